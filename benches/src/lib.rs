@@ -1,0 +1,1 @@
+//! Generators of benchmark inputs shared by the criterion benches.

@@ -1,0 +1,1 @@
+//! `sitlog-compiler`: SitLog source to checked program, interpreter and generated Rust.

@@ -1,0 +1,1 @@
+//! `include_dm!`: a thin proc-macro layer over `sitlog-compiler` (to come).
