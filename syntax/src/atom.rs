@@ -37,7 +37,7 @@ fn interner() -> &'static RwLock<Interner> {
 macro_rules! predefined_atoms {
     ($($konst:ident = $text:literal,)*) => {
         const PREDEFINED: &[&str] = &[$($text,)*];
-        #[allow(dead_code)]
+        #[allow(dead_code, non_camel_case_types, clippy::upper_case_acronyms)]
         enum PredefinedIndex { $($konst,)* }
         /// Atoms with fixed ids, usable without touching the interner.
         pub mod atoms {

@@ -8,6 +8,7 @@
 //! with it.
 
 pub mod atom;
+mod lexer;
 pub mod ops;
 pub mod read;
 pub mod term;
@@ -15,6 +16,8 @@ pub mod write;
 
 pub use atom::{atoms, Atom};
 pub use ops::{OpDef, OpTable, OpType};
-pub use read::{read_clauses, read_clauses_with, read_term, read_term_with, ClauseReader, SyntaxError};
+pub use read::{
+    read_clauses, read_clauses_with, read_term, read_term_with, ClauseReader, SyntaxError,
+};
 pub use term::{Clause, Node, Span, TermId, Terms, VarId, VarInfo};
-pub use write::{writeq, write_term, TermSource, VarLabel, View, WriteOptions};
+pub use write::{write_term, writeq, TermSource, VarLabel, View, WriteOptions};

@@ -4,7 +4,7 @@
 //! the runtime's heap terms print through the same code.
 
 use crate::atom::{atoms, Atom};
-use crate::ops::{OpTable, OpType};
+use crate::ops::OpTable;
 use crate::term::{Clause, Node, TermId};
 use std::fmt::Write as _;
 
@@ -131,8 +131,22 @@ pub fn is_alnum(c: char) -> bool {
 pub fn is_symbol_char(c: char) -> bool {
     matches!(
         c,
-        '#' | '$' | '&' | '*' | '+' | '-' | '.' | '/' | ':' | '<' | '=' | '>' | '?' | '@' | '^'
-            | '~' | '\\'
+        '#' | '$'
+            | '&'
+            | '*'
+            | '+'
+            | '-'
+            | '.'
+            | '/'
+            | ':'
+            | '<'
+            | '='
+            | '>'
+            | '?'
+            | '@'
+            | '^'
+            | '~'
+            | '\\'
     )
 }
 
@@ -201,8 +215,7 @@ impl Writer<'_> {
     fn token(&mut self, text: &str) {
         if let (Some(prev), Some(next)) = (self.out.chars().next_back(), text.chars().next()) {
             let glue = (is_symbol_char(prev) && is_symbol_char(next))
-                || (is_alnum(prev) && is_alnum(next))
-                || (prev == ',' && false);
+                || (is_alnum(prev) && is_alnum(next));
             if glue {
                 self.out.push(' ');
             }
@@ -283,7 +296,8 @@ impl Writer<'_> {
             return;
         }
         if let Some(ops) = self.options.ops {
-            if args.len() == 2 {
+            // SWI writes the bar term canonically: `'|'(a,b)`.
+            if args.len() == 2 && f != atoms::BAR {
                 if let Some(def) = ops.infix(f) {
                     let (lmax, rmax) = def.arg_max();
                     let open = def.priority > max;

@@ -1,0 +1,356 @@
+//! The lexer: pest matches one token at a time (see `token.pest`); this module
+//! turns the match into a [`Token`] and reports lexical errors precisely.
+
+use crate::atom::Atom;
+use crate::read::SyntaxError;
+use crate::term::Span;
+use pest::Parser;
+
+#[derive(pest_derive::Parser)]
+#[grammar = "token.pest"]
+struct TokenGrammar;
+
+/// What a token is.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TokKind {
+    /// A name: letter, symbol, solo or quoted atom.
+    Name {
+        atom: Atom,
+        quoted: bool,
+    },
+    Var(Box<str>),
+    Int(i64),
+    BigInt(Box<str>),
+    Float(f64),
+    Str(Box<str>),
+    BackQuoted(Box<str>),
+    /// `(` directly after a name: functional notation.
+    OpenCt,
+    Punct(char),
+    /// The end token `.` followed by layout or end of input.
+    End,
+    Eof,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Token {
+    pub kind: TokKind,
+    pub span: Span,
+    /// Whether layout (spaces, comments) came before the token.
+    pub layout_before: bool,
+}
+
+pub struct Lexer<'s> {
+    src: &'s str,
+    pos: usize,
+    prev_was_name: bool,
+}
+
+impl<'s> Lexer<'s> {
+    pub fn new(src: &'s str, pos: usize) -> Lexer<'s> {
+        Lexer {
+            src,
+            pos,
+            prev_was_name: false,
+        }
+    }
+
+    /// Skips one character after an error, so that reading can resume.
+    pub fn skip_char(&mut self) {
+        if let Some(c) = self.src[self.pos..].chars().next() {
+            self.pos += c.len_utf8();
+        }
+    }
+
+    pub fn next_token(&mut self) -> Result<Token, SyntaxError> {
+        let rest = &self.src[self.pos..];
+        let base = self.pos;
+        let pairs = match TokenGrammar::parse(Rule::next, rest) {
+            Ok(pairs) => pairs,
+            Err(_) => return Err(self.lex_error(base)),
+        };
+        let next = pairs
+            .into_iter()
+            .next()
+            .expect("`next` rule produced a pair");
+        let mut layout_before = false;
+        let mut token = None;
+        for pair in next.into_inner() {
+            match pair.as_rule() {
+                Rule::layout => layout_before = true,
+                Rule::EOI => {}
+                _ => token = Some(pair),
+            }
+        }
+        let Some(pair) = token else {
+            // Only layout (or nothing) left. An unterminated block comment is not layout.
+            let after = base + next_layout_end(rest);
+            if self.src[after..].starts_with("/*") {
+                return Err(unterminated(after, "block comment", "`*/`"));
+            }
+            self.pos = self.src.len();
+            return Ok(Token {
+                kind: TokKind::Eof,
+                span: Span::new(self.src.len(), self.src.len()),
+                layout_before,
+            });
+        };
+        let start = base + pair.as_span().start();
+        let end = base + pair.as_span().end();
+        let text = pair.as_str();
+        let span = Span::new(start, end);
+        let kind = match pair.as_rule() {
+            Rule::end => TokKind::End,
+            Rule::float => match text.parse::<f64>() {
+                Ok(f) if f.is_finite() => TokKind::Float(f),
+                _ => {
+                    return Err(SyntaxError::new(
+                        span,
+                        format!("float `{text}` is out of range"),
+                    ))
+                }
+            },
+            Rule::char_code => {
+                let body = &text[2..];
+                let code = if body == "''" {
+                    '\'' as i64
+                } else if let Some(esc) = body.strip_prefix('\\') {
+                    let mut chars = String::new();
+                    unescape_one(esc, start + 3, &mut chars)?;
+                    chars.chars().next().map_or(0, |c| c as i64)
+                } else {
+                    body.chars().next().map_or(0, |c| c as i64)
+                };
+                TokKind::Int(code)
+            }
+            Rule::hex => radix(&text[2..], 16, span)?,
+            Rule::octal => radix(&text[2..], 8, span)?,
+            Rule::binary => radix(&text[2..], 2, span)?,
+            Rule::integer => {
+                let digits: String = text.chars().filter(|&c| c != '_').collect();
+                match digits.parse::<i64>() {
+                    Ok(i) => TokKind::Int(i),
+                    Err(_) => TokKind::BigInt(digits.trim_start_matches('0').into()),
+                }
+            }
+            Rule::variable => TokKind::Var(text.into()),
+            Rule::letter_name | Rule::solo => TokKind::Name {
+                atom: Atom::intern(text),
+                quoted: false,
+            },
+            Rule::symbol_name => {
+                if let Some(i) = text.find("/*") {
+                    // `/*` inside a symbol run starts a comment that never ends
+                    // (a closed one would have been layout).
+                    let at = start + i;
+                    if i == 0 {
+                        return Err(unterminated(at, "block comment", "`*/`"));
+                    }
+                    self.pos = at;
+                    return Ok(Token {
+                        kind: TokKind::Name {
+                            atom: Atom::intern(&text[..i]),
+                            quoted: false,
+                        },
+                        span: Span::new(start, at),
+                        layout_before,
+                    });
+                }
+                TokKind::Name {
+                    atom: Atom::intern(text),
+                    quoted: false,
+                }
+            }
+            Rule::quoted => TokKind::Name {
+                atom: Atom::intern(&unquote(text, start)?),
+                quoted: true,
+            },
+            Rule::dq_string => TokKind::Str(unquote(text, start)?.into()),
+            Rule::bq_string => TokKind::BackQuoted(unquote(text, start)?.into()),
+            Rule::punct => {
+                let c = text.chars().next().expect("punct is one char");
+                if c == '(' && !layout_before && self.prev_was_name {
+                    TokKind::OpenCt
+                } else {
+                    TokKind::Punct(c)
+                }
+            }
+            other => unreachable!("token rule {other:?} is not a token"),
+        };
+        self.pos = end;
+        self.prev_was_name = matches!(kind, TokKind::Name { .. });
+        Ok(Token {
+            kind,
+            span,
+            layout_before,
+        })
+    }
+
+    fn lex_error(&mut self, base: usize) -> SyntaxError {
+        let rest = &self.src[base..];
+        let at = base + next_layout_end(rest);
+        let tail = &self.src[at..];
+        let c = tail.chars().next().unwrap_or(' ');
+        match c {
+            '\'' => unterminated_or_bad_escape(self.src, at, '\'', "quoted atom"),
+            '"' => unterminated_or_bad_escape(self.src, at, '"', "string"),
+            '`' => unterminated_or_bad_escape(self.src, at, '`', "back-quoted string"),
+            _ if tail.starts_with("0'") => SyntaxError::new(
+                Span::new(at, at + 2),
+                "incomplete character code `0'`".to_owned(),
+            ),
+            _ => {
+                let what = if c.is_control() {
+                    format!("unexpected control character U+{:04X}", c as u32)
+                } else {
+                    format!("unexpected character `{c}`")
+                };
+                SyntaxError::new(Span::new(at, at + c.len_utf8()), what)
+            }
+        }
+    }
+}
+
+/// Byte length of the layout (spaces and complete comments) at the start of `s`.
+fn next_layout_end(s: &str) -> usize {
+    match TokenGrammar::parse(Rule::layout, s) {
+        Ok(mut pairs) => pairs.next().map_or(0, |p| p.as_span().end()),
+        Err(_) => 0,
+    }
+}
+
+fn unterminated(at: usize, what: &str, closer: &str) -> SyntaxError {
+    let mut e = SyntaxError::new(
+        Span::new(at, at + 2.min(1 + what.len())),
+        format!("unterminated {what}"),
+    );
+    e.span = Span::new(at, at + if what == "block comment" { 2 } else { 1 });
+    e.help = Some(format!("add the closing {closer}"));
+    e.incomplete = true;
+    e
+}
+
+fn unterminated_or_bad_escape(src: &str, at: usize, quote: char, what: &str) -> SyntaxError {
+    // Find whether a closing quote exists: if so the problem is an escape.
+    let body = &src[at + 1..];
+    let mut chars = body.char_indices();
+    while let Some((i, c)) = chars.next() {
+        if c == '\\' {
+            if let Some((j, e)) = chars.next() {
+                if !"abfnrtvxe0123456789\\'\"`\n".contains(e) {
+                    let s = at + 1 + i;
+                    let mut err = SyntaxError::new(
+                        Span::new(s, at + 1 + j + e.len_utf8()),
+                        format!("unknown escape sequence `\\{e}` in {what}"),
+                    );
+                    err.help = Some("write `\\\\` for a backslash".to_owned());
+                    return err;
+                }
+            }
+        } else if c == quote {
+            if body[i + 1..].starts_with(quote) {
+                chars.next();
+                continue;
+            }
+            break;
+        }
+    }
+    let mut e = unterminated(at, what, &format!("`{quote}`"));
+    e.span = Span::new(at, at + 1);
+    e
+}
+
+fn radix(digits: &str, base: u32, span: Span) -> Result<TokKind, SyntaxError> {
+    match i64::from_str_radix(digits, base) {
+        Ok(i) => Ok(TokKind::Int(i)),
+        Err(_) => Err(SyntaxError::new(
+            span,
+            "integer literal is too large (more than 64 bits)".to_owned(),
+        )),
+    }
+}
+
+/// Resolves the quotes and escapes of a quoted token (`'..'`, `".."`, `` `..` ``).
+fn unquote(text: &str, start: usize) -> Result<String, SyntaxError> {
+    let quote = text.chars().next().expect("quoted token has a quote");
+    let body = &text[1..text.len() - 1];
+    let mut out = String::with_capacity(body.len());
+    let mut i = 0;
+    while i < body.len() {
+        let c = body[i..].chars().next().expect("in bounds");
+        if c == quote {
+            // Doubled quote.
+            out.push(quote);
+            i += 2;
+        } else if c == '\\' {
+            i += 1 + unescape_one(&body[i + 1..], start + 1 + i + 1, &mut out)?;
+        } else {
+            out.push(c);
+            i += c.len_utf8();
+        }
+    }
+    Ok(out)
+}
+
+/// Resolves one escape (the text after `\`); returns the bytes consumed.
+fn unescape_one(s: &str, at: usize, out: &mut String) -> Result<usize, SyntaxError> {
+    let c = s.chars().next().unwrap_or('\\');
+    let simple = match c {
+        'a' => Some('\u{7}'),
+        'b' => Some('\u{8}'),
+        'f' => Some('\u{c}'),
+        'n' => Some('\n'),
+        'r' => Some('\r'),
+        't' => Some('\t'),
+        'v' => Some('\u{b}'),
+        'e' => Some('\u{1b}'),
+        's' => Some(' '),
+        '\\' | '\'' | '"' | '`' => Some(c),
+        _ => None,
+    };
+    if let Some(ch) = simple {
+        out.push(ch);
+        return Ok(1);
+    }
+    if c == '\n' {
+        return Ok(1); // line continuation
+    }
+    let (digits, base, skip) = if c == 'x' {
+        let d: String = s[1..]
+            .chars()
+            .take_while(|c| c.is_ascii_hexdigit())
+            .collect();
+        (d, 16, 1)
+    } else if c.is_digit(8) {
+        let d: String = s.chars().take_while(|c| c.is_digit(8)).collect();
+        (d, 8, 0)
+    } else {
+        let mut e = SyntaxError::new(
+            Span::new(at - 1, at + c.len_utf8()),
+            format!("unknown escape sequence `\\{c}`"),
+        );
+        e.help = Some("write `\\\\` for a backslash".to_owned());
+        return Err(e);
+    };
+    let mut used = skip + digits.len();
+    if s[used..].starts_with('\\') {
+        used += 1;
+    }
+    let code = u32::from_str_radix(&digits, base).ok();
+    match code.and_then(char::from_u32) {
+        Some(ch) => {
+            out.push(ch);
+            Ok(used)
+        }
+        None => Err(SyntaxError::new(
+            Span::new(at - 1, at + used),
+            "escape sequence is not a valid character code".to_owned(),
+        )),
+    }
+}
+
+impl<'s> Lexer<'s> {
+    pub fn source(&self) -> &'s str {
+        self.src
+    }
+}
