@@ -1,1 +1,23 @@
-//! `sitlog-compiler`: SitLog source to checked program, interpreter and generated Rust.
+//! `sitlog-compiler`: SitLog source to checked program, and from there to the
+//! reference interpreter and generated Rust.
+//!
+//! Stages run one way: [`load`] (files → read terms) → [`ast`] (SitLog layer)
+//! → [`check`] (diagnostics; produces [`check::Checked`]) → IR → interpret |
+//! generate. Only [`load`] touches the file system; rendering of diagnostics
+//! lives in [`diag`].
+
+pub mod ast;
+pub mod check;
+pub mod diag;
+pub mod load;
+pub mod source;
+
+use std::path::Path;
+
+/// Loads and checks an application directory or DM file.
+pub fn check_path(
+    path: &Path,
+) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
+    let (program, diags) = load::load(path)?;
+    Ok(check::check(program, diags))
+}

@@ -1,0 +1,493 @@
+//! The SitLog layer over read terms: DMs, situations, arcs, variable
+//! declarations and side-file declarations, every node with its span.
+//!
+//! Building is shape checking only (is this a `diag_mod/3`, is a situation a
+//! list of `attr ==> value`, is an arc `E : A => N`); names are resolved by
+//! the checker. Terms stay in their clause's arena and are referred to by
+//! [`TermId`].
+
+use crate::diag::{Diagnostic, Loc};
+use crate::source::{FileId, SourceMap};
+use sitlog_syntax::{atoms, Atom, Clause, Node, Span, TermId};
+
+/// A whole application (or a set of DM files checked together).
+#[derive(Debug, Default)]
+pub struct Program {
+    pub sources: SourceMap,
+    pub dms: Vec<Dm>,
+    pub globals: Vec<GlobalVar>,
+    pub basic_actions: Vec<BasicAction>,
+    pub expectation_types: Vec<(Atom, Loc)>,
+    /// Heads of the clauses of `user_functions.pl` / `templates.pl`.
+    pub functions: Vec<FunctionHead>,
+    /// Prolog files to consult at run time (user functions, templates), in load order.
+    pub prolog_files: Vec<FileId>,
+    /// Whether a `global_vars.pl` was read (if not, every `get`/`set` needs a local).
+    pub has_globals_file: bool,
+}
+
+/// One `diag_mod(Id, Situations, LocalVars)`.
+#[derive(Debug)]
+pub struct Dm {
+    pub file: FileId,
+    pub clause: Clause,
+    /// The `Id` term: an atom, or a compound whose arguments are the parameters.
+    pub head: TermId,
+    pub name: Atom,
+    pub arity: usize,
+    pub situations: Vec<Situation>,
+    pub locals: Vec<LocalVar>,
+}
+
+impl Dm {
+    pub fn loc(&self, span: Span) -> Loc {
+        Loc {
+            file: self.file,
+            span,
+        }
+    }
+    pub fn span_of(&self, t: TermId) -> Span {
+        self.clause.terms.span(t)
+    }
+}
+
+/// What kind of situation a `type` names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SituationKind {
+    Final,
+    Recursive,
+    /// Any other type names a perceptual interpreter (`neutral`, `speech`, ...).
+    Perceptual,
+}
+
+#[derive(Debug)]
+pub struct Situation {
+    pub span: Span,
+    pub id: Option<TermId>,
+    pub kind_term: Option<TermId>,
+    pub arcs: Option<Vec<Arc>>,
+    /// Span of the `arcs ==> [...]` pair.
+    pub arcs_span: Option<Span>,
+    pub prog: Option<TermId>,
+    pub in_arg: Option<TermId>,
+    pub out_arg: Option<TermId>,
+    pub embedded_dm: Option<TermId>,
+    pub diag_mod: Option<TermId>,
+    /// Attributes SitLog does not know, kept as written.
+    pub others: Vec<(Atom, TermId, Span)>,
+}
+
+impl Situation {
+    pub fn kind(&self, clause: &Clause) -> SituationKind {
+        match self.kind_term.and_then(|t| clause.terms.atom(t)) {
+            Some(a) if a == atoms::FINAL => SituationKind::Final,
+            Some(a) if a == atoms::RECURSIVE => SituationKind::Recursive,
+            _ => SituationKind::Perceptual,
+        }
+    }
+}
+
+/// `Expectation : Action => Next`.
+#[derive(Debug, Clone, Copy)]
+pub struct Arc {
+    pub span: Span,
+    pub expectation: TermId,
+    pub action: TermId,
+    pub next: TermId,
+}
+
+/// `name ==> default` in a DM's local variable list.
+#[derive(Debug, Clone, Copy)]
+pub struct LocalVar {
+    pub name: Atom,
+    pub value: TermId,
+    pub span: Span,
+}
+
+/// `name ==> value.` in `global_vars.pl`.
+#[derive(Debug)]
+pub struct GlobalVar {
+    pub name: Atom,
+    pub loc: Loc,
+    pub clause: Clause,
+    pub value: TermId,
+}
+
+/// One clause of `basic_actions.pl`: `[id ==> beep, arity ==> [], mod ==> sound, break ==> no]`.
+#[derive(Debug)]
+pub struct BasicAction {
+    pub name: Atom,
+    pub loc: Loc,
+    pub clause: Clause,
+}
+
+/// The head of a user-function clause: `name/arity`.
+#[derive(Debug, Clone, Copy)]
+pub struct FunctionHead {
+    pub name: Atom,
+    pub arity: usize,
+    pub loc: Loc,
+}
+
+/// Error codes of the SitLog layer.
+pub mod codes {
+    pub const NOT_A_DM: &str = "W0101";
+    pub const MALFORMED_DM: &str = "E0102";
+    pub const MALFORMED_SITUATION: &str = "E0103";
+    pub const MALFORMED_ARC: &str = "E0104";
+    pub const MALFORMED_VAR: &str = "E0105";
+    pub const MALFORMED_SIDE_FILE: &str = "E0106";
+    pub const DUPLICATE_ATTRIBUTE: &str = "W0107";
+}
+
+fn dbl_arrow_pair(clause: &Clause, t: TermId) -> Option<(TermId, TermId)> {
+    clause
+        .terms
+        .compound(t, atoms::DOUBLE_ARROW, 2)
+        .map(|a| (a[0], a[1]))
+}
+
+/// Builds the DMs of one DM file's clauses.
+pub fn build_dms(
+    file: FileId,
+    clauses: Vec<Clause>,
+    out: &mut Vec<Dm>,
+    diags: &mut Vec<Diagnostic>,
+) {
+    for clause in clauses {
+        let loc = |span| Loc { file, span };
+        let root = clause.root;
+        let Some(args) = clause.terms.compound(root, atoms::DIAG_MOD, 3) else {
+            diags.push(
+                Diagnostic::warning(
+                    codes::NOT_A_DM,
+                    loc(clause.terms.span(root)),
+                    "this clause is not a `diag_mod/3` and is ignored",
+                )
+                .with_help("a DM file holds `diag_mod(Id, Situations, LocalVars).`"),
+            );
+            continue;
+        };
+        let (head, sits, locals) = (args[0], args[1], args[2]);
+        let (name, arity) = match clause.terms.functor(head) {
+            Some(f) => f,
+            None => {
+                diags.push(
+                    Diagnostic::error(
+                        codes::MALFORMED_DM,
+                        loc(clause.terms.span(head)),
+                        "the DM identifier must be an atom or a compound term",
+                    )
+                    .with_label("not an atom or compound"),
+                );
+                continue;
+            }
+        };
+        let mut situations = Vec::new();
+        match clause.terms.proper_list(sits) {
+            Some(items) => {
+                for item in items {
+                    if let Some(s) = build_situation(&clause, file, item, diags) {
+                        situations.push(s);
+                    }
+                }
+            }
+            None => diags.push(
+                Diagnostic::error(
+                    codes::MALFORMED_DM,
+                    loc(clause.terms.span(sits)),
+                    "the situations of a DM must be a list",
+                )
+                .with_label("expected `[Situation, ...]`"),
+            ),
+        }
+        let mut local_vars = Vec::new();
+        match clause.terms.proper_list(locals) {
+            Some(items) => {
+                for item in items {
+                    match dbl_arrow_pair(&clause, item)
+                        .and_then(|(n, v)| clause.terms.atom(n).map(|n| (n, v)))
+                    {
+                        Some((name, value)) => local_vars.push(LocalVar {
+                            name,
+                            value,
+                            span: clause.terms.span(item),
+                        }),
+                        None => diags.push(
+                            Diagnostic::error(
+                                codes::MALFORMED_VAR,
+                                loc(clause.terms.span(item)),
+                                "a local variable must be written `name ==> value`",
+                            )
+                            .with_label("not `name ==> value`"),
+                        ),
+                    }
+                }
+            }
+            None => diags.push(
+                Diagnostic::error(
+                    codes::MALFORMED_DM,
+                    loc(clause.terms.span(locals)),
+                    "the local variables of a DM must be a list of `name ==> value`",
+                )
+                .with_label("expected a list"),
+            ),
+        }
+        out.push(Dm {
+            file,
+            head,
+            name,
+            arity,
+            situations,
+            locals: local_vars,
+            clause,
+        });
+    }
+}
+
+fn build_situation(
+    clause: &Clause,
+    file: FileId,
+    item: TermId,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<Situation> {
+    let terms = &clause.terms;
+    let loc = |span| Loc { file, span };
+    let span = terms.span(item);
+    let Some(attrs) = terms.proper_list(item) else {
+        diags.push(
+            Diagnostic::error(
+                codes::MALFORMED_SITUATION,
+                loc(span),
+                "a situation must be a list of `attribute ==> value` pairs",
+            )
+            .with_label("not a list"),
+        );
+        return None;
+    };
+    let mut s = Situation {
+        span,
+        id: None,
+        kind_term: None,
+        arcs: None,
+        arcs_span: None,
+        prog: None,
+        in_arg: None,
+        out_arg: None,
+        embedded_dm: None,
+        diag_mod: None,
+        others: Vec::new(),
+    };
+    let mut seen: Vec<(Atom, Span)> = Vec::new();
+    for attr in attrs {
+        let pair_span = terms.span(attr);
+        let Some((name, value)) =
+            dbl_arrow_pair(clause, attr).and_then(|(n, v)| terms.atom(n).map(|n| (n, v)))
+        else {
+            diags.push(
+                Diagnostic::error(
+                    codes::MALFORMED_SITUATION,
+                    loc(pair_span),
+                    "a situation attribute must be written `attribute ==> value`",
+                )
+                .with_label("not `attribute ==> value`"),
+            );
+            continue;
+        };
+        if let Some((_, first)) = seen.iter().find(|(n, _)| *n == name) {
+            diags.push(
+                Diagnostic::warning(
+                    codes::DUPLICATE_ATTRIBUTE,
+                    loc(pair_span),
+                    format!("attribute `{name}` is given twice; the first one is used"),
+                )
+                .with_secondary(loc(*first), "first given here"),
+            );
+            continue;
+        }
+        seen.push((name, pair_span));
+        let slot = match name.as_str() {
+            "id" => &mut s.id,
+            "type" => &mut s.kind_term,
+            "prog" => &mut s.prog,
+            "in_arg" => &mut s.in_arg,
+            "out_arg" => &mut s.out_arg,
+            "embedded_dm" => &mut s.embedded_dm,
+            "diag_mod" => &mut s.diag_mod,
+            "arcs" => {
+                s.arcs_span = Some(pair_span);
+                s.arcs = Some(build_arcs(clause, file, value, diags));
+                continue;
+            }
+            _ => {
+                s.others.push((name, value, pair_span));
+                continue;
+            }
+        };
+        *slot = Some(value);
+    }
+    Some(s)
+}
+
+fn build_arcs(
+    clause: &Clause,
+    file: FileId,
+    value: TermId,
+    diags: &mut Vec<Diagnostic>,
+) -> Vec<Arc> {
+    let terms = &clause.terms;
+    let loc = |span| Loc { file, span };
+    let Some(items) = terms.proper_list(value) else {
+        diags.push(
+            Diagnostic::error(
+                codes::MALFORMED_ARC,
+                loc(terms.span(value)),
+                "`arcs` must be a list of `Expectation : Action => Next`",
+            )
+            .with_label("not a list"),
+        );
+        return Vec::new();
+    };
+    let mut arcs = Vec::new();
+    for item in items {
+        let shape = terms.compound(item, atoms::ARROW, 2).and_then(|a| {
+            terms
+                .compound(a[0], atoms::COLON, 2)
+                .map(|ea| (ea[0], ea[1], a[1]))
+        });
+        match shape {
+            Some((expectation, action, next)) => arcs.push(Arc {
+                span: terms.span(item),
+                expectation,
+                action,
+                next,
+            }),
+            None => diags.push(
+                Diagnostic::error(
+                    codes::MALFORMED_ARC,
+                    loc(terms.span(item)),
+                    "an arc must have the form `Expectation : Action => Next`",
+                )
+                .with_label("not an arc"),
+            ),
+        }
+    }
+    arcs
+}
+
+/// `name ==> value.` clauses of `global_vars.pl`.
+pub fn build_globals(
+    file: FileId,
+    clauses: Vec<Clause>,
+    out: &mut Vec<GlobalVar>,
+    diags: &mut Vec<Diagnostic>,
+) {
+    for clause in clauses {
+        let loc = Loc {
+            file,
+            span: clause.span,
+        };
+        match dbl_arrow_pair(&clause, clause.root)
+            .and_then(|(n, v)| clause.terms.atom(n).map(|n| (n, v)))
+        {
+            Some((name, value)) => out.push(GlobalVar {
+                name,
+                loc,
+                value,
+                clause,
+            }),
+            None => diags.push(
+                Diagnostic::error(
+                    codes::MALFORMED_SIDE_FILE,
+                    loc,
+                    "a global variable must be written `name ==> value.`",
+                )
+                .with_label("not `name ==> value`"),
+            ),
+        }
+    }
+}
+
+/// Clauses of `basic_actions.pl`: attribute lists with an `id`.
+pub fn build_basic_actions(
+    file: FileId,
+    clauses: Vec<Clause>,
+    out: &mut Vec<BasicAction>,
+    diags: &mut Vec<Diagnostic>,
+) {
+    for clause in clauses {
+        let loc = Loc {
+            file,
+            span: clause.span,
+        };
+        let id = clause.terms.proper_list(clause.root).and_then(|items| {
+            items.into_iter().find_map(|it| {
+                dbl_arrow_pair(&clause, it)
+                    .filter(|(n, _)| clause.terms.atom(*n) == Some(atoms::ID))
+                    .and_then(|(_, v)| clause.terms.atom(v))
+            })
+        });
+        match id {
+            Some(name) => out.push(BasicAction { name, loc, clause }),
+            None => diags.push(
+                Diagnostic::error(
+                    codes::MALFORMED_SIDE_FILE,
+                    loc,
+                    "a basic action must be a list of `attribute ==> value` with an atom `id`",
+                )
+                .with_help("e.g. `[id ==> beep, arity ==> [], mod ==> sound, break ==> no].`"),
+            ),
+        }
+    }
+}
+
+/// Atoms of `expectation_types.pl`.
+pub fn build_expectation_types(
+    file: FileId,
+    clauses: Vec<Clause>,
+    out: &mut Vec<(Atom, Loc)>,
+    diags: &mut Vec<Diagnostic>,
+) {
+    for clause in clauses {
+        let loc = Loc {
+            file,
+            span: clause.span,
+        };
+        match clause.terms.atom(clause.root) {
+            Some(a) => out.push((a, loc)),
+            None => diags.push(Diagnostic::error(
+                codes::MALFORMED_SIDE_FILE,
+                loc,
+                "an expectation type must be an atom",
+            )),
+        }
+    }
+}
+
+/// Heads of Prolog clauses (`Head :- Body.`, facts); directives are skipped.
+pub fn build_function_heads(file: FileId, clauses: &[Clause], out: &mut Vec<FunctionHead>) {
+    let neck = Atom::intern(":-");
+    for clause in clauses {
+        let terms = &clause.terms;
+        let head = match terms.node(clause.root) {
+            Node::Compound {
+                functor, arity: 1, ..
+            } if *functor == neck => continue,
+            _ => terms
+                .compound(clause.root, neck, 2)
+                .map_or(clause.root, |a| a[0]),
+        };
+        if let Some((name, arity)) = terms.functor(head) {
+            if !out.iter().any(|h| h.name == name && h.arity == arity) {
+                out.push(FunctionHead {
+                    name,
+                    arity,
+                    loc: Loc {
+                        file,
+                        span: terms.span(head),
+                    },
+                });
+            }
+        }
+    }
+}

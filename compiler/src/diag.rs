@@ -1,0 +1,195 @@
+//! Diagnostics: one value (code, severity, message, spans, help) and its
+//! renderers: human (ariadne, rustc-like), JSON lines for tools, and a short
+//! one-line form for `compile_error!`.
+
+use crate::source::{FileId, LineCol, SourceMap};
+use sitlog_syntax::Span;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Severity {
+    Error,
+    Warning,
+}
+
+/// A position in a file of the source map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Loc {
+    pub file: FileId,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Diagnostic {
+    pub code: &'static str,
+    pub severity: Severity,
+    pub message: String,
+    pub loc: Loc,
+    /// Text under the primary caret.
+    pub label: Option<String>,
+    /// Secondary positions (e.g. the first definition of a duplicate).
+    pub labels: Vec<(Loc, String)>,
+    pub help: Option<String>,
+}
+
+impl Diagnostic {
+    pub fn error(code: &'static str, loc: Loc, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            code,
+            severity: Severity::Error,
+            message: message.into(),
+            loc,
+            label: None,
+            labels: Vec::new(),
+            help: None,
+        }
+    }
+    pub fn warning(code: &'static str, loc: Loc, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Warning,
+            ..Diagnostic::error(code, loc, message)
+        }
+    }
+    pub fn with_label(mut self, label: impl Into<String>) -> Diagnostic {
+        self.label = Some(label.into());
+        self
+    }
+    pub fn with_secondary(mut self, loc: Loc, label: impl Into<String>) -> Diagnostic {
+        self.labels.push((loc, label.into()));
+        self
+    }
+    pub fn with_help(mut self, help: impl Into<String>) -> Diagnostic {
+        self.help = Some(help.into());
+        self
+    }
+    pub fn is_error(&self) -> bool {
+        self.severity == Severity::Error
+    }
+}
+
+/// Sorts diagnostics by file and position (stable for equal positions).
+pub fn sort(diags: &mut [Diagnostic]) {
+    diags.sort_by_key(|d| (d.loc.file, d.loc.span.start, d.loc.span.end));
+}
+
+/// Renders a diagnostic for a terminal, rustc-like (ariadne).
+pub fn render_human(diag: &Diagnostic, sources: &SourceMap, color: bool) -> String {
+    use ariadne::{Config, IndexType, Label, Report, ReportKind};
+    let file = sources.get(diag.loc.file);
+    let kind = match diag.severity {
+        Severity::Error => ReportKind::Error,
+        Severity::Warning => ReportKind::Warning,
+    };
+    let range = clamp(diag.loc.span, file.text.len());
+    let mut report = Report::build(kind, (file.name.clone(), range.clone()))
+        .with_config(
+            Config::default()
+                .with_index_type(IndexType::Byte)
+                .with_color(color),
+        )
+        .with_code(diag.code)
+        .with_message(&diag.message);
+    let mut primary = Label::new((file.name.clone(), range)).with_order(0);
+    if let Some(text) = &diag.label {
+        primary = primary.with_message(text);
+    }
+    report = report.with_label(primary);
+    for (i, (loc, text)) in diag.labels.iter().enumerate() {
+        let f = sources.get(loc.file);
+        report = report.with_label(
+            Label::new((f.name.clone(), clamp(loc.span, f.text.len())))
+                .with_message(text)
+                .with_order(i as i32 + 1),
+        );
+    }
+    if let Some(help) = &diag.help {
+        report = report.with_help(help);
+    }
+    let mut files: Vec<(String, String)> = vec![(file.name.clone(), file.text.clone())];
+    for (loc, _) in &diag.labels {
+        let f = sources.get(loc.file);
+        if !files.iter().any(|(n, _)| *n == f.name) {
+            files.push((f.name.clone(), f.text.clone()));
+        }
+    }
+    let mut out = Vec::new();
+    if report
+        .finish()
+        .write(ariadne::sources(files), &mut out)
+        .is_err()
+    {
+        return render_short(diag, sources) + "\n";
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+fn clamp(span: Span, len: usize) -> std::ops::Range<usize> {
+    let start = (span.start as usize).min(len);
+    let end = (span.end as usize).clamp(start, len);
+    start..end
+}
+
+/// One diagnostic as a JSON object (for editors and CI).
+pub fn render_json(diag: &Diagnostic, sources: &SourceMap) -> serde_json::Value {
+    let file = sources.get(diag.loc.file);
+    let start: LineCol = file.line_col(diag.loc.span.start);
+    let end: LineCol = file.line_col(diag.loc.span.end);
+    let labels: Vec<serde_json::Value> = diag
+        .labels
+        .iter()
+        .map(|(loc, text)| {
+            let f = sources.get(loc.file);
+            let p = f.line_col(loc.span.start);
+            serde_json::json!({"file": f.name, "line": p.line, "column": p.column, "message": text})
+        })
+        .collect();
+    serde_json::json!({
+        "code": diag.code,
+        "severity": diag.severity,
+        "message": diag.message,
+        "file": file.name,
+        "line": start.line,
+        "column": start.column,
+        "end": {"line": end.line, "column": end.column},
+        "label": diag.label,
+        "labels": labels,
+        "help": diag.help,
+    })
+}
+
+/// `file:line:col: error[CODE]: message` plus the source line and a caret:
+/// the text the proc-macro puts in `compile_error!`.
+pub fn render_short(diag: &Diagnostic, sources: &SourceMap) -> String {
+    let file = sources.get(diag.loc.file);
+    let pos = file.line_col(diag.loc.span.start);
+    let line_text = file
+        .text
+        .lines()
+        .nth(pos.line as usize - 1)
+        .unwrap_or("")
+        .trim_end();
+    let width = file
+        .snippet(diag.loc.span)
+        .lines()
+        .next()
+        .map_or(1, |s| s.chars().count().max(1));
+    let mut s = format!(
+        "{}:{}:{}: {}[{}]: {}\n  | {}\n  | {}{}",
+        file.name,
+        pos.line,
+        pos.column,
+        match diag.severity {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        },
+        diag.code,
+        diag.message,
+        line_text,
+        " ".repeat(pos.column as usize - 1),
+        "^".repeat(width)
+    );
+    if let Some(help) = &diag.help {
+        s.push_str(&format!("\n  = help: {help}"));
+    }
+    s
+}
