@@ -193,7 +193,13 @@ fn read_file_clauses(program: &Program, file: FileId, diags: &mut Vec<Diagnostic
 
 /// A reader error as a diagnostic.
 pub fn syntax_diagnostic(file: FileId, e: SyntaxError) -> Diagnostic {
-    let mut d = Diagnostic::error(codes::SYNTAX, Loc { file, span: e.span }, e.message);
+    let label = if e.incomplete {
+        "input ends here"
+    } else {
+        "here"
+    };
+    let mut d =
+        Diagnostic::error(codes::SYNTAX, Loc { file, span: e.span }, e.message).with_label(label);
     d.help = e.help;
     for (span, text) in e.labels {
         d = d.with_secondary(Loc { file, span }, text);
