@@ -54,7 +54,7 @@ fn json_diagnostic_has_position_fields() {
         "diag_mod(m, [[id ==> a, type ==> final]], []).\nfoo(",
     )]);
     let (result, diags) = check::check(program, diags);
-    let program = result.err().expect("syntax error is an error");
+    let program = result.expect_err("syntax error is an error");
     let v = diag::render_json(&diags[0], &program.sources);
     assert_eq!(v["code"], "E0001");
     assert_eq!(v["severity"], "error");
