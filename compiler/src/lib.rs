@@ -9,7 +9,10 @@
 pub mod ast;
 pub mod check;
 pub mod diag;
+pub mod interp;
+pub mod ir;
 pub mod load;
+pub mod run;
 pub mod source;
 
 use std::path::Path;

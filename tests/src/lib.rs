@@ -1,1 +1,164 @@
-//! Helpers shared by the workspace integration tests in `tests/tests/`.
+//! Helpers shared by the workspace integration tests in `tests/tests/`:
+//! running an example application in test mode and comparing results.
+
+use sitlog_compiler::run::{self, RunConfig};
+use sitlog_runtime::machine::Options;
+use sitlog_runtime::report;
+use sitlog_runtime::testmode::{ScriptPerception, TextActions};
+use sitlog_runtime::{atoms, Functions, Term};
+use std::path::{Path, PathBuf};
+
+/// The workspace root.
+pub fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf()
+}
+
+/// Rust versions of the Appendix A user functions `f`, `g` and `h`
+/// (Listing A5), used until Prolog user functions run.
+pub fn appendix_a_functions(functions: &mut Functions) {
+    // f(X): `ok` if X is the local variable `day`, else `'not ok'`.
+    functions.register("f", 1, |call, args| {
+        let get = call.store.parse("get(day, Day)").map_err(|e| e.message)?.0;
+        let day = call.var_op(get)?;
+        let ok = call.store.identical(args[0], day);
+        Ok(Term::atom(sitlog_runtime::Atom::intern(if ok {
+            "ok"
+        } else {
+            "not ok"
+        })))
+    });
+    // g(_): the last transition of the current DM.
+    functions.register("g", 1, |call, _| {
+        Ok(sitlog_runtime::functions::standard::last_transition(call))
+    });
+    // h(X, Y): `is` if X == Y, else `rs`.
+    functions.register("h", 2, |call, args| {
+        let same = call.store.identical(args[0], args[1]);
+        Ok(Term::atom(sitlog_runtime::Atom::intern(if same {
+            "is"
+        } else {
+            "rs"
+        })))
+    });
+    let _ = atoms::NIL;
+}
+
+/// Options of an example run, read from the optional `run.args` file of the
+/// application: lines `main=TERM`, `in_arg=TERM`, `functions=appendix_a`.
+pub struct ExampleArgs {
+    pub main: String,
+    pub in_arg: Option<String>,
+    pub appendix_a: bool,
+}
+
+pub fn example_args(app: &Path) -> ExampleArgs {
+    let mut args = ExampleArgs {
+        main: "main".into(),
+        in_arg: None,
+        appendix_a: app.file_name().is_some_and(|n| n == "appendix_a"),
+    };
+    if let Ok(text) = std::fs::read_to_string(app.join("run.args")) {
+        for line in text.lines() {
+            if let Some(v) = line.strip_prefix("main=") {
+                args.main = v.trim().to_owned();
+            } else if let Some(v) = line.strip_prefix("in_arg=") {
+                args.in_arg = Some(v.trim().to_owned());
+            }
+        }
+    }
+    args
+}
+
+/// Runs an example application on its `script.txt`; returns the JSON report.
+pub fn run_example(app: &Path) -> serde_json::Value {
+    let (result, diags) = sitlog_compiler::check_path(app).expect("example is readable");
+    let checked = match result {
+        Ok(c) => c,
+        Err(_) => panic!("{} does not check: {diags:#?}", app.display()),
+    };
+    let ir = sitlog_compiler::ir::lower(&checked);
+    let args = example_args(app);
+    let script = std::fs::read_to_string(app.join("script.txt")).unwrap_or_default();
+    let mut perception = ScriptPerception::new("script.txt", script);
+    let mut actions = TextActions::new(std::io::sink(), ir.basic_actions.clone());
+    let mut functions = Functions::standard();
+    if args.appendix_a {
+        appendix_a_functions(&mut functions);
+    }
+    let config = RunConfig {
+        main: args.main,
+        in_arg: args.in_arg,
+        options: Options::default(),
+        functions,
+    };
+    let (outcome, store) =
+        run::run(&ir, config, &mut perception, &mut actions, None).expect("valid run config");
+    serde_json::from_str(&report::outcome_json(&store, &outcome)).expect("report is JSON")
+}
+
+/// Replaces every variable name (`_G12`, `_123`, `_`) in the TERM strings
+/// of a report by `_`, so that reports compare regardless of numbering.
+pub fn normalize(v: &serde_json::Value) -> serde_json::Value {
+    use serde_json::Value;
+    match v {
+        Value::String(s) => Value::String(normalize_vars(s)),
+        Value::Array(items) => Value::Array(items.iter().map(normalize).collect()),
+        Value::Object(map) => {
+            Value::Object(map.iter().map(|(k, v)| (k.clone(), normalize(v))).collect())
+        }
+        other => other.clone(),
+    }
+}
+
+fn normalize_vars(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut chars = s.chars().peekable();
+    let mut in_quote: Option<char> = None;
+    let mut prev_alnum = false;
+    while let Some(c) = chars.next() {
+        if let Some(q) = in_quote {
+            out.push(c);
+            if c == '\\' {
+                if let Some(n) = chars.next() {
+                    out.push(n);
+                }
+            } else if c == q {
+                in_quote = None;
+            }
+            prev_alnum = false;
+            continue;
+        }
+        if c == '\'' || c == '"' {
+            in_quote = Some(c);
+            out.push(c);
+            prev_alnum = false;
+            continue;
+        }
+        if c == '_' && !prev_alnum {
+            while chars
+                .peek()
+                .is_some_and(|n| n.is_alphanumeric() || *n == '_')
+            {
+                chars.next();
+            }
+            out.push('_');
+            prev_alnum = true;
+            continue;
+        }
+        prev_alnum = c.is_alphanumeric() || c == '_';
+        out.push(c);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn variables_normalise() {
+        assert_eq!(super::normalize_vars("f(_G12,'_x',_)"), "f(_,'_x',_)");
+        assert_eq!(super::normalize_vars("a_b(_123)"), "a_b(_)");
+    }
+}

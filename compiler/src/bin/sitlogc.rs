@@ -46,6 +46,49 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Run an application in test mode, like the original interpreter.
+    ///
+    /// Each expectation of a perceptual situation is met by a term read from
+    /// the script (one term per line, ending with `.`) or, without --script,
+    /// typed at a prompt on stdin. At the end the task history, the final
+    /// out_arg and the global variables are printed. Exit status: 0 when the
+    /// main DM reached a final situation, 1 on a run-time error (the history
+    /// so far is still printed), 2 on usage or I/O problems.
+    Run {
+        /// The application directory (or a single DM file).
+        #[arg(value_name = "APP")]
+        app: PathBuf,
+        /// The DM to start, as a term (it may have arguments).
+        #[arg(long, default_value = "main", value_name = "DM")]
+        main: String,
+        /// The initial pipe value, as a term (default: the atom `none`).
+        #[arg(long, value_name = "TERM", allow_hyphen_values = true)]
+        in_arg: Option<String>,
+        /// Read the inputs of test mode from FILE instead of stdin.
+        #[arg(long, value_name = "FILE")]
+        script: Option<PathBuf>,
+        /// `text`: the papers' history listing; `json`: one JSON object on stdout.
+        #[arg(long, value_enum, default_value_t = RunFormat::Text)]
+        format: RunFormat,
+        /// `none` keeps no history, so that a long task runs in bounded memory.
+        #[arg(long, value_enum, default_value_t = HistoryMode::Keep)]
+        history: HistoryMode,
+        /// Write one JSON object per transition to FILE as it happens.
+        #[arg(long, value_name = "FILE")]
+        trace: Option<PathBuf>,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum RunFormat {
+    Text,
+    Json,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum HistoryMode {
+    Keep,
+    None,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -89,6 +132,120 @@ fn run(cli: Cli) -> u8 {
             deny_warnings,
             quiet,
         } => check(&paths, format, deny_warnings, quiet),
+        Command::Run {
+            app,
+            main,
+            in_arg,
+            script,
+            format,
+            history,
+            trace,
+        } => run_app(RunArgs {
+            app,
+            main,
+            in_arg,
+            script,
+            format,
+            keep_history: history == HistoryMode::Keep,
+            trace,
+        }),
+    }
+}
+
+struct RunArgs {
+    app: PathBuf,
+    main: String,
+    in_arg: Option<String>,
+    script: Option<PathBuf>,
+    format: RunFormat,
+    keep_history: bool,
+    trace: Option<PathBuf>,
+}
+
+fn run_app(args: RunArgs) -> u8 {
+    use sitlog_compiler::run::{self, RunConfig};
+    use sitlog_runtime::machine::{Observer, Options, Perception};
+    use sitlog_runtime::report;
+    use sitlog_runtime::testmode::{PromptPerception, ScriptPerception, TextActions};
+
+    let (result, diags) = match sitlog_compiler::check_path(&args.app) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: cannot read {e}");
+            return 2;
+        }
+    };
+    let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    let program_sources = match &result {
+        Ok(c) => &c.program().sources,
+        Err(p) => &p.sources,
+    };
+    for d in diags.iter().filter(|d| d.is_error()) {
+        eprint!("{}", diag::render_human(d, program_sources, color));
+    }
+    let checked = match result {
+        Ok(c) => c,
+        Err(_) => {
+            let n = diags.iter().filter(|d| d.is_error()).count();
+            eprintln!("error: the application has {n} error(s); run `sitlogc check` for details");
+            return 1;
+        }
+    };
+    let ir = sitlog_compiler::ir::lower(&checked);
+    let mut perception: Box<dyn Perception> = match &args.script {
+        Some(path) => match std::fs::read_to_string(path) {
+            Ok(text) => Box::new(ScriptPerception::new(path.display().to_string(), text)),
+            Err(e) => {
+                eprintln!("error: cannot read script {}: {e}", path.display());
+                return 2;
+            }
+        },
+        None => Box::new(PromptPerception::new(std::io::stdin().lock())),
+    };
+    let mut trace = match &args.trace {
+        Some(path) => match std::fs::File::create(path) {
+            Ok(f) => Some(report::JsonTrace::new(std::io::BufWriter::new(f))),
+            Err(e) => {
+                eprintln!("error: cannot create trace file {}: {e}", path.display());
+                return 2;
+            }
+        },
+        None => None,
+    };
+    let mut actions = TextActions::new(std::io::stderr(), ir.basic_actions.clone());
+    let config = RunConfig {
+        main: args.main,
+        in_arg: args.in_arg,
+        options: Options {
+            keep_history: args.keep_history,
+            ..Options::default()
+        },
+        ..RunConfig::default()
+    };
+    let observer = trace.as_mut().map(|t| t as &mut dyn Observer);
+    let (outcome, mut store) =
+        match run::run(&ir, config, perception.as_mut(), &mut actions, observer) {
+            Ok(r) => r,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return 2;
+            }
+        };
+    let stdout = std::io::stdout();
+    let mut out = stdout.lock();
+    match args.format {
+        RunFormat::Json => {
+            let _ = writeln!(out, "{}", report::outcome_json(&store, &outcome));
+        }
+        RunFormat::Text => {
+            let _ = write!(out, "{}", report::outcome_text(&mut store, &outcome));
+        }
+    }
+    if let Err(e) = &outcome.result {
+        eprintln!("error: {e}");
+        1
+    } else {
+        0
     }
 }
 

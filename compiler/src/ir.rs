@@ -1,0 +1,159 @@
+//! The lowered program shared by the interpreter and the code generator.
+//!
+//! Built only from a [`Checked`] program; lowering cannot fail. Every
+//! situation becomes one frozen template term
+//! `'$sit'(Head, Id, Type, InArg, OutArg, Prog, EmbeddedDm, DiagMod, Arcs)`
+//! (absent attributes are `'$none'`, arcs are `'$arc'(E, A, N)`), so that a
+//! visit is one `copy_term` that shares every ground part: constants are
+//! built once, at lowering. The IR never refers back to the AST; source
+//! positions are kept as text in a side table.
+
+use crate::ast::SituationKind;
+use crate::check::Checked;
+use sitlog_runtime::machine::Kind;
+use sitlog_runtime::{Store, Term};
+use sitlog_syntax::{Atom, Clause, TermId};
+use std::collections::HashMap;
+
+/// Index of a DM.
+pub type DmIx = u32;
+
+#[derive(Debug)]
+pub struct Ir {
+    /// The frozen store holding every template and constant.
+    pub store: Store,
+    pub dms: Vec<IrDm>,
+    by_name: HashMap<Atom, DmIx>,
+    /// Initial values of the global variables, in file order.
+    pub globals: Vec<(Atom, Term)>,
+    /// Names of the declared basic actions.
+    pub basic_actions: Vec<Atom>,
+    /// Names and arities of the Prolog user functions (heads of user_functions.pl).
+    pub prolog_functions: Vec<(Atom, usize)>,
+}
+
+#[derive(Debug)]
+pub struct IrDm {
+    pub name: Atom,
+    pub arity: usize,
+    /// The head alone (for calls).
+    pub head: Term,
+    pub situations: Vec<IrSituation>,
+    /// Local variables and their default values (templates).
+    pub locals: Vec<(Atom, Term)>,
+}
+
+#[derive(Debug)]
+pub struct IrSituation {
+    pub kind: Kind,
+    pub template: Term,
+    /// Principal functor of the id when it is not a variable (selection filter).
+    pub id_functor: Option<(Atom, usize)>,
+    /// `file:line:col` of the situation.
+    pub location: String,
+}
+
+/// The marker of an absent attribute in a situation template.
+pub fn none_marker() -> Atom {
+    Atom::intern("$none")
+}
+
+impl Ir {
+    pub fn dm_by_name(&self, name: Atom) -> Option<DmIx> {
+        self.by_name.get(&name).copied()
+    }
+}
+
+/// Lowers a checked program.
+pub fn lower(checked: &Checked) -> Ir {
+    let program = checked.program();
+    let mut store = Store::new();
+    let none = Term::atom(none_marker());
+    let sit_f = Atom::intern("$sit");
+    let arc_f = Atom::intern("$arc");
+    let mut dms = Vec::new();
+    let mut by_name = HashMap::new();
+    for dm in &program.dms {
+        let clause: &Clause = &dm.clause;
+        let file = program.sources.get(dm.file);
+        // One variable table per DM clause: the head and all situations share it (D-7).
+        let mut slots: Vec<Option<Term>> = vec![None; clause.vars.len()];
+        let mut import = |store: &mut Store, t: TermId| store.import(&clause.terms, t, &mut slots);
+        let head = import(&mut store, dm.head);
+        let mut situations = Vec::new();
+        for s in &dm.situations {
+            let opt = |store: &mut Store,
+                       t: Option<TermId>,
+                       import: &mut dyn FnMut(&mut Store, TermId) -> Term| {
+                t.map_or(none, |t| import(store, t))
+            };
+            let id = opt(&mut store, s.id, &mut import);
+            let ty = opt(&mut store, s.kind_term, &mut import);
+            let in_arg = opt(&mut store, s.in_arg, &mut import);
+            let out_arg = opt(&mut store, s.out_arg, &mut import);
+            let prog = opt(&mut store, s.prog, &mut import);
+            let emb = opt(&mut store, s.embedded_dm, &mut import);
+            let diag = opt(&mut store, s.diag_mod, &mut import);
+            let mut arcs = Vec::new();
+            for arc in s.arcs.iter().flatten() {
+                let e = import(&mut store, arc.expectation);
+                let a = import(&mut store, arc.action);
+                let n = import(&mut store, arc.next);
+                arcs.push(store.compound(arc_f, &[e, a, n]));
+            }
+            let arcs = store.list(&arcs);
+            let template = store.compound(
+                sit_f,
+                &[head, id, ty, in_arg, out_arg, prog, emb, diag, arcs],
+            );
+            let kind = match s.kind(clause) {
+                SituationKind::Final => Kind::Final,
+                SituationKind::Recursive => Kind::Recursive,
+                SituationKind::Perceptual => Kind::Perceptual,
+            };
+            let id_functor = s.id.and_then(|id| clause.terms.functor(id));
+            let pos = file.line_col(s.span.start);
+            situations.push(IrSituation {
+                kind,
+                template,
+                id_functor,
+                location: format!("{}:{}:{}", file.name, pos.line, pos.column),
+            });
+        }
+        let locals = dm
+            .locals
+            .iter()
+            .map(|l| (l.name, import(&mut store, l.value)))
+            .collect();
+        by_name.entry(dm.name).or_insert(dms.len() as DmIx);
+        dms.push(IrDm {
+            name: dm.name,
+            arity: dm.arity,
+            head,
+            situations,
+            locals,
+        });
+    }
+    let mut globals: Vec<(Atom, Term)> = Vec::new();
+    for g in &program.globals {
+        if globals.iter().any(|(n, _)| *n == g.name) {
+            continue; // the first declaration wins (checker warns)
+        }
+        let mut slots = vec![None; g.clause.vars.len()];
+        let v = store.import(&g.clause.terms, g.value, &mut slots);
+        globals.push((g.name, v));
+    }
+    store.freeze();
+    Ir {
+        store,
+        dms,
+        by_name,
+        globals,
+        basic_actions: program.basic_actions.iter().map(|b| b.name).collect(),
+        prolog_functions: program
+            .functions
+            .iter()
+            .map(|f| (f.name, f.arity))
+            .collect(),
+    }
+}

@@ -1,0 +1,78 @@
+//! Running a checked program in test mode: the glue between the IR, the
+//! runtime machine and test-mode input/output, shared by `sitlogc run` and
+//! the tests.
+
+use crate::ir::Ir;
+use sitlog_runtime::machine::{Actions, Machine, Observer, Options, Outcome, Perception};
+use sitlog_runtime::{Functions, Store, Term};
+use sitlog_syntax::atoms;
+
+/// What to run and how.
+pub struct RunConfig {
+    /// The main DM call, as a term (`main` by default; may have arguments).
+    pub main: String,
+    /// The initial pipe value as a term (`none` when absent).
+    pub in_arg: Option<String>,
+    pub options: Options,
+    pub functions: Functions,
+}
+
+impl Default for RunConfig {
+    fn default() -> Self {
+        RunConfig {
+            main: "main".to_owned(),
+            in_arg: None,
+            options: Options::default(),
+            functions: Functions::standard(),
+        }
+    }
+}
+
+/// A problem with the run's arguments (exit status 2 in the CLI).
+#[derive(Debug)]
+pub struct ConfigError(pub String);
+
+impl std::fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+/// Runs `ir` from `config.main`; returns the outcome and the store its terms live in.
+pub fn run(
+    ir: &Ir,
+    config: RunConfig,
+    perception: &mut dyn Perception,
+    actions: &mut dyn Actions,
+    observer: Option<&mut dyn Observer>,
+) -> Result<(Outcome, Store), ConfigError> {
+    let (mut store, globals) = ir.initial_state();
+    let main = store
+        .parse(&config.main)
+        .map_err(|e| ConfigError(format!("--main `{}`: {}", config.main, e.message)))?
+        .0;
+    let in_arg = match &config.in_arg {
+        Some(text) => {
+            store
+                .parse(text)
+                .map_err(|e| ConfigError(format!("--in-arg `{text}`: {}", e.message)))?
+                .0
+        }
+        None => Term::atom(atoms::NONE),
+    };
+    if let Some((name, _)) = store.functor(main) {
+        if ir.dm_by_name(name).is_none() {
+            return Err(ConfigError(format!(
+                "the application has no DM named `{name}`"
+            )));
+        }
+    } else {
+        return Err(ConfigError(format!(
+            "--main `{}` is not a DM name",
+            config.main
+        )));
+    }
+    let machine = Machine::new(ir, store, globals, config.functions, config.options);
+    let (outcome, store) = machine.run(main, in_arg, perception, actions, observer);
+    Ok((outcome, store))
+}

@@ -1,0 +1,60 @@
+//! `kbq KB [--do UPDATE]... QUERY`: the `sitlogc kb` convention as a small
+//! stand-alone tool (the lead wires the same [`sitlog_kb::cli`] into
+//! `sitlogc`). With `--cases FILE`, runs tab-separated lines
+//! `KB<TAB>QUERY[<TAB>UPDATE]...` and prints one output line per case
+//! (used for differential testing against the original).
+
+use std::path::Path;
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.len() == 2 && args[0] == "--cases" {
+        let Ok(text) = std::fs::read_to_string(&args[1]) else {
+            eprintln!("cannot read {}", args[1]);
+            return ExitCode::FAILURE;
+        };
+        for line in text.lines() {
+            let mut parts = line.split('\t');
+            let (Some(kb), Some(q)) = (parts.next(), parts.next()) else {
+                continue;
+            };
+            let dos: Vec<String> = parts.map(str::to_owned).collect();
+            match sitlog_kb::cli(Path::new(kb), &dos, q) {
+                Ok(out) => println!("{out}"),
+                Err(e) => println!("error: {e}"),
+            }
+        }
+        return ExitCode::SUCCESS;
+    }
+    let mut dos = Vec::new();
+    let mut rest = Vec::new();
+    let mut it = args.into_iter();
+    while let Some(a) = it.next() {
+        if a == "--do" {
+            match it.next() {
+                Some(d) => dos.push(d),
+                None => {
+                    eprintln!("--do needs an update");
+                    return ExitCode::FAILURE;
+                }
+            }
+        } else {
+            rest.push(a);
+        }
+    }
+    let [kb, query] = &rest[..] else {
+        eprintln!("usage: kbq KB [--do UPDATE]... QUERY");
+        return ExitCode::FAILURE;
+    };
+    match sitlog_kb::cli(Path::new(kb), &dos, query) {
+        Ok(out) => {
+            println!("{out}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("{e}");
+            ExitCode::FAILURE
+        }
+    }
+}

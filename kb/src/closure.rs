@@ -1,0 +1,620 @@
+//! The closure of a property or relation list (kb.md section 2) and the
+//! abductive explanations (section 4), reproducing the original's clause
+//! order: hiding of repeats, per-level ordering of defaults, backward and
+//! forward chaining, and the abduction walk.
+//!
+//! Entries are kept as [`PE`]: `p=>v` split into its two ids so that a
+//! consequent whose value is bound at query time (`q=>'-'`) needs no new term
+//! in the shared store.
+//!
+//! Also owns the per-class cache: the closure of a class alone, reused for
+//! every individual whose own entries cannot change it (see [`Part::reusable`]).
+
+use crate::model::{Entry, Kb, Known, ARROW, DEFAULT, NOT};
+use crate::store::{TId, TermStore};
+use std::cell::Cell;
+use std::collections::HashMap;
+
+/// One entry of a closure list: `p=>v`, or any other term.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) enum PE {
+    Arrow(TId, TId),
+    T(TId),
+}
+
+/// The closure needed more steps than allowed (the original's forward
+/// chaining is exponential in the worst case).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Budget;
+
+/// Steps (firings tried) allowed for one closure.
+pub(crate) const STEP_LIMIT: u64 = 5_000_000;
+
+/// A conditional default `Ant=>>Cons`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Rule {
+    /// The whole `Ant=>>Cons` term.
+    pub term: TId,
+    pub ant: TId,
+    pub cons: TId,
+    /// The `[Rule, Weight]` pair and weight, for the preference services.
+    pub pair: TId,
+    pub weight: TId,
+}
+
+pub(crate) struct Ctx<'a> {
+    pub s: &'a TermStore,
+    pub k: Known,
+    steps: Cell<u64>,
+}
+
+impl<'a> Ctx<'a> {
+    pub fn new(s: &'a TermStore, k: Known) -> Ctx<'a> {
+        Ctx {
+            s,
+            k,
+            steps: Cell::new(0),
+        }
+    }
+
+    pub fn pe(&self, t: TId) -> PE {
+        match self.s.binary(t, ARROW) {
+            Some((p, v)) => PE::Arrow(p, v),
+            None => PE::T(t),
+        }
+    }
+
+    /// The attribute an entry is about: hiding and lookups only ever relate
+    /// entries with the same key.
+    pub fn key_t(&self, mut t: TId) -> TId {
+        loop {
+            if let Some(inner) = self.s.unary(t, NOT) {
+                t = inner;
+            } else if let Some((p, _)) = self.s.binary(t, ARROW) {
+                return p;
+            } else {
+                return t;
+            }
+        }
+    }
+
+    pub fn key(&self, e: PE) -> TId {
+        match e {
+            PE::Arrow(p, _) => p,
+            PE::T(t) => self.key_t(t),
+        }
+    }
+
+    /// A term for which key filtering is exact (not `not(_)`, not `_=>_`).
+    pub fn simple(&self, t: TId) -> bool {
+        self.s.unary(t, NOT).is_none() && self.s.binary(t, ARROW).is_none()
+    }
+
+    fn not_arrow(&self, e: PE) -> Option<(TId, TId)> {
+        match e {
+            PE::T(t) => self.s.unary(t, NOT).and_then(|i| self.s.binary(i, ARROW)),
+            PE::Arrow(..) => None,
+        }
+    }
+
+    fn not_inner(&self, e: PE) -> Option<TId> {
+        match e {
+            PE::T(t) => self
+                .s
+                .unary(t, NOT)
+                .filter(|&i| self.s.binary(i, ARROW).is_none()),
+            PE::Arrow(..) => None,
+        }
+    }
+
+    /// Whether the kept entry `kept` hides a later `e` (step 1 of kb.md).
+    fn hides(&self, kept: PE, e: PE) -> bool {
+        match kept {
+            PE::Arrow(p, v) => {
+                matches!(e, PE::Arrow(q, _) if q == p) || self.not_arrow(e) == Some((p, v))
+            }
+            PE::T(t) => {
+                if let Some((p, v)) = self.not_arrow(kept) {
+                    self.not_arrow(e).is_some_and(|(q, _)| q == p) || e == PE::Arrow(p, v)
+                } else if let Some(h) = self.not_inner(kept) {
+                    e == kept || e == PE::T(h)
+                } else {
+                    e == kept || self.not_inner(e) == Some(t)
+                }
+            }
+        }
+    }
+
+    /// Hide repeats: keep an entry unless an earlier kept entry hides it.
+    pub fn hide(&self, list: &[PE]) -> Vec<PE> {
+        let mut kept: Vec<PE> = Vec::with_capacity(list.len());
+        if list.len() <= 24 {
+            let mut keys: Vec<TId> = Vec::with_capacity(list.len());
+            for &e in list {
+                let ke = self.key(e);
+                let hidden = kept
+                    .iter()
+                    .zip(&keys)
+                    .any(|(&k, &kk)| kk == ke && self.hides(k, e));
+                if !hidden {
+                    kept.push(e);
+                    keys.push(ke);
+                }
+            }
+        } else {
+            let mut by_key: HashMap<TId, Vec<PE>> = HashMap::new();
+            for &e in list {
+                let group = by_key.entry(self.key(e)).or_default();
+                if !group.iter().any(|&k| self.hides(k, e)) {
+                    group.push(e);
+                    kept.push(e);
+                }
+            }
+        }
+        kept
+    }
+
+    /// The value of the first `p=>X` left after hiding repeats in `list`.
+    pub fn first_kept_val(&self, list: &[PE], p: TId) -> Option<TId> {
+        let mut first_not: Option<TId> = None;
+        for &e in list {
+            match e {
+                PE::Arrow(q, x) if q == p => {
+                    if first_not != Some(x) {
+                        return Some(x);
+                    }
+                }
+                PE::T(_) if first_not.is_none() => {
+                    if let Some((q, v)) = self.not_arrow(e) {
+                        if q == p {
+                            first_not = Some(v);
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        None
+    }
+
+    fn has_attr(list: &[PE], p: TId) -> bool {
+        list.iter().any(|e| matches!(e, PE::Arrow(q, _) if *q == p))
+    }
+
+    fn tick(&self) -> Result<(), Budget> {
+        let n = self.steps.get() + 1;
+        self.steps.set(n);
+        if n > STEP_LIMIT {
+            Err(Budget)
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Runs the ordered defaults over `p` (the original's `prefer_handler`).
+    pub fn run(&self, rules: &[Rule], p: &mut Vec<PE>) -> Result<(), Budget> {
+        for i in 0..rules.len() {
+            if let Some(c) = self.fire(rules, i, p)? {
+                p.push(c);
+            }
+        }
+        Ok(())
+    }
+
+    fn concludes(&self, rest: &[Rule], what: impl Fn(PE) -> bool) -> bool {
+        rest.iter().any(|r| what(self.pe(r.cons)))
+    }
+
+    /// What default `i` appends to `p`, trying the original's clauses in order.
+    fn fire(&self, rules: &[Rule], i: usize, p: &[PE]) -> Result<Option<PE>, Budget> {
+        self.tick()?;
+        let r = rules[i];
+        let rest = &rules[i + 1..];
+        let dash = self.k.dash;
+        let ant = self.pe(r.ant);
+        let cons = self.pe(r.cons);
+        let mut forward: Option<Vec<PE>> = None;
+        let mut run_rest = |this: &Self| -> Result<Vec<PE>, Budget> {
+            if let Some(f) = &forward {
+                return Ok(f.clone());
+            }
+            let mut copy = p.to_vec();
+            this.run(rest, &mut copy)?;
+            forward = Some(copy.clone());
+            Ok(copy)
+        };
+        // Backward: the antecedent is already in the list.
+        if let (PE::Arrow(pa, va), PE::Arrow(q, vc)) = (ant, cons) {
+            if va == dash && vc == dash {
+                if let Some(v) = self.first_kept_val(p, pa) {
+                    return Ok(Some(PE::Arrow(q, v)));
+                }
+            }
+            if va == dash && Self::has_attr(p, pa) {
+                return Ok(Some(cons));
+            }
+            if self.first_kept_val(p, pa) == Some(va) {
+                return Ok(Some(cons));
+            }
+        }
+        if p.contains(&ant) {
+            return Ok(Some(cons));
+        }
+        if let PE::Arrow(pa, va) = ant {
+            if va == dash && Self::has_attr(p, pa) {
+                return Ok(Some(cons));
+            }
+        }
+        if r.ant == dash {
+            return Ok(Some(cons));
+        }
+        // Forward: a later default concludes the antecedent.
+        if let (PE::Arrow(pa, va), PE::Arrow(q, vc)) = (ant, cons) {
+            if va == dash
+                && vc == dash
+                && self.concludes(rest, |c| matches!(c, PE::Arrow(x, _) if x == pa))
+            {
+                let pa_list = run_rest(self)?;
+                if let Some(v) = self.first_kept_val(&pa_list, pa) {
+                    return Ok(Some(PE::Arrow(q, v)));
+                }
+            }
+            if self.concludes(rest, |c| c == ant) {
+                let pa_list = run_rest(self)?;
+                if self.first_kept_val(&pa_list, pa) == Some(va) {
+                    return Ok(Some(cons));
+                }
+            }
+        }
+        if self.concludes(rest, |c| c == ant) {
+            let pa_list = run_rest(self)?;
+            if pa_list.contains(&ant) {
+                return Ok(Some(cons));
+            }
+        }
+        // A list of antecedents.
+        if let Some(items) = self.s.proper_list(r.ant) {
+            if let PE::Arrow(q, vc) = cons {
+                if vc == dash {
+                    if let Some(bound) = self.list4(&items, 0, rest, p, None, &mut run_rest)? {
+                        // An empty list leaves the value unbound in the original.
+                        return Ok(Some(PE::Arrow(q, bound.unwrap_or(dash))));
+                    }
+                }
+                if self.list4(&items, 0, rest, p, Some(vc), &mut run_rest)?.is_some() {
+                    return Ok(Some(cons));
+                }
+            }
+            let mut all = true;
+            for &item in &items {
+                let it = self.pe(item);
+                let holds = p.contains(&it)
+                    || (self.concludes(rest, |c| c == it) && run_rest(self)?.contains(&it));
+                if !holds {
+                    all = false;
+                    break;
+                }
+            }
+            if all {
+                return Ok(Some(cons));
+            }
+        }
+        Ok(None)
+    }
+
+    /// The original's 4-argument list check: every item `p=>'-'` / `p=>v`
+    /// holds with one shared value; `Some(binding)` on success.
+    #[allow(clippy::type_complexity)]
+    fn list4(
+        &self,
+        items: &[TId],
+        idx: usize,
+        rest: &[Rule],
+        p: &[PE],
+        val: Option<TId>,
+        run_rest: &mut dyn FnMut(&Self) -> Result<Vec<PE>, Budget>,
+    ) -> Result<Option<Option<TId>>, Budget> {
+        let Some(&item) = items.get(idx) else {
+            return Ok(Some(val));
+        };
+        let dash = self.k.dash;
+        let Some((pa, va)) = self.s.binary(item, ARROW) else {
+            return Ok(None);
+        };
+        let compat = |x: TId| val.is_none() || val == Some(x);
+        let mut tries: Vec<Option<TId>> = Vec::new();
+        if va == dash {
+            if let Some(x) = self.first_kept_val(p, pa).filter(|&x| compat(x)) {
+                tries.push(Some(x));
+            }
+            if compat(dash) && self.first_kept_val(p, pa) == Some(dash) {
+                tries.push(Some(dash));
+            }
+            for t in tries.drain(..) {
+                if let Some(r) = self.list4(items, idx + 1, rest, p, t, run_rest)? {
+                    return Ok(Some(r));
+                }
+            }
+            if self.concludes(rest, |c| matches!(c, PE::Arrow(x, _) if x == pa)) {
+                let fl = run_rest(self)?;
+                if let Some(x) = self.first_kept_val(&fl, pa).filter(|&x| compat(x)) {
+                    if let Some(r) = self.list4(items, idx + 1, rest, p, Some(x), run_rest)? {
+                        return Ok(Some(r));
+                    }
+                }
+            }
+            if compat(dash) && self.concludes(rest, |c| c == PE::Arrow(pa, dash)) {
+                let fl = run_rest(self)?;
+                if self.first_kept_val(&fl, pa) == Some(dash) {
+                    return self.list4(items, idx + 1, rest, p, Some(dash), run_rest);
+                }
+            }
+            Ok(None)
+        } else {
+            if !compat(va) {
+                return Ok(None);
+            }
+            if self.first_kept_val(p, pa) == Some(va) {
+                if let Some(r) = self.list4(items, idx + 1, rest, p, Some(va), run_rest)? {
+                    return Ok(Some(r));
+                }
+            }
+            if self.concludes(rest, |c| c == PE::Arrow(pa, va)) {
+                let fl = run_rest(self)?;
+                if self.first_kept_val(&fl, pa) == Some(va) {
+                    return self.list4(items, idx + 1, rest, p, Some(va), run_rest);
+                }
+            }
+            Ok(None)
+        }
+    }
+
+    /// The abduction walk over the ordered defaults (the original's
+    /// `abductive_handler`), then one explanation per consequent.
+    pub fn abduce(&self, rules: &[Rule], mut p: Vec<PE>) -> Vec<(PE, PE)> {
+        let dash = self.k.dash;
+        let mut out: Vec<(PE, PE)> = Vec::new();
+        for r in rules {
+            let ant = self.pe(r.ant);
+            let cons = self.pe(r.cons);
+            let first_val = |p: &[PE], q: TId| {
+                p.iter().find_map(|e| match e {
+                    PE::Arrow(x, v) if *x == q => Some(*v),
+                    _ => None,
+                })
+            };
+            if let (PE::Arrow(pa, va), PE::Arrow(q, vc)) = (ant, cons) {
+                if va == dash && vc == dash {
+                    if let Some(v) = first_val(&p, q) {
+                        out.push((PE::Arrow(q, v), PE::Arrow(pa, v)));
+                        p.push(PE::Arrow(pa, v));
+                        continue;
+                    }
+                }
+                if va == dash && p.contains(&cons) {
+                    let why = PE::Arrow(pa, first_val(&p, pa).unwrap_or(dash));
+                    out.push((cons, why));
+                    p.push(PE::Arrow(pa, dash));
+                    continue;
+                }
+            }
+            if let PE::Arrow(q, vc) = cons {
+                if vc == dash {
+                    if let Some(v) = first_val(&p, q) {
+                        out.push((PE::Arrow(q, v), ant));
+                        p.push(ant);
+                        continue;
+                    }
+                }
+            }
+            if p.contains(&cons) {
+                out.push((cons, ant));
+                p.push(ant);
+            }
+        }
+        // Keep the first explanation per consequent (per attribute for q=>v).
+        let mut kept: Vec<(PE, PE)> = Vec::with_capacity(out.len());
+        for (c, why) in out {
+            let dup = kept.iter().any(|(k, _)| match (k, c) {
+                (PE::Arrow(a, _), PE::Arrow(b, _)) => *a == b,
+                (k, c) => *k == c,
+            });
+            if !dup {
+                kept.push((c, why));
+            }
+        }
+        kept
+    }
+}
+
+/// The defaults of one level in the original's order: reversed declaration
+/// order, then a stable sort by weight.
+pub(crate) fn level_rules(s: &TermStore, entries: &[Entry], out: &mut Vec<Rule>) {
+    let start = out.len();
+    for e in entries.iter().rev().filter(|e| !e.abs) {
+        if let Some((ant, cons)) = s.binary(e.term, DEFAULT) {
+            out.push(Rule {
+                term: e.term,
+                ant,
+                cons,
+                pair: e.pair,
+                weight: e.weight,
+            });
+        }
+    }
+    let ws: HashMap<TId, f64> = entries.iter().map(|e| (e.pair, e.w)).collect();
+    out[start..].sort_by(|a, b| {
+        let wa = ws.get(&a.pair).copied().unwrap_or(0.0);
+        let wb = ws.get(&b.pair).copied().unwrap_or(0.0);
+        wa.partial_cmp(&wb).unwrap_or(std::cmp::Ordering::Equal)
+    });
+}
+
+/// The closure of a chain of levels: `hidden_abs ++ derived` is the list
+/// before step 4.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Closure {
+    pub hidden_abs: Vec<PE>,
+    pub derived: Vec<PE>,
+}
+
+impl Closure {
+    pub fn pre(&self) -> Vec<PE> {
+        let mut v = self.hidden_abs.clone();
+        v.extend_from_slice(&self.derived);
+        v
+    }
+}
+
+/// The properties (or relations, or both for explanations) of a class chain.
+#[derive(Clone, Debug)]
+pub(crate) struct Part {
+    pub rules: Vec<Rule>,
+    /// Keys of every antecedent (and antecedent list item): entries with
+    /// other keys cannot change which defaults fire.
+    pub ant_keys: Vec<TId>,
+    /// `ant_keys` plus the consequents' keys (for explanations).
+    pub all_keys: Vec<TId>,
+    pub closure: Result<Closure, Budget>,
+}
+
+impl Part {
+    pub fn new(ctx: &Ctx<'_>, abs: Vec<PE>, rules: Vec<Rule>) -> Part {
+        let mut ant_keys = Vec::new();
+        let mut all_keys = Vec::new();
+        for r in &rules {
+            let items = ctx.s.proper_list(r.ant).unwrap_or_default();
+            for t in std::iter::once(r.ant).chain(items) {
+                ant_keys.push(ctx.key_t(t));
+            }
+            all_keys.push(ctx.key_t(r.cons));
+        }
+        ant_keys.sort();
+        ant_keys.dedup();
+        all_keys.extend_from_slice(&ant_keys);
+        all_keys.sort();
+        all_keys.dedup();
+        let hidden_abs = ctx.hide(&abs);
+        let mut p = hidden_abs.clone();
+        let closure = ctx.run(&rules, &mut p).map(|()| Closure {
+            derived: p[hidden_abs.len()..].to_vec(),
+            hidden_abs,
+        });
+        Part {
+            rules,
+            ant_keys,
+            all_keys,
+            closure,
+        }
+    }
+
+    /// Whether an individual with these own entries has this class closure
+    /// (plus its own absolutes): no own defaults, and no own absolute about
+    /// an attribute that some antecedent looks at.
+    pub fn reusable(&self, ctx: &Ctx<'_>, own: &[Entry], keys: &[TId]) -> bool {
+        own.iter()
+            .all(|e| e.abs && keys.binary_search(&ctx.key_t(e.term)).is_err())
+    }
+}
+
+/// Per-class data computed on first use.
+#[derive(Clone, Debug)]
+pub(crate) struct ClassCache {
+    /// The class and its ancestors up to `top`.
+    pub chain: Vec<u32>,
+    pub props: Part,
+    pub rels: Part,
+    /// Properties and relations together (explanations).
+    pub all: Part,
+    pub expl: Result<std::sync::Arc<Vec<(PE, PE)>>, Budget>,
+}
+
+impl Kb {
+    pub(crate) fn ctx(&self) -> Ctx<'_> {
+        Ctx::new(&self.store, self.k)
+    }
+
+    pub(crate) fn chain(&self, c: u32) -> Vec<u32> {
+        let mut v = vec![c];
+        let mut cur = c;
+        while let Some(m) = self.mother_ix.get(cur as usize).copied().flatten() {
+            if v.len() > self.classes.len() {
+                break;
+            }
+            v.push(m);
+            cur = m;
+        }
+        v
+    }
+
+    pub(crate) fn cache(&self, c: u32) -> std::sync::Arc<ClassCache> {
+        self.caches[c as usize]
+            .get_or_init(|| std::sync::Arc::new(self.compute_cache(c)))
+            .clone()
+    }
+
+    fn compute_cache(&self, c: u32) -> ClassCache {
+        let ctx = self.ctx();
+        let chain = self.chain(c);
+        let props = self.build_part(&ctx, &[], &chain, Kind::Props);
+        let rels = self.build_part(&ctx, &[], &chain, Kind::Rels);
+        let all = self.build_part(&ctx, &[], &chain, Kind::Both);
+        let expl = all
+            .closure
+            .as_ref()
+            .map(|cl| std::sync::Arc::new(ctx.abduce(&all.rules, cl.pre())))
+            .map_err(|b| *b);
+        ClassCache {
+            chain,
+            props,
+            rels,
+            all,
+            expl,
+        }
+    }
+
+    /// The part of `kind` for an individual's own entries (may be empty)
+    /// in front of a class chain.
+    pub(crate) fn build_part(
+        &self,
+        ctx: &Ctx<'_>,
+        own: &[&[Entry]],
+        chain: &[u32],
+        kind: Kind,
+    ) -> Part {
+        let s = &self.store;
+        let mut abs = Vec::new();
+        let mut rules = Vec::new();
+        let level = |entries: &[&[Entry]], abs: &mut Vec<PE>, rules: &mut Vec<Rule>| {
+            let both: Vec<Entry>;
+            let flat: &[Entry] = if entries.len() == 1 {
+                entries[0]
+            } else {
+                both = entries.iter().flat_map(|e| e.iter().cloned()).collect();
+                &both
+            };
+            abs.extend(flat.iter().filter(|e| e.abs).map(|e| ctx.pe(e.term)));
+            level_rules(s, flat, rules);
+        };
+        level(own, &mut abs, &mut rules);
+        for &ci in chain {
+            let cl = &self.classes[ci as usize];
+            let entries: Vec<&[Entry]> = match kind {
+                Kind::Props => vec![&cl.props],
+                Kind::Rels => vec![&cl.rels],
+                Kind::Both => vec![&cl.props, &cl.rels],
+            };
+            level(&entries, &mut abs, &mut rules);
+        }
+        Part::new(ctx, abs, rules)
+    }
+}
+
+/// Which lists a closure is over.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Kind {
+    Props,
+    Rels,
+    /// Properties and relations together (explanations).
+    Both,
+}

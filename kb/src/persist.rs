@@ -1,0 +1,164 @@
+//! Reading a KB file and writing it back: the text format (kb.md section 1,
+//! final `.` optional, saved in `writeq` form) and atomic replacement of the
+//! file (temporary file in the same directory, fsync, rename, fsync of the
+//! directory), so a crash never leaves a half-written KB.
+
+use crate::cli::line_col;
+use crate::model::{Kb, ModelError, ARROW};
+use crate::store::Built;
+use sitlog_syntax::{atoms, Atom, Clause};
+use std::fmt;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+/// A KB that could not be loaded: `PATH:LINE:COL: error: message`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LoadError {
+    pub path: String,
+    /// 1-based line and column (characters); `None` for I/O errors.
+    pub pos: Option<(usize, usize)>,
+    pub message: String,
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.pos {
+            Some((l, c)) => write!(f, "{}:{}:{}: error: {}", self.path, l, c, self.message),
+            None => write!(f, "{}: error: {}", self.path, self.message),
+        }
+    }
+}
+
+impl std::error::Error for LoadError {}
+
+/// Saving failed (the old file is left as it was).
+#[derive(Debug)]
+pub struct PersistError {
+    pub path: PathBuf,
+    pub error: std::io::Error,
+}
+
+impl fmt::Display for PersistError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: error: cannot save the KB: {}", self.path.display(), self.error)
+    }
+}
+
+impl std::error::Error for PersistError {}
+
+impl Kb {
+    /// Parses and validates KB text; `name` labels errors (a path).
+    pub fn parse(src: &str, name: &str) -> Result<Kb, LoadError> {
+        let at = |span_start: u32, message: String| LoadError {
+            path: name.to_owned(),
+            pos: Some(line_col(src, span_start as usize)),
+            message,
+        };
+        let clause: Clause =
+            sitlog_syntax::read_term(src).map_err(|e| at(e.span.start, e.message.clone()))?;
+        Kb::from_clause(&clause).map_err(|ModelError { span, message }| at(span.start, message))
+    }
+
+    /// Loads a KB file.
+    pub fn load(path: &Path) -> Result<Kb, LoadError> {
+        let name = path.display().to_string();
+        let src = std::fs::read_to_string(path).map_err(|e| LoadError {
+            path: name.clone(),
+            pos: None,
+            message: format!("cannot read the KB: {e}"),
+        })?;
+        Kb::parse(&src, &name)
+    }
+
+    /// Replaces this KB by the one in `path`; on error this KB is unchanged.
+    pub fn reload(&mut self, path: &Path) -> Result<(), LoadError> {
+        *self = Kb::load(path)?;
+        Ok(())
+    }
+
+    /// The KB in the file format: the list in `writeq` form, one class a line.
+    pub fn to_text(&self) -> String {
+        let mut out = String::from("[");
+        let class_atom = Atom::intern("class");
+        for (n, cl) in self.classes.iter().enumerate() {
+            let mut b = Built::new(&self.store);
+            let props: Vec<_> = cl.props.iter().map(|e| e.pair).collect();
+            let rels: Vec<_> = cl.rels.iter().map(|e| e.pair).collect();
+            let props = b.list(&props);
+            let rels = b.list(&rels);
+            let mut inds = Vec::with_capacity(cl.inds.len());
+            for &i in &cl.inds {
+                let ind = &self.inds[i as usize];
+                let id = b.atom(atoms::ID);
+                let head = b.compound(ARROW, &[id, ind.id]);
+                let p: Vec<_> = ind.props.iter().map(|e| e.pair).collect();
+                let r: Vec<_> = ind.rels.iter().map(|e| e.pair).collect();
+                let p = b.list(&p);
+                let r = b.list(&r);
+                inds.push(b.list(&[head, p, r]));
+            }
+            let inds = b.list(&inds);
+            let t = b.compound(class_atom, &[cl.id, cl.mother, props, rels, inds]);
+            if n > 0 {
+                out.push_str(",\n");
+            }
+            out.push_str(&b.writeq(t));
+        }
+        out.push_str("]\n");
+        out
+    }
+
+    /// Saves atomically: the file holds either the old or the new KB.
+    pub fn save(&self, path: &Path) -> Result<(), PersistError> {
+        write_atomic(path, self.to_text().as_bytes()).map_err(|error| PersistError {
+            path: path.to_owned(),
+            error,
+        })
+    }
+
+    /// Applies an update and persists the result; the KB in memory and on
+    /// disk change together or not at all.
+    pub fn update_persist(
+        &mut self,
+        update: &Clause,
+        path: &Path,
+    ) -> Result<Result<bool, crate::CallError>, PersistError> {
+        let mut next = self.clone();
+        match next.update(update) {
+            Ok(true) => {
+                next.save(path)?;
+                *self = next;
+                Ok(Ok(true))
+            }
+            other => Ok(other),
+        }
+    }
+}
+
+fn write_atomic(path: &Path, data: &[u8]) -> std::io::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_owned(),
+        _ => PathBuf::from("."),
+    };
+    let file_name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "kb".to_owned());
+    let tmp = dir.join(format!(".{file_name}.{}.tmp", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(data)?;
+        f.sync_all()?;
+        drop(f);
+        std::fs::rename(&tmp, path)?;
+        // Make the rename itself durable; not every platform can open a directory.
+        if let Ok(d) = std::fs::File::open(&dir) {
+            let _ = d.sync_all();
+        }
+        Ok(())
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}

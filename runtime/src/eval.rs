@@ -1,0 +1,548 @@
+//! The functional language L: how SitLog evaluates expectations, actions,
+//! next situations, `prog`, `out_arg`, `embedded_dm` and `diag_mod`
+//! (semantics notes D-28..D-39, in the original's rule order).
+//!
+//! Evaluation is deterministic: every construct has exactly one value or an
+//! error (the original's backtracking into earlier choices is not copied).
+
+use crate::arith::ArithCmp;
+use crate::builtins;
+use crate::functions::{FnCall, Functions};
+use crate::history::Item;
+use crate::store::Store;
+use crate::term::{Term, Value};
+use crate::vars::Vars;
+use sitlog_syntax::{atoms, Atom};
+use std::sync::OnceLock;
+
+/// The environment of an evaluation.
+pub struct EvalCtx<'a> {
+    pub store: &'a mut Store,
+    pub locals: &'a mut Vars,
+    pub globals: &'a mut Vars,
+    /// The current DM's history, for functions that read it.
+    pub history: &'a [Item],
+    pub functions: &'a Functions,
+}
+
+/// Why an evaluation failed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EvalError {
+    pub message: String,
+}
+
+impl EvalError {
+    pub fn new(message: impl Into<String>) -> EvalError {
+        EvalError {
+            message: message.into(),
+        }
+    }
+}
+
+impl std::fmt::Display for EvalError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+pub(crate) struct Names {
+    pub apply: Atom,
+    pub assign: Atom,
+    pub equals: Atom,
+    pub is: Atom,
+    pub if_then: Atom,
+    pub semicolon: Atom,
+    pub bar: Atom,
+    pub otherwise: Atom,
+    pub comparisons: [Atom; 6],
+    pub member: Atom,
+    pub not_member: Atom,
+}
+
+pub(crate) fn names() -> &'static Names {
+    static NAMES: OnceLock<Names> = OnceLock::new();
+    NAMES.get_or_init(|| Names {
+        apply: atoms::APPLY,
+        assign: atoms::ASSIGN,
+        equals: atoms::EQUALS,
+        is: atoms::IS,
+        if_then: atoms::IF_THEN,
+        semicolon: atoms::SEMICOLON,
+        bar: atoms::BAR,
+        otherwise: atoms::OTHERWISE,
+        comparisons: [
+            atoms::EQ_EQ,
+            atoms::NOT_EQ_EQ,
+            atoms::GREATER,
+            atoms::LESS,
+            atoms::GREATER_EQ,
+            atoms::LESS_EQ,
+        ],
+        member: atoms::MEMBER,
+        not_member: atoms::NOT_MEMBER,
+    })
+}
+
+fn show(store: &Store, t: Term) -> String {
+    let s = store.writeq(t);
+    if s.chars().count() > 200 {
+        format!("{}…", s.chars().take(199).collect::<String>())
+    } else {
+        s
+    }
+}
+
+/// Evaluates `t` (D-28..D-39).
+pub fn eval(ctx: &mut EvalCtx<'_>, t: Term) -> Result<Term, EvalError> {
+    stacker::maybe_grow(64 * 1024, 1024 * 1024, || eval_inner(ctx, t))
+}
+
+fn eval_inner(ctx: &mut EvalCtx<'_>, t: Term) -> Result<Term, EvalError> {
+    let t = ctx.store.deref(t);
+    let (name, arity) = match ctx.store.value(t) {
+        Value::Compound(name, args) => (name, args.len()),
+        // Variables, numbers and atoms evaluate to themselves (D-28).
+        _ => return Ok(t),
+    };
+    let n = names();
+    // Lists are evaluated element by element (D-36).
+    if name == atoms::DOT && arity == 2 {
+        return eval_args(ctx, t);
+    }
+    if arity == 2 && name == n.assign {
+        let [var, body] = two(ctx.store, t);
+        if !ctx.store.is_var(var) {
+            return Err(EvalError::new(format!(
+                "assign: `{}` is not an unbound variable",
+                show(ctx.store, var)
+            )));
+        }
+        let value = eval(ctx, body)?;
+        ctx.store.bind(var, value);
+        return Ok(value);
+    }
+    if arity == 2 && name == n.equals {
+        let [x, y] = two(ctx.store, t);
+        if !ctx.store.unify(x, y) {
+            return Err(EvalError::new(format!(
+                "`{}` does not unify with `{}`",
+                show(ctx.store, x),
+                show(ctx.store, y)
+            )));
+        }
+        return Ok(x);
+    }
+    if arity == 2 && name == n.is {
+        let [v, expr] = two(ctx.store, t);
+        let value: Term = ctx
+            .store
+            .eval_arith(expr)
+            .map_err(|e| EvalError::new(format!("in `{}`: {e}", show(ctx.store, t))))?
+            .into();
+        if !ctx.store.unify(v, value) {
+            return Err(EvalError::new(format!(
+                "`{}` fails: `{}` is not {}",
+                show(ctx.store, t),
+                show(ctx.store, v),
+                show(ctx.store, value)
+            )));
+        }
+        return Ok(v);
+    }
+    if let Some(result) = builtins::list_operator(ctx.store, name, t) {
+        return result;
+    }
+    if arity == 2 && (name == n.member || name == n.not_member) {
+        let [x, list] = two(ctx.store, t);
+        let found = builtins::member_unify(ctx.store, x, list);
+        let holds = if name == n.member {
+            found
+        } else {
+            !builtins::member_identical(ctx.store, x, list)
+        };
+        return Ok(bool_atom(holds));
+    }
+    if arity == 2 && n.comparisons.contains(&name) {
+        let [a, b] = two(ctx.store, t);
+        let a = eval(ctx, a)?;
+        let b = eval(ctx, b)?;
+        let holds = compare(ctx.store, name, a, b)
+            .map_err(|e| EvalError::new(format!("in `{}`: {e}", show(ctx.store, t))))?;
+        return Ok(bool_atom(holds));
+    }
+    if let Some((cond, then, other)) = conditional(ctx.store, t) {
+        let cond = eval_args(ctx, cond)?;
+        return if call_goal(ctx, cond)? {
+            eval(ctx, then)
+        } else {
+            eval(ctx, other)
+        };
+    }
+    if arity == 2 && name == n.apply {
+        let [f, args] = two(ctx.store, t);
+        return apply(ctx, f, args);
+    }
+    if arity == 2 && (name == atoms::GET || name == atoms::SET || name == atoms::INC) {
+        return var_op(ctx, name, t);
+    }
+    eval_args(ctx, t)
+}
+
+fn bool_atom(b: bool) -> Term {
+    Term::atom(if b { atoms::TRUE } else { atoms::FALSE })
+}
+
+fn two(store: &Store, t: Term) -> [Term; 2] {
+    let a = store.args(t);
+    [a[0], a[1]]
+}
+
+/// `(C -> A ; otherwise -> B)`, also written with `|` (E6): `(C, A, B)`.
+pub(crate) fn conditional(store: &Store, t: Term) -> Option<(Term, Term, Term)> {
+    let n = names();
+    let args = store
+        .compound_args(t, n.semicolon, 2)
+        .or_else(|| store.compound_args(t, n.bar, 2))?;
+    let (then, other) = (args[0], args[1]);
+    let then = store.compound_args(then, n.if_then, 2)?;
+    let other = store.compound_args(other, n.if_then, 2)?;
+    if store.atom_of(other[0]) != Some(n.otherwise) {
+        return None;
+    }
+    Some((then[0], then[1], other[1]))
+}
+
+/// Evaluates the arguments of a compound left to right and rebuilds it;
+/// an unchanged compound is returned as is (no allocation).
+fn eval_args(ctx: &mut EvalCtx<'_>, t: Term) -> Result<Term, EvalError> {
+    let (name, arity) = match ctx.store.functor(t) {
+        Some((name, arity)) if arity > 0 => (name, arity),
+        _ => return Ok(t),
+    };
+    // Long lists: iterate along the spine instead of recursing on the tail.
+    if name == atoms::DOT && arity == 2 {
+        return eval_list(ctx, t);
+    }
+    let mut values: smallvec_like::Buf = smallvec_like::Buf::new();
+    let mut changed = false;
+    for i in 0..arity {
+        let a = ctx.store.args(t)[i];
+        let v = eval(ctx, a)?;
+        changed |= v != a;
+        values.push(v);
+    }
+    if !changed {
+        return Ok(t);
+    }
+    Ok(ctx.store.compound(name, values.as_slice()))
+}
+
+fn eval_list(ctx: &mut EvalCtx<'_>, t: Term) -> Result<Term, EvalError> {
+    let mut items = Vec::new();
+    let mut changed = false;
+    let mut cur = t;
+    loop {
+        let c = ctx.store.deref(cur);
+        match ctx.store.compound_args(c, atoms::DOT, 2) {
+            Some(&[head, tail]) => {
+                let v = eval(ctx, head)?;
+                changed |= v != head;
+                items.push(v);
+                cur = tail;
+            }
+            _ => {
+                let tail = eval(ctx, c)?;
+                changed |= tail != c;
+                if !changed {
+                    return Ok(t);
+                }
+                return Ok(ctx.store.list_with_tail(&items, tail));
+            }
+        }
+    }
+}
+
+/// A small inline buffer for argument values (most compounds have few args).
+mod smallvec_like {
+    use crate::term::Term;
+    pub struct Buf {
+        inline: [Term; 8],
+        len: usize,
+        spill: Vec<Term>,
+    }
+    impl Buf {
+        pub fn new() -> Buf {
+            Buf {
+                inline: [Term::NIL; 8],
+                len: 0,
+                spill: Vec::new(),
+            }
+        }
+        pub fn push(&mut self, t: Term) {
+            if self.len < 8 && self.spill.is_empty() {
+                self.inline[self.len] = t;
+                self.len += 1;
+            } else {
+                if self.spill.is_empty() {
+                    self.spill.extend_from_slice(&self.inline[..self.len]);
+                }
+                self.spill.push(t);
+            }
+        }
+        pub fn as_slice(&self) -> &[Term] {
+            if self.spill.is_empty() {
+                &self.inline[..self.len]
+            } else {
+                &self.spill
+            }
+        }
+    }
+}
+
+/// `get`, `set`, `inc` on the locals, then the globals (D-38).
+fn var_op(ctx: &mut EvalCtx<'_>, op: Atom, t: Term) -> Result<Term, EvalError> {
+    let [name_t, arg] = two(ctx.store, t);
+    let Some(name) = ctx.store.atom_of(name_t) else {
+        return Err(EvalError::new(format!(
+            "`{}`: the variable name must be an atom",
+            show(ctx.store, t)
+        )));
+    };
+    let in_locals = ctx.locals.contains(name);
+    let current = if in_locals {
+        ctx.locals.get(name)
+    } else {
+        ctx.globals.get(name)
+    };
+    let Some(current) = current else {
+        return Err(EvalError::new(format!(
+            "`{}`: `{name}` is neither a local nor a global variable",
+            show(ctx.store, t)
+        )));
+    };
+    let new = if op == atoms::GET {
+        if !ctx.store.unify(arg, current) {
+            return Err(EvalError::new(format!(
+                "`{}`: the value `{}` does not unify with `{}`",
+                show(ctx.store, t),
+                show(ctx.store, current),
+                show(ctx.store, arg)
+            )));
+        }
+        return Ok(current);
+    } else if op == atoms::SET {
+        // The second argument is stored as written, not evaluated (D-38).
+        ctx.store.deref(arg)
+    } else {
+        let cur = ctx.store.deref(current);
+        let next = match ctx.store.value(cur) {
+            Value::Int(i) => match i.checked_add(1) {
+                Some(n) => Term::int(n),
+                None => {
+                    return Err(EvalError::new(format!(
+                        "`inc` of `{name}`: integer overflow"
+                    )))
+                }
+            },
+            Value::Float(f) => Term::float(f + 1.0),
+            _ => {
+                return Err(EvalError::new(format!(
+                    "`inc` of `{name}`: its value `{}` is not a number",
+                    show(ctx.store, cur)
+                )))
+            }
+        };
+        if !ctx.store.unify(arg, next) {
+            return Err(EvalError::new(format!(
+                "`{}`: the new value `{}` does not unify with `{}`",
+                show(ctx.store, t),
+                show(ctx.store, next),
+                show(ctx.store, arg)
+            )));
+        }
+        next
+    };
+    if in_locals {
+        ctx.locals.set(name, new);
+    } else {
+        ctx.globals.set(name, new);
+    }
+    Ok(new)
+}
+
+/// `apply(F, Args)` (D-37): evaluates Args, calls the user function named by F.
+fn apply(ctx: &mut EvalCtx<'_>, f: Term, args: Term) -> Result<Term, EvalError> {
+    let values = eval(ctx, args)?;
+    let Some(values) = ctx.store.list_to_vec(values) else {
+        return Err(EvalError::new(format!(
+            "apply: the arguments `{}` are not a list",
+            show(ctx.store, values)
+        )));
+    };
+    let f = ctx.store.deref(f);
+    let Some((name, arity)) = ctx.store.functor(f) else {
+        return Err(EvalError::new(format!(
+            "apply: `{}` does not name a function",
+            show(ctx.store, f)
+        )));
+    };
+    // Each argument of F that is a variable takes the next value, positionally;
+    // other arguments are passed as written (the caller's variables stay unbound).
+    let declared: Vec<Term> = ctx.store.args(f).to_vec();
+    let mut call_args = Vec::with_capacity(arity);
+    for (i, &a) in declared.iter().enumerate() {
+        let a = ctx.store.deref(a);
+        call_args.push(if ctx.store.is_var(a) {
+            values
+                .get(i)
+                .copied()
+                .unwrap_or_else(|| ctx.store.new_var())
+        } else {
+            a
+        });
+    }
+    let mut call = FnCall {
+        store: ctx.store,
+        locals: ctx.locals,
+        globals: ctx.globals,
+        history: ctx.history,
+        functions: ctx.functions,
+    };
+    match ctx.functions.call(&mut call, name, &call_args) {
+        Some(Ok(v)) => Ok(v),
+        Some(Err(e)) => Err(EvalError::new(format!(
+            "user function `{name}/{arity}` failed: {e}"
+        ))),
+        None => Err(EvalError::new(format!(
+            "no user function `{name}/{arity}` (called as `{}`)",
+            show(ctx.store, f)
+        ))),
+    }
+}
+
+/// `==, \==, >, <, >=, =<` on evaluated arguments (D-34).
+fn compare(store: &mut Store, op: Atom, a: Term, b: Term) -> Result<bool, String> {
+    if op == atoms::EQ_EQ {
+        return Ok(store.identical(a, b));
+    }
+    if op == atoms::NOT_EQ_EQ {
+        return Ok(!store.identical(a, b));
+    }
+    let cmp = ArithCmp::from_atom(op).ok_or_else(|| format!("`{op}` is not a comparison"))?;
+    store.arith_compare(cmp, a, b).map_err(|e| e.to_string())
+}
+
+/// Runs `goal` as a Prolog condition (the `C` of a conditional, D-35).
+pub fn call_goal(ctx: &mut EvalCtx<'_>, goal: Term) -> Result<bool, EvalError> {
+    stacker::maybe_grow(64 * 1024, 1024 * 1024, || call_goal_inner(ctx, goal))
+}
+
+fn call_goal_inner(ctx: &mut EvalCtx<'_>, goal: Term) -> Result<bool, EvalError> {
+    let goal = ctx.store.deref(goal);
+    let Some((name, arity)) = ctx.store.functor(goal) else {
+        return Err(EvalError::new(format!(
+            "`{}` cannot be called as a condition",
+            show(ctx.store, goal)
+        )));
+    };
+    let args: Vec<Term> = ctx.store.args(goal).to_vec();
+    let text = name.as_str();
+    let holds = match (text, arity) {
+        ("true", 0) | ("otherwise", 0) => true,
+        ("fail", 0) | ("false", 0) => false,
+        ("==", 2) => ctx.store.identical(args[0], args[1]),
+        ("\\==", 2) => !ctx.store.identical(args[0], args[1]),
+        ("=", 2) => ctx.store.unify(args[0], args[1]),
+        ("\\=", 2) => {
+            let mark = ctx.store.mark();
+            let u = ctx.store.unify(args[0], args[1]);
+            ctx.store.undo_to(mark);
+            !u
+        }
+        ("<" | ">" | "=<" | ">=" | "=:=" | "=\\=", 2) => {
+            let cmp = ArithCmp::from_atom(name).expect("an arithmetic comparison");
+            ctx.store
+                .arith_compare(cmp, args[0], args[1])
+                .map_err(|e| EvalError::new(format!("in `{}`: {e}", show(ctx.store, goal))))?
+        }
+        ("@<" | "@>" | "@=<" | "@>=", 2) => {
+            let ord = ctx.store.compare(args[0], args[1]);
+            match text {
+                "@<" => ord.is_lt(),
+                "@>" => ord.is_gt(),
+                "@=<" => ord.is_le(),
+                _ => ord.is_ge(),
+            }
+        }
+        ("is", 2) => {
+            let v: Term = ctx
+                .store
+                .eval_arith(args[1])
+                .map_err(|e| EvalError::new(format!("in `{}`: {e}", show(ctx.store, goal))))?
+                .into();
+            ctx.store.unify(args[0], v)
+        }
+        ("member" | "memberchk", 2) => builtins::member_unify(ctx.store, args[0], args[1]),
+        ("not_member", 2) => !builtins::member_identical(ctx.store, args[0], args[1]),
+        ("\\+", 1) => {
+            let mark = ctx.store.mark();
+            let r = call_goal(ctx, args[0])?;
+            ctx.store.undo_to(mark);
+            !r
+        }
+        (",", 2) => call_goal(ctx, args[0])? && call_goal(ctx, args[1])?,
+        (";" | "|", 2) => {
+            if let Some((c, a, b)) = if_then_else(ctx.store, goal) {
+                if call_goal(ctx, c)? {
+                    call_goal(ctx, a)?
+                } else {
+                    call_goal(ctx, b)?
+                }
+            } else {
+                let mark = ctx.store.mark();
+                if call_goal(ctx, args[0])? {
+                    true
+                } else {
+                    ctx.store.undo_to(mark);
+                    call_goal(ctx, args[1])?
+                }
+            }
+        }
+        ("->", 2) => call_goal(ctx, args[0])? && call_goal(ctx, args[1])?,
+        ("var", 1) => ctx.store.is_var(args[0]),
+        ("nonvar", 1) => !ctx.store.is_var(args[0]),
+        ("ground", 1) => ctx.store.is_ground(args[0]),
+        ("atom", 1) => ctx.store.atom_of(args[0]).is_some(),
+        ("number" | "integer" | "float" | "atomic" | "compound" | "is_list", 1) => {
+            let v = ctx.store.deref(args[0]);
+            match (text, ctx.store.value(v)) {
+                ("number", Value::Int(_) | Value::BigInt(_) | Value::Float(_)) => true,
+                ("integer", Value::Int(_) | Value::BigInt(_)) => true,
+                ("float", Value::Float(_)) => true,
+                ("atomic", Value::Var(_) | Value::Compound(..)) => false,
+                ("atomic", _) => true,
+                ("compound", Value::Compound(..)) => true,
+                ("is_list", _) => ctx.store.list_to_vec(v).is_some(),
+                _ => false,
+            }
+        }
+        _ => {
+            return Err(EvalError::new(format!(
+                "`{text}/{arity}` cannot be called as a condition here (in `{}`)",
+                show(ctx.store, goal)
+            )))
+        }
+    };
+    Ok(holds)
+}
+
+/// `(C -> A ; B)` as a goal.
+fn if_then_else(store: &Store, t: Term) -> Option<(Term, Term, Term)> {
+    let n = names();
+    let args = store
+        .compound_args(t, n.semicolon, 2)
+        .or_else(|| store.compound_args(t, n.bar, 2))?;
+    let (then, other) = (args[0], args[1]);
+    let then = store.compound_args(then, n.if_then, 2)?;
+    Some((then[0], then[1], other))
+}

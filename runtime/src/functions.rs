@@ -1,0 +1,161 @@
+//! User functions: Rust functions registered by name and arity, called from
+//! SitLog by `apply(f(X1..Xn), [E1..En])`. A function sees the caller's
+//! SitLog variables (read and write, like the original's `var_op/1`) and the
+//! task history (read only, like `get_history/1`).
+
+use crate::eval::{self, EvalCtx};
+use crate::history::{self, Item};
+use crate::store::Store;
+use crate::term::Term;
+use crate::vars::Vars;
+use sitlog_syntax::{atoms, Atom};
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// What a user function gets besides its arguments.
+pub struct FnCall<'a> {
+    pub store: &'a mut Store,
+    pub locals: &'a mut Vars,
+    pub globals: &'a mut Vars,
+    pub history: &'a [Item],
+    pub functions: &'a Functions,
+}
+
+impl FnCall<'_> {
+    /// `var_op(Op)`: evaluates a SitLog expression (typically `get`/`set`/`inc`)
+    /// against the caller's variables, keeping the updates.
+    pub fn var_op(&mut self, term: Term) -> Result<Term, String> {
+        let mut ctx = EvalCtx {
+            store: self.store,
+            locals: self.locals,
+            globals: self.globals,
+            history: self.history,
+            functions: self.functions,
+        };
+        eval::eval(&mut ctx, term).map_err(|e| e.message)
+    }
+    /// `get_history(H)`: the history of the current DM so far, as a term.
+    pub fn history_term(&mut self) -> Term {
+        history::to_term(self.history, self.store)
+    }
+}
+
+/// A user function: arguments in, value out; an `Err` stops the task with
+/// that message.
+pub type UserFn = dyn Fn(&mut FnCall<'_>, &[Term]) -> Result<Term, String> + Send + Sync;
+
+/// Calls functions that have no Rust entry (e.g. Prolog user functions):
+/// `None` means "not mine".
+pub type FallbackFn =
+    dyn Fn(&mut FnCall<'_>, Atom, &[Term]) -> Option<Result<Term, String>> + Send + Sync;
+
+/// The registry of user functions.
+#[derive(Clone, Default)]
+pub struct Functions {
+    map: HashMap<(Atom, usize), Arc<UserFn>>,
+    fallback: Option<Arc<FallbackFn>>,
+}
+
+impl std::fmt::Debug for Functions {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Functions")
+            .field("count", &self.map.len())
+            .finish()
+    }
+}
+
+impl Functions {
+    /// An empty registry.
+    pub fn new() -> Functions {
+        Functions::default()
+    }
+
+    /// The functions shipped with the runtime (see [`standard`]).
+    pub fn standard() -> Functions {
+        let mut f = Functions::new();
+        standard::register(&mut f);
+        f
+    }
+
+    /// Registers `name/arity`, replacing an earlier one.
+    pub fn register(
+        &mut self,
+        name: &str,
+        arity: usize,
+        f: impl Fn(&mut FnCall<'_>, &[Term]) -> Result<Term, String> + Send + Sync + 'static,
+    ) {
+        self.map.insert((Atom::intern(name), arity), Arc::new(f));
+    }
+
+    /// Sets the handler for functions without a Rust entry.
+    pub fn set_fallback(
+        &mut self,
+        f: impl Fn(&mut FnCall<'_>, Atom, &[Term]) -> Option<Result<Term, String>>
+            + Send
+            + Sync
+            + 'static,
+    ) {
+        self.fallback = Some(Arc::new(f));
+    }
+
+    pub fn contains(&self, name: Atom, arity: usize) -> bool {
+        self.map.contains_key(&(name, arity))
+    }
+
+    /// Names and arities of the registered functions.
+    pub fn names(&self) -> impl Iterator<Item = (Atom, usize)> + '_ {
+        self.map.keys().copied()
+    }
+
+    /// Calls `name/args.len()`; `None` if no such function exists.
+    pub fn call(
+        &self,
+        call: &mut FnCall<'_>,
+        name: Atom,
+        args: &[Term],
+    ) -> Option<Result<Term, String>> {
+        if let Some(f) = self.map.get(&(name, args.len())) {
+            return Some(f(call, args));
+        }
+        self.fallback.as_ref().and_then(|f| f(call, name, args))
+    }
+}
+
+/// Functions shipped with the runtime: `when/3` and history access.
+pub mod standard {
+    use super::*;
+
+    pub fn register(f: &mut Functions) {
+        // when(If, Then, Else): Then if If is `true`, else Else.
+        f.register("when", 3, |call, args| {
+            let cond = call.store.deref(args[0]);
+            Ok(if call.store.atom_of(cond) == Some(atoms::TRUE) {
+                args[1]
+            } else {
+                args[2]
+            })
+        });
+        // get_history(H): the current DM's history as a term.
+        f.register("get_history", 1, |call, _| Ok(call.history_term()));
+        // last_transition(_): `Expectation:Action` of the last entry of the
+        // current DM's history (`none` when it is empty), like the original's
+        // get_last_transition/2 helper.
+        f.register("last_transition", 1, |call, _| Ok(last_transition(call)));
+        f.register("last_transition", 0, |call, _| Ok(last_transition(call)));
+    }
+
+    /// The original's `get_last_transition/2`: the last entry of the
+    /// current DM level, as `Expectation:Action`; `none` without one.
+    pub fn last_transition(call: &mut FnCall<'_>) -> Term {
+        let last = call.history.iter().rev().find_map(|item| match item {
+            Item::Entry(e) => Some(*e),
+            Item::Nested(_) => None,
+        });
+        match last {
+            Some(e) => call
+                .store
+                .compound(atoms::COLON, &[e.expectation, e.action]),
+            None => Term::atom(atoms::NONE),
+        }
+    }
+}

@@ -1,0 +1,536 @@
+//! The term store: compound cells, variable cells, big-integer texts and the
+//! trail; term construction, access, binding, undo, and printing.
+//!
+//! Layout. A compound `f(A1..An)` is `n + 1` contiguous cells: a header
+//! holding the name and arity, then the argument handles. Everything lives
+//! in `Vec`s indexed by `u32`, so there are no pointers to chase on drop and
+//! a 100 000-deep term drops in constant stack. Variables are cells in their
+//! own vector: an unbound variable's cell holds its own handle, a bound one
+//! holds its value (chains are followed by [`Store::deref`]).
+//!
+//! Lifetime of terms. Cells are never mutated once written; only variable
+//! cells change (by binding, and back by undo). [`Store::freeze`] turns the
+//! current contents into a permanent region (programs, constants), and
+//! [`Store::gc`] reclaims everything above it that the caller's roots do not
+//! reach.
+
+use crate::term::{Repr, Term, Value, Var};
+use sitlog_syntax::write::{write_term, TermSource, VarLabel, View, WriteOptions};
+use sitlog_syntax::{atoms, Atom};
+
+/// A point in the trail to undo bindings back to (see [`Store::mark`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Mark {
+    trail: u32,
+    epoch: u32,
+}
+
+/// Sizes of the store's regions, for monitoring memory.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StoreStats {
+    /// Compound cells (headers and arguments), frozen ones included.
+    pub cells: usize,
+    /// Variable cells, frozen ones included.
+    pub vars: usize,
+    /// Big-integer texts.
+    pub bigs: usize,
+    /// Trail entries (bindings that [`Store::undo_to`] could undo).
+    pub trail: usize,
+    /// Cells in the frozen (never collected) region.
+    pub frozen_cells: usize,
+    /// Variable cells in the frozen region.
+    pub frozen_vars: usize,
+}
+
+/// Boundary of the frozen region of each vector.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Frontier {
+    pub(crate) cells: u32,
+    pub(crate) vars: u32,
+    pub(crate) bigs: u32,
+}
+
+/// The term store. See the module documentation.
+#[derive(Debug, Clone)]
+pub struct Store {
+    pub(crate) cells: Vec<Term>,
+    pub(crate) vars: Vec<Term>,
+    pub(crate) bigs: Vec<Box<str>>,
+    pub(crate) trail: Vec<u32>,
+    pub(crate) frozen: Frontier,
+    /// Bumped by every gc: marks taken before a gc are stale.
+    pub(crate) epoch: u32,
+    /// Scratch stack of term pairs reused by unify/compare/identical, so
+    /// those allocate nothing in the steady state.
+    pub(crate) pairs: Vec<(Term, Term)>,
+    /// Scratch stacks of terms reused by copies and conversions.
+    pub(crate) work: Vec<Term>,
+    pub(crate) results: Vec<Term>,
+    /// xorshift64* state for `random/1` and `random_float`.
+    pub(crate) rng: u64,
+}
+
+impl Default for Store {
+    fn default() -> Store {
+        Store::new()
+    }
+}
+
+/// Converts a vector length to a cell index. Exceeding 2^32 cells means
+/// tens of gigabytes of terms: treated as memory exhaustion.
+#[inline]
+pub(crate) fn index(len: usize) -> u32 {
+    u32::try_from(len).expect("term store exceeds 2^32 cells")
+}
+
+impl Store {
+    /// An empty store.
+    pub fn new() -> Store {
+        let seed = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0x9E37_79B9_7F4A_7C15, |d| d.as_nanos() as u64);
+        Store {
+            cells: Vec::new(),
+            vars: Vec::new(),
+            bigs: Vec::new(),
+            trail: Vec::new(),
+            frozen: Frontier::default(),
+            epoch: 0,
+            pairs: Vec::new(),
+            work: Vec::new(),
+            results: Vec::new(),
+            rng: seed | 1,
+        }
+    }
+
+    // ---------------------------------------------------------------- build
+
+    /// A fresh unbound variable.
+    pub fn new_var(&mut self) -> Term {
+        let t = Term(Repr::Var(index(self.vars.len())));
+        self.vars.push(t);
+        t
+    }
+
+    /// The compound `name(args..)`; with no arguments, the atom `name`
+    /// (SWI-6 has no zero-arity compounds).
+    pub fn compound(&mut self, name: Atom, args: &[Term]) -> Term {
+        if args.is_empty() {
+            return Term::atom(name);
+        }
+        let at = index(self.cells.len());
+        self.cells.reserve(args.len() + 1);
+        self.cells
+            .push(Term(Repr::Functor(name, index(args.len()))));
+        self.cells.extend_from_slice(args);
+        Term(Repr::Struct(at))
+    }
+
+    /// The list cell `'.'(head, tail)`.
+    pub fn cons(&mut self, head: Term, tail: Term) -> Term {
+        self.compound(atoms::DOT, &[head, tail])
+    }
+
+    /// The proper list `[items..]`.
+    pub fn list(&mut self, items: &[Term]) -> Term {
+        self.list_with_tail(items, Term::NIL)
+    }
+
+    /// The list `[items..|tail]`.
+    pub fn list_with_tail(&mut self, items: &[Term], tail: Term) -> Term {
+        items
+            .iter()
+            .rev()
+            .fold(tail, |acc, &item| self.cons(item, acc))
+    }
+
+    /// The list of the character codes of `text` (how SWI-6 reads `"text"`).
+    pub fn codes(&mut self, text: &str) -> Term {
+        // Built back to front: one pass, no intermediate vector.
+        let mut acc = Term::NIL;
+        for c in text.chars().rev() {
+            acc = self.cons(Term::int(i64::from(u32::from(c))), acc);
+        }
+        acc
+    }
+
+    /// An integer from decimal text (optional `-`/`+`, digits): a small
+    /// integer if it fits `i64`, else a big integer. `None` if not a number.
+    pub fn integer_from_text(&mut self, text: &str) -> Option<Term> {
+        let (negative, digits) = match text.as_bytes().first()? {
+            b'-' => (true, &text[1..]),
+            b'+' => (false, &text[1..]),
+            _ => (false, text),
+        };
+        if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        let digits = digits.trim_start_matches('0');
+        if digits.is_empty() {
+            return Some(Term::int(0));
+        }
+        let normal = if negative {
+            format!("-{digits}")
+        } else {
+            digits.to_owned()
+        };
+        if let Ok(i) = normal.parse::<i64>() {
+            return Some(Term::int(i));
+        }
+        let at = index(self.bigs.len());
+        self.bigs.push(normal.into_boxed_str());
+        Some(Term(Repr::Big(at)))
+    }
+
+    // --------------------------------------------------------------- access
+
+    /// Follows variable bindings: the result is not a bound variable.
+    #[inline]
+    pub fn deref(&self, mut t: Term) -> Term {
+        while let Repr::Var(i) = t.0 {
+            let b = self.vars[i as usize];
+            if b == t {
+                break;
+            }
+            t = b;
+        }
+        t
+    }
+
+    /// The dereferenced term, one level deep.
+    pub fn value(&self, t: Term) -> Value<'_> {
+        let t = self.deref(t);
+        match t.0 {
+            Repr::Var(i) => Value::Var(Var(i)),
+            Repr::Atom(a) => Value::Atom(a),
+            Repr::Int(i) => Value::Int(i),
+            Repr::Float(bits) => Value::Float(f64::from_bits(bits)),
+            Repr::Big(b) => Value::BigInt(&self.bigs[b as usize]),
+            Repr::Struct(p) => {
+                let (name, args) = self.compound_at(p);
+                Value::Compound(name, args)
+            }
+            // A handle given out is never a header cell; treat one as an
+            // atom rather than panic.
+            Repr::Functor(name, _) => Value::Atom(name),
+        }
+    }
+
+    /// Name and arguments of the compound whose header is at `p`.
+    #[inline]
+    pub(crate) fn compound_at(&self, p: u32) -> (Atom, &[Term]) {
+        let p = p as usize;
+        match self.cells[p].0 {
+            Repr::Functor(name, n) => (name, &self.cells[p + 1..p + 1 + n as usize]),
+            _ => (atoms::NIL, &[]),
+        }
+    }
+
+    /// The header of the compound at `p`.
+    #[inline]
+    pub(crate) fn header_at(&self, p: u32) -> (Atom, u32) {
+        match self.cells[p as usize].0 {
+            Repr::Functor(name, n) => (name, n),
+            _ => (atoms::NIL, 0),
+        }
+    }
+
+    /// Name and arity of an atom (arity 0) or compound.
+    pub fn functor(&self, t: Term) -> Option<(Atom, usize)> {
+        match self.deref(t).0 {
+            Repr::Atom(a) => Some((a, 0)),
+            Repr::Struct(p) => {
+                let (name, n) = self.header_at(p);
+                Some((name, n as usize))
+            }
+            _ => None,
+        }
+    }
+
+    /// The arguments of a compound (not dereferenced); empty otherwise.
+    pub fn args(&self, t: Term) -> &[Term] {
+        match self.deref(t).0 {
+            Repr::Struct(p) => self.compound_at(p).1,
+            _ => &[],
+        }
+    }
+
+    /// Argument `i` (0-based) of a compound.
+    pub fn arg(&self, t: Term, i: usize) -> Option<Term> {
+        self.args(t).get(i).copied()
+    }
+
+    /// The arguments if `t` is `name(..)` with exactly `arity` arguments.
+    pub fn compound_args(&self, t: Term, name: Atom, arity: usize) -> Option<&[Term]> {
+        match self.deref(t).0 {
+            Repr::Struct(p) => {
+                let (n, args) = self.compound_at(p);
+                (n == name && args.len() == arity).then_some(args)
+            }
+            _ => None,
+        }
+    }
+
+    /// The atom, if `t` is one.
+    pub fn atom_of(&self, t: Term) -> Option<Atom> {
+        match self.deref(t).0 {
+            Repr::Atom(a) => Some(a),
+            _ => None,
+        }
+    }
+
+    /// The integer, if `t` is a small integer.
+    pub fn int_of(&self, t: Term) -> Option<i64> {
+        match self.deref(t).0 {
+            Repr::Int(i) => Some(i),
+            _ => None,
+        }
+    }
+
+    /// The variable, if `t` is an unbound one.
+    pub fn var_of(&self, t: Term) -> Option<Var> {
+        match self.deref(t).0 {
+            Repr::Var(i) => Some(Var(i)),
+            _ => None,
+        }
+    }
+
+    /// Whether `t` is an unbound variable.
+    pub fn is_var(&self, t: Term) -> bool {
+        matches!(self.deref(t).0, Repr::Var(_))
+    }
+
+    /// Iterates over the elements of a (proper or partial) list; afterwards
+    /// [`ListIter::tail`] is what ended it (`[]` for a proper list).
+    pub fn list_iter(&self, t: Term) -> ListIter<'_> {
+        ListIter {
+            store: self,
+            cur: t,
+        }
+    }
+
+    /// The elements of a proper list; `None` for anything else.
+    pub fn list_to_vec(&self, t: Term) -> Option<Vec<Term>> {
+        let mut it = self.list_iter(t);
+        let items: Vec<Term> = it.by_ref().collect();
+        (it.tail() == Term::NIL).then_some(items)
+    }
+
+    // ------------------------------------------------------ binding, trail
+
+    /// Binds `var` (dereferenced first) to `value`, recording it on the
+    /// trail. Returns `false`, binding nothing, if `var` is not an unbound
+    /// variable.
+    pub fn bind(&mut self, var: Term, value: Term) -> bool {
+        match self.deref(var).0 {
+            Repr::Var(i) => {
+                let value = self.deref(value);
+                if value != Term(Repr::Var(i)) {
+                    self.bind_raw(i, value);
+                }
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// Binds the unbound variable cell `i`.
+    #[inline]
+    pub(crate) fn bind_raw(&mut self, i: u32, value: Term) {
+        self.vars[i as usize] = value;
+        self.trail.push(i);
+    }
+
+    /// The current trail position: [`Store::undo_to`] it to forget every
+    /// binding made since. Marks are invalidated by [`Store::gc`].
+    pub fn mark(&self) -> Mark {
+        Mark {
+            trail: index(self.trail.len()),
+            epoch: self.epoch,
+        }
+    }
+
+    /// Unbinds every variable bound since `mark`. A mark taken before the
+    /// last [`Store::gc`] is stale and ignored (gc commits all bindings).
+    pub fn undo_to(&mut self, mark: Mark) {
+        if mark.epoch != self.epoch {
+            return;
+        }
+        let keep = mark.trail as usize;
+        while self.trail.len() > keep {
+            if let Some(i) = self.trail.pop() {
+                self.vars[i as usize] = Term(Repr::Var(i));
+            }
+        }
+    }
+
+    // ------------------------------------------------------ memory regions
+
+    /// Makes everything currently in the store permanent: never moved or
+    /// reclaimed by [`Store::gc`]. Build programs and constants, collect
+    /// away the scaffolding, then freeze. Frozen compounds can be shared by
+    /// any number of terms built later at no cost.
+    pub fn freeze(&mut self) {
+        self.frozen = Frontier {
+            cells: index(self.cells.len()),
+            vars: index(self.vars.len()),
+            bigs: index(self.bigs.len()),
+        };
+    }
+
+    /// Current sizes.
+    pub fn stats(&self) -> StoreStats {
+        StoreStats {
+            cells: self.cells.len(),
+            vars: self.vars.len(),
+            bigs: self.bigs.len(),
+            trail: self.trail.len(),
+            frozen_cells: self.frozen.cells as usize,
+            frozen_vars: self.frozen.vars as usize,
+        }
+    }
+
+    // ------------------------------------------------------------- output
+
+    /// `writeq/1` text of `t` (SitLog operators; variables as `_G<n>`).
+    pub fn writeq(&self, t: Term) -> String {
+        write_term(self, t, WriteOptions::writeq())
+    }
+
+    /// `write/1` text of `t` (operators, no quotes).
+    pub fn write(&self, t: Term) -> String {
+        write_term(self, t, WriteOptions::write())
+    }
+
+    /// Text of `t` with explicit writer options.
+    pub fn write_with(&self, t: Term, options: WriteOptions<'_>) -> String {
+        write_term(self, t, options)
+    }
+}
+
+/// Runtime terms print through the syntax crate's writer.
+impl TermSource for Store {
+    type Ref = Term;
+    fn view(&self, t: Term) -> View<'_, Term> {
+        match self.value(t) {
+            Value::Var(v) => View::Var(VarLabel::Numbered(u64::from(v.0))),
+            Value::Atom(a) => View::Atom(a),
+            Value::Int(i) => View::Int(i),
+            Value::BigInt(s) => View::BigInt(s),
+            Value::Float(f) => View::Float(f),
+            Value::Compound(name, args) => View::Compound(name, args),
+        }
+    }
+}
+
+/// Iterator over list elements; see [`Store::list_iter`].
+#[derive(Clone, Debug)]
+pub struct ListIter<'s> {
+    store: &'s Store,
+    cur: Term,
+}
+
+impl ListIter<'_> {
+    /// The dereferenced remainder: `[]` after a proper list, else the
+    /// partial tail (a variable or a non-list term).
+    pub fn tail(&self) -> Term {
+        self.store.deref(self.cur)
+    }
+}
+
+impl Iterator for ListIter<'_> {
+    type Item = Term;
+    fn next(&mut self) -> Option<Term> {
+        let args = self.store.compound_args(self.cur, atoms::DOT, 2)?;
+        let head = args[0];
+        self.cur = args[1];
+        Some(head)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn build_and_access() {
+        let mut s = Store::new();
+        let a = Term::atom(Atom::intern("a"));
+        let x = s.new_var();
+        let f = Atom::intern("f");
+        let t = s.compound(f, &[a, x, Term::int(3)]);
+        assert_eq!(s.functor(t), Some((f, 3)));
+        assert_eq!(s.arg(t, 0), Some(a));
+        assert_eq!(s.arg(t, 3), None);
+        assert!(s.is_var(x));
+        assert_eq!(s.var_of(x).map(Term::from), Some(x));
+        assert_eq!(s.var_of(t), None);
+        assert_eq!(s.compound(f, &[]), Term::atom(f));
+        assert_eq!(s.functor(Term::int(1)), None);
+        assert!(s.args(a).is_empty());
+    }
+
+    #[test]
+    fn bind_deref_undo() {
+        let mut s = Store::new();
+        let x = s.new_var();
+        let y = s.new_var();
+        let m = s.mark();
+        assert!(s.bind(x, y));
+        assert!(s.bind(y, Term::int(5)));
+        assert_eq!(s.deref(x), Term::int(5));
+        assert!(!s.bind(x, Term::int(6)), "bound variables cannot be bound");
+        s.undo_to(m);
+        assert!(s.is_var(x) && s.is_var(y));
+        assert_ne!(s.deref(x), s.deref(y));
+        // Binding a variable to itself is a no-op.
+        assert!(s.bind(x, x));
+        assert!(s.is_var(x));
+    }
+
+    #[test]
+    fn lists() {
+        let mut s = Store::new();
+        let items = [Term::int(1), Term::int(2), Term::int(3)];
+        let l = s.list(&items);
+        assert_eq!(s.list_to_vec(l), Some(items.to_vec()));
+        let t = s.new_var();
+        let p = s.list_with_tail(&items[..1], t);
+        let mut it = s.list_iter(p);
+        assert_eq!(it.next(), Some(Term::int(1)));
+        assert_eq!(it.next(), None);
+        assert_eq!(it.tail(), t);
+        assert_eq!(s.list_to_vec(p), None);
+        assert_eq!(s.list_to_vec(Term::NIL), Some(vec![]));
+        let c = s.codes("hé");
+        assert_eq!(s.list_to_vec(c), Some(vec![Term::int(104), Term::int(233)]));
+        assert_eq!(s.writeq(c), "[104,233]");
+    }
+
+    #[test]
+    fn integers_from_text() {
+        let mut s = Store::new();
+        assert_eq!(s.integer_from_text("-0042"), Some(Term::int(-42)));
+        assert_eq!(s.integer_from_text("+7"), Some(Term::int(7)));
+        assert_eq!(s.integer_from_text("000"), Some(Term::int(0)));
+        assert_eq!(s.integer_from_text(""), None);
+        assert_eq!(s.integer_from_text("-"), None);
+        assert_eq!(s.integer_from_text("12a"), None);
+        let big = s
+            .integer_from_text("-000123456789012345678901234567890")
+            .unwrap();
+        assert_eq!(
+            s.value(big),
+            Value::BigInt("-123456789012345678901234567890")
+        );
+        assert_eq!(s.writeq(big), "-123456789012345678901234567890");
+        assert_eq!(
+            s.integer_from_text("9223372036854775807"),
+            Some(Term::int(i64::MAX))
+        );
+        assert_eq!(
+            s.integer_from_text("-9223372036854775808"),
+            Some(Term::int(i64::MIN))
+        );
+    }
+}
