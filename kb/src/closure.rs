@@ -27,6 +27,13 @@ pub(crate) enum PE {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Budget;
 
+/// The result of a search step: whether the continuation accepted.
+type Step = Result<bool, Budget>;
+/// A continuation over a complete solution list.
+type Cont<'k> = &'k mut dyn FnMut(&[PE]) -> Step;
+/// A continuation over one outcome of a default.
+type Emit<'k> = &'k mut dyn FnMut(Option<PE>) -> Step;
+
 /// Steps (firings tried) allowed for one closure.
 pub(crate) const STEP_LIMIT: u64 = 5_000_000;
 
@@ -191,10 +198,16 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// Runs the ordered defaults over `p` (the original's `prefer_handler`).
+    /// Runs the ordered defaults over `p` (the original's `prefer_handler`,
+    /// first solution): each default adds its first outcome.
     pub fn run(&self, rules: &[Rule], p: &mut Vec<PE>) -> Result<(), Budget> {
         for i in 0..rules.len() {
-            if let Some(c) = self.fire(rules, i, p)? {
+            let mut first = None;
+            self.outcomes(rules, i, p, &mut |o| {
+                first = o;
+                Ok(true)
+            })?;
+            if let Some(c) = first {
                 p.push(c);
             }
         }
@@ -205,106 +218,171 @@ impl<'a> Ctx<'a> {
         rest.iter().any(|r| what(self.pe(r.cons)))
     }
 
-    /// What default `i` appends to `p`, trying the original's clauses in order.
-    fn fire(&self, rules: &[Rule], i: usize, p: &[PE]) -> Result<Option<PE>, Budget> {
+    /// Enumerates, in Prolog's order, the solutions of running `rules[i..]`
+    /// over `p`, calling `k` on each final list until it accepts one (`true`).
+    /// Forward chaining in the original backtracks through these solutions
+    /// until its check holds; repeated outcomes are skipped, since their
+    /// solutions were already rejected.
+    fn solve(&self, rules: &[Rule], i: usize, p: &mut Vec<PE>, k: Cont<'_>) -> Step {
+        stacker::maybe_grow(32 * 1024, 1024 * 1024, || {
+            if i == rules.len() {
+                return k(p);
+            }
+            let snapshot = p.clone();
+            let mut seen: Vec<Option<PE>> = Vec::new();
+            self.outcomes(rules, i, &snapshot, &mut |o| {
+                if seen.contains(&o) {
+                    return Ok(false);
+                }
+                seen.push(o);
+                if let Some(x) = o {
+                    p.push(x);
+                }
+                let r = self.solve(rules, i + 1, p, &mut *k);
+                if o.is_some() {
+                    p.pop();
+                }
+                r
+            })
+        })
+    }
+
+    /// The outcomes of default `i` over `p` (what it appends, or `None` for
+    /// nothing), in the order of the original's clauses; stops when `emit`
+    /// accepts one.
+    fn outcomes(&self, rules: &[Rule], i: usize, p: &[PE], emit: Emit<'_>) -> Step {
         self.tick()?;
         let r = rules[i];
         let rest = &rules[i + 1..];
         let dash = self.k.dash;
         let ant = self.pe(r.ant);
         let cons = self.pe(r.cons);
-        let mut forward: Option<Vec<PE>> = None;
-        let mut run_rest = |this: &Self| -> Result<Vec<PE>, Budget> {
-            if let Some(f) = &forward {
-                return Ok(f.clone());
-            }
-            let mut copy = p.to_vec();
-            this.run(rest, &mut copy)?;
-            forward = Some(copy.clone());
-            Ok(copy)
-        };
+        macro_rules! em {
+            ($o:expr) => {
+                if emit($o)? {
+                    return Ok(true);
+                }
+            };
+        }
         // Backward: the antecedent is already in the list.
         if let (PE::Arrow(pa, va), PE::Arrow(q, vc)) = (ant, cons) {
             if va == dash && vc == dash {
                 if let Some(v) = self.first_kept_val(p, pa) {
-                    return Ok(Some(PE::Arrow(q, v)));
+                    em!(Some(PE::Arrow(q, v)));
                 }
             }
             if va == dash && Self::has_attr(p, pa) {
-                return Ok(Some(cons));
+                em!(Some(cons));
             }
             if self.first_kept_val(p, pa) == Some(va) {
-                return Ok(Some(cons));
+                em!(Some(cons));
             }
         }
         if p.contains(&ant) {
-            return Ok(Some(cons));
+            em!(Some(cons));
         }
         if let PE::Arrow(pa, va) = ant {
             if va == dash && Self::has_attr(p, pa) {
-                return Ok(Some(cons));
+                em!(Some(cons));
             }
         }
         if r.ant == dash {
-            return Ok(Some(cons));
+            em!(Some(cons));
         }
-        // Forward: a later default concludes the antecedent.
+        // Forward: a later default concludes the antecedent; some solution of
+        // the rest must contain it.
         if let (PE::Arrow(pa, va), PE::Arrow(q, vc)) = (ant, cons) {
             if va == dash
                 && vc == dash
                 && self.concludes(rest, |c| matches!(c, PE::Arrow(x, _) if x == pa))
             {
-                let pa_list = run_rest(self)?;
-                if let Some(v) = self.first_kept_val(&pa_list, pa) {
-                    return Ok(Some(PE::Arrow(q, v)));
+                let mut copy = p.to_vec();
+                let stop = self.solve(rest, 0, &mut copy, &mut |fl| {
+                    match self.first_kept_val(fl, pa) {
+                        Some(v) => emit(Some(PE::Arrow(q, v))),
+                        None => Ok(false),
+                    }
+                })?;
+                if stop {
+                    return Ok(true);
                 }
             }
             if self.concludes(rest, |c| c == ant) {
-                let pa_list = run_rest(self)?;
-                if self.first_kept_val(&pa_list, pa) == Some(va) {
-                    return Ok(Some(cons));
+                let mut copy = p.to_vec();
+                let stop = self.solve(rest, 0, &mut copy, &mut |fl| {
+                    if self.first_kept_val(fl, pa) == Some(va) {
+                        emit(Some(cons))
+                    } else {
+                        Ok(false)
+                    }
+                })?;
+                if stop {
+                    return Ok(true);
                 }
             }
         }
         if self.concludes(rest, |c| c == ant) {
-            let pa_list = run_rest(self)?;
-            if pa_list.contains(&ant) {
-                return Ok(Some(cons));
+            let mut copy = p.to_vec();
+            let stop = self.solve(rest, 0, &mut copy, &mut |fl| {
+                if fl.contains(&ant) {
+                    emit(Some(cons))
+                } else {
+                    Ok(false)
+                }
+            })?;
+            if stop {
+                return Ok(true);
             }
         }
         // A list of antecedents.
         if let Some(items) = self.s.proper_list(r.ant) {
             if let PE::Arrow(q, vc) = cons {
                 if vc == dash {
-                    if let Some(bound) = self.list4(&items, 0, rest, p, None, &mut run_rest)? {
-                        // An empty list leaves the value unbound in the original.
-                        return Ok(Some(PE::Arrow(q, bound.unwrap_or(dash))));
+                    // An empty list leaves the value unbound in the original.
+                    let stop = self.list4(&items, 0, rest, p, None, &mut |v| {
+                        emit(Some(PE::Arrow(q, v.unwrap_or(dash))))
+                    })?;
+                    if stop {
+                        return Ok(true);
                     }
                 }
-                if self.list4(&items, 0, rest, p, Some(vc), &mut run_rest)?.is_some() {
-                    return Ok(Some(cons));
+                let stop = self.list4(&items, 0, rest, p, Some(vc), &mut |_| emit(Some(cons)))?;
+                if stop {
+                    return Ok(true);
                 }
             }
-            let mut all = true;
-            for &item in &items {
-                let it = self.pe(item);
-                let holds = p.contains(&it)
-                    || (self.concludes(rest, |c| c == it) && run_rest(self)?.contains(&it));
-                if !holds {
-                    all = false;
-                    break;
-                }
-            }
-            if all {
-                return Ok(Some(cons));
+            if self.list3(&items, rest, p)? {
+                em!(Some(cons));
             }
         }
-        Ok(None)
+        em!(None);
+        Ok(false)
+    }
+
+    /// Whether some solution of running `rest` over `p` satisfies `check`.
+    fn some_solution(&self, rest: &[Rule], p: &[PE], check: impl Fn(&[PE]) -> bool) -> Step {
+        let mut copy = p.to_vec();
+        self.solve(rest, 0, &mut copy, &mut |fl| Ok(check(fl)))
+    }
+
+    /// The original's 3-argument list check: every item is in the list, or
+    /// a later default concludes it in some solution of the rest.
+    fn list3(&self, items: &[TId], rest: &[Rule], p: &[PE]) -> Step {
+        for &item in items {
+            let it = self.pe(item);
+            if p.contains(&it) {
+                continue;
+            }
+            if !(self.concludes(rest, |c| c == it) && self.some_solution(rest, p, |fl| fl.contains(&it))?) {
+                return Ok(false);
+            }
+        }
+        Ok(true)
     }
 
     /// The original's 4-argument list check: every item `p=>'-'` / `p=>v`
-    /// holds with one shared value; `Some(binding)` on success.
-    #[allow(clippy::type_complexity)]
+    /// holds with one shared value, in clause order with backtracking;
+    /// `k` gets the binding.
     fn list4(
         &self,
         items: &[TId],
@@ -312,60 +390,78 @@ impl<'a> Ctx<'a> {
         rest: &[Rule],
         p: &[PE],
         val: Option<TId>,
-        run_rest: &mut dyn FnMut(&Self) -> Result<Vec<PE>, Budget>,
-    ) -> Result<Option<Option<TId>>, Budget> {
+        k: &mut dyn FnMut(Option<TId>) -> Step,
+    ) -> Step {
         let Some(&item) = items.get(idx) else {
-            return Ok(Some(val));
+            return k(val);
         };
+        self.tick()?;
         let dash = self.k.dash;
         let Some((pa, va)) = self.s.binary(item, ARROW) else {
-            return Ok(None);
+            return Ok(false);
         };
         let compat = |x: TId| val.is_none() || val == Some(x);
-        let mut tries: Vec<Option<TId>> = Vec::new();
         if va == dash {
+            // This clause ends in a cut: its first success is the only one.
             if let Some(x) = self.first_kept_val(p, pa).filter(|&x| compat(x)) {
-                tries.push(Some(x));
-            }
-            if compat(dash) && self.first_kept_val(p, pa) == Some(dash) {
-                tries.push(Some(dash));
-            }
-            for t in tries.drain(..) {
-                if let Some(r) = self.list4(items, idx + 1, rest, p, t, run_rest)? {
-                    return Ok(Some(r));
+                let mut first = None;
+                self.list4(items, idx + 1, rest, p, Some(x), &mut |v| {
+                    first = Some(v);
+                    Ok(true)
+                })?;
+                if let Some(v) = first {
+                    return k(v);
                 }
             }
+            if compat(dash)
+                && self.first_kept_val(p, pa) == Some(dash)
+                && self.list4(items, idx + 1, rest, p, Some(dash), k)?
+            {
+                return Ok(true);
+            }
             if self.concludes(rest, |c| matches!(c, PE::Arrow(x, _) if x == pa)) {
-                let fl = run_rest(self)?;
-                if let Some(x) = self.first_kept_val(&fl, pa).filter(|&x| compat(x)) {
-                    if let Some(r) = self.list4(items, idx + 1, rest, p, Some(x), run_rest)? {
-                        return Ok(Some(r));
+                let mut copy = p.to_vec();
+                let stop = self.solve(rest, 0, &mut copy, &mut |fl| {
+                    match self.first_kept_val(fl, pa).filter(|&x| compat(x)) {
+                        Some(x) => self.list4(items, idx + 1, rest, p, Some(x), &mut *k),
+                        None => Ok(false),
                     }
+                })?;
+                if stop {
+                    return Ok(true);
                 }
             }
             if compat(dash) && self.concludes(rest, |c| c == PE::Arrow(pa, dash)) {
-                let fl = run_rest(self)?;
-                if self.first_kept_val(&fl, pa) == Some(dash) {
-                    return self.list4(items, idx + 1, rest, p, Some(dash), run_rest);
-                }
+                let mut copy = p.to_vec();
+                return self.solve(rest, 0, &mut copy, &mut |fl| {
+                    if self.first_kept_val(fl, pa) == Some(dash) {
+                        self.list4(items, idx + 1, rest, p, Some(dash), &mut *k)
+                    } else {
+                        Ok(false)
+                    }
+                });
             }
-            Ok(None)
+            Ok(false)
         } else {
             if !compat(va) {
-                return Ok(None);
+                return Ok(false);
             }
-            if self.first_kept_val(p, pa) == Some(va) {
-                if let Some(r) = self.list4(items, idx + 1, rest, p, Some(va), run_rest)? {
-                    return Ok(Some(r));
-                }
+            if self.first_kept_val(p, pa) == Some(va)
+                && self.list4(items, idx + 1, rest, p, Some(va), k)?
+            {
+                return Ok(true);
             }
             if self.concludes(rest, |c| c == PE::Arrow(pa, va)) {
-                let fl = run_rest(self)?;
-                if self.first_kept_val(&fl, pa) == Some(va) {
-                    return self.list4(items, idx + 1, rest, p, Some(va), run_rest);
-                }
+                let mut copy = p.to_vec();
+                return self.solve(rest, 0, &mut copy, &mut |fl| {
+                    if self.first_kept_val(fl, pa) == Some(va) {
+                        self.list4(items, idx + 1, rest, p, Some(va), &mut *k)
+                    } else {
+                        Ok(false)
+                    }
+                });
             }
-            Ok(None)
+            Ok(false)
         }
     }
 

@@ -17,10 +17,25 @@ pub struct Entry {
 }
 
 /// An element of a DM's history.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub enum Item {
     Entry(Entry),
     Nested(Vec<Item>),
+}
+
+/// Histories nest as deep as DM calls (100 000 levels and more): dropping
+/// them must not recurse.
+impl Drop for Item {
+    fn drop(&mut self) {
+        if let Item::Nested(items) = self {
+            let mut stack = std::mem::take(items);
+            while let Some(mut item) = stack.pop() {
+                if let Item::Nested(inner) = &mut item {
+                    stack.append(inner);
+                }
+            }
+        }
+    }
 }
 
 impl Entry {

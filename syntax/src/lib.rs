@@ -17,7 +17,8 @@ pub mod write;
 pub use atom::{atoms, Atom};
 pub use ops::{OpDef, OpTable, OpType};
 pub use read::{
-    read_clauses, read_clauses_with, read_term, read_term_with, ClauseReader, SyntaxError,
+    line_col, read_clauses, read_clauses_bytes, read_clauses_bytes_with, read_clauses_with,
+    read_term, read_term_with, source_from_bytes, ClauseReader, SyntaxError,
 };
 pub use term::{Clause, Node, Span, TermId, Terms, VarId, VarInfo};
 pub use write::{write_term, writeq, TermSource, VarLabel, View, WriteOptions};

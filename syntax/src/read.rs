@@ -40,6 +40,71 @@ impl SyntaxError {
     }
 }
 
+impl SyntaxError {
+    /// 1-based line and column (in characters) of the start of the error in `src`.
+    pub fn line_col(&self, src: &str) -> (usize, usize) {
+        line_col(src, self.span.start as usize)
+    }
+
+    /// [`SyntaxError::line_col`] for raw bytes (invalid UTF-8 counts one column per byte).
+    pub fn line_col_bytes(&self, src: &[u8]) -> (usize, usize) {
+        let at = (self.span.start as usize).min(src.len());
+        let before = &src[..at];
+        let line_start = before
+            .iter()
+            .rposition(|&b| b == b'\n')
+            .map_or(0, |i| i + 1);
+        let line = 1 + before.iter().filter(|&&b| b == b'\n').count();
+        let col = 1 + String::from_utf8_lossy(&before[line_start..]).chars().count();
+        (line, col)
+    }
+}
+
+/// 1-based line and column (in characters) of byte `offset` of `src`.
+/// Offsets past the end or inside a character are clamped.
+pub fn line_col(src: &str, offset: usize) -> (usize, usize) {
+    let mut at = offset.min(src.len());
+    while !src.is_char_boundary(at) {
+        at -= 1;
+    }
+    let before = &src[..at];
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    let line = 1 + before.bytes().filter(|&b| b == b'\n').count();
+    (line, 1 + before[line_start..].chars().count())
+}
+
+/// Checks that `bytes` are UTF-8 (the reader works on `&str`). The error
+/// points at the first invalid byte and gives its offset.
+pub fn source_from_bytes(bytes: &[u8]) -> Result<&str, SyntaxError> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let at = e.valid_up_to();
+        let len = e.error_len().unwrap_or(bytes.len() - at).max(1);
+        let mut err = SyntaxError::new(
+            Span::new(at, (at + len).min(bytes.len())),
+            format!(
+                "invalid UTF-8 at byte offset {at} (byte 0x{:02X}): source text must be UTF-8",
+                bytes[at]
+            ),
+        );
+        err.help = Some("convert the file to UTF-8 (e.g. with iconv)".into());
+        err
+    })
+}
+
+/// [`read_clauses`] for raw bytes: text that is not UTF-8 gives one error at
+/// the first invalid byte and no clauses.
+pub fn read_clauses_bytes(bytes: &[u8]) -> (Vec<Clause>, Vec<SyntaxError>) {
+    read_clauses_bytes_with(bytes, OpTable::sitlog_shared())
+}
+
+/// [`read_clauses_bytes`] with another operator table.
+pub fn read_clauses_bytes_with(bytes: &[u8], ops: &OpTable) -> (Vec<Clause>, Vec<SyntaxError>) {
+    match source_from_bytes(bytes) {
+        Ok(src) => read_clauses_with(src, ops),
+        Err(e) => (Vec::new(), vec![e]),
+    }
+}
+
 impl std::fmt::Display for SyntaxError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(&self.message)

@@ -162,3 +162,51 @@ mod tests {
         assert_eq!(super::normalize_vars("a_b(_123)"), "a_b(_)");
     }
 }
+
+/// Checks, lowers and runs in-memory sources (`name`, `text`) with a script;
+/// returns the JSON report (as a JSON string when it nests deeper than
+/// serde_json parses). Panics with the diagnostics if they do not check.
+pub fn run_sources(
+    files: &[(&str, &str)],
+    script: &str,
+    main: &str,
+    in_arg: Option<&str>,
+    options: Options,
+) -> serde_json::Value {
+    run_sources_with(files, script, main, in_arg, options, Functions::standard())
+}
+
+pub fn run_sources_with(
+    files: &[(&str, &str)],
+    script: &str,
+    main: &str,
+    in_arg: Option<&str>,
+    options: Options,
+    functions: Functions,
+) -> serde_json::Value {
+    let (program, diags) = sitlog_compiler::load::load_sources(files);
+    let (result, diags) = sitlog_compiler::check::check(program, diags);
+    let checked = match result {
+        Ok(c) => c,
+        Err(p) => {
+            let text: Vec<String> = diags
+                .iter()
+                .map(|d| sitlog_compiler::diag::render_short(d, &p.sources))
+                .collect();
+            panic!("sources do not check:\n{}", text.join("\n"));
+        }
+    };
+    let ir = sitlog_compiler::ir::lower(&checked);
+    let mut perception = ScriptPerception::new("script", script.to_owned());
+    let mut actions = TextActions::new(std::io::sink(), ir.basic_actions.clone());
+    let config = RunConfig {
+        main: main.to_owned(),
+        in_arg: in_arg.map(str::to_owned),
+        options,
+        functions,
+    };
+    let (outcome, store) =
+        run::run(&ir, config, &mut perception, &mut actions, None).expect("valid run config");
+    let text = report::outcome_json(&store, &outcome);
+    serde_json::from_str(&text).unwrap_or_else(|_| serde_json::Value::String(text))
+}

@@ -1,0 +1,2 @@
+% visits of the situation `is`
+rounds ==> 0.
