@@ -1,8 +1,9 @@
 % ask(Topic, Result): asks about Topic at most twice. Result is bound by
-% the diag_mod attribute of the final situation reached: the answer given,
-% or `none` when the user did not know twice. Every ask counts in the
-% global `tries`.
-diag_mod(ask(Topic, Result),
+% the diag_mod attribute of the final situation reached: to the answer
+% given, or to `none` when the user did not know twice (so the head
+% variable is used only through that binding). Every question asked counts
+% in the global `tries`.
+diag_mod(ask(Topic, _Result),
   [
     [ id ==> is,
       type ==> speech,

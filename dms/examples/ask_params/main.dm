@@ -21,7 +21,7 @@ diag_mod(main,
       embedded_dm ==> ask(size, Size),
       arcs ==> [
         got(_) : [set(size, Size)] => report,
-        failed : [inc(failures, F), no_size(Size)] => report
+        failed : [inc(failures, _), no_size(Size)] => report
       ]
     ],
     [ id ==> report,

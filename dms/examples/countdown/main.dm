@@ -23,9 +23,9 @@ diag_mod(main,
     % one step down; says `more` while there are steps left
     [ id ==> tick(N),
       type ==> neutral,
-      prog ==> [inc(steps, S)],
+      prog ==> [inc(steps, _)],
       arcs ==> [
-        empty : [M is N - 1, inc(ticks, T),
+        empty : [M is N - 1, inc(ticks, _),
                  (M > 0 -> say(more) ; otherwise -> say(last))] => tick(M)
       ]
     ],

@@ -7,7 +7,10 @@
 %     SYNTAX_ERROR <line>:<col> <message>
 % is printed (col is 1-based, counted in characters).
 %
-% Usage: swipl swi_dump.pl FILE
+% With a second argument `all`, reading goes on after a syntax error (SWI
+% skips to the end of the erroneous clause), one SYNTAX_ERROR line per error.
+%
+% Usage: swipl swi_dump.pl FILE [all]
 
 :- op(600, xfx, :).
 :- op(800, xfx, =>).
@@ -15,10 +18,13 @@
 :- op(900, xfx, ==>).
 
 :- initialization(main, main).
+:- dynamic go_on/0.
 
 main :-
-    current_prolog_flag(argv, [File]),
+    current_prolog_flag(argv, [File|Rest]),
+    ( Rest == [] ; Rest == [all] ),
     !,
+    ( Rest == [all] -> assertz(go_on) ; true ),
     set_stream(user_output, encoding(utf8)),
     setup_call_cleanup(open(File, read, In, [encoding(utf8)]),
                        dump_stream(In),
@@ -30,7 +36,8 @@ main :-
 dump_stream(In) :-
     catch(read_term(In, T, [variable_names(Names)]), E, true),
     (   nonvar(E)
-    ->  report(E)
+    ->  report(E),
+        ( go_on -> dump_stream(In) ; true )
     ;   T == end_of_file
     ->  true
     ;   print_clause(T, Names),
