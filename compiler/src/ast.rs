@@ -24,6 +24,17 @@ pub struct Program {
     pub prolog_files: Vec<FileId>,
     /// Whether a `global_vars.pl` was read (if not, every `get`/`set` needs a local).
     pub has_globals_file: bool,
+    /// Recovery protocols (`recovery_protocols.pl`): situation type name → DM to run
+    /// when no expectation of a situation of that type is met.
+    pub recovery: Vec<Recovery>,
+}
+
+/// `Type ==> dm.` in `recovery_protocols.pl`.
+#[derive(Debug, Clone, Copy)]
+pub struct Recovery {
+    pub situation_type: Atom,
+    pub dm: Atom,
+    pub loc: Loc,
 }
 
 /// One `diag_mod(Id, Situations, LocalVars)`.
@@ -436,6 +447,35 @@ pub fn build_basic_actions(
                     "a basic action must be a list of `attribute ==> value` with an atom `id`",
                 )
                 .with_help("e.g. `[id ==> beep, arity ==> [], mod ==> sound, break ==> no].`"),
+            ),
+        }
+    }
+}
+
+/// `Type ==> dm.` clauses of `recovery_protocols.pl`.
+pub fn build_recovery(file: FileId, clauses: Vec<Clause>, out: &mut Vec<Recovery>, diags: &mut Vec<Diagnostic>) {
+    for clause in clauses {
+        let loc = Loc {
+            file,
+            span: clause.span,
+        };
+        let pair = dbl_arrow_pair(&clause, clause.root).and_then(|(t, d)| {
+            let ty = clause.terms.functor(t).map(|f| f.0)?;
+            Some((ty, clause.terms.atom(d)?))
+        });
+        match pair {
+            Some((situation_type, dm)) => out.push(Recovery {
+                situation_type,
+                dm,
+                loc,
+            }),
+            None => diags.push(
+                Diagnostic::error(
+                    codes::MALFORMED_SIDE_FILE,
+                    loc,
+                    "a recovery protocol must be written `situation_type ==> dm_name.`",
+                )
+                .with_help("e.g. `speech ==> ask_again.`"),
             ),
         }
     }

@@ -31,6 +31,7 @@ pub mod codes {
     pub const SINGLETON: &str = "W0220";
     pub const DUPLICATE_GLOBAL: &str = "W0221";
     pub const DUPLICATE_LOCAL: &str = "W0222";
+    pub const UNKNOWN_RECOVERY_DM: &str = "E0223";
 }
 
 /// A program the checker accepted (no errors; warnings allowed).
@@ -217,6 +218,18 @@ impl<'p> Checker<'p> {
         self.duplicate_dms();
         self.duplicate_globals();
         let program: &'p Program = self.program;
+        for r in &program.recovery {
+            if self.find_dm(r.dm).is_none() {
+                self.diags.push(
+                    Diagnostic::error(
+                        codes::UNKNOWN_RECOVERY_DM,
+                        r.loc,
+                        format!("recovery protocol `{}` names no DM of the application", r.dm),
+                    )
+                    .with_label("unknown DM"),
+                );
+            }
+        }
         for dm in &program.dms {
             self.dm(dm);
         }

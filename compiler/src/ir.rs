@@ -30,6 +30,8 @@ pub struct Ir {
     pub basic_actions: Vec<Atom>,
     /// Names and arities of the Prolog user functions (heads of user_functions.pl).
     pub prolog_functions: Vec<(Atom, usize)>,
+    /// Recovery DM per situation type (D-42a).
+    pub recovery: Vec<(Atom, Atom)>,
 }
 
 #[derive(Debug)]
@@ -154,6 +156,11 @@ pub fn lower(checked: &Checked) -> Ir {
             .functions
             .iter()
             .map(|f| (f.name, f.arity))
+            .collect(),
+        recovery: program
+            .recovery
+            .iter()
+            .map(|r| (r.situation_type, r.dm))
             .collect(),
     }
 }

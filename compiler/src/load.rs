@@ -40,6 +40,7 @@ impl std::error::Error for LoadError {}
 const GLOBALS: &str = "global_vars.pl";
 const BASIC_ACTIONS: &str = "basic_actions.pl";
 const EXPECTATION_TYPES: &str = "expectation_types.pl";
+const RECOVERY: &str = "recovery_protocols.pl";
 const PROLOG_FILES: [&str; 2] = ["templates.pl", "user_functions.pl"];
 
 /// The programs below `path`: a file is one program; a directory with a
@@ -131,6 +132,7 @@ fn add_file_by_role(
         EXPECTATION_TYPES => {
             ast::build_expectation_types(file, clauses, &mut program.expectation_types, diags)
         }
+        RECOVERY => ast::build_recovery(file, clauses, &mut program.recovery, diags),
         n if PROLOG_FILES.contains(&n) => {
             ast::build_function_heads(file, &clauses, &mut program.functions);
             program.prolog_files.push(file);
@@ -272,7 +274,7 @@ fn load_dir(
             load_dm_file(&path, program, diags)?;
         }
     }
-    for side in [GLOBALS, BASIC_ACTIONS, EXPECTATION_TYPES]
+    for side in [GLOBALS, BASIC_ACTIONS, EXPECTATION_TYPES, RECOVERY]
         .into_iter()
         .chain(PROLOG_FILES)
     {

@@ -72,7 +72,11 @@ pub fn run(
             config.main
         )));
     }
-    let machine = Machine::new(ir, store, globals, config.functions, config.options);
+    let mut options = config.options;
+    if options.recovery.is_empty() {
+        options.recovery = ir.recovery.clone();
+    }
+    let machine = Machine::new(ir, store, globals, config.functions, options);
     let (outcome, store) = machine.run(main, in_arg, perception, actions, observer);
     Ok((outcome, store))
 }

@@ -382,3 +382,28 @@ fn long_loop_without_history() {
     ok(&v);
     assert_eq!(v["history"], serde_json::json!([]));
 }
+
+#[test]
+fn recovery_protocol_runs_then_the_situation_again() {
+    // D-42a: with `speech ==> ask_again` configured, a non-matching input runs
+    // the recovery DM (nested history) and then a new instance of the situation.
+    let dm = "diag_mod(main, [
+        [id ==> is, type ==> speech, prog ==> [inc(tries, _)], arcs ==> [yes : got(get(tries, T)) => fs, no : [] => fs]],
+        [id ==> fs, type ==> final]], [tries ==> 0]).
+      diag_mod(ask_again, [
+        [id ==> s1, type ==> neutral, arcs ==> [empty : say('Sorry, again?') => done]],
+        [id ==> done, type ==> final]], []).";
+    let v = run_sources(
+        &[("t.dm", dm), ("recovery_protocols.pl", "speech ==> ask_again.\n")],
+        "maybe.\nyes.\n",
+        "main",
+        None,
+        Options::default(),
+    );
+    ok(&v);
+    assert_eq!(steps(&v), ["[2 entries]", "is yes => got(2)", "fs empty => empty"]);
+    // Without recovery configured: the original's retry (D-15), nothing recorded.
+    let v = run(dm, "maybe.\nyes.\n");
+    ok(&v);
+    assert_eq!(steps(&v), ["is yes => got(2)", "fs empty => empty"]);
+}
