@@ -12,9 +12,9 @@ diag_mod(main,
       in_arg ==> In_Arg,
       % the outgoing pipe: tuesday when the incoming one is monday,
       % monday otherwise
-      out_arg ==> apply(when(If, True, False),
+      out_arg ==> apply(when(_If, _True, _False),
                         [In_Arg == monday, tuesday, monday]),
-      prog ==> [inc(count_init, Count_Init)],
+      prog ==> [inc(count_init, _Count_Init)],
       arcs ==> [
         % a concrete expectation
         finish : screen('Good Bye') => fs,
@@ -28,7 +28,7 @@ diag_mod(main,
     % recursive situation: runs `wait` on the current pipe value
     [ id ==> rs,
       type ==> recursive,
-      prog ==> [inc(count_rec, Count_Rec)],
+      prog ==> [inc(count_rec, _Count_Rec)],
       embedded_dm ==> wait,
       arcs ==> [
         fs1 : screen('Back to initial sit') => is,

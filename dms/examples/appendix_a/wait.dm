@@ -10,8 +10,8 @@ diag_mod(wait,
       type ==> speech,
       in_arg ==> In_Arg,
       arcs ==> [
-        In_Arg : [inc(g_count_fs1, G1)] => fs1,
-        loop : [inc(g_count_fs2, G2)] => fs2
+        In_Arg : [inc(g_count_fs1, _G1)] => fs1,
+        loop : [inc(g_count_fs2, _G2)] => fs2
       ]
     ],
     [ id ==> fs1, type ==> final ],
