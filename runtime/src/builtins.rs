@@ -201,22 +201,12 @@ fn run(store: &mut Store, name: Atom, t: Term) -> Result<Term, EvalError> {
             Term::atom(Atom::intern(&text))
         }
         "statistics" => {
-            let key = store.atom_of(args[0]).map(Atom::as_str).unwrap_or("");
-            let r = store.compound(
-                Atom::intern(if key == "walltime" {
-                    "realtime"
-                } else {
-                    "cputime"
-                }),
-                &[],
-            );
-            let _ = r;
-            let secs = std::time::SystemTime::now()
+            // statistics(Key, [Total, SinceLast]) in milliseconds; only the
+            // wall clock is meaningful outside the robot.
+            let ms = std::time::SystemTime::now()
                 .duration_since(std::time::UNIX_EPOCH)
                 .map_or(0, |d| d.as_millis() as i64);
-            let ms = Term::int(secs);
-            let zero = Term::int(0);
-            store.list(&[ms, zero])
+            store.list(&[Term::int(ms), Term::int(0)])
         }
         other => {
             return Err(EvalError::new(format!(

@@ -434,7 +434,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                             None,
                         ));
                     };
-                    let call = self.eval_read_only(e, here, true)?;
+                    let call = self.eval_read_only(e, here)?;
                     self.frames.last_mut().expect("frame").pending =
                         Some(Pending::Recursive { sit, inst });
                     self.call_dm(call, here)?;
@@ -596,7 +596,6 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         &mut self,
         t: Term,
         here: Option<(SitIx, Term)>,
-        _locals_visible: bool,
     ) -> Result<Term, RunError> {
         let frame = self.frames.last().expect("frame");
         self.scratch_locals.restore_from(&frame.locals);
@@ -785,7 +784,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         let Some(d) = inst.diag_mod else {
             return Ok(());
         };
-        let value = self.eval_read_only(d, here, true)?;
+        let value = self.eval_read_only(d, here)?;
         let dm_id = self.frames.last().expect("frame").dm_id;
         if !self.store.unify(value, dm_id) {
             return Err(self.err(
