@@ -453,7 +453,12 @@ pub fn build_basic_actions(
 }
 
 /// `Type ==> dm.` clauses of `recovery_protocols.pl`.
-pub fn build_recovery(file: FileId, clauses: Vec<Clause>, out: &mut Vec<Recovery>, diags: &mut Vec<Diagnostic>) {
+pub fn build_recovery(
+    file: FileId,
+    clauses: Vec<Clause>,
+    out: &mut Vec<Recovery>,
+    diags: &mut Vec<Diagnostic>,
+) {
     for clause in clauses {
         let loc = Loc {
             file,

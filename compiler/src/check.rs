@@ -224,7 +224,10 @@ impl<'p> Checker<'p> {
                     Diagnostic::error(
                         codes::UNKNOWN_RECOVERY_DM,
                         r.loc,
-                        format!("recovery protocol `{}` names no DM of the application", r.dm),
+                        format!(
+                            "recovery protocol `{}` names no DM of the application",
+                            r.dm
+                        ),
                     )
                     .with_label("unknown DM"),
                 );

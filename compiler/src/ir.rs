@@ -32,6 +32,18 @@ pub struct Ir {
     pub prolog_functions: Vec<(Atom, usize)>,
     /// Recovery DM per situation type (D-42a).
     pub recovery: Vec<(Atom, Atom)>,
+    /// The Prolog files (templates.pl, then user_functions.pl), consulted
+    /// at start by the `prolog` feature.
+    pub prolog_sources: Vec<PrologFile>,
+}
+
+/// A Prolog source file of the application.
+#[derive(Clone, Debug)]
+pub struct PrologFile {
+    /// As shown in messages.
+    pub name: String,
+    pub path: std::path::PathBuf,
+    pub text: String,
 }
 
 #[derive(Debug)]
@@ -161,6 +173,18 @@ pub fn lower(checked: &Checked) -> Ir {
             .recovery
             .iter()
             .map(|r| (r.situation_type, r.dm))
+            .collect(),
+        prolog_sources: program
+            .prolog_files
+            .iter()
+            .map(|&id| {
+                let f = program.sources.get(id);
+                PrologFile {
+                    name: f.name.clone(),
+                    path: f.path.clone(),
+                    text: f.text.clone(),
+                }
+            })
             .collect(),
     }
 }

@@ -6,12 +6,17 @@
 //! generate. Only [`load`] touches the file system; rendering of diagnostics
 //! lives in [`diag`].
 
+mod app;
 pub mod ast;
+pub mod build;
 pub mod check;
+pub mod codegen;
 pub mod diag;
 pub mod interp;
 pub mod ir;
+pub mod kb_functions;
 pub mod load;
+pub mod package;
 pub mod run;
 pub mod source;
 

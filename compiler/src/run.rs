@@ -80,3 +80,34 @@ pub fn run(
     let (outcome, store) = machine.run(main, in_arg, perception, actions, observer);
     Ok((outcome, store))
 }
+
+/// Starts the embedded Prolog engine with the application's templates.pl
+/// and user_functions.pl and installs it as the fallback of `functions`
+/// (Rust functions keep precedence). `Ok(None)` when the application has
+/// no Prolog file. Errors carry `file:line:col`.
+#[cfg(feature = "prolog")]
+pub fn install_prolog(
+    ir: &Ir,
+    functions: &mut Functions,
+    options: sitlog_runtime::prolog::PrologOptions,
+) -> Result<
+    Option<sitlog_runtime::prolog::PrologFunctions>,
+    Vec<sitlog_runtime::prolog::PrologLoadError>,
+> {
+    use sitlog_runtime::prolog::{PrologFunctions, PrologSource};
+    if ir.prolog_sources.is_empty() {
+        return Ok(None);
+    }
+    let sources: Vec<PrologSource> = ir
+        .prolog_sources
+        .iter()
+        .map(|f| PrologSource {
+            name: f.name.clone(),
+            text: f.text.clone(),
+            dir: f.path.parent().map(|d| d.to_path_buf()),
+        })
+        .collect();
+    let prolog = PrologFunctions::load(&sources, options)?;
+    prolog.install(functions);
+    Ok(Some(prolog))
+}

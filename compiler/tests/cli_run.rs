@@ -8,7 +8,9 @@ fn sitlogc() -> Command {
 }
 
 fn example(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../dms/examples").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../dms/examples")
+        .join(name)
 }
 
 #[test]
@@ -20,7 +22,12 @@ fn json_report_is_one_object_on_stdout() {
         .arg(&app)
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let stdout = String::from_utf8(out.stdout).unwrap();
     assert_eq!(stdout.lines().count(), 1);
     let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
@@ -71,7 +78,10 @@ fn runtime_error_exits_one_with_history_so_far() {
     assert_eq!(out.status.code(), Some(1));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["status"], "error");
-    assert!(v["error"].as_str().unwrap().contains("situation `s2`"), "{v}");
+    assert!(
+        v["error"].as_str().unwrap().contains("situation `s2`"),
+        "{v}"
+    );
     assert_eq!(v["history"].as_array().unwrap().len(), 1);
     // The trace has the transition, with depth and next situation.
     let line = std::fs::read_to_string(&trace).unwrap();
@@ -83,13 +93,24 @@ fn runtime_error_exits_one_with_history_so_far() {
 
 #[test]
 fn usage_errors_exit_two() {
-    let out = sitlogc().args(["run", "/nonexistent/app"]).output().unwrap();
+    let out = sitlogc()
+        .args(["run", "/nonexistent/app"])
+        .output()
+        .unwrap();
     assert_eq!(out.status.code(), Some(2));
     let app = example("countdown");
-    let out = sitlogc().args(["run", "--main", "nosuchdm"]).arg(&app).output().unwrap();
+    let out = sitlogc()
+        .args(["run", "--main", "nosuchdm"])
+        .arg(&app)
+        .output()
+        .unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("no DM named `nosuchdm`"));
-    let out = sitlogc().args(["run", "--in-arg", "f(("]).arg(&app).output().unwrap();
+    let out = sitlogc()
+        .args(["run", "--in-arg", "f(("])
+        .arg(&app)
+        .output()
+        .unwrap();
     assert_eq!(out.status.code(), Some(2));
 }
 

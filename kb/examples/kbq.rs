@@ -2,13 +2,20 @@
 //! stand-alone tool (the lead wires the same [`sitlog_kb::cli`] into
 //! `sitlogc`). With `--cases FILE`, runs tab-separated lines
 //! `KB<TAB>QUERY[<TAB>UPDATE]...` and prints one output line per case
-//! (used for differential testing against the original).
+//! (used for differential testing against the original). `--gen N DEPTH`
+//! prints a generated KB.
 
 use std::path::Path;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.len() == 3 && args[0] == "--gen" {
+        let n = args[1].parse().unwrap_or(100);
+        let depth = args[2].parse().unwrap_or(8);
+        print!("{}", sitlog_kb::gen::generate_text(n, depth));
+        return ExitCode::SUCCESS;
+    }
     if args.len() == 2 && args[0] == "--cases" {
         let Ok(text) = std::fs::read_to_string(&args[1]) else {
             eprintln!("cannot read {}", args[1]);

@@ -69,7 +69,11 @@ pub enum CallError {
     Syntax(SyntaxError),
     /// Not a compound or atom naming a service.
     NotCallable(Span),
-    UnknownService { name: String, arity: usize, span: Span },
+    UnknownService {
+        name: String,
+        arity: usize,
+        span: Span,
+    },
     /// The answer (last argument) is not a variable.
     AnswerNotVar(Span),
     /// An input argument contains a variable.
@@ -95,15 +99,21 @@ impl fmt::Display for CallError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             CallError::Syntax(e) => write!(f, "{}", e.message),
-            CallError::NotCallable(_) => f.write_str("expected a service call such as object_property_value(ana, found_in, X)"),
+            CallError::NotCallable(_) => f.write_str(
+                "expected a service call such as object_property_value(ana, found_in, X)",
+            ),
             CallError::UnknownService { name, arity, .. } => {
                 write!(f, "unknown KB service {name}/{arity}")
             }
             CallError::AnswerNotVar(_) => {
                 f.write_str("the answer (last argument) must be a variable")
             }
-            CallError::NotGround(_) => f.write_str("arguments other than the answer must not contain variables"),
-            CallError::Budget(_) => f.write_str("the closure needs too many steps (exponential forward chaining)"),
+            CallError::NotGround(_) => {
+                f.write_str("arguments other than the answer must not contain variables")
+            }
+            CallError::Budget(_) => {
+                f.write_str("the closure needs too many steps (exponential forward chaining)")
+            }
         }
     }
 }
@@ -114,7 +124,9 @@ fn callable(c: &Clause) -> Result<(String, Vec<TermId>), CallError> {
     let root = c.root;
     match c.terms.node(root) {
         Node::Atom(a) => Ok((a.as_str().to_owned(), Vec::new())),
-        Node::Compound { functor, .. } => Ok((functor.as_str().to_owned(), c.terms.args(root).to_vec())),
+        Node::Compound { functor, .. } => {
+            Ok((functor.as_str().to_owned(), c.terms.args(root).to_vec()))
+        }
         _ => Err(CallError::NotCallable(c.terms.span(root))),
     }
 }
@@ -178,7 +190,9 @@ impl Kb {
                 span: name_span(c),
             });
         };
-        let (last, inputs) = args.split_last().ok_or(CallError::NotCallable(c.terms.span(c.root)))?;
+        let (last, inputs) = args
+            .split_last()
+            .ok_or(CallError::NotCallable(c.terms.span(c.root)))?;
         if !matches!(c.terms.node(*last), Node::Var(_)) {
             return Err(CallError::AnswerNotVar(c.terms.span(*last)));
         }

@@ -37,6 +37,20 @@ type Emit<'k> = &'k mut dyn FnMut(Option<PE>) -> Step;
 /// Steps (firings tried) allowed for one closure.
 pub(crate) const STEP_LIMIT: u64 = 5_000_000;
 
+/// The attribute a term is about: `p` for `p=>v` and `not(p=>v)`, `a` for
+/// `a` and `not(a)`.
+pub(crate) fn term_key(s: &TermStore, mut t: TId) -> TId {
+    loop {
+        if let Some(inner) = s.unary(t, NOT) {
+            t = inner;
+        } else if let Some((p, _)) = s.binary(t, ARROW) {
+            return p;
+        } else {
+            return t;
+        }
+    }
+}
+
 /// A conditional default `Ant=>>Cons`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Rule {
@@ -44,9 +58,9 @@ pub(crate) struct Rule {
     pub term: TId,
     pub ant: TId,
     pub cons: TId,
-    /// The `[Rule, Weight]` pair and weight, for the preference services.
-    pub pair: TId,
+    /// The weight term, for the preference services.
     pub weight: TId,
+    pub w: f64,
 }
 
 pub(crate) struct Ctx<'a> {
@@ -73,16 +87,8 @@ impl<'a> Ctx<'a> {
 
     /// The attribute an entry is about: hiding and lookups only ever relate
     /// entries with the same key.
-    pub fn key_t(&self, mut t: TId) -> TId {
-        loop {
-            if let Some(inner) = self.s.unary(t, NOT) {
-                t = inner;
-            } else if let Some((p, _)) = self.s.binary(t, ARROW) {
-                return p;
-            } else {
-                return t;
-            }
-        }
+    pub fn key_t(&self, t: TId) -> TId {
+        term_key(self.s, t)
     }
 
     pub fn key(&self, e: PE) -> TId {
@@ -166,11 +172,8 @@ impl<'a> Ctx<'a> {
         let mut first_not: Option<TId> = None;
         for &e in list {
             match e {
-                PE::Arrow(q, x) if q == p => {
-                    if first_not != Some(x) {
-                        return Some(x);
-                    }
-                }
+                // Hidden by an earlier kept not(p=>x).
+                PE::Arrow(q, x) if q == p && first_not != Some(x) => return Some(x),
                 PE::T(_) if first_not.is_none() => {
                     if let Some((q, v)) = self.not_arrow(e) {
                         if q == p {
@@ -297,11 +300,11 @@ impl<'a> Ctx<'a> {
                 && self.concludes(rest, |c| matches!(c, PE::Arrow(x, _) if x == pa))
             {
                 let mut copy = p.to_vec();
-                let stop = self.solve(rest, 0, &mut copy, &mut |fl| {
-                    match self.first_kept_val(fl, pa) {
-                        Some(v) => emit(Some(PE::Arrow(q, v))),
-                        None => Ok(false),
-                    }
+                let stop = self.solve(rest, 0, &mut copy, &mut |fl| match self
+                    .first_kept_val(fl, pa)
+                {
+                    Some(v) => emit(Some(PE::Arrow(q, v))),
+                    None => Ok(false),
                 })?;
                 if stop {
                     return Ok(true);
@@ -373,7 +376,9 @@ impl<'a> Ctx<'a> {
             if p.contains(&it) {
                 continue;
             }
-            if !(self.concludes(rest, |c| c == it) && self.some_solution(rest, p, |fl| fl.contains(&it))?) {
+            if !(self.concludes(rest, |c| c == it)
+                && self.some_solution(rest, p, |fl| fl.contains(&it))?)
+            {
                 return Ok(false);
             }
         }
@@ -396,6 +401,23 @@ impl<'a> Ctx<'a> {
             return k(val);
         };
         self.tick()?;
+        // One level of recursion per item: grow the stack for long lists.
+        stacker::maybe_grow(32 * 1024, 1024 * 1024, || {
+            self.list4_item(items, idx, item, rest, p, val, k)
+        })
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn list4_item(
+        &self,
+        items: &[TId],
+        idx: usize,
+        item: TId,
+        rest: &[Rule],
+        p: &[PE],
+        val: Option<TId>,
+        k: &mut dyn FnMut(Option<TId>) -> Step,
+    ) -> Step {
         let dash = self.k.dash;
         let Some((pa, va)) = self.s.binary(item, ARROW) else {
             return Ok(false);
@@ -421,11 +443,12 @@ impl<'a> Ctx<'a> {
             }
             if self.concludes(rest, |c| matches!(c, PE::Arrow(x, _) if x == pa)) {
                 let mut copy = p.to_vec();
-                let stop = self.solve(rest, 0, &mut copy, &mut |fl| {
-                    match self.first_kept_val(fl, pa).filter(|&x| compat(x)) {
-                        Some(x) => self.list4(items, idx + 1, rest, p, Some(x), &mut *k),
-                        None => Ok(false),
-                    }
+                let stop = self.solve(rest, 0, &mut copy, &mut |fl| match self
+                    .first_kept_val(fl, pa)
+                    .filter(|&x| compat(x))
+                {
+                    Some(x) => self.list4(items, idx + 1, rest, p, Some(x), &mut *k),
+                    None => Ok(false),
                 })?;
                 if stop {
                     return Ok(true);
@@ -533,17 +556,13 @@ pub(crate) fn level_rules(s: &TermStore, entries: &[Entry], out: &mut Vec<Rule>)
                 term: e.term,
                 ant,
                 cons,
-                pair: e.pair,
                 weight: e.weight,
+                w: e.w,
             });
         }
     }
-    let ws: HashMap<TId, f64> = entries.iter().map(|e| (e.pair, e.w)).collect();
-    out[start..].sort_by(|a, b| {
-        let wa = ws.get(&a.pair).copied().unwrap_or(0.0);
-        let wb = ws.get(&b.pair).copied().unwrap_or(0.0);
-        wa.partial_cmp(&wb).unwrap_or(std::cmp::Ordering::Equal)
-    });
+    // Stable: equal weights keep the reversed declaration order.
+    out[start..].sort_by(|a, b| a.w.partial_cmp(&b.w).unwrap_or(std::cmp::Ordering::Equal));
 }
 
 /// The closure of a chain of levels: `hidden_abs ++ derived` is the list
@@ -571,6 +590,8 @@ pub(crate) struct Part {
     pub ant_keys: Vec<TId>,
     /// `ant_keys` plus the consequents' keys (for explanations).
     pub all_keys: Vec<TId>,
+    /// `ant_keys` as a bloom set (see `model::key_bit`).
+    pub ant_bloom: u64,
     pub closure: Result<Closure, Budget>,
 }
 
@@ -596,7 +617,11 @@ impl Part {
             derived: p[hidden_abs.len()..].to_vec(),
             hidden_abs,
         });
+        let ant_bloom = ant_keys
+            .iter()
+            .fold(0, |b, &k| b | crate::model::key_bit(k));
         Part {
+            ant_bloom,
             rules,
             ant_keys,
             all_keys,
@@ -607,9 +632,9 @@ impl Part {
     /// Whether an individual with these own entries has this class closure
     /// (plus its own absolutes): no own defaults, and no own absolute about
     /// an attribute that some antecedent looks at.
-    pub fn reusable(&self, ctx: &Ctx<'_>, own: &[Entry], keys: &[TId]) -> bool {
+    pub fn reusable(&self, own: &[Entry], keys: &[TId]) -> bool {
         own.iter()
-            .all(|e| e.abs && keys.binary_search(&ctx.key_t(e.term)).is_err())
+            .all(|e| e.abs && keys.binary_search(&e.key).is_err())
     }
 }
 

@@ -36,7 +36,15 @@ impl G<'_> {
             Err(_) => {
                 let zero = self.s.int(0);
                 let pair = self.s.list(&[term, zero]);
-                Entry { pair, term, weight: zero, abs: true, w: 0.0 }
+                let key = crate::closure::term_key(self.s, term);
+                Entry {
+                    pair,
+                    term,
+                    weight: zero,
+                    abs: true,
+                    w: 0.0,
+                    key,
+                }
             }
         }
     }
@@ -56,12 +64,22 @@ pub fn generate(individuals: usize, depth: usize) -> Kb {
     let mut classes: Vec<Class> = Vec::new();
     let top = g.a("top");
     let none = g.a("none");
-    classes.push(Class { id: top, mother: none, props: vec![], rels: vec![], inds: vec![] });
+    classes.push(Class {
+        id: top,
+        mother: none,
+        props: vec![],
+        rels: vec![],
+        inds: vec![],
+    });
     let mut prev: Vec<TId> = vec![top];
     let mut leaves: Vec<usize> = Vec::new();
     for d in 1..=depth {
         let mut level = Vec::new();
-        for (j, &mother) in prev.iter().enumerate().flat_map(|(m, x)| [(2 * m, x), (2 * m + 1, x)]) {
+        for (j, &mother) in prev
+            .iter()
+            .enumerate()
+            .flat_map(|(m, x)| [(2 * m, x), (2 * m + 1, x)])
+        {
             let id = g.a(&format!("c{d}_{j}"));
             let mut props = Vec::new();
             let mut rels = Vec::new();
@@ -109,14 +127,21 @@ pub fn generate(individuals: usize, depth: usize) -> Kb {
             if d == depth {
                 leaves.push(classes.len());
             }
-            classes.push(Class { id, mother, props, rels, inds: vec![] });
+            classes.push(Class {
+                id,
+                mother,
+                props,
+                rels,
+                inds: vec![],
+            });
             level.push(id);
         }
         prev = level;
     }
     let mut inds = Vec::with_capacity(individuals);
     for i in 0..individuals {
-        let leaf = leaves[i % leaves.len()];
+        // Contiguous blocks per leaf, as individuals are grouped in real files.
+        let leaf = leaves[(i * leaves.len() / individuals.max(1)).min(leaves.len() - 1)];
         let id = g.a(&format!("o{i}"));
         let size = g.s.int((i % 10) as i64);
         let size_atom = g.a("size");
@@ -151,7 +176,13 @@ pub fn generate(individuals: usize, depth: usize) -> Kb {
             rels.push(g.e(t, 0));
         }
         classes[leaf].inds.push(i as u32);
-        inds.push(Ind { id, class: leaf as u32, props, rels, live: true });
+        inds.push(Ind {
+            id,
+            class: leaf as u32,
+            props,
+            rels,
+            live: true,
+        });
     }
     // The generator builds a valid tree, so this cannot fail; degrade to
     // the bare `top` rather than panic if it ever did.
@@ -160,7 +191,13 @@ pub fn generate(individuals: usize, depth: usize) -> Kb {
 
 fn minimal() -> Kb {
     let (store, k) = Kb::empty_store();
-    let top = Class { id: k.top, mother: k.none, props: vec![], rels: vec![], inds: vec![] };
+    let top = Class {
+        id: k.top,
+        mother: k.none,
+        props: vec![],
+        rels: vec![],
+        inds: vec![],
+    };
     let mut kb = Kb {
         store,
         k,
@@ -173,6 +210,8 @@ fn minimal() -> Kb {
         top: 0,
         caches: vec![],
         all_order: Default::default(),
+        blooms: Default::default(),
+        shortcuts: true,
     };
     let _ = kb.reindex();
     kb

@@ -23,6 +23,8 @@ pub(crate) struct Entry {
     pub abs: bool,
     /// Numeric weight, for ordering the defaults.
     pub w: f64,
+    /// The attribute the entry is about (see `Ctx::key_t`).
+    pub key: TId,
 }
 
 #[derive(Clone, Debug)]
@@ -43,6 +45,37 @@ pub(crate) struct Ind {
     pub rels: Vec<Entry>,
     /// False once removed (slots are not reused, so indexes stay stable).
     pub live: bool,
+}
+
+/// One bit per key hash: a set of keys that may have false positives.
+pub(crate) fn key_bit(t: TId) -> u64 {
+    1u64 << (t.0.wrapping_mul(0x9E37_79B1) >> 26)
+}
+
+/// An individual's own entries in brief: the keys of its absolute
+/// properties and relations, and whether it has defaults of its own.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Bloom {
+    pub props: u64,
+    pub rels: u64,
+    pub prop_rules: bool,
+    pub rel_rules: bool,
+}
+
+impl Bloom {
+    pub fn of(ind: &Ind) -> Bloom {
+        let keys = |l: &[Entry]| {
+            l.iter()
+                .filter(|e| e.abs)
+                .fold(0, |b, e| b | key_bit(e.key))
+        };
+        Bloom {
+            props: keys(&ind.props),
+            rels: keys(&ind.rels),
+            prop_rules: ind.props.iter().any(|e| !e.abs),
+            rel_rules: ind.rels.iter().any(|e| !e.abs),
+        }
+    }
 }
 
 /// Ids of terms every KB needs, interned once.
@@ -84,6 +117,11 @@ pub struct Kb {
     pub(crate) caches: Vec<OnceLock<Arc<ClassCache>>>,
     /// `class_extension(top, _)` order, computed on first use.
     pub(crate) all_order: OnceLock<Arc<Vec<u32>>>,
+    /// Per individual (by index), a summary of its own entries, computed on
+    /// first use: extensions then skip reading the entries themselves.
+    pub(crate) blooms: OnceLock<Arc<Vec<Bloom>>>,
+    /// Reuse class closures for individuals (off only to test that reuse).
+    pub(crate) shortcuts: bool,
 }
 
 fn err(span: Span, message: impl Into<String>) -> ModelError {
@@ -128,6 +166,8 @@ impl Kb {
             top: 0,
             caches: Vec::new(),
             all_order: OnceLock::new(),
+            blooms: OnceLock::new(),
+            shortcuts: true,
         };
         kb.reindex().map_err(|(ci, msg, on_mother)| {
             let span = spans
@@ -151,10 +191,11 @@ impl Kb {
                 return Err((i as u32, msg, false));
             }
         }
-        let top = *self
-            .class_ix
-            .get(&self.k.top)
-            .ok_or((0, "the KB has no class `top`".to_owned(), false))?;
+        let top = *self.class_ix.get(&self.k.top).ok_or((
+            0,
+            "the KB has no class `top`".to_owned(),
+            false,
+        ))?;
         self.top = top;
         self.mother_ix = vec![None; n];
         self.children = vec![Vec::new(); n];
@@ -220,9 +261,17 @@ impl Kb {
         Ok(())
     }
 
+    /// Turns the reuse of class closures for individuals on or off (for
+    /// testing that the reuse never changes an answer).
+    #[doc(hidden)]
+    pub fn set_shortcuts(&mut self, on: bool) {
+        self.shortcuts = on;
+    }
+
     pub(crate) fn reset_caches(&mut self) {
         self.caches = (0..self.classes.len()).map(|_| OnceLock::new()).collect();
         self.all_order = OnceLock::new();
+        self.blooms = OnceLock::new();
     }
 
     pub(crate) fn show(&self, t: TId) -> String {
@@ -253,14 +302,10 @@ impl Kb {
                 )
             })?;
             let id = intern(&mut store, clause, args[0])?;
-            if let Some(first) = class_seen.get(&id) {
+            if class_seen.contains_key(&id) {
                 return Err(err(
                     terms.span(args[0]),
-                    format!(
-                        "duplicate class `{}` (first defined at byte offset {})",
-                        sitlog_syntax::writeq(&store, id),
-                        first.start
-                    ),
+                    format!("duplicate class `{}`", sitlog_syntax::writeq(&store, id)),
                 ));
             }
             class_seen.insert(id, terms.span(args[0]));
@@ -320,7 +365,7 @@ impl Kb {
                 inds: mine,
             });
         }
-        let root_span = terms.span(clause.root);
+        let root_span = clause.span;
         Kb::assemble(store, k, classes, inds, Some(&spans)).map_err(|e| {
             if e.message.contains("no class `top`") {
                 err(root_span, e.message)
@@ -365,7 +410,8 @@ fn entries(
                 .map(|t| terms.span(t))
                 .unwrap_or(terms.span(it))
         };
-        let e = make_entry(store, k, pair, parts[0], parts[1]).map_err(|(i, m)| err(span_of(i), m))?;
+        let e =
+            make_entry(store, k, pair, parts[0], parts[1]).map_err(|(i, m)| err(span_of(i), m))?;
         out.push(e);
     }
     Ok(out)
@@ -401,12 +447,14 @@ pub(crate) fn make_entry(
     if store.number(term).is_some() {
         return Err((0, "an entry must be an atom or a compound term".to_owned()));
     }
+    let key = crate::closure::term_key(store, term);
     Ok(Entry {
         pair,
         term,
         weight,
         abs,
         w,
+        key,
     })
 }
 

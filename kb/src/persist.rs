@@ -40,7 +40,12 @@ pub struct PersistError {
 
 impl fmt::Display for PersistError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: error: cannot save the KB: {}", self.path.display(), self.error)
+        write!(
+            f,
+            "{}: error: cannot save the KB: {}",
+            self.path.display(),
+            self.error
+        )
     }
 }
 

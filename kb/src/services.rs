@@ -19,12 +19,15 @@ pub struct Arg {
     pub not_inner: Option<Option<TId>>,
 }
 
+/// A service's implementation: `Ok(None)` when the original's call fails.
+pub(crate) type Handler = fn(&Kb, &[Arg], &mut Built<'_>) -> Result<Option<TId>, Budget>;
+
 /// A query service: `name(Args..., Answer)` without the KB argument.
 pub struct Service {
     pub name: &'static str,
     /// Arguments including the answer (the original's arity minus the KB).
     pub arity: usize,
-    pub(crate) run: fn(&Kb, &[Arg], &mut Built<'_>) -> Result<Option<TId>, Budget>,
+    pub(crate) run: Handler,
 }
 
 macro_rules! services {
@@ -75,9 +78,18 @@ services! {
 
 /// Looks a service up by name and arity (answer included).
 pub fn service(name: &str, arity: usize) -> Option<&'static Service> {
-    SERVICES
-        .iter()
-        .find(|s| s.name == name && s.arity == arity)
+    SERVICES.iter().find(|s| s.name == name && s.arity == arity)
+}
+
+/// How an individual's closure is obtained.
+pub(crate) enum IndPart {
+    /// Its class's closure plus its own facts (no default can see them).
+    Reuse,
+    /// Its own facts change what the class's defaults derive: the list
+    /// before step 4, computed with the class's ordered defaults.
+    OwnFacts(Result<Vec<PE>, Budget>),
+    /// It has defaults of its own: a closure of its own.
+    Full(Part),
 }
 
 impl Kb {
@@ -120,6 +132,12 @@ impl Kb {
         out
     }
 
+    pub(crate) fn blooms(&self) -> Arc<Vec<crate::model::Bloom>> {
+        self.blooms
+            .get_or_init(|| Arc::new(self.inds.iter().map(crate::model::Bloom::of).collect()))
+            .clone()
+    }
+
     pub(crate) fn all_inds(&self) -> Arc<Vec<u32>> {
         self.all_order
             .get_or_init(|| Arc::new(self.extension_uncached(self.top)))
@@ -158,7 +176,12 @@ impl Kb {
 
     /// The part for an individual: the class's cached one when the
     /// individual's own entries cannot change it.
-    fn ind_part(&self, ctx: &Ctx<'_>, i: u32, kind: Kind) -> (Option<Part>, Arc<crate::closure::ClassCache>) {
+    fn ind_part(
+        &self,
+        ctx: &Ctx<'_>,
+        i: u32,
+        kind: Kind,
+    ) -> (IndPart, Arc<crate::closure::ClassCache>) {
         let ind = &self.inds[i as usize];
         let cache = self.cache(ind.class);
         let own: Vec<&[Entry]> = match kind {
@@ -171,21 +194,44 @@ impl Kb {
             Kind::Rels => &cache.rels,
             Kind::Both => &cache.all,
         };
-        let keys = if kind == Kind::Both { &part.all_keys } else { &part.ant_keys };
-        let reusable = own.iter().all(|o| part.reusable(ctx, o, keys));
-        if reusable {
-            (None, cache)
+        let keys = if kind == Kind::Both {
+            &part.all_keys
         } else {
-            (Some(self.build_part(ctx, &own, &cache.chain, kind)), cache)
+            &part.ant_keys
+        };
+        let reusable = self.shortcuts && own.iter().all(|o| part.reusable(o, keys));
+        if reusable {
+            return (IndPart::Reuse, cache);
         }
+        let own_rules = own.iter().any(|o| o.iter().any(|e| !e.abs));
+        if self.shortcuts && !own_rules {
+            // Same defaults as the class: only the starting list differs.
+            let result = part.closure.as_ref().map_err(|b| *b).and_then(|cl| {
+                let mut abs: Vec<PE> = own
+                    .iter()
+                    .flat_map(|o| o.iter())
+                    .map(|e| ctx.pe(e.term))
+                    .collect();
+                abs.extend_from_slice(&cl.hidden_abs);
+                let mut p = ctx.hide(&abs);
+                ctx.run(&part.rules, &mut p)?;
+                Ok(p)
+            });
+            return (IndPart::OwnFacts(result), cache);
+        }
+        (
+            IndPart::Full(self.build_part(ctx, &own, &cache.chain, kind)),
+            cache,
+        )
     }
 
     /// An individual's list before step 4 (hidden absolutes, then derived).
     pub(crate) fn ind_pre(&self, ctx: &Ctx<'_>, i: u32, kind: Kind) -> Result<Vec<PE>, Budget> {
         let (part, cache) = self.ind_part(ctx, i, kind);
         match part {
-            Some(p) => p.closure.map(|c| c.pre()),
-            None => {
+            IndPart::Full(p) => p.closure.map(|c| c.pre()),
+            IndPart::OwnFacts(pre) => pre,
+            IndPart::Reuse => {
                 let class_part = match kind {
                     Kind::Props => &cache.props,
                     Kind::Rels => &cache.rels,
@@ -283,7 +329,13 @@ impl Kb {
         }
     }
 
-    fn s_object_value(&self, i: Arg, p: Arg, kind: Kind, _b: &mut Built<'_>) -> Result<TId, Budget> {
+    fn s_object_value(
+        &self,
+        i: Arg,
+        p: Arg,
+        kind: Kind,
+        _b: &mut Built<'_>,
+    ) -> Result<TId, Budget> {
         let Some(i) = self.ind_of(i) else {
             return Ok(self.k.unknown);
         };
@@ -346,15 +398,20 @@ impl Kb {
         let (part, cache) = self.ind_part(ctx, i, Kind::Both);
         match part {
             // Own entries about attributes no default mentions change nothing.
-            None => cache.expl.clone(),
-            Some(p) => {
+            IndPart::Reuse => cache.expl.clone(),
+            IndPart::OwnFacts(pre) => Ok(Arc::new(ctx.abduce(&cache.all.rules, pre?))),
+            IndPart::Full(p) => {
                 let cl = p.closure.as_ref().map_err(|b| *b)?;
                 Ok(Arc::new(ctx.abduce(&p.rules, cl.pre())))
             }
         }
     }
 
-    fn s_explanation_of_individual(&self, i: Arg, b: &mut Built<'_>) -> Result<Option<TId>, Budget> {
+    fn s_explanation_of_individual(
+        &self,
+        i: Arg,
+        b: &mut Built<'_>,
+    ) -> Result<Option<TId>, Budget> {
         let Some(i) = self.ind_of(i) else {
             return Ok(None);
         };
@@ -365,7 +422,7 @@ impl Kb {
             .map(|&(c, why)| {
                 let c = self.pe_term(b, c);
                 let why = self.pe_term(b, why);
-                b.compound(sitlog_syntax::atoms::COLON, &[c, why])
+                b.fresh(sitlog_syntax::atoms::COLON, &[c, why])
             })
             .collect();
         Ok(Some(b.list(&items)))
@@ -379,7 +436,10 @@ impl Kb {
                 let ex = self.explanations(&ctx, i)?;
                 if let Some(&(_, why)) = ex.iter().find(|(k, _)| *k == target) {
                     let why = self.pe_term(b, why);
-                    out.push(b.compound(sitlog_syntax::atoms::COLON, &[self.inds[i as usize].id, why]));
+                    out.push(b.compound(
+                        sitlog_syntax::atoms::COLON,
+                        &[self.inds[i as usize].id, why],
+                    ));
                 }
             }
         }
@@ -400,21 +460,49 @@ impl Kb {
         let ctx = self.ctx();
         let key = self.lookup_key(&ctx, a, kind);
         let mut per_class: Vec<Option<Option<TId>>> = vec![None; self.classes.len()];
+        let mut caches: Vec<Option<Arc<crate::closure::ClassCache>>> =
+            vec![None; self.classes.len()];
         let all = self.all_inds();
-        let mut pairs: Vec<(u32, TId)> = Vec::with_capacity(all.len());
+        let blooms = self.blooms();
+        let mut pairs: Vec<(u32, TId)> = Vec::new();
+        let mut direct: Vec<TId> = Vec::new();
+        if kind != Kind::Rels {
+            b.reserve(2 * all.len() + 1, 4 * all.len());
+            direct.reserve(all.len());
+        }
         for &i in all.iter() {
             let ind = &self.inds[i as usize];
-            let own = if kind == Kind::Rels { &ind.rels } else { &ind.props };
-            let cache = self.cache(ind.class);
-            let part = if kind == Kind::Rels { &cache.rels } else { &cache.props };
+            let bloom = blooms.get(i as usize).copied().unwrap_or_default();
+            let (own_bloom, own_rules) = match kind {
+                Kind::Rels => (bloom.rels, bloom.rel_rules),
+                _ => (bloom.props, bloom.prop_rules),
+            };
+            let own = if kind == Kind::Rels {
+                &ind.rels
+            } else {
+                &ind.props
+            };
+            let cache = &*caches[ind.class as usize].get_or_insert_with(|| self.cache(ind.class));
+            let part = if kind == Kind::Rels {
+                &cache.rels
+            } else {
+                &cache.props
+            };
+            // The summary answers most individuals without reading their entries.
+            let reusable = self.shortcuts
+                && !own_rules
+                && (own_bloom & part.ant_bloom == 0 || part.reusable(own, &part.ant_keys));
             let value = match key {
-                Some(key) if part.reusable(&ctx, own, &part.ant_keys) => {
+                Some(key) if reusable => {
                     let cl = part.closure.as_ref().map_err(|b| *b)?;
-                    let own_q: Vec<PE> = own
-                        .iter()
-                        .filter(|e| ctx.key_t(e.term) == key)
-                        .map(|e| ctx.pe(e.term))
-                        .collect();
+                    let own_q: Vec<PE> = if own_bloom & crate::model::key_bit(key) == 0 {
+                        Vec::new()
+                    } else {
+                        own.iter()
+                            .filter(|e| e.key == key)
+                            .map(|e| ctx.pe(e.term))
+                            .collect()
+                    };
                     if own_q.is_empty() {
                         let slot = &mut per_class[ind.class as usize];
                         match slot {
@@ -427,7 +515,12 @@ impl Kb {
                         }
                     } else {
                         let mut l = own_q;
-                        l.extend(cl.hidden_abs.iter().chain(&cl.derived).filter(|&&e| ctx.key(e) == key));
+                        l.extend(
+                            cl.hidden_abs
+                                .iter()
+                                .chain(&cl.derived)
+                                .filter(|&&e| ctx.key(e) == key),
+                        );
                         self.lookup(&ctx, &l, a, kind)
                     }
                 }
@@ -436,11 +529,26 @@ impl Kb {
                     self.lookup(&ctx, &pre, a, kind)
                 }
             };
-            if let Some(v) = value {
-                pairs.push((i, v));
+            match value {
+                // Property values go straight into the answer; a value that is
+                // the list [unknown] counts as unknown (as in the original).
+                Some(v)
+                    if kind != Kind::Rels
+                        && self
+                            .store
+                            .proper_list(v)
+                            .is_none_or(|l| l != [self.k.unknown]) =>
+                {
+                    direct.push(b.fresh(sitlog_syntax::atoms::COLON, &[ind.id, v]));
+                }
+                Some(_) if kind != Kind::Rels => {}
+                Some(v) => pairs.push((i, v)),
+                None => {}
             }
         }
         let unknown = self.k.unknown;
+        // One `:` pair and one list cell per individual, two arguments each.
+        b.reserve(2 * pairs.len() + 1, 4 * pairs.len());
         let mut items = Vec::with_capacity(pairs.len());
         for (i, v) in pairs {
             let id = self.inds[i as usize].id;
@@ -457,7 +565,9 @@ impl Kb {
                     let mut acc: Vec<TId> = Vec::new();
                     for &y in objs.iter().rev() {
                         match self.class_ix.get(&y) {
-                            Some(&c) => acc.extend(self.extension(c).iter().map(|&x| self.inds[x as usize].id)),
+                            Some(&c) => acc.extend(
+                                self.extension(c).iter().map(|&x| self.inds[x as usize].id),
+                            ),
                             None => acc.insert(0, y),
                         }
                     }
@@ -470,7 +580,10 @@ impl Kb {
                     v
                 }
             };
-            items.push(b.compound(sitlog_syntax::atoms::COLON, &[id, value]));
+            items.push(b.fresh(sitlog_syntax::atoms::COLON, &[id, value]));
+        }
+        if kind != Kind::Rels {
+            return Ok(b.list_from(direct.into_iter()));
         }
         Ok(b.list_from(items.into_iter()))
     }
@@ -525,11 +638,19 @@ impl Kb {
         };
         let cl = &self.classes[c as usize];
         if c == self.top {
-            let raw = if kind == Kind::Rels { &cl.rels } else { &cl.props };
+            let raw = if kind == Kind::Rels {
+                &cl.rels
+            } else {
+                &cl.props
+            };
             return Ok(Some(raw.iter().map(|e| PE::T(e.pair)).collect()));
         }
         let cache = self.cache(c);
-        let part = if kind == Kind::Rels { &cache.rels } else { &cache.props };
+        let part = if kind == Kind::Rels {
+            &cache.rels
+        } else {
+            &cache.props
+        };
         let closure = part.closure.as_ref().map_err(|b| *b)?;
         Ok(Some(self.ctx().hide(&closure.pre())))
     }
@@ -544,7 +665,12 @@ impl Kb {
         })
     }
 
-    fn s_class_property_value(&self, c: Arg, p: Arg, _b: &mut Built<'_>) -> Result<Option<TId>, Budget> {
+    fn s_class_property_value(
+        &self,
+        c: Arg,
+        p: Arg,
+        _b: &mut Built<'_>,
+    ) -> Result<Option<TId>, Budget> {
         Ok(self
             .class_final(c, Kind::Props)?
             .map(|l| self.find_value(&l, p).unwrap_or(self.k.unknown)))

@@ -42,6 +42,9 @@ pub struct TermStore {
     nodes: Vec<SNode>,
     args: Vec<TId>,
     index: HashMap<Key, TId>,
+    /// Compounds of arity 1 and 2 again, found without allocating a key
+    /// (`not(X)`, `P=>V`, `[E, W]` cells are looked up on hot paths).
+    small: HashMap<(Atom, u32, u32), TId>,
 }
 
 fn leaf_key(node: &Node) -> Option<Key> {
@@ -91,6 +94,17 @@ impl TermStore {
                 }
             }
         };
+        if let Key::Compound(f, args) = &key {
+            match args[..] {
+                [a] => {
+                    self.small.insert((*f, a.0, u32::MAX), id);
+                }
+                [a, b] => {
+                    self.small.insert((*f, a.0, b.0), id);
+                }
+                _ => {}
+            }
+        }
         self.nodes.push(node);
         self.index.insert(key, id);
         id
@@ -107,6 +121,9 @@ impl TermStore {
     pub fn compound(&mut self, f: Atom, args: &[TId]) -> TId {
         if args.is_empty() {
             return self.atom(f);
+        }
+        if let Some(t) = self.find_compound(f, args) {
+            return t;
         }
         self.insert(Key::Compound(f, args.into()))
     }
@@ -126,10 +143,12 @@ impl TermStore {
 
     /// The id of an existing compound, if the store has it.
     pub fn find_compound(&self, f: Atom, args: &[TId]) -> Option<TId> {
-        if args.is_empty() {
-            return self.find_atom(f);
+        match args {
+            [] => self.find_atom(f),
+            [a] => self.small.get(&(f, a.0, u32::MAX)).copied(),
+            [a, b] => self.small.get(&(f, a.0, b.0)).copied(),
+            _ => self.index.get(&Key::Compound(f, args.into())).copied(),
         }
-        self.index.get(&Key::Compound(f, args.into())).copied()
     }
 
     pub(crate) fn node(&self, t: TId) -> &SNode {
@@ -270,7 +289,8 @@ fn walk_ro(
                     // Once something is missing, keep scanning only to report variables.
                     let id = if *missing {
                         TId(0)
-                    } else if let Some(&id) = store.index.get(&Key::Compound(*functor, kids.into())) {
+                    } else if let Some(&id) = store.index.get(&Key::Compound(*functor, kids.into()))
+                    {
                         id
                     } else {
                         *missing = true;
@@ -340,6 +360,12 @@ impl<'s> Built<'s> {
         }
     }
 
+    /// Room for `nodes` more nodes with `args` more arguments in all.
+    pub fn reserve(&mut self, nodes: usize, args: usize) {
+        self.nodes.reserve(nodes);
+        self.args.reserve(args);
+    }
+
     pub fn store(&self) -> &'s TermStore {
         self.store
     }
@@ -376,11 +402,22 @@ impl<'s> Built<'s> {
     }
 
     pub fn list(&mut self, items: &[TId]) -> TId {
-        let mut tail = self.atom(atoms::NIL);
-        for &item in items.iter().rev() {
-            tail = self.compound(atoms::DOT, &[item, tail]);
+        self.list_from(items.iter().copied())
+    }
+
+    /// A new compound in this arena, without looking for it in the store
+    /// (cheaper when the term is only printed or walked).
+    pub fn fresh(&mut self, f: Atom, args: &[TId]) -> TId {
+        if args.is_empty() {
+            return self.atom(f);
         }
-        tail
+        let first = self.args.len() as u32;
+        self.args.extend_from_slice(args);
+        self.push(SNode::Compound {
+            f,
+            first,
+            arity: args.len() as u32,
+        })
     }
 
     /// A list built from an iterator of items without collecting them first.

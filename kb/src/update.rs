@@ -2,6 +2,14 @@
 //! and argument order, applied in place. An update either applies (possibly
 //! changing nothing, as the original does for a missing target) or fails,
 //! and a failing update changes nothing.
+//!
+//! Measured against the original (SWI-Prolog): `rm_object`, `rm_class`,
+//! `change_object_name` and `change_class_name` on a missing name still
+//! rewrite the relations that mention it. Updates that would corrupt the
+//! model fail instead of copying the original's corruption: `add_class`
+//! with an unknown mother or an existing name, `add_object` of an existing
+//! individual, renaming onto an existing name, `rm_class(top)`, and
+//! `change_object_class` with a missing individual or class.
 
 use crate::model::{new_entry, Class, Entry, Ind, Kb, ARROW, NOT};
 use crate::store::TId;
@@ -87,12 +95,20 @@ impl Kb {
             Who::Class => {
                 let c = *self.class_ix.get(&x)?;
                 let cl = &mut self.classes[c as usize];
-                Some(if list == List::Props { &mut cl.props } else { &mut cl.rels })
+                Some(if list == List::Props {
+                    &mut cl.props
+                } else {
+                    &mut cl.rels
+                })
             }
             Who::Object => {
                 let i = *self.ind_ix.get(&x)?;
                 let ind = &mut self.inds[i as usize];
-                Some(if list == List::Props { &mut ind.props } else { &mut ind.rels })
+                Some(if list == List::Props {
+                    &mut ind.props
+                } else {
+                    &mut ind.rels
+                })
             }
         }
     }
@@ -191,17 +207,14 @@ impl Kb {
         true
     }
 
-    fn u_rm(
-        &mut self,
-        who: Who,
-        list: List,
-        x: TId,
-        f: impl FnOnce(&Kb, &mut Vec<Entry>),
-    ) -> bool {
+    fn u_rm(&mut self, who: Who, list: List, x: TId, f: impl FnOnce(&Kb, &mut Vec<Entry>)) -> bool {
         if !self.exists(who, x) {
             return true;
         }
-        let mut l = self.entries_mut(who, list, x).map(std::mem::take).unwrap_or_default();
+        let mut l = self
+            .entries_mut(who, list, x)
+            .map(std::mem::take)
+            .unwrap_or_default();
         f(self, &mut l);
         if let Some(slot) = self.entries_mut(who, list, x) {
             *slot = l;
@@ -288,6 +301,9 @@ impl Kb {
 
     fn u_rm_object(&mut self, i: TId) -> bool {
         let Some(ii) = self.ind_ix.remove(&i) else {
+            // The original still cancels the relations to the missing name.
+            self.cancel_relations_to(i);
+            self.reset_caches();
             return true;
         };
         let ind = &mut self.inds[ii as usize];
@@ -301,6 +317,9 @@ impl Kb {
 
     fn u_rm_class(&mut self, c: TId) -> bool {
         let Some(&ci) = self.class_ix.get(&c) else {
+            // The original still cancels the relations to the missing name.
+            self.cancel_relations_to(c);
+            self.reset_caches();
             return true;
         };
         if ci == self.top {
@@ -344,7 +363,10 @@ impl Kb {
         let Some(e) = self.value_entry(list, p, v) else {
             return false;
         };
-        let mut l = self.entries_mut(who, list, x).map(std::mem::take).unwrap_or_default();
+        let mut l = self
+            .entries_mut(who, list, x)
+            .map(std::mem::take)
+            .unwrap_or_default();
         match list {
             List::Props => self.rm_property(&mut l, p),
             List::Rels => self.rm_relation(&mut l, p),
@@ -386,19 +408,20 @@ impl Kb {
         }
         for l in all {
             for e in l.iter_mut() {
-                let term = if let Some((r, v)) = store.binary(e.term, ARROW).filter(|&(_, v)| v == old) {
-                    let _ = v;
-                    Some(store.compound(ARROW, &[r, new]))
-                } else if let Some((r, _)) = store
-                    .unary(e.term, NOT)
-                    .and_then(|i| store.binary(i, ARROW))
-                    .filter(|&(_, v)| v == old)
-                {
-                    let inner = store.compound(ARROW, &[r, new]);
-                    Some(store.compound(NOT, &[inner]))
-                } else {
-                    None
-                };
+                let term =
+                    if let Some((r, v)) = store.binary(e.term, ARROW).filter(|&(_, v)| v == old) {
+                        let _ = v;
+                        Some(store.compound(ARROW, &[r, new]))
+                    } else if let Some((r, _)) = store
+                        .unary(e.term, NOT)
+                        .and_then(|i| store.binary(i, ARROW))
+                        .filter(|&(_, v)| v == old)
+                    {
+                        let inner = store.compound(ARROW, &[r, new]);
+                        Some(store.compound(NOT, &[inner]))
+                    } else {
+                        None
+                    };
                 if let Some(t) = term {
                     e.term = t;
                     e.pair = store.list(&[t, e.weight]);
@@ -409,6 +432,9 @@ impl Kb {
 
     fn u_change_object_name(&mut self, i: TId, new: TId) -> bool {
         let Some(&ii) = self.ind_ix.get(&i) else {
+            // The original still renames the relations to the missing name.
+            self.rename_in_relations(i, new);
+            self.reset_caches();
             return true;
         };
         if i == new {
@@ -427,6 +453,9 @@ impl Kb {
 
     fn u_change_class_name(&mut self, c: TId, new: TId) -> bool {
         let Some(&ci) = self.class_ix.get(&c) else {
+            // The original still renames the relations to the missing name.
+            self.rename_in_relations(c, new);
+            self.reset_caches();
             return true;
         };
         if c == new {

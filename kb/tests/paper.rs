@@ -45,7 +45,10 @@ fn do_eagles_eat_animals_yes_class_relation_value() {
     // The relation's object is the class `animals`: every eagle eats animals.
     assert_eq!(animals("class_relation_value(eagles, eat, A)"), "animals");
     // relation_extension reads a class object as all its individuals.
-    assert_eq!(animals("relation_extension(eat, L)"), "[pete:[pete,arthur]]");
+    assert_eq!(
+        animals("relation_extension(eat, L)"),
+        "[pete:[pete,arthur]]"
+    );
 }
 
 #[test]
@@ -77,7 +80,10 @@ fn class_extension_of_top_and_birds() {
     assert_eq!(animals("class_extension(top, L)"), "[pete,arthur]");
     assert_eq!(animals("class_extension(birds, L)"), "[pete,arthur]");
     assert_eq!(animals("class_extension(fish, L)"), "[]");
-    assert_eq!(animals("classes_of_individual(pete, L)"), "[eagles,birds,animals,top]");
+    assert_eq!(
+        animals("classes_of_individual(pete, L)"),
+        "[eagles,birds,animals,top]"
+    );
 }
 
 // --- preferences (Appendix B) ---
@@ -89,12 +95,20 @@ fn users_room_after_a_bad_day_back_from_work_object_property_value() {
         "add_object_property(user, back_from_work, yes)",
     ];
     assert_eq!(
-        ask_file("preferences.kb", &dos, "object_property_value(user, found_in, R)"),
+        ask_file(
+            "preferences.kb",
+            &dos,
+            "object_property_value(user, found_in, R)"
+        ),
         "living_room"
     );
     // Without being back from work, nothing places the user.
     assert_eq!(
-        ask_file("preferences.kb", &dos[..1], "object_property_value(user, found_in, R)"),
+        ask_file(
+            "preferences.kb",
+            &dos[..1],
+            "object_property_value(user, found_in, R)"
+        ),
         "unknown"
     );
     // Asking for a comestible sends the user to the dining room.
@@ -111,16 +125,28 @@ fn users_room_after_a_bad_day_back_from_work_object_property_value() {
 #[test]
 fn noodles_locations_before_and_after_last_seen_object_property_list() {
     assert_eq!(
-        ask_file("preferences.kb", &[], "object_property_list(noodles, loc, L)"),
+        ask_file(
+            "preferences.kb",
+            &[],
+            "object_property_list(noodles, loc, L)"
+        ),
         "[shelf_food,shelf_snacks,shelf_drinks]"
     );
     let seen = ["change_value_object_property(noodles, last_seen, shelf_drinks)"];
     assert_eq!(
-        ask_file("preferences.kb", &seen, "object_property_list(noodles, loc, L)"),
+        ask_file(
+            "preferences.kb",
+            &seen,
+            "object_property_list(noodles, loc, L)"
+        ),
         "[shelf_drinks,shelf_food,shelf_snacks,shelf_drinks]"
     );
     assert_eq!(
-        ask_file("preferences.kb", &seen, "object_property_value(noodles, loc, L)"),
+        ask_file(
+            "preferences.kb",
+            &seen,
+            "object_property_value(noodles, loc, L)"
+        ),
         "shelf_drinks"
     );
     // B.1: the preferred shelf of a class.
@@ -137,11 +163,19 @@ fn misplaced_noodles_were_moved_by_the_child_explanation_of_individual() {
         "add_object_property(noodles, misplaced, yes)",
     ];
     assert_eq!(
-        ask_file("preferences.kb", &dos, "explanation_of_individual(noodles, E)"),
+        ask_file(
+            "preferences.kb",
+            &dos,
+            "explanation_of_individual(noodles, E)"
+        ),
         "[(loc=>shelf_drinks):(last_seen=>shelf_drinks),misplaced:(moved_by=>child)]"
     );
     assert_eq!(
-        ask_file("preferences.kb", &dos, "explanation_extension(misplaced, L)"),
+        ask_file(
+            "preferences.kb",
+            &dos,
+            "explanation_extension(misplaced, L)"
+        ),
         "[noodles:(moved_by=>child)]"
     );
 }
@@ -153,11 +187,19 @@ fn users_choice_swaps_weights_change_weight_object_property_preference() {
         "change_weight_object_property_preference(noodles, '-'=>>loc=>shelf_snacks, 5)",
     ];
     assert_eq!(
-        ask_file("preferences.kb", &dos, "object_property_preference_value(noodles, '-'=>>loc=>shelf_snacks, W)"),
+        ask_file(
+            "preferences.kb",
+            &dos,
+            "object_property_preference_value(noodles, '-'=>>loc=>shelf_snacks, W)"
+        ),
         "5"
     );
     assert_eq!(
-        ask_file("preferences.kb", &[], "object_property_preference_value(noodles, '-'=>>loc=>shelf_food, W)"),
+        ask_file(
+            "preferences.kb",
+            &[],
+            "object_property_preference_value(noodles, '-'=>>loc=>shelf_food, W)"
+        ),
         "2"
     );
 }

@@ -1,1 +1,57 @@
-//! `include_dm!`: a thin proc-macro layer over `sitlog-compiler` (to come).
+//! `include_dm!`: a thin proc-macro layer over `sitlog-compiler`.
+//!
+//! ```ignore
+//! mod countdown {
+//!     sitlog_macros::include_dm!("dms/examples/countdown");
+//! }
+//! let (outcome, store) = countdown::run("main", None, options, functions, &mut perception, &mut actions, None)?;
+//! ```
+//!
+//! The path (an application directory or a DM file) is relative to the
+//! invoking crate's `Cargo.toml` (or to `$SITLOG_DM_ROOT` when that is set:
+//! the trybuild tests use it, since their crate lives in the target dir). The macro expands to the items
+//! `sitlog_compiler::codegen` generates (`Program`, `program()`, `run`,
+//! `main_with`, one `dm_<name>` module per DM), plus one
+//! `include_bytes!` per source file read, so that Cargo rebuilds when a DM
+//! changes. Errors in the DM sources become `compile_error!`s naming
+//! `file.dm:line:col` and showing the source line. The invoking crate needs
+//! `sitlog-runtime` as a dependency.
+
+use proc_macro::TokenStream;
+use quote::quote;
+use std::path::PathBuf;
+
+#[proc_macro]
+pub fn include_dm(input: TokenStream) -> TokenStream {
+    let lit = match syn::parse::<syn::LitStr>(input) {
+        Ok(l) => l,
+        Err(e) => {
+            let msg =
+                "include_dm! takes one string literal: the path of a SitLog application or DM file";
+            return syn::Error::new(e.span(), msg).to_compile_error().into();
+        }
+    };
+    let rel = lit.value();
+    let base = std::env::var_os("SITLOG_DM_ROOT")
+        .or_else(|| std::env::var_os("CARGO_MANIFEST_DIR"))
+        .map(PathBuf::from)
+        .unwrap_or_default();
+    let path = base.join(&rel);
+    match sitlog_compiler::build::generate(&path, &rel) {
+        Ok(compiled) => {
+            let tokens = compiled.tokens;
+            let files = compiled.files.iter().map(|f| {
+                let f = f.canonicalize().unwrap_or_else(|_| f.clone());
+                let s = f.display().to_string();
+                quote!(
+                    const _: &[u8] = ::core::include_bytes!(#s);
+                )
+            });
+            quote!(#tokens #(#files)*).into()
+        }
+        Err(e) => {
+            let msg = format!("SitLog program `{rel}` does not compile:\n{e}");
+            syn::Error::new(lit.span(), msg).to_compile_error().into()
+        }
+    }
+}

@@ -19,6 +19,7 @@
 
 mod arith;
 pub mod builtins;
+pub mod cli;
 mod convert;
 mod copy;
 pub mod eval;
@@ -26,6 +27,8 @@ pub mod functions;
 mod gc;
 pub mod history;
 pub mod machine;
+#[cfg(feature = "prolog")]
+pub mod prolog;
 pub mod report;
 mod store;
 mod term;

@@ -592,11 +592,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
 
     /// Evaluates with the variables read-only: updates are discarded
     /// (`embedded_dm` sees locals and globals; `diag_mod` too, E12).
-    fn eval_read_only(
-        &mut self,
-        t: Term,
-        here: Option<(SitIx, Term)>,
-    ) -> Result<Term, RunError> {
+    fn eval_read_only(&mut self, t: Term, here: Option<(SitIx, Term)>) -> Result<Term, RunError> {
         let frame = self.frames.last().expect("frame");
         self.scratch_locals.restore_from(&frame.locals);
         self.scratch_globals.restore_from(&self.globals);
@@ -618,15 +614,18 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         self.expectations.clear();
         let arc_functor = Atom::intern("$arc");
         let out = inst.out_arg.unwrap_or(Term::atom(atoms::NONE));
-        let items: Vec<Term> = self.store.list_to_vec(inst.arcs).unwrap_or_default();
-        for arc in items {
-            let args = self.store.args(arc).to_vec();
-            let both = self
-                .store
-                .compound(arc_functor, &[args[0], args[1], args[2], out]);
+        // Walk the list in place (no allocation per transition).
+        let mut rest = inst.arcs;
+        while let Some(&[arc, tail]) = self.store.compound_args(rest, atoms::DOT, 2) {
+            let (e, a, n) = match self.store.args(arc) {
+                &[e, a, n, ..] => (e, a, n),
+                _ => break,
+            };
+            let both = self.store.compound(arc_functor, &[e, a, n, out]);
             let copy = self.store.copy_term(both);
             let c = self.store.args(copy);
             self.arcs.push([c[0], c[1], c[2], c[3]]);
+            rest = tail;
         }
         let frame = self.frames.last().expect("frame");
         self.scratch_locals.restore_from(&frame.locals);
@@ -766,11 +765,19 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         arc: Option<usize>,
     ) -> Result<(), RunError> {
         let a = self.store.deref(action);
-        let result = match self.store.list_to_vec(a) {
-            Some(items) if self.store.functor(a).is_some_and(|f| f.0 == atoms::DOT) => items
-                .into_iter()
-                .try_for_each(|x| actions.perform(&self.store, x)),
-            _ => actions.perform(&self.store, a),
+        // A proper list is executed element by element (checked and walked
+        // in place: no allocation per transition).
+        let is_list = self.store.functor(a).is_some_and(|f| f.0 == atoms::DOT) && {
+            let mut it = self.store.list_iter(a);
+            it.by_ref().for_each(drop);
+            it.tail() == Term::NIL
+        };
+        let result = if is_list {
+            self.store
+                .list_iter(a)
+                .try_for_each(|x| actions.perform(&self.store, x))
+        } else {
+            actions.perform(&self.store, a)
         };
         result.map_err(|e| self.err(format!("action failed: {e}"), here, arc))
     }

@@ -102,11 +102,33 @@ predefined_atoms! {
     MEMBER = "member",
     NOT_MEMBER = "not_member",
     ERROR = "error",
+    CUT = "!",
 }
 
 impl Atom {
     /// Interns `name`, returning its atom.
     pub fn intern(name: &str) -> Atom {
+        // A small direct-mapped per-thread cache in front of the shared
+        // table: readers intern the same few names over and over.
+        let slot = cache_slot(name);
+        let hit = INTERN_CACHE.with(|cache| {
+            let cache = cache.borrow();
+            match cache[slot] {
+                Some((text, atom)) if text == name => Some(atom),
+                _ => None,
+            }
+        });
+        if let Some(atom) = hit {
+            return atom;
+        }
+        let atom = Atom::intern_shared(name);
+        INTERN_CACHE.with(|cache| {
+            cache.borrow_mut()[slot] = Some((atom.as_str(), atom));
+        });
+        atom
+    }
+
+    fn intern_shared(name: &str) -> Atom {
         {
             let guard = interner().read().unwrap_or_else(|e| e.into_inner());
             if let Some(&id) = guard.ids.get(name) {
@@ -140,6 +162,22 @@ impl Atom {
         let guard = interner().read().unwrap_or_else(|e| e.into_inner());
         ((index as usize) < guard.names.len()).then_some(Atom(index))
     }
+}
+
+const CACHE_SLOTS: usize = 512;
+
+thread_local! {
+    static INTERN_CACHE: std::cell::RefCell<Vec<Option<(&'static str, Atom)>>> =
+        std::cell::RefCell::new(vec![None; CACHE_SLOTS]);
+}
+
+/// FNV-1a over the text, folded to a cache slot.
+fn cache_slot(name: &str) -> usize {
+    let mut h: u32 = 0x811c_9dc5;
+    for &b in name.as_bytes() {
+        h = (h ^ u32::from(b)).wrapping_mul(0x0100_0193);
+    }
+    (h as usize ^ (h as usize >> 16)) % CACHE_SLOTS
 }
 
 impl fmt::Debug for Atom {

@@ -1,7 +1,7 @@
 //! The lexer: pest matches one token at a time (see `token.pest`); this module
 //! turns the match into a [`Token`] and reports lexical errors precisely.
 
-use crate::atom::Atom;
+use crate::atom::{atoms, Atom};
 use crate::read::SyntaxError;
 use crate::term::Span;
 use pest::Parser;
@@ -18,7 +18,8 @@ pub enum TokKind {
         atom: Atom,
         quoted: bool,
     },
-    Var(Box<str>),
+    /// A variable; its name is the token's text.
+    Var,
     Int(i64),
     BigInt(Box<str>),
     Float(f64),
@@ -62,45 +63,140 @@ impl<'s> Lexer<'s> {
         }
     }
 
+    #[inline(never)]
     pub fn next_token(&mut self) -> Result<Token, SyntaxError> {
-        let rest = &self.src[self.pos..];
-        let base = self.pos;
-        let pairs = match TokenGrammar::parse(Rule::next, rest) {
-            Ok(pairs) => pairs,
-            Err(_) => return Err(self.lex_error(base)),
-        };
-        let next = pairs
-            .into_iter()
-            .next()
-            .expect("`next` rule produced a pair");
-        let mut layout_before = false;
-        let mut token = None;
-        for pair in next.into_inner() {
-            match pair.as_rule() {
-                Rule::layout => layout_before = true,
-                Rule::EOI => {}
-                _ => token = Some(pair),
+        let begin = self.pos;
+        let bytes = self.src.as_bytes();
+        let mut i = self.pos;
+        // Plain layout and comments, in Rust; pest only sees tokens.
+        loop {
+            match bytes.get(i) {
+                Some(b' ' | b'\t' | b'\n' | b'\r' | 0x0B | 0x0C) => i += 1,
+                Some(b'%') => {
+                    i = bytes[i..]
+                        .iter()
+                        .position(|&b| b == b'\n')
+                        .map_or(bytes.len(), |n| i + n);
+                }
+                Some(b'/') if bytes.get(i + 1) == Some(&b'*') => {
+                    match find(&bytes[i + 2..], b"*/") {
+                        Some(n) => i += 2 + n + 2,
+                        None => break, // unterminated: reported by the token path
+                    }
+                }
+                Some(&b) if b >= 0x80 => match self.src[i..].chars().next() {
+                    Some(c) if is_unicode_layout(c) => i += c.len_utf8(),
+                    _ => break,
+                },
+                _ => break,
             }
         }
-        let Some(pair) = token else {
-            // Only layout (or nothing) left. An unterminated block comment is not layout.
-            let after = base + next_layout_end(rest);
-            if self.src[after..].starts_with("/*") {
-                return Err(unterminated(after, "block comment", "`*/`"));
-            }
-            self.pos = self.src.len();
+        let layout_before = i > begin;
+        self.pos = i;
+        let base = i;
+        let rest = &self.src[i..];
+        let Some(&first) = bytes.get(i) else {
             return Ok(Token {
                 kind: TokKind::Eof,
                 span: Span::new(self.src.len(), self.src.len()),
                 layout_before,
             });
         };
+        // One-character tokens need no grammar.
+        let single = match first {
+            b'(' | b')' | b'[' | b']' | b'{' | b'}' | b',' | b'|' => {
+                Some(if first == b'(' && !layout_before && self.prev_was_name {
+                    TokKind::OpenCt
+                } else {
+                    TokKind::Punct(first as char)
+                })
+            }
+            b'!' | b';' => Some(TokKind::Name {
+                atom: if first == b'!' {
+                    atoms::CUT
+                } else {
+                    atoms::SEMICOLON
+                },
+                quoted: false,
+            }),
+            b'.' if bytes
+                .get(i + 1)
+                .is_none_or(|&b| b == b'%' || starts_layout(&self.src[i + 1..])) =>
+            {
+                Some(TokKind::End)
+            }
+            _ => None,
+        };
+        if let Some(kind) = single {
+            self.pos = i + 1;
+            self.prev_was_name = matches!(
+                kind,
+                TokKind::Name { .. } | TokKind::Punct(']') | TokKind::Punct('}')
+            );
+            return Ok(Token {
+                kind,
+                span: Span::new(i, i + 1),
+                layout_before,
+            });
+        }
+        let rule = match first {
+            b'a'..=b'z' => Rule::letter_name,
+            b'A'..=b'Z' | b'_' => Rule::variable,
+            b'0'..=b'9' => Rule::number,
+            b'\'' => Rule::quoted,
+            b'"' => Rule::dq_string,
+            b'`' => Rule::bq_string,
+            b'#' | b'$' | b'&' | b'*' | b'+' | b'-' | b'.' | b'/' | b':' | b'<' | b'=' | b'>'
+            | b'?' | b'@' | b'^' | b'~' | b'\\' => Rule::symbol_name,
+            _ => Rule::next,
+        };
+        let pairs = match TokenGrammar::parse(rule, rest) {
+            Ok(pairs) => pairs,
+            Err(_) => return Err(self.lex_error(base)),
+        };
+        let mut pair = pairs
+            .into_iter()
+            .next()
+            .expect("a token rule produced a pair");
+        if rule == Rule::next {
+            let mut token = None;
+            for inner in pair.into_inner() {
+                match inner.as_rule() {
+                    Rule::layout | Rule::EOI => {}
+                    _ => token = Some(inner),
+                }
+            }
+            let Some(inner) = token else {
+                // Only layout (or nothing) left. An unterminated block comment is not layout.
+                let after = base + next_layout_end(rest);
+                if self.src[after..].starts_with("/*") {
+                    return Err(unterminated(after, "block comment", "`*/`"));
+                }
+                self.pos = self.src.len();
+                return Ok(Token {
+                    kind: TokKind::Eof,
+                    span: Span::new(self.src.len(), self.src.len()),
+                    layout_before: true,
+                });
+            };
+            pair = inner;
+        }
+        if pair.as_rule() == Rule::integer && pair.as_str() == "0" && rest.starts_with("0'") {
+            return Err(SyntaxError {
+                incomplete: rest.len() == 2,
+                ..SyntaxError::new(
+                    Span::new(base, base + 2),
+                    "incomplete character code `0'`".to_owned(),
+                )
+            });
+        }
         let start = base + pair.as_span().start();
         let end = base + pair.as_span().end();
         let text = pair.as_str();
         let span = Span::new(start, end);
         let kind = match pair.as_rule() {
-            Rule::end => TokKind::End,
+            Rule::float if text.ends_with("Inf") => TokKind::Float(f64::INFINITY),
+            Rule::float if text.ends_with("NaN") => TokKind::Float(f64::NAN),
             Rule::float => match text.parse::<f64>() {
                 Ok(f) if f.is_finite() => TokKind::Float(f),
                 _ => {
@@ -127,34 +223,23 @@ impl<'s> Lexer<'s> {
             Rule::octal => radix(&text[2..], 8, span)?,
             Rule::binary => radix(&text[2..], 2, span)?,
             Rule::integer => {
-                let digits: String = text.chars().filter(|&c| c != '_').collect();
+                let digits: String = text.chars().filter(char::is_ascii_digit).collect();
                 match digits.parse::<i64>() {
                     Ok(i) => TokKind::Int(i),
                     Err(_) => TokKind::BigInt(digits.trim_start_matches('0').into()),
                 }
             }
-            Rule::variable => TokKind::Var(text.into()),
+            Rule::variable => TokKind::Var,
             Rule::letter_name | Rule::solo => TokKind::Name {
                 atom: Atom::intern(text),
                 quoted: false,
             },
+            Rule::end => TokKind::End,
             Rule::symbol_name => {
-                if let Some(i) = text.find("/*") {
-                    // `/*` inside a symbol run starts a comment that never ends
-                    // (a closed one would have been layout).
-                    let at = start + i;
-                    if i == 0 {
-                        return Err(unterminated(at, "block comment", "`*/`"));
-                    }
-                    self.pos = at;
-                    return Ok(Token {
-                        kind: TokKind::Name {
-                            atom: Atom::intern(&text[..i]),
-                            quoted: false,
-                        },
-                        span: Span::new(start, at),
-                        layout_before,
-                    });
+                // `/*` starts a comment only at the start of a token (as in
+                // SWI-Prolog: `+/*` is one atom); a closed comment was layout.
+                if text.starts_with("/*") {
+                    return Err(unterminated(start, "block comment", "`*/`"));
                 }
                 TokKind::Name {
                     atom: Atom::intern(text),
@@ -178,7 +263,11 @@ impl<'s> Lexer<'s> {
             other => unreachable!("token rule {other:?} is not a token"),
         };
         self.pos = end;
-        self.prev_was_name = matches!(kind, TokKind::Name { .. });
+        // `[](..)` and `{}(..)`: functional notation on `[]` and `{}` (SWI 7).
+        self.prev_was_name = matches!(
+            kind,
+            TokKind::Name { .. } | TokKind::Punct(']') | TokKind::Punct('}')
+        );
         Ok(Token {
             kind,
             span,
@@ -211,6 +300,25 @@ impl<'s> Lexer<'s> {
     }
 }
 
+/// Layout characters beyond ASCII white space (as in `token.pest`).
+fn is_unicode_layout(c: char) -> bool {
+    matches!(c, '\u{A0}' | '\u{FEFF}' | '\u{2028}' | '\u{2029}')
+}
+
+/// Whether `s` starts with a layout character or a `%` comment.
+fn starts_layout(s: &str) -> bool {
+    match s.chars().next() {
+        Some(' ' | '\t' | '\n' | '\r' | '\u{0B}' | '\u{0C}' | '%') => true,
+        Some(c) => is_unicode_layout(c),
+        None => true,
+    }
+}
+
+/// Offset of the first occurrence of `needle` in `hay`.
+fn find(hay: &[u8], needle: &[u8]) -> Option<usize> {
+    hay.windows(needle.len()).position(|w| w == needle)
+}
+
 /// Byte length of the layout (spaces and complete comments) at the start of `s`.
 fn next_layout_end(s: &str) -> usize {
     match TokenGrammar::parse(Rule::layout, s) {
@@ -237,7 +345,7 @@ fn unterminated_or_bad_escape(src: &str, at: usize, quote: char, what: &str) -> 
     while let Some((i, c)) = chars.next() {
         if c == '\\' {
             if let Some((j, e)) = chars.next() {
-                if !"abfnrtvxe0123456789\\'\"`\n".contains(e) {
+                if !"abfnrtvxesuU0123456789\\'\"`\n".contains(e) {
                     let s = at + 1 + i;
                     let mut err = SyntaxError::new(
                         Span::new(s, at + 1 + j + e.len_utf8()),
@@ -314,6 +422,26 @@ fn unescape_one(s: &str, at: usize, out: &mut String) -> Result<usize, SyntaxErr
     }
     if c == '\n' {
         return Ok(1); // line continuation
+    }
+    if c == 'u' || c == 'U' {
+        // SWI-Prolog: `\uXXXX` and `\UXXXXXXXX`.
+        let n = if c == 'u' { 4 } else { 8 };
+        let digits = s[1..]
+            .get(..n)
+            .filter(|d| d.chars().all(|c| c.is_ascii_hexdigit()));
+        let ch = digits
+            .and_then(|d| u32::from_str_radix(d, 16).ok())
+            .and_then(char::from_u32);
+        return match ch {
+            Some(ch) => {
+                out.push(ch);
+                Ok(1 + n)
+            }
+            None => Err(SyntaxError::new(
+                Span::new(at - 1, (at + 1 + n).min(at + s.len())),
+                format!("`\\{c}` must be followed by {n} hexadecimal digits of a valid character"),
+            )),
+        };
     }
     let (digits, base, skip) = if c == 'x' {
         let d: String = s[1..]

@@ -66,12 +66,33 @@ impl OpDef {
     }
 }
 
+/// Hashes an [`Atom`] (a `u32`) with one multiplication: operator lookups
+/// happen for every name token the reader sees.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct AtomHasher(u64);
+
+impl std::hash::Hasher for AtomHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0.rotate_left(5) ^ u64::from(b)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+        }
+    }
+    fn write_u32(&mut self, i: u32) {
+        self.0 = (self.0.rotate_left(5) ^ u64::from(i)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+type AtomMap<V> = HashMap<Atom, V, std::hash::BuildHasherDefault<AtomHasher>>;
+
 /// Prefix, infix and postfix operators by name.
 #[derive(Clone, Debug, Default)]
 pub struct OpTable {
-    prefix: HashMap<Atom, OpDef>,
-    infix: HashMap<Atom, OpDef>,
-    postfix: HashMap<Atom, OpDef>,
+    prefix: AtomMap<OpDef>,
+    infix: AtomMap<OpDef>,
+    postfix: AtomMap<OpDef>,
 }
 
 const ISO: &[(u16, &str, &[&str])] = &[
@@ -104,6 +125,35 @@ const SITLOG: &[(u16, &str, &[&str])] = &[
     (1105, "xfy", &["|"]),
 ];
 
+/// SWI-Prolog 9's own operators beyond ISO core (in module `user`), except
+/// `.` (dicts) and `=>` (SSU rules; SitLog redefines it), plus
+/// `json_object` that the original interpreter imports.
+const SWI_EXTRA: &[(u16, &str, &[&str])] = &[
+    (1, "fx", &["$"]),
+    (1050, "xfy", &["*->"]),
+    (
+        1150,
+        "fx",
+        &[
+            "discontiguous",
+            "dynamic",
+            "initialization",
+            "meta_predicate",
+            "module_transparent",
+            "multifile",
+            "public",
+            "table",
+            "thread_initialization",
+            "thread_local",
+            "volatile",
+            "json_object",
+        ],
+    ),
+    (400, "yfx", &["div", "rdiv", "xor"]),
+    (700, "xfx", &[":<", ">:<", "=@=", "\\=@=", "as"]),
+    (800, "xfx", &[":="]),
+];
+
 impl OpTable {
     /// An empty table.
     pub fn empty() -> OpTable {
@@ -122,6 +172,23 @@ impl OpTable {
         let mut table = OpTable::iso();
         table.add_all(SITLOG);
         table
+    }
+
+    /// SWI-Prolog 9's full default table plus SitLog's operators: what the
+    /// original interpreter has in force. `writeq` in SWI prints with it
+    /// (e.g. `table(X)` as `(table X)`), so the conformance dump prints with
+    /// it; reading DMs needs only [`OpTable::sitlog`].
+    pub fn swi() -> OpTable {
+        let mut table = OpTable::iso();
+        table.add_all(SWI_EXTRA);
+        table.add_all(SITLOG);
+        table
+    }
+
+    /// A shared instance of [`OpTable::swi`].
+    pub fn swi_shared() -> &'static OpTable {
+        static TABLE: std::sync::OnceLock<OpTable> = std::sync::OnceLock::new();
+        TABLE.get_or_init(OpTable::swi)
     }
 
     /// A shared instance of [`OpTable::sitlog`].

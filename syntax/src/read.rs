@@ -1,7 +1,7 @@
 //! The reader: tokens from [`crate::lexer`], terms by precedence climbing over
-//! the operator table. Recursion on nesting goes through `stacker`, so deep
-//! terms grow the stack on the heap instead of overflowing it; a depth limit
-//! turns absurd nesting into an error instead of exhausting memory.
+//! the operator table. The parser is iterative (an explicit stack of pending
+//! levels), so deep terms never touch the native stack; a depth limit turns
+//! absurd nesting into an error instead of exhausting memory.
 
 use crate::atom::{atoms, Atom};
 use crate::lexer::{Lexer, TokKind, Token};
@@ -55,7 +55,9 @@ impl SyntaxError {
             .rposition(|&b| b == b'\n')
             .map_or(0, |i| i + 1);
         let line = 1 + before.iter().filter(|&&b| b == b'\n').count();
-        let col = 1 + String::from_utf8_lossy(&before[line_start..]).chars().count();
+        let col = 1 + String::from_utf8_lossy(&before[line_start..])
+            .chars()
+            .count();
         (line, col)
     }
 }
@@ -113,6 +115,21 @@ impl std::fmt::Display for SyntaxError {
 
 impl std::error::Error for SyntaxError {}
 
+/// Number of tokens in `src` (layout and comments excluded, end tokens
+/// included): for benchmarks of the lexer.
+#[doc(hidden)]
+pub fn count_tokens(src: &str) -> Result<usize, SyntaxError> {
+    let mut lexer = Lexer::new(src, 0);
+    let mut n = 0;
+    loop {
+        let tok = lexer.next_token()?;
+        if tok.kind == TokKind::Eof {
+            return Ok(n);
+        }
+        n += 1;
+    }
+}
+
 /// Reads all clauses of `src` with SitLog's operator table. After a syntax
 /// error, reading resumes after the next end token, like Prolog's `read/1`.
 pub fn read_clauses(src: &str) -> (Vec<Clause>, Vec<SyntaxError>) {
@@ -140,7 +157,7 @@ pub fn read_term(src: &str) -> Result<Clause, SyntaxError> {
 
 /// [`read_term`] with another operator table.
 pub fn read_term_with(src: &str, ops: &OpTable) -> Result<Clause, SyntaxError> {
-    let mut parser = Parser::new(src, 0, ops)?;
+    let mut parser = Parser::new(src, 0, ops).map_err(|e| *e)?;
     if parser.tok.kind == TokKind::Eof {
         return Err(SyntaxError {
             incomplete: true,
@@ -150,7 +167,7 @@ pub fn read_term_with(src: &str, ops: &OpTable) -> Result<Clause, SyntaxError> {
             )
         });
     }
-    let clause = parser.clause(true)?;
+    let clause = parser.clause(true).map_err(|e| *e)?;
     if parser.tok.kind != TokKind::Eof {
         return Err(SyntaxError::new(
             parser.tok.span,
@@ -192,7 +209,7 @@ impl<'s, 'o> ClauseReader<'s, 'o> {
             Ok(p) => p,
             Err(e) => {
                 self.recover(e.span.end as usize);
-                return Some(Err(e));
+                return Some(Err(*e));
             }
         };
         if parser.tok.kind == TokKind::Eof {
@@ -204,10 +221,17 @@ impl<'s, 'o> ClauseReader<'s, 'o> {
                 self.pos = clause.span.end as usize;
                 Some(Ok(clause))
             }
-            Err(e) => {
+            Err(mut e) => {
                 let from = parser.tok.span.start.max(e.span.start) as usize;
+                let unclosed = e.labels.iter().find(|(_, l)| l.starts_with("unclosed"));
+                if let Some(&(open, _)) = unclosed {
+                    let (pos, at) = (self.pos, e.span.start as usize);
+                    if let Some(hint) = indentation_hint(self.src, pos, open.start as usize, at) {
+                        e.labels.push(hint);
+                    }
+                }
                 self.recover(from);
-                Some(Err(e))
+                Some(Err(*e))
             }
         }
     }
@@ -244,6 +268,59 @@ impl<'s, 'o> ClauseReader<'s, 'o> {
     }
 }
 
+/// Width of the indentation of the line holding byte `at` (a tab counts 8).
+fn indent_of_line(src: &str, at: usize) -> usize {
+    let start = src[..at].rfind('\n').map_or(0, |i| i + 1);
+    src[start..]
+        .chars()
+        .take_while(|c| *c == ' ' || *c == '\t')
+        .map(|c| if c == '\t' { 8 } else { 1 })
+        .sum()
+}
+
+/// Whether only blanks precede byte `at` on its line.
+fn first_on_line(src: &str, at: usize) -> bool {
+    let start = src[..at].rfind('\n').map_or(0, |i| i + 1);
+    src[start..at]
+        .chars()
+        .all(|c| c == ' ' || c == '\t' || c == '\r')
+}
+
+/// For unbalanced brackets: the first closing bracket between the unclosed
+/// bracket at `unclosed` and the error at `to` that starts its line indented
+/// less than the line of the bracket it closes: a likely place for a
+/// forgotten closing bracket (the clause starts at `from`).
+fn indentation_hint(src: &str, from: usize, unclosed: usize, to: usize) -> Option<(Span, String)> {
+    let mut lexer = Lexer::new(src, from);
+    let mut stack: Vec<(Span, usize)> = Vec::new();
+    loop {
+        let tok = lexer.next_token().ok()?;
+        if tok.span.start as usize >= to || matches!(tok.kind, TokKind::Eof | TokKind::End) {
+            return None;
+        }
+        match tok.kind {
+            TokKind::Punct('(' | '[' | '{') | TokKind::OpenCt => {
+                stack.push((tok.span, indent_of_line(src, tok.span.start as usize)));
+            }
+            TokKind::Punct(c @ (')' | ']' | '}')) => {
+                let (open, indent) = stack.pop()?;
+                let at = tok.span.start as usize;
+                if at > unclosed && first_on_line(src, at) && indent_of_line(src, at) < indent {
+                    let (line, _) = line_col(src, open.start as usize);
+                    return Some((
+                        tok.span,
+                        format!(
+                            "this `{c}` closes the bracket of line {line} but is indented less than that line: \
+                             is a closing bracket missing before it?"
+                        ),
+                    ));
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
 struct Parser<'s, 'o> {
     lexer: Lexer<'s>,
     ops: &'o OpTable,
@@ -252,21 +329,76 @@ struct Parser<'s, 'o> {
     peeked: Option<Token>,
     terms: Terms,
     vars: Vec<VarInfo>,
-    var_ids: HashMap<Box<str>, VarId>,
+    var_ids: HashMap<&'s str, VarId>,
     open: Vec<(Span, char)>,
-    depth: usize,
+    /// Elements and arguments read so far, for every open list and compound.
+    scratch: Vec<TermId>,
     last_end: usize,
+    /// Whether the token before `tok` was a `,` (for "trailing comma" help).
+    comma_before_tok: bool,
 }
 
-type PResult<T> = Result<T, SyntaxError>;
+/// Errors are boxed inside the parser so that its recursive frames stay small.
+type PResult<T> = Result<T, Box<SyntaxError>>;
+
+/// Where a term is read: at the top of a clause or inside brackets, as an
+/// argument of a compound (`,` ends it), or as a list element (`,` and `|`
+/// end it). SWI-Prolog 7+ reads arguments and elements at priority 1200,
+/// so `f(a :- b)` and `[a -> b]` are accepted, as in SWI.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Ctx {
+    Top,
+    Arg,
+    Elem,
+}
+
+/// What to do with the term a [`Level`] reads once it is complete.
+#[derive(Clone, Copy, Debug)]
+enum Cont {
+    /// The term asked for by the caller of `parse`.
+    Root,
+    /// The right operand of `name`, whose left operand is `left`.
+    InfixRight { left: TermId, name: Atom, prio: u16 },
+    /// The operand of a prefix operator.
+    PrefixArg { atom: Atom, span: Span, prio: u16 },
+    /// The contents of `( )`.
+    Paren,
+    /// The contents of `{ }`.
+    Curly { open: Span },
+    /// A list element; the list's earlier elements are `scratch[items..]`.
+    Elem { open: Span, items: usize },
+    /// The tail after `|` in a list.
+    Tail { open: Span, items: usize },
+    /// An argument of `name(`; earlier arguments are `scratch[args..]`.
+    Arg {
+        name: Atom,
+        start: Span,
+        args: usize,
+    },
+}
+
+/// One pending `parse(max, ctx)`.
+#[derive(Clone, Copy, Debug)]
+struct Level {
+    max: u16,
+    ctx: Ctx,
+    cont: Cont,
+}
+
+/// The outcome of one step: a complete term with its priority, or a level
+/// to read first.
+enum Step {
+    Done(TermId, u16),
+    Push(u16, Ctx, Cont),
+}
 
 impl<'s, 'o> Parser<'s, 'o> {
     fn new(src: &'s str, pos: usize, ops: &'o OpTable) -> PResult<Parser<'s, 'o>> {
         if src.len() >= u32::MAX as usize {
-            return Err(SyntaxError::new(
+            return Err(Box::new(SyntaxError::new(
                 Span::new(0, 0),
                 "source text is larger than 4 GiB".into(),
-            ));
+            )));
         }
         let mut lexer = Lexer::new(src, pos);
         let tok = lexer.next_token()?;
@@ -279,20 +411,24 @@ impl<'s, 'o> Parser<'s, 'o> {
             vars: Vec::new(),
             var_ids: HashMap::new(),
             open: Vec::new(),
-            depth: 0,
+            scratch: Vec::new(),
             last_end: pos,
+            comma_before_tok: false,
         })
     }
 
+    #[inline(never)]
     fn advance(&mut self) -> PResult<Token> {
         let next = match self.peeked.take() {
             Some(t) => t,
             None => self.lexer.next_token()?,
         };
         self.last_end = self.tok.span.end as usize;
+        self.comma_before_tok = self.tok.kind == TokKind::Punct(',');
         Ok(std::mem::replace(&mut self.tok, next))
     }
 
+    #[inline(never)]
     fn peek(&mut self) -> PResult<&Token> {
         if self.peeked.is_none() {
             self.peeked = Some(self.lexer.next_token()?);
@@ -303,7 +439,7 @@ impl<'s, 'o> Parser<'s, 'o> {
     /// Reads one term and its end token. `end_optional`: end of input may stand for `.`.
     fn clause(&mut self, end_optional: bool) -> PResult<Clause> {
         let start = self.tok.span.start;
-        let root = self.parse(1200)?;
+        let root = self.parse(1200, Ctx::Top)?;
         match self.tok.kind {
             TokKind::End => {
                 let end = self.tok.span.end;
@@ -314,7 +450,7 @@ impl<'s, 'o> Parser<'s, 'o> {
                 let end = self.last_end as u32;
                 Ok(self.finish(root, Span { start, end }))
             }
-            _ => Err(self.after_term_error()),
+            _ => Err(Box::new(self.after_term_error())),
         }
     }
 
@@ -328,6 +464,7 @@ impl<'s, 'o> Parser<'s, 'o> {
     }
 
     /// The error for a token that cannot follow a complete term.
+    #[inline(never)]
     fn after_term_error(&self) -> SyntaxError {
         let span = self.tok.span;
         let mut e = match &self.tok.kind {
@@ -384,6 +521,7 @@ impl<'s, 'o> Parser<'s, 'o> {
         }
     }
 
+    #[inline(never)]
     fn expected_term_error(&self) -> SyntaxError {
         let span = self.tok.span;
         let mut e = match &self.tok.kind {
@@ -415,81 +553,226 @@ impl<'s, 'o> Parser<'s, 'o> {
     }
 
     fn lexer_prev_was_comma(&self) -> bool {
-        let src = self.lexer_src();
-        src[..self.tok.span.start as usize]
-            .trim_end()
-            .ends_with(',')
-    }
-
-    fn lexer_src(&self) -> &'s str {
-        self.lexer.source()
+        self.comma_before_tok
     }
 
     fn push(&mut self, node: Node, span: Span) -> TermId {
         self.terms.push(node, span)
     }
 
-    fn parse(&mut self, max: u16) -> PResult<TermId> {
-        self.depth += 1;
-        if self.depth > MAX_DEPTH {
-            return Err(SyntaxError::new(
-                self.tok.span,
-                format!("term nested too deeply (more than {MAX_DEPTH} levels)"),
-            ));
+    /// Reads one term of priority at most `max`. Iterative: nesting lives in
+    /// an explicit stack of [`Level`]s, so any depth runs in constant native
+    /// stack (a depth limit turns absurd nesting into an error).
+    fn parse(&mut self, max: u16, ctx: Ctx) -> PResult<TermId> {
+        let mut levels = vec![Level {
+            max,
+            ctx,
+            cont: Cont::Root,
+        }];
+        let mut start = true;
+        let (mut left, mut left_prio) = (TermId(0), 0u16);
+        loop {
+            let Level { max, ctx, .. } = *levels.last().expect("a level is open");
+            if start {
+                match self.primary(max, ctx)? {
+                    Step::Done(t, p) => {
+                        (left, left_prio) = (t, p);
+                        start = false;
+                    }
+                    Step::Push(max, ctx, cont) => {
+                        if levels.len() >= MAX_DEPTH {
+                            return Err(Box::new(SyntaxError::new(
+                                self.tok.span,
+                                format!("term nested too deeply (more than {MAX_DEPTH} levels)"),
+                            )));
+                        }
+                        levels.push(Level { max, ctx, cont });
+                        continue;
+                    }
+                }
+            }
+            // Infix and postfix operators after a complete left operand.
+            if let Some(step) = self.operator(left, left_prio, max, ctx)? {
+                match step {
+                    Step::Done(t, p) => (left, left_prio) = (t, p),
+                    Step::Push(max, ctx, cont) => {
+                        if levels.len() >= MAX_DEPTH {
+                            return Err(Box::new(SyntaxError::new(
+                                self.tok.span,
+                                format!("term nested too deeply (more than {MAX_DEPTH} levels)"),
+                            )));
+                        }
+                        levels.push(Level { max, ctx, cont });
+                        start = true;
+                    }
+                }
+                continue;
+            }
+            // This level is complete: hand `left` to the level that asked for it.
+            let done = levels.pop().expect("a level is open");
+            match done.cont {
+                Cont::Root => return Ok(left),
+                Cont::InfixRight {
+                    left: l,
+                    name,
+                    prio,
+                } => {
+                    let span = self.terms.span(l).to(self.terms.span(left));
+                    left = self.terms.push_compound(name, &[l, left], span);
+                    left_prio = prio;
+                }
+                Cont::PrefixArg { atom, span, prio } => {
+                    let span = span.to(self.terms.span(left));
+                    left = self.terms.push_compound(atom, &[left], span);
+                    left_prio = prio;
+                }
+                Cont::Paren => {
+                    self.close(')')?;
+                    left_prio = 0;
+                }
+                Cont::Curly { open } => {
+                    let end = self.tok.span;
+                    self.close('}')?;
+                    left = self
+                        .terms
+                        .push_compound(atoms::CURLY, &[left], open.to(end));
+                    left_prio = 0;
+                }
+                Cont::Elem { open, items } => {
+                    self.scratch.push(left);
+                    let next = match self.tok.kind {
+                        TokKind::Punct(',') => Some(Cont::Elem { open, items }),
+                        TokKind::Punct('|') => Some(Cont::Tail { open, items }),
+                        _ => None,
+                    };
+                    if let Some(cont) = next {
+                        self.advance()?;
+                        levels.push(Level {
+                            max: 1200,
+                            ctx: Ctx::Elem,
+                            cont,
+                        });
+                        start = true;
+                        continue;
+                    }
+                    let end = self.tok.span;
+                    self.close(']')?;
+                    let nil = self.push(Node::Atom(atoms::NIL), end);
+                    left = self.build_list(items, nil, open.to(end));
+                    left_prio = 0;
+                }
+                Cont::Tail { open, items } => {
+                    if let TokKind::Punct(c @ (',' | '|')) = self.tok.kind {
+                        let mut e = SyntaxError::new(
+                            self.tok.span,
+                            format!("expected `]` after the list tail, found `{c}`"),
+                        )
+                        .with_help("a list has one tail after `|`: write `[a, b|T]`");
+                        self.add_open_label(&mut e);
+                        return Err(Box::new(e));
+                    }
+                    let end = self.tok.span;
+                    self.close(']')?;
+                    left = self.build_list(items, left, open.to(end));
+                    left_prio = 0;
+                }
+                Cont::Arg {
+                    name,
+                    start: fstart,
+                    args,
+                } => {
+                    self.scratch.push(left);
+                    if self.tok.kind == TokKind::Punct(',') {
+                        self.advance()?;
+                        levels.push(Level {
+                            max: 1200,
+                            ctx: Ctx::Arg,
+                            cont: Cont::Arg {
+                                name,
+                                start: fstart,
+                                args,
+                            },
+                        });
+                        start = true;
+                        continue;
+                    }
+                    let end = self.tok.span;
+                    self.close(')')?;
+                    left = self
+                        .terms
+                        .push_compound(name, &self.scratch[args..], fstart.to(end));
+                    self.scratch.truncate(args);
+                    left_prio = 0;
+                }
+            }
         }
-        // pest itself refuses to run with less than 64 KiB of stack left: keep more.
-        let result = stacker::maybe_grow(256 * 1024, 4 * 1024 * 1024, || self.parse_inner(max));
-        self.depth -= 1;
-        result.map(|(t, _)| t)
     }
 
-    fn parse_inner(&mut self, max: u16) -> PResult<(TermId, u16)> {
-        let (mut left, mut left_prio) = self.primary(max)?;
-        loop {
-            let (name, is_punct) = match &self.tok.kind {
-                TokKind::Name { atom, .. } => (*atom, false),
-                TokKind::Punct(',') => (atoms::COMMA, true),
-                TokKind::Punct('|') => (atoms::BAR, true),
-                _ => break,
+    /// The list of `self.scratch[items..]` ending in `tail`.
+    fn build_list(&mut self, items: usize, tail: TermId, full: Span) -> TermId {
+        let mut list = tail;
+        for i in (items..self.scratch.len()).rev() {
+            let item = self.scratch[i];
+            let s = Span {
+                start: self.terms.span(item).start,
+                end: full.end,
             };
-            if let Some(def) = self.ops.infix(name) {
-                let (lmax, rmax) = def.arg_max();
-                let (lmax, rmax) = (lmax.unwrap_or(0), rmax.unwrap_or(0));
-                if def.priority <= max && left_prio <= lmax {
-                    let op_tok = self.advance()?;
-                    let _ = is_punct;
-                    let right = self.parse(rmax)?;
-                    let span = self.terms.span(left).to(self.terms.span(right));
-                    let _ = op_tok;
-                    left = self.terms.push_compound(name, &[left, right], span);
-                    left_prio = def.priority;
-                    continue;
-                }
-            }
-            if let Some(def) = self.ops.postfix(name) {
-                let (lmax, _) = def.arg_max();
-                if def.priority <= max && left_prio <= lmax.unwrap_or(0) {
-                    let op_tok = self.advance()?;
-                    let span = self.terms.span(left).to(op_tok.span);
-                    left = self.terms.push_compound(name, &[left], span);
-                    left_prio = def.priority;
-                    continue;
-                }
-            }
-            break;
+            list = self.terms.push_compound(atoms::DOT, &[item, list], s);
         }
-        Ok((left, left_prio))
+        self.scratch.truncate(items);
+        list
+    }
+
+    /// An infix or postfix operator after `left`, if one applies here.
+    fn operator(
+        &mut self,
+        left: TermId,
+        left_prio: u16,
+        max: u16,
+        ctx: Ctx,
+    ) -> PResult<Option<Step>> {
+        let name = match &self.tok.kind {
+            TokKind::Name { atom, .. } => *atom,
+            TokKind::Punct(',') if ctx == Ctx::Top => atoms::COMMA,
+            TokKind::Punct('|') if ctx != Ctx::Elem => atoms::BAR,
+            _ => return Ok(None),
+        };
+        if let Some(def) = self.ops.infix(name) {
+            let (lmax, rmax) = def.arg_max();
+            if def.priority <= max && left_prio <= lmax.unwrap_or(0) {
+                self.advance()?;
+                return Ok(Some(Step::Push(
+                    rmax.unwrap_or(0),
+                    ctx,
+                    Cont::InfixRight {
+                        left,
+                        name,
+                        prio: def.priority,
+                    },
+                )));
+            }
+        }
+        if let Some(def) = self.ops.postfix(name) {
+            let (lmax, _) = def.arg_max();
+            if def.priority <= max && left_prio <= lmax.unwrap_or(0) {
+                let op_tok = self.advance()?;
+                let span = self.terms.span(left).to(op_tok.span);
+                let t = self.terms.push_compound(name, &[left], span);
+                return Ok(Some(Step::Done(t, def.priority)));
+            }
+        }
+        Ok(None)
     }
 
     /// Whether the current token can start a term (used to decide whether a
     /// prefix operator has an operand).
-    fn starts_term(&mut self, tok: &TokKind) -> bool {
+    fn starts_term(&self, tok: &TokKind) -> bool {
         match tok {
             TokKind::Name { atom, .. } => {
                 // An infix operator that is not also a prefix operator ends the term.
                 !(self.ops.infix(*atom).is_some() && self.ops.prefix(*atom).is_none())
             }
-            TokKind::Var(_)
+            TokKind::Var
             | TokKind::Int(_)
             | TokKind::BigInt(_)
             | TokKind::Float(_)
@@ -501,24 +784,25 @@ impl<'s, 'o> Parser<'s, 'o> {
         }
     }
 
-    fn primary(&mut self, max: u16) -> PResult<(TermId, u16)> {
+    /// The start of a term: a complete primary term, or the level to read
+    /// for its contents.
+    fn primary(&mut self, max: u16, ctx: Ctx) -> PResult<Step> {
+        let comma_before = self.comma_before_tok;
         let tok = self.advance()?;
         let span = tok.span;
         match tok.kind {
-            TokKind::Int(i) => Ok((self.push(Node::Int(i), span), 0)),
-            TokKind::BigInt(s) => Ok((self.push(Node::BigInt(s), span), 0)),
-            TokKind::Float(f) => Ok((self.push(Node::Float(f), span), 0)),
-            TokKind::Str(s) => Ok((self.push(Node::Str(s), span), 0)),
-            TokKind::BackQuoted(s) => Ok((self.push(Node::BackQuoted(s), span), 0)),
-            TokKind::Var(name) => {
-                let id = self.var(name, span);
-                Ok((self.push(Node::Var(id), span), 0))
+            TokKind::Int(i) => Ok(Step::Done(self.push(Node::Int(i), span), 0)),
+            TokKind::BigInt(s) => Ok(Step::Done(self.push(Node::BigInt(s), span), 0)),
+            TokKind::Float(f) => Ok(Step::Done(self.push(Node::Float(f), span), 0)),
+            TokKind::Str(s) => Ok(Step::Done(self.push(Node::Str(s), span), 0)),
+            TokKind::BackQuoted(s) => Ok(Step::Done(self.push(Node::BackQuoted(s), span), 0)),
+            TokKind::Var => {
+                let id = self.var(span);
+                Ok(Step::Done(self.push(Node::Var(id), span), 0))
             }
             TokKind::Punct('(') | TokKind::OpenCt => {
                 self.open.push((span, '('));
-                let inner = self.parse(1200)?;
-                self.close(')')?;
-                Ok((inner, 0))
+                Ok(Step::Push(1200, Ctx::Top, Cont::Paren))
             }
             TokKind::Punct('[') => {
                 if self.tok.kind == TokKind::Punct(']') {
@@ -527,38 +811,12 @@ impl<'s, 'o> Parser<'s, 'o> {
                     return self.maybe_functional(atoms::NIL, id, span.to(end));
                 }
                 self.open.push((span, '['));
-                let mut items = Vec::new();
-                loop {
-                    items.push(self.parse(999)?);
-                    if self.tok.kind == TokKind::Punct(',') {
-                        self.advance()?;
-                        continue;
-                    }
-                    break;
-                }
-                let tail = if self.tok.kind == TokKind::Punct('|') {
-                    self.advance()?;
-                    Some(self.parse(999)?)
-                } else {
-                    None
-                };
-                let end = self.tok.span;
-                self.close(']')?;
-                let full = span.to(end);
-                let mut list = match tail {
-                    Some(t) => t,
-                    None => self.push(Node::Atom(atoms::NIL), end),
-                };
-                for &item in items.iter().rev() {
-                    let s = Span {
-                        start: self.terms.span(item).start,
-                        end: full.end,
-                    };
-                    list = self.terms.push_compound(atoms::DOT, &[item, list], s);
-                }
-                // The outermost cell spans the whole list, brackets included.
-                let _ = full;
-                Ok((list, 0))
+                let items = self.scratch.len();
+                Ok(Step::Push(
+                    1200,
+                    Ctx::Elem,
+                    Cont::Elem { open: span, items },
+                ))
             }
             TokKind::Punct('{') => {
                 if self.tok.kind == TokKind::Punct('}') {
@@ -567,31 +825,25 @@ impl<'s, 'o> Parser<'s, 'o> {
                     return self.maybe_functional(atoms::CURLY, id, span.to(end));
                 }
                 self.open.push((span, '{'));
-                let inner = self.parse(1200)?;
-                let end = self.tok.span;
-                self.close('}')?;
-                Ok((
-                    self.terms
-                        .push_compound(atoms::CURLY, &[inner], span.to(end)),
-                    0,
-                ))
+                Ok(Step::Push(1200, Ctx::Top, Cont::Curly { open: span }))
             }
-            TokKind::Name { atom, quoted } => self.name_primary(atom, quoted, span, max),
+            TokKind::Name { atom, quoted } => self.name_primary(atom, quoted, span, max, ctx),
             _ => {
                 // Put the token back for the error message.
                 let cur = std::mem::replace(&mut self.tok, tok);
                 self.peeked = Some(cur);
-                Err(self.expected_term_error())
+                self.comma_before_tok = comma_before;
+                Err(Box::new(self.expected_term_error()))
             }
         }
     }
 
     /// `[](..)`/`{}(..)`: SWI-7 functional notation on `[]` and `{}`.
-    fn maybe_functional(&mut self, name: Atom, id: TermId, span: Span) -> PResult<(TermId, u16)> {
+    fn maybe_functional(&mut self, name: Atom, id: TermId, span: Span) -> PResult<Step> {
         if self.tok.kind == TokKind::OpenCt {
             return self.compound(name, span);
         }
-        Ok((id, 0))
+        Ok(Step::Done(id, 0))
     }
 
     fn name_primary(
@@ -600,7 +852,8 @@ impl<'s, 'o> Parser<'s, 'o> {
         quoted: bool,
         span: Span,
         max: u16,
-    ) -> PResult<(TermId, u16)> {
+        ctx: Ctx,
+    ) -> PResult<Step> {
         if self.tok.kind == TokKind::OpenCt {
             return self.compound(atom, span);
         }
@@ -620,62 +873,71 @@ impl<'s, 'o> Parser<'s, 'o> {
             };
             if let Some(node) = negated {
                 let num = self.advance()?;
-                return Ok((self.push(node, span.to(num.span)), 0));
+                return Ok(Step::Done(self.push(node, span.to(num.span)), 0));
             }
         }
         if let Some(def) = self.ops.prefix(atom) {
-            let next = self.tok.kind.clone();
-            let mut has_operand = self.starts_term(&next);
+            let next = &self.tok.kind;
+            let mut has_operand = self.starts_term(next);
             // `- (a)`: an operand in parentheses; `-(a)` was functional notation above.
-            if let TokKind::Name { atom: n, .. } = &next {
+            if let TokKind::Name { atom: n, .. } = *next {
                 // `- =`: an infix-only operator after a prefix operator makes it an atom,
                 // unless that name is followed by `(` (then it is a term: `- =(a,b)`).
-                if self.ops.infix(*n).is_some() && self.ops.prefix(*n).is_none() {
+                if self.ops.infix(n).is_some() && self.ops.prefix(n).is_none() {
                     has_operand = self.peek()?.kind == TokKind::OpenCt;
                 }
             }
             if has_operand {
-                let (_, rmax) = def.arg_max();
-                let mut prio = def.priority;
-                let mut rmax = rmax.unwrap_or(0);
-                if prio > max {
-                    // ISO: a prefix operator of higher priority than allowed here
-                    // can still be read as an atom operand; otherwise clamp like SWI.
-                    prio = max;
-                    rmax = rmax.min(max);
+                if def.priority > max {
+                    // SWI-Prolog (and ISO): `- \+ a`, `a = \+ b` are clashes.
+                    let mut e = SyntaxError::new(
+                        span,
+                        format!(
+                            "operator priority clash: prefix operator `{}` ({}) cannot appear where at most priority {max} is allowed",
+                            atom.as_str(),
+                            def.priority
+                        ),
+                    )
+                    .with_help("add parentheses around the operator term");
+                    self.add_open_label(&mut e);
+                    return Err(Box::new(e));
                 }
-                let arg = self.parse(rmax)?;
-                let s = span.to(self.terms.span(arg));
-                return Ok((self.terms.push_compound(atom, &[arg], s), prio));
+                let rmax = def.arg_max().1.unwrap_or(0);
+                return Ok(Step::Push(
+                    rmax,
+                    ctx,
+                    Cont::PrefixArg {
+                        atom,
+                        span,
+                        prio: def.priority,
+                    },
+                ));
             }
+            // A prefix operator standing as an atom keeps its priority as a
+            // left operand (SWI: `- * a` reads, `\+ * a` does not).
+            let id = self.push(Node::Atom(atom), span);
+            return Ok(Step::Done(id, def.priority));
         }
         let id = self.push(Node::Atom(atom), span);
-        Ok((id, 0))
+        Ok(Step::Done(id, 0))
     }
 
-    fn compound(&mut self, name: Atom, start: Span) -> PResult<(TermId, u16)> {
+    /// `name(`: functional notation; the arguments are read as levels.
+    fn compound(&mut self, name: Atom, start: Span) -> PResult<Step> {
         let open = self.advance()?; // OpenCt
         self.open.push((open.span, '('));
-        let mut args = Vec::new();
         if self.tok.kind == TokKind::Punct(')') {
             // `name()`: SWI-Prolog 7 zero-argument compound.
             let end = self.advance()?.span;
             self.open.pop();
-            return Ok((self.terms.push_compound(name, &[], start.to(end)), 0));
+            let id = self.terms.push_compound(name, &[], start.to(end));
+            return Ok(Step::Done(id, 0));
         }
-        loop {
-            args.push(self.parse(999)?);
-            if self.tok.kind == TokKind::Punct(',') {
-                self.advance()?;
-                continue;
-            }
-            break;
-        }
-        let end = self.tok.span;
-        self.close(')')?;
-        Ok((self.terms.push_compound(name, &args, start.to(end)), 0))
+        let args = self.scratch.len();
+        Ok(Step::Push(1200, Ctx::Arg, Cont::Arg { name, start, args }))
     }
 
+    #[inline(never)]
     fn close(&mut self, c: char) -> PResult<()> {
         if self.tok.kind == TokKind::Punct(c) {
             self.advance()?;
@@ -698,24 +960,25 @@ impl<'s, 'o> Parser<'s, 'o> {
             if e.help.is_none() && !matches!(self.tok.kind, TokKind::Punct(_)) {
                 e.help = Some("is a `,` missing?".into());
             }
-            Err(e)
+            Err(Box::new(e))
         }
     }
 
-    fn var(&mut self, name: Box<str>, span: Span) -> VarId {
-        if &*name != "_" {
-            if let Some(&id) = self.var_ids.get(&name) {
+    fn var(&mut self, span: Span) -> VarId {
+        let name: &'s str = &self.lexer.source()[span.range()];
+        if name != "_" {
+            if let Some(&id) = self.var_ids.get(name) {
                 self.vars[id.0 as usize].occurrences += 1;
                 return id;
             }
         }
         let id = VarId(self.vars.len() as u32);
         self.vars.push(VarInfo {
-            name: name.clone(),
+            name: name.into(),
             first: span,
             occurrences: 1,
         });
-        if &*name != "_" {
+        if name != "_" {
             self.var_ids.insert(name, id);
         }
         id
@@ -744,7 +1007,25 @@ mod tests {
         assert_eq!(rt("[ ]"), "[]");
         assert_eq!(rt("{a,b}"), "{a,b}");
         assert_eq!(rt("-30.0"), "-30.0");
-        assert_eq!(rt("- 1"), "-(1)");
+        assert_eq!(rt("- 1"), "- 1");
+        assert_eq!(rt("-(1)"), "- 1");
+        assert_eq!(rt("-(-(1))"), "- - 1");
+        assert_eq!(rt("a- (-1)"), "a- -1");
+        assert_eq!(rt("-(1)^2"), "(- 1)^2");
+        assert_eq!(rt("-(2^1)"), "- 2^1");
+        assert_eq!(rt("- {a}"), "- {a}");
+        assert_eq!(rt("1.0e10"), "10000000000.0");
+        assert_eq!(rt("1.0e15"), "1.0e+15");
+        assert_eq!(rt("1.0Inf"), "1.0Inf");
+        assert_eq!(rt("1 000"), "1000");
+        assert_eq!(rt("1_000_ 000"), "1000000");
+        assert_eq!(rt("'\\e\\0\\'"), "'\\u001B\\u0000'");
+        assert_eq!(rt("'\\u00e9\\U0001F600'"), "'é😀'");
+        assert_eq!(rt("[](a)"), "[](a)");
+        assert_eq!(rt("{}(a)"), "{a}");
+        // Found by proptest: an atom starting with `/*` must be quoted.
+        assert_eq!(rt("'/*'(X)"), "'/*'(X)");
+        assert_eq!(rt("[+/*, a/**/+b]"), "[+/*,a+b]");
         assert_eq!(rt("a - -1"), "a- -1");
         assert_eq!(rt("f(x)-50"), "f(x)-50");
         assert_eq!(rt("0'a"), "97");
@@ -766,14 +1047,20 @@ mod tests {
         assert_eq!(rt("X is 1 + 2 * 3"), "X is 1+2*3");
         assert_eq!(rt("(1-2)-3"), "1-2-3");
         assert_eq!(rt("1-(2-3)"), "1-(2-3)");
-        assert_eq!(
-            rt("(c -> a | otherwise -> b)"),
-            "'|'((c->a),(otherwise->b))"
-        );
+        assert_eq!(rt("(c -> a | otherwise -> b)"), "c->a|otherwise->b");
         assert_eq!(rt("\\+ a"), "\\+a");
         assert_eq!(rt("- - a"), "- -a");
         assert_eq!(rt("f(-)"), "f(-)");
-        assert_eq!(rt("- (1)"), "-(1)");
+        assert_eq!(rt("- (1)"), "- 1");
+        assert_eq!(rt("[(c -> a | b)]"), "[(c->a|b)]");
+        assert_eq!(rt("f(a :- b, c)"), "f((a:-b),c)");
+        assert_eq!(rt("[a -> b|T]"), "[(a->b)|T]");
+        assert_eq!(rt("f(a | b)"), "f((a|b))");
+        assert_eq!(rt("f(:-, -)"), "f(:-,-)");
+        assert_eq!(rt("- (-)"), "- (-)");
+        assert_eq!(rt("a = \\+"), "a=(\\+)");
+        assert_eq!(rt("- * a"), "(-)*a");
+        assert_eq!(rt("((:-) :- (:-))"), "(:-):-(:-)");
         assert_eq!(rt("[-]"), "[-]");
         assert_eq!(rt("f((a,b))"), "f((a,b))");
         assert_eq!(rt("f((a:-b))"), "f((a:-b))");
@@ -787,9 +1074,34 @@ mod tests {
             "a ==> b ==> c",
             "x : y => z => w",
             "a = b = c",
+            "- \\+ a",
+            "a = \\+ b",
+            "\\+ * a",
         ] {
             let e = err(src);
             assert!(e.message.contains("priority clash"), "{src}: {e:?}");
+        }
+    }
+
+    #[test]
+    fn forgotten_bracket_is_located_by_indentation() {
+        let src = "d(x,\n[\n  [\n    a ==> [\n      b\n  ],\n  [\n    c\n  ]\n]\n).\n";
+        let (_, errors) = read_clauses(src);
+        assert_eq!(errors.len(), 1, "{errors:?}");
+        let e = &errors[0];
+        assert!(e.message.contains("mismatched brackets"), "{e:?}");
+        let hint = e.labels.iter().find(|(_, l)| l.contains("indented less"));
+        let (span, _) = hint.expect("an indentation hint");
+        assert_eq!(line_col(src, span.start as usize), (6, 3));
+    }
+
+    #[test]
+    fn list_tail_errors() {
+        for src in ["[a|b|c]", "[a|b,c]"] {
+            let e = err(src);
+            assert!(e.message.contains("after the list tail"), "{src}: {e:?}");
+            assert_eq!(e.span, Span::new(4, 5));
+            assert_eq!(e.labels.len(), 1);
         }
     }
 

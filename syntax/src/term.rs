@@ -4,6 +4,7 @@
 //! a 100 000-deep term never recurses.
 
 use crate::atom::{atoms, Atom};
+use std::collections::HashMap;
 
 /// A byte range in the source text.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -210,5 +211,49 @@ pub struct Clause {
 impl Clause {
     pub fn var_name(&self, var: VarId) -> &str {
         &self.vars[var.0 as usize].name
+    }
+
+    /// Whether the two clauses hold the same term up to renaming of
+    /// variables (spans and variable names ignored; floats compared by bits,
+    /// so -0.0 differs from 0.0; any NaN equals any NaN). Iterative: any depth is fine.
+    pub fn is_variant_of(&self, other: &Clause) -> bool {
+        let mut map_a: HashMap<VarId, VarId> = HashMap::new();
+        let mut map_b: HashMap<VarId, VarId> = HashMap::new();
+        let mut stack = vec![(self.root, other.root)];
+        while let Some((a, b)) = stack.pop() {
+            let same = match (self.terms.node(a), other.terms.node(b)) {
+                (Node::Var(x), Node::Var(y)) => {
+                    *map_a.entry(*x).or_insert(*y) == *y && *map_b.entry(*y).or_insert(*x) == *x
+                }
+                (Node::Float(x), Node::Float(y)) => {
+                    x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan())
+                }
+                (
+                    Node::Compound {
+                        functor: f,
+                        arity: n,
+                        ..
+                    },
+                    Node::Compound {
+                        functor: g,
+                        arity: m,
+                        ..
+                    },
+                ) => {
+                    if f == g && n == m {
+                        let (xs, ys) = (self.terms.args(a), other.terms.args(b));
+                        stack.extend(xs.iter().copied().zip(ys.iter().copied()));
+                        true
+                    } else {
+                        false
+                    }
+                }
+                (x, y) => x == y,
+            };
+            if !same {
+                return false;
+            }
+        }
+        true
     }
 }

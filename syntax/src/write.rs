@@ -90,7 +90,7 @@ pub fn write_term<S: TermSource>(source: &S, term: S::Ref, options: WriteOptions
         out: String::new(),
         options,
     };
-    w.term(source, term, 1200);
+    w.term(source, term, 1200, false);
     w.out
 }
 
@@ -117,7 +117,8 @@ pub fn atom_needs_quotes(text: &str) -> bool {
         return !text.chars().all(is_alnum);
     }
     if is_symbol_char(first) {
-        return text == "." || !text.chars().all(is_symbol_char);
+        // `/*` would start a comment.
+        return text == "." || text.starts_with("/*") || !text.chars().all(is_symbol_char);
     }
     true
 }
@@ -162,13 +163,16 @@ fn quote_into(out: &mut String, text: &str, quote: char) {
             '\u{8}' => out.push_str("\\b"),
             '\u{b}' => out.push_str("\\v"),
             '\u{c}' => out.push_str("\\f"),
-            '\0' => out.push_str("\\0\\"),
             c if c == quote => {
                 out.push('\\');
                 out.push(c);
             }
-            c if (c as u32) < 0x20 || c as u32 == 0x7f => {
-                let _ = write!(out, "\\x{:x}\\", c as u32);
+            c if needs_escape(c) => {
+                let _ = if (c as u32) <= 0xFFFF {
+                    write!(out, "\\u{:04X}", c as u32)
+                } else {
+                    write!(out, "\\U{:08X}", c as u32)
+                };
             }
             c => out.push(c),
         }
@@ -176,8 +180,33 @@ fn quote_into(out: &mut String, text: &str, quote: char) {
     out.push(quote);
 }
 
-/// Formats a float the way SWI-Prolog prints it: shortest text that reads
-/// back to the same value, always with a `.` or an exponent.
+/// Characters SWI-Prolog 9 writes as `\uXXXX` inside quotes: controls and
+/// invisible (separator and format) characters other than the plain space.
+fn needs_escape(c: char) -> bool {
+    let u = c as u32;
+    c.is_control()
+        || (c.is_whitespace() && c != ' ')
+        || matches!(
+            u,
+            0xAD | 0x600..=0x605
+                | 0x61C
+                | 0x6DD
+                | 0x70F
+                | 0x180E
+                | 0x200B..=0x200F
+                | 0x202A..=0x202E
+                | 0x2060..=0x2064
+                | 0x2066..=0x206F
+                | 0xFEFF
+                | 0xFFF9..=0xFFFB
+                | 0xE000..=0xF8FF
+                | 0xF0000..=0x10FFFF
+        )
+}
+
+/// Formats a float the way SWI-Prolog 9 prints it: the shortest text that
+/// reads back to the same value, always with a `.`; exponent form (`1.0e+22`,
+/// `1.0e-5`) outside `1.0e-4 <= |f| < 1.0e15`.
 pub fn format_float(f: f64) -> String {
     if f.is_nan() {
         return "1.5NaN".to_owned();
@@ -200,8 +229,33 @@ pub fn format_float(f: f64) -> String {
         } else {
             format!("{mantissa}.0")
         };
-        format!("{mantissa}e{exp}")
+        let sign = if exp < 0 { '-' } else { '+' };
+        format!("{mantissa}e{sign}{}", exp.unsigned_abs())
     }
+}
+
+/// How one term is written in a given context.
+#[derive(Clone, Copy)]
+enum Form {
+    /// An operator atom in operand position: `(op)`.
+    ParenAtom,
+    Plain,
+    List,
+    Curly,
+    Infix {
+        priority: u16,
+        lmax: u16,
+        rmax: u16,
+    },
+    Prefix {
+        priority: u16,
+        rmax: u16,
+    },
+    Postfix {
+        priority: u16,
+        lmax: u16,
+    },
+    Canonical,
 }
 
 struct Writer<'o> {
@@ -214,9 +268,7 @@ impl Writer<'_> {
     /// the previous one (two symbol-char runs or two alphanumeric runs).
     fn token(&mut self, text: &str) {
         if let (Some(prev), Some(next)) = (self.out.chars().next_back(), text.chars().next()) {
-            let glue = (is_symbol_char(prev) && is_symbol_char(next))
-                || (is_alnum(prev) && is_alnum(next));
-            if glue {
+            if glues(prev, next) {
                 self.out.push(' ');
             }
         }
@@ -233,30 +285,139 @@ impl Writer<'_> {
         self.options.ops.is_some_and(|ops| ops.is_op(atom))
     }
 
-    fn term<S: TermSource>(&mut self, src: &S, t: S::Ref, max: u16) {
-        stacker::maybe_grow(64 * 1024, 1024 * 1024, || self.term_inner(src, t, max));
-    }
-
-    /// Writes `t` as an operand of an operator: operator atoms get parentheses.
-    fn operand<S: TermSource>(&mut self, src: &S, t: S::Ref, max: u16) {
-        if let View::Atom(a) = src.view(t) {
-            if self.is_op(a) && a != atoms::NIL && a != atoms::CURLY {
-                self.token("(");
-                self.atom_token(a);
-                self.out.push(')');
-                return;
+    /// How `t` is written with maximum priority `max`; `arg`: as an argument
+    /// of a canonical compound or a list element (operator atoms stay bare).
+    fn form<S: TermSource>(&self, view: &View<'_, S::Ref>, max: u16, arg: bool) -> Form {
+        match *view {
+            View::Atom(a) => {
+                if !arg && max < 1200 && self.is_op(a) {
+                    Form::ParenAtom
+                } else {
+                    Form::Plain
+                }
             }
+            View::Compound(f, args) => {
+                if f == atoms::DOT && args.len() == 2 {
+                    return Form::List;
+                }
+                if f == atoms::CURLY && args.len() == 1 {
+                    return Form::Curly;
+                }
+                let Some(ops) = self.options.ops else {
+                    return Form::Canonical;
+                };
+                if args.len() == 2 {
+                    if let Some(def) = ops.infix(f) {
+                        let (l, r) = def.arg_max();
+                        return Form::Infix {
+                            priority: def.priority,
+                            lmax: l.unwrap_or(999),
+                            rmax: r.unwrap_or(999),
+                        };
+                    }
+                }
+                if args.len() == 1 {
+                    if let Some(def) = ops.prefix(f) {
+                        return Form::Prefix {
+                            priority: def.priority,
+                            rmax: def.arg_max().1.unwrap_or(999),
+                        };
+                    }
+                    if let Some(def) = ops.postfix(f) {
+                        return Form::Postfix {
+                            priority: def.priority,
+                            lmax: def.arg_max().0.unwrap_or(999),
+                        };
+                    }
+                }
+                Form::Canonical
+            }
+            _ => Form::Plain,
         }
-        self.term(src, t, max);
     }
 
-    fn term_inner<S: TermSource>(&mut self, src: &S, t: S::Ref, max: u16) {
-        match src.view(t) {
+    /// The first character `term` writes as at (`max`, `arg`), without writing
+    /// it. Walks down the left spine of operator terms, iteratively.
+    fn first_char<S: TermSource>(
+        &self,
+        src: &S,
+        mut t: S::Ref,
+        mut max: u16,
+        mut arg: bool,
+    ) -> char {
+        loop {
+            let view = src.view(t);
+            match self.form::<S>(&view, max, arg) {
+                Form::ParenAtom => return '(',
+                Form::List => return '[',
+                Form::Curly => return '{',
+                Form::Infix { priority, lmax, .. } | Form::Postfix { priority, lmax } => {
+                    if priority > max {
+                        return '(';
+                    }
+                    if let View::Compound(_, args) = view {
+                        t = args[0];
+                        max = lmax;
+                        arg = false;
+                        continue;
+                    }
+                }
+                Form::Prefix { priority, .. } => {
+                    if priority > max {
+                        return '(';
+                    }
+                }
+                Form::Plain | Form::Canonical => {}
+            }
+            return match view {
+                View::Var(VarLabel::Named(name)) => name.chars().next().unwrap_or('_'),
+                View::Var(VarLabel::Numbered(_)) => '_',
+                View::Int(i) => {
+                    if i < 0 {
+                        '-'
+                    } else {
+                        '0'
+                    }
+                }
+                View::BigInt(s) => s.chars().next().unwrap_or('0'),
+                View::Float(f) => {
+                    if f.is_sign_negative() && !f.is_nan() {
+                        '-'
+                    } else {
+                        '0'
+                    }
+                }
+                View::Str(_) => {
+                    if self.options.quoted {
+                        '"'
+                    } else {
+                        'a'
+                    }
+                }
+                View::BackQuoted(_) => '`',
+                View::Atom(a) | View::Compound(a, _) => {
+                    let text = a.as_str();
+                    if self.options.quoted && atom_needs_quotes(text) {
+                        '\''
+                    } else {
+                        text.chars().next().unwrap_or('a')
+                    }
+                }
+            };
+        }
+    }
+
+    fn term<S: TermSource>(&mut self, src: &S, t: S::Ref, max: u16, arg: bool) {
+        stacker::maybe_grow(64 * 1024, 1024 * 1024, || self.term_inner(src, t, max, arg));
+    }
+
+    fn term_inner<S: TermSource>(&mut self, src: &S, t: S::Ref, max: u16, arg: bool) {
+        let view = src.view(t);
+        match view {
             View::Var(VarLabel::Named(name)) => self.token(name),
             View::Var(VarLabel::Numbered(n)) => self.token(&format!("_G{n}")),
             View::Atom(a) => {
-                let prio = self.options.ops.map_or(0, |ops| ops.max_priority(a));
-                if prio > max {
+                if let Form::ParenAtom = self.form::<S>(&view, max, arg) {
                     self.token("(");
                     self.atom_token(a);
                     self.out.push(')');
@@ -281,121 +442,123 @@ impl Writer<'_> {
                 quote_into(&mut q, s, '`');
                 self.token(&q);
             }
-            View::Compound(f, args) => self.compound(src, f, args, max),
+            View::Compound(f, args) => self.compound(src, &view, f, args, max, arg),
         }
     }
 
-    fn compound<S: TermSource>(&mut self, src: &S, f: Atom, args: &[S::Ref], max: u16) {
-        if f == atoms::DOT && args.len() == 2 {
-            return self.list(src, args);
-        }
-        if f == atoms::CURLY && args.len() == 1 {
-            self.token("{");
-            self.term(src, args[0], 1200);
-            self.out.push('}');
-            return;
-        }
-        if let Some(ops) = self.options.ops {
-            // SWI writes the bar term canonically: `'|'(a,b)`.
-            if args.len() == 2 && f != atoms::BAR {
-                if let Some(def) = ops.infix(f) {
-                    let (lmax, rmax) = def.arg_max();
-                    let open = def.priority > max;
-                    if open {
-                        self.token("(");
-                    }
-                    self.operand(src, args[0], lmax.unwrap_or(999));
-                    if f == atoms::COMMA {
-                        self.out.push(',');
-                    } else if f.as_str().chars().all(is_alnum) {
-                        self.out.push(' ');
-                        self.atom_token(f);
-                        self.out.push(' ');
-                    } else {
-                        self.atom_token(f);
-                    }
-                    self.operand(src, args[1], rmax.unwrap_or(999));
-                    if open {
-                        self.out.push(')');
-                    }
-                    return;
-                }
+    fn compound<S: TermSource>(
+        &mut self,
+        src: &S,
+        view: &View<'_, S::Ref>,
+        f: Atom,
+        args: &[S::Ref],
+        max: u16,
+        arg: bool,
+    ) {
+        match self.form::<S>(view, max, arg) {
+            Form::List => self.list(src, args),
+            Form::Curly => {
+                self.token("{");
+                self.term(src, args[0], 1200, false);
+                self.out.push('}');
             }
-            if args.len() == 1 {
-                if let Some(def) = ops.prefix(f) {
-                    let arg_is_number = matches!(
-                        src.view(args[0]),
-                        View::Int(_) | View::BigInt(_) | View::Float(_)
-                    );
-                    if !((f == atoms::MINUS || f == atoms::PLUS) && arg_is_number) {
-                        let (_, rmax) = def.arg_max();
-                        let open = def.priority > max;
-                        if open {
-                            self.token("(");
-                        }
-                        self.atom_token(f);
-                        if f.as_str().chars().all(is_alnum) {
-                            self.out.push(' ');
-                        }
-                        // An operand starting with `(` would read as functional notation.
-                        let before = self.out.len();
-                        self.operand(src, args[0], rmax.unwrap_or(999));
-                        if self.out[before..].starts_with('(') {
-                            self.out.insert(before, ' ');
-                        }
-                        if open {
-                            self.out.push(')');
-                        }
-                        return;
-                    }
+            Form::Infix {
+                priority,
+                lmax,
+                rmax,
+            } => {
+                let open = priority > max;
+                if open {
+                    self.token("(");
                 }
-                if let Some(def) = ops.postfix(f) {
-                    let (lmax, _) = def.arg_max();
-                    let open = def.priority > max;
-                    if open {
-                        self.token("(");
-                    }
-                    self.operand(src, args[0], lmax.unwrap_or(999));
+                self.term(src, args[0], lmax, false);
+                if f == atoms::COMMA {
+                    self.out.push(',');
+                } else if f == atoms::BAR {
+                    self.out.push('|');
+                } else if f.as_str().chars().all(is_alnum) {
+                    self.out.push(' ');
                     self.atom_token(f);
-                    if open {
-                        self.out.push(')');
-                    }
-                    return;
+                    self.out.push(' ');
+                } else {
+                    self.atom_token(f);
+                }
+                self.term(src, args[1], rmax, false);
+                if open {
+                    self.out.push(')');
                 }
             }
-        }
-        self.atom_token(f);
-        self.out.push('(');
-        for (i, &a) in args.iter().enumerate() {
-            if i > 0 {
-                self.out.push(',');
+            Form::Prefix { priority, rmax } => {
+                let open = priority > max;
+                if open {
+                    self.token("(");
+                }
+                self.atom_token(f);
+                let next = self.first_char(src, args[0], rmax, false);
+                // `- 1` is -(1), `-1` the integer; `-(a)` would be functional
+                // notation and SWI reads `-{a}` as a dict.
+                if f.as_str().chars().all(is_alnum)
+                    || matches!(next, '(' | '{')
+                    || (f == atoms::MINUS && next.is_ascii_digit())
+                {
+                    self.out.push(' ');
+                }
+                self.term(src, args[0], rmax, false);
+                if open {
+                    self.out.push(')');
+                }
             }
-            self.term(src, a, 999);
+            Form::Postfix { priority, lmax } => {
+                let open = priority > max;
+                if open {
+                    self.token("(");
+                }
+                self.term(src, args[0], lmax, false);
+                self.atom_token(f);
+                if open {
+                    self.out.push(')');
+                }
+            }
+            Form::ParenAtom | Form::Plain | Form::Canonical => {
+                self.atom_token(f);
+                self.out.push('(');
+                for (i, &a) in args.iter().enumerate() {
+                    if i > 0 {
+                        self.out.push(',');
+                    }
+                    self.term(src, a, 999, true);
+                }
+                self.out.push(')');
+            }
         }
-        self.out.push(')');
     }
 
     fn list<S: TermSource>(&mut self, src: &S, cell: &[S::Ref]) {
         self.token("[");
-        self.term(src, cell[0], 999);
+        self.term(src, cell[0], 999, true);
         let mut tail = cell[1];
         loop {
             match src.view(tail) {
                 View::Compound(f, args) if f == atoms::DOT && args.len() == 2 => {
                     self.out.push(',');
-                    self.term(src, args[0], 999);
+                    self.term(src, args[0], 999, true);
                     tail = args[1];
                 }
                 View::Atom(a) if a == atoms::NIL => break,
                 _ => {
                     self.out.push('|');
-                    self.term(src, tail, 999);
+                    self.term(src, tail, 999, true);
                     break;
                 }
             }
         }
         self.out.push(']');
     }
+}
+
+/// Whether two characters written next to each other would read as one token.
+fn glues(prev: char, next: char) -> bool {
+    (is_symbol_char(prev) && is_symbol_char(next)) || (is_alnum(prev) && is_alnum(next))
 }
 
 #[cfg(test)]
@@ -413,6 +576,8 @@ mod tests {
         assert!(atom_needs_quotes(""));
         assert!(atom_needs_quotes(","));
         assert!(atom_needs_quotes("|"));
+        assert!(atom_needs_quotes("/*"));
+        assert!(!atom_needs_quotes("+/*"));
     }
 
     #[test]
@@ -420,7 +585,11 @@ mod tests {
         assert_eq!(format_float(1.0), "1.0");
         assert_eq!(format_float(0.22999999999999998), "0.22999999999999998");
         assert_eq!(format_float(-30.0), "-30.0");
-        assert_eq!(format_float(1e22), "1.0e22");
+        assert_eq!(format_float(1e22), "1.0e+22");
         assert_eq!(format_float(1.5e-7), "1.5e-7");
+        assert_eq!(format_float(1e15), "1.0e+15");
+        assert_eq!(format_float(1e14), "100000000000000.0");
+        assert_eq!(format_float(1e-4), "0.0001");
+        assert_eq!(format_float(1.5e300), "1.5e+300");
     }
 }

@@ -1,6 +1,8 @@
 //! Helpers shared by the workspace integration tests in `tests/tests/`:
 //! running an example application in test mode and comparing results.
 
+pub mod compiled;
+
 use sitlog_compiler::run::{self, RunConfig};
 use sitlog_runtime::machine::Options;
 use sitlog_runtime::report;
@@ -85,6 +87,13 @@ pub fn run_example(app: &Path) -> serde_json::Value {
     let mut perception = ScriptPerception::new("script.txt", script);
     let mut actions = TextActions::new(std::io::sink(), ir.basic_actions.clone());
     let mut functions = Functions::standard();
+    // With the `prolog` feature the application's own user_functions.pl
+    // runs; without it, Appendix A falls back to the Rust stand-ins.
+    #[cfg(feature = "prolog")]
+    if let Err(errors) = run::install_prolog(&ir, &mut functions, Default::default()) {
+        panic!("{}: Prolog files do not load: {errors:?}", app.display());
+    }
+    #[cfg(not(feature = "prolog"))]
     if args.appendix_a {
         appendix_a_functions(&mut functions);
     }
@@ -154,15 +163,6 @@ fn normalize_vars(s: &str) -> String {
     out
 }
 
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn variables_normalise() {
-        assert_eq!(super::normalize_vars("f(_G12,'_x',_)"), "f(_,'_x',_)");
-        assert_eq!(super::normalize_vars("a_b(_123)"), "a_b(_)");
-    }
-}
-
 /// Checks, lowers and runs in-memory sources (`name`, `text`) with a script;
 /// returns the JSON report (as a JSON string when it nests deeper than
 /// serde_json parses). Panics with the diagnostics if they do not check.
@@ -208,5 +208,14 @@ pub fn run_sources_with(
     let (outcome, store) =
         run::run(&ir, config, &mut perception, &mut actions, None).expect("valid run config");
     let text = report::outcome_json(&store, &outcome);
-    serde_json::from_str(&text).unwrap_or_else(|_| serde_json::Value::String(text))
+    serde_json::from_str(&text).unwrap_or(serde_json::Value::String(text))
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn variables_normalise() {
+        assert_eq!(super::normalize_vars("f(_G12,'_x',_)"), "f(_,'_x',_)");
+        assert_eq!(super::normalize_vars("a_b(_123)"), "a_b(_)");
+    }
 }

@@ -394,14 +394,20 @@ fn recovery_protocol_runs_then_the_situation_again() {
         [id ==> s1, type ==> neutral, arcs ==> [empty : say('Sorry, again?') => done]],
         [id ==> done, type ==> final]], []).";
     let v = run_sources(
-        &[("t.dm", dm), ("recovery_protocols.pl", "speech ==> ask_again.\n")],
+        &[
+            ("t.dm", dm),
+            ("recovery_protocols.pl", "speech ==> ask_again.\n"),
+        ],
         "maybe.\nyes.\n",
         "main",
         None,
         Options::default(),
     );
     ok(&v);
-    assert_eq!(steps(&v), ["[2 entries]", "is yes => got(2)", "fs empty => empty"]);
+    assert_eq!(
+        steps(&v),
+        ["[2 entries]", "is yes => got(2)", "fs empty => empty"]
+    );
     // Without recovery configured: the original's retry (D-15), nothing recorded.
     let v = run(dm, "maybe.\nyes.\n");
     ok(&v);

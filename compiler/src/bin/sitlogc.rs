@@ -76,7 +76,61 @@ enum Command {
         /// Write one JSON object per transition to FILE as it happens.
         #[arg(long, value_name = "FILE")]
         trace: Option<PathBuf>,
+        /// A knowledge base whose services become user functions
+        /// (`apply(object_property_value(I, P), [pete, lives])`).
+        #[arg(long, value_name = "FILE")]
+        kb: Option<PathBuf>,
+        /// Write every successful KB update back to the --kb file (atomically).
+        #[arg(long, requires = "kb")]
+        kb_persist: bool,
     },
+    /// Compile an application to one executable.
+    ///
+    /// Generates a Cargo package under `target/sitlog-build/<app>/` that uses
+    /// this workspace's runtime, builds it (cargo's progress on stderr; the
+    /// build cache in `target/sitlog-build/target` is shared by every
+    /// application) and copies the executable to FILE. The executable runs
+    /// the task with the options of `sitlogc run` (`--main`, `--in-arg`,
+    /// `--script`, `--format`, `--history`, `--trace`). With `--emit rust`
+    /// the generated Rust is written to FILE (stdout without -o) instead.
+    Build {
+        /// The application directory (or a single DM file).
+        #[arg(value_name = "APP")]
+        app: PathBuf,
+        /// Where to write the executable (default: the application's name).
+        #[arg(short, long, value_name = "FILE")]
+        output: Option<PathBuf>,
+        /// Build with optimizations.
+        #[arg(long)]
+        release: bool,
+        /// `rust`: only write the generated code.
+        #[arg(long, value_enum)]
+        emit: Option<Emit>,
+    },
+    /// Ask a knowledge base one question (for people exploring a KB).
+    ///
+    /// QUERY is one service call with the original's name and argument
+    /// order, leaving out the KB argument; the answer is the last argument,
+    /// written as a variable, e.g. `object_property_value(pete, lives, X)`.
+    /// Prints the answer (writeq style) or `false`. FILE is never modified.
+    /// Exit status: 0 with an answer or `false`, 1 on a bad KB or query.
+    Kb {
+        /// The KB file (a Prolog list of `class(Id, Mother, Props, Rels, Individuals)`).
+        #[arg(value_name = "FILE")]
+        file: PathBuf,
+        /// An update applied before the query (repeatable, in order),
+        /// e.g. `--do 'add_object_property(mug1, misplaced, yes)'`.
+        #[arg(long = "do", value_name = "UPDATE", allow_hyphen_values = true)]
+        updates: Vec<String>,
+        /// The service call.
+        #[arg(value_name = "QUERY", allow_hyphen_values = true)]
+        query: String,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum Emit {
+    Rust,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -140,6 +194,8 @@ fn run(cli: Cli) -> u8 {
             format,
             history,
             trace,
+            kb,
+            kb_persist,
         } => run_app(RunArgs {
             app,
             main,
@@ -148,7 +204,107 @@ fn run(cli: Cli) -> u8 {
             format,
             keep_history: history == HistoryMode::Keep,
             trace,
+            kb,
+            kb_persist,
         }),
+        Command::Build {
+            app,
+            output,
+            release,
+            emit,
+        } => build_app(&app, output, release, emit),
+        Command::Kb {
+            file,
+            updates,
+            query,
+        } => match sitlog_kb::cli(&file, &updates, &query) {
+            Ok(line) => {
+                println!("{line}");
+                0
+            }
+            Err(e) => {
+                eprintln!("{e}");
+                1
+            }
+        },
+    }
+}
+
+/// Loads and checks an application, printing its errors; `Err` is the exit status.
+fn checked_ir(app: &std::path::Path) -> Result<sitlog_compiler::ir::Ir, u8> {
+    let (result, diags) = match sitlog_compiler::check_path(app) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: cannot read {e}");
+            return Err(2);
+        }
+    };
+    let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    let program_sources = match &result {
+        Ok(c) => &c.program().sources,
+        Err(p) => &p.sources,
+    };
+    for d in diags.iter().filter(|d| d.is_error()) {
+        eprint!("{}", diag::render_human(d, program_sources, color));
+    }
+    match result {
+        Ok(c) => Ok(sitlog_compiler::ir::lower(&c)),
+        Err(_) => {
+            let n = diags.iter().filter(|d| d.is_error()).count();
+            eprintln!("error: the application has {n} error(s); run `sitlogc check` for details");
+            Err(1)
+        }
+    }
+}
+
+fn build_app(
+    app: &std::path::Path,
+    output: Option<PathBuf>,
+    release: bool,
+    emit: Option<Emit>,
+) -> u8 {
+    use sitlog_compiler::{build, package};
+    if let Err(code) = checked_ir(app) {
+        return code;
+    }
+    let compiled = match build::generate(app, &app.display().to_string()) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 1;
+        }
+    };
+    if emit == Some(Emit::Rust) {
+        let text = compiled.to_file_string();
+        return match output {
+            Some(path) => match build::write_if_changed(&path, &text) {
+                Ok(_) => 0,
+                Err(e) => {
+                    eprintln!("error: cannot write {}: {e}", path.display());
+                    2
+                }
+            },
+            None => {
+                print!("{text}");
+                0
+            }
+        };
+    }
+    let output = output.unwrap_or_else(|| PathBuf::from(build::app_name(app)));
+    let layout = package::Layout::workspace();
+    let built = package::write_package(&compiled, app, &layout).and_then(|(dir, name)| {
+        eprintln!("sitlogc: building {} in {}", name, dir.display());
+        package::build_package(&dir, &name, &layout, release, &output)
+    });
+    match built {
+        Ok(()) => {
+            eprintln!("sitlogc: wrote {}", output.display());
+            0
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            2
+        }
     }
 }
 
@@ -160,93 +316,55 @@ struct RunArgs {
     format: RunFormat,
     keep_history: bool,
     trace: Option<PathBuf>,
+    kb: Option<PathBuf>,
+    kb_persist: bool,
 }
 
 fn run_app(args: RunArgs) -> u8 {
-    use sitlog_compiler::run::{self, RunConfig};
-    use sitlog_runtime::machine::{Observer, Options, Perception};
-    use sitlog_runtime::report;
-    use sitlog_runtime::testmode::{PromptPerception, ScriptPerception, TextActions};
-
-    let (result, diags) = match sitlog_compiler::check_path(&args.app) {
-        Ok(r) => r,
-        Err(e) => {
-            eprintln!("error: cannot read {e}");
-            return 2;
-        }
+    use sitlog_runtime::cli::{self, Format};
+    let ir = match checked_ir(&args.app) {
+        Ok(ir) => ir,
+        Err(code) => return code,
     };
-    let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
-    let program_sources = match &result {
-        Ok(c) => &c.program().sources,
-        Err(p) => &p.sources,
-    };
-    for d in diags.iter().filter(|d| d.is_error()) {
-        eprint!("{}", diag::render_human(d, program_sources, color));
-    }
-    let checked = match result {
-        Ok(c) => c,
-        Err(_) => {
-            let n = diags.iter().filter(|d| d.is_error()).count();
-            eprintln!("error: the application has {n} error(s); run `sitlogc check` for details");
-            return 1;
-        }
-    };
-    let ir = sitlog_compiler::ir::lower(&checked);
-    let mut perception: Box<dyn Perception> = match &args.script {
-        Some(path) => match std::fs::read_to_string(path) {
-            Ok(text) => Box::new(ScriptPerception::new(path.display().to_string(), text)),
-            Err(e) => {
-                eprintln!("error: cannot read script {}: {e}", path.display());
-                return 2;
-            }
-        },
-        None => Box::new(PromptPerception::new(std::io::stdin().lock())),
-    };
-    let mut trace = match &args.trace {
-        Some(path) => match std::fs::File::create(path) {
-            Ok(f) => Some(report::JsonTrace::new(std::io::BufWriter::new(f))),
-            Err(e) => {
-                eprintln!("error: cannot create trace file {}: {e}", path.display());
-                return 2;
-            }
-        },
-        None => None,
-    };
-    let mut actions = TextActions::new(std::io::stderr(), ir.basic_actions.clone());
-    let config = RunConfig {
+    let run_args = cli::RunArgs {
         main: args.main,
         in_arg: args.in_arg,
-        options: Options {
-            keep_history: args.keep_history,
-            ..Options::default()
+        script: args.script,
+        format: match args.format {
+            RunFormat::Text => Format::Text,
+            RunFormat::Json => Format::Json,
         },
-        ..RunConfig::default()
+        keep_history: args.keep_history,
+        trace: args.trace,
     };
-    let observer = trace.as_mut().map(|t| t as &mut dyn Observer);
-    let (outcome, mut store) =
-        match run::run(&ir, config, perception.as_mut(), &mut actions, observer) {
-            Ok(r) => r,
+    #[allow(unused_mut)]
+    let mut functions = sitlog_runtime::Functions::standard();
+    // The application's user_functions.pl and templates.pl (feature `prolog`).
+    #[cfg(feature = "prolog")]
+    if let Err(errors) =
+        sitlog_compiler::run::install_prolog(&ir, &mut functions, Default::default())
+    {
+        for e in errors {
+            eprintln!("error: {e}");
+        }
+        return 1;
+    }
+    if let Some(path) = &args.kb {
+        let kb = match sitlog_kb::Kb::load(path) {
+            Ok(kb) => kb,
             Err(e) => {
                 eprintln!("error: {e}");
                 return 2;
             }
         };
-    let stdout = std::io::stdout();
-    let mut out = stdout.lock();
-    match args.format {
-        RunFormat::Json => {
-            let _ = writeln!(out, "{}", report::outcome_json(&store, &outcome));
-        }
-        RunFormat::Text => {
-            let _ = write!(out, "{}", report::outcome_text(&mut store, &outcome));
-        }
+        let persist = args.kb_persist.then(|| path.clone());
+        sitlog_compiler::kb_functions::register(
+            &mut functions,
+            std::sync::Arc::new(std::sync::Mutex::new(kb)),
+            persist,
+        );
     }
-    if let Err(e) = &outcome.result {
-        eprintln!("error: {e}");
-        1
-    } else {
-        0
-    }
+    cli::execute(&ir, functions, &run_args)
 }
 
 fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool) -> u8 {

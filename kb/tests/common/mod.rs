@@ -3,7 +3,9 @@ use sitlog_kb::Kb;
 use std::path::PathBuf;
 
 pub fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name)
 }
 
 /// Runs updates then a query on KB text, giving the `sitlogc kb` line.
@@ -16,7 +18,9 @@ pub fn ask(kb: &str, dos: &[&str], query: &str) -> String {
             Err(e) => panic!("{d}: {e}"),
         }
     }
-    kb.query(query).unwrap_or_else(|e| panic!("{query}: {e}")).to_line()
+    kb.query(query)
+        .unwrap_or_else(|e| panic!("{query}: {e}"))
+        .to_line()
 }
 
 pub fn ask_file(file: &str, dos: &[&str], query: &str) -> String {

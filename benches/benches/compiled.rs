@@ -1,0 +1,258 @@
+//! Generated code vs the reference interpreter vs a hand-written Rust
+//! `enum` + `match` machine doing the same work (the floor), per transition:
+//! - `counter_loop`: a neutral loop with a local counter (`inc` + a
+//!   conditional next situation), no history;
+//! - `pipe_calls`: N DM calls passing the pipe (`B is A + 1` in the callee),
+//!   no history;
+//! - `appendix_a`: the papers' Appendix A example on its script, with history.
+//!
+//! `cargo bench -p sitlog-benches --bench compiled`; the ratios in the README
+//! come from one such run.
+
+use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use sitlog_compiler::ir::Ir;
+use sitlog_runtime::machine::{Options, Outcome};
+use sitlog_runtime::testmode::{ScriptPerception, TextActions};
+use sitlog_runtime::{cli, Functions, Store};
+use std::path::Path;
+use std::time::Duration;
+
+mod counter_loop {
+    sitlog_macros::include_dm!("dms/counter_loop");
+}
+mod pipe_calls {
+    sitlog_macros::include_dm!("dms/pipe_calls");
+}
+mod appendix_a {
+    sitlog_macros::include_dm!("../dms/examples/appendix_a");
+}
+
+fn interpreter(app: &Path) -> Ir {
+    let (checked, _) = sitlog_compiler::check_path(app).expect("readable");
+    sitlog_compiler::ir::lower(&checked.expect("checks"))
+}
+
+fn options(keep_history: bool) -> Options {
+    Options {
+        keep_history,
+        ..Options::default()
+    }
+}
+
+/// Runs a program through the runtime's runner (both back ends share it).
+fn run<A: cli::App>(
+    app: &A,
+    main: &str,
+    in_arg: Option<&str>,
+    script: &str,
+    keep_history: bool,
+    functions: Functions,
+) -> u64 {
+    let mut perception = ScriptPerception::new("script", script.to_owned());
+    let mut actions = TextActions::new(std::io::sink(), Vec::new());
+    let (outcome, _store): (Outcome, Store) = cli::run(
+        app,
+        main,
+        in_arg,
+        options(keep_history),
+        functions,
+        &mut perception,
+        &mut actions,
+        None,
+    )
+    .expect("runs");
+    assert!(outcome.result.is_ok(), "{:?}", outcome.result);
+    outcome.transitions
+}
+
+/// The hand-written floor for `counter_loop`: the same states, the same
+/// counter, the same comparisons, one "transition" per step.
+fn hand_counter_loop(max: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum St {
+        Is,
+        Fs,
+    }
+    let (mut n, mut st, mut transitions) = (0i64, St::Is, 0u64);
+    loop {
+        transitions += 1;
+        match st {
+            St::Is => {
+                n = black_box(n + 1);
+                st = if n >= max { St::Fs } else { St::Is };
+            }
+            St::Fs => return transitions,
+        }
+    }
+}
+
+/// The hand-written floor for `pipe_calls`: a DM stack of typed frames, the
+/// pipe as an integer.
+fn hand_pipe_calls(max: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Main {
+        Call,
+        Check,
+        Fs,
+    }
+    #[derive(Clone, Copy)]
+    enum AddOne {
+        Is,
+        Done,
+    }
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Main(Main),
+        AddOne(AddOne),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Main(Main::Call)];
+    let (mut pipe, mut transitions) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Main(Main::Call) => stack.push(Frame::AddOne(AddOne::Is)),
+            Frame::Main(Main::Check) => {
+                transitions += 1;
+                *top = Frame::Main(if pipe >= max { Main::Fs } else { Main::Call });
+            }
+            Frame::Main(Main::Fs) => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::AddOne(AddOne::Is) => {
+                transitions += 1;
+                pipe = black_box(pipe + 1);
+                *top = Frame::AddOne(AddOne::Done);
+            }
+            Frame::AddOne(AddOne::Done) => {
+                transitions += 1;
+                stack.pop();
+                // The caller's recursive situation concludes.
+                transitions += 1;
+                if let Some(Frame::Main(m)) = stack.last_mut() {
+                    *m = Main::Check;
+                }
+            }
+        }
+    }
+    transitions
+}
+
+fn bench(c: &mut Criterion) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let counter_ir = interpreter(&root.join("dms/counter_loop"));
+    let pipe_ir = interpreter(&root.join("dms/pipe_calls"));
+    for n in [10_000i64, 100_000] {
+        let main = format!("main({n})");
+        let mut group = c.benchmark_group("counter_loop");
+        group
+            .sample_size(10)
+            .measurement_time(Duration::from_secs(3));
+        group.warm_up_time(Duration::from_secs(1));
+        let t = run(
+            counter_loop::program(),
+            &main,
+            None,
+            "",
+            false,
+            Functions::standard(),
+        );
+        assert_eq!(t, hand_counter_loop(n));
+        group.throughput(Throughput::Elements(t));
+        group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
+            b.iter(|| {
+                run(
+                    counter_loop::program(),
+                    &main,
+                    None,
+                    "",
+                    false,
+                    Functions::standard(),
+                )
+            })
+        });
+        group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
+            b.iter(|| run(&counter_ir, &main, None, "", false, Functions::standard()))
+        });
+        group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, &n| {
+            b.iter(|| hand_counter_loop(black_box(n)))
+        });
+        group.finish();
+
+        let mut group = c.benchmark_group("pipe_calls");
+        group
+            .sample_size(10)
+            .measurement_time(Duration::from_secs(3));
+        group.warm_up_time(Duration::from_secs(1));
+        let t = run(
+            pipe_calls::program(),
+            &main,
+            Some("0"),
+            "",
+            false,
+            Functions::standard(),
+        );
+        assert_eq!(t, hand_pipe_calls(n));
+        group.throughput(Throughput::Elements(t));
+        group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
+            b.iter(|| {
+                run(
+                    pipe_calls::program(),
+                    &main,
+                    Some("0"),
+                    "",
+                    false,
+                    Functions::standard(),
+                )
+            })
+        });
+        group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
+            b.iter(|| run(&pipe_ir, &main, Some("0"), "", false, Functions::standard()))
+        });
+        group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, &n| {
+            b.iter(|| hand_pipe_calls(black_box(n)))
+        });
+        group.finish();
+    }
+
+    let app = root.join("../dms/examples/appendix_a");
+    let appendix_ir = interpreter(&app);
+    let script = std::fs::read_to_string(app.join("script.txt")).expect("script");
+    let functions = || {
+        let mut f = Functions::standard();
+        sitlog_tests::appendix_a_functions(&mut f);
+        f
+    };
+    let mut group = c.benchmark_group("appendix_a");
+    group
+        .sample_size(20)
+        .measurement_time(Duration::from_secs(3));
+    group.warm_up_time(Duration::from_secs(1));
+    let t = run(
+        appendix_a::program(),
+        "main",
+        None,
+        &script,
+        true,
+        functions(),
+    );
+    group.throughput(Throughput::Elements(t));
+    group.bench_function("compiled", |b| {
+        b.iter(|| {
+            run(
+                appendix_a::program(),
+                "main",
+                None,
+                &script,
+                true,
+                functions(),
+            )
+        })
+    });
+    group.bench_function("interpreter", |b| {
+        b.iter(|| run(&appendix_ir, "main", None, &script, true, functions()))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,194 @@
+//! Compiling SitLog applications from a build script (the prost-build
+//! pattern), and the shared front half of `include_dm!` and `sitlogc build`.
+//!
+//! ```no_run
+//! // in build.rs's `main`:
+//! sitlog_compiler::build::compile("dms/examples/countdown").unwrap();
+//! // then in src/lib.rs:
+//! // pub mod countdown { include!(concat!(env!("OUT_DIR"), "/countdown.rs")); }
+//! ```
+//!
+//! The generated file is written only when its text changed (so unchanged
+//! programs do not trigger rebuilds), and `cargo:rerun-if-changed` is printed
+//! for every file read and for the application directory.
+
+use crate::codegen;
+use proc_macro2::TokenStream;
+use std::path::{Path, PathBuf};
+
+/// Why a program could not be compiled: I/O, or diagnostics of the DM
+/// sources rendered as `file.dm:line:col: error[CODE]: message` plus the
+/// source line (one string per error).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Error {
+    pub messages: Vec<String>,
+}
+
+impl std::fmt::Display for Error {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.messages.join("\n"))
+    }
+}
+
+impl std::error::Error for Error {}
+
+/// A compiled program: its tokens and every file read to make them.
+pub struct Compiled {
+    pub tokens: TokenStream,
+    /// Source files read (DM files, side files, the `models` file).
+    pub files: Vec<PathBuf>,
+    /// How the source was named (for the `@generated` header).
+    pub source: String,
+}
+
+impl Compiled {
+    /// The formatted file text with its `@generated` header.
+    pub fn to_file_string(&self) -> String {
+        codegen::format_file(self.tokens.clone(), &self.source)
+    }
+}
+
+/// Loads, checks, lowers and generates the application at `path` (a
+/// directory or a DM file). `source` names it in the header.
+pub fn generate(path: &Path, source: &str) -> Result<Compiled, Error> {
+    let (result, diags) = crate::check_path(path).map_err(|e| Error {
+        messages: vec![format!("cannot read {e}")],
+    })?;
+    let sources = match &result {
+        Ok(c) => &c.program().sources,
+        Err(p) => &p.sources,
+    };
+    let mut files: Vec<PathBuf> = sources.files().map(|(_, f)| f.path.clone()).collect();
+    if path.is_dir() && path.join("models").is_file() {
+        files.push(path.join("models"));
+    }
+    let checked = match result {
+        Ok(c) => c,
+        Err(p) => {
+            let messages = diags
+                .iter()
+                .filter(|d| d.is_error())
+                .map(|d| crate::diag::render_short(d, &p.sources))
+                .collect();
+            return Err(Error { messages });
+        }
+    };
+    let ir = crate::ir::lower(&checked);
+    Ok(Compiled {
+        tokens: codegen::generate(&ir, source),
+        files,
+        source: source.to_owned(),
+    })
+}
+
+/// Options of [`Config::compile`].
+#[derive(Clone, Debug, Default)]
+pub struct Config {
+    out_dir: Option<PathBuf>,
+    file_name: Option<String>,
+    quiet: bool,
+}
+
+impl Config {
+    pub fn new() -> Config {
+        Config::default()
+    }
+
+    /// Where to write (default: the `OUT_DIR` Cargo gives build scripts).
+    pub fn out_dir(mut self, dir: impl Into<PathBuf>) -> Config {
+        self.out_dir = Some(dir.into());
+        self
+    }
+
+    /// The output file name (default: `<application name>.rs`).
+    pub fn file_name(mut self, name: impl Into<String>) -> Config {
+        self.file_name = Some(name.into());
+        self
+    }
+
+    /// Do not print `cargo:` lines (outside build scripts).
+    pub fn quiet(mut self, quiet: bool) -> Config {
+        self.quiet = quiet;
+        self
+    }
+
+    /// Compiles the application at `app` into the output directory; returns
+    /// the path of the generated file.
+    pub fn compile(&self, app: impl AsRef<Path>) -> Result<PathBuf, Error> {
+        let app = app.as_ref();
+        if !self.quiet {
+            println!("cargo:rerun-if-changed={}", app.display());
+        }
+        let compiled = generate(app, &app.display().to_string());
+        if !self.quiet {
+            let files = match &compiled {
+                Ok(c) => c.files.clone(),
+                Err(_) => Vec::new(),
+            };
+            for f in files {
+                println!("cargo:rerun-if-changed={}", f.display());
+            }
+        }
+        let compiled = compiled?;
+        let out_dir = match &self.out_dir {
+            Some(d) => d.clone(),
+            None => PathBuf::from(std::env::var_os("OUT_DIR").ok_or_else(|| Error {
+                messages: vec![
+                    "OUT_DIR is not set: call from a build script or set Config::out_dir".into(),
+                ],
+            })?),
+        };
+        let name = match &self.file_name {
+            Some(n) => n.clone(),
+            None => format!("{}.rs", app_name(app)),
+        };
+        let path = out_dir.join(name);
+        write_if_changed(&path, &compiled.to_file_string()).map_err(|e| Error {
+            messages: vec![format!("cannot write {}: {e}", path.display())],
+        })?;
+        Ok(path)
+    }
+}
+
+/// Compiles the application at `app` into `OUT_DIR/<name>.rs` (from a
+/// build script); see [`Config`] for options.
+pub fn compile(app: impl AsRef<Path>) -> Result<PathBuf, Error> {
+    Config::new().compile(app)
+}
+
+/// The name of an application: its directory name, or a DM file's stem, as
+/// a Rust identifier.
+pub fn app_name(app: &Path) -> String {
+    let raw = if app.is_dir() {
+        app.file_name()
+    } else {
+        app.file_stem()
+    };
+    let raw = raw.and_then(|s| s.to_str()).unwrap_or("app");
+    let mut s: String = raw
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() || s.starts_with(|c: char| c.is_ascii_digit()) {
+        s.insert(0, '_');
+    }
+    s
+}
+
+/// Writes `text` to `path` unless the file already holds exactly it.
+pub fn write_if_changed(path: &Path, text: &str) -> std::io::Result<bool> {
+    if std::fs::read(path).is_ok_and(|old| old == text.as_bytes()) {
+        return Ok(false);
+    }
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)?;
+    }
+    std::fs::write(path, text)?;
+    Ok(true)
+}

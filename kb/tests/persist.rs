@@ -1,0 +1,96 @@
+//! Save/load round trips, atomic saves, and the generator at scale
+//! (including that reusing class closures never changes an answer).
+mod common;
+use sitlog_kb::{gen, Kb};
+
+#[test]
+fn save_load_round_trip_of_the_paper_kbs() {
+    for f in ["animals.kb", "preferences.kb", "office.kb", "updates.kb"] {
+        let kb = Kb::load(&common::data(f)).unwrap();
+        let text = kb.to_text();
+        let again = Kb::parse(&text, f).unwrap();
+        assert_eq!(again.to_text(), text, "{f}");
+        // The original's own save format has no final full stop; ours neither.
+        assert!(text.trim_end().ends_with(']'));
+    }
+}
+
+#[test]
+fn save_is_atomic_and_reloadable() {
+    let dir = std::env::temp_dir().join(format!("sitlog-kb-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("kb.kb");
+    let mut kb = Kb::load(&common::data("preferences.kb")).unwrap();
+    kb.save(&path).unwrap();
+    let upd = sitlog_syntax::read_term("add_object_property(noodles, misplaced, yes)").unwrap();
+    assert_eq!(kb.update_persist(&upd, &path).unwrap(), Ok(true));
+    let back = Kb::load(&path).unwrap();
+    assert_eq!(back.to_text(), kb.to_text());
+    assert_eq!(
+        back.query("object_property_value(noodles, misplaced, X)")
+            .unwrap()
+            .to_line(),
+        "yes"
+    );
+    // No temporary file is left behind.
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names.len(), 1, "{names:?}");
+    // A failed reload keeps the KB.
+    let mut kb2 = back.clone();
+    std::fs::write(dir.join("bad.kb"), "[class(a,none,[],[],[])]").unwrap();
+    assert!(kb2.reload(&dir.join("bad.kb")).is_err());
+    assert_eq!(kb2.to_text(), back.to_text());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn generated_kb_round_trips_and_shortcuts_agree() {
+    let kb = gen::generate(2000, 8);
+    let text = kb.to_text();
+    let parsed = Kb::parse(&text, "gen").unwrap();
+    assert_eq!(parsed.to_text(), text);
+    let mut slow = kb.clone();
+    slow.set_shortcuts(false);
+    for q in [
+        "property_extension(loc, X)",
+        "property_extension(found_in, X)",
+        "property_extension(swims, X)",
+        "property_extension(stressed, X)",
+        "property_extension(p3, X)",
+        "relation_extension(likes, X)",
+        "relation_extension(owner, X)",
+        "explanation_extension(misplaced, X)",
+        "explanation_extension(loc=>shelf8, X)",
+        "object_property_value(o0, found_in, X)",
+        "properties_of_individual(o1, X)",
+        "explanation_of_individual(o2, X)",
+        "explanation_of_individual(o5, X)",
+        "relations_of_individual(o10, X)",
+    ] {
+        let fast = kb.query(q).unwrap().to_line();
+        assert_eq!(fast, slow.query(q).unwrap().to_line(), "{q}");
+    }
+    assert_eq!(
+        kb.query("class_extension(top, X)")
+            .unwrap()
+            .to_line()
+            .matches(',')
+            .count(),
+        1999
+    );
+}
+
+#[test]
+fn a_million_individuals_property_extension() {
+    // Debug builds are slow: this checks it works at scale, not its speed
+    // (the criterion bench measures that in release).
+    if cfg!(debug_assertions) {
+        return;
+    }
+    let kb = gen::generate(1_000_000, 8);
+    let out = kb.query("property_extension(loc, X)").unwrap().to_line();
+    assert!(out.starts_with("[o0:"));
+}

@@ -1,0 +1,15 @@
+//! `include_dm!` through the compiler: a good DM compiles and runs, bad
+//! ones give `compile_error!`s naming the `.dm` file, line and column.
+//! One trybuild run (one nested cargo build) for all cases.
+
+#[test]
+fn ui() {
+    // trybuild's crate lives in the target dir: resolve the DM paths
+    // against this crate (the nested cargo inherits the environment).
+    std::env::set_var("SITLOG_DM_ROOT", env!("CARGO_MANIFEST_DIR"));
+    let t = trybuild::TestCases::new();
+    t.pass("tests/ui/good_dm.rs");
+    t.compile_fail("tests/ui/bad_dm.rs");
+    t.compile_fail("tests/ui/syntax_dm.rs");
+    t.compile_fail("tests/ui/not_a_string.rs");
+}

@@ -1,0 +1,5 @@
+mod app {
+    sitlog_macros::include_dm!("tests/ui/bad_dm");
+}
+
+fn main() {}

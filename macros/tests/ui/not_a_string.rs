@@ -1,0 +1,5 @@
+mod app {
+    sitlog_macros::include_dm!(dms / app);
+}
+
+fn main() {}

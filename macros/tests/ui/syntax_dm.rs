@@ -1,0 +1,5 @@
+mod app {
+    sitlog_macros::include_dm!("tests/ui/syntax_dm.dm");
+}
+
+fn main() {}

@@ -1,0 +1,1047 @@
+//! Prolog user functions (feature `prolog`): the application's
+//! `templates.pl` and `user_functions.pl` run in an embedded
+//! [scryer-prolog](https://crates.io/crates/scryer-prolog) engine, so a task
+//! stays one binary with no system library.
+//!
+//! Loading. Our reader (SWI-Prolog 6 syntax, SitLog operators) reads the
+//! files; each clause is sent to the engine in canonical form, with `'|'/2`
+//! turned into `;/2` (SWI-6 reads `(C -> A | otherwise -> B)` as `;`) and
+//! double-quoted strings as code lists (SWI-6's default). So the engine
+//! never parses application text: syntax errors are our reader's, with
+//! file:line:col, and the engine only reports errors of its own (a clause
+//! it refuses, a failing directive) by clause position. `consult/1` and
+//! `ensure_loaded/1` directives load the named file the same way
+//! (`$SITLOG_HOME/...` is the `SITLOG_HOME` environment variable, else the
+//! nearest ancestor directory in which the rest of the path exists).
+//!
+//! Calling. `apply(f(X1..Xn), [E1..En])` becomes one query of the prelude
+//! (`prolog_prelude.pl`) with the arguments, the caller's locals and
+//! globals, the history and the caller's unbound variables written as
+//! canonical text; the answer gives the value passed to
+//! `assign_func_value/1`, the SitLog variables changed by `var_op/1` and
+//! the bindings of the caller's variables. The engine is not `Send`: it
+//! lives on a thread of its own and calls are messages to it.
+
+use crate::functions::{FnCall, Functions};
+use crate::store::Store;
+use crate::term::{Term, Value, Var};
+use scryer_prolog::{LeafAnswer, Machine, MachineBuilder, Term as PTerm};
+use sitlog_syntax::{atoms, read_clauses, Atom};
+use std::collections::{HashMap, HashSet};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::mpsc;
+use std::sync::{Arc, Mutex};
+
+/// The prelude consulted before the application's files.
+pub const PRELUDE: &str = include_str!("prolog_prelude.pl");
+
+/// Library predicates made visible to application code unless it defines
+/// them itself (SWI-6 autoloads these).
+const LIBRARIES: &[(&str, &[&str])] = &[
+    (
+        "lists",
+        &[
+            "member/2",
+            "select/3",
+            "append/2",
+            "append/3",
+            "foldl/4",
+            "foldl/5",
+            "memberchk/2",
+            "reverse/2",
+            "length/2",
+            "maplist/2",
+            "maplist/3",
+            "maplist/4",
+            "maplist/5",
+            "maplist/6",
+            "maplist/7",
+            "same_length/2",
+            "nth0/3",
+            "nth0/4",
+            "nth1/3",
+            "nth1/4",
+            "sum_list/2",
+            "transpose/2",
+            "list_to_set/2",
+            "list_max/2",
+            "list_min/2",
+            "permutation/2",
+        ],
+    ),
+    (
+        "between",
+        &["between/3", "numlist/2", "numlist/3", "repeat/1"],
+    ),
+    ("format", &["format/2", "format/3", "portray_clause/1"]),
+];
+
+/// One Prolog source file.
+#[derive(Clone, Debug)]
+pub struct PrologSource {
+    /// Name used in messages (`file:line:col`).
+    pub name: String,
+    pub text: String,
+    /// Directory relative to which `consult/1` directives are resolved
+    /// (`None` for embedded sources: such directives are then errors).
+    pub dir: Option<PathBuf>,
+}
+
+impl PrologSource {
+    pub fn new(name: impl Into<String>, text: impl Into<String>) -> PrologSource {
+        PrologSource {
+            name: name.into(),
+            text: text.into(),
+            dir: None,
+        }
+    }
+    /// Reads `path`.
+    pub fn from_path(path: &Path) -> std::io::Result<PrologSource> {
+        Ok(PrologSource {
+            name: path.display().to_string(),
+            text: std::fs::read_to_string(path)?,
+            dir: path.parent().map(Path::to_path_buf),
+        })
+    }
+}
+
+/// Limits of one call.
+#[derive(Clone, Copy, Debug)]
+pub struct PrologOptions {
+    /// Inferences one function call may use before it is stopped with an
+    /// error (runaway recursion).
+    pub inference_limit: u64,
+}
+
+impl Default for PrologOptions {
+    fn default() -> Self {
+        PrologOptions {
+            inference_limit: 10_000_000,
+        }
+    }
+}
+
+/// A problem while loading the Prolog sources: `file:line:col: message`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PrologLoadError {
+    pub file: String,
+    pub line: usize,
+    pub col: usize,
+    pub message: String,
+}
+
+impl std::fmt::Display for PrologLoadError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}:{}:{}: {}",
+            self.file, self.line, self.col, self.message
+        )
+    }
+}
+
+fn neck() -> Atom {
+    Atom::intern(":-")
+}
+
+/// 1-based line and column (in characters) of byte offset `at` of `text`.
+fn line_col(text: &str, at: usize) -> (usize, usize) {
+    let mut at = at.min(text.len());
+    while at > 0 && !text.is_char_boundary(at) {
+        at -= 1;
+    }
+    let before = &text[..at];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}
+
+/// What the engine thread is asked to do.
+enum Request {
+    Query(String, mpsc::Sender<Result<Option<PTerm>, String>>),
+}
+
+/// The application's Prolog user functions, running in an embedded engine.
+/// Cheap to clone (a handle to the engine thread).
+#[derive(Clone)]
+pub struct PrologFunctions {
+    inner: Arc<Inner>,
+}
+
+struct Inner {
+    tx: Mutex<mpsc::Sender<Request>>,
+    /// Predicates defined by the application's clauses.
+    defined: HashSet<(Atom, usize)>,
+    options: PrologOptions,
+}
+
+impl std::fmt::Debug for PrologFunctions {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PrologFunctions")
+            .field("defined", &self.inner.defined.len())
+            .finish()
+    }
+}
+
+/// A clause ready for the engine.
+struct Prepared {
+    /// Canonical text of the clause term (no final `.`).
+    text: String,
+    directive: bool,
+    file: String,
+    line: usize,
+    col: usize,
+}
+
+impl PrologFunctions {
+    /// Reads `sources` (in order: templates.pl, then user_functions.pl),
+    /// starts the engine and loads the prelude and the clauses. Every
+    /// problem is reported, with its position.
+    pub fn load(
+        sources: &[PrologSource],
+        options: PrologOptions,
+    ) -> Result<PrologFunctions, Vec<PrologLoadError>> {
+        let mut prepared = Vec::new();
+        let mut errors = Vec::new();
+        let mut defined = HashSet::new();
+        let mut seen_files = HashSet::new();
+        for s in sources {
+            prepare(
+                s,
+                &mut prepared,
+                &mut defined,
+                &mut errors,
+                &mut seen_files,
+                0,
+            );
+        }
+        if !errors.is_empty() {
+            return Err(errors);
+        }
+        let (tx, rx) = mpsc::channel::<Request>();
+        let (ready_tx, ready_rx) = mpsc::channel();
+        std::thread::Builder::new()
+            .name("sitlog-prolog".into())
+            .stack_size(64 << 20)
+            .spawn(move || engine_thread(prepared, rx, ready_tx))
+            .map_err(|e| {
+                vec![PrologLoadError {
+                    file: "<engine>".into(),
+                    line: 0,
+                    col: 0,
+                    message: format!("cannot start the Prolog engine thread: {e}"),
+                }]
+            })?;
+        let load_errors = ready_rx.recv().unwrap_or_else(|_| {
+            vec![PrologLoadError {
+                file: "<engine>".into(),
+                line: 0,
+                col: 0,
+                message: "the Prolog engine stopped while loading".into(),
+            }]
+        });
+        if !load_errors.is_empty() {
+            return Err(load_errors);
+        }
+        Ok(PrologFunctions {
+            inner: Arc::new(Inner {
+                tx: Mutex::new(tx),
+                defined,
+                options,
+            }),
+        })
+    }
+
+    /// Whether the application defines `name/arity` in Prolog.
+    pub fn defines(&self, name: Atom, arity: usize) -> bool {
+        self.inner.defined.contains(&(name, arity))
+    }
+
+    /// Installs these functions as the fallback of `functions`: Rust
+    /// functions keep precedence; names Prolog does not define stay
+    /// unknown ("no user function").
+    pub fn install(&self, functions: &mut Functions) {
+        let me = self.clone();
+        functions.set_fallback(move |call, name, args| {
+            if !me.defines(name, args.len()) {
+                return None;
+            }
+            Some(me.call(call, name, args))
+        });
+    }
+
+    /// Runs a raw query (for tests and tools): the first answer's binding
+    /// of `Result`, `None` on failure.
+    pub fn query_raw(&self, query: &str) -> Result<Option<String>, String> {
+        self.ask(query.to_owned())
+            .map(|a| a.map(|t| format!("{t:?}")))
+    }
+
+    fn ask(&self, query: String) -> Result<Option<PTerm>, String> {
+        let (tx, rx) = mpsc::channel();
+        self.inner
+            .tx
+            .lock()
+            .map_err(|_| "the Prolog engine is poisoned".to_owned())?
+            .send(Request::Query(query, tx))
+            .map_err(|_| "the Prolog engine has stopped".to_owned())?;
+        rx.recv()
+            .map_err(|_| "the Prolog engine has stopped".to_owned())?
+    }
+
+    /// Calls `name(args..)` with the caller's environment.
+    pub fn call(&self, call: &mut FnCall<'_>, name: Atom, args: &[Term]) -> Result<Term, String> {
+        let history = call.history_term();
+        let store: &Store = call.store;
+        let mut w = Writer::new(store, false);
+        w.out.push_str("'$sitlog_call'(");
+        write_atom(&mut w.out, name);
+        if !args.is_empty() {
+            w.out.push('(');
+            for (i, &a) in args.iter().enumerate() {
+                if i > 0 {
+                    w.out.push(',');
+                }
+                w.term(a);
+            }
+            w.out.push(')');
+        }
+        // Vars come after everything else is written: reserve its place.
+        let mut rest = String::new();
+        std::mem::swap(&mut rest, &mut w.out);
+        for (i, vars) in [&*call.locals, &*call.globals].into_iter().enumerate() {
+            let _ = i;
+            w.out.push(',');
+            w.out.push('[');
+            for (j, &(n, v)) in vars.entries().iter().enumerate() {
+                if j > 0 {
+                    w.out.push(',');
+                }
+                w.out.push_str("'-'(");
+                write_atom(&mut w.out, n);
+                w.out.push(',');
+                w.term(v);
+                w.out.push(')');
+            }
+            w.out.push(']');
+        }
+        w.out.push(',');
+        w.term(history);
+        let _ = write!(w.out, ",{},R).", self.inner.options.inference_limit);
+        let env = std::mem::take(&mut w.out);
+        let mut query = rest;
+        query.push_str(",[");
+        for (i, v) in w.vars.iter().enumerate() {
+            if i > 0 {
+                query.push(',');
+            }
+            let _ = write!(query, "_S{}", v.0);
+        }
+        query.push(']');
+        query.push_str(&env);
+        let vars = w.vars.clone();
+        let answer = self.ask(query)?;
+        let shown = || format!("{}/{}", name, args.len());
+        let Some(r) = answer else {
+            return Err(format!("the Prolog call of `{}` did not answer", shown()));
+        };
+        let mut names: HashMap<String, Term> = vars
+            .iter()
+            .map(|&v| (format!("_S{}", v.0), Term::from(v)))
+            .collect();
+        match &r {
+            PTerm::Compound(f, a) if f == "ok" && a.len() == 3 => {
+                let value = from_prolog(call.store, &a[0], &mut names);
+                if let PTerm::List(outs) = &a[1] {
+                    for (&v, out) in vars.iter().zip(outs) {
+                        let t = from_prolog(call.store, out, &mut names);
+                        let var = Term::from(v);
+                        if call.store.deref(t) != call.store.deref(var) && !call.store.unify(var, t)
+                        {
+                            return Err(format!("`{}`: a binding does not unify back", shown()));
+                        }
+                    }
+                }
+                if let PTerm::List(changes) = &a[2] {
+                    for c in changes {
+                        if let PTerm::Compound(w, ca) = c {
+                            if ca.len() == 2 {
+                                if let PTerm::Atom(n) = &ca[0] {
+                                    let v = from_prolog(call.store, &ca[1], &mut names);
+                                    let n = Atom::intern(n);
+                                    if w == "l" {
+                                        call.locals.set(n, v);
+                                    } else {
+                                        call.globals.set(n, v);
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+                Ok(value)
+            }
+            PTerm::Atom(a) if a == "novalue" => Err(format!(
+                "`{}` succeeded without calling assign_func_value/1",
+                shown()
+            )),
+            PTerm::Atom(a) if a == "fail" => Err(format!("`{}` failed", shown())),
+            PTerm::Atom(a) if a == "limit" => Err(format!(
+                "`{}` exceeded the inference limit ({})",
+                shown(),
+                self.inner.options.inference_limit
+            )),
+            PTerm::Compound(f, a) if f == "error" && a.len() == 1 => {
+                let mut names = HashMap::new();
+                let e = from_prolog(call.store, &a[0], &mut names);
+                Err(format!("`{}` raised {}", shown(), call.store.writeq(e)))
+            }
+            other => Err(format!("`{}`: unexpected answer {other:?}", shown())),
+        }
+    }
+}
+
+/// Prepares the clauses of `source` (recursively for consulted files).
+fn prepare(
+    source: &PrologSource,
+    out: &mut Vec<Prepared>,
+    defined: &mut HashSet<(Atom, usize)>,
+    errors: &mut Vec<PrologLoadError>,
+    seen: &mut HashSet<String>,
+    depth: usize,
+) {
+    if !seen.insert(source.name.clone()) {
+        return;
+    }
+    let (clauses, syntax) = read_clauses(&source.text);
+    for e in syntax {
+        let (line, col) = line_col(&source.text, e.span.start as usize);
+        errors.push(PrologLoadError {
+            file: source.name.clone(),
+            line,
+            col,
+            message: e.message.clone(),
+        });
+    }
+    for clause in &clauses {
+        let (line, col) = line_col(&source.text, clause.span.start as usize);
+        let mut store = Store::new();
+        let (t, _) = store.from_clause(clause);
+        let err = |message: String| PrologLoadError {
+            file: source.name.clone(),
+            line,
+            col,
+            message,
+        };
+        // Directives.
+        if let Some(args) = store.compound_args(t, neck(), 1) {
+            let goal = args[0];
+            if let Some(files) = consulted_files(&store, goal) {
+                if depth > 32 {
+                    errors.push(err("consult/1 nested too deeply".into()));
+                    continue;
+                }
+                for f in files {
+                    match resolve(&f, source.dir.as_deref()) {
+                        Some(path) => match PrologSource::from_path(&path) {
+                            Ok(s) => prepare(&s, out, defined, errors, seen, depth + 1),
+                            Err(e) => errors.push(err(format!("cannot consult `{f}`: {e}"))),
+                        },
+                        None => errors.push(err(format!("cannot consult `{f}`: no such file"))),
+                    }
+                }
+                continue;
+            }
+            let mut w = Writer::new(&store, true);
+            w.term(goal);
+            out.push(Prepared {
+                text: w.out,
+                directive: true,
+                file: source.name.clone(),
+                line,
+                col,
+            });
+            continue;
+        }
+        // Clauses.
+        let head = match store.compound_args(t, neck(), 2) {
+            Some(a) => a[0],
+            None => t,
+        };
+        match store.functor(head) {
+            Some(key) => {
+                defined.insert(key);
+            }
+            None => {
+                errors.push(err(format!(
+                    "`{}` is not a clause head",
+                    store.writeq(head)
+                )));
+                continue;
+            }
+        }
+        let mut w = Writer::new(&store, true);
+        w.term(t);
+        out.push(Prepared {
+            text: w.out,
+            directive: false,
+            file: source.name.clone(),
+            line,
+            col,
+        });
+    }
+}
+
+/// The files of a `consult/1`, `ensure_loaded/1` or `[F, ..]` directive.
+fn consulted_files(store: &Store, goal: Term) -> Option<Vec<String>> {
+    let arg = match store.value(goal) {
+        Value::Compound(f, a)
+            if a.len() == 1 && (f.as_str() == "consult" || f.as_str() == "ensure_loaded") =>
+        {
+            a[0]
+        }
+        Value::Compound(f, _) if f == atoms::DOT => goal,
+        _ => return None,
+    };
+    let items = store.list_to_vec(arg).unwrap_or_else(|| vec![arg]);
+    let mut files = Vec::new();
+    for i in items {
+        match store.atom_of(i) {
+            Some(a) => files.push(a.as_str().to_owned()),
+            None => return None,
+        }
+    }
+    Some(files)
+}
+
+/// Resolves a consulted file name: `$SITLOG_HOME/..` as described in the
+/// module documentation, relative names against `dir`, `.pl` added when
+/// the name has none and the file without it does not exist.
+fn resolve(name: &str, dir: Option<&Path>) -> Option<PathBuf> {
+    let with_ext = |p: PathBuf| -> Option<PathBuf> {
+        if p.is_file() {
+            return Some(p);
+        }
+        let mut q = p.into_os_string();
+        q.push(".pl");
+        let q = PathBuf::from(q);
+        q.is_file().then_some(q)
+    };
+    if let Some(rest) = name.strip_prefix("$SITLOG_HOME/") {
+        if let Some(home) = std::env::var_os("SITLOG_HOME") {
+            return with_ext(Path::new(&home).join(rest));
+        }
+        let mut d = dir?.to_path_buf();
+        loop {
+            if let Some(p) = with_ext(d.join(rest)) {
+                return Some(p);
+            }
+            if !d.pop() {
+                return None;
+            }
+        }
+    }
+    let p = Path::new(name);
+    if p.is_absolute() {
+        with_ext(p.to_path_buf())
+    } else {
+        with_ext(dir?.join(p))
+    }
+}
+
+/// The engine thread: builds the machine, loads, then answers queries.
+fn engine_thread(
+    prepared: Vec<Prepared>,
+    rx: mpsc::Receiver<Request>,
+    ready: mpsc::Sender<Vec<PrologLoadError>>,
+) {
+    let (mut machine, errors) = build_machine(&prepared);
+    let _ = ready.send(errors);
+    while let Ok(Request::Query(q, reply)) = rx.recv() {
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            first_answer(&mut machine, &q, "R")
+        }));
+        let r = match r {
+            Ok(r) => r,
+            Err(_) => {
+                // The engine may be in any state: start afresh.
+                machine = build_machine(&prepared).0;
+                Err("the Prolog engine panicked (it was restarted)".to_owned())
+            }
+        };
+        let _ = reply.send(r);
+    }
+}
+
+fn build_machine(prepared: &[Prepared]) -> (Machine, Vec<PrologLoadError>) {
+    let mut machine = MachineBuilder::default().build();
+    machine.consult_module_string("user", PRELUDE);
+    let mut errors = Vec::new();
+    let mut directives = Vec::new();
+    for p in prepared {
+        if p.directive {
+            directives.push(p);
+            continue;
+        }
+        let q = format!("'$sitlog_add'({},R).", p.text);
+        check_load(&mut machine, &q, p, &mut errors);
+    }
+    for (lib, preds) in LIBRARIES {
+        let q = format!("'$sitlog_import'({lib},[{}],R).", preds.join(","));
+        let _ = first_answer(&mut machine, &q, "R");
+    }
+    for p in directives {
+        let q = format!("'$sitlog_directive'({},R).", p.text);
+        check_load(&mut machine, &q, p, &mut errors);
+    }
+    (machine, errors)
+}
+
+fn check_load(machine: &mut Machine, q: &str, p: &Prepared, errors: &mut Vec<PrologLoadError>) {
+    let message = match first_answer(machine, q, "R") {
+        Ok(Some(PTerm::Atom(a))) if a == "ok" => return,
+        Ok(Some(PTerm::Atom(a))) if a == "fail" => "directive failed".to_owned(),
+        Ok(Some(PTerm::Compound(f, a))) if f == "error" && a.len() == 1 => {
+            format!("the Prolog engine refused it: {}", show_pterm(&a[0]))
+        }
+        Ok(other) => format!("the Prolog engine refused it: {other:?}"),
+        Err(e) => e,
+    };
+    errors.push(PrologLoadError {
+        file: p.file.clone(),
+        line: p.line,
+        col: p.col,
+        message,
+    });
+}
+
+/// A scryer term as Prolog-like text (for messages).
+fn show_pterm(t: &PTerm) -> String {
+    let mut store = Store::new();
+    let mut names = HashMap::new();
+    let t = from_prolog(&mut store, t, &mut names);
+    store.writeq(t)
+}
+
+/// The binding of `var` in the first answer of `query`.
+fn first_answer(machine: &mut Machine, query: &str, var: &str) -> Result<Option<PTerm>, String> {
+    let mut answers = machine.run_query(query.to_owned());
+    let first = answers.next();
+    drop(answers);
+    match first {
+        None | Some(Ok(LeafAnswer::False)) => Ok(None),
+        Some(Ok(LeafAnswer::True)) => Ok(Some(PTerm::Atom("true".into()))),
+        Some(Ok(LeafAnswer::LeafAnswer { bindings, .. })) => Ok(bindings.get(var).cloned()),
+        Some(Ok(LeafAnswer::Exception(e))) | Some(Err(e)) => {
+            Err(format!("Prolog exception: {}", show_pterm(&e)))
+        }
+    }
+}
+
+// ------------------------------------------------------------ conversion
+
+/// Writes store terms as canonical Prolog text the engine reads back
+/// exactly: every atom quoted, no operators, lists in list notation,
+/// variables `_S<index>`.
+struct Writer<'s> {
+    store: &'s Store,
+    out: String,
+    /// Distinct unbound variables met, in order.
+    vars: Vec<Var>,
+    seen: HashSet<Var>,
+    /// Turn `'|'/2` into `;/2` (application clauses, SWI-6 reading).
+    bar_is_or: bool,
+}
+
+impl<'s> Writer<'s> {
+    fn new(store: &'s Store, bar_is_or: bool) -> Writer<'s> {
+        Writer {
+            store,
+            out: String::new(),
+            vars: Vec::new(),
+            seen: HashSet::new(),
+            bar_is_or,
+        }
+    }
+
+    fn term(&mut self, t: Term) {
+        stacker::maybe_grow(64 * 1024, 1024 * 1024, || self.term_inner(t));
+    }
+
+    fn term_inner(&mut self, t: Term) {
+        match self.store.value(t) {
+            Value::Var(v) => {
+                if self.seen.insert(v) {
+                    self.vars.push(v);
+                }
+                let _ = write!(self.out, "_S{}", v.0);
+            }
+            Value::Atom(a) => write_atom(&mut self.out, a),
+            Value::Int(i) => {
+                let _ = write!(self.out, "{i}");
+            }
+            Value::BigInt(s) => self.out.push_str(s),
+            Value::Float(f) => {
+                if f.is_finite() {
+                    self.out.push_str(&sitlog_syntax::write::format_float(f));
+                } else if f.is_nan() {
+                    self.out.push_str("nan");
+                } else if f > 0.0 {
+                    self.out.push_str("inf");
+                } else {
+                    self.out.push_str("'-inf'");
+                }
+            }
+            Value::Compound(f, args) if f == atoms::DOT && args.len() == 2 => {
+                self.out.push('[');
+                let mut it = self.store.list_iter(t);
+                let mut first = true;
+                for item in it.by_ref() {
+                    if !first {
+                        self.out.push(',');
+                    }
+                    first = false;
+                    self.term(item);
+                }
+                let tail = it.tail();
+                if tail != Term::NIL {
+                    self.out.push('|');
+                    self.term(tail);
+                }
+                self.out.push(']');
+            }
+            Value::Compound(f, args) => {
+                let f = if self.bar_is_or && f == atoms::BAR && args.len() == 2 {
+                    atoms::SEMICOLON
+                } else {
+                    f
+                };
+                let args = args.to_vec();
+                write_atom(&mut self.out, f);
+                self.out.push('(');
+                for (i, &a) in args.iter().enumerate() {
+                    if i > 0 {
+                        self.out.push(',');
+                    }
+                    self.term(a);
+                }
+                self.out.push(')');
+            }
+        }
+    }
+}
+
+/// An atom, quoted (ISO escapes), except `[]` and `{}`.
+fn write_atom(out: &mut String, a: Atom) {
+    let s = a.as_str();
+    if s == "[]" || s == "{}" {
+        out.push_str(s);
+        return;
+    }
+    out.push('\'');
+    for c in s.chars() {
+        match c {
+            '\'' => out.push_str("\\'"),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '\t' => out.push_str("\\t"),
+            c if c.is_control() => {
+                let _ = write!(out, "\\x{:x}\\", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('\'');
+}
+
+/// A scryer term as a store term: a variable is `names[name]`, or a fresh
+/// variable recorded there.
+fn from_prolog(store: &mut Store, t: &PTerm, names: &mut HashMap<String, Term>) -> Term {
+    stacker::maybe_grow(64 * 1024, 1024 * 1024, || match t {
+        PTerm::Integer(i) => match i64::try_from(i.clone()) {
+            Ok(small) => Term::int(small),
+            Err(_) => store
+                .integer_from_text(&i.to_string())
+                .unwrap_or(Term::atom(atoms::NIL)),
+        },
+        PTerm::Rational(r) => {
+            let text = r.to_string();
+            Term::atom(Atom::intern(&text))
+        }
+        PTerm::Float(f) => Term::float(*f),
+        PTerm::Atom(a) => Term::atom(Atom::intern(a)),
+        PTerm::String(s) => {
+            let chars: Vec<Term> = s
+                .chars()
+                .map(|c| Term::atom(Atom::intern(c.encode_utf8(&mut [0; 4]))))
+                .collect();
+            store.list(&chars)
+        }
+        PTerm::List(items) => {
+            let items: Vec<Term> = items.iter().map(|i| from_prolog(store, i, names)).collect();
+            store.list(&items)
+        }
+        PTerm::Compound(f, args) => {
+            let args: Vec<Term> = args.iter().map(|a| from_prolog(store, a, names)).collect();
+            store.compound(Atom::intern(f), &args)
+        }
+        PTerm::Var(name) => {
+            if let Some(&t) = names.get(name) {
+                return t;
+            }
+            let t = store.new_var();
+            names.insert(name.clone(), t);
+            t
+        }
+        _ => Term::atom(Atom::intern("$unknown")),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::eval::{eval, EvalCtx};
+    use crate::history::{Entry, Item};
+    use crate::vars::Vars;
+
+    const FUNCTIONS: &str = r#"
+% reads a local, answers with the SWI-6 conditional style
+f(X) :- var_op(get(day, Day)), (X == Day -> A = ok | otherwise -> A = 'not ok'), assign_func_value(A).
+g(_) :- get_history(H), get_last_transition(H, T), assign_func_value(T).
+bump(V) :- var_op(inc(cnt, N)), var_op(set(glist, [V])), assign_func_value(N).
+out(X, Y) :- X = bound(Y), Y = 42, assign_func_value(done).
+fails(_) :- fail.
+throws(_) :- throw(oops).
+novalue(_) :- true.
+loop(X) :- loop(X).
+echo(X) :- assign_func_value(X).
+hist(_) :- get_history(H), assign_func_value(H).
+cur(_) :- get_history(H), get_current_DM(H, C), length(C, N), assign_func_value(N).
+codes(X) :- X = "ab", assign_func_value(X).
+sum(L) :- sum_list(L, S), assign_func_value(S).
+member(x, _).
+mem(X) :- (member(X, [a]) -> assign_func_value(yes) ; assign_func_value(no)).
+"#;
+
+    struct Env {
+        store: Store,
+        locals: Vars,
+        globals: Vars,
+        history: Vec<Item>,
+        functions: Functions,
+    }
+
+    /// One engine for all tests (building one takes a while in debug builds).
+    fn engine() -> &'static PrologFunctions {
+        static ENGINE: std::sync::OnceLock<PrologFunctions> = std::sync::OnceLock::new();
+        ENGINE.get_or_init(|| {
+            PrologFunctions::load(
+                &[PrologSource::new("user_functions.pl", FUNCTIONS)],
+                PrologOptions {
+                    inference_limit: 200_000,
+                },
+            )
+            .expect("loads")
+        })
+    }
+
+    fn env() -> Env {
+        let p = engine();
+        let mut functions = Functions::standard();
+        p.install(&mut functions);
+        let mut store = Store::new();
+        let locals = Vars::from_entries(vec![
+            (Atom::intern("day"), Term::atom(Atom::intern("monday"))),
+            (Atom::intern("cnt"), Term::int(5)),
+        ]);
+        let globals = Vars::from_entries(vec![(Atom::intern("glist"), Term::NIL)]);
+        let mut entry = |dm: &str, sit: &str, e: &str, a: &str| {
+            let dm = Term::atom(Atom::intern(dm));
+            let situation = Term::atom(Atom::intern(sit));
+            let expectation = store.parse(e).unwrap().0;
+            let action = store.parse(a).unwrap().0;
+            Item::Entry(Entry {
+                dm,
+                situation,
+                expectation,
+                action,
+            })
+        };
+        let history = vec![
+            entry("main", "is", "[day(tuesday)]", "[date(monday)]"),
+            Item::Nested(vec![entry("wait", "is", "loop", "[1]")]),
+            entry("main", "rs", "fs2", "screen(x)"),
+        ];
+        Env {
+            store,
+            locals,
+            globals,
+            history,
+            functions,
+        }
+    }
+
+    fn run(env: &mut Env, src: &str) -> Result<String, String> {
+        let (t, _) = env.store.parse(src).unwrap();
+        let mut ctx = EvalCtx {
+            store: &mut env.store,
+            locals: &mut env.locals,
+            globals: &mut env.globals,
+            history: &env.history,
+            functions: &env.functions,
+        };
+        let v = eval(&mut ctx, t).map_err(|e| e.message)?;
+        Ok(env.store.writeq(v))
+    }
+
+    #[test]
+    fn reads_variables_and_conditional_with_bar() {
+        let mut e = env();
+        assert_eq!(run(&mut e, "apply(f(X), [monday])").unwrap(), "ok");
+        assert_eq!(run(&mut e, "apply(f(X), [sunday])").unwrap(), "'not ok'");
+    }
+
+    #[test]
+    fn history_helpers() {
+        let mut e = env();
+        assert_eq!(run(&mut e, "apply(g(X), [_])").unwrap(), "fs2:screen(x)");
+        assert_eq!(run(&mut e, "apply(cur(X), [_])").unwrap(), "1");
+        let h = run(&mut e, "apply(hist(X), [_])").unwrap();
+        assert_eq!(
+            h,
+            "[main:((is),[day(tuesday)]:[date(monday)]),[wait:((is),loop:[1])],main:(rs,fs2:screen(x))]"
+        );
+        e.history.clear();
+        assert_eq!(run(&mut e, "apply(g(X), [_])").unwrap(), "none");
+    }
+
+    #[test]
+    fn sets_and_increments_variables() {
+        let mut e = env();
+        assert_eq!(run(&mut e, "apply(bump(V), [z])").unwrap(), "6");
+        assert_eq!(run(&mut e, "get(cnt, C)").unwrap(), "6");
+        assert_eq!(run(&mut e, "get(glist, G)").unwrap(), "[z]");
+        assert_eq!(
+            run(&mut e, "[apply(bump(V), [w]), get(cnt, C)]").unwrap(),
+            "[7,7]"
+        );
+    }
+
+    #[test]
+    fn binds_output_variables() {
+        let mut e = env();
+        assert_eq!(
+            run(&mut e, "[apply(out(A, B), [X, Y]), X, Y]").unwrap(),
+            "[done,bound(42),42]"
+        );
+    }
+
+    #[test]
+    fn terms_round_trip() {
+        let mut e = env();
+        for t in [
+            "'hello world'",
+            "'it''s'",
+            "[]",
+            "'[]'",
+            "{a,b}",
+            "123456789012345678901234567890",
+            "-123456789012345678901234567890",
+            "-7",
+            "1.5e300",
+            "-2.25",
+            "f(- 1, -(1), a:b, (a:-b), (a,b), (a;b), '|'(a,b))",
+            "[1,2|T]",
+            "'\\n\\t\\\\'",
+            "'ünï'",
+            "f(X, Y, X)",
+        ] {
+            let src = format!("apply(echo(V), [{t}])");
+            let expected = {
+                let (v, _) = e.store.parse(t).unwrap();
+                e.store.writeq(v)
+            };
+            let got = run(&mut e, &src).unwrap();
+            assert_eq!(
+                got.replace(|c: char| c.is_ascii_digit(), ""),
+                expected.replace(|c: char| c.is_ascii_digit(), ""),
+                "{t}"
+            );
+        }
+        // Strings are SWI-6 code lists.
+        assert_eq!(run(&mut e, "apply(codes(V), [_])").unwrap(), "[97,98]");
+        // A caller's variable shared by arguments stays shared.
+        assert_eq!(
+            run(&mut e, "[apply(echo(V), [f(A, A)]), A]")
+                .unwrap()
+                .replace(|c: char| c.is_ascii_digit(), ""),
+            "[f(_G,_G),_G]"
+        );
+    }
+
+    #[test]
+    fn failures_are_errors_naming_the_call() {
+        let mut e = env();
+        let err = run(&mut e, "apply(fails(X), [1])").unwrap_err();
+        assert!(err.contains("fails/1") && err.contains("failed"), "{err}");
+        let err = run(&mut e, "apply(throws(X), [1])").unwrap_err();
+        assert!(err.contains("throws/1") && err.contains("oops"), "{err}");
+        let err = run(&mut e, "apply(novalue(X), [1])").unwrap_err();
+        assert!(err.contains("assign_func_value"), "{err}");
+        let err = run(&mut e, "apply(loop(X), [1])").unwrap_err();
+        assert!(err.contains("inference limit"), "{err}");
+        let err = run(&mut e, "apply(missing(X), [1])").unwrap_err();
+        assert!(err.contains("no user function `missing/1`"), "{err}");
+        // The engine is still fine afterwards.
+        assert_eq!(run(&mut e, "apply(f(X), [monday])").unwrap(), "ok");
+    }
+
+    #[test]
+    fn libraries_yield_to_application_definitions() {
+        let mut e = env();
+        assert_eq!(run(&mut e, "apply(sum(X), [[1,2,3]])").unwrap(), "6");
+        // The application's member/2 wins over library(lists).
+        assert_eq!(run(&mut e, "apply(mem(X), [a])").unwrap(), "no");
+        assert_eq!(run(&mut e, "apply(mem(X), [x])").unwrap(), "yes");
+    }
+
+    #[test]
+    fn load_errors_have_positions() {
+        let errs = PrologFunctions::load(
+            &[PrologSource::new("uf.pl", "ok(1).\nbad(X :- .\n")],
+            PrologOptions::default(),
+        )
+        .unwrap_err();
+        assert_eq!(
+            (errs[0].file.as_str(), errs[0].line),
+            ("uf.pl", 2),
+            "{errs:?}"
+        );
+        let errs = PrologFunctions::load(
+            &[PrologSource::new("uf.pl", "ok(1).\n:- consult(nowhere).\n")],
+            PrologOptions::default(),
+        )
+        .unwrap_err();
+        assert!(
+            errs[0].line == 2 && errs[0].message.contains("nowhere"),
+            "{errs:?}"
+        );
+        // Errors of the engine itself: a failing directive, a clause it refuses.
+        let errs = PrologFunctions::load(
+            &[PrologSource::new(
+                "uf.pl",
+                "ok(1).\n:- fail.\nassign_func_value(_).\n",
+            )],
+            PrologOptions::default(),
+        )
+        .unwrap_err();
+        assert_eq!(errs.len(), 2, "{errs:?}");
+        assert!(
+            errs.iter()
+                .any(|e| e.line == 2 && e.message.contains("failed")),
+            "{errs:?}"
+        );
+        assert!(errs.iter().any(|e| e.line == 3), "{errs:?}");
+    }
+}

@@ -1,0 +1,140 @@
+//! The example applications compiled to Rust by `tests/build.rs`, and how
+//! to run them like [`crate::run_example`] runs the interpreter.
+
+use crate::{appendix_a_functions, example_args, workspace};
+use sitlog_runtime::machine::Options;
+use sitlog_runtime::report;
+use sitlog_runtime::testmode::{ScriptPerception, TextActions};
+use sitlog_runtime::Functions;
+use std::path::Path;
+
+/// The generated modules (one per application under `dms/`) and `APPS`.
+#[allow(clippy::all, dead_code)]
+pub mod generated {
+    include!(concat!(env!("OUT_DIR"), "/generated_apps.rs"));
+}
+
+/// The compiled `run` of the application at `app`, if `tests/build.rs`
+/// compiled it.
+pub fn compiled(app: &Path) -> Option<generated::RunFn> {
+    let dms = workspace().join("dms");
+    let rel = app.strip_prefix(&dms).ok()?;
+    generated::APPS
+        .iter()
+        .find(|(p, _)| Path::new(p) == rel)
+        .map(|e| e.1)
+}
+
+/// Runs the compiled example on its `script.txt` (as
+/// [`crate::run_example`] does with the interpreter); returns the JSON report.
+pub fn run_example_compiled(app: &Path) -> serde_json::Value {
+    let run = compiled(app).unwrap_or_else(|| panic!("{} was not compiled", app.display()));
+    let args = example_args(app);
+    let script = std::fs::read_to_string(app.join("script.txt")).unwrap_or_default();
+    let mut perception = ScriptPerception::new("script.txt", script);
+    let mut actions = TextActions::new(std::io::sink(), Vec::new());
+    let mut functions = Functions::standard();
+    if args.appendix_a {
+        appendix_a_functions(&mut functions);
+    }
+    let (outcome, store) = run(
+        &args.main,
+        args.in_arg.as_deref(),
+        Options::default(),
+        functions,
+        &mut perception,
+        &mut actions,
+        None,
+    )
+    .expect("valid run config");
+    serde_json::from_str(&report::outcome_json(&store, &outcome)).expect("report is JSON")
+}
+
+/// Renames the variables of every TERM string of a report consistently, in
+/// order of first appearance (`_G17` → `_V0`, ...), so that two reports
+/// compare exactly up to a consistent renaming (a stronger check than
+/// [`crate::normalize`], which maps every variable to `_`).
+pub fn canonical_vars(v: &serde_json::Value) -> serde_json::Value {
+    let mut names = std::collections::HashMap::new();
+    canonical(v, &mut names)
+}
+
+fn canonical(
+    v: &serde_json::Value,
+    names: &mut std::collections::HashMap<String, usize>,
+) -> serde_json::Value {
+    use serde_json::Value;
+    match v {
+        Value::String(s) => Value::String(rename(s, names)),
+        Value::Array(items) => Value::Array(items.iter().map(|i| canonical(i, names)).collect()),
+        // serde_json's map is sorted by key: a deterministic order.
+        Value::Object(map) => Value::Object(
+            map.iter()
+                .map(|(k, v)| (k.clone(), canonical(v, names)))
+                .collect(),
+        ),
+        other => other.clone(),
+    }
+}
+
+fn rename(s: &str, names: &mut std::collections::HashMap<String, usize>) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut chars = s.chars().peekable();
+    let mut in_quote: Option<char> = None;
+    let mut prev_alnum = false;
+    while let Some(c) = chars.next() {
+        if let Some(q) = in_quote {
+            out.push(c);
+            if c == '\\' {
+                if let Some(n) = chars.next() {
+                    out.push(n);
+                }
+            } else if c == q {
+                in_quote = None;
+            }
+            continue;
+        }
+        if c == '\'' || c == '"' {
+            in_quote = Some(c);
+            out.push(c);
+            prev_alnum = false;
+            continue;
+        }
+        if c == '_' && !prev_alnum {
+            let mut name = String::from("_");
+            while let Some(&n) = chars.peek() {
+                if n.is_alphanumeric() || n == '_' {
+                    name.push(n);
+                    chars.next();
+                } else {
+                    break;
+                }
+            }
+            if name == "_" {
+                out.push('_');
+            } else {
+                let next = names.len();
+                let i = *names.entry(name).or_insert(next);
+                out.push_str(&format!("_V{i}"));
+            }
+            prev_alnum = true;
+            continue;
+        }
+        prev_alnum = c.is_alphanumeric() || c == '_';
+        out.push(c);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn renaming_is_consistent() {
+        let mut names = Default::default();
+        assert_eq!(
+            super::rename("f(_G12,'_x',_G3,_G12)", &mut names),
+            "f(_V0,'_x',_V1,_V0)"
+        );
+        assert_eq!(super::rename("g(_G3)", &mut names), "g(_V1)");
+    }
+}
