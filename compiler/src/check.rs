@@ -53,13 +53,41 @@ impl Checked {
 /// checked program if no diagnostic is an error, and all diagnostics sorted.
 pub fn check(
     program: Program,
+    diags: Vec<Diagnostic>,
+) -> (Result<Checked, Program>, Vec<Diagnostic>) {
+    check_with(program, diags, false)
+}
+
+/// Errors about names that do not resolve (a next situation, an embedded DM
+/// or its arity, an exit arc, a SitLog variable): the program's structure is
+/// sound and, when run, the machine stops with a clean run-time error if and
+/// only if the faulty path is taken, as the original would misbehave there.
+pub const UNRESOLVED: &[&str] = &[
+    codes::UNKNOWN_NEXT,
+    codes::UNKNOWN_DM,
+    codes::DM_ARITY,
+    codes::UNKNOWN_EXIT,
+    codes::UNKNOWN_VARIABLE,
+];
+
+/// [`check`]; with `unresolved_as_warnings`, the [`UNRESOLVED`] errors are
+/// reported as warnings (`sitlogc run --allow-unresolved`, for legacy
+/// applications whose dead paths name missing parts).
+pub fn check_with(
+    program: Program,
     mut diags: Vec<Diagnostic>,
+    unresolved_as_warnings: bool,
 ) -> (Result<Checked, Program>, Vec<Diagnostic>) {
     Checker {
         program: &program,
         diags: &mut diags,
     }
     .run();
+    if unresolved_as_warnings {
+        for d in diags.iter_mut().filter(|d| UNRESOLVED.contains(&d.code)) {
+            d.severity = crate::diag::Severity::Warning;
+        }
+    }
     crate::diag::sort(&mut diags);
     if diags.iter().any(Diagnostic::is_error) {
         (Err(program), diags)

@@ -29,3 +29,11 @@ pub fn check_path(
     let (program, diags) = load::load(path)?;
     Ok(check::check(program, diags))
 }
+
+/// [`check_path`], with unresolved names as warnings (see [`check::check_with`]).
+pub fn check_path_lenient(
+    path: &Path,
+) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
+    let (program, diags) = load::load(path)?;
+    Ok(check::check_with(program, diags, true))
+}

@@ -128,3 +128,39 @@ fn history_none_keeps_no_history() {
     assert_eq!(v["history"], serde_json::json!([]));
     assert_eq!(v["status"], "ok");
 }
+
+#[test]
+fn allow_unresolved_runs_legacy_programs_with_dead_paths() {
+    let dir = std::env::temp_dir().join(format!("sitlogc-lenient-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main, [[id ==> is, type ==> speech, arcs ==> [go : [] => fs, broken : [] => nowhere]],\n\
+         [id ==> fs, type ==> final]], []).\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("script.txt"), "go.\n").unwrap();
+    let run = |extra: &[&str], script: &str| {
+        std::fs::write(dir.join("script.txt"), script).unwrap();
+        sitlogc()
+            .args(["run", "--format", "json", "--script"])
+            .arg(dir.join("script.txt"))
+            .args(extra)
+            .arg(&dir)
+            .output()
+            .unwrap()
+    };
+    assert_eq!(run(&[], "go.\n").status.code(), Some(1));
+    assert_eq!(run(&["--allow-unresolved"], "go.\n").status.code(), Some(0));
+    // Taking the dead path is a clean run-time error.
+    let out = run(&["--allow-unresolved"], "broken.\n");
+    assert_eq!(out.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(
+        v["error"]
+            .as_str()
+            .unwrap()
+            .contains("no situation `nowhere`"),
+        "{v}"
+    );
+}

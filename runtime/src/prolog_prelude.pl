@@ -23,6 +23,11 @@
 otherwise.
 print(X) :- writeq(X).
 
+% The original interpreter asserts its execution mode; applications test it
+% to pick between simulated (test mode) and robot input.
+:- dynamic(mode_exe/1).
+mode_exe(test).
+
 % ---------------------------------------------------------------- the call
 
 '$sitlog_call'(Goal, Vars, Locals, Globals, History, Limit, Result) :-

@@ -83,6 +83,11 @@ enum Command {
         /// Write every successful KB update back to the --kb file (atomically).
         #[arg(long, requires = "kb")]
         kb_persist: bool,
+        /// Run even if next situations, embedded DMs, exit arcs or SitLog
+        /// variables do not resolve (E0212, E0216–E0219); taking such a path
+        /// stops the task with a run-time error. For legacy applications.
+        #[arg(long)]
+        allow_unresolved: bool,
     },
     /// Compile an application to one executable.
     ///
@@ -196,6 +201,7 @@ fn run(cli: Cli) -> u8 {
             trace,
             kb,
             kb_persist,
+            allow_unresolved,
         } => run_app(RunArgs {
             app,
             main,
@@ -206,6 +212,7 @@ fn run(cli: Cli) -> u8 {
             trace,
             kb,
             kb_persist,
+            allow_unresolved,
         }),
         Command::Build {
             app,
@@ -232,7 +239,16 @@ fn run(cli: Cli) -> u8 {
 
 /// Loads and checks an application, printing its errors; `Err` is the exit status.
 fn checked_ir(app: &std::path::Path) -> Result<sitlog_compiler::ir::Ir, u8> {
-    let (result, diags) = match sitlog_compiler::check_path(app) {
+    checked_ir_with(app, false)
+}
+
+fn checked_ir_with(app: &std::path::Path, lenient: bool) -> Result<sitlog_compiler::ir::Ir, u8> {
+    let loaded = if lenient {
+        sitlog_compiler::check_path_lenient(app)
+    } else {
+        sitlog_compiler::check_path(app)
+    };
+    let (result, diags) = match loaded {
         Ok(r) => r,
         Err(e) => {
             eprintln!("error: cannot read {e}");
@@ -318,11 +334,12 @@ struct RunArgs {
     trace: Option<PathBuf>,
     kb: Option<PathBuf>,
     kb_persist: bool,
+    allow_unresolved: bool,
 }
 
 fn run_app(args: RunArgs) -> u8 {
     use sitlog_runtime::cli::{self, Format};
-    let ir = match checked_ir(&args.app) {
+    let ir = match checked_ir_with(&args.app, args.allow_unresolved) {
         Ok(ir) => ir,
         Err(code) => return code,
     };
