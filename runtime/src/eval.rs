@@ -200,16 +200,12 @@ fn two(store: &Store, t: Term) -> [Term; 2] {
 /// `(C -> A ; otherwise -> B)`, also written with `|` (E6): `(C, A, B)`.
 pub(crate) fn conditional(store: &Store, t: Term) -> Option<(Term, Term, Term)> {
     let n = names();
-    let args = store
-        .compound_args(t, n.semicolon, 2)
-        .or_else(|| store.compound_args(t, n.bar, 2))?;
-    let (then, other) = (args[0], args[1]);
-    let then = store.compound_args(then, n.if_then, 2)?;
+    let (cond, then, other) = if_then_else(store, t)?;
     let other = store.compound_args(other, n.if_then, 2)?;
     if store.atom_of(other[0]) != Some(n.otherwise) {
         return None;
     }
-    Some((then[0], then[1], other[1]))
+    Some((cond, then, other[1]))
 }
 
 /// Evaluates the arguments of a compound left to right and rebuilds it;
