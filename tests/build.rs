@@ -41,15 +41,19 @@ fn main() {
             index,
             "pub mod {name} {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file}\")); }}"
         );
-        let _ = writeln!(table, "    (\"{}\", {name}::run),", rel.display());
+        let _ = writeln!(
+            table,
+            "    (\"{}\", {name}::run, {name}::functions),",
+            rel.display()
+        );
     }
     let _ = writeln!(
         index,
-        "\n/// A generated program's `run`.\npub type RunFn = fn(&str, Option<&str>, ::sitlog_runtime::machine::Options, ::sitlog_runtime::Functions, &mut dyn ::sitlog_runtime::machine::Perception, &mut dyn ::sitlog_runtime::machine::Actions, Option<&mut dyn ::sitlog_runtime::machine::Observer>) -> Result<(::sitlog_runtime::machine::Outcome, ::sitlog_runtime::Store), String>;"
+        "\n/// A generated program's `run`.\npub type RunFn = fn(&str, Option<&str>, ::sitlog_runtime::machine::Options, ::sitlog_runtime::Functions, &mut dyn ::sitlog_runtime::machine::Perception, &mut dyn ::sitlog_runtime::machine::Actions, Option<&mut dyn ::sitlog_runtime::machine::Observer>) -> Result<(::sitlog_runtime::machine::Outcome, ::sitlog_runtime::Store), String>;\n\n/// A generated program's `functions` (standard ones plus its embedded Prolog).\npub type FunctionsFn = fn() -> Result<::sitlog_runtime::Functions, String>;"
     );
     let _ = writeln!(
         index,
-        "\n/// Every compiled application: its path below `dms/` and its `run`.\npub const APPS: &[(&str, RunFn)] = &[\n{table}];"
+        "\n/// Every compiled application: its path below `dms/` and its `run`.\npub const APPS: &[(&str, RunFn, FunctionsFn)] = &[\n{table}];"
     );
     sitlog_compiler::build::write_if_changed(
         &Path::new(&out_dir).join("generated_apps.rs"),

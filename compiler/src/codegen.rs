@@ -516,6 +516,16 @@ impl<'s> Gen<'s> {
 
     fn emit(&self, ir: &Ir, source: &str) -> TokenStream {
         let rt = quote!(::sitlog_runtime);
+        let prolog_names: Vec<Literal> = ir
+            .prolog_sources
+            .iter()
+            .map(|f| Literal::string(&f.name))
+            .collect();
+        let prolog_texts: Vec<Literal> = ir
+            .prolog_sources
+            .iter()
+            .map(|f| Literal::string(&f.text))
+            .collect();
         // Atoms.
         let atom_fields = self.atoms.iter().map(|(a, id)| {
             let doc = format!(" `{}`", quote_atom(a.as_str()));
@@ -776,6 +786,18 @@ impl<'s> Gen<'s> {
                 observer: ::std::option::Option<&mut dyn #rt::machine::Observer>,
             ) -> ::std::result::Result<(#rt::machine::Outcome, #rt::Store), ::std::string::String> {
                 #rt::cli::run(program(), main, in_arg, options, functions, perception, actions, observer)
+            }
+
+            /// The application's Prolog sources (`templates.pl`, `user_functions.pl`), embedded.
+            #[allow(dead_code)]
+            pub const PROLOG_SOURCES: &[(&str, &str)] = &[#((#prolog_names, #prolog_texts)),*];
+
+            /// The standard user functions plus the application's Prolog ones.
+            #[allow(dead_code)]
+            pub fn functions() -> ::std::result::Result<#rt::Functions, ::std::string::String> {
+                let mut functions = #rt::Functions::standard();
+                #rt::install_prolog_sources(&mut functions, PROLOG_SOURCES)?;
+                ::std::result::Result::Ok(functions)
             }
 
             /// The command line of `sitlogc run` (`--main`, `--in-arg`, `--script`,

@@ -48,3 +48,39 @@ pub use vars::Vars;
 
 #[cfg(test)]
 mod tests;
+
+/// Installs an application's Prolog user functions (`templates.pl` then
+/// `user_functions.pl`, as `(name, text)` in load order) as the fallback of
+/// `functions`; generated tasks call this with the sources they embed.
+/// Without sources nothing happens; with sources but without the `prolog`
+/// feature it is an error that says so.
+pub fn install_prolog_sources(
+    functions: &mut Functions,
+    sources: &[(&str, &str)],
+) -> Result<(), String> {
+    if sources.is_empty() {
+        return Ok(());
+    }
+    #[cfg(feature = "prolog")]
+    {
+        let sources: Vec<prolog::PrologSource> = sources
+            .iter()
+            .map(|(name, text)| prolog::PrologSource::new(*name, *text))
+            .collect();
+        let engine =
+            prolog::PrologFunctions::load(&sources, Default::default()).map_err(|errors| {
+                errors
+                    .iter()
+                    .map(|e| e.to_string())
+                    .collect::<Vec<_>>()
+                    .join("\n")
+            })?;
+        engine.install(functions);
+        Ok(())
+    }
+    #[cfg(not(feature = "prolog"))]
+    {
+        let _ = functions;
+        Err("this task has Prolog user functions, but sitlog-runtime was built without its `prolog` feature".to_owned())
+    }
+}

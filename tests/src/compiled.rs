@@ -16,25 +16,32 @@ pub mod generated {
 
 /// The compiled `run` of the application at `app`, if `tests/build.rs`
 /// compiled it.
-pub fn compiled(app: &Path) -> Option<generated::RunFn> {
+pub fn compiled(app: &Path) -> Option<(generated::RunFn, generated::FunctionsFn)> {
     let dms = workspace().join("dms");
     let rel = app.strip_prefix(&dms).ok()?;
     generated::APPS
         .iter()
-        .find(|(p, _)| Path::new(p) == rel)
-        .map(|e| e.1)
+        .find(|(p, _, _)| Path::new(p) == rel)
+        .map(|e| (e.1, e.2))
 }
 
 /// Runs the compiled example on its `script.txt` (as
 /// [`crate::run_example`] does with the interpreter); returns the JSON report.
 pub fn run_example_compiled(app: &Path) -> serde_json::Value {
-    let run = compiled(app).unwrap_or_else(|| panic!("{} was not compiled", app.display()));
+    let (run, embedded_functions) =
+        compiled(app).unwrap_or_else(|| panic!("{} was not compiled", app.display()));
     let args = example_args(app);
     let script = std::fs::read_to_string(app.join("script.txt")).unwrap_or_default();
     let mut perception = ScriptPerception::new("script.txt", script);
     let mut actions = TextActions::new(std::io::sink(), Vec::new());
-    let mut functions = Functions::standard();
-    if args.appendix_a {
+    // The program's own functions: standard ones plus its embedded Prolog
+    // sources (issue 10); Rust stand-ins only when Prolog is compiled out.
+    let mut functions = if cfg!(feature = "prolog") {
+        embedded_functions().expect("embedded Prolog sources load")
+    } else {
+        Functions::standard()
+    };
+    if args.appendix_a && !cfg!(feature = "prolog") {
         appendix_a_functions(&mut functions);
     }
     let (outcome, store) = run(
