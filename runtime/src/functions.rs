@@ -98,6 +98,11 @@ impl Functions {
         self.fallback = Some(Arc::new(f));
     }
 
+    /// Removes `name/arity`; `true` if it was registered.
+    pub fn remove(&mut self, name: Atom, arity: usize) -> bool {
+        self.map.remove(&(name, arity)).is_some()
+    }
+
     pub fn contains(&self, name: Atom, arity: usize) -> bool {
         self.map.contains_key(&(name, arity))
     }

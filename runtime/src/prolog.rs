@@ -258,10 +258,15 @@ impl PrologFunctions {
         self.inner.defined.contains(&(name, arity))
     }
 
-    /// Installs these functions as the fallback of `functions`: Rust
-    /// functions keep precedence; names Prolog does not define stay
-    /// unknown ("no user function").
+    /// Installs these functions as the fallback of `functions`. Where the
+    /// application defines a function in Prolog that is also registered in
+    /// Rust (e.g. the standard `when/3`), the application's definition wins:
+    /// it is what the author wrote and what the original runs. Names Prolog
+    /// does not define stay as they are.
     pub fn install(&self, functions: &mut Functions) {
+        for &(name, arity) in &self.inner.defined {
+            functions.remove(name, arity);
+        }
         let me = self.clone();
         functions.set_fallback(move |call, name, args| {
             if !me.defines(name, args.len()) {

@@ -59,3 +59,13 @@ fn functions_set_variables_and_read_history() {
     assert_eq!(report["history"][0]["action"], "[1]");
     assert_eq!(report["history"][1]["action"], "[1,x:[1]]");
 }
+
+#[test]
+fn application_prolog_function_wins_over_a_standard_rust_one() {
+    // The standard `when/3` is replaced by the application's own definition.
+    let dm = "diag_mod(main, [[id ==> is, type ==> neutral, arcs ==> [empty : apply(when(I, T, E), [true, a, b]) => fs]],
+        [id ==> fs, type ==> final]], []).";
+    let uf = "when(_, _, _) :- assign_func_value(mine).\n";
+    let v = run_with_prolog(dm, uf, "");
+    assert_eq!(v["history"][0]["action"], "mine", "{v}");
+}
