@@ -217,6 +217,9 @@ pub struct Machine<'p, P: DmProgram> {
     expectations: Vec<Term>,
     transitions: u64,
     cells_after_gc: usize,
+    /// Functor that pairs an arc with its out_arg for one joint copy (D-11);
+    /// interned once, not per transition.
+    arc_functor: Atom,
 }
 
 /// What happened in one situation: the chosen arc's terms.
@@ -249,6 +252,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             expectations: Vec::new(),
             transitions: 0,
             cells_after_gc: 0,
+            arc_functor: Atom::intern("$arc"),
         }
     }
 
@@ -612,7 +616,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     ) -> Result<(), RunError> {
         self.arcs.clear();
         self.expectations.clear();
-        let arc_functor = Atom::intern("$arc");
+        let arc_functor = self.arc_functor;
         let out = inst.out_arg.unwrap_or(Term::atom(atoms::NONE));
         // Walk the list in place (no allocation per transition).
         let mut rest = inst.arcs;

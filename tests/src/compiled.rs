@@ -85,52 +85,13 @@ fn canonical(
 }
 
 fn rename(s: &str, names: &mut std::collections::HashMap<String, usize>) -> String {
-    let mut out = String::with_capacity(s.len());
-    let mut chars = s.chars().peekable();
-    let mut in_quote: Option<char> = None;
-    let mut prev_alnum = false;
-    while let Some(c) = chars.next() {
-        if let Some(q) = in_quote {
-            out.push(c);
-            if c == '\\' {
-                if let Some(n) = chars.next() {
-                    out.push(n);
-                }
-            } else if c == q {
-                in_quote = None;
-            }
-            continue;
+    crate::map_vars(s, |name| {
+        if name == "_" {
+            return "_".to_owned();
         }
-        if c == '\'' || c == '"' {
-            in_quote = Some(c);
-            out.push(c);
-            prev_alnum = false;
-            continue;
-        }
-        if c == '_' && !prev_alnum {
-            let mut name = String::from("_");
-            while let Some(&n) = chars.peek() {
-                if n.is_alphanumeric() || n == '_' {
-                    name.push(n);
-                    chars.next();
-                } else {
-                    break;
-                }
-            }
-            if name == "_" {
-                out.push('_');
-            } else {
-                let next = names.len();
-                let i = *names.entry(name).or_insert(next);
-                out.push_str(&format!("_V{i}"));
-            }
-            prev_alnum = true;
-            continue;
-        }
-        prev_alnum = c.is_alphanumeric() || c == '_';
-        out.push(c);
-    }
-    out
+        let next = names.len();
+        format!("_V{}", *names.entry(name.to_owned()).or_insert(next))
+    })
 }
 
 #[cfg(test)]

@@ -123,6 +123,12 @@ pub fn normalize(v: &serde_json::Value) -> serde_json::Value {
 }
 
 fn normalize_vars(s: &str) -> String {
+    map_vars(s, |_| "_".to_owned())
+}
+
+/// Rewrites every variable name (`_G12`, `_123`, `_`) outside quoted atoms
+/// and strings of a term's text through `rename`.
+pub fn map_vars(s: &str, mut rename: impl FnMut(&str) -> String) -> String {
     let mut out = String::with_capacity(s.len());
     let mut chars = s.chars().peekable();
     let mut in_quote: Option<char> = None;
@@ -147,13 +153,16 @@ fn normalize_vars(s: &str) -> String {
             continue;
         }
         if c == '_' && !prev_alnum {
-            while chars
-                .peek()
-                .is_some_and(|n| n.is_alphanumeric() || *n == '_')
-            {
-                chars.next();
+            let mut name = String::from("_");
+            while let Some(&n) = chars.peek() {
+                if n.is_alphanumeric() || n == '_' {
+                    name.push(n);
+                    chars.next();
+                } else {
+                    break;
+                }
             }
-            out.push('_');
+            out.push_str(&rename(&name));
             prev_alnum = true;
             continue;
         }
