@@ -143,6 +143,18 @@ impl ArithCmp {
             _ => return None,
         })
     }
+
+    /// The operator's name.
+    pub fn atom(self) -> Atom {
+        Atom::intern(match self {
+            ArithCmp::Eq => "=:=",
+            ArithCmp::Ne => "=\\=",
+            ArithCmp::Lt => "<",
+            ArithCmp::Gt => ">",
+            ArithCmp::Le => "=<",
+            ArithCmp::Ge => ">=",
+        })
+    }
 }
 
 /// Numeric comparison: integers and floats by exact value; `None` when a

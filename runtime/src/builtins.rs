@@ -29,7 +29,16 @@ fn fails(store: &Store, call: Term) -> EvalError {
 /// Evaluates `t` if its functor is one of the original's list operators.
 pub fn list_operator(store: &mut Store, name: Atom, t: Term) -> Option<Result<Term, EvalError>> {
     let arity = store.args(t).len();
-    let known = matches!(
+    if !is_list_operator(name, arity) {
+        return None;
+    }
+    Some(run(store, name, t))
+}
+
+/// Whether `name/arity` is one of the original's list operators (D-39) or
+/// its robot built-ins, which L evaluates as functions.
+pub fn is_list_operator(name: Atom, arity: usize) -> bool {
+    matches!(
         (name.as_str(), arity),
         ("append", 3)
             | ("reverse", 2)
@@ -53,11 +62,7 @@ pub fn list_operator(store: &mut Store, name: Atom, t: Term) -> Option<Result<Te
             | ("cam2arm", _)
             | ("timeOver", _)
             | ("arrived_posit", _)
-    );
-    if !known {
-        return None;
-    }
-    Some(run(store, name, t))
+    )
 }
 
 fn run(store: &mut Store, name: Atom, t: Term) -> Result<Term, EvalError> {

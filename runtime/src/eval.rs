@@ -188,6 +188,67 @@ fn eval_inner(ctx: &mut EvalCtx<'_>, t: Term) -> Result<Term, EvalError> {
     eval_args(ctx, t)
 }
 
+/// Whether evaluating a compound `name/arity` only evaluates its arguments
+/// and rebuilds it (D-36): no construct of L has this functor. `;` and `|`
+/// answer `false` because whether they are a conditional depends on their
+/// arguments. Code generators use this to evaluate such terms in place.
+pub fn evaluates_arguments_only(name: Atom, arity: usize) -> bool {
+    let n = names();
+    if arity == 2
+        && (name == n.assign
+            || name == n.equals
+            || name == n.is
+            || name == n.member
+            || name == n.not_member
+            || name == n.semicolon
+            || name == n.bar
+            || name == n.apply
+            || name == atoms::GET
+            || name == atoms::SET
+            || name == atoms::INC
+            || n.comparisons.contains(&name))
+    {
+        return false;
+    }
+    !builtins::is_list_operator(name, arity)
+}
+
+/// `get`, `set` or `inc` (`op`) of the variable `name` with argument `arg`
+/// (not evaluated), as `op(name, arg)` evaluates (D-38).
+pub fn var_op_named(
+    ctx: &mut EvalCtx<'_>,
+    op: Atom,
+    name: Atom,
+    arg: Term,
+) -> Result<Term, EvalError> {
+    var_op_parts(ctx, op, name, arg, None)
+}
+
+/// The condition of a conditional, as `(C -> A ; otherwise -> B)` runs it:
+/// its arguments evaluated, then called as a goal (D-35).
+pub fn condition(ctx: &mut EvalCtx<'_>, cond: Term) -> Result<bool, EvalError> {
+    let cond = eval_args(ctx, cond)?;
+    call_goal(ctx, cond)
+}
+
+/// The condition `A op B` of a conditional when `op` is an arithmetic
+/// comparison, on the already evaluated `a` and `b`: what [`condition`]
+/// does on such a term, without building it (except for an error message).
+pub fn arith_condition(
+    store: &mut Store,
+    op: ArithCmp,
+    a: Term,
+    b: Term,
+) -> Result<bool, EvalError> {
+    match store.arith_compare(op, a, b) {
+        Ok(holds) => Ok(holds),
+        Err(e) => {
+            let goal = store.compound(op.atom(), &[a, b]);
+            Err(EvalError::new(format!("in `{}`: {e}", show(store, goal))))
+        }
+    }
+}
+
 fn bool_atom(b: bool) -> Term {
     Term::atom(if b { atoms::TRUE } else { atoms::FALSE })
 }
@@ -198,7 +259,7 @@ fn two(store: &Store, t: Term) -> [Term; 2] {
 }
 
 /// `(C -> A ; otherwise -> B)`, also written with `|` (E6): `(C, A, B)`.
-pub(crate) fn conditional(store: &Store, t: Term) -> Option<(Term, Term, Term)> {
+pub fn conditional(store: &Store, t: Term) -> Option<(Term, Term, Term)> {
     let n = names();
     let (cond, then, other) = if_then_else(store, t)?;
     let other = store.compound_args(other, n.if_then, 2)?;
@@ -304,6 +365,20 @@ fn var_op(ctx: &mut EvalCtx<'_>, op: Atom, t: Term) -> Result<Term, EvalError> {
             show(ctx.store, t)
         )));
     };
+    var_op_parts(ctx, op, name, arg, Some(t))
+}
+
+/// `whole` is the term `op(name, arg)` when there is one; it is built only
+/// for an error message otherwise.
+fn var_op_parts(
+    ctx: &mut EvalCtx<'_>,
+    op: Atom,
+    name: Atom,
+    arg: Term,
+    whole: Option<Term>,
+) -> Result<Term, EvalError> {
+    let whole =
+        |store: &mut Store| whole.unwrap_or_else(|| store.compound(op, &[Term::atom(name), arg]));
     let in_locals = ctx.locals.contains(name);
     let current = if in_locals {
         ctx.locals.get(name)
@@ -313,14 +388,20 @@ fn var_op(ctx: &mut EvalCtx<'_>, op: Atom, t: Term) -> Result<Term, EvalError> {
     let Some(current) = current else {
         return Err(EvalError::new(format!(
             "`{}`: `{name}` is neither a local nor a global variable",
-            show(ctx.store, t)
+            {
+                let t = whole(ctx.store);
+                show(ctx.store, t)
+            }
         )));
     };
     let new = if op == atoms::GET {
         if !ctx.store.unify(arg, current) {
             return Err(EvalError::new(format!(
                 "`{}`: the value `{}` does not unify with `{}`",
-                show(ctx.store, t),
+                {
+                    let t = whole(ctx.store);
+                    show(ctx.store, t)
+                },
                 show(ctx.store, current),
                 show(ctx.store, arg)
             )));
@@ -351,7 +432,10 @@ fn var_op(ctx: &mut EvalCtx<'_>, op: Atom, t: Term) -> Result<Term, EvalError> {
         if !ctx.store.unify(arg, next) {
             return Err(EvalError::new(format!(
                 "`{}`: the new value `{}` does not unify with `{}`",
-                show(ctx.store, t),
+                {
+                    let t = whole(ctx.store);
+                    show(ctx.store, t)
+                },
                 show(ctx.store, next),
                 show(ctx.store, arg)
             )));
@@ -441,7 +525,11 @@ fn call_goal_inner(ctx: &mut EvalCtx<'_>, goal: Term) -> Result<bool, EvalError>
             show(ctx.store, goal)
         )));
     };
-    let args: Vec<Term> = ctx.store.args(goal).to_vec();
+    // Every goal handled here has at most two arguments (no allocation per call).
+    let mut args = [Term::NIL; 2];
+    for (slot, &a) in args.iter_mut().zip(ctx.store.args(goal)) {
+        *slot = a;
+    }
     let text = name.as_str();
     let holds = match (text, arity) {
         ("true", 0) | ("otherwise", 0) => true,

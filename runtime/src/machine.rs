@@ -70,6 +70,59 @@ pub trait DmProgram {
         let _ = (dm, sit);
         None
     }
+    /// `Some(id)` when situation `sit` runs as code ([`DmProgram::run_situation`]
+    /// and, for a recursive one, [`DmProgram::run_exit`]) instead of being
+    /// instantiated; its id is then the atom `id`.
+    fn compiled_id(&self, dm: DmIx, sit: SitIx) -> Option<Atom> {
+        let _ = (dm, sit);
+        None
+    }
+    /// Runs compiled situation `sit` of the running DM, up to the step the
+    /// machine takes next.
+    fn run_situation(
+        &self,
+        dm: DmIx,
+        sit: SitIx,
+        cx: &mut Cx<'_, '_, Self>,
+    ) -> Result<Step, RunError>
+    where
+        Self: Sized,
+    {
+        let _ = (dm, sit);
+        Err(cx.error("the situation has no compiled code", None))
+    }
+    /// The exit arcs of compiled recursive situation `sit`, once its embedded
+    /// DM ended in `final_id`; `saved` is what [`Step::Call`] kept.
+    fn run_exit(
+        &self,
+        dm: DmIx,
+        sit: SitIx,
+        saved: Term,
+        final_id: Term,
+        cx: &mut Cx<'_, '_, Self>,
+    ) -> Result<Step, RunError>
+    where
+        Self: Sized,
+    {
+        let _ = (dm, sit, saved, final_id);
+        Err(cx.error("the situation has no compiled code", None))
+    }
+}
+
+/// What the code of a compiled situation leaves to the machine.
+#[derive(Clone, Copy, Debug)]
+pub enum Step {
+    /// Go to the situation this (evaluated) term names, selected as for any next situation.
+    Goto(Term),
+    /// Go to situation `SitIx` of the running DM: the one a constant next
+    /// situation selects, resolved when the program was compiled.
+    GotoSit(SitIx),
+    /// Run the DM `call`; `saved` keeps what the exit arcs need (a GC root meanwhile).
+    Call { call: Term, saved: Term },
+    /// A final situation ended the running DM (its entry is recorded).
+    Final,
+    /// No expectation was met: the recovery DM of the type, or a new instance (D-15, D-42a).
+    Unmet { type_term: Term },
 }
 
 /// What the perceptual interpreter of a situation type perceived.
@@ -183,6 +236,7 @@ pub struct Outcome {
 #[derive(Debug)]
 enum Pending {
     Recursive { sit: SitIx, inst: Instance },
+    Compiled { sit: SitIx, saved: Term },
     Recovery { id: Term },
 }
 
@@ -200,6 +254,8 @@ struct Frame {
 enum Goto {
     Initial,
     Situation(Term),
+    /// A situation of the running DM chosen when the program was compiled.
+    Index(SitIx),
 }
 
 /// The machine's state.
@@ -372,65 +428,49 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     ) -> Result<(), RunError> {
         self.call_dm(main, None)?;
         let mut goto = Goto::Initial;
+        let program = self.program;
         loop {
             self.maybe_gc(pipe, &mut goto);
             let (sit, inst) = self.select(&goto)?;
-            let here = Some((sit, inst.id));
             let dm = self.frames.last().expect("a frame is running").dm;
+            let Some(inst) = inst else {
+                // Compiled code runs the situation; the machine takes the step it returns.
+                let id = Term::atom(program.compiled_id(dm, sit).expect("a compiled situation"));
+                let mut cx = Cx {
+                    m: self,
+                    pipe,
+                    perception,
+                    actions,
+                    observer: reborrow(observer),
+                    sit,
+                    id,
+                };
+                let step = program.run_situation(dm, sit, &mut cx)?;
+                match self.take_step(step, sit, id, pipe, perception, actions, observer)? {
+                    Some(next) => goto = next,
+                    None => {
+                        *final_situation = Some(id);
+                        return Ok(());
+                    }
+                }
+                continue;
+            };
+            let here = Some((sit, inst.id));
             // in_arg is a pattern unified with the incoming pipe (D-8, E14).
             if let Some(pattern) = inst.in_arg {
-                if !self.store.unify(pattern, *pipe) {
-                    return Err(self.err(
-                        format!(
-                            "in_arg `{}` does not match the incoming pipe value `{}`",
-                            self.store.writeq(pattern),
-                            self.store.writeq(*pipe)
-                        ),
-                        here,
-                        None,
-                    ));
-                }
+                self.unify_in_arg(pattern, *pipe, here)?;
             }
-            match self.program.kind(dm, sit) {
+            let step = match program.kind(dm, sit) {
                 Kind::Final => {
-                    self.run_prog(&inst, inst.out_arg, here)?;
-                    let out = match inst.out_arg {
-                        Some(o) => self.eval_in_frame(o, here, None)?,
-                        None => *pipe,
-                    };
-                    if !self.store.is_var(out) {
-                        *pipe = out;
-                    }
-                    self.bind_diag_mod(&inst, here)?;
+                    self.run_prog(inst.prog, &[inst.in_arg, inst.out_arg], here)?;
+                    self.final_out_arg(inst.out_arg, pipe, here)?;
+                    self.bind_diag_mod(inst.diag_mod, here)?;
                     let empty = Term::atom(atoms::EMPTY);
                     self.record(inst.id, empty, empty, None, observer);
-                    let frame = self.frames.pop().expect("a frame is running");
-                    match self.frames.last_mut() {
-                        None => {
-                            *final_situation = Some(inst.id);
-                            self.frames.push(frame); // keep for the history
-                            return Ok(());
-                        }
-                        Some(caller) => {
-                            if self.options.keep_history {
-                                caller.history.push(Item::Nested(frame.history));
-                            }
-                            match caller.pending.take() {
-                                Some(Pending::Recursive { sit, inst: rinst }) => {
-                                    goto = Goto::Situation(self.finish_recursive(
-                                        sit, rinst, inst.id, pipe, actions, observer,
-                                    )?);
-                                }
-                                Some(Pending::Recovery { id }) => goto = Goto::Situation(id),
-                                None => {
-                                    unreachable!("a caller frame always has a pending situation")
-                                }
-                            }
-                        }
-                    }
+                    Step::Final
                 }
                 Kind::Recursive => {
-                    self.run_prog(&inst, None, here)?;
+                    self.run_prog(inst.prog, &[inst.in_arg], here)?;
                     let Some(e) = inst.embedded_dm else {
                         return Err(self.err(
                             "recursive situation without `embedded_dm`",
@@ -443,52 +483,167 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         Some(Pending::Recursive { sit, inst });
                     self.call_dm(call, here)?;
                     goto = Goto::Initial;
+                    continue;
                 }
                 Kind::Perceptual => {
-                    self.run_prog(&inst, inst.out_arg, here)?;
+                    self.run_prog(inst.prog, &[inst.in_arg, inst.out_arg], here)?;
                     match self.choose_perceptual(sit, &inst, perception)? {
                         Some(chosen) => {
+                            Step::Goto(self.conclude(&inst, here, chosen, pipe, actions, observer)?)
+                        }
+                        None => Step::Unmet {
+                            type_term: inst.type_term,
+                        },
+                    }
+                }
+            };
+            match self.take_step(step, sit, inst.id, pipe, perception, actions, observer)? {
+                Some(next) => goto = next,
+                None => {
+                    *final_situation = Some(inst.id);
+                    return Ok(());
+                }
+            }
+        }
+    }
+
+    /// Where control goes after situation `sit` (id `id`) of the running DM
+    /// took `step`; `None` when the main DM has ended.
+    #[allow(clippy::too_many_arguments)]
+    fn take_step(
+        &mut self,
+        mut step: Step,
+        mut sit: SitIx,
+        mut id: Term,
+        pipe: &mut Term,
+        perception: &mut dyn Perception,
+        actions: &mut dyn Actions,
+        observer: &mut Option<&mut dyn Observer>,
+    ) -> Result<Option<Goto>, RunError> {
+        let program = self.program;
+        loop {
+            let here = Some((sit, id));
+            match step {
+                Step::Goto(next) => return Ok(Some(Goto::Situation(next))),
+                Step::GotoSit(next) => return Ok(Some(Goto::Index(next))),
+                Step::Call { call, saved } => {
+                    self.frames.last_mut().expect("frame").pending =
+                        Some(Pending::Compiled { sit, saved });
+                    self.call_dm(call, here)?;
+                    return Ok(Some(Goto::Initial));
+                }
+                Step::Unmet { type_term } => {
+                    // No expectation met (D-15 / D-42a): recovery DM, then a new instance.
+                    let ty = self
+                        .store
+                        .atom_of(type_term)
+                        .or_else(|| self.store.functor(type_term).map(|(n, _)| n));
+                    let recovery = ty.and_then(|t| {
+                        self.options
+                            .recovery
+                            .iter()
+                            .find(|(k, _)| *k == t)
+                            .map(|r| r.1)
+                    });
+                    return match recovery {
+                        Some(dm_name) => {
+                            self.frames.last_mut().expect("frame").pending =
+                                Some(Pending::Recovery { id });
+                            self.call_dm(Term::atom(dm_name), here)?;
+                            Ok(Some(Goto::Initial))
+                        }
+                        None => Ok(Some(Goto::Situation(id))),
+                    };
+                }
+                Step::Final => {
+                    let frame = self.frames.pop().expect("a frame is running");
+                    let Some(caller) = self.frames.last_mut() else {
+                        self.frames.push(frame); // keep for the history
+                        return Ok(None);
+                    };
+                    if self.options.keep_history {
+                        caller.history.push(Item::Nested(frame.history));
+                    }
+                    match caller.pending.take() {
+                        Some(Pending::Recursive { sit, inst: rinst }) => {
                             let next =
-                                self.conclude(&inst, here, chosen, pipe, actions, observer)?;
-                            goto = Goto::Situation(next);
+                                self.finish_recursive(sit, rinst, id, pipe, actions, observer)?;
+                            return Ok(Some(Goto::Situation(next)));
                         }
-                        None => {
-                            // No expectation met (D-15 / D-42a): recovery DM, then a new instance.
-                            let ty = self
-                                .store
-                                .atom_of(inst.type_term)
-                                .or_else(|| self.store.functor(inst.type_term).map(|(n, _)| n));
-                            let recovery = ty.and_then(|t| {
-                                self.options
-                                    .recovery
-                                    .iter()
-                                    .find(|(k, _)| *k == t)
-                                    .map(|r| r.1)
-                            });
-                            match recovery {
-                                Some(dm_name) => {
-                                    self.frames.last_mut().expect("frame").pending =
-                                        Some(Pending::Recovery { id: inst.id });
-                                    self.call_dm(Term::atom(dm_name), here)?;
-                                    goto = Goto::Initial;
-                                }
-                                None => goto = Goto::Situation(inst.id),
-                            }
+                        Some(Pending::Recovery { id }) => return Ok(Some(Goto::Situation(id))),
+                        Some(Pending::Compiled { sit: rsit, saved }) => {
+                            let final_id = id;
+                            let dm = self.frames.last().expect("caller").dm;
+                            sit = rsit;
+                            id = Term::atom(
+                                program.compiled_id(dm, sit).expect("a compiled situation"),
+                            );
+                            let mut cx = Cx {
+                                m: self,
+                                pipe,
+                                perception,
+                                actions,
+                                observer: reborrow(observer),
+                                sit,
+                                id,
+                            };
+                            step = program.run_exit(dm, sit, saved, final_id, &mut cx)?;
                         }
+                        None => unreachable!("a caller frame always has a pending situation"),
                     }
                 }
             }
         }
     }
 
-    /// Picks and instantiates the situation to run (D-7, D-21).
-    fn select(&mut self, goto: &Goto) -> Result<(SitIx, Instance), RunError> {
+    fn unify_in_arg(
+        &mut self,
+        pattern: Term,
+        pipe: Term,
+        here: Option<(SitIx, Term)>,
+    ) -> Result<(), RunError> {
+        if self.store.unify(pattern, pipe) {
+            return Ok(());
+        }
+        Err(self.err(
+            format!(
+                "in_arg `{}` does not match the incoming pipe value `{}`",
+                self.store.writeq(pattern),
+                self.store.writeq(pipe)
+            ),
+            here,
+            None,
+        ))
+    }
+
+    /// A final situation's out_arg, evaluated, becomes the pipe unless it is a variable.
+    fn final_out_arg(
+        &mut self,
+        out_arg: Option<Term>,
+        pipe: &mut Term,
+        here: Option<(SitIx, Term)>,
+    ) -> Result<(), RunError> {
+        let out = match out_arg {
+            Some(o) => self.eval_in_frame(o, here, None)?,
+            None => *pipe,
+        };
+        if !self.store.is_var(out) {
+            *pipe = out;
+        }
+        Ok(())
+    }
+
+    /// Picks the situation to run (D-7, D-21), instantiated unless it is compiled.
+    fn select(&mut self, goto: &Goto) -> Result<(SitIx, Option<Instance>), RunError> {
         let frame = self.frames.last().expect("a frame is running");
         let (dm, dm_id) = (frame.dm, frame.dm_id);
         match *goto {
             Goto::Initial => {
                 if self.program.situation_count(dm) == 0 {
                     return Err(self.err("the DM has no situations", None, None));
+                }
+                if self.program.compiled_id(dm, 0).is_some() {
+                    return Ok((0, None));
                 }
                 let inst = self.program.instantiate(dm, 0, &mut self.store);
                 if !self.store.unify(inst.head, dm_id) {
@@ -501,7 +656,15 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         None,
                     ));
                 }
-                Ok((0, inst))
+                Ok((0, Some(inst)))
+            }
+            Goto::Index(sit) => {
+                if self.program.compiled_id(dm, sit).is_some() {
+                    return Ok((sit, None));
+                }
+                let inst = self.program.instantiate(dm, sit, &mut self.store);
+                self.link_head(inst.head, dm_id);
+                Ok((sit, Some(inst)))
             }
             Goto::Situation(value) => {
                 let value = self.store.deref(value);
@@ -515,7 +678,15 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         None,
                     ));
                 }
+                let atom = self.store.atom_of(value);
                 for sit in 0..self.program.situation_count(dm) as SitIx {
+                    if let Some(id) = self.program.compiled_id(dm, sit) {
+                        // An atom id unifies only with that atom.
+                        if atom == Some(id) {
+                            return Ok((sit, None));
+                        }
+                        continue;
+                    }
                     if !self.program.may_select(dm, sit, value, &self.store) {
                         continue;
                     }
@@ -523,7 +694,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     let inst = self.program.instantiate(dm, sit, &mut self.store);
                     if self.store.unify(inst.id, value) {
                         self.link_head(inst.head, dm_id);
-                        return Ok((sit, inst));
+                        return Ok((sit, Some(inst)));
                     }
                     self.store.undo_to(mark);
                 }
@@ -554,16 +725,17 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         }
     }
 
-    /// `prog` on a renamed copy linked to in_arg/out_arg only (D-10).
+    /// `prog` on a renamed copy linked to in_arg/out_arg only (D-10):
+    /// `links` are the terms whose variables stay shared.
     fn run_prog(
         &mut self,
-        inst: &Instance,
-        out_arg: Option<Term>,
+        prog: Option<Term>,
+        links: &[Option<Term>],
         here: Option<(SitIx, Term)>,
     ) -> Result<(), RunError> {
-        let Some(prog) = inst.prog else { return Ok(()) };
+        let Some(prog) = prog else { return Ok(()) };
         let mut map = crate::copy::VarMap::new();
-        for linked in [inst.in_arg, out_arg].into_iter().flatten() {
+        for &linked in links.iter().flatten() {
             for v in self.store.term_vars(linked) {
                 if let crate::term::Value::Var(var) = self.store.value(v) {
                     map.insert(var, v);
@@ -659,24 +831,38 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     ) -> Result<Option<Chosen>, RunError> {
         let here = Some((sit, inst.id));
         self.prepare_arcs(inst, here)?;
-        if self.arcs.is_empty() {
+        let Some(i) = self.choose_index(inst.type_term, here, perception)? else {
+            return Ok(None);
+        };
+        Ok(Some(Chosen {
+            arc: i,
+            expectation: self.expectations[i],
+            action: self.arcs[i][1],
+            next: self.arcs[i][2],
+            out_arg: inst.out_arg.map(|_| self.arcs[i][3]),
+        }))
+    }
+
+    /// Which of the evaluated expectations (`self.expectations`, one per
+    /// arc) is met: the neutral rule, else what the perceptual interpreter
+    /// perceived, the last arc whose expectation unifies winning (D-14, E2, E3).
+    fn choose_index(
+        &mut self,
+        type_term: Term,
+        here: Option<(SitIx, Term)>,
+        perception: &mut dyn Perception,
+    ) -> Result<Option<usize>, RunError> {
+        if self.expectations.is_empty() {
             return Err(self.err("the situation has no arcs", here, None));
         }
-        let out_of =
-            |this: &Self, i: usize| -> Option<Term> { inst.out_arg.map(|_| this.arcs[i][3]) };
-        if self.store.atom_of(inst.type_term) == Some(atoms::NEUTRAL) {
+        if self.store.atom_of(type_term) == Some(atoms::NEUTRAL) {
             let e = self.store.deref(self.expectations[0]);
-            if self.arcs.len() == 1
+            if self.expectations.len() == 1
                 && (self.store.atom_of(e) == Some(atoms::EMPTY) || self.store.is_var(e))
             {
                 let _ = self.store.unify(e, Term::atom(atoms::EMPTY));
-                return Ok(Some(Chosen {
-                    arc: 0,
-                    expectation: e,
-                    action: self.arcs[0][1],
-                    next: self.arcs[0][2],
-                    out_arg: out_of(self, 0),
-                }));
+                self.expectations[0] = e;
+                return Ok(Some(0));
             }
             return Err(self.err(
                 "a `neutral` situation needs exactly one arc, with expectation `empty`",
@@ -684,14 +870,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 None,
             ));
         }
-        let second_read_allowed = self.arcs.len() == 1 || {
+        let second_read_allowed = self.expectations.len() == 1 || {
             let first = self.store.deref(self.expectations[0]);
             self.store.list_to_vec(first).is_some()
                 && self.store.functor(first).is_some_and(|f| f.0 == atoms::DOT)
         };
         for attempt in 0..2 {
             let exps = std::mem::take(&mut self.expectations);
-            let perceived = perception.perceive(&mut self.store, inst.type_term, &exps);
+            let perceived = perception.perceive(&mut self.store, type_term, &exps);
             self.expectations = exps;
             let input = match perceived {
                 Ok(Perceived::Input(t)) => t,
@@ -705,16 +891,10 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 Err(e) => return Err(self.err(format!("perception failed: {e}"), here, None)),
             };
             // The last arc whose expectation unifies wins (D-14, E2).
-            for i in (0..self.arcs.len()).rev() {
+            for i in (0..self.expectations.len()).rev() {
                 let mark = self.store.mark();
                 if self.store.unify(input, self.expectations[i]) {
-                    return Ok(Some(Chosen {
-                        arc: i,
-                        expectation: self.expectations[i],
-                        action: self.arcs[i][1],
-                        next: self.arcs[i][2],
-                        out_arg: out_of(self, i),
-                    }));
+                    return Ok(Some(i));
                 }
                 self.store.undo_to(mark);
             }
@@ -723,6 +903,30 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             }
         }
         Ok(None)
+    }
+
+    /// The first exit arc whose expectation unifies with the embedded DM's
+    /// final situation (D-22), or an error.
+    fn choose_exit_index(
+        &mut self,
+        final_id: Term,
+        here: Option<(SitIx, Term)>,
+    ) -> Result<usize, RunError> {
+        for i in 0..self.expectations.len() {
+            let mark = self.store.mark();
+            if self.store.unify(self.expectations[i], final_id) {
+                return Ok(i);
+            }
+            self.store.undo_to(mark);
+        }
+        Err(self.err(
+            format!(
+                "no exit arc for the embedded DM's final situation `{}`",
+                self.store.writeq(final_id)
+            ),
+            here,
+            None,
+        ))
     }
 
     /// Action, next situation, pipe, diag_mod and history entry of a chosen arc (D-16..D-20).
@@ -745,7 +949,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 *pipe = value;
             }
         }
-        self.bind_diag_mod(inst, here)?;
+        self.bind_diag_mod(inst.diag_mod, here)?;
         self.record(inst.id, chosen.expectation, action, Some(next), observer);
         let n = self.store.deref(next);
         if self.store.functor(n).is_none() {
@@ -789,10 +993,10 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     /// Evaluates `diag_mod` (read-only variables) and unifies it with the DM id (D-20, E9).
     fn bind_diag_mod(
         &mut self,
-        inst: &Instance,
+        diag_mod: Option<Term>,
         here: Option<(SitIx, Term)>,
     ) -> Result<(), RunError> {
-        let Some(d) = inst.diag_mod else {
+        let Some(d) = diag_mod else {
             return Ok(());
         };
         let value = self.eval_read_only(d, here)?;
@@ -823,29 +1027,15 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     ) -> Result<Term, RunError> {
         let here = Some((sit, inst.id));
         self.prepare_arcs(&inst, here)?;
-        // The first arc whose expectation unifies with the final situation wins.
-        for i in 0..self.arcs.len() {
-            let mark = self.store.mark();
-            if self.store.unify(self.expectations[i], final_id) {
-                let chosen = Chosen {
-                    arc: i,
-                    expectation: self.expectations[i],
-                    action: self.arcs[i][1],
-                    next: self.arcs[i][2],
-                    out_arg: inst.out_arg.map(|_| self.arcs[i][3]),
-                };
-                return self.conclude(&inst, here, chosen, pipe, actions, observer);
-            }
-            self.store.undo_to(mark);
-        }
-        Err(self.err(
-            format!(
-                "no exit arc for the embedded DM's final situation `{}`",
-                self.store.writeq(final_id)
-            ),
-            here,
-            None,
-        ))
+        let i = self.choose_exit_index(final_id, here)?;
+        let chosen = Chosen {
+            arc: i,
+            expectation: self.expectations[i],
+            action: self.arcs[i][1],
+            next: self.arcs[i][2],
+            out_arg: inst.out_arg.map(|_| self.arcs[i][3]),
+        };
+        self.conclude(&inst, here, chosen, pipe, actions, observer)
     }
 
     fn record(
@@ -898,6 +1088,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             if let Some(Pending::Recovery { id }) = &f.pending {
                 roots.push(*id);
             }
+            if let Some(Pending::Compiled { saved, .. }) = &f.pending {
+                roots.push(*saved);
+            }
         }
         self.store.gc(&mut roots);
         // Write the relocated roots back in the same order.
@@ -921,8 +1114,275 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             if let Some(Pending::Recovery { id }) = &mut f.pending {
                 *id = it.next().expect("recovery root");
             }
+            if let Some(Pending::Compiled { saved, .. }) = &mut f.pending {
+                *saved = it.next().expect("compiled situation root");
+            }
         }
         self.cells_after_gc = self.store.stats().cells + self.store.stats().vars;
+    }
+}
+
+/// What compiled code of a situation sees of the machine: one method per
+/// semantic step, each the one the interpreted path takes, so generated code
+/// decides only *which* steps a situation needs, never how they behave.
+///
+/// Terms built through it live in the run's store; they stay valid until the
+/// situation returns its [`Step`] (garbage is collected only between situations).
+pub struct Cx<'a, 'p, P: DmProgram> {
+    m: &'a mut Machine<'p, P>,
+    pipe: &'a mut Term,
+    perception: &'a mut dyn Perception,
+    actions: &'a mut dyn Actions,
+    observer: Option<&'a mut dyn Observer>,
+    sit: SitIx,
+    id: Term,
+}
+
+impl<P: DmProgram> Cx<'_, '_, P> {
+    fn here(&self) -> Option<(SitIx, Term)> {
+        Some((self.sit, self.id))
+    }
+
+    /// A run-time error in this situation (`arc`: 0-based).
+    pub fn error(&self, message: impl Into<String>, arc: Option<usize>) -> RunError {
+        self.m.err(message, self.here(), arc)
+    }
+
+    pub fn store(&mut self) -> &mut Store {
+        &mut self.m.store
+    }
+
+    /// A fresh variable.
+    #[inline]
+    pub fn var(&mut self) -> Term {
+        self.m.store.new_var()
+    }
+
+    #[inline]
+    pub fn compound(&mut self, name: Atom, args: &[Term]) -> Term {
+        self.m.store.compound(name, args)
+    }
+
+    /// Argument `i` of compound `t` (as [`Step::Call`]'s `saved` keeps them).
+    #[inline]
+    pub fn arg(&self, t: Term, i: usize) -> Term {
+        self.m.store.args(t)[i]
+    }
+
+    /// Argument `i` of the running DM's call: the value a head parameter
+    /// written as a variable takes (D-7); a fresh variable if the call has
+    /// no such argument.
+    #[inline]
+    pub fn head_arg(&mut self, i: usize) -> Term {
+        let dm_id = self.m.frames.last().expect("a frame is running").dm_id;
+        match self.m.store.arg(dm_id, i) {
+            Some(a) => a,
+            None => self.m.store.new_var(),
+        }
+    }
+
+    /// The incoming pipe value.
+    #[inline]
+    pub fn pipe(&self) -> Term {
+        *self.pipe
+    }
+
+    /// Unifies the situation's in_arg pattern with the incoming pipe (D-8, E14).
+    pub fn in_arg(&mut self, pattern: Term) -> Result<(), RunError> {
+        let here = self.here();
+        self.m.unify_in_arg(pattern, *self.pipe, here)
+    }
+
+    /// Runs `prog` on a copy sharing only the variables of `links` (D-10).
+    pub fn prog(&mut self, prog: Term, links: &[Option<Term>]) -> Result<(), RunError> {
+        let here = self.here();
+        self.m.run_prog(Some(prog), links, here)
+    }
+
+    /// What an arc sees of the situation's variables: each value copied with
+    /// the arc (D-11), jointly, so shared unbound variables stay shared.
+    /// Atomic values are their own copies (no work).
+    pub fn import(&mut self, values: &mut [Term]) {
+        let store = &mut self.m.store;
+        let mut all_atomic = true;
+        for v in values.iter_mut() {
+            *v = store.deref(*v);
+            all_atomic &= !matches!(
+                store.value(*v),
+                crate::term::Value::Var(_) | crate::term::Value::Compound(..)
+            );
+        }
+        if all_atomic {
+            return;
+        }
+        let both = store.compound(self.m.arc_functor, values);
+        let copy = store.copy_term(both);
+        values.copy_from_slice(store.args(copy));
+    }
+
+    /// Evaluates `t` in L (D-28..D-39).
+    pub fn eval(&mut self, t: Term, arc: Option<usize>) -> Result<Term, RunError> {
+        let here = self.here();
+        self.m.eval_in_frame(t, here, arc)
+    }
+
+    /// The value of a variable occurrence in L: what [`Cx::eval`] gives,
+    /// without a call when it is not bound to a compound.
+    #[inline]
+    pub fn value(&mut self, t: Term, arc: Option<usize>) -> Result<Term, RunError> {
+        let t = self.m.store.deref(t);
+        if matches!(self.m.store.value(t), crate::term::Value::Compound(..)) {
+            return self.eval(t, arc);
+        }
+        Ok(t)
+    }
+
+    /// `op(name, arg)` for `op` in `get`, `set`, `inc` (D-38); `arg` as written.
+    pub fn var_op(
+        &mut self,
+        op: Atom,
+        name: Atom,
+        arg: Term,
+        arc: Option<usize>,
+    ) -> Result<Term, RunError> {
+        let m = &mut *self.m;
+        let frame = m.frames.last_mut().expect("a frame is running");
+        let mut ctx = EvalCtx {
+            store: &mut m.store,
+            locals: &mut frame.locals,
+            globals: &mut m.globals,
+            history: &frame.history,
+            functions: &m.functions,
+        };
+        eval::var_op_named(&mut ctx, op, name, arg).map_err(|e| self.error(e.message, arc))
+    }
+
+    /// A conditional's condition `a op b` with an arithmetic comparison, on evaluated operands.
+    #[inline]
+    pub fn arith_condition(
+        &mut self,
+        op: crate::arith::ArithCmp,
+        a: Term,
+        b: Term,
+        arc: Option<usize>,
+    ) -> Result<bool, RunError> {
+        eval::arith_condition(&mut self.m.store, op, a, b).map_err(|e| self.error(e.message, arc))
+    }
+
+    /// Any other condition of a conditional (D-35).
+    pub fn condition(&mut self, cond: Term, arc: Option<usize>) -> Result<bool, RunError> {
+        let m = &mut *self.m;
+        let frame = m.frames.last_mut().expect("a frame is running");
+        let mut ctx = EvalCtx {
+            store: &mut m.store,
+            locals: &mut frame.locals,
+            globals: &mut m.globals,
+            history: &frame.history,
+            functions: &m.functions,
+        };
+        eval::condition(&mut ctx, cond).map_err(|e| self.error(e.message, arc))
+    }
+
+    /// Keeps the variables' values, to be put back by [`Cx::restore_vars`]:
+    /// updates made while expectations are evaluated are discarded (D-12).
+    pub fn save_vars(&mut self) {
+        let frame = self.m.frames.last().expect("a frame is running");
+        self.m.scratch_locals.restore_from(&frame.locals);
+        self.m.scratch_globals.restore_from(&self.m.globals);
+    }
+
+    pub fn restore_vars(&mut self) {
+        let frame = self.m.frames.last_mut().expect("a frame is running");
+        frame.locals.restore_from(&self.m.scratch_locals);
+        self.m.globals.restore_from(&self.m.scratch_globals);
+    }
+
+    /// The evaluated expectations of the situation's arcs, in arc order.
+    pub fn set_expectations(&mut self, expectations: &[Term]) {
+        self.m.expectations.clear();
+        self.m.expectations.extend_from_slice(expectations);
+    }
+
+    /// The met expectation of arc `i`, after [`Cx::choose`] or [`Cx::choose_exit`].
+    #[inline]
+    pub fn expectation(&self, i: usize) -> Term {
+        self.m.expectations[i]
+    }
+
+    /// Which arc's expectation is met (the neutral rule, else perception, D-14).
+    pub fn choose(&mut self, type_term: Term) -> Result<Option<usize>, RunError> {
+        let here = self.here();
+        self.m.choose_index(type_term, here, &mut *self.perception)
+    }
+
+    /// Which exit arc takes the embedded DM's final situation `final_id` (D-22).
+    pub fn choose_exit(&mut self, final_id: Term) -> Result<usize, RunError> {
+        let here = self.here();
+        self.m.choose_exit_index(final_id, here)
+    }
+
+    /// Performs an evaluated action (D-17).
+    pub fn perform(&mut self, action: Term, arc: Option<usize>) -> Result<(), RunError> {
+        let here = self.here();
+        self.m.perform(action, &mut *self.actions, here, arc)
+    }
+
+    /// An arc's out_arg: its value becomes the pipe unless it is a variable (D-18).
+    pub fn out_arg(&mut self, out: Term, arc: Option<usize>) -> Result<(), RunError> {
+        let value = self.eval(out, arc)?;
+        if !self.m.store.is_var(value) {
+            *self.pipe = value;
+        }
+        Ok(())
+    }
+
+    /// A final situation's out_arg (or the pipe unchanged when `None`).
+    pub fn final_out_arg(&mut self, out: Option<Term>) -> Result<(), RunError> {
+        let here = self.here();
+        self.m.final_out_arg(out, self.pipe, here)
+    }
+
+    /// Evaluates `diag_mod` with read-only variables and unifies it with the DM's id (D-20).
+    pub fn diag_mod(&mut self, d: Term) -> Result<(), RunError> {
+        let here = self.here();
+        self.m.bind_diag_mod(Some(d), here)
+    }
+
+    /// Evaluates `embedded_dm` with read-only variables: the DM call.
+    pub fn embedded_dm(&mut self, e: Term) -> Result<Term, RunError> {
+        let here = self.here();
+        self.m.eval_read_only(e, here)
+    }
+
+    /// Appends the situation's history entry (and tells the observer).
+    #[inline]
+    pub fn record(&mut self, expectation: Term, action: Term, next: Option<Term>) {
+        let id = self.id;
+        self.m
+            .record(id, expectation, action, next, &mut self.observer);
+    }
+
+    /// The step to an evaluated next situation, which must name one (D-19).
+    pub fn goto(&mut self, next: Term, arc: Option<usize>) -> Result<Step, RunError> {
+        let n = self.m.store.deref(next);
+        if self.m.store.functor(n).is_none() {
+            return Err(self.error(
+                format!(
+                    "the next situation evaluates to `{}`, which is not a situation name",
+                    self.m.store.writeq(n)
+                ),
+                arc,
+            ));
+        }
+        Ok(Step::Goto(n))
+    }
+}
+
+/// A shorter-lived handle on the observer (the trait object's lifetime shrinks with it).
+fn reborrow<'a>(observer: &'a mut Option<&mut dyn Observer>) -> Option<&'a mut dyn Observer> {
+    match observer {
+        Some(o) => Some(&mut **o),
+        None => None,
     }
 }
 
