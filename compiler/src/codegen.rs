@@ -26,6 +26,8 @@
 //! code can be `include!`d anywhere; the output is deterministic (source
 //! order, no hash-map order).
 
+mod step;
+
 use crate::ir::{none_marker, Ir};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -240,6 +242,16 @@ impl<'s> Gen<'s> {
             for s in &dm.situations {
                 for &f in self.store.args(s.template) {
                     self.visit(f);
+                }
+                // Compiled situations use each arc's parts on their own.
+                let arcs = self.store.args(s.template)[8];
+                let parts: Vec<Term> = self
+                    .store
+                    .list_iter(arcs)
+                    .flat_map(|arc| self.store.args(arc).to_vec())
+                    .collect();
+                for part in parts {
+                    self.visit(part);
                 }
                 if let Some((name, _)) = s.id_functor {
                     self.atom(name);
@@ -750,6 +762,40 @@ impl<'s> Gen<'s> {
                     };
                     Some(at.to_owned())
                 }
+                fn compiled_id(
+                    &self,
+                    dm: #rt::machine::DmIx,
+                    sit: #rt::machine::SitIx,
+                ) -> ::std::option::Option<#rt::Atom> {
+                    match dm {
+                        #(#dm_ix => #dm_mods::compiled_id(self, sit),)*
+                        _ => ::std::option::Option::None,
+                    }
+                }
+                fn run_situation(
+                    &self,
+                    dm: #rt::machine::DmIx,
+                    sit: #rt::machine::SitIx,
+                    cx: &mut #rt::machine::Cx<'_, '_, Self>,
+                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    match dm {
+                        #(#dm_ix => #dm_mods::run_situation(self, sit, cx),)*
+                        _ => ::std::result::Result::Err(cx.error("no such DM", None)),
+                    }
+                }
+                fn run_exit(
+                    &self,
+                    dm: #rt::machine::DmIx,
+                    sit: #rt::machine::SitIx,
+                    saved: #rt::Term,
+                    final_id: #rt::Term,
+                    cx: &mut #rt::machine::Cx<'_, '_, Self>,
+                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    match dm {
+                        #(#dm_ix => #dm_mods::run_exit(self, sit, saved, final_id, cx),)*
+                        _ => ::std::result::Result::Err(cx.error("no such DM", None)),
+                    }
+                }
             }
 
             #[allow(clippy::all)]
@@ -823,6 +869,9 @@ impl<'s> Gen<'s> {
         let mut selects = Vec::new();
         let mut locations = Vec::new();
         let mut instantiate_arms = Vec::new();
+        let mut compiled_arms = Vec::new();
+        let mut run_arms = Vec::new();
+        let mut exit_arms = Vec::new();
         for (i, s) in dm.situations.iter().enumerate() {
             let f = self.store.args(s.template);
             let id_text = self.store.writeq(f[1]);
@@ -906,6 +955,25 @@ impl<'s> Gen<'s> {
                 }
             });
             instantiate_arms.push(quote!(Situation::#vname => #fname(p, store),));
+
+            // The situation as code, when it can be compiled.
+            if let Some(id) = self.compiled_id(dm, s) {
+                let base = snake(&vname.to_string());
+                let run_name = format_ident!("run_{}", base);
+                let exit_name = format_ident!("exit_{}", base);
+                let code = self.situation_code(dm, i, &run_name, &exit_name);
+                let a = &self.atoms[self.atom_ix[&id]].1;
+                compiled_arms.push(quote!(#ix => ::std::option::Option::Some(p.atoms.#a),));
+                run_arms.push(quote!(#ix => #run_name(p, cx),));
+                let rdoc = format!(" A visit of `{id_text}` as code.");
+                let run = code.run;
+                fns.push(quote!(#[doc = #rdoc] #run));
+                if let Some(exit) = code.exit {
+                    exit_arms.push(quote!(#ix => #exit_name(p, saved, final_id, cx),));
+                    let edoc = format!(" The exit arcs of `{id_text}` as code.");
+                    fns.push(quote!(#[doc = #edoc] #exit));
+                }
+            }
         }
         let count = dm.situations.len();
         let variant_names: Vec<TokenStream> =
@@ -993,6 +1061,43 @@ impl<'s> Gen<'s> {
                     #locals_prelude
                     #locals_body
                     #rt::Vars::from_entries(::std::vec![#(#local_entries),*])
+                }
+
+                /// The id of a situation that runs as code.
+                pub fn compiled_id(
+                    p: &super::Program,
+                    sit: #rt::machine::SitIx,
+                ) -> ::std::option::Option<#rt::Atom> {
+                    match sit {
+                        #(#compiled_arms)*
+                        _ => ::std::option::Option::None,
+                    }
+                }
+
+                /// Runs a situation that runs as code.
+                pub fn run_situation(
+                    p: &super::Program,
+                    sit: #rt::machine::SitIx,
+                    cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    match sit {
+                        #(#run_arms)*
+                        _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
+                    }
+                }
+
+                /// The exit arcs of a recursive situation that runs as code.
+                pub fn run_exit(
+                    p: &super::Program,
+                    sit: #rt::machine::SitIx,
+                    saved: #rt::Term,
+                    final_id: #rt::Term,
+                    cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    match sit {
+                        #(#exit_arms)*
+                        _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
+                    }
                 }
 
                 /// A fresh instance of a situation.
