@@ -6,16 +6,22 @@
 //! What the generated code is (see the notes' "How generated code should
 //! look"):
 //! - a `Program` struct implementing the runtime's
-//!   `sitlog_runtime::machine::DmProgram`: the runtime's machine does every
-//!   semantic step, exactly as for the reference interpreter; the generated
-//!   code only *builds* what the machine asks for;
+//!   `sitlog_runtime::machine::DmProgram`: the runtime's machine keeps the
+//!   DM stack, the pipe, the variables and the history, and owns every
+//!   semantic step;
 //! - one module per DM (`pub mod dm_<name>`) with an `enum Situation` (one
 //!   variant per situation, in source order, `#[repr(u32)]` so the variant is
-//!   the machine's situation index) and one function per situation that
-//!   builds a fresh instance (D-7) directly: fresh variables first (in the
-//!   order a `copy_term` of the interpreter's template would make them, so
-//!   both back ends number variables alike), then the non-ground parts, while
-//!   ground parts are constants built once by `Program::new`;
+//!   the machine's situation index);
+//! - for each situation whose id and type are atoms (in a DM whose head
+//!   parameters are variables), a function running a visit as code: a
+//!   `match` on the chosen arc, `get`/`set`/`inc` and conditionals inline,
+//!   constants built once, constant next situations resolved to situation
+//!   indices, DM calls as frames on the machine's stack ([`step`]); every
+//!   step is a call on the runtime's `Cx`, so semantics stay in the runtime;
+//! - for every situation, a function building a fresh instance (D-7) for the
+//!   machine's general path (situations with parameters): fresh variables
+//!   first (in the order a `copy_term` of the interpreter's template would
+//!   make them), then the non-ground parts, ground parts being constants;
 //! - `may_select`, `kind`, `location` as `match`es on the situation enum,
 //!   and DM lookup by comparing interned atoms;
 //! - entry points: `program()` (one `Program` per process), `run(...)` and
@@ -635,7 +641,8 @@ impl<'s> Gen<'s> {
             #[doc = #source_doc]
             ///
             /// Runs on the runtime's DM machine (`sitlog_runtime::machine`), which
-            /// implements every semantic step; this code builds the program's terms.
+            /// implements every semantic step: situations with atom ids run as
+            /// code calling those steps, the others as instances built here.
             #[allow(dead_code, non_camel_case_types, unused_variables, clippy::all)]
             pub struct Program {
                 /// Frozen store holding the constants; every run starts from a clone.

@@ -417,6 +417,16 @@ impl Store {
     /// Arithmetic comparison: both sides are evaluated, then compared by
     /// value (`1 =:= 1.0` is true). NaN compares unequal to everything.
     pub fn arith_compare(&mut self, op: ArithCmp, a: Term, b: Term) -> Result<bool, ArithError> {
+        if let (Repr::Int(x), Repr::Int(y)) = (self.deref(a).0, self.deref(b).0) {
+            return Ok(match op {
+                ArithCmp::Eq => x == y,
+                ArithCmp::Ne => x != y,
+                ArithCmp::Lt => x < y,
+                ArithCmp::Gt => x > y,
+                ArithCmp::Le => x <= y,
+                ArithCmp::Ge => x >= y,
+            });
+        }
         let x = self.eval_arith(a)?;
         let y = self.eval_arith(b)?;
         let o = compare_numbers(x, y);

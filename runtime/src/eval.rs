@@ -221,7 +221,15 @@ pub fn var_op_named(
     name: Atom,
     arg: Term,
 ) -> Result<Term, EvalError> {
-    var_op_parts(ctx, op, name, arg, None)
+    var_op_parts(ctx, op, name, Some(arg), None)
+}
+
+/// `op(name, V)` for `op` in `get`, `inc` with `V` a fresh variable: the
+/// value `V` would be bound to (the same updates and errors; `V` is made only
+/// for an error message).
+pub fn var_op_fresh(ctx: &mut EvalCtx<'_>, op: Atom, name: Atom) -> Result<Term, EvalError> {
+    debug_assert!(op == atoms::GET || op == atoms::INC);
+    var_op_parts(ctx, op, name, None, None)
 }
 
 /// The condition of a conditional, as `(C -> A ; otherwise -> B)` runs it:
@@ -365,20 +373,25 @@ fn var_op(ctx: &mut EvalCtx<'_>, op: Atom, t: Term) -> Result<Term, EvalError> {
             show(ctx.store, t)
         )));
     };
-    var_op_parts(ctx, op, name, arg, Some(t))
+    var_op_parts(ctx, op, name, Some(arg), Some(t))
 }
 
 /// `whole` is the term `op(name, arg)` when there is one; it is built only
-/// for an error message otherwise.
+/// for an error message otherwise. `arg: None` stands for a fresh variable
+/// (which unifies with anything: no unification is made).
 fn var_op_parts(
     ctx: &mut EvalCtx<'_>,
     op: Atom,
     name: Atom,
-    arg: Term,
+    arg: Option<Term>,
     whole: Option<Term>,
 ) -> Result<Term, EvalError> {
-    let whole =
-        |store: &mut Store| whole.unwrap_or_else(|| store.compound(op, &[Term::atom(name), arg]));
+    let whole = |store: &mut Store| {
+        whole.unwrap_or_else(|| {
+            let arg = arg.unwrap_or_else(|| store.new_var());
+            store.compound(op, &[Term::atom(name), arg])
+        })
+    };
     let in_locals = ctx.locals.contains(name);
     let current = if in_locals {
         ctx.locals.get(name)
@@ -395,7 +408,7 @@ fn var_op_parts(
         )));
     };
     let new = if op == atoms::GET {
-        if !ctx.store.unify(arg, current) {
+        if let Some(arg) = arg.filter(|&arg| !ctx.store.unify(arg, current)) {
             return Err(EvalError::new(format!(
                 "`{}`: the value `{}` does not unify with `{}`",
                 {
@@ -409,6 +422,7 @@ fn var_op_parts(
         return Ok(current);
     } else if op == atoms::SET {
         // The second argument is stored as written, not evaluated (D-38).
+        let arg = arg.unwrap_or_else(|| ctx.store.new_var());
         ctx.store.deref(arg)
     } else {
         let cur = ctx.store.deref(current);
@@ -429,7 +443,7 @@ fn var_op_parts(
                 )))
             }
         };
-        if !ctx.store.unify(arg, next) {
+        if let Some(arg) = arg.filter(|&arg| !ctx.store.unify(arg, next)) {
             return Err(EvalError::new(format!(
                 "`{}`: the new value `{}` does not unify with `{}`",
                 {

@@ -1207,10 +1207,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         let mut all_atomic = true;
         for v in values.iter_mut() {
             *v = store.deref(*v);
-            all_atomic &= !matches!(
-                store.value(*v),
-                crate::term::Value::Var(_) | crate::term::Value::Compound(..)
-            );
+            all_atomic &= store.is_atomic(*v);
         }
         if all_atomic {
             return;
@@ -1231,7 +1228,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     #[inline]
     pub fn value(&mut self, t: Term, arc: Option<usize>) -> Result<Term, RunError> {
         let t = self.m.store.deref(t);
-        if matches!(self.m.store.value(t), crate::term::Value::Compound(..)) {
+        if self.m.store.is_compound(t) {
             return self.eval(t, arc);
         }
         Ok(t)
@@ -1255,6 +1252,27 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             functions: &m.functions,
         };
         eval::var_op_named(&mut ctx, op, name, arg).map_err(|e| self.error(e.message, arc))
+    }
+
+    /// `op(name, V)` for `op` in `get`, `inc`, where `V` is a variable that
+    /// occurs nowhere else yet: the value `V` would be bound to, without
+    /// making `V` (the caller uses the value in its place).
+    pub fn var_op_fresh(
+        &mut self,
+        op: Atom,
+        name: Atom,
+        arc: Option<usize>,
+    ) -> Result<Term, RunError> {
+        let m = &mut *self.m;
+        let frame = m.frames.last_mut().expect("a frame is running");
+        let mut ctx = EvalCtx {
+            store: &mut m.store,
+            locals: &mut frame.locals,
+            globals: &mut m.globals,
+            history: &frame.history,
+            functions: &m.functions,
+        };
+        eval::var_op_fresh(&mut ctx, op, name).map_err(|e| self.error(e.message, arc))
     }
 
     /// A conditional's condition `a op b` with an arithmetic comparison, on evaluated operands.

@@ -300,6 +300,18 @@ impl Store {
         matches!(self.deref(t).0, Repr::Var(_))
     }
 
+    /// Whether `t` is (bound to) a compound.
+    #[inline]
+    pub fn is_compound(&self, t: Term) -> bool {
+        matches!(self.deref(t).0, Repr::Struct(_))
+    }
+
+    /// Whether `t` is (bound to) an atom or a number.
+    #[inline]
+    pub fn is_atomic(&self, t: Term) -> bool {
+        !matches!(self.deref(t).0, Repr::Var(_) | Repr::Struct(_))
+    }
+
     /// Iterates over the elements of a (proper or partial) list; afterwards
     /// [`ListIter::tail`] is what ended it (`[]` for a proper list).
     pub fn list_iter(&self, t: Term) -> ListIter<'_> {

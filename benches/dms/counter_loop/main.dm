@@ -2,7 +2,7 @@
 diag_mod(main(Max),
   [ [ id ==> is,
       type ==> neutral,
-      arcs ==> [ empty : inc(n, N) => (N >= Max -> fs ; otherwise -> is) ]
+      arcs ==> [ empty : [inc(n, N)] => (N >= Max -> fs ; otherwise -> is) ]
     ],
     [ id ==> fs, type ==> final ]
   ],

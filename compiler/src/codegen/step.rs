@@ -50,6 +50,9 @@ pub(super) struct SituationCode {
 /// Local names and fresh-name counter of one generated function.
 struct Scope {
     vars: HashMap<u32, Ident>,
+    /// Fresh variables not made yet: their first occurrence is the argument
+    /// of a `get` or `inc`, whose value they take without being made.
+    lazy: HashSet<u32>,
     next_tmp: usize,
 }
 
@@ -197,6 +200,16 @@ impl Gen<'_> {
             return quote!(#x);
         }
         if args.len() == 2 && [atoms::GET, atoms::SET, atoms::INC].contains(&name) {
+            if let (Some(var), Value::Var(v)) =
+                (self.store.atom_of(args[0]), self.store.value(args[1]))
+            {
+                if scope.lazy.remove(&v.index()) {
+                    let w = scope.vars[&v.index()].clone();
+                    let (op, var) = (self.atom_expr(name), self.atom_expr(var));
+                    out.push(quote!(let #w = cx.var_op_fresh(#op, #var, #arc)?;));
+                    return quote!(#w);
+                }
+            }
             if let Some(var) = self.store.atom_of(args[0]) {
                 let arg = self.build_cx(args[1], scope, out);
                 let (op, var) = (self.atom_expr(name), self.atom_expr(var));
@@ -287,6 +300,51 @@ impl Gen<'_> {
         quote!((#v, ::std::option::Option::None))
     }
 
+    /// The variables of `terms` (evaluated in this order) whose first
+    /// occurrence is the argument of a `get` or `inc` outside any conditional.
+    fn lazy_vars(&self, terms: &[Term]) -> HashSet<u32> {
+        let mut seen = HashSet::new();
+        let mut lazy = HashSet::new();
+        for &t in terms {
+            self.lazy_walk(t, 0, &mut seen, &mut lazy);
+        }
+        lazy
+    }
+
+    fn lazy_walk(&self, t: Term, depth: usize, seen: &mut HashSet<u32>, lazy: &mut HashSet<u32>) {
+        let Value::Compound(name, args) = self.store.value(t) else {
+            if let Value::Var(v) = self.store.value(t) {
+                seen.insert(v.index());
+            }
+            return;
+        };
+        if let Some((c, a, b)) = eval::conditional(self.store, t) {
+            for part in [c, a, b] {
+                self.lazy_walk(part, depth + 1, seen, lazy);
+            }
+            return;
+        }
+        if args.len() == 2 && (name == atoms::GET || name == atoms::INC) {
+            if let (Some(_), Value::Var(v)) =
+                (self.store.atom_of(args[0]), self.store.value(args[1]))
+            {
+                if depth == 0 && seen.insert(v.index()) {
+                    lazy.insert(v.index());
+                }
+                return;
+            }
+        }
+        if !self.store.is_ground(t) && eval::evaluates_arguments_only(name, args.len()) {
+            for &a in args {
+                self.lazy_walk(a, depth, seen, lazy);
+            }
+            return;
+        }
+        let mut vars = Vec::new();
+        self.term_vars(t, &mut vars);
+        seen.extend(vars);
+    }
+
     /// Code of a compiled situation (`ix` in `dm`).
     pub(super) fn situation_code(
         &self,
@@ -299,6 +357,7 @@ impl Gen<'_> {
         let f = self.store.args(s.template);
         let mut scope = Scope {
             vars: HashMap::new(),
+            lazy: HashSet::new(),
             next_tmp: 0,
         };
         // The situation's own variables (every field but the arcs).
@@ -398,8 +457,16 @@ impl Gen<'_> {
                 let e = self.field(s, EMBEDDED_DM).expect("checked by compiled_id");
                 let e = self.build_cx(e, &mut scope, &mut body);
                 body.push(quote!(let call = cx.embedded_dm(#e)?;));
-                let saved_vars: Vec<Ident> = (0..inst_vars.len())
-                    .map(|n| format_ident!("v{}", n))
+                // What the exit arcs need of the situation's variables.
+                let mut needed = Vec::new();
+                for t in [Some(f[ARCS]), out_arg, diag_mod].into_iter().flatten() {
+                    self.term_vars(t, &mut needed);
+                }
+                let saved_vars: Vec<Ident> = inst_vars
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, v)| needed.contains(v))
+                    .map(|(n, _)| format_ident!("v{}", n))
                     .collect();
                 let saved = if saved_vars.is_empty() {
                     quote!(#rt::Term::NIL)
@@ -418,6 +485,7 @@ impl Gen<'_> {
                 }
                 let mut exit_scope = Scope {
                     vars: scope.vars.clone(),
+                    lazy: HashSet::new(),
                     next_tmp: scope.next_tmp,
                 };
                 self.arcs_code(dm, s, &mut exit_scope, &mut exit, true);
@@ -472,6 +540,15 @@ impl Gen<'_> {
             for &t in arc.iter().chain(out_arg.iter()) {
                 self.term_vars(t, &mut vars);
             }
+            // Expectations are evaluated apart (D-12): their variables are made first.
+            let in_order: Vec<Term> = arc.iter().copied().chain(out_arg).collect();
+            let mut in_expectation = Vec::new();
+            self.term_vars(arc[0], &mut in_expectation);
+            let lazy: HashSet<u32> = self
+                .lazy_vars(&in_order)
+                .into_iter()
+                .filter(|v| !scope.vars.contains_key(v) && !in_expectation.contains(v))
+                .collect();
             let mut arc_vars = HashMap::new();
             let mut imported = Vec::new();
             let mut import_from = Vec::new();
@@ -480,7 +557,7 @@ impl Gen<'_> {
                 if let Some(inst) = scope.vars.get(&v) {
                     imported.push(id.clone());
                     import_from.push(inst.clone());
-                } else {
+                } else if !lazy.contains(&v) {
                     body.push(quote!(let #id = cx.var();));
                 }
                 arc_vars.insert(v, id);
@@ -498,15 +575,16 @@ impl Gen<'_> {
                 self.term_vars(arc[0], &mut ev);
                 ev.iter().all(|v| !scope.vars.contains_key(v))
             };
-            arc_scopes.push((arc_vars, pure));
+            arc_scopes.push((arc_vars, lazy, pure));
         }
         // Expectations, with variable updates discarded (D-12).
         let mut exp_stmts = Vec::new();
         let mut exps = Vec::new();
-        let all_pure = arc_scopes.iter().all(|(_, p)| *p);
+        let all_pure = arc_scopes.iter().all(|(_, _, p)| *p);
         for (i, arc) in arcs.iter().enumerate() {
             let mut sc = Scope {
                 vars: arc_scopes[i].0.clone(),
+                lazy: HashSet::new(),
                 next_tmp: scope.next_tmp,
             };
             let arc_ix = Literal::usize_unsuffixed(i);
@@ -530,10 +608,23 @@ impl Gen<'_> {
                 let [#(#exps),*] = expectations?;
             });
         }
-        body.push(quote!(cx.set_expectations(&[#(#exps),*]);));
+        let neutral = self.store.atom_of(f[TYPE]) == Some(atoms::NEUTRAL);
+        if !exit
+            && neutral
+            && arcs.len() == 1
+            && self.store.atom_of(arcs[0][0]) == Some(atoms::EMPTY)
+        {
+            // The neutral rule on `[empty : A => N]` always takes the arc (D-14).
+            body.push(quote!(let chosen = 0usize;));
+        } else {
+            body.push(quote!(cx.set_expectations(&[#(#exps),*]);));
+        }
         if exit {
             body.push(quote!(let chosen = cx.choose_exit(final_id)?;));
-        } else {
+        } else if !(neutral
+            && arcs.len() == 1
+            && self.store.atom_of(arcs[0][0]) == Some(atoms::EMPTY))
+        {
             let ty = self.atom_term(self.store.atom_of(f[TYPE]).expect("an atom type"));
             body.push(quote! {
                 let ::std::option::Option::Some(chosen) = cx.choose(#ty)? else {
@@ -545,6 +636,7 @@ impl Gen<'_> {
         for (i, arc) in arcs.iter().enumerate() {
             let mut sc = Scope {
                 vars: arc_scopes[i].0.clone(),
+                lazy: arc_scopes[i].1.clone(),
                 next_tmp: scope.next_tmp,
             };
             let arc_ix = Literal::usize_unsuffixed(i);
@@ -563,15 +655,16 @@ impl Gen<'_> {
                 // diag_mod belongs to the situation, not to the arc's copy.
                 let mut inst = Scope {
                     vars: scope.vars.clone(),
+                    lazy: HashSet::new(),
                     next_tmp: sc.next_tmp,
                 };
                 let d = self.build_cx(d, &mut inst, &mut stmts);
                 sc.next_tmp = inst.next_tmp;
                 stmts.push(quote!(cx.diag_mod(#d)?;));
             }
+            let e = format_ident!("e{}", i);
             stmts.push(quote! {
-                let expectation = cx.expectation(#arc_ix);
-                cx.record(expectation, action, ::std::option::Option::Some(next));
+                cx.record(#e, action, ::std::option::Option::Some(next));
                 match target {
                     ::std::option::Option::Some(ix) => ::std::result::Result::Ok(#rt::machine::Step::GotoSit(ix)),
                     ::std::option::Option::None => cx.goto(next, #arc_t),
