@@ -3,9 +3,19 @@
 //! code next to the interpreter without a nested cargo build.
 //! `OUT_DIR/generated_apps.rs` gathers them: one module per application
 //! (named after its path below `dms/`) and a table `APPS`.
+//!
+//! It also writes the random programs of `gen/random_dm.rs` (seeds
+//! `0..random_dm::PROGRAMS`) as application directories into
+//! `OUT_DIR/random/seed_<seed>/`, compiles each, and adds a module
+//! `random_<seed>` per program and the table `RANDOM_APPS` (seed, app
+//! directory, `run`, `functions`) for `tests/tests/random_agreement.rs`.
 
 use std::fmt::Write as _;
 use std::path::Path;
+
+#[allow(dead_code)]
+#[path = "gen/random_dm.rs"]
+mod random_dm;
 
 fn main() {
     let dms = Path::new("../dms");
@@ -47,6 +57,7 @@ fn main() {
             rel.display()
         );
     }
+    let random_table = random_programs(Path::new(&out_dir), &mut index);
     let _ = writeln!(
         index,
         "\n/// A generated program's `run`.\npub type RunFn = fn(&str, Option<&str>, ::sitlog_runtime::machine::Options, ::sitlog_runtime::Functions, &mut dyn ::sitlog_runtime::machine::Perception, &mut dyn ::sitlog_runtime::machine::Actions, Option<&mut dyn ::sitlog_runtime::machine::Observer>) -> Result<(::sitlog_runtime::machine::Outcome, ::sitlog_runtime::Store), String>;\n\n/// A generated program's `functions` (standard ones plus its embedded Prolog).\npub type FunctionsFn = fn() -> Result<::sitlog_runtime::Functions, String>;"
@@ -55,9 +66,52 @@ fn main() {
         index,
         "\n/// Every compiled application: its path below `dms/` and its `run`.\npub const APPS: &[(&str, RunFn, FunctionsFn)] = &[\n{table}];"
     );
+    let _ = writeln!(
+        index,
+        "\n/// The random programs of `tests/gen/random_dm.rs`: seed, application\n/// directory (in `OUT_DIR`), `run` and `functions`.\npub const RANDOM_APPS: &[(u64, &str, RunFn, FunctionsFn)] = &[\n{random_table}];"
+    );
     sitlog_compiler::build::write_if_changed(
         &Path::new(&out_dir).join("generated_apps.rs"),
         &index,
     )
     .expect("write generated_apps.rs");
+}
+
+/// Writes every random program into `OUT_DIR/random/seed_<seed>/` and
+/// compiles it to `OUT_DIR/random_<seed>.rs`; adds its module to `index`
+/// and returns the rows of `RANDOM_APPS`. A program that does not compile
+/// is left out with a warning (the random agreement test then fails, naming
+/// its diagnostics).
+fn random_programs(out_dir: &Path, index: &mut String) -> String {
+    println!("cargo:rerun-if-changed=gen/random_dm.rs");
+    let mut table = String::new();
+    for seed in 0..random_dm::PROGRAMS {
+        let dir = out_dir.join("random").join(format!("seed_{seed}"));
+        std::fs::create_dir_all(&dir).expect("create the random program's directory");
+        for (name, text) in random_dm::program(seed) {
+            sitlog_compiler::build::write_if_changed(&dir.join(name), &text)
+                .expect("write a random program's file");
+        }
+        let name = format!("random_{seed}");
+        let file = format!("{name}.rs");
+        // Quiet: the sources are ours (in OUT_DIR), not inputs to watch.
+        let result = sitlog_compiler::build::Config::new()
+            .file_name(&file)
+            .quiet(true)
+            .compile(&dir);
+        if let Err(e) = result {
+            println!("cargo:warning=random program {seed} does not compile: {e}");
+            continue;
+        }
+        let _ = writeln!(
+            index,
+            "pub mod {name} {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file}\")); }}"
+        );
+        let _ = writeln!(
+            table,
+            "    ({seed}, {:?}, {name}::run, {name}::functions),",
+            dir.display().to_string()
+        );
+    }
+    table
 }

@@ -2,6 +2,8 @@
 //! running an example application in test mode and comparing results.
 
 pub mod compiled;
+#[path = "../gen/random_dm.rs"]
+pub mod random_dm;
 
 use sitlog_compiler::run::{self, RunConfig};
 use sitlog_runtime::machine::Options;
@@ -127,7 +129,8 @@ fn normalize_vars(s: &str) -> String {
 }
 
 /// Rewrites every variable name (`_G12`, `_123`, `_`) outside quoted atoms
-/// and strings of a term's text through `rename`.
+/// and strings of a term's text (or of an error message quoting terms)
+/// through `rename`.
 pub fn map_vars(s: &str, mut rename: impl FnMut(&str) -> String) -> String {
     let mut out = String::with_capacity(s.len());
     let mut chars = s.chars().peekable();
@@ -146,7 +149,10 @@ pub fn map_vars(s: &str, mut rename: impl FnMut(&str) -> String) -> String {
             prev_alnum = false;
             continue;
         }
-        if c == '\'' || c == '"' {
+        // A quote right after a letter or digit opens nothing: Prolog
+        // never writes one there, but prose does (`the DM's identifier`
+        // in an error message).
+        if (c == '\'' || c == '"') && !prev_alnum {
             in_quote = Some(c);
             out.push(c);
             prev_alnum = false;
@@ -226,5 +232,11 @@ mod tests {
     fn variables_normalise() {
         assert_eq!(super::normalize_vars("f(_G12,'_x',_)"), "f(_,'_x',_)");
         assert_eq!(super::normalize_vars("a_b(_123)"), "a_b(_)");
+        assert_eq!(super::normalize_vars("'it''s _G1'(_G2)"), "'it''s _G1'(_)");
+        // An apostrophe in prose opens no quoted atom.
+        assert_eq!(
+            super::normalize_vars("`s(_G1)` is not the DM's identifier `s(_G2)`"),
+            "`s(_)` is not the DM's identifier `s(_)`"
+        );
     }
 }
