@@ -15,6 +15,15 @@ use crate::term::{Repr, Term};
 /// Marks a slot of a forwarding table as not yet copied.
 const UNMOVED: u32 = u32::MAX;
 
+/// The collector's buffers, kept in the store between collections.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Scratch {
+    cell_fwd: Vec<u32>,
+    var_fwd: Vec<u32>,
+    new_cells: Vec<Term>,
+    new_vars: Vec<Term>,
+}
+
 /// The old (from-space) region and the new (to-space) one being built.
 struct Collector<'a> {
     frozen_cells: u32,
@@ -23,14 +32,14 @@ struct Collector<'a> {
     /// Bindings of frozen variables as they were before the collection
     /// (old references).
     frozen_var_cells: &'a [Term],
-    old_cells: Vec<Term>,
-    old_vars: Vec<Term>,
+    old_cells: &'a [Term],
+    old_vars: &'a [Term],
     old_bigs: Vec<Box<str>>,
-    cell_fwd: Vec<u32>,
-    var_fwd: Vec<u32>,
+    cell_fwd: &'a mut Vec<u32>,
+    var_fwd: &'a mut Vec<u32>,
     big_fwd: Vec<u32>,
-    new_cells: Vec<Term>,
-    new_vars: Vec<Term>,
+    new_cells: &'a mut Vec<Term>,
+    new_vars: &'a mut Vec<Term>,
     new_bigs: Vec<Box<str>>,
 }
 
@@ -115,22 +124,30 @@ impl Store {
     /// renumbered (their standard order may change).
     pub fn gc(&mut self, roots: &mut [Term]) {
         let frozen = self.frozen;
-        let old_cells = self.cells.split_off(frozen.cells as usize);
-        let old_vars = self.vars.split_off(frozen.vars as usize);
         let old_bigs = self.bigs.split_off(frozen.bigs as usize);
+        let mut scratch = std::mem::take(&mut self.gc_scratch);
+        let (frozen_var_cells, old_vars) = self.vars.split_at(frozen.vars as usize);
+        let old_cells = &self.cells[frozen.cells as usize..];
+        // Reused tables: filling them touches memory already mapped.
+        scratch.cell_fwd.clear();
+        scratch.cell_fwd.resize(old_cells.len(), UNMOVED);
+        scratch.var_fwd.clear();
+        scratch.var_fwd.resize(old_vars.len(), UNMOVED);
+        scratch.new_cells.clear();
+        scratch.new_vars.clear();
         let mut c = Collector {
             frozen_cells: frozen.cells,
             frozen_vars: frozen.vars,
             frozen_bigs: frozen.bigs,
-            frozen_var_cells: &self.vars,
-            cell_fwd: vec![UNMOVED; old_cells.len()],
-            var_fwd: vec![UNMOVED; old_vars.len()],
+            frozen_var_cells,
+            cell_fwd: &mut scratch.cell_fwd,
+            var_fwd: &mut scratch.var_fwd,
             big_fwd: vec![UNMOVED; old_bigs.len()],
             old_cells,
             old_vars,
             old_bigs,
-            new_cells: Vec::new(),
-            new_vars: Vec::new(),
+            new_cells: &mut scratch.new_cells,
+            new_vars: &mut scratch.new_vars,
             new_bigs: Vec::new(),
         };
         for root in roots.iter_mut() {
@@ -146,24 +163,24 @@ impl Store {
             }
         }
         c.scan();
-        let Collector {
-            new_cells,
-            new_vars,
-            new_bigs,
-            ..
-        } = c;
-        self.cells.extend_from_slice(&new_cells);
-        self.vars.extend_from_slice(&new_vars);
+        let new_bigs = std::mem::take(&mut c.new_bigs);
+        self.cells.truncate(frozen.cells as usize);
+        self.cells.extend_from_slice(&scratch.new_cells);
+        self.vars.truncate(frozen.vars as usize);
+        self.vars.extend_from_slice(&scratch.new_vars);
         self.bigs.extend(new_bigs);
         for (i, b) in frozen_bindings {
             self.vars[i as usize] = b;
         }
+        self.gc_scratch = scratch;
         self.trail.clear();
         self.epoch = self.epoch.wrapping_add(1);
         // Give back memory after a burst, keeping room to grow.
         shrink(&mut self.cells);
         shrink(&mut self.vars);
         shrink(&mut self.trail);
+        shrink(&mut self.gc_scratch.cell_fwd);
+        shrink(&mut self.gc_scratch.var_fwd);
         for scratch in [&mut self.work, &mut self.results] {
             scratch.shrink_to(1 << 12);
         }
@@ -171,9 +188,12 @@ impl Store {
     }
 }
 
+/// Gives back memory after a burst, keeping room for the usual growth
+/// between collections (so the next cycle does not reallocate).
 fn shrink<T>(v: &mut Vec<T>) {
-    if v.capacity() > 4 * v.len() + 4096 {
-        v.shrink_to(2 * v.len() + 1024);
+    const HEADROOM: usize = 1 << 20;
+    if v.capacity() > 2 * (v.len() + HEADROOM) {
+        v.shrink_to(v.len() + HEADROOM);
     }
 }
 

@@ -68,6 +68,9 @@ pub struct Store {
     pub(crate) results: Vec<Term>,
     /// xorshift64* state for `random/1` and `random_float`.
     pub(crate) rng: u64,
+    /// Buffers of the collector, kept between collections so that a
+    /// collection allocates (and page-faults) nothing once warm.
+    pub(crate) gc_scratch: crate::gc::Scratch,
 }
 
 impl Default for Store {
@@ -100,6 +103,7 @@ impl Store {
             work: Vec::new(),
             results: Vec::new(),
             rng: seed | 1,
+            gc_scratch: Default::default(),
         }
     }
 

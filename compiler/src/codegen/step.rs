@@ -415,8 +415,32 @@ impl Gen<'_> {
             None
         };
         if let Some(p) = prog {
-            let p = self.build_cx(p, &mut scope, &mut body);
-            body.push(quote!(cx.prog(#p, &[#(#links),*])?;));
+            // `prog` runs on a copy sharing only in_arg's (and out_arg's)
+            // variables (D-10). When no other field has its variables, the
+            // situation's fresh variables are that copy: evaluate in place.
+            let mut linked = Vec::new();
+            let mut elsewhere = Vec::new();
+            for (i, &t) in f.iter().enumerate() {
+                let link = i == IN_ARG || (i == OUT_ARG && s.kind != Kind::Recursive);
+                match i {
+                    PROG => {}
+                    _ if link => self.term_vars(t, &mut linked),
+                    _ => self.term_vars(t, &mut elsewhere),
+                }
+            }
+            let mut prog_vars = Vec::new();
+            self.term_vars(p, &mut prog_vars);
+            if prog_vars
+                .iter()
+                .all(|v| linked.contains(v) || !elsewhere.contains(v))
+            {
+                let none = quote!(::std::option::Option::None);
+                let value = self.eval_cx(p, &none, &mut scope, &mut body);
+                body.push(quote!(let _ = #value;));
+            } else {
+                let p = self.build_cx(p, &mut scope, &mut body);
+                body.push(quote!(cx.prog(#p, &[#(#links),*])?;));
+            }
         }
         let rt = quote!(::sitlog_runtime);
         let sig = quote!(cx: &mut #rt::machine::Cx<'_, '_, super::Program>);
