@@ -773,10 +773,22 @@ impl<'s> Gen<'s> {
                     &self,
                     dm: #rt::machine::DmIx,
                     sit: #rt::machine::SitIx,
-                ) -> ::std::option::Option<#rt::Atom> {
+                ) -> ::std::option::Option<(#rt::Atom, usize)> {
                     match dm {
                         #(#dm_ix => #dm_mods::compiled_id(self, sit),)*
                         _ => ::std::option::Option::None,
+                    }
+                }
+                fn select_compiled(
+                    &self,
+                    dm: #rt::machine::DmIx,
+                    sit: #rt::machine::SitIx,
+                    value: #rt::Term,
+                    store: &mut #rt::Store,
+                ) -> bool {
+                    match dm {
+                        #(#dm_ix => #dm_mods::select_compiled(self, sit, value, store),)*
+                        _ => true,
                     }
                 }
                 fn run_situation(
@@ -877,6 +889,7 @@ impl<'s> Gen<'s> {
         let mut locations = Vec::new();
         let mut instantiate_arms = Vec::new();
         let mut compiled_arms = Vec::new();
+        let mut select_arms = Vec::new();
         let mut run_arms = Vec::new();
         let mut exit_arms = Vec::new();
         for (i, s) in dm.situations.iter().enumerate() {
@@ -964,13 +977,18 @@ impl<'s> Gen<'s> {
             instantiate_arms.push(quote!(Situation::#vname => #fname(p, store),));
 
             // The situation as code, when it can be compiled.
-            if let Some(id) = self.compiled_id(dm, s) {
+            if let Some((id, arity)) = self.compiled_id(dm, s) {
                 let base = snake(&vname.to_string());
                 let run_name = format_ident!("run_{}", base);
                 let exit_name = format_ident!("exit_{}", base);
                 let code = self.situation_code(dm, i, &run_name, &exit_name);
                 let a = &self.atoms[self.atom_ix[&id]].1;
-                compiled_arms.push(quote!(#ix => ::std::option::Option::Some(p.atoms.#a),));
+                let arity = Literal::usize_unsuffixed(arity);
+                compiled_arms
+                    .push(quote!(#ix => ::std::option::Option::Some((p.atoms.#a, #arity)),));
+                if let Some(select) = self.select_code(s) {
+                    select_arms.push(quote!(#ix => { #select }));
+                }
                 run_arms.push(quote!(#ix => #run_name(p, cx),));
                 let rdoc = format!(" A visit of `{id_text}` as code.");
                 let run = code.run;
@@ -1074,10 +1092,24 @@ impl<'s> Gen<'s> {
                 pub fn compiled_id(
                     p: &super::Program,
                     sit: #rt::machine::SitIx,
-                ) -> ::std::option::Option<#rt::Atom> {
+                ) -> ::std::option::Option<(#rt::Atom, usize)> {
                     match sit {
                         #(#compiled_arms)*
                         _ => ::std::option::Option::None,
+                    }
+                }
+
+                /// Whether a compiled situation's constant id arguments unify with `value`'s.
+                pub fn select_compiled(
+                    p: &super::Program,
+                    sit: #rt::machine::SitIx,
+                    value: #rt::Term,
+                    store: &mut #rt::Store,
+                ) -> bool {
+                    let a = &p.atoms;
+                    match sit {
+                        #(#select_arms)*
+                        _ => true,
                     }
                 }
 

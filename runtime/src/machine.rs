@@ -70,12 +70,21 @@ pub trait DmProgram {
         let _ = (dm, sit);
         None
     }
-    /// `Some(id)` when situation `sit` runs as code ([`DmProgram::run_situation`]
-    /// and, for a recursive one, [`DmProgram::run_exit`]) instead of being
-    /// instantiated; its id is then the atom `id`.
-    fn compiled_id(&self, dm: DmIx, sit: SitIx) -> Option<Atom> {
+    /// `Some((name, arity))` when situation `sit` runs as code
+    /// ([`DmProgram::run_situation`] and, for a recursive one,
+    /// [`DmProgram::run_exit`]) instead of being instantiated; its id is
+    /// then the atom `name` (arity 0) or a compound `name(...)` whose
+    /// arguments are distinct fresh variables or atomic constants.
+    fn compiled_id(&self, dm: DmIx, sit: SitIx) -> Option<(Atom, usize)> {
         let _ = (dm, sit);
         None
+    }
+    /// Whether compiled situation `sit`, whose id has the principal functor
+    /// of `value`, is selected by `value`: its constant id arguments unify
+    /// with `value`'s (bindings are kept when it is, undone otherwise).
+    fn select_compiled(&self, dm: DmIx, sit: SitIx, value: Term, store: &mut Store) -> bool {
+        let _ = (dm, sit, value, store);
+        true
     }
     /// Runs compiled situation `sit` of the running DM, up to the step the
     /// machine takes next.
@@ -236,7 +245,7 @@ pub struct Outcome {
 #[derive(Debug)]
 enum Pending {
     Recursive { sit: SitIx, inst: Instance },
-    Compiled { sit: SitIx, saved: Term },
+    Compiled { sit: SitIx, saved: Term, id: Term },
     Recovery { id: Term },
 }
 
@@ -248,6 +257,15 @@ struct Frame {
     locals: Vars,
     history: Vec<Item>,
     pending: Option<Pending>,
+}
+
+/// The situation [`Machine::select`] picked.
+enum Selected {
+    /// Instantiated (D-7), its id unified with the next situation's value.
+    Instance(Instance),
+    /// Compiled: `Some(value)` when selected by a next situation's value
+    /// (its id is that value), `None` when entered by index.
+    Compiled(Option<Term>),
 }
 
 /// Where control goes next in the top frame.
@@ -433,27 +451,35 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             self.maybe_gc(pipe, &mut goto);
             let (sit, inst) = self.select(&goto)?;
             let dm = self.frames.last().expect("a frame is running").dm;
-            let Some(inst) = inst else {
-                // Compiled code runs the situation; the machine takes the step it returns.
-                let id = Term::atom(program.compiled_id(dm, sit).expect("a compiled situation"));
-                let mut cx = Cx {
-                    m: self,
-                    pipe,
-                    perception,
-                    actions,
-                    observer: reborrow(observer),
-                    sit,
-                    id,
-                };
-                let step = program.run_situation(dm, sit, &mut cx)?;
-                match self.take_step(step, sit, id, pipe, perception, actions, observer)? {
-                    Some(next) => goto = next,
-                    None => {
-                        *final_situation = Some(id);
-                        return Ok(());
+            let inst = match inst {
+                Selected::Instance(inst) => inst,
+                Selected::Compiled(selected) => {
+                    // Compiled code runs the situation; the machine takes the step it returns.
+                    let id = selected.unwrap_or_else(|| {
+                        let (name, _) = program.compiled_id(dm, sit).expect("a compiled situation");
+                        Term::atom(name)
+                    });
+                    let mut cx = Cx {
+                        m: self,
+                        pipe,
+                        perception,
+                        actions,
+                        observer: reborrow(observer),
+                        sit,
+                        id,
+                        selected,
+                    };
+                    let step = program.run_situation(dm, sit, &mut cx)?;
+                    let id = cx.id;
+                    match self.take_step(step, sit, id, pipe, perception, actions, observer)? {
+                        Some(next) => goto = next,
+                        None => {
+                            *final_situation = Some(id);
+                            return Ok(());
+                        }
                     }
+                    continue;
                 }
-                continue;
             };
             let here = Some((sit, inst.id));
             // in_arg is a pattern unified with the incoming pipe (D-8, E14).
@@ -528,7 +554,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 Step::GotoSit(next) => return Ok(Some(Goto::Index(next))),
                 Step::Call { call, saved } => {
                     self.frames.last_mut().expect("frame").pending =
-                        Some(Pending::Compiled { sit, saved });
+                        Some(Pending::Compiled { sit, saved, id });
                     self.call_dm(call, here)?;
                     return Ok(Some(Goto::Initial));
                 }
@@ -571,13 +597,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                             return Ok(Some(Goto::Situation(next)));
                         }
                         Some(Pending::Recovery { id }) => return Ok(Some(Goto::Situation(id))),
-                        Some(Pending::Compiled { sit: rsit, saved }) => {
+                        Some(Pending::Compiled {
+                            sit: rsit,
+                            saved,
+                            id: rid,
+                        }) => {
                             let final_id = id;
                             let dm = self.frames.last().expect("caller").dm;
-                            sit = rsit;
-                            id = Term::atom(
-                                program.compiled_id(dm, sit).expect("a compiled situation"),
-                            );
+                            (sit, id) = (rsit, rid);
                             let mut cx = Cx {
                                 m: self,
                                 pipe,
@@ -586,6 +613,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                                 observer: reborrow(observer),
                                 sit,
                                 id,
+                                selected: Some(id),
                             };
                             step = program.run_exit(dm, sit, saved, final_id, &mut cx)?;
                         }
@@ -634,7 +662,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     }
 
     /// Picks the situation to run (D-7, D-21), instantiated unless it is compiled.
-    fn select(&mut self, goto: &Goto) -> Result<(SitIx, Option<Instance>), RunError> {
+    fn select(&mut self, goto: &Goto) -> Result<(SitIx, Selected), RunError> {
         let frame = self.frames.last().expect("a frame is running");
         let (dm, dm_id) = (frame.dm, frame.dm_id);
         match *goto {
@@ -643,7 +671,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     return Err(self.err("the DM has no situations", None, None));
                 }
                 if self.program.compiled_id(dm, 0).is_some() {
-                    return Ok((0, None));
+                    return Ok((0, Selected::Compiled(None)));
                 }
                 let inst = self.program.instantiate(dm, 0, &mut self.store);
                 if !self.store.unify(inst.head, dm_id) {
@@ -656,15 +684,15 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         None,
                     ));
                 }
-                Ok((0, Some(inst)))
+                Ok((0, Selected::Instance(inst)))
             }
             Goto::Index(sit) => {
                 if self.program.compiled_id(dm, sit).is_some() {
-                    return Ok((sit, None));
+                    return Ok((sit, Selected::Compiled(None)));
                 }
                 let inst = self.program.instantiate(dm, sit, &mut self.store);
                 self.link_head(inst.head, dm_id);
-                Ok((sit, Some(inst)))
+                Ok((sit, Selected::Instance(inst)))
             }
             Goto::Situation(value) => {
                 let value = self.store.deref(value);
@@ -678,13 +706,24 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         None,
                     ));
                 }
-                let atom = self.store.atom_of(value);
+                let functor = self.store.functor(value);
                 for sit in 0..self.program.situation_count(dm) as SitIx {
                     if let Some(id) = self.program.compiled_id(dm, sit) {
-                        // An atom id unifies only with that atom.
-                        if atom == Some(id) {
-                            return Ok((sit, None));
+                        if functor != Some(id) {
+                            continue;
                         }
+                        if id.1 == 0 {
+                            // An atom id unifies only with that atom.
+                            return Ok((sit, Selected::Compiled(None)));
+                        }
+                        let mark = self.store.mark();
+                        if self
+                            .program
+                            .select_compiled(dm, sit, value, &mut self.store)
+                        {
+                            return Ok((sit, Selected::Compiled(Some(value))));
+                        }
+                        self.store.undo_to(mark);
                         continue;
                     }
                     if !self.program.may_select(dm, sit, value, &self.store) {
@@ -694,7 +733,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     let inst = self.program.instantiate(dm, sit, &mut self.store);
                     if self.store.unify(inst.id, value) {
                         self.link_head(inst.head, dm_id);
-                        return Ok((sit, Some(inst)));
+                        return Ok((sit, Selected::Instance(inst)));
                     }
                     self.store.undo_to(mark);
                 }
@@ -1088,8 +1127,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             if let Some(Pending::Recovery { id }) = &f.pending {
                 roots.push(*id);
             }
-            if let Some(Pending::Compiled { saved, .. }) = &f.pending {
+            if let Some(Pending::Compiled { saved, id, .. }) = &f.pending {
                 roots.push(*saved);
+                roots.push(*id);
             }
         }
         self.store.gc(&mut roots);
@@ -1114,8 +1154,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             if let Some(Pending::Recovery { id }) = &mut f.pending {
                 *id = it.next().expect("recovery root");
             }
-            if let Some(Pending::Compiled { saved, .. }) = &mut f.pending {
+            if let Some(Pending::Compiled { saved, id, .. }) = &mut f.pending {
                 *saved = it.next().expect("compiled situation root");
+                *id = it.next().expect("compiled situation root");
             }
         }
         self.cells_after_gc = self.store.stats().cells + self.store.stats().vars;
@@ -1136,6 +1177,7 @@ pub struct Cx<'a, 'p, P: DmProgram> {
     observer: Option<&'a mut dyn Observer>,
     sit: SitIx,
     id: Term,
+    selected: Option<Term>,
 }
 
 impl<P: DmProgram> Cx<'_, '_, P> {
@@ -1150,6 +1192,21 @@ impl<P: DmProgram> Cx<'_, '_, P> {
 
     pub fn store(&mut self) -> &mut Store {
         &mut self.m.store
+    }
+
+    /// The value of the next situation that selected this one (its id
+    /// then), or `None` when the situation was entered by index (an atom
+    /// id) or as its DM's initial situation.
+    #[inline]
+    pub fn selected(&self) -> Option<Term> {
+        self.selected
+    }
+
+    /// Sets the situation's id (a compound id built by the situation's code
+    /// when it was not selected by a value).
+    #[inline]
+    pub fn set_id(&mut self, id: Term) {
+        self.id = id;
     }
 
     /// A fresh variable.

@@ -65,14 +65,13 @@ impl Scope {
 }
 
 impl Gen<'_> {
-    /// The situation's id when it is compiled (see the module doc).
-    pub(super) fn compiled_id(&self, dm: &IrDm, s: &IrSituation) -> Option<Atom> {
+    /// The principal functor of the situation's id when it is compiled:
+    /// an atom, or a compound whose arguments are distinct variables (not
+    /// DM parameters) or atomic constants; its type an atom; its DM's head
+    /// parameters distinct variables.
+    pub(super) fn compiled_id(&self, dm: &IrDm, s: &IrSituation) -> Option<(Atom, usize)> {
         let f = self.store.args(s.template);
-        let id = self.store.atom_of(f[ID])?;
         self.store.atom_of(f[TYPE])?;
-        if id == none_marker() {
-            return None;
-        }
         if s.kind == Kind::Recursive && self.store.atom_of(f[EMBEDDED_DM]) == Some(none_marker()) {
             return None;
         }
@@ -83,7 +82,47 @@ impl Gen<'_> {
                 _ => return None,
             }
         }
-        Some(id)
+        match self.store.value(f[ID]) {
+            Value::Atom(a) if a != none_marker() => Some((a, 0)),
+            Value::Compound(name, args) => {
+                for &arg in args {
+                    match self.store.value(arg) {
+                        Value::Var(v) if seen.insert(v.index()) => {}
+                        Value::Atom(_) | Value::Int(_) | Value::Float(_) => {}
+                        _ => return None,
+                    }
+                }
+                Some((name, args.len()))
+            }
+            _ => None,
+        }
+    }
+
+    /// The code of `select_compiled` for a compiled situation with a
+    /// compound id: its constant arguments unified with `value`'s.
+    pub(super) fn select_code(&self, s: &IrSituation) -> Option<TokenStream> {
+        let id = self.store.args(s.template)[ID];
+        let Value::Compound(_, args) = self.store.value(id) else {
+            return None;
+        };
+        let mut checks = Vec::new();
+        for (i, &arg) in args.iter().enumerate() {
+            if matches!(self.store.value(arg), Value::Var(_)) {
+                continue;
+            }
+            let c = self.build_into(arg, &HashMap::new(), false, &mut 0, &mut Vec::new());
+            let i = Literal::usize_unsuffixed(i);
+            checks.push(quote! {
+                let x = store.args(value)[#i];
+                if !store.unify(x, #c) {
+                    return false;
+                }
+            });
+        }
+        if checks.is_empty() {
+            return None;
+        }
+        Some(quote!(#(#checks)* true))
     }
 
     /// Where a constant next situation `name` goes: the index of the first
@@ -96,6 +135,7 @@ impl Gen<'_> {
                 Value::Atom(a) if a == name => {
                     return self.compiled_id(dm, s).map(|_| i as u32);
                 }
+                Value::Compound(..) => {}
                 _ => {}
             }
         }
@@ -383,9 +423,47 @@ impl Gen<'_> {
             _ => None,
         });
         let mut body = Vec::new();
+        // A compound id: the value that selected the situation, else built
+        // with fresh variables (initial situation); its variables are its arguments.
+        let mut id_vars = Vec::new();
+        if let Value::Compound(name, args) = self.store.value(f[ID]) {
+            let mut fresh = Vec::new();
+            let mut parts = Vec::new();
+            for (i, &arg) in args.iter().enumerate() {
+                if let Value::Var(v) = self.store.value(arg) {
+                    id_vars.push((v.index(), i));
+                    let x = format_ident!("x{}", i);
+                    fresh.push(quote!(let #x = cx.var();));
+                    parts.push(quote!(#x));
+                } else {
+                    parts.push(self.build_into(
+                        arg,
+                        &HashMap::new(),
+                        false,
+                        &mut 0,
+                        &mut Vec::new(),
+                    ));
+                }
+            }
+            let f = self.atom_expr(name);
+            body.push(quote! {
+                let id = match cx.selected() {
+                    ::std::option::Option::Some(value) => value,
+                    ::std::option::Option::None => {
+                        #(#fresh)*
+                        let id = cx.compound(#f, &[#(#parts),*]);
+                        cx.set_id(id);
+                        id
+                    }
+                };
+            });
+        }
         for (n, &v) in inst_vars.iter().enumerate() {
             let id = format_ident!("v{}", n);
-            let init = if let Some(i) = head_vars.iter().position(|&h| h == v) {
+            let init = if let Some(&(_, i)) = id_vars.iter().find(|(x, _)| *x == v) {
+                let i = Literal::usize_unsuffixed(i);
+                quote!(cx.arg(id, #i))
+            } else if let Some(i) = head_vars.iter().position(|&h| h == v) {
                 let i = Literal::usize_unsuffixed(i);
                 quote!(cx.head_arg(#i))
             } else if Some(v) == in_var {
