@@ -1402,6 +1402,24 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.m.perform(action, &mut *self.actions, here, arc)
     }
 
+    /// Performs the elements of an evaluated action that is a proper,
+    /// non-empty list, one by one (what [`Cx::perform`] does with such a list).
+    pub fn perform_each(&mut self, elements: &[Term], arc: Option<usize>) -> Result<(), RunError> {
+        for &x in elements {
+            if let Err(e) = self.actions.perform(&self.m.store, x) {
+                return Err(self.error(format!("action failed: {e}"), arc));
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether history entries are observed (kept, or seen by an observer):
+    /// when not, an entry's terms need not be built.
+    #[inline]
+    pub fn records(&self) -> bool {
+        self.m.options.keep_history || self.observer.is_some()
+    }
+
     /// An arc's out_arg: its value becomes the pipe unless it is a variable (D-18).
     pub fn out_arg(&mut self, out: Term, arc: Option<usize>) -> Result<(), RunError> {
         let value = self.eval(out, arc)?;

@@ -385,6 +385,22 @@ impl Gen<'_> {
         seen.extend(vars);
     }
 
+    /// The elements of a non-empty proper list written out in the source.
+    fn list_literal(&self, t: Term) -> Option<Vec<Term>> {
+        let mut items = Vec::new();
+        let mut rest = t;
+        loop {
+            match self.store.value(rest) {
+                Value::Compound(name, &[head, tail]) if name == atoms::DOT => {
+                    items.push(head);
+                    rest = tail;
+                }
+                Value::Atom(a) if a == atoms::NIL && !items.is_empty() => return Some(items),
+                _ => return None,
+            }
+        }
+    }
+
     /// Code of a compiled situation (`ix` in `dm`).
     pub(super) fn situation_code(
         &self,
@@ -744,9 +760,30 @@ impl Gen<'_> {
             let arc_ix = Literal::usize_unsuffixed(i);
             let arc_t = quote!(::std::option::Option::Some(#arc_ix));
             let mut stmts = Vec::new();
-            let action = self.eval_cx(arc[1], &arc_t, &mut sc, &mut stmts);
-            stmts.push(quote!(let action = #action;));
-            stmts.push(quote!(cx.perform(action, #arc_t)?;));
+            match self.list_literal(arc[1]) {
+                // A list of actions, written out: its elements evaluated and
+                // performed in order; the list itself is built only for the
+                // history.
+                Some(items) if !self.inert(arc[1], true) || !self.store.is_ground(arc[1]) => {
+                    let values: Vec<TokenStream> = items
+                        .iter()
+                        .map(|&x| self.eval_cx(x, &arc_t, &mut sc, &mut stmts))
+                        .collect();
+                    stmts.push(quote! {
+                        cx.perform_each(&[#(#values),*], #arc_t)?;
+                        let action = if cx.records() {
+                            cx.store().list(&[#(#values),*])
+                        } else {
+                            #rt::Term::NIL
+                        };
+                    });
+                }
+                _ => {
+                    let action = self.eval_cx(arc[1], &arc_t, &mut sc, &mut stmts);
+                    stmts.push(quote!(let action = #action;));
+                    stmts.push(quote!(cx.perform(action, #arc_t)?;));
+                }
+            }
             let next = self.next_cx(dm, arc[2], &arc_t, &mut sc, &mut stmts);
             stmts.push(quote!(let (next, target) = #next;));
             if let Some(o) = out_arg {
