@@ -4,6 +4,8 @@
 //!   conditional next situation), no history;
 //! - `pipe_calls`: N DM calls passing the pipe (`B is A + 1` in the callee),
 //!   no history;
+//! - `scripted_loop`: a speech situation driven by a script of `tick.`
+//!   inputs (each read and parsed as a term), no history;
 //! - `appendix_a`: the papers' Appendix A example on its script, with history.
 //!
 //! `cargo bench -p sitlog-benches --bench compiled`; the ratios in the README
@@ -22,6 +24,9 @@ mod counter_loop {
 }
 mod pipe_calls {
     sitlog_macros::include_dm!("dms/pipe_calls");
+}
+mod scripted_loop {
+    sitlog_macros::include_dm!("dms/scripted_loop");
 }
 mod appendix_a {
     sitlog_macros::include_dm!("../dms/examples/appendix_a");
@@ -137,6 +142,33 @@ fn hand_pipe_calls(max: i64) -> u64 {
     transitions
 }
 
+/// The hand-written floor for `scripted_loop`: the same script read line by
+/// line, each input compared with the expectations as text (no term is
+/// parsed), the counter an integer.
+fn hand_scripted_loop(script: &str) -> u64 {
+    #[derive(Clone, Copy)]
+    enum St {
+        Is,
+        Fs,
+    }
+    let (mut n, mut st, mut transitions) = (0i64, St::Is, 0u64);
+    let mut lines = script.lines();
+    loop {
+        match st {
+            St::Is => {
+                let input = lines.next().map(|l| l.trim().trim_end_matches('.'));
+                transitions += 1;
+                match input {
+                    Some("tick") => n = black_box(n + 1),
+                    Some("stop") => st = St::Fs,
+                    _ => return transitions,
+                }
+            }
+            St::Fs => return transitions + 1,
+        }
+    }
+}
+
 fn bench(c: &mut Criterion) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let counter_ir = interpreter(&root.join("dms/counter_loop"));
@@ -210,6 +242,54 @@ fn bench(c: &mut Criterion) {
         });
         group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, &n| {
             b.iter(|| hand_pipe_calls(black_box(n)))
+        });
+        group.finish();
+    }
+
+    let scripted_ir = interpreter(&root.join("dms/scripted_loop"));
+    for n in [10_000u64, 100_000] {
+        let (_, script) = sitlog_benches::scripted_loop(n);
+        let mut group = c.benchmark_group("scripted_loop");
+        group
+            .sample_size(10)
+            .measurement_time(Duration::from_secs(3));
+        group.warm_up_time(Duration::from_secs(1));
+        let t = run(
+            scripted_loop::program(),
+            "main",
+            None,
+            &script,
+            false,
+            Functions::standard(),
+        );
+        assert_eq!(t, hand_scripted_loop(&script));
+        group.throughput(Throughput::Elements(t));
+        group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
+            b.iter(|| {
+                run(
+                    scripted_loop::program(),
+                    "main",
+                    None,
+                    &script,
+                    false,
+                    Functions::standard(),
+                )
+            })
+        });
+        group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
+            b.iter(|| {
+                run(
+                    &scripted_ir,
+                    "main",
+                    None,
+                    &script,
+                    false,
+                    Functions::standard(),
+                )
+            })
+        });
+        group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, _| {
+            b.iter(|| hand_scripted_loop(black_box(&script)))
         });
         group.finish();
     }
