@@ -239,8 +239,32 @@ enum Op {
     Copysign,
 }
 
-fn op_table() -> &'static HashMap<(Atom, u32), Op> {
-    static TABLE: OnceLock<HashMap<(Atom, u32), Op>> = OnceLock::new();
+/// A multiplicative hash for the operator table: its keys are small atom
+/// indices, and SipHash showed up in every `is`.
+#[derive(Default)]
+struct AtomHasher(u64);
+
+impl std::hash::Hasher for AtomHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+    fn write_u32(&mut self, i: u32) {
+        self.write_u64(u64::from(i));
+    }
+    fn write_u64(&mut self, i: u64) {
+        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+}
+
+type OpTable = HashMap<(Atom, u32), Op, std::hash::BuildHasherDefault<AtomHasher>>;
+
+fn op_table() -> &'static OpTable {
+    static TABLE: OnceLock<OpTable> = OnceLock::new();
     TABLE.get_or_init(|| {
         use Op::*;
         let defs: &[(&str, u32, Op)] = &[

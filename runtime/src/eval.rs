@@ -134,20 +134,7 @@ fn eval_inner(ctx: &mut EvalCtx<'_>, t: Term) -> Result<Term, EvalError> {
     }
     if arity == 2 && name == n.is {
         let [v, expr] = two(ctx.store, t);
-        let value: Term = ctx
-            .store
-            .eval_arith(expr)
-            .map_err(|e| EvalError::new(format!("in `{}`: {e}", show(ctx.store, t))))?
-            .into();
-        if !ctx.store.unify(v, value) {
-            return Err(EvalError::new(format!(
-                "`{}` fails: `{}` is not {}",
-                show(ctx.store, t),
-                show(ctx.store, v),
-                show(ctx.store, value)
-            )));
-        }
-        return Ok(v);
+        return is(ctx.store, Some(v), expr, Some(t));
     }
     if let Some(result) = builtins::list_operator(ctx.store, name, t) {
         return result;
@@ -230,6 +217,42 @@ pub fn var_op_named(
 pub fn var_op_fresh(ctx: &mut EvalCtx<'_>, op: Atom, name: Atom) -> Result<Term, EvalError> {
     debug_assert!(op == atoms::GET || op == atoms::INC);
     var_op_parts(ctx, op, name, None, None)
+}
+
+/// `V is Expr` (D-33): `Expr` evaluated arithmetically, unified with `V`;
+/// the value is `V`. `whole` is the term `V is Expr` if there is one (it is
+/// built only for an error message otherwise).
+/// `v: None` stands for a fresh variable: the value is returned instead.
+pub fn is(
+    store: &mut Store,
+    v: Option<Term>,
+    expr: Term,
+    whole: Option<Term>,
+) -> Result<Term, EvalError> {
+    let whole = |store: &mut Store| {
+        whole.unwrap_or_else(|| {
+            let v = v.unwrap_or_else(|| store.new_var());
+            store.compound(atoms::IS, &[v, expr])
+        })
+    };
+    let value: Term = match store.eval_arith(expr) {
+        Ok(n) => n.into(),
+        Err(e) => {
+            let t = whole(store);
+            return Err(EvalError::new(format!("in `{}`: {e}", show(store, t))));
+        }
+    };
+    let Some(v) = v else { return Ok(value) };
+    if !store.unify(v, value) {
+        let t = whole(store);
+        return Err(EvalError::new(format!(
+            "`{}` fails: `{}` is not {}",
+            show(store, t),
+            show(store, v),
+            show(store, value)
+        )));
+    }
+    Ok(v)
 }
 
 /// The condition of a conditional, as `(C -> A ; otherwise -> B)` runs it:

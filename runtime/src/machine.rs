@@ -1332,6 +1332,18 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         eval::var_op_fresh(&mut ctx, op, name).map_err(|e| self.error(e.message, arc))
     }
 
+    /// `v is expr` (D-33), both as written (not evaluated); `v: None` for a
+    /// variable that occurs nowhere else yet (the value is returned).
+    #[inline]
+    pub fn is(
+        &mut self,
+        v: Option<Term>,
+        expr: Term,
+        arc: Option<usize>,
+    ) -> Result<Term, RunError> {
+        eval::is(&mut self.m.store, v, expr, None).map_err(|e| self.error(e.message, arc))
+    }
+
     /// A conditional's condition `a op b` with an arithmetic comparison, on evaluated operands.
     #[inline]
     pub fn arith_condition(

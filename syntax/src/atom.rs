@@ -148,8 +148,20 @@ impl Atom {
 
     /// The atom's text.
     pub fn as_str(self) -> &'static str {
-        let guard = interner().read().unwrap_or_else(|e| e.into_inner());
-        guard.names[self.0 as usize]
+        // Names are leaked and never move: each thread keeps its own copy
+        // of the table's prefix and takes the lock only for atoms newer
+        // than its copy (the hot paths ask for the same few names).
+        let i = self.0 as usize;
+        NAMES_SEEN.with(|seen| {
+            if let Some(&name) = seen.borrow().get(i) {
+                return name;
+            }
+            let guard = interner().read().unwrap_or_else(|e| e.into_inner());
+            let mut seen = seen.borrow_mut();
+            let from = seen.len();
+            seen.extend_from_slice(&guard.names[from..]);
+            guard.names[i]
+        })
     }
 
     /// The interner index (stable for the life of the process).
@@ -165,6 +177,11 @@ impl Atom {
 }
 
 const CACHE_SLOTS: usize = 512;
+
+thread_local! {
+    /// This thread's copy of a prefix of the interner's names (see [`Atom::as_str`]).
+    static NAMES_SEEN: std::cell::RefCell<Vec<&'static str>> = const { std::cell::RefCell::new(Vec::new()) };
+}
 
 thread_local! {
     static INTERN_CACHE: std::cell::RefCell<Vec<Option<(&'static str, Atom)>>> =

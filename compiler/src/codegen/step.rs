@@ -258,6 +258,20 @@ impl Gen<'_> {
                 return quote!(#x);
             }
         }
+        if args.len() == 2 && name == atoms::IS {
+            let expr = self.build_cx(args[1], scope, out);
+            if let Value::Var(v) = self.store.value(args[0]) {
+                if scope.lazy.remove(&v.index()) {
+                    let w = scope.vars[&v.index()].clone();
+                    out.push(quote!(let #w = cx.is(::std::option::Option::None, #expr, #arc)?;));
+                    return quote!(#w);
+                }
+            }
+            let lhs = self.build_cx(args[0], scope, out);
+            let x = scope.tmp();
+            out.push(quote!(let #x = cx.is(::std::option::Option::Some(#lhs), #expr, #arc)?;));
+            return quote!(#x);
+        }
         if eval::evaluates_arguments_only(name, args.len()) {
             let values: Vec<TokenStream> = args
                 .iter()
@@ -362,6 +376,22 @@ impl Gen<'_> {
             for part in [c, a, b] {
                 self.lazy_walk(part, depth + 1, seen, lazy);
             }
+            return;
+        }
+        if args.len() == 2 && name == atoms::IS {
+            // The expression is read first, then the variable is bound.
+            let mut vars = Vec::new();
+            self.term_vars(args[1], &mut vars);
+            seen.extend(vars);
+            if let Value::Var(v) = self.store.value(args[0]) {
+                if depth == 0 && seen.insert(v.index()) {
+                    lazy.insert(v.index());
+                }
+                return;
+            }
+            let mut vars = Vec::new();
+            self.term_vars(args[0], &mut vars);
+            seen.extend(vars);
             return;
         }
         if args.len() == 2 && (name == atoms::GET || name == atoms::INC) {
@@ -529,8 +559,12 @@ impl Gen<'_> {
                 .all(|v| linked.contains(v) || !elsewhere.contains(v))
             {
                 let none = quote!(::std::option::Option::None);
-                let value = self.eval_cx(p, &none, &mut scope, &mut body);
-                body.push(quote!(let _ = #value;));
+                // Its value is not used: a list's elements are evaluated, not gathered.
+                let parts = self.list_literal(p).unwrap_or_else(|| vec![p]);
+                for part in parts {
+                    let value = self.eval_cx(part, &none, &mut scope, &mut body);
+                    body.push(quote!(let _ = #value;));
+                }
             } else {
                 let p = self.build_cx(p, &mut scope, &mut body);
                 body.push(quote!(cx.prog(#p, &[#(#links),*])?;));
@@ -573,8 +607,14 @@ impl Gen<'_> {
             }
             Kind::Recursive => {
                 let e = self.field(s, EMBEDDED_DM).expect("checked by compiled_id");
-                let e = self.build_cx(e, &mut scope, &mut body);
-                body.push(quote!(let call = cx.embedded_dm(#e)?;));
+                if self.store.is_ground(e) && self.inert(e, true) {
+                    // Evaluating a constant call changes nothing.
+                    let e = self.build_cx(e, &mut scope, &mut body);
+                    body.push(quote!(let call = #e;));
+                } else {
+                    let e = self.build_cx(e, &mut scope, &mut body);
+                    body.push(quote!(let call = cx.embedded_dm(#e)?;));
+                }
                 // What the exit arcs need of the situation's variables.
                 let mut needed = Vec::new();
                 for t in [Some(f[ARCS]), out_arg, diag_mod].into_iter().flatten() {
