@@ -1113,15 +1113,30 @@ impl<'s> Gen<'s> {
                     }
                 }
 
-                /// Runs a situation that runs as code.
+                /// Runs a situation that runs as code, and the compiled
+                /// situations it goes to by index, until the machine is
+                /// needed (another kind of step, or garbage to collect).
                 pub fn run_situation(
                     p: &super::Program,
                     sit: #rt::machine::SitIx,
                     cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
                 ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
-                    match sit {
-                        #(#run_arms)*
-                        _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
+                    let mut sit = sit;
+                    loop {
+                        let step = match sit {
+                            #(#run_arms)*
+                            _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
+                        }?;
+                        match step {
+                            #rt::machine::Step::GotoSit(next) if !cx.gc_due() => {
+                                let ::std::option::Option::Some((id, 0)) = compiled_id(p, next) else {
+                                    return ::std::result::Result::Ok(step);
+                                };
+                                cx.enter(next, id);
+                                sit = next;
+                            }
+                            _ => return ::std::result::Result::Ok(step),
+                        }
                     }
                 }
 

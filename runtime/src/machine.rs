@@ -470,7 +470,8 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         selected,
                     };
                     let step = program.run_situation(dm, sit, &mut cx)?;
-                    let id = cx.id;
+                    // The code may have gone on to other situations of the DM.
+                    let (sit, id) = (cx.sit, cx.id);
                     match self.take_step(step, sit, id, pipe, perception, actions, observer)? {
                         Some(next) => goto = next,
                         None => {
@@ -1207,6 +1208,23 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     #[inline]
     pub fn set_id(&mut self, id: Term) {
         self.id = id;
+    }
+
+    /// Whether the machine wants control back before the next situation
+    /// (the store has grown enough to be collected). Until then, code may go
+    /// on to a compiled situation of the same DM by itself, after [`Cx::enter`].
+    #[inline]
+    pub fn gc_due(&self) -> bool {
+        let stats = self.m.store.stats();
+        stats.cells + stats.vars >= self.m.cells_after_gc + self.m.options.gc_threshold
+    }
+
+    /// Goes on to compiled situation `sit` of the running DM, whose id is the atom `id`.
+    #[inline]
+    pub fn enter(&mut self, sit: SitIx, id: Atom) {
+        self.sit = sit;
+        self.id = Term::atom(id);
+        self.selected = None;
     }
 
     /// A fresh variable.
