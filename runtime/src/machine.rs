@@ -244,9 +244,19 @@ pub struct Outcome {
 /// situation waiting for its recovery DM.
 #[derive(Debug)]
 enum Pending {
-    Recursive { sit: SitIx, inst: Instance },
-    Compiled { sit: SitIx, saved: Term, id: Term },
-    Recovery { id: Term },
+    /// Its instance is on [`Machine::instances`] (kept out of the frame,
+    /// which stays small to push and pop).
+    Recursive {
+        sit: SitIx,
+    },
+    Compiled {
+        sit: SitIx,
+        saved: Term,
+        id: Term,
+    },
+    Recovery {
+        id: Term,
+    },
 }
 
 #[derive(Debug)]
@@ -284,6 +294,9 @@ pub struct Machine<'p, P: DmProgram> {
     pub functions: Functions,
     pub options: Options,
     frames: Vec<Frame>,
+    /// Instances of the recursive situations waiting for their embedded
+    /// DMs (interpreted path), innermost last.
+    instances: Vec<Instance>,
     /// Reused buffers (no allocation per transition once warm).
     scratch_locals: Vars,
     scratch_globals: Vars,
@@ -320,6 +333,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             functions,
             options,
             frames: Vec::new(),
+            instances: Vec::new(),
             scratch_locals: Vars::new(),
             scratch_globals: Vars::new(),
             arcs: Vec::new(),
@@ -507,7 +521,8 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     };
                     let call = self.eval_read_only(e, here)?;
                     self.frames.last_mut().expect("frame").pending =
-                        Some(Pending::Recursive { sit, inst });
+                        Some(Pending::Recursive { sit });
+                    self.instances.push(inst);
                     self.call_dm(call, here)?;
                     goto = Goto::Initial;
                     continue;
@@ -592,7 +607,8 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         caller.history.push(Item::Nested(frame.history));
                     }
                     match caller.pending.take() {
-                        Some(Pending::Recursive { sit, inst: rinst }) => {
+                        Some(Pending::Recursive { sit }) => {
+                            let rinst = self.instances.pop().expect("a pending instance");
                             let next =
                                 self.finish_recursive(sit, rinst, id, pipe, actions, observer)?;
                             return Ok(Some(Goto::Situation(next)));
@@ -1122,9 +1138,6 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             roots.push(f.dm_id);
             roots.extend(f.locals.entries().iter().map(|e| e.1));
             collect_history_roots(&f.history, &mut roots);
-            if let Some(Pending::Recursive { inst, .. }) = &f.pending {
-                roots.extend(instance_terms(inst));
-            }
             if let Some(Pending::Recovery { id }) = &f.pending {
                 roots.push(*id);
             }
@@ -1132,6 +1145,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 roots.push(*saved);
                 roots.push(*id);
             }
+        }
+        for inst in &self.instances {
+            roots.extend(instance_terms(inst));
         }
         self.store.gc(&mut roots);
         // Write the relocated roots back in the same order.
@@ -1149,9 +1165,6 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 *v = it.next().expect("local root");
             }
             restore_history_roots(&mut f.history, &mut it);
-            if let Some(Pending::Recursive { inst, .. }) = &mut f.pending {
-                set_instance_terms(inst, &mut it);
-            }
             if let Some(Pending::Recovery { id }) = &mut f.pending {
                 *id = it.next().expect("recovery root");
             }
@@ -1159,6 +1172,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 *saved = it.next().expect("compiled situation root");
                 *id = it.next().expect("compiled situation root");
             }
+        }
+        for inst in &mut self.instances {
+            set_instance_terms(inst, &mut it);
         }
         self.cells_after_gc = self.store.stats().cells + self.store.stats().vars;
     }

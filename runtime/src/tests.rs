@@ -636,12 +636,14 @@ mod props {
             let a = build(&mut s, &x, &mut vars);
             let b = build(&mut s, &y, &mut vars);
             let _ = s.unify(a, b);
-            let garbage = build(&mut s, &y, &mut vars);
-            let _ = s.copy_term(garbage);
             let pair = s.compound(Atom::intern("p"), &[a, b]);
+            // Unification without occurs check may have made a cyclic term,
+            // which copy_term and writeq do not handle (see `copy`).
             if !s.is_acyclic(pair) {
                 return Ok(());
             }
+            let garbage = build(&mut s, &y, &mut vars);
+            let _ = s.copy_term(garbage);
             let before = normalize_vars(&s.writeq(pair));
             let mut roots = [pair, a];
             s.gc(&mut roots);
