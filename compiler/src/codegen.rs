@@ -16,8 +16,10 @@
 //!   parameters are variables), a function running a visit as code: a
 //!   `match` on the chosen arc, `get`/`set`/`inc` and conditionals inline,
 //!   constants built once, constant next situations resolved to situation
-//!   indices, DM calls as frames on the machine's stack ([`step`]); every
-//!   step is a call on the runtime's `Cx`, so semantics stay in the runtime;
+//!   indices (the DM's `run_situation` goes on to them by itself until the
+//!   machine is needed), DM calls as frames on the machine's stack
+//!   ([`step`]); every step is a call on the runtime's `Cx`, so semantics
+//!   stay in the runtime;
 //! - for every situation, a function building a fresh instance (D-7) for the
 //!   machine's general path (situations with parameters): fresh variables
 //!   first (in the order a `copy_term` of the interpreter's template would
