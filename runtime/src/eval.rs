@@ -123,9 +123,20 @@ fn eval_inner(ctx: &mut EvalCtx<'_>, t: Term) -> Result<Term, EvalError> {
     }
     if arity == 2 && name == n.equals {
         let [x, y] = two(ctx.store, t);
+        let mark = ctx.store.mark();
         if !ctx.store.unify(x, y) {
             return Err(EvalError::new(format!(
                 "`{}` does not unify with `{}`",
+                show(ctx.store, x),
+                show(ctx.store, y)
+            )));
+        }
+        // A cyclic term could not be copied or printed: refuse to make one
+        // (the original would; SitLog programs have no use for them).
+        if !ctx.store.is_acyclic(x) {
+            ctx.store.undo_to(mark);
+            return Err(EvalError::new(format!(
+                "`{} = {}` would make a cyclic term (a variable inside its own value)",
                 show(ctx.store, x),
                 show(ctx.store, y)
             )));
@@ -573,7 +584,15 @@ fn call_goal_inner(ctx: &mut EvalCtx<'_>, goal: Term) -> Result<bool, EvalError>
         ("fail", 0) | ("false", 0) => false,
         ("==", 2) => ctx.store.identical(args[0], args[1]),
         ("\\==", 2) => !ctx.store.identical(args[0], args[1]),
-        ("=", 2) => ctx.store.unify(args[0], args[1]),
+        // With occurs check: a cyclic term could not be copied or printed.
+        ("=", 2) => {
+            let mark = ctx.store.mark();
+            let u = ctx.store.unify(args[0], args[1]) && ctx.store.is_acyclic(args[0]);
+            if !u {
+                ctx.store.undo_to(mark);
+            }
+            u
+        }
         ("\\=", 2) => {
             let mark = ctx.store.mark();
             let u = ctx.store.unify(args[0], args[1]);

@@ -413,3 +413,16 @@ fn recovery_protocol_runs_then_the_situation_again() {
     ok(&v);
     assert_eq!(steps(&v), ["is yes => got(2)", "fs empty => empty"]);
 }
+
+#[test]
+fn a_cyclic_term_is_an_error_not_a_hang() {
+    // `X = f(X)` would make a term that no copy or print ends on; as a
+    // condition it fails (occurs check), as an action it is an error.
+    let dm = "diag_mod(main, [[id ==> is, type ==> neutral,
+            arcs ==> [empty : [(Y = g(Y) -> no ; otherwise -> yes), X = f(X)] => fs]],
+        [id ==> fs, type ==> final]], []).";
+    let v = run(dm, "");
+    assert_eq!(v["status"], "error");
+    let e = v["error"].as_str().unwrap();
+    assert!(e.contains("would make a cyclic term"), "{e}");
+}
