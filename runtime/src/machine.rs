@@ -802,21 +802,26 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         self.eval_in_frame(copy, here, None).map(|_| ())
     }
 
+    /// What the evaluator sees: the store, the running DM's locals and
+    /// history, the globals and the functions.
+    fn eval_ctx(&mut self) -> EvalCtx<'_> {
+        let frame = self.frames.last_mut().expect("a frame is running");
+        EvalCtx {
+            store: &mut self.store,
+            locals: &mut frame.locals,
+            globals: &mut self.globals,
+            history: &frame.history,
+            functions: &self.functions,
+        }
+    }
+
     fn eval_in_frame(
         &mut self,
         t: Term,
         here: Option<(SitIx, Term)>,
         arc: Option<usize>,
     ) -> Result<Term, RunError> {
-        let frame = self.frames.last_mut().expect("a frame is running");
-        let mut ctx = EvalCtx {
-            store: &mut self.store,
-            locals: &mut frame.locals,
-            globals: &mut self.globals,
-            history: &frame.history,
-            functions: &self.functions,
-        };
-        match eval::eval(&mut ctx, t) {
+        match eval::eval(&mut self.eval_ctx(), t) {
             Ok(v) => Ok(v),
             Err(EvalError { message }) => Err(self.err(message, here, arc)),
         }
@@ -1333,16 +1338,8 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         arg: Term,
         arc: Option<usize>,
     ) -> Result<Term, RunError> {
-        let m = &mut *self.m;
-        let frame = m.frames.last_mut().expect("a frame is running");
-        let mut ctx = EvalCtx {
-            store: &mut m.store,
-            locals: &mut frame.locals,
-            globals: &mut m.globals,
-            history: &frame.history,
-            functions: &m.functions,
-        };
-        eval::var_op_named(&mut ctx, op, name, arg).map_err(|e| self.error(e.message, arc))
+        let r = eval::var_op_named(&mut self.m.eval_ctx(), op, name, arg);
+        r.map_err(|e| self.error(e.message, arc))
     }
 
     /// `op(name, V)` for `op` in `get`, `inc`, where `V` is a variable that
@@ -1354,16 +1351,8 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         name: Atom,
         arc: Option<usize>,
     ) -> Result<Term, RunError> {
-        let m = &mut *self.m;
-        let frame = m.frames.last_mut().expect("a frame is running");
-        let mut ctx = EvalCtx {
-            store: &mut m.store,
-            locals: &mut frame.locals,
-            globals: &mut m.globals,
-            history: &frame.history,
-            functions: &m.functions,
-        };
-        eval::var_op_fresh(&mut ctx, op, name).map_err(|e| self.error(e.message, arc))
+        let r = eval::var_op_fresh(&mut self.m.eval_ctx(), op, name);
+        r.map_err(|e| self.error(e.message, arc))
     }
 
     /// `v is expr` (D-33), both as written (not evaluated); `v: None` for a
@@ -1392,16 +1381,8 @@ impl<P: DmProgram> Cx<'_, '_, P> {
 
     /// Any other condition of a conditional (D-35).
     pub fn condition(&mut self, cond: Term, arc: Option<usize>) -> Result<bool, RunError> {
-        let m = &mut *self.m;
-        let frame = m.frames.last_mut().expect("a frame is running");
-        let mut ctx = EvalCtx {
-            store: &mut m.store,
-            locals: &mut frame.locals,
-            globals: &mut m.globals,
-            history: &frame.history,
-            functions: &m.functions,
-        };
-        eval::condition(&mut ctx, cond).map_err(|e| self.error(e.message, arc))
+        let r = eval::condition(&mut self.m.eval_ctx(), cond);
+        r.map_err(|e| self.error(e.message, arc))
     }
 
     /// Keeps the variables' values, to be put back by [`Cx::restore_vars`]:
