@@ -169,129 +169,96 @@ fn hand_scripted_loop(script: &str) -> u64 {
     }
 }
 
+/// One workload of size `n` on the three runners: compiled code and the
+/// interpreter on the same run (main call, in_arg, script; no history),
+/// and the hand-written floor, which must make as many transitions.
+#[allow(clippy::too_many_arguments)]
+fn three_ways(
+    c: &mut Criterion,
+    name: &str,
+    n: u64,
+    compiled: &impl cli::App,
+    interpreted: &Ir,
+    main: &str,
+    in_arg: Option<&str>,
+    script: &str,
+    hand: impl Fn() -> u64,
+) {
+    let mut group = c.benchmark_group(name);
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(3));
+    group.warm_up_time(Duration::from_secs(1));
+    let t = run(compiled, main, in_arg, script, false, Functions::standard());
+    assert_eq!(
+        t,
+        hand(),
+        "{name}: the hand-written machine makes other transitions"
+    );
+    group.throughput(Throughput::Elements(t));
+    group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
+        b.iter(|| run(compiled, main, in_arg, script, false, Functions::standard()))
+    });
+    group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
+        b.iter(|| {
+            run(
+                interpreted,
+                main,
+                in_arg,
+                script,
+                false,
+                Functions::standard(),
+            )
+        })
+    });
+    group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, _| {
+        b.iter(&hand)
+    });
+    group.finish();
+}
+
 fn bench(c: &mut Criterion) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let counter_ir = interpreter(&root.join("dms/counter_loop"));
     let pipe_ir = interpreter(&root.join("dms/pipe_calls"));
-    for n in [10_000i64, 100_000] {
+    let scripted_ir = interpreter(&root.join("dms/scripted_loop"));
+    for n in [10_000u64, 100_000] {
         let main = format!("main({n})");
-        let mut group = c.benchmark_group("counter_loop");
-        group
-            .sample_size(10)
-            .measurement_time(Duration::from_secs(3));
-        group.warm_up_time(Duration::from_secs(1));
-        let t = run(
+        let max = n as i64;
+        three_ways(
+            c,
+            "counter_loop",
+            n,
             counter_loop::program(),
+            &counter_ir,
             &main,
             None,
             "",
-            false,
-            Functions::standard(),
+            || hand_counter_loop(black_box(max)),
         );
-        assert_eq!(t, hand_counter_loop(n));
-        group.throughput(Throughput::Elements(t));
-        group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
-            b.iter(|| {
-                run(
-                    counter_loop::program(),
-                    &main,
-                    None,
-                    "",
-                    false,
-                    Functions::standard(),
-                )
-            })
-        });
-        group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
-            b.iter(|| run(&counter_ir, &main, None, "", false, Functions::standard()))
-        });
-        group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, &n| {
-            b.iter(|| hand_counter_loop(black_box(n)))
-        });
-        group.finish();
-
-        let mut group = c.benchmark_group("pipe_calls");
-        group
-            .sample_size(10)
-            .measurement_time(Duration::from_secs(3));
-        group.warm_up_time(Duration::from_secs(1));
-        let t = run(
+        three_ways(
+            c,
+            "pipe_calls",
+            n,
             pipe_calls::program(),
+            &pipe_ir,
             &main,
             Some("0"),
             "",
-            false,
-            Functions::standard(),
+            || hand_pipe_calls(black_box(max)),
         );
-        assert_eq!(t, hand_pipe_calls(n));
-        group.throughput(Throughput::Elements(t));
-        group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
-            b.iter(|| {
-                run(
-                    pipe_calls::program(),
-                    &main,
-                    Some("0"),
-                    "",
-                    false,
-                    Functions::standard(),
-                )
-            })
-        });
-        group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
-            b.iter(|| run(&pipe_ir, &main, Some("0"), "", false, Functions::standard()))
-        });
-        group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, &n| {
-            b.iter(|| hand_pipe_calls(black_box(n)))
-        });
-        group.finish();
-    }
-
-    let scripted_ir = interpreter(&root.join("dms/scripted_loop"));
-    for n in [10_000u64, 100_000] {
         let (_, script) = sitlog_benches::scripted_loop(n);
-        let mut group = c.benchmark_group("scripted_loop");
-        group
-            .sample_size(10)
-            .measurement_time(Duration::from_secs(3));
-        group.warm_up_time(Duration::from_secs(1));
-        let t = run(
+        three_ways(
+            c,
+            "scripted_loop",
+            n,
             scripted_loop::program(),
+            &scripted_ir,
             "main",
             None,
             &script,
-            false,
-            Functions::standard(),
+            || hand_scripted_loop(black_box(&script)),
         );
-        assert_eq!(t, hand_scripted_loop(&script));
-        group.throughput(Throughput::Elements(t));
-        group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
-            b.iter(|| {
-                run(
-                    scripted_loop::program(),
-                    "main",
-                    None,
-                    &script,
-                    false,
-                    Functions::standard(),
-                )
-            })
-        });
-        group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
-            b.iter(|| {
-                run(
-                    &scripted_ir,
-                    "main",
-                    None,
-                    &script,
-                    false,
-                    Functions::standard(),
-                )
-            })
-        });
-        group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, _| {
-            b.iter(|| hand_scripted_loop(black_box(&script)))
-        });
-        group.finish();
     }
 
     let app = root.join("../dms/examples/appendix_a");

@@ -273,9 +273,10 @@ struct Frame {
 enum Selected {
     /// Instantiated (D-7), its id unified with the next situation's value.
     Instance(Instance),
-    /// Compiled: `Some(value)` when selected by a next situation's value
-    /// (its id is that value), `None` when entered by index.
-    Compiled(Option<Term>),
+    /// Compiled: `selected` is the next situation's value that selected it
+    /// (then also its id), `None` when entered by index or as the initial one.
+    /// `id` is the atom (or name, for code that builds its compound id).
+    Compiled { id: Term, selected: Option<Term> },
 }
 
 /// Where control goes next in the top frame.
@@ -467,12 +468,8 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             let dm = self.frames.last().expect("a frame is running").dm;
             let inst = match inst {
                 Selected::Instance(inst) => inst,
-                Selected::Compiled(selected) => {
+                Selected::Compiled { id, selected } => {
                     // Compiled code runs the situation; the machine takes the step it returns.
-                    let id = selected.unwrap_or_else(|| {
-                        let (name, _) = program.compiled_id(dm, sit).expect("a compiled situation");
-                        Term::atom(name)
-                    });
                     let mut cx = Cx {
                         m: self,
                         pipe,
@@ -687,8 +684,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 if self.program.situation_count(dm) == 0 {
                     return Err(self.err("the DM has no situations", None, None));
                 }
-                if self.program.compiled_id(dm, 0).is_some() {
-                    return Ok((0, Selected::Compiled(None)));
+                if let Some((name, _)) = self.program.compiled_id(dm, 0) {
+                    let id = Term::atom(name);
+                    return Ok((0, Selected::Compiled { id, selected: None }));
                 }
                 let inst = self.program.instantiate(dm, 0, &mut self.store);
                 if !self.store.unify(inst.head, dm_id) {
@@ -704,8 +702,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 Ok((0, Selected::Instance(inst)))
             }
             Goto::Index(sit) => {
-                if self.program.compiled_id(dm, sit).is_some() {
-                    return Ok((sit, Selected::Compiled(None)));
+                if let Some((name, _)) = self.program.compiled_id(dm, sit) {
+                    let id = Term::atom(name);
+                    return Ok((sit, Selected::Compiled { id, selected: None }));
                 }
                 let inst = self.program.instantiate(dm, sit, &mut self.store);
                 self.link_head(inst.head, dm_id);
@@ -731,14 +730,22 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         }
                         if id.1 == 0 {
                             // An atom id unifies only with that atom.
-                            return Ok((sit, Selected::Compiled(None)));
+                            let id = Term::atom(id.0);
+                            return Ok((sit, Selected::Compiled { id, selected: None }));
                         }
                         let mark = self.store.mark();
                         if self
                             .program
                             .select_compiled(dm, sit, value, &mut self.store)
                         {
-                            return Ok((sit, Selected::Compiled(Some(value))));
+                            let selected = Some(value);
+                            return Ok((
+                                sit,
+                                Selected::Compiled {
+                                    id: value,
+                                    selected,
+                                },
+                            ));
                         }
                         self.store.undo_to(mark);
                         continue;

@@ -728,11 +728,10 @@ impl Gen<'_> {
                     let [#(#imported),*] = #tmp;
                 });
             }
-            let pure = arc[0..1].iter().all(|&e| self.inert(e, true)) && {
-                let mut ev = Vec::new();
-                self.term_vars(arc[0], &mut ev);
-                ev.iter().all(|v| !scope.vars.contains_key(v))
-            };
+            // Nothing to save when the expectation evaluates to itself and
+            // has none of the situation's variables (whose values could).
+            let pure = self.inert(arc[0], true)
+                && in_expectation.iter().all(|v| !scope.vars.contains_key(v));
             arc_scopes.push((arc_vars, lazy, pure));
         }
         // Expectations, with variable updates discarded (D-12).
