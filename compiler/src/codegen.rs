@@ -867,14 +867,6 @@ impl<'s> Gen<'s> {
                 ::std::result::Result::Ok(functions)
             }
 
-            /// The command line of `sitlogc run` (`--main`, `--in-arg`, `--script`,
-            /// `--format`, `--history`, `--trace`) for this program, with the
-            /// given user functions; returns the exit status.
-            #[allow(dead_code)]
-            pub fn main_with(functions: #rt::Functions) -> ::std::process::ExitCode {
-                #rt::cli::main(program(), functions)
-            }
-
             #(#modules)*
         }
     }

@@ -14,7 +14,6 @@ pub mod codegen;
 pub mod diag;
 pub mod interp;
 pub mod ir;
-pub mod kb_functions;
 pub mod load;
 pub mod package;
 pub mod run;

@@ -156,7 +156,12 @@ pub trait Perception {
 /// Basic actions: executed after an arc's action is evaluated.
 pub trait Actions {
     /// Performs one action (an element of an action list, or the action).
-    fn perform(&mut self, store: &Store, action: Term) -> Result<(), String>;
+    ///
+    /// The store is mutable so that an action can report a result by
+    /// binding an unbound argument (`navigate(kitchen, Status)` binds
+    /// `Status`), as the original's robot services do: the arc's next
+    /// situation, out_arg and the history entry then see the binding.
+    fn perform(&mut self, store: &mut Store, action: Term) -> Result<(), String>;
 }
 
 /// Notified of every transition as it happens (for `--trace`).
@@ -1049,11 +1054,20 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             it.tail() == Term::NIL
         };
         let result = if is_list {
-            self.store
-                .list_iter(a)
-                .try_for_each(|x| actions.perform(&self.store, x))
+            // Walked by position: an action may bind variables (and so grow
+            // the store) while the list is performed.
+            let mut rest = a;
+            let mut result = Ok(());
+            while let Some(&[head, tail]) = self.store.compound_args(rest, atoms::DOT, 2) {
+                result = actions.perform(&mut self.store, head);
+                if result.is_err() {
+                    break;
+                }
+                rest = tail;
+            }
+            result
         } else {
-            actions.perform(&self.store, a)
+            actions.perform(&mut self.store, a)
         };
         result.map_err(|e| self.err(format!("action failed: {e}"), here, arc))
     }
@@ -1440,7 +1454,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// non-empty list, one by one (what [`Cx::perform`] does with such a list).
     pub fn perform_each(&mut self, elements: &[Term], arc: Option<usize>) -> Result<(), RunError> {
         for &x in elements {
-            if let Err(e) = self.actions.perform(&self.m.store, x) {
+            if let Err(e) = self.actions.perform(&mut self.m.store, x) {
                 return Err(self.error(format!("action failed: {e}"), arc));
             }
         }

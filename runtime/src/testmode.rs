@@ -163,7 +163,7 @@ impl<W: Write> TextActions<W> {
 }
 
 impl<W: Write> Actions for TextActions<W> {
-    fn perform(&mut self, store: &Store, action: Term) -> Result<(), String> {
+    fn perform(&mut self, store: &mut Store, action: Term) -> Result<(), String> {
         let a = store.deref(action);
         let Some((name, arity)) = store.functor(a) else {
             return Ok(());

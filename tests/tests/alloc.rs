@@ -62,7 +62,7 @@ struct Ticks {
 }
 
 impl Actions for Ticks {
-    fn perform(&mut self, store: &Store, _action: Term) -> Result<(), String> {
+    fn perform(&mut self, store: &mut Store, _action: Term) -> Result<(), String> {
         self.n += 1;
         let stats = store.stats();
         let cells = stats.cells + stats.vars;

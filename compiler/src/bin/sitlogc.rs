@@ -46,43 +46,23 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
-    /// Run an application in test mode, like the original interpreter.
+    /// Run an application: on its simulated world, or in test mode.
     ///
-    /// Each expectation of a perceptual situation is met by a term read from
-    /// the script (one term per line, ending with `.`) or, without --script,
-    /// typed at a prompt on stdin. At the end the task history, the final
-    /// out_arg and the global variables are printed. Exit status: 0 when the
-    /// main DM reached a final situation, 1 on a run-time error (the history
-    /// so far is still printed), 2 on usage or I/O problems.
+    /// With a world (the application's `world.toml`, or --world FILE) the
+    /// task runs on the simulated robot and user, and the conversation is
+    /// printed as it happens. Without one it runs in test mode, like the
+    /// original interpreter: each expectation of a perceptual situation is
+    /// met by a term read from the script (one term per line, ending with
+    /// `.`) or typed at a prompt on stdin. At the end the task history, the
+    /// final out_arg and the global variables are printed. Exit status: 0
+    /// when the main DM reached a final situation, 1 on a run-time error
+    /// (the history so far is still printed), 2 on usage or I/O problems.
     Run {
         /// The application directory (or a single DM file).
         #[arg(value_name = "APP")]
         app: PathBuf,
-        /// The DM to start, as a term (it may have arguments).
-        #[arg(long, default_value = "main", value_name = "DM")]
-        main: String,
-        /// The initial pipe value, as a term (default: the atom `none`).
-        #[arg(long, value_name = "TERM", allow_hyphen_values = true)]
-        in_arg: Option<String>,
-        /// Read the inputs of test mode from FILE instead of stdin.
-        #[arg(long, value_name = "FILE")]
-        script: Option<PathBuf>,
-        /// `text`: the papers' history listing; `json`: one JSON object on stdout.
-        #[arg(long, value_enum, default_value_t = RunFormat::Text)]
-        format: RunFormat,
-        /// `none` keeps no history, so that a long task runs in bounded memory.
-        #[arg(long, value_enum, default_value_t = HistoryMode::Keep)]
-        history: HistoryMode,
-        /// Write one JSON object per transition to FILE as it happens.
-        #[arg(long, value_name = "FILE")]
-        trace: Option<PathBuf>,
-        /// A knowledge base whose services become user functions
-        /// (`apply(object_property_value(I, P), [pete, lives])`).
-        #[arg(long, value_name = "FILE")]
-        kb: Option<PathBuf>,
-        /// Write every successful KB update back to the --kb file (atomically).
-        #[arg(long, requires = "kb")]
-        kb_persist: bool,
+        #[command(flatten)]
+        run: sitlog_robot::cli::RunArgs,
         /// Run even if next situations, embedded DMs, exit arcs or SitLog
         /// variables do not resolve (E0212, E0216–E0219); taking such a path
         /// stops the task with a run-time error. For legacy applications.
@@ -139,18 +119,6 @@ enum Emit {
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
-enum RunFormat {
-    Text,
-    Json,
-}
-
-#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
-enum HistoryMode {
-    Keep,
-    None,
-}
-
-#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
 enum Format {
     Human,
     Json,
@@ -193,27 +161,9 @@ fn run(cli: Cli) -> u8 {
         } => check(&paths, format, deny_warnings, quiet),
         Command::Run {
             app,
-            main,
-            in_arg,
-            script,
-            format,
-            history,
-            trace,
-            kb,
-            kb_persist,
+            run,
             allow_unresolved,
-        } => run_app(RunArgs {
-            app,
-            main,
-            in_arg,
-            script,
-            format,
-            keep_history: history == HistoryMode::Keep,
-            trace,
-            kb,
-            kb_persist,
-            allow_unresolved,
-        }),
+        } => run_app(&app, &run, allow_unresolved),
         Command::Build {
             app,
             output,
@@ -324,35 +274,17 @@ fn build_app(
     }
 }
 
-struct RunArgs {
-    app: PathBuf,
-    main: String,
-    in_arg: Option<String>,
-    script: Option<PathBuf>,
-    format: RunFormat,
-    keep_history: bool,
-    trace: Option<PathBuf>,
-    kb: Option<PathBuf>,
-    kb_persist: bool,
-    allow_unresolved: bool,
-}
-
-fn run_app(args: RunArgs) -> u8 {
-    use sitlog_runtime::cli::{self, Format};
-    let ir = match checked_ir_with(&args.app, args.allow_unresolved) {
+fn run_app(app: &std::path::Path, args: &sitlog_robot::cli::RunArgs, allow_unresolved: bool) -> u8 {
+    let ir = match checked_ir_with(app, allow_unresolved) {
         Ok(ir) => ir,
         Err(code) => return code,
     };
-    let run_args = cli::RunArgs {
-        main: args.main,
-        in_arg: args.in_arg,
-        script: args.script,
-        format: match args.format {
-            RunFormat::Text => Format::Text,
-            RunFormat::Json => Format::Json,
-        },
-        keep_history: args.keep_history,
-        trace: args.trace,
+    let assets = match sitlog_robot::Assets::from_app(app) {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
     };
     #[allow(unused_mut)]
     let mut functions = sitlog_runtime::Functions::standard();
@@ -366,22 +298,7 @@ fn run_app(args: RunArgs) -> u8 {
         }
         return 1;
     }
-    if let Some(path) = &args.kb {
-        let kb = match sitlog_kb::Kb::load(path) {
-            Ok(kb) => kb,
-            Err(e) => {
-                eprintln!("error: {e}");
-                return 2;
-            }
-        };
-        let persist = args.kb_persist.then(|| path.clone());
-        sitlog_compiler::kb_functions::register(
-            &mut functions,
-            std::sync::Arc::new(std::sync::Mutex::new(kb)),
-            persist,
-        );
-    }
-    cli::execute(&ir, functions, &run_args)
+    sitlog_robot::execute(&ir, functions, args, &assets)
 }
 
 fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool) -> u8 {

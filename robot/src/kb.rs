@@ -6,6 +6,7 @@
 //! `u(A1..An)` becomes `u/n` and gives `true` or `false`; with a
 //! persistence path, every successful update is written to disk atomically.
 
+use crate::console::SharedConsole;
 use sitlog_kb::{Kb, Outcome, SERVICES, UPDATES};
 use sitlog_runtime::functions::FnCall;
 use sitlog_runtime::{Atom, Functions, Term};
@@ -27,6 +28,17 @@ fn call_text(call: &FnCall<'_>, name: &str, args: &[Term], answer: bool) -> Stri
 
 /// Registers every KB query and update service in `functions`.
 pub fn register(functions: &mut Functions, kb: SharedKb, persist: Option<PathBuf>) {
+    register_with(functions, kb, persist, None)
+}
+
+/// [`register`], narrating every update that changes the KB on `console`
+/// (`KB: add_object_property(user,tired,yes)`).
+pub fn register_with(
+    functions: &mut Functions,
+    kb: SharedKb,
+    persist: Option<PathBuf>,
+    console: Option<SharedConsole>,
+) {
     for service in SERVICES {
         let kb = kb.clone();
         let name = service.name;
@@ -46,6 +58,7 @@ pub fn register(functions: &mut Functions, kb: SharedKb, persist: Option<PathBuf
         let kb = kb.clone();
         let persist = persist.clone();
         let name = update.name;
+        let console = console.clone();
         functions.register(name, update.arity, move |call, args| {
             let text = call_text(call, name, args, false);
             let mut kb = kb
@@ -60,6 +73,13 @@ pub fn register(functions: &mut Functions, kb: SharedKb, persist: Option<PathBuf
                     .map_err(|e| format!("{text}: {e}"))?,
                 None => kb.update(&clause).map_err(|e| format!("{text}: {e}"))?,
             };
+            if changed {
+                if let Some(console) = &console {
+                    if let Ok(mut c) = console.lock() {
+                        c.narrate(&format!("KB: {text}"));
+                    }
+                }
+            }
             Ok(Term::atom(if changed {
                 sitlog_syntax::atoms::TRUE
             } else {

@@ -1,0 +1,500 @@
+//! The command line of a task run, shared by `sitlogc run` (which adds the
+//! application and its own options around [`RunArgs`]) and by compiled
+//! tasks ([`main`]). The option set and the output contract are the notes'
+//! "Our convention for `sitlogc run` output", plus the robot's options:
+//! `--world`, `--no-world`, `--seed`, `--kb`, `--kb-persist`, `--quiet`.
+//!
+//! What runs the task:
+//! - with a world (the application's `world.toml`, `--world FILE`, or one
+//!   embedded in a compiled task) and without `--no-world`: the simulated
+//!   robot and user ([`crate::robot`]); the transcript (the conversation and
+//!   narration) goes to stdout before the text report, to stderr with
+//!   `--format json`;
+//! - without one: test mode, as the original's: inputs from `--script` or
+//!   typed at a prompt, actions rendered on stderr.
+
+use crate::console::{Console, SharedConsole};
+use crate::kb;
+use clap::{Args, CommandFactory, FromArgMatches, Parser, ValueEnum};
+use sitlog_runtime::cli::{run, App};
+use sitlog_runtime::history::Entry;
+use sitlog_runtime::machine::{Actions, Observer, Options, Perception};
+use sitlog_runtime::report;
+use sitlog_runtime::testmode::{PromptPerception, ScriptPerception, TextActions};
+use sitlog_runtime::{Functions, Store, Term};
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+/// Output format of a run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// The papers' history listing, then `Out Arg:` and `Out Global Vars:`.
+    Text,
+    /// One JSON object on stdout.
+    Json,
+}
+
+/// Whether the task history is kept.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum HistoryMode {
+    Keep,
+    None,
+}
+
+/// The options of a run (after the application).
+#[derive(Args, Clone, Debug, PartialEq, Eq)]
+pub struct RunArgs {
+    /// The DM to start, as a term (it may have arguments).
+    #[arg(long, default_value = "main", value_name = "DM")]
+    pub main: String,
+    /// The initial pipe value, as a term (default: the atom `none`).
+    #[arg(long, value_name = "TERM", allow_hyphen_values = true)]
+    pub in_arg: Option<String>,
+    /// Test mode: read the inputs from FILE (one term per line, ending with
+    /// `.`) instead of a prompt on stdin. Not with a world.
+    #[arg(long, value_name = "FILE")]
+    pub script: Option<PathBuf>,
+    /// `text`: the papers' history listing; `json`: one JSON object on stdout.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+    /// `none` keeps no history, so that a long task runs in bounded memory.
+    #[arg(long, value_enum, default_value_t = HistoryMode::Keep)]
+    pub history: HistoryMode,
+    /// Write one JSON object per transition to FILE as it happens.
+    #[arg(long, value_name = "FILE")]
+    pub trace: Option<PathBuf>,
+    /// A knowledge base whose services become user functions
+    /// (`apply(object_property_value(I, P), [pete, lives])`); default: the
+    /// application's `knowledge.kb`, if it has one.
+    #[arg(long, value_name = "FILE")]
+    pub kb: Option<PathBuf>,
+    /// Write every successful KB update back to the --kb file (atomically).
+    #[arg(long)]
+    pub kb_persist: bool,
+    /// Run on the simulated world of FILE (default: the application's
+    /// `world.toml`, if it has one).
+    #[arg(long, value_name = "FILE", conflicts_with = "no_world")]
+    pub world: Option<PathBuf>,
+    /// Run in test mode even if the application has a world.
+    #[arg(long)]
+    pub no_world: bool,
+    /// The seed of the simulated world (default: the world file's `seed`, else 0).
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
+    /// No progress indicator and no narration lines (the conversation stays).
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+impl Default for RunArgs {
+    fn default() -> RunArgs {
+        RunArgs {
+            main: "main".to_owned(),
+            in_arg: None,
+            script: None,
+            format: Format::Text,
+            history: HistoryMode::Keep,
+            trace: None,
+            kb: None,
+            kb_persist: false,
+            world: None,
+            no_world: false,
+            seed: None,
+            quiet: false,
+        }
+    }
+}
+
+/// A file a task carries: its name (for messages) and its text.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Source {
+    pub name: String,
+    pub text: String,
+}
+
+/// What an application brings besides its DMs: its name, its world and its
+/// KB. `sitlogc run` reads them from the application directory; a compiled
+/// task embeds them.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Assets {
+    pub app_name: String,
+    /// `world.toml`.
+    pub world: Option<Source>,
+    /// `knowledge.kb`.
+    pub kb: Option<Source>,
+}
+
+/// The world file of an application directory.
+pub const WORLD_FILE: &str = "world.toml";
+/// The KB file of an application directory.
+pub const KB_FILE: &str = "knowledge.kb";
+
+impl Assets {
+    /// The assets of an application directory (or of the directory of a DM
+    /// file): `world.toml` and `knowledge.kb` where present.
+    pub fn from_app(app: &Path) -> Result<Assets, String> {
+        let dir = if app.is_dir() {
+            app.to_path_buf()
+        } else {
+            app.parent().map(Path::to_path_buf).unwrap_or_default()
+        };
+        let read = |file: &str| -> Result<Option<Source>, String> {
+            let path = dir.join(file);
+            if !path.is_file() {
+                return Ok(None);
+            }
+            std::fs::read(&path)
+                .map_err(|e| format!("cannot read {}: {e}", path.display()))
+                .map(|bytes| {
+                    Some(Source {
+                        name: path.display().to_string(),
+                        text: String::from_utf8_lossy(&bytes).into_owned(),
+                    })
+                })
+        };
+        Ok(Assets {
+            app_name: app_name(app),
+            world: read(WORLD_FILE)?,
+            kb: read(KB_FILE)?,
+        })
+    }
+}
+
+/// The name of an application: its directory's (real) name, or the DM
+/// file's stem.
+pub fn app_name(app: &Path) -> String {
+    let app = std::fs::canonicalize(app).unwrap_or_else(|_| app.to_path_buf());
+    let name = if app.is_dir() {
+        app.file_name()
+    } else {
+        app.file_stem()
+    };
+    name.map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "app".to_owned())
+}
+
+/// Where a run writes: the report (stdout), messages and test-mode action
+/// renderings (stderr), and whether each is a terminal.
+pub struct Streams {
+    pub stdout: Box<dyn Write + Send>,
+    pub stderr: Box<dyn Write + Send>,
+    pub stdout_is_terminal: bool,
+    pub stderr_is_terminal: bool,
+}
+
+impl Streams {
+    /// The process's own stdout and stderr.
+    pub fn process() -> Streams {
+        Streams {
+            stdout_is_terminal: std::io::stdout().is_terminal(),
+            stderr_is_terminal: std::io::stderr().is_terminal(),
+            stdout: Box::new(std::io::stdout()),
+            stderr: Box::new(std::io::stderr()),
+        }
+    }
+}
+
+/// Runs `app` as `sitlogc run` does on the process's streams; returns the
+/// exit status (0 ok, 1 run-time error, 2 usage or I/O problem).
+pub fn execute<A: App>(app: &A, functions: Functions, args: &RunArgs, assets: &Assets) -> u8 {
+    execute_with(app, functions, args, assets, Streams::process())
+}
+
+/// Counts transitions on the console (the progress indicator).
+struct Progress<'a> {
+    console: &'a SharedConsole,
+}
+
+impl Observer for Progress<'_> {
+    fn transition(&mut self, store: &Store, entry: &Entry, depth: usize, _next: Option<Term>) {
+        if let Ok(mut c) = self.console.lock() {
+            c.tick(|| {
+                format!(
+                    "{}{} / {}",
+                    "  ".repeat(depth.min(8)),
+                    store.writeq(entry.dm),
+                    store.writeq(entry.situation)
+                )
+            });
+        }
+    }
+}
+
+/// Several observers as one.
+struct Fanout<'a>(Vec<&'a mut dyn Observer>);
+
+impl Observer for Fanout<'_> {
+    fn transition(&mut self, store: &Store, entry: &Entry, depth: usize, next: Option<Term>) {
+        for o in &mut self.0 {
+            o.transition(store, entry, depth, next);
+        }
+    }
+}
+
+/// [`execute`] on the given streams.
+pub fn execute_with<A: App>(
+    app: &A,
+    mut functions: Functions,
+    args: &RunArgs,
+    assets: &Assets,
+    mut streams: Streams,
+) -> u8 {
+    macro_rules! fail {
+        ($code:expr, $($msg:tt)*) => {{
+            let _ = writeln!(streams.stderr, $($msg)*);
+            return $code;
+        }};
+    }
+    // The world, if any.
+    let world: Option<Source> = if args.no_world {
+        None
+    } else if let Some(path) = &args.world {
+        match std::fs::read(path) {
+            Ok(bytes) => Some(Source {
+                name: path.display().to_string(),
+                text: String::from_utf8_lossy(&bytes).into_owned(),
+            }),
+            Err(e) => fail!(2, "error: cannot read world {}: {e}", path.display()),
+        }
+    } else {
+        assets.world.clone()
+    };
+    if world.is_some() && args.script.is_some() {
+        fail!(
+            2,
+            "error: --script gives test-mode inputs, but this run has a world; pass --no-world to run in test mode"
+        );
+    }
+    let json = args.format == Format::Json;
+    // The transcript: stdout before the text report, stderr with JSON.
+    let with_world = world.is_some();
+    let progress = !args.quiet && streams.stdout_is_terminal && streams.stderr_is_terminal;
+    let transcript_out: Box<dyn Write + Send> = if !with_world {
+        Box::new(std::io::sink())
+    } else if json {
+        std::mem::replace(&mut streams.stderr, Box::new(std::io::stderr()))
+    } else {
+        std::mem::replace(&mut streams.stdout, Box::new(std::io::sink()))
+    };
+    let console = Console::new(transcript_out, progress, !args.quiet).shared();
+
+    // The KB.
+    let kb_source = match &args.kb {
+        Some(path) => match sitlog_kb::Kb::load(path) {
+            Ok(kb) => Some((kb, Some(path.clone()))),
+            Err(e) => fail!(2, "error: {e}"),
+        },
+        None => match &assets.kb {
+            Some(src) => match sitlog_kb::Kb::parse(&src.text, &src.name) {
+                Ok(kb) => Some((kb, None)),
+                Err(e) => fail!(2, "error: {e}"),
+            },
+            None => None,
+        },
+    };
+    if args.kb_persist && kb_source.as_ref().is_none_or(|(_, p)| p.is_none()) {
+        fail!(
+            2,
+            "error: --kb-persist needs a KB file to write to: pass --kb FILE"
+        );
+    }
+    if let Some((kb_value, path)) = kb_source {
+        let persist = if args.kb_persist { path } else { None };
+        let narrate = with_world.then(|| console.clone());
+        kb::register_with(
+            &mut functions,
+            Arc::new(Mutex::new(kb_value)),
+            persist,
+            narrate,
+        );
+    }
+
+    // Perception and actions: the simulated robot, or test mode.
+    let mut io: (Box<dyn Perception>, Box<dyn Actions>) = match &world {
+        #[cfg(feature = "sim")]
+        Some(world) => {
+            match crate::robot::SimRobot::from_source(world, args.seed, console.clone()) {
+                Ok(robot) => {
+                    let (senses, effectors) = robot.split();
+                    (Box::new(senses), Box::new(effectors))
+                }
+                Err(e) => fail!(2, "{e}"),
+            }
+        }
+        #[cfg(not(feature = "sim"))]
+        Some(world) => fail!(
+            2,
+            "error: {} is a world, but this task was built without the simulator (feature `sim` of sitlog-robot)",
+            world.name
+        ),
+        None => {
+            let perception: Box<dyn Perception> = match &args.script {
+                Some(path) => match std::fs::read(path) {
+                    Ok(bytes) => Box::new(ScriptPerception::new(
+                        path.display().to_string(),
+                        String::from_utf8_lossy(&bytes).into_owned(),
+                    )),
+                    Err(e) => fail!(2, "error: cannot read script {}: {e}", path.display()),
+                },
+                None => Box::new(PromptPerception::new(std::io::stdin().lock())),
+            };
+            let actions = Box::new(TextActions::new(std::io::stderr(), app.basic_actions()));
+            (perception, actions)
+        }
+    };
+
+    let mut trace = match &args.trace {
+        Some(path) => match std::fs::File::create(path) {
+            Ok(f) => Some(report::JsonTrace::new(std::io::BufWriter::new(f))),
+            Err(e) => fail!(2, "error: cannot create trace file {}: {e}", path.display()),
+        },
+        None => None,
+    };
+    let shows_progress = console.lock().map(|c| c.shows_progress()).unwrap_or(false);
+    let mut progress_observer = Progress { console: &console };
+    let mut observers: Vec<&mut dyn Observer> = Vec::new();
+    if let Some(t) = trace.as_mut() {
+        observers.push(t);
+    }
+    if shows_progress {
+        observers.push(&mut progress_observer);
+    }
+    let mut fanout = Fanout(observers);
+    let observer: Option<&mut dyn Observer> = match fanout.0.len() {
+        0 => None,
+        _ => Some(&mut fanout),
+    };
+    let options = Options {
+        keep_history: args.history == HistoryMode::Keep,
+        ..Options::default()
+    };
+
+    let result = run(
+        app,
+        &args.main,
+        args.in_arg.as_deref(),
+        options,
+        functions,
+        io.0.as_mut(),
+        io.1.as_mut(),
+        observer,
+    );
+    let (outcome, mut store) = match result {
+        Ok(r) => r,
+        Err(e) => {
+            if let Ok(mut c) = console.lock() {
+                c.finish();
+            }
+            fail!(2, "error: {e}")
+        }
+    };
+    let transcript_error = console.lock().ok().and_then(|mut c| c.finish());
+    drop(fanout);
+    if let Some(t) = trace {
+        drop(t);
+    }
+    let report = match args.format {
+        Format::Json => format!("{}\n", report::outcome_json(&store, &outcome)),
+        Format::Text => report::outcome_text(&mut store, &outcome),
+    };
+    let written = streams
+        .stdout
+        .write_all(report.as_bytes())
+        .and_then(|_| streams.stdout.flush());
+    match written {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+        Err(e) => fail!(2, "error: cannot write the report: {e}"),
+        Ok(()) => {}
+    }
+    if let Some(e) = transcript_error {
+        fail!(2, "error: cannot write the transcript: {e}");
+    }
+    if let Err(e) = &outcome.result {
+        let _ = writeln!(streams.stderr, "error: {e}");
+        1
+    } else {
+        0
+    }
+}
+
+/// The command line of a compiled task.
+#[derive(Parser, Debug)]
+struct TaskCli {
+    #[command(flatten)]
+    run: RunArgs,
+}
+
+/// The `main` of a compiled task: parses `std::env::args` (clap, the
+/// options of `sitlogc run`, named after the application), runs on a thread
+/// with a big stack (as `sitlogc` does), returns the exit status.
+pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::process::ExitCode {
+    let name = if assets.app_name.is_empty() {
+        "task".to_owned()
+    } else {
+        assets.app_name.clone()
+    };
+    let about = format!(
+        "The SitLog task `{name}`, compiled. Runs it on its world when it has one, else in test mode."
+    );
+    let command = TaskCli::command()
+        .name(name.clone())
+        .bin_name(name)
+        .about(about)
+        .version(env!("CARGO_PKG_VERSION"));
+    let args = match command
+        .try_get_matches()
+        .and_then(|m| TaskCli::from_arg_matches(&m))
+    {
+        Ok(cli) => cli.run,
+        Err(e) => {
+            let _ = e.print();
+            return match e.kind() {
+                clap::error::ErrorKind::DisplayHelp | clap::error::ErrorKind::DisplayVersion => {
+                    std::process::ExitCode::SUCCESS
+                }
+                _ => std::process::ExitCode::from(2),
+            };
+        }
+    };
+    let code = std::thread::scope(|s| {
+        std::thread::Builder::new()
+            .stack_size(256 * 1024 * 1024)
+            .spawn_scoped(s, || execute(app, functions, &args, assets))
+            .map(|h| h.join().unwrap_or(101))
+            .unwrap_or(101)
+    });
+    std::process::ExitCode::from(code)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn options_parse() {
+        let cli = TaskCli::try_parse_from([
+            "t",
+            "--main",
+            "m(1)",
+            "--in-arg=-3",
+            "--format",
+            "json",
+            "--history",
+            "none",
+            "--script",
+            "s.txt",
+        ])
+        .unwrap();
+        let a = cli.run;
+        assert_eq!(a.main, "m(1)");
+        assert_eq!(a.in_arg.as_deref(), Some("-3"));
+        assert_eq!(a.format, Format::Json);
+        assert_eq!(a.history, HistoryMode::None);
+        assert_eq!(a.script, Some(PathBuf::from("s.txt")));
+        assert!(TaskCli::try_parse_from(["t", "--format", "xml"]).is_err());
+        assert!(TaskCli::try_parse_from(["t", "--main"]).is_err());
+        assert!(TaskCli::try_parse_from(["t", "app"]).is_err());
+        assert!(TaskCli::try_parse_from(["t", "--world", "w", "--no-world"]).is_err());
+    }
+}

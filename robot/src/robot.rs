@@ -1,0 +1,1 @@
+//! The simulated robot (feature `sim`): written once `sitlog-sim` lands.
