@@ -262,7 +262,8 @@ impl Physics {
         }
     }
 
-    fn awake(&self) -> Vec<usize> {
+    /// The objects whose bodies are awake (still moving).
+    pub fn awake(&self) -> Vec<usize> {
         (0..self.objects.len())
             .filter(|&i| match self.objects[i] {
                 Some((b, _)) => self.world.bodies.get(b).is_some_and(|b| !b.is_sleeping()),
@@ -322,7 +323,7 @@ impl Physics {
             };
             let d = target - origin;
             let dist = d.length();
-            if !(dist > 1e-6) {
+            if dist.is_nan() || dist <= 1e-6 {
                 continue;
             }
             let ray = Ray::new(origin, d / dist);

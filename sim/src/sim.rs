@@ -213,6 +213,21 @@ impl Sim {
         self.physics.position(self.world.object_index(object)?)
     }
 
+    /// The board of a shelf, in world coordinates.
+    pub fn shelf_board(&self, shelf: &str) -> Option<&crate::physics::Board> {
+        Some(&self.physics.boards()[self.world.shelf_index(shelf)?])
+    }
+
+    /// The objects whose bodies have not come to rest (normally none: every
+    /// action settles the physics).
+    pub fn moving_objects(&self) -> Vec<&str> {
+        self.physics
+            .awake()
+            .into_iter()
+            .map(|o| self.world.objects[o].name.as_str())
+            .collect()
+    }
+
     /// How many of the user's utterances are still to be heard.
     pub fn utterances_left(&self) -> usize {
         self.world.user.says.len() - self.next_utterance

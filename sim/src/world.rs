@@ -175,11 +175,11 @@ impl World {
     pub fn parse(file_name: &str, text: &str) -> Result<World, Vec<WorldError>> {
         let mut cx = Cx::new(file_name, text);
         let (doc, syntax) = DeTable::parse_recoverable(text);
-        if !syntax.is_empty() {
-            for e in syntax {
-                let at = e.span().map(|s| s.start).unwrap_or(0);
-                cx.err(at, format!("not valid TOML: {}", e.message()));
-            }
+        // Only the first syntax error: the parser's recovery after it often
+        // reports errors that are not there (a `duplicate key` further down).
+        if let Some(e) = syntax.first() {
+            let at = e.span().map(|s| s.start).unwrap_or(0);
+            cx.err(at, format!("not valid TOML: {}", e.message()));
             return Err(cx.finish());
         }
         let world = read_world(&mut cx, &doc);
@@ -565,10 +565,22 @@ impl<'t> Cx<'t> {
                 v: n,
                 at: v.span().start,
             }),
-            Some(_) => {
+            Some(n) => {
+                let found = match n {
+                    Some(n) => n.to_string(),
+                    None => "a number too big".to_string(),
+                };
+                let least = if lo == i64::MIN {
+                    String::new()
+                } else {
+                    format!(" of at least {lo}")
+                };
                 self.err(
                     v.span().start,
-                    format!("`{key}` in {} must be an integer of at least {lo}", t.label),
+                    format!(
+                        "`{key}` in {} must be an integer{least}, found {found}",
+                        t.label
+                    ),
                 );
                 None
             }
