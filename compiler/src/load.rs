@@ -133,12 +133,111 @@ fn add_file_by_role(
             ast::build_expectation_types(file, clauses, &mut program.expectation_types, diags)
         }
         RECOVERY => ast::build_recovery(file, clauses, &mut program.recovery, diags),
-        n if PROLOG_FILES.contains(&n) => {
-            ast::build_function_heads(file, &clauses, &mut program.functions);
-            program.prolog_files.push(file);
-        }
+        n if PROLOG_FILES.contains(&n) => add_prolog_file(program, file, clauses, diags, 0),
         _ => ast::build_dms(file, clauses, &mut program.dms, diags),
     }
+}
+
+/// Adds a Prolog file and, before it, the files it consults by relative
+/// name (`:- consult(F)`, `:- ensure_loaded(F)`, `:- [F, ...]`), so that the
+/// checker knows their predicates and a compiled task embeds them: one
+/// binary, no file read at run time. A consulted file that is missing, or
+/// named through `$SITLOG_HOME`, is left to the Prolog loader, which
+/// reports it with its position.
+fn add_prolog_file(
+    program: &mut Program,
+    file: FileId,
+    clauses: Vec<Clause>,
+    diags: &mut Vec<Diagnostic>,
+    depth: usize,
+) {
+    let dir = program
+        .sources
+        .get(file)
+        .path
+        .parent()
+        .map(Path::to_path_buf);
+    if let Some(dir) = dir.filter(|_| depth < 32) {
+        for name in consulted(&clauses) {
+            if name.starts_with('$') || Path::new(&name).is_absolute() {
+                continue;
+            }
+            let mut path = dir.join(&name);
+            if !path.is_file() {
+                path.as_mut_os_string().push(".pl");
+            }
+            let path = normalize(&path);
+            let known = program
+                .prolog_files
+                .iter()
+                .any(|&f| normalize(&program.sources.get(f).path) == path);
+            if known || !path.is_file() {
+                continue;
+            }
+            if let Ok(id) = read_text(&path, program, diags) {
+                let clauses = read_file_clauses(program, id, diags);
+                add_prolog_file(program, id, clauses, diags, depth + 1);
+            }
+        }
+    }
+    ast::build_function_heads(file, &clauses, &mut program.functions);
+    program.prolog_files.push(file);
+}
+
+/// The file names of the consult directives among `clauses`.
+fn consulted(clauses: &[Clause]) -> Vec<String> {
+    let neck = sitlog_syntax::Atom::intern(":-");
+    let mut out = Vec::new();
+    for c in clauses {
+        let t = &c.terms;
+        let Some(&[goal]) = t.compound(c.root, neck, 1) else {
+            continue;
+        };
+        let list = match t.functor(goal) {
+            Some((f, 1)) if f.as_str() == "consult" || f.as_str() == "ensure_loaded" => {
+                t.args(goal)[0]
+            }
+            Some((f, 2)) if f.as_str() == "." => goal,
+            _ => continue,
+        };
+        let mut item = list;
+        loop {
+            if let Some(a) = t.atom(item) {
+                if a.as_str() != "[]" {
+                    out.push(a.as_str().to_owned());
+                }
+                break;
+            }
+            match t.functor(item) {
+                Some((f, 2)) if f.as_str() == "." => {
+                    if let Some(a) = t.atom(t.args(item)[0]) {
+                        out.push(a.as_str().to_owned());
+                    }
+                    item = t.args(item)[1];
+                }
+                _ => break,
+            }
+        }
+    }
+    out
+}
+
+/// `path` with `.` and `dir/..` removed lexically (no file system access).
+pub fn normalize(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let mut out = PathBuf::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir
+                if matches!(out.components().next_back(), Some(Component::Normal(_))) =>
+            {
+                out.pop();
+            }
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 fn read_text(

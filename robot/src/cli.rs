@@ -13,7 +13,7 @@
 //! - without one: test mode, as the original's: inputs from `--script` or
 //!   typed at a prompt, actions rendered on stderr.
 
-use crate::console::{Console, SharedConsole};
+use crate::console::{Console, SharedConsole, SharedWriter};
 use crate::kb;
 use clap::{Args, CommandFactory, FromArgMatches, Parser, ValueEnum};
 use sitlog_runtime::cli::{run, App};
@@ -272,10 +272,15 @@ pub fn execute_with<A: App>(
     let progress = !args.quiet && streams.stdout_is_terminal && streams.stderr_is_terminal;
     let transcript_out: Box<dyn Write + Send> = if !with_world {
         Box::new(std::io::sink())
-    } else if json {
-        std::mem::replace(&mut streams.stderr, Box::new(std::io::stderr()))
     } else {
-        std::mem::replace(&mut streams.stdout, Box::new(std::io::sink()))
+        let stream = if json {
+            &mut streams.stderr
+        } else {
+            &mut streams.stdout
+        };
+        let shared = SharedWriter::new(std::mem::replace(stream, Box::new(std::io::sink())));
+        *stream = Box::new(shared.clone());
+        Box::new(shared)
     };
     let console = Console::new(transcript_out, progress, !args.quiet).shared();
 

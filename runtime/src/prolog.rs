@@ -209,6 +209,7 @@ impl PrologFunctions {
         for s in sources {
             prepare(
                 s,
+                sources,
                 &mut prepared,
                 &mut defined,
                 &mut errors,
@@ -410,13 +411,14 @@ impl PrologFunctions {
 /// Prepares the clauses of `source` (recursively for consulted files).
 fn prepare(
     source: &PrologSource,
+    embedded: &[PrologSource],
     out: &mut Vec<Prepared>,
     defined: &mut HashSet<(Atom, usize)>,
     errors: &mut Vec<PrologLoadError>,
-    seen: &mut HashSet<String>,
+    seen: &mut HashSet<PathBuf>,
     depth: usize,
 ) {
-    if !seen.insert(source.name.clone()) {
+    if !seen.insert(normalize(Path::new(&source.name))) {
         return;
     }
     let (clauses, syntax) = read_clauses(&source.text);
@@ -448,9 +450,15 @@ fn prepare(
                     continue;
                 }
                 for f in files {
+                    // A file given with the sources (a compiled task embeds
+                    // what its sources consult) is taken from them.
+                    if let Some(s) = embedded_source(&f, source, embedded) {
+                        prepare(s, embedded, out, defined, errors, seen, depth + 1);
+                        continue;
+                    }
                     match resolve(&f, source.dir.as_deref()) {
                         Some(path) => match PrologSource::from_path(&path) {
-                            Ok(s) => prepare(&s, out, defined, errors, seen, depth + 1),
+                            Ok(s) => prepare(&s, embedded, out, defined, errors, seen, depth + 1),
                             Err(e) => errors.push(err(format!("cannot consult `{f}`: {e}"))),
                         },
                         None => errors.push(err(format!("cannot consult `{f}`: no such file"))),
@@ -518,6 +526,43 @@ fn consulted_files(store: &Store, goal: Term) -> Option<Vec<String>> {
         }
     }
     Some(files)
+}
+
+/// The source among `embedded` that `name`, consulted from `from`, names:
+/// relative to the directory of `from`'s name, with or without `.pl`.
+fn embedded_source<'a>(
+    name: &str,
+    from: &PrologSource,
+    embedded: &'a [PrologSource],
+) -> Option<&'a PrologSource> {
+    if name.starts_with('$') || Path::new(name).is_absolute() {
+        return None;
+    }
+    let base = Path::new(&from.name).parent()?.join(name);
+    let mut with_ext = base.clone().into_os_string();
+    with_ext.push(".pl");
+    let wanted = [normalize(&base), normalize(Path::new(&with_ext))];
+    embedded
+        .iter()
+        .find(|s| wanted.contains(&normalize(Path::new(&s.name))))
+}
+
+/// `path` with `.` and `dir/..` removed lexically (no file system access).
+fn normalize(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let mut out = PathBuf::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir
+                if matches!(out.components().next_back(), Some(Component::Normal(_))) =>
+            {
+                out.pop();
+            }
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 /// Resolves a consulted file name: `$SITLOG_HOME/..` as described in the
