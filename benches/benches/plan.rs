@@ -75,7 +75,10 @@ fn bench(c: &mut Criterion) {
         let ours = plan(&p, &d).expect("a plan");
         if n <= 10 {
             let base = exhaustive(&p, &d).expect("a plan");
-            assert!((ours.cost - base.cost).abs() < 1e-9, "{n}: {ours:?} vs {base:?}");
+            assert!(
+                (ours.cost - base.cost).abs() < 1e-9,
+                "{n}: {ours:?} vs {base:?}"
+            );
             g.bench_with_input(BenchmarkId::new("exhaustive", n), &p, |b, p| {
                 b.iter(|| black_box(exhaustive(p, &d).unwrap().cost))
             });

@@ -21,7 +21,8 @@ use std::collections::BTreeSet;
 pub struct Input {
     /// Every shelf of the shop (names in the distance table).
     pub shelves: Vec<String>,
-    /// The shelf just observed.
+    /// The shelf just observed (or the place where the robot is: any
+    /// place of the distance table).
     pub current: String,
     /// Shelves observed so far in this cycle, with what was on them
     /// (Previous_Shelves, the current one included), oldest first.
@@ -84,7 +85,7 @@ pub fn diagnose(input: &Input, distances: &Distances) -> Result<Diagnosis, Error
             Err(Error(format!("`{s}` is not a shelf of the shop")))
         }
     };
-    known_shelf(&input.current)?;
+    distances.index(&input.current)?;
     for (s, _) in input.observed.iter().chain(&input.believed) {
         known_shelf(s)?;
     }
@@ -212,10 +213,13 @@ mod tests {
     #[test]
     fn the_sought_object_goes_to_the_closest_unseen_shelf() {
         let d = diagnose(&input(), &shop()).unwrap();
-        assert_eq!(d.placed, vec![("heineken".to_owned(), "shelf_food".to_owned())]);
+        assert_eq!(
+            d.placed,
+            vec![("heineken".to_owned(), "shelf_food".to_owned())]
+        );
         assert_eq!(d.shelf_of("heineken"), Some("shelf_food"));
         assert!(d.ran_out.is_empty());
-        assert_eq!(d.states[0].known, true);
+        assert!(d.states[0].known);
         assert_eq!(d.states[1].objects, s(&["noodles", "heineken"]));
         assert_eq!(
             d.actions[..3],
@@ -262,7 +266,8 @@ mod tests {
     #[test]
     fn an_object_seen_elsewhere_is_not_assumed_missing() {
         let mut i = input();
-        i.observed.push(("shelf_bread".into(), s(&["heineken", "bagel"])));
+        i.observed
+            .push(("shelf_bread".into(), s(&["heineken", "bagel"])));
         let d = diagnose(&i, &shop()).unwrap();
         assert!(d.placed.is_empty());
         assert_eq!(d.shelf_of("heineken"), Some("shelf_bread"));
@@ -274,7 +279,7 @@ mod tests {
         i.current = "shelf_toys".into();
         assert_eq!(
             diagnose(&i, &shop()).unwrap_err().0,
-            "`shelf_toys` is not a shelf of the shop"
+            "`shelf_toys` is not a place of the map"
         );
     }
 }

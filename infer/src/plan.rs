@@ -156,14 +156,15 @@ fn compile<'a>(p: &Problem, d: &'a Distances) -> Result<Compiled<'a>, Error> {
     let c = p.costs;
     let ok = |x: f64| x.is_finite() && x >= 0.0;
     let prob = |x: f64| (0.0..=1.0).contains(&x);
-    if !(c.speed.is_finite() && c.speed > 0.0)
-        || !ok(c.take)
-        || !ok(c.deliver)
-        || !ok(c.search_user)
-        || ![c.p_move, c.p_take, c.p_deliver, c.p_search_user]
+    let valid = c.speed.is_finite()
+        && c.speed > 0.0
+        && ok(c.take)
+        && ok(c.deliver)
+        && ok(c.search_user)
+        && [c.p_move, c.p_take, c.p_deliver, c.p_search_user]
             .into_iter()
-            .all(prob)
-    {
+            .all(prob);
+    if !valid {
         return Err(Error(format!("bad costs: {c:?}")));
     }
     // A hand holding an object no obligation moves stays full.
@@ -493,7 +494,9 @@ pub fn exhaustive(problem: &Problem, distances: &Distances) -> Result<Plan, Erro
     let c = compile(problem, distances)?;
     let n = c.actions.len();
     if n > 12 {
-        return Err(Error(format!("{n} basic actions: too many to try every order")));
+        return Err(Error(format!(
+            "{n} basic actions: too many to try every order"
+        )));
     }
     let goal = c.all_done();
     let s0 = c.start();
@@ -572,7 +575,7 @@ mod tests {
         ];
         for (a, ax, ay) in pts {
             for (b, bx, by) in pts {
-                let dist: f64 = ((ax - bx) * (ax - bx) + (ay - by) * (ay - by)) as f64;
+                let dist: f64 = (ax - bx) * (ax - bx) + (ay - by) * (ay - by);
                 d.set(a, b, dist.sqrt().round());
             }
         }
@@ -698,7 +701,10 @@ mod tests {
         p.obligations[0].from = None;
         p.right = Some("malz".into());
         let plan = plan(&p, &shop()).unwrap();
-        assert_eq!(plan.steps, vec![Step::SearchUser, Step::Deliver("malz".into())]);
+        assert_eq!(
+            plan.steps,
+            vec![Step::SearchUser, Step::Deliver("malz".into())]
+        );
     }
 
     #[test]

@@ -321,6 +321,7 @@ pub fn execute_with<A: App>(
         Some(world) => {
             match crate::robot::SimRobot::from_source(world, args.seed, console.clone()) {
                 Ok(robot) => {
+                    robot.register_inference(&mut functions, args.seed);
                     let (senses, effectors) = robot.split();
                     (Box::new(senses), Box::new(effectors))
                 }

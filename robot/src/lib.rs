@@ -16,6 +16,8 @@
 
 pub mod cli;
 pub mod console;
+#[cfg(feature = "sim")]
+mod infer;
 pub mod kb;
 #[cfg(feature = "sim")]
 pub mod robot;
