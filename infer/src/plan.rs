@@ -716,6 +716,30 @@ mod tests {
     }
 
     #[test]
+    fn a_route_blocked_mid_plan_gives_a_new_plan_from_where_the_robot_is() {
+        let p = problem(vec![
+            to_user("coke", "shelf_food"),
+            to_shelf("bagel", "shelf_drinks", "shelf_bread"),
+        ]);
+        let before = plan(&p, &shop()).unwrap();
+        // The robot took the bagel; then the way drinks-food closed: the
+        // remaining obligations are planned again from its state, on the
+        // map without that way (the detour through the entrance).
+        let mut d = shop();
+        d.set("shelf_drinks", "shelf_food", 6.0 + 8.0);
+        let mut again = p.clone();
+        again.obligations[1].from = None;
+        again.left = Some("bagel".into());
+        let after = plan(&again, &d).unwrap();
+        assert!(after.cost > 0.0 && after.steps.len() < before.steps.len());
+        assert_eq!(after.cost, exhaustive(&again, &d).unwrap().cost);
+        assert!(after
+            .behaviours
+            .iter()
+            .any(|b| matches!(b, Behaviour::Place { object, .. } if object == "bagel")));
+    }
+
+    #[test]
     fn nothing_to_do_is_the_empty_plan() {
         let plan = plan(&problem(vec![]), &shop()).unwrap();
         assert!(plan.steps.is_empty());

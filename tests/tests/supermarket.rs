@@ -228,3 +228,32 @@ fn a_minor_is_not_served_beer() {
     assert!(t.contains("Golem: Sorry, I cannot bring you the heineken."));
     assert!(!t.contains("goes from"));
 }
+
+#[test]
+fn two_misplaced_objects_are_both_put_back_when_the_budget_allows() {
+    // The bagel is on the drinks shelf too: two pending obligations.
+    let w = edit(
+        &coke_world(),
+        &[(
+            "name = \"bagel\"\non = \"shelf_bread\"",
+            "name = \"bagel\"\non = \"shelf_drinks\"",
+        )],
+    );
+    let t = run(&w, &base_kb());
+    insta::assert_snapshot!("two_misplaced", t);
+    assert!(t.contains("Golem: I put the noodles back on the shelf of food."));
+    assert!(t.contains("Golem: I put the bagel back on the shelf of bread."));
+    assert!(t.contains("(Golem hands coke to Customer)"));
+}
+
+#[test]
+fn a_blocked_aisle_is_rerouted_mid_plan() {
+    let w = format!(
+        "{}\n[[fault]]\nkind = \"route_blocked\"\nfrom = \"drinks_aisle\"\nto = \"food_aisle\"\n",
+        base_world()
+    );
+    let t = run(&w, &base_kb());
+    insta::assert_snapshot!("route_blocked", t);
+    assert!(t.contains("is blocked; I will take another route."));
+    assert!(t.contains("(Golem hands malz to Customer)"));
+}

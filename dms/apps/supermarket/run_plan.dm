@@ -39,7 +39,8 @@ diag_mod(run_plan(Plan, Sought),
       type ==> recursive,
       embedded_dm ==> give(X),
       arcs ==> [
-        done : empty => next(Rest),
+        done : apply(change_value_object_property(_, _, _), [X, loc, customer])
+               => next(Rest),
         error(E) : empty => error(E)
       ]
     ],
@@ -69,7 +70,9 @@ diag_mod(run_plan(Plan, Sought),
       type ==> recursive,
       embedded_dm ==> take(X, _, _),
       arcs ==> [
-        success(_) : empty => next(Rest),
+        % In the robot's hand, the object is on no shelf.
+        success(_) : apply(change_value_object_property(_, _, _), [X, loc, golem])
+                     => next(Rest),
         error(E, _) : empty => error(E)
       ]
     ],
