@@ -6,6 +6,7 @@
 //! generate. Only [`load`] touches the file system; rendering of diagnostics
 //! lives in [`diag`].
 
+pub mod analysis;
 mod app;
 pub mod ast;
 pub mod build;

@@ -68,7 +68,7 @@ pub fn discover(path: &Path) -> Result<Vec<PathBuf>, LoadError> {
     Ok(apps)
 }
 
-fn is_application(dir: &Path) -> io::Result<bool> {
+pub fn is_application(dir: &Path) -> io::Result<bool> {
     if dir.join("models").is_file() {
         return Ok(true);
     }
@@ -240,12 +240,57 @@ pub fn normalize(path: &Path) -> PathBuf {
     out
 }
 
+thread_local! {
+    /// Texts that stand in for files on this thread (an editor's unsaved
+    /// buffers, see [`with_overlay`]), by normalized path.
+    static OVERLAY: std::cell::RefCell<std::collections::HashMap<PathBuf, String>> =
+        Default::default();
+}
+
+/// Runs `f` with `overlay` standing in for the files it names: loading
+/// reads those texts instead of the disk (the language server's unsaved
+/// buffers). Directories are still listed from disk.
+pub fn with_overlay<R>(
+    overlay: &std::collections::HashMap<PathBuf, String>,
+    f: impl FnOnce() -> R,
+) -> R {
+    OVERLAY.with(|o| {
+        *o.borrow_mut() = overlay
+            .iter()
+            .map(|(p, t)| (normalize(&absolute(p)), t.clone()))
+            .collect()
+    });
+    let r = f();
+    OVERLAY.with(|o| o.borrow_mut().clear());
+    r
+}
+
+fn absolute(p: &Path) -> PathBuf {
+    std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
+}
+
+/// A file's bytes: from the overlay if it holds the file, else the disk.
+fn read_bytes(path: &Path) -> io::Result<Vec<u8>> {
+    let over = OVERLAY.with(|o| {
+        let o = o.borrow();
+        if o.is_empty() {
+            None
+        } else {
+            o.get(&normalize(&absolute(path))).cloned()
+        }
+    });
+    match over {
+        Some(text) => Ok(text.into_bytes()),
+        None => std::fs::read(path),
+    }
+}
+
 fn read_text(
     path: &Path,
     program: &mut Program,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<FileId, LoadError> {
-    let bytes = std::fs::read(path).map_err(|error| LoadError {
+    let bytes = read_bytes(path).map_err(|error| LoadError {
         path: path.to_path_buf(),
         error,
     })?;
@@ -346,7 +391,7 @@ fn load_dir(
                 continue;
             };
             let path = dir.join(name.as_str());
-            match std::fs::read(&path) {
+            match read_bytes(&path) {
                 Ok(bytes) => {
                     let f = add_bytes(&path, bytes, program, diags);
                     let clauses = read_file_clauses(program, f, diags);

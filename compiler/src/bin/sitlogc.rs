@@ -111,6 +111,11 @@ enum Command {
         #[arg(value_name = "QUERY", allow_hyphen_values = true)]
         query: String,
     },
+    /// A language server (LSP, JSON-RPC on stdin/stdout) for editors: the
+    /// diagnostics of `check` as you type, go to the definition of a DM,
+    /// situation, global, basic action or user function, and hovers.
+    /// Point your editor's LSP client at `sitlogc lsp` for `*.dm` files.
+    Lsp,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -170,6 +175,13 @@ fn run(cli: Cli) -> u8 {
             release,
             emit,
         } => build_app(&app, output, release, emit),
+        Command::Lsp => match sitlog_lsp::run_stdio(&sitlog_compiler::analysis::Analysis) {
+            Ok(()) => 0,
+            Err(e) => {
+                eprintln!("error: sitlogc lsp: {e}");
+                2
+            }
+        },
         Command::Kb {
             file,
             updates,
