@@ -64,15 +64,26 @@ impl Kb {
         Kb::from_clause(&clause).map_err(|ModelError { span, message }| at(span.start, message))
     }
 
+    /// Parses the bytes of a KB file: text that is not UTF-8 is an error at
+    /// the line and column of the first bad byte (a UTF-8 BOM is skipped).
+    pub fn parse_bytes(bytes: &[u8], name: &str) -> Result<Kb, LoadError> {
+        let src = sitlog_syntax::decode(bytes).map_err(|e| LoadError {
+            path: name.to_owned(),
+            pos: Some((e.line, e.column)),
+            message: e.message,
+        })?;
+        Kb::parse(src, name)
+    }
+
     /// Loads a KB file.
     pub fn load(path: &Path) -> Result<Kb, LoadError> {
         let name = path.display().to_string();
-        let src = std::fs::read_to_string(path).map_err(|e| LoadError {
+        let bytes = std::fs::read(path).map_err(|e| LoadError {
             path: name.clone(),
             pos: None,
             message: format!("cannot read the KB: {e}"),
         })?;
-        Kb::parse(&src, &name)
+        Kb::parse_bytes(&bytes, &name)
     }
 
     /// Replaces this KB by the one in `path`; on error this KB is unchanged.

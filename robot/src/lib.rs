@@ -16,8 +16,9 @@
 
 pub mod cli;
 pub mod console;
+pub mod interrupt;
 pub mod kb;
 #[cfg(feature = "sim")]
 pub mod robot;
 
-pub use cli::{execute, main, Assets, Source};
+pub use cli::{execute, main, Assets, FileError, Source};
