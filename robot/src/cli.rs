@@ -415,7 +415,17 @@ pub fn execute_interruptible<A: App>(
     let console = Console::new(transcript_out, progress, !args.quiet).shared();
 
     // The KB.
+    // A persisted KB is locked against other persisting processes for the
+    // whole run (and temporary files of killed runs are removed).
+    let mut _kb_lock = None;
     let kb_source = match &args.kb {
+        Some(path) if args.kb_persist => match sitlog_kb::Kb::open_persistent(path) {
+            Ok((kb, lock)) => {
+                _kb_lock = Some(lock);
+                Some((kb, Some(path.clone())))
+            }
+            Err(e) => fail!(if e.pos.is_some() { 1 } else { 2 }, "{e}"),
+        },
         Some(path) => match sitlog_kb::Kb::load(path) {
             Ok(kb) => Some((kb, Some(path.clone()))),
             // A position means bad content (1); none, a file that cannot be read (2).
