@@ -303,21 +303,29 @@ fn add_bytes(
     program: &mut Program,
     diags: &mut Vec<Diagnostic>,
 ) -> FileId {
-    match String::from_utf8(bytes) {
-        Ok(text) => program.sources.add(path, text),
+    match sitlog_syntax::decode(&bytes) {
+        Ok(text) => program.sources.add(path, text.to_owned()),
         Err(e) => {
-            let at = e.utf8_error().valid_up_to();
-            let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
+            // The file is shown with U+FFFD for what is not UTF-8; the span
+            // covers the first replacement (a char boundary of that text).
+            let (text, at) = sitlog_syntax::decode::lossy_with_offset(&bytes, e.offset);
+            let text = text.into_owned();
+            let width = text[at..].chars().next().map_or(0, char::len_utf8);
             let file = program.sources.add(path, text);
-            let span = Span::new(at, at + 1);
+            let span = Span::new(at, at + width);
+            let (label, help) = if e.utf16 {
+                ("UTF-16 text", "save the file as UTF-8")
+            } else {
+                ("not UTF-8", "save the file as UTF-8 (e.g. iconv -t UTF-8)")
+            };
             diags.push(
                 Diagnostic::error(
                     codes::NOT_UTF8,
                     Loc { file, span },
-                    format!("file is not valid UTF-8 (invalid byte at offset {at})"),
+                    format!("{} (at byte offset {})", e.message, e.offset),
                 )
-                .with_label("invalid UTF-8 here")
-                .with_help("save the file as UTF-8"),
+                .with_label(label)
+                .with_help(help),
             );
             file
         }

@@ -22,7 +22,7 @@
 //! the bindings of the caller's variables. The engine is not `Send`: it
 //! lives on a thread of its own and calls are messages to it.
 
-use crate::functions::{FnCall, Functions};
+use crate::functions::{CallLimits, FnCall, Functions};
 use crate::store::Store;
 use crate::term::{Term, Value, Var};
 use scryer_prolog::{LeafAnswer, Machine, MachineBuilder, Term as PTerm};
@@ -96,30 +96,69 @@ impl PrologSource {
             dir: None,
         }
     }
-    /// Reads `path`.
+    /// Reads `path`; text that is not UTF-8 is an `InvalidData` error naming
+    /// the file, line and column of the first bad byte.
     pub fn from_path(path: &Path) -> std::io::Result<PrologSource> {
+        let name = path.display().to_string();
+        let bytes = std::fs::read(path)?;
+        let text = sitlog_syntax::decode(&bytes)
+            .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.in_file(&name)))?
+            .to_owned();
         Ok(PrologSource {
-            name: path.display().to_string(),
-            text: std::fs::read_to_string(path)?,
+            name,
+            text,
             dir: path.parent().map(Path::to_path_buf),
         })
     }
 }
 
-/// Limits of one call.
+/// Limits of one call (the defaults of an engine; a run's
+/// [`Functions::set_call_limits`] overrides them).
+///
+/// The inference limit is the engine's own (`call_with_inference_limit/3`).
+/// Time and memory are watched from the calling thread, which waits for the
+/// answer in short slices: a call that runs longer than `time_limit`, or
+/// during which the process grows by more than `heap_limit` bytes (resident
+/// memory, where the system tells it), is abandoned with an error naming the
+/// limit. The engine thread is then left behind and every later call is an
+/// error (the run ends on the first one anyway).
 #[derive(Clone, Copy, Debug)]
 pub struct PrologOptions {
     /// Inferences one function call may use before it is stopped with an
     /// error (runaway recursion).
     pub inference_limit: u64,
+    /// Wall-clock time of one call.
+    pub time_limit: std::time::Duration,
+    /// Growth of the process's memory during one call, in bytes.
+    pub heap_limit: u64,
 }
 
 impl Default for PrologOptions {
     fn default() -> Self {
+        let d = CallLimits::default();
         PrologOptions {
-            inference_limit: 10_000_000,
+            inference_limit: d.inferences,
+            time_limit: d.time,
+            heap_limit: d.heap_bytes,
         }
     }
+}
+
+impl From<CallLimits> for PrologOptions {
+    fn from(l: CallLimits) -> PrologOptions {
+        PrologOptions {
+            inference_limit: l.inferences,
+            time_limit: l.time,
+            heap_limit: l.heap_bytes,
+        }
+    }
+}
+
+/// Resident memory of this process in bytes, where the system tells it.
+fn resident_bytes() -> Option<u64> {
+    let statm = std::fs::read_to_string("/proc/self/statm").ok()?;
+    let pages: u64 = statm.split_whitespace().nth(1)?.parse().ok()?;
+    Some(pages * 4096)
 }
 
 /// A problem while loading the Prolog sources: `file:line:col: message`.
@@ -171,6 +210,8 @@ pub struct PrologFunctions {
 
 struct Inner {
     tx: Mutex<mpsc::Sender<Request>>,
+    /// Why the engine was abandoned (a call over its time or memory limit).
+    abandoned: Mutex<Option<String>>,
     /// Predicates defined by the application's clauses.
     defined: HashSet<(Atom, usize)>,
     options: PrologOptions,
@@ -248,6 +289,7 @@ impl PrologFunctions {
         Ok(PrologFunctions {
             inner: Arc::new(Inner {
                 tx: Mutex::new(tx),
+                abandoned: Mutex::new(None),
                 defined,
                 options,
             }),
@@ -280,11 +322,21 @@ impl PrologFunctions {
     /// Runs a raw query (for tests and tools): the first answer's binding
     /// of `Result`, `None` on failure.
     pub fn query_raw(&self, query: &str) -> Result<Option<String>, String> {
-        self.ask(query.to_owned())
+        self.ask(query.to_owned(), self.inner.options, "the query")
             .map(|a| a.map(|t| format!("{t:?}")))
     }
 
-    fn ask(&self, query: String) -> Result<Option<PTerm>, String> {
+    /// Sends `query` and waits for its answer within the time and memory
+    /// limits of `options`; `what` names the call in errors.
+    fn ask(
+        &self,
+        query: String,
+        options: PrologOptions,
+        what: &str,
+    ) -> Result<Option<PTerm>, String> {
+        if let Some(why) = self.inner.abandoned.lock().ok().and_then(|a| a.clone()) {
+            return Err(format!("the Prolog engine is stopped: {why}"));
+        }
         let (tx, rx) = mpsc::channel();
         self.inner
             .tx
@@ -292,12 +344,46 @@ impl PrologFunctions {
             .map_err(|_| "the Prolog engine is poisoned".to_owned())?
             .send(Request::Query(query, tx))
             .map_err(|_| "the Prolog engine has stopped".to_owned())?;
-        rx.recv()
-            .map_err(|_| "the Prolog engine has stopped".to_owned())?
+        let start = std::time::Instant::now();
+        let rss0 = resident_bytes();
+        let slice = std::time::Duration::from_millis(10);
+        loop {
+            match rx.recv_timeout(slice) {
+                Ok(answer) => return answer,
+                Err(mpsc::RecvTimeoutError::Disconnected) => {
+                    return Err("the Prolog engine has stopped".to_owned())
+                }
+                Err(mpsc::RecvTimeoutError::Timeout) => {}
+            }
+            let over = if start.elapsed() > options.time_limit {
+                Some(format!(
+                    "{what} exceeded the time limit of {:?} per call (option --prolog-time-limit)",
+                    options.time_limit
+                ))
+            } else {
+                match (rss0, resident_bytes()) {
+                    (Some(a), Some(b)) if b.saturating_sub(a) > options.heap_limit => Some(format!(
+                        "{what} exceeded the memory limit of {} MiB per call (option --prolog-heap-limit)",
+                        options.heap_limit >> 20
+                    )),
+                    _ => None,
+                }
+            };
+            if let Some(message) = over {
+                if let Ok(mut a) = self.inner.abandoned.lock() {
+                    *a = Some(message.clone());
+                }
+                return Err(message);
+            }
+        }
     }
 
     /// Calls `name(args..)` with the caller's environment.
     pub fn call(&self, call: &mut FnCall<'_>, name: Atom, args: &[Term]) -> Result<Term, String> {
+        let options = match call.functions.call_limits() {
+            Some(l) => PrologOptions::from(l),
+            None => self.inner.options,
+        };
         let history = call.history_term();
         let store: &Store = call.store;
         let mut w = Writer::new(store, false);
@@ -334,7 +420,7 @@ impl PrologFunctions {
         }
         w.out.push(',');
         w.term(history);
-        let _ = write!(w.out, ",{},R).", self.inner.options.inference_limit);
+        let _ = write!(w.out, ",{},R).", options.inference_limit);
         let env = std::mem::take(&mut w.out);
         let mut query = rest;
         query.push_str(",[");
@@ -347,8 +433,8 @@ impl PrologFunctions {
         query.push(']');
         query.push_str(&env);
         let vars = w.vars.clone();
-        let answer = self.ask(query)?;
         let shown = || format!("{}/{}", name, args.len());
+        let answer = self.ask(query, options, &format!("`{}`", shown()))?;
         let Some(r) = answer else {
             return Err(format!("the Prolog call of `{}` did not answer", shown()));
         };
@@ -394,9 +480,9 @@ impl PrologFunctions {
             )),
             PTerm::Atom(a) if a == "fail" => Err(format!("`{}` failed", shown())),
             PTerm::Atom(a) if a == "limit" => Err(format!(
-                "`{}` exceeded the inference limit ({})",
+                "`{}` exceeded the inference limit ({}; option --prolog-inferences)",
                 shown(),
-                self.inner.options.inference_limit
+                options.inference_limit
             )),
             PTerm::Compound(f, a) if f == "error" && a.len() == 1 => {
                 let mut names = HashMap::new();
@@ -890,6 +976,7 @@ mem(X) :- (member(X, [a]) -> assign_func_value(yes) ; assign_func_value(no)).
                 &[PrologSource::new("user_functions.pl", FUNCTIONS)],
                 PrologOptions {
                     inference_limit: 200_000,
+                    ..Default::default()
                 },
             )
             .expect("loads")

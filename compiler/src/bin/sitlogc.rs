@@ -187,15 +187,26 @@ fn run(cli: Cli) -> u8 {
             updates,
             query,
         } => match sitlog_kb::cli(&file, &updates, &query) {
-            Ok(line) => {
-                println!("{line}");
-                0
-            }
+            Ok(line) => write_stdout(&format!("{line}\n"), "the answer"),
             Err(e) => {
                 eprintln!("{e}");
                 1
             }
         },
+    }
+}
+
+/// Writes `text` to stdout: 0, or 2 with a message naming `what` when it
+/// cannot be written (a closed pipe, as `| head` makes, is quiet: 0).
+fn write_stdout(text: &str, what: &str) -> u8 {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        Ok(()) => 0,
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => 0,
+        Err(e) => {
+            eprintln!("error: cannot write {what} to stdout: {e}");
+            2
+        }
     }
 }
 
@@ -262,10 +273,7 @@ fn build_app(
                     2
                 }
             },
-            None => {
-                print!("{text}");
-                0
-            }
+            None => write_stdout(&text, "the generated code"),
         };
     }
     let output = output.unwrap_or_else(|| PathBuf::from(build::app_name(app)));
@@ -294,8 +302,8 @@ fn run_app(app: &std::path::Path, args: &sitlog_robot::cli::RunArgs, allow_unres
     let assets = match sitlog_robot::Assets::from_app(app) {
         Ok(a) => a,
         Err(e) => {
-            eprintln!("error: {e}");
-            return 2;
+            eprintln!("{e}");
+            return e.status;
         }
     };
     #[allow(unused_mut)]
@@ -360,9 +368,20 @@ fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool) ->
             match format {
                 Format::Human => eprint!("{}", diag::render_human(d, &program.sources, color)),
                 Format::Json => {
-                    let _ = writeln!(out, "{}", diag::render_json(d, &program.sources));
+                    if let Err(e) = writeln!(out, "{}", diag::render_json(d, &program.sources)) {
+                        if e.kind() != std::io::ErrorKind::BrokenPipe && !io_failed {
+                            eprintln!("error: cannot write the diagnostics to stdout: {e}");
+                        }
+                        io_failed |= e.kind() != std::io::ErrorKind::BrokenPipe;
+                    }
                 }
             }
+        }
+    }
+    if let Err(e) = out.flush() {
+        if e.kind() != std::io::ErrorKind::BrokenPipe {
+            eprintln!("error: cannot write the diagnostics to stdout: {e}");
+            io_failed = true;
         }
     }
     if format == Format::Human {
