@@ -255,7 +255,9 @@ pub fn sentence(store: &Store, items: &[Term]) -> String {
     }
 }
 
-/// The original's value of the constant pi in its coordinate transforms.
+/// The original's value of the constant pi in its coordinate transforms
+/// (five decimals: its results depend on it).
+#[allow(clippy::approx_constant)]
 const PI_APPROX: f64 = 3.14159;
 
 /// Evaluates the arithmetic expression `expr` (SWI-Prolog's arithmetic:

@@ -672,9 +672,10 @@ fn engine_thread(
 /// `user_input` by [`read_reply`]; anything else written there goes to
 /// stderr.
 fn engine_streams() -> StreamConfig {
+    type StreamCallback = Box<dyn FnMut(&mut std::io::Cursor<Vec<u8>>)>;
     let (mut replies, input) = InputStreamConfig::channel();
     let mut pending: Vec<u8> = Vec::new();
-    let on_error: Box<dyn FnMut(&mut std::io::Cursor<Vec<u8>>)> =
+    let on_error: StreamCallback =
         Box::new(move |buf: &mut std::io::Cursor<Vec<u8>>| {
             pending.extend(std::mem::take(buf.get_mut()));
             buf.set_position(0);
@@ -696,7 +697,7 @@ fn engine_streams() -> StreamConfig {
                 let _ = replies.write_all(read_reply(&text).as_bytes());
             }
         });
-    let on_output: Box<dyn FnMut(&mut std::io::Cursor<Vec<u8>>)> =
+    let on_output: StreamCallback =
         Box::new(|buf: &mut std::io::Cursor<Vec<u8>>| {
             buf.get_mut().clear();
             buf.set_position(0);
@@ -739,7 +740,7 @@ pub fn read_reply(text: &str) -> String {
             write_atom(&mut out, Atom::intern(&e.message));
             out.push_str("),context(");
             write_atom(&mut out, Atom::intern(text));
-            let _ = write!(out, ",{line},{col}))).\n");
+            let _ = writeln!(out, ",{line},{col}))).");
             out
         }
     }
@@ -1307,6 +1308,9 @@ msorted(R) :- msort([3, 1.5, 2, 0.5, 1, 1.0, 2], R).
 keysorted(R) :- keysort([2-a, 1.5-b, 1-c, 2-d], R).
 sort4(R) :- sort(2, @>=, [f(a, 1), f(b, 2.5), f(c, 2)], R).
 best(R) :- predsort(compare, [2, 1.5, 3], R).
+% a decision as the original's decision maker takes it: grade the options,
+% sort, take the highest
+decide(R) :- sort([2-[coke], 2.5-[coke, noodles], 1-[]], S), reverse(S, [_-R|_]).
 read_text(R) :- atom_to_chars('[class(x, top, [''-''=>>loc], [], [])]', Cs), atom_to_chars('.', D), append(Cs, D, All), read_from_chars(All, R).
 bad_text(R) :- catch(read_from_chars("f(a", _), error(syntax_error(_), _), R = syntax_error).
 to_atom(R) :- term_to_atom(f(X, 'a b', [1]), A), term_to_atom(T, 'g(Y, c)'), R = A-T.
@@ -1416,6 +1420,8 @@ bindings(R) :- atom_to_term('p(X, Y, X)', _, R).
         assert_eq!(ask("keysorted"), "[1-c,1.5-b,2-a,2-d]");
         assert_eq!(ask("sort4"), "[f(b,2.5),f(c,2),f(a,1)]");
         assert_eq!(ask("best"), "[1.5,2,3]");
+        // With the engine's order 2.5 sorts first and `[coke]` would win.
+        assert_eq!(ask("decide"), "[coke,noodles]");
     }
 
     #[test]

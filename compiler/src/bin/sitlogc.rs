@@ -316,8 +316,8 @@ fn run_app(
     legacy: Option<Option<&std::path::Path>>,
 ) -> u8 {
     // The legacy profile: the original's Prolog layer from SITLOG_HOME.
-    #[allow(unused_mut)]
-    let mut before = Vec::new();
+    #[cfg(feature = "prolog")]
+    let mut before: Vec<sitlog_runtime::prolog::PrologSource> = Vec::new();
     if let Some(explicit) = legacy {
         use sitlog_compiler::legacy;
         let files = legacy::find_home(app, explicit)
