@@ -675,33 +675,31 @@ fn engine_streams() -> StreamConfig {
     type StreamCallback = Box<dyn FnMut(&mut std::io::Cursor<Vec<u8>>)>;
     let (mut replies, input) = InputStreamConfig::channel();
     let mut pending: Vec<u8> = Vec::new();
-    let on_error: StreamCallback =
-        Box::new(move |buf: &mut std::io::Cursor<Vec<u8>>| {
-            pending.extend(std::mem::take(buf.get_mut()));
-            buf.set_position(0);
-            loop {
-                let Some(start) = pending.iter().position(|&b| b == 1) else {
-                    let _ = std::io::stderr().write_all(&pending);
-                    pending.clear();
-                    return;
-                };
-                if start > 0 {
-                    let _ = std::io::stderr().write_all(&pending[..start]);
-                    pending.drain(..start);
-                }
-                let Some(end) = pending.iter().position(|&b| b == 2) else {
-                    return;
-                };
-                let text = String::from_utf8_lossy(&pending[1..end]).into_owned();
-                pending.drain(..=end);
-                let _ = replies.write_all(read_reply(&text).as_bytes());
+    let on_error: StreamCallback = Box::new(move |buf: &mut std::io::Cursor<Vec<u8>>| {
+        pending.extend(std::mem::take(buf.get_mut()));
+        buf.set_position(0);
+        loop {
+            let Some(start) = pending.iter().position(|&b| b == 1) else {
+                let _ = std::io::stderr().write_all(&pending);
+                pending.clear();
+                return;
+            };
+            if start > 0 {
+                let _ = std::io::stderr().write_all(&pending[..start]);
+                pending.drain(..start);
             }
-        });
-    let on_output: StreamCallback =
-        Box::new(|buf: &mut std::io::Cursor<Vec<u8>>| {
-            buf.get_mut().clear();
-            buf.set_position(0);
-        });
+            let Some(end) = pending.iter().position(|&b| b == 2) else {
+                return;
+            };
+            let text = String::from_utf8_lossy(&pending[1..end]).into_owned();
+            pending.drain(..=end);
+            let _ = replies.write_all(read_reply(&text).as_bytes());
+        }
+    });
+    let on_output: StreamCallback = Box::new(|buf: &mut std::io::Cursor<Vec<u8>>| {
+        buf.get_mut().clear();
+        buf.set_position(0);
+    });
     StreamConfig::in_memory()
         .with_user_input(input)
         .with_user_output(OutputStreamConfig::callback(on_output))

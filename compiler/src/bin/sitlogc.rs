@@ -45,6 +45,10 @@ enum Command {
         /// Do not print warnings.
         #[arg(long, short)]
         quiet: bool,
+        /// The original's rules, as `run --legacy` applies them: a DM
+        /// defined twice identically is a warning (W0203), not an error.
+        #[arg(long)]
+        legacy: bool,
     },
     /// Run an application: on its simulated world, or in test mode.
     ///
@@ -170,7 +174,8 @@ fn run(cli: Cli) -> u8 {
             format,
             deny_warnings,
             quiet,
-        } => check(&paths, format, deny_warnings, quiet),
+            legacy,
+        } => check(&paths, format, deny_warnings, quiet, legacy),
         Command::Run {
             app,
             run,
@@ -391,7 +396,7 @@ fn run_app(
     sitlog_robot::execute(&ir, functions, args, &assets)
 }
 
-fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool) -> u8 {
+fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, legacy: bool) -> u8 {
     let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
     let mut errors = 0usize;
     let mut warnings = 0usize;
@@ -415,7 +420,11 @@ fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool) ->
         }
     }
     for path in &programs {
-        let (result, diags) = match sitlog_compiler::check_path(path) {
+        let options = sitlog_compiler::check::CheckOptions {
+            unresolved_as_warnings: false,
+            legacy,
+        };
+        let (result, diags) = match sitlog_compiler::check_path_opts(path, options) {
             Ok(r) => r,
             Err(e) => {
                 eprintln!("error: cannot read {e}");
