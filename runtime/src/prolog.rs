@@ -25,10 +25,14 @@
 use crate::functions::{CallLimits, FnCall, Functions};
 use crate::store::Store;
 use crate::term::{Term, Value, Var};
-use scryer_prolog::{LeafAnswer, Machine, MachineBuilder, Term as PTerm};
+use scryer_prolog::{
+    InputStreamConfig, LeafAnswer, Machine, MachineBuilder, OutputStreamConfig, StreamConfig,
+    Term as PTerm,
+};
 use sitlog_syntax::{atoms, read_clauses, Atom};
 use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
@@ -76,6 +80,89 @@ const LIBRARIES: &[(&str, &[&str])] = &[
     ),
     ("format", &["format/2", "format/3", "portray_clause/1"]),
 ];
+
+/// SWI-Prolog predicates the prelude provides as `'$swi_Name'`: each is
+/// made visible under its own name after the application's clauses are
+/// loaded, unless the application defines it or the engine already has it.
+pub const SWI_PREDICATES: &[&str] = &[
+    "getenv/2",
+    "atomic_concat/3",
+    "get0/1",
+    "get0/2",
+    "atom_to_chars/2",
+    "flatten/2",
+    "assert/1",
+    "random_permutation/2",
+    "last/2",
+    "include/3",
+    "exclude/3",
+    "partition/4",
+    "sumlist/2",
+    "sum_list/2",
+    "max_list/2",
+    "min_list/2",
+    "delete/3",
+    "subtract/3",
+    "intersection/3",
+    "union/3",
+    "max_member/2",
+    "min_member/2",
+    "atomic_list_concat/2",
+    "atomic_list_concat/3",
+    "concat_atom/2",
+    "concat_atom/3",
+    "atom_number/2",
+    "upcase_atom/2",
+    "downcase_atom/2",
+    "nb_setval/2",
+    "nb_getval/2",
+    "b_setval/2",
+    "b_getval/2",
+    "predsort/3",
+];
+
+/// Built-ins of the engine that behave otherwise than SWI-Prolog's and
+/// cannot be redefined: the application's clauses call `'$swi_Name'`
+/// instead (every compound `Name(..)` of that arity in a clause is renamed,
+/// and so is a closure `Name` given to `call/N`, `maplist/N`, `include/3`,
+/// `exclude/3`, `partition/4`, `foldl/4..6` or `predsort/3`).
+pub const SWI_RENAMED: &[(&str, usize)] = &[
+    ("atom_chars", 2),
+    ("compare", 3),
+    ("sort", 2),
+    ("msort", 2),
+    ("sort", 4),
+    ("keysort", 2),
+    ("@<", 2),
+    ("@>", 2),
+    ("@=<", 2),
+    ("@>=", 2),
+    ("read_from_chars", 2),
+    ("read_term_from_atom", 3),
+    ("term_to_atom", 2),
+    ("atom_to_term", 3),
+];
+
+fn swi_renamed(name: Atom, arity: usize) -> Option<Atom> {
+    SWI_RENAMED
+        .iter()
+        .any(|&(n, a)| a == arity && n == name.as_str())
+        .then(|| Atom::intern(&format!("$swi_{}", name.as_str())))
+}
+
+/// The number of arguments a meta-predicate adds to the closure it is given
+/// as its first argument (or as the first of `foldl`'s), if `name/arity` is one.
+fn closure_extra(name: &str, arity: usize) -> Option<usize> {
+    match (name, arity) {
+        ("call", n) if n >= 2 => Some(n - 1),
+        ("maplist", n) if n >= 2 => Some(n - 1),
+        ("include" | "exclude", 3) => Some(1),
+        ("partition", 4) => Some(1),
+        ("foldl", n) if (4..=6).contains(&n) => Some(n - 1),
+        ("predsort", 3) => Some(3),
+        _ => None,
+    }
+}
 
 /// One Prolog source file.
 #[derive(Clone, Debug)]
@@ -710,8 +797,88 @@ fn engine_thread(
     }
 }
 
+/// The engine's streams: `user_output` is dropped (what functions print is
+/// not part of the task's output); `user_error` carries the requests of
+/// `'$sitlog_read_text'/3` (framed by `\x01` and `\x02`), answered on
+/// `user_input` by [`read_reply`]; anything else written there goes to
+/// stderr.
+fn engine_streams() -> StreamConfig {
+    type StreamCallback = Box<dyn FnMut(&mut std::io::Cursor<Vec<u8>>)>;
+    let (mut replies, input) = InputStreamConfig::channel();
+    let mut pending: Vec<u8> = Vec::new();
+    let on_error: StreamCallback = Box::new(move |buf: &mut std::io::Cursor<Vec<u8>>| {
+        pending.extend(std::mem::take(buf.get_mut()));
+        buf.set_position(0);
+        loop {
+            let Some(start) = pending.iter().position(|&b| b == 1) else {
+                let _ = std::io::stderr().write_all(&pending);
+                pending.clear();
+                return;
+            };
+            if start > 0 {
+                let _ = std::io::stderr().write_all(&pending[..start]);
+                pending.drain(..start);
+            }
+            let Some(end) = pending.iter().position(|&b| b == 2) else {
+                return;
+            };
+            let text = String::from_utf8_lossy(&pending[1..end]).into_owned();
+            pending.drain(..=end);
+            let _ = replies.write_all(read_reply(&text).as_bytes());
+        }
+    });
+    let on_output: StreamCallback = Box::new(|buf: &mut std::io::Cursor<Vec<u8>>| {
+        buf.get_mut().clear();
+        buf.set_position(0);
+    });
+    StreamConfig::in_memory()
+        .with_user_input(input)
+        .with_user_output(OutputStreamConfig::callback(on_output))
+        .with_user_error(OutputStreamConfig::callback(on_error))
+}
+
+/// Reads `text` as one term with our reader (SWI-Prolog syntax, SitLog
+/// operators) and answers in canonical form: `'$ok'(Term, ['Name'=Var,..]).`,
+/// `'$error'(error(syntax_error(Message), context(Text, Line, Column))).` or,
+/// for text with no term, `'$eof'.`
+pub fn read_reply(text: &str) -> String {
+    if text.trim().is_empty() {
+        return "'$eof'.\n".to_owned();
+    }
+    let mut store = Store::new();
+    match store.parse(text) {
+        Ok((t, bindings)) => {
+            let mut w = Writer::new(&store, false);
+            w.out.push_str("'$ok'(");
+            w.term(t);
+            w.out.push_str(",[");
+            for (i, (name, v)) in bindings.iter().enumerate() {
+                if i > 0 {
+                    w.out.push(',');
+                }
+                write_atom(&mut w.out, Atom::intern(name));
+                w.out.push('=');
+                w.term(*v);
+            }
+            w.out.push_str("]).\n");
+            w.out
+        }
+        Err(e) => {
+            let (line, col) = e.line_col(text);
+            let mut out = String::from("'$error'(error(syntax_error(");
+            write_atom(&mut out, Atom::intern(&e.message));
+            out.push_str("),context(");
+            write_atom(&mut out, Atom::intern(text));
+            let _ = writeln!(out, ",{line},{col}))).");
+            out
+        }
+    }
+}
+
 fn build_machine(prepared: &[Prepared]) -> (Machine, Vec<PrologLoadError>) {
-    let mut machine = MachineBuilder::default().build();
+    let mut machine = MachineBuilder::default()
+        .with_streams(engine_streams())
+        .build();
     machine.consult_module_string("user", PRELUDE);
     let mut errors = Vec::new();
     let mut directives = Vec::new();
@@ -727,6 +894,20 @@ fn build_machine(prepared: &[Prepared]) -> (Machine, Vec<PrologLoadError>) {
         let q = format!("'$sitlog_import'({lib},[{}],R).", preds.join(","));
         let _ = first_answer(&mut machine, &q, "R");
     }
+    let q = format!(
+        "'$sitlog_bridge'([{}],R).",
+        SWI_PREDICATES
+            .iter()
+            .map(|p| {
+                let (n, a) = p.rsplit_once('/').expect("name/arity");
+                let mut q = String::new();
+                write_atom(&mut q, Atom::intern(n));
+                format!("{q}/{a}")
+            })
+            .collect::<Vec<_>>()
+            .join(",")
+    );
+    let _ = first_answer(&mut machine, &q, "R");
     for p in directives {
         let q = format!("'$sitlog_directive'({},R).", p.text);
         check_load(&mut machine, &q, p, &mut errors);
@@ -786,7 +967,8 @@ struct Writer<'s> {
     /// Distinct unbound variables met, in order.
     vars: Vec<Var>,
     seen: HashSet<Var>,
-    /// Turn `'|'/2` into `;/2` (application clauses, SWI-6 reading).
+    /// Application clauses: turn `'|'/2` into `;/2` (SWI-6 reading) and
+    /// rename the calls of [`SWI_RENAMED`] built-ins.
     bar_is_or: bool,
 }
 
@@ -848,22 +1030,65 @@ impl<'s> Writer<'s> {
                 self.out.push(']');
             }
             Value::Compound(f, args) => {
-                let f = if self.bar_is_or && f == atoms::BAR && args.len() == 2 {
+                let args = args.to_vec();
+                let f = if !self.bar_is_or {
+                    f
+                } else if f == atoms::BAR && args.len() == 2 {
                     atoms::SEMICOLON
                 } else {
-                    f
+                    swi_renamed(f, args.len()).unwrap_or(f)
                 };
-                let args = args.to_vec();
+                // A closure naming a renamed built-in.
+                let closure = if self.bar_is_or {
+                    closure_extra(f.as_str(), args.len())
+                } else {
+                    None
+                };
                 write_atom(&mut self.out, f);
                 self.out.push('(');
                 for (i, &a) in args.iter().enumerate() {
                     if i > 0 {
                         self.out.push(',');
                     }
-                    self.term(a);
+                    match closure {
+                        Some(extra) if i == 0 => self.closure(a, extra),
+                        _ => self.term(a),
+                    }
                 }
                 self.out.push(')');
             }
+        }
+    }
+}
+
+impl Writer<'_> {
+    /// A closure given `extra` more arguments by a meta-predicate.
+    fn closure(&mut self, t: Term, extra: usize) {
+        let t = self.store.deref(t);
+        match self.store.value(t) {
+            Value::Atom(a) => match swi_renamed(a, extra) {
+                Some(r) => write_atom(&mut self.out, r),
+                None => self.term(t),
+            },
+            Value::Compound(f, args) if f != atoms::DOT => {
+                let n = args.len();
+                match swi_renamed(f, n + extra) {
+                    Some(r) => {
+                        let args = args.to_vec();
+                        write_atom(&mut self.out, r);
+                        self.out.push('(');
+                        for (i, &a) in args.iter().enumerate() {
+                            if i > 0 {
+                                self.out.push(',');
+                            }
+                            self.term(a);
+                        }
+                        self.out.push(')');
+                    }
+                    None => self.term(t),
+                }
+            }
+            _ => self.term(t),
         }
     }
 }
@@ -1180,5 +1405,164 @@ mem(X) :- (member(X, [a]) -> assign_func_value(yes) ; assign_func_value(no)).
             "{errs:?}"
         );
         assert!(errs.iter().any(|e| e.line == 3), "{errs:?}");
+    }
+}
+
+/// SWI-Prolog built-ins as legacy applications call them: one test each.
+#[cfg(test)]
+mod swi_tests {
+    use super::*;
+
+    const APP: &str = r#"
+env(V) :- getenv('SITLOG_HOME', V).
+env_missing(V) :- ( getenv('SITLOG_NO_SUCH_VARIABLE_X', V) -> true ; V = none ).
+concat(R) :- atomic_concat('/home/', 'kb.txt', A), atomic_concat(A, 42, R).
+% reads a file code by code, as the original's readclauses/2 does
+read_codes(File, R) :- open(File, read, S), get0(S, C), rest(C, S, Cs), close(S), atom_chars(R, Cs).
+rest(-1, _, []) :- !.
+rest(C, S, [C|Cs]) :- get0(S, N), rest(N, S, Cs).
+chars_of_codes(R) :- atom_chars(R, [0'a, 0'b, 0'c]).
+chars_plain(R) :- atom_chars(abc, R).
+to_chars(R) :- atom_to_chars(ab, R).
+flat(R) :- flatten([a, [b, [c, []], d], [[e]]], R).
+asserting(R) :- assert(counter(7)), counter(R).
+perm(R) :- random_permutation([only], R).
+perm_all(R) :- random_permutation([1,2,3,4,5], P), msort(P, R).
+last_of(R) :- last([a, b, c], R).
+incl(R) :- include(integer, [a, 1, b, 2.0, 3], R).
+excl(R) :- exclude(integer, [a, 1, b, 3], R).
+cmp(R) :- findall(O, (member(X-Y, [1-2.5, 2.5-1, 1-1.0, 1.0-1, 2-2]), compare(O, X, Y)), R).
+before(R) :- ( 2 @< 1.5 -> R = yes ; R = no ).
+sorted(R) :- sort([3, 1.5, 2, 0.5, 1, 1.0, 2], R).
+msorted(R) :- msort([3, 1.5, 2, 0.5, 1, 1.0, 2], R).
+keysorted(R) :- keysort([2-a, 1.5-b, 1-c, 2-d], R).
+sort4(R) :- sort(2, @>=, [f(a, 1), f(b, 2.5), f(c, 2)], R).
+best(R) :- predsort(compare, [2, 1.5, 3], R).
+% a decision as the original's decision maker takes it: grade the options,
+% sort, take the highest
+decide(R) :- sort([2-[coke], 2.5-[coke, noodles], 1-[]], S), reverse(S, [_-R|_]).
+read_text(R) :- atom_to_chars('[class(x, top, [''-''=>>loc], [], [])]', Cs), atom_to_chars('.', D), append(Cs, D, All), read_from_chars(All, R).
+bad_text(R) :- catch(read_from_chars("f(a", _), error(syntax_error(_), _), R = syntax_error).
+to_atom(R) :- term_to_atom(f(X, 'a b', [1]), A), term_to_atom(T, 'g(Y, c)'), R = A-T.
+bindings(R) :- atom_to_term('p(X, Y, X)', _, R).
+"#;
+
+    pub(super) fn engine() -> &'static PrologFunctions {
+        static ENGINE: std::sync::OnceLock<PrologFunctions> = std::sync::OnceLock::new();
+        ENGINE.get_or_init(|| {
+            PrologFunctions::load(
+                &[
+                    PrologSource::new("env.pl", "'$sitlog_env'('SITLOG_HOME', '/opt/sitlog/')."),
+                    PrologSource::new("user_functions.pl", APP),
+                ],
+                PrologOptions::default(),
+            )
+            .expect("loads")
+        })
+    }
+
+    fn ask(q: &str) -> String {
+        let query = format!("{q}(R0), R = R0.");
+        match engine().ask(query) {
+            Ok(Some(p)) => {
+                let mut store = Store::new();
+                let mut names = HashMap::new();
+                let t = from_prolog(&mut store, &p, &mut names);
+                store.writeq(t)
+            }
+            other => format!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn getenv() {
+        assert_eq!(ask("env"), "'/opt/sitlog/'");
+        assert_eq!(ask("env_missing"), "none");
+    }
+
+    #[test]
+    fn atomic_concat() {
+        assert_eq!(ask("concat"), "'/home/kb.txt42'");
+    }
+
+    #[test]
+    fn get0_reads_codes_to_end_of_file() {
+        let dir = std::env::temp_dir().join(format!("sitlog-get0-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("kb.txt");
+        std::fs::write(&file, "[a, 'b c']").unwrap();
+        let q = format!("read_codes('{}', R)", file.display());
+        let got = engine()
+            .query_raw(&format!("{q}."))
+            .unwrap()
+            .expect("answers");
+        assert!(got.contains("[a, 'b c']"), "{got}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn atom_chars_given_codes() {
+        assert_eq!(ask("chars_of_codes"), "abc");
+        assert_eq!(ask("chars_plain"), "[a,b,c]");
+    }
+
+    #[test]
+    fn atom_to_chars() {
+        assert_eq!(ask("to_chars"), "[97,98]");
+    }
+
+    #[test]
+    fn flatten() {
+        assert_eq!(ask("flat"), "[a,b,c,d,e]");
+    }
+
+    #[test]
+    fn assert() {
+        assert_eq!(ask("asserting"), "7");
+    }
+
+    #[test]
+    fn random_permutation() {
+        assert_eq!(ask("perm"), "[only]");
+        assert_eq!(ask("perm_all"), "[1,2,3,4,5]");
+    }
+
+    #[test]
+    fn last() {
+        assert_eq!(ask("last_of"), "c");
+    }
+
+    #[test]
+    fn include_exclude() {
+        assert_eq!(ask("incl"), "[1,3]");
+        assert_eq!(ask("excl"), "[a,b]");
+    }
+
+    /// SWI compares numbers by value, a float first when equal; the engine
+    /// alone puts every float before every integer (`2 @< 1.5`), which made
+    /// the supermarket demo's decision differ silently.
+    #[test]
+    fn standard_order_of_mixed_numbers() {
+        assert_eq!(ask("cmp"), "[<,>,>,<,=]");
+        assert_eq!(ask("before"), "no");
+        assert_eq!(ask("sorted"), "[0.5,1.0,1,1.5,2,3]");
+        assert_eq!(ask("msorted"), "[0.5,1.0,1,1.5,2,2,3]");
+        assert_eq!(ask("keysorted"), "[1-c,1.5-b,2-a,2-d]");
+        assert_eq!(ask("sort4"), "[f(b,2.5),f(c,2),f(a,1)]");
+        assert_eq!(ask("best"), "[1.5,2,3]");
+        // With the engine's order 2.5 sorts first and `[coke]` would win.
+        assert_eq!(ask("decide"), "[coke,noodles]");
+    }
+
+    #[test]
+    fn text_is_read_by_our_reader() {
+        // `'-'=>>loc` is SWI syntax the engine's own reader refuses.
+        assert_eq!(ask("read_text"), "[class(x,top,[(-)=>>loc],[],[])]");
+        assert_eq!(ask("bad_text"), "syntax_error");
+        let got = ask("to_atom");
+        assert!(got.starts_with("'f(") && got.contains("a b"), "{got}");
+        assert!(got.contains("-g(_"), "{got}");
+        let b = ask("bindings");
+        assert!(b.starts_with("['X'=_") && b.contains(",'Y'=_"), "{b}");
     }
 }

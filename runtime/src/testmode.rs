@@ -328,7 +328,17 @@ impl<W: Write> Actions for TextActions<W> {
         let arg = |i: usize| store.write(store.args(a)[i]);
         let line = match (name.as_str(), arity) {
             ("screen", 1) => format!("Golem prints on screen: {}", arg(0)),
-            ("say", 1) => format!("Golem says: {}", arg(0)),
+            ("say", 1) => {
+                // A message given as a list is said as one sentence (the
+                // original's msg_format/2).
+                let m = store.args(a)[0];
+                match store.list_to_vec(m).filter(|items| !items.is_empty()) {
+                    Some(items) => {
+                        format!("Golem says: {}", crate::builtins::sentence(store, &items))
+                    }
+                    None => format!("Golem says: {}", arg(0)),
+                }
+            }
             _ if self.declared.contains(&name) => format!("Golem does: {}", store.writeq(a)),
             _ => return Ok(()),
         };

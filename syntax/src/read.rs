@@ -1055,6 +1055,8 @@ mod tests {
         assert_eq!(rt("1_000_ 000"), "1000000");
         assert_eq!(rt("'\\e\\0\\'"), "'\\u001B\\u0000'");
         assert_eq!(rt("'\\u00e9\\U0001F600'"), "'é😀'");
+        // SWI-Prolog's `\c` skips the layout after it (the original's init.pl).
+        assert_eq!(rt("'ab\\c\n    cd'"), "abcd");
         assert_eq!(rt("[](a)"), "[](a)");
         assert_eq!(rt("{}(a)"), "{a}");
         // Found by proptest: an atom starting with `/*` must be quoted.
