@@ -12,6 +12,7 @@ pub mod build;
 pub mod check;
 pub mod codegen;
 pub mod diag;
+pub mod diagram;
 pub mod interp;
 pub mod ir;
 pub mod load;

@@ -134,7 +134,12 @@ fn add_file_by_role(
         }
         RECOVERY => ast::build_recovery(file, clauses, &mut program.recovery, diags),
         n if PROLOG_FILES.contains(&n) => {
-            ast::build_function_heads(file, &clauses, &mut program.functions);
+            ast::build_function_heads(
+                file,
+                &clauses,
+                &mut program.functions,
+                &mut program.function_values,
+            );
             program.prolog_files.push(file);
         }
         _ => ast::build_dms(file, clauses, &mut program.dms, diags),

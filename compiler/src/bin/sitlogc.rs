@@ -92,6 +92,40 @@ enum Command {
         #[arg(long, value_enum)]
         emit: Option<Emit>,
     },
+    /// Draw an application in the notation of the SitLog papers.
+    ///
+    /// Each DM is a dotted oval; situations are circles with their id and
+    /// type; arcs are labelled `expectation : action`; a next situation
+    /// given by a function is a bold dot labelled with it, with one exit
+    /// per value the compiler can tell (dashed when it cannot); several
+    /// instances of one situation id are reached through a `∨` circle;
+    /// recursive situations hold one return dot per final situation of
+    /// their embedded DM; bold arrows are the pipe between DMs and the
+    /// task's out_arg. Every element's SVG `<title>` starts with the
+    /// `file:line:col` where it is written. An application with errors
+    /// gives its diagnostics, not a picture (exit status 1).
+    Graph {
+        /// The application directory (or a single DM file).
+        #[arg(value_name = "APP")]
+        app: PathBuf,
+        /// Where to write the diagram (default: stdout).
+        #[arg(short, long, value_name = "FILE")]
+        output: Option<PathBuf>,
+        /// Draw only this DM (by name).
+        #[arg(long, value_name = "NAME")]
+        dm: Option<String>,
+        /// The main DM, whose out_arg leaves the task (default `main`).
+        #[arg(long, value_name = "NAME")]
+        main: Option<String>,
+        /// `svg` (laid out here), `dot` (for Graphviz), `json` (nodes,
+        /// edges, labels and source locations, for other tools).
+        #[arg(long, value_enum, default_value_t = GraphFormat::Svg)]
+        format: GraphFormat,
+        /// Colour a recorded run (`sitlogc run --trace FILE`): visited
+        /// situations and arcs taken, with how often.
+        #[arg(long, value_name = "FILE")]
+        trace: Option<PathBuf>,
+    },
     /// Ask a knowledge base one question (for people exploring a KB).
     ///
     /// QUERY is one service call with the original's name and argument
@@ -116,6 +150,13 @@ enum Command {
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
 enum Emit {
     Rust,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum GraphFormat {
+    Svg,
+    Dot,
+    Json,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -170,6 +211,14 @@ fn run(cli: Cli) -> u8 {
             release,
             emit,
         } => build_app(&app, output, release, emit),
+        Command::Graph {
+            app,
+            output,
+            dm,
+            main,
+            format,
+            trace,
+        } => graph(&app, output, dm, main, format, trace),
         Command::Kb {
             file,
             updates,
@@ -219,6 +268,95 @@ fn checked_ir_with(app: &std::path::Path, lenient: bool) -> Result<sitlog_compil
             let n = diags.iter().filter(|d| d.is_error()).count();
             eprintln!("error: the application has {n} error(s); run `sitlogc check` for details");
             Err(1)
+        }
+    }
+}
+
+fn graph(
+    app: &std::path::Path,
+    output: Option<PathBuf>,
+    dm: Option<String>,
+    main: Option<String>,
+    format: GraphFormat,
+    trace: Option<PathBuf>,
+) -> u8 {
+    let ir = match checked_ir(app) {
+        Ok(ir) => ir,
+        Err(code) => return code,
+    };
+    let options = sitlog_compiler::diagram::Options {
+        dm,
+        main,
+        title: sitlog_compiler::build::app_name(app),
+    };
+    let diagram = match sitlog_compiler::diagram::diagram(&ir, &options) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
+    let overlay = match &trace {
+        None => None,
+        Some(path) => {
+            let text = match std::fs::read_to_string(path) {
+                Ok(t) => t,
+                Err(e) => {
+                    eprintln!("error: cannot read trace {}: {e}", path.display());
+                    return 2;
+                }
+            };
+            match sitlog_graph::trace::read(&diagram, &text) {
+                Ok(o) => {
+                    if o.unmatched > 0 {
+                        eprintln!(
+                            "note: {} of {} transitions of {} are not in this diagram",
+                            o.unmatched,
+                            o.transitions,
+                            path.display()
+                        );
+                    }
+                    Some(o)
+                }
+                Err(e) => {
+                    eprintln!("error: {}: {e}", path.display());
+                    return 2;
+                }
+            }
+        }
+    };
+    let text = match format {
+        GraphFormat::Dot => sitlog_graph::dot::render(&diagram),
+        GraphFormat::Json => diagram.to_json(),
+        GraphFormat::Svg => {
+            let layout = sitlog_graph::layout::layout(&diagram);
+            for n in &layout.notes {
+                eprintln!("note: {n}");
+            }
+            sitlog_graph::svg::render(&diagram, &layout, overlay.as_ref())
+        }
+    };
+    if trace.is_some() && format != GraphFormat::Svg {
+        eprintln!("note: --trace colours the SVG only");
+    }
+    match output {
+        Some(path) => match std::fs::write(&path, text) {
+            Ok(()) => 0,
+            Err(e) => {
+                eprintln!("error: cannot write {}: {e}", path.display());
+                2
+            }
+        },
+        None => {
+            let mut out = std::io::stdout().lock();
+            match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+                Ok(()) => 0,
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => 0,
+                Err(e) => {
+                    eprintln!("error: cannot write the diagram: {e}");
+                    2
+                }
+            }
         }
     }
 }
