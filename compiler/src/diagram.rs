@@ -153,8 +153,8 @@ fn always_matches(store: &Store, b: Term) -> bool {
 
 /// Where a next-situation term may lead.
 enum Target {
-    /// The situations (several: a disjunction) and the term as written.
-    Sits(Vec<usize>, String),
+    /// The situations (several: a disjunction) with their ids, and the term as written.
+    Sits(Vec<(usize, String)>, String),
     Fun {
         label: String,
         what: String,
@@ -169,17 +169,34 @@ struct Cx<'a> {
     store: &'a Store,
     named: Named<'a>,
     sits: Vec<Sit>,
+    /// Situations by the functor of their id.
+    by_functor: HashMap<(Atom, usize), Vec<usize>>,
+    /// Situations whose id is a variable.
+    var_ids: Vec<usize>,
 }
 
 impl Cx<'_> {
-    fn candidates(&self, n: Term) -> Vec<usize> {
+    fn candidates(&self, n: Term) -> Vec<(usize, String)> {
         let mut out = Vec::new();
-        for (i, s) in self.sits.iter().enumerate() {
+        // situations whose id has n's functor, or is a variable, in order
+        let mut ixs: Vec<usize> = match self.store.functor(n) {
+            Some(f) if !is_evaluated(self.store, n) => {
+                self.by_functor.get(&f).cloned().unwrap_or_default()
+            }
+            _ => (0..self.sits.len()).collect(),
+        };
+        if !self.var_ids.is_empty() {
+            ixs.extend(&self.var_ids);
+            ixs.sort_unstable();
+            ixs.dedup();
+        }
+        for i in ixs {
+            let s = &self.sits[i];
             if is_none(self.store, s.id) {
                 continue;
             }
             if may_unify(self.store, n, s.id) {
-                out.push(i);
+                out.push((i, self.named.text(s.id)));
                 if always_matches(self.store, s.id) {
                     break;
                 }
@@ -312,11 +329,21 @@ pub fn diagram(ir: &Ir, options: &Options) -> Result<Diagram, String> {
             .iter()
             .map(|s| fields(store, s.template))
             .collect();
+        let mut by_functor: HashMap<(Atom, usize), Vec<usize>> = HashMap::new();
+        let mut var_ids = Vec::new();
+        for (i, s) in sits.iter().enumerate() {
+            match store.functor(s.id) {
+                Some(f) => by_functor.entry(f).or_default().push(i),
+                None => var_ids.push(i),
+            }
+        }
         let cx = Cx {
             ir,
             store,
             named,
             sits,
+            by_functor,
+            var_ids,
         };
         let mut g = DmGraph {
             id: format!("d{di}"),
@@ -560,7 +587,13 @@ fn emit(
     };
     match t {
         Target::Sits(ks, _) if ks.len() == 1 => {
-            edge(g, format!("d{di}.s{}", ks[0]), label, kind, base.to_owned());
+            edge(
+                g,
+                format!("d{di}.s{}", ks[0].0),
+                label,
+                kind,
+                base.to_owned(),
+            );
         }
         Target::Sits(ks, text) if ks.is_empty() => {
             let cid = format!("{base}.c");
@@ -573,13 +606,8 @@ fn emit(
             g.nodes
                 .push(plain(NodeKind::Disjunction, vid.clone(), text.clone()));
             edge(g, vid.clone(), label, kind, base.to_owned());
-            for &k in ks {
-                let cond = g
-                    .nodes
-                    .iter()
-                    .find(|n| n.id == format!("d{di}.s{k}"))
-                    .map(|n| n.label.clone())
-                    .unwrap_or_default();
+            for (k, cond) in ks {
+                let cond = cond.clone();
                 g.edges.push(Edge {
                     id: format!("e:{vid}.{k}"),
                     kind: EdgeKind::Exit,

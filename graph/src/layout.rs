@@ -4,10 +4,12 @@
 //! boxes of the program's call graph, and the links between DMs are drawn
 //! as curves between the placed nodes.
 //!
-//! `layout-rs` draws no nested clusters, so the two levels are ours. A DM
-//! with more than [`LAYERED_LIMIT`] nodes, or one the engine cannot lay
-//! out, is placed by a simple layered layout of ours instead (and a note
-//! says so): the engine's edge-crossing pass grows faster than linearly.
+//! `layout-rs` draws no nested clusters, so the two levels are ours. The
+//! engine's edge-crossing reduction grows much faster than linearly with
+//! the DM (its nodes plus the dummy nodes of long edges, see
+//! [`engine_cost`]): past [`OPT_LIMIT`] it is skipped, and a DM past
+//! [`PLAIN_LIMIT`], or one the engine cannot lay out, is placed by a simple
+//! layered layout of ours instead. A note says so each time.
 
 use crate::{shorten, Diagram, DmGraph, Edge, NodeKind};
 use layout::core::base::Orientation;
@@ -19,8 +21,15 @@ use layout::std_shapes::shapes::{Arrow, Element, LineEndKind, ShapeKind};
 use layout::topo::layout::VisualGraph;
 use std::collections::HashMap;
 
-/// DMs with more nodes than this use the simple layered layout.
-pub const LAYERED_LIMIT: usize = 400;
+/// Time the engine may take for a whole diagram; a DM not laid out by then
+/// gets the simple layered layout.
+pub const ENGINE_BUDGET: std::time::Duration = std::time::Duration::from_secs(4);
+
+/// Up to this [`engine_cost`] the engine reduces edge crossings.
+pub const OPT_LIMIT: usize = 250;
+/// Up to this [`engine_cost`] the engine lays the DM out (without crossing
+/// reduction past [`OPT_LIMIT`]); past it, the simple layered layout.
+pub const PLAIN_LIMIT: usize = 500;
 
 /// Width of one character of label text, in the monospace font the SVG uses.
 pub const CHAR_W: f64 = 7.0;
@@ -172,22 +181,33 @@ pub fn return_dot_offsets(n: usize, diameter: f64) -> Vec<P> {
 /// Lays out the whole diagram.
 pub fn layout(d: &Diagram) -> Layout {
     let mut out = Layout::default();
+    let started = std::time::Instant::now();
+    let budget = ENGINE_BUDGET;
     // 1. Each DM on its own, in local coordinates.
     let mut locals = Vec::new();
     for dm in &d.dms {
-        let local = if dm.nodes.len() + dm.edges.len() > LAYERED_LIMIT {
+        let cost = engine_cost(dm);
+        let local = if cost > PLAIN_LIMIT {
             out.notes.push(format!(
-                "DM {} has {} nodes: drawn with the simple layered layout",
+                "DM {} has {} nodes and {} edges: too many to lay out in a few seconds; drawn with the simple layered layout",
                 dm.name,
-                dm.nodes.len()
+                dm.nodes.len(),
+                dm.edges.len()
             ));
             layered(dm)
         } else {
-            match std::panic::catch_unwind(|| engine(dm)) {
-                Ok(Some(l)) => l,
-                _ => {
+            if cost > OPT_LIMIT {
+                out.notes.push(format!(
+                    "DM {} is large: edge crossings are not reduced",
+                    dm.name
+                ));
+            }
+            let left = budget.saturating_sub(started.elapsed());
+            match engine_within(dm, cost <= OPT_LIMIT, left) {
+                Ok(l) => l,
+                Err(why) => {
                     out.notes.push(format!(
-                        "the layout engine could not place DM {}: drawn with the simple layered layout",
+                        "DM {}: {why}; drawn with the simple layered layout",
                         dm.name
                     ));
                     layered(dm)
@@ -325,6 +345,30 @@ struct Local {
     max: P,
 }
 
+/// [`engine`] on a thread of its own, given up after `time` (the thread is
+/// left to finish on its own) or when the engine fails.
+fn engine_within(dm: &DmGraph, optimize: bool, time: std::time::Duration) -> Result<Local, String> {
+    if time.is_zero() {
+        return Err("out of layout time".to_owned());
+    }
+    let (tx, rx) = std::sync::mpsc::channel();
+    let owned = dm.clone();
+    let spawned = std::thread::Builder::new()
+        .name("sitlog-graph-layout".to_owned())
+        .spawn(move || {
+            let r = std::panic::catch_unwind(|| engine(&owned, optimize));
+            let _ = tx.send(r.ok().flatten());
+        });
+    if spawned.is_err() {
+        return Err("no thread for the layout engine".to_owned());
+    }
+    match rx.recv_timeout(time) {
+        Ok(Some(l)) => Ok(l),
+        Ok(None) => Err("the layout engine could not place it".to_owned()),
+        Err(_) => Err("the layout engine took too long".to_owned()),
+    }
+}
+
 /// Records the arrows `layout-rs` draws (their properties are our edge indices).
 #[derive(Default)]
 struct Capture {
@@ -370,7 +414,7 @@ fn p(pt: Point) -> P {
 }
 
 /// `layout-rs` on one DM; `None` when its output cannot be read back.
-fn engine(dm: &DmGraph) -> Option<Local> {
+fn engine(dm: &DmGraph, optimize: bool) -> Option<Local> {
     let mut vg = VisualGraph::new(Orientation::TopToBottom);
     let look = StyleAttr::new(Color::new(0), 1, None, 0, 7);
     let mut handles = Vec::new();
@@ -399,7 +443,7 @@ fn engine(dm: &DmGraph) -> Option<Local> {
         vg.add_edge(arrow, handles[a], handles[b]);
     }
     let mut cap = Capture::default();
-    vg.do_it(false, false, false, &mut cap);
+    vg.do_it(false, !optimize, false, &mut cap);
     let mut nodes = Vec::new();
     for (i, h) in handles.iter().enumerate() {
         let pos = vg.pos(*h);
@@ -573,9 +617,9 @@ fn bounded(nodes: Vec<Placed>, routes: Vec<Route>) -> Local {
     }
 }
 
-/// The simple layered layout: ranks by breadth-first search from the
-/// first node, rows left to right, straight edges.
-fn layered(dm: &DmGraph) -> Local {
+/// Ranks by breadth-first search from the first node (then from each node
+/// not reached yet).
+fn ranks(dm: &DmGraph) -> (Vec<usize>, HashMap<&str, usize>, Vec<Vec<usize>>) {
     let n = dm.nodes.len();
     let index: HashMap<&str, usize> = dm
         .nodes
@@ -611,6 +655,29 @@ fn layered(dm: &DmGraph) -> Local {
         }
         base = base.max(rank[next_root] + 1);
     }
+    (rank, index, succ)
+}
+
+/// How much work the engine has with a DM: its nodes plus the dummy
+/// nodes long edges need (the sum of the edges' rank spans, with the
+/// label connector each edge gets). The engine's crossing reduction grows
+/// much faster than linearly in it.
+pub fn engine_cost(dm: &DmGraph) -> usize {
+    let (rank, _, succ) = ranks(dm);
+    let mut cost = dm.nodes.len();
+    for (a, bs) in succ.iter().enumerate() {
+        for &b in bs {
+            cost += 2 * rank[a].abs_diff(rank[b]).max(1);
+        }
+    }
+    cost
+}
+
+/// The simple layered layout: ranks by breadth-first search from the
+/// first node, rows left to right, straight edges.
+fn layered(dm: &DmGraph) -> Local {
+    let n = dm.nodes.len();
+    let (rank, index, _) = ranks(dm);
     // Rows, wrapped at a fixed width so that wide ranks stay readable.
     let max_row_w = 2400.0;
     let mut nodes = vec![
@@ -712,20 +779,27 @@ fn place_boxes(boxes: &[(f64, f64)], pairs: &[(usize, usize)]) -> Vec<P> {
             .map(|h| p(vg.pos(*h).center()))
             .collect::<Vec<_>>()
     };
-    match std::panic::catch_unwind(run) {
-        Ok(v) => v,
-        Err(_) => {
-            let mut x = 0.0;
-            boxes
-                .iter()
-                .map(|&(w, h)| {
-                    let c = P::new(x + w / 2.0, h / 2.0);
-                    x += w + 40.0;
-                    c
-                })
-                .collect()
+    let grid = || {
+        // rows of about √n boxes
+        let per_row = (boxes.len() as f64).sqrt().ceil() as usize;
+        let (mut x, mut y, mut row_h) = (0.0, 0.0, 0.0f64);
+        let mut v = Vec::new();
+        for (i, &(w, h)) in boxes.iter().enumerate() {
+            if i > 0 && i % per_row == 0 {
+                y += row_h + 40.0;
+                x = 0.0;
+                row_h = 0.0;
+            }
+            v.push(P::new(x + w / 2.0, y + h / 2.0));
+            x += w + 40.0;
+            row_h = row_h.max(h);
         }
+        v
+    };
+    if boxes.len() > 60 || pairs.len() > 150 {
+        return grid();
     }
+    std::panic::catch_unwind(run).unwrap_or_else(|_| grid())
 }
 
 /// A curve between two placed nodes (or into a return dot).
