@@ -275,14 +275,10 @@ pub fn layout(d: &Diagram) -> Layout {
                 w: p.w,
                 h: p.h,
             };
-            for (r, off) in n
-                .returns
-                .iter()
-                .zip(return_dot_offsets(n.returns.len(), p.w))
-            {
-                out.dots.insert(r.id.clone(), placed.center.plus(off));
-            }
             out.nodes.insert(n.id.clone(), placed);
+        }
+        for (id, at) in &l.dots {
+            out.dots.insert(id.clone(), at.plus(t));
         }
         for (e, r) in dm.edges.iter().zip(&l.routes) {
             let mut r = r.clone();
@@ -341,6 +337,8 @@ fn owners(d: &Diagram) -> HashMap<&str, usize> {
 struct Local {
     nodes: Vec<Placed>,
     routes: Vec<Route>,
+    /// Return dot id → centre.
+    dots: Vec<(String, P)>,
     min: P,
     max: P,
 }
@@ -521,8 +519,7 @@ fn engine(dm: &DmGraph, optimize: bool) -> Option<Local> {
         used[k] = true;
         routes[i].label_at = Some(connectors[k].1);
     }
-    with_ports(dm, &nodes, &mut routes);
-    Some(bounded(nodes, routes))
+    Some(bounded(dm, nodes, routes))
 }
 
 fn route_points(path: &[Cmd]) -> Vec<P> {
@@ -537,36 +534,43 @@ fn route_points(path: &[Cmd]) -> Vec<P> {
     v
 }
 
-/// Arcs leaving a return dot start at the dot.
-fn with_ports(dm: &DmGraph, nodes: &[Placed], routes: &mut [Route]) {
-    let index: HashMap<&str, usize> = dm
-        .nodes
-        .iter()
-        .enumerate()
-        .map(|(i, n)| (n.id.as_str(), i))
-        .collect();
-    for (e, r) in dm.edges.iter().zip(routes.iter_mut()) {
-        let Some(port) = &e.from_port else { continue };
-        let Some(&i) = index.get(e.from.as_str()) else {
+/// Where the return dots of each recursive situation go (local
+/// coordinates): a dot with an arc sits just inside the rim where that arc
+/// leaves, so the arc starts at its dot; the others along the bottom.
+fn place_ports(dm: &DmGraph, nodes: &[Placed], routes: &[Route]) -> Vec<(String, P)> {
+    let mut out = Vec::new();
+    for (i, n) in dm.nodes.iter().enumerate() {
+        if n.returns.is_empty() {
             continue;
-        };
-        let n = &dm.nodes[i];
-        let Some(k) = n.returns.iter().position(|d| &d.id == port) else {
-            continue;
-        };
-        let dot = nodes[i]
-            .center
-            .plus(return_dot_offsets(n.returns.len(), nodes[i].w)[k]);
-        if let Some(Cmd::M(start)) = r.path.first().cloned() {
-            r.path[0] = Cmd::M(dot);
-            r.path.insert(1, Cmd::L(start));
-            // keep the curve continuous: the C that followed starts at `start`
-            r.path.insert(2, Cmd::M(start));
+        }
+        let offsets = return_dot_offsets(n.returns.len(), nodes[i].w);
+        for (k, dot) in n.returns.iter().enumerate() {
+            let start = dm
+                .edges
+                .iter()
+                .zip(routes)
+                .find(|(e, _)| e.from == n.id && e.from_port.as_ref() == Some(&dot.id))
+                .and_then(|(_, r)| match r.path.first() {
+                    Some(Cmd::M(a)) => Some(*a),
+                    _ => None,
+                });
+            let at = match start {
+                Some(a) => {
+                    let c = nodes[i].center;
+                    let d = a.minus(c);
+                    let len = d.len().max(1e-9);
+                    c.plus(d.scale((len - 7.0).max(0.0) / len))
+                }
+                None => nodes[i].center.plus(offsets[k]),
+            };
+            out.push((dot.id.clone(), at));
         }
     }
+    out
 }
 
-fn bounded(nodes: Vec<Placed>, routes: Vec<Route>) -> Local {
+fn bounded(dm: &DmGraph, nodes: Vec<Placed>, routes: Vec<Route>) -> Local {
+    let dots = place_ports(dm, &nodes, &routes);
     let (mut min, mut max) = (P::new(f64::MAX, f64::MAX), P::new(f64::MIN, f64::MIN));
     let mut grow = |q: P| {
         min = P::new(min.x.min(q.x), min.y.min(q.y));
@@ -612,6 +616,7 @@ fn bounded(nodes: Vec<Placed>, routes: Vec<Route>) -> Local {
     Local {
         nodes,
         routes,
+        dots,
         min,
         max,
     }
@@ -734,8 +739,7 @@ fn layered(dm: &DmGraph) -> Local {
         }
         routes.push(r);
     }
-    with_ports(dm, &nodes, &mut routes);
-    bounded(nodes, routes)
+    bounded(dm, nodes, routes)
 }
 
 /// The point of `n`'s ellipse towards `to`.

@@ -59,6 +59,10 @@ pub fn render(d: &Diagram, l: &Layout, overlay: Option<&Overlay>) -> String {
         num(l.width),
         num(l.height)
     );
+    // links first: the circles they end in cover them up to their dots
+    for e in &d.links {
+        edge(&mut s, e, l, overlay);
+    }
     for (dm, oval) in d.dms.iter().zip(&l.ovals) {
         let _ = writeln!(
             s,
@@ -98,9 +102,6 @@ pub fn render(d: &Diagram, l: &Layout, overlay: Option<&Overlay>) -> String {
     }
     for n in &d.externals {
         node(&mut s, n, l, overlay);
-    }
-    for e in &d.links {
-        edge(&mut s, e, l, overlay);
     }
     s.push_str("</svg>\n");
     s
@@ -149,7 +150,7 @@ fn edge(s: &mut String, e: &Edge, l: &Layout, overlay: Option<&Overlay>) {
         EdgeKind::Arc | EdgeKind::Exit => ("#222", 1.3, "", "arrow-black"),
         EdgeKind::Computed => ("#222", 1.3, "6 4", "arrow-black"),
         EdgeKind::Pipe | EdgeKind::OutArg => ("#000", 3.5, "", "arrow-bold"),
-        EdgeKind::Control => ("#777", 2.0, "7 3", "arrow"),
+        EdgeKind::Control => ("#777", 2.0, "7 3", ""),
     };
     let mut opacity = 1.0;
     match taken {
@@ -173,9 +174,14 @@ fn edge(s: &mut String, e: &Edge, l: &Layout, overlay: Option<&Overlay>) {
     } else {
         format!(r#" stroke-dasharray="{dash}""#)
     };
+    let marker = if marker.is_empty() {
+        String::new()
+    } else {
+        format!(r#" marker-end="url(#{marker})""#)
+    };
     let _ = writeln!(
         s,
-        r#"<path d="{}" fill="none" stroke="{stroke}" stroke-width="{}"{dash_attr} opacity="{}" marker-end="url(#{marker})"/>"#,
+        r#"<path d="{}" fill="none" stroke="{stroke}" stroke-width="{}"{dash_attr} opacity="{}"{marker}/>"#,
         path_data(&r.path),
         num(width),
         num(opacity)
@@ -345,12 +351,10 @@ fn node(s: &mut String, n: &Node, l: &Layout, overlay: Option<&Overlay>) {
                     esc(line)
                 );
             }
-            for (dot, off) in n
-                .returns
-                .iter()
-                .zip(layout::return_dot_offsets(n.returns.len(), pl.w))
-            {
-                let q = c.plus(off);
+            for dot in &n.returns {
+                let Some(&q) = l.dots.get(&dot.id) else {
+                    continue;
+                };
                 let _ = writeln!(
                     s,
                     r##"<g class="return" id="{}"><title>{}
