@@ -442,6 +442,7 @@ pub fn diagram(ir: &Ir, options: &Options) -> Result<Diagram, String> {
                     &base,
                     &loc,
                     di,
+                    Some(cx.named.text(e)),
                 );
             }
         }
@@ -461,6 +462,7 @@ pub fn diagram(ir: &Ir, options: &Options) -> Result<Diagram, String> {
                 to: sit_id(ci, 0),
                 to_port: None,
                 label: call,
+                expectation: None,
                 location: loc.clone(),
             });
             let node = d.dms[drawn.iter().position(|&x| x == di).unwrap_or(0)]
@@ -485,6 +487,7 @@ pub fn diagram(ir: &Ir, options: &Options) -> Result<Diagram, String> {
                     to: from.clone(),
                     to_port: Some(r.id.clone()),
                     label: String::new(),
+                    expectation: None,
                     location: r.location.clone(),
                 });
             }
@@ -515,6 +518,7 @@ pub fn diagram(ir: &Ir, options: &Options) -> Result<Diagram, String> {
                 to: xid,
                 to_port: None,
                 label: call,
+                expectation: None,
                 location: loc,
             });
         }
@@ -542,6 +546,7 @@ pub fn diagram(ir: &Ir, options: &Options) -> Result<Diagram, String> {
             to: "out_arg".to_owned(),
             to_port: None,
             label: String::new(),
+            expectation: None,
             location: ir.dms[mi].location.clone(),
         });
     }
@@ -559,6 +564,7 @@ fn emit(
     base: &str,
     loc: &str,
     di: usize,
+    expectation: Option<String>,
 ) {
     let edge = |g: &mut DmGraph, to: String, label: String, kind: EdgeKind, id: String| {
         g.edges.push(Edge {
@@ -569,6 +575,7 @@ fn emit(
             to,
             to_port: None,
             label,
+            expectation: expectation.clone(),
             location: loc.to_owned(),
         });
     };
@@ -616,6 +623,7 @@ fn emit(
                     to: format!("d{di}.s{k}"),
                     to_port: None,
                     label: cond,
+                    expectation: None,
                     location: loc.to_owned(),
                 });
             }
@@ -641,6 +649,7 @@ fn emit(
                     &format!("{fid}.x{x}"),
                     loc,
                     di,
+                    None,
                 );
             }
             if *computed {
@@ -655,6 +664,7 @@ fn emit(
                     to: cid,
                     to_port: None,
                     label: "computed".to_owned(),
+                    expectation: None,
                     location: loc.to_owned(),
                 });
             }

@@ -301,6 +301,20 @@ fn a_recorded_run_on_the_diagram() {
         .find(|e| e.from == h.id && e.to == id("main", "rs"))
         .unwrap();
     assert_eq!(o.edge_count(&exit_rs.id), 1);
+    // the transition `[monday,ok]` went through `h` back to `is`, not round the self-loop
+    let exit_is = main
+        .edges
+        .iter()
+        .find(|e| e.from == h.id && e.to == id("main", "is"))
+        .unwrap();
+    assert_eq!(o.edge_count(&exit_is.id), 1);
+    assert_eq!(o.node_count(&h.id), 2);
+    let self_loop = main
+        .edges
+        .iter()
+        .find(|e| e.from == id("main", "is") && e.to == id("main", "is"))
+        .unwrap();
+    assert_eq!(o.edge_count(&self_loop.id), 2);
     for (from, to) in [("rs", "rs"), ("rs", "is"), ("is", "fs")] {
         let e = main
             .edges

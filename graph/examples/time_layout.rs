@@ -40,6 +40,7 @@ fn synthetic(n: usize, seed: u64) -> Diagram {
                     to: format!("d0.s{j}"),
                     to_port: None,
                     label: format!("e{k} : empty"),
+                    expectation: None,
                     location: "main.dm:1:1".into(),
                 });
             }

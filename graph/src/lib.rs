@@ -155,6 +155,10 @@ pub struct Edge {
     pub to_port: Option<String>,
     /// `α:β` for arcs, the condition or value for exits, ...
     pub label: String,
+    /// The arc's expectation as written (arcs out of a situation only;
+    /// to tell which arc a recorded transition took).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub expectation: Option<String>,
     pub location: String,
 }
 

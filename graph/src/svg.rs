@@ -151,8 +151,13 @@ fn edge(s: &mut String, e: &Edge, l: &Layout, overlay: Option<&Overlay>) {
         EdgeKind::Control => ("#777", 2.0, "7 3", ""),
     };
     let mut opacity = 1.0;
+    let is_link = matches!(
+        e.kind,
+        EdgeKind::Pipe | EdgeKind::Control | EdgeKind::OutArg
+    );
     match taken {
-        Some(0) => opacity = 0.45,
+        Some(0) if !is_link => opacity = 0.45,
+        Some(0) => {}
         Some(n) => {
             if matches!(e.kind, EdgeKind::Arc | EdgeKind::Exit | EdgeKind::Computed) {
                 stroke = "#1a7f37";

@@ -38,6 +38,7 @@ fn synthetic(n: usize) -> Diagram {
                     to: format!("d0.s{j}"),
                     to_port: None,
                     label: format!("e{k} : empty"),
+                    expectation: None,
                     location: format!("main.dm:{}:5", i + 2),
                 });
             }
@@ -108,6 +109,7 @@ fn empty_and_odd_diagrams() {
         to: "missing".into(),
         to_port: None,
         label: String::new(),
+        expectation: None,
         location: "main.dm:1:1".into(),
     });
     let s = svg::render(&d, &layout::layout(&d), None);
@@ -129,4 +131,24 @@ fn functor_of_trace_ids() {
     assert_eq!(functor_of("'it''s'(x)").as_deref(), Some("it''s/1"));
     assert_eq!(functor_of("X"), None);
     assert_eq!(functor_of("42"), None);
+}
+
+#[test]
+fn recorded_values_against_expectations() {
+    use trace::may_match;
+    assert!(may_match("[day(X)]", "[day(tuesday)]"));
+    assert!(!may_match("[day(X)]", "[tuesday,'not ok']"));
+    assert!(may_match(
+        "[get(day,Day),apply(f(X),[In_Arg])]",
+        "[tuesday,'not ok']"
+    ));
+    assert!(may_match("finish", "finish"));
+    assert!(!may_match("finish", "loop"));
+    assert!(may_match("In_Arg", "tuesday"));
+    assert!(may_match("[H|T]", "[a,b]"));
+    assert!(!may_match("[H|T]", "[]"));
+    assert!(may_match("'ok'", "ok"));
+    assert!(!may_match("success(X)", "error(x)"));
+    // what the reader does not follow matches
+    assert!(may_match("X == 1", "whatever"));
 }

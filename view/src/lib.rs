@@ -205,9 +205,10 @@ impl Observer for ViewObserver {
         let d = &self.shared.diagram;
         let g = find_dm(d, &dm);
         let node = g.and_then(|g| find_situation(g, &situation));
+        let expectation = store.writeq(entry.expectation);
         let edges = match (g, node, next.as_deref()) {
             (Some(g), Some(n), Some(next)) => find_situation(g, next)
-                .and_then(|t| chain(g, &n.id, &t.id))
+                .and_then(|t| chain(g, &n.id, &t.id, Some(&expectation)))
                 .unwrap_or_default(),
             _ => Vec::new(),
         };
@@ -217,7 +218,7 @@ impl Observer for ViewObserver {
                 "seq": st.events.len(),
                 "dm": dm,
                 "situation": situation,
-                "expectation": store.writeq(entry.expectation),
+                "expectation": expectation,
                 "action": store.writeq(entry.action),
                 "depth": depth,
                 "next": next,
