@@ -20,6 +20,8 @@ pub struct Program {
     pub expectation_types: Vec<(Atom, Loc)>,
     /// Heads of the clauses of `user_functions.pl` / `templates.pl`.
     pub functions: Vec<FunctionHead>,
+    /// What each of those functions can give as its value (for diagrams).
+    pub function_values: Vec<FunctionValues>,
     /// Prolog files to consult at run time (user functions, templates), in load order.
     pub prolog_files: Vec<FileId>,
     /// Whether a `global_vars.pl` was read (if not, every `get`/`set` needs a local).
@@ -509,20 +511,134 @@ pub fn build_expectation_types(
     }
 }
 
+/// The values a user function `name/arity` gives through
+/// `assign_func_value/1`, as far as its clauses show them: `values` is
+/// `None` when some clause gives something else than a term written in the
+/// clause (directly or through `V = Term`) or one of its arguments.
+#[derive(Debug, Clone)]
+pub struct FunctionValues {
+    pub name: Atom,
+    pub arity: usize,
+    pub values: Option<Vec<FnValue>>,
+}
+
+/// One value of a user function.
+#[derive(Debug, Clone)]
+pub enum FnValue {
+    /// A term of this clause (it may hold variables).
+    Term(Clause, TermId),
+    /// The call's argument at this index (0-based).
+    Arg(usize),
+}
+
+/// The `assign_func_value(V)` values of one clause: `None` if one of them
+/// cannot be told; empty if the clause assigns nothing.
+fn clause_values(clause: &Clause, head: TermId, body: Option<TermId>) -> Option<Vec<FnValue>> {
+    let terms = &clause.terms;
+    let Some(body) = body else {
+        return Some(Vec::new());
+    };
+    // The goals of the body, through `,` `;` `->` `*->` `|`.
+    let mut goals = Vec::new();
+    let mut work = vec![body];
+    while let Some(g) = work.pop() {
+        match terms.node(g) {
+            Node::Compound {
+                functor, arity: 2, ..
+            } if [",", ";", "->", "*->", "|"].contains(&functor.as_str()) => {
+                let a = terms.args(g);
+                work.push(a[1]);
+                work.push(a[0]);
+            }
+            _ => goals.push(g),
+        }
+    }
+    let var_of = |t: TermId| match terms.node(t) {
+        Node::Var(v) if &*clause.vars[v.0 as usize].name != "_" => Some(*v),
+        _ => None,
+    };
+    let head_args: &[TermId] = match terms.node(head) {
+        Node::Compound { .. } => terms.args(head),
+        _ => &[],
+    };
+    let arg_index = |v| head_args.iter().position(|&a| var_of(a) == Some(v));
+    let assign = Atom::intern("assign_func_value");
+    let eq = Atom::intern("=");
+    let mut out = Vec::new();
+    for &g in &goals {
+        let Some(a) = terms.compound(g, assign, 1) else {
+            continue;
+        };
+        let Some(v) = var_of(a[0]) else {
+            out.push(FnValue::Term(clause.clone(), a[0]));
+            continue;
+        };
+        if let Some(i) = arg_index(v) {
+            out.push(FnValue::Arg(i));
+            continue;
+        }
+        let mut found = false;
+        for &u in &goals {
+            let Some(b) = terms.compound(u, eq, 2) else {
+                continue;
+            };
+            let other = if var_of(b[0]) == Some(v) {
+                b[1]
+            } else if var_of(b[1]) == Some(v) {
+                b[0]
+            } else {
+                continue;
+            };
+            match var_of(other) {
+                Some(w) => match arg_index(w) {
+                    Some(i) => out.push(FnValue::Arg(i)),
+                    None => return None,
+                },
+                None => out.push(FnValue::Term(clause.clone(), other)),
+            }
+            found = true;
+        }
+        if !found {
+            return None;
+        }
+    }
+    Some(out)
+}
+
 /// Heads of Prolog clauses (`Head :- Body.`, facts); directives are skipped.
-pub fn build_function_heads(file: FileId, clauses: &[Clause], out: &mut Vec<FunctionHead>) {
+pub fn build_function_heads(
+    file: FileId,
+    clauses: &[Clause],
+    out: &mut Vec<FunctionHead>,
+    values: &mut Vec<FunctionValues>,
+) {
     let neck = Atom::intern(":-");
     for clause in clauses {
         let terms = &clause.terms;
-        let head = match terms.node(clause.root) {
+        let (head, body) = match terms.node(clause.root) {
             Node::Compound {
                 functor, arity: 1, ..
             } if *functor == neck => continue,
             _ => terms
                 .compound(clause.root, neck, 2)
-                .map_or(clause.root, |a| a[0]),
+                .map_or((clause.root, None), |a| (a[0], Some(a[1]))),
         };
         if let Some((name, arity)) = terms.functor(head) {
+            let these = clause_values(clause, head, body);
+            match values
+                .iter_mut()
+                .find(|f| f.name == name && f.arity == arity)
+            {
+                Some(f) => match (&mut f.values, these) {
+                    (Some(vs), Some(more)) => vs.extend(more),
+                    (vs, _) => *vs = None,
+                },
+                None => values.push(FunctionValues {
+                    name,
+                    arity,
+                    values: these,
+                }),
+            }
             if !out.iter().any(|h| h.name == name && h.arity == arity) {
                 out.push(FunctionHead {
                     name,

@@ -8,7 +8,7 @@
 //! built once, at lowering. The IR never refers back to the AST; source
 //! positions are kept as text in a side table.
 
-use crate::ast::SituationKind;
+use crate::ast::{FnValue, SituationKind};
 use crate::check::Checked;
 use sitlog_runtime::machine::Kind;
 use sitlog_runtime::{Store, Term};
@@ -35,6 +35,27 @@ pub struct Ir {
     /// The Prolog files (templates.pl, then user_functions.pl), consulted
     /// at start by the `prolog` feature.
     pub prolog_sources: Vec<PrologFile>,
+    /// What each Prolog user function can return, as far as its clauses
+    /// show it (for diagrams; see [`crate::ast::FunctionValues`]).
+    pub function_values: Vec<IrFunctionValues>,
+}
+
+/// The values a user function `name/arity` can give: `None` when some
+/// clause gives a value that is not a constant nor an argument.
+#[derive(Debug)]
+pub struct IrFunctionValues {
+    pub name: Atom,
+    pub arity: usize,
+    pub values: Option<Vec<IrFnValue>>,
+}
+
+/// One value a user function can give.
+#[derive(Clone, Copy, Debug)]
+pub enum IrFnValue {
+    /// This term (may hold variables).
+    Term(Term),
+    /// The value of the call's argument at this index (0-based).
+    Arg(usize),
 }
 
 /// A Prolog source file of the application.
@@ -55,6 +76,10 @@ pub struct IrDm {
     pub situations: Vec<IrSituation>,
     /// Local variables and their default values (templates).
     pub locals: Vec<(Atom, Term)>,
+    /// `file:line:col` of the `diag_mod` clause.
+    pub location: String,
+    /// Source names of the template variables (for diagrams and messages).
+    pub var_names: Vec<(Term, Box<str>)>,
 }
 
 #[derive(Debug)]
@@ -65,6 +90,8 @@ pub struct IrSituation {
     pub id_functor: Option<(Atom, usize)>,
     /// `file:line:col` of the situation.
     pub location: String,
+    /// `file:line:col` of each arc, in order.
+    pub arc_locations: Vec<String>,
 }
 
 /// The marker of an absent attribute in a situation template.
@@ -109,7 +136,10 @@ pub fn lower(checked: &Checked) -> Ir {
             let emb = opt(&mut store, s.embedded_dm, &mut import);
             let diag = opt(&mut store, s.diag_mod, &mut import);
             let mut arcs = Vec::new();
+            let mut arc_locations = Vec::new();
             for arc in s.arcs.iter().flatten() {
+                let pos = file.line_col(arc.span.start);
+                arc_locations.push(format!("{}:{}:{}", file.name, pos.line, pos.column));
                 let e = import(&mut store, arc.expectation);
                 let a = import(&mut store, arc.action);
                 let n = import(&mut store, arc.next);
@@ -132,6 +162,7 @@ pub fn lower(checked: &Checked) -> Ir {
                 template,
                 id_functor,
                 location: format!("{}:{}:{}", file.name, pos.line, pos.column),
+                arc_locations,
             });
         }
         let locals = dm
@@ -139,6 +170,12 @@ pub fn lower(checked: &Checked) -> Ir {
             .iter()
             .map(|l| (l.name, import(&mut store, l.value)))
             .collect();
+        let var_names = slots
+            .iter()
+            .enumerate()
+            .filter_map(|(i, t)| t.map(|t| (t, clause.vars[i].name.clone())))
+            .collect();
+        let pos = file.line_col(clause.span.start);
         by_name.entry(dm.name).or_insert(dms.len() as DmIx);
         dms.push(IrDm {
             name: dm.name,
@@ -146,6 +183,8 @@ pub fn lower(checked: &Checked) -> Ir {
             head,
             situations,
             locals,
+            location: format!("{}:{}:{}", file.name, pos.line, pos.column),
+            var_names,
         });
     }
     let mut globals: Vec<(Atom, Term)> = Vec::new();
@@ -157,8 +196,28 @@ pub fn lower(checked: &Checked) -> Ir {
         let v = store.import(&g.clause.terms, g.value, &mut slots);
         globals.push((g.name, v));
     }
+    let function_values = program
+        .function_values
+        .iter()
+        .map(|f| IrFunctionValues {
+            name: f.name,
+            arity: f.arity,
+            values: f.values.as_ref().map(|vs| {
+                vs.iter()
+                    .map(|v| match v {
+                        FnValue::Arg(i) => IrFnValue::Arg(*i),
+                        FnValue::Term(clause, t) => {
+                            let mut slots = vec![None; clause.vars.len()];
+                            IrFnValue::Term(store.import(&clause.terms, *t, &mut slots))
+                        }
+                    })
+                    .collect()
+            }),
+        })
+        .collect();
     store.freeze();
     Ir {
+        function_values,
         store,
         dms,
         by_name,

@@ -13,6 +13,7 @@ pub mod build;
 pub mod check;
 pub mod codegen;
 pub mod diag;
+pub mod diagram;
 pub mod interp;
 pub mod ir;
 pub mod legacy;

@@ -180,7 +180,12 @@ fn add_prolog_file(
             }
         }
     }
-    ast::build_function_heads(file, &clauses, &mut program.functions);
+    ast::build_function_heads(
+        file,
+        &clauses,
+        &mut program.functions,
+        &mut program.function_values,
+    );
     program.prolog_files.push(file);
 }
 

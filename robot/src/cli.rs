@@ -253,12 +253,14 @@ pub fn app_name(app: &Path) -> String {
 }
 
 /// Where a run writes: the report (stdout), messages and test-mode action
-/// renderings (stderr), and whether each is a terminal.
+/// renderings (stderr), and whether each is a terminal; and who else
+/// watches its transitions (the live view of `sitlogc run --view`).
 pub struct Streams {
     pub stdout: Box<dyn Write + Send>,
     pub stderr: Box<dyn Write + Send>,
     pub stdout_is_terminal: bool,
     pub stderr_is_terminal: bool,
+    pub observer: Option<Box<dyn Observer + Send>>,
 }
 
 impl Streams {
@@ -269,6 +271,7 @@ impl Streams {
             stderr_is_terminal: std::io::stderr().is_terminal(),
             stdout: Box::new(std::io::stdout()),
             stderr: Box::new(std::io::stderr()),
+            observer: None,
         }
     }
 }
@@ -518,9 +521,13 @@ pub fn execute_interruptible<A: App>(
     };
     let shows_progress = console.lock().map(|c| c.shows_progress()).unwrap_or(false);
     let mut progress_observer = Progress { console: &console };
+    let mut watcher = streams.observer.take();
     let mut observers: Vec<&mut dyn Observer> = Vec::new();
     if let Some(t) = trace.as_mut() {
         observers.push(t);
+    }
+    if let Some(w) = watcher.as_mut() {
+        observers.push(w.as_mut());
     }
     if shows_progress {
         observers.push(&mut progress_observer);

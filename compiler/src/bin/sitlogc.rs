@@ -84,6 +84,20 @@ enum Command {
         /// the nearest directory above APP that has src/init.pl).
         #[arg(long, value_name = "DIR", requires = "legacy")]
         sitlog_home: Option<PathBuf>,
+        /// Follow the run in a web page: the program's diagram (as
+        /// `sitlogc graph` draws it) with the current situation, the arcs
+        /// taken, the DM stack and the last transitions. Served on
+        /// 127.0.0.1 only; the task starts when the page is open, and the
+        /// server stops when the task ends.
+        #[arg(long)]
+        view: bool,
+        /// The live view's port (default: a free one, printed on stderr).
+        #[arg(long, value_name = "PORT", default_value_t = 0, requires = "view")]
+        view_port: u16,
+        /// Wait this many milliseconds after each transition, so that a
+        /// fast task can be followed in the live view.
+        #[arg(long, value_name = "MS", default_value_t = 0, requires = "view")]
+        view_delay: u64,
     },
     /// Compile an application to one executable.
     ///
@@ -107,6 +121,40 @@ enum Command {
         /// `rust`: only write the generated code.
         #[arg(long, value_enum)]
         emit: Option<Emit>,
+    },
+    /// Draw an application in the notation of the SitLog papers.
+    ///
+    /// Each DM is a dotted oval; situations are circles with their id and
+    /// type; arcs are labelled `expectation : action`; a next situation
+    /// given by a function is a bold dot labelled with it, with one exit
+    /// per value the compiler can tell (dashed when it cannot); several
+    /// instances of one situation id are reached through a `∨` circle;
+    /// recursive situations hold one return dot per final situation of
+    /// their embedded DM; bold arrows are the pipe between DMs and the
+    /// task's out_arg. Every element's SVG `<title>` starts with the
+    /// `file:line:col` where it is written. An application with errors
+    /// gives its diagnostics, not a picture (exit status 1).
+    Graph {
+        /// The application directory (or a single DM file).
+        #[arg(value_name = "APP")]
+        app: PathBuf,
+        /// Where to write the diagram (default: stdout).
+        #[arg(short, long, value_name = "FILE")]
+        output: Option<PathBuf>,
+        /// Draw only this DM (by name).
+        #[arg(long, value_name = "NAME")]
+        dm: Option<String>,
+        /// The main DM, whose out_arg leaves the task (default `main`).
+        #[arg(long, value_name = "NAME")]
+        main: Option<String>,
+        /// `svg` (laid out here), `dot` (for Graphviz), `json` (nodes,
+        /// edges, labels and source locations, for other tools).
+        #[arg(long, value_enum, default_value_t = GraphFormat::Svg)]
+        format: GraphFormat,
+        /// Colour a recorded run (`sitlogc run --trace FILE`): visited
+        /// situations and arcs taken, with how often.
+        #[arg(long, value_name = "FILE")]
+        trace: Option<PathBuf>,
     },
     /// Ask a knowledge base one question (for people exploring a KB).
     ///
@@ -137,6 +185,13 @@ enum Command {
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
 enum Emit {
     Rust,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum GraphFormat {
+    Svg,
+    Dot,
+    Json,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -187,13 +242,21 @@ fn run(cli: Cli) -> u8 {
             allow_unresolved,
             legacy,
             sitlog_home,
+            view,
+            view_port,
+            view_delay,
         } => {
             let legacy = legacy.then_some(sitlog_home);
+            let view = view.then_some(ViewArgs {
+                port: view_port,
+                delay: std::time::Duration::from_millis(view_delay),
+            });
             run_app(
                 &app,
                 &run,
                 allow_unresolved,
                 legacy.as_ref().map(|h| h.as_deref()),
+                view,
             )
         }
         Command::Build {
@@ -209,6 +272,14 @@ fn run(cli: Cli) -> u8 {
                 2
             }
         },
+        Command::Graph {
+            app,
+            output,
+            dm,
+            main,
+            format,
+            trace,
+        } => graph(&app, output, dm, main, format, trace),
         Command::Kb {
             file,
             updates,
@@ -285,6 +356,95 @@ fn checked_ir_opts(
     }
 }
 
+fn graph(
+    app: &std::path::Path,
+    output: Option<PathBuf>,
+    dm: Option<String>,
+    main: Option<String>,
+    format: GraphFormat,
+    trace: Option<PathBuf>,
+) -> u8 {
+    let ir = match checked_ir(app) {
+        Ok(ir) => ir,
+        Err(code) => return code,
+    };
+    let options = sitlog_compiler::diagram::Options {
+        dm,
+        main,
+        title: sitlog_compiler::build::app_name(app),
+    };
+    let diagram = match sitlog_compiler::diagram::diagram(&ir, &options) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
+    let overlay = match &trace {
+        None => None,
+        Some(path) => {
+            let text = match std::fs::read_to_string(path) {
+                Ok(t) => t,
+                Err(e) => {
+                    eprintln!("error: cannot read trace {}: {e}", path.display());
+                    return 2;
+                }
+            };
+            match sitlog_graph::trace::read(&diagram, &text) {
+                Ok(o) => {
+                    if o.unmatched > 0 {
+                        eprintln!(
+                            "note: {} of {} transitions of {} are not in this diagram",
+                            o.unmatched,
+                            o.transitions,
+                            path.display()
+                        );
+                    }
+                    Some(o)
+                }
+                Err(e) => {
+                    eprintln!("error: {}: {e}", path.display());
+                    return 2;
+                }
+            }
+        }
+    };
+    let text = match format {
+        GraphFormat::Dot => sitlog_graph::dot::render(&diagram),
+        GraphFormat::Json => diagram.to_json(),
+        GraphFormat::Svg => {
+            let layout = sitlog_graph::layout::layout(&diagram);
+            for n in &layout.notes {
+                eprintln!("note: {n}");
+            }
+            sitlog_graph::svg::render(&diagram, &layout, overlay.as_ref())
+        }
+    };
+    if trace.is_some() && format != GraphFormat::Svg {
+        eprintln!("note: --trace colours the SVG only");
+    }
+    match output {
+        Some(path) => match std::fs::write(&path, text) {
+            Ok(()) => 0,
+            Err(e) => {
+                eprintln!("error: cannot write {}: {e}", path.display());
+                2
+            }
+        },
+        None => {
+            let mut out = std::io::stdout().lock();
+            match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+                Ok(()) => 0,
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => 0,
+                Err(e) => {
+                    eprintln!("error: cannot write the diagram: {e}");
+                    2
+                }
+            }
+        }
+    }
+}
+
 fn build_app(
     app: &std::path::Path,
     output: Option<PathBuf>,
@@ -333,12 +493,19 @@ fn build_app(
     }
 }
 
+/// `sitlogc run --view`.
+struct ViewArgs {
+    port: u16,
+    delay: std::time::Duration,
+}
+
 /// `legacy`: `Some(--sitlog-home)` under `--legacy`.
 fn run_app(
     app: &std::path::Path,
     args: &sitlog_robot::cli::RunArgs,
     allow_unresolved: bool,
     legacy: Option<Option<&std::path::Path>>,
+    view: Option<ViewArgs>,
 ) -> u8 {
     // The legacy profile: the original's Prolog layer from SITLOG_HOME.
     #[cfg(feature = "prolog")]
@@ -413,7 +580,46 @@ fn run_app(
         }
         return 1;
     }
-    sitlog_robot::execute(&ir, functions, args, &assets)
+    let Some(view) = view else {
+        return sitlog_robot::execute(&ir, functions, args, &assets);
+    };
+    let options = sitlog_compiler::diagram::Options {
+        dm: None,
+        main: None,
+        title: sitlog_compiler::build::app_name(app),
+    };
+    let diagram = match sitlog_compiler::diagram::diagram(&ir, &options) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
+    let server = match sitlog_view::View::start(diagram, view.port) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!(
+                "error: cannot serve the live view on 127.0.0.1:{}: {e}",
+                view.port
+            );
+            return 2;
+        }
+    };
+    eprintln!(
+        "sitlogc: live view at {} (the task starts when the page is open)",
+        server.url()
+    );
+    server.wait_for_viewer(None);
+    let mut streams = sitlog_robot::cli::Streams::process();
+    streams.observer = Some(Box::new(server.observer(view.delay)));
+    let code = sitlog_robot::cli::execute_with(&ir, functions, args, &assets, streams);
+    let status = match code {
+        0 => "ok",
+        1 => "error",
+        _ => "stopped",
+    };
+    server.finish(status, "", std::time::Duration::from_secs(3));
+    code
 }
 
 fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, legacy: bool) -> u8 {

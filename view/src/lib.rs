@@ -1,0 +1,379 @@
+//! `sitlog-view`: the live view of a running task (`sitlogc run --view`).
+//!
+//! A small HTTP server on 127.0.0.1 only serves the program's diagram (the
+//! SVG of `sitlog-graph`) in a page that highlights, as the task runs, the
+//! current situation, the arcs taken, the DM stack and the last
+//! transitions. The page reads the transitions as Server-Sent Events
+//! (`/events`), the same events `--trace` writes (one JSON object per
+//! transition), and works offline (no script or style from elsewhere).
+//!
+//! Routes: `/` the page, `/diagram.svg`, `/events` (an event stream that
+//! replays every transition so far, then follows the run, and ends with
+//! `{"end":true,...}`), `/state` (the last transition, JSON).
+//!
+//! **Invariant:** the server only reads; it never changes the run. The
+//! observer it hands out costs one JSON line and a lock per transition.
+//! The server is ours (std's `TcpListener`, GET only, one thread per
+//! connection): an event stream must be written unbuffered as it happens,
+//! and nothing more is needed on a loopback port.
+
+use sitlog_graph::trace::{chain, find_dm, find_situation};
+use sitlog_graph::Diagram;
+use sitlog_runtime::history::Entry;
+use sitlog_runtime::machine::Observer;
+use sitlog_runtime::{Store, Term};
+use std::io::{self, BufRead, BufReader, Read, Write};
+use std::net::{SocketAddr, TcpListener, TcpStream};
+use std::sync::{Arc, Condvar, Mutex};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+const PAGE: &str = include_str!("page.html");
+
+#[derive(Default)]
+struct State {
+    /// Every event so far (JSON, one line each); the last one may be the end.
+    events: Vec<String>,
+    ended: bool,
+    stopping: bool,
+    /// Event streams opened, and those that have sent the end.
+    viewers: usize,
+    viewers_done: usize,
+}
+
+struct Shared {
+    state: Mutex<State>,
+    changed: Condvar,
+    diagram: Diagram,
+    page: String,
+    svg: String,
+}
+
+impl Shared {
+    fn lock(&self) -> std::sync::MutexGuard<'_, State> {
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+/// A running view server.
+pub struct View {
+    addr: SocketAddr,
+    shared: Arc<Shared>,
+    acceptor: Option<JoinHandle<()>>,
+}
+
+/// Escapes text for HTML.
+fn esc(s: &str) -> String {
+    sitlog_graph::svg::esc(s)
+}
+
+impl View {
+    /// Serves `diagram` on 127.0.0.1:`port` (0: any free port).
+    pub fn start(diagram: Diagram, port: u16) -> io::Result<View> {
+        let listener = TcpListener::bind(("127.0.0.1", port))?;
+        let addr = listener.local_addr()?;
+        let layout = sitlog_graph::layout::layout(&diagram);
+        let svg = sitlog_graph::svg::render(&diagram, &layout, None);
+        let page = PAGE
+            .replace("{{TITLE}}", &esc(&diagram.title))
+            .replace("{{SVG}}", &svg);
+        let shared = Arc::new(Shared {
+            state: Mutex::new(State::default()),
+            changed: Condvar::new(),
+            diagram,
+            page,
+            svg,
+        });
+        let s = shared.clone();
+        let acceptor = std::thread::Builder::new()
+            .name("sitlog-view".to_owned())
+            .spawn(move || accept(listener, s))?;
+        Ok(View {
+            addr,
+            shared,
+            acceptor: Some(acceptor),
+        })
+    }
+
+    /// Where the page is.
+    pub fn url(&self) -> String {
+        format!("http://{}/", self.addr)
+    }
+
+    pub fn addr(&self) -> SocketAddr {
+        self.addr
+    }
+
+    /// Notes from laying out the diagram are the caller's to show; this
+    /// is the observer to give the run. `delay` slows each transition so
+    /// that a person can follow a fast task.
+    pub fn observer(&self, delay: Duration) -> ViewObserver {
+        ViewObserver {
+            shared: self.shared.clone(),
+            stack: Vec::new(),
+            delay,
+        }
+    }
+
+    /// Waits until a page follows the run (an event stream is open), at
+    /// most `timeout` (`None`: for ever). Whether one is.
+    pub fn wait_for_viewer(&self, timeout: Option<Duration>) -> bool {
+        let start = Instant::now();
+        let mut st = self.shared.lock();
+        while st.viewers == 0 {
+            let left = match timeout {
+                Some(t) => match t.checked_sub(start.elapsed()) {
+                    Some(l) if !l.is_zero() => l,
+                    _ => return false,
+                },
+                None => Duration::from_secs(1),
+            };
+            st = self
+                .shared
+                .changed
+                .wait_timeout(st, left)
+                .unwrap_or_else(|e| e.into_inner())
+                .0;
+        }
+        true
+    }
+
+    /// Ends the view: sends the end event (with `status` and `message`),
+    /// lets open pages read it (at most `linger`), then stops the server.
+    pub fn finish(mut self, status: &str, message: &str, linger: Duration) {
+        {
+            let mut st = self.shared.lock();
+            let end = serde_json::json!({"end": true, "status": status, "message": message});
+            st.events.push(end.to_string());
+            st.ended = true;
+            self.shared.changed.notify_all();
+        }
+        let start = Instant::now();
+        let mut st = self.shared.lock();
+        while st.viewers_done < st.viewers && start.elapsed() < linger {
+            st = self
+                .shared
+                .changed
+                .wait_timeout(st, Duration::from_millis(50))
+                .unwrap_or_else(|e| e.into_inner())
+                .0;
+        }
+        drop(st);
+        self.stop();
+    }
+
+    fn stop(&mut self) {
+        {
+            let mut st = self.shared.lock();
+            st.stopping = true;
+            self.shared.changed.notify_all();
+        }
+        // wake the acceptor
+        let _ = TcpStream::connect_timeout(&self.addr, Duration::from_millis(500));
+        if let Some(h) = self.acceptor.take() {
+            let _ = h.join();
+        }
+    }
+}
+
+impl Drop for View {
+    fn drop(&mut self) {
+        if self.acceptor.is_some() {
+            self.stop();
+        }
+    }
+}
+
+/// Feeds a [`View`] with the run's transitions.
+pub struct ViewObserver {
+    shared: Arc<Shared>,
+    /// DM names by depth.
+    stack: Vec<String>,
+    delay: Duration,
+}
+
+impl Observer for ViewObserver {
+    fn transition(&mut self, store: &Store, entry: &Entry, depth: usize, next: Option<Term>) {
+        let dm = store.writeq(entry.dm);
+        let situation = store.writeq(entry.situation);
+        let next = next.map(|n| store.writeq(n));
+        self.stack.truncate(depth);
+        while self.stack.len() < depth {
+            self.stack.push("?".to_owned());
+        }
+        self.stack.push(dm.clone());
+        let d = &self.shared.diagram;
+        let g = find_dm(d, &dm);
+        let node = g.and_then(|g| find_situation(g, &situation));
+        let expectation = store.writeq(entry.expectation);
+        let edges = match (g, node, next.as_deref()) {
+            (Some(g), Some(n), Some(next)) => find_situation(g, next)
+                .and_then(|t| chain(g, &n.id, &t.id, Some(&expectation)))
+                .unwrap_or_default(),
+            _ => Vec::new(),
+        };
+        {
+            let mut st = self.shared.lock();
+            let ev = serde_json::json!({
+                "seq": st.events.len(),
+                "dm": dm,
+                "situation": situation,
+                "expectation": expectation,
+                "action": store.writeq(entry.action),
+                "depth": depth,
+                "next": next,
+                "node": node.map(|n| n.id.clone()),
+                "edges": edges,
+                "stack": self.stack,
+            });
+            st.events.push(ev.to_string());
+            self.shared.changed.notify_all();
+        }
+        if !self.delay.is_zero() {
+            std::thread::sleep(self.delay);
+        }
+    }
+}
+
+fn accept(listener: TcpListener, shared: Arc<Shared>) {
+    for stream in listener.incoming() {
+        if shared.lock().stopping {
+            break;
+        }
+        let Ok(stream) = stream else { continue };
+        let s = shared.clone();
+        let _ = std::thread::Builder::new()
+            .name("sitlog-view-conn".to_owned())
+            .spawn(move || {
+                let _ = handle(stream, &s);
+            });
+    }
+}
+
+/// Reads the request head; returns the path of a GET.
+fn request_path(stream: &TcpStream) -> io::Result<Option<String>> {
+    stream.set_read_timeout(Some(Duration::from_secs(5)))?;
+    let mut reader = BufReader::new(stream);
+    let mut first = String::new();
+    reader.by_ref().take(8192).read_line(&mut first)?;
+    // the rest of the head, up to the blank line
+    let mut total = first.len();
+    loop {
+        let mut line = String::new();
+        let n = reader.by_ref().take(8192).read_line(&mut line)?;
+        total += n;
+        if n == 0 || line == "\r\n" || line == "\n" || total > 64 * 1024 {
+            break;
+        }
+    }
+    let mut parts = first.split_whitespace();
+    match (parts.next(), parts.next()) {
+        (Some("GET"), Some(path)) => Ok(Some(path.to_owned())),
+        _ => Ok(None),
+    }
+}
+
+fn respond(mut stream: &TcpStream, status: &str, kind: &str, body: &[u8]) -> io::Result<()> {
+    write!(
+        stream,
+        "HTTP/1.1 {status}\r\nContent-Type: {kind}\r\nContent-Length: {}\r\nCache-Control: no-cache\r\nConnection: close\r\n\r\n",
+        body.len()
+    )?;
+    stream.write_all(body)?;
+    stream.flush()
+}
+
+fn handle(stream: TcpStream, shared: &Shared) -> io::Result<()> {
+    let Some(path) = request_path(&stream)? else {
+        return respond(
+            &stream,
+            "405 Method Not Allowed",
+            "text/plain",
+            b"GET only\n",
+        );
+    };
+    let path = path.split('?').next().unwrap_or("");
+    match path {
+        "/" | "/index.html" => respond(
+            &stream,
+            "200 OK",
+            "text/html; charset=utf-8",
+            shared.page.as_bytes(),
+        ),
+        "/diagram.svg" => respond(&stream, "200 OK", "image/svg+xml", shared.svg.as_bytes()),
+        "/state" => {
+            let st = shared.lock();
+            let last = st
+                .events
+                .last()
+                .cloned()
+                .unwrap_or_else(|| "null".to_owned());
+            let body = format!(
+                "{{\"transitions\":{},\"ended\":{},\"last\":{last}}}\n",
+                st.events.len() - usize::from(st.ended),
+                st.ended
+            );
+            drop(st);
+            respond(&stream, "200 OK", "application/json", body.as_bytes())
+        }
+        "/events" => events(stream, shared),
+        _ => respond(&stream, "404 Not Found", "text/plain", b"not found\n"),
+    }
+}
+
+/// The event stream: every event so far, then each new one, until the end.
+fn events(mut stream: TcpStream, shared: &Shared) -> io::Result<()> {
+    stream.set_write_timeout(Some(Duration::from_secs(10)))?;
+    write!(
+        stream,
+        "HTTP/1.1 200 OK\r\nContent-Type: text/event-stream\r\nCache-Control: no-cache\r\nConnection: close\r\n\r\n"
+    )?;
+    stream.flush()?;
+    {
+        let mut st = shared.lock();
+        st.viewers += 1;
+        shared.changed.notify_all();
+    }
+    let mut sent = 0;
+    let result = loop {
+        let (batch, done) = {
+            let mut st = shared.lock();
+            while sent >= st.events.len() && !st.stopping {
+                st = shared
+                    .changed
+                    .wait_timeout(st, Duration::from_secs(15))
+                    .unwrap_or_else(|e| e.into_inner())
+                    .0;
+                if sent >= st.events.len() {
+                    break;
+                }
+            }
+            let batch: Vec<String> = st.events[sent..].to_vec();
+            // once ended, the batch holds everything up to the end event
+            (batch, st.stopping || st.ended)
+        };
+        let mut out = String::new();
+        if batch.is_empty() && !done {
+            out.push_str(": still here\n\n");
+        }
+        for e in &batch {
+            out.push_str("data: ");
+            out.push_str(e);
+            out.push_str("\n\n");
+        }
+        sent += batch.len();
+        if let Err(e) = stream
+            .write_all(out.as_bytes())
+            .and_then(|_| stream.flush())
+        {
+            break Err(e);
+        }
+        if done {
+            break Ok(());
+        }
+    };
+    let mut st = shared.lock();
+    st.viewers_done += 1;
+    shared.changed.notify_all();
+    result
+}

@@ -1,0 +1,65 @@
+//! The view server on its own: routes, replay of past events, end, stop.
+
+use sitlog_runtime::history::Entry;
+use sitlog_runtime::machine::Observer;
+use sitlog_runtime::{Atom, Store, Term};
+use sitlog_view::View;
+use std::io::{Read, Write};
+use std::net::TcpStream;
+use std::time::Duration;
+
+fn request(addr: std::net::SocketAddr, head: &str) -> String {
+    let mut s = TcpStream::connect(addr).unwrap();
+    s.set_read_timeout(Some(Duration::from_secs(30))).unwrap();
+    s.write_all(head.as_bytes()).unwrap();
+    let mut all = String::new();
+    s.read_to_string(&mut all).unwrap();
+    all
+}
+
+fn diagram() -> sitlog_graph::Diagram {
+    sitlog_graph::Diagram {
+        title: "t<&>".into(),
+        ..Default::default()
+    }
+}
+
+#[test]
+fn routes_replay_and_stop() {
+    let view = View::start(diagram(), 0).unwrap();
+    let addr = view.addr();
+    assert!(view.url().starts_with("http://127.0.0.1:"));
+    let page = request(addr, "GET / HTTP/1.1\r\n\r\n");
+    assert!(page.starts_with("HTTP/1.1 200 OK"));
+    assert!(page.contains("t&lt;&amp;&gt;"));
+    assert!(request(addr, "POST / HTTP/1.1\r\n\r\n").starts_with("HTTP/1.1 405"));
+    assert!(request(addr, "garbage\r\n\r\n").starts_with("HTTP/1.1 405"));
+    let state = request(addr, "GET /state HTTP/1.1\r\n\r\n");
+    assert!(state.contains(r#"{"transitions":0,"ended":false,"last":null}"#));
+    assert!(!view.wait_for_viewer(Some(Duration::from_millis(50))));
+    // two transitions before anyone looks: a late page still gets them
+    let mut obs = view.observer(Duration::ZERO);
+    let mut store = Store::new();
+    let main = Term::atom(Atom::intern("main"));
+    let is = Term::atom(Atom::intern("is"));
+    let go = Term::atom(Atom::intern("go"));
+    let entry = Entry {
+        dm: main,
+        situation: is,
+        expectation: go,
+        action: store.list(&[]),
+    };
+    obs.transition(&store, &entry, 0, Some(is));
+    obs.transition(&store, &entry, 0, None);
+    let state = request(addr, "GET /state HTTP/1.1\r\n\r\n");
+    assert!(state.contains(r#""transitions":2"#), "{state}");
+    let reader = std::thread::spawn(move || request(addr, "GET /events HTTP/1.1\r\n\r\n"));
+    assert!(view.wait_for_viewer(Some(Duration::from_secs(10))));
+    view.finish("ok", "done", Duration::from_secs(5));
+    let stream = reader.join().unwrap();
+    let data: Vec<&str> = stream.lines().filter(|l| l.starts_with("data: ")).collect();
+    assert_eq!(data.len(), 3, "{stream}");
+    assert!(data[0].contains(r#""situation":"is""#));
+    assert!(data[2].contains(r#""end":true"#));
+    assert!(TcpStream::connect(addr).is_err());
+}
