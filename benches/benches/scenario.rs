@@ -12,13 +12,9 @@
 //! `cargo bench -p sitlog-benches --bench scenario`.
 
 use criterion::{black_box, criterion_group, criterion_main, BatchSize, Criterion};
-use sitlog_robot::cli::{execute_with, Format, RunArgs, Streams};
-use sitlog_robot::console::SharedBuf;
-use sitlog_robot::{Assets, Source};
-use sitlog_runtime::cli::App;
-use sitlog_runtime::Functions;
 use sitlog_sim::{Hand, Sim, World};
 use sitlog_tests::compiled::generated::apps_home;
+use sitlog_tests::scenario::{assets, execute, interpreter};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -26,41 +22,25 @@ fn app() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../dms/apps/home")
 }
 
-fn run_home<A: App>(program: &A, functions: Functions, assets: &Assets) -> usize {
-    let args = RunArgs {
-        format: Format::Json,
-        ..RunArgs::default()
-    };
-    let (out, err) = (SharedBuf::default(), SharedBuf::default());
-    let streams = Streams {
-        stdout: Box::new(out.clone()),
-        stderr: Box::new(err.clone()),
-        stdout_is_terminal: false,
-        stderr_is_terminal: false,
-    };
-    let code = execute_with(program, functions, &args, assets, streams);
-    assert_eq!(code, 0, "{}", err.text());
-    err.text().len()
-}
-
 fn home(c: &mut Criterion) {
-    let assets = Assets::from_app(&app()).expect("the home app's assets");
-    let (checked, _) = sitlog_compiler::check_path(&app()).expect("readable");
-    let ir = sitlog_compiler::ir::lower(&checked.expect("checks"));
+    let world = std::fs::read_to_string(app().join("world.toml")).expect("the home world");
+    let assets = assets(&app(), &world, None);
     let mut g = c.benchmark_group("home");
     g.sample_size(10).measurement_time(Duration::from_secs(20));
     g.bench_function("interpreted", |b| {
         b.iter(|| {
-            let mut functions = Functions::standard();
-            sitlog_compiler::run::install_prolog(&ir, &mut functions, Default::default())
-                .expect("Prolog loads");
-            black_box(run_home(&ir, functions, &assets))
+            let (ir, functions) = interpreter(&app());
+            let run = execute(&ir, functions, &assets);
+            assert_eq!(run.code, 0);
+            black_box(run.transcript.len())
         })
     });
     g.bench_function("compiled", |b| {
         b.iter(|| {
             let functions = apps_home::functions().expect("Prolog loads");
-            black_box(run_home(apps_home::program(), functions, &assets))
+            let run = execute(apps_home::program(), functions, &assets);
+            assert_eq!(run.code, 0);
+            black_box(run.transcript.len())
         })
     });
     g.finish();

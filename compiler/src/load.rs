@@ -227,23 +227,7 @@ fn consulted(clauses: &[Clause]) -> Vec<String> {
     out
 }
 
-/// `path` with `.` and `dir/..` removed lexically (no file system access).
-pub fn normalize(path: &Path) -> PathBuf {
-    use std::path::Component;
-    let mut out = PathBuf::new();
-    for c in path.components() {
-        match c {
-            Component::CurDir => {}
-            Component::ParentDir
-                if matches!(out.components().next_back(), Some(Component::Normal(_))) =>
-            {
-                out.pop();
-            }
-            c => out.push(c),
-        }
-    }
-    out
-}
+pub use sitlog_runtime::paths::normalize;
 
 thread_local! {
     /// Texts that stand in for files on this thread (an editor's unsaved

@@ -23,6 +23,7 @@
 //! lives on a thread of its own and calls are messages to it.
 
 use crate::functions::{CallLimits, FnCall, Functions};
+use crate::paths::normalize;
 use crate::store::Store;
 use crate::term::{Term, Value, Var};
 use scryer_prolog::{
@@ -718,24 +719,6 @@ fn embedded_source<'a>(
     embedded
         .iter()
         .find(|s| wanted.contains(&normalize(Path::new(&s.name))))
-}
-
-/// `path` with `.` and `dir/..` removed lexically (no file system access).
-fn normalize(path: &Path) -> PathBuf {
-    use std::path::Component;
-    let mut out = PathBuf::new();
-    for c in path.components() {
-        match c {
-            Component::CurDir => {}
-            Component::ParentDir
-                if matches!(out.components().next_back(), Some(Component::Normal(_))) =>
-            {
-                out.pop();
-            }
-            c => out.push(c),
-        }
-    }
-    out
 }
 
 /// Resolves a consulted file name: `$SITLOG_HOME/..` as described in the
@@ -1463,7 +1446,7 @@ bindings(R) :- atom_to_term('p(X, Y, X)', _, R).
 
     fn ask(q: &str) -> String {
         let query = format!("{q}(R0), R = R0.");
-        match engine().ask(query) {
+        match engine().ask(query, PrologOptions::default(), "the test query") {
             Ok(Some(p)) => {
                 let mut store = Store::new();
                 let mut names = HashMap::new();

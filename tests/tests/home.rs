@@ -5,12 +5,8 @@
 //! on the interpreter and on the code `tests/build.rs` generated, and the
 //! two must print the same transcript and report.
 
-use sitlog_robot::cli::{execute_with, Format, RunArgs, Streams};
-use sitlog_robot::console::SharedBuf;
-use sitlog_robot::{Assets, Source};
-use sitlog_runtime::cli::App;
-use sitlog_runtime::Functions;
 use sitlog_tests::compiled::generated::apps_home;
+use sitlog_tests::scenario::{both, edit};
 use sitlog_tests::workspace;
 use std::path::PathBuf;
 
@@ -22,83 +18,15 @@ fn base_world() -> String {
     std::fs::read_to_string(app().join("world.toml")).unwrap()
 }
 
-/// The base world with each `(from, to)` replaced (each must be there).
-fn edit(world: &str, edits: &[(&str, &str)]) -> String {
-    let mut w = world.to_owned();
-    for (from, to) in edits {
-        assert!(w.contains(from), "the world has no `{from}`");
-        w = w.replacen(from, to, 1);
-    }
-    w
-}
-
-struct Run {
-    transcript: String,
-    report: serde_json::Value,
-    code: u8,
-}
-
-fn execute<A: App>(app_: &A, functions: Functions, world: &str) -> Run {
-    let mut assets = Assets::from_app(&app()).unwrap();
-    assets.world = Some(Source {
-        name: "world.toml".into(),
-        text: world.to_owned(),
-    });
-    let args = RunArgs {
-        format: Format::Json,
-        ..RunArgs::default()
-    };
-    let (out, err) = (SharedBuf::default(), SharedBuf::default());
-    let streams = Streams {
-        stdout: Box::new(out.clone()),
-        stderr: Box::new(err.clone()),
-        stdout_is_terminal: false,
-        stderr_is_terminal: false,
-    };
-    let code = execute_with(app_, functions, &args, &assets, streams);
-    let report = serde_json::from_str(out.text().trim())
-        .unwrap_or_else(|e| panic!("not one JSON object ({e}): {}", out.text()));
-    Run {
-        transcript: err.text(),
-        report,
-        code,
-    }
-}
-
-fn interpreted(world: &str) -> Run {
-    let (result, diags) = sitlog_compiler::check_path(&app()).unwrap();
-    let checked = result.unwrap_or_else(|_| panic!("the home app does not check: {diags:?}"));
-    let ir = sitlog_compiler::ir::lower(&checked);
-    let mut functions = Functions::standard();
-    sitlog_compiler::run::install_prolog(&ir, &mut functions, Default::default())
-        .unwrap_or_else(|e| panic!("{e:?}"));
-    execute(&ir, functions, world)
-}
-
-fn compiled(world: &str) -> Run {
-    execute(apps_home::program(), apps_home::functions().unwrap(), world)
-}
-
 /// Runs `world` on both back ends; they must agree; the run must end ok.
 fn run(world: &str) -> String {
-    let a = interpreted(world);
-    let b = compiled(world);
-    assert_eq!(
-        a.transcript, b.transcript,
-        "interpreted and compiled transcripts differ"
-    );
-    assert_eq!(
-        sitlog_tests::compiled::canonical_vars(&a.report),
-        sitlog_tests::compiled::canonical_vars(&b.report),
-        "interpreted and compiled reports differ"
-    );
-    assert_eq!(
-        a.report["status"], "ok",
-        "{}\n{}",
-        a.transcript, a.report["error"]
-    );
-    assert_eq!(a.code, 0);
-    a.transcript
+    both(
+        &app(),
+        apps_home::program(),
+        apps_home::functions().unwrap(),
+        world,
+        None,
+    )
 }
 
 fn robot_lines(transcript: &str) -> Vec<&str> {
