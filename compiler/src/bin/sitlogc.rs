@@ -84,6 +84,11 @@ enum Command {
         /// the nearest directory above APP that has src/init.pl).
         #[arg(long, value_name = "DIR", requires = "legacy")]
         sitlog_home: Option<PathBuf>,
+        /// With --legacy: `prolog` runs the original's KB layer as it is;
+        /// `native` serves its KB services, updates, loads and saves from
+        /// our KB (sitlog-kb), the KB being a handle.
+        #[arg(long, value_enum, value_name = "HOW", requires = "legacy", default_value_t = LegacyKb::Prolog)]
+        legacy_kb: LegacyKb,
     },
     /// Compile an application to one executable.
     ///
@@ -127,6 +132,12 @@ enum Command {
         #[arg(value_name = "QUERY", allow_hyphen_values = true)]
         query: String,
     },
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum LegacyKb {
+    Prolog,
+    Native,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -182,6 +193,7 @@ fn run(cli: Cli) -> u8 {
             allow_unresolved,
             legacy,
             sitlog_home,
+            legacy_kb,
         } => {
             let legacy = legacy.then_some(sitlog_home);
             run_app(
@@ -189,6 +201,7 @@ fn run(cli: Cli) -> u8 {
                 &run,
                 allow_unresolved,
                 legacy.as_ref().map(|h| h.as_deref()),
+                legacy_kb == LegacyKb::Native,
             )
         }
         Command::Build {
@@ -319,6 +332,7 @@ fn run_app(
     args: &sitlog_robot::cli::RunArgs,
     allow_unresolved: bool,
     legacy: Option<Option<&std::path::Path>>,
+    native_kb: bool,
 ) -> u8 {
     // The legacy profile: the original's Prolog layer from SITLOG_HOME.
     #[cfg(feature = "prolog")]
@@ -386,7 +400,13 @@ fn run_app(
     // The application's user_functions.pl and templates.pl (feature `prolog`).
     #[cfg(feature = "prolog")]
     if let Err(errors) =
-        sitlog_compiler::run::install_prolog_with(&ir, &mut functions, Default::default(), before)
+        sitlog_compiler::run::install_prolog_with(
+            &ir,
+            &mut functions,
+            Default::default(),
+            before,
+            native_kb.then(sitlog_compiler::legacy::native_kb),
+        )
     {
         for e in errors {
             eprintln!("error: {e}");
