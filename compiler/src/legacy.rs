@@ -106,40 +106,6 @@ pub fn init_consults(home: &Path) -> Result<Vec<PathBuf>, String> {
     Ok(files)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn reads_the_home_consults_of_init_pl() {
-        let dir = std::env::temp_dir().join(format!("sitlog-legacy-{}", std::process::id()));
-        std::fs::create_dir_all(dir.join("src")).unwrap();
-        std::fs::create_dir_all(dir.join("kb")).unwrap();
-        std::fs::write(
-            dir.join(INIT_FILE),
-            ":- op(800, xfx, '=>').\n:- consult(diag_manager).\n\
-             :- consult('$SITLOG_HOME/kb/a.pl').\n:- consult('$SITLOG_HOME/kb/b').\nstart :- true.\n",
-        )
-        .unwrap();
-        std::fs::write(dir.join("kb/a.pl"), "a.\n").unwrap();
-        std::fs::write(dir.join("kb/b.pl"), "b.\n").unwrap();
-        let files = init_consults(&dir).unwrap();
-        assert_eq!(files, vec![dir.join("kb/a.pl"), dir.join("kb/b.pl")]);
-        // Found from an application inside the tree.
-        std::fs::create_dir_all(dir.join("apps/x")).unwrap();
-        if std::env::var_os("SITLOG_HOME").is_none() {
-            let home = find_home(&dir.join("apps/x"), None).unwrap();
-            assert_eq!(home, std::fs::canonicalize(&dir).unwrap());
-        }
-        assert!(find_home(Path::new("/"), Some(Path::new("/nonexistent")))
-            .unwrap_err()
-            .contains("no src/init.pl"));
-        std::fs::write(dir.join(INIT_FILE), ":- consult('$SITLOG_HOME/kb/c').\n").unwrap();
-        assert!(init_consults(&dir).unwrap_err().contains("kb/c"));
-        let _ = std::fs::remove_dir_all(&dir);
-    }
-}
-
 /// `--legacy-kb native`: the original's KB layer served by our KB
 /// (`sitlog-kb`): the services and updates the KB crate has, and the KB
 /// loads and saves of the layer (see `sitlog_runtime::prolog::NativeKb`).
@@ -157,7 +123,11 @@ pub fn native_kb() -> sitlog_runtime::prolog::NativeKb {
             Ok(reply) => reply,
             Err(message) => {
                 let mut out = String::from("'$error'(error(kb_error(");
-                sitlog_syntax::write::write_atom(&mut out, sitlog_syntax::Atom::intern(&message), true);
+                sitlog_syntax::write::write_atom(
+                    &mut out,
+                    sitlog_syntax::Atom::intern(&message),
+                    true,
+                );
                 out.push_str("),native_kb)).\n");
                 out
             }
@@ -240,7 +210,8 @@ fn kb_request(kbs: &mut Vec<sitlog_kb::Kb>, request: &str) -> Result<String, Str
         ("update", 2) => {
             let h = handle(&store, kbs, args[0])?;
             let goal = store.writeq(args[1]);
-            let clause = sitlog_syntax::read_term(&goal).map_err(|e| format!("{goal}: {}", e.message))?;
+            let clause =
+                sitlog_syntax::read_term(&goal).map_err(|e| format!("{goal}: {}", e.message))?;
             let mut next = kbs[h].clone();
             if next.update(&clause).map_err(|e| format!("{goal}: {e}"))? {
                 Ok(new(kbs, next))
@@ -249,5 +220,39 @@ fn kb_request(kbs: &mut Vec<sitlog_kb::Kb>, request: &str) -> Result<String, Str
             }
         }
         _ => Err(format!("unknown request `{request}`")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_the_home_consults_of_init_pl() {
+        let dir = std::env::temp_dir().join(format!("sitlog-legacy-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("src")).unwrap();
+        std::fs::create_dir_all(dir.join("kb")).unwrap();
+        std::fs::write(
+            dir.join(INIT_FILE),
+            ":- op(800, xfx, '=>').\n:- consult(diag_manager).\n\
+             :- consult('$SITLOG_HOME/kb/a.pl').\n:- consult('$SITLOG_HOME/kb/b').\nstart :- true.\n",
+        )
+        .unwrap();
+        std::fs::write(dir.join("kb/a.pl"), "a.\n").unwrap();
+        std::fs::write(dir.join("kb/b.pl"), "b.\n").unwrap();
+        let files = init_consults(&dir).unwrap();
+        assert_eq!(files, vec![dir.join("kb/a.pl"), dir.join("kb/b.pl")]);
+        // Found from an application inside the tree.
+        std::fs::create_dir_all(dir.join("apps/x")).unwrap();
+        if std::env::var_os("SITLOG_HOME").is_none() {
+            let home = find_home(&dir.join("apps/x"), None).unwrap();
+            assert_eq!(home, std::fs::canonicalize(&dir).unwrap());
+        }
+        assert!(find_home(Path::new("/"), Some(Path::new("/nonexistent")))
+            .unwrap_err()
+            .contains("no src/init.pl"));
+        std::fs::write(dir.join(INIT_FILE), ":- consult('$SITLOG_HOME/kb/c').\n").unwrap();
+        assert!(init_consults(&dir).unwrap_err().contains("kb/c"));
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

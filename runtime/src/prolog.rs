@@ -205,10 +205,10 @@ pub type KbHost = Arc<dyn Fn(&str) -> String + Send + Sync>;
 /// - the clauses of a query service `S/n+1` of `queries` (`S(Args.., KB,
 ///   Answer)`) and of an update `U/m+2` of `updates` (`U(Args.., KB,
 ///   NewKB)`) are replaced by calls of the host;
-/// - a predicate of arity 1 whose clause opens a `.txt` file named by an
-///   `atomic_concat(Home, '/path.txt', Path)` for reading (writing) is a KB
-///   load (save) of `$SITLOG_HOME/path.txt` (the original's `open_kb/1`,
-///   `save_kb/1`, `open_preferences_kb/1`...);
+/// - a predicate of arity 1 whose clause opens a file named by an
+///   `atomic_concat(Home, '/dir/file.ext', Path)` for reading (writing) is a
+///   KB load (save) of `$SITLOG_HOME/dir/file.ext` (the original's
+///   `open_kb/1`, `save_kb/1`, `open_preferences_kb/1`...);
 /// - every other predicate gets its handles turned back into KB terms (the
 ///   host writes the KB) before its own clauses run, so code of the layer
 ///   that the host does not serve still works.
@@ -344,7 +344,11 @@ impl PrologFunctions {
                 defined: &mut defined,
                 errors: &mut errors,
                 seen: &mut seen_files,
-                native: if i < layer { native_state.as_mut() } else { None },
+                native: if i < layer {
+                    native_state.as_mut()
+                } else {
+                    None
+                },
             };
             prepare(s, &mut cx, 0);
         }
@@ -776,7 +780,11 @@ impl NativeState {
                 "{}(KB) :- getenv('SITLOG_HOME', H), atomic_concat(H, {}, P), {}(P, KB)",
                 name(p.as_str()),
                 name(file.as_str()),
-                if *save { "'$sitlog_kb_save'" } else { "'$sitlog_kb_open'" }
+                if *save {
+                    "'$sitlog_kb_save'"
+                } else {
+                    "'$sitlog_kb_open'"
+                }
             ));
         }
         for (p, arity) in &self.wrapped {
@@ -815,7 +823,7 @@ fn legacy_name(a: Atom) -> Atom {
 
 /// Whether `body` opens a KB file as the original's `open_kb/1` and
 /// `save_kb/1` do: `open(_, read|write, _)` of a path made by
-/// `atomic_concat(_, '/….txt', _)`. Gives the file name and whether it is a
+/// `atomic_concat(_, '/….ext', _)`. Gives the file name and whether it is a
 /// save.
 fn kb_file_access(store: &Store, body: Term) -> Option<(Atom, bool)> {
     let mut stack = vec![body];
@@ -823,18 +831,23 @@ fn kb_file_access(store: &Store, body: Term) -> Option<(Atom, bool)> {
     let mut mode = None;
     while let Some(t) = stack.pop() {
         let t = store.deref(t);
-        let Some((f, n)) = store.functor(t) else { continue };
+        let Some((f, n)) = store.functor(t) else {
+            continue;
+        };
         let args = store.args(t).to_vec();
         match (f.as_str(), n) {
             ("atomic_concat", 3) => {
                 if let Some(a) = store.atom_of(store.deref(args[1])) {
-                    if a.as_str().ends_with(".txt") {
+                    let name = a.as_str().rsplit('/').next().unwrap_or("");
+                    if a.as_str().starts_with('/') && name.contains('.') {
                         file = Some(a);
                     }
                 }
             }
             ("open", 3) => {
-                mode = store.atom_of(store.deref(args[1])).map(|a| a.as_str() == "write");
+                mode = store
+                    .atom_of(store.deref(args[1]))
+                    .map(|a| a.as_str() == "write");
             }
             (",", 2) => stack.extend(args),
             _ => {}
@@ -1011,10 +1024,7 @@ pub fn read_reply(text: &str) -> String {
     }
 }
 
-fn build_machine(
-    prepared: &[Prepared],
-    host: Option<KbHost>,
-) -> (Machine, Vec<PrologLoadError>) {
+fn build_machine(prepared: &[Prepared], host: Option<KbHost>) -> (Machine, Vec<PrologLoadError>) {
     let mut machine = MachineBuilder::default()
         .with_streams(engine_streams(host))
         .build();

@@ -399,15 +399,13 @@ fn run_app(
     let mut functions = sitlog_runtime::Functions::standard();
     // The application's user_functions.pl and templates.pl (feature `prolog`).
     #[cfg(feature = "prolog")]
-    if let Err(errors) =
-        sitlog_compiler::run::install_prolog_with(
-            &ir,
-            &mut functions,
-            Default::default(),
-            before,
-            native_kb.then(sitlog_compiler::legacy::native_kb),
-        )
-    {
+    if let Err(errors) = sitlog_compiler::run::install_prolog_with(
+        &ir,
+        &mut functions,
+        Default::default(),
+        before,
+        native_kb.then(sitlog_compiler::legacy::native_kb),
+    ) {
         for e in errors {
             eprintln!("error: {e}");
         }
