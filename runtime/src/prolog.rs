@@ -14,6 +14,18 @@
 //! (`$SITLOG_HOME/...` is the `SITLOG_HOME` environment variable, else the
 //! nearest ancestor directory in which the rest of the path exists).
 //!
+//! SWI-Prolog. Code written for the original expects SWI-Prolog: the
+//! prelude provides its built-ins and library predicates the engine lacks
+//! ([`SWI_PREDICATES`], each yielding to an application's own definition),
+//! and the loader renames the application's calls of engine built-ins that
+//! behave otherwise ([`SWI_RENAMED`]: `atom_chars/2` on codes, SWI's
+//! standard order of mixed numbers in `compare/3`, `@<`, the sorts, and
+//! reading text as terms). Text read as a term at run time
+//! (`read_from_chars/2`, `term_to_atom/2`, ...) is read by our reader too:
+//! the engine sends it to the host on its `user_error` stream and gets the
+//! term back in canonical form on `user_input` ([`read_reply`]); the same
+//! channel serves the legacy KB layer natively ([`NativeKb`]).
+//!
 //! Calling. `apply(f(X1..Xn), [E1..En])` becomes one query of the prelude
 //! (`prolog_prelude.pl`) with the arguments, the caller's locals and
 //! globals, the history and the caller's unbound variables written as
