@@ -106,6 +106,123 @@ pub fn init_consults(home: &Path) -> Result<Vec<PathBuf>, String> {
     Ok(files)
 }
 
+/// `--legacy-kb native`: the original's KB layer served by our KB
+/// (`sitlog-kb`): the services and updates the KB crate has, and the KB
+/// loads and saves of the layer (see `sitlog_runtime::prolog::NativeKb`).
+#[cfg(feature = "prolog")]
+pub fn native_kb() -> sitlog_runtime::prolog::NativeKb {
+    use sitlog_kb::{SERVICES, UPDATES};
+    use std::sync::{Arc, Mutex};
+    let kbs: Mutex<Vec<sitlog_kb::Kb>> = Mutex::new(Vec::new());
+    let host = move |request: &str| -> String {
+        let mut kbs = match kbs.lock() {
+            Ok(k) => k,
+            Err(p) => p.into_inner(),
+        };
+        match kb_request(&mut kbs, request) {
+            Ok(reply) => reply,
+            Err(message) => {
+                let mut out = String::from("'$error'(error(kb_error(");
+                sitlog_syntax::write::write_atom(
+                    &mut out,
+                    sitlog_syntax::Atom::intern(&message),
+                    true,
+                );
+                out.push_str("),native_kb)).\n");
+                out
+            }
+        }
+    };
+    sitlog_runtime::prolog::NativeKb {
+        host: Arc::new(host),
+        queries: SERVICES
+            .iter()
+            .map(|s| (s.name.to_owned(), s.arity))
+            .collect(),
+        updates: UPDATES
+            .iter()
+            .map(|u| (u.name.to_owned(), u.arity))
+            .collect(),
+    }
+}
+
+/// One request of the engine (canonical text): see `NativeKb`.
+#[cfg(feature = "prolog")]
+fn kb_request(kbs: &mut Vec<sitlog_kb::Kb>, request: &str) -> Result<String, String> {
+    use sitlog_runtime::prolog::read_reply;
+    use sitlog_runtime::{Store, Term};
+    let mut store = Store::new();
+    let (t, _) = store
+        .parse(request)
+        .map_err(|e| format!("bad request `{request}`: {}", e.message))?;
+    let Some((name, _)) = store.functor(t) else {
+        return Err(format!("bad request `{request}`"));
+    };
+    let args: Vec<Term> = store.args(t).to_vec();
+    let handle = |store: &Store, kbs: &[sitlog_kb::Kb], t: Term| -> Result<usize, String> {
+        let t = store.deref(t);
+        store
+            .compound_args(t, sitlog_syntax::Atom::intern("$kb"), 1)
+            .and_then(|a| store.int_of(a[0]))
+            .and_then(|n| usize::try_from(n).ok())
+            .filter(|&n| n < kbs.len())
+            .ok_or_else(|| format!("`{}` is not a KB", store.writeq(t)))
+    };
+    let atom = |store: &Store, t: Term| -> Result<String, String> {
+        store
+            .atom_of(store.deref(t))
+            .map(|a| a.as_str().to_owned())
+            .ok_or_else(|| format!("`{}` is not a file name", store.writeq(t)))
+    };
+    let new = |kbs: &mut Vec<sitlog_kb::Kb>, kb: sitlog_kb::Kb| -> String {
+        kbs.push(kb);
+        format!("'$ok'('$kb'({}),[]).\n", kbs.len() - 1)
+    };
+    match (name.as_str(), args.len()) {
+        ("open", 1) => {
+            let path = atom(&store, args[0])?;
+            let kb = sitlog_kb::Kb::load(Path::new(&path)).map_err(|e| e.to_string())?;
+            Ok(new(kbs, kb))
+        }
+        ("handle", 1) => {
+            let text = store.writeq(args[0]);
+            let kb = sitlog_kb::Kb::parse(&text, "<KB term>").map_err(|e| e.to_string())?;
+            Ok(new(kbs, kb))
+        }
+        ("save", 2) => {
+            let h = handle(&store, kbs, args[0])?;
+            let path = atom(&store, args[1])?;
+            kbs[h].save(Path::new(&path)).map_err(|e| e.to_string())?;
+            Ok("'$ok'(true,[]).\n".to_owned())
+        }
+        ("term", 1) => {
+            let h = handle(&store, kbs, args[0])?;
+            Ok(read_reply(&kbs[h].to_text()))
+        }
+        ("query", 2) => {
+            let h = handle(&store, kbs, args[0])?;
+            let goal = store.writeq(args[1]);
+            match kbs[h].query(&goal).map_err(|e| format!("{goal}: {e}"))? {
+                sitlog_kb::Outcome::Answer(a) => Ok(read_reply(&a.writeq())),
+                sitlog_kb::Outcome::Fails => Ok("'$fail'.\n".to_owned()),
+            }
+        }
+        ("update", 2) => {
+            let h = handle(&store, kbs, args[0])?;
+            let goal = store.writeq(args[1]);
+            let clause =
+                sitlog_syntax::read_term(&goal).map_err(|e| format!("{goal}: {}", e.message))?;
+            let mut next = kbs[h].clone();
+            if next.update(&clause).map_err(|e| format!("{goal}: {e}"))? {
+                Ok(new(kbs, next))
+            } else {
+                Ok(format!("'$ok'('$kb'({h}),[]).\n"))
+            }
+        }
+        _ => Err(format!("unknown request `{request}`")),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

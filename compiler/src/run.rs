@@ -94,17 +94,19 @@ pub fn install_prolog(
     Option<sitlog_runtime::prolog::PrologFunctions>,
     Vec<sitlog_runtime::prolog::PrologLoadError>,
 > {
-    install_prolog_with(ir, functions, options, Vec::new())
+    install_prolog_with(ir, functions, options, Vec::new(), None)
 }
 
 /// [`install_prolog`], with `before` loaded ahead of the application's
-/// files (the `--legacy` profile's Prolog layer of the original).
+/// files (the `--legacy` profile's Prolog layer of the original), served by
+/// `native` if given.
 #[cfg(feature = "prolog")]
 pub fn install_prolog_with(
     ir: &Ir,
     functions: &mut Functions,
     options: sitlog_runtime::prolog::PrologOptions,
     before: Vec<sitlog_runtime::prolog::PrologSource>,
+    native: Option<sitlog_runtime::prolog::NativeKb>,
 ) -> Result<
     Option<sitlog_runtime::prolog::PrologFunctions>,
     Vec<sitlog_runtime::prolog::PrologLoadError>,
@@ -113,6 +115,7 @@ pub fn install_prolog_with(
     if ir.prolog_sources.is_empty() && before.is_empty() {
         return Ok(None);
     }
+    let layer = before.len();
     let mut sources = before;
     let app: Vec<PrologSource> = ir
         .prolog_sources
@@ -124,7 +127,7 @@ pub fn install_prolog_with(
         })
         .collect();
     sources.extend(app);
-    let prolog = PrologFunctions::load(&sources, options)?;
+    let prolog = PrologFunctions::load_with(&sources, options, layer, native)?;
     prolog.install(functions);
     Ok(Some(prolog))
 }

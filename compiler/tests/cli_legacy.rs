@@ -25,6 +25,7 @@ fn tree(name: &str) -> PathBuf {
         r#":- op(900, xfx, '==>').
 :- consult(interpreter).
 :- consult('$SITLOG_HOME/knowledge_base/layer.pl').
+:- consult('$SITLOG_HOME/knowledge_base/kb_layer.pl').
 banner('a long line \c
         continued').
 "#,
@@ -47,6 +48,39 @@ open_kb(KB) :-
     atom_to_chars(A, Text), atom_to_chars('.', Stop), append(Text, Stop, All),
     read_from_chars(All, KB).
 "#,
+    );
+    // A KB layer of the original's shape (services and updates take the KB
+    // term; open/save read and write a file), for --legacy-kb.
+    write(
+        &root,
+        "knowledge_base/kb_layer.pl",
+        r#"open_shop_kb(KB) :-
+    getenv('SITLOG_HOME', Home),
+    atomic_concat(Home, '/knowledge_base/shop.kb', Path),
+    open(Path, read, S), get0(S, C), codes(C, S, Cs), close(S),
+    atom_chars(A, Cs), atom_to_chars(A, Text), append(Text, ".", All),
+    read_from_chars(All, KB).
+save_shop_kb(KB) :-
+    getenv('SITLOG_HOME', Home),
+    atomic_concat(Home, '/knowledge_base/shop.kb', Path),
+    open(Path, write, S), writeq(S, KB), close(S).
+object_property_value(O, P, KB, V) :-
+    member(class(_, _, _, _, Inds), KB), member([id=>O, Props, _], Inds),
+    member([P=>V, _], Props), !.
+object_property_value(_, _, _, unknown).
+add_object_property(O, P, V, KB, New) :- maplist(add_p(O, P, V), KB, New).
+add_p(O, P, V, class(C, M, Ps, Rs, Is), class(C, M, Ps, Rs, Is2)) :- maplist(add_i(O, P, V), Is, Is2).
+add_i(O, P, V, [id=>O, Props, Rels], [id=>O, Props2, Rels]) :- !, append(Props, [[P=>V, 0]], Props2).
+add_i(_, _, _, I, I).
+% not a service of sitlog-kb: gets the KB term
+individuals(KB, N) :-
+    findall(I, (member(class(_, _, _, _, Is), KB), member(I, Is)), L), length(L, N).
+"#,
+    );
+    write(
+        &root,
+        "knowledge_base/shop.kb",
+        "[class(top,none,[],[],[]),\nclass(drink,top,[],[],[[id=>coke,[[size=>big,0]],[]],[id=>malz,[],[]]])]\n",
     );
     write(
         &root,
@@ -94,6 +128,30 @@ odd_op(_) :- open_kb([shop([Op=>>_])|_]), assign_func_value(Op).
                           say(P), say(apply(odd_op(Y), [y]))] => rs ] ],
     [ id ==> rs, type ==> recursive, embedded_dm ==> helper(done),
       arcs ==> [ fs : empty => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#,
+    );
+    write(&root, "apps/kb/models", "'main.dm'.\n");
+    write(
+        &root,
+        "apps/kb/user_functions.pl",
+        r#"kb_talk(_) :-
+    open_shop_kb(KB), object_property_value(coke, size, KB, Big),
+    object_property_value(malz, size, KB, None),
+    add_object_property(malz, size, small, KB, KB2), save_shop_kb(KB2),
+    open_shop_kb(KB3), object_property_value(malz, size, KB3, Small),
+    object_property_value(tea, size, KB3, Tea),
+    individuals(KB3, N),
+    assign_func_value([Big, None, Small, Tea, N]).
+"#,
+    );
+    write(
+        &root,
+        "apps/kb/main.dm",
+        r#"diag_mod(main,
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : [say(apply(kb_talk(X), [x]))] => fs ] ],
     [ id ==> fs, type ==> final ] ],
   []).
 "#,
@@ -208,4 +266,34 @@ fn sitlog_home_is_explicit_or_from_the_environment() {
     assert_eq!(out.status.code(), Some(2));
     let _ = std::fs::remove_dir_all(&root);
     let _ = std::fs::remove_dir_all(&elsewhere);
+}
+
+#[test]
+fn the_kb_layer_served_natively_answers_as_the_original_layer() {
+    for mode in ["prolog", "native"] {
+        let root = tree(mode);
+        let out = Command::new(env!("CARGO_BIN_EXE_sitlogc"))
+            .current_dir(&root)
+            .args(["run", "apps/kb", "--legacy", "--legacy-kb", mode])
+            .env_remove("SITLOG_HOME")
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{mode}: {stderr}");
+        let said: Vec<&str> = stderr
+            .lines()
+            .filter_map(|l| l.strip_prefix("Golem says: "))
+            .collect();
+        assert_eq!(said, ["big unknown small unknown 2."], "{mode}: {stderr}");
+        // The update was saved, in a form the layer reads back.
+        let saved = std::fs::read_to_string(root.join("knowledge_base/shop.kb")).unwrap();
+        assert!(saved.contains("small"), "{mode}: {saved}");
+        // Written by sitlog-kb (one class a line) only when served natively.
+        assert_eq!(
+            saved.contains(",\nclass("),
+            mode == "native",
+            "{mode}: {saved}"
+        );
+        let _ = std::fs::remove_dir_all(&root);
+    }
 }

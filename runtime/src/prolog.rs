@@ -14,6 +14,18 @@
 //! (`$SITLOG_HOME/...` is the `SITLOG_HOME` environment variable, else the
 //! nearest ancestor directory in which the rest of the path exists).
 //!
+//! SWI-Prolog. Code written for the original expects SWI-Prolog: the
+//! prelude provides its built-ins and library predicates the engine lacks
+//! ([`SWI_PREDICATES`], each yielding to an application's own definition),
+//! and the loader renames the application's calls of engine built-ins that
+//! behave otherwise ([`SWI_RENAMED`]: `atom_chars/2` on codes, SWI's
+//! standard order of mixed numbers in `compare/3`, `@<`, the sorts, and
+//! reading text as terms). Text read as a term at run time
+//! (`read_from_chars/2`, `term_to_atom/2`, ...) is read by our reader too:
+//! the engine sends it to the host on its `user_error` stream and gets the
+//! term back in canonical form on `user_input` ([`read_reply`]); the same
+//! channel serves the legacy KB layer natively ([`NativeKb`]).
+//!
 //! Calling. `apply(f(X1..Xn), [E1..En])` becomes one query of the prelude
 //! (`prolog_prelude.pl`) with the arguments, the caller's locals and
 //! globals, the history and the caller's unbound variables written as
@@ -200,6 +212,39 @@ impl PrologSource {
     }
 }
 
+/// A host answering the KB requests of the engine (see [`NativeKb`]).
+pub type KbHost = Arc<dyn Fn(&str) -> String + Send + Sync>;
+
+/// The legacy KB layer served natively (`sitlogc run --legacy --legacy-kb
+/// native`): the original's KB predicates, which pass the whole KB as a
+/// term, run on the host's KB instead, the KB being a handle `'$kb'(N)`.
+///
+/// In the sources marked as the legacy layer (`load_with`'s `layer`, and
+/// the files they consult):
+/// - the clauses of a query service `S/n+1` of `queries` (`S(Args.., KB,
+///   Answer)`) and of an update `U/m+2` of `updates` (`U(Args.., KB,
+///   NewKB)`) are replaced by calls of the host;
+/// - a predicate of arity 1 whose clause opens a file named by an
+///   `atomic_concat(Home, '/dir/file.ext', Path)` for reading (writing) is a
+///   KB load (save) of `$SITLOG_HOME/dir/file.ext` (the original's
+///   `open_kb/1`, `save_kb/1`, `open_preferences_kb/1`...);
+/// - every other predicate gets its handles turned back into KB terms (the
+///   host writes the KB) before its own clauses run, so code of the layer
+///   that the host does not serve still works.
+///
+/// Requests (canonical text): `open(Path)`, `save(KB, Path)`,
+/// `query(KB, Goal)`, `update(KB, Goal)`, `term(KB)`, `handle(Term)`; the
+/// host answers with [`read_reply`] of its answer's text (`'$ok'(T, _).`),
+/// `'$fail'.` or `'$error'(E).`.
+#[derive(Clone)]
+pub struct NativeKb {
+    pub host: KbHost,
+    /// Query services: name and arity without the KB (answer included).
+    pub queries: Vec<(String, usize)>,
+    /// Updates: name and arity without the two KBs.
+    pub updates: Vec<(String, usize)>,
+}
+
 /// Limits of one call (the defaults of an engine; a run's
 /// [`Functions::set_call_limits`] overrides them).
 ///
@@ -331,30 +376,50 @@ impl PrologFunctions {
         sources: &[PrologSource],
         options: PrologOptions,
     ) -> Result<PrologFunctions, Vec<PrologLoadError>> {
+        Self::load_with(sources, options, 0, None)
+    }
+
+    /// [`load`](Self::load), the first `layer` sources being the legacy KB
+    /// layer served by `native` (see [`NativeKb`]).
+    pub fn load_with(
+        sources: &[PrologSource],
+        options: PrologOptions,
+        layer: usize,
+        native: Option<NativeKb>,
+    ) -> Result<PrologFunctions, Vec<PrologLoadError>> {
         let mut prepared = Vec::new();
         let mut errors = Vec::new();
         let mut defined = HashSet::new();
         let mut seen_files = HashSet::new();
-        for s in sources {
-            prepare(
-                s,
-                sources,
-                &mut prepared,
-                &mut defined,
-                &mut errors,
-                &mut seen_files,
-                0,
-            );
+        let mut native_state = native.as_ref().map(NativeState::new);
+        for (i, s) in sources.iter().enumerate() {
+            let mut cx = Prep {
+                out: &mut prepared,
+                defined: &mut defined,
+                errors: &mut errors,
+                seen: &mut seen_files,
+                embedded: sources,
+                native: if i < layer {
+                    native_state.as_mut()
+                } else {
+                    None
+                },
+            };
+            prepare(s, &mut cx, 0);
+        }
+        if let Some(st) = native_state {
+            st.finish(&mut prepared);
         }
         if !errors.is_empty() {
             return Err(errors);
         }
+        let host = native.map(|n| n.host);
         let (tx, rx) = mpsc::channel::<Request>();
         let (ready_tx, ready_rx) = mpsc::channel();
         std::thread::Builder::new()
             .name("sitlog-prolog".into())
             .stack_size(64 << 20)
-            .spawn(move || engine_thread(prepared, rx, ready_tx))
+            .spawn(move || engine_thread(prepared, host, rx, ready_tx))
             .map_err(|e| {
                 vec![PrologLoadError {
                     file: "<engine>".into(),
@@ -582,23 +647,28 @@ impl PrologFunctions {
     }
 }
 
+/// Where [`prepare`] puts what it reads.
+struct Prep<'a> {
+    out: &'a mut Vec<Prepared>,
+    defined: &'a mut HashSet<(Atom, usize)>,
+    errors: &'a mut Vec<PrologLoadError>,
+    seen: &'a mut HashSet<PathBuf>,
+    /// Every source given: a file they consult is taken from them first
+    /// (a compiled task embeds what its sources consult).
+    embedded: &'a [PrologSource],
+    /// Set while reading the legacy KB layer served natively.
+    native: Option<&'a mut NativeState>,
+}
+
 /// Prepares the clauses of `source` (recursively for consulted files).
-fn prepare(
-    source: &PrologSource,
-    embedded: &[PrologSource],
-    out: &mut Vec<Prepared>,
-    defined: &mut HashSet<(Atom, usize)>,
-    errors: &mut Vec<PrologLoadError>,
-    seen: &mut HashSet<PathBuf>,
-    depth: usize,
-) {
-    if !seen.insert(normalize(Path::new(&source.name))) {
+fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
+    if !cx.seen.insert(normalize(Path::new(&source.name))) {
         return;
     }
     let (clauses, syntax) = read_clauses(&source.text);
     for e in syntax {
         let (line, col) = line_col(&source.text, e.span.start as usize);
-        errors.push(PrologLoadError {
+        cx.errors.push(PrologLoadError {
             file: source.name.clone(),
             line,
             col,
@@ -620,29 +690,31 @@ fn prepare(
             let goal = args[0];
             if let Some(files) = consulted_files(&store, goal) {
                 if depth > 32 {
-                    errors.push(err("consult/1 nested too deeply".into()));
+                    cx.errors.push(err("consult/1 nested too deeply".into()));
                     continue;
                 }
                 for f in files {
                     // A file given with the sources (a compiled task embeds
                     // what its sources consult) is taken from them.
-                    if let Some(s) = embedded_source(&f, source, embedded) {
-                        prepare(s, embedded, out, defined, errors, seen, depth + 1);
+                    if let Some(s) = embedded_source(&f, source, cx.embedded) {
+                        prepare(s, cx, depth + 1);
                         continue;
                     }
                     match resolve(&f, source.dir.as_deref()) {
                         Some(path) => match PrologSource::from_path(&path) {
-                            Ok(s) => prepare(&s, embedded, out, defined, errors, seen, depth + 1),
-                            Err(e) => errors.push(err(format!("cannot consult `{f}`: {e}"))),
+                            Ok(s) => prepare(&s, cx, depth + 1),
+                            Err(e) => cx.errors.push(err(format!("cannot consult `{f}`: {e}"))),
                         },
-                        None => errors.push(err(format!("cannot consult `{f}`: no such file"))),
+                        None => cx
+                            .errors
+                            .push(err(format!("cannot consult `{f}`: no such file"))),
                     }
                 }
                 continue;
             }
             let mut w = Writer::new(&store, true);
             w.term(goal);
-            out.push(Prepared {
+            cx.out.push(Prepared {
                 text: w.out,
                 directive: true,
                 file: source.name.clone(),
@@ -652,25 +724,39 @@ fn prepare(
             continue;
         }
         // Clauses.
-        let head = match store.compound_args(t, neck(), 2) {
-            Some(a) => a[0],
-            None => t,
+        let (head, body) = match store.compound_args(t, neck(), 2) {
+            Some(a) => (a[0], Some(a[1])),
+            None => (t, None),
         };
-        match store.functor(head) {
-            Some(key) => {
-                defined.insert(key);
-            }
+        let key = match store.functor(head) {
+            Some(key) => key,
             None => {
-                errors.push(err(format!(
+                cx.errors.push(err(format!(
                     "`{}` is not a clause head",
                     store.writeq(head)
                 )));
                 continue;
             }
+        };
+        cx.defined.insert(key);
+        let mut t = t;
+        if let Some(native) = cx.native.as_deref_mut() {
+            match native.clause(&mut store, key, body) {
+                ClauseFate::Keep => {}
+                ClauseFate::Drop => continue,
+                ClauseFate::Rename(new) => {
+                    let args = store.args(head).to_vec();
+                    let h = store.compound(new, &args);
+                    t = match body {
+                        Some(b) => store.compound(neck(), &[h, b]),
+                        None => h,
+                    };
+                }
+            }
         }
         let mut w = Writer::new(&store, true);
         w.term(t);
-        out.push(Prepared {
+        cx.out.push(Prepared {
             text: w.out,
             directive: false,
             file: source.name.clone(),
@@ -678,6 +764,205 @@ fn prepare(
             col,
         });
     }
+}
+
+/// What becomes of a clause of the natively served legacy layer.
+enum ClauseFate {
+    Keep,
+    Drop,
+    Rename(Atom),
+}
+
+/// The legacy layer's predicates as [`NativeKb`] serves them.
+struct NativeState {
+    served: HashSet<(Atom, usize)>,
+    /// KB loads and saves found: predicate name, file name, `true` for a save.
+    files: Vec<(Atom, Atom, bool)>,
+    /// Predicates wrapped to turn handles into terms, in order met.
+    wrapped: Vec<(Atom, usize)>,
+    wrapped_set: HashSet<(Atom, usize)>,
+    /// Served predicates the layer defines itself.
+    defined_served: HashSet<(Atom, usize)>,
+    queries: Vec<(String, usize)>,
+    updates: Vec<(String, usize)>,
+}
+
+impl NativeState {
+    fn new(n: &NativeKb) -> NativeState {
+        let mut served = HashSet::new();
+        for (name, arity) in &n.queries {
+            served.insert((Atom::intern(name), arity + 1));
+        }
+        for (name, arity) in &n.updates {
+            served.insert((Atom::intern(name), arity + 2));
+        }
+        NativeState {
+            served,
+            files: Vec::new(),
+            wrapped: Vec::new(),
+            wrapped_set: HashSet::new(),
+            defined_served: HashSet::new(),
+            queries: n.queries.clone(),
+            updates: n.updates.clone(),
+        }
+    }
+
+    fn clause(&mut self, store: &mut Store, key: (Atom, usize), body: Option<Term>) -> ClauseFate {
+        if key.1 == 0 {
+            return ClauseFate::Keep;
+        }
+        if self.files.iter().any(|f| f.0 == key.0 && key.1 == 1) {
+            return ClauseFate::Drop;
+        }
+        if self.served.contains(&key) {
+            // Kept for calls the host cannot serve (arguments not ground).
+            self.defined_served.insert(key);
+            return ClauseFate::Rename(legacy_name(key.0));
+        }
+        if key.1 == 1 {
+            if let Some((file, save)) = body.and_then(|b| kb_file_access(store, b)) {
+                self.files.push((key.0, file, save));
+                return ClauseFate::Drop;
+            }
+        }
+        if self.wrapped_set.insert(key) {
+            self.wrapped.push(key);
+        }
+        ClauseFate::Rename(legacy_name(key.0))
+    }
+
+    /// The clauses that serve the layer's predicates and wrap the others.
+    fn finish(self, out: &mut Vec<Prepared>) {
+        let vars = |n: usize| -> Vec<String> { (0..n).map(|i| format!("V{i}")).collect() };
+        let mut clauses = Vec::new();
+        let name = |a: &str| {
+            let mut s = String::new();
+            write_atom(&mut s, Atom::intern(a));
+            s
+        };
+        // With arguments that are not ground (the original's services then
+        // enumerate), the layer's own clauses run on the KB term.
+        let fallback = |p: &str, all: &[String]| -> String {
+            let key = (Atom::intern(p), all.len());
+            if !self.defined_served.contains(&key) {
+                return String::new();
+            }
+            let w: Vec<String> = (0..all.len()).map(|i| format!("W{i}")).collect();
+            let mut legacy = String::new();
+            write_atom(&mut legacy, legacy_name(key.0));
+            format!(
+                " ; '$sitlog_kb_terms'([{}], [{}]), {}({})",
+                all.join(","),
+                w.join(","),
+                legacy,
+                w.join(",")
+            )
+        };
+        for (q, arity) in &self.queries {
+            let v = vars(arity - 1);
+            let all = [v.clone(), vec!["KB".into(), "A".into()]].concat();
+            clauses.push(format!(
+                "{}({}) :- ( ground([{}]) -> '$sitlog_kb_query'({}, [{}], KB, A){} )",
+                name(q),
+                all.join(","),
+                v.join(","),
+                name(q),
+                v.join(","),
+                fallback(q, &all)
+            ));
+        }
+        for (u, arity) in &self.updates {
+            let v = vars(*arity);
+            let all = [v.clone(), vec!["KB".into(), "New".into()]].concat();
+            clauses.push(format!(
+                "{}({}) :- ( ground([{}]) -> '$sitlog_kb_update'({}, [{}], KB, New){} )",
+                name(u),
+                all.join(","),
+                v.join(","),
+                name(u),
+                v.join(","),
+                fallback(u, &all)
+            ));
+        }
+        for (p, file, save) in &self.files {
+            clauses.push(format!(
+                "{}(KB) :- getenv('SITLOG_HOME', H), atomic_concat(H, {}, P), {}(P, KB)",
+                name(p.as_str()),
+                name(file.as_str()),
+                if *save {
+                    "'$sitlog_kb_save'"
+                } else {
+                    "'$sitlog_kb_open'"
+                }
+            ));
+        }
+        for (p, arity) in &self.wrapped {
+            let v = vars(*arity);
+            let w: Vec<String> = (0..*arity).map(|i| format!("W{i}")).collect();
+            let mut legacy = String::new();
+            write_atom(&mut legacy, legacy_name(*p));
+            if *arity == 0 {
+                continue;
+            }
+            clauses.push(format!(
+                "{}({}) :- '$sitlog_kb_terms'([{}], [{}]), {}({})",
+                name(p.as_str()),
+                v.join(","),
+                v.join(","),
+                w.join(","),
+                legacy,
+                w.join(",")
+            ));
+        }
+        for text in clauses {
+            out.push(Prepared {
+                text: format!("({text})"),
+                directive: false,
+                file: "<native KB layer>".into(),
+                line: 0,
+                col: 0,
+            });
+        }
+    }
+}
+
+fn legacy_name(a: Atom) -> Atom {
+    Atom::intern(&format!("$legacy_{}", a.as_str()))
+}
+
+/// Whether `body` opens a KB file as the original's `open_kb/1` and
+/// `save_kb/1` do: `open(_, read|write, _)` of a path made by
+/// `atomic_concat(_, '/….ext', _)`. Gives the file name and whether it is a
+/// save.
+fn kb_file_access(store: &Store, body: Term) -> Option<(Atom, bool)> {
+    let mut stack = vec![body];
+    let mut file = None;
+    let mut mode = None;
+    while let Some(t) = stack.pop() {
+        let t = store.deref(t);
+        let Some((f, n)) = store.functor(t) else {
+            continue;
+        };
+        let args = store.args(t).to_vec();
+        match (f.as_str(), n) {
+            ("atomic_concat", 3) => {
+                if let Some(a) = store.atom_of(store.deref(args[1])) {
+                    let name = a.as_str().rsplit('/').next().unwrap_or("");
+                    if a.as_str().starts_with('/') && name.contains('.') {
+                        file = Some(a);
+                    }
+                }
+            }
+            ("open", 3) => {
+                mode = store
+                    .atom_of(store.deref(args[1]))
+                    .map(|a| a.as_str() == "write");
+            }
+            (",", 2) => stack.extend(args),
+            _ => {}
+        }
+    }
+    Some((file?, mode?))
 }
 
 /// The files of a `consult/1`, `ensure_loaded/1` or `[F, ..]` directive.
@@ -759,10 +1044,11 @@ fn resolve(name: &str, dir: Option<&Path>) -> Option<PathBuf> {
 /// The engine thread: builds the machine, loads, then answers queries.
 fn engine_thread(
     prepared: Vec<Prepared>,
+    host: Option<KbHost>,
     rx: mpsc::Receiver<Request>,
     ready: mpsc::Sender<Vec<PrologLoadError>>,
 ) {
-    let (mut machine, errors) = build_machine(&prepared);
+    let (mut machine, errors) = build_machine(&prepared, host.clone());
     let _ = ready.send(errors);
     while let Ok(Request::Query(q, reply)) = rx.recv() {
         let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
@@ -772,7 +1058,7 @@ fn engine_thread(
             Ok(r) => r,
             Err(_) => {
                 // The engine may be in any state: start afresh.
-                machine = build_machine(&prepared).0;
+                machine = build_machine(&prepared, host.clone()).0;
                 Err("the Prolog engine panicked (it was restarted)".to_owned())
             }
         };
@@ -785,7 +1071,7 @@ fn engine_thread(
 /// `'$sitlog_read_text'/3` (framed by `\x01` and `\x02`), answered on
 /// `user_input` by [`read_reply`]; anything else written there goes to
 /// stderr.
-fn engine_streams() -> StreamConfig {
+fn engine_streams(host: Option<KbHost>) -> StreamConfig {
     type StreamCallback = Box<dyn FnMut(&mut std::io::Cursor<Vec<u8>>)>;
     let (mut replies, input) = InputStreamConfig::channel();
     let mut pending: Vec<u8> = Vec::new();
@@ -807,7 +1093,15 @@ fn engine_streams() -> StreamConfig {
             };
             let text = String::from_utf8_lossy(&pending[1..end]).into_owned();
             pending.drain(..=end);
-            let _ = replies.write_all(read_reply(&text).as_bytes());
+            // The first character says what is asked: `R` read, `K` KB.
+            let reply = match text.strip_prefix('K') {
+                Some(request) => match &host {
+                    Some(h) => h(request),
+                    None => "'$error'(error(existence_error(kb_host, sitlog), kb)).\n".to_owned(),
+                },
+                None => read_reply(text.strip_prefix('R').unwrap_or(&text)),
+            };
+            let _ = replies.write_all(reply.as_bytes());
         }
     });
     let on_output: StreamCallback = Box::new(|buf: &mut std::io::Cursor<Vec<u8>>| {
@@ -858,9 +1152,9 @@ pub fn read_reply(text: &str) -> String {
     }
 }
 
-fn build_machine(prepared: &[Prepared]) -> (Machine, Vec<PrologLoadError>) {
+fn build_machine(prepared: &[Prepared], host: Option<KbHost>) -> (Machine, Vec<PrologLoadError>) {
     let mut machine = MachineBuilder::default()
-        .with_streams(engine_streams())
+        .with_streams(engine_streams(host))
         .build();
     machine.consult_module_string("user", PRELUDE);
     let mut errors = Vec::new();

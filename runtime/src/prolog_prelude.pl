@@ -559,6 +559,7 @@ get_last_situation(History, S) :-
     '$swi_text_chars'(Text, Cs),
     atom_chars(A, Cs),
     put_char(user_error, '\x1\'),
+    put_char(user_error, 'R'),
     write(user_error, A),
     put_char(user_error, '\x2\'),
     flush_output(user_error),
@@ -580,6 +581,64 @@ get_last_situation(History, S) :-
     ;   write_term_to_chars(T, [quoted(true)], Cs),
         atom_chars(A, Cs)
     ).
+
+% ------------------------------------------------ the KB layer, natively
+% (sitlogc run --legacy --legacy-kb native; NativeKb in prolog.rs). A KB is
+% a handle '$kb'(N) to a KB of the host; a KB term met where a handle is
+% needed becomes one (the last conversion is remembered), and a handle met
+% by code the host does not serve becomes the KB term again.
+
+'$sitlog_kb'(Request, Reply) :-
+    put_char(user_error, '\x1\'),
+    put_char(user_error, 'K'),
+    write_canonical(user_error, Request),
+    put_char(user_error, '\x2\'),
+    flush_output(user_error),
+    get_line_to_chars(user_input, Line, []),
+    read_from_chars(Line, R),
+    (   R = '$ok'(T, _) -> Reply = T
+    ;   R = '$error'(E) -> throw(E)
+    ;   fail
+    ).
+
+'$sitlog_kb_open'(Path, KB) :- '$sitlog_kb'(open(Path), KB).
+'$sitlog_kb_save'(Path, KB) :-
+    '$sitlog_kb_handle'(KB, H),
+    '$sitlog_kb'(save(H, Path), _).
+
+'$sitlog_kb_handle'(KB, H) :-
+    (   var(KB)
+    ->  throw(error(instantiation_error, kb/1))
+    ;   KB = '$kb'(_)
+    ->  H = KB
+    ;   catch(bb_get('$sitlog_kb_last', T-H0), _, fail), T == KB
+    ->  H = H0
+    ;   '$sitlog_kb'(handle(KB), H),
+        bb_put('$sitlog_kb_last', KB-H)
+    ).
+
+'$sitlog_kb_query'(Name, Args, KB, Answer) :-
+    '$sitlog_kb_handle'(KB, H),
+    '$sitlog_append'(Args, [_], All),
+    Goal =.. [Name|All],
+    '$sitlog_kb'(query(H, Goal), A),
+    Answer = A.
+
+'$sitlog_kb_update'(Name, Args, KB, New) :-
+    '$sitlog_kb_handle'(KB, H),
+    Goal =.. [Name|Args],
+    '$sitlog_kb'(update(H, Goal), N),
+    New = N.
+
+% The arguments with every handle turned into its KB term.
+'$sitlog_kb_terms'([], []).
+'$sitlog_kb_terms'([A|As], [B|Bs]) :-
+    (   nonvar(A), A = '$kb'(_)
+    ->  '$sitlog_kb'(term(A), B),
+        bb_put('$sitlog_kb_last', B-A)
+    ;   B = A
+    ),
+    '$sitlog_kb_terms'(As, Bs).
 
 % Makes '$swi_X' visible as X: Preds lists Name/Arity.
 '$sitlog_bridge'([], []).

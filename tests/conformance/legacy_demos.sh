@@ -3,7 +3,8 @@
 # the original SitLog interpreter and on `sitlogc run --legacy`, each in a
 # fresh copy of the original's tree, and compares the runs
 # (legacy_demos.py: transitions, DM/situation sequence, actions, utterances
-# in order).
+# in order). Ours runs twice: with the original's KB layer as it is
+# (--legacy-kb prolog) and served by sitlog-kb (--legacy-kb native).
 #
 #   preferences       apps/test_behaviors, dispatcher answer res(preferences).
 #   demo_supermarket  apps/german_open_2019, dispatcher answer res(demo_supermarket).
@@ -88,17 +89,22 @@ for demo in "${demos[@]}"; do
     (cd "$d/original" && PATH="$work/shim:$PATH" SITLOG_HOME="$d/original/" \
         timeout "$limit" bash "$launcher" test <"$d/inputs.txt" >"$d/original.out" 2>&1)
     t1=$(now)
-    # Ours, from the same kind of tree.
-    fresh "$d/ours"
-    t2=$(now)
-    (cd "$d/ours" && SITLOG_HOME="$d/ours/" timeout "$limit" \
-        "$sitlogc" run "$app" --legacy --script "$d/inputs.txt" >"$d/ours.out" 2>"$d/ours.err")
-    rc=$?
-    t3=$(now)
-    echo "$demo: $(wc -l <"$d/inputs.txt") inputs; original $(elapsed "$t0" "$t1") s, sitlogc $(elapsed "$t2" "$t3") s (exit status $rc)"
-    python3 "$here/legacy_demos.py" "$d/original.out" "$d/ours.out" "$d/ours.err" | sed 's/^/  /'
-    if [ "${PIPESTATUS[0]}" != 0 ] || [ "$rc" != 0 ]; then
-        status=1
-    fi
+    echo "$demo: $(wc -l <"$d/inputs.txt") inputs; original $(elapsed "$t0" "$t1") s"
+    # Ours, from the same kind of tree: the original's KB layer run as it
+    # is (prolog), then served by sitlog-kb (native).
+    for kb in prolog native; do
+        fresh "$d/ours-$kb"
+        t2=$(now)
+        (cd "$d/ours-$kb" && SITLOG_HOME="$d/ours-$kb/" timeout "$limit" \
+            "$sitlogc" run "$app" --legacy --legacy-kb "$kb" --script "$d/inputs.txt" \
+            >"$d/ours-$kb.out" 2>"$d/ours-$kb.err")
+        rc=$?
+        t3=$(now)
+        echo "  sitlogc --legacy-kb $kb: $(elapsed "$t2" "$t3") s (exit status $rc)"
+        python3 "$here/legacy_demos.py" "$d/original.out" "$d/ours-$kb.out" "$d/ours-$kb.err" | sed 's/^/    /'
+        if [ "${PIPESTATUS[0]}" != 0 ] || [ "$rc" != 0 ]; then
+            status=1
+        fi
+    done
 done
 exit $status

@@ -98,6 +98,11 @@ enum Command {
         /// fast task can be followed in the live view.
         #[arg(long, value_name = "MS", default_value_t = 0, requires = "view")]
         view_delay: u64,
+        /// With --legacy: `prolog` runs the original's KB layer as it is;
+        /// `native` serves its KB services, updates, loads and saves from
+        /// our KB (sitlog-kb), the KB being a handle.
+        #[arg(long, value_enum, value_name = "HOW", requires = "legacy", default_value_t = LegacyKb::Prolog)]
+        legacy_kb: LegacyKb,
     },
     /// Compile an application to one executable.
     ///
@@ -183,6 +188,12 @@ enum Command {
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum LegacyKb {
+    Prolog,
+    Native,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
 enum Emit {
     Rust,
 }
@@ -245,6 +256,7 @@ fn run(cli: Cli) -> u8 {
             view,
             view_port,
             view_delay,
+            legacy_kb,
         } => {
             let legacy = legacy.then_some(sitlog_home);
             let view = view.then_some(ViewArgs {
@@ -257,6 +269,7 @@ fn run(cli: Cli) -> u8 {
                 allow_unresolved,
                 legacy.as_ref().map(|h| h.as_deref()),
                 view,
+                legacy_kb == LegacyKb::Native,
             )
         }
         Command::Build {
@@ -506,6 +519,7 @@ fn run_app(
     allow_unresolved: bool,
     legacy: Option<Option<&std::path::Path>>,
     view: Option<ViewArgs>,
+    native_kb: bool,
 ) -> u8 {
     // The legacy profile: the original's Prolog layer from SITLOG_HOME.
     #[cfg(feature = "prolog")]
@@ -572,9 +586,13 @@ fn run_app(
     let mut functions = sitlog_runtime::Functions::standard();
     // The application's user_functions.pl and templates.pl (feature `prolog`).
     #[cfg(feature = "prolog")]
-    if let Err(errors) =
-        sitlog_compiler::run::install_prolog_with(&ir, &mut functions, Default::default(), before)
-    {
+    if let Err(errors) = sitlog_compiler::run::install_prolog_with(
+        &ir,
+        &mut functions,
+        Default::default(),
+        before,
+        native_kb.then(sitlog_compiler::legacy::native_kb),
+    ) {
         for e in errors {
             eprintln!("error: {e}");
         }
