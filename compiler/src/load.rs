@@ -116,6 +116,23 @@ pub fn load_sources(files: &[(&str, &str)]) -> (Program, Vec<Diagnostic>) {
     (program, diags)
 }
 
+/// [`load_sources`] for raw bytes, decoded as files are (text that is not
+/// UTF-8 is a diagnostic at its first bad byte): for fuzzing and tools.
+pub fn load_source_bytes(files: &[(&str, &[u8])]) -> (Program, Vec<Diagnostic>) {
+    let mut program = Program::default();
+    let mut diags = Vec::new();
+    for (name, bytes) in files {
+        let file = add_bytes(Path::new(name), bytes.to_vec(), &mut program, &mut diags);
+        let clauses = read_file_clauses(&program, file, &mut diags);
+        let name = Path::new(name)
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or("");
+        add_file_by_role(&mut program, file, name, clauses, &mut diags);
+    }
+    (program, diags)
+}
+
 fn add_file_by_role(
     program: &mut Program,
     file: FileId,

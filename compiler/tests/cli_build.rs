@@ -83,11 +83,86 @@ fn built_executable_runs_like_sitlogc_run() {
         );
         assert_eq!(compiled.stderr, interpreted.stderr);
     }
+    // Output that cannot be written is an error (issue 23), as for `sitlogc run`.
+    #[cfg(target_os = "linux")]
+    for format in ["json", "text"] {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let out = Command::new(&exe)
+            .args(["--format", format, "--script"])
+            .arg(&script)
+            .stdout(full)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{format}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("cannot write the report"));
+    }
     // The options of `sitlogc run`: usage errors exit 2, --help exits 0.
     let bad = Command::new(&exe).arg("--format=xml").output().unwrap();
     assert_eq!(bad.status.code(), Some(2));
     let help = Command::new(&exe).arg("--help").output().unwrap();
     assert!(help.status.success());
     assert!(String::from_utf8_lossy(&help.stdout).contains("--in-arg"));
+    assert!(String::from_utf8_lossy(&help.stdout).contains("--max-input-bytes"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A compiled task stops at a transition boundary on SIGINT, with its
+/// JSON object and exit status 130 (issue 23).
+#[cfg(unix)]
+#[test]
+fn built_executable_stops_on_sigint() {
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let dir = std::env::temp_dir().join(format!("sitlogc-build-int-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let app = dir.join("spin");
+    std::fs::create_dir_all(&app).unwrap();
+    std::fs::write(
+        app.join("main.dm"),
+        "diag_mod(main, [
+  [id ==> is, type ==> neutral, arcs ==> [empty : inc(n, _) => is]],
+  [id ==> fs, type ==> final]
+], [n ==> 0]).
+",
+    )
+    .unwrap();
+    let exe = dir.join("spin-task");
+    let status = sitlogc()
+        .arg("build")
+        .arg(&app)
+        .arg("-o")
+        .arg(&exe)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let trace = dir.join("t.jsonl");
+    let child = Command::new(&exe)
+        .args(["--format", "json", "--history", "none", "--trace"])
+        .arg(&trace)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while std::fs::metadata(&trace).map_or(0, |m| m.len()) < 1000 {
+        assert!(start.elapsed() < Duration::from_secs(60));
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let killed = Command::new("kill")
+        .arg("-INT")
+        .arg(child.id().to_string())
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["status"], "interrupted");
+    for line in std::fs::read_to_string(&trace).unwrap().lines() {
+        let _: serde_json::Value = serde_json::from_str(line).unwrap();
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

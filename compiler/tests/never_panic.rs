@@ -1,0 +1,237 @@
+//! Issue 23: any bytes as a DM file, as typed or scripted input, or as
+//! `user_functions.pl` get a verdict, never a panic: load, check, the three
+//! diagnostic renderers, lowering and a bounded run. The cargo-fuzz targets
+//! `check`, `run`, `input` and `prolog` in fuzz/ run the same properties
+//! for longer.
+
+use proptest::prelude::*;
+use sitlog_compiler::{check, diag, ir, load, run};
+use sitlog_runtime::history::Entry;
+use sitlog_runtime::machine::{Observer, Options};
+use sitlog_runtime::testmode::{InputLimits, ScriptPerception, TextActions};
+use sitlog_runtime::{report, Store, Term};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+/// Stops a run after a number of transitions.
+struct Budget {
+    left: u32,
+    stop: Arc<AtomicBool>,
+}
+
+impl Observer for Budget {
+    fn transition(&mut self, _: &Store, _: &Entry, _: usize, _: Option<Term>) {
+        self.left = self.left.saturating_sub(1);
+        if self.left == 0 {
+            self.stop.store(true, Ordering::Relaxed);
+        }
+    }
+}
+
+/// Check, render, lower and run (bounded) one DM file's bytes.
+fn pipeline(bytes: &[u8], script: &[u8]) {
+    let (program, diags) = load::load_source_bytes(&[("main.dm", bytes)]);
+    let (result, diags) = check::check(program, diags);
+    let sources = match &result {
+        Ok(c) => &c.program().sources,
+        Err(p) => &p.sources,
+    };
+    for d in &diags {
+        diag::render_human(d, sources, false);
+        diag::render_json(d, sources);
+        diag::render_short(d, sources);
+    }
+    let Ok(checked) = result else { return };
+    let ir = ir::lower(&checked);
+    let Ok(perception) = ScriptPerception::from_bytes("script", script.to_vec()) else {
+        return;
+    };
+    let mut perception = perception.with_limits(InputLimits {
+        max_bytes: 256,
+        max_depth: 16,
+    });
+    let stop = Arc::new(AtomicBool::new(false));
+    let config = run::RunConfig {
+        options: Options {
+            stop: Some(stop.clone()),
+            max_depth: 1000,
+            gc_threshold: 1 << 10,
+            ..Options::default()
+        },
+        ..run::RunConfig::default()
+    };
+    let mut actions = TextActions::new(std::io::sink(), ir.basic_actions.clone());
+    let mut budget = Budget { left: 500, stop };
+    if let Ok((outcome, mut store)) = run::run(
+        &ir,
+        config,
+        &mut perception,
+        &mut actions,
+        Some(&mut budget),
+    ) {
+        report::outcome_json(&store, &outcome);
+        report::outcome_text(&mut store, &outcome);
+    }
+}
+
+const DM_PIECES: &[&str] = &[
+    "diag_mod(",
+    "main",
+    ", [",
+    "[id ==> ",
+    "is",
+    "fs",
+    ", type ==> ",
+    "neutral",
+    "listening",
+    "final",
+    "recursive",
+    ", arcs ==> [",
+    "empty : ",
+    "X : ",
+    " => ",
+    "screen(X)",
+    "inc(n, N)",
+    "get(n, N)",
+    "set(n, X)",
+    "apply(f(X), [1])",
+    "embedded_dm ==> main",
+    "]",
+    "]]",
+    "], [n ==> 0]).",
+    ", ",
+    "(N > 2 -> fs ; otherwise -> is)",
+    "[]",
+    ".",
+    "\n",
+    " ",
+    "\u{e9}",
+    "\u{fffd}",
+    "'",
+    "%",
+    "/*",
+    "*/",
+    "\"s\"",
+    "0'",
+    "1",
+    "-",
+];
+
+const VALID: &str = "diag_mod(main, [
+  [id ==> is, type ==> listening, arcs ==> [stop : screen(bye) => fs, X : [inc(n, _), screen(X)] => is]],
+  [id ==> fs, type ==> final]
+], [n ==> 0]).
+";
+
+fn config(default: u32) -> ProptestConfig {
+    ProptestConfig {
+        cases: std::env::var("PROPTEST_CASES")
+            .ok()
+            .and_then(|c| c.parse().ok())
+            .unwrap_or(default),
+        ..ProptestConfig::default()
+    }
+}
+
+proptest! {
+    #![proptest_config(config(256))]
+
+    #[test]
+    fn arbitrary_bytes_as_a_dm_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..300)) {
+        pipeline(&bytes, b"hello.\n3.\n");
+    }
+
+    #[test]
+    fn dm_shaped_text_never_panics(parts in prop::collection::vec(prop::sample::select(DM_PIECES), 0..50)) {
+        pipeline(parts.concat().as_bytes(), b"hello.\nyes.\n3.\nstop.\n");
+    }
+
+    #[test]
+    fn a_valid_dm_with_bytes_changed_never_panics(
+        edits in prop::collection::vec((0..VALID.len(), any::<u8>()), 1..6)
+    ) {
+        let mut bytes = VALID.as_bytes().to_vec();
+        for (at, b) in edits {
+            bytes[at] = b;
+        }
+        pipeline(&bytes, b"hello.\nstop.\n");
+    }
+
+    #[test]
+    fn arbitrary_bytes_as_input_never_panic(script in prop::collection::vec(any::<u8>(), 0..300)) {
+        pipeline(VALID.as_bytes(), &script);
+    }
+
+    #[test]
+    fn term_shaped_input_never_panics(parts in prop::collection::vec(prop::sample::select(&[
+        "f(", ")", "[", "]", ",", "|", ".", " ", "\n", "a", "X", "1", "'q", "\"", "stop", "%", "\u{e9}",
+    ][..]), 0..80)) {
+        pipeline(VALID.as_bytes(), parts.concat().as_bytes());
+    }
+}
+
+#[cfg(feature = "prolog")]
+mod prolog {
+    use super::*;
+    use sitlog_runtime::functions::{CallLimits, FnCall};
+    use sitlog_runtime::prolog::{PrologFunctions, PrologOptions, PrologSource};
+    use sitlog_runtime::{Atom, Functions, Vars};
+    use std::time::Duration;
+
+    /// Loads `bytes` as user_functions.pl and calls what it defines.
+    fn user_functions(bytes: &[u8]) {
+        let Ok(text) = sitlog_syntax::decode(bytes) else {
+            return;
+        };
+        let options = PrologOptions {
+            inference_limit: 100_000,
+            time_limit: Duration::from_secs(2),
+            heap_limit: 256 << 20,
+        };
+        let Ok(engine) =
+            PrologFunctions::load(&[PrologSource::new("user_functions.pl", text)], options)
+        else {
+            return;
+        };
+        let mut functions = Functions::standard();
+        functions.set_call_limits(CallLimits {
+            inferences: 100_000,
+            time: Duration::from_secs(2),
+            heap_bytes: 256 << 20,
+        });
+        engine.install(&mut functions);
+        let mut store = Store::new();
+        let (mut locals, mut globals) = (Vars::default(), Vars::default());
+        for name in ["f", "g", "p"] {
+            for arity in 0..3 {
+                let name = Atom::intern(name);
+                if !engine.defines(name, arity) {
+                    continue;
+                }
+                let args: Vec<Term> = (0..arity).map(|_| Term::atom(Atom::intern("x"))).collect();
+                let mut call = FnCall {
+                    store: &mut store,
+                    locals: &mut locals,
+                    globals: &mut globals,
+                    history: &[],
+                    functions: &functions,
+                };
+                let _ = engine.call(&mut call, name, &args);
+            }
+        }
+    }
+
+    proptest! {
+        // Each case starts an engine: few cases in the stable suite.
+        #![proptest_config(config(12))]
+
+        #[test]
+        fn prolog_shaped_text_never_panics(parts in prop::collection::vec(prop::sample::select(&[
+            "f(X)", "g", "p(A, B)", " :- ", "assign_func_value(", ")", "X", ", ", ".\n", "(", "fail",
+            "!", "[", "]", "|", "1", "is", "+", ";", "->", "\\+", "length(L, 3)", "var_op(get(n, V))",
+            "\u{e9}", "'", "%", "\u{ff}",
+        ][..]), 0..30)) {
+            user_functions(parts.concat().as_bytes());
+        }
+    }
+}
