@@ -85,6 +85,19 @@ pub struct RunArgs {
     /// No progress indicator and no narration lines (the conversation stays).
     #[arg(long, short)]
     pub quiet: bool,
+    /// Follow the run in a web page: the program's diagram (as `sitlogc
+    /// graph` draws it) with the current situation, the arcs taken, the DM
+    /// stack and the last transitions. Served on 127.0.0.1 only; the task
+    /// starts when the page is open, and the server stops when it ends.
+    #[arg(long)]
+    pub view: bool,
+    /// The live view's port (default: a free one, printed on stderr).
+    #[arg(long, value_name = "PORT", default_value_t = 0, requires = "view")]
+    pub view_port: u16,
+    /// Wait this many milliseconds after each transition, so that a fast
+    /// task can be followed in the live view.
+    #[arg(long, value_name = "MS", default_value_t = 0, requires = "view")]
+    pub view_delay: u64,
 }
 
 impl Default for RunArgs {
@@ -102,6 +115,9 @@ impl Default for RunArgs {
             no_world: false,
             seed: None,
             quiet: false,
+            view: false,
+            view_port: 0,
+            view_delay: 0,
         }
     }
 }
@@ -123,6 +139,9 @@ pub struct Assets {
     pub world: Option<Source>,
     /// `knowledge.kb`.
     pub kb: Option<Source>,
+    /// The program's diagram as JSON (`sitlogc graph --format json`), for
+    /// `--view`.
+    pub diagram: Option<String>,
 }
 
 /// The world file of an application directory.
@@ -157,6 +176,7 @@ impl Assets {
             app_name: app_name(app),
             world: read(WORLD_FILE)?,
             kb: read(KB_FILE)?,
+            diagram: None,
         })
     }
 }
@@ -237,6 +257,87 @@ impl Observer for Fanout<'_> {
 
 /// [`execute`] on the given streams.
 pub fn execute_with<A: App>(
+    app: &A,
+    functions: Functions,
+    args: &RunArgs,
+    assets: &Assets,
+    streams: Streams,
+) -> u8 {
+    if args.view {
+        return with_view(app, functions, args, assets, streams);
+    }
+    run_task(app, functions, args, assets, streams)
+}
+
+/// `--view`: serves the diagram, waits for the page, runs the task with
+/// the page following it, then stops the server.
+#[cfg(feature = "view")]
+fn with_view<A: App>(
+    app: &A,
+    functions: Functions,
+    args: &RunArgs,
+    assets: &Assets,
+    mut streams: Streams,
+) -> u8 {
+    let diagram = match assets
+        .diagram
+        .as_deref()
+        .map(sitlog_graph::Diagram::from_json)
+    {
+        Some(Ok(d)) => d,
+        Some(Err(e)) => {
+            let _ = writeln!(streams.stderr, "error: the task's diagram: {e}");
+            return 2;
+        }
+        None => {
+            let _ = writeln!(
+                streams.stderr,
+                "error: --view needs the program's diagram, and this task has none"
+            );
+            return 2;
+        }
+    };
+    let view = match sitlog_view::View::start(diagram, args.view_port) {
+        Ok(v) => v,
+        Err(e) => {
+            let _ = writeln!(
+                streams.stderr,
+                "error: cannot serve the live view on 127.0.0.1:{}: {e}",
+                args.view_port
+            );
+            return 2;
+        }
+    };
+    let _ = writeln!(
+        streams.stderr,
+        "live view at {} (the task starts when the page is open)",
+        view.url()
+    );
+    let _ = streams.stderr.flush();
+    view.wait_for_viewer(None);
+    streams.observer = Some(Box::new(
+        view.observer(std::time::Duration::from_millis(args.view_delay)),
+    ));
+    let code = run_task(app, functions, args, assets, streams);
+    let status = match code {
+        0 => "ok",
+        1 => "error",
+        _ => "stopped",
+    };
+    view.finish(status, "", std::time::Duration::from_secs(3));
+    code
+}
+
+#[cfg(not(feature = "view"))]
+fn with_view<A: App>(_: &A, _: Functions, _: &RunArgs, _: &Assets, mut streams: Streams) -> u8 {
+    let _ = writeln!(
+        streams.stderr,
+        "error: --view: this build has no live view (feature `view` of sitlog-robot)"
+    );
+    2
+}
+
+fn run_task<A: App>(
     app: &A,
     mut functions: Functions,
     args: &RunArgs,
