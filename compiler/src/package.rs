@@ -82,8 +82,12 @@ pub fn write_package(
         src = app.display(),
         // The embedded Prolog engine only where the application has Prolog sources.
         features = if has_prolog { ", features = [\"prolog\"]" } else { "" },
-        // The simulator only where the application has a world.
-        robot_features = if assets.world.is_some() { ", features = [\"sim\"]" } else { "" },
+        // The simulator only where the application has a world; the live view always.
+        robot_features = if assets.world.is_some() {
+            ", features = [\"sim\", \"view\"]"
+        } else {
+            ", features = [\"view\"]"
+        },
     );
     let embed = |s: &Option<sitlog_robot::Source>| match s {
         Some(s) => format!(
@@ -99,7 +103,8 @@ pub fn write_package(
          let assets = sitlog_robot::Assets {{\n        \
          app_name: {app_name:?}.to_owned(),\n        \
          world: {world},\n        \
-         kb: {kb},\n    \
+         kb: {kb},\n        \
+         diagram: {diagram},\n    \
          }};\n    \
          match program::functions() {{\n        \
          Ok(functions) => sitlog_robot::main(program::program(), functions, &assets),\n        \
@@ -112,6 +117,10 @@ pub fn write_package(
         app_name = assets.app_name,
         world = embed(&assets.world),
         kb = embed(&assets.kb),
+        diagram = match diagram_json(app) {
+            Some(json) => format!("Some({json:?}.to_owned())"),
+            None => "None".to_owned(),
+        },
     );
     let files = [
         (dir.join("Cargo.toml"), manifest),
@@ -185,4 +194,16 @@ pub fn build_package(
             ))
         })?;
     Ok(())
+}
+
+/// The program's diagram as JSON (for `--view` on the compiled task).
+fn diagram_json(app: &Path) -> Option<String> {
+    let (checked, _) = crate::check_path(app).ok()?;
+    let ir = crate::ir::lower(&checked.ok()?);
+    let options = crate::diagram::Options {
+        dm: None,
+        main: None,
+        title: crate::build::app_name(app),
+    };
+    Some(crate::diagram::diagram(&ir, &options).ok()?.to_json())
 }

@@ -106,6 +106,39 @@ fn built_executable_runs_like_sitlogc_run() {
     assert!(help.status.success());
     assert!(String::from_utf8_lossy(&help.stdout).contains("--in-arg"));
     assert!(String::from_utf8_lossy(&help.stdout).contains("--max-input-bytes"));
+    assert!(String::from_utf8_lossy(&help.stdout).contains("--view"));
+    // The live view works on the compiled task too: its diagram is embedded.
+    let mut child = Command::new(&exe)
+        .args(["--view", "--format", "json", "--script"])
+        .arg(&script)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
+    let addr = loop {
+        let mut line = String::new();
+        use std::io::BufRead;
+        assert!(
+            stderr.read_line(&mut line).unwrap() > 0,
+            "no live view address"
+        );
+        if let Some(at) = line.find("http://127.0.0.1:") {
+            let rest = &line[at + "http://".len()..];
+            break rest[..rest.find('/').unwrap()].to_owned();
+        }
+    };
+    let mut stream = std::net::TcpStream::connect(&addr).unwrap();
+    use std::io::{Read, Write};
+    write!(stream, "GET /events HTTP/1.1\r\n\r\n").unwrap();
+    let mut events = String::new();
+    stream.read_to_string(&mut events).unwrap();
+    assert!(
+        events.contains(r#"data: {"end":true,"message":"","status":"ok"}"#),
+        "{events}"
+    );
+    assert!(events.contains(r#""node":"d0.s0""#), "{events}");
+    assert!(child.wait().unwrap().success());
     let _ = std::fs::remove_dir_all(&dir);
 }
 

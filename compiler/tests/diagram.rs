@@ -433,3 +433,36 @@ fn a_big_dm_end_to_end() {
     assert!(s.contains("id=\"d0.s1499\""));
     assert!(took.as_secs() < 10, "took {took:?}");
 }
+
+/// The DOT output is read by Graphviz (skipped where `dot` is not installed).
+#[test]
+fn dot_output_is_read_by_graphviz() {
+    if Command::new("dot").arg("-V").output().is_err() {
+        eprintln!("skipped: no Graphviz `dot`");
+        return;
+    }
+    for app in [SHAPES, APPENDIX_A, HOME] {
+        let text = sitlog_graph::dot::render(&draw(app, None));
+        let mut child = Command::new("dot")
+            .arg("-Tsvg")
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        use std::io::Write;
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(text.as_bytes())
+            .unwrap();
+        let out = child.wait_with_output().unwrap();
+        assert!(
+            out.status.success(),
+            "{app}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(String::from_utf8_lossy(&out.stdout).contains("<svg"));
+    }
+}

@@ -19,10 +19,10 @@ pub mod layout;
 pub mod svg;
 pub mod trace;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// A whole program, or one DM of it.
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Diagram {
     /// The application's name.
     pub title: String,
@@ -35,7 +35,7 @@ pub struct Diagram {
 }
 
 /// One DM: its situations and the arcs between them, inside a dotted oval.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct DmGraph {
     /// Stable id (`d0`, `d1`, ... in program order).
     pub id: String,
@@ -48,7 +48,7 @@ pub struct DmGraph {
 }
 
 /// What a node stands for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum NodeKind {
     /// A situation: a circle with its id and type.
@@ -67,7 +67,7 @@ pub enum NodeKind {
 }
 
 /// The kind of situation (for situation nodes).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SituationKind {
     Perceptual,
@@ -75,7 +75,7 @@ pub enum SituationKind {
     Final,
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Node {
     /// Stable id, unique in the diagram (`d0.s2`, `d0.s2.a1.f`, ...).
     pub id: String,
@@ -83,32 +83,32 @@ pub struct Node {
     /// The situation id, the function, `∨`, the called DM...
     pub label: String,
     /// The situation's type as written (situation nodes only).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub situation_type: Option<String>,
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub situation_kind: Option<SituationKind>,
     /// Whether this is the DM's initial situation (the first one).
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub initial: bool,
     /// Principal functor `name/arity` of a situation id (for matching a run's trace).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub functor: Option<String>,
     /// The embedded DM of a recursive situation, as written.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub embedded_dm: Option<String>,
     /// The return dots of a recursive situation: one per final situation
     /// of the embedded DM.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub returns: Vec<ReturnDot>,
     /// More about it (a function dot: the call as written).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub detail: Option<String>,
     /// `file:line:col` where it is written.
     pub location: String,
 }
 
 /// A control return point inside a recursive situation.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct ReturnDot {
     /// Stable id (`<situation id>.r<k>`).
     pub id: String,
@@ -119,7 +119,7 @@ pub struct ReturnDot {
 }
 
 /// What an edge stands for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum EdgeKind {
     /// An arc `α:β`, from a situation (or one of its return dots) to the
@@ -140,24 +140,24 @@ pub enum EdgeKind {
     OutArg,
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Edge {
     /// Stable id, unique in the diagram (`e:...`).
     pub id: String,
     pub kind: EdgeKind,
     pub from: String,
     /// The return dot the edge leaves from (arcs of recursive situations).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub from_port: Option<String>,
     pub to: String,
     /// The return dot the edge goes into (control links).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub to_port: Option<String>,
     /// `α:β` for arcs, the condition or value for exits, ...
     pub label: String,
     /// The arc's expectation as written (arcs out of a situation only;
     /// to tell which arc a recorded transition took).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub expectation: Option<String>,
     pub location: String,
 }
@@ -177,6 +177,11 @@ impl Diagram {
             .iter()
             .flat_map(|d| d.edges.iter())
             .chain(self.links.iter())
+    }
+
+    /// Reads the JSON form back.
+    pub fn from_json(text: &str) -> Result<Diagram, String> {
+        serde_json::from_str(text).map_err(|e| format!("not a diagram: {e}"))
     }
 
     /// The JSON form: `{"title", "dms": [{"id","name","location","nodes","edges"}],

@@ -105,6 +105,19 @@ pub struct RunArgs {
     /// Memory the process may grow by during one Prolog user function call, in MiB.
     #[arg(long, value_name = "MIB", default_value_t = CallLimits::HEAP_BYTES >> 20)]
     pub prolog_heap_limit: u64,
+    /// Follow the run in a web page: the program's diagram (as `sitlogc
+    /// graph` draws it) with the current situation, the arcs taken, the DM
+    /// stack and the last transitions. Served on 127.0.0.1 only; the task
+    /// starts when the page is open, and the server stops when it ends.
+    #[arg(long)]
+    pub view: bool,
+    /// The live view's port (default: a free one, printed on stderr).
+    #[arg(long, value_name = "PORT", default_value_t = 0, requires = "view")]
+    pub view_port: u16,
+    /// Wait this many milliseconds after each transition, so that a fast
+    /// task can be followed in the live view.
+    #[arg(long, value_name = "MS", default_value_t = 0, requires = "view")]
+    pub view_delay: u64,
 }
 
 /// `--prolog-time-limit`: seconds, decimals allowed.
@@ -154,6 +167,9 @@ impl Default for RunArgs {
             prolog_inferences: CallLimits::INFERENCES,
             prolog_time_limit: CallLimits::TIME,
             prolog_heap_limit: CallLimits::HEAP_BYTES >> 20,
+            view: false,
+            view_port: 0,
+            view_delay: 0,
         }
     }
 }
@@ -208,6 +224,9 @@ pub struct Assets {
     pub world: Option<Source>,
     /// `knowledge.kb`.
     pub kb: Option<Source>,
+    /// The program's diagram as JSON (`sitlogc graph --format json`), for
+    /// `--view`.
+    pub diagram: Option<String>,
 }
 
 /// The world file of an application directory.
@@ -235,6 +254,7 @@ impl Assets {
             app_name: app_name(app),
             world: read(WORLD_FILE, "world")?,
             kb: read(KB_FILE, "KB")?,
+            diagram: None,
         })
     }
 }
@@ -334,7 +354,78 @@ pub fn execute_with<A: App>(
     assets: &Assets,
     streams: Streams,
 ) -> u8 {
+    if args.view {
+        return with_view(app, functions, args, assets, streams);
+    }
     execute_interruptible(app, functions, args, assets, streams, None)
+}
+
+/// `--view`: serves the diagram, waits for the page, runs the task with
+/// the page following it, then stops the server.
+#[cfg(feature = "view")]
+fn with_view<A: App>(
+    app: &A,
+    functions: Functions,
+    args: &RunArgs,
+    assets: &Assets,
+    mut streams: Streams,
+) -> u8 {
+    let diagram = match assets
+        .diagram
+        .as_deref()
+        .map(sitlog_graph::Diagram::from_json)
+    {
+        Some(Ok(d)) => d,
+        Some(Err(e)) => {
+            let _ = writeln!(streams.stderr, "error: the task's diagram: {e}");
+            return 2;
+        }
+        None => {
+            let _ = writeln!(
+                streams.stderr,
+                "error: --view needs the program's diagram, and this task has none"
+            );
+            return 2;
+        }
+    };
+    let view = match sitlog_view::View::start(diagram, args.view_port) {
+        Ok(v) => v,
+        Err(e) => {
+            let _ = writeln!(
+                streams.stderr,
+                "error: cannot serve the live view on 127.0.0.1:{}: {e}",
+                args.view_port
+            );
+            return 2;
+        }
+    };
+    let _ = writeln!(
+        streams.stderr,
+        "live view at {} (the task starts when the page is open)",
+        view.url()
+    );
+    let _ = streams.stderr.flush();
+    view.wait_for_viewer(None);
+    streams.observer = Some(Box::new(
+        view.observer(std::time::Duration::from_millis(args.view_delay)),
+    ));
+    let code = execute_interruptible(app, functions, args, assets, streams, None);
+    let status = match code {
+        0 => "ok",
+        1 => "error",
+        _ => "stopped",
+    };
+    view.finish(status, "", std::time::Duration::from_secs(3));
+    code
+}
+
+#[cfg(not(feature = "view"))]
+fn with_view<A: App>(_: &A, _: Functions, _: &RunArgs, _: &Assets, mut streams: Streams) -> u8 {
+    let _ = writeln!(
+        streams.stderr,
+        "error: --view: this build has no live view (feature `view` of sitlog-robot)"
+    );
+    2
 }
 
 /// The trace file of `--trace`: every write checked (the first error is

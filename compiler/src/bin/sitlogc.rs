@@ -84,20 +84,6 @@ enum Command {
         /// the nearest directory above APP that has src/init.pl).
         #[arg(long, value_name = "DIR", requires = "legacy")]
         sitlog_home: Option<PathBuf>,
-        /// Follow the run in a web page: the program's diagram (as
-        /// `sitlogc graph` draws it) with the current situation, the arcs
-        /// taken, the DM stack and the last transitions. Served on
-        /// 127.0.0.1 only; the task starts when the page is open, and the
-        /// server stops when the task ends.
-        #[arg(long)]
-        view: bool,
-        /// The live view's port (default: a free one, printed on stderr).
-        #[arg(long, value_name = "PORT", default_value_t = 0, requires = "view")]
-        view_port: u16,
-        /// Wait this many milliseconds after each transition, so that a
-        /// fast task can be followed in the live view.
-        #[arg(long, value_name = "MS", default_value_t = 0, requires = "view")]
-        view_delay: u64,
         /// With --legacy: `prolog` runs the original's KB layer as it is;
         /// `native` serves its KB services, updates, loads and saves from
         /// our KB (sitlog-kb), the KB being a handle.
@@ -253,22 +239,14 @@ fn run(cli: Cli) -> u8 {
             allow_unresolved,
             legacy,
             sitlog_home,
-            view,
-            view_port,
-            view_delay,
             legacy_kb,
         } => {
             let legacy = legacy.then_some(sitlog_home);
-            let view = view.then_some(ViewArgs {
-                port: view_port,
-                delay: std::time::Duration::from_millis(view_delay),
-            });
             run_app(
                 &app,
                 &run,
                 allow_unresolved,
                 legacy.as_ref().map(|h| h.as_deref()),
-                view,
                 legacy_kb == LegacyKb::Native,
             )
         }
@@ -506,19 +484,12 @@ fn build_app(
     }
 }
 
-/// `sitlogc run --view`.
-struct ViewArgs {
-    port: u16,
-    delay: std::time::Duration,
-}
-
 /// `legacy`: `Some(--sitlog-home)` under `--legacy`.
 fn run_app(
     app: &std::path::Path,
     args: &sitlog_robot::cli::RunArgs,
     allow_unresolved: bool,
     legacy: Option<Option<&std::path::Path>>,
-    view: Option<ViewArgs>,
     native_kb: bool,
 ) -> u8 {
     // The legacy profile: the original's Prolog layer from SITLOG_HOME.
@@ -575,7 +546,7 @@ fn run_app(
         Ok(ir) => ir,
         Err(code) => return code,
     };
-    let assets = match sitlog_robot::Assets::from_app(app) {
+    let mut assets = match sitlog_robot::Assets::from_app(app) {
         Ok(a) => a,
         Err(e) => {
             eprintln!("{e}");
@@ -598,46 +569,22 @@ fn run_app(
         }
         return 1;
     }
-    let Some(view) = view else {
-        return sitlog_robot::execute(&ir, functions, args, &assets);
-    };
-    let options = sitlog_compiler::diagram::Options {
-        dm: None,
-        main: None,
-        title: sitlog_compiler::build::app_name(app),
-    };
-    let diagram = match sitlog_compiler::diagram::diagram(&ir, &options) {
-        Ok(d) => d,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return 2;
+    if args.view {
+        // the live view draws the program as `sitlogc graph` does
+        let options = sitlog_compiler::diagram::Options {
+            dm: None,
+            main: Some(args.main.split('(').next().unwrap_or("").trim().to_owned()),
+            title: sitlog_compiler::build::app_name(app),
+        };
+        match sitlog_compiler::diagram::diagram(&ir, &options) {
+            Ok(d) => assets.diagram = Some(d.to_json()),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return 2;
+            }
         }
-    };
-    let server = match sitlog_view::View::start(diagram, view.port) {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!(
-                "error: cannot serve the live view on 127.0.0.1:{}: {e}",
-                view.port
-            );
-            return 2;
-        }
-    };
-    eprintln!(
-        "sitlogc: live view at {} (the task starts when the page is open)",
-        server.url()
-    );
-    server.wait_for_viewer(None);
-    let mut streams = sitlog_robot::cli::Streams::process();
-    streams.observer = Some(Box::new(server.observer(view.delay)));
-    let code = sitlog_robot::cli::execute_with(&ir, functions, args, &assets, streams);
-    let status = match code {
-        0 => "ok",
-        1 => "error",
-        _ => "stopped",
-    };
-    server.finish(status, "", std::time::Duration::from_secs(3));
-    code
+    }
+    sitlog_robot::execute(&ir, functions, args, &assets)
 }
 
 fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, legacy: bool) -> u8 {
