@@ -354,9 +354,6 @@ pub fn execute_with<A: App>(
     assets: &Assets,
     streams: Streams,
 ) -> u8 {
-    if args.view {
-        return with_view(app, functions, args, assets, streams);
-    }
     execute_interruptible(app, functions, args, assets, streams, None)
 }
 
@@ -369,6 +366,7 @@ fn with_view<A: App>(
     args: &RunArgs,
     assets: &Assets,
     mut streams: Streams,
+    interrupt: Option<Interrupt>,
 ) -> u8 {
     let diagram = match assets
         .diagram
@@ -409,7 +407,7 @@ fn with_view<A: App>(
     streams.observer = Some(Box::new(
         view.observer(std::time::Duration::from_millis(args.view_delay)),
     ));
-    let code = execute_interruptible(app, functions, args, assets, streams, None);
+    let code = run_task(app, functions, args, assets, streams, interrupt);
     let status = match code {
         0 => "ok",
         1 => "error",
@@ -420,7 +418,14 @@ fn with_view<A: App>(
 }
 
 #[cfg(not(feature = "view"))]
-fn with_view<A: App>(_: &A, _: Functions, _: &RunArgs, _: &Assets, mut streams: Streams) -> u8 {
+fn with_view<A: App>(
+    _: &A,
+    _: Functions,
+    _: &RunArgs,
+    _: &Assets,
+    mut streams: Streams,
+    _: Option<Interrupt>,
+) -> u8 {
     let _ = writeln!(
         streams.stderr,
         "error: --view: this build has no live view (feature `view` of sitlog-robot)"
@@ -465,6 +470,21 @@ impl TraceFile {
 
 /// [`execute_with`], stopping between transitions when `interrupt` is set.
 pub fn execute_interruptible<A: App>(
+    app: &A,
+    functions: Functions,
+    args: &RunArgs,
+    assets: &Assets,
+    streams: Streams,
+    interrupt: Option<Interrupt>,
+) -> u8 {
+    if args.view {
+        return with_view(app, functions, args, assets, streams, interrupt);
+    }
+    run_task(app, functions, args, assets, streams, interrupt)
+}
+
+/// The run itself (the live view, if any, already set up).
+fn run_task<A: App>(
     app: &A,
     mut functions: Functions,
     args: &RunArgs,
