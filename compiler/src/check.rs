@@ -12,6 +12,7 @@ use std::collections::HashMap;
 pub mod codes {
     pub const DUPLICATE_DM: &str = "E0201";
     pub const SAME_NAME_OTHER_ARITY: &str = "W0202";
+    pub const DUPLICATE_DM_IDENTICAL: &str = "W0203";
     pub const MISSING_ID: &str = "E0204";
     pub const MISSING_TYPE: &str = "E0205";
     pub const MISSING_ARCS: &str = "E0206";
@@ -75,12 +76,41 @@ pub const UNRESOLVED: &[&str] = &[
 /// applications whose dead paths name missing parts).
 pub fn check_with(
     program: Program,
-    mut diags: Vec<Diagnostic>,
+    diags: Vec<Diagnostic>,
     unresolved_as_warnings: bool,
 ) -> (Result<Checked, Program>, Vec<Diagnostic>) {
+    check_opts(
+        program,
+        diags,
+        CheckOptions {
+            unresolved_as_warnings,
+            legacy: false,
+        },
+    )
+}
+
+/// How lenient the checker is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CheckOptions {
+    /// The [`UNRESOLVED`] errors are warnings (`--allow-unresolved`).
+    pub unresolved_as_warnings: bool,
+    /// The original's rules where it accepts what we refuse (`--legacy`):
+    /// a DM defined twice *identically* is a warning (W0203) and the first
+    /// definition is used, as the original does.
+    pub legacy: bool,
+}
+
+/// [`check`] with [`CheckOptions`].
+pub fn check_opts(
+    program: Program,
+    mut diags: Vec<Diagnostic>,
+    options: CheckOptions,
+) -> (Result<Checked, Program>, Vec<Diagnostic>) {
+    let unresolved_as_warnings = options.unresolved_as_warnings;
     Checker {
         program: &program,
         diags: &mut diags,
+        legacy: options.legacy,
     }
     .run();
     if unresolved_as_warnings {
@@ -99,6 +129,7 @@ pub fn check_with(
 struct Checker<'p> {
     program: &'p Program,
     diags: &'p mut Vec<Diagnostic>,
+    legacy: bool,
 }
 
 /// Functors the functional language evaluates specially: a term with one of
@@ -272,6 +303,25 @@ impl<'p> Checker<'p> {
             let seen = first.entry(dm.name).or_default();
             let head = dm.loc(dm.span_of(dm.head));
             if let Some(prev) = seen.iter().find(|p| p.arity == dm.arity) {
+                let same = || {
+                    sitlog_syntax::writeq(&prev.clause, prev.clause.root)
+                        == sitlog_syntax::writeq(&dm.clause, dm.clause.root)
+                };
+                if self.legacy && same() {
+                    self.diags.push(
+                        Diagnostic::warning(
+                            codes::DUPLICATE_DM_IDENTICAL,
+                            head,
+                            format!(
+                                "DM `{}/{}` is defined twice, identically; the first definition is used",
+                                dm.name, dm.arity
+                            ),
+                        )
+                        .with_label("second definition")
+                        .with_secondary(prev.loc(prev.span_of(prev.head)), "used"),
+                    );
+                    continue;
+                }
                 self.diags.push(
                     Diagnostic::error(
                         codes::DUPLICATE_DM,

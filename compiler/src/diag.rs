@@ -80,7 +80,7 @@ pub fn render_human(diag: &Diagnostic, sources: &SourceMap, color: bool) -> Stri
         Severity::Error => ReportKind::Error,
         Severity::Warning => ReportKind::Warning,
     };
-    let range = clamp(diag.loc.span, file.text.len());
+    let range = clamp(diag.loc.span, &file.text);
     let mut report = Report::build(kind, (file.name.clone(), range.clone()))
         .with_config(
             Config::default()
@@ -97,7 +97,7 @@ pub fn render_human(diag: &Diagnostic, sources: &SourceMap, color: bool) -> Stri
     for (i, (loc, text)) in diag.labels.iter().enumerate() {
         let f = sources.get(loc.file);
         report = report.with_label(
-            Label::new((f.name.clone(), clamp(loc.span, f.text.len())))
+            Label::new((f.name.clone(), clamp(loc.span, &f.text)))
                 .with_message(text)
                 .with_order(i as i32 + 1),
         );
@@ -123,9 +123,19 @@ pub fn render_human(diag: &Diagnostic, sources: &SourceMap, color: bool) -> Stri
     String::from_utf8_lossy(&out).into_owned()
 }
 
-fn clamp(span: Span, len: usize) -> std::ops::Range<usize> {
-    let start = (span.start as usize).min(len);
-    let end = (span.end as usize).clamp(start, len);
+/// A span as a byte range of `text` that the renderer can slice: clamped to
+/// the text and widened to character boundaries (ariadne slices the text
+/// with it and would panic inside a character).
+fn clamp(span: Span, text: &str) -> std::ops::Range<usize> {
+    let len = text.len();
+    let mut start = (span.start as usize).min(len);
+    while !text.is_char_boundary(start) {
+        start -= 1;
+    }
+    let mut end = (span.end as usize).clamp(start, len);
+    while !text.is_char_boundary(end) {
+        end += 1;
+    }
     start..end
 }
 
@@ -192,4 +202,46 @@ pub fn render_short(diag: &Diagnostic, sources: &SourceMap) -> String {
         s.push_str(&format!("\n  = help: {help}"));
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::source::SourceMap;
+
+    /// The renderers accept any span on any text: inside a character, past
+    /// the end, reversed (issue 23: ariadne panicked inside a U+FFFD).
+    #[test]
+    fn any_span_renders() {
+        let mut sources = SourceMap::new();
+        let text = "dm(é, [\u{FFFD}\u{FFFD} x]).\n% caf\u{FFFD}";
+        let file = sources.add(std::path::Path::new("a.dm"), text.to_owned());
+        let n = text.len() as u32 + 2;
+        for start in 0..n {
+            for end in 0..n {
+                let d = Diagnostic::error(
+                    "E0002",
+                    Loc {
+                        file,
+                        span: Span { start, end },
+                    },
+                    "m",
+                )
+                .with_label("l")
+                .with_secondary(
+                    Loc {
+                        file,
+                        span: Span {
+                            start: end,
+                            end: start,
+                        },
+                    },
+                    "s",
+                );
+                assert!(render_human(&d, &sources, false).contains("E0002"));
+                render_json(&d, &sources);
+                render_short(&d, &sources);
+            }
+        }
+    }
 }

@@ -6,6 +6,7 @@
 //! generate. Only [`load`] touches the file system; rendering of diagnostics
 //! lives in [`diag`].
 
+pub mod analysis;
 mod app;
 pub mod ast;
 pub mod build;
@@ -15,6 +16,7 @@ pub mod diag;
 pub mod diagram;
 pub mod interp;
 pub mod ir;
+pub mod legacy;
 pub mod load;
 pub mod package;
 pub mod run;
@@ -36,4 +38,13 @@ pub fn check_path_lenient(
 ) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
     let (program, diags) = load::load(path)?;
     Ok(check::check_with(program, diags, true))
+}
+
+/// [`check_path`] with [`check::CheckOptions`].
+pub fn check_path_opts(
+    path: &Path,
+    options: check::CheckOptions,
+) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
+    let (program, diags) = load::load(path)?;
+    Ok(check::check_opts(program, diags, options))
 }

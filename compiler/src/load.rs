@@ -68,7 +68,7 @@ pub fn discover(path: &Path) -> Result<Vec<PathBuf>, LoadError> {
     Ok(apps)
 }
 
-fn is_application(dir: &Path) -> io::Result<bool> {
+pub fn is_application(dir: &Path) -> io::Result<bool> {
     if dir.join("models").is_file() {
         return Ok(true);
     }
@@ -133,16 +133,144 @@ fn add_file_by_role(
             ast::build_expectation_types(file, clauses, &mut program.expectation_types, diags)
         }
         RECOVERY => ast::build_recovery(file, clauses, &mut program.recovery, diags),
-        n if PROLOG_FILES.contains(&n) => {
-            ast::build_function_heads(
-                file,
-                &clauses,
-                &mut program.functions,
-                &mut program.function_values,
-            );
-            program.prolog_files.push(file);
-        }
+        n if PROLOG_FILES.contains(&n) => add_prolog_file(program, file, clauses, diags, 0),
         _ => ast::build_dms(file, clauses, &mut program.dms, diags),
+    }
+}
+
+/// Adds a Prolog file and, before it, the files it consults by relative
+/// name (`:- consult(F)`, `:- ensure_loaded(F)`, `:- [F, ...]`), so that the
+/// checker knows their predicates and a compiled task embeds them: one
+/// binary, no file read at run time. A consulted file that is missing, or
+/// named through `$SITLOG_HOME`, is left to the Prolog loader, which
+/// reports it with its position.
+fn add_prolog_file(
+    program: &mut Program,
+    file: FileId,
+    clauses: Vec<Clause>,
+    diags: &mut Vec<Diagnostic>,
+    depth: usize,
+) {
+    let dir = program
+        .sources
+        .get(file)
+        .path
+        .parent()
+        .map(Path::to_path_buf);
+    if let Some(dir) = dir.filter(|_| depth < 32) {
+        for name in consulted(&clauses) {
+            if name.starts_with('$') || Path::new(&name).is_absolute() {
+                continue;
+            }
+            let mut path = dir.join(&name);
+            if !path.is_file() {
+                path.as_mut_os_string().push(".pl");
+            }
+            let path = normalize(&path);
+            let known = program
+                .prolog_files
+                .iter()
+                .any(|&f| normalize(&program.sources.get(f).path) == path);
+            if known || !path.is_file() {
+                continue;
+            }
+            if let Ok(id) = read_text(&path, program, diags) {
+                let clauses = read_file_clauses(program, id, diags);
+                add_prolog_file(program, id, clauses, diags, depth + 1);
+            }
+        }
+    }
+    ast::build_function_heads(
+        file,
+        &clauses,
+        &mut program.functions,
+        &mut program.function_values,
+    );
+    program.prolog_files.push(file);
+}
+
+/// The file names of the consult directives among `clauses`.
+fn consulted(clauses: &[Clause]) -> Vec<String> {
+    let neck = sitlog_syntax::Atom::intern(":-");
+    let mut out = Vec::new();
+    for c in clauses {
+        let t = &c.terms;
+        let Some(&[goal]) = t.compound(c.root, neck, 1) else {
+            continue;
+        };
+        let list = match t.functor(goal) {
+            Some((f, 1)) if f.as_str() == "consult" || f.as_str() == "ensure_loaded" => {
+                t.args(goal)[0]
+            }
+            Some((f, 2)) if f.as_str() == "." => goal,
+            _ => continue,
+        };
+        let mut item = list;
+        loop {
+            if let Some(a) = t.atom(item) {
+                if a.as_str() != "[]" {
+                    out.push(a.as_str().to_owned());
+                }
+                break;
+            }
+            match t.functor(item) {
+                Some((f, 2)) if f.as_str() == "." => {
+                    if let Some(a) = t.atom(t.args(item)[0]) {
+                        out.push(a.as_str().to_owned());
+                    }
+                    item = t.args(item)[1];
+                }
+                _ => break,
+            }
+        }
+    }
+    out
+}
+
+pub use sitlog_runtime::paths::normalize;
+
+thread_local! {
+    /// Texts that stand in for files on this thread (an editor's unsaved
+    /// buffers, see [`with_overlay`]), by normalized path.
+    static OVERLAY: std::cell::RefCell<std::collections::HashMap<PathBuf, String>> =
+        Default::default();
+}
+
+/// Runs `f` with `overlay` standing in for the files it names: loading
+/// reads those texts instead of the disk (the language server's unsaved
+/// buffers). Directories are still listed from disk.
+pub fn with_overlay<R>(
+    overlay: &std::collections::HashMap<PathBuf, String>,
+    f: impl FnOnce() -> R,
+) -> R {
+    OVERLAY.with(|o| {
+        *o.borrow_mut() = overlay
+            .iter()
+            .map(|(p, t)| (normalize(&absolute(p)), t.clone()))
+            .collect()
+    });
+    let r = f();
+    OVERLAY.with(|o| o.borrow_mut().clear());
+    r
+}
+
+fn absolute(p: &Path) -> PathBuf {
+    std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
+}
+
+/// A file's bytes: from the overlay if it holds the file, else the disk.
+fn read_bytes(path: &Path) -> io::Result<Vec<u8>> {
+    let over = OVERLAY.with(|o| {
+        let o = o.borrow();
+        if o.is_empty() {
+            None
+        } else {
+            o.get(&normalize(&absolute(path))).cloned()
+        }
+    });
+    match over {
+        Some(text) => Ok(text.into_bytes()),
+        None => std::fs::read(path),
     }
 }
 
@@ -151,7 +279,7 @@ fn read_text(
     program: &mut Program,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<FileId, LoadError> {
-    let bytes = std::fs::read(path).map_err(|error| LoadError {
+    let bytes = read_bytes(path).map_err(|error| LoadError {
         path: path.to_path_buf(),
         error,
     })?;
@@ -164,21 +292,29 @@ fn add_bytes(
     program: &mut Program,
     diags: &mut Vec<Diagnostic>,
 ) -> FileId {
-    match String::from_utf8(bytes) {
-        Ok(text) => program.sources.add(path, text),
+    match sitlog_syntax::decode(&bytes) {
+        Ok(text) => program.sources.add(path, text.to_owned()),
         Err(e) => {
-            let at = e.utf8_error().valid_up_to();
-            let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
+            // The file is shown with U+FFFD for what is not UTF-8; the span
+            // covers the first replacement (a char boundary of that text).
+            let (text, at) = sitlog_syntax::decode::lossy_with_offset(&bytes, e.offset);
+            let text = text.into_owned();
+            let width = text[at..].chars().next().map_or(0, char::len_utf8);
             let file = program.sources.add(path, text);
-            let span = Span::new(at, at + 1);
+            let span = Span::new(at, at + width);
+            let (label, help) = if e.utf16 {
+                ("UTF-16 text", "save the file as UTF-8")
+            } else {
+                ("not UTF-8", "save the file as UTF-8 (e.g. iconv -t UTF-8)")
+            };
             diags.push(
                 Diagnostic::error(
                     codes::NOT_UTF8,
                     Loc { file, span },
-                    format!("file is not valid UTF-8 (invalid byte at offset {at})"),
+                    format!("{} (at byte offset {})", e.message, e.offset),
                 )
-                .with_label("invalid UTF-8 here")
-                .with_help("save the file as UTF-8"),
+                .with_label(label)
+                .with_help(help),
             );
             file
         }
@@ -252,7 +388,7 @@ fn load_dir(
                 continue;
             };
             let path = dir.join(name.as_str());
-            match std::fs::read(&path) {
+            match read_bytes(&path) {
                 Ok(bytes) => {
                     let f = add_bytes(&path, bytes, program, diags);
                     let clauses = read_file_clauses(program, f, diags);

@@ -94,11 +94,30 @@ pub fn install_prolog(
     Option<sitlog_runtime::prolog::PrologFunctions>,
     Vec<sitlog_runtime::prolog::PrologLoadError>,
 > {
+    install_prolog_with(ir, functions, options, Vec::new(), None)
+}
+
+/// [`install_prolog`], with `before` loaded ahead of the application's
+/// files (the `--legacy` profile's Prolog layer of the original), served by
+/// `native` if given.
+#[cfg(feature = "prolog")]
+pub fn install_prolog_with(
+    ir: &Ir,
+    functions: &mut Functions,
+    options: sitlog_runtime::prolog::PrologOptions,
+    before: Vec<sitlog_runtime::prolog::PrologSource>,
+    native: Option<sitlog_runtime::prolog::NativeKb>,
+) -> Result<
+    Option<sitlog_runtime::prolog::PrologFunctions>,
+    Vec<sitlog_runtime::prolog::PrologLoadError>,
+> {
     use sitlog_runtime::prolog::{PrologFunctions, PrologSource};
-    if ir.prolog_sources.is_empty() {
+    if ir.prolog_sources.is_empty() && before.is_empty() {
         return Ok(None);
     }
-    let sources: Vec<PrologSource> = ir
+    let layer = before.len();
+    let mut sources = before;
+    let app: Vec<PrologSource> = ir
         .prolog_sources
         .iter()
         .map(|f| PrologSource {
@@ -107,7 +126,8 @@ pub fn install_prolog(
             dir: f.path.parent().map(|d| d.to_path_buf()),
         })
         .collect();
-    let prolog = PrologFunctions::load(&sources, options)?;
+    sources.extend(app);
+    let prolog = PrologFunctions::load_with(&sources, options, layer, native)?;
     prolog.install(functions);
     Ok(Some(prolog))
 }

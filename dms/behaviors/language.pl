@@ -306,9 +306,12 @@ lang_answer(choice(Os), Acts, O) :-
 lang_answer(order, Acts, order(Items)) :-
     lang_member(order(Items), Acts),
     !.
+% Items named without a request verb make an order only if one of them is
+% known: words the robot cannot place are no order ("lude bu vozeda").
 lang_answer(order, Acts, order(Items)) :-
     lang_mentioned(Acts, Items),
-    Items \== [],
+    lang_in(Known, Items),
+    Known \= unknown(_),
     !.
 lang_answer(mood, Acts, M) :- lang_member(mood(M), Acts), !.
 lang_answer(more, Acts, no) :- lang_member(no, Acts), !.

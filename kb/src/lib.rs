@@ -23,7 +23,7 @@ pub use answer::{Answer, CallError, Outcome};
 pub use cli::{cli, line_col, CliError};
 pub use closure::Budget;
 pub use model::{Kb, ModelError};
-pub use persist::{LoadError, PersistError};
+pub use persist::{lock_for_persist, LoadError, PersistError, PersistLock};
 pub use services::{service, Arg, Service, SERVICES};
 pub use update::{update_service, UpdateService, UPDATES};
 

@@ -2,6 +2,13 @@
 //! final `.` optional, saved in `writeq` form) and atomic replacement of the
 //! file (temporary file in the same directory, fsync, rename, fsync of the
 //! directory), so a crash never leaves a half-written KB.
+//!
+//! A process that persists a KB holds [`PersistLock`]: an exclusive lock
+//! (fs4) on the file `.NAME.lock` beside the KB, so a second persisting
+//! process is refused instead of silently overwriting the first one's
+//! updates. Taking the lock removes the temporary files (`.NAME.PID.tmp`)
+//! that a killed run left behind; the lock file itself stays (one empty
+//! file per KB, reused by every run).
 
 use crate::cli::line_col;
 use crate::model::{Kb, ModelError, ARROW};
@@ -30,6 +37,105 @@ impl fmt::Display for LoadError {
 }
 
 impl std::error::Error for LoadError {}
+
+/// The right to persist one KB file, held for as long as this value lives
+/// (the operating system releases it when the process ends, however).
+#[derive(Debug)]
+pub struct PersistLock {
+    path: PathBuf,
+    _file: std::fs::File,
+}
+
+impl PersistLock {
+    /// The KB file this lock is for.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+}
+
+/// `dir` and file name of `path` (`.` for a bare file name).
+fn dir_and_name(path: &Path) -> (PathBuf, String) {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_owned(),
+        _ => PathBuf::from("."),
+    };
+    let file_name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "kb".to_owned());
+    (dir, file_name)
+}
+
+/// Takes the persistence lock of the KB file `path` without waiting, then
+/// removes the temporary files that killed runs left beside it. Another
+/// process holding the lock is an error naming it.
+pub fn lock_for_persist(path: &Path) -> Result<PersistLock, LoadError> {
+    let (dir, name) = dir_and_name(path);
+    let lock_path = dir.join(format!(".{name}.lock"));
+    let err = |message: String| LoadError {
+        path: path.display().to_string(),
+        pos: None,
+        message,
+    };
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&lock_path)
+        .map_err(|e| {
+            err(format!(
+                "cannot open the lock file {}: {e}",
+                lock_path.display()
+            ))
+        })?;
+    match fs4::FileExt::try_lock(&file) {
+        Ok(()) => {}
+        Err(fs4::TryLockError::WouldBlock) => {
+            return Err(err(format!(
+                "another process is persisting this KB (it holds {}); two persisting runs would overwrite each other's updates",
+                lock_path.display()
+            )))
+        }
+        Err(fs4::TryLockError::Error(e)) => {
+            return Err(err(format!("cannot lock {}: {e}", lock_path.display())))
+        }
+    }
+    remove_stale_temporaries(&dir, &name);
+    Ok(PersistLock {
+        path: path.to_owned(),
+        _file: file,
+    })
+}
+
+/// Removes `.NAME.*.tmp` in `dir` (only called under the lock: no other
+/// process is writing one).
+fn remove_stale_temporaries(dir: &Path, name: &str) {
+    let prefix = format!(".{name}.");
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file = entry.file_name();
+        let file = file.to_string_lossy();
+        if let Some(middle) = file
+            .strip_prefix(&prefix)
+            .and_then(|r| r.strip_suffix(".tmp"))
+        {
+            if !middle.is_empty() && middle.bytes().all(|b| b.is_ascii_digit()) {
+                let _ = std::fs::remove_file(entry.path());
+            }
+        }
+    }
+}
+
+impl Kb {
+    /// Locks `path` for persistence ([`lock_for_persist`]) and loads it.
+    pub fn open_persistent(path: &Path) -> Result<(Kb, PersistLock), LoadError> {
+        let lock = lock_for_persist(path)?;
+        let kb = Kb::load(path)?;
+        Ok((kb, lock))
+    }
+}
 
 /// Saving failed (the old file is left as it was).
 #[derive(Debug)]
@@ -64,15 +170,26 @@ impl Kb {
         Kb::from_clause(&clause).map_err(|ModelError { span, message }| at(span.start, message))
     }
 
+    /// Parses the bytes of a KB file: text that is not UTF-8 is an error at
+    /// the line and column of the first bad byte (a UTF-8 BOM is skipped).
+    pub fn parse_bytes(bytes: &[u8], name: &str) -> Result<Kb, LoadError> {
+        let src = sitlog_syntax::decode(bytes).map_err(|e| LoadError {
+            path: name.to_owned(),
+            pos: Some((e.line, e.column)),
+            message: e.message,
+        })?;
+        Kb::parse(src, name)
+    }
+
     /// Loads a KB file.
     pub fn load(path: &Path) -> Result<Kb, LoadError> {
         let name = path.display().to_string();
-        let src = std::fs::read_to_string(path).map_err(|e| LoadError {
+        let bytes = std::fs::read(path).map_err(|e| LoadError {
             path: name.clone(),
             pos: None,
             message: format!("cannot read the KB: {e}"),
         })?;
-        Kb::parse(&src, &name)
+        Kb::parse_bytes(&bytes, &name)
     }
 
     /// Replaces this KB by the one in `path`; on error this KB is unchanged.
@@ -141,14 +258,7 @@ impl Kb {
 }
 
 fn write_atomic(path: &Path, data: &[u8]) -> std::io::Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_owned(),
-        _ => PathBuf::from("."),
-    };
-    let file_name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "kb".to_owned());
+    let (dir, file_name) = dir_and_name(path);
     let tmp = dir.join(format!(".{file_name}.{}.tmp", std::process::id()));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
@@ -166,4 +276,28 @@ fn write_atomic(path: &Path, data: &[u8]) -> std::io::Result<()> {
         let _ = std::fs::remove_file(&tmp);
     }
     result
+}
+
+#[cfg(test)]
+mod lock_tests {
+    use super::*;
+
+    #[test]
+    fn the_lock_refuses_a_second_holder_and_removes_stale_temporaries() {
+        let dir = std::env::temp_dir().join(format!("sitlog-kb-lock-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let kb = dir.join("k.kb");
+        std::fs::write(&kb, "[class(top,none,[],[],[])].\n").unwrap();
+        std::fs::write(dir.join(".k.kb.123.tmp"), "half").unwrap();
+        std::fs::write(dir.join(".k.kb.notes.tmp"), "not ours").unwrap();
+        let (_, lock) = Kb::open_persistent(&kb).unwrap();
+        assert!(!dir.join(".k.kb.123.tmp").exists());
+        assert!(dir.join(".k.kb.notes.tmp").exists());
+        let e = lock_for_persist(&kb).unwrap_err();
+        assert!(e.message.contains("another process"), "{e}");
+        drop(lock);
+        assert!(lock_for_persist(&kb).is_ok());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -13,18 +13,21 @@
 //! - without one: test mode, as the original's: inputs from `--script` or
 //!   typed at a prompt, actions rendered on stderr.
 
-use crate::console::{Console, SharedConsole};
+use crate::console::{Console, SharedConsole, SharedWriter};
+use crate::interrupt::{Interrupt, InterruptibleStdin};
 use crate::kb;
 use clap::{Args, CommandFactory, FromArgMatches, Parser, ValueEnum};
 use sitlog_runtime::cli::{run, App};
+use sitlog_runtime::functions::CallLimits;
 use sitlog_runtime::history::Entry;
 use sitlog_runtime::machine::{Actions, Observer, Options, Perception};
 use sitlog_runtime::report;
-use sitlog_runtime::testmode::{PromptPerception, ScriptPerception, TextActions};
+use sitlog_runtime::testmode::{InputLimits, PromptPerception, ScriptPerception, TextActions};
 use sitlog_runtime::{Functions, Store, Term};
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
+use std::time::Duration;
 
 /// Output format of a run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -85,6 +88,23 @@ pub struct RunArgs {
     /// No progress indicator and no narration lines (the conversation stays).
     #[arg(long, short)]
     pub quiet: bool,
+    /// Longest term from outside (one perception read from --script or typed,
+    /// --in-arg, --main), in bytes.
+    #[arg(long, value_name = "BYTES", default_value_t = InputLimits::MAX_BYTES)]
+    pub max_input_bytes: usize,
+    /// Deepest nesting of a term from outside, in levels.
+    #[arg(long, value_name = "LEVELS", default_value_t = InputLimits::MAX_DEPTH)]
+    pub max_input_depth: usize,
+    /// Inferences one Prolog user function call may make.
+    #[arg(long, value_name = "N", default_value_t = CallLimits::INFERENCES)]
+    pub prolog_inferences: u64,
+    /// Wall-clock time one Prolog user function call may take, in seconds
+    /// (decimals allowed).
+    #[arg(long, value_name = "SECONDS", default_value = "10", value_parser = parse_seconds)]
+    pub prolog_time_limit: Duration,
+    /// Memory the process may grow by during one Prolog user function call, in MiB.
+    #[arg(long, value_name = "MIB", default_value_t = CallLimits::HEAP_BYTES >> 20)]
+    pub prolog_heap_limit: u64,
     /// Follow the run in a web page: the program's diagram (as `sitlogc
     /// graph` draws it) with the current situation, the arcs taken, the DM
     /// stack and the last transitions. Served on 127.0.0.1 only; the task
@@ -98,6 +118,33 @@ pub struct RunArgs {
     /// task can be followed in the live view.
     #[arg(long, value_name = "MS", default_value_t = 0, requires = "view")]
     pub view_delay: u64,
+}
+
+/// `--prolog-time-limit`: seconds, decimals allowed.
+fn parse_seconds(text: &str) -> Result<Duration, String> {
+    let s: f64 = text
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number of seconds"))?;
+    Duration::try_from_secs_f64(s).map_err(|_| format!("`{text}` is not a duration in seconds"))
+}
+
+impl RunArgs {
+    /// The limits on terms from outside.
+    pub fn input_limits(&self) -> InputLimits {
+        InputLimits {
+            max_bytes: self.max_input_bytes,
+            max_depth: self.max_input_depth,
+        }
+    }
+
+    /// The limits of one Prolog user function call.
+    pub fn call_limits(&self) -> CallLimits {
+        CallLimits {
+            inferences: self.prolog_inferences,
+            time: self.prolog_time_limit,
+            heap_bytes: self.prolog_heap_limit.saturating_mul(1 << 20),
+        }
+    }
 }
 
 impl Default for RunArgs {
@@ -115,6 +162,11 @@ impl Default for RunArgs {
             no_world: false,
             seed: None,
             quiet: false,
+            max_input_bytes: InputLimits::MAX_BYTES,
+            max_input_depth: InputLimits::MAX_DEPTH,
+            prolog_inferences: CallLimits::INFERENCES,
+            prolog_time_limit: CallLimits::TIME,
+            prolog_heap_limit: CallLimits::HEAP_BYTES >> 20,
             view: false,
             view_port: 0,
             view_delay: 0,
@@ -127,6 +179,39 @@ impl Default for RunArgs {
 pub struct Source {
     pub name: String,
     pub text: String,
+}
+
+/// A file of a run that could not be used: the exit status (1 for bad
+/// content, e.g. text that is not UTF-8; 2 for I/O) and the message.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FileError {
+    pub status: u8,
+    pub message: String,
+}
+
+impl std::fmt::Display for FileError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl Source {
+    /// Reads a text file: `what` names it in errors ("world", "script").
+    /// Text that is not UTF-8 is an error at its first bad byte (status 1).
+    pub fn read(path: &Path, what: &str) -> Result<Source, FileError> {
+        let name = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|e| FileError {
+            status: 2,
+            message: format!("error: cannot read {what} {name}: {e}"),
+        })?;
+        match sitlog_syntax::decode_owned(bytes) {
+            Ok(text) => Ok(Source { name, text }),
+            Err(e) => Err(FileError {
+                status: 1,
+                message: format!("{name}:{}:{}: error: {}", e.line, e.column, e.message),
+            }),
+        }
+    }
 }
 
 /// What an application brings besides its DMs: its name, its world and its
@@ -152,30 +237,23 @@ pub const KB_FILE: &str = "knowledge.kb";
 impl Assets {
     /// The assets of an application directory (or of the directory of a DM
     /// file): `world.toml` and `knowledge.kb` where present.
-    pub fn from_app(app: &Path) -> Result<Assets, String> {
+    pub fn from_app(app: &Path) -> Result<Assets, FileError> {
         let dir = if app.is_dir() {
             app.to_path_buf()
         } else {
             app.parent().map(Path::to_path_buf).unwrap_or_default()
         };
-        let read = |file: &str| -> Result<Option<Source>, String> {
+        let read = |file: &str, what: &str| -> Result<Option<Source>, FileError> {
             let path = dir.join(file);
             if !path.is_file() {
                 return Ok(None);
             }
-            std::fs::read(&path)
-                .map_err(|e| format!("cannot read {}: {e}", path.display()))
-                .map(|bytes| {
-                    Some(Source {
-                        name: path.display().to_string(),
-                        text: String::from_utf8_lossy(&bytes).into_owned(),
-                    })
-                })
+            Source::read(&path, what).map(Some)
         };
         Ok(Assets {
             app_name: app_name(app),
-            world: read(WORLD_FILE)?,
-            kb: read(KB_FILE)?,
+            world: read(WORLD_FILE, "world")?,
+            kb: read(KB_FILE, "KB")?,
             diagram: None,
         })
     }
@@ -220,8 +298,21 @@ impl Streams {
 
 /// Runs `app` as `sitlogc run` does on the process's streams; returns the
 /// exit status (0 ok, 1 run-time error, 2 usage or I/O problem).
+///
+/// SIGINT and SIGTERM stop the task at its next transition: the report
+/// (status `interrupted`) is still printed and the trace closed; the exit
+/// status is then 130 (SIGINT) or 143 (SIGTERM). A second signal ends the
+/// process at once.
 pub fn execute<A: App>(app: &A, functions: Functions, args: &RunArgs, assets: &Assets) -> u8 {
-    execute_with(app, functions, args, assets, Streams::process())
+    let interrupt = Interrupt::install();
+    execute_interruptible(
+        app,
+        functions,
+        args,
+        assets,
+        Streams::process(),
+        Some(interrupt),
+    )
 }
 
 /// Counts transitions on the console (the progress indicator).
@@ -255,7 +346,7 @@ impl Observer for Fanout<'_> {
     }
 }
 
-/// [`execute`] on the given streams.
+/// [`execute`] on the given streams, without signal handling.
 pub fn execute_with<A: App>(
     app: &A,
     functions: Functions,
@@ -263,10 +354,57 @@ pub fn execute_with<A: App>(
     assets: &Assets,
     streams: Streams,
 ) -> u8 {
-    if args.view {
-        return with_view(app, functions, args, assets, streams);
+    execute_interruptible(app, functions, args, assets, streams, None)
+}
+
+/// The trace file of `--trace`: every write checked (the first error is
+/// kept), flushed after each transition, synced to disk at the end.
+struct TraceFile {
+    inner: report::JsonTrace<std::io::BufWriter<std::fs::File>>,
+}
+
+impl Observer for TraceFile {
+    fn transition(&mut self, store: &Store, entry: &Entry, depth: usize, next: Option<Term>) {
+        self.inner.transition(store, entry, depth, next);
     }
-    run_task(app, functions, args, assets, streams)
+}
+
+impl TraceFile {
+    /// Flushes and syncs; the first write error, if any.
+    fn finish(self) -> std::io::Result<()> {
+        let file = self
+            .inner
+            .finish()?
+            .into_inner()
+            .map_err(|e| e.into_error())?;
+        match file.sync_all() {
+            // Devices and pipes cannot be synced: nothing was lost.
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    std::io::ErrorKind::InvalidInput | std::io::ErrorKind::Unsupported
+                ) =>
+            {
+                Ok(())
+            }
+            r => r,
+        }
+    }
+}
+
+/// [`execute_with`], stopping between transitions when `interrupt` is set.
+pub fn execute_interruptible<A: App>(
+    app: &A,
+    functions: Functions,
+    args: &RunArgs,
+    assets: &Assets,
+    streams: Streams,
+    interrupt: Option<Interrupt>,
+) -> u8 {
+    if args.view {
+        return with_view(app, functions, args, assets, streams, interrupt);
+    }
+    run_task(app, functions, args, assets, streams, interrupt)
 }
 
 /// `--view`: serves the diagram, waits for the page, runs the task with
@@ -278,6 +416,7 @@ fn with_view<A: App>(
     args: &RunArgs,
     assets: &Assets,
     mut streams: Streams,
+    interrupt: Option<Interrupt>,
 ) -> u8 {
     let diagram = match assets
         .diagram
@@ -318,7 +457,7 @@ fn with_view<A: App>(
     streams.observer = Some(Box::new(
         view.observer(std::time::Duration::from_millis(args.view_delay)),
     ));
-    let code = run_task(app, functions, args, assets, streams);
+    let code = run_task(app, functions, args, assets, streams, interrupt);
     let status = match code {
         0 => "ok",
         1 => "error",
@@ -329,7 +468,14 @@ fn with_view<A: App>(
 }
 
 #[cfg(not(feature = "view"))]
-fn with_view<A: App>(_: &A, _: Functions, _: &RunArgs, _: &Assets, mut streams: Streams) -> u8 {
+fn with_view<A: App>(
+    _: &A,
+    _: Functions,
+    _: &RunArgs,
+    _: &Assets,
+    mut streams: Streams,
+    _: Option<Interrupt>,
+) -> u8 {
     let _ = writeln!(
         streams.stderr,
         "error: --view: this build has no live view (feature `view` of sitlog-robot)"
@@ -343,6 +489,7 @@ fn run_task<A: App>(
     args: &RunArgs,
     assets: &Assets,
     mut streams: Streams,
+    interrupt: Option<Interrupt>,
 ) -> u8 {
     macro_rules! fail {
         ($code:expr, $($msg:tt)*) => {{
@@ -354,12 +501,9 @@ fn run_task<A: App>(
     let world: Option<Source> = if args.no_world {
         None
     } else if let Some(path) = &args.world {
-        match std::fs::read(path) {
-            Ok(bytes) => Some(Source {
-                name: path.display().to_string(),
-                text: String::from_utf8_lossy(&bytes).into_owned(),
-            }),
-            Err(e) => fail!(2, "error: cannot read world {}: {e}", path.display()),
+        match Source::read(path, "world") {
+            Ok(source) => Some(source),
+            Err(e) => fail!(e.status, "{e}"),
         }
     } else {
         assets.world.clone()
@@ -376,23 +520,39 @@ fn run_task<A: App>(
     let progress = !args.quiet && streams.stdout_is_terminal && streams.stderr_is_terminal;
     let transcript_out: Box<dyn Write + Send> = if !with_world {
         Box::new(std::io::sink())
-    } else if json {
-        std::mem::replace(&mut streams.stderr, Box::new(std::io::stderr()))
     } else {
-        std::mem::replace(&mut streams.stdout, Box::new(std::io::sink()))
+        let stream = if json {
+            &mut streams.stderr
+        } else {
+            &mut streams.stdout
+        };
+        let shared = SharedWriter::new(std::mem::replace(stream, Box::new(std::io::sink())));
+        *stream = Box::new(shared.clone());
+        Box::new(shared)
     };
     let console = Console::new(transcript_out, progress, !args.quiet).shared();
 
     // The KB.
+    // A persisted KB is locked against other persisting processes for the
+    // whole run (and temporary files of killed runs are removed).
+    let mut _kb_lock = None;
     let kb_source = match &args.kb {
+        Some(path) if args.kb_persist => match sitlog_kb::Kb::open_persistent(path) {
+            Ok((kb, lock)) => {
+                _kb_lock = Some(lock);
+                Some((kb, Some(path.clone())))
+            }
+            Err(e) => fail!(if e.pos.is_some() { 1 } else { 2 }, "{e}"),
+        },
         Some(path) => match sitlog_kb::Kb::load(path) {
             Ok(kb) => Some((kb, Some(path.clone()))),
-            Err(e) => fail!(2, "error: {e}"),
+            // A position means bad content (1); none, a file that cannot be read (2).
+            Err(e) => fail!(if e.pos.is_some() { 1 } else { 2 }, "{e}"),
         },
         None => match &assets.kb {
             Some(src) => match sitlog_kb::Kb::parse(&src.text, &src.name) {
                 Ok(kb) => Some((kb, None)),
-                Err(e) => fail!(2, "error: {e}"),
+                Err(e) => fail!(1, "{e}"),
             },
             None => None,
         },
@@ -420,9 +580,13 @@ fn run_task<A: App>(
         Some(world) => {
             match crate::robot::SimRobot::from_source(world, args.seed, console.clone()) {
                 Ok(robot) => {
+                    robot.register_inference(&mut functions, args.seed);
                     let (senses, effectors) = robot.split();
                     (Box::new(senses), Box::new(effectors))
                 }
+                // A world file that is not what the simulator reads: exit 2
+                // (issue 15), like a missing one; bytes that are not UTF-8
+                // were refused above with exit 1 (issue 23).
                 Err(e) => fail!(2, "{e}"),
             }
         }
@@ -433,15 +597,23 @@ fn run_task<A: App>(
             world.name
         ),
         None => {
+            let limits = args.input_limits();
             let perception: Box<dyn Perception> = match &args.script {
-                Some(path) => match std::fs::read(path) {
-                    Ok(bytes) => Box::new(ScriptPerception::new(
-                        path.display().to_string(),
-                        String::from_utf8_lossy(&bytes).into_owned(),
-                    )),
-                    Err(e) => fail!(2, "error: cannot read script {}: {e}", path.display()),
+                Some(path) => match Source::read(path, "script") {
+                    Ok(s) => Box::new(ScriptPerception::new(s.name, s.text).with_limits(limits)),
+                    Err(e) => fail!(e.status, "{e}"),
                 },
-                None => Box::new(PromptPerception::new(std::io::stdin().lock())),
+                // Typed input: read on a thread of its own when a signal
+                // can stop the run, so that the prompt sees it.
+                None => match &interrupt {
+                    Some(i) => Box::new(
+                        PromptPerception::new(InterruptibleStdin::new(i.flag.clone()))
+                            .with_limits(limits),
+                    ),
+                    None => {
+                        Box::new(PromptPerception::new(std::io::stdin().lock()).with_limits(limits))
+                    }
+                },
             };
             let actions = Box::new(TextActions::new(std::io::stderr(), app.basic_actions()));
             (perception, actions)
@@ -450,7 +622,9 @@ fn run_task<A: App>(
 
     let mut trace = match &args.trace {
         Some(path) => match std::fs::File::create(path) {
-            Ok(f) => Some(report::JsonTrace::new(std::io::BufWriter::new(f))),
+            Ok(f) => Some(TraceFile {
+                inner: report::JsonTrace::new(std::io::BufWriter::new(f)),
+            }),
             Err(e) => fail!(2, "error: cannot create trace file {}: {e}", path.display()),
         },
         None => None,
@@ -475,8 +649,11 @@ fn run_task<A: App>(
     };
     let options = Options {
         keep_history: args.history == HistoryMode::Keep,
+        input_limits: args.input_limits(),
+        stop: interrupt.as_ref().map(|i| i.flag.clone()),
         ..Options::default()
     };
+    functions.set_call_limits(args.call_limits());
 
     let result = run(
         app,
@@ -488,20 +665,32 @@ fn run_task<A: App>(
         io.1.as_mut(),
         observer,
     );
+    drop(fanout);
+    // The trace is flushed and synced however the run ended.
+    let trace_error = trace.and_then(|t| t.finish().err());
+    let trace_name = || {
+        args.trace
+            .as_ref()
+            .map(|p| p.display().to_string())
+            .unwrap_or_default()
+    };
     let (outcome, mut store) = match result {
         Ok(r) => r,
         Err(e) => {
             if let Ok(mut c) = console.lock() {
                 c.finish();
             }
+            if let Some(te) = trace_error {
+                let _ = writeln!(
+                    streams.stderr,
+                    "error: cannot write the trace {}: {te}",
+                    trace_name()
+                );
+            }
             fail!(2, "error: {e}")
         }
     };
     let transcript_error = console.lock().ok().and_then(|mut c| c.finish());
-    drop(fanout);
-    if let Some(t) = trace {
-        drop(t);
-    }
     let report = match args.format {
         Format::Json => format!("{}\n", report::outcome_json(&store, &outcome)),
         Format::Text => report::outcome_text(&mut store, &outcome),
@@ -518,9 +707,18 @@ fn run_task<A: App>(
     if let Some(e) = transcript_error {
         fail!(2, "error: cannot write the transcript: {e}");
     }
+    match trace_error {
+        Some(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            fail!(2, "error: cannot write the trace {}: {e}", trace_name())
+        }
+        _ => {}
+    }
     if let Err(e) = &outcome.result {
         let _ = writeln!(streams.stderr, "error: {e}");
-        1
+        match interrupt.as_ref().and_then(Interrupt::exit_status) {
+            Some(status) if outcome.interrupted => status,
+            _ => 1,
+        }
     } else {
         0
     }

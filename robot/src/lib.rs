@@ -16,8 +16,11 @@
 
 pub mod cli;
 pub mod console;
+#[cfg(feature = "sim")]
+mod infer;
+pub mod interrupt;
 pub mod kb;
 #[cfg(feature = "sim")]
 pub mod robot;
 
-pub use cli::{execute, main, Assets, Source};
+pub use cli::{execute, main, Assets, FileError, Source};

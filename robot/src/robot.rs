@@ -40,8 +40,8 @@ use sitlog_runtime::{Atom, Store, Term, Value};
 use sitlog_sim::{EventKind, Hand, Heard, Placed, Sim, World};
 use std::sync::{Arc, Mutex};
 
-struct Inner {
-    sim: Sim,
+pub(crate) struct Inner {
+    pub(crate) sim: Sim,
     console: SharedConsole,
     /// Events of the world already printed.
     printed: usize,
@@ -118,6 +118,19 @@ impl SimRobot {
         SimRobot {
             inner: Arc::new(Mutex::new(inner)),
         }
+    }
+
+    /// Registers the inference cycle's user functions (`shop_diagnose`,
+    /// `shop_decide`, `shop_shelves`), which read the robot's map.
+    pub fn register_inference(&self, functions: &mut sitlog_runtime::Functions, seed: Option<u64>) {
+        let (seed, console) = match self.inner.lock() {
+            Ok(i) => (
+                seed.or(i.sim.world().seed()).unwrap_or(0),
+                i.console.clone(),
+            ),
+            Err(_) => return,
+        };
+        crate::infer::register(functions, self.inner.clone(), seed, console);
     }
 
     /// The two views the machine takes: senses and effectors.
@@ -328,6 +341,16 @@ impl Actions for Effectors {
                     c.narrate(&format!("{robot} shows on its screen: {text}"));
                 }
             }
+            // A text message to someone away (the shop's manager): a
+            // line of the transcript.
+            ("message", 2) => {
+                let to = sentence(store, store.args(action)[0]);
+                let text = sentence(store, store.args(action)[1]);
+                let robot = inner.sim.world().robot_name().to_owned();
+                if let Ok(mut c) = inner.console.lock() {
+                    c.narrate(&format!("{robot} texts {}: {text}", lower_first(&to)));
+                }
+            }
             ("navigate", 2) => {
                 let to = name_arg(store, action, 0, "place")?;
                 let status = match inner.sim.navigate(&to) {
@@ -390,6 +413,15 @@ impl Actions for Effectors {
         }
         inner.flush();
         Ok(())
+    }
+}
+
+/// `The manager` → `the manager` (a name said inside a sentence).
+fn lower_first(s: &str) -> String {
+    let mut c = s.chars();
+    match c.next() {
+        Some(f) => f.to_lowercase().chain(c).collect(),
+        None => String::new(),
     }
 }
 

@@ -67,6 +67,7 @@ pub fn is_list_operator(name: Atom, arity: usize) -> bool {
 
 fn run(store: &mut Store, name: Atom, t: Term) -> Result<Term, EvalError> {
     let args: Vec<Term> = store.args(t).to_vec();
+    let arity = args.len();
     let result: Term = match name.as_str() {
         "append" => {
             let mut a = list(store, args[0], "the first argument", t)?;
@@ -188,23 +189,14 @@ fn run(store: &mut Store, name: Atom, t: Term) -> Result<Term, EvalError> {
         }
         "msg_format" => {
             let a = list(store, args[0], "the argument", t)?;
-            let mut text = String::new();
-            for (i, &x) in a.iter().enumerate() {
-                let x = store.deref(x);
-                let piece = match store.value(x) {
-                    Value::Atom(p) if p.as_str() == "pause" => {
-                        text.push_str(if i == 0 { ". " } else { " ." });
-                        continue;
-                    }
-                    _ => store.write(x),
-                };
-                if !text.is_empty() && !text.ends_with(' ') {
-                    text.push(' ');
-                }
-                text.push_str(&piece);
+            match a.as_slice() {
+                [] => return Err(fails(store, t)),
+                [one] => *one,
+                _ => Term::atom(Atom::intern(&sentence(store, &a))),
             }
-            Term::atom(Atom::intern(&text))
         }
+        "cam2nav" if arity == 3 => cam2nav(store, &args, t)?,
+        "cam2arm" if arity == 6 => cam2arm(store, &args, t)?,
         "statistics" => {
             // statistics(Key, [Total, SinceLast]) in milliseconds; only the
             // wall clock is meaningful outside the robot.
@@ -228,6 +220,156 @@ fn run(store: &mut Store, name: Atom, t: Term) -> Result<Term, EvalError> {
     }
 }
 
+/// A message given as a list, as the original says it (its `msg_format/2`):
+/// the elements written one after the other, separated by a space; `pause`
+/// is a full stop (`". "` between elements); a message of three or more
+/// elements ends with `.`. `[A]` is `A`; two elements get no final stop.
+pub fn sentence(store: &Store, items: &[Term]) -> String {
+    let is_pause = |t: Term| store.atom_of(store.deref(t)).map(|a| a.as_str()) == Some("pause");
+    let text = |t: Term| store.write(t);
+    match items {
+        [] => "[]".to_owned(),
+        [one] => text(*one),
+        [a, b, rest @ ..] => {
+            let mut out = if is_pause(*a) {
+                format!(". {}", text(*b))
+            } else if is_pause(*b) {
+                format!("{} .", text(*a))
+            } else {
+                format!("{} {}", text(*a), text(*b))
+            };
+            if rest.is_empty() {
+                return out;
+            }
+            for &x in rest {
+                if is_pause(x) {
+                    out.push_str(". ");
+                } else {
+                    out.push(' ');
+                    out.push_str(&text(x));
+                }
+            }
+            out.push('.');
+            out
+        }
+    }
+}
+
+/// The original's value of the constant pi in its coordinate transforms
+/// (five decimals: its results depend on it).
+#[allow(clippy::approx_constant)]
+const PI_APPROX: f64 = 3.14159;
+
+/// Evaluates the arithmetic expression `expr` (SWI-Prolog's arithmetic:
+/// `round` gives an integer, an exact integer quotient stays an integer)
+/// with the named numbers bound.
+fn arith(
+    store: &mut Store,
+    expr: &str,
+    values: &[(&str, Term)],
+    call: Term,
+) -> Result<Term, EvalError> {
+    let (e, bindings) = store
+        .parse(expr)
+        .map_err(|err| EvalError::new(format!("internal formula `{expr}`: {}", err.message)))?;
+    for (name, var) in bindings {
+        if let Some(&(_, v)) = values.iter().find(|(n, _)| **n == *name) {
+            store.unify(var, v);
+        }
+    }
+    match store.eval_arith(e) {
+        Ok(n) => Ok(Term::from(n)),
+        Err(err) => Err(EvalError::new(format!("`{}`: {err:?}", show(store, call)))),
+    }
+}
+
+/// The three numbers of a point `[X, Y, Z]`.
+fn point(store: &Store, t: Term, what: &str, call: Term) -> Result<[Term; 3], EvalError> {
+    let items = list(store, t, what, call)?;
+    let ok = items.len() == 3
+        && items
+            .iter()
+            .all(|&x| matches!(store.value(store.deref(x)), Value::Int(_) | Value::Float(_)));
+    if !ok {
+        return Err(EvalError::new(format!(
+            "`{}`: {what} `{}` is not a point [X, Y, Z] of numbers",
+            show(store, call),
+            show(store, t)
+        )));
+    }
+    Ok([items[0], items[1], items[2]])
+}
+
+/// `cam2nav([X, Y, Z], Tilt, Nav)`: a point seen by the camera as the
+/// navigation's `[Angle, Distance]` from the robot's base (the camera sits
+/// 0.10 to the side of the base; angle in degrees, both rounded to 4
+/// decimals). `Tilt` is not used (as in the original).
+fn cam2nav(store: &mut Store, args: &[Term], call: Term) -> Result<Term, EvalError> {
+    let [x, _, z] = point(store, args[0], "the camera point", call)?;
+    let pi = Term::float(PI_APPROX);
+    let xb = arith(store, "X - 0.10", &[("X", x)], call)?;
+    let v = [("XB", xb), ("ZB", z), ("PI", pi)];
+    let dist = arith(
+        store,
+        "round(sqrt(XB * XB + ZB * ZB) * 10000) / 10000",
+        &v,
+        call,
+    )?;
+    let angle = arith(
+        store,
+        "round((atan(XB / ZB) * (180 / PI)) * 10000) / 10000",
+        &v,
+        call,
+    )?;
+    Ok(store.list(&[angle, dist]))
+}
+
+/// `cam2arm(Arm, RobotHeight, [X, Y, Z], Tilt, [XArm, YArm, ZArm], Polar)`:
+/// a point seen by the camera as the arm's `[Height, Angle, Distance]`
+/// (the platform height for the robot's height plus 0.45, the angle in
+/// degrees, the left arm's 12 degrees less; rounded to 4 decimals). `Tilt`
+/// is not used (as in the original). Fails for an arm other than
+/// `right`/`left`.
+fn cam2arm(store: &mut Store, args: &[Term], call: Term) -> Result<Term, EvalError> {
+    let arm = store
+        .atom_of(store.deref(args[0]))
+        .map(|a| a.as_str().to_owned());
+    let offset = match arm.as_deref() {
+        Some("right") => "",
+        Some("left") => " - 12.0",
+        _ => return Err(fails(store, call)),
+    };
+    let [x, y, z] = point(store, args[2], "the camera point", call)?;
+    let [xa, ya, za] = point(store, args[4], "the arm's position", call)?;
+    let h = store.deref(args[1]);
+    if !matches!(store.value(h), Value::Int(_) | Value::Float(_)) {
+        return Err(EvalError::new(format!(
+            "`{}`: the robot's height `{}` is not a number",
+            show(store, call),
+            show(store, h)
+        )));
+    }
+    let pi = Term::float(PI_APPROX);
+    let xo = arith(store, "X - XA", &[("X", x), ("XA", xa)], call)?;
+    let yo = arith(store, "Y - YA", &[("Y", y), ("YA", ya)], call)?;
+    let zo = arith(store, "Z - ZA", &[("Z", z), ("ZA", za)], call)?;
+    let v = [("XO", xo), ("YO", yo), ("ZO", zo), ("H", h), ("PI", pi)];
+    let height = arith(store, "round((H + 0.45 - YO) * 10000) / 10000", &v, call)?;
+    let dist = arith(
+        store,
+        "round(sqrt(XO * XO + ZO * ZO) * 10000) / 10000",
+        &v,
+        call,
+    )?;
+    let angle = arith(
+        store,
+        &format!("round((atan(XO / ZO) * (180 / PI)) * 10000) / 10000{offset}"),
+        &v,
+        call,
+    )?;
+    Ok(store.list(&[height, angle, dist]))
+}
+
 /// `member(X, L)`: unifies `x` with the first element that unifies.
 pub fn member_unify(store: &mut Store, x: Term, list: Term) -> bool {
     let items = match store.list_to_vec(list) {
@@ -242,4 +384,71 @@ pub fn member_identical(store: &Store, x: Term, list: Term) -> bool {
     store
         .list_to_vec(list)
         .is_some_and(|items| items.into_iter().any(|item| store.identical(x, item)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn op(src: &str) -> Result<String, String> {
+        let mut store = Store::new();
+        let (t, _) = store.parse(src).expect("parses");
+        let name = store.functor(t).expect("compound").0;
+        match list_operator(&mut store, name, t) {
+            Some(Ok(v)) => Ok(store.writeq(v)),
+            Some(Err(e)) => Err(e.message),
+            None => Err("not a list operator".into()),
+        }
+    }
+
+    #[test]
+    fn cam2nav_camera_to_base() {
+        assert_eq!(
+            op("cam2nav([0.2, 2, 0.55], [-30, 0.1, -0.06], P)").unwrap(),
+            "[10.3049,0.559]"
+        );
+        // Exact quotients stay integers, as in SWI-Prolog.
+        assert_eq!(op("cam2nav([0.1, 0, 2], [0, 0, 0], P)").unwrap(), "[0,2]");
+        let e = op("cam2nav([a, 0, 2], [0, 0, 0], P)").unwrap_err();
+        assert!(e.contains("not a point"), "{e}");
+        let e = op("cam2nav([0.1, 0, 0], [0, 0, 0], P)").unwrap_err();
+        assert!(e.contains("cam2nav"), "{e}");
+    }
+
+    #[test]
+    fn cam2arm_camera_to_arm() {
+        assert_eq!(
+            op("cam2arm(right, 1.25, [1, 2, 1], [0, 0.1, 0.1], [0, 1, 0], P)").unwrap(),
+            "[0.7,45,1.4142]"
+        );
+        assert_eq!(
+            op("cam2arm(left, 1.25, [1, 2, 1], [0, 0.1, 0.1], [0, 1, 0], P)").unwrap(),
+            "[0.7,33.0,1.4142]"
+        );
+        assert!(
+            op("cam2arm(middle, 1.25, [1, 2, 1], [0, 0, 0], [0, 1, 0], P)")
+                .unwrap_err()
+                .contains("fails")
+        );
+        // The value is the last argument: a bound one must match.
+        assert!(op("cam2arm(right, 1.25, [1, 2, 1], [0, 0, 0], [0, 1, 0], [1, 2, 3])").is_err());
+    }
+
+    #[test]
+    fn messages_as_sentences() {
+        assert_eq!(
+            op("msg_format(['what do you like best', malz, or, coke, '?'], M)").unwrap(),
+            "'what do you like best malz or coke ?.'"
+        );
+        assert_eq!(
+            op("msg_format([hello, world], M)").unwrap(),
+            "'hello world'"
+        );
+        assert_eq!(op("msg_format([f(x)], M)").unwrap(), "f(x)");
+        assert_eq!(
+            op("msg_format([hi, pause, 'the ', 3, pause], M)").unwrap(),
+            "'hi . the  3. .'"
+        );
+        assert_eq!(op("msg_format([pause, b, c], M)").unwrap(), "'. b c.'");
+    }
 }

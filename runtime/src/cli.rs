@@ -40,16 +40,18 @@ pub fn run<A: App>(
     observer: Option<&mut dyn Observer>,
 ) -> Result<(Outcome, Store), String> {
     let (mut store, globals) = app.initial_state();
-    let main_term = store
-        .parse(main)
-        .map_err(|e| format!("--main `{main}`: {}", e.message))?
-        .0;
+    let limits = options.input_limits;
+    // The option and its text (when short) name the input in errors.
+    let named = |option: &str, text: &str| match text.len() {
+        0..=80 => format!("{option} `{text}`"),
+        _ => option.to_owned(),
+    };
+    let main_term = limits.read_term(&named("--main", main), main)?;
+    let main_term = store.from_clause(&main_term).0;
     let in_arg = match in_arg {
         Some(text) => {
-            store
-                .parse(text)
-                .map_err(|e| format!("--in-arg `{text}`: {}", e.message))?
-                .0
+            let clause = limits.read_term(&named("--in-arg", text), text)?;
+            store.from_clause(&clause).0
         }
         None => Term::atom(atoms::NONE),
     };

@@ -49,11 +49,41 @@ pub type UserFn = dyn Fn(&mut FnCall<'_>, &[Term]) -> Result<Term, String> + Sen
 pub type FallbackFn =
     dyn Fn(&mut FnCall<'_>, Atom, &[Term]) -> Option<Result<Term, String>> + Send + Sync;
 
+/// Bounds on one call of a user function that runs outside Rust (Prolog):
+/// set by a run's options (`--prolog-inferences`, `--prolog-time-limit`,
+/// `--prolog-heap-limit`) and read by the engine at each call.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CallLimits {
+    /// Inferences (runaway recursion).
+    pub inferences: u64,
+    /// Wall-clock time of one call.
+    pub time: std::time::Duration,
+    /// Memory the process may grow by during one call, in bytes.
+    pub heap_bytes: u64,
+}
+
+impl CallLimits {
+    pub const INFERENCES: u64 = 10_000_000;
+    pub const TIME: std::time::Duration = std::time::Duration::from_secs(10);
+    pub const HEAP_BYTES: u64 = 512 << 20;
+}
+
+impl Default for CallLimits {
+    fn default() -> CallLimits {
+        CallLimits {
+            inferences: CallLimits::INFERENCES,
+            time: CallLimits::TIME,
+            heap_bytes: CallLimits::HEAP_BYTES,
+        }
+    }
+}
+
 /// The registry of user functions.
 #[derive(Clone, Default)]
 pub struct Functions {
     map: HashMap<(Atom, usize), Arc<UserFn>>,
     fallback: Option<Arc<FallbackFn>>,
+    limits: Option<CallLimits>,
 }
 
 impl std::fmt::Debug for Functions {
@@ -96,6 +126,17 @@ impl Functions {
             + 'static,
     ) {
         self.fallback = Some(Arc::new(f));
+    }
+
+    /// Sets the bounds of each call of a function run outside Rust
+    /// (otherwise each engine uses its own defaults).
+    pub fn set_call_limits(&mut self, limits: CallLimits) {
+        self.limits = Some(limits);
+    }
+
+    /// The bounds set by [`Functions::set_call_limits`].
+    pub fn call_limits(&self) -> Option<CallLimits> {
+        self.limits
     }
 
     /// Removes `name/arity`; `true` if it was registered.

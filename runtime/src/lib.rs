@@ -27,6 +27,7 @@ pub mod functions;
 mod gc;
 pub mod history;
 pub mod machine;
+pub mod paths;
 #[cfg(feature = "prolog")]
 pub mod prolog;
 pub mod report;

@@ -180,6 +180,12 @@ pub struct Options {
     pub recovery: Vec<(Atom, Atom)>,
     /// Collect garbage when the store has grown by this many cells since the last collection.
     pub gc_threshold: usize,
+    /// Limits on terms from outside (`--in-arg`, `--main`; perception
+    /// sources take theirs when they are made).
+    pub input_limits: crate::testmode::InputLimits,
+    /// When set (by a signal handler), the run stops before its next
+    /// transition with an error and [`Outcome::interrupted`].
+    pub stop: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
 }
 
 impl Default for Options {
@@ -189,6 +195,8 @@ impl Default for Options {
             max_depth: 10_000_000,
             recovery: Vec::new(),
             gc_threshold: 1 << 20,
+            input_limits: Default::default(),
+            stop: None,
         }
     }
 }
@@ -243,6 +251,9 @@ pub struct Outcome {
     pub final_situation: Option<Term>,
     /// Transitions made (history entries appended, kept or not).
     pub transitions: u64,
+    /// The run was stopped by [`Options::stop`] (the result is then an error
+    /// saying so).
+    pub interrupted: bool,
 }
 
 /// A recursive situation waiting for its embedded DM, or a failed
@@ -399,7 +410,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             }
             history = h;
         }
+        let interrupted = result.is_err() && self.stop_requested();
         let outcome = Outcome {
+            interrupted,
             result,
             history,
             out_arg: pipe,
@@ -408,6 +421,15 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             transitions: self.transitions,
         };
         (outcome, self.store)
+    }
+
+    /// Whether [`Options::stop`] is set.
+    #[inline]
+    fn stop_requested(&self) -> bool {
+        self.options
+            .stop
+            .as_ref()
+            .is_some_and(|s| s.load(std::sync::atomic::Ordering::Relaxed))
     }
 
     fn call_dm(&mut self, call: Term, sit: Option<(SitIx, Term)>) -> Result<(), RunError> {
@@ -468,6 +490,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         let mut goto = Goto::Initial;
         let program = self.program;
         loop {
+            if self.stop_requested() {
+                return Err(self.err("interrupted (the run was stopped by a signal)", None, None));
+            }
             self.maybe_gc(pipe, &mut goto);
             let (sit, inst) = self.select(&goto)?;
             let dm = self.frames.last().expect("a frame is running").dm;
@@ -1259,6 +1284,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     pub fn gc_due(&self) -> bool {
         let stats = self.m.store.stats();
         stats.cells + stats.vars >= self.m.cells_after_gc + self.m.options.gc_threshold
+            || self.m.stop_requested()
     }
 
     /// Goes on to compiled situation `sit` of the running DM, whose id is the atom `id`.

@@ -200,3 +200,455 @@ get_last_situation(History, S) :-
     ->  true
     ;   '$sitlog_memberchk'(X, Ys)
     ).
+
+% ------------------------------------------- SWI-Prolog compatibility
+% Programs written for the original run on SWI-Prolog and call its
+% built-ins and autoloaded library predicates. Each '$swi_X' below is made
+% visible as X once the application's clauses are loaded, unless the
+% application defines X itself or the engine already has it
+% ('$sitlog_bridge'/2, list in prolog.rs). Built-ins the engine has but
+% with another behaviour (atom_chars/2 on codes, the standard order of
+% mixed integers and floats, reading text) cannot be redefined: the
+% application's clauses call the '$swi_X' versions instead (the loader
+% renames those calls, see prolog.rs).
+
+:- dynamic('$sitlog_env'/2).
+:- use_module(library(os), []).
+:- use_module(library(random), [random/1]).
+
+'$sitlog_length'(L, N) :- '$sitlog_length'(L, 0, N).
+'$sitlog_length'(L, N0, N) :-
+    (   L == [] -> N = N0
+    ;   nonvar(L), L = [_|T] -> N1 is N0 + 1, '$sitlog_length'(T, N1, N)
+    ;   throw(error(type_error(list, L), length/2))
+    ).
+'$sitlog_split_at'(0, L, [], L) :- !.
+'$sitlog_split_at'(N, [X|Xs], [X|As], B) :- N1 is N - 1, '$sitlog_split_at'(N1, Xs, As, B).
+
+'$sitlog_append'([], L, L).
+'$sitlog_append'([X|Xs], L, [X|Ys]) :- '$sitlog_append'(Xs, L, Ys).
+
+% getenv(+Name, -Value): the host's environment, atoms (SWI).
+'$swi_getenv'(Name, Value) :-
+    '$swi_text_chars'(Name, Cs),
+    atom_chars(N, Cs),
+    (   '$sitlog_env'(N, V0)
+    ->  Value = V0
+    ;   catch(os:getenv(Cs, VCs), _, fail),
+        atom_chars(Value, VCs)
+    ).
+
+% Text of an atom, number, code list or char list, as chars.
+'$swi_text_chars'(X, Cs) :-
+    (   var(X)
+    ->  throw(error(instantiation_error, text/1))
+    ;   atom(X)
+    ->  atom_chars(X, Cs)
+    ;   number(X)
+    ->  number_chars(X, Cs)
+    ;   X == []
+    ->  Cs = []
+    ;   X = [C|_], integer(C)
+    ->  '$swi_codes_chars'(X, Cs)
+    ;   X = [_|_]
+    ->  Cs = X
+    ;   throw(error(type_error(atomic, X), text/1))
+    ).
+
+'$swi_codes_chars'([], []).
+'$swi_codes_chars'([C|Cs], [H|Hs]) :- char_code(H, C), '$swi_codes_chars'(Cs, Hs).
+
+% atomic_concat(+A, +B, -Atom) (SWI-Prolog 5 and earlier).
+'$swi_atomic_concat'(A, B, C) :-
+    '$swi_text_chars'(A, As),
+    '$swi_text_chars'(B, Bs),
+    '$sitlog_append'(As, Bs, Cs),
+    atom_chars(C, Cs).
+
+% get0(-Code), get0(+Stream, -Code): -1 at the end.
+'$swi_get0'(C) :- get_code(C).
+'$swi_get0'(S, C) :- get_code(S, C).
+
+% atom_chars(?Atom, ?Text): SWI accepts a code list for Text.
+'$swi_atom_chars'(A, L) :-
+    (   var(A), nonvar(L), L = [C|_], integer(C)
+    ->  atom_codes(A, L)
+    ;   atom_chars(A, L)
+    ).
+
+% atom_to_chars(+Atom, -Codes) (library(charsio) of SWI).
+'$swi_atom_to_chars'(A, Codes) :-
+    '$swi_text_chars'(A, Cs),
+    '$swi_chars_codes'(Cs, Codes).
+
+'$swi_chars_codes'([], []).
+'$swi_chars_codes'([C|Cs], [H|Hs]) :- char_code(C, H), '$swi_chars_codes'(Cs, Hs).
+
+% flatten(+List, -Flat).
+'$swi_flatten'(List, Flat) :-
+    '$swi_flatten'(List, [], Flat0),
+    !,
+    Flat = Flat0.
+'$swi_flatten'(Var, Tl, [Var|Tl]) :- var(Var), !.
+'$swi_flatten'([], Tl, Tl) :- !.
+'$swi_flatten'([Hd|Tl], Tail, List) :- !,
+    '$swi_flatten'(Hd, FlatHeadTail, List),
+    '$swi_flatten'(Tl, Tail, FlatHeadTail).
+'$swi_flatten'(NonList, Tl, [NonList|Tl]).
+
+% assert/1 is assertz/1.
+'$swi_assert'(C) :- assertz(C).
+
+% random_permutation(+List, -Permutation).
+'$swi_random_permutation'(List, Perm) :-
+    '$swi_keyed_random'(List, Keyed),
+    keysort(Keyed, Sorted),
+    '$swi_values'(Sorted, Perm).
+
+'$swi_keyed_random'([], []).
+'$swi_keyed_random'([X|Xs], [K-X|Ks]) :- random(K), '$swi_keyed_random'(Xs, Ks).
+
+'$swi_values'([], []).
+'$swi_values'([_-V|Ps], [V|Vs]) :- '$swi_values'(Ps, Vs).
+
+% last(?List, ?Last).
+'$swi_last'([X|Xs], Last) :- '$swi_last_'(Xs, X, Last).
+'$swi_last_'([], Last, Last).
+'$swi_last_'([X|Xs], _, Last) :- '$swi_last_'(Xs, X, Last).
+
+% include/3, exclude/3, partition/4 (library(apply)).
+'$swi_include'(_, [], []).
+'$swi_include'(P, [X|Xs], L) :-
+    (   call(P, X) -> L = [X|L1] ; L = L1 ),
+    '$swi_include'(P, Xs, L1).
+'$swi_exclude'(_, [], []).
+'$swi_exclude'(P, [X|Xs], L) :-
+    (   call(P, X) -> L = L1 ; L = [X|L1] ),
+    '$swi_exclude'(P, Xs, L1).
+'$swi_partition'(_, [], [], []).
+'$swi_partition'(P, [X|Xs], I, E) :-
+    (   call(P, X) -> I = [X|I1], E = E1 ; I = I1, E = [X|E1] ),
+    '$swi_partition'(P, Xs, I1, E1).
+
+% Other library(lists) predicates of SWI.
+'$swi_sumlist'(L, S) :- '$swi_sum'(L, 0, S).
+'$swi_sum'([], S, S).
+'$swi_sum'([X|Xs], S0, S) :- S1 is S0 + X, '$swi_sum'(Xs, S1, S).
+'$swi_max_list'([X|Xs], M) :- '$swi_max_list_'(Xs, X, M).
+'$swi_max_list_'([], M, M).
+'$swi_max_list_'([X|Xs], M0, M) :- M1 is max(M0, X), '$swi_max_list_'(Xs, M1, M).
+'$swi_min_list'([X|Xs], M) :- '$swi_min_list_'(Xs, X, M).
+'$swi_min_list_'([], M, M).
+'$swi_min_list_'([X|Xs], M0, M) :- M1 is min(M0, X), '$swi_min_list_'(Xs, M1, M).
+'$swi_delete'([], _, []).
+'$swi_delete'([X|Xs], D, R) :-
+    (   X \= D -> R = [X|R1] ; R = R1 ),
+    '$swi_delete'(Xs, D, R1).
+'$swi_subtract'([], _, []).
+'$swi_subtract'([X|Xs], L, R) :-
+    (   '$sitlog_memberchk'(X, L) -> R = R1 ; R = [X|R1] ),
+    '$swi_subtract'(Xs, L, R1).
+'$swi_intersection'([], _, []).
+'$swi_intersection'([X|Xs], L, R) :-
+    (   '$sitlog_memberchk'(X, L) -> R = [X|R1] ; R = R1 ),
+    '$swi_intersection'(Xs, L, R1).
+'$swi_union'([], L, L).
+'$swi_union'([X|Xs], L, R) :-
+    (   '$sitlog_memberchk'(X, L) -> R = R1 ; R = [X|R1] ),
+    '$swi_union'(Xs, L, R1).
+'$swi_sum_list'(L, S) :- '$swi_sumlist'(L, S).
+'$swi_max_member'(M, L) :- '$swi_msort'(L, S), '$swi_last'(S, M).
+'$swi_min_member'(M, [X|Xs]) :- '$swi_msort'([X|Xs], [M|_]).
+
+% atomic_list_concat/2, /3 (the /3 form also splits), concat_atom.
+'$swi_atomic_list_concat'(L, A) :-
+    '$swi_concat_all'(L, Cs),
+    atom_chars(A, Cs).
+'$swi_atomic_list_concat'(L, Sep, A) :-
+    (   '$swi_ground_list'(L)
+    ->  '$swi_text_chars'(Sep, SCs),
+        '$swi_join'(L, SCs, Cs),
+        atom_chars(A, Cs)
+    ;   '$swi_text_chars'(Sep, SCs), SCs \== [],
+        '$swi_text_chars'(A, ACs),
+        '$swi_split'(ACs, SCs, Parts),
+        '$swi_atoms'(Parts, L)
+    ).
+'$swi_concat_atom'(L, A) :- '$swi_atomic_list_concat'(L, A).
+'$swi_concat_atom'(L, S, A) :- '$swi_atomic_list_concat'(L, S, A).
+
+'$swi_ground_list'(L) :- ground(L), catch('$sitlog_length'(L, _), _, fail).
+'$swi_concat_all'([], []).
+'$swi_concat_all'([X|Xs], Cs) :-
+    '$swi_text_chars'(X, C0), '$swi_concat_all'(Xs, C1), '$sitlog_append'(C0, C1, Cs).
+'$swi_join'([], _, []).
+'$swi_join'([X], _, Cs) :- !, '$swi_text_chars'(X, Cs).
+'$swi_join'([X|Xs], Sep, Cs) :-
+    '$swi_text_chars'(X, C0), '$swi_join'(Xs, Sep, C1),
+    '$sitlog_append'(Sep, C1, C2), '$sitlog_append'(C0, C2, Cs).
+'$swi_split'(Cs, Sep, [P|Ps]) :-
+    (   '$sitlog_append'(P, Rest, Cs), '$sitlog_append'(Sep, After, Rest)
+    ->  '$swi_split'(After, Sep, Ps)
+    ;   P = Cs, Ps = []
+    ).
+'$swi_atoms'([], []).
+'$swi_atoms'([Cs|Css], [A|As]) :- atom_chars(A, Cs), '$swi_atoms'(Css, As).
+
+% atom_number(+Atom, -Number): fails if Atom does not read as a number.
+'$swi_atom_number'(A, N) :-
+    (   atom(A)
+    ->  atom_chars(A, Cs), catch(number_chars(N0, Cs), _, fail), N = N0
+    ;   number(N), number_chars(N, Cs), atom_chars(A, Cs)
+    ).
+
+% upcase_atom/2, downcase_atom/2.
+'$swi_upcase_atom'(A, U) :-
+    '$swi_text_chars'(A, Cs), '$swi_map_case'(Cs, upper, Us), atom_chars(U, Us).
+'$swi_downcase_atom'(A, U) :-
+    '$swi_text_chars'(A, Cs), '$swi_map_case'(Cs, lower, Us), atom_chars(U, Us).
+'$swi_map_case'([], _, []).
+'$swi_map_case'([C|Cs], Case, [D|Ds]) :-
+    char_code(C, X),
+    (   Case == upper, X >= 0'a, X =< 0'z -> Y is X - 32, char_code(D, Y)
+    ;   Case == lower, X >= 0'A, X =< 0'Z -> Y is X + 32, char_code(D, Y)
+    ;   D = C
+    ),
+    '$swi_map_case'(Cs, Case, Ds).
+
+% nb_getval/2, nb_setval/2, b_getval/2, b_setval/2 (global variables).
+'$swi_nb_setval'(K, V) :- bb_put(K, V).
+'$swi_nb_getval'(K, V) :- bb_get(K, V).
+'$swi_b_setval'(K, V) :- bb_b_put(K, V).
+'$swi_b_getval'(K, V) :- bb_get(K, V).
+
+% ------------------------------------------ SWI's standard order of terms
+% SWI-Prolog compares numbers by value (1 < 1.5 < 2); equal values order a
+% float before an integer. The engine orders every float before every
+% integer (ISO). The application's compare/3, @</2 ... sort/2, msort/2,
+% sort/4, keysort/2 are these.
+
+'$swi_compare'(O, A, B) :-
+    (   number(A), number(B)
+    ->  (   A < B -> O = (<)
+        ;   A > B -> O = (>)
+        ;   compare(O, A, B)      % equal value: float before integer
+        )
+    ;   compound(A), compound(B),
+        functor(A, N, Ar), functor(B, N, Ar)
+    ->  '$swi_compare_args'(1, Ar, A, B, O)
+    ;   compare(O, A, B)
+    ).
+
+'$swi_compare_args'(I, Ar, A, B, O) :-
+    (   I > Ar
+    ->  O = (=)
+    ;   arg(I, A, X), arg(I, B, Y),
+        '$swi_compare'(O1, X, Y),
+        (   O1 == (=)
+        ->  I1 is I + 1,
+            '$swi_compare_args'(I1, Ar, A, B, O)
+        ;   O = O1
+        )
+    ).
+
+'$swi_@<'(A, B) :- '$swi_compare'(<, A, B).
+'$swi_@>'(A, B) :- '$swi_compare'(>, A, B).
+'$swi_@=<'(A, B) :- '$swi_compare'(O, A, B), O \== (>).
+'$swi_@>='(A, B) :- '$swi_compare'(O, A, B), O \== (<).
+
+% Whether a term has both an integer and a float in it (else the engine's
+% own order is SWI's and its sorts are used).
+'$swi_mixed'(T) :- '$swi_kinds'(T, n, K), K == both.
+'$swi_kinds'(T, K0, K) :-
+    (   K0 == both -> K = both
+    ;   var(T) -> K = K0
+    ;   integer(T) -> ( K0 == f -> K = both ; K = i )
+    ;   float(T) -> ( K0 == i -> K = both ; K = f )
+    ;   compound(T) -> functor(T, _, N), '$swi_kinds_args'(1, N, T, K0, K)
+    ;   K = K0
+    ).
+'$swi_kinds_args'(I, N, T, K0, K) :-
+    (   I > N -> K = K0
+    ;   arg(I, T, A), '$swi_kinds'(A, K0, K1), I1 is I + 1,
+        '$swi_kinds_args'(I1, N, T, K1, K)
+    ).
+
+'$swi_msort'(L, S) :-
+    (   '$swi_mixed'(L)
+    ->  '$swi_merge_sort'(L, key0, (=<), S)
+    ;   '$swi_self_keyed'(L, P), keysort(P, SP), '$swi_values'(SP, S)
+    ).
+'$swi_self_keyed'([], []).
+'$swi_self_keyed'([X|Xs], [X-X|Ps]) :- '$swi_self_keyed'(Xs, Ps).
+'$swi_sort'(L, S) :-
+    (   '$swi_mixed'(L)
+    ->  '$swi_merge_sort'(L, key0, (<), S)
+    ;   sort(L, S)
+    ).
+'$swi_keysort'(L, S) :-
+    (   '$swi_mixed'(L)
+    ->  '$swi_merge_sort'(L, pair, (=<), S)
+    ;   keysort(L, S)
+    ).
+% sort(+Key, +Order, +List, -Sorted): Key 0 is the whole term; Order one
+% of @<, @=<, @>, @>= (@< and @> remove duplicates).
+'$swi_sort'(Key, Order, L, S) :-
+    (   Order == (@<) -> O = (<)
+    ;   Order == (@=<) -> O = (=<)
+    ;   Order == (@>) -> O = (>)
+    ;   Order == (@>=) -> O = (>=)
+    ;   throw(error(domain_error(order, Order), sort/4))
+    ),
+    ( Key == 0 -> K = key0 ; K = arg(Key) ),
+    '$swi_merge_sort'(L, K, O, S).
+
+% predsort(+Pred, +List, -Sorted): Pred's order; elements it finds = are
+% dropped.
+'$swi_predsort'(P, L, Sorted) :-
+    '$sitlog_length'(L, N),
+    (   N =< 1 -> Sorted = L
+    ;   H is N // 2, '$sitlog_split_at'(H, L, A, B),
+        '$swi_predsort'(P, A, SA),
+        '$swi_predsort'(P, B, SB),
+        '$swi_predmerge'(SA, SB, P, Sorted)
+    ).
+'$swi_predmerge'([], L, _, L) :- !.
+'$swi_predmerge'(L, [], _, L) :- !.
+'$swi_predmerge'([X|Xs], [Y|Ys], P, S) :-
+    call(P, O, X, Y),
+    (   O == (<) -> S = [X|S1], '$swi_predmerge'(Xs, [Y|Ys], P, S1)
+    ;   O == (>) -> S = [Y|S1], '$swi_predmerge'([X|Xs], Ys, P, S1)
+    ;   O == (=) -> S = [X|S1], '$swi_predmerge'(Xs, Ys, P, S1)
+    ;   throw(error(domain_error(order, O), predsort/3))
+    ).
+
+'$swi_key'(key0, X, X).
+'$swi_key'(pair, K-_, K).
+'$swi_key'(arg(I), X, K) :- arg(I, X, K).
+
+% A stable merge sort; Order < and > drop elements equal to the one kept.
+'$swi_merge_sort'(L, Key, Order, S) :-
+    '$sitlog_length'(L, N),
+    (   N =< 1 -> S = L
+    ;   H is N // 2, '$sitlog_split_at'(H, L, A, B),
+        '$swi_merge_sort'(A, Key, Order, SA),
+        '$swi_merge_sort'(B, Key, Order, SB),
+        '$swi_merge'(SA, SB, Key, Order, S)
+    ).
+'$swi_merge'([], L, _, _, L) :- !.
+'$swi_merge'(L, [], _, _, L) :- !.
+'$swi_merge'([X|Xs], [Y|Ys], Key, Order, S) :-
+    '$swi_key'(Key, X, KX), '$swi_key'(Key, Y, KY),
+    '$swi_compare'(C, KX, KY),
+    (   C == (=), ( Order == (<) ; Order == (>) )
+    ->  S = [X|S1], '$swi_merge'(Xs, Ys, Key, Order, S1)
+    ;   '$swi_before'(Order, C)
+    ->  S = [X|S1], '$swi_merge'(Xs, [Y|Ys], Key, Order, S1)
+    ;   S = [Y|S1], '$swi_merge'([X|Xs], Ys, Key, Order, S1)
+    ).
+'$swi_before'(O, C) :- ( O == (<) ; O == (=<) ), !, C \== (>).
+'$swi_before'(_, C) :- C \== (<).
+
+% --------------------------------------------------- reading text as terms
+% Text is read by sitlog-rs's own reader (SWI-Prolog syntax, the SitLog
+% operators), not the engine's: the request goes out on user_error framed
+% by \x1\ and \x2\, the host answers on user_input with the term in
+% canonical form. So text is read exactly as `sitlogc check` reads files.
+
+'$sitlog_read_text'(Text, Term, Bindings) :-
+    '$swi_text_chars'(Text, Cs),
+    atom_chars(A, Cs),
+    put_char(user_error, '\x1\'),
+    put_char(user_error, 'R'),
+    write(user_error, A),
+    put_char(user_error, '\x2\'),
+    flush_output(user_error),
+    get_line_to_chars(user_input, Line, []),
+    read_from_chars(Line, Reply),
+    (   Reply = '$ok'(T, B)
+    ->  Term = T, Bindings = B
+    ;   Reply = '$error'(E)
+    ->  throw(E)
+    ;   Term = end_of_file, Bindings = []
+    ).
+
+'$swi_read_from_chars'(Text, Term) :- '$sitlog_read_text'(Text, Term, _).
+'$swi_read_term_from_atom'(A, Term, _) :- '$sitlog_read_text'(A, Term, _).
+'$swi_atom_to_term'(A, Term, Bindings) :- '$sitlog_read_text'(A, Term, Bindings).
+'$swi_term_to_atom'(T, A) :-
+    (   nonvar(A)
+    ->  '$sitlog_read_text'(A, T0, _), T = T0
+    ;   write_term_to_chars(T, [quoted(true)], Cs),
+        atom_chars(A, Cs)
+    ).
+
+% ------------------------------------------------ the KB layer, natively
+% (sitlogc run --legacy --legacy-kb native; NativeKb in prolog.rs). A KB is
+% a handle '$kb'(N) to a KB of the host; a KB term met where a handle is
+% needed becomes one (the last conversion is remembered), and a handle met
+% by code the host does not serve becomes the KB term again.
+
+'$sitlog_kb'(Request, Reply) :-
+    put_char(user_error, '\x1\'),
+    put_char(user_error, 'K'),
+    write_canonical(user_error, Request),
+    put_char(user_error, '\x2\'),
+    flush_output(user_error),
+    get_line_to_chars(user_input, Line, []),
+    read_from_chars(Line, R),
+    (   R = '$ok'(T, _) -> Reply = T
+    ;   R = '$error'(E) -> throw(E)
+    ;   fail
+    ).
+
+'$sitlog_kb_open'(Path, KB) :- '$sitlog_kb'(open(Path), KB).
+'$sitlog_kb_save'(Path, KB) :-
+    '$sitlog_kb_handle'(KB, H),
+    '$sitlog_kb'(save(H, Path), _).
+
+'$sitlog_kb_handle'(KB, H) :-
+    (   var(KB)
+    ->  throw(error(instantiation_error, kb/1))
+    ;   KB = '$kb'(_)
+    ->  H = KB
+    ;   catch(bb_get('$sitlog_kb_last', T-H0), _, fail), T == KB
+    ->  H = H0
+    ;   '$sitlog_kb'(handle(KB), H),
+        bb_put('$sitlog_kb_last', KB-H)
+    ).
+
+'$sitlog_kb_query'(Name, Args, KB, Answer) :-
+    '$sitlog_kb_handle'(KB, H),
+    '$sitlog_append'(Args, [_], All),
+    Goal =.. [Name|All],
+    '$sitlog_kb'(query(H, Goal), A),
+    Answer = A.
+
+'$sitlog_kb_update'(Name, Args, KB, New) :-
+    '$sitlog_kb_handle'(KB, H),
+    Goal =.. [Name|Args],
+    '$sitlog_kb'(update(H, Goal), N),
+    New = N.
+
+% The arguments with every handle turned into its KB term.
+'$sitlog_kb_terms'([], []).
+'$sitlog_kb_terms'([A|As], [B|Bs]) :-
+    (   nonvar(A), A = '$kb'(_)
+    ->  '$sitlog_kb'(term(A), B),
+        bb_put('$sitlog_kb_last', B-A)
+    ;   B = A
+    ),
+    '$sitlog_kb_terms'(As, Bs).
+
+% Makes '$swi_X' visible as X: Preds lists Name/Arity.
+'$sitlog_bridge'([], []).
+'$sitlog_bridge'([N/A|Ps], Done) :-
+    functor(H, N, A),
+    (   catch(predicate_property(H, dynamic), _, fail)
+    ->  Done = Done1                     % the application's own
+    ;   H =.. [_|Args],
+        atom_concat('$swi_', N, SN),
+        B =.. [SN|Args],
+        catch((assertz((H :- B)), Done = [N/A|Done1]), _, Done = Done1)
+    ),
+    '$sitlog_bridge'(Ps, Done1).

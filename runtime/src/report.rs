@@ -63,6 +63,7 @@ fn write_items(store: &Store, items: &[Item], out: &mut String) {
 pub fn outcome_json(store: &Store, outcome: &Outcome) -> String {
     let (status, error) = match &outcome.result {
         Ok(()) => ("ok", "null".to_owned()),
+        Err(e) if outcome.interrupted => ("interrupted", json_string(&e.to_string())),
         Err(e) => ("error", json_string(&e.to_string())),
     };
     let globals: Vec<String> = outcome
@@ -120,22 +121,40 @@ fn write_text(store: &mut Store, items: &[Item], depth: usize, out: &mut String)
 }
 
 /// `--trace FILE`: one JSON object per transition, flushed as it happens.
+/// Every write is checked: after the first failure nothing more is written,
+/// and [`JsonTrace::finish`] returns that error.
 pub struct JsonTrace<W: Write> {
     out: W,
+    error: Option<std::io::Error>,
 }
 
 impl<W: Write> JsonTrace<W> {
     pub fn new(out: W) -> Self {
-        JsonTrace { out }
+        JsonTrace { out, error: None }
+    }
+
+    /// Flushes; the writer, or the first write error.
+    pub fn finish(mut self) -> std::io::Result<W> {
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        self.out.flush()?;
+        Ok(self.out)
     }
 }
 
 impl<W: Write> Observer for JsonTrace<W> {
     fn transition(&mut self, store: &Store, entry: &Entry, depth: usize, next: Option<Term>) {
+        if self.error.is_some() {
+            return;
+        }
         let mut line = entry_json(store, entry);
         line.pop();
         let next = next.map_or("null".to_owned(), |n| json_string(&store.writeq(n)));
-        let _ = writeln!(self.out, "{line},\"depth\":{depth},\"next\":{next}}}");
-        let _ = self.out.flush();
+        let written = writeln!(self.out, "{line},\"depth\":{depth},\"next\":{next}}}")
+            .and_then(|_| self.out.flush());
+        if let Err(e) = written {
+            self.error = Some(e);
+        }
     }
 }

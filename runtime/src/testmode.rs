@@ -7,7 +7,7 @@ use crate::machine::{Actions, Perceived, Perception};
 use crate::store::Store;
 use crate::term::Term;
 use sitlog_syntax::{Atom, ClauseReader, OpTable};
-use std::io::{BufRead, Write};
+use std::io::{BufRead, Read, Write};
 
 /// Types whose perceptual interpreter wraps the input as `said(Term)` (D-14).
 fn wraps_said(store: &Store, ty: Term) -> bool {
@@ -23,6 +23,68 @@ fn deliver(store: &mut Store, ty: Term, input: Term) -> Perceived {
     }
 }
 
+/// Limits on one term that comes from outside the application (a
+/// perception read from a script or typed, `--in-arg`, `--main`): much
+/// tighter than those of source files, so that a hostile or broken message
+/// costs a few MB at most.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct InputLimits {
+    /// Bytes of text of one term (`--max-input-bytes`).
+    pub max_bytes: usize,
+    /// Nesting depth of one term (`--max-input-depth`).
+    pub max_depth: usize,
+}
+
+impl InputLimits {
+    /// Default of [`InputLimits::max_bytes`]: 1 MiB.
+    pub const MAX_BYTES: usize = 1 << 20;
+    /// Default of [`InputLimits::max_depth`]: 10 000 levels.
+    pub const MAX_DEPTH: usize = 10_000;
+
+    /// The error for a term of `len` bytes or more, if that is over the limit;
+    /// `what` names the input (`script s.txt:3:1: a perception`).
+    pub fn size_error(&self, what: &str, len: usize) -> String {
+        format!(
+            "{what} is longer than {} bytes ({len} bytes or more); the limit is set by --max-input-bytes",
+            self.max_bytes
+        )
+    }
+
+    /// The error for a term nested too deeply.
+    pub fn depth_error(&self, what: &str) -> String {
+        format!(
+            "{what} is nested more than {} levels deep; the limit is set by --max-input-depth",
+            self.max_depth
+        )
+    }
+
+    /// Reads one term of outside input under these limits; `what` names it
+    /// in errors.
+    pub fn read_term(&self, what: &str, text: &str) -> Result<sitlog_syntax::Clause, String> {
+        if text.len() > self.max_bytes {
+            return Err(self.size_error(what, text.len()));
+        }
+        sitlog_syntax::read_term_limited(text, OpTable::sitlog_shared(), self.max_depth).map_err(
+            |e| {
+                if e.is_too_deep() {
+                    self.depth_error(what)
+                } else {
+                    format!("{what}: {}", e.message)
+                }
+            },
+        )
+    }
+}
+
+impl Default for InputLimits {
+    fn default() -> InputLimits {
+        InputLimits {
+            max_bytes: InputLimits::MAX_BYTES,
+            max_depth: InputLimits::MAX_DEPTH,
+        }
+    }
+}
+
 /// Inputs from a script text.
 pub struct ScriptPerception {
     text: String,
@@ -31,6 +93,7 @@ pub struct ScriptPerception {
     name: String,
     /// Echo each input read to stderr.
     pub echo: bool,
+    limits: InputLimits,
 }
 
 impl ScriptPerception {
@@ -40,6 +103,36 @@ impl ScriptPerception {
             pos: 0,
             name: name.into(),
             echo: false,
+            limits: InputLimits::default(),
+        }
+    }
+
+    /// The script of `bytes`: an error naming `name`, line and column when
+    /// they are not UTF-8 (a UTF-8 BOM is skipped).
+    pub fn from_bytes(name: impl Into<String>, bytes: Vec<u8>) -> Result<ScriptPerception, String> {
+        let name = name.into();
+        match sitlog_syntax::decode_owned(bytes) {
+            Ok(text) => Ok(ScriptPerception::new(name, text)),
+            Err(e) => Err(format!("script {}", e.in_file(&name))),
+        }
+    }
+
+    /// Reads each input under `limits` (default: [`InputLimits::default`]).
+    pub fn with_limits(mut self, limits: InputLimits) -> Self {
+        self.limits = limits;
+        self
+    }
+}
+
+/// Bytes of white space and `%` comments at the start of `text`.
+fn leading_layout(text: &str) -> usize {
+    let mut rest = text;
+    loop {
+        let trimmed = rest.trim_start();
+        if let Some(comment) = trimmed.strip_prefix('%') {
+            rest = comment.find('\n').map_or("", |i| &comment[i..]);
+        } else {
+            return text.len() - trimmed.len();
         }
     }
 }
@@ -60,9 +153,25 @@ impl Perception for ScriptPerception {
     ) -> Result<Perceived, String> {
         let ops = OpTable::sitlog_shared();
         let rest = &self.text[self.pos..];
-        let mut reader = ClauseReader::new(rest, ops);
+        // One input is read from at most max_bytes (+1 to tell a clause
+        // that ends exactly there): a longer one is incomplete, then refused.
+        let mut cut = rest.len().min(self.limits.max_bytes.saturating_add(1));
+        while !rest.is_char_boundary(cut) {
+            cut -= 1;
+        }
+        let truncated = cut < rest.len();
+        let mut reader = ClauseReader::new(&rest[..cut], ops).with_max_depth(self.limits.max_depth);
+        let what = || {
+            let (line, col) = line_col(&self.text, self.pos + leading_layout(rest));
+            format!("{}:{line}:{col}: the input", self.name)
+        };
         match reader.next_clause() {
+            None if truncated => Err(self.limits.size_error(&what(), cut)),
             None => Ok(Perceived::EndOfInput),
+            Some(Err(e)) if truncated && (e.incomplete || reader.position() >= cut) => {
+                Err(self.limits.size_error(&what(), cut))
+            }
+            Some(Err(e)) if e.is_too_deep() => Err(self.limits.depth_error(&what())),
             Some(Ok(clause)) => {
                 let base = self.pos;
                 self.pos = base + reader.position();
@@ -86,11 +195,45 @@ impl Perception for ScriptPerception {
 /// Inputs typed at a prompt (stdin), with the expectations listed on stderr.
 pub struct PromptPerception<R: BufRead> {
     input: R,
+    limits: InputLimits,
+    /// Lines read so far (for positions in errors).
+    line: usize,
 }
 
 impl<R: BufRead> PromptPerception<R> {
     pub fn new(input: R) -> Self {
-        PromptPerception { input }
+        PromptPerception {
+            input,
+            limits: InputLimits::default(),
+            line: 0,
+        }
+    }
+
+    /// Reads each input under `limits` (default: [`InputLimits::default`]).
+    pub fn with_limits(mut self, limits: InputLimits) -> Self {
+        self.limits = limits;
+        self
+    }
+
+    /// One line of input (with its `\n`), at most `max` bytes read: `Ok(None)`
+    /// at end of input; an error for text that is not UTF-8.
+    fn read_line(&mut self, max: usize) -> Result<Option<String>, String> {
+        let mut bytes = Vec::new();
+        let n = (&mut self.input)
+            .take(max as u64 + 1)
+            .read_until(b'\n', &mut bytes)
+            .map_err(|e| format!("standard input: {e}"))?;
+        if n == 0 {
+            return Ok(None);
+        }
+        self.line += 1;
+        match sitlog_syntax::decode_owned(bytes) {
+            Ok(text) => Ok(Some(text)),
+            Err(e) => Err(format!(
+                "standard input:{}:{}: {}",
+                self.line, e.column, e.message
+            )),
+        }
     }
 }
 
@@ -110,11 +253,20 @@ impl<R: BufRead> Perception for PromptPerception<R> {
             list.join(" | ")
         );
         let mut text = String::new();
+        let mut start_line = self.line + 1;
         loop {
             let _ = write!(err, "{}", if text.is_empty() { "|: " } else { "|  " });
             let _ = err.flush();
-            let mut line = String::new();
-            let n = self.input.read_line(&mut line).map_err(|e| e.to_string())?;
+            if text.is_empty() {
+                start_line = self.line + 1;
+            }
+            let what = || format!("standard input:{start_line}:1: the input");
+            let room = self.limits.max_bytes.saturating_sub(text.len());
+            let line = self.read_line(room)?.unwrap_or_default();
+            if text.len() + line.len() > self.limits.max_bytes {
+                return Err(self.limits.size_error(&what(), text.len() + line.len()));
+            }
+            let n = line.len();
             if n == 0 {
                 if text.trim().is_empty() {
                     return Ok(Perceived::EndOfInput);
@@ -126,11 +278,16 @@ impl<R: BufRead> Perception for PromptPerception<R> {
                 text.clear();
                 continue;
             }
-            match sitlog_syntax::read_term(text.trim()) {
+            match sitlog_syntax::read_term_limited(
+                text.trim(),
+                OpTable::sitlog_shared(),
+                self.limits.max_depth,
+            ) {
                 Ok(clause) => {
                     let (t, _) = store.from_clause(&clause);
                     return Ok(deliver(store, ty, t));
                 }
+                Err(e) if e.is_too_deep() => return Err(self.limits.depth_error(&what())),
                 Err(e) if e.incomplete && n > 0 => continue,
                 Err(e) => {
                     let _ = writeln!(
@@ -171,7 +328,17 @@ impl<W: Write> Actions for TextActions<W> {
         let arg = |i: usize| store.write(store.args(a)[i]);
         let line = match (name.as_str(), arity) {
             ("screen", 1) => format!("Golem prints on screen: {}", arg(0)),
-            ("say", 1) => format!("Golem says: {}", arg(0)),
+            ("say", 1) => {
+                // A message given as a list is said as one sentence (the
+                // original's msg_format/2).
+                let m = store.args(a)[0];
+                match store.list_to_vec(m).filter(|items| !items.is_empty()) {
+                    Some(items) => {
+                        format!("Golem says: {}", crate::builtins::sentence(store, &items))
+                    }
+                    None => format!("Golem says: {}", arg(0)),
+                }
+            }
             _ if self.declared.contains(&name) => format!("Golem does: {}", store.writeq(a)),
             _ => return Ok(()),
         };

@@ -349,7 +349,6 @@ impl Sim {
     pub fn wait_for_user(&mut self, max_seconds: f64) -> bool {
         let max = if max_seconds > 0.0 { max_seconds } else { 0.0 };
         let start = self.now;
-        let at = self.events.len();
         let limit = start + max;
         let came = loop {
             if self.user_at == self.robot_at {
@@ -366,16 +365,18 @@ impl Sim {
                 }
             }
         };
+        // Logged when the wait ends, after the user's moves it waited for;
+        // not at all when the user was there already.
         let seconds = self.now - start;
-        self.events.insert(
-            at,
-            Event {
-                time: start,
-                kind: EventKind::WaitedForUser { seconds, came },
-                robot: self.robot.clone(),
-                user: self.user.clone(),
-            },
-        );
+        if came && seconds == 0.0 {
+            return true;
+        }
+        self.events.push(Event {
+            time: self.now,
+            kind: EventKind::WaitedForUser { seconds, came },
+            robot: self.robot.clone(),
+            user: self.user.clone(),
+        });
         came
     }
 

@@ -209,19 +209,12 @@ impl World {
     /// The bytes of a world file as text, or an error at the first byte that
     /// is not UTF-8.
     pub fn text_of<'b>(file_name: &str, bytes: &'b [u8]) -> Result<&'b str, Vec<WorldError>> {
-        std::str::from_utf8(bytes).map_err(|e| {
-            let good = &bytes[..e.valid_up_to()];
-            // The valid prefix is UTF-8 by definition.
-            let good = std::str::from_utf8(good).unwrap_or("");
-            let (line, column) = line_col(good, good.len());
+        sitlog_syntax::decode(bytes).map_err(|e| {
             vec![WorldError {
                 file: file_name.to_string(),
-                line,
-                column,
-                message: format!(
-                    "the world file is not UTF-8 text (byte 0x{:02x})",
-                    bytes[e.valid_up_to()]
-                ),
+                line: e.line,
+                column: e.column,
+                message: e.message,
             }]
         })
     }

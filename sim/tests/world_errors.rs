@@ -173,7 +173,7 @@ fn text_that_is_not_utf8_is_an_error_at_its_first_bad_byte() {
     let e = World::text_of("w.toml", b"seed = 7\n# caf\xc3\xa9 \xff\n").unwrap_err();
     assert_eq!(
         e[0].to_string(),
-        "w.toml:2:8: error: the world file is not UTF-8 text (byte 0xff)"
+        "w.toml:2:8: error: invalid UTF-8 (byte 0xFF): the file must be UTF-8 text"
     );
     let dir = std::env::temp_dir().join(format!("sitlog-sim-test-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -345,7 +345,7 @@ fn unterminated_or_bad_escape(src: &str, at: usize, quote: char, what: &str) -> 
     while let Some((i, c)) = chars.next() {
         if c == '\\' {
             if let Some((j, e)) = chars.next() {
-                if !"abfnrtvxesuU0123456789\\'\"`\n".contains(e) {
+                if !"abcfnrtvxesuU0123456789\\'\"`\n".contains(e) {
                     let s = at + 1 + i;
                     let mut err = SyntaxError::new(
                         Span::new(s, at + 1 + j + e.len_utf8()),
@@ -422,6 +422,15 @@ fn unescape_one(s: &str, at: usize, out: &mut String) -> Result<usize, SyntaxErr
     }
     if c == '\n' {
         return Ok(1); // line continuation
+    }
+    if c == 'c' {
+        // SWI-Prolog: `\c` skips the layout that follows it.
+        let layout: usize = s[1..]
+            .chars()
+            .take_while(|c| c.is_whitespace())
+            .map(char::len_utf8)
+            .sum();
+        return Ok(1 + layout);
     }
     if c == 'u' || c == 'U' {
         // SWI-Prolog: `\uXXXX` and `\UXXXXXXXX`.

@@ -8,6 +8,7 @@
 //! with it.
 
 pub mod atom;
+pub mod decode;
 mod lexer;
 pub mod ops;
 pub mod read;
@@ -15,10 +16,11 @@ pub mod term;
 pub mod write;
 
 pub use atom::{atoms, Atom};
+pub use decode::{decode, decode_owned, DecodeError};
 pub use ops::{OpDef, OpTable, OpType};
 pub use read::{
     line_col, read_clauses, read_clauses_bytes, read_clauses_bytes_with, read_clauses_with,
-    read_term, read_term_with, source_from_bytes, ClauseReader, SyntaxError,
+    read_term, read_term_limited, read_term_with, source_from_bytes, ClauseReader, SyntaxError,
 };
 pub use term::{Clause, Node, Span, TermId, Terms, VarId, VarInfo};
 pub use write::{write_term, writeq, TermSource, VarLabel, View, WriteOptions};

@@ -12,6 +12,9 @@ use std::collections::HashMap;
 /// Deepest nesting of terms the reader accepts.
 pub const MAX_DEPTH: usize = 1_000_000;
 
+/// The start of the message of a depth-limit error ([`SyntaxError::is_too_deep`]).
+const TOO_DEEP: &str = "term nested too deeply";
+
 /// A syntax error with its position and, where useful, related positions.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SyntaxError {
@@ -41,6 +44,12 @@ impl SyntaxError {
 }
 
 impl SyntaxError {
+    /// Whether this is the error of a depth limit ([`MAX_DEPTH`], or the one
+    /// given to [`read_term_limited`] or [`ClauseReader::with_max_depth`]).
+    pub fn is_too_deep(&self) -> bool {
+        self.message.starts_with(TOO_DEEP)
+    }
+
     /// 1-based line and column (in characters) of the start of the error in `src`.
     pub fn line_col(&self, src: &str) -> (usize, usize) {
         line_col(src, self.span.start as usize)
@@ -75,18 +84,17 @@ pub fn line_col(src: &str, offset: usize) -> (usize, usize) {
     (line, 1 + before[line_start..].chars().count())
 }
 
-/// Checks that `bytes` are UTF-8 (the reader works on `&str`). The error
-/// points at the first invalid byte and gives its offset.
+/// Checks that `bytes` are UTF-8 (the reader works on `&str`), through
+/// [`crate::decode::decode`]: a leading BOM is skipped (spans of what is read
+/// are then relative to the text after it). The error points at the first
+/// invalid byte and gives its offset.
 pub fn source_from_bytes(bytes: &[u8]) -> Result<&str, SyntaxError> {
-    std::str::from_utf8(bytes).map_err(|e| {
-        let at = e.valid_up_to();
-        let len = e.error_len().unwrap_or(bytes.len() - at).max(1);
+    crate::decode::decode(bytes).map_err(|e| {
+        let at = e.offset.min(bytes.len());
+        let len = if e.utf16 { 2 } else { 1 };
         let mut err = SyntaxError::new(
             Span::new(at, (at + len).min(bytes.len())),
-            format!(
-                "invalid UTF-8 at byte offset {at} (byte 0x{:02X}): source text must be UTF-8",
-                bytes[at]
-            ),
+            format!("byte offset {at}: {}", e.message),
         );
         err.help = Some("convert the file to UTF-8 (e.g. with iconv)".into());
         err
@@ -157,7 +165,19 @@ pub fn read_term(src: &str) -> Result<Clause, SyntaxError> {
 
 /// [`read_term`] with another operator table.
 pub fn read_term_with(src: &str, ops: &OpTable) -> Result<Clause, SyntaxError> {
+    read_term_limited(src, ops, MAX_DEPTH)
+}
+
+/// [`read_term_with`] that refuses terms nested more than `max_depth`
+/// levels (for input from outside, which gets tighter limits than source
+/// files): the error is [`SyntaxError::is_too_deep`].
+pub fn read_term_limited(
+    src: &str,
+    ops: &OpTable,
+    max_depth: usize,
+) -> Result<Clause, SyntaxError> {
     let mut parser = Parser::new(src, 0, ops).map_err(|e| *e)?;
+    parser.max_depth = max_depth.clamp(1, MAX_DEPTH);
     if parser.tok.kind == TokKind::Eof {
         return Err(SyntaxError {
             incomplete: true,
@@ -183,6 +203,7 @@ pub struct ClauseReader<'s, 'o> {
     ops: &'o OpTable,
     pos: usize,
     done: bool,
+    max_depth: usize,
 }
 
 impl<'s, 'o> ClauseReader<'s, 'o> {
@@ -192,7 +213,15 @@ impl<'s, 'o> ClauseReader<'s, 'o> {
             ops,
             pos: 0,
             done: false,
+            max_depth: MAX_DEPTH,
         }
+    }
+
+    /// Refuses clauses nested more than `max_depth` levels (at most
+    /// [`MAX_DEPTH`]): the error is [`SyntaxError::is_too_deep`].
+    pub fn with_max_depth(mut self, max_depth: usize) -> Self {
+        self.max_depth = max_depth.clamp(1, MAX_DEPTH);
+        self
     }
 
     /// Byte offset where the next clause starts.
@@ -212,6 +241,7 @@ impl<'s, 'o> ClauseReader<'s, 'o> {
                 return Some(Err(*e));
             }
         };
+        parser.max_depth = self.max_depth;
         if parser.tok.kind == TokKind::Eof {
             self.done = true;
             return None;
@@ -336,6 +366,8 @@ struct Parser<'s, 'o> {
     last_end: usize,
     /// Whether the token before `tok` was a `,` (for "trailing comma" help).
     comma_before_tok: bool,
+    /// Deepest nesting allowed ([`MAX_DEPTH`] for source files).
+    max_depth: usize,
 }
 
 /// Errors are boxed inside the parser so that its recursive frames stay small.
@@ -414,6 +446,7 @@ impl<'s, 'o> Parser<'s, 'o> {
             scratch: Vec::new(),
             last_end: pos,
             comma_before_tok: false,
+            max_depth: MAX_DEPTH,
         })
     }
 
@@ -552,6 +585,13 @@ impl<'s, 'o> Parser<'s, 'o> {
         e
     }
 
+    fn too_deep(&self) -> SyntaxError {
+        SyntaxError::new(
+            self.tok.span,
+            format!("{TOO_DEEP} (more than {} levels)", self.max_depth),
+        )
+    }
+
     fn lexer_prev_was_comma(&self) -> bool {
         self.comma_before_tok
     }
@@ -580,11 +620,8 @@ impl<'s, 'o> Parser<'s, 'o> {
                         start = false;
                     }
                     Step::Push(max, ctx, cont) => {
-                        if levels.len() >= MAX_DEPTH {
-                            return Err(Box::new(SyntaxError::new(
-                                self.tok.span,
-                                format!("term nested too deeply (more than {MAX_DEPTH} levels)"),
-                            )));
+                        if levels.len() >= self.max_depth {
+                            return Err(Box::new(self.too_deep()));
                         }
                         levels.push(Level { max, ctx, cont });
                         continue;
@@ -596,11 +633,8 @@ impl<'s, 'o> Parser<'s, 'o> {
                 match step {
                     Step::Done(t, p) => (left, left_prio) = (t, p),
                     Step::Push(max, ctx, cont) => {
-                        if levels.len() >= MAX_DEPTH {
-                            return Err(Box::new(SyntaxError::new(
-                                self.tok.span,
-                                format!("term nested too deeply (more than {MAX_DEPTH} levels)"),
-                            )));
+                        if levels.len() >= self.max_depth {
+                            return Err(Box::new(self.too_deep()));
                         }
                         levels.push(Level { max, ctx, cont });
                         start = true;
@@ -1021,6 +1055,8 @@ mod tests {
         assert_eq!(rt("1_000_ 000"), "1000000");
         assert_eq!(rt("'\\e\\0\\'"), "'\\u001B\\u0000'");
         assert_eq!(rt("'\\u00e9\\U0001F600'"), "'é😀'");
+        // SWI-Prolog's `\c` skips the layout after it (the original's init.pl).
+        assert_eq!(rt("'ab\\c\n    cd'"), "abcd");
         assert_eq!(rt("[](a)"), "[](a)");
         assert_eq!(rt("{}(a)"), "{a}");
         // Found by proptest: an atom starting with `/*` must be quoted.

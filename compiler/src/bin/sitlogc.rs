@@ -45,6 +45,10 @@ enum Command {
         /// Do not print warnings.
         #[arg(long, short)]
         quiet: bool,
+        /// The original's rules, as `run --legacy` applies them: a DM
+        /// defined twice identically is a warning (W0203), not an error.
+        #[arg(long)]
+        legacy: bool,
     },
     /// Run an application: on its simulated world, or in test mode.
     ///
@@ -68,6 +72,23 @@ enum Command {
         /// stops the task with a run-time error. For legacy applications.
         #[arg(long)]
         allow_unresolved: bool,
+        /// Run an application written for the original interpreter
+        /// unmodified, from the original's tree: load the Prolog files its
+        /// `src/init.pl` consults from `$SITLOG_HOME` (KB services, parser,
+        /// cognitive model, diagnosis, decision, planning) before the
+        /// application's own; a DM defined twice identically is a warning
+        /// (the first is used); implies --allow-unresolved.
+        #[arg(long)]
+        legacy: bool,
+        /// The original's tree for --legacy (default: $SITLOG_HOME, else
+        /// the nearest directory above APP that has src/init.pl).
+        #[arg(long, value_name = "DIR", requires = "legacy")]
+        sitlog_home: Option<PathBuf>,
+        /// With --legacy: `prolog` runs the original's KB layer as it is;
+        /// `native` serves its KB services, updates, loads and saves from
+        /// our KB (sitlog-kb), the KB being a handle.
+        #[arg(long, value_enum, value_name = "HOW", requires = "legacy", default_value_t = LegacyKb::Prolog)]
+        legacy_kb: LegacyKb,
     },
     /// Compile an application to one executable.
     ///
@@ -145,6 +166,17 @@ enum Command {
         #[arg(value_name = "QUERY", allow_hyphen_values = true)]
         query: String,
     },
+    /// A language server (LSP, JSON-RPC on stdin/stdout) for editors: the
+    /// diagnostics of `check` as you type, go to the definition of a DM,
+    /// situation, global, basic action or user function, and hovers.
+    /// Point your editor's LSP client at `sitlogc lsp` for `*.dm` files.
+    Lsp,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum LegacyKb {
+    Prolog,
+    Native,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -199,18 +231,38 @@ fn run(cli: Cli) -> u8 {
             format,
             deny_warnings,
             quiet,
-        } => check(&paths, format, deny_warnings, quiet),
+            legacy,
+        } => check(&paths, format, deny_warnings, quiet, legacy),
         Command::Run {
             app,
             run,
             allow_unresolved,
-        } => run_app(&app, &run, allow_unresolved),
+            legacy,
+            sitlog_home,
+            legacy_kb,
+        } => {
+            let legacy = legacy.then_some(sitlog_home);
+            run_app(
+                &app,
+                &run,
+                allow_unresolved,
+                legacy.as_ref().map(|h| h.as_deref()),
+                legacy_kb == LegacyKb::Native,
+            )
+        }
         Command::Build {
             app,
             output,
             release,
             emit,
         } => build_app(&app, output, release, emit),
+        Command::Lsp => match sitlog_lsp::run_stdio(&sitlog_compiler::analysis::Analysis) {
+            Ok(()) => 0,
+            Err(e) => {
+                eprintln!("error: sitlogc lsp: {e}");
+                2
+            }
+        },
         Command::Graph {
             app,
             output,
@@ -224,15 +276,26 @@ fn run(cli: Cli) -> u8 {
             updates,
             query,
         } => match sitlog_kb::cli(&file, &updates, &query) {
-            Ok(line) => {
-                println!("{line}");
-                0
-            }
+            Ok(line) => write_stdout(&format!("{line}\n"), "the answer"),
             Err(e) => {
                 eprintln!("{e}");
                 1
             }
         },
+    }
+}
+
+/// Writes `text` to stdout: 0, or 2 with a message naming `what` when it
+/// cannot be written (a closed pipe, as `| head` makes, is quiet: 0).
+fn write_stdout(text: &str, what: &str) -> u8 {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        Ok(()) => 0,
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => 0,
+        Err(e) => {
+            eprintln!("error: cannot write {what} to stdout: {e}");
+            2
+        }
     }
 }
 
@@ -242,11 +305,20 @@ fn checked_ir(app: &std::path::Path) -> Result<sitlog_compiler::ir::Ir, u8> {
 }
 
 fn checked_ir_with(app: &std::path::Path, lenient: bool) -> Result<sitlog_compiler::ir::Ir, u8> {
-    let loaded = if lenient {
-        sitlog_compiler::check_path_lenient(app)
-    } else {
-        sitlog_compiler::check_path(app)
-    };
+    checked_ir_opts(
+        app,
+        sitlog_compiler::check::CheckOptions {
+            unresolved_as_warnings: lenient,
+            legacy: false,
+        },
+    )
+}
+
+fn checked_ir_opts(
+    app: &std::path::Path,
+    options: sitlog_compiler::check::CheckOptions,
+) -> Result<sitlog_compiler::ir::Ir, u8> {
+    let loaded = sitlog_compiler::check_path_opts(app, options);
     let (result, diags) = match loaded {
         Ok(r) => r,
         Err(e) => {
@@ -259,7 +331,10 @@ fn checked_ir_with(app: &std::path::Path, lenient: bool) -> Result<sitlog_compil
         Ok(c) => &c.program().sources,
         Err(p) => &p.sources,
     };
-    for d in diags.iter().filter(|d| d.is_error()) {
+    for d in diags.iter().filter(|d| {
+        d.is_error()
+            || (options.legacy && d.code == sitlog_compiler::check::codes::DUPLICATE_DM_IDENTICAL)
+    }) {
         eprint!("{}", diag::render_human(d, program_sources, color));
     }
     match result {
@@ -388,10 +463,7 @@ fn build_app(
                     2
                 }
             },
-            None => {
-                print!("{text}");
-                0
-            }
+            None => write_stdout(&text, "the generated code"),
         };
     }
     let output = output.unwrap_or_else(|| PathBuf::from(build::app_name(app)));
@@ -412,25 +484,86 @@ fn build_app(
     }
 }
 
-fn run_app(app: &std::path::Path, args: &sitlog_robot::cli::RunArgs, allow_unresolved: bool) -> u8 {
-    let ir = match checked_ir_with(app, allow_unresolved) {
+/// `legacy`: `Some(--sitlog-home)` under `--legacy`.
+fn run_app(
+    app: &std::path::Path,
+    args: &sitlog_robot::cli::RunArgs,
+    allow_unresolved: bool,
+    legacy: Option<Option<&std::path::Path>>,
+    native_kb: bool,
+) -> u8 {
+    // The legacy profile: the original's Prolog layer from SITLOG_HOME.
+    #[cfg(feature = "prolog")]
+    let mut before: Vec<sitlog_runtime::prolog::PrologSource> = Vec::new();
+    if let Some(explicit) = legacy {
+        use sitlog_compiler::legacy;
+        let files = legacy::find_home(app, explicit)
+            .and_then(|home| legacy::init_consults(&home).map(|f| (home, f)));
+        let (home, files) = match files {
+            Ok(x) => x,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return 2;
+            }
+        };
+        #[cfg(feature = "prolog")]
+        {
+            use sitlog_runtime::prolog::PrologSource;
+            // getenv('SITLOG_HOME', H) as the original's launchers set it
+            // (with a trailing `/`).
+            let value = std::env::var("SITLOG_HOME")
+                .ok()
+                .filter(|v| !v.is_empty())
+                .unwrap_or_else(|| format!("{}/", home.display()));
+            let mut fact = String::from("'$sitlog_env'('SITLOG_HOME', ");
+            sitlog_syntax::write::write_atom(&mut fact, sitlog_syntax::Atom::intern(&value), true);
+            fact.push_str(").\n");
+            before.push(PrologSource::new("<legacy environment>", fact));
+            for f in &files {
+                match PrologSource::from_path(f) {
+                    Ok(s) => before.push(s),
+                    Err(e) => {
+                        eprintln!("error: --legacy: cannot read {}: {e}", f.display());
+                        return 2;
+                    }
+                }
+            }
+        }
+        #[cfg(not(feature = "prolog"))]
+        {
+            let _ = (home, files);
+            eprintln!("error: --legacy needs the Prolog engine (feature `prolog`)");
+            return 2;
+        }
+    }
+    let ir = match checked_ir_opts(
+        app,
+        sitlog_compiler::check::CheckOptions {
+            unresolved_as_warnings: allow_unresolved || legacy.is_some(),
+            legacy: legacy.is_some(),
+        },
+    ) {
         Ok(ir) => ir,
         Err(code) => return code,
     };
     let mut assets = match sitlog_robot::Assets::from_app(app) {
         Ok(a) => a,
         Err(e) => {
-            eprintln!("error: {e}");
-            return 2;
+            eprintln!("{e}");
+            return e.status;
         }
     };
     #[allow(unused_mut)]
     let mut functions = sitlog_runtime::Functions::standard();
     // The application's user_functions.pl and templates.pl (feature `prolog`).
     #[cfg(feature = "prolog")]
-    if let Err(errors) =
-        sitlog_compiler::run::install_prolog(&ir, &mut functions, Default::default())
-    {
+    if let Err(errors) = sitlog_compiler::run::install_prolog_with(
+        &ir,
+        &mut functions,
+        Default::default(),
+        before,
+        native_kb.then(sitlog_compiler::legacy::native_kb),
+    ) {
         for e in errors {
             eprintln!("error: {e}");
         }
@@ -454,7 +587,7 @@ fn run_app(app: &std::path::Path, args: &sitlog_robot::cli::RunArgs, allow_unres
     sitlog_robot::execute(&ir, functions, args, &assets)
 }
 
-fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool) -> u8 {
+fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, legacy: bool) -> u8 {
     let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
     let mut errors = 0usize;
     let mut warnings = 0usize;
@@ -478,7 +611,11 @@ fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool) ->
         }
     }
     for path in &programs {
-        let (result, diags) = match sitlog_compiler::check_path(path) {
+        let options = sitlog_compiler::check::CheckOptions {
+            unresolved_as_warnings: false,
+            legacy,
+        };
+        let (result, diags) = match sitlog_compiler::check_path_opts(path, options) {
             Ok(r) => r,
             Err(e) => {
                 eprintln!("error: cannot read {e}");
@@ -501,9 +638,20 @@ fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool) ->
             match format {
                 Format::Human => eprint!("{}", diag::render_human(d, &program.sources, color)),
                 Format::Json => {
-                    let _ = writeln!(out, "{}", diag::render_json(d, &program.sources));
+                    if let Err(e) = writeln!(out, "{}", diag::render_json(d, &program.sources)) {
+                        if e.kind() != std::io::ErrorKind::BrokenPipe && !io_failed {
+                            eprintln!("error: cannot write the diagnostics to stdout: {e}");
+                        }
+                        io_failed |= e.kind() != std::io::ErrorKind::BrokenPipe;
+                    }
                 }
             }
+        }
+    }
+    if let Err(e) = out.flush() {
+        if e.kind() != std::io::ErrorKind::BrokenPipe {
+            eprintln!("error: cannot write the diagnostics to stdout: {e}");
+            io_failed = true;
         }
     }
     if format == Format::Human {

@@ -1,0 +1,186 @@
+//! Interrupts of a task run: SIGINT and SIGTERM stop the machine at its
+//! next transition boundary (the run's [`Options::stop`] flag), so the
+//! runner can still print the history, close the trace and exit with
+//! 130 (SIGINT) or 143 (SIGTERM). A second SIGINT or SIGTERM ends the
+//! process at once with that status.
+//!
+//! Invariant: the handler only sets atomics (signal-hook's iterator runs it
+//! on a thread of its own, not in the signal handler); everything else is
+//! done by the run's thread when it sees the flag.
+//!
+//! [`Options::stop`]: sitlog_runtime::machine::Options::stop
+
+use std::io::{self, BufRead, Read};
+use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
+use std::sync::mpsc;
+use std::sync::Arc;
+use std::time::Duration;
+
+/// Exit status of a run stopped by SIGINT.
+pub const EXIT_SIGINT: u8 = 130;
+/// Exit status of a run stopped by SIGTERM.
+pub const EXIT_SIGTERM: u8 = 143;
+
+/// The stop flag of a run and the signal that set it.
+#[derive(Clone, Default)]
+pub struct Interrupt {
+    pub flag: Arc<AtomicBool>,
+    signal: Arc<AtomicI32>,
+}
+
+impl Interrupt {
+    /// A flag nothing sets (until [`Interrupt::request`]).
+    pub fn new() -> Interrupt {
+        Interrupt::default()
+    }
+
+    /// Watches SIGINT and SIGTERM for this process (unix); elsewhere, a flag
+    /// nothing sets.
+    pub fn install() -> Interrupt {
+        let me = Interrupt::new();
+        #[cfg(unix)]
+        {
+            use signal_hook::consts::{SIGINT, SIGTERM};
+            if let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM]) {
+                let watch = me.clone();
+                let _ = std::thread::Builder::new()
+                    .name("sitlog-signals".into())
+                    .spawn(move || {
+                        for sig in signals.forever() {
+                            if watch.flag.load(Ordering::SeqCst) {
+                                // The second one: end now.
+                                std::process::exit(i32::from(status_of(sig)));
+                            }
+                            watch.request(sig);
+                        }
+                    });
+            }
+        }
+        me
+    }
+
+    /// Asks the run to stop, as signal `signal` would.
+    pub fn request(&self, signal: i32) {
+        self.signal.store(signal, Ordering::SeqCst);
+        self.flag.store(true, Ordering::SeqCst);
+    }
+
+    /// Whether a stop was asked for.
+    pub fn requested(&self) -> bool {
+        self.flag.load(Ordering::SeqCst)
+    }
+
+    /// The exit status for the signal that stopped the run (130 for
+    /// SIGINT, 143 for SIGTERM), `None` if none did.
+    pub fn exit_status(&self) -> Option<u8> {
+        self.requested()
+            .then(|| status_of(self.signal.load(Ordering::SeqCst)))
+    }
+}
+
+/// 128 + the signal number, as shells report it (SIGINT 130, SIGTERM 143).
+fn status_of(signal: i32) -> u8 {
+    u8::try_from(128 + signal.clamp(0, 127)).unwrap_or(EXIT_SIGINT)
+}
+
+/// Standard input read on a thread of its own, so that a reader blocked at
+/// the prompt sees an interrupt: reading fails with the error "interrupted"
+/// once the flag is set.
+pub struct InterruptibleStdin {
+    rx: mpsc::Receiver<io::Result<Vec<u8>>>,
+    buf: Vec<u8>,
+    pos: usize,
+    eof: bool,
+    flag: Arc<AtomicBool>,
+}
+
+impl InterruptibleStdin {
+    pub fn new(flag: Arc<AtomicBool>) -> InterruptibleStdin {
+        let (tx, rx) = mpsc::sync_channel(1);
+        let _ = std::thread::Builder::new()
+            .name("sitlog-stdin".into())
+            .spawn(move || {
+                let stdin = io::stdin();
+                let mut lock = stdin.lock();
+                loop {
+                    let mut line = Vec::new();
+                    match lock.read_until(b'\n', &mut line) {
+                        Ok(0) => {
+                            let _ = tx.send(Ok(Vec::new()));
+                            return;
+                        }
+                        Ok(_) => {
+                            if tx.send(Ok(line)).is_err() {
+                                return;
+                            }
+                        }
+                        Err(e) => {
+                            let _ = tx.send(Err(e));
+                            return;
+                        }
+                    }
+                }
+            });
+        InterruptibleStdin {
+            rx,
+            buf: Vec::new(),
+            pos: 0,
+            eof: false,
+            flag,
+        }
+    }
+}
+
+impl Read for InterruptibleStdin {
+    fn read(&mut self, out: &mut [u8]) -> io::Result<usize> {
+        let n = {
+            let available = self.fill_buf()?;
+            let n = available.len().min(out.len());
+            out[..n].copy_from_slice(&available[..n]);
+            n
+        };
+        self.consume(n);
+        Ok(n)
+    }
+}
+
+impl BufRead for InterruptibleStdin {
+    fn fill_buf(&mut self) -> io::Result<&[u8]> {
+        while self.pos >= self.buf.len() && !self.eof {
+            if self.flag.load(Ordering::SeqCst) {
+                // Not `ErrorKind::Interrupted`: std's readers retry on that.
+                return Err(io::Error::other("interrupted"));
+            }
+            match self.rx.recv_timeout(Duration::from_millis(50)) {
+                Ok(Ok(line)) if line.is_empty() => self.eof = true,
+                Ok(Ok(line)) => {
+                    self.buf = line;
+                    self.pos = 0;
+                }
+                Ok(Err(e)) => return Err(e),
+                Err(mpsc::RecvTimeoutError::Timeout) => {}
+                Err(mpsc::RecvTimeoutError::Disconnected) => self.eof = true,
+            }
+        }
+        Ok(&self.buf[self.pos.min(self.buf.len())..])
+    }
+
+    fn consume(&mut self, n: usize) {
+        self.pos = (self.pos + n).min(self.buf.len());
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn statuses() {
+        let i = Interrupt::new();
+        assert_eq!(i.exit_status(), None);
+        i.request(2);
+        assert_eq!(i.exit_status(), Some(EXIT_SIGINT));
+        i.request(15);
+        assert_eq!(i.exit_status(), Some(EXIT_SIGTERM));
+    }
+}

@@ -1,0 +1,115 @@
+//! Running a scenario application (`dms/apps/*`) on its simulated world,
+//! as `sitlogc run APP --format json` does, with the world and the KB given
+//! as text (tests change them), on the interpreter or on generated code.
+//! Shared by `tests/tests/{home,supermarket}.rs` and the scenario bench.
+
+use sitlog_robot::cli::{execute_with, Format, RunArgs, Streams};
+use sitlog_robot::console::SharedBuf;
+use sitlog_robot::{Assets, Source};
+use sitlog_runtime::cli::App;
+use sitlog_runtime::Functions;
+use std::path::Path;
+
+/// What a run printed and returned.
+pub struct Run {
+    /// The conversation and narration (stderr with `--format json`).
+    pub transcript: String,
+    /// The JSON report.
+    pub report: serde_json::Value,
+    pub code: u8,
+}
+
+/// The application's assets with `world` and, if given, `kb` in place of
+/// its files.
+pub fn assets(app: &Path, world: &str, kb: Option<&str>) -> Assets {
+    let mut assets = Assets::from_app(app).expect("the app's world and KB are readable");
+    assets.world = Some(Source {
+        name: "world.toml".into(),
+        text: world.to_owned(),
+    });
+    if let Some(kb) = kb {
+        assets.kb = Some(Source {
+            name: "knowledge.kb".into(),
+            text: kb.to_owned(),
+        });
+    }
+    assets
+}
+
+/// Runs `program` with `functions` on `assets`, JSON report.
+pub fn execute<A: App>(program: &A, functions: Functions, assets: &Assets) -> Run {
+    let args = RunArgs {
+        format: Format::Json,
+        ..RunArgs::default()
+    };
+    let (out, err) = (SharedBuf::default(), SharedBuf::default());
+    let streams = Streams {
+        stdout: Box::new(out.clone()),
+        stderr: Box::new(err.clone()),
+        stdout_is_terminal: false,
+        stderr_is_terminal: false,
+        observer: None,
+    };
+    let code = execute_with(program, functions, &args, assets, streams);
+    let report = serde_json::from_str(out.text().trim())
+        .unwrap_or_else(|e| panic!("not one JSON object ({e}): {}", out.text()));
+    Run {
+        transcript: err.text(),
+        report,
+        code,
+    }
+}
+
+/// The checked IR of `app` and its standard and Prolog functions: what the
+/// interpreter runs.
+pub fn interpreter(app: &Path) -> (sitlog_compiler::ir::Ir, Functions) {
+    let (result, diags) = sitlog_compiler::check_path(app).expect("the app is readable");
+    let checked = result.unwrap_or_else(|_| panic!("{} does not check: {diags:?}", app.display()));
+    let ir = sitlog_compiler::ir::lower(&checked);
+    let mut functions = Functions::standard();
+    sitlog_compiler::run::install_prolog(&ir, &mut functions, Default::default())
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    (ir, functions)
+}
+
+/// Runs on both back ends (the interpreter, and `compiled` with
+/// `functions`); they must print the same transcript and report, and the
+/// run must end `ok`. The transcript.
+pub fn both<A: App>(
+    app: &Path,
+    compiled: &A,
+    compiled_functions: Functions,
+    world: &str,
+    kb: Option<&str>,
+) -> String {
+    let assets = assets(app, world, kb);
+    let (ir, functions) = interpreter(app);
+    let a = execute(&ir, functions, &assets);
+    let b = execute(compiled, compiled_functions, &assets);
+    assert_eq!(
+        a.transcript, b.transcript,
+        "interpreted and compiled transcripts differ"
+    );
+    assert_eq!(
+        crate::compiled::canonical_vars(&a.report),
+        crate::compiled::canonical_vars(&b.report),
+        "interpreted and compiled reports differ"
+    );
+    assert_eq!(
+        a.report["status"], "ok",
+        "{}\n{}",
+        a.transcript, a.report["error"]
+    );
+    assert_eq!(a.code, 0);
+    a.transcript
+}
+
+/// `text` with each `(from, to)` replaced once (each must be there).
+pub fn edit(text: &str, edits: &[(&str, &str)]) -> String {
+    let mut w = text.to_owned();
+    for (from, to) in edits {
+        assert!(w.contains(from), "no `{from}` to replace");
+        w = w.replacen(from, to, 1);
+    }
+    w
+}
