@@ -346,3 +346,66 @@ impl<W: Write> Actions for TextActions<W> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod limit_tests {
+    use super::*;
+
+    fn first(p: &mut dyn Perception) -> Result<Perceived, String> {
+        let mut store = Store::new();
+        let ty = Term::atom(Atom::intern("listening"));
+        p.perceive(&mut store, ty, &[])
+    }
+
+    #[test]
+    fn scripts_obey_the_input_limits_with_positions() {
+        let limits = InputLimits {
+            max_bytes: 20,
+            max_depth: 5,
+        };
+        let script =
+            |text: &str| ScriptPerception::new("s.txt", text.to_owned()).with_limits(limits);
+        assert!(matches!(
+            first(&mut script("% c\nf(a).\n")),
+            Ok(Perceived::Input(_))
+        ));
+        let e = first(&mut script("ok.\n")).map(|_| ());
+        assert!(e.is_ok());
+        let long = format!("\n  [{}].\n", "1,".repeat(20) + "1");
+        let e = first(&mut script(&long)).unwrap_err();
+        assert!(
+            e.starts_with("s.txt:2:3: the input is longer than 20 bytes"),
+            "{e}"
+        );
+        assert!(e.contains("--max-input-bytes"), "{e}");
+        let e = first(&mut script("f(f(f(f(f(f(a)))))).")).unwrap_err();
+        assert!(e.contains("nested more than 5 levels deep"), "{e}");
+        assert!(e.contains("--max-input-depth"), "{e}");
+        // Exactly at the limit is fine.
+        assert!(first(&mut script("f(f(f(f(a)))).")).is_ok());
+        let e = ScriptPerception::from_bytes("s.txt", b"a.\n\xc3(".to_vec())
+            .err()
+            .unwrap();
+        assert!(e.contains("s.txt:2:1"), "{e}");
+    }
+
+    #[test]
+    fn typed_input_obeys_the_limits_and_names_bad_bytes() {
+        let limits = InputLimits {
+            max_bytes: 10,
+            max_depth: 3,
+        };
+        let mut p = PromptPerception::new(&b"[1,2,3,4,5,6,7].\n"[..]).with_limits(limits);
+        let e = first(&mut p).unwrap_err();
+        assert!(e.contains("longer than 10 bytes"), "{e}");
+        let mut p = PromptPerception::new(&b"f(g(h(i(j)))).\n"[..]).with_limits(InputLimits {
+            max_bytes: 100,
+            max_depth: 3,
+        });
+        assert!(first(&mut p).unwrap_err().contains("nested more than 3"));
+        let mut p = PromptPerception::new(&b"ok.\nab \xff.\n"[..]).with_limits(limits);
+        assert!(first(&mut p).is_ok());
+        let e = first(&mut p).unwrap_err();
+        assert!(e.starts_with("standard input:2:4:"), "{e}");
+    }
+}

@@ -2,7 +2,9 @@
 //! robot. A robot with a camera and two hands, a user who talks and walks
 //! about, places joined by routes, shelves with objects on them, walls, and
 //! faults to test recovery. It knows nothing of SitLog: a bridge maps a
-//! robot program's actions and perceptions onto [`Sim`].
+//! robot program's actions and perceptions onto [`Sim`]. (It uses
+//! `sitlog-syntax` only for `decode`, the one place where every reader of
+//! sitlog-rs turns bytes into text.)
 //!
 //! What this crate owns and keeps:
 //! - [`World`] (module `world`): the world file, read with every error
