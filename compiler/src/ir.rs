@@ -55,6 +55,8 @@ pub struct IrDm {
     pub situations: Vec<IrSituation>,
     /// Local variables and their default values (templates).
     pub locals: Vec<(Atom, Term)>,
+    /// Source names of the clause's variables (store variable index, name).
+    pub var_names: Vec<(u32, String)>,
 }
 
 #[derive(Debug)]
@@ -139,6 +141,14 @@ pub fn lower(checked: &Checked) -> Ir {
             .iter()
             .map(|l| (l.name, import(&mut store, l.value)))
             .collect();
+        let var_names = slots
+            .iter()
+            .zip(&clause.vars)
+            .filter_map(|(slot, info)| match store.value((*slot)?) {
+                sitlog_runtime::Value::Var(v) => Some((v.index(), info.name.to_string())),
+                _ => None,
+            })
+            .collect();
         by_name.entry(dm.name).or_insert(dms.len() as DmIx);
         dms.push(IrDm {
             name: dm.name,
@@ -146,6 +156,7 @@ pub fn lower(checked: &Checked) -> Ir {
             head,
             situations,
             locals,
+            var_names,
         });
     }
     let mut globals: Vec<(Atom, Term)> = Vec::new();

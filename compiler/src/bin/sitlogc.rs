@@ -91,6 +91,10 @@ enum Command {
         /// `rust`: only write the generated code.
         #[arg(long, value_enum)]
         emit: Option<Emit>,
+        /// Print what type inference found (which variables and situations
+        /// run on native values, and why the others stay terms) and stop.
+        #[arg(long)]
+        explain_types: bool,
     },
     /// Ask a knowledge base one question (for people exploring a KB).
     ///
@@ -169,7 +173,14 @@ fn run(cli: Cli) -> u8 {
             output,
             release,
             emit,
-        } => build_app(&app, output, release, emit),
+            explain_types,
+        } => {
+            if explain_types {
+                explain_types_of(&app)
+            } else {
+                build_app(&app, output, release, emit)
+            }
+        }
         Command::Kb {
             file,
             updates,
@@ -220,6 +231,17 @@ fn checked_ir_with(app: &std::path::Path, lenient: bool) -> Result<sitlog_compil
             eprintln!("error: the application has {n} error(s); run `sitlogc check` for details");
             Err(1)
         }
+    }
+}
+
+fn explain_types_of(app: &std::path::Path) -> u8 {
+    match checked_ir(app) {
+        Ok(ir) => {
+            let types = sitlog_compiler::types::infer(&ir);
+            print!("{}", sitlog_compiler::types::explain(&ir, &types));
+            0
+        }
+        Err(code) => code,
     }
 }
 
