@@ -79,7 +79,7 @@ impl Ty {
             }
             (Ty::Shape(f, a), Ty::Shape(g, b)) if f == g && a.len() == b.len() => {
                 let args: Vec<Ty> = a.iter().zip(b).map(|(x, y)| x.join(y)).collect();
-                if args.iter().any(|t| *t == Ty::Term) {
+                if args.contains(&Ty::Term) {
                     Ty::Term
                 } else {
                     Ty::Shape(*f, args)
@@ -109,7 +109,7 @@ impl Ty {
                     .iter()
                     .map(|&a| Self::of_ground_at(store, a, depth + 1))
                     .collect();
-                if args.iter().any(|t| *t == Ty::Term) {
+                if args.contains(&Ty::Term) {
                     Ty::Term
                 } else {
                     Ty::Shape(name, args)
@@ -334,6 +334,26 @@ impl TSit {
         }
     }
 
+    /// The constant terms the plan uses (expectations, actions, elements, set values).
+    pub fn constants(&self, out: &mut Vec<Term>) {
+        if let TSit::Perceptual { arcs, .. } = self {
+            for arc in arcs {
+                out.push(arc.expectation);
+                match &arc.action {
+                    TAction::Const(c) => out.push(*c),
+                    TAction::List(items) => {
+                        for it in items {
+                            match it {
+                                TItem::Const(c) | TItem::Set { value: c, .. } => out.push(*c),
+                                _ => {}
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     fn locals_used(&self, out: &mut Vec<usize>) {
         if let TSit::Perceptual { arcs, .. } = self {
             for arc in arcs {
@@ -484,7 +504,7 @@ fn writes_of(store: &Store, dm: &IrDm, name: Atom) -> Vec<Write> {
                         Some(_) => {}
                         None => out.push(Write::Opaque(format!(
                             "`{}` names its variable at run time",
-                            store.writeq(t)
+                            show(store, dm, t)
                         ))),
                     }
                 }
@@ -592,12 +612,16 @@ fn infer_dm(ir: &Ir, dm: &IrDm) -> DmTypes {
         .enumerate()
         .map(|(i, v)| {
             v.map(|v| {
-                let ty = match &cx.params[i] {
-                    Ty::None => Ty::Term,
-                    t => t.clone(),
+                let (ty, why) = match &cx.params[i] {
+                    Ty::None => (Ty::Term, "not used by typed code".to_owned()),
+                    Ty::Term => (
+                        Ty::Term,
+                        "compared both as an int and as a float".to_owned(),
+                    ),
+                    t => (t.clone(), String::new()),
                 };
                 let why = match ty {
-                    Ty::Term => "not used by typed code".to_owned(),
+                    Ty::Term => why,
                     _ => format!("compared with {} in typed code; checked on entry", an(&ty)),
                 };
                 VarTy {
@@ -659,7 +683,7 @@ impl DmCx<'_> {
             (DIAG_MOD, "diag_mod"),
         ] {
             if self.present(f[i]) {
-                return Err(format!("it has `{what}` (runs on terms)"));
+                return Err(format!("it has `{what}`"));
             }
         }
         match s.kind {
@@ -1003,4 +1027,172 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{check, ir, load};
+
+    fn ir_of(src: &str) -> Ir {
+        let (program, diags) = load::load_sources(&[("t.dm", src)]);
+        let (result, diags) = check::check(program, diags);
+        let checked = result.unwrap_or_else(|_| panic!("does not check: {diags:#?}"));
+        ir::lower(&checked)
+    }
+
+    fn atoms(names: &[&str]) -> Ty {
+        Ty::Atoms(names.iter().map(|n| Atom::intern(n)).collect())
+    }
+
+    #[test]
+    fn the_lattice_joins() {
+        assert_eq!(Ty::Int.join(&Ty::Int), Ty::Int);
+        assert_eq!(Ty::None.join(&Ty::Float), Ty::Float);
+        assert_eq!(Ty::Int.join(&Ty::Float), Ty::Term);
+        assert_eq!(atoms(&["b"]).join(&atoms(&["a", "b"])), atoms(&["a", "b"]));
+        assert_eq!(atoms(&["a"]).join(&Ty::Int), Ty::Term);
+        let pos = |x: Ty| Ty::Shape(Atom::intern("pos"), vec![x, Ty::Float]);
+        assert_eq!(
+            pos(atoms(&["a"])).join(&pos(atoms(&["b"]))),
+            pos(atoms(&["a", "b"]))
+        );
+        assert_eq!(pos(Ty::Int).join(&pos(Ty::Float)), Ty::Term);
+        let many: Vec<Ty> = (0..=MAX_ATOMS)
+            .map(|i| atoms(&[&format!("a{i}")]))
+            .collect();
+        let joined = many.iter().fold(Ty::None, |t, u| t.join(u));
+        assert_eq!(joined, Ty::Term, "more atoms than MAX_ATOMS stay a term");
+        assert_eq!(format!("{}", pos(atoms(&["b", "a"]))), "pos({b, a}, float)");
+    }
+
+    #[test]
+    fn ground_terms_have_shapes() {
+        let mut store = Store::new();
+        let t = store.parse("p(1, 2.0, x, [a])").unwrap().0;
+        assert_eq!(
+            format!("{}", Ty::of_ground(&store, t)),
+            "p(int, float, {x}, [{a} | {[]}])"
+        );
+        let v = store.parse("p(X)").unwrap().0;
+        assert_eq!(Ty::of_ground(&store, v), Ty::Term);
+        let big = store.parse("123456789012345678901234567890").unwrap().0;
+        assert_eq!(Ty::of_ground(&store, big), Ty::Term);
+    }
+
+    const LOOP: &str = r#"
+diag_mod(main(Max),
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : [inc(n, N), set(mode, busy)] => (N >= Max -> fs ; otherwise -> is) ] ],
+    [ id ==> fs, type ==> final ] ],
+  [ n ==> 0, mode ==> idle, f ==> 1.5, p ==> pos(1, 2), l ==> [], x ==> _ ]).
+"#;
+
+    #[test]
+    fn locals_parameters_and_situations_are_typed() {
+        let ir = ir_of(LOOP);
+        let t = infer(&ir);
+        let dm = &t.dms[0];
+        let ty = |n: &str| &dm.locals.iter().find(|l| l.name == n).unwrap().ty;
+        assert_eq!(*ty("n"), Ty::Int);
+        assert_eq!(*ty("mode"), atoms(&["busy", "idle"]));
+        assert_eq!(*ty("f"), Ty::Float);
+        assert_eq!(format!("{}", ty("p")), "pos(int, int)");
+        assert_eq!(*ty("x"), Ty::Term);
+        assert_eq!(dm.params[0].as_ref().unwrap().ty, Ty::Int);
+        assert_eq!(dm.params[0].as_ref().unwrap().name, "Max");
+        let Ok(TSit::Perceptual {
+            always_first, arcs, ..
+        }) = &dm.situations[0]
+        else {
+            panic!("`is` is typed: {:?}", dm.situations[0]);
+        };
+        assert!(*always_first);
+        assert!(matches!(
+            &arcs[0].next,
+            TNext::If {
+                op: ArithCmp::Ge,
+                float: false,
+                a: TVal::Var(_),
+                b: TVal::Param(0),
+                ..
+            }
+        ));
+        assert!(matches!(dm.situations[1], Ok(TSit::Final { .. })));
+        assert_eq!(dm.frame_locals(), vec![0, 1]);
+        assert_eq!(dm.frame_params(), vec![0]);
+    }
+
+    #[test]
+    fn what_stays_a_term_says_why() {
+        let ir = ir_of(
+            r#"
+diag_mod(main,
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : [inc(n, _), set(n, done)] => is2 ] ],
+    [ id ==> is2, type ==> neutral, in_arg ==> X,
+      arcs ==> [ empty : [inc(k, _)] => s(X) ] ],
+    [ id ==> s(_), type ==> neutral,
+      arcs ==> [ empty : [inc(k, K)] => (K > 1.5 -> fs ; otherwise -> is2) ] ],
+    [ id ==> fs, type ==> final ] ],
+  [ n ==> 0, k ==> 0 ]).
+"#,
+        );
+        let t = infer(&ir);
+        let text = explain(&ir, &t);
+        assert!(
+            text.contains("local `n`: term (`set` to `done` (an atom of {done}) besides"),
+            "{text}"
+        );
+        assert!(
+            text.contains("situation `is`: terms (arc 1: local `n` is a term)"),
+            "{text}"
+        );
+        assert!(
+            text.contains("situation `is2`: terms (it has `in_arg`)"),
+            "{text}"
+        );
+        assert!(
+            text.contains("situation `s(_)`: terms (its id `s(_)` is not an atom)"),
+            "{text}"
+        );
+        assert!(
+            text.contains("situation `fs`: terms (no other situation of the DM runs typed)"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn mixed_comparisons_and_opaque_writes() {
+        let ir = ir_of(
+            r#"
+diag_mod(main(P),
+  [ [ id ==> a, type ==> neutral,
+      arcs ==> [ empty : [inc(k, K)] => (K > 1.5 -> b ; otherwise -> a) ] ],
+    [ id ==> b, type ==> neutral,
+      arcs ==> [ empty : [get(k, K)] => (P > K -> c ; otherwise -> b) ] ],
+    [ id ==> c, type ==> neutral,
+      arcs ==> [ empty : [get(f, F)] => (P > F -> fs ; otherwise -> c) ] ],
+    [ id ==> fs, type ==> final, prog ==> [set(V, 1)] ] ],
+  [ k ==> 0, f ==> 0.5 ]).
+"#,
+        );
+        let t = infer(&ir);
+        let text = explain(&ir, &t);
+        assert!(
+            text.contains("situation `a`: terms (arc 1: `K>1.5` compares an int with a float)"),
+            "{text}"
+        );
+        assert!(
+            text.contains(
+                "situation `b`: terms (parameter `P` is compared both as an int and as a float)"
+            ),
+            "{text}"
+        );
+        assert!(
+            text.contains("`set(V,1)` names its variable at run time: checked on load"),
+            "{text}"
+        );
+        assert_eq!(t.dms[0].params[0].as_ref().unwrap().ty, Ty::Term);
+    }
 }

@@ -178,4 +178,9 @@ impl<W: Write> Actions for TextActions<W> {
         let _ = writeln!(self.out, "{line}");
         Ok(())
     }
+
+    /// A number has no functor: nothing to show.
+    fn ignores_numbers(&self) -> bool {
+        true
+    }
 }
