@@ -8,6 +8,11 @@
 //!   inputs (each read and parsed as a term), no history;
 //! - `appendix_a`: the papers' Appendix A example on its script, with history.
 //!
+//! Each program is also compiled `untyped` (every value a term: the code
+//! generator before typed code), so that one run compares both. Sizes 10⁴
+//! and 10⁶ transitions; the counter loop also at 10⁸ (typed code and the
+//! hand-written loop only).
+//!
 //! `cargo bench -p sitlog-benches --bench compiled`; the ratios in the README
 //! come from one such run.
 
@@ -27,6 +32,16 @@ mod pipe_calls {
 }
 mod scripted_loop {
     sitlog_macros::include_dm!("dms/scripted_loop");
+}
+// The same programs with every value a term (the code generator before typed code).
+mod counter_loop_untyped {
+    sitlog_macros::include_dm!("dms/counter_loop", untyped);
+}
+mod pipe_calls_untyped {
+    sitlog_macros::include_dm!("dms/pipe_calls", untyped);
+}
+mod scripted_loop_untyped {
+    sitlog_macros::include_dm!("dms/scripted_loop", untyped);
 }
 mod appendix_a {
     sitlog_macros::include_dm!("../dms/examples/appendix_a");
@@ -178,6 +193,7 @@ fn three_ways(
     name: &str,
     n: u64,
     compiled: &impl cli::App,
+    untyped: &impl cli::App,
     interpreted: &Ir,
     main: &str,
     in_arg: Option<&str>,
@@ -198,6 +214,13 @@ fn three_ways(
     group.throughput(Throughput::Elements(t));
     group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
         b.iter(|| run(compiled, main, in_arg, script, false, Functions::standard()))
+    });
+    assert_eq!(
+        run(untyped, main, in_arg, script, false, Functions::standard()),
+        t
+    );
+    group.bench_with_input(BenchmarkId::new("compiled_untyped", n), &n, |b, _| {
+        b.iter(|| run(untyped, main, in_arg, script, false, Functions::standard()))
     });
     group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
         b.iter(|| {
@@ -222,7 +245,7 @@ fn bench(c: &mut Criterion) {
     let counter_ir = interpreter(&root.join("dms/counter_loop"));
     let pipe_ir = interpreter(&root.join("dms/pipe_calls"));
     let scripted_ir = interpreter(&root.join("dms/scripted_loop"));
-    for n in [10_000u64, 100_000] {
+    for n in [10_000u64, 1_000_000] {
         let main = format!("main({n})");
         let max = n as i64;
         three_ways(
@@ -230,6 +253,7 @@ fn bench(c: &mut Criterion) {
             "counter_loop",
             n,
             counter_loop::program(),
+            counter_loop_untyped::program(),
             &counter_ir,
             &main,
             None,
@@ -241,6 +265,7 @@ fn bench(c: &mut Criterion) {
             "pipe_calls",
             n,
             pipe_calls::program(),
+            pipe_calls_untyped::program(),
             &pipe_ir,
             &main,
             Some("0"),
@@ -253,12 +278,42 @@ fn bench(c: &mut Criterion) {
             "scripted_loop",
             n,
             scripted_loop::program(),
+            scripted_loop_untyped::program(),
             &scripted_ir,
             "main",
             None,
             &script,
             || hand_scripted_loop(black_box(&script)),
         );
+    }
+
+    // 10^8 transitions: typed code and the hand-written loop only (the
+    // others would take minutes per sample).
+    {
+        let n = 100_000_000u64;
+        let main = format!("main({n})");
+        let mut group = c.benchmark_group("counter_loop");
+        group
+            .sample_size(10)
+            .measurement_time(Duration::from_secs(5));
+        group.warm_up_time(Duration::from_secs(1));
+        group.throughput(Throughput::Elements(n + 1));
+        group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
+            b.iter(|| {
+                run(
+                    counter_loop::program(),
+                    &main,
+                    None,
+                    "",
+                    false,
+                    Functions::standard(),
+                )
+            })
+        });
+        group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, _| {
+            b.iter(|| hand_counter_loop(black_box(n as i64)))
+        });
+        group.finish();
     }
 
     let app = root.join("../dms/examples/appendix_a");

@@ -20,6 +20,11 @@
 //!   machine is needed), DM calls as frames on the machine's stack
 //!   ([`step`]); every step is a call on the runtime's `Cx`, so semantics
 //!   stay in the runtime;
+//! - for the situations type inference ([`crate::types`]) gave a typed plan,
+//!   a native `Frame` of the DM and `run_typed`, tried first: typed
+//!   situations run one after the other on `i64`/`f64`/enum values, the
+//!   frame loaded from the machine's variables with a check and written back
+//!   when untyped code or the machine is needed ([`typed`]);
 //! - for every situation, a function building a fresh instance (D-7) for the
 //!   machine's general path (situations with parameters): fresh variables
 //!   first (in the order a `copy_term` of the interpreter's template would
@@ -68,10 +73,30 @@ pub fn generate_file(ir: &Ir, source: &str) -> String {
     format_file(generate(ir, source), source)
 }
 
+/// Choices of the code generator.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Typed code for the situations type inference can type (the
+    /// default); `false` keeps every value a term (to compare, or to rule
+    /// typed code out when chasing a bug).
+    pub typed: bool,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options { typed: true }
+    }
+}
+
 /// Generates the Rust items of a program.
 pub fn generate(ir: &Ir, source: &str) -> TokenStream {
+    generate_with(ir, source, Options::default())
+}
+
+/// [`generate`] with options.
+pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
     let mut g = Gen::new(&ir.store);
-    g.types = Some(crate::types::infer(ir));
+    g.types = options.typed.then(|| crate::types::infer(ir));
     g.collect(ir);
     g.emit(ir, source)
 }

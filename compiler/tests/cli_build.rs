@@ -57,6 +57,7 @@ fn built_executable_runs_like_sitlogc_run() {
     let exe = dir.join("pipe");
     let status = sitlogc()
         .arg("build")
+        .arg("--debug")
         .arg(&app)
         .arg("-o")
         .arg(&exe)

@@ -85,9 +85,13 @@ enum Command {
         /// Where to write the executable (default: the application's name).
         #[arg(short, long, value_name = "FILE")]
         output: Option<PathBuf>,
-        /// Build with optimizations.
-        #[arg(long)]
+        /// Build with optimizations (the default: a shipped task is a
+        /// release build; kept for compatibility).
+        #[arg(long, conflicts_with = "debug")]
         release: bool,
+        /// Build without optimizations (faster to build).
+        #[arg(long)]
+        debug: bool,
         /// `rust`: only write the generated code.
         #[arg(long, value_enum)]
         emit: Option<Emit>,
@@ -171,10 +175,12 @@ fn run(cli: Cli) -> u8 {
         Command::Build {
             app,
             output,
-            release,
+            release: _,
+            debug,
             emit,
             explain_types,
         } => {
+            let release = !debug;
             if explain_types {
                 explain_types_of(&app)
             } else {
