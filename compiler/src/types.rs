@@ -25,7 +25,7 @@
 //!   is a constant, every action a constant or a list of constants and
 //!   `get`/`set`/`inc` of typed locals, and every next situation a constant
 //!   situation of the DM or a conditional on an arithmetic comparison of
-//!   typed numbers. A run of typed situations executes on native values,
+//!   typed numbers, or on `==`/`\==` of typed atoms. A run of typed situations executes on native values,
 //!   touching no term unless the history is kept or observed.
 //! - **globals** are typed like locals (for the listing); generated code
 //!   keeps them as terms.
@@ -263,6 +263,19 @@ pub enum TVal {
     Var(u32),
     Int(i64),
     Float(f64),
+    /// An atom (compared with `==`/`\==` against typed atoms).
+    Atom(Atom),
+}
+
+/// A comparison in a typed conditional.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Cmp {
+    /// An arithmetic comparison of two numbers of one type.
+    Arith(ArithCmp),
+    /// `==` of two atoms.
+    Identical,
+    /// `\==` of two atoms.
+    NotIdentical,
 }
 
 /// One element of a typed action list, or a typed action.
@@ -292,9 +305,10 @@ pub enum TAction {
 pub enum TNext {
     /// Situation `ix` of the DM, whose id is the atom.
     Sit(u32, Atom),
-    /// `(A op B -> Then ; otherwise -> Else)` on typed numbers of one type.
+    /// `(A op B -> Then ; otherwise -> Else)` on typed numbers of one type,
+    /// or `==`/`\==` on typed atoms.
     If {
-        op: ArithCmp,
+        op: Cmp,
         float: bool,
         a: TVal,
         b: TVal,
@@ -845,14 +859,40 @@ impl DmCx<'_> {
                     show(store, self.dm, cond)
                 ));
             };
-            let Some(op) = ArithCmp::from_atom(op) else {
-                return Err(format!(
-                    "condition `{}` is not an arithmetic comparison",
-                    show(store, self.dm, cond)
-                ));
+            let op = match ArithCmp::from_atom(op) {
+                Some(op) => Cmp::Arith(op),
+                None if op.as_str() == "==" => Cmp::Identical,
+                None if op.as_str() == "\\==" => Cmp::NotIdentical,
+                None => {
+                    return Err(format!(
+                        "condition `{}` is not an arithmetic comparison or `==`/`\\==`",
+                        show(store, self.dm, cond)
+                    ))
+                }
             };
             let (a, ta) = self.val(l, bound)?;
             let (b, tb) = self.val(r, bound)?;
+            if !matches!(op, Cmp::Arith(_)) {
+                // Atoms of any two sets compare by identity.
+                if !matches!(ta, Ty::Atoms(_)) || !matches!(tb, Ty::Atoms(_)) {
+                    return Err(format!(
+                        "`{}` compares {} with {} (typed `==` is on atoms)",
+                        show(store, self.dm, cond),
+                        an(&ta),
+                        an(&tb)
+                    ));
+                }
+                let then = Box::new(self.next(then, bound)?);
+                let other = Box::new(self.next(other, bound)?);
+                return Ok(TNext::If {
+                    op,
+                    float: false,
+                    a,
+                    b,
+                    then,
+                    other,
+                });
+            }
             let ty = match (&ta, &tb) {
                 (Ty::None, Ty::None) => {
                     return Err("a comparison of two parameters".to_owned());
@@ -891,7 +931,7 @@ impl DmCx<'_> {
             });
         }
         Err(format!(
-            "next situation `{}` is not an atom or an arithmetic conditional",
+            "next situation `{}` is not an atom or a conditional on a comparison",
             show(store, self.dm, n)
         ))
     }
@@ -900,6 +940,7 @@ impl DmCx<'_> {
     fn val(&self, t: Term, bound: &HashMap<u32, Ty>) -> Result<(TVal, Ty), String> {
         let store = self.store;
         match store.value(t) {
+            Value::Atom(a) => Ok((TVal::Atom(a), Ty::Atoms(vec![a]))),
             Value::Int(i) => Ok((TVal::Int(i), Ty::Int)),
             Value::Float(f) => Ok((TVal::Float(f), Ty::Float)),
             Value::Var(v) => {
@@ -1111,7 +1152,7 @@ diag_mod(main(Max),
         assert!(matches!(
             &arcs[0].next,
             TNext::If {
-                op: ArithCmp::Ge,
+                op: Cmp::Arith(ArithCmp::Ge),
                 float: false,
                 a: TVal::Var(_),
                 b: TVal::Param(0),

@@ -132,7 +132,7 @@ fn agree<A: cli::App>(compiled: &A, interpreted: &Ir, main: &str, script: &str) 
 fn typed_loops_agree() {
     let ir = interpreter("typed/loops");
     let app = loops::program();
-    let script = "tick.\ntick.\nhalf.\nzzz.\ntick.\nhalf.\nhalf.\nstop.\n";
+    let script = "tick.\nother.\ntick.\nhalf.\nmode.\nother.\nzzz.\ntick.\nhalf.\nhalf.\nstop.\n";
     for main in [
         "main(0)",
         "main(5)",
@@ -144,6 +144,8 @@ fn typed_loops_agree() {
         agree(app, &ir, main, script);
     }
     agree(app, &ir, "main(3)", "tick.\n"); // the script ends: an error
+    agree(app, &ir, "main(1)", "mode.\n"); // `counting` is not `idle`: done
+    agree(app, &ir, "main(1)", "other.\n"); // `counting` is `counting`: done
     agree(app, &ir, "big", ""); // `inc` overflows: an error
 }
 

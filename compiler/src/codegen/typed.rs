@@ -19,7 +19,7 @@
 
 use super::Gen;
 use crate::ir::IrDm;
-use crate::types::{DmTypes, TAction, TItem, TNext, TSit, TVal, Ty};
+use crate::types::{Cmp, DmTypes, TAction, TItem, TNext, TSit, TVal, Ty};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_syntax::Atom;
@@ -302,6 +302,18 @@ impl Gen<'_> {
                 let bits = Literal::u64_suffixed(f.to_bits());
                 quote!(f64::from_bits(#bits))
             }
+            TVal::Atom(a) => self.atom_term(*a),
+        }
+    }
+
+    /// A typed atom operand as a `Term`.
+    fn atom_operand(&self, v: &TVal) -> TokenStream {
+        match v {
+            TVal::Atom(a) => self.atom_term(*a),
+            v => {
+                let e = self.typed_val(v);
+                quote!(#e.term(p))
+            }
         }
     }
 
@@ -472,14 +484,27 @@ impl Gen<'_> {
                 other,
                 ..
             } => {
-                let (a, b) = (self.typed_val(a), self.typed_val(b));
                 let c = match op {
-                    sitlog_runtime::ArithCmp::Eq => quote!(#a == #b),
-                    sitlog_runtime::ArithCmp::Ne => quote!(#a != #b),
-                    sitlog_runtime::ArithCmp::Lt => quote!(#a < #b),
-                    sitlog_runtime::ArithCmp::Gt => quote!(#a > #b),
-                    sitlog_runtime::ArithCmp::Le => quote!(#a <= #b),
-                    sitlog_runtime::ArithCmp::Ge => quote!(#a >= #b),
+                    Cmp::Arith(op) => {
+                        let (a, b) = (self.typed_val(a), self.typed_val(b));
+                        match op {
+                            sitlog_runtime::ArithCmp::Eq => quote!(#a == #b),
+                            sitlog_runtime::ArithCmp::Ne => quote!(#a != #b),
+                            sitlog_runtime::ArithCmp::Lt => quote!(#a < #b),
+                            sitlog_runtime::ArithCmp::Gt => quote!(#a > #b),
+                            sitlog_runtime::ArithCmp::Le => quote!(#a <= #b),
+                            sitlog_runtime::ArithCmp::Ge => quote!(#a >= #b),
+                        }
+                    }
+                    // Atoms compare as terms (an atom-set value as its atom).
+                    Cmp::Identical | Cmp::NotIdentical => {
+                        let (a, b) = (self.atom_operand(a), self.atom_operand(b));
+                        if *op == Cmp::Identical {
+                            quote!(#a == #b)
+                        } else {
+                            quote!(#a != #b)
+                        }
+                    }
                 };
                 let (then, other) = (self.typed_next(then), self.typed_next(other));
                 quote!(if #c { #then } else { #other })

@@ -13,6 +13,8 @@ diag_mod(main(Max),
       arcs ==> [ tick : [inc(n, _), beep] => listen,
                  half : [set(mode, idle), get(f, F)] =>
                    (F > 2.5 -> done ; otherwise -> listen),
+                 mode : [get(mode, M)] => (M == idle -> listen ; otherwise -> done),
+                 other : [get(mode, M)] => (M \== counting -> listen ; otherwise -> done),
                  stop : empty => done ]
     ],
     [ id ==> done, type ==> final ]
