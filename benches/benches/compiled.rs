@@ -8,6 +8,11 @@
 //!   inputs (each read and parsed as a term), no history;
 //! - `appendix_a`: the papers' Appendix A example on its script, with history.
 //!
+//! Each program is also compiled `untyped` (every value a term: the code
+//! generator before typed code), so that one run compares both. Sizes 10⁴
+//! and 10⁶ transitions; the counter loop also at 10⁸ (typed code and the
+//! hand-written loop only).
+//!
 //! `cargo bench -p sitlog-benches --bench compiled`; the ratios in the README
 //! come from one such run.
 
@@ -15,7 +20,7 @@ use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criteri
 use sitlog_compiler::ir::Ir;
 use sitlog_runtime::machine::{Options, Outcome};
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
-use sitlog_runtime::{cli, Functions, Store};
+use sitlog_runtime::{cli, Functions, Store, Term};
 use std::path::Path;
 use std::time::Duration;
 
@@ -27,6 +32,16 @@ mod pipe_calls {
 }
 mod scripted_loop {
     sitlog_macros::include_dm!("dms/scripted_loop");
+}
+// The same programs with every value a term (the code generator before typed code).
+mod counter_loop_untyped {
+    sitlog_macros::include_dm!("dms/counter_loop", untyped);
+}
+mod pipe_calls_untyped {
+    sitlog_macros::include_dm!("dms/pipe_calls", untyped);
+}
+mod scripted_loop_untyped {
+    sitlog_macros::include_dm!("dms/scripted_loop", untyped);
 }
 mod appendix_a {
     sitlog_macros::include_dm!("../dms/examples/appendix_a");
@@ -89,6 +104,60 @@ fn hand_counter_loop(max: i64) -> u64 {
             St::Fs => return transitions,
         }
     }
+}
+
+/// `hand_counter_loop` handing each new value of the counter to `perform`
+/// (a dynamic call per transition, as an effector would be).
+fn hand_counter_loop_performing(max: i64, perform: &mut dyn FnMut(i64)) -> u64 {
+    #[derive(Clone, Copy)]
+    enum St {
+        Is,
+        Fs,
+    }
+    let (mut n, mut st, mut transitions) = (0i64, St::Is, 0u64);
+    loop {
+        transitions += 1;
+        match st {
+            St::Is => {
+                n += 1;
+                perform(n);
+                st = if n >= max { St::Fs } else { St::Is };
+            }
+            St::Fs => return transitions,
+        }
+    }
+}
+
+/// Sums the numbers it is given (does not ignore them).
+struct Summing(i64, u64);
+
+impl sitlog_runtime::machine::Actions for Summing {
+    fn perform(&mut self, store: &mut Store, action: Term) -> Result<(), String> {
+        if let sitlog_runtime::Value::Int(i) = store.value(action) {
+            self.0 = self.0.wrapping_add(i);
+            self.1 += 1;
+        }
+        Ok(())
+    }
+}
+
+/// Runs the counter loop with [`Summing`] actions: (sum, actions performed).
+fn run_performing<A: cli::App>(app: &A, main: &str) -> (i64, u64) {
+    let mut perception = ScriptPerception::new("script", String::new());
+    let mut actions = Summing(0, 0);
+    let (outcome, _store): (Outcome, Store) = cli::run(
+        app,
+        main,
+        None,
+        options(false),
+        Functions::standard(),
+        &mut perception,
+        &mut actions,
+        None,
+    )
+    .expect("runs");
+    assert!(outcome.result.is_ok(), "{:?}", outcome.result);
+    (actions.0, actions.1)
 }
 
 /// The hand-written floor for `pipe_calls`: a DM stack of typed frames, the
@@ -178,6 +247,7 @@ fn three_ways(
     name: &str,
     n: u64,
     compiled: &impl cli::App,
+    untyped: &impl cli::App,
     interpreted: &Ir,
     main: &str,
     in_arg: Option<&str>,
@@ -198,6 +268,13 @@ fn three_ways(
     group.throughput(Throughput::Elements(t));
     group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
         b.iter(|| run(compiled, main, in_arg, script, false, Functions::standard()))
+    });
+    assert_eq!(
+        run(untyped, main, in_arg, script, false, Functions::standard()),
+        t
+    );
+    group.bench_with_input(BenchmarkId::new("compiled_untyped", n), &n, |b, _| {
+        b.iter(|| run(untyped, main, in_arg, script, false, Functions::standard()))
     });
     group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
         b.iter(|| {
@@ -222,7 +299,7 @@ fn bench(c: &mut Criterion) {
     let counter_ir = interpreter(&root.join("dms/counter_loop"));
     let pipe_ir = interpreter(&root.join("dms/pipe_calls"));
     let scripted_ir = interpreter(&root.join("dms/scripted_loop"));
-    for n in [10_000u64, 100_000] {
+    for n in [10_000u64, 1_000_000] {
         let main = format!("main({n})");
         let max = n as i64;
         three_ways(
@@ -230,6 +307,7 @@ fn bench(c: &mut Criterion) {
             "counter_loop",
             n,
             counter_loop::program(),
+            counter_loop_untyped::program(),
             &counter_ir,
             &main,
             None,
@@ -241,6 +319,7 @@ fn bench(c: &mut Criterion) {
             "pipe_calls",
             n,
             pipe_calls::program(),
+            pipe_calls_untyped::program(),
             &pipe_ir,
             &main,
             Some("0"),
@@ -253,12 +332,78 @@ fn bench(c: &mut Criterion) {
             "scripted_loop",
             n,
             scripted_loop::program(),
+            scripted_loop_untyped::program(),
             &scripted_ir,
             "main",
             None,
             &script,
             || hand_scripted_loop(black_box(&script)),
         );
+    }
+
+    // 10^8 transitions: typed code and the hand-written loop only (the
+    // others would take minutes per sample).
+    {
+        let n = 100_000_000u64;
+        let main = format!("main({n})");
+        let mut group = c.benchmark_group("counter_loop");
+        group
+            .sample_size(10)
+            .measurement_time(Duration::from_secs(5));
+        group.warm_up_time(Duration::from_secs(1));
+        group.throughput(Throughput::Elements(n + 1));
+        group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
+            b.iter(|| {
+                run(
+                    counter_loop::program(),
+                    &main,
+                    None,
+                    "",
+                    false,
+                    Functions::standard(),
+                )
+            })
+        });
+        group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, _| {
+            b.iter(|| hand_counter_loop(black_box(n as i64)))
+        });
+        group.finish();
+    }
+
+    // The counter loop whose actions are performed: an `Actions` that does
+    // not ignore numbers gets each `inc`'s value (one dynamic call per
+    // transition, which also keeps the optimiser from folding the typed
+    // loop); the hand-written loop calls a `dyn FnMut(i64)` the same way.
+    for n in [10_000u64, 1_000_000] {
+        let main = format!("main({n})");
+        let mut group = c.benchmark_group("counter_loop_performed");
+        group
+            .sample_size(10)
+            .measurement_time(Duration::from_secs(3));
+        group.warm_up_time(Duration::from_secs(1));
+        group.throughput(Throughput::Elements(n + 1));
+        let t = run_performing(counter_loop::program(), &main);
+        assert_eq!(t.1, n);
+        group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
+            b.iter(|| run_performing(counter_loop::program(), &main))
+        });
+        group.bench_with_input(BenchmarkId::new("compiled_untyped", n), &n, |b, _| {
+            b.iter(|| run_performing(counter_loop_untyped::program(), &main))
+        });
+        group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
+            b.iter(|| run_performing(&counter_ir, &main))
+        });
+        group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, _| {
+            b.iter(|| {
+                let mut sum = 0i64;
+                let mut sink = |x: i64| sum = sum.wrapping_add(x);
+                let sink: &mut dyn FnMut(i64) = black_box(&mut sink);
+                let t = hand_counter_loop_performing(black_box(n as i64), sink);
+                black_box(sum);
+                t
+            })
+        });
+        group.finish();
     }
 
     let app = root.join("../dms/examples/appendix_a");

@@ -51,6 +51,15 @@ impl Compiled {
 /// Loads, checks, lowers and generates the application at `path` (a
 /// directory or a DM file). `source` names it in the header.
 pub fn generate(path: &Path, source: &str) -> Result<Compiled, Error> {
+    generate_with(path, source, codegen::Options::default())
+}
+
+/// [`generate`] with code generator options.
+pub fn generate_with(
+    path: &Path,
+    source: &str,
+    options: codegen::Options,
+) -> Result<Compiled, Error> {
     let (result, diags) = crate::check_path(path).map_err(|e| Error {
         messages: vec![format!("cannot read {e}")],
     })?;
@@ -75,7 +84,7 @@ pub fn generate(path: &Path, source: &str) -> Result<Compiled, Error> {
     };
     let ir = crate::ir::lower(&checked);
     Ok(Compiled {
-        tokens: codegen::generate(&ir, source),
+        tokens: codegen::generate_with(&ir, source, options),
         files,
         source: source.to_owned(),
     })

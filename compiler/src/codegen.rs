@@ -20,6 +20,11 @@
 //!   machine is needed), DM calls as frames on the machine's stack
 //!   ([`step`]); every step is a call on the runtime's `Cx`, so semantics
 //!   stay in the runtime;
+//! - for the situations type inference ([`crate::types`]) gave a typed plan,
+//!   a native `Frame` of the DM and `run_typed`, tried first: typed
+//!   situations run one after the other on `i64`/`f64`/enum values, the
+//!   frame loaded from the machine's variables with a check and written back
+//!   when untyped code or the machine is needed ([`typed`]);
 //! - for every situation, a function building a fresh instance (D-7) for the
 //!   machine's general path (situations with parameters): fresh variables
 //!   first (in the order a `copy_term` of the interpreter's template would
@@ -35,6 +40,7 @@
 //! order, no hash-map order).
 
 mod step;
+mod typed;
 
 use crate::ir::{none_marker, Ir};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
@@ -67,9 +73,30 @@ pub fn generate_file(ir: &Ir, source: &str) -> String {
     format_file(generate(ir, source), source)
 }
 
+/// Choices of the code generator.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Typed code for the situations type inference can type (the
+    /// default); `false` keeps every value a term (to compare, or to rule
+    /// typed code out when chasing a bug).
+    pub typed: bool,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options { typed: true }
+    }
+}
+
 /// Generates the Rust items of a program.
 pub fn generate(ir: &Ir, source: &str) -> TokenStream {
+    generate_with(ir, source, Options::default())
+}
+
+/// [`generate`] with options.
+pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
     let mut g = Gen::new(&ir.store);
+    g.types = options.typed.then(|| crate::types::infer(ir));
     g.collect(ir);
     g.emit(ir, source)
 }
@@ -200,6 +227,8 @@ struct Gen<'s> {
     /// Ground compounds (and big integers) built once, by their writeq text.
     consts: Vec<(String, Term)>,
     const_ix: HashMap<String, usize>,
+    /// What type inference found (typed situations run on native frames).
+    types: Option<crate::types::Types>,
 }
 
 /// Code that builds one term: statements, then the expression of its value.
@@ -218,6 +247,7 @@ impl<'s> Gen<'s> {
             atom_namer: Namer::default(),
             consts: Vec::new(),
             const_ix: HashMap::new(),
+            types: None,
         }
     }
 
@@ -273,6 +303,16 @@ impl<'s> Gen<'s> {
         for &(n, v) in &ir.globals {
             self.atom(n);
             self.visit(v);
+        }
+        // Constants typed code uses on their own (elements of a ground list).
+        let mut typed_consts = Vec::new();
+        for dm in self.types.iter().flat_map(|t| &t.dms) {
+            for plan in dm.situations.iter().flatten() {
+                plan.constants(&mut typed_consts);
+            }
+        }
+        for t in typed_consts {
+            self.visit(t);
         }
         for &a in &ir.basic_actions {
             self.atom(a);
@@ -584,10 +624,10 @@ impl<'s> Gen<'s> {
         let mut dm_namer = Namer::default();
         let mut modules = Vec::new();
         let mut dm_mods = Vec::new();
-        for dm in &ir.dms {
+        for (i, dm) in ir.dms.iter().enumerate() {
             let m = ident(&dm_namer.fresh(format!("dm_{}", snake(dm.name.as_str()))));
             dm_mods.push(m.clone());
-            modules.push(self.emit_dm(dm, &m));
+            modules.push(self.emit_dm(dm, i, &m));
         }
         let dm_ix: Vec<Literal> = (0..ir.dms.len() as u32)
             .map(Literal::u32_unsuffixed)
@@ -871,7 +911,7 @@ impl<'s> Gen<'s> {
         }
     }
 
-    fn emit_dm(&self, dm: &crate::ir::IrDm, module: &Ident) -> TokenStream {
+    fn emit_dm(&self, dm: &crate::ir::IrDm, dm_ix: usize, module: &Ident) -> TokenStream {
         let rt = quote!(::sitlog_runtime);
         let none = Term::atom(none_marker());
         let mut namer = Namer::default();
@@ -904,8 +944,13 @@ impl<'s> Gen<'s> {
                 Kind::Recursive => "recursive",
                 Kind::Perceptual => "perceptual",
             };
+            let typing = match self.types.as_ref().map(|t| &t.dms[dm_ix].situations[i]) {
+                Some(Ok(_)) => " Typed: runs on the DM's native `Frame`.".to_owned(),
+                Some(Err(why)) => format!(" Runs on terms: {why}."),
+                None => String::new(),
+            };
             let doc = format!(
-                " `{}` ({}, type `{}`, {kind_text})",
+                " `{}` ({}, type `{}`, {kind_text}).{typing}",
                 id_text,
                 s.location,
                 self.store.writeq(f[2])
@@ -995,6 +1040,31 @@ impl<'s> Gen<'s> {
             }
         }
         let count = dm.situations.len();
+        let typed = match &self.types {
+            Some(types) => self.typed_code(dm, &types.dms[dm_ix]),
+            None => typed::TypedCode {
+                items: quote!(),
+                present: false,
+            },
+        };
+        let untyped = quote! {
+            match sit {
+                #(#run_arms)*
+                _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
+            }?
+        };
+        let typed_first = if typed.present {
+            quote! {
+                // Typed situations first, on the native frame; else as terms.
+                let step = match run_typed(p, sit, cx)? {
+                    ::std::option::Option::Some(step) => step,
+                    ::std::option::Option::None => #untyped,
+                };
+            }
+        } else {
+            quote!(let step = #untyped;)
+        };
+        let typed_items = typed.items;
         let variant_names: Vec<TokenStream> =
             vnames.iter().map(|v| quote!(Situation::#v)).collect();
         let head_body = self.builder_body(&[(format_ident!("head"), dm.head)]);
@@ -1117,10 +1187,7 @@ impl<'s> Gen<'s> {
                 ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
                     let mut sit = sit;
                     loop {
-                        let step = match sit {
-                            #(#run_arms)*
-                            _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
-                        }?;
+                        #typed_first
                         match step {
                             #rt::machine::Step::GotoSit(next) if !cx.gc_due() => {
                                 let ::std::option::Option::Some((id, 0)) = compiled_id(p, next) else {
@@ -1156,6 +1223,8 @@ impl<'s> Gen<'s> {
                 ) -> #rt::machine::Instance {
                     #instantiate_body
                 }
+
+                #typed_items
 
                 #(#fns)*
             }

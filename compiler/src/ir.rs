@@ -80,6 +80,9 @@ pub struct IrDm {
     pub location: String,
     /// Source names of the template variables (for diagrams and messages).
     pub var_names: Vec<(Term, Box<str>)>,
+    /// Source names of the clause's variables by store variable index
+    /// (for the type listing).
+    pub var_index_names: Vec<(u32, String)>,
 }
 
 #[derive(Debug)]
@@ -175,6 +178,14 @@ pub fn lower(checked: &Checked) -> Ir {
             .enumerate()
             .filter_map(|(i, t)| t.map(|t| (t, clause.vars[i].name.clone())))
             .collect();
+        let var_index_names = slots
+            .iter()
+            .zip(&clause.vars)
+            .filter_map(|(slot, info)| match store.value((*slot)?) {
+                sitlog_runtime::Value::Var(v) => Some((v.index(), info.name.to_string())),
+                _ => None,
+            })
+            .collect();
         let pos = file.line_col(clause.span.start);
         by_name.entry(dm.name).or_insert(dms.len() as DmIx);
         dms.push(IrDm {
@@ -184,6 +195,7 @@ pub fn lower(checked: &Checked) -> Ir {
             situations,
             locals,
             location: format!("{}:{}:{}", file.name, pos.line, pos.column),
+            var_index_names,
             var_names,
         });
     }

@@ -21,6 +21,7 @@ pub mod load;
 pub mod package;
 pub mod run;
 pub mod source;
+pub mod types;
 
 use std::path::Path;
 

@@ -78,7 +78,9 @@ pub fn write_package(
          [dependencies]\n\
          sitlog-runtime = {{ path = \"{runtime}\"{features} }}\n\
          sitlog-robot = {{ path = \"{robot}\", default-features = false{robot_features} }}\n\n\
-         # Not a member of the enclosing workspace.\n[workspace]\n",
+         # Not a member of the enclosing workspace.\n[workspace]\n\n\
+         # A shipped task: whole-program optimisation (measured in the README).\n\
+         [profile.release]\nlto = \"fat\"\ncodegen-units = 1\n",
         src = app.display(),
         // The embedded Prolog engine only where the application has Prolog sources.
         features = if has_prolog { ", features = [\"prolog\"]" } else { "" },

@@ -57,6 +57,7 @@ fn built_executable_runs_like_sitlogc_run() {
     let exe = dir.join("pipe");
     let status = sitlogc()
         .arg("build")
+        .arg("--debug")
         .arg(&app)
         .arg("-o")
         .arg(&exe)
@@ -165,6 +166,7 @@ fn built_executable_stops_on_sigint() {
     let exe = dir.join("spin-task");
     let status = sitlogc()
         .arg("build")
+        .arg("--debug")
         .arg(&app)
         .arg("-o")
         .arg(&exe)

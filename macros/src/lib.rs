@@ -15,7 +15,8 @@
 //! `include_bytes!` per source file read, so that Cargo rebuilds when a DM
 //! changes. Errors in the DM sources become `compile_error!`s naming
 //! `file.dm:line:col` and showing the source line. The invoking crate needs
-//! `sitlog-runtime` as a dependency.
+//! `sitlog-runtime` as a dependency. `include_dm!("path", untyped)` keeps
+//! every value a term (no typed code; for comparisons).
 
 use proc_macro::TokenStream;
 use quote::quote;
@@ -23,7 +24,20 @@ use std::path::PathBuf;
 
 #[proc_macro]
 pub fn include_dm(input: TokenStream) -> TokenStream {
-    let lit = match syn::parse::<syn::LitStr>(input) {
+    // `"path"` or `"path", untyped` (every value a term: for comparisons).
+    let parser = |input: syn::parse::ParseStream| -> syn::Result<(syn::LitStr, bool)> {
+        let lit: syn::LitStr = input.parse()?;
+        if input.is_empty() {
+            return Ok((lit, false));
+        }
+        input.parse::<syn::Token![,]>()?;
+        let flag: syn::Ident = input.parse()?;
+        if flag != "untyped" {
+            return Err(syn::Error::new(flag.span(), "expected `untyped`"));
+        }
+        Ok((lit, true))
+    };
+    let (lit, untyped) = match syn::parse::Parser::parse(parser, input) {
         Ok(l) => l,
         Err(e) => {
             let msg =
@@ -31,13 +45,14 @@ pub fn include_dm(input: TokenStream) -> TokenStream {
             return syn::Error::new(e.span(), msg).to_compile_error().into();
         }
     };
+    let options = sitlog_compiler::codegen::Options { typed: !untyped };
     let rel = lit.value();
     let base = std::env::var_os("SITLOG_DM_ROOT")
         .or_else(|| std::env::var_os("CARGO_MANIFEST_DIR"))
         .map(PathBuf::from)
         .unwrap_or_default();
     let path = base.join(&rel);
-    match sitlog_compiler::build::generate(&path, &rel) {
+    match sitlog_compiler::build::generate_with(&path, &rel, options) {
         Ok(compiled) => {
             let tokens = compiled.tokens;
             let files = compiled.files.iter().map(|f| {

@@ -162,6 +162,13 @@ pub trait Actions {
     /// `Status`), as the original's robot services do: the arc's next
     /// situation, out_arg and the history entry then see the binding.
     fn perform(&mut self, store: &mut Store, action: Term) -> Result<(), String>;
+
+    /// Whether performing a number does nothing (and succeeds), always: then
+    /// typed code skips the calls for actions it knows are numbers (an
+    /// `inc` in an action list). `false` is always a correct answer.
+    fn ignores_numbers(&self) -> bool {
+        false
+    }
 }
 
 /// Notified of every transition as it happens (for `--trace`).
@@ -1519,6 +1526,56 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     pub fn embedded_dm(&mut self, e: Term) -> Result<Term, RunError> {
         let here = self.here();
         self.m.eval_read_only(e, here)
+    }
+
+    /// The value of the running DM's local variable `name` (dereferenced).
+    pub fn local(&self, name: Atom) -> Option<Term> {
+        let frame = self.m.frames.last().expect("a frame is running");
+        frame.locals.get(name).map(|t| self.m.store.deref(t))
+    }
+
+    /// Sets the running DM's local variable `name` (typed code writing its
+    /// frame back).
+    pub fn set_local(&mut self, name: Atom, value: Term) {
+        let frame = self.m.frames.last_mut().expect("a frame is running");
+        frame.locals.set(name, value);
+    }
+
+    /// Argument `i` of the running DM's call, dereferenced, if it has one.
+    pub fn param(&self, i: usize) -> Option<Term> {
+        let dm_id = self.m.frames.last().expect("a frame is running").dm_id;
+        self.m.store.arg(dm_id, i).map(|t| self.m.store.deref(t))
+    }
+
+    /// The integer a (dereferenced) term is, if it is one.
+    #[inline]
+    pub fn int_of(&self, t: Term) -> Option<i64> {
+        match self.m.store.value(t) {
+            crate::Value::Int(i) => Some(i),
+            _ => None,
+        }
+    }
+
+    /// The float a (dereferenced) term is, if it is one.
+    #[inline]
+    pub fn float_of(&self, t: Term) -> Option<f64> {
+        match self.m.store.value(t) {
+            crate::Value::Float(f) => Some(f),
+            _ => None,
+        }
+    }
+
+    /// Counts transitions typed code made without recording them (the
+    /// history neither kept nor observed).
+    #[inline]
+    pub fn count_transitions(&mut self, n: u64) {
+        self.m.transitions += n;
+    }
+
+    /// Whether the run's actions ignore numbers ([`Actions::ignores_numbers`]).
+    #[inline]
+    pub fn ignores_numbers(&self) -> bool {
+        self.actions.ignores_numbers()
     }
 
     /// Appends the situation's history entry (and tells the observer).

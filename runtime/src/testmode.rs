@@ -345,6 +345,11 @@ impl<W: Write> Actions for TextActions<W> {
         let _ = writeln!(self.out, "{line}");
         Ok(())
     }
+
+    /// A number has no functor: nothing to show.
+    fn ignores_numbers(&self) -> bool {
+        true
+    }
 }
 
 #[cfg(test)]

@@ -15,6 +15,9 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 mod ground_loop {
     sitlog_macros::include_dm!("dms/ground_loop");
 }
+mod typed_counter {
+    sitlog_macros::include_dm!("dms/typed_counter");
+}
 
 struct Counting;
 
@@ -135,6 +138,20 @@ fn transitions_allocate_nothing_in_steady_state() {
         .unwrap();
         assert!(outcome.result.is_err());
     });
+    // Typed code (issue 19): the counter is a native int, the store untouched.
+    let typed = measure(|ticks| {
+        let (outcome, _store) = typed_counter::run(
+            "main",
+            None,
+            options(),
+            Functions::standard(),
+            &mut NoInput,
+            ticks,
+            None,
+        )
+        .unwrap();
+        assert!(outcome.result.is_err());
+    });
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("dms/ground_loop");
     let (checked, _) = sitlog_compiler::check_path(&dir).unwrap();
     let ir = sitlog_compiler::ir::lower(&checked.ok().unwrap());
@@ -152,7 +169,11 @@ fn transitions_allocate_nothing_in_steady_state() {
         .unwrap();
         assert!(outcome.result.is_err());
     });
-    for (name, t) in [("compiled", &compiled), ("interpreter", &interpreted)] {
+    for (name, t) in [
+        ("compiled", &compiled),
+        ("typed counter", &typed),
+        ("interpreter", &interpreted),
+    ] {
         println!(
             "{name}: {} allocations in {} transitions without a collection; \
              {} collections made {} allocations",
@@ -168,6 +189,11 @@ fn transitions_allocate_nothing_in_steady_state() {
         (compiled.steady, compiled.collections),
         (0, 0),
         "compiled code allocated in {MEASURED} transitions"
+    );
+    assert_eq!(
+        (typed.steady, typed.collections),
+        (0, 0),
+        "typed code allocated in {MEASURED} transitions"
     );
     // The interpreter builds each instance in the store; the window is long
     // enough to include collections. What remains outside them is the

@@ -106,12 +106,20 @@ enum Command {
         /// Where to write the executable (default: the application's name).
         #[arg(short, long, value_name = "FILE")]
         output: Option<PathBuf>,
-        /// Build with optimizations.
-        #[arg(long)]
+        /// Build with optimizations (the default: a shipped task is a
+        /// release build; kept for compatibility).
+        #[arg(long, conflicts_with = "debug")]
         release: bool,
+        /// Build without optimizations (faster to build).
+        #[arg(long)]
+        debug: bool,
         /// `rust`: only write the generated code.
         #[arg(long, value_enum)]
         emit: Option<Emit>,
+        /// Print what type inference found (which variables and situations
+        /// run on native values, and why the others stay terms) and stop.
+        #[arg(long)]
+        explain_types: bool,
     },
     /// Draw an application in the notation of the SitLog papers.
     ///
@@ -253,9 +261,18 @@ fn run(cli: Cli) -> u8 {
         Command::Build {
             app,
             output,
-            release,
+            release: _,
+            debug,
             emit,
-        } => build_app(&app, output, release, emit),
+            explain_types,
+        } => {
+            let release = !debug;
+            if explain_types {
+                explain_types_of(&app)
+            } else {
+                build_app(&app, output, release, emit)
+            }
+        }
         Command::Lsp => match sitlog_lsp::run_stdio(&sitlog_compiler::analysis::Analysis) {
             Ok(()) => 0,
             Err(e) => {
@@ -433,6 +450,17 @@ fn graph(
                 }
             }
         }
+    }
+}
+
+fn explain_types_of(app: &std::path::Path) -> u8 {
+    match checked_ir(app) {
+        Ok(ir) => {
+            let types = sitlog_compiler::types::infer(&ir);
+            print!("{}", sitlog_compiler::types::explain(&ir, &types));
+            0
+        }
+        Err(code) => code,
     }
 }
 

@@ -158,12 +158,12 @@ impl Gen<'_> {
         }
     }
 
-    fn atom_expr(&self, a: Atom) -> TokenStream {
+    pub(super) fn atom_expr(&self, a: Atom) -> TokenStream {
         let id = &self.atoms[self.atom_ix[&a]].1;
         quote!(a.#id)
     }
 
-    fn atom_term(&self, a: Atom) -> TokenStream {
+    pub(super) fn atom_term(&self, a: Atom) -> TokenStream {
         let id = &self.atoms[self.atom_ix[&a]].1;
         quote!(::sitlog_runtime::Term::atom(a.#id))
     }

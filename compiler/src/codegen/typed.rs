@@ -1,0 +1,521 @@
+//! Typed code: the situations [`crate::types`] gave a typed plan run on a
+//! native frame of their DM (`struct Frame`: the locals and parameters they
+//! use, as `i64`, `f64` or an `enum` of the local's atoms), not on terms.
+//!
+//! `run_typed` is tried before the untyped code of a situation: it loads the
+//! frame from the machine's variables (a check: code the compiler cannot
+//! see, a user function or the command line, may have put any term there;
+//! if a value does not fit, `None` and the untyped path runs, nothing
+//! done), runs typed situations one after the other as a `match` on native
+//! values, and writes the frame back when it leaves (a situation that is not
+//! typed, a final one, input not met, an error, or garbage to collect).
+//!
+//! What a typed transition still does, in the interpreter's order: the
+//! machine's perception (`choose`) for a perceptual situation that is not
+//! the neutral rule, the actions (skipped for numbers when the run's
+//! `Actions` ignore them), and the history entry, built from the native
+//! values only when the history is kept or observed; otherwise it counts.
+//! Run-time errors are the untyped path's, word for word (`inc` overflow).
+
+use super::Gen;
+use crate::ir::IrDm;
+use crate::types::{Cmp, DmTypes, TAction, TItem, TNext, TSit, TVal, Ty};
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
+use sitlog_syntax::Atom;
+use std::collections::HashMap;
+
+/// The typed items of one DM module (empty when no situation is typed).
+pub(super) struct TypedCode {
+    /// `struct Frame`, its enums, `run_typed` and its loop.
+    pub items: TokenStream,
+    /// Whether `run_typed` exists.
+    pub present: bool,
+}
+
+fn local_field(i: usize) -> Ident {
+    format_ident!("l{}", i)
+}
+fn param_field(i: usize) -> Ident {
+    format_ident!("p{}", i)
+}
+fn atoms_enum(i: usize) -> Ident {
+    format_ident!("Local{}", i)
+}
+
+impl Gen<'_> {
+    pub(super) fn typed_code(&self, dm: &IrDm, t: &DmTypes) -> TypedCode {
+        let rt = quote!(::sitlog_runtime);
+        if !t
+            .situations
+            .iter()
+            .any(|s| matches!(s, Ok(TSit::Perceptual { .. })))
+        {
+            return TypedCode {
+                items: quote!(),
+                present: false,
+            };
+        }
+        let locals = t.frame_locals();
+        let params = t.frame_params();
+        // The frame's fields, load and store.
+        let mut fields = Vec::new();
+        let mut enums = Vec::new();
+        let mut loads = Vec::new();
+        let mut inits = Vec::new();
+        let mut stores = Vec::new();
+        for &i in &locals {
+            let f = local_field(i);
+            let name = self.atom_expr(dm.locals[i].0);
+            let doc = format!(" Local `{}`: {}.", t.locals[i].name, t.locals[i].ty);
+            match &t.locals[i].ty {
+                Ty::Int => {
+                    fields.push(quote!(#[doc = #doc] pub #f: i64,));
+                    loads.push(quote!(let #f = cx.int_of(cx.local(#name)?)?;));
+                    stores.push(quote!(cx.set_local(#name, #rt::Term::int(self.#f));));
+                }
+                Ty::Float => {
+                    fields.push(quote!(#[doc = #doc] pub #f: f64,));
+                    loads.push(quote!(let #f = cx.float_of(cx.local(#name)?)?;));
+                    stores.push(quote!(cx.set_local(#name, #rt::Term::float(self.#f));));
+                }
+                Ty::Atoms(atoms) => {
+                    let e = atoms_enum(i);
+                    let variants: Vec<Ident> =
+                        (0..atoms.len()).map(|j| format_ident!("A{}", j)).collect();
+                    let docs: Vec<String> =
+                        atoms.iter().map(|a| format!(" `{}`", a.as_str())).collect();
+                    let atom_exprs: Vec<TokenStream> =
+                        atoms.iter().map(|&a| self.atom_expr(a)).collect();
+                    let edoc = format!(" The values of local `{}`.", t.locals[i].name);
+                    enums.push(quote! {
+                        #[doc = #edoc]
+                        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+                        pub enum #e { #(#[doc = #docs] #variants,)* }
+                        impl #e {
+                            fn of(p: &super::Program, t: #rt::Term) -> ::std::option::Option<#e> {
+                                let a = &p.atoms;
+                                let x = ::std::option::Option::Some(t);
+                                #(if x == ::std::option::Option::Some(#rt::Term::atom(#atom_exprs)) { return ::std::option::Option::Some(#e::#variants); })*
+                                ::std::option::Option::None
+                            }
+                            fn term(self, p: &super::Program) -> #rt::Term {
+                                let a = &p.atoms;
+                                match self { #(#e::#variants => #rt::Term::atom(#atom_exprs),)* }
+                            }
+                        }
+                    });
+                    fields.push(quote!(#[doc = #doc] pub #f: #e,));
+                    loads.push(quote!(let #f = #e::of(p, cx.local(#name)?)?;));
+                    stores.push(quote!(cx.set_local(#name, self.#f.term(p));));
+                }
+                _ => unreachable!("frame locals are native"),
+            }
+            inits.push(quote!(#f,));
+        }
+        for &i in &params {
+            let f = param_field(i);
+            let doc = match &t.params[i] {
+                Some(v) => format!(" Parameter `{}`: {}.", v.name, v.ty),
+                None => String::new(),
+            };
+            let ix = Literal::usize_unsuffixed(i);
+            match t.params[i].as_ref().map(|v| &v.ty) {
+                Some(Ty::Float) => {
+                    fields.push(quote!(#[doc = #doc] pub #f: f64,));
+                    loads.push(quote!(let #f = cx.float_of(cx.param(#ix)?)?;));
+                }
+                _ => {
+                    fields.push(quote!(#[doc = #doc] pub #f: i64,));
+                    loads.push(quote!(let #f = cx.int_of(cx.param(#ix)?)?;));
+                }
+            }
+            inits.push(quote!(#f,));
+        }
+
+        // The typed situations.
+        let typed_ix: Vec<Literal> = t
+            .situations
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.is_ok())
+            .map(|(i, _)| Literal::u32_unsuffixed(i as u32))
+            .collect();
+        let mut arms = Vec::new();
+        for (i, s) in t.situations.iter().enumerate() {
+            let Ok(plan) = s else { continue };
+            let ix = Literal::u32_unsuffixed(i as u32);
+            let id = self.atom_expr(plan.id());
+            let here = quote!(cx.enter(#ix, #id););
+            let body = match plan {
+                TSit::Final { .. } => {
+                    let empty = quote!(#rt::Term::atom(#rt::atoms::EMPTY));
+                    quote! {
+                        #here
+                        cx.final_out_arg(::std::option::Option::None)?;
+                        cx.record(#empty, #empty, ::std::option::Option::None);
+                        return ::std::result::Result::Ok(#rt::machine::Step::Final);
+                    }
+                }
+                TSit::Perceptual {
+                    type_name,
+                    always_first,
+                    arcs,
+                    ..
+                } => {
+                    let exps: Vec<TokenStream> = arcs
+                        .iter()
+                        .map(|a| self.typed_const(a.expectation))
+                        .collect();
+                    let enames: Vec<Ident> =
+                        (0..arcs.len()).map(|j| format_ident!("e{}", j)).collect();
+                    let choose = if *always_first {
+                        quote!(let chosen = 0usize;)
+                    } else {
+                        let ty = self.atom_term(*type_name);
+                        quote! {
+                            #here
+                            cx.set_expectations(&[#(#enames),*]);
+                            let ::std::option::Option::Some(chosen) = cx.choose(#ty)? else {
+                                return ::std::result::Result::Ok(#rt::machine::Step::Unmet { type_term: #ty });
+                            };
+                        }
+                    };
+                    let mut match_arms = Vec::new();
+                    for (j, arc) in arcs.iter().enumerate() {
+                        let code = self.typed_arc(dm, t, i, plan.id(), j, arc);
+                        let j = Literal::usize_unsuffixed(j);
+                        match_arms.push(quote!(#j => { #code }));
+                    }
+                    quote! {
+                        #(let #enames = #exps;)*
+                        #choose
+                        match chosen {
+                            #(#match_arms)*
+                            _ => unreachable!("the machine chose an arc of this situation"),
+                        }
+                    }
+                }
+            };
+            arms.push(quote!(#ix => { #body }));
+        }
+        let loop_body = quote! {
+            loop {
+                match sit {
+                    #(#arms)*
+                    _ => return ::std::result::Result::Ok(#rt::machine::Step::GotoSit(sit)),
+                }
+            }
+        };
+        let loop_prelude = Self::prelude(&loop_body);
+        let items = quote! {
+            #(#enums)*
+
+            /// The DM's typed frame: what its typed situations use of its
+            /// locals and parameters, as native values.
+            #[derive(Clone, Copy, Debug)]
+            pub struct Frame { #(#fields)* }
+
+            impl Frame {
+                /// The frame, if every value it holds has its type.
+                fn load(p: &super::Program, cx: &#rt::machine::Cx<'_, '_, super::Program>) -> ::std::option::Option<Frame> {
+                    let a = &p.atoms;
+                    #(#loads)*
+                    ::std::option::Option::Some(Frame { #(#inits)* })
+                }
+
+                /// Writes the locals back into the machine's variables.
+                fn store(&self, p: &super::Program, cx: &mut #rt::machine::Cx<'_, '_, super::Program>) {
+                    let a = &p.atoms;
+                    #(#stores)*
+                }
+            }
+
+            /// Runs typed situations from `sit` on the typed frame until the
+            /// machine or untyped code is needed; `None` (nothing done) when
+            /// `sit` is not typed or the frame does not load.
+            pub fn run_typed(
+                p: &super::Program,
+                sit: #rt::machine::SitIx,
+                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+            ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
+                if !matches!(sit, #(#typed_ix)|*) {
+                    return ::std::result::Result::Ok(::std::option::Option::None);
+                }
+                let ::std::option::Option::Some(mut fr) = Frame::load(p, cx) else {
+                    return ::std::result::Result::Ok(::std::option::Option::None);
+                };
+                let records = cx.records();
+                let quiet = cx.ignores_numbers();
+                let mut count = 0u64;
+                let r = typed_loop(p, sit, &mut fr, records, quiet, &mut count, cx);
+                cx.count_transitions(count);
+                fr.store(p, cx);
+                r.map(::std::option::Option::Some)
+            }
+
+            #[allow(unreachable_code, clippy::never_loop)]
+            fn typed_loop(
+                p: &super::Program,
+                mut sit: #rt::machine::SitIx,
+                fr: &mut Frame,
+                records: bool,
+                quiet: bool,
+                count: &mut u64,
+                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+            ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                #loop_prelude
+                #loop_body
+            }
+        };
+        TypedCode {
+            items,
+            present: true,
+        }
+    }
+
+    /// A constant term (expectation, action element): an immediate or a `k` constant.
+    fn typed_const(&self, t: sitlog_runtime::Term) -> TokenStream {
+        self.leaf(t, &HashMap::new(), false)
+            .expect("constants are leaves or registered constants")
+    }
+
+    fn typed_val(&self, v: &TVal) -> TokenStream {
+        match v {
+            TVal::Local(i) => {
+                let f = local_field(*i);
+                quote!(fr.#f)
+            }
+            TVal::Param(i) => {
+                let f = param_field(*i);
+                quote!(fr.#f)
+            }
+            TVal::Var(v) => {
+                let w = format_ident!("w{}", *v);
+                quote!(#w)
+            }
+            TVal::Int(i) => {
+                let lit = Literal::i64_suffixed(*i);
+                quote!(#lit)
+            }
+            TVal::Float(f) => {
+                let bits = Literal::u64_suffixed(f.to_bits());
+                quote!(f64::from_bits(#bits))
+            }
+            TVal::Atom(a) => self.atom_term(*a),
+        }
+    }
+
+    /// A typed atom operand as a `Term`.
+    fn atom_operand(&self, v: &TVal) -> TokenStream {
+        match v {
+            TVal::Atom(a) => self.atom_term(*a),
+            v => {
+                let e = self.typed_val(v);
+                quote!(#e.term(p))
+            }
+        }
+    }
+
+    /// The term of a native value of local `i`'s type.
+    fn native_term(&self, t: &DmTypes, local: usize, e: TokenStream) -> TokenStream {
+        let rt = quote!(::sitlog_runtime);
+        match &t.locals[local].ty {
+            Ty::Int => quote!(#rt::Term::int(#e)),
+            Ty::Float => quote!(#rt::Term::float(#e)),
+            _ => quote!(#e.term(p)),
+        }
+    }
+
+    /// The native value of a constant of local `i`'s type.
+    fn native_const(&self, t: &DmTypes, local: usize, c: sitlog_runtime::Term) -> TokenStream {
+        match (&t.locals[local].ty, self.store.value(c)) {
+            (Ty::Int, sitlog_runtime::Value::Int(i)) => {
+                let lit = Literal::i64_suffixed(i);
+                quote!(#lit)
+            }
+            (Ty::Float, sitlog_runtime::Value::Float(f)) => {
+                let bits = Literal::u64_suffixed(f.to_bits());
+                quote!(f64::from_bits(#bits))
+            }
+            (Ty::Atoms(atoms), sitlog_runtime::Value::Atom(a)) => {
+                let e = atoms_enum(local);
+                let j = atoms
+                    .iter()
+                    .position(|x| *x == a)
+                    .expect("checked by inference");
+                let v = format_ident!("A{}", j);
+                quote!(#e::#v)
+            }
+            _ => unreachable!("checked by inference"),
+        }
+    }
+
+    fn typed_arc(
+        &self,
+        dm: &IrDm,
+        t: &DmTypes,
+        sit: usize,
+        sit_id: Atom,
+        j: usize,
+        arc: &crate::types::TArc,
+    ) -> TokenStream {
+        let rt = quote!(::sitlog_runtime);
+        let sit_ix = Literal::u32_unsuffixed(sit as u32);
+        let id = self.atom_expr(sit_id);
+        let here = quote!(cx.enter(#sit_ix, #id););
+        let arc_ix = Literal::usize_unsuffixed(j);
+        let arc_t = quote!(::std::option::Option::Some(#arc_ix));
+        let e = format_ident!("e{}", j);
+        let mut out = Vec::new();
+        // The action.
+        let action = match &arc.action {
+            TAction::Const(c) => {
+                let c = self.typed_const(*c);
+                let numeric = matches!(
+                    self.store.value(arc_const(arc)),
+                    sitlog_runtime::Value::Int(_) | sitlog_runtime::Value::Float(_)
+                );
+                let perform = quote! { #here cx.perform(action, #arc_t)?; };
+                out.push(quote!(let action = #c;));
+                out.push(if numeric {
+                    quote!(if !quiet { #perform })
+                } else {
+                    perform
+                });
+                quote!(action)
+            }
+            TAction::List(items) => {
+                let mut values = Vec::new();
+                let mut numeric = true;
+                for (n, it) in items.iter().enumerate() {
+                    let x = format_ident!("x{}", n);
+                    match it {
+                        TItem::Inc { local, bind } | TItem::Get { local, bind } => {
+                            let f = local_field(*local);
+                            if let TItem::Inc { .. } = it {
+                                let name = dm.locals[*local].0.as_str();
+                                let msg = Literal::string(&format!(
+                                    "`inc` of `{name}`: integer overflow"
+                                ));
+                                let next = match t.locals[*local].ty {
+                                    Ty::Int => quote! {
+                                        match fr.#f.checked_add(1) {
+                                            ::std::option::Option::Some(v) => v,
+                                            ::std::option::Option::None => {
+                                                #here
+                                                return ::std::result::Result::Err(cx.error(#msg, #arc_t));
+                                            }
+                                        }
+                                    },
+                                    _ => quote!(fr.#f + 1.0),
+                                };
+                                out.push(quote!(fr.#f = #next;));
+                            }
+                            let native = quote!(fr.#f);
+                            if let Some(v) = bind {
+                                let w = format_ident!("w{}", *v);
+                                out.push(quote!(let #w = #native;));
+                            }
+                            numeric &= matches!(t.locals[*local].ty, Ty::Int | Ty::Float);
+                            let term = self.native_term(t, *local, native);
+                            out.push(quote!(let #x = #term;));
+                        }
+                        TItem::Set { local, value } => {
+                            let f = local_field(*local);
+                            let c = self.native_const(t, *local, *value);
+                            out.push(quote!(fr.#f = #c;));
+                            numeric &= matches!(t.locals[*local].ty, Ty::Int | Ty::Float);
+                            let c = self.typed_const(*value);
+                            out.push(quote!(let #x = #c;));
+                        }
+                        TItem::Const(c) => {
+                            numeric &= matches!(
+                                self.store.value(*c),
+                                sitlog_runtime::Value::Int(_) | sitlog_runtime::Value::Float(_)
+                            );
+                            let c = self.typed_const(*c);
+                            out.push(quote!(let #x = #c;));
+                        }
+                    }
+                    values.push(x);
+                }
+                let perform = quote! { #here cx.perform_each(&[#(#values),*], #arc_t)?; };
+                out.push(if numeric {
+                    quote!(if !quiet { #perform })
+                } else {
+                    perform
+                });
+                quote!(cx.store().list(&[#(#values),*]))
+            }
+        };
+        // The next situation.
+        let next = self.typed_next(&arc.next);
+        out.push(quote!(let (target, next) = #next;));
+        out.push(quote! {
+            if records {
+                #here
+                let action = #action;
+                cx.record(#e, action, ::std::option::Option::Some(#rt::Term::atom(next)));
+                if cx.gc_due() {
+                    return ::std::result::Result::Ok(#rt::machine::Step::GotoSit(target));
+                }
+            } else {
+                *count += 1;
+            }
+            sit = target;
+        });
+        quote!(#(#out)*)
+    }
+
+    /// `(index, atom)` of a typed next situation.
+    fn typed_next(&self, n: &TNext) -> TokenStream {
+        match n {
+            TNext::Sit(ix, name) => {
+                let ix = Literal::u32_unsuffixed(*ix);
+                let a = self.atom_expr(*name);
+                quote!((#ix, #a))
+            }
+            TNext::If {
+                op,
+                a,
+                b,
+                then,
+                other,
+                ..
+            } => {
+                let c = match op {
+                    Cmp::Arith(op) => {
+                        let (a, b) = (self.typed_val(a), self.typed_val(b));
+                        match op {
+                            sitlog_runtime::ArithCmp::Eq => quote!(#a == #b),
+                            sitlog_runtime::ArithCmp::Ne => quote!(#a != #b),
+                            sitlog_runtime::ArithCmp::Lt => quote!(#a < #b),
+                            sitlog_runtime::ArithCmp::Gt => quote!(#a > #b),
+                            sitlog_runtime::ArithCmp::Le => quote!(#a <= #b),
+                            sitlog_runtime::ArithCmp::Ge => quote!(#a >= #b),
+                        }
+                    }
+                    // Atoms compare as terms (an atom-set value as its atom).
+                    Cmp::Identical | Cmp::NotIdentical => {
+                        let (a, b) = (self.atom_operand(a), self.atom_operand(b));
+                        if *op == Cmp::Identical {
+                            quote!(#a == #b)
+                        } else {
+                            quote!(#a != #b)
+                        }
+                    }
+                };
+                let (then, other) = (self.typed_next(then), self.typed_next(other));
+                quote!(if #c { #then } else { #other })
+            }
+        }
+    }
+}
+
+fn arc_const(arc: &crate::types::TArc) -> sitlog_runtime::Term {
+    match arc.action {
+        TAction::Const(c) => c,
+        TAction::List(_) => unreachable!(),
+    }
+}

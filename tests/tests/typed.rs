@@ -1,0 +1,176 @@
+//! Typed code (issue 19): situations that type inference gave a plan run on
+//! native frames in generated code. These DMs exercise what the plans cover
+//! (int, float and atom-set locals, a parameter checked on entry, constant
+//! expectations read from a script, `inc` overflow) and the ways back to
+//! untyped code (a situation that is not typed, a DM call, a user function
+//! putting an atom where an int was, a parameter that is not an int). Each
+//! run must agree with the interpreter on the report, the actions performed,
+//! the observer's transitions and the transition count, with the history
+//! kept or not.
+
+use sitlog_compiler::ir::Ir;
+use sitlog_runtime::history::Entry;
+use sitlog_runtime::machine::{Actions, Observer, Options, Outcome};
+use sitlog_runtime::testmode::{ScriptPerception, TextActions};
+use sitlog_runtime::{atoms, cli, report, Atom, Functions, Store, Term};
+use sitlog_tests::compiled::canonical_vars;
+use std::path::Path;
+
+mod loops {
+    sitlog_macros::include_dm!("typed/loops");
+}
+mod mixed {
+    sitlog_macros::include_dm!("typed/mixed");
+}
+
+fn interpreter(app: &str) -> Ir {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(app);
+    let (checked, _) = sitlog_compiler::check_path(&dir).expect("readable");
+    sitlog_compiler::ir::lower(&checked.expect("checks"))
+}
+
+/// `poke(_)`: sets the caller's local `n` to the atom `hello`, which the
+/// compiler cannot see.
+fn functions() -> Functions {
+    let mut f = Functions::standard();
+    f.register("poke", 1, |call, _| {
+        let set = call.store.parse("set(n, hello)").map_err(|e| e.message)?.0;
+        call.var_op(set)?;
+        Ok(Term::atom(atoms::TRUE))
+    });
+    f
+}
+
+/// Records every action performed (numbers included).
+#[derive(Default)]
+struct Log(Vec<String>);
+
+impl Actions for Log {
+    fn perform(&mut self, store: &mut Store, action: Term) -> Result<(), String> {
+        self.0.push(store.writeq(action));
+        Ok(())
+    }
+}
+
+/// Records every transition the observer sees.
+#[derive(Default)]
+struct Trace(Vec<String>);
+
+impl Observer for Trace {
+    fn transition(&mut self, store: &Store, entry: &Entry, depth: usize, next: Option<Term>) {
+        self.0.push(format!(
+            "{depth} {}:({},{}:{}) -> {}",
+            store.writeq(entry.dm),
+            store.writeq(entry.situation),
+            store.writeq(entry.expectation),
+            store.writeq(entry.action),
+            next.map_or("-".to_owned(), |n| store.writeq(n))
+        ));
+    }
+}
+
+/// One run: the report, what the actions saw, the observer's trace.
+fn run<A: cli::App>(
+    app: &A,
+    main: &str,
+    script: &str,
+    keep_history: bool,
+    observe: bool,
+    log_numbers: bool,
+) -> (serde_json::Value, u64, Vec<String>, Vec<String>) {
+    let mut perception = ScriptPerception::new("script", script.to_owned());
+    let mut text = Vec::new();
+    let mut log = Log::default();
+    let mut trace = Trace::default();
+    let options = Options {
+        keep_history,
+        ..Options::default()
+    };
+    let (outcome, store): (Outcome, Store) = {
+        let mut text_actions = TextActions::new(&mut text, vec![Atom::intern("beep")]);
+        let actions: &mut dyn Actions = if log_numbers {
+            &mut log
+        } else {
+            &mut text_actions
+        };
+        let observer: Option<&mut dyn Observer> = if observe { Some(&mut trace) } else { None };
+        cli::run(
+            app,
+            main,
+            None,
+            options,
+            functions(),
+            &mut perception,
+            actions,
+            observer,
+        )
+        .expect("runs")
+    };
+    let report: serde_json::Value =
+        serde_json::from_str(&report::outcome_json(&store, &outcome)).expect("JSON");
+    let mut seen = log.0;
+    seen.extend(String::from_utf8(text).unwrap().lines().map(str::to_owned));
+    (canonical_vars(&report), outcome.transitions, seen, trace.0)
+}
+
+fn agree<A: cli::App>(compiled: &A, interpreted: &Ir, main: &str, script: &str) {
+    for keep in [false, true] {
+        for observe in [false, true] {
+            for log_numbers in [false, true] {
+                let c = run(compiled, main, script, keep, observe, log_numbers);
+                let i = run(interpreted, main, script, keep, observe, log_numbers);
+                assert_eq!(
+                    c, i,
+                    "{main} on {script:?} (history {keep}, observer {observe}, numbers logged {log_numbers})"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn typed_loops_agree() {
+    let ir = interpreter("typed/loops");
+    let app = loops::program();
+    let script = "tick.\nother.\ntick.\nhalf.\nmode.\nother.\nzzz.\ntick.\nhalf.\nhalf.\nstop.\n";
+    for main in [
+        "main(0)",
+        "main(5)",
+        "main(1000)",
+        "main(2.5)",
+        "main(abc)",
+        "main",
+    ] {
+        agree(app, &ir, main, script);
+    }
+    agree(app, &ir, "main(3)", "tick.\n"); // the script ends: an error
+    agree(app, &ir, "main(1)", "mode.\n"); // `counting` is not `idle`: done
+    agree(app, &ir, "main(1)", "other.\n"); // `counting` is `counting`: done
+    agree(app, &ir, "big", ""); // `inc` overflows: an error
+}
+
+#[test]
+fn typed_and_untyped_situations_agree() {
+    let ir = interpreter("typed/mixed");
+    let app = mixed::program();
+    agree(app, &ir, "main", "");
+    agree(app, &ir, "count(3)", "");
+    agree(app, &ir, "count(x)", "");
+}
+
+#[test]
+fn typed_runs_report_the_expected_outcome() {
+    let (report, transitions, _, _) =
+        run(loops::program(), "main(5)", "stop.\n", true, false, false);
+    assert_eq!(report["status"], "ok", "{report}");
+    assert_eq!(transitions, 7);
+    let (report, _, _, _) = run(loops::program(), "big", "", false, false, false);
+    assert_eq!(report["status"], "error");
+    assert!(
+        report["error"]
+            .as_str()
+            .unwrap()
+            .contains("`inc` of `n`: integer overflow"),
+        "{report}"
+    );
+}
