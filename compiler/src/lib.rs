@@ -22,6 +22,7 @@ pub mod package;
 pub mod run;
 pub mod source;
 pub mod types;
+pub mod watch;
 
 use std::path::Path;
 

@@ -315,6 +315,43 @@ pub fn execute<A: App>(app: &A, functions: Functions, args: &RunArgs, assets: &A
     )
 }
 
+/// Wraps the perception a run makes (the simulated user's, the script's or
+/// the prompt's) in another: `sitlogc run --watch` lets a situation waiting
+/// for input take it in a program that changed meanwhile.
+pub type PerceptionWrap = Box<dyn FnOnce(Box<dyn Perception>) -> Box<dyn Perception>>;
+
+/// [`execute`], with the run's perception wrapped by `wrap`.
+pub fn execute_wrapped<A: App>(
+    app: &A,
+    functions: Functions,
+    args: &RunArgs,
+    assets: &Assets,
+    wrap: PerceptionWrap,
+) -> u8 {
+    let interrupt = Interrupt::install();
+    let streams = Streams::process();
+    if args.view {
+        return with_view(
+            app,
+            functions,
+            args,
+            assets,
+            streams,
+            Some(interrupt),
+            Some(wrap),
+        );
+    }
+    run_task(
+        app,
+        functions,
+        args,
+        assets,
+        streams,
+        Some(interrupt),
+        Some(wrap),
+    )
+}
+
 /// Counts transitions on the console (the progress indicator).
 struct Progress<'a> {
     console: &'a SharedConsole,
@@ -367,6 +404,7 @@ fn with_view<A: App>(
     assets: &Assets,
     mut streams: Streams,
     interrupt: Option<Interrupt>,
+    wrap: Option<PerceptionWrap>,
 ) -> u8 {
     let diagram = match assets
         .diagram
@@ -407,7 +445,7 @@ fn with_view<A: App>(
     streams.observer = Some(Box::new(
         view.observer(std::time::Duration::from_millis(args.view_delay)),
     ));
-    let code = run_task(app, functions, args, assets, streams, interrupt);
+    let code = run_task(app, functions, args, assets, streams, interrupt, wrap);
     let status = match code {
         0 => "ok",
         1 => "error",
@@ -425,6 +463,7 @@ fn with_view<A: App>(
     _: &Assets,
     mut streams: Streams,
     _: Option<Interrupt>,
+    _: Option<PerceptionWrap>,
 ) -> u8 {
     let _ = writeln!(
         streams.stderr,
@@ -478,9 +517,9 @@ pub fn execute_interruptible<A: App>(
     interrupt: Option<Interrupt>,
 ) -> u8 {
     if args.view {
-        return with_view(app, functions, args, assets, streams, interrupt);
+        return with_view(app, functions, args, assets, streams, interrupt, None);
     }
-    run_task(app, functions, args, assets, streams, interrupt)
+    run_task(app, functions, args, assets, streams, interrupt, None)
 }
 
 /// The run itself (the live view, if any, already set up).
@@ -491,6 +530,7 @@ fn run_task<A: App>(
     assets: &Assets,
     mut streams: Streams,
     interrupt: Option<Interrupt>,
+    wrap: Option<PerceptionWrap>,
 ) -> u8 {
     macro_rules! fail {
         ($code:expr, $($msg:tt)*) => {{
@@ -620,6 +660,11 @@ fn run_task<A: App>(
             (perception, actions)
         }
     };
+
+    if let Some(wrap) = wrap {
+        let (perception, actions) = io;
+        io = (wrap(perception), actions);
+    }
 
     let mut trace = match &args.trace {
         Some(path) => match std::fs::File::create(path) {

@@ -100,6 +100,15 @@ pub trait DmProgram {
         let _ = (dm, sit);
         Err(cx.error("the situation has no compiled code", None))
     }
+    /// Called between two transitions, before the machine enters the next
+    /// situation: a program that can change while it runs (`sitlogc run
+    /// --watch`) takes its new version here, and may add variables to the
+    /// frames ([`Between`]). `Err` stops the run with that message.
+    /// Does nothing unless overridden.
+    fn between(&self, at: &mut Between<'_>) -> Result<(), String> {
+        let _ = at;
+        Ok(())
+    }
     /// The exit arcs of compiled recursive situation `sit`, once its embedded
     /// DM ended in `final_id`; `saved` is what [`Step::Call`] kept.
     fn run_exit(
@@ -140,6 +149,11 @@ pub enum Perceived {
     Input(Term),
     /// No more input (end of a test script).
     EndOfInput,
+    /// Nothing perceived yet: enter the situation again, as a new instance,
+    /// without its recovery DM (as when no expectation is met, D-15). A
+    /// perception returns it when the program changed while it waited
+    /// (hot reload), so that the new program's situation takes the input.
+    Again,
 }
 
 /// Perceptual interpreters: given the situation type and the evaluated
@@ -151,6 +165,13 @@ pub trait Perception {
         situation_type: Term,
         expectations: &[Term],
     ) -> Result<Perceived, String>;
+
+    /// Where the next [`Perception::perceive`] is asked for: the running
+    /// DM's call and the situation's id (for a prompt that names them).
+    /// Called by the machine just before it. Does nothing unless overridden.
+    fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
+        let _ = (store, dm, situation);
+    }
 }
 
 /// Basic actions: executed after an arc's action is evaluated.
@@ -174,6 +195,58 @@ pub trait Actions {
 /// Notified of every transition as it happens (for `--trace`).
 pub trait Observer {
     fn transition(&mut self, store: &Store, entry: &Entry, depth: usize, next: Option<Term>);
+}
+
+/// Where control goes next, as [`DmProgram::between`] sees it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Next {
+    /// The initial situation of the running DM (just called).
+    Initial,
+    /// The situation this (evaluated) next-situation value selects.
+    Situation(Term),
+    /// Situation `SitIx` of the running DM (compiled code).
+    Index(SitIx),
+}
+
+/// The machine between two transitions, for [`DmProgram::between`]: the DM
+/// stack (frame 0 is the main DM, the running one is last), the situation
+/// it enters next, the variables and the functions.
+pub struct Between<'a> {
+    pub store: &'a mut Store,
+    pub globals: &'a mut Vars,
+    pub functions: &'a mut Functions,
+    pub next: Next,
+    frames: &'a mut [Frame],
+}
+
+impl Between<'_> {
+    /// DMs on the stack.
+    pub fn depth(&self) -> usize {
+        self.frames.len()
+    }
+    /// Frame `i`'s DM (the program's index) and call term.
+    pub fn dm(&self, i: usize) -> (DmIx, Term) {
+        (self.frames[i].dm, self.frames[i].dm_id)
+    }
+    /// Frame `i`'s local variables.
+    pub fn locals_mut(&mut self, i: usize) -> &mut Vars {
+        &mut self.frames[i].locals
+    }
+    /// The recursive situation of frame `i` that waits for the DM above it
+    /// (interpreted programs), if any.
+    pub fn waiting_situation(&self, i: usize) -> Option<SitIx> {
+        match self.frames[i].pending {
+            Some(Pending::Recursive { sit }) => Some(sit),
+            _ => None,
+        }
+    }
+    /// Renumbers the waiting recursive situation of frame `i` (its
+    /// instance, already made, is kept), for a program that changed.
+    pub fn set_waiting_situation(&mut self, i: usize, sit: SitIx) {
+        if let Some(Pending::Recursive { sit: s }) = &mut self.frames[i].pending {
+            *s = sit;
+        }
+    }
 }
 
 /// Options of a run.
@@ -331,6 +404,9 @@ pub struct Machine<'p, P: DmProgram> {
     /// Functor that pairs an arc with its out_arg for one joint copy (D-11);
     /// interned once, not per transition.
     arc_functor: Atom,
+    /// The perception answered [`Perceived::Again`]: the situation is
+    /// entered again without its recovery DM.
+    again: bool,
 }
 
 /// What happened in one situation: the chosen arc's terms.
@@ -365,6 +441,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             transitions: 0,
             cells_after_gc: 0,
             arc_functor: Atom::intern("$arc"),
+            again: false,
         }
     }
 
@@ -501,6 +578,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 return Err(self.err("interrupted (the run was stopped by a signal)", None, None));
             }
             self.maybe_gc(pipe, &mut goto);
+            self.between(&mut goto)?;
             let (sit, inst) = self.select(&goto)?;
             let dm = self.frames.last().expect("a frame is running").dm;
             let inst = match inst {
@@ -607,6 +685,10 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         Some(Pending::Compiled { sit, saved, id });
                     self.call_dm(call, here)?;
                     return Ok(Some(Goto::Initial));
+                }
+                Step::Unmet { .. } if std::mem::take(&mut self.again) => {
+                    // Asked to perceive again: a new instance, no recovery.
+                    return Ok(Some(Goto::Situation(id)));
                 }
                 Step::Unmet { type_term } => {
                     // No expectation met (D-15 / D-42a): recovery DM, then a new instance.
@@ -980,12 +1062,19 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             self.store.list_to_vec(first).is_some()
                 && self.store.functor(first).is_some_and(|f| f.0 == atoms::DOT)
         };
+        if let (Some((_, id)), Some(frame)) = (here, self.frames.last()) {
+            perception.waiting_at(&self.store, frame.dm_id, id);
+        }
         for attempt in 0..2 {
             let exps = std::mem::take(&mut self.expectations);
             let perceived = perception.perceive(&mut self.store, type_term, &exps);
             self.expectations = exps;
             let input = match perceived {
                 Ok(Perceived::Input(t)) => t,
+                Ok(Perceived::Again) => {
+                    self.again = true;
+                    return Ok(None);
+                }
                 Ok(Perceived::EndOfInput) => {
                     return Err(self.err(
                         "end of input while the situation waits for an expectation",
@@ -1177,6 +1266,28 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 .expect("frame")
                 .history
                 .push(Item::Entry(entry));
+        }
+    }
+
+    /// Lets the program look at the machine between two transitions
+    /// ([`DmProgram::between`]).
+    #[inline]
+    fn between(&mut self, goto: &mut Goto) -> Result<(), RunError> {
+        let next = match *goto {
+            Goto::Initial => Next::Initial,
+            Goto::Situation(t) => Next::Situation(t),
+            Goto::Index(s) => Next::Index(s),
+        };
+        let mut at = Between {
+            store: &mut self.store,
+            globals: &mut self.globals,
+            functions: &mut self.functions,
+            next,
+            frames: &mut self.frames,
+        };
+        match self.program.between(&mut at) {
+            Ok(()) => Ok(()),
+            Err(message) => Err(self.err(message, None, None)),
         }
     }
 

@@ -89,6 +89,17 @@ enum Command {
         /// our KB (sitlog-kb), the KB being a handle.
         #[arg(long, value_enum, value_name = "HOW", requires = "legacy", default_value_t = LegacyKb::Prolog)]
         legacy_kb: LegacyKb,
+        /// Hot reload: when a file of the application changes (a DM file,
+        /// `models`, global_vars.pl, basic_actions.pl, the Prolog user
+        /// functions), read and check the program again; if it checks, the
+        /// run goes on in the new program between two transitions, at the
+        /// same DM and situation, keeping its stack, pipe, variables and
+        /// history (a situation waiting for input takes it in the new
+        /// program); if not, the diagnostics are printed and the old program
+        /// goes on. A change that removes the situation the run is at, or a
+        /// DM on its stack, stops the run (exit status 1). Not with --legacy.
+        #[arg(long, conflicts_with = "legacy")]
+        watch: bool,
     },
     /// Compile an application to one executable.
     ///
@@ -248,6 +259,7 @@ fn run(cli: Cli) -> u8 {
             legacy,
             sitlog_home,
             legacy_kb,
+            watch,
         } => {
             let legacy = legacy.then_some(sitlog_home);
             run_app(
@@ -256,6 +268,7 @@ fn run(cli: Cli) -> u8 {
                 allow_unresolved,
                 legacy.as_ref().map(|h| h.as_deref()),
                 legacy_kb == LegacyKb::Native,
+                watch,
             )
         }
         Command::Build {
@@ -519,6 +532,7 @@ fn run_app(
     allow_unresolved: bool,
     legacy: Option<Option<&std::path::Path>>,
     native_kb: bool,
+    watch: bool,
 ) -> u8 {
     // The legacy profile: the original's Prolog layer from SITLOG_HOME.
     #[cfg(feature = "prolog")]
@@ -564,13 +578,11 @@ fn run_app(
             return 2;
         }
     }
-    let ir = match checked_ir_opts(
-        app,
-        sitlog_compiler::check::CheckOptions {
-            unresolved_as_warnings: allow_unresolved || legacy.is_some(),
-            legacy: legacy.is_some(),
-        },
-    ) {
+    let check_options = sitlog_compiler::check::CheckOptions {
+        unresolved_as_warnings: allow_unresolved || legacy.is_some(),
+        legacy: legacy.is_some(),
+    };
+    let ir = match checked_ir_opts(app, check_options) {
         Ok(ir) => ir,
         Err(code) => return code,
     };
@@ -612,7 +624,50 @@ fn run_app(
             }
         }
     }
+    if watch {
+        return run_watched(app, ir, functions, args, &assets, check_options);
+    }
     sitlog_robot::execute(&ir, functions, args, &assets)
+}
+
+/// `sitlogc run --watch`: the run over a program that reloads itself.
+fn run_watched(
+    app: &std::path::Path,
+    ir: sitlog_compiler::ir::Ir,
+    functions: sitlog_runtime::Functions,
+    args: &sitlog_robot::cli::RunArgs,
+    assets: &sitlog_robot::Assets,
+    options: sitlog_compiler::check::CheckOptions,
+) -> u8 {
+    use sitlog_compiler::watch::{ReloadAware, Watched};
+    let files: Vec<PathBuf> = match sitlog_compiler::load::load(app) {
+        Ok((program, _)) => program
+            .sources
+            .files()
+            .map(|(_, f)| f.path.clone())
+            .collect(),
+        Err(e) => {
+            eprintln!("error: cannot read {e}");
+            return 2;
+        }
+    };
+    let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    let messages: sitlog_compiler::watch::Messages =
+        std::sync::Arc::new(std::sync::Mutex::new(Box::new(std::io::stderr())));
+    let watched = Watched::new(ir, messages);
+    if let Err(e) = watched.watch(app, &files, options, color) {
+        eprintln!("error: --watch: {e}");
+        return 2;
+    }
+    eprintln!(
+        "watch: watching {} ({} file(s)); edits take effect between transitions",
+        app.display(),
+        files.len()
+    );
+    let ready = watched.ready_flag();
+    let wrap: sitlog_robot::cli::PerceptionWrap =
+        Box::new(move |inner| Box::new(ReloadAware::new(inner, ready)));
+    sitlog_robot::cli::execute_wrapped(&watched, functions, args, assets, wrap)
 }
 
 fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, legacy: bool) -> u8 {
