@@ -16,6 +16,7 @@
 use crate::console::{Console, SharedConsole, SharedWriter};
 use crate::interrupt::{Interrupt, InterruptibleStdin};
 use crate::kb;
+use crate::prompt::EndOfInputStops;
 use clap::{Args, CommandFactory, FromArgMatches, Parser, ValueEnum};
 use sitlog_runtime::cli::{run, App};
 use sitlog_runtime::functions::CallLimits;
@@ -615,6 +616,11 @@ fn run_task<A: App>(
         );
     }
 
+    // Typed input (test mode without a script) ends the task cleanly at its
+    // end (Ctrl-D): recorded in the run's interrupt (one of its own when
+    // signals are not handled).
+    let typed = world.is_none() && args.script.is_none();
+    let ended: Option<Interrupt> = interrupt.clone().or_else(|| typed.then(Interrupt::new));
     // Perception and actions: the simulated robot, or test mode.
     let mut io: (Box<dyn Perception>, Box<dyn Actions>) = match &world {
         #[cfg(feature = "sim")]
@@ -644,17 +650,25 @@ fn run_task<A: App>(
                     Ok(s) => Box::new(ScriptPerception::new(s.name, s.text).with_limits(limits)),
                     Err(e) => fail!(e.status, "{e}"),
                 },
-                // Typed input: read on a thread of its own when a signal
-                // can stop the run, so that the prompt sees it.
-                None => match &interrupt {
-                    Some(i) => Box::new(
-                        PromptPerception::new(InterruptibleStdin::new(i.flag.clone()))
-                            .with_limits(limits),
-                    ),
-                    None => {
-                        Box::new(PromptPerception::new(std::io::stdin().lock()).with_limits(limits))
-                    }
-                },
+                // Typed input: line editing on a terminal; else read on a
+                // thread of its own when a signal can stop the run, so that
+                // the prompt sees it.
+                None => {
+                    let ended = ended.clone().unwrap_or_default();
+                    let prompt: Box<dyn Perception> = match edited_prompt(limits, &ended) {
+                        Some(p) => p,
+                        None => match &interrupt {
+                            Some(i) => Box::new(
+                                PromptPerception::new(InterruptibleStdin::new(i.flag.clone()))
+                                    .with_limits(limits),
+                            ),
+                            None => Box::new(
+                                PromptPerception::new(std::io::stdin().lock()).with_limits(limits),
+                            ),
+                        },
+                    };
+                    Box::new(EndOfInputStops::new(prompt, ended))
+                }
             };
             let actions = Box::new(TextActions::new(std::io::stderr(), app.basic_actions()));
             (perception, actions)
@@ -696,7 +710,7 @@ fn run_task<A: App>(
     let options = Options {
         keep_history: args.history == HistoryMode::Keep,
         input_limits: args.input_limits(),
-        stop: interrupt.as_ref().map(|i| i.flag.clone()),
+        stop: ended.as_ref().map(|i| i.flag.clone()),
         ..Options::default()
     };
     functions.set_call_limits(args.call_limits());
@@ -760,14 +774,43 @@ fn run_task<A: App>(
         _ => {}
     }
     if let Err(e) = &outcome.result {
-        let _ = writeln!(streams.stderr, "error: {e}");
-        match interrupt.as_ref().and_then(Interrupt::exit_status) {
+        let by_input = outcome.interrupted && ended.as_ref().is_some_and(Interrupt::ended_by_input);
+        if by_input {
+            let place = match (&e.dm, &e.situation) {
+                (Some(dm), Some(sit)) => format!(" while DM `{dm}` waited in situation `{sit}`"),
+                _ => String::new(),
+            };
+            let _ = writeln!(
+                streams.stderr,
+                "stopped: the input ended (Ctrl-D){place}: the task did not finish (exit status {})",
+                crate::interrupt::EXIT_END_OF_INPUT
+            );
+        } else {
+            let _ = writeln!(streams.stderr, "error: {e}");
+        }
+        match ended.as_ref().and_then(Interrupt::exit_status) {
             Some(status) if outcome.interrupted => status,
             _ => 1,
         }
     } else {
         0
     }
+}
+
+/// The prompt with line editing, when stdin and stderr are terminals (and
+/// the `edit` feature is on).
+#[cfg(feature = "edit")]
+fn edited_prompt(limits: InputLimits, interrupt: &Interrupt) -> Option<Box<dyn Perception>> {
+    if !(std::io::stdin().is_terminal() && std::io::stderr().is_terminal()) {
+        return None;
+    }
+    crate::prompt::EditedPrompt::new(limits, interrupt.clone())
+        .map(|p| Box::new(p) as Box<dyn Perception>)
+}
+
+#[cfg(not(feature = "edit"))]
+fn edited_prompt(_: InputLimits, _: &Interrupt) -> Option<Box<dyn Perception>> {
+    None
 }
 
 /// The command line of a compiled task.
@@ -787,7 +830,9 @@ pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::proc
         assets.app_name.clone()
     };
     let about = format!(
-        "The SitLog task `{name}`, compiled. Runs it on its world when it has one, else in test mode."
+        "The SitLog task `{name}`, compiled. Runs it on its world when it has one, else in test mode. \
+         A compiled task does not reload when its sources change: for that, run them with \
+         `sitlogc run APP --watch`."
     );
     let command = TaskCli::command()
         .name(name.clone())

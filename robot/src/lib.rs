@@ -20,6 +20,7 @@ pub mod console;
 mod infer;
 pub mod interrupt;
 pub mod kb;
+pub mod prompt;
 #[cfg(feature = "sim")]
 pub mod robot;
 
