@@ -253,3 +253,78 @@ fn removing_a_dm_on_the_stack_stops_the_run() {
         "{err}"
     );
 }
+
+#[test]
+fn variables_are_kept_and_new_ones_start_at_their_initial_values() {
+    let dir = app("vars");
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main, [
+  [id ==> ask, type ==> listening,
+   arcs ==> [said(go) : [inc(n, N), say(N)] => ask, said(stop) : say(bye) => fs]],
+  [id ==> fs, type ==> final]
+], [n ==> 0]).
+",
+    )
+    .unwrap();
+    let mut run = Run::start(&dir);
+    run.wait_for("|: ");
+    run.send("go.");
+    run.wait_for("Golem says: 1");
+    run.send("go.");
+    run.wait_for("Golem says: 2");
+    run.wait_for("|: ");
+    // The new program says the local's value with a new global's. Until
+    // global_vars.pl declares it, the program does not check (E0219): only
+    // the program with both changes is taken.
+    edit(&dir, |t| {
+        t.replace(
+            "[inc(n, N), say(N)]",
+            "[inc(n, N), get(m, M), say(sum(N, M))]",
+        )
+    });
+    std::fs::write(dir.join("global_vars.pl"), "m ==> 40.\n").unwrap();
+    run.wait_for("the program checks");
+    run.send("go.");
+    run.wait_for("Golem says: sum(3,40)");
+    run.send("stop.");
+    let (code, out, err) = run.finish();
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("Out Global Vars: [m==>40]"), "{out}");
+}
+
+#[test]
+fn changed_prolog_user_functions_are_loaded_again() {
+    let dir = app("prolog");
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main, [
+  [id ==> ask, type ==> listening,
+   arcs ==> [said(go) : say(apply(word(_), [x])) => ask, said(stop) : say(bye) => fs]],
+  [id ==> fs, type ==> final]
+], []).
+",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("user_functions.pl"),
+        "word(_) :- assign_func_value(one).\n",
+    )
+    .unwrap();
+    let mut run = Run::start(&dir);
+    run.wait_for("|: ");
+    run.send("go.");
+    run.wait_for("Golem says: one");
+    run.wait_for("|: ");
+    std::fs::write(
+        dir.join("user_functions.pl"),
+        "word(_) :- assign_func_value(two).\n",
+    )
+    .unwrap();
+    run.wait_for("user_functions.pl changed; the program checks");
+    run.send("go.");
+    run.wait_for("Golem says: two");
+    run.send("stop.");
+    let (code, _, err) = run.finish();
+    assert_eq!(code, Some(0), "{err}");
+}

@@ -110,6 +110,8 @@ enum Command {
     /// the task with the options of `sitlogc run` (`--main`, `--in-arg`,
     /// `--script`, `--format`, `--history`, `--trace`). With `--emit rust`
     /// the generated Rust is written to FILE (stdout without -o) instead.
+    /// A compiled task does not reload when its sources change (that is
+    /// `sitlogc run APP --watch`).
     Build {
         /// The application directory (or a single DM file).
         #[arg(value_name = "APP")]
