@@ -1,0 +1,229 @@
+//! Every relative link of README.md and of the guide (`docs/guide/*.md`)
+//! names a file of the repository, and every `#anchor` a heading of the
+//! page it points to (GitHub's heading ids); nothing links outside the
+//! repository. Pages another change is still writing may be linked before
+//! they exist: they are listed in `COMING`.
+
+use sitlog_tests::workspace;
+use std::path::{Path, PathBuf};
+
+/// Guide pages linked as "coming" before they are written.
+const COMING: [&str; 6] = [
+    "cli.md",
+    "running.md",
+    "debugging.md",
+    "performance.md",
+    "compiling.md",
+    "diagnostics.md",
+];
+
+/// The Markdown files checked.
+fn pages() -> Vec<PathBuf> {
+    let root = workspace();
+    let mut pages = vec![root.join("README.md")];
+    let mut guide: Vec<PathBuf> = std::fs::read_dir(root.join("docs/guide"))
+        .expect("docs/guide exists")
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    guide.sort();
+    pages.extend(guide);
+    pages
+}
+
+/// The text outside fenced code blocks and inline code, line by line.
+fn prose(text: &str) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    let mut fenced = false;
+    for (i, line) in text.lines().enumerate() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+            continue;
+        }
+        if fenced {
+            continue;
+        }
+        // drop `inline code`
+        let mut kept = String::new();
+        let mut code = false;
+        for c in line.chars() {
+            if c == '`' {
+                code = !code;
+            } else if !code {
+                kept.push(c);
+            }
+        }
+        out.push((i + 1, kept));
+    }
+    out
+}
+
+/// The targets of `[text](target)` and `![alt](target)` links, with their lines.
+fn links(text: &str) -> Vec<(usize, String)> {
+    let mut found = Vec::new();
+    for (line, prose) in prose(text) {
+        let mut rest = prose.as_str();
+        while let Some(at) = rest.find("](") {
+            let after = &rest[at + 2..];
+            let end = after.find(')').unwrap_or(after.len());
+            found.push((line, after[..end].trim().to_owned()));
+            rest = &after[end..];
+        }
+    }
+    found
+}
+
+/// GitHub's id of a heading: lower case, spaces to `-`, punctuation other
+/// than `-` and `_` dropped.
+fn slug(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter_map(|c| match c {
+            ' ' => Some('-'),
+            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c),
+            _ => None,
+        })
+        .collect()
+}
+
+fn anchors(text: &str) -> Vec<String> {
+    let mut fenced = false;
+    let mut ids = Vec::new();
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+            continue;
+        }
+        if !fenced && line.starts_with('#') {
+            let base = slug(line.trim_start_matches('#'));
+            // repeated headings get -1, -2, ...
+            let n = ids
+                .iter()
+                .filter(|i: &&String| **i == base || i.starts_with(&format!("{base}-")))
+                .count();
+            ids.push(if n == 0 { base } else { format!("{base}-{n}") });
+        }
+        // explicit anchors: <a id="name"></a>
+        if !fenced {
+            let mut rest = line;
+            while let Some(at) = rest.find("<a id=\"") {
+                let after = &rest[at + 7..];
+                let end = after.find('"').unwrap_or(after.len());
+                ids.push(after[..end].to_owned());
+                rest = &after[end..];
+            }
+        }
+    }
+    ids
+}
+
+fn check(page: &Path, problems: &mut Vec<String>) {
+    let root = workspace();
+    let text = std::fs::read_to_string(page).unwrap();
+    let name = page.strip_prefix(&root).unwrap().display().to_string();
+    for (line, target) in links(&text) {
+        let at = format!("{name}:{line}: `{target}`");
+        if target.contains("://") || target.starts_with("mailto:") {
+            problems.push(format!("{at}: points outside the repository"));
+            continue;
+        }
+        let (path, anchor) = match target.split_once('#') {
+            Some((p, a)) => (p, Some(a)),
+            None => (target.as_str(), None),
+        };
+        let file = if path.is_empty() {
+            page.to_path_buf()
+        } else {
+            page.parent().unwrap().join(path)
+        };
+        if !file.exists() {
+            let coming =
+                page.parent() == Some(root.join("docs/guide").as_path()) && COMING.contains(&path);
+            if !coming {
+                problems.push(format!("{at}: no such file"));
+            }
+            continue;
+        }
+        if let Some(anchor) = anchor {
+            if file.extension().is_some_and(|e| e == "md") {
+                let ids = anchors(&std::fs::read_to_string(&file).unwrap());
+                if !ids.iter().any(|i| i == anchor) {
+                    problems.push(format!("{at}: no heading with this id"));
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn the_guide_links_resolve_in_the_repository() {
+    let mut problems = Vec::new();
+    for page in pages() {
+        check(&page, &mut problems);
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn every_guide_page_is_in_the_summary() {
+    let root = workspace();
+    let summary = std::fs::read_to_string(root.join("docs/guide/SUMMARY.md")).unwrap();
+    let listed: Vec<String> = links(&summary).into_iter().map(|(_, t)| t).collect();
+    for page in pages().into_iter().skip(1) {
+        let file = page.file_name().unwrap().to_string_lossy().into_owned();
+        if file != "SUMMARY.md" {
+            assert!(
+                listed.contains(&file),
+                "{file} is not in docs/guide/SUMMARY.md"
+            );
+        }
+    }
+}
+
+#[test]
+fn slugs_follow_github() {
+    assert_eq!(
+        slug(" The home butler (`dms/apps/home/`)"),
+        "the-home-butler-dmsappshome"
+    );
+    assert_eq!(slug("Typed code generation"), "typed-code-generation");
+    assert_eq!(
+        slug("In your editor: `sitlogc lsp`"),
+        "in-your-editor-sitlogc-lsp"
+    );
+}
+
+/// The Rust blocks of `docs/guide/robot.md` that show the worked example's
+/// robot are the example's code (`robot/examples/channel_robot.rs`), which
+/// `cargo test -p sitlog-robot` compiles.
+#[test]
+fn the_robot_page_shows_the_example_as_it_is() {
+    let root = workspace();
+    let page = std::fs::read_to_string(root.join("docs/guide/robot.md")).unwrap();
+    let example = std::fs::read_to_string(root.join("robot/examples/channel_robot.rs")).unwrap();
+    let task = std::fs::read_to_string(root.join("robot/examples/channel_robot/main.dm")).unwrap();
+    let mut shown = 0;
+    for block in page.split("```rust\n").skip(1) {
+        let block = &block[..block.find("```").unwrap()];
+        if block.contains("impl Perception for Senses") {
+            assert!(
+                example.contains(block),
+                "robot.md shows a robot that is not the example's:\n{block}"
+            );
+            shown += 1;
+        }
+    }
+    for block in page.split("```prolog\n").skip(1) {
+        let block = &block[..block.find("```").unwrap()];
+        if block.contains("navigate(kitchen, Status)") {
+            assert!(
+                task.contains(block),
+                "robot.md shows a task that is not the example's:\n{block}"
+            );
+            shown += 1;
+        }
+    }
+    assert_eq!(shown, 2);
+}
