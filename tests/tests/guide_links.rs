@@ -227,3 +227,51 @@ fn the_robot_page_shows_the_example_as_it_is() {
     }
     assert_eq!(shown, 2);
 }
+
+/// The first Prolog block of `text` (after `after`) and the text block after it.
+fn blocks_after<'a>(text: &'a str, after: &str) -> (&'a str, &'a str) {
+    let from = text.find(after).expect("marker") + after.len();
+    let rest = &text[from..];
+    let dm_at = rest.find("```prolog\n").expect("a Prolog block") + 10;
+    let dm = &rest[dm_at..dm_at + rest[dm_at..].find("```").unwrap()];
+    let rest = &rest[dm_at + dm.len()..];
+    let out_at = rest.find("```text\n").expect("a text block") + 8;
+    let out = &rest[out_at..out_at + rest[out_at..].find("```").unwrap()];
+    (dm, out)
+}
+
+/// README's ten-line DM checks without a warning and, answered `yes.`,
+/// prints what README shows.
+#[test]
+fn the_readme_dm_runs_as_shown() {
+    use sitlog_compiler::run::{self, RunConfig};
+    use sitlog_robot::console::SharedBuf;
+    use sitlog_runtime::testmode::{ScriptPerception, TextActions};
+
+    let readme = std::fs::read_to_string(workspace().join("README.md")).unwrap();
+    let (dm, shown) = blocks_after(&readme, "A DM that greets");
+    let dir = std::env::temp_dir().join(format!("sitlog-readme-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("hello.dm");
+    std::fs::write(&file, dm).unwrap();
+    let (result, diags) = sitlog_compiler::check_path(&file).expect("readable");
+    let _ = std::fs::remove_dir_all(&dir);
+    let checked = result.unwrap_or_else(|_| panic!("README's DM does not check: {diags:?}"));
+    assert!(diags.is_empty(), "{diags:?}");
+    let ir = sitlog_compiler::ir::lower(&checked);
+    let said = SharedBuf::default();
+    let mut actions = TextActions::new(said.clone(), ir.basic_actions.clone());
+    let mut perception = ScriptPerception::new("answers.txt", "yes.\n".to_owned());
+    let (outcome, mut store) = run::run(
+        &ir,
+        RunConfig::default(),
+        &mut perception,
+        &mut actions,
+        None,
+    )
+    .expect("runs");
+    let report = sitlog_runtime::report::outcome_text(&mut store, &outcome);
+    let history = report.split("\n\n").next().unwrap();
+    let printed = format!("{}{history}\n", said.text());
+    assert_eq!(shown, printed, "README shows another run than its DM makes");
+}
