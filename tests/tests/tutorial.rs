@@ -101,3 +101,50 @@ fn the_tutorial_app_gives_up_after_three_questions() {
     insta::assert_snapshot!("tutorial_gave_up", out);
     assert!(guide().contains(out.trim_end()));
 }
+
+/// Step 4 of the tutorial: a typo in a next situation, as `sitlogc check`
+/// reports it (without colours).
+#[test]
+fn a_typo_is_reported_as_the_guide_shows() {
+    use sitlog_compiler::diag::{self, Severity};
+    let tmp = std::env::temp_dir().join(format!("sitlog-tutorial-{}", std::process::id()));
+    let copy = tmp.join("dms/examples/tutorial");
+    std::fs::create_dir_all(&copy).unwrap();
+    for entry in std::fs::read_dir(app()).unwrap() {
+        let p = entry.unwrap().path();
+        std::fs::copy(&p, copy.join(p.file_name().unwrap())).unwrap();
+    }
+    let dm = std::fs::read_to_string(copy.join("ask_drink.dm")).unwrap();
+    let typo = "Other : say(msg_format(['Sorry, we have no', Other], _)) => retry,";
+    assert!(dm.contains(typo), "the tutorial's ask_drink.dm changed");
+    std::fs::write(
+        copy.join("ask_drink.dm"),
+        dm.replace(typo, &typo.replace("=> retry", "=> rerty")),
+    )
+    .unwrap();
+    let (result, diags) = sitlog_compiler::check_path(&copy).expect("readable");
+    let program = match &result {
+        Ok(checked) => checked.program(),
+        Err(program) => program,
+    };
+    let mut text: String = diags
+        .iter()
+        .map(|d| diag::render_human(d, &program.sources, false))
+        .collect();
+    let errors = diags
+        .iter()
+        .filter(|d| d.severity == Severity::Error)
+        .count();
+    text.push_str(&format!(
+        "checked 1 program(s): {errors} error(s), {} warning(s)\n",
+        diags.len() - errors
+    ));
+    let prefix = format!("{}/", tmp.display());
+    let text = text.replace(&prefix, "");
+    let _ = std::fs::remove_dir_all(&tmp);
+    insta::assert_snapshot!("tutorial_typo", text);
+    assert!(
+        guide().contains(text.trim_end()),
+        "docs/guide/tutorial.md does not show `check`'s report as it is now:\n{text}"
+    );
+}
