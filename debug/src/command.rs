@@ -199,6 +199,15 @@ impl Source {
         })
     }
 
+    /// Commands given as text (`name` names them in errors), as from a file.
+    pub fn text(name: &str, text: &str) -> Source {
+        Source::File {
+            name: name.to_owned(),
+            lines: text.lines().map(str::to_owned).collect(),
+            next: 0,
+        }
+    }
+
     /// The terminal's line editor.
     pub fn editor() -> Result<Source, String> {
         rustyline::DefaultEditor::new()

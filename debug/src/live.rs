@@ -404,10 +404,31 @@ impl Perception for Ask {
     }
 }
 
+/// A run's output stream that goes quiet once the session has quit (or
+/// failed): the run's end, report and "interrupted" error are not printed.
+struct Gate {
+    inner: Box<dyn Write + Send>,
+    closed: Arc<AtomicBool>,
+}
+
+impl Write for Gate {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if self.closed.load(Ordering::Relaxed) {
+            return Ok(buf.len());
+        }
+        self.inner.write(buf)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush()
+    }
+}
+
 /// `sitlogc debug`: runs `app` as `sitlogc run` does with `args`, under
 /// the REPL reading `commands`; the debugger writes to `out`, a bad
 /// commands file is reported on `err`. The exit status is the run's, 0
-/// after `quit`, 2 for a bad line in a commands file.
+/// after `quit`, 2 for a bad line in a commands file. After `quit` (or a
+/// bad line) the run stops at its next transition and prints nothing more.
 #[allow(clippy::too_many_arguments)]
 pub fn debug<A: App>(
     app: &A,
@@ -447,6 +468,13 @@ pub fn debug<A: App>(
         Resume::Stop => 0,
         _ => {
             streams.observer = Some(Box::new(Watch(live.clone())));
+            for stream in [&mut streams.stdout, &mut streams.stderr] {
+                let inner = std::mem::replace(stream, Box::new(std::io::sink()));
+                *stream = Box::new(Gate {
+                    inner,
+                    closed: stop.clone(),
+                });
+            }
             let for_perception = live.clone();
             let for_world = live.clone();
             let hooks = DebugHooks {
