@@ -53,8 +53,14 @@ impl Trace {
                 continue;
             }
             let value: serde_json::Value = serde_json::from_str(line).map_err(|e| {
+                // serde's message without its own " at line 1 column C".
+                let message = e.to_string();
+                let message = match message.rfind(" at line ") {
+                    Some(i) => message[..i].to_owned(),
+                    None => message,
+                };
                 format!(
-                    "{name}:{n}:{}: error: not a JSON object: {e}",
+                    "{name}:{n}:{}: error: not a JSON object: {message}",
                     e.column().max(1)
                 )
             })?;
