@@ -17,6 +17,9 @@ use std::io::Write;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 
+/// Transitions kept for `history` (memory stays bounded on long runs).
+const KEEP: usize = 50_000;
+
 /// Where the run goes until it stops again.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Mode {
@@ -60,11 +63,16 @@ struct Live {
     breaks: Vec<(usize, Spec)>,
     next_break: usize,
     mode: Mode,
+    /// The last transitions (at most 2 × [`KEEP`]), for `history` and
+    /// breakpoints; `dropped` older ones were let go.
     records: Vec<Record>,
+    dropped: usize,
     world: Option<WorldProbe>,
     stop: Arc<AtomicBool>,
     state: State,
     limits: InputLimits,
+    /// Set by Ctrl-C (interactive sessions): stop at the next transition.
+    interrupt: Option<Arc<AtomicBool>>,
 }
 
 macro_rules! say {
@@ -179,7 +187,7 @@ impl Live {
                 None
             }
             Command::History(n) => {
-                let text = record::history(&self.records, n.unwrap_or(10));
+                let text = record::history_from(self.dropped, &self.records, n.unwrap_or(10));
                 let _ = write!(self.out, "{text}");
                 None
             }
@@ -301,6 +309,11 @@ impl Live {
     /// Why the run stops after the last transition, if it does.
     fn stops(&self) -> Option<String> {
         let r = self.records.last()?;
+        if let Some(flag) = &self.interrupt {
+            if flag.swap(false, Ordering::SeqCst) {
+                return Some("-- interrupted (Ctrl-C)".to_owned());
+            }
+        }
         let before = &self.records[..self.records.len() - 1];
         for (n, spec) in &self.breaks {
             let hit = match spec {
@@ -331,6 +344,10 @@ struct Watch(Arc<Mutex<Live>>);
 impl Observer for Watch {
     fn transition(&mut self, store: &Store, entry: &Entry, depth: usize, next: Option<Term>) {
         let Ok(mut live) = self.0.lock() else { return };
+        if live.records.len() >= 2 * KEEP {
+            live.records.drain(..KEEP);
+            live.dropped += KEEP;
+        }
         live.records.push(Record {
             dm: store.writeq(entry.dm),
             situation: store.writeq(entry.situation),
@@ -360,7 +377,7 @@ impl Observer for Watch {
             say!(live, "{why}");
         }
         let n = live.records.len();
-        let line = record::numbered(n, &live.records[n - 1]);
+        let line = record::numbered(live.dropped + n, &live.records[n - 1]);
         say!(live, "{line}");
         live.repl(&mut Ctx::Machine(machine));
     }
@@ -441,13 +458,21 @@ pub fn debug<A: App>(
     mut err: Box<dyn Write + Send>,
 ) -> u8 {
     let stop = Arc::new(AtomicBool::new(false));
+    // At the terminal, Ctrl-C during a run stops it at its next transition
+    // (a second one, before that, ends the process).
+    let interrupt = match commands {
+        Source::Editor(_) => Some(sitlog_robot::interrupt::Interrupt::install().flag),
+        Source::File { .. } => None,
+    };
     let live = Arc::new(Mutex::new(Live {
+        interrupt,
         commands,
         out,
         breaks: Vec::new(),
         next_break: 0,
         mode: Mode::Step,
         records: Vec::new(),
+        dropped: 0,
         world: None,
         stop: stop.clone(),
         state: State::Running,
@@ -468,6 +493,8 @@ pub fn debug<A: App>(
         Resume::Stop => 0,
         _ => {
             streams.observer = Some(Box::new(Watch(live.clone())));
+            // No progress indicator: it would tick over the prompt.
+            streams.stdout_is_terminal = false;
             for stream in [&mut streams.stdout, &mut streams.stderr] {
                 let inner = std::mem::replace(stream, Box::new(std::io::sink()));
                 *stream = Box::new(Gate {

@@ -57,13 +57,18 @@ pub fn numbered(n: usize, r: &Record) -> String {
 
 /// The last `count` of `records` (numbered from 1), one a line.
 pub fn history(records: &[Record], count: usize) -> String {
+    history_from(0, records, count)
+}
+
+/// [`history`] of records numbered from `first + 1`.
+pub fn history_from(first: usize, records: &[Record], count: usize) -> String {
     let mut out = String::new();
     if records.is_empty() {
         out.push_str("no transition yet\n");
     }
     let from = records.len().saturating_sub(count);
     for (i, r) in records.iter().enumerate().skip(from) {
-        let _ = writeln!(out, "{}", numbered(i + 1, r));
+        let _ = writeln!(out, "{}", numbered(first + i + 1, r));
     }
     out
 }
