@@ -549,6 +549,9 @@ fn run_task<A: App>(
         Some(h) => (Some(h.perception), Some(h.world), Some(h.stop)),
         None => (None, None, None),
     };
+    // Without the simulator there is no world to look at.
+    #[cfg(not(feature = "sim"))]
+    let _ = debug_world.take();
     macro_rules! fail {
         ($code:expr, $($msg:tt)*) => {{
             let _ = writeln!(streams.stderr, $($msg)*);

@@ -84,7 +84,7 @@ fn breakpoints_step_next_finish_and_inspection() {
         &app(),
         &args,
         "break ask:is\nbreak main:ask1\nbreak\ncontinue\nstack\nvars\nvars 0\nvars 7\npipe\n\
-         print get(asked, N)\nprint apply(no_such_function, [])\nhistory\nnext\nstack\nfinish\n\
+         print get(asked, N)\nprint apply(no_such_function, [])\nprint [set(asked, 99), inc(asked, M)]\nvars\nhistory\nnext\nstack\nfinish\n\
          delete 1\ndelete 9\ncontinue\nworld\nback\nstep\ncontinue\n",
     );
     assert_eq!((code, err.as_str()), (0, ""));
