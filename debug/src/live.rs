@@ -248,8 +248,9 @@ impl Live {
             Command::Stack => {
                 for i in (0..m.depth()).rev() {
                     let dm = m.store.writeq(m.dm_id(i));
-                    let at = match (i == top, self.records.last()) {
-                        (true, Some(r)) => format!("  after {}", r.situation),
+                    let at = match (i == top, self.records.last(), m.waiting_in(i)) {
+                        (true, Some(r), _) => format!("  after {}", r.situation),
+                        (false, _, Some(id)) => format!("  in {}", m.store.writeq(id)),
                         _ => String::new(),
                     };
                     say!(self, "#{i} {dm}{at}");

@@ -197,6 +197,7 @@ pub struct Inspection<'a> {
     /// The error that stopped the run, when it did (`None` after a transition).
     pub error: Option<&'a RunError>,
     frames: &'a mut [Frame],
+    instances: &'a [Instance],
 }
 
 impl Inspection<'_> {
@@ -211,6 +212,21 @@ impl Inspection<'_> {
     /// Frame `i`'s local variables.
     pub fn locals(&self, i: usize) -> &Vars {
         &self.frames[i].locals
+    }
+    /// The id of the situation frame `i` waits in for frame `i + 1` (its
+    /// recursive situation, or the failed one a recovery DM runs for);
+    /// `None` for the innermost frame.
+    pub fn waiting_in(&self, i: usize) -> Option<Term> {
+        match self.frames.get(i)?.pending.as_ref()? {
+            Pending::Recursive { .. } => {
+                let n = self.frames[..=i]
+                    .iter()
+                    .filter(|f| matches!(f.pending, Some(Pending::Recursive { .. })))
+                    .count();
+                self.instances.get(n - 1).map(|inst| inst.id)
+            }
+            Pending::Compiled { id, .. } | Pending::Recovery { id } => Some(*id),
+        }
     }
     /// Frame `i`'s history so far (empty when the history is not kept).
     pub fn history(&self, i: usize) -> &[Item] {
@@ -1267,6 +1283,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             pipe,
             error,
             frames: &mut self.frames,
+            instances: &self.instances,
         });
     }
 
