@@ -56,7 +56,8 @@ fn debug_session_from_a_commands_file() {
     assert_eq!(out.status.code(), Some(0));
     let stdout = String::from_utf8(out.stdout).unwrap();
     assert!(
-        stdout.contains("(sitlog) stack\n#1 ask(color)  after is\n#0 main\n(sitlog) quit\n"),
+        stdout
+            .contains("(sitlog) stack\n#1 ask(color)  after is\n#0 main  in ask1\n(sitlog) quit\n"),
         "{stdout}"
     );
     assert!(!stdout.contains("Execution history"), "{stdout}");
