@@ -295,3 +295,29 @@ mod tests {
         assert!(parse("break :x").is_err());
     }
 }
+
+#[cfg(test)]
+mod props {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Any line is a command, nothing, or an error: never a panic.
+        #[test]
+        fn any_line_parses_or_is_refused(line in "\\PC{0,40}") {
+            let _ = parse(&line);
+        }
+
+        /// Commands made of the known words and any argument.
+        #[test]
+        fn known_words_with_any_argument(
+            word in prop::sample::select(vec![
+                "break", "delete", "step", "next", "finish", "continue", "back", "goto",
+                "stack", "pipe", "vars", "history", "print", "input", "world", "diff", "help", "quit",
+            ]),
+            arg in "[ -~]{0,12}",
+        ) {
+            let _ = parse(&format!("{word} {arg}"));
+        }
+    }
+}

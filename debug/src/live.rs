@@ -247,6 +247,10 @@ impl Live {
         match command {
             Command::Stack => {
                 for i in (0..m.depth()).rev() {
+                    if m.depth() - i > crate::replay::STACK_SHOWN {
+                        say!(self, "... {} frames more, down to #0", i + 1);
+                        break;
+                    }
                     let dm = m.store.writeq(m.dm_id(i));
                     let at = match (i == top, self.records.last(), m.waiting_in(i)) {
                         (true, Some(r), _) => format!("  after {}", r.situation),

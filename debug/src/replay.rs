@@ -128,6 +128,10 @@ impl Trace {
         };
         let mut frames = vec![format!("#{} {}  after {}", r.depth, r.dm, r.situation)];
         for k in (0..r.depth).rev() {
+            if frames.len() == STACK_SHOWN {
+                frames.push(format!("... {} frames more, down to #0", k + 1));
+                break;
+            }
             let later = self.records[at..].iter().find(|p| p.depth <= k);
             let frame = match later {
                 Some(p) if p.depth == k => format!("#{k} {}  in {}", p.dm, p.situation),
@@ -141,6 +145,9 @@ impl Trace {
         frames
     }
 }
+
+/// Frames `stack` lists at most (a deep recursion has millions).
+pub const STACK_SHOWN: usize = 100;
 
 fn short(text: &str) -> String {
     let mut s: String = text.chars().take(60).collect();
@@ -450,6 +457,18 @@ mod tests {
     }
 
     #[test]
+    fn a_deep_stack_is_cut() {
+        let t = Trace::parse(
+            "t.jsonl",
+            r#"{"dm":"m","situation":"s","expectation":"x","action":"a","depth":18446744073709551615,"next":null}"#,
+        )
+        .unwrap();
+        let frames = t.stack(1);
+        assert_eq!(frames.len(), STACK_SHOWN + 1);
+        assert!(frames[STACK_SHOWN].starts_with("... "), "{frames:?}");
+    }
+
+    #[test]
     fn diff_finds_the_first_difference() {
         let a = Trace::parse("a", T).unwrap();
         assert_eq!(diff(&a, &a), None);
@@ -463,5 +482,37 @@ mod tests {
         assert!(diff(&a, &c)
             .unwrap()
             .contains("c: ends after 1 transitions"));
+    }
+}
+
+#[cfg(test)]
+mod props {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Any text is a trace or an error naming the file and a line: never a panic.
+        #[test]
+        fn any_text_reads_or_names_a_line(text in "\\PC{0,200}") {
+            if let Err(e) = Trace::parse("t.jsonl", &text) {
+                prop_assert!(e.starts_with("t.jsonl:"), "{}", e);
+            }
+        }
+
+        /// JSON-like lines with fields missing or of the wrong kind.
+        #[test]
+        fn trace_like_lines(
+            fields in prop::collection::vec(
+                (prop::sample::select(vec!["dm", "situation", "expectation", "action", "depth", "next"]),
+                 prop::sample::select(vec!["\"a\"", "0", "-1", "null", "[1]", "1.5", "{}"])),
+                0..7),
+        ) {
+            let body: Vec<String> = fields.iter().map(|(k, v)| format!("\"{k}\":{v}")).collect();
+            let line = format!("{{{}}}", body.join(","));
+            match Trace::parse("t.jsonl", &line) {
+                Ok(t) => prop_assert_eq!(t.records.len(), 1),
+                Err(e) => prop_assert!(e.starts_with("t.jsonl:1"), "{}", e),
+            }
+        }
     }
 }
