@@ -321,14 +321,7 @@ impl Live {
         }
         let before = &self.records[..self.records.len() - 1];
         for (n, spec) in &self.breaks {
-            let hit = match spec {
-                Spec::Dm(dm) => record::name_of(&r.dm) == dm && record::first_of_call(before, r),
-                Spec::Situation(dm, sit) => {
-                    record::name_of(&r.dm) == dm
-                        && (r.situation == *sit || record::name_of(&r.situation) == sit)
-                }
-                Spec::Error => false,
-            };
+            let hit = record::hits(spec, before, r);
             if hit {
                 return Some(format!("-- breakpoint {n} ({spec})"));
             }

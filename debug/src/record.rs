@@ -35,6 +35,24 @@ pub fn name_of(text: &str) -> &str {
     text.split('(').next().unwrap_or(text).trim()
 }
 
+/// Whether `r` is where breakpoint `spec` stops, given the transitions
+/// before it. A DM or situation is named by its name (`ask`) or by the
+/// term as printed (`ask(color)`, spaces aside).
+pub fn hits(spec: &crate::command::Spec, before: &[Record], r: &Record) -> bool {
+    use crate::command::Spec;
+    let names = |text: &str, name: &str| {
+        name_of(text) == name || {
+            let squeeze = |s: &str| s.chars().filter(|c| !c.is_whitespace()).collect::<String>();
+            squeeze(text) == squeeze(name)
+        }
+    };
+    match spec {
+        Spec::Dm(dm) => names(&r.dm, dm) && first_of_call(before, r),
+        Spec::Situation(dm, sit) => names(&r.dm, dm) && names(&r.situation, sit),
+        Spec::Error => false,
+    }
+}
+
 /// Whether `r` is the first transition of a call of its DM, given the
 /// transitions before it: going back, an earlier transition of the same
 /// depth comes before any of a lower one only within the same call.
@@ -97,5 +115,21 @@ mod tests {
         assert!(!first_of_call(&rs[..2], &rs[2]));
         assert!(first_of_call(&rs[..4], &rs[4]));
         assert_eq!(name_of("ask(X, 1)"), "ask");
+        use crate::command::Spec;
+        let mut got = r("ask(color)", 1);
+        got.situation = "got(red)".into();
+        for (dm, sit, hit) in [
+            ("ask", "got", true),
+            ("ask(color)", "got(red)", true),
+            ("ask( color )", "got( red)", true),
+            ("ask(size)", "got", false),
+            ("ask", "got(blue)", false),
+            ("main", "got", false),
+        ] {
+            let spec = Spec::Situation(dm.into(), sit.into());
+            assert_eq!(hits(&spec, &[], &got), hit, "{dm}:{sit}");
+        }
+        assert!(hits(&Spec::Dm("ask(color)".into()), &[], &got));
+        assert!(!hits(&Spec::Error, &[], &got));
     }
 }

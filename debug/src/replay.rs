@@ -275,16 +275,7 @@ impl Replay<'_> {
         let records = &self.trace.records;
         let r = &records[n - 1];
         self.breaks.iter().find_map(|(id, spec)| {
-            let hit = match spec {
-                Spec::Dm(dm) => {
-                    record::name_of(&r.dm) == dm && record::first_of_call(&records[..n - 1], r)
-                }
-                Spec::Situation(dm, sit) => {
-                    record::name_of(&r.dm) == dm
-                        && (r.situation == *sit || record::name_of(&r.situation) == sit)
-                }
-                Spec::Error => false,
-            };
+            let hit = record::hits(spec, &records[..n - 1], r);
             hit.then_some(*id)
         })
     }
