@@ -174,6 +174,85 @@ pub trait Actions {
 /// Notified of every transition as it happens (for `--trace`).
 pub trait Observer {
     fn transition(&mut self, store: &Store, entry: &Entry, depth: usize, next: Option<Term>);
+
+    /// Called after [`Observer::transition`] (the entry then in its DM's
+    /// history), and once more when the run stops on an error (before the
+    /// stack is unwound), with the machine as it is: a debugger blocks here.
+    /// Does nothing unless overridden.
+    fn inspect(&mut self, machine: &mut Inspection<'_>) {
+        let _ = machine;
+    }
+}
+
+/// What [`Observer::inspect`] sees of the machine between two transitions:
+/// the DM stack (each frame's call term, locals and history, innermost
+/// last), the pipe, the globals, and an evaluator that leaves them as they
+/// were ([`Inspection::evaluate`]).
+pub struct Inspection<'a> {
+    pub store: &'a mut Store,
+    pub globals: &'a mut Vars,
+    pub functions: &'a Functions,
+    /// The pipe's value.
+    pub pipe: Term,
+    /// The error that stopped the run, when it did (`None` after a transition).
+    pub error: Option<&'a RunError>,
+    frames: &'a mut [Frame],
+    instances: &'a [Instance],
+}
+
+impl Inspection<'_> {
+    /// DMs on the stack (the main DM is frame 0).
+    pub fn depth(&self) -> usize {
+        self.frames.len()
+    }
+    /// Frame `i`'s DM call term.
+    pub fn dm_id(&self, i: usize) -> Term {
+        self.frames[i].dm_id
+    }
+    /// Frame `i`'s local variables.
+    pub fn locals(&self, i: usize) -> &Vars {
+        &self.frames[i].locals
+    }
+    /// The id of the situation frame `i` waits in for frame `i + 1` (its
+    /// recursive situation, or the failed one a recovery DM runs for);
+    /// `None` for the innermost frame.
+    pub fn waiting_in(&self, i: usize) -> Option<Term> {
+        match self.frames.get(i)?.pending.as_ref()? {
+            Pending::Recursive { .. } => {
+                let n = self.frames[..=i]
+                    .iter()
+                    .filter(|f| matches!(f.pending, Some(Pending::Recursive { .. })))
+                    .count();
+                self.instances.get(n - 1).map(|inst| inst.id)
+            }
+            Pending::Compiled { id, .. } | Pending::Recovery { id } => Some(*id),
+        }
+    }
+    /// Frame `i`'s history so far (empty when the history is not kept).
+    pub fn history(&self, i: usize) -> &[Item] {
+        &self.frames[i].history
+    }
+    /// Evaluates `t` (an L expression) in frame `i` and prints its value
+    /// (`writeq`); bindings and variable updates are undone afterwards.
+    pub fn evaluate(&mut self, i: usize, t: Term) -> Result<String, String> {
+        let frame = &mut self.frames[i];
+        let (locals, globals) = (frame.locals.clone(), self.globals.clone());
+        let mark = self.store.mark();
+        let mut cx = EvalCtx {
+            store: &mut *self.store,
+            locals: &mut frame.locals,
+            globals: &mut *self.globals,
+            history: &frame.history,
+            functions: self.functions,
+        };
+        let result = eval::eval(&mut cx, t)
+            .map(|v| self.store.writeq(v))
+            .map_err(|e| e.message);
+        self.store.undo_to(mark);
+        frame.locals = locals;
+        *self.globals = globals;
+        result
+    }
 }
 
 /// Options of a run.
@@ -407,6 +486,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             &mut observer,
             &mut final_situation,
         );
+        if let (Err(e), Some(o)) = (&result, &mut observer) {
+            self.inspect(pipe, Some(e), &mut **o);
+        }
         // On error, the history so far: unwind the stack, nesting each
         // embedded DM's partial history into its caller's, as if it returned.
         let mut history = Vec::new();
@@ -541,7 +623,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     self.final_out_arg(inst.out_arg, pipe, here)?;
                     self.bind_diag_mod(inst.diag_mod, here)?;
                     let empty = Term::atom(atoms::EMPTY);
-                    self.record(inst.id, empty, empty, None, observer);
+                    self.record(inst.id, empty, empty, None, *pipe, observer);
                     Step::Final
                 }
                 Kind::Recursive => {
@@ -1055,7 +1137,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             }
         }
         self.bind_diag_mod(inst.diag_mod, here)?;
-        self.record(inst.id, chosen.expectation, action, Some(next), observer);
+        self.record(
+            inst.id,
+            chosen.expectation,
+            action,
+            Some(next),
+            *pipe,
+            observer,
+        );
         let n = self.store.deref(next);
         if self.store.functor(n).is_none() {
             return Err(self.err(
@@ -1152,12 +1241,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         self.conclude(&inst, here, chosen, pipe, actions, observer)
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn record(
         &mut self,
         situation: Term,
         expectation: Term,
         action: Term,
         next: Option<Term>,
+        pipe: Term,
         observer: &mut Option<&mut dyn Observer>,
     ) {
         self.transitions += 1;
@@ -1178,6 +1269,22 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 .history
                 .push(Item::Entry(entry));
         }
+        if let Some(o) = observer.as_deref_mut() {
+            self.inspect(pipe, None, o);
+        }
+    }
+
+    /// Lets `observer` inspect the machine ([`Observer::inspect`]).
+    fn inspect(&mut self, pipe: Term, error: Option<&RunError>, observer: &mut dyn Observer) {
+        observer.inspect(&mut Inspection {
+            store: &mut self.store,
+            globals: &mut self.globals,
+            functions: &self.functions,
+            pipe,
+            error,
+            frames: &mut self.frames,
+            instances: &self.instances,
+        });
     }
 
     /// Collects garbage when the store has grown enough; roots are everything
@@ -1582,8 +1689,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     #[inline]
     pub fn record(&mut self, expectation: Term, action: Term, next: Option<Term>) {
         let id = self.id;
+        let pipe = *self.pipe;
         self.m
-            .record(id, expectation, action, next, &mut self.observer);
+            .record(id, expectation, action, next, pipe, &mut self.observer);
     }
 
     /// The step to an evaluated next situation, which must name one (D-19).
