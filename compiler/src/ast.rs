@@ -29,6 +29,17 @@ pub struct Program {
     /// Recovery protocols (`recovery_protocols.pl`): situation type name → DM to run
     /// when no expectation of a situation of that type is met.
     pub recovery: Vec<Recovery>,
+    /// Files that Prolog files consult but the loader could not read
+    /// (`$SITLOG_HOME/...`, absolute or missing paths), with the directive's
+    /// position: their predicates are unknown to the checker.
+    pub unread_consults: Vec<(String, Loc)>,
+    /// Whether the application has a `knowledge.kb` (its KB services are functions).
+    pub has_kb_file: bool,
+    /// Whether the application has a `world.toml` (it runs on the simulated robot).
+    pub has_world_file: bool,
+    /// Whether the program is one DM file checked alone (other DMs of its
+    /// directory are not part of it).
+    pub single_file: bool,
 }
 
 /// `Type ==> dm.` in `recovery_protocols.pl`.
