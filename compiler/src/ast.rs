@@ -40,6 +40,10 @@ pub struct Program {
     /// Whether the program is one DM file checked alone (other DMs of its
     /// directory are not part of it).
     pub single_file: bool,
+    /// Functions the host registers in Rust, declared in `host_functions.pl`
+    /// (`name/arity.` per clause) or by whoever assembles the program, so
+    /// that the checker knows them.
+    pub host_functions: Vec<(Atom, usize)>,
 }
 
 /// `Type ==> dm.` in `recovery_protocols.pl`.
@@ -460,6 +464,43 @@ pub fn build_basic_actions(
                     "a basic action must be a list of `attribute ==> value` with an atom `id`",
                 )
                 .with_help("e.g. `[id ==> beep, arity ==> [], mod ==> sound, break ==> no].`"),
+            ),
+        }
+    }
+}
+
+/// `name/arity.` clauses of `host_functions.pl`: the user functions a
+/// host registers in Rust (`Functions::register`), which no Prolog file of
+/// the application defines.
+pub fn build_host_functions(
+    file: FileId,
+    clauses: Vec<Clause>,
+    out: &mut Vec<(Atom, usize)>,
+    diags: &mut Vec<Diagnostic>,
+) {
+    let slash = Atom::intern("/");
+    for clause in clauses {
+        let loc = Loc {
+            file,
+            span: clause.span,
+        };
+        let terms = &clause.terms;
+        let decl = terms.compound(clause.root, slash, 2).and_then(|a| {
+            let name = terms.atom(a[0])?;
+            match terms.node(a[1]) {
+                Node::Int(n) if *n >= 0 => Some((name, *n as usize)),
+                _ => None,
+            }
+        });
+        match decl {
+            Some(decl) => out.push(decl),
+            None => diags.push(
+                Diagnostic::error(
+                    codes::MALFORMED_SIDE_FILE,
+                    loc,
+                    "a host function must be written `name/arity.`",
+                )
+                .with_help("e.g. `poke/1.`"),
             ),
         }
     }

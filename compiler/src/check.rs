@@ -984,6 +984,7 @@ impl Broken {
             match name {
                 "global_vars.pl" => broken.globals = true,
                 "basic_actions.pl" => broken.basic_actions = true,
+                "host_functions.pl" => broken.prolog = true,
                 "models" | "expectation_types.pl" | "recovery_protocols.pl" => {}
                 _ if program.prolog_files.contains(&f) => broken.prolog = true,
                 _ => {
@@ -1148,6 +1149,7 @@ impl Checker<'_> {
         let mut known: HashSet<(Atom, usize)> =
             sitlog_runtime::Functions::standard().names().collect();
         known.extend(program.functions.iter().map(|f| (f.name, f.arity)));
+        known.extend(program.host_functions.iter().copied());
         known.extend(
             self.options
                 .host_functions
@@ -1251,12 +1253,12 @@ impl Checker<'_> {
                     format!("did you mean `{similar}`?")
                 } else if program.prolog_files.is_empty() {
                     format!(
-                        "define it in a user_functions.pl beside the DMs: `{} :- ..., assign_func_value(Value).`",
+                        "define it in a user_functions.pl beside the DMs: `{} :- ..., assign_func_value(Value).` (a function registered in Rust by the host is declared in host_functions.pl: `{sig}.`)",
                         head_example(call.name, call.arity)
                     )
                 } else {
                     format!(
-                        "define it in user_functions.pl: `{} :- ..., assign_func_value(Value).`",
+                        "define it in user_functions.pl: `{} :- ..., assign_func_value(Value).` (a function registered in Rust by the host is declared in host_functions.pl: `{sig}.`)",
                         head_example(call.name, call.arity)
                     )
                 };

@@ -3,7 +3,8 @@
 //! file lists (in order, paths relative to the directory), or, without a
 //! `models` file, every `*.dm` below it (sorted by path); plus the side files
 //! beside them (`global_vars.pl`, `basic_actions.pl`, `expectation_types.pl`,
-//! `user_functions.pl`, `templates.pl`). A single file is a program of one
+//! `user_functions.pl`, `templates.pl`, `recovery_protocols.pl`,
+//! `host_functions.pl`). A single file is a program of one
 //! DM file.
 
 use crate::ast::{self, Program};
@@ -41,6 +42,7 @@ const GLOBALS: &str = "global_vars.pl";
 const BASIC_ACTIONS: &str = "basic_actions.pl";
 const EXPECTATION_TYPES: &str = "expectation_types.pl";
 const RECOVERY: &str = "recovery_protocols.pl";
+const HOST_FUNCTIONS: &str = "host_functions.pl";
 const PROLOG_FILES: [&str; 2] = ["templates.pl", "user_functions.pl"];
 /// The application's knowledge base and simulated world (not read here).
 const KB_FILE: &str = "knowledge.kb";
@@ -175,6 +177,9 @@ fn add_file_by_role(
             ast::build_expectation_types(file, clauses, &mut program.expectation_types, diags)
         }
         RECOVERY => ast::build_recovery(file, clauses, &mut program.recovery, diags),
+        HOST_FUNCTIONS => {
+            ast::build_host_functions(file, clauses, &mut program.host_functions, diags)
+        }
         n if PROLOG_FILES.contains(&n) => add_prolog_file(program, file, clauses, diags, 0),
         _ => ast::build_dms(file, clauses, &mut program.dms, diags),
     }
@@ -473,9 +478,15 @@ fn load_side_files(
     program: &mut Program,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<(), LoadError> {
-    for side in [GLOBALS, BASIC_ACTIONS, EXPECTATION_TYPES, RECOVERY]
-        .into_iter()
-        .chain(PROLOG_FILES)
+    for side in [
+        GLOBALS,
+        BASIC_ACTIONS,
+        EXPECTATION_TYPES,
+        RECOVERY,
+        HOST_FUNCTIONS,
+    ]
+    .into_iter()
+    .chain(PROLOG_FILES)
     {
         let path = dir.join(side);
         if path.is_file() {
