@@ -284,3 +284,47 @@ fn ten_thousand_situations_check_in_linear_time() {
         eprintln!("10 000 situations (compound ids: {compound}): {took:?}");
     }
 }
+
+/// `sitlogc run APP --allow-unresolved [--format json]` on `tests/run_errors/NAME`.
+fn run_error(name: &str, json: bool) -> (i32, String, String) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/run_errors");
+    let mut cmd = sitlogc();
+    cmd.current_dir(&dir)
+        .args(["run", name, "--allow-unresolved"])
+        .env("NO_COLOR", "1");
+    if json {
+        cmd.args(["--format", "json"]);
+    }
+    let out = cmd.output().unwrap();
+    (
+        out.status.code().unwrap(),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+/// A run-time error points at the failing expression (file:line:col and a
+/// snippet) and is printed once: on stderr, not in the report on stdout.
+#[test]
+fn run_time_errors_point_at_the_expression_once() {
+    let (code, stdout, stderr) = run_error("arc", false);
+    assert_eq!(code, 1);
+    assert!(!stdout.contains("pour"), "{stdout}");
+    assert!(stdout.starts_with("Execution history:"), "{stdout}");
+    assert_eq!(stderr.matches("pour/1").count(), 1, "{stderr}");
+    let trimmed: Vec<&str> = stderr.lines().map(str::trim_end).collect();
+    insta::assert_snapshot!("run_error_arc", trimmed.join("\n"));
+    let (code, stdout, stderr) = run_error("prog", false);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("prog/main.dm:4:61"), "{stderr}");
+    assert!(!stdout.contains("bob"), "{stdout}");
+    let trimmed: Vec<&str> = stderr.lines().map(str::trim_end).collect();
+    insta::assert_snapshot!("run_error_prog", trimmed.join("\n"));
+    // With --format json, stdout holds exactly the JSON object.
+    let (code, stdout, stderr) = run_error("arc", true);
+    assert_eq!(code, 1);
+    let v: serde_json::Value = serde_json::from_str(stdout.trim()).expect("one JSON object");
+    assert_eq!(v["status"], "error");
+    assert!(v["error"].as_str().unwrap().contains("pour/1"));
+    assert!(stderr.contains("arc/main.dm:4:39"), "{stderr}");
+}

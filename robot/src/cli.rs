@@ -715,7 +715,13 @@ fn run_task<A: App>(
         _ => {}
     }
     if let Err(e) = &outcome.result {
-        let _ = writeln!(streams.stderr, "error: {e}");
+        // Reported once, here (the report on stdout does not repeat it):
+        // on the source when the program keeps it.
+        let color = streams.stderr_is_terminal && std::env::var_os("NO_COLOR").is_none();
+        let _ = match app.render_error(e, color) {
+            Some(text) => write!(streams.stderr, "{text}"),
+            None => writeln!(streams.stderr, "error: {e}"),
+        };
         match interrupt.as_ref().and_then(Interrupt::exit_status) {
             Some(status) if outcome.interrupted => status,
             _ => 1,
