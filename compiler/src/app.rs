@@ -20,6 +20,12 @@ impl App for Ir {
         let d = run_error_diagnostic(self, error)?;
         Some(crate::diag::render_human(&d, &self.sources, color))
     }
+    fn error_location(&self, error: &RunError) -> Option<String> {
+        let d = run_error_diagnostic(self, error)?;
+        let file = self.sources.get(d.loc.file);
+        let pos = file.line_col(d.loc.span.start);
+        Some(format!("{}:{}:{}", file.name, pos.line, pos.column))
+    }
 }
 
 /// A run-time error as a diagnostic at the failing expression: the

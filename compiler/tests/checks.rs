@@ -325,6 +325,9 @@ fn run_time_errors_point_at_the_expression_once() {
     assert_eq!(code, 1);
     let v: serde_json::Value = serde_json::from_str(stdout.trim()).expect("one JSON object");
     assert_eq!(v["status"], "error");
-    assert!(v["error"].as_str().unwrap().contains("pour/1"));
+    let error = v["error"].as_str().unwrap();
+    assert!(error.contains("pour/1"), "{error}");
+    // The message names the failing expression's position, not the situation's.
+    assert!(error.contains("(arc/main.dm:4:39)"), "{error}");
     assert!(stderr.contains("arc/main.dm:4:39"), "{stderr}");
 }

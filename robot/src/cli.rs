@@ -691,6 +691,13 @@ fn run_task<A: App>(
             fail!(2, "error: {e}")
         }
     };
+    let mut outcome = outcome;
+    // The error names the failing expression's position, in every report.
+    if let Err(e) = &mut outcome.result {
+        if let Some(location) = app.error_location(e) {
+            e.location = Some(location);
+        }
+    }
     let transcript_error = console.lock().ok().and_then(|mut c| c.finish());
     let report = match args.format {
         Format::Json => format!("{}\n", report::outcome_json(&store, &outcome)),

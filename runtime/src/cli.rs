@@ -30,6 +30,13 @@ pub trait App: DmProgram + Sync {
         let _ = (error, color);
         None
     }
+    /// `file:line:col` of the failing expression of a run-time error (the
+    /// runner puts it in the error's `location`, so that the JSON report
+    /// names it too); `None` when the program keeps no source.
+    fn error_location(&self, error: &crate::machine::RunError) -> Option<String> {
+        let _ = error;
+        None
+    }
 }
 
 /// Runs `app` from `main` (a DM call, as a term) with `in_arg` (a term; the
