@@ -1319,7 +1319,64 @@ impl Checker<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::did_you_mean;
+    use super::{did_you_mean, is_ground, may_unify, static_values, SituationIndex};
+    use proptest::prelude::*;
+
+    const IDS: &[&str] = &[
+        "a", "b", "s(1)", "s(X)", "s(a)", "s(1.0)", "t(X, Y)", "t(a, b)", "X", "1", "'s'",
+    ];
+
+    proptest! {
+        /// The index finds exactly the situations a scan of every id finds.
+        #[test]
+        fn index_agrees_with_a_scan(
+            ids in proptest::collection::vec(0..IDS.len(), 1..8),
+            nexts in proptest::collection::vec(0..IDS.len(), 1..8),
+        ) {
+            let mut text = String::from("diag_mod(m, [");
+            for (i, &id) in ids.iter().enumerate() {
+                let next = IDS[nexts[i % nexts.len()]];
+                text.push_str(&format!(
+                    "[id ==> {}, type ==> neutral, arcs ==> [empty : empty => {next}]],",
+                    IDS[id]
+                ));
+            }
+            text.push_str("[id ==> fs, type ==> final]], []).");
+            let (program, diags) = crate::load::load_sources(&[("m.dm", &text)]);
+            prop_assert!(diags.is_empty(), "{diags:?}");
+            let dm = &program.dms[0];
+            let terms = &dm.clause.terms;
+            let index = SituationIndex::new(dm);
+            for s in &dm.situations {
+                for arc in s.arcs.iter().flatten() {
+                    for v in static_values(terms, arc.next).into_iter().flatten() {
+                        let mut got = index.targets(dm, v);
+                        got.sort_unstable();
+                        let want: Vec<usize> = dm
+                            .situations
+                            .iter()
+                            .enumerate()
+                            .filter(|(_, t)| t.id.is_some_and(|id| may_unify(terms, id, terms, v)))
+                            .map(|(j, _)| j)
+                            .collect();
+                        prop_assert_eq!(&got, &want, "value {} ground {}", sitlog_syntax::writeq(&dm.clause, v), is_ground(terms, v));
+                    }
+                }
+            }
+        }
+
+        /// A suggestion is one of the candidates, never the name itself.
+        #[test]
+        fn suggestion_is_another_candidate(
+            target in "\\PC{0,12}",
+            candidates in proptest::collection::vec("\\PC{0,12}", 0..6),
+        ) {
+            if let Some(s) = did_you_mean(&target, candidates.iter().map(String::as_str)) {
+                prop_assert!(s != target);
+                prop_assert!(candidates.iter().any(|c| c == s));
+            }
+        }
+    }
 
     #[test]
     fn suggestions() {
