@@ -764,6 +764,13 @@ fn run_task<A: App>(
             fail!(2, "error: {e}")
         }
     };
+    let mut outcome = outcome;
+    // The error names the failing expression's position, in every report.
+    if let Err(e) = &mut outcome.result {
+        if let Some(location) = app.error_location(e) {
+            e.location = Some(location);
+        }
+    }
     let transcript_error = console.lock().ok().and_then(|mut c| c.finish());
     let report = match args.format {
         Format::Json => format!("{}\n", report::outcome_json(&store, &outcome)),
@@ -788,7 +795,13 @@ fn run_task<A: App>(
         _ => {}
     }
     if let Err(e) = &outcome.result {
-        let _ = writeln!(streams.stderr, "error: {e}");
+        // Reported once, here (the report on stdout does not repeat it):
+        // on the source when the program keeps it.
+        let color = streams.stderr_is_terminal && std::env::var_os("NO_COLOR").is_none();
+        let _ = match app.render_error(e, color) {
+            Some(text) => write!(streams.stderr, "{text}"),
+            None => writeln!(streams.stderr, "error: {e}"),
+        };
         match interrupt.as_ref().and_then(Interrupt::exit_status) {
             Some(status) if outcome.interrupted => status,
             _ => 1,

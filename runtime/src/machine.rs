@@ -296,6 +296,18 @@ pub struct RunError {
     /// 1-based arc number.
     pub arc: Option<usize>,
     pub location: Option<String>,
+    /// Where in the program, for a reporter that shows the source
+    /// ([`crate::cli::App::render_error`]); boxed to keep errors small.
+    pub site: Option<Box<ErrorSite>>,
+}
+
+/// The running DM and situation of a [`RunError`], by index, and the
+/// expression of L whose evaluation failed, when one did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ErrorSite {
+    pub dm: DmIx,
+    pub situation: SitIx,
+    pub culprit: Option<eval::Culprit>,
 }
 
 impl std::fmt::Display for RunError {
@@ -461,6 +473,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             arc: arc.map(|a| a + 1),
             location: match (frame, sit) {
                 (Some(f), Some((s, _))) => self.program.location(f.dm, s),
+                _ => None,
+            },
+            site: match (frame, sit) {
+                (Some(f), Some((s, _))) => Some(Box::new(ErrorSite {
+                    dm: f.dm,
+                    situation: s,
+                    culprit: None,
+                })),
                 _ => None,
             },
         }
@@ -949,7 +969,13 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     ) -> Result<Term, RunError> {
         match eval::eval(&mut self.eval_ctx(), t) {
             Ok(v) => Ok(v),
-            Err(EvalError { message }) => Err(self.err(message, here, arc)),
+            Err(EvalError { message, culprit }) => {
+                let mut e = self.err(message, here, arc);
+                if let Some(site) = e.site.as_mut() {
+                    site.culprit = culprit;
+                }
+                Err(e)
+            }
         }
     }
 

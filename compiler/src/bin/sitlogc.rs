@@ -376,7 +376,7 @@ fn checked_ir_with(app: &std::path::Path, lenient: bool) -> Result<sitlog_compil
         app,
         sitlog_compiler::check::CheckOptions {
             unresolved_as_warnings: lenient,
-            legacy: false,
+            ..Default::default()
         },
     )
 }
@@ -620,6 +620,7 @@ fn run_app(
         sitlog_compiler::check::CheckOptions {
             unresolved_as_warnings: allow_unresolved || legacy.is_some(),
             legacy: legacy.is_some(),
+            ..Default::default()
         },
     ) {
         Ok(ir) => ir,
@@ -755,11 +756,14 @@ fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, le
     let mut programs = Vec::new();
     for path in paths {
         match sitlog_compiler::load::discover(path) {
+            // Nothing to check is a usage error (exit 2, like a missing
+            // path): a check that passes on nothing would hide a wrong path.
             Ok(found) if found.is_empty() => {
                 eprintln!(
-                    "warning: no application or DM file found in {}",
+                    "error: no application or DM file found in {} (an application is a directory with a `models` file or `*.dm` files)",
                     path.display()
-                )
+                );
+                io_failed = true;
             }
             Ok(found) => programs.extend(found),
             Err(e) => {
@@ -770,8 +774,8 @@ fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, le
     }
     for path in &programs {
         let options = sitlog_compiler::check::CheckOptions {
-            unresolved_as_warnings: false,
             legacy,
+            ..Default::default()
         };
         let (result, diags) = match sitlog_compiler::check_path_opts(path, options) {
             Ok(r) => r,
