@@ -22,7 +22,7 @@
 
 use crate::ir::{none_marker, Ir};
 use sitlog_runtime::machine::{
-    Between, DmIx, DmProgram, Instance, Kind, Next, Perceived, Perception, SitIx,
+    Between, DmIx, DmProgram, Instance, Kind, Next, Perceived, Perception, RunError, SitIx,
 };
 use sitlog_runtime::{cli::App, Atom, Store, Term, Value, Var, Vars};
 use std::collections::HashMap;
@@ -588,6 +588,29 @@ impl App for Watched {
     }
     fn recovery(&self) -> Vec<(Atom, Atom)> {
         self.state().current.recovery.clone()
+    }
+    fn render_error(&self, error: &RunError, color: bool) -> Option<String> {
+        let (ir, error) = self.in_current(error);
+        ir.render_error(&error, color)
+    }
+    fn error_location(&self, error: &RunError) -> Option<String> {
+        let (ir, error) = self.in_current(error);
+        ir.error_location(&error)
+    }
+}
+
+impl Watched {
+    /// The current IR, and `error` with its DM numbered as in that IR.
+    fn in_current(&self, error: &RunError) -> (Arc<Ir>, RunError) {
+        let s = self.state();
+        let mut error = error.clone();
+        if let Some(site) = error.site.as_mut() {
+            match s.map.get(site.dm as usize).copied().flatten() {
+                Some(ix) => site.dm = ix,
+                None => error.site = None,
+            }
+        }
+        (s.current.clone(), error)
     }
 }
 

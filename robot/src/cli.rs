@@ -349,6 +349,7 @@ pub fn execute_wrapped<A: App>(
         assets,
         streams,
         Some(interrupt),
+        None,
         Some(wrap),
     )
 }
@@ -382,6 +383,67 @@ impl Observer for Fanout<'_> {
             o.transition(store, entry, depth, next);
         }
     }
+
+    fn inspect(&mut self, machine: &mut sitlog_runtime::machine::Inspection<'_>) {
+        for o in &mut self.0 {
+            o.inspect(machine);
+        }
+    }
+}
+
+/// Makes a run's test-mode perception from the script's, if any.
+pub type MakePerception = Box<dyn FnOnce(Option<Box<dyn Perception>>) -> Box<dyn Perception>>;
+
+/// What `sitlogc debug` (sitlog-debug) adds to a run besides its observer
+/// (which comes in [`Streams::observer`]).
+pub struct DebugHooks {
+    /// Makes the test-mode perception from the script's (`None` without
+    /// `--script`); it replaces the prompt on stdin.
+    pub perception: MakePerception,
+    /// Given a look at the simulated world when the run has one.
+    pub world: Box<dyn FnOnce(WorldProbe)>,
+    /// When set, the run stops before its next transition (`quit`).
+    pub stop: Arc<std::sync::atomic::AtomicBool>,
+}
+
+/// A look at the simulated world of a run (the debugger's `world`).
+#[derive(Clone)]
+pub struct WorldProbe {
+    #[cfg(feature = "sim")]
+    robot: crate::robot::Probe,
+}
+
+impl WorldProbe {
+    /// The world's state now, one fact a line.
+    pub fn describe(&self) -> String {
+        #[cfg(feature = "sim")]
+        {
+            self.robot.describe()
+        }
+        #[cfg(not(feature = "sim"))]
+        String::new()
+    }
+}
+
+/// Runs `app` as [`execute_with`] does, with a debugger's [`DebugHooks`].
+pub fn execute_debug<A: App>(
+    app: &A,
+    functions: Functions,
+    args: &RunArgs,
+    assets: &Assets,
+    streams: Streams,
+    hooks: DebugHooks,
+) -> u8 {
+    run_task(
+        app,
+        functions,
+        args,
+        assets,
+        streams,
+        None,
+        Some(hooks),
+        None,
+    )
 }
 
 /// [`execute`] on the given streams, without signal handling.
@@ -446,7 +508,7 @@ fn with_view<A: App>(
     streams.observer = Some(Box::new(
         view.observer(std::time::Duration::from_millis(args.view_delay)),
     ));
-    let code = run_task(app, functions, args, assets, streams, interrupt, wrap);
+    let code = run_task(app, functions, args, assets, streams, interrupt, None, wrap);
     let status = match code {
         0 => "ok",
         1 => "error",
@@ -520,10 +582,11 @@ pub fn execute_interruptible<A: App>(
     if args.view {
         return with_view(app, functions, args, assets, streams, interrupt, None);
     }
-    run_task(app, functions, args, assets, streams, interrupt, None)
+    run_task(app, functions, args, assets, streams, interrupt, None, None)
 }
 
 /// The run itself (the live view, if any, already set up).
+#[allow(clippy::too_many_arguments)]
 fn run_task<A: App>(
     app: &A,
     mut functions: Functions,
@@ -531,8 +594,16 @@ fn run_task<A: App>(
     assets: &Assets,
     mut streams: Streams,
     interrupt: Option<Interrupt>,
+    hooks: Option<DebugHooks>,
     wrap: Option<PerceptionWrap>,
 ) -> u8 {
+    let (mut debug_perception, mut debug_world, debug_stop) = match hooks {
+        Some(h) => (Some(h.perception), Some(h.world), Some(h.stop)),
+        None => (None, None, None),
+    };
+    // Without the simulator there is no world to look at.
+    #[cfg(not(feature = "sim"))]
+    let _ = debug_world.take();
     macro_rules! fail {
         ($code:expr, $($msg:tt)*) => {{
             let _ = writeln!(streams.stderr, $($msg)*);
@@ -628,6 +699,11 @@ fn run_task<A: App>(
             match crate::robot::SimRobot::from_source(world, args.seed, console.clone()) {
                 Ok(robot) => {
                     robot.register_inference(&mut functions, args.seed);
+                    if let Some(give) = debug_world.take() {
+                        give(WorldProbe {
+                            robot: robot.probe(),
+                        });
+                    }
                     let (senses, effectors) = robot.split();
                     (Box::new(senses), Box::new(effectors))
                 }
@@ -645,15 +721,23 @@ fn run_task<A: App>(
         ),
         None => {
             let limits = args.input_limits();
-            let perception: Box<dyn Perception> = match &args.script {
-                Some(path) => match Source::read(path, "script") {
-                    Ok(s) => Box::new(ScriptPerception::new(s.name, s.text).with_limits(limits)),
+            let perception: Box<dyn Perception> = match (&args.script, debug_perception.take()) {
+                (Some(path), debugger) => match Source::read(path, "script") {
+                    Ok(s) => {
+                        let script =
+                            Box::new(ScriptPerception::new(s.name, s.text).with_limits(limits));
+                        match debugger {
+                            Some(make) => make(Some(script)),
+                            None => script,
+                        }
+                    }
                     Err(e) => fail!(e.status, "{e}"),
                 },
                 // Typed input: line editing on a terminal; else read on a
                 // thread of its own when a signal can stop the run, so that
                 // the prompt sees it.
-                None => {
+                (None, Some(make)) => make(None),
+                (None, None) => {
                     let ended = ended.clone().unwrap_or_default();
                     let prompt: Box<dyn Perception> = match edited_prompt(limits, &ended) {
                         Some(p) => p,
@@ -710,7 +794,7 @@ fn run_task<A: App>(
     let options = Options {
         keep_history: args.history == HistoryMode::Keep,
         input_limits: args.input_limits(),
-        stop: ended.as_ref().map(|i| i.flag.clone()),
+        stop: ended.as_ref().map(|i| i.flag.clone()).or(debug_stop),
         ..Options::default()
     };
     functions.set_call_limits(args.call_limits());
@@ -750,6 +834,13 @@ fn run_task<A: App>(
             fail!(2, "error: {e}")
         }
     };
+    let mut outcome = outcome;
+    // The error names the failing expression's position, in every report.
+    if let Err(e) = &mut outcome.result {
+        if let Some(location) = app.error_location(e) {
+            e.location = Some(location);
+        }
+    }
     let transcript_error = console.lock().ok().and_then(|mut c| c.finish());
     let report = match args.format {
         Format::Json => format!("{}\n", report::outcome_json(&store, &outcome)),
@@ -786,7 +877,13 @@ fn run_task<A: App>(
                 crate::interrupt::EXIT_END_OF_INPUT
             );
         } else {
-            let _ = writeln!(streams.stderr, "error: {e}");
+            // Reported once, here (the report on stdout does not repeat it):
+            // on the source when the program keeps it.
+            let color = streams.stderr_is_terminal && std::env::var_os("NO_COLOR").is_none();
+            let _ = match app.render_error(e, color) {
+                Some(text) => write!(streams.stderr, "{text}"),
+                None => writeln!(streams.stderr, "error: {e}"),
+            };
         }
         match ended.as_ref().and_then(Interrupt::exit_status) {
             Some(status) if outcome.interrupted => status,

@@ -195,6 +195,85 @@ pub trait Actions {
 /// Notified of every transition as it happens (for `--trace`).
 pub trait Observer {
     fn transition(&mut self, store: &Store, entry: &Entry, depth: usize, next: Option<Term>);
+
+    /// Called after [`Observer::transition`] (the entry then in its DM's
+    /// history), and once more when the run stops on an error (before the
+    /// stack is unwound), with the machine as it is: a debugger blocks here.
+    /// Does nothing unless overridden.
+    fn inspect(&mut self, machine: &mut Inspection<'_>) {
+        let _ = machine;
+    }
+}
+
+/// What [`Observer::inspect`] sees of the machine between two transitions:
+/// the DM stack (each frame's call term, locals and history, innermost
+/// last), the pipe, the globals, and an evaluator that leaves them as they
+/// were ([`Inspection::evaluate`]).
+pub struct Inspection<'a> {
+    pub store: &'a mut Store,
+    pub globals: &'a mut Vars,
+    pub functions: &'a Functions,
+    /// The pipe's value.
+    pub pipe: Term,
+    /// The error that stopped the run, when it did (`None` after a transition).
+    pub error: Option<&'a RunError>,
+    frames: &'a mut [Frame],
+    instances: &'a [Instance],
+}
+
+impl Inspection<'_> {
+    /// DMs on the stack (the main DM is frame 0).
+    pub fn depth(&self) -> usize {
+        self.frames.len()
+    }
+    /// Frame `i`'s DM call term.
+    pub fn dm_id(&self, i: usize) -> Term {
+        self.frames[i].dm_id
+    }
+    /// Frame `i`'s local variables.
+    pub fn locals(&self, i: usize) -> &Vars {
+        &self.frames[i].locals
+    }
+    /// The id of the situation frame `i` waits in for frame `i + 1` (its
+    /// recursive situation, or the failed one a recovery DM runs for);
+    /// `None` for the innermost frame.
+    pub fn waiting_in(&self, i: usize) -> Option<Term> {
+        match self.frames.get(i)?.pending.as_ref()? {
+            Pending::Recursive { .. } => {
+                let n = self.frames[..=i]
+                    .iter()
+                    .filter(|f| matches!(f.pending, Some(Pending::Recursive { .. })))
+                    .count();
+                self.instances.get(n - 1).map(|inst| inst.id)
+            }
+            Pending::Compiled { id, .. } | Pending::Recovery { id } => Some(*id),
+        }
+    }
+    /// Frame `i`'s history so far (empty when the history is not kept).
+    pub fn history(&self, i: usize) -> &[Item] {
+        &self.frames[i].history
+    }
+    /// Evaluates `t` (an L expression) in frame `i` and prints its value
+    /// (`writeq`); bindings and variable updates are undone afterwards.
+    pub fn evaluate(&mut self, i: usize, t: Term) -> Result<String, String> {
+        let frame = &mut self.frames[i];
+        let (locals, globals) = (frame.locals.clone(), self.globals.clone());
+        let mark = self.store.mark();
+        let mut cx = EvalCtx {
+            store: &mut *self.store,
+            locals: &mut frame.locals,
+            globals: &mut *self.globals,
+            history: &frame.history,
+            functions: self.functions,
+        };
+        let result = eval::eval(&mut cx, t)
+            .map(|v| self.store.writeq(v))
+            .map_err(|e| e.message);
+        self.store.undo_to(mark);
+        frame.locals = locals;
+        *self.globals = globals;
+        result
+    }
 }
 
 /// Where control goes next, as [`DmProgram::between`] sees it.
@@ -290,6 +369,18 @@ pub struct RunError {
     /// 1-based arc number.
     pub arc: Option<usize>,
     pub location: Option<String>,
+    /// Where in the program, for a reporter that shows the source
+    /// ([`crate::cli::App::render_error`]); boxed to keep errors small.
+    pub site: Option<Box<ErrorSite>>,
+}
+
+/// The running DM and situation of a [`RunError`], by index, and the
+/// expression of L whose evaluation failed, when one did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ErrorSite {
+    pub dm: DmIx,
+    pub situation: SitIx,
+    pub culprit: Option<eval::Culprit>,
 }
 
 impl std::fmt::Display for RunError {
@@ -461,6 +552,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 (Some(f), Some((s, _))) => self.program.location(f.dm, s),
                 _ => None,
             },
+            site: match (frame, sit) {
+                (Some(f), Some((s, _))) => Some(Box::new(ErrorSite {
+                    dm: f.dm,
+                    situation: s,
+                    culprit: None,
+                })),
+                _ => None,
+            },
         }
     }
 
@@ -484,6 +583,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             &mut observer,
             &mut final_situation,
         );
+        if let (Err(e), Some(o)) = (&result, &mut observer) {
+            self.inspect(pipe, Some(e), &mut **o);
+        }
         // On error, the history so far: unwind the stack, nesting each
         // embedded DM's partial history into its caller's, as if it returned.
         let mut history = Vec::new();
@@ -619,7 +721,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     self.final_out_arg(inst.out_arg, pipe, here)?;
                     self.bind_diag_mod(inst.diag_mod, here)?;
                     let empty = Term::atom(atoms::EMPTY);
-                    self.record(inst.id, empty, empty, None, observer);
+                    self.record(inst.id, empty, empty, None, *pipe, observer);
                     Step::Final
                 }
                 Kind::Recursive => {
@@ -949,7 +1051,13 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     ) -> Result<Term, RunError> {
         match eval::eval(&mut self.eval_ctx(), t) {
             Ok(v) => Ok(v),
-            Err(EvalError { message }) => Err(self.err(message, here, arc)),
+            Err(EvalError { message, culprit }) => {
+                let mut e = self.err(message, here, arc);
+                if let Some(site) = e.site.as_mut() {
+                    site.culprit = culprit;
+                }
+                Err(e)
+            }
         }
     }
 
@@ -1144,7 +1252,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             }
         }
         self.bind_diag_mod(inst.diag_mod, here)?;
-        self.record(inst.id, chosen.expectation, action, Some(next), observer);
+        self.record(
+            inst.id,
+            chosen.expectation,
+            action,
+            Some(next),
+            *pipe,
+            observer,
+        );
         let n = self.store.deref(next);
         if self.store.functor(n).is_none() {
             return Err(self.err(
@@ -1241,12 +1356,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         self.conclude(&inst, here, chosen, pipe, actions, observer)
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn record(
         &mut self,
         situation: Term,
         expectation: Term,
         action: Term,
         next: Option<Term>,
+        pipe: Term,
         observer: &mut Option<&mut dyn Observer>,
     ) {
         self.transitions += 1;
@@ -1267,6 +1384,22 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 .history
                 .push(Item::Entry(entry));
         }
+        if let Some(o) = observer.as_deref_mut() {
+            self.inspect(pipe, None, o);
+        }
+    }
+
+    /// Lets `observer` inspect the machine ([`Observer::inspect`]).
+    fn inspect(&mut self, pipe: Term, error: Option<&RunError>, observer: &mut dyn Observer) {
+        observer.inspect(&mut Inspection {
+            store: &mut self.store,
+            globals: &mut self.globals,
+            functions: &self.functions,
+            pipe,
+            error,
+            frames: &mut self.frames,
+            instances: &self.instances,
+        });
     }
 
     /// Lets the program look at the machine between two transitions
@@ -1693,8 +1826,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     #[inline]
     pub fn record(&mut self, expectation: Term, action: Term, next: Option<Term>) {
         let id = self.id;
+        let pipe = *self.pipe;
         self.m
-            .record(id, expectation, action, next, &mut self.observer);
+            .record(id, expectation, action, next, pipe, &mut self.observer);
     }
 
     /// The step to an evaluated next situation, which must name one (D-19).

@@ -101,6 +101,47 @@ enum Command {
         #[arg(long, conflicts_with = "legacy")]
         watch: bool,
     },
+    /// Run an application under the step debugger (interpreted).
+    ///
+    /// A REPL over the live run: breakpoints (`break DM[:SITUATION]`,
+    /// `break on error`), `step`, `next`, `finish`, `continue`, and at a
+    /// stop `stack`, `pipe`, `vars`, `history`, `print TERM`, `world`; in
+    /// test mode `input TERM` answers a perceptual situation the script has
+    /// no input for. `help` lists the commands. The run's options are
+    /// those of `sitlogc run`. Exit status: the run's, 0 after `quit`, 2 for
+    /// a bad line in the --commands file.
+    Debug {
+        /// The application directory (or a single DM file).
+        #[arg(value_name = "APP")]
+        app: PathBuf,
+        #[command(flatten)]
+        run: sitlog_robot::cli::RunArgs,
+        /// Read the commands from FILE (each echoed after the prompt)
+        /// instead of the terminal; when it ends, the run goes on without
+        /// stopping.
+        #[arg(long, value_name = "FILE")]
+        commands: Option<PathBuf>,
+    },
+    /// Replay a recorded run (`sitlogc run --trace FILE`) without running it.
+    ///
+    /// The debugger's commands over the recording, forwards and backwards:
+    /// `step`, `back`, `goto N`, `next`, `finish`, `continue`, `break`,
+    /// `stack`, `history`, `diff TRACE2`. With --diff, prints the first
+    /// transition where the two recordings differ and exits (status 0 when
+    /// they are the same, 1 when they differ). A bad trace is an error
+    /// naming FILE:LINE (exit 2).
+    Replay {
+        /// The recording (JSON lines, as --trace writes them).
+        #[arg(value_name = "TRACE")]
+        trace: PathBuf,
+        /// Compare with this recording and exit.
+        #[arg(long, value_name = "TRACE2")]
+        diff: Option<PathBuf>,
+        /// Read the commands from FILE (each echoed after the prompt)
+        /// instead of the terminal.
+        #[arg(long, value_name = "FILE", conflicts_with = "diff")]
+        commands: Option<PathBuf>,
+    },
     /// Compile an application to one executable.
     ///
     /// Generates a Cargo package under `target/sitlog-build/<app>/` that uses
@@ -270,9 +311,24 @@ fn run(cli: Cli) -> u8 {
                 allow_unresolved,
                 legacy.as_ref().map(|h| h.as_deref()),
                 legacy_kb == LegacyKb::Native,
+                None,
                 watch,
             )
         }
+        Command::Debug { app, run, commands } => run_app(
+            &app,
+            &run,
+            false,
+            None,
+            false,
+            Some(commands.as_deref()),
+            false,
+        ),
+        Command::Replay {
+            trace,
+            diff,
+            commands,
+        } => replay(&trace, diff.as_deref(), commands.as_deref()),
         Command::Build {
             app,
             output,
@@ -341,7 +397,7 @@ fn checked_ir_with(app: &std::path::Path, lenient: bool) -> Result<sitlog_compil
         app,
         sitlog_compiler::check::CheckOptions {
             unresolved_as_warnings: lenient,
-            legacy: false,
+            ..Default::default()
         },
     )
 }
@@ -534,6 +590,7 @@ fn run_app(
     allow_unresolved: bool,
     legacy: Option<Option<&std::path::Path>>,
     native_kb: bool,
+    debug: Option<Option<&std::path::Path>>,
     watch: bool,
 ) -> u8 {
     // The legacy profile: the original's Prolog layer from SITLOG_HOME.
@@ -583,6 +640,7 @@ fn run_app(
     let check_options = sitlog_compiler::check::CheckOptions {
         unresolved_as_warnings: allow_unresolved || legacy.is_some(),
         legacy: legacy.is_some(),
+        ..Default::default()
     };
     let ir = match checked_ir_opts(app, check_options) {
         Ok(ir) => ir,
@@ -629,7 +687,86 @@ fn run_app(
     if watch {
         return run_watched(app, ir, functions, args, &assets, check_options);
     }
-    sitlog_robot::execute(&ir, functions, args, &assets)
+    match debug {
+        None => sitlog_robot::execute(&ir, functions, args, &assets),
+        Some(commands) => {
+            let source = match commands {
+                Some(path) => sitlog_debug::Source::file(path),
+                None => sitlog_debug::Source::editor(),
+            };
+            let source = match source {
+                Ok(s) => s,
+                Err(e) => {
+                    eprintln!("{e}");
+                    return 2;
+                }
+            };
+            sitlog_debug::debug(
+                &ir,
+                functions,
+                args,
+                &assets,
+                sitlog_robot::cli::Streams::process(),
+                source,
+                Box::new(std::io::stdout()),
+                Box::new(std::io::stderr()),
+            )
+        }
+    }
+}
+
+/// `sitlogc replay`.
+fn replay(
+    trace: &std::path::Path,
+    diff: Option<&std::path::Path>,
+    commands: Option<&std::path::Path>,
+) -> u8 {
+    let read = |path| match sitlog_debug::Trace::read(path) {
+        Ok(t) => Ok(t),
+        Err(e) => {
+            eprintln!("{e}");
+            Err(2)
+        }
+    };
+    let trace = match read(trace) {
+        Ok(t) => t,
+        Err(code) => return code,
+    };
+    if let Some(other) = diff {
+        let other = match read(other) {
+            Ok(t) => t,
+            Err(code) => return code,
+        };
+        return match sitlog_debug::diff(&trace, &other) {
+            None => {
+                println!(
+                    "the recordings are the same ({} transitions)",
+                    trace.records.len()
+                );
+                0
+            }
+            Some(text) => {
+                print!("{text}");
+                1
+            }
+        };
+    }
+    let source = match commands {
+        Some(path) => sitlog_debug::Source::file(path),
+        None => sitlog_debug::Source::editor(),
+    };
+    match source {
+        Ok(source) => sitlog_debug::replay(
+            &trace,
+            source,
+            &mut std::io::stdout(),
+            &mut std::io::stderr(),
+        ),
+        Err(e) => {
+            eprintln!("{e}");
+            2
+        }
+    }
 }
 
 /// `sitlogc run --watch`: the run over a program that reloads itself.
@@ -682,11 +819,14 @@ fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, le
     let mut programs = Vec::new();
     for path in paths {
         match sitlog_compiler::load::discover(path) {
+            // Nothing to check is a usage error (exit 2, like a missing
+            // path): a check that passes on nothing would hide a wrong path.
             Ok(found) if found.is_empty() => {
                 eprintln!(
-                    "warning: no application or DM file found in {}",
+                    "error: no application or DM file found in {} (an application is a directory with a `models` file or `*.dm` files)",
                     path.display()
-                )
+                );
+                io_failed = true;
             }
             Ok(found) => programs.extend(found),
             Err(e) => {
@@ -697,8 +837,8 @@ fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, le
     }
     for path in &programs {
         let options = sitlog_compiler::check::CheckOptions {
-            unresolved_as_warnings: false,
             legacy,
+            ..Default::default()
         };
         let (result, diags) = match sitlog_compiler::check_path_opts(path, options) {
             Ok(r) => r,
