@@ -108,6 +108,8 @@ fn built_executable_runs_like_sitlogc_run() {
     assert!(String::from_utf8_lossy(&help.stdout).contains("--in-arg"));
     assert!(String::from_utf8_lossy(&help.stdout).contains("--max-input-bytes"));
     assert!(String::from_utf8_lossy(&help.stdout).contains("--view"));
+    // Compiled tasks do not reload (issue 21): their help says so.
+    assert!(String::from_utf8_lossy(&help.stdout).contains("does not reload"));
     // The live view works on the compiled task too: its diagram is embedded.
     let mut child = Command::new(&exe)
         .args(["--view", "--format", "json", "--script"])
