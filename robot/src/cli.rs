@@ -303,7 +303,8 @@ impl Streams {
 /// SIGINT and SIGTERM stop the task at its next transition: the report
 /// (status `interrupted`) is still printed and the trace closed; the exit
 /// status is then 130 (SIGINT) or 143 (SIGTERM). A second signal ends the
-/// process at once.
+/// process at once. The end of typed input (Ctrl-D at the prompt) stops it
+/// the same way, with exit status 3 ([`crate::prompt`]).
 pub fn execute<A: App>(app: &A, functions: Functions, args: &RunArgs, assets: &Assets) -> u8 {
     let interrupt = Interrupt::install();
     execute_interruptible(

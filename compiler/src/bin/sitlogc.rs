@@ -58,9 +58,12 @@ enum Command {
     /// original interpreter: each expectation of a perceptual situation is
     /// met by a term read from the script (one term per line, ending with
     /// `.`) or typed at a prompt on stdin. At the end the task history, the
-    /// final out_arg and the global variables are printed. Exit status: 0
+    /// final out_arg and the global variables are printed. At the prompt,
+    /// Ctrl-D (the end of stdin) ends the task where it waits. Exit status: 0
     /// when the main DM reached a final situation, 1 on a run-time error
-    /// (the history so far is still printed), 2 on usage or I/O problems.
+    /// (the history so far is still printed), 2 on usage or I/O problems,
+    /// 3 when the typed input ended before the task did, 130 / 143 when
+    /// stopped by SIGINT / SIGTERM.
     Run {
         /// The application directory (or a single DM file).
         #[arg(value_name = "APP")]
