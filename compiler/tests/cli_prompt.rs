@@ -134,6 +134,8 @@ fn on_a_terminal_lines_are_edited_and_remembered() {
             Ok(())
         });
     }
+    // A terminal the editor supports, whatever the environment says.
+    cmd.env("TERM", "xterm");
     let mut child = cmd
         .arg("run")
         .arg(&dir)
