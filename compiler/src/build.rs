@@ -165,9 +165,12 @@ pub fn compile(app: impl AsRef<Path>) -> Result<PathBuf, Error> {
     Config::new().compile(app)
 }
 
-/// The name of an application: its directory name, or a DM file's stem, as
-/// a Rust identifier.
+/// The name of an application: its directory's real name (`.` too), or a
+/// DM file's stem, as a Rust identifier.
 pub fn app_name(app: &Path) -> String {
+    // `.`, `..` and `dir/.` have no file name of their own: the real one.
+    let real = std::fs::canonicalize(app);
+    let app = real.as_deref().unwrap_or(app);
     let raw = if app.is_dir() {
         app.file_name()
     } else {

@@ -742,7 +742,9 @@ pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::proc
         assets.app_name.clone()
     };
     let about = format!(
-        "The SitLog task `{name}`, compiled. Runs it on its world when it has one, else in test mode."
+        "The SitLog task `{name}`, compiled. Runs it on its world when it has one, else in test mode.\n\
+         It runs the program it was compiled from: editing the DM files afterwards changes nothing \
+         here (no reloading); compile again with `sitlogc build`."
     );
     let command = TaskCli::command()
         .name(name.clone())

@@ -92,18 +92,24 @@ enum Command {
     },
     /// Compile an application to one executable.
     ///
-    /// Generates a Cargo package under `target/sitlog-build/<app>/` that uses
-    /// this workspace's runtime, builds it (cargo's progress on stderr; the
-    /// build cache in `target/sitlog-build/target` is shared by every
-    /// application) and copies the executable to FILE. The executable runs
-    /// the task with the options of `sitlogc run` (`--main`, `--in-arg`,
-    /// `--script`, `--format`, `--history`, `--trace`). With `--emit rust`
-    /// the generated Rust is written to FILE (stdout without -o) instead.
+    /// Generates a Cargo package that uses the runtime shipped inside
+    /// sitlogc, builds it with cargo (progress on stderr) and copies the
+    /// executable to FILE, by default a file named after the application in
+    /// the current directory (refused when a directory has that name: give
+    /// -o then). Needs cargo, not the sitlog-rs sources: the runtime, the
+    /// generated packages and the shared build cache live in the user's
+    /// cache directory ($SITLOGC_CACHE_DIR, else $XDG_CACHE_HOME/sitlogc,
+    /// else ~/.cache/sitlogc). The executable runs the task with the
+    /// options of `sitlogc run`. With `--emit rust` the generated Rust is
+    /// written to FILE (stdout without -o) instead. Exit status: 0 when
+    /// written, 1 when the application has errors, 2 on usage, I/O or cargo
+    /// problems.
     Build {
         /// The application directory (or a single DM file).
         #[arg(value_name = "APP")]
         app: PathBuf,
-        /// Where to write the executable (default: the application's name).
+        /// Where to write the executable (default: the application's name,
+        /// in the current directory).
         #[arg(short, long, value_name = "FILE")]
         output: Option<PathBuf>,
         /// Build with optimizations (the default: a shipped task is a
@@ -179,6 +185,19 @@ enum Command {
     /// situation, global, basic action or user function, and hovers.
     /// Point your editor's LSP client at `sitlogc lsp` for `*.dm` files.
     Lsp,
+    /// Make a new application that checks and runs at once.
+    ///
+    /// Creates the directory NAME (it must not exist) with a DM `main` (a
+    /// speech situation and a recursive situation calling the DM
+    /// `ask_name`), global_vars.pl, basic_actions.pl, user_functions.pl, a
+    /// `models` file, a test-mode script, the golden output of running it
+    /// (`expected.txt`) and a README. Exit status: 0 when made, 2 when NAME
+    /// exists or cannot be written (nothing is changed then).
+    New {
+        /// The application directory to make; its last component names the application.
+        #[arg(value_name = "NAME")]
+        name: PathBuf,
+    },
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -288,6 +307,7 @@ fn run(cli: Cli) -> u8 {
             format,
             trace,
         } => graph(&app, output, dm, main, format, trace),
+        Command::New { name } => new_app(&name),
         Command::Kb {
             file,
             updates,
@@ -299,6 +319,24 @@ fn run(cli: Cli) -> u8 {
                 1
             }
         },
+    }
+}
+
+/// `sitlogc new NAME`.
+fn new_app(dir: &std::path::Path) -> u8 {
+    match sitlog_compiler::scaffold::create(dir) {
+        Ok(files) => {
+            let d = dir.display();
+            eprintln!("sitlogc: made the application {d} ({} files)", files.len());
+            eprintln!("  check it:  sitlogc check {d}");
+            eprintln!("  run it:    sitlogc run {d} --script {d}/script.txt");
+            eprintln!("  talk to it: sitlogc run {d}");
+            0
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            2
+        }
     }
 }
 
@@ -494,8 +532,20 @@ fn build_app(
             None => write_stdout(&text, "the generated code"),
         };
     }
-    let output = output.unwrap_or_else(|| PathBuf::from(build::app_name(app)));
-    let layout = package::Layout::workspace();
+    let output = match output_file(app, output) {
+        Ok(o) => o,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return 2;
+        }
+    };
+    let layout = match package::Layout::user() {
+        Ok(l) => l,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
     let built = package::write_package(&compiled, app, &layout).and_then(|(dir, name)| {
         eprintln!("sitlogc: building {} in {}", name, dir.display());
         package::build_package(&dir, &name, &layout, release, &output)
@@ -510,6 +560,29 @@ fn build_app(
             2
         }
     }
+}
+
+/// Where `build` writes the executable: `-o FILE`, else a file named after
+/// the application (its directory's real name, or the DM file's stem) in
+/// the current directory. A directory there (the application itself when
+/// building from beside it) is refused before anything is built, as
+/// `go build` does, rather than writing somewhere the user did not ask.
+fn output_file(app: &std::path::Path, output: Option<PathBuf>) -> Result<PathBuf, String> {
+    let given = output.is_some();
+    let output = output.unwrap_or_else(|| PathBuf::from(sitlog_robot::cli::app_name(app)));
+    if output.is_dir() {
+        let o = output.display();
+        return Err(if given {
+            format!("cannot write the executable to `{o}`: it is a directory; give a file name with -o FILE")
+        } else {
+            format!(
+                "the default output `{o}` is a directory (the application itself, when you build from beside it); \
+                 name the executable with -o FILE, e.g. `sitlogc build {} -o {o}-task`",
+                app.display()
+            )
+        });
+    }
+    Ok(output)
 }
 
 /// `legacy`: `Some(--sitlog-home)` under `--legacy`.
