@@ -1,7 +1,7 @@
 //! `sitlogc`: the SitLog command-line tool. Argument parsing, exit codes and
 //! the choice of output format only; the work is done by the library.
 
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{CommandFactory, Parser, Subcommand, ValueEnum};
 use sitlog_compiler::diag::{self, Severity};
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
@@ -18,8 +18,36 @@ below it), plus global_vars.pl, basic_actions.pl, expectation_types.pl, user_fun
 and templates.pl beside them."
 )]
 struct Cli {
+    /// When diagnostics are coloured: `auto` when stderr is a terminal and
+    /// NO_COLOR is unset or empty; `always`; `never`.
+    #[arg(long, global = true, value_enum, value_name = "WHEN", default_value_t = ColorWhen::Auto)]
+    color: ColorWhen,
     #[command(subcommand)]
     command: Command,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq, Debug)]
+enum ColorWhen {
+    Auto,
+    Always,
+    Never,
+}
+
+/// The `--color` of this run (set once in `run`).
+static COLOR: std::sync::OnceLock<ColorWhen> = std::sync::OnceLock::new();
+
+/// Whether diagnostics on stderr are coloured: `--color`, else (`auto`)
+/// when stderr is a terminal and NO_COLOR is unset or empty
+/// (<https://no-color.org>).
+fn color_stderr() -> bool {
+    match COLOR.get().copied().unwrap_or(ColorWhen::Auto) {
+        ColorWhen::Always => true,
+        ColorWhen::Never => false,
+        ColorWhen::Auto => {
+            std::io::stderr().is_terminal()
+                && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
+        }
+    }
 }
 
 #[derive(Subcommand)]
@@ -185,6 +213,26 @@ enum Command {
     /// situation, global, basic action or user function, and hovers.
     /// Point your editor's LSP client at `sitlogc lsp` for `*.dm` files.
     Lsp,
+    /// Print a completion script for SHELL on stdout.
+    ///
+    /// For example `sitlogc completions bash > ~/.local/share/bash-completion/completions/sitlogc`,
+    /// `sitlogc completions zsh > ~/.zfunc/_sitlogc` (with `~/.zfunc` in
+    /// `fpath`), or `sitlogc completions fish > ~/.config/fish/completions/sitlogc.fish`.
+    Completions {
+        /// The shell.
+        #[arg(value_enum)]
+        shell: clap_complete::Shell,
+    },
+    /// Write the manual page (roff) of sitlogc.
+    ///
+    /// Without --dir, the page `sitlogc(1)` goes to stdout (try `sitlogc man
+    /// | man -l -`); with --dir, `sitlogc.1` and one page per subcommand
+    /// (`sitlogc-run.1`, ...) are written into DIR.
+    Man {
+        /// Write every page into this directory (made if missing).
+        #[arg(long, value_name = "DIR")]
+        dir: Option<PathBuf>,
+    },
     /// Make a new application that checks and runs at once.
     ///
     /// Creates the directory NAME (it must not exist) with a DM `main` (a
@@ -252,7 +300,14 @@ fn main() -> ExitCode {
 }
 
 fn run(cli: Cli) -> u8 {
+    let _ = COLOR.set(cli.color);
     match cli.command {
+        Command::Completions { shell } => {
+            let mut out = Vec::new();
+            clap_complete::generate(shell, &mut Cli::command(), "sitlogc", &mut out);
+            write_stdout(&String::from_utf8_lossy(&out), "the completion script")
+        }
+        Command::Man { dir } => man(dir.as_deref()),
         Command::Check {
             paths,
             format,
@@ -322,6 +377,40 @@ fn run(cli: Cli) -> u8 {
     }
 }
 
+/// `sitlogc man [--dir DIR]`.
+fn man(dir: Option<&std::path::Path>) -> u8 {
+    let command = Cli::command();
+    match dir {
+        None => {
+            let mut out = Vec::new();
+            match clap_mangen::Man::new(command).render(&mut out) {
+                Ok(()) => write_stdout(&String::from_utf8_lossy(&out), "the manual page"),
+                Err(e) => {
+                    eprintln!("error: cannot render the manual page: {e}");
+                    2
+                }
+            }
+        }
+        Some(dir) => {
+            let written =
+                std::fs::create_dir_all(dir).and_then(|_| clap_mangen::generate_to(command, dir));
+            match written {
+                Ok(()) => {
+                    eprintln!("sitlogc: wrote the manual pages into {}", dir.display());
+                    0
+                }
+                Err(e) => {
+                    eprintln!(
+                        "error: cannot write the manual pages into {}: {e}",
+                        dir.display()
+                    );
+                    2
+                }
+            }
+        }
+    }
+}
+
 /// `sitlogc new NAME`.
 fn new_app(dir: &std::path::Path) -> u8 {
     match sitlog_compiler::scaffold::create(dir) {
@@ -381,7 +470,7 @@ fn checked_ir_opts(
             return Err(2);
         }
     };
-    let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    let color = color_stderr();
     let program_sources = match &result {
         Ok(c) => &c.program().sources,
         Err(p) => &p.sources,
@@ -689,7 +778,7 @@ fn run_app(
 }
 
 fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, legacy: bool) -> u8 {
-    let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    let color = color_stderr();
     let mut errors = 0usize;
     let mut warnings = 0usize;
     let mut io_failed = false;
