@@ -403,3 +403,33 @@ fn built_executable_stops_on_sigint() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `build --allow-unresolved` compiles what `run --allow-unresolved` runs;
+/// without it the unresolved names are errors.
+#[test]
+fn allow_unresolved_compiles_what_run_allows() {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(
+        tmp.path().join("main.dm"),
+        "diag_mod(main, [
+  [id ==> is, type ==> speech, arcs ==> [go : [] => fs, away : [] => nowhere]],
+  [id ==> fs, type ==> final]
+], []).
+",
+    )
+    .unwrap();
+    let build = |extra: &[&str]| {
+        sitlogc()
+            .args(["build", "--emit", "rust"])
+            .args(extra)
+            .arg(tmp.path())
+            .output()
+            .unwrap()
+    };
+    let strict = build(&[]);
+    assert_eq!(strict.status.code(), Some(1));
+    assert!(stderr(&strict).contains("nowhere"), "{}", stderr(&strict));
+    let lenient = build(&["--allow-unresolved"]);
+    assert_eq!(lenient.status.code(), Some(0), "{}", stderr(&lenient));
+    assert!(String::from_utf8_lossy(&lenient.stdout).contains("pub mod dm_main"));
+}

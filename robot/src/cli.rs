@@ -730,6 +730,11 @@ fn run_task<A: App>(
 struct TaskCli {
     #[command(flatten)]
     run: RunArgs,
+    /// Accepted so that a `sitlogc run` command line works unchanged; it
+    /// changes nothing here: unresolved names were allowed or refused when
+    /// the task was compiled (`sitlogc build --allow-unresolved`).
+    #[arg(long)]
+    allow_unresolved: bool,
 }
 
 /// The `main` of a compiled task: parses `std::env::args` (clap, the
@@ -779,6 +784,16 @@ pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::proc
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_run_command_line_works_unchanged() {
+        let cli =
+            TaskCli::try_parse_from(["t", "--allow-unresolved", "--kb", "k.kb", "--kb-persist"])
+                .unwrap();
+        assert!(cli.allow_unresolved);
+        assert_eq!(cli.run.kb.as_deref(), Some(Path::new("k.kb")));
+        assert!(cli.run.kb_persist);
+    }
 
     #[test]
     fn options_parse() {

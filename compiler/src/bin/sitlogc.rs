@@ -154,6 +154,12 @@ enum Command {
         /// run on native values, and why the others stay terms) and stop.
         #[arg(long)]
         explain_types: bool,
+        /// Compile even if next situations, embedded DMs, exit arcs or
+        /// SitLog variables do not resolve (E0212, E0216–E0219), as `run
+        /// --allow-unresolved` runs them: taking such a path stops the task
+        /// with a run-time error.
+        #[arg(long)]
+        allow_unresolved: bool,
     },
     /// Draw an application in the notation of the SitLog papers.
     ///
@@ -339,12 +345,13 @@ fn run(cli: Cli) -> u8 {
             debug,
             emit,
             explain_types,
+            allow_unresolved,
         } => {
             let release = !debug;
             if explain_types {
                 explain_types_of(&app)
             } else {
-                build_app(&app, output, release, emit)
+                build_app(&app, output, release, emit, allow_unresolved)
             }
         }
         Command::Lsp => match sitlog_lsp::run_stdio(&sitlog_compiler::analysis::Analysis) {
@@ -596,18 +603,25 @@ fn build_app(
     output: Option<PathBuf>,
     release: bool,
     emit: Option<Emit>,
+    allow_unresolved: bool,
 ) -> u8 {
     use sitlog_compiler::{build, package};
-    if let Err(code) = checked_ir(app) {
+    let options = sitlog_compiler::check::CheckOptions {
+        unresolved_as_warnings: allow_unresolved,
+        legacy: false,
+    };
+    if let Err(code) = checked_ir_opts(app, options) {
         return code;
     }
-    let compiled = match build::generate(app, &app.display().to_string()) {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return 1;
-        }
-    };
+    let compiled =
+        match build::generate_checked(app, &app.display().to_string(), Default::default(), options)
+        {
+            Ok(c) => c,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return 1;
+            }
+        };
     if emit == Some(Emit::Rust) {
         let text = compiled.to_file_string();
         return match output {
