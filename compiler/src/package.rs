@@ -298,6 +298,8 @@ pub fn build_package(
         Some(p) => p.to_path_buf(),
         None => PathBuf::from("."),
     };
+    std::fs::create_dir_all(&parent)
+        .map_err(|e| err(format!("cannot create {}: {e}", parent.display())))?;
     let mut tmp = tempfile::Builder::new()
         .prefix(".sitlogc-")
         .suffix(".tmp")

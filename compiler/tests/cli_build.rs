@@ -365,7 +365,8 @@ fn built_executable_stops_on_sigint() {
 ",
     )
     .unwrap();
-    let exe = dir.join("spin-task");
+    // Into a directory that does not exist yet: it is made.
+    let exe = dir.join("bin/spin-task");
     let status = sitlogc()
         .arg("build")
         .arg("--debug")
