@@ -13,7 +13,7 @@
 //! and 10⁶ transitions; the counter loop also at 10⁸ (typed code and the
 //! hand-written loop only).
 //!
-//! `cargo bench -p sitlog-benches --bench compiled`; the ratios in the README
+//! `cargo bench -p sitlog-benches --bench compiled`; the ratios in docs/guide/internals.md
 //! come from one such run.
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};

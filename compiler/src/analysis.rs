@@ -45,7 +45,11 @@ fn analyse(
     let root = program_root(file);
     load::with_overlay(overlay, || {
         let (program, diags) = load::load(&root).map_err(|e| e.to_string())?;
-        let (result, diags) = crate::check::check(program, diags);
+        let options = crate::check::CheckOptions {
+            world_functions: sitlog_robot::WORLD_FUNCTIONS,
+            ..Default::default()
+        };
+        let (result, diags) = crate::check::check_opts(program, diags, options);
         let program = match result {
             Ok(c) => c.into_program(),
             Err(p) => p,

@@ -1,7 +1,9 @@
 //! The IR as a whole program for the runtime's CLI runner (`sitlogc run`
 //! shares `sitlog_runtime::cli` with compiled programs).
 
-use crate::ir::Ir;
+use crate::diag::{Diagnostic, Loc};
+use crate::ir::{ExprSite, Ir};
+use sitlog_runtime::machine::RunError;
 use sitlog_runtime::{cli::App, Atom, Store, Vars};
 
 impl App for Ir {
@@ -14,4 +16,69 @@ impl App for Ir {
     fn recovery(&self) -> Vec<(Atom, Atom)> {
         self.recovery.clone()
     }
+    fn render_error(&self, error: &RunError, color: bool) -> Option<String> {
+        let d = run_error_diagnostic(self, error)?;
+        Some(crate::diag::render_human(&d, &self.sources, color))
+    }
+    fn error_location(&self, error: &RunError) -> Option<String> {
+        let d = run_error_diagnostic(self, error)?;
+        let file = self.sources.get(d.loc.file);
+        let pos = file.line_col(d.loc.span.start);
+        Some(format!("{}:{}:{}", file.name, pos.line, pos.column))
+    }
+}
+
+/// A run-time error as a diagnostic at the failing expression: the
+/// construct of L the evaluator blamed, looked up among those written in
+/// the arc (or the other attributes) that failed; else the arc, else the
+/// situation. `None` without a situation (e.g. an unknown main DM).
+pub fn run_error_diagnostic(ir: &Ir, error: &RunError) -> Option<Diagnostic> {
+    let site = error.site.as_deref()?;
+    let src = &ir
+        .dms
+        .get(site.dm as usize)?
+        .situations
+        .get(site.situation as usize)?
+        .source;
+    let arc = error.arc.map(|a| a - 1);
+    let found = site.culprit.and_then(|c| {
+        let exact = |e: &&ExprSite| e.functor == (c.name, c.arity) && e.inner == c.inner;
+        let by_functor = |e: &&ExprSite| e.functor == (c.name, c.arity);
+        let here = || src.exprs.iter().filter(|e| e.arc == arc);
+        here()
+            .find(exact)
+            .or_else(|| here().find(by_functor))
+            .or_else(|| src.exprs.iter().find(exact))
+    });
+    let (span, label) = match (found, arc.and_then(|a| src.arcs.get(a))) {
+        (Some(e), _) => (e.span, "failed here"),
+        (None, Some(&span)) => (span, "in this arc"),
+        (None, None) => (src.span, "in this situation"),
+    };
+    let mut place = Vec::new();
+    if let Some(dm) = &error.dm {
+        place.push(format!("DM `{dm}`"));
+    }
+    if let Some(s) = &error.situation {
+        place.push(format!("situation `{s}`"));
+    }
+    if let Some(a) = error.arc {
+        place.push(format!("arc {a}"));
+    }
+    let message = if place.is_empty() {
+        error.message.clone()
+    } else {
+        format!("{} (in {})", error.message, place.join(", "))
+    };
+    Some(
+        Diagnostic::error(
+            "",
+            Loc {
+                file: src.file,
+                span,
+            },
+            message,
+        )
+        .with_label(label),
+    )
 }

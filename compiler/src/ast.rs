@@ -29,6 +29,21 @@ pub struct Program {
     /// Recovery protocols (`recovery_protocols.pl`): situation type name → DM to run
     /// when no expectation of a situation of that type is met.
     pub recovery: Vec<Recovery>,
+    /// Files that Prolog files consult but the loader could not read
+    /// (`$SITLOG_HOME/...`, absolute or missing paths), with the directive's
+    /// position: their predicates are unknown to the checker.
+    pub unread_consults: Vec<(String, Loc)>,
+    /// Whether the application has a `knowledge.kb` (its KB services are functions).
+    pub has_kb_file: bool,
+    /// Whether the application has a `world.toml` (it runs on the simulated robot).
+    pub has_world_file: bool,
+    /// Whether the program is one DM file checked alone (other DMs of its
+    /// directory are not part of it).
+    pub single_file: bool,
+    /// Functions the host registers in Rust, declared in `host_functions.pl`
+    /// (`name/arity.` per clause) or by whoever assembles the program, so
+    /// that the checker knows them.
+    pub host_functions: Vec<(Atom, usize)>,
 }
 
 /// `Type ==> dm.` in `recovery_protocols.pl`.
@@ -449,6 +464,43 @@ pub fn build_basic_actions(
                     "a basic action must be a list of `attribute ==> value` with an atom `id`",
                 )
                 .with_help("e.g. `[id ==> beep, arity ==> [], mod ==> sound, break ==> no].`"),
+            ),
+        }
+    }
+}
+
+/// `name/arity.` clauses of `host_functions.pl`: the user functions a
+/// host registers in Rust (`Functions::register`), which no Prolog file of
+/// the application defines.
+pub fn build_host_functions(
+    file: FileId,
+    clauses: Vec<Clause>,
+    out: &mut Vec<(Atom, usize)>,
+    diags: &mut Vec<Diagnostic>,
+) {
+    let slash = Atom::intern("/");
+    for clause in clauses {
+        let loc = Loc {
+            file,
+            span: clause.span,
+        };
+        let terms = &clause.terms;
+        let decl = terms.compound(clause.root, slash, 2).and_then(|a| {
+            let name = terms.atom(a[0])?;
+            match terms.node(a[1]) {
+                Node::Int(n) if *n >= 0 => Some((name, *n as usize)),
+                _ => None,
+            }
+        });
+        match decl {
+            Some(decl) => out.push(decl),
+            None => diags.push(
+                Diagnostic::error(
+                    codes::MALFORMED_SIDE_FILE,
+                    loc,
+                    "a host function must be written `name/arity.`",
+                )
+                .with_help("e.g. `poke/1.`"),
             ),
         }
     }

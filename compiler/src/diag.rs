@@ -81,14 +81,16 @@ pub fn render_human(diag: &Diagnostic, sources: &SourceMap, color: bool) -> Stri
         Severity::Warning => ReportKind::Warning,
     };
     let range = clamp(diag.loc.span, &file.text);
-    let mut report = Report::build(kind, (file.name.clone(), range.clone()))
-        .with_config(
-            Config::default()
-                .with_index_type(IndexType::Byte)
-                .with_color(color),
-        )
-        .with_code(diag.code)
-        .with_message(&diag.message);
+    let mut report = Report::build(kind, (file.name.clone(), range.clone())).with_config(
+        Config::default()
+            .with_index_type(IndexType::Byte)
+            .with_color(color),
+    );
+    // Run-time errors have no code.
+    if !diag.code.is_empty() {
+        report = report.with_code(diag.code);
+    }
+    report = report.with_message(&diag.message);
     let mut primary = Label::new((file.name.clone(), range)).with_order(0);
     if let Some(text) = &diag.label {
         primary = primary.with_message(text);

@@ -38,6 +38,55 @@ pub struct Ir {
     /// What each Prolog user function can return, as far as its clauses
     /// show it (for diagrams; see [`crate::ast::FunctionValues`]).
     pub function_values: Vec<IrFunctionValues>,
+    /// The DM source files, for run-time errors shown on the source
+    /// ([`IrSituation::source`]).
+    pub sources: crate::source::SourceMap,
+}
+
+/// Where a situation and its expressions are written (run-time errors
+/// point there).
+#[derive(Debug, Clone)]
+pub struct SituationSource {
+    pub file: crate::source::FileId,
+    pub span: sitlog_syntax::Span,
+    /// Each arc's span, in order.
+    pub arcs: Vec<sitlog_syntax::Span>,
+    /// The constructs of L written in the situation (`apply`, `get`, ...),
+    /// in source order: which arc holds them (`None`: another attribute),
+    /// their functor, their first argument's functor, their span.
+    pub exprs: Vec<ExprSite>,
+}
+
+/// One construct of L in the source (see [`SituationSource::exprs`]).
+#[derive(Debug, Clone, Copy)]
+pub struct ExprSite {
+    pub arc: Option<usize>,
+    pub functor: (Atom, usize),
+    pub inner: Option<(Atom, usize)>,
+    pub span: sitlog_syntax::Span,
+}
+
+/// The constructs of L below `root` (see [`SituationSource::exprs`]).
+fn expr_sites(
+    terms: &sitlog_syntax::Terms,
+    root: TermId,
+    arc: Option<usize>,
+    out: &mut Vec<ExprSite>,
+) {
+    let mut stack = vec![root];
+    while let Some(t) = stack.pop() {
+        if let Some((name, arity)) = terms.functor(t) {
+            if arity > 0 && !sitlog_runtime::eval::evaluates_arguments_only(name, arity) {
+                out.push(ExprSite {
+                    arc,
+                    functor: (name, arity),
+                    inner: terms.args(t).first().and_then(|&a| terms.functor(a)),
+                    span: terms.span(t),
+                });
+            }
+        }
+        stack.extend_from_slice(terms.args(t));
+    }
 }
 
 /// The values a user function `name/arity` can give: `None` when some
@@ -95,6 +144,8 @@ pub struct IrSituation {
     pub location: String,
     /// `file:line:col` of each arc, in order.
     pub arc_locations: Vec<String>,
+    /// Spans of the situation, its arcs and its constructs of L.
+    pub source: SituationSource,
 }
 
 /// The marker of an absent attribute in a situation template.
@@ -140,6 +191,25 @@ pub fn lower(checked: &Checked) -> Ir {
             let diag = opt(&mut store, s.diag_mod, &mut import);
             let mut arcs = Vec::new();
             let mut arc_locations = Vec::new();
+            let mut exprs = Vec::new();
+            for t in [s.prog, s.in_arg, s.out_arg, s.embedded_dm, s.diag_mod]
+                .into_iter()
+                .flatten()
+            {
+                expr_sites(&clause.terms, t, None, &mut exprs);
+            }
+            for (i, arc) in s.arcs.iter().flatten().enumerate() {
+                for t in [arc.expectation, arc.action, arc.next] {
+                    expr_sites(&clause.terms, t, Some(i), &mut exprs);
+                }
+            }
+            exprs.sort_by_key(|e| e.span);
+            let source = SituationSource {
+                file: dm.file,
+                span: s.span,
+                arcs: s.arcs.iter().flatten().map(|a| a.span).collect(),
+                exprs,
+            };
             for arc in s.arcs.iter().flatten() {
                 let pos = file.line_col(arc.span.start);
                 arc_locations.push(format!("{}:{}:{}", file.name, pos.line, pos.column));
@@ -166,6 +236,7 @@ pub fn lower(checked: &Checked) -> Ir {
                 id_functor,
                 location: format!("{}:{}:{}", file.name, pos.line, pos.column),
                 arc_locations,
+                source,
             });
         }
         let locals = dm
@@ -229,6 +300,7 @@ pub fn lower(checked: &Checked) -> Ir {
         .collect();
     store.freeze();
     Ir {
+        sources: program.sources.clone(),
         function_values,
         store,
         dms,

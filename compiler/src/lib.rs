@@ -23,30 +23,42 @@ pub mod run;
 pub mod scaffold;
 pub mod source;
 pub mod types;
+pub mod watch;
 
 use std::path::Path;
 
 /// Loads and checks an application directory or DM file.
+///
+/// The functions of the simulated robot ([`sitlog_robot::WORLD_FUNCTIONS`])
+/// are known to the checker when the application runs on a world.
 pub fn check_path(
     path: &Path,
 ) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
-    let (program, diags) = load::load(path)?;
-    Ok(check::check(program, diags))
+    check_path_opts(path, check::CheckOptions::default())
 }
 
 /// [`check_path`], with unresolved names as warnings (see [`check::check_with`]).
 pub fn check_path_lenient(
     path: &Path,
 ) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
-    let (program, diags) = load::load(path)?;
-    Ok(check::check_with(program, diags, true))
+    check_path_opts(
+        path,
+        check::CheckOptions {
+            unresolved_as_warnings: true,
+            ..Default::default()
+        },
+    )
 }
 
-/// [`check_path`] with [`check::CheckOptions`].
+/// [`check_path`] with [`check::CheckOptions`] (the simulated robot's
+/// functions are added to `world_functions` if it is empty).
 pub fn check_path_opts(
     path: &Path,
-    options: check::CheckOptions,
+    mut options: check::CheckOptions,
 ) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
     let (program, diags) = load::load(path)?;
+    if options.world_functions.is_empty() {
+        options.world_functions = sitlog_robot::WORLD_FUNCTIONS;
+    }
     Ok(check::check_opts(program, diags, options))
 }

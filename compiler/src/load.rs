@@ -3,7 +3,8 @@
 //! file lists (in order, paths relative to the directory), or, without a
 //! `models` file, every `*.dm` below it (sorted by path); plus the side files
 //! beside them (`global_vars.pl`, `basic_actions.pl`, `expectation_types.pl`,
-//! `user_functions.pl`, `templates.pl`). A single file is a program of one
+//! `user_functions.pl`, `templates.pl`, `recovery_protocols.pl`,
+//! `host_functions.pl`). A single file is a program of one
 //! DM file.
 
 use crate::ast::{self, Program};
@@ -41,7 +42,11 @@ const GLOBALS: &str = "global_vars.pl";
 const BASIC_ACTIONS: &str = "basic_actions.pl";
 const EXPECTATION_TYPES: &str = "expectation_types.pl";
 const RECOVERY: &str = "recovery_protocols.pl";
+const HOST_FUNCTIONS: &str = "host_functions.pl";
 const PROLOG_FILES: [&str; 2] = ["templates.pl", "user_functions.pl"];
+/// The application's knowledge base and simulated world (not read here).
+const KB_FILE: &str = "knowledge.kb";
+const WORLD_FILE: &str = "world.toml";
 
 /// The programs below `path`: a file is one program; a directory with a
 /// `models` file or a `*.dm` file directly in it is one application; any
@@ -89,10 +94,32 @@ pub fn load(path: &Path) -> Result<(Program, Vec<Diagnostic>), LoadError> {
         path: path.to_path_buf(),
         error,
     })?;
-    if meta.is_dir() {
+    let dir = if meta.is_dir() {
         load_dir(path, &mut program, &mut diags)?;
+        Some(path.to_path_buf())
     } else {
         load_dm_file(path, &mut program, &mut diags)?;
+        program.single_file = true;
+        // A DM file checked alone still sees the side files beside it (its
+        // globals, actions, functions): what the help of its diagnostics
+        // tells the user to edit is what is read.
+        let dir = path.parent().map(|p| {
+            if p.as_os_str().is_empty() {
+                Path::new(".")
+            } else {
+                p
+            }
+        });
+        if path.extension().is_some_and(|e| e == "dm") {
+            if let Some(dir) = dir {
+                load_side_files(dir, &mut program, &mut diags)?;
+            }
+        }
+        dir.map(Path::to_path_buf)
+    };
+    if let Some(dir) = dir {
+        program.has_kb_file = dir.join(KB_FILE).is_file();
+        program.has_world_file = dir.join(WORLD_FILE).is_file();
     }
     Ok((program, diags))
 }
@@ -150,6 +177,9 @@ fn add_file_by_role(
             ast::build_expectation_types(file, clauses, &mut program.expectation_types, diags)
         }
         RECOVERY => ast::build_recovery(file, clauses, &mut program.recovery, diags),
+        HOST_FUNCTIONS => {
+            ast::build_host_functions(file, clauses, &mut program.host_functions, diags)
+        }
         n if PROLOG_FILES.contains(&n) => add_prolog_file(program, file, clauses, diags, 0),
         _ => ast::build_dms(file, clauses, &mut program.dms, diags),
     }
@@ -175,8 +205,10 @@ fn add_prolog_file(
         .parent()
         .map(Path::to_path_buf);
     if let Some(dir) = dir.filter(|_| depth < 32) {
-        for name in consulted(&clauses) {
+        for (name, span) in consulted(&clauses) {
+            let unread = (name.clone(), Loc { file, span });
             if name.starts_with('$') || Path::new(&name).is_absolute() {
+                program.unread_consults.push(unread);
                 continue;
             }
             let mut path = dir.join(&name);
@@ -188,7 +220,11 @@ fn add_prolog_file(
                 .prolog_files
                 .iter()
                 .any(|&f| normalize(&program.sources.get(f).path) == path);
-            if known || !path.is_file() {
+            if known {
+                continue;
+            }
+            if !path.is_file() {
+                program.unread_consults.push(unread);
                 continue;
             }
             if let Ok(id) = read_text(&path, program, diags) {
@@ -206,8 +242,9 @@ fn add_prolog_file(
     program.prolog_files.push(file);
 }
 
-/// The file names of the consult directives among `clauses`.
-fn consulted(clauses: &[Clause]) -> Vec<String> {
+/// The file names of the consult directives among `clauses`, each with
+/// the span of its directive.
+fn consulted(clauses: &[Clause]) -> Vec<(String, Span)> {
     let neck = sitlog_syntax::Atom::intern(":-");
     let mut out = Vec::new();
     for c in clauses {
@@ -226,14 +263,14 @@ fn consulted(clauses: &[Clause]) -> Vec<String> {
         loop {
             if let Some(a) = t.atom(item) {
                 if a.as_str() != "[]" {
-                    out.push(a.as_str().to_owned());
+                    out.push((a.as_str().to_owned(), c.span));
                 }
                 break;
             }
             match t.functor(item) {
                 Some((f, 2)) if f.as_str() == "." => {
                     if let Some(a) = t.atom(t.args(item)[0]) {
-                        out.push(a.as_str().to_owned());
+                        out.push((a.as_str().to_owned(), c.span));
                     }
                     item = t.args(item)[1];
                 }
@@ -432,9 +469,24 @@ fn load_dir(
             load_dm_file(&path, program, diags)?;
         }
     }
-    for side in [GLOBALS, BASIC_ACTIONS, EXPECTATION_TYPES, RECOVERY]
-        .into_iter()
-        .chain(PROLOG_FILES)
+    load_side_files(dir, program, diags)
+}
+
+/// The side files of the application in `dir` (those that exist).
+fn load_side_files(
+    dir: &Path,
+    program: &mut Program,
+    diags: &mut Vec<Diagnostic>,
+) -> Result<(), LoadError> {
+    for side in [
+        GLOBALS,
+        BASIC_ACTIONS,
+        EXPECTATION_TYPES,
+        RECOVERY,
+        HOST_FUNCTIONS,
+    ]
+    .into_iter()
+    .chain(PROLOG_FILES)
     {
         let path = dir.join(side);
         if path.is_file() {

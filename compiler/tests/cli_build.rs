@@ -310,6 +310,8 @@ fn built_executable_runs_like_sitlogc_run() {
     );
     assert!(help.contains("no reloading"), "{help}");
     assert!(!help.contains("PROGRAM"), "{help}");
+    // Compiled tasks do not reload (issue 21): their help says so.
+    assert!(help.contains("does not reload"), "{help}");
     // The live view works on the compiled task too: its diagram is embedded.
     let mut child = Command::new(&exe)
         .args(["--view", "--format", "json", "--script"])

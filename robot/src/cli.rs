@@ -16,6 +16,7 @@
 use crate::console::{Console, SharedConsole, SharedWriter};
 use crate::interrupt::{Interrupt, InterruptibleStdin};
 use crate::kb;
+use crate::prompt::EndOfInputStops;
 use clap::{Args, CommandFactory, FromArgMatches, Parser, ValueEnum};
 use sitlog_runtime::cli::{run, App};
 use sitlog_runtime::functions::CallLimits;
@@ -302,7 +303,8 @@ impl Streams {
 /// SIGINT and SIGTERM stop the task at its next transition: the report
 /// (status `interrupted`) is still printed and the trace closed; the exit
 /// status is then 130 (SIGINT) or 143 (SIGTERM). A second signal ends the
-/// process at once.
+/// process at once. The end of typed input (Ctrl-D at the prompt) stops it
+/// the same way, with exit status 3 ([`crate::prompt`]).
 pub fn execute<A: App>(app: &A, functions: Functions, args: &RunArgs, assets: &Assets) -> u8 {
     let interrupt = Interrupt::install();
     execute_interruptible(
@@ -312,6 +314,44 @@ pub fn execute<A: App>(app: &A, functions: Functions, args: &RunArgs, assets: &A
         assets,
         Streams::process(),
         Some(interrupt),
+    )
+}
+
+/// Wraps the perception a run makes (the simulated user's, the script's or
+/// the prompt's) in another: `sitlogc run --watch` lets a situation waiting
+/// for input take it in a program that changed meanwhile.
+pub type PerceptionWrap = Box<dyn FnOnce(Box<dyn Perception>) -> Box<dyn Perception>>;
+
+/// [`execute`], with the run's perception wrapped by `wrap`.
+pub fn execute_wrapped<A: App>(
+    app: &A,
+    functions: Functions,
+    args: &RunArgs,
+    assets: &Assets,
+    wrap: PerceptionWrap,
+) -> u8 {
+    let interrupt = Interrupt::install();
+    let streams = Streams::process();
+    if args.view {
+        return with_view(
+            app,
+            functions,
+            args,
+            assets,
+            streams,
+            Some(interrupt),
+            Some(wrap),
+        );
+    }
+    run_task(
+        app,
+        functions,
+        args,
+        assets,
+        streams,
+        Some(interrupt),
+        None,
+        Some(wrap),
     )
 }
 
@@ -344,6 +384,67 @@ impl Observer for Fanout<'_> {
             o.transition(store, entry, depth, next);
         }
     }
+
+    fn inspect(&mut self, machine: &mut sitlog_runtime::machine::Inspection<'_>) {
+        for o in &mut self.0 {
+            o.inspect(machine);
+        }
+    }
+}
+
+/// Makes a run's test-mode perception from the script's, if any.
+pub type MakePerception = Box<dyn FnOnce(Option<Box<dyn Perception>>) -> Box<dyn Perception>>;
+
+/// What `sitlogc debug` (sitlog-debug) adds to a run besides its observer
+/// (which comes in [`Streams::observer`]).
+pub struct DebugHooks {
+    /// Makes the test-mode perception from the script's (`None` without
+    /// `--script`); it replaces the prompt on stdin.
+    pub perception: MakePerception,
+    /// Given a look at the simulated world when the run has one.
+    pub world: Box<dyn FnOnce(WorldProbe)>,
+    /// When set, the run stops before its next transition (`quit`).
+    pub stop: Arc<std::sync::atomic::AtomicBool>,
+}
+
+/// A look at the simulated world of a run (the debugger's `world`).
+#[derive(Clone)]
+pub struct WorldProbe {
+    #[cfg(feature = "sim")]
+    robot: crate::robot::Probe,
+}
+
+impl WorldProbe {
+    /// The world's state now, one fact a line.
+    pub fn describe(&self) -> String {
+        #[cfg(feature = "sim")]
+        {
+            self.robot.describe()
+        }
+        #[cfg(not(feature = "sim"))]
+        String::new()
+    }
+}
+
+/// Runs `app` as [`execute_with`] does, with a debugger's [`DebugHooks`].
+pub fn execute_debug<A: App>(
+    app: &A,
+    functions: Functions,
+    args: &RunArgs,
+    assets: &Assets,
+    streams: Streams,
+    hooks: DebugHooks,
+) -> u8 {
+    run_task(
+        app,
+        functions,
+        args,
+        assets,
+        streams,
+        None,
+        Some(hooks),
+        None,
+    )
 }
 
 /// [`execute`] on the given streams, without signal handling.
@@ -367,6 +468,7 @@ fn with_view<A: App>(
     assets: &Assets,
     mut streams: Streams,
     interrupt: Option<Interrupt>,
+    wrap: Option<PerceptionWrap>,
 ) -> u8 {
     let diagram = match assets
         .diagram
@@ -407,7 +509,7 @@ fn with_view<A: App>(
     streams.observer = Some(Box::new(
         view.observer(std::time::Duration::from_millis(args.view_delay)),
     ));
-    let code = run_task(app, functions, args, assets, streams, interrupt);
+    let code = run_task(app, functions, args, assets, streams, interrupt, None, wrap);
     let status = match code {
         0 => "ok",
         1 => "error",
@@ -425,6 +527,7 @@ fn with_view<A: App>(
     _: &Assets,
     mut streams: Streams,
     _: Option<Interrupt>,
+    _: Option<PerceptionWrap>,
 ) -> u8 {
     let _ = writeln!(
         streams.stderr,
@@ -478,12 +581,13 @@ pub fn execute_interruptible<A: App>(
     interrupt: Option<Interrupt>,
 ) -> u8 {
     if args.view {
-        return with_view(app, functions, args, assets, streams, interrupt);
+        return with_view(app, functions, args, assets, streams, interrupt, None);
     }
-    run_task(app, functions, args, assets, streams, interrupt)
+    run_task(app, functions, args, assets, streams, interrupt, None, None)
 }
 
 /// The run itself (the live view, if any, already set up).
+#[allow(clippy::too_many_arguments)]
 fn run_task<A: App>(
     app: &A,
     mut functions: Functions,
@@ -491,7 +595,16 @@ fn run_task<A: App>(
     assets: &Assets,
     mut streams: Streams,
     interrupt: Option<Interrupt>,
+    hooks: Option<DebugHooks>,
+    wrap: Option<PerceptionWrap>,
 ) -> u8 {
+    let (mut debug_perception, mut debug_world, debug_stop) = match hooks {
+        Some(h) => (Some(h.perception), Some(h.world), Some(h.stop)),
+        None => (None, None, None),
+    };
+    // Without the simulator there is no world to look at.
+    #[cfg(not(feature = "sim"))]
+    let _ = debug_world.take();
     macro_rules! fail {
         ($code:expr, $($msg:tt)*) => {{
             let _ = writeln!(streams.stderr, $($msg)*);
@@ -575,6 +688,11 @@ fn run_task<A: App>(
         );
     }
 
+    // Typed input (test mode without a script) ends the task cleanly at its
+    // end (Ctrl-D): recorded in the run's interrupt (one of its own when
+    // signals are not handled).
+    let typed = world.is_none() && args.script.is_none();
+    let ended: Option<Interrupt> = interrupt.clone().or_else(|| typed.then(Interrupt::new));
     // Perception and actions: the simulated robot, or test mode.
     let mut io: (Box<dyn Perception>, Box<dyn Actions>) = match &world {
         #[cfg(feature = "sim")]
@@ -582,6 +700,11 @@ fn run_task<A: App>(
             match crate::robot::SimRobot::from_source(world, args.seed, console.clone()) {
                 Ok(robot) => {
                     robot.register_inference(&mut functions, args.seed);
+                    if let Some(give) = debug_world.take() {
+                        give(WorldProbe {
+                            robot: robot.probe(),
+                        });
+                    }
                     let (senses, effectors) = robot.split();
                     (Box::new(senses), Box::new(effectors))
                 }
@@ -599,27 +722,48 @@ fn run_task<A: App>(
         ),
         None => {
             let limits = args.input_limits();
-            let perception: Box<dyn Perception> = match &args.script {
-                Some(path) => match Source::read(path, "script") {
-                    Ok(s) => Box::new(ScriptPerception::new(s.name, s.text).with_limits(limits)),
+            let perception: Box<dyn Perception> = match (&args.script, debug_perception.take()) {
+                (Some(path), debugger) => match Source::read(path, "script") {
+                    Ok(s) => {
+                        let script =
+                            Box::new(ScriptPerception::new(s.name, s.text).with_limits(limits));
+                        match debugger {
+                            Some(make) => make(Some(script)),
+                            None => script,
+                        }
+                    }
                     Err(e) => fail!(e.status, "{e}"),
                 },
-                // Typed input: read on a thread of its own when a signal
-                // can stop the run, so that the prompt sees it.
-                None => match &interrupt {
-                    Some(i) => Box::new(
-                        PromptPerception::new(InterruptibleStdin::new(i.flag.clone()))
-                            .with_limits(limits),
-                    ),
-                    None => {
-                        Box::new(PromptPerception::new(std::io::stdin().lock()).with_limits(limits))
-                    }
-                },
+                // Typed input: line editing on a terminal; else read on a
+                // thread of its own when a signal can stop the run, so that
+                // the prompt sees it.
+                (None, Some(make)) => make(None),
+                (None, None) => {
+                    let ended = ended.clone().unwrap_or_default();
+                    let prompt: Box<dyn Perception> = match edited_prompt(limits, &ended) {
+                        Some(p) => p,
+                        None => match &interrupt {
+                            Some(i) => Box::new(
+                                PromptPerception::new(InterruptibleStdin::new(i.flag.clone()))
+                                    .with_limits(limits),
+                            ),
+                            None => Box::new(
+                                PromptPerception::new(std::io::stdin().lock()).with_limits(limits),
+                            ),
+                        },
+                    };
+                    Box::new(EndOfInputStops::new(prompt, ended))
+                }
             };
             let actions = Box::new(TextActions::new(std::io::stderr(), app.basic_actions()));
             (perception, actions)
         }
     };
+
+    if let Some(wrap) = wrap {
+        let (perception, actions) = io;
+        io = (wrap(perception), actions);
+    }
 
     let mut trace = match &args.trace {
         Some(path) => match std::fs::File::create(path) {
@@ -651,7 +795,7 @@ fn run_task<A: App>(
     let options = Options {
         keep_history: args.history == HistoryMode::Keep,
         input_limits: args.input_limits(),
-        stop: interrupt.as_ref().map(|i| i.flag.clone()),
+        stop: ended.as_ref().map(|i| i.flag.clone()).or(debug_stop),
         ..Options::default()
     };
     functions.set_call_limits(args.call_limits());
@@ -691,6 +835,13 @@ fn run_task<A: App>(
             fail!(2, "error: {e}")
         }
     };
+    let mut outcome = outcome;
+    // The error names the failing expression's position, in every report.
+    if let Err(e) = &mut outcome.result {
+        if let Some(location) = app.error_location(e) {
+            e.location = Some(location);
+        }
+    }
     let transcript_error = console.lock().ok().and_then(|mut c| c.finish());
     let report = match args.format {
         Format::Json => format!("{}\n", report::outcome_json(&store, &outcome)),
@@ -715,14 +866,49 @@ fn run_task<A: App>(
         _ => {}
     }
     if let Err(e) = &outcome.result {
-        let _ = writeln!(streams.stderr, "error: {e}");
-        match interrupt.as_ref().and_then(Interrupt::exit_status) {
+        let by_input = outcome.interrupted && ended.as_ref().is_some_and(Interrupt::ended_by_input);
+        if by_input {
+            let place = match (&e.dm, &e.situation) {
+                (Some(dm), Some(sit)) => format!(" while DM `{dm}` waited in situation `{sit}`"),
+                _ => String::new(),
+            };
+            let _ = writeln!(
+                streams.stderr,
+                "stopped: the input ended (Ctrl-D){place}: the task did not finish (exit status {})",
+                crate::interrupt::EXIT_END_OF_INPUT
+            );
+        } else {
+            // Reported once, here (the report on stdout does not repeat it):
+            // on the source when the program keeps it.
+            let color = streams.stderr_is_terminal && std::env::var_os("NO_COLOR").is_none();
+            let _ = match app.render_error(e, color) {
+                Some(text) => write!(streams.stderr, "{text}"),
+                None => writeln!(streams.stderr, "error: {e}"),
+            };
+        }
+        match ended.as_ref().and_then(Interrupt::exit_status) {
             Some(status) if outcome.interrupted => status,
             _ => 1,
         }
     } else {
         0
     }
+}
+
+/// The prompt with line editing, when stdin and stderr are terminals (and
+/// the `edit` feature is on).
+#[cfg(feature = "edit")]
+fn edited_prompt(limits: InputLimits, interrupt: &Interrupt) -> Option<Box<dyn Perception>> {
+    if !(std::io::stdin().is_terminal() && std::io::stderr().is_terminal()) {
+        return None;
+    }
+    crate::prompt::EditedPrompt::new(limits, interrupt.clone())
+        .map(|p| Box::new(p) as Box<dyn Perception>)
+}
+
+#[cfg(not(feature = "edit"))]
+fn edited_prompt(_: InputLimits, _: &Interrupt) -> Option<Box<dyn Perception>> {
+    None
 }
 
 /// The command line of a compiled task.
@@ -748,8 +934,9 @@ pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::proc
     };
     let about = format!(
         "The SitLog task `{name}`, compiled. Runs it on its world when it has one, else in test mode.\n\
-         It runs the program it was compiled from: editing the DM files afterwards changes nothing \
-         here (no reloading); compile again with `sitlogc build`."
+         A compiled task does not reload when its sources change: it runs the program it was \
+         compiled from (no reloading); compile again with `sitlogc build`, or run the sources \
+         with `sitlogc run APP --watch`."
     );
     let command = TaskCli::command()
         .name(name.clone())

@@ -109,6 +109,18 @@ fn distances(sim: &Sim, names: &[&str]) -> Result<Distances, String> {
     Ok(d)
 }
 
+/// The functions [`register`] registers, by name and arity: what a checker
+/// must know besides the application's own functions when a task runs on
+/// a world (the checker does not depend on this crate; its callers pass
+/// this list).
+pub(crate) const FUNCTIONS: &[(&str, usize)] = &[
+    ("shop_shelves", 0),
+    ("shop_shelf_here", 0),
+    ("shop_place_here", 0),
+    ("shop_diagnose", 4),
+    ("shop_decide", 4),
+];
+
 /// Registers the functions of the module documentation.
 pub(crate) fn register(
     functions: &mut Functions,
@@ -330,4 +342,34 @@ pub(crate) fn register(
         );
         parse(call, &text)
     });
+}
+
+#[cfg(test)]
+mod functions_tests {
+    use crate::console::Console;
+    use crate::robot::SimRobot;
+
+    /// [`super::FUNCTIONS`] lists exactly what a robot on a world registers.
+    #[test]
+    fn the_list_is_what_is_registered() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../dms/apps/supermarket/world.toml"
+        );
+        let world = sitlog_sim::World::load(std::path::Path::new(path)).expect("world");
+        let robot = SimRobot::new(&world, None, Console::sink().shared());
+        let mut functions = sitlog_runtime::Functions::new();
+        robot.register_inference(&mut functions, None);
+        let mut got: Vec<(String, usize)> = functions
+            .names()
+            .map(|(n, a)| (n.as_str().to_owned(), a))
+            .collect();
+        got.sort();
+        let mut want: Vec<(String, usize)> = super::FUNCTIONS
+            .iter()
+            .map(|&(n, a)| (n.to_owned(), a))
+            .collect();
+        want.sort();
+        assert_eq!(got, want);
+    }
 }

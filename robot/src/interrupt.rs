@@ -20,6 +20,12 @@ use std::time::Duration;
 pub const EXIT_SIGINT: u8 = 130;
 /// Exit status of a run stopped by SIGTERM.
 pub const EXIT_SIGTERM: u8 = 143;
+/// Exit status of a run whose typed input ended (Ctrl-D at the prompt, or
+/// the end of a pipe on stdin) while a situation waited for it.
+pub const EXIT_END_OF_INPUT: u8 = 3;
+
+/// What [`Interrupt::request_end_of_input`] records in place of a signal.
+const END_OF_INPUT: i32 = -1;
 
 /// The stop flag of a run and the signal that set it.
 #[derive(Clone, Default)]
@@ -65,6 +71,17 @@ impl Interrupt {
         self.flag.store(true, Ordering::SeqCst);
     }
 
+    /// Asks the run to stop because its typed input ended (Ctrl-D): the
+    /// exit status is then [`EXIT_END_OF_INPUT`].
+    pub fn request_end_of_input(&self) {
+        self.request(END_OF_INPUT);
+    }
+
+    /// Whether the run was stopped by the end of its typed input.
+    pub fn ended_by_input(&self) -> bool {
+        self.requested() && self.signal.load(Ordering::SeqCst) == END_OF_INPUT
+    }
+
     /// Whether a stop was asked for.
     pub fn requested(&self) -> bool {
         self.flag.load(Ordering::SeqCst)
@@ -78,8 +95,12 @@ impl Interrupt {
     }
 }
 
-/// 128 + the signal number, as shells report it (SIGINT 130, SIGTERM 143).
+/// 128 + the signal number, as shells report it (SIGINT 130, SIGTERM 143);
+/// [`EXIT_END_OF_INPUT`] for the end of typed input.
 fn status_of(signal: i32) -> u8 {
+    if signal == END_OF_INPUT {
+        return EXIT_END_OF_INPUT;
+    }
     u8::try_from(128 + signal.clamp(0, 127)).unwrap_or(EXIT_SIGINT)
 }
 
@@ -182,5 +203,10 @@ mod tests {
         assert_eq!(i.exit_status(), Some(EXIT_SIGINT));
         i.request(15);
         assert_eq!(i.exit_status(), Some(EXIT_SIGTERM));
+        assert!(!i.ended_by_input());
+        let i = Interrupt::new();
+        i.request_end_of_input();
+        assert!(i.ended_by_input());
+        assert_eq!(i.exit_status(), Some(EXIT_END_OF_INPUT));
     }
 }

@@ -20,7 +20,17 @@ pub mod console;
 mod infer;
 pub mod interrupt;
 pub mod kb;
+pub mod prompt;
 #[cfg(feature = "sim")]
 pub mod robot;
 
 pub use cli::{execute, main, Assets, FileError, Source};
+
+/// The user functions the simulated robot registers when a task runs on a
+/// world (`shop_diagnose/4`, ...), by name and arity: `sitlogc check`
+/// passes them to the checker, which does not depend on this crate.
+#[cfg(feature = "sim")]
+pub const WORLD_FUNCTIONS: &[(&str, usize)] = infer::FUNCTIONS;
+/// Without the simulator no world functions exist.
+#[cfg(not(feature = "sim"))]
+pub const WORLD_FUNCTIONS: &[(&str, usize)] = &[];

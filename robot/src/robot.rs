@@ -133,6 +133,13 @@ impl SimRobot {
         crate::infer::register(functions, self.inner.clone(), seed, console);
     }
 
+    /// A look at the world's state (the debugger's `world`).
+    pub fn probe(&self) -> Probe {
+        Probe {
+            inner: self.inner.clone(),
+        }
+    }
+
     /// The two views the machine takes: senses and effectors.
     pub fn split(self) -> (Senses, Effectors) {
         (
@@ -141,6 +148,44 @@ impl SimRobot {
             },
             Effectors { inner: self.inner },
         )
+    }
+}
+
+/// A look at the simulated world's state, shared with the running robot.
+#[derive(Clone)]
+pub struct Probe {
+    inner: Arc<Mutex<Inner>>,
+}
+
+impl Probe {
+    /// Time, places, hands and the routes found blocked, one a line.
+    pub fn describe(&self) -> String {
+        let Ok(inner) = lock(&self.inner) else {
+            return "the simulated world is unusable after an earlier panic\n".to_owned();
+        };
+        let sim = &inner.sim;
+        let place = |p: &str| match sim.room_of(p) {
+            Some(room) => format!("{p} (in {room})"),
+            None => p.to_owned(),
+        };
+        let hand = |h: Hand| sim.holding(h).unwrap_or("free").to_owned();
+        let mut out = format!("time: {:.1} s\n", sim.now());
+        out.push_str(&format!("robot: at {}\n", place(sim.robot_at())));
+        if let Some(shelf) = sim.shelf_at(sim.robot_at()) {
+            out.push_str(&format!("in front of: {shelf}\n"));
+        }
+        out.push_str(&format!(
+            "hands: left {}, right {}\n",
+            hand(Hand::Left),
+            hand(Hand::Right)
+        ));
+        out.push_str(&format!("user: at {}\n", place(sim.user_at())));
+        let blocked = sim.known_blocked();
+        if !blocked.is_empty() {
+            let routes: Vec<String> = blocked.iter().map(|(a, b)| format!("{a}-{b}")).collect();
+            out.push_str(&format!("known blocked: {}\n", routes.join(", ")));
+        }
+        out
     }
 }
 

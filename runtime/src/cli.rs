@@ -23,6 +23,20 @@ pub trait App: DmProgram + Sync {
     fn recovery(&self) -> Vec<(Atom, Atom)> {
         Vec::new()
     }
+    /// A run-time error as the user reads it, pointing at the failing
+    /// expression in the source (`color`: ANSI colours); `None` when the
+    /// program keeps no source (then the error's own text is shown).
+    fn render_error(&self, error: &crate::machine::RunError, color: bool) -> Option<String> {
+        let _ = (error, color);
+        None
+    }
+    /// `file:line:col` of the failing expression of a run-time error (the
+    /// runner puts it in the error's `location`, so that the JSON report
+    /// names it too); `None` when the program keeps no source.
+    fn error_location(&self, error: &crate::machine::RunError) -> Option<String> {
+        let _ = error;
+        None
+    }
 }
 
 /// Runs `app` from `main` (a DM call, as a term) with `in_arg` (a term; the

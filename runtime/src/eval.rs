@@ -29,13 +29,44 @@ pub struct EvalCtx<'a> {
 #[derive(Clone, Debug, PartialEq)]
 pub struct EvalError {
     pub message: String,
+    /// The construct of L whose evaluation failed (the innermost one), so
+    /// that a reporter can point at it in the source.
+    pub culprit: Option<Culprit>,
+}
+
+/// The shape of a failing expression as written: its principal functor
+/// and that of its first argument (`apply(pour(D), [D])` is `apply/2`
+/// with `pour/1`; `get(count, N)` is `get/2` with `count/0`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Culprit {
+    pub name: Atom,
+    pub arity: usize,
+    pub inner: Option<(Atom, usize)>,
 }
 
 impl EvalError {
     pub fn new(message: impl Into<String>) -> EvalError {
         EvalError {
             message: message.into(),
+            culprit: None,
         }
+    }
+
+    /// Blames `t` (a construct of L being evaluated) unless an inner
+    /// expression is already blamed.
+    fn blame(mut self, store: &Store, t: Term) -> EvalError {
+        if self.culprit.is_none() {
+            if let Some((name, arity)) = store.functor(t) {
+                if !evaluates_arguments_only(name, arity) {
+                    let inner = store
+                        .args(t)
+                        .first()
+                        .and_then(|&a| store.functor(store.deref(a)));
+                    self.culprit = Some(Culprit { name, arity, inner });
+                }
+            }
+        }
+        self
     }
 }
 
@@ -94,7 +125,12 @@ fn show(store: &Store, t: Term) -> String {
 
 /// Evaluates `t` (D-28..D-39).
 pub fn eval(ctx: &mut EvalCtx<'_>, t: Term) -> Result<Term, EvalError> {
-    stacker::maybe_grow(64 * 1024, 1024 * 1024, || eval_inner(ctx, t))
+    stacker::maybe_grow(64 * 1024, 1024 * 1024, || {
+        eval_inner(ctx, t).map_err(|e| {
+            let t = ctx.store.deref(t);
+            e.blame(ctx.store, t)
+        })
+    })
 }
 
 fn eval_inner(ctx: &mut EvalCtx<'_>, t: Term) -> Result<Term, EvalError> {

@@ -100,6 +100,15 @@ pub trait DmProgram {
         let _ = (dm, sit);
         Err(cx.error("the situation has no compiled code", None))
     }
+    /// Called between two transitions, before the machine enters the next
+    /// situation: a program that can change while it runs (`sitlogc run
+    /// --watch`) takes its new version here, and may add variables to the
+    /// frames ([`Between`]). `Err` stops the run with that message.
+    /// Does nothing unless overridden.
+    fn between(&self, at: &mut Between<'_>) -> Result<(), String> {
+        let _ = at;
+        Ok(())
+    }
     /// The exit arcs of compiled recursive situation `sit`, once its embedded
     /// DM ended in `final_id`; `saved` is what [`Step::Call`] kept.
     fn run_exit(
@@ -140,6 +149,11 @@ pub enum Perceived {
     Input(Term),
     /// No more input (end of a test script).
     EndOfInput,
+    /// Nothing perceived yet: enter the situation again, as a new instance,
+    /// without its recovery DM (as when no expectation is met, D-15). A
+    /// perception returns it when the program changed while it waited
+    /// (hot reload), so that the new program's situation takes the input.
+    Again,
 }
 
 /// Perceptual interpreters: given the situation type and the evaluated
@@ -151,6 +165,13 @@ pub trait Perception {
         situation_type: Term,
         expectations: &[Term],
     ) -> Result<Perceived, String>;
+
+    /// Where the next [`Perception::perceive`] is asked for: the running
+    /// DM's call and the situation's id (for a prompt that names them).
+    /// Called by the machine just before it. Does nothing unless overridden.
+    fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
+        let _ = (store, dm, situation);
+    }
 }
 
 /// Basic actions: executed after an arc's action is evaluated.
@@ -174,6 +195,137 @@ pub trait Actions {
 /// Notified of every transition as it happens (for `--trace`).
 pub trait Observer {
     fn transition(&mut self, store: &Store, entry: &Entry, depth: usize, next: Option<Term>);
+
+    /// Called after [`Observer::transition`] (the entry then in its DM's
+    /// history), and once more when the run stops on an error (before the
+    /// stack is unwound), with the machine as it is: a debugger blocks here.
+    /// Does nothing unless overridden.
+    fn inspect(&mut self, machine: &mut Inspection<'_>) {
+        let _ = machine;
+    }
+}
+
+/// What [`Observer::inspect`] sees of the machine between two transitions:
+/// the DM stack (each frame's call term, locals and history, innermost
+/// last), the pipe, the globals, and an evaluator that leaves them as they
+/// were ([`Inspection::evaluate`]).
+pub struct Inspection<'a> {
+    pub store: &'a mut Store,
+    pub globals: &'a mut Vars,
+    pub functions: &'a Functions,
+    /// The pipe's value.
+    pub pipe: Term,
+    /// The error that stopped the run, when it did (`None` after a transition).
+    pub error: Option<&'a RunError>,
+    frames: &'a mut [Frame],
+    instances: &'a [Instance],
+}
+
+impl Inspection<'_> {
+    /// DMs on the stack (the main DM is frame 0).
+    pub fn depth(&self) -> usize {
+        self.frames.len()
+    }
+    /// Frame `i`'s DM call term.
+    pub fn dm_id(&self, i: usize) -> Term {
+        self.frames[i].dm_id
+    }
+    /// Frame `i`'s local variables.
+    pub fn locals(&self, i: usize) -> &Vars {
+        &self.frames[i].locals
+    }
+    /// The id of the situation frame `i` waits in for frame `i + 1` (its
+    /// recursive situation, or the failed one a recovery DM runs for);
+    /// `None` for the innermost frame.
+    pub fn waiting_in(&self, i: usize) -> Option<Term> {
+        match self.frames.get(i)?.pending.as_ref()? {
+            Pending::Recursive { .. } => {
+                let n = self.frames[..=i]
+                    .iter()
+                    .filter(|f| matches!(f.pending, Some(Pending::Recursive { .. })))
+                    .count();
+                self.instances.get(n - 1).map(|inst| inst.id)
+            }
+            Pending::Compiled { id, .. } | Pending::Recovery { id } => Some(*id),
+        }
+    }
+    /// Frame `i`'s history so far (empty when the history is not kept).
+    pub fn history(&self, i: usize) -> &[Item] {
+        &self.frames[i].history
+    }
+    /// Evaluates `t` (an L expression) in frame `i` and prints its value
+    /// (`writeq`); bindings and variable updates are undone afterwards.
+    pub fn evaluate(&mut self, i: usize, t: Term) -> Result<String, String> {
+        let frame = &mut self.frames[i];
+        let (locals, globals) = (frame.locals.clone(), self.globals.clone());
+        let mark = self.store.mark();
+        let mut cx = EvalCtx {
+            store: &mut *self.store,
+            locals: &mut frame.locals,
+            globals: &mut *self.globals,
+            history: &frame.history,
+            functions: self.functions,
+        };
+        let result = eval::eval(&mut cx, t)
+            .map(|v| self.store.writeq(v))
+            .map_err(|e| e.message);
+        self.store.undo_to(mark);
+        frame.locals = locals;
+        *self.globals = globals;
+        result
+    }
+}
+
+/// Where control goes next, as [`DmProgram::between`] sees it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Next {
+    /// The initial situation of the running DM (just called).
+    Initial,
+    /// The situation this (evaluated) next-situation value selects.
+    Situation(Term),
+    /// Situation `SitIx` of the running DM (compiled code).
+    Index(SitIx),
+}
+
+/// The machine between two transitions, for [`DmProgram::between`]: the DM
+/// stack (frame 0 is the main DM, the running one is last), the situation
+/// it enters next, the variables and the functions.
+pub struct Between<'a> {
+    pub store: &'a mut Store,
+    pub globals: &'a mut Vars,
+    pub functions: &'a mut Functions,
+    pub next: Next,
+    frames: &'a mut [Frame],
+}
+
+impl Between<'_> {
+    /// DMs on the stack.
+    pub fn depth(&self) -> usize {
+        self.frames.len()
+    }
+    /// Frame `i`'s DM (the program's index) and call term.
+    pub fn dm(&self, i: usize) -> (DmIx, Term) {
+        (self.frames[i].dm, self.frames[i].dm_id)
+    }
+    /// Frame `i`'s local variables.
+    pub fn locals_mut(&mut self, i: usize) -> &mut Vars {
+        &mut self.frames[i].locals
+    }
+    /// The recursive situation of frame `i` that waits for the DM above it
+    /// (interpreted programs), if any.
+    pub fn waiting_situation(&self, i: usize) -> Option<SitIx> {
+        match self.frames[i].pending {
+            Some(Pending::Recursive { sit }) => Some(sit),
+            _ => None,
+        }
+    }
+    /// Renumbers the waiting recursive situation of frame `i` (its
+    /// instance, already made, is kept), for a program that changed.
+    pub fn set_waiting_situation(&mut self, i: usize, sit: SitIx) {
+        if let Some(Pending::Recursive { sit: s }) = &mut self.frames[i].pending {
+            *s = sit;
+        }
+    }
 }
 
 /// Options of a run.
@@ -217,6 +369,18 @@ pub struct RunError {
     /// 1-based arc number.
     pub arc: Option<usize>,
     pub location: Option<String>,
+    /// Where in the program, for a reporter that shows the source
+    /// ([`crate::cli::App::render_error`]); boxed to keep errors small.
+    pub site: Option<Box<ErrorSite>>,
+}
+
+/// The running DM and situation of a [`RunError`], by index, and the
+/// expression of L whose evaluation failed, when one did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ErrorSite {
+    pub dm: DmIx,
+    pub situation: SitIx,
+    pub culprit: Option<eval::Culprit>,
 }
 
 impl std::fmt::Display for RunError {
@@ -331,6 +495,9 @@ pub struct Machine<'p, P: DmProgram> {
     /// Functor that pairs an arc with its out_arg for one joint copy (D-11);
     /// interned once, not per transition.
     arc_functor: Atom,
+    /// The perception answered [`Perceived::Again`]: the situation is
+    /// entered again without its recovery DM.
+    again: bool,
 }
 
 /// What happened in one situation: the chosen arc's terms.
@@ -365,6 +532,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             transitions: 0,
             cells_after_gc: 0,
             arc_functor: Atom::intern("$arc"),
+            again: false,
         }
     }
 
@@ -382,6 +550,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             arc: arc.map(|a| a + 1),
             location: match (frame, sit) {
                 (Some(f), Some((s, _))) => self.program.location(f.dm, s),
+                _ => None,
+            },
+            site: match (frame, sit) {
+                (Some(f), Some((s, _))) => Some(Box::new(ErrorSite {
+                    dm: f.dm,
+                    situation: s,
+                    culprit: None,
+                })),
                 _ => None,
             },
         }
@@ -407,6 +583,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             &mut observer,
             &mut final_situation,
         );
+        if let (Err(e), Some(o)) = (&result, &mut observer) {
+            self.inspect(pipe, Some(e), &mut **o);
+        }
         // On error, the history so far: unwind the stack, nesting each
         // embedded DM's partial history into its caller's, as if it returned.
         let mut history = Vec::new();
@@ -501,6 +680,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 return Err(self.err("interrupted (the run was stopped by a signal)", None, None));
             }
             self.maybe_gc(pipe, &mut goto);
+            self.between(&mut goto)?;
             let (sit, inst) = self.select(&goto)?;
             let dm = self.frames.last().expect("a frame is running").dm;
             let inst = match inst {
@@ -541,7 +721,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     self.final_out_arg(inst.out_arg, pipe, here)?;
                     self.bind_diag_mod(inst.diag_mod, here)?;
                     let empty = Term::atom(atoms::EMPTY);
-                    self.record(inst.id, empty, empty, None, observer);
+                    self.record(inst.id, empty, empty, None, *pipe, observer);
                     Step::Final
                 }
                 Kind::Recursive => {
@@ -607,6 +787,10 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         Some(Pending::Compiled { sit, saved, id });
                     self.call_dm(call, here)?;
                     return Ok(Some(Goto::Initial));
+                }
+                Step::Unmet { .. } if std::mem::take(&mut self.again) => {
+                    // Asked to perceive again: a new instance, no recovery.
+                    return Ok(Some(Goto::Situation(id)));
                 }
                 Step::Unmet { type_term } => {
                     // No expectation met (D-15 / D-42a): recovery DM, then a new instance.
@@ -867,7 +1051,13 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     ) -> Result<Term, RunError> {
         match eval::eval(&mut self.eval_ctx(), t) {
             Ok(v) => Ok(v),
-            Err(EvalError { message }) => Err(self.err(message, here, arc)),
+            Err(EvalError { message, culprit }) => {
+                let mut e = self.err(message, here, arc);
+                if let Some(site) = e.site.as_mut() {
+                    site.culprit = culprit;
+                }
+                Err(e)
+            }
         }
     }
 
@@ -980,12 +1170,19 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             self.store.list_to_vec(first).is_some()
                 && self.store.functor(first).is_some_and(|f| f.0 == atoms::DOT)
         };
+        if let (Some((_, id)), Some(frame)) = (here, self.frames.last()) {
+            perception.waiting_at(&self.store, frame.dm_id, id);
+        }
         for attempt in 0..2 {
             let exps = std::mem::take(&mut self.expectations);
             let perceived = perception.perceive(&mut self.store, type_term, &exps);
             self.expectations = exps;
             let input = match perceived {
                 Ok(Perceived::Input(t)) => t,
+                Ok(Perceived::Again) => {
+                    self.again = true;
+                    return Ok(None);
+                }
                 Ok(Perceived::EndOfInput) => {
                     return Err(self.err(
                         "end of input while the situation waits for an expectation",
@@ -1055,7 +1252,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             }
         }
         self.bind_diag_mod(inst.diag_mod, here)?;
-        self.record(inst.id, chosen.expectation, action, Some(next), observer);
+        self.record(
+            inst.id,
+            chosen.expectation,
+            action,
+            Some(next),
+            *pipe,
+            observer,
+        );
         let n = self.store.deref(next);
         if self.store.functor(n).is_none() {
             return Err(self.err(
@@ -1152,12 +1356,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         self.conclude(&inst, here, chosen, pipe, actions, observer)
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn record(
         &mut self,
         situation: Term,
         expectation: Term,
         action: Term,
         next: Option<Term>,
+        pipe: Term,
         observer: &mut Option<&mut dyn Observer>,
     ) {
         self.transitions += 1;
@@ -1177,6 +1383,44 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 .expect("frame")
                 .history
                 .push(Item::Entry(entry));
+        }
+        if let Some(o) = observer.as_deref_mut() {
+            self.inspect(pipe, None, o);
+        }
+    }
+
+    /// Lets `observer` inspect the machine ([`Observer::inspect`]).
+    fn inspect(&mut self, pipe: Term, error: Option<&RunError>, observer: &mut dyn Observer) {
+        observer.inspect(&mut Inspection {
+            store: &mut self.store,
+            globals: &mut self.globals,
+            functions: &self.functions,
+            pipe,
+            error,
+            frames: &mut self.frames,
+            instances: &self.instances,
+        });
+    }
+
+    /// Lets the program look at the machine between two transitions
+    /// ([`DmProgram::between`]).
+    #[inline]
+    fn between(&mut self, goto: &mut Goto) -> Result<(), RunError> {
+        let next = match *goto {
+            Goto::Initial => Next::Initial,
+            Goto::Situation(t) => Next::Situation(t),
+            Goto::Index(s) => Next::Index(s),
+        };
+        let mut at = Between {
+            store: &mut self.store,
+            globals: &mut self.globals,
+            functions: &mut self.functions,
+            next,
+            frames: &mut self.frames,
+        };
+        match self.program.between(&mut at) {
+            Ok(()) => Ok(()),
+            Err(message) => Err(self.err(message, None, None)),
         }
     }
 
@@ -1582,8 +1826,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     #[inline]
     pub fn record(&mut self, expectation: Term, action: Term, next: Option<Term>) {
         let id = self.id;
+        let pipe = *self.pipe;
         self.m
-            .record(id, expectation, action, next, &mut self.observer);
+            .record(id, expectation, action, next, pipe, &mut self.observer);
     }
 
     /// The step to an evaluated next situation, which must name one (D-19).

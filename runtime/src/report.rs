@@ -151,14 +151,12 @@ pub fn outcome_json(store: &Store, outcome: &Outcome) -> String {
 }
 
 /// The `--format text` report: the history listing, then `Out Arg:` and
-/// `Out Global Vars:` lines (and the error, if any, on its own line).
+/// `Out Global Vars:` lines. A run-time error is not part of it: the
+/// runner reports it once, on stderr, like every diagnostic.
 pub fn outcome_text(store: &mut Store, outcome: &Outcome) -> String {
     let mut out = String::from("Execution history:\n");
     write_text(store, &outcome.history, 0, &mut out);
     out.push('\n');
-    if let Err(e) = &outcome.result {
-        out.push_str(&format!("Error: {e}\n"));
-    }
     out.push_str(&format!("Out Arg: {}\n", store.writeq(outcome.out_arg)));
     let globals = outcome.globals.to_term(store);
     out.push_str(&format!("Out Global Vars: {}\n", store.writeq(globals)));

@@ -15,6 +15,12 @@ fn wraps_said(store: &Store, ty: Term) -> bool {
     matches!(name, Some("nkeyboard") | Some("listening"))
 }
 
+/// An input typed or read for a situation of type `ty`, as the perceptual
+/// interpreter delivers it (`said(Input)` for `listening` and `nkeyboard`).
+pub fn deliver_typed(store: &mut Store, ty: Term, input: Term) -> Perceived {
+    deliver(store, ty, input)
+}
+
 fn deliver(store: &mut Store, ty: Term, input: Term) -> Perceived {
     if wraps_said(store, ty) {
         Perceived::Input(store.compound(Atom::intern("said"), &[input]))
@@ -192,12 +198,48 @@ impl Perception for ScriptPerception {
     }
 }
 
+/// The line a prompt shows before it reads: the DM and situation waiting
+/// (when known), the situation's type and its expectations, e.g.
+/// `DM main, situation ask (listening) expects: said(go) | said(stop)`.
+pub fn prompt_header(
+    store: &Store,
+    at: Option<&(String, String)>,
+    ty: Term,
+    expectations: &[Term],
+) -> String {
+    let list: Vec<String> = expectations.iter().map(|&e| store.writeq(e)).collect();
+    let ty = store.writeq(ty);
+    match at {
+        Some((dm, situation)) => format!(
+            "DM {dm}, situation {situation} ({ty}) expects: {}",
+            list.join(" | ")
+        ),
+        None => format!("[{ty}] expectations: {}", list.join(" | ")),
+    }
+}
+
+/// What [`Perception::waiting_at`] tells a prompt: the DM's name (its call
+/// term's functor) and the situation's id, as text.
+pub fn waiting_text(store: &Store, dm: Term, situation: Term) -> (String, String) {
+    let dm = match store.functor(dm) {
+        Some((name, _)) => {
+            let mut text = String::new();
+            sitlog_syntax::write::write_atom(&mut text, name, true);
+            text
+        }
+        None => store.writeq(dm),
+    };
+    (dm, store.writeq(situation))
+}
+
 /// Inputs typed at a prompt (stdin), with the expectations listed on stderr.
 pub struct PromptPerception<R: BufRead> {
     input: R,
     limits: InputLimits,
     /// Lines read so far (for positions in errors).
     line: usize,
+    /// The DM and situation waiting, when the machine said.
+    at: Option<(String, String)>,
 }
 
 impl<R: BufRead> PromptPerception<R> {
@@ -206,6 +248,7 @@ impl<R: BufRead> PromptPerception<R> {
             input,
             limits: InputLimits::default(),
             line: 0,
+            at: None,
         }
     }
 
@@ -244,14 +287,9 @@ impl<R: BufRead> Perception for PromptPerception<R> {
         ty: Term,
         expectations: &[Term],
     ) -> Result<Perceived, String> {
-        let list: Vec<String> = expectations.iter().map(|&e| store.writeq(e)).collect();
         let mut err = std::io::stderr();
-        let _ = writeln!(
-            err,
-            "[{}] expectations: {}",
-            store.writeq(ty),
-            list.join(" | ")
-        );
+        let header = prompt_header(store, self.at.as_ref(), ty, expectations);
+        let _ = writeln!(err, "{header}");
         let mut text = String::new();
         let mut start_line = self.line + 1;
         loop {
@@ -302,6 +340,10 @@ impl<R: BufRead> Perception for PromptPerception<R> {
                 }
             }
         }
+    }
+
+    fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
+        self.at = Some(waiting_text(store, dm, situation));
     }
 }
 
@@ -392,6 +434,26 @@ mod limit_tests {
             .err()
             .unwrap();
         assert!(e.contains("s.txt:2:1"), "{e}");
+    }
+
+    #[test]
+    fn the_prompt_names_the_dm_the_situation_and_the_expectations() {
+        let mut store = Store::new();
+        let ty = Term::atom(Atom::intern("listening"));
+        let (go, _) = store.parse("said(go)").unwrap();
+        let (any, _) = store.parse("said(X)").unwrap();
+        let (dm, _) = store.parse("'find it'(cup, L)").unwrap();
+        let (sit, _) = store.parse("ask(2)").unwrap();
+        let at = waiting_text(&store, dm, sit);
+        assert_eq!(at, ("'find it'".to_owned(), "ask(2)".to_owned()));
+        assert_eq!(
+            prompt_header(&store, Some(&at), ty, &[go, any]),
+            "DM 'find it', situation ask(2) (listening) expects: said(go) | said(_G0)"
+        );
+        assert_eq!(
+            prompt_header(&store, None, ty, &[go]),
+            "[listening] expectations: said(go)"
+        );
     }
 
     #[test]

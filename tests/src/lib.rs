@@ -200,8 +200,12 @@ pub fn run_sources_with(
     options: Options,
     functions: Functions,
 ) -> serde_json::Value {
-    let (program, diags) = sitlog_compiler::load::load_sources(files);
-    let (result, diags) = sitlog_compiler::check::check(program, diags);
+    let (mut program, diags) = sitlog_compiler::load::load_sources(files);
+    // The functions registered here are the host's; names that resolve
+    // nowhere are left to the machine (as `--allow-unresolved` does), whose
+    // run-time errors these tests observe.
+    program.host_functions.extend(functions.names());
+    let (result, diags) = sitlog_compiler::check::check_with(program, diags, true);
     let checked = match result {
         Ok(c) => c,
         Err(p) => {

@@ -86,9 +86,12 @@ enum Command {
     /// original interpreter: each expectation of a perceptual situation is
     /// met by a term read from the script (one term per line, ending with
     /// `.`) or typed at a prompt on stdin. At the end the task history, the
-    /// final out_arg and the global variables are printed. Exit status: 0
+    /// final out_arg and the global variables are printed. At the prompt,
+    /// Ctrl-D (the end of stdin) ends the task where it waits. Exit status: 0
     /// when the main DM reached a final situation, 1 on a run-time error
-    /// (the history so far is still printed), 2 on usage or I/O problems.
+    /// (the history so far is still printed), 2 on usage or I/O problems,
+    /// 3 when the typed input ended before the task did, 130 / 143 when
+    /// stopped by SIGINT / SIGTERM.
     Run {
         /// The application directory (or a single DM file).
         #[arg(value_name = "APP")]
@@ -117,6 +120,58 @@ enum Command {
         /// our KB (sitlog-kb), the KB being a handle.
         #[arg(long, value_enum, value_name = "HOW", requires = "legacy", default_value_t = LegacyKb::Prolog)]
         legacy_kb: LegacyKb,
+        /// Hot reload: when a file of the application changes (a DM file,
+        /// `models`, global_vars.pl, basic_actions.pl, the Prolog user
+        /// functions), read and check the program again; if it checks, the
+        /// run goes on in the new program between two transitions, at the
+        /// same DM and situation, keeping its stack, pipe, variables and
+        /// history (a situation waiting for input takes it in the new
+        /// program); if not, the diagnostics are printed and the old program
+        /// goes on. A change that removes the situation the run is at, or a
+        /// DM on its stack, stops the run (exit status 1). Not with --legacy.
+        #[arg(long, conflicts_with = "legacy")]
+        watch: bool,
+    },
+    /// Run an application under the step debugger (interpreted).
+    ///
+    /// A REPL over the live run: breakpoints (`break DM[:SITUATION]`,
+    /// `break on error`), `step`, `next`, `finish`, `continue`, and at a
+    /// stop `stack`, `pipe`, `vars`, `history`, `print TERM`, `world`; in
+    /// test mode `input TERM` answers a perceptual situation the script has
+    /// no input for. `help` lists the commands. The run's options are
+    /// those of `sitlogc run`. Exit status: the run's, 0 after `quit`, 2 for
+    /// a bad line in the --commands file.
+    Debug {
+        /// The application directory (or a single DM file).
+        #[arg(value_name = "APP")]
+        app: PathBuf,
+        #[command(flatten)]
+        run: sitlog_robot::cli::RunArgs,
+        /// Read the commands from FILE (each echoed after the prompt)
+        /// instead of the terminal; when it ends, the run goes on without
+        /// stopping.
+        #[arg(long, value_name = "FILE")]
+        commands: Option<PathBuf>,
+    },
+    /// Replay a recorded run (`sitlogc run --trace FILE`) without running it.
+    ///
+    /// The debugger's commands over the recording, forwards and backwards:
+    /// `step`, `back`, `goto N`, `next`, `finish`, `continue`, `break`,
+    /// `stack`, `history`, `diff TRACE2`. With --diff, prints the first
+    /// transition where the two recordings differ and exits (status 0 when
+    /// they are the same, 1 when they differ). A bad trace is an error
+    /// naming FILE:LINE (exit 2).
+    Replay {
+        /// The recording (JSON lines, as --trace writes them).
+        #[arg(value_name = "TRACE")]
+        trace: PathBuf,
+        /// Compare with this recording and exit.
+        #[arg(long, value_name = "TRACE2")]
+        diff: Option<PathBuf>,
+        /// Read the commands from FILE (each echoed after the prompt)
+        /// instead of the terminal.
+        #[arg(long, value_name = "FILE", conflicts_with = "diff")]
+        commands: Option<PathBuf>,
     },
     /// Compile an application to one executable.
     ///
@@ -131,7 +186,8 @@ enum Command {
     /// options of `sitlogc run`. With `--emit rust` the generated Rust is
     /// written to FILE (stdout without -o) instead. Exit status: 0 when
     /// written, 1 when the application has errors, 2 on usage, I/O or cargo
-    /// problems.
+    /// problems. A compiled task does not reload when its sources change
+    /// (that is `sitlogc run APP --watch`).
     Build {
         /// The application directory (or a single DM file).
         #[arg(value_name = "APP")]
@@ -328,6 +384,7 @@ fn run(cli: Cli) -> u8 {
             legacy,
             sitlog_home,
             legacy_kb,
+            watch,
         } => {
             let legacy = legacy.then_some(sitlog_home);
             run_app(
@@ -336,8 +393,24 @@ fn run(cli: Cli) -> u8 {
                 allow_unresolved,
                 legacy.as_ref().map(|h| h.as_deref()),
                 legacy_kb == LegacyKb::Native,
+                None,
+                watch,
             )
         }
+        Command::Debug { app, run, commands } => run_app(
+            &app,
+            &run,
+            false,
+            None,
+            false,
+            Some(commands.as_deref()),
+            false,
+        ),
+        Command::Replay {
+            trace,
+            diff,
+            commands,
+        } => replay(&trace, diff.as_deref(), commands.as_deref()),
         Command::Build {
             app,
             output,
@@ -460,7 +533,7 @@ fn checked_ir_with(app: &std::path::Path, lenient: bool) -> Result<sitlog_compil
         app,
         sitlog_compiler::check::CheckOptions {
             unresolved_as_warnings: lenient,
-            legacy: false,
+            ..Default::default()
         },
     )
 }
@@ -608,7 +681,7 @@ fn build_app(
     use sitlog_compiler::{build, package};
     let options = sitlog_compiler::check::CheckOptions {
         unresolved_as_warnings: allow_unresolved,
-        legacy: false,
+        ..Default::default()
     };
     if let Err(code) = checked_ir_opts(app, options) {
         return code;
@@ -695,6 +768,8 @@ fn run_app(
     allow_unresolved: bool,
     legacy: Option<Option<&std::path::Path>>,
     native_kb: bool,
+    debug: Option<Option<&std::path::Path>>,
+    watch: bool,
 ) -> u8 {
     // The legacy profile: the original's Prolog layer from SITLOG_HOME.
     #[cfg(feature = "prolog")]
@@ -740,13 +815,12 @@ fn run_app(
             return 2;
         }
     }
-    let ir = match checked_ir_opts(
-        app,
-        sitlog_compiler::check::CheckOptions {
-            unresolved_as_warnings: allow_unresolved || legacy.is_some(),
-            legacy: legacy.is_some(),
-        },
-    ) {
+    let check_options = sitlog_compiler::check::CheckOptions {
+        unresolved_as_warnings: allow_unresolved || legacy.is_some(),
+        legacy: legacy.is_some(),
+        ..Default::default()
+    };
+    let ir = match checked_ir_opts(app, check_options) {
         Ok(ir) => ir,
         Err(code) => return code,
     };
@@ -788,7 +862,129 @@ fn run_app(
             }
         }
     }
-    sitlog_robot::execute(&ir, functions, args, &assets)
+    if watch {
+        return run_watched(app, ir, functions, args, &assets, check_options);
+    }
+    match debug {
+        None => sitlog_robot::execute(&ir, functions, args, &assets),
+        Some(commands) => {
+            let source = match commands {
+                Some(path) => sitlog_debug::Source::file(path),
+                None => sitlog_debug::Source::editor(),
+            };
+            let source = match source {
+                Ok(s) => s,
+                Err(e) => {
+                    eprintln!("{e}");
+                    return 2;
+                }
+            };
+            sitlog_debug::debug(
+                &ir,
+                functions,
+                args,
+                &assets,
+                sitlog_robot::cli::Streams::process(),
+                source,
+                Box::new(std::io::stdout()),
+                Box::new(std::io::stderr()),
+            )
+        }
+    }
+}
+
+/// `sitlogc replay`.
+fn replay(
+    trace: &std::path::Path,
+    diff: Option<&std::path::Path>,
+    commands: Option<&std::path::Path>,
+) -> u8 {
+    let read = |path| match sitlog_debug::Trace::read(path) {
+        Ok(t) => Ok(t),
+        Err(e) => {
+            eprintln!("{e}");
+            Err(2)
+        }
+    };
+    let trace = match read(trace) {
+        Ok(t) => t,
+        Err(code) => return code,
+    };
+    if let Some(other) = diff {
+        let other = match read(other) {
+            Ok(t) => t,
+            Err(code) => return code,
+        };
+        return match sitlog_debug::diff(&trace, &other) {
+            None => {
+                println!(
+                    "the recordings are the same ({} transitions)",
+                    trace.records.len()
+                );
+                0
+            }
+            Some(text) => {
+                print!("{text}");
+                1
+            }
+        };
+    }
+    let source = match commands {
+        Some(path) => sitlog_debug::Source::file(path),
+        None => sitlog_debug::Source::editor(),
+    };
+    match source {
+        Ok(source) => sitlog_debug::replay(
+            &trace,
+            source,
+            &mut std::io::stdout(),
+            &mut std::io::stderr(),
+        ),
+        Err(e) => {
+            eprintln!("{e}");
+            2
+        }
+    }
+}
+
+/// `sitlogc run --watch`: the run over a program that reloads itself.
+fn run_watched(
+    app: &std::path::Path,
+    ir: sitlog_compiler::ir::Ir,
+    functions: sitlog_runtime::Functions,
+    args: &sitlog_robot::cli::RunArgs,
+    assets: &sitlog_robot::Assets,
+    options: sitlog_compiler::check::CheckOptions,
+) -> u8 {
+    use sitlog_compiler::watch::{ReloadAware, Watched};
+    let files: Vec<PathBuf> = match sitlog_compiler::load::load(app) {
+        Ok((program, _)) => program
+            .sources
+            .files()
+            .map(|(_, f)| f.path.clone())
+            .collect(),
+        Err(e) => {
+            eprintln!("error: cannot read {e}");
+            return 2;
+        }
+    };
+    let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    let messages: sitlog_compiler::watch::Messages =
+        std::sync::Arc::new(std::sync::Mutex::new(Box::new(std::io::stderr())));
+    let watched = Watched::new(ir, messages);
+    if let Err(e) = watched.watch(app, &files, options, color) {
+        eprintln!("error: --watch: {e}");
+        return 2;
+    }
+    eprintln!(
+        "watch: watching {} ({} file(s)); edits take effect between transitions",
+        app.display(),
+        files.len()
+    );
+    let ready = watched.ready_flag();
+    let wrap: sitlog_robot::cli::PerceptionWrap =
+        Box::new(move |inner| Box::new(ReloadAware::new(inner, ready)));
+    sitlog_robot::cli::execute_wrapped(&watched, functions, args, assets, wrap)
 }
 
 fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, legacy: bool) -> u8 {
@@ -801,11 +997,14 @@ fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, le
     let mut programs = Vec::new();
     for path in paths {
         match sitlog_compiler::load::discover(path) {
+            // Nothing to check is a usage error (exit 2, like a missing
+            // path): a check that passes on nothing would hide a wrong path.
             Ok(found) if found.is_empty() => {
                 eprintln!(
-                    "warning: no application or DM file found in {}",
+                    "error: no application or DM file found in {} (an application is a directory with a `models` file or `*.dm` files)",
                     path.display()
-                )
+                );
+                io_failed = true;
             }
             Ok(found) => programs.extend(found),
             Err(e) => {
@@ -816,8 +1015,8 @@ fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, le
     }
     for path in &programs {
         let options = sitlog_compiler::check::CheckOptions {
-            unresolved_as_warnings: false,
             legacy,
+            ..Default::default()
         };
         let (result, diags) = match sitlog_compiler::check_path_opts(path, options) {
             Ok(r) => r,

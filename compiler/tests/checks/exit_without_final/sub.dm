@@ -1,0 +1,3 @@
+diag_mod(sub,
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => is ] ] ],
+  []).

@@ -1,0 +1,1 @@
+greeting(Name) :- assign_func_value(['Hello', Name]).

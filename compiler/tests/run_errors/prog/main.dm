@@ -1,0 +1,7 @@
+% `inc` of a local whose value is not a number, in a situation's prog.
+diag_mod(main,
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : [] => s2 ] ],
+    [ id ==> s2, type ==> neutral, prog ==> [inc(count, _), inc(name, _)],
+      arcs ==> [ empty : [] => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  [count ==> 0, name ==> bob]).

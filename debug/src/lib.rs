@@ -1,0 +1,25 @@
+//! `sitlog-debug`: working on a task program from the command line.
+//!
+//! Owns the REPL engine of `sitlogc debug` ([`debug`]: a step debugger
+//! over a live, interpreted run) and of `sitlogc replay` ([`replay`]: a
+//! `--trace` recording walked forwards and backwards, [`diff`] of two
+//! recordings), their command language ([`command`]), and where commands
+//! come from (a line editor, or a `--commands` file, echoed, for tests).
+//! `sitlogc` only parses the arguments.
+//!
+//! Invariants: the debugger never changes the run it watches except by
+//! `input` (an answer the script or prompt would have given) and `quit`
+//! (the run's stop flag); `print` evaluates with every binding and variable
+//! update undone. It stops only at transition boundaries (after a
+//! transition is recorded, or when the run fails, before the stack is
+//! unwound) and when a perceptual situation has no input. A bad commands
+//! or trace file is an error naming FILE:LINE (and column), never a panic.
+
+pub mod command;
+mod live;
+pub mod record;
+pub mod replay;
+
+pub use command::Source;
+pub use live::debug;
+pub use replay::{diff, replay, Trace};

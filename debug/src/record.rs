@@ -1,0 +1,135 @@
+//! One transition as the debugger shows, keeps and compares it: the
+//! fields of a `--trace` line, as text. Live runs make them from the
+//! machine's terms (as `--trace` prints them), replays read them from the
+//! trace, so both print and compare alike.
+
+use std::fmt::Write as _;
+
+/// One transition.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Record {
+    pub dm: String,
+    pub situation: String,
+    pub expectation: String,
+    pub action: String,
+    /// DMs under this one on the stack (the main DM is at depth 0).
+    pub depth: usize,
+    /// The next situation; `None` when the DM ended.
+    pub next: Option<String>,
+}
+
+impl Record {
+    /// `main / ask  [said(yes) => say(ok)]  -> done`.
+    pub fn line(&self) -> String {
+        let next = self.next.as_deref().unwrap_or("(end of DM)");
+        format!(
+            "{} / {}  [{} => {}]  -> {}",
+            self.dm, self.situation, self.expectation, self.action, next
+        )
+    }
+}
+
+/// The name of a term's principal functor as `writeq` printed it: `ask`
+/// for `ask`, `ask(X)` and `ask(1, 2)`.
+pub fn name_of(text: &str) -> &str {
+    text.split('(').next().unwrap_or(text).trim()
+}
+
+/// Whether `r` is where breakpoint `spec` stops, given the transitions
+/// before it. A DM or situation is named by its name (`ask`) or by the
+/// term as printed (`ask(color)`, spaces aside).
+pub fn hits(spec: &crate::command::Spec, before: &[Record], r: &Record) -> bool {
+    use crate::command::Spec;
+    let names = |text: &str, name: &str| {
+        name_of(text) == name || {
+            let squeeze = |s: &str| s.chars().filter(|c| !c.is_whitespace()).collect::<String>();
+            squeeze(text) == squeeze(name)
+        }
+    };
+    match spec {
+        Spec::Dm(dm) => names(&r.dm, dm) && first_of_call(before, r),
+        Spec::Situation(dm, sit) => names(&r.dm, dm) && names(&r.situation, sit),
+        Spec::Error => false,
+    }
+}
+
+/// Whether `r` is the first transition of a call of its DM, given the
+/// transitions before it: going back, an earlier transition of the same
+/// depth comes before any of a lower one only within the same call.
+pub fn first_of_call(before: &[Record], r: &Record) -> bool {
+    for p in before.iter().rev() {
+        if p.depth == r.depth {
+            return false;
+        }
+        if p.depth < r.depth {
+            return true;
+        }
+    }
+    true
+}
+
+/// Transition `n` (1-based) as `history` lists it, indented by depth.
+pub fn numbered(n: usize, r: &Record) -> String {
+    format!("#{n:<4} {}{}", "  ".repeat(r.depth.min(12)), r.line())
+}
+
+/// The last `count` of `records` (numbered from 1), one a line.
+pub fn history(records: &[Record], count: usize) -> String {
+    history_from(0, records, count)
+}
+
+/// [`history`] of records numbered from `first + 1`.
+pub fn history_from(first: usize, records: &[Record], count: usize) -> String {
+    let mut out = String::new();
+    if records.is_empty() {
+        out.push_str("no transition yet\n");
+    }
+    let from = records.len().saturating_sub(count);
+    for (i, r) in records.iter().enumerate().skip(from) {
+        let _ = writeln!(out, "{}", numbered(first + i + 1, r));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn r(dm: &str, depth: usize) -> Record {
+        Record {
+            dm: dm.into(),
+            situation: "s".into(),
+            expectation: "e".into(),
+            action: "a".into(),
+            depth,
+            next: None,
+        }
+    }
+
+    #[test]
+    fn first_of_a_call() {
+        // main calls x twice (two recursive situations), x calls y.
+        let rs = [r("y", 2), r("x", 1), r("x", 1), r("main", 0), r("x", 1)];
+        assert!(first_of_call(&rs[..0], &rs[0]));
+        assert!(first_of_call(&rs[..1], &rs[1]));
+        assert!(!first_of_call(&rs[..2], &rs[2]));
+        assert!(first_of_call(&rs[..4], &rs[4]));
+        assert_eq!(name_of("ask(X, 1)"), "ask");
+        use crate::command::Spec;
+        let mut got = r("ask(color)", 1);
+        got.situation = "got(red)".into();
+        for (dm, sit, hit) in [
+            ("ask", "got", true),
+            ("ask(color)", "got(red)", true),
+            ("ask( color )", "got( red)", true),
+            ("ask(size)", "got", false),
+            ("ask", "got(blue)", false),
+            ("main", "got", false),
+        ] {
+            let spec = Spec::Situation(dm.into(), sit.into());
+            assert_eq!(hits(&spec, &[], &got), hit, "{dm}:{sit}");
+        }
+        assert!(hits(&Spec::Dm("ask(color)".into()), &[], &got));
+        assert!(!hits(&Spec::Error, &[], &got));
+    }
+}

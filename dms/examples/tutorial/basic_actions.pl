@@ -1,0 +1,2 @@
+% The basic actions the task uses.
+[id ==> say, arity ==> [text], mod ==> speech, break ==> no].

@@ -1,0 +1,2 @@
+% How many drinks Golem has served in this run.
+served ==> 0.

@@ -1,0 +1,2 @@
+% Functions this example registers in Rust (channel_robot.rs).
+describe/1.

@@ -1,0 +1,165 @@
+//! The test-mode prompt of a run without `--script` (issue 17): typed
+//! inputs, with the DM and situation waiting and their expectations shown
+//! before each read.
+//!
+//! - On a terminal (stdin and stderr both terminals, feature `edit`), lines
+//!   are read with line editing and history ([`EditedPrompt`], rustyline,
+//!   on the terminal itself); Ctrl-C stops the run as SIGINT does.
+//! - Otherwise lines are read as they come ([`PromptPerception`] of the
+//!   runtime), so scripts and pipes work as before.
+//!
+//! Either way the end of the input (Ctrl-D, or the end of a pipe) ends the
+//! task cleanly ([`EndOfInputStops`]): the run stops with the history so
+//! far and exit status [`EXIT_END_OF_INPUT`](crate::interrupt::EXIT_END_OF_INPUT),
+//! not as a run-time error.
+//!
+//! [`PromptPerception`]: sitlog_runtime::testmode::PromptPerception
+
+use crate::interrupt::Interrupt;
+use sitlog_runtime::machine::{Perceived, Perception};
+use sitlog_runtime::{Store, Term};
+
+/// Makes the end of a prompt's input stop the run cleanly: the run's
+/// interrupt records it, so the machine's end-of-input error becomes an
+/// interrupted outcome with exit status 3.
+pub struct EndOfInputStops {
+    inner: Box<dyn Perception>,
+    interrupt: Interrupt,
+}
+
+impl EndOfInputStops {
+    pub fn new(inner: Box<dyn Perception>, interrupt: Interrupt) -> EndOfInputStops {
+        EndOfInputStops { inner, interrupt }
+    }
+}
+
+impl Perception for EndOfInputStops {
+    fn perceive(
+        &mut self,
+        store: &mut Store,
+        situation_type: Term,
+        expectations: &[Term],
+    ) -> Result<Perceived, String> {
+        let p = self.inner.perceive(store, situation_type, expectations)?;
+        if p == Perceived::EndOfInput && !self.interrupt.requested() {
+            self.interrupt.request_end_of_input();
+            // End the prompt's line.
+            eprintln!();
+        }
+        Ok(p)
+    }
+
+    fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
+        self.inner.waiting_at(store, dm, situation);
+    }
+}
+
+#[cfg(feature = "edit")]
+pub use edit::EditedPrompt;
+
+#[cfg(feature = "edit")]
+mod edit {
+    use crate::interrupt::Interrupt;
+    use rustyline::config::{Behavior, Config};
+    use rustyline::error::ReadlineError;
+    use rustyline::DefaultEditor;
+    use sitlog_runtime::machine::{Perceived, Perception};
+    use sitlog_runtime::testmode::{prompt_header, waiting_text, InputLimits};
+    use sitlog_runtime::{Store, Term};
+    use sitlog_syntax::OpTable;
+    use std::io::Write;
+
+    /// The prompt with line editing and history, on the terminal.
+    pub struct EditedPrompt {
+        editor: DefaultEditor,
+        limits: InputLimits,
+        at: Option<(String, String)>,
+        interrupt: Interrupt,
+    }
+
+    impl EditedPrompt {
+        /// `None` when the terminal cannot be used for line editing.
+        pub fn new(limits: InputLimits, interrupt: Interrupt) -> Option<EditedPrompt> {
+            let config = Config::builder()
+                .behavior(Behavior::PreferTerm)
+                .auto_add_history(false)
+                .build();
+            let editor = DefaultEditor::with_config(config).ok()?;
+            Some(EditedPrompt {
+                editor,
+                limits,
+                at: None,
+                interrupt,
+            })
+        }
+    }
+
+    impl Perception for EditedPrompt {
+        fn perceive(
+            &mut self,
+            store: &mut Store,
+            ty: Term,
+            expectations: &[Term],
+        ) -> Result<Perceived, String> {
+            let header = prompt_header(store, self.at.as_ref(), ty, expectations);
+            let mut err = std::io::stderr();
+            let _ = writeln!(err, "{header}");
+            let _ = err.flush();
+            let mut text = String::new();
+            loop {
+                let prompt = if text.is_empty() { "|: " } else { "|  " };
+                let line = match self.editor.readline(prompt) {
+                    Ok(line) => line,
+                    Err(ReadlineError::Eof) if text.trim().is_empty() => {
+                        return Ok(Perceived::EndOfInput)
+                    }
+                    Err(ReadlineError::Eof) => String::new(),
+                    Err(ReadlineError::Interrupted) => {
+                        // Ctrl-C in raw mode is a key, not a signal: stop as SIGINT would.
+                        self.interrupt.request(2);
+                        return Err("interrupted (Ctrl-C at the prompt)".to_owned());
+                    }
+                    Err(e) => return Err(format!("the terminal: {e}")),
+                };
+                if !line.trim().is_empty() {
+                    let _ = self.editor.add_history_entry(line.as_str());
+                }
+                let ended = line.is_empty() && !text.is_empty();
+                text.push_str(&line);
+                text.push('\n');
+                if text.trim().is_empty() {
+                    text.clear();
+                    continue;
+                }
+                let what = "the input";
+                if text.len() > self.limits.max_bytes {
+                    return Err(self.limits.size_error(what, text.len()));
+                }
+                match sitlog_syntax::read_term_limited(
+                    text.trim(),
+                    OpTable::sitlog_shared(),
+                    self.limits.max_depth,
+                ) {
+                    Ok(clause) => {
+                        let (t, _) = store.from_clause(&clause);
+                        return Ok(sitlog_runtime::testmode::deliver_typed(store, ty, t));
+                    }
+                    Err(e) if e.is_too_deep() => return Err(self.limits.depth_error(what)),
+                    Err(e) if e.incomplete && !ended => continue,
+                    Err(e) => {
+                        let _ = writeln!(
+                            err,
+                            "syntax error: {} (type a term ending with `.`)",
+                            e.message
+                        );
+                        text.clear();
+                    }
+                }
+            }
+        }
+
+        fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
+            self.at = Some(waiting_text(store, dm, situation));
+        }
+    }
+}
