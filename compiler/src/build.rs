@@ -60,7 +60,20 @@ pub fn generate_with(
     source: &str,
     options: codegen::Options,
 ) -> Result<Compiled, Error> {
-    let (result, diags) = crate::check_path(path).map_err(|e| Error {
+    generate_checked(path, source, options, crate::check::CheckOptions::default())
+}
+
+/// [`generate_with`] with checker options: with `unresolved_as_warnings`
+/// a program whose next situations, embedded DMs or exit arcs do not all
+/// resolve is compiled too (taking such a path is a run-time error, as in
+/// `sitlogc run --allow-unresolved`).
+pub fn generate_checked(
+    path: &Path,
+    source: &str,
+    options: codegen::Options,
+    check: crate::check::CheckOptions,
+) -> Result<Compiled, Error> {
+    let (result, diags) = crate::check_path_opts(path, check).map_err(|e| Error {
         messages: vec![format!("cannot read {e}")],
     })?;
     let sources = match &result {
@@ -165,9 +178,12 @@ pub fn compile(app: impl AsRef<Path>) -> Result<PathBuf, Error> {
     Config::new().compile(app)
 }
 
-/// The name of an application: its directory name, or a DM file's stem, as
-/// a Rust identifier.
+/// The name of an application: its directory's real name (`.` too), or a
+/// DM file's stem, as a Rust identifier.
 pub fn app_name(app: &Path) -> String {
+    // `.`, `..` and `dir/.` have no file name of their own: the real one.
+    let real = std::fs::canonicalize(app);
+    let app = real.as_deref().unwrap_or(app);
     let raw = if app.is_dir() {
         app.file_name()
     } else {

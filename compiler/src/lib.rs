@@ -20,6 +20,7 @@ pub mod legacy;
 pub mod load;
 pub mod package;
 pub mod run;
+pub mod scaffold;
 pub mod source;
 pub mod types;
 pub mod watch;

@@ -1,50 +1,150 @@
 //! `sitlogc build`: an application compiled to one executable. Generates a
-//! Cargo package under `<target>/sitlog-build/<app>/` that depends on the
-//! workspace's `runtime` by absolute path, builds it with cargo (progress
-//! shown on stderr; `--offline` when the dependencies are already on this
-//! machine) into one shared target dir (`<target>/sitlog-build/target`, so
-//! the build cache is reused between applications and runs), and copies the
-//! executable to the requested file. The executable takes the options of
-//! `sitlogc run` (see `sitlog_runtime::cli`).
+//! Cargo package that depends on the runtime crates by path, builds it with
+//! cargo (progress shown on stderr; `--offline` when the dependencies are
+//! already on this machine) into one shared target dir (so the build cache
+//! is reused between applications and runs), and copies the executable to
+//! the requested file. The executable takes the options of `sitlogc run`
+//! (see `sitlog_robot::cli`).
+//!
+//! Nothing here needs the checkout `sitlogc` was built from: the sources of
+//! the runtime crates, the workspace manifest and `Cargo.lock` are embedded
+//! in the binary (`compiler/build.rs`) and extracted once per version and
+//! content hash into the user's cache directory ([`cache_dir`]), which also
+//! holds the generated packages and the target dir:
+//!
+//! ```text
+//! <cache>/runtime/<version>-<hash>/   the embedded workspace (runtime, robot, …)
+//! <cache>/apps/<app>/                 one generated package per application
+//! <cache>/target/                     the shared cargo target dir
+//! ```
 
 use crate::build::{app_name, write_if_changed, Compiled, Error};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-/// Where things are: the runtime crate to depend on, and the target dir.
+include!(concat!(env!("OUT_DIR"), "/embedded_runtime.rs"));
+
+/// The environment variable that chooses the cache directory.
+pub const CACHE_ENV: &str = "SITLOGC_CACHE_DIR";
+
+/// Where `sitlogc build` keeps its files: `$SITLOGC_CACHE_DIR`, else
+/// `$XDG_CACHE_HOME/sitlogc`, else `~/.cache/sitlogc` (on Windows
+/// `%LOCALAPPDATA%\sitlogc`).
+pub fn cache_dir() -> Result<PathBuf, Error> {
+    let var = |name: &str| {
+        std::env::var_os(name)
+            .map(PathBuf::from)
+            .filter(|p| p.is_absolute())
+    };
+    if let Some(dir) = std::env::var_os(CACHE_ENV).filter(|v| !v.is_empty()) {
+        let dir = PathBuf::from(dir);
+        return Ok(if dir.is_absolute() {
+            dir
+        } else {
+            std::env::current_dir()
+                .map_err(|e| Error {
+                    messages: vec![format!("cannot read the current directory: {e}")],
+                })?
+                .join(dir)
+        });
+    }
+    if let Some(dir) = var("XDG_CACHE_HOME") {
+        return Ok(dir.join("sitlogc"));
+    }
+    if cfg!(windows) {
+        if let Some(dir) = var("LOCALAPPDATA") {
+            return Ok(dir.join("sitlogc"));
+        }
+    }
+    if let Some(home) = var("HOME") {
+        return Ok(home.join(".cache").join("sitlogc"));
+    }
+    Err(Error {
+        messages: vec![format!(
+            "no cache directory: set {CACHE_ENV} (or XDG_CACHE_HOME, or HOME) to an absolute path"
+        )],
+    })
+}
+
+/// The embedded runtime workspace's directory under `cache`, named after
+/// this sitlogc's version and the hash of the embedded files.
+pub fn runtime_dir(cache: &Path) -> PathBuf {
+    cache
+        .join("runtime")
+        .join(format!("{}-{RUNTIME_HASH}", env!("CARGO_PKG_VERSION")))
+}
+
+/// Extracts the embedded runtime workspace into `cache` unless it is there
+/// already; returns its directory. Atomic: the files are written into a
+/// temporary directory that is then renamed, so a killed or concurrent
+/// `sitlogc` never leaves (or uses) half a copy.
+pub fn extract_runtime(cache: &Path) -> Result<PathBuf, Error> {
+    let dir = runtime_dir(cache);
+    if dir.is_dir() {
+        return Ok(dir);
+    }
+    let err = |what: &Path, e: std::io::Error| Error {
+        messages: vec![format!("cannot write {}: {e}", what.display())],
+    };
+    let parent = dir.parent().expect("runtime_dir has a parent");
+    std::fs::create_dir_all(parent).map_err(|e| err(parent, e))?;
+    let tmp = tempfile::Builder::new()
+        .prefix(".extract-")
+        .tempdir_in(parent)
+        .map_err(|e| err(parent, e))?;
+    for (rel, bytes) in RUNTIME_FILES {
+        let path = tmp.path().join(rel);
+        if let Some(d) = path.parent() {
+            std::fs::create_dir_all(d).map_err(|e| err(d, e))?;
+        }
+        std::fs::write(&path, bytes).map_err(|e| err(&path, e))?;
+    }
+    match std::fs::rename(tmp.path(), &dir) {
+        Ok(()) => {
+            let _ = tmp.keep();
+            Ok(dir)
+        }
+        // Another sitlogc extracted it meanwhile: use theirs (ours is removed).
+        Err(_) if dir.is_dir() => Ok(dir),
+        Err(e) => Err(err(&dir, e)),
+    }
+}
+
+/// Where things are: the runtime crates to depend on, where packages are
+/// generated, and the target dir.
 #[derive(Clone, Debug)]
 pub struct Layout {
-    /// The `runtime/` directory of the workspace (absolute).
+    /// The `runtime/` crate directory (absolute).
     pub runtime: PathBuf,
-    /// The `robot/` directory of the workspace (absolute): the command line,
-    /// KB functions and simulated robot a compiled task links.
+    /// The `robot/` crate directory (absolute): the command line, KB
+    /// functions and simulated robot a compiled task links.
     pub robot: PathBuf,
-    /// The workspace's `Cargo.lock`, copied into new packages so that they
-    /// use the same dependency versions (and can build offline).
+    /// The `Cargo.lock` copied into new packages so that they use the
+    /// dependency versions sitlogc was tested with (and can build offline).
     pub lockfile: Option<PathBuf>,
-    /// The directory holding `sitlog-build/` (the workspace target dir).
+    /// The directory of the generated packages (one per application).
+    pub packages: PathBuf,
+    /// The shared cargo target dir.
     pub target: PathBuf,
 }
 
 impl Layout {
-    /// The layout of the workspace this compiler was built in
-    /// (`CARGO_TARGET_DIR` wins for the target dir).
-    pub fn workspace() -> Layout {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .parent()
-            .expect("the compiler crate is in a workspace")
-            .to_path_buf();
-        let target = std::env::var_os("CARGO_TARGET_DIR")
-            .map(PathBuf::from)
-            .map(|t| if t.is_absolute() { t } else { root.join(t) })
-            .unwrap_or_else(|| root.join("target"));
-        let lock = root.join("Cargo.lock");
-        Layout {
+    /// The layout in the user's cache directory ([`cache_dir`]), the
+    /// embedded runtime extracted there if needed.
+    pub fn user() -> Result<Layout, Error> {
+        Layout::in_cache(&cache_dir()?)
+    }
+
+    /// The layout in `cache`, the embedded runtime extracted there if needed.
+    pub fn in_cache(cache: &Path) -> Result<Layout, Error> {
+        let root = extract_runtime(cache)?;
+        Ok(Layout {
             runtime: root.join("runtime"),
             robot: root.join("robot"),
-            lockfile: lock.is_file().then_some(lock),
-            target,
-        }
+            lockfile: Some(root.join("Cargo.lock")),
+            packages: cache.join("apps"),
+            target: cache.join("target"),
+        })
     }
 }
 
@@ -57,7 +157,7 @@ pub fn write_package(
 ) -> Result<(PathBuf, String), Error> {
     let name = app_name(app);
     let package = format!("sitlog-app-{}", name.replace('_', "-").trim_matches('-'));
-    let dir = layout.target.join("sitlog-build").join(&name);
+    let dir = layout.packages.join(&name);
     let io = |what: &Path, e: std::io::Error| Error {
         messages: vec![format!("cannot write {}: {e}", what.display())],
     };
@@ -150,7 +250,7 @@ pub fn build_package(
 ) -> Result<(), Error> {
     let err = |m: String| Error { messages: vec![m] };
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let target_dir = layout.target.join("sitlog-build").join("target");
+    let target_dir = layout.target.clone();
     let manifest = dir.join("Cargo.toml");
     // Offline when every dependency is already on this machine.
     let offline = Command::new(&cargo)
@@ -184,17 +284,32 @@ pub fn build_package(
         std::fs::create_dir_all(parent)
             .map_err(|e| err(format!("cannot create {}: {e}", parent.display())))?;
     }
-    // Copy through a temporary file so a running executable is not overwritten in place.
-    let tmp = output.with_extension("sitlog-tmp");
-    std::fs::copy(&exe, &tmp)
-        .and_then(|_| std::fs::rename(&tmp, output))
-        .map_err(|e| {
-            err(format!(
-                "cannot copy {} to {}: {e}",
-                exe.display(),
-                output.display()
-            ))
-        })?;
+    // Copy through a temporary file beside the output (removed on any
+    // failure), renamed into place: a running executable is not overwritten
+    // in place, and a failed copy leaves nothing behind.
+    let copy_err = |e: std::io::Error| {
+        err(format!(
+            "cannot copy {} to {}: {e}",
+            exe.display(),
+            output.display()
+        ))
+    };
+    let parent = match output.parent().filter(|p| !p.as_os_str().is_empty()) {
+        Some(p) => p.to_path_buf(),
+        None => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&parent)
+        .map_err(|e| err(format!("cannot create {}: {e}", parent.display())))?;
+    let mut tmp = tempfile::Builder::new()
+        .prefix(".sitlogc-")
+        .suffix(".tmp")
+        .tempfile_in(&parent)
+        .map_err(copy_err)?;
+    let mut from = std::fs::File::open(&exe).map_err(copy_err)?;
+    std::io::copy(&mut from, tmp.as_file_mut()).map_err(copy_err)?;
+    let permissions = from.metadata().map_err(copy_err)?.permissions();
+    std::fs::set_permissions(tmp.path(), permissions).map_err(copy_err)?;
+    tmp.persist(output).map_err(|e| copy_err(e.error))?;
     Ok(())
 }
 

@@ -1,13 +1,200 @@
 //! `sitlogc build`: an example application compiled to an executable (one
-//! nested cargo build into `target/sitlog-build/target`, offline when the
-//! dependencies are on the machine) gives byte-identical output to
-//! `sitlogc run`; and `--emit rust` prints the generated code.
+//! nested cargo build, offline when the dependencies are on the machine)
+//! gives byte-identical output to `sitlogc run`; `--emit rust` prints the
+//! generated code; the default output name, `build .`, failures that leave
+//! nothing behind, and a sitlogc that works away from its checkout (the
+//! runtime it compiles against is embedded and extracted into the cache).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+/// The cache every test build shares (inside the target dir, so the tests
+/// leave nothing in the user's cache and reuse one build cache).
+fn cache() -> PathBuf {
+    Path::new(env!("CARGO_TARGET_TMPDIR")).join("sitlogc-cache")
+}
+
 fn sitlogc() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_sitlogc"))
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_sitlogc"));
+    cmd.env("SITLOGC_CACHE_DIR", cache());
+    cmd
+}
+
+fn stderr(out: &std::process::Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// A fresh copy of the example `name` in a new temporary directory.
+fn copy_example(name: &str) -> (tempfile::TempDir, PathBuf) {
+    let tmp = tempfile::tempdir().unwrap();
+    let from = workspace().join("dms/examples").join(name);
+    let to = tmp.path().join(name);
+    std::fs::create_dir(&to).unwrap();
+    for entry in std::fs::read_dir(&from).unwrap() {
+        let entry = entry.unwrap();
+        std::fs::copy(entry.path(), to.join(entry.file_name())).unwrap();
+    }
+    (tmp, to)
+}
+
+/// A `cargo` that succeeds without building anything: `sitlogc build` then
+/// fails when it copies the (missing) executable.
+#[cfg(unix)]
+fn fake_cargo(dir: &Path) -> PathBuf {
+    use std::os::unix::fs::PermissionsExt;
+    let path = dir.join("fake-cargo");
+    std::fs::write(&path, "#!/bin/sh\nexit 0\n").unwrap();
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    path
+}
+
+#[test]
+fn default_output_that_is_the_app_directory_is_refused_before_building() {
+    let (tmp, _app) = copy_example("countdown");
+    let cache = tmp.path().join("cache");
+    let out = sitlogc()
+        .env("SITLOGC_CACHE_DIR", &cache)
+        .args(["build", "countdown"])
+        .current_dir(tmp.path())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(
+        err.contains("the default output `countdown` is a directory"),
+        "{err}"
+    );
+    assert!(err.contains("-o countdown-task"), "{err}");
+    // Refused before anything was extracted, generated or built.
+    assert!(!cache.exists());
+    // -o naming a directory is refused too.
+    let out = sitlogc()
+        .env("SITLOGC_CACHE_DIR", &cache)
+        .args(["build", "countdown", "-o", "."])
+        .current_dir(tmp.path())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("it is a directory"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+/// `build .` is named after the directory's real name, and a failed copy of
+/// the executable leaves no temporary file.
+#[cfg(unix)]
+#[test]
+fn build_dot_is_named_after_the_directory_and_failures_leave_nothing() {
+    let (tmp, app) = copy_example("countdown");
+    let cache = tmp.path().join("cache");
+    let out = sitlogc()
+        .env("SITLOGC_CACHE_DIR", &cache)
+        .env("CARGO", fake_cargo(tmp.path()))
+        .args(["build", "."])
+        .current_dir(&app)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("cannot copy"), "{}", stderr(&out));
+    assert!(cache.join("apps/countdown/Cargo.toml").is_file());
+    // Nothing but the application's own files beside it.
+    let mut names: Vec<String> = std::fs::read_dir(&app)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "expected.json",
+            "global_vars.pl",
+            "main.dm",
+            "models",
+            "script.txt"
+        ]
+    );
+    // cargo itself failing: the same.
+    let out = sitlogc()
+        .env("SITLOGC_CACHE_DIR", &cache)
+        .env("CARGO", "false")
+        .args(["build", ".", "-o", "out/task"])
+        .current_dir(&app)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("cargo build failed"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!app.join("out").exists());
+}
+
+/// The generated package depends on the runtime extracted into the cache,
+/// not on this checkout; the extracted copy is the workspace's sources.
+#[cfg(unix)]
+#[test]
+fn generated_package_uses_the_embedded_runtime() {
+    let (tmp, app) = copy_example("countdown");
+    let cache = tmp.path().join("cache");
+    let out = sitlogc()
+        .env("SITLOGC_CACHE_DIR", &cache)
+        .env("CARGO", fake_cargo(tmp.path()))
+        .arg("build")
+        .arg(&app)
+        .arg("-o")
+        .arg(tmp.path().join("countdown-task"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let manifest = std::fs::read_to_string(cache.join("apps/countdown/Cargo.toml")).unwrap();
+    let runtimes: Vec<_> = std::fs::read_dir(cache.join("runtime"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert_eq!(runtimes.len(), 1, "{runtimes:?}");
+    let runtime = &runtimes[0];
+    assert!(
+        manifest.contains(&format!("path = \"{}/runtime\"", runtime.display())),
+        "{manifest}"
+    );
+    assert!(
+        !manifest.contains(&workspace().display().to_string()),
+        "{manifest}"
+    );
+    for file in [
+        "runtime/src/lib.rs",
+        "robot/src/cli.rs",
+        "view/src/page.html",
+        "Cargo.lock",
+    ] {
+        assert_eq!(
+            std::fs::read(runtime.join(file)).unwrap(),
+            std::fs::read(workspace().join(file)).unwrap(),
+            "{file}"
+        );
+    }
+    let root = std::fs::read_to_string(runtime.join("Cargo.toml")).unwrap();
+    assert!(
+        root.contains("members = [\"syntax\", \"runtime\""),
+        "{root}"
+    );
+    assert!(!root.contains("\"compiler\", \"graph\""), "{root}");
+    assert!(!root.contains("[profile"), "{root}");
+    // Extracted once: a second build reuses it, and leaves no temporary directory.
+    let again = sitlogc()
+        .env("SITLOGC_CACHE_DIR", &cache)
+        .env("CARGO", fake_cargo(tmp.path()))
+        .arg("build")
+        .arg(&app)
+        .arg("-o")
+        .arg(tmp.path().join("t"))
+        .output()
+        .unwrap();
+    assert_eq!(again.status.code(), Some(2));
+    assert_eq!(std::fs::read_dir(cache.join("runtime")).unwrap().count(), 1);
 }
 
 fn workspace() -> PathBuf {
@@ -54,16 +241,22 @@ fn built_executable_runs_like_sitlogc_run() {
     let app = workspace().join("dms/examples/pipe");
     let dir = std::env::temp_dir().join(format!("sitlogc-build-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
+    // As an installed sitlogc: a copy of the binary, run from elsewhere,
+    // with the default output name (the app is not in the current directory).
+    let installed = dir.join("bin/sitlogc");
+    std::fs::create_dir_all(installed.parent().unwrap()).unwrap();
+    std::fs::copy(env!("CARGO_BIN_EXE_sitlogc"), &installed).unwrap();
     let exe = dir.join("pipe");
-    let status = sitlogc()
+    let status = Command::new(&installed)
+        .env("SITLOGC_CACHE_DIR", cache())
         .arg("build")
         .arg("--debug")
         .arg(&app)
-        .arg("-o")
-        .arg(&exe)
+        .current_dir(&dir)
         .status()
         .unwrap();
     assert!(status.success());
+    assert!(exe.is_file());
     let script = app.join("script.txt");
     for format in ["json", "text"] {
         let compiled = Command::new(&exe)
@@ -108,8 +301,17 @@ fn built_executable_runs_like_sitlogc_run() {
     assert!(String::from_utf8_lossy(&help.stdout).contains("--in-arg"));
     assert!(String::from_utf8_lossy(&help.stdout).contains("--max-input-bytes"));
     assert!(String::from_utf8_lossy(&help.stdout).contains("--view"));
+    // Named after the application, with run's KB options, and saying it does not reload.
+    let help = String::from_utf8_lossy(&help.stdout).into_owned();
+    assert!(help.contains("Usage: pipe [OPTIONS]"), "{help}");
+    assert!(
+        help.contains("--kb <FILE>") && help.contains("--kb-persist"),
+        "{help}"
+    );
+    assert!(help.contains("no reloading"), "{help}");
+    assert!(!help.contains("PROGRAM"), "{help}");
     // Compiled tasks do not reload (issue 21): their help says so.
-    assert!(String::from_utf8_lossy(&help.stdout).contains("does not reload"));
+    assert!(help.contains("does not reload"), "{help}");
     // The live view works on the compiled task too: its diagram is embedded.
     let mut child = Command::new(&exe)
         .args(["--view", "--format", "json", "--script"])
@@ -165,7 +367,8 @@ fn built_executable_stops_on_sigint() {
 ",
     )
     .unwrap();
-    let exe = dir.join("spin-task");
+    // Into a directory that does not exist yet: it is made.
+    let exe = dir.join("bin/spin-task");
     let status = sitlogc()
         .arg("build")
         .arg("--debug")
@@ -202,4 +405,34 @@ fn built_executable_stops_on_sigint() {
         let _: serde_json::Value = serde_json::from_str(line).unwrap();
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `build --allow-unresolved` compiles what `run --allow-unresolved` runs;
+/// without it the unresolved names are errors.
+#[test]
+fn allow_unresolved_compiles_what_run_allows() {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(
+        tmp.path().join("main.dm"),
+        "diag_mod(main, [
+  [id ==> is, type ==> speech, arcs ==> [go : [] => fs, away : [] => nowhere]],
+  [id ==> fs, type ==> final]
+], []).
+",
+    )
+    .unwrap();
+    let build = |extra: &[&str]| {
+        sitlogc()
+            .args(["build", "--emit", "rust"])
+            .args(extra)
+            .arg(tmp.path())
+            .output()
+            .unwrap()
+    };
+    let strict = build(&[]);
+    assert_eq!(strict.status.code(), Some(1));
+    assert!(stderr(&strict).contains("nowhere"), "{}", stderr(&strict));
+    let lenient = build(&["--allow-unresolved"]);
+    assert_eq!(lenient.status.code(), Some(0), "{}", stderr(&lenient));
+    assert!(String::from_utf8_lossy(&lenient.stdout).contains("pub mod dm_main"));
 }

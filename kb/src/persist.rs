@@ -6,7 +6,7 @@
 //! A process that persists a KB holds [`PersistLock`]: an exclusive lock
 //! (fs4) on the file `.NAME.lock` beside the KB, so a second persisting
 //! process is refused instead of silently overwriting the first one's
-//! updates. Taking the lock removes the temporary files (`.NAME.PID.tmp`)
+//! updates. Taking the lock removes the temporary files (`.NAME.PID.XXXXXX.tmp`)
 //! that a killed run left behind; the lock file itself stays (one empty
 //! file per KB, reused by every run).
 
@@ -107,8 +107,8 @@ pub fn lock_for_persist(path: &Path) -> Result<PersistLock, LoadError> {
     })
 }
 
-/// Removes `.NAME.*.tmp` in `dir` (only called under the lock: no other
-/// process is writing one).
+/// Removes `.NAME.PID.XXXXXX.tmp` (and the older `.NAME.PID.tmp`) in `dir`
+/// (only called under the lock: no other process is writing one).
 fn remove_stale_temporaries(dir: &Path, name: &str) {
     let prefix = format!(".{name}.");
     let Ok(entries) = std::fs::read_dir(dir) else {
@@ -121,7 +121,12 @@ fn remove_stale_temporaries(dir: &Path, name: &str) {
             .strip_prefix(&prefix)
             .and_then(|r| r.strip_suffix(".tmp"))
         {
-            if !middle.is_empty() && middle.bytes().all(|b| b.is_ascii_digit()) {
+            // `PID.XXXXXX` (tempfile's random part), or `PID` (older runs).
+            let (pid, random) = middle.split_once('.').unwrap_or((middle, ""));
+            if !pid.is_empty()
+                && pid.bytes().all(|b| b.is_ascii_digit())
+                && random.bytes().all(|b| b.is_ascii_alphanumeric())
+            {
                 let _ = std::fs::remove_file(entry.path());
             }
         }
@@ -257,25 +262,37 @@ impl Kb {
     }
 }
 
+/// Writes `data` to a temporary file beside `path` (tempfile: removed
+/// whatever goes wrong before the rename), syncs it, keeps the old file's
+/// permissions, renames it over `path` and syncs the directory.
 fn write_atomic(path: &Path, data: &[u8]) -> std::io::Result<()> {
     let (dir, file_name) = dir_and_name(path);
-    let tmp = dir.join(format!(".{file_name}.{}.tmp", std::process::id()));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(data)?;
-        f.sync_all()?;
-        drop(f);
-        std::fs::rename(&tmp, path)?;
-        // Make the rename itself durable; not every platform can open a directory.
-        if let Ok(d) = std::fs::File::open(&dir) {
-            let _ = d.sync_all();
+    // `.NAME.PID.XXXXXX.tmp`: what `remove_stale_temporaries` recognises.
+    let mut tmp = tempfile::Builder::new()
+        .prefix(&format!(".{file_name}.{}.", std::process::id()))
+        .suffix(".tmp")
+        .tempfile_in(&dir)?;
+    tmp.as_file_mut().write_all(data)?;
+    match std::fs::metadata(path) {
+        Ok(old) => tmp.as_file().set_permissions(old.permissions())?,
+        // A new KB file: readable by others, as `File::create` makes it
+        // (tempfile makes its files private).
+        #[cfg(unix)]
+        Err(_) => {
+            use std::os::unix::fs::PermissionsExt;
+            tmp.as_file()
+                .set_permissions(std::fs::Permissions::from_mode(0o644))?
         }
-        Ok(())
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+        #[cfg(not(unix))]
+        Err(_) => {}
     }
-    result
+    tmp.as_file().sync_all()?;
+    tmp.persist(path).map_err(|e| e.error)?;
+    // Make the rename itself durable; not every platform can open a directory.
+    if let Ok(d) = std::fs::File::open(&dir) {
+        let _ = d.sync_all();
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -290,9 +307,11 @@ mod lock_tests {
         let kb = dir.join("k.kb");
         std::fs::write(&kb, "[class(top,none,[],[],[])].\n").unwrap();
         std::fs::write(dir.join(".k.kb.123.tmp"), "half").unwrap();
+        std::fs::write(dir.join(".k.kb.456.a1B2c3.tmp"), "half").unwrap();
         std::fs::write(dir.join(".k.kb.notes.tmp"), "not ours").unwrap();
         let (_, lock) = Kb::open_persistent(&kb).unwrap();
         assert!(!dir.join(".k.kb.123.tmp").exists());
+        assert!(!dir.join(".k.kb.456.a1B2c3.tmp").exists());
         assert!(dir.join(".k.kb.notes.tmp").exists());
         let e = lock_for_persist(&kb).unwrap_err();
         assert!(e.message.contains("another process"), "{e}");

@@ -46,6 +46,40 @@ fn save_is_atomic_and_reloadable() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A save keeps the file's permissions (the temporary file it goes through
+/// is private), a new file is readable by others, and a failed save leaves
+/// the old file and no temporary file.
+#[cfg(unix)]
+#[test]
+fn save_keeps_permissions_and_a_failed_save_leaves_nothing() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = std::env::temp_dir().join(format!("sitlog-kb-perm-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let kb = Kb::load(&common::data("preferences.kb")).unwrap();
+    let new = dir.join("new.kb");
+    kb.save(&new).unwrap();
+    let mode = |p: &std::path::Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+    assert_eq!(mode(&new), 0o644);
+    let shared = dir.join("shared.kb");
+    std::fs::write(&shared, "[]").unwrap();
+    std::fs::set_permissions(&shared, std::fs::Permissions::from_mode(0o664)).unwrap();
+    kb.save(&shared).unwrap();
+    assert_eq!(mode(&shared), 0o664);
+    // The target is a directory: the rename fails; the temporary file goes.
+    let target = dir.join("a_dir.kb");
+    std::fs::create_dir(&target).unwrap();
+    std::fs::write(target.join("inside"), "x").unwrap();
+    assert!(kb.save(&target).is_err());
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["a_dir.kb", "new.kb", "shared.kb"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn generated_kb_round_trips_and_shortcuts_agree() {
     let kb = gen::generate(2000, 8);

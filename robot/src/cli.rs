@@ -916,6 +916,11 @@ fn edited_prompt(_: InputLimits, _: &Interrupt) -> Option<Box<dyn Perception>> {
 struct TaskCli {
     #[command(flatten)]
     run: RunArgs,
+    /// Accepted so that a `sitlogc run` command line works unchanged; it
+    /// changes nothing here: unresolved names were allowed or refused when
+    /// the task was compiled (`sitlogc build --allow-unresolved`).
+    #[arg(long)]
+    allow_unresolved: bool,
 }
 
 /// The `main` of a compiled task: parses `std::env::args` (clap, the
@@ -928,9 +933,10 @@ pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::proc
         assets.app_name.clone()
     };
     let about = format!(
-        "The SitLog task `{name}`, compiled. Runs it on its world when it has one, else in test mode. \
-         A compiled task does not reload when its sources change: for that, run them with \
-         `sitlogc run APP --watch`."
+        "The SitLog task `{name}`, compiled. Runs it on its world when it has one, else in test mode.\n\
+         A compiled task does not reload when its sources change: it runs the program it was \
+         compiled from (no reloading); compile again with `sitlogc build`, or run the sources \
+         with `sitlogc run APP --watch`."
     );
     let command = TaskCli::command()
         .name(name.clone())
@@ -965,6 +971,16 @@ pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::proc
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_run_command_line_works_unchanged() {
+        let cli =
+            TaskCli::try_parse_from(["t", "--allow-unresolved", "--kb", "k.kb", "--kb-persist"])
+                .unwrap();
+        assert!(cli.allow_unresolved);
+        assert_eq!(cli.run.kb.as_deref(), Some(Path::new("k.kb")));
+        assert!(cli.run.kb_persist);
+    }
 
     #[test]
     fn options_parse() {

@@ -1,89 +1,153 @@
 //! The end-of-run report in our fixed formats: the history listing of the
 //! papers (text) and the `sitlogc run --format json` object, plus the
-//! per-transition JSON lines of `--trace`.
+//! per-transition JSON lines of `--trace`. The JSON is written by
+//! serde_json (compact, keys in the order of the notes' convention).
 
 use crate::history::{Entry, Item};
 use crate::machine::{Observer, Outcome};
 use crate::store::Store;
 use crate::term::Term;
+use serde::ser::{Serialize, SerializeMap, SerializeSeq, SerializeStruct, Serializer};
 use std::io::Write;
 
-fn json_string(s: &str) -> String {
-    let mut out = String::with_capacity(s.len() + 2);
-    out.push('"');
-    for c in s.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            c if (c as u32) < 0x20 => out.push_str(&format!("\\u{:04x}", c as u32)),
-            c => out.push(c),
+/// serde_json's compact output, except that backspace and form feed are
+/// written `\u0008` and `\u000c` (not `\b`, `\f`): the bytes this report
+/// has always had.
+struct Compact;
+
+impl serde_json::ser::Formatter for Compact {
+    fn write_char_escape<W: ?Sized + Write>(
+        &mut self,
+        writer: &mut W,
+        char_escape: serde_json::ser::CharEscape,
+    ) -> std::io::Result<()> {
+        use serde_json::ser::CharEscape;
+        match char_escape {
+            CharEscape::Backspace => writer.write_all(b"\\u0008"),
+            CharEscape::FormFeed => writer.write_all(b"\\u000c"),
+            other => serde_json::ser::CompactFormatter.write_char_escape(writer, other),
         }
     }
-    out.push('"');
-    out
 }
 
-fn entry_json(store: &Store, e: &Entry) -> String {
-    format!(
-        "{{\"dm\":{},\"situation\":{},\"expectation\":{},\"action\":{}}}",
-        json_string(&store.writeq(e.dm)),
-        json_string(&store.writeq(e.situation)),
-        json_string(&store.writeq(e.expectation)),
-        json_string(&store.writeq(e.action))
-    )
+/// `value` as one line of JSON.
+fn to_json<T: Serialize>(value: &T) -> String {
+    let mut out = Vec::new();
+    let mut ser = serde_json::Serializer::with_formatter(&mut out, Compact);
+    value
+        .serialize(&mut ser)
+        .expect("serializing to memory does not fail");
+    String::from_utf8(out).expect("serde_json writes UTF-8")
+}
+
+/// One history entry: `{"dm":…,"situation":…,"expectation":…,"action":…}`,
+/// plus `depth` and `next` in a trace line.
+struct EntryJson<'a> {
+    store: &'a Store,
+    entry: &'a Entry,
+    trace: Option<(usize, Option<Term>)>,
+}
+
+impl Serialize for EntryJson<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let (store, e) = (self.store, self.entry);
+        let mut m = s.serialize_struct("Entry", if self.trace.is_some() { 6 } else { 4 })?;
+        m.serialize_field("dm", &store.writeq(e.dm))?;
+        m.serialize_field("situation", &store.writeq(e.situation))?;
+        m.serialize_field("expectation", &store.writeq(e.expectation))?;
+        m.serialize_field("action", &store.writeq(e.action))?;
+        if let Some((depth, next)) = self.trace {
+            m.serialize_field("depth", &depth)?;
+            m.serialize_field("next", &next.map(|n| store.writeq(n)))?;
+        }
+        m.end()
+    }
+}
+
+/// A history: an array of entries and (embedded DMs) nested arrays.
+struct ItemsJson<'a> {
+    store: &'a Store,
+    items: &'a [Item],
+}
+
+impl Serialize for ItemsJson<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        // Deeply nested histories: grow the stack rather than overflow it.
+        stacker::maybe_grow(64 * 1024, 1024 * 1024, || {
+            let mut seq = s.serialize_seq(Some(self.items.len()))?;
+            for item in self.items {
+                match item {
+                    Item::Entry(entry) => seq.serialize_element(&EntryJson {
+                        store: self.store,
+                        entry,
+                        trace: None,
+                    })?,
+                    Item::Nested(inner) => seq.serialize_element(&ItemsJson {
+                        store: self.store,
+                        items: inner,
+                    })?,
+                }
+            }
+            seq.end()
+        })
+    }
+}
+
+/// The global variables as an object, in their order.
+struct GlobalsJson<'a> {
+    store: &'a Store,
+    outcome: &'a Outcome,
+}
+
+impl Serialize for GlobalsJson<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let entries = self.outcome.globals.entries();
+        let mut m = s.serialize_map(Some(entries.len()))?;
+        for &(name, value) in entries.iter() {
+            m.serialize_entry(name.as_str(), &self.store.writeq(value))?;
+        }
+        m.end()
+    }
+}
+
+/// The `--format json` object.
+struct OutcomeJson<'a> {
+    store: &'a Store,
+    outcome: &'a Outcome,
+}
+
+impl Serialize for OutcomeJson<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let (store, outcome) = (self.store, self.outcome);
+        let (status, error) = match &outcome.result {
+            Ok(()) => ("ok", None),
+            Err(e) if outcome.interrupted => ("interrupted", Some(e.to_string())),
+            Err(e) => ("error", Some(e.to_string())),
+        };
+        let mut m = s.serialize_struct("Outcome", 5)?;
+        m.serialize_field("status", status)?;
+        m.serialize_field("error", &error)?;
+        m.serialize_field(
+            "history",
+            &ItemsJson {
+                store,
+                items: &outcome.history,
+            },
+        )?;
+        m.serialize_field("out_arg", &store.writeq(outcome.out_arg))?;
+        m.serialize_field("globals", &GlobalsJson { store, outcome })?;
+        m.end()
+    }
 }
 
 /// The history as a JSON array (nested arrays for embedded DMs).
 pub fn history_json(store: &Store, items: &[Item]) -> String {
-    let mut out = String::new();
-    write_items(store, items, &mut out);
-    out
-}
-
-fn write_items(store: &Store, items: &[Item], out: &mut String) {
-    stacker::maybe_grow(64 * 1024, 1024 * 1024, || {
-        out.push('[');
-        for (i, item) in items.iter().enumerate() {
-            if i > 0 {
-                out.push(',');
-            }
-            match item {
-                Item::Entry(e) => out.push_str(&entry_json(store, e)),
-                Item::Nested(inner) => write_items(store, inner, out),
-            }
-        }
-        out.push(']');
-    })
+    to_json(&ItemsJson { store, items })
 }
 
 /// The `--format json` object.
 pub fn outcome_json(store: &Store, outcome: &Outcome) -> String {
-    let (status, error) = match &outcome.result {
-        Ok(()) => ("ok", "null".to_owned()),
-        Err(e) if outcome.interrupted => ("interrupted", json_string(&e.to_string())),
-        Err(e) => ("error", json_string(&e.to_string())),
-    };
-    let globals: Vec<String> = outcome
-        .globals
-        .entries()
-        .iter()
-        .map(|&(n, v)| {
-            format!(
-                "{}:{}",
-                json_string(n.as_str()),
-                json_string(&store.writeq(v))
-            )
-        })
-        .collect();
-    format!(
-        "{{\"status\":\"{status}\",\"error\":{error},\"history\":{},\"out_arg\":{},\"globals\":{{{}}}}}",
-        history_json(store, &outcome.history),
-        json_string(&store.writeq(outcome.out_arg)),
-        globals.join(",")
-    )
+    to_json(&OutcomeJson { store, outcome })
 }
 
 /// The `--format text` report: the history listing, then `Out Arg:` and
@@ -146,13 +210,33 @@ impl<W: Write> Observer for JsonTrace<W> {
         if self.error.is_some() {
             return;
         }
-        let mut line = entry_json(store, entry);
-        line.pop();
-        let next = next.map_or("null".to_owned(), |n| json_string(&store.writeq(n)));
-        let written = writeln!(self.out, "{line},\"depth\":{depth},\"next\":{next}}}")
-            .and_then(|_| self.out.flush());
+        let line = to_json(&EntryJson {
+            store,
+            entry,
+            trace: Some((depth, next)),
+        });
+        let written = writeln!(self.out, "{line}").and_then(|_| self.out.flush());
         if let Err(e) = written {
             self.error = Some(e);
         }
+    }
+}
+
+#[cfg(test)]
+mod json_tests {
+    use super::to_json;
+
+    /// The escapes the report has always written (every control character
+    /// as `\uXXXX` except `\n`, `\r`, `\t`; DEL and non-ASCII as they are).
+    #[test]
+    fn string_escapes_are_the_reports_own() {
+        let text = "a\u{8}b\u{c}c\u{1}\u{1f}\"\\/\n\t\r\u{7f}é€😀";
+        assert_eq!(
+            to_json(&text),
+            "\"a\\u0008b\\u000cc\\u0001\\u001f\\\"\\\\/\\n\\t\\r\u{7f}é€😀\""
+        );
+        // Still JSON, and the same string back.
+        let back: String = serde_json::from_str(&to_json(&text)).unwrap();
+        assert_eq!(back, text);
     }
 }

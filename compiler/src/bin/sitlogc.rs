@@ -1,7 +1,7 @@
 //! `sitlogc`: the SitLog command-line tool. Argument parsing, exit codes and
 //! the choice of output format only; the work is done by the library.
 
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{CommandFactory, Parser, Subcommand, ValueEnum};
 use sitlog_compiler::diag::{self, Severity};
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
@@ -18,8 +18,36 @@ below it), plus global_vars.pl, basic_actions.pl, expectation_types.pl, user_fun
 and templates.pl beside them."
 )]
 struct Cli {
+    /// When diagnostics are coloured: `auto` when stderr is a terminal and
+    /// NO_COLOR is unset or empty; `always`; `never`.
+    #[arg(long, global = true, value_enum, value_name = "WHEN", default_value_t = ColorWhen::Auto)]
+    color: ColorWhen,
     #[command(subcommand)]
     command: Command,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq, Debug)]
+enum ColorWhen {
+    Auto,
+    Always,
+    Never,
+}
+
+/// The `--color` of this run (set once in `run`).
+static COLOR: std::sync::OnceLock<ColorWhen> = std::sync::OnceLock::new();
+
+/// Whether diagnostics on stderr are coloured: `--color`, else (`auto`)
+/// when stderr is a terminal and NO_COLOR is unset or empty
+/// (<https://no-color.org>).
+fn color_stderr() -> bool {
+    match COLOR.get().copied().unwrap_or(ColorWhen::Auto) {
+        ColorWhen::Always => true,
+        ColorWhen::Never => false,
+        ColorWhen::Auto => {
+            std::io::stderr().is_terminal()
+                && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
+        }
+    }
 }
 
 #[derive(Subcommand)]
@@ -147,20 +175,25 @@ enum Command {
     },
     /// Compile an application to one executable.
     ///
-    /// Generates a Cargo package under `target/sitlog-build/<app>/` that uses
-    /// this workspace's runtime, builds it (cargo's progress on stderr; the
-    /// build cache in `target/sitlog-build/target` is shared by every
-    /// application) and copies the executable to FILE. The executable runs
-    /// the task with the options of `sitlogc run` (`--main`, `--in-arg`,
-    /// `--script`, `--format`, `--history`, `--trace`). With `--emit rust`
-    /// the generated Rust is written to FILE (stdout without -o) instead.
-    /// A compiled task does not reload when its sources change (that is
-    /// `sitlogc run APP --watch`).
+    /// Generates a Cargo package that uses the runtime shipped inside
+    /// sitlogc, builds it with cargo (progress on stderr) and copies the
+    /// executable to FILE, by default a file named after the application in
+    /// the current directory (refused when a directory has that name: give
+    /// -o then). Needs cargo, not the sitlog-rs sources: the runtime, the
+    /// generated packages and the shared build cache live in the user's
+    /// cache directory ($SITLOGC_CACHE_DIR, else $XDG_CACHE_HOME/sitlogc,
+    /// else ~/.cache/sitlogc). The executable runs the task with the
+    /// options of `sitlogc run`. With `--emit rust` the generated Rust is
+    /// written to FILE (stdout without -o) instead. Exit status: 0 when
+    /// written, 1 when the application has errors, 2 on usage, I/O or cargo
+    /// problems. A compiled task does not reload when its sources change
+    /// (that is `sitlogc run APP --watch`).
     Build {
         /// The application directory (or a single DM file).
         #[arg(value_name = "APP")]
         app: PathBuf,
-        /// Where to write the executable (default: the application's name).
+        /// Where to write the executable (default: the application's name,
+        /// in the current directory).
         #[arg(short, long, value_name = "FILE")]
         output: Option<PathBuf>,
         /// Build with optimizations (the default: a shipped task is a
@@ -177,6 +210,12 @@ enum Command {
         /// run on native values, and why the others stay terms) and stop.
         #[arg(long)]
         explain_types: bool,
+        /// Compile even if next situations, embedded DMs, exit arcs or
+        /// SitLog variables do not resolve (E0212, E0216–E0219), as `run
+        /// --allow-unresolved` runs them: taking such a path stops the task
+        /// with a run-time error.
+        #[arg(long)]
+        allow_unresolved: bool,
     },
     /// Draw an application in the notation of the SitLog papers.
     ///
@@ -236,6 +275,39 @@ enum Command {
     /// situation, global, basic action or user function, and hovers.
     /// Point your editor's LSP client at `sitlogc lsp` for `*.dm` files.
     Lsp,
+    /// Print a completion script for SHELL on stdout.
+    ///
+    /// For example `sitlogc completions bash > ~/.local/share/bash-completion/completions/sitlogc`,
+    /// `sitlogc completions zsh > ~/.zfunc/_sitlogc` (with `~/.zfunc` in
+    /// `fpath`), or `sitlogc completions fish > ~/.config/fish/completions/sitlogc.fish`.
+    Completions {
+        /// The shell.
+        #[arg(value_enum)]
+        shell: clap_complete::Shell,
+    },
+    /// Write the manual page (roff) of sitlogc.
+    ///
+    /// Without --dir, the page `sitlogc(1)` goes to stdout (try `sitlogc man
+    /// | man -l -`); with --dir, `sitlogc.1` and one page per subcommand
+    /// (`sitlogc-run.1`, ...) are written into DIR.
+    Man {
+        /// Write every page into this directory (made if missing).
+        #[arg(long, value_name = "DIR")]
+        dir: Option<PathBuf>,
+    },
+    /// Make a new application that checks and runs at once.
+    ///
+    /// Creates the directory NAME (it must not exist) with a DM `main` (a
+    /// speech situation and a recursive situation calling the DM
+    /// `ask_name`), global_vars.pl, basic_actions.pl, user_functions.pl, a
+    /// `models` file, a test-mode script, the golden output of running it
+    /// (`expected.txt`) and a README. Exit status: 0 when made, 2 when NAME
+    /// exists or cannot be written (nothing is changed then).
+    New {
+        /// The application directory to make; its last component names the application.
+        #[arg(value_name = "NAME")]
+        name: PathBuf,
+    },
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -290,7 +362,14 @@ fn main() -> ExitCode {
 }
 
 fn run(cli: Cli) -> u8 {
+    let _ = COLOR.set(cli.color);
     match cli.command {
+        Command::Completions { shell } => {
+            let mut out = Vec::new();
+            clap_complete::generate(shell, &mut Cli::command(), "sitlogc", &mut out);
+            write_stdout(&String::from_utf8_lossy(&out), "the completion script")
+        }
+        Command::Man { dir } => man(dir.as_deref()),
         Command::Check {
             paths,
             format,
@@ -339,12 +418,13 @@ fn run(cli: Cli) -> u8 {
             debug,
             emit,
             explain_types,
+            allow_unresolved,
         } => {
             let release = !debug;
             if explain_types {
                 explain_types_of(&app)
             } else {
-                build_app(&app, output, release, emit)
+                build_app(&app, output, release, emit, allow_unresolved)
             }
         }
         Command::Lsp => match sitlog_lsp::run_stdio(&sitlog_compiler::analysis::Analysis) {
@@ -362,6 +442,7 @@ fn run(cli: Cli) -> u8 {
             format,
             trace,
         } => graph(&app, output, dm, main, format, trace),
+        Command::New { name } => new_app(&name),
         Command::Kb {
             file,
             updates,
@@ -373,6 +454,58 @@ fn run(cli: Cli) -> u8 {
                 1
             }
         },
+    }
+}
+
+/// `sitlogc man [--dir DIR]`.
+fn man(dir: Option<&std::path::Path>) -> u8 {
+    let command = Cli::command();
+    match dir {
+        None => {
+            let mut out = Vec::new();
+            match clap_mangen::Man::new(command).render(&mut out) {
+                Ok(()) => write_stdout(&String::from_utf8_lossy(&out), "the manual page"),
+                Err(e) => {
+                    eprintln!("error: cannot render the manual page: {e}");
+                    2
+                }
+            }
+        }
+        Some(dir) => {
+            let written =
+                std::fs::create_dir_all(dir).and_then(|_| clap_mangen::generate_to(command, dir));
+            match written {
+                Ok(()) => {
+                    eprintln!("sitlogc: wrote the manual pages into {}", dir.display());
+                    0
+                }
+                Err(e) => {
+                    eprintln!(
+                        "error: cannot write the manual pages into {}: {e}",
+                        dir.display()
+                    );
+                    2
+                }
+            }
+        }
+    }
+}
+
+/// `sitlogc new NAME`.
+fn new_app(dir: &std::path::Path) -> u8 {
+    match sitlog_compiler::scaffold::create(dir) {
+        Ok(files) => {
+            let d = dir.display();
+            eprintln!("sitlogc: made the application {d} ({} files)", files.len());
+            eprintln!("  check it:  sitlogc check {d}");
+            eprintln!("  run it:    sitlogc run {d} --script {d}/script.txt");
+            eprintln!("  talk to it: sitlogc run {d}");
+            0
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            2
+        }
     }
 }
 
@@ -417,7 +550,7 @@ fn checked_ir_opts(
             return Err(2);
         }
     };
-    let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    let color = color_stderr();
     let program_sources = match &result {
         Ok(c) => &c.program().sources,
         Err(p) => &p.sources,
@@ -543,18 +676,25 @@ fn build_app(
     output: Option<PathBuf>,
     release: bool,
     emit: Option<Emit>,
+    allow_unresolved: bool,
 ) -> u8 {
     use sitlog_compiler::{build, package};
-    if let Err(code) = checked_ir(app) {
+    let options = sitlog_compiler::check::CheckOptions {
+        unresolved_as_warnings: allow_unresolved,
+        ..Default::default()
+    };
+    if let Err(code) = checked_ir_opts(app, options) {
         return code;
     }
-    let compiled = match build::generate(app, &app.display().to_string()) {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return 1;
-        }
-    };
+    let compiled =
+        match build::generate_checked(app, &app.display().to_string(), Default::default(), options)
+        {
+            Ok(c) => c,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return 1;
+            }
+        };
     if emit == Some(Emit::Rust) {
         let text = compiled.to_file_string();
         return match output {
@@ -568,8 +708,20 @@ fn build_app(
             None => write_stdout(&text, "the generated code"),
         };
     }
-    let output = output.unwrap_or_else(|| PathBuf::from(build::app_name(app)));
-    let layout = package::Layout::workspace();
+    let output = match output_file(app, output) {
+        Ok(o) => o,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return 2;
+        }
+    };
+    let layout = match package::Layout::user() {
+        Ok(l) => l,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
     let built = package::write_package(&compiled, app, &layout).and_then(|(dir, name)| {
         eprintln!("sitlogc: building {} in {}", name, dir.display());
         package::build_package(&dir, &name, &layout, release, &output)
@@ -584,6 +736,29 @@ fn build_app(
             2
         }
     }
+}
+
+/// Where `build` writes the executable: `-o FILE`, else a file named after
+/// the application (its directory's real name, or the DM file's stem) in
+/// the current directory. A directory there (the application itself when
+/// building from beside it) is refused before anything is built, as
+/// `go build` does, rather than writing somewhere the user did not ask.
+fn output_file(app: &std::path::Path, output: Option<PathBuf>) -> Result<PathBuf, String> {
+    let given = output.is_some();
+    let output = output.unwrap_or_else(|| PathBuf::from(sitlog_robot::cli::app_name(app)));
+    if output.is_dir() {
+        let o = output.display();
+        return Err(if given {
+            format!("cannot write the executable to `{o}`: it is a directory; give a file name with -o FILE")
+        } else {
+            format!(
+                "the default output `{o}` is a directory (the application itself, when you build from beside it); \
+                 name the executable with -o FILE, e.g. `sitlogc build {} -o {o}-task`",
+                app.display()
+            )
+        });
+    }
+    Ok(output)
 }
 
 /// `legacy`: `Some(--sitlog-home)` under `--legacy`.
@@ -813,7 +988,7 @@ fn run_watched(
 }
 
 fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, legacy: bool) -> u8 {
-    let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    let color = color_stderr();
     let mut errors = 0usize;
     let mut warnings = 0usize;
     let mut io_failed = false;
