@@ -140,7 +140,10 @@ enum Prog {
 #[derive(Debug)]
 enum Action {
     /// A list written out: elements evaluated into `regs`, performed one by one.
-    List { items: Vec<Ev>, regs: Reg },
+    List {
+        items: Vec<Ev>,
+        regs: Reg,
+    },
     One(Ev),
 }
 
@@ -355,7 +358,10 @@ impl<'s> Planner<'s> {
             return Err(Unsupported);
         }
         match self.store.value(t) {
-            Value::Var(v) => vars.get(&v.index()).map(|&r| Build::Reg(r)).ok_or(Unsupported),
+            Value::Var(v) => vars
+                .get(&v.index())
+                .map(|&r| Build::Reg(r))
+                .ok_or(Unsupported),
             Value::Compound(name, args) if !self.store.is_ground(t) => {
                 let args = args
                     .iter()
@@ -611,7 +617,9 @@ impl<'s> Planner<'s> {
             None => None,
         };
         let out_plan = match out_arg {
-            Some(t) if s.kind != Kind::Recursive => Some((self.build(t, &scope.vars, 0)?, self.reg())),
+            Some(t) if s.kind != Kind::Recursive => {
+                Some((self.build(t, &scope.vars, 0)?, self.reg()))
+            }
             _ => None,
         };
         let prog_plan = match prog {
@@ -706,8 +714,10 @@ impl<'s> Planner<'s> {
             })
             .collect();
         let neutral = self.store.atom_of(type_term) == Some(atoms::NEUTRAL);
-        let always_first =
-            !exit && neutral && arcs.len() == 1 && self.store.atom_of(arcs[0][0]) == Some(atoms::EMPTY);
+        let always_first = !exit
+            && neutral
+            && arcs.len() == 1
+            && self.store.atom_of(arcs[0][0]) == Some(atoms::EMPTY);
         // Each arc's variables: imported copies of the situation's, fresh otherwise (D-11).
         let mut scopes = Vec::new();
         let mut parts = Vec::new();
@@ -812,6 +822,10 @@ impl<'s> Planner<'s> {
 
 type Rcx<'c, 'a, 'p, 'ir> = &'c mut Cx<'a, 'p, Resolved<'ir>>;
 
+/// Results inside a visit: the error boxed, so that the values passed up
+/// the tree of steps stay small.
+type R<T> = Result<T, Box<RunError>>;
+
 fn build(cx: Rcx<'_, '_, '_, '_>, regs: &[Term], b: &Build) -> Term {
     match b {
         Build::Const(t) => *t,
@@ -831,18 +845,23 @@ fn build(cx: Rcx<'_, '_, '_, '_>, regs: &[Term], b: &Build) -> Term {
     }
 }
 
-fn ev(
-    cx: Rcx<'_, '_, '_, '_>,
-    regs: &mut [Term],
-    e: &Ev,
-    arc: Option<usize>,
-) -> Result<Term, RunError> {
+fn ev(cx: Rcx<'_, '_, '_, '_>, regs: &mut [Term], e: &Ev, arc: Option<usize>) -> R<Term> {
     match e {
-        Ev::Value(r) => cx.value(regs[*r as usize], arc),
+        Ev::Value(r) => {
+            // What `Cx::value` does: a compound is evaluated, anything else
+            // is its own value.
+            let store = cx.store();
+            let t = store.deref(regs[*r as usize]);
+            if store.is_compound(t) {
+                Ok(cx.eval(t, arc)?)
+            } else {
+                Ok(t)
+            }
+        }
         Ev::Built(b) => Ok(build(cx, regs, b)),
         Ev::Eval(b) => {
             let t = build(cx, regs, b);
-            cx.eval(t, arc)
+            Ok(cx.eval(t, arc)?)
         }
         Ev::If(c, then, other) => {
             if cond(cx, regs, c, arc)? {
@@ -852,13 +871,27 @@ fn ev(
             }
         }
         Ev::VarOpFresh { op, name, dst } => {
+            // `inc` of a local integer that does not overflow: what
+            // `var_op_fresh` does, without its general path.
+            if *op == atoms::INC {
+                let next = cx
+                    .local(*name)
+                    .and_then(|cur| cx.int_of(cur))
+                    .and_then(|i| i.checked_add(1));
+                if let Some(n) = next {
+                    let v = Term::int(n);
+                    cx.set_local(*name, v);
+                    regs[*dst as usize] = v;
+                    return Ok(v);
+                }
+            }
             let v = cx.var_op_fresh(*op, *name, arc)?;
             regs[*dst as usize] = v;
             Ok(v)
         }
         Ev::VarOp { op, name, arg } => {
             let a = build(cx, regs, arg);
-            cx.var_op(*op, *name, a, arc)
+            Ok(cx.var_op(*op, *name, a, arc)?)
         }
         Ev::IsFresh { expr, dst } => {
             let x = build(cx, regs, expr);
@@ -869,7 +902,7 @@ fn ev(
         Ev::Is { lhs, expr } => {
             let x = build(cx, regs, expr);
             let l = build(cx, regs, lhs);
-            cx.is(Some(l), x, arc)
+            Ok(cx.is(Some(l), x, arc)?)
         }
         Ev::Compound(name, args) => {
             let mut buf = [Term::NIL; 8];
@@ -889,21 +922,28 @@ fn ev(
     }
 }
 
-fn cond(
-    cx: Rcx<'_, '_, '_, '_>,
-    regs: &mut [Term],
-    c: &Cond,
-    arc: Option<usize>,
-) -> Result<bool, RunError> {
+fn cond(cx: Rcx<'_, '_, '_, '_>, regs: &mut [Term], c: &Cond, arc: Option<usize>) -> R<bool> {
     match c {
         Cond::Arith(op, l, r) => {
             let l = ev(cx, regs, l, arc)?;
             let r = ev(cx, regs, r, arc)?;
-            cx.arith_condition(*op, l, r, arc)
+            // Two integers compare as integers (what the runtime's
+            // comparison does with them).
+            if let (Some(a), Some(b)) = (cx.int_of(l), cx.int_of(r)) {
+                return Ok(match op {
+                    ArithCmp::Eq => a == b,
+                    ArithCmp::Ne => a != b,
+                    ArithCmp::Lt => a < b,
+                    ArithCmp::Gt => a > b,
+                    ArithCmp::Le => a <= b,
+                    ArithCmp::Ge => a >= b,
+                });
+            }
+            Ok(cx.arith_condition(*op, l, r, arc)?)
         }
         Cond::Other(b) => {
             let t = build(cx, regs, b);
-            cx.condition(t, arc)
+            Ok(cx.condition(t, arc)?)
         }
     }
 }
@@ -913,7 +953,7 @@ fn next(
     regs: &mut [Term],
     n: &Next,
     arc: Option<usize>,
-) -> Result<(Term, Option<SitIx>), RunError> {
+) -> R<(Term, Option<SitIx>)> {
     match n {
         Next::Static(t, ix) => Ok((*t, *ix)),
         Next::If(c, then, other) => {
@@ -928,8 +968,11 @@ fn next(
 }
 
 /// Runs `f` with the registers of one visit (on the stack when few).
-fn with_regs<R>(n: usize, f: impl FnOnce(&mut [Term]) -> R) -> R {
-    if n <= STACK_REGS {
+fn with_regs<T>(n: usize, f: impl FnOnce(&mut [Term]) -> T) -> T {
+    if n <= 8 {
+        let mut regs = [Term::NIL; 8];
+        f(&mut regs[..n])
+    } else if n <= STACK_REGS {
         let mut regs = [Term::NIL; STACK_REGS];
         f(&mut regs[..n])
     } else {
@@ -937,11 +980,7 @@ fn with_regs<R>(n: usize, f: impl FnOnce(&mut [Term]) -> R) -> R {
     }
 }
 
-fn run_plan(
-    p: &SitPlan,
-    cx: Rcx<'_, '_, '_, '_>,
-    regs: &mut [Term],
-) -> Result<Step, RunError> {
+fn run_plan(p: &SitPlan, cx: Rcx<'_, '_, '_, '_>, regs: &mut [Term]) -> R<Step> {
     let mut id = Term::NIL;
     if let Some(parts) = &p.compound_id {
         id = match cx.selected() {
@@ -1037,7 +1076,7 @@ fn run_arcs(
     cx: Rcx<'_, '_, '_, '_>,
     regs: &mut [Term],
     final_id: Option<Term>,
-) -> Result<Step, RunError> {
+) -> R<Step> {
     for arc in &a.arcs {
         for &r in &arc.fresh {
             regs[r as usize] = cx.var();
@@ -1096,7 +1135,16 @@ fn run_arcs(
                 regs[base + i] = ev(cx, regs, item, at)?;
             }
             let values = &regs[base..base + items.len()];
-            cx.perform_each(values, at)?;
+            if cx.ignores_numbers() {
+                // Performing a number does nothing: only the others.
+                for &x in values {
+                    if cx.int_of(x).is_none() && cx.float_of(x).is_none() {
+                        cx.perform_each(&[x], at)?;
+                    }
+                }
+            } else {
+                cx.perform_each(values, at)?;
+            }
             if cx.records() {
                 cx.store().list(values)
             } else {
@@ -1105,7 +1153,11 @@ fn run_arcs(
         }
         Action::One(e) => {
             let action = ev(cx, regs, e, at)?;
-            cx.perform(action, at)?;
+            // Performing a number does nothing when the actions ignore numbers.
+            let number = cx.int_of(action).is_some() || cx.float_of(action).is_some();
+            if !(number && cx.ignores_numbers()) {
+                cx.perform(action, at)?;
+            }
             action
         }
     };
@@ -1121,7 +1173,7 @@ fn run_arcs(
     cx.record(regs[exps + chosen], action, Some(next_value));
     match target {
         Some(ix) => Ok(Step::GotoSit(ix)),
-        None => cx.goto(next_value, at),
+        None => Ok(cx.goto(next_value, at)?),
     }
 }
 
@@ -1179,7 +1231,7 @@ impl DmProgram for Resolved<'_> {
             let Some(p) = self.plan(dm, sit) else {
                 return Err(cx.error("the situation has no plan", None));
             };
-            let step = with_regs(p.regs, |regs| run_plan(p, cx, regs))?;
+            let step = with_regs(p.regs, |regs| run_plan(p, cx, regs)).map_err(|e| *e)?;
             match step {
                 // Go on to the next situation of the DM by itself, until
                 // the machine is needed.
@@ -1219,6 +1271,7 @@ impl DmProgram for Resolved<'_> {
             }
             run_arcs(exit, cx, regs, Some(final_id))
         })
+        .map_err(|e| *e)
     }
 }
 
@@ -1231,5 +1284,126 @@ impl sitlog_runtime::cli::App for Resolved<'_> {
     }
     fn recovery(&self) -> Vec<(Atom, Atom)> {
         self.ir.recovery.clone()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::run::{self, RunConfig};
+    use sitlog_runtime::machine::Options;
+    use sitlog_runtime::report;
+    use sitlog_runtime::testmode::{ScriptPerception, TextActions};
+
+    fn lower(src: &str) -> Ir {
+        let (program, diags) = crate::load::load_sources(&[("t.dm", src)]);
+        let (result, diags) = crate::check::check(program, diags);
+        let errors: Vec<_> = diags.iter().filter(|d| d.is_error()).collect();
+        assert!(errors.is_empty(), "{errors:?}");
+        crate::ir::lower(&result.expect("checks"))
+    }
+
+    /// The JSON report of a run, with or without plans, variables renamed away.
+    fn report(ir: &Ir, script: &str, plans: bool, keep_history: bool) -> String {
+        let mut perception = ScriptPerception::new("script", script.to_owned());
+        let mut actions = TextActions::new(std::io::sink(), Vec::new());
+        let config = RunConfig {
+            options: Options {
+                keep_history,
+                ..Options::default()
+            },
+            ..RunConfig::default()
+        };
+        let runner = if plans { run::run } else { run::run_unresolved };
+        let (outcome, store) =
+            runner(ir, config, &mut perception, &mut actions, None).expect("runs");
+        let text = report::outcome_json(&store, &outcome);
+        // `_G12`, `_123`: numbering differs between the paths.
+        let mut out = String::new();
+        let mut chars = text.chars().peekable();
+        while let Some(c) = chars.next() {
+            out.push(c);
+            if c == '_' {
+                while chars
+                    .peek()
+                    .is_some_and(|d| d.is_ascii_digit() || *d == 'G')
+                {
+                    chars.next();
+                }
+            }
+        }
+        out
+    }
+
+    fn agree(src: &str, script: &str) -> Ir {
+        let ir = lower(src);
+        for keep in [true, false] {
+            assert_eq!(
+                report(&ir, script, true, keep),
+                report(&ir, script, false, keep),
+                "plans and templates disagree (history kept: {keep})"
+            );
+        }
+        ir
+    }
+
+    #[test]
+    fn a_counter_loop_runs_from_plans() {
+        let ir = agree(
+            "diag_mod(main, [
+  [id ==> is, type ==> neutral, arcs ==> [empty : inc(n, N) => (N >= 5 -> fs ; otherwise -> is)]],
+  [id ==> fs, type ==> final]], [n ==> 0]).\n",
+            "",
+        );
+        assert_eq!(Resolved::new(&ir).counts(), (2, 2));
+    }
+
+    #[test]
+    fn calls_pipes_scripts_and_compound_ids_agree() {
+        let ir = agree(
+            "diag_mod(main, [
+  [id ==> is, type ==> speech, arcs ==> [
+      tick : [inc(n, _), say(tick)] => is,
+      go(X) : [set(last, X)] => step(X, 1),
+      stop : [] => call]],
+  [id ==> step(X, K), type ==> neutral, arcs ==> [empty : say(X) => (K > 0 -> is ; otherwise -> fs)]],
+  [id ==> call, type ==> recursive, embedded_dm ==> add_one(get(n, _)), out_arg ==> Out,
+   arcs ==> [done(R) : say(R) => fs]],
+  [id ==> fs, type ==> final, out_arg ==> get(last, _)]],
+  [n ==> 0, last ==> none]).
+diag_mod(add_one(A), [
+  [id ==> is, type ==> neutral, in_arg ==> P, out_arg ==> Q,
+   arcs ==> [empty : (Q is A + 1) => done(Q)]],
+  [id ==> done(R), type ==> final, diag_mod ==> add_one(_)]], []).\n",
+            "tick.\ngo(a).\ntick.\nnothing.\nstop.\n",
+        );
+        let (planned, all) = Resolved::new(&ir).counts();
+        assert!(planned >= 4 && planned <= all, "{planned} of {all}");
+    }
+
+    #[test]
+    fn errors_agree() {
+        agree(
+            "diag_mod(main, [
+  [id ==> is, type ==> neutral, arcs ==> [empty : inc(n, _) => (get(n, _) > a -> is ; otherwise -> fs)]],
+  [id ==> fs, type ==> final]],
+  [n ==> 0]).\n",
+            "",
+        );
+    }
+
+    #[test]
+    fn a_deep_term_keeps_its_situation_on_templates() {
+        let mut list = String::from("X");
+        for i in 0..(MAX_DEPTH + 50) {
+            list = format!("f{}({list})", i % 3);
+        }
+        let src = format!(
+            "diag_mod(main, [
+  [id ==> is, type ==> neutral, arcs ==> [empty : say({list}) => fs]],
+  [id ==> fs, type ==> final]], []).\n"
+        );
+        let ir = agree(&src, "");
+        assert_eq!(Resolved::new(&ir).counts(), (1, 2));
     }
 }

@@ -612,7 +612,9 @@ fn run_app(
             }
         }
     }
-    sitlog_robot::execute(&ir, functions, args, &assets)
+    // Situations run from their plans where they can (resolved once, here).
+    let resolved = sitlog_compiler::resolve::Resolved::new(&ir);
+    sitlog_robot::execute(&resolved, functions, args, &assets)
 }
 
 fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, legacy: bool) -> u8 {
