@@ -513,6 +513,25 @@ mod plain_atom_tests {
         }
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(500))]
+        /// Scripts made of atom-like pieces, dots, layout, comments,
+        /// quotes, brackets and operators read the same both ways.
+        #[test]
+        fn scripts_read_the_same_both_ways(
+            pieces in proptest::collection::vec(
+                proptest::sample::select(vec![
+                    "tick", "a", "zZ_9", "is", "mod", "dynamic", "X", "_", "'q'", "é",
+                    ".", ".", ". ", ".\n", "\n", " ", "\t", "%c\n", "/*c*/", "(", ")",
+                    "[]", ",", "+", "-", "1", "0.5", "\u{a0}",
+                ]),
+                0..12,
+            )
+        ) {
+            same_both_ways(&pieces.concat());
+        }
+    }
+
     #[test]
     fn plain_atoms_keep_the_byte_limit() {
         let long = format!("{}.\n", "a".repeat(100));
