@@ -208,6 +208,9 @@ struct SitPlan {
 pub struct Resolved<'ir> {
     ir: &'ir Ir,
     plans: Vec<Vec<Option<SitPlan>>>,
+    /// Go on to the next planned situation of a DM without returning to the
+    /// machine's loop (as generated code does).
+    chain: bool,
 }
 
 impl<'ir> Resolved<'ir> {
@@ -222,7 +225,20 @@ impl<'ir> Resolved<'ir> {
                     .collect()
             })
             .collect();
-        Resolved { ir, plans }
+        Resolved {
+            ir,
+            plans,
+            chain: true,
+        }
+    }
+
+    /// Returns to the machine's loop after every situation, so that each
+    /// one goes through [`Machine`](sitlog_runtime::machine::Machine)'s
+    /// selection (for tools that act between situations, such as a
+    /// debugger); a little slower, the same semantics.
+    pub fn one_situation_per_step(mut self) -> Self {
+        self.chain = false;
+        self
     }
 
     /// The program without plans: every situation instantiated.
@@ -1235,7 +1251,7 @@ impl DmProgram for Resolved<'_> {
             match step {
                 // Go on to the next situation of the DM by itself, until
                 // the machine is needed.
-                Step::GotoSit(next) if !cx.gc_due() => match self.plan(dm, next) {
+                Step::GotoSit(next) if self.chain && !cx.gc_due() => match self.plan(dm, next) {
                     Some(q) if q.id.1 == 0 => {
                         cx.enter(next, q.id.0);
                         sit = next;
@@ -1345,6 +1361,39 @@ mod tests {
             );
         }
         ir
+    }
+
+    #[test]
+    fn one_situation_per_step_runs_the_same() {
+        let ir = lower(
+            "diag_mod(main, [
+  [id ==> is, type ==> neutral, arcs ==> [empty : inc(n, N) => (N >= 5 -> fs ; otherwise -> is)]],
+  [id ==> fs, type ==> final]], [n ==> 0]).\n",
+        );
+        let run = |resolved: &Resolved<'_>| {
+            let mut perception = ScriptPerception::new("script", String::new());
+            let mut actions = TextActions::new(std::io::sink(), Vec::new());
+            let (store, globals) = ir.initial_state();
+            let machine = sitlog_runtime::machine::Machine::new(
+                resolved,
+                store,
+                globals,
+                sitlog_runtime::Functions::standard(),
+                Options::default(),
+            );
+            let (outcome, store) = machine.run(
+                Term::atom(Atom::intern("main")),
+                Term::atom(atoms::NONE),
+                &mut perception,
+                &mut actions,
+                None,
+            );
+            report::outcome_json(&store, &outcome)
+        };
+        assert_eq!(
+            run(&Resolved::new(&ir)),
+            run(&Resolved::new(&ir).one_situation_per_step())
+        );
     }
 
     #[test]
