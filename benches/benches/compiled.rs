@@ -13,16 +13,71 @@
 //! and 10⁶ transitions; the counter loop also at 10⁸ (typed code and the
 //! hand-written loop only).
 //!
-//! `cargo bench -p sitlog-benches --bench compiled`; the ratios in docs/guide/internals.md
-//! come from one such run.
+//! The interpreter runs situations from their plans
+//! ([`sitlog_compiler::resolve`], what `sitlogc run` does); at 10⁴ also
+//! from their templates (`interpreter_templates`, every situation
+//! instantiated, as before the plans).
+//!
+//! Before each group, one run of each variant under a counting global
+//! allocator prints its heap allocations per transition; the scripted loop
+//! also times reading its script alone (`scripted_loop_parse`: the term
+//! reader's share of a transition).
+//!
+//! `cargo bench -p sitlog-benches --bench compiled`; the ratios in
+//! docs/guide/performance.md come from one such run.
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use sitlog_compiler::ir::Ir;
+use sitlog_compiler::resolve::Resolved;
 use sitlog_runtime::machine::{Options, Outcome};
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
 use sitlog_runtime::{cli, Functions, Store, Term};
+use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Duration;
+
+/// Counts heap allocations (and reallocations) while [`COUNTING`] is set.
+struct Counting;
+
+static COUNTING: AtomicBool = AtomicBool::new(false);
+static ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        System.alloc(layout)
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout)
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        System.realloc(ptr, layout, new_size)
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Runs `f` once (it returns its transitions) and prints its heap
+/// allocations per transition, whole run included (start-up, the store's
+/// growth, garbage collections).
+fn allocations(label: &str, f: impl FnOnce() -> u64) {
+    ALLOCATIONS.store(0, Ordering::Relaxed);
+    COUNTING.store(true, Ordering::Relaxed);
+    let t = f();
+    COUNTING.store(false, Ordering::Relaxed);
+    let a = ALLOCATIONS.load(Ordering::Relaxed);
+    println!(
+        "allocations {label}: {a} in {t} transitions = {:.4} per transition",
+        a as f64 / t.max(1) as f64
+    );
+}
 
 mod counter_loop {
     sitlog_macros::include_dm!("dms/counter_loop");
@@ -266,6 +321,44 @@ fn three_ways(
         "{name}: the hand-written machine makes other transitions"
     );
     group.throughput(Throughput::Elements(t));
+    let resolved = Resolved::new(interpreted);
+    let go =
+        |app: &dyn Fn() -> u64, variant: &str| allocations(&format!("{name}/{variant}/{n}"), app);
+    go(
+        &|| run(compiled, main, in_arg, script, false, Functions::standard()),
+        "compiled",
+    );
+    go(
+        &|| run(untyped, main, in_arg, script, false, Functions::standard()),
+        "compiled_untyped",
+    );
+    go(
+        &|| {
+            run(
+                &resolved,
+                main,
+                in_arg,
+                script,
+                false,
+                Functions::standard(),
+            )
+        },
+        "interpreter",
+    );
+    go(
+        &|| {
+            run(
+                interpreted,
+                main,
+                in_arg,
+                script,
+                false,
+                Functions::standard(),
+            )
+        },
+        "interpreter_templates",
+    );
+    go(&hand, "hand_written");
     group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
         b.iter(|| run(compiled, main, in_arg, script, false, Functions::standard()))
     });
@@ -279,7 +372,7 @@ fn three_ways(
     group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
         b.iter(|| {
             run(
-                interpreted,
+                &resolved,
                 main,
                 in_arg,
                 script,
@@ -288,9 +381,49 @@ fn three_ways(
             )
         })
     });
+    if n <= 10_000 {
+        group.bench_with_input(BenchmarkId::new("interpreter_templates", n), &n, |b, _| {
+            b.iter(|| {
+                run(
+                    interpreted,
+                    main,
+                    in_arg,
+                    script,
+                    false,
+                    Functions::standard(),
+                )
+            })
+        });
+    }
     group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, _| {
         b.iter(&hand)
     });
+    group.finish();
+}
+
+/// Reads the scripted loop's script alone, term by term, as the
+/// perception of a run does (a fresh store per run, as a run has): the term
+/// reader's share of a scripted transition.
+fn read_script(c: &mut Criterion, n: u64, script: &str) {
+    use sitlog_runtime::machine::{Perceived, Perception};
+    let read = || {
+        let mut store = Store::new();
+        let mut perception = ScriptPerception::new("script", script.to_owned());
+        let ty = Term::atom(sitlog_runtime::Atom::intern("speech"));
+        let mut terms = 0u64;
+        while let Ok(Perceived::Input(_)) = perception.perceive(&mut store, ty, &[]) {
+            terms += 1;
+        }
+        terms
+    };
+    assert_eq!(read(), n + 1);
+    let mut group = c.benchmark_group("scripted_loop_parse");
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(3));
+    group.warm_up_time(Duration::from_secs(1));
+    group.throughput(Throughput::Elements(n + 2));
+    group.bench_with_input(BenchmarkId::new("read_script", n), &n, |b, _| b.iter(read));
     group.finish();
 }
 
@@ -327,6 +460,7 @@ fn bench(c: &mut Criterion) {
             || hand_pipe_calls(black_box(max)),
         );
         let (_, script) = sitlog_benches::scripted_loop(n);
+        read_script(c, n, &script);
         three_ways(
             c,
             "scripted_loop",
@@ -368,6 +502,34 @@ fn bench(c: &mut Criterion) {
             b.iter(|| hand_counter_loop(black_box(n as i64)))
         });
         group.finish();
+        // Untyped code and the interpreter: one timed run each (criterion's
+        // ten samples would take minutes), with their allocations.
+        if std::env::var_os("SITLOG_BENCH_SKIP_1E8").is_none() {
+            let resolved = Resolved::new(&counter_ir);
+            let once = |label: &str, f: &dyn Fn() -> u64| {
+                let start = std::time::Instant::now();
+                let t = f();
+                let ns = start.elapsed().as_nanos() as f64 / t as f64;
+                println!(
+                    "counter_loop/{label}/{n}: one run, {t} transitions, {ns:.2} ns per transition"
+                );
+            };
+            let untyped = || {
+                run(
+                    counter_loop_untyped::program(),
+                    &main,
+                    None,
+                    "",
+                    false,
+                    Functions::standard(),
+                )
+            };
+            let interp = || run(&resolved, &main, None, "", false, Functions::standard());
+            once("compiled_untyped", &untyped);
+            once("interpreter", &interp);
+            allocations(&format!("counter_loop/compiled_untyped/{n}"), untyped);
+            allocations(&format!("counter_loop/interpreter/{n}"), interp);
+        }
     }
 
     // The counter loop whose actions are performed: an `Actions` that does
@@ -390,8 +552,9 @@ fn bench(c: &mut Criterion) {
         group.bench_with_input(BenchmarkId::new("compiled_untyped", n), &n, |b, _| {
             b.iter(|| run_performing(counter_loop_untyped::program(), &main))
         });
+        let resolved = Resolved::new(&counter_ir);
         group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
-            b.iter(|| run_performing(&counter_ir, &main))
+            b.iter(|| run_performing(&resolved, &main))
         });
         group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, _| {
             b.iter(|| {
@@ -440,7 +603,11 @@ fn bench(c: &mut Criterion) {
             )
         })
     });
+    let appendix_resolved = Resolved::new(&appendix_ir);
     group.bench_function("interpreter", |b| {
+        b.iter(|| run(&appendix_resolved, "main", None, &script, true, functions()))
+    });
+    group.bench_function("interpreter_templates", |b| {
         b.iter(|| run(&appendix_ir, "main", None, &script, true, functions()))
     });
     group.finish();

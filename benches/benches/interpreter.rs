@@ -1,7 +1,9 @@
 //! Transitions per second of the reference interpreter for 10^3..10^6
 //! transitions, on a neutral loop (local counter) and on a loop driven by
 //! scripted input, with and without history. Cost per transition must stay
-//! flat as N grows.
+//! flat as N grows. `run::run` resolves the program into plans at each run
+//! (included in the time); `templates` instantiates every situation from
+//! its template (`run::run_unresolved`, the interpreter before the plans).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use sitlog_benches::{neutral_loop, scripted_loop};
@@ -17,6 +19,19 @@ fn lower(src: &str) -> Ir {
 }
 
 fn run_once(ir: &Ir, script: &str, keep_history: bool) -> u64 {
+    run_with(run::run, ir, script, keep_history)
+}
+
+type Runner =
+    fn(
+        &Ir,
+        RunConfig,
+        &mut dyn sitlog_runtime::machine::Perception,
+        &mut dyn sitlog_runtime::machine::Actions,
+        Option<&mut dyn sitlog_runtime::machine::Observer>,
+    ) -> Result<(sitlog_runtime::machine::Outcome, sitlog_runtime::Store), run::ConfigError>;
+
+fn run_with(runner: Runner, ir: &Ir, script: &str, keep_history: bool) -> u64 {
     let mut perception = ScriptPerception::new("script", script.to_owned());
     let mut actions = TextActions::new(std::io::sink(), Vec::new());
     let config = RunConfig {
@@ -26,7 +41,7 @@ fn run_once(ir: &Ir, script: &str, keep_history: bool) -> u64 {
         },
         ..RunConfig::default()
     };
-    let (outcome, _) = run::run(ir, config, &mut perception, &mut actions, None).expect("runs");
+    let (outcome, _) = runner(ir, config, &mut perception, &mut actions, None).expect("runs");
     assert!(outcome.result.is_ok(), "{:?}", outcome.result);
     outcome.transitions
 }
@@ -44,6 +59,16 @@ fn interpreter(c: &mut Criterion) {
         }
         group.finish();
     }
+    let mut group = c.benchmark_group("neutral_loop/templates/history_none");
+    group.sample_size(10);
+    for n in [1_000u64, 10_000] {
+        let ir = lower(&neutral_loop(n));
+        group.throughput(Throughput::Elements(n + 1));
+        group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+            b.iter(|| run_with(run::run_unresolved, &ir, "", false))
+        });
+    }
+    group.finish();
     let mut group = c.benchmark_group("scripted_loop/history_none");
     group.sample_size(10);
     for n in [1_000u64, 10_000, 100_000, 1_000_000] {

@@ -19,6 +19,7 @@ pub mod ir;
 pub mod legacy;
 pub mod load;
 pub mod package;
+pub mod resolve;
 pub mod run;
 pub mod scaffold;
 pub mod source;

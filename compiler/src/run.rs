@@ -3,7 +3,10 @@
 //! the tests.
 
 use crate::ir::Ir;
-use sitlog_runtime::machine::{Actions, Machine, Observer, Options, Outcome, Perception};
+use crate::resolve::Resolved;
+use sitlog_runtime::machine::{
+    Actions, DmProgram, Machine, Observer, Options, Outcome, Perception,
+};
 use sitlog_runtime::{Functions, Store, Term};
 use sitlog_syntax::atoms;
 
@@ -39,8 +42,35 @@ impl std::fmt::Display for ConfigError {
 }
 
 /// Runs `ir` from `config.main`; returns the outcome and the store its terms live in.
+///
+/// The situations [`Resolved`] can plan run from their plans, the others
+/// from their templates ([`run_unresolved`] runs every one from its template).
 pub fn run(
     ir: &Ir,
+    config: RunConfig,
+    perception: &mut dyn Perception,
+    actions: &mut dyn Actions,
+    observer: Option<&mut dyn Observer>,
+) -> Result<(Outcome, Store), ConfigError> {
+    let resolved = Resolved::new(ir);
+    run_program(ir, &resolved, config, perception, actions, observer)
+}
+
+/// [`run`], every situation instantiated from its template (the reference
+/// path the plans are compared with).
+pub fn run_unresolved(
+    ir: &Ir,
+    config: RunConfig,
+    perception: &mut dyn Perception,
+    actions: &mut dyn Actions,
+    observer: Option<&mut dyn Observer>,
+) -> Result<(Outcome, Store), ConfigError> {
+    run_program(ir, ir, config, perception, actions, observer)
+}
+
+fn run_program<P: DmProgram>(
+    ir: &Ir,
+    program: &P,
     config: RunConfig,
     perception: &mut dyn Perception,
     actions: &mut dyn Actions,
@@ -76,7 +106,7 @@ pub fn run(
     if options.recovery.is_empty() {
         options.recovery = ir.recovery.clone();
     }
-    let machine = Machine::new(ir, store, globals, config.functions, options);
+    let machine = Machine::new(program, store, globals, config.functions, options);
     let (outcome, store) = machine.run(main, in_arg, perception, actions, observer);
     Ok((outcome, store))
 }

@@ -1509,6 +1509,20 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.m.err(message, self.here(), arc)
     }
 
+    /// A run-time error of `op(name, _)` (`get`, `set`, `inc`, ...) in this
+    /// situation, blaming that construct as the machine's evaluator does.
+    fn var_op_error(&self, message: String, op: Atom, name: Atom, arc: Option<usize>) -> RunError {
+        let mut e = self.error(message, arc);
+        if let Some(site) = e.site.as_mut() {
+            site.culprit = Some(eval::Culprit {
+                name: op,
+                arity: 2,
+                inner: Some((name, 0)),
+            });
+        }
+        e
+    }
+
     pub fn store(&mut self) -> &mut Store {
         &mut self.m.store
     }
@@ -1637,7 +1651,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         arc: Option<usize>,
     ) -> Result<Term, RunError> {
         let r = eval::var_op_named(&mut self.m.eval_ctx(), op, name, arg);
-        r.map_err(|e| self.error(e.message, arc))
+        r.map_err(|e| self.var_op_error(e.message, op, name, arc))
     }
 
     /// `op(name, V)` for `op` in `get`, `inc`, where `V` is a variable that
@@ -1650,7 +1664,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         arc: Option<usize>,
     ) -> Result<Term, RunError> {
         let r = eval::var_op_fresh(&mut self.m.eval_ctx(), op, name);
-        r.map_err(|e| self.error(e.message, arc))
+        r.map_err(|e| self.var_op_error(e.message, op, name, arc))
     }
 
     /// `v is expr` (D-33), both as written (not evaluated); `v: None` for a

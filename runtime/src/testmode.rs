@@ -100,6 +100,9 @@ pub struct ScriptPerception {
     /// Echo each input read to stderr.
     pub echo: bool,
     limits: InputLimits,
+    /// Reads a plain atom input (`tick.`) without the term reader (see
+    /// [`plain_atom`]); off only to compare both ways in tests.
+    atoms_fast: bool,
 }
 
 impl ScriptPerception {
@@ -110,6 +113,7 @@ impl ScriptPerception {
             name: name.into(),
             echo: false,
             limits: InputLimits::default(),
+            atoms_fast: true,
         }
     }
 
@@ -143,6 +147,31 @@ fn leading_layout(text: &str) -> usize {
     }
 }
 
+/// When `text` starts with white space (no comment) then a plain atom
+/// (`[a-z][A-Za-z0-9_]*`, not an operator) and an end token (`.` then
+/// white space or the end of the text): the atom and the offset where the
+/// term reader's clause ends. Such an input is most of a scripted run; the
+/// term reader gives the same atom (tested against it below).
+fn plain_atom<'t>(text: &'t str, ops: &OpTable) -> Option<(&'t str, usize)> {
+    let bytes = text.as_bytes();
+    let start = bytes.iter().position(|b| !b.is_ascii_whitespace())?;
+    if !bytes[start].is_ascii_lowercase() {
+        return None;
+    }
+    let len = bytes[start..]
+        .iter()
+        .position(|b| !(b.is_ascii_alphanumeric() || *b == b'_'))?;
+    let end = start + len;
+    if bytes[end] != b'.' || !bytes.get(end + 1).is_none_or(|b| b.is_ascii_whitespace()) {
+        return None;
+    }
+    let name = &text[start..end];
+    if ops.is_op(Atom::intern(name)) {
+        return None;
+    }
+    Some((name, end + 1))
+}
+
 fn line_col(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset.min(text.len())];
     let line = before.matches('\n').count() + 1;
@@ -159,6 +188,18 @@ impl Perception for ScriptPerception {
     ) -> Result<Perceived, String> {
         let ops = OpTable::sitlog_shared();
         let rest = &self.text[self.pos..];
+        if self.atoms_fast {
+            if let Some((name, end)) = plain_atom(rest, ops) {
+                if end <= self.limits.max_bytes {
+                    self.pos += end;
+                    let t = Term::atom(Atom::intern(name));
+                    if self.echo {
+                        eprintln!("input: {}", store.writeq(t));
+                    }
+                    return Ok(deliver(store, ty, t));
+                }
+            }
+        }
         // One input is read from at most max_bytes (+1 to tell a clause
         // that ends exactly there): a longer one is incomplete, then refused.
         let mut cut = rest.len().min(self.limits.max_bytes.saturating_add(1));
@@ -474,5 +515,100 @@ mod limit_tests {
         assert!(first(&mut p).is_ok());
         let e = first(&mut p).unwrap_err();
         assert!(e.starts_with("standard input:2:4:"), "{e}");
+    }
+}
+
+#[cfg(test)]
+mod plain_atom_tests {
+    use super::*;
+
+    /// Every input of `script`, read with and without the plain-atom path:
+    /// the same terms, errors and positions.
+    fn same_both_ways(script: &str) {
+        let ty = Term::atom(Atom::intern("speech"));
+        let mut fast = ScriptPerception::new("s", script.to_owned());
+        let mut slow = ScriptPerception::new("s", script.to_owned());
+        slow.atoms_fast = false;
+        let (mut a, mut b) = (Store::new(), Store::new());
+        for _ in 0..20 {
+            let x = fast.perceive(&mut a, ty, &[]);
+            let y = slow.perceive(&mut b, ty, &[]);
+            let show = |s: &Store, r: &Result<Perceived, String>| match r {
+                Ok(Perceived::Input(t)) => format!("input {}", s.writeq(*t)),
+                other => format!("{other:?}"),
+            };
+            assert_eq!(show(&a, &x), show(&b, &y), "in {script:?}");
+            assert_eq!(fast.pos, slow.pos, "position in {script:?}");
+            if !matches!(y, Ok(Perceived::Input(_))) {
+                break;
+            }
+        }
+    }
+
+    #[test]
+    fn plain_atoms_read_as_the_term_reader_reads_them() {
+        for script in [
+            "tick.\nstop.\n",
+            "tick.",
+            "  tick.\n\n  tock_2.\tx.\r\nyY.",
+            "tick",
+            "tick .\n",
+            "tick.%c\nstop.\n",
+            "'tick'.\n",
+            "tick(a).\n",
+            "abc.def.\n",
+            "is.\n",
+            "mod.\nrem.\n",
+            "dynamic.\n",
+            "a.b.\n",
+            "é.\n",
+            "Tick.\n",
+            "_x.\n",
+            "% comment\ntick.\n",
+            "/* c */ tick.\n",
+            "tick..\n",
+            "tick.\u{a0}stop.\n",
+            "",
+            "   \n",
+        ] {
+            same_both_ways(script);
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(500))]
+        /// Scripts made of atom-like pieces, dots, layout, comments,
+        /// quotes, brackets and operators read the same both ways.
+        #[test]
+        fn scripts_read_the_same_both_ways(
+            pieces in proptest::collection::vec(
+                proptest::sample::select(vec![
+                    "tick", "a", "zZ_9", "is", "mod", "dynamic", "X", "_", "'q'", "é",
+                    ".", ".", ". ", ".\n", "\n", " ", "\t", "%c\n", "/*c*/", "(", ")",
+                    "[]", ",", "+", "-", "1", "0.5", "\u{a0}",
+                ]),
+                0..12,
+            )
+        ) {
+            same_both_ways(&pieces.concat());
+        }
+    }
+
+    #[test]
+    fn plain_atoms_keep_the_byte_limit() {
+        let long = format!("{}.\n", "a".repeat(100));
+        let limits = InputLimits {
+            max_bytes: 50,
+            ..InputLimits::default()
+        };
+        let ty = Term::atom(Atom::intern("speech"));
+        let mut fast = ScriptPerception::new("s", long.clone()).with_limits(limits);
+        let mut slow = ScriptPerception::new("s", long).with_limits(limits);
+        slow.atoms_fast = false;
+        let (mut a, mut b) = (Store::new(), Store::new());
+        assert_eq!(
+            fast.perceive(&mut a, ty, &[]),
+            slow.perceive(&mut b, ty, &[])
+        );
     }
 }

@@ -88,8 +88,10 @@ impl Run {
     }
 }
 
-/// The reference interpreter's report of program `index` on `script`.
-fn interpreted(index: usize, script: &str, how: &Run) -> serde_json::Value {
+/// The reference interpreter's report of program `index` on `script`:
+/// situations from their plans (`resolved`, what `sitlogc run` does) or
+/// all instantiated from their templates.
+fn interpreted(index: usize, script: &str, how: &Run, resolved: bool) -> serde_json::Value {
     let ir = ir(index);
     let mut perception = ScriptPerception::new(SCRIPT, script.to_owned());
     let mut actions = TextActions::new(std::io::sink(), ir.basic_actions.clone());
@@ -99,8 +101,13 @@ fn interpreted(index: usize, script: &str, how: &Run) -> serde_json::Value {
         options: how.options(),
         functions: Functions::standard(),
     };
+    let run = if resolved {
+        run::run
+    } else {
+        run::run_unresolved
+    };
     let (outcome, store) =
-        run::run(&ir, config, &mut perception, &mut actions, None).expect("valid run config");
+        run(&ir, config, &mut perception, &mut actions, None).expect("valid run config");
     report_json(report::outcome_json(&store, &outcome))
 }
 
@@ -123,17 +130,19 @@ fn compiled(index: usize, script: &str, how: &Run) -> serde_json::Value {
     report_json(report::outcome_json(&store, &outcome))
 }
 
-/// Runs both back ends; on disagreement, the message names the program, the
-/// script, how it was run and both reports.
+/// Runs both back ends, the interpreter with and without its plans; on
+/// disagreement, the message names the program, the script, how it was run
+/// and the reports.
 fn agree(index: usize, words: &[&str], how: &Run) -> Result<serde_json::Value, String> {
     let script = random_dm::script(words);
-    let interp = canonical_vars(&interpreted(index, &script, how));
+    let templates = canonical_vars(&interpreted(index, &script, how, false));
+    let interp = canonical_vars(&interpreted(index, &script, how, true));
     let generated = canonical_vars(&compiled(index, &script, how));
-    if interp == generated {
+    if interp == generated && templates == interp {
         Ok(interp)
     } else {
         Err(format!(
-            "random program {} ({}) disagrees ({how:?}) on the script\n{script}\ninterpreter {interp}\ncompiled    {generated}",
+            "random program {} ({}) disagrees ({how:?}) on the script\n{script}\ntemplates   {templates}\ninterpreter {interp}\ncompiled    {generated}",
             RANDOM_APPS[index].0, RANDOM_APPS[index].1
         ))
     }

@@ -866,7 +866,11 @@ fn run_app(
         return run_watched(app, ir, functions, args, &assets, check_options);
     }
     match debug {
-        None => sitlog_robot::execute(&ir, functions, args, &assets),
+        // Situations run from their plans where they can (resolved once, here).
+        None => {
+            let resolved = sitlog_compiler::resolve::Resolved::new(&ir);
+            sitlog_robot::execute(&resolved, functions, args, &assets)
+        }
         Some(commands) => {
             let source = match commands {
                 Some(path) => sitlog_debug::Source::file(path),
@@ -879,8 +883,11 @@ fn run_app(
                     return 2;
                 }
             };
+            // Plans, back to the machine's loop after each situation, so the
+            // debugger sees every one.
+            let resolved = sitlog_compiler::resolve::Resolved::new(&ir).one_situation_per_step();
             sitlog_debug::debug(
-                &ir,
+                &resolved,
                 functions,
                 args,
                 &assets,
