@@ -140,7 +140,8 @@ enum Command {
     /// test mode `input TERM` answers a perceptual situation the script has
     /// no input for. `help` lists the commands. The run's options are
     /// those of `sitlogc run`. Exit status: the run's, 0 after `quit`, 2 for
-    /// a bad line in the --commands file.
+    /// a bad line in the --commands file. A compiled task gets the same
+    /// debugger with `sitlogc build --debugger`.
     Debug {
         /// The application directory (or a single DM file).
         #[arg(value_name = "APP")]
