@@ -3,7 +3,8 @@
 //! gives byte-identical output to `sitlogc run`; `--emit rust` prints the
 //! generated code; the default output name, `build .`, failures that leave
 //! nothing behind, and a sitlogc that works away from its checkout (the
-//! runtime it compiles against is embedded and extracted into the cache).
+//! runtime it compiles against is embedded and extracted into the cache);
+//! `--debugger` builds that debug as `sitlogc debug` does.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
