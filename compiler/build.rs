@@ -10,9 +10,10 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The workspace crates a generated task package depends on, directly
-/// (runtime, robot) or through them (features `prolog`, `sim`, `view`).
+/// (runtime, robot; debug with `sitlogc build --debugger`) or through them
+/// (features `prolog`, `sim`, `view`).
 const CRATES: &[&str] = &[
-    "syntax", "runtime", "kb", "robot", "sim", "infer", "view", "graph",
+    "syntax", "runtime", "kb", "robot", "sim", "infer", "view", "graph", "debug",
 ];
 
 fn main() {

@@ -119,6 +119,9 @@ pub struct Layout {
     /// The `robot/` crate directory (absolute): the command line, KB
     /// functions and simulated robot a compiled task links.
     pub robot: PathBuf,
+    /// The `debug/` crate directory (absolute): the step debugger a task
+    /// built with `sitlogc build --debugger` links.
+    pub debug: PathBuf,
     /// The `Cargo.lock` copied into new packages so that they use the
     /// dependency versions sitlogc was tested with (and can build offline).
     pub lockfile: Option<PathBuf>,
@@ -141,6 +144,7 @@ impl Layout {
         Ok(Layout {
             runtime: root.join("runtime"),
             robot: root.join("robot"),
+            debug: root.join("debug"),
             lockfile: Some(root.join("Cargo.lock")),
             packages: cache.join("apps"),
             target: cache.join("target"),
@@ -149,11 +153,14 @@ impl Layout {
 }
 
 /// Writes the Cargo package of a compiled application; returns its
-/// directory and package name.
+/// directory and package name. With `debugger` the task also links the
+/// step debugger (`sitlog_debug::task_main`: it runs under the debugger,
+/// as `sitlogc debug` runs the sources).
 pub fn write_package(
     compiled: &Compiled,
     app: &Path,
     layout: &Layout,
+    debugger: bool,
 ) -> Result<(PathBuf, String), Error> {
     let name = app_name(app);
     let package = format!("sitlog-app-{}", name.replace('_', "-").trim_matches('-'));
@@ -177,13 +184,20 @@ pub fn write_package(
          [[bin]]\nname = \"{package}\"\npath = \"src/main.rs\"\n\n\
          [dependencies]\n\
          sitlog-runtime = {{ path = \"{runtime}\"{features} }}\n\
-         sitlog-robot = {{ path = \"{robot}\", default-features = false{robot_features} }}\n\n\
+         sitlog-robot = {{ path = \"{robot}\", default-features = false{robot_features} }}\n\
+         {debug_dep}\n\
          # Not a member of the enclosing workspace.\n[workspace]\n\n\
          # A shipped task: whole-program optimisation (measured in the README).\n\
          [profile.release]\nlto = \"fat\"\ncodegen-units = 1\n",
         src = app.display(),
         // The embedded Prolog engine only where the application has Prolog sources.
         features = if has_prolog { ", features = [\"prolog\"]" } else { "" },
+        // `--debugger`: the step debugger (its own main, see `task_main` below).
+        debug_dep = if debugger {
+            format!("sitlog-debug = {{ path = \"{}\" }}\n", path_of(&layout.debug))
+        } else {
+            String::new()
+        },
         // The simulator only where the application has a world; the live view always.
         robot_features = if assets.world.is_some() {
             ", features = [\"sim\", \"view\"]"
@@ -209,7 +223,7 @@ pub fn write_package(
          diagram: {diagram},\n    \
          }};\n    \
          match program::functions() {{\n        \
-         Ok(functions) => sitlog_robot::main(program::program(), functions, &assets),\n        \
+         Ok(functions) => {task_main}(program::program(), functions, &assets),\n        \
          Err(e) => {{\n            \
          eprintln!(\"error: {{e}}\");\n            \
          std::process::ExitCode::from(1)\n        \
@@ -217,6 +231,11 @@ pub fn write_package(
          }}\n}}\n",
         src = app.display(),
         app_name = assets.app_name,
+        task_main = if debugger {
+            "sitlog_debug::task_main"
+        } else {
+            "sitlog_robot::main"
+        },
         world = embed(&assets.world),
         kb = embed(&assets.kb),
         diagram = match diagram_json(app) {

@@ -3,7 +3,8 @@
 //! gives byte-identical output to `sitlogc run`; `--emit rust` prints the
 //! generated code; the default output name, `build .`, failures that leave
 //! nothing behind, and a sitlogc that works away from its checkout (the
-//! runtime it compiles against is embedded and extracted into the cache).
+//! runtime it compiles against is embedded and extracted into the cache);
+//! `--debugger` builds that debug as `sitlogc debug` does.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -168,6 +169,7 @@ fn generated_package_uses_the_embedded_runtime() {
         "runtime/src/lib.rs",
         "robot/src/cli.rs",
         "view/src/page.html",
+        "debug/src/task.rs",
         "Cargo.lock",
     ] {
         assert_eq!(
@@ -195,6 +197,30 @@ fn generated_package_uses_the_embedded_runtime() {
         .unwrap();
     assert_eq!(again.status.code(), Some(2));
     assert_eq!(std::fs::read_dir(cache.join("runtime")).unwrap().count(), 1);
+    // Only with --debugger does the task link the debugger and start in it.
+    let main = std::fs::read_to_string(cache.join("apps/countdown/src/main.rs")).unwrap();
+    assert!(!manifest.contains("sitlog-debug"), "{manifest}");
+    assert!(main.contains("sitlog_robot::main("), "{main}");
+    let debugger = sitlogc()
+        .env("SITLOGC_CACHE_DIR", &cache)
+        .env("CARGO", fake_cargo(tmp.path()))
+        .args(["build", "--debugger"])
+        .arg(&app)
+        .arg("-o")
+        .arg(tmp.path().join("t"))
+        .output()
+        .unwrap();
+    assert_eq!(debugger.status.code(), Some(2));
+    let manifest = std::fs::read_to_string(cache.join("apps/countdown/Cargo.toml")).unwrap();
+    let main = std::fs::read_to_string(cache.join("apps/countdown/src/main.rs")).unwrap();
+    assert!(
+        manifest.contains(&format!(
+            "sitlog-debug = {{ path = \"{}/debug\" }}",
+            runtime.display()
+        )),
+        "{manifest}"
+    );
+    assert!(main.contains("sitlog_debug::task_main("), "{main}");
 }
 
 fn workspace() -> PathBuf {
@@ -312,6 +338,8 @@ fn built_executable_runs_like_sitlogc_run() {
     assert!(!help.contains("PROGRAM"), "{help}");
     // Compiled tasks do not reload (issue 21): their help says so.
     assert!(help.contains("does not reload"), "{help}");
+    // Without --debugger, no debugger (see built_with_debugger_debugs_like_sitlogc_debug).
+    assert!(!help.contains("--commands"), "{help}");
     // The live view works on the compiled task too: its diagram is embedded.
     let mut child = Command::new(&exe)
         .args(["--view", "--format", "json", "--script"])
@@ -344,6 +372,101 @@ fn built_executable_runs_like_sitlogc_run() {
     );
     assert!(events.contains(r#""node":"d0.s0""#), "{events}");
     assert!(child.wait().unwrap().success());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `sitlogc build --debugger` (issue 21): the compiled task runs under the
+/// step debugger, as `sitlogc debug` runs the sources. The same commands
+/// file gives the same session. The one documented difference: fresh
+/// variables that `print` shows (`_G5`) are numbered by each run's store,
+/// so they are compared with their numbers left out.
+#[test]
+fn built_with_debugger_debugs_like_sitlogc_debug() {
+    let app = workspace().join("tests/dms/debug_app");
+    let dir = std::env::temp_dir().join(format!("sitlogc-build-dbg-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let exe = dir.join("debug_app");
+    let out = sitlogc()
+        .args(["build", "--debug", "--debugger", "-o"])
+        .arg(&exe)
+        .arg(&app)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let commands = dir.join("commands.txt");
+    std::fs::write(
+        &commands,
+        "break ask:is\ncontinue\nstack\nvars\npipe\nstep\nstep\nstack\nvars\n\
+         print f(Color)\nhistory\nnext\ncontinue\n",
+    )
+    .unwrap();
+    let script = app.join("script.txt");
+    let compiled = Command::new(&exe)
+        .arg("--script")
+        .arg(&script)
+        .arg("--commands")
+        .arg(&commands)
+        .output()
+        .unwrap();
+    let interpreted = sitlogc()
+        .arg("debug")
+        .arg(&app)
+        .arg("--script")
+        .arg(&script)
+        .arg("--commands")
+        .arg(&commands)
+        .output()
+        .unwrap();
+    let fresh = |o: &std::process::Output| {
+        let text = String::from_utf8_lossy(&o.stdout);
+        let mut out = String::new();
+        let mut chars = text.chars().peekable();
+        while let Some(c) = chars.next() {
+            out.push(c);
+            if c == 'G' && out.ends_with("_G") {
+                while chars.peek().is_some_and(|d| d.is_ascii_digit()) {
+                    chars.next();
+                }
+            }
+        }
+        out
+    };
+    assert_eq!(compiled.status.code(), Some(0), "{}", stderr(&compiled));
+    assert_eq!(interpreted.status.code(), Some(0));
+    let session = fresh(&compiled);
+    assert_eq!(session, fresh(&interpreted));
+    assert_eq!(compiled.stderr, interpreted.stderr);
+    for seen in [
+        "(sitlog) break ask:is\nbreakpoint 1: ask:is\n",
+        "-- breakpoint 1 (ask:is)\n",
+        "(sitlog) stack\n#1 ask(color)  after is\n#0 main  in ask1\n",
+        "locals of #0 main:\n  color = red\n",
+        "(sitlog) print f(Color)\nf(_G)\n",
+        "(end of the commands: the run goes on without stopping)\n",
+        "Out Arg: color\n",
+    ] {
+        assert!(session.contains(seen), "{seen:?} in\n{session}");
+    }
+    // A bad commands file: exit 2 naming FILE:LINE, as `sitlogc debug`.
+    std::fs::write(&commands, "break ask:is\nfrobnicate\n").unwrap();
+    let bad = Command::new(&exe)
+        .arg("--script")
+        .arg(&script)
+        .arg("--commands")
+        .arg(&commands)
+        .output()
+        .unwrap();
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(stderr(&bad).contains("commands.txt:2"), "{}", stderr(&bad));
+    // Its help: the task's options, --commands, and that it is a debugger build.
+    let help = Command::new(&exe).arg("--help").output().unwrap();
+    assert!(help.status.success());
+    let help = String::from_utf8_lossy(&help.stdout).into_owned();
+    assert!(help.contains("Usage: debug_app [OPTIONS]"), "{help}");
+    assert!(help.contains("--commands <FILE>"), "{help}");
+    assert!(help.contains("--script <FILE>"), "{help}");
+    assert!(help.contains("sitlogc build --debugger"), "{help}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -4,7 +4,9 @@
 //! over a live, interpreted run) and of `sitlogc replay` ([`replay`]: a
 //! `--trace` recording walked forwards and backwards, [`diff`] of two
 //! recordings), their command language ([`command`]), and where commands
-//! come from (a line editor, or a `--commands` file, echoed, for tests).
+//! come from (a line editor, or a `--commands` file, echoed, for tests),
+//! and the `main` of a task compiled with `sitlogc build --debugger`
+//! ([`task_main`]: the same debugger over the compiled program).
 //! `sitlogc` only parses the arguments.
 //!
 //! Invariants: the debugger never changes the run it watches except by
@@ -19,7 +21,9 @@ pub mod command;
 mod live;
 pub mod record;
 pub mod replay;
+mod task;
 
 pub use command::Source;
 pub use live::debug;
 pub use replay::{diff, replay, Trace};
+pub use task::task_main;

@@ -911,22 +911,24 @@ fn edited_prompt(_: InputLimits, _: &Interrupt) -> Option<Box<dyn Perception>> {
     None
 }
 
-/// The command line of a compiled task.
+/// The command line of a compiled task: the options of `sitlogc run`.
+/// Public so that a task built with `sitlogc build --debugger`
+/// (`sitlog_debug::task_main`) takes the same options, plus its own.
 #[derive(Parser, Debug)]
-struct TaskCli {
+pub struct TaskCli {
     #[command(flatten)]
-    run: RunArgs,
+    pub run: RunArgs,
     /// Accepted so that a `sitlogc run` command line works unchanged; it
     /// changes nothing here: unresolved names were allowed or refused when
     /// the task was compiled (`sitlogc build --allow-unresolved`).
     #[arg(long)]
-    allow_unresolved: bool,
+    pub allow_unresolved: bool,
 }
 
-/// The `main` of a compiled task: parses `std::env::args` (clap, the
-/// options of `sitlogc run`, named after the application), runs on a thread
-/// with a big stack (as `sitlogc` does), returns the exit status.
-pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::process::ExitCode {
+/// The clap command of a compiled task whose command line is `C` (e.g.
+/// [`TaskCli`]), named after the application; `more` is appended to its
+/// description.
+pub fn task_command<C: CommandFactory>(assets: &Assets, more: &str) -> clap::Command {
     let name = if assets.app_name.is_empty() {
         "task".to_owned()
     } else {
@@ -936,36 +938,60 @@ pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::proc
         "The SitLog task `{name}`, compiled. Runs it on its world when it has one, else in test mode.\n\
          A compiled task does not reload when its sources change: it runs the program it was \
          compiled from (no reloading); compile again with `sitlogc build`, or run the sources \
-         with `sitlogc run APP --watch`."
+         with `sitlogc run APP --watch`.{more}"
     );
-    let command = TaskCli::command()
+    C::command()
         .name(name.clone())
         .bin_name(name)
         .about(about)
-        .version(env!("CARGO_PKG_VERSION"));
-    let args = match command
+        .version(env!("CARGO_PKG_VERSION"))
+}
+
+/// Parses `std::env::args` with `command` (see [`task_command`]); on
+/// `--help`, `--version` or a usage error prints it and gives the exit
+/// status (0, or 2).
+pub fn parse_task_args<C: FromArgMatches>(
+    command: clap::Command,
+) -> Result<C, std::process::ExitCode> {
+    match command
         .try_get_matches()
-        .and_then(|m| TaskCli::from_arg_matches(&m))
+        .and_then(|m| C::from_arg_matches(&m))
     {
-        Ok(cli) => cli.run,
+        Ok(cli) => Ok(cli),
         Err(e) => {
             let _ = e.print();
-            return match e.kind() {
+            Err(match e.kind() {
                 clap::error::ErrorKind::DisplayHelp | clap::error::ErrorKind::DisplayVersion => {
                     std::process::ExitCode::SUCCESS
                 }
                 _ => std::process::ExitCode::from(2),
-            };
+            })
         }
-    };
+    }
+}
+
+/// Runs `f` on a thread with a big stack (as `sitlogc` does); its exit
+/// status (101 when it panicked).
+pub fn on_big_stack(f: impl FnOnce() -> u8 + Send) -> std::process::ExitCode {
     let code = std::thread::scope(|s| {
         std::thread::Builder::new()
             .stack_size(256 * 1024 * 1024)
-            .spawn_scoped(s, || execute(app, functions, &args, assets))
+            .spawn_scoped(s, f)
             .map(|h| h.join().unwrap_or(101))
             .unwrap_or(101)
     });
     std::process::ExitCode::from(code)
+}
+
+/// The `main` of a compiled task: parses `std::env::args` (clap, the
+/// options of `sitlogc run`, named after the application), runs on a thread
+/// with a big stack (as `sitlogc` does), returns the exit status.
+pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::process::ExitCode {
+    let args = match parse_task_args::<TaskCli>(task_command::<TaskCli>(assets, "")) {
+        Ok(cli) => cli.run,
+        Err(code) => return code,
+    };
+    on_big_stack(|| execute(app, functions, &args, assets))
 }
 
 #[cfg(test)]

@@ -140,7 +140,8 @@ enum Command {
     /// test mode `input TERM` answers a perceptual situation the script has
     /// no input for. `help` lists the commands. The run's options are
     /// those of `sitlogc run`. Exit status: the run's, 0 after `quit`, 2 for
-    /// a bad line in the --commands file.
+    /// a bad line in the --commands file. A compiled task gets the same
+    /// debugger with `sitlogc build --debugger`.
     Debug {
         /// The application directory (or a single DM file).
         #[arg(value_name = "APP")]
@@ -216,6 +217,12 @@ enum Command {
         /// with a run-time error.
         #[arg(long)]
         allow_unresolved: bool,
+        /// Link the step debugger: the executable runs the task under the
+        /// debugger, as `sitlogc debug APP` runs the sources (commands from
+        /// the terminal, or from its --commands FILE). Opt-in: a normal
+        /// compiled task stays smaller.
+        #[arg(long, conflicts_with = "emit")]
+        debugger: bool,
     },
     /// Draw an application in the notation of the SitLog papers.
     ///
@@ -419,12 +426,13 @@ fn run(cli: Cli) -> u8 {
             emit,
             explain_types,
             allow_unresolved,
+            debugger,
         } => {
             let release = !debug;
             if explain_types {
                 explain_types_of(&app)
             } else {
-                build_app(&app, output, release, emit, allow_unresolved)
+                build_app(&app, output, release, emit, allow_unresolved, debugger)
             }
         }
         Command::Lsp => match sitlog_lsp::run_stdio(&sitlog_compiler::analysis::Analysis) {
@@ -677,6 +685,7 @@ fn build_app(
     release: bool,
     emit: Option<Emit>,
     allow_unresolved: bool,
+    debugger: bool,
 ) -> u8 {
     use sitlog_compiler::{build, package};
     let options = sitlog_compiler::check::CheckOptions {
@@ -722,10 +731,11 @@ fn build_app(
             return 2;
         }
     };
-    let built = package::write_package(&compiled, app, &layout).and_then(|(dir, name)| {
-        eprintln!("sitlogc: building {} in {}", name, dir.display());
-        package::build_package(&dir, &name, &layout, release, &output)
-    });
+    let built =
+        package::write_package(&compiled, app, &layout, debugger).and_then(|(dir, name)| {
+            eprintln!("sitlogc: building {} in {}", name, dir.display());
+            package::build_package(&dir, &name, &layout, release, &output)
+        });
     match built {
         Ok(()) => {
             eprintln!("sitlogc: wrote {}", output.display());
