@@ -6,6 +6,7 @@
 //! generate. Only [`load`] touches the file system; rendering of diagnostics
 //! lives in [`diag`].
 
+#[cfg(feature = "cli")]
 pub mod analysis;
 mod app;
 pub mod ast;
@@ -18,12 +19,14 @@ pub mod interp;
 pub mod ir;
 pub mod legacy;
 pub mod load;
+#[cfg(feature = "cli")]
 pub mod package;
 pub mod resolve;
 pub mod run;
 pub mod scaffold;
 pub mod source;
 pub mod types;
+#[cfg(feature = "cli")]
 pub mod watch;
 
 use std::path::Path;
@@ -55,9 +58,10 @@ pub fn check_path_lenient(
 /// functions are added to `world_functions` if it is empty).
 pub fn check_path_opts(
     path: &Path,
-    mut options: check::CheckOptions,
+    #[cfg_attr(not(feature = "cli"), allow(unused_mut))] mut options: check::CheckOptions,
 ) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
     let (program, diags) = load::load(path)?;
+    #[cfg(feature = "cli")]
     if options.world_functions.is_empty() {
         options.world_functions = sitlog_robot::WORLD_FUNCTIONS;
     }
