@@ -25,20 +25,7 @@ impl DmProgram for Ir {
     fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Instance {
         let template = self.dms[dm as usize].situations[sit as usize].template;
         let t = store.copy_term(template);
-        let a = store.args(t);
-        let none = Term::atom(none_marker());
-        let opt = |x: Term| (x != none).then_some(x);
-        Instance {
-            head: a[0],
-            id: a[1],
-            type_term: a[2],
-            in_arg: opt(a[3]),
-            out_arg: opt(a[4]),
-            prog: opt(a[5]),
-            embedded_dm: opt(a[6]),
-            diag_mod: opt(a[7]),
-            arcs: a[8],
-        }
+        instance_of(store, t)
     }
     fn may_select(&self, dm: DmIx, sit: SitIx, value: Term, store: &Store) -> bool {
         match self.dms[dm as usize].situations[sit as usize].id_functor {
@@ -74,5 +61,24 @@ impl Ir {
             .map(|&(n, v)| (n, store.copy_term(v)))
             .collect();
         (store, Vars::from_entries(entries))
+    }
+}
+
+/// The [`Instance`] of a fresh copy `t` of a situation template (its nine
+/// fields in order; the `none` marker stands for an absent one).
+pub(crate) fn instance_of(store: &Store, t: Term) -> Instance {
+    let a = store.args(t);
+    let none = Term::atom(none_marker());
+    let opt = |x: Term| (x != none).then_some(x);
+    Instance {
+        head: a[0],
+        id: a[1],
+        type_term: a[2],
+        in_arg: opt(a[3]),
+        out_arg: opt(a[4]),
+        prog: opt(a[5]),
+        embedded_dm: opt(a[6]),
+        diag_mod: opt(a[7]),
+        arcs: a[8],
     }
 }

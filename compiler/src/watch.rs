@@ -20,7 +20,7 @@
 //! - A program that does not check never reaches the run: its diagnostics
 //!   are printed and the old program goes on.
 
-use crate::ir::{none_marker, Ir};
+use crate::ir::Ir;
 use sitlog_runtime::machine::{
     Between, DmIx, DmProgram, Instance, Kind, Next, Perceived, Perception, RunError, SitIx,
 };
@@ -93,20 +93,7 @@ impl State {
     fn instantiate(&self, ix: usize, sit: SitIx, store: &mut Store) -> Instance {
         let template = self.current.dms[ix].situations[sit as usize].template;
         let t = self.copy(template, store, &mut HashMap::new());
-        let a = store.args(t).to_vec();
-        let none = Term::atom(none_marker());
-        let opt = |x: Term| (x != none).then_some(x);
-        Instance {
-            head: a[0],
-            id: a[1],
-            type_term: a[2],
-            in_arg: opt(a[3]),
-            out_arg: opt(a[4]),
-            prog: opt(a[5]),
-            embedded_dm: opt(a[6]),
-            diag_mod: opt(a[7]),
-            arcs: a[8],
-        }
+        crate::interp::instance_of(store, t)
     }
 }
 
