@@ -31,7 +31,7 @@ use sitlog_compiler::ir::Ir;
 use sitlog_compiler::resolve::Resolved;
 use sitlog_runtime::machine::{Options, Outcome};
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
-use sitlog_runtime::{cli, Functions, Store, Term};
+use sitlog_runtime::{app, Functions, Store, Term};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -115,7 +115,7 @@ fn options(keep_history: bool) -> Options {
 }
 
 /// Runs a program through the runtime's runner (both back ends share it).
-fn run<A: cli::App>(
+fn run<A: app::App>(
     app: &A,
     main: &str,
     in_arg: Option<&str>,
@@ -125,7 +125,7 @@ fn run<A: cli::App>(
 ) -> u64 {
     let mut perception = ScriptPerception::new("script", script.to_owned());
     let mut actions = TextActions::new(std::io::sink(), Vec::new());
-    let (outcome, _store): (Outcome, Store) = cli::run(
+    let (outcome, _store): (Outcome, Store) = app::run(
         app,
         main,
         in_arg,
@@ -197,10 +197,10 @@ impl sitlog_runtime::machine::Actions for Summing {
 }
 
 /// Runs the counter loop with [`Summing`] actions: (sum, actions performed).
-fn run_performing<A: cli::App>(app: &A, main: &str) -> (i64, u64) {
+fn run_performing<A: app::App>(app: &A, main: &str) -> (i64, u64) {
     let mut perception = ScriptPerception::new("script", String::new());
     let mut actions = Summing(0, 0);
-    let (outcome, _store): (Outcome, Store) = cli::run(
+    let (outcome, _store): (Outcome, Store) = app::run(
         app,
         main,
         None,
@@ -301,8 +301,8 @@ fn three_ways(
     c: &mut Criterion,
     name: &str,
     n: u64,
-    compiled: &impl cli::App,
-    untyped: &impl cli::App,
+    compiled: &impl app::App,
+    untyped: &impl app::App,
     interpreted: &Ir,
     main: &str,
     in_arg: Option<&str>,

@@ -1,10 +1,10 @@
 //! The IR as a whole program for the runtime's CLI runner (`sitlogc run`
-//! shares `sitlog_runtime::cli` with compiled programs).
+//! shares `sitlog_runtime::app` with compiled programs).
 
 use crate::diag::{Diagnostic, Loc};
 use crate::ir::{ExprSite, Ir};
 use sitlog_runtime::machine::RunError;
-use sitlog_runtime::{cli::App, Atom, Store, Vars};
+use sitlog_runtime::{app::App, Atom, Store, Vars};
 
 impl App for Ir {
     fn initial_state(&self) -> (Store, Vars) {

@@ -33,7 +33,7 @@
 //!   and DM lookup by comparing interned atoms;
 //! - entry points: `program()` (one `Program` per process), `run(...)` and
 //!   `main()` (the `sitlogc run` command line, shared through
-//!   `sitlog_runtime::cli`).
+//!   `sitlog_runtime::app`).
 //!
 //! Every runtime path is fully qualified (`::sitlog_runtime::...`), so the
 //! code can be `include!`d anywhere; the output is deterministic (source
@@ -860,7 +860,7 @@ impl<'s> Gen<'s> {
             }
 
             #[allow(clippy::all)]
-            impl #rt::cli::App for Program {
+            impl #rt::app::App for Program {
                 fn initial_state(&self) -> (#rt::Store, #rt::Vars) {
                     Program::initial_state(self)
                 }
@@ -881,7 +881,7 @@ impl<'s> Gen<'s> {
 
             /// Runs the program in test mode from `main` (a DM call, as a term) with
             /// `in_arg` (a term; the atom `none` when absent): the runtime's
-            /// [`run`](::sitlog_runtime::cli::run) on this program.
+            /// [`run`](::sitlog_runtime::app::run) on this program.
             #[allow(dead_code)]
             pub fn run(
                 main: &str,
@@ -892,7 +892,7 @@ impl<'s> Gen<'s> {
                 actions: &mut dyn #rt::machine::Actions,
                 observer: ::std::option::Option<&mut dyn #rt::machine::Observer>,
             ) -> ::std::result::Result<(#rt::machine::Outcome, #rt::Store), ::std::string::String> {
-                #rt::cli::run(program(), main, in_arg, options, functions, perception, actions, observer)
+                #rt::app::run(program(), main, in_arg, options, functions, perception, actions, observer)
             }
 
             /// The application's Prolog sources (`templates.pl`, `user_functions.pl`), embedded.

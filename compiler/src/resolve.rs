@@ -1291,7 +1291,7 @@ impl DmProgram for Resolved<'_> {
     }
 }
 
-impl sitlog_runtime::cli::App for Resolved<'_> {
+impl sitlog_runtime::app::App for Resolved<'_> {
     fn initial_state(&self) -> (Store, Vars) {
         self.ir.initial_state()
     }

@@ -24,7 +24,7 @@ use crate::ir::Ir;
 use sitlog_runtime::machine::{
     Between, DmIx, DmProgram, Instance, Kind, Next, Perceived, Perception, RunError, SitIx,
 };
-use sitlog_runtime::{cli::App, Atom, Store, Term, Value, Var, Vars};
+use sitlog_runtime::{app::App, Atom, Store, Term, Value, Var, Vars};
 use std::collections::HashMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};

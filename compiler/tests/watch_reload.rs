@@ -69,7 +69,7 @@ fn run(first: Ir, next: Ir, script: &str) -> (String, String, String) {
     };
     let said = Arc::new(Mutex::new(Vec::<u8>::new()));
     let mut actions = TextActions::new(SharedVec(said.clone()), Vec::new());
-    let (outcome, mut store) = sitlog_runtime::cli::run(
+    let (outcome, mut store) = sitlog_runtime::app::run(
         &watched,
         "main",
         None,

@@ -8,7 +8,7 @@ use crate::command::{self, Command, Line, Source, Spec, PROMPT};
 use crate::record::{self, Record};
 use sitlog_robot::cli::{DebugHooks, RunArgs, Streams, WorldProbe};
 use sitlog_robot::Assets;
-use sitlog_runtime::cli::App;
+use sitlog_runtime::app::App;
 use sitlog_runtime::history::Entry;
 use sitlog_runtime::machine::{Inspection, Observer, Perceived, Perception};
 use sitlog_runtime::testmode::InputLimits;

@@ -6,7 +6,7 @@
 use crate::command::Source;
 use sitlog_robot::cli::{self, Streams, TaskCli};
 use sitlog_robot::Assets;
-use sitlog_runtime::cli::App;
+use sitlog_runtime::app::App;
 use sitlog_runtime::Functions;
 use std::path::PathBuf;
 

@@ -18,7 +18,7 @@ use crate::interrupt::{Interrupt, InterruptibleStdin};
 use crate::kb;
 use crate::prompt::EndOfInputStops;
 use clap::{Args, CommandFactory, FromArgMatches, Parser, ValueEnum};
-use sitlog_runtime::cli::{run, App};
+use sitlog_runtime::app::{run, App};
 use sitlog_runtime::functions::CallLimits;
 use sitlog_runtime::history::Entry;
 use sitlog_runtime::machine::{Actions, Observer, Options, Perception};

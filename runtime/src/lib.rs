@@ -17,9 +17,9 @@
 //! Every walk over a term is iterative or grows its stack on the heap, so
 //! terms of any depth are safe on a 2 MiB thread.
 
+pub mod app;
 mod arith;
 pub mod builtins;
-pub mod cli;
 mod convert;
 mod copy;
 pub mod eval;

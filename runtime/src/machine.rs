@@ -370,7 +370,7 @@ pub struct RunError {
     pub arc: Option<usize>,
     pub location: Option<String>,
     /// Where in the program, for a reporter that shows the source
-    /// ([`crate::cli::App::render_error`]); boxed to keep errors small.
+    /// ([`crate::app::App::render_error`]); boxed to keep errors small.
     pub site: Option<Box<ErrorSite>>,
 }
 

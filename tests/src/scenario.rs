@@ -6,7 +6,7 @@
 use sitlog_robot::cli::{execute_with, Format, RunArgs, Streams};
 use sitlog_robot::console::SharedBuf;
 use sitlog_robot::{Assets, Source};
-use sitlog_runtime::cli::App;
+use sitlog_runtime::app::App;
 use sitlog_runtime::Functions;
 use std::path::Path;
 

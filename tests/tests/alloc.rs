@@ -156,7 +156,7 @@ fn transitions_allocate_nothing_in_steady_state() {
     let (checked, _) = sitlog_compiler::check_path(&dir).unwrap();
     let ir = sitlog_compiler::ir::lower(&checked.ok().unwrap());
     let interpreted = measure(|ticks| {
-        let (outcome, _store) = sitlog_runtime::cli::run(
+        let (outcome, _store) = sitlog_runtime::app::run(
             &ir,
             "main",
             None,

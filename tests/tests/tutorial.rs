@@ -8,7 +8,7 @@
 use sitlog_robot::cli::{execute_with, RunArgs, Streams};
 use sitlog_robot::console::SharedBuf;
 use sitlog_robot::Assets;
-use sitlog_runtime::cli::App;
+use sitlog_runtime::app::App;
 use sitlog_runtime::machine::Options;
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
 use sitlog_runtime::Functions;
@@ -42,7 +42,7 @@ fn run<A: App>(program: &A, functions: Functions, script: &str) -> (String, Stri
     let mut perception = ScriptPerception::new(script, text);
     let err = SharedBuf::default();
     let mut actions = TextActions::new(err.clone(), program.basic_actions());
-    let (outcome, _) = sitlog_runtime::cli::run(
+    let (outcome, _) = sitlog_runtime::app::run(
         program,
         "main",
         None,

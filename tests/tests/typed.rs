@@ -12,7 +12,7 @@ use sitlog_compiler::ir::Ir;
 use sitlog_runtime::history::Entry;
 use sitlog_runtime::machine::{Actions, Observer, Options, Outcome};
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
-use sitlog_runtime::{atoms, cli, report, Atom, Functions, Store, Term};
+use sitlog_runtime::{app, atoms, report, Atom, Functions, Store, Term};
 use sitlog_tests::compiled::canonical_vars;
 use std::path::Path;
 
@@ -70,7 +70,7 @@ impl Observer for Trace {
 }
 
 /// One run: the report, what the actions saw, the observer's trace.
-fn run<A: cli::App>(
+fn run<A: app::App>(
     app: &A,
     main: &str,
     script: &str,
@@ -94,7 +94,7 @@ fn run<A: cli::App>(
             &mut text_actions
         };
         let observer: Option<&mut dyn Observer> = if observe { Some(&mut trace) } else { None };
-        cli::run(
+        app::run(
             app,
             main,
             None,
@@ -113,7 +113,7 @@ fn run<A: cli::App>(
     (canonical_vars(&report), outcome.transitions, seen, trace.0)
 }
 
-fn agree<A: cli::App>(compiled: &A, interpreted: &Ir, main: &str, script: &str) {
+fn agree<A: app::App>(compiled: &A, interpreted: &Ir, main: &str, script: &str) {
     for keep in [false, true] {
         for observe in [false, true] {
             for log_numbers in [false, true] {
