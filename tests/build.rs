@@ -40,6 +40,7 @@ fn main() {
         let file = format!("{name}.rs");
         let result = sitlog_compiler::build::Config::new()
             .file_name(&file)
+            .world_functions(sitlog_robot::WORLD_FUNCTIONS)
             .compile(app);
         if let Err(e) = result {
             // A DM that does not check is the golden tests' business; say so

@@ -27,8 +27,8 @@
 //! docs/guide/performance.md come from one such run.
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use sitlog_compiler::interp::Resolved;
 use sitlog_compiler::ir::Ir;
-use sitlog_compiler::resolve::Resolved;
 use sitlog_runtime::machine::{Options, Outcome};
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
 use sitlog_runtime::{app, Functions, Store, Term};

@@ -1,5 +1,6 @@
-//! The IR as a whole program for the runtime's CLI runner (`sitlogc run`
-//! shares `sitlog_runtime::app` with compiled programs).
+//! The IR as a whole program for the runtime's runner
+//! ([`sitlog_runtime::app::App`]): initial state, basic actions, recovery
+//! protocols, and run-time errors rendered at the failing expression.
 
 use crate::diag::{Diagnostic, Loc};
 use crate::ir::{ExprSite, Ir};

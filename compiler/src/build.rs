@@ -109,6 +109,7 @@ pub struct Config {
     out_dir: Option<PathBuf>,
     file_name: Option<String>,
     quiet: bool,
+    world_functions: &'static [(&'static str, usize)],
 }
 
 impl Config {
@@ -128,6 +129,14 @@ impl Config {
         self
     }
 
+    /// Functions the host registers when the task runs on a world (e.g.
+    /// `sitlog_robot::WORLD_FUNCTIONS`), known to the checker by name and
+    /// arity (see [`crate::check::CheckOptions::world_functions`]).
+    pub fn world_functions(mut self, functions: &'static [(&'static str, usize)]) -> Config {
+        self.world_functions = functions;
+        self
+    }
+
     /// Do not print `cargo:` lines (outside build scripts).
     pub fn quiet(mut self, quiet: bool) -> Config {
         self.quiet = quiet;
@@ -141,7 +150,11 @@ impl Config {
         if !self.quiet {
             println!("cargo:rerun-if-changed={}", app.display());
         }
-        let compiled = generate(app, &app.display().to_string());
+        let check = crate::check::CheckOptions {
+            world_functions: self.world_functions,
+            ..Default::default()
+        };
+        let compiled = generate_checked(app, &app.display().to_string(), Default::default(), check);
         if !self.quiet {
             let files = match &compiled {
                 Ok(c) => c.files.clone(),

@@ -1,13 +1,26 @@
-//! `sitlog-compiler`: SitLog source to checked program, and from there to the
-//! reference interpreter and generated Rust.
+//! `sitlog-compiler`, the compiler core: SitLog source to a checked
+//! program, and from there to the interpreter's plans, generated Rust and
+//! diagrams. No command line, no robot: the `sitlogc` shell is `sitlog-cli`,
+//! which sits on top of this crate (as Gleam's CLI on its `compiler-core`).
 //!
-//! Stages run one way: [`load`] (files → read terms) → [`ast`] (SitLog layer)
-//! → [`check`] (diagnostics; produces [`check::Checked`]) → IR → interpret |
-//! generate. Only [`load`] touches the file system; rendering of diagnostics
-//! lives in [`diag`].
+//! Stages run one way, one module each:
+//! [`load`] (files → read terms, with [`source`] positions) → [`ast`] (the
+//! SitLog layer) → [`check`] (diagnostics, rendered by [`diag`]; produces
+//! [`check::Checked`], the only input later stages accept) → [`ir::lower`]
+//! → the back ends: [`interp`] (plans the runtime's machine runs, with
+//! [`instantiate`] the reference path from templates; [`run`] hands them to
+//! the one runner, `sitlog_runtime::app::run`), [`types`] + [`codegen`]
+//! (Rust for `include_dm!`, build scripts ([`build`]) and `sitlogc build`),
+//! [`diagram`] (the papers' notation, drawn by `sitlog-graph`).
+//!
+//! Invariants: no stage reaches back to an earlier one; this crate never
+//! depends on the robot, simulator, debugger, language server, live view or
+//! command line (`tests/tests/repository/layout.rs` checks the crate graph);
+//! it reads files only in [`load`] and writes only in [`build`] (the
+//! generated file a build script asks for, as decisions.md §8 places that
+//! helper here); semantics live in the runtime, so every back end runs the
+//! same steps.
 
-#[cfg(feature = "cli")]
-pub mod analysis;
 mod app;
 pub mod ast;
 pub mod build;
@@ -15,55 +28,31 @@ pub mod check;
 pub mod codegen;
 pub mod diag;
 pub mod diagram;
+pub mod instantiate;
 pub mod interp;
 pub mod ir;
-pub mod legacy;
 pub mod load;
-#[cfg(feature = "cli")]
-pub mod package;
-pub mod resolve;
 pub mod run;
-pub mod scaffold;
 pub mod source;
 pub mod types;
-#[cfg(feature = "cli")]
-pub mod watch;
 
 use std::path::Path;
 
-/// Loads and checks an application directory or DM file.
-///
-/// The functions of the simulated robot ([`sitlog_robot::WORLD_FUNCTIONS`])
-/// are known to the checker when the application runs on a world.
+/// Loads and checks an application directory or DM file. Functions a host
+/// registers (the simulated robot's, `sitlog_robot::WORLD_FUNCTIONS`) are
+/// known to the checker only when [`check::CheckOptions::world_functions`]
+/// names them ([`check_path_opts`]).
 pub fn check_path(
     path: &Path,
 ) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
     check_path_opts(path, check::CheckOptions::default())
 }
 
-/// [`check_path`], with unresolved names as warnings (see [`check::check_with`]).
-pub fn check_path_lenient(
-    path: &Path,
-) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
-    check_path_opts(
-        path,
-        check::CheckOptions {
-            unresolved_as_warnings: true,
-            ..Default::default()
-        },
-    )
-}
-
-/// [`check_path`] with [`check::CheckOptions`] (the simulated robot's
-/// functions are added to `world_functions` if it is empty).
+/// [`check_path`] with [`check::CheckOptions`].
 pub fn check_path_opts(
     path: &Path,
-    #[cfg_attr(not(feature = "cli"), allow(unused_mut))] mut options: check::CheckOptions,
+    options: check::CheckOptions,
 ) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
     let (program, diags) = load::load(path)?;
-    #[cfg(feature = "cli")]
-    if options.world_functions.is_empty() {
-        options.world_functions = sitlog_robot::WORLD_FUNCTIONS;
-    }
     Ok(check::check_opts(program, diags, options))
 }

@@ -1,14 +1,14 @@
-//! Running a checked program in test mode: the glue between the IR, the
-//! runtime machine and test-mode input/output, shared by `sitlogc run` and
-//! the tests.
+//! Running a checked program: the IR (through the interpreter's plans, or
+//! from its templates) handed to the one runner, `sitlog_runtime::app::run`,
+//! with the run's configuration as one value; and the application's Prolog
+//! user functions installed in the embedded engine. The command line's
+//! runner (`sitlog_robot`) calls the same `app::run`.
 
+use crate::interp::Resolved;
 use crate::ir::Ir;
-use crate::resolve::Resolved;
-use sitlog_runtime::machine::{
-    Actions, DmProgram, Machine, Observer, Options, Outcome, Perception,
-};
-use sitlog_runtime::{Functions, Store, Term};
-use sitlog_syntax::atoms;
+use sitlog_runtime::app::App;
+use sitlog_runtime::machine::{Actions, Observer, Options, Outcome, Perception};
+use sitlog_runtime::{Functions, Store};
 
 /// What to run and how.
 pub struct RunConfig {
@@ -53,7 +53,7 @@ pub fn run(
     observer: Option<&mut dyn Observer>,
 ) -> Result<(Outcome, Store), ConfigError> {
     let resolved = Resolved::new(ir);
-    run_program(ir, &resolved, config, perception, actions, observer)
+    run_program(&resolved, config, perception, actions, observer)
 }
 
 /// [`run`], every situation instantiated from its template (the reference
@@ -65,50 +65,27 @@ pub fn run_unresolved(
     actions: &mut dyn Actions,
     observer: Option<&mut dyn Observer>,
 ) -> Result<(Outcome, Store), ConfigError> {
-    run_program(ir, ir, config, perception, actions, observer)
+    run_program(ir, config, perception, actions, observer)
 }
 
-fn run_program<P: DmProgram>(
-    ir: &Ir,
+fn run_program<P: App>(
     program: &P,
     config: RunConfig,
     perception: &mut dyn Perception,
     actions: &mut dyn Actions,
     observer: Option<&mut dyn Observer>,
 ) -> Result<(Outcome, Store), ConfigError> {
-    let (mut store, globals) = ir.initial_state();
-    let main = store
-        .parse(&config.main)
-        .map_err(|e| ConfigError(format!("--main `{}`: {}", config.main, e.message)))?
-        .0;
-    let in_arg = match &config.in_arg {
-        Some(text) => {
-            store
-                .parse(text)
-                .map_err(|e| ConfigError(format!("--in-arg `{text}`: {}", e.message)))?
-                .0
-        }
-        None => Term::atom(atoms::NONE),
-    };
-    if let Some((name, _)) = store.functor(main) {
-        if ir.dm_by_name(name).is_none() {
-            return Err(ConfigError(format!(
-                "the application has no DM named `{name}`"
-            )));
-        }
-    } else {
-        return Err(ConfigError(format!(
-            "--main `{}` is not a DM name",
-            config.main
-        )));
-    }
-    let mut options = config.options;
-    if options.recovery.is_empty() {
-        options.recovery = ir.recovery.clone();
-    }
-    let machine = Machine::new(program, store, globals, config.functions, options);
-    let (outcome, store) = machine.run(main, in_arg, perception, actions, observer);
-    Ok((outcome, store))
+    sitlog_runtime::app::run(
+        program,
+        &config.main,
+        config.in_arg.as_deref(),
+        config.options,
+        config.functions,
+        perception,
+        actions,
+        observer,
+    )
+    .map_err(ConfigError)
 }
 
 /// Starts the embedded Prolog engine with the application's templates.pl

@@ -21,6 +21,22 @@ pub fn workspace() -> PathBuf {
         .to_path_buf()
 }
 
+/// Loads and checks an application as `sitlogc` does: the simulated
+/// robot's functions ([`sitlog_robot::WORLD_FUNCTIONS`]) are known.
+pub fn check_app(
+    app: &Path,
+) -> (
+    Result<sitlog_compiler::check::Checked, sitlog_compiler::ast::Program>,
+    Vec<sitlog_compiler::diag::Diagnostic>,
+) {
+    let options = sitlog_compiler::check::CheckOptions {
+        world_functions: sitlog_robot::WORLD_FUNCTIONS,
+        ..Default::default()
+    };
+    sitlog_compiler::check_path_opts(app, options)
+        .unwrap_or_else(|e| panic!("{} is not readable: {e}", app.display()))
+}
+
 /// Rust versions of the Appendix A user functions `f`, `g` and `h`
 /// (Listing A5), used until Prolog user functions run.
 pub fn appendix_a_functions(functions: &mut Functions) {

@@ -63,7 +63,7 @@ pub fn execute<A: App>(program: &A, functions: Functions, assets: &Assets) -> Ru
 /// The checked IR of `app` and its standard and Prolog functions: what the
 /// interpreter runs.
 pub fn interpreter(app: &Path) -> (sitlog_compiler::ir::Ir, Functions) {
-    let (result, diags) = sitlog_compiler::check_path(app).expect("the app is readable");
+    let (result, diags) = crate::check_app(app);
     let checked = result.unwrap_or_else(|_| panic!("{} does not check: {diags:?}", app.display()));
     let ir = sitlog_compiler::ir::lower(&checked);
     let mut functions = Functions::standard();

@@ -1,15 +1,15 @@
-//! The interpreter's plans (`sitlog_compiler::resolve`) on the shipped
+//! The interpreter's plans (`sitlog_compiler::interp`) on the shipped
 //! applications: most of their situations run from plans; the counts are
 //! printed (`cargo test -p sitlog-tests --test resolve -- --nocapture`) for
 //! docs/guide/performance.md. That plans and templates agree is checked by
 //! `random_agreement.rs` and the goldens (which run from plans).
 
-use sitlog_compiler::resolve::Resolved;
+use sitlog_compiler::interp::Resolved;
 use std::path::Path;
 
 fn counts(app: &str) -> (usize, usize) {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(app);
-    let (result, _) = sitlog_compiler::check_path(&dir).expect("readable");
+    let (result, _) = sitlog_tests::check_app(&dir);
     let ir = sitlog_compiler::ir::lower(&result.expect("checks"));
     let (planned, all) = Resolved::new(&ir).counts();
     println!("{app}: {planned} of {all} situations run from plans");

@@ -19,6 +19,10 @@
 //!   to the runtime's evaluator;
 //! - a constant next situation is resolved to its index (D-21), so the
 //!   machine jumps to it without selecting.
+//!
+//! (One file over 800 lines: it is one lowering of a visit, step by step,
+//! in the order the visit runs; split, the order would no longer read top
+//! to bottom.)
 
 use super::{none_marker, Gen};
 use crate::ir::{IrDm, IrSituation};

@@ -1,0 +1,323 @@
+//! The command line of `sitlogc` as clap reads it: the subcommands, their
+//! options and help texts. Parsing only; [`crate::commands`] does the work.
+//! The help and the manual page are generated from these definitions.
+
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+
+#[derive(Parser)]
+#[command(
+    name = "sitlogc",
+    version,
+    about = "Check, run and compile SitLog task programs (dialogue models)",
+    long_about = "Check, run and compile SitLog task programs (dialogue models).\n\n\
+An application is a directory: the DM files listed in its `models` file (or every `*.dm` \
+below it), plus global_vars.pl, basic_actions.pl, expectation_types.pl, user_functions.pl \
+and templates.pl beside them."
+)]
+pub struct Cli {
+    /// When diagnostics are coloured: `auto` when stderr is a terminal and
+    /// NO_COLOR is unset or empty; `always`; `never`.
+    #[arg(long, global = true, value_enum, value_name = "WHEN", default_value_t = ColorWhen::Auto)]
+    pub color: ColorWhen,
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq, Debug)]
+pub enum ColorWhen {
+    Auto,
+    Always,
+    Never,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Read and check applications or DM files, reporting every problem found.
+    ///
+    /// Each PATH is a DM file (a program of one file), an application
+    /// directory (it has a `models` file or `*.dm` files directly in it), or
+    /// a directory of applications (each checked on its own). Exit status: 0 without errors,
+    /// 1 when an error was found, 2 on usage or I/O problems.
+    Check {
+        /// Application directories or DM files.
+        #[arg(required = true, value_name = "PATH")]
+        paths: Vec<PathBuf>,
+        /// `human`: rustc-like text on stderr; `json`: one JSON object per
+        /// diagnostic and line on stdout (code, severity, message, file, line,
+        /// column, end, label, labels, help).
+        #[arg(long, value_enum, default_value_t = Format::Human)]
+        format: Format,
+        /// Treat warnings as errors (exit status 1).
+        #[arg(long)]
+        deny_warnings: bool,
+        /// Do not print warnings.
+        #[arg(long, short)]
+        quiet: bool,
+        /// The original's rules, as `run --legacy` applies them: a DM
+        /// defined twice identically is a warning (W0203), not an error.
+        #[arg(long)]
+        legacy: bool,
+    },
+    /// Run an application: on its simulated world, or in test mode.
+    ///
+    /// With a world (the application's `world.toml`, or --world FILE) the
+    /// task runs on the simulated robot and user, and the conversation is
+    /// printed as it happens. Without one it runs in test mode, like the
+    /// original interpreter: each expectation of a perceptual situation is
+    /// met by a term read from the script (one term per line, ending with
+    /// `.`) or typed at a prompt on stdin. At the end the task history, the
+    /// final out_arg and the global variables are printed. At the prompt,
+    /// Ctrl-D (the end of stdin) ends the task where it waits. Exit status: 0
+    /// when the main DM reached a final situation, 1 on a run-time error
+    /// (the history so far is still printed), 2 on usage or I/O problems,
+    /// 3 when the typed input ended before the task did, 130 / 143 when
+    /// stopped by SIGINT / SIGTERM.
+    Run {
+        /// The application directory (or a single DM file).
+        #[arg(value_name = "APP")]
+        app: PathBuf,
+        #[command(flatten)]
+        run: sitlog_robot::cli::RunArgs,
+        /// Run even if next situations, embedded DMs, exit arcs or SitLog
+        /// variables do not resolve (E0212, E0216–E0219); taking such a path
+        /// stops the task with a run-time error. For legacy applications.
+        #[arg(long)]
+        allow_unresolved: bool,
+        /// Run an application written for the original interpreter
+        /// unmodified, from the original's tree: load the Prolog files its
+        /// `src/init.pl` consults from `$SITLOG_HOME` (KB services, parser,
+        /// cognitive model, diagnosis, decision, planning) before the
+        /// application's own; a DM defined twice identically is a warning
+        /// (the first is used); implies --allow-unresolved.
+        #[arg(long)]
+        legacy: bool,
+        /// The original's tree for --legacy (default: $SITLOG_HOME, else
+        /// the nearest directory above APP that has src/init.pl).
+        #[arg(long, value_name = "DIR", requires = "legacy")]
+        sitlog_home: Option<PathBuf>,
+        /// With --legacy: `prolog` runs the original's KB layer as it is;
+        /// `native` serves its KB services, updates, loads and saves from
+        /// our KB (sitlog-kb), the KB being a handle.
+        #[arg(long, value_enum, value_name = "HOW", requires = "legacy", default_value_t = LegacyKb::Prolog)]
+        legacy_kb: LegacyKb,
+        /// Hot reload: when a file of the application changes (a DM file,
+        /// `models`, global_vars.pl, basic_actions.pl, the Prolog user
+        /// functions), read and check the program again; if it checks, the
+        /// run goes on in the new program between two transitions, at the
+        /// same DM and situation, keeping its stack, pipe, variables and
+        /// history (a situation waiting for input takes it in the new
+        /// program); if not, the diagnostics are printed and the old program
+        /// goes on. A change that removes the situation the run is at, or a
+        /// DM on its stack, stops the run (exit status 1). Not with --legacy.
+        #[arg(long, conflicts_with = "legacy")]
+        watch: bool,
+    },
+    /// Run an application under the step debugger (interpreted).
+    ///
+    /// A REPL over the live run: breakpoints (`break DM[:SITUATION]`,
+    /// `break on error`), `step`, `next`, `finish`, `continue`, and at a
+    /// stop `stack`, `pipe`, `vars`, `history`, `print TERM`, `world`; in
+    /// test mode `input TERM` answers a perceptual situation the script has
+    /// no input for. `help` lists the commands. The run's options are
+    /// those of `sitlogc run`. Exit status: the run's, 0 after `quit`, 2 for
+    /// a bad line in the --commands file. A compiled task gets the same
+    /// debugger with `sitlogc build --debugger`.
+    Debug {
+        /// The application directory (or a single DM file).
+        #[arg(value_name = "APP")]
+        app: PathBuf,
+        #[command(flatten)]
+        run: sitlog_robot::cli::RunArgs,
+        /// Read the commands from FILE (each echoed after the prompt)
+        /// instead of the terminal; when it ends, the run goes on without
+        /// stopping.
+        #[arg(long, value_name = "FILE")]
+        commands: Option<PathBuf>,
+    },
+    /// Replay a recorded run (`sitlogc run --trace FILE`) without running it.
+    ///
+    /// The debugger's commands over the recording, forwards and backwards:
+    /// `step`, `back`, `goto N`, `next`, `finish`, `continue`, `break`,
+    /// `stack`, `history`, `diff TRACE2`. With --diff, prints the first
+    /// transition where the two recordings differ and exits (status 0 when
+    /// they are the same, 1 when they differ). A bad trace is an error
+    /// naming FILE:LINE (exit 2).
+    Replay {
+        /// The recording (JSON lines, as --trace writes them).
+        #[arg(value_name = "TRACE")]
+        trace: PathBuf,
+        /// Compare with this recording and exit.
+        #[arg(long, value_name = "TRACE2")]
+        diff: Option<PathBuf>,
+        /// Read the commands from FILE (each echoed after the prompt)
+        /// instead of the terminal.
+        #[arg(long, value_name = "FILE", conflicts_with = "diff")]
+        commands: Option<PathBuf>,
+    },
+    /// Compile an application to one executable.
+    ///
+    /// Generates a Cargo package that uses the runtime shipped inside
+    /// sitlogc, builds it with cargo (progress on stderr) and copies the
+    /// executable to FILE, by default a file named after the application in
+    /// the current directory (refused when a directory has that name: give
+    /// -o then). Needs cargo, not the sitlog-rs sources: the runtime, the
+    /// generated packages and the shared build cache live in the user's
+    /// cache directory ($SITLOGC_CACHE_DIR, else $XDG_CACHE_HOME/sitlogc,
+    /// else ~/.cache/sitlogc). The executable runs the task with the
+    /// options of `sitlogc run`. With `--emit rust` the generated Rust is
+    /// written to FILE (stdout without -o) instead. Exit status: 0 when
+    /// written, 1 when the application has errors, 2 on usage, I/O or cargo
+    /// problems. A compiled task does not reload when its sources change
+    /// (that is `sitlogc run APP --watch`).
+    Build {
+        /// The application directory (or a single DM file).
+        #[arg(value_name = "APP")]
+        app: PathBuf,
+        /// Where to write the executable (default: the application's name,
+        /// in the current directory).
+        #[arg(short, long, value_name = "FILE")]
+        output: Option<PathBuf>,
+        /// Build with optimizations (the default: a shipped task is a
+        /// release build; kept for compatibility).
+        #[arg(long, conflicts_with = "debug")]
+        release: bool,
+        /// Build without optimizations (faster to build).
+        #[arg(long)]
+        debug: bool,
+        /// `rust`: only write the generated code.
+        #[arg(long, value_enum)]
+        emit: Option<Emit>,
+        /// Print what type inference found (which variables and situations
+        /// run on native values, and why the others stay terms) and stop.
+        #[arg(long)]
+        explain_types: bool,
+        /// Compile even if next situations, embedded DMs, exit arcs or
+        /// SitLog variables do not resolve (E0212, E0216–E0219), as `run
+        /// --allow-unresolved` runs them: taking such a path stops the task
+        /// with a run-time error.
+        #[arg(long)]
+        allow_unresolved: bool,
+        /// Link the step debugger: the executable runs the task under the
+        /// debugger, as `sitlogc debug APP` runs the sources (commands from
+        /// the terminal, or from its --commands FILE). Opt-in: a normal
+        /// compiled task stays smaller.
+        #[arg(long, conflicts_with = "emit")]
+        debugger: bool,
+    },
+    /// Draw an application in the notation of the SitLog papers.
+    ///
+    /// Each DM is a dotted oval; situations are circles with their id and
+    /// type; arcs are labelled `expectation : action`; a next situation
+    /// given by a function is a bold dot labelled with it, with one exit
+    /// per value the compiler can tell (dashed when it cannot); several
+    /// instances of one situation id are reached through a `∨` circle;
+    /// recursive situations hold one return dot per final situation of
+    /// their embedded DM; bold arrows are the pipe between DMs and the
+    /// task's out_arg. Every element's SVG `<title>` starts with the
+    /// `file:line:col` where it is written. An application with errors
+    /// gives its diagnostics, not a picture (exit status 1).
+    Graph {
+        /// The application directory (or a single DM file).
+        #[arg(value_name = "APP")]
+        app: PathBuf,
+        /// Where to write the diagram (default: stdout).
+        #[arg(short, long, value_name = "FILE")]
+        output: Option<PathBuf>,
+        /// Draw only this DM (by name).
+        #[arg(long, value_name = "NAME")]
+        dm: Option<String>,
+        /// The main DM, whose out_arg leaves the task (default `main`).
+        #[arg(long, value_name = "NAME")]
+        main: Option<String>,
+        /// `svg` (laid out here), `dot` (for Graphviz), `json` (nodes,
+        /// edges, labels and source locations, for other tools).
+        #[arg(long, value_enum, default_value_t = GraphFormat::Svg)]
+        format: GraphFormat,
+        /// Colour a recorded run (`sitlogc run --trace FILE`): visited
+        /// situations and arcs taken, with how often.
+        #[arg(long, value_name = "FILE")]
+        trace: Option<PathBuf>,
+    },
+    /// Ask a knowledge base one question (for people exploring a KB).
+    ///
+    /// QUERY is one service call with the original's name and argument
+    /// order, leaving out the KB argument; the answer is the last argument,
+    /// written as a variable, e.g. `object_property_value(pete, lives, X)`.
+    /// Prints the answer (writeq style) or `false`. FILE is never modified.
+    /// Exit status: 0 with an answer or `false`, 1 on a bad KB or query.
+    Kb {
+        /// The KB file (a Prolog list of `class(Id, Mother, Props, Rels, Individuals)`).
+        #[arg(value_name = "FILE")]
+        file: PathBuf,
+        /// An update applied before the query (repeatable, in order),
+        /// e.g. `--do 'add_object_property(mug1, misplaced, yes)'`.
+        #[arg(long = "do", value_name = "UPDATE", allow_hyphen_values = true)]
+        updates: Vec<String>,
+        /// The service call.
+        #[arg(value_name = "QUERY", allow_hyphen_values = true)]
+        query: String,
+    },
+    /// A language server (LSP, JSON-RPC on stdin/stdout) for editors: the
+    /// diagnostics of `check` as you type, go to the definition of a DM,
+    /// situation, global, basic action or user function, and hovers.
+    /// Point your editor's LSP client at `sitlogc lsp` for `*.dm` files.
+    Lsp,
+    /// Print a completion script for SHELL on stdout.
+    ///
+    /// For example `sitlogc completions bash > ~/.local/share/bash-completion/completions/sitlogc`,
+    /// `sitlogc completions zsh > ~/.zfunc/_sitlogc` (with `~/.zfunc` in
+    /// `fpath`), or `sitlogc completions fish > ~/.config/fish/completions/sitlogc.fish`.
+    Completions {
+        /// The shell.
+        #[arg(value_enum)]
+        shell: clap_complete::Shell,
+    },
+    /// Write the manual page (roff) of sitlogc.
+    ///
+    /// Without --dir, the page `sitlogc(1)` goes to stdout (try `sitlogc man
+    /// | man -l -`); with --dir, `sitlogc.1` and one page per subcommand
+    /// (`sitlogc-run.1`, ...) are written into DIR.
+    Man {
+        /// Write every page into this directory (made if missing).
+        #[arg(long, value_name = "DIR")]
+        dir: Option<PathBuf>,
+    },
+    /// Make a new application that checks and runs at once.
+    ///
+    /// Creates the directory NAME (it must not exist) with a DM `main` (a
+    /// speech situation and a recursive situation calling the DM
+    /// `ask_name`), global_vars.pl, basic_actions.pl, user_functions.pl, a
+    /// `models` file, a test-mode script, the golden output of running it
+    /// (`expected.txt`) and a README. Exit status: 0 when made, 2 when NAME
+    /// exists or cannot be written (nothing is changed then).
+    New {
+        /// The application directory to make; its last component names the application.
+        #[arg(value_name = "NAME")]
+        name: PathBuf,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum LegacyKb {
+    Prolog,
+    Native,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum Emit {
+    Rust,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum GraphFormat {
+    Svg,
+    Dot,
+    Json,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum Format {
+    Human,
+    Json,
+}

@@ -1,0 +1,111 @@
+//! `sitlogc build`: an application compiled to one executable
+//! ([`crate::package`]), its generated Rust (`--emit rust`), or what type
+//! inference found (`--explain-types`).
+
+use crate::args::Emit;
+use crate::output::{checked_ir, checked_ir_opts, with_world, write_stdout};
+use std::path::PathBuf;
+
+pub fn explain_types_of(app: &std::path::Path) -> u8 {
+    match checked_ir(app) {
+        Ok(ir) => {
+            let types = sitlog_compiler::types::infer(&ir);
+            print!("{}", sitlog_compiler::types::explain(&ir, &types));
+            0
+        }
+        Err(code) => code,
+    }
+}
+
+pub fn build_app(
+    app: &std::path::Path,
+    output: Option<PathBuf>,
+    release: bool,
+    emit: Option<Emit>,
+    allow_unresolved: bool,
+    debugger: bool,
+) -> u8 {
+    use crate::package;
+    use sitlog_compiler::build;
+    let options = with_world(sitlog_compiler::check::CheckOptions {
+        unresolved_as_warnings: allow_unresolved,
+        ..Default::default()
+    });
+    if let Err(code) = checked_ir_opts(app, options) {
+        return code;
+    }
+    let compiled =
+        match build::generate_checked(app, &app.display().to_string(), Default::default(), options)
+        {
+            Ok(c) => c,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return 1;
+            }
+        };
+    if emit == Some(Emit::Rust) {
+        let text = compiled.to_file_string();
+        return match output {
+            Some(path) => match build::write_if_changed(&path, &text) {
+                Ok(_) => 0,
+                Err(e) => {
+                    eprintln!("error: cannot write {}: {e}", path.display());
+                    2
+                }
+            },
+            None => write_stdout(&text, "the generated code"),
+        };
+    }
+    let output = match output_file(app, output) {
+        Ok(o) => o,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return 2;
+        }
+    };
+    let layout = match package::Layout::user() {
+        Ok(l) => l,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
+    let built =
+        package::write_package(&compiled, app, &layout, debugger).and_then(|(dir, name)| {
+            eprintln!("sitlogc: building {} in {}", name, dir.display());
+            package::build_package(&dir, &name, &layout, release, &output)
+        });
+    match built {
+        Ok(()) => {
+            eprintln!("sitlogc: wrote {}", output.display());
+            0
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            2
+        }
+    }
+}
+
+/// Where `build` writes the executable: `-o FILE`, else a file named after
+/// the application (its directory's real name, or the DM file's stem) in
+/// the current directory. A directory there (the application itself when
+/// building from beside it) is refused before anything is built, as
+/// `go build` does, rather than writing somewhere the user did not ask.
+pub fn output_file(app: &std::path::Path, output: Option<PathBuf>) -> Result<PathBuf, String> {
+    let given = output.is_some();
+    let output = output.unwrap_or_else(|| PathBuf::from(sitlog_robot::cli::app_name(app)));
+    if output.is_dir() {
+        let o = output.display();
+        return Err(if given {
+            format!("cannot write the executable to `{o}`: it is a directory; give a file name with -o FILE")
+        } else {
+            format!(
+                "the default output `{o}` is a directory (the application itself, when you build from beside it); \
+                 name the executable with -o FILE, e.g. `sitlogc build {} -o {o}-task`",
+                app.display()
+            )
+        });
+    }
+    Ok(output)
+}

@@ -1,0 +1,101 @@
+//! `sitlogc check`: every problem of applications and DM files, as text
+//! on stderr or JSON lines on stdout.
+
+use crate::args::Format;
+use crate::output::color_stderr;
+use sitlog_compiler::diag::{self, Severity};
+use std::io::Write;
+use std::path::PathBuf;
+
+pub fn check(
+    paths: &[PathBuf],
+    format: Format,
+    deny_warnings: bool,
+    quiet: bool,
+    legacy: bool,
+) -> u8 {
+    let color = color_stderr();
+    let mut errors = 0usize;
+    let mut warnings = 0usize;
+    let mut io_failed = false;
+    let stdout = std::io::stdout();
+    let mut out = stdout.lock();
+    let mut programs = Vec::new();
+    for path in paths {
+        match sitlog_compiler::load::discover(path) {
+            // Nothing to check is a usage error (exit 2, like a missing
+            // path): a check that passes on nothing would hide a wrong path.
+            Ok(found) if found.is_empty() => {
+                eprintln!(
+                    "error: no application or DM file found in {} (an application is a directory with a `models` file or `*.dm` files)",
+                    path.display()
+                );
+                io_failed = true;
+            }
+            Ok(found) => programs.extend(found),
+            Err(e) => {
+                eprintln!("error: cannot read {e}");
+                io_failed = true;
+            }
+        }
+    }
+    for path in &programs {
+        let options = sitlog_compiler::check::CheckOptions {
+            legacy,
+            ..Default::default()
+        };
+        let (result, diags) = match crate::output::check_app(path, options) {
+            Ok(r) => r,
+            Err(e) => {
+                eprintln!("error: cannot read {e}");
+                io_failed = true;
+                continue;
+            }
+        };
+        let program = match &result {
+            Ok(checked) => checked.program(),
+            Err(program) => program,
+        };
+        for d in &diags {
+            match d.severity {
+                Severity::Error => errors += 1,
+                Severity::Warning => warnings += 1,
+            }
+            if quiet && d.severity == Severity::Warning {
+                continue;
+            }
+            match format {
+                Format::Human => eprint!("{}", diag::render_human(d, &program.sources, color)),
+                Format::Json => {
+                    if let Err(e) = writeln!(out, "{}", diag::render_json(d, &program.sources)) {
+                        if e.kind() != std::io::ErrorKind::BrokenPipe && !io_failed {
+                            eprintln!("error: cannot write the diagnostics to stdout: {e}");
+                        }
+                        io_failed |= e.kind() != std::io::ErrorKind::BrokenPipe;
+                    }
+                }
+            }
+        }
+    }
+    if let Err(e) = out.flush() {
+        if e.kind() != std::io::ErrorKind::BrokenPipe {
+            eprintln!("error: cannot write the diagnostics to stdout: {e}");
+            io_failed = true;
+        }
+    }
+    if format == Format::Human {
+        eprintln!(
+            "checked {} program(s): {} error(s), {} warning(s)",
+            programs.len(),
+            errors,
+            warnings
+        );
+    }
+    if io_failed {
+        2
+    } else if errors > 0 || (deny_warnings && warnings > 0) {
+        1
+    } else {
+        0
+    }
+}

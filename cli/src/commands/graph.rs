@@ -1,0 +1,95 @@
+//! `sitlogc graph`: an application drawn in the papers' notation.
+
+use crate::args::GraphFormat;
+use crate::output::checked_ir;
+use std::io::Write;
+use std::path::PathBuf;
+
+pub fn graph(
+    app: &std::path::Path,
+    output: Option<PathBuf>,
+    dm: Option<String>,
+    main: Option<String>,
+    format: GraphFormat,
+    trace: Option<PathBuf>,
+) -> u8 {
+    let ir = match checked_ir(app) {
+        Ok(ir) => ir,
+        Err(code) => return code,
+    };
+    let options = sitlog_compiler::diagram::Options {
+        dm,
+        main,
+        title: sitlog_compiler::build::app_name(app),
+    };
+    let diagram = match sitlog_compiler::diagram::diagram(&ir, &options) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
+    let overlay = match &trace {
+        None => None,
+        Some(path) => {
+            let text = match std::fs::read_to_string(path) {
+                Ok(t) => t,
+                Err(e) => {
+                    eprintln!("error: cannot read trace {}: {e}", path.display());
+                    return 2;
+                }
+            };
+            match sitlog_graph::trace::read(&diagram, &text) {
+                Ok(o) => {
+                    if o.unmatched > 0 {
+                        eprintln!(
+                            "note: {} of {} transitions of {} are not in this diagram",
+                            o.unmatched,
+                            o.transitions,
+                            path.display()
+                        );
+                    }
+                    Some(o)
+                }
+                Err(e) => {
+                    eprintln!("error: {}: {e}", path.display());
+                    return 2;
+                }
+            }
+        }
+    };
+    let text = match format {
+        GraphFormat::Dot => sitlog_graph::dot::render(&diagram),
+        GraphFormat::Json => diagram.to_json(),
+        GraphFormat::Svg => {
+            let layout = sitlog_graph::layout::layout(&diagram);
+            for n in &layout.notes {
+                eprintln!("note: {n}");
+            }
+            sitlog_graph::svg::render(&diagram, &layout, overlay.as_ref())
+        }
+    };
+    if trace.is_some() && format != GraphFormat::Svg {
+        eprintln!("note: --trace colours the SVG only");
+    }
+    match output {
+        Some(path) => match std::fs::write(&path, text) {
+            Ok(()) => 0,
+            Err(e) => {
+                eprintln!("error: cannot write {}: {e}", path.display());
+                2
+            }
+        },
+        None => {
+            let mut out = std::io::stdout().lock();
+            match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+                Ok(()) => 0,
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => 0,
+                Err(e) => {
+                    eprintln!("error: cannot write the diagram: {e}");
+                    2
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,55 @@
+//! `sitlogc replay`: a recorded run (`--trace`) replayed or compared.
+
+/// `sitlogc replay`.
+pub fn replay(
+    trace: &std::path::Path,
+    diff: Option<&std::path::Path>,
+    commands: Option<&std::path::Path>,
+) -> u8 {
+    let read = |path| match sitlog_debug::Trace::read(path) {
+        Ok(t) => Ok(t),
+        Err(e) => {
+            eprintln!("{e}");
+            Err(2)
+        }
+    };
+    let trace = match read(trace) {
+        Ok(t) => t,
+        Err(code) => return code,
+    };
+    if let Some(other) = diff {
+        let other = match read(other) {
+            Ok(t) => t,
+            Err(code) => return code,
+        };
+        return match sitlog_debug::diff(&trace, &other) {
+            None => {
+                println!(
+                    "the recordings are the same ({} transitions)",
+                    trace.records.len()
+                );
+                0
+            }
+            Some(text) => {
+                print!("{text}");
+                1
+            }
+        };
+    }
+    let source = match commands {
+        Some(path) => sitlog_debug::Source::file(path),
+        None => sitlog_debug::Source::editor(),
+    };
+    match source {
+        Ok(source) => sitlog_debug::replay(
+            &trace,
+            source,
+            &mut std::io::stdout(),
+            &mut std::io::stderr(),
+        ),
+        Err(e) => {
+            eprintln!("{e}");
+            2
+        }
+    }
+}

@@ -1,0 +1,176 @@
+//! `sitlogc run` and `sitlogc debug`: a run of the interpreter on the
+//! simulated robot or in test mode (the runner is `sitlog_robot`'s), under
+//! the debugger, or reloading its sources (`--watch`, [`crate::watch`]).
+
+use crate::output::checked_ir_opts;
+use std::io::IsTerminal;
+use std::path::PathBuf;
+
+/// `legacy`: `Some(--sitlog-home)` under `--legacy`.
+pub fn run_app(
+    app: &std::path::Path,
+    args: &sitlog_robot::cli::RunArgs,
+    allow_unresolved: bool,
+    legacy: Option<Option<&std::path::Path>>,
+    native_kb: bool,
+    debug: Option<Option<&std::path::Path>>,
+    watch: bool,
+) -> u8 {
+    // The legacy profile: the original's Prolog layer from SITLOG_HOME.
+    let mut before: Vec<sitlog_runtime::prolog::PrologSource> = Vec::new();
+    if let Some(explicit) = legacy {
+        use crate::legacy;
+        let files = legacy::find_home(app, explicit)
+            .and_then(|home| legacy::init_consults(&home).map(|f| (home, f)));
+        let (home, files) = match files {
+            Ok(x) => x,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return 2;
+            }
+        };
+        {
+            use sitlog_runtime::prolog::PrologSource;
+            // getenv('SITLOG_HOME', H) as the original's launchers set it
+            // (with a trailing `/`).
+            let value = std::env::var("SITLOG_HOME")
+                .ok()
+                .filter(|v| !v.is_empty())
+                .unwrap_or_else(|| format!("{}/", home.display()));
+            let mut fact = String::from("'$sitlog_env'('SITLOG_HOME', ");
+            sitlog_syntax::write::write_atom(&mut fact, sitlog_syntax::Atom::intern(&value), true);
+            fact.push_str(").\n");
+            before.push(PrologSource::new("<legacy environment>", fact));
+            for f in &files {
+                match PrologSource::from_path(f) {
+                    Ok(s) => before.push(s),
+                    Err(e) => {
+                        eprintln!("error: --legacy: cannot read {}: {e}", f.display());
+                        return 2;
+                    }
+                }
+            }
+        }
+    }
+    let check_options = sitlog_compiler::check::CheckOptions {
+        unresolved_as_warnings: allow_unresolved || legacy.is_some(),
+        legacy: legacy.is_some(),
+        ..Default::default()
+    };
+    let ir = match checked_ir_opts(app, check_options) {
+        Ok(ir) => ir,
+        Err(code) => return code,
+    };
+    let mut assets = match sitlog_robot::Assets::from_app(app) {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("{e}");
+            return e.status;
+        }
+    };
+    let mut functions = sitlog_runtime::Functions::standard();
+    // The application's user_functions.pl and templates.pl (feature `prolog`).
+    if let Err(errors) = sitlog_compiler::run::install_prolog_with(
+        &ir,
+        &mut functions,
+        Default::default(),
+        before,
+        native_kb.then(crate::legacy::native_kb),
+    ) {
+        for e in errors {
+            eprintln!("error: {e}");
+        }
+        return 1;
+    }
+    if args.view {
+        // the live view draws the program as `sitlogc graph` does
+        let options = sitlog_compiler::diagram::Options {
+            dm: None,
+            main: Some(args.main.split('(').next().unwrap_or("").trim().to_owned()),
+            title: sitlog_compiler::build::app_name(app),
+        };
+        match sitlog_compiler::diagram::diagram(&ir, &options) {
+            Ok(d) => assets.diagram = Some(d.to_json()),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return 2;
+            }
+        }
+    }
+    if watch {
+        return run_watched(app, ir, functions, args, &assets, check_options);
+    }
+    match debug {
+        // Situations run from their plans where they can (resolved once, here).
+        None => {
+            let resolved = sitlog_compiler::interp::Resolved::new(&ir);
+            sitlog_robot::execute(&resolved, functions, args, &assets)
+        }
+        Some(commands) => {
+            let source = match commands {
+                Some(path) => sitlog_debug::Source::file(path),
+                None => sitlog_debug::Source::editor(),
+            };
+            let source = match source {
+                Ok(s) => s,
+                Err(e) => {
+                    eprintln!("{e}");
+                    return 2;
+                }
+            };
+            // Plans, back to the machine's loop after each situation, so the
+            // debugger sees every one.
+            let resolved = sitlog_compiler::interp::Resolved::new(&ir).one_situation_per_step();
+            sitlog_debug::debug(
+                &resolved,
+                functions,
+                args,
+                &assets,
+                sitlog_robot::cli::Streams::process(),
+                source,
+                Box::new(std::io::stdout()),
+                Box::new(std::io::stderr()),
+            )
+        }
+    }
+}
+
+/// `sitlogc run --watch`: the run over a program that reloads itself.
+pub fn run_watched(
+    app: &std::path::Path,
+    ir: sitlog_compiler::ir::Ir,
+    functions: sitlog_runtime::Functions,
+    args: &sitlog_robot::cli::RunArgs,
+    assets: &sitlog_robot::Assets,
+    options: sitlog_compiler::check::CheckOptions,
+) -> u8 {
+    use crate::watch::{ReloadAware, Watched};
+    let files: Vec<PathBuf> = match sitlog_compiler::load::load(app) {
+        Ok((program, _)) => program
+            .sources
+            .files()
+            .map(|(_, f)| f.path.clone())
+            .collect(),
+        Err(e) => {
+            eprintln!("error: cannot read {e}");
+            return 2;
+        }
+    };
+    let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    let messages: crate::watch::Messages =
+        std::sync::Arc::new(std::sync::Mutex::new(Box::new(std::io::stderr())));
+    let watched = Watched::new(ir, messages);
+    if let Err(e) = watched.watch(app, &files, options, color) {
+        eprintln!("error: --watch: {e}");
+        return 2;
+    }
+    eprintln!(
+        "watch: watching {} ({} file(s)); edits take effect between transitions",
+        app.display(),
+        files.len()
+    );
+    let ready = watched.ready_flag();
+    let wrap: sitlog_robot::cli::PerceptionWrap =
+        Box::new(move |inner| Box::new(ReloadAware::new(inner, ready)));
+    sitlog_robot::cli::execute_wrapped(&watched, functions, args, assets, wrap)
+}

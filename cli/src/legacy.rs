@@ -1,0 +1,256 @@
+//! The legacy profile (`sitlogc run --legacy`): running applications written
+//! for the original SitLog interpreter unmodified, from the original's tree
+//! (`SITLOG_HOME`).
+//!
+//! What the original loads before an application: its `src/init.pl`
+//! consults the interpreter (files of `src/`, which sitlog-rs replaces) and
+//! the Prolog layer the applications call (`:- consult('$SITLOG_HOME/...')`:
+//! the KB services, the parser, the cognitive model, diagnosis, decision
+//! making and planning). This module finds `SITLOG_HOME` and lists the
+//! files of those `$SITLOG_HOME` directives, in order, read from `init.pl`
+//! itself; nothing of the original is part of sitlog-rs. The files are then
+//! loaded like `user_functions.pl` (our reader, the embedded engine).
+
+use std::path::{Path, PathBuf};
+
+/// The original's start-up file, relative to `SITLOG_HOME`.
+pub const INIT_FILE: &str = "src/init.pl";
+
+/// `SITLOG_HOME`: `explicit` (`--sitlog-home`), else the environment
+/// variable, else the nearest ancestor of `app` that has `src/init.pl`.
+pub fn find_home(app: &Path, explicit: Option<&Path>) -> Result<PathBuf, String> {
+    if let Some(dir) = explicit {
+        return checked_home(dir, "--sitlog-home");
+    }
+    if let Some(dir) = std::env::var_os("SITLOG_HOME").filter(|d| !d.is_empty()) {
+        return checked_home(Path::new(&dir), "SITLOG_HOME");
+    }
+    let start = std::fs::canonicalize(app).unwrap_or_else(|_| app.to_path_buf());
+    let mut dir = Some(start.as_path());
+    while let Some(d) = dir {
+        if d.join(INIT_FILE).is_file() {
+            return Ok(d.to_path_buf());
+        }
+        dir = d.parent();
+    }
+    Err(format!(
+        "--legacy: cannot find the original's tree: set SITLOG_HOME or pass --sitlog-home DIR \
+         (a directory with {INIT_FILE}); {} is not inside one",
+        app.display()
+    ))
+}
+
+fn checked_home(dir: &Path, what: &str) -> Result<PathBuf, String> {
+    if dir.join(INIT_FILE).is_file() {
+        Ok(dir.to_path_buf())
+    } else {
+        Err(format!(
+            "--legacy: {what} `{}` is not the original's tree (it has no {INIT_FILE})",
+            dir.display()
+        ))
+    }
+}
+
+/// The files `init.pl` consults from `$SITLOG_HOME`, in order.
+pub fn init_consults(home: &Path) -> Result<Vec<PathBuf>, String> {
+    let init = home.join(INIT_FILE);
+    let text = std::fs::read_to_string(&init)
+        .map_err(|e| format!("--legacy: cannot read {}: {e}", init.display()))?;
+    let (clauses, errors) = sitlog_syntax::read_clauses(&text);
+    if let Some(e) = errors.first() {
+        let (line, col) = e.line_col(&text);
+        return Err(format!(
+            "--legacy: {}:{line}:{col}: {}",
+            init.display(),
+            e.message
+        ));
+    }
+    let mut files = Vec::new();
+    for clause in &clauses {
+        let terms = &clause.terms;
+        let Some(d) = terms.compound(clause.root, sitlog_syntax::Atom::intern(":-"), 1) else {
+            continue;
+        };
+        let goal = d[0];
+        for name in ["consult", "ensure_loaded"] {
+            let Some(a) = terms.compound(goal, sitlog_syntax::Atom::intern(name), 1) else {
+                continue;
+            };
+            let items = match terms.proper_list(a[0]) {
+                Some(items) => items,
+                None => vec![a[0]],
+            };
+            for item in items {
+                let Some(f) = terms.atom(item) else { continue };
+                if let Some(rest) = f.as_str().strip_prefix("$SITLOG_HOME/") {
+                    let p = home.join(rest);
+                    let p = if p.is_file() {
+                        p
+                    } else {
+                        let mut q = p.clone().into_os_string();
+                        q.push(".pl");
+                        PathBuf::from(q)
+                    };
+                    if !p.is_file() {
+                        return Err(format!(
+                            "--legacy: {} consults `{}`, which does not exist",
+                            init.display(),
+                            f.as_str()
+                        ));
+                    }
+                    files.push(p);
+                }
+            }
+        }
+    }
+    Ok(files)
+}
+
+/// `--legacy-kb native`: the original's KB layer served by our KB
+/// (`sitlog-kb`): the services and updates the KB crate has, and the KB
+/// loads and saves of the layer (see `sitlog_runtime::prolog::NativeKb`).
+pub fn native_kb() -> sitlog_runtime::prolog::NativeKb {
+    use sitlog_kb::{SERVICES, UPDATES};
+    use std::sync::{Arc, Mutex};
+    let kbs: Mutex<Vec<sitlog_kb::Kb>> = Mutex::new(Vec::new());
+    let host = move |request: &str| -> String {
+        let mut kbs = match kbs.lock() {
+            Ok(k) => k,
+            Err(p) => p.into_inner(),
+        };
+        match kb_request(&mut kbs, request) {
+            Ok(reply) => reply,
+            Err(message) => {
+                let mut out = String::from("'$error'(error(kb_error(");
+                sitlog_syntax::write::write_atom(
+                    &mut out,
+                    sitlog_syntax::Atom::intern(&message),
+                    true,
+                );
+                out.push_str("),native_kb)).\n");
+                out
+            }
+        }
+    };
+    sitlog_runtime::prolog::NativeKb {
+        host: Arc::new(host),
+        queries: SERVICES
+            .iter()
+            .map(|s| (s.name.to_owned(), s.arity))
+            .collect(),
+        updates: UPDATES
+            .iter()
+            .map(|u| (u.name.to_owned(), u.arity))
+            .collect(),
+    }
+}
+
+/// One request of the engine (canonical text): see `NativeKb`.
+fn kb_request(kbs: &mut Vec<sitlog_kb::Kb>, request: &str) -> Result<String, String> {
+    use sitlog_runtime::prolog::read_reply;
+    use sitlog_runtime::{Store, Term};
+    let mut store = Store::new();
+    let (t, _) = store
+        .parse(request)
+        .map_err(|e| format!("bad request `{request}`: {}", e.message))?;
+    let Some((name, _)) = store.functor(t) else {
+        return Err(format!("bad request `{request}`"));
+    };
+    let args: Vec<Term> = store.args(t).to_vec();
+    let handle = |store: &Store, kbs: &[sitlog_kb::Kb], t: Term| -> Result<usize, String> {
+        let t = store.deref(t);
+        store
+            .compound_args(t, sitlog_syntax::Atom::intern("$kb"), 1)
+            .and_then(|a| store.int_of(a[0]))
+            .and_then(|n| usize::try_from(n).ok())
+            .filter(|&n| n < kbs.len())
+            .ok_or_else(|| format!("`{}` is not a KB", store.writeq(t)))
+    };
+    let atom = |store: &Store, t: Term| -> Result<String, String> {
+        store
+            .atom_of(store.deref(t))
+            .map(|a| a.as_str().to_owned())
+            .ok_or_else(|| format!("`{}` is not a file name", store.writeq(t)))
+    };
+    let new = |kbs: &mut Vec<sitlog_kb::Kb>, kb: sitlog_kb::Kb| -> String {
+        kbs.push(kb);
+        format!("'$ok'('$kb'({}),[]).\n", kbs.len() - 1)
+    };
+    match (name.as_str(), args.len()) {
+        ("open", 1) => {
+            let path = atom(&store, args[0])?;
+            let kb = sitlog_kb::Kb::load(Path::new(&path)).map_err(|e| e.to_string())?;
+            Ok(new(kbs, kb))
+        }
+        ("handle", 1) => {
+            let text = store.writeq(args[0]);
+            let kb = sitlog_kb::Kb::parse(&text, "<KB term>").map_err(|e| e.to_string())?;
+            Ok(new(kbs, kb))
+        }
+        ("save", 2) => {
+            let h = handle(&store, kbs, args[0])?;
+            let path = atom(&store, args[1])?;
+            kbs[h].save(Path::new(&path)).map_err(|e| e.to_string())?;
+            Ok("'$ok'(true,[]).\n".to_owned())
+        }
+        ("term", 1) => {
+            let h = handle(&store, kbs, args[0])?;
+            Ok(read_reply(&kbs[h].to_text()))
+        }
+        ("query", 2) => {
+            let h = handle(&store, kbs, args[0])?;
+            let goal = store.writeq(args[1]);
+            match kbs[h].query(&goal).map_err(|e| format!("{goal}: {e}"))? {
+                sitlog_kb::Outcome::Answer(a) => Ok(read_reply(&a.writeq())),
+                sitlog_kb::Outcome::Fails => Ok("'$fail'.\n".to_owned()),
+            }
+        }
+        ("update", 2) => {
+            let h = handle(&store, kbs, args[0])?;
+            let goal = store.writeq(args[1]);
+            let clause =
+                sitlog_syntax::read_term(&goal).map_err(|e| format!("{goal}: {}", e.message))?;
+            let mut next = kbs[h].clone();
+            if next.update(&clause).map_err(|e| format!("{goal}: {e}"))? {
+                Ok(new(kbs, next))
+            } else {
+                Ok(format!("'$ok'('$kb'({h}),[]).\n"))
+            }
+        }
+        _ => Err(format!("unknown request `{request}`")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_the_home_consults_of_init_pl() {
+        let dir = std::env::temp_dir().join(format!("sitlog-legacy-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("src")).unwrap();
+        std::fs::create_dir_all(dir.join("kb")).unwrap();
+        std::fs::write(
+            dir.join(INIT_FILE),
+            ":- op(800, xfx, '=>').\n:- consult(diag_manager).\n\
+             :- consult('$SITLOG_HOME/kb/a.pl').\n:- consult('$SITLOG_HOME/kb/b').\nstart :- true.\n",
+        )
+        .unwrap();
+        std::fs::write(dir.join("kb/a.pl"), "a.\n").unwrap();
+        std::fs::write(dir.join("kb/b.pl"), "b.\n").unwrap();
+        let files = init_consults(&dir).unwrap();
+        assert_eq!(files, vec![dir.join("kb/a.pl"), dir.join("kb/b.pl")]);
+        // Found from an application inside the tree.
+        std::fs::create_dir_all(dir.join("apps/x")).unwrap();
+        if std::env::var_os("SITLOG_HOME").is_none() {
+            let home = find_home(&dir.join("apps/x"), None).unwrap();
+            assert_eq!(home, std::fs::canonicalize(&dir).unwrap());
+        }
+        assert!(find_home(Path::new("/"), Some(Path::new("/nonexistent")))
+            .unwrap_err()
+            .contains("no src/init.pl"));
+        std::fs::write(dir.join(INIT_FILE), ":- consult('$SITLOG_HOME/kb/c').\n").unwrap();
+        assert!(init_consults(&dir).unwrap_err().contains("kb/c"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

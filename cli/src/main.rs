@@ -1,0 +1,132 @@
+//! `sitlogc`: the SitLog command-line tool. Argument parsing, exit codes and
+//! the choice of output format only; the work is done by the library.
+
+use clap::{CommandFactory, Parser};
+use sitlog_cli::args::{Cli, Command, LegacyKb};
+use sitlog_cli::commands::*;
+use sitlog_cli::output::{write_stdout, COLOR};
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return match e.kind() {
+                clap::error::ErrorKind::DisplayHelp | clap::error::ErrorKind::DisplayVersion => {
+                    ExitCode::SUCCESS
+                }
+                _ => ExitCode::from(2),
+            };
+        }
+    };
+    // Deep terms are handled by stacker and explicit stacks; a big main stack
+    // is a cheap extra margin for the rest.
+    let child = std::thread::Builder::new()
+        .stack_size(256 * 1024 * 1024)
+        .spawn(move || run(cli));
+    match child.map(|h| h.join()) {
+        Ok(Ok(code)) => ExitCode::from(code),
+        _ => {
+            eprintln!("sitlogc: internal error");
+            ExitCode::from(101)
+        }
+    }
+}
+
+fn run(cli: Cli) -> u8 {
+    let _ = COLOR.set(cli.color);
+    match cli.command {
+        Command::Completions { shell } => {
+            let mut out = Vec::new();
+            clap_complete::generate(shell, &mut Cli::command(), "sitlogc", &mut out);
+            write_stdout(&String::from_utf8_lossy(&out), "the completion script")
+        }
+        Command::Man { dir } => man(dir.as_deref()),
+        Command::Check {
+            paths,
+            format,
+            deny_warnings,
+            quiet,
+            legacy,
+        } => check(&paths, format, deny_warnings, quiet, legacy),
+        Command::Run {
+            app,
+            run,
+            allow_unresolved,
+            legacy,
+            sitlog_home,
+            legacy_kb,
+            watch,
+        } => {
+            let legacy = legacy.then_some(sitlog_home);
+            run_app(
+                &app,
+                &run,
+                allow_unresolved,
+                legacy.as_ref().map(|h| h.as_deref()),
+                legacy_kb == LegacyKb::Native,
+                None,
+                watch,
+            )
+        }
+        Command::Debug { app, run, commands } => run_app(
+            &app,
+            &run,
+            false,
+            None,
+            false,
+            Some(commands.as_deref()),
+            false,
+        ),
+        Command::Replay {
+            trace,
+            diff,
+            commands,
+        } => replay(&trace, diff.as_deref(), commands.as_deref()),
+        Command::Build {
+            app,
+            output,
+            release: _,
+            debug,
+            emit,
+            explain_types,
+            allow_unresolved,
+            debugger,
+        } => {
+            let release = !debug;
+            if explain_types {
+                explain_types_of(&app)
+            } else {
+                build_app(&app, output, release, emit, allow_unresolved, debugger)
+            }
+        }
+        Command::Lsp => match sitlog_lsp::run_stdio(&sitlog_cli::analysis::Analysis) {
+            Ok(()) => 0,
+            Err(e) => {
+                eprintln!("error: sitlogc lsp: {e}");
+                2
+            }
+        },
+        Command::Graph {
+            app,
+            output,
+            dm,
+            main,
+            format,
+            trace,
+        } => graph(&app, output, dm, main, format, trace),
+        Command::New { name } => new_app(&name),
+        Command::Kb {
+            file,
+            updates,
+            query,
+        } => match sitlog_kb::cli(&file, &updates, &query) {
+            Ok(line) => write_stdout(&format!("{line}\n"), "the answer"),
+            Err(e) => {
+                eprintln!("{e}");
+                1
+            }
+        },
+    }
+}

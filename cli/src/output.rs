@@ -1,0 +1,100 @@
+//! What every command shares on its way out: whether stderr is coloured
+//! (`--color`, `NO_COLOR`), writing to stdout (a closed pipe is quiet), and
+//! loading and checking an application with its errors printed.
+
+use crate::args::ColorWhen;
+use sitlog_compiler::ast::Program;
+use sitlog_compiler::check::{CheckOptions, Checked};
+use sitlog_compiler::diag::{self, Diagnostic};
+use sitlog_compiler::load::LoadError;
+use std::io::{IsTerminal, Write};
+use std::path::Path;
+
+/// The `--color` of this run (set once in `run`).
+pub static COLOR: std::sync::OnceLock<ColorWhen> = std::sync::OnceLock::new();
+
+/// Whether diagnostics on stderr are coloured: `--color`, else (`auto`)
+/// when stderr is a terminal and NO_COLOR is unset or empty
+/// (<https://no-color.org>).
+pub fn color_stderr() -> bool {
+    match COLOR.get().copied().unwrap_or(ColorWhen::Auto) {
+        ColorWhen::Always => true,
+        ColorWhen::Never => false,
+        ColorWhen::Auto => {
+            std::io::stderr().is_terminal()
+                && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
+        }
+    }
+}
+
+/// Writes `text` to stdout: 0, or 2 with a message naming `what` when it
+/// cannot be written (a closed pipe, as `| head` makes, is quiet: 0).
+pub fn write_stdout(text: &str, what: &str) -> u8 {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        Ok(()) => 0,
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => 0,
+        Err(e) => {
+            eprintln!("error: cannot write {what} to stdout: {e}");
+            2
+        }
+    }
+}
+
+/// Loads and checks an application or DM file as every command does: the
+/// functions the simulated robot registers ([`sitlog_robot::WORLD_FUNCTIONS`])
+/// are known to the checker unless `options` names others.
+pub fn check_app(
+    path: &Path,
+    options: CheckOptions,
+) -> Result<(Result<Checked, Program>, Vec<Diagnostic>), LoadError> {
+    sitlog_compiler::check_path_opts(path, with_world(options))
+}
+
+/// `options` with the simulated robot's functions when it names none.
+pub fn with_world(mut options: CheckOptions) -> CheckOptions {
+    if options.world_functions.is_empty() {
+        options.world_functions = sitlog_robot::WORLD_FUNCTIONS;
+    }
+    options
+}
+
+/// Loads and checks an application, printing its errors; `Err` is the exit status.
+pub fn checked_ir(app: &Path) -> Result<sitlog_compiler::ir::Ir, u8> {
+    checked_ir_opts(app, CheckOptions::default())
+}
+
+/// [`checked_ir`] with [`CheckOptions`] (under `legacy`, the identical
+/// duplicate DMs' warnings are printed too).
+pub fn checked_ir_opts(
+    app: &std::path::Path,
+    options: sitlog_compiler::check::CheckOptions,
+) -> Result<sitlog_compiler::ir::Ir, u8> {
+    let loaded = check_app(app, options);
+    let (result, diags) = match loaded {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: cannot read {e}");
+            return Err(2);
+        }
+    };
+    let color = color_stderr();
+    let program_sources = match &result {
+        Ok(c) => &c.program().sources,
+        Err(p) => &p.sources,
+    };
+    for d in diags.iter().filter(|d| {
+        d.is_error()
+            || (options.legacy && d.code == sitlog_compiler::check::codes::DUPLICATE_DM_IDENTICAL)
+    }) {
+        eprint!("{}", diag::render_human(d, program_sources, color));
+    }
+    match result {
+        Ok(c) => Ok(sitlog_compiler::ir::lower(&c)),
+        Err(_) => {
+            let n = diags.iter().filter(|d| d.is_error()).count();
+            eprintln!("error: the application has {n} error(s); run `sitlogc check` for details");
+            Err(1)
+        }
+    }
+}

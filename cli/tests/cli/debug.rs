@@ -1,0 +1,153 @@
+//! `sitlogc debug` and `sitlogc replay` from the command line: exit codes
+//! and where messages go (the sessions themselves are golden-tested in
+//! tests/tests/debug.rs).
+
+use crate::support::sitlogc;
+use std::path::{Path, PathBuf};
+
+fn app() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/dms/debug_app")
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("sitlogc-cli-debug-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// Records a run of the test application with `script` to `trace`.
+fn record(trace: &Path, script: &str) {
+    let script_file = trace.with_extension("txt");
+    std::fs::write(&script_file, script).unwrap();
+    let out = sitlogc()
+        .arg("run")
+        .arg(app())
+        .arg("--script")
+        .arg(&script_file)
+        .arg("--trace")
+        .arg(trace)
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn debug_session_from_a_commands_file() {
+    let commands = temp("session.txt");
+    std::fs::write(&commands, "break ask:is\ncontinue\nstack\nquit\n").unwrap();
+    let out = sitlogc()
+        .arg("debug")
+        .arg(app())
+        .arg("--script")
+        .arg(app().join("script.txt"))
+        .arg("--commands")
+        .arg(&commands)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        stdout
+            .contains("(sitlog) stack\n#1 ask(color)  after is\n#0 main  in ask1\n(sitlog) quit\n"),
+        "{stdout}"
+    );
+    assert!(!stdout.contains("Execution history"), "{stdout}");
+    // A missing commands file, a bad line.
+    let out = sitlogc()
+        .arg("debug")
+        .arg(app())
+        .arg("--commands")
+        .arg(temp("missing.txt"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).starts_with("error: cannot read commands file "));
+    std::fs::write(&commands, "step\nfly\n").unwrap();
+    let out = sitlogc()
+        .arg("debug")
+        .arg(app())
+        .arg("--script")
+        .arg(app().join("script.txt"))
+        .arg("--commands")
+        .arg(&commands)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        stderr.ends_with("session.txt:2: error: unknown command `fly` (`help` lists them)\n"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn replay_and_diff_exit_codes() {
+    let (a, b) = (temp("a.jsonl"), temp("b.jsonl"));
+    record(&a, "hello.\nanswer(red).\nbye.\n");
+    record(&b, "hello.\nanswer(blue).\nbye.\n");
+    let diff = |x: &Path, y: &Path| {
+        sitlogc()
+            .arg("replay")
+            .arg(x)
+            .arg("--diff")
+            .arg(y)
+            .output()
+            .unwrap()
+    };
+    let same = diff(&a, &a);
+    assert_eq!(same.status.code(), Some(0));
+    assert_eq!(
+        String::from_utf8(same.stdout).unwrap(),
+        "the recordings are the same (6 transitions)\n"
+    );
+    let differ = diff(&a, &b);
+    assert_eq!(differ.status.code(), Some(1));
+    assert!(String::from_utf8(differ.stdout)
+        .unwrap()
+        .starts_with("the recordings differ at transition #2 "));
+    // Replay with commands.
+    let commands = temp("replay.txt");
+    std::fs::write(&commands, "goto 3\nstack\nback\n").unwrap();
+    let out = sitlogc()
+        .arg("replay")
+        .arg(&a)
+        .arg("--commands")
+        .arg(&commands)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        stdout.contains("(sitlog) stack\n#1 ask(color)  after got(red)\n#0 main  in ask1\n"),
+        "{stdout}"
+    );
+    // A bad trace: FILE:LINE:COL, exit 2, for replay and for either side of --diff.
+    let bad = temp("bad.jsonl");
+    std::fs::write(&bad, "{\"dm\":\"main\"\n").unwrap();
+    for out in [
+        sitlogc().arg("replay").arg(&bad).output().unwrap(),
+        diff(&a, &bad),
+        diff(&bad, &a),
+    ] {
+        assert_eq!(out.status.code(), Some(2));
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        assert!(
+            stderr.contains(
+                "bad.jsonl:1:12: error: not a JSON object: EOF while parsing an object\n"
+            ),
+            "{stderr}"
+        );
+    }
+    let out = sitlogc()
+        .arg("replay")
+        .arg(temp("none.jsonl"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).starts_with("error: cannot read trace "));
+}

@@ -1,0 +1,23 @@
+//! The command-line tests of `sitlogc`, one test binary (one link) with a
+//! module per subcommand or concern; [`support`] holds what they share.
+
+mod support;
+
+mod build;
+mod check;
+mod checks;
+mod conventions;
+mod debug;
+mod diagram;
+mod explain_types;
+mod kb;
+mod legacy;
+mod lsp;
+mod new;
+mod prompt;
+mod reliability;
+mod run;
+mod view;
+mod watch;
+mod watch_reload;
+mod world;

@@ -1,0 +1,162 @@
+//! `sitlogc run`: the fixed output conventions (text, JSON, trace), exit codes.
+
+use crate::support::sitlogc;
+use std::path::{Path, PathBuf};
+
+fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../dms/examples")
+        .join(name)
+}
+
+#[test]
+fn json_report_is_one_object_on_stdout() {
+    let app = example("countdown");
+    let out = sitlogc()
+        .args(["run", "--format", "json", "--script"])
+        .arg(app.join("script.txt"))
+        .arg(&app)
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(stdout.lines().count(), 1);
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let expected: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(app.join("expected.json")).unwrap()).unwrap();
+    assert_eq!(v, expected);
+    // Rendered actions go to stderr, not stdout.
+    assert!(String::from_utf8_lossy(&out.stderr).contains("Golem says: more"));
+}
+
+#[test]
+fn text_report_lists_history_out_arg_and_globals() {
+    let app = example("countdown");
+    let out = sitlogc()
+        .args(["run", "--script"])
+        .arg(app.join("script.txt"))
+        .arg(&app)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(stdout.starts_with("Execution history:\n"), "{stdout}");
+    assert!(stdout.contains("main:(start,count(3):[3])"), "{stdout}");
+    assert!(stdout.contains("\nOut Arg: "), "{stdout}");
+    assert!(stdout.contains("\nOut Global Vars: ["), "{stdout}");
+}
+
+#[test]
+fn runtime_error_exits_one_with_history_so_far() {
+    let dir = std::env::temp_dir().join(format!("sitlogc-run-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main, [[id ==> is, type ==> speech, arcs ==> [a : x => s2]],\n\
+         [id ==> s2, type ==> speech, arcs ==> [b : y => fs]], [id ==> fs, type ==> final]], []).\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("script.txt"), "a.\n").unwrap();
+    let trace = dir.join("trace.jsonl");
+    let out = sitlogc()
+        .args(["run", "--format", "json", "--script"])
+        .arg(dir.join("script.txt"))
+        .arg("--trace")
+        .arg(&trace)
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["status"], "error");
+    assert!(
+        v["error"].as_str().unwrap().contains("situation `s2`"),
+        "{v}"
+    );
+    assert_eq!(v["history"].as_array().unwrap().len(), 1);
+    // The trace has the transition, with depth and next situation.
+    let line = std::fs::read_to_string(&trace).unwrap();
+    let t: serde_json::Value = serde_json::from_str(line.lines().next().unwrap()).unwrap();
+    assert_eq!(t["situation"], "is");
+    assert_eq!(t["depth"], 0);
+    assert_eq!(t["next"], "s2");
+}
+
+#[test]
+fn usage_errors_exit_two() {
+    let out = sitlogc()
+        .args(["run", "/nonexistent/app"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let app = example("countdown");
+    let out = sitlogc()
+        .args(["run", "--main", "nosuchdm"])
+        .arg(&app)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no DM named `nosuchdm`"));
+    let out = sitlogc()
+        .args(["run", "--in-arg", "f(("])
+        .arg(&app)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
+fn history_none_keeps_no_history() {
+    let app = example("countdown");
+    let out = sitlogc()
+        .args(["run", "--format", "json", "--history", "none", "--script"])
+        .arg(app.join("script.txt"))
+        .arg(&app)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["history"], serde_json::json!([]));
+    assert_eq!(v["status"], "ok");
+}
+
+#[test]
+fn allow_unresolved_runs_legacy_programs_with_dead_paths() {
+    let dir = std::env::temp_dir().join(format!("sitlogc-lenient-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main, [[id ==> is, type ==> speech, arcs ==> [go : [] => fs, broken : [] => nowhere]],\n\
+         [id ==> fs, type ==> final]], []).\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("script.txt"), "go.\n").unwrap();
+    let run = |extra: &[&str], script: &str| {
+        std::fs::write(dir.join("script.txt"), script).unwrap();
+        sitlogc()
+            .args(["run", "--format", "json", "--script"])
+            .arg(dir.join("script.txt"))
+            .args(extra)
+            .arg(&dir)
+            .output()
+            .unwrap()
+    };
+    assert_eq!(run(&[], "go.\n").status.code(), Some(1));
+    assert_eq!(run(&["--allow-unresolved"], "go.\n").status.code(), Some(0));
+    // Taking the dead path is a clean run-time error.
+    let out = run(&["--allow-unresolved"], "broken.\n");
+    assert_eq!(out.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(
+        v["error"]
+            .as_str()
+            .unwrap()
+            .contains("no situation `nowhere`"),
+        "{v}"
+    );
+}

@@ -1,0 +1,102 @@
+//! `sitlogc run` on the simulated world: the README's main job ends well,
+//! and a bad world file (the app's own or `--world FILE`) stops the run
+//! before it starts with `file:line:col` and exit status 2.
+
+use crate::support::sitlogc;
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+fn home() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../dms/apps/home")
+}
+
+fn run_with_world(text: &str, tag: &str) -> Output {
+    let dir = std::env::temp_dir().join(format!("sitlogc-world-{}-{tag}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let world = dir.join("world.toml");
+    std::fs::write(&world, text).unwrap();
+    let out = sitlogc()
+        .arg("run")
+        .arg(home())
+        .arg("--world")
+        .arg(&world)
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    out
+}
+
+#[test]
+fn the_main_job_runs_the_home_butler_to_the_end() {
+    let out = sitlogc().arg("run").arg(home()).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // In text mode the conversation and then the report go to stdout.
+    assert!(stdout.starts_with("Golem: Hi, Luis.\n"), "{stdout}");
+    assert!(stdout.contains("Luis: bring me something to drink and biscuits\n"));
+    assert!(stdout.contains("Golem: Goodbye.\n"));
+    assert!(stdout.contains("Execution history:"), "{stdout}");
+}
+
+#[test]
+fn bad_world_files_exit_two_with_their_position() {
+    let base = std::fs::read_to_string(home().join("world.toml")).unwrap();
+    let cases: Vec<(&str, String, &str)> = vec![
+        (
+            "toml",
+            "[robot\n".to_owned(),
+            "world.toml:1:7: error: not valid TOML",
+        ),
+        (
+            "unknown_key",
+            base.replacen("[robot]\n", "[robot]\narms = 2\n", 1),
+            "unknown key `arms` in [robot]",
+        ),
+        (
+            "unknown_place",
+            base.replacen("at = \"living_room\"", "at = \"garage\"", 1),
+            "garage",
+        ),
+        (
+            "empty",
+            String::new(),
+            "missing key `robot` in the world file",
+        ),
+    ];
+    for (tag, text, wanted) in cases {
+        let out = run_with_world(&text, tag);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{tag}: {stderr}");
+        assert!(
+            stderr.contains(wanted),
+            "{tag}: wanted `{wanted}` in\n{stderr}"
+        );
+        assert!(
+            stderr.contains("world.toml:"),
+            "{tag}: no position in\n{stderr}"
+        );
+        assert!(
+            !stderr.contains("Golem:"),
+            "{tag}: the run started\n{stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{tag}: {stderr}");
+    }
+}
+
+#[test]
+fn a_missing_world_file_exits_two_naming_it() {
+    let out = sitlogc()
+        .arg("run")
+        .arg(home())
+        .args(["--world", "/nonexistent/world.toml"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("/nonexistent/world.toml"), "{stderr}");
+}

@@ -1,0 +1,182 @@
+//! What a program calls outside its DMs: user functions (`apply`) against
+//! the standard ones, the Prolog files' clause heads, KB services and the
+//! host's functions; basic actions against `basic_actions.pl`.
+
+use super::*;
+
+impl Checker<'_> {
+    /// Every `apply(f(..), Args)` names a function the run will have: a
+    /// standard one, a clause head of the application's Prolog files, a KB
+    /// service when the KB is in use, or one the host registers.
+    pub(super) fn functions(&mut self) {
+        let program = self.program;
+        let mut known: HashSet<(Atom, usize)> =
+            sitlog_runtime::Functions::standard().names().collect();
+        known.extend(program.functions.iter().map(|f| (f.name, f.arity)));
+        known.extend(program.host_functions.iter().copied());
+        known.extend(
+            self.options
+                .host_functions
+                .iter()
+                .map(|&(n, a)| (Atom::intern(n), a)),
+        );
+        let kb: HashSet<(Atom, usize)> = sitlog_kb::SERVICES
+            .iter()
+            .map(|s| (Atom::intern(s.name), s.arity - 1))
+            .chain(
+                sitlog_kb::UPDATES
+                    .iter()
+                    .map(|u| (Atom::intern(u.name), u.arity)),
+            )
+            .collect();
+        let world: HashSet<(Atom, usize)> = self
+            .options
+            .world_functions
+            .iter()
+            .map(|&(n, a)| (Atom::intern(n), a))
+            .collect();
+        let kb_in_use = self.options.kb.unwrap_or(program.has_kb_file);
+        let on_world = self.options.world.unwrap_or(program.has_world_file);
+        if kb_in_use {
+            known.extend(kb.iter().copied());
+        }
+        if on_world {
+            known.extend(world.iter().copied());
+        }
+        for dm in &program.dms {
+            for call in calls(dm) {
+                let key = (call.name, call.arity);
+                if known.contains(&key) {
+                    continue;
+                }
+                let loc = dm.loc(call.span);
+                let sig = format!("{}/{}", call.name, call.arity);
+                if kb.contains(&key) {
+                    self.diags.push(
+                        Diagnostic::warning(
+                            codes::KB_SERVICE_WITHOUT_KB,
+                            loc,
+                            format!(
+                                "`{sig}` is a KB service, but the application has no knowledge.kb"
+                            ),
+                        )
+                        .with_label("needs a knowledge base")
+                        .with_help("add a knowledge.kb beside the DMs, or run with `--kb FILE`"),
+                    );
+                    continue;
+                }
+                if world.contains(&key) {
+                    self.diags.push(
+                        Diagnostic::warning(
+                            codes::WORLD_FUNCTION_WITHOUT_WORLD,
+                            loc,
+                            format!("`{sig}` is a function of the simulated robot, but the application has no world.toml"),
+                        )
+                        .with_label("needs a world")
+                        .with_help("add a world.toml beside the DMs, or run with `--world FILE`"),
+                    );
+                    continue;
+                }
+                let same_name: Vec<usize> = known
+                    .iter()
+                    .chain(kb.iter())
+                    .chain(world.iter())
+                    .filter(|(n, _)| *n == call.name)
+                    .map(|&(_, a)| a)
+                    .collect();
+                let mut d =
+                    Diagnostic::error(codes::UNKNOWN_FUNCTION, loc, format!("no function `{sig}`"))
+                        .with_label("unknown function");
+                let names: Vec<(Atom, usize)> = known
+                    .iter()
+                    .chain(kb.iter())
+                    .chain(world.iter())
+                    .copied()
+                    .collect();
+                let mut texts: Vec<&str> = names.iter().map(|(n, _)| n.as_str()).collect();
+                texts.sort_unstable();
+                texts.dedup();
+                let help = if let Some(mut arities) = (!same_name.is_empty()).then_some(same_name) {
+                    arities.sort_unstable();
+                    arities.dedup();
+                    let list: Vec<String> = arities
+                        .iter()
+                        .map(|a| format!("`{}/{a}`", call.name))
+                        .collect();
+                    format!(
+                        "`{}` exists with {} argument(s): {}",
+                        call.name,
+                        arities
+                            .iter()
+                            .map(usize::to_string)
+                            .collect::<Vec<_>>()
+                            .join(" or "),
+                        list.join(", ")
+                    )
+                } else if let Some(similar) = did_you_mean(call.name.as_str(), texts) {
+                    format!("did you mean `{similar}`?")
+                } else if program.prolog_files.is_empty() {
+                    format!(
+                        "define it in a user_functions.pl beside the DMs: `{} :- ..., assign_func_value(Value).` (a function registered in Rust by the host is declared in host_functions.pl: `{sig}.`)",
+                        head_example(call.name, call.arity)
+                    )
+                } else {
+                    format!(
+                        "define it in user_functions.pl: `{} :- ..., assign_func_value(Value).` (a function registered in Rust by the host is declared in host_functions.pl: `{sig}.`)",
+                        head_example(call.name, call.arity)
+                    )
+                };
+                d = d.with_help(help);
+                if let Some((file, at)) = program.unread_consults.first() {
+                    // It may be defined in a file the checker cannot read.
+                    d.severity = Severity::Warning;
+                    d = d.with_secondary(
+                        *at,
+                        format!("`{file}` is not read by the checker: it may define `{sig}`"),
+                    );
+                }
+                self.diags.push(d);
+            }
+        }
+    }
+
+    /// With a `basic_actions.pl`, every action an arc performs is declared
+    /// there (the original ignores the others silently: a typo does nothing).
+    pub(super) fn actions(&mut self) {
+        let program = self.program;
+        let declared: HashSet<Atom> = program.basic_actions.iter().map(|b| b.name).collect();
+        for dm in &program.dms {
+            let terms = &dm.clause.terms;
+            let mut found = Vec::new();
+            for s in &dm.situations {
+                for arc in s.arcs.iter().flatten() {
+                    actions_of(terms, arc.action, &mut found);
+                }
+            }
+            found.sort_by_key(|&(_, span)| span);
+            for (name, span) in found {
+                if declared.contains(&name) {
+                    continue;
+                }
+                let help = match did_you_mean(
+                    name.as_str(),
+                    program.basic_actions.iter().map(|b| b.name.as_str()),
+                ) {
+                    Some(similar) => format!("did you mean `{similar}`?"),
+                    None => format!(
+                        "declare it in basic_actions.pl: `[id ==> {name}, arity ==> [...], mod ==> ..., break ==> no].`"
+                    ),
+                };
+                self.diags.push(
+                    Diagnostic::error(
+                        codes::UNKNOWN_ACTION,
+                        dm.loc(span),
+                        format!("action `{name}` is not declared in basic_actions.pl"),
+                    )
+                    .with_label("unknown action")
+                    .with_help(help),
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,469 @@
+//! The checks of a DM's situations: their attributes, next situations
+//! (resolved through a per-DM index of situation ids), embedded DMs and
+//! their exits, reachability; and what an unreadable file may have
+//! declared ([`Broken`]), so that it is not reported missing.
+
+use super::*;
+
+impl<'p> Checker<'p> {
+    pub(super) fn dm(&mut self, dm: &Dm, broken: &Broken) {
+        let terms = &dm.clause.terms;
+        let loc = |t: TermId| dm.loc(terms.span(t));
+        // Situation structure.
+        for s in &dm.situations {
+            let sloc = dm.loc(s.span);
+            if s.id.is_none() {
+                self.diags.push(
+                    Diagnostic::error(codes::MISSING_ID, sloc, "situation has no `id`")
+                        .with_label("this situation")
+                        .with_help("add `id ==> Name`"),
+                );
+            }
+            let kind = s.kind(&dm.clause);
+            if s.kind_term.is_none() {
+                self.diags.push(
+                    Diagnostic::error(codes::MISSING_TYPE, sloc, "situation has no `type`")
+                        .with_label("this situation")
+                        .with_help(
+                            "add `type ==> neutral` (or `final`, `recursive`, a perception type)",
+                        ),
+                );
+            } else if kind != SituationKind::Final && s.arcs.is_none() {
+                self.diags.push(
+                    Diagnostic::error(
+                        codes::MISSING_ARCS,
+                        sloc,
+                        "a situation that is not final must have `arcs`",
+                    )
+                    .with_label("no `arcs` here")
+                    .with_help(
+                        "add `arcs ==> [Expectation : Action => Next]` or make it `type ==> final`",
+                    ),
+                );
+            }
+            if kind == SituationKind::Final {
+                if let Some(span) = s.arcs_span {
+                    self.diags.push(
+                        Diagnostic::warning(
+                            codes::FINAL_WITH_ARCS,
+                            dm.loc(span),
+                            "a final situation's arcs are never followed",
+                        )
+                        .with_label("ignored"),
+                    );
+                }
+            }
+            if kind == SituationKind::Recursive && s.embedded_dm.is_none() {
+                self.diags.push(
+                    Diagnostic::error(
+                        codes::MISSING_EMBEDDED_DM,
+                        sloc,
+                        "a recursive situation must name its `embedded_dm`",
+                    )
+                    .with_label("no `embedded_dm` here"),
+                );
+            }
+            for &(name, _, span) in &s.others {
+                self.diags.push(
+                    Diagnostic::warning(
+                        codes::UNKNOWN_ATTRIBUTE,
+                        dm.loc(span),
+                        format!("unknown situation attribute `{name}` (kept, but SitLog does not use it)"),
+                    )
+                    .with_help("known attributes: id, type, arcs, prog, in_arg, out_arg, embedded_dm, diag_mod"),
+                );
+            }
+            if s.kind_term.and_then(|t| terms.atom(t)) == Some(atoms::NEUTRAL) {
+                if let Some(arcs) = &s.arcs {
+                    let ok =
+                        arcs.len() == 1 && terms.atom(arcs[0].expectation) == Some(atoms::EMPTY);
+                    if !ok {
+                        self.diags.push(
+                            Diagnostic::warning(
+                                codes::NEUTRAL_SHAPE,
+                                dm.loc(s.arcs_span.unwrap_or(s.span)),
+                                "a `neutral` situation proceeds only with exactly one arc whose expectation is `empty`",
+                            )
+                            .with_help("write `arcs ==> [empty : Action => Next]`"),
+                        );
+                    }
+                }
+            }
+        }
+        if !dm
+            .situations
+            .iter()
+            .any(|s| s.kind(&dm.clause) == SituationKind::Final)
+        {
+            self.diags.push(
+                Diagnostic::error(
+                    codes::NO_FINAL,
+                    dm.loc(dm.span_of(dm.head)),
+                    format!("DM `{}` has no final situation", dm.name),
+                )
+                .with_label("this DM never ends")
+                .with_help("add a situation `[id ==> fs, type ==> final]`"),
+            );
+        }
+        self.next_situations(dm);
+        self.embedded(dm, broken);
+        if !broken.globals {
+            self.variables(dm);
+        }
+        self.singletons(dm);
+        self.shadowed(dm);
+        let _ = loc;
+    }
+
+    /// Ground next situations must name a situation; unreachable situations warn.
+    /// Linear in the situations of the DM: each next-situation value is
+    /// looked up in an index of the ids, not compared with every id.
+    pub(super) fn next_situations(&mut self, dm: &Dm) {
+        let terms = &dm.clause.terms;
+        let n = dm.situations.len();
+        let index = SituationIndex::new(dm);
+        let mut edges: Vec<Vec<usize>> = vec![Vec::new(); n];
+        let mut everything_reachable = false;
+        for (i, s) in dm.situations.iter().enumerate() {
+            for arc in s.arcs.iter().flatten() {
+                let Some(values) = static_values(terms, arc.next) else {
+                    everything_reachable = true;
+                    continue;
+                };
+                for v in values {
+                    let targets = index.targets(dm, v);
+                    if targets.is_empty() && is_ground(terms, v) {
+                        let shown = show(dm, v);
+                        let ids: Vec<String> = dm
+                            .situations
+                            .iter()
+                            .filter_map(|s| s.id.map(|id| show(dm, id)))
+                            .collect();
+                        let help = match did_you_mean(&shown, ids.iter().map(String::as_str)) {
+                            Some(similar) => format!("did you mean `{similar}`?"),
+                            None => format!(
+                                "situations of this DM: {}{}",
+                                ids.iter().take(8).cloned().collect::<Vec<_>>().join(", "),
+                                if ids.len() > 8 { ", …" } else { "" }
+                            ),
+                        };
+                        self.diags.push(
+                            Diagnostic::error(
+                                codes::UNKNOWN_NEXT,
+                                dm.loc(terms.span(v)),
+                                format!("no situation `{shown}` in DM `{}`", dm.name),
+                            )
+                            .with_label("next situation not found")
+                            .with_help(help),
+                        );
+                    }
+                    edges[i].extend(targets);
+                }
+            }
+        }
+        if everything_reachable || n == 0 {
+            return;
+        }
+        let mut reached = vec![false; n];
+        let mut stack = vec![0];
+        reached[0] = true;
+        while let Some(i) = stack.pop() {
+            for &j in &edges[i] {
+                if !reached[j] {
+                    reached[j] = true;
+                    stack.push(j);
+                }
+            }
+        }
+        for (i, s) in dm.situations.iter().enumerate() {
+            if reached[i] {
+                continue;
+            }
+            let name = s.id.map(|id| show(dm, id)).unwrap_or_else(|| "?".into());
+            let (code, msg) = if s.kind(&dm.clause) == SituationKind::Final {
+                (
+                    codes::FINAL_UNREACHED,
+                    format!("final situation `{name}` is never reached"),
+                )
+            } else {
+                (
+                    codes::UNREACHABLE,
+                    format!("situation `{name}` is unreachable"),
+                )
+            };
+            self.diags.push(
+                Diagnostic::warning(code, dm.loc(s.id.map_or(s.span, |id| dm.span_of(id))), msg)
+                    .with_label("no arc leads here from the initial situation"),
+            );
+        }
+    }
+
+    /// `embedded_dm` names a DM of the right arity, and the exit arcs name its final situations.
+    pub(super) fn embedded(&mut self, dm: &Dm, broken: &Broken) {
+        let terms = &dm.clause.terms;
+        for s in &dm.situations {
+            let Some(e) = s.embedded_dm else { continue };
+            let Some(values) = static_values(terms, e) else {
+                continue;
+            };
+            let mut resolved: Vec<&'p Dm> = Vec::new();
+            for v in values {
+                let Some((name, arity)) = terms.functor(v) else {
+                    continue;
+                };
+                match self.find_dm(name) {
+                    // A DM file that could not be read may define it: the
+                    // syntax error is the error to fix, not this name.
+                    None if broken.may_define_dm(name) => {}
+                    None => {
+                        let mut d = Diagnostic::error(
+                            codes::UNKNOWN_DM,
+                            dm.loc(terms.span(v)),
+                            format!("no DM named `{name}`"),
+                        )
+                        .with_label("embedded DM not found");
+                        if let Some(similar) = self.similar_dm(name) {
+                            d = d.with_help(format!("did you mean `{similar}`?"));
+                        } else if self.program.single_file {
+                            d = d.with_help(
+                                "a DM file checked alone sees no other DM file: check its application directory instead",
+                            );
+                        } else {
+                            d = d.with_help("add its file to the application (or to `models`)");
+                        }
+                        self.diags.push(d);
+                    }
+                    Some(target) if target.arity != arity => {
+                        self.diags.push(
+                            Diagnostic::error(
+                                codes::DM_ARITY,
+                                dm.loc(terms.span(v)),
+                                format!(
+                                    "DM `{name}` takes {} argument(s), but is called with {arity}",
+                                    target.arity
+                                ),
+                            )
+                            .with_label("wrong number of arguments")
+                            .with_secondary(
+                                target.loc(target.span_of(target.head)),
+                                "defined here",
+                            ),
+                        );
+                    }
+                    Some(target) => resolved.push(target),
+                }
+            }
+            if resolved.len() != 1 {
+                continue;
+            }
+            let target = resolved[0];
+            let finals: Vec<TermId> = target
+                .situations
+                .iter()
+                .filter(|t| t.kind(&target.clause) == SituationKind::Final)
+                .filter_map(|t| t.id)
+                .collect();
+            for arc in s.arcs.iter().flatten() {
+                let Some(values) = static_values(terms, arc.expectation) else {
+                    continue;
+                };
+                for v in values {
+                    if !finals
+                        .iter()
+                        .any(|&f| may_unify(terms, v, &target.clause.terms, f))
+                    {
+                        let names: Vec<String> = finals.iter().map(|&f| show(target, f)).collect();
+                        let shown = show(dm, v);
+                        let help = if names.is_empty() {
+                            format!(
+                                "DM `{}` has no final situation: add `[id ==> {shown}, type ==> final]` to it",
+                                target.name
+                            )
+                        } else if let Some(similar) =
+                            did_you_mean(&shown, names.iter().map(String::as_str))
+                        {
+                            format!("did you mean `{similar}`?")
+                        } else {
+                            format!(
+                                "final situations of `{}`: {}",
+                                target.name,
+                                names.join(", ")
+                            )
+                        };
+                        self.diags.push(
+                            Diagnostic::error(
+                                codes::UNKNOWN_EXIT,
+                                dm.loc(terms.span(v)),
+                                format!(
+                                    "`{shown}` is not a final situation of DM `{}`",
+                                    target.name
+                                ),
+                            )
+                            .with_label("this exit arc can never be taken")
+                            .with_secondary(
+                                target.loc(target.span_of(target.head)),
+                                format!("DM `{}` defined here", target.name),
+                            )
+                            .with_help(help),
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+}
+
+/// The situations of a DM by id, so that finding the situations a
+/// next-situation value can select costs a hash lookup, not a scan.
+pub(super) struct SituationIndex {
+    /// Ground ids, by their text.
+    pub(super) ground: HashMap<String, Vec<usize>>,
+    /// Ids with variables, by principal functor.
+    pub(super) open: HashMap<(Atom, usize), Vec<usize>>,
+    /// Every id, by principal functor (for values with variables).
+    pub(super) all: HashMap<(Atom, usize), Vec<usize>>,
+    /// Ids that are a variable: any value selects them.
+    pub(super) var: Vec<usize>,
+}
+
+impl SituationIndex {
+    pub(super) fn new(dm: &Dm) -> SituationIndex {
+        let terms = &dm.clause.terms;
+        let mut index = SituationIndex {
+            ground: HashMap::new(),
+            open: HashMap::new(),
+            all: HashMap::new(),
+            var: Vec::new(),
+        };
+        for (j, s) in dm.situations.iter().enumerate() {
+            let Some(id) = s.id else { continue };
+            let Some(key) = terms.functor(id) else {
+                if matches!(terms.node(id), Node::Var(_)) {
+                    index.var.push(j);
+                } else {
+                    // numbers and other constants: compared by text
+                    index
+                        .ground
+                        .entry(sitlog_syntax::writeq(&dm.clause, id))
+                        .or_default()
+                        .push(j);
+                }
+                continue;
+            };
+            index.all.entry(key).or_default().push(j);
+            if is_ground(terms, id) {
+                index
+                    .ground
+                    .entry(sitlog_syntax::writeq(&dm.clause, id))
+                    .or_default()
+                    .push(j);
+            } else {
+                index.open.entry(key).or_default().push(j);
+            }
+        }
+        index
+    }
+
+    /// The situations whose id may unify with `v`.
+    pub(super) fn targets(&self, dm: &Dm, v: TermId) -> Vec<usize> {
+        let terms = &dm.clause.terms;
+        let unifies = |&j: &usize| {
+            dm.situations[j]
+                .id
+                .is_some_and(|id| may_unify(terms, id, terms, v))
+        };
+        let mut out: Vec<usize> = self.var.clone();
+        match terms.functor(v) {
+            Some(key) if is_ground(terms, v) => {
+                if let Some(js) = self.ground.get(&sitlog_syntax::writeq(&dm.clause, v)) {
+                    out.extend(js);
+                }
+                if let Some(js) = self.open.get(&key) {
+                    out.extend(js.iter().filter(|j| unifies(j)));
+                }
+            }
+            Some(key) => {
+                if let Some(js) = self.all.get(&key) {
+                    out.extend(js.iter().filter(|j| unifies(j)));
+                }
+            }
+            None => {
+                if let Some(js) = self.ground.get(&sitlog_syntax::writeq(&dm.clause, v)) {
+                    out.extend(js);
+                }
+            }
+        }
+        out
+    }
+}
+
+/// What files that could not be read (syntax errors, not UTF-8) may have
+/// declared: names they may define are not reported as unknown (the
+/// reading error is the one to fix, and it is reported).
+pub(super) struct Broken {
+    /// A DM file failed.
+    pub(super) dm_file: bool,
+    /// The DM names the failed DM files seem to define (`diag_mod(name`);
+    /// `None` when one of them shows none: any name may be defined there.
+    pub(super) dm_names: Option<HashSet<String>>,
+    pub(super) globals: bool,
+    pub(super) basic_actions: bool,
+    pub(super) prolog: bool,
+}
+
+impl Broken {
+    pub(super) fn of(program: &Program, diags: &[Diagnostic]) -> Broken {
+        let mut files: Vec<FileId> = diags
+            .iter()
+            .filter(|d| {
+                d.is_error()
+                    && (d.code == crate::load::codes::SYNTAX
+                        || d.code == crate::load::codes::NOT_UTF8)
+            })
+            .map(|d| d.loc.file)
+            .collect();
+        files.sort();
+        files.dedup();
+        let mut broken = Broken {
+            dm_file: false,
+            dm_names: Some(HashSet::new()),
+            globals: false,
+            basic_actions: false,
+            prolog: false,
+        };
+        for f in files {
+            let source = program.sources.get(f);
+            let name = source
+                .path
+                .file_name()
+                .and_then(|n| n.to_str())
+                .unwrap_or("");
+            match name {
+                "global_vars.pl" => broken.globals = true,
+                "basic_actions.pl" => broken.basic_actions = true,
+                "host_functions.pl" => broken.prolog = true,
+                "models" | "expectation_types.pl" | "recovery_protocols.pl" => {}
+                _ if program.prolog_files.contains(&f) => broken.prolog = true,
+                _ => {
+                    broken.dm_file = true;
+                    let names = dm_names_in(&source.text);
+                    match (&mut broken.dm_names, names.is_empty()) {
+                        (Some(known), false) => known.extend(names),
+                        (known, _) => *known = None,
+                    }
+                }
+            }
+        }
+        broken
+    }
+
+    pub(super) fn may_define_dm(&self, name: Atom) -> bool {
+        self.dm_file
+            && self
+                .dm_names
+                .as_ref()
+                .is_none_or(|names| names.contains(name.as_str()))
+    }
+}
+

@@ -1,0 +1,118 @@
+//! The checks of SitLog variables in a DM: declared before use (local,
+//! global, parameter), singletons, locals shadowing globals.
+
+use super::*;
+
+impl<'p> Checker<'p> {
+    /// `get`/`set`/`inc` name a local or global variable.
+    pub(super) fn variables(&mut self, dm: &Dm) {
+        let terms = &dm.clause.terms;
+        for (i, l) in dm.locals.iter().enumerate() {
+            if dm.locals[..i].iter().any(|p| p.name == l.name) {
+                self.diags.push(Diagnostic::warning(
+                    codes::DUPLICATE_LOCAL,
+                    dm.loc(l.span),
+                    format!(
+                        "local variable `{}` is declared twice; the first is used",
+                        l.name
+                    ),
+                ));
+            }
+        }
+        let known = |name: Atom| {
+            dm.locals.iter().any(|l| l.name == name)
+                || self.program.globals.iter().any(|g| g.name == name)
+        };
+        let mut found = Vec::new();
+        for s in &dm.situations {
+            let roots = [s.id, s.prog, s.in_arg, s.out_arg, s.embedded_dm, s.diag_mod];
+            let mut stack: Vec<TermId> = roots.into_iter().flatten().collect();
+            for arc in s.arcs.iter().flatten() {
+                stack.extend([arc.expectation, arc.action, arc.next]);
+            }
+            while let Some(t) = stack.pop() {
+                if let Some((f, 2)) = terms.functor(t) {
+                    if f == atoms::GET || f == atoms::SET || f == atoms::INC {
+                        if let Some(name) = terms.atom(terms.args(t)[0]) {
+                            if !known(name) {
+                                found.push((f, name, terms.args(t)[0]));
+                            }
+                        }
+                    }
+                }
+                stack.extend_from_slice(terms.args(t));
+            }
+        }
+        found.sort_by_key(|&(_, _, t)| terms.span(t));
+        for (f, name, t) in found {
+            let mut d = Diagnostic::error(
+                codes::UNKNOWN_VARIABLE,
+                dm.loc(terms.span(t)),
+                format!("`{f}` of `{name}`, which is neither a local variable of DM `{}` nor a global variable", dm.name),
+            )
+            .with_label("unknown SitLog variable");
+            let names = dm
+                .locals
+                .iter()
+                .map(|l| l.name.as_str())
+                .chain(self.program.globals.iter().map(|g| g.name.as_str()));
+            d = if let Some(similar) = did_you_mean(name.as_str(), names) {
+                d.with_help(format!("did you mean `{similar}`?"))
+            } else if self.program.has_globals_file {
+                d.with_help(format!("declare it in the DM's local variables (`{name} ==> Value`) or in global_vars.pl"))
+            } else {
+                d.with_help(format!("declare it in the DM's local variables (`{name} ==> Value`) or in a global_vars.pl beside the DMs"))
+            };
+            self.diags.push(d);
+        }
+    }
+
+    /// Variables that occur once (Prolog's singleton warning).
+    pub(super) fn singletons(&mut self, dm: &Dm) {
+        for v in &dm.clause.vars {
+            if v.occurrences == 1 && !v.is_anonymous_style() {
+                self.diags.push(
+                    Diagnostic::warning(
+                        codes::SINGLETON,
+                        dm.loc(v.first),
+                        format!("singleton variable `{}`", v.name),
+                    )
+                    .with_label("occurs only once in this DM")
+                    .with_help(format!("if that is intended, write `_{}` or `_`", v.name)),
+                );
+            }
+        }
+    }
+
+    /// A later situation with the same ground id as an earlier one is never selected.
+    pub(super) fn shadowed(&mut self, dm: &Dm) {
+        let terms = &dm.clause.terms;
+        let mut first: HashMap<String, usize> = HashMap::new();
+        for (i, s) in dm.situations.iter().enumerate() {
+            let Some(id) = s.id else { continue };
+            if !is_ground(terms, id) {
+                continue;
+            }
+            let earlier = match first.entry(sitlog_syntax::writeq(&dm.clause, id)) {
+                std::collections::hash_map::Entry::Occupied(e) => Some(&dm.situations[*e.get()]),
+                std::collections::hash_map::Entry::Vacant(e) => {
+                    e.insert(i);
+                    None
+                }
+            };
+            if let Some(p) = earlier {
+                self.diags.push(
+                    Diagnostic::warning(
+                        codes::SHADOWED,
+                        dm.loc(terms.span(id)),
+                        format!(
+                            "situation `{}` is defined twice; the first one is always selected",
+                            show(dm, id)
+                        ),
+                    )
+                    .with_secondary(dm.loc(p.span), "first definition"),
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,665 @@
+//! The program and its DMs as Rust items: `Program` and its
+//! `DmProgram`/`App` impls, the entry points (`program()`, `run`, `main`),
+//! and one module per DM (its situation enum, instance builders, dispatch).
+//! The per-situation code is [`super::step`]'s and [`super::typed`]'s.
+
+use super::*;
+
+impl Gen<'_> {
+    pub(super) fn emit(&self, ir: &Ir, source: &str) -> TokenStream {
+        let rt = quote!(::sitlog_runtime);
+        let prolog_names: Vec<Literal> = ir
+            .prolog_sources
+            .iter()
+            .map(|f| Literal::string(&f.name))
+            .collect();
+        let prolog_texts: Vec<Literal> = ir
+            .prolog_sources
+            .iter()
+            .map(|f| Literal::string(&f.text))
+            .collect();
+        // Atoms.
+        let atom_fields = self.atoms.iter().map(|(a, id)| {
+            let doc = format!(" `{}`", quote_atom(a.as_str()));
+            quote!(#[doc = #doc] pub #id: #rt::Atom,)
+        });
+        let atom_inits = self.atoms.iter().map(|(a, id)| {
+            let lit = Literal::string(a.as_str());
+            quote!(#id: #rt::Atom::intern(#lit),)
+        });
+
+        // Constants.
+        let const_fields = self.consts.iter().enumerate().map(|(i, (text, _))| {
+            let id = Self::const_ident(i);
+            let doc = format!(" `{text}`");
+            quote!(#[doc = #doc] pub #id: #rt::Term,)
+        });
+        let empty = HashMap::new();
+        let const_inits = self.consts.iter().enumerate().map(|(i, (_, t))| {
+            let id = Self::const_ident(i);
+            let mut next_tmp = 0;
+            let b = self.build(*t, &empty, true, &mut next_tmp);
+            let stmts = b.stmts;
+            let value = b.value;
+            if stmts.len() == 1 {
+                // One compound: bind it directly.
+                let expr = &stmts[0].1;
+                quote!(let #id = #expr;)
+            } else {
+                let stmts = stmts.iter().map(|(t, e)| quote!(let #t = #e;));
+                quote!(let #id = { #(#stmts)* #value };)
+            }
+        });
+        let const_names: Vec<Ident> = (0..self.consts.len()).map(Self::const_ident).collect();
+
+        // DM modules.
+        let mut dm_namer = Namer::default();
+        let mut modules = Vec::new();
+        let mut dm_mods = Vec::new();
+        for (i, dm) in ir.dms.iter().enumerate() {
+            let m = ident(&dm_namer.fresh(format!("dm_{}", snake(dm.name.as_str()))));
+            dm_mods.push(m.clone());
+            modules.push(self.emit_dm(dm, i, &m));
+        }
+        let dm_ix: Vec<Literal> = (0..ir.dms.len() as u32)
+            .map(Literal::u32_unsuffixed)
+            .collect();
+
+        // dm_by_name: the first DM of each name in load order.
+        let mut seen = Vec::new();
+        let mut lookup = Vec::new();
+        for (i, dm) in ir.dms.iter().enumerate() {
+            if seen.contains(&dm.name) {
+                continue;
+            }
+            seen.push(dm.name);
+            let a = &self.atoms[self.atom_ix[&dm.name]].1;
+            let ix = Literal::u32_unsuffixed(i as u32);
+            lookup.push(quote!(if name == self.atoms.#a { return Some(#ix); }));
+        }
+        let dm_name_arms = ir.dms.iter().zip(&dm_ix).map(|(dm, ix)| {
+            let a = &self.atoms[self.atom_ix[&dm.name]].1;
+            quote!(#ix => self.atoms.#a,)
+        });
+
+        // Globals.
+        let global_names: Vec<Ident> = (0..ir.globals.len())
+            .map(|i| format_ident!("g{}", i))
+            .collect();
+        let mut global_stmts = Vec::new();
+        let mut global_entries = Vec::new();
+        for ((n, v), gname) in ir.globals.iter().zip(&global_names) {
+            let e = self.builder_expr(*v);
+            let a = &self.atoms[self.atom_ix[n]].1;
+            global_stmts.push(quote!(let #gname = #e;));
+            global_entries.push(quote!((p.atoms.#a, #gname)));
+        }
+        let globals_body = quote!(#(#global_stmts)*);
+        let globals_prelude = Self::prelude(&globals_body);
+        let basic_actions = ir.basic_actions.iter().map(|b| {
+            let a = &self.atoms[self.atom_ix[b]].1;
+            quote!(self.atoms.#a)
+        });
+        let recovery: Vec<TokenStream> = ir
+            .recovery
+            .iter()
+            .map(|(ty, dm)| {
+                let t = &self.atoms[self.atom_ix[ty]].1;
+                let d = &self.atoms[self.atom_ix[dm]].1;
+                quote!((self.atoms.#t, self.atoms.#d))
+            })
+            .collect();
+        let source_doc = format!(" The SitLog program `{source}`, compiled by sitlog-compiler.");
+
+        quote! {
+            #[doc = #source_doc]
+            ///
+            /// Runs on the runtime's DM machine (`sitlog_runtime::machine`), which
+            /// implements every semantic step: situations with atom ids run as
+            /// code calling those steps, the others as instances built here.
+            #[allow(dead_code, non_camel_case_types, unused_variables, clippy::all)]
+            pub struct Program {
+                /// Frozen store holding the constants; every run starts from a clone.
+                store: #rt::Store,
+                pub atoms: Atoms,
+                pub k: Consts,
+            }
+
+            /// The program's atoms, interned once.
+            #[allow(dead_code, non_snake_case, clippy::all)]
+            pub struct Atoms { #(#atom_fields)* }
+
+            /// The program's ground compound terms, built once in [`Program::new`].
+            #[allow(dead_code, clippy::all)]
+            pub struct Consts { #(#const_fields)* }
+
+            #[allow(dead_code, unused_variables, clippy::all)]
+            impl Program {
+                /// Interns the atoms and builds the constants.
+                pub fn new() -> Program {
+                    let mut store = #rt::Store::new();
+                    let a = Atoms { #(#atom_inits)* };
+                    let store = &mut store;
+                    #(#const_inits)*
+                    let k = Consts { #(#const_names),* };
+                    let mut store = ::std::mem::take(store);
+                    store.freeze();
+                    Program { store, atoms: a, k }
+                }
+
+                /// The names of the declared basic actions (`basic_actions.pl`).
+                pub fn basic_actions(&self) -> ::std::vec::Vec<#rt::Atom> {
+                    ::std::vec![#(#basic_actions),*]
+                }
+
+                /// A store for one run (a clone of the frozen one) and fresh
+                /// initial values of the global variables.
+                pub fn initial_state(&self) -> (#rt::Store, #rt::Vars) {
+                    let p = self;
+                    let mut store = self.store.clone();
+                    let store = &mut store;
+                    #globals_prelude
+                    #globals_body
+                    let globals = #rt::Vars::from_entries(::std::vec![#(#global_entries),*]);
+                    (::std::mem::take(store), globals)
+                }
+            }
+
+            #[allow(clippy::all)]
+            impl ::std::default::Default for Program {
+                fn default() -> Program {
+                    Program::new()
+                }
+            }
+
+            #[allow(clippy::all)]
+            impl #rt::machine::DmProgram for Program {
+                fn dm_by_name(&self, name: #rt::Atom) -> ::std::option::Option<#rt::machine::DmIx> {
+                    #(#lookup)*
+                    None
+                }
+                fn dm_name(&self, dm: #rt::machine::DmIx) -> #rt::Atom {
+                    match dm {
+                        #(#dm_name_arms)*
+                        _ => panic!("no DM number {dm}"),
+                    }
+                }
+                fn situation_count(&self, dm: #rt::machine::DmIx) -> usize {
+                    match dm {
+                        #(#dm_ix => #dm_mods::Situation::ALL.len(),)*
+                        _ => panic!("no DM number {dm}"),
+                    }
+                }
+                fn kind(&self, dm: #rt::machine::DmIx, sit: #rt::machine::SitIx) -> #rt::machine::Kind {
+                    match dm {
+                        #(#dm_ix => #dm_mods::Situation::from_ix(sit).kind(),)*
+                        _ => panic!("no DM number {dm}"),
+                    }
+                }
+                fn fresh_head(&self, dm: #rt::machine::DmIx, store: &mut #rt::Store) -> #rt::Term {
+                    match dm {
+                        #(#dm_ix => #dm_mods::head(self, store),)*
+                        _ => panic!("no DM number {dm}"),
+                    }
+                }
+                fn instantiate(
+                    &self,
+                    dm: #rt::machine::DmIx,
+                    sit: #rt::machine::SitIx,
+                    store: &mut #rt::Store,
+                ) -> #rt::machine::Instance {
+                    match dm {
+                        #(#dm_ix => #dm_mods::instantiate(self, #dm_mods::Situation::from_ix(sit), store),)*
+                        _ => panic!("no DM number {dm}"),
+                    }
+                }
+                fn may_select(
+                    &self,
+                    dm: #rt::machine::DmIx,
+                    sit: #rt::machine::SitIx,
+                    value: #rt::Term,
+                    store: &#rt::Store,
+                ) -> bool {
+                    let functor = store.functor(value);
+                    match dm {
+                        #(#dm_ix => #dm_mods::Situation::from_ix(sit).may_select(self, functor),)*
+                        _ => panic!("no DM number {dm}"),
+                    }
+                }
+                fn locals(&self, dm: #rt::machine::DmIx, store: &mut #rt::Store) -> #rt::Vars {
+                    match dm {
+                        #(#dm_ix => #dm_mods::locals(self, store),)*
+                        _ => panic!("no DM number {dm}"),
+                    }
+                }
+                fn location(
+                    &self,
+                    dm: #rt::machine::DmIx,
+                    sit: #rt::machine::SitIx,
+                ) -> ::std::option::Option<::std::string::String> {
+                    let at = match dm {
+                        #(#dm_ix => #dm_mods::Situation::from_ix(sit).location(),)*
+                        _ => panic!("no DM number {dm}"),
+                    };
+                    Some(at.to_owned())
+                }
+                fn compiled_id(
+                    &self,
+                    dm: #rt::machine::DmIx,
+                    sit: #rt::machine::SitIx,
+                ) -> ::std::option::Option<(#rt::Atom, usize)> {
+                    match dm {
+                        #(#dm_ix => #dm_mods::compiled_id(self, sit),)*
+                        _ => ::std::option::Option::None,
+                    }
+                }
+                fn select_compiled(
+                    &self,
+                    dm: #rt::machine::DmIx,
+                    sit: #rt::machine::SitIx,
+                    value: #rt::Term,
+                    store: &mut #rt::Store,
+                ) -> bool {
+                    match dm {
+                        #(#dm_ix => #dm_mods::select_compiled(self, sit, value, store),)*
+                        _ => true,
+                    }
+                }
+                fn run_situation(
+                    &self,
+                    dm: #rt::machine::DmIx,
+                    sit: #rt::machine::SitIx,
+                    cx: &mut #rt::machine::Cx<'_, '_, Self>,
+                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    match dm {
+                        #(#dm_ix => #dm_mods::run_situation(self, sit, cx),)*
+                        _ => ::std::result::Result::Err(cx.error("no such DM", None)),
+                    }
+                }
+                fn run_exit(
+                    &self,
+                    dm: #rt::machine::DmIx,
+                    sit: #rt::machine::SitIx,
+                    saved: #rt::Term,
+                    final_id: #rt::Term,
+                    cx: &mut #rt::machine::Cx<'_, '_, Self>,
+                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    match dm {
+                        #(#dm_ix => #dm_mods::run_exit(self, sit, saved, final_id, cx),)*
+                        _ => ::std::result::Result::Err(cx.error("no such DM", None)),
+                    }
+                }
+            }
+
+            #[allow(clippy::all)]
+            impl #rt::app::App for Program {
+                fn initial_state(&self) -> (#rt::Store, #rt::Vars) {
+                    Program::initial_state(self)
+                }
+                fn basic_actions(&self) -> ::std::vec::Vec<#rt::Atom> {
+                    Program::basic_actions(self)
+                }
+                fn recovery(&self) -> ::std::vec::Vec<(#rt::Atom, #rt::Atom)> {
+                    ::std::vec![#(#recovery),*]
+                }
+            }
+
+            /// The program, built on first use.
+            #[allow(dead_code)]
+            pub fn program() -> &'static Program {
+                static PROGRAM: ::std::sync::OnceLock<Program> = ::std::sync::OnceLock::new();
+                PROGRAM.get_or_init(Program::new)
+            }
+
+            /// Runs the program in test mode from `main` (a DM call, as a term) with
+            /// `in_arg` (a term; the atom `none` when absent): the runtime's
+            /// [`run`](::sitlog_runtime::app::run) on this program.
+            #[allow(dead_code)]
+            pub fn run(
+                main: &str,
+                in_arg: ::std::option::Option<&str>,
+                options: #rt::machine::Options,
+                functions: #rt::Functions,
+                perception: &mut dyn #rt::machine::Perception,
+                actions: &mut dyn #rt::machine::Actions,
+                observer: ::std::option::Option<&mut dyn #rt::machine::Observer>,
+            ) -> ::std::result::Result<(#rt::machine::Outcome, #rt::Store), ::std::string::String> {
+                #rt::app::run(program(), main, in_arg, options, functions, perception, actions, observer)
+            }
+
+            /// The application's Prolog sources (`templates.pl`, `user_functions.pl`), embedded.
+            #[allow(dead_code)]
+            pub const PROLOG_SOURCES: &[(&str, &str)] = &[#((#prolog_names, #prolog_texts)),*];
+
+            /// The standard user functions plus the application's Prolog ones.
+            #[allow(dead_code)]
+            pub fn functions() -> ::std::result::Result<#rt::Functions, ::std::string::String> {
+                let mut functions = #rt::Functions::standard();
+                #rt::install_prolog_sources(&mut functions, PROLOG_SOURCES)?;
+                ::std::result::Result::Ok(functions)
+            }
+
+            #(#modules)*
+        }
+    }
+
+    fn emit_dm(&self, dm: &crate::ir::IrDm, dm_ix: usize, module: &Ident) -> TokenStream {
+        let rt = quote!(::sitlog_runtime);
+        let none = Term::atom(none_marker());
+        let mut namer = Namer::default();
+        let mut variants = Vec::new();
+        let mut vnames = Vec::new();
+        let mut fns = Vec::new();
+        let mut kinds = Vec::new();
+        let mut selects = Vec::new();
+        let mut locations = Vec::new();
+        let mut instantiate_arms = Vec::new();
+        let mut compiled_arms = Vec::new();
+        let mut select_arms = Vec::new();
+        let mut run_arms = Vec::new();
+        let mut exit_arms = Vec::new();
+        for (i, s) in dm.situations.iter().enumerate() {
+            let f = self.store.args(s.template);
+            let id_text = self.store.writeq(f[1]);
+            let base = match self.store.value(f[1]) {
+                Value::Var(_) => "Any".to_owned(),
+                _ => match self.store.functor(f[1]) {
+                    Some((name, _)) => camel(name.as_str()),
+                    None => format!("S{i}"),
+                },
+            };
+            let vname = ident(&namer.fresh(base));
+            vnames.push(vname.clone());
+            let ix = Literal::u32_unsuffixed(i as u32);
+            let kind_text = match s.kind {
+                Kind::Final => "final",
+                Kind::Recursive => "recursive",
+                Kind::Perceptual => "perceptual",
+            };
+            let typing = match self.types.as_ref().map(|t| &t.dms[dm_ix].situations[i]) {
+                Some(Ok(_)) => " Typed: runs on the DM's native `Frame`.".to_owned(),
+                Some(Err(why)) => format!(" Runs on terms: {why}."),
+                None => String::new(),
+            };
+            let doc = format!(
+                " `{}` ({}, type `{}`, {kind_text}).{typing}",
+                id_text,
+                s.location,
+                self.store.writeq(f[2])
+            );
+            variants.push(quote!(#[doc = #doc] #vname = #ix,));
+            let kind = match s.kind {
+                Kind::Final => quote!(Final),
+                Kind::Recursive => quote!(Recursive),
+                Kind::Perceptual => quote!(Perceptual),
+            };
+            kinds.push(quote!(Situation::#vname => #rt::machine::Kind::#kind,));
+            let loc = Literal::string(&s.location);
+            locations.push(quote!(Situation::#vname => #loc,));
+            selects.push(match s.id_functor {
+                Some((name, arity)) => {
+                    let a = &self.atoms[self.atom_ix[&name]].1;
+                    let ar = Literal::usize_unsuffixed(arity);
+                    quote!(Situation::#vname => functor == Some((p.atoms.#a, #ar)),)
+                }
+                None => quote!(Situation::#vname => true,),
+            });
+
+            // The instance builder.
+            let fname = format_ident!("sit_{}", snake(&vname.to_string()));
+            let names = [
+                "head",
+                "id",
+                "type_term",
+                "in_arg",
+                "out_arg",
+                "prog",
+                "embedded_dm",
+                "diag_mod",
+                "arcs",
+            ];
+            let mut parts = Vec::new();
+            let mut fields = Vec::new();
+            for (n, &t) in names.iter().zip(f) {
+                let id = format_ident!("{}", n);
+                let optional = !matches!(*n, "head" | "id" | "type_term" | "arcs");
+                if optional && t == none {
+                    fields.push(quote!(#id: None,));
+                    continue;
+                }
+                parts.push((id.clone(), t));
+                fields.push(if optional {
+                    quote!(#id: Some(#id),)
+                } else {
+                    quote!(#id,)
+                });
+            }
+            let body = self.builder_body(&parts);
+            let prelude = Self::prelude(&body);
+            let fdoc = format!(" A fresh instance of `{id_text}` (D-7).");
+            fns.push(quote! {
+                #[doc = #fdoc]
+                fn #fname(p: &super::Program, store: &mut #rt::Store) -> #rt::machine::Instance {
+                    #prelude
+                    #body
+                    #rt::machine::Instance { #(#fields)* }
+                }
+            });
+            instantiate_arms.push(quote!(Situation::#vname => #fname(p, store),));
+
+            // The situation as code, when it can be compiled.
+            if let Some((id, arity)) = self.compiled_id(dm, s) {
+                let base = snake(&vname.to_string());
+                let run_name = format_ident!("run_{}", base);
+                let exit_name = format_ident!("exit_{}", base);
+                let code = self.situation_code(dm, i, &run_name, &exit_name);
+                let a = &self.atoms[self.atom_ix[&id]].1;
+                let arity = Literal::usize_unsuffixed(arity);
+                compiled_arms
+                    .push(quote!(#ix => ::std::option::Option::Some((p.atoms.#a, #arity)),));
+                if let Some(select) = self.select_code(s) {
+                    select_arms.push(quote!(#ix => { #select }));
+                }
+                run_arms.push(quote!(#ix => #run_name(p, cx),));
+                let rdoc = format!(" A visit of `{id_text}` as code.");
+                let run = code.run;
+                fns.push(quote!(#[doc = #rdoc] #run));
+                if let Some(exit) = code.exit {
+                    exit_arms.push(quote!(#ix => #exit_name(p, saved, final_id, cx),));
+                    let edoc = format!(" The exit arcs of `{id_text}` as code.");
+                    fns.push(quote!(#[doc = #edoc] #exit));
+                }
+            }
+        }
+        let count = dm.situations.len();
+        let typed = match &self.types {
+            Some(types) => self.typed_code(dm, &types.dms[dm_ix]),
+            None => typed::TypedCode {
+                items: quote!(),
+                present: false,
+            },
+        };
+        let untyped = quote! {
+            match sit {
+                #(#run_arms)*
+                _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
+            }?
+        };
+        let typed_first = if typed.present {
+            quote! {
+                // Typed situations first, on the native frame; else as terms.
+                let step = match run_typed(p, sit, cx)? {
+                    ::std::option::Option::Some(step) => step,
+                    ::std::option::Option::None => #untyped,
+                };
+            }
+        } else {
+            quote!(let step = #untyped;)
+        };
+        let typed_items = typed.items;
+        let variant_names: Vec<TokenStream> =
+            vnames.iter().map(|v| quote!(Situation::#v)).collect();
+        let head_body = self.builder_body(&[(format_ident!("head"), dm.head)]);
+        let head_prelude = Self::prelude(&head_body);
+        let local_names: Vec<Ident> = (0..dm.locals.len())
+            .map(|i| format_ident!("l{}", i))
+            .collect();
+        let mut local_stmts = Vec::new();
+        let mut local_entries = Vec::new();
+        for ((n, v), lname) in dm.locals.iter().zip(&local_names) {
+            // Each default is copied on its own (no sharing between locals).
+            let e = self.builder_expr(*v);
+            let a = &self.atoms[self.atom_ix[n]].1;
+            local_stmts.push(quote!(let #lname = #e;));
+            local_entries.push(quote!((p.atoms.#a, #lname)));
+        }
+        let locals_body = quote!(#(#local_stmts)*);
+        let locals_prelude = Self::prelude(&locals_body);
+        let head_text = self.store.writeq(dm.head);
+        let mod_doc = format!(" DM `{head_text}`.");
+        let count_lit = Literal::usize_unsuffixed(count);
+        let (may_select_body, kind_body, location_body, instantiate_body) = if count == 0 {
+            (
+                quote!(match self {}),
+                quote!(match self {}),
+                quote!(match self {}),
+                quote!(match sit {}),
+            )
+        } else {
+            (
+                quote!(match self { #(#selects)* }),
+                quote!(match self { #(#kinds)* }),
+                quote!(match self { #(#locations)* }),
+                quote!(match sit { #(#instantiate_arms)* }),
+            )
+        };
+        quote! {
+            #[doc = #mod_doc]
+            #[allow(dead_code, unused_variables, non_camel_case_types, clippy::all)]
+            pub mod #module {
+                /// The situations, in source order; the discriminant is the
+                /// machine's situation index.
+                #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+                #[repr(u32)]
+                pub enum Situation { #(#variants)* }
+
+                impl Situation {
+                    pub const ALL: [Situation; #count_lit] = [#(#variant_names),*];
+
+                    pub fn from_ix(ix: #rt::machine::SitIx) -> Situation {
+                        Situation::ALL[ix as usize]
+                    }
+
+                    pub fn kind(self) -> #rt::machine::Kind {
+                        #kind_body
+                    }
+
+                    /// Whether the situation's id may unify with a value of this
+                    /// principal functor (D-21's cheap filter).
+                    pub fn may_select(
+                        self,
+                        p: &super::Program,
+                        functor: ::std::option::Option<(#rt::Atom, usize)>,
+                    ) -> bool {
+                        #may_select_body
+                    }
+
+                    /// Where the situation is written.
+                    pub fn location(self) -> &'static str {
+                        #location_body
+                    }
+                }
+
+                /// A fresh copy of the DM's head.
+                pub fn head(p: &super::Program, store: &mut #rt::Store) -> #rt::Term {
+                    #head_prelude
+                    #head_body
+                    head
+                }
+
+                /// Fresh default values of the local variables (D-5).
+                pub fn locals(p: &super::Program, store: &mut #rt::Store) -> #rt::Vars {
+                    #locals_prelude
+                    #locals_body
+                    #rt::Vars::from_entries(::std::vec![#(#local_entries),*])
+                }
+
+                /// The id of a situation that runs as code.
+                pub fn compiled_id(
+                    p: &super::Program,
+                    sit: #rt::machine::SitIx,
+                ) -> ::std::option::Option<(#rt::Atom, usize)> {
+                    match sit {
+                        #(#compiled_arms)*
+                        _ => ::std::option::Option::None,
+                    }
+                }
+
+                /// Whether a compiled situation's constant id arguments unify with `value`'s.
+                pub fn select_compiled(
+                    p: &super::Program,
+                    sit: #rt::machine::SitIx,
+                    value: #rt::Term,
+                    store: &mut #rt::Store,
+                ) -> bool {
+                    let a = &p.atoms;
+                    match sit {
+                        #(#select_arms)*
+                        _ => true,
+                    }
+                }
+
+                /// Runs a situation that runs as code, and the compiled
+                /// situations it goes to by index, until the machine is
+                /// needed (another kind of step, or garbage to collect).
+                pub fn run_situation(
+                    p: &super::Program,
+                    sit: #rt::machine::SitIx,
+                    cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    let mut sit = sit;
+                    loop {
+                        #typed_first
+                        match step {
+                            #rt::machine::Step::GotoSit(next) if !cx.gc_due() => {
+                                let ::std::option::Option::Some((id, 0)) = compiled_id(p, next) else {
+                                    return ::std::result::Result::Ok(step);
+                                };
+                                cx.enter(next, id);
+                                sit = next;
+                            }
+                            _ => return ::std::result::Result::Ok(step),
+                        }
+                    }
+                }
+
+                /// The exit arcs of a recursive situation that runs as code.
+                pub fn run_exit(
+                    p: &super::Program,
+                    sit: #rt::machine::SitIx,
+                    saved: #rt::Term,
+                    final_id: #rt::Term,
+                    cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    match sit {
+                        #(#exit_arms)*
+                        _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
+                    }
+                }
+
+                /// A fresh instance of a situation.
+                pub fn instantiate(
+                    p: &super::Program,
+                    sit: Situation,
+                    store: &mut #rt::Store,
+                ) -> #rt::machine::Instance {
+                    #instantiate_body
+                }
+
+                #typed_items
+
+                #(#fns)*
+            }
+        }
+    }
+}

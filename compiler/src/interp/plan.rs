@@ -1,0 +1,582 @@
+//! Planning: a situation of the IR turned into a [`SitPlan`] once, before
+//! the run (registers for its variables, frozen ground parts, next
+//! situations resolved to indices), or left to the instantiating path
+//! ([`Unsupported`]).
+
+use super::*;
+
+
+/// Variables of one scope: their registers, and those not made yet.
+#[derive(Clone, Default)]
+pub(super) struct Scope {
+    vars: HashMap<u32, Reg>,
+    lazy: HashSet<u32>,
+}
+
+pub(super) struct Planner<'s> {
+    store: &'s Store,
+    dm: &'s IrDm,
+    regs: Reg,
+}
+
+impl<'s> Planner<'s> {
+    pub(super) fn new(store: &'s Store, dm: &'s IrDm) -> Self {
+        Planner { store, dm, regs: 0 }
+    }
+
+    pub(super) fn reg(&mut self) -> Reg {
+        self.regs += 1;
+        self.regs - 1
+    }
+
+    pub(super) fn regs(&mut self, n: usize) -> Reg {
+        let r = self.regs;
+        self.regs += n as Reg;
+        r
+    }
+
+    pub(super) fn field(&self, s: &IrSituation, i: usize) -> Option<Term> {
+        let t = self.store.args(s.template)[i];
+        (self.store.atom_of(t) != Some(none_marker())).then_some(t)
+    }
+
+    pub(super) fn term_vars(&self, t: Term, out: &mut Vec<u32>) {
+        let mut stack = vec![t];
+        while let Some(u) = stack.pop() {
+            match self.store.value(u) {
+                Value::Var(v) if !out.contains(&v.index()) => out.push(v.index()),
+                Value::Compound(_, args) => stack.extend(args.iter().rev()),
+                _ => {}
+            }
+        }
+    }
+
+    /// The code generator's rule for a situation that runs as code.
+    pub(super) fn compiled_id(&self, s: &IrSituation) -> Option<(Atom, usize)> {
+        let f = self.store.args(s.template);
+        self.store.atom_of(f[TYPE])?;
+        if s.kind == Kind::Recursive && self.store.atom_of(f[EMBEDDED_DM]) == Some(none_marker()) {
+            return None;
+        }
+        let mut seen = HashSet::new();
+        for &a in self.store.args(self.dm.head) {
+            match self.store.value(a) {
+                Value::Var(v) if seen.insert(v.index()) => {}
+                _ => return None,
+            }
+        }
+        match self.store.value(f[ID]) {
+            Value::Atom(a) if a != none_marker() => Some((a, 0)),
+            Value::Compound(name, args) => {
+                for &arg in args {
+                    match self.store.value(arg) {
+                        Value::Var(v) if seen.insert(v.index()) => {}
+                        Value::Atom(_) | Value::Int(_) | Value::Float(_) => {}
+                        _ => return None,
+                    }
+                }
+                Some((name, args.len()))
+            }
+            _ => None,
+        }
+    }
+
+    /// The index of the first situation a constant next situation `name`
+    /// selects, when that one runs from a plan.
+    pub(super) fn static_target(&self, name: Atom) -> Option<SitIx> {
+        for (i, s) in self.dm.situations.iter().enumerate() {
+            let id = self.store.args(s.template)[ID];
+            match self.store.value(id) {
+                Value::Var(_) => return None,
+                Value::Atom(a) if a == name => {
+                    return self.compiled_id(s).map(|_| i as SitIx);
+                }
+                _ => {}
+            }
+        }
+        None
+    }
+
+    /// Whether evaluating `t` gives `t` back with no effect.
+    pub(super) fn inert(&self, t: Term, vars_inert: bool) -> bool {
+        let mut stack = vec![t];
+        while let Some(u) = stack.pop() {
+            match self.store.value(u) {
+                Value::Var(_) if !vars_inert => return false,
+                Value::Compound(name, args) => {
+                    if !eval::evaluates_arguments_only(name, args.len()) {
+                        return false;
+                    }
+                    stack.extend(args.iter());
+                }
+                _ => {}
+            }
+        }
+        true
+    }
+
+    pub(super) fn build(&self, t: Term, vars: &HashMap<u32, Reg>, depth: usize) -> Plan<Build> {
+        if depth > MAX_DEPTH {
+            return Err(Unsupported);
+        }
+        match self.store.value(t) {
+            Value::Var(v) => vars
+                .get(&v.index())
+                .map(|&r| Build::Reg(r))
+                .ok_or(Unsupported),
+            Value::Compound(name, args) if !self.store.is_ground(t) => {
+                let args = args
+                    .iter()
+                    .map(|&a| self.build(a, vars, depth + 1))
+                    .collect::<Plan<Vec<_>>>()?;
+                Ok(Build::Compound(name, args.into()))
+            }
+            _ => Ok(Build::Const(t)),
+        }
+    }
+
+    pub(super) fn ev(&self, t: Term, scope: &mut Scope, depth: usize) -> Plan<Ev> {
+        if depth > MAX_DEPTH {
+            return Err(Unsupported);
+        }
+        let (name, args) = match self.store.value(t) {
+            Value::Var(v) => {
+                return scope
+                    .vars
+                    .get(&v.index())
+                    .map(|&r| Ev::Value(r))
+                    .ok_or(Unsupported)
+            }
+            Value::Compound(name, args) => (name, args),
+            _ => return Ok(Ev::Built(Build::Const(t))),
+        };
+        if self.store.is_ground(t) {
+            let k = Build::Const(t);
+            return Ok(if self.inert(t, true) {
+                Ev::Built(k)
+            } else {
+                Ev::Eval(k)
+            });
+        }
+        if let Some((cond, then, other)) = eval::conditional(self.store, t) {
+            let c = self.cond(cond, scope, depth + 1)?;
+            let then = self.ev(then, scope, depth + 1)?;
+            let other = self.ev(other, scope, depth + 1)?;
+            return Ok(Ev::If(Box::new(c), Box::new(then), Box::new(other)));
+        }
+        if args.len() == 2 && [atoms::GET, atoms::SET, atoms::INC].contains(&name) {
+            if let (Some(var), Value::Var(v)) =
+                (self.store.atom_of(args[0]), self.store.value(args[1]))
+            {
+                if scope.lazy.remove(&v.index()) {
+                    let dst = *scope.vars.get(&v.index()).ok_or(Unsupported)?;
+                    return Ok(Ev::VarOpFresh {
+                        op: name,
+                        name: var,
+                        dst,
+                    });
+                }
+            }
+            if let Some(var) = self.store.atom_of(args[0]) {
+                let arg = self.build(args[1], &scope.vars, depth + 1)?;
+                return Ok(Ev::VarOp {
+                    op: name,
+                    name: var,
+                    arg,
+                });
+            }
+        }
+        if args.len() == 2 && name == atoms::IS {
+            let expr = self.build(args[1], &scope.vars, depth + 1)?;
+            if let Value::Var(v) = self.store.value(args[0]) {
+                if scope.lazy.remove(&v.index()) {
+                    let dst = *scope.vars.get(&v.index()).ok_or(Unsupported)?;
+                    return Ok(Ev::IsFresh { expr, dst });
+                }
+            }
+            let lhs = self.build(args[0], &scope.vars, depth + 1)?;
+            return Ok(Ev::Is { lhs, expr });
+        }
+        if eval::evaluates_arguments_only(name, args.len()) {
+            let values = args
+                .iter()
+                .map(|&a| self.ev(a, scope, depth + 1))
+                .collect::<Plan<Vec<_>>>()?;
+            return Ok(Ev::Compound(name, values.into()));
+        }
+        Ok(Ev::Eval(self.build(t, &scope.vars, depth + 1)?))
+    }
+
+    pub(super) fn cond(&self, cond: Term, scope: &mut Scope, depth: usize) -> Plan<Cond> {
+        if let Value::Compound(name, &[l, r]) = self.store.value(cond) {
+            if let Some(op) = ArithCmp::from_atom(name) {
+                let l = self.ev(l, scope, depth + 1)?;
+                let r = self.ev(r, scope, depth + 1)?;
+                return Ok(Cond::Arith(op, l, r));
+            }
+        }
+        Ok(Cond::Other(self.build(cond, &scope.vars, depth + 1)?))
+    }
+
+    pub(super) fn next(&self, t: Term, scope: &mut Scope, depth: usize) -> Plan<Next> {
+        if depth > MAX_DEPTH {
+            return Err(Unsupported);
+        }
+        if let Some(name) = self.store.atom_of(t) {
+            return Ok(Next::Static(t, self.static_target(name)));
+        }
+        if let Some((cond, then, other)) = eval::conditional(self.store, t) {
+            let c = self.cond(cond, scope, depth + 1)?;
+            let then = self.next(then, scope, depth + 1)?;
+            let other = self.next(other, scope, depth + 1)?;
+            return Ok(Next::If(Box::new(c), Box::new(then), Box::new(other)));
+        }
+        Ok(Next::Eval(self.ev(t, scope, depth + 1)?))
+    }
+
+    /// Variables whose first occurrence is the argument of a `get`/`inc`
+    /// (or the variable of an `is`) outside any conditional.
+    pub(super) fn lazy_vars(&self, terms: &[Term]) -> HashSet<u32> {
+        let mut seen = HashSet::new();
+        let mut lazy = HashSet::new();
+        for &t in terms {
+            self.lazy_walk(t, 0, &mut seen, &mut lazy);
+        }
+        lazy
+    }
+
+    pub(super) fn lazy_walk(&self, t: Term, depth: usize, seen: &mut HashSet<u32>, lazy: &mut HashSet<u32>) {
+        let Value::Compound(name, args) = self.store.value(t) else {
+            if let Value::Var(v) = self.store.value(t) {
+                seen.insert(v.index());
+            }
+            return;
+        };
+        if depth > MAX_DEPTH {
+            // Planning fails on such a term anyway: mark its variables seen.
+            let mut vars = Vec::new();
+            self.term_vars(t, &mut vars);
+            seen.extend(vars);
+            return;
+        }
+        if let Some((c, a, b)) = eval::conditional(self.store, t) {
+            for part in [c, a, b] {
+                self.lazy_walk(part, depth + 1, seen, lazy);
+            }
+            return;
+        }
+        if args.len() == 2 && name == atoms::IS {
+            let mut vars = Vec::new();
+            self.term_vars(args[1], &mut vars);
+            seen.extend(vars);
+            if let Value::Var(v) = self.store.value(args[0]) {
+                if depth == 0 && seen.insert(v.index()) {
+                    lazy.insert(v.index());
+                }
+                return;
+            }
+            let mut vars = Vec::new();
+            self.term_vars(args[0], &mut vars);
+            seen.extend(vars);
+            return;
+        }
+        if args.len() == 2 && (name == atoms::GET || name == atoms::INC) {
+            if let (Some(_), Value::Var(v)) =
+                (self.store.atom_of(args[0]), self.store.value(args[1]))
+            {
+                if depth == 0 && seen.insert(v.index()) {
+                    lazy.insert(v.index());
+                }
+                return;
+            }
+        }
+        if !self.store.is_ground(t) && eval::evaluates_arguments_only(name, args.len()) {
+            for &a in args {
+                self.lazy_walk(a, depth, seen, lazy);
+            }
+            return;
+        }
+        let mut vars = Vec::new();
+        self.term_vars(t, &mut vars);
+        seen.extend(vars);
+    }
+
+    pub(super) fn list_literal(&self, t: Term) -> Option<Vec<Term>> {
+        let mut items = Vec::new();
+        let mut rest = t;
+        loop {
+            match self.store.value(rest) {
+                Value::Compound(name, &[head, tail]) if name == atoms::DOT => {
+                    items.push(head);
+                    rest = tail;
+                }
+                Value::Atom(a) if a == atoms::NIL && !items.is_empty() => return Some(items),
+                _ => return None,
+            }
+        }
+    }
+
+    /// The plan of situation `ix`.
+    pub(super) fn situation(mut self, ix: usize) -> Plan<SitPlan> {
+        let s = &self.dm.situations[ix];
+        let id = self.compiled_id(s).ok_or(Unsupported)?;
+        let f = self.store.args(s.template).to_vec();
+        let mut scope = Scope::default();
+        let mut inst_vars = Vec::new();
+        for &t in &f[..ARCS] {
+            self.term_vars(t, &mut inst_vars);
+        }
+        let head_vars: Vec<u32> = self
+            .store
+            .args(f[HEAD])
+            .iter()
+            .map(|&a| match self.store.value(a) {
+                Value::Var(v) => Ok(v.index()),
+                _ => Err(Unsupported),
+            })
+            .collect::<Plan<_>>()?;
+        let in_arg = self.field(s, IN_ARG);
+        let out_arg = self.field(s, OUT_ARG);
+        let prog = self.field(s, PROG);
+        let diag_mod = self.field(s, DIAG_MOD);
+        let in_var = in_arg.and_then(|t| match self.store.value(t) {
+            Value::Var(v) if !head_vars.contains(&v.index()) => Some(v.index()),
+            _ => None,
+        });
+        let mut select = Vec::new();
+        let mut id_vars = Vec::new();
+        let mut compound_id = None;
+        if let Value::Compound(_, args) = self.store.value(f[ID]) {
+            let mut parts = Vec::new();
+            for (i, &arg) in args.iter().enumerate() {
+                if let Value::Var(v) = self.store.value(arg) {
+                    id_vars.push((v.index(), i));
+                    parts.push(IdPart::Fresh(self.reg()));
+                } else {
+                    select.push((i, arg));
+                    parts.push(IdPart::Const(arg));
+                }
+            }
+            compound_id = Some(parts);
+        }
+        let mut inits = Vec::new();
+        for &v in &inst_vars {
+            let init = if let Some(&(_, i)) = id_vars.iter().find(|(x, _)| *x == v) {
+                Init::IdArg(i)
+            } else if let Some(i) = head_vars.iter().position(|&h| h == v) {
+                Init::HeadArg(i)
+            } else if Some(v) == in_var {
+                Init::Pipe
+            } else {
+                Init::Fresh
+            };
+            let r = self.reg();
+            inits.push((r, init));
+            scope.vars.insert(v, r);
+        }
+        let in_plan = match in_arg {
+            Some(t) => Some((self.build(t, &scope.vars, 0)?, in_var.is_none(), self.reg())),
+            None => None,
+        };
+        let out_plan = match out_arg {
+            Some(t) if s.kind != Kind::Recursive => {
+                Some((self.build(t, &scope.vars, 0)?, self.reg()))
+            }
+            _ => None,
+        };
+        let prog_plan = match prog {
+            None => None,
+            Some(p) => {
+                let mut linked = Vec::new();
+                let mut elsewhere = Vec::new();
+                for (i, &t) in f.iter().enumerate() {
+                    let link = i == IN_ARG || (i == OUT_ARG && s.kind != Kind::Recursive);
+                    match i {
+                        PROG => {}
+                        _ if link => self.term_vars(t, &mut linked),
+                        _ => self.term_vars(t, &mut elsewhere),
+                    }
+                }
+                let mut prog_vars = Vec::new();
+                self.term_vars(p, &mut prog_vars);
+                if prog_vars
+                    .iter()
+                    .all(|v| linked.contains(v) || !elsewhere.contains(v))
+                {
+                    let parts = self.list_literal(p).unwrap_or_else(|| vec![p]);
+                    let evs = parts
+                        .into_iter()
+                        .map(|part| self.ev(part, &mut scope, 0))
+                        .collect::<Plan<Vec<_>>>()?;
+                    Some(Prog::InPlace(evs))
+                } else {
+                    Some(Prog::Copy(self.build(p, &scope.vars, 0)?))
+                }
+            }
+        };
+        let kind = match s.kind {
+            Kind::Final => KindPlan::Final {
+                diag_mod: match diag_mod {
+                    Some(d) => Some(self.build(d, &scope.vars, 0)?),
+                    None => None,
+                },
+            },
+            Kind::Perceptual => KindPlan::Perceptual(self.arcs(s, &mut scope, false)?),
+            Kind::Recursive => {
+                let e = self.field(s, EMBEDDED_DM).ok_or(Unsupported)?;
+                let eval_call = !(self.store.is_ground(e) && self.inert(e, true));
+                let call = self.build(e, &scope.vars, 0)?;
+                let mut needed = Vec::new();
+                for t in [Some(f[ARCS]), out_arg, diag_mod].into_iter().flatten() {
+                    self.term_vars(t, &mut needed);
+                }
+                let saved: Vec<Reg> = inst_vars
+                    .iter()
+                    .filter(|v| needed.contains(v))
+                    .map(|v| scope.vars[v])
+                    .collect();
+                let mut exit_scope = Scope {
+                    vars: scope.vars.clone(),
+                    lazy: HashSet::new(),
+                };
+                let exit = self.arcs(s, &mut exit_scope, true)?;
+                KindPlan::Recursive {
+                    call,
+                    eval_call,
+                    saved,
+                    exit,
+                }
+            }
+        };
+        Ok(SitPlan {
+            id,
+            select,
+            compound_id,
+            inits,
+            in_arg: in_plan,
+            out_arg: out_plan,
+            prog: prog_plan,
+            kind,
+            regs: self.regs as usize,
+        })
+    }
+
+    /// The arcs of a perceptual situation, or the exit arcs of a recursive one.
+    pub(super) fn arcs(&mut self, s: &IrSituation, scope: &mut Scope, exit: bool) -> Plan<Arcs> {
+        let f = self.store.args(s.template);
+        let out_arg = self.field(s, OUT_ARG);
+        let diag_mod = self.field(s, DIAG_MOD);
+        let type_term = f[TYPE];
+        let arcs: Vec<[Term; 3]> = self
+            .store
+            .list_iter(f[ARCS])
+            .map(|arc| {
+                let a = self.store.args(arc);
+                [a[0], a[1], a[2]]
+            })
+            .collect();
+        let neutral = self.store.atom_of(type_term) == Some(atoms::NEUTRAL);
+        let always_first = !exit
+            && neutral
+            && arcs.len() == 1
+            && self.store.atom_of(arcs[0][0]) == Some(atoms::EMPTY);
+        // Each arc's variables: imported copies of the situation's, fresh otherwise (D-11).
+        let mut scopes = Vec::new();
+        let mut parts = Vec::new();
+        let mut pure = true;
+        for arc in &arcs {
+            let mut vars = Vec::new();
+            for &t in arc.iter().chain(out_arg.iter()) {
+                self.term_vars(t, &mut vars);
+            }
+            let in_order: Vec<Term> = arc.iter().copied().chain(out_arg).collect();
+            let mut in_expectation = Vec::new();
+            self.term_vars(arc[0], &mut in_expectation);
+            let lazy: HashSet<u32> = self
+                .lazy_vars(&in_order)
+                .into_iter()
+                .filter(|v| !scope.vars.contains_key(v) && !in_expectation.contains(v))
+                .collect();
+            let imported: Vec<u32> = vars
+                .iter()
+                .copied()
+                .filter(|v| scope.vars.contains_key(v))
+                .collect();
+            let import_at = self.regs(imported.len());
+            let import_from: Vec<Reg> = imported.iter().map(|v| scope.vars[v]).collect();
+            let mut arc_vars = HashMap::new();
+            let mut fresh = Vec::new();
+            for (n, &v) in imported.iter().enumerate() {
+                arc_vars.insert(v, import_at + n as Reg);
+            }
+            for &v in &vars {
+                if arc_vars.contains_key(&v) {
+                    continue;
+                }
+                let r = self.reg();
+                if !lazy.contains(&v) {
+                    fresh.push(r);
+                }
+                arc_vars.insert(v, r);
+            }
+            pure &= self.inert(arc[0], true)
+                && in_expectation.iter().all(|v| !scope.vars.contains_key(v));
+            scopes.push(Scope {
+                vars: arc_vars,
+                lazy,
+            });
+            parts.push((fresh, import_from, import_at));
+        }
+        let exps = self.regs(arcs.len());
+        let mut plans = Vec::new();
+        for ((arc, sc), (fresh, import_from, import_at)) in arcs.iter().zip(scopes).zip(parts) {
+            let mut exp_scope = Scope {
+                vars: sc.vars.clone(),
+                lazy: HashSet::new(),
+            };
+            let expectation = self.ev(arc[0], &mut exp_scope, 0)?;
+            let mut sc = sc;
+            let action = match self.list_literal(arc[1]) {
+                Some(items) if !self.inert(arc[1], true) || !self.store.is_ground(arc[1]) => {
+                    let items = items
+                        .into_iter()
+                        .map(|x| self.ev(x, &mut sc, 0))
+                        .collect::<Plan<Vec<_>>>()?;
+                    let regs = self.regs(items.len());
+                    Action::List { items, regs }
+                }
+                _ => Action::One(self.ev(arc[1], &mut sc, 0)?),
+            };
+            let next = self.next(arc[2], &mut sc, 0)?;
+            let out_arg = match out_arg {
+                Some(o) => Some(self.build(o, &sc.vars, 0)?),
+                None => None,
+            };
+            let diag_mod = match diag_mod {
+                Some(d) => Some(self.build(d, &scope.vars, 0)?),
+                None => None,
+            };
+            plans.push(ArcPlan {
+                fresh,
+                import_from,
+                import_at,
+                expectation,
+                action,
+                next,
+                out_arg,
+                diag_mod,
+            });
+        }
+        if !always_first {
+            self.store.atom_of(type_term).ok_or(Unsupported)?;
+        }
+        Ok(Arcs {
+            arcs: plans,
+            pure,
+            always_first,
+            type_term,
+            exps,
+        })
+    }
+}
+

@@ -1,0 +1,582 @@
+//! The inference itself: per DM, the writes of each variable joined into
+//! one type, then each situation given a typed plan ([`TSit`]) or a reason
+//! to stay on terms.
+
+use super::*;
+
+/// Runs inference over a lowered program.
+pub fn infer(ir: &Ir) -> Types {
+    let store = &ir.store;
+    let mut dms = Vec::new();
+    for dm in &ir.dms {
+        dms.push(infer_dm(ir, dm));
+    }
+    // Globals: initial values joined with the constant writes of every DM
+    // where the name is not a local.
+    let mut globals = Vec::new();
+    for &(name, init) in &ir.globals {
+        let mut ty = Ty::of_ground(store, init);
+        let mut why = if ty == Ty::Term {
+            format!("initial value `{}` is not ground", store.writeq(init))
+        } else {
+            format!("initial value `{}`", store.writeq(init))
+        };
+        for dm in &ir.dms {
+            if dm.locals.iter().any(|(n, _)| *n == name) {
+                continue;
+            }
+            let writes = writes_of(store, dm, name);
+            (ty, why) = join_writes(store, dm, ty, why, &writes);
+        }
+        globals.push(VarTy {
+            name: name.as_str().to_owned(),
+            ty,
+            why,
+        });
+    }
+    Types { dms, globals }
+}
+
+/// A write into a SitLog variable found in a DM's code.
+pub(super) enum Write {
+    Set(Term),
+    Inc,
+    /// `set`/`inc` whose variable name is not written out, or code that may
+    /// write any variable (a user function, an unknown evaluation).
+    Opaque(String),
+}
+
+pub(super) fn join_writes(
+    store: &Store,
+    dm: &IrDm,
+    mut ty: Ty,
+    mut why: String,
+    writes: &[Write],
+) -> (Ty, String) {
+    for w in writes {
+        if ty == Ty::Term {
+            break;
+        }
+        match w {
+            Write::Set(v) => {
+                let t = Ty::of_ground(store, *v);
+                let joined = ty.join(&t);
+                if joined == Ty::Term {
+                    why = format!(
+                        "`set` to `{}` ({}) besides {why}",
+                        show(store, dm, *v),
+                        an(&t)
+                    );
+                } else if joined != ty {
+                    why = format!("{why}, `set` to `{}`", show(store, dm, *v));
+                }
+                ty = joined;
+            }
+            Write::Inc => {
+                if !matches!(ty, Ty::Int | Ty::Float) {
+                    why = format!("`inc` of {} ({why})", an(&ty));
+                    ty = Ty::Term;
+                }
+            }
+            Write::Opaque(what) => {
+                if !why.contains(what.as_str()) {
+                    why = format!("{why}; {what}: checked on load");
+                }
+            }
+        }
+    }
+    (ty, why)
+}
+
+/// Every write into `name` in the code of `dm` (any field of any situation).
+pub(super) fn writes_of(store: &Store, dm: &IrDm, name: Atom) -> Vec<Write> {
+    let mut out = Vec::new();
+    for s in &dm.situations {
+        let mut stack = vec![s.template];
+        while let Some(t) = stack.pop() {
+            if let Value::Compound(f, args) = store.value(t) {
+                if args.len() == 2 && (f == atoms::SET || f == atoms::INC) {
+                    match store.atom_of(args[0]) {
+                        Some(n) if n == name => out.push(if f == atoms::SET {
+                            Write::Set(args[1])
+                        } else {
+                            Write::Inc
+                        }),
+                        Some(_) => {}
+                        None => out.push(Write::Opaque(format!(
+                            "`{}` names its variable at run time",
+                            show(store, dm, t)
+                        ))),
+                    }
+                }
+                stack.extend(args.iter());
+            }
+        }
+    }
+    out
+}
+
+pub(super) fn var_name(dm: &IrDm, v: u32) -> String {
+    dm.var_index_names
+        .iter()
+        .find(|(i, _)| *i == v)
+        .map_or_else(|| format!("_G{v}"), |(_, n)| n.clone())
+}
+
+pub(super) fn infer_dm(ir: &Ir, dm: &IrDm) -> DmTypes {
+    let store = &ir.store;
+    let locals: Vec<VarTy> = dm
+        .locals
+        .iter()
+        .map(|&(name, init)| {
+            let ty = Ty::of_ground(store, init);
+            let why = if ty == Ty::Term {
+                format!("default `{}` is not ground", store.writeq(init))
+            } else {
+                format!("default `{}`", store.writeq(init))
+            };
+            let writes = writes_of(store, dm, name);
+            let (ty, why) = join_writes(store, dm, ty, why, &writes);
+            let why = if writes.iter().any(|w| matches!(w, Write::Inc)) && ty != Ty::Term {
+                format!("{why}; `inc` keeps it {}", an(&ty))
+            } else {
+                why
+            };
+            VarTy {
+                name: name.as_str().to_owned(),
+                ty,
+                why,
+            }
+        })
+        .collect();
+    let head_vars: Vec<Option<u32>> = store
+        .args(dm.head)
+        .iter()
+        .map(|&a| match store.value(a) {
+            Value::Var(v) => Some(v.index()),
+            _ => None,
+        })
+        .collect();
+    let distinct_params = {
+        let mut seen = Vec::new();
+        head_vars
+            .iter()
+            .all(|v| v.is_some_and(|v| !seen.contains(&v) && (seen.push(v), true).1))
+    };
+    let mut cx = DmCx {
+        store,
+        dm,
+        locals: &locals,
+        head_vars: &head_vars,
+        params: vec![Ty::None; head_vars.len()],
+    };
+    let mut situations = Vec::new();
+    for ix in 0..dm.situations.len() {
+        let r = if distinct_params {
+            cx.situation(ix)
+        } else {
+            Err("the DM's head has non-variable or repeated parameters".to_owned())
+        };
+        situations.push(r);
+    }
+    // A typed final situation alone gains nothing: the DM runs on terms.
+    if !situations
+        .iter()
+        .any(|s| matches!(s, Ok(TSit::Perceptual { .. })))
+    {
+        for s in &mut situations {
+            if s.is_ok() {
+                *s = Err("no other situation of the DM runs typed".to_owned());
+            }
+        }
+    }
+    // A parameter whose demanded types disagree: its situations stay untyped.
+    let bad: Vec<usize> = (0..cx.params.len())
+        .filter(|&i| cx.params[i] == Ty::Term)
+        .collect();
+    if !bad.is_empty() {
+        for s in &mut situations {
+            if let Ok(t) = s {
+                let mut used = Vec::new();
+                t.params_used(&mut used);
+                if let Some(&i) = used.iter().find(|i| bad.contains(i)) {
+                    *s = Err(format!(
+                        "parameter `{}` is compared both as an int and as a float",
+                        var_name(dm, head_vars[i].unwrap_or(0))
+                    ));
+                }
+            }
+        }
+    }
+    let params = head_vars
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            v.map(|v| {
+                let (ty, why) = match &cx.params[i] {
+                    Ty::None => (Ty::Term, "not used by typed code".to_owned()),
+                    Ty::Term => (
+                        Ty::Term,
+                        "compared both as an int and as a float".to_owned(),
+                    ),
+                    t => (t.clone(), String::new()),
+                };
+                let why = match ty {
+                    Ty::Term => why,
+                    _ => format!("compared with {} in typed code; checked on entry", an(&ty)),
+                };
+                VarTy {
+                    name: var_name(dm, v),
+                    ty,
+                    why,
+                }
+            })
+        })
+        .collect();
+    DmTypes {
+        params,
+        locals,
+        situations,
+    }
+}
+
+pub(super) struct DmCx<'a> {
+    store: &'a Store,
+    dm: &'a IrDm,
+    locals: &'a [VarTy],
+    head_vars: &'a [Option<u32>],
+    /// Types the typed code demands of each parameter.
+    params: Vec<Ty>,
+}
+
+pub(super) const IN_ARG: usize = 3;
+pub(super) const PROG: usize = 5;
+pub(super) const EMBEDDED_DM: usize = 6;
+pub(super) const DIAG_MOD: usize = 7;
+pub(super) const OUT_ARG: usize = 4;
+
+impl DmCx<'_> {
+    fn present(&self, t: Term) -> bool {
+        self.store.atom_of(t) != Some(none_marker())
+    }
+
+    fn situation(&mut self, ix: usize) -> Result<TSit, String> {
+        let store = self.store;
+        let s = &self.dm.situations[ix];
+        let f = store.args(s.template);
+        let Some(id) = store.atom_of(f[1]).filter(|&a| a != none_marker()) else {
+            return Err(format!(
+                "its id `{}` is not an atom",
+                show(store, self.dm, f[1])
+            ));
+        };
+        let Some(type_name) = store.atom_of(f[2]) else {
+            return Err(format!(
+                "its type `{}` is not an atom",
+                show(store, self.dm, f[2])
+            ));
+        };
+        for (i, what) in [
+            (IN_ARG, "in_arg"),
+            (OUT_ARG, "out_arg"),
+            (PROG, "prog"),
+            (EMBEDDED_DM, "embedded_dm"),
+            (DIAG_MOD, "diag_mod"),
+        ] {
+            if self.present(f[i]) {
+                return Err(format!("it has `{what}`"));
+            }
+        }
+        match s.kind {
+            Kind::Final => return Ok(TSit::Final { id }),
+            Kind::Recursive => return Err("it is recursive".to_owned()),
+            Kind::Perceptual => {}
+        }
+        let raw: Vec<[Term; 3]> = store
+            .list_iter(f[8])
+            .map(|arc| {
+                let a = store.args(arc);
+                [a[0], a[1], a[2]]
+            })
+            .collect();
+        let always_first = type_name == atoms::NEUTRAL
+            && raw.len() == 1
+            && store.atom_of(raw[0][0]) == Some(atoms::EMPTY);
+        let mut arcs = Vec::new();
+        for (i, [e, a, n]) in raw.into_iter().enumerate() {
+            let arc = self
+                .arc(e, a, n)
+                .map_err(|why| format!("arc {}: {why}", i + 1))?;
+            arcs.push(arc);
+        }
+        Ok(TSit::Perceptual {
+            id,
+            type_name,
+            always_first,
+            arcs,
+        })
+    }
+
+    fn constant(&self, t: Term) -> bool {
+        self.store.is_ground(t) && inert(self.store, t)
+    }
+
+    fn local(&self, name: Atom) -> Result<usize, String> {
+        let Some(i) = self.dm.locals.iter().position(|(n, _)| *n == name) else {
+            return Err(format!(
+                "`{name}` is not a local of the DM (globals stay terms)"
+            ));
+        };
+        if !self.locals[i].ty.is_native() {
+            return Err(format!("local `{name}` is {}", an(&self.locals[i].ty)));
+        }
+        Ok(i)
+    }
+
+    fn arc(&mut self, e: Term, a: Term, n: Term) -> Result<TArc, String> {
+        let store = self.store;
+        if !self.constant(e) {
+            return Err(format!(
+                "expectation `{}` is not a constant",
+                show(store, self.dm, e)
+            ));
+        }
+        // Arc variables bound so far, with their types.
+        let mut bound: HashMap<u32, Ty> = HashMap::new();
+        let action = match list_literal(store, a) {
+            Some(items) if !self.constant(a) => {
+                let mut out = Vec::new();
+                for x in items {
+                    out.push(self.item(x, &mut bound)?);
+                }
+                TAction::List(out)
+            }
+            _ if self.constant(a) => TAction::Const(a),
+            _ => {
+                return Err(format!(
+                    "action `{}` is not a list of constants and `get`/`set`/`inc` of typed locals",
+                    show(store, self.dm, a)
+                ))
+            }
+        };
+        let next = self.next(n, &bound)?;
+        Ok(TArc {
+            expectation: e,
+            action,
+            next,
+        })
+    }
+
+    fn item(&self, x: Term, bound: &mut HashMap<u32, Ty>) -> Result<TItem, String> {
+        let store = self.store;
+        if self.constant(x) {
+            return Ok(TItem::Const(x));
+        }
+        if let Value::Compound(op, &[var, arg]) = store.value(x) {
+            if [atoms::GET, atoms::SET, atoms::INC].contains(&op) {
+                let Some(name) = store.atom_of(var) else {
+                    return Err(format!("`{}` names no variable", show(store, self.dm, x)));
+                };
+                let local = self.local(name)?;
+                let ty = &self.locals[local].ty;
+                if op == atoms::SET {
+                    if !store.is_ground(arg) || Ty::of_ground(store, arg).join(ty) != *ty {
+                        return Err(format!(
+                            "`{}` sets a value not of type {ty}",
+                            show(store, self.dm, x)
+                        ));
+                    }
+                    return Ok(TItem::Set { local, value: arg });
+                }
+                if op == atoms::INC && !matches!(ty, Ty::Int | Ty::Float) {
+                    return Err(format!("`inc` of {}", an(ty)));
+                }
+                let bind = match store.value(arg) {
+                    Value::Var(v) if self.head_vars.contains(&Some(v.index())) => {
+                        return Err(format!(
+                            "`{}` binds a DM parameter",
+                            show(store, self.dm, x)
+                        ))
+                    }
+                    Value::Var(v) if !bound.contains_key(&v.index()) => {
+                        bound.insert(v.index(), ty.clone());
+                        // `_` and other singletons are bound all the same.
+                        Some(v.index())
+                    }
+                    _ => {
+                        return Err(format!(
+                            "`{}`: the variable is not fresh",
+                            show(store, self.dm, x)
+                        ))
+                    }
+                };
+                return Ok(if op == atoms::INC {
+                    TItem::Inc { local, bind }
+                } else {
+                    TItem::Get { local, bind }
+                });
+            }
+        }
+        Err(format!(
+            "action element `{}` is not a constant or `get`/`set`/`inc` of a typed local",
+            show(store, self.dm, x)
+        ))
+    }
+
+    fn next(&mut self, n: Term, bound: &HashMap<u32, Ty>) -> Result<TNext, String> {
+        let store = self.store;
+        if let Some(name) = store.atom_of(n) {
+            // The first situation whose id unifies with the atom (D-21).
+            for (i, s) in self.dm.situations.iter().enumerate() {
+                let id = store.args(s.template)[1];
+                match store.value(id) {
+                    Value::Var(_) => break,
+                    Value::Atom(a) if a == name => return Ok(TNext::Sit(i as u32, name)),
+                    _ => {}
+                }
+            }
+            return Err(format!(
+                "next situation `{name}` is not an atom id of the DM"
+            ));
+        }
+        if let Some((cond, then, other)) = eval::conditional(store, n) {
+            let Value::Compound(op, &[l, r]) = store.value(cond) else {
+                return Err(format!(
+                    "condition `{}` is not a comparison",
+                    show(store, self.dm, cond)
+                ));
+            };
+            let op = match ArithCmp::from_atom(op) {
+                Some(op) => Cmp::Arith(op),
+                None if op.as_str() == "==" => Cmp::Identical,
+                None if op.as_str() == "\\==" => Cmp::NotIdentical,
+                None => {
+                    return Err(format!(
+                        "condition `{}` is not an arithmetic comparison or `==`/`\\==`",
+                        show(store, self.dm, cond)
+                    ))
+                }
+            };
+            let (a, ta) = self.val(l, bound)?;
+            let (b, tb) = self.val(r, bound)?;
+            if !matches!(op, Cmp::Arith(_)) {
+                // Atoms of any two sets compare by identity.
+                if !matches!(ta, Ty::Atoms(_)) || !matches!(tb, Ty::Atoms(_)) {
+                    return Err(format!(
+                        "`{}` compares {} with {} (typed `==` is on atoms)",
+                        show(store, self.dm, cond),
+                        an(&ta),
+                        an(&tb)
+                    ));
+                }
+                let then = Box::new(self.next(then, bound)?);
+                let other = Box::new(self.next(other, bound)?);
+                return Ok(TNext::If {
+                    op,
+                    float: false,
+                    a,
+                    b,
+                    then,
+                    other,
+                });
+            }
+            let ty = match (&ta, &tb) {
+                (Ty::None, Ty::None) => {
+                    return Err("a comparison of two parameters".to_owned());
+                }
+                (Ty::None, t) | (t, Ty::None) => t.clone(),
+                (x, y) if x == y => x.clone(),
+                _ => {
+                    return Err(format!(
+                        "`{}` compares {} with {}",
+                        show(store, self.dm, cond),
+                        an(&ta),
+                        an(&tb)
+                    ))
+                }
+            };
+            if !matches!(ty, Ty::Int | Ty::Float) {
+                return Err(format!(
+                    "`{}` compares {ty} values",
+                    show(store, self.dm, cond)
+                ));
+            }
+            for v in [&a, &b] {
+                if let TVal::Param(i) = v {
+                    self.params[*i] = self.params[*i].join(&ty);
+                }
+            }
+            let then = Box::new(self.next(then, bound)?);
+            let other = Box::new(self.next(other, bound)?);
+            return Ok(TNext::If {
+                op,
+                float: ty == Ty::Float,
+                a,
+                b,
+                then,
+                other,
+            });
+        }
+        Err(format!(
+            "next situation `{}` is not an atom or a conditional on a comparison",
+            show(store, self.dm, n)
+        ))
+    }
+
+    /// A typed operand; `Ty::None` for a parameter (its type is demanded).
+    fn val(&self, t: Term, bound: &HashMap<u32, Ty>) -> Result<(TVal, Ty), String> {
+        let store = self.store;
+        match store.value(t) {
+            Value::Atom(a) => Ok((TVal::Atom(a), Ty::Atoms(vec![a]))),
+            Value::Int(i) => Ok((TVal::Int(i), Ty::Int)),
+            Value::Float(f) => Ok((TVal::Float(f), Ty::Float)),
+            Value::Var(v) => {
+                if let Some(ty) = bound.get(&v.index()) {
+                    return Ok((TVal::Var(v.index()), ty.clone()));
+                }
+                if let Some(i) = self.head_vars.iter().position(|h| *h == Some(v.index())) {
+                    return Ok((TVal::Param(i), Ty::None));
+                }
+                Err(format!(
+                    "`{}` is not bound to a typed value",
+                    var_name(self.dm, v.index())
+                ))
+            }
+            _ => Err(format!(
+                "operand `{}` is not a number or a typed variable",
+                show(store, self.dm, t)
+            )),
+        }
+    }
+}
+
+/// Whether evaluating `t` gives `t` back with no effect (no construct of L in it).
+pub(super) fn inert(store: &Store, t: Term) -> bool {
+    let mut stack = vec![t];
+    while let Some(u) = stack.pop() {
+        if let Value::Compound(name, args) = store.value(u) {
+            if !eval::evaluates_arguments_only(name, args.len()) {
+                return false;
+            }
+            stack.extend(args.iter());
+        }
+    }
+    true
+}
+
+/// The elements of a non-empty proper list written out in the source.
+pub(super) fn list_literal(store: &Store, t: Term) -> Option<Vec<Term>> {
+    let mut items = Vec::new();
+    let mut rest = t;
+    loop {
+        match store.value(rest) {
+            Value::Compound(name, &[head, tail]) if name == atoms::DOT => {
+                items.push(head);
+                rest = tail;
+            }
+            Value::Atom(a) if a == atoms::NIL && !items.is_empty() => return Some(items),
+            _ => return None,
+        }
+    }
+}
+

@@ -1,0 +1,6 @@
+//! Tests of the compiler core through its library API (no `sitlogc`
+//! binary: those are in `cli/tests/cli/`), one test binary.
+
+mod codegen;
+mod diagnostics;
+mod never_panic;
