@@ -107,7 +107,7 @@ fn walk(dir: &Path, prefix: &str, out: &mut Vec<(String, PathBuf)>) {
 /// its `[workspace.package]` and `[workspace.dependencies]`).
 fn workspace_manifest(text: &str) -> String {
     let mut out = String::from(
-        "# The workspace of the runtime crates embedded in sitlogc (see compiler/build.rs).\n",
+        "# The workspace of the runtime crates embedded in sitlogc (see cli/build.rs).\n",
     );
     let mut table = String::new();
     let mut skipping_array = false;

@@ -30,7 +30,7 @@ tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 cargo run -q --bin sitlogc -- graph dms/examples/appendix_a -o "$tmp/appendix_a.svg"
 render "$tmp/appendix_a.svg" docs/graph/appendix_a.png
-cargo run -q --bin sitlogc -- graph compiler/tests/graph/shapes -o "$tmp/shapes.svg"
+cargo run -q --bin sitlogc -- graph cli/tests/graph/shapes -o "$tmp/shapes.svg"
 render "$tmp/shapes.svg" docs/graph/shapes.png
 cargo run -q --bin sitlogc -- graph dms/apps/home --dm main -o "$tmp/home_main.svg"
 render "$tmp/home_main.svg" docs/graph/home_main.png

@@ -14,7 +14,7 @@
 //! hand-written loop only).
 //!
 //! The interpreter runs situations from their plans
-//! ([`sitlog_compiler::resolve`], what `sitlogc run` does); at 10⁴ also
+//! ([`sitlog_compiler::interp`], what `sitlogc run` does); at 10⁴ also
 //! from their templates (`interpreter_templates`, every situation
 //! instantiated, as before the plans).
 //!

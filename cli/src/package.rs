@@ -8,7 +8,7 @@
 //!
 //! Nothing here needs the checkout `sitlogc` was built from: the sources of
 //! the runtime crates, the workspace manifest and `Cargo.lock` are embedded
-//! in the binary (`compiler/build.rs`) and extracted once per version and
+//! in the binary (`cli/build.rs`) and extracted once per version and
 //! content hash into the user's cache directory ([`cache_dir`]), which also
 //! holds the generated packages and the target dir:
 //!

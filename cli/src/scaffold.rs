@@ -1,5 +1,5 @@
 //! `sitlogc new NAME`: a new application that checks and runs at once. Owns
-//! the template (the files under `compiler/templates/new/`, embedded in the
+//! the template (the files under `cli/templates/new/`, embedded in the
 //! binary) and writing it; the invariant is that it never writes into a
 //! directory that already exists.
 //!

@@ -105,7 +105,7 @@ fn usage_and_io_errors_exit_two() {
 }
 
 /// Slow in a debug build (about two minutes): run it with
-/// `cargo test --release -p sitlog-compiler --test cli_check -- --ignored`.
+/// `cargo test --release -p sitlog-cli --test cli -- --ignored check::`.
 #[test]
 #[ignore]
 fn fifty_megabytes_of_dms() {

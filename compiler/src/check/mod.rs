@@ -322,7 +322,6 @@ impl<'p> Checker<'p> {
         let program: &'p Program = self.program;
         did_you_mean(name.as_str(), program.dms.iter().map(|d| d.name.as_str()))
     }
-
 }
 
 /// The candidate closest to `target`, if it is close enough to be a typo of

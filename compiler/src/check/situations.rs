@@ -311,7 +311,6 @@ impl<'p> Checker<'p> {
             }
         }
     }
-
 }
 
 /// The situations of a DM by id, so that finding the situations a
@@ -466,4 +465,3 @@ impl Broken {
                 .is_none_or(|names| names.contains(name.as_str()))
     }
 }
-

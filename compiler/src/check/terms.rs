@@ -232,4 +232,3 @@ pub(super) fn actions_of(terms: &Terms, action: TermId, out: &mut Vec<(Atom, Spa
         out.push((name, terms.span(t)));
     }
 }
-

@@ -537,4 +537,3 @@ diag_mod(add_one(A), [
         assert_eq!(Resolved::new(&ir).counts(), (1, 2));
     }
 }
-

@@ -5,7 +5,6 @@
 
 use super::*;
 
-
 /// Variables of one scope: their registers, and those not made yet.
 #[derive(Clone, Default)]
 pub(super) struct Scope {
@@ -245,7 +244,13 @@ impl<'s> Planner<'s> {
         lazy
     }
 
-    pub(super) fn lazy_walk(&self, t: Term, depth: usize, seen: &mut HashSet<u32>, lazy: &mut HashSet<u32>) {
+    pub(super) fn lazy_walk(
+        &self,
+        t: Term,
+        depth: usize,
+        seen: &mut HashSet<u32>,
+        lazy: &mut HashSet<u32>,
+    ) {
         let Value::Compound(name, args) = self.store.value(t) else {
             if let Value::Var(v) = self.store.value(t) {
                 seen.insert(v.index());
@@ -579,4 +584,3 @@ impl<'s> Planner<'s> {
         })
     }
 }
-

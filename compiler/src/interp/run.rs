@@ -4,7 +4,6 @@
 
 use super::*;
 
-
 pub(super) type Rcx<'c, 'a, 'p, 'ir> = &'c mut Cx<'a, 'p, Resolved<'ir>>;
 
 /// Results inside a visit: the error boxed, so that the values passed up
@@ -30,7 +29,12 @@ pub(super) fn build(cx: Rcx<'_, '_, '_, '_>, regs: &[Term], b: &Build) -> Term {
     }
 }
 
-pub(super) fn ev(cx: Rcx<'_, '_, '_, '_>, regs: &mut [Term], e: &Ev, arc: Option<usize>) -> R<Term> {
+pub(super) fn ev(
+    cx: Rcx<'_, '_, '_, '_>,
+    regs: &mut [Term],
+    e: &Ev,
+    arc: Option<usize>,
+) -> R<Term> {
     match e {
         Ev::Value(r) => {
             // What `Cx::value` does: a compound is evaluated, anything else
@@ -107,7 +111,12 @@ pub(super) fn ev(cx: Rcx<'_, '_, '_, '_>, regs: &mut [Term], e: &Ev, arc: Option
     }
 }
 
-pub(super) fn cond(cx: Rcx<'_, '_, '_, '_>, regs: &mut [Term], c: &Cond, arc: Option<usize>) -> R<bool> {
+pub(super) fn cond(
+    cx: Rcx<'_, '_, '_, '_>,
+    regs: &mut [Term],
+    c: &Cond,
+    arc: Option<usize>,
+) -> R<bool> {
     match c {
         Cond::Arith(op, l, r) => {
             let l = ev(cx, regs, l, arc)?;
@@ -361,4 +370,3 @@ pub(super) fn run_arcs(
         None => Ok(cx.goto(next_value, at)?),
     }
 }
-

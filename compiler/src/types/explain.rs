@@ -79,4 +79,3 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
     }
     out
 }
-

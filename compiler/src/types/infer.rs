@@ -579,4 +579,3 @@ pub(super) fn list_literal(store: &Store, t: Term) -> Option<Vec<Term>> {
         }
     }
 }
-

@@ -591,4 +591,3 @@ diag_mod(main(P),
         assert_eq!(t.dms[0].params[0].as_ref().unwrap().ty, Ty::Term);
     }
 }
-
