@@ -205,9 +205,9 @@ pub fn write_package(
             ", features = [\"view\"]"
         },
     );
-    let embed = |s: &Option<sitlog_robot::Source>| match s {
+    let embed = |s: &Option<sitlog_robot::TextFile>| match s {
         Some(s) => format!(
-            "Some(sitlog_robot::Source {{ name: {:?}.to_owned(), text: {:?}.to_owned() }})",
+            "Some(sitlog_robot::TextFile {{ name: {:?}.to_owned(), text: {:?}.to_owned() }})",
             s.name, s.text
         ),
         None => "None".to_owned(),

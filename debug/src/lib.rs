@@ -23,7 +23,7 @@ pub mod record;
 pub mod replay;
 mod task;
 
-pub use command::Source;
+pub use command::CommandSource;
 pub use live::debug;
 pub use replay::{diff, replay, Trace};
 pub use task::task_main;

@@ -755,7 +755,7 @@ fn build_app(
 /// `go build` does, rather than writing somewhere the user did not ask.
 fn output_file(app: &std::path::Path, output: Option<PathBuf>) -> Result<PathBuf, String> {
     let given = output.is_some();
-    let output = output.unwrap_or_else(|| PathBuf::from(sitlog_robot::cli::app_name(app)));
+    let output = output.unwrap_or_else(|| PathBuf::from(sitlog_robot::app_name(app)));
     if output.is_dir() {
         let o = output.display();
         return Err(if given {
@@ -879,12 +879,12 @@ fn run_app(
         // Situations run from their plans where they can (resolved once, here).
         None => {
             let resolved = sitlog_compiler::resolve::Resolved::new(&ir);
-            sitlog_robot::execute(&resolved, functions, args, &assets)
+            sitlog_robot::Runner::process().run(&resolved, functions, args, &assets)
         }
         Some(commands) => {
             let source = match commands {
-                Some(path) => sitlog_debug::Source::file(path),
-                None => sitlog_debug::Source::editor(),
+                Some(path) => sitlog_debug::CommandSource::file(path),
+                None => sitlog_debug::CommandSource::editor(),
             };
             let source = match source {
                 Ok(s) => s,
@@ -901,7 +901,7 @@ fn run_app(
                 functions,
                 args,
                 &assets,
-                sitlog_robot::cli::Streams::process(),
+                sitlog_robot::Streams::process(),
                 source,
                 Box::new(std::io::stdout()),
                 Box::new(std::io::stderr()),
@@ -947,8 +947,8 @@ fn replay(
         };
     }
     let source = match commands {
-        Some(path) => sitlog_debug::Source::file(path),
-        None => sitlog_debug::Source::editor(),
+        Some(path) => sitlog_debug::CommandSource::file(path),
+        None => sitlog_debug::CommandSource::editor(),
     };
     match source {
         Ok(source) => sitlog_debug::replay(
@@ -999,9 +999,11 @@ fn run_watched(
         files.len()
     );
     let ready = watched.ready_flag();
-    let wrap: sitlog_robot::cli::PerceptionWrap =
+    let wrap: sitlog_robot::PerceptionWrap =
         Box::new(move |inner| Box::new(ReloadAware::new(inner, ready)));
-    sitlog_robot::cli::execute_wrapped(&watched, functions, args, assets, wrap)
+    sitlog_robot::Runner::process()
+        .wrap_perception(wrap)
+        .run(&watched, functions, args, assets)
 }
 
 fn check(paths: &[PathBuf], format: Format, deny_warnings: bool, quiet: bool, legacy: bool) -> u8 {
