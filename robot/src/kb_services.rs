@@ -5,7 +5,7 @@
 //! answer, or `false` where the original's call fails. An update
 //! `u(A1..An)` becomes `u/n` and gives `true` or `false`; with a
 //! persistence path, every successful update is written to disk atomically.
-//! [`open`] finds the KB of a run (`--kb FILE`, `--kb-persist`, or the
+//! `open` finds the KB of a run (`--kb FILE`, `--kb-persist`, or the
 //! application's `knowledge.kb`).
 
 use crate::assets::TextFile;

@@ -5,22 +5,25 @@
 //! share.
 //!
 //! Invariants:
-//! - This crate never depends on the compiler (a compiled task links the
-//!   runtime and this crate only), and the runtime never depends on it.
+//! - The library never depends on the compiler: a compiled task links the
+//!   runtime and this crate only (the dev-dependency on sitlog-macros is
+//!   for an example). The runtime never depends on this crate.
 //! - One runner ([`Runner::run`]) for the interpreter and compiled code, so
 //!   both print the same transcript and report for the same run.
-//! - The simulator (`sitlog-sim`, feature `sim`) knows nothing of SitLog:
-//!   every SitLog term a robot perceives or acts on is made or read here
-//!   ([`robot`], and the shop's functions over its world).
+//! - The simulator (`sitlog-sim`, feature `sim`) knows nothing of SitLog
+//!   (it uses only sitlog-syntax's text decoding): every SitLog term a
+//!   robot perceives or acts on is made or read here (the simulated robot,
+//!   and the shop's functions over its world).
 //!
 //! The modules, each using only those before it: `assets` (what an
 //! application brings: [`Assets`], [`TextFile`]), [`cli`] (the options of
 //! a run, [`RunArgs`], and a compiled task's command line), `streams`
 //! ([`Streams`]), [`console`], [`interrupt`], [`prompt`] (typed input),
-//! [`kb_services`], `shop_functions` and the simulated robot ([`robot`]),
-//! `debug_hooks` ([`DebugHooks`]), `observers` and `live_view` (what
-//! watches a run), `runner` ([`Runner`]: the run), and `task` (a compiled
-//! task's [`main`]). The private ones are re-exported here.
+//! [`kb_services`], `shop_functions` and the simulated robot (`robot`,
+//! feature `sim`), `debug_hooks` ([`DebugHooks`]), `observers` and
+//! `live_view` (what watches a run), `runner` ([`Runner`]: the run), and
+//! `task` (a compiled task's [`main`]). The public items of the private
+//! modules are re-exported here.
 //!
 //! [`Perception`]: sitlog_runtime::machine::Perception
 //! [`Actions`]: sitlog_runtime::machine::Actions

@@ -120,7 +120,7 @@ impl Runner {
         mut functions: Functions,
         args: &RunArgs,
         assets: &Assets,
-        view: Option<Box<dyn Observer + Send>>,
+        mut view: Option<Box<dyn Observer + Send>>,
     ) -> u8 {
         let Runner {
             mut streams,
@@ -269,7 +269,6 @@ impl Runner {
         };
         let shows_progress = console.lock().map(|c| c.shows_progress()).unwrap_or(false);
         let mut progress_observer = Progress { console: &console };
-        let mut view = view;
         let mut observers: Vec<&mut dyn Observer> = Vec::new();
         if let Some(t) = trace.as_mut() {
             observers.push(t);

@@ -6,7 +6,8 @@ use std::io::{IsTerminal, Write};
 
 /// Where a run writes: the report (stdout), messages (stderr), and whether
 /// each is a terminal. With a world, the transcript goes to stdout before
-/// a text report, to stderr with `--format json`.
+/// a text report, to stderr with `--format json`. In test mode the actions
+/// are rendered on the process's own stderr, not here.
 pub struct Streams {
     pub stdout: Box<dyn Write + Send>,
     pub stderr: Box<dyn Write + Send>,
