@@ -18,7 +18,7 @@
 //! <cache>/target/                     the shared cargo target dir
 //! ```
 
-use sitlog_compiler::build::{app_name, write_if_changed, Compiled, Error};
+use sitlog_compiler::build::{app_ident, write_if_changed, Compiled, Error};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
@@ -162,7 +162,7 @@ pub fn write_package(
     layout: &Layout,
     debugger: bool,
 ) -> Result<(PathBuf, String), Error> {
-    let name = app_name(app);
+    let name = app_ident(app);
     let package = format!("sitlog-app-{}", name.replace('_', "-").trim_matches('-'));
     let dir = layout.packages.join(&name);
     let io = |what: &Path, e: std::io::Error| Error {
@@ -205,9 +205,9 @@ pub fn write_package(
             ", features = [\"view\"]"
         },
     );
-    let embed = |s: &Option<sitlog_robot::Source>| match s {
+    let embed = |s: &Option<sitlog_robot::TextFile>| match s {
         Some(s) => format!(
-            "Some(sitlog_robot::Source {{ name: {:?}.to_owned(), text: {:?}.to_owned() }})",
+            "Some(sitlog_robot::TextFile {{ name: {:?}.to_owned(), text: {:?}.to_owned() }})",
             s.name, s.text
         ),
         None => "None".to_owned(),
@@ -339,7 +339,7 @@ fn diagram_json(app: &Path) -> Option<String> {
     let options = sitlog_compiler::diagram::Options {
         dm: None,
         main: None,
-        title: sitlog_compiler::build::app_name(app),
+        title: sitlog_compiler::build::app_ident(app),
     };
     Some(
         sitlog_compiler::diagram::diagram(&ir, &options)

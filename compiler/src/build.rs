@@ -175,7 +175,7 @@ impl Config {
         };
         let name = match &self.file_name {
             Some(n) => n.clone(),
-            None => format!("{}.rs", app_name(app)),
+            None => format!("{}.rs", app_ident(app)),
         };
         let path = out_dir.join(name);
         write_if_changed(&path, &compiled.to_file_string()).map_err(|e| Error {
@@ -191,19 +191,12 @@ pub fn compile(app: impl AsRef<Path>) -> Result<PathBuf, Error> {
     Config::new().compile(app)
 }
 
-/// The name of an application: its directory's real name (`.` too), or a
-/// DM file's stem, as a Rust identifier.
-pub fn app_name(app: &Path) -> String {
-    // `.`, `..` and `dir/.` have no file name of their own: the real one.
-    let real = std::fs::canonicalize(app);
-    let app = real.as_deref().unwrap_or(app);
-    let raw = if app.is_dir() {
-        app.file_name()
-    } else {
-        app.file_stem()
-    };
-    let raw = raw.and_then(|s| s.to_str()).unwrap_or("app");
-    let mut s: String = raw
+/// The application's name ([`sitlog_runtime::paths::app_name`]) as a Rust
+/// identifier: lower case, `_` for anything not alphanumeric, `_` in front
+/// of a leading digit. Names the generated file and the diagrams' title.
+pub fn app_ident(app: &Path) -> String {
+    let name = sitlog_runtime::paths::app_name(app);
+    let mut s: String = name
         .chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() {

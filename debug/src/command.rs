@@ -155,7 +155,7 @@ pub fn parse(line: &str) -> Result<Option<Command>, String> {
 }
 
 /// Where commands come from.
-pub enum Source {
+pub enum CommandSource {
     /// A `--commands` file: its lines, each echoed after the prompt.
     File {
         name: String,
@@ -174,9 +174,9 @@ pub enum Line {
     End,
 }
 
-impl Source {
+impl CommandSource {
     /// A commands file (UTF-8 text); `Err` says why it cannot be read.
-    pub fn file(path: &Path) -> Result<Source, String> {
+    pub fn file(path: &Path) -> Result<CommandSource, String> {
         let name = path.display().to_string();
         let bytes = std::fs::read(path)
             .map_err(|e| format!("error: cannot read commands file {name}: {e}"))?;
@@ -192,7 +192,7 @@ impl Source {
                 + 1;
             format!("{name}:{line}:{col}: error: the commands file is not UTF-8 text")
         })?;
-        Ok(Source::File {
+        Ok(CommandSource::File {
             name,
             lines: text.lines().map(str::to_owned).collect(),
             next: 0,
@@ -200,8 +200,8 @@ impl Source {
     }
 
     /// Commands given as text (`name` names them in errors), as from a file.
-    pub fn text(name: &str, text: &str) -> Source {
-        Source::File {
+    pub fn text(name: &str, text: &str) -> CommandSource {
+        CommandSource::File {
             name: name.to_owned(),
             lines: text.lines().map(str::to_owned).collect(),
             next: 0,
@@ -209,24 +209,24 @@ impl Source {
     }
 
     /// The terminal's line editor.
-    pub fn editor() -> Result<Source, String> {
+    pub fn editor() -> Result<CommandSource, String> {
         rustyline::DefaultEditor::new()
-            .map(|e| Source::Editor(Box::new(e)))
+            .map(|e| CommandSource::Editor(Box::new(e)))
             .map_err(|e| format!("error: cannot start the line editor: {e}"))
     }
 
     /// The name of a commands file, for messages.
     pub fn file_name(&self) -> Option<&str> {
         match self {
-            Source::File { name, .. } => Some(name),
-            Source::Editor(_) => None,
+            CommandSource::File { name, .. } => Some(name),
+            CommandSource::Editor(_) => None,
         }
     }
 
     /// The next line, after `prompt` (echoed to `out` from a file).
     pub fn read(&mut self, prompt: &str, out: &mut dyn Write) -> Line {
         match self {
-            Source::File { lines, next, .. } => {
+            CommandSource::File { lines, next, .. } => {
                 let Some(line) = lines.get(*next) else {
                     return Line::End;
                 };
@@ -234,7 +234,7 @@ impl Source {
                 let _ = writeln!(out, "{prompt}{line}");
                 Line::Text(line.clone(), Some(*next))
             }
-            Source::Editor(editor) => {
+            CommandSource::Editor(editor) => {
                 let _ = out.flush();
                 loop {
                     match editor.readline(prompt) {

@@ -1,12 +1,13 @@
 //! `sitlog-debug`: working on a task program from the command line.
 //!
 //! Owns the REPL engine of `sitlogc debug` ([`debug`]: a step debugger
-//! over a live, interpreted run) and of `sitlogc replay` ([`replay`]: a
+//! over a live, interpreted run) and of `sitlogc replay` ([`replay()`]: a
 //! `--trace` recording walked forwards and backwards, [`diff`] of two
-//! recordings), their command language ([`command`]), and where commands
-//! come from (a line editor, or a `--commands` file, echoed, for tests),
-//! and the `main` of a task compiled with `sitlogc build --debugger`
-//! ([`task_main`]: the same debugger over the compiled program).
+//! recordings), their command language ([`command`]), where commands come
+//! from ([`CommandSource`]: a line editor, or a `--commands` file, echoed,
+//! for tests), and the `main` of a task compiled with `sitlogc build
+//! --debugger` ([`task_main`]: the same debugger over the compiled
+//! program).
 //! `sitlogc` only parses the arguments.
 //!
 //! Invariants: the debugger never changes the run it watches except by
@@ -23,7 +24,7 @@ pub mod record;
 pub mod replay;
 mod task;
 
-pub use command::Source;
+pub use command::CommandSource;
 pub use live::debug;
 pub use replay::{diff, replay, Trace};
 pub use task::task_main;

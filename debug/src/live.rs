@@ -1,13 +1,12 @@
 //! `sitlogc debug`: the REPL over a live run. The run is `sitlogc run`'s
-//! ([`sitlog_robot::cli::execute_debug`]); the debugger is its observer
+//! ([`sitlog_robot::Runner`] with the debugger's hooks); the debugger is its observer
 //! (stopping at transition boundaries, in [`Observer::inspect`]) and, in
 //! test mode, its perception (asking for `input TERM` when the script has
 //! no more inputs, or there is no script).
 
-use crate::command::{self, Command, Line, Source, Spec, PROMPT};
+use crate::command::{self, Command, CommandSource, Line, Spec, PROMPT};
 use crate::record::{self, Record};
-use sitlog_robot::cli::{DebugHooks, RunArgs, Streams, WorldProbe};
-use sitlog_robot::Assets;
+use sitlog_robot::{Assets, DebugHooks, RunArgs, Runner, Streams, WorldProbe};
 use sitlog_runtime::app::App;
 use sitlog_runtime::history::Entry;
 use sitlog_runtime::machine::{Inspection, Observer, Perceived, Perception};
@@ -58,7 +57,7 @@ enum Resume {
 }
 
 struct Live {
-    commands: Source,
+    commands: CommandSource,
     out: Box<dyn Write + Send>,
     breaks: Vec<(usize, Spec)>,
     next_break: usize,
@@ -451,7 +450,7 @@ pub fn debug<A: App>(
     args: &RunArgs,
     assets: &Assets,
     mut streams: Streams,
-    commands: Source,
+    commands: CommandSource,
     out: Box<dyn Write + Send>,
     mut err: Box<dyn Write + Send>,
 ) -> u8 {
@@ -459,8 +458,8 @@ pub fn debug<A: App>(
     // At the terminal, Ctrl-C during a run stops it at its next transition
     // (a second one, before that, ends the process).
     let interrupt = match commands {
-        Source::Editor(_) => Some(sitlog_robot::interrupt::Interrupt::install().flag),
-        Source::File { .. } => None,
+        CommandSource::Editor(_) => Some(sitlog_robot::interrupt::Interrupt::install().flag),
+        CommandSource::File { .. } => None,
     };
     let live = Arc::new(Mutex::new(Live {
         interrupt,
@@ -490,7 +489,6 @@ pub fn debug<A: App>(
     let code = match started {
         Resume::Stop => 0,
         _ => {
-            streams.observer = Some(Box::new(Watch(live.clone())));
             // No progress indicator: it would tick over the prompt.
             streams.stdout_is_terminal = false;
             for stream in [&mut streams.stdout, &mut streams.stderr] {
@@ -503,6 +501,7 @@ pub fn debug<A: App>(
             let for_perception = live.clone();
             let for_world = live.clone();
             let hooks = DebugHooks {
+                observer: Box::new(Watch(live.clone())),
                 perception: Box::new(move |script| {
                     Box::new(Ask {
                         script,
@@ -516,7 +515,14 @@ pub fn debug<A: App>(
                 }),
                 stop,
             };
-            sitlog_robot::cli::execute_debug(app, functions, args, assets, streams, hooks)
+            // The debugger is the run's only watcher: no live view under it.
+            let args = RunArgs {
+                view: false,
+                ..args.clone()
+            };
+            Runner::new(streams)
+                .debugger(hooks)
+                .run(app, functions, &args, assets)
         }
     };
     let Ok(mut l) = live.lock() else { return 2 };

@@ -3,7 +3,7 @@
 //! forwards and backwards with the debugger's commands, without running
 //! anything; and the first difference of two recordings.
 
-use crate::command::{self, Command, Line, Source, Spec, PROMPT};
+use crate::command::{self, Command, CommandSource, Line, Spec, PROMPT};
 use crate::record::{self, Record};
 use std::fmt::Write as _;
 use std::io::Write;
@@ -382,7 +382,12 @@ impl Replay<'_> {
 
 /// `sitlogc replay TRACE`: the REPL over `trace`, reading `commands`.
 /// The exit status: 0, or 2 for a bad line in a commands file (reported on `err`).
-pub fn replay(trace: &Trace, mut commands: Source, out: &mut dyn Write, err: &mut dyn Write) -> u8 {
+pub fn replay(
+    trace: &Trace,
+    mut commands: CommandSource,
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> u8 {
     let _ = writeln!(
         out,
         "replay of {}: {} transitions (`help` lists the commands)",

@@ -1,11 +1,11 @@
 //! The `main` of a task compiled with `sitlogc build --debugger`: the
-//! task's usual options ([`sitlog_robot::cli::TaskCli`], those of
+//! task's usual options ([`TaskCli`], those of
 //! `sitlogc run`) plus `--commands FILE`, and the run under the debugger
 //! exactly as `sitlogc debug APP` runs it.
 
-use crate::command::Source;
-use sitlog_robot::cli::{self, Streams, TaskCli};
-use sitlog_robot::Assets;
+use crate::command::CommandSource;
+use sitlog_robot::cli::{parse_task_args, task_command, TaskCli};
+use sitlog_robot::{on_big_stack, Assets, Streams};
 use sitlog_runtime::app::App;
 use sitlog_runtime::Functions;
 use std::path::PathBuf;
@@ -35,16 +35,14 @@ status: the run's, 0 after `quit`, 2 for a bad line in the --commands file.";
 /// from the line editor, or from FILE) on a thread with a big stack, and
 /// returns the exit status.
 pub fn task_main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::process::ExitCode {
-    let cli = match cli::parse_task_args::<DebugTaskCli>(cli::task_command::<DebugTaskCli>(
-        assets, ABOUT,
-    )) {
+    let cli = match parse_task_args::<DebugTaskCli>(task_command::<DebugTaskCli>(assets, ABOUT)) {
         Ok(cli) => cli,
         Err(code) => return code,
     };
-    cli::on_big_stack(|| {
+    on_big_stack(|| {
         let source = match &cli.commands {
-            Some(path) => Source::file(path),
-            None => Source::editor(),
+            Some(path) => CommandSource::file(path),
+            None => CommandSource::editor(),
         };
         let source = match source {
             Ok(s) => s,

@@ -15,9 +15,47 @@
 //!
 //! [`PromptPerception`]: sitlog_runtime::testmode::PromptPerception
 
-use crate::interrupt::Interrupt;
+use crate::interrupt::{Interrupt, InterruptibleStdin};
 use sitlog_runtime::machine::{Perceived, Perception};
+use sitlog_runtime::testmode::{InputLimits, PromptPerception};
 use sitlog_runtime::{Store, Term};
+
+/// The perception of typed input: line editing on a terminal; else lines
+/// read on a thread of their own when `signals` can stop the run (so that
+/// the prompt sees them), or straight from stdin. The end of the input is
+/// recorded in `ended`.
+pub(crate) fn typed_input(
+    limits: InputLimits,
+    signals: Option<&Interrupt>,
+    ended: Interrupt,
+) -> Box<dyn Perception> {
+    let prompt: Box<dyn Perception> = match edited_prompt(limits, &ended) {
+        Some(p) => p,
+        None => match signals {
+            Some(i) => Box::new(
+                PromptPerception::new(InterruptibleStdin::new(i.flag.clone())).with_limits(limits),
+            ),
+            None => Box::new(PromptPerception::new(std::io::stdin().lock()).with_limits(limits)),
+        },
+    };
+    Box::new(EndOfInputStops::new(prompt, ended))
+}
+
+/// The prompt with line editing, when stdin and stderr are terminals (and
+/// the `edit` feature is on).
+#[cfg(feature = "edit")]
+fn edited_prompt(limits: InputLimits, interrupt: &Interrupt) -> Option<Box<dyn Perception>> {
+    use std::io::IsTerminal;
+    if !(std::io::stdin().is_terminal() && std::io::stderr().is_terminal()) {
+        return None;
+    }
+    EditedPrompt::new(limits, interrupt.clone()).map(|p| Box::new(p) as Box<dyn Perception>)
+}
+
+#[cfg(not(feature = "edit"))]
+fn edited_prompt(_: InputLimits, _: &Interrupt) -> Option<Box<dyn Perception>> {
+    None
+}
 
 /// Makes the end of a prompt's input stop the run cleanly: the run's
 /// interrupt records it, so the machine's end-of-input error becomes an

@@ -33,15 +33,16 @@
 //! robot says and hears as turns of the conversation, the rest as
 //! narration lines.
 
-use crate::cli::Source;
+use crate::assets::TextFile;
 use crate::console::SharedConsole;
+use crate::shop_functions::{self, SimAccess};
 use sitlog_runtime::machine::{Actions, Perceived, Perception};
 use sitlog_runtime::{Atom, Store, Term, Value};
 use sitlog_sim::{EventKind, Hand, Heard, Placed, Sim, World};
 use std::sync::{Arc, Mutex};
 
-pub(crate) struct Inner {
-    pub(crate) sim: Sim,
+struct Inner {
+    sim: Sim,
     console: SharedConsole,
     /// Events of the world already printed.
     printed: usize,
@@ -87,15 +88,15 @@ pub struct Effectors {
 }
 
 impl SimRobot {
-    /// The robot in the world of `source`, with `seed` (default: the world
-    /// file's `seed`, else 0). `Err` holds every error of the world file,
-    /// one per line, `FILE:LINE:COL: error: ...`.
-    pub fn from_source(
-        source: &Source,
+    /// The robot in the world of the world file `file`, with `seed`
+    /// (default: the world file's `seed`, else 0). `Err` holds every error
+    /// of the world file, one per line, `FILE:LINE:COL: error: ...`.
+    pub fn from_file(
+        file: &TextFile,
         seed: Option<u64>,
         console: SharedConsole,
     ) -> Result<SimRobot, String> {
-        let world = World::parse(&source.name, &source.text).map_err(|errors| {
+        let world = World::parse(&file.name, &file.text).map_err(|errors| {
             errors
                 .iter()
                 .map(|e| e.to_string())
@@ -123,14 +124,11 @@ impl SimRobot {
     /// Registers the inference cycle's user functions (`shop_diagnose`,
     /// `shop_decide`, `shop_shelves`), which read the robot's map.
     pub fn register_inference(&self, functions: &mut sitlog_runtime::Functions, seed: Option<u64>) {
-        let (seed, console) = match self.inner.lock() {
-            Ok(i) => (
-                seed.or(i.sim.world().seed()).unwrap_or(0),
-                i.console.clone(),
-            ),
+        let seed = match self.inner.lock() {
+            Ok(i) => seed.or(i.sim.world().seed()).unwrap_or(0),
             Err(_) => return,
         };
-        crate::infer::register(functions, self.inner.clone(), seed, console);
+        shop_functions::register(functions, Shared(self.inner.clone()), seed);
     }
 
     /// A look at the world's state (the debugger's `world`).
@@ -186,6 +184,20 @@ impl Probe {
             out.push_str(&format!("known blocked: {}\n", routes.join(", ")));
         }
         out
+    }
+}
+
+/// The robot's state as the shop functions read it.
+#[derive(Clone)]
+struct Shared(Arc<Mutex<Inner>>);
+
+impl SimAccess for Shared {
+    fn with_sim<R>(&self, f: impl FnOnce(&Sim) -> R) -> Result<R, String> {
+        let inner = self
+            .0
+            .lock()
+            .map_err(|_| "the simulated world is unusable".to_owned())?;
+        Ok(f(&inner.sim))
     }
 }
 
@@ -496,5 +508,31 @@ mod tests {
         assert_eq!(sentence(&store, t), "Goodbye.");
         let t = store.parse("[count, 3, f(x)]").unwrap().0;
         assert_eq!(sentence(&store, t), "Count 3 f(x)");
+    }
+
+    /// [`shop_functions::FUNCTIONS`] lists exactly what a robot on a world
+    /// registers.
+    #[test]
+    fn the_shop_functions_list_is_what_is_registered() {
+        use crate::console::Console;
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../dms/apps/supermarket/world.toml"
+        );
+        let world = sitlog_sim::World::load(std::path::Path::new(path)).expect("world");
+        let robot = SimRobot::new(&world, None, Console::sink().shared());
+        let mut functions = sitlog_runtime::Functions::new();
+        robot.register_inference(&mut functions, None);
+        let mut got: Vec<(String, usize)> = functions
+            .names()
+            .map(|(n, a)| (n.as_str().to_owned(), a))
+            .collect();
+        got.sort();
+        let mut want: Vec<(String, usize)> = shop_functions::FUNCTIONS
+            .iter()
+            .map(|&(n, a)| (n.to_owned(), a))
+            .collect();
+        want.sort();
+        assert_eq!(got, want);
     }
 }

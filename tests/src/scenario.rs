@@ -3,9 +3,8 @@
 //! as text (tests change them), on the interpreter or on generated code.
 //! Shared by `tests/tests/{home,supermarket}.rs` and the scenario bench.
 
-use sitlog_robot::cli::{execute_with, Format, RunArgs, Streams};
 use sitlog_robot::console::SharedBuf;
-use sitlog_robot::{Assets, Source};
+use sitlog_robot::{Assets, Format, RunArgs, Runner, Streams, TextFile};
 use sitlog_runtime::app::App;
 use sitlog_runtime::Functions;
 use std::path::Path;
@@ -23,12 +22,12 @@ pub struct Run {
 /// its files.
 pub fn assets(app: &Path, world: &str, kb: Option<&str>) -> Assets {
     let mut assets = Assets::from_app(app).expect("the app's world and KB are readable");
-    assets.world = Some(Source {
+    assets.world = Some(TextFile {
         name: "world.toml".into(),
         text: world.to_owned(),
     });
     if let Some(kb) = kb {
-        assets.kb = Some(Source {
+        assets.kb = Some(TextFile {
             name: "knowledge.kb".into(),
             text: kb.to_owned(),
         });
@@ -48,9 +47,8 @@ pub fn execute<A: App>(program: &A, functions: Functions, assets: &Assets) -> Ru
         stderr: Box::new(err.clone()),
         stdout_is_terminal: false,
         stderr_is_terminal: false,
-        observer: None,
     };
-    let code = execute_with(program, functions, &args, assets, streams);
+    let code = Runner::new(streams).run(program, functions, &args, assets);
     let report = serde_json::from_str(out.text().trim())
         .unwrap_or_else(|e| panic!("not one JSON object ({e}): {}", out.text()));
     Run {

@@ -6,10 +6,9 @@
 //! difference of two recordings; bad commands and trace files.
 
 use sitlog_debug::record::{numbered, Record};
-use sitlog_debug::{diff, replay, Source, Trace};
-use sitlog_robot::cli::{execute_with, HistoryMode, RunArgs, Streams};
+use sitlog_debug::{diff, replay, CommandSource, Trace};
 use sitlog_robot::console::SharedBuf;
-use sitlog_robot::Assets;
+use sitlog_robot::{Assets, HistoryMode, RunArgs, Runner, Streams};
 use sitlog_tests::scenario::interpreter;
 use sitlog_tests::workspace;
 use std::path::{Path, PathBuf};
@@ -24,7 +23,6 @@ fn streams(out: &SharedBuf, err: &SharedBuf) -> Streams {
         stderr: Box::new(err.clone()),
         stdout_is_terminal: false,
         stderr_is_terminal: false,
-        observer: None,
     }
 }
 
@@ -40,7 +38,7 @@ fn session(app: &Path, args: &RunArgs, commands: &str) -> (String, String, u8) {
         args,
         &assets,
         streams(&out, &err),
-        Source::text("session.txt", commands),
+        CommandSource::text("session.txt", commands),
         Box::new(out.clone()),
         Box::new(err.clone()),
     );
@@ -181,11 +179,13 @@ fn a_bad_command_line_names_file_and_line_and_exits_2() {
         "session.txt:1: error: `break :is`: write DM or DM:SITUATION\n"
     );
     // A commands file that is not there, or not text.
-    let e = Source::file(&dir.path().join("missing.txt")).err().unwrap();
+    let e = CommandSource::file(&dir.path().join("missing.txt"))
+        .err()
+        .unwrap();
     assert!(e.starts_with("error: cannot read commands file "), "{e}");
     let bad = script(&dir, "bad.txt", "step\n\u{0}");
     std::fs::write(&bad, b"step\nnext \xff\n").unwrap();
-    let e = Source::file(&bad).err().unwrap();
+    let e = CommandSource::file(&bad).err().unwrap();
     assert!(
         e.ends_with("bad.txt:2:6: error: the commands file is not UTF-8 text"),
         "{e}"
@@ -219,7 +219,7 @@ fn record(dir: &tempfile::TempDir, name: &str, script_text: &str) -> Trace {
     let (ir, functions) = interpreter(&app());
     let assets = Assets::from_app(&app()).unwrap();
     let (out, err) = (SharedBuf::default(), SharedBuf::default());
-    let code = execute_with(&ir, functions, &args, &assets, streams(&out, &err));
+    let code = Runner::new(streams(&out, &err)).run(&ir, functions, &args, &assets);
     assert_eq!(code, 0, "{}", err.text());
     let mut t = Trace::read(&trace).unwrap();
     t.name = format!("{name}.jsonl");
@@ -231,7 +231,7 @@ fn replay_session(trace: &Trace, commands: &str) -> (String, String, u8) {
     let (mut out, mut err) = (Vec::new(), Vec::new());
     let code = replay(
         trace,
-        Source::text("replay.txt", commands),
+        CommandSource::text("replay.txt", commands),
         &mut out,
         &mut err,
     );
@@ -345,7 +345,7 @@ fn diff_of_two_home_runs_on_different_worlds() {
     let run = |name: &str, world: &str| {
         let trace = dir.path().join(format!("{name}.jsonl"));
         let mut assets = Assets::from_app(&home).unwrap();
-        assets.world = Some(sitlog_robot::Source {
+        assets.world = Some(sitlog_robot::TextFile {
             name: "world.toml".into(),
             text: world.to_owned(),
         });
@@ -357,7 +357,7 @@ fn diff_of_two_home_runs_on_different_worlds() {
         };
         let (ir, functions) = interpreter(&home);
         let (out, err) = (SharedBuf::default(), SharedBuf::default());
-        execute_with(&ir, functions, &args, &assets, streams(&out, &err));
+        Runner::new(streams(&out, &err)).run(&ir, functions, &args, &assets);
         let mut t = Trace::read(&trace).unwrap();
         t.name = format!("{name}.jsonl");
         t

@@ -5,9 +5,8 @@
 //! generated code; what it prints is an insta snapshot, and the guide must
 //! show exactly that output, so the tutorial cannot rot.
 
-use sitlog_robot::cli::{execute_with, RunArgs, Streams};
 use sitlog_robot::console::SharedBuf;
-use sitlog_robot::Assets;
+use sitlog_robot::{Assets, RunArgs, Runner, Streams};
 use sitlog_runtime::app::App;
 use sitlog_runtime::machine::Options;
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
@@ -34,9 +33,8 @@ fn run<A: App>(program: &A, functions: Functions, script: &str) -> (String, Stri
         stderr: Box::new(std::io::sink()),
         stdout_is_terminal: false,
         stderr_is_terminal: false,
-        observer: None,
     };
-    let code = execute_with(program, functions.clone(), &args, &assets, streams);
+    let code = Runner::new(streams).run(program, functions.clone(), &args, &assets);
     // stderr: test mode renders the actions there, as `TextActions` does
     let text = std::fs::read_to_string(app().join(script)).unwrap();
     let mut perception = ScriptPerception::new(script, text);

@@ -94,7 +94,7 @@ pub fn build_app(
 /// `go build` does, rather than writing somewhere the user did not ask.
 pub fn output_file(app: &std::path::Path, output: Option<PathBuf>) -> Result<PathBuf, String> {
     let given = output.is_some();
-    let output = output.unwrap_or_else(|| PathBuf::from(sitlog_robot::cli::app_name(app)));
+    let output = output.unwrap_or_else(|| PathBuf::from(sitlog_robot::app_name(app)));
     if output.is_dir() {
         let o = output.display();
         return Err(if given {

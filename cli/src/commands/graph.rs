@@ -20,7 +20,7 @@ pub fn graph(
     let options = sitlog_compiler::diagram::Options {
         dm,
         main,
-        title: sitlog_compiler::build::app_name(app),
+        title: sitlog_compiler::build::app_ident(app),
     };
     let diagram = match sitlog_compiler::diagram::diagram(&ir, &options) {
         Ok(d) => d,

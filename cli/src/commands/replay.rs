@@ -37,8 +37,8 @@ pub fn replay(
         };
     }
     let source = match commands {
-        Some(path) => sitlog_debug::Source::file(path),
-        None => sitlog_debug::Source::editor(),
+        Some(path) => sitlog_debug::CommandSource::file(path),
+        None => sitlog_debug::CommandSource::editor(),
     };
     match source {
         Ok(source) => sitlog_debug::replay(

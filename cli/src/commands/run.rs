@@ -87,7 +87,7 @@ pub fn run_app(
         let options = sitlog_compiler::diagram::Options {
             dm: None,
             main: Some(args.main.split('(').next().unwrap_or("").trim().to_owned()),
-            title: sitlog_compiler::build::app_name(app),
+            title: sitlog_compiler::build::app_ident(app),
         };
         match sitlog_compiler::diagram::diagram(&ir, &options) {
             Ok(d) => assets.diagram = Some(d.to_json()),
@@ -104,12 +104,12 @@ pub fn run_app(
         // Situations run from their plans where they can (resolved once, here).
         None => {
             let resolved = sitlog_compiler::interp::Resolved::new(&ir);
-            sitlog_robot::execute(&resolved, functions, args, &assets)
+            sitlog_robot::Runner::process().run(&resolved, functions, args, &assets)
         }
         Some(commands) => {
             let source = match commands {
-                Some(path) => sitlog_debug::Source::file(path),
-                None => sitlog_debug::Source::editor(),
+                Some(path) => sitlog_debug::CommandSource::file(path),
+                None => sitlog_debug::CommandSource::editor(),
             };
             let source = match source {
                 Ok(s) => s,
@@ -126,7 +126,7 @@ pub fn run_app(
                 functions,
                 args,
                 &assets,
-                sitlog_robot::cli::Streams::process(),
+                sitlog_robot::Streams::process(),
                 source,
                 Box::new(std::io::stdout()),
                 Box::new(std::io::stderr()),
@@ -170,7 +170,9 @@ pub fn run_watched(
         files.len()
     );
     let ready = watched.ready_flag();
-    let wrap: sitlog_robot::cli::PerceptionWrap =
+    let wrap: sitlog_robot::PerceptionWrap =
         Box::new(move |inner| Box::new(ReloadAware::new(inner, ready)));
-    sitlog_robot::cli::execute_wrapped(&watched, functions, args, assets, wrap)
+    sitlog_robot::Runner::process()
+        .wrap_perception(wrap)
+        .run(&watched, functions, args, assets)
 }

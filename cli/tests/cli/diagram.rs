@@ -18,7 +18,7 @@ fn draw(app: &str, dm: Option<&str>) -> Diagram {
     let options = Options {
         dm: dm.map(str::to_owned),
         main: None,
-        title: sitlog_compiler::build::app_name(Path::new(app)),
+        title: sitlog_compiler::build::app_ident(Path::new(app)),
     };
     diagram::diagram(&ir, &options).expect("a diagram")
 }

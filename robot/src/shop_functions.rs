@@ -20,9 +20,10 @@
 //!   costs more than RMax).
 //!
 //! The robot's own place and hands come from the simulator (what the robot
-//! knows of itself); every other input from the task.
+//! knows of itself, read through [`SimAccess`]); every other input from the
+//! task. Nothing here knows the robot itself: the simulated robot
+//! registers these functions over its world.
 
-use crate::console::SharedConsole;
 use sitlog_infer::decision::decide;
 use sitlog_infer::diagnosis::{diagnose, AssistantAction, Input};
 use sitlog_infer::plan::{Behaviour, Costs, Obligation, Problem, Target};
@@ -30,9 +31,13 @@ use sitlog_infer::Distances;
 use sitlog_runtime::functions::FnCall;
 use sitlog_runtime::{Functions, Store, Term, Value};
 use sitlog_sim::{Hand, Sim};
-use std::sync::{Arc, Mutex};
 
-type Shared = Arc<Mutex<super::robot::Inner>>;
+/// The simulated world the functions read, under the robot's lock.
+pub(crate) trait SimAccess: Clone + Send + Sync + 'static {
+    /// `f` on the simulator; `Err` when the world is unusable (after an
+    /// earlier panic).
+    fn with_sim<R>(&self, f: impl FnOnce(&Sim) -> R) -> Result<R, String>;
+}
 
 fn atom_name(store: &Store, t: Term, what: &str) -> Result<String, String> {
     store
@@ -122,71 +127,47 @@ pub(crate) const FUNCTIONS: &[(&str, usize)] = &[
 ];
 
 /// Registers the functions of the module documentation.
-pub(crate) fn register(
-    functions: &mut Functions,
-    inner: Shared,
-    seed: u64,
-    _console: SharedConsole,
-) {
-    let i = inner.clone();
+pub(crate) fn register(functions: &mut Functions, world: impl SimAccess, seed: u64) {
+    let w = world.clone();
     functions.register("shop_shelves", 0, move |call, _| {
-        let inner = i
-            .lock()
-            .map_err(|_| "the simulated world is unusable".to_owned())?;
-        let shelves: Vec<String> = inner
-            .sim
-            .world()
-            .shelf_names()
-            .into_iter()
-            .map(quoted)
-            .collect();
+        let shelves: Vec<String> =
+            w.with_sim(|sim| sim.world().shelf_names().into_iter().map(quoted).collect())?;
         parse(call, &format!("[{}]", shelves.join(",")))
     });
 
-    let i = inner.clone();
+    let w = world.clone();
     functions.register("shop_shelf_here", 0, move |call, _| {
-        let inner = i
-            .lock()
-            .map_err(|_| "the simulated world is unusable".to_owned())?;
-        let here = inner.sim.robot_at().to_owned();
-        let shelf = inner.sim.shelf_at(&here).unwrap_or("none").to_owned();
-        drop(inner);
+        let shelf = w.with_sim(|sim| sim.shelf_at(sim.robot_at()).unwrap_or("none").to_owned())?;
         parse(call, &quoted(&shelf))
     });
 
-    let i = inner.clone();
+    let w = world.clone();
     functions.register("shop_place_here", 0, move |call, _| {
-        let inner = i
-            .lock()
-            .map_err(|_| "the simulated world is unusable".to_owned())?;
-        let here = inner.sim.robot_at().to_owned();
-        drop(inner);
+        let here = w.with_sim(|sim| sim.robot_at().to_owned())?;
         parse(call, &quoted(&here))
     });
 
-    let i = inner.clone();
+    let w = world.clone();
     functions.register("shop_diagnose", 4, move |call, args| {
         let store = &*call.store;
         let current = atom_name(store, args[0], "the current shelf")?;
         let observed = shelf_pairs(store, args[1], "the shelves observed")?;
         let believed = shelf_pairs(store, args[2], "the shelves believed")?;
         let missing = names(store, args[3], "the missing objects")?;
-        let inner = i
-            .lock()
-            .map_err(|_| "the simulated world is unusable".to_owned())?;
-        let shelves: Vec<String> = inner
-            .sim
-            .world()
-            .shelf_names()
-            .into_iter()
-            .map(str::to_owned)
-            .collect();
-        let mut refs: Vec<&str> = shelves.iter().map(String::as_str).collect();
-        if !refs.contains(&current.as_str()) {
-            refs.push(&current);
-        }
-        let d = distances(&inner.sim, &refs)?;
-        drop(inner);
+        let (shelves, d) = w.with_sim(|sim| {
+            let shelves: Vec<String> = sim
+                .world()
+                .shelf_names()
+                .into_iter()
+                .map(str::to_owned)
+                .collect();
+            let mut refs: Vec<&str> = shelves.iter().map(String::as_str).collect();
+            if !refs.contains(&current.as_str()) {
+                refs.push(&current);
+            }
+            let d = distances(sim, &refs)?;
+            Ok::<_, String>((shelves, d))
+        })??;
         let input = Input {
             shelves,
             current,
@@ -219,7 +200,7 @@ pub(crate) fn register(
         parse(call, &text)
     });
 
-    let i = inner;
+    let w = world;
     functions.register("shop_decide", 4, move |call, args| {
         let store = &*call.store;
         let mut obligations = Vec::new();
@@ -275,33 +256,33 @@ pub(crate) fn register(
                 ))
             }
         };
-        let inner = i.lock().map_err(|_| "the simulated world is unusable".to_owned())?;
-        let sim = &inner.sim;
-        let at = sim.robot_at().to_owned();
-        let mut names: Vec<&str> = vec![at.as_str(), user_at.as_str()];
-        for o in &obligations {
-            if let Some(f) = &o.from {
-                names.push(f);
+        let (problem, d) = w.with_sim(|sim| {
+            let at = sim.robot_at().to_owned();
+            let mut names: Vec<&str> = vec![at.as_str(), user_at.as_str()];
+            for o in &obligations {
+                if let Some(f) = &o.from {
+                    names.push(f);
+                }
+                if let Target::Shelf(s) = &o.to {
+                    names.push(s);
+                }
             }
-            if let Target::Shelf(s) = &o.to {
-                names.push(s);
-            }
-        }
-        names.sort_unstable();
-        names.dedup();
-        let d = distances(sim, &names)?;
-        let problem = Problem {
-            at: at.clone(),
-            left: sim.holding(Hand::Left).map(str::to_owned),
-            right: sim.holding(Hand::Right).map(str::to_owned),
-            user_at: user_at.clone(),
-            obligations,
-            costs: Costs {
-                speed: sim.world().robot_speed(),
-                ..costs
-            },
-        };
-        drop(inner);
+            names.sort_unstable();
+            names.dedup();
+            let d = distances(sim, &names)?;
+            let problem = Problem {
+                at: at.clone(),
+                left: sim.holding(Hand::Left).map(str::to_owned),
+                right: sim.holding(Hand::Right).map(str::to_owned),
+                user_at: user_at.clone(),
+                obligations,
+                costs: Costs {
+                    speed: sim.world().robot_speed(),
+                    ..costs
+                },
+            };
+            Ok::<_, String>((problem, d))
+        })??;
         let dec = decide(&problem, r_max, &d).map_err(|e| format!("shop_decide: {e}"))?;
         let ob = |o: &Obligation| match (&o.to, &o.from) {
             (Target::User, f) => format!(
@@ -342,34 +323,4 @@ pub(crate) fn register(
         );
         parse(call, &text)
     });
-}
-
-#[cfg(test)]
-mod functions_tests {
-    use crate::console::Console;
-    use crate::robot::SimRobot;
-
-    /// [`super::FUNCTIONS`] lists exactly what a robot on a world registers.
-    #[test]
-    fn the_list_is_what_is_registered() {
-        let path = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../dms/apps/supermarket/world.toml"
-        );
-        let world = sitlog_sim::World::load(std::path::Path::new(path)).expect("world");
-        let robot = SimRobot::new(&world, None, Console::sink().shared());
-        let mut functions = sitlog_runtime::Functions::new();
-        robot.register_inference(&mut functions, None);
-        let mut got: Vec<(String, usize)> = functions
-            .names()
-            .map(|(n, a)| (n.as_str().to_owned(), a))
-            .collect();
-        got.sort();
-        let mut want: Vec<(String, usize)> = super::FUNCTIONS
-            .iter()
-            .map(|&(n, a)| (n.to_owned(), a))
-            .collect();
-        want.sort();
-        assert_eq!(got, want);
-    }
 }

@@ -5,13 +5,70 @@
 //! answer, or `false` where the original's call fails. An update
 //! `u(A1..An)` becomes `u/n` and gives `true` or `false`; with a
 //! persistence path, every successful update is written to disk atomically.
+//! `open` finds the KB of a run (`--kb FILE`, `--kb-persist`, or the
+//! application's `knowledge.kb`).
 
+use crate::assets::TextFile;
 use crate::console::SharedConsole;
-use sitlog_kb::{Kb, Outcome, SERVICES, UPDATES};
+use sitlog_kb::{Kb, Outcome, PersistLock, SERVICES, UPDATES};
 use sitlog_runtime::functions::FnCall;
 use sitlog_runtime::{Atom, Functions, Term};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
+
+/// The KB of a run.
+pub(crate) struct RunKb {
+    pub(crate) kb: Kb,
+    /// Where every successful update is written back (`--kb-persist`).
+    pub(crate) persist: Option<PathBuf>,
+    /// With `--kb-persist`: held for the whole run, so that no other
+    /// persisting process writes the file meanwhile (and temporary files
+    /// of killed runs are removed).
+    pub(crate) lock: Option<PersistLock>,
+}
+
+/// The KB of a run: the file `file` (`--kb`), else the application's
+/// `asset`; with `persist` (`--kb-persist`), `file` is locked and written
+/// back. `Err` holds the exit status (1 for bad content, 2 for I/O or a
+/// `--kb-persist` without a file) and the message.
+pub(crate) fn open(
+    file: Option<&Path>,
+    persist: bool,
+    asset: Option<&TextFile>,
+) -> Result<Option<RunKb>, (u8, String)> {
+    // A position means bad content (1); none, a file that cannot be read (2).
+    let failed = |e: sitlog_kb::LoadError| (if e.pos.is_some() { 1 } else { 2 }, e.to_string());
+    let found = match file {
+        Some(path) if persist => {
+            let (kb, lock) = Kb::open_persistent(path).map_err(failed)?;
+            Some(RunKb {
+                kb,
+                persist: Some(path.to_path_buf()),
+                lock: Some(lock),
+            })
+        }
+        Some(path) => Some(RunKb {
+            kb: Kb::load(path).map_err(failed)?,
+            persist: None,
+            lock: None,
+        }),
+        None => match asset {
+            Some(src) => Some(RunKb {
+                kb: Kb::parse(&src.text, &src.name).map_err(|e| (1, e.to_string()))?,
+                persist: None,
+                lock: None,
+            }),
+            None => None,
+        },
+    };
+    if persist && found.as_ref().is_none_or(|k| k.persist.is_none()) {
+        return Err((
+            2,
+            "error: --kb-persist needs a KB file to write to: pass --kb FILE".to_owned(),
+        ));
+    }
+    Ok(found)
+}
 
 /// A KB shared by the registered functions.
 pub type SharedKb = Arc<Mutex<Kb>>;

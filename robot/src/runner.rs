@@ -1,0 +1,395 @@
+//! The one way to run a task, for `sitlogc run`, `sitlogc debug`, compiled
+//! tasks and tests: a [`Runner`] says where the run writes, what stops it,
+//! what wraps its perception and which debugger watches it;
+//! [`Runner::run`] runs a program with the options of a command line
+//! ([`RunArgs`]) and its [`Assets`], and returns the exit status (0 ok, 1
+//! run-time error, 2 usage or I/O problem, 3 end of typed input, 130 / 143
+//! interrupted by SIGINT / SIGTERM).
+//!
+//! What runs the task:
+//! - with a world (the application's `world.toml`, `--world FILE`, or one
+//!   embedded in a compiled task) and without `--no-world`: the simulated
+//!   robot and user ([`crate::robot`]); the transcript (the conversation and
+//!   narration) goes to stdout before the text report, to stderr with
+//!   `--format json`;
+//! - without one: test mode, as the original's: inputs from `--script` or
+//!   typed at a prompt ([`crate::prompt`]), actions rendered on the
+//!   process's stderr.
+
+use crate::assets::{Assets, TextFile};
+use crate::cli::{Format, HistoryMode, RunArgs};
+use crate::console::{Console, SharedWriter};
+use crate::debug_hooks::DebugHooks;
+use crate::interrupt::Interrupt;
+use crate::kb_services;
+use crate::live_view::LiveView;
+use crate::observers::{Fanout, Progress, TraceFile};
+use crate::streams::Streams;
+use sitlog_runtime::app::{run, App};
+use sitlog_runtime::machine::{Actions, Observer, Options, Perception};
+use sitlog_runtime::report;
+use sitlog_runtime::testmode::{ScriptPerception, TextActions};
+use sitlog_runtime::Functions;
+use std::io::Write;
+use std::sync::{Arc, Mutex};
+
+/// Wraps the perception a run makes (the simulated user's, the script's or
+/// the prompt's) in another: `sitlogc run --watch` lets a situation waiting
+/// for input take it in a program that changed meanwhile.
+pub type PerceptionWrap = Box<dyn FnOnce(Box<dyn Perception>) -> Box<dyn Perception>>;
+
+/// How a task runs, besides its options and assets: its [`Streams`], what
+/// stops it, what wraps its perception, and a debugger's hooks.
+pub struct Runner {
+    streams: Streams,
+    interrupt: Option<Interrupt>,
+    wrap: Option<PerceptionWrap>,
+    debugger: Option<DebugHooks>,
+}
+
+impl Runner {
+    /// A run on `streams`, which nothing stops but its end (and, at a
+    /// prompt, the end of the typed input).
+    pub fn new(streams: Streams) -> Runner {
+        Runner {
+            streams,
+            interrupt: None,
+            wrap: None,
+            debugger: None,
+        }
+    }
+
+    /// A run as `sitlogc run` makes it: on the process's streams, stopped
+    /// by SIGINT and SIGTERM ([`Interrupt::install`]).
+    ///
+    /// A signal stops the task at its next transition: the report (status
+    /// `interrupted`) is still printed and the trace closed; the exit
+    /// status is then 130 (SIGINT) or 143 (SIGTERM). A second signal ends
+    /// the process at once. The end of typed input (Ctrl-D at the prompt)
+    /// stops it the same way, with exit status 3 ([`crate::prompt`]).
+    pub fn process() -> Runner {
+        Runner::new(Streams::process()).interrupt(Interrupt::install())
+    }
+
+    /// Stops the run between transitions when `interrupt` is set.
+    pub fn interrupt(mut self, interrupt: Interrupt) -> Runner {
+        self.interrupt = Some(interrupt);
+        self
+    }
+
+    /// Wraps the run's perception in `wrap` ([`PerceptionWrap`]).
+    pub fn wrap_perception(mut self, wrap: PerceptionWrap) -> Runner {
+        self.wrap = Some(wrap);
+        self
+    }
+
+    /// Runs under a debugger: its observer, test-mode perception, look at
+    /// the world and stop flag ([`DebugHooks`]).
+    pub fn debugger(mut self, hooks: DebugHooks) -> Runner {
+        self.debugger = Some(hooks);
+        self
+    }
+
+    /// Runs `app` with `functions`, the options `args` and `assets`; the
+    /// exit status (see the module documentation). With `--view` the live
+    /// view is served first, and the task starts when its page is open.
+    pub fn run<A: App>(
+        mut self,
+        app: &A,
+        functions: Functions,
+        args: &RunArgs,
+        assets: &Assets,
+    ) -> u8 {
+        if !args.view {
+            return self.run_task(app, functions, args, assets, None);
+        }
+        let view = match LiveView::start(args, assets, &mut self.streams.stderr) {
+            Ok(view) => view,
+            Err(code) => return code,
+        };
+        let observer = view.observer(args.view_delay);
+        let code = self.run_task(app, functions, args, assets, Some(observer));
+        view.finish(code);
+        code
+    }
+
+    /// The run itself, `view` (the live view's observer) already set up.
+    fn run_task<A: App>(
+        self,
+        app: &A,
+        mut functions: Functions,
+        args: &RunArgs,
+        assets: &Assets,
+        mut view: Option<Box<dyn Observer + Send>>,
+    ) -> u8 {
+        let Runner {
+            mut streams,
+            interrupt,
+            wrap,
+            debugger,
+        } = self;
+        let (mut debug_observer, mut debug_perception, mut debug_world, debug_stop) = match debugger
+        {
+            Some(h) => (
+                Some(h.observer),
+                Some(h.perception),
+                Some(h.world),
+                Some(h.stop),
+            ),
+            None => (None, None, None, None),
+        };
+        // Without the simulator there is no world to look at.
+        #[cfg(not(feature = "sim"))]
+        let _ = debug_world.take();
+        macro_rules! fail {
+            ($code:expr, $($msg:tt)*) => {{
+                let _ = writeln!(streams.stderr, $($msg)*);
+                return $code;
+            }};
+        }
+        // The world, if any.
+        let world: Option<TextFile> = if args.no_world {
+            None
+        } else if let Some(path) = &args.world {
+            match TextFile::read(path, "world") {
+                Ok(file) => Some(file),
+                Err(e) => fail!(e.status, "{e}"),
+            }
+        } else {
+            assets.world.clone()
+        };
+        if world.is_some() && args.script.is_some() {
+            fail!(
+                2,
+                "error: --script gives test-mode inputs, but this run has a world; pass --no-world to run in test mode"
+            );
+        }
+        let json = args.format == Format::Json;
+        // The transcript: stdout before the text report, stderr with JSON.
+        let with_world = world.is_some();
+        let progress = !args.quiet && streams.stdout_is_terminal && streams.stderr_is_terminal;
+        let transcript_out: Box<dyn Write + Send> = if !with_world {
+            Box::new(std::io::sink())
+        } else {
+            let stream = if json {
+                &mut streams.stderr
+            } else {
+                &mut streams.stdout
+            };
+            let shared = SharedWriter::new(std::mem::replace(stream, Box::new(std::io::sink())));
+            *stream = Box::new(shared.clone());
+            Box::new(shared)
+        };
+        let console = Console::new(transcript_out, progress, !args.quiet).shared();
+
+        // The KB; a persisted one stays locked until the run ends.
+        let _kb_lock =
+            match kb_services::open(args.kb.as_deref(), args.kb_persist, assets.kb.as_ref()) {
+                Ok(Some(kb)) => {
+                    let narrate = with_world.then(|| console.clone());
+                    kb_services::register_with(
+                        &mut functions,
+                        Arc::new(Mutex::new(kb.kb)),
+                        kb.persist,
+                        narrate,
+                    );
+                    kb.lock
+                }
+                Ok(None) => None,
+                Err((code, message)) => fail!(code, "{message}"),
+            };
+
+        // Typed input (test mode without a script) ends the task cleanly at
+        // its end (Ctrl-D): recorded in the run's interrupt (one of its own
+        // when signals are not handled).
+        let typed = world.is_none() && args.script.is_none();
+        let ended: Option<Interrupt> = interrupt.clone().or_else(|| typed.then(Interrupt::new));
+        // Perception and actions: the simulated robot, or test mode.
+        let (perception, mut actions): (Box<dyn Perception>, Box<dyn Actions>) = match &world {
+            #[cfg(feature = "sim")]
+            Some(world) => {
+                match crate::robot::SimRobot::from_file(world, args.seed, console.clone()) {
+                    Ok(robot) => {
+                        robot.register_inference(&mut functions, args.seed);
+                        if let Some(give) = debug_world.take() {
+                            give(crate::debug_hooks::WorldProbe::new(robot.probe()));
+                        }
+                        let (senses, effectors) = robot.split();
+                        (Box::new(senses), Box::new(effectors))
+                    }
+                    // A world file that is not what the simulator reads: exit 2
+                    // (issue 15), like a missing one; bytes that are not UTF-8
+                    // were refused above with exit 1 (issue 23).
+                    Err(e) => fail!(2, "{e}"),
+                }
+            }
+            #[cfg(not(feature = "sim"))]
+            Some(world) => fail!(
+                2,
+                "error: {} is a world, but this task was built without the simulator (feature `sim` of sitlog-robot)",
+                world.name
+            ),
+            None => {
+                let limits = args.input_limits();
+                let perception: Box<dyn Perception> = match (&args.script, debug_perception.take())
+                {
+                    (Some(path), debugger) => match TextFile::read(path, "script") {
+                        Ok(s) => {
+                            let script =
+                                Box::new(ScriptPerception::new(s.name, s.text).with_limits(limits));
+                            match debugger {
+                                Some(make) => make(Some(script)),
+                                None => script,
+                            }
+                        }
+                        Err(e) => fail!(e.status, "{e}"),
+                    },
+                    (None, Some(make)) => make(None),
+                    (None, None) => crate::prompt::typed_input(
+                        limits,
+                        interrupt.as_ref(),
+                        ended.clone().unwrap_or_default(),
+                    ),
+                };
+                let actions = Box::new(TextActions::new(std::io::stderr(), app.basic_actions()));
+                (perception, actions)
+            }
+        };
+        let mut perception = match wrap {
+            Some(wrap) => wrap(perception),
+            None => perception,
+        };
+
+        let mut trace = match &args.trace {
+            Some(path) => match std::fs::File::create(path) {
+                Ok(f) => Some(TraceFile::new(f)),
+                Err(e) => fail!(2, "error: cannot create trace file {}: {e}", path.display()),
+            },
+            None => None,
+        };
+        let shows_progress = console.lock().map(|c| c.shows_progress()).unwrap_or(false);
+        let mut progress_observer = Progress { console: &console };
+        let mut observers: Vec<&mut dyn Observer> = Vec::new();
+        if let Some(t) = trace.as_mut() {
+            observers.push(t);
+        }
+        if let Some(d) = debug_observer.as_mut() {
+            observers.push(d.as_mut());
+        }
+        if let Some(v) = view.as_mut() {
+            observers.push(v.as_mut());
+        }
+        if shows_progress {
+            observers.push(&mut progress_observer);
+        }
+        let mut fanout = Fanout(observers);
+        let observer: Option<&mut dyn Observer> = match fanout.0.len() {
+            0 => None,
+            _ => Some(&mut fanout),
+        };
+        let options = Options {
+            keep_history: args.history == HistoryMode::Keep,
+            input_limits: args.input_limits(),
+            stop: ended.as_ref().map(|i| i.flag.clone()).or(debug_stop),
+            ..Options::default()
+        };
+        functions.set_call_limits(args.call_limits());
+
+        let result = run(
+            app,
+            &args.main,
+            args.in_arg.as_deref(),
+            options,
+            functions,
+            perception.as_mut(),
+            actions.as_mut(),
+            observer,
+        );
+        drop(fanout);
+        // The trace is flushed and synced however the run ended.
+        let trace_error = trace.and_then(|t| t.finish().err());
+        let trace_name = || {
+            args.trace
+                .as_ref()
+                .map(|p| p.display().to_string())
+                .unwrap_or_default()
+        };
+        let (outcome, mut store) = match result {
+            Ok(r) => r,
+            Err(e) => {
+                if let Ok(mut c) = console.lock() {
+                    c.finish();
+                }
+                if let Some(te) = trace_error {
+                    let _ = writeln!(
+                        streams.stderr,
+                        "error: cannot write the trace {}: {te}",
+                        trace_name()
+                    );
+                }
+                fail!(2, "error: {e}")
+            }
+        };
+        let mut outcome = outcome;
+        // The error names the failing expression's position, in every report.
+        if let Err(e) = &mut outcome.result {
+            if let Some(location) = app.error_location(e) {
+                e.location = Some(location);
+            }
+        }
+        let transcript_error = console.lock().ok().and_then(|mut c| c.finish());
+        let report = match args.format {
+            Format::Json => format!("{}\n", report::outcome_json(&store, &outcome)),
+            Format::Text => report::outcome_text(&mut store, &outcome),
+        };
+        let written = streams
+            .stdout
+            .write_all(report.as_bytes())
+            .and_then(|_| streams.stdout.flush());
+        match written {
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+            Err(e) => fail!(2, "error: cannot write the report: {e}"),
+            Ok(()) => {}
+        }
+        if let Some(e) = transcript_error {
+            fail!(2, "error: cannot write the transcript: {e}");
+        }
+        match trace_error {
+            Some(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+                fail!(2, "error: cannot write the trace {}: {e}", trace_name())
+            }
+            _ => {}
+        }
+        if let Err(e) = &outcome.result {
+            let by_input =
+                outcome.interrupted && ended.as_ref().is_some_and(Interrupt::ended_by_input);
+            if by_input {
+                let place = match (&e.dm, &e.situation) {
+                    (Some(dm), Some(sit)) => {
+                        format!(" while DM `{dm}` waited in situation `{sit}`")
+                    }
+                    _ => String::new(),
+                };
+                let _ = writeln!(
+                    streams.stderr,
+                    "stopped: the input ended (Ctrl-D){place}: the task did not finish (exit status {})",
+                    crate::interrupt::EXIT_END_OF_INPUT
+                );
+            } else {
+                // Reported once, here (the report on stdout does not repeat
+                // it): on the source when the program keeps it.
+                let color = streams.stderr_is_terminal && std::env::var_os("NO_COLOR").is_none();
+                let _ = match app.render_error(e, color) {
+                    Some(text) => write!(streams.stderr, "{text}"),
+                    None => writeln!(streams.stderr, "error: {e}"),
+                };
+            }
+            match ended.as_ref().and_then(Interrupt::exit_status) {
+                Some(status) if outcome.interrupted => status,
+                _ => 1,
+            }
+        } else {
+            0
+        }
+    }
+}
