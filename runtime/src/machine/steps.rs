@@ -83,7 +83,10 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     }
 
     /// What the evaluator sees: the store, the running DM's locals and
-    /// history, the globals and the functions.
+    /// history, the globals and the functions (`#[inline]`: a constructor
+    /// that `cx` calls too, from another codegen unit, and must not cost a
+    /// call).
+    #[inline]
     pub(super) fn eval_ctx(&mut self) -> EvalCtx<'_> {
         let frame = self.frames.last_mut().expect("a frame is running");
         EvalCtx {
