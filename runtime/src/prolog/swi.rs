@@ -2,7 +2,7 @@
 //! application), the library predicates made visible to application code
 //! ([`LIBRARIES`]), the SWI-Prolog predicates the prelude provides
 //! ([`SWI_PREDICATES`]) and the engine's built-ins whose calls are renamed
-//! ([`SWI_RENAMED`]). Tables only; the writer applies the renaming.
+//! ([`SWI_RENAMED`]), with the two look-ups the writer renames calls by.
 
 use sitlog_syntax::Atom;
 
