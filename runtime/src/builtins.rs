@@ -3,7 +3,7 @@
 //! call. Written from their observable behaviour (`first([])` is `non`,
 //! `pop([])` is `empty`, indices start at 0, ...).
 
-use crate::eval::EvalError;
+use crate::eval_error::EvalError;
 use crate::store::Store;
 use crate::term::{Term, Value};
 use sitlog_syntax::Atom;

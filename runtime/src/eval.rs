@@ -7,6 +7,7 @@
 
 use crate::arith::ArithCmp;
 use crate::builtins;
+pub use crate::eval_error::{Culprit, EvalError};
 use crate::functions::{FnCall, Functions};
 use crate::history::Item;
 use crate::store::Store;
@@ -25,33 +26,24 @@ pub struct EvalCtx<'a> {
     pub functions: &'a Functions,
 }
 
-/// Why an evaluation failed.
-#[derive(Clone, Debug, PartialEq)]
-pub struct EvalError {
-    pub message: String,
-    /// The construct of L whose evaluation failed (the innermost one), so
-    /// that a reporter can point at it in the source.
-    pub culprit: Option<Culprit>,
-}
-
-/// The shape of a failing expression as written: its principal functor
-/// and that of its first argument (`apply(pour(D), [D])` is `apply/2`
-/// with `pour/1`; `get(count, N)` is `get/2` with `count/0`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Culprit {
-    pub name: Atom,
-    pub arity: usize,
-    pub inner: Option<(Atom, usize)>,
+impl FnCall<'_> {
+    /// `var_op(Op)`: evaluates a SitLog expression (typically `get`/`set`/`inc`)
+    /// against the caller's variables, keeping the updates. (A method of
+    /// [`FnCall`] defined here, with the evaluator it calls, so that
+    /// `functions` stays below `eval`.)
+    pub fn var_op(&mut self, term: Term) -> Result<Term, String> {
+        let mut ctx = EvalCtx {
+            store: self.store,
+            locals: self.locals,
+            globals: self.globals,
+            history: self.history,
+            functions: self.functions,
+        };
+        eval(&mut ctx, term).map_err(|e| e.message)
+    }
 }
 
 impl EvalError {
-    pub fn new(message: impl Into<String>) -> EvalError {
-        EvalError {
-            message: message.into(),
-            culprit: None,
-        }
-    }
-
     /// Blames `t` (a construct of L being evaluated) unless an inner
     /// expression is already blamed.
     fn blame(mut self, store: &Store, t: Term) -> EvalError {
@@ -67,12 +59,6 @@ impl EvalError {
             }
         }
         self
-    }
-}
-
-impl std::fmt::Display for EvalError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.message)
     }
 }
 

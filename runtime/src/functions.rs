@@ -3,7 +3,6 @@
 //! SitLog variables (read and write, like the original's `var_op/1`) and the
 //! task history (read only, like `get_history/1`).
 
-use crate::eval::{self, EvalCtx};
 use crate::history::{self, Item};
 use crate::store::Store;
 use crate::term::Term;
@@ -22,18 +21,9 @@ pub struct FnCall<'a> {
 }
 
 impl FnCall<'_> {
-    /// `var_op(Op)`: evaluates a SitLog expression (typically `get`/`set`/`inc`)
-    /// against the caller's variables, keeping the updates.
-    pub fn var_op(&mut self, term: Term) -> Result<Term, String> {
-        let mut ctx = EvalCtx {
-            store: self.store,
-            locals: self.locals,
-            globals: self.globals,
-            history: self.history,
-            functions: self.functions,
-        };
-        eval::eval(&mut ctx, term).map_err(|e| e.message)
-    }
+    // `var_op` (evaluating L against the caller's variables) is defined by
+    // the evaluator, in `eval`, which is above this module.
+
     /// `get_history(H)`: the history of the current DM so far, as a term.
     pub fn history_term(&mut self) -> Term {
         history::to_term(self.history, self.store)

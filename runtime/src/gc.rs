@@ -15,15 +15,6 @@ use crate::term::{Repr, Term};
 /// Marks a slot of a forwarding table as not yet copied.
 const UNMOVED: u32 = u32::MAX;
 
-/// The collector's buffers, kept in the store between collections.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct Scratch {
-    cell_fwd: Vec<u32>,
-    var_fwd: Vec<u32>,
-    new_cells: Vec<Term>,
-    new_vars: Vec<Term>,
-}
-
 /// The old (from-space) region and the new (to-space) one being built.
 struct Collector<'a> {
     frozen_cells: u32,

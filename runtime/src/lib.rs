@@ -1,5 +1,30 @@
 //! `sitlog-runtime`: everything a running SitLog task needs, shared by the
-//! reference interpreter and by generated code. Never depends on the compiler.
+//! reference interpreter and by generated code.
+//!
+//! What holds for the whole crate:
+//! - It never depends on the compiler, nor on `kb` (KB services are
+//!   registered as user functions by whoever assembles a program): its only
+//!   SitLog dependency is `sitlog-syntax` (read terms, operators, the reader).
+//! - Every walk over a term is iterative or grows its stack on the heap
+//!   (`stacker`), so terms of any depth are safe on a 2 MiB thread; nesting
+//!   DMs costs heap too (the machine's DM stack is a `Vec`).
+//! - Semantics live here once: the interpreter and generated code run on
+//!   the same [`machine`] and its steps, so they cannot disagree.
+//! - The `use crate::` edges between its modules form a DAG (below); within
+//!   `machine`, `prolog` and `arith` the submodules are ordered the same
+//!   way (see their module docs).
+//!
+//! The modules by floor, each using only modules of lower floors:
+//!
+//! | floor | modules |
+//! |---|---|
+//! | 6 | [`app`], [`report`], [`testmode`] |
+//! | 5 | [`machine`] (the DM machine) |
+//! | 4 | [`eval`] (the language L), `prolog` (feature `prolog`: Prolog user functions) |
+//! | 3 | `arith`, `copy`, [`functions`] |
+//! | 2 | `unify`, `gc`, `convert`, [`vars`], [`history`], [`builtins`] |
+//! | 1 | `store` |
+//! | 0 | `term`, `eval_error`, `input` (limits on terms from outside), [`paths`] |
 //!
 //! The term layer:
 //! - [`Term`]: a `Copy` handle; atoms, integers, floats and variables need
@@ -13,9 +38,6 @@
 //!   ([`Store::from_clause`], [`Store::parse`]), printing
 //!   ([`Store::writeq`]), arithmetic ([`Store::eval_arith`]) and memory
 //!   ([`Store::freeze`], [`Store::gc`]).
-//!
-//! Every walk over a term is iterative or grows its stack on the heap, so
-//! terms of any depth are safe on a 2 MiB thread.
 
 pub mod app;
 mod arith;
@@ -23,9 +45,11 @@ pub mod builtins;
 mod convert;
 mod copy;
 pub mod eval;
+mod eval_error;
 pub mod functions;
 mod gc;
 pub mod history;
+mod input;
 pub mod machine;
 pub mod paths;
 #[cfg(feature = "prolog")]

@@ -50,6 +50,16 @@ pub(crate) struct Frontier {
     pub(crate) bigs: u32,
 }
 
+/// The collector's buffers (see `Store::gc`), kept in the store between
+/// collections; only the collector reads them.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct GcScratch {
+    pub(crate) cell_fwd: Vec<u32>,
+    pub(crate) var_fwd: Vec<u32>,
+    pub(crate) new_cells: Vec<Term>,
+    pub(crate) new_vars: Vec<Term>,
+}
+
 /// The term store. See the module documentation.
 #[derive(Debug, Clone)]
 pub struct Store {
@@ -70,7 +80,7 @@ pub struct Store {
     pub(crate) rng: u64,
     /// Buffers of the collector, kept between collections so that a
     /// collection allocates (and page-faults) nothing once warm.
-    pub(crate) gc_scratch: crate::gc::Scratch,
+    pub(crate) gc_scratch: GcScratch,
 }
 
 impl Default for Store {

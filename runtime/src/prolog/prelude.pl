@@ -206,11 +206,11 @@ get_last_situation(History, S) :-
 % built-ins and autoloaded library predicates. Each '$swi_X' below is made
 % visible as X once the application's clauses are loaded, unless the
 % application defines X itself or the engine already has it
-% ('$sitlog_bridge'/2, list in prolog.rs). Built-ins the engine has but
+% ('$sitlog_bridge'/2, list in swi.rs). Built-ins the engine has but
 % with another behaviour (atom_chars/2 on codes, the standard order of
 % mixed integers and floats, reading text) cannot be redefined: the
 % application's clauses call the '$swi_X' versions instead (the loader
-% renames those calls, see prolog.rs).
+% renames those calls, see swi.rs).
 
 :- dynamic('$sitlog_env'/2).
 :- use_module(library(os), []).
@@ -583,7 +583,7 @@ get_last_situation(History, S) :-
     ).
 
 % ------------------------------------------------ the KB layer, natively
-% (sitlogc run --legacy --legacy-kb native; NativeKb in prolog.rs). A KB is
+% (sitlogc run --legacy --legacy-kb native; NativeKb in legacy_kb.rs). A KB is
 % a handle '$kb'(N) to a KB of the host; a KB term met where a handle is
 % needed becomes one (the last conversion is remembered), and a handle met
 % by code the host does not serve becomes the KB term again.

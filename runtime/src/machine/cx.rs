@@ -1,0 +1,364 @@
+//! The steps [`Cx`] offers the code of a compiled situation (generated
+//! Rust, or an interpreter's plan): one method per semantic step, each
+//! the one the interpreted path takes.
+
+use super::outcome::RunError;
+use super::program::{Cx, DmProgram, Step};
+use super::situation::SitIx;
+use crate::eval;
+use crate::store::Store;
+use crate::term::Term;
+use sitlog_syntax::Atom;
+
+impl<P: DmProgram> Cx<'_, '_, P> {
+    /// A run-time error of `op(name, _)` (`get`, `set`, `inc`, ...) in this
+    /// situation, blaming that construct as the machine's evaluator does.
+    fn var_op_error(&self, message: String, op: Atom, name: Atom, arc: Option<usize>) -> RunError {
+        let mut e = self.error(message, arc);
+        if let Some(site) = e.site.as_mut() {
+            site.culprit = Some(eval::Culprit {
+                name: op,
+                arity: 2,
+                inner: Some((name, 0)),
+            });
+        }
+        e
+    }
+
+    pub fn store(&mut self) -> &mut Store {
+        &mut self.m.store
+    }
+
+    /// The value of the next situation that selected this one (its id
+    /// then), or `None` when the situation was entered by index (an atom
+    /// id) or as its DM's initial situation.
+    #[inline]
+    pub fn selected(&self) -> Option<Term> {
+        self.selected
+    }
+
+    /// Sets the situation's id (a compound id built by the situation's code
+    /// when it was not selected by a value).
+    #[inline]
+    pub fn set_id(&mut self, id: Term) {
+        self.id = id;
+    }
+
+    /// Whether the machine wants control back before the next situation
+    /// (the store has grown enough to be collected). Until then, code may go
+    /// on to a compiled situation of the same DM by itself, after [`Cx::enter`].
+    #[inline]
+    pub fn gc_due(&self) -> bool {
+        let stats = self.m.store.stats();
+        stats.cells + stats.vars >= self.m.cells_after_gc + self.m.options.gc_threshold
+            || self.m.stop_requested()
+    }
+
+    /// Goes on to compiled situation `sit` of the running DM, whose id is the atom `id`.
+    #[inline]
+    pub fn enter(&mut self, sit: SitIx, id: Atom) {
+        self.sit = sit;
+        self.id = Term::atom(id);
+        self.selected = None;
+    }
+
+    /// A fresh variable.
+    #[inline]
+    pub fn var(&mut self) -> Term {
+        self.m.store.new_var()
+    }
+
+    #[inline]
+    pub fn compound(&mut self, name: Atom, args: &[Term]) -> Term {
+        self.m.store.compound(name, args)
+    }
+
+    /// Argument `i` of compound `t` (as [`Step::Call`]'s `saved` keeps them).
+    #[inline]
+    pub fn arg(&self, t: Term, i: usize) -> Term {
+        self.m.store.args(t)[i]
+    }
+
+    /// Argument `i` of the running DM's call: the value a head parameter
+    /// written as a variable takes (D-7); a fresh variable if the call has
+    /// no such argument.
+    #[inline]
+    pub fn head_arg(&mut self, i: usize) -> Term {
+        let dm_id = self.m.frames.last().expect("a frame is running").dm_id;
+        match self.m.store.arg(dm_id, i) {
+            Some(a) => a,
+            None => self.m.store.new_var(),
+        }
+    }
+
+    /// The incoming pipe value.
+    #[inline]
+    pub fn pipe(&self) -> Term {
+        *self.pipe
+    }
+
+    /// Unifies the situation's in_arg pattern with the incoming pipe (D-8, E14).
+    pub fn in_arg(&mut self, pattern: Term) -> Result<(), RunError> {
+        let here = self.here();
+        self.m.unify_in_arg(pattern, *self.pipe, here)
+    }
+
+    /// Runs `prog` on a copy sharing only the variables of `links` (D-10).
+    pub fn prog(&mut self, prog: Term, links: &[Option<Term>]) -> Result<(), RunError> {
+        let here = self.here();
+        self.m.run_prog(Some(prog), links, here)
+    }
+
+    /// What an arc sees of the situation's variables: each value copied with
+    /// the arc (D-11), jointly, so shared unbound variables stay shared.
+    /// Atomic values are their own copies (no work).
+    pub fn import(&mut self, values: &mut [Term]) {
+        let store = &mut self.m.store;
+        let mut all_atomic = true;
+        for v in values.iter_mut() {
+            *v = store.deref(*v);
+            all_atomic &= store.is_atomic(*v);
+        }
+        if all_atomic {
+            return;
+        }
+        let both = store.compound(self.m.arc_functor, values);
+        let copy = store.copy_term(both);
+        values.copy_from_slice(store.args(copy));
+    }
+
+    /// Evaluates `t` in L (D-28..D-39).
+    pub fn eval(&mut self, t: Term, arc: Option<usize>) -> Result<Term, RunError> {
+        let here = self.here();
+        self.m.eval_in_frame(t, here, arc)
+    }
+
+    /// The value of a variable occurrence in L: what [`Cx::eval`] gives,
+    /// without a call when it is not bound to a compound.
+    #[inline]
+    pub fn value(&mut self, t: Term, arc: Option<usize>) -> Result<Term, RunError> {
+        let t = self.m.store.deref(t);
+        if self.m.store.is_compound(t) {
+            return self.eval(t, arc);
+        }
+        Ok(t)
+    }
+
+    /// `op(name, arg)` for `op` in `get`, `set`, `inc` (D-38); `arg` as written.
+    pub fn var_op(
+        &mut self,
+        op: Atom,
+        name: Atom,
+        arg: Term,
+        arc: Option<usize>,
+    ) -> Result<Term, RunError> {
+        let r = eval::var_op_named(&mut self.m.eval_ctx(), op, name, arg);
+        r.map_err(|e| self.var_op_error(e.message, op, name, arc))
+    }
+
+    /// `op(name, V)` for `op` in `get`, `inc`, where `V` is a variable that
+    /// occurs nowhere else yet: the value `V` would be bound to, without
+    /// making `V` (the caller uses the value in its place).
+    pub fn var_op_fresh(
+        &mut self,
+        op: Atom,
+        name: Atom,
+        arc: Option<usize>,
+    ) -> Result<Term, RunError> {
+        let r = eval::var_op_fresh(&mut self.m.eval_ctx(), op, name);
+        r.map_err(|e| self.var_op_error(e.message, op, name, arc))
+    }
+
+    /// `v is expr` (D-33), both as written (not evaluated); `v: None` for a
+    /// variable that occurs nowhere else yet (the value is returned).
+    #[inline]
+    pub fn is(
+        &mut self,
+        v: Option<Term>,
+        expr: Term,
+        arc: Option<usize>,
+    ) -> Result<Term, RunError> {
+        eval::is(&mut self.m.store, v, expr, None).map_err(|e| self.error(e.message, arc))
+    }
+
+    /// A conditional's condition `a op b` with an arithmetic comparison, on evaluated operands.
+    #[inline]
+    pub fn arith_condition(
+        &mut self,
+        op: crate::arith::ArithCmp,
+        a: Term,
+        b: Term,
+        arc: Option<usize>,
+    ) -> Result<bool, RunError> {
+        eval::arith_condition(&mut self.m.store, op, a, b).map_err(|e| self.error(e.message, arc))
+    }
+
+    /// Any other condition of a conditional (D-35).
+    pub fn condition(&mut self, cond: Term, arc: Option<usize>) -> Result<bool, RunError> {
+        let r = eval::condition(&mut self.m.eval_ctx(), cond);
+        r.map_err(|e| self.error(e.message, arc))
+    }
+
+    /// Keeps the variables' values, to be put back by [`Cx::restore_vars`]:
+    /// updates made while expectations are evaluated are discarded (D-12).
+    pub fn save_vars(&mut self) {
+        let frame = self.m.frames.last().expect("a frame is running");
+        self.m.scratch_locals.restore_from(&frame.locals);
+        self.m.scratch_globals.restore_from(&self.m.globals);
+    }
+
+    pub fn restore_vars(&mut self) {
+        let frame = self.m.frames.last_mut().expect("a frame is running");
+        frame.locals.restore_from(&self.m.scratch_locals);
+        self.m.globals.restore_from(&self.m.scratch_globals);
+    }
+
+    /// The evaluated expectations of the situation's arcs, in arc order.
+    pub fn set_expectations(&mut self, expectations: &[Term]) {
+        self.m.expectations.clear();
+        self.m.expectations.extend_from_slice(expectations);
+    }
+
+    /// The met expectation of arc `i`, after [`Cx::choose`] or [`Cx::choose_exit`].
+    #[inline]
+    pub fn expectation(&self, i: usize) -> Term {
+        self.m.expectations[i]
+    }
+
+    /// Which arc's expectation is met (the neutral rule, else perception, D-14).
+    pub fn choose(&mut self, type_term: Term) -> Result<Option<usize>, RunError> {
+        let here = self.here();
+        self.m.choose_index(type_term, here, &mut *self.perception)
+    }
+
+    /// Which exit arc takes the embedded DM's final situation `final_id` (D-22).
+    pub fn choose_exit(&mut self, final_id: Term) -> Result<usize, RunError> {
+        let here = self.here();
+        self.m.choose_exit_index(final_id, here)
+    }
+
+    /// Performs an evaluated action (D-17).
+    pub fn perform(&mut self, action: Term, arc: Option<usize>) -> Result<(), RunError> {
+        let here = self.here();
+        self.m.perform(action, &mut *self.actions, here, arc)
+    }
+
+    /// Performs the elements of an evaluated action that is a proper,
+    /// non-empty list, one by one (what [`Cx::perform`] does with such a list).
+    pub fn perform_each(&mut self, elements: &[Term], arc: Option<usize>) -> Result<(), RunError> {
+        for &x in elements {
+            if let Err(e) = self.actions.perform(&mut self.m.store, x) {
+                return Err(self.error(format!("action failed: {e}"), arc));
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether history entries are observed (kept, or seen by an observer):
+    /// when not, an entry's terms need not be built.
+    #[inline]
+    pub fn records(&self) -> bool {
+        self.m.options.keep_history || self.observer.is_some()
+    }
+
+    /// An arc's out_arg: its value becomes the pipe unless it is a variable (D-18).
+    pub fn out_arg(&mut self, out: Term, arc: Option<usize>) -> Result<(), RunError> {
+        let value = self.eval(out, arc)?;
+        if !self.m.store.is_var(value) {
+            *self.pipe = value;
+        }
+        Ok(())
+    }
+
+    /// A final situation's out_arg (or the pipe unchanged when `None`).
+    pub fn final_out_arg(&mut self, out: Option<Term>) -> Result<(), RunError> {
+        let here = self.here();
+        self.m.final_out_arg(out, self.pipe, here)
+    }
+
+    /// Evaluates `diag_mod` with read-only variables and unifies it with the DM's id (D-20).
+    pub fn diag_mod(&mut self, d: Term) -> Result<(), RunError> {
+        let here = self.here();
+        self.m.bind_diag_mod(Some(d), here)
+    }
+
+    /// Evaluates `embedded_dm` with read-only variables: the DM call.
+    pub fn embedded_dm(&mut self, e: Term) -> Result<Term, RunError> {
+        let here = self.here();
+        self.m.eval_read_only(e, here)
+    }
+
+    /// The value of the running DM's local variable `name` (dereferenced).
+    pub fn local(&self, name: Atom) -> Option<Term> {
+        let frame = self.m.frames.last().expect("a frame is running");
+        frame.locals.get(name).map(|t| self.m.store.deref(t))
+    }
+
+    /// Sets the running DM's local variable `name` (typed code writing its
+    /// frame back).
+    pub fn set_local(&mut self, name: Atom, value: Term) {
+        let frame = self.m.frames.last_mut().expect("a frame is running");
+        frame.locals.set(name, value);
+    }
+
+    /// Argument `i` of the running DM's call, dereferenced, if it has one.
+    pub fn param(&self, i: usize) -> Option<Term> {
+        let dm_id = self.m.frames.last().expect("a frame is running").dm_id;
+        self.m.store.arg(dm_id, i).map(|t| self.m.store.deref(t))
+    }
+
+    /// The integer a (dereferenced) term is, if it is one.
+    #[inline]
+    pub fn int_of(&self, t: Term) -> Option<i64> {
+        match self.m.store.value(t) {
+            crate::Value::Int(i) => Some(i),
+            _ => None,
+        }
+    }
+
+    /// The float a (dereferenced) term is, if it is one.
+    #[inline]
+    pub fn float_of(&self, t: Term) -> Option<f64> {
+        match self.m.store.value(t) {
+            crate::Value::Float(f) => Some(f),
+            _ => None,
+        }
+    }
+
+    /// Counts transitions typed code made without recording them (the
+    /// history neither kept nor observed).
+    #[inline]
+    pub fn count_transitions(&mut self, n: u64) {
+        self.m.transitions += n;
+    }
+
+    /// Whether the run's actions ignore numbers ([`Actions::ignores_numbers`](super::Actions::ignores_numbers)).
+    #[inline]
+    pub fn ignores_numbers(&self) -> bool {
+        self.actions.ignores_numbers()
+    }
+
+    /// Appends the situation's history entry (and tells the observer).
+    #[inline]
+    pub fn record(&mut self, expectation: Term, action: Term, next: Option<Term>) {
+        let id = self.id;
+        let pipe = *self.pipe;
+        self.m
+            .record(id, expectation, action, next, pipe, &mut self.observer);
+    }
+
+    /// The step to an evaluated next situation, which must name one (D-19).
+    pub fn goto(&mut self, next: Term, arc: Option<usize>) -> Result<Step, RunError> {
+        let n = self.m.store.deref(next);
+        if self.m.store.functor(n).is_none() {
+            return Err(self.error(
+                format!(
+                    "the next situation evaluates to `{}`, which is not a situation name",
+                    self.m.store.writeq(n)
+                ),
+                arc,
+            ));
+        }
+        Ok(Step::Goto(n))
+    }
+}

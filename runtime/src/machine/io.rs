@@ -1,0 +1,54 @@
+//! The world side of the machine: what it asks ([`Perception`]) and what
+//! it has done ([`Actions`]).
+
+use crate::store::Store;
+use crate::term::Term;
+
+/// What the perceptual interpreter of a situation type perceived.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Perceived {
+    Input(Term),
+    /// No more input (end of a test script).
+    EndOfInput,
+    /// Nothing perceived yet: enter the situation again, as a new instance,
+    /// without its recovery DM (as when no expectation is met, D-15). A
+    /// perception returns it when the program changed while it waited
+    /// (hot reload), so that the new program's situation takes the input.
+    Again,
+}
+
+/// Perceptual interpreters: given the situation type and the evaluated
+/// expectations, perceive what happened (in test mode: read a term).
+pub trait Perception {
+    fn perceive(
+        &mut self,
+        store: &mut Store,
+        situation_type: Term,
+        expectations: &[Term],
+    ) -> Result<Perceived, String>;
+
+    /// Where the next [`Perception::perceive`] is asked for: the running
+    /// DM's call and the situation's id (for a prompt that names them).
+    /// Called by the machine just before it. Does nothing unless overridden.
+    fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
+        let _ = (store, dm, situation);
+    }
+}
+
+/// Basic actions: executed after an arc's action is evaluated.
+pub trait Actions {
+    /// Performs one action (an element of an action list, or the action).
+    ///
+    /// The store is mutable so that an action can report a result by
+    /// binding an unbound argument (`navigate(kitchen, Status)` binds
+    /// `Status`), as the original's robot services do: the arc's next
+    /// situation, out_arg and the history entry then see the binding.
+    fn perform(&mut self, store: &mut Store, action: Term) -> Result<(), String>;
+
+    /// Whether performing a number does nothing (and succeeds), always: then
+    /// typed code skips the calls for actions it knows are numbers (an
+    /// `inc` in an action list). `false` is always a correct answer.
+    fn ignores_numbers(&self) -> bool {
+        false
+    }
+}

@@ -1,0 +1,42 @@
+//! The DM machine: runs a SitLog program as a functional recursive
+//! transition network. One loop, the DM stack on the heap (no Rust recursion
+//! per embedded DM), the pipe, locals per DM execution, globals for the
+//! program, and the task history, in the original's order of steps
+//! (semantics notes D-7..D-27, with our fixes E1, E4, E5, E7–E16).
+//!
+//! The program itself is behind [`DmProgram`]: the reference interpreter
+//! implements it over the compiler's IR, generated code implements it with
+//! code. Both share every step below, so they cannot disagree on semantics.
+//!
+//! One job per submodule, bottom to top (each uses only those before it;
+//! this file only re-exports, so every public item keeps its path
+//! `sitlog_runtime::machine::X`):
+//! - `situation`: indices, [`Kind`], [`Instance`]; `io`: [`Perception`],
+//!   [`Actions`]; `options`: [`Options`];
+//! - `outcome`: [`Outcome`], [`RunError`];
+//! - `state`: the [`Machine`] and its DM stack;
+//! - `observe`: [`Observer`] and the [`Inspection`] it is shown;
+//! - `program`: [`DmProgram`], [`Step`], [`Cx`], [`Between`];
+//! - `steps`: the semantic steps of one situation;
+//! - `cx`: the steps as [`Cx`] offers them to compiled code;
+//! - `run`: the loop (DM calls and returns, selection of situations, garbage
+//!   collection between them).
+
+mod cx;
+mod io;
+mod observe;
+mod options;
+mod outcome;
+mod program;
+mod run;
+mod situation;
+mod state;
+mod steps;
+
+pub use io::{Actions, Perceived, Perception};
+pub use observe::{Inspection, Observer};
+pub use options::Options;
+pub use outcome::{ErrorSite, Outcome, RunError};
+pub use program::{Between, Cx, DmProgram, Next, Step};
+pub use situation::{DmIx, Instance, Kind, SitIx};
+pub use state::Machine;

@@ -1,0 +1,35 @@
+//! What a run is given besides its program: [`Options`].
+
+use sitlog_syntax::Atom;
+
+/// Options of a run.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Keep the task history (`--history keep`); without it, memory stays bounded.
+    pub keep_history: bool,
+    /// Deepest DM stack allowed before the run stops with an error.
+    pub max_depth: usize,
+    /// Recovery DM per situation type (D-42a): run when no expectation is met.
+    pub recovery: Vec<(Atom, Atom)>,
+    /// Collect garbage when the store has grown by this many cells since the last collection.
+    pub gc_threshold: usize,
+    /// Limits on terms from outside (`--in-arg`, `--main`; perception
+    /// sources take theirs when they are made).
+    pub input_limits: crate::input::InputLimits,
+    /// When set (by a signal handler), the run stops before its next
+    /// transition with an error and [`Outcome::interrupted`](super::Outcome::interrupted).
+    pub stop: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            keep_history: true,
+            max_depth: 10_000_000,
+            recovery: Vec::new(),
+            gc_threshold: 1 << 20,
+            input_limits: Default::default(),
+            stop: None,
+        }
+    }
+}

@@ -1,0 +1,75 @@
+//! How a run ends: its [`Outcome`], and the [`RunError`] that stops it
+//! (with the [`ErrorSite`] a reporter points at).
+
+use super::situation::{DmIx, SitIx};
+use crate::eval;
+use crate::history::Item;
+use crate::term::Term;
+use crate::vars::Vars;
+
+/// A run-time error: where it happened and what.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunError {
+    pub message: String,
+    pub dm: Option<String>,
+    pub situation: Option<String>,
+    /// 1-based arc number.
+    pub arc: Option<usize>,
+    pub location: Option<String>,
+    /// Where in the program, for a reporter that shows the source
+    /// (an `App`'s `render_error`); boxed to keep errors small.
+    pub site: Option<Box<ErrorSite>>,
+}
+
+/// The running DM and situation of a [`RunError`], by index, and the
+/// expression of L whose evaluation failed, when one did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ErrorSite {
+    pub dm: DmIx,
+    pub situation: SitIx,
+    pub culprit: Option<eval::Culprit>,
+}
+
+impl std::fmt::Display for RunError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut place = Vec::new();
+        if let Some(dm) = &self.dm {
+            place.push(format!("DM `{dm}`"));
+        }
+        if let Some(s) = &self.situation {
+            place.push(format!("situation `{s}`"));
+        }
+        if let Some(a) = self.arc {
+            place.push(format!("arc {a}"));
+        }
+        if !place.is_empty() {
+            write!(f, "in {}", place.join(", "))?;
+            if let Some(loc) = &self.location {
+                write!(f, " ({loc})")?;
+            }
+            write!(f, ": ")?;
+        }
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for RunError {}
+
+/// How a run ended.
+#[derive(Debug)]
+pub struct Outcome {
+    /// `Ok` when the main DM reached a final situation.
+    pub result: Result<(), RunError>,
+    /// The history (nested as the original's), empty with `keep_history: false`.
+    pub history: Vec<Item>,
+    /// The final pipe value.
+    pub out_arg: Term,
+    pub globals: Vars,
+    /// The final situation reached by the main DM, if any.
+    pub final_situation: Option<Term>,
+    /// Transitions made (history entries appended, kept or not).
+    pub transitions: u64,
+    /// The run was stopped by [`Options::stop`](super::Options::stop) (the result is then an error
+    /// saying so).
+    pub interrupted: bool,
+}

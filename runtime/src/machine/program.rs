@@ -1,0 +1,244 @@
+//! The contract between the machine and a program: what the program
+//! implements ([`DmProgram`]), what its compiled code is handed ([`Cx`],
+//! whose steps are in `cx`) and returns ([`Step`]), what it sees between
+//! two transitions ([`Between`]), and the program's part in a run-time
+//! error (where the situation is written).
+
+use super::io::{Actions, Perception};
+use super::observe::Observer;
+use super::outcome::{ErrorSite, RunError};
+use super::situation::{DmIx, Instance, Kind, SitIx};
+use super::state::{Frame, Goto, Machine, Pending};
+use crate::functions::Functions;
+use crate::store::Store;
+use crate::term::Term;
+use crate::vars::Vars;
+use sitlog_syntax::Atom;
+
+/// A program the machine can run.
+pub trait DmProgram {
+    /// The first DM in load order with this name (D-3: arity is not compared).
+    fn dm_by_name(&self, name: Atom) -> Option<DmIx>;
+    fn dm_name(&self, dm: DmIx) -> Atom;
+    fn situation_count(&self, dm: DmIx) -> usize;
+    fn kind(&self, dm: DmIx, sit: SitIx) -> Kind;
+    /// A fresh copy of the DM's head (its identifier term).
+    fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Term;
+    /// A fresh instance of a situation (D-7), head included.
+    fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Instance;
+    /// Whether situation `sit`'s id could unify with `value` (a cheap filter
+    /// before instantiating; `true` is always a correct answer).
+    fn may_select(&self, dm: DmIx, sit: SitIx, value: Term, store: &Store) -> bool {
+        let _ = (dm, sit, value, store);
+        true
+    }
+    /// Fresh default values of the DM's local variables (D-5).
+    fn locals(&self, dm: DmIx, store: &mut Store) -> Vars;
+    /// Where a situation is written, for error messages (`file:line:col`).
+    fn location(&self, dm: DmIx, sit: SitIx) -> Option<String> {
+        let _ = (dm, sit);
+        None
+    }
+    /// `Some((name, arity))` when situation `sit` runs as code
+    /// ([`DmProgram::run_situation`] and, for a recursive one,
+    /// [`DmProgram::run_exit`]) instead of being instantiated; its id is
+    /// then the atom `name` (arity 0) or a compound `name(...)` whose
+    /// arguments are distinct fresh variables or atomic constants.
+    fn compiled_id(&self, dm: DmIx, sit: SitIx) -> Option<(Atom, usize)> {
+        let _ = (dm, sit);
+        None
+    }
+    /// Whether compiled situation `sit`, whose id has the principal functor
+    /// of `value`, is selected by `value`: its constant id arguments unify
+    /// with `value`'s (bindings are kept when it is, undone otherwise).
+    fn select_compiled(&self, dm: DmIx, sit: SitIx, value: Term, store: &mut Store) -> bool {
+        let _ = (dm, sit, value, store);
+        true
+    }
+    /// Runs compiled situation `sit` of the running DM, up to the step the
+    /// machine takes next.
+    fn run_situation(
+        &self,
+        dm: DmIx,
+        sit: SitIx,
+        cx: &mut Cx<'_, '_, Self>,
+    ) -> Result<Step, RunError>
+    where
+        Self: Sized,
+    {
+        let _ = (dm, sit);
+        Err(cx.error("the situation has no compiled code", None))
+    }
+    /// Called between two transitions, before the machine enters the next
+    /// situation: a program that can change while it runs (`sitlogc run
+    /// --watch`) takes its new version here, and may add variables to the
+    /// frames ([`Between`]). `Err` stops the run with that message.
+    /// Does nothing unless overridden.
+    fn between(&self, at: &mut Between<'_>) -> Result<(), String> {
+        let _ = at;
+        Ok(())
+    }
+    /// The exit arcs of compiled recursive situation `sit`, once its embedded
+    /// DM ended in `final_id`; `saved` is what [`Step::Call`] kept.
+    fn run_exit(
+        &self,
+        dm: DmIx,
+        sit: SitIx,
+        saved: Term,
+        final_id: Term,
+        cx: &mut Cx<'_, '_, Self>,
+    ) -> Result<Step, RunError>
+    where
+        Self: Sized,
+    {
+        let _ = (dm, sit, saved, final_id);
+        Err(cx.error("the situation has no compiled code", None))
+    }
+}
+
+/// What the code of a compiled situation leaves to the machine.
+#[derive(Clone, Copy, Debug)]
+pub enum Step {
+    /// Go to the situation this (evaluated) term names, selected as for any next situation.
+    Goto(Term),
+    /// Go to situation `SitIx` of the running DM: the one a constant next
+    /// situation selects, resolved when the program was compiled.
+    GotoSit(SitIx),
+    /// Run the DM `call`; `saved` keeps what the exit arcs need (a GC root meanwhile).
+    Call { call: Term, saved: Term },
+    /// A final situation ended the running DM (its entry is recorded).
+    Final,
+    /// No expectation was met: the recovery DM of the type, or a new instance (D-15, D-42a).
+    Unmet { type_term: Term },
+}
+
+/// What compiled code of a situation sees of the machine: one method per
+/// semantic step, each the one the interpreted path takes, so generated code
+/// decides only *which* steps a situation needs, never how they behave.
+///
+/// Terms built through it live in the run's store; they stay valid until the
+/// situation returns its [`Step`] (garbage is collected only between situations).
+pub struct Cx<'a, 'p, P: DmProgram> {
+    pub(super) m: &'a mut Machine<'p, P>,
+    pub(super) pipe: &'a mut Term,
+    pub(super) perception: &'a mut dyn Perception,
+    pub(super) actions: &'a mut dyn Actions,
+    pub(super) observer: Option<&'a mut dyn Observer>,
+    pub(super) sit: SitIx,
+    pub(super) id: Term,
+    pub(super) selected: Option<Term>,
+}
+
+impl<P: DmProgram> Cx<'_, '_, P> {
+    pub(super) fn here(&self) -> Option<(SitIx, Term)> {
+        Some((self.sit, self.id))
+    }
+
+    /// A run-time error in this situation (`arc`: 0-based).
+    pub fn error(&self, message: impl Into<String>, arc: Option<usize>) -> RunError {
+        self.m.err(message, self.here(), arc)
+    }
+}
+
+/// Where control goes next, as [`DmProgram::between`] sees it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Next {
+    /// The initial situation of the running DM (just called).
+    Initial,
+    /// The situation this (evaluated) next-situation value selects.
+    Situation(Term),
+    /// Situation `SitIx` of the running DM (compiled code).
+    Index(SitIx),
+}
+
+/// The machine between two transitions, for [`DmProgram::between`]: the DM
+/// stack (frame 0 is the main DM, the running one is last), the situation
+/// it enters next, the variables and the functions.
+pub struct Between<'a> {
+    pub store: &'a mut Store,
+    pub globals: &'a mut Vars,
+    pub functions: &'a mut Functions,
+    pub next: Next,
+    frames: &'a mut [Frame],
+}
+
+impl Between<'_> {
+    /// DMs on the stack.
+    pub fn depth(&self) -> usize {
+        self.frames.len()
+    }
+    /// Frame `i`'s DM (the program's index) and call term.
+    pub fn dm(&self, i: usize) -> (DmIx, Term) {
+        (self.frames[i].dm, self.frames[i].dm_id)
+    }
+    /// Frame `i`'s local variables.
+    pub fn locals_mut(&mut self, i: usize) -> &mut Vars {
+        &mut self.frames[i].locals
+    }
+    /// The recursive situation of frame `i` that waits for the DM above it
+    /// (interpreted programs), if any.
+    pub fn waiting_situation(&self, i: usize) -> Option<SitIx> {
+        match self.frames[i].pending {
+            Some(Pending::Recursive { sit }) => Some(sit),
+            _ => None,
+        }
+    }
+    /// Renumbers the waiting recursive situation of frame `i` (its
+    /// instance, already made, is kept), for a program that changed.
+    pub fn set_waiting_situation(&mut self, i: usize, sit: SitIx) {
+        if let Some(Pending::Recursive { sit: s }) = &mut self.frames[i].pending {
+            *s = sit;
+        }
+    }
+}
+
+impl<'p, P: DmProgram> Machine<'p, P> {
+    pub(super) fn err(
+        &self,
+        message: impl Into<String>,
+        sit: Option<(SitIx, Term)>,
+        arc: Option<usize>,
+    ) -> RunError {
+        let frame = self.frames.last();
+        RunError {
+            message: message.into(),
+            dm: frame.map(|f| self.store.writeq(f.dm_id)),
+            situation: sit.map(|(_, id)| self.store.writeq(id)),
+            arc: arc.map(|a| a + 1),
+            location: match (frame, sit) {
+                (Some(f), Some((s, _))) => self.program.location(f.dm, s),
+                _ => None,
+            },
+            site: match (frame, sit) {
+                (Some(f), Some((s, _))) => Some(Box::new(ErrorSite {
+                    dm: f.dm,
+                    situation: s,
+                    culprit: None,
+                })),
+                _ => None,
+            },
+        }
+    }
+
+    /// Lets the program look at the machine between two transitions
+    /// ([`DmProgram::between`]).
+    #[inline]
+    pub(super) fn between(&mut self, goto: &mut Goto) -> Result<(), RunError> {
+        let next = match *goto {
+            Goto::Initial => Next::Initial,
+            Goto::Situation(t) => Next::Situation(t),
+            Goto::Index(s) => Next::Index(s),
+        };
+        let mut at = Between {
+            store: &mut self.store,
+            globals: &mut self.globals,
+            functions: &mut self.functions,
+            next,
+            frames: &mut self.frames,
+        };
+        match self.program.between(&mut at) {
+            Ok(()) => Ok(()),
+            Err(message) => Err(self.err(message, None, None)),
+        }
+    }
+}

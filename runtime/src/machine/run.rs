@@ -1,0 +1,602 @@
+//! The machine's loop: calls and returns of DMs on a heap stack (no Rust
+//! recursion per embedded DM), selection of the next situation, the step
+//! each situation ends with, interpreted or compiled (D-7, D-15, D-21,
+//! D-22, D-42a), and garbage collection between two situations, with
+//! every term the machine refers to as a root.
+
+use super::io::{Actions, Perception};
+use super::observe::Observer;
+use super::outcome::{Outcome, RunError};
+use super::program::{Cx, DmProgram, Step};
+use super::situation::{Instance, Kind, SitIx};
+use super::state::{Frame, Goto, Machine, Pending};
+use super::steps::Chosen;
+use crate::history::Item;
+use crate::store::Store;
+use crate::term::Term;
+use sitlog_syntax::atoms;
+
+/// The situation [`Machine::select`] picked.
+enum Selected {
+    /// Instantiated (D-7), its id unified with the next situation's value.
+    Instance(Instance),
+    /// Compiled: `selected` is the next situation's value that selected it
+    /// (then also its id), `None` when entered by index or as the initial one.
+    /// `id` is the atom (or name, for code that builds its compound id).
+    Compiled { id: Term, selected: Option<Term> },
+}
+
+impl<'p, P: DmProgram> Machine<'p, P> {
+    /// Runs `main` (a DM call term) with `in_arg` as the initial pipe;
+    /// returns the outcome and the store its terms live in.
+    pub fn run(
+        mut self,
+        main: Term,
+        in_arg: Term,
+        perception: &mut dyn Perception,
+        actions: &mut dyn Actions,
+        mut observer: Option<&mut dyn Observer>,
+    ) -> (Outcome, Store) {
+        let mut pipe = in_arg;
+        let mut final_situation = None;
+        let result = self.run_loop(
+            main,
+            &mut pipe,
+            perception,
+            actions,
+            &mut observer,
+            &mut final_situation,
+        );
+        if let (Err(e), Some(o)) = (&result, &mut observer) {
+            self.inspect(pipe, Some(e), &mut **o);
+        }
+        // On error, the history so far: unwind the stack, nesting each
+        // embedded DM's partial history into its caller's, as if it returned.
+        let mut history = Vec::new();
+        while let Some(frame) = self.frames.pop() {
+            let mut h = frame.history;
+            if !history.is_empty() {
+                h.push(Item::Nested(std::mem::take(&mut history)));
+            }
+            history = h;
+        }
+        let interrupted = result.is_err() && self.stop_requested();
+        let outcome = Outcome {
+            interrupted,
+            result,
+            history,
+            out_arg: pipe,
+            globals: self.globals,
+            final_situation,
+            transitions: self.transitions,
+        };
+        (outcome, self.store)
+    }
+
+    fn call_dm(&mut self, call: Term, sit: Option<(SitIx, Term)>) -> Result<(), RunError> {
+        if self.frames.len() >= self.options.max_depth {
+            return Err(self.err(
+                format!(
+                    "the DM stack exceeded {} nested DMs",
+                    self.options.max_depth
+                ),
+                sit,
+                None,
+            ));
+        }
+        let call = self.store.deref(call);
+        let Some((name, _)) = self.store.functor(call) else {
+            return Err(self.err(
+                format!("`{}` does not name a DM", self.store.writeq(call)),
+                sit,
+                None,
+            ));
+        };
+        let Some(dm) = self.program.dm_by_name(name) else {
+            return Err(self.err(format!("there is no DM named `{name}`"), sit, None));
+        };
+        let head = self.program.fresh_head(dm, &mut self.store);
+        if !self.store.unify(head, call) {
+            return Err(self.err(
+                format!(
+                    "the call `{}` does not match the DM's head `{}`",
+                    self.store.writeq(call),
+                    self.store.writeq(head)
+                ),
+                sit,
+                None,
+            ));
+        }
+        let locals = self.program.locals(dm, &mut self.store);
+        self.frames.push(Frame {
+            dm,
+            dm_id: call,
+            locals,
+            history: Vec::new(),
+            pending: None,
+        });
+        Ok(())
+    }
+
+    fn run_loop(
+        &mut self,
+        main: Term,
+        pipe: &mut Term,
+        perception: &mut dyn Perception,
+        actions: &mut dyn Actions,
+        observer: &mut Option<&mut dyn Observer>,
+        final_situation: &mut Option<Term>,
+    ) -> Result<(), RunError> {
+        self.call_dm(main, None)?;
+        let mut goto = Goto::Initial;
+        let program = self.program;
+        loop {
+            if self.stop_requested() {
+                return Err(self.err("interrupted (the run was stopped by a signal)", None, None));
+            }
+            self.maybe_gc(pipe, &mut goto);
+            self.between(&mut goto)?;
+            let (sit, inst) = self.select(&goto)?;
+            let dm = self.frames.last().expect("a frame is running").dm;
+            let inst = match inst {
+                Selected::Instance(inst) => inst,
+                Selected::Compiled { id, selected } => {
+                    // Compiled code runs the situation; the machine takes the step it returns.
+                    let mut cx = Cx {
+                        m: self,
+                        pipe,
+                        perception,
+                        actions,
+                        observer: reborrow(observer),
+                        sit,
+                        id,
+                        selected,
+                    };
+                    let step = program.run_situation(dm, sit, &mut cx)?;
+                    // The code may have gone on to other situations of the DM.
+                    let (sit, id) = (cx.sit, cx.id);
+                    match self.take_step(step, sit, id, pipe, perception, actions, observer)? {
+                        Some(next) => goto = next,
+                        None => {
+                            *final_situation = Some(id);
+                            return Ok(());
+                        }
+                    }
+                    continue;
+                }
+            };
+            let here = Some((sit, inst.id));
+            // in_arg is a pattern unified with the incoming pipe (D-8, E14).
+            if let Some(pattern) = inst.in_arg {
+                self.unify_in_arg(pattern, *pipe, here)?;
+            }
+            let step = match program.kind(dm, sit) {
+                Kind::Final => {
+                    self.run_prog(inst.prog, &[inst.in_arg, inst.out_arg], here)?;
+                    self.final_out_arg(inst.out_arg, pipe, here)?;
+                    self.bind_diag_mod(inst.diag_mod, here)?;
+                    let empty = Term::atom(atoms::EMPTY);
+                    self.record(inst.id, empty, empty, None, *pipe, observer);
+                    Step::Final
+                }
+                Kind::Recursive => {
+                    self.run_prog(inst.prog, &[inst.in_arg], here)?;
+                    let Some(e) = inst.embedded_dm else {
+                        return Err(self.err(
+                            "recursive situation without `embedded_dm`",
+                            here,
+                            None,
+                        ));
+                    };
+                    let call = self.eval_read_only(e, here)?;
+                    self.frames.last_mut().expect("frame").pending =
+                        Some(Pending::Recursive { sit });
+                    self.instances.push(inst);
+                    self.call_dm(call, here)?;
+                    goto = Goto::Initial;
+                    continue;
+                }
+                Kind::Perceptual => {
+                    self.run_prog(inst.prog, &[inst.in_arg, inst.out_arg], here)?;
+                    match self.choose_perceptual(sit, &inst, perception)? {
+                        Some(chosen) => {
+                            Step::Goto(self.conclude(&inst, here, chosen, pipe, actions, observer)?)
+                        }
+                        None => Step::Unmet {
+                            type_term: inst.type_term,
+                        },
+                    }
+                }
+            };
+            match self.take_step(step, sit, inst.id, pipe, perception, actions, observer)? {
+                Some(next) => goto = next,
+                None => {
+                    *final_situation = Some(inst.id);
+                    return Ok(());
+                }
+            }
+        }
+    }
+
+    /// Where control goes after situation `sit` (id `id`) of the running DM
+    /// took `step`; `None` when the main DM has ended.
+    #[allow(clippy::too_many_arguments)]
+    fn take_step(
+        &mut self,
+        mut step: Step,
+        mut sit: SitIx,
+        mut id: Term,
+        pipe: &mut Term,
+        perception: &mut dyn Perception,
+        actions: &mut dyn Actions,
+        observer: &mut Option<&mut dyn Observer>,
+    ) -> Result<Option<Goto>, RunError> {
+        let program = self.program;
+        loop {
+            let here = Some((sit, id));
+            match step {
+                Step::Goto(next) => return Ok(Some(Goto::Situation(next))),
+                Step::GotoSit(next) => return Ok(Some(Goto::Index(next))),
+                Step::Call { call, saved } => {
+                    self.frames.last_mut().expect("frame").pending =
+                        Some(Pending::Compiled { sit, saved, id });
+                    self.call_dm(call, here)?;
+                    return Ok(Some(Goto::Initial));
+                }
+                Step::Unmet { .. } if std::mem::take(&mut self.again) => {
+                    // Asked to perceive again: a new instance, no recovery.
+                    return Ok(Some(Goto::Situation(id)));
+                }
+                Step::Unmet { type_term } => {
+                    // No expectation met (D-15 / D-42a): recovery DM, then a new instance.
+                    let ty = self
+                        .store
+                        .atom_of(type_term)
+                        .or_else(|| self.store.functor(type_term).map(|(n, _)| n));
+                    let recovery = ty.and_then(|t| {
+                        self.options
+                            .recovery
+                            .iter()
+                            .find(|(k, _)| *k == t)
+                            .map(|r| r.1)
+                    });
+                    return match recovery {
+                        Some(dm_name) => {
+                            self.frames.last_mut().expect("frame").pending =
+                                Some(Pending::Recovery { id });
+                            self.call_dm(Term::atom(dm_name), here)?;
+                            Ok(Some(Goto::Initial))
+                        }
+                        None => Ok(Some(Goto::Situation(id))),
+                    };
+                }
+                Step::Final => {
+                    let frame = self.frames.pop().expect("a frame is running");
+                    let Some(caller) = self.frames.last_mut() else {
+                        self.frames.push(frame); // keep for the history
+                        return Ok(None);
+                    };
+                    if self.options.keep_history {
+                        caller.history.push(Item::Nested(frame.history));
+                    }
+                    match caller.pending.take() {
+                        Some(Pending::Recursive { sit }) => {
+                            let rinst = self.instances.pop().expect("a pending instance");
+                            let next =
+                                self.finish_recursive(sit, rinst, id, pipe, actions, observer)?;
+                            return Ok(Some(Goto::Situation(next)));
+                        }
+                        Some(Pending::Recovery { id }) => return Ok(Some(Goto::Situation(id))),
+                        Some(Pending::Compiled {
+                            sit: rsit,
+                            saved,
+                            id: rid,
+                        }) => {
+                            let final_id = id;
+                            let dm = self.frames.last().expect("caller").dm;
+                            (sit, id) = (rsit, rid);
+                            let mut cx = Cx {
+                                m: self,
+                                pipe,
+                                perception,
+                                actions,
+                                observer: reborrow(observer),
+                                sit,
+                                id,
+                                selected: Some(id),
+                            };
+                            step = program.run_exit(dm, sit, saved, final_id, &mut cx)?;
+                        }
+                        None => unreachable!("a caller frame always has a pending situation"),
+                    }
+                }
+            }
+        }
+    }
+
+    /// Picks the situation to run (D-7, D-21), instantiated unless it is compiled.
+    fn select(&mut self, goto: &Goto) -> Result<(SitIx, Selected), RunError> {
+        let frame = self.frames.last().expect("a frame is running");
+        let (dm, dm_id) = (frame.dm, frame.dm_id);
+        match *goto {
+            Goto::Initial => {
+                if self.program.situation_count(dm) == 0 {
+                    return Err(self.err("the DM has no situations", None, None));
+                }
+                if let Some((name, _)) = self.program.compiled_id(dm, 0) {
+                    let id = Term::atom(name);
+                    return Ok((0, Selected::Compiled { id, selected: None }));
+                }
+                let inst = self.program.instantiate(dm, 0, &mut self.store);
+                if !self.store.unify(inst.head, dm_id) {
+                    return Err(self.err(
+                        format!(
+                            "the call `{}` does not match the DM's head",
+                            self.store.writeq(dm_id)
+                        ),
+                        None,
+                        None,
+                    ));
+                }
+                Ok((0, Selected::Instance(inst)))
+            }
+            Goto::Index(sit) => {
+                if let Some((name, _)) = self.program.compiled_id(dm, sit) {
+                    let id = Term::atom(name);
+                    return Ok((sit, Selected::Compiled { id, selected: None }));
+                }
+                let inst = self.program.instantiate(dm, sit, &mut self.store);
+                self.link_head(inst.head, dm_id);
+                Ok((sit, Selected::Instance(inst)))
+            }
+            Goto::Situation(value) => {
+                let value = self.store.deref(value);
+                if self.store.functor(value).is_none() {
+                    return Err(self.err(
+                        format!(
+                            "the next situation `{}` is not a situation name",
+                            self.store.writeq(value)
+                        ),
+                        None,
+                        None,
+                    ));
+                }
+                let functor = self.store.functor(value);
+                for sit in 0..self.program.situation_count(dm) as SitIx {
+                    if let Some(id) = self.program.compiled_id(dm, sit) {
+                        if functor != Some(id) {
+                            continue;
+                        }
+                        if id.1 == 0 {
+                            // An atom id unifies only with that atom.
+                            let id = Term::atom(id.0);
+                            return Ok((sit, Selected::Compiled { id, selected: None }));
+                        }
+                        let mark = self.store.mark();
+                        if self
+                            .program
+                            .select_compiled(dm, sit, value, &mut self.store)
+                        {
+                            let selected = Some(value);
+                            return Ok((
+                                sit,
+                                Selected::Compiled {
+                                    id: value,
+                                    selected,
+                                },
+                            ));
+                        }
+                        self.store.undo_to(mark);
+                        continue;
+                    }
+                    if !self.program.may_select(dm, sit, value, &self.store) {
+                        continue;
+                    }
+                    let mark = self.store.mark();
+                    let inst = self.program.instantiate(dm, sit, &mut self.store);
+                    if self.store.unify(inst.id, value) {
+                        self.link_head(inst.head, dm_id);
+                        return Ok((sit, Selected::Instance(inst)));
+                    }
+                    self.store.undo_to(mark);
+                }
+                Err(self.err(
+                    format!(
+                        "there is no situation `{}` in this DM",
+                        self.store.writeq(value)
+                    ),
+                    None,
+                    None,
+                ))
+            }
+        }
+    }
+
+    /// Links a later situation's fresh head to the DM call, argument by
+    /// argument where they unify (D-7).
+    fn link_head(&mut self, head: Term, dm_id: Term) {
+        let n = self.store.args(head).len();
+        for i in 0..n {
+            let (h, d) = (self.store.args(head)[i], self.store.arg(dm_id, i));
+            if let Some(d) = d {
+                let mark = self.store.mark();
+                if !self.store.unify(h, d) {
+                    self.store.undo_to(mark);
+                }
+            }
+        }
+    }
+
+    /// Asks the perceptual interpreter which expectation is met (D-14, E2, E3).
+    fn choose_perceptual(
+        &mut self,
+        sit: SitIx,
+        inst: &Instance,
+        perception: &mut dyn Perception,
+    ) -> Result<Option<Chosen>, RunError> {
+        let here = Some((sit, inst.id));
+        self.prepare_arcs(inst, here)?;
+        let Some(i) = self.choose_index(inst.type_term, here, perception)? else {
+            return Ok(None);
+        };
+        Ok(Some(Chosen {
+            arc: i,
+            expectation: self.expectations[i],
+            action: self.arcs[i][1],
+            next: self.arcs[i][2],
+            out_arg: inst.out_arg.map(|_| self.arcs[i][3]),
+        }))
+    }
+
+    /// Exit arc of a recursive situation whose embedded DM ended in `final_id` (D-22).
+    fn finish_recursive(
+        &mut self,
+        sit: SitIx,
+        inst: Instance,
+        final_id: Term,
+        pipe: &mut Term,
+        actions: &mut dyn Actions,
+        observer: &mut Option<&mut dyn Observer>,
+    ) -> Result<Term, RunError> {
+        let here = Some((sit, inst.id));
+        self.prepare_arcs(&inst, here)?;
+        let i = self.choose_exit_index(final_id, here)?;
+        let chosen = Chosen {
+            arc: i,
+            expectation: self.expectations[i],
+            action: self.arcs[i][1],
+            next: self.arcs[i][2],
+            out_arg: inst.out_arg.map(|_| self.arcs[i][3]),
+        };
+        self.conclude(&inst, here, chosen, pipe, actions, observer)
+    }
+
+    /// Collects garbage when the store has grown enough; roots are everything
+    /// the machine still refers to.
+    fn maybe_gc(&mut self, pipe: &mut Term, goto: &mut Goto) {
+        let cells = self.store.stats().cells + self.store.stats().vars;
+        if cells < self.cells_after_gc + self.options.gc_threshold {
+            return;
+        }
+        let mut roots: Vec<Term> = vec![*pipe];
+        if let Goto::Situation(t) = goto {
+            roots.push(*t);
+        }
+        roots.extend(self.globals.entries().iter().map(|e| e.1));
+        for f in &self.frames {
+            roots.push(f.dm_id);
+            roots.extend(f.locals.entries().iter().map(|e| e.1));
+            collect_history_roots(&f.history, &mut roots);
+            if let Some(Pending::Recovery { id }) = &f.pending {
+                roots.push(*id);
+            }
+            if let Some(Pending::Compiled { saved, id, .. }) = &f.pending {
+                roots.push(*saved);
+                roots.push(*id);
+            }
+        }
+        for inst in &self.instances {
+            roots.extend(instance_terms(inst));
+        }
+        self.store.gc(&mut roots);
+        // Write the relocated roots back in the same order.
+        let mut it = roots.into_iter();
+        *pipe = it.next().expect("pipe root");
+        if let Goto::Situation(t) = goto {
+            *t = it.next().expect("goto root");
+        }
+        for v in self.globals.values_mut() {
+            *v = it.next().expect("global root");
+        }
+        for f in &mut self.frames {
+            f.dm_id = it.next().expect("dm root");
+            for v in f.locals.values_mut() {
+                *v = it.next().expect("local root");
+            }
+            restore_history_roots(&mut f.history, &mut it);
+            if let Some(Pending::Recovery { id }) = &mut f.pending {
+                *id = it.next().expect("recovery root");
+            }
+            if let Some(Pending::Compiled { saved, id, .. }) = &mut f.pending {
+                *saved = it.next().expect("compiled situation root");
+                *id = it.next().expect("compiled situation root");
+            }
+        }
+        for inst in &mut self.instances {
+            set_instance_terms(inst, &mut it);
+        }
+        self.cells_after_gc = self.store.stats().cells + self.store.stats().vars;
+    }
+}
+
+/// A shorter-lived handle on the observer (the trait object's lifetime shrinks with it).
+fn reborrow<'a>(observer: &'a mut Option<&mut dyn Observer>) -> Option<&'a mut dyn Observer> {
+    match observer {
+        Some(o) => Some(&mut **o),
+        None => None,
+    }
+}
+
+fn instance_terms(inst: &Instance) -> Vec<Term> {
+    let opt = |t: Option<Term>| t.unwrap_or(Term::NIL);
+    vec![
+        inst.head,
+        inst.id,
+        inst.type_term,
+        opt(inst.in_arg),
+        opt(inst.out_arg),
+        opt(inst.prog),
+        opt(inst.embedded_dm),
+        opt(inst.diag_mod),
+        inst.arcs,
+    ]
+}
+
+fn set_instance_terms(inst: &mut Instance, it: &mut impl Iterator<Item = Term>) {
+    let mut next = || it.next().expect("instance root");
+    inst.head = next();
+    inst.id = next();
+    inst.type_term = next();
+    let opt = |o: &mut Option<Term>, v: Term| {
+        if o.is_some() {
+            *o = Some(v);
+        }
+    };
+    let (a, b, c, d, e) = (next(), next(), next(), next(), next());
+    opt(&mut inst.in_arg, a);
+    opt(&mut inst.out_arg, b);
+    opt(&mut inst.prog, c);
+    opt(&mut inst.embedded_dm, d);
+    opt(&mut inst.diag_mod, e);
+    inst.arcs = next();
+}
+
+fn collect_history_roots(items: &[Item], roots: &mut Vec<Term>) {
+    // Nesting depth equals DM call depth: grow the stack as needed.
+    stacker::maybe_grow(64 * 1024, 1024 * 1024, || {
+        for item in items {
+            match item {
+                Item::Entry(e) => roots.extend([e.dm, e.situation, e.expectation, e.action]),
+                Item::Nested(inner) => collect_history_roots(inner, roots),
+            }
+        }
+    })
+}
+
+fn restore_history_roots(items: &mut [Item], it: &mut dyn Iterator<Item = Term>) {
+    stacker::maybe_grow(64 * 1024, 1024 * 1024, || restore_history_level(items, it))
+}
+
+fn restore_history_level(items: &mut [Item], it: &mut dyn Iterator<Item = Term>) {
+    for item in items {
+        match item {
+            Item::Entry(e) => {
+                e.dm = it.next().expect("history root");
+                e.situation = it.next().expect("history root");
+                e.expectation = it.next().expect("history root");
+                e.action = it.next().expect("history root");
+            }
+            Item::Nested(inner) => restore_history_roots(inner, it),
+        }
+    }
+}

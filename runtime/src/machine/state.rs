@@ -1,0 +1,112 @@
+//! The machine's state: [`Machine`] (store, variables, functions, options,
+//! the DM stack of [`Frame`]s, the instances waiting for embedded DMs and
+//! the buffers reused per transition) and how it is made.
+
+use super::options::Options;
+use super::situation::{DmIx, Instance, SitIx};
+use crate::functions::Functions;
+use crate::history::Item;
+use crate::store::Store;
+use crate::term::Term;
+use crate::vars::Vars;
+use sitlog_syntax::Atom;
+
+/// A recursive situation waiting for its embedded DM, or a failed
+/// situation waiting for its recovery DM.
+#[derive(Debug)]
+pub(super) enum Pending {
+    /// Its instance is on [`Machine::instances`] (kept out of the frame,
+    /// which stays small to push and pop).
+    Recursive {
+        sit: SitIx,
+    },
+    Compiled {
+        sit: SitIx,
+        saved: Term,
+        id: Term,
+    },
+    Recovery {
+        id: Term,
+    },
+}
+
+#[derive(Debug)]
+pub(super) struct Frame {
+    pub(super) dm: DmIx,
+    /// The DM call term (the caller sees its bindings: parameters by reference).
+    pub(super) dm_id: Term,
+    pub(super) locals: Vars,
+    pub(super) history: Vec<Item>,
+    pub(super) pending: Option<Pending>,
+}
+
+/// Where control goes next in the top frame.
+pub(super) enum Goto {
+    Initial,
+    Situation(Term),
+    /// A situation of the running DM chosen when the program was compiled.
+    Index(SitIx),
+}
+
+/// The machine's state.
+pub struct Machine<'p, P> {
+    pub(super) program: &'p P,
+    pub store: Store,
+    pub globals: Vars,
+    pub functions: Functions,
+    pub options: Options,
+    pub(super) frames: Vec<Frame>,
+    /// Instances of the recursive situations waiting for their embedded
+    /// DMs (interpreted path), innermost last.
+    pub(super) instances: Vec<Instance>,
+    /// Reused buffers (no allocation per transition once warm).
+    pub(super) scratch_locals: Vars,
+    pub(super) scratch_globals: Vars,
+    pub(super) arcs: Vec<[Term; 4]>,
+    pub(super) expectations: Vec<Term>,
+    pub(super) transitions: u64,
+    pub(super) cells_after_gc: usize,
+    /// Functor that pairs an arc with its out_arg for one joint copy (D-11);
+    /// interned once, not per transition.
+    pub(super) arc_functor: Atom,
+    /// The perception answered [`Perceived::Again`](super::Perceived::Again): the situation is
+    /// entered again without its recovery DM.
+    pub(super) again: bool,
+}
+
+impl<'p, P> Machine<'p, P> {
+    pub fn new(
+        program: &'p P,
+        store: Store,
+        globals: Vars,
+        functions: Functions,
+        options: Options,
+    ) -> Self {
+        Machine {
+            program,
+            store,
+            globals,
+            functions,
+            options,
+            frames: Vec::new(),
+            instances: Vec::new(),
+            scratch_locals: Vars::new(),
+            scratch_globals: Vars::new(),
+            arcs: Vec::new(),
+            expectations: Vec::new(),
+            transitions: 0,
+            cells_after_gc: 0,
+            arc_functor: Atom::intern("$arc"),
+            again: false,
+        }
+    }
+
+    /// Whether [`Options::stop`] is set.
+    #[inline]
+    pub(super) fn stop_requested(&self) -> bool {
+        self.options
+            .stop
+            .as_ref()
+            .is_some_and(|s| s.load(std::sync::atomic::Ordering::Relaxed))
+    }
+}

@@ -1,0 +1,406 @@
+//! The steps of one situation, shared by the loop and by compiled code
+//! ([`Cx`](super::Cx)): in_arg, `prog`, the arcs' expectations, the choice
+//! of the met one (perception, the neutral rule, exit arcs), action, next
+//! situation, out_arg, diag_mod and the history entry (D-8..D-22).
+
+use super::io::{Actions, Perceived, Perception};
+use super::observe::Observer;
+use super::outcome::RunError;
+use super::program::DmProgram;
+use super::situation::{Instance, SitIx};
+use super::state::Machine;
+use crate::eval::{self, EvalCtx, EvalError};
+use crate::history::{Entry, Item};
+use crate::term::Term;
+use sitlog_syntax::atoms;
+
+/// What happened in one situation: the chosen arc's terms.
+pub(super) struct Chosen {
+    pub(super) arc: usize,
+    pub(super) expectation: Term,
+    pub(super) action: Term,
+    pub(super) next: Term,
+    pub(super) out_arg: Option<Term>,
+}
+
+impl<'p, P: DmProgram> Machine<'p, P> {
+    pub(super) fn unify_in_arg(
+        &mut self,
+        pattern: Term,
+        pipe: Term,
+        here: Option<(SitIx, Term)>,
+    ) -> Result<(), RunError> {
+        if self.store.unify(pattern, pipe) {
+            return Ok(());
+        }
+        Err(self.err(
+            format!(
+                "in_arg `{}` does not match the incoming pipe value `{}`",
+                self.store.writeq(pattern),
+                self.store.writeq(pipe)
+            ),
+            here,
+            None,
+        ))
+    }
+
+    /// A final situation's out_arg, evaluated, becomes the pipe unless it is a variable.
+    pub(super) fn final_out_arg(
+        &mut self,
+        out_arg: Option<Term>,
+        pipe: &mut Term,
+        here: Option<(SitIx, Term)>,
+    ) -> Result<(), RunError> {
+        let out = match out_arg {
+            Some(o) => self.eval_in_frame(o, here, None)?,
+            None => *pipe,
+        };
+        if !self.store.is_var(out) {
+            *pipe = out;
+        }
+        Ok(())
+    }
+
+    /// `prog` on a renamed copy linked to in_arg/out_arg only (D-10):
+    /// `links` are the terms whose variables stay shared.
+    pub(super) fn run_prog(
+        &mut self,
+        prog: Option<Term>,
+        links: &[Option<Term>],
+        here: Option<(SitIx, Term)>,
+    ) -> Result<(), RunError> {
+        let Some(prog) = prog else { return Ok(()) };
+        let mut map = crate::copy::VarMap::new();
+        for &linked in links.iter().flatten() {
+            for v in self.store.term_vars(linked) {
+                if let crate::term::Value::Var(var) = self.store.value(v) {
+                    map.insert(var, v);
+                }
+            }
+        }
+        let copy = self.store.copy_term_with(prog, &mut map);
+        self.eval_in_frame(copy, here, None).map(|_| ())
+    }
+
+    /// What the evaluator sees: the store, the running DM's locals and
+    /// history, the globals and the functions (`#[inline]`: a constructor
+    /// that `cx` calls too, from another codegen unit, and must not cost a
+    /// call).
+    #[inline]
+    pub(super) fn eval_ctx(&mut self) -> EvalCtx<'_> {
+        let frame = self.frames.last_mut().expect("a frame is running");
+        EvalCtx {
+            store: &mut self.store,
+            locals: &mut frame.locals,
+            globals: &mut self.globals,
+            history: &frame.history,
+            functions: &self.functions,
+        }
+    }
+
+    pub(super) fn eval_in_frame(
+        &mut self,
+        t: Term,
+        here: Option<(SitIx, Term)>,
+        arc: Option<usize>,
+    ) -> Result<Term, RunError> {
+        match eval::eval(&mut self.eval_ctx(), t) {
+            Ok(v) => Ok(v),
+            Err(EvalError { message, culprit }) => {
+                let mut e = self.err(message, here, arc);
+                if let Some(site) = e.site.as_mut() {
+                    site.culprit = culprit;
+                }
+                Err(e)
+            }
+        }
+    }
+
+    /// Evaluates with the variables read-only: updates are discarded
+    /// (`embedded_dm` sees locals and globals; `diag_mod` too, E12).
+    pub(super) fn eval_read_only(
+        &mut self,
+        t: Term,
+        here: Option<(SitIx, Term)>,
+    ) -> Result<Term, RunError> {
+        let frame = self.frames.last().expect("frame");
+        self.scratch_locals.restore_from(&frame.locals);
+        self.scratch_globals.restore_from(&self.globals);
+        let r = self.eval_in_frame(t, here, None);
+        let frame = self.frames.last_mut().expect("frame");
+        frame.locals.restore_from(&self.scratch_locals);
+        self.globals.restore_from(&self.scratch_globals);
+        r
+    }
+
+    /// Copies every arc with its own out_arg (D-11) and evaluates the
+    /// expectations in order, discarding variable updates (D-12).
+    pub(super) fn prepare_arcs(
+        &mut self,
+        inst: &Instance,
+        here: Option<(SitIx, Term)>,
+    ) -> Result<(), RunError> {
+        self.arcs.clear();
+        self.expectations.clear();
+        let arc_functor = self.arc_functor;
+        let out = inst.out_arg.unwrap_or(Term::atom(atoms::NONE));
+        // Walk the list in place (no allocation per transition).
+        let mut rest = inst.arcs;
+        while let Some(&[arc, tail]) = self.store.compound_args(rest, atoms::DOT, 2) {
+            let (e, a, n) = match self.store.args(arc) {
+                &[e, a, n, ..] => (e, a, n),
+                _ => break,
+            };
+            let both = self.store.compound(arc_functor, &[e, a, n, out]);
+            let copy = self.store.copy_term(both);
+            let c = self.store.args(copy);
+            self.arcs.push([c[0], c[1], c[2], c[3]]);
+            rest = tail;
+        }
+        let frame = self.frames.last().expect("frame");
+        self.scratch_locals.restore_from(&frame.locals);
+        self.scratch_globals.restore_from(&self.globals);
+        let mut result = Ok(());
+        for i in 0..self.arcs.len() {
+            match self.eval_in_frame(self.arcs[i][0], here, Some(i)) {
+                Ok(v) => self.expectations.push(v),
+                Err(e) => {
+                    result = Err(e);
+                    break;
+                }
+            }
+        }
+        let frame = self.frames.last_mut().expect("frame");
+        frame.locals.restore_from(&self.scratch_locals);
+        self.globals.restore_from(&self.scratch_globals);
+        result
+    }
+
+    /// Which of the evaluated expectations (`self.expectations`, one per
+    /// arc) is met: the neutral rule, else what the perceptual interpreter
+    /// perceived, the last arc whose expectation unifies winning (D-14, E2, E3).
+    pub(super) fn choose_index(
+        &mut self,
+        type_term: Term,
+        here: Option<(SitIx, Term)>,
+        perception: &mut dyn Perception,
+    ) -> Result<Option<usize>, RunError> {
+        if self.expectations.is_empty() {
+            return Err(self.err("the situation has no arcs", here, None));
+        }
+        if self.store.atom_of(type_term) == Some(atoms::NEUTRAL) {
+            let e = self.store.deref(self.expectations[0]);
+            if self.expectations.len() == 1
+                && (self.store.atom_of(e) == Some(atoms::EMPTY) || self.store.is_var(e))
+            {
+                let _ = self.store.unify(e, Term::atom(atoms::EMPTY));
+                self.expectations[0] = e;
+                return Ok(Some(0));
+            }
+            return Err(self.err(
+                "a `neutral` situation needs exactly one arc, with expectation `empty`",
+                here,
+                None,
+            ));
+        }
+        let second_read_allowed = self.expectations.len() == 1 || {
+            let first = self.store.deref(self.expectations[0]);
+            self.store.list_to_vec(first).is_some()
+                && self.store.functor(first).is_some_and(|f| f.0 == atoms::DOT)
+        };
+        if let (Some((_, id)), Some(frame)) = (here, self.frames.last()) {
+            perception.waiting_at(&self.store, frame.dm_id, id);
+        }
+        for attempt in 0..2 {
+            let exps = std::mem::take(&mut self.expectations);
+            let perceived = perception.perceive(&mut self.store, type_term, &exps);
+            self.expectations = exps;
+            let input = match perceived {
+                Ok(Perceived::Input(t)) => t,
+                Ok(Perceived::Again) => {
+                    self.again = true;
+                    return Ok(None);
+                }
+                Ok(Perceived::EndOfInput) => {
+                    return Err(self.err(
+                        "end of input while the situation waits for an expectation",
+                        here,
+                        None,
+                    ))
+                }
+                Err(e) => return Err(self.err(format!("perception failed: {e}"), here, None)),
+            };
+            // The last arc whose expectation unifies wins (D-14, E2).
+            for i in (0..self.expectations.len()).rev() {
+                let mark = self.store.mark();
+                if self.store.unify(input, self.expectations[i]) {
+                    return Ok(Some(i));
+                }
+                self.store.undo_to(mark);
+            }
+            if attempt == 0 && !second_read_allowed {
+                break;
+            }
+        }
+        Ok(None)
+    }
+
+    /// The first exit arc whose expectation unifies with the embedded DM's
+    /// final situation (D-22), or an error.
+    pub(super) fn choose_exit_index(
+        &mut self,
+        final_id: Term,
+        here: Option<(SitIx, Term)>,
+    ) -> Result<usize, RunError> {
+        for i in 0..self.expectations.len() {
+            let mark = self.store.mark();
+            if self.store.unify(self.expectations[i], final_id) {
+                return Ok(i);
+            }
+            self.store.undo_to(mark);
+        }
+        Err(self.err(
+            format!(
+                "no exit arc for the embedded DM's final situation `{}`",
+                self.store.writeq(final_id)
+            ),
+            here,
+            None,
+        ))
+    }
+
+    /// Action, next situation, pipe, diag_mod and history entry of a chosen arc (D-16..D-20).
+    pub(super) fn conclude(
+        &mut self,
+        inst: &Instance,
+        here: Option<(SitIx, Term)>,
+        chosen: Chosen,
+        pipe: &mut Term,
+        actions: &mut dyn Actions,
+        observer: &mut Option<&mut dyn Observer>,
+    ) -> Result<Term, RunError> {
+        let arc = Some(chosen.arc);
+        let action = self.eval_in_frame(chosen.action, here, arc)?;
+        self.perform(action, actions, here, arc)?;
+        let next = self.eval_in_frame(chosen.next, here, arc)?;
+        if let Some(out) = chosen.out_arg {
+            let value = self.eval_in_frame(out, here, arc)?;
+            if !self.store.is_var(value) {
+                *pipe = value;
+            }
+        }
+        self.bind_diag_mod(inst.diag_mod, here)?;
+        self.record(
+            inst.id,
+            chosen.expectation,
+            action,
+            Some(next),
+            *pipe,
+            observer,
+        );
+        let n = self.store.deref(next);
+        if self.store.functor(n).is_none() {
+            return Err(self.err(
+                format!(
+                    "the next situation evaluates to `{}`, which is not a situation name",
+                    self.store.writeq(n)
+                ),
+                here,
+                arc,
+            ));
+        }
+        Ok(n)
+    }
+
+    pub(super) fn perform(
+        &mut self,
+        action: Term,
+        actions: &mut dyn Actions,
+        here: Option<(SitIx, Term)>,
+        arc: Option<usize>,
+    ) -> Result<(), RunError> {
+        let a = self.store.deref(action);
+        // A proper list is executed element by element (checked and walked
+        // in place: no allocation per transition).
+        let is_list = self.store.functor(a).is_some_and(|f| f.0 == atoms::DOT) && {
+            let mut it = self.store.list_iter(a);
+            it.by_ref().for_each(drop);
+            it.tail() == Term::NIL
+        };
+        let result = if is_list {
+            // Walked by position: an action may bind variables (and so grow
+            // the store) while the list is performed.
+            let mut rest = a;
+            let mut result = Ok(());
+            while let Some(&[head, tail]) = self.store.compound_args(rest, atoms::DOT, 2) {
+                result = actions.perform(&mut self.store, head);
+                if result.is_err() {
+                    break;
+                }
+                rest = tail;
+            }
+            result
+        } else {
+            actions.perform(&mut self.store, a)
+        };
+        result.map_err(|e| self.err(format!("action failed: {e}"), here, arc))
+    }
+
+    /// Evaluates `diag_mod` (read-only variables) and unifies it with the DM id (D-20, E9).
+    pub(super) fn bind_diag_mod(
+        &mut self,
+        diag_mod: Option<Term>,
+        here: Option<(SitIx, Term)>,
+    ) -> Result<(), RunError> {
+        let Some(d) = diag_mod else {
+            return Ok(());
+        };
+        let value = self.eval_read_only(d, here)?;
+        let dm_id = self.frames.last().expect("frame").dm_id;
+        if !self.store.unify(value, dm_id) {
+            return Err(self.err(
+                format!(
+                    "diag_mod `{}` does not match the DM's identifier `{}`",
+                    self.store.writeq(value),
+                    self.store.writeq(dm_id)
+                ),
+                here,
+                None,
+            ));
+        }
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn record(
+        &mut self,
+        situation: Term,
+        expectation: Term,
+        action: Term,
+        next: Option<Term>,
+        pipe: Term,
+        observer: &mut Option<&mut dyn Observer>,
+    ) {
+        self.transitions += 1;
+        let frame = self.frames.last_mut().expect("frame");
+        let entry = Entry {
+            dm: frame.dm_id,
+            situation,
+            expectation,
+            action,
+        };
+        if let Some(o) = observer.as_deref_mut() {
+            o.transition(&self.store, &entry, self.frames.len() - 1, next);
+        }
+        if self.options.keep_history {
+            self.frames
+                .last_mut()
+                .expect("frame")
+                .history
+                .push(Item::Entry(entry));
+        }
+        if let Some(o) = observer.as_deref_mut() {
+            self.inspect(pipe, None, o);
+        }
+    }
+}

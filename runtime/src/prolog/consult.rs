@@ -1,0 +1,279 @@
+//! Reading the application's Prolog sources into clauses for the engine:
+//! [`PrologSource`], our reader's syntax errors as [`PrologLoadError`]s
+//! with file:line:col, and `consult/1` / `ensure_loaded/1` directives
+//! resolved (an embedded source first, then `$SITLOG_HOME/...` and paths
+//! relative to the consulting file, `.pl` added where needed).
+
+use super::legacy_kb::{ClauseFate, NativeState};
+use super::translate::{Prepared, Writer};
+use crate::paths::normalize;
+use crate::store::Store;
+use crate::term::{Term, Value};
+use sitlog_syntax::{atoms, read_clauses, Atom};
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+
+/// One Prolog source file.
+#[derive(Clone, Debug)]
+pub struct PrologSource {
+    /// Name used in messages (`file:line:col`).
+    pub name: String,
+    pub text: String,
+    /// Directory relative to which `consult/1` directives are resolved
+    /// (`None` for embedded sources: such directives are then errors).
+    pub dir: Option<PathBuf>,
+}
+
+impl PrologSource {
+    pub fn new(name: impl Into<String>, text: impl Into<String>) -> PrologSource {
+        PrologSource {
+            name: name.into(),
+            text: text.into(),
+            dir: None,
+        }
+    }
+    /// Reads `path`; text that is not UTF-8 is an `InvalidData` error naming
+    /// the file, line and column of the first bad byte.
+    pub fn from_path(path: &Path) -> std::io::Result<PrologSource> {
+        let name = path.display().to_string();
+        let bytes = std::fs::read(path)?;
+        let text = sitlog_syntax::decode(&bytes)
+            .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.in_file(&name)))?
+            .to_owned();
+        Ok(PrologSource {
+            name,
+            text,
+            dir: path.parent().map(Path::to_path_buf),
+        })
+    }
+}
+
+/// A problem while loading the Prolog sources: `file:line:col: message`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PrologLoadError {
+    pub file: String,
+    pub line: usize,
+    pub col: usize,
+    pub message: String,
+}
+
+impl std::fmt::Display for PrologLoadError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}:{}:{}: {}",
+            self.file, self.line, self.col, self.message
+        )
+    }
+}
+
+fn neck() -> Atom {
+    Atom::intern(":-")
+}
+
+/// 1-based line and column (in characters) of byte offset `at` of `text`.
+fn line_col(text: &str, at: usize) -> (usize, usize) {
+    let mut at = at.min(text.len());
+    while at > 0 && !text.is_char_boundary(at) {
+        at -= 1;
+    }
+    let before = &text[..at];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}
+
+/// Where [`prepare`] puts what it reads.
+pub(super) struct Prep<'a> {
+    pub(super) out: &'a mut Vec<Prepared>,
+    pub(super) defined: &'a mut HashSet<(Atom, usize)>,
+    pub(super) errors: &'a mut Vec<PrologLoadError>,
+    pub(super) seen: &'a mut HashSet<PathBuf>,
+    /// Every source given: a file they consult is taken from them first
+    /// (a compiled task embeds what its sources consult).
+    pub(super) embedded: &'a [PrologSource],
+    /// Set while reading the legacy KB layer served natively.
+    pub(super) native: Option<&'a mut NativeState>,
+}
+
+/// Prepares the clauses of `source` (recursively for consulted files).
+pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
+    if !cx.seen.insert(normalize(Path::new(&source.name))) {
+        return;
+    }
+    let (clauses, syntax) = read_clauses(&source.text);
+    for e in syntax {
+        let (line, col) = line_col(&source.text, e.span.start as usize);
+        cx.errors.push(PrologLoadError {
+            file: source.name.clone(),
+            line,
+            col,
+            message: e.message.clone(),
+        });
+    }
+    for clause in &clauses {
+        let (line, col) = line_col(&source.text, clause.span.start as usize);
+        let mut store = Store::new();
+        let (t, _) = store.from_clause(clause);
+        let err = |message: String| PrologLoadError {
+            file: source.name.clone(),
+            line,
+            col,
+            message,
+        };
+        // Directives.
+        if let Some(args) = store.compound_args(t, neck(), 1) {
+            let goal = args[0];
+            if let Some(files) = consulted_files(&store, goal) {
+                if depth > 32 {
+                    cx.errors.push(err("consult/1 nested too deeply".into()));
+                    continue;
+                }
+                for f in files {
+                    // A file given with the sources (a compiled task embeds
+                    // what its sources consult) is taken from them.
+                    if let Some(s) = embedded_source(&f, source, cx.embedded) {
+                        prepare(s, cx, depth + 1);
+                        continue;
+                    }
+                    match resolve(&f, source.dir.as_deref()) {
+                        Some(path) => match PrologSource::from_path(&path) {
+                            Ok(s) => prepare(&s, cx, depth + 1),
+                            Err(e) => cx.errors.push(err(format!("cannot consult `{f}`: {e}"))),
+                        },
+                        None => cx
+                            .errors
+                            .push(err(format!("cannot consult `{f}`: no such file"))),
+                    }
+                }
+                continue;
+            }
+            let mut w = Writer::new(&store, true);
+            w.term(goal);
+            cx.out.push(Prepared {
+                text: w.out,
+                directive: true,
+                file: source.name.clone(),
+                line,
+                col,
+            });
+            continue;
+        }
+        // Clauses.
+        let (head, body) = match store.compound_args(t, neck(), 2) {
+            Some(a) => (a[0], Some(a[1])),
+            None => (t, None),
+        };
+        let key = match store.functor(head) {
+            Some(key) => key,
+            None => {
+                cx.errors.push(err(format!(
+                    "`{}` is not a clause head",
+                    store.writeq(head)
+                )));
+                continue;
+            }
+        };
+        cx.defined.insert(key);
+        let mut t = t;
+        if let Some(native) = cx.native.as_deref_mut() {
+            match native.clause(&mut store, key, body) {
+                ClauseFate::Keep => {}
+                ClauseFate::Drop => continue,
+                ClauseFate::Rename(new) => {
+                    let args = store.args(head).to_vec();
+                    let h = store.compound(new, &args);
+                    t = match body {
+                        Some(b) => store.compound(neck(), &[h, b]),
+                        None => h,
+                    };
+                }
+            }
+        }
+        let mut w = Writer::new(&store, true);
+        w.term(t);
+        cx.out.push(Prepared {
+            text: w.out,
+            directive: false,
+            file: source.name.clone(),
+            line,
+            col,
+        });
+    }
+}
+
+/// The files of a `consult/1`, `ensure_loaded/1` or `[F, ..]` directive.
+fn consulted_files(store: &Store, goal: Term) -> Option<Vec<String>> {
+    let arg = match store.value(goal) {
+        Value::Compound(f, a)
+            if a.len() == 1 && (f.as_str() == "consult" || f.as_str() == "ensure_loaded") =>
+        {
+            a[0]
+        }
+        Value::Compound(f, _) if f == atoms::DOT => goal,
+        _ => return None,
+    };
+    let items = store.list_to_vec(arg).unwrap_or_else(|| vec![arg]);
+    let mut files = Vec::new();
+    for i in items {
+        match store.atom_of(i) {
+            Some(a) => files.push(a.as_str().to_owned()),
+            None => return None,
+        }
+    }
+    Some(files)
+}
+
+/// The source among `embedded` that `name`, consulted from `from`, names:
+/// relative to the directory of `from`'s name, with or without `.pl`.
+fn embedded_source<'a>(
+    name: &str,
+    from: &PrologSource,
+    embedded: &'a [PrologSource],
+) -> Option<&'a PrologSource> {
+    if name.starts_with('$') || Path::new(name).is_absolute() {
+        return None;
+    }
+    let base = Path::new(&from.name).parent()?.join(name);
+    let mut with_ext = base.clone().into_os_string();
+    with_ext.push(".pl");
+    let wanted = [normalize(&base), normalize(Path::new(&with_ext))];
+    embedded
+        .iter()
+        .find(|s| wanted.contains(&normalize(Path::new(&s.name))))
+}
+
+/// Resolves a consulted file name: `$SITLOG_HOME/..` as described in the
+/// module documentation, relative names against `dir`, `.pl` added when
+/// the name has none and the file without it does not exist.
+fn resolve(name: &str, dir: Option<&Path>) -> Option<PathBuf> {
+    let with_ext = |p: PathBuf| -> Option<PathBuf> {
+        if p.is_file() {
+            return Some(p);
+        }
+        let mut q = p.into_os_string();
+        q.push(".pl");
+        let q = PathBuf::from(q);
+        q.is_file().then_some(q)
+    };
+    if let Some(rest) = name.strip_prefix("$SITLOG_HOME/") {
+        if let Some(home) = std::env::var_os("SITLOG_HOME") {
+            return with_ext(Path::new(&home).join(rest));
+        }
+        let mut d = dir?.to_path_buf();
+        loop {
+            if let Some(p) = with_ext(d.join(rest)) {
+                return Some(p);
+            }
+            if !d.pop() {
+                return None;
+            }
+        }
+    }
+    let p = Path::new(name);
+    if p.is_absolute() {
+        with_ext(p.to_path_buf())
+    } else {
+        with_ext(dir?.join(p))
+    }
+}

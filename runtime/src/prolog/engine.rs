@@ -1,0 +1,533 @@
+//! The engine: [`PrologFunctions`] loads the prepared clauses into a
+//! scryer-prolog machine on a thread of its own (the engine is not `Send`)
+//! and calls user functions as queries sent to it, watched for their time
+//! and memory limits ([`PrologOptions`]) from the calling thread.
+
+use super::consult::{prepare, Prep, PrologLoadError, PrologSource};
+use super::legacy_kb::{KbHost, NativeKb, NativeState};
+use super::swi::{LIBRARIES, PRELUDE, SWI_PREDICATES};
+use super::translate::{from_prolog, read_reply, write_atom, Prepared, Writer};
+use crate::functions::{CallLimits, FnCall, Functions};
+use crate::store::Store;
+use crate::term::Term;
+use scryer_prolog::{
+    InputStreamConfig, LeafAnswer, Machine, MachineBuilder, OutputStreamConfig, StreamConfig,
+    Term as PTerm,
+};
+use sitlog_syntax::Atom;
+use std::collections::{HashMap, HashSet};
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::sync::mpsc;
+use std::sync::{Arc, Mutex};
+
+/// Limits of one call (the defaults of an engine; a run's
+/// [`Functions::set_call_limits`] overrides them).
+///
+/// The inference limit is the engine's own (`call_with_inference_limit/3`).
+/// Time and memory are watched from the calling thread, which waits for the
+/// answer in short slices: a call that runs longer than `time_limit`, or
+/// during which the process grows by more than `heap_limit` bytes (resident
+/// memory, where the system tells it), is abandoned with an error naming the
+/// limit. The engine thread is then left behind and every later call is an
+/// error (the run ends on the first one anyway).
+#[derive(Clone, Copy, Debug)]
+pub struct PrologOptions {
+    /// Inferences one function call may use before it is stopped with an
+    /// error (runaway recursion).
+    pub inference_limit: u64,
+    /// Wall-clock time of one call.
+    pub time_limit: std::time::Duration,
+    /// Growth of the process's memory during one call, in bytes.
+    pub heap_limit: u64,
+}
+
+impl Default for PrologOptions {
+    fn default() -> Self {
+        let d = CallLimits::default();
+        PrologOptions {
+            inference_limit: d.inferences,
+            time_limit: d.time,
+            heap_limit: d.heap_bytes,
+        }
+    }
+}
+
+impl From<CallLimits> for PrologOptions {
+    fn from(l: CallLimits) -> PrologOptions {
+        PrologOptions {
+            inference_limit: l.inferences,
+            time_limit: l.time,
+            heap_limit: l.heap_bytes,
+        }
+    }
+}
+
+/// Resident memory of this process in bytes, where the system tells it.
+fn resident_bytes() -> Option<u64> {
+    let statm = std::fs::read_to_string("/proc/self/statm").ok()?;
+    let pages: u64 = statm.split_whitespace().nth(1)?.parse().ok()?;
+    Some(pages * 4096)
+}
+
+/// What the engine thread is asked to do.
+enum Request {
+    Query(String, mpsc::Sender<Result<Option<PTerm>, String>>),
+}
+
+/// The application's Prolog user functions, running in an embedded engine.
+/// Cheap to clone (a handle to the engine thread).
+#[derive(Clone)]
+pub struct PrologFunctions {
+    inner: Arc<Inner>,
+}
+
+struct Inner {
+    tx: Mutex<mpsc::Sender<Request>>,
+    /// Why the engine was abandoned (a call over its time or memory limit).
+    abandoned: Mutex<Option<String>>,
+    /// Predicates defined by the application's clauses.
+    defined: HashSet<(Atom, usize)>,
+    options: PrologOptions,
+}
+
+impl std::fmt::Debug for PrologFunctions {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PrologFunctions")
+            .field("defined", &self.inner.defined.len())
+            .finish()
+    }
+}
+
+impl PrologFunctions {
+    /// Reads `sources` (in order: templates.pl, then user_functions.pl),
+    /// starts the engine and loads the prelude and the clauses. Every
+    /// problem is reported, with its position.
+    pub fn load(
+        sources: &[PrologSource],
+        options: PrologOptions,
+    ) -> Result<PrologFunctions, Vec<PrologLoadError>> {
+        Self::load_with(sources, options, 0, None)
+    }
+
+    /// [`load`](Self::load), the first `layer` sources being the legacy KB
+    /// layer served by `native` (see [`NativeKb`]).
+    pub fn load_with(
+        sources: &[PrologSource],
+        options: PrologOptions,
+        layer: usize,
+        native: Option<NativeKb>,
+    ) -> Result<PrologFunctions, Vec<PrologLoadError>> {
+        let mut prepared = Vec::new();
+        let mut errors = Vec::new();
+        let mut defined = HashSet::new();
+        let mut seen_files = HashSet::new();
+        let mut native_state = native.as_ref().map(NativeState::new);
+        for (i, s) in sources.iter().enumerate() {
+            let mut cx = Prep {
+                out: &mut prepared,
+                defined: &mut defined,
+                errors: &mut errors,
+                seen: &mut seen_files,
+                embedded: sources,
+                native: if i < layer {
+                    native_state.as_mut()
+                } else {
+                    None
+                },
+            };
+            prepare(s, &mut cx, 0);
+        }
+        if let Some(st) = native_state {
+            st.finish(&mut prepared);
+        }
+        if !errors.is_empty() {
+            return Err(errors);
+        }
+        let host = native.map(|n| n.host);
+        let (tx, rx) = mpsc::channel::<Request>();
+        let (ready_tx, ready_rx) = mpsc::channel();
+        std::thread::Builder::new()
+            .name("sitlog-prolog".into())
+            .stack_size(64 << 20)
+            .spawn(move || engine_thread(prepared, host, rx, ready_tx))
+            .map_err(|e| {
+                vec![PrologLoadError {
+                    file: "<engine>".into(),
+                    line: 0,
+                    col: 0,
+                    message: format!("cannot start the Prolog engine thread: {e}"),
+                }]
+            })?;
+        let load_errors = ready_rx.recv().unwrap_or_else(|_| {
+            vec![PrologLoadError {
+                file: "<engine>".into(),
+                line: 0,
+                col: 0,
+                message: "the Prolog engine stopped while loading".into(),
+            }]
+        });
+        if !load_errors.is_empty() {
+            return Err(load_errors);
+        }
+        Ok(PrologFunctions {
+            inner: Arc::new(Inner {
+                tx: Mutex::new(tx),
+                abandoned: Mutex::new(None),
+                defined,
+                options,
+            }),
+        })
+    }
+
+    /// Whether the application defines `name/arity` in Prolog.
+    pub fn defines(&self, name: Atom, arity: usize) -> bool {
+        self.inner.defined.contains(&(name, arity))
+    }
+
+    /// Installs these functions as the fallback of `functions`. Where the
+    /// application defines a function in Prolog that is also registered in
+    /// Rust (e.g. the standard `when/3`), the application's definition wins:
+    /// it is what the author wrote and what the original runs. Names Prolog
+    /// does not define stay as they are.
+    pub fn install(&self, functions: &mut Functions) {
+        for &(name, arity) in &self.inner.defined {
+            functions.remove(name, arity);
+        }
+        let me = self.clone();
+        functions.set_fallback(move |call, name, args| {
+            if !me.defines(name, args.len()) {
+                return None;
+            }
+            Some(me.call(call, name, args))
+        });
+    }
+
+    /// Runs a raw query (for tests and tools): the first answer's binding
+    /// of `Result`, `None` on failure.
+    pub fn query_raw(&self, query: &str) -> Result<Option<String>, String> {
+        self.ask(query.to_owned(), self.inner.options, "the query")
+            .map(|a| a.map(|t| format!("{t:?}")))
+    }
+
+    /// Sends `query` and waits for its answer within the time and memory
+    /// limits of `options`; `what` names the call in errors.
+    pub(super) fn ask(
+        &self,
+        query: String,
+        options: PrologOptions,
+        what: &str,
+    ) -> Result<Option<PTerm>, String> {
+        if let Some(why) = self.inner.abandoned.lock().ok().and_then(|a| a.clone()) {
+            return Err(format!("the Prolog engine is stopped: {why}"));
+        }
+        let (tx, rx) = mpsc::channel();
+        self.inner
+            .tx
+            .lock()
+            .map_err(|_| "the Prolog engine is poisoned".to_owned())?
+            .send(Request::Query(query, tx))
+            .map_err(|_| "the Prolog engine has stopped".to_owned())?;
+        let start = std::time::Instant::now();
+        let rss0 = resident_bytes();
+        let slice = std::time::Duration::from_millis(10);
+        loop {
+            match rx.recv_timeout(slice) {
+                Ok(answer) => return answer,
+                Err(mpsc::RecvTimeoutError::Disconnected) => {
+                    return Err("the Prolog engine has stopped".to_owned())
+                }
+                Err(mpsc::RecvTimeoutError::Timeout) => {}
+            }
+            let over = if start.elapsed() > options.time_limit {
+                Some(format!(
+                    "{what} exceeded the time limit of {:?} per call (option --prolog-time-limit)",
+                    options.time_limit
+                ))
+            } else {
+                match (rss0, resident_bytes()) {
+                    (Some(a), Some(b)) if b.saturating_sub(a) > options.heap_limit => Some(format!(
+                        "{what} exceeded the memory limit of {} MiB per call (option --prolog-heap-limit)",
+                        options.heap_limit >> 20
+                    )),
+                    _ => None,
+                }
+            };
+            if let Some(message) = over {
+                if let Ok(mut a) = self.inner.abandoned.lock() {
+                    *a = Some(message.clone());
+                }
+                return Err(message);
+            }
+        }
+    }
+
+    /// Calls `name(args..)` with the caller's environment.
+    pub fn call(&self, call: &mut FnCall<'_>, name: Atom, args: &[Term]) -> Result<Term, String> {
+        let options = match call.functions.call_limits() {
+            Some(l) => PrologOptions::from(l),
+            None => self.inner.options,
+        };
+        let history = call.history_term();
+        let store: &Store = call.store;
+        let mut w = Writer::new(store, false);
+        w.out.push_str("'$sitlog_call'(");
+        write_atom(&mut w.out, name);
+        if !args.is_empty() {
+            w.out.push('(');
+            for (i, &a) in args.iter().enumerate() {
+                if i > 0 {
+                    w.out.push(',');
+                }
+                w.term(a);
+            }
+            w.out.push(')');
+        }
+        // Vars come after everything else is written: reserve its place.
+        let mut rest = String::new();
+        std::mem::swap(&mut rest, &mut w.out);
+        for (i, vars) in [&*call.locals, &*call.globals].into_iter().enumerate() {
+            let _ = i;
+            w.out.push(',');
+            w.out.push('[');
+            for (j, &(n, v)) in vars.entries().iter().enumerate() {
+                if j > 0 {
+                    w.out.push(',');
+                }
+                w.out.push_str("'-'(");
+                write_atom(&mut w.out, n);
+                w.out.push(',');
+                w.term(v);
+                w.out.push(')');
+            }
+            w.out.push(']');
+        }
+        w.out.push(',');
+        w.term(history);
+        let _ = write!(w.out, ",{},R).", options.inference_limit);
+        let env = std::mem::take(&mut w.out);
+        let mut query = rest;
+        query.push_str(",[");
+        for (i, v) in w.vars.iter().enumerate() {
+            if i > 0 {
+                query.push(',');
+            }
+            let _ = write!(query, "_S{}", v.0);
+        }
+        query.push(']');
+        query.push_str(&env);
+        let vars = w.vars.clone();
+        let shown = || format!("{}/{}", name, args.len());
+        let answer = self.ask(query, options, &format!("`{}`", shown()))?;
+        let Some(r) = answer else {
+            return Err(format!("the Prolog call of `{}` did not answer", shown()));
+        };
+        let mut names: HashMap<String, Term> = vars
+            .iter()
+            .map(|&v| (format!("_S{}", v.0), Term::from(v)))
+            .collect();
+        match &r {
+            PTerm::Compound(f, a) if f == "ok" && a.len() == 3 => {
+                let value = from_prolog(call.store, &a[0], &mut names);
+                if let PTerm::List(outs) = &a[1] {
+                    for (&v, out) in vars.iter().zip(outs) {
+                        let t = from_prolog(call.store, out, &mut names);
+                        let var = Term::from(v);
+                        if call.store.deref(t) != call.store.deref(var) && !call.store.unify(var, t)
+                        {
+                            return Err(format!("`{}`: a binding does not unify back", shown()));
+                        }
+                    }
+                }
+                if let PTerm::List(changes) = &a[2] {
+                    for c in changes {
+                        if let PTerm::Compound(w, ca) = c {
+                            if ca.len() == 2 {
+                                if let PTerm::Atom(n) = &ca[0] {
+                                    let v = from_prolog(call.store, &ca[1], &mut names);
+                                    let n = Atom::intern(n);
+                                    if w == "l" {
+                                        call.locals.set(n, v);
+                                    } else {
+                                        call.globals.set(n, v);
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+                Ok(value)
+            }
+            PTerm::Atom(a) if a == "novalue" => Err(format!(
+                "`{}` succeeded without calling assign_func_value/1",
+                shown()
+            )),
+            PTerm::Atom(a) if a == "fail" => Err(format!("`{}` failed", shown())),
+            PTerm::Atom(a) if a == "limit" => Err(format!(
+                "`{}` exceeded the inference limit ({}; option --prolog-inferences)",
+                shown(),
+                options.inference_limit
+            )),
+            PTerm::Compound(f, a) if f == "error" && a.len() == 1 => {
+                let mut names = HashMap::new();
+                let e = from_prolog(call.store, &a[0], &mut names);
+                Err(format!("`{}` raised {}", shown(), call.store.writeq(e)))
+            }
+            other => Err(format!("`{}`: unexpected answer {other:?}", shown())),
+        }
+    }
+}
+
+/// The engine thread: builds the machine, loads, then answers queries.
+fn engine_thread(
+    prepared: Vec<Prepared>,
+    host: Option<KbHost>,
+    rx: mpsc::Receiver<Request>,
+    ready: mpsc::Sender<Vec<PrologLoadError>>,
+) {
+    let (mut machine, errors) = build_machine(&prepared, host.clone());
+    let _ = ready.send(errors);
+    while let Ok(Request::Query(q, reply)) = rx.recv() {
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            first_answer(&mut machine, &q, "R")
+        }));
+        let r = match r {
+            Ok(r) => r,
+            Err(_) => {
+                // The engine may be in any state: start afresh.
+                machine = build_machine(&prepared, host.clone()).0;
+                Err("the Prolog engine panicked (it was restarted)".to_owned())
+            }
+        };
+        let _ = reply.send(r);
+    }
+}
+
+/// The engine's streams: `user_output` is dropped (what functions print is
+/// not part of the task's output); `user_error` carries the requests of
+/// `'$sitlog_read_text'/3` (framed by `\x01` and `\x02`), answered on
+/// `user_input` by [`read_reply`]; anything else written there goes to
+/// stderr.
+fn engine_streams(host: Option<KbHost>) -> StreamConfig {
+    type StreamCallback = Box<dyn FnMut(&mut std::io::Cursor<Vec<u8>>)>;
+    let (mut replies, input) = InputStreamConfig::channel();
+    let mut pending: Vec<u8> = Vec::new();
+    let on_error: StreamCallback = Box::new(move |buf: &mut std::io::Cursor<Vec<u8>>| {
+        pending.extend(std::mem::take(buf.get_mut()));
+        buf.set_position(0);
+        loop {
+            let Some(start) = pending.iter().position(|&b| b == 1) else {
+                let _ = std::io::stderr().write_all(&pending);
+                pending.clear();
+                return;
+            };
+            if start > 0 {
+                let _ = std::io::stderr().write_all(&pending[..start]);
+                pending.drain(..start);
+            }
+            let Some(end) = pending.iter().position(|&b| b == 2) else {
+                return;
+            };
+            let text = String::from_utf8_lossy(&pending[1..end]).into_owned();
+            pending.drain(..=end);
+            // The first character says what is asked: `R` read, `K` KB.
+            let reply = match text.strip_prefix('K') {
+                Some(request) => match &host {
+                    Some(h) => h(request),
+                    None => "'$error'(error(existence_error(kb_host, sitlog), kb)).\n".to_owned(),
+                },
+                None => read_reply(text.strip_prefix('R').unwrap_or(&text)),
+            };
+            let _ = replies.write_all(reply.as_bytes());
+        }
+    });
+    let on_output: StreamCallback = Box::new(|buf: &mut std::io::Cursor<Vec<u8>>| {
+        buf.get_mut().clear();
+        buf.set_position(0);
+    });
+    StreamConfig::in_memory()
+        .with_user_input(input)
+        .with_user_output(OutputStreamConfig::callback(on_output))
+        .with_user_error(OutputStreamConfig::callback(on_error))
+}
+
+fn build_machine(prepared: &[Prepared], host: Option<KbHost>) -> (Machine, Vec<PrologLoadError>) {
+    let mut machine = MachineBuilder::default()
+        .with_streams(engine_streams(host))
+        .build();
+    machine.consult_module_string("user", PRELUDE);
+    let mut errors = Vec::new();
+    let mut directives = Vec::new();
+    for p in prepared {
+        if p.directive {
+            directives.push(p);
+            continue;
+        }
+        let q = format!("'$sitlog_add'({},R).", p.text);
+        check_load(&mut machine, &q, p, &mut errors);
+    }
+    for (lib, preds) in LIBRARIES {
+        let q = format!("'$sitlog_import'({lib},[{}],R).", preds.join(","));
+        let _ = first_answer(&mut machine, &q, "R");
+    }
+    let q = format!(
+        "'$sitlog_bridge'([{}],R).",
+        SWI_PREDICATES
+            .iter()
+            .map(|p| {
+                let (n, a) = p.rsplit_once('/').expect("name/arity");
+                let mut q = String::new();
+                write_atom(&mut q, Atom::intern(n));
+                format!("{q}/{a}")
+            })
+            .collect::<Vec<_>>()
+            .join(",")
+    );
+    let _ = first_answer(&mut machine, &q, "R");
+    for p in directives {
+        let q = format!("'$sitlog_directive'({},R).", p.text);
+        check_load(&mut machine, &q, p, &mut errors);
+    }
+    (machine, errors)
+}
+
+fn check_load(machine: &mut Machine, q: &str, p: &Prepared, errors: &mut Vec<PrologLoadError>) {
+    let message = match first_answer(machine, q, "R") {
+        Ok(Some(PTerm::Atom(a))) if a == "ok" => return,
+        Ok(Some(PTerm::Atom(a))) if a == "fail" => "directive failed".to_owned(),
+        Ok(Some(PTerm::Compound(f, a))) if f == "error" && a.len() == 1 => {
+            format!("the Prolog engine refused it: {}", show_pterm(&a[0]))
+        }
+        Ok(other) => format!("the Prolog engine refused it: {other:?}"),
+        Err(e) => e,
+    };
+    errors.push(PrologLoadError {
+        file: p.file.clone(),
+        line: p.line,
+        col: p.col,
+        message,
+    });
+}
+
+/// A scryer term as Prolog-like text (for messages).
+fn show_pterm(t: &PTerm) -> String {
+    let mut store = Store::new();
+    let mut names = HashMap::new();
+    let t = from_prolog(&mut store, t, &mut names);
+    store.writeq(t)
+}
+
+/// The binding of `var` in the first answer of `query`.
+fn first_answer(machine: &mut Machine, query: &str, var: &str) -> Result<Option<PTerm>, String> {
+    let mut answers = machine.run_query(query.to_owned());
+    let first = answers.next();
+    drop(answers);
+    match first {
+        None | Some(Ok(LeafAnswer::False)) => Ok(None),
+        Some(Ok(LeafAnswer::True)) => Ok(Some(PTerm::Atom("true".into()))),
+        Some(Ok(LeafAnswer::LeafAnswer { bindings, .. })) => Ok(bindings.get(var).cloned()),
+        Some(Ok(LeafAnswer::Exception(e))) | Some(Err(e)) => {
+            Err(format!("Prolog exception: {}", show_pterm(&e)))
+        }
+    }
+}

@@ -1,0 +1,63 @@
+//! Prolog user functions (feature `prolog`): the application's
+//! `templates.pl` and `user_functions.pl` run in an embedded
+//! [scryer-prolog](https://crates.io/crates/scryer-prolog) engine, so a task
+//! stays one binary with no system library.
+//!
+//! Loading. Our reader (SWI-Prolog 6 syntax, SitLog operators) reads the
+//! files; each clause is sent to the engine in canonical form, with `'|'/2`
+//! turned into `;/2` (SWI-6 reads `(C -> A | otherwise -> B)` as `;`) and
+//! double-quoted strings as code lists (SWI-6's default). So the engine
+//! never parses application text: syntax errors are our reader's, with
+//! file:line:col, and the engine only reports errors of its own (a clause
+//! it refuses, a failing directive) by clause position. `consult/1` and
+//! `ensure_loaded/1` directives load the named file the same way
+//! (`$SITLOG_HOME/...` is the `SITLOG_HOME` environment variable, else the
+//! nearest ancestor directory in which the rest of the path exists).
+//!
+//! SWI-Prolog. Code written for the original expects SWI-Prolog: the
+//! prelude provides its built-ins and library predicates the engine lacks
+//! ([`SWI_PREDICATES`], each yielding to an application's own definition),
+//! and the loader renames the application's calls of engine built-ins that
+//! behave otherwise ([`SWI_RENAMED`]: `atom_chars/2` on codes, SWI's
+//! standard order of mixed numbers in `compare/3`, `@<`, the sorts, and
+//! reading text as terms). Text read as a term at run time
+//! (`read_from_chars/2`, `term_to_atom/2`, ...) is read by our reader too:
+//! the engine sends it to the host on its `user_error` stream and gets the
+//! term back in canonical form on `user_input` ([`read_reply`]); the same
+//! channel serves the legacy KB layer natively ([`NativeKb`]).
+//!
+//! Calling. `apply(f(X1..Xn), [E1..En])` becomes one query of the prelude
+//! (`prolog/prelude.pl`) with the arguments, the caller's locals and
+//! globals, the history and the caller's unbound variables written as
+//! canonical text; the answer gives the value passed to
+//! `assign_func_value/1`, the SitLog variables changed by `var_op/1` and
+//! the bindings of the caller's variables. The engine is not `Send`: it
+//! lives on a thread of its own and calls are messages to it.
+//!
+//! One job per submodule, bottom to top (each uses only those before it;
+//! this file only re-exports, so every public item keeps its path
+//! `sitlog_runtime::prolog::X`):
+//! - `swi`: the prelude and the SWI-Prolog compatibility tables;
+//! - `translate`: store terms to canonical text and engine terms back;
+//! - `legacy_kb`: the legacy KB layer served natively ([`NativeKb`]);
+//! - `consult`: sources, their clauses, and `consult/1` resolution;
+//! - `engine`: the engine thread and the calling protocol
+//!   ([`PrologFunctions`]).
+
+mod consult;
+mod engine;
+mod legacy_kb;
+mod swi;
+mod translate;
+
+pub use consult::{PrologLoadError, PrologSource};
+pub use engine::{PrologFunctions, PrologOptions};
+pub use legacy_kb::{KbHost, NativeKb};
+pub use swi::{PRELUDE, SWI_PREDICATES, SWI_RENAMED};
+pub use translate::read_reply;
+
+#[cfg(test)]
+mod tests;
+
+#[cfg(test)]
+mod swi_tests;

@@ -1,0 +1,252 @@
+//! The engine's calling protocol, end to end: variables, history, bindings,
+//! term round trips, failures and load errors.
+
+use super::{PrologFunctions, PrologOptions, PrologSource};
+use crate::eval::{eval, EvalCtx};
+use crate::functions::Functions;
+use crate::history::{Entry, Item};
+use crate::store::Store;
+use crate::term::Term;
+use crate::vars::Vars;
+use sitlog_syntax::Atom;
+
+const FUNCTIONS: &str = r#"
+% reads a local, answers with the SWI-6 conditional style
+f(X) :- var_op(get(day, Day)), (X == Day -> A = ok | otherwise -> A = 'not ok'), assign_func_value(A).
+g(_) :- get_history(H), get_last_transition(H, T), assign_func_value(T).
+bump(V) :- var_op(inc(cnt, N)), var_op(set(glist, [V])), assign_func_value(N).
+out(X, Y) :- X = bound(Y), Y = 42, assign_func_value(done).
+fails(_) :- fail.
+throws(_) :- throw(oops).
+novalue(_) :- true.
+loop(X) :- loop(X).
+echo(X) :- assign_func_value(X).
+hist(_) :- get_history(H), assign_func_value(H).
+cur(_) :- get_history(H), get_current_DM(H, C), length(C, N), assign_func_value(N).
+codes(X) :- X = "ab", assign_func_value(X).
+sum(L) :- sum_list(L, S), assign_func_value(S).
+member(x, _).
+mem(X) :- (member(X, [a]) -> assign_func_value(yes) ; assign_func_value(no)).
+"#;
+
+struct Env {
+    store: Store,
+    locals: Vars,
+    globals: Vars,
+    history: Vec<Item>,
+    functions: Functions,
+}
+
+/// One engine for all tests (building one takes a while in debug builds).
+fn engine() -> &'static PrologFunctions {
+    static ENGINE: std::sync::OnceLock<PrologFunctions> = std::sync::OnceLock::new();
+    ENGINE.get_or_init(|| {
+        PrologFunctions::load(
+            &[PrologSource::new("user_functions.pl", FUNCTIONS)],
+            PrologOptions {
+                inference_limit: 200_000,
+                ..Default::default()
+            },
+        )
+        .expect("loads")
+    })
+}
+
+fn env() -> Env {
+    let p = engine();
+    let mut functions = Functions::standard();
+    p.install(&mut functions);
+    let mut store = Store::new();
+    let locals = Vars::from_entries(vec![
+        (Atom::intern("day"), Term::atom(Atom::intern("monday"))),
+        (Atom::intern("cnt"), Term::int(5)),
+    ]);
+    let globals = Vars::from_entries(vec![(Atom::intern("glist"), Term::NIL)]);
+    let mut entry = |dm: &str, sit: &str, e: &str, a: &str| {
+        let dm = Term::atom(Atom::intern(dm));
+        let situation = Term::atom(Atom::intern(sit));
+        let expectation = store.parse(e).unwrap().0;
+        let action = store.parse(a).unwrap().0;
+        Item::Entry(Entry {
+            dm,
+            situation,
+            expectation,
+            action,
+        })
+    };
+    let history = vec![
+        entry("main", "is", "[day(tuesday)]", "[date(monday)]"),
+        Item::Nested(vec![entry("wait", "is", "loop", "[1]")]),
+        entry("main", "rs", "fs2", "screen(x)"),
+    ];
+    Env {
+        store,
+        locals,
+        globals,
+        history,
+        functions,
+    }
+}
+
+fn run(env: &mut Env, src: &str) -> Result<String, String> {
+    let (t, _) = env.store.parse(src).unwrap();
+    let mut ctx = EvalCtx {
+        store: &mut env.store,
+        locals: &mut env.locals,
+        globals: &mut env.globals,
+        history: &env.history,
+        functions: &env.functions,
+    };
+    let v = eval(&mut ctx, t).map_err(|e| e.message)?;
+    Ok(env.store.writeq(v))
+}
+
+#[test]
+fn reads_variables_and_conditional_with_bar() {
+    let mut e = env();
+    assert_eq!(run(&mut e, "apply(f(X), [monday])").unwrap(), "ok");
+    assert_eq!(run(&mut e, "apply(f(X), [sunday])").unwrap(), "'not ok'");
+}
+
+#[test]
+fn history_helpers() {
+    let mut e = env();
+    assert_eq!(run(&mut e, "apply(g(X), [_])").unwrap(), "fs2:screen(x)");
+    assert_eq!(run(&mut e, "apply(cur(X), [_])").unwrap(), "1");
+    let h = run(&mut e, "apply(hist(X), [_])").unwrap();
+    assert_eq!(
+        h,
+        "[main:((is),[day(tuesday)]:[date(monday)]),[wait:((is),loop:[1])],main:(rs,fs2:screen(x))]"
+    );
+    e.history.clear();
+    assert_eq!(run(&mut e, "apply(g(X), [_])").unwrap(), "none");
+}
+
+#[test]
+fn sets_and_increments_variables() {
+    let mut e = env();
+    assert_eq!(run(&mut e, "apply(bump(V), [z])").unwrap(), "6");
+    assert_eq!(run(&mut e, "get(cnt, C)").unwrap(), "6");
+    assert_eq!(run(&mut e, "get(glist, G)").unwrap(), "[z]");
+    assert_eq!(
+        run(&mut e, "[apply(bump(V), [w]), get(cnt, C)]").unwrap(),
+        "[7,7]"
+    );
+}
+
+#[test]
+fn binds_output_variables() {
+    let mut e = env();
+    assert_eq!(
+        run(&mut e, "[apply(out(A, B), [X, Y]), X, Y]").unwrap(),
+        "[done,bound(42),42]"
+    );
+}
+
+#[test]
+fn terms_round_trip() {
+    let mut e = env();
+    for t in [
+        "'hello world'",
+        "'it''s'",
+        "[]",
+        "'[]'",
+        "{a,b}",
+        "123456789012345678901234567890",
+        "-123456789012345678901234567890",
+        "-7",
+        "1.5e300",
+        "-2.25",
+        "f(- 1, -(1), a:b, (a:-b), (a,b), (a;b), '|'(a,b))",
+        "[1,2|T]",
+        "'\\n\\t\\\\'",
+        "'ünï'",
+        "f(X, Y, X)",
+    ] {
+        let src = format!("apply(echo(V), [{t}])");
+        let expected = {
+            let (v, _) = e.store.parse(t).unwrap();
+            e.store.writeq(v)
+        };
+        let got = run(&mut e, &src).unwrap();
+        assert_eq!(
+            got.replace(|c: char| c.is_ascii_digit(), ""),
+            expected.replace(|c: char| c.is_ascii_digit(), ""),
+            "{t}"
+        );
+    }
+    // Strings are SWI-6 code lists.
+    assert_eq!(run(&mut e, "apply(codes(V), [_])").unwrap(), "[97,98]");
+    // A caller's variable shared by arguments stays shared.
+    assert_eq!(
+        run(&mut e, "[apply(echo(V), [f(A, A)]), A]")
+            .unwrap()
+            .replace(|c: char| c.is_ascii_digit(), ""),
+        "[f(_G,_G),_G]"
+    );
+}
+
+#[test]
+fn failures_are_errors_naming_the_call() {
+    let mut e = env();
+    let err = run(&mut e, "apply(fails(X), [1])").unwrap_err();
+    assert!(err.contains("fails/1") && err.contains("failed"), "{err}");
+    let err = run(&mut e, "apply(throws(X), [1])").unwrap_err();
+    assert!(err.contains("throws/1") && err.contains("oops"), "{err}");
+    let err = run(&mut e, "apply(novalue(X), [1])").unwrap_err();
+    assert!(err.contains("assign_func_value"), "{err}");
+    let err = run(&mut e, "apply(loop(X), [1])").unwrap_err();
+    assert!(err.contains("inference limit"), "{err}");
+    let err = run(&mut e, "apply(missing(X), [1])").unwrap_err();
+    assert!(err.contains("no user function `missing/1`"), "{err}");
+    // The engine is still fine afterwards.
+    assert_eq!(run(&mut e, "apply(f(X), [monday])").unwrap(), "ok");
+}
+
+#[test]
+fn libraries_yield_to_application_definitions() {
+    let mut e = env();
+    assert_eq!(run(&mut e, "apply(sum(X), [[1,2,3]])").unwrap(), "6");
+    // The application's member/2 wins over library(lists).
+    assert_eq!(run(&mut e, "apply(mem(X), [a])").unwrap(), "no");
+    assert_eq!(run(&mut e, "apply(mem(X), [x])").unwrap(), "yes");
+}
+
+#[test]
+fn load_errors_have_positions() {
+    let errs = PrologFunctions::load(
+        &[PrologSource::new("uf.pl", "ok(1).\nbad(X :- .\n")],
+        PrologOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!(
+        (errs[0].file.as_str(), errs[0].line),
+        ("uf.pl", 2),
+        "{errs:?}"
+    );
+    let errs = PrologFunctions::load(
+        &[PrologSource::new("uf.pl", "ok(1).\n:- consult(nowhere).\n")],
+        PrologOptions::default(),
+    )
+    .unwrap_err();
+    assert!(
+        errs[0].line == 2 && errs[0].message.contains("nowhere"),
+        "{errs:?}"
+    );
+    // Errors of the engine itself: a failing directive, a clause it refuses.
+    let errs = PrologFunctions::load(
+        &[PrologSource::new(
+            "uf.pl",
+            "ok(1).\n:- fail.\nassign_func_value(_).\n",
+        )],
+        PrologOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!(errs.len(), 2, "{errs:?}");
+    assert!(
+        errs.iter()
+            .any(|e| e.line == 2 && e.message.contains("failed")),
+        "{errs:?}"
+    );
+    assert!(errs.iter().any(|e| e.line == 3), "{errs:?}");
+}
