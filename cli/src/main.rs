@@ -121,7 +121,7 @@ fn run(cli: Cli) -> u8 {
             file,
             updates,
             query,
-        } => match sitlog_kb::cli(&file, &updates, &query) {
+        } => match sitlog_kb::answer_line(&file, &updates, &query) {
             Ok(line) => write_stdout(&format!("{line}\n"), "the answer"),
             Err(e) => {
                 eprintln!("{e}");

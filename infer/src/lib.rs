@@ -17,6 +17,9 @@
 //!   on every problem small enough for that.
 //!
 //! Modules: [`diagnosis`] (§8.1), [`decision`] (§8.2), [`plan`] (§8.3).
+//! Each uses only [`Distances`] and [`Error`] (defined here), and
+//! [`decision`] also [`plan`] (a set of obligations costs what its best plan
+//! costs); nothing else uses another module.
 
 pub mod decision;
 pub mod diagnosis;

@@ -21,6 +21,10 @@
 //! then to the first in the order of [`Step`]. [`exhaustive`] is the
 //! authors' method (every permutation of B, sorted by cost), for
 //! comparison on small problems.
+//!
+//! Size: just over 800 lines, of which about 250 are its tests; the code
+//! (about 560 lines) is one job, the search and the problem it searches,
+//! and reads best whole.
 
 use crate::{Distances, Error};
 use std::collections::HashMap;

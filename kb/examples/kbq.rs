@@ -1,5 +1,5 @@
 //! `kbq KB [--do UPDATE]... QUERY`: the `sitlogc kb` convention as a small
-//! stand-alone tool (the lead wires the same [`sitlog_kb::cli`] into
+//! stand-alone tool (the lead wires the same [`sitlog_kb::answer_line`] into
 //! `sitlogc`). With `--cases FILE`, runs tab-separated lines
 //! `KB<TAB>QUERY[<TAB>UPDATE]...` and prints one output line per case
 //! (used for differential testing against the original). `--gen N DEPTH`
@@ -27,7 +27,7 @@ fn main() -> ExitCode {
                 continue;
             };
             let dos: Vec<String> = parts.map(str::to_owned).collect();
-            match sitlog_kb::cli(Path::new(kb), &dos, q) {
+            match sitlog_kb::answer_line(Path::new(kb), &dos, q) {
                 Ok(out) => println!("{out}"),
                 Err(e) => println!("error: {e}"),
             }
@@ -54,7 +54,7 @@ fn main() -> ExitCode {
         eprintln!("usage: kbq KB [--do UPDATE]... QUERY");
         return ExitCode::FAILURE;
     };
-    match sitlog_kb::cli(Path::new(kb), &dos, query) {
+    match sitlog_kb::answer_line(Path::new(kb), &dos, query) {
         Ok(out) => {
             println!("{out}");
             ExitCode::SUCCESS

@@ -3,7 +3,8 @@
 //! run. Owns the answer type, whose terms live on top of the KB's store.
 
 use crate::closure::{Budget, PE};
-use crate::model::{Kb, ARROW, NOT};
+use crate::entry::{ARROW, NOT};
+use crate::model::Kb;
 use crate::services::{service, Arg};
 use crate::store::{Built, TId};
 use crate::update::update_service;

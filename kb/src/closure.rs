@@ -7,10 +7,12 @@
 //! consequent whose value is bound at query time (`q=>'-'`) needs no new term
 //! in the shared store.
 //!
-//! Also owns the per-class cache: the closure of a class alone, reused for
-//! every individual whose own entries cannot change it (see [`Part::reusable`]).
+//! Also defines the per-class cache record ([`ClassCache`]: the closure of a
+//! class alone, reused for every individual whose own entries cannot change
+//! it, see [`Part::reusable`]); `class_cache` fills it for a `Kb`. This
+//! module knows entries and the term store, not the `Kb`.
 
-use crate::model::{Entry, Kb, Known, ARROW, DEFAULT, NOT};
+use crate::entry::{key_bit, term_key, Entry, Known, ARROW, DEFAULT, NOT};
 use crate::store::{TId, TermStore};
 use std::cell::Cell;
 use std::collections::HashMap;
@@ -36,20 +38,6 @@ type Emit<'k> = &'k mut dyn FnMut(Option<PE>) -> Step;
 
 /// Steps (firings tried) allowed for one closure.
 pub(crate) const STEP_LIMIT: u64 = 5_000_000;
-
-/// The attribute a term is about: `p` for `p=>v` and `not(p=>v)`, `a` for
-/// `a` and `not(a)`.
-pub(crate) fn term_key(s: &TermStore, mut t: TId) -> TId {
-    loop {
-        if let Some(inner) = s.unary(t, NOT) {
-            t = inner;
-        } else if let Some((p, _)) = s.binary(t, ARROW) {
-            return p;
-        } else {
-            return t;
-        }
-    }
-}
 
 /// A conditional default `Ant=>>Cons`.
 #[derive(Clone, Copy, Debug)]
@@ -590,7 +578,7 @@ pub(crate) struct Part {
     pub ant_keys: Vec<TId>,
     /// `ant_keys` plus the consequents' keys (for explanations).
     pub all_keys: Vec<TId>,
-    /// `ant_keys` as a bloom set (see `model::key_bit`).
+    /// `ant_keys` as a bloom set (see `entry::key_bit`).
     pub ant_bloom: u64,
     pub closure: Result<Closure, Budget>,
 }
@@ -617,9 +605,7 @@ impl Part {
             derived: p[hidden_abs.len()..].to_vec(),
             hidden_abs,
         });
-        let ant_bloom = ant_keys
-            .iter()
-            .fold(0, |b, &k| b | crate::model::key_bit(k));
+        let ant_bloom = ant_keys.iter().fold(0, |b, &k| b | key_bit(k));
         Part {
             ant_bloom,
             rules,
@@ -648,87 +634,6 @@ pub(crate) struct ClassCache {
     /// Properties and relations together (explanations).
     pub all: Part,
     pub expl: Result<std::sync::Arc<Vec<(PE, PE)>>, Budget>,
-}
-
-impl Kb {
-    pub(crate) fn ctx(&self) -> Ctx<'_> {
-        Ctx::new(&self.store, self.k)
-    }
-
-    pub(crate) fn chain(&self, c: u32) -> Vec<u32> {
-        let mut v = vec![c];
-        let mut cur = c;
-        while let Some(m) = self.mother_ix.get(cur as usize).copied().flatten() {
-            if v.len() > self.classes.len() {
-                break;
-            }
-            v.push(m);
-            cur = m;
-        }
-        v
-    }
-
-    pub(crate) fn cache(&self, c: u32) -> std::sync::Arc<ClassCache> {
-        self.caches[c as usize]
-            .get_or_init(|| std::sync::Arc::new(self.compute_cache(c)))
-            .clone()
-    }
-
-    fn compute_cache(&self, c: u32) -> ClassCache {
-        let ctx = self.ctx();
-        let chain = self.chain(c);
-        let props = self.build_part(&ctx, &[], &chain, Kind::Props);
-        let rels = self.build_part(&ctx, &[], &chain, Kind::Rels);
-        let all = self.build_part(&ctx, &[], &chain, Kind::Both);
-        let expl = all
-            .closure
-            .as_ref()
-            .map(|cl| std::sync::Arc::new(ctx.abduce(&all.rules, cl.pre())))
-            .map_err(|b| *b);
-        ClassCache {
-            chain,
-            props,
-            rels,
-            all,
-            expl,
-        }
-    }
-
-    /// The part of `kind` for an individual's own entries (may be empty)
-    /// in front of a class chain.
-    pub(crate) fn build_part(
-        &self,
-        ctx: &Ctx<'_>,
-        own: &[&[Entry]],
-        chain: &[u32],
-        kind: Kind,
-    ) -> Part {
-        let s = &self.store;
-        let mut abs = Vec::new();
-        let mut rules = Vec::new();
-        let level = |entries: &[&[Entry]], abs: &mut Vec<PE>, rules: &mut Vec<Rule>| {
-            let both: Vec<Entry>;
-            let flat: &[Entry] = if entries.len() == 1 {
-                entries[0]
-            } else {
-                both = entries.iter().flat_map(|e| e.iter().cloned()).collect();
-                &both
-            };
-            abs.extend(flat.iter().filter(|e| e.abs).map(|e| ctx.pe(e.term)));
-            level_rules(s, flat, rules);
-        };
-        level(own, &mut abs, &mut rules);
-        for &ci in chain {
-            let cl = &self.classes[ci as usize];
-            let entries: Vec<&[Entry]> = match kind {
-                Kind::Props => vec![&cl.props],
-                Kind::Rels => vec![&cl.rels],
-                Kind::Both => vec![&cl.props, &cl.rels],
-            };
-            level(&entries, &mut abs, &mut rules);
-        }
-        Part::new(ctx, abs, rules)
-    }
 }
 
 /// Which lists a closure is over.

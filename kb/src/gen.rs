@@ -4,13 +4,14 @@
 //! `n` individuals on the leaves, a few percent of them with entries that
 //! defeat the per-class cache. Deterministic: same arguments, same KB.
 
-use crate::model::{new_entry, Class, Entry, Ind, Kb, ARROW, DEFAULT, NOT};
+use crate::entry::{new_entry, term_key, Entry, Known, ARROW, DEFAULT, NOT};
+use crate::model::{Class, Ind, Kb};
 use crate::store::{TId, TermStore};
 use sitlog_syntax::Atom;
 
 struct G<'a> {
     s: &'a mut TermStore,
-    k: crate::model::Known,
+    k: Known,
 }
 
 impl G<'_> {
@@ -36,7 +37,7 @@ impl G<'_> {
             Err(_) => {
                 let zero = self.s.int(0);
                 let pair = self.s.list(&[term, zero]);
-                let key = crate::closure::term_key(self.s, term);
+                let key = term_key(self.s, term);
                 Entry {
                     pair,
                     term,

@@ -10,10 +10,10 @@
 //! that a killed run left behind; the lock file itself stays (one empty
 //! file per KB, reused by every run).
 
-use crate::cli::line_col;
-use crate::model::{Kb, ModelError, ARROW};
+use crate::entry::ARROW;
+use crate::model::{Kb, ModelError};
 use crate::store::Built;
-use sitlog_syntax::{atoms, Atom, Clause};
+use sitlog_syntax::{atoms, line_col, Atom, Clause};
 use std::fmt;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};

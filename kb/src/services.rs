@@ -3,7 +3,8 @@
 //! and answers, plus the table that maps `name/arity` to each of them.
 
 use crate::closure::{Budget, Ctx, Kind, Part, PE};
-use crate::model::{Entry, Kb, ARROW, NOT};
+use crate::entry::{key_bit, Entry, ARROW, NOT};
+use crate::model::Kb;
 use crate::store::{Built, TId};
 use std::sync::Arc;
 
@@ -495,7 +496,7 @@ impl Kb {
             let value = match key {
                 Some(key) if reusable => {
                     let cl = part.closure.as_ref().map_err(|b| *b)?;
-                    let own_q: Vec<PE> = if own_bloom & crate::model::key_bit(key) == 0 {
+                    let own_q: Vec<PE> = if own_bloom & key_bit(key) == 0 {
                         Vec::new()
                     } else {
                         own.iter()

@@ -11,7 +11,8 @@
 //! individual, renaming onto an existing name, `rm_class(top)`, and
 //! `change_object_class` with a missing individual or class.
 
-use crate::model::{new_entry, Class, Entry, Ind, Kb, ARROW, NOT};
+use crate::entry::{new_entry, Entry, ARROW, NOT};
+use crate::model::{Class, Ind, Kb};
 use crate::store::TId;
 
 /// An update service: `name(Args...)` without the two KB arguments.

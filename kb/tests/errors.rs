@@ -1,6 +1,6 @@
 //! Malformed KBs, queries and updates: exact `sitlogc kb` error lines.
 mod common;
-use sitlog_kb::{cli, Kb};
+use sitlog_kb::{answer_line, Kb};
 use std::path::PathBuf;
 
 fn load_err(text: &str) -> String {
@@ -69,7 +69,7 @@ fn office() -> PathBuf {
 
 #[test]
 fn query_errors() {
-    let q = |s: &str| cli(&office(), &[], s).unwrap_err().to_string();
+    let q = |s: &str| answer_line(&office(), &[], s).unwrap_err().to_string();
     assert_eq!(
         q("object_property_value(tom, found_in)"),
         "<query>:1:1: error: unknown KB service object_property_value/2"
@@ -94,7 +94,7 @@ fn query_errors() {
 fn update_errors() {
     let d = |dos: &[&str]| {
         let dos: Vec<String> = dos.iter().map(|s| s.to_string()).collect();
-        cli(&office(), &dos, "property_extension(late, X)")
+        answer_line(&office(), &dos, "property_extension(late, X)")
             .unwrap_err()
             .to_string()
     };
@@ -107,7 +107,7 @@ fn update_errors() {
         "<do-2>:1:12: error: arguments other than the answer must not contain variables"
     );
     assert!(d(&["add_object(x, staff"]).starts_with("<do-1>:1:"));
-    let missing = cli(
+    let missing = answer_line(
         &PathBuf::from("/nonexistent/kb.kb"),
         &[],
         "class_extension(top, X)",

@@ -232,9 +232,9 @@ fn updates_that_would_corrupt_the_kb_fail() {
 }
 
 #[test]
-fn cli_stops_at_a_failing_update() {
+fn answer_line_stops_at_a_failing_update() {
     let path = common::data("updates.kb");
-    let out = sitlog_kb::cli(
+    let out = sitlog_kb::answer_line(
         &path,
         &["add_class(zz, nomother)".into(), "add_object(q, c)".into()],
         "class_extension(c, X)",

@@ -2,9 +2,12 @@
 //! robot. A robot with a camera and two hands, a user who talks and walks
 //! about, places joined by routes, shelves with objects on them, walls, and
 //! faults to test recovery. It knows nothing of SitLog: a bridge maps a
-//! robot program's actions and perceptions onto [`Sim`]. (It uses
-//! `sitlog-syntax` only for `decode`, the one place where every reader of
-//! sitlog-rs turns bytes into text.)
+//! robot program's actions and perceptions onto [`Sim`].
+//!
+//! **Invariant:** no SitLog crate is among its dependencies (see its
+//! `Cargo.toml`); its only input is the world file and the calls on [`Sim`].
+//! Even the world file's bytes are turned into text here (with the same
+//! rules and messages as the toolchain's other readers).
 //!
 //! What this crate owns and keeps:
 //! - [`World`] (module `world`): the world file, read with every error

@@ -1,6 +1,8 @@
 //! Decoding the bytes of a text file: the one place where every reader of
 //! sitlog-rs (DM and side files, KB files, scripts and typed input, Prolog
-//! user functions, world files) turns bytes into text.
+//! user functions, world files as `sitlogc` reads them) turns bytes into
+//! text. (The simulator, which depends on no SitLog crate, keeps a copy of
+//! these rules and messages for its own `World::load`.)
 //!
 //! Invariant: a file is accepted only as UTF-8 (a leading UTF-8 byte order
 //! mark is skipped); anything else is a [`DecodeError`] with the 1-based line

@@ -2,7 +2,7 @@
 //! turns the match into a [`Token`] and reports lexical errors precisely.
 
 use crate::atom::{atoms, Atom};
-use crate::read::SyntaxError;
+use crate::error::SyntaxError;
 use crate::term::Span;
 use pest::Parser;
 

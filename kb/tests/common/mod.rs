@@ -25,5 +25,5 @@ pub fn ask(kb: &str, dos: &[&str], query: &str) -> String {
 
 pub fn ask_file(file: &str, dos: &[&str], query: &str) -> String {
     let dos: Vec<String> = dos.iter().map(|s| s.to_string()).collect();
-    sitlog_kb::cli(&data(file), &dos, query).unwrap_or_else(|e| panic!("{e}"))
+    sitlog_kb::answer_line(&data(file), &dos, query).unwrap_or_else(|e| panic!("{e}"))
 }

@@ -1,0 +1,251 @@
+//! Everything that drives `layout-rs`: one DM laid out by the engine (on a
+//! thread of its own, given up after a time limit or a panic) and read back
+//! from the arrows it draws, and the boxes of the program's call graph
+//! placed by it (a grid when it cannot).
+
+use super::dm::{bounded, Local};
+use super::geometry::{label_lines, node_size, route_points, Cmd, Placed, Route, P};
+use crate::DmGraph;
+use layout::core::base::Orientation;
+use layout::core::color::Color;
+use layout::core::format::{ClipHandle, RenderBackend};
+use layout::core::geometry::Point;
+use layout::core::style::StyleAttr;
+use layout::std_shapes::shapes::{Arrow, Element, LineEndKind, ShapeKind};
+use layout::topo::layout::VisualGraph;
+use std::collections::HashMap;
+
+/// [`engine`] on a thread of its own, given up after `time` (the thread is
+/// left to finish on its own) or when the engine fails.
+pub(super) fn engine_within(
+    dm: &DmGraph,
+    optimize: bool,
+    time: std::time::Duration,
+) -> Result<Local, String> {
+    if time.is_zero() {
+        return Err("out of layout time".to_owned());
+    }
+    let (tx, rx) = std::sync::mpsc::channel();
+    let owned = dm.clone();
+    let spawned = std::thread::Builder::new()
+        .name("sitlog-graph-layout".to_owned())
+        .spawn(move || {
+            let r = std::panic::catch_unwind(|| engine(&owned, optimize));
+            let _ = tx.send(r.ok().flatten());
+        });
+    if spawned.is_err() {
+        return Err("no thread for the layout engine".to_owned());
+    }
+    match rx.recv_timeout(time) {
+        Ok(Some(l)) => Ok(l),
+        Ok(None) => Err("the layout engine could not place it".to_owned()),
+        Err(_) => Err("the layout engine took too long".to_owned()),
+    }
+}
+
+/// Records the arrows `layout-rs` draws (their properties are our edge indices).
+#[derive(Default)]
+struct Capture {
+    arrows: Vec<Captured>,
+}
+
+/// Edge index, path, whether the engine turned the edge around.
+type Captured = (usize, Vec<(Point, Point)>, bool);
+
+impl RenderBackend for Capture {
+    fn draw_rect(
+        &mut self,
+        _: Point,
+        _: Point,
+        _: &StyleAttr,
+        _: Option<String>,
+        _: Option<ClipHandle>,
+    ) {
+    }
+    fn draw_line(&mut self, _: Point, _: Point, _: &StyleAttr, _: Option<String>) {}
+    fn draw_circle(&mut self, _: Point, _: Point, _: &StyleAttr, _: Option<String>) {}
+    fn draw_text(&mut self, _: Point, _: &str, _: &StyleAttr) {}
+    fn draw_arrow(
+        &mut self,
+        path: &[(Point, Point)],
+        _: bool,
+        head: (bool, bool),
+        _: &StyleAttr,
+        properties: Option<String>,
+        _: &str,
+    ) {
+        if let Some(i) = properties.and_then(|p| p.parse().ok()) {
+            self.arrows.push((i, path.to_vec(), head.0 && !head.1));
+        }
+    }
+    fn create_clip(&mut self, _: Point, _: Point, _: usize) -> ClipHandle {
+        0
+    }
+}
+
+fn p(pt: Point) -> P {
+    P::new(pt.x, pt.y)
+}
+
+/// `layout-rs` on one DM; `None` when its output cannot be read back.
+fn engine(dm: &DmGraph, optimize: bool) -> Option<Local> {
+    let mut vg = VisualGraph::new(Orientation::TopToBottom);
+    let look = StyleAttr::new(Color::new(0), 1, None, 0, 7);
+    let mut handles = Vec::new();
+    let mut index: HashMap<&str, usize> = HashMap::new();
+    for (i, n) in dm.nodes.iter().enumerate() {
+        let (w, h) = node_size(n);
+        let el = Element::create(
+            ShapeKind::Circle(String::new()),
+            look.clone(),
+            Orientation::TopToBottom,
+            Point::new(w, h),
+        );
+        handles.push(vg.add_node(el));
+        index.insert(n.id.as_str(), i);
+    }
+    let first = handles.len();
+    for (i, e) in dm.edges.iter().enumerate() {
+        let (Some(&a), Some(&b)) = (index.get(e.from.as_str()), index.get(e.to.as_str())) else {
+            continue;
+        };
+        let text = label_lines(&e.label).join("\n");
+        let mut arrow = Arrow::simple(&text);
+        arrow.look = look.clone();
+        arrow.properties = Some(i.to_string());
+        arrow.end = LineEndKind::Arrow;
+        vg.add_edge(arrow, handles[a], handles[b]);
+    }
+    let mut cap = Capture::default();
+    vg.do_it(false, !optimize, false, &mut cap);
+    let mut nodes = Vec::new();
+    for (i, h) in handles.iter().enumerate() {
+        let pos = vg.pos(*h);
+        let (w, hh) = node_size(&dm.nodes[i]);
+        nodes.push(Placed {
+            center: p(pos.center()),
+            w,
+            h: hh,
+        });
+    }
+    // Label connectors, in creation order.
+    let mut connectors = Vec::new();
+    for h in vg.iter_nodes() {
+        if h.get_index() < first {
+            continue;
+        }
+        if let ShapeKind::Connector(Some(t)) = &vg.element(h).shape {
+            connectors.push((t.clone(), p(vg.pos(h).center())));
+        }
+    }
+    let mut routes = vec![Route::default(); dm.edges.len()];
+    for (i, path, reversed) in cap.arrows {
+        if path.len() < 2 || i >= routes.len() {
+            return None;
+        }
+        // As explicit cubic segments: start, then (c1, c2, end) each.
+        let start = p(path[0].0);
+        let mut segs = vec![(p(path[0].1), p(path[1].0), p(path[1].1))];
+        for q in &path[2..] {
+            let (_, c2, end) = *segs.last().unwrap_or(&(start, start, start));
+            // `S` reflects the previous second control point
+            let c1 = end.plus(end.minus(c2));
+            segs.push((c1, p(q.0), p(q.1)));
+        }
+        let mut cmds = Vec::new();
+        if reversed {
+            let last = segs.last().map_or(start, |s| s.2);
+            cmds.push(Cmd::M(last));
+            for (k, &(c1, c2, _)) in segs.iter().enumerate().rev() {
+                let to = if k == 0 { start } else { segs[k - 1].2 };
+                cmds.push(Cmd::C(c2, c1, to));
+            }
+        } else {
+            cmds.push(Cmd::M(start));
+            cmds.extend(segs.iter().map(|&(a, b, c)| Cmd::C(a, b, c)));
+        }
+        routes[i].path = cmds;
+    }
+    // Each label sits on a connector the edge's curve passes through: the
+    // nearest one with the same text.
+    let mut used = vec![false; connectors.len()];
+    for (i, e) in dm.edges.iter().enumerate() {
+        routes[i].label_lines = label_lines(&e.label);
+        if routes[i].path.is_empty() {
+            return None;
+        }
+        let text = routes[i].label_lines.join("\n");
+        if text.is_empty() {
+            continue;
+        }
+        let points = route_points(&routes[i].path);
+        let best = connectors
+            .iter()
+            .enumerate()
+            .filter(|(k, (t, _))| !used[*k] && *t == text)
+            .map(|(k, (_, at))| {
+                let d = points
+                    .iter()
+                    .map(|q| q.minus(*at).len())
+                    .fold(f64::MAX, f64::min);
+                (k, d)
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+        let (k, _) = best?;
+        used[k] = true;
+        routes[i].label_at = Some(connectors[k].1);
+    }
+    Some(bounded(dm, nodes, routes))
+}
+
+/// Places boxes of the given sizes with `layout-rs` (edges: calls); falls
+/// back to a row when it cannot.
+pub(super) fn place_boxes(boxes: &[(f64, f64)], pairs: &[(usize, usize)]) -> Vec<P> {
+    if boxes.is_empty() {
+        return Vec::new();
+    }
+    let run = || {
+        let mut vg = VisualGraph::new(Orientation::TopToBottom);
+        let look = StyleAttr::new(Color::new(0), 1, None, 0, 7);
+        let handles: Vec<_> = boxes
+            .iter()
+            .map(|&(w, h)| {
+                vg.add_node(Element::create(
+                    ShapeKind::Box(String::new()),
+                    look.clone(),
+                    Orientation::TopToBottom,
+                    Point::new(w, h),
+                ))
+            })
+            .collect();
+        for &(a, b) in pairs {
+            vg.add_edge(Arrow::simple(""), handles[a], handles[b]);
+        }
+        vg.do_it(false, false, false, &mut Capture::default());
+        handles
+            .iter()
+            .map(|h| p(vg.pos(*h).center()))
+            .collect::<Vec<_>>()
+    };
+    let grid = || {
+        // rows of about √n boxes
+        let per_row = (boxes.len() as f64).sqrt().ceil() as usize;
+        let (mut x, mut y, mut row_h) = (0.0, 0.0, 0.0f64);
+        let mut v = Vec::new();
+        for (i, &(w, h)) in boxes.iter().enumerate() {
+            if i > 0 && i % per_row == 0 {
+                y += row_h + 40.0;
+                x = 0.0;
+                row_h = 0.0;
+            }
+            v.push(P::new(x + w / 2.0, y + h / 2.0));
+            x += w + 40.0;
+            row_h = row_h.max(h);
+        }
+        v
+    };
+    if boxes.len() > 60 || pairs.len() > 150 {
+        return grid();
+    }
+    std::panic::catch_unwind(run).unwrap_or_else(|_| grid())
+}
