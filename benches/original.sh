@@ -55,7 +55,8 @@
 #   executable takes the same options. It is built once per workload into
 #   the work directory with `sitlogc build APP -o FILE --release`; when the
 #   build fails the column says n/a.
-# * Original: benches/original_driver.pl (ours) loads $SITLOG_HOME/src/init.pl,
+# * Original: the harness in tests/conformance/original/ (ours; driver.pl
+#   in mode count) loads $SITLOG_HOME/src/init.pl,
 #   asserts the facts of a test-mode start_init/0 and calls execute_md/8 for
 #   the main DM, input on stdin (/dev/null for the loops). As in any run of
 #   the original, the history is KEPT (there is no switch; execute_md/8
@@ -76,20 +77,11 @@ set -u
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/.." && pwd)
 
-if [ -z "${SITLOG_HOME:-}" ]; then
-    echo "skipped: SITLOG_HOME not set"
-    exit 0
-fi
-if ! command -v swipl >/dev/null 2>&1; then
-    echo "skipped: swipl not found"
-    exit 0
-fi
-if [ ! -f "$SITLOG_HOME/src/init.pl" ]; then
-    echo "skipped: $SITLOG_HOME/src/init.pl not found (is SITLOG_HOME a checkout of the original?)"
-    exit 0
-fi
-SITLOG_HOME=$(cd "$SITLOG_HOME" && pwd)
-export SITLOG_HOME
+# The harness shared with tests/conformance: original_available,
+# original_prepare, original_run (driver.pl in mode count).
+# shellcheck source=../tests/conformance/original/original.sh
+. "$root/tests/conformance/original/original.sh"
+original_available || exit 0
 
 sitlogc=${SITLOGC:-target/release/sitlogc}
 case "$sitlogc" in
@@ -116,7 +108,6 @@ orig_timeout=${ORIGINAL_TIMEOUT:-120}
 orig_stack=${ORIGINAL_STACK_LIMIT:-8g}
 orig_max=${ORIGINAL_MAX_TRANSITIONS:-20000}
 compiled=${BENCH_COMPILED:-1}
-driver="$here/original_driver.pl"
 
 if [ $# -gt 0 ]; then
     workloads=("$@")
@@ -178,42 +169,10 @@ prepare_ours() {
     cp -R "$app/." "$copy/"
 }
 
-# The original's copy: ours plus every side file the original opens, and a
-# models file (as tests/conformance/run.sh prepares one).
-prepare_original() {
-    local ours=$1 copy=$2
-    mkdir -p "$copy"
-    cp -R "$ours/." "$copy/"
-    if [ ! -f "$copy/models" ]; then
-        (cd "$copy" && find . -name '*.dm' | LC_ALL=C sort | sed "s|^\./||; s|.*|'&'.|") > "$copy/models"
-    fi
-    if [ ! -f "$copy/basic_actions.pl" ]; then
-        if [ -f "$SITLOG_HOME/apps/test_behaviors/basic_actions.pl" ]; then
-            cp "$SITLOG_HOME/apps/test_behaviors/basic_actions.pl" "$copy/basic_actions.pl"
-        else
-            : > "$copy/basic_actions.pl"
-        fi
-    fi
-    local f
-    for f in expectation_types.pl global_vars.pl templates.pl user_functions.pl; do
-        [ -f "$copy/$f" ] || : > "$copy/$f"
-    done
-}
-
 # run_original COPY MAIN IN_ARG INPUT RESULT: one run of the original.
 run_original() {
-    local copy=$1 main=$2 in_arg=$3 input=$4 result=$5
-    rm -f "$result"
-    (cd "$copy" && timeout "$orig_timeout" swipl --stack-limit="$orig_stack" -q "$driver" \
-        "$copy" "$main" "$in_arg" models "$result" < "$input" > /dev/null 2>&1)
-    local rc=$?
-    if [ ! -s "$result" ]; then
-        if [ $rc -eq 124 ]; then
-            echo "0 0 timeout" > "$result"
-        else
-            echo "0 0 crash(rc=$rc)" > "$result"
-        fi
-    fi
+    original_run count "$1" "$2" "$3" "$4" "$5" /dev/null "$orig_timeout" \
+        --stack-limit="$orig_stack"
 }
 
 # best_original REPEAT COPY MAIN IN_ARG INPUT: "MIN JITTER" in ns over
@@ -277,7 +236,7 @@ for w in "${workloads[@]}"; do
     slot="$work/$w"
     prepare_ours "$app" "$slot/ours/$w" "$w"
     ours_app="$slot/ours/$w"
-    prepare_original "$ours_app" "$slot/orig"
+    original_prepare "$ours_app" "$slot/orig"
     orig_app="$slot/orig"
 
     exe=""

@@ -26,40 +26,18 @@
 //! `cargo bench -p sitlog-benches --bench compiled`; the ratios in
 //! docs/guide/performance.md come from one such run.
 
-use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::measurement::WallTime;
+use criterion::{
+    black_box, criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion, Throughput,
+};
 use sitlog_compiler::interp::Resolved;
 use sitlog_compiler::ir::Ir;
 use sitlog_runtime::machine::{Options, Outcome};
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
 use sitlog_runtime::{app, Functions, Store, Term};
-use std::alloc::{GlobalAlloc, Layout, System};
+use sitlog_tests::alloc::{self, Counting};
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Duration;
-
-/// Counts heap allocations (and reallocations) while [`COUNTING`] is set.
-struct Counting;
-
-static COUNTING: AtomicBool = AtomicBool::new(false);
-static ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if COUNTING.load(Ordering::Relaxed) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if COUNTING.load(Ordering::Relaxed) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        System.realloc(ptr, layout, new_size)
-    }
-}
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -68,15 +46,27 @@ static GLOBAL: Counting = Counting;
 /// allocations per transition, whole run included (start-up, the store's
 /// growth, garbage collections).
 fn allocations(label: &str, f: impl FnOnce() -> u64) {
-    ALLOCATIONS.store(0, Ordering::Relaxed);
-    COUNTING.store(true, Ordering::Relaxed);
-    let t = f();
-    COUNTING.store(false, Ordering::Relaxed);
-    let a = ALLOCATIONS.load(Ordering::Relaxed);
+    let (t, a) = alloc::count(f);
     println!(
         "allocations {label}: {a} in {t} transitions = {:.4} per transition",
         a as f64 / t.max(1) as f64
     );
+}
+
+/// A benchmark group of `samples` samples measured for `secs` seconds
+/// after one second of warm-up.
+fn group<'a>(
+    c: &'a mut Criterion,
+    name: &str,
+    samples: usize,
+    secs: u64,
+) -> BenchmarkGroup<'a, WallTime> {
+    let mut group = c.benchmark_group(name);
+    group
+        .sample_size(samples)
+        .measurement_time(Duration::from_secs(secs));
+    group.warm_up_time(Duration::from_secs(1));
+    group
 }
 
 mod counter_loop {
@@ -114,30 +104,49 @@ fn options(keep_history: bool) -> Options {
     }
 }
 
-/// Runs a program through the runtime's runner (both back ends share it).
-fn run<A: app::App>(
-    app: &A,
-    main: &str,
-    in_arg: Option<&str>,
-    script: &str,
+/// One run of a program: its main call, in_arg and script, and whether the
+/// history is kept.
+struct Workload<'a> {
+    main: &'a str,
+    in_arg: Option<&'a str>,
+    script: &'a str,
     keep_history: bool,
-    functions: Functions,
-) -> u64 {
-    let mut perception = ScriptPerception::new("script", script.to_owned());
-    let mut actions = TextActions::new(std::io::sink(), Vec::new());
-    let (outcome, _store): (Outcome, Store) = app::run(
-        app,
-        main,
-        in_arg,
-        options(keep_history),
-        functions,
-        &mut perception,
-        &mut actions,
-        None,
-    )
-    .expect("runs");
-    assert!(outcome.result.is_ok(), "{:?}", outcome.result);
-    outcome.transitions
+}
+
+impl Workload<'_> {
+    /// A run without history and without script.
+    fn plain(main: &str) -> Workload<'_> {
+        Workload {
+            main,
+            in_arg: None,
+            script: "",
+            keep_history: false,
+        }
+    }
+
+    /// Runs a program with the standard functions; its transitions.
+    fn run<A: app::App>(&self, app: &A) -> u64 {
+        self.run_with(app, Functions::standard())
+    }
+
+    /// Runs a program through the runtime's runner (both back ends share it).
+    fn run_with<A: app::App>(&self, app: &A, functions: Functions) -> u64 {
+        let mut perception = ScriptPerception::new("script", self.script.to_owned());
+        let mut actions = TextActions::new(std::io::sink(), Vec::new());
+        let (outcome, _store): (Outcome, Store) = app::run(
+            app,
+            self.main,
+            self.in_arg,
+            options(self.keep_history),
+            functions,
+            &mut perception,
+            &mut actions,
+            None,
+        )
+        .expect("runs");
+        assert!(outcome.result.is_ok(), "{:?}", outcome.result);
+        outcome.transitions
+    }
 }
 
 /// The hand-written floor for `counter_loop`: the same states, the same
@@ -294,8 +303,8 @@ fn hand_scripted_loop(script: &str) -> u64 {
 }
 
 /// One workload of size `n` on the three runners: compiled code and the
-/// interpreter on the same run (main call, in_arg, script; no history),
-/// and the hand-written floor, which must make as many transitions.
+/// interpreter on the same run (`w`, no history), and the hand-written
+/// floor, which must make as many transitions.
 #[allow(clippy::too_many_arguments)]
 fn three_ways(
     c: &mut Criterion,
@@ -304,17 +313,11 @@ fn three_ways(
     compiled: &impl app::App,
     untyped: &impl app::App,
     interpreted: &Ir,
-    main: &str,
-    in_arg: Option<&str>,
-    script: &str,
+    w: &Workload,
     hand: impl Fn() -> u64,
 ) {
-    let mut group = c.benchmark_group(name);
-    group
-        .sample_size(10)
-        .measurement_time(Duration::from_secs(3));
-    group.warm_up_time(Duration::from_secs(1));
-    let t = run(compiled, main, in_arg, script, false, Functions::standard());
+    let mut group = group(c, name, 10, 3);
+    let t = w.run(compiled);
     assert_eq!(
         t,
         hand(),
@@ -322,82 +325,23 @@ fn three_ways(
     );
     group.throughput(Throughput::Elements(t));
     let resolved = Resolved::new(interpreted);
-    let go =
-        |app: &dyn Fn() -> u64, variant: &str| allocations(&format!("{name}/{variant}/{n}"), app);
-    go(
-        &|| run(compiled, main, in_arg, script, false, Functions::standard()),
-        "compiled",
-    );
-    go(
-        &|| run(untyped, main, in_arg, script, false, Functions::standard()),
-        "compiled_untyped",
-    );
-    go(
-        &|| {
-            run(
-                &resolved,
-                main,
-                in_arg,
-                script,
-                false,
-                Functions::standard(),
-            )
-        },
-        "interpreter",
-    );
-    go(
-        &|| {
-            run(
-                interpreted,
-                main,
-                in_arg,
-                script,
-                false,
-                Functions::standard(),
-            )
-        },
-        "interpreter_templates",
-    );
-    go(&hand, "hand_written");
-    group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
-        b.iter(|| run(compiled, main, in_arg, script, false, Functions::standard()))
-    });
-    assert_eq!(
-        run(untyped, main, in_arg, script, false, Functions::standard()),
-        t
-    );
-    group.bench_with_input(BenchmarkId::new("compiled_untyped", n), &n, |b, _| {
-        b.iter(|| run(untyped, main, in_arg, script, false, Functions::standard()))
-    });
-    group.bench_with_input(BenchmarkId::new("interpreter", n), &n, |b, _| {
-        b.iter(|| {
-            run(
-                &resolved,
-                main,
-                in_arg,
-                script,
-                false,
-                Functions::standard(),
-            )
-        })
-    });
-    if n <= 10_000 {
-        group.bench_with_input(BenchmarkId::new("interpreter_templates", n), &n, |b, _| {
-            b.iter(|| {
-                run(
-                    interpreted,
-                    main,
-                    in_arg,
-                    script,
-                    false,
-                    Functions::standard(),
-                )
-            })
-        });
+    let variants: [(&str, &dyn Fn() -> u64); 5] = [
+        ("compiled", &|| w.run(compiled)),
+        ("compiled_untyped", &|| w.run(untyped)),
+        ("interpreter", &|| w.run(&resolved)),
+        ("interpreter_templates", &|| w.run(interpreted)),
+        ("hand_written", &hand),
+    ];
+    for (variant, f) in variants {
+        allocations(&format!("{name}/{variant}/{n}"), f);
     }
-    group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, _| {
-        b.iter(&hand)
-    });
+    assert_eq!(w.run(untyped), t);
+    for (variant, f) in variants {
+        if variant == "interpreter_templates" && n > 10_000 {
+            continue;
+        }
+        group.bench_with_input(BenchmarkId::new(variant, n), &n, |b, _| b.iter(f));
+    }
     group.finish();
 }
 
@@ -417,11 +361,7 @@ fn read_script(c: &mut Criterion, n: u64, script: &str) {
         terms
     };
     assert_eq!(read(), n + 1);
-    let mut group = c.benchmark_group("scripted_loop_parse");
-    group
-        .sample_size(10)
-        .measurement_time(Duration::from_secs(3));
-    group.warm_up_time(Duration::from_secs(1));
+    let mut group = group(c, "scripted_loop_parse", 10, 3);
     group.throughput(Throughput::Elements(n + 2));
     group.bench_with_input(BenchmarkId::new("read_script", n), &n, |b, _| b.iter(read));
     group.finish();
@@ -442,9 +382,7 @@ fn bench(c: &mut Criterion) {
             counter_loop::program(),
             counter_loop_untyped::program(),
             &counter_ir,
-            &main,
-            None,
-            "",
+            &Workload::plain(&main),
             || hand_counter_loop(black_box(max)),
         );
         three_ways(
@@ -454,9 +392,10 @@ fn bench(c: &mut Criterion) {
             pipe_calls::program(),
             pipe_calls_untyped::program(),
             &pipe_ir,
-            &main,
-            Some("0"),
-            "",
+            &Workload {
+                in_arg: Some("0"),
+                ..Workload::plain(&main)
+            },
             || hand_pipe_calls(black_box(max)),
         );
         let (_, script) = sitlog_benches::scripted_loop(n);
@@ -468,9 +407,10 @@ fn bench(c: &mut Criterion) {
             scripted_loop::program(),
             scripted_loop_untyped::program(),
             &scripted_ir,
-            "main",
-            None,
-            &script,
+            &Workload {
+                script: &script,
+                ..Workload::plain("main")
+            },
             || hand_scripted_loop(black_box(&script)),
         );
     }
@@ -480,23 +420,11 @@ fn bench(c: &mut Criterion) {
     {
         let n = 100_000_000u64;
         let main = format!("main({n})");
-        let mut group = c.benchmark_group("counter_loop");
-        group
-            .sample_size(10)
-            .measurement_time(Duration::from_secs(5));
-        group.warm_up_time(Duration::from_secs(1));
+        let w = Workload::plain(&main);
+        let mut group = group(c, "counter_loop", 10, 5);
         group.throughput(Throughput::Elements(n + 1));
         group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
-            b.iter(|| {
-                run(
-                    counter_loop::program(),
-                    &main,
-                    None,
-                    "",
-                    false,
-                    Functions::standard(),
-                )
-            })
+            b.iter(|| w.run(counter_loop::program()))
         });
         group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, _| {
             b.iter(|| hand_counter_loop(black_box(n as i64)))
@@ -514,17 +442,8 @@ fn bench(c: &mut Criterion) {
                     "counter_loop/{label}/{n}: one run, {t} transitions, {ns:.2} ns per transition"
                 );
             };
-            let untyped = || {
-                run(
-                    counter_loop_untyped::program(),
-                    &main,
-                    None,
-                    "",
-                    false,
-                    Functions::standard(),
-                )
-            };
-            let interp = || run(&resolved, &main, None, "", false, Functions::standard());
+            let untyped = || w.run(counter_loop_untyped::program());
+            let interp = || w.run(&resolved);
             once("compiled_untyped", &untyped);
             once("interpreter", &interp);
             allocations(&format!("counter_loop/compiled_untyped/{n}"), untyped);
@@ -538,11 +457,7 @@ fn bench(c: &mut Criterion) {
     // loop); the hand-written loop calls a `dyn FnMut(i64)` the same way.
     for n in [10_000u64, 1_000_000] {
         let main = format!("main({n})");
-        let mut group = c.benchmark_group("counter_loop_performed");
-        group
-            .sample_size(10)
-            .measurement_time(Duration::from_secs(3));
-        group.warm_up_time(Duration::from_secs(1));
+        let mut group = group(c, "counter_loop_performed", 10, 3);
         group.throughput(Throughput::Elements(n + 1));
         let t = run_performing(counter_loop::program(), &main);
         assert_eq!(t.1, n);
@@ -577,38 +492,23 @@ fn bench(c: &mut Criterion) {
         sitlog_tests::appendix_a_functions(&mut f);
         f
     };
-    let mut group = c.benchmark_group("appendix_a");
-    group
-        .sample_size(20)
-        .measurement_time(Duration::from_secs(3));
-    group.warm_up_time(Duration::from_secs(1));
-    let t = run(
-        appendix_a::program(),
-        "main",
-        None,
-        &script,
-        true,
-        functions(),
-    );
+    let w = Workload {
+        script: &script,
+        keep_history: true,
+        ..Workload::plain("main")
+    };
+    let mut group = group(c, "appendix_a", 20, 3);
+    let t = w.run_with(appendix_a::program(), functions());
     group.throughput(Throughput::Elements(t));
     group.bench_function("compiled", |b| {
-        b.iter(|| {
-            run(
-                appendix_a::program(),
-                "main",
-                None,
-                &script,
-                true,
-                functions(),
-            )
-        })
+        b.iter(|| w.run_with(appendix_a::program(), functions()))
     });
     let appendix_resolved = Resolved::new(&appendix_ir);
     group.bench_function("interpreter", |b| {
-        b.iter(|| run(&appendix_resolved, "main", None, &script, true, functions()))
+        b.iter(|| w.run_with(&appendix_resolved, functions()))
     });
     group.bench_function("interpreter_templates", |b| {
-        b.iter(|| run(&appendix_ir, "main", None, &script, true, functions()))
+        b.iter(|| w.run_with(&appendix_ir, functions()))
     });
     group.finish();
 }

@@ -26,6 +26,15 @@ fn bench_kb(c: &mut Criterion) {
     let one_general = q("object_property_value(o0, found_in, X)");
     let one_expl = q("explanation_of_individual(o2, X)");
     let one_props = q("properties_of_individual(o57, X)");
+    // The benchmarks of each size, in this order.
+    let queries = [
+        ("property_extension", &prop_ext),
+        ("explanation_extension", &expl_ext),
+        ("object_property_value/cached", &one_value),
+        ("object_property_value/own_closure", &one_general),
+        ("explanation_of_individual", &one_expl),
+        ("properties_of_individual", &one_props),
+    ];
 
     let mut group = c.benchmark_group("kb");
     group.sample_size(10);
@@ -39,34 +48,11 @@ fn bench_kb(c: &mut Criterion) {
         query(&kb, &prop_ext);
         let cold = t.elapsed();
         eprintln!("kb n={n}: generate {built:?}, first property_extension (cold caches) {cold:?}");
-        group.bench_with_input(BenchmarkId::new("property_extension", n), &kb, |b, kb| {
-            b.iter(|| black_box(query(kb, &prop_ext)))
-        });
-        group.bench_with_input(
-            BenchmarkId::new("explanation_extension", n),
-            &kb,
-            |b, kb| b.iter(|| black_box(query(kb, &expl_ext))),
-        );
-        group.bench_with_input(
-            BenchmarkId::new("object_property_value/cached", n),
-            &kb,
-            |b, kb| b.iter(|| black_box(query(kb, &one_value))),
-        );
-        group.bench_with_input(
-            BenchmarkId::new("object_property_value/own_closure", n),
-            &kb,
-            |b, kb| b.iter(|| black_box(query(kb, &one_general))),
-        );
-        group.bench_with_input(
-            BenchmarkId::new("explanation_of_individual", n),
-            &kb,
-            |b, kb| b.iter(|| black_box(query(kb, &one_expl))),
-        );
-        group.bench_with_input(
-            BenchmarkId::new("properties_of_individual", n),
-            &kb,
-            |b, kb| b.iter(|| black_box(query(kb, &one_props))),
-        );
+        for (name, clause) in &queries {
+            group.bench_with_input(BenchmarkId::new(*name, n), &kb, |b, kb| {
+                b.iter(|| black_box(query(kb, clause)))
+            });
+        }
     }
     group.finish();
 }

@@ -4,7 +4,8 @@
 %   swipl -q compare.pl REFERENCE.json CANDIDATE.json [KNOWN_PATH...]
 %
 % REFERENCE is the original interpreter's result as written by
-% original_to_json.pl; CANDIDATE is sitlogc's result (or an expected.json).
+% original/driver.pl (mode json); CANDIDATE is sitlogc's result (or an
+% expected.json).
 % Prints `agree` (exit 0) or `DIFFER: PATH: reference R vs candidate C`
 % naming the first difference that is not in the KNOWN_PATH list (exit 1).
 % Differences at known paths are counted and mentioned after `agree`.

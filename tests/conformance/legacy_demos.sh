@@ -33,9 +33,10 @@ skip() {
     echo "skipped: $*"
     exit 0
 }
-[ -n "${SITLOG_HOME:-}" ] || skip "SITLOG_HOME not set"
-[ -f "$SITLOG_HOME/src/init.pl" ] || skip "$SITLOG_HOME/src/init.pl not found (is SITLOG_HOME the original's tree?)"
-swipl=$(command -v swipl) || skip "swipl not found"
+# shellcheck source=original/original.sh
+. "$here/original/original.sh"
+original_available || exit 0
+swipl=$(command -v swipl)
 command -v python3 >/dev/null 2>&1 || skip "python3 not found"
 sitlogc=${SITLOGC:-target/release/sitlogc}
 case "$sitlogc" in

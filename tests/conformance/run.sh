@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Conformance check: run every application under dms/ that has a script.txt
 # through the original SitLog interpreter (test mode) and through sitlogc,
-# and compare the two results in our JSON convention.
+# and compare the two results in our JSON convention. The original runs
+# through the harness in original/ (original.sh, driver.pl in mode json).
 #
 # Environment:
 #   SITLOG_HOME  checkout of the original interpreter (required, else skip)
@@ -22,19 +23,9 @@ set -u
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
 
-if [ -z "${SITLOG_HOME:-}" ]; then
-    echo "skipped: SITLOG_HOME not set"
-    exit 0
-fi
-if ! command -v swipl >/dev/null 2>&1; then
-    echo "skipped: swipl not found"
-    exit 0
-fi
-if [ ! -f "$SITLOG_HOME/src/init.pl" ]; then
-    echo "skipped: $SITLOG_HOME/src/init.pl not found (is SITLOG_HOME a checkout of the original?)"
-    exit 0
-fi
-export SITLOG_HOME
+# shellcheck source=original/original.sh
+. "$here/original/original.sh"
+original_available || exit 0
 
 sitlogc=${SITLOGC:-target/release/sitlogc}
 case "$sitlogc" in
@@ -66,45 +57,6 @@ known_paths() {
     awk -v app="$app" '$0 !~ /^[ \t]*(#|$)/ && $1 == app { print $2 }' "$known_file"
 }
 
-# Prepare a copy of the application with every side file the original
-# opens, and a models file if the application has none.
-prepare_copy() {
-    local app=$1 copy=$2
-    mkdir -p "$copy"
-    cp -R "$app/." "$copy/"
-    if [ ! -f "$copy/models" ]; then
-        (cd "$copy" && find . -name '*.dm' | LC_ALL=C sort | sed "s|^\./||; s|.*|'&'.|") > "$copy/models"
-    fi
-    if [ ! -f "$copy/basic_actions.pl" ]; then
-        # The original's generic basic actions (screen, say, ...), read at
-        # run time from the checkout; without them actions are just ignored.
-        if [ -f "$SITLOG_HOME/apps/test_behaviors/basic_actions.pl" ]; then
-            cp "$SITLOG_HOME/apps/test_behaviors/basic_actions.pl" "$copy/basic_actions.pl"
-        else
-            : > "$copy/basic_actions.pl"
-        fi
-    fi
-    local f
-    for f in expectation_types.pl global_vars.pl templates.pl user_functions.pl; do
-        [ -f "$copy/$f" ] || : > "$copy/$f"
-    done
-}
-
-# Run the original on a prepared copy; writes $out (JSON).
-run_original() {
-    local copy=$1 script=$2 out=$3 log=$4
-    (cd "$copy" && timeout "$timeout_s" swipl -q "$here/original_to_json.pl" \
-        "$copy" main none models "$out" < "$script" > "$log" 2>&1)
-    local rc=$?
-    if [ ! -s "$out" ]; then
-        if [ $rc -eq 124 ]; then
-            printf '{"status":"error","error":"original timed out","history":[],"out_arg":null,"globals":{}}\n' > "$out"
-        else
-            printf '{"status":"error","error":"original crashed (rc %d)","history":[],"out_arg":null,"globals":{}}\n' "$rc" > "$out"
-        fi
-    fi
-}
-
 failures=0
 count=0
 if [ $# -gt 0 ]; then
@@ -121,8 +73,9 @@ for app in "${apps[@]}"; do
     count=$((count + 1))
     slot="$work/$count"
     mkdir -p "$slot"
-    prepare_copy "$app" "$slot/app"
-    run_original "$slot/app" "$app/script.txt" "$slot/original.json" "$slot/original.log"
+    original_prepare "$app" "$slot/app"
+    original_run json "$slot/app" main none "$app/script.txt" "$slot/original.json" \
+        "$slot/original.log" "$timeout_s"
     mapfile -t known < <(known_paths "$key")
 
     if [ $have_ours -eq 1 ]; then

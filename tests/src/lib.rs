@@ -1,6 +1,7 @@
 //! Helpers shared by the workspace integration tests in `tests/tests/`:
 //! running an example application in test mode and comparing results.
 
+pub mod alloc;
 pub mod compiled;
 #[path = "../gen/random_dm.rs"]
 pub mod random_dm;

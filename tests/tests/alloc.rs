@@ -7,39 +7,16 @@
 //! The same DM on the reference interpreter is measured too and printed
 //! (`cargo test --test alloc -- --nocapture`).
 
+use sitlog_runtime::app::{self, App};
 use sitlog_runtime::machine::{Actions, Options, Perceived, Perception};
 use sitlog_runtime::{Functions, Store, Term};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use sitlog_tests::alloc::{allocations, set_counting, Counting};
 
 mod ground_loop {
     sitlog_macros::include_dm!("dms/ground_loop");
 }
 mod typed_counter {
     sitlog_macros::include_dm!("dms/typed_counter");
-}
-
-struct Counting;
-
-static COUNTING: AtomicBool = AtomicBool::new(false);
-static ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if COUNTING.load(Ordering::Relaxed) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if COUNTING.load(Ordering::Relaxed) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        System.realloc(ptr, layout, new_size)
-    }
 }
 
 #[global_allocator]
@@ -69,9 +46,9 @@ impl Actions for Ticks {
         self.n += 1;
         let stats = store.stats();
         let cells = stats.cells + stats.vars;
-        let allocs = ALLOCATIONS.load(Ordering::SeqCst);
+        let allocs = allocations();
         if self.n == WARM_UP {
-            COUNTING.store(true, Ordering::SeqCst);
+            set_counting(true);
         } else if self.n > WARM_UP {
             let delta = allocs - self.last_allocs;
             if cells < self.last_cells {
@@ -84,7 +61,7 @@ impl Actions for Ticks {
         self.last_allocs = allocs;
         self.last_cells = cells;
         if self.n == WARM_UP + MEASURED {
-            COUNTING.store(false, Ordering::SeqCst);
+            set_counting(false);
             return Err("enough".into());
         }
         Ok(())
@@ -108,7 +85,8 @@ fn options() -> Options {
     }
 }
 
-fn measure(run: impl FnOnce(&mut Ticks)) -> Ticks {
+/// Runs `app` from `main` without input until [`Ticks`] stops it.
+fn measure<A: App>(app: &A) -> Ticks {
     let mut ticks = Ticks {
         n: 0,
         last_allocs: 0,
@@ -117,58 +95,33 @@ fn measure(run: impl FnOnce(&mut Ticks)) -> Ticks {
         collections: 0,
         gc_allocs: 0,
     };
-    run(&mut ticks);
+    let (outcome, _store) = app::run(
+        app,
+        "main",
+        None,
+        options(),
+        Functions::standard(),
+        &mut NoInput,
+        &mut ticks,
+        None,
+    )
+    .unwrap();
+    assert!(outcome.result.is_err());
     assert_eq!(ticks.n, WARM_UP + MEASURED);
     ticks
 }
 
-// Both measurements in one test: the counter is global to the process.
+// All measurements in one test: the counter is global to the process.
 #[test]
 fn transitions_allocate_nothing_in_steady_state() {
-    let compiled = measure(|ticks| {
-        let (outcome, _store) = ground_loop::run(
-            "main",
-            None,
-            options(),
-            Functions::standard(),
-            &mut NoInput,
-            ticks,
-            None,
-        )
-        .unwrap();
-        assert!(outcome.result.is_err());
-    });
+    // Compiled code (what the generated `run` runs).
+    let compiled = measure(ground_loop::program());
     // Typed code (issue 19): the counter is a native int, the store untouched.
-    let typed = measure(|ticks| {
-        let (outcome, _store) = typed_counter::run(
-            "main",
-            None,
-            options(),
-            Functions::standard(),
-            &mut NoInput,
-            ticks,
-            None,
-        )
-        .unwrap();
-        assert!(outcome.result.is_err());
-    });
+    let typed = measure(typed_counter::program());
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("dms/ground_loop");
     let (checked, _) = sitlog_compiler::check_path(&dir).unwrap();
     let ir = sitlog_compiler::ir::lower(&checked.ok().unwrap());
-    let interpreted = measure(|ticks| {
-        let (outcome, _store) = sitlog_runtime::app::run(
-            &ir,
-            "main",
-            None,
-            options(),
-            Functions::standard(),
-            &mut NoInput,
-            ticks,
-            None,
-        )
-        .unwrap();
-        assert!(outcome.result.is_err());
-    });
+    let interpreted = measure(&ir);
     for (name, t) in [
         ("compiled", &compiled),
         ("typed counter", &typed),
