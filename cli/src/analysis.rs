@@ -44,7 +44,8 @@ fn analyse(
 ) -> Result<(Program, Vec<sitlog_compiler::diag::Diagnostic>), String> {
     let root = program_root(file);
     load::with_overlay(overlay, || {
-        let (program, diags) = load::load(&root).map_err(|e| e.to_string())?;
+        let (program, diags) =
+            load::load_with(&root, crate::library::library()).map_err(|e| e.to_string())?;
         let options = sitlog_compiler::check::CheckOptions {
             world_functions: sitlog_robot::WORLD_FUNCTIONS,
             ..Default::default()

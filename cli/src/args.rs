@@ -58,6 +58,12 @@ pub enum Command {
         /// defined twice identically is a warning (W0203), not an error.
         #[arg(long)]
         legacy: bool,
+        /// Also say, on stderr, where each file named by a library name
+        /// (`'behaviors/say.dm'` in `models`) was read from: the
+        /// application's own copy, a directory of $SITLOG_LIBRARY, or the
+        /// library built into sitlogc.
+        #[arg(long)]
+        origins: bool,
     },
     /// Run an application: on its simulated world, or in test mode.
     ///
@@ -289,12 +295,20 @@ pub enum Command {
     /// speech situation and a recursive situation calling the DM
     /// `ask_name`), global_vars.pl, basic_actions.pl, user_functions.pl, a
     /// `models` file, a test-mode script, the golden output of running it
-    /// (`expected.txt`) and a README. Exit status: 0 when made, 2 when NAME
-    /// exists or cannot be written (nothing is changed then).
+    /// (`expected.txt`) and a README. With --robot, a task on the simulated
+    /// robot instead: a world file (a small map, shelves, objects, a user),
+    /// a KB, and DMs that fetch the object the user asks for with the
+    /// behaviour library built into sitlogc, its recovery protocols at
+    /// work; with the golden output of a run. Exit status: 0 when made, 2
+    /// when NAME exists or cannot be written (nothing is changed then).
     New {
         /// The application directory to make; its last component names the application.
         #[arg(value_name = "NAME")]
         name: PathBuf,
+        /// Make a task on the simulated robot (world, map, KB, the behaviour
+        /// library) instead of a test-mode speech task.
+        #[arg(long)]
+        robot: bool,
     },
 }
 

@@ -49,7 +49,8 @@ fn run(cli: Cli) -> u8 {
             deny_warnings,
             quiet,
             legacy,
-        } => check(&paths, format, deny_warnings, quiet, legacy),
+            origins,
+        } => check(&paths, format, deny_warnings, quiet, legacy, origins),
         Command::Run {
             app,
             run,
@@ -116,7 +117,7 @@ fn run(cli: Cli) -> u8 {
             format,
             trace,
         } => graph(&app, output, dm, main, format, trace),
-        Command::New { name } => new_app(&name),
+        Command::New { name, robot } => new_app(&name, robot),
         Command::Kb {
             file,
             updates,

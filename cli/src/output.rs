@@ -51,10 +51,14 @@ pub fn check_app(
     sitlog_compiler::check_path_opts(path, with_world(options))
 }
 
-/// `options` with the simulated robot's functions when it names none.
+/// `options` with the simulated robot's functions when it names none, and
+/// the behaviour library ([`crate::library`]) when it names none.
 pub fn with_world(mut options: CheckOptions) -> CheckOptions {
     if options.world_functions.is_empty() {
         options.world_functions = sitlog_robot::WORLD_FUNCTIONS;
+    }
+    if options.library.is_none() {
+        options.library = Some(crate::library::library());
     }
     options
 }

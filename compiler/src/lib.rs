@@ -53,6 +53,7 @@ pub fn check_path_opts(
     path: &Path,
     options: check::CheckOptions,
 ) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
-    let (program, diags) = load::load(path)?;
+    let library = options.library.unwrap_or(load::Library::none());
+    let (program, diags) = load::load_with(path, library)?;
     Ok(check::check_opts(program, diags, options))
 }

@@ -1,5 +1,6 @@
 //! `sitlogc check`: every problem of applications and DM files, as text
-//! on stderr or JSON lines on stdout.
+//! on stderr or JSON lines on stdout, and (`--origins`) where the files
+//! named by a library name came from.
 
 use crate::args::Format;
 use crate::output::color_stderr;
@@ -13,6 +14,7 @@ pub fn check(
     deny_warnings: bool,
     quiet: bool,
     legacy: bool,
+    origins: bool,
 ) -> u8 {
     let color = color_stderr();
     let mut errors = 0usize;
@@ -56,6 +58,11 @@ pub fn check(
             Ok(checked) => checked.program(),
             Err(program) => program,
         };
+        if origins {
+            for line in origin_lines(path, program) {
+                eprintln!("{line}");
+            }
+        }
         for d in &diags {
             match d.severity {
                 Severity::Error => errors += 1,
@@ -98,4 +105,24 @@ pub fn check(
     } else {
         0
     }
+}
+
+/// `--origins`: one line per file of `program` named by a library name,
+/// saying where it was read from.
+fn origin_lines(path: &std::path::Path, program: &sitlog_compiler::ast::Program) -> Vec<String> {
+    program
+        .library_files
+        .iter()
+        .map(|f| {
+            let shown = &program.sources.get(f.file).name;
+            let from = match (&f.root, &f.overrides) {
+                (Some(root), _) => format!("from {root} ({shown})"),
+                (None, Some(instead)) => {
+                    format!("from its own copy {shown} (instead of {instead})")
+                }
+                (None, None) => format!("from its own copy {shown}"),
+            };
+            format!("{} uses {} {from}", path.display(), f.name)
+        })
+        .collect()
 }

@@ -145,11 +145,13 @@ pub fn run_watched(
     options: sitlog_compiler::check::CheckOptions,
 ) -> u8 {
     use crate::watch::{ReloadAware, Watched};
-    let files: Vec<PathBuf> = match sitlog_compiler::load::load(app) {
+    let files: Vec<PathBuf> = match sitlog_compiler::load::load_with(app, crate::library::library())
+    {
         Ok((program, _)) => program
             .sources
             .files()
             .map(|(_, f)| f.path.clone())
+            .filter(|p| !p.starts_with(sitlog_compiler::load::EMBEDDED))
             .collect(),
         Err(e) => {
             eprintln!("error: cannot read {e}");

@@ -131,6 +131,10 @@ pub struct CheckOptions {
     /// Whether the KB services are functions of the run (`Some`), or as the
     /// application's files say (`None`: a `knowledge.kb` beside the DMs).
     pub kb: Option<bool>,
+    /// Where [`crate::check_path_opts`] looks up library names the
+    /// application has no copy of (`sitlogc` passes the behaviour library
+    /// built into it); `None`: nowhere.
+    pub library: Option<&'static crate::load::Library>,
 }
 
 /// [`check`] with [`CheckOptions`].
