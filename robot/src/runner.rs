@@ -249,9 +249,13 @@ impl Runner {
                         limits,
                         interrupt.as_ref(),
                         ended.clone().unwrap_or_default(),
+                        console.clone(),
                     ),
                 };
-                let actions = Box::new(TextActions::new(std::io::stderr(), app.basic_actions()));
+                let actions = Box::new(TextActions::new(
+                    crate::console::ConsoleStderr::new(console.clone()),
+                    app.basic_actions(),
+                ));
                 (perception, actions)
             }
         };
