@@ -310,6 +310,22 @@ pub enum Command {
         #[arg(long)]
         robot: bool,
     },
+    /// List the behaviour library, or print one of its files.
+    ///
+    /// An application names the library's files without a path
+    /// (`'behaviors/take.dm'.` in `models`, `:- consult('behaviors/language.pl').`):
+    /// they are read from the application's own copy if it has one, else
+    /// from the directories of $SITLOG_LIBRARY, else from the library built
+    /// into sitlogc. Without NAME, every file of the built-in library and
+    /// where it is read from; with NAME, the file's text on stdout (to make
+    /// a copy of your own: `sitlogc library behaviors/take.dm >
+    /// myapp/behaviors/take.dm`). Exit status: 0, or 2 when NAME is not in
+    /// the library.
+    Library {
+        /// A library file (`behaviors/take.dm`).
+        #[arg(value_name = "NAME")]
+        name: Option<String>,
+    },
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]

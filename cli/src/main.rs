@@ -118,6 +118,7 @@ fn run(cli: Cli) -> u8 {
             trace,
         } => graph(&app, output, dm, main, format, trace),
         Command::New { name, robot } => new_app(&name, robot),
+        Command::Library { name } => library(name.as_deref()),
         Command::Kb {
             file,
             updates,

@@ -17,6 +17,7 @@ mod new;
 mod prompt;
 mod reliability;
 mod run;
+mod tutorial;
 mod view;
 mod watch;
 mod watch_reload;
