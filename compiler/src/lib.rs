@@ -6,7 +6,8 @@
 //! Stages run one way, one module each:
 //! [`load`] (files → read terms, with [`source`] positions) → [`ast`] (the
 //! SitLog layer) → [`check`] (diagnostics, rendered by [`diag`]; produces
-//! [`check::Checked`], the only input later stages accept) → [`ir::lower`]
+//! [`check::Checked`], the only input later stages accept; [`codes`] lists
+//! every diagnostic code) → [`ir::lower`]
 //! → the back ends: [`interp`] (plans the runtime's machine runs, with
 //! [`instantiate`] the reference path from templates; [`run`] hands them to
 //! the one runner, `sitlog_runtime::app::run`), [`types`] + [`codegen`]
@@ -26,6 +27,7 @@ pub mod ast;
 pub mod build;
 pub mod check;
 pub mod codegen;
+pub mod codes;
 pub mod diag;
 pub mod diagram;
 pub mod instantiate;

@@ -1,6 +1,7 @@
 //! The tutorial (`docs/guide/tutorial.md`) is what `sitlogc` does: every
 //! fenced block of the page is checked against the files and a real run of
-//! the `sitlogc` under test, so the page cannot drift (issue 30).
+//! the `sitlogc` under test, so the page cannot drift (issue 30). The same
+//! markers check the examples of `docs/guide/language.md` that have one.
 //!
 //! - A `console` block is a terminal session: each `$ sitlogc ARGS` line is
 //!   run (in a scratch directory holding a copy of `dms/examples/tutorial`,
@@ -13,7 +14,8 @@
 //!   before it, `<!-- test` ... `-->`, one instruction per line:
 //!   `$ sitlogc ARGS` runs a command (as in a console block); `write FILE:
 //!   TEXT` and `replace FILE: OLD` with a line `by: NEW` after it (both
-//!   with `\n` for a line break) prepare files;
+//!   with `\n` for a line break; `write FILE: (the block above)` writes the
+//!   text of the block before this one) prepare files;
 //!   `fake cargo` stands a cargo in for `sitlogc build` that prints canned
 //!   progress and makes an empty executable (a real build takes minutes;
 //!   what `sitlogc` prints is real); and one `show WHAT` says what the
@@ -30,7 +32,7 @@ use crate::support::{sitlogc, workspace};
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 
-const PAGE: &str = "docs/guide/tutorial.md";
+const PAGE: &str = "tutorial.md";
 
 /// A fenced block of the page: its language, text, marker lines and the
 /// line where it starts.
@@ -107,6 +109,8 @@ fn words(line: &str) -> Vec<String> {
 struct Scratch {
     dir: tempfile::TempDir,
     cargo: Option<PathBuf>,
+    /// The text of the block above the one checked.
+    above: String,
 }
 
 impl Scratch {
@@ -119,7 +123,11 @@ impl Scratch {
             let p = entry.unwrap().path();
             std::fs::copy(&p, copy.join(p.file_name().unwrap())).unwrap();
         }
-        Scratch { dir, cargo: None }
+        Scratch {
+            dir,
+            cargo: None,
+            above: String::new(),
+        }
     }
 
     fn path(&self) -> &Path {
@@ -345,8 +353,15 @@ fn check_marked(block: &Block, scratch: &mut Scratch) -> Result<(), String> {
             );
         } else if let Some(rest) = line.strip_prefix("write ") {
             let (file, text) = rest.split_once(": ").ok_or("write FILE: TEXT")?;
-            std::fs::write(scratch.path().join(file), text.replace("\\n", "\n"))
-                .map_err(|e| e.to_string())?;
+            let text = match text {
+                "(the block above)" => scratch.above.clone(),
+                text => text.replace("\\n", "\n"),
+            };
+            let path = scratch.path().join(file);
+            if let Some(dir) = path.parent() {
+                std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
+            }
+            std::fs::write(path, text).map_err(|e| e.to_string())?;
         } else if let Some(rest) = line.strip_prefix("replace ") {
             let (file, old) = rest.split_once(": ").ok_or("replace FILE: OLD")?;
             let new = marker
@@ -426,15 +441,22 @@ fn check_marked(block: &Block, scratch: &mut Scratch) -> Result<(), String> {
     }
 }
 
-#[test]
-fn every_block_of_the_tutorial_is_what_sitlogc_does() {
-    let page = std::fs::read_to_string(workspace().join(PAGE)).unwrap();
-    let blocks = blocks(&page);
-    assert!(blocks.len() > 20, "{} blocks", blocks.len());
+/// Checks the blocks of `page` (below `docs/guide/`): every block, or
+/// (`all` false) those with a marker; the number of blocks checked.
+fn check_page(page: &str, all: bool) -> usize {
+    let text = std::fs::read_to_string(workspace().join("docs/guide").join(page)).unwrap();
+    let blocks = blocks(&text);
     let mut problems = Vec::new();
+    let mut checked = 0;
+    let mut above: Option<&Block> = None;
     for block in &blocks {
         let mut scratch = Scratch::new();
+        if let Some(above) = above {
+            scratch.above = above.text.clone();
+        }
+        above = Some(block);
         let result = match (block.lang.as_str(), block.marker.is_empty()) {
+            (_, true) if !all => continue,
             ("console", _) => {
                 check_marked_setup(block, &mut scratch).and_then(|_| check_console(block, &scratch))
             }
@@ -442,11 +464,29 @@ fn every_block_of_the_tutorial_is_what_sitlogc_does() {
             (_, true) => Err("no `<!-- test` marker says what this block is".to_owned()),
             (_, false) => check_marked(block, &mut scratch),
         };
+        checked += 1;
         if let Err(e) = result {
-            problems.push(format!("{PAGE}:{}: ```{}: {e}", block.line, block.lang));
+            problems.push(format!(
+                "docs/guide/{page}:{}: ```{}: {e}",
+                block.line, block.lang
+            ));
         }
     }
     assert!(problems.is_empty(), "\n{}", problems.join("\n\n"));
+    checked
+}
+
+#[test]
+fn every_block_of_the_tutorial_is_what_sitlogc_does() {
+    assert!(check_page(PAGE, true) > 20);
+}
+
+/// The language page's examples with a marker (the patterns of issue 30:
+/// list expectations, where DM parameters are visible, giving up after N
+/// misunderstandings) run as shown.
+#[test]
+fn the_marked_examples_of_the_language_page_run_as_shown() {
+    assert!(check_page("language.md", false) >= 3);
 }
 
 /// A console block's marker may prepare files and a fake cargo.
