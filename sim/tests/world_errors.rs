@@ -117,6 +117,8 @@ fn cases() -> Vec<(&'static str, String)> {
         ("an infinite size", with("size = [0.1, inf, 0.3]\n")),
         ("a zero speed", replace("at = \"a\"\n[user]", "at = \"a\"\nspeed = 0\n[user]")),
         ("a negative speed", replace("at = \"a\"\n[user]", "at = \"a\"\nspeed = -0.5\n[user]")),
+        ("a speed too slow to be physical", replace("at = \"a\"\n[user]", "at = \"a\"\nspeed = 1e-300\n[user]")),
+        ("a speed too fast to be physical", replace("at = \"a\"\n[user]", "at = \"a\"\nspeed = 1e6\n[user]")),
         ("a speed that is not a number", replace("at = \"a\"\n[user]", "at = \"a\"\nspeed = nan\n[user]")),
         ("a coordinate too far away", replace("x = 2", "x = 1e9")),
         ("an empty name", replace("name = \"noodles\"", "name = \"\"")),
