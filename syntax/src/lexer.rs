@@ -143,7 +143,7 @@ impl<'s> Lexer<'s> {
         // beyond ASCII that is neither layout nor a letter) is said here,
         // without the grammar: a failed pest parse costs the length of the
         // line, so a line of them cost its length squared.
-        if first < 0x20 || first >= 0x7F {
+        if !(0x20..0x7F).contains(&first) {
             let c = rest.chars().next().unwrap_or(' ');
             if c.is_control() || (!c.is_ascii() && !c.is_alphabetic()) {
                 let what = if c.is_control() {
