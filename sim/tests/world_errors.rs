@@ -282,3 +282,16 @@ proptest! {
         }
     }
 }
+
+/// A world of 20 000 shelves with an object each loads (issue 31: 100 000
+/// took 79 s, every shelf scanning every object; a quadratic step would keep
+/// this test running for hours). `benches/benches/world.rs` measures it.
+#[test]
+fn a_world_of_twenty_thousand_shelves_loads() {
+    let text = sitlog_sim::world::example::grid(20_000);
+    let w =
+        World::parse("big.toml", &text).unwrap_or_else(|e| panic!("{:?}", &e[..e.len().min(3)]));
+    assert_eq!(w.object_names().len(), 20_000);
+    assert_eq!(w.shelf_names().len(), 20_000);
+    assert_eq!(w.initial_shelf("o19999"), Some("s19999"));
+}
