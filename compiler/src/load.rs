@@ -67,7 +67,7 @@ pub struct Library {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct LibraryRoot {
     /// What it is, as `sitlogc check --origins` says it (`the library built
-    /// into sitlogc 0.1.0`, `$SITLOG_LIBRARY: /opt/lib`).
+    /// into sitlogc 0.1.0`, `$SITLOG_LIBRARY directory /opt/lib`).
     pub what: String,
     pub files: LibraryFiles,
 }
