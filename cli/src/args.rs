@@ -262,7 +262,12 @@ pub enum Command {
     /// diagnostics of `check` as you type, go to the definition of a DM,
     /// situation, global, basic action or user function, and hovers.
     /// Point your editor's LSP client at `sitlogc lsp` for `*.dm` files.
-    Lsp,
+    Lsp {
+        /// Largest message read from the editor (bytes, its `Content-Length`);
+        /// a longer one ends the session with an error (exit 2).
+        #[arg(long, value_name = "BYTES", default_value_t = sitlog_lsp::transport::DEFAULT_MAX_MESSAGE_BYTES)]
+        max_message_bytes: u64,
+    },
     /// Print a completion script for SHELL on stdout.
     ///
     /// For example `sitlogc completions bash > ~/.local/share/bash-completion/completions/sitlogc`,

@@ -104,13 +104,15 @@ fn run(cli: Cli) -> u8 {
                 build_app(&app, output, release, emit, allow_unresolved, debugger)
             }
         }
-        Command::Lsp => match sitlog_lsp::run_stdio(&sitlog_cli::analysis::Analysis) {
-            Ok(()) => 0,
-            Err(e) => {
-                eprintln!("error: sitlogc lsp: {e}");
-                2
+        Command::Lsp { max_message_bytes } => {
+            match sitlog_lsp::run_stdio(&sitlog_cli::analysis::Analysis, max_message_bytes) {
+                Ok(()) => 0,
+                Err(e) => {
+                    eprintln!("error: sitlogc lsp: {e}");
+                    2
+                }
             }
-        },
+        }
         Command::Graph {
             app,
             output,
