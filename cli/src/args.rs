@@ -20,6 +20,10 @@ pub struct Cli {
     /// NO_COLOR is unset or empty; `always`; `never`.
     #[arg(long, global = true, value_enum, value_name = "WHEN", default_value_t = ColorWhen::Auto)]
     pub color: ColorWhen,
+    /// Largest file read (a DM, side file, KB, world, script or trace, in
+    /// bytes): a larger one is an error naming the file and this option.
+    #[arg(long, global = true, value_name = "BYTES", default_value_t = sitlog_syntax::decode::DEFAULT_MAX_FILE_BYTES)]
+    pub max_file_bytes: u64,
     #[command(subcommand)]
     pub command: Command,
 }

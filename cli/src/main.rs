@@ -39,6 +39,7 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> u8 {
     let _ = COLOR.set(cli.color);
+    sitlog_syntax::decode::set_max_file_bytes(cli.max_file_bytes);
     match cli.command {
         Command::Completions { shell } => {
             let mut out = Vec::new();

@@ -23,8 +23,8 @@ impl Trace {
     /// Reads a trace file; `Err` is `FILE:LINE[:COL]: error: ...`.
     pub fn read(path: &Path) -> Result<Trace, String> {
         let name = path.display().to_string();
-        let bytes =
-            std::fs::read(path).map_err(|e| format!("error: cannot read trace {name}: {e}"))?;
+        let bytes = sitlog_syntax::read_file(path)
+            .map_err(|e| format!("error: cannot read trace {name}: {e}"))?;
         let text = String::from_utf8(bytes).map_err(|e| {
             let at = e.utf8_error().valid_up_to();
             let before = &e.as_bytes()[..at];

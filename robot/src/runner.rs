@@ -238,10 +238,9 @@ impl Runner {
                 let limits = args.input_limits();
                 let perception: Box<dyn Perception> = match (&args.script, debug_perception.take())
                 {
-                    (Some(path), debugger) => match TextFile::read(path, "script") {
-                        Ok(s) => {
-                            let script =
-                                Box::new(ScriptPerception::new(s.name, s.text).with_limits(limits));
+                    (Some(path), debugger) => match read_script(path) {
+                        Ok(script) => {
+                            let script = Box::new(script.with_limits(limits));
                             match debugger {
                                 Some(make) => make(Some(script)),
                                 None => script,
@@ -396,5 +395,27 @@ impl Runner {
         } else {
             0
         }
+    }
+}
+
+/// The script of `--script`: a regular file is read whole (so that text
+/// that is not UTF-8 is refused before the run starts); a pipe or device
+/// (`/dev/stdin`, a FIFO) is read as the task consumes it.
+fn read_script(path: &std::path::Path) -> Result<ScriptPerception, crate::assets::FileError> {
+    let regular = std::fs::metadata(path).map(|m| m.is_file()).unwrap_or(true);
+    if regular {
+        let s = TextFile::read(path, "script")?;
+        return Ok(ScriptPerception::new(s.name, s.text));
+    }
+    let name = path.display().to_string();
+    match std::fs::File::open(path) {
+        Ok(f) => Ok(ScriptPerception::from_reader(
+            name,
+            Box::new(std::io::BufReader::new(f)),
+        )),
+        Err(e) => Err(crate::assets::FileError {
+            status: 2,
+            message: format!("error: cannot read script {name}: {e}"),
+        }),
     }
 }

@@ -32,7 +32,11 @@ pub fn graph(
     let overlay = match &trace {
         None => None,
         Some(path) => {
-            let text = match std::fs::read_to_string(path) {
+            let text = match sitlog_syntax::read_file(path).and_then(|b| {
+                sitlog_syntax::decode_owned(b).map_err(|e| {
+                    std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string())
+                })
+            }) {
                 Ok(t) => t,
                 Err(e) => {
                     eprintln!("error: cannot read trace {}: {e}", path.display());

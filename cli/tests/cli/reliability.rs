@@ -604,3 +604,113 @@ fn an_output_naming_an_input_is_refused_naming_both_options() {
         b"[class(top,none,[],[],[])].\n"
     );
 }
+
+// ------------------------------------------------------------ file sizes
+
+/// Every file read is capped (`--max-file-bytes`, 256 MiB by default): a
+/// larger or endless one (`/dev/zero`) is refused at once naming the file
+/// and the option, with the exit status of a file that cannot be read.
+#[test]
+fn files_over_the_limit_are_refused_naming_the_option() {
+    let dir = app("sizes", &[("main.dm", ECHO.as_bytes())]);
+    // small enough for the limit: its files are read, the run's are not
+    let tiny = app(
+        "sizes-tiny",
+        &[(
+            "main.dm",
+            b"diag_mod(main, [[id ==> fs, type ==> final]], []).\n",
+        )],
+    );
+    let kb = dir.join("k.kb");
+    std::fs::write(&kb, "class(object, top, [], [], []).\n".repeat(100)).unwrap();
+    let cases: Vec<(Vec<std::ffi::OsString>, &str)> = vec![
+        (vec!["check".into(), dir.clone().into()], "main.dm"),
+        (
+            vec!["kb".into(), kb.clone().into(), "objects_of(object)".into()],
+            "k.kb",
+        ),
+        (
+            vec![
+                "run".into(),
+                tiny.clone().into(),
+                "--script".into(),
+                "/dev/zero".into(),
+            ],
+            "/dev/zero",
+        ),
+        (
+            vec![
+                "run".into(),
+                tiny.clone().into(),
+                "--world".into(),
+                "/dev/zero".into(),
+            ],
+            "/dev/zero",
+        ),
+        (vec!["replay".into(), "/dev/zero".into()], "/dev/zero"),
+    ];
+    for (args, file) in cases {
+        let start = Instant::now();
+        let out = sitlogc()
+            .args(["--max-file-bytes", "100"])
+            .args(&args)
+            .stdin(Stdio::null())
+            .output()
+            .unwrap();
+        let err = stderr(&out);
+        assert!(start.elapsed() < Duration::from_secs(60), "{args:?}");
+        assert!(matches!(out.status.code(), Some(1 | 2)), "{args:?}: {err}");
+        assert!(err.contains("--max-file-bytes"), "{args:?}: {err}");
+        assert!(err.contains(file), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+    // under the default, the same files are read
+    let out = sitlogc()
+        .args(["kb"])
+        .arg(&kb)
+        .arg("objects_of(object)")
+        .output()
+        .unwrap();
+    assert!(
+        !stderr(&out).contains("--max-file-bytes"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+/// A script from a pipe is read as the task consumes it: an endless
+/// `yes 'water.'` ends with the task, and the run prints what the same
+/// script from a file does.
+#[test]
+fn a_piped_script_is_read_term_by_term() {
+    use std::io::Write;
+    let app = example("tutorial");
+    let mut child = sitlogc()
+        .arg("run")
+        .arg(&app)
+        .args(["--script", "/dev/stdin", "-q"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || {
+        let chunk = "water.\n".repeat(1000);
+        // ends when the run closes its end of the pipe
+        while stdin.write_all(chunk.as_bytes()).is_ok() {}
+    });
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > Duration::from_secs(60) {
+            let _ = child.kill();
+            panic!("the run did not end with its task");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().unwrap();
+    writer.join().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("Out Arg: water"), "{text}");
+}
