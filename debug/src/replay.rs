@@ -342,6 +342,26 @@ impl Replay<'_> {
                 )
             }
             Command::Break(Some(spec)) => {
+                // the names the recording has: a breakpoint elsewhere never stops
+                let mut names: Vec<(String, Vec<String>)> = Vec::new();
+                for r in &self.trace.records {
+                    let dm = crate::record::name_of(&r.dm).to_owned();
+                    let i = match names.iter().position(|(n, _)| *n == dm) {
+                        Some(i) => i,
+                        None => {
+                            names.push((dm, Vec::new()));
+                            names.len() - 1
+                        }
+                    };
+                    let sit = crate::record::name_of(&r.situation).to_owned();
+                    if !names[i].1.contains(&sit) {
+                        names[i].1.push(sit);
+                    }
+                }
+                if let Some(problem) = crate::record::unknown_name(&names, &spec) {
+                    say!(self, "{problem} in this recording: no breakpoint set");
+                    return true;
+                }
                 self.next_break += 1;
                 say!(self, "breakpoint {}: {spec}", self.next_break);
                 self.breaks.push((self.next_break, spec));
