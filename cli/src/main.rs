@@ -31,7 +31,7 @@ fn main() -> ExitCode {
     match child.map(|h| h.join()) {
         Ok(Ok(code)) => ExitCode::from(code),
         _ => {
-            eprintln!("sitlogc: internal error");
+            sitlog_runtime::errln!("sitlogc: internal error");
             ExitCode::from(101)
         }
     }
@@ -109,7 +109,7 @@ fn run(cli: Cli) -> u8 {
             match sitlog_lsp::run_stdio(&sitlog_cli::analysis::Analysis, max_message_bytes) {
                 Ok(()) => 0,
                 Err(e) => {
-                    eprintln!("error: sitlogc lsp: {e}");
+                    sitlog_runtime::errln!("error: sitlogc lsp: {e}");
                     2
                 }
             }
@@ -130,7 +130,7 @@ fn run(cli: Cli) -> u8 {
         } => match sitlog_kb::answer_line(&file, &updates, &query) {
             Ok(line) => write_stdout(&format!("{line}\n"), "the answer"),
             Err(e) => {
-                eprintln!("{e}");
+                sitlog_runtime::errln!("{e}");
                 1
             }
         },

@@ -48,7 +48,7 @@ pub fn task_main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std:
         let source = match source {
             Ok(s) => s,
             Err(e) => {
-                eprintln!("{e}");
+                sitlog_runtime::errln!("{e}");
                 return 2;
             }
         };

@@ -256,7 +256,7 @@ impl Perception for ScriptPerception {
                     self.pos += end;
                     let t = Term::atom(Atom::intern(name));
                     if self.echo {
-                        eprintln!("input: {}", store.writeq(t));
+                        crate::errln!("input: {}", store.writeq(t));
                     }
                     return Ok(deliver(store, ty, t));
                 }
@@ -287,7 +287,7 @@ impl Perception for ScriptPerception {
                 self.pos = base + reader.position();
                 let (t, _) = store.from_clause(&clause);
                 if self.echo {
-                    eprintln!("input: {}", store.writeq(t));
+                    crate::errln!("input: {}", store.writeq(t));
                 }
                 Ok(deliver(store, ty, t))
             }

@@ -714,3 +714,44 @@ fn a_piped_script_is_read_term_by_term() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("Out Arg: water"), "{text}");
 }
+
+/// Diagnostics to a stderr that cannot be written (full, closed) never
+/// panic: each command still ends with its own exit status.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_stderr_that_cannot_be_written_changes_no_exit_status() {
+    let bad = app("errfull", &[("main.dm", b"diag_mod(main, [[id ==> is]], []).\n")]);
+    let good = example("countdown");
+    let cases: Vec<(Vec<std::ffi::OsString>, i32)> = vec![
+        (vec!["check".into(), bad.clone().into()], 1),
+        (vec!["run".into(), bad.clone().into()], 1),
+        (vec!["run".into(), "/no/such/app".into()], 2),
+        (
+            vec![
+                "run".into(),
+                good.clone().into(),
+                "--script".into(),
+                good.join("script.txt").into(),
+            ],
+            0,
+        ),
+        (vec!["replay".into(), "/no/such/trace".into()], 2),
+    ];
+    for (args, code) in cases {
+        for closed in [false, true] {
+            let mut cmd = sitlogc();
+            cmd.args(&args).stdout(Stdio::null());
+            if closed {
+                // the read end of a pipe dropped at once: writes fail (EPIPE)
+                cmd.stderr(Stdio::piped());
+                let mut child = cmd.spawn().unwrap();
+                drop(child.stderr.take());
+                let status = child.wait().unwrap();
+                assert_eq!(status.code(), Some(code), "{args:?} closed");
+            } else {
+                let out = cmd.stderr(dev_full()).output().unwrap();
+                assert_eq!(out.status.code(), Some(code), "{args:?} full");
+            }
+        }
+    }
+}
