@@ -65,10 +65,12 @@ impl Runner {
     /// A signal stops the task at its next transition: the report (status
     /// `interrupted`) is still printed and the trace closed; the exit
     /// status is then 130 (SIGINT) or 143 (SIGTERM). A second signal ends
-    /// the process at once. The end of typed input (Ctrl-D at the prompt)
+    /// the process at once, and so does the first before the task starts
+    /// (while files open, a FIFO waits for its writer or the live view for
+    /// its page). The end of typed input (Ctrl-D at the prompt)
     /// stops it the same way, with exit status 3 ([`crate::prompt`]).
     pub fn process() -> Runner {
-        Runner::new(Streams::process()).interrupt(Interrupt::install())
+        Runner::new(Streams::process()).interrupt(Interrupt::install_before_start())
     }
 
     /// Stops the run between transitions when `interrupt` is set.
@@ -299,6 +301,11 @@ impl Runner {
         };
         functions.set_call_limits(args.call_limits());
 
+        // every file is open: from here a signal stops the task between
+        // transitions
+        if let Some(i) = &interrupt {
+            i.started();
+        }
         let result = run(
             app,
             &args.main,

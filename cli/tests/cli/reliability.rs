@@ -720,7 +720,10 @@ fn a_piped_script_is_read_term_by_term() {
 #[cfg(target_os = "linux")]
 #[test]
 fn a_stderr_that_cannot_be_written_changes_no_exit_status() {
-    let bad = app("errfull", &[("main.dm", b"diag_mod(main, [[id ==> is]], []).\n")]);
+    let bad = app(
+        "errfull",
+        &[("main.dm", b"diag_mod(main, [[id ==> is]], []).\n")],
+    );
     let good = example("countdown");
     let cases: Vec<(Vec<std::ffi::OsString>, i32)> = vec![
         (vec!["check".into(), bad.clone().into()], 1),
@@ -753,5 +756,80 @@ fn a_stderr_that_cannot_be_written_changes_no_exit_status() {
                 assert_eq!(out.status.code(), Some(code), "{args:?} full");
             }
         }
+    }
+}
+
+/// Whether process `pid` has a thread blocked opening a FIFO and its
+/// signal thread running.
+#[cfg(target_os = "linux")]
+fn waits_on_a_fifo(pid: u32) -> bool {
+    let Ok(tasks) = std::fs::read_dir(format!("/proc/{pid}/task")) else {
+        return false;
+    };
+    let (mut fifo, mut signals) = (false, false);
+    for t in tasks.flatten() {
+        let read = |f: &str| std::fs::read_to_string(t.path().join(f)).unwrap_or_default();
+        fifo |= read("wchan").contains("wait_for_partner");
+        signals |= read("comm").starts_with("sitlog-signals");
+    }
+    fifo && signals
+}
+
+/// The first SIGTERM ends a run blocked before its task starts (a FIFO
+/// with no writer for --kb, --script, --world or --trace; the live view
+/// waiting for its page) with the documented status.
+#[cfg(target_os = "linux")]
+#[test]
+fn the_first_signal_ends_a_run_that_has_not_started() {
+    let app = example("tutorial");
+    let dir = temp("fifo");
+    let fifo = dir.join("f");
+    assert!(std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success());
+    for opt in ["--kb", "--script", "--world", "--trace", "--view"] {
+        let mut cmd = sitlogc();
+        cmd.arg("run").arg(&app).arg(opt);
+        if opt == "--view" {
+            cmd.args(["--view-port", "0"]);
+        } else {
+            cmd.arg(&fifo);
+        }
+        let mut child = cmd
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let start = Instant::now();
+        let mut err = child.stderr.take().unwrap();
+        if opt == "--view" {
+            // the line that says where the page is comes once it waits
+            use std::io::BufRead;
+            let mut line = String::new();
+            std::io::BufReader::new(&mut err)
+                .read_line(&mut line)
+                .unwrap();
+            assert!(line.contains("live view at"), "{line}");
+        } else {
+            while !waits_on_a_fifo(child.id()) {
+                assert!(
+                    start.elapsed() < Duration::from_secs(60),
+                    "{opt}: never blocked"
+                );
+                std::thread::sleep(Duration::from_millis(20));
+            }
+        }
+        kill(child.id(), "TERM");
+        while child.try_wait().unwrap().is_none() {
+            if start.elapsed() > Duration::from_secs(60) {
+                let _ = child.kill();
+                panic!("{opt}: still running after SIGTERM");
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        assert_eq!(child.wait().unwrap().code(), Some(143), "{opt}");
     }
 }
