@@ -20,6 +20,10 @@ pub struct Cli {
     /// NO_COLOR is unset or empty; `always`; `never`.
     #[arg(long, global = true, value_enum, value_name = "WHEN", default_value_t = ColorWhen::Auto)]
     pub color: ColorWhen,
+    /// Largest file read (a DM, side file, KB, world, script or trace, in
+    /// bytes): a larger one is an error naming the file and this option.
+    #[arg(long, global = true, value_name = "BYTES", default_value_t = sitlog_syntax::decode::DEFAULT_MAX_FILE_BYTES)]
+    pub max_file_bytes: u64,
     #[command(subcommand)]
     pub command: Command,
 }
@@ -268,7 +272,12 @@ pub enum Command {
     /// diagnostics of `check` as you type, go to the definition of a DM,
     /// situation, global, basic action or user function, and hovers.
     /// Point your editor's LSP client at `sitlogc lsp` for `*.dm` files.
-    Lsp,
+    Lsp {
+        /// Largest message read from the editor (bytes, its `Content-Length`);
+        /// a longer one ends the session with an error (exit 2).
+        #[arg(long, value_name = "BYTES", default_value_t = sitlog_lsp::transport::DEFAULT_MAX_MESSAGE_BYTES)]
+        max_message_bytes: u64,
+    },
     /// Print a completion script for SHELL on stdout.
     ///
     /// For example `sitlogc completions bash > ~/.local/share/bash-completion/completions/sitlogc`,

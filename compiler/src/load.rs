@@ -520,7 +520,7 @@ fn read_bytes(path: &Path) -> io::Result<Vec<u8>> {
     });
     match over {
         Some(text) => Ok(text.into_bytes()),
-        None => std::fs::read(path),
+        None => sitlog_syntax::read_file(path),
     }
 }
 

@@ -72,6 +72,8 @@ struct Live {
     limits: InputLimits,
     /// Set by Ctrl-C (interactive sessions): stop at the next transition.
     interrupt: Option<Arc<AtomicBool>>,
+    /// The program's DMs and their situations' names (empty: unknown).
+    names: Vec<(String, Vec<String>)>,
 }
 
 macro_rules! say {
@@ -170,6 +172,10 @@ impl Live {
                 None
             }
             Command::Break(Some(spec)) => {
+                if let Some(problem) = crate::record::unknown_name(&self.names, &spec) {
+                    say!(self, "{problem}: no breakpoint set");
+                    return None;
+                }
                 self.next_break += 1;
                 say!(self, "breakpoint {}: {spec}", self.next_break);
                 self.breaks.push((self.next_break, spec));
@@ -474,6 +480,7 @@ pub fn debug<A: App>(
         stop: stop.clone(),
         state: State::Running,
         limits: args.input_limits(),
+        names: app.names(),
     }));
     // Before the run: breakpoints, then `step`, `continue`...
     let started = {

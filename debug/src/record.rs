@@ -53,6 +53,63 @@ pub fn hits(spec: &crate::command::Spec, before: &[Record], r: &Record) -> bool 
     }
 }
 
+/// Why breakpoint `spec` can never stop in the program whose DMs and
+/// situation names are `names` (a name that is not there, with the
+/// closest one as "did you mean"); `None` when it can, or when `names`
+/// is empty (the program did not say).
+pub fn unknown_name(
+    names: &[(String, Vec<String>)],
+    spec: &crate::command::Spec,
+) -> Option<String> {
+    use crate::command::Spec;
+    if names.is_empty() {
+        return None;
+    }
+    let (dm, sit) = match spec {
+        Spec::Dm(dm) => (dm, None),
+        Spec::Situation(dm, sit) => (dm, Some(sit)),
+        Spec::Error => return None,
+    };
+    let unquote = |s: &str| -> String {
+        s.strip_prefix('\'')
+            .and_then(|s| s.strip_suffix('\''))
+            .unwrap_or(s)
+            .to_owned()
+    };
+    let dm_name = unquote(name_of(dm));
+    let dm_name = dm_name.as_str();
+    let Some((_, situations)) = names.iter().find(|(n, _)| *n == dm_name) else {
+        let hint = closest(dm_name, names.iter().map(|(n, _)| n.as_str()));
+        return Some(format!("there is no DM `{dm_name}`{hint}"));
+    };
+    let sit = sit?;
+    let sit_name = unquote(name_of(sit));
+    let sit_name = sit_name.as_str();
+    if situations.iter().any(|s| s == sit_name) {
+        return None;
+    }
+    let hint = closest(sit_name, situations.iter().map(String::as_str));
+    Some(format!(
+        "DM `{dm_name}` has no situation `{sit_name}`{hint}"
+    ))
+}
+
+/// ` (did you mean `NAME`?)` for the candidate closest to `target` when it
+/// is close enough to be a typo (edit distance at most a third of the
+/// length, or a shared start); empty otherwise.
+fn closest<'a>(target: &str, candidates: impl Iterator<Item = &'a str>) -> String {
+    let limit = (target.chars().count() / 3).max(1);
+    let best = candidates
+        .filter(|c| *c != target)
+        .map(|c| (strsim::osa_distance(target, c), c))
+        .filter(|(d, c)| *d <= limit || strsim::jaro_winkler(target, c) >= 0.9)
+        .min_by_key(|(d, _)| *d);
+    match best {
+        Some((_, c)) => format!(" (did you mean `{c}`?)"),
+        None => String::new(),
+    }
+}
+
 /// Whether `r` is the first transition of a call of its DM, given the
 /// transitions before it: going back, an earlier transition of the same
 /// depth comes before any of a lower one only within the same call.
@@ -131,5 +188,37 @@ mod tests {
         }
         assert!(hits(&Spec::Dm("ask(color)".into()), &[], &got));
         assert!(!hits(&Spec::Error, &[], &got));
+    }
+
+    #[test]
+    fn names_that_are_not_in_the_program_are_told_with_the_closest() {
+        use crate::command::Spec;
+        let names = vec![
+            ("main".to_owned(), vec!["is".to_owned(), "ask".to_owned()]),
+            ("greet".to_owned(), vec!["hello".to_owned()]),
+        ];
+        let dm = |d: &str| Spec::Dm(d.into());
+        let sit = |d: &str, s: &str| Spec::Situation(d.into(), s.into());
+        assert_eq!(unknown_name(&names, &dm("greet")), None);
+        assert_eq!(unknown_name(&names, &dm("greet(x)")), None);
+        assert_eq!(unknown_name(&names, &sit("main", "ask(1)")), None);
+        assert_eq!(
+            unknown_name(&names, &dm("gret")).as_deref(),
+            Some("there is no DM `gret` (did you mean `greet`?)")
+        );
+        assert_eq!(
+            unknown_name(&names, &sit("main", "aks")).as_deref(),
+            Some("DM `main` has no situation `aks` (did you mean `ask`?)")
+        );
+        assert_eq!(
+            unknown_name(&names, &dm("zzzzzz")).as_deref(),
+            Some("there is no DM `zzzzzz`")
+        );
+        assert_eq!(unknown_name(&[], &dm("x")), None);
+        let quoted = vec![("find it".to_owned(), vec!["look around".to_owned()])];
+        assert_eq!(
+            unknown_name(&quoted, &sit("'find it'", "'look around'")),
+            None
+        );
     }
 }

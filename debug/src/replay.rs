@@ -23,8 +23,8 @@ impl Trace {
     /// Reads a trace file; `Err` is `FILE:LINE[:COL]: error: ...`.
     pub fn read(path: &Path) -> Result<Trace, String> {
         let name = path.display().to_string();
-        let bytes =
-            std::fs::read(path).map_err(|e| format!("error: cannot read trace {name}: {e}"))?;
+        let bytes = sitlog_syntax::read_file(path)
+            .map_err(|e| format!("error: cannot read trace {name}: {e}"))?;
         let text = String::from_utf8(bytes).map_err(|e| {
             let at = e.utf8_error().valid_up_to();
             let before = &e.as_bytes()[..at];
@@ -342,6 +342,26 @@ impl Replay<'_> {
                 )
             }
             Command::Break(Some(spec)) => {
+                // the names the recording has: a breakpoint elsewhere never stops
+                let mut names: Vec<(String, Vec<String>)> = Vec::new();
+                for r in &self.trace.records {
+                    let dm = crate::record::name_of(&r.dm).to_owned();
+                    let i = match names.iter().position(|(n, _)| *n == dm) {
+                        Some(i) => i,
+                        None => {
+                            names.push((dm, Vec::new()));
+                            names.len() - 1
+                        }
+                    };
+                    let sit = crate::record::name_of(&r.situation).to_owned();
+                    if !names[i].1.contains(&sit) {
+                        names[i].1.push(sit);
+                    }
+                }
+                if let Some(problem) = crate::record::unknown_name(&names, &spec) {
+                    say!(self, "{problem} in this recording: no breakpoint set");
+                    return true;
+                }
                 self.next_break += 1;
                 say!(self, "breakpoint {}: {spec}", self.next_break);
                 self.breaks.push((self.next_break, spec));

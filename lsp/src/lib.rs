@@ -63,12 +63,17 @@ pub trait Analyzer {
     fn hover(&self, file: &Path, pos: Pos, overlay: &Overlay) -> Option<String>;
 }
 
-/// Serves on stdin/stdout until the client says `exit`.
-pub fn run_stdio(analyzer: &dyn Analyzer) -> Result<(), String> {
-    let (connection, threads) = Connection::stdio();
-    serve(&connection, analyzer)?;
+pub mod transport;
+
+/// Serves on stdin/stdout until the client says `exit`, reading messages
+/// of at most `max_message_bytes` (see [`transport`]).
+pub fn run_stdio(analyzer: &dyn Analyzer, max_message_bytes: u64) -> Result<(), String> {
+    let (connection, threads) = transport::stdio(max_message_bytes).map_err(|e| e.to_string())?;
+    let served = serve(&connection, analyzer);
     drop(connection);
-    threads.join().map_err(|e| e.to_string())
+    let read = threads.join().map_err(|e| e.to_string());
+    // a broken frame ends the session: its error says why
+    read.and(served)
 }
 
 fn capabilities() -> Value {

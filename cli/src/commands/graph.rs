@@ -25,24 +25,28 @@ pub fn graph(
     let diagram = match sitlog_compiler::diagram::diagram(&ir, &options) {
         Ok(d) => d,
         Err(e) => {
-            eprintln!("error: {e}");
+            sitlog_runtime::errln!("error: {e}");
             return 2;
         }
     };
     let overlay = match &trace {
         None => None,
         Some(path) => {
-            let text = match std::fs::read_to_string(path) {
+            let text = match sitlog_syntax::read_file(path).and_then(|b| {
+                sitlog_syntax::decode_owned(b).map_err(|e| {
+                    std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string())
+                })
+            }) {
                 Ok(t) => t,
                 Err(e) => {
-                    eprintln!("error: cannot read trace {}: {e}", path.display());
+                    sitlog_runtime::errln!("error: cannot read trace {}: {e}", path.display());
                     return 2;
                 }
             };
             match sitlog_graph::trace::read(&diagram, &text) {
                 Ok(o) => {
                     if o.unmatched > 0 {
-                        eprintln!(
+                        sitlog_runtime::errln!(
                             "note: {} of {} transitions of {} are not in this diagram",
                             o.unmatched,
                             o.transitions,
@@ -52,7 +56,7 @@ pub fn graph(
                     Some(o)
                 }
                 Err(e) => {
-                    eprintln!("error: {}: {e}", path.display());
+                    sitlog_runtime::errln!("error: {}: {e}", path.display());
                     return 2;
                 }
             }
@@ -64,19 +68,19 @@ pub fn graph(
         GraphFormat::Svg => {
             let layout = sitlog_graph::layout::layout(&diagram);
             for n in &layout.notes {
-                eprintln!("note: {n}");
+                sitlog_runtime::errln!("note: {n}");
             }
             sitlog_graph::svg::render(&diagram, &layout, overlay.as_ref())
         }
     };
     if trace.is_some() && format != GraphFormat::Svg {
-        eprintln!("note: --trace colours the SVG only");
+        sitlog_runtime::errln!("note: --trace colours the SVG only");
     }
     match output {
         Some(path) => match std::fs::write(&path, text) {
             Ok(()) => 0,
             Err(e) => {
-                eprintln!("error: cannot write {}: {e}", path.display());
+                sitlog_runtime::errln!("error: cannot write {}: {e}", path.display());
                 2
             }
         },
@@ -86,7 +90,7 @@ pub fn graph(
                 Ok(()) => 0,
                 Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => 0,
                 Err(e) => {
-                    eprintln!("error: cannot write the diagram: {e}");
+                    sitlog_runtime::errln!("error: cannot write the diagram: {e}");
                     2
                 }
             }

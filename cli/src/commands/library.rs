@@ -24,7 +24,7 @@ pub fn library(name: Option<&str>) -> u8 {
                 write_stdout(&String::from_utf8_lossy(&bytes), "the library file")
             }
             None => {
-                eprintln!(
+                sitlog_runtime::errln!(
                     "error: no file `{name}` in the library; `sitlogc library` lists its files"
                 );
                 2

@@ -13,19 +13,19 @@ pub fn new_app(dir: &std::path::Path, robot: bool) -> u8 {
     match crate::scaffold::create(dir, template) {
         Ok(files) => {
             let d = dir.display();
-            eprintln!("sitlogc: made the application {d} ({} files)", files.len());
-            eprintln!("  check it:  sitlogc check {d}");
+            sitlog_runtime::errln!("sitlogc: made the application {d} ({} files)", files.len());
+            sitlog_runtime::errln!("  check it:  sitlogc check {d}");
             if robot {
-                eprintln!("  run it:    sitlogc run {d}");
-                eprintln!("  test it:   sitlogc run {d} | diff {d}/expected.txt -");
+                sitlog_runtime::errln!("  run it:    sitlogc run {d}");
+                sitlog_runtime::errln!("  test it:   sitlogc run {d} | diff {d}/expected.txt -");
             } else {
-                eprintln!("  run it:    sitlogc run {d} --script {d}/script.txt");
-                eprintln!("  talk to it: sitlogc run {d}");
+                sitlog_runtime::errln!("  run it:    sitlogc run {d} --script {d}/script.txt");
+                sitlog_runtime::errln!("  talk to it: sitlogc run {d}");
             }
             0
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            sitlog_runtime::errln!("error: {e}");
             2
         }
     }

@@ -151,3 +151,64 @@ fn replay_and_diff_exit_codes() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).starts_with("error: cannot read trace "));
 }
+
+/// `break` on a DM or situation the program does not have says so, with
+/// the closest name, and sets nothing.
+#[test]
+fn a_breakpoint_on_a_name_not_in_the_program_is_refused() {
+    let commands = temp("unknown.txt");
+    std::fs::write(
+        &commands,
+        "break aks\nbreak ask:iz\nbreak ask:is\nbreak\nquit\n",
+    )
+    .unwrap();
+    let out = sitlogc()
+        .arg("debug")
+        .arg(app())
+        .arg("--script")
+        .arg(app().join("script.txt"))
+        .arg("--commands")
+        .arg(&commands)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        stdout.contains("there is no DM `aks` (did you mean `ask`?): no breakpoint set"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("DM `ask` has no situation `iz` (did you mean `is`?): no breakpoint set"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("breakpoint 1: ask:is"), "{stdout}");
+    assert!(!stdout.contains("breakpoint 2"), "{stdout}");
+}
+
+/// In a replay, a breakpoint on a name the recording never shows is
+/// refused the same way.
+#[test]
+fn a_replay_breakpoint_on_a_name_not_recorded_is_refused() {
+    let trace = temp("names.jsonl");
+    record(
+        &trace,
+        &std::fs::read_to_string(app().join("script.txt")).unwrap(),
+    );
+    let commands = temp("names.txt");
+    std::fs::write(&commands, "break aks\nbreak ask\n").unwrap();
+    let out = sitlogc()
+        .arg("replay")
+        .arg(&trace)
+        .arg("--commands")
+        .arg(&commands)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        stdout.contains(
+            "there is no DM `aks` (did you mean `ask`?) in this recording: no breakpoint set"
+        ),
+        "{stdout}"
+    );
+    assert!(stdout.contains("breakpoint 1: ask"), "{stdout}");
+}

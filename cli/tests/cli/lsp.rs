@@ -159,3 +159,37 @@ fn an_editor_session() {
     assert!(status.success());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A `Content-Length` beyond the limit ends the session at once with an
+/// error naming the length and the option (exit 2), before any allocation
+/// of that size; a frame that breaks off does too.
+#[test]
+fn a_message_over_the_limit_is_refused() {
+    for (header, expect) in [
+        (
+            "Content-Length: 1000000000000\r\n\r\n",
+            "1000000000000 bytes",
+        ),
+        ("Content-Length: 3000000000\r\n\r\n", "--max-message-bytes"),
+        (
+            "Content-Length: 10\r\n\r\n{",
+            "end of input after 1 of the 10 bytes",
+        ),
+    ] {
+        let mut child = sitlogc()
+            .arg("lsp")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut stdin = child.stdin.take().unwrap();
+        stdin.write_all(header.as_bytes()).unwrap();
+        drop(stdin);
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains(expect), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}

@@ -363,6 +363,9 @@ impl DmProgram for Resolved<'_> {
 }
 
 impl sitlog_runtime::app::App for Resolved<'_> {
+    fn names(&self) -> Vec<(String, Vec<String>)> {
+        self.ir.names()
+    }
     fn initial_state(&self) -> (Store, Vars) {
         self.ir.initial_state()
     }
