@@ -5,7 +5,7 @@
 
 use super::dm::{bounded, Local};
 use super::geometry::{label_lines, node_size, route_points, Cmd, Placed, Route, P};
-use crate::DmGraph;
+use crate::{DmGraph, NodeKind};
 use layout::core::base::Orientation;
 use layout::core::color::Color;
 use layout::core::format::{ClipHandle, RenderBackend};
@@ -20,6 +20,7 @@ use std::collections::HashMap;
 pub(super) fn engine_within(
     dm: &DmGraph,
     optimize: bool,
+    across: bool,
     time: std::time::Duration,
 ) -> Result<Local, String> {
     if time.is_zero() {
@@ -30,7 +31,7 @@ pub(super) fn engine_within(
     let spawned = std::thread::Builder::new()
         .name("sitlog-graph-layout".to_owned())
         .spawn(move || {
-            let r = std::panic::catch_unwind(|| engine(&owned, optimize));
+            let r = std::panic::catch_unwind(|| engine(&owned, optimize, across));
             let _ = tx.send(r.ok().flatten());
         });
     if spawned.is_err() {
@@ -87,20 +88,30 @@ fn p(pt: Point) -> P {
     P::new(pt.x, pt.y)
 }
 
-/// `layout-rs` on one DM; `None` when its output cannot be read back.
-fn engine(dm: &DmGraph, optimize: bool) -> Option<Local> {
-    let mut vg = VisualGraph::new(Orientation::TopToBottom);
+/// `layout-rs` on one DM (ranks top to bottom, or left to right
+/// `across`); `None` when its output cannot be read back.
+fn engine(dm: &DmGraph, optimize: bool, across: bool) -> Option<Local> {
+    let orientation = if across {
+        Orientation::LeftToRight
+    } else {
+        Orientation::TopToBottom
+    };
+    let mut vg = VisualGraph::new(orientation);
     let look = StyleAttr::new(Color::new(0), 1, None, 0, 7);
     let mut handles = Vec::new();
     let mut index: HashMap<&str, usize> = HashMap::new();
     for (i, n) in dm.nodes.iter().enumerate() {
         let (w, h) = node_size(n);
-        let el = Element::create(
-            ShapeKind::Circle(String::new()),
-            look.clone(),
-            Orientation::TopToBottom,
-            Point::new(w, h),
-        );
+        // boxes are clipped as boxes, so that arrows end at their edge
+        let shape = if matches!(
+            n.kind,
+            NodeKind::Dm | NodeKind::ExternalDm | NodeKind::OutArg
+        ) {
+            ShapeKind::Box(String::new())
+        } else {
+            ShapeKind::Circle(String::new())
+        };
+        let el = Element::create(shape, look.clone(), orientation, Point::new(w, h));
         handles.push(vg.add_node(el));
         index.insert(n.id.as_str(), i);
     }
@@ -199,7 +210,7 @@ fn engine(dm: &DmGraph, optimize: bool) -> Option<Local> {
 }
 
 /// Places boxes of the given sizes with `layout-rs` (edges: calls); falls
-/// back to a row when it cannot.
+/// back to a grid when it cannot.
 pub(super) fn place_boxes(boxes: &[(f64, f64)], pairs: &[(usize, usize)]) -> Vec<P> {
     if boxes.is_empty() {
         return Vec::new();
