@@ -242,7 +242,7 @@ impl<'p> Checker<'p> {
         }
         let declared = self.declared_actions();
         let outputs = |name: Atom, arity: usize, i: usize| match declared.get(&name) {
-            Some(Some(names)) => names.get(i).is_some_and(|n| n.as_str() == "status"),
+            Some(Some(names)) => names.get(i).is_some_and(|n| is_output_name(n.as_str())),
             _ => arity >= 2 && i == arity - 1,
         };
         for dm in &program.dms {
@@ -336,6 +336,13 @@ impl<'p> Checker<'p> {
         let program: &'p Program = self.program;
         did_you_mean(name.as_str(), program.dms.iter().map(|d| d.name.as_str()))
     }
+}
+
+/// Whether an argument an action's `arity` list names so is one the robot
+/// binds: `status`, `result`, `out`, or a name with one of them in it
+/// (`grasp_status`, `out_pose`).
+fn is_output_name(name: &str) -> bool {
+    name.contains("status") || name.contains("result") || name.starts_with("out")
 }
 
 /// The candidate closest to `target`, if it is close enough to be a typo of

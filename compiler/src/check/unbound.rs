@@ -153,8 +153,9 @@ fn add_vars(terms: &Terms, t: TermId, set: &mut HashSet<VarId>) {
 
 /// Whether argument `i` of action `name/arity` is one the robot binds
 /// (a status it reports): with `basic_actions.pl`, an argument the action's
-/// `arity` list names `status`; for an action it does not declare, the
-/// last of two or more arguments (`navigate(Place, Status)`).
+/// `arity` list names `status` (or `result`, `out...`); for an action it
+/// does not declare, the last of two or more arguments
+/// (`navigate(Place, Status)`).
 pub(super) type Outputs<'a> = &'a dyn Fn(Atom, usize, usize) -> bool;
 
 /// Walks an action (`action`: true) or next situation in evaluation
