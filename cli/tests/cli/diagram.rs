@@ -591,6 +591,57 @@ fn pages_wrap_labels_and_route_pipes_round_situations() {
     assert_eq!(squeeze(&joined), squeeze(&long.label));
 }
 
+/// An arc's label (11 px text, as the SVG draws it) does not lie over a
+/// situation of its DM: the layout leaves room for every line of it.
+#[test]
+fn arc_labels_leave_the_situations_clear() {
+    let all = draw(HOME, None);
+    let mut over = Vec::new();
+    for name in all
+        .dms
+        .iter()
+        .map(|g| g.name.split('(').next().unwrap().to_owned())
+    {
+        let d = draw(HOME, Some(&name));
+        let l = sitlog_graph::layout::layout(&d);
+        for g in &d.dms {
+            for e in &g.edges {
+                let Some(r) = l.routes.get(&e.id) else {
+                    continue;
+                };
+                let Some(at) = r.label_at else { continue };
+                let chars = r
+                    .label_lines
+                    .iter()
+                    .map(|x| x.chars().count())
+                    .max()
+                    .unwrap_or(0);
+                let (hw, hh) = (
+                    chars as f64 * 11.0 * 0.61 / 2.0,
+                    r.label_lines.len() as f64 * 13.0 / 2.0,
+                );
+                for n in g.nodes.iter().filter(|n| n.kind == NodeKind::Situation) {
+                    let c = &l.nodes[&n.id];
+                    let radius = c.w / 2.0;
+                    // the point of the label's box nearest the centre
+                    let qx = c.center.x.clamp(at.x - hw, at.x + hw);
+                    let qy = c.center.y.clamp(at.y - hh, at.y + hh);
+                    let dist = ((qx - c.center.x).powi(2) + (qy - c.center.y).powi(2)).sqrt();
+                    if dist < radius - 2.0 {
+                        over.push(format!("{name}: {:?} over {}", r.label_lines, n.label));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        over.is_empty(),
+        "{} label(s) over situations:\n{}",
+        over.len(),
+        over.join("\n")
+    );
+}
+
 /// A recovery DM is linked to the situations of the type it serves (it
 /// was an isolated oval): in the whole drawing, on a page and in the overview.
 #[test]

@@ -88,6 +88,18 @@ fn p(pt: Point) -> P {
     P::new(pt.x, pt.y)
 }
 
+/// An arc label as `layout-rs` is given it: the engine reserves 7 px a
+/// character and 7 px a line (its font size), and the SVG draws lines 13 px
+/// apart, so each line is followed by an empty one to reserve its height.
+fn engine_label(lines: &[String]) -> String {
+    if lines.is_empty() {
+        return String::new();
+    }
+    let mut text = lines.join("\n\n");
+    text.push_str("\n ");
+    text
+}
+
 /// `layout-rs` on one DM (ranks top to bottom, or left to right
 /// `across`); `None` when its output cannot be read back.
 fn engine(dm: &DmGraph, optimize: bool, across: bool) -> Option<Local> {
@@ -120,7 +132,7 @@ fn engine(dm: &DmGraph, optimize: bool, across: bool) -> Option<Local> {
         let (Some(&a), Some(&b)) = (index.get(e.from.as_str()), index.get(e.to.as_str())) else {
             continue;
         };
-        let text = label_lines(&e.label).join("\n");
+        let text = engine_label(&label_lines(&e.label));
         let mut arrow = Arrow::simple(&text);
         arrow.look = look.clone();
         arrow.properties = Some(i.to_string());
@@ -145,8 +157,12 @@ fn engine(dm: &DmGraph, optimize: bool, across: bool) -> Option<Local> {
         if h.get_index() < first {
             continue;
         }
+        // The edge passes through the connector's `center` (the bottom of
+        // its box, top to bottom); the engine reserved the box above it,
+        // round its `middle`, for the text.
         if let ShapeKind::Connector(Some(t)) = &vg.element(h).shape {
-            connectors.push((t.clone(), p(vg.pos(h).center())));
+            let pos = vg.pos(h);
+            connectors.push((t.clone(), p(pos.center()), p(pos.middle())));
         }
     }
     let mut routes = vec![Route::default(); dm.edges.len()];
@@ -185,7 +201,7 @@ fn engine(dm: &DmGraph, optimize: bool, across: bool) -> Option<Local> {
         if routes[i].path.is_empty() {
             return None;
         }
-        let text = routes[i].label_lines.join("\n");
+        let text = engine_label(&routes[i].label_lines);
         if text.is_empty() {
             continue;
         }
@@ -193,8 +209,8 @@ fn engine(dm: &DmGraph, optimize: bool, across: bool) -> Option<Local> {
         let best = connectors
             .iter()
             .enumerate()
-            .filter(|(k, (t, _))| !used[*k] && *t == text)
-            .map(|(k, (_, at))| {
+            .filter(|(k, (t, _, _))| !used[*k] && *t == text)
+            .map(|(k, (_, at, _))| {
                 let d = points
                     .iter()
                     .map(|q| q.minus(*at).len())
@@ -204,7 +220,7 @@ fn engine(dm: &DmGraph, optimize: bool, across: bool) -> Option<Local> {
             .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
         let (k, _) = best?;
         used[k] = true;
-        routes[i].label_at = Some(connectors[k].1);
+        routes[i].label_at = Some(connectors[k].2);
     }
     Some(bounded(dm, nodes, routes))
 }
