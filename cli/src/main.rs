@@ -121,7 +121,22 @@ fn run(cli: Cli) -> u8 {
             main,
             format,
             trace,
-        } => graph(&app, output, dm, main, format, trace),
+            overview,
+            out_dir,
+            all,
+        } => graph(
+            &app,
+            sitlog_cli::commands::graph::What {
+                output,
+                dm,
+                main,
+                format,
+                trace,
+                overview,
+                out_dir,
+                all,
+            },
+        ),
         Command::New { name } => new_app(&name),
         Command::Kb {
             file,
