@@ -225,8 +225,11 @@ pub enum Command {
     /// recursive situations hold one return dot per final situation of
     /// their embedded DM; bold arrows are the pipe between DMs and the
     /// task's out_arg. Every element's SVG `<title>` starts with the
-    /// `file:line:col` where it is written. An application with errors
-    /// gives its diagnostics, not a picture (exit status 1).
+    /// `file:line:col` where it is written. A program too large to read in
+    /// one SVG (over 4000 px on a side) is drawn as its overview, one box
+    /// per DM (`--all`: everything in one picture; `--out-dir`: the overview
+    /// and a page per DM). An application with errors gives its
+    /// diagnostics, not a picture (exit status 1).
     Graph {
         /// The application directory (or a single DM file).
         #[arg(value_name = "APP")]
@@ -248,6 +251,20 @@ pub enum Command {
         /// situations and arcs taken, with how often.
         #[arg(long, value_name = "FILE")]
         trace: Option<PathBuf>,
+        /// Draw the program's overview: one box per DM, an arrow to each DM
+        /// it calls and to the recovery DM of each situation type it has one
+        /// for.
+        #[arg(long, conflicts_with_all = ["dm", "out_dir", "all"])]
+        overview: bool,
+        /// Write the overview and one page per DM into DIR: `index.svg`,
+        /// `index.html` and `NAME.svg` for each DM (a box of the overview and
+        /// a called DM on a page link to the DM's page).
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["dm", "output", "all"])]
+        out_dir: Option<PathBuf>,
+        /// Every DM in one SVG, however large (without it, a program too
+        /// large to read in one picture is drawn as its overview).
+        #[arg(long, conflicts_with = "dm")]
+        all: bool,
     },
     /// Ask a knowledge base one question (for people exploring a KB).
     ///

@@ -122,7 +122,22 @@ fn run(cli: Cli) -> u8 {
             main,
             format,
             trace,
-        } => graph(&app, output, dm, main, format, trace),
+            overview,
+            out_dir,
+            all,
+        } => graph(
+            &app,
+            sitlog_cli::commands::graph::What {
+                output,
+                dm,
+                main,
+                format,
+                trace,
+                overview,
+                out_dir,
+                all,
+            },
+        ),
         Command::New { name, robot } => new_app(&name, robot),
         Command::Library { name } => library(name.as_deref()),
         Command::Kb {

@@ -109,6 +109,18 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         check::WORLD_FUNCTION_WITHOUT_WORLD,
         "function of the simulated robot called in an application without a world",
     ),
+    (
+        check::UNBOUND_VARIABLE,
+        "a variable used in an action or next situation that nothing binds before (names the places looked at)",
+    ),
+    (
+        check::ACTION_ARITY,
+        "an action given another number of arguments than its `arity` list in `basic_actions.pl`",
+    ),
+    (
+        check::UNKNOWN_SITUATION_TYPE,
+        "a situation `type` that is no known type but close to one (`fianl`: *did you mean `final`?*)",
+    ),
 ];
 
 /// The meaning of `code`, if it is one.

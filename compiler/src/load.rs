@@ -205,11 +205,18 @@ pub fn load_with(path: &Path, library: &Library) -> Result<(Program, Vec<Diagnos
     let cx = Cx { library };
     let mut program = Program::default();
     let mut diags = Vec::new();
-    let meta = std::fs::metadata(path).map_err(|error| LoadError {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    let dir = if meta.is_dir() {
+    // A file only in the overlay (an editor's unsaved buffer) is a DM file.
+    let is_dir = match std::fs::metadata(path) {
+        Ok(meta) => meta.is_dir(),
+        Err(_) if in_overlay(path) => false,
+        Err(error) => {
+            return Err(LoadError {
+                path: path.to_path_buf(),
+                error,
+            })
+        }
+    };
+    let dir = if is_dir {
         load_dir(cx, path, &mut program, &mut diags)?;
         Some(path.to_path_buf())
     } else {
@@ -488,7 +495,8 @@ thread_local! {
 
 /// Runs `f` with `overlay` standing in for the files it names: loading
 /// reads those texts instead of the disk (the language server's unsaved
-/// buffers). Directories are still listed from disk.
+/// buffers), whether or not the file exists. Directories are listed from
+/// disk, plus the overlay's `*.dm` files below them that are not on disk.
 pub fn with_overlay<R>(
     overlay: &std::collections::HashMap<PathBuf, String>,
     f: impl FnOnce() -> R,
@@ -506,6 +514,27 @@ pub fn with_overlay<R>(
 
 fn absolute(p: &Path) -> PathBuf {
     std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
+}
+
+/// Whether the overlay holds `path`.
+fn in_overlay(path: &Path) -> bool {
+    OVERLAY.with(|o| {
+        let o = o.borrow();
+        !o.is_empty() && o.contains_key(&normalize(&absolute(path)))
+    })
+}
+
+/// The overlay's `*.dm` files below `dir` that are not on disk (a DM file
+/// an editor has not saved yet), as paths under `dir`.
+fn overlay_dm_files(dir: &Path) -> Vec<PathBuf> {
+    let base = normalize(&absolute(dir));
+    OVERLAY.with(|o| {
+        o.borrow()
+            .keys()
+            .filter(|p| p.extension().is_some_and(|e| e == "dm") && !p.is_file())
+            .filter_map(|p| p.strip_prefix(&base).ok().map(|rel| dir.join(rel)))
+            .collect()
+    })
 }
 
 /// A file's bytes: from the overlay if it holds the file, else the disk.
@@ -700,6 +729,7 @@ fn load_dir(
             path: dir.to_path_buf(),
             error,
         })?;
+        dm_files.extend(overlay_dm_files(dir));
         dm_files.sort();
         for path in dm_files {
             load_dm_file(cx, &path, program, diags)?;

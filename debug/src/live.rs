@@ -5,7 +5,7 @@
 //! no more inputs, or there is no script).
 
 use crate::command::{self, Command, CommandSource, Line, Spec, PROMPT};
-use crate::record::{self, Record};
+use crate::record::{self, Record, Unmatched};
 use sitlog_robot::{Assets, DebugHooks, RunArgs, Runner, Streams, WorldProbe};
 use sitlog_runtime::app::App;
 use sitlog_runtime::history::Entry;
@@ -66,6 +66,8 @@ struct Live {
     /// breakpoints; `dropped` older ones were let go.
     records: Vec<Record>,
     dropped: usize,
+    /// The inputs that met no expectation since the oldest record kept.
+    unmatched: Vec<Unmatched>,
     world: Option<WorldProbe>,
     stop: Arc<AtomicBool>,
     state: State,
@@ -192,7 +194,12 @@ impl Live {
                 None
             }
             Command::History(n) => {
-                let text = record::history_from(self.dropped, &self.records, n.unwrap_or(10));
+                let text = record::history_with(
+                    self.dropped,
+                    &self.records,
+                    &self.unmatched,
+                    n.unwrap_or(10),
+                );
                 let _ = write!(self.out, "{text}");
                 None
             }
@@ -350,6 +357,8 @@ impl Observer for Watch {
         if live.records.len() >= 2 * KEEP {
             live.records.drain(..KEEP);
             live.dropped += KEEP;
+            let dropped = live.dropped;
+            live.unmatched.retain(|u| u.before >= dropped);
         }
         live.records.push(Record {
             dm: store.writeq(entry.dm),
@@ -359,6 +368,25 @@ impl Observer for Watch {
             depth,
             next: next.map(|n| store.writeq(n)),
         });
+    }
+
+    /// Kept for `history` and shown at once while the debugger watches.
+    fn unmatched(&mut self, store: &Store, dm: Term, situation: Term, input: Term, depth: usize) {
+        let Ok(mut live) = self.0.lock() else { return };
+        let u = Unmatched {
+            dm: store.writeq(dm),
+            situation: store.writeq(situation),
+            input: store.writeq(input),
+            depth,
+            before: live.dropped + live.records.len(),
+        };
+        if live.state == State::Running {
+            say!(live, "{}", record::unnumbered(&u));
+        }
+        if live.unmatched.len() >= 2 * KEEP {
+            live.unmatched.drain(..KEEP);
+        }
+        live.unmatched.push(u);
     }
 
     fn inspect(&mut self, machine: &mut Inspection<'_>) {
@@ -475,6 +503,7 @@ pub fn debug<A: App>(
         next_break: 0,
         mode: Mode::Step,
         records: Vec::new(),
+        unmatched: Vec::new(),
         dropped: 0,
         world: None,
         stop: stop.clone(),

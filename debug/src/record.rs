@@ -1,7 +1,9 @@
 //! One transition as the debugger shows, keeps and compares it: the
-//! fields of a `--trace` line, as text. Live runs make them from the
-//! machine's terms (as `--trace` prints them), replays read them from the
-//! trace, so both print and compare alike.
+//! fields of a `--trace` line, as text; and an input that met no
+//! expectation ([`Unmatched`], a trace line with `unmatched`), which is not
+//! a transition (it has no number) but is listed and compared with them.
+//! Live runs make them from the machine's terms (as `--trace` prints
+//! them), replays read them from the trace, so both print and compare alike.
 
 use std::fmt::Write as _;
 
@@ -27,6 +29,40 @@ impl Record {
             self.dm, self.situation, self.expectation, self.action, next
         )
     }
+}
+
+/// An input that met no expectation of a situation: nothing entered the
+/// history, the situation was entered again.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Unmatched {
+    pub dm: String,
+    pub situation: String,
+    pub input: String,
+    pub depth: usize,
+    /// The transitions made before it (it comes before transition
+    /// `before + 1`).
+    pub before: usize,
+}
+
+impl Unmatched {
+    /// `main / ask  said(maybe) met no expectation`.
+    pub fn line(&self) -> String {
+        format!(
+            "{} / {}  {} met no expectation",
+            self.dm, self.situation, self.input
+        )
+    }
+
+    /// Whether two inputs are the same event (where they came aside).
+    pub fn same(&self, other: &Unmatched) -> bool {
+        (&self.dm, &self.situation, &self.input, self.depth)
+            == (&other.dm, &other.situation, &other.input, other.depth)
+    }
+}
+
+/// An unmatched input as `history` lists it: no number, indented by depth.
+pub fn unnumbered(u: &Unmatched) -> String {
+    format!("      {}{}", "  ".repeat(u.depth.min(12)), u.line())
 }
 
 /// The name of a term's principal functor as `writeq` printed it: `ask`
@@ -137,14 +173,33 @@ pub fn history(records: &[Record], count: usize) -> String {
 
 /// [`history`] of records numbered from `first + 1`.
 pub fn history_from(first: usize, records: &[Record], count: usize) -> String {
+    history_with(first, records, &[], count)
+}
+
+/// [`history_from`] with the inputs that met no expectation among the
+/// transitions listed, each where it came (`before` counts from 0, not
+/// from `first`), the ones after the last transition at the end.
+pub fn history_with(
+    first: usize,
+    records: &[Record],
+    unmatched: &[Unmatched],
+    count: usize,
+) -> String {
     let mut out = String::new();
+    let from = records.len().saturating_sub(count);
+    let inputs = |out: &mut String, before: usize| {
+        for u in unmatched.iter().filter(|u| u.before == before) {
+            let _ = writeln!(out, "{}", unnumbered(u));
+        }
+    };
     if records.is_empty() {
         out.push_str("no transition yet\n");
     }
-    let from = records.len().saturating_sub(count);
     for (i, r) in records.iter().enumerate().skip(from) {
+        inputs(&mut out, first + i);
         let _ = writeln!(out, "{}", numbered(first + i + 1, r));
     }
+    inputs(&mut out, first + records.len());
     out
 }
 

@@ -527,7 +527,7 @@ diag_mod(add_one(A), [
 
     #[test]
     fn a_deep_term_keeps_its_situation_on_templates() {
-        let mut list = String::from("X");
+        let mut list = String::from("_X");
         for i in 0..(MAX_DEPTH + 50) {
             list = format!("f{}({list})", i % 3);
         }
