@@ -623,6 +623,10 @@ fn files_over_the_limit_are_refused_naming_the_option() {
     );
     let kb = dir.join("k.kb");
     std::fs::write(&kb, "class(object, top, [], [], []).\n".repeat(100)).unwrap();
+    // a script that is a regular file is read whole (a pipe or device is
+    // read as the task consumes it)
+    let big = dir.join("big.txt");
+    std::fs::write(&big, "a.\n".repeat(100)).unwrap();
     let cases: Vec<(Vec<std::ffi::OsString>, &str)> = vec![
         (vec!["check".into(), dir.clone().into()], "main.dm"),
         (
@@ -634,9 +638,9 @@ fn files_over_the_limit_are_refused_naming_the_option() {
                 "run".into(),
                 tiny.clone().into(),
                 "--script".into(),
-                "/dev/zero".into(),
+                big.clone().into(),
             ],
-            "/dev/zero",
+            "big.txt",
         ),
         (
             vec![
