@@ -54,7 +54,10 @@ fn analyse(
         (program, diags)
     } else {
         let root = program_root(file);
-        load::with_overlay(overlay, || load::load_with(&root, crate::library::library())).map_err(|e| e.to_string())?
+        load::with_overlay(overlay, || {
+            load::load_with(&root, crate::library::library())
+        })
+        .map_err(|e| e.to_string())?
     };
     let options = sitlog_compiler::check::CheckOptions {
         world_functions: sitlog_robot::WORLD_FUNCTIONS,
