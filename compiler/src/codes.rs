@@ -25,6 +25,14 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         "a file listed in `models` cannot be read (in the application's directory, or in the library for a library name)",
     ),
     (
+        load::NOT_A_DM_FILE,
+        "a file listed in `models` is not a `.dm` or `.pl` file (not read)",
+    ),
+    (
+        load::OUTSIDE_APP,
+        "a file listed in `models` is outside the application directory",
+    ),
+    (
         shape::NOT_A_DM,
         "a clause of a DM file that is not a DM (ignored)",
     ),

@@ -28,6 +28,8 @@ pub mod codes {
     pub const NOT_UTF8: &str = "E0002";
     pub const MODELS_ENTRY: &str = "E0003";
     pub const MISSING_FILE: &str = "E0004";
+    pub const NOT_A_DM_FILE: &str = "E0005";
+    pub const OUTSIDE_APP: &str = "W0006";
 }
 
 /// An I/O problem that stops loading (exit status 2 in the CLI).
@@ -671,6 +673,14 @@ fn load_dir(
             };
             let name = name.as_str();
             let path = dir.join(name);
+            match foreign_entry(dir, &path, loc) {
+                Some(d) if d.is_error() => {
+                    diags.push(d);
+                    continue;
+                }
+                Some(d) => diags.push(d),
+                None => {}
+            }
             // The application's own file (a local copy of a library file
             // wins), else the library's.
             let (path, read, root) = match read_bytes(&path) {
@@ -736,6 +746,47 @@ fn load_dir(
         }
     }
     load_side_files(cx, dir, program, diags)
+}
+
+/// What is wrong with a `models` entry naming `path` before it is read:
+/// a file that is not SitLog/Prolog text by its name (not `.dm` or `.pl`:
+/// `/etc/shadow`, `/proc/self/environ`, a device) is refused without being
+/// read, so no diagnostic ever quotes it; a file outside the application's
+/// directory is a warning (the behaviour library is named without a path).
+fn foreign_entry(dir: &Path, path: &Path, loc: Loc) -> Option<Diagnostic> {
+    let ext = path.extension().and_then(|e| e.to_str());
+    if !matches!(ext, Some("dm" | "pl")) {
+        return Some(
+            Diagnostic::error(
+                codes::NOT_A_DM_FILE,
+                loc,
+                format!(
+                    "`{}` is not a DM file: `models` lists `.dm` (or `.pl`) files only; it was not read",
+                    path.display()
+                ),
+            )
+            .with_label("listed here"),
+        );
+    }
+    let real = std::fs::canonicalize(path).ok()?;
+    let home = std::fs::canonicalize(dir).ok()?;
+    if real.starts_with(&home) {
+        return None;
+    }
+    Some(
+        Diagnostic::warning(
+            codes::OUTSIDE_APP,
+            loc,
+            format!(
+                "`{}` is outside the application directory",
+                path.display()
+            ),
+        )
+        .with_label("listed here")
+        .with_help(
+            "copy it into the application, or name a library file without a path (`'behaviors/say.dm'`)",
+        ),
+    )
 }
 
 /// The side files of the application in `dir` (those that exist).

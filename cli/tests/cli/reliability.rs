@@ -837,3 +837,40 @@ fn the_first_signal_ends_a_run_that_has_not_started() {
         assert_eq!(child.wait().unwrap().code(), Some(143), "{opt}");
     }
 }
+
+/// A `models` entry naming a file that is not a DM file is refused without
+/// reading it (no message quotes it); one outside the application is a
+/// warning.
+#[test]
+fn models_entries_outside_the_application_are_not_quoted() {
+    let secret = temp("secret").join("secret");
+    std::fs::write(&secret, "TOP SECRET LINE\n").unwrap();
+    let outside = temp("outside-dm").join("other.dm");
+    std::fs::write(
+        &outside,
+        "diag_mod(other, [[id ==> fs, type ==> final]], []).\n",
+    )
+    .unwrap();
+    let models = format!(
+        "'main.dm'.\n'{}'.\n'/proc/self/environ'.\n'{}'.\n",
+        secret.display(),
+        outside.display()
+    );
+    let dir = app(
+        "foreign",
+        &[
+            (
+                "main.dm",
+                b"diag_mod(main, [[id ==> fs, type ==> final]], []).\n",
+            ),
+            ("models", models.as_bytes()),
+        ],
+    );
+    let out = sitlogc().arg("check").arg(&dir).output().unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(err.matches("E0005").count(), 2, "{err}");
+    assert!(err.contains("W0006"), "{err}");
+    assert!(!err.contains("TOP SECRET"), "{err}");
+    assert!(!err.contains("PATH="), "{err}");
+}
