@@ -1,5 +1,8 @@
-//! `sitlogc`: the SitLog command-line tool. Argument parsing, exit codes and
-//! the choice of output format only; the work is done by the library.
+//! `sitlogc`: the SitLog command-line tool. Parses the arguments
+//! ([`sitlog_cli::args`]), sets the colour of diagnostics, runs the chosen
+//! command ([`sitlog_cli::commands`]) on a thread with a big stack and turns
+//! its status into the exit code; the three commands of a few lines
+//! (`completions`, `kb`, `lsp`) are dispatched here.
 
 use clap::{CommandFactory, Parser};
 use sitlog_cli::args::{Cli, Command, LegacyKb};

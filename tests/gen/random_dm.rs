@@ -5,7 +5,9 @@
 //! `#[path = "gen/random_dm.rs"]` to write and compile [`PROGRAMS`] programs
 //! at build time, and `tests/src/lib.rs` includes it as
 //! `sitlog_tests::random_dm` for the test that runs them interpreted.
-//! No external crates: a splitmix64 generator seeded by an integer.
+//! No external crates: a splitmix64 generator seeded by an integer. One file
+//! of over 800 lines because the build script includes it by `#[path]`: a
+//! module directory could not be included there.
 //!
 //! What a program holds: 1–3 DMs (`main`, `sub1`, `sub2`; subs take 0–2
 //! parameters, the last one a result bound by a final's `diag_mod`), each
