@@ -596,7 +596,7 @@ impl Gen<'_> {
                     }
                 }
 
-                /// Whether a compiled situation's constant id arguments unify with `value`'s.
+                /// Whether a compiled situation's id unifies with `value` (its constant arguments, or the whole id when it is a pattern).
                 pub fn select_compiled(
                     p: &super::Program,
                     sit: #rt::machine::SitIx,

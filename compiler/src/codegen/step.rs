@@ -252,6 +252,20 @@ impl Gen<'_> {
     /// The code of `select_compiled` for a situation with a compound id:
     /// its constant arguments unified with `value`'s.
     pub(super) fn select_code(&self, plan: &SitPlan) -> Option<TokenStream> {
+        if let Some(pat) = &plan.pattern {
+            // As an instance's id: a fresh copy of the pattern unified with the value.
+            let (fresh, vars) = self.fresh_vars(&[pat.term]);
+            let built = self.build(pat.term, &vars, false, &mut 0);
+            let stmts = built.stmts.iter().map(|(n, e)| quote!(let #n = #e;));
+            let v = built.value;
+            let body = quote! {
+                #(#fresh)*
+                #(#stmts)*
+                store.unify(value, #v)
+            };
+            let k = Self::uses(&body).1.then(|| quote!(let k = &p.k;));
+            return Some(quote!(#k #body));
+        }
         if plan.select.is_empty() {
             return None;
         }
@@ -307,15 +321,42 @@ impl Gen<'_> {
                 };
             });
         }
-        for &(r, init) in &plan.inits {
-            let r = reg(r);
+        if let Some(pat) = &plan.pattern {
+            let fresh = pat.fresh.iter().map(|&r| {
+                let r = reg(r);
+                quote!(#r = cx.var();)
+            });
+            let (stmts, v) = b.nested(|b| self.build_code(&pat.build, b));
+            b.stmts.push(quote! {
+                let id = match cx.selected() {
+                    ::std::option::Option::Some(value) => value,
+                    ::std::option::Option::None => {
+                        #(#fresh)*
+                        #(#stmts)*
+                        let id = #v;
+                        cx.set_id(id);
+                        id
+                    }
+                };
+            });
+        }
+        for (r, init) in &plan.inits {
+            let r = reg(*r);
             let init = match init {
                 Init::IdArg(i) => {
-                    let i = Literal::usize_unsuffixed(i);
+                    let i = Literal::usize_unsuffixed(*i);
                     quote!(cx.arg(id, #i))
                 }
+                Init::IdPath(path) => {
+                    let mut t = quote!(id);
+                    for &i in path.iter() {
+                        let i = Literal::usize_unsuffixed(i);
+                        t = quote!(cx.arg(#t, #i));
+                    }
+                    t
+                }
                 Init::HeadArg(i) => {
-                    let i = Literal::usize_unsuffixed(i);
+                    let i = Literal::usize_unsuffixed(*i);
                     quote!(cx.head_arg(#i))
                 }
                 // A variable in_arg takes the pipe value (D-8).

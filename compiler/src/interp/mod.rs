@@ -107,6 +107,11 @@ impl DmProgram for Resolved<'_> {
         let Some(p) = self.plan(dm, sit) else {
             return true;
         };
+        if let Some(pat) = &p.pattern {
+            // As an instance's id: a fresh copy of the pattern unified with the value.
+            let c = store.copy_term(pat.term);
+            return store.unify(value, c);
+        }
         for &(i, c) in &p.select {
             let x = store.args(value)[i];
             if !store.unify(x, c) {
@@ -317,6 +322,28 @@ diag_mod(add_one(A), [
         );
         let (planned, all) = Resolved::new(&ir).counts();
         assert!(planned >= 4 && planned <= all, "{planned} of {all}");
+    }
+
+    #[test]
+    fn ids_that_are_patterns_run_from_plans() {
+        let src = "diag_mod(main, [
+  [id ==> is, type ==> neutral, arcs ==> [empty : say(go) => walk([a, f(b), c|_])]],
+  [id ==> walk([]), type ==> neutral, arcs ==> [empty : say(done) => check(x, y, y)]],
+  [id ==> walk([f(X)|T]), type ==> neutral, arcs ==> [empty : say(f(X)) => walk(T)]],
+  [id ==> walk([H|T]), type ==> neutral, in_arg ==> P, arcs ==> [empty : say(H-P) => walk(T)]],
+  [id ==> check(A, B, B), type ==> neutral, arcs ==> [empty : say(A) => pipe(x)]],
+  [id ==> pipe(Q), type ==> neutral, in_arg ==> Q, arcs ==> [empty : say(Q) => fs]],
+  [id ==> fs, type ==> final]], []).\n";
+        let ir = agree(src, "");
+        assert_eq!(Resolved::new(&ir).counts(), (7, 7));
+        // The first situation with a pattern id, and a variable in_arg
+        // that is the id's: the pipe is unified with it (an error here).
+        agree(
+            "diag_mod(main, [
+  [id ==> walk([H|T]), type ==> neutral, in_arg ==> H, arcs ==> [empty : say(H) => walk(T)]],
+  [id ==> walk([]), type ==> final]], []).\n",
+            "",
+        );
     }
 
     #[test]

@@ -68,16 +68,50 @@ impl<'s> Planner<'s> {
         match self.store.value(f[ID]) {
             Value::Atom(a) if a != none_marker() => Some((a, 0)),
             Value::Compound(name, args) => {
-                for &arg in args {
-                    match self.store.value(arg) {
-                        Value::Var(v) if seen.insert(v.index()) => {}
-                        Value::Atom(_) | Value::Int(_) | Value::Float(_) => {}
-                        _ => return None,
-                    }
+                // Its variables are the situation's own: none is a parameter.
+                let mut vars = Vec::new();
+                self.term_vars(f[ID], &mut vars);
+                if vars.iter().any(|v| seen.contains(v)) {
+                    return None;
                 }
                 Some((name, args.len()))
             }
             _ => None,
+        }
+    }
+
+    /// Whether a compound id's arguments are distinct variables and atomic
+    /// constants (selected by unifying the constants only); otherwise the
+    /// id is a pattern ([`IdPattern`]).
+    pub(crate) fn simple_id(&self, args: &[Term]) -> bool {
+        let mut seen = HashSet::new();
+        args.iter().all(|&arg| match self.store.value(arg) {
+            Value::Var(v) => seen.insert(v.index()),
+            Value::Atom(_) | Value::Int(_) | Value::Float(_) => true,
+            _ => false,
+        })
+    }
+
+    /// The path of argument positions to each variable's first occurrence
+    /// in `t` (pre-order, left to right).
+    pub(crate) fn var_paths(
+        &self,
+        t: Term,
+        path: &mut Vec<usize>,
+        out: &mut HashMap<u32, Box<[usize]>>,
+    ) {
+        match self.store.value(t) {
+            Value::Var(v) => {
+                out.entry(v.index()).or_insert_with(|| path.clone().into());
+            }
+            Value::Compound(_, args) => {
+                for (i, &a) in args.iter().enumerate() {
+                    path.push(i);
+                    self.var_paths(a, path, out);
+                    path.pop();
+                }
+            }
+            _ => {}
         }
     }
 
@@ -345,30 +379,59 @@ impl<'s> Planner<'s> {
         let out_arg = self.field(s, OUT_ARG);
         let prog = self.field(s, PROG);
         let diag_mod = self.field(s, DIAG_MOD);
+        let mut id_vars_all = Vec::new();
+        self.term_vars(f[ID], &mut id_vars_all);
+        // A variable in_arg takes the pipe unless it is a parameter or
+        // the id's (then the pipe is unified with its value).
         let in_var = in_arg.and_then(|t| match self.store.value(t) {
-            Value::Var(v) if !head_vars.contains(&v.index()) => Some(v.index()),
+            Value::Var(v)
+                if !head_vars.contains(&v.index()) && !id_vars_all.contains(&v.index()) =>
+            {
+                Some(v.index())
+            }
             _ => None,
         });
         let mut select = Vec::new();
         let mut id_vars = Vec::new();
+        let mut id_paths = HashMap::new();
         let mut compound_id = None;
+        let mut pattern = None;
         if let Value::Compound(_, args) = self.store.value(f[ID]) {
-            let mut parts = Vec::new();
-            for (i, &arg) in args.iter().enumerate() {
-                if let Value::Var(v) = self.store.value(arg) {
-                    id_vars.push((v.index(), i));
-                    parts.push(IdPart::Fresh(self.reg()));
-                } else {
-                    select.push((i, arg));
-                    parts.push(IdPart::Const(arg));
+            if self.simple_id(args) {
+                let mut parts = Vec::new();
+                for (i, &arg) in args.iter().enumerate() {
+                    if let Value::Var(v) = self.store.value(arg) {
+                        id_vars.push((v.index(), i));
+                        parts.push(IdPart::Fresh(self.reg()));
+                    } else {
+                        select.push((i, arg));
+                        parts.push(IdPart::Const(arg));
+                    }
                 }
+                compound_id = Some(parts);
+            } else {
+                let mut fresh_vars = HashMap::new();
+                let mut fresh = Vec::new();
+                for &v in &id_vars_all {
+                    let r = self.reg();
+                    fresh_vars.insert(v, r);
+                    fresh.push(r);
+                }
+                let build = self.build(f[ID], &fresh_vars, 0)?;
+                self.var_paths(f[ID], &mut Vec::new(), &mut id_paths);
+                pattern = Some(IdPattern {
+                    term: f[ID],
+                    fresh,
+                    build,
+                });
             }
-            compound_id = Some(parts);
         }
         let mut inits = Vec::new();
         for &v in &inst_vars {
             let init = if let Some(&(_, i)) = id_vars.iter().find(|(x, _)| *x == v) {
                 Init::IdArg(i)
+            } else if let Some(path) = id_paths.get(&v) {
+                Init::IdPath(Box::clone(path))
             } else if let Some(i) = head_vars.iter().position(|&h| h == v) {
                 Init::HeadArg(i)
             } else if Some(v) == in_var {
@@ -458,6 +521,7 @@ impl<'s> Planner<'s> {
             id,
             select,
             compound_id,
+            pattern,
             inits,
             in_arg: in_plan,
             out_arg: out_plan,

@@ -5,8 +5,8 @@
 //! the instantiating path.
 //!
 //! Invariant: the rules of *which situations run as code* (an atom id, or
-//! a compound id of fresh variables and atomic constants; an atom type; a
-//! DM whose parameters are distinct variables; no term deeper than
+//! a compound id none of whose variables is a DM parameter; an atom type;
+//! a DM whose parameters are distinct variables; no term deeper than
 //! [`MAX_DEPTH`]), *which variables are lazy* (first occurring as the
 //! argument of `get`/`inc` or the variable of `is`) and *where a constant
 //! next situation goes* are decided here only. The interpreter
@@ -110,10 +110,13 @@ pub enum Next {
 }
 
 /// How a situation variable starts a visit.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub enum Init {
     /// Argument `i` of the selecting value (a compound id).
     IdArg(usize),
+    /// The subterm of the id at this path of argument positions (an id
+    /// that is a pattern, [`IdPattern`]): where the variable first occurs.
+    IdPath(Box<[usize]>),
     /// Argument `i` of the DM call.
     HeadArg(usize),
     /// A variable in_arg: the incoming pipe.
@@ -125,6 +128,19 @@ pub enum Init {
 pub enum IdPart {
     Fresh(Reg),
     Const(Term),
+}
+
+/// A compound id that is a pattern (an argument neither a fresh variable
+/// nor atomic, or a variable twice: `try([P|Ps])`, `check(O, S, S, R)`):
+/// selected by unifying the value with a fresh copy of `term`, as an
+/// instance's id would be; built from `build` over the fresh registers
+/// `fresh` when no value selected it (a DM's initial situation).
+#[derive(Debug)]
+pub struct IdPattern {
+    /// The id as written (a term of the IR's store).
+    pub term: Term,
+    pub fresh: Vec<Reg>,
+    pub build: Build,
 }
 
 #[derive(Debug)]
@@ -192,6 +208,8 @@ pub struct SitPlan {
     pub select: Vec<(usize, Term)>,
     /// A compound id built when not selected by a value.
     pub compound_id: Option<Vec<IdPart>>,
+    /// An id that is a pattern (then `select` is empty and `compound_id` `None`).
+    pub pattern: Option<IdPattern>,
     pub inits: Vec<(Reg, Init)>,
     /// in_arg: the pattern, unified with the pipe when `unify`; kept in `reg`.
     pub in_arg: Option<(Build, bool, Reg)>,
@@ -320,6 +338,9 @@ impl SitPlan {
             if let IdPart::Const(t) = part {
                 out.push(*t);
             }
+        }
+        if let Some(p) = &self.pattern {
+            p.build.constants(out);
         }
         if let Some((b, _, _)) = &self.in_arg {
             b.constants(out);
