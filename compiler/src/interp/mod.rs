@@ -340,7 +340,7 @@ diag_mod(add_one(A), [
         // that is the id's: the pipe is unified with it (an error here).
         agree(
             "diag_mod(main, [
-  [id ==> walk([H|T]), type ==> neutral, in_arg ==> H, arcs ==> [empty : say(H) => walk(T)]],
+  [id ==> walk([H|T]), type ==> neutral, in_arg ==> H, arcs ==> [empty : say(H-T) => walk([])]],
   [id ==> walk([]), type ==> final]], []).\n",
             "",
         );
