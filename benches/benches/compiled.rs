@@ -2,6 +2,8 @@
 //! `enum` + `match` machine doing the same work (the floor), per transition:
 //! - `counter_loop`: a neutral loop with a local counter (`inc` + a
 //!   conditional next situation), no history;
+//! - `counter_loop_in_arg`: the same loop with its limit as in_arg (the
+//!   pipe), no history;
 //! - `pipe_calls`: N DM calls passing the pipe (`B is A + 1` in the callee),
 //!   no history;
 //! - `scripted_loop`: a speech situation driven by a script of `tick.`
@@ -72,6 +74,9 @@ fn group<'a>(
 mod counter_loop {
     sitlog_macros::include_dm!("dms/counter_loop");
 }
+mod counter_loop_in_arg {
+    sitlog_macros::include_dm!("dms/counter_loop_in_arg");
+}
 mod pipe_calls {
     sitlog_macros::include_dm!("dms/pipe_calls");
 }
@@ -81,6 +86,9 @@ mod scripted_loop {
 // The same programs with every value a term (the code generator before typed code).
 mod counter_loop_untyped {
     sitlog_macros::include_dm!("dms/counter_loop", untyped);
+}
+mod counter_loop_in_arg_untyped {
+    sitlog_macros::include_dm!("dms/counter_loop_in_arg", untyped);
 }
 mod pipe_calls_untyped {
     sitlog_macros::include_dm!("dms/pipe_calls", untyped);
@@ -370,6 +378,7 @@ fn read_script(c: &mut Criterion, n: u64, script: &str) {
 fn bench(c: &mut Criterion) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let counter_ir = interpreter(&root.join("dms/counter_loop"));
+    let in_arg_ir = interpreter(&root.join("dms/counter_loop_in_arg"));
     let pipe_ir = interpreter(&root.join("dms/pipe_calls"));
     let scripted_ir = interpreter(&root.join("dms/scripted_loop"));
     for n in [10_000u64, 1_000_000] {
@@ -383,6 +392,20 @@ fn bench(c: &mut Criterion) {
             counter_loop_untyped::program(),
             &counter_ir,
             &Workload::plain(&main),
+            || hand_counter_loop(black_box(max)),
+        );
+        let limit = n.to_string();
+        three_ways(
+            c,
+            "counter_loop_in_arg",
+            n,
+            counter_loop_in_arg::program(),
+            counter_loop_in_arg_untyped::program(),
+            &in_arg_ir,
+            &Workload {
+                in_arg: Some(&limit),
+                ..Workload::plain("main")
+            },
             || hand_counter_loop(black_box(max)),
         );
         three_ways(

@@ -34,6 +34,7 @@ pub mod instantiate;
 pub mod interp;
 pub mod ir;
 pub mod load;
+pub mod mir;
 pub mod run;
 pub mod source;
 pub mod types;

@@ -15,7 +15,9 @@
 //! `num(N)`, lists, the in_arg value, `get`/`inc` of a local or a bare
 //! variable; `neutral` ones `[empty : A => N]`; `recursive` ones calling
 //! other DMs (by parameters, with one exit arc per final situation);
-//! countdowns `tick(0)`/`tick(N)` (two situations sharing a functor, D-21);
+//! countdowns `tick(0)`/`tick(N)` (two situations sharing a functor, D-21)
+//! and list walks `tick([])`/`tick([H|T])` (an id that is a pattern, whose
+//! head may also be the in_arg);
 //! speech situations with a parameter `ask(K)` reached by `ask(2)`; final
 //! situations with `out_arg` and `diag_mod`. Actions use local variables
 //! (`n`, `m`, `l`, `v`) and global ones (`g_count`, `g_log` in
@@ -769,6 +771,12 @@ impl<'a> Gen<'a> {
             return format!("f{k}");
         }
         match p.kinds[t] {
+            Kind::Tick if t % 2 == 1 => {
+                // A list walked by a pattern id, sometimes with an open tail.
+                let items: Vec<String> = (0..self.rng.range(0, 3)).map(|_| self.term(s)).collect();
+                let tail = if self.rng.chance(20) { "|_" } else { "" };
+                format!("tick{t}([{}{tail}])", items.join(", "))
+            }
             Kind::Tick => {
                 let n = self.num(s, 3);
                 format!("tick{t}({n})")
@@ -799,6 +807,9 @@ impl<'a> Gen<'a> {
         let mut extra = Vec::new();
         let next = self.next(j, false, &scope, &mut extra);
         let action = with_extra(self.action(&scope), extra);
+        if j % 2 == 1 {
+            return self.walk(j, action, next);
+        }
         let zero = Self::situation(&[
             format!("id ==> tick{j}(0)"),
             "type ==> neutral".to_owned(),
@@ -820,6 +831,29 @@ impl<'a> Gen<'a> {
         };
         attrs.push(format!(
             "arcs ==> [\n        empty : [{m} is {n} - 1{say}] => tick{j}({m})\n      ]"
+        ));
+        (zero, Self::situation(&attrs))
+    }
+
+    /// `tickJ([])` then `tickJ([H|T])`: a list walked by a situation whose
+    /// id is a pattern (not only fresh variables and constants).
+    fn walk(&mut self, j: usize, action: String, next: String) -> (String, String) {
+        let zero = Self::situation(&[
+            format!("id ==> tick{j}([])"),
+            "type ==> neutral".to_owned(),
+            format!("arcs ==> [\n        empty : {action} => {next}\n      ]"),
+        ]);
+        let h = self.var("H");
+        let t = self.var("T");
+        let mut attrs = vec![
+            format!("id ==> tick{j}([{h}|{t}])"),
+            "type ==> neutral".to_owned(),
+        ];
+        if self.rng.chance(10) {
+            attrs.push(format!("in_arg ==> {h}"));
+        }
+        attrs.push(format!(
+            "arcs ==> [\n        empty : say({h}) => tick{j}({t})\n      ]"
         ));
         (zero, Self::situation(&attrs))
     }

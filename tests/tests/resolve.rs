@@ -1,5 +1,6 @@
 //! The interpreter's plans (`sitlog_compiler::interp`) on the shipped
-//! applications: most of their situations run from plans; the counts are
+//! applications: at least 90 % of their situations run from plans (ids
+//! that are patterns, `try([P|Ps])`, included); the counts are
 //! printed (`cargo test -p sitlog-tests --test resolve -- --nocapture`) for
 //! docs/guide/performance.md. That plans and templates agree is checked by
 //! `random_agreement.rs` and the goldens (which run from plans).
@@ -24,6 +25,9 @@ fn the_applications_run_mostly_from_plans() {
         "dms/examples/appendix_a",
     ] {
         let (planned, all) = counts(app);
-        assert!(all > 0 && planned * 2 >= all, "{app}: {planned} of {all}");
+        assert!(
+            all > 0 && planned * 10 >= all * 9,
+            "{app}: {planned} of {all}"
+        );
     }
 }

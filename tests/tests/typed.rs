@@ -3,7 +3,9 @@
 //! (int, float and atom-set locals, a parameter checked on entry, constant
 //! expectations read from a script, `inc` overflow) and the ways back to
 //! untyped code (a situation that is not typed, a DM call, a user function
-//! putting an atom where an int was, a parameter that is not an int). Each
+//! putting an atom where an int was, a parameter that is not an int), and
+//! the pipe read by typed code (issue 28: a variable in_arg, checked on
+//! load like a parameter). Each
 //! run must agree with the interpreter on the report, the actions performed,
 //! the observer's transitions and the transition count, with the history
 //! kept or not.
@@ -21,6 +23,9 @@ mod loops {
 }
 mod mixed {
     sitlog_macros::include_dm!("typed/mixed");
+}
+mod pipe {
+    sitlog_macros::include_dm!("typed/pipe");
 }
 
 fn interpreter(app: &str) -> Ir {
@@ -78,6 +83,19 @@ fn run<A: app::App>(
     observe: bool,
     log_numbers: bool,
 ) -> (serde_json::Value, u64, Vec<String>, Vec<String>) {
+    run_piped(app, main, None, script, keep_history, observe, log_numbers)
+}
+
+/// [`run`] with an in_arg (the pipe the main DM starts with).
+fn run_piped<A: app::App>(
+    app: &A,
+    main: &str,
+    in_arg: Option<&str>,
+    script: &str,
+    keep_history: bool,
+    observe: bool,
+    log_numbers: bool,
+) -> (serde_json::Value, u64, Vec<String>, Vec<String>) {
     let mut perception = ScriptPerception::new("script", script.to_owned());
     let mut text = Vec::new();
     let mut log = Log::default();
@@ -97,7 +115,7 @@ fn run<A: app::App>(
         app::run(
             app,
             main,
-            None,
+            in_arg,
             options,
             functions(),
             &mut perception,
@@ -114,14 +132,32 @@ fn run<A: app::App>(
 }
 
 fn agree<A: app::App>(compiled: &A, interpreted: &Ir, main: &str, script: &str) {
+    agree_piped(compiled, interpreted, main, None, script);
+}
+
+fn agree_piped<A: app::App>(
+    compiled: &A,
+    interpreted: &Ir,
+    main: &str,
+    in_arg: Option<&str>,
+    script: &str,
+) {
     for keep in [false, true] {
         for observe in [false, true] {
             for log_numbers in [false, true] {
-                let c = run(compiled, main, script, keep, observe, log_numbers);
-                let i = run(interpreted, main, script, keep, observe, log_numbers);
+                let c = run_piped(compiled, main, in_arg, script, keep, observe, log_numbers);
+                let i = run_piped(
+                    interpreted,
+                    main,
+                    in_arg,
+                    script,
+                    keep,
+                    observe,
+                    log_numbers,
+                );
                 assert_eq!(
                     c, i,
-                    "{main} on {script:?} (history {keep}, observer {observe}, numbers logged {log_numbers})"
+                    "{main} with in_arg {in_arg:?} on {script:?} (history {keep}, observer {observe}, numbers logged {log_numbers})"
                 );
             }
         }
@@ -173,4 +209,27 @@ fn typed_runs_report_the_expected_outcome() {
             .contains("`inc` of `n`: integer overflow"),
         "{report}"
     );
+}
+
+/// The pipe read by typed code (a variable in_arg): an int, a float, an
+/// atom, nothing, and a pattern that does not match, on both back ends.
+#[test]
+fn typed_pipe_agrees() {
+    let ir = interpreter("typed/pipe");
+    let app = pipe::program();
+    for in_arg in [
+        Some("0"),
+        Some("1"),
+        Some("5"),
+        Some("2.5"),
+        Some("abc"),
+        Some("f(3)"),
+        None,
+    ] {
+        agree_piped(app, &ir, "main", in_arg, "");
+        agree_piped(app, &ir, "half", in_arg, "");
+    }
+    let (report, transitions, _, _) = run_piped(app, "main", Some("4"), "", false, false, false);
+    assert_eq!(report["status"], "ok", "{report}");
+    assert_eq!(transitions, 7);
 }

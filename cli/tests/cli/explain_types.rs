@@ -1,6 +1,6 @@
 //! `sitlogc build --explain-types`: what type inference found, as a user
 //! reads it (insta snapshots over the benchmark DMs, the examples and the
-//! typed test DMs).
+//! typed test DMs), each ending with its one summary line.
 
 use crate::support::{sitlogc, workspace};
 
@@ -23,10 +23,12 @@ fn explain_types_listing() {
     let mut all = String::new();
     for app in [
         "benches/dms/counter_loop",
+        "benches/dms/counter_loop_in_arg",
         "benches/dms/pipe_calls",
         "benches/dms/scripted_loop",
         "tests/typed/loops",
         "tests/typed/mixed",
+        "tests/typed/pipe",
         "dms/examples/appendix_a",
         "dms/examples/countdown",
         "dms/examples/retry_choice",
@@ -34,6 +36,35 @@ fn explain_types_listing() {
         all.push_str(&format!("== {app}\n{}", explain(app)));
     }
     insta::assert_snapshot!(all);
+}
+
+/// The listing of each application ends with exactly one summary line.
+#[test]
+fn explain_types_ends_with_one_summary_line() {
+    for app in [
+        "dms/apps/home",
+        "dms/apps/supermarket",
+        "dms/examples/tutorial",
+    ] {
+        let text = explain(app);
+        let summaries: Vec<&str> = text
+            .lines()
+            .filter(|l| l.starts_with("situations compiled as code: "))
+            .collect();
+        assert_eq!(summaries.len(), 1, "{app}: {text}");
+        let last = text.lines().last().unwrap();
+        assert_eq!(last, summaries[0], "{app}");
+        let (sits, vars) = last
+            .strip_prefix("situations compiled as code: ")
+            .and_then(|r| r.split_once("; variables typed: "))
+            .unwrap_or_else(|| panic!("{app}: {last}"));
+        for ratio in [sits, vars] {
+            let (x, y) = ratio.split_once('/').unwrap();
+            let (x, y): (usize, usize) = (x.parse().unwrap(), y.parse().unwrap());
+            assert!(x <= y && y > 0, "{app}: {last}");
+        }
+        println!("{app}: {last}");
+    }
 }
 
 #[test]

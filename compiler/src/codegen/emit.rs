@@ -448,16 +448,17 @@ impl Gen<'_> {
             instantiate_arms.push(quote!(Situation::#vname => #fname(p, store),));
 
             // The situation as code, when it can be compiled.
-            if let Some((id, arity)) = self.compiled_id(dm, s) {
+            if let Some(plan) = self.mir.plan(dm_ix as u32, i as u32) {
+                let (id, arity) = plan.id;
                 let base = snake(&vname.to_string());
                 let run_name = format_ident!("run_{}", base);
                 let exit_name = format_ident!("exit_{}", base);
-                let code = self.situation_code(dm, i, &run_name, &exit_name);
+                let code = self.situation_code(plan, &run_name, &exit_name);
                 let a = &self.atoms[self.atom_ix[&id]].1;
                 let arity = Literal::usize_unsuffixed(arity);
                 compiled_arms
                     .push(quote!(#ix => ::std::option::Option::Some((p.atoms.#a, #arity)),));
-                if let Some(select) = self.select_code(s) {
+                if let Some(select) = self.select_code(plan) {
                     select_arms.push(quote!(#ix => { #select }));
                 }
                 run_arms.push(quote!(#ix => #run_name(p, cx),));
@@ -535,7 +536,7 @@ impl Gen<'_> {
         };
         quote! {
             #[doc = #mod_doc]
-            #[allow(dead_code, unused_variables, non_camel_case_types, clippy::all)]
+            #[allow(dead_code, unused_variables, unused_assignments, unused_mut, non_camel_case_types, clippy::all)]
             pub mod #module {
                 /// The situations, in source order; the discriminant is the
                 /// machine's situation index.
@@ -595,7 +596,7 @@ impl Gen<'_> {
                     }
                 }
 
-                /// Whether a compiled situation's constant id arguments unify with `value`'s.
+                /// Whether a compiled situation's id unifies with `value` (its constant arguments, or the whole id when it is a pattern).
                 pub fn select_compiled(
                     p: &super::Program,
                     sit: #rt::machine::SitIx,

@@ -12,14 +12,15 @@
 //! - one module per DM (`pub mod dm_<name>`) with an `enum Situation` (one
 //!   variant per situation, in source order, `#[repr(u32)]` so the variant is
 //!   the machine's situation index);
-//! - for each situation whose id and type are atoms (in a DM whose head
-//!   parameters are variables), a function running a visit as code: a
-//!   `match` on the chosen arc, `get`/`set`/`inc` and conditionals inline,
-//!   constants built once, constant next situations resolved to situation
-//!   indices (the DM's `run_situation` goes on to them by itself until the
-//!   machine is needed), DM calls as frames on the machine's stack
-//!   ([`step`]); every step is a call on the runtime's `Cx`, so semantics
-//!   stay in the runtime;
+//! - for each situation the [MIR](crate::mir) gives a plan (the rule is the
+//!   MIR's, shared with the interpreter), a function running a visit as
+//!   code, printed from that plan: a `match` on the chosen arc,
+//!   `get`/`set`/`inc` and conditionals inline, constants built once,
+//!   constant next situations resolved to situation indices (the DM's
+//!   `run_situation` goes on to them by itself until the machine is
+//!   needed), DM calls as frames on the machine's stack ([`step`]); every
+//!   step is a call on the runtime's `Cx`, so semantics stay in the
+//!   runtime;
 //! - for the situations type inference ([`crate::types`]) gave a typed plan,
 //!   a native `Frame` of the DM and `run_typed`, tried first: typed
 //!   situations run one after the other on `i64`/`f64`/enum values, the
@@ -99,7 +100,7 @@ pub fn generate(ir: &Ir, source: &str) -> TokenStream {
 
 /// [`generate`] with options.
 pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
-    let mut g = Gen::new(&ir.store);
+    let mut g = Gen::new(&ir.store, crate::mir::lower(ir));
     g.types = options.typed.then(|| crate::types::infer(ir));
     g.collect(ir);
     g.emit(ir, source)
@@ -118,6 +119,8 @@ struct Gen<'s> {
     const_ix: HashMap<String, usize>,
     /// What type inference found (typed situations run on native frames).
     types: Option<crate::types::Types>,
+    /// The plans of the situations that run as code.
+    mir: crate::mir::Mir,
 }
 
 /// Code that builds one term: statements, then the expression of its value.
@@ -128,8 +131,9 @@ struct Built {
 }
 
 impl<'s> Gen<'s> {
-    fn new(store: &'s Store) -> Self {
+    fn new(store: &'s Store, mir: crate::mir::Mir) -> Self {
         Gen {
+            mir,
             store,
             atoms: Vec::new(),
             atom_ix: HashMap::new(),
@@ -203,6 +207,9 @@ impl<'s> Gen<'s> {
         for t in typed_consts {
             self.visit(t);
         }
+        let mir = std::mem::replace(&mut self.mir, crate::mir::Mir { dms: Vec::new() });
+        self.collect_plans(&mir);
+        self.mir = mir;
         for &a in &ir.basic_actions {
             self.atom(a);
         }

@@ -133,6 +133,24 @@ impl Gen<'_> {
             inits.push(quote!(#f,));
         }
 
+        if t.frame_pipe() {
+            let doc = format!(
+                " The incoming pipe: {}.",
+                t.pipe.as_ref().map_or(Ty::Int, |p| p.ty.clone())
+            );
+            match t.pipe.as_ref().map(|v| &v.ty) {
+                Some(Ty::Float) => {
+                    fields.push(quote!(#[doc = #doc] pub pipe: f64,));
+                    loads.push(quote!(let pipe = cx.float_of(cx.pipe())?;));
+                }
+                _ => {
+                    fields.push(quote!(#[doc = #doc] pub pipe: i64,));
+                    loads.push(quote!(let pipe = cx.int_of(cx.pipe())?;));
+                }
+            }
+            inits.push(quote!(pipe,));
+        }
+
         // The typed situations.
         let typed_ix: Vec<Literal> = t
             .situations
@@ -290,6 +308,7 @@ impl Gen<'_> {
                 let f = param_field(*i);
                 quote!(fr.#f)
             }
+            TVal::Pipe => quote!(fr.pipe),
             TVal::Var(v) => {
                 let w = format_ident!("w{}", *v);
                 quote!(#w)

@@ -1,219 +1,37 @@
-//! The interpreter's resolved program: the IR turned, once before a run,
-//! into plans the machine runs without looking names up or copying
+//! The interpreter's resolved program: the IR with the [MIR](crate::mir)'s
+//! plans, which the machine runs without looking names up or copying
 //! situation templates.
 //!
-//! A situation the code generator would compile ([`codegen`](crate::codegen)'s
-//! rule: its id and type are atoms, or its id a compound of fresh variables
-//! and atomic constants, in a DM whose head parameters are distinct
-//! variables) gets a *plan*: a small tree of steps over the runtime's
-//! [`Cx`], the same steps, in the same order, as the generated code of that
-//! situation takes. Variables live in registers of one visit (no map from
-//! names), ground parts of the templates are the IR's frozen terms (built
-//! once, at lowering), a constant next situation is resolved to its index,
-//! and the machine's situations of one DM follow each other without going
-//! back to the machine's loop. Every other situation (and any situation the
-//! planner cannot resolve: see [`Unsupported`]) is instantiated from its
-//! template, as before: the plans only skip work whose result is known
-//! before the run, so semantics are the runtime's.
+//! A situation that runs as code (the rule is [`crate::mir`]'s, shared with
+//! the code generator) is run from its *plan*: a small tree of steps over
+//! the runtime's [`Cx`], the same steps, in the same order, as the
+//! generated code of that situation takes. Variables live in registers of
+//! one visit (no map from names), ground parts of the templates are the
+//! IR's frozen terms (built once, at lowering), a constant next situation
+//! is resolved to its index, and the machine's situations of one DM follow
+//! each other without going back to the machine's loop. Every other
+//! situation is instantiated from its template, as before: the plans only
+//! skip work whose result is known before the run, so semantics are the
+//! runtime's.
 //!
 //! Invariant: [`Resolved`] runs a program exactly as the IR alone does (the
 //! same reports, histories and errors, up to the names of unbound
 //! variables); `tests/tests/random_agreement.rs` compares the two on random
 //! programs and scripts, and both with the generated code.
 
-use crate::ir::{none_marker, Ir, IrDm, IrSituation};
+use crate::ir::Ir;
+use crate::mir::*;
 use sitlog_runtime::machine::{Cx, DmIx, DmProgram, Instance, Kind, RunError, SitIx, Step};
-use sitlog_runtime::{atoms, eval, ArithCmp, Atom, Store, Term, Value, Vars};
-use std::collections::{HashMap, HashSet};
+use sitlog_runtime::{atoms, ArithCmp, Atom, Store, Term, Vars};
 
-mod plan;
 mod run;
 
-use plan::*;
 use run::*;
-
-/// Field positions in a situation template (see [`crate::ir`]).
-const HEAD: usize = 0;
-const ID: usize = 1;
-const TYPE: usize = 2;
-const IN_ARG: usize = 3;
-const OUT_ARG: usize = 4;
-const PROG: usize = 5;
-const EMBEDDED_DM: usize = 6;
-const DIAG_MOD: usize = 7;
-const ARCS: usize = 8;
-
-/// Deepest term the planner turns into a tree of steps; a deeper one keeps
-/// its situation on the instantiating path (no deep recursion at run time).
-const MAX_DEPTH: usize = 200;
-
-/// Registers of one visit kept on the stack (more spill to the heap).
-const STACK_REGS: usize = 32;
-
-/// A register of one visit of a situation.
-type Reg = u32;
-
-/// Why the planner left a situation to the instantiating path (a variable
-/// it does not know, a term too deep): never an error of the program.
-#[derive(Debug)]
-struct Unsupported;
-
-type Plan<T> = Result<T, Unsupported>;
-
-/// A term built from registers, not evaluated.
-#[derive(Debug)]
-enum Build {
-    /// Atomic, or ground: a frozen term of the IR's store.
-    Const(Term),
-    Reg(Reg),
-    Compound(Atom, Box<[Build]>),
-}
-
-/// A term evaluated in L, as the generated code evaluates it.
-#[derive(Debug)]
-enum Ev {
-    /// A variable occurrence: its value ([`Cx::value`]).
-    Value(Reg),
-    /// Evaluating gives the term itself.
-    Built(Build),
-    /// Anything else: the runtime's evaluator.
-    Eval(Build),
-    If(Box<Cond>, Box<Ev>, Box<Ev>),
-    /// `get`/`inc` into a variable not made yet: it takes the value.
-    VarOpFresh {
-        op: Atom,
-        name: Atom,
-        dst: Reg,
-    },
-    VarOp {
-        op: Atom,
-        name: Atom,
-        arg: Build,
-    },
-    /// `V is E` for a variable not made yet.
-    IsFresh {
-        expr: Build,
-        dst: Reg,
-    },
-    Is {
-        lhs: Build,
-        expr: Build,
-    },
-    /// A compound whose evaluation evaluates its arguments only.
-    Compound(Atom, Box<[Ev]>),
-}
-
-#[derive(Debug)]
-enum Cond {
-    Arith(ArithCmp, Ev, Ev),
-    Other(Build),
-}
-
-/// A next situation: its value and, when known, its index.
-#[derive(Debug)]
-enum Next {
-    Static(Term, Option<SitIx>),
-    If(Box<Cond>, Box<Next>, Box<Next>),
-    Eval(Ev),
-}
-
-/// How a situation variable starts a visit.
-#[derive(Debug, Clone, Copy)]
-enum Init {
-    /// Argument `i` of the selecting value (a compound id).
-    IdArg(usize),
-    /// Argument `i` of the DM call.
-    HeadArg(usize),
-    /// A variable in_arg: the incoming pipe.
-    Pipe,
-    Fresh,
-}
-
-#[derive(Debug)]
-enum IdPart {
-    Fresh(Reg),
-    Const(Term),
-}
-
-#[derive(Debug)]
-enum Prog {
-    /// Evaluated in place, element by element.
-    InPlace(Vec<Ev>),
-    /// On a copy sharing in_arg's and out_arg's variables (D-10).
-    Copy(Build),
-}
-
-#[derive(Debug)]
-enum Action {
-    /// A list written out: elements evaluated into `regs`, performed one by one.
-    List {
-        items: Vec<Ev>,
-        regs: Reg,
-    },
-    One(Ev),
-}
-
-#[derive(Debug)]
-struct ArcPlan {
-    fresh: Vec<Reg>,
-    /// Imported variables: sources, copied into `import_at..` and imported jointly.
-    import_from: Vec<Reg>,
-    import_at: Reg,
-    expectation: Ev,
-    action: Action,
-    next: Next,
-    out_arg: Option<Build>,
-    diag_mod: Option<Build>,
-}
-
-#[derive(Debug)]
-struct Arcs {
-    arcs: Vec<ArcPlan>,
-    /// No expectation can change a variable: nothing saved around them.
-    pure: bool,
-    /// `neutral` with `[empty : A => N]`: the arc is taken (D-14).
-    always_first: bool,
-    type_term: Term,
-    /// The evaluated expectations: registers `exps..exps + arcs.len()`.
-    exps: Reg,
-}
-
-#[derive(Debug)]
-enum KindPlan {
-    Final {
-        diag_mod: Option<Build>,
-    },
-    Perceptual(Arcs),
-    Recursive {
-        call: Build,
-        eval_call: bool,
-        saved: Vec<Reg>,
-        exit: Arcs,
-    },
-}
-
-/// The plan of one situation.
-#[derive(Debug)]
-struct SitPlan {
-    id: (Atom, usize),
-    /// Constant arguments of a compound id, unified when it is selected.
-    select: Vec<(usize, Term)>,
-    /// A compound id built when not selected by a value.
-    compound_id: Option<Vec<IdPart>>,
-    inits: Vec<(Reg, Init)>,
-    /// in_arg: the pattern, unified with the pipe when `unify`; kept in `reg`.
-    in_arg: Option<(Build, bool, Reg)>,
-    /// out_arg of a non-recursive situation, built into `reg`.
-    out_arg: Option<(Build, Reg)>,
-    prog: Option<Prog>,
-    kind: KindPlan,
-    regs: usize,
-}
 
 /// The IR with plans for the situations it can resolve (see the module doc).
 pub struct Resolved<'ir> {
     ir: &'ir Ir,
-    plans: Vec<Vec<Option<SitPlan>>>,
+    plans: Mir,
     /// Go on to the next planned situation of a DM without returning to the
     /// machine's loop (as generated code does).
     chain: bool,
@@ -222,15 +40,7 @@ pub struct Resolved<'ir> {
 impl<'ir> Resolved<'ir> {
     /// Plans every situation that can be resolved.
     pub fn new(ir: &'ir Ir) -> Resolved<'ir> {
-        let plans = ir
-            .dms
-            .iter()
-            .map(|dm| {
-                (0..dm.situations.len())
-                    .map(|i| Planner::new(&ir.store, dm).situation(i).ok())
-                    .collect()
-            })
-            .collect();
+        let plans = crate::mir::lower(ir);
         Resolved {
             ir,
             plans,
@@ -254,13 +64,11 @@ impl<'ir> Resolved<'ir> {
 
     /// How many situations run from plans, of how many.
     pub fn counts(&self) -> (usize, usize) {
-        let all = self.plans.iter().map(Vec::len).sum();
-        let planned = self.plans.iter().flatten().filter(|p| p.is_some()).count();
-        (planned, all)
+        self.plans.counts()
     }
 
     fn plan(&self, dm: DmIx, sit: SitIx) -> Option<&SitPlan> {
-        self.plans[dm as usize][sit as usize].as_ref()
+        self.plans.plan(dm, sit)
     }
 }
 
@@ -299,6 +107,11 @@ impl DmProgram for Resolved<'_> {
         let Some(p) = self.plan(dm, sit) else {
             return true;
         };
+        if let Some(pat) = &p.pattern {
+            // As an instance's id: a fresh copy of the pattern unified with the value.
+            let c = store.copy_term(pat.term);
+            return store.unify(value, c);
+        }
         for &(i, c) in &p.select {
             let x = store.args(value)[i];
             if !store.unify(x, c) {
@@ -512,6 +325,28 @@ diag_mod(add_one(A), [
         );
         let (planned, all) = Resolved::new(&ir).counts();
         assert!(planned >= 4 && planned <= all, "{planned} of {all}");
+    }
+
+    #[test]
+    fn ids_that_are_patterns_run_from_plans() {
+        let src = "diag_mod(main, [
+  [id ==> is, type ==> neutral, arcs ==> [empty : say(go) => walk([a, f(b), c|_])]],
+  [id ==> walk([]), type ==> neutral, arcs ==> [empty : say(done) => check(x, y, y)]],
+  [id ==> walk([f(X)|T]), type ==> neutral, arcs ==> [empty : say(f(X)) => walk(T)]],
+  [id ==> walk([H|T]), type ==> neutral, in_arg ==> P, arcs ==> [empty : say(H-P) => walk(T)]],
+  [id ==> check(A, B, B), type ==> neutral, arcs ==> [empty : say(A) => pipe(x)]],
+  [id ==> pipe(Q), type ==> neutral, in_arg ==> Q, arcs ==> [empty : say(Q) => fs]],
+  [id ==> fs, type ==> final]], []).\n";
+        let ir = agree(src, "");
+        assert_eq!(Resolved::new(&ir).counts(), (7, 7));
+        // The first situation with a pattern id, and a variable in_arg
+        // that is the id's: the pipe is unified with it (an error here).
+        agree(
+            "diag_mod(main, [
+  [id ==> walk([H|T]), type ==> neutral, in_arg ==> H, arcs ==> [empty : say(H-T) => walk([])]],
+  [id ==> walk([]), type ==> final]], []).\n",
+            "",
+        );
     }
 
     #[test]

@@ -198,10 +198,24 @@ pub(super) fn run_plan(p: &SitPlan, cx: Rcx<'_, '_, '_, '_>, regs: &mut [Term]) 
             }
         };
     }
-    for &(r, init) in &p.inits {
-        regs[r as usize] = match init {
-            Init::IdArg(i) => cx.arg(id, i),
-            Init::HeadArg(i) => cx.head_arg(i),
+    if let Some(pat) = &p.pattern {
+        id = match cx.selected() {
+            Some(value) => value,
+            None => {
+                for &r in &pat.fresh {
+                    regs[r as usize] = cx.var();
+                }
+                let id = build(cx, regs, &pat.build);
+                cx.set_id(id);
+                id
+            }
+        };
+    }
+    for (r, init) in &p.inits {
+        regs[*r as usize] = match init {
+            Init::IdArg(i) => cx.arg(id, *i),
+            Init::IdPath(path) => path.iter().fold(id, |t, &i| cx.arg(t, i)),
+            Init::HeadArg(i) => cx.head_arg(*i),
             Init::Pipe => cx.pipe(),
             Init::Fresh => cx.var(),
         };

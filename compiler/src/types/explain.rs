@@ -1,10 +1,12 @@
 //! `sitlogc build --explain-types`: what inference found, per DM, variable
-//! and situation, as a user reads it.
+//! and situation, as a user reads it, ending with one summary line for the
+//! application ([`summary`]).
 
 use super::*;
 
 /// The `--explain-types` listing: every DM's parameters, locals and
-/// situations, typed or not and why; then the globals.
+/// situations, typed or not and why; then the globals; last, exactly one
+/// line [`summary`].
 pub fn explain(ir: &Ir, types: &Types) -> String {
     let store = &ir.store;
     let mut out = String::new();
@@ -26,6 +28,9 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
                     let _ = writeln!(out, "  parameter {}: not a variable", i + 1);
                 }
             }
+        }
+        if let Some(p) = &t.pipe {
+            let _ = writeln!(out, "  pipe (in_arg): {} ({})", p.ty, p.why);
         }
         for l in &t.locals {
             let _ = writeln!(out, "  local `{}`: {} ({})", l.name, l.ty, l.why);
@@ -77,5 +82,31 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
             let _ = writeln!(out, "  `{}`: {} ({})", g.name, g.ty, g.why);
         }
     }
+    let _ = writeln!(out, "{}", summary(types));
     out
+}
+
+/// `situations compiled as code: X/Y; variables typed: A/B`: X of the
+/// application's Y situations run as native typed code, A of its B
+/// variables (DM parameters, pipes read by typed code, locals and globals)
+/// have a type other than `term`.
+pub fn summary(types: &Types) -> String {
+    let (mut sits, mut typed_sits, mut vars, mut typed_vars) = (0, 0, 0, 0);
+    let mut count = |v: &VarTy| {
+        vars += 1;
+        if v.ty != Ty::Term {
+            typed_vars += 1;
+        }
+    };
+    for dm in &types.dms {
+        dm.params.iter().flatten().for_each(&mut count);
+        dm.pipe.iter().for_each(&mut count);
+        dm.locals.iter().for_each(&mut count);
+        sits += dm.situations.len();
+        typed_sits += dm.situations.iter().filter(|s| s.is_ok()).count();
+    }
+    types.globals.iter().for_each(&mut count);
+    format!(
+        "situations compiled as code: {typed_sits}/{sits}; variables typed: {typed_vars}/{vars}"
+    )
 }

@@ -169,6 +169,8 @@ pub(super) fn infer_dm(ir: &Ir, dm: &IrDm) -> DmTypes {
         locals: &locals,
         head_vars: &head_vars,
         params: vec![Ty::None; head_vars.len()],
+        pipe: Ty::None,
+        in_var: None,
     };
     let mut situations = Vec::new();
     for ix in 0..dm.situations.len() {
@@ -208,6 +210,26 @@ pub(super) fn infer_dm(ir: &Ir, dm: &IrDm) -> DmTypes {
             }
         }
     }
+    // The pipe compared both as an int and as a float: likewise.
+    if cx.pipe == Ty::Term {
+        for s in &mut situations {
+            if s.as_ref().is_ok_and(|t| t.uses(&|v| *v == TVal::Pipe)) {
+                *s = Err("the pipe (in_arg) is compared both as an int and as a float".to_owned());
+            }
+        }
+    }
+    let pipe_used = situations
+        .iter()
+        .flatten()
+        .any(|t| t.uses(&|v| *v == TVal::Pipe));
+    let pipe = pipe_used.then(|| VarTy {
+        name: "in_arg".to_owned(),
+        ty: cx.pipe.clone(),
+        why: format!(
+            "compared with {} in typed code; checked on entry",
+            an(&cx.pipe)
+        ),
+    });
     let params = head_vars
         .iter()
         .enumerate()
@@ -235,6 +257,7 @@ pub(super) fn infer_dm(ir: &Ir, dm: &IrDm) -> DmTypes {
         .collect();
     DmTypes {
         params,
+        pipe,
         locals,
         situations,
     }
@@ -247,6 +270,10 @@ pub(super) struct DmCx<'a> {
     head_vars: &'a [Option<u32>],
     /// Types the typed code demands of each parameter.
     params: Vec<Ty>,
+    /// The type the typed code demands of the pipe.
+    pipe: Ty,
+    /// The variable in_arg of the situation being typed (the pipe).
+    in_var: Option<u32>,
 }
 
 pub(super) const IN_ARG: usize = 3;
@@ -277,7 +304,6 @@ impl DmCx<'_> {
             ));
         };
         for (i, what) in [
-            (IN_ARG, "in_arg"),
             (OUT_ARG, "out_arg"),
             (PROG, "prog"),
             (EMBEDDED_DM, "embedded_dm"),
@@ -285,6 +311,22 @@ impl DmCx<'_> {
         ] {
             if self.present(f[i]) {
                 return Err(format!("it has `{what}`"));
+            }
+        }
+        // A variable in_arg names the pipe (D-8): typed like a parameter.
+        self.in_var = None;
+        if self.present(f[IN_ARG]) {
+            match store.value(f[IN_ARG]) {
+                _ if s.kind == Kind::Final => return Err("it has `in_arg`".to_owned()),
+                Value::Var(v) if !self.head_vars.contains(&Some(v.index())) => {
+                    self.in_var = Some(v.index());
+                }
+                _ => {
+                    return Err(format!(
+                        "its in_arg `{}` is not a variable",
+                        show(store, self.dm, f[IN_ARG])
+                    ))
+                }
             }
         }
         match s.kind {
@@ -392,9 +434,12 @@ impl DmCx<'_> {
                     return Err(format!("`inc` of {}", an(ty)));
                 }
                 let bind = match store.value(arg) {
-                    Value::Var(v) if self.head_vars.contains(&Some(v.index())) => {
+                    Value::Var(v)
+                        if self.head_vars.contains(&Some(v.index()))
+                            || self.in_var == Some(v.index()) =>
+                    {
                         return Err(format!(
-                            "`{}` binds a DM parameter",
+                            "`{}` binds a DM parameter or the in_arg",
                             show(store, self.dm, x)
                         ))
                     }
@@ -481,9 +526,10 @@ impl DmCx<'_> {
                 });
             }
             let ty = match (&ta, &tb) {
-                (Ty::None, Ty::None) => {
-                    return Err("a comparison of two parameters".to_owned());
-                }
+                // Two values whose types are demanded (parameters, the
+                // pipe): ints, checked when the frame is loaded (anything
+                // else runs the untyped path).
+                (Ty::None, Ty::None) => Ty::Int,
                 (Ty::None, t) | (t, Ty::None) => t.clone(),
                 (x, y) if x == y => x.clone(),
                 _ => {
@@ -502,8 +548,10 @@ impl DmCx<'_> {
                 ));
             }
             for v in [&a, &b] {
-                if let TVal::Param(i) = v {
-                    self.params[*i] = self.params[*i].join(&ty);
+                match v {
+                    TVal::Param(i) => self.params[*i] = self.params[*i].join(&ty),
+                    TVal::Pipe => self.pipe = self.pipe.join(&ty),
+                    _ => {}
                 }
             }
             let then = Box::new(self.next(then, bound)?);
@@ -536,6 +584,9 @@ impl DmCx<'_> {
                 }
                 if let Some(i) = self.head_vars.iter().position(|h| *h == Some(v.index())) {
                     return Ok((TVal::Param(i), Ty::None));
+                }
+                if self.in_var == Some(v.index()) {
+                    return Ok((TVal::Pipe, Ty::None));
                 }
                 Err(format!(
                     "`{}` is not bound to a typed value",

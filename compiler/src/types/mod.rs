@@ -15,13 +15,20 @@
 //!   when a value does not fit: the type is a fact about the DM's own code
 //!   and a guard at run time, never a rejection.
 //! - a **DM parameter** (a variable of the head) gets the type its uses in
-//!   typed situations demand (compared arithmetically with an int: int);
+//!   typed situations demand (compared arithmetically with an int: int;
+//!   with another parameter or the pipe: int too, the check on load
+//!   sending any other value to the untyped path);
 //!   any DM may be started from the command line with any argument, so this
 //!   is always checked when the frame is loaded.
 //! - an **arc variable** is typed when its first occurrence takes the value
 //!   of a typed local (`inc(n, N)`, `get(n, N)`).
+//! - the **pipe** read by a situation whose `in_arg` is a variable (not a
+//!   parameter) gets the type its uses demand, like a parameter, and is
+//!   checked when the frame is loaded (whoever called the DM may have put
+//!   any term there).
 //! - a **situation** is typed when its id is an atom, it has no
-//!   `in_arg`/`out_arg`/`prog`/`diag_mod`/`embedded_dm`, every expectation
+//!   `out_arg`/`prog`/`diag_mod`/`embedded_dm` and no `in_arg` but a
+//!   variable (a final situation: no `in_arg` at all), every expectation
 //!   is a constant, every action a constant or a list of constants and
 //!   `get`/`set`/`inc` of typed locals, and every next situation a constant
 //!   situation of the DM or a conditional on an arithmetic comparison of
@@ -40,7 +47,7 @@ use std::fmt::Write as _;
 mod explain;
 mod infer;
 
-pub use explain::explain;
+pub use explain::{explain, summary};
 pub use infer::infer;
 use infer::var_name;
 
@@ -227,6 +234,8 @@ pub struct Types {
 pub struct DmTypes {
     /// Head parameters, by position (`None` for a non-variable argument).
     pub params: Vec<Option<VarTy>>,
+    /// The incoming pipe, when typed situations read it (a variable in_arg).
+    pub pipe: Option<VarTy>,
     pub locals: Vec<VarTy>,
     /// Per situation, in order: its typed plan or why it has none.
     pub situations: Vec<Result<TSit, String>>,
@@ -247,6 +256,13 @@ impl DmTypes {
         used.dedup();
         used
     }
+    /// Whether a typed situation reads the pipe.
+    pub fn frame_pipe(&self) -> bool {
+        self.situations
+            .iter()
+            .flatten()
+            .any(|s| s.uses(&|v| *v == TVal::Pipe))
+    }
     /// Parameters the typed situations use, in order.
     pub fn frame_params(&self) -> Vec<usize> {
         let mut used = Vec::new();
@@ -266,6 +282,8 @@ pub enum TVal {
     Local(usize),
     /// The DM's head parameter number `i` (in the frame).
     Param(usize),
+    /// The incoming pipe, as the situation's variable in_arg (in the frame).
+    Pipe,
     /// An arc variable bound by an earlier item (its store variable index).
     Var(u32),
     Int(i64),
@@ -395,6 +413,17 @@ impl TSit {
                 });
             }
         }
+    }
+
+    /// Whether an operand of the plan's conditionals satisfies `f`.
+    pub(super) fn uses(&self, f: &dyn Fn(&TVal) -> bool) -> bool {
+        let mut found = false;
+        if let TSit::Perceptual { arcs, .. } = self {
+            for arc in arcs {
+                arc.next.vals(&mut |v| found |= f(v));
+            }
+        }
+        found
     }
 
     fn params_used(&self, out: &mut Vec<usize>) {
@@ -543,8 +572,10 @@ diag_mod(main,
             text.contains("situation `is`: terms (arc 1: local `n` is a term)"),
             "{text}"
         );
+        // A variable in_arg is the pipe, typed like a parameter: what
+        // leaves `is2` on terms is its next situation.
         assert!(
-            text.contains("situation `is2`: terms (it has `in_arg`)"),
+            text.contains("situation `is2`: terms (arc 1: next situation `s(X)` is not an atom"),
             "{text}"
         );
         assert!(

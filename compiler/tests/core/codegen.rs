@@ -73,3 +73,14 @@ diag_mod('type',
     assert!(text.contains("pub mod dm_type"), "{text}");
     assert!(text.contains("Any = 2"), "{text}");
 }
+
+/// The tutorial's generated code (`sitlogc build --emit rust
+/// dms/examples/tutorial`): what a reader of the guide sees.
+#[test]
+fn tutorial() {
+    let app = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../dms/examples/tutorial");
+    let (checked, diags) = sitlog_compiler::check_path(&app).expect("readable");
+    let checked = checked.unwrap_or_else(|_| panic!("does not check: {diags:#?}"));
+    let ir = ir::lower(&checked);
+    insta::assert_snapshot!(codegen::generate_file(&ir, "dms/examples/tutorial"));
+}

@@ -42,15 +42,15 @@ pub trait DmProgram {
     /// `Some((name, arity))` when situation `sit` runs as code
     /// ([`DmProgram::run_situation`] and, for a recursive one,
     /// [`DmProgram::run_exit`]) instead of being instantiated; its id is
-    /// then the atom `name` (arity 0) or a compound `name(...)` whose
-    /// arguments are distinct fresh variables or atomic constants.
+    /// then the atom `name` (arity 0) or a compound `name(...)`, which
+    /// [`DmProgram::select_compiled`] matches against a value.
     fn compiled_id(&self, dm: DmIx, sit: SitIx) -> Option<(Atom, usize)> {
         let _ = (dm, sit);
         None
     }
     /// Whether compiled situation `sit`, whose id has the principal functor
-    /// of `value`, is selected by `value`: its constant id arguments unify
-    /// with `value`'s (bindings are kept when it is, undone otherwise).
+    /// of `value`, is selected by `value`: its id unifies with `value` as an
+    /// instance's would (bindings are kept when it is, undone otherwise).
     fn select_compiled(&self, dm: DmIx, sit: SitIx, value: Term, store: &mut Store) -> bool {
         let _ = (dm, sit, value, store);
         true

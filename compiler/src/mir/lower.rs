@@ -1,45 +1,46 @@
-//! Planning: a situation of the IR turned into a [`SitPlan`] once, before
-//! the run (registers for its variables, frozen ground parts, next
-//! situations resolved to indices), or left to the instantiating path
-//! ([`Unsupported`]).
+//! Lowering: a situation of the IR turned into a [`SitPlan`] once
+//! (registers for its variables, frozen ground parts, next situations
+//! resolved to indices), or left to the instantiating path
+//! ([`Unsupported`]). The one place that decides which situations run as
+//! code and which variables are lazy.
 
 use super::*;
 
 /// Variables of one scope: their registers, and those not made yet.
 #[derive(Clone, Default)]
-pub(super) struct Scope {
+pub(crate) struct Scope {
     vars: HashMap<u32, Reg>,
     lazy: HashSet<u32>,
 }
 
-pub(super) struct Planner<'s> {
+pub(crate) struct Planner<'s> {
     store: &'s Store,
     dm: &'s IrDm,
     regs: Reg,
 }
 
 impl<'s> Planner<'s> {
-    pub(super) fn new(store: &'s Store, dm: &'s IrDm) -> Self {
+    pub(crate) fn new(store: &'s Store, dm: &'s IrDm) -> Self {
         Planner { store, dm, regs: 0 }
     }
 
-    pub(super) fn reg(&mut self) -> Reg {
+    pub(crate) fn reg(&mut self) -> Reg {
         self.regs += 1;
         self.regs - 1
     }
 
-    pub(super) fn regs(&mut self, n: usize) -> Reg {
+    pub(crate) fn regs(&mut self, n: usize) -> Reg {
         let r = self.regs;
         self.regs += n as Reg;
         r
     }
 
-    pub(super) fn field(&self, s: &IrSituation, i: usize) -> Option<Term> {
+    pub(crate) fn field(&self, s: &IrSituation, i: usize) -> Option<Term> {
         let t = self.store.args(s.template)[i];
         (self.store.atom_of(t) != Some(none_marker())).then_some(t)
     }
 
-    pub(super) fn term_vars(&self, t: Term, out: &mut Vec<u32>) {
+    pub(crate) fn term_vars(&self, t: Term, out: &mut Vec<u32>) {
         let mut stack = vec![t];
         while let Some(u) = stack.pop() {
             match self.store.value(u) {
@@ -50,8 +51,8 @@ impl<'s> Planner<'s> {
         }
     }
 
-    /// The code generator's rule for a situation that runs as code.
-    pub(super) fn compiled_id(&self, s: &IrSituation) -> Option<(Atom, usize)> {
+    /// The rule for a situation that runs as code (both back ends follow it).
+    pub(crate) fn compiled_id(&self, s: &IrSituation) -> Option<(Atom, usize)> {
         let f = self.store.args(s.template);
         self.store.atom_of(f[TYPE])?;
         if s.kind == Kind::Recursive && self.store.atom_of(f[EMBEDDED_DM]) == Some(none_marker()) {
@@ -67,12 +68,11 @@ impl<'s> Planner<'s> {
         match self.store.value(f[ID]) {
             Value::Atom(a) if a != none_marker() => Some((a, 0)),
             Value::Compound(name, args) => {
-                for &arg in args {
-                    match self.store.value(arg) {
-                        Value::Var(v) if seen.insert(v.index()) => {}
-                        Value::Atom(_) | Value::Int(_) | Value::Float(_) => {}
-                        _ => return None,
-                    }
+                // Its variables are the situation's own: none is a parameter.
+                let mut vars = Vec::new();
+                self.term_vars(f[ID], &mut vars);
+                if vars.iter().any(|v| seen.contains(v)) {
+                    return None;
                 }
                 Some((name, args.len()))
             }
@@ -80,9 +80,44 @@ impl<'s> Planner<'s> {
         }
     }
 
+    /// Whether a compound id's arguments are distinct variables and atomic
+    /// constants (selected by unifying the constants only); otherwise the
+    /// id is a pattern ([`IdPattern`]).
+    pub(crate) fn simple_id(&self, args: &[Term]) -> bool {
+        let mut seen = HashSet::new();
+        args.iter().all(|&arg| match self.store.value(arg) {
+            Value::Var(v) => seen.insert(v.index()),
+            Value::Atom(_) | Value::Int(_) | Value::Float(_) => true,
+            _ => false,
+        })
+    }
+
+    /// The path of argument positions to each variable's first occurrence
+    /// in `t` (pre-order, left to right).
+    pub(crate) fn var_paths(
+        &self,
+        t: Term,
+        path: &mut Vec<usize>,
+        out: &mut HashMap<u32, Box<[usize]>>,
+    ) {
+        match self.store.value(t) {
+            Value::Var(v) => {
+                out.entry(v.index()).or_insert_with(|| path.clone().into());
+            }
+            Value::Compound(_, args) => {
+                for (i, &a) in args.iter().enumerate() {
+                    path.push(i);
+                    self.var_paths(a, path, out);
+                    path.pop();
+                }
+            }
+            _ => {}
+        }
+    }
+
     /// The index of the first situation a constant next situation `name`
     /// selects, when that one runs from a plan.
-    pub(super) fn static_target(&self, name: Atom) -> Option<SitIx> {
+    pub(crate) fn static_target(&self, name: Atom) -> Option<SitIx> {
         for (i, s) in self.dm.situations.iter().enumerate() {
             let id = self.store.args(s.template)[ID];
             match self.store.value(id) {
@@ -97,7 +132,7 @@ impl<'s> Planner<'s> {
     }
 
     /// Whether evaluating `t` gives `t` back with no effect.
-    pub(super) fn inert(&self, t: Term, vars_inert: bool) -> bool {
+    pub(crate) fn inert(&self, t: Term, vars_inert: bool) -> bool {
         let mut stack = vec![t];
         while let Some(u) = stack.pop() {
             match self.store.value(u) {
@@ -114,7 +149,7 @@ impl<'s> Planner<'s> {
         true
     }
 
-    pub(super) fn build(&self, t: Term, vars: &HashMap<u32, Reg>, depth: usize) -> Plan<Build> {
+    pub(crate) fn build(&self, t: Term, vars: &HashMap<u32, Reg>, depth: usize) -> Plan<Build> {
         if depth > MAX_DEPTH {
             return Err(Unsupported);
         }
@@ -134,7 +169,7 @@ impl<'s> Planner<'s> {
         }
     }
 
-    pub(super) fn ev(&self, t: Term, scope: &mut Scope, depth: usize) -> Plan<Ev> {
+    pub(crate) fn ev(&self, t: Term, scope: &mut Scope, depth: usize) -> Plan<Ev> {
         if depth > MAX_DEPTH {
             return Err(Unsupported);
         }
@@ -206,7 +241,7 @@ impl<'s> Planner<'s> {
         Ok(Ev::Eval(self.build(t, &scope.vars, depth + 1)?))
     }
 
-    pub(super) fn cond(&self, cond: Term, scope: &mut Scope, depth: usize) -> Plan<Cond> {
+    pub(crate) fn cond(&self, cond: Term, scope: &mut Scope, depth: usize) -> Plan<Cond> {
         if let Value::Compound(name, &[l, r]) = self.store.value(cond) {
             if let Some(op) = ArithCmp::from_atom(name) {
                 let l = self.ev(l, scope, depth + 1)?;
@@ -217,7 +252,7 @@ impl<'s> Planner<'s> {
         Ok(Cond::Other(self.build(cond, &scope.vars, depth + 1)?))
     }
 
-    pub(super) fn next(&self, t: Term, scope: &mut Scope, depth: usize) -> Plan<Next> {
+    pub(crate) fn next(&self, t: Term, scope: &mut Scope, depth: usize) -> Plan<Next> {
         if depth > MAX_DEPTH {
             return Err(Unsupported);
         }
@@ -235,7 +270,7 @@ impl<'s> Planner<'s> {
 
     /// Variables whose first occurrence is the argument of a `get`/`inc`
     /// (or the variable of an `is`) outside any conditional.
-    pub(super) fn lazy_vars(&self, terms: &[Term]) -> HashSet<u32> {
+    pub(crate) fn lazy_vars(&self, terms: &[Term]) -> HashSet<u32> {
         let mut seen = HashSet::new();
         let mut lazy = HashSet::new();
         for &t in terms {
@@ -244,7 +279,7 @@ impl<'s> Planner<'s> {
         lazy
     }
 
-    pub(super) fn lazy_walk(
+    pub(crate) fn lazy_walk(
         &self,
         t: Term,
         depth: usize,
@@ -306,7 +341,7 @@ impl<'s> Planner<'s> {
         seen.extend(vars);
     }
 
-    pub(super) fn list_literal(&self, t: Term) -> Option<Vec<Term>> {
+    pub(crate) fn list_literal(&self, t: Term) -> Option<Vec<Term>> {
         let mut items = Vec::new();
         let mut rest = t;
         loop {
@@ -322,7 +357,7 @@ impl<'s> Planner<'s> {
     }
 
     /// The plan of situation `ix`.
-    pub(super) fn situation(mut self, ix: usize) -> Plan<SitPlan> {
+    pub(crate) fn situation(mut self, ix: usize) -> Plan<SitPlan> {
         let s = &self.dm.situations[ix];
         let id = self.compiled_id(s).ok_or(Unsupported)?;
         let f = self.store.args(s.template).to_vec();
@@ -344,30 +379,59 @@ impl<'s> Planner<'s> {
         let out_arg = self.field(s, OUT_ARG);
         let prog = self.field(s, PROG);
         let diag_mod = self.field(s, DIAG_MOD);
+        let mut id_vars_all = Vec::new();
+        self.term_vars(f[ID], &mut id_vars_all);
+        // A variable in_arg takes the pipe unless it is a parameter or
+        // the id's (then the pipe is unified with its value).
         let in_var = in_arg.and_then(|t| match self.store.value(t) {
-            Value::Var(v) if !head_vars.contains(&v.index()) => Some(v.index()),
+            Value::Var(v)
+                if !head_vars.contains(&v.index()) && !id_vars_all.contains(&v.index()) =>
+            {
+                Some(v.index())
+            }
             _ => None,
         });
         let mut select = Vec::new();
         let mut id_vars = Vec::new();
+        let mut id_paths = HashMap::new();
         let mut compound_id = None;
+        let mut pattern = None;
         if let Value::Compound(_, args) = self.store.value(f[ID]) {
-            let mut parts = Vec::new();
-            for (i, &arg) in args.iter().enumerate() {
-                if let Value::Var(v) = self.store.value(arg) {
-                    id_vars.push((v.index(), i));
-                    parts.push(IdPart::Fresh(self.reg()));
-                } else {
-                    select.push((i, arg));
-                    parts.push(IdPart::Const(arg));
+            if self.simple_id(args) {
+                let mut parts = Vec::new();
+                for (i, &arg) in args.iter().enumerate() {
+                    if let Value::Var(v) = self.store.value(arg) {
+                        id_vars.push((v.index(), i));
+                        parts.push(IdPart::Fresh(self.reg()));
+                    } else {
+                        select.push((i, arg));
+                        parts.push(IdPart::Const(arg));
+                    }
                 }
+                compound_id = Some(parts);
+            } else {
+                let mut fresh_vars = HashMap::new();
+                let mut fresh = Vec::new();
+                for &v in &id_vars_all {
+                    let r = self.reg();
+                    fresh_vars.insert(v, r);
+                    fresh.push(r);
+                }
+                let build = self.build(f[ID], &fresh_vars, 0)?;
+                self.var_paths(f[ID], &mut Vec::new(), &mut id_paths);
+                pattern = Some(IdPattern {
+                    term: f[ID],
+                    fresh,
+                    build,
+                });
             }
-            compound_id = Some(parts);
         }
         let mut inits = Vec::new();
         for &v in &inst_vars {
             let init = if let Some(&(_, i)) = id_vars.iter().find(|(x, _)| *x == v) {
                 Init::IdArg(i)
+            } else if let Some(path) = id_paths.get(&v) {
+                Init::IdPath(Box::clone(path))
             } else if let Some(i) = head_vars.iter().position(|&h| h == v) {
                 Init::HeadArg(i)
             } else if Some(v) == in_var {
@@ -457,6 +521,7 @@ impl<'s> Planner<'s> {
             id,
             select,
             compound_id,
+            pattern,
             inits,
             in_arg: in_plan,
             out_arg: out_plan,
@@ -467,7 +532,7 @@ impl<'s> Planner<'s> {
     }
 
     /// The arcs of a perceptual situation, or the exit arcs of a recursive one.
-    pub(super) fn arcs(&mut self, s: &IrSituation, scope: &mut Scope, exit: bool) -> Plan<Arcs> {
+    pub(crate) fn arcs(&mut self, s: &IrSituation, scope: &mut Scope, exit: bool) -> Plan<Arcs> {
         let f = self.store.args(s.template);
         let out_arg = self.field(s, OUT_ARG);
         let diag_mod = self.field(s, DIAG_MOD);
