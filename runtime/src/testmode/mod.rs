@@ -2,6 +2,12 @@
 //! script (one term per clause, ending with `.`) or typed at a prompt, and
 //! actions are rendered as text on stderr. Input is data: it is read as a
 //! term and never executed.
+//!
+//! Our own applications get the typed term as it is, except a situation of
+//! type `listening` or `nkeyboard` (any arity), which gets `said(Term)`
+//! (D-14). Under `sitlogc run --legacy`, [`original`] gives each situation
+//! type what the original's test mode gives it instead (`detected(T)`,
+//! `doas(T)`, `speaker(T)`, several terms read...).
 
 pub use crate::input::InputLimits;
 use crate::machine::{Actions, Perceived, Perception};
@@ -10,8 +16,11 @@ use crate::term::Term;
 use sitlog_syntax::{Atom, ClauseReader, OpTable};
 use std::io::{BufRead, Read, Write};
 
+pub mod original;
+pub use original::OriginalTestMode;
+
 /// Types whose perceptual interpreter wraps the input as `said(Term)` (D-14).
-fn wraps_said(store: &Store, ty: Term) -> bool {
+pub(crate) fn wraps_said(store: &Store, ty: Term) -> bool {
     let name = store.functor(ty).map(|(n, _)| n.as_str());
     matches!(name, Some("nkeyboard") | Some("listening"))
 }
