@@ -3,7 +3,7 @@
 //! and calls user functions as queries sent to it, watched for their time
 //! and memory limits ([`PrologOptions`]) from the calling thread.
 
-use super::consult::{prepare, Prep, PrologLoadError, PrologSource};
+use super::consult::{prepare, Prep, PrologLoadError, PrologSource, Redefinitions};
 use super::legacy_kb::{KbHost, NativeKb, NativeState};
 use super::swi::{LIBRARIES, PRELUDE, PRELUDE_SWI, SWI_PREDICATES};
 use super::translate::{from_prolog, read_reply, write_atom, Prepared, Writer};
@@ -110,8 +110,11 @@ impl PrologFunctions {
         Self::load_with(sources, options, 0, None)
     }
 
-    /// [`load`](Self::load), the first `layer` sources being the legacy KB
-    /// layer served by `native` (see [`NativeKb`]).
+    /// [`load`](Self::load), the first `layer` sources being the legacy
+    /// profile's Prolog layer of the original, its KB layer served by
+    /// `native` if given (see [`NativeKb`]). With a layer, a file that
+    /// defines a predicate again replaces what an earlier file defined, as
+    /// SWI-Prolog's `consult/1` does (the original's apps rely on it).
     pub fn load_with(
         sources: &[PrologSource],
         options: PrologOptions,
@@ -123,6 +126,7 @@ impl PrologFunctions {
         let mut defined = HashSet::new();
         let mut seen_files = HashSet::new();
         let mut native_state = native.as_ref().map(NativeState::new);
+        let mut redefinitions = (layer > 0).then(Redefinitions::default);
         for (i, s) in sources.iter().enumerate() {
             let mut cx = Prep {
                 out: &mut prepared,
@@ -135,8 +139,12 @@ impl PrologFunctions {
                 } else {
                     None
                 },
+                redefine: redefinitions.as_mut(),
             };
             prepare(s, &mut cx, 0);
+        }
+        if let Some(r) = &redefinitions {
+            r.apply(&mut prepared);
         }
         if let Some(st) = native_state {
             st.finish(&mut prepared);

@@ -617,6 +617,18 @@ get_last_situation(History, S) :-
         bb_put('$sitlog_kb_last', KB-H)
     ).
 
+% KB is a handle, or a KB term the host reads (the last one it could not
+% read is remembered).
+'$sitlog_kb_native'(KB) :-
+    nonvar(KB),
+    (   KB = '$kb'(_)
+    ->  true
+    ;   catch(bb_get('$sitlog_kb_bad', B), _, fail), B == KB
+    ->  fail
+    ;   catch('$sitlog_kb_handle'(KB, _), error(kb_error(_), native_kb),
+              ( bb_put('$sitlog_kb_bad', KB), fail ))
+    ).
+
 '$sitlog_kb_query'(Name, Args, KB, Answer) :-
     '$sitlog_kb_handle'(KB, H),
     '$sitlog_append'(Args, [_], All),
