@@ -69,11 +69,12 @@ fresh() {
 }
 
 # The original ended its main DM without reading past the inputs and
-# without going through one of its own errors ("Press Ctrl. C and abort",
-# printed when a next situation's function fails; it then leaves the DM).
+# without going through one of its own errors ("Press Ctrl. C and abort" or
+# ", Abort", printed when a function or a next situation fails; it then
+# leaves the DM).
 completed() {
     grep -aq "'Dialogue manager ends'" "$1" && ! grep -aq "end_of_file" "$1" &&
-        ! grep -aq "Press Ctrl. C and abort" "$1"
+        ! grep -aq "Press Ctrl. C" "$1"
 }
 
 tasks=("$@")

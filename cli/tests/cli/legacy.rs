@@ -300,6 +300,38 @@ fn the_kb_layer_served_natively_answers_as_the_original_layer() {
 }
 
 #[test]
+fn a_kb_that_sitlog_kb_cannot_read_is_served_by_the_layer() {
+    // A KB sitlog-kb refuses (a property not `[Entry, Weight]`): the layer's own clauses load,
+    // query, update and save it, as with --legacy-kb prolog.
+    let root = tree("native-fallback");
+    write(
+        &root,
+        "knowledge_base/shop.kb",
+        "[class(top,none,[odd],[],[]),\nclass(drink,top,[],[],[[id=>coke,[[size=>big,0]],[]],[id=>malz,[],[]]])]\n",
+    );
+    let out = sitlogc()
+        .current_dir(&root)
+        .args(["run", "apps/kb", "--legacy", "--legacy-kb", "native"])
+        .env_remove("SITLOG_HOME")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    let said: Vec<&str> = stderr
+        .lines()
+        .filter_map(|l| l.strip_prefix("Golem says: "))
+        .collect();
+    assert_eq!(said, ["big unknown small unknown 2."], "{stderr}");
+    // Saved by the layer's own clause (writeq, one line), `odd` kept.
+    let saved = std::fs::read_to_string(root.join("knowledge_base/shop.kb")).unwrap();
+    assert!(
+        saved.contains("small") && saved.contains("[odd]") && !saved.contains(",\nclass("),
+        "{saved}"
+    );
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+#[test]
 fn test_mode_gives_each_situation_type_what_the_original_gives() {
     let root = tree("wrap");
     write(&root, "apps/wrap/models", "'main.dm'.\n");

@@ -27,8 +27,8 @@ pub type KbHost = Arc<dyn Fn(&str) -> String + Send + Sync>;
 ///   KB load (save) of `$SITLOG_HOME/dir/file.ext` (the original's
 ///   `open_kb/1`, `save_kb/1`, `open_preferences_kb/1`...); a KB file the
 ///   host cannot read (a format of its own) is loaded by the layer's clause
-///   as written, and its KB term is then served by the layer's own clauses
-///   (`'$sitlog_kb_native'/1` fails for it);
+///   as written, and KB terms are then served by the layer's own clauses
+///   for the rest of the run (`'$sitlog_kb_native'/1` fails for them);
 /// - every other predicate gets its handles turned back into KB terms (the
 ///   host writes the KB) before its own clauses run, so code of the layer
 ///   that the host does not serve still works.
@@ -196,7 +196,7 @@ impl NativeState {
                 if *save {
                     format!("('$sitlog_kb_terms'([KB], [T]), {legacy}(T))")
                 } else {
-                    format!("{legacy}(KB)")
+                    format!("(bb_put('$sitlog_kb_off', true), {legacy}(KB))")
                 }
             ));
         }
