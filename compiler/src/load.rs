@@ -90,11 +90,18 @@ pub fn is_application(dir: &Path) -> io::Result<bool> {
 pub fn load(path: &Path) -> Result<(Program, Vec<Diagnostic>), LoadError> {
     let mut program = Program::default();
     let mut diags = Vec::new();
-    let meta = std::fs::metadata(path).map_err(|error| LoadError {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    let dir = if meta.is_dir() {
+    // A file only in the overlay (an editor's unsaved buffer) is a DM file.
+    let is_dir = match std::fs::metadata(path) {
+        Ok(meta) => meta.is_dir(),
+        Err(_) if in_overlay(path) => false,
+        Err(error) => {
+            return Err(LoadError {
+                path: path.to_path_buf(),
+                error,
+            })
+        }
+    };
+    let dir = if is_dir {
         load_dir(path, &mut program, &mut diags)?;
         Some(path.to_path_buf())
     } else {
@@ -292,7 +299,8 @@ thread_local! {
 
 /// Runs `f` with `overlay` standing in for the files it names: loading
 /// reads those texts instead of the disk (the language server's unsaved
-/// buffers). Directories are still listed from disk.
+/// buffers), whether or not the file exists. Directories are listed from
+/// disk, plus the overlay's `*.dm` files below them that are not on disk.
 pub fn with_overlay<R>(
     overlay: &std::collections::HashMap<PathBuf, String>,
     f: impl FnOnce() -> R,
@@ -312,6 +320,27 @@ fn absolute(p: &Path) -> PathBuf {
     std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
 }
 
+/// Whether the overlay holds `path`.
+fn in_overlay(path: &Path) -> bool {
+    OVERLAY.with(|o| {
+        let o = o.borrow();
+        !o.is_empty() && o.contains_key(&normalize(&absolute(path)))
+    })
+}
+
+/// The overlay's `*.dm` files below `dir` that are not on disk (a DM file
+/// an editor has not saved yet), as paths under `dir`.
+fn overlay_dm_files(dir: &Path) -> Vec<PathBuf> {
+    let base = normalize(&absolute(dir));
+    OVERLAY.with(|o| {
+        o.borrow()
+            .keys()
+            .filter(|p| p.extension().is_some_and(|e| e == "dm") && !p.is_file())
+            .filter_map(|p| p.strip_prefix(&base).ok().map(|rel| dir.join(rel)))
+            .collect()
+    })
+}
+
 /// A file's bytes: from the overlay if it holds the file, else the disk.
 fn read_bytes(path: &Path) -> io::Result<Vec<u8>> {
     let over = OVERLAY.with(|o| {
@@ -324,7 +353,7 @@ fn read_bytes(path: &Path) -> io::Result<Vec<u8>> {
     });
     match over {
         Some(text) => Ok(text.into_bytes()),
-        None => std::fs::read(path),
+        None => sitlog_syntax::read_file(path),
     }
 }
 
@@ -464,6 +493,7 @@ fn load_dir(
             path: dir.to_path_buf(),
             error,
         })?;
+        dm_files.extend(overlay_dm_files(dir));
         dm_files.sort();
         for path in dm_files {
             load_dm_file(&path, program, diags)?;

@@ -82,7 +82,7 @@ impl Perception for EndOfInputStops {
         if p == Perceived::EndOfInput && !self.interrupt.requested() {
             self.interrupt.request_end_of_input();
             // End the prompt's line.
-            eprintln!();
+            sitlog_runtime::errln!();
         }
         Ok(p)
     }

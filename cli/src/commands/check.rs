@@ -26,7 +26,7 @@ pub fn check(
             // Nothing to check is a usage error (exit 2, like a missing
             // path): a check that passes on nothing would hide a wrong path.
             Ok(found) if found.is_empty() => {
-                eprintln!(
+                sitlog_runtime::errln!(
                     "error: no application or DM file found in {} (an application is a directory with a `models` file or `*.dm` files)",
                     path.display()
                 );
@@ -34,7 +34,7 @@ pub fn check(
             }
             Ok(found) => programs.extend(found),
             Err(e) => {
-                eprintln!("error: cannot read {e}");
+                sitlog_runtime::errln!("error: cannot read {e}");
                 io_failed = true;
             }
         }
@@ -47,7 +47,7 @@ pub fn check(
         let (result, diags) = match crate::output::check_app(path, options) {
             Ok(r) => r,
             Err(e) => {
-                eprintln!("error: cannot read {e}");
+                sitlog_runtime::errln!("error: cannot read {e}");
                 io_failed = true;
                 continue;
             }
@@ -65,11 +65,15 @@ pub fn check(
                 continue;
             }
             match format {
-                Format::Human => eprint!("{}", diag::render_human(d, &program.sources, color)),
+                Format::Human => {
+                    sitlog_runtime::errprint!("{}", diag::render_human(d, &program.sources, color))
+                }
                 Format::Json => {
                     if let Err(e) = writeln!(out, "{}", diag::render_json(d, &program.sources)) {
                         if e.kind() != std::io::ErrorKind::BrokenPipe && !io_failed {
-                            eprintln!("error: cannot write the diagnostics to stdout: {e}");
+                            sitlog_runtime::errln!(
+                                "error: cannot write the diagnostics to stdout: {e}"
+                            );
                         }
                         io_failed |= e.kind() != std::io::ErrorKind::BrokenPipe;
                     }
@@ -79,12 +83,12 @@ pub fn check(
     }
     if let Err(e) = out.flush() {
         if e.kind() != std::io::ErrorKind::BrokenPipe {
-            eprintln!("error: cannot write the diagnostics to stdout: {e}");
+            sitlog_runtime::errln!("error: cannot write the diagnostics to stdout: {e}");
             io_failed = true;
         }
     }
     if format == Format::Human {
-        eprintln!(
+        sitlog_runtime::errln!(
             "checked {} program(s): {} error(s), {} warning(s)",
             programs.len(),
             errors,

@@ -5,14 +5,14 @@ pub fn new_app(dir: &std::path::Path) -> u8 {
     match crate::scaffold::create(dir) {
         Ok(files) => {
             let d = dir.display();
-            eprintln!("sitlogc: made the application {d} ({} files)", files.len());
-            eprintln!("  check it:  sitlogc check {d}");
-            eprintln!("  run it:    sitlogc run {d} --script {d}/script.txt");
-            eprintln!("  talk to it: sitlogc run {d}");
+            sitlog_runtime::errln!("sitlogc: made the application {d} ({} files)", files.len());
+            sitlog_runtime::errln!("  check it:  sitlogc check {d}");
+            sitlog_runtime::errln!("  run it:    sitlogc run {d} --script {d}/script.txt");
+            sitlog_runtime::errln!("  talk to it: sitlogc run {d}");
             0
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            sitlog_runtime::errln!("error: {e}");
             2
         }
     }

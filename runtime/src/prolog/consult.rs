@@ -38,7 +38,7 @@ impl PrologSource {
     /// the file, line and column of the first bad byte.
     pub fn from_path(path: &Path) -> std::io::Result<PrologSource> {
         let name = path.display().to_string();
-        let bytes = std::fs::read(path)?;
+        let bytes = sitlog_syntax::read_file(path)?;
         let text = sitlog_syntax::decode(&bytes)
             .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.in_file(&name)))?
             .to_owned();
