@@ -103,6 +103,7 @@ for task in "${tasks[@]}"; do
     if ! completed "$d/original.out"; then
         echo "$task: DIFFER: the original does not complete this task with these inputs"
         status=1
+        rm -rf "$d/tree"
         continue
     fi
     ok=1
@@ -126,6 +127,8 @@ for task in "${tasks[@]}"; do
         fi
     done
     [ $ok = 1 ] && agreed=$((agreed + 1))
+    # One copy of the tree at a time (7-8 MB each).
+    [ "${CONFORMANCE_KEEP:-0}" = 1 ] || rm -rf "$d/tree"
 done
 echo "$agreed of $total tasks agree"
 exit $status
