@@ -104,7 +104,16 @@ pub fn run_app(
         // Situations run from their plans where they can (resolved once, here).
         None => {
             let resolved = sitlog_compiler::interp::Resolved::new(&ir);
-            sitlog_robot::Runner::process().run(&resolved, functions, args, &assets)
+            let mut runner = sitlog_robot::Runner::process();
+            // --legacy in test mode: each situation type is given what the
+            // original's test mode gives it.
+            let test_mode = args.no_world || (args.world.is_none() && assets.world.is_none());
+            if legacy.is_some() && test_mode {
+                runner = runner.wrap_perception(Box::new(|inner| {
+                    Box::new(sitlog_runtime::testmode::OriginalTestMode::new(inner))
+                }));
+            }
+            runner.run(&resolved, functions, args, &assets)
         }
         Some(commands) => {
             let source = match commands {

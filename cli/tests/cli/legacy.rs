@@ -298,3 +298,84 @@ fn the_kb_layer_served_natively_answers_as_the_original_layer() {
         let _ = std::fs::remove_dir_all(&root);
     }
 }
+
+#[test]
+fn a_kb_that_sitlog_kb_cannot_read_is_served_by_the_layer() {
+    // A KB sitlog-kb refuses (a property not `[Entry, Weight]`): the layer's own clauses load,
+    // query, update and save it, as with --legacy-kb prolog.
+    let root = tree("native-fallback");
+    write(
+        &root,
+        "knowledge_base/shop.kb",
+        "[class(top,none,[odd],[],[]),\nclass(drink,top,[],[],[[id=>coke,[[size=>big,0]],[]],[id=>malz,[],[]]])]\n",
+    );
+    let out = sitlogc()
+        .current_dir(&root)
+        .args(["run", "apps/kb", "--legacy", "--legacy-kb", "native"])
+        .env_remove("SITLOG_HOME")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    let said: Vec<&str> = stderr
+        .lines()
+        .filter_map(|l| l.strip_prefix("Golem says: "))
+        .collect();
+    assert_eq!(said, ["big unknown small unknown 2."], "{stderr}");
+    // Saved by the layer's own clause (writeq, one line), `odd` kept.
+    let saved = std::fs::read_to_string(root.join("knowledge_base/shop.kb")).unwrap();
+    assert!(
+        saved.contains("small") && saved.contains("[odd]") && !saved.contains(",\nclass("),
+        "{saved}"
+    );
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+#[test]
+fn test_mode_gives_each_situation_type_what_the_original_gives() {
+    let root = tree("wrap");
+    write(&root, "apps/wrap/models", "'main.dm'.\n");
+    write(
+        &root,
+        "apps/wrap/main.dm",
+        r#"diag_mod(main,
+  [ [ id ==> body, type ==> detect_body(nearest),
+      arcs ==> [ detected(B) : say(B) => ask ] ],
+    [ id ==> ask, type ==> listening,
+      arcs ==> [ yes : say(yes) => point ] ],
+    [ id ==> point, type ==> see_pointing_follow,
+      arcs ==> [ pointing_coords(X, Y, Z) : say([X, Y, Z]) => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#,
+    );
+    write(&root, "apps/wrap/in.txt", "luis.\nyes.\n1.\n2.\n3.\n");
+    let out = sitlogc()
+        .current_dir(&root)
+        .args([
+            "run",
+            "apps/wrap",
+            "--legacy",
+            "--script",
+            "apps/wrap/in.txt",
+        ])
+        .env_remove("SITLOG_HOME")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    let said: Vec<&str> = stderr
+        .lines()
+        .filter_map(|l| l.strip_prefix("Golem says: "))
+        .collect();
+    assert_eq!(said, ["luis", "yes", "1 2 3."], "{stderr}");
+    // Without --legacy, `listening` gets said(yes) and detect_body the
+    // term as typed: the task stops at its first situation.
+    let out = sitlogc()
+        .current_dir(&root)
+        .args(["run", "apps/wrap", "--script", "apps/wrap/in.txt"])
+        .output()
+        .unwrap();
+    assert_ne!(out.status.code(), Some(0));
+    let _ = std::fs::remove_dir_all(&root);
+}

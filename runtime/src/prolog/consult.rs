@@ -2,7 +2,9 @@
 //! [`PrologSource`], our reader's syntax errors as [`PrologLoadError`]s
 //! with file:line:col, and `consult/1` / `ensure_loaded/1` directives
 //! resolved (an embedded source first, then `$SITLOG_HOME/...` and paths
-//! relative to the consulting file, `.pl` added where needed).
+//! relative to the consulting file, `.pl` added where needed); for the
+//! `--legacy` profile, SWI-Prolog's rule that a file defining a predicate
+//! again replaces what an earlier file defined ([`Redefinitions`]).
 
 use super::legacy_kb::{ClauseFate, NativeState};
 use super::translate::{Prepared, Writer};
@@ -10,7 +12,7 @@ use crate::paths::normalize;
 use crate::store::Store;
 use crate::term::{Term, Value};
 use sitlog_syntax::{atoms, read_clauses, Atom};
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 /// One Prolog source file.
@@ -94,6 +96,48 @@ pub(super) struct Prep<'a> {
     pub(super) embedded: &'a [PrologSource],
     /// Set while reading the legacy KB layer served natively.
     pub(super) native: Option<&'a mut NativeState>,
+    /// Set for the `--legacy` profile: SWI-Prolog's redefinition rule.
+    pub(super) redefine: Option<&'a mut Redefinitions>,
+}
+
+/// SWI-Prolog's `consult/1` rule, which the original's code relies on: the
+/// clauses a file gives for a predicate replace those an earlier file gave
+/// (SWI warns "Redefined static procedure"; dynamic ones too). Clauses of
+/// one file are never dropped, whatever comes between them. (SWI's
+/// exception, `multifile` predicates, does not arise: the engine refuses
+/// the directive, and no file of the original's tree gives it.)
+#[derive(Default)]
+pub(super) struct Redefinitions {
+    /// Each predicate's file and the indices (in `Prep::out`) of its clauses.
+    owner: HashMap<(Atom, usize), (String, Vec<usize>)>,
+    /// Indices of the clauses replaced by a later file.
+    dropped: HashSet<usize>,
+}
+
+impl Redefinitions {
+    fn clause(&mut self, key: (Atom, usize), file: &str, index: usize) {
+        let entry = self
+            .owner
+            .entry(key)
+            .or_insert_with(|| (file.to_owned(), Vec::new()));
+        if entry.0 != file {
+            self.dropped.extend(entry.1.drain(..));
+            entry.0 = file.to_owned();
+        }
+        entry.1.push(index);
+    }
+
+    /// `prepared` without the clauses replaced by a later file.
+    pub(super) fn apply(&self, prepared: &mut Vec<Prepared>) {
+        if self.dropped.is_empty() {
+            return;
+        }
+        let mut i = 0;
+        prepared.retain(|_| {
+            i += 1;
+            !self.dropped.contains(&(i - 1))
+        });
+    }
 }
 
 /// Prepares the clauses of `source` (recursively for consulted files).
@@ -179,7 +223,6 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
         if let Some(native) = cx.native.as_deref_mut() {
             match native.clause(&mut store, key, body) {
                 ClauseFate::Keep => {}
-                ClauseFate::Drop => continue,
                 ClauseFate::Rename(new) => {
                     let args = store.args(head).to_vec();
                     let h = store.compound(new, &args);
@@ -189,6 +232,9 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
                     };
                 }
             }
+        }
+        if let Some(r) = cx.redefine.as_deref_mut() {
+            r.clause(key, &source.name, cx.out.len());
         }
         let mut w = Writer::new(&store, true);
         w.term(t);

@@ -3,9 +3,9 @@
 //! and calls user functions as queries sent to it, watched for their time
 //! and memory limits ([`PrologOptions`]) from the calling thread.
 
-use super::consult::{prepare, Prep, PrologLoadError, PrologSource};
+use super::consult::{prepare, Prep, PrologLoadError, PrologSource, Redefinitions};
 use super::legacy_kb::{KbHost, NativeKb, NativeState};
-use super::swi::{LIBRARIES, PRELUDE, SWI_PREDICATES};
+use super::swi::{LIBRARIES, PRELUDE, PRELUDE_SWI, SWI_PREDICATES};
 use super::translate::{from_prolog, read_reply, write_atom, Prepared, Writer};
 use crate::functions::{CallLimits, FnCall, Functions};
 use crate::store::Store;
@@ -110,8 +110,11 @@ impl PrologFunctions {
         Self::load_with(sources, options, 0, None)
     }
 
-    /// [`load`](Self::load), the first `layer` sources being the legacy KB
-    /// layer served by `native` (see [`NativeKb`]).
+    /// [`load`](Self::load), the first `layer` sources being the legacy
+    /// profile's Prolog layer of the original, its KB layer served by
+    /// `native` if given (see [`NativeKb`]). With a layer, a file that
+    /// defines a predicate again replaces what an earlier file defined, as
+    /// SWI-Prolog's `consult/1` does (the original's apps rely on it).
     pub fn load_with(
         sources: &[PrologSource],
         options: PrologOptions,
@@ -123,6 +126,7 @@ impl PrologFunctions {
         let mut defined = HashSet::new();
         let mut seen_files = HashSet::new();
         let mut native_state = native.as_ref().map(NativeState::new);
+        let mut redefinitions = (layer > 0).then(Redefinitions::default);
         for (i, s) in sources.iter().enumerate() {
             let mut cx = Prep {
                 out: &mut prepared,
@@ -135,8 +139,12 @@ impl PrologFunctions {
                 } else {
                     None
                 },
+                redefine: redefinitions.as_mut(),
             };
             prepare(s, &mut cx, 0);
+        }
+        if let Some(r) = &redefinitions {
+            r.apply(&mut prepared);
         }
         if let Some(st) = native_state {
             st.finish(&mut prepared);
@@ -405,9 +413,10 @@ fn engine_thread(
 
 /// The engine's streams: `user_output` is dropped (what functions print is
 /// not part of the task's output); `user_error` carries the requests of
-/// `'$sitlog_read_text'/3` (framed by `\x01` and `\x02`), answered on
-/// `user_input` by [`read_reply`]; anything else written there goes to
-/// stderr.
+/// `'$sitlog_read_text'/3`, the native KB layer and `'$sitlog_system'/2`
+/// (framed by `\x01` and `\x02`, the first character saying which),
+/// answered on `user_input` ([`read_reply`], [`system_reply`]); anything
+/// else written there goes to stderr.
 fn engine_streams(host: Option<KbHost>) -> StreamConfig {
     type StreamCallback = Box<dyn FnMut(&mut std::io::Cursor<Vec<u8>>)>;
     let (mut replies, input) = InputStreamConfig::channel();
@@ -430,13 +439,17 @@ fn engine_streams(host: Option<KbHost>) -> StreamConfig {
             };
             let text = String::from_utf8_lossy(&pending[1..end]).into_owned();
             pending.drain(..=end);
-            // The first character says what is asked: `R` read, `K` KB.
-            let reply = match text.strip_prefix('K') {
-                Some(request) => match &host {
+            // The first character says what is asked: `R` read, `K` KB,
+            // `S` the system (clock, sleep).
+            let reply = if let Some(request) = text.strip_prefix('K') {
+                match &host {
                     Some(h) => h(request),
                     None => "'$error'(error(existence_error(kb_host, sitlog), kb)).\n".to_owned(),
-                },
-                None => read_reply(text.strip_prefix('R').unwrap_or(&text)),
+                }
+            } else if let Some(request) = text.strip_prefix('S') {
+                system_reply(request)
+            } else {
+                read_reply(text.strip_prefix('R').unwrap_or(&text))
             };
             let _ = replies.write_all(reply.as_bytes());
         }
@@ -451,12 +464,120 @@ fn engine_streams(host: Option<KbHost>) -> StreamConfig {
         .with_user_error(OutputStreamConfig::callback(on_error))
 }
 
+/// When the first engine was built: `statistics(walltime, _)` counts from
+/// here, as SWI-Prolog's counts from its start.
+static STARTED: std::sync::OnceLock<(std::time::Instant, f64)> = std::sync::OnceLock::new();
+
+fn epoch_seconds() -> f64 {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0.0, |d| d.as_secs_f64())
+}
+
+fn started() -> (std::time::Instant, f64) {
+    *STARTED.get_or_init(|| (std::time::Instant::now(), epoch_seconds()))
+}
+
+/// The CPU time of this process in seconds (user + system, from
+/// `/proc/self/stat` at 100 ticks a second); elsewhere the time since the
+/// engine started.
+fn cpu_seconds() -> f64 {
+    let ticks = std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|s| {
+            // The fields after the command name (which may hold spaces).
+            let rest = &s[s.rfind(')')? + 2..];
+            let f: Vec<&str> = rest.split_whitespace().collect();
+            Some(f.get(11)?.parse::<u64>().ok()? + f.get(12)?.parse::<u64>().ok()?)
+        });
+    match ticks {
+        Some(t) => t as f64 / 100.0,
+        None => started().0.elapsed().as_secs_f64(),
+    }
+}
+
+/// The answer to a `'$sitlog_system'/2` request of the prelude: `time`
+/// (seconds since the epoch), `cputime` (seconds), `walltime`
+/// (milliseconds since the engine started), `epoch` (when it started),
+/// `sleep(Seconds)` (sleeps, at most a day; answers 0).
+fn system_reply(request: &str) -> String {
+    let (since, epoch) = started();
+    let request = request.trim();
+    if let Some(secs) = request
+        .strip_prefix("sleep(")
+        .and_then(|r| r.strip_suffix(')'))
+        .and_then(|r| r.trim().parse::<f64>().ok())
+    {
+        if secs.is_finite() && secs > 0.0 {
+            std::thread::sleep(std::time::Duration::from_secs_f64(secs.min(86_400.0)));
+        }
+        return "'$ok'(0,[]).\n".to_owned();
+    }
+    match request {
+        "time" => format!("'$ok'({:?},[]).\n", epoch_seconds()),
+        "cputime" => format!("'$ok'({:?},[]).\n", cpu_seconds()),
+        "walltime" => format!("'$ok'({},[]).\n", since.elapsed().as_millis()),
+        "epoch" => format!("'$ok'({epoch:?},[]).\n"),
+        other => {
+            let mut out = String::from("'$error'(error(domain_error(system_request,");
+            write_atom(&mut out, Atom::intern(other));
+            out.push_str("),sitlog)).\n");
+            out
+        }
+    }
+}
+
+/// The clauses and directives of `prelude_swi.pl` as canonical text (read
+/// by our reader; no call renamed).
+fn prelude_swi() -> Vec<Prepared> {
+    let (clauses, _) = sitlog_syntax::read_clauses(PRELUDE_SWI);
+    clauses
+        .iter()
+        .map(|clause| {
+            let mut store = Store::new();
+            let (t, _) = store.from_clause(clause);
+            let directive = store.compound_args(t, Atom::intern(":-"), 1).map(|a| a[0]);
+            let mut w = Writer::new(&store, false);
+            w.term(directive.unwrap_or(t));
+            let (line, col) = clause_position(PRELUDE_SWI, clause.span.start as usize);
+            Prepared {
+                text: w.out,
+                directive: directive.is_some(),
+                file: "prelude_swi.pl".to_owned(),
+                line,
+                col,
+            }
+        })
+        .collect()
+}
+
+fn clause_position(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    (
+        line,
+        before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1,
+    )
+}
+
 fn build_machine(prepared: &[Prepared], host: Option<KbHost>) -> (Machine, Vec<PrologLoadError>) {
+    started();
     let mut machine = MachineBuilder::default()
         .with_streams(engine_streams(host))
         .build();
     machine.consult_module_string("user", PRELUDE);
     let mut errors = Vec::new();
+    // The prelude's second part is asserted clause by clause, like the
+    // application's (consulted in one string with the first part, the
+    // engine loses its trail on the next query).
+    for p in prelude_swi() {
+        let q = if p.directive {
+            format!("'$sitlog_directive'({},R).", p.text)
+        } else {
+            format!("'$sitlog_add'({},R).", p.text)
+        };
+        check_load(&mut machine, &q, &p, &mut errors);
+    }
     let mut directives = Vec::new();
     for p in prepared {
         if p.directive {

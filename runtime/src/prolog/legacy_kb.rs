@@ -1,6 +1,6 @@
 //! The legacy KB layer served natively: [`NativeKb`] says which of the
 //! original's KB predicates the host serves; while the layer's sources are
-//! prepared, each clause is kept, dropped or renamed, and the clauses that
+//! prepared, each clause is kept or renamed, and the clauses that
 //! call the host (or turn handles back into KB terms) are added at the end.
 
 use super::translate::{write_atom, Prepared};
@@ -25,7 +25,10 @@ pub type KbHost = Arc<dyn Fn(&str) -> String + Send + Sync>;
 /// - a predicate of arity 1 whose clause opens a file named by an
 ///   `atomic_concat(Home, '/dir/file.ext', Path)` for reading (writing) is a
 ///   KB load (save) of `$SITLOG_HOME/dir/file.ext` (the original's
-///   `open_kb/1`, `save_kb/1`, `open_preferences_kb/1`...);
+///   `open_kb/1`, `save_kb/1`, `open_preferences_kb/1`...); a KB file the
+///   host cannot read (a format of its own) is loaded by the layer's clause
+///   as written, and KB terms are then served by the layer's own clauses
+///   for the rest of the run (`'$sitlog_kb_native'/1` fails for them);
 /// - every other predicate gets its handles turned back into KB terms (the
 ///   host writes the KB) before its own clauses run, so code of the layer
 ///   that the host does not serve still works.
@@ -46,7 +49,6 @@ pub struct NativeKb {
 /// What becomes of a clause of the natively served legacy layer.
 pub(super) enum ClauseFate {
     Keep,
-    Drop,
     Rename(Atom),
 }
 
@@ -93,8 +95,10 @@ impl NativeState {
         if key.1 == 0 {
             return ClauseFate::Keep;
         }
+        // A KB load or save keeps its clauses, renamed, for a KB file the
+        // host cannot read (another format): they then run as written.
         if self.files.iter().any(|f| f.0 == key.0 && key.1 == 1) {
-            return ClauseFate::Drop;
+            return ClauseFate::Rename(legacy_name(key.0));
         }
         if self.served.contains(&key) {
             // Kept for calls the host cannot serve (arguments not ground).
@@ -104,7 +108,7 @@ impl NativeState {
         if key.1 == 1 {
             if let Some((file, save)) = body.and_then(|b| kb_file_access(store, b)) {
                 self.files.push((key.0, file, save));
-                return ClauseFate::Drop;
+                return ClauseFate::Rename(legacy_name(key.0));
             }
         }
         if self.wrapped_set.insert(key) {
@@ -123,7 +127,15 @@ impl NativeState {
             s
         };
         // With arguments that are not ground (the original's services then
-        // enumerate), the layer's own clauses run on the KB term.
+        // enumerate), or a KB term the host cannot read (another format),
+        // the layer's own clauses run on the KB term.
+        let native = |p: &str, arity: usize| -> &'static str {
+            if self.defined_served.contains(&(Atom::intern(p), arity)) {
+                ", '$sitlog_kb_native'(KB)"
+            } else {
+                ""
+            }
+        };
         let fallback = |p: &str, all: &[String]| -> String {
             let key = (Atom::intern(p), all.len());
             if !self.defined_served.contains(&key) {
@@ -144,10 +156,11 @@ impl NativeState {
             let v = vars(arity - 1);
             let all = [v.clone(), vec!["KB".into(), "A".into()]].concat();
             clauses.push(format!(
-                "{}({}) :- ( ground([{}]) -> '$sitlog_kb_query'({}, [{}], KB, A){} )",
+                "{}({}) :- ( ground([{}]){} -> '$sitlog_kb_query'({}, [{}], KB, A){} )",
                 name(q),
                 all.join(","),
                 v.join(","),
+                native(q, all.len()),
                 name(q),
                 v.join(","),
                 fallback(q, &all)
@@ -157,24 +170,33 @@ impl NativeState {
             let v = vars(*arity);
             let all = [v.clone(), vec!["KB".into(), "New".into()]].concat();
             clauses.push(format!(
-                "{}({}) :- ( ground([{}]) -> '$sitlog_kb_update'({}, [{}], KB, New){} )",
+                "{}({}) :- ( ground([{}]){} -> '$sitlog_kb_update'({}, [{}], KB, New){} )",
                 name(u),
                 all.join(","),
                 v.join(","),
+                native(u, all.len()),
                 name(u),
                 v.join(","),
                 fallback(u, &all)
             ));
         }
         for (p, file, save) in &self.files {
+            let mut legacy = String::new();
+            write_atom(&mut legacy, legacy_name(*p));
             clauses.push(format!(
-                "{}(KB) :- getenv('SITLOG_HOME', H), atomic_concat(H, {}, P), {}(P, KB)",
+                "{}(KB) :- getenv('SITLOG_HOME', H), atomic_concat(H, {}, P), \
+                 catch({}(P, KB), error(kb_error(_), native_kb), {})",
                 name(p.as_str()),
                 name(file.as_str()),
                 if *save {
                     "'$sitlog_kb_save'"
                 } else {
                     "'$sitlog_kb_open'"
+                },
+                if *save {
+                    format!("('$sitlog_kb_terms'([KB], [T]), {legacy}(T))")
+                } else {
+                    format!("(bb_put('$sitlog_kb_off', true), {legacy}(KB))")
                 }
             ));
         }

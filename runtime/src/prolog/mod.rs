@@ -37,7 +37,9 @@
 //! One job per submodule, bottom to top (each uses only those before it;
 //! this file only re-exports, so every public item keeps its path
 //! `sitlog_runtime::prolog::X`):
-//! - `swi`: the prelude and the SWI-Prolog compatibility tables;
+//! - `swi`: the prelude (`prelude.pl`, then `prelude_swi.pl`: SWI's
+//!   strings as atoms, `format/1,2,3`, Edinburgh I/O, file names, time)
+//!   and the SWI-Prolog compatibility tables;
 //! - `translate`: store terms to canonical text and engine terms back;
 //! - `legacy_kb`: the legacy KB layer served natively ([`NativeKb`]);
 //! - `consult`: sources, their clauses, and `consult/1` resolution;

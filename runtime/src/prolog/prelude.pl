@@ -617,6 +617,20 @@ get_last_situation(History, S) :-
         bb_put('$sitlog_kb_last', KB-H)
     ).
 
+% KB is a handle, or a KB term the host reads. Once the host could not read
+% a KB (a file or term in a format of its own), KB terms are left to the
+% layer's own clauses for the rest of the run (a flag: remembering the
+% term would copy it at every call).
+'$sitlog_kb_native'(KB) :-
+    nonvar(KB),
+    (   KB = '$kb'(_)
+    ->  true
+    ;   catch(bb_get('$sitlog_kb_off', true), _, fail)
+    ->  fail
+    ;   catch('$sitlog_kb_handle'(KB, _), error(kb_error(_), native_kb),
+              ( bb_put('$sitlog_kb_off', true), fail ))
+    ).
+
 '$sitlog_kb_query'(Name, Args, KB, Answer) :-
     '$sitlog_kb_handle'(KB, H),
     '$sitlog_append'(Args, [_], All),

@@ -9,6 +9,9 @@ use sitlog_syntax::Atom;
 /// The prelude consulted before the application's files.
 pub const PRELUDE: &str = include_str!("prelude.pl");
 
+/// The prelude's second part, consulted after it (see `prelude_swi.pl`).
+pub const PRELUDE_SWI: &str = include_str!("prelude_swi.pl");
+
 /// Library predicates made visible to application code unless it defines
 /// them itself (SWI-6 autoloads these).
 pub(super) const LIBRARIES: &[(&str, &[&str])] = &[
@@ -88,6 +91,47 @@ pub const SWI_PREDICATES: &[&str] = &[
     "b_setval/2",
     "b_getval/2",
     "predsort/3",
+    // prelude_swi.pl
+    "atom_string/2",
+    "string_concat/3",
+    "text_concat/3",
+    "string_chars/2",
+    "string_codes/2",
+    "string_to_atom/2",
+    "text_to_string/2",
+    "string_length/2",
+    "string_code/3",
+    "number_string/2",
+    "string_lower/2",
+    "string_upper/2",
+    "sub_string/5",
+    "split_string/4",
+    "term_string/2",
+    "term_string/3",
+    "sformat/2",
+    "sformat/3",
+    "format/1",
+    "is_list/1",
+    "name/2",
+    "random/3",
+    "random_between/3",
+    "tab/1",
+    "tab/2",
+    "see/1",
+    "seeing/1",
+    "seen/0",
+    "tell/1",
+    "telling/1",
+    "told/0",
+    "file_search_path/2",
+    "absolute_file_name/2",
+    "absolute_file_name/3",
+    "get_time/1",
+    "sleep/1",
+    "stamp_date_time/3",
+    "date_time_stamp/2",
+    "day_of_the_week/2",
+    "statistics/2",
 ];
 
 /// Built-ins of the engine that behave otherwise than SWI-Prolog's and
@@ -110,6 +154,8 @@ pub const SWI_RENAMED: &[(&str, usize)] = &[
     ("read_term_from_atom", 3),
     ("term_to_atom", 2),
     ("atom_to_term", 3),
+    ("format", 2),
+    ("format", 3),
 ];
 
 pub(super) fn swi_renamed(name: Atom, arity: usize) -> Option<Atom> {

@@ -37,6 +37,33 @@ read_text(R) :- atom_to_chars('[class(x, top, [''-''=>>loc], [], [])]', Cs), ato
 bad_text(R) :- catch(read_from_chars("f(a", _), error(syntax_error(_), _), R = syntax_error).
 to_atom(R) :- term_to_atom(f(X, 'a b', [1]), A), term_to_atom(T, 'g(Y, c)'), R = A-T.
 bindings(R) :- atom_to_term('p(X, Y, X)', _, R).
+% prelude_swi.pl: strings (atoms here), format, I/O, files, time
+s_atom_string(R) :- atom_string(A, "abc"), atom_string(42, S), R = A-S.
+s_concat(R) :- string_concat(ab, cd, S), findall(X+Y, string_concat(X, Y, ab), L), R = S-L.
+s_text_concat(R) :- text_concat(ab, 1, S), R = S.
+s_chars(R) :- string_chars(S, [h,i]), string_codes(S, C), string_chars(hi, Cs), R = S-C-Cs.
+s_to_atom(R) :- string_to_atom("xy", A), string_to_atom(S, 12), text_to_string("t", T), R = A-S-T.
+s_length(R) :- string_length("hello", L), string_length(hello, L2), R = L-L2.
+s_number(R) :- number_string(N, ' 42 '), number_string(3.5, S), ( number_string(_, '4x') -> F = yes ; F = no ), R = N-S-F.
+s_split(R) :- split_string("a.b.c.d", ".", "", P), split_string("/home//jan///nice/path", "/", "", L), split_string("  a b  ", "", " ", T), split_string("SWI-Prolog, 7.0", ",", " ", U), R = [P, L, T, U].
+s_sub(R) :- findall(B-Sub, sub_string(abc, B, 2, _, Sub), R).
+s_case(R) :- string_lower('HeLLo', L), string_upper(hello, U), R = L-U.
+s_term(R) :- term_string(T, 'foo(X, bar)'), term_string(f('A', [1]), S), R = T-S.
+s_code(R) :- string_code(1, "abc", C), ( string_code(4, "abc", _) -> F = yes ; F = no ), R = C-F.
+s_format(R) :- format(atom(A), '~w and ~a: ~q~n', [f(x), b, 'A']), format(atom(B), "~p|~d|~2d", ['x y', 42, 314]), sformat(S, "~w-~w", [1, 2]), format(atom(C), '~a', hello), R = [A, B, S, C].
+s_format2(R) :- format(atom(A), '~e ~3e ~g ~c~3c', [1.5, 12345.678, 0.0001, 65, 66]), format(codes(C), '~s!', [[104,105]]), R = A-C.
+s_format3(R) :- format(atom(A), '~a~t~10|~w', [ab, c]), format(atom(B), '~t~w~10|', [right]), format(atom(C), '~*c', [3, 0'x]), format(atom(D), '~g ~g ~g', [123456789.0, 2.5, 100.0]), R = [A, B, C, D].
+s_format_out(R) :- format("to the output ~w~n", [dropped]), format('~w', x), format(done), R = ok.
+s_is_list(R) :- findall(X, (member(X, [[], [a], [a|_], a, _]), is_list(X)), L), length(L, R).
+s_name(R) :- name(X, "42"), name(Y, "ab"), name(foo, C), R = [X, Y, C].
+s_random(R) :- random(1, 2, X), random_between(5, 5, Y), random(0.0, 1.0, F), ( float(F) -> G = float ; G = F ), R = X-Y-G.
+s_files(R) :- absolute_file_name('b/../c.pl', A, [relative_to('/tmp')]), absolute_file_name('/a/./b//c', B), R = A-B.
+s_search(R) :- assertz(file_search_path(kb, '/opt/kb')), absolute_file_name(kb('x.pl'), R).
+s_time(R) :- stamp_date_time(0, D, 'UTC'), stamp_date_time(86400.5, date(Y,M,Dd,H,Mn,S,_,_,_), 0), day_of_the_week(date(2024, 11, 26), W), date_time_stamp(date(1970,1,2,0,0,0.5,0,-,-), T), R = [D, Y-M-Dd-H-Mn-S, W, T].
+s_now(R) :- get_time(T), ( float(T), T > 1.7e9 -> R = ok ; R = T ).
+s_stats(R) :- statistics(runtime, [T|_]), statistics(walltime, [W|_]), statistics(cputime, C), ( integer(T), integer(W), number(C) -> R = ok ; R = [T, W, C] ).
+s_sleep(R) :- get_time(A), sleep(0.05), get_time(B), D is B - A, ( D >= 0.04 -> R = ok ; R = D ).
+s_edinburgh(File, R) :- tell(File), telling(S), tab(2), write(hello(world)), write('.'), nl, told, telling(U), see(File), read(X), seen, seeing(V), ( S \== user -> T = file ; T = S ), R = [X, T, U, V].
 "#;
 
 pub(super) fn engine() -> &'static PrologFunctions {
@@ -156,4 +183,83 @@ fn text_is_read_by_our_reader() {
     assert!(got.contains("-g(_"), "{got}");
     let b = ask("bindings");
     assert!(b.starts_with("['X'=_") && b.contains(",'Y'=_"), "{b}");
+}
+
+#[test]
+fn strings_are_atoms_with_swis_text_predicates() {
+    assert_eq!(ask("s_atom_string"), "abc-'42'");
+    assert_eq!(ask("s_concat"), "abcd-[''+ab,a+b,ab+'']");
+    assert_eq!(ask("s_text_concat"), "ab1");
+    assert_eq!(ask("s_chars"), "hi-[104,105]-[h,i]");
+    assert_eq!(ask("s_to_atom"), "xy-'12'-t");
+    assert_eq!(ask("s_length"), "5-5");
+    assert_eq!(ask("s_number"), "42-'3.5'-no");
+    assert_eq!(
+        ask("s_split"),
+        "[[a,b,c,d],['',home,'',jan,'','',nice,path],['a b'],['SWI-Prolog','7.0']]"
+    );
+    assert_eq!(ask("s_sub"), "[0-ab,1-bc]");
+    assert_eq!(ask("s_case"), "hello-'HELLO'");
+    let t = ask("s_term");
+    assert!(
+        t.starts_with("foo(_") && t.ends_with(",bar)-'f(\\'A\\',[1])'"),
+        "{t}"
+    );
+    assert_eq!(ask("s_code"), "97-no");
+}
+
+#[test]
+fn format_as_swi() {
+    assert_eq!(
+        ask("s_format"),
+        "['f(x) and b: \\'A\\'\\n','\\'x y\\'|42|3.14','1-2',hello]"
+    );
+    assert_eq!(
+        ask("s_format2"),
+        "'1.500000e+00 1.235e+04 0.0001 ABBB'-[104,105,33]"
+    );
+    assert_eq!(
+        ask("s_format3"),
+        "['ab        c','     right',xxx,'1.23457e+08 2.5 100']"
+    );
+    assert_eq!(ask("s_format_out"), "ok");
+}
+
+#[test]
+fn is_list_name_random() {
+    assert_eq!(ask("s_is_list"), "2");
+    assert_eq!(ask("s_name"), "[42,ab,[102,111,111]]");
+    assert_eq!(ask("s_random"), "1-5-float");
+}
+
+#[test]
+fn absolute_file_names() {
+    assert_eq!(ask("s_files"), "'/tmp/c.pl'-'/a/b/c'");
+    assert_eq!(ask("s_search"), "'/opt/kb/x.pl'");
+}
+
+#[test]
+fn time_and_statistics() {
+    assert_eq!(
+        ask("s_time"),
+        "[date(1970,1,1,0,0,0.0,0,'UTC',-),1970-1-2-0-0-0.5,2,86400.5]"
+    );
+    assert_eq!(ask("s_now"), "ok");
+    assert_eq!(ask("s_stats"), "ok");
+    assert_eq!(ask("s_sleep"), "ok");
+}
+
+#[test]
+fn edinburgh_io_and_tab() {
+    let dir = std::env::temp_dir().join(format!("sitlog-see-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("out.pl");
+    let q = format!("s_edinburgh('{}', R0), R = R0.", file.display());
+    let got = engine().query_raw(&q).unwrap().expect("answers");
+    assert!(
+        got.contains("hello") && got.contains("file") && got.contains("user"),
+        "{got}"
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "  hello(world).\n");
+    let _ = std::fs::remove_dir_all(&dir);
 }

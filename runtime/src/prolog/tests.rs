@@ -264,3 +264,31 @@ fn a_consulted_library_name_is_taken_from_the_sources_given() {
     let errs = PrologFunctions::load(&[app], PrologOptions::default()).unwrap_err();
     assert!(errs[0].message.contains("behaviors/lang.pl"), "{errs:?}");
 }
+
+#[test]
+fn legacy_files_redefine_as_swi_consult() {
+    let layer = PrologSource::new("layer.pl", "p(a1).\np(a2).\nr(x).\n");
+    let app = PrologSource::new("user_functions.pl", "p(b).\n");
+    // `R` is the binding query_raw gives back: `yes` when p/1 and r/1
+    // have the clauses `want`.
+    let has = |p: &PrologFunctions, want: &str| {
+        let q = format!(
+            "( findall(X, p(X), P), findall(Z, r(Z), Q), [P, Q] == {want} -> R = yes ; R = no )."
+        );
+        p.query_raw(&q).unwrap().unwrap().contains("yes")
+    };
+    // The --legacy profile (a layer before the application's files): the
+    // later file's clauses replace the earlier file's.
+    let legacy = PrologFunctions::load_with(
+        &[layer.clone(), app.clone()],
+        PrologOptions::default(),
+        1,
+        None,
+    )
+    .expect("loads");
+    assert!(has(&legacy, "[[b],[x]]"));
+    drop(legacy);
+    // Our own applications keep every clause.
+    let own = PrologFunctions::load(&[layer, app], PrologOptions::default()).expect("loads");
+    assert!(has(&own, "[[a1,a2,b],[x]]"));
+}

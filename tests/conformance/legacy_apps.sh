@@ -1,0 +1,134 @@
+#!/usr/bin/env bash
+# Runs the tasks of the ORIGINAL SitLog tree's own applications, as their
+# authors wrote them, on the original interpreter and on
+# `sitlogc run --legacy`, each from a fresh copy of the original's tree, and
+# compares the runs (legacy_demos.py: transitions, DM/situation sequence,
+# actions, utterances in order).
+#
+# The tasks are the files legacy_apps/APP/TASK.txt next to this script: the
+# inputs a user types in test mode, one term a line (for a dispatcher app,
+# `res(TASK).` and `ok.` first), written by us from the DMs; APP is the
+# directory under $SITLOG_HOME/apps, run by the original through its own
+# launcher $SITLOG_HOME/scripts/APP (`test` mode). Each is a task that the
+# original completes with those inputs: a run counts only when the original
+# ends its main DM without reading past the inputs and without an error of
+# its own. Nothing of the original is kept in this repository.
+#
+# Environment:
+#   SITLOG_HOME  the original's tree (required, else skip)
+#   swipl        SWI-Prolog on PATH (required, else skip); the original runs
+#                as `swipl --traditional` (SWI-6 lists, see legacy_demos.sh)
+#   SITLOGC      our binary (default target/release/sitlogc)
+#   LEGACY_KB    our KB modes to run, default "prolog native"
+#   CONFORMANCE_TIMEOUT  seconds per run (default 120)
+#   CONFORMANCE_KEEP=1   keep the work directory and print its path
+#
+# Usage: tests/conformance/legacy_apps.sh [APP/TASK]...   (default: all)
+# Prints one line per task and KB mode (`APP/TASK kb=MODE: agree (N
+# transitions, M utterances)` or `... DIFFER` with the first differences),
+# then `N of M tasks agree`. Exit status: 0 when all agree (or skipped), 1
+# otherwise.
+set -u
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+root=$(cd "$here/../.." && pwd)
+
+skip() {
+    echo "skipped: $*"
+    exit 0
+}
+# shellcheck source=original/original.sh
+. "$here/original/original.sh"
+original_available || exit 0
+swipl=$(command -v swipl)
+command -v python3 >/dev/null 2>&1 || skip "python3 not found"
+sitlogc=${SITLOGC:-target/release/sitlogc}
+case "$sitlogc" in
+    /*) ;;
+    *) sitlogc="$root/$sitlogc" ;;
+esac
+[ -x "$sitlogc" ] || skip "$sitlogc not built (cargo build --release --bin sitlogc)"
+limit=${CONFORMANCE_TIMEOUT:-120}
+read -r -a kbs <<<"${LEGACY_KB:-prolog native}"
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/sitlog-legacy-apps.XXXXXX")
+if [ "${CONFORMANCE_KEEP:-0}" = 1 ]; then
+    echo "work directory: $work"
+else
+    trap 'rm -rf "$work"' EXIT
+fi
+mkdir -p "$work/shim"
+printf '#!/bin/sh\nexec %s --traditional "$@"\n' "$swipl" >"$work/shim/swipl"
+chmod +x "$work/shim/swipl"
+
+# A fresh copy of the original's tree (tasks rewrite its KB files).
+fresh() {
+    rm -rf "$1"
+    mkdir -p "$1"
+    (cd "$SITLOG_HOME" && tar --exclude=./.git -cf - .) | (cd "$1" && tar -xf -)
+}
+
+# The original ended its main DM without reading past the inputs and
+# without going through one of its own errors ("Press Ctrl. C and abort" or
+# ", Abort", printed when a function or a next situation fails; it then
+# leaves the DM).
+completed() {
+    grep -aq "'Dialogue manager ends'" "$1" && ! grep -aq "end_of_file" "$1" &&
+        ! grep -aq "Press Ctrl. C" "$1"
+}
+
+tasks=("$@")
+if [ ${#tasks[@]} -eq 0 ]; then
+    while IFS= read -r f; do
+        tasks+=("${f%.txt}")
+    done < <(cd "$here/legacy_apps" && find . -name '*.txt' | sed 's|^\./||' | LC_ALL=C sort)
+fi
+status=0
+total=0
+agreed=0
+for task in "${tasks[@]}"; do
+    app=${task%%/*}
+    input="$here/legacy_apps/$task.txt"
+    total=$((total + 1))
+    if [ ! -f "$input" ] || [ ! -f "$SITLOG_HOME/scripts/$app" ]; then
+        echo "$task: DIFFER: no $input or no launcher $SITLOG_HOME/scripts/$app"
+        status=1
+        continue
+    fi
+    d="$work/${task//\//.}"
+    mkdir -p "$d"
+    fresh "$d/tree"
+    (cd "$d/tree" && PATH="$work/shim:$PATH" SITLOG_HOME="$d/tree/" \
+        timeout "$limit" bash "scripts/$app" test <"$input" >"$d/original.out" 2>&1)
+    if ! completed "$d/original.out"; then
+        echo "$task: DIFFER: the original does not complete this task with these inputs"
+        status=1
+        rm -rf "$d/tree"
+        continue
+    fi
+    ok=1
+    for kb in "${kbs[@]}"; do
+        fresh "$d/tree"
+        (cd "$d/tree" && SITLOG_HOME="$d/tree/" timeout "$limit" \
+            "$sitlogc" run "apps/$app" --legacy --legacy-kb "$kb" --script "$input" \
+            >"$d/ours-$kb.out" 2>"$d/ours-$kb.err")
+        rc=$?
+        python3 "$here/legacy_demos.py" "$d/original.out" "$d/ours-$kb.out" "$d/ours-$kb.err" \
+            >"$d/compare-$kb.txt"
+        cmp=$?
+        if [ "$cmp" = 0 ] && [ "$rc" = 0 ]; then
+            echo "$task kb=$kb: agree ($(head -n 1 "$d/compare-$kb.txt"))"
+        else
+            echo "$task kb=$kb: DIFFER (exit status $rc)"
+            sed 's/^/    /' "$d/compare-$kb.txt"
+            [ "$rc" = 0 ] || tail -n 3 "$d/ours-$kb.err" | sed 's/^/    stderr: /'
+            ok=0
+            status=1
+        fi
+    done
+    [ $ok = 1 ] && agreed=$((agreed + 1))
+    # One copy of the tree at a time (7-8 MB each).
+    [ "${CONFORMANCE_KEEP:-0}" = 1 ] || rm -rf "$d/tree"
+done
+echo "$agreed of $total tasks agree"
+exit $status
