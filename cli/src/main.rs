@@ -73,6 +73,21 @@ fn run(cli: Cli) -> u8 {
                 watch,
             )
         }
+        #[cfg(feature = "ros2")]
+        Command::Sim {
+            app,
+            ros2: _,
+            speech,
+            world,
+            seed,
+            quiet,
+        } => sim(
+            &app,
+            world.as_deref(),
+            seed,
+            speech == sitlog_cli::args::Speech::External,
+            quiet,
+        ),
         Command::Debug { app, run, commands } => run_app(
             &app,
             &run,

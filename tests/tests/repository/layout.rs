@@ -53,6 +53,11 @@ const LAYERS: &[(&str, &[&str])] = &[
         "sitlog-debug",
         &["sitlog-syntax", "sitlog-runtime", "sitlog-robot"],
     ),
+    // a robot over ROS 2, and the simulator served as one
+    (
+        "sitlog-ros",
+        &["sitlog-runtime", "sitlog-robot", "sitlog-sim"],
+    ),
     // floor 4: the command line
     (
         "sitlog-cli",
@@ -65,6 +70,8 @@ const LAYERS: &[(&str, &[&str])] = &[
             "sitlog-lsp",
             "sitlog-debug",
             "sitlog-robot",
+            "sitlog-ros",
+            "sitlog-sim",
         ],
     ),
 ];
@@ -72,6 +79,7 @@ const LAYERS: &[(&str, &[&str])] = &[
 /// What the compiler core must never reach.
 const NOT_UNDER_THE_COMPILER: &[&str] = &[
     "sitlog-robot",
+    "sitlog-ros",
     "sitlog-sim",
     "sitlog-debug",
     "sitlog-lsp",
