@@ -247,6 +247,12 @@ pub enum Command {
         /// compiled task stays smaller.
         #[arg(long, conflicts_with = "emit")]
         debugger: bool,
+        /// Link the robot over ROS 2 (sitlog-ros): the executable also runs
+        /// with `--robot ros2`. On when the application has a `ros2.toml`;
+        /// opt-in otherwise (it adds build time and size, see the guide's
+        /// "A robot over ROS 2"). Not with --debugger.
+        #[arg(long, conflicts_with = "debugger")]
+        ros2: bool,
     },
     /// Draw an application in the notation of the SitLog papers.
     ///

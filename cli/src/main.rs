@@ -111,12 +111,21 @@ fn run(cli: Cli) -> u8 {
             explain_types,
             allow_unresolved,
             debugger,
+            ros2,
         } => {
             let release = !debug;
             if explain_types {
                 explain_types_of(&app)
             } else {
-                build_app(&app, output, release, emit, allow_unresolved, debugger)
+                build_app(
+                    &app,
+                    output,
+                    release,
+                    emit,
+                    allow_unresolved,
+                    debugger,
+                    ros2,
+                )
             }
         }
         Command::Lsp => match sitlog_lsp::run_stdio(&sitlog_cli::analysis::Analysis) {

@@ -57,11 +57,16 @@ fn err(what: &str, e: impl std::fmt::Display) -> String {
 }
 
 impl Link {
-    /// Joins the domain as node `/sitlog/NAME`.
+    /// Joins the domain of the environment ([`domain_id`],
+    /// [`localhost_only`]) as node `/sitlog/NAME`.
     pub fn open(name: &str) -> Result<Link, String> {
-        let domain = domain_id()?;
+        Link::open_on(name, domain_id()?, localhost_only())
+    }
+
+    /// Joins `domain` as node `/sitlog/NAME`, on loopback only with `local`.
+    pub fn open_on(name: &str, domain: u16, local: bool) -> Result<Link, String> {
         let mut builder = rustdds::DomainParticipantBuilder::new(domain);
-        if localhost_only() {
+        if local {
             builder = builder.with_only_networks([std::net::Ipv4Addr::LOCALHOST]);
         }
         let participant = builder

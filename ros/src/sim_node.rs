@@ -198,19 +198,28 @@ pub fn serve(
     w.flush();
     let mut link = Link::open("sim")?;
     let t = &iface.topics;
-    let q = &iface.qos;
     let a = &iface.actions;
     let s = &iface.services;
+    // Keep every message until taken (a `false` then `true` on the listening
+    // topic are two listens, even when both arrive before the node looks).
+    let deep = |q: &crate::config::Qos| crate::config::Qos {
+        depth: q.depth.max(1000),
+        ..q.clone()
+    };
+    let q = &iface.qos;
     let mut say: Subscription<StdString> =
-        link.subscription(&t.say, ("std_msgs", "String"), &q.say)?;
+        link.subscription(&t.say, ("std_msgs", "String"), &deep(&q.say))?;
     let mut screen: Subscription<StdString> =
-        link.subscription(&t.screen, ("std_msgs", "String"), &q.screen)?;
-    let mut message: Subscription<TextMessage> =
-        link.subscription(&t.message, ("sitlog_msgs", "TextMessage"), &q.message)?;
+        link.subscription(&t.screen, ("std_msgs", "String"), &deep(&q.screen))?;
+    let mut message: Subscription<TextMessage> = link.subscription(
+        &t.message,
+        ("sitlog_msgs", "TextMessage"),
+        &deep(&q.message),
+    )?;
     let mut listening: Subscription<StdBool> =
-        link.subscription(&t.listening, ("std_msgs", "Bool"), &q.listening)?;
+        link.subscription(&t.listening, ("std_msgs", "Bool"), &deep(&q.listening))?;
     let mut heard_in: Option<Subscription<StdString>> = if options.speech_external {
-        Some(link.subscription(&t.heard, ("std_msgs", "String"), &q.heard)?)
+        Some(link.subscription(&t.heard, ("std_msgs", "String"), &deep(&q.heard))?)
     } else {
         None
     };
