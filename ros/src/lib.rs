@@ -7,7 +7,8 @@
 //! participant, node and waits), `robot` (the task's side: [`RosRobot`],
 //! the runtime's `Perception` and `Actions` over the interface, and
 //! [`hook`] for `--robot ros2`), `sim_node` (the robot's side:
-//! [`sim_node::serve`], a simulated world served on the interface).
+//! [`sim_node::serve`], a simulated world served on the interface), and
+//! `terms` (the terms the robot reads and makes).
 //!
 //! Invariant: no SitLog syntax here beyond the terms a robot perceives and
 //! acts on (as `sitlog-robot`'s simulated robot makes them); the
@@ -18,6 +19,7 @@ pub mod link;
 pub mod msgs;
 mod robot;
 pub mod sim_node;
+mod terms;
 
 pub use config::Interface;
 pub use robot::{hook, RosRobot};

@@ -26,6 +26,7 @@
 use crate::config::Interface;
 use crate::link::{wait_for, Link, Waited, Writer};
 use crate::msgs::*;
+use crate::terms::{goal_pose, hand_arg, lower_first, name_arg, number, report, status_term};
 use ros2_client::action::GoalStatusEnum;
 use ros2_client::{ActionClient, Client, Subscription};
 use sitlog_robot::console::SharedConsole;
@@ -33,8 +34,8 @@ use sitlog_robot::interrupt::Interrupt;
 use sitlog_robot::robot::sentence;
 use sitlog_robot::{RobotHook, RobotParts, RobotSetup, SimAccess};
 use sitlog_runtime::machine::{Actions, Perceived, Perception};
-use sitlog_runtime::{Atom, Store, Term, Value};
-use sitlog_sim::{Hand, Sim, World};
+use sitlog_runtime::{Atom, Store, Term};
+use sitlog_sim::{Sim, World};
 use std::sync::atomic::AtomicBool;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -471,24 +472,6 @@ enum Heard {
     Stopped,
 }
 
-/// Resolves a place of the interface to a goal pose.
-fn goal_pose(iface: &Interface, place: &str) -> Option<NavigateToPoseGoal> {
-    let &(x, y, yaw) = iface.places.get(place)?;
-    Some(NavigateToPoseGoal {
-        pose: PoseStamped {
-            header: Header {
-                stamp: Time::now(),
-                frame_id: iface.frames.map.clone(),
-            },
-            pose: Pose {
-                position: Point { x, y, z: 0.0 },
-                orientation: Quaternion::yaw(yaw),
-            },
-        },
-        behavior_tree: String::new(),
-    })
-}
-
 /// The robot's senses.
 struct Senses {
     inner: Arc<Mutex<Inner>>,
@@ -497,60 +480,6 @@ struct Senses {
 /// The robot's effectors.
 struct Effectors {
     inner: Arc<Mutex<Inner>>,
-}
-
-/// Reads an aborted action's status (`blocked(hall, kitchen)`,
-/// `grasp_failed`): a ground term, else `None`.
-fn status_term(store: &mut Store, text: &str) -> Option<Term> {
-    let text = text.trim();
-    if text.is_empty() || !text.starts_with(|c: char| c.is_ascii_lowercase()) {
-        return None;
-    }
-    let (t, _) = store.parse(text).ok()?;
-    store.is_ground(t).then_some(t)
-}
-
-/// The name an argument gives (an atom), or an error naming the action.
-fn name_arg(store: &Store, action: Term, i: usize, what: &str) -> Result<String, String> {
-    let a = store.args(action)[i];
-    store
-        .atom_of(a)
-        .map(|n| n.as_str().to_owned())
-        .ok_or_else(|| {
-            format!(
-                "`{}`: the {what} must be an atom, not `{}`",
-                store.writeq(action),
-                store.writeq(a)
-            )
-        })
-}
-
-fn hand_arg(store: &Store, action: Term, i: usize) -> Result<Hand, String> {
-    let name = name_arg(store, action, i, "hand")?;
-    name.parse::<Hand>()
-        .map_err(|e| format!("`{}`: {e}", store.writeq(action)))
-}
-
-/// Unifies the status argument `i` of `action` with `status`.
-fn report(store: &mut Store, action: Term, i: usize, status: Term) -> Result<(), String> {
-    let arg = store.args(action)[i];
-    if store.unify(arg, status) {
-        Ok(())
-    } else {
-        Err(format!(
-            "`{}`: the robot's answer `{}` does not match",
-            store.writeq(action),
-            store.writeq(status)
-        ))
-    }
-}
-
-fn number(store: &Store, t: Term) -> Option<f64> {
-    match store.value(t) {
-        Value::Int(i) => Some(i as f64),
-        Value::Float(f) => Some(f),
-        _ => None,
-    }
 }
 
 impl Perception for Senses {
@@ -827,14 +756,5 @@ impl Actions for Effectors {
             _ => {}
         }
         Ok(())
-    }
-}
-
-/// `The manager` → `the manager` (a name said inside a sentence).
-fn lower_first(s: &str) -> String {
-    let mut c = s.chars();
-    match c.next() {
-        Some(f) => f.to_lowercase().chain(c).collect(),
-        None => String::new(),
     }
 }
