@@ -35,7 +35,7 @@ mod update;
 pub use answer::{Answer, CallError, Outcome};
 pub use closure::Budget;
 pub use model::{Kb, ModelError};
-pub use persist::{lock_for_persist, LoadError, PersistError, PersistLock};
+pub use persist::{lock_for_persist, real_path, LoadError, PersistError, PersistLock};
 pub use query::{answer_line, QueryError};
 pub use services::{service, Arg, Service, SERVICES};
 /// 1-based line and column (in characters) of a byte offset: the positions

@@ -66,17 +66,53 @@ fn dir_and_name(path: &Path) -> (PathBuf, String) {
     (dir, file_name)
 }
 
+/// The file `path` names, following symbolic links (as many as the system
+/// allows, relative ones from their own directory); a dangling link gives
+/// the path it points to, so that saving creates the target, not a file in
+/// place of the link.
+pub fn real_path(path: &Path) -> PathBuf {
+    let mut path = path.to_owned();
+    for _ in 0..40 {
+        match std::fs::read_link(&path) {
+            Ok(target) => {
+                path = match path.parent() {
+                    Some(dir) if target.is_relative() => dir.join(target),
+                    _ => target,
+                };
+            }
+            Err(_) => break,
+        }
+    }
+    path
+}
+
 /// Takes the persistence lock of the KB file `path` without waiting, then
 /// removes the temporary files that killed runs left beside it. Another
 /// process holding the lock is an error naming it.
+///
+/// `path` is resolved once, here ([`real_path`]): the lock, the temporary
+/// files and every save are beside and of the real file, so a symbolic link
+/// stays a link, its target is what changes, and a run persisting the target
+/// by another name is excluded too. A path that is not a regular file (a
+/// device, a FIFO, a directory) is refused.
 pub fn lock_for_persist(path: &Path) -> Result<PersistLock, LoadError> {
-    let (dir, name) = dir_and_name(path);
-    let lock_path = dir.join(format!(".{name}.lock"));
+    let shown = path.display().to_string();
     let err = |message: String| LoadError {
-        path: path.display().to_string(),
+        path: shown.clone(),
         pos: None,
         message,
     };
+    let path = &real_path(path);
+    if let Ok(m) = std::fs::metadata(path) {
+        if !m.is_file() {
+            return Err(err(format!(
+                "{} is not a regular file: a KB to persist must be one",
+                path.display()
+            )));
+        }
+    }
+    let (dir, name) = dir_and_name(path);
+    let lock_path = dir.join(format!(".{name}.lock"));
     let file = std::fs::OpenOptions::new()
         .create(true)
         .truncate(false)
@@ -134,10 +170,11 @@ fn remove_stale_temporaries(dir: &Path, name: &str) {
 }
 
 impl Kb {
-    /// Locks `path` for persistence ([`lock_for_persist`]) and loads it.
+    /// Locks `path` for persistence ([`lock_for_persist`]) and loads it;
+    /// save to [`PersistLock::path`], the real file.
     pub fn open_persistent(path: &Path) -> Result<(Kb, PersistLock), LoadError> {
         let lock = lock_for_persist(path)?;
-        let kb = Kb::load(path)?;
+        let kb = Kb::load(lock.path())?;
         Ok((kb, lock))
     }
 }
@@ -262,10 +299,13 @@ impl Kb {
     }
 }
 
-/// Writes `data` to a temporary file beside `path` (tempfile: removed
-/// whatever goes wrong before the rename), syncs it, keeps the old file's
-/// permissions, renames it over `path` and syncs the directory.
+/// Writes `data` to a temporary file beside the real file of `path`
+/// ([`real_path`]: a symbolic link stays a link) (tempfile: removed whatever
+/// goes wrong before the rename), syncs it, keeps the old file's permissions
+/// when it is a regular file, renames it over the real file and syncs the
+/// directory.
 fn write_atomic(path: &Path, data: &[u8]) -> std::io::Result<()> {
+    let path = &real_path(path);
     let (dir, file_name) = dir_and_name(path);
     // `.NAME.PID.XXXXXX.tmp`: what `remove_stale_temporaries` recognises.
     let mut tmp = tempfile::Builder::new()
@@ -273,18 +313,19 @@ fn write_atomic(path: &Path, data: &[u8]) -> std::io::Result<()> {
         .suffix(".tmp")
         .tempfile_in(&dir)?;
     tmp.as_file_mut().write_all(data)?;
-    match std::fs::metadata(path) {
-        Ok(old) => tmp.as_file().set_permissions(old.permissions())?,
-        // A new KB file: readable by others, as `File::create` makes it
-        // (tempfile makes its files private).
+    match std::fs::symlink_metadata(path) {
+        Ok(old) if old.is_file() => tmp.as_file().set_permissions(old.permissions())?,
+        // A new KB file (or something that is not a file, whose mode says
+        // nothing about a KB's): readable by others, as `File::create` makes
+        // it (tempfile makes its files private).
         #[cfg(unix)]
-        Err(_) => {
+        _ => {
             use std::os::unix::fs::PermissionsExt;
             tmp.as_file()
                 .set_permissions(std::fs::Permissions::from_mode(0o644))?
         }
         #[cfg(not(unix))]
-        Err(_) => {}
+        _ => {}
     }
     tmp.as_file().sync_all()?;
     tmp.persist(path).map_err(|e| e.error)?;

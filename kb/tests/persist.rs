@@ -128,3 +128,60 @@ fn a_million_individuals_property_extension() {
     let out = kb.query("property_extension(loc, X)").unwrap().to_line();
     assert!(out.starts_with("[o0:"));
 }
+
+/// `--kb-persist` through a symbolic link (issue 31): the link stays a link
+/// and its target is what changes; the lock is the target's, so a second
+/// run persisting the target by its own name is refused; a path to
+/// something that is not a regular file is refused before anything is read.
+#[cfg(unix)]
+#[test]
+fn persisting_through_a_symbolic_link_writes_the_real_file() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = std::env::temp_dir().join(format!("sitlog-kb-link-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("real")).unwrap();
+    let target = dir.join("real/k.kb");
+    std::fs::write(&target, "[class(top,none,[],[],[])].\n").unwrap();
+    std::fs::set_permissions(&target, std::fs::Permissions::from_mode(0o600)).unwrap();
+    let link = dir.join("link.kb");
+    std::os::unix::fs::symlink("real/k.kb", &link).unwrap();
+
+    let (mut kb, lock) = Kb::open_persistent(&link).unwrap();
+    assert_eq!(lock.path(), target.as_path());
+    // a second run persisting the real file by its own name is excluded
+    let e = sitlog_kb::lock_for_persist(&target).unwrap_err();
+    assert!(e.message.contains("another process"), "{e}");
+    let upd = sitlog_syntax::read_term("add_class(thing, top)").unwrap();
+    assert_eq!(kb.update_persist(&upd, lock.path()).unwrap(), Ok(true));
+    // saving through the link itself resolves it too
+    kb.save(&link).unwrap();
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(std::fs::read_to_string(&target).unwrap().contains("thing"));
+    let mode = std::fs::metadata(&target).unwrap().permissions().mode() & 0o777;
+    assert_eq!(mode, 0o600, "the target keeps its mode");
+    // nothing was left beside the link
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        !names
+            .iter()
+            .any(|n| n.ends_with(".lock") || n.ends_with(".tmp")),
+        "{names:?}"
+    );
+    drop(lock);
+
+    // a link to a device is refused, naming it
+    let dev = dir.join("zero.kb");
+    std::os::unix::fs::symlink("/dev/zero", &dev).unwrap();
+    let e = sitlog_kb::lock_for_persist(&dev).unwrap_err();
+    assert!(
+        e.to_string().contains("/dev/zero is not a regular file"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

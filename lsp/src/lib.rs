@@ -2,7 +2,8 @@
 //! crate owns the protocol only: the document store (the editor's unsaved
 //! text, an overlay over the disk), URIs and UTF-16 positions, and which
 //! notifications and requests are answered. It knows nothing of SitLog:
-//! the compiler supplies the analysis (`sitlogc lsp`).
+//! `sitlogc lsp` supplies the analysis (`sitlog_cli::analysis`, over the
+//! compiler core).
 //!
 //! Invariants: every file the analyzer reported diagnostics for is told
 //! again when they are gone (an empty list), so an editor never keeps a

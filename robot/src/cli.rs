@@ -11,7 +11,7 @@ use crate::assets::Assets;
 use clap::{Args, CommandFactory, FromArgMatches, Parser, ValueEnum};
 use sitlog_runtime::functions::CallLimits;
 use sitlog_runtime::testmode::InputLimits;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 /// Output format of a run.
@@ -122,6 +122,31 @@ pub struct RunArgs {
     pub view_delay: u64,
 }
 
+/// Whether `a` and `b` name one file: the same file on disk when both
+/// exist (through links, `..`, another spelling), else the same path once
+/// the directory is resolved (a file `--trace` is about to create).
+fn same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    if let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+        use std::os::unix::fs::MetadataExt;
+        return ma.dev() == mb.dev() && ma.ino() == mb.ino();
+    }
+    let resolve = |p: &Path| -> PathBuf {
+        if let Ok(real) = std::fs::canonicalize(p) {
+            return real;
+        }
+        let dir = match p.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        match (std::fs::canonicalize(dir), p.file_name()) {
+            (Ok(d), Some(name)) => d.join(name),
+            _ => p.to_path_buf(),
+        }
+    };
+    resolve(a) == resolve(b)
+}
+
 /// `--prolog-time-limit`: seconds, decimals allowed.
 fn parse_seconds(text: &str) -> Result<Duration, String> {
     let s: f64 = text
@@ -131,6 +156,39 @@ fn parse_seconds(text: &str) -> Result<Duration, String> {
 }
 
 impl RunArgs {
+    /// Two options naming the same file where one of them writes it
+    /// (`--trace`, and `--kb` with `--kb-persist`) and the other reads or
+    /// writes it too (`--script`, `--kb`, `--world`, `--trace`): `run
+    /// --script s.txt --trace s.txt` would overwrite the script. The
+    /// message names both options and the file.
+    pub fn files_in_conflict(&self) -> Option<String> {
+        let mut named: Vec<(&str, &Path, bool)> = Vec::new();
+        if let Some(p) = &self.script {
+            named.push(("--script", p, false));
+        }
+        if let Some(p) = &self.kb {
+            named.push(("--kb", p, self.kb_persist));
+        }
+        if let Some(p) = &self.world {
+            named.push(("--world", p, false));
+        }
+        if let Some(p) = &self.trace {
+            named.push(("--trace", p, true));
+        }
+        for (i, &(a, pa, wa)) in named.iter().enumerate() {
+            for &(b, pb, wb) in &named[i + 1..] {
+                if (wa || wb) && same_file(pa, pb) {
+                    let writer = if wb { b } else { a };
+                    return Some(format!(
+                        "{a} and {b} name the same file, {}: {writer} would overwrite it; give them different files",
+                        pb.display()
+                    ));
+                }
+            }
+        }
+        None
+    }
+
     /// The limits on terms from outside.
     pub fn input_limits(&self) -> InputLimits {
         InputLimits {

@@ -43,7 +43,8 @@ pub(crate) fn open(
             let (kb, lock) = Kb::open_persistent(path).map_err(failed)?;
             Some(RunKb {
                 kb,
-                persist: Some(path.to_path_buf()),
+                // the real file, resolved once when locked
+                persist: Some(lock.path().to_path_buf()),
                 lock: Some(lock),
             })
         }

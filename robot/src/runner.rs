@@ -162,6 +162,11 @@ impl Runner {
                 return $code;
             }};
         }
+        // An output that is also an input (or another output) would destroy
+        // it: refused before anything is opened.
+        if let Some(message) = args.files_in_conflict() {
+            fail!(2, "error: {message}");
+        }
         // The world, if any.
         let world: Option<TextFile> = if args.no_world {
             None

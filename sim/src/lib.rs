@@ -56,7 +56,7 @@
 //! [robot]
 //! name = "Golem"            # required
 //! at = "living_room"        # required: a place
-//! speed = 0.5               # optional, m/s, > 0 (default 0.5)
+//! speed = 0.5               # optional, m/s, 0.01 to 20 (default 0.5)
 //!
 //! [user]
 //! name = "Luis"             # required

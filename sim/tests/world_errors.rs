@@ -117,6 +117,8 @@ fn cases() -> Vec<(&'static str, String)> {
         ("an infinite size", with("size = [0.1, inf, 0.3]\n")),
         ("a zero speed", replace("at = \"a\"\n[user]", "at = \"a\"\nspeed = 0\n[user]")),
         ("a negative speed", replace("at = \"a\"\n[user]", "at = \"a\"\nspeed = -0.5\n[user]")),
+        ("a speed too slow to be physical", replace("at = \"a\"\n[user]", "at = \"a\"\nspeed = 1e-300\n[user]")),
+        ("a speed too fast to be physical", replace("at = \"a\"\n[user]", "at = \"a\"\nspeed = 1e6\n[user]")),
         ("a speed that is not a number", replace("at = \"a\"\n[user]", "at = \"a\"\nspeed = nan\n[user]")),
         ("a coordinate too far away", replace("x = 2", "x = 1e9")),
         ("an empty name", replace("name = \"noodles\"", "name = \"\"")),
@@ -279,4 +281,17 @@ proptest! {
             exercise(&world);
         }
     }
+}
+
+/// A world of 20 000 shelves with an object each loads (issue 31: 100 000
+/// took 79 s, every shelf scanning every object; a quadratic step would keep
+/// this test running for hours). `benches/benches/world.rs` measures it.
+#[test]
+fn a_world_of_twenty_thousand_shelves_loads() {
+    let text = sitlog_sim::world::example::grid(20_000);
+    let w =
+        World::parse("big.toml", &text).unwrap_or_else(|e| panic!("{:?}", &e[..e.len().min(3)]));
+    assert_eq!(w.object_names().len(), 20_000);
+    assert_eq!(w.shelf_names().len(), 20_000);
+    assert_eq!(w.initial_shelf("o19999"), Some("s19999"));
 }

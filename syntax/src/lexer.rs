@@ -139,6 +139,21 @@ impl<'s> Lexer<'s> {
                 layout_before,
             });
         }
+        // A character that starts no token (a control character, or one
+        // beyond ASCII that is neither layout nor a letter) is said here,
+        // without the grammar: a failed pest parse costs the length of the
+        // line, so a line of them cost its length squared.
+        if !(0x20..0x7F).contains(&first) {
+            let c = rest.chars().next().unwrap_or(' ');
+            if c.is_control() || (!c.is_ascii() && !c.is_alphabetic()) {
+                let what = if c.is_control() {
+                    format!("unexpected control character U+{:04X}", c as u32)
+                } else {
+                    format!("unexpected character `{c}`")
+                };
+                return Err(SyntaxError::new(Span::new(i, i + c.len_utf8()), what));
+            }
+        }
         let rule = match first {
             b'a'..=b'z' => Rule::letter_name,
             b'A'..=b'Z' | b'_' => Rule::variable,

@@ -275,3 +275,44 @@ fn fuzz_regressions() {
     }
     assert!(n > 0);
 }
+
+/// Characters that start no token, a line of them (issue 31: 100 KB of
+/// `\x01` took 14 s to check, each failed token costing the line's length):
+/// one error at the first, the rest skipped with it, in linear time. A
+/// quadratic path would make this test run for hours on 200 KB.
+#[test]
+fn a_line_of_characters_that_start_no_token_is_one_error_read_in_linear_time() {
+    let mut chars: Vec<char> = (0u8..0x20)
+        .filter(|b| !matches!(b, b'\t' | b'\n' | b'\r' | 0x0B | 0x0C))
+        .map(char::from)
+        .collect();
+    chars.extend([
+        '\u{7F}', '\u{85}', '\u{A4}', '\u{20AC}', '\u{0663}', '\u{0301}',
+    ]);
+    for c in chars {
+        let src: String = std::iter::repeat_n(c, 200_000).collect();
+        let (clauses, errors) = read_clauses(&src);
+        assert!(clauses.is_empty());
+        assert!(!errors.is_empty(), "U+{:04X}", c as u32);
+        assert_eq!(errors[0].span.start, 0, "U+{:04X}", c as u32);
+        let expected = if c.is_control() {
+            format!("unexpected control character U+{:04X}", c as u32)
+        } else {
+            format!("unexpected character `{c}`")
+        };
+        assert_eq!(errors[0].message, expected);
+    }
+}
+
+/// A line of 200 000 opening brackets (issue 31): the hint for a forgotten
+/// closing bracket looked back from every bracket to its line's start,
+/// quadratic in the line's length; now each byte is looked at once.
+#[test]
+fn a_long_line_of_unclosed_brackets_is_an_error_in_linear_time() {
+    for open in ["[", "(", "{", "a("] {
+        let src = open.repeat(200_000);
+        let (clauses, errors) = read_clauses(&src);
+        assert!(clauses.is_empty());
+        assert!(!errors.is_empty(), "{open}");
+    }
+}

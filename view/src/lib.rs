@@ -8,8 +8,11 @@
 //! transition), and works offline (no script or style from elsewhere).
 //!
 //! Routes: `/` the page, `/diagram.svg`, `/events` (an event stream that
-//! replays every transition so far, then follows the run, and ends with
-//! `{"end":true,...}`), `/state` (the last transition, JSON).
+//! replays the last [`WINDOW`] transitions, then follows the run, and ends
+//! with `{"end":true,...}`), `/state` (the last transition, JSON). Only
+//! requests whose `Host` and `Origin` (when sent) name this server on
+//! 127.0.0.1 or localhost are answered: another site's page cannot read or
+//! start a task by DNS rebinding or a cross-origin request.
 //!
 //! **Invariant:** the server only reads; it never changes the run. The
 //! observer it hands out costs one JSON line and a lock per transition.
@@ -30,10 +33,18 @@ use std::time::{Duration, Instant};
 
 const PAGE: &str = include_str!("page.html");
 
+/// How many of the last events the server keeps for pages that open late
+/// (as the debugger keeps a bounded history): memory stays flat however
+/// long the run, and a page opened during the run sees it from then on.
+pub const WINDOW: usize = 10_000;
+
 #[derive(Default)]
 struct State {
-    /// Every event so far (JSON, one line each); the last one may be the end.
-    events: Vec<String>,
+    /// The last [`WINDOW`] events (JSON, one line each); the last one may be
+    /// the end.
+    events: std::collections::VecDeque<String>,
+    /// How many events came before `events[0]`.
+    dropped: usize,
     ended: bool,
     stopping: bool,
     /// Event streams opened, and those that have sent the end.
@@ -43,6 +54,8 @@ struct State {
 
 struct Shared {
     state: Mutex<State>,
+    /// The served port (requests must name it in `Host` and `Origin`).
+    port: u16,
     changed: Condvar,
     diagram: Diagram,
     page: String,
@@ -52,6 +65,22 @@ struct Shared {
 impl Shared {
     fn lock(&self) -> std::sync::MutexGuard<'_, State> {
         self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+impl State {
+    /// Every event so far, the dropped ones included.
+    fn total(&self) -> usize {
+        self.dropped + self.events.len()
+    }
+
+    /// Keeps `event`, dropping the oldest beyond [`WINDOW`].
+    fn push(&mut self, event: String) {
+        self.events.push_back(event);
+        if self.events.len() > WINDOW {
+            self.events.pop_front();
+            self.dropped += 1;
+        }
     }
 }
 
@@ -79,6 +108,7 @@ impl View {
             .replace("{{SVG}}", &svg);
         let shared = Arc::new(Shared {
             state: Mutex::new(State::default()),
+            port: addr.port(),
             changed: Condvar::new(),
             diagram,
             page,
@@ -144,7 +174,7 @@ impl View {
         {
             let mut st = self.shared.lock();
             let end = serde_json::json!({"end": true, "status": status, "message": message});
-            st.events.push(end.to_string());
+            st.push(end.to_string());
             st.ended = true;
             self.shared.changed.notify_all();
         }
@@ -215,7 +245,7 @@ impl Observer for ViewObserver {
         {
             let mut st = self.shared.lock();
             let ev = serde_json::json!({
-                "seq": st.events.len(),
+                "seq": st.total(),
                 "dm": dm,
                 "situation": situation,
                 "expectation": expectation,
@@ -226,7 +256,7 @@ impl Observer for ViewObserver {
                 "edges": edges,
                 "stack": self.stack,
             });
-            st.events.push(ev.to_string());
+            st.push(ev.to_string());
             self.shared.changed.notify_all();
         }
         if !self.delay.is_zero() {
@@ -250,12 +280,21 @@ fn accept(listener: TcpListener, shared: Arc<Shared>) {
     }
 }
 
-/// Reads the request head; returns the path of a GET.
-fn request_path(stream: &TcpStream) -> io::Result<Option<String>> {
+/// A request's head: the path of a GET (`None` for another method or
+/// garbage) and the `Host` and `Origin` headers.
+struct Head {
+    get: Option<String>,
+    host: Option<String>,
+    origin: Option<String>,
+}
+
+/// Reads the request head (at most 64 KiB, 5 s).
+fn request_head(stream: &TcpStream) -> io::Result<Head> {
     stream.set_read_timeout(Some(Duration::from_secs(5)))?;
     let mut reader = BufReader::new(stream);
     let mut first = String::new();
     reader.by_ref().take(8192).read_line(&mut first)?;
+    let (mut host, mut origin) = (None, None);
     // the rest of the head, up to the blank line
     let mut total = first.len();
     loop {
@@ -265,12 +304,45 @@ fn request_path(stream: &TcpStream) -> io::Result<Option<String>> {
         if n == 0 || line == "\r\n" || line == "\n" || total > 64 * 1024 {
             break;
         }
+        if let Some((name, value)) = line.split_once(':') {
+            let value = Some(value.trim().to_owned());
+            if name.eq_ignore_ascii_case("host") {
+                host = value;
+            } else if name.eq_ignore_ascii_case("origin") {
+                origin = value;
+            }
+        }
     }
     let mut parts = first.split_whitespace();
-    match (parts.next(), parts.next()) {
-        (Some("GET"), Some(path)) => Ok(Some(path.to_owned())),
-        _ => Ok(None),
-    }
+    let get = match (parts.next(), parts.next()) {
+        (Some("GET"), Some(path)) => Some(path.to_owned()),
+        _ => None,
+    };
+    Ok(Head { get, host, origin })
+}
+
+/// The names a page of this server is reached by: `127.0.0.1`, `localhost`
+/// (and `[::1]`), with the served port.
+fn own_host(host: &str, port: u16) -> bool {
+    let (name, p) = match host.rsplit_once(':') {
+        Some((name, p)) if !name.ends_with(']') || name.starts_with('[') => (name, p),
+        _ => return false,
+    };
+    p.parse::<u16>() == Ok(port)
+        && (name == "127.0.0.1" || name.eq_ignore_ascii_case("localhost") || name == "[::1]")
+}
+
+/// Whether a request may be answered: a `Host` naming another server (a
+/// page of another site reaching this one by DNS rebinding) or an `Origin`
+/// other than this server's (a cross-site `fetch` or `EventSource`) is
+/// refused. A request without either (a tool, not a browser) is served.
+fn allowed(head: &Head, port: u16) -> bool {
+    let host_ok = head.host.as_deref().is_none_or(|h| own_host(h, port));
+    let origin_ok = head.origin.as_deref().is_none_or(|o| {
+        o.strip_prefix("http://")
+            .is_some_and(|rest| own_host(rest.trim_end_matches('/'), port))
+    });
+    host_ok && origin_ok
 }
 
 fn respond(mut stream: &TcpStream, status: &str, kind: &str, body: &[u8]) -> io::Result<()> {
@@ -284,7 +356,16 @@ fn respond(mut stream: &TcpStream, status: &str, kind: &str, body: &[u8]) -> io:
 }
 
 fn handle(stream: TcpStream, shared: &Shared) -> io::Result<()> {
-    let Some(path) = request_path(&stream)? else {
+    let head = request_head(&stream)?;
+    if !allowed(&head, shared.port) {
+        return respond(
+            &stream,
+            "403 Forbidden",
+            "text/plain",
+            b"this live view answers only pages it served itself (Host and Origin 127.0.0.1 or localhost)\n",
+        );
+    }
+    let Some(path) = head.get else {
         return respond(
             &stream,
             "405 Method Not Allowed",
@@ -305,12 +386,12 @@ fn handle(stream: TcpStream, shared: &Shared) -> io::Result<()> {
             let st = shared.lock();
             let last = st
                 .events
-                .last()
+                .back()
                 .cloned()
                 .unwrap_or_else(|| "null".to_owned());
             let body = format!(
                 "{{\"transitions\":{},\"ended\":{},\"last\":{last}}}\n",
-                st.events.len() - usize::from(st.ended),
+                st.total() - usize::from(st.ended),
                 st.ended
             );
             drop(st);
@@ -338,17 +419,19 @@ fn events(mut stream: TcpStream, shared: &Shared) -> io::Result<()> {
     let result = loop {
         let (batch, done) = {
             let mut st = shared.lock();
-            while sent >= st.events.len() && !st.stopping {
+            while sent >= st.total() && !st.stopping {
                 st = shared
                     .changed
                     .wait_timeout(st, Duration::from_secs(15))
                     .unwrap_or_else(|e| e.into_inner())
                     .0;
-                if sent >= st.events.len() {
+                if sent >= st.total() {
                     break;
                 }
             }
-            let batch: Vec<String> = st.events[sent..].to_vec();
+            // a page that fell behind the window goes on from its start
+            sent = sent.max(st.dropped);
+            let batch: Vec<String> = st.events.range(sent - st.dropped..).cloned().collect();
             // once ended, the batch holds everything up to the end event
             (batch, st.stopping || st.ended)
         };

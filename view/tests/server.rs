@@ -63,3 +63,85 @@ fn routes_replay_and_stop() {
     assert!(data[2].contains(r#""end":true"#));
     assert!(TcpStream::connect(addr).is_err());
 }
+
+/// DNS rebinding and cross-site requests (issue 31): a `Host` naming
+/// another server and an `Origin` of another site are refused; the served
+/// names are answered.
+#[test]
+fn only_its_own_host_and_origin_are_answered() {
+    let view = View::start(diagram(), 0).unwrap();
+    let addr = view.addr();
+    let port = addr.port();
+    let get = |headers: &str| request(addr, &format!("GET /state HTTP/1.1\r\n{headers}\r\n"));
+    for ok in [
+        format!("Host: 127.0.0.1:{port}\r\n"),
+        format!("Host: localhost:{port}\r\n"),
+        format!("Host: localhost:{port}\r\nOrigin: http://localhost:{port}\r\n"),
+        format!("Host: 127.0.0.1:{port}\r\nOrigin: http://127.0.0.1:{port}\r\n"),
+    ] {
+        assert!(get(&ok).starts_with("HTTP/1.1 200"), "{ok}");
+    }
+    for bad in [
+        format!("Host: evil.example.com:{port}\r\n"),
+        "Host: evil.example.com\r\n".to_owned(),
+        "Host: 127.0.0.1:1\r\n".to_owned(),
+        format!("Host: 127.0.0.1:{port}\r\nOrigin: http://evil.example.com\r\n"),
+        format!("Host: 127.0.0.1:{port}\r\nOrigin: https://127.0.0.1:{port}\r\n"),
+        format!("Host: 127.0.0.1:{port}\r\nOrigin: null\r\n"),
+    ] {
+        let answer = get(&bad);
+        assert!(answer.starts_with("HTTP/1.1 403"), "{bad}: {answer}");
+    }
+    // a cross-site event stream does not count as a viewer (it would start the task)
+    let answer = request(
+        addr,
+        &format!("GET /events HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nOrigin: http://evil.example.com\r\n\r\n"),
+    );
+    assert!(answer.starts_with("HTTP/1.1 403"), "{answer}");
+    assert!(!view.wait_for_viewer(Some(Duration::from_millis(50))));
+}
+
+/// A long run keeps the last `WINDOW` events only: a late page gets those,
+/// numbered from where they are in the run.
+#[test]
+fn a_long_run_keeps_a_bounded_window() {
+    let view = View::start(diagram(), 0).unwrap();
+    let addr = view.addr();
+    let mut obs = view.observer(Duration::ZERO);
+    let mut store = Store::new();
+    let main = Term::atom(Atom::intern("main"));
+    let entry = Entry {
+        dm: main,
+        situation: main,
+        expectation: main,
+        action: store.list(&[]),
+    };
+    let n = sitlog_view::WINDOW + 25;
+    for _ in 0..n {
+        obs.transition(&store, &entry, 0, Some(main));
+    }
+    let state = request(addr, "GET /state HTTP/1.1\r\n\r\n");
+    assert!(state.contains(&format!(r#""transitions":{n}"#)), "{state}");
+    let reader = std::thread::spawn(move || request(addr, "GET /events HTTP/1.1\r\n\r\n"));
+    assert!(view.wait_for_viewer(Some(Duration::from_secs(10))));
+    view.finish("ok", "done", Duration::from_secs(5));
+    let stream = reader.join().unwrap();
+    let data: Vec<&str> = stream.lines().filter(|l| l.starts_with("data: ")).collect();
+    // the page opened before the end: it gets the window, then the end (one
+    // more event) unless the end came before its first read
+    let w = sitlog_view::WINDOW;
+    assert!(
+        data.len() == w || data.len() == w + 1,
+        "the window, the end event included: {}",
+        data.len()
+    );
+    // events are numbered from 0; the end is number n
+    let first = n + 1 - data.len();
+    assert!(
+        data[0].contains(&format!(r#""seq":{first},"#))
+            || data[0].contains(&format!(r#""seq":{first}}}"#)),
+        "{}",
+        data[0]
+    );
+    assert!(data[data.len() - 1].contains(r#""end":true"#));
+}

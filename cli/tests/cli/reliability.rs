@@ -553,3 +553,54 @@ fn kill_9_while_persisting_leaves_a_consistent_kb_and_no_litter() {
     assert_eq!(temporaries(&dir), 0);
     drop(lock);
 }
+
+/// An output naming an input (issue 31): `--trace` over the script, or over
+/// the KB a run persists, would destroy it; refused before anything is
+/// opened, naming both options, the files untouched.
+#[test]
+fn an_output_naming_an_input_is_refused_naming_both_options() {
+    let dir = app(
+        "same_file",
+        &[
+            ("main.dm", KB_LOOP.as_bytes()),
+            ("k.kb", b"[class(top,none,[],[],[])].\n"),
+            ("s.txt", b"go.\n"),
+        ],
+    );
+    let script = dir.join("s.txt");
+    let out = sitlogc()
+        .args(["run", "--script"])
+        .arg(&script)
+        .arg("--trace")
+        // another spelling of the same file
+        .arg(dir.join(".").join("s.txt"))
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(
+        err.contains("--script and --trace name the same file"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&script).unwrap(), b"go.\n");
+    let kb = dir.join("k.kb");
+    let out = sitlogc()
+        .args(["run", "--kb-persist", "--kb"])
+        .arg(&kb)
+        .arg("--trace")
+        .arg(&kb)
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("--kb and --trace name the same file"),
+        "{}",
+        stderr(&out)
+    );
+    assert_eq!(
+        std::fs::read(&kb).unwrap(),
+        b"[class(top,none,[],[],[])].\n"
+    );
+}

@@ -162,6 +162,7 @@ pub(super) fn next(
 }
 
 /// Runs `f` with the registers of one visit (on the stack when few).
+#[inline]
 pub(super) fn with_regs<T>(n: usize, f: impl FnOnce(&mut [Term]) -> T) -> T {
     if n <= 8 {
         let mut regs = [Term::NIL; 8];

@@ -28,6 +28,7 @@
 //!   [`World`].
 
 mod error;
+pub mod example;
 mod layout;
 mod model;
 mod read;

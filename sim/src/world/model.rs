@@ -8,6 +8,11 @@ use nalgebra::{Point2, Vector2, Vector3};
 
 /// Default robot speed (m/s).
 pub const DEFAULT_SPEED: f64 = 0.5;
+/// Slowest robot a world may have (m/s): 1 cm/s. Slower ones would narrate
+/// trips of absurd length (a speed of 1e-300 m/s was once accepted).
+pub const MIN_SPEED: f64 = 0.01;
+/// Fastest robot a world may have (m/s): faster than any service robot.
+pub const MAX_SPEED: f64 = 20.0;
 /// Default shelf size: width, depth, height of its top board (m).
 pub const DEFAULT_SHELF_SIZE: [f64; 3] = [0.8, 0.4, 0.8];
 /// Default object size: width, depth, height (m).

@@ -11,7 +11,7 @@ use toml::Spanned;
 use super::error::Cx;
 use super::model::{
     Trigger, WallSpec, DEFAULT_OBJECT_SIZE, DEFAULT_SHELF_SIZE, DEFAULT_SPEED, DEFAULT_WALL_HEIGHT,
-    DEFAULT_WALL_THICKNESS, MAX_COORDINATE, MAX_SIZE, MIN_SIZE,
+    DEFAULT_WALL_THICKNESS, MAX_COORDINATE, MAX_SIZE, MAX_SPEED, MIN_SIZE, MIN_SPEED,
 };
 use super::value::{what, At, Tbl};
 
@@ -137,7 +137,7 @@ fn read_robot(cx: &mut Cx<'_>, root: &Tbl<'_, '_>) -> RawRobot {
         at = cx.name(t, "at");
         if let Some(v) = Cx::get(t, "speed") {
             speed = cx
-                .ranged(t, "speed", v, 0.0, MAX_SIZE, true)
+                .ranged(t, "speed", v, MIN_SPEED, MAX_SPEED, false)
                 .unwrap_or(speed);
         }
     }

@@ -275,7 +275,8 @@ fn objects(
     shelf_ix: &BTreeMap<String, usize>,
     raw: &[RawObject],
 ) -> (Vec<ObjectSpec>, BTreeMap<String, usize>) {
-    let shelf_names_all: Vec<&str> = raw_shelves.iter().map(|s| s.name.v.as_str()).collect();
+    let shelf_names_all: std::collections::BTreeSet<&str> =
+        raw_shelves.iter().map(|s| s.name.v.as_str()).collect();
     let mut object_ix: BTreeMap<String, usize> = BTreeMap::new();
     let mut specs: Vec<ObjectSpec> = Vec::new();
     let mut explicit: Vec<bool> = Vec::new();

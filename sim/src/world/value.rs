@@ -298,6 +298,9 @@ fn show_num(x: f64) -> String {
         "nan".into()
     } else if x.is_infinite() {
         if x > 0.0 { "inf" } else { "-inf" }.into()
+    } else if x != 0.0 && (x.abs() < 1e-6 || x.abs() >= 1e15) {
+        // 1e-300 as written, not three hundred digits
+        format!("{x:e}")
     } else {
         format!("{x}")
     }
