@@ -234,27 +234,27 @@ impl Runner {
             .clone()
             .or_else(|| (typed || other_robot).then(Interrupt::new));
         // Perception and actions: another robot, the simulated robot, or test mode.
-        let (perception, mut actions): (Box<dyn Perception>, Box<dyn Actions>) = if other_robot {
-            let Some(hook) = robot else {
-                fail!(
-                    2,
-                    "error: --robot ros2: this program was built without ROS 2 (sitlogc: its default feature `ros2`; a compiled task: `sitlogc build --ros2`)"
-                );
-            };
-            let setup = RobotSetup {
-                args,
-                assets,
-                world: world.as_ref(),
-                console: console.clone(),
-                functions: &mut functions,
-                stop: ended.clone().unwrap_or_default(),
-            };
-            match hook(setup) {
-                Ok(parts) => parts,
-                Err((code, message)) => fail!(code, "{message}"),
+        let (perception, mut actions): (Box<dyn Perception>, Box<dyn Actions>) = match &world {
+            _ if other_robot => {
+                let Some(hook) = robot else {
+                    fail!(
+                        2,
+                        "error: --robot ros2: this program was built without ROS 2 (sitlogc: its default feature `ros2`; a compiled task: `sitlogc build --ros2`)"
+                    );
+                };
+                let setup = RobotSetup {
+                    args,
+                    assets,
+                    world: world.as_ref(),
+                    console: console.clone(),
+                    functions: &mut functions,
+                    stop: ended.clone().unwrap_or_default(),
+                };
+                match hook(setup) {
+                    Ok(parts) => parts,
+                    Err((code, message)) => fail!(code, "{message}"),
+                }
             }
-        } else {
-            match &world {
             #[cfg(feature = "sim")]
             Some(world) => {
                 match crate::robot::SimRobot::from_file(world, args.seed, console.clone()) {
@@ -303,7 +303,6 @@ impl Runner {
                 let actions = Box::new(TextActions::new(std::io::stderr(), app.basic_actions()));
                 (perception, actions)
             }
-        }
         };
         let mut perception = match wrap {
             Some(wrap) => wrap(perception),
