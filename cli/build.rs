@@ -16,9 +16,10 @@ use std::path::{Path, PathBuf};
 
 /// The workspace crates a generated task package depends on, directly
 /// (runtime, robot; debug with `sitlogc build --debugger`) or through them
-/// (features `prolog`, `sim`, `view`).
+/// (features `prolog`, `sim`, `view`), and the robot over ROS 2 (`ros`,
+/// with `sitlogc build --ros2`).
 const CRATES: &[&str] = &[
-    "syntax", "runtime", "kb", "robot", "sim", "infer", "view", "graph", "debug",
+    "syntax", "runtime", "kb", "robot", "sim", "infer", "view", "graph", "debug", "ros",
 ];
 
 fn main() {

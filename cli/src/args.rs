@@ -28,6 +28,13 @@ pub struct Cli {
     pub command: Command,
 }
 
+/// Where `sitlogc sim`'s user's words come from.
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq, Debug)]
+pub enum Speech {
+    Simulated,
+    External,
+}
+
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq, Debug)]
 pub enum ColorWhen {
     Auto,
@@ -123,6 +130,42 @@ pub enum Command {
         #[arg(long, conflicts_with = "legacy")]
         watch: bool,
     },
+    /// Serve an application's simulated world as a robot over ROS 2.
+    ///
+    /// `sitlogc sim APP --ros2` runs the simulator of `sitlogc run` (the
+    /// application's `world.toml`, or --world FILE) as a ROS 2 node on the
+    /// interface of the guide's table (names from the application's
+    /// `ros2.toml`), on the DDS domain ROS_DOMAIN_ID: a task in another
+    /// process (`sitlogc run APP --robot ros2`, or a compiled task) runs on
+    /// it. It prints the world's transcript and serves until it is stopped.
+    /// Exit status: 0 when stopped by SIGINT or SIGTERM, 1 when the world's
+    /// user has said everything the world file gives them, 2 on usage, I/O
+    /// or world file problems, or when ROS 2 cannot start.
+    #[cfg(feature = "ros2")]
+    Sim {
+        /// The application directory (or a single DM file).
+        #[arg(value_name = "APP")]
+        app: PathBuf,
+        /// Serve on ROS 2 (the only way `sitlogc sim` serves for now).
+        #[arg(long, required = true)]
+        ros2: bool,
+        /// `simulated`: the user's words are the world file's `user.says`;
+        /// `external`: they are what another node publishes on the heard
+        /// topic while the task listens (a person with `ros2 topic pub`, a
+        /// speech recogniser); the user's moves still follow the world file,
+        /// counted on the utterances heard.
+        #[arg(long, value_enum, default_value_t = Speech::Simulated)]
+        speech: Speech,
+        /// The world to serve (default: the application's `world.toml`).
+        #[arg(long, value_name = "FILE")]
+        world: Option<PathBuf>,
+        /// The seed of the simulated world (default: the world file's `seed`, else 0).
+        #[arg(long, value_name = "N")]
+        seed: Option<u64>,
+        /// No narration lines (the conversation stays).
+        #[arg(long, short)]
+        quiet: bool,
+    },
     /// Run an application under the step debugger (interpreted).
     ///
     /// A REPL over the live run: breakpoints (`break DM[:SITUATION]`,
@@ -214,6 +257,12 @@ pub enum Command {
         /// compiled task stays smaller.
         #[arg(long, conflicts_with = "emit")]
         debugger: bool,
+        /// Link the robot over ROS 2 (sitlog-ros): the executable also runs
+        /// with `--robot ros2`. On when the application has a `ros2.toml`;
+        /// opt-in otherwise (it adds build time and size, see the guide's
+        /// "A robot over ROS 2"). Not with --debugger.
+        #[arg(long, conflicts_with = "debugger")]
+        ros2: bool,
     },
     /// Draw an application in the notation of the SitLog papers.
     ///

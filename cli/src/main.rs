@@ -75,6 +75,21 @@ fn run(cli: Cli) -> u8 {
                 watch,
             )
         }
+        #[cfg(feature = "ros2")]
+        Command::Sim {
+            app,
+            ros2: _,
+            speech,
+            world,
+            seed,
+            quiet,
+        } => sim(
+            &app,
+            world.as_deref(),
+            seed,
+            speech == sitlog_cli::args::Speech::External,
+            quiet,
+        ),
         Command::Debug { app, run, commands } => run_app(
             &app,
             &run,
@@ -98,12 +113,21 @@ fn run(cli: Cli) -> u8 {
             explain_types,
             allow_unresolved,
             debugger,
+            ros2,
         } => {
             let release = !debug;
             if explain_types {
                 explain_types_of(&app)
             } else {
-                build_app(&app, output, release, emit, allow_unresolved, debugger)
+                build_app(
+                    &app,
+                    output,
+                    release,
+                    emit,
+                    allow_unresolved,
+                    debugger,
+                    ros2,
+                )
             }
         }
         Command::Lsp { max_message_bytes } => {

@@ -56,6 +56,9 @@ pub struct Assets {
     pub world: Option<TextFile>,
     /// `knowledge.kb`.
     pub kb: Option<TextFile>,
+    /// `ros2.toml`: the ROS 2 interface's names, QoS and places
+    /// (`--robot ros2`, see sitlog-ros).
+    pub ros2: Option<TextFile>,
     /// The program's diagram as JSON (`sitlogc graph --format json`), for
     /// `--view`.
     pub diagram: Option<String>,
@@ -65,10 +68,12 @@ pub struct Assets {
 pub const WORLD_FILE: &str = "world.toml";
 /// The KB file of an application directory.
 pub const KB_FILE: &str = "knowledge.kb";
+/// The ROS 2 interface file of an application directory (`--robot ros2`).
+pub const ROS2_FILE: &str = "ros2.toml";
 
 impl Assets {
     /// The assets of an application directory (or of the directory of a DM
-    /// file): `world.toml` and `knowledge.kb` where present.
+    /// file): `world.toml`, `knowledge.kb` and `ros2.toml` where present.
     pub fn from_app(app: &Path) -> Result<Assets, FileError> {
         let dir = if app.is_dir() {
             app.to_path_buf()
@@ -86,6 +91,7 @@ impl Assets {
             app_name: app_name(app),
             world: read(WORLD_FILE, "world")?,
             kb: read(KB_FILE, "KB")?,
+            ros2: read(ROS2_FILE, "ROS 2 interface")?,
             diagram: None,
         })
     }

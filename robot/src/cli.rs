@@ -3,7 +3,7 @@
 //! application) and the command line of a compiled task ([`TaskCli`],
 //! [`task_command`], [`parse_task_args`]). The option set and the output
 //! contract are the notes' "Our convention for `sitlogc run` output", plus
-//! the robot's options: `--world`, `--no-world`, `--seed`, `--kb`,
+//! the robot's options: `--world`, `--no-world`, `--seed`, `--robot`, `--kb`,
 //! `--kb-persist`, `--quiet`. What a run does with them is
 //! [`crate::Runner`]'s.
 
@@ -21,6 +21,18 @@ pub enum Format {
     Text,
     /// One JSON object on stdout.
     Json,
+}
+
+/// What a run's actions and perceptions reach.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum RobotKind {
+    /// The simulated robot of the world file (test mode without one).
+    #[default]
+    Sim,
+    /// A robot over ROS 2: the topics and actions of the guide's interface
+    /// table (names in the application's `ros2.toml`), on the DDS domain
+    /// `ROS_DOMAIN_ID`.
+    Ros2,
 }
 
 /// Whether the task history is kept.
@@ -70,6 +82,11 @@ pub struct RunArgs {
     /// The seed of the simulated world (default: the world file's `seed`, else 0).
     #[arg(long, value_name = "N")]
     pub seed: Option<u64>,
+    /// The robot: `sim`, the simulated one of the world file (test mode
+    /// without one); `ros2`, a robot over ROS 2 (`sitlogc sim APP --ros2`, or
+    /// a real one; see the guide's "Connecting a robot").
+    #[arg(long, value_enum, default_value_t = RobotKind::Sim, value_name = "ROBOT")]
+    pub robot: RobotKind,
     /// No progress indicator and no narration lines (the conversation stays).
     #[arg(long, short)]
     pub quiet: bool,
@@ -204,6 +221,7 @@ impl Default for RunArgs {
             world: None,
             no_world: false,
             seed: None,
+            robot: RobotKind::Sim,
             quiet: false,
             max_input_bytes: InputLimits::MAX_BYTES,
             max_input_depth: InputLimits::MAX_DEPTH,

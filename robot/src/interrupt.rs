@@ -2,7 +2,9 @@
 //! next transition boundary (the run's [`Options::stop`] flag), so the
 //! runner can still print the history, close the trace and exit with
 //! 130 (SIGINT) or 143 (SIGTERM). A second SIGINT or SIGTERM ends the
-//! process at once with that status.
+//! process at once with that status. The same flag stops a run at the end
+//! of its typed input (exit 3) and when another robot went away (exit 4,
+//! [`EXIT_ROBOT_GONE`]).
 //!
 //! Invariant: the handler only sets atomics (signal-hook's iterator runs it
 //! on a thread of its own, not in the signal handler); everything else is
@@ -24,8 +26,16 @@ pub const EXIT_SIGTERM: u8 = 143;
 /// the end of a pipe on stdin) while a situation waited for it.
 pub const EXIT_END_OF_INPUT: u8 = 3;
 
+/// Exit status of a run on another robot ([`crate::RobotHook`], `--robot
+/// ros2`) stopped because the robot went away (it stopped answering, or
+/// left the network): the task stops at its next transition boundary
+/// with its history and report.
+pub const EXIT_ROBOT_GONE: u8 = 4;
+
 /// What [`Interrupt::request_end_of_input`] records in place of a signal.
 const END_OF_INPUT: i32 = -1;
+/// What [`Interrupt::request_robot_gone`] records in place of a signal.
+const ROBOT_GONE: i32 = -2;
 
 /// The stop flag of a run and the signal that set it.
 #[derive(Clone, Default)]
@@ -101,6 +111,19 @@ impl Interrupt {
         self.request(END_OF_INPUT);
     }
 
+    /// Asks the run to stop because the robot went away: the exit status is
+    /// then [`EXIT_ROBOT_GONE`].
+    pub fn request_robot_gone(&self) {
+        if !self.requested() {
+            self.request(ROBOT_GONE);
+        }
+    }
+
+    /// Whether the run was stopped because the robot went away.
+    pub fn robot_gone(&self) -> bool {
+        self.requested() && self.signal.load(Ordering::SeqCst) == ROBOT_GONE
+    }
+
     /// Whether the run was stopped by the end of its typed input.
     pub fn ended_by_input(&self) -> bool {
         self.requested() && self.signal.load(Ordering::SeqCst) == END_OF_INPUT
@@ -124,6 +147,9 @@ impl Interrupt {
 fn status_of(signal: i32) -> u8 {
     if signal == END_OF_INPUT {
         return EXIT_END_OF_INPUT;
+    }
+    if signal == ROBOT_GONE {
+        return EXIT_ROBOT_GONE;
     }
     u8::try_from(128 + signal.clamp(0, 127)).unwrap_or(EXIT_SIGINT)
 }
@@ -232,5 +258,9 @@ mod tests {
         i.request_end_of_input();
         assert!(i.ended_by_input());
         assert_eq!(i.exit_status(), Some(EXIT_END_OF_INPUT));
+        let i = Interrupt::new();
+        i.request_robot_gone();
+        assert!(i.robot_gone());
+        assert_eq!(i.exit_status(), Some(EXIT_ROBOT_GONE));
     }
 }

@@ -20,7 +20,8 @@
 //! a run, [`RunArgs`], and a compiled task's command line), `streams`
 //! ([`Streams`]), [`console`], [`interrupt`], [`prompt`] (typed input),
 //! [`kb_services`], `shop_functions` and the simulated robot (`robot`,
-//! feature `sim`), `debug_hooks` ([`DebugHooks`]), `observers` and
+//! feature `sim`), `robot_hook` (another robot: [`RobotHook`]),
+//! `debug_hooks` ([`DebugHooks`]), `observers` and
 //! `live_view` (what watches a run), `runner` ([`Runner`]: the run), and
 //! `task` (a compiled task's [`main`]). The public items of the private
 //! modules are re-exported here.
@@ -39,18 +40,25 @@ mod observers;
 pub mod prompt;
 #[cfg(feature = "sim")]
 pub mod robot;
+mod robot_hook;
 mod runner;
 #[cfg(feature = "sim")]
 mod shop_functions;
 mod streams;
 mod task;
 
-pub use assets::{app_name, Assets, FileError, TextFile, KB_FILE, WORLD_FILE};
-pub use cli::{Format, HistoryMode, RunArgs};
+pub use assets::{app_name, Assets, FileError, TextFile, KB_FILE, ROS2_FILE, WORLD_FILE};
+pub use cli::{Format, HistoryMode, RobotKind, RunArgs};
 pub use debug_hooks::{DebugHooks, MakePerception, WorldProbe};
+pub use robot_hook::{RobotHook, RobotParts, RobotSetup};
 pub use runner::{PerceptionWrap, Runner};
 pub use streams::Streams;
-pub use task::{main, on_big_stack};
+pub use task::{main, main_with_robot, on_big_stack};
+
+/// The world's user functions (`shop_diagnose/4`, ...) over a simulator
+/// that another robot keeps as its belief of the world (sitlog-ros).
+#[cfg(feature = "sim")]
+pub use shop_functions::{register as register_world_functions, SimAccess};
 
 /// The user functions the simulated robot registers when a task runs on a
 /// world (`shop_diagnose/4`, ...), by name and arity: `sitlogc check`

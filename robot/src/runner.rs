@@ -14,16 +14,22 @@
 //!   `--format json`;
 //! - without one: test mode, as the original's: inputs from `--script` or
 //!   typed at a prompt ([`crate::prompt`]), actions rendered on the
-//!   process's stderr.
+//!   process's stderr;
+//! - with `--robot ros2`: the robot the run's [`RobotHook`] connects
+//!   ([`Runner::robot`]; the world file, if any, is then not simulated);
+//!   its transcript goes where a world's does. Without a hook the run
+//!   fails with exit status 2. When that robot goes away the task stops
+//!   at its next transition boundary, exit status 4.
 
 use crate::assets::{Assets, TextFile};
-use crate::cli::{Format, HistoryMode, RunArgs};
+use crate::cli::{Format, HistoryMode, RobotKind, RunArgs};
 use crate::console::{Console, SharedWriter};
 use crate::debug_hooks::DebugHooks;
 use crate::interrupt::Interrupt;
 use crate::kb_services;
 use crate::live_view::LiveView;
 use crate::observers::{Fanout, Progress, TraceFile};
+use crate::robot_hook::{RobotHook, RobotSetup};
 use crate::streams::Streams;
 use sitlog_runtime::app::{run, App};
 use sitlog_runtime::machine::{Actions, Observer, Options, Perception};
@@ -45,6 +51,7 @@ pub struct Runner {
     interrupt: Option<Interrupt>,
     wrap: Option<PerceptionWrap>,
     debugger: Option<DebugHooks>,
+    robot: Option<RobotHook>,
 }
 
 impl Runner {
@@ -56,6 +63,7 @@ impl Runner {
             interrupt: None,
             wrap: None,
             debugger: None,
+            robot: None,
         }
     }
 
@@ -89,6 +97,12 @@ impl Runner {
     /// the world and stop flag ([`DebugHooks`]).
     pub fn debugger(mut self, hooks: DebugHooks) -> Runner {
         self.debugger = Some(hooks);
+        self
+    }
+
+    /// Connects `--robot ros2` runs with `hook` ([`RobotHook`]).
+    pub fn robot(mut self, hook: RobotHook) -> Runner {
+        self.robot = Some(hook);
         self
     }
 
@@ -129,6 +143,7 @@ impl Runner {
             interrupt,
             wrap,
             debugger,
+            robot,
         } = self;
         let (mut debug_observer, mut debug_perception, mut debug_world, debug_stop) = match debugger
         {
@@ -165,6 +180,13 @@ impl Runner {
         } else {
             assets.world.clone()
         };
+        let other_robot = args.robot == RobotKind::Ros2;
+        if other_robot && args.script.is_some() {
+            fail!(
+                2,
+                "error: --script gives test-mode inputs, but this run is on a robot over ROS 2 (--robot ros2)"
+            );
+        }
         if world.is_some() && args.script.is_some() {
             fail!(
                 2,
@@ -173,7 +195,7 @@ impl Runner {
         }
         let json = args.format == Format::Json;
         // The transcript: stdout before the text report, stderr with JSON.
-        let with_world = world.is_some();
+        let with_world = world.is_some() || other_robot;
         let progress = !args.quiet && streams.stdout_is_terminal && streams.stderr_is_terminal;
         let transcript_out: Box<dyn Write + Send> = if !with_world {
             Box::new(std::io::sink())
@@ -209,10 +231,32 @@ impl Runner {
         // Typed input (test mode without a script) ends the task cleanly at
         // its end (Ctrl-D): recorded in the run's interrupt (one of its own
         // when signals are not handled).
-        let typed = world.is_none() && args.script.is_none();
-        let ended: Option<Interrupt> = interrupt.clone().or_else(|| typed.then(Interrupt::new));
-        // Perception and actions: the simulated robot, or test mode.
+        let typed = world.is_none() && args.script.is_none() && !other_robot;
+        let ended: Option<Interrupt> = interrupt
+            .clone()
+            .or_else(|| (typed || other_robot).then(Interrupt::new));
+        // Perception and actions: another robot, the simulated robot, or test mode.
         let (perception, mut actions): (Box<dyn Perception>, Box<dyn Actions>) = match &world {
+            _ if other_robot => {
+                let Some(hook) = robot else {
+                    fail!(
+                        2,
+                        "error: --robot ros2: this program was built without ROS 2 (sitlogc: its default feature `ros2`; a compiled task: `sitlogc build --ros2`)"
+                    );
+                };
+                let setup = RobotSetup {
+                    args,
+                    assets,
+                    world: world.as_ref(),
+                    console: console.clone(),
+                    functions: &mut functions,
+                    stop: ended.clone().unwrap_or_default(),
+                };
+                match hook(setup) {
+                    Ok(parts) => parts,
+                    Err((code, message)) => fail!(code, "{message}"),
+                }
+            }
             #[cfg(feature = "sim")]
             Some(world) => {
                 match crate::robot::SimRobot::from_file(world, args.seed, console.clone()) {
@@ -378,7 +422,14 @@ impl Runner {
         if let Err(e) = &outcome.result {
             let by_input =
                 outcome.interrupted && ended.as_ref().is_some_and(Interrupt::ended_by_input);
-            if by_input {
+            let gone = outcome.interrupted && ended.as_ref().is_some_and(Interrupt::robot_gone);
+            if gone {
+                let _ = writeln!(
+                    streams.stderr,
+                    "stopped: the robot went away: the task did not finish (exit status {})",
+                    crate::interrupt::EXIT_ROBOT_GONE
+                );
+            } else if by_input {
                 let place = match (&e.dm, &e.situation) {
                     (Some(dm), Some(sit)) => {
                         format!(" while DM `{dm}` waited in situation `{sit}`")

@@ -32,8 +32,10 @@ use sitlog_runtime::functions::FnCall;
 use sitlog_runtime::{Functions, Store, Term, Value};
 use sitlog_sim::{Hand, Sim};
 
-/// The simulated world the functions read, under the robot's lock.
-pub(crate) trait SimAccess: Clone + Send + Sync + 'static {
+/// The simulated world the functions read, under the robot's lock (the
+/// simulated robot's own, or what another robot believes of itself over
+/// the world's map: sitlog-ros).
+pub trait SimAccess: Clone + Send + Sync + 'static {
     /// `f` on the simulator; `Err` when the world is unusable (after an
     /// earlier panic).
     fn with_sim<R>(&self, f: impl FnOnce(&Sim) -> R) -> Result<R, String>;
@@ -127,7 +129,7 @@ pub(crate) const FUNCTIONS: &[(&str, usize)] = &[
 ];
 
 /// Registers the functions of the module documentation.
-pub(crate) fn register(functions: &mut Functions, world: impl SimAccess, seed: u64) {
+pub fn register(functions: &mut Functions, world: impl SimAccess, seed: u64) {
     let w = world.clone();
     functions.register("shop_shelves", 0, move |call, _| {
         let shelves: Vec<String> =

@@ -4,6 +4,7 @@
 
 use crate::assets::Assets;
 use crate::cli::{parse_task_args, task_command, TaskCli};
+use crate::robot_hook::RobotHook;
 use crate::runner::Runner;
 use sitlog_runtime::app::App;
 use sitlog_runtime::Functions;
@@ -33,4 +34,24 @@ pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::proc
         Err(code) => return code,
     };
     on_big_stack(|| Runner::process().run(app, functions, &args, assets))
+}
+
+/// [`main`] for a task that can also run on another robot (`--robot
+/// ros2`): `robot` makes the hook ([`Runner::robot`]) when the run asks
+/// for it.
+pub fn main_with_robot<A: App>(
+    app: &A,
+    functions: Functions,
+    assets: &Assets,
+    robot: impl FnOnce() -> RobotHook + Send,
+) -> std::process::ExitCode {
+    let args = match parse_task_args::<TaskCli>(task_command::<TaskCli>(assets, "")) {
+        Ok(cli) => cli.run,
+        Err(code) => return code,
+    };
+    on_big_stack(|| {
+        Runner::process()
+            .robot(robot())
+            .run(app, functions, &args, assets)
+    })
 }

@@ -688,6 +688,24 @@ impl Sim {
         Heard::Said(text)
     }
 
+    /// The user says `text`, words that come from outside the world file (a
+    /// person, or a speech recogniser): heard as the world's next utterance
+    /// would be, and counted with them (the user's `after_saying` moves
+    /// follow it); the world's own `says` are not used.
+    pub fn hear_from_outside(&mut self, text: &str) {
+        let i = self.next_utterance;
+        self.next_utterance += 1;
+        self.log(EventKind::Heard {
+            text: text.to_string(),
+        });
+        for (k, m) in self.world.user.moves.iter().enumerate() {
+            if matches!(m.trigger, Trigger::AfterSaying(n) if n == i + 1) {
+                self.move_due[k] = Some(self.now + m.delay);
+            }
+        }
+        self.advance(words(text) as f64 * SECONDS_PER_WORD);
+    }
+
     /// As many made-up words as `text` has, none of them a word of `text`.
     fn garble(&mut self, text: &str) -> String {
         const CONSONANTS: &[u8] = b"bdfgklmnprstvz";

@@ -24,6 +24,7 @@ pub fn build_app(
     emit: Option<Emit>,
     allow_unresolved: bool,
     debugger: bool,
+    ros2: bool,
 ) -> u8 {
     use crate::package;
     use sitlog_compiler::build;
@@ -71,7 +72,7 @@ pub fn build_app(
         }
     };
     let built =
-        package::write_package(&compiled, app, &layout, debugger).and_then(|(dir, name)| {
+        package::write_package(&compiled, app, &layout, debugger, ros2).and_then(|(dir, name)| {
             sitlog_runtime::errln!("sitlogc: building {} in {}", name, dir.display());
             package::build_package(&dir, &name, &layout, release, &output)
         });

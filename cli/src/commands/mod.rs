@@ -10,6 +10,8 @@ pub mod man;
 pub mod new;
 pub mod replay;
 pub mod run;
+#[cfg(feature = "ros2")]
+pub mod sim;
 
 pub use build::{build_app, explain_types_of};
 pub use check::check;
@@ -19,3 +21,5 @@ pub use man::man;
 pub use new::new_app;
 pub use replay::replay;
 pub use run::run_app;
+#[cfg(feature = "ros2")]
+pub use sim::sim;

@@ -104,7 +104,7 @@ pub fn run_app(
         // Situations run from their plans where they can (resolved once, here).
         None => {
             let resolved = sitlog_compiler::interp::Resolved::new(&ir);
-            let mut runner = sitlog_robot::Runner::process();
+            let mut runner = runner();
             // --legacy in test mode: each situation type is given what the
             // original's test mode gives it.
             let test_mode = args.no_world || (args.world.is_none() && assets.world.is_none());
@@ -183,7 +183,16 @@ pub fn run_watched(
     let ready = watched.ready_flag();
     let wrap: sitlog_robot::PerceptionWrap =
         Box::new(move |inner| Box::new(ReloadAware::new(inner, ready)));
-    sitlog_robot::Runner::process()
+    runner()
         .wrap_perception(wrap)
         .run(&watched, functions, args, assets)
+}
+
+/// The runner of `sitlogc run`: on the process's streams, stopped by
+/// signals, and (feature `ros2`) able to run on a robot over ROS 2.
+fn runner() -> sitlog_robot::Runner {
+    let runner = sitlog_robot::Runner::process();
+    #[cfg(feature = "ros2")]
+    let runner = runner.robot(sitlog_ros::hook());
+    runner
 }

@@ -16,6 +16,8 @@ mod lsp;
 mod new;
 mod prompt;
 mod reliability;
+#[cfg(feature = "ros2")]
+mod ros;
 mod run;
 mod tutorial;
 mod view;

@@ -197,6 +197,18 @@ impl World {
             .map(|o| self.shelves[o.shelf].name.as_str())
     }
 
+    /// Where the robot stands to be at `name` (a place, or a shelf: the
+    /// place in front of it, as [`crate::Sim::navigate`] resolves it): the
+    /// place's name, `x`, `y` (m) and `heading` (radians anticlockwise from
+    /// +x). A bridge turns it into a goal pose (sitlog-ros).
+    pub fn place_pose(&self, name: &str) -> Option<(&str, f64, f64, f64)> {
+        let i = self
+            .place_index(name)
+            .or_else(|| self.shelf_index(name).map(|s| self.shelves[s].place))?;
+        let p = &self.places[i];
+        Some((p.name.as_str(), p.pos.x, p.pos.y, p.heading))
+    }
+
     pub(crate) fn place_index(&self, name: &str) -> Option<usize> {
         self.places.iter().position(|p| p.name == name)
     }

@@ -53,6 +53,11 @@ const LAYERS: &[(&str, &[&str])] = &[
         "sitlog-debug",
         &["sitlog-syntax", "sitlog-runtime", "sitlog-robot"],
     ),
+    // a robot over ROS 2, and the simulator served as one
+    (
+        "sitlog-ros",
+        &["sitlog-runtime", "sitlog-robot", "sitlog-sim"],
+    ),
     // floor 4: the command line
     (
         "sitlog-cli",
@@ -65,6 +70,8 @@ const LAYERS: &[(&str, &[&str])] = &[
             "sitlog-lsp",
             "sitlog-debug",
             "sitlog-robot",
+            "sitlog-ros",
+            "sitlog-sim",
         ],
     ),
 ];
@@ -72,6 +79,7 @@ const LAYERS: &[(&str, &[&str])] = &[
 /// What the compiler core must never reach.
 const NOT_UNDER_THE_COMPILER: &[&str] = &[
     "sitlog-robot",
+    "sitlog-ros",
     "sitlog-sim",
     "sitlog-debug",
     "sitlog-lsp",
@@ -331,4 +339,29 @@ fn no_import_circle_inside_a_crate() {
         }
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+/// Every diagnostic write of the crates' code goes through
+/// `sitlog_runtime::errln!`/`errprint!`, which never panic
+/// (`runtime/src/stderr.rs`): no `eprintln!` or `eprint!` in any `src/`.
+#[test]
+fn no_panicking_stderr_writes() {
+    let mut found = Vec::new();
+    for member in members() {
+        let mut files = Vec::new();
+        rust_files(&member.join("src"), &mut files);
+        for f in files {
+            let text = std::fs::read_to_string(&f).unwrap();
+            for (i, line) in text.lines().enumerate() {
+                if line.contains("eprintln!(") || line.contains("eprint!(") {
+                    found.push(format!("{}:{}: {}", f.display(), i + 1, line.trim()));
+                }
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "use sitlog_runtime::errln!/errprint! instead:\n{}",
+        found.join("\n")
+    );
 }

@@ -182,7 +182,7 @@ fn normalise(line: &str) -> String {
 fn the_table_is_the_originals() {
     // Needs the original and SWI-Prolog; skipped without them.
     let Some(home) = std::env::var_os("SITLOG_HOME").filter(|h| !h.is_empty()) else {
-        eprintln!("skipped: SITLOG_HOME not set");
+        crate::errln!("skipped: SITLOG_HOME not set");
         return;
     };
     let probe = concat!(
@@ -197,7 +197,7 @@ fn the_table_is_the_originals() {
         Ok(o) if o.status.success() => String::from_utf8_lossy(&o.stdout).into_owned(),
         Ok(o) => panic!("wrapping.pl failed: {}", String::from_utf8_lossy(&o.stderr)),
         Err(_) => {
-            eprintln!("skipped: swipl not found");
+            crate::errln!("skipped: swipl not found");
             return;
         }
     };

@@ -1,0 +1,267 @@
+//! The interface of a robot over ROS 2 (`ros2.toml`, all keys optional):
+//! topic, action and service names, QoS, frame ids, timeouts, the names of
+//! the robot and the user, and the places a navigation goal can name.
+//! Defaults are the guide's interface table; places come from the
+//! application's world file (a place, or a shelf standing for the place in
+//! front of it), then from `[places.NAME]`.
+//!
+//! Invariant: an [`Interface`] is complete (every name set, every timeout
+//! finite and ≥ 0); any unknown key is an error.
+
+use serde::Deserialize;
+use sitlog_sim::World;
+use std::collections::BTreeMap;
+use std::time::Duration;
+
+/// Reliability, durability and depth of one topic.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Qos {
+    /// `reliable` or `best_effort`.
+    pub reliability: String,
+    /// `transient_local` or `volatile`.
+    pub durability: String,
+    /// History: keep the last `depth` messages.
+    pub depth: i32,
+}
+
+impl Qos {
+    fn new(reliability: &str, durability: &str, depth: i32) -> Qos {
+        Qos {
+            reliability: reliability.into(),
+            durability: durability.into(),
+            depth,
+        }
+    }
+}
+
+macro_rules! section {
+    ($(#[$m:meta])* $name:ident { $($(#[$fm:meta])* $field:ident : $ty:ty = $default:expr),* $(,)? }) => {
+        $(#[$m])*
+        #[derive(Clone, Debug, Deserialize, PartialEq)]
+        #[serde(deny_unknown_fields, default)]
+        pub struct $name { $($(#[$fm])* pub $field: $ty),* }
+        impl Default for $name {
+            fn default() -> $name { $name { $($field: $default.into()),* } }
+        }
+    };
+}
+
+section!(
+    /// `[topics]`.
+    Topics {
+        say: String = "/sitlog/say",
+        listening: String = "/sitlog/listening",
+        heard: String = "/sitlog/heard",
+        screen: String = "/sitlog/screen",
+        message: String = "/sitlog/message",
+    }
+);
+
+section!(
+    /// `[actions]`.
+    ActionNames {
+        navigate: String = "/navigate_to_pose",
+        grasp: String = "/sitlog/grasp",
+        place: String = "/sitlog/place",
+        hand_over: String = "/sitlog/hand_over",
+        wait_for_person: String = "/sitlog/wait_for_person",
+    }
+);
+
+section!(
+    /// `[services]`.
+    Services {
+        detect_objects: String = "/sitlog/detect_objects",
+        hands: String = "/sitlog/hands",
+    }
+);
+
+section!(
+    /// `[frames]`: the frame of navigation goals, and the camera asked for
+    /// detections (empty: the robot's default).
+    Frames {
+        map: String = "map",
+        camera: String = "",
+    }
+);
+
+section!(
+    /// `[qos.TOPIC]`.
+    TopicQos {
+        say: Qos = Qos::new("reliable", "transient_local", 50),
+        listening: Qos = Qos::new("reliable", "transient_local", 1),
+        heard: Qos = Qos::new("reliable", "volatile", 10),
+        screen: Qos = Qos::new("reliable", "transient_local", 10),
+        message: Qos = Qos::new("reliable", "transient_local", 10),
+    }
+);
+
+section!(
+    /// `[timeouts]`, in seconds.
+    Timeouts {
+        /// To find the robot at start, and the server of an action or service.
+        discovery: f64 = 5.0,
+        /// For the robot to acknowledge a message or answer a request: past
+        /// it, the robot is gone.
+        answer: f64 = 5.0,
+        /// For a navigation to end.
+        navigate: f64 = 600.0,
+        /// For any other action to end.
+        action: f64 = 120.0,
+        /// For an utterance while listening; 0: as long as it takes.
+        speech: f64 = 0.0,
+    }
+);
+
+/// `[places.NAME]`: a goal pose in the map frame.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct PlacePose {
+    pub x: f64,
+    pub y: f64,
+    /// Degrees anticlockwise from +x.
+    #[serde(default)]
+    pub yaw: f64,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+struct File {
+    robot_name: Option<String>,
+    user_name: Option<String>,
+    topics: Topics,
+    actions: ActionNames,
+    services: Services,
+    frames: Frames,
+    qos: TopicQos,
+    timeouts: Timeouts,
+    places: BTreeMap<String, PlacePose>,
+}
+
+/// The whole interface of a run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Interface {
+    pub robot_name: String,
+    pub user_name: String,
+    pub topics: Topics,
+    pub actions: ActionNames,
+    pub services: Services,
+    pub frames: Frames,
+    pub qos: TopicQos,
+    pub timeouts: Timeouts,
+    /// Goal poses by name: (x, y, yaw in radians).
+    pub places: BTreeMap<String, (f64, f64, f64)>,
+}
+
+impl Interface {
+    /// The interface of `ros2.toml` (`file`: its name and text, if there is
+    /// one) over the places and names of `world`. `Err`: `FILE: error: ...`.
+    pub fn load(file: Option<(&str, &str)>, world: Option<&World>) -> Result<Interface, String> {
+        let parsed: File = match file {
+            Some((name, text)) => toml::from_str(text)
+                .map_err(|e| format!("{name}: error: {}", e.to_string().trim()))?,
+            None => File::default(),
+        };
+        let name = file.map(|f| f.0).unwrap_or("ros2.toml");
+        let t = &parsed.timeouts;
+        for (key, v) in [
+            ("discovery", t.discovery),
+            ("answer", t.answer),
+            ("navigate", t.navigate),
+            ("action", t.action),
+            ("speech", t.speech),
+        ] {
+            if !(v.is_finite() && (0.0..=1.0e6).contains(&v)) {
+                return Err(format!(
+                    "{name}: error: timeouts.{key} must be a number of seconds between 0 and 1000000"
+                ));
+            }
+        }
+        for (key, q) in [
+            ("say", &parsed.qos.say),
+            ("listening", &parsed.qos.listening),
+            ("heard", &parsed.qos.heard),
+            ("screen", &parsed.qos.screen),
+            ("message", &parsed.qos.message),
+        ] {
+            if !matches!(q.reliability.as_str(), "reliable" | "best_effort")
+                || !matches!(q.durability.as_str(), "transient_local" | "volatile")
+                || !(1..=10_000).contains(&q.depth)
+            {
+                return Err(format!(
+                    "{name}: error: qos.{key}: reliability `reliable` or `best_effort`, durability `transient_local` or `volatile`, depth 1 to 10000"
+                ));
+            }
+        }
+        let mut places = BTreeMap::new();
+        if let Some(w) = world {
+            for n in w.place_names().into_iter().chain(w.shelf_names()) {
+                if let Some((_, x, y, yaw)) = w.place_pose(n) {
+                    places.insert(n.to_owned(), (x, y, yaw));
+                }
+            }
+        }
+        for (n, p) in &parsed.places {
+            if !(p.x.is_finite() && p.y.is_finite() && p.yaw.is_finite()) {
+                return Err(format!(
+                    "{name}: error: places.{n}: x, y and yaw must be numbers"
+                ));
+            }
+            places.insert(n.clone(), (p.x, p.y, p.yaw.to_radians()));
+        }
+        Ok(Interface {
+            robot_name: parsed
+                .robot_name
+                .or_else(|| world.map(|w| w.robot_name().to_owned()))
+                .unwrap_or_else(|| "Robot".into()),
+            user_name: parsed
+                .user_name
+                .or_else(|| world.map(|w| w.user_name().to_owned()))
+                .unwrap_or_else(|| "User".into()),
+            topics: parsed.topics,
+            actions: parsed.actions,
+            services: parsed.services,
+            frames: parsed.frames,
+            qos: parsed.qos,
+            timeouts: parsed.timeouts,
+            places,
+        })
+    }
+
+    /// A timeout of `[timeouts]` as a duration.
+    pub fn secs(seconds: f64) -> Duration {
+        Duration::from_secs_f64(seconds.max(0.0))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_and_overrides() {
+        let i = Interface::load(None, None).unwrap();
+        assert_eq!(i.topics.say, "/sitlog/say");
+        assert_eq!(i.actions.navigate, "/navigate_to_pose");
+        assert_eq!(i.qos.say, Qos::new("reliable", "transient_local", 50));
+        assert_eq!(i.robot_name, "Robot");
+        let text = "robot_name = \"Tiago\"\n[topics]\nsay = \"/tts\"\n[places.kitchen]\nx = 1.0\ny = 2.0\nyaw = 90.0\n";
+        let i = Interface::load(Some(("ros2.toml", text)), None).unwrap();
+        assert_eq!(i.robot_name, "Tiago");
+        assert_eq!(i.topics.say, "/tts");
+        assert_eq!(i.topics.heard, "/sitlog/heard");
+        let (x, y, yaw) = i.places["kitchen"];
+        assert_eq!((x, y), (1.0, 2.0));
+        assert!((yaw - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+    }
+
+    #[test]
+    fn errors_name_the_file() {
+        let e = Interface::load(Some(("r.toml", "[topics]\nsai = \"/x\"\n")), None).unwrap_err();
+        assert!(e.starts_with("r.toml: error:"), "{e}");
+        assert!(e.contains("sai"), "{e}");
+        let e = Interface::load(Some(("r.toml", "[timeouts]\nanswer = -1.0\n")), None).unwrap_err();
+        assert!(e.contains("timeouts.answer"), "{e}");
+    }
+}
