@@ -8,7 +8,7 @@
 //! `0..random_dm::PROGRAMS`) as application directories into
 //! `OUT_DIR/random/seed_<seed>/`, compiles each, and adds a module
 //! `random_<seed>` per program and the table `RANDOM_APPS` (seed, app
-//! directory, `run`, `functions`) for `tests/tests/random_agreement.rs`.
+//! directory, `run`, `functions`) for `tests/tests/suite/random_agreement.rs`.
 
 use std::fmt::Write as _;
 use std::path::Path;

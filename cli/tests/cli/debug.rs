@@ -1,6 +1,6 @@
 //! `sitlogc debug` and `sitlogc replay` from the command line: exit codes
 //! and where messages go (the sessions themselves are golden-tested in
-//! tests/tests/debug.rs).
+//! tests/tests/suite/debug.rs).
 
 use crate::support::sitlogc;
 use std::path::{Path, PathBuf};

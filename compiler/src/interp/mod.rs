@@ -16,7 +16,7 @@
 //!
 //! Invariant: [`Resolved`] runs a program exactly as the IR alone does (the
 //! same reports, histories and errors, up to the names of unbound
-//! variables); `tests/tests/random_agreement.rs` compares the two on random
+//! variables); `tests/tests/suite/random_agreement.rs` compares the two on random
 //! programs and scripts, and both with the generated code.
 
 use crate::ir::Ir;

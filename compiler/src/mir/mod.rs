@@ -12,7 +12,7 @@
 //! next situation goes* are decided here only. The interpreter
 //! ([`crate::interp`]) runs the plans; the code generator
 //! ([`crate::codegen`]) prints them as Rust; both therefore take the same
-//! steps in the same order, which `tests/tests/random_agreement.rs` checks.
+//! steps in the same order, which `tests/tests/suite/random_agreement.rs` checks.
 
 use crate::ir::{none_marker, Ir, IrDm, IrSituation};
 use sitlog_runtime::machine::{Kind, SitIx};

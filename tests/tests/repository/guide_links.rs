@@ -277,13 +277,14 @@ fn the_readme_dm_runs_as_shown() {
 }
 
 /// The excerpt of the main job's output in README is in the home butler's
-/// golden transcript (`home__paper.snap`, checked by `tests/tests/home.rs`).
+/// golden transcript (`suite__home__paper.snap`, checked by `tests/tests/suite/home.rs`).
 #[test]
 fn the_readme_excerpt_is_in_the_home_transcript() {
     let root = workspace();
     let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
     let golden =
-        std::fs::read_to_string(root.join("tests/tests/snapshots/home__paper.snap")).unwrap();
+        std::fs::read_to_string(root.join("tests/tests/suite/snapshots/suite__home__paper.snap"))
+            .unwrap();
     let from = readme.find("Golem: Hi, Luis.").expect("the excerpt");
     let excerpt = &readme[from..from + readme[from..].find("```").unwrap()];
     for line in excerpt.lines().filter(|l| *l != "...") {
