@@ -24,7 +24,7 @@
 //! | 3 | `arith`, `copy`, [`functions`] |
 //! | 2 | `unify`, `gc`, `convert`, [`vars`], [`history`], [`builtins`] |
 //! | 1 | `store` |
-//! | 0 | `term`, `eval_error`, `input` (limits on terms from outside), [`paths`] |
+//! | 0 | `term`, `eval_error`, `input` (limits on terms from outside), [`paths`], [`trust`] |
 //!
 //! The term layer:
 //! - [`Term`]: a `Copy` handle; atoms, integers, floats and variables need
@@ -58,6 +58,7 @@ pub mod report;
 mod store;
 mod term;
 pub mod testmode;
+pub mod trust;
 mod unify;
 pub mod vars;
 
