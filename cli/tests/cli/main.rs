@@ -17,6 +17,7 @@ mod new;
 mod prompt;
 mod reliability;
 mod run;
+mod trust;
 mod view;
 mod watch;
 mod watch_reload;

@@ -13,6 +13,7 @@ use sitlog_syntax::{atoms, Atom, Node, Span, TermId, Terms};
 use std::collections::{HashMap, HashSet};
 
 mod calls;
+mod os_access;
 mod situations;
 mod terms;
 mod variables;
@@ -49,6 +50,7 @@ pub mod codes {
     pub const UNKNOWN_ACTION: &str = "E0225";
     pub const KB_SERVICE_WITHOUT_KB: &str = "W0226";
     pub const WORLD_FUNCTION_WITHOUT_WORLD: &str = "W0227";
+    pub const OS_ACCESS: &str = "W0240";
 }
 
 /// A program the checker accepted (no errors; warnings allowed).
@@ -237,6 +239,7 @@ impl<'p> Checker<'p> {
         if !broken.prolog {
             self.functions();
         }
+        self.os_access();
         if !broken.basic_actions && !program.basic_actions.is_empty() {
             self.actions();
         }

@@ -89,8 +89,9 @@ pub(super) struct Prep<'a> {
     pub(super) defined: &'a mut HashSet<(Atom, usize)>,
     pub(super) errors: &'a mut Vec<PrologLoadError>,
     pub(super) seen: &'a mut HashSet<PathBuf>,
-    /// `consult/1` directives naming a file outside the directories of
-    /// `embedded` (refused at start without `--allow-os`).
+    /// `consult/1` directives naming, by an absolute or `$SITLOG_HOME`
+    /// path, a file outside the directories of `embedded` (refused at start
+    /// without `--allow-os`; relative names are the application's own).
     pub(super) outside: &'a mut Vec<PrologLoadError>,
     /// Every source given: a file they consult is taken from them first
     /// (a compiled task embeds what its sources consult).
@@ -140,7 +141,12 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
                         continue;
                     }
                     match resolve(&f, source.dir.as_deref()) {
-                        Some(path) if !inside_sources(&path, cx.embedded) => {
+                        // A relative name is part of the application (the
+                        // checker reads it, a compiled task embeds it).
+                        Some(path)
+                            if (f.starts_with('$') || Path::new(&f).is_absolute())
+                                && !inside_sources(&path, cx.embedded) =>
+                        {
                             cx.outside.push(err(format!(
                                 "consulting `{}` (outside the application) is refused: the operating system is off for application code unless the run is given {}",
                                 path.display(),

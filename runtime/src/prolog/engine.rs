@@ -474,7 +474,7 @@ impl PrologFunctions {
             )),
             PTerm::Compound(f, a) if f == "error" && a.len() == 1 => {
                 if let Some(m) = permissions::refusal(&a[0], show_pterm) {
-                    return Err(format!("`{}`: {m}", shown()));
+                    return Err(m);
                 }
                 let mut names = HashMap::new();
                 let e = from_prolog(call.store, &a[0], &mut names);
