@@ -145,7 +145,6 @@ fn lsp_opens(file: &Path) {
     }
     send(serde_json::json!({"jsonrpc": "2.0", "id": 2, "method": "shutdown", "params": null}));
     send(serde_json::json!({"jsonrpc": "2.0", "method": "exit", "params": null}));
-    drop(send);
     drop(stdin);
     let _ = child.wait();
 }
