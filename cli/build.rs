@@ -5,6 +5,11 @@
 //! cache directory). Writes `$OUT_DIR/embedded_runtime.rs`: the files as
 //! `(relative path, bytes)` and a hash of them all that names the extracted
 //! copy.
+//!
+//! It also embeds the behaviour library (`dms/behaviors/`, its DMs and its
+//! Prolog grammar) as `$OUT_DIR/embedded_library.rs`: the files named as an
+//! application names them (`behaviors/say.dm`), which `sitlogc` reads when
+//! an application has no copy of its own (see `src/library.rs`).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -84,6 +89,34 @@ fn main() {
     )
     .unwrap();
     std::fs::write(out_dir.join("embedded_runtime.rs"), code).unwrap();
+    embed_library(&root, &out_dir);
+}
+
+/// Writes `embedded_library.rs`: `LIBRARY_FILES`, every file below
+/// `dms/behaviors/` as `(behaviors/…, bytes)`, sorted.
+fn embed_library(root: &Path, out_dir: &Path) {
+    let dir = root.join("dms").join("behaviors");
+    println!("cargo:rerun-if-changed={}", dir.display());
+    let mut files = Vec::new();
+    walk(&dir, "behaviors", &mut files);
+    for (_, path) in &files {
+        println!("cargo:rerun-if-changed={}", path.display());
+    }
+    files.sort();
+    let mut code = String::from(
+        "/// The behaviour library: (name as applications write it, contents).\n\
+         pub(crate) static LIBRARY_FILES: &[(&str, &[u8])] = &[\n",
+    );
+    for (rel, path) in &files {
+        writeln!(
+            code,
+            "    ({rel:?}, include_bytes!({:?})),",
+            path.display().to_string()
+        )
+        .unwrap();
+    }
+    code.push_str("];\n");
+    std::fs::write(out_dir.join("embedded_library.rs"), code).unwrap();
 }
 
 /// Every file below `dir`, as `prefix/…` (sorted later).

@@ -34,3 +34,5 @@ cargo run -q --bin sitlogc -- graph cli/tests/graph/shapes -o "$tmp/shapes.svg"
 render "$tmp/shapes.svg" docs/graph/shapes.png
 cargo run -q --bin sitlogc -- graph dms/apps/home --dm main -o "$tmp/home_main.svg"
 render "$tmp/home_main.svg" docs/graph/home_main.png
+cargo run -q --bin sitlogc -- graph dms/apps/home --overview -o "$tmp/home_overview.svg"
+render "$tmp/home_overview.svg" docs/graph/home_overview.png

@@ -16,14 +16,16 @@ use std::path::{Path, PathBuf};
 pub struct Analysis;
 
 /// The program a file belongs to: the nearest directory at or above it
-/// that is an application (a `models` file or a `*.dm` in it), else the
-/// file alone.
+/// that is an application (a `models` file or a `*.dm` in it, the file
+/// itself counted even when it is not saved yet), else the file alone.
 pub fn program_root(file: &Path) -> PathBuf {
+    let is_dm = file.extension().is_some_and(|e| e == "dm");
     for dir in file.ancestors().skip(1) {
         if dir.as_os_str().is_empty() {
             break;
         }
-        if load::is_application(dir).unwrap_or(false) {
+        let own_dir = is_dm && Some(dir) == file.parent() && dir.is_dir();
+        if own_dir || load::is_application(dir).unwrap_or(false) {
             return dir.to_path_buf();
         }
     }
@@ -37,25 +39,36 @@ fn same(a: &Path, b: &Path) -> bool {
 }
 
 /// Loads and checks the program of `file`: the program (checked or not)
-/// and its diagnostics.
+/// and its diagnostics. The editor's text counts whether or not the file
+/// is on disk; an `untitled:` document is a DM file alone, with no
+/// directory and so no side files.
 fn analyse(
     file: &Path,
     overlay: &Overlay,
 ) -> Result<(Program, Vec<sitlog_compiler::diag::Diagnostic>), String> {
-    let root = program_root(file);
-    load::with_overlay(overlay, || {
-        let (program, diags) = load::load(&root).map_err(|e| e.to_string())?;
-        let options = sitlog_compiler::check::CheckOptions {
-            world_functions: sitlog_robot::WORLD_FUNCTIONS,
-            ..Default::default()
-        };
-        let (result, diags) = sitlog_compiler::check::check_opts(program, diags, options);
-        let program = match result {
-            Ok(c) => c.into_program(),
-            Err(p) => p,
-        };
-        Ok((program, diags))
-    })
+    let (program, diags) = if sitlog_lsp::is_untitled(file) {
+        let text = overlay.get(file).map_or("", String::as_str);
+        let name = file.to_string_lossy();
+        let (mut program, diags) = load::load_sources(&[(&name, text)]);
+        program.single_file = true;
+        (program, diags)
+    } else {
+        let root = program_root(file);
+        load::with_overlay(overlay, || {
+            load::load_with(&root, crate::library::library())
+        })
+        .map_err(|e| e.to_string())?
+    };
+    let options = sitlog_compiler::check::CheckOptions {
+        world_functions: sitlog_robot::WORLD_FUNCTIONS,
+        ..Default::default()
+    };
+    let (result, diags) = sitlog_compiler::check::check_opts(program, diags, options);
+    let program = match result {
+        Ok(c) => c.into_program(),
+        Err(p) => p,
+    };
+    Ok((program, diags))
 }
 
 fn range_of(text: &str, span: Span) -> Range {

@@ -20,6 +20,10 @@ pub struct Cli {
     /// NO_COLOR is unset or empty; `always`; `never`.
     #[arg(long, global = true, value_enum, value_name = "WHEN", default_value_t = ColorWhen::Auto)]
     pub color: ColorWhen,
+    /// Largest file read (a DM, side file, KB, world, script or trace, in
+    /// bytes): a larger one is an error naming the file and this option.
+    #[arg(long, global = true, value_name = "BYTES", default_value_t = sitlog_syntax::decode::DEFAULT_MAX_FILE_BYTES)]
+    pub max_file_bytes: u64,
     #[command(subcommand)]
     pub command: Command,
 }
@@ -58,6 +62,12 @@ pub enum Command {
         /// defined twice identically is a warning (W0203), not an error.
         #[arg(long)]
         legacy: bool,
+        /// Also say, on stderr, where each file named by a library name
+        /// (`'behaviors/say.dm'` in `models`) was read from: the
+        /// application's own copy, a directory of $SITLOG_LIBRARY, or the
+        /// library built into sitlogc.
+        #[arg(long)]
+        origins: bool,
     },
     /// Run an application: on its simulated world, or in test mode.
     ///
@@ -215,8 +225,11 @@ pub enum Command {
     /// recursive situations hold one return dot per final situation of
     /// their embedded DM; bold arrows are the pipe between DMs and the
     /// task's out_arg. Every element's SVG `<title>` starts with the
-    /// `file:line:col` where it is written. An application with errors
-    /// gives its diagnostics, not a picture (exit status 1).
+    /// `file:line:col` where it is written. A program too large to read in
+    /// one SVG (over 4000 px on a side) is drawn as its overview, one box
+    /// per DM (`--all`: everything in one picture; `--out-dir`: the overview
+    /// and a page per DM). An application with errors gives its
+    /// diagnostics, not a picture (exit status 1).
     Graph {
         /// The application directory (or a single DM file).
         #[arg(value_name = "APP")]
@@ -238,6 +251,20 @@ pub enum Command {
         /// situations and arcs taken, with how often.
         #[arg(long, value_name = "FILE")]
         trace: Option<PathBuf>,
+        /// Draw the program's overview: one box per DM, an arrow to each DM
+        /// it calls and to the recovery DM of each situation type it has one
+        /// for.
+        #[arg(long, conflicts_with_all = ["dm", "out_dir", "all"])]
+        overview: bool,
+        /// Write the overview and one page per DM into DIR: `index.svg`,
+        /// `index.html` and `NAME.svg` for each DM (a box of the overview and
+        /// a called DM on a page link to the DM's page).
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["dm", "output", "all"])]
+        out_dir: Option<PathBuf>,
+        /// Every DM in one SVG, however large (without it, a program too
+        /// large to read in one picture is drawn as its overview).
+        #[arg(long, conflicts_with = "dm")]
+        all: bool,
     },
     /// Ask a knowledge base one question (for people exploring a KB).
     ///
@@ -262,7 +289,12 @@ pub enum Command {
     /// diagnostics of `check` as you type, go to the definition of a DM,
     /// situation, global, basic action or user function, and hovers.
     /// Point your editor's LSP client at `sitlogc lsp` for `*.dm` files.
-    Lsp,
+    Lsp {
+        /// Largest message read from the editor (bytes, its `Content-Length`);
+        /// a longer one ends the session with an error (exit 2).
+        #[arg(long, value_name = "BYTES", default_value_t = sitlog_lsp::transport::DEFAULT_MAX_MESSAGE_BYTES)]
+        max_message_bytes: u64,
+    },
     /// Print a completion script for SHELL on stdout.
     ///
     /// For example `sitlogc completions bash > ~/.local/share/bash-completion/completions/sitlogc`,
@@ -289,12 +321,36 @@ pub enum Command {
     /// speech situation and a recursive situation calling the DM
     /// `ask_name`), global_vars.pl, basic_actions.pl, user_functions.pl, a
     /// `models` file, a test-mode script, the golden output of running it
-    /// (`expected.txt`) and a README. Exit status: 0 when made, 2 when NAME
-    /// exists or cannot be written (nothing is changed then).
+    /// (`expected.txt`) and a README. With --robot, a task on the simulated
+    /// robot instead: a world file (a small map, shelves, objects, a user),
+    /// a KB, and DMs that fetch the object the user asks for with the
+    /// behaviour library built into sitlogc, its recovery protocols at
+    /// work; with the golden output of a run. Exit status: 0 when made, 2
+    /// when NAME exists or cannot be written (nothing is changed then).
     New {
         /// The application directory to make; its last component names the application.
         #[arg(value_name = "NAME")]
         name: PathBuf,
+        /// Make a task on the simulated robot (world, map, KB, the behaviour
+        /// library) instead of a test-mode speech task.
+        #[arg(long)]
+        robot: bool,
+    },
+    /// List the behaviour library, or print one of its files.
+    ///
+    /// An application names the library's files without a path
+    /// (`'behaviors/take.dm'.` in `models`, `:- consult('behaviors/language.pl').`):
+    /// they are read from the application's own copy if it has one, else
+    /// from the directories of $SITLOG_LIBRARY, else from the library built
+    /// into sitlogc. Without NAME, every file of the built-in library and
+    /// where it is read from; with NAME, the file's text on stdout (to make
+    /// a copy of your own: `sitlogc library behaviors/take.dm >
+    /// myapp/behaviors/take.dm`). Exit status: 0, or 2 when NAME is not in
+    /// the library.
+    Library {
+        /// A library file (`behaviors/take.dm`).
+        #[arg(value_name = "NAME")]
+        name: Option<String>,
     },
 }
 

@@ -54,7 +54,9 @@ fn checked_home(dir: &Path, what: &str) -> Result<PathBuf, String> {
 /// The files `init.pl` consults from `$SITLOG_HOME`, in order.
 pub fn init_consults(home: &Path) -> Result<Vec<PathBuf>, String> {
     let init = home.join(INIT_FILE);
-    let text = std::fs::read_to_string(&init)
+    let text = sitlog_syntax::read_file(&init)
+        .map_err(|e| e.to_string())
+        .and_then(|b| sitlog_syntax::decode_owned(b).map_err(|e| e.to_string()))
         .map_err(|e| format!("--legacy: cannot read {}: {e}", init.display()))?;
     let (clauses, errors) = sitlog_syntax::read_clauses(&text);
     if let Some(e) = errors.first() {

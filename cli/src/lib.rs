@@ -4,8 +4,9 @@
 //! (`sitlog-kb`). Everything only the command line needs lives here and
 //! nowhere below: argument parsing ([`args`]), one module per subcommand
 //! ([`commands`]), hot reload ([`watch`]), packaging a compiled task
-//! ([`package`]), new applications ([`scaffold`]), the legacy profile's
-//! Prolog layer ([`legacy`]) and the editor analysis ([`analysis`]).
+//! ([`package`]), the behaviour library built into `sitlogc` ([`library`]),
+//! new applications ([`scaffold`]), the legacy profile's Prolog layer
+//! ([`legacy`]) and the editor analysis ([`analysis`]).
 //!
 //! Invariant: this crate is the top of the dependency graph; no crate of the
 //! workspace depends on it (the tests in `tests/` check the crate layers).
@@ -17,6 +18,7 @@ pub mod analysis;
 pub mod args;
 pub mod commands;
 pub mod legacy;
+pub mod library;
 pub mod output;
 pub mod package;
 pub mod scaffold;

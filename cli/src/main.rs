@@ -31,7 +31,7 @@ fn main() -> ExitCode {
     match child.map(|h| h.join()) {
         Ok(Ok(code)) => ExitCode::from(code),
         _ => {
-            eprintln!("sitlogc: internal error");
+            sitlog_runtime::errln!("sitlogc: internal error");
             ExitCode::from(101)
         }
     }
@@ -39,6 +39,7 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> u8 {
     let _ = COLOR.set(cli.color);
+    sitlog_syntax::decode::set_max_file_bytes(cli.max_file_bytes);
     match cli.command {
         Command::Completions { shell } => {
             let mut out = Vec::new();
@@ -52,7 +53,8 @@ fn run(cli: Cli) -> u8 {
             deny_warnings,
             quiet,
             legacy,
-        } => check(&paths, format, deny_warnings, quiet, legacy),
+            origins,
+        } => check(&paths, format, deny_warnings, quiet, legacy, origins),
         Command::Run {
             app,
             run,
@@ -104,13 +106,15 @@ fn run(cli: Cli) -> u8 {
                 build_app(&app, output, release, emit, allow_unresolved, debugger)
             }
         }
-        Command::Lsp => match sitlog_lsp::run_stdio(&sitlog_cli::analysis::Analysis) {
-            Ok(()) => 0,
-            Err(e) => {
-                eprintln!("error: sitlogc lsp: {e}");
-                2
+        Command::Lsp { max_message_bytes } => {
+            match sitlog_lsp::run_stdio(&sitlog_cli::analysis::Analysis, max_message_bytes) {
+                Ok(()) => 0,
+                Err(e) => {
+                    sitlog_runtime::errln!("error: sitlogc lsp: {e}");
+                    2
+                }
             }
-        },
+        }
         Command::Graph {
             app,
             output,
@@ -118,8 +122,24 @@ fn run(cli: Cli) -> u8 {
             main,
             format,
             trace,
-        } => graph(&app, output, dm, main, format, trace),
-        Command::New { name } => new_app(&name),
+            overview,
+            out_dir,
+            all,
+        } => graph(
+            &app,
+            sitlog_cli::commands::graph::What {
+                output,
+                dm,
+                main,
+                format,
+                trace,
+                overview,
+                out_dir,
+                all,
+            },
+        ),
+        Command::New { name, robot } => new_app(&name, robot),
+        Command::Library { name } => library(name.as_deref()),
         Command::Kb {
             file,
             updates,
@@ -127,7 +147,7 @@ fn run(cli: Cli) -> u8 {
         } => match sitlog_kb::answer_line(&file, &updates, &query) {
             Ok(line) => write_stdout(&format!("{line}\n"), "the answer"),
             Err(e) => {
-                eprintln!("{e}");
+                sitlog_runtime::errln!("{e}");
                 1
             }
         },

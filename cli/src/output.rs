@@ -35,7 +35,7 @@ pub fn write_stdout(text: &str, what: &str) -> u8 {
         Ok(()) => 0,
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => 0,
         Err(e) => {
-            eprintln!("error: cannot write {what} to stdout: {e}");
+            sitlog_runtime::errln!("error: cannot write {what} to stdout: {e}");
             2
         }
     }
@@ -51,10 +51,14 @@ pub fn check_app(
     sitlog_compiler::check_path_opts(path, with_world(options))
 }
 
-/// `options` with the simulated robot's functions when it names none.
+/// `options` with the simulated robot's functions when it names none, and
+/// the behaviour library ([`crate::library`]) when it names none.
 pub fn with_world(mut options: CheckOptions) -> CheckOptions {
     if options.world_functions.is_empty() {
         options.world_functions = sitlog_robot::WORLD_FUNCTIONS;
+    }
+    if options.library.is_none() {
+        options.library = Some(crate::library::library());
     }
     options
 }
@@ -74,7 +78,7 @@ pub fn checked_ir_opts(
     let (result, diags) = match loaded {
         Ok(r) => r,
         Err(e) => {
-            eprintln!("error: cannot read {e}");
+            sitlog_runtime::errln!("error: cannot read {e}");
             return Err(2);
         }
     };
@@ -87,13 +91,15 @@ pub fn checked_ir_opts(
         d.is_error()
             || (options.legacy && d.code == sitlog_compiler::check::codes::DUPLICATE_DM_IDENTICAL)
     }) {
-        eprint!("{}", diag::render_human(d, program_sources, color));
+        sitlog_runtime::errprint!("{}", diag::render_human(d, program_sources, color));
     }
     match result {
         Ok(c) => Ok(sitlog_compiler::ir::lower(&c)),
         Err(_) => {
             let n = diags.iter().filter(|d| d.is_error()).count();
-            eprintln!("error: the application has {n} error(s); run `sitlogc check` for details");
+            sitlog_runtime::errln!(
+                "error: the application has {n} error(s); run `sitlogc check` for details"
+            );
             Err(1)
         }
     }

@@ -225,7 +225,7 @@ pub fn write_package(
          match program::functions() {{\n        \
          Ok(functions) => {task_main}(program::program(), functions, &assets),\n        \
          Err(e) => {{\n            \
-         eprintln!(\"error: {{e}}\");\n            \
+         sitlog_runtime::errln!(\"error: {{e}}\");\n            \
          std::process::ExitCode::from(1)\n        \
          }}\n    \
          }}\n}}\n",

@@ -27,6 +27,27 @@ impl App for Ir {
         let pos = file.line_col(d.loc.span.start);
         Some(format!("{}:{}:{}", file.name, pos.line, pos.column))
     }
+    fn names(&self) -> Vec<(String, Vec<String>)> {
+        Ir::names(self)
+    }
+}
+
+impl Ir {
+    /// Each DM's name with the names of its situations (functors of the
+    /// ids that are not variables).
+    pub fn names(&self) -> Vec<(String, Vec<String>)> {
+        self.dms
+            .iter()
+            .map(|dm| {
+                let situations = dm
+                    .situations
+                    .iter()
+                    .filter_map(|s| s.id_functor.map(|(name, _)| name.as_str().to_owned()))
+                    .collect();
+                (dm.name.as_str().to_owned(), situations)
+            })
+            .collect()
+    }
 }
 
 /// A run-time error as a diagnostic at the failing expression: the

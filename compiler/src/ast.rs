@@ -44,6 +44,22 @@ pub struct Program {
     /// (`name/arity.` per clause) or by whoever assembles the program, so
     /// that the checker knows them.
     pub host_functions: Vec<(Atom, usize)>,
+    /// The files named by a library name (`'behaviors/say.dm'` in `models`,
+    /// `:- consult('behaviors/language.pl')`) and where each was read from.
+    pub library_files: Vec<LibraryFile>,
+}
+
+/// A file named by a library name, and where the loader found it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LibraryFile {
+    /// The name as written (`behaviors/say.dm`).
+    pub name: String,
+    pub file: FileId,
+    /// Where it came from: `None` for the application's own copy, else
+    /// the library root's description (`the library built into sitlogc`).
+    pub root: Option<String>,
+    /// For the application's own copy, the root it stands in for.
+    pub overrides: Option<String>,
 }
 
 /// `Type ==> dm.` in `recovery_protocols.pl`.

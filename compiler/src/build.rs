@@ -80,7 +80,13 @@ pub fn generate_checked(
         Ok(c) => &c.program().sources,
         Err(p) => &p.sources,
     };
-    let mut files: Vec<PathBuf> = sources.files().map(|(_, f)| f.path.clone()).collect();
+    // The files read (for `cargo:rerun-if-changed` and `--watch`): not
+    // those of a library held in memory.
+    let mut files: Vec<PathBuf> = sources
+        .files()
+        .map(|(_, f)| f.path.clone())
+        .filter(|p| !p.starts_with(crate::load::EMBEDDED))
+        .collect();
     if path.is_dir() && path.join("models").is_file() {
         files.push(path.join("models"));
     }
@@ -110,6 +116,7 @@ pub struct Config {
     file_name: Option<String>,
     quiet: bool,
     world_functions: &'static [(&'static str, usize)],
+    library: Option<&'static crate::load::Library>,
 }
 
 impl Config {
@@ -137,6 +144,13 @@ impl Config {
         self
     }
 
+    /// Where library names the application has no copy of are looked up
+    /// (see [`crate::load::Library`]).
+    pub fn library(mut self, library: &'static crate::load::Library) -> Config {
+        self.library = Some(library);
+        self
+    }
+
     /// Do not print `cargo:` lines (outside build scripts).
     pub fn quiet(mut self, quiet: bool) -> Config {
         self.quiet = quiet;
@@ -152,6 +166,7 @@ impl Config {
         }
         let check = crate::check::CheckOptions {
             world_functions: self.world_functions,
+            library: self.library,
             ..Default::default()
         };
         let compiled = generate_checked(app, &app.display().to_string(), Default::default(), check);

@@ -11,6 +11,9 @@
 //! `assign_func_value/1` (constants, or arguments of the call), plus a
 //! dashed "computed" exit when they cannot all be told; anything else (a
 //! variable bound by the expectation, `get/2`...) is a dashed arrow to `?`.
+//! A situation whose type has a recovery protocol is linked to the
+//! recovery DM. [`overview`] draws the program one box per DM, with its
+//! calls and recovery protocols.
 
 use crate::ir::{none_marker, Ir, IrDm, IrFnValue};
 use sitlog_graph::{Diagram, DmGraph, Edge, EdgeKind, Node, NodeKind, ReturnDot, SituationKind};
@@ -19,6 +22,9 @@ use sitlog_runtime::{Store, Term, Value, Var};
 use sitlog_syntax::write::{write_term, TermSource, VarLabel, View, WriteOptions};
 use sitlog_syntax::Atom;
 use std::collections::HashMap;
+
+mod overview;
+pub use overview::overview;
 
 /// What to draw.
 #[derive(Clone, Debug, Default)]
@@ -32,7 +38,7 @@ pub struct Options {
 }
 
 /// The store's terms with the DM's source variable names.
-struct Named<'a> {
+pub(crate) struct Named<'a> {
     store: &'a Store,
     names: HashMap<Var, &'a str>,
 }
@@ -55,7 +61,7 @@ impl TermSource for Named<'_> {
 }
 
 impl<'a> Named<'a> {
-    fn new(store: &'a Store, dm: &'a IrDm) -> Named<'a> {
+    pub(crate) fn new(store: &'a Store, dm: &'a IrDm) -> Named<'a> {
         let names = dm
             .var_names
             .iter()
@@ -63,20 +69,20 @@ impl<'a> Named<'a> {
             .collect();
         Named { store, names }
     }
-    fn text(&self, t: Term) -> String {
+    pub(crate) fn text(&self, t: Term) -> String {
         write_term(self, t, WriteOptions::writeq())
     }
 }
 
 /// The fields of a situation template.
-struct Sit {
+pub(crate) struct Sit {
     id: Term,
-    ty: Term,
-    emb: Term,
+    pub(crate) ty: Term,
+    pub(crate) emb: Term,
     arcs: Vec<(Term, Term, Term)>,
 }
 
-fn fields(store: &Store, template: Term) -> Sit {
+pub(crate) fn fields(store: &Store, template: Term) -> Sit {
     let a = store.args(template).to_vec();
     let get = |i: usize| a.get(i).copied().unwrap_or(template);
     let arcs = store
@@ -96,7 +102,7 @@ fn fields(store: &Store, template: Term) -> Sit {
     }
 }
 
-fn is_none(store: &Store, t: Term) -> bool {
+pub(crate) fn is_none(store: &Store, t: Term) -> bool {
     store.atom_of(t) == Some(none_marker())
 }
 
@@ -422,6 +428,7 @@ pub fn diagram(ir: &Ir, options: &Options) -> Result<Diagram, String> {
                 embedded_dm: embedded,
                 returns: returns.into_iter().map(|(_, _, r)| r).collect(),
                 detail: None,
+                link: None,
                 location: irs.location.clone(),
             });
             for (j, &(e, a, n)) in s.arcs.iter().enumerate() {
@@ -495,20 +502,7 @@ pub fn diagram(ir: &Ir, options: &Options) -> Result<Diagram, String> {
             let xid = format!("x{ci}");
             if !externals.iter().any(|(c, _)| *c == ci) {
                 externals.push((ci, xid.clone()));
-                let cdm = &ir.dms[ci];
-                d.externals.push(Node {
-                    id: xid.clone(),
-                    kind: NodeKind::ExternalDm,
-                    label: Named::new(store, cdm).text(cdm.head),
-                    situation_type: None,
-                    situation_kind: None,
-                    initial: false,
-                    functor: None,
-                    embedded_dm: None,
-                    returns: Vec::new(),
-                    detail: None,
-                    location: cdm.location.clone(),
-                });
+                d.externals.push(external(store, &ir.dms[ci], xid.clone()));
             }
             d.links.push(Edge {
                 id: pipe_id,
@@ -520,6 +514,38 @@ pub fn diagram(ir: &Ir, options: &Options) -> Result<Diagram, String> {
                 label: call,
                 expectation: None,
                 location: loc,
+            });
+        }
+    }
+    // Recovery protocols: from each situation of a type that has one to
+    // the recovery DM (its initial situation, or its box when not drawn).
+    for &di in &drawn {
+        let dm = &ir.dms[di];
+        for (si, s) in dm.situations.iter().enumerate() {
+            let Some(ri) = recovery_of(ir, fields(store, s.template).ty) else {
+                continue;
+            };
+            let (ty, ri) = ri;
+            let to = if drawn.contains(&ri) && !ir.dms[ri].situations.is_empty() {
+                sit_id(ri, 0)
+            } else {
+                let xid = format!("x{ri}");
+                if !externals.iter().any(|(c, _)| *c == ri) {
+                    externals.push((ri, xid.clone()));
+                    d.externals.push(external(store, &ir.dms[ri], xid.clone()));
+                }
+                xid
+            };
+            d.links.push(Edge {
+                id: format!("e:{}.recovery", sit_id(di, si)),
+                kind: EdgeKind::Recovery,
+                from: sit_id(di, si),
+                from_port: None,
+                to,
+                to_port: None,
+                label: format!("recovery ({ty})"),
+                expectation: None,
+                location: s.location.clone(),
             });
         }
     }
@@ -536,6 +562,7 @@ pub fn diagram(ir: &Ir, options: &Options) -> Result<Diagram, String> {
             embedded_dm: None,
             returns: Vec::new(),
             detail: None,
+            link: None,
             location: ir.dms[mi].location.clone(),
         });
         d.links.push(Edge {
@@ -551,6 +578,32 @@ pub fn diagram(ir: &Ir, options: &Options) -> Result<Diagram, String> {
         });
     }
     Ok(d)
+}
+
+/// The box of a DM that is not drawn.
+fn external(store: &Store, dm: &IrDm, id: String) -> Node {
+    Node {
+        id,
+        kind: NodeKind::ExternalDm,
+        label: Named::new(store, dm).text(dm.head),
+        situation_type: None,
+        situation_kind: None,
+        initial: false,
+        functor: None,
+        embedded_dm: None,
+        returns: Vec::new(),
+        detail: None,
+        link: None,
+        location: dm.location.clone(),
+    }
+}
+
+/// The recovery protocol of a situation type (`type ==> dm.` in
+/// `recovery_protocols.pl`, by the type's name): the type and the DM's index.
+pub(crate) fn recovery_of(ir: &Ir, ty: Term) -> Option<(Atom, usize)> {
+    let (name, _) = ir.store.functor(ty)?;
+    let (_, dm) = ir.recovery.iter().find(|(t, _)| *t == name)?;
+    Some((name, ir.dm_by_name(*dm)? as usize))
 }
 
 /// Draws the way from `from` along `t`.
@@ -590,6 +643,7 @@ fn emit(
         embedded_dm: None,
         returns: Vec::new(),
         detail: None,
+        link: None,
         location: loc.to_owned(),
     };
     match t {

@@ -6,7 +6,8 @@
 //! Stages run one way, one module each:
 //! [`load`] (files → read terms, with [`source`] positions) → [`ast`] (the
 //! SitLog layer) → [`check`] (diagnostics, rendered by [`diag`]; produces
-//! [`check::Checked`], the only input later stages accept) → [`ir::lower`]
+//! [`check::Checked`], the only input later stages accept; [`codes`] lists
+//! every diagnostic code) → [`ir::lower`]
 //! → the back ends: [`interp`] (plans the runtime's machine runs, with
 //! [`instantiate`] the reference path from templates; [`run`] hands them to
 //! the one runner, `sitlog_runtime::app::run`), [`types`] + [`codegen`]
@@ -26,6 +27,7 @@ pub mod ast;
 pub mod build;
 pub mod check;
 pub mod codegen;
+pub mod codes;
 pub mod diag;
 pub mod diagram;
 pub mod instantiate;
@@ -53,6 +55,7 @@ pub fn check_path_opts(
     path: &Path,
     options: check::CheckOptions,
 ) -> Result<(Result<check::Checked, ast::Program>, Vec<diag::Diagnostic>), load::LoadError> {
-    let (program, diags) = load::load(path)?;
+    let library = options.library.unwrap_or(load::Library::none());
+    let (program, diags) = load::load_with(path, library)?;
     Ok(check::check_opts(program, diags, options))
 }

@@ -6,6 +6,14 @@
 //! `user_functions.pl`, `templates.pl`, `recovery_protocols.pl`,
 //! `host_functions.pl`). A single file is a program of one
 //! DM file.
+//!
+//! Library names: a `models` entry or a consulted Prolog file named by a
+//! relative path without `..` (`'behaviors/say.dm'`) is read from the
+//! application's directory when it is there (a local copy wins), else from
+//! the first root of the [`Library`] the caller gives that has it (the
+//! `sitlogc` binary passes `$SITLOG_LIBRARY`'s directories, then the
+//! behaviour library built into it). Files of an embedded root are shown as
+//! `library:/NAME`; [`Program::library_files`] says where each came from.
 
 use crate::ast::{self, Program};
 use crate::diag::{Diagnostic, Loc};
@@ -48,6 +56,105 @@ const PROLOG_FILES: [&str; 2] = ["templates.pl", "user_functions.pl"];
 const KB_FILE: &str = "knowledge.kb";
 const WORLD_FILE: &str = "world.toml";
 
+/// Where library names are looked up after the application's directory,
+/// in order (see the module documentation).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Library {
+    pub roots: Vec<LibraryRoot>,
+}
+
+/// One place library files are read from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LibraryRoot {
+    /// What it is, as `sitlogc check --origins` says it (`the library built
+    /// into sitlogc 0.1.0`, `$SITLOG_LIBRARY directory /opt/lib`).
+    pub what: String,
+    pub files: LibraryFiles,
+}
+
+/// The files of a [`LibraryRoot`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum LibraryFiles {
+    /// A directory: a name is a path below it.
+    Dir(PathBuf),
+    /// Files held in memory (shipped inside a program), by name
+    /// (`behaviors/say.dm`); shown as [`EMBEDDED`]`/NAME`.
+    Embedded(&'static [(&'static str, &'static [u8])]),
+}
+
+/// The directory embedded library files appear in (their paths and names).
+pub const EMBEDDED: &str = "library:";
+
+/// No library: names are read from the application's directory only.
+static NO_LIBRARY: Library = Library { roots: Vec::new() };
+
+impl Library {
+    /// No library: names are read from the application's directory only.
+    pub fn none() -> &'static Library {
+        &NO_LIBRARY
+    }
+
+    /// The file a library name names: the root's index, its path (for an
+    /// embedded root, below [`EMBEDDED`]) and its bytes.
+    pub fn find(&self, name: &str) -> Option<(usize, PathBuf, Vec<u8>)> {
+        if !is_library_name(name) {
+            return None;
+        }
+        let wanted = normalize(Path::new(name));
+        self.roots
+            .iter()
+            .enumerate()
+            .find_map(|(i, root)| match &root.files {
+                LibraryFiles::Dir(dir) => {
+                    let path = dir.join(&wanted);
+                    let bytes = path.is_file().then(|| read_bytes(&path).ok()).flatten()?;
+                    Some((i, path, bytes))
+                }
+                LibraryFiles::Embedded(files) => files
+                    .iter()
+                    .find(|(n, _)| Path::new(n) == wanted)
+                    .map(|(n, b)| (i, Path::new(EMBEDDED).join(n), b.to_vec())),
+            })
+    }
+
+    /// The bytes of the file `name` of the first embedded root that has it.
+    fn embedded(&self, name: &Path) -> Option<&'static [u8]> {
+        self.roots.iter().find_map(|root| match &root.files {
+            LibraryFiles::Embedded(files) => files
+                .iter()
+                .find(|(n, _)| Path::new(n) == name)
+                .map(|(_, b)| *b),
+            LibraryFiles::Dir(_) => None,
+        })
+    }
+
+    /// Where the library was looked for, for a help line.
+    fn places(&self) -> String {
+        self.roots
+            .iter()
+            .map(|r| r.what.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+/// Whether `name` may name a library file: a relative path of plain
+/// components (no `..`, no root).
+pub fn is_library_name(name: &str) -> bool {
+    let p = Path::new(name);
+    !name.is_empty()
+        && p.components()
+            .all(|c| matches!(c, std::path::Component::Normal(_)))
+}
+
+/// The name of an embedded library file below [`EMBEDDED`], if `path` is one.
+fn embedded_name(path: &Path) -> Option<PathBuf> {
+    normalize(path)
+        .strip_prefix(EMBEDDED)
+        .ok()
+        .map(Path::to_path_buf)
+}
+
 /// The programs below `path`: a file is one program; a directory with a
 /// `models` file or a `*.dm` file directly in it is one application; any
 /// other directory is a collection whose subdirectories are searched (sorted).
@@ -86,19 +193,34 @@ pub fn is_application(dir: &Path) -> io::Result<bool> {
     Ok(false)
 }
 
-/// Loads an application directory or a single DM file into one program.
+/// Loads an application directory or a single DM file into one program,
+/// without a library ([`load_with`]).
 pub fn load(path: &Path) -> Result<(Program, Vec<Diagnostic>), LoadError> {
+    load_with(path, Library::none())
+}
+
+/// Loads an application directory or a single DM file into one program,
+/// library names looked up in `library` when the application has no copy.
+pub fn load_with(path: &Path, library: &Library) -> Result<(Program, Vec<Diagnostic>), LoadError> {
+    let cx = Cx { library };
     let mut program = Program::default();
     let mut diags = Vec::new();
-    let meta = std::fs::metadata(path).map_err(|error| LoadError {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    let dir = if meta.is_dir() {
-        load_dir(path, &mut program, &mut diags)?;
+    // A file only in the overlay (an editor's unsaved buffer) is a DM file.
+    let is_dir = match std::fs::metadata(path) {
+        Ok(meta) => meta.is_dir(),
+        Err(_) if in_overlay(path) => false,
+        Err(error) => {
+            return Err(LoadError {
+                path: path.to_path_buf(),
+                error,
+            })
+        }
+    };
+    let dir = if is_dir {
+        load_dir(cx, path, &mut program, &mut diags)?;
         Some(path.to_path_buf())
     } else {
-        load_dm_file(path, &mut program, &mut diags)?;
+        load_dm_file(cx, path, &mut program, &mut diags)?;
         program.single_file = true;
         // A DM file checked alone still sees the side files beside it (its
         // globals, actions, functions): what the help of its diagnostics
@@ -112,7 +234,7 @@ pub fn load(path: &Path) -> Result<(Program, Vec<Diagnostic>), LoadError> {
         });
         if path.extension().is_some_and(|e| e == "dm") {
             if let Some(dir) = dir {
-                load_side_files(dir, &mut program, &mut diags)?;
+                load_side_files(cx, dir, &mut program, &mut diags)?;
             }
         }
         dir.map(Path::to_path_buf)
@@ -138,7 +260,7 @@ pub fn load_sources(files: &[(&str, &str)]) -> (Program, Vec<Diagnostic>) {
             .file_name()
             .and_then(|n| n.to_str())
             .unwrap_or("");
-        add_file_by_role(&mut program, file, name, clauses, &mut diags);
+        add_file_by_role(Cx::NONE, &mut program, file, name, clauses, &mut diags);
     }
     (program, diags)
 }
@@ -155,12 +277,49 @@ pub fn load_source_bytes(files: &[(&str, &[u8])]) -> (Program, Vec<Diagnostic>) 
             .file_name()
             .and_then(|n| n.to_str())
             .unwrap_or("");
-        add_file_by_role(&mut program, file, name, clauses, &mut diags);
+        add_file_by_role(Cx::NONE, &mut program, file, name, clauses, &mut diags);
     }
     (program, diags)
 }
 
+/// What loading one program needs besides the files: the library.
+#[derive(Clone, Copy)]
+struct Cx<'a> {
+    library: &'a Library,
+}
+
+impl Cx<'static> {
+    const NONE: Cx<'static> = Cx {
+        library: &NO_LIBRARY,
+    };
+}
+
+impl Cx<'_> {
+    /// Whether `path` names a file: one of an embedded library root, or
+    /// one on disk.
+    fn exists(&self, path: &Path) -> bool {
+        match embedded_name(path) {
+            Some(name) => self.library.embedded(&name).is_some(),
+            None => path.is_file(),
+        }
+    }
+
+    /// The bytes of `path`: an embedded library file, or a file on disk
+    /// (or the overlay standing in for it).
+    fn read(&self, path: &Path) -> io::Result<Vec<u8>> {
+        match embedded_name(path) {
+            Some(name) => self
+                .library
+                .embedded(&name)
+                .map(<[u8]>::to_vec)
+                .ok_or_else(|| io::ErrorKind::NotFound.into()),
+            None => read_bytes(path),
+        }
+    }
+}
+
 fn add_file_by_role(
+    cx: Cx<'_>,
     program: &mut Program,
     file: FileId,
     name: &str,
@@ -180,7 +339,7 @@ fn add_file_by_role(
         HOST_FUNCTIONS => {
             ast::build_host_functions(file, clauses, &mut program.host_functions, diags)
         }
-        n if PROLOG_FILES.contains(&n) => add_prolog_file(program, file, clauses, diags, 0),
+        n if PROLOG_FILES.contains(&n) => add_prolog_file(cx, program, file, clauses, diags, 0),
         _ => ast::build_dms(file, clauses, &mut program.dms, diags),
     }
 }
@@ -192,6 +351,7 @@ fn add_file_by_role(
 /// named through `$SITLOG_HOME`, is left to the Prolog loader, which
 /// reports it with its position.
 fn add_prolog_file(
+    cx: Cx<'_>,
     program: &mut Program,
     file: FileId,
     clauses: Vec<Clause>,
@@ -211,11 +371,46 @@ fn add_prolog_file(
                 program.unread_consults.push(unread);
                 continue;
             }
-            let mut path = dir.join(&name);
-            if !path.is_file() {
-                path.as_mut_os_string().push(".pl");
-            }
-            let path = normalize(&path);
+            let with_pl = format!("{name}.pl");
+            // Beside the consulting file (a file of an embedded library:
+            // beside it in the library), with or without `.pl`.
+            let beside = [&name, &with_pl]
+                .into_iter()
+                .map(|n| normalize(&dir.join(n)))
+                .find(|p| cx.exists(p));
+            let (path, bytes, library) = match beside {
+                Some(path) => {
+                    let library = [&name, &with_pl]
+                        .into_iter()
+                        .find_map(|n| cx.library.find(n).map(|found| (n, found)))
+                        .map(|(n, (root, _, _))| {
+                            let what = cx.library.roots[root].what.clone();
+                            match embedded_name(&path) {
+                                Some(_) => (n.clone(), Some(what), None),
+                                None => (n.clone(), None, Some(what)),
+                            }
+                        });
+                    (path, None, library)
+                }
+                // A library name the application has no copy of.
+                None => match [&name, &with_pl]
+                    .into_iter()
+                    .find_map(|n| cx.library.find(n).map(|found| (n, found)))
+                {
+                    Some((n, (root, path, bytes))) => {
+                        let what = cx.library.roots[root].what.clone();
+                        (
+                            normalize(&path),
+                            Some(bytes),
+                            Some((n.clone(), Some(what), None)),
+                        )
+                    }
+                    None => {
+                        program.unread_consults.push(unread);
+                        continue;
+                    }
+                },
+            };
             let known = program
                 .prolog_files
                 .iter()
@@ -223,13 +418,21 @@ fn add_prolog_file(
             if known {
                 continue;
             }
-            if !path.is_file() {
-                program.unread_consults.push(unread);
-                continue;
-            }
-            if let Ok(id) = read_text(&path, program, diags) {
+            let read = match bytes {
+                Some(bytes) => Ok(add_bytes(&path, bytes, program, diags)),
+                None => read_text(cx, &path, program, diags),
+            };
+            if let Ok(id) = read {
+                if let Some((name, root, overrides)) = library {
+                    program.library_files.push(ast::LibraryFile {
+                        name,
+                        file: id,
+                        root,
+                        overrides,
+                    });
+                }
                 let clauses = read_file_clauses(program, id, diags);
-                add_prolog_file(program, id, clauses, diags, depth + 1);
+                add_prolog_file(cx, program, id, clauses, diags, depth + 1);
             }
         }
     }
@@ -292,7 +495,8 @@ thread_local! {
 
 /// Runs `f` with `overlay` standing in for the files it names: loading
 /// reads those texts instead of the disk (the language server's unsaved
-/// buffers). Directories are still listed from disk.
+/// buffers), whether or not the file exists. Directories are listed from
+/// disk, plus the overlay's `*.dm` files below them that are not on disk.
 pub fn with_overlay<R>(
     overlay: &std::collections::HashMap<PathBuf, String>,
     f: impl FnOnce() -> R,
@@ -312,6 +516,27 @@ fn absolute(p: &Path) -> PathBuf {
     std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
 }
 
+/// Whether the overlay holds `path`.
+fn in_overlay(path: &Path) -> bool {
+    OVERLAY.with(|o| {
+        let o = o.borrow();
+        !o.is_empty() && o.contains_key(&normalize(&absolute(path)))
+    })
+}
+
+/// The overlay's `*.dm` files below `dir` that are not on disk (a DM file
+/// an editor has not saved yet), as paths under `dir`.
+fn overlay_dm_files(dir: &Path) -> Vec<PathBuf> {
+    let base = normalize(&absolute(dir));
+    OVERLAY.with(|o| {
+        o.borrow()
+            .keys()
+            .filter(|p| p.extension().is_some_and(|e| e == "dm") && !p.is_file())
+            .filter_map(|p| p.strip_prefix(&base).ok().map(|rel| dir.join(rel)))
+            .collect()
+    })
+}
+
 /// A file's bytes: from the overlay if it holds the file, else the disk.
 fn read_bytes(path: &Path) -> io::Result<Vec<u8>> {
     let over = OVERLAY.with(|o| {
@@ -324,16 +549,17 @@ fn read_bytes(path: &Path) -> io::Result<Vec<u8>> {
     });
     match over {
         Some(text) => Ok(text.into_bytes()),
-        None => std::fs::read(path),
+        None => sitlog_syntax::read_file(path),
     }
 }
 
 fn read_text(
+    cx: Cx<'_>,
     path: &Path,
     program: &mut Program,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<FileId, LoadError> {
-    let bytes = read_bytes(path).map_err(|error| LoadError {
+    let bytes = cx.read(path).map_err(|error| LoadError {
         path: path.to_path_buf(),
         error,
     })?;
@@ -405,25 +631,27 @@ pub fn syntax_diagnostic(file: FileId, e: SyntaxError) -> Diagnostic {
 }
 
 fn load_dm_file(
+    cx: Cx<'_>,
     path: &Path,
     program: &mut Program,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<(), LoadError> {
-    let file = read_text(path, program, diags)?;
+    let file = read_text(cx, path, program, diags)?;
     let clauses = read_file_clauses(program, file, diags);
     let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
-    add_file_by_role(program, file, name, clauses, diags);
+    add_file_by_role(cx, program, file, name, clauses, diags);
     Ok(())
 }
 
 fn load_dir(
+    cx: Cx<'_>,
     dir: &Path,
     program: &mut Program,
     diags: &mut Vec<Diagnostic>,
 ) -> Result<(), LoadError> {
     let models = dir.join("models");
     if models.is_file() {
-        let file = read_text(&models, program, diags)?;
+        let file = read_text(cx, &models, program, diags)?;
         let clauses = read_file_clauses(program, file, diags);
         for clause in clauses {
             let loc = Loc {
@@ -441,21 +669,58 @@ fn load_dir(
                 );
                 continue;
             };
-            let path = dir.join(name.as_str());
-            match read_bytes(&path) {
+            let name = name.as_str();
+            let path = dir.join(name);
+            // The application's own file (a local copy of a library file
+            // wins), else the library's.
+            let (path, read, root) = match read_bytes(&path) {
+                Err(e) if e.kind() == io::ErrorKind::NotFound => match cx.library.find(name) {
+                    Some((root, path, bytes)) => (path, Ok(bytes), Some(root)),
+                    None => (path, Err(e), None),
+                },
+                read => (path, read, None),
+            };
+            match read {
                 Ok(bytes) => {
                     let f = add_bytes(&path, bytes, program, diags);
+                    let what = |root: usize| cx.library.roots[root].what.clone();
+                    let library = match root {
+                        Some(root) => Some((Some(what(root)), None)),
+                        None => cx
+                            .library
+                            .find(name)
+                            .map(|(root, _, _)| (None, Some(what(root)))),
+                    };
+                    if let Some((root, overrides)) = library {
+                        program.library_files.push(ast::LibraryFile {
+                            name: name.to_owned(),
+                            file: f,
+                            root,
+                            overrides,
+                        });
+                    }
                     let clauses = read_file_clauses(program, f, diags);
                     ast::build_dms(f, clauses, &mut program.dms, diags);
                 }
-                Err(e) => diags.push(
-                    Diagnostic::error(
+                Err(e) => {
+                    let mut d = Diagnostic::error(
                         codes::MISSING_FILE,
                         loc,
                         format!("cannot read DM file `{}`: {e}", path.display()),
                     )
-                    .with_label("listed here"),
-                ),
+                    .with_label("listed here");
+                    if e.kind() == io::ErrorKind::NotFound && is_library_name(name) {
+                        d = d.with_help(if cx.library.roots.is_empty() {
+                            "the path is relative to the application directory".to_owned()
+                        } else {
+                            format!(
+                                "not in the application directory, nor in the library ({})",
+                                cx.library.places()
+                            )
+                        });
+                    }
+                    diags.push(d);
+                }
             }
         }
     } else {
@@ -464,16 +729,18 @@ fn load_dir(
             path: dir.to_path_buf(),
             error,
         })?;
+        dm_files.extend(overlay_dm_files(dir));
         dm_files.sort();
         for path in dm_files {
-            load_dm_file(&path, program, diags)?;
+            load_dm_file(cx, &path, program, diags)?;
         }
     }
-    load_side_files(dir, program, diags)
+    load_side_files(cx, dir, program, diags)
 }
 
 /// The side files of the application in `dir` (those that exist).
 fn load_side_files(
+    cx: Cx<'_>,
     dir: &Path,
     program: &mut Program,
     diags: &mut Vec<Diagnostic>,
@@ -490,9 +757,9 @@ fn load_side_files(
     {
         let path = dir.join(side);
         if path.is_file() {
-            let file = read_text(&path, program, diags)?;
+            let file = read_text(cx, &path, program, diags)?;
             let clauses = read_file_clauses(program, file, diags);
-            add_file_by_role(program, file, side, clauses, diags);
+            add_file_by_role(cx, program, file, side, clauses, diags);
         }
     }
     Ok(())

@@ -178,7 +178,7 @@ impl CommandSource {
     /// A commands file (UTF-8 text); `Err` says why it cannot be read.
     pub fn file(path: &Path) -> Result<CommandSource, String> {
         let name = path.display().to_string();
-        let bytes = std::fs::read(path)
+        let bytes = sitlog_syntax::read_file(path)
             .map_err(|e| format!("error: cannot read commands file {name}: {e}"))?;
         let text = String::from_utf8(bytes).map_err(|e| {
             let at = e.utf8_error().valid_up_to();

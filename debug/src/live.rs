@@ -5,7 +5,7 @@
 //! no more inputs, or there is no script).
 
 use crate::command::{self, Command, CommandSource, Line, Spec, PROMPT};
-use crate::record::{self, Record};
+use crate::record::{self, Record, Unmatched};
 use sitlog_robot::{Assets, DebugHooks, RunArgs, Runner, Streams, WorldProbe};
 use sitlog_runtime::app::App;
 use sitlog_runtime::history::Entry;
@@ -66,12 +66,16 @@ struct Live {
     /// breakpoints; `dropped` older ones were let go.
     records: Vec<Record>,
     dropped: usize,
+    /// The inputs that met no expectation since the oldest record kept.
+    unmatched: Vec<Unmatched>,
     world: Option<WorldProbe>,
     stop: Arc<AtomicBool>,
     state: State,
     limits: InputLimits,
     /// Set by Ctrl-C (interactive sessions): stop at the next transition.
     interrupt: Option<Arc<AtomicBool>>,
+    /// The program's DMs and their situations' names (empty: unknown).
+    names: Vec<(String, Vec<String>)>,
 }
 
 macro_rules! say {
@@ -170,6 +174,10 @@ impl Live {
                 None
             }
             Command::Break(Some(spec)) => {
+                if let Some(problem) = crate::record::unknown_name(&self.names, &spec) {
+                    say!(self, "{problem}: no breakpoint set");
+                    return None;
+                }
                 self.next_break += 1;
                 say!(self, "breakpoint {}: {spec}", self.next_break);
                 self.breaks.push((self.next_break, spec));
@@ -186,7 +194,12 @@ impl Live {
                 None
             }
             Command::History(n) => {
-                let text = record::history_from(self.dropped, &self.records, n.unwrap_or(10));
+                let text = record::history_with(
+                    self.dropped,
+                    &self.records,
+                    &self.unmatched,
+                    n.unwrap_or(10),
+                );
                 let _ = write!(self.out, "{text}");
                 None
             }
@@ -344,6 +357,8 @@ impl Observer for Watch {
         if live.records.len() >= 2 * KEEP {
             live.records.drain(..KEEP);
             live.dropped += KEEP;
+            let dropped = live.dropped;
+            live.unmatched.retain(|u| u.before >= dropped);
         }
         live.records.push(Record {
             dm: store.writeq(entry.dm),
@@ -353,6 +368,25 @@ impl Observer for Watch {
             depth,
             next: next.map(|n| store.writeq(n)),
         });
+    }
+
+    /// Kept for `history` and shown at once while the debugger watches.
+    fn unmatched(&mut self, store: &Store, dm: Term, situation: Term, input: Term, depth: usize) {
+        let Ok(mut live) = self.0.lock() else { return };
+        let u = Unmatched {
+            dm: store.writeq(dm),
+            situation: store.writeq(situation),
+            input: store.writeq(input),
+            depth,
+            before: live.dropped + live.records.len(),
+        };
+        if live.state == State::Running {
+            say!(live, "{}", record::unnumbered(&u));
+        }
+        if live.unmatched.len() >= 2 * KEEP {
+            live.unmatched.drain(..KEEP);
+        }
+        live.unmatched.push(u);
     }
 
     fn inspect(&mut self, machine: &mut Inspection<'_>) {
@@ -469,11 +503,13 @@ pub fn debug<A: App>(
         next_break: 0,
         mode: Mode::Step,
         records: Vec::new(),
+        unmatched: Vec::new(),
         dropped: 0,
         world: None,
         stop: stop.clone(),
         state: State::Running,
         limits: args.input_limits(),
+        names: app.names(),
     }));
     // Before the run: breakpoints, then `step`, `continue`...
     let started = {

@@ -1,10 +1,12 @@
 //! `sitlogc replay`: a `--trace` recording (one JSON object per transition:
-//! `dm`, `situation`, `expectation`, `action`, `depth`, `next`) walked
-//! forwards and backwards with the debugger's commands, without running
-//! anything; and the first difference of two recordings.
+//! `dm`, `situation`, `expectation`, `action`, `depth`, `next`; one per
+//! input that met no expectation: `dm`, `situation`, `unmatched`, `depth`)
+//! walked forwards and backwards with the debugger's commands, without
+//! running anything; and the first difference of two recordings, inputs
+//! that met no expectation included.
 
 use crate::command::{self, Command, CommandSource, Line, Spec, PROMPT};
-use crate::record::{self, Record};
+use crate::record::{self, Record, Unmatched};
 use std::fmt::Write as _;
 use std::io::Write;
 use std::path::Path;
@@ -17,14 +19,18 @@ pub struct Trace {
     pub records: Vec<Record>,
     /// The file's line of each record (1-based).
     pub lines: Vec<usize>,
+    /// The inputs that met no expectation, in order.
+    pub unmatched: Vec<Unmatched>,
+    /// The file's line of each of them.
+    pub unmatched_lines: Vec<usize>,
 }
 
 impl Trace {
     /// Reads a trace file; `Err` is `FILE:LINE[:COL]: error: ...`.
     pub fn read(path: &Path) -> Result<Trace, String> {
         let name = path.display().to_string();
-        let bytes =
-            std::fs::read(path).map_err(|e| format!("error: cannot read trace {name}: {e}"))?;
+        let bytes = sitlog_syntax::read_file(path)
+            .map_err(|e| format!("error: cannot read trace {name}: {e}"))?;
         let text = String::from_utf8(bytes).map_err(|e| {
             let at = e.utf8_error().valid_up_to();
             let before = &e.as_bytes()[..at];
@@ -46,6 +52,8 @@ impl Trace {
             name: name.to_owned(),
             records: Vec::new(),
             lines: Vec::new(),
+            unmatched: Vec::new(),
+            unmatched_lines: Vec::new(),
         };
         for (i, line) in text.lines().enumerate() {
             let n = i + 1;
@@ -95,6 +103,17 @@ impl Trace {
                     ))
                 }
             };
+            if object.contains_key("unmatched") {
+                trace.unmatched.push(Unmatched {
+                    dm: text("dm")?,
+                    situation: text("situation")?,
+                    input: text("unmatched")?,
+                    depth: usize::try_from(depth).unwrap_or(usize::MAX),
+                    before: trace.records.len(),
+                });
+                trace.unmatched_lines.push(n);
+                continue;
+            }
             let next = match object.get("next") {
                 None | Some(serde_json::Value::Null) => None,
                 Some(serde_json::Value::String(s)) => Some(s.clone()),
@@ -157,37 +176,94 @@ fn short(text: &str) -> String {
     s
 }
 
+/// One line of a recording: a transition (its index) or an input that
+/// met no expectation (its index), in the file's order.
+#[derive(Clone, Copy)]
+enum Event {
+    Transition(usize),
+    Input(usize),
+}
+
+impl Trace {
+    fn events(&self) -> Vec<Event> {
+        let mut out = Vec::with_capacity(self.records.len() + self.unmatched.len());
+        let mut inputs = self.unmatched.iter().enumerate().peekable();
+        for i in 0..=self.records.len() {
+            while let Some((j, _)) = inputs.next_if(|(_, u)| u.before == i) {
+                out.push(Event::Input(j));
+            }
+            if i < self.records.len() {
+                out.push(Event::Transition(i));
+            }
+        }
+        out
+    }
+
+    fn same_event(&self, x: Event, other: &Trace, y: Event) -> bool {
+        match (x, y) {
+            (Event::Transition(i), Event::Transition(j)) => self.records[i] == other.records[j],
+            (Event::Input(i), Event::Input(j)) => self.unmatched[i].same(&other.unmatched[j]),
+            _ => false,
+        }
+    }
+}
+
 /// The first difference of two recordings, with context; `None` when they
-/// are the same.
+/// are the same. An input that met no expectation in one and not the
+/// other is a difference, before the transition that follows it.
 pub fn diff(a: &Trace, b: &Trace) -> Option<String> {
-    let same = a
-        .records
+    let (ea, eb) = (a.events(), b.events());
+    let k = ea
         .iter()
-        .zip(&b.records)
-        .take_while(|(x, y)| x == y)
+        .zip(&eb)
+        .take_while(|(&x, &y)| a.same_event(x, b, y))
         .count();
-    if same == a.records.len() && same == b.records.len() {
+    if k == ea.len() && k == eb.len() {
         return None;
     }
+    let same = ea[..k]
+        .iter()
+        .filter(|e| matches!(e, Event::Transition(_)))
+        .count();
+    let input_differs = [ea.get(k), eb.get(k)]
+        .iter()
+        .any(|e| matches!(e, Some(Event::Input(_))));
     let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "the recordings differ at transition #{} (the {same} before are the same)",
-        same + 1
-    );
+    if input_differs {
+        let _ = writeln!(
+            out,
+            "the recordings differ before transition #{}: an input met no expectation (the {same} transitions before are the same)",
+            same + 1
+        );
+    } else {
+        let _ = writeln!(
+            out,
+            "the recordings differ at transition #{} (the {same} before are the same)",
+            same + 1
+        );
+    }
     let from = same.saturating_sub(3);
     for (i, r) in a.records.iter().enumerate().take(same).skip(from) {
         let _ = writeln!(out, "  {}", record::numbered(i + 1, r));
     }
-    for t in [a, b] {
-        match t.records.get(same) {
-            Some(r) => {
+    for (t, e) in [(a, ea.get(k)), (b, eb.get(k))] {
+        match e {
+            Some(&Event::Transition(i)) => {
                 let _ = writeln!(
                     out,
                     "{}:{}:\n  {}",
                     t.name,
-                    t.lines[same],
-                    record::numbered(same + 1, r)
+                    t.lines[i],
+                    record::numbered(i + 1, &t.records[i])
+                );
+            }
+            Some(&Event::Input(j)) => {
+                let _ = writeln!(
+                    out,
+                    "{}:{}:\n  {}",
+                    t.name,
+                    t.unmatched_lines[j],
+                    record::unnumbered(&t.unmatched[j])
                 );
             }
             None => {
@@ -224,9 +300,28 @@ impl Replay<'_> {
         match self.at {
             0 => say!(self, "at the start (no transition yet)"),
             n => {
+                // The inputs that met no expectation on the way here.
+                for u in self.trace.unmatched.iter().filter(|u| u.before == n - 1) {
+                    say!(self, "{}", record::unnumbered(u));
+                }
                 let line = record::numbered(n, &self.trace.records[n - 1]);
                 say!(self, "{line}");
             }
+        }
+        if self.at == self.trace.records.len() {
+            for u in self.trace.unmatched.iter().filter(|u| u.before == self.at) {
+                say!(self, "{}", record::unnumbered(u));
+            }
+        }
+    }
+
+    /// The inputs that met no expectation up to the current position.
+    fn inputs_so_far(&self) -> &[Unmatched] {
+        let u = &self.trace.unmatched;
+        if self.at == self.trace.records.len() {
+            u
+        } else {
+            &u[..u.partition_point(|u| u.before < self.at)]
         }
     }
 
@@ -324,7 +419,12 @@ impl Replay<'_> {
                 }
             }
             Command::History(n) => {
-                let text = record::history(&self.trace.records[..self.at], n.unwrap_or(10));
+                let text = record::history_with(
+                    0,
+                    &self.trace.records[..self.at],
+                    self.inputs_so_far(),
+                    n.unwrap_or(10),
+                );
                 let _ = write!(self.out, "{text}");
             }
             Command::Break(None) => {
@@ -342,6 +442,26 @@ impl Replay<'_> {
                 )
             }
             Command::Break(Some(spec)) => {
+                // the names the recording has: a breakpoint elsewhere never stops
+                let mut names: Vec<(String, Vec<String>)> = Vec::new();
+                for r in &self.trace.records {
+                    let dm = crate::record::name_of(&r.dm).to_owned();
+                    let i = match names.iter().position(|(n, _)| *n == dm) {
+                        Some(i) => i,
+                        None => {
+                            names.push((dm, Vec::new()));
+                            names.len() - 1
+                        }
+                    };
+                    let sit = crate::record::name_of(&r.situation).to_owned();
+                    if !names[i].1.contains(&sit) {
+                        names[i].1.push(sit);
+                    }
+                }
+                if let Some(problem) = crate::record::unknown_name(&names, &spec) {
+                    say!(self, "{problem} in this recording: no breakpoint set");
+                    return true;
+                }
                 self.next_break += 1;
                 say!(self, "breakpoint {}: {spec}", self.next_break);
                 self.breaks.push((self.next_break, spec));

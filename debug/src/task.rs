@@ -39,6 +39,7 @@ pub fn task_main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std:
         Ok(cli) => cli,
         Err(code) => return code,
     };
+    sitlog_syntax::decode::set_max_file_bytes(cli.task.max_file_bytes);
     on_big_stack(|| {
         let source = match &cli.commands {
             Some(path) => CommandSource::file(path),
@@ -47,7 +48,7 @@ pub fn task_main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std:
         let source = match source {
             Ok(s) => s,
             Err(e) => {
-                eprintln!("{e}");
+                sitlog_runtime::errln!("{e}");
                 return 2;
             }
         };

@@ -3,7 +3,7 @@
 % things it talks about. Written for sitlog-rs; applications
 % consult this file from their user_functions.pl:
 %
-%     :- consult('../../behaviors/language.pl').
+%     :- consult('behaviors/language.pl').
 %
 % Understanding is vocabulary-driven, not a match on fixed sentences: the
 % caller passes what the robot knows of the world,

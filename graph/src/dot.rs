@@ -80,6 +80,22 @@ fn node(s: &mut String, n: &Node) {
             format!("shape=box, style=\"dotted,rounded\", label={}", q(&n.label))
         }
         NodeKind::OutArg => format!("shape=plaintext, label={}", q(&n.label)),
+        NodeKind::Dm => {
+            let label = match &n.detail {
+                Some(d) => format!("{}\n{d}", n.label),
+                None => n.label.clone(),
+            };
+            let pen = if n.initial { ", penwidth=2" } else { "" };
+            let url = n
+                .link
+                .as_ref()
+                .map(|l| format!(", URL={}", q(l)))
+                .unwrap_or_default();
+            format!(
+                "shape=box, style=\"dotted,rounded\", label={}{pen}{url}",
+                q(&label)
+            )
+        }
     };
     let _ = writeln!(s, "    {} [{attrs}, tooltip={}];", q(&n.id), q(&n.location));
     for r in &n.returns {
@@ -117,6 +133,8 @@ fn edge(s: &mut String, e: &Edge, d: &Diagram) {
         EdgeKind::Computed => ", style=dashed",
         EdgeKind::Pipe | EdgeKind::OutArg => ", penwidth=3.5",
         EdgeKind::Control => ", style=dashed, penwidth=2, color=\"#777777\"",
+        EdgeKind::Recovery => ", style=dashed, penwidth=2, color=\"#a64b00\"",
+        EdgeKind::Call => ", penwidth=2",
     };
     let label = if e.label.is_empty() {
         String::new()

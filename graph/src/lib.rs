@@ -3,8 +3,9 @@
 //! and 4).
 //!
 //! This crate owns the *diagram model* ([`Diagram`]: DMs, situations,
-//! function dots, disjunctions, return dots, arcs, pipes and control links,
-//! each with its `file:line:col`), its layout ([`layout`], on the pure-Rust
+//! function dots, disjunctions, return dots, arcs, pipes, control and
+//! recovery links; the overview's DM boxes and calls; each with its
+//! `file:line:col`), label wrapping ([`wrap`]), its layout ([`layout`], on the pure-Rust
 //! Graphviz-style engine `layout-rs`) and its renderings: SVG ([`svg`]),
 //! DOT ([`dot`]) and JSON ([`Diagram::to_json`]), plus the colouring of a
 //! recorded run ([`trace`]).
@@ -70,6 +71,9 @@ pub enum NodeKind {
     ExternalDm,
     /// The task's out_arg leaving the main DM.
     OutArg,
+    /// A whole DM, as a box of the program's overview (its `detail`: how
+    /// many situations, and where).
+    Dm,
 }
 
 /// The kind of situation (for situation nodes).
@@ -106,9 +110,14 @@ pub struct Node {
     /// of the embedded DM.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub returns: Vec<ReturnDot>,
-    /// More about it (a function dot: the call as written).
+    /// More about it (a function dot: the call as written; a DM of the
+    /// overview: its situations and file).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub detail: Option<String>,
+    /// A page the SVG links the node to (a DM's own page, `sitlogc graph
+    /// --out-dir`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub link: Option<String>,
     /// `file:line:col` where it is written.
     pub location: String,
 }
@@ -144,6 +153,13 @@ pub enum EdgeKind {
     Control,
     /// Bold: the task's out_arg leaving the main DM.
     OutArg,
+    /// Dashed: from a situation whose type has a recovery protocol (or, in
+    /// the overview, a DM with such situations) to the recovery DM, run
+    /// when no expectation of the situation is met.
+    Recovery,
+    /// In the overview: a DM calls another (its recursive situations'
+    /// `embedded_dm`, the calls as label).
+    Call,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -204,6 +220,56 @@ impl Diagram {
             .filter(|n| n.kind == NodeKind::Situation)
             .count()
     }
+}
+
+/// Lines a label wraps into: at most [`WRAP_LINES`]; past them the last
+/// line ends with `…` (only a label of hundreds of characters is cut).
+pub const WRAP_LINES: usize = 12;
+
+/// `text` in lines of at most `width` characters, broken after a `,`, a
+/// space, a `:` or an opening bracket where possible (inside a word only
+/// where it has none), continuation lines without leading spaces.
+pub fn wrap(text: &str, width: usize) -> Vec<String> {
+    let width = width.max(4);
+    let chars: Vec<char> = text.chars().collect();
+    let mut lines = Vec::new();
+    let mut start = 0;
+    while start < chars.len() {
+        if chars.len() - start <= width {
+            lines.push(chars[start..].iter().collect::<String>());
+            break;
+        }
+        // the last break opportunity within the width
+        let end = start + width;
+        let cut = (start + 1..=end)
+            .rev()
+            .find(|&i| matches!(chars[i - 1], ',' | ' ' | ':' | '(' | '[' | '|'))
+            .filter(|&i| i > start + width / 3)
+            .unwrap_or(end);
+        lines.push(
+            chars[start..cut]
+                .iter()
+                .collect::<String>()
+                .trim_end()
+                .to_owned(),
+        );
+        start = cut;
+        while start < chars.len() && chars[start] == ' ' {
+            start += 1;
+        }
+        if lines.len() == WRAP_LINES && start < chars.len() {
+            let last = lines.pop().unwrap_or_default();
+            lines.push(shorten(
+                &format!("{last} {}", chars[start..].iter().collect::<String>()),
+                width,
+            ));
+            break;
+        }
+    }
+    if lines.is_empty() {
+        lines.push(String::new());
+    }
+    lines
 }
 
 /// Shortens `text` to at most `max` characters, ending with `…` when cut.

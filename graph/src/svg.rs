@@ -4,7 +4,7 @@
 //! `<title>` that starts with its `file:line:col`, so that hovering says
 //! where it is written; the live view highlights by those ids.
 
-use crate::layout::{self, node_lines, path_data, Layout, P};
+use crate::layout::{function_lines, node_lines, node_text, path_data, Layout, LINE_H, P};
 use crate::trace::Overlay;
 use crate::{Diagram, Edge, EdgeKind, Node, NodeKind, SituationKind};
 use std::fmt::Write;
@@ -51,6 +51,13 @@ pub fn render(d: &Diagram, l: &Layout, overlay: Option<&Overlay>) -> String {
         r##"<marker id="arrow-taken" viewBox="0 0 10 10" refX="9" refY="5" markerUnits="userSpaceOnUse" markerWidth="10" markerHeight="10" orient="auto-start-reverse"><path d="M 0 0 L 10 5 L 0 10 z" fill="#1a7f37"/></marker>"##,
         "\n</defs>\n",
     ));
+    if d.edges().any(|e| e.kind == EdgeKind::Recovery) {
+        s.truncate(s.len() - "</defs>\n".len());
+        s.push_str(concat!(
+            r##"<marker id="arrow-recovery" viewBox="0 0 10 10" refX="9" refY="5" markerUnits="userSpaceOnUse" markerWidth="10" markerHeight="10" orient="auto-start-reverse"><path d="M 0 0 L 10 5 L 0 10 z" fill="#a64b00"/></marker>"##,
+            "\n</defs>\n"
+        ));
+    }
     let _ = writeln!(
         s,
         r##"<rect x="0" y="0" width="{}" height="{}" fill="#ffffff"/>"##,
@@ -82,13 +89,15 @@ pub fn render(d: &Diagram, l: &Layout, overlay: Option<&Overlay>) -> String {
             num(oval.rx),
             num(oval.ry)
         );
-        let _ = writeln!(
-            s,
-            r##"<text x="{}" y="{}" text-anchor="middle" font-size="15" font-weight="bold" fill="#333">{}</text>"##,
-            num(oval.center.x),
-            num(oval.center.y - oval.ry + 22.0),
-            esc(&crate::shorten(&dm.name, 60))
-        );
+        for (i, line) in crate::wrap(&dm.name, 60).iter().enumerate() {
+            let _ = writeln!(
+                s,
+                r##"<text x="{}" y="{}" text-anchor="middle" font-size="15" font-weight="bold" fill="#333">{}</text>"##,
+                num(oval.center.x),
+                num(oval.center.y - oval.ry + 22.0 + 17.0 * i as f64),
+                esc(line)
+            );
+        }
         // nodes first: arcs leaving a return dot start inside their circle
         for n in &dm.nodes {
             node(&mut s, n, l, overlay);
@@ -116,6 +125,8 @@ fn edge(s: &mut String, e: &Edge, l: &Layout, overlay: Option<&Overlay>) {
         EdgeKind::Pipe => "pipe",
         EdgeKind::Control => "control",
         EdgeKind::OutArg => "out-arg",
+        EdgeKind::Recovery => "recovery",
+        EdgeKind::Call => "call",
     };
     let taken = overlay.map(|o| o.edge_count(&e.id));
     let _ = writeln!(
@@ -132,6 +143,8 @@ fn edge(s: &mut String, e: &Edge, l: &Layout, overlay: Option<&Overlay>) {
         EdgeKind::Pipe => format!("pipe into {}", e.label),
         EdgeKind::Control => format!("control returns through {}", e.label),
         EdgeKind::OutArg => "the task's out_arg".to_owned(),
+        EdgeKind::Recovery => format!("recovery protocol: {}", e.label),
+        EdgeKind::Call => format!("calls {}", e.label),
     };
     let count = match taken {
         Some(n) if n > 0 => format!("\ntaken {n} time(s)"),
@@ -149,11 +162,13 @@ fn edge(s: &mut String, e: &Edge, l: &Layout, overlay: Option<&Overlay>) {
         EdgeKind::Computed => ("#222", 1.3, "6 4", "arrow-black"),
         EdgeKind::Pipe | EdgeKind::OutArg => ("#000", 3.5, "", "arrow-bold"),
         EdgeKind::Control => ("#777", 2.0, "7 3", ""),
+        EdgeKind::Recovery => ("#a64b00", 2.0, "8 4", "arrow-recovery"),
+        EdgeKind::Call => ("#222", 2.0, "", "arrow-black"),
     };
     let mut opacity = 1.0;
     let is_link = matches!(
         e.kind,
-        EdgeKind::Pipe | EdgeKind::Control | EdgeKind::OutArg
+        EdgeKind::Pipe | EdgeKind::Control | EdgeKind::OutArg | EdgeKind::Recovery | EdgeKind::Call
     );
     match taken {
         Some(0) if !is_link => opacity = 0.45,
@@ -259,7 +274,11 @@ fn node(s: &mut String, n: &Node, l: &Layout, overlay: Option<&Overlay>) {
         NodeKind::Computed => "computed",
         NodeKind::ExternalDm => "external",
         NodeKind::OutArg => "out-arg",
+        NodeKind::Dm => "dm-box",
     };
+    if let Some(href) = &n.link {
+        let _ = writeln!(s, r#"<a href="{}">"#, esc(href));
+    }
     let _ = writeln!(
         s,
         r#"<g class="node {kind}" id="{}" data-label="{}">"#,
@@ -284,6 +303,14 @@ fn node(s: &mut String, n: &Node, l: &Layout, overlay: Option<&Overlay>) {
         NodeKind::Computed => format!("next situation computed at run time: {}", n.label),
         NodeKind::ExternalDm => format!("DM {} (not drawn)", n.label),
         NodeKind::OutArg => "the task's out_arg".to_owned(),
+        NodeKind::Dm => format!(
+            "DM {}{}",
+            n.label,
+            n.detail
+                .as_ref()
+                .map(|d| format!(": {d}"))
+                .unwrap_or_default()
+        ),
     };
     let count = match visits {
         Some(k) if k > 0 => format!("\nvisited {k} time(s)"),
@@ -327,20 +354,26 @@ fn node(s: &mut String, n: &Node, l: &Layout, overlay: Option<&Overlay>) {
                     num(opacity)
                 );
             }
-            let lines = node_lines(n);
+            let (bold, italic) = node_text(n);
+            let lines: Vec<(bool, &String)> = bold
+                .iter()
+                .map(|l| (true, l))
+                .chain(italic.iter().map(|l| (false, l)))
+                .collect();
+            let lh = LINE_H;
             let at = if n.returns.is_empty() {
                 c
             } else {
+                // above the return dots (at half the radius below the centre)
                 P {
                     x: c.x,
-                    y: c.y - r * 0.22,
+                    y: c.y - (lh * lines.len() as f64 / 2.0).max(r * 0.22),
                 }
             };
             // id in bold, type in italic
-            let lh = 14.0;
             let top = at.y - lh * lines.len() as f64 / 2.0;
-            for (i, line) in lines.iter().enumerate() {
-                let (weight, style) = if i == 0 {
+            for (i, (is_bold, line)) in lines.iter().enumerate() {
+                let (weight, style) = if *is_bold {
                     (r#" font-weight="bold""#, "")
                 } else {
                     ("", r#" font-style="italic""#)
@@ -387,23 +420,27 @@ return point of the embedded DM's final situation {}</title><circle cx="{}" cy="
                 num(c.y),
                 num(opacity)
             );
-            let w = crate::shorten(&n.label, layout::LABEL_MAX);
-            let tw = w.chars().count() as f64 * 12.0 * 0.61;
+            let lines = function_lines(n);
+            let tw =
+                lines.iter().map(|l| l.chars().count()).max().unwrap_or(0) as f64 * 12.0 * 0.61;
             let _ = writeln!(
                 s,
-                r##"<rect x="{}" y="{}" width="{}" height="15" fill="#ffffff" fill-opacity="0.85"/>"##,
+                r##"<rect x="{}" y="{}" width="{}" height="{}" fill="#ffffff" fill-opacity="0.85"/>"##,
                 num(c.x + 12.0),
                 num(c.y - 19.0),
-                num(tw + 4.0)
+                num(tw + 4.0),
+                num(15.0 * lines.len() as f64)
             );
-            let _ = writeln!(
-                s,
-                r##"<text x="{}" y="{}" font-size="12" font-weight="bold" font-style="italic" fill="#000" opacity="{}">{}</text>"##,
-                num(c.x + 14.0),
-                num(c.y - 8.0),
-                num(opacity),
-                esc(&w)
-            );
+            for (i, line) in lines.iter().enumerate() {
+                let _ = writeln!(
+                    s,
+                    r##"<text x="{}" y="{}" font-size="12" font-weight="bold" font-style="italic" fill="#000" opacity="{}">{}</text>"##,
+                    num(c.x + 14.0),
+                    num(c.y - 8.0 + 15.0 * i as f64),
+                    num(opacity),
+                    esc(line)
+                );
+            }
         }
         NodeKind::Disjunction | NodeKind::Computed => {
             let dash = if n.kind == NodeKind::Computed {
@@ -445,6 +482,44 @@ return point of the embedded DM's final situation {}</title><circle cx="{}" cy="
             }
             text_block(s, c, &node_lines(n), 12.0, false, 1.0, false);
         }
+        NodeKind::Dm => {
+            let stroke = if n.initial { 3.0 } else { 1.6 };
+            let _ = writeln!(
+                s,
+                r##"<rect x="{}" y="{}" width="{}" height="{}" rx="14" fill="#f7f7ff" stroke="#333" stroke-width="{}" stroke-dasharray="2 4" stroke-linecap="round"/>"##,
+                num(c.x - pl.w / 2.0),
+                num(c.y - pl.h / 2.0),
+                num(pl.w),
+                num(pl.h),
+                num(stroke)
+            );
+            let (bold, plain) = node_text(n);
+            let total = (bold.len() + plain.len()) as f64;
+            let top = c.y - LINE_H * total / 2.0;
+            for (i, (is_bold, line)) in bold
+                .iter()
+                .map(|l| (true, l))
+                .chain(plain.iter().map(|l| (false, l)))
+                .enumerate()
+            {
+                let (size, weight) = if is_bold {
+                    (13.0, r#" font-weight="bold""#)
+                } else {
+                    (11.0, "")
+                };
+                let _ = writeln!(
+                    s,
+                    r##"<text x="{}" y="{}" text-anchor="middle" font-size="{}"{weight} fill="#111">{}</text>"##,
+                    num(c.x),
+                    num(top + LINE_H * (i as f64 + 0.5) + 4.0),
+                    num(size),
+                    esc(line)
+                );
+            }
+        }
     }
     s.push_str("</g>\n");
+    if n.link.is_some() {
+        s.push_str("</a>\n");
+    }
 }

@@ -316,6 +316,10 @@ pub fn read(d: &Diagram, text: &str) -> Result<Overlay, String> {
         }
         let v: serde_json::Value = serde_json::from_str(line)
             .map_err(|e| format!("line {}: not a trace entry: {e}", i + 1))?;
+        // An input that met no expectation is not a transition.
+        if v.get("unmatched").is_some() {
+            continue;
+        }
         let field = |k: &str| v.get(k).and_then(|x| x.as_str());
         let (Some(dm), Some(sit)) = (field("dm"), field("situation")) else {
             return Err(format!(

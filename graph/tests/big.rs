@@ -26,6 +26,7 @@ fn synthetic(n: usize) -> Diagram {
             embedded_dm: None,
             returns: Vec::new(),
             detail: None,
+            link: None,
             location: format!("main.dm:{}:1", i + 2),
         });
         if i + 1 < n {

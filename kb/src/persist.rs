@@ -226,7 +226,7 @@ impl Kb {
     /// Loads a KB file.
     pub fn load(path: &Path) -> Result<Kb, LoadError> {
         let name = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| LoadError {
+        let bytes = sitlog_syntax::read_file(path).map_err(|e| LoadError {
             path: name.clone(),
             pos: None,
             message: format!("cannot read the KB: {e}"),

@@ -12,6 +12,9 @@
 //! `InvalidParams` and the server goes on (text that is not JSON-RPC at
 //! all ends the session with an error message and exit status 2).
 //!
+//! Documents are `file:` URIs, or `untitled:` ones (an unsaved buffer,
+//! [`document_path`]).
+//!
 //! Served: `textDocument/didOpen`, `didChange` (full text), `didSave`,
 //! `didClose`; `textDocument/publishDiagnostics`; `textDocument/definition`;
 //! `textDocument/hover`; `shutdown`/`exit`.
@@ -63,12 +66,17 @@ pub trait Analyzer {
     fn hover(&self, file: &Path, pos: Pos, overlay: &Overlay) -> Option<String>;
 }
 
-/// Serves on stdin/stdout until the client says `exit`.
-pub fn run_stdio(analyzer: &dyn Analyzer) -> Result<(), String> {
-    let (connection, threads) = Connection::stdio();
-    serve(&connection, analyzer)?;
+pub mod transport;
+
+/// Serves on stdin/stdout until the client says `exit`, reading messages
+/// of at most `max_message_bytes` (see [`transport`]).
+pub fn run_stdio(analyzer: &dyn Analyzer, max_message_bytes: u64) -> Result<(), String> {
+    let (connection, threads) = transport::stdio(max_message_bytes).map_err(|e| e.to_string())?;
+    let served = serve(&connection, analyzer);
     drop(connection);
-    threads.join().map_err(|e| e.to_string())
+    let read = threads.join().map_err(|e| e.to_string());
+    // a broken frame ends the session: its error says why
+    read.and(served)
 }
 
 fn capabilities() -> Value {
@@ -141,7 +149,7 @@ impl Server<'_> {
             let uri = params["textDocument"]["uri"]
                 .as_str()
                 .ok_or("missing textDocument.uri")?;
-            let path = uri_to_path(uri).ok_or_else(|| format!("not a file URI: {uri}"))?;
+            let path = document_path(uri).ok_or_else(|| format!("not a file URI: {uri}"))?;
             let p = &params["position"];
             let (Some(line), Some(character)) = (p["line"].as_u64(), p["character"].as_u64())
             else {
@@ -160,7 +168,7 @@ impl Server<'_> {
                 Ok((path, pos)) => {
                     let result = match self.analyzer.definition(&path, pos, &self.overlay) {
                         Some((file, range)) => json!({
-                            "uri": path_to_uri(&file),
+                            "uri": document_uri(&file),
                             "range": range_json(range),
                         }),
                         None => Value::Null,
@@ -191,7 +199,7 @@ impl Server<'_> {
 
     fn notification(&mut self, n: Notification) -> Vec<Notification> {
         let doc = &n.params["textDocument"];
-        let Some(path) = doc["uri"].as_str().and_then(uri_to_path) else {
+        let Some(path) = doc["uri"].as_str().and_then(document_path) else {
             return Vec::new();
         };
         match n.method.as_str() {
@@ -251,7 +259,7 @@ fn publish_diagnostics(file: &Path, diags: &[Diag]) -> Notification {
         .collect();
     Notification::new(
         "textDocument/publishDiagnostics".into(),
-        json!({ "uri": path_to_uri(file), "diagnostics": items }),
+        json!({ "uri": document_uri(file), "diagnostics": items }),
     )
 }
 
@@ -260,6 +268,32 @@ fn range_json(r: Range) -> Value {
         "start": { "line": r.start.line, "character": r.start.character },
         "end": { "line": r.end.line, "character": r.end.character },
     })
+}
+
+/// The path that stands for a document: its file for a `file:` URI; for
+/// an `untitled:` document (a buffer never saved), the URI itself as a
+/// relative path (`untitled:Untitled-1`), which has no directory.
+pub fn document_path(uri: &str) -> Option<PathBuf> {
+    if uri.starts_with(UNTITLED) {
+        return Some(PathBuf::from(uri));
+    }
+    uri_to_path(uri)
+}
+
+/// The URI of a document's path ([`document_path`] reversed).
+pub fn document_uri(path: &Path) -> String {
+    match path.to_str() {
+        Some(s) if s.starts_with(UNTITLED) => s.to_owned(),
+        _ => path_to_uri(path),
+    }
+}
+
+/// The scheme of documents that are not files.
+const UNTITLED: &str = "untitled:";
+
+/// Whether `path` stands for an `untitled:` document ([`document_path`]).
+pub fn is_untitled(path: &Path) -> bool {
+    path.to_str().is_some_and(|s| s.starts_with(UNTITLED))
 }
 
 /// `file:///a%20b/c.dm` → `/a b/c.dm`.
@@ -341,6 +375,16 @@ mod tests {
         assert_eq!(uri_to_path("http://x"), None);
         assert_eq!(uri_to_path("file:///bad%zz"), None);
         assert_eq!(uri_to_path("file:///cut%4"), Some(PathBuf::from("/cut%4")));
+    }
+
+    #[test]
+    fn untitled_documents_round_trip() {
+        let p = document_path("untitled:Untitled-1").unwrap();
+        assert!(is_untitled(&p));
+        assert_eq!(document_uri(&p), "untitled:Untitled-1");
+        let f = document_path("file:///tmp/x.dm").unwrap();
+        assert!(!is_untitled(&f));
+        assert_eq!(document_uri(&f), "file:///tmp/x.dm");
     }
 
     #[test]

@@ -32,7 +32,7 @@ impl TextFile {
     /// Text that is not UTF-8 is an error at its first bad byte (status 1).
     pub fn read(path: &Path, what: &str) -> Result<TextFile, FileError> {
         let name = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| FileError {
+        let bytes = sitlog_syntax::read_file(path).map_err(|e| FileError {
             status: 2,
             message: format!("error: cannot read {what} {name}: {e}"),
         })?;

@@ -258,6 +258,10 @@ pub struct TaskCli {
     /// the task was compiled (`sitlogc build --allow-unresolved`).
     #[arg(long)]
     pub allow_unresolved: bool,
+    /// Largest file read (a KB, world, script or trace, in bytes): a larger
+    /// one is an error naming the file and this option.
+    #[arg(long, value_name = "BYTES", default_value_t = sitlog_syntax::decode::DEFAULT_MAX_FILE_BYTES)]
+    pub max_file_bytes: u64,
 }
 
 /// The clap command of a compiled task whose command line is `C` (e.g.

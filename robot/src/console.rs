@@ -6,7 +6,10 @@
 //! reported when the run ends (a transcript that never reached its reader is
 //! not a success), except a closed pipe (`| head`), which ends output
 //! quietly; the progress indicator never writes between the characters of a
-//! transcript line (lines are printed through it).
+//! transcript line (lines are printed through it, test mode's actions too:
+//! [`ConsoleStderr`]), and it is gone while the task waits for input typed
+//! at the terminal ([`Console::pause`]), so the prompt and what is typed stay
+//! readable.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{self, Write};
@@ -17,6 +20,10 @@ use std::time::Duration;
 pub struct Console {
     out: Box<dyn Write + Send>,
     progress: Option<ProgressBar>,
+    /// While paused: the progress indicator's count and elapsed time.
+    paused: Option<(u64, Duration)>,
+    /// The next tick names where the task is (after a pause).
+    rename: bool,
     /// Print narration lines (off with `--quiet`).
     narrate: bool,
     /// The first write that failed (other than a closed pipe).
@@ -33,18 +40,12 @@ impl Console {
     /// A console writing the transcript to `out`, with a progress indicator
     /// on stderr when `progress` is true.
     pub fn new(out: Box<dyn Write + Send>, progress: bool, narrate: bool) -> Console {
-        let progress = progress.then(|| {
-            let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
-            bar.set_style(
-                ProgressStyle::with_template("{spinner} {elapsed} {pos} transitions  {msg}")
-                    .unwrap_or_else(|_| ProgressStyle::default_spinner()),
-            );
-            bar.enable_steady_tick(Duration::from_millis(100));
-            bar
-        });
+        let progress = progress.then(|| spinner(0, Duration::ZERO));
         Console {
             out,
             progress,
+            paused: None,
+            rename: false,
             narrate,
             failed: None,
             closed: false,
@@ -96,19 +97,47 @@ impl Console {
         self.transitions += 1;
         if let Some(bar) = &self.progress {
             bar.set_position(self.transitions);
-            if self.transitions % 16 == 1 {
+            if self.transitions % 16 == 1 || std::mem::take(&mut self.rename) {
                 bar.set_message(at());
             }
         }
     }
 
-    /// Whether a progress indicator is shown.
+    /// Whether a progress indicator is shown (or paused).
     pub fn shows_progress(&self) -> bool {
-        self.progress.is_some()
+        self.progress.is_some() || self.paused.is_some()
+    }
+
+    /// Removes the progress indicator from the terminal while the task
+    /// waits for typed input; [`Console::resume`] brings it back.
+    pub fn pause(&mut self) {
+        if let Some(bar) = self.progress.take() {
+            self.paused = Some((bar.position(), bar.elapsed()));
+            bar.finish_and_clear();
+        }
+    }
+
+    /// Shows the progress indicator again after [`Console::pause`], with
+    /// its count and time; the next transition names where the task is.
+    pub fn resume(&mut self) {
+        if let Some((position, elapsed)) = self.paused.take() {
+            self.progress = Some(spinner(position, elapsed));
+            self.rename = true;
+        }
+    }
+
+    /// Runs `f` (which writes to the terminal) with the progress indicator
+    /// out of the way.
+    pub fn around_progress<R>(&self, f: impl FnOnce() -> R) -> R {
+        match &self.progress {
+            Some(bar) => bar.suspend(f),
+            None => f(),
+        }
     }
 
     /// Removes the progress indicator and flushes; the first write error, if any.
     pub fn finish(&mut self) -> Option<io::Error> {
+        self.paused = None;
         if let Some(bar) = self.progress.take() {
             bar.finish_and_clear();
         }
@@ -130,6 +159,76 @@ impl Console {
                 }
             }
         }
+    }
+}
+
+/// The progress indicator on stderr, at `position` transitions after
+/// `elapsed`.
+fn spinner(position: u64, elapsed: Duration) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr())
+        .with_position(position)
+        .with_elapsed(elapsed);
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {elapsed} {pos} transitions  {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+    );
+    bar.enable_steady_tick(Duration::from_millis(100));
+    bar
+}
+
+/// Stderr written line by line around the console's progress indicator
+/// (test mode's `Golem says: ...` lines): a line is never drawn over.
+pub struct ConsoleStderr {
+    console: SharedConsole,
+    line: Vec<u8>,
+}
+
+impl ConsoleStderr {
+    pub fn new(console: SharedConsole) -> ConsoleStderr {
+        ConsoleStderr {
+            console,
+            line: Vec::new(),
+        }
+    }
+
+    /// Writes the complete lines gathered so far (everything with `all`).
+    fn write_lines(&mut self, all: bool) -> io::Result<()> {
+        let end = match self.line.iter().rposition(|&b| b == b'\n') {
+            Some(i) => i + 1,
+            None if all => self.line.len(),
+            None => return Ok(()),
+        };
+        if end == 0 {
+            return Ok(());
+        }
+        let text: Vec<u8> = self.line.drain(..end).collect();
+        let write = || {
+            let mut err = io::stderr().lock();
+            err.write_all(&text).and_then(|_| err.flush())
+        };
+        match self.console.lock() {
+            Ok(c) => c.around_progress(write),
+            Err(_) => write(),
+        }
+    }
+}
+
+impl Write for ConsoleStderr {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.line.extend_from_slice(buf);
+        self.write_lines(false)?;
+        Ok(buf.len())
+    }
+    /// Writes the complete lines (a part of a line waits for its end, so
+    /// that the progress indicator is never drawn after it).
+    fn flush(&mut self) -> io::Result<()> {
+        self.write_lines(false)
+    }
+}
+
+impl Drop for ConsoleStderr {
+    fn drop(&mut self) {
+        let _ = self.write_lines(true);
     }
 }
 

@@ -32,6 +32,9 @@ const END_OF_INPUT: i32 = -1;
 pub struct Interrupt {
     pub flag: Arc<AtomicBool>,
     signal: Arc<AtomicI32>,
+    /// Set once the task's loop runs (it checks `flag` between
+    /// transitions); before that, a signal ends the process at once.
+    running: Arc<AtomicBool>,
 }
 
 impl Interrupt {
@@ -43,6 +46,17 @@ impl Interrupt {
     /// Watches SIGINT and SIGTERM for this process (unix); elsewhere, a flag
     /// nothing sets.
     pub fn install() -> Interrupt {
+        let me = Interrupt::install_before_start();
+        me.started();
+        me
+    }
+
+    /// [`Interrupt::install`] for a run that has not started: until
+    /// [`Interrupt::started`], the first signal ends the process at once
+    /// with its status (a run opening a FIFO, or waiting for the live view's
+    /// page, is blocked where no flag is looked at; nothing has run, so
+    /// there is no history to print).
+    pub fn install_before_start() -> Interrupt {
         let me = Interrupt::new();
         #[cfg(unix)]
         {
@@ -53,6 +67,10 @@ impl Interrupt {
                     .name("sitlog-signals".into())
                     .spawn(move || {
                         for sig in signals.forever() {
+                            if !watch.running.load(Ordering::SeqCst) {
+                                sitlog_runtime::errln!("interrupted before the task started");
+                                std::process::exit(i32::from(status_of(sig)));
+                            }
                             if watch.flag.load(Ordering::SeqCst) {
                                 // The second one: end now.
                                 std::process::exit(i32::from(status_of(sig)));
@@ -63,6 +81,12 @@ impl Interrupt {
             }
         }
         me
+    }
+
+    /// The task's loop runs: from now on the first signal stops it at its
+    /// next transition.
+    pub fn started(&self) {
+        self.running.store(true, Ordering::SeqCst);
     }
 
     /// Asks the run to stop, as signal `signal` would.

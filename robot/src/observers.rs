@@ -43,6 +43,12 @@ impl Observer for Fanout<'_> {
             o.inspect(machine);
         }
     }
+
+    fn unmatched(&mut self, store: &Store, dm: Term, situation: Term, input: Term, depth: usize) {
+        for o in &mut self.0 {
+            o.unmatched(store, dm, situation, input, depth);
+        }
+    }
 }
 
 /// The trace file of `--trace`: every write checked (the first error is
@@ -54,6 +60,10 @@ pub(crate) struct TraceFile {
 impl Observer for TraceFile {
     fn transition(&mut self, store: &Store, entry: &Entry, depth: usize, next: Option<Term>) {
         self.inner.transition(store, entry, depth, next);
+    }
+
+    fn unmatched(&mut self, store: &Store, dm: Term, situation: Term, input: Term, depth: usize) {
+        self.inner.unmatched(store, dm, situation, input, depth);
     }
 }
 

@@ -11,10 +11,13 @@
 //! Either way the end of the input (Ctrl-D, or the end of a pipe) ends the
 //! task cleanly ([`EndOfInputStops`]): the run stops with the history so
 //! far and exit status [`EXIT_END_OF_INPUT`](crate::interrupt::EXIT_END_OF_INPUT),
-//! not as a run-time error.
+//! not as a run-time error; and no progress indicator is on the terminal
+//! while a situation waits for what is typed ([`PausesProgress`]): it comes
+//! back when the task runs on its own.
 //!
 //! [`PromptPerception`]: sitlog_runtime::testmode::PromptPerception
 
+use crate::console::SharedConsole;
 use crate::interrupt::{Interrupt, InterruptibleStdin};
 use sitlog_runtime::machine::{Perceived, Perception};
 use sitlog_runtime::testmode::{InputLimits, PromptPerception};
@@ -23,11 +26,13 @@ use sitlog_runtime::{Store, Term};
 /// The perception of typed input: line editing on a terminal; else lines
 /// read on a thread of their own when `signals` can stop the run (so that
 /// the prompt sees them), or straight from stdin. The end of the input is
-/// recorded in `ended`.
+/// recorded in `ended`; `console`'s progress indicator is paused while
+/// the prompt waits.
 pub(crate) fn typed_input(
     limits: InputLimits,
     signals: Option<&Interrupt>,
     ended: Interrupt,
+    console: SharedConsole,
 ) -> Box<dyn Perception> {
     let prompt: Box<dyn Perception> = match edited_prompt(limits, &ended) {
         Some(p) => p,
@@ -38,7 +43,39 @@ pub(crate) fn typed_input(
             None => Box::new(PromptPerception::new(std::io::stdin().lock()).with_limits(limits)),
         },
     };
-    Box::new(EndOfInputStops::new(prompt, ended))
+    Box::new(PausesProgress {
+        inner: Box::new(EndOfInputStops::new(prompt, ended)),
+        console,
+    })
+}
+
+/// Takes the progress indicator off the terminal while `inner` waits for
+/// typed input, and brings it back when the input is read.
+pub struct PausesProgress {
+    inner: Box<dyn Perception>,
+    console: SharedConsole,
+}
+
+impl Perception for PausesProgress {
+    fn perceive(
+        &mut self,
+        store: &mut Store,
+        situation_type: Term,
+        expectations: &[Term],
+    ) -> Result<Perceived, String> {
+        if let Ok(mut c) = self.console.lock() {
+            c.pause();
+        }
+        let p = self.inner.perceive(store, situation_type, expectations);
+        if let Ok(mut c) = self.console.lock() {
+            c.resume();
+        }
+        p
+    }
+
+    fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
+        self.inner.waiting_at(store, dm, situation);
+    }
 }
 
 /// The prompt with line editing, when stdin and stderr are terminals (and
@@ -82,7 +119,7 @@ impl Perception for EndOfInputStops {
         if p == Perceived::EndOfInput && !self.interrupt.requested() {
             self.interrupt.request_end_of_input();
             // End the prompt's line.
-            eprintln!();
+            sitlog_runtime::errln!();
         }
         Ok(p)
     }

@@ -66,10 +66,12 @@ impl Runner {
     /// A signal stops the task at its next transition: the report (status
     /// `interrupted`) is still printed and the trace closed; the exit
     /// status is then 130 (SIGINT) or 143 (SIGTERM). A second signal ends
-    /// the process at once. The end of typed input (Ctrl-D at the prompt)
+    /// the process at once, and so does the first before the task starts
+    /// (while files open, a FIFO waits for its writer or the live view for
+    /// its page). The end of typed input (Ctrl-D at the prompt)
     /// stops it the same way, with exit status 3 ([`crate::prompt`]).
     pub fn process() -> Runner {
-        Runner::new(Streams::process()).interrupt(Interrupt::install())
+        Runner::new(Streams::process()).interrupt(Interrupt::install_before_start())
     }
 
     /// Stops the run between transitions when `interrupt` is set.
@@ -239,10 +241,9 @@ impl Runner {
                 let limits = args.input_limits();
                 let perception: Box<dyn Perception> = match (&args.script, debug_perception.take())
                 {
-                    (Some(path), debugger) => match TextFile::read(path, "script") {
-                        Ok(s) => {
-                            let script =
-                                Box::new(ScriptPerception::new(s.name, s.text).with_limits(limits));
+                    (Some(path), debugger) => match read_script(path) {
+                        Ok(script) => {
+                            let script = Box::new(script.with_limits(limits));
                             match debugger {
                                 Some(make) => make(Some(script)),
                                 None => script,
@@ -255,9 +256,13 @@ impl Runner {
                         limits,
                         interrupt.as_ref(),
                         ended.clone().unwrap_or_default(),
+                        console.clone(),
                     ),
                 };
-                let actions = Box::new(TextActions::new(std::io::stderr(), app.basic_actions()));
+                let actions = Box::new(TextActions::new(
+                    crate::console::ConsoleStderr::new(console.clone()),
+                    app.basic_actions(),
+                ));
                 (perception, actions)
             }
         };
@@ -308,6 +313,11 @@ impl Runner {
             .or_else(|| assets.kb.as_ref().map(|k| PathBuf::from(&k.name)));
         functions.set_trust(args.trust(kb_file.as_deref()));
 
+        // every file is open: from here a signal stops the task between
+        // transitions
+        if let Some(i) = &interrupt {
+            i.started();
+        }
         let result = run(
             app,
             &args.main,
@@ -404,5 +414,27 @@ impl Runner {
         } else {
             0
         }
+    }
+}
+
+/// The script of `--script`: a regular file is read whole (so that text
+/// that is not UTF-8 is refused before the run starts); a pipe or device
+/// (`/dev/stdin`, a FIFO) is read as the task consumes it.
+fn read_script(path: &std::path::Path) -> Result<ScriptPerception, crate::assets::FileError> {
+    let regular = std::fs::metadata(path).map(|m| m.is_file()).unwrap_or(true);
+    if regular {
+        let s = TextFile::read(path, "script")?;
+        return Ok(ScriptPerception::new(s.name, s.text));
+    }
+    let name = path.display().to_string();
+    match std::fs::File::open(path) {
+        Ok(f) => Ok(ScriptPerception::from_reader(
+            name,
+            Box::new(std::io::BufReader::new(f)),
+        )),
+        Err(e) => Err(crate::assets::FileError {
+            status: 2,
+            message: format!("error: cannot read script {name}: {e}"),
+        }),
     }
 }

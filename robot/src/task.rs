@@ -26,7 +26,10 @@ pub fn on_big_stack(f: impl FnOnce() -> u8 + Send) -> std::process::ExitCode {
 /// with a big stack (as `sitlogc` does), returns the exit status.
 pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::process::ExitCode {
     let args = match parse_task_args::<TaskCli>(task_command::<TaskCli>(assets, "")) {
-        Ok(cli) => cli.run,
+        Ok(cli) => {
+            sitlog_syntax::decode::set_max_file_bytes(cli.max_file_bytes);
+            cli.run
+        }
         Err(code) => return code,
     };
     on_big_stack(|| Runner::process().run(app, functions, &args, assets))

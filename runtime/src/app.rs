@@ -37,6 +37,13 @@ pub trait App: DmProgram + Sync {
         let _ = error;
         None
     }
+    /// The program's DMs by name, each with the names of its situations
+    /// (the functor of each id), for tools that check a name a person
+    /// typed (the debugger's `break`); empty when the program does not
+    /// say.
+    fn names(&self) -> Vec<(String, Vec<String>)> {
+        Vec::new()
+    }
 }
 
 /// Runs `app` from `main` (a DM call, as a term) with `in_arg` (a term; the

@@ -183,7 +183,7 @@ fn run(store: &mut Store, name: Atom, t: Term) -> Result<Term, EvalError> {
         "print_list" => {
             let a = list(store, args[0], "the argument", t)?;
             for x in a {
-                eprintln!("{}", store.write(x));
+                crate::errln!("{}", store.write(x));
             }
             args[0]
         }

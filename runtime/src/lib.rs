@@ -55,6 +55,7 @@ pub mod paths;
 #[cfg(feature = "prolog")]
 pub mod prolog;
 pub mod report;
+pub mod stderr;
 mod store;
 mod term;
 pub mod testmode;

@@ -1,6 +1,7 @@
 //! The end-of-run report in our fixed formats: the history listing of the
 //! papers (text) and the `sitlogc run --format json` object, plus the
-//! per-transition JSON lines of `--trace`. The JSON is written by
+//! JSON lines of `--trace` (one per transition, and one per input that met
+//! no expectation). The JSON is written by
 //! serde_json (compact, keys in the order of the notes' convention).
 
 use crate::history::{Entry, Item};
@@ -215,11 +216,42 @@ impl<W: Write> Observer for JsonTrace<W> {
             entry,
             trace: Some((depth, next)),
         });
+        self.write_line(&line);
+    }
+
+    /// `{"dm":…,"situation":…,"unmatched":INPUT,"depth":N}`: an input that
+    /// met no expectation (no `expectation`, `action` or `next`: it is not
+    /// a transition).
+    fn unmatched(&mut self, store: &Store, dm: Term, situation: Term, input: Term, depth: usize) {
+        if self.error.is_some() {
+            return;
+        }
+        let line = to_json(&UnmatchedJson {
+            dm: store.writeq(dm),
+            situation: store.writeq(situation),
+            unmatched: store.writeq(input),
+            depth,
+        });
+        self.write_line(&line);
+    }
+}
+
+impl<W: Write> JsonTrace<W> {
+    fn write_line(&mut self, line: &str) {
         let written = writeln!(self.out, "{line}").and_then(|_| self.out.flush());
         if let Err(e) = written {
             self.error = Some(e);
         }
     }
+}
+
+/// A trace line for an input that met no expectation.
+#[derive(serde::Serialize)]
+struct UnmatchedJson {
+    dm: String,
+    situation: String,
+    unmatched: String,
+    depth: usize,
 }
 
 #[cfg(test)]

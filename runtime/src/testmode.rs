@@ -42,6 +42,14 @@ pub struct ScriptPerception {
     /// Reads a plain atom input (`tick.`) without the term reader (see
     /// [`plain_atom`]); off only to compare both ways in tests.
     atoms_fast: bool,
+    /// Where more of the script comes from, for a script read as the task
+    /// consumes it (a pipe, a device: [`ScriptPerception::from_reader`]);
+    /// `None` once it ended or for a script given whole.
+    source: Option<Box<dyn BufRead + Send>>,
+    /// Lines read so far (for positions of text that is not UTF-8).
+    lines: usize,
+    /// Lines dropped from the front of `text` once consumed.
+    dropped_lines: usize,
 }
 
 impl ScriptPerception {
@@ -53,7 +61,121 @@ impl ScriptPerception {
             echo: false,
             limits: InputLimits::default(),
             atoms_fast: true,
+            source: None,
+            lines: 0,
+            dropped_lines: 0,
         }
+    }
+
+    /// A script read from `reader` as the task consumes it: whole lines, no
+    /// more than one input ahead (so `yes 'quit.' | sitlogc run --script
+    /// /dev/stdin` ends at once); each input still under the limits.
+    pub fn from_reader(
+        name: impl Into<String>,
+        reader: Box<dyn BufRead + Send>,
+    ) -> ScriptPerception {
+        let mut script = ScriptPerception::new(name, String::new());
+        script.source = Some(reader);
+        script
+    }
+
+    /// For a script read as it is consumed: reads whole lines until the
+    /// unread text holds a complete input (or a syntax error more text
+    /// cannot mend, or more than one input may be long), or the source ends.
+    /// Each read at least doubles the unread text, so an input spread over
+    /// many lines costs linear time.
+    fn fill(&mut self) -> Result<(), String> {
+        let ops = OpTable::sitlog_shared();
+        while self.source.is_some() {
+            // what the task consumed is dropped (whole lines: columns stay)
+            if self.pos >= 1 << 16 {
+                if let Some(cut) = self.text[..self.pos].rfind('\n').map(|i| i + 1) {
+                    self.dropped_lines += self.text[..cut].matches('\n').count();
+                    self.text.drain(..cut);
+                    self.pos -= cut;
+                }
+            }
+            let rest = &self.text[self.pos..];
+            // past max_bytes + 1: the input is refused as too long below
+            if rest.len() > self.limits.max_bytes + 1 {
+                return Ok(());
+            }
+            if plain_atom(rest, ops).is_some() {
+                return Ok(());
+            }
+            let mut reader = ClauseReader::new(rest, ops).with_max_depth(self.limits.max_depth);
+            match reader.next_clause() {
+                Some(Ok(_)) => return Ok(()),
+                Some(Err(e))
+                    if !e.incomplete && !e.is_too_deep() && reader.position() < rest.len() =>
+                {
+                    return Ok(())
+                }
+                _ => {}
+            }
+            // one line at least (a pipe feeding inputs one by one is never
+            // waited on for more), as many bytes as the unread text at most
+            let want = rest.len().max(1);
+            let room = (self.limits.max_bytes + 2 - rest.len()) as u64;
+            let Some(source) = self.source.as_mut() else {
+                break;
+            };
+            let mut bytes = Vec::new();
+            let mut ended = false;
+            while bytes.len() < want && (bytes.len() as u64) < room {
+                let left = room - bytes.len() as u64;
+                let n = source
+                    .as_mut()
+                    .take(left)
+                    .read_until(b'\n', &mut bytes)
+                    .map_err(|e| format!("error: cannot read script {}: {e}", self.name))?;
+                if n == 0 {
+                    ended = true;
+                    break;
+                }
+            }
+            // a byte order mark is skipped at the start of the script only
+            let text = if self.lines == 0 && self.dropped_lines == 0 && self.text.is_empty() {
+                sitlog_syntax::decode_owned(bytes)
+            } else {
+                String::from_utf8(bytes).map_err(|e| {
+                    let bytes = e.into_bytes();
+                    let mut at = bytes.clone();
+                    // decode names the first bad byte (a leading BOM kept)
+                    at.splice(0..0, b"x".iter().copied());
+                    match sitlog_syntax::decode(&at) {
+                        Err(mut d) => {
+                            if d.line == 1 {
+                                d.column -= 1;
+                            }
+                            d
+                        }
+                        Ok(_) => sitlog_syntax::DecodeError {
+                            offset: 0,
+                            line: 1,
+                            column: 1,
+                            message: "invalid UTF-8".to_owned(),
+                            utf16: false,
+                        },
+                    }
+                })
+            };
+            let text = text.map_err(|e| {
+                format!(
+                    "{}:{}:{}: error: {}",
+                    self.name,
+                    self.lines + e.line,
+                    e.column,
+                    e.message
+                )
+            })?;
+            self.lines += text.matches('\n').count();
+            self.text.push_str(&text);
+            if ended {
+                self.source = None;
+            }
+        }
+        Ok(())
     }
 
     /// The script of `bytes`: an error naming `name`, line and column when
@@ -125,6 +247,7 @@ impl Perception for ScriptPerception {
         ty: Term,
         _expectations: &[Term],
     ) -> Result<Perceived, String> {
+        self.fill()?;
         let ops = OpTable::sitlog_shared();
         let rest = &self.text[self.pos..];
         if self.atoms_fast {
@@ -133,7 +256,7 @@ impl Perception for ScriptPerception {
                     self.pos += end;
                     let t = Term::atom(Atom::intern(name));
                     if self.echo {
-                        eprintln!("input: {}", store.writeq(t));
+                        crate::errln!("input: {}", store.writeq(t));
                     }
                     return Ok(deliver(store, ty, t));
                 }
@@ -149,6 +272,7 @@ impl Perception for ScriptPerception {
         let mut reader = ClauseReader::new(&rest[..cut], ops).with_max_depth(self.limits.max_depth);
         let what = || {
             let (line, col) = line_col(&self.text, self.pos + leading_layout(rest));
+            let line = line + self.dropped_lines;
             format!("{}:{line}:{col}: the input", self.name)
         };
         match reader.next_clause() {
@@ -163,12 +287,13 @@ impl Perception for ScriptPerception {
                 self.pos = base + reader.position();
                 let (t, _) = store.from_clause(&clause);
                 if self.echo {
-                    eprintln!("input: {}", store.writeq(t));
+                    crate::errln!("input: {}", store.writeq(t));
                 }
                 Ok(deliver(store, ty, t))
             }
             Some(Err(e)) => {
                 let (line, col) = line_col(&self.text, self.pos + e.span.start as usize);
+                let line = line + self.dropped_lines;
                 Err(format!(
                     "{}:{line}:{col}: syntax error in input: {}",
                     self.name, e.message
@@ -549,5 +674,163 @@ mod plain_atom_tests {
             fast.perceive(&mut a, ty, &[]),
             slow.perceive(&mut b, ty, &[])
         );
+    }
+}
+
+#[cfg(test)]
+mod stream_tests {
+    use super::*;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::Arc;
+
+    fn inputs(mut p: ScriptPerception) -> Vec<String> {
+        let ty = Term::atom(Atom::intern("speech"));
+        let mut store = Store::new();
+        let mut out = Vec::new();
+        for _ in 0..30 {
+            let r = p.perceive(&mut store, ty, &[]);
+            let done = !matches!(r, Ok(Perceived::Input(_)));
+            out.push(match r {
+                Ok(Perceived::Input(t)) => format!("input {}", store.writeq(t)),
+                other => format!("{other:?}"),
+            });
+            if done {
+                break;
+            }
+        }
+        out
+    }
+
+    /// A pipe giving its bytes a few at a time.
+    fn piped(text: &str) -> Box<dyn BufRead + Send> {
+        Box::new(std::io::BufReader::with_capacity(
+            3,
+            std::io::Cursor::new(text.as_bytes().to_vec()),
+        ))
+    }
+
+    /// The same inputs, in order, and the same end: the end of input, or a
+    /// syntax error at the same step (the whole script's reader may name a
+    /// token error further on; the streamed one names the first it meets).
+    fn same_streamed(script: &str, limits: InputLimits) {
+        let whole = ScriptPerception::new("s", script.to_owned()).with_limits(limits);
+        let streamed = ScriptPerception::from_reader("s", piped(script)).with_limits(limits);
+        let (mut a, mut b) = (inputs(whole), inputs(streamed));
+        let error = |v: &Vec<String>| v.last().is_some_and(|l| l.contains("syntax error"));
+        if error(&a) {
+            // the whole script's reader meets a token error further on at
+            // the first input after the last good one; the streamed reader
+            // takes the good inputs before it, then stops at an error too
+            assert!(error(&b), "in {script:?}: {b:?}");
+            a.pop();
+            b.pop();
+            assert!(b.starts_with(&a), "in {script:?}: {a:?} {b:?}");
+        } else {
+            assert_eq!(a, b, "in {script:?}");
+        }
+    }
+
+    #[test]
+    fn a_streamed_script_reads_as_the_whole_one() {
+        let limits = InputLimits::default();
+        for script in [
+            "tick.\nstop.\n",
+            "f(a,\n  b).\ng.\n",
+            "'multi\nline'.\nx.\n",
+            "/* a\ncomment */ x.\n% c\ny.",
+            "f(a.\n",
+            "f(\n",
+            "\n\n\n",
+            "x.\ny \u{7f}.\n",
+            "1.\n5.\n",
+            "[1,\n2,\n3].\n",
+        ] {
+            same_streamed(script, limits);
+        }
+        let small = InputLimits {
+            max_bytes: 20,
+            max_depth: 4,
+        };
+        for script in [
+            "\n  [1,1,1,1,1,1,1,1,1,1,1,1,1].\n",
+            "[1,\n1,\n1,\n1,\n1,\n1,\n1,\n1,\n1,\n1,\n1].\nok.\n",
+            "f(f(f(f(f(a))))).\n",
+            "okay.\nfine.\n",
+        ] {
+            same_streamed(script, small);
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
+        #[test]
+        fn streamed_scripts_read_as_whole_ones(
+            pieces in proptest::collection::vec(
+                proptest::sample::select(vec![
+                    "tick", "a", "X", "'q", "'", "é", ".", ". ", ".\n", "\n", " ",
+                    "%c\n", "/*", "*/", "(", ")", "[", "]", ",", "1", "0.5", "\"s",
+                ]),
+                0..16,
+            )
+        ) {
+            same_streamed(&pieces.concat(), InputLimits::default());
+        }
+    }
+
+    /// Text that is not UTF-8 is an error at its line in the whole script.
+    #[test]
+    fn bad_bytes_are_named_at_their_line() {
+        let bytes = b"a.\nb.\nc \xff.\n".to_vec();
+        let p = ScriptPerception::from_reader(
+            "s.txt",
+            Box::new(std::io::BufReader::with_capacity(
+                2,
+                std::io::Cursor::new(bytes),
+            )),
+        );
+        let got = inputs(p);
+        assert_eq!(got[0], "input a");
+        assert!(got.last().unwrap().contains("s.txt:3:3"), "{got:?}");
+    }
+
+    /// An endless source: only what the inputs taken need is read.
+    #[test]
+    fn only_what_is_consumed_is_read() {
+        struct Endless(Arc<AtomicUsize>);
+        impl std::io::Read for Endless {
+            fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+                let line = b"quit.\n";
+                let n = buf.len().min(line.len());
+                buf[..n].copy_from_slice(&line[..n]);
+                self.0.fetch_add(n, Ordering::Relaxed);
+                Ok(n)
+            }
+        }
+        let count = Arc::new(AtomicUsize::new(0));
+        let mut p = ScriptPerception::from_reader(
+            "stdin",
+            Box::new(std::io::BufReader::new(Endless(count.clone()))),
+        );
+        let ty = Term::atom(Atom::intern("speech"));
+        let mut store = Store::new();
+        for _ in 0..3 {
+            assert!(matches!(
+                p.perceive(&mut store, ty, &[]),
+                Ok(Perceived::Input(_))
+            ));
+        }
+        assert!(
+            count.load(Ordering::Relaxed) < 64 * 1024,
+            "{}",
+            count.load(Ordering::Relaxed)
+        );
+        // a long run keeps its memory: consumed lines are dropped
+        for _ in 0..200_000 {
+            assert!(matches!(
+                p.perceive(&mut store, ty, &[]),
+                Ok(Perceived::Input(_))
+            ));
+        }
+        assert!(p.text.len() < 1 << 18, "{}", p.text.len());
     }
 }

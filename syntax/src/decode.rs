@@ -173,3 +173,52 @@ mod tests {
         assert_eq!(&text[at..], "\u{FFFD}\u{FFFD}cd");
     }
 }
+
+/// The largest file a reader takes unless told otherwise (256 MiB): far
+/// beyond any DM, KB, world, script or trace, small enough that reading
+/// `/dev/zero` or a runaway file by mistake ends at once.
+pub const DEFAULT_MAX_FILE_BYTES: u64 = 256 * 1024 * 1024;
+
+static MAX_FILE_BYTES: std::sync::atomic::AtomicU64 =
+    std::sync::atomic::AtomicU64::new(DEFAULT_MAX_FILE_BYTES);
+
+/// Sets the largest file [`read_file`] takes, for the whole process (the
+/// command line's `--max-file-bytes`).
+pub fn set_max_file_bytes(limit: u64) {
+    MAX_FILE_BYTES.store(limit, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// The largest file [`read_file`] takes.
+pub fn max_file_bytes() -> u64 {
+    MAX_FILE_BYTES.load(std::sync::atomic::Ordering::Relaxed)
+}
+
+/// Reads the bytes of the file at `path`, at most [`max_file_bytes`]: a
+/// longer file (or an endless one such as `/dev/zero`) is an error saying
+/// the limit and its option, after reading no more than the limit and one
+/// byte. Every reader of a file of a program or a run goes through here.
+pub fn read_file(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let limit = max_file_bytes();
+    let file = std::fs::File::open(path)?;
+    let mut bytes = Vec::new();
+    file.take(limit.saturating_add(1)).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("larger than the limit of {limit} bytes (option --max-file-bytes)"),
+        ));
+    }
+    Ok(bytes)
+}
+
+#[cfg(test)]
+mod read_file_tests {
+    #[test]
+    fn an_endless_file_is_refused_at_the_limit() {
+        super::set_max_file_bytes(1000);
+        let e = super::read_file(std::path::Path::new("/dev/zero")).unwrap_err();
+        super::set_max_file_bytes(super::DEFAULT_MAX_FILE_BYTES);
+        assert!(e.to_string().contains("limit of 1000 bytes"), "{e}");
+    }
+}

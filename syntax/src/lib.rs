@@ -23,7 +23,7 @@ pub mod term;
 pub mod write;
 
 pub use atom::{atoms, Atom};
-pub use decode::{decode, decode_owned, DecodeError};
+pub use decode::{decode, decode_owned, read_file, DecodeError};
 pub use error::{line_col, SyntaxError};
 pub use ops::{OpDef, OpTable, OpType};
 pub use read::{

@@ -22,8 +22,22 @@ pub fn workspace() -> PathBuf {
         .to_path_buf()
 }
 
+/// The behaviour library as the repository holds it (`dms/behaviors/`,
+/// named `behaviors/...`): what `sitlogc` embeds.
+pub fn library() -> &'static sitlog_compiler::load::Library {
+    use sitlog_compiler::load::{Library, LibraryFiles, LibraryRoot};
+    static LIBRARY: std::sync::OnceLock<Library> = std::sync::OnceLock::new();
+    LIBRARY.get_or_init(|| Library {
+        roots: vec![LibraryRoot {
+            what: "the repository's dms/".to_owned(),
+            files: LibraryFiles::Dir(workspace().join("dms")),
+        }],
+    })
+}
+
 /// Loads and checks an application as `sitlogc` does: the simulated
-/// robot's functions ([`sitlog_robot::WORLD_FUNCTIONS`]) are known.
+/// robot's functions ([`sitlog_robot::WORLD_FUNCTIONS`]) and the behaviour
+/// library ([`library`]) are known.
 pub fn check_app(
     app: &Path,
 ) -> (
@@ -32,6 +46,7 @@ pub fn check_app(
 ) {
     let options = sitlog_compiler::check::CheckOptions {
         world_functions: sitlog_robot::WORLD_FUNCTIONS,
+        library: Some(library()),
         ..Default::default()
     };
     sitlog_compiler::check_path_opts(app, options)

@@ -3,7 +3,9 @@
 //! script as `sitlogc run dms/examples/tutorial --script
 //! dms/examples/tutorial/script.txt` does, on the interpreter and on the
 //! generated code; what it prints is an insta snapshot, and the guide must
-//! show exactly that output, so the tutorial cannot rot.
+//! show exactly that output, so the tutorial cannot rot. (Every other block
+//! of the page is checked against a run of the `sitlogc` binary by
+//! `cli/tests/cli/tutorial.rs`.)
 
 use sitlog_robot::console::SharedBuf;
 use sitlog_robot::{Assets, RunArgs, Runner, Streams};

@@ -10,8 +10,8 @@ pub fn explain_types_of(app: &std::path::Path) -> u8 {
     match checked_ir(app) {
         Ok(ir) => {
             let types = sitlog_compiler::types::infer(&ir);
-            print!("{}", sitlog_compiler::types::explain(&ir, &types));
-            0
+            let text = sitlog_compiler::types::explain(&ir, &types);
+            write_stdout(&text, "the type listing")
         }
         Err(code) => code,
     }
@@ -39,7 +39,7 @@ pub fn build_app(
         {
             Ok(c) => c,
             Err(e) => {
-                eprintln!("error: {e}");
+                sitlog_runtime::errln!("error: {e}");
                 return 1;
             }
         };
@@ -49,7 +49,7 @@ pub fn build_app(
             Some(path) => match build::write_if_changed(&path, &text) {
                 Ok(_) => 0,
                 Err(e) => {
-                    eprintln!("error: cannot write {}: {e}", path.display());
+                    sitlog_runtime::errln!("error: cannot write {}: {e}", path.display());
                     2
                 }
             },
@@ -59,29 +59,29 @@ pub fn build_app(
     let output = match output_file(app, output) {
         Ok(o) => o,
         Err(message) => {
-            eprintln!("error: {message}");
+            sitlog_runtime::errln!("error: {message}");
             return 2;
         }
     };
     let layout = match package::Layout::user() {
         Ok(l) => l,
         Err(e) => {
-            eprintln!("error: {e}");
+            sitlog_runtime::errln!("error: {e}");
             return 2;
         }
     };
     let built =
         package::write_package(&compiled, app, &layout, debugger).and_then(|(dir, name)| {
-            eprintln!("sitlogc: building {} in {}", name, dir.display());
+            sitlog_runtime::errln!("sitlogc: building {} in {}", name, dir.display());
             package::build_package(&dir, &name, &layout, release, &output)
         });
     match built {
         Ok(()) => {
-            eprintln!("sitlogc: wrote {}", output.display());
+            sitlog_runtime::errln!("sitlogc: wrote {}", output.display());
             0
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            sitlog_runtime::errln!("error: {e}");
             2
         }
     }

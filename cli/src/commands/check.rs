@@ -1,5 +1,6 @@
 //! `sitlogc check`: every problem of applications and DM files, as text
-//! on stderr or JSON lines on stdout.
+//! on stderr or JSON lines on stdout, and (`--origins`) where the files
+//! named by a library name came from.
 
 use crate::args::Format;
 use crate::output::color_stderr;
@@ -13,6 +14,7 @@ pub fn check(
     deny_warnings: bool,
     quiet: bool,
     legacy: bool,
+    origins: bool,
 ) -> u8 {
     let color = color_stderr();
     let mut errors = 0usize;
@@ -26,7 +28,7 @@ pub fn check(
             // Nothing to check is a usage error (exit 2, like a missing
             // path): a check that passes on nothing would hide a wrong path.
             Ok(found) if found.is_empty() => {
-                eprintln!(
+                sitlog_runtime::errln!(
                     "error: no application or DM file found in {} (an application is a directory with a `models` file or `*.dm` files)",
                     path.display()
                 );
@@ -34,7 +36,7 @@ pub fn check(
             }
             Ok(found) => programs.extend(found),
             Err(e) => {
-                eprintln!("error: cannot read {e}");
+                sitlog_runtime::errln!("error: cannot read {e}");
                 io_failed = true;
             }
         }
@@ -47,7 +49,7 @@ pub fn check(
         let (result, diags) = match crate::output::check_app(path, options) {
             Ok(r) => r,
             Err(e) => {
-                eprintln!("error: cannot read {e}");
+                sitlog_runtime::errln!("error: cannot read {e}");
                 io_failed = true;
                 continue;
             }
@@ -56,6 +58,11 @@ pub fn check(
             Ok(checked) => checked.program(),
             Err(program) => program,
         };
+        if origins {
+            for line in origin_lines(path, program) {
+                sitlog_runtime::errln!("{line}");
+            }
+        }
         for d in &diags {
             match d.severity {
                 Severity::Error => errors += 1,
@@ -65,11 +72,15 @@ pub fn check(
                 continue;
             }
             match format {
-                Format::Human => eprint!("{}", diag::render_human(d, &program.sources, color)),
+                Format::Human => {
+                    sitlog_runtime::errprint!("{}", diag::render_human(d, &program.sources, color))
+                }
                 Format::Json => {
                     if let Err(e) = writeln!(out, "{}", diag::render_json(d, &program.sources)) {
                         if e.kind() != std::io::ErrorKind::BrokenPipe && !io_failed {
-                            eprintln!("error: cannot write the diagnostics to stdout: {e}");
+                            sitlog_runtime::errln!(
+                                "error: cannot write the diagnostics to stdout: {e}"
+                            );
                         }
                         io_failed |= e.kind() != std::io::ErrorKind::BrokenPipe;
                     }
@@ -79,12 +90,12 @@ pub fn check(
     }
     if let Err(e) = out.flush() {
         if e.kind() != std::io::ErrorKind::BrokenPipe {
-            eprintln!("error: cannot write the diagnostics to stdout: {e}");
+            sitlog_runtime::errln!("error: cannot write the diagnostics to stdout: {e}");
             io_failed = true;
         }
     }
     if format == Format::Human {
-        eprintln!(
+        sitlog_runtime::errln!(
             "checked {} program(s): {} error(s), {} warning(s)",
             programs.len(),
             errors,
@@ -98,4 +109,24 @@ pub fn check(
     } else {
         0
     }
+}
+
+/// `--origins`: one line per file of `program` named by a library name,
+/// saying where it was read from.
+fn origin_lines(path: &std::path::Path, program: &sitlog_compiler::ast::Program) -> Vec<String> {
+    program
+        .library_files
+        .iter()
+        .map(|f| {
+            let shown = &program.sources.get(f.file).name;
+            let from = match (&f.root, &f.overrides) {
+                (Some(root), _) => format!("from {root} ({shown})"),
+                (None, Some(instead)) => {
+                    format!("from its own copy {shown} (instead of {instead})")
+                }
+                (None, None) => format!("from its own copy {shown}"),
+            };
+            format!("{} uses {} {from}", path.display(), f.name)
+        })
+        .collect()
 }

@@ -13,7 +13,7 @@ pub fn man(dir: Option<&std::path::Path>) -> u8 {
             match clap_mangen::Man::new(command).render(&mut out) {
                 Ok(()) => write_stdout(&String::from_utf8_lossy(&out), "the manual page"),
                 Err(e) => {
-                    eprintln!("error: cannot render the manual page: {e}");
+                    sitlog_runtime::errln!("error: cannot render the manual page: {e}");
                     2
                 }
             }
@@ -23,11 +23,14 @@ pub fn man(dir: Option<&std::path::Path>) -> u8 {
                 std::fs::create_dir_all(dir).and_then(|_| clap_mangen::generate_to(command, dir));
             match written {
                 Ok(()) => {
-                    eprintln!("sitlogc: wrote the manual pages into {}", dir.display());
+                    sitlog_runtime::errln!(
+                        "sitlogc: wrote the manual pages into {}",
+                        dir.display()
+                    );
                     0
                 }
                 Err(e) => {
-                    eprintln!(
+                    sitlog_runtime::errln!(
                         "error: cannot write the manual pages into {}: {e}",
                         dir.display()
                     );

@@ -5,6 +5,7 @@
 pub mod build;
 pub mod check;
 pub mod graph;
+pub mod library;
 pub mod man;
 pub mod new;
 pub mod replay;
@@ -13,6 +14,7 @@ pub mod run;
 pub use build::{build_app, explain_types_of};
 pub use check::check;
 pub use graph::graph;
+pub use library::library;
 pub use man::man;
 pub use new::new_app;
 pub use replay::replay;

@@ -1,18 +1,31 @@
-//! `sitlogc new NAME`: a new application from the template ([`crate::scaffold`]).
+//! `sitlogc new NAME [--robot]`: a new application from a template
+//! ([`crate::scaffold`]).
 
-/// `sitlogc new NAME`.
-pub fn new_app(dir: &std::path::Path) -> u8 {
-    match crate::scaffold::create(dir) {
+use crate::scaffold::Template;
+
+/// `sitlogc new NAME [--robot]`.
+pub fn new_app(dir: &std::path::Path, robot: bool) -> u8 {
+    let template = if robot {
+        Template::Robot
+    } else {
+        Template::Speech
+    };
+    match crate::scaffold::create(dir, template) {
         Ok(files) => {
             let d = dir.display();
-            eprintln!("sitlogc: made the application {d} ({} files)", files.len());
-            eprintln!("  check it:  sitlogc check {d}");
-            eprintln!("  run it:    sitlogc run {d} --script {d}/script.txt");
-            eprintln!("  talk to it: sitlogc run {d}");
+            sitlog_runtime::errln!("sitlogc: made the application {d} ({} files)", files.len());
+            sitlog_runtime::errln!("  check it:  sitlogc check {d}");
+            if robot {
+                sitlog_runtime::errln!("  run it:    sitlogc run {d}");
+                sitlog_runtime::errln!("  test it:   sitlogc run {d} | diff {d}/expected.txt -");
+            } else {
+                sitlog_runtime::errln!("  run it:    sitlogc run {d} --script {d}/script.txt");
+                sitlog_runtime::errln!("  talk to it: sitlogc run {d}");
+            }
             0
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            sitlog_runtime::errln!("error: {e}");
             2
         }
     }

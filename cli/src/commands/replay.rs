@@ -9,7 +9,7 @@ pub fn replay(
     let read = |path| match sitlog_debug::Trace::read(path) {
         Ok(t) => Ok(t),
         Err(e) => {
-            eprintln!("{e}");
+            sitlog_runtime::errln!("{e}");
             Err(2)
         }
     };
@@ -23,17 +23,17 @@ pub fn replay(
             Err(code) => return code,
         };
         return match sitlog_debug::diff(&trace, &other) {
-            None => {
-                println!(
-                    "the recordings are the same ({} transitions)",
+            None => crate::output::write_stdout(
+                &format!(
+                    "the recordings are the same ({} transitions)\n",
                     trace.records.len()
-                );
-                0
-            }
-            Some(text) => {
-                print!("{text}");
-                1
-            }
+                ),
+                "the comparison",
+            ),
+            Some(text) => match crate::output::write_stdout(&text, "the differences") {
+                0 => 1,
+                code => code,
+            },
         };
     }
     let source = match commands {
@@ -48,7 +48,7 @@ pub fn replay(
             &mut std::io::stderr(),
         ),
         Err(e) => {
-            eprintln!("{e}");
+            sitlog_runtime::errln!("{e}");
             2
         }
     }

@@ -25,7 +25,7 @@ pub fn run_app(
         let (home, files) = match files {
             Ok(x) => x,
             Err(e) => {
-                eprintln!("error: {e}");
+                sitlog_runtime::errln!("error: {e}");
                 return 2;
             }
         };
@@ -45,7 +45,7 @@ pub fn run_app(
                 match PrologSource::from_path(f) {
                     Ok(s) => before.push(s),
                     Err(e) => {
-                        eprintln!("error: --legacy: cannot read {}: {e}", f.display());
+                        sitlog_runtime::errln!("error: --legacy: cannot read {}: {e}", f.display());
                         return 2;
                     }
                 }
@@ -64,7 +64,7 @@ pub fn run_app(
     let mut assets = match sitlog_robot::Assets::from_app(app) {
         Ok(a) => a,
         Err(e) => {
-            eprintln!("{e}");
+            sitlog_runtime::errln!("{e}");
             return e.status;
         }
     };
@@ -78,7 +78,7 @@ pub fn run_app(
         native_kb.then(crate::legacy::native_kb),
     ) {
         for e in errors {
-            eprintln!("error: {e}");
+            sitlog_runtime::errln!("error: {e}");
         }
         return 1;
     }
@@ -92,7 +92,7 @@ pub fn run_app(
         match sitlog_compiler::diagram::diagram(&ir, &options) {
             Ok(d) => assets.diagram = Some(d.to_json()),
             Err(e) => {
-                eprintln!("error: {e}");
+                sitlog_runtime::errln!("error: {e}");
                 return 2;
             }
         }
@@ -114,7 +114,7 @@ pub fn run_app(
             let source = match source {
                 Ok(s) => s,
                 Err(e) => {
-                    eprintln!("{e}");
+                    sitlog_runtime::errln!("{e}");
                     return 2;
                 }
             };
@@ -145,14 +145,16 @@ pub fn run_watched(
     options: sitlog_compiler::check::CheckOptions,
 ) -> u8 {
     use crate::watch::{ReloadAware, Watched};
-    let files: Vec<PathBuf> = match sitlog_compiler::load::load(app) {
+    let files: Vec<PathBuf> = match sitlog_compiler::load::load_with(app, crate::library::library())
+    {
         Ok((program, _)) => program
             .sources
             .files()
             .map(|(_, f)| f.path.clone())
+            .filter(|p| !p.starts_with(sitlog_compiler::load::EMBEDDED))
             .collect(),
         Err(e) => {
-            eprintln!("error: cannot read {e}");
+            sitlog_runtime::errln!("error: cannot read {e}");
             return 2;
         }
     };
@@ -161,10 +163,10 @@ pub fn run_watched(
         std::sync::Arc::new(std::sync::Mutex::new(Box::new(std::io::stderr())));
     let watched = Watched::new(ir, messages);
     if let Err(e) = watched.watch(app, &files, options, color) {
-        eprintln!("error: --watch: {e}");
+        sitlog_runtime::errln!("error: --watch: {e}");
         return 2;
     }
-    eprintln!(
+    sitlog_runtime::errln!(
         "watch: watching {} ({} file(s)); edits take effect between transitions",
         app.display(),
         files.len()

@@ -121,6 +121,60 @@ fn names_get_did_you_mean() {
     );
 }
 
+/// Issue 30: a variable nothing binds, used once (`Guest`), twice (`Who`)
+/// or bound only in another situation (`Drink`), is an error where it is
+/// used; an action given the wrong number of arguments; `type ==> fianl`.
+/// What does bind (an expectation, a status an earlier action reports, `=`,
+/// a condition, a situation id's argument) gives nothing.
+#[test]
+fn unbound_variables_action_arity_and_situation_types() {
+    let (code, diags, _) = check_json(&cases().join("unbound_variables"));
+    assert_eq!(code, 1);
+    assert_eq!(codes(&diags), ["E0228", "E0228", "E0229", "E0228", "E0230"]);
+    assert_eq!(
+        diags[0]["message"],
+        "variable `Guest` has no value here: nothing binds it before it is used"
+    );
+    assert_eq!(
+        diags[3]["labels"].as_array().unwrap().len(),
+        1,
+        "{:?}",
+        diags[3]
+    );
+    assert_eq!(
+        diags[2]["message"],
+        "action `say` takes 1 argument(s) (text), but is given 2"
+    );
+    assert_eq!(diags[4]["message"], "unknown situation type `fianl`");
+    assert_eq!(diags[4]["help"], "did you mean `final`?");
+    // No E0211 "no final situation" or E0206 "no arcs" after the typo,
+    // no W0220 singleton for `Guest`.
+}
+
+/// An unbound variable is one of the errors `--allow-unresolved` turns
+/// into warnings: the run goes on, as the original's would.
+#[test]
+fn unbound_variable_runs_with_allow_unresolved() {
+    let dir = std::env::temp_dir().join(format!("sitlogc-unbound-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main, [[id ==> is, type ==> neutral, arcs ==> [empty : say(['Welcome,', Guest]) => fs]], [id ==> fs, type ==> final]], []).\n",
+    )
+    .unwrap();
+    let (code, diags, _) = check_json(&dir);
+    assert_eq!((code, codes(&diags)), (1, vec!["E0228".to_owned()]));
+    let out = sitlogc()
+        .args(["run", "--allow-unresolved"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("Golem says: Welcome, _G"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// E0218 said "final situations of `sub`: " with nothing after it.
 #[test]
 fn exit_arc_of_a_dm_without_final_situation_has_a_help() {

@@ -464,3 +464,293 @@ fn dot_output_is_read_by_graphviz() {
         assert!(String::from_utf8_lossy(&out.stdout).contains("<svg"));
     }
 }
+
+const RECOVERY: &str = "tests/graph/recovery";
+
+fn overview(app: &str) -> Diagram {
+    let (checked, diags) =
+        sitlog_cli::output::check_app(Path::new(app), Default::default()).expect("readable");
+    let checked = checked.unwrap_or_else(|_| panic!("{app} has errors: {diags:?}"));
+    let ir = sitlog_compiler::ir::lower(&checked);
+    let options = Options {
+        dm: None,
+        main: None,
+        title: sitlog_compiler::build::app_ident(Path::new(app)),
+    };
+    diagram::overview(&ir, &options)
+}
+
+/// Points along a route (each cubic at 16 steps).
+fn route_points(path: &[sitlog_graph::layout::Cmd]) -> Vec<sitlog_graph::layout::P> {
+    use sitlog_graph::layout::{Cmd, P};
+    let mut out = Vec::new();
+    let mut at = P::new(0.0, 0.0);
+    for c in path {
+        match *c {
+            Cmd::M(a) | Cmd::L(a) | Cmd::S(_, a) => {
+                out.push(a);
+                at = a;
+            }
+            Cmd::C(b, c, d) => {
+                for k in 1..=16 {
+                    let t = k as f64 / 16.0;
+                    let u = 1.0 - t;
+                    out.push(
+                        at.scale(u * u * u)
+                            .plus(b.scale(3.0 * u * u * t))
+                            .plus(c.scale(3.0 * u * t * t))
+                            .plus(d.scale(t * t * t)),
+                    );
+                }
+                at = d;
+            }
+        }
+    }
+    out
+}
+
+/// Issue 30: `sitlogc graph dms/apps/home` was one 22981×13449 SVG. The
+/// overview has one box per DM and an arrow per caller and callee, and
+/// fits 1920 px across.
+#[test]
+fn overview_of_home_is_one_box_per_dm_and_fits_a_screen() {
+    let o = overview(HOME);
+    let whole = draw(HOME, None);
+    assert_eq!(o.externals.len(), whole.dms.len());
+    assert!(o.externals.iter().all(|n| n.kind == NodeKind::Dm));
+    assert!(o.externals.iter().any(|n| n.label == "main" && n.initial));
+    let calls = |from: &str, to: &str| {
+        let id = |name: &str| {
+            o.externals
+                .iter()
+                .find(|n| {
+                    n.functor
+                        .as_deref()
+                        .is_some_and(|f| f.starts_with(&format!("{name}/")))
+                })
+                .unwrap()
+                .id
+                .clone()
+        };
+        o.links
+            .iter()
+            .any(|e| e.kind == EdgeKind::Call && e.from == id(from) && e.to == id(to))
+    };
+    assert!(calls("main", "serve"));
+    assert!(calls("move", "reroute"));
+    assert!(!calls("reroute", "move"));
+    let l = sitlog_graph::layout::layout(&o);
+    assert!(l.width <= 1920.0, "{}×{}", l.width, l.height);
+    insta::assert_snapshot!("home_overview_svg", sitlog_graph::svg::render(&o, &l, None));
+}
+
+/// Labels wrap instead of being cut; the pipes of a page of one DM go to
+/// boxes laid out beside their situations, and no pipe crosses a
+/// situation (on a page or in the whole drawing).
+#[test]
+fn pages_wrap_labels_and_route_pipes_round_situations() {
+    for dm in [
+        Some("main"),
+        Some("take"),
+        Some("serve"),
+        Some("choose"),
+        None,
+    ] {
+        let d = draw(HOME, dm);
+        let l = sitlog_graph::layout::layout(&d);
+        let s = sitlog_graph::svg::render(&d, &l, None);
+        assert!(!s.contains('…'), "{dm:?}: a label is cut");
+        for e in d.links.iter().filter(|e| e.kind == EdgeKind::Pipe) {
+            let r = &l.routes[&e.id];
+            for q in route_points(&r.path) {
+                let situations = d.dms.iter().flat_map(|g| &g.nodes);
+                for n in situations.filter(|n| n.kind == NodeKind::Situation) {
+                    if n.id == e.from || n.id == e.to {
+                        continue;
+                    }
+                    let c = &l.nodes[&n.id];
+                    let dist = q.minus(c.center).len();
+                    assert!(
+                        dist > c.w / 2.0 - 1.0,
+                        "{dm:?}: {} crosses {}",
+                        e.id,
+                        n.label
+                    );
+                }
+            }
+        }
+    }
+    // the longest arc label of `take` is there whole, over several lines
+    let d = draw(HOME, Some("take"));
+    let l = sitlog_graph::layout::layout(&d);
+    let long = d.dms[0].edges.iter().max_by_key(|e| e.label.len()).unwrap();
+    let lines = &l.routes[&long.id].label_lines;
+    assert!(lines.len() > 2, "{lines:?}");
+    let joined: String = lines.concat();
+    let squeeze = |s: &str| s.chars().filter(|c| !c.is_whitespace()).collect::<String>();
+    assert_eq!(squeeze(&joined), squeeze(&long.label));
+}
+
+/// An arc's label (11 px text, as the SVG draws it) does not lie over a
+/// situation of its DM: the layout leaves room for every line of it.
+#[test]
+fn arc_labels_leave_the_situations_clear() {
+    let all = draw(HOME, None);
+    let mut over = Vec::new();
+    for name in all
+        .dms
+        .iter()
+        .map(|g| g.name.split('(').next().unwrap().to_owned())
+    {
+        let d = draw(HOME, Some(&name));
+        let l = sitlog_graph::layout::layout(&d);
+        for g in &d.dms {
+            for e in &g.edges {
+                let Some(r) = l.routes.get(&e.id) else {
+                    continue;
+                };
+                let Some(at) = r.label_at else { continue };
+                let chars = r
+                    .label_lines
+                    .iter()
+                    .map(|x| x.chars().count())
+                    .max()
+                    .unwrap_or(0);
+                let (hw, hh) = (
+                    chars as f64 * 11.0 * 0.61 / 2.0,
+                    r.label_lines.len() as f64 * 13.0 / 2.0,
+                );
+                for n in g.nodes.iter().filter(|n| n.kind == NodeKind::Situation) {
+                    let c = &l.nodes[&n.id];
+                    let radius = c.w / 2.0;
+                    // the point of the label's box nearest the centre
+                    let qx = c.center.x.clamp(at.x - hw, at.x + hw);
+                    let qy = c.center.y.clamp(at.y - hh, at.y + hh);
+                    let dist = ((qx - c.center.x).powi(2) + (qy - c.center.y).powi(2)).sqrt();
+                    if dist < radius - 2.0 {
+                        over.push(format!("{name}: {:?} over {}", r.label_lines, n.label));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        over.is_empty(),
+        "{} label(s) over situations:\n{}",
+        over.len(),
+        over.join("\n")
+    );
+}
+
+/// A recovery DM is linked to the situations of the type it serves (it
+/// was an isolated oval): in the whole drawing, on a page and in the overview.
+#[test]
+fn recovery_dms_are_linked_to_the_situations_they_serve() {
+    let d = draw(RECOVERY, None);
+    let pardon = d.dms.iter().find(|g| g.name == "pardon").unwrap();
+    let main = d.dms.iter().find(|g| g.name == "main").unwrap();
+    let rec: Vec<(&str, &str)> = d
+        .links
+        .iter()
+        .filter(|e| e.kind == EdgeKind::Recovery)
+        .map(|e| (e.from.as_str(), e.to.as_str()))
+        .collect();
+    let speech: Vec<&str> = main
+        .nodes
+        .iter()
+        .filter(|n| n.situation_type.as_deref() == Some("speech"))
+        .map(|n| n.id.as_str())
+        .collect();
+    assert_eq!(
+        rec,
+        speech
+            .iter()
+            .map(|&s| (s, pardon.nodes[0].id.as_str()))
+            .collect::<Vec<_>>()
+    );
+    insta::assert_snapshot!("recovery_json", d.to_json());
+    let page = draw(RECOVERY, Some("main"));
+    assert!(page
+        .links
+        .iter()
+        .any(|e| e.kind == EdgeKind::Recovery && e.label == "recovery (speech)"));
+    assert!(page.externals.iter().any(|n| n.label == "pardon"));
+    let o = overview(RECOVERY);
+    assert_eq!(
+        o.links
+            .iter()
+            .filter(|e| e.kind == EdgeKind::Recovery)
+            .map(|e| (e.from.as_str(), e.to.as_str()))
+            .collect::<Vec<_>>(),
+        [("d0", "d1")]
+    );
+}
+
+/// The command line: a program too large for one picture gives its
+/// overview (with a note; `--all` the whole); `--overview`; `--out-dir`
+/// writes the overview and a page per DM, linked to each other.
+#[test]
+fn cli_overview_and_pages() {
+    let dir = std::env::temp_dir().join(format!("sitlogc-graph-pages-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let size = |svg: &str| -> (f64, f64) {
+        let first = svg.lines().next().unwrap();
+        let num = |key: &str| {
+            let at = first.find(key).unwrap() + key.len();
+            first[at..].split('"').next().unwrap().parse().unwrap()
+        };
+        (num("width=\""), num("height=\""))
+    };
+    let out = sitlogc().args(["graph", HOME]).output().unwrap();
+    assert!(out.status.success());
+    let svg = String::from_utf8(out.stdout).unwrap();
+    assert!(svg.contains("class=\"node dm-box\""));
+    assert!(size(&svg).0 <= 1920.0);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("drawn as the overview"));
+    let out = sitlogc().args(["graph", HOME, "--all"]).output().unwrap();
+    let svg = String::from_utf8(out.stdout).unwrap();
+    assert!(size(&svg).0 > 4000.0);
+    // a small program is drawn whole, as before
+    let out = sitlogc().args(["graph", APPENDIX_A]).output().unwrap();
+    assert!(String::from_utf8(out.stdout).unwrap().contains("<ellipse"));
+    assert!(out.stderr.is_empty());
+    let out = sitlogc()
+        .args(["graph", APPENDIX_A, "--overview", "--format", "json"])
+        .output()
+        .unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["externals"].as_array().unwrap().len(), 2);
+    // pages
+    let out = sitlogc()
+        .args(["graph", HOME, "--out-dir"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let index = std::fs::read_to_string(dir.join("index.svg")).unwrap();
+    assert!(index.contains("<a href=\"take.svg\">"));
+    let html = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    assert!(html.contains("<a href=\"main.svg\">main</a>"));
+    let pages = std::fs::read_dir(&dir).unwrap().count();
+    assert_eq!(pages, 24 + 2);
+    let take = std::fs::read_to_string(dir.join("take.svg")).unwrap();
+    assert!(take.contains("<a href=\"regrasp.svg\">"));
+    for page in std::fs::read_dir(&dir).unwrap() {
+        let path = page.unwrap().path();
+        if path.extension().is_some_and(|e| e == "svg") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            assert!(!text.contains('…'), "{}", path.display());
+        }
+    }
+    // flags that do not go together
+    let out = sitlogc()
+        .args(["graph", HOME, "--overview", "--dm", "main"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -159,3 +159,121 @@ fn an_editor_session() {
     assert!(status.success());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+impl Session {
+    /// `initialize` and `initialized`.
+    fn handshake(&mut self) {
+        self.send(
+            json!({"jsonrpc": "2.0", "id": 1, "method": "initialize", "params": {"capabilities": {}}}),
+        );
+        self.response(1);
+        self.send(json!({"jsonrpc": "2.0", "method": "initialized", "params": {}}));
+    }
+
+    /// Opens `uri` with `text`; the diagnostics published for `uri`.
+    fn open(&mut self, uri: &str, text: &str) -> Vec<Value> {
+        self.send(
+            json!({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {
+            "textDocument": {"uri": uri, "languageId": "sitlog", "version": 1, "text": text}}}),
+        );
+        loop {
+            let d = self.next_of("textDocument/publishDiagnostics");
+            if d["params"]["uri"] == uri {
+                return d["params"]["diagnostics"].as_array().unwrap().clone();
+            }
+        }
+    }
+
+    fn stop(mut self) {
+        self.send(json!({"jsonrpc": "2.0", "id": 99, "method": "shutdown"}));
+        self.response(99);
+        self.send(json!({"jsonrpc": "2.0", "method": "exit"}));
+        assert!(self.child.wait().unwrap().success());
+    }
+}
+
+fn codes(diags: &[Value]) -> Vec<&str> {
+    diags.iter().map(|d| d["code"].as_str().unwrap()).collect()
+}
+
+/// Issue 30: a file not saved yet gave E0004 "No such file or directory"
+/// at 1:1, an `untitled:` document nothing. The text given is analysed,
+/// with the side files of its directory when there is one.
+#[test]
+fn files_not_saved_yet() {
+    let dir = std::env::temp_dir().join(format!("sitlogc-lsp-new-{}", std::process::id()));
+    let lone = dir.join("lone");
+    let app = dir.join("app");
+    std::fs::create_dir_all(&lone).unwrap();
+    std::fs::create_dir_all(&app).unwrap();
+    // A directory with side files but no DM yet: `get(n, _)` is known.
+    std::fs::write(lone.join("global_vars.pl"), "n ==> 1.\n").unwrap();
+    // An application whose main DM calls a DM in a file not saved yet.
+    std::fs::write(
+        app.join("main.dm"),
+        "diag_mod(main, [[id ==> is, type ==> recursive, embedded_dm ==> helper, arcs ==> [done : empty => fs]], [id ==> fs, type ==> final]], []).\n",
+    )
+    .unwrap();
+
+    let mut s = Session::start();
+    s.handshake();
+    let text = BAD.replace("say(hello)", "say(get(n, _))");
+    let diags = s.open(&sitlog_lsp::path_to_uri(&lone.join("new.dm")), &text);
+    assert_eq!(codes(&diags), ["E0212", "W0214"], "{diags:?}");
+    assert_eq!(diags[0]["range"]["start"]["line"], 3);
+
+    let helper = "diag_mod(helper, [[id ==> is, type ==> neutral, arcs ==> [empty : empty => don]], [id ==> done, type ==> final]], []).\n";
+    let diags = s.open(&sitlog_lsp::path_to_uri(&app.join("helper.dm")), helper);
+    assert_eq!(codes(&diags), ["E0212", "W0214"], "{diags:?}");
+    // main.dm, on disk, sees `helper`: no E0216.
+    s.send(json!({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {
+        "textDocument": {"uri": sitlog_lsp::path_to_uri(&app.join("main.dm")), "languageId": "sitlog", "version": 1,
+        "text": std::fs::read_to_string(app.join("main.dm")).unwrap()}}}));
+    let main_uri = sitlog_lsp::path_to_uri(&app.join("main.dm"));
+    loop {
+        let d = s.next_of("textDocument/publishDiagnostics");
+        if d["params"]["uri"] == main_uri.as_str() {
+            assert_eq!(d["params"]["diagnostics"], json!([]), "{d}");
+            break;
+        }
+    }
+
+    let diags = s.open("untitled:Untitled-1", BAD);
+    assert_eq!(codes(&diags), ["E0212", "W0214"], "{diags:?}");
+    s.stop();
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A `Content-Length` beyond the limit ends the session at once with an
+/// error naming the length and the option (exit 2), before any allocation
+/// of that size; a frame that breaks off does too.
+#[test]
+fn a_message_over_the_limit_is_refused() {
+    for (header, expect) in [
+        (
+            "Content-Length: 1000000000000\r\n\r\n",
+            "1000000000000 bytes",
+        ),
+        ("Content-Length: 3000000000\r\n\r\n", "--max-message-bytes"),
+        (
+            "Content-Length: 10\r\n\r\n{",
+            "end of input after 1 of the 10 bytes",
+        ),
+    ] {
+        let mut child = sitlogc()
+            .arg("lsp")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut stdin = child.stdin.take().unwrap();
+        stdin.write_all(header.as_bytes()).unwrap();
+        drop(stdin);
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains(expect), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}

@@ -18,6 +18,7 @@ mod prompt;
 mod reliability;
 mod run;
 mod trust;
+mod tutorial;
 mod view;
 mod watch;
 mod watch_reload;

@@ -1,7 +1,8 @@
 //! The test-mode prompt of `sitlogc run` (issue 17): it names the DM and
 //! situation waiting and lists the expectations; the end of the input
 //! (Ctrl-D, or the end of a pipe) ends the task cleanly with exit status 3;
-//! on a terminal, lines are edited and remembered (tested on a pty).
+//! on a terminal, lines are edited and remembered, and no progress line is
+//! drawn while the prompt waits (issue 30; both tested on a pty).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -210,4 +211,136 @@ fn on_a_terminal_lines_are_edited_and_remembered() {
         out.contains("main:(ask,said(go):say(one))\nmain:(ask,said(go):say(one))\n"),
         "{out}"
     );
+}
+
+/// On a pseudo-terminal for stdin, stdout and stderr (as a shell runs it,
+/// where the progress indicator is on): while the prompt waits, nothing is
+/// drawn after `|: ` (no spinner over what is typed); when the task runs on
+/// its own (a long loop after the input), the progress line comes back and
+/// names where the task is; at the next prompt it is gone again.
+#[cfg(target_os = "linux")]
+#[test]
+fn no_progress_line_while_the_prompt_waits() {
+    use std::io::Read;
+    use std::os::fd::{FromRawFd, OwnedFd};
+    use std::sync::mpsc;
+    use std::time::{Duration, Instant};
+
+    let dir = app("spinner");
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main, [
+  [id ==> ask, type ==> listening,
+   arcs ==> [said(go) : set(n, 0) => busy, said(stop) : say(bye) => fs]],
+  [id ==> busy, type ==> neutral,
+   arcs ==> [empty : inc(n, _) => (get(n, _) < 60000 -> busy ; otherwise -> ask)]],
+  [id ==> fs, type ==> final]
+], [n ==> 0]).
+",
+    )
+    .unwrap();
+    let (mut master, slave) = unsafe {
+        let (mut m, mut s) = (0, 0);
+        let r = libc::openpty(
+            &mut m,
+            &mut s,
+            std::ptr::null_mut(),
+            std::ptr::null(),
+            std::ptr::null(),
+        );
+        if r != 0 {
+            eprintln!("skipped: openpty: {}", std::io::Error::last_os_error());
+            return;
+        }
+        (std::fs::File::from_raw_fd(m), OwnedFd::from_raw_fd(s))
+    };
+    let mut cmd = sitlogc();
+    unsafe {
+        use std::os::unix::process::CommandExt;
+        cmd.pre_exec(|| {
+            if libc::setsid() < 0 || libc::ioctl(0, libc::TIOCSCTTY, 0) < 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    cmd.env("TERM", "xterm");
+    let mut child = cmd
+        .arg("run")
+        .arg(&dir)
+        .args(["--history", "none"])
+        .stdin(Stdio::from(slave.try_clone().unwrap()))
+        .stdout(Stdio::from(slave.try_clone().unwrap()))
+        .stderr(Stdio::from(slave.try_clone().unwrap()))
+        .spawn()
+        .unwrap();
+    drop(slave);
+    let (tx, rx) = mpsc::channel::<Vec<u8>>();
+    let mut reader = master.try_clone().unwrap();
+    std::thread::spawn(move || {
+        let mut buf = [0u8; 4096];
+        while let Ok(n) = reader.read(&mut buf) {
+            if n == 0 || tx.send(buf[..n].to_vec()).is_err() {
+                return;
+            }
+        }
+    });
+    let mut screen = String::new();
+    // Reads what the terminal shows until `until` holds, or for `at_least`.
+    let read = |screen: &mut String, until: &dyn Fn(&str) -> bool, at_least: Duration| {
+        let start = Instant::now();
+        loop {
+            let done = until(screen) && start.elapsed() >= at_least;
+            if done {
+                return;
+            }
+            let left = Duration::from_secs(120).saturating_sub(start.elapsed());
+            assert!(!left.is_zero(), "timed out; the terminal shows:\n{screen}");
+            if let Ok(bytes) = rx.recv_timeout(Duration::from_millis(50).min(left)) {
+                screen.push_str(&String::from_utf8_lossy(&bytes));
+            }
+        }
+    };
+    const HEADER: &str = "DM main, situation ask (listening) expects: said(go) | said(stop)";
+    let prompts = |s: &str| s.matches(HEADER).count();
+    let after_last_prompt = |s: &str| {
+        s.rsplit(HEADER)
+            .next()
+            .unwrap_or("")
+            .split_once("|: ")
+            .map(|(_, r)| r.to_owned())
+    };
+    // The first prompt; then a second of waiting (the spinner ticks every
+    // 100 ms): nothing is drawn after `|: `.
+    read(
+        &mut screen,
+        &|s| after_last_prompt(s).is_some(),
+        Duration::from_millis(1200),
+    );
+    let waiting = after_last_prompt(&screen).unwrap();
+    assert!(
+        !waiting.contains("transitions"),
+        "a progress line was drawn at the prompt: {waiting:?}\n{screen}"
+    );
+    // The task runs on its own for a while: the progress line is back, and
+    // names the situation the task is in.
+    master.write_all(b"go.\r").unwrap();
+    read(
+        &mut screen,
+        &|s| prompts(s) == 2 && after_last_prompt(s).is_some(),
+        Duration::from_millis(1200),
+    );
+    let busy = screen.rsplit(HEADER).nth(1).unwrap_or("");
+    assert!(
+        busy.contains("transitions") && busy.contains("main / busy"),
+        "no progress line while the task ran on its own:\n{screen}"
+    );
+    let waiting = after_last_prompt(&screen).unwrap();
+    assert!(
+        !waiting.contains("transitions"),
+        "a progress line was drawn at the second prompt: {waiting:?}\n{screen}"
+    );
+    master.write_all(b"stop.\r").unwrap();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(0), "{screen}");
 }

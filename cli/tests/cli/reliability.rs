@@ -604,3 +604,236 @@ fn an_output_naming_an_input_is_refused_naming_both_options() {
         b"[class(top,none,[],[],[])].\n"
     );
 }
+
+// ------------------------------------------------------------ file sizes
+
+/// Every file read is capped (`--max-file-bytes`, 256 MiB by default): a
+/// larger or endless one (`/dev/zero`) is refused at once naming the file
+/// and the option, with the exit status of a file that cannot be read.
+#[test]
+fn files_over_the_limit_are_refused_naming_the_option() {
+    let dir = app("sizes", &[("main.dm", ECHO.as_bytes())]);
+    // small enough for the limit: its files are read, the run's are not
+    let tiny = app(
+        "sizes-tiny",
+        &[(
+            "main.dm",
+            b"diag_mod(main, [[id ==> fs, type ==> final]], []).\n",
+        )],
+    );
+    let kb = dir.join("k.kb");
+    std::fs::write(&kb, "class(object, top, [], [], []).\n".repeat(100)).unwrap();
+    // a script that is a regular file is read whole (a pipe or device is
+    // read as the task consumes it)
+    let big = dir.join("big.txt");
+    std::fs::write(&big, "a.\n".repeat(100)).unwrap();
+    let cases: Vec<(Vec<std::ffi::OsString>, &str)> = vec![
+        (vec!["check".into(), dir.clone().into()], "main.dm"),
+        (
+            vec!["kb".into(), kb.clone().into(), "objects_of(object)".into()],
+            "k.kb",
+        ),
+        (
+            vec![
+                "run".into(),
+                tiny.clone().into(),
+                "--script".into(),
+                big.clone().into(),
+            ],
+            "big.txt",
+        ),
+        (
+            vec![
+                "run".into(),
+                tiny.clone().into(),
+                "--world".into(),
+                "/dev/zero".into(),
+            ],
+            "/dev/zero",
+        ),
+        (vec!["replay".into(), "/dev/zero".into()], "/dev/zero"),
+    ];
+    for (args, file) in cases {
+        let start = Instant::now();
+        let out = sitlogc()
+            .args(["--max-file-bytes", "100"])
+            .args(&args)
+            .stdin(Stdio::null())
+            .output()
+            .unwrap();
+        let err = stderr(&out);
+        assert!(start.elapsed() < Duration::from_secs(60), "{args:?}");
+        assert!(matches!(out.status.code(), Some(1 | 2)), "{args:?}: {err}");
+        assert!(err.contains("--max-file-bytes"), "{args:?}: {err}");
+        assert!(err.contains(file), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+    // under the default, the same files are read
+    let out = sitlogc()
+        .args(["kb"])
+        .arg(&kb)
+        .arg("objects_of(object)")
+        .output()
+        .unwrap();
+    assert!(
+        !stderr(&out).contains("--max-file-bytes"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+/// A script from a pipe is read as the task consumes it: an endless
+/// `yes 'water.'` ends with the task, and the run prints what the same
+/// script from a file does.
+#[test]
+fn a_piped_script_is_read_term_by_term() {
+    use std::io::Write;
+    let app = example("tutorial");
+    let mut child = sitlogc()
+        .arg("run")
+        .arg(&app)
+        .args(["--script", "/dev/stdin", "-q"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || {
+        let chunk = "water.\n".repeat(1000);
+        // ends when the run closes its end of the pipe
+        while stdin.write_all(chunk.as_bytes()).is_ok() {}
+    });
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > Duration::from_secs(60) {
+            let _ = child.kill();
+            panic!("the run did not end with its task");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().unwrap();
+    writer.join().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("Out Arg: water"), "{text}");
+}
+
+/// Diagnostics to a stderr that cannot be written (full, closed) never
+/// panic: each command still ends with its own exit status.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_stderr_that_cannot_be_written_changes_no_exit_status() {
+    let bad = app(
+        "errfull",
+        &[("main.dm", b"diag_mod(main, [[id ==> is]], []).\n")],
+    );
+    let good = example("countdown");
+    let cases: Vec<(Vec<std::ffi::OsString>, i32)> = vec![
+        (vec!["check".into(), bad.clone().into()], 1),
+        (vec!["run".into(), bad.clone().into()], 1),
+        (vec!["run".into(), "/no/such/app".into()], 2),
+        (
+            vec![
+                "run".into(),
+                good.clone().into(),
+                "--script".into(),
+                good.join("script.txt").into(),
+            ],
+            0,
+        ),
+        (vec!["replay".into(), "/no/such/trace".into()], 2),
+    ];
+    for (args, code) in cases {
+        for closed in [false, true] {
+            let mut cmd = sitlogc();
+            cmd.args(&args).stdout(Stdio::null());
+            if closed {
+                // the read end of a pipe dropped at once: writes fail (EPIPE)
+                cmd.stderr(Stdio::piped());
+                let mut child = cmd.spawn().unwrap();
+                drop(child.stderr.take());
+                let status = child.wait().unwrap();
+                assert_eq!(status.code(), Some(code), "{args:?} closed");
+            } else {
+                let out = cmd.stderr(dev_full()).output().unwrap();
+                assert_eq!(out.status.code(), Some(code), "{args:?} full");
+            }
+        }
+    }
+}
+
+/// Whether process `pid` has a thread blocked opening a FIFO and its
+/// signal thread running.
+#[cfg(target_os = "linux")]
+fn waits_on_a_fifo(pid: u32) -> bool {
+    let Ok(tasks) = std::fs::read_dir(format!("/proc/{pid}/task")) else {
+        return false;
+    };
+    let (mut fifo, mut signals) = (false, false);
+    for t in tasks.flatten() {
+        let read = |f: &str| std::fs::read_to_string(t.path().join(f)).unwrap_or_default();
+        fifo |= read("wchan").contains("wait_for_partner");
+        signals |= read("comm").starts_with("sitlog-signals");
+    }
+    fifo && signals
+}
+
+/// The first SIGTERM ends a run blocked before its task starts (a FIFO
+/// with no writer for --kb, --script, --world or --trace; the live view
+/// waiting for its page) with the documented status.
+#[cfg(target_os = "linux")]
+#[test]
+fn the_first_signal_ends_a_run_that_has_not_started() {
+    let app = example("tutorial");
+    let dir = temp("fifo");
+    let fifo = dir.join("f");
+    assert!(std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success());
+    for opt in ["--kb", "--script", "--world", "--trace", "--view"] {
+        let mut cmd = sitlogc();
+        cmd.arg("run").arg(&app).arg(opt);
+        if opt == "--view" {
+            cmd.args(["--view-port", "0"]);
+        } else {
+            cmd.arg(&fifo);
+        }
+        let mut child = cmd
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let start = Instant::now();
+        let mut err = child.stderr.take().unwrap();
+        if opt == "--view" {
+            // the line that says where the page is comes once it waits
+            use std::io::BufRead;
+            let mut line = String::new();
+            std::io::BufReader::new(&mut err)
+                .read_line(&mut line)
+                .unwrap();
+            assert!(line.contains("live view at"), "{line}");
+        } else {
+            while !waits_on_a_fifo(child.id()) {
+                assert!(
+                    start.elapsed() < Duration::from_secs(60),
+                    "{opt}: never blocked"
+                );
+                std::thread::sleep(Duration::from_millis(20));
+            }
+        }
+        kill(child.id(), "TERM");
+        while child.try_wait().unwrap().is_none() {
+            if start.elapsed() > Duration::from_secs(60) {
+                let _ = child.kill();
+                panic!("{opt}: still running after SIGTERM");
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        assert_eq!(child.wait().unwrap().code(), Some(143), "{opt}");
+    }
+}

@@ -1,6 +1,7 @@
 //! What a program calls outside its DMs: user functions (`apply`) against
 //! the standard ones, the Prolog files' clause heads, KB services and the
-//! host's functions; basic actions against `basic_actions.pl`.
+//! host's functions; basic actions and their arities against
+//! `basic_actions.pl`.
 
 use super::*;
 
@@ -140,11 +141,38 @@ impl Checker<'_> {
         }
     }
 
+    /// The argument names of each action `basic_actions.pl` declares
+    /// (`arity ==> [place, status]`); `None` where no such list is given.
+    pub(super) fn declared_actions(&self) -> HashMap<Atom, Option<Vec<Atom>>> {
+        let arrow = Atom::intern("==>");
+        let arity = Atom::intern("arity");
+        let mut out = HashMap::new();
+        for b in &self.program.basic_actions {
+            let terms = &b.clause.terms;
+            let names = terms
+                .proper_list(b.clause.root)
+                .into_iter()
+                .flatten()
+                .filter_map(|item| terms.compound(item, arrow, 2))
+                .find(|pair| terms.atom(pair[0]) == Some(arity))
+                .and_then(|pair| terms.proper_list(pair[1]))
+                .map(|items| {
+                    items
+                        .iter()
+                        .map(|&i| terms.atom(i).unwrap_or(atoms::EMPTY))
+                        .collect()
+                });
+            out.entry(b.name).or_insert(names);
+        }
+        out
+    }
+
     /// With a `basic_actions.pl`, every action an arc performs is declared
-    /// there (the original ignores the others silently: a typo does nothing).
+    /// there (the original ignores the others silently: a typo does
+    /// nothing), with as many arguments as its `arity` list names.
     pub(super) fn actions(&mut self) {
         let program = self.program;
-        let declared: HashSet<Atom> = program.basic_actions.iter().map(|b| b.name).collect();
+        let declared = self.declared_actions();
         for dm in &program.dms {
             let terms = &dm.clause.terms;
             let mut found = Vec::new();
@@ -153,10 +181,38 @@ impl Checker<'_> {
                     actions_of(terms, arc.action, &mut found);
                 }
             }
-            found.sort_by_key(|&(_, span)| span);
-            for (name, span) in found {
-                if declared.contains(&name) {
-                    continue;
+            found.sort_by_key(|&(_, _, span)| span);
+            for (name, arity, span) in found {
+                match declared.get(&name) {
+                    Some(Some(names)) if names.len() != arity => {
+                        let decl = program
+                            .basic_actions
+                            .iter()
+                            .find(|b| b.name == name)
+                            .expect("declared");
+                        let shown: Vec<&str> = names.iter().map(|n| n.as_str()).collect();
+                        self.diags.push(
+                            Diagnostic::error(
+                                codes::ACTION_ARITY,
+                                dm.loc(span),
+                                format!(
+                                    "action `{name}` takes {} argument(s) ({}), but is given {arity}",
+                                    names.len(),
+                                    shown.join(", ")
+                                ),
+                            )
+                            .with_label("wrong number of arguments")
+                            .with_secondary(decl.loc, "declared here")
+                            .with_help(if names.len() == 1 && arity > 1 {
+                                format!("to give several parts, pass one list: `{name}([...])`")
+                            } else {
+                                format!("write `{}`", head_example(name, names.len()))
+                            }),
+                        );
+                        continue;
+                    }
+                    Some(_) => continue,
+                    None => {}
                 }
                 let help = match did_you_mean(
                     name.as_str(),

@@ -1,6 +1,7 @@
-//! The checker: names, arities, situation structure, reachability,
-//! variables, user functions (`apply`) and basic actions, with "did you
-//! mean" suggestions. It collects every diagnostic and never runs anything;
+//! The checker: names, arities, situation structure and types,
+//! reachability, SitLog variables and Prolog variables used without a
+//! value, user functions (`apply`) and basic actions (names and arities),
+//! with "did you mean" suggestions. It collects every diagnostic and never runs anything;
 //! what a file that could not be read may have declared is not reported as
 //! missing. Linear in the size of the program. A
 //! program without errors becomes a [`Checked`] program: later stages accept
@@ -16,6 +17,7 @@ mod calls;
 mod os_access;
 mod situations;
 mod terms;
+mod unbound;
 mod variables;
 
 use situations::Broken;
@@ -50,6 +52,9 @@ pub mod codes {
     pub const UNKNOWN_ACTION: &str = "E0225";
     pub const KB_SERVICE_WITHOUT_KB: &str = "W0226";
     pub const WORLD_FUNCTION_WITHOUT_WORLD: &str = "W0227";
+    pub const UNBOUND_VARIABLE: &str = "E0228";
+    pub const ACTION_ARITY: &str = "E0229";
+    pub const UNKNOWN_SITUATION_TYPE: &str = "E0230";
     pub const OS_ACCESS: &str = "W0240";
 }
 
@@ -78,9 +83,11 @@ pub fn check(
 }
 
 /// Errors about names that do not resolve (a next situation, an embedded DM
-/// or its arity, an exit arc, a SitLog variable): the program's structure is
-/// sound and, when run, the machine stops with a clean run-time error if and
-/// only if the faulty path is taken, as the original would misbehave there.
+/// or its arity, an exit arc, a SitLog variable, a function, an action or
+/// its arity) and variables used without a value: the program's structure
+/// is sound and, when run, the faulty path misbehaves only if it is taken
+/// (a clean run-time error where the machine cannot go on; where the
+/// original runs on, so does the run: an unbound variable prints as `_G1`).
 pub const UNRESOLVED: &[&str] = &[
     codes::UNKNOWN_NEXT,
     codes::UNKNOWN_DM,
@@ -89,6 +96,8 @@ pub const UNRESOLVED: &[&str] = &[
     codes::UNKNOWN_VARIABLE,
     codes::UNKNOWN_FUNCTION,
     codes::UNKNOWN_ACTION,
+    codes::UNBOUND_VARIABLE,
+    codes::ACTION_ARITY,
 ];
 
 /// [`check`]; with `unresolved_as_warnings`, the [`UNRESOLVED`] errors are
@@ -133,6 +142,10 @@ pub struct CheckOptions {
     /// Whether the KB services are functions of the run (`Some`), or as the
     /// application's files say (`None`: a `knowledge.kb` beside the DMs).
     pub kb: Option<bool>,
+    /// Where [`crate::check_path_opts`] looks up library names the
+    /// application has no copy of (`sitlogc` passes the behaviour library
+    /// built into it); `None`: nowhere.
+    pub library: Option<&'static crate::load::Library>,
 }
 
 /// [`check`] with [`CheckOptions`].
@@ -233,8 +246,13 @@ impl<'p> Checker<'p> {
                 );
             }
         }
+        let declared = self.declared_actions();
+        let outputs = |name: Atom, arity: usize, i: usize| match declared.get(&name) {
+            Some(Some(names)) => names.get(i).is_some_and(|n| is_output_name(n.as_str())),
+            _ => arity >= 2 && i == arity - 1,
+        };
         for dm in &program.dms {
-            self.dm(dm, &broken);
+            self.dm(dm, &broken, &outputs);
         }
         if !broken.prolog {
             self.functions();
@@ -325,6 +343,13 @@ impl<'p> Checker<'p> {
         let program: &'p Program = self.program;
         did_you_mean(name.as_str(), program.dms.iter().map(|d| d.name.as_str()))
     }
+}
+
+/// Whether an argument an action's `arity` list names so is one the robot
+/// binds: `status`, `result`, `out`, or a name with one of them in it
+/// (`grasp_status`, `out_pose`).
+fn is_output_name(name: &str) -> bool {
+    name.contains("status") || name.contains("result") || name.starts_with("out")
 }
 
 /// The candidate closest to `target`, if it is close enough to be a typo of

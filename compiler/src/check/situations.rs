@@ -1,16 +1,34 @@
-//! The checks of a DM's situations: their attributes, next situations
+//! The checks of a DM's situations: their attributes and types, next situations
 //! (resolved through a per-DM index of situation ids), embedded DMs and
 //! their exits, reachability; and what an unreadable file may have
 //! declared ([`Broken`]), so that it is not reported missing.
 
 use super::*;
 
+/// The situation types of the perceptual interpreters SitLog programs use
+/// (the original's speech, listening, keyboard and vision; the simulated
+/// robot's hands and presence), besides `neutral`, `final`, `recursive` and
+/// the types `recovery_protocols.pl` names: a `type` that is none of these
+/// but close to one is a typo (E0230). Any other type is left alone: a
+/// robot may have perceptual interpreters of its own.
+pub(super) const PERCEPTION_TYPES: &[&str] = &[
+    "speech",
+    "listening",
+    "keyboard",
+    "nkeyboard",
+    "vision",
+    "hands",
+    "presence",
+];
+
 impl<'p> Checker<'p> {
-    pub(super) fn dm(&mut self, dm: &Dm, broken: &Broken) {
+    pub(super) fn dm(&mut self, dm: &Dm, broken: &Broken, outputs: unbound::Outputs<'_>) {
         let terms = &dm.clause.terms;
         let loc = |t: TermId| dm.loc(terms.span(t));
-        // Situation structure.
-        for s in &dm.situations {
+        // Situation structure, with a type that is a typo of a known one
+        // taken as meant (its error is E0230, not a missing part).
+        let kinds = self.situation_types(dm);
+        for (s, &kind) in dm.situations.iter().zip(&kinds) {
             let sloc = dm.loc(s.span);
             if s.id.is_none() {
                 self.diags.push(
@@ -19,7 +37,6 @@ impl<'p> Checker<'p> {
                         .with_help("add `id ==> Name`"),
                 );
             }
-            let kind = s.kind(&dm.clause);
             if s.kind_term.is_none() {
                 self.diags.push(
                     Diagnostic::error(codes::MISSING_TYPE, sloc, "situation has no `type`")
@@ -90,11 +107,7 @@ impl<'p> Checker<'p> {
                 }
             }
         }
-        if !dm
-            .situations
-            .iter()
-            .any(|s| s.kind(&dm.clause) == SituationKind::Final)
-        {
+        if !kinds.contains(&SituationKind::Final) {
             self.diags.push(
                 Diagnostic::error(
                     codes::NO_FINAL,
@@ -110,9 +123,55 @@ impl<'p> Checker<'p> {
         if !broken.globals {
             self.variables(dm);
         }
-        self.singletons(dm);
+        let unbound = self.unbound(dm, outputs);
+        self.singletons(dm, &unbound);
         self.shadowed(dm);
         let _ = loc;
+    }
+
+    /// E0230 for a `type` that names no known situation type but is close
+    /// to one (`fianl`); the kind of each situation, taking such a typo as
+    /// the type meant.
+    fn situation_types(&mut self, dm: &Dm) -> Vec<SituationKind> {
+        let terms = &dm.clause.terms;
+        let mut known: Vec<&str> = [atoms::NEUTRAL, atoms::FINAL, atoms::RECURSIVE]
+            .iter()
+            .map(|a| a.as_str())
+            .chain(PERCEPTION_TYPES.iter().copied())
+            .collect();
+        known.extend(
+            self.program
+                .recovery
+                .iter()
+                .map(|r| r.situation_type.as_str()),
+        );
+        let mut kinds = Vec::with_capacity(dm.situations.len());
+        for s in &dm.situations {
+            let mut kind = s.kind(&dm.clause);
+            let name = s.kind_term.and_then(|t| terms.functor(t).map(|f| (t, f.0)));
+            if let Some((t, name)) = name {
+                if !known.contains(&name.as_str()) {
+                    if let Some(similar) = did_you_mean(name.as_str(), known.iter().copied()) {
+                        if similar == atoms::FINAL.as_str() {
+                            kind = SituationKind::Final;
+                        } else if similar == atoms::RECURSIVE.as_str() {
+                            kind = SituationKind::Recursive;
+                        }
+                        self.diags.push(
+                            Diagnostic::error(
+                                codes::UNKNOWN_SITUATION_TYPE,
+                                dm.loc(terms.span(t)),
+                                format!("unknown situation type `{name}`"),
+                            )
+                            .with_label("not a situation type")
+                            .with_help(format!("did you mean `{similar}`?")),
+                        );
+                    }
+                }
+            }
+            kinds.push(kind);
+        }
+        kinds
     }
 
     /// Ground next situations must name a situation; unreachable situations warn.

@@ -204,10 +204,10 @@ pub(super) fn calls(dm: &Dm) -> Vec<Call> {
 }
 
 /// The actions an arc's action term performs, as far as they are written
-/// (an element of a list, either branch of a conditional): name and span.
+/// (an element of a list, either branch of a conditional): name, arity and span.
 /// Terms evaluated to something unknown (`get`, `apply`, ...) and `empty`
 /// are left out.
-pub(super) fn actions_of(terms: &Terms, action: TermId, out: &mut Vec<(Atom, Span)>) {
+pub(super) fn actions_of(terms: &Terms, action: TermId, out: &mut Vec<(Atom, usize, Span)>) {
     let mut stack = vec![action];
     while let Some(t) = stack.pop() {
         if let Some((then, other)) = conditional(terms, t) {
@@ -229,6 +229,6 @@ pub(super) fn actions_of(terms: &Terms, action: TermId, out: &mut Vec<(Atom, Spa
         {
             continue;
         }
-        out.push((name, terms.span(t)));
+        out.push((name, arity, terms.span(t)));
     }
 }

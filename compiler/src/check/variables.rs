@@ -67,10 +67,14 @@ impl<'p> Checker<'p> {
         }
     }
 
-    /// Variables that occur once (Prolog's singleton warning).
-    pub(super) fn singletons(&mut self, dm: &Dm) {
-        for v in &dm.clause.vars {
-            if v.occurrences == 1 && !v.is_anonymous_style() {
+    /// Variables that occur once (Prolog's singleton warning), except those
+    /// already reported as used without a value (`unbound`).
+    pub(super) fn singletons(&mut self, dm: &Dm, unbound: &HashSet<sitlog_syntax::VarId>) {
+        for (i, v) in dm.clause.vars.iter().enumerate() {
+            if v.occurrences == 1
+                && !v.is_anonymous_style()
+                && !unbound.contains(&sitlog_syntax::VarId(i as u32))
+            {
                 self.diags.push(
                     Diagnostic::warning(
                         codes::SINGLETON,

@@ -363,6 +363,9 @@ impl DmProgram for Resolved<'_> {
 }
 
 impl sitlog_runtime::app::App for Resolved<'_> {
+    fn names(&self) -> Vec<(String, Vec<String>)> {
+        self.ir.names()
+    }
     fn initial_state(&self) -> (Store, Vars) {
         self.ir.initial_state()
     }
@@ -524,7 +527,7 @@ diag_mod(add_one(A), [
 
     #[test]
     fn a_deep_term_keeps_its_situation_on_templates() {
-        let mut list = String::from("X");
+        let mut list = String::from("_X");
         for i in 0..(MAX_DEPTH + 50) {
             list = format!("f{}({list})", i % 3);
         }

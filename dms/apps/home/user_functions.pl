@@ -4,7 +4,7 @@
 % The KB services are not called from here: the DMs call them and pass
 % their answers in.
 
-:- consult('../../behaviors/language.pl').
+:- consult('behaviors/language.pl').
 
 % home_vocab(+NamePairs, +Agents, +Objects, +Classes): the words the robot
 % understands: vocab(Names, Objects, Classes), Names being the words of

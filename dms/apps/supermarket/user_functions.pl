@@ -4,7 +4,7 @@
 % itself (diagnosis, decision, planning) is Rust: shop_diagnose/4 and
 % shop_decide/4, registered by the simulated robot.
 
-:- consult('../../behaviors/language.pl').
+:- consult('behaviors/language.pl').
 
 % shop_vocab(+Objects, +Classes): the words the robot understands.
 shop_vocab(Objects, Classes) :-

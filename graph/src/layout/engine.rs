@@ -5,7 +5,7 @@
 
 use super::dm::{bounded, Local};
 use super::geometry::{label_lines, node_size, route_points, Cmd, Placed, Route, P};
-use crate::DmGraph;
+use crate::{DmGraph, NodeKind};
 use layout::core::base::Orientation;
 use layout::core::color::Color;
 use layout::core::format::{ClipHandle, RenderBackend};
@@ -20,6 +20,7 @@ use std::collections::HashMap;
 pub(super) fn engine_within(
     dm: &DmGraph,
     optimize: bool,
+    across: bool,
     time: std::time::Duration,
 ) -> Result<Local, String> {
     if time.is_zero() {
@@ -30,7 +31,7 @@ pub(super) fn engine_within(
     let spawned = std::thread::Builder::new()
         .name("sitlog-graph-layout".to_owned())
         .spawn(move || {
-            let r = std::panic::catch_unwind(|| engine(&owned, optimize));
+            let r = std::panic::catch_unwind(|| engine(&owned, optimize, across));
             let _ = tx.send(r.ok().flatten());
         });
     if spawned.is_err() {
@@ -87,20 +88,42 @@ fn p(pt: Point) -> P {
     P::new(pt.x, pt.y)
 }
 
-/// `layout-rs` on one DM; `None` when its output cannot be read back.
-fn engine(dm: &DmGraph, optimize: bool) -> Option<Local> {
-    let mut vg = VisualGraph::new(Orientation::TopToBottom);
+/// An arc label as `layout-rs` is given it: the engine reserves 7 px a
+/// character and 7 px a line (its font size), and the SVG draws lines 13 px
+/// apart, so each line is followed by an empty one to reserve its height.
+fn engine_label(lines: &[String]) -> String {
+    if lines.is_empty() {
+        return String::new();
+    }
+    let mut text = lines.join("\n\n");
+    text.push_str("\n ");
+    text
+}
+
+/// `layout-rs` on one DM (ranks top to bottom, or left to right
+/// `across`); `None` when its output cannot be read back.
+fn engine(dm: &DmGraph, optimize: bool, across: bool) -> Option<Local> {
+    let orientation = if across {
+        Orientation::LeftToRight
+    } else {
+        Orientation::TopToBottom
+    };
+    let mut vg = VisualGraph::new(orientation);
     let look = StyleAttr::new(Color::new(0), 1, None, 0, 7);
     let mut handles = Vec::new();
     let mut index: HashMap<&str, usize> = HashMap::new();
     for (i, n) in dm.nodes.iter().enumerate() {
         let (w, h) = node_size(n);
-        let el = Element::create(
-            ShapeKind::Circle(String::new()),
-            look.clone(),
-            Orientation::TopToBottom,
-            Point::new(w, h),
-        );
+        // boxes are clipped as boxes, so that arrows end at their edge
+        let shape = if matches!(
+            n.kind,
+            NodeKind::Dm | NodeKind::ExternalDm | NodeKind::OutArg
+        ) {
+            ShapeKind::Box(String::new())
+        } else {
+            ShapeKind::Circle(String::new())
+        };
+        let el = Element::create(shape, look.clone(), orientation, Point::new(w, h));
         handles.push(vg.add_node(el));
         index.insert(n.id.as_str(), i);
     }
@@ -109,7 +132,7 @@ fn engine(dm: &DmGraph, optimize: bool) -> Option<Local> {
         let (Some(&a), Some(&b)) = (index.get(e.from.as_str()), index.get(e.to.as_str())) else {
             continue;
         };
-        let text = label_lines(&e.label).join("\n");
+        let text = engine_label(&label_lines(&e.label));
         let mut arrow = Arrow::simple(&text);
         arrow.look = look.clone();
         arrow.properties = Some(i.to_string());
@@ -134,8 +157,12 @@ fn engine(dm: &DmGraph, optimize: bool) -> Option<Local> {
         if h.get_index() < first {
             continue;
         }
+        // The edge passes through the connector's `center` (the bottom of
+        // its box, top to bottom); the engine reserved the box above it,
+        // round its `middle`, for the text.
         if let ShapeKind::Connector(Some(t)) = &vg.element(h).shape {
-            connectors.push((t.clone(), p(vg.pos(h).center())));
+            let pos = vg.pos(h);
+            connectors.push((t.clone(), p(pos.center()), p(pos.middle())));
         }
     }
     let mut routes = vec![Route::default(); dm.edges.len()];
@@ -174,7 +201,7 @@ fn engine(dm: &DmGraph, optimize: bool) -> Option<Local> {
         if routes[i].path.is_empty() {
             return None;
         }
-        let text = routes[i].label_lines.join("\n");
+        let text = engine_label(&routes[i].label_lines);
         if text.is_empty() {
             continue;
         }
@@ -182,8 +209,8 @@ fn engine(dm: &DmGraph, optimize: bool) -> Option<Local> {
         let best = connectors
             .iter()
             .enumerate()
-            .filter(|(k, (t, _))| !used[*k] && *t == text)
-            .map(|(k, (_, at))| {
+            .filter(|(k, (t, _, _))| !used[*k] && *t == text)
+            .map(|(k, (_, at, _))| {
                 let d = points
                     .iter()
                     .map(|q| q.minus(*at).len())
@@ -193,13 +220,13 @@ fn engine(dm: &DmGraph, optimize: bool) -> Option<Local> {
             .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
         let (k, _) = best?;
         used[k] = true;
-        routes[i].label_at = Some(connectors[k].1);
+        routes[i].label_at = Some(connectors[k].2);
     }
     Some(bounded(dm, nodes, routes))
 }
 
 /// Places boxes of the given sizes with `layout-rs` (edges: calls); falls
-/// back to a row when it cannot.
+/// back to a grid when it cannot.
 pub(super) fn place_boxes(boxes: &[(f64, f64)], pairs: &[(usize, usize)]) -> Vec<P> {
     if boxes.is_empty() {
         return Vec::new();

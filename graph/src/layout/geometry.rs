@@ -3,15 +3,19 @@
 //! node and edge labels and the sizes they give the shapes; SVG path data.
 //! Pure geometry: no layout engine here.
 
-use crate::{shorten, Node, NodeKind};
+use crate::{wrap, Node, NodeKind};
 use std::collections::HashMap;
 
 /// Width of one character of label text, in the monospace font the SVG uses.
 pub const CHAR_W: f64 = 7.0;
-/// Longest edge label line, in characters.
+/// Longest edge label line, in characters (longer labels wrap).
 pub const LABEL_MAX: usize = 40;
-/// Longest situation label line, in characters.
+/// Longest situation label line, in characters (longer ids wrap).
 pub const NODE_LABEL_MAX: usize = 26;
+/// Longest line in a DM's box of the overview, in characters.
+pub const DM_LABEL_MAX: usize = 20;
+/// Height of a line of node text.
+pub const LINE_H: f64 = 14.0;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct P {
@@ -68,7 +72,7 @@ pub struct Route {
     pub path: Vec<Cmd>,
     /// Centre of the label.
     pub label_at: Option<P>,
-    /// The label's lines as drawn (shortened).
+    /// The label's lines as drawn (wrapped).
     pub label_lines: Vec<String>,
 }
 
@@ -90,57 +94,84 @@ pub struct Layout {
 }
 
 /// Lines of an edge label as drawn: `α : β` on one line when short,
-/// else `α :` and `β` on two.
+/// else `α :` and `β` each wrapped to [`LABEL_MAX`] characters; a label
+/// with line breaks of its own keeps them.
 pub fn label_lines(label: &str) -> Vec<String> {
     if label.is_empty() {
         return Vec::new();
+    }
+    if label.contains('\n') {
+        return label.lines().flat_map(|l| wrap(l, LABEL_MAX)).collect();
     }
     if label.chars().count() <= LABEL_MAX {
         return vec![label.to_owned()];
     }
     if let Some(i) = label.find(" : ") {
         let (a, b) = (&label[..i + 2], &label[i + 3..]);
-        return vec![shorten(a, LABEL_MAX), shorten(b, LABEL_MAX)];
+        let mut lines = wrap(a, LABEL_MAX);
+        lines.extend(wrap(b, LABEL_MAX));
+        return lines;
     }
-    vec![shorten(label, LABEL_MAX)]
+    wrap(label, LABEL_MAX)
 }
 
-/// The lines written inside a node.
-pub fn node_lines(n: &Node) -> Vec<String> {
+/// The text inside a node: its bold lines (a situation's id, a DM's name)
+/// and its plain or italic ones (a situation's type, a DM's summary).
+pub fn node_text(n: &Node) -> (Vec<String>, Vec<String>) {
     match n.kind {
-        NodeKind::Situation => {
-            let mut v = vec![shorten(&n.label, NODE_LABEL_MAX)];
-            if let Some(t) = &n.situation_type {
-                v.push(shorten(t, NODE_LABEL_MAX));
-            }
-            v
-        }
-        NodeKind::ExternalDm | NodeKind::OutArg => vec![shorten(&n.label, LABEL_MAX)],
-        NodeKind::Disjunction => vec!["∨".to_owned()],
-        NodeKind::Computed => vec!["?".to_owned()],
-        NodeKind::Function => Vec::new(),
+        NodeKind::Situation => (
+            wrap(&n.label, NODE_LABEL_MAX),
+            n.situation_type
+                .as_deref()
+                .map_or_else(Vec::new, |t| wrap(t, NODE_LABEL_MAX)),
+        ),
+        NodeKind::ExternalDm | NodeKind::OutArg => (Vec::new(), wrap(&n.label, LABEL_MAX)),
+        NodeKind::Dm => (
+            wrap(&n.label, DM_LABEL_MAX),
+            n.detail
+                .as_deref()
+                .map_or_else(Vec::new, |t| wrap(t, DM_LABEL_MAX)),
+        ),
+        NodeKind::Disjunction => (Vec::new(), vec!["∨".to_owned()]),
+        NodeKind::Computed => (Vec::new(), vec!["?".to_owned()]),
+        NodeKind::Function => (Vec::new(), Vec::new()),
     }
+}
+
+/// The lines written inside a node ([`node_text`], bold lines first).
+pub fn node_lines(n: &Node) -> Vec<String> {
+    let (mut a, b) = node_text(n);
+    a.extend(b);
+    a
+}
+
+/// The lines of a function dot's label (beside the dot).
+pub fn function_lines(n: &Node) -> Vec<String> {
+    wrap(&n.label, LABEL_MAX)
 }
 
 /// Size of a node's shape.
 pub fn node_size(n: &Node) -> (f64, f64) {
-    let chars = node_lines(n)
-        .iter()
-        .map(|l| l.chars().count())
-        .max()
-        .unwrap_or(0) as f64;
+    let lines = node_lines(n);
+    let chars = lines.iter().map(|l| l.chars().count()).max().unwrap_or(0) as f64;
+    let text_h = lines.len() as f64 * LINE_H;
     match n.kind {
         NodeKind::Situation => {
-            let mut d = (chars * CHAR_W + 24.0).max(58.0);
+            // a circle round the text's box
+            let (w, h) = (chars * CHAR_W + 16.0, text_h + 8.0);
+            let mut d = (w * w + h * h).sqrt().max(58.0);
             if !n.returns.is_empty() {
                 d = d.max(18.0 * n.returns.len() as f64 + 40.0).max(74.0);
+                // the text sits above the return dots
+                d = d.max(2.4 * text_h + 30.0);
             }
-            (d, d)
+            (d.round(), d.round())
         }
         NodeKind::Function => (20.0, 20.0),
         NodeKind::Disjunction => (24.0, 24.0),
         NodeKind::Computed => (26.0, 26.0),
-        NodeKind::ExternalDm | NodeKind::OutArg => (chars * CHAR_W + 20.0, 30.0),
+        NodeKind::ExternalDm | NodeKind::OutArg => (chars * CHAR_W + 20.0, text_h + 16.0),
+        NodeKind::Dm => (chars * CHAR_W + 28.0, text_h + 22.0),
     }
 }
 

@@ -14,16 +14,18 @@
 //! This module is the whole-diagram step; its parts, each using only those
 //! before it: `geometry` (the layout's types, label lines and node sizes),
 //! `dm` (one DM in its own coordinates, the simple layered layout),
-//! `engine` (everything that drives `layout-rs`).
+//! `engine` (everything that drives `layout-rs`), `route` (links routed
+//! round the nodes in their way).
 
 mod dm;
 mod engine;
 mod geometry;
+mod route;
 
 pub use dm::engine_cost;
 pub use geometry::{
-    label_lines, node_lines, node_size, path_data, return_dot_offsets, Cmd, Layout, Oval, Placed,
-    Route, CHAR_W, LABEL_MAX, NODE_LABEL_MAX, P,
+    function_lines, label_lines, node_lines, node_size, node_text, path_data, return_dot_offsets,
+    Cmd, Layout, Oval, Placed, Route, CHAR_W, LABEL_MAX, LINE_H, NODE_LABEL_MAX, P,
 };
 
 use crate::{Diagram, Edge, EdgeKind};
@@ -42,21 +44,133 @@ pub const OPT_LIMIT: usize = 250;
 /// reduction past [`OPT_LIMIT`]); past it, the simple layered layout.
 pub const PLAIN_LIMIT: usize = 500;
 
+/// For each external node, the DM it belongs with: the one whose nodes
+/// all its links join (a DM called from one drawn DM, on a page of one
+/// DM); it is laid out with that DM, so its links are routed as arcs.
+fn attached(d: &Diagram) -> Vec<Option<usize>> {
+    let mut node_dm: HashMap<&str, usize> = HashMap::new();
+    for (i, dm) in d.dms.iter().enumerate() {
+        for n in &dm.nodes {
+            node_dm.insert(n.id.as_str(), i);
+        }
+    }
+    d.externals
+        .iter()
+        .map(|x| {
+            let mut dm = None;
+            for e in &d.links {
+                let other = if e.to == x.id {
+                    &e.from
+                } else if e.from == x.id {
+                    &e.to
+                } else {
+                    continue;
+                };
+                match (node_dm.get(other.as_str()), dm) {
+                    (Some(&i), None) => dm = Some(i),
+                    (Some(&i), Some(j)) if i == j => {}
+                    _ => return None,
+                }
+            }
+            dm
+        })
+        .collect()
+}
+
+/// The overview (boxes and links, no DM drawn): laid out as one graph by
+/// the engine, ranks left to right (call graphs are wide).
+fn overview(d: &Diagram) -> Layout {
+    let mut out = Layout::default();
+    let g = crate::DmGraph {
+        id: String::new(),
+        name: d.title.clone(),
+        location: String::new(),
+        nodes: d.externals.clone(),
+        edges: d.links.clone(),
+    };
+    let cost = engine_cost(&g);
+    let local = if cost > PLAIN_LIMIT {
+        out.notes.push(format!(
+            "the overview has {} DMs and {} calls: drawn with the simple layered layout",
+            g.nodes.len(),
+            g.edges.len()
+        ));
+        layered(&g)
+    } else {
+        match engine_within(&g, cost <= OPT_LIMIT, true, ENGINE_BUDGET) {
+            Ok(l) => l,
+            Err(why) => {
+                out.notes.push(format!(
+                    "the overview: {why}; drawn with the simple layered layout"
+                ));
+                layered(&g)
+            }
+        }
+    };
+    let margin = 20.0;
+    let t = P::new(margin - local.min.x, margin - local.min.y);
+    out.width = (local.max.x - local.min.x + 2.0 * margin).ceil();
+    out.height = (local.max.y - local.min.y + 2.0 * margin).ceil();
+    for (n, p) in g.nodes.iter().zip(&local.nodes) {
+        let placed = Placed {
+            center: p.center.plus(t),
+            w: p.w,
+            h: p.h,
+        };
+        out.nodes.insert(n.id.clone(), placed);
+    }
+    for (e, r) in g.edges.iter().zip(&local.routes) {
+        let mut r = r.clone();
+        for c in r.path.iter_mut() {
+            translate(c, t);
+        }
+        r.label_at = r.label_at.map(|p| p.plus(t));
+        out.routes.insert(e.id.clone(), r);
+    }
+    out
+}
+
 /// Lays out the whole diagram.
 pub fn layout(d: &Diagram) -> Layout {
+    if d.dms.is_empty() && d.externals.iter().any(|n| n.kind == crate::NodeKind::Dm) {
+        return overview(d);
+    }
     let mut out = Layout::default();
     let started = std::time::Instant::now();
     let budget = ENGINE_BUDGET;
-    // 1. Each DM on its own, in local coordinates.
+    let attached = attached(d);
+    // 1. Each DM on its own, in local coordinates, with the external
+    // nodes that belong with it and their links.
     let mut locals = Vec::new();
-    for dm in &d.dms {
+    let mut extra_links: Vec<Vec<&Edge>> = Vec::new();
+    for (di, plain) in d.dms.iter().enumerate() {
+        let mut dm = std::borrow::Cow::Borrowed(plain);
+        let mine: Vec<&crate::Node> = d
+            .externals
+            .iter()
+            .zip(&attached)
+            .filter(|(_, a)| **a == Some(di))
+            .map(|(n, _)| n)
+            .collect();
+        let links: Vec<&Edge> = d
+            .links
+            .iter()
+            .filter(|e| mine.iter().any(|n| n.id == e.to || n.id == e.from))
+            .collect();
+        if !mine.is_empty() {
+            let g = dm.to_mut();
+            g.nodes.extend(mine.iter().map(|n| (*n).clone()));
+            g.edges.extend(links.iter().map(|e| (*e).clone()));
+        }
+        extra_links.push(links);
+        let dm = &*dm;
         let cost = engine_cost(dm);
         let local = if cost > PLAIN_LIMIT {
             out.notes.push(format!(
                 "DM {} has {} nodes and {} edges: too many to lay out in a few seconds; drawn with the simple layered layout",
                 dm.name,
-                dm.nodes.len(),
-                dm.edges.len()
+                plain.nodes.len(),
+                plain.edges.len()
             ));
             layered(dm)
         } else {
@@ -67,7 +181,7 @@ pub fn layout(d: &Diagram) -> Layout {
                 ));
             }
             let left = budget.saturating_sub(started.elapsed());
-            match engine_within(dm, cost <= OPT_LIMIT, left) {
+            match engine_within(dm, cost <= OPT_LIMIT, false, left) {
                 Ok(l) => l,
                 Err(why) => {
                     out.notes.push(format!(
@@ -80,7 +194,7 @@ pub fn layout(d: &Diagram) -> Layout {
         };
         locals.push(local);
     }
-    // 2. The ovals and externals, as boxes of the call graph.
+    // 2. The ovals and the other externals, as boxes of the call graph.
     let mut boxes: Vec<(f64, f64)> = Vec::new();
     for l in &locals {
         let (w, h) = (l.max.x - l.min.x, l.max.y - l.min.y);
@@ -88,11 +202,18 @@ pub fn layout(d: &Diagram) -> Layout {
         let ry = h / 2.0 * std::f64::consts::SQRT_2 + 26.0;
         boxes.push((2.0 * rx + 30.0, 2.0 * ry + 30.0));
     }
-    for n in &d.externals {
-        let (w, h) = node_size(n);
-        boxes.push((w + 20.0, h + 20.0));
+    let mut box_of_external = Vec::new();
+    for (n, a) in d.externals.iter().zip(&attached) {
+        match a {
+            Some(di) => box_of_external.push(*di),
+            None => {
+                let (w, h) = node_size(n);
+                box_of_external.push(boxes.len());
+                boxes.push((w + 20.0, h + 20.0));
+            }
+        }
     }
-    let owner = owners(d);
+    let owner = owners(d, &box_of_external);
     let mut pairs: Vec<(usize, usize)> = Vec::new();
     for e in &d.links {
         if let (Some(&a), Some(&b)) = (owner.get(e.from.as_str()), owner.get(e.to.as_str())) {
@@ -123,6 +244,7 @@ pub fn layout(d: &Diagram) -> Layout {
     let shift = P::new(margin - minx, margin - miny);
     out.width = (maxx - minx + 2.0 * margin).ceil();
     out.height = (maxy - miny + 2.0 * margin).ceil();
+    let mut routed: Vec<&str> = Vec::new();
     for (i, (dm, l)) in d.dms.iter().zip(&locals).enumerate() {
         let c = centers[i].plus(shift);
         let local_center = l.min.plus(l.max).scale(0.5);
@@ -133,7 +255,13 @@ pub fn layout(d: &Diagram) -> Layout {
             rx: w / 2.0 * std::f64::consts::SQRT_2 + 16.0,
             ry: h / 2.0 * std::f64::consts::SQRT_2 + 26.0,
         });
-        for (n, p) in dm.nodes.iter().zip(&l.nodes) {
+        let ext_nodes = d
+            .externals
+            .iter()
+            .zip(&attached)
+            .filter(|(_, a)| **a == Some(i))
+            .map(|(n, _)| n);
+        for (n, p) in dm.nodes.iter().chain(ext_nodes).zip(&l.nodes) {
             let placed = Placed {
                 center: p.center.plus(t),
                 w: p.w,
@@ -144,7 +272,8 @@ pub fn layout(d: &Diagram) -> Layout {
         for (id, at) in &l.dots {
             out.dots.insert(id.clone(), at.plus(t));
         }
-        for (e, r) in dm.edges.iter().zip(&l.routes) {
+        let edges = dm.edges.iter().chain(extra_links[i].iter().copied());
+        for (e, r) in edges.zip(&l.routes) {
             let mut r = r.clone();
             for c in r.path.iter_mut() {
                 translate(c, t);
@@ -152,15 +281,40 @@ pub fn layout(d: &Diagram) -> Layout {
             r.label_at = r.label_at.map(|p| p.plus(t));
             out.routes.insert(e.id.clone(), r);
         }
+        routed.extend(extra_links[i].iter().map(|e| e.id.as_str()));
     }
     for (k, n) in d.externals.iter().enumerate() {
-        let c = centers[d.dms.len() + k].plus(shift);
+        if attached[k].is_some() {
+            continue;
+        }
+        let c = centers[box_of_external[k]].plus(shift);
         let (w, h) = node_size(n);
         out.nodes.insert(n.id.clone(), Placed { center: c, w, h });
     }
-    // 4. Links between DMs: curves between the placed nodes.
+    // 4. Links between DMs: curves between the placed nodes, routed round
+    // the nodes in their way.
+    let mut ids: Vec<&String> = out.nodes.keys().collect();
+    ids.sort();
+    let placed: Vec<(&str, route::Obstacle)> = ids
+        .into_iter()
+        .map(|id| (id.as_str(), route::Obstacle::of(&out.nodes[id])))
+        .collect();
     for e in &d.links {
-        if let Some(r) = link_route(&out, d, e) {
+        if routed.contains(&e.id.as_str()) {
+            continue;
+        }
+        if let Some(mut r) = link_route(&out, d, e) {
+            let others: Vec<route::Obstacle> = placed
+                .iter()
+                .filter(|(id, _)| *id != e.from && *id != e.to)
+                .map(|(_, o)| *o)
+                .collect();
+            if let Some((path, mid)) = route::around(&r.path, &others) {
+                r.path = path;
+                if r.label_at.is_some() {
+                    r.label_at = Some(mid);
+                }
+            }
             out.routes.insert(e.id.clone(), r);
         }
     }
@@ -182,8 +336,9 @@ fn translate(c: &mut Cmd, t: P) {
     }
 }
 
-/// Node id → index of its box (DMs, then externals).
-fn owners(d: &Diagram) -> HashMap<&str, usize> {
+/// Node id → index of its box (DMs, then the externals not laid out
+/// with a DM: `box_of_external`).
+fn owners<'d>(d: &'d Diagram, box_of_external: &[usize]) -> HashMap<&'d str, usize> {
     let mut m = HashMap::new();
     for (i, dm) in d.dms.iter().enumerate() {
         m.insert(dm.id.as_str(), i);
@@ -192,7 +347,7 @@ fn owners(d: &Diagram) -> HashMap<&str, usize> {
         }
     }
     for (k, n) in d.externals.iter().enumerate() {
-        m.insert(n.id.as_str(), d.dms.len() + k);
+        m.insert(n.id.as_str(), box_of_external[k]);
     }
     m
 }

@@ -1,6 +1,7 @@
 //! What an observer (`--trace`, the debugger) is told of a run: each
-//! transition ([`Observer`]) and, between two, the machine itself
-//! ([`Inspection`]: read-mostly, with an evaluator that undoes itself).
+//! transition and each input that met no expectation ([`Observer`]) and,
+//! between two transitions, the machine itself ([`Inspection`]:
+//! read-mostly, with an evaluator that undoes itself).
 
 use super::outcome::RunError;
 use super::situation::Instance;
@@ -22,6 +23,15 @@ pub trait Observer {
     /// Does nothing unless overridden.
     fn inspect(&mut self, machine: &mut Inspection<'_>) {
         let _ = machine;
+    }
+
+    /// An input that met no expectation of `situation` (D-15): nothing
+    /// enters the history, and the situation is entered again (after its
+    /// recovery DM, if there is one). Called once the machine knows it met
+    /// nothing, before the transition or step that follows. Does nothing
+    /// unless overridden.
+    fn unmatched(&mut self, store: &Store, dm: Term, situation: Term, input: Term, depth: usize) {
+        let _ = (store, dm, situation, input, depth);
     }
 }
 
@@ -97,6 +107,20 @@ impl Inspection<'_> {
 }
 
 impl<'p, P> Machine<'p, P> {
+    /// Tells `observer` of the inputs that met no expectation since it was
+    /// last told ([`Observer::unmatched`]), and forgets them.
+    pub(super) fn report_unmatched(&mut self, observer: &mut Option<&mut dyn Observer>) {
+        if self.unmatched.is_empty() {
+            return;
+        }
+        let inputs = std::mem::take(&mut self.unmatched);
+        if let Some(o) = observer.as_deref_mut() {
+            for &(dm, situation, input, depth) in &inputs {
+                o.unmatched(&self.store, dm, situation, input, depth);
+            }
+        }
+    }
+
     /// Lets `observer` inspect the machine ([`Observer::inspect`]).
     pub(super) fn inspect(
         &mut self,

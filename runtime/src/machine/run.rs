@@ -47,6 +47,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             &mut observer,
             &mut final_situation,
         );
+        self.report_unmatched(&mut observer);
         if let (Err(e), Some(o)) = (&result, &mut observer) {
             self.inspect(pipe, Some(e), &mut **o);
         }
@@ -255,10 +256,12 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 }
                 Step::Unmet { .. } if std::mem::take(&mut self.again) => {
                     // Asked to perceive again: a new instance, no recovery.
+                    self.report_unmatched(observer);
                     return Ok(Some(Goto::Situation(id)));
                 }
                 Step::Unmet { type_term } => {
                     // No expectation met (D-15 / D-42a): recovery DM, then a new instance.
+                    self.report_unmatched(observer);
                     let ty = self
                         .store
                         .atom_of(type_term)

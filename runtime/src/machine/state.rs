@@ -72,6 +72,10 @@ pub struct Machine<'p, P> {
     /// The perception answered [`Perceived::Again`](super::Perceived::Again): the situation is
     /// entered again without its recovery DM.
     pub(super) again: bool,
+    /// Inputs read that met no expectation (D-15), not yet told to the
+    /// observer: DM call, situation id, input, depth. Empty between two
+    /// situations (so never a garbage-collection root).
+    pub(super) unmatched: Vec<(Term, Term, Term, usize)>,
 }
 
 impl<'p, P> Machine<'p, P> {
@@ -98,6 +102,7 @@ impl<'p, P> Machine<'p, P> {
             cells_after_gc: 0,
             arc_functor: Atom::intern("$arc"),
             again: false,
+            unmatched: Vec::new(),
         }
     }
 

@@ -238,6 +238,10 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 }
                 self.store.undo_to(mark);
             }
+            if let (Some((_, id)), Some(frame)) = (here, self.frames.last()) {
+                let depth = self.frames.len() - 1;
+                self.unmatched.push((frame.dm_id, id, input, depth));
+            }
             if attempt == 0 && !second_read_allowed {
                 break;
             }
@@ -381,6 +385,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         pipe: Term,
         observer: &mut Option<&mut dyn Observer>,
     ) {
+        self.report_unmatched(observer);
         self.transitions += 1;
         let frame = self.frames.last_mut().expect("frame");
         let entry = Entry {

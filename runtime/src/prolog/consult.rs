@@ -36,7 +36,7 @@ impl PrologSource {
     /// the file, line and column of the first bad byte.
     pub fn from_path(path: &Path) -> std::io::Result<PrologSource> {
         let name = path.display().to_string();
-        let bytes = std::fs::read(path)?;
+        let bytes = sitlog_syntax::read_file(path)?;
         let text = sitlog_syntax::decode(&bytes)
             .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.in_file(&name)))?
             .to_owned();
@@ -261,7 +261,10 @@ fn consulted_files(store: &Store, goal: Term) -> Option<Vec<String>> {
 }
 
 /// The source among `embedded` that `name`, consulted from `from`, names:
-/// relative to the directory of `from`'s name, with or without `.pl`.
+/// relative to the directory of `from`'s name, with or without `.pl`; else
+/// one whose name ends with `name` (a library file the compiler's loader
+/// found elsewhere, `library:/behaviors/language.pl` for
+/// `'behaviors/language.pl'`).
 fn embedded_source<'a>(
     name: &str,
     from: &PrologSource,
@@ -270,13 +273,22 @@ fn embedded_source<'a>(
     if name.starts_with('$') || Path::new(name).is_absolute() {
         return None;
     }
-    let base = Path::new(&from.name).parent()?.join(name);
-    let mut with_ext = base.clone().into_os_string();
-    with_ext.push(".pl");
-    let wanted = [normalize(&base), normalize(Path::new(&with_ext))];
+    let with_pl = format!("{name}.pl");
+    let base = Path::new(&from.name).parent()?;
+    let wanted = [normalize(&base.join(name)), normalize(&base.join(&with_pl))];
+    let names = [normalize(Path::new(name)), normalize(Path::new(&with_pl))];
+    let is_library_name = names[0]
+        .components()
+        .all(|c| matches!(c, std::path::Component::Normal(_)));
     embedded
         .iter()
         .find(|s| wanted.contains(&normalize(Path::new(&s.name))))
+        .or_else(|| {
+            embedded.iter().find(|s| {
+                let path = normalize(Path::new(&s.name));
+                is_library_name && names.iter().any(|n| path.ends_with(n))
+            })
+        })
 }
 
 /// Resolves a consulted file name: `$SITLOG_HOME/..` as described in the

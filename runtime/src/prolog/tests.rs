@@ -250,3 +250,17 @@ fn load_errors_have_positions() {
     );
     assert!(errs.iter().any(|e| e.line == 3), "{errs:?}");
 }
+
+/// A library file the compiler's loader found elsewhere (issue 30) is
+/// consulted by its library name: the source whose name ends with it.
+#[test]
+fn a_consulted_library_name_is_taken_from_the_sources_given() {
+    let library = PrologSource::new("library:/behaviors/lang.pl", "word(hello).\n");
+    let app = PrologSource::new(
+        "apps/mine/user_functions.pl",
+        ":- consult('behaviors/lang.pl').\ngreet :- word(_).\n",
+    );
+    assert!(PrologFunctions::load(&[library, app.clone()], PrologOptions::default()).is_ok());
+    let errs = PrologFunctions::load(&[app], PrologOptions::default()).unwrap_err();
+    assert!(errs[0].message.contains("behaviors/lang.pl"), "{errs:?}");
+}

@@ -71,7 +71,7 @@ impl World {
     /// byte.
     pub fn load(path: &std::path::Path) -> Result<World, Vec<WorldError>> {
         let file = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| {
+        let bytes = read_capped(path).map_err(|e| {
             vec![WorldError {
                 file: file.clone(),
                 line: 0,
@@ -95,6 +95,26 @@ impl World {
             }]
         })
     }
+}
+
+/// The largest world file [`World::load`] reads (256 MiB, the default of
+/// `sitlogc --max-file-bytes`, which reads worlds itself).
+pub const MAX_WORLD_BYTES: u64 = 256 * 1024 * 1024;
+
+/// The bytes of `path`, at most [`MAX_WORLD_BYTES`].
+fn read_capped(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(MAX_WORLD_BYTES + 1)
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_WORLD_BYTES {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("larger than the limit of {MAX_WORLD_BYTES} bytes"),
+        ));
+    }
+    Ok(bytes)
 }
 
 #[cfg(test)]

@@ -1,0 +1,188 @@
+//! Every diagnostic code of the compiler with its one-line meaning, in
+//! order: the list the guide's code tables are made from
+//! (`tests/tests/repository/guide_codes.rs` checks `docs/guide/checking.md`
+//! and `docs/guide/diagnostics.md` against it). Invariant: each code
+//! constant of [`crate::load::codes`], [`crate::ast::codes`] and
+//! [`crate::check::codes`] is here once (a unit test reads their sources).
+
+use crate::ast::codes as shape;
+use crate::check::codes as check;
+use crate::load::codes as load;
+
+/// (code, what it reports), in the order of the codes.
+pub const DIAGNOSTICS: &[(&str, &str)] = &[
+    (
+        load::SYNTAX,
+        "syntax error (with the unclosed bracket, if any)",
+    ),
+    (load::NOT_UTF8, "file is not UTF-8"),
+    (
+        load::MODELS_ENTRY,
+        "a `models` entry is not a quoted file name",
+    ),
+    (
+        load::MISSING_FILE,
+        "a file listed in `models` cannot be read (in the application's directory, or in the library for a library name)",
+    ),
+    (
+        shape::NOT_A_DM,
+        "a clause of a DM file that is not a DM (ignored)",
+    ),
+    (shape::MALFORMED_DM, "malformed DM identifier"),
+    (shape::MALFORMED_SITUATION, "malformed situation"),
+    (shape::MALFORMED_ARC, "malformed arc"),
+    (shape::MALFORMED_VAR, "malformed local variable"),
+    (shape::MALFORMED_SIDE_FILE, "malformed side-file clause"),
+    (
+        shape::DUPLICATE_ATTRIBUTE,
+        "attribute given twice in a situation (the first is used)",
+    ),
+    (check::DUPLICATE_DM, "DM defined twice"),
+    (
+        check::SAME_NAME_OTHER_ARITY,
+        "two DMs with the same name and other arities",
+    ),
+    (
+        check::DUPLICATE_DM_IDENTICAL,
+        "DM defined twice identically (only with `--legacy`, where the first is used, as the original does; otherwise E0201)",
+    ),
+    (check::MISSING_ID, "situation without `id`"),
+    (check::MISSING_TYPE, "situation without `type`"),
+    (
+        check::MISSING_ARCS,
+        "situation that is not final without `arcs`",
+    ),
+    (check::FINAL_WITH_ARCS, "final situation with arcs"),
+    (
+        check::MISSING_EMBEDDED_DM,
+        "recursive situation without `embedded_dm`",
+    ),
+    (check::UNKNOWN_ATTRIBUTE, "unknown situation attribute"),
+    (
+        check::NEUTRAL_SHAPE,
+        "`neutral` situation not of the form `[empty : A => N]`",
+    ),
+    (check::NO_FINAL, "DM without a final situation"),
+    (
+        check::UNKNOWN_NEXT,
+        "next situation that names no situation of the DM",
+    ),
+    (check::UNREACHABLE, "unreachable situation"),
+    (check::FINAL_UNREACHED, "final situation never reached"),
+    (
+        check::SHADOWED,
+        "situation shadowed by an earlier one with the same id",
+    ),
+    (check::UNKNOWN_DM, "`embedded_dm` names no DM"),
+    (
+        check::DM_ARITY,
+        "DM called with the wrong number of arguments",
+    ),
+    (
+        check::UNKNOWN_EXIT,
+        "exit arc that is not a final situation of the embedded DM",
+    ),
+    (
+        check::UNKNOWN_VARIABLE,
+        "`get`/`set`/`inc` of a variable neither local nor global",
+    ),
+    (check::SINGLETON, "singleton variable (as Prolog warns)"),
+    (check::DUPLICATE_GLOBAL, "global variable declared twice"),
+    (check::DUPLICATE_LOCAL, "local variable declared twice"),
+    (
+        check::UNKNOWN_RECOVERY_DM,
+        "a recovery protocol (`recovery_protocols.pl`) names no DM of the application",
+    ),
+    (
+        check::UNKNOWN_FUNCTION,
+        "`apply` of a function the run will not have",
+    ),
+    (
+        check::UNKNOWN_ACTION,
+        "action not declared in `basic_actions.pl`",
+    ),
+    (
+        check::KB_SERVICE_WITHOUT_KB,
+        "KB service called in an application without a KB",
+    ),
+    (
+        check::WORLD_FUNCTION_WITHOUT_WORLD,
+        "function of the simulated robot called in an application without a world",
+    ),
+    (
+        check::UNBOUND_VARIABLE,
+        "a variable used in an action or next situation that nothing binds before (names the places looked at)",
+    ),
+    (
+        check::ACTION_ARITY,
+        "an action given another number of arguments than its `arity` list in `basic_actions.pl`",
+    ),
+    (
+        check::UNKNOWN_SITUATION_TYPE,
+        "a situation `type` that is no known type but close to one (`fianl`: *did you mean `final`?*)",
+    ),
+    (
+        check::OS_ACCESS,
+        "a directive or clause of the application's Prolog files reaches the operating system (shell, processes, sockets, native code, `open/3,4` for writing, loading code at run time or from an absolute or `$SITLOG_HOME` path): a run refuses it unless given `--allow-os` (the trust model, [reliability](reliability.md#trust-model))",
+    ),
+];
+
+/// The meaning of `code`, if it is one.
+pub fn meaning(code: &str) -> Option<&'static str> {
+    DIAGNOSTICS
+        .iter()
+        .find(|(c, _)| *c == code)
+        .map(|(_, m)| *m)
+}
+
+/// The guide's table of codes (`docs/guide/checking.md`): one row per code.
+pub fn markdown_table() -> String {
+    let mut out = String::from("| code | meaning |\n|---|---|\n");
+    for (code, meaning) in DIAGNOSTICS {
+        out.push_str(&format!("| {code} | {meaning} |\n"));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The codes defined as `pub const NAME: &str = "E0123";` in `source`.
+    fn defined(source: &str) -> Vec<String> {
+        source
+            .lines()
+            .filter_map(|l| {
+                let l = l.trim();
+                let rest = l.strip_prefix("pub const ")?;
+                let (_, value) = rest.split_once(": &str = \"")?;
+                let code = value.strip_suffix("\";")?;
+                let c = code.as_bytes();
+                (c.len() == 5 && (c[0] == b'E' || c[0] == b'W')).then(|| code.to_owned())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn every_code_is_listed_once_in_order() {
+        let mut defined: Vec<String> = [
+            include_str!("load.rs"),
+            include_str!("ast.rs"),
+            include_str!("check/mod.rs"),
+        ]
+        .iter()
+        .flat_map(|s| defined(s))
+        .collect();
+        defined.sort_by(|a, b| a[1..].cmp(&b[1..]));
+        let listed: Vec<String> = DIAGNOSTICS.iter().map(|(c, _)| c.to_string()).collect();
+        assert_eq!(
+            listed, defined,
+            "compiler/src/codes.rs must list every code constant once, in order"
+        );
+        assert!(DIAGNOSTICS.iter().all(|(_, m)| !m.is_empty()));
+        assert_eq!(
+            meaning("E0212"),
+            Some("next situation that names no situation of the DM")
+        );
+    }
+}
