@@ -540,8 +540,15 @@ impl DmProgram for Watched {
             let texts = prolog_texts(&new);
             if texts != s.prolog {
                 s.prolog = texts;
-                match sitlog_compiler::run::install_prolog(&new, at.functions, Default::default()) {
-                    Ok(_) => {}
+                // The run has started: the new engine's directives run now.
+                let installed =
+                    sitlog_compiler::run::install_prolog(&new, at.functions, Default::default())
+                        .and_then(|engine| match engine {
+                            Some(engine) => engine.start(at.functions.trust()),
+                            None => Ok(()),
+                        });
+                match installed {
+                    Ok(()) => {}
                     Err(errors) => {
                         let text: Vec<String> = errors.iter().map(|e| e.to_string()).collect();
                         return Err(format!(

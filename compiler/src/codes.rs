@@ -129,6 +129,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         check::UNKNOWN_SITUATION_TYPE,
         "a situation `type` that is no known type but close to one (`fianl`: *did you mean `final`?*)",
     ),
+    (
+        check::OS_ACCESS,
+        "a directive or clause of the application's Prolog files reaches the operating system (shell, processes, sockets, native code, `open/3,4` for writing, loading code at run time or from an absolute or `$SITLOG_HOME` path): a run refuses it unless given `--allow-os` (the trust model, [reliability](reliability.md#trust-model))",
+    ),
 ];
 
 /// The meaning of `code`, if it is one.

@@ -4,13 +4,14 @@
 //! [`task_command`], [`parse_task_args`]). The option set and the output
 //! contract are the notes' "Our convention for `sitlogc run` output", plus
 //! the robot's options: `--world`, `--no-world`, `--seed`, `--robot`, `--kb`,
-//! `--kb-persist`, `--quiet`. What a run does with them is
+//! `--kb-persist`, `--quiet`, and the trust model's `--allow-os`. What a run does with them is
 //! [`crate::Runner`]'s.
 
 use crate::assets::Assets;
 use clap::{Args, CommandFactory, FromArgMatches, Parser, ValueEnum};
 use sitlog_runtime::functions::CallLimits;
 use sitlog_runtime::testmode::InputLimits;
+use sitlog_runtime::trust::Trust;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -107,6 +108,12 @@ pub struct RunArgs {
     /// Memory the process may grow by during one Prolog user function call, in MiB.
     #[arg(long, value_name = "MIB", default_value_t = CallLimits::HEAP_BYTES >> 20)]
     pub prolog_heap_limit: u64,
+    /// Let the application's Prolog code reach the operating system: run
+    /// shell commands and processes, open sockets, write files outside the
+    /// application and its KB, consult files outside the application.
+    /// Without it these are refused with an error naming this option.
+    #[arg(long)]
+    pub allow_os: bool,
     /// Follow the run in a web page: the program's diagram (as `sitlogc
     /// graph` draws it) with the current situation, the arcs taken, the DM
     /// stack and the last transitions. Served on 127.0.0.1 only; the task
@@ -197,6 +204,27 @@ impl RunArgs {
         }
     }
 
+    /// What the application's code may reach of the operating system
+    /// (`--allow-os`; without it, writes stay inside the application and
+    /// the directory of `kb`, the run's KB file).
+    pub fn trust(&self, kb: Option<&Path>) -> Trust {
+        let roots = kb
+            .and_then(|k| k.parent())
+            .map(|d| {
+                if d.as_os_str().is_empty() {
+                    Path::new(".")
+                } else {
+                    d
+                }
+            })
+            .map(|d| vec![d.to_path_buf()])
+            .unwrap_or_default();
+        Trust {
+            allow_os: self.allow_os,
+            roots,
+        }
+    }
+
     /// The limits of one Prolog user function call.
     pub fn call_limits(&self) -> CallLimits {
         CallLimits {
@@ -228,6 +256,7 @@ impl Default for RunArgs {
             prolog_inferences: CallLimits::INFERENCES,
             prolog_time_limit: CallLimits::TIME,
             prolog_heap_limit: CallLimits::HEAP_BYTES >> 20,
+            allow_os: false,
             view: false,
             view_port: 0,
             view_delay: 0,

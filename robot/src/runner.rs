@@ -37,6 +37,7 @@ use sitlog_runtime::report;
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
 use sitlog_runtime::Functions;
 use std::io::Write;
+use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
 /// Wraps the perception a run makes (the simulated user's, the script's or
@@ -348,6 +349,13 @@ impl Runner {
             ..Options::default()
         };
         functions.set_call_limits(args.call_limits());
+        // What the application's code may reach (Prolog directives run at
+        // the first transition, with this).
+        let kb_file = args
+            .kb
+            .clone()
+            .or_else(|| assets.kb.as_ref().map(|k| PathBuf::from(&k.name)));
+        functions.set_trust(args.trust(kb_file.as_deref()));
 
         // every file is open: from here a signal stops the task between
         // transitions

@@ -6,6 +6,7 @@
 use crate::history::{self, Item};
 use crate::store::Store;
 use crate::term::Term;
+use crate::trust::Trust;
 use crate::vars::Vars;
 use sitlog_syntax::{atoms, Atom};
 use std::collections::HashMap;
@@ -38,6 +39,11 @@ pub type UserFn = dyn Fn(&mut FnCall<'_>, &[Term]) -> Result<Term, String> + Sen
 /// `None` means "not mine".
 pub type FallbackFn =
     dyn Fn(&mut FnCall<'_>, Atom, &[Term]) -> Option<Result<Term, String>> + Send + Sync;
+
+/// Run once when a run starts (its first transition), with the run's
+/// [`Trust`]: an engine's own code (Prolog directives) runs here, never
+/// while a program or its options are being checked.
+pub type StartFn = dyn Fn(&Trust) -> Result<(), String> + Send + Sync;
 
 /// Bounds on one call of a user function that runs outside Rust (Prolog):
 /// set by a run's options (`--prolog-inferences`, `--prolog-time-limit`,
@@ -74,6 +80,8 @@ pub struct Functions {
     map: HashMap<(Atom, usize), Arc<UserFn>>,
     fallback: Option<Arc<FallbackFn>>,
     limits: Option<CallLimits>,
+    start: Option<Arc<StartFn>>,
+    trust: Trust,
 }
 
 impl std::fmt::Debug for Functions {
@@ -127,6 +135,32 @@ impl Functions {
     /// The bounds set by [`Functions::set_call_limits`].
     pub fn call_limits(&self) -> Option<CallLimits> {
         self.limits
+    }
+
+    /// Sets what runs when a run starts (see [`StartFn`]), replacing an
+    /// earlier one.
+    pub fn set_start(&mut self, f: impl Fn(&Trust) -> Result<(), String> + Send + Sync + 'static) {
+        self.start = Some(Arc::new(f));
+    }
+
+    /// Runs the start hook set by [`Functions::set_start`] with
+    /// [`Functions::trust`]; the machine calls it at a run's first transition.
+    pub fn start(&self) -> Result<(), String> {
+        match &self.start {
+            Some(f) => f(&self.trust),
+            None => Ok(()),
+        }
+    }
+
+    /// Sets what code run outside Rust may reach (a run's `--allow-os`).
+    pub fn set_trust(&mut self, trust: Trust) {
+        self.trust = trust;
+    }
+
+    /// What code run outside Rust may reach (nothing of the operating
+    /// system unless set).
+    pub fn trust(&self) -> &Trust {
+        &self.trust
     }
 
     /// Removes `name/arity`; `true` if it was registered.

@@ -24,7 +24,7 @@
 //! | 3 | `arith`, `copy`, [`functions`] |
 //! | 2 | `unify`, `gc`, `convert`, [`vars`], [`history`], [`builtins`] |
 //! | 1 | `store` |
-//! | 0 | `term`, `eval_error`, `input` (limits on terms from outside), [`paths`] |
+//! | 0 | `term`, `eval_error`, `input` (limits on terms from outside), [`paths`], [`trust`] |
 //!
 //! The term layer:
 //! - [`Term`]: a `Copy` handle; atoms, integers, floats and variables need
@@ -59,6 +59,7 @@ pub mod stderr;
 mod store;
 mod term;
 pub mod testmode;
+pub mod trust;
 mod unify;
 pub mod vars;
 
@@ -77,7 +78,8 @@ mod tests;
 
 /// Installs an application's Prolog user functions (`templates.pl` then
 /// `user_functions.pl`, as `(name, text)` in load order) as the fallback of
-/// `functions`; generated tasks call this with the sources they embed.
+/// `functions`, their directives left for the run's start; generated tasks
+/// call this with the sources they embed.
 /// Without sources nothing happens; with sources but without the `prolog`
 /// feature it is an error that says so.
 pub fn install_prolog_sources(
@@ -93,8 +95,10 @@ pub fn install_prolog_sources(
             .iter()
             .map(|(name, text)| prolog::PrologSource::new(*name, *text))
             .collect();
-        let engine =
-            prolog::PrologFunctions::load(&sources, Default::default()).map_err(|errors| {
+        // Loading runs no application code: the directives run when the
+        // task starts (the trust model, see `prolog`).
+        let engine = prolog::PrologFunctions::load_with(&sources, Default::default(), 0, None)
+            .map_err(|errors| {
                 errors
                     .iter()
                     .map(|e| e.to_string())

@@ -14,6 +14,7 @@ use sitlog_syntax::{atoms, Atom, Node, Span, TermId, Terms};
 use std::collections::{HashMap, HashSet};
 
 mod calls;
+mod os_access;
 mod situations;
 mod terms;
 mod unbound;
@@ -54,6 +55,7 @@ pub mod codes {
     pub const UNBOUND_VARIABLE: &str = "E0228";
     pub const ACTION_ARITY: &str = "E0229";
     pub const UNKNOWN_SITUATION_TYPE: &str = "E0230";
+    pub const OS_ACCESS: &str = "W0240";
 }
 
 /// A program the checker accepted (no errors; warnings allowed).
@@ -255,6 +257,7 @@ impl<'p> Checker<'p> {
         if !broken.prolog {
             self.functions();
         }
+        self.os_access();
         if !broken.basic_actions && !program.basic_actions.is_empty() {
             self.actions();
         }

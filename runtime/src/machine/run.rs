@@ -131,12 +131,22 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         self.call_dm(main, None)?;
         let mut goto = Goto::Initial;
         let program = self.program;
+        let mut started = false;
         loop {
             if self.stop_requested() {
                 return Err(self.err("interrupted (the run was stopped by a signal)", None, None));
             }
             self.maybe_gc(pipe, &mut goto);
             self.between(&mut goto)?;
+            // The functions' own start (Prolog directives) at the first
+            // transition: after the run's options were checked and after the
+            // hooks between transitions (a debugger, a live view) had their say.
+            if !started {
+                started = true;
+                if let Err(message) = self.functions.start() {
+                    return Err(self.err(message, None, None));
+                }
+            }
             let (sit, inst) = self.select(&goto)?;
             let dm = self.frames.last().expect("a frame is running").dm;
             let inst = match inst {

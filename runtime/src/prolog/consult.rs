@@ -91,6 +91,10 @@ pub(super) struct Prep<'a> {
     pub(super) defined: &'a mut HashSet<(Atom, usize)>,
     pub(super) errors: &'a mut Vec<PrologLoadError>,
     pub(super) seen: &'a mut HashSet<PathBuf>,
+    /// `consult/1` directives naming, by an absolute or `$SITLOG_HOME`
+    /// path, a file outside the directories of `embedded` (refused at start
+    /// without `--allow-os`; relative names are the application's own).
+    pub(super) outside: &'a mut Vec<PrologLoadError>,
     /// Every source given: a file they consult is taken from them first
     /// (a compiled task embeds what its sources consult).
     pub(super) embedded: &'a [PrologSource],
@@ -181,6 +185,22 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
                         continue;
                     }
                     match resolve(&f, source.dir.as_deref()) {
+                        // A relative name is part of the application (the
+                        // checker reads it, a compiled task embeds it).
+                        Some(path)
+                            if (f.starts_with('$') || Path::new(&f).is_absolute())
+                                && !inside_sources(&path, cx.embedded) =>
+                        {
+                            cx.outside.push(err(format!(
+                                "consulting `{}` (outside the application) is refused: the operating system is off for application code unless the run is given {}",
+                                path.display(),
+                                crate::trust::ALLOW_OS
+                            )));
+                            match PrologSource::from_path(&path) {
+                                Ok(s) => prepare(&s, cx, depth + 1),
+                                Err(e) => cx.errors.push(err(format!("cannot consult `{f}`: {e}"))),
+                            }
+                        }
                         Some(path) => match PrologSource::from_path(&path) {
                             Ok(s) => prepare(&s, cx, depth + 1),
                             Err(e) => cx.errors.push(err(format!("cannot consult `{f}`: {e}"))),
@@ -237,7 +257,16 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
             r.clause(key, &source.name, cx.out.len());
         }
         let mut w = Writer::new(&store, true);
-        w.term(t);
+        match store.compound_args(t, neck(), 2) {
+            Some(a) => {
+                w.out.push_str("':-'(");
+                w.head(a[0]);
+                w.out.push(',');
+                w.term(a[1]);
+                w.out.push(')');
+            }
+            None => w.head(t),
+        }
         cx.out.push(Prepared {
             text: w.out,
             directive: false,
@@ -246,6 +275,13 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
             col,
         });
     }
+}
+
+/// Whether `path` lies inside the directory of one of `sources` (the
+/// application's own Prolog files).
+fn inside_sources(path: &Path, sources: &[PrologSource]) -> bool {
+    let roots: Vec<PathBuf> = sources.iter().filter_map(|s| s.dir.clone()).collect();
+    crate::trust::Trust::inside(path, &roots)
 }
 
 /// The files of a `consult/1`, `ensure_loaded/1` or `[F, ..]` directive.

@@ -2,14 +2,20 @@
 //! scryer-prolog machine on a thread of its own (the engine is not `Send`)
 //! and calls user functions as queries sent to it, watched for their time
 //! and memory limits ([`PrologOptions`]) from the calling thread.
+//! Invariant (the trust model): loading only stores clauses; the
+//! application's directives run at [`PrologFunctions::start`] (a run's
+//! first transition, or the first call), after the run's permissions are
+//! set in the engine.
 
 use super::consult::{prepare, Prep, PrologLoadError, PrologSource, Redefinitions};
 use super::legacy_kb::{KbHost, NativeKb, NativeState};
+use super::permissions;
 use super::swi::{LIBRARIES, PRELUDE, PRELUDE_SWI, SWI_PREDICATES};
 use super::translate::{from_prolog, read_reply, write_atom, Prepared, Writer};
 use crate::functions::{CallLimits, FnCall, Functions};
 use crate::store::Store;
 use crate::term::Term;
+use crate::trust::Trust;
 use scryer_prolog::{
     InputStreamConfig, LeafAnswer, Machine, MachineBuilder, OutputStreamConfig, StreamConfig,
     Term as PTerm,
@@ -18,6 +24,7 @@ use sitlog_syntax::Atom;
 use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
 use std::io::Write as _;
+use std::path::PathBuf;
 use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
 
@@ -72,8 +79,14 @@ fn resident_bytes() -> Option<u64> {
 
 /// What the engine thread is asked to do.
 enum Request {
+    /// Run the application's directives, code reaching the operating
+    /// system allowed or not.
+    Start(bool, mpsc::Sender<Vec<PrologLoadError>>),
     Query(String, mpsc::Sender<Result<Option<PTerm>, String>>),
 }
+
+/// Directories the guards let code write into and load from (set at start).
+type Roots = Arc<Mutex<Vec<PathBuf>>>;
 
 /// The application's Prolog user functions, running in an embedded engine.
 /// Cheap to clone (a handle to the engine thread).
@@ -89,6 +102,13 @@ struct Inner {
     /// Predicates defined by the application's clauses.
     defined: HashSet<(Atom, usize)>,
     options: PrologOptions,
+    /// The outcome of [`PrologFunctions::start`], once it ran.
+    started: Mutex<Option<Result<(), Vec<PrologLoadError>>>>,
+    /// `consult/1` directives naming a file outside the application.
+    outside: Vec<PrologLoadError>,
+    /// Directories of the application's Prolog files.
+    source_dirs: Vec<PathBuf>,
+    roots: Roots,
 }
 
 impl std::fmt::Debug for PrologFunctions {
@@ -101,30 +121,58 @@ impl std::fmt::Debug for PrologFunctions {
 
 impl PrologFunctions {
     /// Reads `sources` (in order: templates.pl, then user_functions.pl),
-    /// starts the engine and loads the prelude and the clauses. Every
-    /// problem is reported, with its position.
+    /// starts the engine, loads the prelude and the clauses and runs the
+    /// directives ([`load_with`](Self::load_with) then
+    /// [`start`](Self::start) with nothing of the operating system
+    /// allowed). Every problem is reported, with its position.
     pub fn load(
         sources: &[PrologSource],
         options: PrologOptions,
     ) -> Result<PrologFunctions, Vec<PrologLoadError>> {
-        Self::load_with(sources, options, 0, None)
+        let (engine, mut errors) = Self::spawn(sources, options, 0, None)?;
+        if let Err(e) = engine.start(&Trust::default()) {
+            errors.extend(e);
+        }
+        if errors.is_empty() {
+            Ok(engine)
+        } else {
+            errors.sort_by(|a, b| (&a.file, a.line, a.col).cmp(&(&b.file, b.line, b.col)));
+            Err(errors)
+        }
     }
 
-    /// [`load`](Self::load), the first `layer` sources being the legacy
-    /// profile's Prolog layer of the original, its KB layer served by
-    /// `native` if given (see [`NativeKb`]). With a layer, a file that
-    /// defines a predicate again replaces what an earlier file defined, as
-    /// SWI-Prolog's `consult/1` does (the original's apps rely on it).
+    /// Reads `sources`, starts the engine and stores the clauses, the
+    /// first `layer` sources being the legacy profile's Prolog layer of the
+    /// original, its KB layer served by `native` if given (see
+    /// [`NativeKb`]). With a layer, a file that defines a predicate again
+    /// replaces what an earlier file defined, as SWI-Prolog's `consult/1`
+    /// does (the original's apps rely on it). No application code runs:
+    /// the directives wait for [`start`](Self::start).
     pub fn load_with(
         sources: &[PrologSource],
         options: PrologOptions,
         layer: usize,
         native: Option<NativeKb>,
     ) -> Result<PrologFunctions, Vec<PrologLoadError>> {
+        match Self::spawn(sources, options, layer, native)? {
+            (engine, errors) if errors.is_empty() => Ok(engine),
+            (_, errors) => Err(errors),
+        }
+    }
+
+    /// [`load_with`](Self::load_with), the clauses the engine refused
+    /// given beside the engine.
+    fn spawn(
+        sources: &[PrologSource],
+        options: PrologOptions,
+        layer: usize,
+        native: Option<NativeKb>,
+    ) -> Result<(PrologFunctions, Vec<PrologLoadError>), Vec<PrologLoadError>> {
         let mut prepared = Vec::new();
         let mut errors = Vec::new();
         let mut defined = HashSet::new();
         let mut seen_files = HashSet::new();
+        let mut outside = Vec::new();
         let mut native_state = native.as_ref().map(NativeState::new);
         let mut redefinitions = (layer > 0).then(Redefinitions::default);
         for (i, s) in sources.iter().enumerate() {
@@ -133,6 +181,7 @@ impl PrologFunctions {
                 defined: &mut defined,
                 errors: &mut errors,
                 seen: &mut seen_files,
+                outside: &mut outside,
                 embedded: sources,
                 native: if i < layer {
                     native_state.as_mut()
@@ -153,12 +202,15 @@ impl PrologFunctions {
             return Err(errors);
         }
         let host = native.map(|n| n.host);
+        let source_dirs: Vec<PathBuf> = sources.iter().filter_map(|s| s.dir.clone()).collect();
+        let roots: Roots = Arc::new(Mutex::new(source_dirs.clone()));
         let (tx, rx) = mpsc::channel::<Request>();
         let (ready_tx, ready_rx) = mpsc::channel();
+        let thread_roots = roots.clone();
         std::thread::Builder::new()
             .name("sitlog-prolog".into())
             .stack_size(64 << 20)
-            .spawn(move || engine_thread(prepared, host, rx, ready_tx))
+            .spawn(move || engine_thread(prepared, host, thread_roots, rx, ready_tx))
             .map_err(|e| {
                 vec![PrologLoadError {
                     file: "<engine>".into(),
@@ -175,17 +227,63 @@ impl PrologFunctions {
                 message: "the Prolog engine stopped while loading".into(),
             }]
         });
-        if !load_errors.is_empty() {
-            return Err(load_errors);
-        }
-        Ok(PrologFunctions {
+        let engine = PrologFunctions {
             inner: Arc::new(Inner {
                 tx: Mutex::new(tx),
                 abandoned: Mutex::new(None),
                 defined,
                 options,
+                started: Mutex::new(None),
+                outside,
+                source_dirs,
+                roots,
             }),
-        })
+        };
+        Ok((engine, load_errors))
+    }
+
+    /// Runs the application's directives, once (later calls give the first
+    /// outcome), with what `trust` allows of the operating system: without
+    /// `--allow-os` a `consult/1` of a file outside the application is
+    /// refused here, and the guards refuse shell, processes, sockets and
+    /// writes outside the application and its KB. A refusal or a failing
+    /// directive is an error at the directive's position.
+    pub fn start(&self, trust: &Trust) -> Result<(), Vec<PrologLoadError>> {
+        let mut started = self
+            .inner
+            .started
+            .lock()
+            .map_err(|_| vec![engine_error("the Prolog engine is poisoned")])?;
+        if let Some(outcome) = &*started {
+            return outcome.clone();
+        }
+        let outcome = self.start_now(trust);
+        *started = Some(outcome.clone());
+        outcome
+    }
+
+    fn start_now(&self, trust: &Trust) -> Result<(), Vec<PrologLoadError>> {
+        if !trust.allow_os && !self.inner.outside.is_empty() {
+            return Err(self.inner.outside.clone());
+        }
+        if let Ok(mut r) = self.inner.roots.lock() {
+            *r = permissions::roots(&self.inner.source_dirs, trust);
+        }
+        let (tx, rx) = mpsc::channel();
+        self.inner
+            .tx
+            .lock()
+            .map_err(|_| vec![engine_error("the Prolog engine is poisoned")])?
+            .send(Request::Start(trust.allow_os, tx))
+            .map_err(|_| vec![engine_error("the Prolog engine has stopped")])?;
+        let errors = rx
+            .recv()
+            .unwrap_or_else(|_| vec![engine_error("the Prolog engine stopped while starting")]);
+        if errors.is_empty() {
+            Ok(())
+        } else {
+            Err(errors)
+        }
     }
 
     /// Whether the application defines `name/arity` in Prolog.
@@ -207,8 +305,14 @@ impl PrologFunctions {
             if !me.defines(name, args.len()) {
                 return None;
             }
+            // A call before the run's start (a debugger's evaluation) starts it.
+            if let Err(errors) = me.start(call.functions.trust()) {
+                return Some(Err(show_errors(&errors)));
+            }
             Some(me.call(call, name, args))
         });
+        let me = self.clone();
+        functions.set_start(move |trust| me.start(trust).map_err(|e| show_errors(&e)));
     }
 
     /// Runs a raw query (for tests and tools): the first answer's binding
@@ -377,6 +481,9 @@ impl PrologFunctions {
                 options.inference_limit
             )),
             PTerm::Compound(f, a) if f == "error" && a.len() == 1 => {
+                if let Some(m) = permissions::refusal(&a[0], show_pterm) {
+                    return Err(m);
+                }
                 let mut names = HashMap::new();
                 let e = from_prolog(call.store, &a[0], &mut names);
                 Err(format!("`{}` raised {}", shown(), call.store.writeq(e)))
@@ -386,16 +493,28 @@ impl PrologFunctions {
     }
 }
 
-/// The engine thread: builds the machine, loads, then answers queries.
+/// The engine thread: builds the machine, loads, then starts and answers
+/// queries.
 fn engine_thread(
     prepared: Vec<Prepared>,
     host: Option<KbHost>,
+    roots: Roots,
     rx: mpsc::Receiver<Request>,
     ready: mpsc::Sender<Vec<PrologLoadError>>,
 ) {
-    let (mut machine, errors) = build_machine(&prepared, host.clone());
+    let (mut machine, errors) = build_machine(&prepared, host.clone(), roots.clone());
     let _ = ready.send(errors);
-    while let Ok(Request::Query(q, reply)) = rx.recv() {
+    // `Some(allow_os)` once started.
+    let mut started: Option<bool> = None;
+    while let Ok(request) = rx.recv() {
+        let (q, reply) = match request {
+            Request::Start(allow_os, reply) => {
+                started = Some(allow_os);
+                let _ = reply.send(run_directives(&mut machine, &prepared, allow_os));
+                continue;
+            }
+            Request::Query(q, reply) => (q, reply),
+        };
         let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
             first_answer(&mut machine, &q, "R")
         }));
@@ -403,7 +522,10 @@ fn engine_thread(
             Ok(r) => r,
             Err(_) => {
                 // The engine may be in any state: start afresh.
-                machine = build_machine(&prepared, host.clone()).0;
+                machine = build_machine(&prepared, host.clone(), roots.clone()).0;
+                if let Some(allow_os) = started {
+                    let _ = run_directives(&mut machine, &prepared, allow_os);
+                }
                 Err("the Prolog engine panicked (it was restarted)".to_owned())
             }
         };
@@ -413,11 +535,12 @@ fn engine_thread(
 
 /// The engine's streams: `user_output` is dropped (what functions print is
 /// not part of the task's output); `user_error` carries the requests of
-/// `'$sitlog_read_text'/3`, the native KB layer and `'$sitlog_system'/2`
-/// (framed by `\x01` and `\x02`, the first character saying which),
-/// answered on `user_input` ([`read_reply`], [`system_reply`]); anything
-/// else written there goes to stderr.
-fn engine_streams(host: Option<KbHost>) -> StreamConfig {
+/// `'$sitlog_read_text'/3`, the native KB layer, `'$sitlog_system'/2` and
+/// the guards' questions (framed by `\x01` and `\x02`, the first character
+/// saying which), answered on `user_input` ([`read_reply`],
+/// [`system_reply`], [`permissions::inside_reply`]); anything else written
+/// there goes to stderr.
+fn engine_streams(host: Option<KbHost>, roots: Roots) -> StreamConfig {
     type StreamCallback = Box<dyn FnMut(&mut std::io::Cursor<Vec<u8>>)>;
     let (mut replies, input) = InputStreamConfig::channel();
     let mut pending: Vec<u8> = Vec::new();
@@ -440,7 +563,8 @@ fn engine_streams(host: Option<KbHost>) -> StreamConfig {
             let text = String::from_utf8_lossy(&pending[1..end]).into_owned();
             pending.drain(..=end);
             // The first character says what is asked: `R` read, `K` KB,
-            // `S` the system (clock, sleep).
+            // `S` the system (clock, sleep), `P` whether a file is inside
+            // the application (the guards).
             let reply = if let Some(request) = text.strip_prefix('K') {
                 match &host {
                     Some(h) => h(request),
@@ -448,6 +572,9 @@ fn engine_streams(host: Option<KbHost>) -> StreamConfig {
                 }
             } else if let Some(request) = text.strip_prefix('S') {
                 system_reply(request)
+            } else if let Some(file) = text.strip_prefix('P') {
+                let roots = roots.lock().map(|r| r.clone()).unwrap_or_default();
+                permissions::inside_reply(file, &roots)
             } else {
                 read_reply(text.strip_prefix('R').unwrap_or(&text))
             };
@@ -560,12 +687,19 @@ fn clause_position(text: &str, offset: usize) -> (usize, usize) {
     )
 }
 
-fn build_machine(prepared: &[Prepared], host: Option<KbHost>) -> (Machine, Vec<PrologLoadError>) {
+/// A machine with the prelude, the guards and the application's clauses
+/// (no directive run: see [`run_directives`]).
+fn build_machine(
+    prepared: &[Prepared],
+    host: Option<KbHost>,
+    roots: Roots,
+) -> (Machine, Vec<PrologLoadError>) {
     started();
     let mut machine = MachineBuilder::default()
-        .with_streams(engine_streams(host))
+        .with_streams(engine_streams(host, roots))
         .build();
     machine.consult_module_string("user", PRELUDE);
+    machine.consult_module_string("user", permissions::guards());
     let mut errors = Vec::new();
     // The prelude's second part is asserted clause by clause, like the
     // application's (consulted in one string with the first part, the
@@ -578,12 +712,7 @@ fn build_machine(prepared: &[Prepared], host: Option<KbHost>) -> (Machine, Vec<P
         };
         check_load(&mut machine, &q, &p, &mut errors);
     }
-    let mut directives = Vec::new();
-    for p in prepared {
-        if p.directive {
-            directives.push(p);
-            continue;
-        }
+    for p in prepared.iter().filter(|p| !p.directive) {
         let q = format!("'$sitlog_add'({},R).", p.text);
         check_load(&mut machine, &q, p, &mut errors);
     }
@@ -605,11 +734,24 @@ fn build_machine(prepared: &[Prepared], host: Option<KbHost>) -> (Machine, Vec<P
             .join(",")
     );
     let _ = first_answer(&mut machine, &q, "R");
-    for p in directives {
-        let q = format!("'$sitlog_directive'({},R).", p.text);
-        check_load(&mut machine, &q, p, &mut errors);
-    }
     (machine, errors)
+}
+
+/// Sets the permissions, then runs the application's directives in order.
+fn run_directives(
+    machine: &mut Machine,
+    prepared: &[Prepared],
+    allow_os: bool,
+) -> Vec<PrologLoadError> {
+    if allow_os {
+        let _ = first_answer(machine, "assertz('$sitlog_allow_os'), R = ok.", "R");
+    }
+    let mut errors = Vec::new();
+    for p in prepared.iter().filter(|p| p.directive) {
+        let q = format!("'$sitlog_directive'({},R).", p.text);
+        check_load(machine, &q, p, &mut errors);
+    }
+    errors
 }
 
 fn check_load(machine: &mut Machine, q: &str, p: &Prepared, errors: &mut Vec<PrologLoadError>) {
@@ -617,7 +759,10 @@ fn check_load(machine: &mut Machine, q: &str, p: &Prepared, errors: &mut Vec<Pro
         Ok(Some(PTerm::Atom(a))) if a == "ok" => return,
         Ok(Some(PTerm::Atom(a))) if a == "fail" => "directive failed".to_owned(),
         Ok(Some(PTerm::Compound(f, a))) if f == "error" && a.len() == 1 => {
-            format!("the Prolog engine refused it: {}", show_pterm(&a[0]))
+            match permissions::refusal(&a[0], show_pterm) {
+                Some(m) => m,
+                None => format!("the Prolog engine refused it: {}", show_pterm(&a[0])),
+            }
         }
         Ok(other) => format!("the Prolog engine refused it: {other:?}"),
         Err(e) => e,
@@ -651,4 +796,23 @@ fn first_answer(machine: &mut Machine, query: &str, var: &str) -> Result<Option<
             Err(format!("Prolog exception: {}", show_pterm(&e)))
         }
     }
+}
+
+/// An error of the engine itself (no position in the application).
+fn engine_error(message: &str) -> PrologLoadError {
+    PrologLoadError {
+        file: "<engine>".into(),
+        line: 0,
+        col: 0,
+        message: message.to_owned(),
+    }
+}
+
+/// Load errors as one message, one per line.
+fn show_errors(errors: &[PrologLoadError]) -> String {
+    errors
+        .iter()
+        .map(|e| e.to_string())
+        .collect::<Vec<_>>()
+        .join("\n")
 }

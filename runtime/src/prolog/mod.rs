@@ -3,6 +3,10 @@
 //! [scryer-prolog](https://crates.io/crates/scryer-prolog) engine, so a task
 //! stays one binary with no system library.
 //!
+//! Trust. Loading runs no application code: the directives run at
+//! [`PrologFunctions::start`], a run's first transition (see `permissions`
+//! and docs/guide/reliability.md, "Trust model").
+//!
 //! Loading. Our reader (SWI-Prolog 6 syntax, SitLog operators) reads the
 //! files; each clause is sent to the engine in canonical form, with `'|'/2`
 //! turned into `;/2` (SWI-6 reads `(C -> A | otherwise -> B)` as `;`) and
@@ -40,6 +44,8 @@
 //! - `swi`: the prelude (`prelude.pl`, then `prelude_swi.pl`: SWI's
 //!   strings as atoms, `format/1,2,3`, Edinburgh I/O, file names, time)
 //!   and the SWI-Prolog compatibility tables;
+//! - `permissions`: the trust model's guards (calls reaching the operating
+//!   system renamed to them; refused without `--allow-os`);
 //! - `translate`: store terms to canonical text and engine terms back;
 //! - `legacy_kb`: the legacy KB layer served natively ([`NativeKb`]);
 //! - `consult`: sources, their clauses, and `consult/1` resolution;
@@ -49,6 +55,7 @@
 mod consult;
 mod engine;
 mod legacy_kb;
+mod permissions;
 mod swi;
 mod translate;
 
@@ -63,3 +70,6 @@ mod tests;
 
 #[cfg(test)]
 mod swi_tests;
+
+#[cfg(test)]
+mod permissions_tests;

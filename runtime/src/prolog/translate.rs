@@ -6,6 +6,7 @@
 //! clause ready for the engine ([`Prepared`]). Both walks grow their stack
 //! on the heap.
 
+use super::permissions::guard_name;
 use super::swi::{closure_extra, swi_renamed};
 use crate::store::Store;
 use crate::term::{Term, Value, Var};
@@ -34,8 +35,13 @@ pub(super) struct Writer<'s> {
     pub(super) vars: Vec<Var>,
     seen: HashSet<Var>,
     /// Application clauses: turn `'|'/2` into `;/2` (SWI-6 reading) and
-    /// rename the calls of [`SWI_RENAMED`](super::SWI_RENAMED) built-ins.
+    /// rename the calls of [`SWI_RENAMED`](super::SWI_RENAMED) built-ins,
+    /// and those of the predicates reaching the operating system to their
+    /// guards (see `permissions`).
     bar_is_or: bool,
+    /// Off while a clause head is written (an application's own `shell/1`
+    /// keeps its name).
+    guard: bool,
 }
 
 impl<'s> Writer<'s> {
@@ -46,7 +52,45 @@ impl<'s> Writer<'s> {
             vars: Vec::new(),
             seen: HashSet::new(),
             bar_is_or,
+            guard: true,
         }
+    }
+
+    /// A clause head: written as [`term`](Self::term) does, except that its
+    /// own name is not renamed to a guard.
+    pub(super) fn head(&mut self, t: Term) {
+        self.guard = false;
+        match self.store.value(t) {
+            Value::Compound(f, args) if f != atoms::DOT => {
+                let args = args.to_vec();
+                let f = if self.bar_is_or {
+                    swi_renamed(f, args.len()).unwrap_or(f)
+                } else {
+                    f
+                };
+                self.guard = true;
+                write_atom(&mut self.out, f);
+                self.out.push('(');
+                for (i, &a) in args.iter().enumerate() {
+                    if i > 0 {
+                        self.out.push(',');
+                    }
+                    self.term(a);
+                }
+                self.out.push(')');
+            }
+            _ => {
+                self.guard = true;
+                self.term(t)
+            }
+        }
+    }
+
+    /// The name a compound `f/n` of an application clause is written with.
+    fn renamed(&self, f: Atom, n: usize) -> Atom {
+        swi_renamed(f, n)
+            .or_else(|| if self.guard { guard_name(f, n) } else { None })
+            .unwrap_or(f)
     }
 
     pub(super) fn term(&mut self, t: Term) {
@@ -102,7 +146,7 @@ impl<'s> Writer<'s> {
                 } else if f == atoms::BAR && args.len() == 2 {
                     atoms::SEMICOLON
                 } else {
-                    swi_renamed(f, args.len()).unwrap_or(f)
+                    self.renamed(f, args.len())
                 };
                 // A closure naming a renamed built-in.
                 let closure = if self.bar_is_or {
@@ -132,13 +176,13 @@ impl Writer<'_> {
     fn closure(&mut self, t: Term, extra: usize) {
         let t = self.store.deref(t);
         match self.store.value(t) {
-            Value::Atom(a) => match swi_renamed(a, extra) {
-                Some(r) => write_atom(&mut self.out, r),
-                None => self.term(t),
+            Value::Atom(a) => match self.renamed(a, extra) {
+                r if r != a => write_atom(&mut self.out, r),
+                _ => self.term(t),
             },
             Value::Compound(f, args) if f != atoms::DOT => {
                 let n = args.len();
-                match swi_renamed(f, n + extra) {
+                match Some(self.renamed(f, n + extra)).filter(|&r| r != f) {
                     Some(r) => {
                         let args = args.to_vec();
                         write_atom(&mut self.out, r);
