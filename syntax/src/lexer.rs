@@ -461,10 +461,21 @@ fn unescape_one(s: &str, at: usize, out: &mut String) -> Result<usize, SyntaxErr
                 out.push(ch);
                 Ok(1 + n)
             }
-            None => Err(SyntaxError::new(
-                Span::new(at - 1, (at + 1 + n).min(at + s.len())),
-                format!("`\\{c}` must be followed by {n} hexadecimal digits of a valid character"),
-            )),
+            None => {
+                // The `n` bytes after the letter, widened to the end of a
+                // character they cut (`\ubbd` then a 2-byte character):
+                // the span must stay on character boundaries (fuzzing).
+                let mut end = (1 + n).min(s.len());
+                while !s.is_char_boundary(end) {
+                    end += 1;
+                }
+                Err(SyntaxError::new(
+                    Span::new(at - 1, at + end),
+                    format!(
+                        "`\\{c}` must be followed by {n} hexadecimal digits of a valid character"
+                    ),
+                ))
+            }
         };
     }
     let (digits, base, skip) = if c == 'x' {

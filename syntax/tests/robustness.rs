@@ -276,6 +276,23 @@ fn fuzz_regressions() {
     assert!(n > 0);
 }
 
+/// A `\u`/`\U` escape cut short by a character of more than one byte
+/// (fuzz/ `input`, issue 31: `'\ubbd\u{a0}'` panicked slicing the text
+/// inside the character where the error's span ended): one error, its span
+/// on character boundaries, covering the escape and the whole character.
+#[test]
+fn a_unicode_escape_cut_short_by_a_wide_character_is_an_error_on_character_boundaries() {
+    for (src, shown) in [
+        ("'\\ubbd\u{a0}'.", "\\ubbd\u{a0}"),
+        ("\"\\U0001F60\u{e9}x\" .", "\\U0001F60\u{e9}"),
+        ("'\\u\u{1F600}' .", "\\u\u{1F600}"),
+    ] {
+        let e = one_error(src);
+        assert!(e.message.contains("hexadecimal digits"), "{src:?}: {e:?}");
+        assert_eq!(src.get(e.span.range()), Some(shown), "{src:?}: {e:?}");
+    }
+}
+
 /// Characters that start no token, a line of them (issue 31: 100 KB of
 /// `\x01` took 14 s to check, each failed token costing the line's length):
 /// one error at the first, the rest skipped with it, in linear time. A
