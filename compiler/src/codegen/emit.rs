@@ -478,6 +478,7 @@ impl Gen<'_> {
             None => typed::TypedCode {
                 items: quote!(),
                 present: false,
+                falls_back: false,
             },
         };
         let untyped = quote! {
@@ -486,7 +487,16 @@ impl Gen<'_> {
                 _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
             }?
         };
-        let typed_first = if typed.present {
+        let typed_first = if typed.falls_back {
+            quote! {
+                // Typed situations first, on the native frame; else as terms
+                // (from the situation where typed code handed over).
+                let step = match run_typed(p, &mut sit, cx)? {
+                    ::std::option::Option::Some(step) => step,
+                    ::std::option::Option::None => #untyped,
+                };
+            }
+        } else if typed.present {
             quote! {
                 // Typed situations first, on the native frame; else as terms.
                 let step = match run_typed(p, sit, cx)? {

@@ -19,7 +19,7 @@
 
 use super::Gen;
 use crate::ir::IrDm;
-use crate::types::{Cmp, DmTypes, TAction, TItem, TNext, TSit, TVal, Ty};
+use crate::types::{Cmp, DmTypes, TAction, TExpr, TItem, TNext, TSit, TVal, Ty};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_syntax::Atom;
@@ -31,6 +31,10 @@ pub(super) struct TypedCode {
     pub items: TokenStream,
     /// Whether `run_typed` exists.
     pub present: bool,
+    /// Whether `run_typed` may hand a situation it reached back to the
+    /// untyped path (a typed `prog` that overflows): it then takes
+    /// `&mut sit` and writes that situation there.
+    pub falls_back: bool,
 }
 
 fn local_field(i: usize) -> Ident {
@@ -54,6 +58,7 @@ impl Gen<'_> {
             return TypedCode {
                 items: quote!(),
                 present: false,
+                falls_back: false,
             };
         }
         let locals = t.frame_locals();
@@ -178,9 +183,27 @@ impl Gen<'_> {
                 TSit::Perceptual {
                     type_name,
                     always_first,
+                    prog,
+                    out_arg,
                     arcs,
                     ..
                 } => {
+                    // `prog`: `V is E`, checked; an overflow leaves the
+                    // situation to the untyped path, which reports it.
+                    let prog_code = match prog {
+                        Some(is) => {
+                            let bail = quote! {{
+                                #here
+                                *untyped = true;
+                                return ::std::result::Result::Ok(#rt::machine::Step::GotoSit(#ix));
+                            }};
+                            let w = format_ident!("w{}", is.var);
+                            let e = self.typed_expr(&is.expr, &bail);
+                            quote!(let #w: i64 = #e;)
+                        }
+                        None => quote!(),
+                    };
+                    let out_var = prog.as_ref().filter(|_| *out_arg).map(|is| is.var);
                     let exps: Vec<TokenStream> = arcs
                         .iter()
                         .map(|a| self.typed_const(a.expectation))
@@ -201,11 +224,12 @@ impl Gen<'_> {
                     };
                     let mut match_arms = Vec::new();
                     for (j, arc) in arcs.iter().enumerate() {
-                        let code = self.typed_arc(dm, t, i, plan.id(), j, arc);
+                        let code = self.typed_arc(dm, t, i, plan.id(), j, arc, out_var);
                         let j = Literal::usize_unsuffixed(j);
                         match_arms.push(quote!(#j => { #code }));
                     }
                     quote! {
+                        #prog_code
                         #(let #enames = #exps;)*
                         #choose
                         match chosen {
@@ -226,6 +250,40 @@ impl Gen<'_> {
             }
         };
         let loop_prelude = Self::prelude(&loop_body);
+        let falls_back = t
+            .situations
+            .iter()
+            .any(|s| matches!(s, Ok(TSit::Perceptual { prog: Some(_), .. })));
+        let (sit_param, sit_get, untyped_param, untyped_arg, untyped_init, many_args, finish) =
+            if falls_back {
+                (
+                    quote!(sit: &mut #rt::machine::SitIx),
+                    quote!(*sit),
+                    quote!(untyped: &mut bool,),
+                    quote!(&mut untyped,),
+                    quote!(let mut untyped = false;),
+                    quote!(#[allow(clippy::too_many_arguments)]),
+                    quote! {
+                        match r {
+                            ::std::result::Result::Ok(#rt::machine::Step::GotoSit(at)) if untyped => {
+                                *sit = at;
+                                ::std::result::Result::Ok(::std::option::Option::None)
+                            }
+                            r => r.map(::std::option::Option::Some),
+                        }
+                    },
+                )
+            } else {
+                (
+                    quote!(sit: #rt::machine::SitIx),
+                    quote!(sit),
+                    quote!(),
+                    quote!(),
+                    quote!(),
+                    quote!(),
+                    quote!(r.map(::std::option::Option::Some)),
+                )
+            };
         let items = quote! {
             #(#enums)*
 
@@ -254,10 +312,10 @@ impl Gen<'_> {
             /// `sit` is not typed or the frame does not load.
             pub fn run_typed(
                 p: &super::Program,
-                sit: #rt::machine::SitIx,
+                #sit_param,
                 cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
             ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
-                if !matches!(sit, #(#typed_ix)|*) {
+                if !matches!(#sit_get, #(#typed_ix)|*) {
                     return ::std::result::Result::Ok(::std::option::Option::None);
                 }
                 let ::std::option::Option::Some(mut fr) = Frame::load(p, cx) else {
@@ -266,13 +324,14 @@ impl Gen<'_> {
                 let records = cx.records();
                 let quiet = cx.ignores_numbers();
                 let mut count = 0u64;
-                let r = typed_loop(p, sit, &mut fr, records, quiet, &mut count, cx);
+                #untyped_init
+                let r = typed_loop(p, #sit_get, &mut fr, records, quiet, &mut count, #untyped_arg cx);
                 cx.count_transitions(count);
                 fr.store(p, cx);
-                r.map(::std::option::Option::Some)
+                #finish
             }
 
-            #[allow(unreachable_code, clippy::never_loop)]
+            #[allow(unreachable_code, clippy::never_loop)] #many_args
             fn typed_loop(
                 p: &super::Program,
                 mut sit: #rt::machine::SitIx,
@@ -280,6 +339,7 @@ impl Gen<'_> {
                 records: bool,
                 quiet: bool,
                 count: &mut u64,
+                #untyped_param
                 cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
             ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
                 #loop_prelude
@@ -289,6 +349,7 @@ impl Gen<'_> {
         TypedCode {
             items,
             present: true,
+            falls_back,
         }
     }
 
@@ -370,6 +431,29 @@ impl Gen<'_> {
         }
     }
 
+    /// A typed `prog` expression: `i64`, each operation checked (`bail`
+    /// when it overflows).
+    fn typed_expr(&self, e: &TExpr, bail: &TokenStream) -> TokenStream {
+        match e {
+            TExpr::Val(v) => self.typed_val(v),
+            TExpr::Bin(op, a, b) => {
+                let (a, b) = (self.typed_expr(a, bail), self.typed_expr(b, bail));
+                let f = match op {
+                    '+' => format_ident!("checked_add"),
+                    '-' => format_ident!("checked_sub"),
+                    _ => format_ident!("checked_mul"),
+                };
+                quote! {
+                    match (#a).#f(#b) {
+                        ::std::option::Option::Some(v) => v,
+                        ::std::option::Option::None => #bail,
+                    }
+                }
+            }
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
     fn typed_arc(
         &self,
         dm: &IrDm,
@@ -378,6 +462,7 @@ impl Gen<'_> {
         sit_id: Atom,
         j: usize,
         arc: &crate::types::TArc,
+        out_var: Option<u32>,
     ) -> TokenStream {
         let rt = quote!(::sitlog_runtime);
         let sit_ix = Literal::u32_unsuffixed(sit as u32);
@@ -471,6 +556,14 @@ impl Gen<'_> {
         // The next situation.
         let next = self.typed_next(&arc.next);
         out.push(quote!(let (target, next) = #next;));
+        // The out_arg: `prog`'s value becomes the pipe (D-18).
+        if let Some(v) = out_var {
+            let w = format_ident!("w{}", v);
+            out.push(quote!(cx.set_pipe(#rt::Term::int(#w));));
+            if t.frame_pipe() {
+                out.push(quote!(fr.pipe = #w;));
+            }
+        }
         out.push(quote! {
             if records {
                 #here

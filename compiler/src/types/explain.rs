@@ -40,7 +40,10 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
             match r {
                 Ok(plan) => {
                     let mut vars = Vec::new();
-                    if let TSit::Perceptual { arcs, .. } = plan {
+                    if let TSit::Perceptual { arcs, prog, .. } = plan {
+                        if let Some(is) = prog {
+                            vars.push(format!("prog `{}`: int", var_name(dm, is.var)));
+                        }
                         for (i, arc) in arcs.iter().enumerate() {
                             if let TAction::List(items) = &arc.action {
                                 for it in items {

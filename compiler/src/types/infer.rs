@@ -213,7 +213,9 @@ pub(super) fn infer_dm(ir: &Ir, dm: &IrDm) -> DmTypes {
     // The pipe compared both as an int and as a float: likewise.
     if cx.pipe == Ty::Term {
         for s in &mut situations {
-            if s.as_ref().is_ok_and(|t| t.uses(&|v| *v == TVal::Pipe)) {
+            if s.as_ref().is_ok_and(|t| {
+                t.uses(&|v| *v == TVal::Pipe) || matches!(t, TSit::Perceptual { out_arg: true, .. })
+            }) {
                 *s = Err("the pipe (in_arg) is compared both as an int and as a float".to_owned());
             }
         }
@@ -303,14 +305,25 @@ impl DmCx<'_> {
                 show(store, self.dm, f[2])
             ));
         };
-        for (i, what) in [
-            (OUT_ARG, "out_arg"),
-            (PROG, "prog"),
-            (EMBEDDED_DM, "embedded_dm"),
-            (DIAG_MOD, "diag_mod"),
-        ] {
+        // What the listing said of a perceptual situation with a `prog` or
+        // an `out_arg` before they were typed (checked first, as then).
+        let old_reason = [(OUT_ARG, "it has `out_arg`"), (PROG, "it has `prog`")]
+            .into_iter()
+            .find(|&(i, _)| self.present(f[i]))
+            .map(|(_, why)| why.to_owned());
+        let what = if s.kind == Kind::Perceptual {
+            &[(EMBEDDED_DM, "embedded_dm"), (DIAG_MOD, "diag_mod")][..]
+        } else {
+            &[
+                (OUT_ARG, "out_arg"),
+                (PROG, "prog"),
+                (EMBEDDED_DM, "embedded_dm"),
+                (DIAG_MOD, "diag_mod"),
+            ][..]
+        };
+        for &(i, what) in what {
             if self.present(f[i]) {
-                return Err(format!("it has `{what}`"));
+                return Err(old_reason.unwrap_or_else(|| format!("it has `{what}`")));
             }
         }
         // A variable in_arg names the pipe (D-8): typed like a parameter.
@@ -322,10 +335,12 @@ impl DmCx<'_> {
                     self.in_var = Some(v.index());
                 }
                 _ => {
-                    return Err(format!(
-                        "its in_arg `{}` is not a variable",
-                        show(store, self.dm, f[IN_ARG])
-                    ))
+                    return Err(old_reason.unwrap_or_else(|| {
+                        format!(
+                            "its in_arg `{}` is not a variable",
+                            show(store, self.dm, f[IN_ARG])
+                        )
+                    }))
                 }
             }
         }
@@ -341,22 +356,118 @@ impl DmCx<'_> {
                 [a[0], a[1], a[2]]
             })
             .collect();
+        // `prog ==> [V is E]` with `V` the out_arg: V an int the arcs may read.
+        let mut bound: HashMap<u32, Ty> = HashMap::new();
+        let prog = if self.present(f[PROG]) {
+            let is = self.prog(f[PROG], f[OUT_ARG])?;
+            bound.insert(is.var, Ty::Int);
+            Some(is)
+        } else if self.present(f[OUT_ARG]) {
+            return Err("it has `out_arg`".to_owned());
+        } else {
+            None
+        };
+        let out_arg = prog.is_some();
         let always_first = type_name == atoms::NEUTRAL
             && raw.len() == 1
             && store.atom_of(raw[0][0]) == Some(atoms::EMPTY);
         let mut arcs = Vec::new();
         for (i, [e, a, n]) in raw.into_iter().enumerate() {
             let arc = self
-                .arc(e, a, n)
+                .arc(e, a, n, &bound)
                 .map_err(|why| format!("arc {}: {why}", i + 1))?;
             arcs.push(arc);
+        }
+        if out_arg {
+            // The pipe is written with an int.
+            self.pipe = self.pipe.join(&Ty::Int);
         }
         Ok(TSit::Perceptual {
             id,
             type_name,
             always_first,
+            prog,
+            out_arg,
             arcs,
         })
+    }
+
+    /// A typed `prog`: `V is E` (or `[V is E]`), `V` the out_arg variable,
+    /// fresh, `E` an int expression.
+    fn prog(&mut self, p: Term, out: Term) -> Result<TIs, String> {
+        let store = self.store;
+        // Any other shape: the reason the listing always gave.
+        let other = || {
+            Err(if self.present(out) {
+                "it has `out_arg`".to_owned()
+            } else {
+                "it has `prog`".to_owned()
+            })
+        };
+        let is = match list_literal(store, p) {
+            Some(items) if items.len() == 1 => items[0],
+            Some(_) => return other(),
+            None => p,
+        };
+        let Value::Compound(op, &[v, e]) = store.value(is) else {
+            return other();
+        };
+        let (Value::Var(var), Value::Var(o)) = (store.value(v), store.value(out)) else {
+            return other();
+        };
+        if op.as_str() != "is"
+            || var != o
+            || self.head_vars.contains(&Some(var.index()))
+            || self.in_var == Some(var.index())
+            || store
+                .term_vars(e)
+                .iter()
+                .any(|&x| matches!(store.value(x), Value::Var(w) if w == var))
+        {
+            return other();
+        }
+        let expr = self.expr(e, 0)?;
+        Ok(TIs {
+            var: var.index(),
+            expr,
+        })
+    }
+
+    /// An int expression of a typed `prog`.
+    fn expr(&mut self, e: Term, depth: usize) -> Result<TExpr, String> {
+        let store = self.store;
+        if let Value::Compound(op, &[a, b]) = store.value(e) {
+            let c = match op.as_str() {
+                "+" => '+',
+                "-" => '-',
+                "*" => '*',
+                _ => {
+                    return Err(format!(
+                        "prog expression `{}` is not `+`/`-`/`*` on ints",
+                        show(store, self.dm, e)
+                    ))
+                }
+            };
+            if depth > 16 {
+                return Err("its prog expression is too deep".to_owned());
+            }
+            let a = self.expr(a, depth + 1)?;
+            let b = self.expr(b, depth + 1)?;
+            return Ok(TExpr::Bin(c, Box::new(a), Box::new(b)));
+        }
+        let (v, ty) = self.val(e, &HashMap::new())?;
+        match (&v, ty) {
+            (TVal::Int(_), _) => {}
+            (TVal::Param(i), Ty::None) => self.params[*i] = self.params[*i].join(&Ty::Int),
+            (TVal::Pipe, Ty::None) => self.pipe = self.pipe.join(&Ty::Int),
+            _ => {
+                return Err(format!(
+                    "prog operand `{}` is not an int",
+                    show(store, self.dm, e)
+                ))
+            }
+        }
+        Ok(TExpr::Val(v))
     }
 
     fn constant(&self, t: Term) -> bool {
@@ -375,7 +486,13 @@ impl DmCx<'_> {
         Ok(i)
     }
 
-    fn arc(&mut self, e: Term, a: Term, n: Term) -> Result<TArc, String> {
+    fn arc(
+        &mut self,
+        e: Term,
+        a: Term,
+        n: Term,
+        prog_bound: &HashMap<u32, Ty>,
+    ) -> Result<TArc, String> {
         let store = self.store;
         if !self.constant(e) {
             return Err(format!(
@@ -383,8 +500,8 @@ impl DmCx<'_> {
                 show(store, self.dm, e)
             ));
         }
-        // Arc variables bound so far, with their types.
-        let mut bound: HashMap<u32, Ty> = HashMap::new();
+        // Arc variables bound so far (`prog`'s first), with their types.
+        let mut bound: HashMap<u32, Ty> = prog_bound.clone();
         let action = match list_literal(store, a) {
             Some(items) if !self.constant(a) => {
                 let mut out = Vec::new();

@@ -27,8 +27,12 @@
 //!   checked when the frame is loaded (whoever called the DM may have put
 //!   any term there).
 //! - a **situation** is typed when its id is an atom, it has no
-//!   `out_arg`/`prog`/`diag_mod`/`embedded_dm` and no `in_arg` but a
-//!   variable (a final situation: no `in_arg` at all), every expectation
+//!   `diag_mod`/`embedded_dm`, no `in_arg` but a variable (a final
+//!   situation: no `in_arg` at all, no `prog`, no `out_arg`), no `prog` but
+//!   `V is E` with `V` its out_arg variable (fresh; an int the arcs may
+//!   read) and `E` `+`/`-`/`*` over ints, the pipe and parameters (an
+//!   overflow runs the situation untyped, which reports it), and no
+//!   `out_arg` but that `V`, every expectation
 //!   is a constant, every action a constant or a list of constants and
 //!   `get`/`set`/`inc` of typed locals, and every next situation a constant
 //!   situation of the DM or a conditional on an arithmetic comparison of
@@ -325,6 +329,38 @@ pub enum TAction {
     List(Vec<TItem>),
 }
 
+/// An integer expression of a typed `prog` (`+`, `-`, `*` on ints, checked:
+/// an overflow leaves the situation to the untyped path, which reports it).
+#[derive(Clone, Debug, PartialEq)]
+pub enum TExpr {
+    /// An int operand (the pipe, a parameter, a constant).
+    Val(TVal),
+    /// `A op B`, `op` one of `+`, `-`, `*`.
+    Bin(char, Box<TExpr>, Box<TExpr>),
+}
+
+impl TExpr {
+    fn vals(&self, f: &mut dyn FnMut(&TVal)) {
+        match self {
+            TExpr::Val(v) => f(v),
+            TExpr::Bin(_, a, b) => {
+                a.vals(f);
+                b.vals(f);
+            }
+        }
+    }
+}
+
+/// A typed `prog`: `V is E` (alone or the only element of a list), `V` the
+/// situation's out_arg variable, fresh, an int (arcs may read it), `E` an
+/// int expression.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TIs {
+    /// `V`'s store variable index.
+    pub var: u32,
+    pub expr: TExpr,
+}
+
 /// A typed next situation.
 #[derive(Clone, Debug, PartialEq)]
 pub enum TNext {
@@ -362,6 +398,10 @@ pub enum TSit {
         type_name: Atom,
         /// The neutral rule on one `empty` arc: always taken (D-14).
         always_first: bool,
+        /// `prog ==> [V is E]`, run before the arc is chosen.
+        prog: Option<TIs>,
+        /// Whether the out_arg is `prog`'s `V` (the pipe after each arc).
+        out_arg: bool,
         arcs: Vec<TArc>,
     },
 }
@@ -418,7 +458,10 @@ impl TSit {
     /// Whether an operand of the plan's conditionals satisfies `f`.
     pub(super) fn uses(&self, f: &dyn Fn(&TVal) -> bool) -> bool {
         let mut found = false;
-        if let TSit::Perceptual { arcs, .. } = self {
+        if let TSit::Perceptual { arcs, prog, .. } = self {
+            if let Some(is) = prog {
+                is.expr.vals(&mut |v| found |= f(v));
+            }
             for arc in arcs {
                 arc.next.vals(&mut |v| found |= f(v));
             }
@@ -427,7 +470,14 @@ impl TSit {
     }
 
     fn params_used(&self, out: &mut Vec<usize>) {
-        if let TSit::Perceptual { arcs, .. } = self {
+        if let TSit::Perceptual { arcs, prog, .. } = self {
+            if let Some(is) = prog {
+                is.expr.vals(&mut |v| {
+                    if let TVal::Param(i) = v {
+                        out.push(*i)
+                    }
+                });
+            }
             for arc in arcs {
                 arc.next.vals(&mut |v| {
                     if let TVal::Param(i) = v {

@@ -261,6 +261,12 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.m.options.keep_history || self.observer.is_some()
     }
 
+    /// Sets the pipe to a value typed code computed (an arc's out_arg, D-18).
+    #[inline]
+    pub fn set_pipe(&mut self, value: Term) {
+        *self.pipe = value;
+    }
+
     /// An arc's out_arg: its value becomes the pipe unless it is a variable (D-18).
     pub fn out_arg(&mut self, out: Term, arc: Option<usize>) -> Result<(), RunError> {
         let value = self.eval(out, arc)?;

@@ -233,3 +233,38 @@ fn typed_pipe_agrees() {
     assert_eq!(report["status"], "ok", "{report}");
     assert_eq!(transitions, 7);
 }
+
+/// A typed `prog` (`B is A * 2 + 1`, `B` the out_arg): ints on the native
+/// frame, an overflow and the values that do not load (a float, an atom)
+/// on the untyped path, the same on both back ends.
+#[test]
+fn typed_prog_agrees() {
+    let ir = interpreter("typed/pipe");
+    let app = pipe::program();
+    for in_arg in [
+        Some("0"),
+        Some("3"),
+        Some("-7"),
+        Some("2.5"),
+        Some("abc"),
+        Some("4611686018427387903"),
+        Some("4611686018427387904"),
+        None,
+    ] {
+        agree_piped(app, &ir, "twice", in_arg, "");
+    }
+    let (report, transitions, _, _) = run_piped(app, "twice", Some("0"), "", false, false, false);
+    assert_eq!(report["status"], "ok", "{report}");
+    // 0 -> 1 -> 3 -> 7 -> 15, then the final situation.
+    assert_eq!(transitions, 5);
+    let (report, _, _, _) = run_piped(
+        app,
+        "twice",
+        Some("4611686018427387904"),
+        "",
+        false,
+        false,
+        false,
+    );
+    assert_ne!(report["status"], "ok", "{report}");
+}

@@ -21,3 +21,13 @@ diag_mod(half,
       arcs ==> [ empty : [] => (X =< 1.5 -> fs ; otherwise -> is) ] ],
     [ id ==> fs, type ==> final ] ],
   [ k ==> 0 ]).
+
+% `twice`: a typed `prog` (`B is A * 2 + 1` on the pipe, `B` the out_arg,
+% read by the arc) until the pipe passes 10; an overflow runs the situation
+% untyped, which reports it.
+diag_mod(twice,
+  [ [ id ==> is, type ==> neutral, in_arg ==> A, out_arg ==> B,
+      prog ==> [B is A * 2 + 1],
+      arcs ==> [ empty : empty => (B > 10 -> fs ; otherwise -> is) ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
