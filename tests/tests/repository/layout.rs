@@ -365,3 +365,27 @@ fn no_panicking_stderr_writes() {
         found.join("\n")
     );
 }
+
+/// Each member once in `default-members` (twice, `cargo run --bin sitlogc`
+/// sees two executables and the README's main command fails), and every
+/// default member a member.
+#[test]
+fn default_members_are_members_once() {
+    let text = std::fs::read_to_string(workspace().join("Cargo.toml")).unwrap();
+    let manifest: toml::Table = toml::from_str(&text).unwrap();
+    let names = |key: &str| -> Vec<String> {
+        manifest["workspace"][key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|m| m.as_str().unwrap().to_owned())
+            .collect()
+    };
+    let members = names("members");
+    let defaults = names("default-members");
+    let mut seen = BTreeSet::new();
+    for d in &defaults {
+        assert!(seen.insert(d.clone()), "{d} twice in default-members");
+        assert!(members.contains(d), "{d} is not a member");
+    }
+}
