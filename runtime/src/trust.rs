@@ -124,6 +124,24 @@ impl Trust {
     }
 }
 
+/// Gives the process `SHELL=/bin/sh` when it has no `SHELL`, once.
+/// The engine's `shell/1,2` run `$SHELL -c` and simply fail without it,
+/// and a robot's task started by systemd, cron or a container runtime
+/// usually has none: with [`ALLOW_OS`] a shell command then runs as it
+/// does from a terminal. The variable is set through `std::env`, whose
+/// readers (the engine's included) hold the same lock.
+pub fn default_shell() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    #[cfg(unix)]
+    ONCE.call_once(|| {
+        if std::env::var_os("SHELL").is_none_or(|s| s.is_empty()) {
+            std::env::set_var("SHELL", "/bin/sh");
+        }
+    });
+    #[cfg(not(unix))]
+    ONCE.call_once(|| {});
+}
+
 /// `path` with its links and `..` resolved: the file itself when it
 /// exists, else its directory's real path joined with its name.
 fn resolve(path: &Path) -> Option<PathBuf> {

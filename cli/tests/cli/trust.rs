@@ -40,8 +40,11 @@ fn shell(marker: &Path) -> String {
     )
 }
 
+/// Runs without `SHELL`, as CI and a task under systemd do: `--allow-os`
+/// must still let `shell/1` run (the runtime defaults it to `/bin/sh`).
 fn run(dir: &Path, extra: &[&str]) -> std::process::Output {
     sitlogc()
+        .env_remove("SHELL")
         .arg("run")
         .arg(dir)
         .arg("--script")

@@ -269,6 +269,9 @@ impl PrologFunctions {
         if let Ok(mut r) = self.inner.roots.lock() {
             *r = permissions::roots(&self.inner.source_dirs, trust);
         }
+        if trust.allow_os {
+            crate::trust::default_shell();
+        }
         let (tx, rx) = mpsc::channel();
         self.inner
             .tx
