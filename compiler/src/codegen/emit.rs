@@ -61,6 +61,7 @@ impl Gen<'_> {
             dm_mods.push(m.clone());
             modules.push(self.emit_dm(dm, i, &m));
         }
+        let typed_driver = self.typed_driver(ir, &dm_mods);
         let dm_ix: Vec<Literal> = (0..ir.dms.len() as u32)
             .map(Literal::u32_unsuffixed)
             .collect();
@@ -339,6 +340,8 @@ impl Gen<'_> {
                 ::std::result::Result::Ok(functions)
             }
 
+            #typed_driver
+
             #(#modules)*
         }
     }
@@ -478,7 +481,6 @@ impl Gen<'_> {
             None => typed::TypedCode {
                 items: quote!(),
                 present: false,
-                falls_back: false,
             },
         };
         let untyped = quote! {
@@ -487,19 +489,24 @@ impl Gen<'_> {
                 _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
             }?
         };
-        let typed_first = if typed.falls_back {
+        let typed_first = if typed.present && self.typed_calls() {
+            let ix = Literal::u32_unsuffixed(dm_ix as u32);
             quote! {
-                // Typed situations first, on the native frame; else as terms
-                // (from the situation where typed code handed over).
-                let step = match run_typed(p, &mut sit, cx)? {
-                    ::std::option::Option::Some(step) => step,
+                // Typed situations first, on the native frames of the
+                // program's typed driver (which may go into other DMs: the
+                // machine then takes the step); else as terms (from the
+                // situation where typed code handed over).
+                let step = match super::run_typed(p, #ix, &mut sit, cx)? {
+                    ::std::option::Option::Some((step, true)) => step,
+                    ::std::option::Option::Some((step, false)) => return ::std::result::Result::Ok(step),
                     ::std::option::Option::None => #untyped,
                 };
             }
         } else if typed.present {
             quote! {
-                // Typed situations first, on the native frame; else as terms.
-                let step = match run_typed(p, sit, cx)? {
+                // Typed situations first, on the native frame; else as terms
+                // (from the situation where typed code handed over).
+                let step = match run_typed(p, &mut sit, cx)? {
                     ::std::option::Option::Some(step) => step,
                     ::std::option::Option::None => #untyped,
                 };

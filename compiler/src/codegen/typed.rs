@@ -18,7 +18,7 @@
 //! Run-time errors are the untyped path's, word for word (`inc` overflow).
 
 use super::Gen;
-use crate::ir::IrDm;
+use crate::ir::{Ir, IrDm};
 use crate::types::{Cmp, DmTypes, TAction, TExpr, TItem, TNext, TSit, TVal, Ty};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -29,12 +29,8 @@ use std::collections::HashMap;
 pub(super) struct TypedCode {
     /// `struct Frame`, its enums, `run_typed` and its loop.
     pub items: TokenStream,
-    /// Whether `run_typed` exists.
+    /// Whether `typed_loop` exists.
     pub present: bool,
-    /// Whether `run_typed` may hand a situation it reached back to the
-    /// untyped path (a typed `prog` that overflows): it then takes
-    /// `&mut sit` and writes that situation there.
-    pub falls_back: bool,
 }
 
 fn local_field(i: usize) -> Ident {
@@ -53,12 +49,11 @@ impl Gen<'_> {
         if !t
             .situations
             .iter()
-            .any(|s| matches!(s, Ok(TSit::Perceptual { .. })))
+            .any(|s| matches!(s, Ok(TSit::Perceptual { .. } | TSit::Call { .. })))
         {
             return TypedCode {
                 items: quote!(),
                 present: false,
-                falls_back: false,
             };
         }
         let locals = t.frame_locals();
@@ -180,6 +175,11 @@ impl Gen<'_> {
                         return ::std::result::Result::Ok(#rt::machine::Step::Final);
                     }
                 }
+                TSit::Call {
+                    callee: (_, callee),
+                    arcs,
+                    ..
+                } => self.typed_call(dm, t, i, plan.id(), *callee, arcs),
                 TSit::Perceptual {
                     type_name,
                     always_first,
@@ -250,40 +250,51 @@ impl Gen<'_> {
             }
         };
         let loop_prelude = Self::prelude(&loop_body);
-        let falls_back = t
-            .situations
-            .iter()
-            .any(|s| matches!(s, Ok(TSit::Perceptual { prog: Some(_), .. })));
-        let (sit_param, sit_get, untyped_param, untyped_arg, untyped_init, many_args, finish) =
-            if falls_back {
-                (
-                    quote!(sit: &mut #rt::machine::SitIx),
-                    quote!(*sit),
-                    quote!(untyped: &mut bool,),
-                    quote!(&mut untyped,),
-                    quote!(let mut untyped = false;),
-                    quote!(#[allow(clippy::too_many_arguments)]),
-                    quote! {
-                        match r {
-                            ::std::result::Result::Ok(#rt::machine::Step::GotoSit(at)) if untyped => {
-                                *sit = at;
-                                ::std::result::Result::Ok(::std::option::Option::None)
-                            }
-                            r => r.map(::std::option::Option::Some),
+        // With typed calls the program's driver loads, runs and stores the
+        // frames of every DM ([`Gen::typed_driver`]); else the DM's own
+        // `run_typed` does.
+        let run_typed = if self.typed_calls() {
+            quote! {
+                /// Whether situation `sit` has typed code.
+                pub fn is_typed(sit: #rt::machine::SitIx) -> bool {
+                    matches!(sit, #(#typed_ix)|*)
+                }
+            }
+        } else {
+            quote! {
+                /// Runs typed situations from `sit` on the typed frame until the
+                /// machine or untyped code is needed; `None` (nothing done) when
+                /// `sit` is not typed or the frame does not load, or when typed
+                /// code hands the situation it reached to the untyped path (a
+                /// typed `prog` that overflows), written into `sit`.
+                pub fn run_typed(
+                    p: &super::Program,
+                    sit: &mut #rt::machine::SitIx,
+                    cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
+                    if !matches!(*sit, #(#typed_ix)|*) {
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    }
+                    let ::std::option::Option::Some(mut fr) = Frame::load(p, cx) else {
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    };
+                    let records = cx.records();
+                    let quiet = cx.ignores_numbers();
+                    let mut count = 0u64;
+                    let mut untyped = false;
+                    let r = typed_loop(p, *sit, &mut fr, ::std::option::Option::None, records, quiet, &mut count, &mut untyped, cx);
+                    cx.count_transitions(count);
+                    fr.store(p, cx);
+                    match r {
+                        ::std::result::Result::Ok(#rt::machine::Step::GotoSit(at)) if untyped => {
+                            *sit = at;
+                            ::std::result::Result::Ok(::std::option::Option::None)
                         }
-                    },
-                )
-            } else {
-                (
-                    quote!(sit: #rt::machine::SitIx),
-                    quote!(sit),
-                    quote!(),
-                    quote!(),
-                    quote!(),
-                    quote!(),
-                    quote!(r.map(::std::option::Option::Some)),
-                )
-            };
+                        r => r.map(::std::option::Option::Some),
+                    }
+                }
+            }
+        };
         let items = quote! {
             #(#enums)*
 
@@ -294,52 +305,37 @@ impl Gen<'_> {
 
             impl Frame {
                 /// The frame, if every value it holds has its type.
-                fn load(p: &super::Program, cx: &#rt::machine::Cx<'_, '_, super::Program>) -> ::std::option::Option<Frame> {
+                pub fn load(p: &super::Program, cx: &#rt::machine::Cx<'_, '_, super::Program>) -> ::std::option::Option<Frame> {
                     let a = &p.atoms;
                     #(#loads)*
                     ::std::option::Option::Some(Frame { #(#inits)* })
                 }
 
                 /// Writes the locals back into the machine's variables.
-                fn store(&self, p: &super::Program, cx: &mut #rt::machine::Cx<'_, '_, super::Program>) {
+                pub fn store(&self, p: &super::Program, cx: &mut #rt::machine::Cx<'_, '_, super::Program>) {
                     let a = &p.atoms;
                     #(#stores)*
                 }
             }
 
-            /// Runs typed situations from `sit` on the typed frame until the
-            /// machine or untyped code is needed; `None` (nothing done) when
-            /// `sit` is not typed or the frame does not load.
-            pub fn run_typed(
-                p: &super::Program,
-                #sit_param,
-                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
-            ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
-                if !matches!(#sit_get, #(#typed_ix)|*) {
-                    return ::std::result::Result::Ok(::std::option::Option::None);
-                }
-                let ::std::option::Option::Some(mut fr) = Frame::load(p, cx) else {
-                    return ::std::result::Result::Ok(::std::option::Option::None);
-                };
-                let records = cx.records();
-                let quiet = cx.ignores_numbers();
-                let mut count = 0u64;
-                #untyped_init
-                let r = typed_loop(p, #sit_get, &mut fr, records, quiet, &mut count, #untyped_arg cx);
-                cx.count_transitions(count);
-                fr.store(p, cx);
-                #finish
-            }
+            #run_typed
 
-            #[allow(unreachable_code, clippy::never_loop)] #many_args
-            fn typed_loop(
+            /// Runs typed situations from `sit` on the frame until the
+            /// machine, untyped code or another DM is needed (a typed call
+            /// returns its `Step::Call`). `exit`: the final id of the DM
+            /// that `sit`, a typed call, waited for; its exit arcs run first.
+            /// `untyped` is set when the returned `GotoSit` situation must
+            /// run untyped.
+            #[allow(unreachable_code, clippy::never_loop, clippy::too_many_arguments)]
+            pub fn typed_loop(
                 p: &super::Program,
                 mut sit: #rt::machine::SitIx,
                 fr: &mut Frame,
+                mut exit: ::std::option::Option<#rt::Term>,
                 records: bool,
                 quiet: bool,
                 count: &mut u64,
-                #untyped_param
+                untyped: &mut bool,
                 cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
             ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
                 #loop_prelude
@@ -349,7 +345,262 @@ impl Gen<'_> {
         TypedCode {
             items,
             present: true,
-            falls_back,
+        }
+    }
+
+    /// Whether some situation of the program is a typed call (then the
+    /// program-level driver runs every DM's typed code).
+    pub(super) fn typed_calls(&self) -> bool {
+        self.types.as_ref().is_some_and(|t| {
+            t.dms
+                .iter()
+                .flat_map(|d| &d.situations)
+                .any(|s| matches!(s, Ok(TSit::Call { .. })))
+        })
+    }
+
+    /// A typed call: the first visit returns the machine's `Step::Call`
+    /// (the driver pushes the callee's typed frame, or hands the call to the
+    /// machine); when the callee has ended, `exit` holds its final id and
+    /// the exit arcs run here: the first whose atom is that id, else the
+    /// machine's own choice (which reports a missing exit). The pipe the
+    /// callee left is read again into the frame; a value of another type
+    /// sends the next situation to the untyped path.
+    fn typed_call(
+        &self,
+        dm: &IrDm,
+        t: &DmTypes,
+        sit: usize,
+        id: Atom,
+        callee: Atom,
+        arcs: &[crate::types::TArc],
+    ) -> TokenStream {
+        let rt = quote!(::sitlog_runtime);
+        let ix = Literal::u32_unsuffixed(sit as u32);
+        let id_expr = self.atom_expr(id);
+        let here = quote!(cx.enter(#ix, #id_expr););
+        let callee = self.atom_term(callee);
+        let exps: Vec<TokenStream> = arcs
+            .iter()
+            .map(|a| self.typed_const(a.expectation))
+            .collect();
+        let enames: Vec<Ident> = (0..arcs.len()).map(|j| format_ident!("e{}", j)).collect();
+        let js: Vec<Literal> = (0..arcs.len()).map(Literal::usize_unsuffixed).collect();
+        let reload = if t.frame_pipe() {
+            let of = match t.pipe.as_ref().map(|v| &v.ty) {
+                Some(Ty::Float) => quote!(float_of),
+                _ => quote!(int_of),
+            };
+            quote! {
+                match cx.#of(cx.pipe()) {
+                    ::std::option::Option::Some(v) => fr.pipe = v,
+                    ::std::option::Option::None => {
+                        cx.enter(target, next);
+                        *untyped = true;
+                        return ::std::result::Result::Ok(#rt::machine::Step::GotoSit(target));
+                    }
+                }
+            }
+        } else {
+            quote!()
+        };
+        let mut match_arms = Vec::new();
+        for (j, arc) in arcs.iter().enumerate() {
+            let code = self.typed_arc(dm, t, sit, id, j, arc, None);
+            let j = Literal::usize_unsuffixed(j);
+            match_arms.push(quote!(#j => { #code #reload }));
+        }
+        quote! {
+            match exit.take() {
+                ::std::option::Option::Some(final_id) => {
+                    #(let #enames = #exps;)*
+                    let chosen = #(if final_id == #enames { #js } else)* {
+                        #here
+                        cx.set_expectations(&[#(#enames),*]);
+                        cx.choose_exit(final_id)?
+                    };
+                    match chosen {
+                        #(#match_arms)*
+                        _ => unreachable!("the machine chose an arc of this situation"),
+                    }
+                }
+                ::std::option::Option::None => {
+                    #here
+                    return ::std::result::Result::Ok(#rt::machine::Step::Call {
+                        call: #callee,
+                        saved: #rt::Term::NIL,
+                    });
+                }
+            }
+        }
+    }
+
+    /// The program's typed driver, when it has typed calls: every DM's
+    /// typed frame as one `enum`, and `run_typed`, which runs typed code
+    /// across DMs. A typed call stores the caller's frame, pushes the
+    /// callee's machine frame (as the machine would) and its typed frame
+    /// on a fixed array (no Rust recursion, no allocation; deeper calls go
+    /// through the machine); a typed final pops both and runs the caller's
+    /// exit arcs. Whatever else happens returns to the machine with its DM
+    /// stack as it would be had the machine run every step, each frame's
+    /// locals written back: the step is for the DM that runs then.
+    pub(super) fn typed_driver(&self, ir: &Ir, mods: &[Ident]) -> TokenStream {
+        let rt = quote!(::sitlog_runtime);
+        let Some(types) = self.types.as_ref().filter(|_| self.typed_calls()) else {
+            return quote!();
+        };
+        let mut variants = Vec::new();
+        let mut loads = Vec::new();
+        let mut stores = Vec::new();
+        let mut runs = Vec::new();
+        let mut callees = Vec::new();
+        for (d, (dm, t)) in ir.dms.iter().zip(&types.dms).enumerate() {
+            if !t
+                .situations
+                .iter()
+                .any(|s| matches!(s, Ok(TSit::Perceptual { .. } | TSit::Call { .. })))
+            {
+                continue;
+            }
+            let v = format_ident!("Dm{}", d);
+            let m = &mods[d];
+            let ix = Literal::u32_unsuffixed(d as u32);
+            variants.push(quote!(#v(#m::Frame),));
+            loads.push(quote! {
+                #ix if #m::is_typed(sit) => #m::Frame::load(p, cx).map(TypedFrame::#v),
+            });
+            stores.push(quote!(TypedFrame::#v(fr) => fr.store(p, cx),));
+            runs.push(quote! {
+                TypedFrame::#v(fr) => #m::typed_loop(p, sit, fr, exit, records, quiet, count, untyped, cx),
+            });
+            let first_of_name = ir.dms.iter().position(|x| x.name == dm.name) == Some(d);
+            if first_of_name
+                && store_arity0(self.store, dm.head)
+                && matches!(t.situations.first(), Some(Ok(_)))
+            {
+                let a = self.atom_term(dm.name);
+                callees.push(quote!(if call == #a { return ::std::option::Option::Some(#ix); }));
+            }
+        }
+        quote! {
+            /// Every DM's typed frame, for the typed DM stack of
+            /// [`run_typed`].
+            #[derive(Clone, Copy, Debug)]
+            #[allow(dead_code, clippy::all)]
+            enum TypedFrame { #(#variants)* }
+
+            #[allow(dead_code, unused_variables, clippy::all)]
+            impl TypedFrame {
+                /// DM `dm`'s frame, if `sit` has typed code and the frame loads.
+                fn load(p: &Program, dm: #rt::machine::DmIx, sit: #rt::machine::SitIx, cx: &#rt::machine::Cx<'_, '_, Program>) -> ::std::option::Option<TypedFrame> {
+                    match dm {
+                        #(#loads)*
+                        _ => ::std::option::Option::None,
+                    }
+                }
+                fn store(&self, p: &Program, cx: &mut #rt::machine::Cx<'_, '_, Program>) {
+                    match self { #(#stores)* }
+                }
+                #[allow(clippy::too_many_arguments)]
+                fn run(
+                    &mut self,
+                    p: &Program,
+                    sit: #rt::machine::SitIx,
+                    exit: ::std::option::Option<#rt::Term>,
+                    records: bool,
+                    quiet: bool,
+                    count: &mut u64,
+                    untyped: &mut bool,
+                    cx: &mut #rt::machine::Cx<'_, '_, Program>,
+                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    match self { #(#runs)* }
+                }
+            }
+
+            /// The DM a typed call may enter on its typed frame: one without
+            /// parameters whose initial situation is typed.
+            #[allow(dead_code, clippy::all)]
+            fn typed_callee(p: &Program, call: #rt::Term) -> ::std::option::Option<#rt::machine::DmIx> {
+                let a = &p.atoms;
+                #(#callees)*
+                ::std::option::Option::None
+            }
+
+            /// How deep typed calls nest on the typed stack before the
+            /// machine takes the next one.
+            const TYPED_DEPTH: usize = 32;
+
+            /// Runs typed code from situation `sit` of DM `dm` (the running
+            /// one), across typed calls. `None`: nothing done (`sit` not
+            /// typed, the frame does not load, or typed code handed `sit`,
+            /// written there, to the DM's untyped path). `Some((step,
+            /// same))`: the step for the DM that runs now, `same` when that
+            /// is still `dm`.
+            #[allow(dead_code, clippy::all)]
+            pub fn run_typed(
+                p: &Program,
+                dm: #rt::machine::DmIx,
+                sit: &mut #rt::machine::SitIx,
+                cx: &mut #rt::machine::Cx<'_, '_, Program>,
+            ) -> ::std::result::Result<::std::option::Option<(#rt::machine::Step, bool)>, #rt::machine::RunError> {
+                let ::std::option::Option::Some(mut frame) = TypedFrame::load(p, dm, *sit, cx) else {
+                    return ::std::result::Result::Ok(::std::option::Option::None);
+                };
+                let records = cx.records();
+                let quiet = cx.ignores_numbers();
+                let mut count = 0u64;
+                let mut untyped = false;
+                let mut stack = [frame; TYPED_DEPTH];
+                let mut depth = 0usize;
+                let mut at = *sit;
+                let mut exit = ::std::option::Option::None;
+                let r = loop {
+                    let r = frame.run(p, at, exit.take(), records, quiet, &mut count, &mut untyped, cx);
+                    match r {
+                        ::std::result::Result::Ok(#rt::machine::Step::Call { call, saved })
+                            if depth < TYPED_DEPTH && !cx.stop_requested() =>
+                        {
+                            let ::std::option::Option::Some(callee) = typed_callee(p, call) else {
+                                break ::std::result::Result::Ok(#rt::machine::Step::Call { call, saved });
+                            };
+                            frame.store(p, cx);
+                            if let ::std::result::Result::Err(e) = cx.call_typed(callee, call, saved) {
+                                break ::std::result::Result::Err(e);
+                            }
+                            stack[depth] = frame;
+                            depth += 1;
+                            match TypedFrame::load(p, callee, 0, cx) {
+                                ::std::option::Option::Some(f) => {
+                                    frame = f;
+                                    at = 0;
+                                }
+                                ::std::option::Option::None => {
+                                    // The callee starts untyped, from the machine.
+                                    cx.count_transitions(count);
+                                    return ::std::result::Result::Ok(::std::option::Option::Some((#rt::machine::Step::GotoSit(0), false)));
+                                }
+                            }
+                        }
+                        ::std::result::Result::Ok(#rt::machine::Step::Final) if depth > 0 => {
+                            exit = ::std::option::Option::Some(cx.return_typed());
+                            depth -= 1;
+                            frame = stack[depth];
+                            at = cx.situation();
+                        }
+                        r => break r,
+                    }
+                };
+                cx.count_transitions(count);
+                frame.store(p, cx);
+                let same = depth == 0;
+                match r {
+                    ::std::result::Result::Ok(#rt::machine::Step::GotoSit(to)) if untyped && same => {
+                        *sit = to;
+                        ::std::result::Result::Ok(::std::option::Option::None)
+                    }
+                    r => r.map(|step| ::std::option::Option::Some((step, same))),
+                }
+            }
         }
     }
 
@@ -630,4 +881,9 @@ fn arc_const(arc: &crate::types::TArc) -> sitlog_runtime::Term {
         TAction::Const(c) => c,
         TAction::List(_) => unreachable!(),
     }
+}
+
+/// Whether a DM head has no parameters.
+fn store_arity0(store: &sitlog_runtime::Store, head: sitlog_runtime::Term) -> bool {
+    store.args(head).is_empty()
 }

@@ -40,11 +40,17 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
             match r {
                 Ok(plan) => {
                     let mut vars = Vec::new();
-                    if let TSit::Perceptual { arcs, prog, .. } = plan {
-                        if let Some(is) = prog {
-                            vars.push(format!("prog `{}`: int", var_name(dm, is.var)));
-                        }
-                        for (i, arc) in arcs.iter().enumerate() {
+                    if let TSit::Call {
+                        callee: (_, name), ..
+                    } = plan
+                    {
+                        vars.push(format!("calls `{name}` on a typed frame"));
+                    }
+                    if let TSit::Perceptual { prog: Some(is), .. } = plan {
+                        vars.push(format!("prog `{}`: int", var_name(dm, is.var)));
+                    }
+                    {
+                        for (i, arc) in plan.arcs().iter().enumerate() {
                             if let TAction::List(items) = &arc.action {
                                 for it in items {
                                     if let TItem::Inc {

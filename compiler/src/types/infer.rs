@@ -11,6 +11,7 @@ pub fn infer(ir: &Ir) -> Types {
     for dm in &ir.dms {
         dms.push(infer_dm(ir, dm));
     }
+    typed_calls(ir, &mut dms);
     // Globals: initial values joined with the constant writes of every DM
     // where the name is not a local.
     let mut globals = Vec::new();
@@ -35,6 +36,55 @@ pub fn infer(ir: &Ir) -> Types {
         });
     }
     Types { dms, globals }
+}
+
+/// Keeps a typed call only where it pays and is safe: the situation runs
+/// as code (its exit arcs exist as code for when the callee ends through
+/// the machine) and the callee's initial situation is typed. Demoting one
+/// call may leave its DM with no typed situation but finals, and so demote
+/// the calls into it: repeated until nothing changes.
+fn typed_calls(ir: &Ir, dms: &mut [DmTypes]) {
+    let mir = crate::mir::lower(ir);
+    loop {
+        let mut changed = false;
+        for d in 0..dms.len() {
+            for i in 0..dms[d].situations.len() {
+                let Ok(TSit::Call {
+                    callee: (callee, name),
+                    ..
+                }) = &dms[d].situations[i]
+                else {
+                    continue;
+                };
+                let why = if mir.dms[d][i].is_none() {
+                    Some("it does not run as code".to_owned())
+                } else if !dms[*callee].situations.first().is_some_and(|s| s.is_ok()) {
+                    Some(format!("the initial situation of `{name}` runs on terms"))
+                } else {
+                    None
+                };
+                if let Some(why) = why {
+                    dms[d].situations[i] = Err(why);
+                    changed = true;
+                }
+            }
+            let any = dms[d]
+                .situations
+                .iter()
+                .any(|s| matches!(s, Ok(TSit::Perceptual { .. } | TSit::Call { .. })));
+            if !any {
+                for s in &mut dms[d].situations {
+                    if s.is_ok() {
+                        *s = Err("no other situation of the DM runs typed".to_owned());
+                        changed = true;
+                    }
+                }
+            }
+        }
+        if !changed {
+            return;
+        }
+    }
 }
 
 /// A write into a SitLog variable found in a DM's code.
@@ -164,6 +214,7 @@ pub(super) fn infer_dm(ir: &Ir, dm: &IrDm) -> DmTypes {
             .all(|v| v.is_some_and(|v| !seen.contains(&v) && (seen.push(v), true).1))
     };
     let mut cx = DmCx {
+        ir,
         store,
         dm,
         locals: &locals,
@@ -184,7 +235,7 @@ pub(super) fn infer_dm(ir: &Ir, dm: &IrDm) -> DmTypes {
     // A typed final situation alone gains nothing: the DM runs on terms.
     if !situations
         .iter()
-        .any(|s| matches!(s, Ok(TSit::Perceptual { .. })))
+        .any(|s| matches!(s, Ok(TSit::Perceptual { .. } | TSit::Call { .. })))
     {
         for s in &mut situations {
             if s.is_ok() {
@@ -266,6 +317,7 @@ pub(super) fn infer_dm(ir: &Ir, dm: &IrDm) -> DmTypes {
 }
 
 pub(super) struct DmCx<'a> {
+    ir: &'a Ir,
     store: &'a Store,
     dm: &'a IrDm,
     locals: &'a [VarTy],
@@ -313,6 +365,13 @@ impl DmCx<'_> {
             .map(|(_, why)| why.to_owned());
         let what = if s.kind == Kind::Perceptual {
             &[(EMBEDDED_DM, "embedded_dm"), (DIAG_MOD, "diag_mod")][..]
+        } else if s.kind == Kind::Recursive {
+            &[
+                (OUT_ARG, "out_arg"),
+                (PROG, "prog"),
+                (IN_ARG, "in_arg"),
+                (DIAG_MOD, "diag_mod"),
+            ][..]
         } else {
             &[
                 (OUT_ARG, "out_arg"),
@@ -346,7 +405,7 @@ impl DmCx<'_> {
         }
         match s.kind {
             Kind::Final => return Ok(TSit::Final { id }),
-            Kind::Recursive => return Err("it is recursive".to_owned()),
+            Kind::Recursive => return self.call(id, f),
             Kind::Perceptual => {}
         }
         let raw: Vec<[Term; 3]> = store
@@ -388,6 +447,61 @@ impl DmCx<'_> {
             always_first,
             prog,
             out_arg,
+            arcs,
+        })
+    }
+
+    /// A recursive situation as a typed call: `embedded_dm` an atom naming
+    /// a DM without parameters, exit arcs with atom expectations that share
+    /// no variable with the rest of the situation (nothing to save around
+    /// the call). Whether the callee starts typed is decided once every DM
+    /// is typed ([`infer`]).
+    fn call(&mut self, id: Atom, f: &[Term]) -> Result<TSit, String> {
+        let store = self.store;
+        let e = f[EMBEDDED_DM];
+        let Some(name) = store.atom_of(e) else {
+            return Err(format!(
+                "its embedded_dm `{}` is not the name of a DM",
+                show(store, self.dm, e)
+            ));
+        };
+        let Some(callee) = self.ir.dms.iter().position(|d| d.name == name) else {
+            return Err(format!(
+                "its embedded_dm `{name}` is not a DM of the program"
+            ));
+        };
+        if !store.args(self.ir.dms[callee].head).is_empty() {
+            return Err(format!("it calls `{name}`, which has parameters"));
+        }
+        let mut shared = Vec::new();
+        for &t in &f[..8] {
+            shared.extend(store.term_vars(t));
+        }
+        let mut arcs = Vec::new();
+        for (i, arc) in store.list_iter(f[8]).enumerate() {
+            let a = store.args(arc);
+            let (e, act, n) = (a[0], a[1], a[2]);
+            if store.atom_of(e).is_none() {
+                return Err(format!(
+                    "exit arc {}: expectation `{}` is not an atom",
+                    i + 1,
+                    show(store, self.dm, e)
+                ));
+            }
+            if store.term_vars(arc).iter().any(|v| shared.contains(v)) {
+                return Err(format!(
+                    "exit arc {} uses a variable of the situation",
+                    i + 1
+                ));
+            }
+            let arc = self
+                .arc(e, act, n, &HashMap::new())
+                .map_err(|why| format!("exit arc {}: {why}", i + 1))?;
+            arcs.push(arc);
+        }
+        Ok(TSit::Call {
+            id,
+            callee: (callee, name),
             arcs,
         })
     }

@@ -404,19 +404,38 @@ pub enum TSit {
         out_arg: bool,
         arcs: Vec<TArc>,
     },
+    /// A recursive situation calling a DM without parameters, named by a
+    /// constant `embedded_dm`, whose initial situation is typed: the callee's
+    /// typed frame is pushed over the caller's (no Rust recursion), and the
+    /// exit arcs (atom expectations, matched on the callee's final id) run
+    /// on the caller's frame when it ends.
+    Call {
+        id: Atom,
+        /// The callee's index in the program and its name.
+        callee: (usize, Atom),
+        arcs: Vec<TArc>,
+    },
 }
 
 impl TSit {
     pub fn id(&self) -> Atom {
         match self {
-            TSit::Final { id } | TSit::Perceptual { id, .. } => *id,
+            TSit::Final { id } | TSit::Perceptual { id, .. } | TSit::Call { id, .. } => *id,
+        }
+    }
+
+    /// The arcs of the plan (a call's exit arcs), none for a final situation.
+    pub fn arcs(&self) -> &[TArc] {
+        match self {
+            TSit::Final { .. } => &[],
+            TSit::Perceptual { arcs, .. } | TSit::Call { arcs, .. } => arcs,
         }
     }
 
     /// The constant terms the plan uses (expectations, actions, elements, set values).
     pub fn constants(&self, out: &mut Vec<Term>) {
-        if let TSit::Perceptual { arcs, .. } = self {
-            for arc in arcs {
+        {
+            for arc in self.arcs() {
                 out.push(arc.expectation);
                 match &arc.action {
                     TAction::Const(c) => out.push(*c),
@@ -434,8 +453,8 @@ impl TSit {
     }
 
     fn locals_used(&self, out: &mut Vec<usize>) {
-        if let TSit::Perceptual { arcs, .. } = self {
-            for arc in arcs {
+        {
+            for arc in self.arcs() {
                 if let TAction::List(items) = &arc.action {
                     for it in items {
                         match it {
@@ -458,33 +477,29 @@ impl TSit {
     /// Whether an operand of the plan's conditionals satisfies `f`.
     pub(super) fn uses(&self, f: &dyn Fn(&TVal) -> bool) -> bool {
         let mut found = false;
-        if let TSit::Perceptual { arcs, prog, .. } = self {
-            if let Some(is) = prog {
-                is.expr.vals(&mut |v| found |= f(v));
-            }
-            for arc in arcs {
-                arc.next.vals(&mut |v| found |= f(v));
-            }
+        if let TSit::Perceptual { prog: Some(is), .. } = self {
+            is.expr.vals(&mut |v| found |= f(v));
+        }
+        for arc in self.arcs() {
+            arc.next.vals(&mut |v| found |= f(v));
         }
         found
     }
 
     fn params_used(&self, out: &mut Vec<usize>) {
-        if let TSit::Perceptual { arcs, prog, .. } = self {
-            if let Some(is) = prog {
-                is.expr.vals(&mut |v| {
-                    if let TVal::Param(i) = v {
-                        out.push(*i)
-                    }
-                });
-            }
-            for arc in arcs {
-                arc.next.vals(&mut |v| {
-                    if let TVal::Param(i) = v {
-                        out.push(*i)
-                    }
-                });
-            }
+        if let TSit::Perceptual { prog: Some(is), .. } = self {
+            is.expr.vals(&mut |v| {
+                if let TVal::Param(i) = v {
+                    out.push(*i)
+                }
+            });
+        }
+        for arc in self.arcs() {
+            arc.next.vals(&mut |v| {
+                if let TVal::Param(i) = v {
+                    out.push(*i)
+                }
+            });
         }
     }
 }

@@ -62,6 +62,82 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.selected = None;
     }
 
+    /// The situation running now (after [`Cx::return_typed`]: the caller's
+    /// recursive situation).
+    #[inline]
+    pub fn situation(&self) -> SitIx {
+        self.sit
+    }
+
+    /// Whether the run was asked to stop (a signal): code that goes on
+    /// without the machine's loop checks it at each DM call.
+    #[inline]
+    pub fn stop_requested(&self) -> bool {
+        self.m.stop_requested()
+    }
+
+    /// A DM call made by typed code, which goes on running the callee
+    /// itself: what the machine does for [`Step::Call`] (the recursive
+    /// situation `sit`/`id` waits with `saved`, the callee's frame is
+    /// pushed, the depth limit checked), for `dm`, a DM without
+    /// parameters named by the atom `call`. The callee starts at its
+    /// initial situation.
+    pub fn call_typed(&mut self, dm: super::DmIx, call: Term, saved: Term) -> Result<(), RunError> {
+        let here = self.here();
+        if self.m.frames.len() >= self.m.options.max_depth {
+            return self.m.call_dm(call, here);
+        }
+        self.m
+            .frames
+            .last_mut()
+            .expect("a frame is running")
+            .pending = Some(super::state::Pending::Compiled {
+            sit: self.sit,
+            saved,
+            id: self.id,
+        });
+        let locals = self.m.program.locals(dm, &mut self.m.store);
+        self.m.frames.push(super::state::Frame {
+            dm,
+            dm_id: call,
+            locals,
+            history: Vec::new(),
+            pending: None,
+        });
+        self.sit = 0;
+        self.selected = None;
+        Ok(())
+    }
+
+    /// The end of a DM entered by [`Cx::call_typed`], after its final
+    /// situation: what the machine does for [`Step::Final`] (the frame
+    /// popped, its history nested in the caller's), the caller's waiting
+    /// situation becoming the running one. Returns the final situation's id.
+    pub fn return_typed(&mut self) -> Term {
+        let final_id = self.id;
+        let frame = self.m.frames.pop().expect("a frame is running");
+        let keep = self.m.options.keep_history;
+        let caller = self
+            .m
+            .frames
+            .last_mut()
+            .expect("typed calls return to a caller");
+        if keep {
+            caller
+                .history
+                .push(crate::history::Item::Nested(frame.history));
+        }
+        match caller.pending.take() {
+            Some(super::state::Pending::Compiled { sit, id, .. }) => {
+                self.sit = sit;
+                self.id = id;
+                self.selected = Some(id);
+            }
+            _ => unreachable!("a typed call left its caller waiting"),
+        }
+        final_id
+    }
+
     /// A fresh variable.
     #[inline]
     pub fn var(&mut self) -> Term {

@@ -74,7 +74,11 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         (outcome, self.store)
     }
 
-    fn call_dm(&mut self, call: Term, sit: Option<(SitIx, Term)>) -> Result<(), RunError> {
+    pub(super) fn call_dm(
+        &mut self,
+        call: Term,
+        sit: Option<(SitIx, Term)>,
+    ) -> Result<(), RunError> {
         if self.frames.len() >= self.options.max_depth {
             return Err(self.err(
                 format!(

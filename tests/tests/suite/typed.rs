@@ -27,6 +27,9 @@ mod mixed {
 mod pipe {
     sitlog_macros::include_dm!("typed/pipe");
 }
+mod calls {
+    sitlog_macros::include_dm!("../dms/examples/typed_calls");
+}
 
 fn interpreter(app: &str) -> Ir {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(app);
@@ -96,14 +99,34 @@ fn run_piped<A: app::App>(
     observe: bool,
     log_numbers: bool,
 ) -> (serde_json::Value, u64, Vec<String>, Vec<String>) {
+    run_with(
+        app,
+        main,
+        in_arg,
+        script,
+        Options {
+            keep_history,
+            ..Options::default()
+        },
+        observe,
+        log_numbers,
+    )
+}
+
+/// [`run_piped`] with the machine's options.
+fn run_with<A: app::App>(
+    app: &A,
+    main: &str,
+    in_arg: Option<&str>,
+    script: &str,
+    options: Options,
+    observe: bool,
+    log_numbers: bool,
+) -> (serde_json::Value, u64, Vec<String>, Vec<String>) {
     let mut perception = ScriptPerception::new("script", script.to_owned());
     let mut text = Vec::new();
     let mut log = Log::default();
     let mut trace = Trace::default();
-    let options = Options {
-        keep_history,
-        ..Options::default()
-    };
     let (outcome, store): (Outcome, Store) = {
         let mut text_actions = TextActions::new(&mut text, vec![Atom::intern("beep")]);
         let actions: &mut dyn Actions = if log_numbers {
@@ -267,4 +290,61 @@ fn typed_prog_agrees() {
         false,
     );
     assert_ne!(report["status"], "ok", "{report}");
+}
+
+/// Typed DM calls (issue 28, `dms/examples/typed_calls`): callee frames
+/// pushed by typed code, exit arcs chosen by the callee's final id, calls
+/// deeper than the typed stack, a callee that leaves a float in the pipe,
+/// a `prog` that overflows inside a callee, the depth limit
+/// reached by a typed call; each the same on both back ends, with the
+/// history kept or not, observed or not.
+#[test]
+fn typed_calls_agree() {
+    let ir = interpreter("../dms/examples/typed_calls");
+    let app = calls::program();
+    for script in [
+        "go.\ndive.\ngo.\ngo.\nspoil.\ngo.\ndive.\nstop.\n",
+        "dive.\ndive.\ngo.\nstop.\n",
+        "go.\nzzz.\n",
+        "",
+    ] {
+        agree(app, &ir, "main", script);
+    }
+    for in_arg in [
+        Some("0"),
+        Some("1"),
+        Some("29"),
+        Some("31"),
+        Some("40"),
+        Some("100"),
+        Some("-3"),
+        Some("2.5"),
+        Some("abc"),
+        Some("9223372036854775807"),
+        Some("-9223372036854775808"),
+        None,
+    ] {
+        agree_piped(app, &ir, "bump", in_arg, "");
+        // `down` nests as many calls as the pipe says.
+        let small = in_arg.is_none_or(|a| a.parse::<f64>().map_or(true, |v| v <= 100.0));
+        if small {
+            agree_piped(app, &ir, "down", in_arg, "");
+        }
+    }
+    // 70 nested calls of `down`: more than the typed stack holds.
+    let (report, transitions, _, _) = run_piped(app, "down", Some("70"), "", false, false, false);
+    assert_eq!(report["status"], "ok", "{report}");
+    assert_eq!(transitions, 70 + 69 + 70);
+    // The depth limit, reached by typed calls: the machine's error.
+    for depth in [1, 2, 5, 40] {
+        let options = || Options {
+            keep_history: false,
+            max_depth: depth,
+            ..Options::default()
+        };
+        let c = run_with(app, "down", Some("60"), "", options(), false, false);
+        let i = run_with(&ir, "down", Some("60"), "", options(), false, false);
+        assert_eq!(c, i, "max_depth {depth}");
+        assert_eq!(c.0["status"], "error", "{}", c.0);
+    }
 }
