@@ -211,6 +211,15 @@ impl Store {
         t
     }
 
+    /// The float the dereferenced term is, if it is one.
+    #[inline]
+    pub fn float_of(&self, t: Term) -> Option<f64> {
+        match self.deref(t).0 {
+            Repr::Float(bits) => Some(f64::from_bits(bits)),
+            _ => None,
+        }
+    }
+
     /// The dereferenced term, one level deep.
     pub fn value(&self, t: Term) -> Value<'_> {
         let t = self.deref(t);
@@ -286,6 +295,7 @@ impl Store {
     }
 
     /// The atom, if `t` is one.
+    #[inline]
     pub fn atom_of(&self, t: Term) -> Option<Atom> {
         match self.deref(t).0 {
             Repr::Atom(a) => Some(a),
@@ -294,6 +304,7 @@ impl Store {
     }
 
     /// The integer, if `t` is a small integer.
+    #[inline]
     pub fn int_of(&self, t: Term) -> Option<i64> {
         match self.deref(t).0 {
             Repr::Int(i) => Some(i),
@@ -310,6 +321,7 @@ impl Store {
     }
 
     /// Whether `t` is an unbound variable.
+    #[inline]
     pub fn is_var(&self, t: Term) -> bool {
         matches!(self.deref(t).0, Repr::Var(_))
     }

@@ -61,7 +61,7 @@ impl Gen<'_> {
             dm_mods.push(m.clone());
             modules.push(self.emit_dm(dm, i, &m));
         }
-        let typed_driver = self.typed_driver(ir, &dm_mods);
+        let typed_driver = self.typed_driver(&dm_mods);
         let dm_ix: Vec<Literal> = (0..ir.dms.len() as u32)
             .map(Literal::u32_unsuffixed)
             .collect();

@@ -18,7 +18,7 @@
 //! Run-time errors are the untyped path's, word for word (`inc` overflow).
 
 use super::Gen;
-use crate::ir::{Ir, IrDm};
+use crate::ir::IrDm;
 use crate::types::{Cmp, DmTypes, TAction, TExpr, TItem, TNext, TSit, TVal, Ty};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -168,18 +168,20 @@ impl Gen<'_> {
             let body = match plan {
                 TSit::Final { .. } => {
                     let empty = quote!(#rt::Term::atom(#rt::atoms::EMPTY));
+                    // No out_arg: the pipe stays as it is (D-18).
                     quote! {
                         #here
-                        cx.final_out_arg(::std::option::Option::None)?;
-                        cx.record(#empty, #empty, ::std::option::Option::None);
+                        if run.records {
+                            cx.record(#empty, #empty, ::std::option::Option::None);
+                        } else {
+                            run.count += 1;
+                        }
                         return ::std::result::Result::Ok(#rt::machine::Step::Final);
                     }
                 }
-                TSit::Call {
-                    callee: (_, callee),
-                    arcs,
-                    ..
-                } => self.typed_call(dm, t, i, plan.id(), *callee, arcs),
+                TSit::Call { callee, arcs, .. } => {
+                    self.typed_call(dm, t, i, plan.id(), *callee, arcs)
+                }
                 TSit::Perceptual {
                     type_name,
                     always_first,
@@ -194,7 +196,7 @@ impl Gen<'_> {
                         Some(is) => {
                             let bail = quote! {{
                                 #here
-                                *untyped = true;
+                                run.untyped = true;
                                 return ::std::result::Result::Ok(#rt::machine::Step::GotoSit(#ix));
                             }};
                             let w = format_ident!("w{}", is.var);
@@ -278,15 +280,12 @@ impl Gen<'_> {
                     let ::std::option::Option::Some(mut fr) = Frame::load(p, cx) else {
                         return ::std::result::Result::Ok(::std::option::Option::None);
                     };
-                    let records = cx.records();
-                    let quiet = cx.ignores_numbers();
-                    let mut count = 0u64;
-                    let mut untyped = false;
-                    let r = typed_loop(p, *sit, &mut fr, ::std::option::Option::None, records, quiet, &mut count, &mut untyped, cx);
-                    cx.count_transitions(count);
+                    let mut run = cx.typed_run();
+                    let r = typed_loop(p, *sit, &mut fr, ::std::option::Option::None, &mut run, cx);
+                    cx.count_transitions(run.count);
                     fr.store(p, cx);
                     match r {
-                        ::std::result::Result::Ok(#rt::machine::Step::GotoSit(at)) if untyped => {
+                        ::std::result::Result::Ok(#rt::machine::Step::GotoSit(at)) if run.untyped => {
                             *sit = at;
                             ::std::result::Result::Ok(::std::option::Option::None)
                         }
@@ -294,6 +293,12 @@ impl Gen<'_> {
                     }
                 }
             }
+        };
+        // Under the driver, each DM's loop is called from one place.
+        let inline = if self.typed_calls() {
+            quote!(#[inline])
+        } else {
+            quote!()
         };
         let items = quote! {
             #(#enums)*
@@ -327,15 +332,13 @@ impl Gen<'_> {
             /// `untyped` is set when the returned `GotoSit` situation must
             /// run untyped.
             #[allow(unreachable_code, clippy::never_loop, clippy::too_many_arguments)]
+            #inline
             pub fn typed_loop(
                 p: &super::Program,
                 mut sit: #rt::machine::SitIx,
                 fr: &mut Frame,
                 mut exit: ::std::option::Option<#rt::Term>,
-                records: bool,
-                quiet: bool,
-                count: &mut u64,
-                untyped: &mut bool,
+                run: &mut #rt::machine::TypedRun,
                 cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
             ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
                 #loop_prelude
@@ -372,14 +375,15 @@ impl Gen<'_> {
         t: &DmTypes,
         sit: usize,
         id: Atom,
-        callee: Atom,
+        callee: (usize, Atom),
         arcs: &[crate::types::TArc],
     ) -> TokenStream {
         let rt = quote!(::sitlog_runtime);
         let ix = Literal::u32_unsuffixed(sit as u32);
         let id_expr = self.atom_expr(id);
         let here = quote!(cx.enter(#ix, #id_expr););
-        let callee = self.atom_term(callee);
+        let callee_ix = Literal::u32_unsuffixed(callee.0 as u32);
+        let callee = self.atom_term(callee.1);
         let exps: Vec<TokenStream> = arcs
             .iter()
             .map(|a| self.typed_const(a.expectation))
@@ -396,7 +400,7 @@ impl Gen<'_> {
                     ::std::option::Option::Some(v) => fr.pipe = v,
                     ::std::option::Option::None => {
                         cx.enter(target, next);
-                        *untyped = true;
+                        run.untyped = true;
                         return ::std::result::Result::Ok(#rt::machine::Step::GotoSit(target));
                     }
                 }
@@ -426,6 +430,7 @@ impl Gen<'_> {
                 }
                 ::std::option::Option::None => {
                     #here
+                    run.call = ::std::option::Option::Some(#callee_ix);
                     return ::std::result::Result::Ok(#rt::machine::Step::Call {
                         call: #callee,
                         saved: #rt::Term::NIL,
@@ -444,7 +449,7 @@ impl Gen<'_> {
     /// exit arcs. Whatever else happens returns to the machine with its DM
     /// stack as it would be had the machine run every step, each frame's
     /// locals written back: the step is for the DM that runs then.
-    pub(super) fn typed_driver(&self, ir: &Ir, mods: &[Ident]) -> TokenStream {
+    pub(super) fn typed_driver(&self, mods: &[Ident]) -> TokenStream {
         let rt = quote!(::sitlog_runtime);
         let Some(types) = self.types.as_ref().filter(|_| self.typed_calls()) else {
             return quote!();
@@ -453,8 +458,7 @@ impl Gen<'_> {
         let mut loads = Vec::new();
         let mut stores = Vec::new();
         let mut runs = Vec::new();
-        let mut callees = Vec::new();
-        for (d, (dm, t)) in ir.dms.iter().zip(&types.dms).enumerate() {
+        for (d, t) in types.dms.iter().enumerate() {
             if !t
                 .situations
                 .iter()
@@ -471,16 +475,8 @@ impl Gen<'_> {
             });
             stores.push(quote!(TypedFrame::#v(fr) => fr.store(p, cx),));
             runs.push(quote! {
-                TypedFrame::#v(fr) => #m::typed_loop(p, sit, fr, exit, records, quiet, count, untyped, cx),
+                TypedFrame::#v(fr) => #m::typed_loop(p, sit, fr, exit, run, cx),
             });
-            let first_of_name = ir.dms.iter().position(|x| x.name == dm.name) == Some(d);
-            if first_of_name
-                && store_arity0(self.store, dm.head)
-                && matches!(t.situations.first(), Some(Ok(_)))
-            {
-                let a = self.atom_term(dm.name);
-                callees.push(quote!(if call == #a { return ::std::option::Option::Some(#ix); }));
-            }
         }
         quote! {
             /// Every DM's typed frame, for the typed DM stack of
@@ -507,23 +503,11 @@ impl Gen<'_> {
                     p: &Program,
                     sit: #rt::machine::SitIx,
                     exit: ::std::option::Option<#rt::Term>,
-                    records: bool,
-                    quiet: bool,
-                    count: &mut u64,
-                    untyped: &mut bool,
+                    run: &mut #rt::machine::TypedRun,
                     cx: &mut #rt::machine::Cx<'_, '_, Program>,
                 ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
                     match self { #(#runs)* }
                 }
-            }
-
-            /// The DM a typed call may enter on its typed frame: one without
-            /// parameters whose initial situation is typed.
-            #[allow(dead_code, clippy::all)]
-            fn typed_callee(p: &Program, call: #rt::Term) -> ::std::option::Option<#rt::machine::DmIx> {
-                let a = &p.atoms;
-                #(#callees)*
-                ::std::option::Option::None
             }
 
             /// How deep typed calls nest on the typed stack before the
@@ -546,25 +530,22 @@ impl Gen<'_> {
                 let ::std::option::Option::Some(mut frame) = TypedFrame::load(p, dm, *sit, cx) else {
                     return ::std::result::Result::Ok(::std::option::Option::None);
                 };
-                let records = cx.records();
-                let quiet = cx.ignores_numbers();
-                let mut count = 0u64;
-                let mut untyped = false;
+                let mut run = cx.typed_run();
                 let mut stack = [frame; TYPED_DEPTH];
                 let mut depth = 0usize;
                 let mut at = *sit;
                 let mut exit = ::std::option::Option::None;
                 let r = loop {
-                    let r = frame.run(p, at, exit.take(), records, quiet, &mut count, &mut untyped, cx);
-                    match r {
-                        ::std::result::Result::Ok(#rt::machine::Step::Call { call, saved })
+                    let r = frame.run(p, at, exit.take(), &mut run, cx);
+                    // A typed call (its step is `Step::Call` with the
+                    // callee's atom and nothing saved), read from `run`.
+                    match run.call.take() {
+                        ::std::option::Option::Some(callee)
                             if depth < TYPED_DEPTH && !cx.stop_requested() =>
                         {
-                            let ::std::option::Option::Some(callee) = typed_callee(p, call) else {
-                                break ::std::result::Result::Ok(#rt::machine::Step::Call { call, saved });
-                            };
+                            let call = #rt::Term::atom(#rt::machine::DmProgram::dm_name(p, callee));
                             frame.store(p, cx);
-                            if let ::std::result::Result::Err(e) = cx.call_typed(callee, call, saved) {
+                            if let ::std::result::Result::Err(e) = cx.call_typed(callee, call, #rt::Term::NIL) {
                                 break ::std::result::Result::Err(e);
                             }
                             stack[depth] = frame;
@@ -576,11 +557,15 @@ impl Gen<'_> {
                                 }
                                 ::std::option::Option::None => {
                                     // The callee starts untyped, from the machine.
-                                    cx.count_transitions(count);
+                                    cx.count_transitions(run.count);
                                     return ::std::result::Result::Ok(::std::option::Option::Some((#rt::machine::Step::GotoSit(0), false)));
                                 }
                             }
+                            continue;
                         }
+                        _ => {}
+                    }
+                    match r {
                         ::std::result::Result::Ok(#rt::machine::Step::Final) if depth > 0 => {
                             exit = ::std::option::Option::Some(cx.return_typed());
                             depth -= 1;
@@ -590,11 +575,11 @@ impl Gen<'_> {
                         r => break r,
                     }
                 };
-                cx.count_transitions(count);
+                cx.count_transitions(run.count);
                 frame.store(p, cx);
                 let same = depth == 0;
                 match r {
-                    ::std::result::Result::Ok(#rt::machine::Step::GotoSit(to)) if untyped && same => {
+                    ::std::result::Result::Ok(#rt::machine::Step::GotoSit(to)) if run.untyped && same => {
                         *sit = to;
                         ::std::result::Result::Ok(::std::option::Option::None)
                     }
@@ -733,8 +718,11 @@ impl Gen<'_> {
                 );
                 let perform = quote! { #here cx.perform(action, #arc_t)?; };
                 out.push(quote!(let action = #c;));
+                let empty = self.store.atom_of(arc_const(arc)) == Some(sitlog_syntax::atoms::EMPTY);
                 out.push(if numeric {
-                    quote!(if !quiet { #perform })
+                    quote!(if !run.quiet_numbers { #perform })
+                } else if empty {
+                    quote!(if !run.quiet_empty { #perform })
                 } else {
                     perform
                 });
@@ -797,7 +785,7 @@ impl Gen<'_> {
                 }
                 let perform = quote! { #here cx.perform_each(&[#(#values),*], #arc_t)?; };
                 out.push(if numeric {
-                    quote!(if !quiet { #perform })
+                    quote!(if !run.quiet_numbers { #perform })
                 } else {
                     perform
                 });
@@ -816,7 +804,7 @@ impl Gen<'_> {
             }
         }
         out.push(quote! {
-            if records {
+            if run.records {
                 #here
                 let action = #action;
                 cx.record(#e, action, ::std::option::Option::Some(#rt::Term::atom(next)));
@@ -824,7 +812,7 @@ impl Gen<'_> {
                     return ::std::result::Result::Ok(#rt::machine::Step::GotoSit(target));
                 }
             } else {
-                *count += 1;
+                run.count += 1;
             }
             sit = target;
         });
@@ -883,7 +871,3 @@ fn arc_const(arc: &crate::types::TArc) -> sitlog_runtime::Term {
     }
 }
 
-/// Whether a DM head has no parameters.
-fn store_arity0(store: &sitlog_runtime::Store, head: sitlog_runtime::Term) -> bool {
-    store.args(head).is_empty()
-}

@@ -62,6 +62,21 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.selected = None;
     }
 
+    /// What typed code keeps while it runs typed situations one after the
+    /// other without the machine: the run's settings read once, the
+    /// transitions it counted (given back with [`Cx::count_transitions`]).
+    #[inline]
+    pub fn typed_run(&self) -> super::TypedRun {
+        super::TypedRun {
+            records: self.records(),
+            quiet_numbers: self.actions.ignores_numbers(),
+            quiet_empty: self.actions.ignores_empty(),
+            count: 0,
+            untyped: false,
+            call: None,
+        }
+    }
+
     /// The situation running now (after [`Cx::return_typed`]: the caller's
     /// recursive situation).
     #[inline]
@@ -126,6 +141,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             caller
                 .history
                 .push(crate::history::Item::Nested(frame.history));
+        } else if frame.history.capacity() == 0 {
+            // Nothing allocated: skip the (out-of-line) drop of no entries.
+            std::mem::forget(frame.history);
         }
         match caller.pending.take() {
             Some(super::state::Pending::Compiled { sit, id, .. }) => {
@@ -392,19 +410,13 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// The integer a (dereferenced) term is, if it is one.
     #[inline]
     pub fn int_of(&self, t: Term) -> Option<i64> {
-        match self.m.store.value(t) {
-            crate::Value::Int(i) => Some(i),
-            _ => None,
-        }
+        self.m.store.int_of(t)
     }
 
     /// The float a (dereferenced) term is, if it is one.
     #[inline]
     pub fn float_of(&self, t: Term) -> Option<f64> {
-        match self.m.store.value(t) {
-            crate::Value::Float(f) => Some(f),
-            _ => None,
-        }
+        self.m.store.float_of(t)
     }
 
     /// Counts transitions typed code made without recording them (the

@@ -51,4 +51,12 @@ pub trait Actions {
     fn ignores_numbers(&self) -> bool {
         false
     }
+
+    /// Whether performing the atom `empty` (the action of an arc that
+    /// does nothing) does nothing (and succeeds), always: then the machine
+    /// and compiled code do not call [`Actions::perform`] with it. `false`
+    /// is always a correct answer.
+    fn ignores_empty(&self) -> bool {
+        false
+    }
 }

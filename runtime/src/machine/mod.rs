@@ -37,6 +37,6 @@ pub use io::{Actions, Perceived, Perception};
 pub use observe::{Inspection, Observer};
 pub use options::Options;
 pub use outcome::{ErrorSite, Outcome, RunError};
-pub use program::{Between, Cx, DmProgram, Next, Step};
+pub use program::{Between, Cx, DmProgram, Next, Step, TypedRun};
 pub use situation::{DmIx, Instance, Kind, SitIx};
 pub use state::Machine;

@@ -112,6 +112,25 @@ pub enum Step {
     Unmet { type_term: Term },
 }
 
+/// What compiled typed code keeps while it runs typed situations one after
+/// the other on native frames ([`Cx::typed_run`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TypedRun {
+    /// History entries are kept or observed: build and record them.
+    pub records: bool,
+    /// [`Actions::ignores_numbers`](super::Actions::ignores_numbers).
+    pub quiet_numbers: bool,
+    /// [`Actions::ignores_empty`](super::Actions::ignores_empty).
+    pub quiet_empty: bool,
+    /// Transitions done without a history entry, not yet counted.
+    pub count: u64,
+    /// Set with a `GotoSit` step: that situation must run untyped.
+    pub untyped: bool,
+    /// Set with the `Step::Call` of a typed call: the callee (a DM without
+    /// parameters, named by its atom), for the program's typed driver.
+    pub call: Option<super::DmIx>,
+}
+
 /// What compiled code of a situation sees of the machine: one method per
 /// semantic step, each the one the interpreted path takes, so generated code
 /// decides only *which* steps a situation needs, never how they behave.

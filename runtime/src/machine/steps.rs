@@ -324,6 +324,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         arc: Option<usize>,
     ) -> Result<(), RunError> {
         let a = self.store.deref(action);
+        if a == Term::atom(atoms::EMPTY) && actions.ignores_empty() {
+            return Ok(());
+        }
         // A proper list is executed element by element (checked and walked
         // in place: no allocation per transition).
         let is_list = self.store.functor(a).is_some_and(|f| f.0 == atoms::DOT) && {

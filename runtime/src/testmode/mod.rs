@@ -506,6 +506,11 @@ impl<W: Write> Actions for TextActions<W> {
     fn ignores_numbers(&self) -> bool {
         true
     }
+
+    /// `empty` is shown only when it is a declared basic action.
+    fn ignores_empty(&self) -> bool {
+        !self.declared.contains(&sitlog_syntax::atoms::EMPTY)
+    }
 }
 
 #[cfg(test)]
