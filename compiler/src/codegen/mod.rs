@@ -25,7 +25,9 @@
 //!   a native `Frame` of the DM and `run_typed`, tried first: typed
 //!   situations run one after the other on `i64`/`f64`/enum values, the
 //!   frame loaded from the machine's variables with a check and written back
-//!   when untyped code or the machine is needed ([`typed`]);
+//!   when untyped code or the machine is needed ([`typed`]); with typed DM
+//!   calls, one driver for the program runs typed code across DMs, the
+//!   callee's typed frame pushed over the caller's (no Rust recursion);
 //! - for every situation, a function building a fresh instance (D-7) for the
 //!   machine's general path (situations with parameters): fresh variables
 //!   first (in the order a `copy_term` of the interpreter's template would

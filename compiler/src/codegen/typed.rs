@@ -16,6 +16,12 @@
 //! `Actions` ignore them), and the history entry, built from the native
 //! values only when the history is kept or observed; otherwise it counts.
 //! Run-time errors are the untyped path's, word for word (`inc` overflow).
+//!
+//! Typed DM calls ([`Gen::typed_driver`]): the caller's `Step::Call`, taken
+//! by the program's driver, which keeps every DM's typed frame in one enum
+//! on a fixed array and the machine's DM stack exactly as the machine would
+//! (`Cx::call_typed`, `Cx::return_typed`), so that any other step hands
+//! over to the machine as it is.
 
 use super::Gen;
 use crate::ir::IrDm;
@@ -870,4 +876,3 @@ fn arc_const(arc: &crate::types::TArc) -> sitlog_runtime::Term {
         TAction::List(_) => unreachable!(),
     }
 }
-

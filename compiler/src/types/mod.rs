@@ -38,6 +38,13 @@
 //!   situation of the DM or a conditional on an arithmetic comparison of
 //!   typed numbers, or on `==`/`\==` of typed atoms. A run of typed situations executes on native values,
 //!   touching no term unless the history is kept or observed.
+//! - a **recursive situation** is a typed call when its id is an atom, it
+//!   has no `in_arg`/`out_arg`/`prog`/`diag_mod`, its `embedded_dm` is an
+//!   atom naming a DM without parameters whose initial situation is typed,
+//!   and its exit arcs have atom expectations, typed actions and next
+//!   situations, and no variable shared with the rest of the situation;
+//!   and when the situation runs as code (its MIR plan gives the untyped
+//!   exit arcs, for a callee that ends through the machine).
 //! - **globals** are typed like locals (for the listing); generated code
 //!   keeps them as terms.
 
