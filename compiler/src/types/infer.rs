@@ -460,8 +460,13 @@ impl DmCx<'_> {
         let store = self.store;
         let e = f[EMBEDDED_DM];
         let Some(name) = store.atom_of(e) else {
+            let why = if store.functor(e).is_some() {
+                "passes arguments (typed calls are to DMs without parameters)"
+            } else {
+                "is not an atom"
+            };
             return Err(format!(
-                "its embedded_dm `{}` is not the name of a DM",
+                "its embedded_dm `{}` {why}",
                 show(store, self.dm, e)
             ));
         };
