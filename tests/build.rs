@@ -17,9 +17,13 @@ use std::path::Path;
 #[path = "gen/random_dm.rs"]
 mod random_dm;
 
+#[path = "src/world_functions.rs"]
+mod world_functions;
+
 fn main() {
     let dms = Path::new("../dms");
     println!("cargo:rerun-if-changed=../dms");
+    println!("cargo:rerun-if-changed=src/world_functions.rs");
     let out_dir = std::env::var("OUT_DIR").expect("OUT_DIR");
     let apps = sitlog_compiler::load::discover(dms).expect("dms/ is readable");
     // The behaviour library, named `behaviors/...` by the applications, as
@@ -49,7 +53,7 @@ fn main() {
         let file = format!("{name}.rs");
         let result = sitlog_compiler::build::Config::new()
             .file_name(&file)
-            .world_functions(sitlog_robot::WORLD_FUNCTIONS)
+            .world_functions(world_functions::WORLD_FUNCTIONS)
             .library(library)
             .compile(app);
         if let Err(e) = result {

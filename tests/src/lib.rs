@@ -6,6 +6,7 @@ pub mod compiled;
 #[path = "../gen/random_dm.rs"]
 pub mod random_dm;
 pub mod scenario;
+pub mod world_functions;
 
 use sitlog_compiler::run::{self, RunConfig};
 use sitlog_runtime::machine::Options;
