@@ -49,26 +49,24 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
                     if let TSit::Perceptual { prog: Some(is), .. } = plan {
                         vars.push(format!("prog `{}`: int", var_name(dm, is.var)));
                     }
-                    {
-                        for (i, arc) in plan.arcs().iter().enumerate() {
-                            if let TAction::List(items) = &arc.action {
-                                for it in items {
-                                    if let TItem::Inc {
-                                        local,
-                                        bind: Some(v),
-                                    }
-                                    | TItem::Get {
-                                        local,
-                                        bind: Some(v),
-                                    } = it
-                                    {
-                                        vars.push(format!(
-                                            "arc {} `{}`: {}",
-                                            i + 1,
-                                            var_name(dm, *v),
-                                            t.locals[*local].ty
-                                        ));
-                                    }
+                    for (i, arc) in plan.arcs().iter().enumerate() {
+                        if let TAction::List(items) = &arc.action {
+                            for it in items {
+                                if let TItem::Inc {
+                                    local,
+                                    bind: Some(v),
+                                }
+                                | TItem::Get {
+                                    local,
+                                    bind: Some(v),
+                                } = it
+                                {
+                                    vars.push(format!(
+                                        "arc {} `{}`: {}",
+                                        i + 1,
+                                        var_name(dm, *v),
+                                        t.locals[*local].ty
+                                    ));
                                 }
                             }
                         }

@@ -441,17 +441,15 @@ impl TSit {
 
     /// The constant terms the plan uses (expectations, actions, elements, set values).
     pub fn constants(&self, out: &mut Vec<Term>) {
-        {
-            for arc in self.arcs() {
-                out.push(arc.expectation);
-                match &arc.action {
-                    TAction::Const(c) => out.push(*c),
-                    TAction::List(items) => {
-                        for it in items {
-                            match it {
-                                TItem::Const(c) | TItem::Set { value: c, .. } => out.push(*c),
-                                _ => {}
-                            }
+        for arc in self.arcs() {
+            out.push(arc.expectation);
+            match &arc.action {
+                TAction::Const(c) => out.push(*c),
+                TAction::List(items) => {
+                    for it in items {
+                        match it {
+                            TItem::Const(c) | TItem::Set { value: c, .. } => out.push(*c),
+                            _ => {}
                         }
                     }
                 }
@@ -460,24 +458,22 @@ impl TSit {
     }
 
     fn locals_used(&self, out: &mut Vec<usize>) {
-        {
-            for arc in self.arcs() {
-                if let TAction::List(items) = &arc.action {
-                    for it in items {
-                        match it {
-                            TItem::Inc { local, .. }
-                            | TItem::Get { local, .. }
-                            | TItem::Set { local, .. } => out.push(*local),
-                            TItem::Const(_) => {}
-                        }
+        for arc in self.arcs() {
+            if let TAction::List(items) = &arc.action {
+                for it in items {
+                    match it {
+                        TItem::Inc { local, .. }
+                        | TItem::Get { local, .. }
+                        | TItem::Set { local, .. } => out.push(*local),
+                        TItem::Const(_) => {}
                     }
                 }
-                arc.next.vals(&mut |v| {
-                    if let TVal::Local(i) = v {
-                        out.push(*i)
-                    }
-                });
             }
+            arc.next.vals(&mut |v| {
+                if let TVal::Local(i) = v {
+                    out.push(*i)
+                }
+            });
         }
     }
 

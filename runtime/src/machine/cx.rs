@@ -98,10 +98,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// parameters named by the atom `call`. The callee starts at its
     /// initial situation.
     pub fn call_typed(&mut self, dm: super::DmIx, call: Term, saved: Term) -> Result<(), RunError> {
-        let here = self.here();
-        if self.m.frames.len() >= self.m.options.max_depth {
-            return self.m.call_dm(call, here);
-        }
+        self.m.check_depth(self.here())?;
         self.m
             .frames
             .last_mut()
@@ -111,14 +108,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             saved,
             id: self.id,
         });
-        let locals = self.m.program.locals(dm, &mut self.m.store);
-        self.m.frames.push(super::state::Frame {
-            dm,
-            dm_id: call,
-            locals,
-            history: Vec::new(),
-            pending: None,
-        });
+        self.m.push_frame(dm, call);
         self.sit = 0;
         self.selected = None;
         Ok(())
@@ -130,23 +120,8 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// situation becoming the running one. Returns the final situation's id.
     pub fn return_typed(&mut self) -> Term {
         let final_id = self.id;
-        let frame = self.m.frames.pop().expect("a frame is running");
-        let keep = self.m.options.keep_history;
-        let caller = self
-            .m
-            .frames
-            .last_mut()
-            .expect("typed calls return to a caller");
-        if keep {
-            caller
-                .history
-                .push(crate::history::Item::Nested(frame.history));
-        } else if frame.history.capacity() == 0 {
-            // Nothing allocated: skip the (out-of-line) drop of no entries.
-            std::mem::forget(frame.history);
-        }
-        match caller.pending.take() {
-            Some(super::state::Pending::Compiled { sit, id, .. }) => {
+        match self.m.pop_frame() {
+            Some(Some(super::state::Pending::Compiled { sit, id, .. })) => {
                 self.sit = sit;
                 self.id = id;
                 self.selected = Some(id);

@@ -74,21 +74,8 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         (outcome, self.store)
     }
 
-    pub(super) fn call_dm(
-        &mut self,
-        call: Term,
-        sit: Option<(SitIx, Term)>,
-    ) -> Result<(), RunError> {
-        if self.frames.len() >= self.options.max_depth {
-            return Err(self.err(
-                format!(
-                    "the DM stack exceeded {} nested DMs",
-                    self.options.max_depth
-                ),
-                sit,
-                None,
-            ));
-        }
+    fn call_dm(&mut self, call: Term, sit: Option<(SitIx, Term)>) -> Result<(), RunError> {
+        self.check_depth(sit)?;
         let call = self.store.deref(call);
         let Some((name, _)) = self.store.functor(call) else {
             return Err(self.err(
@@ -112,6 +99,28 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 None,
             ));
         }
+        self.push_frame(dm, call);
+        Ok(())
+    }
+
+    /// The error of a call that would exceed [`Options::max_depth`](super::Options::max_depth).
+    pub(super) fn check_depth(&self, sit: Option<(SitIx, Term)>) -> Result<(), RunError> {
+        if self.frames.len() >= self.options.max_depth {
+            return Err(self.err(
+                format!(
+                    "the DM stack exceeded {} nested DMs",
+                    self.options.max_depth
+                ),
+                sit,
+                None,
+            ));
+        }
+        Ok(())
+    }
+
+    /// Pushes a frame for DM `dm` called as `call` (checked by the caller:
+    /// the depth limit, the head unified), with fresh locals.
+    pub(super) fn push_frame(&mut self, dm: super::DmIx, call: Term) {
         let locals = self.program.locals(dm, &mut self.store);
         self.frames.push(Frame {
             dm,
@@ -120,7 +129,25 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             history: Vec::new(),
             pending: None,
         });
-        Ok(())
+    }
+
+    /// The end of the running DM: its frame popped, its history nested in
+    /// the caller's when kept; the caller's waiting situation taken. `None`
+    /// when the main DM has ended (its frame stays, for the history).
+    pub(super) fn pop_frame(&mut self) -> Option<Option<Pending>> {
+        let frame = self.frames.pop().expect("a frame is running");
+        let keep = self.options.keep_history;
+        let Some(caller) = self.frames.last_mut() else {
+            self.frames.push(frame);
+            return None;
+        };
+        if keep {
+            caller.history.push(Item::Nested(frame.history));
+        } else if frame.history.capacity() == 0 {
+            // Nothing allocated: skip the (out-of-line) drop of no entries.
+            std::mem::forget(frame.history);
+        }
+        Some(caller.pending.take())
     }
 
     fn run_loop(
@@ -288,15 +315,10 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     };
                 }
                 Step::Final => {
-                    let frame = self.frames.pop().expect("a frame is running");
-                    let Some(caller) = self.frames.last_mut() else {
-                        self.frames.push(frame); // keep for the history
+                    let Some(pending) = self.pop_frame() else {
                         return Ok(None);
                     };
-                    if self.options.keep_history {
-                        caller.history.push(Item::Nested(frame.history));
-                    }
-                    match caller.pending.take() {
+                    match pending {
                         Some(Pending::Recursive { sit }) => {
                             let rinst = self.instances.pop().expect("a pending instance");
                             let next =
