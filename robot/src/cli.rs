@@ -114,6 +114,11 @@ pub struct RunArgs {
     /// Without it these are refused with an error naming this option.
     #[arg(long)]
     pub allow_os: bool,
+    /// Directories the application's code may also write into and consult
+    /// from without `--allow-os` (not an option: `sitlogc run --legacy`
+    /// gives the original's tree, whose apps consult one another's files).
+    #[arg(skip)]
+    pub trust_roots: Vec<PathBuf>,
     /// Follow the run in a web page: the program's diagram (as `sitlogc
     /// graph` draws it) with the current situation, the arcs taken, the DM
     /// stack and the last transitions. Served on 127.0.0.1 only; the task
@@ -218,7 +223,10 @@ impl RunArgs {
                 }
             })
             .map(|d| vec![d.to_path_buf()])
-            .unwrap_or_default();
+            .unwrap_or_default()
+            .into_iter()
+            .chain(self.trust_roots.iter().cloned())
+            .collect();
         Trust {
             allow_os: self.allow_os,
             roots,
@@ -257,6 +265,7 @@ impl Default for RunArgs {
             prolog_time_limit: CallLimits::TIME,
             prolog_heap_limit: CallLimits::HEAP_BYTES >> 20,
             allow_os: false,
+            trust_roots: Vec::new(),
             view: false,
             view_port: 0,
             view_delay: 0,

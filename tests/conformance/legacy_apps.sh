@@ -33,33 +33,10 @@ set -u
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
 
-skip() {
-    echo "skipped: $*"
-    exit 0
-}
 # shellcheck source=original/original.sh
 . "$here/original/original.sh"
-original_available || exit 0
-swipl=$(command -v swipl)
-command -v python3 >/dev/null 2>&1 || skip "python3 not found"
-sitlogc=${SITLOGC:-target/release/sitlogc}
-case "$sitlogc" in
-    /*) ;;
-    *) sitlogc="$root/$sitlogc" ;;
-esac
-[ -x "$sitlogc" ] || skip "$sitlogc not built (cargo build --release --bin sitlogc)"
-limit=${CONFORMANCE_TIMEOUT:-120}
+original_legacy_setup legacy-apps 120 || exit 0
 read -r -a kbs <<<"${LEGACY_KB:-prolog native}"
-
-work=$(mktemp -d "${TMPDIR:-/tmp}/sitlog-legacy-apps.XXXXXX")
-if [ "${CONFORMANCE_KEEP:-0}" = 1 ]; then
-    echo "work directory: $work"
-else
-    trap 'rm -rf "$work"' EXIT
-fi
-mkdir -p "$work/shim"
-printf '#!/bin/sh\nexec %s --traditional "$@"\n' "$swipl" >"$work/shim/swipl"
-chmod +x "$work/shim/swipl"
 
 # A fresh copy of the original's tree (tasks rewrite its KB files).
 fresh() {

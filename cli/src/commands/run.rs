@@ -18,6 +18,8 @@ pub fn run_app(
 ) -> u8 {
     // The legacy profile: the original's Prolog layer from SITLOG_HOME.
     let mut before: Vec<sitlog_runtime::prolog::PrologSource> = Vec::new();
+    let mut legacy_args;
+    let mut args = args;
     if let Some(explicit) = legacy {
         use crate::legacy;
         let files = legacy::find_home(app, explicit)
@@ -29,6 +31,11 @@ pub fn run_app(
                 return 2;
             }
         };
+        // The original's tree is the application: its apps consult one
+        // another's files (without --allow-os as well).
+        legacy_args = args.clone();
+        legacy_args.trust_roots.push(home.clone());
+        args = &legacy_args;
         {
             use sitlog_runtime::prolog::PrologSource;
             // getenv('SITLOG_HOME', H) as the original's launchers set it

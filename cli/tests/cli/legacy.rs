@@ -379,3 +379,43 @@ fn test_mode_gives_each_situation_type_what_the_original_gives() {
     assert_ne!(out.status.code(), Some(0));
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// Under `--legacy` the original's tree is the application: an app's
+/// Prolog consulting another app's file by a `$SITLOG_HOME` path runs
+/// without `--allow-os` (the original's own apps do), while a file outside
+/// the tree is still refused.
+#[test]
+fn the_original_tree_is_the_application_under_legacy() {
+    let root = tree("sibling");
+    write(&root, "apps/other/extra.pl", "extra_fact(yes).\n");
+    let functions = root.join("apps/shop/user_functions.pl");
+    let text = std::fs::read_to_string(&functions).unwrap();
+    std::fs::write(
+        &functions,
+        format!("{text}\n:- consult('$SITLOG_HOME/apps/other/extra.pl').\n"),
+    )
+    .unwrap();
+    let out = run(&root, &[], None);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    // A file outside the tree: refused, naming --allow-os.
+    let elsewhere = std::env::temp_dir().join(format!(
+        "sitlogc-legacy-elsewhere-{}.pl",
+        std::process::id()
+    ));
+    std::fs::write(&elsewhere, "elsewhere_fact(yes).\n").unwrap();
+    std::fs::write(
+        &functions,
+        format!("{text}\n:- consult('{}').\n", elsewhere.display()),
+    )
+    .unwrap();
+    let out = run(&root, &[], None);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("outside the application") && stderr.contains("--allow-os"),
+        "{stderr}"
+    );
+    let _ = std::fs::remove_file(&elsewhere);
+    let _ = std::fs::remove_dir_all(&root);
+}

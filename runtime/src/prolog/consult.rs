@@ -94,7 +94,7 @@ pub(super) struct Prep<'a> {
     /// `consult/1` directives naming, by an absolute or `$SITLOG_HOME`
     /// path, a file outside the directories of `embedded` (refused at start
     /// without `--allow-os`; relative names are the application's own).
-    pub(super) outside: &'a mut Vec<PrologLoadError>,
+    pub(super) outside: &'a mut Vec<(PathBuf, PrologLoadError)>,
     /// Every source given: a file they consult is taken from them first
     /// (a compiled task embeds what its sources consult).
     pub(super) embedded: &'a [PrologSource],
@@ -191,11 +191,14 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
                             if (f.starts_with('$') || Path::new(&f).is_absolute())
                                 && !inside_sources(&path, cx.embedded) =>
                         {
-                            cx.outside.push(err(format!(
-                                "consulting `{}` (outside the application) is refused: the operating system is off for application code unless the run is given {}",
-                                path.display(),
-                                crate::trust::ALLOW_OS
-                            )));
+                            cx.outside.push((
+                                path.clone(),
+                                err(format!(
+                                    "consulting `{}` (outside the application) is refused: the operating system is off for application code unless the run is given {}",
+                                    path.display(),
+                                    crate::trust::ALLOW_OS
+                                )),
+                            ));
                             match PrologSource::from_path(&path) {
                                 Ok(s) => prepare(&s, cx, depth + 1),
                                 Err(e) => cx.errors.push(err(format!("cannot consult `{f}`: {e}"))),

@@ -104,8 +104,9 @@ struct Inner {
     options: PrologOptions,
     /// The outcome of [`PrologFunctions::start`], once it ran.
     started: Mutex<Option<Result<(), Vec<PrologLoadError>>>>,
-    /// `consult/1` directives naming a file outside the application.
-    outside: Vec<PrologLoadError>,
+    /// `consult/1` directives naming a file outside the application: the
+    /// file and the refusal (unless the run's trust roots hold the file).
+    outside: Vec<(PathBuf, PrologLoadError)>,
     /// Directories of the application's Prolog files.
     source_dirs: Vec<PathBuf>,
     roots: Roots,
@@ -263,8 +264,17 @@ impl PrologFunctions {
     }
 
     fn start_now(&self, trust: &Trust) -> Result<(), Vec<PrologLoadError>> {
-        if !trust.allow_os && !self.inner.outside.is_empty() {
-            return Err(self.inner.outside.clone());
+        if !trust.allow_os {
+            let refused: Vec<PrologLoadError> = self
+                .inner
+                .outside
+                .iter()
+                .filter(|(path, _)| !Trust::inside(path, &trust.roots))
+                .map(|(_, e)| e.clone())
+                .collect();
+            if !refused.is_empty() {
+                return Err(refused);
+            }
         }
         if let Ok(mut r) = self.inner.roots.lock() {
             *r = permissions::roots(&self.inner.source_dirs, trust);

@@ -4,7 +4,7 @@
 # driver.pl next to this file. Nothing of the original is copied into this
 # repository.
 #
-# Sourced (tests/conformance/run.sh, tests/conformance/legacy_demos.sh,
+# Sourced (tests/conformance/run.sh, legacy_demos.sh, legacy_apps.sh,
 # benches/original.sh), it defines:
 #
 #   original_available
@@ -17,6 +17,17 @@
 #       it has none, basic_actions.pl from $SITLOG_HOME/apps/test_behaviors
 #       (so that `screen` and friends print) when it has none, and the other
 #       side files empty.
+#   original_legacy_setup NAME DEFAULT_TIMEOUT
+#       what the scripts that run the original's own apps beside ours
+#       (legacy_demos.sh, legacy_apps.sh) share: after original_available,
+#       checks python3 and our binary ($SITLOGC, default
+#       target/release/sitlogc, set as `sitlogc`), sets `swipl`, `limit`
+#       ($CONFORMANCE_TIMEOUT or DEFAULT_TIMEOUT) and `work` (a temporary
+#       directory named after NAME, removed on exit unless
+#       CONFORMANCE_KEEP=1), and puts in $work/shim a `swipl` that runs
+#       `swipl --traditional` (SWI-6 lists, which the original's action code
+#       needs). Prints `skipped: REASON` and returns 1 when something is
+#       missing.
 #   original_run MODE COPY MAIN IN_ARG INPUT OUT LOG TIMEOUT [SWIPL_OPTION...]
 #       one run of the original on a prepared COPY (main DM MAIN, initial
 #       in_arg IN_ARG, test-mode input from the file INPUT), under `timeout
@@ -51,6 +62,36 @@ original_available() {
     fi
     SITLOG_HOME=$(cd "$SITLOG_HOME" && pwd)
     export SITLOG_HOME
+}
+
+original_legacy_setup() {
+    local root
+    root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
+    original_available || return 1
+    swipl=$(command -v swipl)
+    if ! command -v python3 >/dev/null 2>&1; then
+        echo "skipped: python3 not found"
+        return 1
+    fi
+    sitlogc=${SITLOGC:-target/release/sitlogc}
+    case "$sitlogc" in
+        /*) ;;
+        *) sitlogc="$root/$sitlogc" ;;
+    esac
+    if [ ! -x "$sitlogc" ]; then
+        echo "skipped: $sitlogc not built (cargo build --release --bin sitlogc)"
+        return 1
+    fi
+    limit=${CONFORMANCE_TIMEOUT:-$2}
+    work=$(mktemp -d "${TMPDIR:-/tmp}/sitlog-$1.XXXXXX")
+    if [ "${CONFORMANCE_KEEP:-0}" = 1 ]; then
+        echo "work directory: $work"
+    else
+        trap 'rm -rf "$work"' EXIT
+    fi
+    mkdir -p "$work/shim"
+    printf '#!/bin/sh\nexec %s --traditional "$@"\n' "$swipl" >"$work/shim/swipl"
+    chmod +x "$work/shim/swipl"
 }
 
 original_prepare() {
