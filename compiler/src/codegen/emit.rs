@@ -628,8 +628,10 @@ impl Gen<'_> {
                 }
 
                 /// Runs a situation that runs as code, and the compiled
-                /// situations it goes to by index, until the machine is
-                /// needed (another kind of step, or garbage to collect).
+                /// situations it goes to (by index, or selected by the
+                /// value of its next situation), until the machine is
+                /// needed (another kind of step, a situation instantiated
+                /// from its template, or garbage to collect).
                 pub fn run_situation(
                     p: &super::Program,
                     sit: #rt::machine::SitIx,
@@ -640,10 +642,19 @@ impl Gen<'_> {
                         #typed_first
                         match step {
                             #rt::machine::Step::GotoSit(next) if !cx.gc_due() => {
-                                let ::std::option::Option::Some((id, 0)) = compiled_id(p, next) else {
+                                // A compound id is built by the situation's code.
+                                let ::std::option::Option::Some((id, _)) = compiled_id(p, next) else {
                                     return ::std::result::Result::Ok(step);
                                 };
                                 cx.enter(next, id);
+                                sit = next;
+                            }
+                            // A next situation computed at run time: selected
+                            // here when the machine would select compiled code.
+                            #rt::machine::Step::Goto(value) if !cx.gc_due() => {
+                                let ::std::option::Option::Some(next) = cx.enter_selected(value) else {
+                                    return ::std::result::Result::Ok(step);
+                                };
                                 sit = next;
                             }
                             _ => return ::std::result::Result::Ok(step),

@@ -537,7 +537,7 @@ impl Gen<'_> {
                 b.stmts
                     .push(quote!(let chosen = cx.choose_exit(final_id)?;));
             } else {
-                let ty = self.frozen(a.type_term, b);
+                let ty = self.build_code(&a.type_term, b);
                 b.stmts.push(quote! {
                     let ::std::option::Option::Some(chosen) = cx.choose(#ty)? else {
                         return ::std::result::Result::Ok(#rt::machine::Step::Unmet { type_term: #ty });

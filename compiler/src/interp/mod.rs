@@ -136,11 +136,18 @@ impl DmProgram for Resolved<'_> {
                 // Go on to the next situation of the DM by itself, until
                 // the machine is needed.
                 Step::GotoSit(next) if self.chain && !cx.gc_due() => match self.plan(dm, next) {
-                    Some(q) if q.id.1 == 0 => {
+                    // A compound id is built by the situation's plan.
+                    Some(q) => {
                         cx.enter(next, q.id.0);
                         sit = next;
                     }
-                    _ => return Ok(step),
+                    None => return Ok(step),
+                },
+                // A next situation computed at run time: selected here when
+                // the machine would select a situation with a plan.
+                Step::Goto(value) if self.chain && !cx.gc_due() => match cx.enter_selected(value) {
+                    Some(next) => sit = next,
+                    None => return Ok(step),
                 },
                 _ => return Ok(step),
             }
@@ -347,6 +354,23 @@ diag_mod(add_one(A), [
   [id ==> walk([]), type ==> final]], []).\n",
             "",
         );
+    }
+
+    #[test]
+    fn compound_types_run_from_plans() {
+        // A type built from a parameter and from an id variable, as an
+        // instance's would be; unmet input and recovery see the same term.
+        let ir = agree(
+            "diag_mod(main, [
+  [id ==> is, type ==> recursive, embedded_dm ==> wait(speech), arcs ==> [done(W) : say(W) => fs]],
+  [id ==> fs, type ==> final]], []).
+diag_mod(wait(T), [
+  [id ==> is, type ==> T, arcs ==> [go(X) : say(X) => at(T)]],
+  [id ==> at(U), type ==> U, arcs ==> [stop : empty => done(U)]],
+  [id ==> done(U), type ==> final]], []).\n",
+            "go(a).\nnothing.\nstop.\n",
+        );
+        assert_eq!(Resolved::new(&ir).counts(), (5, 5));
     }
 
     #[test]

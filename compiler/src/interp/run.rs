@@ -325,14 +325,13 @@ pub(super) fn run_arcs(
         cx.set_expectations(&regs[exps..exps + n]);
         match final_id {
             Some(final_id) => cx.choose_exit(final_id)?,
-            None => match cx.choose(a.type_term)? {
-                Some(i) => i,
-                None => {
-                    return Ok(Step::Unmet {
-                        type_term: a.type_term,
-                    })
+            None => {
+                let type_term = build(cx, regs, &a.type_term);
+                match cx.choose(type_term)? {
+                    Some(i) => i,
+                    None => return Ok(Step::Unmet { type_term }),
                 }
-            },
+            }
         }
     };
     let arc = &a.arcs[chosen];

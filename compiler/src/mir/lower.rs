@@ -54,7 +54,6 @@ impl<'s> Planner<'s> {
     /// The rule for a situation that runs as code (both back ends follow it).
     pub(crate) fn compiled_id(&self, s: &IrSituation) -> Option<(Atom, usize)> {
         let f = self.store.args(s.template);
-        self.store.atom_of(f[TYPE])?;
         if s.kind == Kind::Recursive && self.store.atom_of(f[EMBEDDED_DM]) == Some(none_marker()) {
             return None;
         }
@@ -637,9 +636,9 @@ impl<'s> Planner<'s> {
                 diag_mod,
             });
         }
-        if !always_first {
-            self.store.atom_of(type_term).ok_or(Unsupported)?;
-        }
+        // A type that is not an atom is built from the situation's
+        // variables, as an instance's would be.
+        let type_term = self.build(type_term, &scope.vars, 0)?;
         Ok(Arcs {
             arcs: plans,
             pure,

@@ -5,8 +5,8 @@
 //! the instantiating path.
 //!
 //! Invariant: the rules of *which situations run as code* (an atom id, or
-//! a compound id none of whose variables is a DM parameter; an atom type;
-//! a DM whose parameters are distinct variables; no term deeper than
+//! a compound id none of whose variables is a DM parameter; any type, a
+//! compound one built from the situation's variables; a DM whose parameters are distinct variables; no term deeper than
 //! [`MAX_DEPTH`]), *which variables are lazy* (first occurring as the
 //! argument of `get`/`inc` or the variable of `is`) and *where a constant
 //! next situation goes* are decided here only. The interpreter
@@ -181,7 +181,9 @@ pub struct Arcs {
     pub pure: bool,
     /// `neutral` with `[empty : A => N]`: the arc is taken (D-14).
     pub always_first: bool,
-    pub type_term: Term,
+    /// The situation's type, built from the situation's registers when it
+    /// is not an atom (`presence(Seconds)`).
+    pub type_term: Build,
     /// The evaluated expectations: registers `exps..exps + arcs.len()`.
     pub exps: Reg,
 }
@@ -314,7 +316,7 @@ impl Next {
 
 impl Arcs {
     fn constants(&self, out: &mut Vec<Term>) {
-        out.push(self.type_term);
+        self.type_term.constants(out);
         for arc in &self.arcs {
             arc.expectation.constants(out);
             match &arc.action {

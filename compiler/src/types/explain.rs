@@ -35,7 +35,7 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
         for l in &t.locals {
             let _ = writeln!(out, "  local `{}`: {} ({})", l.name, l.ty, l.why);
         }
-        for (s, r) in dm.situations.iter().zip(&t.situations) {
+        for (n, (s, r)) in dm.situations.iter().zip(&t.situations).enumerate() {
             let id = show(store, dm, store.args(s.template)[1]);
             match r {
                 Ok(plan) => {
@@ -77,8 +77,15 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
                         let _ = writeln!(out, "  situation `{id}`: typed ({})", vars.join(", "));
                     }
                 }
-                Err(why) => {
-                    let _ = writeln!(out, "  situation `{id}`: terms ({why})");
+                Err(why) if t.code[n] => {
+                    let _ = writeln!(out, "  situation `{id}`: code on terms ({why})");
+                }
+                Err(_) => {
+                    let _ = writeln!(
+                        out,
+                        "  situation `{id}`: template (instantiated at run time: {})",
+                        template_why(store, s)
+                    );
                 }
             }
         }
@@ -93,12 +100,30 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
     out
 }
 
-/// `situations compiled as code: X/Y; variables typed: A/B`: X of the
-/// application's Y situations run as native typed code, A of its B
-/// variables (DM parameters, pipes read by typed code, locals and globals)
-/// have a type other than `term`.
+/// Why the MIR gives situation `s` no plan (see [`crate::mir`]'s rule).
+fn template_why(store: &Store, s: &crate::ir::IrSituation) -> &'static str {
+    let f = store.args(s.template);
+    let id = f[crate::mir::ID];
+    if store.atom_of(id).is_none() && store.functor(id).is_none() {
+        "its id is not a name"
+    } else if s.kind == Kind::Recursive
+        && store.atom_of(f[crate::mir::EMBEDDED_DM]) == Some(none_marker())
+    {
+        "a recursive situation without `embedded_dm`"
+    } else {
+        "its DM's parameters are not distinct variables, its id shares one, or a term is too deep"
+    }
+}
+
+/// The listing's last two lines: `situations on native values: N/Y`, then
+/// exactly `situations compiled as code: X/Y; variables typed: A/B`.
+/// X of the application's Y situations run as generated code (a
+/// [MIR](crate::mir) plan: no template instantiated, next situations
+/// selected by the code), N of those on native values (a typed plan); A
+/// of its B variables (DM parameters, pipes read by typed code, locals
+/// and globals) have a type other than `term`.
 pub fn summary(types: &Types) -> String {
-    let (mut sits, mut typed_sits, mut vars, mut typed_vars) = (0, 0, 0, 0);
+    let (mut sits, mut code, mut typed_sits, mut vars, mut typed_vars) = (0, 0, 0, 0, 0);
     let mut count = |v: &VarTy| {
         vars += 1;
         if v.ty != Ty::Term {
@@ -110,10 +135,12 @@ pub fn summary(types: &Types) -> String {
         dm.pipe.iter().for_each(&mut count);
         dm.locals.iter().for_each(&mut count);
         sits += dm.situations.len();
+        code += dm.code.iter().filter(|&&c| c).count();
         typed_sits += dm.situations.iter().filter(|s| s.is_ok()).count();
     }
     types.globals.iter().for_each(&mut count);
     format!(
-        "situations compiled as code: {typed_sits}/{sits}; variables typed: {typed_vars}/{vars}"
+        "situations on native values: {typed_sits}/{sits}\n\
+         situations compiled as code: {code}/{sits}; variables typed: {typed_vars}/{vars}"
     )
 }

@@ -45,6 +45,15 @@ pub fn infer(ir: &Ir) -> Types {
 /// the calls into it: repeated until nothing changes.
 fn typed_calls(ir: &Ir, dms: &mut [DmTypes]) {
     let mir = crate::mir::lower(ir);
+    for (d, plans) in dms.iter_mut().zip(&mir.dms) {
+        d.code = plans.iter().map(Option::is_some).collect();
+        // Typed code runs from a situation's code: none without a plan.
+        for (s, code) in d.situations.iter_mut().zip(&d.code) {
+            if s.is_ok() && !code {
+                *s = Err("it does not run as code".to_owned());
+            }
+        }
+    }
     loop {
         let mut changed = false;
         for d in 0..dms.len() {
@@ -312,6 +321,7 @@ pub(super) fn infer_dm(ir: &Ir, dm: &IrDm) -> DmTypes {
         params,
         pipe,
         locals,
+        code: vec![false; situations.len()],
         situations,
     }
 }

@@ -250,6 +250,11 @@ pub struct DmTypes {
     pub locals: Vec<VarTy>,
     /// Per situation, in order: its typed plan or why it has none.
     pub situations: Vec<Result<TSit, String>>,
+    /// Per situation, in order: whether it runs as generated code (it has
+    /// a [MIR](crate::mir) plan), on native values when it also has a
+    /// typed plan, on terms otherwise; else it is instantiated from its
+    /// template at run time.
+    pub code: Vec<bool>,
 }
 
 impl DmTypes {
@@ -637,21 +642,54 @@ diag_mod(main,
             "{text}"
         );
         assert!(
-            text.contains("situation `is`: terms (arc 1: local `n` is a term)"),
+            text.contains("situation `is`: code on terms (arc 1: local `n` is a term)"),
             "{text}"
         );
         // A variable in_arg is the pipe, typed like a parameter: what
         // leaves `is2` on terms is its next situation.
         assert!(
-            text.contains("situation `is2`: terms (arc 1: next situation `s(X)` is not an atom"),
+            text.contains("situation `is2`: code on terms (arc 1: next situation `s(X)` is not an atom"),
             "{text}"
         );
         assert!(
-            text.contains("situation `s(_)`: terms (its id `s(_)` is not an atom)"),
+            text.contains("situation `s(_)`: code on terms (its id `s(_)` is not an atom)"),
             "{text}"
         );
         assert!(
-            text.contains("situation `fs`: terms (no other situation of the DM runs typed)"),
+            text.contains("situation `fs`: code on terms (no other situation of the DM runs typed)"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn the_summary_counts_code_and_native_values() {
+        let ir = ir_of(
+            r#"
+diag_mod(main,
+  [ [ id ==> is, type ==> recursive, embedded_dm ==> twice(a, a),
+      arcs ==> [ fs : empty => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+diag_mod(twice(X, X),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : say(X) => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#,
+        );
+        let t = infer(&ir);
+        let text = explain(&ir, &t);
+        assert!(
+            text.contains("situation `is`: code on terms (its embedded_dm `twice(a,a)`"),
+            "{text}"
+        );
+        assert!(
+            text.contains("situation `is`: template (instantiated at run time: its DM's parameters"),
+            "{text}"
+        );
+        assert!(
+            text.ends_with(
+                "situations on native values: 0/4\nsituations compiled as code: 2/4; variables typed: 0/2\n"
+            ),
             "{text}"
         );
     }
@@ -674,12 +712,12 @@ diag_mod(main(P),
         let t = infer(&ir);
         let text = explain(&ir, &t);
         assert!(
-            text.contains("situation `a`: terms (arc 1: `K>1.5` compares an int with a float)"),
+            text.contains("situation `a`: code on terms (arc 1: `K>1.5` compares an int with a float)"),
             "{text}"
         );
         assert!(
             text.contains(
-                "situation `b`: terms (parameter `P` is compared both as an int and as a float)"
+                "situation `b`: code on terms (parameter `P` is compared both as an int and as a float)"
             ),
             "{text}"
         );

@@ -62,6 +62,23 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.selected = None;
     }
 
+    /// Goes on to the situation of the running DM that the evaluated next
+    /// situation `next` (a [`Step::Goto`]'s) selects, when it is compiled
+    /// and selected as the machine would (D-21): its index, after which its
+    /// code runs as if the machine had entered it. `None`, nothing done,
+    /// when the machine must select (a situation instantiated from its
+    /// template may take it, or none does). Code that goes on by itself
+    /// asks [`Cx::gc_due`] first.
+    #[inline]
+    pub fn enter_selected(&mut self, next: Term) -> Option<SitIx> {
+        let dm = self.m.frames.last().expect("a frame is running").dm;
+        let (sit, id, selected) = self.m.select_compiled_first(dm, next)?;
+        self.sit = sit;
+        self.id = id;
+        self.selected = selected;
+        Some(sit)
+    }
+
     /// What typed code keeps while it runs typed situations one after the
     /// other without the machine: the run's settings read once, the
     /// transitions it counted (given back with [`Cx::count_transitions`]).

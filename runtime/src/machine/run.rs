@@ -8,13 +8,13 @@ use super::io::{Actions, Perception};
 use super::observe::Observer;
 use super::outcome::{Outcome, RunError};
 use super::program::{Cx, DmProgram, Step};
-use super::situation::{Instance, Kind, SitIx};
+use super::situation::{DmIx, Instance, Kind, SitIx};
 use super::state::{Frame, Goto, Machine, Pending};
 use super::steps::Chosen;
 use crate::history::Item;
 use crate::store::Store;
 use crate::term::Term;
-use sitlog_syntax::atoms;
+use sitlog_syntax::{atoms, Atom};
 
 /// The situation [`Machine::select`] picked.
 enum Selected {
@@ -403,29 +403,11 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 let functor = self.store.functor(value);
                 for sit in 0..self.program.situation_count(dm) as SitIx {
                     if let Some(id) = self.program.compiled_id(dm, sit) {
-                        if functor != Some(id) {
-                            continue;
-                        }
-                        if id.1 == 0 {
-                            // An atom id unifies only with that atom.
-                            let id = Term::atom(id.0);
-                            return Ok((sit, Selected::Compiled { id, selected: None }));
-                        }
-                        let mark = self.store.mark();
-                        if self
-                            .program
-                            .select_compiled(dm, sit, value, &mut self.store)
+                        if let Some((id, selected)) =
+                            self.select_compiled_one(dm, sit, id, functor, value)
                         {
-                            let selected = Some(value);
-                            return Ok((
-                                sit,
-                                Selected::Compiled {
-                                    id: value,
-                                    selected,
-                                },
-                            ));
+                            return Ok((sit, Selected::Compiled { id, selected }));
                         }
-                        self.store.undo_to(mark);
                         continue;
                     }
                     if !self.program.may_select(dm, sit, value, &self.store) {
@@ -449,6 +431,65 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 ))
             }
         }
+    }
+
+    /// Whether compiled situation `sit` (its id's name and arity `id`) of
+    /// DM `dm` takes the next situation `value` (principal functor
+    /// `functor`), D-21: its id and the value that selected it (`None` for
+    /// an atom id), else nothing bound. One rule for the machine's
+    /// selection and for code going on by itself ([`Machine::select_compiled_first`]).
+    fn select_compiled_one(
+        &mut self,
+        dm: DmIx,
+        sit: SitIx,
+        id: (Atom, usize),
+        functor: Option<(Atom, usize)>,
+        value: Term,
+    ) -> Option<(Term, Option<Term>)> {
+        if functor != Some(id) {
+            return None;
+        }
+        if id.1 == 0 {
+            // An atom id unifies only with that atom.
+            return Some((Term::atom(id.0), None));
+        }
+        let mark = self.store.mark();
+        if self
+            .program
+            .select_compiled(dm, sit, value, &mut self.store)
+        {
+            return Some((value, Some(value)));
+        }
+        self.store.undo_to(mark);
+        None
+    }
+
+    /// The situation of DM `dm` the next situation `value` (dereferenced,
+    /// a name) selects, when the machine's selection would pick a compiled
+    /// one: `None` (nothing bound) when a situation instantiated from its
+    /// template may take it first, or none does (the machine then selects,
+    /// and reports what it must).
+    pub(super) fn select_compiled_first(
+        &mut self,
+        dm: DmIx,
+        value: Term,
+    ) -> Option<(SitIx, Term, Option<Term>)> {
+        let functor = self.store.functor(value);
+        functor?;
+        for sit in 0..self.program.situation_count(dm) as SitIx {
+            match self.program.compiled_id(dm, sit) {
+                Some(id) => {
+                    if let Some((id, selected)) =
+                        self.select_compiled_one(dm, sit, id, functor, value)
+                    {
+                        return Some((sit, id, selected));
+                    }
+                }
+                None if self.program.may_select(dm, sit, value, &self.store) => return None,
+                None => {}
+            }
+        }
+        None
     }
 
     /// Links a later situation's fresh head to the DM call, argument by
