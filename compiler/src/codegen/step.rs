@@ -253,6 +253,15 @@ impl Gen<'_> {
     /// its constant arguments unified with `value`'s.
     pub(super) fn select_code(&self, plan: &SitPlan) -> Option<TokenStream> {
         if let Some(pat) = &plan.pattern {
+            if self.linear(pat.term) {
+                // Matched natively, argument by argument; a variable of the
+                // value where the pattern has structure is bound to a fresh
+                // copy of that part, as unifying with a copy would.
+                let mut n = 0;
+                let body = self.match_pattern(pat.term, quote!(value), &mut n);
+                let k = Self::uses(&body).1.then(|| quote!(let k = &p.k;));
+                return Some(quote!(#k #body true));
+            }
             // As an instance's id: a fresh copy of the pattern unified with the value.
             let (fresh, vars) = self.fresh_vars(&[pat.term]);
             let built = self.build(pat.term, &vars, false, &mut 0);
@@ -280,6 +289,78 @@ impl Gen<'_> {
             }
         });
         Some(quote!(#(#checks)* true))
+    }
+
+    /// Whether no variable occurs twice in `t`.
+    fn linear(&self, t: Term) -> bool {
+        let mut seen = std::collections::HashSet::new();
+        let mut stack = vec![t];
+        while let Some(u) = stack.pop() {
+            match self.store.value(u) {
+                Value::Var(v) if !seen.insert(v.index()) => return false,
+                Value::Compound(_, args) => stack.extend(args.iter().copied()),
+                _ => {}
+            }
+        }
+        true
+    }
+
+    /// Statements matching the value `x` against the linear pattern `pat`
+    /// (`return false` when it cannot unify), each part as unifying with a
+    /// fresh copy of the pattern would: a variable of the pattern takes
+    /// anything, a ground part is unified, a compound part is taken apart
+    /// when the value has that functor and arity, and bound to a fresh copy
+    /// of itself when the value is a variable.
+    fn match_pattern(&self, pat: Term, x: TokenStream, n: &mut usize) -> TokenStream {
+        match self.store.value(pat) {
+            Value::Var(_) => quote!(),
+            _ if self.store.is_ground(pat) => {
+                let c = self.build_into(pat, &Default::default(), false, &mut 0, &mut Vec::new());
+                quote! {
+                    if !store.unify(#x, #c) {
+                        return false;
+                    }
+                }
+            }
+            Value::Compound(name, args) => {
+                let y = format_ident!("y{}", *n);
+                *n += 1;
+                let (fresh, vars) = self.fresh_vars(&[pat]);
+                let built = self.build(pat, &vars, false, &mut 0);
+                let stmts = built.stmts.iter().map(|(n, e)| quote!(let #n = #e;));
+                let copy = built.value;
+                let f = self.atom_expr(name);
+                let arity = Literal::usize_unsuffixed(args.len());
+                let parts: Vec<Ident> = (0..args.len())
+                    .map(|_| {
+                        let p = format_ident!("y{}", *n);
+                        *n += 1;
+                        p
+                    })
+                    .collect();
+                let ixs = (0..args.len()).map(Literal::usize_unsuffixed);
+                let inner: Vec<TokenStream> = args
+                    .iter()
+                    .zip(&parts)
+                    .map(|(&a, p)| self.match_pattern(a, quote!(#p), n))
+                    .collect();
+                quote! {
+                    let #y = store.deref(#x);
+                    if store.is_var(#y) {
+                        #(#fresh)*
+                        #(#stmts)*
+                        let _ = store.unify(#y, #copy);
+                    } else {
+                        let ::std::option::Option::Some(args) = store.compound_args(#y, #f, #arity) else {
+                            return false;
+                        };
+                        let [#(#parts),*] = [#(args[#ixs]),*];
+                        #(#inner)*
+                    }
+                }
+            }
+            _ => unreachable!("atomic terms are ground"),
+        }
     }
 
     /// The code of a situation's plan: a visit, and for a recursive one its

@@ -648,7 +648,9 @@ diag_mod(main,
         // A variable in_arg is the pipe, typed like a parameter: what
         // leaves `is2` on terms is its next situation.
         assert!(
-            text.contains("situation `is2`: code on terms (arc 1: next situation `s(X)` is not an atom"),
+            text.contains(
+                "situation `is2`: code on terms (arc 1: next situation `s(X)` is not an atom"
+            ),
             "{text}"
         );
         assert!(
@@ -656,7 +658,9 @@ diag_mod(main,
             "{text}"
         );
         assert!(
-            text.contains("situation `fs`: code on terms (no other situation of the DM runs typed)"),
+            text.contains(
+                "situation `fs`: code on terms (no other situation of the DM runs typed)"
+            ),
             "{text}"
         );
     }
@@ -683,7 +687,9 @@ diag_mod(twice(X, X),
             "{text}"
         );
         assert!(
-            text.contains("situation `is`: template (instantiated at run time: its DM's parameters"),
+            text.contains(
+                "situation `is`: template (instantiated at run time: its DM's parameters"
+            ),
             "{text}"
         );
         assert!(
@@ -712,7 +718,9 @@ diag_mod(main(P),
         let t = infer(&ir);
         let text = explain(&ir, &t);
         assert!(
-            text.contains("situation `a`: code on terms (arc 1: `K>1.5` compares an int with a float)"),
+            text.contains(
+                "situation `a`: code on terms (arc 1: `K>1.5` compares an int with a float)"
+            ),
             "{text}"
         );
         assert!(
