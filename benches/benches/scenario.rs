@@ -3,6 +3,9 @@
 //! - `home/interpreted`, `home/compiled`: one whole run on the app's world
 //!   (Prolog engine start, KB, sim world built and settled, 260-odd
 //!   transitions, the transcript written to a buffer);
+//! - `home/prolog_start`: the Prolog engine with the app's files alone;
+//!   `home/interpreted_run_only`, `home/compiled_run_only`: the run once
+//!   the engine is there (and, interpreted, the program checked and lowered);
 //! - `sim/new`: reading nothing, building the physics world of the home and
 //!   settling every object on its shelf;
 //! - `sim/see`: one look at the drinks shelf (a shape-intersection query and
@@ -42,6 +45,34 @@ fn home(c: &mut Criterion) {
             assert_eq!(run.code, 0);
             black_box(run.transcript.len())
         })
+    });
+    // What a whole run is made of: the Prolog engine with the app's files,
+    // and the run itself once the engine is there (the program checked
+    // and lowered beforehand on the interpreter).
+    g.bench_function("prolog_start", |b| {
+        b.iter(|| black_box(apps_home::functions().expect("Prolog loads")))
+    });
+    g.bench_function("interpreted_run_only", |b| {
+        b.iter_batched(
+            || interpreter(&app()),
+            |(ir, functions)| {
+                let run = execute(&ir, functions, &assets);
+                assert_eq!(run.code, 0);
+                black_box(run.transcript.len())
+            },
+            BatchSize::PerIteration,
+        )
+    });
+    g.bench_function("compiled_run_only", |b| {
+        b.iter_batched(
+            || apps_home::functions().expect("Prolog loads"),
+            |functions| {
+                let run = execute(apps_home::program(), functions, &assets);
+                assert_eq!(run.code, 0);
+                black_box(run.transcript.len())
+            },
+            BatchSize::PerIteration,
+        )
     });
     g.finish();
 }

@@ -72,6 +72,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     #[inline]
     pub fn enter_selected(&mut self, next: Term) -> Option<SitIx> {
         let dm = self.m.frames.last().expect("a frame is running").dm;
+        let next = self.m.store.deref(next);
         let (sit, id, selected) = self.m.select_compiled_first(dm, next)?;
         self.sit = sit;
         self.id = id;
