@@ -1,6 +1,7 @@
 //! The home butler (`dms/apps/home`) as a user runs it, and the two costs of
 //! the simulated robot that such a run is made of:
-//! - `home/interpreted`, `home/compiled`: one whole run on the app's world
+//! - `home/interpreted` (`sitlogc run`'s interpreter: plans, the program
+//!   checked and lowered in the run), `home/compiled`: one whole run on the app's world
 //!   (Prolog engine start, KB, sim world built and settled, 260-odd
 //!   transitions, the transcript written to a buffer);
 //! - `home/prolog_start`: the Prolog engine with the app's files alone;
@@ -15,6 +16,7 @@
 //! `cargo bench -p sitlog-benches --bench scenario`.
 
 use criterion::{black_box, criterion_group, criterion_main, BatchSize, Criterion};
+use sitlog_compiler::interp::Resolved;
 use sitlog_sim::{Hand, Sim, World};
 use sitlog_tests::compiled::generated::apps_home;
 use sitlog_tests::scenario::{assets, execute, interpreter};
@@ -33,7 +35,7 @@ fn home(c: &mut Criterion) {
     g.bench_function("interpreted", |b| {
         b.iter(|| {
             let (ir, functions) = interpreter(&app());
-            let run = execute(&ir, functions, &assets);
+            let run = execute(&Resolved::new(&ir), functions, &assets);
             assert_eq!(run.code, 0);
             black_box(run.transcript.len())
         })
@@ -56,7 +58,7 @@ fn home(c: &mut Criterion) {
         b.iter_batched(
             || interpreter(&app()),
             |(ir, functions)| {
-                let run = execute(&ir, functions, &assets);
+                let run = execute(&Resolved::new(&ir), functions, &assets);
                 assert_eq!(run.code, 0);
                 black_box(run.transcript.len())
             },

@@ -35,6 +35,9 @@ pub struct Resolved<'ir> {
     /// Go on to the next planned situation of a DM without returning to the
     /// machine's loop (as generated code does).
     chain: bool,
+    /// Situations instantiated from their templates so far, by every run
+    /// of this program (those without a plan).
+    instantiated: std::sync::atomic::AtomicUsize,
 }
 
 impl<'ir> Resolved<'ir> {
@@ -45,7 +48,14 @@ impl<'ir> Resolved<'ir> {
             ir,
             plans,
             chain: true,
+            instantiated: std::sync::atomic::AtomicUsize::new(0),
         }
+    }
+
+    /// How many situations the runs of this program have instantiated from
+    /// their templates (none when every situation they reached has a plan).
+    pub fn templates_instantiated(&self) -> usize {
+        self.instantiated.load(std::sync::atomic::Ordering::Relaxed)
     }
 
     /// Returns to the machine's loop after every situation, so that each
@@ -89,6 +99,8 @@ impl DmProgram for Resolved<'_> {
         DmProgram::fresh_head(self.ir, dm, store)
     }
     fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Instance {
+        self.instantiated
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         DmProgram::instantiate(self.ir, dm, sit, store)
     }
     fn may_select(&self, dm: DmIx, sit: SitIx, value: Term, store: &Store) -> bool {

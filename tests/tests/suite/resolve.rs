@@ -1,7 +1,8 @@
 //! The interpreter's plans (`sitlog_compiler::interp`) on the shipped
 //! applications: every situation of the two scenarios runs from a plan
 //! (ids that are patterns, `try([P|Ps])`, and types that are not atoms,
-//! `presence(Seconds)`, included), at least 90 % elsewhere; the counts are
+//! `presence(Seconds)`, included), at least 90 % elsewhere, and a whole
+//! run of each scenario instantiates no template; the counts are
 //! printed (`cargo test -p sitlog-tests --test resolve -- --nocapture`) for
 //! docs/guide/performance.md. That plans and templates agree is checked by
 //! `random_agreement.rs` and the goldens (which run from plans).
@@ -33,5 +34,25 @@ fn the_applications_run_mostly_from_plans() {
         if app.starts_with("dms/apps/") {
             assert_eq!(planned, all, "{app}");
         }
+    }
+}
+
+/// A whole run of each scenario on its own world, on `sitlogc run`'s
+/// interpreter, instantiates no situation from its template: every
+/// situation it reaches runs from its plan (the code the generated task
+/// runs too).
+#[test]
+fn the_scenarios_instantiate_no_template() {
+    for app in ["dms/apps/home", "dms/apps/supermarket"] {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(app);
+        let world = std::fs::read_to_string(dir.join("world.toml")).expect("the app's world");
+        let assets = sitlog_tests::scenario::assets(&dir, &world, None);
+        let (ir, functions) = sitlog_tests::scenario::interpreter(&dir);
+        let resolved = Resolved::new(&ir);
+        let run = sitlog_tests::scenario::execute(&resolved, functions, &assets);
+        assert_eq!(run.report["status"], "ok", "{app}: {}", run.transcript);
+        let history = run.report["history"].as_array().map_or(0, Vec::len);
+        assert!(history > 5, "{app}: {history} history entries");
+        assert_eq!(resolved.templates_instantiated(), 0, "{app}");
     }
 }
