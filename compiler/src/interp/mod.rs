@@ -386,6 +386,35 @@ diag_mod(wait(T), [
     }
 
     #[test]
+    fn computed_next_situations_are_selected_as_the_machine_would() {
+        // `s(X)` shares the DM's parameter: left to its template, it may
+        // take `s(..)` first, so the machine selects; `t(..)` is selected
+        // by the plans' loop itself, `t([])` before `t([H|T])`, and a name
+        // no situation has is the machine's error.
+        for main in ["m(b)", "m(a)"] {
+            let src = format!(
+                "diag_mod(main, [
+  [id ==> is, type ==> recursive, embedded_dm ==> {main}, arcs ==> [R : say(R) => fs]],
+  [id ==> fs, type ==> final]], []).
+diag_mod(m(X), [
+  [id ==> is, type ==> neutral, arcs ==> [empty : say(go) => s(a)]],
+  [id ==> s(X), type ==> neutral, arcs ==> [empty : say(param) => t([1, 2])]],
+  [id ==> s(Y), type ==> neutral, arcs ==> [empty : say(Y) => t([3])]],
+  [id ==> t([]), type ==> neutral, arcs ==> [empty : say(empty) => u(1)]],
+  [id ==> t([H|T]), type ==> neutral, arcs ==> [empty : say(H) => t(T)]],
+  [id ==> u(N), type ==> final]], []).\n"
+            );
+            agree(&src, "");
+        }
+        agree(
+            "diag_mod(main, [
+  [id ==> is, type ==> neutral, arcs ==> [empty : get(w, N) => N]],
+  [id ==> fs, type ==> final]], [w ==> nowhere(1)]).\n",
+            "",
+        );
+    }
+
+    #[test]
     fn errors_agree() {
         agree(
             "diag_mod(main, [

@@ -3,7 +3,7 @@
 //! (ids that are patterns, `try([P|Ps])`, and types that are not atoms,
 //! `presence(Seconds)`, included), at least 90 % elsewhere, and a whole
 //! run of each scenario instantiates no template; the counts are
-//! printed (`cargo test -p sitlog-tests --test resolve -- --nocapture`) for
+//! printed (`cargo test -p sitlog-tests --test suite -- resolve --nocapture`) for
 //! docs/guide/performance.md. That plans and templates agree is checked by
 //! `random_agreement.rs` and the goldens (which run from plans).
 
