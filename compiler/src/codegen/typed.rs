@@ -185,9 +185,9 @@ impl Gen<'_> {
                         return ::std::result::Result::Ok(#rt::machine::Step::Final);
                     }
                 }
-                TSit::Call { callee, arcs, .. } => {
-                    self.typed_call(dm, t, i, plan.id(), *callee, arcs)
-                }
+                TSit::Call {
+                    callee, call, arcs, ..
+                } => self.typed_call(dm, t, i, plan.id(), (*callee, *call), arcs),
                 TSit::Perceptual {
                     type_name,
                     always_first,
@@ -381,15 +381,16 @@ impl Gen<'_> {
         t: &DmTypes,
         sit: usize,
         id: Atom,
-        callee: (usize, Atom),
+        callee: ((usize, Atom), sitlog_runtime::Term),
         arcs: &[crate::types::TArc],
     ) -> TokenStream {
         let rt = quote!(::sitlog_runtime);
         let ix = Literal::u32_unsuffixed(sit as u32);
         let id_expr = self.atom_expr(id);
         let here = quote!(cx.enter(#ix, #id_expr););
-        let callee_ix = Literal::u32_unsuffixed(callee.0 as u32);
-        let callee = self.atom_term(callee.1);
+        let ((callee_ix, _), call) = callee;
+        let callee_ix = Literal::u32_unsuffixed(callee_ix as u32);
+        let callee = self.typed_const(call);
         let exps: Vec<TokenStream> = arcs
             .iter()
             .map(|a| self.typed_const(a.expectation))
@@ -545,11 +546,11 @@ impl Gen<'_> {
                     let r = frame.run(p, at, exit.take(), &mut run, cx);
                     // A typed call (its step is `Step::Call` with the
                     // callee's atom and nothing saved), read from `run`.
-                    match run.call.take() {
-                        ::std::option::Option::Some(callee)
+                    match (run.call.take(), &r) {
+                        (::std::option::Option::Some(callee), ::std::result::Result::Ok(#rt::machine::Step::Call { call, .. }))
                             if depth < TYPED_DEPTH && !cx.stop_requested() =>
                         {
-                            let call = #rt::Term::atom(#rt::machine::DmProgram::dm_name(p, callee));
+                            let call = *call;
                             frame.store(p, cx);
                             if let ::std::result::Result::Err(e) = cx.call_typed(callee, call, #rt::Term::NIL) {
                                 break ::std::result::Result::Err(e);

@@ -462,31 +462,50 @@ impl DmCx<'_> {
     }
 
     /// A recursive situation as a typed call: `embedded_dm` an atom naming
-    /// a DM without parameters, exit arcs with atom expectations that share
-    /// no variable with the rest of the situation (nothing to save around
-    /// the call). Whether the callee starts typed is decided once every DM
-    /// is typed ([`infer`]).
+    /// a DM without parameters, or a constant call (`count(2)`, arguments
+    /// that evaluate to themselves) of a DM whose parameters are distinct
+    /// variables; exit arcs with atom expectations that share no variable
+    /// with the rest of the situation (nothing to save around the call).
+    /// Whether the callee starts typed is decided once every DM is typed
+    /// ([`infer`]).
     fn call(&mut self, id: Atom, f: &[Term]) -> Result<TSit, String> {
         let store = self.store;
         let e = f[EMBEDDED_DM];
-        let Some(name) = store.atom_of(e) else {
-            let why = if store.functor(e).is_some() {
-                "passes arguments (typed calls are to DMs without parameters)"
-            } else {
-                "is not an atom"
-            };
+        let Some((name, arity)) = store.functor(e) else {
             return Err(format!(
-                "its embedded_dm `{}` {why}",
+                "its embedded_dm `{}` is not an atom",
                 show(store, self.dm, e)
             ));
         };
-        let Some(callee) = self.ir.dms.iter().position(|d| d.name == name) else {
+        if arity > 0 && !self.constant(e) {
             return Err(format!(
-                "its embedded_dm `{name}` is not a DM of the program"
+                "its embedded_dm `{}` passes arguments that are not constants",
+                show(store, self.dm, e)
+            ));
+        }
+        // The DM the machine calls: the first of that name.
+        let Some(callee) = self
+            .ir
+            .dms
+            .iter()
+            .position(|d| d.name == name)
+            .filter(|&d| self.ir.dms[d].arity == arity)
+        else {
+            return Err(format!(
+                "its embedded_dm `{}` is not a DM of the program",
+                show(store, self.dm, e)
             ));
         };
-        if !store.args(self.ir.dms[callee].head).is_empty() {
-            return Err(format!("it calls `{name}`, which has parameters"));
+        let mut seen = Vec::new();
+        for &a in store.args(self.ir.dms[callee].head) {
+            match store.value(a) {
+                Value::Var(v) if !seen.contains(&v.index()) => seen.push(v.index()),
+                _ => {
+                    return Err(format!(
+                        "it calls `{name}`, whose parameters are not distinct variables"
+                    ))
+                }
+            }
         }
         let mut shared = Vec::new();
         for &t in &f[..8] {
@@ -517,6 +536,7 @@ impl DmCx<'_> {
         Ok(TSit::Call {
             id,
             callee: (callee, name),
+            call: e,
             arcs,
         })
     }

@@ -40,7 +40,9 @@
 //!   touching no term unless the history is kept or observed.
 //! - a **recursive situation** is a typed call when its id is an atom, it
 //!   has no `in_arg`/`out_arg`/`prog`/`diag_mod`, its `embedded_dm` is an
-//!   atom naming a DM without parameters whose initial situation is typed,
+//!   atom naming a DM without parameters or a constant call (`count(2)`:
+//!   arguments that evaluate to themselves) of a DM whose parameters are
+//!   distinct variables, the callee's initial situation typed,
 //!   and its exit arcs have atom expectations, typed actions and next
 //!   situations, and no variable shared with the rest of the situation;
 //!   and when the situation runs as code (its MIR plan gives the untyped
@@ -416,8 +418,9 @@ pub enum TSit {
         out_arg: bool,
         arcs: Vec<TArc>,
     },
-    /// A recursive situation calling a DM without parameters, named by a
-    /// constant `embedded_dm`, whose initial situation is typed: the callee's
+    /// A recursive situation calling a DM by a constant `embedded_dm` (its
+    /// name, or a call whose arguments evaluate to themselves), whose
+    /// initial situation is typed: the callee's
     /// typed frame is pushed over the caller's (no Rust recursion), and the
     /// exit arcs (atom expectations, matched on the callee's final id) run
     /// on the caller's frame when it ends.
@@ -425,6 +428,8 @@ pub enum TSit {
         id: Atom,
         /// The callee's index in the program and its name.
         callee: (usize, Atom),
+        /// The call: the callee's name, or a constant compound.
+        call: Term,
         arcs: Vec<TArc>,
     },
 }
@@ -444,8 +449,12 @@ impl TSit {
         }
     }
 
-    /// The constant terms the plan uses (expectations, actions, elements, set values).
+    /// The constant terms the plan uses (expectations, actions, elements,
+    /// set values, calls).
     pub fn constants(&self, out: &mut Vec<Term>) {
+        if let TSit::Call { call, .. } = self {
+            out.push(*call);
+        }
         for arc in self.arcs() {
             out.push(arc.expectation);
             match &arc.action {
@@ -683,7 +692,9 @@ diag_mod(twice(X, X),
         let t = infer(&ir);
         let text = explain(&ir, &t);
         assert!(
-            text.contains("situation `is`: code on terms (its embedded_dm `twice(a,a)`"),
+            text.contains(
+                "situation `is`: code on terms (it calls `twice`, whose parameters are not distinct variables)"
+            ),
             "{text}"
         );
         assert!(

@@ -7,6 +7,10 @@
 % - `dive` calls `down`, which calls itself until the pipe reaches 0: the
 %   first 36 levels are deeper than the compiled code's typed DM stack, so
 %   the deeper calls go through the machine's DM stack;
+% - `count` calls `upto(3)`, a constant call with an argument: the callee's
+%   frame holds its parameter as an integer; `bad` calls `upto(many)`,
+%   whose frame does not load: the callee runs on terms (and fails to
+%   compare `many`, an error on both back ends);
 % - `spoil` leaves a float in the pipe: the typed frames, which hold the
 %   pipe as an integer, no longer load, and everything after runs on terms.
 diag_mod(main,
@@ -22,6 +26,8 @@ diag_mod(main,
       arcs ==> [
         go : [inc(rounds, _)] => measure,
         dive : empty => dive,
+        count : empty => counting,
+        bad : empty => counting_bad,
         spoil : empty => spoiling,
         stop : say(bye) => fs
       ]
@@ -38,6 +44,16 @@ diag_mod(main,
       type ==> recursive,
       embedded_dm ==> down,
       arcs ==> [ bottom : say(bottom) => gate ]
+    ],
+    [ id ==> counting,
+      type ==> recursive,
+      embedded_dm ==> upto(3),
+      arcs ==> [ done : say(counted) => gate ]
+    ],
+    [ id ==> counting_bad,
+      type ==> recursive,
+      embedded_dm ==> upto(many),
+      arcs ==> [ done : say(counted) => gate ]
     ],
     [ id ==> spoiling,
       type ==> recursive,
@@ -102,4 +118,16 @@ diag_mod(spoil,
     [ id ==> spoiled, type ==> final ]
   ],
   []
+).
+
+% Counts its local up to its parameter.
+diag_mod(upto(Max),
+  [
+    [ id ==> is,
+      type ==> neutral,
+      arcs ==> [ empty : [inc(c, C)] => (C >= Max -> done ; otherwise -> is) ]
+    ],
+    [ id ==> done, type ==> final ]
+  ],
+  [ c ==> 0 ]
 ).

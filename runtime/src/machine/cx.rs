@@ -112,9 +112,10 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// A DM call made by typed code, which goes on running the callee
     /// itself: what the machine does for [`Step::Call`] (the recursive
     /// situation `sit`/`id` waits with `saved`, the callee's frame is
-    /// pushed, the depth limit checked), for `dm`, a DM without
-    /// parameters named by the atom `call`. The callee starts at its
-    /// initial situation.
+    /// pushed, the depth limit checked), for `dm` called as `call`: its
+    /// name, or a call whose head the machine would unify for sure (the
+    /// caller's code knows: the DM's parameters are distinct variables and
+    /// the arguments as many). The callee starts at its initial situation.
     pub fn call_typed(&mut self, dm: super::DmIx, call: Term, saved: Term) -> Result<(), RunError> {
         self.m.check_depth(self.here())?;
         self.m

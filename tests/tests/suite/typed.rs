@@ -294,7 +294,9 @@ fn typed_prog_agrees() {
 
 /// Typed DM calls (issue 28, `dms/examples/typed_calls`): callee frames
 /// pushed by typed code, exit arcs chosen by the callee's final id, calls
-/// deeper than the typed stack, a callee that leaves a float in the pipe,
+/// with constant arguments (and one whose argument the callee's frame
+/// cannot hold), calls deeper than the typed stack, a callee that leaves a
+/// float in the pipe,
 /// a `prog` that overflows inside a callee, the depth limit
 /// reached by a typed call; each the same on both back ends, with the
 /// history kept or not, observed or not.
@@ -303,8 +305,9 @@ fn typed_calls_agree() {
     let ir = interpreter("../dms/examples/typed_calls");
     let app = calls::program();
     for script in [
-        "go.\ndive.\ngo.\ngo.\nspoil.\ngo.\ndive.\nstop.\n",
+        "go.\ndive.\ncount.\ngo.\ngo.\nspoil.\ngo.\ncount.\ndive.\nstop.\n",
         "dive.\ndive.\ngo.\nstop.\n",
+        "count.\nbad.\n",
         "go.\nzzz.\n",
         "",
     ] {
