@@ -68,6 +68,9 @@ impl Gen<'_> {
         let mut fields = Vec::new();
         let mut enums = Vec::new();
         let mut loads = Vec::new();
+        // The frame of a call no frame was pushed for: the locals' defaults
+        // and the call's arguments.
+        let mut fresh = Vec::new();
         let mut inits = Vec::new();
         let mut stores = Vec::new();
         for &i in &locals {
@@ -117,6 +120,8 @@ impl Gen<'_> {
                 }
                 _ => unreachable!("frame locals are native"),
             }
+            let default = self.native_default(t, i, dm.locals[i].1);
+            fresh.push(quote!(let #f = #default;));
             inits.push(quote!(#f,));
         }
         for &i in &params {
@@ -130,10 +135,12 @@ impl Gen<'_> {
                 Some(Ty::Float) => {
                     fields.push(quote!(#[doc = #doc] pub #f: f64,));
                     loads.push(quote!(let #f = cx.float_of(cx.param(#ix)?)?;));
+                    fresh.push(quote!(let #f = cx.float_of(cx.arg(call, #ix))?;));
                 }
                 _ => {
                     fields.push(quote!(#[doc = #doc] pub #f: i64,));
                     loads.push(quote!(let #f = cx.int_of(cx.param(#ix)?)?;));
+                    fresh.push(quote!(let #f = cx.int_of(cx.arg(call, #ix))?;));
                 }
             }
             inits.push(quote!(#f,));
@@ -148,10 +155,12 @@ impl Gen<'_> {
                 Some(Ty::Float) => {
                     fields.push(quote!(#[doc = #doc] pub pipe: f64,));
                     loads.push(quote!(let pipe = cx.float_of(cx.pipe())?;));
+                    fresh.push(quote!(let pipe = cx.float_of(cx.pipe())?;));
                 }
                 _ => {
                     fields.push(quote!(#[doc = #doc] pub pipe: i64,));
                     loads.push(quote!(let pipe = cx.int_of(cx.pipe())?;));
+                    fresh.push(quote!(let pipe = cx.int_of(cx.pipe())?;));
                 }
             }
             inits.push(quote!(pipe,));
@@ -322,6 +331,16 @@ impl Gen<'_> {
                     ::std::option::Option::Some(Frame { #(#inits)* })
                 }
 
+                /// The frame of a call of the DM as `call` whose machine
+                /// frame is not pushed yet: the locals' defaults, the
+                /// arguments of `call`, if every value has its type.
+                #[allow(unreachable_code)]
+                pub fn fresh(p: &super::Program, call: #rt::Term, cx: &#rt::machine::Cx<'_, '_, super::Program>) -> ::std::option::Option<Frame> {
+                    let a = &p.atoms;
+                    #(#fresh)*
+                    ::std::option::Option::Some(Frame { #(#inits)* })
+                }
+
                 /// Writes the locals back into the machine's variables.
                 pub fn store(&self, p: &super::Program, cx: &mut #rt::machine::Cx<'_, '_, super::Program>) {
                     let a = &p.atoms;
@@ -463,6 +482,7 @@ impl Gen<'_> {
         };
         let mut variants = Vec::new();
         let mut loads = Vec::new();
+        let mut freshes = Vec::new();
         let mut stores = Vec::new();
         let mut runs = Vec::new();
         for (d, t) in types.dms.iter().enumerate() {
@@ -479,6 +499,9 @@ impl Gen<'_> {
             variants.push(quote!(#v(#m::Frame),));
             loads.push(quote! {
                 #ix if #m::is_typed(sit) => #m::Frame::load(p, cx).map(TypedFrame::#v),
+            });
+            freshes.push(quote! {
+                #ix if #m::is_typed(0) => #m::Frame::fresh(p, call, cx).map(TypedFrame::#v),
             });
             stores.push(quote!(TypedFrame::#v(fr) => fr.store(p, cx),));
             runs.push(quote! {
@@ -498,6 +521,15 @@ impl Gen<'_> {
                 fn load(p: &Program, dm: #rt::machine::DmIx, sit: #rt::machine::SitIx, cx: &#rt::machine::Cx<'_, '_, Program>) -> ::std::option::Option<TypedFrame> {
                     match dm {
                         #(#loads)*
+                        _ => ::std::option::Option::None,
+                    }
+                }
+                /// DM `dm`'s frame for a call as `call` whose machine frame
+                /// is not pushed yet, if its initial situation has typed
+                /// code and the frame loads.
+                fn fresh(p: &Program, dm: #rt::machine::DmIx, call: #rt::Term, cx: &#rt::machine::Cx<'_, '_, Program>) -> ::std::option::Option<TypedFrame> {
+                    match dm {
+                        #(#freshes)*
                         _ => ::std::option::Option::None,
                     }
                 }
@@ -552,18 +584,32 @@ impl Gen<'_> {
                         {
                             let call = *call;
                             frame.store(p, cx);
-                            if let ::std::result::Result::Err(e) = cx.call_typed(callee, call, #rt::Term::NIL) {
+                            // Without history the callee's machine frame is
+                            // pushed only if something reads the DM stack.
+                            let lazy = !run.records;
+                            let pushed = if lazy {
+                                cx.call_typed_lazy(callee, call, #rt::Term::NIL)
+                            } else {
+                                cx.call_typed(callee, call, #rt::Term::NIL)
+                            };
+                            if let ::std::result::Result::Err(e) = pushed {
                                 break ::std::result::Result::Err(e);
                             }
                             stack[depth] = frame;
                             depth += 1;
-                            match TypedFrame::load(p, callee, 0, cx) {
+                            let callee_frame = if lazy {
+                                TypedFrame::fresh(p, callee, call, cx)
+                            } else {
+                                TypedFrame::load(p, callee, 0, cx)
+                            };
+                            match callee_frame {
                                 ::std::option::Option::Some(f) => {
                                     frame = f;
                                     at = 0;
                                 }
                                 ::std::option::Option::None => {
                                     // The callee starts untyped, from the machine.
+                                    cx.materialize_frames();
                                     cx.count_transitions(run.count);
                                     return ::std::result::Result::Ok(::std::option::Option::Some((#rt::machine::Step::GotoSit(0), false)));
                                 }
@@ -582,6 +628,9 @@ impl Gen<'_> {
                         r => break r,
                     }
                 };
+                // The DM stack as the machine would have it, then each
+                // frame's locals where the machine keeps them.
+                cx.materialize_frames();
                 cx.count_transitions(run.count);
                 frame.store(p, cx);
                 let same = depth == 0;
@@ -647,6 +696,28 @@ impl Gen<'_> {
             Ty::Int => quote!(#rt::Term::int(#e)),
             Ty::Float => quote!(#rt::Term::float(#e)),
             _ => quote!(#e.term(p)),
+        }
+    }
+
+    /// The native value of local `i`'s default (`default`, the IR's term),
+    /// or code that gives up on the fresh frame when it is not a constant
+    /// of the local's type (the machine then makes the frame).
+    fn native_default(
+        &self,
+        t: &DmTypes,
+        local: usize,
+        default: sitlog_runtime::Term,
+    ) -> TokenStream {
+        let fits = match (&t.locals[local].ty, self.store.value(default)) {
+            (Ty::Int, sitlog_runtime::Value::Int(_))
+            | (Ty::Float, sitlog_runtime::Value::Float(_)) => true,
+            (Ty::Atoms(atoms), sitlog_runtime::Value::Atom(a)) => atoms.contains(&a),
+            _ => false,
+        };
+        if fits {
+            self.native_const(t, local, default)
+        } else {
+            quote!(return ::std::option::Option::None)
         }
     }
 

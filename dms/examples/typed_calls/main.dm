@@ -10,7 +10,8 @@
 % - `count` calls `upto(3)`, a constant call with an argument: the callee's
 %   frame holds its parameter as an integer; `bad` calls `upto(many)`,
 %   whose frame does not load: the callee runs on terms (and fails to
-%   compare `many`, an error on both back ends);
+%   compare `many`, an error on both back ends); `over` calls `wrap`,
+%   whose `inc` overflows: the error names `wrap`, where it happened;
 % - `spoil` leaves a float in the pipe: the typed frames, which hold the
 %   pipe as an integer, no longer load, and everything after runs on terms.
 diag_mod(main,
@@ -28,6 +29,7 @@ diag_mod(main,
         dive : empty => dive,
         count : empty => counting,
         bad : empty => counting_bad,
+        over : empty => overflowing,
         spoil : empty => spoiling,
         stop : say(bye) => fs
       ]
@@ -54,6 +56,11 @@ diag_mod(main,
       type ==> recursive,
       embedded_dm ==> upto(many),
       arcs ==> [ done : say(counted) => gate ]
+    ],
+    [ id ==> overflowing,
+      type ==> recursive,
+      embedded_dm ==> wrap,
+      arcs ==> [ done : empty => gate ]
     ],
     [ id ==> spoiling,
       type ==> recursive,
@@ -130,4 +137,16 @@ diag_mod(upto(Max),
     [ id ==> done, type ==> final ]
   ],
   [ c ==> 0 ]
+).
+
+% Its counter starts at the largest integer: `inc` overflows.
+diag_mod(wrap,
+  [
+    [ id ==> is,
+      type ==> neutral,
+      arcs ==> [ empty : [inc(c, _)] => done ]
+    ],
+    [ id ==> done, type ==> final ]
+  ],
+  [ c ==> 9223372036854775807 ]
 ).

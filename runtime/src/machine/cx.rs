@@ -71,6 +71,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// asks [`Cx::gc_due`] first.
     #[inline]
     pub fn enter_selected(&mut self, next: Term) -> Option<SitIx> {
+        self.m.materialize();
         let dm = self.m.frames.last().expect("a frame is running").dm;
         let next = self.m.store.deref(next);
         let (sit, id, selected) = self.m.select_compiled_first(dm, next)?;
@@ -117,6 +118,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// caller's code knows: the DM's parameters are distinct variables and
     /// the arguments as many). The callee starts at its initial situation.
     pub fn call_typed(&mut self, dm: super::DmIx, call: Term, saved: Term) -> Result<(), RunError> {
+        self.m.materialize();
         self.m.check_depth(self.here())?;
         self.m
             .frames
@@ -133,12 +135,61 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         Ok(())
     }
 
-    /// The end of a DM entered by [`Cx::call_typed`], after its final
+    /// [`Cx::call_typed`] without pushing the callee's frame, for typed
+    /// code that keeps no history: the frame is pushed, with every one
+    /// below it, only when something reads the DM stack (any step of this
+    /// `Cx` that does, an error, or [`Cx::materialize_frames`]), so a call
+    /// that typed code runs to its end costs no frame. The depth limit is
+    /// checked as by `call_typed`.
+    pub fn call_typed_lazy(
+        &mut self,
+        dm: super::DmIx,
+        call: Term,
+        saved: Term,
+    ) -> Result<(), RunError> {
+        if self.m.frames.len() + self.m.lazy.len() >= self.m.options.max_depth {
+            self.m.materialize();
+            self.m.check_depth(self.here())?;
+        }
+        self.m.lazy.push(super::state::LazyFrame {
+            dm,
+            call,
+            caller: super::state::Pending::Compiled {
+                sit: self.sit,
+                saved,
+                id: self.id,
+            },
+        });
+        self.sit = 0;
+        self.selected = None;
+        Ok(())
+    }
+
+    /// Pushes the frames of the DMs [`Cx::call_typed_lazy`] called: the DM
+    /// stack as the machine would have it. Typed code calls it before it
+    /// hands over.
+    #[inline]
+    pub fn materialize_frames(&mut self) {
+        self.m.materialize();
+    }
+
+    /// The end of a DM entered by [`Cx::call_typed`] or
+    /// [`Cx::call_typed_lazy`], after its final
     /// situation: what the machine does for [`Step::Final`] (the frame
     /// popped, its history nested in the caller's), the caller's waiting
     /// situation becoming the running one. Returns the final situation's id.
     pub fn return_typed(&mut self) -> Term {
         let final_id = self.id;
+        if let Some(l) = self.m.lazy.pop() {
+            // A frame never pushed: nothing to pop, no history to nest.
+            let super::state::Pending::Compiled { sit, id, .. } = l.caller else {
+                unreachable!("a typed call left its caller waiting")
+            };
+            self.sit = sit;
+            self.id = id;
+            self.selected = Some(id);
+            return final_id;
+        }
         match self.m.pop_frame() {
             Some(Some(super::state::Pending::Compiled { sit, id, .. })) => {
                 self.sit = sit;
@@ -172,6 +223,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// no such argument.
     #[inline]
     pub fn head_arg(&mut self, i: usize) -> Term {
+        self.m.materialize();
         let dm_id = self.m.frames.last().expect("a frame is running").dm_id;
         match self.m.store.arg(dm_id, i) {
             Some(a) => a,
@@ -187,12 +239,14 @@ impl<P: DmProgram> Cx<'_, '_, P> {
 
     /// Unifies the situation's in_arg pattern with the incoming pipe (D-8, E14).
     pub fn in_arg(&mut self, pattern: Term) -> Result<(), RunError> {
+        self.m.materialize();
         let here = self.here();
         self.m.unify_in_arg(pattern, *self.pipe, here)
     }
 
     /// Runs `prog` on a copy sharing only the variables of `links` (D-10).
     pub fn prog(&mut self, prog: Term, links: &[Option<Term>]) -> Result<(), RunError> {
+        self.m.materialize();
         let here = self.here();
         self.m.run_prog(Some(prog), links, here)
     }
@@ -217,6 +271,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
 
     /// Evaluates `t` in L (D-28..D-39).
     pub fn eval(&mut self, t: Term, arc: Option<usize>) -> Result<Term, RunError> {
+        self.m.materialize();
         let here = self.here();
         self.m.eval_in_frame(t, here, arc)
     }
@@ -240,6 +295,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         arg: Term,
         arc: Option<usize>,
     ) -> Result<Term, RunError> {
+        self.m.materialize();
         let r = eval::var_op_named(&mut self.m.eval_ctx(), op, name, arg);
         r.map_err(|e| self.var_op_error(e.message, op, name, arc))
     }
@@ -253,6 +309,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         name: Atom,
         arc: Option<usize>,
     ) -> Result<Term, RunError> {
+        self.m.materialize();
         let r = eval::var_op_fresh(&mut self.m.eval_ctx(), op, name);
         r.map_err(|e| self.var_op_error(e.message, op, name, arc))
     }
@@ -283,6 +340,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
 
     /// Any other condition of a conditional (D-35).
     pub fn condition(&mut self, cond: Term, arc: Option<usize>) -> Result<bool, RunError> {
+        self.m.materialize();
         let r = eval::condition(&mut self.m.eval_ctx(), cond);
         r.map_err(|e| self.error(e.message, arc))
     }
@@ -290,12 +348,14 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// Keeps the variables' values, to be put back by [`Cx::restore_vars`]:
     /// updates made while expectations are evaluated are discarded (D-12).
     pub fn save_vars(&mut self) {
+        self.m.materialize();
         let frame = self.m.frames.last().expect("a frame is running");
         self.m.scratch_locals.restore_from(&frame.locals);
         self.m.scratch_globals.restore_from(&self.m.globals);
     }
 
     pub fn restore_vars(&mut self) {
+        self.m.materialize();
         let frame = self.m.frames.last_mut().expect("a frame is running");
         frame.locals.restore_from(&self.m.scratch_locals);
         self.m.globals.restore_from(&self.m.scratch_globals);
@@ -315,12 +375,14 @@ impl<P: DmProgram> Cx<'_, '_, P> {
 
     /// Which arc's expectation is met (the neutral rule, else perception, D-14).
     pub fn choose(&mut self, type_term: Term) -> Result<Option<usize>, RunError> {
+        self.m.materialize();
         let here = self.here();
         self.m.choose_index(type_term, here, &mut *self.perception)
     }
 
     /// Which exit arc takes the embedded DM's final situation `final_id` (D-22).
     pub fn choose_exit(&mut self, final_id: Term) -> Result<usize, RunError> {
+        self.m.materialize();
         let here = self.here();
         self.m.choose_exit_index(final_id, here)
     }
@@ -366,24 +428,28 @@ impl<P: DmProgram> Cx<'_, '_, P> {
 
     /// A final situation's out_arg (or the pipe unchanged when `None`).
     pub fn final_out_arg(&mut self, out: Option<Term>) -> Result<(), RunError> {
+        self.m.materialize();
         let here = self.here();
         self.m.final_out_arg(out, self.pipe, here)
     }
 
     /// Evaluates `diag_mod` with read-only variables and unifies it with the DM's id (D-20).
     pub fn diag_mod(&mut self, d: Term) -> Result<(), RunError> {
+        self.m.materialize();
         let here = self.here();
         self.m.bind_diag_mod(Some(d), here)
     }
 
     /// Evaluates `embedded_dm` with read-only variables: the DM call.
     pub fn embedded_dm(&mut self, e: Term) -> Result<Term, RunError> {
+        self.m.materialize();
         let here = self.here();
         self.m.eval_read_only(e, here)
     }
 
     /// The value of the running DM's local variable `name` (dereferenced).
     pub fn local(&self, name: Atom) -> Option<Term> {
+        debug_assert!(self.m.lazy.is_empty(), "locals read under a lazy frame");
         let frame = self.m.frames.last().expect("a frame is running");
         frame.locals.get(name).map(|t| self.m.store.deref(t))
     }
@@ -391,12 +457,14 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// Sets the running DM's local variable `name` (typed code writing its
     /// frame back).
     pub fn set_local(&mut self, name: Atom, value: Term) {
+        self.m.materialize();
         let frame = self.m.frames.last_mut().expect("a frame is running");
         frame.locals.set(name, value);
     }
 
     /// Argument `i` of the running DM's call, dereferenced, if it has one.
     pub fn param(&self, i: usize) -> Option<Term> {
+        debug_assert!(self.m.lazy.is_empty(), "parameters read under a lazy frame");
         let dm_id = self.m.frames.last().expect("a frame is running").dm_id;
         self.m.store.arg(dm_id, i).map(|t| self.m.store.deref(t))
     }
@@ -429,6 +497,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// Appends the situation's history entry (and tells the observer).
     #[inline]
     pub fn record(&mut self, expectation: Term, action: Term, next: Option<Term>) {
+        self.m.materialize();
         let id = self.id;
         let pipe = *self.pipe;
         self.m

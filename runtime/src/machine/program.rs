@@ -218,19 +218,23 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         sit: Option<(SitIx, Term)>,
         arc: Option<usize>,
     ) -> RunError {
-        let frame = self.frames.last();
+        // The running DM: the innermost one typed code called, if any.
+        let frame = match self.lazy.last() {
+            Some(l) => Some((l.dm, l.call)),
+            None => self.frames.last().map(|f| (f.dm, f.dm_id)),
+        };
         RunError {
             message: message.into(),
-            dm: frame.map(|f| self.store.writeq(f.dm_id)),
+            dm: frame.map(|(_, call)| self.store.writeq(call)),
             situation: sit.map(|(_, id)| self.store.writeq(id)),
             arc: arc.map(|a| a + 1),
             location: match (frame, sit) {
-                (Some(f), Some((s, _))) => self.program.location(f.dm, s),
+                (Some((dm, _)), Some((s, _))) => self.program.location(dm, s),
                 _ => None,
             },
             site: match (frame, sit) {
-                (Some(f), Some((s, _))) => Some(Box::new(ErrorSite {
-                    dm: f.dm,
+                (Some((dm, _)), Some((s, _))) => Some(Box::new(ErrorSite {
+                    dm,
                     situation: s,
                     culprit: None,
                 })),

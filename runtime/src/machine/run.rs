@@ -105,7 +105,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
 
     /// The error of a call that would exceed [`Options::max_depth`](super::Options::max_depth).
     pub(super) fn check_depth(&self, sit: Option<(SitIx, Term)>) -> Result<(), RunError> {
-        if self.frames.len() >= self.options.max_depth {
+        if self.frames.len() + self.lazy.len() >= self.options.max_depth {
             return Err(self.err(
                 format!(
                     "the DM stack exceeded {} nested DMs",
@@ -116,6 +116,27 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             ));
         }
         Ok(())
+    }
+
+    /// Pushes the frames of the DMs typed code called without them
+    /// ([`Machine::lazy`]), each caller waiting as it would; a no-op when
+    /// there are none.
+    #[inline]
+    pub(super) fn materialize(&mut self) {
+        if !self.lazy.is_empty() {
+            self.materialize_all();
+        }
+    }
+
+    #[cold]
+    fn materialize_all(&mut self) {
+        let mut lazy = std::mem::take(&mut self.lazy);
+        for l in lazy.drain(..) {
+            self.frames.last_mut().expect("a frame is running").pending = Some(l.caller);
+            self.push_frame(l.dm, l.call);
+        }
+        // The buffer is kept: no allocation per call once warm.
+        self.lazy = lazy;
     }
 
     /// Pushes a frame for DM `dm` called as `call` (checked by the caller:

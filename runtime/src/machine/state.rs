@@ -40,6 +40,16 @@ pub(super) struct Frame {
     pub(super) pending: Option<Pending>,
 }
 
+/// A DM called by typed code whose frame is not on the stack yet (see
+/// [`Machine::lazy`]): what [`Machine::materialize`] pushes.
+#[derive(Debug)]
+pub(super) struct LazyFrame {
+    pub(super) dm: DmIx,
+    pub(super) call: Term,
+    /// What the caller's frame waits with.
+    pub(super) caller: Pending,
+}
+
 /// Where control goes next in the top frame.
 pub(super) enum Goto {
     Initial,
@@ -56,6 +66,12 @@ pub struct Machine<'p, P> {
     pub functions: Functions,
     pub options: Options,
     pub(super) frames: Vec<Frame>,
+    /// Frames of DMs called by typed code that only typed code has run so
+    /// far, innermost last, logically above `frames`: pushed
+    /// ([`Machine::materialize`]) before anything reads the DM stack, so
+    /// that nothing outside typed code ever sees them. Empty outside a
+    /// typed run without history.
+    pub(super) lazy: Vec<LazyFrame>,
     /// Instances of the recursive situations waiting for their embedded
     /// DMs (interpreted path), innermost last.
     pub(super) instances: Vec<Instance>,
@@ -93,6 +109,7 @@ impl<'p, P> Machine<'p, P> {
             functions,
             options,
             frames: Vec::new(),
+            lazy: Vec::new(),
             instances: Vec::new(),
             scratch_locals: Vars::new(),
             scratch_globals: Vars::new(),

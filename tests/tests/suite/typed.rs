@@ -308,6 +308,7 @@ fn typed_calls_agree() {
         "go.\ndive.\ncount.\ngo.\ngo.\nspoil.\ngo.\ncount.\ndive.\nstop.\n",
         "dive.\ndive.\ngo.\nstop.\n",
         "count.\nbad.\n",
+        "go.\nover.\n",
         "go.\nzzz.\n",
         "",
     ] {
