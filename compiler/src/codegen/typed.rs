@@ -21,7 +21,11 @@
 //! by the program's driver, which keeps every DM's typed frame in one enum
 //! on a fixed array and the machine's DM stack exactly as the machine would
 //! (`Cx::call_typed`, `Cx::return_typed`), so that any other step hands
-//! over to the machine as it is.
+//! over to the machine as it is. Without history the callee's machine frame
+//! is not pushed at all unless something reads the DM stack
+//! (`Cx::call_typed_lazy`, its typed frame made from the locals' defaults
+//! and the call's arguments, `Frame::fresh`); the driver pushes every such
+//! frame (`Cx::materialize_frames`) before it hands over.
 
 use super::Gen;
 use crate::ir::IrDm;
