@@ -241,8 +241,9 @@ pub enum Command {
         /// `rust`: only write the generated code.
         #[arg(long, value_enum)]
         emit: Option<Emit>,
-        /// Print what type inference found (which variables and situations
-        /// run on native values, and why the others stay terms) and stop.
+        /// Print which situations run as generated code (on native values
+        /// or on terms) and which variables are typed, each with the reason
+        /// when not, and stop.
         #[arg(long)]
         explain_types: bool,
         /// Compile even if next situations, embedded DMs, exit arcs or
