@@ -859,6 +859,24 @@ impl DmCx<'_> {
                     var_name(self.dm, v.index())
                 ))
             }
+            // `get(n, _)`: the value of a typed local, read in place (the
+            // fresh variable it would bind is used nowhere: a variable
+            // used again is not bound in typed code, so its use leaves
+            // the situation on terms).
+            Value::Compound(get, &[name, var])
+                if get.as_str() == "get"
+                    && store.is_var(var)
+                    && !bound.contains_key(&store.var_of(var).map_or(u32::MAX, |v| v.index())) =>
+            {
+                let Some(name) = store.atom_of(name) else {
+                    return Err(format!(
+                        "operand `{}` names its variable at run time",
+                        show(store, self.dm, t)
+                    ));
+                };
+                let i = self.local(name)?;
+                Ok((TVal::Local(i), self.locals[i].ty.clone()))
+            }
             _ => Err(format!(
                 "operand `{}` is not a number or a typed variable",
                 show(store, self.dm, t)

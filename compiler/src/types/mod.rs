@@ -36,7 +36,8 @@
 //!   is a constant, every action a constant or a list of constants and
 //!   `get`/`set`/`inc` of typed locals, and every next situation a constant
 //!   situation of the DM or a conditional on an arithmetic comparison of
-//!   typed numbers, or on `==`/`\==` of typed atoms. A run of typed situations executes on native values,
+//!   typed numbers (a typed local read in place, `get(n, _)`, included),
+//!   or on `==`/`\==` of typed atoms. A run of typed situations executes on native values,
 //!   touching no term unless the history is kept or observed.
 //! - a **recursive situation** is a typed call when its id is an atom, it
 //!   has no `in_arg`/`out_arg`/`prog`/`diag_mod`, its `embedded_dm` is an
