@@ -216,9 +216,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         selected,
                     };
                     let step = program.run_situation(dm, sit, &mut cx)?;
-                    debug_assert!(self.lazy.is_empty(), "typed code left lazy frames");
                     // The code may have gone on to other situations of the DM.
                     let (sit, id) = (cx.sit, cx.id);
+                    debug_assert!(self.lazy.is_empty(), "typed code left lazy frames");
                     match self.take_step(step, sit, id, pipe, perception, actions, observer)? {
                         Some(next) => goto = next,
                         None => {
