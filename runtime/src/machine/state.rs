@@ -1,6 +1,8 @@
 //! The machine's state: [`Machine`] (store, variables, functions, options,
-//! the DM stack of [`Frame`]s, the instances waiting for embedded DMs and
-//! the buffers reused per transition) and how it is made.
+//! the DM stack of [`Frame`]s and the frames typed code has not pushed yet
+//! ([`LazyFrame`]s, never seen outside typed code), the instances waiting
+//! for embedded DMs and the buffers reused per transition) and how it is
+//! made.
 
 use super::options::Options;
 use super::situation::{DmIx, Instance, SitIx};
