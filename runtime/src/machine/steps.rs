@@ -388,6 +388,13 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         pipe: Term,
         observer: &mut Option<&mut dyn Observer>,
     ) {
+        if observer.is_none() && !self.options.keep_history {
+            // Nothing sees the entry: count it (and forget the unmatched
+            // inputs, as reporting them to no observer does).
+            self.unmatched.clear();
+            self.transitions += 1;
+            return;
+        }
         self.report_unmatched(observer);
         self.transitions += 1;
         let frame = self.frames.last_mut().expect("frame");
