@@ -141,7 +141,7 @@ fn shared_engine(sources: &[PrologSource]) -> Option<PrologFunctions> {
     if sources.is_empty()
         || !sources
             .iter()
-            .all(|s| stateless(&s.text, s.dir.as_deref(), 0))
+            .all(|s| stateless(&s.text, s.dir.as_deref(), sources, 0))
     {
         return None;
     }
@@ -206,12 +206,13 @@ pub fn edit(text: &str, edits: &[(&str, &str)]) -> String {
     w
 }
 
-/// Whether Prolog `text` (and the files it consults, found as the engine
-/// finds them: from `dir` or its nearest ancestor that has the path) has
-/// no directive but `consult/1` and `ensure_loaded/1` and no word that
-/// could keep state between calls. Conservative: a file it cannot find, or
-/// such a word anywhere (even in a comment), says no.
-fn stateless(text: &str, dir: Option<&Path>, depth: usize) -> bool {
+/// Whether Prolog `text` (and the files it consults: one of `given`, whose
+/// text the caller checks, else found as the engine finds it, from `dir`
+/// or its nearest ancestor that has the path) has no directive but
+/// `consult/1` and `ensure_loaded/1` and no word that could keep state
+/// between calls. Conservative: a file it cannot find, or such a word
+/// anywhere (even in a comment), says no.
+fn stateless(text: &str, dir: Option<&Path>, given: &[PrologSource], depth: usize) -> bool {
     const STATEFUL: &[&str] = &[
         "assert",
         "asserta",
@@ -256,12 +257,19 @@ fn stateless(text: &str, dir: Option<&Path>, depth: usize) -> bool {
         let Some(name) = rest.split('\'').next() else {
             return false;
         };
+        let with_pl = format!("{name}.pl");
+        if given.iter().any(|s| {
+            let path = Path::new(&s.name);
+            path.ends_with(name) || path.ends_with(&with_pl)
+        }) {
+            return true;
+        }
         let Some(dir) = dir else {
             return false;
         };
         let found = dir.ancestors().map(|d| d.join(name)).find(|p| p.is_file());
         match found.and_then(|p| std::fs::read_to_string(&p).ok().map(|t| (p, t))) {
-            Some((path, text)) => stateless(&text, path.parent(), depth + 1),
+            Some((path, text)) => stateless(&text, path.parent(), given, depth + 1),
             None => false,
         }
     })
@@ -269,7 +277,7 @@ fn stateless(text: &str, dir: Option<&Path>, depth: usize) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::stateless;
+    use super::{stateless, PrologSource};
 
     /// The scenario applications share their engines (else each of their
     /// tests builds two again); code that may keep state does not.
@@ -278,7 +286,7 @@ mod tests {
         for app in ["dms/apps/home", "dms/apps/supermarket"] {
             let dir = crate::workspace().join(app);
             let text = std::fs::read_to_string(dir.join("user_functions.pl")).unwrap();
-            assert!(stateless(&text, Some(&dir), 0), "{app}");
+            assert!(stateless(&text, Some(&dir), &[], 0), "{app}");
         }
         let dir = crate::workspace().join("dms/apps/home");
         for text in [
@@ -287,8 +295,17 @@ mod tests {
             ":- consult('no/such/file.pl').\n",
             "f(X) :- nb_setval(k, X).\n",
         ] {
-            assert!(!stateless(text, Some(&dir), 0), "{text}");
+            assert!(!stateless(text, Some(&dir), &[], 0), "{text}");
         }
-        assert!(stateless("f(X) :- drop(X), stop(X).\n", None, 0));
+        assert!(stateless("f(X) :- drop(X), stop(X).\n", None, &[], 0));
+        // Compiled, their consults are among the sources they embed.
+        use crate::compiled::generated::{apps_home, apps_supermarket};
+        for embedded in [apps_home::PROLOG_SOURCES, apps_supermarket::PROLOG_SOURCES] {
+            let given: Vec<PrologSource> = embedded
+                .iter()
+                .map(|(name, text)| PrologSource::new(*name, *text))
+                .collect();
+            assert!(given.iter().all(|s| stateless(&s.text, None, &given, 0)));
+        }
     }
 }
