@@ -2,12 +2,18 @@
 //! as `sitlogc run APP --format json` does, with the world and the KB given
 //! as text (tests change them), on the interpreter or on generated code.
 //! Shared by `tests/tests/{home,supermarket}.rs` and the scenario bench.
+//! The tests share one Prolog engine per application and back end
+//! ([`shared_interpreter`], [`compiled_functions`]); the bench builds one
+//! per run ([`interpreter`]).
 
 use sitlog_robot::console::SharedBuf;
 use sitlog_robot::{Assets, Format, RunArgs, Runner, Streams, TextFile};
 use sitlog_runtime::app::App;
+use sitlog_runtime::prolog::{PrologFunctions, PrologSource};
 use sitlog_runtime::Functions;
+use std::collections::HashMap;
 use std::path::Path;
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// What a run printed and returned.
 pub struct Run {
@@ -59,20 +65,108 @@ pub fn execute<A: App>(program: &A, functions: Functions, assets: &Assets) -> Ru
 }
 
 /// The checked IR of `app` and its standard and Prolog functions: what the
-/// interpreter runs.
+/// interpreter runs (a new Prolog engine).
 pub fn interpreter(app: &Path) -> (sitlog_compiler::ir::Ir, Functions) {
-    let (result, diags) = crate::check_app(app);
-    let checked = result.unwrap_or_else(|_| panic!("{} does not check: {diags:?}", app.display()));
-    let ir = sitlog_compiler::ir::lower(&checked);
+    let ir = checked_ir(app);
     let mut functions = Functions::standard();
     sitlog_compiler::run::install_prolog(&ir, &mut functions, Default::default())
         .unwrap_or_else(|e| panic!("{e:?}"));
     (ir, functions)
 }
 
-/// Runs on both back ends (the interpreter, and `compiled` with
-/// `functions`); they must print the same transcript and report, and the
-/// run must end `ok`. The transcript.
+/// [`interpreter`], with the Prolog engine of `app` shared by the tests of
+/// the process where that is sound (see [`shared_engine`]).
+pub fn shared_interpreter(app: &Path) -> (sitlog_compiler::ir::Ir, Functions) {
+    let ir = checked_ir(app);
+    let sources: Vec<PrologSource> = ir
+        .prolog_sources
+        .iter()
+        .map(|f| PrologSource {
+            name: f.name.clone(),
+            text: f.text.clone(),
+            dir: f.path.parent().map(|d| d.to_path_buf()),
+        })
+        .collect();
+    let Some(engine) = shared_engine(&sources) else {
+        let mut functions = Functions::standard();
+        sitlog_compiler::run::install_prolog(&ir, &mut functions, Default::default())
+            .unwrap_or_else(|e| panic!("{e:?}"));
+        return (ir, functions);
+    };
+    let mut functions = Functions::standard();
+    engine.install(&mut functions);
+    (ir, functions)
+}
+
+fn checked_ir(app: &Path) -> sitlog_compiler::ir::Ir {
+    let (result, diags) = crate::check_app(app);
+    let checked = result.unwrap_or_else(|_| panic!("{} does not check: {diags:?}", app.display()));
+    sitlog_compiler::ir::lower(&checked)
+}
+
+/// What a compiled application's `functions()` gives (the standard
+/// functions and its embedded Prolog `sources`), its engine shared as
+/// [`interpreter`]'s is.
+pub fn compiled_functions(sources: &[(&str, &str)]) -> Functions {
+    let sources: Vec<PrologSource> = sources
+        .iter()
+        .map(|(name, text)| PrologSource::new(*name, *text))
+        .collect();
+    let mut functions = Functions::standard();
+    match shared_engine(&sources) {
+        Some(engine) => engine.install(&mut functions),
+        None => {
+            let texts: Vec<(&str, &str)> = sources
+                .iter()
+                .map(|s| (s.name.as_str(), s.text.as_str()))
+                .collect();
+            sitlog_runtime::install_prolog_sources(&mut functions, &texts)
+                .unwrap_or_else(|e| panic!("{e}"));
+        }
+    }
+    functions
+}
+
+/// One engine per set of Prolog sources for the whole test process, built
+/// on first use (issue 30: building one takes ~2.5 s in a debug build, and
+/// the scenario tests ran two per test). Sound only for code that keeps no
+/// state between calls and whose directives only load files: then a run on
+/// a used engine is a run on a fresh one (runs of two test threads send
+/// their calls to it in turn, each call one query). Other sources (see
+/// [`stateless`]) get `None`: a fresh engine per run, as before.
+fn shared_engine(sources: &[PrologSource]) -> Option<PrologFunctions> {
+    type Key = Vec<(String, String, Option<std::path::PathBuf>)>;
+    type Engines = Mutex<HashMap<Key, Arc<OnceLock<PrologFunctions>>>>;
+    static ENGINES: OnceLock<Engines> = OnceLock::new();
+    if sources.is_empty()
+        || !sources
+            .iter()
+            .all(|s| stateless(&s.text, s.dir.as_deref(), sources, 0))
+    {
+        return None;
+    }
+    let key: Key = sources
+        .iter()
+        .map(|s| (s.name.clone(), s.text.clone(), s.dir.clone()))
+        .collect();
+    let cell = ENGINES
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap()
+        .entry(key)
+        .or_default()
+        .clone();
+    let engine = cell.get_or_init(|| {
+        PrologFunctions::load_with(sources, Default::default(), 0, None)
+            .unwrap_or_else(|e| panic!("{e:?}"))
+    });
+    Some(engine.clone())
+}
+
+/// Runs on both back ends (the interpreter, its Prolog engine shared as
+/// [`shared_interpreter`]'s, and `compiled` with `functions`); they must
+/// print the same transcript and report, and the run must end `ok`. The
+/// transcript.
 pub fn both<A: App>(
     app: &Path,
     compiled: &A,
@@ -81,7 +175,7 @@ pub fn both<A: App>(
     kb: Option<&str>,
 ) -> String {
     let assets = assets(app, world, kb);
-    let (ir, functions) = interpreter(app);
+    let (ir, functions) = shared_interpreter(app);
     let a = execute(&ir, functions, &assets);
     let b = execute(compiled, compiled_functions, &assets);
     assert_eq!(
@@ -110,4 +204,108 @@ pub fn edit(text: &str, edits: &[(&str, &str)]) -> String {
         w = w.replacen(from, to, 1);
     }
     w
+}
+
+/// Whether Prolog `text` (and the files it consults: one of `given`, whose
+/// text the caller checks, else found as the engine finds it, from `dir`
+/// or its nearest ancestor that has the path) has no directive but
+/// `consult/1` and `ensure_loaded/1` and no word that could keep state
+/// between calls. Conservative: a file it cannot find, or such a word
+/// anywhere (even in a comment), says no.
+fn stateless(text: &str, dir: Option<&Path>, given: &[PrologSource], depth: usize) -> bool {
+    const STATEFUL: &[&str] = &[
+        "assert",
+        "asserta",
+        "assertz",
+        "retract",
+        "retractall",
+        "abolish",
+        "b_setval",
+        "nb_setval",
+        "bb_put",
+        "bb_b_put",
+        "flag",
+        "random",
+        "random_between",
+        "random_member",
+        "set_random",
+        "gensym",
+        "recorda",
+        "recordz",
+        "erase",
+        "set_prolog_flag",
+        "op",
+        "dynamic",
+    ];
+    let words = text
+        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .filter(|w| !w.is_empty());
+    if depth > 8 || words.clone().any(|w| STATEFUL.contains(&w)) {
+        return false;
+    }
+    text.lines().all(|line| {
+        let line = line.trim_start();
+        if !line.starts_with(":-") {
+            return true;
+        }
+        let Some(rest) = line
+            .strip_prefix(":- consult('")
+            .or_else(|| line.strip_prefix(":- ensure_loaded('"))
+        else {
+            return false;
+        };
+        let Some(name) = rest.split('\'').next() else {
+            return false;
+        };
+        let with_pl = format!("{name}.pl");
+        if given.iter().any(|s| {
+            let path = Path::new(&s.name);
+            path.ends_with(name) || path.ends_with(&with_pl)
+        }) {
+            return true;
+        }
+        let Some(dir) = dir else {
+            return false;
+        };
+        let found = dir.ancestors().map(|d| d.join(name)).find(|p| p.is_file());
+        match found.and_then(|p| std::fs::read_to_string(&p).ok().map(|t| (p, t))) {
+            Some((path, text)) => stateless(&text, path.parent(), given, depth + 1),
+            None => false,
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{stateless, PrologSource};
+
+    /// The scenario applications share their engines (else each of their
+    /// tests builds two again); code that may keep state does not.
+    #[test]
+    fn the_scenario_apps_are_stateless_and_state_is_seen() {
+        for app in ["dms/apps/home", "dms/apps/supermarket"] {
+            let dir = crate::workspace().join(app);
+            let text = std::fs::read_to_string(dir.join("user_functions.pl")).unwrap();
+            assert!(stateless(&text, Some(&dir), &[], 0), "{app}");
+        }
+        let dir = crate::workspace().join("dms/apps/home");
+        for text in [
+            "f(X) :- assertz(seen(X)).\n",
+            ":- initialization(main).\n",
+            ":- consult('no/such/file.pl').\n",
+            "f(X) :- nb_setval(k, X).\n",
+        ] {
+            assert!(!stateless(text, Some(&dir), &[], 0), "{text}");
+        }
+        assert!(stateless("f(X) :- drop(X), stop(X).\n", None, &[], 0));
+        // Compiled, their consults are among the sources they embed.
+        use crate::compiled::generated::{apps_home, apps_supermarket};
+        for embedded in [apps_home::PROLOG_SOURCES, apps_supermarket::PROLOG_SOURCES] {
+            let given: Vec<PrologSource> = embedded
+                .iter()
+                .map(|(name, text)| PrologSource::new(*name, *text))
+                .collect();
+            assert!(given.iter().all(|s| stateless(&s.text, None, &given, 0)));
+        }
+    }
 }

@@ -292,3 +292,23 @@ fn legacy_files_redefine_as_swi_consult() {
     let own = PrologFunctions::load(&[layer, app], PrologOptions::default()).expect("loads");
     assert!(has(&own, "[[a1,a2,b],[x]]"));
 }
+
+/// The engine's toplevel keeps scryer's directives whole (one a line), so
+/// the same libraries are loaded as with scryer's own toplevel.
+#[test]
+fn the_toplevel_keeps_scryers_directives_whole() {
+    let text = super::engine::toplevel();
+    for line in text.lines() {
+        assert!(
+            line == "repl." || (line.starts_with(":- ") && line.ends_with(").")),
+            "{line}"
+        );
+    }
+    for library in ["lists", "format", "charsio", "'$atts'"] {
+        assert!(
+            text.contains(&format!(":- use_module(library({library})).")),
+            "{library}"
+        );
+    }
+    assert!(text.contains(":- dynamic(started/0)."));
+}

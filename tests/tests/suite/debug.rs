@@ -9,7 +9,7 @@ use sitlog_debug::record::{numbered, Record};
 use sitlog_debug::{diff, replay, CommandSource, Trace};
 use sitlog_robot::console::SharedBuf;
 use sitlog_robot::{Assets, HistoryMode, RunArgs, Runner, Streams};
-use sitlog_tests::scenario::interpreter;
+use sitlog_tests::scenario::shared_interpreter as interpreter;
 use sitlog_tests::workspace;
 use std::path::{Path, PathBuf};
 

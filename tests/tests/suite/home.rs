@@ -23,7 +23,7 @@ fn run(world: &str) -> String {
     both(
         &app(),
         apps_home::program(),
-        apps_home::functions().unwrap(),
+        sitlog_tests::scenario::compiled_functions(apps_home::PROLOG_SOURCES),
         world,
         None,
     )

@@ -51,7 +51,7 @@ fn run(world: &str, kb: &str) -> String {
     both(
         &app(),
         apps_supermarket::program(),
-        apps_supermarket::functions().unwrap(),
+        sitlog_tests::scenario::compiled_functions(apps_supermarket::PROLOG_SOURCES),
         world,
         Some(kb),
     )
