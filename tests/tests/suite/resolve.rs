@@ -47,7 +47,7 @@ fn the_scenarios_instantiate_no_template() {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(app);
         let world = std::fs::read_to_string(dir.join("world.toml")).expect("the app's world");
         let assets = sitlog_tests::scenario::assets(&dir, &world, None);
-        let (ir, functions) = sitlog_tests::scenario::interpreter(&dir);
+        let (ir, functions) = sitlog_tests::scenario::shared_interpreter(&dir);
         let resolved = Resolved::new(&ir);
         let run = sitlog_tests::scenario::execute(&resolved, functions, &assets);
         assert_eq!(run.report["status"], "ok", "{app}: {}", run.transcript);
