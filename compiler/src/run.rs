@@ -118,23 +118,28 @@ pub fn install_prolog_with(
     Option<sitlog_runtime::prolog::PrologFunctions>,
     Vec<sitlog_runtime::prolog::PrologLoadError>,
 > {
-    use sitlog_runtime::prolog::{PrologFunctions, PrologSource};
+    use sitlog_runtime::prolog::PrologFunctions;
     if ir.prolog_sources.is_empty() && before.is_empty() {
         return Ok(None);
     }
     let layer = before.len();
     let mut sources = before;
-    let app: Vec<PrologSource> = ir
-        .prolog_sources
+    sources.extend(prolog_sources(ir));
+    let prolog = PrologFunctions::load_with(&sources, options, layer, native)?;
+    prolog.install(functions);
+    Ok(Some(prolog))
+}
+
+/// The application's Prolog files as the engine loads them (each with its
+/// directory, for the files it consults by a relative name).
+#[cfg(feature = "prolog")]
+pub fn prolog_sources(ir: &Ir) -> Vec<sitlog_runtime::prolog::PrologSource> {
+    ir.prolog_sources
         .iter()
-        .map(|f| PrologSource {
+        .map(|f| sitlog_runtime::prolog::PrologSource {
             name: f.name.clone(),
             text: f.text.clone(),
             dir: f.path.parent().map(|d| d.to_path_buf()),
         })
-        .collect();
-    sources.extend(app);
-    let prolog = PrologFunctions::load_with(&sources, options, layer, native)?;
-    prolog.install(functions);
-    Ok(Some(prolog))
+        .collect()
 }

@@ -78,15 +78,7 @@ pub fn interpreter(app: &Path) -> (sitlog_compiler::ir::Ir, Functions) {
 /// the process where that is sound (see [`shared_engine`]).
 pub fn shared_interpreter(app: &Path) -> (sitlog_compiler::ir::Ir, Functions) {
     let ir = checked_ir(app);
-    let sources: Vec<PrologSource> = ir
-        .prolog_sources
-        .iter()
-        .map(|f| PrologSource {
-            name: f.name.clone(),
-            text: f.text.clone(),
-            dir: f.path.parent().map(|d| d.to_path_buf()),
-        })
-        .collect();
+    let sources = sitlog_compiler::run::prolog_sources(&ir);
     let Some(engine) = shared_engine(&sources) else {
         let mut functions = Functions::standard();
         sitlog_compiler::run::install_prolog(&ir, &mut functions, Default::default())
