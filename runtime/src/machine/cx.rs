@@ -147,10 +147,8 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         call: Term,
         saved: Term,
     ) -> Result<(), RunError> {
-        if self.m.frames.len() + self.m.lazy.len() >= self.m.options.max_depth {
-            self.m.materialize();
-            self.m.check_depth(self.here())?;
-        }
+        // Counts the lazy frames; its error names the running DM, pushed or not.
+        self.m.check_depth(self.here())?;
         self.m.lazy.push(super::state::LazyFrame {
             dm,
             call,

@@ -126,8 +126,8 @@ pub struct TypedRun {
     pub count: u64,
     /// Set with a `GotoSit` step: that situation must run untyped.
     pub untyped: bool,
-    /// Set with the `Step::Call` of a typed call: the callee (a DM without
-    /// parameters, named by its atom), for the program's typed driver.
+    /// Set with the `Step::Call` of a typed call: the callee, for the
+    /// program's typed driver (the call term is the step's).
     pub call: Option<super::DmIx>,
 }
 
