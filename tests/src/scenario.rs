@@ -204,7 +204,7 @@ pub fn edit(text: &str, edits: &[(&str, &str)]) -> String {
 /// `consult/1` and `ensure_loaded/1` and no word that could keep state
 /// between calls. Conservative: a file it cannot find, or such a word
 /// anywhere (even in a comment), says no.
-fn stateless(text: &str, dir: Option<&Path>, given: &[PrologSource], depth: usize) -> bool {
+pub fn stateless(text: &str, dir: Option<&Path>, given: &[PrologSource], depth: usize) -> bool {
     const STATEFUL: &[&str] = &[
         "assert",
         "asserta",
@@ -265,39 +265,4 @@ fn stateless(text: &str, dir: Option<&Path>, given: &[PrologSource], depth: usiz
             None => false,
         }
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{stateless, PrologSource};
-
-    /// The scenario applications share their engines (else each of their
-    /// tests builds two again); code that may keep state does not.
-    #[test]
-    fn the_scenario_apps_are_stateless_and_state_is_seen() {
-        for app in ["dms/apps/home", "dms/apps/supermarket"] {
-            let dir = crate::workspace().join(app);
-            let text = std::fs::read_to_string(dir.join("user_functions.pl")).unwrap();
-            assert!(stateless(&text, Some(&dir), &[], 0), "{app}");
-        }
-        let dir = crate::workspace().join("dms/apps/home");
-        for text in [
-            "f(X) :- assertz(seen(X)).\n",
-            ":- initialization(main).\n",
-            ":- consult('no/such/file.pl').\n",
-            "f(X) :- nb_setval(k, X).\n",
-        ] {
-            assert!(!stateless(text, Some(&dir), &[], 0), "{text}");
-        }
-        assert!(stateless("f(X) :- drop(X), stop(X).\n", None, &[], 0));
-        // Compiled, their consults are among the sources they embed.
-        use crate::compiled::generated::{apps_home, apps_supermarket};
-        for embedded in [apps_home::PROLOG_SOURCES, apps_supermarket::PROLOG_SOURCES] {
-            let given: Vec<PrologSource> = embedded
-                .iter()
-                .map(|(name, text)| PrologSource::new(*name, *text))
-                .collect();
-            assert!(given.iter().all(|s| stateless(&s.text, None, &given, 0)));
-        }
-    }
 }

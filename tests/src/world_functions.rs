@@ -5,7 +5,7 @@
 //! and, through the compiler's default feature, the Prolog engine a second
 //! time for the host (issue 30: about a quarter of the test command's
 //! compile time). Invariant: the list equals `sitlog_robot::WORLD_FUNCTIONS`
-//! (the test below).
+//! (`support::the_build_scripts_list_is_the_robots` in the `suite` test binary).
 
 /// `sitlog_robot::WORLD_FUNCTIONS`, restated for the build script.
 pub const WORLD_FUNCTIONS: &[(&str, usize)] = &[
@@ -15,11 +15,3 @@ pub const WORLD_FUNCTIONS: &[(&str, usize)] = &[
     ("shop_diagnose", 4),
     ("shop_decide", 4),
 ];
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn the_build_scripts_list_is_the_robots() {
-        assert_eq!(super::WORLD_FUNCTIONS, sitlog_robot::WORLD_FUNCTIONS);
-    }
-}

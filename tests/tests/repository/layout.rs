@@ -49,6 +49,8 @@ const LAYERS: &[(&str, &[&str])] = &[
     ),
     // floor 3: tools over them
     ("sitlog-macros", &["sitlog-compiler", "sitlog-runtime"]),
+    // include_dm!'s trybuild tests: what a user of the macro depends on
+    ("sitlog-macros-ui", &["sitlog-macros", "sitlog-runtime"]),
     (
         "sitlog-debug",
         &["sitlog-syntax", "sitlog-runtime", "sitlog-robot"],

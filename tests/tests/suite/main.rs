@@ -13,5 +13,6 @@ mod prolog;
 mod random_agreement;
 mod resolve;
 mod supermarket;
+mod support;
 mod tutorial;
 mod typed;
