@@ -96,13 +96,7 @@ impl SimRobot {
         seed: Option<u64>,
         console: SharedConsole,
     ) -> Result<SimRobot, String> {
-        let world = World::parse(&file.name, &file.text).map_err(|errors| {
-            errors
-                .iter()
-                .map(|e| e.to_string())
-                .collect::<Vec<_>>()
-                .join("\n")
-        })?;
+        let world = parse_world(file)?;
         Ok(SimRobot::new(&world, seed, console))
     }
 
@@ -480,6 +474,18 @@ fn lower_first(s: &str) -> String {
         Some(f) => f.to_lowercase().chain(c).collect(),
         None => String::new(),
     }
+}
+
+/// A world file parsed, or its errors as one message (a line each, with
+/// their positions).
+pub(crate) fn parse_world(file: &TextFile) -> Result<World, String> {
+    World::parse(&file.name, &file.text).map_err(|errors| {
+        errors
+            .iter()
+            .map(|e| e.to_string())
+            .collect::<Vec<_>>()
+            .join("\n")
+    })
 }
 
 #[cfg(test)]

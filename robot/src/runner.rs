@@ -107,6 +107,28 @@ impl Runner {
         self
     }
 
+    /// The checks of a run that need only its options and files, as
+    /// [`Runner::run`] makes them first: outputs that would destroy an
+    /// input, options that exclude each other, the world file read and (with
+    /// the simulator) parsed. For a caller with costly set-up of its own
+    /// (`sitlogc run` starts the Prolog engine), so that a run that cannot
+    /// start says so at once: it runs with `args` and `assets` as given back
+    /// (the world file, read once, moved into the assets: a FIFO is read
+    /// only once). Make the runner first: its signal handling then covers
+    /// a world file that blocks. The error is the exit status and message.
+    pub fn preflight(args: &RunArgs, assets: &Assets) -> Result<(RunArgs, Assets), (u8, String)> {
+        let world = run_world(args, assets)?;
+        #[cfg(feature = "sim")]
+        if let (Some(world), false) = (&world, args.robot == RobotKind::Ros2) {
+            crate::robot::parse_world(world).map_err(|e| (2, e))?;
+        }
+        let mut args = args.clone();
+        let mut assets = assets.clone();
+        args.world = None;
+        assets.world = world;
+        Ok((args, assets))
+    }
+
     /// Runs `app` with `functions`, the options `args` and `assets`; the
     /// exit status (see the module documentation). With `--view` the live
     /// view is served first, and the task starts when its page is open.
@@ -165,35 +187,11 @@ impl Runner {
                 return $code;
             }};
         }
-        // An output that is also an input (or another output) would destroy
-        // it: refused before anything is opened.
-        if let Some(message) = args.files_in_conflict() {
-            fail!(2, "error: {message}");
-        }
-        // The world, if any.
-        let world: Option<TextFile> = if args.no_world {
-            None
-        } else if let Some(path) = &args.world {
-            match TextFile::read(path, "world") {
-                Ok(file) => Some(file),
-                Err(e) => fail!(e.status, "{e}"),
-            }
-        } else {
-            assets.world.clone()
+        let world = match run_world(args, assets) {
+            Ok(world) => world,
+            Err((code, message)) => fail!(code, "{message}"),
         };
         let other_robot = args.robot == RobotKind::Ros2;
-        if other_robot && args.script.is_some() {
-            fail!(
-                2,
-                "error: --script gives test-mode inputs, but this run is on a robot over ROS 2 (--robot ros2)"
-            );
-        }
-        if world.is_some() && args.script.is_some() {
-            fail!(
-                2,
-                "error: --script gives test-mode inputs, but this run has a world; pass --no-world to run in test mode"
-            );
-        }
         let json = args.format == Format::Json;
         // The transcript: stdout before the text report, stderr with JSON.
         let with_world = world.is_some() || other_robot;
@@ -488,4 +486,38 @@ fn read_script(path: &std::path::Path) -> Result<ScriptPerception, crate::assets
             message: format!("error: cannot read script {name}: {e}"),
         }),
     }
+}
+
+/// The run's world file, if any, after the checks that need no more than
+/// the options: outputs in conflict with inputs, `--script` with a world or
+/// with a robot over ROS 2 (exit status 2), a world file that cannot be read.
+fn run_world(args: &RunArgs, assets: &Assets) -> Result<Option<TextFile>, (u8, String)> {
+    // An output that is also an input (or another output) would destroy
+    // it: refused before anything is opened.
+    if let Some(message) = args.files_in_conflict() {
+        return Err((2, format!("error: {message}")));
+    }
+    // The world, if any.
+    let world: Option<TextFile> = if args.no_world {
+        None
+    } else if let Some(path) = &args.world {
+        Some(TextFile::read(path, "world").map_err(|e| (e.status, e.to_string()))?)
+    } else {
+        assets.world.clone()
+    };
+    if args.robot == RobotKind::Ros2 && args.script.is_some() {
+        return Err((
+            2,
+            "error: --script gives test-mode inputs, but this run is on a robot over ROS 2 (--robot ros2)"
+                .to_owned(),
+        ));
+    }
+    if world.is_some() && args.script.is_some() {
+        return Err((
+            2,
+            "error: --script gives test-mode inputs, but this run has a world; pass --no-world to run in test mode"
+                .to_owned(),
+        ));
+    }
+    Ok(world)
 }

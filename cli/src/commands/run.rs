@@ -75,6 +75,26 @@ pub fn run_app(
             return e.status;
         }
     };
+    // A plain run checks its options and world file before the Prolog
+    // engine starts, so a run that cannot start says so at once (issue 30),
+    // its signal handling already in place (a world FIFO may block).
+    let mut plain_runner = None;
+    let preflighted;
+    if debug.is_none() && !watch {
+        let runner = runner();
+        match sitlog_robot::Runner::preflight(args, &assets) {
+            Ok((checked_args, checked_assets)) => {
+                preflighted = checked_args;
+                args = &preflighted;
+                assets = checked_assets;
+            }
+            Err((code, message)) => {
+                sitlog_runtime::errln!("{message}");
+                return code;
+            }
+        }
+        plain_runner = Some(runner);
+    }
     let mut functions = sitlog_runtime::Functions::standard();
     // The application's user_functions.pl and templates.pl (feature `prolog`).
     if let Err(errors) = sitlog_compiler::run::install_prolog_with(
@@ -111,7 +131,7 @@ pub fn run_app(
         // Situations run from their plans where they can (resolved once, here).
         None => {
             let resolved = sitlog_compiler::interp::Resolved::new(&ir);
-            let mut runner = runner();
+            let mut runner = plain_runner.unwrap_or_else(runner);
             // --legacy in test mode: each situation type is given what the
             // original's test mode gives it.
             let test_mode = args.no_world || (args.world.is_none() && assets.world.is_none());

@@ -100,3 +100,44 @@ fn a_missing_world_file_exits_two_naming_it() {
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("/nonexistent/world.toml"), "{stderr}");
 }
+
+/// The run's options and world file are checked before the Prolog engine
+/// starts (issue 30): a run that cannot start says so at once, and a bad
+/// world file is the error even when the engine would refuse a clause too.
+#[test]
+fn a_bad_world_file_is_reported_before_the_prolog_engine_starts() {
+    let tmp = tempfile::tempdir().unwrap();
+    let app = tmp.path().join("app");
+    std::fs::create_dir_all(&app).unwrap();
+    std::fs::write(
+        app.join("main.dm"),
+        "diag_mod(main, [[id ==> is, type ==> neutral, arcs ==> [empty : f(1) => fs]], [id ==> fs, type ==> final]], []).\n",
+    )
+    .unwrap();
+    // The engine refuses a clause of one of its built-ins (exit status 1).
+    std::fs::write(
+        app.join("user_functions.pl"),
+        "atom_length(_, 0).\nf(X) :- X = 1.\n",
+    )
+    .unwrap();
+    let refused = sitlogc().arg("run").arg(&app).output().unwrap();
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("user_functions.pl:1:1"), "{stderr}");
+    let world = tmp.path().join("world.toml");
+    std::fs::write(&world, "[robot\n").unwrap();
+    let out = sitlogc()
+        .arg("run")
+        .arg(&app)
+        .arg("--world")
+        .arg(&world)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("world.toml:1:7: error: not valid TOML"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("user_functions.pl"), "{stderr}");
+}
