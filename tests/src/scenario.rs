@@ -67,54 +67,46 @@ pub fn execute<A: App>(program: &A, functions: Functions, assets: &Assets) -> Ru
 /// The checked IR of `app` and its standard and Prolog functions: what the
 /// interpreter runs (a new Prolog engine).
 pub fn interpreter(app: &Path) -> (sitlog_compiler::ir::Ir, Functions) {
-    let ir = checked_ir(app);
-    let mut functions = Functions::standard();
-    sitlog_compiler::run::install_prolog(&ir, &mut functions, Default::default())
-        .unwrap_or_else(|e| panic!("{e:?}"));
-    (ir, functions)
+    interpreter_with(app, false)
 }
 
 /// [`interpreter`], with the Prolog engine of `app` shared by the tests of
 /// the process where that is sound (see [`shared_engine`]).
 pub fn shared_interpreter(app: &Path) -> (sitlog_compiler::ir::Ir, Functions) {
-    let ir = checked_ir(app);
-    let sources = sitlog_compiler::run::prolog_sources(&ir);
-    let Some(engine) = shared_engine(&sources) else {
-        let mut functions = Functions::standard();
-        sitlog_compiler::run::install_prolog(&ir, &mut functions, Default::default())
-            .unwrap_or_else(|e| panic!("{e:?}"));
-        return (ir, functions);
-    };
-    let mut functions = Functions::standard();
-    engine.install(&mut functions);
-    (ir, functions)
+    interpreter_with(app, true)
 }
 
-fn checked_ir(app: &Path) -> sitlog_compiler::ir::Ir {
+fn interpreter_with(app: &Path, shared: bool) -> (sitlog_compiler::ir::Ir, Functions) {
     let (result, diags) = crate::check_app(app);
     let checked = result.unwrap_or_else(|_| panic!("{} does not check: {diags:?}", app.display()));
-    sitlog_compiler::ir::lower(&checked)
+    let ir = sitlog_compiler::ir::lower(&checked);
+    let mut functions = Functions::standard();
+    let engine = shared
+        .then(|| shared_engine(&sitlog_compiler::run::prolog_sources(&ir)))
+        .flatten();
+    match engine {
+        Some(engine) => engine.install(&mut functions),
+        None => {
+            sitlog_compiler::run::install_prolog(&ir, &mut functions, Default::default())
+                .unwrap_or_else(|e| panic!("{e:?}"));
+        }
+    }
+    (ir, functions)
 }
 
 /// What a compiled application's `functions()` gives (the standard
 /// functions and its embedded Prolog `sources`), its engine shared as
 /// [`interpreter`]'s is.
 pub fn compiled_functions(sources: &[(&str, &str)]) -> Functions {
-    let sources: Vec<PrologSource> = sources
+    let given: Vec<PrologSource> = sources
         .iter()
         .map(|(name, text)| PrologSource::new(*name, *text))
         .collect();
     let mut functions = Functions::standard();
-    match shared_engine(&sources) {
+    match shared_engine(&given) {
         Some(engine) => engine.install(&mut functions),
-        None => {
-            let texts: Vec<(&str, &str)> = sources
-                .iter()
-                .map(|s| (s.name.as_str(), s.text.as_str()))
-                .collect();
-            sitlog_runtime::install_prolog_sources(&mut functions, &texts)
-                .unwrap_or_else(|e| panic!("{e}"));
-        }
+        None => sitlog_runtime::install_prolog_sources(&mut functions, sources)
+            .unwrap_or_else(|e| panic!("{e}")),
     }
     functions
 }
