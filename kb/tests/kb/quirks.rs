@@ -1,6 +1,6 @@
 //! One test per behaviour listed in kb.md sections 2-4 (the closure, the
 //! services' answers and their quirks). Each names the service it calls.
-mod common;
+use crate::common;
 use common::ask;
 
 fn kb(top_props: &str, class_props: &str, ind_props: &str) -> String {

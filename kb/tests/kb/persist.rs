@@ -1,6 +1,6 @@
 //! Save/load round trips, atomic saves, and the generator at scale
 //! (including that reusing class closures never changes an answer).
-mod common;
+use crate::common;
 use sitlog_kb::{gen, Kb};
 
 #[test]

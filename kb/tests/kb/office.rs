@@ -1,5 +1,5 @@
 //! The five `sitlogc kb` examples of kb.md section 6, output for output.
-mod common;
+use crate::common;
 use common::ask_file;
 
 #[test]

@@ -1,5 +1,5 @@
 //! Malformed KBs, queries and updates: exact `sitlogc kb` error lines.
-mod common;
+use crate::common;
 use sitlog_kb::{answer_line, Kb};
 use std::path::PathBuf;
 

@@ -1,11 +1,11 @@
 //! The update services: effects and quirks as measured against the
 //! original (SWI-Prolog), and failing updates leaving the KB unchanged.
 //! Each test names the update and the query service it uses.
-mod common;
+use crate::common;
 use common::ask;
 use sitlog_kb::Kb;
 
-const KB: &str = include_str!("data/updates.kb");
+const KB: &str = include_str!("../data/updates.kb");
 
 #[test]
 fn rm_object_cancels_relations_and_flattens_lists_object_relations() {

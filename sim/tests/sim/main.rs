@@ -1,5 +1,8 @@
 //! Behaviour of the simulated world: physics rest, the camera, routes and
-//! time, hands, the user, determinism.
+//! time, hands, the user, determinism; and, in `world_errors`, bad world
+//! files. One binary (a test binary costs a link: issue 30).
+
+mod world_errors;
 
 use sitlog_sim::*;
 

@@ -2,7 +2,7 @@
 //! section 9 and Appendix B, Figure 6 / Listing 3). Each test names the
 //! service it calls; the KBs, and the repairs to the listings, are in
 //! `tests/data/animals.kb` and `tests/data/preferences.kb`.
-mod common;
+use crate::common;
 use common::ask_file;
 
 fn animals(q: &str) -> String {
