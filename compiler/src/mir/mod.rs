@@ -7,12 +7,14 @@
 //! Invariant: the rules of *which situations run as code* (an atom id, or
 //! a compound id none of whose variables is a DM parameter; any type, a
 //! compound one built from the situation's variables; a DM whose
-//! parameters are distinct variables; no term deeper than [`MAX_DEPTH`]), *which variables are lazy* (first occurring as the
-//! argument of `get`/`inc` or the variable of `is`) and *where a constant
-//! next situation goes* are decided here only. The interpreter
+//! parameters are distinct variables; no term deeper than [`MAX_DEPTH`]),
+//! *which variables are lazy* (first occurring as the argument of
+//! `get`/`inc` or the variable of `is`) and *where a constant next
+//! situation goes* are decided here only. The interpreter
 //! ([`crate::interp`]) runs the plans; the code generator
 //! ([`crate::codegen`]) prints them as Rust; both therefore take the same
-//! steps in the same order, which `tests/tests/suite/random_agreement.rs` checks.
+//! steps in the same order, which `tests/tests/suite/random_agreement.rs`
+//! checks.
 
 use crate::ir::{none_marker, Ir, IrDm, IrSituation};
 use sitlog_runtime::machine::{Kind, SitIx};

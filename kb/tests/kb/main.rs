@@ -1,5 +1,6 @@
 //! The KB crate's integration tests, in one binary (a test binary costs a
-//! link: issue 30). Each module is one area; `data/` holds their KBs.
+//! link: issue 30). Each module is one area; `tests/data/` holds
+//! their KBs.
 mod common;
 
 mod errors;
