@@ -18,14 +18,14 @@
 //!   `get`/`set`/`inc` and conditionals inline, constants built once,
 //!   constant next situations resolved to situation indices (the DM's
 //!   `run_situation` goes on to them by itself until the machine is
-//!   needed), DM calls as frames on the machine's stack ([`step`]); every
+//!   needed), DM calls as frames on the machine's stack (`step`); every
 //!   step is a call on the runtime's `Cx`, so semantics stay in the
 //!   runtime;
 //! - for the situations type inference ([`crate::types`]) gave a typed plan,
 //!   a native `Frame` of the DM and `run_typed`, tried first: typed
 //!   situations run one after the other on `i64`/`f64`/enum values, the
 //!   frame loaded from the machine's variables with a check and written back
-//!   when untyped code or the machine is needed ([`typed`]); with typed DM
+//!   when untyped code or the machine is needed (`typed`); with typed DM
 //!   calls, one driver for the program runs typed code across DMs, the
 //!   callee's typed frame pushed over the caller's (no Rust recursion);
 //! - for every situation, a function building a fresh instance (D-7) for the

@@ -66,7 +66,7 @@ pub enum Build {
 /// A term evaluated in L, as the generated code evaluates it.
 #[derive(Debug)]
 pub enum Ev {
-    /// A variable occurrence: its value ([`Cx::value`]).
+    /// A variable occurrence: its value ([`Cx::value`](sitlog_runtime::machine::Cx::value)).
     Value(Reg),
     /// Evaluating gives the term itself.
     Built(Build),
