@@ -103,8 +103,10 @@ pub fn generate(ir: &Ir, source: &str) -> TokenStream {
 
 /// [`generate`] with options.
 pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
-    let mut g = Gen::new(&ir.store, crate::mir::lower(ir));
-    g.types = options.typed.then(|| crate::types::infer(ir));
+    let mir = crate::mir::lower(ir);
+    let types = options.typed.then(|| crate::types::infer(ir, &mir));
+    let mut g = Gen::new(&ir.store, mir);
+    g.types = types;
     g.collect(ir);
     g.emit(ir, source)
 }
