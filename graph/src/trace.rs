@@ -20,6 +20,10 @@ pub struct Overlay {
     pub transitions: usize,
     /// Transitions whose DM or situation is not in the diagram.
     pub unmatched: usize,
+    /// Drawn as coverage (`sitlogc graph --coverage`): arcs never taken
+    /// red and dashed, situations never visited with a red outline,
+    /// instead of faded.
+    pub coverage: bool,
 }
 
 impl Overlay {
@@ -28,6 +32,10 @@ impl Overlay {
     }
     pub fn edge_count(&self, id: &str) -> u64 {
         self.edges.get(id).copied().unwrap_or(0)
+    }
+    /// Whether node `id` was visited.
+    pub fn node_seen(&self, id: &str) -> bool {
+        self.node_count(id) > 0
     }
 }
 
