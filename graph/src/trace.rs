@@ -5,8 +5,8 @@
 //!
 //! A trace names situations by their instantiated ids (`look([b],[])`):
 //! a situation matches by its id as written, else by its principal functor
-//! (the first such instance; with several instances of one id the count
-//! goes to the first).
+//! (of several instances of one id, the first whose id as written the
+//! recorded one may fit, else the first).
 
 use crate::{Diagram, DmGraph, NodeKind};
 use std::collections::HashMap;
@@ -112,8 +112,10 @@ pub fn find_situation<'d>(dm: &'d DmGraph, id: &str) -> Option<&'d crate::Node> 
         return Some(n);
     }
     let f = functor_of(id)?;
-    sits.clone()
-        .find(|n| n.functor.as_deref() == Some(f.as_str()))
+    let mut same = sits.filter(|n| n.functor.as_deref() == Some(f.as_str()));
+    let first = same.clone().next();
+    // of several instances of one id, the first the recorded id may fit
+    same.find(|n| may_match(&n.label, id)).or(first)
 }
 
 /// A term as written by `writeq`, enough to tell whether a recorded value
