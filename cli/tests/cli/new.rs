@@ -123,7 +123,7 @@ fn new_robot_app_checks_and_runs_at_once() {
     }
     let readme = std::fs::read_to_string(tmp.path().join("x/README.md")).unwrap();
     assert!(
-        readme.contains("sitlogc run x | diff x/expected.txt -"),
+        readme.contains("sitlogc test x --coverage"),
         "{readme}"
     );
 }
