@@ -78,6 +78,24 @@ pub struct Suite<'a> {
     pub app: &'a Path,
     pub ir: &'a sitlog_compiler::ir::Ir,
     pub assets: &'a Assets,
+    /// One Prolog engine for every test, when the application's Prolog
+    /// keeps no state between calls ([`shared_engine`]); else each test
+    /// starts its own.
+    pub engine: Option<sitlog_runtime::prolog::PrologFunctions>,
+}
+
+/// The engine the tests of `ir` may share: its Prolog sources loaded once,
+/// when they keep no state between calls
+/// (`sitlog_compiler::run::shareable`); `None` otherwise, or when they do
+/// not load (each test then reports why).
+pub fn shared_engine(
+    ir: &sitlog_compiler::ir::Ir,
+) -> Option<sitlog_runtime::prolog::PrologFunctions> {
+    let sources = sitlog_compiler::run::prolog_sources(ir);
+    if !sitlog_compiler::run::shareable(&sources) {
+        return None;
+    }
+    sitlog_runtime::prolog::PrologFunctions::load_with(&sources, Default::default(), 0, None).ok()
 }
 
 /// Runs `case` (its file's text `case_text`) and checks it.
@@ -171,7 +189,9 @@ pub fn run_case(suite: &Suite<'_>, case: &Case, case_text: &str) -> Outcome {
     }
 
     let mut functions = sitlog_runtime::Functions::standard();
-    if let Err(errors) = sitlog_compiler::run::install_prolog_with(
+    if let Some(engine) = &suite.engine {
+        engine.install(&mut functions);
+    } else if let Err(errors) = sitlog_compiler::run::install_prolog_with(
         suite.ir,
         &mut functions,
         Default::default(),
@@ -507,12 +527,12 @@ pub fn diff(want: &str, got: &str) -> String {
             ops.push((' ', a[i]));
             i += 1;
             j += 1;
-        } else if j < m && (i == n || lcs[i][j + 1] >= lcs[i + 1][j]) {
-            ops.push(('+', b[j]));
-            j += 1;
-        } else {
+        } else if i < n && (j == m || lcs[i + 1][j] >= lcs[i][j + 1]) {
             ops.push(('-', a[i]));
             i += 1;
+        } else {
+            ops.push(('+', b[j]));
+            j += 1;
         }
     }
     let near = |k: usize| {

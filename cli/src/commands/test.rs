@@ -119,6 +119,11 @@ pub fn test_app(app: &Path, options: Options) -> u8 {
         app,
         ir: &ir,
         assets: &assets,
+        engine: if cases.is_empty() {
+            None
+        } else {
+            run::shared_engine(&ir)
+        },
     };
     let json = options.json;
     let outcomes = run::run_all(&suite, &cases, jobs, &mut |o| {
