@@ -553,7 +553,7 @@ pub fn diff(want: &str, got: &str) -> String {
             skipped = true;
         }
     }
-    if skipped {
+    if skipped && !s.is_empty() {
         s.push_str("  ...\n");
     }
     s
