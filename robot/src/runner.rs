@@ -443,7 +443,9 @@ impl Runner {
         let transcript_error = console.lock().ok().and_then(|mut c| c.finish());
         let report = match args.format {
             Format::Json => format!("{}\n", report::outcome_json(&store, &outcome)),
-            Format::Text => report::outcome_text(&mut store, &outcome),
+            Format::Text => {
+                report::outcome_text_with(&mut store, &outcome, args.history == HistoryMode::Keep)
+            }
         };
         let written = streams
             .stdout
