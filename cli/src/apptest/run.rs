@@ -576,20 +576,31 @@ pub fn run_all(
         for _ in 0..jobs {
             let tx = tx.clone();
             let (next, results) = (&next, &results);
-            std::thread::Builder::new()
+            // A thread that cannot start leaves its tests to the others
+            // (with none, every test reports that it did not run).
+            let _ = std::thread::Builder::new()
                 .stack_size(256 * 1024 * 1024)
                 .spawn_scoped(scope, move || loop {
                     let i = next.fetch_add(1, Ordering::SeqCst);
                     let Some((case, text)) = cases.get(i) else {
                         break;
                     };
-                    let outcome = run_case(suite, case, text);
+                    // A bug that panics fails its test, not the whole run.
+                    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                        run_case(suite, case, text)
+                    }))
+                    .unwrap_or_else(|_| Outcome {
+                        failures: vec![format!(
+                            "{}: sitlogc failed inside this test's run (an internal error; please report it)",
+                            case.path.display()
+                        )],
+                        ..not_run(case)
+                    });
                     if let Ok(mut slot) = results[i].lock() {
                         *slot = Some(outcome);
                     }
                     let _ = tx.send(());
-                })
-                .expect("a test thread starts");
+                });
         }
         drop(tx);
         let mut reported = 0;
@@ -613,22 +624,30 @@ pub fn run_all(
         .into_iter()
         .zip(cases)
         .map(|(r, (case, _))| {
-            r.into_inner().ok().flatten().unwrap_or_else(|| Outcome {
-                name: case.name.clone(),
-                file: case.path.display().to_string(),
-                failures: vec![format!(
-                    "{}: the test's thread ended without a result",
-                    case.path.display()
-                )],
-                detail: String::new(),
-                stdout: String::new(),
-                stderr: String::new(),
-                trace: String::new(),
-                transitions: 0,
-                elapsed: Duration::ZERO,
-            })
+            r.into_inner()
+                .ok()
+                .flatten()
+                .unwrap_or_else(|| not_run(case))
         })
         .collect()
+}
+
+/// The outcome of a test that did not run.
+fn not_run(case: &Case) -> Outcome {
+    Outcome {
+        name: case.name.clone(),
+        file: case.path.display().to_string(),
+        failures: vec![format!(
+            "{}: the test did not run (no thread could run it)",
+            case.path.display()
+        )],
+        detail: String::new(),
+        stdout: String::new(),
+        stderr: String::new(),
+        trace: String::new(),
+        transitions: 0,
+        elapsed: Duration::ZERO,
+    }
 }
 
 #[cfg(test)]
