@@ -184,3 +184,59 @@ fn bad_test_files_are_errors_at_their_place_and_nothing_runs() {
         "{stdout}"
     );
 }
+
+#[test]
+fn test_mode_tests_take_a_script_and_compare_a_golden_output() {
+    let tmp = tempfile::tempdir().unwrap();
+    let made = sitlogc()
+        .args(["new", "hello"])
+        .current_dir(tmp.path())
+        .output()
+        .unwrap();
+    assert_eq!(made.status.code(), Some(0));
+    let tests = tmp.path().join("hello/tests");
+    std::fs::create_dir(&tests).unwrap();
+    // the script file and the golden output `sitlogc new` made
+    std::fs::write(
+        tests.join("golden.toml"),
+        "script = \"../script.txt\"\n[expect]\nfinal = \"done\"\nout_arg = \"none\"\ngolden = \"../expected.txt\"\nlines = [\"Golem says: Nice to meet you, ada\"]\n",
+    )
+    .unwrap();
+    // an inline script that runs out: the task stops with an error
+    std::fs::write(
+        tests.join("too_short.toml"),
+        "script = [\"hello.\"]\n[expect]\nstatus = \"error\"\nerror = \"end of input\"\n",
+    )
+    .unwrap();
+    // a golden output that differs: a diff
+    std::fs::write(
+        tmp.path().join("hello/other.txt"),
+        "Execution history:\nsomething else\n",
+    )
+    .unwrap();
+    std::fs::write(
+        tests.join("wrong_golden.toml"),
+        "script = \"../script.txt\"\n[expect]\ngolden = \"../other.txt\"\n",
+    )
+    .unwrap();
+    let out = sitlogc()
+        .args(["test", "hello", "--jobs", "1"])
+        .current_dir(tmp.path())
+        .output()
+        .unwrap();
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(
+        stdout
+            .contains("test golden ... ok\ntest too_short ... ok\ntest wrong_golden ... FAILED\n"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("hello/tests/wrong_golden.toml:3:10: the output differs from hello/tests/../other.txt (- expected, + actual)"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("  Execution history:\n- something else\n+ main:"),
+        "{stdout}"
+    );
+}
