@@ -334,8 +334,9 @@ pub enum Command {
     /// per test and a summary are printed in the order of their file names;
     /// a failure shows why, with the output marked or a diff. See the
     /// guide's "Testing an application". Exit status: 0 when every test
-    /// passed, 1 when one failed, 2 on usage or I/O problems, a bad test
-    /// file (at its file:line:col) or a program that does not check.
+    /// passed, 1 when one failed or the application has errors (its
+    /// diagnostics are printed, as by `check`), 2 on usage or I/O problems
+    /// or a bad test file (at its file:line:col).
     Test {
         /// The application directory.
         #[arg(value_name = "APP")]

@@ -2,7 +2,8 @@
 //! read every test file (a bad one stops everything, exit status 2), run
 //! the chosen tests in parallel, print their lines and the summary, and
 //! the coverage when asked for. Exit status 0 when every test passed, 1
-//! when one failed, 2 on usage or I/O problems.
+//! when one failed or the application has errors, 2 on usage or I/O
+//! problems or a bad test file.
 
 use crate::apptest::{self, case, coverage::Coverage, report, run};
 use crate::output::checked_ir;
