@@ -1,7 +1,7 @@
 //! Running the tests of an application: each [`Case`] on the interpreter
 //! through the runner of `sitlogc run` (`sitlog_robot::Runner`, on captured
 //! streams), its transitions recorded, then its expectations checked
-//! ([`check`]). [`run_all`] runs the cases on worker threads and gives the
+//! (`check`). [`run_all`] runs the cases on worker threads and gives the
 //! results in the cases' order.
 //!
 //! A run never hangs a test: it stops after `expect.max_transitions`
