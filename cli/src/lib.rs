@@ -5,7 +5,8 @@
 //! nowhere below: argument parsing ([`args`]), one module per subcommand
 //! ([`commands`]), hot reload ([`watch`]), packaging a compiled task
 //! ([`package`]), the behaviour library built into `sitlogc` ([`library`]),
-//! new applications ([`scaffold`]), the legacy profile's Prolog layer
+//! new applications ([`scaffold`]), an application's own tests
+//! ([`apptest`], `sitlogc test`), the legacy profile's Prolog layer
 //! ([`legacy`]) and the editor analysis ([`analysis`]).
 //!
 //! Invariant: this crate is the top of the dependency graph; no crate of the
@@ -15,6 +16,7 @@
 //! the crates below.
 
 pub mod analysis;
+pub mod apptest;
 pub mod args;
 pub mod commands;
 pub mod legacy;
