@@ -360,6 +360,36 @@ mod tests {
         drop(shared);
     }
 
+    proptest::proptest! {
+        /// Any mix of shapes behaves as the vector it holds.
+        #[test]
+        fn behaves_as_a_vector(
+            items in proptest::collection::vec(0i32..5, 0..12),
+            cells in 0usize..13,
+            drop_first in 0usize..13,
+        ) {
+            let cells = cells.min(items.len());
+            let mut list = List::from_slice(&items[cells..]);
+            for &x in items[..cells].iter().rev() {
+                list = List::cons(x, list);
+            }
+            let whole = List::from_slice(&items);
+            proptest::prop_assert_eq!(list.len(), items.len());
+            proptest::prop_assert_eq!(list.iter().copied().collect::<Vec<_>>(), items.clone());
+            proptest::prop_assert_eq!(&list, &whole);
+            proptest::prop_assert_eq!(list.first(), items.first());
+            let mut rest = list.clone();
+            for _ in 0..drop_first.min(items.len()) {
+                rest = rest.tail().unwrap();
+            }
+            let model = &items[drop_first.min(items.len())..];
+            proptest::prop_assert_eq!(rest.len(), model.len());
+            proptest::prop_assert_eq!(rest.iter().len(), model.len());
+            proptest::prop_assert!(rest.iter().eq(model.iter()));
+            proptest::prop_assert_eq!(rest == whole, model.len() == items.len());
+        }
+    }
+
     #[test]
     fn small() {
         assert_eq!(std::mem::size_of::<List<u64>>(), 24);
