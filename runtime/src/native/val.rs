@@ -179,6 +179,25 @@ impl Val {
         any
     }
 
+    /// Appends every term inside to `out`, in a fixed order: the first
+    /// half of a collection by hand (the second is [`Val::pull_terms`]),
+    /// for a holder whose roots are gathered from several places; [`gc`]
+    /// does both.
+    pub fn push_terms(&self, out: &mut Vec<Term>) {
+        self.each_term(&mut |t| out.push(t.get()));
+    }
+
+    /// Puts back the terms [`Val::push_terms`] gave, moved by
+    /// [`Store::gc`], taking them from `moved` in the same order (a value
+    /// must not change between the two).
+    pub fn pull_terms(&self, moved: &mut impl Iterator<Item = Term>) {
+        self.each_term(&mut |t| {
+            if let Some(m) = moved.next() {
+                t.set(m);
+            }
+        });
+    }
+
     /// Calls `f` on every term inside, in a fixed order (shared storage as
     /// often as it is reached).
     fn each_term(&self, f: &mut impl FnMut(&Cell<Term>)) {
@@ -251,17 +270,13 @@ where
     let vals = vals.into_iter();
     let mut all = roots.to_vec();
     for v in vals.clone() {
-        v.each_term(&mut |t| all.push(t.get()));
+        v.push_terms(&mut all);
     }
     store.gc(&mut all);
     roots.copy_from_slice(&all[..roots.len()]);
-    let mut moved = all[roots.len()..].iter();
+    let mut moved = all[roots.len()..].iter().copied();
     for v in vals {
-        v.each_term(&mut |t| {
-            if let Some(&m) = moved.next() {
-                t.set(m);
-            }
-        });
+        v.pull_terms(&mut moved);
     }
 }
 

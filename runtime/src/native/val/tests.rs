@@ -359,6 +359,24 @@ fn gc_moves_the_terms_inside_values() {
 }
 
 #[test]
+fn terms_gathered_by_hand_move_too() {
+    let mut s = Store::new();
+    for i in 0..50 {
+        s.compound(atom("junk"), &[Term::int(i)]);
+    }
+    let t = s.parse("p(X, [a])").unwrap().0;
+    let v = Val::Tagged(Compound::new(atom("q"), [Val::from(t), Val::Int(1)]));
+    let mut roots = Vec::new();
+    v.push_terms(&mut roots);
+    assert_eq!(roots, [t]);
+    s.gc(&mut roots);
+    v.pull_terms(&mut roots.iter().copied());
+    assert_eq!(v.as_term(), None);
+    let u = v.to_term(&mut s);
+    assert_eq!(s.writeq(u), "q(p(_G0,[a]),1)");
+}
+
+#[test]
 fn small() {
     assert_eq!(std::mem::size_of::<Val>(), 24);
     assert_eq!(std::mem::size_of::<List<Val>>(), 24);
