@@ -21,10 +21,10 @@
 //! | 6 | [`app`], [`report`], [`testmode`] |
 //! | 5 | [`machine`] (the DM machine) |
 //! | 4 | [`eval`] (the language L), `prolog` (feature `prolog`: Prolog user functions) |
-//! | 3 | `arith`, `copy`, [`functions`] |
+//! | 3 | `arith`, `copy`, [`functions`], [`native`] (native values: their types, `List`, `Val`, conversions to and from terms, gc of the terms inside) |
 //! | 2 | `unify`, `gc`, `convert`, [`vars`], [`history`], [`builtins`] |
 //! | 1 | `store` |
-//! | 0 | [`native`] (native value types), `term`, `special` (the functors L gives a meaning), `eval_error`, `input` (limits on terms from outside), [`paths`], [`trust`] |
+//! | 0 | `term`, `special` (the functors L gives a meaning), `eval_error`, `input` (limits on terms from outside), [`paths`], [`trust`] |
 //!
 //! The term layer:
 //! - [`Term`]: a `Copy` handle; atoms, integers, floats and variables need

@@ -180,7 +180,7 @@ impl Store {
 
     /// Whether `t` is known to evaluate to itself in L (D-28, D-36) without
     /// walking it: atomic, or a compound built from inert parts whose
-    /// functor is no construct of L ([`crate::special`]). Constant time; a
+    /// functor is no construct of L (`crate::special`). Constant time; a
     /// list of atoms, numbers and inert compounds is inert.
     #[inline]
     pub fn is_inert(&self, t: Term) -> bool {
