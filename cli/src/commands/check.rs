@@ -19,6 +19,8 @@ pub fn check(
     let color = color_stderr();
     let mut errors = 0usize;
     let mut warnings = 0usize;
+    // Warnings of applications whose sitlog.toml denies them.
+    let mut denied_warnings = 0usize;
     let mut io_failed = false;
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
@@ -42,6 +44,20 @@ pub fn check(
         }
     }
     for path in &programs {
+        // The application's sitlog.toml may deny its warnings (a bad one
+        // is an error; the program is checked all the same).
+        let denied = match crate::config::read(path) {
+            Ok(config) => config.deny_warnings,
+            Err((code, message)) => {
+                sitlog_runtime::errln!("{message}");
+                if code == 1 {
+                    errors += 1;
+                } else {
+                    io_failed = true;
+                }
+                false
+            }
+        };
         let options = sitlog_compiler::check::CheckOptions {
             legacy,
             ..Default::default()
@@ -66,9 +82,10 @@ pub fn check(
         for d in &diags {
             match d.severity {
                 Severity::Error => errors += 1,
+                Severity::Warning if denied => denied_warnings += 1,
                 Severity::Warning => warnings += 1,
             }
-            if quiet && d.severity == Severity::Warning {
+            if quiet && d.severity == Severity::Warning && !denied {
                 continue;
             }
             match format {
@@ -96,15 +113,20 @@ pub fn check(
     }
     if format == Format::Human {
         sitlog_runtime::errln!(
-            "checked {} program(s): {} error(s), {} warning(s)",
+            "checked {} program(s): {} error(s), {} warning(s){}",
             programs.len(),
             errors,
-            warnings
+            warnings + denied_warnings,
+            if denied_warnings > 0 {
+                format!(" ({denied_warnings} denied by {})", crate::config::FILE)
+            } else {
+                String::new()
+            }
         );
     }
     if io_failed {
         2
-    } else if errors > 0 || (deny_warnings && warnings > 0) {
+    } else if errors > 0 || denied_warnings > 0 || (deny_warnings && warnings > 0) {
         1
     } else {
         0

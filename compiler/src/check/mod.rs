@@ -49,11 +49,11 @@ pub mod codes {
     pub const DUPLICATE_LOCAL: &str = "W0222";
     pub const UNKNOWN_RECOVERY_DM: &str = "E0223";
     pub const UNKNOWN_FUNCTION: &str = "E0224";
-    pub const UNKNOWN_ACTION: &str = "E0225";
+    pub const UNKNOWN_ACTION: &str = "W0225";
     pub const KB_SERVICE_WITHOUT_KB: &str = "W0226";
     pub const WORLD_FUNCTION_WITHOUT_WORLD: &str = "W0227";
-    pub const UNBOUND_VARIABLE: &str = "E0228";
-    pub const ACTION_ARITY: &str = "E0229";
+    pub const UNBOUND_VARIABLE: &str = "W0228";
+    pub const ACTION_ARITY: &str = "W0229";
     pub const UNKNOWN_SITUATION_TYPE: &str = "E0230";
     pub const OS_ACCESS: &str = "W0240";
 }
@@ -83,11 +83,12 @@ pub fn check(
 }
 
 /// Errors about names that do not resolve (a next situation, an embedded DM
-/// or its arity, an exit arc, a SitLog variable, a function, an action or
-/// its arity) and variables used without a value: the program's structure
-/// is sound and, when run, the faulty path misbehaves only if it is taken
-/// (a clean run-time error where the machine cannot go on; where the
-/// original runs on, so does the run: an unbound variable prints as `_G1`).
+/// or its arity, an exit arc, a SitLog variable, a function): the
+/// program's structure is sound and, when run, the faulty path fails only
+/// if it is taken (a clean run-time error: the original stops there too).
+/// What the original runs on (an undeclared action or one given another
+/// number of arguments does nothing, an unbound variable prints as `_G1`)
+/// is a warning from the start (W0225, W0228, W0229).
 pub const UNRESOLVED: &[&str] = &[
     codes::UNKNOWN_NEXT,
     codes::UNKNOWN_DM,
@@ -95,9 +96,6 @@ pub const UNRESOLVED: &[&str] = &[
     codes::UNKNOWN_EXIT,
     codes::UNKNOWN_VARIABLE,
     codes::UNKNOWN_FUNCTION,
-    codes::UNKNOWN_ACTION,
-    codes::UNBOUND_VARIABLE,
-    codes::ACTION_ARITY,
 ];
 
 /// [`check`]; with `unresolved_as_warnings`, the [`UNRESOLVED`] errors are

@@ -1,5 +1,5 @@
 //! Prolog variables used without a value: a variable in an arc's action or
-//! next situation that nothing can bind before it is used (E0228). The
+//! next situation that nothing can bind before it is used (W0228). The
 //! places that can bind it, in the order a visit runs them: the DM's
 //! parameters and local defaults, the situation's id, `in_arg`, the
 //! `out_arg` variables that `prog` sets, the embedded DM call, the arc's
@@ -16,7 +16,7 @@ use super::*;
 use sitlog_syntax::VarId;
 
 impl Checker<'_> {
-    /// E0228 for every arc of `dm`; returns the variables reported, so that
+    /// W0228 for every arc of `dm`; returns the variables reported, so that
     /// the singleton warning is not given for them too.
     pub(super) fn unbound(&mut self, dm: &Dm, outputs: Outputs<'_>) -> HashSet<VarId> {
         let terms = &dm.clause.terms;
@@ -85,7 +85,7 @@ impl Checker<'_> {
             }
             places.push("this arc's expectation".into());
             places.push("the functions and actions before this use".into());
-            let mut d = Diagnostic::error(
+            let mut d = Diagnostic::warning(
                 codes::UNBOUND_VARIABLE,
                 dm.loc(terms.span(t)),
                 format!("variable `{name}` has no value here: nothing binds it before it is used"),
