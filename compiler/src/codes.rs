@@ -33,6 +33,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         "a file listed in `models` is outside the application directory",
     ),
     (
+        load::APP_FILE,
+        "the application's `world.toml`, `knowledge.kb` or `ros2.toml` has an error that `sitlogc run` stops on (its message and position)",
+    ),
+    (
         shape::NOT_A_DM,
         "a clause of a DM file that is not a DM (ignored)",
     ),

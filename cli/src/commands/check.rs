@@ -4,9 +4,10 @@
 
 use crate::args::Format;
 use crate::output::color_stderr;
-use sitlog_compiler::diag::{self, Severity};
+use sitlog_compiler::diag::{self, Diagnostic, Loc, Severity};
+use sitlog_compiler::source::SourceMap;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 pub fn check(
     paths: &[PathBuf],
@@ -74,12 +75,25 @@ pub fn check(
             Ok(checked) => checked.program(),
             Err(program) => program,
         };
+        // The world, KB and ROS 2 interface files, as `run` reads them.
+        let (asset_sources, asset_diags) = match asset_diagnostics(path) {
+            Ok(found) => found,
+            Err(message) => {
+                sitlog_runtime::errln!("{message}");
+                io_failed = true;
+                (SourceMap::new(), Vec::new())
+            }
+        };
         if origins {
             for line in origin_lines(path, program) {
                 sitlog_runtime::errln!("{line}");
             }
         }
-        for d in &diags {
+        let all = diags
+            .iter()
+            .map(|d| (d, &program.sources))
+            .chain(asset_diags.iter().map(|d| (d, &asset_sources)));
+        for (d, sources) in all {
             match d.severity {
                 Severity::Error => errors += 1,
                 Severity::Warning if denied => denied_warnings += 1,
@@ -90,10 +104,10 @@ pub fn check(
             }
             match format {
                 Format::Human => {
-                    sitlog_runtime::errprint!("{}", diag::render_human(d, &program.sources, color))
+                    sitlog_runtime::errprint!("{}", diag::render_human(d, sources, color))
                 }
                 Format::Json => {
-                    if let Err(e) = writeln!(out, "{}", diag::render_json(d, &program.sources)) {
+                    if let Err(e) = writeln!(out, "{}", diag::render_json(d, sources)) {
                         if e.kind() != std::io::ErrorKind::BrokenPipe && !io_failed {
                             sitlog_runtime::errln!(
                                 "error: cannot write the diagnostics to stdout: {e}"
@@ -131,6 +145,97 @@ pub fn check(
     } else {
         0
     }
+}
+
+/// The errors a run of the application at `path` would stop on in its
+/// `world.toml`, `knowledge.kb` and (with ROS 2) `ros2.toml`, as
+/// diagnostics (E0007) over a source map of those files; `Err`: a file that
+/// cannot be read (the message).
+fn asset_diagnostics(path: &Path) -> Result<(SourceMap, Vec<Diagnostic>), String> {
+    let assets = sitlog_robot::Assets::from_app(path).map_err(|e| e.message)?;
+    #[allow(unused_mut)]
+    let mut problems = assets.problems();
+    #[cfg(feature = "ros2")]
+    if let Some(file) = &assets.ros2 {
+        let world = assets
+            .world
+            .as_ref()
+            .and_then(|w| sitlog_sim::World::parse(&w.name, &w.text).ok());
+        if let Err(message) =
+            sitlog_ros::Interface::load(Some((&file.name, &file.text)), world.as_ref())
+        {
+            let message = message
+                .strip_prefix(&format!("{}: error: ", file.name))
+                .unwrap_or(&message);
+            // toml's own text: "TOML parse error at line L, column C", the
+            // line quoted, then what is wrong.
+            let (line, column, message) = toml_position(message)
+                .map(|(l, c)| (l, c, message.lines().last().unwrap_or("").to_owned()))
+                .unwrap_or((0, 0, message.to_owned()));
+            problems.push(sitlog_robot::AssetError {
+                file: file.name.clone(),
+                line,
+                column,
+                message,
+            });
+        }
+    }
+    let mut sources = SourceMap::new();
+    let mut diags = Vec::new();
+    for p in problems {
+        let text = [&assets.world, &assets.kb, &assets.ros2]
+            .into_iter()
+            .flatten()
+            .find(|f| f.name == p.file)
+            .map(|f| f.text.clone())
+            .unwrap_or_default();
+        let start = offset(&text, p.line, p.column);
+        let end = text[start..]
+            .find(['\n', ' ', ',', ']', '}'])
+            .map_or(text.len(), |n| start + n.max(1).min(text.len() - start));
+        let file = sources.add(Path::new(&p.file), text);
+        let span = sitlog_syntax::Span {
+            start: start as u32,
+            end: end as u32,
+        };
+        diags.push(
+            Diagnostic::error(
+                sitlog_compiler::load::codes::APP_FILE,
+                Loc { file, span },
+                p.message,
+            )
+            .with_label("here"),
+        );
+    }
+    Ok((sources, diags))
+}
+
+/// The line and column of toml's "TOML parse error at line L, column C".
+#[cfg(feature = "ros2")]
+fn toml_position(message: &str) -> Option<(usize, usize)> {
+    let rest = message.strip_prefix("TOML parse error at line ")?;
+    let (line, rest) = rest.split_once(", column ")?;
+    let column: String = rest.chars().take_while(char::is_ascii_digit).collect();
+    Some((line.parse().ok()?, column.parse().ok()?))
+}
+
+/// The byte offset of 1-based `line` and `column` (characters) in `text`;
+/// the start for line 0.
+fn offset(text: &str, line: usize, column: usize) -> usize {
+    if line == 0 {
+        return 0;
+    }
+    let mut start = 0;
+    for _ in 1..line {
+        match text[start..].find('\n') {
+            Some(n) => start += n + 1,
+            None => return text.len(),
+        }
+    }
+    text[start..]
+        .char_indices()
+        .nth(column.saturating_sub(1))
+        .map_or(text.len(), |(i, _)| start + i)
 }
 
 /// `--origins`: one line per file of `program` named by a library name,

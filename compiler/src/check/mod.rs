@@ -337,6 +337,17 @@ impl<'p> Checker<'p> {
         program.dms.iter().find(|d| d.name == name)
     }
 
+    /// The library file (`behaviors/find.dm`) that defines a DM named
+    /// `name`, when the checker was given a library.
+    fn library_file_defining(&self, name: Atom) -> Option<String> {
+        let library = self.options.library?;
+        library
+            .dm_files(true)
+            .into_iter()
+            .find(|(_, text)| dm_names_in(text).iter().any(|n| n == name.as_str()))
+            .map(|(file, _)| file)
+    }
+
     fn similar_dm(&self, name: Atom) -> Option<&'p str> {
         let program: &'p Program = self.program;
         did_you_mean(name.as_str(), program.dms.iter().map(|d| d.name.as_str()))
@@ -356,7 +367,7 @@ fn is_output_name(name: &str) -> bool {
 /// most of its start (Jaro-Winkler similarity 0.9 or more: `greet` for
 /// `greeting`). Never the name itself, nothing for names shorter than 3
 /// characters (any other short name is one edit away); the fewest edits win.
-fn did_you_mean<'a>(
+pub(crate) fn did_you_mean<'a>(
     target: &str,
     candidates: impl IntoIterator<Item = &'a str>,
 ) -> Option<&'a str> {

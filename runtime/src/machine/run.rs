@@ -443,14 +443,22 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     }
                     self.store.undo_to(mark);
                 }
-                Err(self.err(
-                    format!(
-                        "there is no situation `{}` in this DM",
-                        self.store.writeq(value)
-                    ),
-                    None,
-                    None,
-                ))
+                // Where the next situation was chosen: that situation and
+                // arc (file:line:col of the arc), when it is known.
+                let message = format!(
+                    "there is no situation `{}` in this DM",
+                    self.store.writeq(value)
+                );
+                match self.chose.take() {
+                    Some((sit, arc)) if (sit as usize) < self.program.situation_count(dm) => {
+                        let id = match self.program.compiled_id(dm, sit) {
+                            Some((name, 0)) => Term::atom(name),
+                            _ => self.program.instantiate(dm, sit, &mut self.store).id,
+                        };
+                        Err(self.err(message, Some((sit, id)), arc))
+                    }
+                    _ => Err(self.err(message, None, None)),
+                }
             }
         }
     }
