@@ -134,6 +134,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         "a situation `type` that is no known type but close to one (`fianl`: *did you mean `final`?*)",
     ),
     (
+        check::DEAD_EXIT,
+        "an exit arc that names no final situation of the embedded DM, while each of its final situations has another exit arc: never taken (E0218 when a final situation is left without one)",
+    ),
+    (
         check::OS_ACCESS,
         "a directive or clause of the application's Prolog files reaches the operating system (shell, processes, sockets, native code, `open/3,4` for writing, loading code at run time or from an absolute or `$SITLOG_HOME` path): a run refuses it unless given `--allow-os` (the trust model, [reliability](reliability.md#trust-model))",
     ),

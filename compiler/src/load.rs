@@ -908,13 +908,14 @@ fn similar_file<'a>(name: &str, known: &'a [String]) -> Option<&'a str> {
         .filter(|(d, _)| *d == dir)
         .map(|(_, b)| b)
         .collect();
-    if let Some(b) = crate::check::did_you_mean(base, same_dir.iter().copied()) {
+    if let Some(b) = crate::suggest::did_you_mean(base, same_dir.iter().copied()) {
         return known
             .iter()
             .map(String::as_str)
             .find(|k| split(k) == (dir, b));
     }
-    crate::check::did_you_mean(name, known.iter().map(String::as_str)).filter(|k| split(k).0 != dir)
+    crate::suggest::did_you_mean(name, known.iter().map(String::as_str))
+        .filter(|k| split(k).0 != dir)
 }
 
 fn collect_dm_files(dir: &Path, out: &mut Vec<PathBuf>) -> io::Result<()> {

@@ -79,6 +79,17 @@ fn exit_arc_of_a_call_with_computed_arguments() {
             "did you mean `success(Answer)`?".to_owned()
         )]
     );
+    // A dead arc beside one for each final situation: only a warning
+    // (the original runs it, never taking the arc).
+    let (_tmp, app) = robot_app(&[(
+        "main.dm",
+        "success(Object) : empty => fetch(Object),",
+        "success(Object) : empty => fetch(Object),\n        sucess(Object) : empty => fetch(Object),",
+    )]);
+    let (code, diags) = check(&app);
+    assert_eq!(code, 0);
+    let codes: Vec<&str> = diags.iter().map(|d| d["code"].as_str().unwrap()).collect();
+    assert_eq!(codes, ["W0231"]);
     // The arity too.
     let (_tmp, app) = robot_app(&[("main.dm", "get(vocab, _), _, _)", "get(vocab, _), _)")]);
     let (code, diags) = check(&app);

@@ -10,6 +10,7 @@
 use crate::ast::{Dm, Program, SituationKind};
 use crate::diag::{Diagnostic, Severity};
 use crate::source::FileId;
+use crate::suggest::did_you_mean;
 use sitlog_syntax::{atoms, Atom, Node, Span, TermId, Terms};
 use std::collections::{HashMap, HashSet};
 
@@ -55,6 +56,7 @@ pub mod codes {
     pub const UNBOUND_VARIABLE: &str = "W0228";
     pub const ACTION_ARITY: &str = "W0229";
     pub const UNKNOWN_SITUATION_TYPE: &str = "E0230";
+    pub const DEAD_EXIT: &str = "W0231";
     pub const OS_ACCESS: &str = "W0240";
 }
 
@@ -359,34 +361,6 @@ impl<'p> Checker<'p> {
 /// (`grasp_status`, `out_pose`).
 fn is_output_name(name: &str) -> bool {
     name.contains("status") || name.contains("result") || name.starts_with("out")
-}
-
-/// The candidate closest to `target`, if it is close enough to be a typo of
-/// it: at most a third of the name's length apart by edit distance
-/// (a transposition counts one; at least one edit allowed), or sharing
-/// most of its start (Jaro-Winkler similarity 0.9 or more: `greet` for
-/// `greeting`). Never the name itself, nothing for names shorter than 3
-/// characters (any other short name is one edit away); the fewest edits win.
-pub(crate) fn did_you_mean<'a>(
-    target: &str,
-    candidates: impl IntoIterator<Item = &'a str>,
-) -> Option<&'a str> {
-    let len = target.chars().count();
-    let limit = (len / 3).max(1);
-    let mut best: Option<(usize, f64, &'a str)> = None;
-    for c in candidates {
-        if c == target {
-            continue;
-        }
-        let d = strsim::osa_distance(target, c);
-        let jw = strsim::jaro_winkler(target, c);
-        let close = len >= 3 && (d <= limit || jw >= 0.9);
-        let better = best.is_none_or(|(bd, bjw, _)| d < bd || (d == bd && jw > bjw));
-        if close && better {
-            best = Some((d, jw, c));
-        }
-    }
-    best.map(|(_, _, c)| c)
 }
 
 #[cfg(test)]

@@ -355,6 +355,21 @@ impl<'p> Checker<'p> {
                 .filter(|t| t.kind(&target.clause) == SituationKind::Final)
                 .filter_map(|t| t.id)
                 .collect();
+            // Whether every final situation has an exit arc that may take
+            // it (an arc whose expectation is not known takes any): then a
+            // dead exit arc is only dead code, which the original runs
+            // (W0231); else the callee ending there stops the run (E0218).
+            let arcs = s.arcs.iter().flatten();
+            let covered = |f: TermId| {
+                arcs.clone()
+                    .any(|arc| match static_values(terms, arc.expectation) {
+                        None => true,
+                        Some(values) => values
+                            .iter()
+                            .any(|&v| may_unify(terms, v, &target.clause.terms, f)),
+                    })
+            };
+            let all_covered = !finals.is_empty() && finals.iter().all(|&f| covered(f));
             for arc in s.arcs.iter().flatten() {
                 let Some(values) = static_values(terms, arc.expectation) else {
                     continue;
@@ -386,9 +401,14 @@ impl<'p> Checker<'p> {
                                 names.join(", ")
                             )
                         };
+                        let (code, make): (_, fn(_, _, String) -> Diagnostic) = if all_covered {
+                            (codes::DEAD_EXIT, Diagnostic::warning)
+                        } else {
+                            (codes::UNKNOWN_EXIT, Diagnostic::error)
+                        };
                         self.diags.push(
-                            Diagnostic::error(
-                                codes::UNKNOWN_EXIT,
+                            make(
+                                code,
                                 dm.loc(terms.span(v)),
                                 format!(
                                     "`{shown}` is not a final situation of DM `{}`",
