@@ -1,6 +1,8 @@
-//! `sitlogc check`: every problem of applications and DM files, as text
-//! on stderr or JSON lines on stdout, and (`--origins`) where the files
-//! named by a library name came from.
+//! `sitlogc check`: every problem of applications and DM files (with what
+//! `run` would stop on in their world, KB and ROS 2 interface files, E0007),
+//! as text on stderr or JSON lines on stdout; warnings denied by
+//! `--deny-warnings` or the application's `sitlog.toml`; and (`--origins`)
+//! where the files named by a library name came from.
 
 use crate::args::Format;
 use crate::output::color_stderr;
