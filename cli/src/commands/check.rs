@@ -80,9 +80,15 @@ pub fn check(
         // The world, KB and ROS 2 interface files, as `run` reads them.
         let (asset_sources, asset_diags) = match asset_diagnostics(path) {
             Ok(found) => found,
-            Err(message) => {
+            Err((status, message)) => {
+                // Text that is not UTF-8 is an error of the file (1), as in
+                // `run`; a file that cannot be read, an I/O problem (2).
                 sitlog_runtime::errln!("{message}");
-                io_failed = true;
+                if status == 1 {
+                    errors += 1;
+                } else {
+                    io_failed = true;
+                }
                 (SourceMap::new(), Vec::new())
             }
         };
@@ -152,9 +158,9 @@ pub fn check(
 /// The errors a run of the application at `path` would stop on in its
 /// `world.toml`, `knowledge.kb` and (with ROS 2) `ros2.toml`, as
 /// diagnostics (E0007) over a source map of those files; `Err`: a file that
-/// cannot be read (the message).
-fn asset_diagnostics(path: &Path) -> Result<(SourceMap, Vec<Diagnostic>), String> {
-    let assets = sitlog_robot::Assets::from_app(path).map_err(|e| e.message)?;
+/// cannot be used, as `run` says it (exit status and message).
+fn asset_diagnostics(path: &Path) -> Result<(SourceMap, Vec<Diagnostic>), (u8, String)> {
+    let assets = sitlog_robot::Assets::from_app(path).map_err(|e| (e.status, e.message))?;
     #[allow(unused_mut)]
     let mut problems = assets.problems();
     #[cfg(feature = "ros2")]
