@@ -37,6 +37,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         "the application's `world.toml`, `knowledge.kb` or `ros2.toml` has an error that `sitlogc run` stops on (its message and position)",
     ),
     (
+        load::PROLOG_SYNTAX,
+        "a clause of a consulted Prolog file (`user_functions.pl`, `templates.pl` and what they consult) that does not read: skipped, as SWI-Prolog's consult skips it, and the rest is loaded",
+    ),
+    (
         shape::NOT_A_DM,
         "a clause of a DM file that is not a DM (ignored)",
     ),

@@ -34,6 +34,8 @@ pub mod codes {
     /// KB and ROS 2 interface files (`sitlogc check`) and reports their
     /// errors with this code.
     pub const APP_FILE: &str = "E0007";
+    /// A clause of a consulted Prolog file that does not read (skipped).
+    pub const PROLOG_SYNTAX: &str = "W0008";
 }
 
 /// An I/O problem that stops loading (exit status 2 in the CLI).
@@ -302,7 +304,28 @@ pub fn load_with(path: &Path, library: &Library) -> Result<(Program, Vec<Diagnos
         program.has_kb_file = dir.join(KB_FILE).is_file();
         program.has_world_file = dir.join(WORLD_FILE).is_file();
     }
+    skipped_prolog_clauses(&program, &mut diags);
     Ok((program, diags))
+}
+
+/// A syntax error in a Prolog file that is consulted (`user_functions.pl`,
+/// `templates.pl` and what they consult) skips that clause, as SWI-Prolog's
+/// consult does for the original, and the engine loads the rest: a warning
+/// (W0008), not an error. The side files the original reads with `read/1`
+/// (global variables, actions, ...) and the DM files stay errors (E0001).
+fn skipped_prolog_clauses(program: &Program, diags: &mut [Diagnostic]) {
+    for d in diags.iter_mut() {
+        if d.code == codes::SYNTAX && program.prolog_files.contains(&d.loc.file) {
+            d.code = codes::PROLOG_SYNTAX;
+            d.severity = crate::diag::Severity::Warning;
+            d.message = format!("{} (this clause is skipped)", d.message);
+            if d.help.is_none() {
+                d.help = Some(
+                    "SWI-Prolog skips a clause it cannot read and loads the rest of the file, and so does the run: the functions it defines are missing".to_owned(),
+                );
+            }
+        }
+    }
 }
 
 /// Loads a program from in-memory DM sources (for tests and tools).
@@ -321,6 +344,7 @@ pub fn load_sources(files: &[(&str, &str)]) -> (Program, Vec<Diagnostic>) {
             .unwrap_or("");
         add_file_by_role(Cx::NONE, &mut program, file, name, clauses, &mut diags);
     }
+    skipped_prolog_clauses(&program, &mut diags);
     (program, diags)
 }
 
@@ -338,6 +362,7 @@ pub fn load_source_bytes(files: &[(&str, &[u8])]) -> (Program, Vec<Diagnostic>) 
             .unwrap_or("");
         add_file_by_role(Cx::NONE, &mut program, file, name, clauses, &mut diags);
     }
+    skipped_prolog_clauses(&program, &mut diags);
     (program, diags)
 }
 

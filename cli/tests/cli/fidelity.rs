@@ -216,3 +216,33 @@ fn misspelt_variable_gets_did_you_mean() {
     assert_eq!(w.len(), 1, "{diags:?}");
     assert_eq!(w[0]["help"], "did you mean `Drink`?");
 }
+
+/// A clause of `user_functions.pl` that does not read (marcopolo's
+/// `parse/2`, whose body starts with `|`) is skipped, as SWI-Prolog's
+/// consult skips it: W0008, and the run uses the rest of the file.
+#[test]
+fn a_prolog_clause_that_does_not_read_is_skipped() {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(
+        tmp.path().join("main.dm"),
+        "diag_mod(main, [[id ==> is, type ==> neutral, arcs ==> [empty : say(apply(hi(_), [])) => fs]], [id ==> fs, type ==> final]], []).\n",
+    )
+    .unwrap();
+    std::fs::write(
+        tmp.path().join("user_functions.pl"),
+        "parse(In, Out) :-\n  % the interpreter\n|  ( In = Out -> true | otherwise -> fail ).\nhi(_) :- assign_func_value(hello).\n",
+    )
+    .unwrap();
+    let (code, diags) = check(tmp.path());
+    assert_eq!(code, 0, "{diags:?}");
+    assert_eq!(diags.len(), 1, "{diags:?}");
+    assert_eq!(diags[0]["code"], "W0008");
+    assert_eq!(
+        (&diags[0]["line"], &diags[0]["column"]),
+        (&3.into(), &1.into())
+    );
+    let out = sitlogc().arg("run").arg(tmp.path()).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("Golem says: hello"), "{stderr}");
+}

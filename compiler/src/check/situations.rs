@@ -562,9 +562,10 @@ impl Broken {
         let mut files: Vec<FileId> = diags
             .iter()
             .filter(|d| {
-                d.is_error()
+                (d.is_error()
                     && (d.code == crate::load::codes::SYNTAX
-                        || d.code == crate::load::codes::NOT_UTF8)
+                        || d.code == crate::load::codes::NOT_UTF8))
+                    || d.code == crate::load::codes::PROLOG_SYNTAX
             })
             .map(|d| d.loc.file)
             .collect();
