@@ -8,7 +8,14 @@
 //!   no history;
 //! - `scripted_loop`: a speech situation driven by a script of `tick.`
 //!   inputs (each read and parsed as a term), no history;
-//! - `appendix_a`: the papers' Appendix A example on its script, with history.
+//! - `appendix_a`: the papers' Appendix A example on its script, with history;
+//! - `echo_calls` (workload c of issue 37): N calls of an embedded DM, the
+//!   limit the recursive situation's in_arg, the callee handing its pipe
+//!   back through `out_arg ==> X`, no history;
+//! - `list_search_8`, `list_search_256` (workload d of issue 37): rounds of
+//!   a call `search(Places, Target)` walking a list by the compound id
+//!   `try([P|Ps])`, ending in `found(P)` or `not_found`, no history; 8 and
+//!   256 places, to see that a walk costs the same per transition.
 //!
 //! Each program is also compiled `untyped` (every value a term: the code
 //! generator before typed code), so that one run compares both. Sizes 10⁴
@@ -83,6 +90,12 @@ mod pipe_calls {
 mod scripted_loop {
     sitlog_macros::include_dm!("dms/scripted_loop");
 }
+mod echo_calls {
+    sitlog_macros::include_dm!("dms/echo_calls");
+}
+mod list_search {
+    sitlog_macros::include_dm!("dms/list_search");
+}
 // The same programs with every value a term (the code generator before typed code).
 mod counter_loop_untyped {
     sitlog_macros::include_dm!("dms/counter_loop", untyped);
@@ -95,6 +108,12 @@ mod pipe_calls_untyped {
 }
 mod scripted_loop_untyped {
     sitlog_macros::include_dm!("dms/scripted_loop", untyped);
+}
+mod echo_calls_untyped {
+    sitlog_macros::include_dm!("dms/echo_calls", untyped);
+}
+mod list_search_untyped {
+    sitlog_macros::include_dm!("dms/list_search", untyped);
 }
 mod appendix_a {
     sitlog_macros::include_dm!("../dms/examples/appendix_a");
@@ -283,6 +302,125 @@ fn hand_pipe_calls(max: i64) -> u64 {
     transitions
 }
 
+/// The hand-written floor for `echo_calls` (workload c of issue 37): a DM
+/// stack of typed frames, the pipe handed to the callee and back, a local
+/// counter compared with the limit the recursive situation received.
+fn hand_echo_calls(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Main {
+        Call,
+        Fs,
+    }
+    #[derive(Clone, Copy)]
+    enum Echo {
+        Is,
+        Back,
+    }
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Main(Main),
+        Echo(Echo),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Main(Main::Call)];
+    let (mut pipe, mut n, mut transitions) = (limit, 0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Main(Main::Call) => stack.push(Frame::Echo(Echo::Is)),
+            Frame::Main(Main::Fs) => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Echo(Echo::Is) => {
+                transitions += 1;
+                // in_arg X, out_arg X: the pipe goes back as it came.
+                pipe = black_box(pipe);
+                *top = Frame::Echo(Echo::Back);
+            }
+            Frame::Echo(Echo::Back) => {
+                transitions += 1;
+                stack.pop();
+                // The caller's recursive situation concludes on `back`.
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(Frame::Main(m)) = stack.last_mut() {
+                    *m = if n >= pipe { Main::Fs } else { Main::Call };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// An atom of the hand-written machines: an interned index (what a Rust
+/// `enum` of the places compiles to, for a set of any size).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+struct Sym(u32);
+
+/// The hand-written floor for `list_search` (workload d of issue 37):
+/// places as symbols, the list walked as a slice, frames on an explicit
+/// stack, the callee's final situation carrying the place found.
+fn hand_list_search(rounds: i64, places: &[Sym], target: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Main {
+        Round,
+        Fs,
+    }
+    #[derive(Clone, Copy)]
+    enum Search<'a> {
+        Is,
+        Try(&'a [Sym]),
+        Found(Sym),
+        NotFound,
+    }
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Main(Main),
+        Search(Search<'a>),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Main(Main::Round)];
+    let (mut n, mut transitions) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Main(Main::Round) => stack.push(Frame::Search(Search::Is)),
+            Frame::Main(Main::Fs) => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Search(s) => {
+                transitions += 1;
+                let found = match s {
+                    Search::Is => {
+                        *top = Frame::Search(Search::Try(places));
+                        continue;
+                    }
+                    Search::Try([]) => {
+                        *top = Frame::Search(Search::NotFound);
+                        continue;
+                    }
+                    Search::Try([p, rest @ ..]) => {
+                        *top = Frame::Search(if *p == target {
+                            Search::Found(*p)
+                        } else {
+                            Search::Try(rest)
+                        });
+                        continue;
+                    }
+                    Search::Found(p) => Some(p),
+                    Search::NotFound => None,
+                };
+                black_box(found);
+                stack.pop();
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(Frame::Main(m)) = stack.last_mut() {
+                    *m = if n >= rounds { Main::Fs } else { Main::Round };
+                }
+            }
+        }
+    }
+    transitions
+}
+
 /// The hand-written floor for `scripted_loop`: the same script read line by
 /// line, each input compared with the expectations as text (no term is
 /// parsed), the counter an integer.
@@ -435,6 +573,52 @@ fn bench(c: &mut Criterion) {
                 ..Workload::plain("main")
             },
             || hand_scripted_loop(black_box(&script)),
+        );
+    }
+
+    // Workloads (c) and (d) of issue 37.
+    let echo_ir = interpreter(&root.join("dms/echo_calls"));
+    let search_ir = interpreter(&root.join("dms/list_search"));
+    for n in [10_000u64, 1_000_000] {
+        let limit = n.to_string();
+        three_ways(
+            c,
+            "echo_calls",
+            n,
+            echo_calls::program(),
+            echo_calls_untyped::program(),
+            &echo_ir,
+            &Workload {
+                in_arg: Some(&limit),
+                ..Workload::plain("main")
+            },
+            || hand_echo_calls(black_box(n as i64)),
+        );
+    }
+    for (rounds, len) in [
+        (1_000u64, 8usize),
+        (100_000, 8),
+        (1_000, 256),
+        (10_000, 256),
+    ] {
+        let names: Vec<String> = (0..len).map(|i| format!("p{i}")).collect();
+        let main = format!("main({rounds}, [{}], p{})", names.join(","), len - 1);
+        let syms: Vec<Sym> = (0..len as u32).map(Sym).collect();
+        three_ways(
+            c,
+            &format!("list_search_{len}"),
+            rounds,
+            list_search::program(),
+            list_search_untyped::program(),
+            &search_ir,
+            &Workload::plain(&main),
+            || {
+                hand_list_search(
+                    black_box(rounds as i64),
+                    black_box(&syms),
+                    black_box(Sym(len as u32 - 1)),
+                )
+            },
         );
     }
 

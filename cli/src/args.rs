@@ -312,6 +312,12 @@ pub enum Command {
         /// situations and arcs taken, with how often.
         #[arg(long, value_name = "FILE")]
         trace: Option<PathBuf>,
+        /// Draw the arc coverage of `sitlogc test APP --coverage-file FILE`
+        /// (or of any trace): arcs never taken red and dashed, situations
+        /// never visited with a red outline, the others coloured as with
+        /// --trace.
+        #[arg(long, value_name = "FILE", conflicts_with = "trace")]
+        coverage: Option<PathBuf>,
         /// Draw the program's overview: one box per DM, an arrow to each DM
         /// it calls and to the recovery DM of each situation type it has one
         /// for.
@@ -326,6 +332,55 @@ pub enum Command {
         /// large to read in one picture is drawn as its overview).
         #[arg(long, conflicts_with = "dm")]
         all: bool,
+    },
+    /// Run an application's tests: each `tests/*.toml` of APP.
+    ///
+    /// A test file gives the world the task runs on (the application's
+    /// `world.toml` with changes: objects missing or moved, the user's
+    /// lines, faults, the seed; or another file), or test-mode inputs
+    /// (`script`), and what must hold afterwards (`[expect]`: the status,
+    /// the main DM's final situation, the out_arg, lines that must appear
+    /// in order and lines that must not, KB answers, a bound on
+    /// transitions, a golden output). The tests run in parallel; one line
+    /// per test and a summary are printed in the order of their file names;
+    /// a failure shows why, with the output marked or a diff. See the
+    /// guide's "Testing an application". Exit status: 0 when every test
+    /// passed, 1 when one failed or the application has errors (its
+    /// diagnostics are printed, as by `check`), 2 on usage or I/O problems
+    /// or a bad test file (at its file:line:col).
+    Test {
+        /// The application directory.
+        #[arg(value_name = "APP")]
+        app: PathBuf,
+        /// Run only the tests whose name contains FILTER.
+        #[arg(value_name = "FILTER")]
+        filter: Option<String>,
+        /// With FILTER: only the test named exactly FILTER.
+        #[arg(long, requires = "filter")]
+        exact: bool,
+        /// Tests run at once (default: the number of CPUs).
+        #[arg(long, short, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+        jobs: Option<u16>,
+        /// `human`: cargo's lines; `json`: one JSON object per test and a
+        /// summary, one per line.
+        #[arg(long, value_enum, default_value_t = Format::Human)]
+        format: Format,
+        /// Also write the results as JUnit XML to FILE (for CI).
+        #[arg(long, value_name = "FILE")]
+        junit: Option<PathBuf>,
+        /// Print the arc coverage after the summary: for each DM (the
+        /// application's and the library's), the situations visited and
+        /// the arcs taken by the tests, then every arc never taken.
+        #[arg(long)]
+        coverage: bool,
+        /// Write the coverage table to FILE instead of stdout (implies
+        /// --coverage).
+        #[arg(long, value_name = "FILE")]
+        coverage_table: Option<PathBuf>,
+        /// Write every transition of the tests' runs to FILE (JSON lines,
+        /// as `run --trace` writes them), for `sitlogc graph APP --coverage FILE`.
+        #[arg(long, value_name = "FILE")]
+        coverage_file: Option<PathBuf>,
     },
     /// Ask a knowledge base one question (for people exploring a KB).
     ///

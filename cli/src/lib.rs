@@ -6,7 +6,8 @@
 //! ([`commands`]), an application's settings file ([`config`]), hot reload
 //! ([`watch`]), packaging a compiled task ([`package`]), the behaviour
 //! library built into `sitlogc` ([`library`]), new applications
-//! ([`scaffold`]), the legacy profile's Prolog layer
+//! ([`scaffold`]), an application's own tests ([`apptest`], `sitlogc
+//! test`), the legacy profile's Prolog layer
 //! ([`legacy`]) and the editor analysis ([`analysis`]).
 //!
 //! Invariant: this crate is the top of the dependency graph; no crate of the
@@ -16,6 +17,7 @@
 //! the crates below.
 
 pub mod analysis;
+pub mod apptest;
 pub mod args;
 pub mod commands;
 pub mod config;

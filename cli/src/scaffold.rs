@@ -86,6 +86,14 @@ const ROBOT: &[(&str, &str)] = &[
         "expected.txt",
         include_str!("../templates/robot/expected.txt.in"),
     ),
+    (
+        "tests/fetch_juice.toml",
+        include_str!("../templates/robot/tests/fetch_juice.toml.in"),
+    ),
+    (
+        "tests/juice_missing.toml",
+        include_str!("../templates/robot/tests/juice_missing.toml.in"),
+    ),
     ("README.md", include_str!("../templates/robot/README.md.in")),
 ];
 
@@ -148,6 +156,10 @@ pub fn create(dir: &Path, template: Template) -> Result<Vec<PathBuf>, Error> {
     let mut written = Vec::new();
     for (file, text) in template.files() {
         let path = dir.join(file);
+        if let Some(sub) = path.parent().filter(|p| *p != dir) {
+            std::fs::create_dir_all(sub)
+                .map_err(|e| Error(format!("cannot create {}: {e}", sub.display())))?;
+        }
         std::fs::write(&path, text.replace("{name}", &name))
             .map_err(|e| Error(format!("cannot write {}: {e}", path.display())))?;
         written.push(path);

@@ -381,9 +381,9 @@ impl DmProgram for Watched {
         let head = s.current.dms[s.ix(dm)].head;
         s.copy(head, store, &mut HashMap::new())
     }
-    fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Instance {
+    fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Option<Instance> {
         let s = self.state();
-        s.instantiate(s.ix(dm), sit, store)
+        Some(s.instantiate(s.ix(dm), sit, store))
     }
     fn may_select(&self, dm: DmIx, sit: SitIx, value: Term, store: &Store) -> bool {
         let s = self.state();

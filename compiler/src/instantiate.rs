@@ -25,10 +25,10 @@ impl DmProgram for Ir {
     fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Term {
         store.copy_term(self.dms[dm as usize].head)
     }
-    fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Instance {
+    fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Option<Instance> {
         let template = self.dms[dm as usize].situations[sit as usize].template;
         let t = store.copy_term(template);
-        instance_of(store, t)
+        Some(instance_of(store, t))
     }
     fn may_select(&self, dm: DmIx, sit: SitIx, value: Term, store: &Store) -> bool {
         match self.dms[dm as usize].situations[sit as usize].id_functor {

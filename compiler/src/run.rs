@@ -143,3 +143,90 @@ pub fn prolog_sources(ir: &Ir) -> Vec<sitlog_runtime::prolog::PrologSource> {
         })
         .collect()
 }
+
+/// Whether an engine loaded from `sources` may serve several runs, one
+/// after another or from several threads (each call one query): every
+/// source is [`stateless`]. `sitlogc test` and the workspace's scenario
+/// tests share one engine then.
+#[cfg(feature = "prolog")]
+pub fn shareable(sources: &[sitlog_runtime::prolog::PrologSource]) -> bool {
+    !sources.is_empty()
+        && sources
+            .iter()
+            .all(|s| stateless(&s.text, s.dir.as_deref(), sources, 0))
+}
+
+/// Whether Prolog `text` (and the files it consults: one of `given`, whose
+/// text the caller checks, else found as the engine finds it, from `dir`
+/// or its nearest ancestor that has the path) has no directive but
+/// `consult/1` and `ensure_loaded/1` and no word that could keep state
+/// between calls. Conservative: a file it cannot find, or such a word
+/// anywhere (even in a comment), says no.
+#[cfg(feature = "prolog")]
+pub fn stateless(
+    text: &str,
+    dir: Option<&std::path::Path>,
+    given: &[sitlog_runtime::prolog::PrologSource],
+    depth: usize,
+) -> bool {
+    const STATEFUL: &[&str] = &[
+        "assert",
+        "asserta",
+        "assertz",
+        "retract",
+        "retractall",
+        "abolish",
+        "b_setval",
+        "nb_setval",
+        "bb_put",
+        "bb_b_put",
+        "flag",
+        "random",
+        "random_between",
+        "random_member",
+        "set_random",
+        "gensym",
+        "recorda",
+        "recordz",
+        "erase",
+        "set_prolog_flag",
+        "op",
+        "dynamic",
+    ];
+    let words = text
+        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .filter(|w| !w.is_empty());
+    if depth > 8 || words.clone().any(|w| STATEFUL.contains(&w)) {
+        return false;
+    }
+    text.lines().all(|line| {
+        let line = line.trim_start();
+        if !line.starts_with(":-") {
+            return true;
+        }
+        let Some(rest) = line
+            .strip_prefix(":- consult('")
+            .or_else(|| line.strip_prefix(":- ensure_loaded('"))
+        else {
+            return false;
+        };
+        let Some(name) = rest.split('\'').next() else {
+            return false;
+        };
+        let with_pl = format!("{name}.pl");
+        if given.iter().any(|s| {
+            let path = std::path::Path::new(&s.name);
+            path.ends_with(name) || path.ends_with(&with_pl)
+        }) {
+            return true;
+        }
+        let Some(dir) = dir else {
+            return false;
+        };
+        let found = dir.ancestors().map(|d| d.join(name)).find(|p| p.is_file());
+        match found.and_then(|p| std::fs::read_to_string(&p).ok().map(|t| (p, t))) {
+            Some((path, text)) => stateless(&text, path.parent(), given, depth + 1),
+            None => false,
+        }
+    })
+}

@@ -1,8 +1,8 @@
 % deliver(Hand, Object, Status): the robot hands what it holds in Hand to
 % the user, who must be where the robot is, saying "Here is the Object".
 %
-% Status: ok, empty_hand, or no_user. Final situations: success,
-% error(Status).
+% Status: ok, empty_hand, or no_user. Final situations: success(Object),
+% error(Status, Object).
 diag_mod(deliver(Hand, _Object, _Status),
   [
     [ id ==> is,

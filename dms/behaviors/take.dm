@@ -5,7 +5,7 @@
 %
 % Status: ok, hands_full, not_in_view (it cannot see Object here), or
 % grasp_failed (the second attempt failed too).
-% Final situations: success, error(Status).
+% Final situations: success(Hand), error(Status, Hand).
 diag_mod(take(Object, _Hand, _Status),
   [
     % Which hands are free: the robot feels its hands. The last arc whose

@@ -51,6 +51,13 @@ pub fn render(d: &Diagram, l: &Layout, overlay: Option<&Overlay>) -> String {
         r##"<marker id="arrow-taken" viewBox="0 0 10 10" refX="9" refY="5" markerUnits="userSpaceOnUse" markerWidth="10" markerHeight="10" orient="auto-start-reverse"><path d="M 0 0 L 10 5 L 0 10 z" fill="#1a7f37"/></marker>"##,
         "\n</defs>\n",
     ));
+    if overlay.is_some_and(|o| o.coverage) {
+        s.truncate(s.len() - "</defs>\n".len());
+        s.push_str(concat!(
+            r##"<marker id="arrow-untaken" viewBox="0 0 10 10" refX="9" refY="5" markerUnits="userSpaceOnUse" markerWidth="10" markerHeight="10" orient="auto-start-reverse"><path d="M 0 0 L 10 5 L 0 10 z" fill="#c62828"/></marker>"##,
+            "\n</defs>\n"
+        ));
+    }
     if d.edges().any(|e| e.kind == EdgeKind::Recovery) {
         s.truncate(s.len() - "</defs>\n".len());
         s.push_str(concat!(
@@ -129,6 +136,11 @@ fn edge(s: &mut String, e: &Edge, l: &Layout, overlay: Option<&Overlay>) {
         EdgeKind::Call => "call",
     };
     let taken = overlay.map(|o| o.edge_count(&e.id));
+    let is_link = matches!(
+        e.kind,
+        EdgeKind::Pipe | EdgeKind::Control | EdgeKind::OutArg | EdgeKind::Recovery | EdgeKind::Call
+    );
+    let coverage = overlay.is_some_and(|o| o.coverage);
     let _ = writeln!(
         s,
         r#"<g class="edge {kind}" id="{}" data-from="{}" data-to="{}">"#,
@@ -148,6 +160,7 @@ fn edge(s: &mut String, e: &Edge, l: &Layout, overlay: Option<&Overlay>) {
     };
     let count = match taken {
         Some(n) if n > 0 => format!("\ntaken {n} time(s)"),
+        Some(0) if coverage && !is_link => "\nnever taken".to_owned(),
         _ => String::new(),
     };
     let _ = writeln!(
@@ -166,11 +179,14 @@ fn edge(s: &mut String, e: &Edge, l: &Layout, overlay: Option<&Overlay>) {
         EdgeKind::Call => ("#222", 2.0, "", "arrow-black"),
     };
     let mut opacity = 1.0;
-    let is_link = matches!(
-        e.kind,
-        EdgeKind::Pipe | EdgeKind::Control | EdgeKind::OutArg | EdgeKind::Recovery | EdgeKind::Call
-    );
     match taken {
+        // Coverage: an arc no run took is drawn red and dashed.
+        Some(0) if !is_link && coverage => {
+            stroke = "#c62828";
+            marker = "arrow-untaken";
+            width = 1.8;
+            dash = "5 4";
+        }
         Some(0) if !is_link => opacity = 0.45,
         Some(0) => {}
         Some(n) => {
@@ -267,6 +283,7 @@ fn node(s: &mut String, n: &Node, l: &Layout, overlay: Option<&Overlay>) {
     };
     let c = pl.center;
     let visits = overlay.map(|o| o.node_count(&n.id));
+    let coverage = overlay.is_some_and(|o| o.coverage);
     let kind = match n.kind {
         NodeKind::Situation => "situation",
         NodeKind::Function => "function",
@@ -314,6 +331,7 @@ fn node(s: &mut String, n: &Node, l: &Layout, overlay: Option<&Overlay>) {
     };
     let count = match visits {
         Some(k) if k > 0 => format!("\nvisited {k} time(s)"),
+        Some(0) if coverage && n.kind == NodeKind::Situation => "\nnever visited".to_owned(),
         _ => String::new(),
     };
     let _ = writeln!(
@@ -324,8 +342,14 @@ fn node(s: &mut String, n: &Node, l: &Layout, overlay: Option<&Overlay>) {
         count
     );
     let opacity = match visits {
+        Some(0) if coverage && n.kind == NodeKind::Situation => 1.0,
         Some(0) => 0.45,
         _ => 1.0,
+    };
+    // Coverage: a situation no run visited has a red, dashed outline.
+    let outline = match visits {
+        Some(0) if coverage => r##"#c62828" stroke-dasharray="5 4"##,
+        _ => "#222",
     };
     let fill = match visits {
         Some(k) if k > 0 => "#d4f5d4",
@@ -337,7 +361,7 @@ fn node(s: &mut String, n: &Node, l: &Layout, overlay: Option<&Overlay>) {
             let width = if n.initial { 2.6 } else { 1.6 };
             let _ = writeln!(
                 s,
-                r##"<circle cx="{}" cy="{}" r="{}" fill="{fill}" stroke="#222" stroke-width="{}" opacity="{}"/>"##,
+                r##"<circle cx="{}" cy="{}" r="{}" fill="{fill}" stroke="{outline}" stroke-width="{}" opacity="{}"/>"##,
                 num(c.x),
                 num(c.y),
                 num(r),

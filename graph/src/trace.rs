@@ -5,8 +5,8 @@
 //!
 //! A trace names situations by their instantiated ids (`look([b],[])`):
 //! a situation matches by its id as written, else by its principal functor
-//! (the first such instance; with several instances of one id the count
-//! goes to the first).
+//! (of several instances of one id, the first whose id as written the
+//! recorded one may fit, else the first).
 
 use crate::{Diagram, DmGraph, NodeKind};
 use std::collections::HashMap;
@@ -20,6 +20,10 @@ pub struct Overlay {
     pub transitions: usize,
     /// Transitions whose DM or situation is not in the diagram.
     pub unmatched: usize,
+    /// Drawn as coverage (`sitlogc graph --coverage`): arcs never taken
+    /// red and dashed, situations never visited with a red outline,
+    /// instead of faded.
+    pub coverage: bool,
 }
 
 impl Overlay {
@@ -28,6 +32,10 @@ impl Overlay {
     }
     pub fn edge_count(&self, id: &str) -> u64 {
         self.edges.get(id).copied().unwrap_or(0)
+    }
+    /// Whether node `id` was visited.
+    pub fn node_seen(&self, id: &str) -> bool {
+        self.node_count(id) > 0
     }
 }
 
@@ -104,8 +112,10 @@ pub fn find_situation<'d>(dm: &'d DmGraph, id: &str) -> Option<&'d crate::Node> 
         return Some(n);
     }
     let f = functor_of(id)?;
-    sits.clone()
-        .find(|n| n.functor.as_deref() == Some(f.as_str()))
+    let mut same = sits.filter(|n| n.functor.as_deref() == Some(f.as_str()));
+    let first = same.clone().next();
+    // of several instances of one id, the first the recorded id may fit
+    same.find(|n| may_match(&n.label, id)).or(first)
 }
 
 /// A term as written by `writeq`, enough to tell whether a recorded value

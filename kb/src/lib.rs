@@ -36,7 +36,7 @@ pub use answer::{Answer, CallError, Outcome};
 pub use closure::Budget;
 pub use model::{Kb, ModelError};
 pub use persist::{lock_for_persist, real_path, LoadError, PersistError, PersistLock};
-pub use query::{answer_line, QueryError};
+pub use query::{answer_in, answer_line, QueryError};
 pub use services::{service, Arg, Service, SERVICES};
 /// 1-based line and column (in characters) of a byte offset: the positions
 /// of KB errors, as the term reader counts them.

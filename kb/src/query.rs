@@ -27,6 +27,19 @@ fn located(label: &str, src: &str, e: &CallError) -> QueryError {
     QueryError(format!("{label}:{l}:{c}: error: {e}"))
 }
 
+/// The answer line of `query` (one service call, the answer its last
+/// argument) on `kb` as it is: what `sitlogc kb` prints for it (`false`
+/// when the service fails). `label` names the query in errors
+/// (`LABEL:LINE:COL: error: ...`, the position inside the query).
+pub fn answer_in(kb: &Kb, label: &str, query: &str) -> Result<String, QueryError> {
+    let q = read_term(query).map_err(|e| located(label, query, &CallError::Syntax(e)))?;
+    Kb::check_query(&q).map_err(|e| located(label, query, &e))?;
+    match kb.call(&q) {
+        Ok(outcome) => Ok(outcome.to_line()),
+        Err(e) => Err(located(label, query, &e)),
+    }
+}
+
 /// The line `sitlogc kb KB_PATH [--do D]... QUERY` prints: `Ok` is the
 /// answer line (without its newline), `Err` the error line.
 pub fn answer_line(kb_path: &Path, dos: &[String], query: &str) -> Result<String, QueryError> {

@@ -53,7 +53,7 @@ pub use assets::{
 pub use cli::{Format, HistoryMode, RobotKind, RunArgs};
 pub use debug_hooks::{DebugHooks, MakePerception, WorldProbe};
 pub use robot_hook::{RobotHook, RobotParts, RobotSetup};
-pub use runner::{PerceptionWrap, Runner};
+pub use runner::{KbProbe, PerceptionWrap, Runner};
 pub use streams::Streams;
 pub use task::{main, main_with_robot, on_big_stack};
 

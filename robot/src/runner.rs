@@ -53,7 +53,14 @@ pub struct Runner {
     wrap: Option<PerceptionWrap>,
     debugger: Option<DebugHooks>,
     robot: Option<RobotHook>,
+    watch: Option<Box<dyn Observer + Send>>,
+    actions_out: Option<Box<dyn Write + Send>>,
+    kb_probe: Option<KbProbe>,
 }
+
+/// Given the run's KB, if it has one, before the task starts: whoever asked
+/// (`sitlogc test`) reads it after the run ([`Runner::kb_probe`]).
+pub type KbProbe = Box<dyn FnOnce(kb_services::SharedKb) + Send>;
 
 impl Runner {
     /// A run on `streams`, which nothing stops but its end (and, at a
@@ -65,6 +72,9 @@ impl Runner {
             wrap: None,
             debugger: None,
             robot: None,
+            watch: None,
+            actions_out: None,
+            kb_probe: None,
         }
     }
 
@@ -98,6 +108,26 @@ impl Runner {
     /// the world and stop flag ([`DebugHooks`]).
     pub fn debugger(mut self, hooks: DebugHooks) -> Runner {
         self.debugger = Some(hooks);
+        self
+    }
+
+    /// Tells `observer` of every transition too (after the trace and the
+    /// debugger): `sitlogc test` records the arcs a test takes.
+    pub fn observe(mut self, observer: Box<dyn Observer + Send>) -> Runner {
+        self.watch = Some(observer);
+        self
+    }
+
+    /// In test mode, renders the actions (`Golem says: ...`) on `out`
+    /// instead of the process's stderr.
+    pub fn actions_to(mut self, out: Box<dyn Write + Send>) -> Runner {
+        self.actions_out = Some(out);
+        self
+    }
+
+    /// Hands the run's KB (if it has one) to `probe` before the task starts.
+    pub fn kb_probe(mut self, probe: KbProbe) -> Runner {
+        self.kb_probe = Some(probe);
         self
     }
 
@@ -167,6 +197,9 @@ impl Runner {
             wrap,
             debugger,
             robot,
+            mut watch,
+            actions_out,
+            kb_probe,
         } = self;
         let (mut debug_observer, mut debug_perception, mut debug_world, debug_stop) = match debugger
         {
@@ -215,12 +248,11 @@ impl Runner {
             match kb_services::open(args.kb.as_deref(), args.kb_persist, assets.kb.as_ref()) {
                 Ok(Some(kb)) => {
                     let narrate = with_world.then(|| console.clone());
-                    kb_services::register_with(
-                        &mut functions,
-                        Arc::new(Mutex::new(kb.kb)),
-                        kb.persist,
-                        narrate,
-                    );
+                    let shared = Arc::new(Mutex::new(kb.kb));
+                    if let Some(probe) = kb_probe {
+                        probe(shared.clone());
+                    }
+                    kb_services::register_with(&mut functions, shared, kb.persist, narrate);
                     kb.lock
                 }
                 Ok(None) => None,
@@ -301,10 +333,13 @@ impl Runner {
                         console.clone(),
                     ),
                 };
-                let actions = Box::new(TextActions::new(
-                    crate::console::ConsoleStderr::new(console.clone()),
-                    app.basic_actions(),
-                ));
+                let actions: Box<dyn Actions> = match actions_out {
+                    Some(out) => Box::new(TextActions::new(out, app.basic_actions())),
+                    None => Box::new(TextActions::new(
+                        crate::console::ConsoleStderr::new(console.clone()),
+                        app.basic_actions(),
+                    )),
+                };
                 (perception, actions)
             }
         };
@@ -331,6 +366,9 @@ impl Runner {
         }
         if let Some(v) = view.as_mut() {
             observers.push(v.as_mut());
+        }
+        if let Some(w) = watch.as_mut() {
+            observers.push(w.as_mut());
         }
         if shows_progress {
             observers.push(&mut progress_observer);
@@ -405,7 +443,9 @@ impl Runner {
         let transcript_error = console.lock().ok().and_then(|mut c| c.finish());
         let report = match args.format {
             Format::Json => format!("{}\n", report::outcome_json(&store, &outcome)),
-            Format::Text => report::outcome_text(&mut store, &outcome),
+            Format::Text => {
+                report::outcome_text_with(&mut store, &outcome, args.history == HistoryMode::Keep)
+            }
         };
         let written = streams
             .stdout

@@ -35,35 +35,7 @@ pub fn list_operator(store: &mut Store, name: Atom, t: Term) -> Option<Result<Te
     Some(run(store, name, t))
 }
 
-/// Whether `name/arity` is one of the original's list operators (D-39) or
-/// its robot built-ins, which L evaluates as functions.
-pub fn is_list_operator(name: Atom, arity: usize) -> bool {
-    matches!(
-        (name.as_str(), arity),
-        ("append", 3)
-            | ("reverse", 2)
-            | ("length_list", 2)
-            | ("first", 2)
-            | ("rest", 2)
-            | ("last", 2)
-            | ("rotate_list", 2)
-            | ("push", 3)
-            | ("pop", 2)
-            | ("filter_element", 3)
-            | ("filter_duplicates", 3)
-            | ("idx_object", 3)
-            | ("get_options", 4)
-            | ("get_random_element", 2)
-            | ("empty_list", 1)
-            | ("print_list", 1)
-            | ("msg_format", 2)
-            | ("statistics", 2)
-            | ("cam2nav", _)
-            | ("cam2arm", _)
-            | ("timeOver", _)
-            | ("arrived_posit", _)
-    )
-}
+pub use crate::special::is_list_operator;
 
 fn run(store: &mut Store, name: Atom, t: Term) -> Result<Term, EvalError> {
     let args: Vec<Term> = store.args(t).to_vec();

@@ -121,6 +121,11 @@ pub fn eval(ctx: &mut EvalCtx<'_>, t: Term) -> Result<Term, EvalError> {
 
 fn eval_inner(ctx: &mut EvalCtx<'_>, t: Term) -> Result<Term, EvalError> {
     let t = ctx.store.deref(t);
+    // A compound built from inert parts with no construct of L as its
+    // functor is its own value (D-36): a list of atoms is not walked.
+    if ctx.store.is_inert(t) {
+        return Ok(t);
+    }
     let (name, arity) = match ctx.store.value(t) {
         Value::Compound(name, args) => (name, args.len()),
         // Variables, numbers and atoms evaluate to themselves (D-28).
@@ -208,30 +213,7 @@ fn eval_inner(ctx: &mut EvalCtx<'_>, t: Term) -> Result<Term, EvalError> {
     eval_args(ctx, t)
 }
 
-/// Whether evaluating a compound `name/arity` only evaluates its arguments
-/// and rebuilds it (D-36): no construct of L has this functor. `;` and `|`
-/// answer `false` because whether they are a conditional depends on their
-/// arguments. Code generators use this to evaluate such terms in place.
-pub fn evaluates_arguments_only(name: Atom, arity: usize) -> bool {
-    let n = names();
-    if arity == 2
-        && (name == n.assign
-            || name == n.equals
-            || name == n.is
-            || name == n.member
-            || name == n.not_member
-            || name == n.semicolon
-            || name == n.bar
-            || name == n.apply
-            || name == atoms::GET
-            || name == atoms::SET
-            || name == atoms::INC
-            || n.comparisons.contains(&name))
-    {
-        return false;
-    }
-    !builtins::is_list_operator(name, arity)
-}
+pub use crate::special::evaluates_arguments_only;
 
 /// `get`, `set` or `inc` (`op`) of the variable `name` with argument `arg`
 /// (not evaluated), as `op(name, arg)` evaluates (D-38).

@@ -70,7 +70,7 @@ impl Collector<'_> {
                 let k = (p - self.frozen_cells) as usize;
                 if self.cell_fwd[k] == UNMOVED {
                     let n = match self.old_cells[k].0 {
-                        Repr::Functor(_, n) => n as usize,
+                        Repr::Functor(_, n, _) => n as usize,
                         _ => 0,
                     };
                     let at = self.frozen_cells + index(self.new_cells.len());

@@ -24,7 +24,7 @@
 //! | 3 | `arith`, `copy`, [`functions`] |
 //! | 2 | `unify`, `gc`, `convert`, [`vars`], [`history`], [`builtins`] |
 //! | 1 | `store` |
-//! | 0 | `term`, `eval_error`, `input` (limits on terms from outside), [`paths`], [`trust`] |
+//! | 0 | [`native`] (native value types), `term`, `special` (the functors L gives a meaning), `eval_error`, `input` (limits on terms from outside), [`paths`], [`trust`] |
 //!
 //! The term layer:
 //! - [`Term`]: a `Copy` handle; atoms, integers, floats and variables need
@@ -51,10 +51,12 @@ mod gc;
 pub mod history;
 mod input;
 pub mod machine;
+pub mod native;
 pub mod paths;
 #[cfg(feature = "prolog")]
 pub mod prolog;
 pub mod report;
+mod special;
 pub mod stderr;
 mod store;
 mod term;

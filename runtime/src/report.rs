@@ -155,9 +155,19 @@ pub fn outcome_json(store: &Store, outcome: &Outcome) -> String {
 /// `Out Global Vars:` lines. A run-time error is not part of it: the
 /// runner reports it once, on stderr, like every diagnostic.
 pub fn outcome_text(store: &mut Store, outcome: &Outcome) -> String {
-    let mut out = String::from("Execution history:\n");
-    write_text(store, &outcome.history, 0, &mut out);
-    out.push('\n');
+    outcome_text_with(store, outcome, true)
+}
+
+/// [`outcome_text`]; without `history` (a run with `--history none`, which
+/// keeps none) the `Execution history:` listing is left out, and the report
+/// is the `Out Arg:` and `Out Global Vars:` lines.
+pub fn outcome_text_with(store: &mut Store, outcome: &Outcome, history: bool) -> String {
+    let mut out = String::new();
+    if history {
+        out.push_str("Execution history:\n");
+        write_text(store, &outcome.history, 0, &mut out);
+        out.push('\n');
+    }
     out.push_str(&format!("Out Arg: {}\n", store.writeq(outcome.out_arg)));
     let globals = outcome.globals.to_term(store);
     out.push_str(&format!("Out Global Vars: {}\n", store.writeq(globals)));

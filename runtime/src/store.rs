@@ -18,6 +18,12 @@ use crate::term::{Repr, Term, Value, Var};
 use sitlog_syntax::write::{write_term, TermSource, VarLabel, View, WriteOptions};
 use sitlog_syntax::{atoms, Atom};
 
+/// Header flag: the compound contains no variable handle (ground, and so
+/// acyclic: cells are never changed once written).
+pub(crate) const GROUND: u8 = 1;
+/// Header flag: the compound is ground and evaluates to itself in L.
+pub(crate) const INERT: u8 = 2;
+
 /// A point in the trail to undo bindings back to (see [`Store::mark`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Mark {
@@ -132,12 +138,54 @@ impl Store {
         if args.is_empty() {
             return Term::atom(name);
         }
+        let mut flags = GROUND | INERT;
+        for &a in args {
+            flags &= self.flags_of(a);
+        }
+        if flags & INERT != 0 && !crate::special::evaluates_arguments_only(name, args.len()) {
+            flags &= !INERT;
+        }
         let at = index(self.cells.len());
         self.cells.reserve(args.len() + 1);
         self.cells
-            .push(Term(Repr::Functor(name, index(args.len()))));
+            .push(Term(Repr::Functor(name, index(args.len()), flags)));
         self.cells.extend_from_slice(args);
         Term(Repr::Struct(at))
+    }
+
+    /// What is known of `t` as a whole without walking it: [`GROUND`] and
+    /// [`INERT`] for atomic terms, none for a variable handle (even a bound
+    /// one: a binding may be undone), a compound's as decided when it was
+    /// built.
+    #[inline]
+    fn flags_of(&self, t: Term) -> u8 {
+        match t.0 {
+            Repr::Var(_) => 0,
+            Repr::Struct(p) => match self.cells[p as usize].0 {
+                Repr::Functor(_, _, f) => f,
+                _ => 0,
+            },
+            _ => GROUND | INERT,
+        }
+    }
+
+    /// Whether `t` is known to be ground without walking it: atomic, or a
+    /// compound built from ground parts only (every argument atomic or
+    /// itself such a compound; a compound built over variable handles is
+    /// not known to be ground even when they are bound). Constant time.
+    #[inline]
+    pub fn known_ground(&self, t: Term) -> bool {
+        self.flags_of(self.deref(t)) & GROUND != 0
+    }
+
+    /// Whether `t` is known to evaluate to itself in L (D-28, D-36) without
+    /// walking it: atomic, or a compound built from inert parts whose
+    /// functor is no construct of L ([`crate::special`]). Constant time; a
+    /// list of atoms, numbers and inert compounds is inert.
+    #[inline]
+    pub fn is_inert(&self, t: Term) -> bool {
+        let t = self.deref(t);
+        !matches!(t.0, Repr::Var(_)) && self.flags_of(t) & INERT != 0
     }
 
     /// The list cell `'.'(head, tail)`.
@@ -235,7 +283,7 @@ impl Store {
             }
             // A handle given out is never a header cell; treat one as an
             // atom rather than panic.
-            Repr::Functor(name, _) => Value::Atom(name),
+            Repr::Functor(name, ..) => Value::Atom(name),
         }
     }
 
@@ -244,7 +292,7 @@ impl Store {
     pub(crate) fn compound_at(&self, p: u32) -> (Atom, &[Term]) {
         let p = p as usize;
         match self.cells[p].0 {
-            Repr::Functor(name, n) => (name, &self.cells[p + 1..p + 1 + n as usize]),
+            Repr::Functor(name, n, _) => (name, &self.cells[p + 1..p + 1 + n as usize]),
             _ => (atoms::NIL, &[]),
         }
     }
@@ -253,7 +301,7 @@ impl Store {
     #[inline]
     pub(crate) fn header_at(&self, p: u32) -> (Atom, u32) {
         match self.cells[p as usize].0 {
-            Repr::Functor(name, n) => (name, n),
+            Repr::Functor(name, n, _) => (name, n),
             _ => (atoms::NIL, 0),
         }
     }

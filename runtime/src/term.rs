@@ -32,8 +32,9 @@ pub(crate) enum Repr {
     Big(u32),
     /// Index of the header cell of a compound; the args follow it.
     Struct(u32),
-    /// Header cell: name and arity.
-    Functor(Atom, u32),
+    /// Header cell: name, arity and what holds of the whole compound
+    /// (`store::GROUND`, `store::INERT`), decided when it is built.
+    Functor(Atom, u32, u8),
 }
 
 impl Term {

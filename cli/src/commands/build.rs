@@ -10,7 +10,7 @@ use std::path::PathBuf;
 pub fn explain_types_of(app: &std::path::Path) -> u8 {
     match checked_ir(app) {
         Ok(ir) => {
-            let types = sitlog_compiler::types::infer(&ir);
+            let types = sitlog_compiler::types::infer(&ir, &sitlog_compiler::mir::lower(&ir));
             let text = sitlog_compiler::types::explain(&ir, &types);
             write_stdout(&text, "the type listing")
         }

@@ -23,6 +23,8 @@ pub struct What {
     pub main: Option<String>,
     pub format: GraphFormat,
     pub trace: Option<PathBuf>,
+    /// `--coverage FILE`: the trace drawn as coverage.
+    pub coverage: bool,
     pub overview: bool,
     pub out_dir: Option<PathBuf>,
     pub all: bool,
@@ -72,7 +74,7 @@ pub fn graph(app: &Path, what: What) -> u8 {
         };
         let overlay = match &trace {
             None => None,
-            Some((path, text)) => match colours(&diagram, path, text, true) {
+            Some((path, text)) => match colours(&diagram, path, text, true, what.coverage) {
                 Ok(o) => Some(o),
                 Err(code) => return code,
             },
@@ -134,10 +136,17 @@ fn render(d: &Diagram, format: GraphFormat, overlay: Option<&Overlay>) -> String
 }
 
 /// A recorded run read against `d`; with `notes`, says how many of its
-/// transitions are not in the drawing.
-fn colours(d: &Diagram, path: &Path, text: &str, notes: bool) -> Result<Overlay, u8> {
+/// transitions are not in the drawing; with `coverage`, drawn as coverage.
+fn colours(
+    d: &Diagram,
+    path: &Path,
+    text: &str,
+    notes: bool,
+    coverage: bool,
+) -> Result<Overlay, u8> {
     match sitlog_graph::trace::read(d, text) {
-        Ok(o) => {
+        Ok(mut o) => {
+            o.coverage = coverage;
             if notes && o.unmatched > 0 {
                 sitlog_runtime::errln!(
                     "note: {} of {} transitions of {} are not in this diagram",
@@ -268,7 +277,7 @@ fn pages(ir: &Ir, what: &What, title: String, dir: &Path, trace: Option<(&Path, 
             }
         }
         let overlay = match &trace {
-            Some((path, text)) => match colours(&d, path, text, false) {
+            Some((path, text)) => match colours(&d, path, text, false, what.coverage) {
                 Ok(o) => Some(o),
                 Err(code) => return code,
             },

@@ -12,6 +12,7 @@ pub mod replay;
 pub mod run;
 #[cfg(feature = "ros2")]
 pub mod sim;
+pub mod test;
 
 pub use build::{build_app, explain_types_of};
 pub use check::check;
@@ -23,6 +24,7 @@ pub use replay::replay;
 pub use run::run_app;
 #[cfg(feature = "ros2")]
 pub use sim::sim;
+pub use test::test_app;
 
 /// How strict `run` and `build` are with a program's diagnostics.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -17,7 +17,7 @@ pub fn new_app(dir: &std::path::Path, robot: bool) -> u8 {
             sitlog_runtime::errln!("  check it:  sitlogc check {d}");
             if robot {
                 sitlog_runtime::errln!("  run it:    sitlogc run {d}");
-                sitlog_runtime::errln!("  test it:   sitlogc run {d} | diff {d}/expected.txt -");
+                sitlog_runtime::errln!("  test it:   sitlogc test {d} --coverage");
             } else {
                 sitlog_runtime::errln!("  run it:    sitlogc run {d} --script {d}/script.txt");
                 sitlog_runtime::errln!("  talk to it: sitlogc run {d}");

@@ -3,6 +3,7 @@
 
 mod support;
 
+mod apptest;
 mod build;
 mod check;
 mod checks;

@@ -122,10 +122,7 @@ fn new_robot_app_checks_and_runs_at_once() {
         assert!(out.contains(line), "no {line:?} in:\n{out}");
     }
     let readme = std::fs::read_to_string(tmp.path().join("x/README.md")).unwrap();
-    assert!(
-        readme.contains("sitlogc run x | diff x/expected.txt -"),
-        "{readme}"
-    );
+    assert!(readme.contains("sitlogc test x --coverage"), "{readme}");
 }
 
 /// Copies the files of `from` (one level, as the shipped apps are) into `to`.

@@ -123,6 +123,17 @@ fn history_none_keeps_no_history() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["history"], serde_json::json!([]));
     assert_eq!(v["status"], "ok");
+    // The text report has no `Execution history:` header then (issue 40).
+    let out = sitlogc()
+        .args(["run", "--history", "none", "--script"])
+        .arg(app.join("script.txt"))
+        .arg(&app)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.starts_with("Out Arg: "), "{text}");
+    assert!(!text.contains("Execution history"), "{text}");
 }
 
 #[test]

@@ -504,6 +504,12 @@ fn check_marked_setup(block: &Block, scratch: &mut Scratch) -> Result<(), String
     check_marked(&setup, scratch)
 }
 
+/// The marked examples of the page on `sitlogc test` (issue 40) run as shown.
+#[test]
+fn the_marked_examples_of_the_app_testing_page_run_as_shown() {
+    assert!(check_page("testing-apps.md", false) >= 1);
+}
+
 #[test]
 fn the_checker_of_the_page_catches_drift() {
     assert!(matches(&["a", "...", "d"], &["a", "b", "c", "d"]));

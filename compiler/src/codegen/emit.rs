@@ -208,7 +208,7 @@ impl Gen<'_> {
                     dm: #rt::machine::DmIx,
                     sit: #rt::machine::SitIx,
                     store: &mut #rt::Store,
-                ) -> #rt::machine::Instance {
+                ) -> ::std::option::Option<#rt::machine::Instance> {
                     match dm {
                         #(#dm_ix => #dm_mods::instantiate(self, #dm_mods::Situation::from_ix(sit), store),)*
                         _ => panic!("no DM number {dm}"),
@@ -408,7 +408,9 @@ impl Gen<'_> {
                 None => quote!(Situation::#vname => true,),
             });
 
-            // The instance builder.
+            // The instance builder, for a situation that does not run as
+            // code (the machine instantiates only those).
+            let planned = self.mir.plan(dm_ix as u32, i as u32).is_some();
             let fname = format_ident!("sit_{}", snake(&vname.to_string()));
             let names = [
                 "head",
@@ -437,18 +439,24 @@ impl Gen<'_> {
                     quote!(#id,)
                 });
             }
-            let body = self.builder_body(&parts);
-            let prelude = Self::prelude(&body);
-            let fdoc = format!(" A fresh instance of `{id_text}` (D-7).");
-            fns.push(quote! {
-                #[doc = #fdoc]
-                fn #fname(p: &super::Program, store: &mut #rt::Store) -> #rt::machine::Instance {
-                    #prelude
-                    #body
-                    #rt::machine::Instance { #(#fields)* }
-                }
-            });
-            instantiate_arms.push(quote!(Situation::#vname => #fname(p, store),));
+            if planned {
+                instantiate_arms.push(quote!(Situation::#vname => ::std::option::Option::None,));
+            } else {
+                let body = self.builder_body(&parts);
+                let prelude = Self::prelude(&body);
+                let fdoc = format!(" A fresh instance of `{id_text}` (D-7).");
+                fns.push(quote! {
+                    #[doc = #fdoc]
+                    fn #fname(p: &super::Program, store: &mut #rt::Store) -> #rt::machine::Instance {
+                        #prelude
+                        #body
+                        #rt::machine::Instance { #(#fields)* }
+                    }
+                });
+                instantiate_arms.push(
+                    quote!(Situation::#vname => ::std::option::Option::Some(#fname(p, store)),),
+                );
+            }
 
             // The situation as code, when it can be compiled.
             if let Some(plan) = self.mir.plan(dm_ix as u32, i as u32) {
@@ -676,12 +684,13 @@ impl Gen<'_> {
                     }
                 }
 
-                /// A fresh instance of a situation.
+                /// A fresh instance of a situation; `None` for one that runs
+                /// as code (the machine never instantiates it).
                 pub fn instantiate(
                     p: &super::Program,
                     sit: Situation,
                     store: &mut #rt::Store,
-                ) -> #rt::machine::Instance {
+                ) -> ::std::option::Option<#rt::machine::Instance> {
                     #instantiate_body
                 }
 

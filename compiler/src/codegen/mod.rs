@@ -28,8 +28,9 @@
 //!   when untyped code or the machine is needed (`typed`); with typed DM
 //!   calls, one driver for the program runs typed code across DMs, the
 //!   callee's typed frame pushed over the caller's (no Rust recursion);
-//! - for every situation, a function building a fresh instance (D-7) for the
-//!   machine's general path (situations with parameters): fresh variables
+//! - for every situation that does not run as code, a function building a
+//!   fresh instance (D-7) for the machine's general path (situations with
+//!   parameters; the machine never instantiates the others): fresh variables
 //!   first (in the order a `copy_term` of the interpreter's template would
 //!   make them), then the non-ground parts, ground parts being constants;
 //! - `may_select`, `kind`, `location` as `match`es on the situation enum,
@@ -102,8 +103,10 @@ pub fn generate(ir: &Ir, source: &str) -> TokenStream {
 
 /// [`generate`] with options.
 pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
-    let mut g = Gen::new(&ir.store, crate::mir::lower(ir));
-    g.types = options.typed.then(|| crate::types::infer(ir));
+    let mir = crate::mir::lower(ir);
+    let types = options.typed.then(|| crate::types::infer(ir, &mir));
+    let mut g = Gen::new(&ir.store, mir);
+    g.types = types;
     g.collect(ir);
     g.emit(ir, source)
 }
@@ -170,13 +173,23 @@ impl<'s> Gen<'s> {
         for dm in &ir.dms {
             self.atom(dm.name);
         }
-        for dm in &ir.dms {
+        for (dm_ix, dm) in ir.dms.iter().enumerate() {
             self.visit(dm.head);
-            for s in &dm.situations {
-                for &f in self.store.args(s.template) {
-                    self.visit(f);
+            for (i, s) in dm.situations.iter().enumerate() {
+                if let Some((name, _)) = s.id_functor {
+                    self.atom(name);
                 }
-                // Compiled situations use each arc's parts on their own.
+                // A situation that runs as code has no instance builder (the
+                // template's constants), and uses each arc's parts on its own.
+                if self.mir.plan(dm_ix as u32, i as u32).is_none() {
+                    for &f in self.store.args(s.template) {
+                        self.visit(f);
+                    }
+                    continue;
+                }
+                for &f in self.store.args(s.template) {
+                    self.visit_atoms(f);
+                }
                 let arcs = self.store.args(s.template)[8];
                 let parts: Vec<Term> = self
                     .store
@@ -185,9 +198,6 @@ impl<'s> Gen<'s> {
                     .collect();
                 for part in parts {
                     self.visit(part);
-                }
-                if let Some((name, _)) = s.id_functor {
-                    self.atom(name);
                 }
             }
             for &(n, v) in &dm.locals {
@@ -218,6 +228,24 @@ impl<'s> Gen<'s> {
         for &(ty, dm) in &ir.recovery {
             self.atom(ty);
             self.atom(dm);
+        }
+    }
+
+    /// Registers every atom of a term, functor names included (the atoms a
+    /// plan of it may name), making no constant.
+    fn visit_atoms(&mut self, t: Term) {
+        let mut stack = vec![t];
+        while let Some(t) = stack.pop() {
+            match self.store.value(t) {
+                Value::Atom(a) if a != none_marker() => {
+                    self.atom(a);
+                }
+                Value::Compound(name, args) => {
+                    self.functor(name, args.len());
+                    stack.extend(args.iter().rev());
+                }
+                _ => {}
+            }
         }
     }
 

@@ -98,7 +98,7 @@ impl DmProgram for Resolved<'_> {
     fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Term {
         DmProgram::fresh_head(self.ir, dm, store)
     }
-    fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Instance {
+    fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Option<Instance> {
         self.instantiated
             .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         DmProgram::instantiate(self.ir, dm, sit, store)

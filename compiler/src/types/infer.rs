@@ -4,14 +4,15 @@
 
 use super::*;
 
-/// Runs inference over a lowered program.
-pub fn infer(ir: &Ir) -> Types {
+/// Runs inference over a lowered program and its MIR (`mir::lower(ir)`,
+/// built once by the caller and shared with the code generator).
+pub fn infer(ir: &Ir, mir: &crate::mir::Mir) -> Types {
     let store = &ir.store;
     let mut dms = Vec::new();
     for dm in &ir.dms {
         dms.push(infer_dm(ir, dm));
     }
-    typed_calls(ir, &mut dms);
+    typed_calls(mir, &mut dms);
     // Globals: initial values joined with the constant writes of every DM
     // where the name is not a local.
     let mut globals = Vec::new();
@@ -43,8 +44,7 @@ pub fn infer(ir: &Ir) -> Types {
 /// the machine) and the callee's initial situation is typed. Demoting one
 /// call may leave its DM with no typed situation but finals, and so demote
 /// the calls into it: repeated until nothing changes.
-fn typed_calls(ir: &Ir, dms: &mut [DmTypes]) {
-    let mir = crate::mir::lower(ir);
+fn typed_calls(mir: &crate::mir::Mir, dms: &mut [DmTypes]) {
     for (d, plans) in dms.iter_mut().zip(&mir.dms) {
         d.code = plans.iter().map(Option::is_some).collect();
         // Typed code runs from a situation's code: none without a plan.

@@ -598,7 +598,7 @@ diag_mod(main(Max),
     #[test]
     fn locals_parameters_and_situations_are_typed() {
         let ir = ir_of(LOOP);
-        let t = infer(&ir);
+        let t = infer(&ir, &crate::mir::lower(&ir));
         let dm = &t.dms[0];
         let ty = |n: &str| &dm.locals.iter().find(|l| l.name == n).unwrap().ty;
         assert_eq!(*ty("n"), Ty::Int);
@@ -645,7 +645,7 @@ diag_mod(main,
   [ n ==> 0, k ==> 0 ]).
 "#,
         );
-        let t = infer(&ir);
+        let t = infer(&ir, &crate::mir::lower(&ir));
         let text = explain(&ir, &t);
         assert!(
             text.contains("local `n`: term (`set` to `done` (an atom of {done}) besides"),
@@ -690,7 +690,7 @@ diag_mod(twice(X, X),
   []).
 "#,
         );
-        let t = infer(&ir);
+        let t = infer(&ir, &crate::mir::lower(&ir));
         let text = explain(&ir, &t);
         assert!(
             text.contains(
@@ -727,7 +727,7 @@ diag_mod(main(P),
   [ k ==> 0, f ==> 0.5 ]).
 "#,
         );
-        let t = infer(&ir);
+        let t = infer(&ir, &crate::mir::lower(&ir));
         let text = explain(&ir, &t);
         assert!(
             text.contains(

@@ -261,7 +261,7 @@ impl Store {
                             tasks.push(Task::Apply(op, args.len()));
                             tasks.extend(args.iter().rev().map(|&a| Task::Eval(a)));
                         }
-                        Repr::Functor(name, n) => {
+                        Repr::Functor(name, n, _) => {
                             return Err(ArithError::NotEvaluable {
                                 name,
                                 arity: n as usize,

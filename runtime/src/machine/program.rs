@@ -24,8 +24,11 @@ pub trait DmProgram {
     fn kind(&self, dm: DmIx, sit: SitIx) -> Kind;
     /// A fresh copy of the DM's head (its identifier term).
     fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Term;
-    /// A fresh instance of a situation (D-7), head included.
-    fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Instance;
+    /// A fresh instance of a situation (D-7), head included; `None` for a
+    /// situation that runs as code ([`DmProgram::compiled_id`] is `Some`),
+    /// which the machine never instantiates (generated code has no builder
+    /// for it).
+    fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Option<Instance>;
     /// Whether situation `sit`'s id could unify with `value` (a cheap filter
     /// before instantiating; `true` is always a correct answer).
     fn may_select(&self, dm: DmIx, sit: SitIx, value: Term, store: &Store) -> bool {

@@ -375,6 +375,20 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         }
     }
 
+    /// A fresh instance of a situation that does not run as code.
+    fn instance(&mut self, dm: DmIx, sit: SitIx) -> Result<Instance, RunError> {
+        match self.program.instantiate(dm, sit, &mut self.store) {
+            Some(inst) => Ok(inst),
+            None => Err(self.err(
+                format!(
+                    "the program has neither code nor an instance for situation {sit} of its DM"
+                ),
+                None,
+                None,
+            )),
+        }
+    }
+
     /// Picks the situation to run (D-7, D-21), instantiated unless it is compiled.
     fn select(&mut self, goto: &Goto) -> Result<(SitIx, Selected), RunError> {
         let frame = self.frames.last().expect("a frame is running");
@@ -388,7 +402,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     let id = Term::atom(name);
                     return Ok((0, Selected::Compiled { id, selected: None }));
                 }
-                let inst = self.program.instantiate(dm, 0, &mut self.store);
+                let inst = self.instance(dm, 0)?;
                 if !self.store.unify(inst.head, dm_id) {
                     return Err(self.err(
                         format!(
@@ -406,7 +420,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     let id = Term::atom(name);
                     return Ok((sit, Selected::Compiled { id, selected: None }));
                 }
-                let inst = self.program.instantiate(dm, sit, &mut self.store);
+                let inst = self.instance(dm, sit)?;
                 self.link_head(inst.head, dm_id);
                 Ok((sit, Selected::Instance(inst)))
             }
@@ -436,7 +450,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         continue;
                     }
                     let mark = self.store.mark();
-                    let inst = self.program.instantiate(dm, sit, &mut self.store);
+                    let inst = self.instance(dm, sit)?;
                     if self.store.unify(inst.id, value) {
                         self.link_head(inst.head, dm_id);
                         return Ok((sit, Selected::Instance(inst)));
@@ -449,14 +463,21 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     "there is no situation `{}` in this DM",
                     self.store.writeq(value)
                 );
-                match self.chose.take() {
-                    Some((sit, arc)) if (sit as usize) < self.program.situation_count(dm) => {
-                        let id = match self.program.compiled_id(dm, sit) {
-                            Some((name, 0)) => Term::atom(name),
-                            _ => self.program.instantiate(dm, sit, &mut self.store).id,
-                        };
-                        Err(self.err(message, Some((sit, id)), arc))
-                    }
+                let chose = self
+                    .chose
+                    .take()
+                    .filter(|&(sit, _)| (sit as usize) < self.program.situation_count(dm));
+                // The situation's id as written: its name when it runs as
+                // code (no instance of it is built), else a fresh instance's.
+                let id = chose.and_then(|(sit, _)| match self.program.compiled_id(dm, sit) {
+                    Some((name, _)) => Some(Term::atom(name)),
+                    None => self
+                        .program
+                        .instantiate(dm, sit, &mut self.store)
+                        .map(|inst| inst.id),
+                });
+                match (chose, id) {
+                    (Some((sit, arc)), Some(id)) => Err(self.err(message, Some((sit, id)), arc)),
                     _ => Err(self.err(message, None, None)),
                 }
             }

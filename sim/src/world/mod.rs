@@ -42,6 +42,7 @@ pub use model::{
     World, DEFAULT_OBJECT_SIZE, DEFAULT_SHELF_SIZE, DEFAULT_SPEED, DEFAULT_WALL_HEIGHT,
     DEFAULT_WALL_THICKNESS, MAX_COORDINATE, MAX_SIZE, MIN_SIZE,
 };
+pub use read::KEYS;
 
 use error::Cx;
 use toml::de::DeTable;
@@ -119,6 +120,47 @@ fn read_capped(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
 
 #[cfg(test)]
 mod tests {
+    /// The guide's reference of the world file's keys (docs/guide/robot.md,
+    /// "Every key of the world file") lists exactly the keys the reader
+    /// accepts ([`KEYS`]).
+    #[test]
+    fn the_guide_lists_every_key_of_the_world_file() {
+        let page = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../docs/guide/robot.md"
+        ))
+        .expect("the guide's robot page");
+        let section = page
+            .split("### Every key of the world file")
+            .nth(1)
+            .expect("the section")
+            .split("\n#")
+            .next()
+            .unwrap_or("");
+        let mut listed: Vec<(String, String)> = section
+            .lines()
+            .filter(|l| l.starts_with("| ") && !l.starts_with("| table"))
+            .map(|l| {
+                let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+                let table = cells[1].trim_matches('`');
+                let table = if table == "(top)" { "" } else { table };
+                (table.to_owned(), cells[2].trim_matches('`').to_owned())
+            })
+            .collect();
+        let mut accepted: Vec<(String, String)> = super::KEYS
+            .iter()
+            .flat_map(|(t, ks)| ks.iter().map(move |k| (t.to_string(), k.to_string())))
+            .collect();
+        listed.sort();
+        accepted.sort();
+        let missing: Vec<_> = accepted.iter().filter(|k| !listed.contains(k)).collect();
+        let extra: Vec<_> = listed.iter().filter(|k| !accepted.contains(k)).collect();
+        assert!(
+            missing.is_empty() && extra.is_empty(),
+            "the guide misses {missing:?} and lists keys the reader refuses: {extra:?}"
+        );
+    }
+
     use super::*;
 
     #[test]

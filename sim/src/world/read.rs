@@ -98,9 +98,39 @@ pub(super) enum Utterance {
     Text(String),
 }
 
-const ROOT_KEYS: &[&str] = &[
-    "seed", "robot", "user", "place", "route", "wall", "shelf", "object", "fault",
+/// Every key of the world file, by table (`""` for the top level; a fault's
+/// keys by its kind, `[[fault]] KIND`): what the reader accepts, and what the
+/// guide's reference lists (a test of this crate compares the two).
+pub const KEYS: &[(&str, &[&str])] = &[
+    (
+        "",
+        &[
+            "seed", "robot", "user", "place", "route", "wall", "shelf", "object", "fault",
+        ],
+    ),
+    ("[robot]", &["name", "at", "speed"]),
+    ("[user]", &["name", "at", "says", "moves"]),
+    (
+        "[[user.moves]]",
+        &["after_saying", "at_time", "delay", "to"],
+    ),
+    ("[[place]]", &["name", "x", "y", "room", "heading"]),
+    ("[[route]]", &["from", "to", "length"]),
+    ("[[wall]]", &["from", "to", "height", "thickness"]),
+    ("[[shelf]]", &["name", "at", "size"]),
+    ("[[object]]", &["name", "on", "size", "spot"]),
+    ("[[fault]] grasp_fails", &["kind", "object", "times"]),
+    ("[[fault]] route_blocked", &["kind", "from", "to"]),
+    ("[[fault]] mishear", &["kind", "utterance"]),
 ];
+
+/// The keys of `table` in [`KEYS`].
+fn keys_of(table: &str) -> &'static [&'static str] {
+    KEYS.iter()
+        .find(|(t, _)| *t == table)
+        .map(|(_, k)| *k)
+        .unwrap_or(&[])
+}
 
 /// Reads every section of the file; what cannot be read is reported to `cx`.
 pub(super) fn read_world(cx: &mut Cx<'_>, doc: &Spanned<DeTable<'_>>) -> Raw {
@@ -109,7 +139,7 @@ pub(super) fn read_world(cx: &mut Cx<'_>, doc: &Spanned<DeTable<'_>>) -> Raw {
         at: 0,
         label: "the world file".to_string(),
     };
-    cx.keys(&root, ROOT_KEYS);
+    cx.keys(&root, keys_of(""));
     let seed = match Cx::get(&root, "seed") {
         Some(v) => cx.integer(&root, "seed", v, 0).map(|n| n.v as u64),
         None => None,
@@ -132,7 +162,7 @@ fn read_robot(cx: &mut Cx<'_>, root: &Tbl<'_, '_>) -> RawRobot {
     let robot = cx.req(root, "robot").and_then(|v| cx.table(v, "[robot]"));
     let (mut name, mut at, mut speed) = (None, None, DEFAULT_SPEED);
     if let Some(t) = &robot {
-        cx.keys(t, &["name", "at", "speed"]);
+        cx.keys(t, keys_of("[robot]"));
         name = cx.name(t, "name");
         at = cx.name(t, "at");
         if let Some(v) = Cx::get(t, "speed") {
@@ -149,7 +179,7 @@ fn read_user(cx: &mut Cx<'_>, root: &Tbl<'_, '_>) -> RawUser {
     let user = cx.req(root, "user").and_then(|v| cx.table(v, "[user]"));
     let (mut name, mut at, mut says, mut moves) = (None, None, Vec::new(), Vec::new());
     if let Some(t) = &user {
-        cx.keys(t, &["name", "at", "says", "moves"]);
+        cx.keys(t, keys_of("[user]"));
         name = cx.name(t, "name");
         at = cx.name(t, "at");
         if let Some(v) = Cx::get(t, "says") {
@@ -191,7 +221,7 @@ fn read_places(cx: &mut Cx<'_>, root: &Tbl<'_, '_>) -> Vec<RawPlace> {
         return places;
     };
     for t in cx.tables(v, "[[place]]") {
-        cx.keys(&t, &["name", "x", "y", "room", "heading"]);
+        cx.keys(&t, keys_of("[[place]]"));
         let name = cx.name(&t, "name");
         let x = cx.req(&t, "x").and_then(|v| cx.coordinate(&t, "x", v));
         let y = cx.req(&t, "y").and_then(|v| cx.coordinate(&t, "y", v));
@@ -222,7 +252,7 @@ fn read_routes(cx: &mut Cx<'_>, root: &Tbl<'_, '_>) -> Option<Vec<RawRoute>> {
     let v = Cx::get(root, "route")?;
     let mut list = Vec::new();
     for t in cx.tables(v, "[[route]]") {
-        cx.keys(&t, &["from", "to", "length"]);
+        cx.keys(&t, keys_of("[[route]]"));
         let from = cx.name(&t, "from");
         let to = cx.name(&t, "to");
         let length = Cx::get(&t, "length").and_then(|v| cx.ranged(&t, "length", v, 0.0, 1e6, true));
@@ -243,7 +273,7 @@ fn read_walls(cx: &mut Cx<'_>, root: &Tbl<'_, '_>) -> Vec<WallSpec> {
         return walls;
     };
     for t in cx.tables(v, "[[wall]]") {
-        cx.keys(&t, &["from", "to", "height", "thickness"]);
+        cx.keys(&t, keys_of("[[wall]]"));
         let c = MAX_COORDINATE;
         let from = cx
             .req(&t, "from")
@@ -287,7 +317,7 @@ fn read_shelves(cx: &mut Cx<'_>, root: &Tbl<'_, '_>) -> Vec<RawShelf> {
         return shelves;
     };
     for t in cx.tables(v, "[[shelf]]") {
-        cx.keys(&t, &["name", "at", "size"]);
+        cx.keys(&t, keys_of("[[shelf]]"));
         let name = cx.name(&t, "name");
         let at = cx.name(&t, "at");
         let size = match Cx::get(&t, "size") {
@@ -311,7 +341,7 @@ fn read_objects(cx: &mut Cx<'_>, root: &Tbl<'_, '_>) -> Vec<RawObject> {
         return objects;
     };
     for t in cx.tables(v, "[[object]]") {
-        cx.keys(&t, &["name", "on", "size", "spot"]);
+        cx.keys(&t, keys_of("[[object]]"));
         let name = cx.name(&t, "name");
         let on = cx.name(&t, "on");
         let size = match Cx::get(&t, "size") {
@@ -352,7 +382,7 @@ fn read_faults(cx: &mut Cx<'_>, root: &Tbl<'_, '_>) -> Vec<RawFault> {
 }
 
 fn read_move(cx: &mut Cx<'_>, t: &Tbl<'_, '_>) -> RawMove {
-    cx.keys(t, &["after_saying", "at_time", "delay", "to"]);
+    cx.keys(t, keys_of("[[user.moves]]"));
     let to = cx.name(t, "to");
     let delay = Cx::get(t, "delay")
         .and_then(|v| cx.ranged(t, "delay", v, 0.0, 1e9, false))
@@ -401,7 +431,7 @@ fn read_fault(cx: &mut Cx<'_>, t: &Tbl<'_, '_>) -> Option<RawFault> {
     };
     match kind.v.as_str() {
         "grasp_fails" => {
-            cx.keys(&t2, &["kind", "object", "times"]);
+            cx.keys(&t2, keys_of("[[fault]] grasp_fails"));
             let object = cx.name(&t2, "object");
             let times = match Cx::get(&t2, "times") {
                 Some(v) => cx
@@ -415,7 +445,7 @@ fn read_fault(cx: &mut Cx<'_>, t: &Tbl<'_, '_>) -> Option<RawFault> {
             })
         }
         "route_blocked" => {
-            cx.keys(&t2, &["kind", "from", "to"]);
+            cx.keys(&t2, keys_of("[[fault]] route_blocked"));
             let from = cx.name(&t2, "from");
             let to = cx.name(&t2, "to");
             Some(RawFault::RouteBlocked {
@@ -425,7 +455,7 @@ fn read_fault(cx: &mut Cx<'_>, t: &Tbl<'_, '_>) -> Option<RawFault> {
             })
         }
         "mishear" => {
-            cx.keys(&t2, &["kind", "utterance"]);
+            cx.keys(&t2, keys_of("[[fault]] mishear"));
             let v = cx.req(&t2, "utterance")?;
             let at = v.span().start;
             match v.get_ref() {
