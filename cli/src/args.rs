@@ -59,7 +59,9 @@ pub enum Command {
         /// column, end, label, labels, help).
         #[arg(long, value_enum, default_value_t = Format::Human)]
         format: Format,
-        /// Treat warnings as errors (exit status 1).
+        /// Treat warnings as errors (exit status 1), as `rustc -D warnings`
+        /// does; an application sets it for itself with `deny-warnings =
+        /// true` in a `sitlog.toml` beside its DMs.
         #[arg(long)]
         deny_warnings: bool,
         /// Do not print warnings.
@@ -101,6 +103,11 @@ pub enum Command {
         /// stops the task with a run-time error. For legacy applications.
         #[arg(long)]
         allow_unresolved: bool,
+        /// Refuse to run a program with warnings, printing them (exit
+        /// status 1), as `sitlogc check --deny-warnings` does; also set by
+        /// `deny-warnings = true` in the application's `sitlog.toml`.
+        #[arg(long)]
+        deny_warnings: bool,
         /// Run an application written for the original interpreter
         /// unmodified, from the original's tree: load the Prolog files its
         /// `src/init.pl` consults from `$SITLOG_HOME` (KB services, parser,
@@ -252,6 +259,10 @@ pub enum Command {
         /// with a run-time error.
         #[arg(long)]
         allow_unresolved: bool,
+        /// Refuse to compile a program with warnings (exit status 1); also
+        /// set by `deny-warnings = true` in the application's `sitlog.toml`.
+        #[arg(long)]
+        deny_warnings: bool,
         /// Link the step debugger: the executable runs the task under the
         /// debugger, as `sitlogc debug APP` runs the sources (commands from
         /// the terminal, or from its --commands FILE). Opt-in: a normal

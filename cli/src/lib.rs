@@ -3,10 +3,11 @@
 //! debugger (`sitlog-debug`), the language server (`sitlog-lsp`) and the KB
 //! (`sitlog-kb`). Everything only the command line needs lives here and
 //! nowhere below: argument parsing ([`args`]), one module per subcommand
-//! ([`commands`]), hot reload ([`watch`]), packaging a compiled task
-//! ([`package`]), the behaviour library built into `sitlogc` ([`library`]),
-//! new applications ([`scaffold`]), an application's own tests
-//! ([`apptest`], `sitlogc test`), the legacy profile's Prolog layer
+//! ([`commands`]), an application's settings file ([`config`]), hot reload
+//! ([`watch`]), packaging a compiled task ([`package`]), the behaviour
+//! library built into `sitlogc` ([`library`]), new applications
+//! ([`scaffold`]), an application's own tests ([`apptest`], `sitlogc
+//! test`), the legacy profile's Prolog layer
 //! ([`legacy`]) and the editor analysis ([`analysis`]).
 //!
 //! Invariant: this crate is the top of the dependency graph; no crate of the
@@ -19,6 +20,7 @@ pub mod analysis;
 pub mod apptest;
 pub mod args;
 pub mod commands;
+pub mod config;
 pub mod legacy;
 pub mod library;
 pub mod output;

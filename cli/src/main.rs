@@ -59,6 +59,7 @@ fn run(cli: Cli) -> u8 {
             app,
             run,
             allow_unresolved,
+            deny_warnings,
             legacy,
             sitlog_home,
             legacy_kb,
@@ -68,7 +69,10 @@ fn run(cli: Cli) -> u8 {
             run_app(
                 &app,
                 &run,
-                allow_unresolved,
+                Strictness {
+                    allow_unresolved,
+                    deny_warnings,
+                },
                 legacy.as_ref().map(|h| h.as_deref()),
                 legacy_kb == LegacyKb::Native,
                 None,
@@ -93,7 +97,7 @@ fn run(cli: Cli) -> u8 {
         Command::Debug { app, run, commands } => run_app(
             &app,
             &run,
-            false,
+            Strictness::default(),
             None,
             false,
             Some(commands.as_deref()),
@@ -112,6 +116,7 @@ fn run(cli: Cli) -> u8 {
             emit,
             explain_types,
             allow_unresolved,
+            deny_warnings,
             debugger,
             ros2,
         } => {
@@ -124,7 +129,10 @@ fn run(cli: Cli) -> u8 {
                     output,
                     release,
                     emit,
-                    allow_unresolved,
+                    Strictness {
+                        allow_unresolved,
+                        deny_warnings,
+                    },
                     debugger,
                     ros2,
                 )

@@ -74,6 +74,29 @@ pub fn checked_ir_opts(
     app: &std::path::Path,
     options: sitlog_compiler::check::CheckOptions,
 ) -> Result<sitlog_compiler::ir::Ir, u8> {
+    checked_ir_strict(app, options, false)
+}
+
+/// Whether warnings are errors for `app`: `flag` (`--deny-warnings`) or its
+/// `sitlog.toml` says so. `Err`: the exit status, the settings file's error
+/// printed.
+pub fn deny_warnings(app: &Path, flag: bool) -> Result<bool, u8> {
+    match crate::config::read(app) {
+        Ok(config) => Ok(flag || config.deny_warnings),
+        Err((code, message)) => {
+            sitlog_runtime::errln!("{message}");
+            Err(code)
+        }
+    }
+}
+
+/// [`checked_ir_opts`]; with `deny_warnings` the warnings are printed too
+/// and any of them refuses the program, as an error does.
+pub fn checked_ir_strict(
+    app: &std::path::Path,
+    options: sitlog_compiler::check::CheckOptions,
+    deny_warnings: bool,
+) -> Result<sitlog_compiler::ir::Ir, u8> {
     let loaded = check_app(app, options);
     let (result, diags) = match loaded {
         Ok(r) => r,
@@ -89,16 +112,25 @@ pub fn checked_ir_opts(
     };
     for d in diags.iter().filter(|d| {
         d.is_error()
+            || deny_warnings
             || (options.legacy && d.code == sitlog_compiler::check::codes::DUPLICATE_DM_IDENTICAL)
     }) {
         sitlog_runtime::errprint!("{}", diag::render_human(d, program_sources, color));
     }
+    let errors = diags.iter().filter(|d| d.is_error()).count();
+    let warnings = diags.len() - errors;
     match result {
+        Ok(_) if deny_warnings && warnings > 0 => {
+            sitlog_runtime::errln!(
+                "error: the application has {warnings} warning(s), and warnings are denied (--deny-warnings, or `deny-warnings = true` in {})",
+                crate::config::FILE
+            );
+            Err(1)
+        }
         Ok(c) => Ok(sitlog_compiler::ir::lower(&c)),
         Err(_) => {
-            let n = diags.iter().filter(|d| d.is_error()).count();
             sitlog_runtime::errln!(
-                "error: the application has {n} error(s); run `sitlogc check` for details"
+                "error: the application has {errors} error(s); run `sitlogc check` for details"
             );
             Err(1)
         }

@@ -33,6 +33,14 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         "a file listed in `models` is outside the application directory",
     ),
     (
+        load::APP_FILE,
+        "the application's `world.toml`, `knowledge.kb` or `ros2.toml` has an error that `sitlogc run` stops on (its message and position)",
+    ),
+    (
+        load::PROLOG_SYNTAX,
+        "a clause of a consulted Prolog file (`user_functions.pl`, `templates.pl` and what they consult) that does not read: skipped, as SWI-Prolog's consult skips it, and the rest is loaded",
+    ),
+    (
         shape::NOT_A_DM,
         "a clause of a DM file that is not a DM (ignored)",
     ),
@@ -128,6 +136,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
     (
         check::UNKNOWN_SITUATION_TYPE,
         "a situation `type` that is no known type but close to one (`fianl`: *did you mean `final`?*)",
+    ),
+    (
+        check::DEAD_EXIT,
+        "an exit arc that names no final situation of the embedded DM, while each of its final situations has another exit arc: never taken (E0218 when a final situation is left without one)",
     ),
     (
         check::OS_ACCESS,

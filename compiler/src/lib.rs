@@ -7,7 +7,7 @@
 //! [`load`] (files → read terms, with [`source`] positions) → [`ast`] (the
 //! SitLog layer) → [`check`] (diagnostics, rendered by [`diag`]; produces
 //! [`check::Checked`], the only input later stages accept; [`codes`] lists
-//! every diagnostic code) → [`ir::lower`]
+//! every diagnostic code, [`suggest`] gives their "did you mean") → [`ir::lower`]
 //! → the back ends: [`interp`] (plans the runtime's machine runs, with
 //! [`instantiate`] the reference path from templates; [`run`] hands them to
 //! the one runner, `sitlog_runtime::app::run`), [`types`] + [`codegen`]
@@ -37,6 +37,7 @@ pub mod load;
 pub mod mir;
 pub mod run;
 pub mod source;
+pub mod suggest;
 pub mod types;
 
 use std::path::Path;

@@ -30,6 +30,12 @@ pub mod codes {
     pub const MISSING_FILE: &str = "E0004";
     pub const NOT_A_DM_FILE: &str = "E0005";
     pub const OUTSIDE_APP: &str = "W0006";
+    /// Not the loader's: the command line reads the application's world,
+    /// KB and ROS 2 interface files (`sitlogc check`) and reports their
+    /// errors with this code.
+    pub const APP_FILE: &str = "E0007";
+    /// A clause of a consulted Prolog file that does not read (skipped).
+    pub const PROLOG_SYNTAX: &str = "W0008";
 }
 
 /// An I/O problem that stops loading (exit status 2 in the CLI).
@@ -128,6 +134,59 @@ impl Library {
                 .map(|(_, b)| *b),
             LibraryFiles::Dir(_) => None,
         })
+    }
+
+    /// The names of the library's DM files (`behaviors/find.dm`), each
+    /// once (the first root that has it), sorted; with `text`, their text
+    /// too. For help lines: read only when a diagnostic needs them.
+    pub fn dm_files(&self, text: bool) -> Vec<(String, String)> {
+        let mut out: Vec<(String, String)> = Vec::new();
+        for root in &self.roots {
+            let mut found: Vec<(String, String)> = Vec::new();
+            match &root.files {
+                LibraryFiles::Dir(dir) => {
+                    let mut files = Vec::new();
+                    if collect_dm_files(dir, &mut files).is_err() {
+                        continue;
+                    }
+                    for f in files {
+                        let Ok(rel) = f.strip_prefix(dir) else {
+                            continue;
+                        };
+                        let name = rel
+                            .components()
+                            .map(|c| c.as_os_str().to_string_lossy())
+                            .collect::<Vec<_>>()
+                            .join("/");
+                        let body = if text {
+                            read_bytes(&f)
+                                .map(|b| String::from_utf8_lossy(&b).into_owned())
+                                .unwrap_or_default()
+                        } else {
+                            String::new()
+                        };
+                        found.push((name, body));
+                    }
+                }
+                LibraryFiles::Embedded(files) => {
+                    for (n, b) in files.iter().filter(|(n, _)| n.ends_with(".dm")) {
+                        let body = if text {
+                            String::from_utf8_lossy(b).into_owned()
+                        } else {
+                            String::new()
+                        };
+                        found.push(((*n).to_owned(), body));
+                    }
+                }
+            }
+            for f in found {
+                if !out.iter().any(|(n, _)| *n == f.0) {
+                    out.push(f);
+                }
+            }
+        }
+        out.sort();
+        out
     }
 
     /// Where the library was looked for, for a help line.
@@ -245,7 +304,28 @@ pub fn load_with(path: &Path, library: &Library) -> Result<(Program, Vec<Diagnos
         program.has_kb_file = dir.join(KB_FILE).is_file();
         program.has_world_file = dir.join(WORLD_FILE).is_file();
     }
+    skipped_prolog_clauses(&program, &mut diags);
     Ok((program, diags))
+}
+
+/// A syntax error in a Prolog file that is consulted (`user_functions.pl`,
+/// `templates.pl` and what they consult) skips that clause, as SWI-Prolog's
+/// consult does for the original, and the engine loads the rest: a warning
+/// (W0008), not an error. The side files the original reads with `read/1`
+/// (global variables, actions, ...) and the DM files stay errors (E0001).
+fn skipped_prolog_clauses(program: &Program, diags: &mut [Diagnostic]) {
+    for d in diags.iter_mut() {
+        if d.code == codes::SYNTAX && program.prolog_files.contains(&d.loc.file) {
+            d.code = codes::PROLOG_SYNTAX;
+            d.severity = crate::diag::Severity::Warning;
+            d.message = format!("{} (this clause is skipped)", d.message);
+            if d.help.is_none() {
+                d.help = Some(
+                    "SWI-Prolog skips a clause it cannot read and loads the rest of the file, and so does the run: the functions it defines are missing".to_owned(),
+                );
+            }
+        }
+    }
 }
 
 /// Loads a program from in-memory DM sources (for tests and tools).
@@ -264,6 +344,7 @@ pub fn load_sources(files: &[(&str, &str)]) -> (Program, Vec<Diagnostic>) {
             .unwrap_or("");
         add_file_by_role(Cx::NONE, &mut program, file, name, clauses, &mut diags);
     }
+    skipped_prolog_clauses(&program, &mut diags);
     (program, diags)
 }
 
@@ -281,6 +362,7 @@ pub fn load_source_bytes(files: &[(&str, &[u8])]) -> (Program, Vec<Diagnostic>) 
             .unwrap_or("");
         add_file_by_role(Cx::NONE, &mut program, file, name, clauses, &mut diags);
     }
+    skipped_prolog_clauses(&program, &mut diags);
     (program, diags)
 }
 
@@ -720,14 +802,37 @@ fn load_dir(
                     )
                     .with_label("listed here");
                     if e.kind() == io::ErrorKind::NotFound && is_library_name(name) {
-                        d = d.with_help(if cx.library.roots.is_empty() {
+                        // A typo of a library file, or of one of the application's own.
+                        let mut known: Vec<String> = cx
+                            .library
+                            .dm_files(false)
+                            .into_iter()
+                            .map(|(n, _)| n)
+                            .collect();
+                        let mut own = Vec::new();
+                        if collect_dm_files(dir, &mut own).is_ok() {
+                            known.extend(own.iter().filter_map(|f| {
+                                let rel = f.strip_prefix(dir).ok()?;
+                                Some(
+                                    rel.components()
+                                        .map(|c| c.as_os_str().to_string_lossy())
+                                        .collect::<Vec<_>>()
+                                        .join("/"),
+                                )
+                            }));
+                        }
+                        let mut help = if cx.library.roots.is_empty() {
                             "the path is relative to the application directory".to_owned()
                         } else {
                             format!(
                                 "not in the application directory, nor in the library ({})",
                                 cx.library.places()
                             )
-                        });
+                        };
+                        if let Some(similar) = similar_file(name, &known) {
+                            help.push_str(&format!(": did you mean `'{similar}'.`?"));
+                        }
+                        d = d.with_help(help);
                     }
                     diags.push(d);
                 }
@@ -814,6 +919,28 @@ fn load_side_files(
         }
     }
     Ok(())
+}
+
+/// The file of `known` (names with `/`) that `name` is a typo of: one in
+/// the same directory whose file name is close (`behaviors/fnd.dm` →
+/// `behaviors/find.dm`), else one whose whole name is close.
+fn similar_file<'a>(name: &str, known: &'a [String]) -> Option<&'a str> {
+    let split = |n: &'a str| n.rsplit_once('/').unwrap_or(("", n));
+    let (dir, base) = name.rsplit_once('/').unwrap_or(("", name));
+    let same_dir: Vec<&str> = known
+        .iter()
+        .map(|k| split(k))
+        .filter(|(d, _)| *d == dir)
+        .map(|(_, b)| b)
+        .collect();
+    if let Some(b) = crate::suggest::did_you_mean(base, same_dir.iter().copied()) {
+        return known
+            .iter()
+            .map(String::as_str)
+            .find(|k| split(k) == (dir, b));
+    }
+    crate::suggest::did_you_mean(name, known.iter().map(String::as_str))
+        .filter(|k| split(k).0 != dir)
 }
 
 fn collect_dm_files(dir: &Path, out: &mut Vec<PathBuf>) -> io::Result<()> {

@@ -1,7 +1,8 @@
 //! What a task carries besides its DMs ([`Assets`]: its name, its world and
 //! its KB, read from an application directory or embedded in a compiled
-//! task), and the text files a run reads ([`TextFile`]: a file's name and
-//! its UTF-8 text; [`FileError`] when it cannot be used).
+//! task; [`Assets::problems`], what a run would refuse in them), and the
+//! text files a run reads ([`TextFile`]: a file's name and its UTF-8 text;
+//! [`FileError`] when it cannot be used).
 
 use std::path::Path;
 
@@ -94,6 +95,64 @@ impl Assets {
             ros2: read(ROS2_FILE, "ROS 2 interface")?,
             diagram: None,
         })
+    }
+}
+
+/// A problem in a file of the application besides its DMs (its world, its
+/// KB): the file, the 1-based line and column (0 and 0 when it has no
+/// position) and what is wrong, as a run reports it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AssetError {
+    pub file: String,
+    pub line: usize,
+    pub column: usize,
+    pub message: String,
+}
+
+impl std::fmt::Display for AssetError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.line == 0 {
+            write!(f, "{}: error: {}", self.file, self.message)
+        } else {
+            write!(
+                f,
+                "{}:{}:{}: error: {}",
+                self.file, self.line, self.column, self.message
+            )
+        }
+    }
+}
+
+impl Assets {
+    /// What a run of these assets would refuse before it starts: every
+    /// error of the world file (with feature `sim`) and the KB's first, each
+    /// with the position and message the run gives (`sitlogc check` reports
+    /// them). The ROS 2 interface file is sitlog-ros's to read.
+    pub fn problems(&self) -> Vec<AssetError> {
+        let mut out = Vec::new();
+        #[cfg(feature = "sim")]
+        if let Some(world) = &self.world {
+            if let Err(errors) = sitlog_sim::World::parse(&world.name, &world.text) {
+                out.extend(errors.into_iter().map(|e| AssetError {
+                    file: e.file,
+                    line: e.line,
+                    column: e.column,
+                    message: e.message,
+                }));
+            }
+        }
+        if let Some(kb) = &self.kb {
+            if let Err(e) = sitlog_kb::Kb::parse(&kb.text, &kb.name) {
+                let (line, column) = e.pos.unwrap_or((0, 0));
+                out.push(AssetError {
+                    file: e.path,
+                    line,
+                    column,
+                    message: e.message,
+                });
+            }
+        }
+        out
     }
 }
 

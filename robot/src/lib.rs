@@ -47,7 +47,9 @@ mod shop_functions;
 mod streams;
 mod task;
 
-pub use assets::{app_name, Assets, FileError, TextFile, KB_FILE, ROS2_FILE, WORLD_FILE};
+pub use assets::{
+    app_name, AssetError, Assets, FileError, TextFile, KB_FILE, ROS2_FILE, WORLD_FILE,
+};
 pub use cli::{Format, HistoryMode, RobotKind, RunArgs};
 pub use debug_hooks::{DebugHooks, MakePerception, WorldProbe};
 pub use robot_hook::{RobotHook, RobotParts, RobotSetup};

@@ -2,8 +2,9 @@
 //! ([`crate::package`]), its generated Rust (`--emit rust`), or what type
 //! inference found (`--explain-types`).
 
+use super::Strictness;
 use crate::args::Emit;
-use crate::output::{checked_ir, checked_ir_opts, with_world, write_stdout};
+use crate::output::{checked_ir, checked_ir_strict, deny_warnings, with_world, write_stdout};
 use std::path::PathBuf;
 
 pub fn explain_types_of(app: &std::path::Path) -> u8 {
@@ -22,17 +23,21 @@ pub fn build_app(
     output: Option<PathBuf>,
     release: bool,
     emit: Option<Emit>,
-    allow_unresolved: bool,
+    strictness: Strictness,
     debugger: bool,
     ros2: bool,
 ) -> u8 {
     use crate::package;
     use sitlog_compiler::build;
     let options = with_world(sitlog_compiler::check::CheckOptions {
-        unresolved_as_warnings: allow_unresolved,
+        unresolved_as_warnings: strictness.allow_unresolved,
         ..Default::default()
     });
-    if let Err(code) = checked_ir_opts(app, options) {
+    let deny = match deny_warnings(app, strictness.deny_warnings) {
+        Ok(deny) => deny,
+        Err(code) => return code,
+    };
+    if let Err(code) = checked_ir_strict(app, options, deny) {
         return code;
     }
     let compiled =

@@ -1,12 +1,15 @@
-//! `sitlogc check`: every problem of applications and DM files, as text
-//! on stderr or JSON lines on stdout, and (`--origins`) where the files
-//! named by a library name came from.
+//! `sitlogc check`: every problem of applications and DM files (with what
+//! `run` would stop on in their world, KB and ROS 2 interface files, E0007),
+//! as text on stderr or JSON lines on stdout; warnings denied by
+//! `--deny-warnings` or the application's `sitlog.toml`; and (`--origins`)
+//! where the files named by a library name came from.
 
 use crate::args::Format;
 use crate::output::color_stderr;
-use sitlog_compiler::diag::{self, Severity};
+use sitlog_compiler::diag::{self, Diagnostic, Loc, Severity};
+use sitlog_compiler::source::SourceMap;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 pub fn check(
     paths: &[PathBuf],
@@ -19,6 +22,8 @@ pub fn check(
     let color = color_stderr();
     let mut errors = 0usize;
     let mut warnings = 0usize;
+    // Warnings of applications whose sitlog.toml denies them.
+    let mut denied_warnings = 0usize;
     let mut io_failed = false;
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
@@ -42,6 +47,20 @@ pub fn check(
         }
     }
     for path in &programs {
+        // The application's sitlog.toml may deny its warnings (a bad one
+        // is an error; the program is checked all the same).
+        let denied = match crate::config::read(path) {
+            Ok(config) => config.deny_warnings,
+            Err((code, message)) => {
+                sitlog_runtime::errln!("{message}");
+                if code == 1 {
+                    errors += 1;
+                } else {
+                    io_failed = true;
+                }
+                false
+            }
+        };
         let options = sitlog_compiler::check::CheckOptions {
             legacy,
             ..Default::default()
@@ -58,25 +77,45 @@ pub fn check(
             Ok(checked) => checked.program(),
             Err(program) => program,
         };
+        // The world, KB and ROS 2 interface files, as `run` reads them.
+        let (asset_sources, asset_diags) = match asset_diagnostics(path) {
+            Ok(found) => found,
+            Err((status, message)) => {
+                // Text that is not UTF-8 is an error of the file (1), as in
+                // `run`; a file that cannot be read, an I/O problem (2).
+                sitlog_runtime::errln!("{message}");
+                if status == 1 {
+                    errors += 1;
+                } else {
+                    io_failed = true;
+                }
+                (SourceMap::new(), Vec::new())
+            }
+        };
         if origins {
             for line in origin_lines(path, program) {
                 sitlog_runtime::errln!("{line}");
             }
         }
-        for d in &diags {
+        let all = diags
+            .iter()
+            .map(|d| (d, &program.sources))
+            .chain(asset_diags.iter().map(|d| (d, &asset_sources)));
+        for (d, sources) in all {
             match d.severity {
                 Severity::Error => errors += 1,
+                Severity::Warning if denied => denied_warnings += 1,
                 Severity::Warning => warnings += 1,
             }
-            if quiet && d.severity == Severity::Warning {
+            if quiet && d.severity == Severity::Warning && !denied {
                 continue;
             }
             match format {
                 Format::Human => {
-                    sitlog_runtime::errprint!("{}", diag::render_human(d, &program.sources, color))
+                    sitlog_runtime::errprint!("{}", diag::render_human(d, sources, color))
                 }
                 Format::Json => {
-                    if let Err(e) = writeln!(out, "{}", diag::render_json(d, &program.sources)) {
+                    if let Err(e) = writeln!(out, "{}", diag::render_json(d, sources)) {
                         if e.kind() != std::io::ErrorKind::BrokenPipe && !io_failed {
                             sitlog_runtime::errln!(
                                 "error: cannot write the diagnostics to stdout: {e}"
@@ -96,19 +135,115 @@ pub fn check(
     }
     if format == Format::Human {
         sitlog_runtime::errln!(
-            "checked {} program(s): {} error(s), {} warning(s)",
+            "checked {} program(s): {} error(s), {} warning(s){}",
             programs.len(),
             errors,
-            warnings
+            warnings + denied_warnings,
+            if denied_warnings > 0 {
+                format!(" ({denied_warnings} denied by {})", crate::config::FILE)
+            } else {
+                String::new()
+            }
         );
     }
     if io_failed {
         2
-    } else if errors > 0 || (deny_warnings && warnings > 0) {
+    } else if errors > 0 || denied_warnings > 0 || (deny_warnings && warnings > 0) {
         1
     } else {
         0
     }
+}
+
+/// The errors a run of the application at `path` would stop on in its
+/// `world.toml`, `knowledge.kb` and (with ROS 2) `ros2.toml`, as
+/// diagnostics (E0007) over a source map of those files; `Err`: a file that
+/// cannot be used, as `run` says it (exit status and message).
+fn asset_diagnostics(path: &Path) -> Result<(SourceMap, Vec<Diagnostic>), (u8, String)> {
+    let assets = sitlog_robot::Assets::from_app(path).map_err(|e| (e.status, e.message))?;
+    #[allow(unused_mut)]
+    let mut problems = assets.problems();
+    #[cfg(feature = "ros2")]
+    if let Some(file) = &assets.ros2 {
+        let world = assets
+            .world
+            .as_ref()
+            .and_then(|w| sitlog_sim::World::parse(&w.name, &w.text).ok());
+        if let Err(message) =
+            sitlog_ros::Interface::load(Some((&file.name, &file.text)), world.as_ref())
+        {
+            let message = message
+                .strip_prefix(&format!("{}: error: ", file.name))
+                .unwrap_or(&message);
+            // toml's own text: "TOML parse error at line L, column C", the
+            // line quoted, then what is wrong.
+            let (line, column, message) = toml_position(message)
+                .map(|(l, c)| (l, c, message.lines().last().unwrap_or("").to_owned()))
+                .unwrap_or((0, 0, message.to_owned()));
+            problems.push(sitlog_robot::AssetError {
+                file: file.name.clone(),
+                line,
+                column,
+                message,
+            });
+        }
+    }
+    let mut sources = SourceMap::new();
+    let mut diags = Vec::new();
+    for p in problems {
+        let text = [&assets.world, &assets.kb, &assets.ros2]
+            .into_iter()
+            .flatten()
+            .find(|f| f.name == p.file)
+            .map(|f| f.text.clone())
+            .unwrap_or_default();
+        let start = offset(&text, p.line, p.column);
+        let end = text[start..]
+            .find(['\n', ' ', ',', ']', '}'])
+            .map_or(text.len(), |n| start + n.max(1).min(text.len() - start));
+        let file = sources.add(Path::new(&p.file), text);
+        let span = sitlog_syntax::Span {
+            start: start as u32,
+            end: end as u32,
+        };
+        diags.push(
+            Diagnostic::error(
+                sitlog_compiler::load::codes::APP_FILE,
+                Loc { file, span },
+                p.message,
+            )
+            .with_label("here"),
+        );
+    }
+    Ok((sources, diags))
+}
+
+/// The line and column of toml's "TOML parse error at line L, column C".
+#[cfg(feature = "ros2")]
+fn toml_position(message: &str) -> Option<(usize, usize)> {
+    let rest = message.strip_prefix("TOML parse error at line ")?;
+    let (line, rest) = rest.split_once(", column ")?;
+    let column: String = rest.chars().take_while(char::is_ascii_digit).collect();
+    Some((line.parse().ok()?, column.parse().ok()?))
+}
+
+/// The byte offset of 1-based `line` and `column` (characters) in `text`;
+/// the start for line 0.
+fn offset(text: &str, line: usize, column: usize) -> usize {
+    if line == 0 {
+        return 0;
+    }
+    let mut start = 0;
+    for _ in 1..line {
+        match text[start..].find('\n') {
+            Some(n) => start += n + 1,
+            None => return text.len(),
+        }
+    }
+    text[start..]
+        .char_indices()
+        .nth(column.saturating_sub(1))
+        .map_or(text.len(), |(i, _)| start + i)
 }
 
 /// `--origins`: one line per file of `program` named by a library name,

@@ -25,3 +25,13 @@ pub use run::run_app;
 #[cfg(feature = "ros2")]
 pub use sim::sim;
 pub use test::test_app;
+
+/// How strict `run` and `build` are with a program's diagnostics.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Strictness {
+    /// `--allow-unresolved`: names that do not resolve are warnings.
+    pub allow_unresolved: bool,
+    /// `--deny-warnings` (or the application's `sitlog.toml`): warnings
+    /// refuse the program.
+    pub deny_warnings: bool,
+}

@@ -2,7 +2,8 @@
 //! simulated robot or in test mode (the runner is `sitlog_robot`'s), under
 //! the debugger, or reloading its sources (`--watch`, [`crate::watch`]).
 
-use crate::output::checked_ir_opts;
+use super::Strictness;
+use crate::output::{checked_ir_strict, deny_warnings};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
@@ -10,7 +11,7 @@ use std::path::PathBuf;
 pub fn run_app(
     app: &std::path::Path,
     args: &sitlog_robot::cli::RunArgs,
-    allow_unresolved: bool,
+    strictness: Strictness,
     legacy: Option<Option<&std::path::Path>>,
     native_kb: bool,
     debug: Option<Option<&std::path::Path>>,
@@ -60,11 +61,15 @@ pub fn run_app(
         }
     }
     let check_options = sitlog_compiler::check::CheckOptions {
-        unresolved_as_warnings: allow_unresolved || legacy.is_some(),
+        unresolved_as_warnings: strictness.allow_unresolved || legacy.is_some(),
         legacy: legacy.is_some(),
         ..Default::default()
     };
-    let ir = match checked_ir_opts(app, check_options) {
+    let deny = match deny_warnings(app, strictness.deny_warnings) {
+        Ok(deny) => deny,
+        Err(code) => return code,
+    };
+    let ir = match checked_ir_strict(app, check_options, deny) {
         Ok(ir) => ir,
         Err(code) => return code,
     };

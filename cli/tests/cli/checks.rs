@@ -88,12 +88,21 @@ fn unknown_function_is_an_error() {
     assert_eq!(diags[1]["help"], "did you mean `greeting`?");
 }
 
-/// `sya(hello)` with `say` declared in basic_actions.pl.
+/// `sya(hello)` with `say` declared in basic_actions.pl: a warning (the
+/// original runs an undeclared action as doing nothing), an error with
+/// `--deny-warnings`.
 #[test]
-fn undeclared_action_is_an_error() {
+fn undeclared_action_is_a_warning() {
     let (code, diags, _) = check_json(&cases().join("unknown_action"));
-    assert_eq!(code, 1);
-    assert_eq!(codes(&diags), ["E0225", "E0225"]);
+    assert_eq!(code, 0);
+    assert_eq!(codes(&diags), ["W0225", "W0225"]);
+    assert!(diags.iter().all(|d| d["severity"] == "warning"));
+    let out = sitlogc()
+        .args(["check", "--deny-warnings"])
+        .arg(cases().join("unknown_action"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
     assert_eq!(
         diags[0]["message"],
         "action `sya` is not declared in basic_actions.pl"
@@ -122,15 +131,25 @@ fn names_get_did_you_mean() {
 }
 
 /// Issue 30: a variable nothing binds, used once (`Guest`), twice (`Who`)
-/// or bound only in another situation (`Drink`), is an error where it is
+/// or bound only in another situation (`Drink`), is reported where it is
 /// used; an action given the wrong number of arguments; `type ==> fianl`.
+/// The first two are warnings (issue 39: the original runs them), the
+/// typo of a type an error.
 /// What does bind (an expectation, a status an earlier action reports, `=`,
 /// a condition, a situation id's argument) gives nothing.
 #[test]
 fn unbound_variables_action_arity_and_situation_types() {
     let (code, diags, _) = check_json(&cases().join("unbound_variables"));
     assert_eq!(code, 1);
-    assert_eq!(codes(&diags), ["E0228", "E0228", "E0229", "E0228", "E0230"]);
+    assert_eq!(codes(&diags), ["W0228", "W0228", "W0229", "W0228", "E0230"]);
+    let severities: Vec<&str> = diags
+        .iter()
+        .map(|d| d["severity"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        severities,
+        ["warning", "warning", "warning", "warning", "error"]
+    );
     assert_eq!(
         diags[0]["message"],
         "variable `Guest` has no value here: nothing binds it before it is used"
@@ -151,10 +170,10 @@ fn unbound_variables_action_arity_and_situation_types() {
     // no W0220 singleton for `Guest`.
 }
 
-/// An unbound variable is one of the errors `--allow-unresolved` turns
-/// into warnings: the run goes on, as the original's would.
+/// An unbound variable is a warning (issue 39): the run goes on, as the
+/// original's would, printing it as `_G..`; `--deny-warnings` refuses it.
 #[test]
-fn unbound_variable_runs_with_allow_unresolved() {
+fn unbound_variable_is_a_warning_and_runs() {
     let dir = std::env::temp_dir().join(format!("sitlogc-unbound-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
@@ -163,15 +182,19 @@ fn unbound_variable_runs_with_allow_unresolved() {
     )
     .unwrap();
     let (code, diags, _) = check_json(&dir);
-    assert_eq!((code, codes(&diags)), (1, vec!["E0228".to_owned()]));
+    assert_eq!((code, codes(&diags)), (0, vec!["W0228".to_owned()]));
+    let out = sitlogc().arg("run").arg(&dir).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("Golem says: Welcome, _G"), "{stderr}");
     let out = sitlogc()
-        .args(["run", "--allow-unresolved"])
+        .args(["run", "--deny-warnings"])
         .arg(&dir)
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(0), "{stderr}");
-    assert!(stderr.contains("Golem says: Welcome, _G"), "{stderr}");
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("[W0228] Warning"), "{stderr}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -381,4 +404,72 @@ fn run_time_errors_point_at_the_expression_once() {
     // The message names the failing expression's position, not the situation's.
     assert!(error.contains("(arc/main.dm:4:39)"), "{error}");
     assert!(stderr.contains("arc/main.dm:4:39"), "{stderr}");
+}
+
+/// Issue 39: the shapes of the runs recorded on the original that `check`
+/// and `run` refused (a variable bound only in `prog`, in another
+/// situation, never) are warnings, and the run goes to its end, printing
+/// the unbound variables as the original does (`_G..`).
+#[test]
+fn programs_the_original_runs_are_not_refused() {
+    let app = cases().join("original_runs");
+    let (code, diags, _) = check_json(&app);
+    assert_eq!(code, 0, "{diags:?}");
+    assert_eq!(codes(&diags), ["W0228"; 5]);
+    let out = sitlogc()
+        .args(["run", "--format", "json"])
+        .arg(&app)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(report["status"], "ok", "{report}");
+    let history = report["history"].to_string();
+    assert!(history.contains("tick(_G"), "{history}");
+    assert!(history.contains("round(_G"), "{history}");
+}
+
+/// `deny-warnings = true` in the application's `sitlog.toml` makes `check`
+/// and `run` refuse its warnings, as `--deny-warnings` does; a misspelt key
+/// is an error at its line and column.
+#[test]
+fn sitlog_toml_denies_warnings() {
+    let dir = std::env::temp_dir().join(format!("sitlogc-deny-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main, [[id ==> is, type ==> neutral, arcs ==> [empty : say(Who) => fs]], [id ==> fs, type ==> final]], []).\n",
+    )
+    .unwrap();
+    let status = |args: &[&str]| {
+        let out = sitlogc().args(args).arg(&dir).output().unwrap();
+        (
+            out.status.code().unwrap(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    assert_eq!(status(&["check"]).0, 0);
+    assert_eq!(status(&["run"]).0, 0);
+    std::fs::write(dir.join("sitlog.toml"), "deny-warnings = true\n").unwrap();
+    let (code, stderr) = status(&["check"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("1 warning(s) (1 denied by sitlog.toml)"),
+        "{stderr}"
+    );
+    let (code, stderr) = status(&["run"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("[W0228] Warning"), "{stderr}");
+    assert!(stderr.contains("warnings are denied"), "{stderr}");
+    std::fs::write(dir.join("sitlog.toml"), "\ndeny-warning = true\n").unwrap();
+    for args in [&["check"][..], &["run"]] {
+        let (code, stderr) = status(args);
+        assert_eq!(code, 1, "{stderr}");
+        assert!(
+            stderr.contains("sitlog.toml:2:1: error: unknown field `deny-warning`"),
+            "{stderr}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }

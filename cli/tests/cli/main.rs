@@ -11,6 +11,7 @@ mod conventions;
 mod debug;
 mod diagram;
 mod explain_types;
+mod fidelity;
 mod kb;
 mod legacy;
 mod lsp;

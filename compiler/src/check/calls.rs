@@ -192,7 +192,7 @@ impl Checker<'_> {
                             .expect("declared");
                         let shown: Vec<&str> = names.iter().map(|n| n.as_str()).collect();
                         self.diags.push(
-                            Diagnostic::error(
+                            Diagnostic::warning(
                                 codes::ACTION_ARITY,
                                 dm.loc(span),
                                 format!(
@@ -224,7 +224,7 @@ impl Checker<'_> {
                     ),
                 };
                 self.diags.push(
-                    Diagnostic::error(
+                    Diagnostic::warning(
                         codes::UNKNOWN_ACTION,
                         dm.loc(span),
                         format!("action `{name}` is not declared in basic_actions.pl"),

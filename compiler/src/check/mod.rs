@@ -10,6 +10,7 @@
 use crate::ast::{Dm, Program, SituationKind};
 use crate::diag::{Diagnostic, Severity};
 use crate::source::FileId;
+use crate::suggest::did_you_mean;
 use sitlog_syntax::{atoms, Atom, Node, Span, TermId, Terms};
 use std::collections::{HashMap, HashSet};
 
@@ -49,12 +50,13 @@ pub mod codes {
     pub const DUPLICATE_LOCAL: &str = "W0222";
     pub const UNKNOWN_RECOVERY_DM: &str = "E0223";
     pub const UNKNOWN_FUNCTION: &str = "E0224";
-    pub const UNKNOWN_ACTION: &str = "E0225";
+    pub const UNKNOWN_ACTION: &str = "W0225";
     pub const KB_SERVICE_WITHOUT_KB: &str = "W0226";
     pub const WORLD_FUNCTION_WITHOUT_WORLD: &str = "W0227";
-    pub const UNBOUND_VARIABLE: &str = "E0228";
-    pub const ACTION_ARITY: &str = "E0229";
+    pub const UNBOUND_VARIABLE: &str = "W0228";
+    pub const ACTION_ARITY: &str = "W0229";
     pub const UNKNOWN_SITUATION_TYPE: &str = "E0230";
+    pub const DEAD_EXIT: &str = "W0231";
     pub const OS_ACCESS: &str = "W0240";
 }
 
@@ -83,11 +85,12 @@ pub fn check(
 }
 
 /// Errors about names that do not resolve (a next situation, an embedded DM
-/// or its arity, an exit arc, a SitLog variable, a function, an action or
-/// its arity) and variables used without a value: the program's structure
-/// is sound and, when run, the faulty path misbehaves only if it is taken
-/// (a clean run-time error where the machine cannot go on; where the
-/// original runs on, so does the run: an unbound variable prints as `_G1`).
+/// or its arity, an exit arc, a SitLog variable, a function): the
+/// program's structure is sound and, when run, the faulty path fails only
+/// if it is taken (a clean run-time error: the original stops there too).
+/// What the original runs on (an undeclared action or one given another
+/// number of arguments does nothing, an unbound variable prints as `_G1`)
+/// is a warning from the start (W0225, W0228, W0229).
 pub const UNRESOLVED: &[&str] = &[
     codes::UNKNOWN_NEXT,
     codes::UNKNOWN_DM,
@@ -95,9 +98,6 @@ pub const UNRESOLVED: &[&str] = &[
     codes::UNKNOWN_EXIT,
     codes::UNKNOWN_VARIABLE,
     codes::UNKNOWN_FUNCTION,
-    codes::UNKNOWN_ACTION,
-    codes::UNBOUND_VARIABLE,
-    codes::ACTION_ARITY,
 ];
 
 /// [`check`]; with `unresolved_as_warnings`, the [`UNRESOLVED`] errors are
@@ -339,6 +339,17 @@ impl<'p> Checker<'p> {
         program.dms.iter().find(|d| d.name == name)
     }
 
+    /// The library file (`behaviors/find.dm`) that defines a DM named
+    /// `name`, when the checker was given a library.
+    fn library_file_defining(&self, name: Atom) -> Option<String> {
+        let library = self.options.library?;
+        library
+            .dm_files(true)
+            .into_iter()
+            .find(|(_, text)| dm_names_in(text).iter().any(|n| n == name.as_str()))
+            .map(|(file, _)| file)
+    }
+
     fn similar_dm(&self, name: Atom) -> Option<&'p str> {
         let program: &'p Program = self.program;
         did_you_mean(name.as_str(), program.dms.iter().map(|d| d.name.as_str()))
@@ -350,34 +361,6 @@ impl<'p> Checker<'p> {
 /// (`grasp_status`, `out_pose`).
 fn is_output_name(name: &str) -> bool {
     name.contains("status") || name.contains("result") || name.starts_with("out")
-}
-
-/// The candidate closest to `target`, if it is close enough to be a typo of
-/// it: at most a third of the name's length apart by edit distance
-/// (a transposition counts one; at least one edit allowed), or sharing
-/// most of its start (Jaro-Winkler similarity 0.9 or more: `greet` for
-/// `greeting`). Never the name itself, nothing for names shorter than 3
-/// characters (any other short name is one edit away); the fewest edits win.
-fn did_you_mean<'a>(
-    target: &str,
-    candidates: impl IntoIterator<Item = &'a str>,
-) -> Option<&'a str> {
-    let len = target.chars().count();
-    let limit = (len / 3).max(1);
-    let mut best: Option<(usize, f64, &'a str)> = None;
-    for c in candidates {
-        if c == target {
-            continue;
-        }
-        let d = strsim::osa_distance(target, c);
-        let jw = strsim::jaro_winkler(target, c);
-        let close = len >= 3 && (d <= limit || jw >= 0.9);
-        let better = best.is_none_or(|(bd, bjw, _)| d < bd || (d == bd && jw > bjw));
-        if close && better {
-            best = Some((d, jw, c));
-        }
-    }
-    best.map(|(_, _, c)| c)
 }
 
 #[cfg(test)]

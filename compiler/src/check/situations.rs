@@ -190,19 +190,40 @@ impl<'p> Checker<'p> {
                     continue;
                 };
                 for v in values {
-                    let targets = index.targets(dm, v);
-                    if targets.is_empty() && is_ground(terms, v) {
+                    let mut targets = index.targets(dm, v);
+                    // No situation's id unifies with it, whatever its
+                    // variables become: the arc can never go on.
+                    if targets.is_empty() {
                         let shown = show(dm, v);
-                        let ids: Vec<String> = dm
+                        let ids: Vec<(usize, String)> = dm
                             .situations
                             .iter()
-                            .filter_map(|s| s.id.map(|id| show(dm, id)))
+                            .enumerate()
+                            .filter_map(|(j, s)| s.id.map(|id| (j, show(dm, id))))
                             .collect();
-                        let help = match did_you_mean(&shown, ids.iter().map(String::as_str)) {
-                            Some(similar) => format!("did you mean `{similar}`?"),
+                        let similar = suggest_term(
+                            terms,
+                            v,
+                            &shown,
+                            dm,
+                            dm.situations
+                                .iter()
+                                .enumerate()
+                                .filter_map(|(j, s)| s.id.map(|id| (j, id))),
+                        );
+                        let help = match similar {
+                            Some((j, similar)) => {
+                                // Taken as meant: no follow-on "unreachable".
+                                targets.push(j);
+                                format!("did you mean `{similar}`?")
+                            }
                             None => format!(
                                 "situations of this DM: {}{}",
-                                ids.iter().take(8).cloned().collect::<Vec<_>>().join(", "),
+                                ids.iter()
+                                    .take(8)
+                                    .map(|(_, s)| s.clone())
+                                    .collect::<Vec<_>>()
+                                    .join(", "),
                                 if ids.len() > 8 { ", …" } else { "" }
                             ),
                         };
@@ -262,7 +283,9 @@ impl<'p> Checker<'p> {
         let terms = &dm.clause.terms;
         for s in &dm.situations {
             let Some(e) = s.embedded_dm else { continue };
-            let Some(values) = static_values(terms, e) else {
+            // The DMs it may call: known by their name and arity even when
+            // the arguments are computed (`ask(Q, get(vocab, _))`).
+            let Some(values) = callees(terms, e) else {
                 continue;
             };
             let mut resolved: Vec<&'p Dm> = Vec::new();
@@ -281,7 +304,17 @@ impl<'p> Checker<'p> {
                             format!("no DM named `{name}`"),
                         )
                         .with_label("embedded DM not found");
-                        if let Some(similar) = self.similar_dm(name) {
+                        if let Some(file) = self.library_file_defining(name) {
+                            let has_models =
+                                self.program.sources.files().any(|(_, f)| {
+                                    f.path.file_name().is_some_and(|n| n == "models")
+                                });
+                            d = d.with_help(if has_models {
+                                format!("DM `{name}` is in the library's `{file}`: add `'{file}'.` to `models`")
+                            } else {
+                                format!("DM `{name}` is in the library's `{file}`: list the application's DM files in a `models` file, with `'{file}'.`")
+                            });
+                        } else if let Some(similar) = self.similar_dm(name) {
                             d = d.with_help(format!("did you mean `{similar}`?"));
                         } else if self.program.single_file {
                             d = d.with_help(
@@ -322,6 +355,21 @@ impl<'p> Checker<'p> {
                 .filter(|t| t.kind(&target.clause) == SituationKind::Final)
                 .filter_map(|t| t.id)
                 .collect();
+            // Whether every final situation has an exit arc that may take
+            // it (an arc whose expectation is not known takes any): then a
+            // dead exit arc is only dead code, which the original runs
+            // (W0231); else the callee ending there stops the run (E0218).
+            let arcs = s.arcs.iter().flatten();
+            let covered = |f: TermId| {
+                arcs.clone()
+                    .any(|arc| match static_values(terms, arc.expectation) {
+                        None => true,
+                        Some(values) => values
+                            .iter()
+                            .any(|&v| may_unify(terms, v, &target.clause.terms, f)),
+                    })
+            };
+            let all_covered = !finals.is_empty() && finals.iter().all(|&f| covered(f));
             for arc in s.arcs.iter().flatten() {
                 let Some(values) = static_values(terms, arc.expectation) else {
                     continue;
@@ -338,9 +386,13 @@ impl<'p> Checker<'p> {
                                 "DM `{}` has no final situation: add `[id ==> {shown}, type ==> final]` to it",
                                 target.name
                             )
-                        } else if let Some(similar) =
-                            did_you_mean(&shown, names.iter().map(String::as_str))
-                        {
+                        } else if let Some((_, similar)) = suggest_term(
+                            terms,
+                            v,
+                            &shown,
+                            target,
+                            finals.iter().copied().enumerate(),
+                        ) {
                             format!("did you mean `{similar}`?")
                         } else {
                             format!(
@@ -349,9 +401,14 @@ impl<'p> Checker<'p> {
                                 names.join(", ")
                             )
                         };
+                        let (code, make): (_, fn(_, _, String) -> Diagnostic) = if all_covered {
+                            (codes::DEAD_EXIT, Diagnostic::warning)
+                        } else {
+                            (codes::UNKNOWN_EXIT, Diagnostic::error)
+                        };
                         self.diags.push(
-                            Diagnostic::error(
-                                codes::UNKNOWN_EXIT,
+                            make(
+                                code,
                                 dm.loc(terms.span(v)),
                                 format!(
                                     "`{shown}` is not a final situation of DM `{}`",
@@ -370,6 +427,36 @@ impl<'p> Checker<'p> {
             }
         }
     }
+}
+
+/// The candidate (its index, its text) that `v` (a term of `terms`, shown
+/// as `shown`) is a typo of, among terms of `dm`: the closest by its text,
+/// else one with the same arity whose name is close to `v`'s
+/// (`serch(Shelves)` → `search(S)`).
+fn suggest_term(
+    terms: &Terms,
+    v: TermId,
+    shown: &str,
+    dm: &Dm,
+    candidates: impl Iterator<Item = (usize, TermId)>,
+) -> Option<(usize, String)> {
+    let candidates: Vec<(usize, TermId, String)> =
+        candidates.map(|(j, t)| (j, t, show(dm, t))).collect();
+    if let Some(similar) = did_you_mean(shown, candidates.iter().map(|(_, _, s)| s.as_str())) {
+        let (j, _, s) = candidates.iter().find(|(_, _, s)| s == similar)?;
+        return Some((*j, s.clone()));
+    }
+    let (name, arity) = terms.functor(v)?;
+    let same_arity: Vec<(usize, Atom, &String)> = candidates
+        .iter()
+        .filter_map(|(j, t, s)| match dm.clause.terms.functor(*t) {
+            Some((n, a)) if a == arity => Some((*j, n, s)),
+            _ => None,
+        })
+        .collect();
+    let best = did_you_mean(name.as_str(), same_arity.iter().map(|(_, n, _)| n.as_str()))?;
+    let (j, _, s) = same_arity.iter().find(|(_, n, _)| n.as_str() == best)?;
+    Some((*j, (*s).clone()))
 }
 
 /// The situations of a DM by id, so that finding the situations a
@@ -475,9 +562,10 @@ impl Broken {
         let mut files: Vec<FileId> = diags
             .iter()
             .filter(|d| {
-                d.is_error()
+                (d.is_error()
                     && (d.code == crate::load::codes::SYNTAX
-                        || d.code == crate::load::codes::NOT_UTF8)
+                        || d.code == crate::load::codes::NOT_UTF8))
+                    || d.code == crate::load::codes::PROLOG_SYNTAX
             })
             .map(|d| d.loc.file)
             .collect();

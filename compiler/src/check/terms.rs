@@ -45,6 +45,23 @@ pub(super) fn static_values(terms: &Terms, t: TermId) -> Option<Vec<TermId>> {
     Some(vec![t])
 }
 
+/// The calls an `embedded_dm` value can be, as far as their DM is known:
+/// each branch of a conditional, and a term whose principal functor is not
+/// evaluated (its arguments may be: `ask(Q, get(vocab, _))` calls
+/// `ask/2`); `None` when the DM itself is computed (a variable, `get(...)`,
+/// `apply(...)`).
+pub(super) fn callees(terms: &Terms, t: TermId) -> Option<Vec<TermId>> {
+    if let Some((a, b)) = conditional(terms, t) {
+        let mut v = callees(terms, a)?;
+        v.extend(callees(terms, b)?);
+        return Some(v);
+    }
+    match terms.functor(t) {
+        Some((name, arity)) if !is_evaluated(name, arity) => Some(vec![t]),
+        _ => None,
+    }
+}
+
 /// Whether two terms could unify, treating every variable as a wildcard.
 pub(super) fn may_unify(ta: &Terms, a: TermId, tb: &Terms, b: TermId) -> bool {
     let mut stack = vec![(a, b)];

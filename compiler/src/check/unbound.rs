@@ -1,5 +1,5 @@
 //! Prolog variables used without a value: a variable in an arc's action or
-//! next situation that nothing can bind before it is used (E0228). The
+//! next situation that nothing can bind before it is used (W0228). The
 //! places that can bind it, in the order a visit runs them: the DM's
 //! parameters and local defaults, the situation's id, `in_arg`, the
 //! `out_arg` variables that `prog` sets, the embedded DM call, the arc's
@@ -16,7 +16,7 @@ use super::*;
 use sitlog_syntax::VarId;
 
 impl Checker<'_> {
-    /// E0228 for every arc of `dm`; returns the variables reported, so that
+    /// W0228 for every arc of `dm`; returns the variables reported, so that
     /// the singleton warning is not given for them too.
     pub(super) fn unbound(&mut self, dm: &Dm, outputs: Outputs<'_>) -> HashSet<VarId> {
         let terms = &dm.clause.terms;
@@ -31,7 +31,9 @@ impl Checker<'_> {
         for l in &dm.locals {
             add_vars(terms, l.value, &mut dm_level);
         }
-        let mut found: Vec<(VarId, TermId, usize, usize)> = Vec::new();
+        // Each use: the variable, where, situation and arc, and the
+        // variables bound in that arc (for "did you mean").
+        let mut found: Vec<(VarId, TermId, usize, usize, Vec<VarId>)> = Vec::new();
         for (si, s) in dm.situations.iter().enumerate() {
             let Some(arcs) = &s.arcs else { continue };
             let mut situation = dm_level.clone();
@@ -54,15 +56,21 @@ impl Checker<'_> {
                 walk(terms, arc.action, true, outputs, &mut bound, &mut uses);
                 walk(terms, arc.next, false, outputs, &mut bound, &mut uses);
                 let mut seen = HashSet::new();
+                let mut near: Option<Vec<VarId>> = None;
                 for (v, t) in uses {
                     if seen.insert(v) && !dm.clause.vars[v.0 as usize].is_anonymous_style() {
-                        found.push((v, t, si, ai));
+                        let near = near.get_or_insert_with(|| {
+                            let mut b: Vec<VarId> = bound.iter().copied().collect();
+                            b.sort_by_key(|v| v.0);
+                            b
+                        });
+                        found.push((v, t, si, ai, near.clone()));
                     }
                 }
             }
         }
-        found.sort_by_key(|&(_, t, _, _)| terms.span(t));
-        for (v, t, si, ai) in found {
+        found.sort_by_key(|&(_, t, _, _, _)| terms.span(t));
+        for (v, t, si, ai, near) in found {
             reported.insert(v);
             let s = &dm.situations[si];
             let name = dm.clause.var_name(v);
@@ -85,16 +93,26 @@ impl Checker<'_> {
             }
             places.push("this arc's expectation".into());
             places.push("the functions and actions before this use".into());
-            let mut d = Diagnostic::error(
+            let mut d = Diagnostic::warning(
                 codes::UNBOUND_VARIABLE,
                 dm.loc(terms.span(t)),
                 format!("variable `{name}` has no value here: nothing binds it before it is used"),
             )
-            .with_label("unbound when the arc runs")
-            .with_help(format!(
-                "looked for what binds `{name}` in {}; give it a value before this use (in the expectation, e.g. `said({name})`, or with `get`, `apply`, `=`), or write `_` if no value is meant",
-                join_places(&places)
-            ));
+            .with_label("unbound when the arc runs");
+            // A near miss of a variable that has a value here (`Drnk`).
+            let similar = did_you_mean(
+                name,
+                near.iter()
+                    .filter(|b| !dm.clause.vars[b.0 as usize].is_anonymous_style())
+                    .map(|&b| dm.clause.var_name(b)),
+            );
+            d = d.with_help(match similar {
+                Some(similar) => format!("did you mean `{similar}`?"),
+                None => format!(
+                    "looked for what binds `{name}` in {}; give it a value before this use (in the expectation, e.g. `said({name})`, or with `get`, `apply`, `=`), or write `_` if no value is meant",
+                    join_places(&places)
+                ),
+            });
             // The same name outside this arc (and its out_arg copy) is
             // another variable on every visit.
             let own: Vec<Span> = [

@@ -504,6 +504,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
 
     /// The step to an evaluated next situation, which must name one (D-19).
     pub fn goto(&mut self, next: Term, arc: Option<usize>) -> Result<Step, RunError> {
+        self.m.chose = Some((self.sit, arc));
         let n = self.m.store.deref(next);
         if self.m.store.functor(n).is_none() {
             return Err(self.error(

@@ -457,14 +457,29 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     }
                     self.store.undo_to(mark);
                 }
-                Err(self.err(
-                    format!(
-                        "there is no situation `{}` in this DM",
-                        self.store.writeq(value)
-                    ),
-                    None,
-                    None,
-                ))
+                // Where the next situation was chosen: that situation and
+                // arc (file:line:col of the arc), when it is known.
+                let message = format!(
+                    "there is no situation `{}` in this DM",
+                    self.store.writeq(value)
+                );
+                let chose = self
+                    .chose
+                    .take()
+                    .filter(|&(sit, _)| (sit as usize) < self.program.situation_count(dm));
+                // The situation's id as written: its name when it runs as
+                // code (no instance of it is built), else a fresh instance's.
+                let id = chose.and_then(|(sit, _)| match self.program.compiled_id(dm, sit) {
+                    Some((name, _)) => Some(Term::atom(name)),
+                    None => self
+                        .program
+                        .instantiate(dm, sit, &mut self.store)
+                        .map(|inst| inst.id),
+                });
+                match (chose, id) {
+                    (Some((sit, arc)), Some(id)) => Err(self.err(message, Some((sit, id)), arc)),
+                    _ => Err(self.err(message, None, None)),
+                }
             }
         }
     }

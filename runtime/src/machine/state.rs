@@ -94,6 +94,11 @@ pub struct Machine<'p, P> {
     /// observer: DM call, situation id, input, depth. Empty between two
     /// situations (so never a garbage-collection root).
     pub(super) unmatched: Vec<(Term, Term, Term, usize)>,
+    /// The situation of the running DM and the arc (0-based) whose next
+    /// situation is the one to select: where a next situation that matches
+    /// no situation is written, for its error. No terms: nothing for the
+    /// garbage collector.
+    pub(super) chose: Option<(SitIx, Option<usize>)>,
 }
 
 impl<'p, P> Machine<'p, P> {
@@ -122,6 +127,7 @@ impl<'p, P> Machine<'p, P> {
             arc_functor: Atom::intern("$arc"),
             again: false,
             unmatched: Vec::new(),
+            chose: None,
         }
     }
 

@@ -284,6 +284,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         observer: &mut Option<&mut dyn Observer>,
     ) -> Result<Term, RunError> {
         let arc = Some(chosen.arc);
+        self.chose = here.map(|(sit, _)| (sit, arc));
         let action = self.eval_in_frame(chosen.action, here, arc)?;
         self.perform(action, actions, here, arc)?;
         let next = self.eval_in_frame(chosen.next, here, arc)?;

@@ -1,6 +1,6 @@
 //! Reading the application's Prolog sources into clauses for the engine:
-//! [`PrologSource`], our reader's syntax errors as [`PrologLoadError`]s
-//! with file:line:col, and `consult/1` / `ensure_loaded/1` directives
+//! [`PrologSource`], [`PrologLoadError`]s with file:line:col (a clause that
+//! does not read is skipped, as SWI-Prolog's consult skips it), and `consult/1` / `ensure_loaded/1` directives
 //! resolved (an embedded source first, then `$SITLOG_HOME/...` and paths
 //! relative to the consulting file, `.pl` added where needed); for the
 //! `--legacy` profile, SWI-Prolog's rule that a file defining a predicate
@@ -149,16 +149,10 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
     if !cx.seen.insert(normalize(Path::new(&source.name))) {
         return;
     }
-    let (clauses, syntax) = read_clauses(&source.text);
-    for e in syntax {
-        let (line, col) = line_col(&source.text, e.span.start as usize);
-        cx.errors.push(PrologLoadError {
-            file: source.name.clone(),
-            line,
-            col,
-            message: e.message.clone(),
-        });
-    }
+    // A clause that does not read is skipped and the rest loaded, as
+    // SWI-Prolog's consult does for the original (`sitlogc check` warns of
+    // it, with its place).
+    let (clauses, _skipped) = read_clauses(&source.text);
     for clause in &clauses {
         let (line, col) = line_col(&source.text, clause.span.start as usize);
         let mut store = Store::new();

@@ -11,8 +11,10 @@
 //! files; each clause is sent to the engine in canonical form, with `'|'/2`
 //! turned into `;/2` (SWI-6 reads `(C -> A | otherwise -> B)` as `;`) and
 //! double-quoted strings as code lists (SWI-6's default). So the engine
-//! never parses application text: syntax errors are our reader's, with
-//! file:line:col, and the engine only reports errors of its own (a clause
+//! never parses application text: a clause our reader cannot read is
+//! skipped and the rest loaded, as SWI-Prolog's consult does for the
+//! original (`sitlogc check` warns of it with its file:line:col), and the
+//! engine only reports errors of its own (a clause
 //! it refuses, a failing directive) by clause position. `consult/1` and
 //! `ensure_loaded/1` directives load the named file the same way
 //! (`$SITLOG_HOME/...` is the `SITLOG_HOME` environment variable, else the

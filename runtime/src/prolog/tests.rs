@@ -214,16 +214,16 @@ fn libraries_yield_to_application_definitions() {
 
 #[test]
 fn load_errors_have_positions() {
-    let errs = PrologFunctions::load(
-        &[PrologSource::new("uf.pl", "ok(1).\nbad(X :- .\n")],
+    // A clause that does not read is skipped, the rest loaded, as
+    // SWI-Prolog's consult does (issue 39; `check` warns, W0008).
+    let loaded = PrologFunctions::load(
+        &[PrologSource::new(
+            "uf.pl",
+            "bad(X :- .\nok(X) :- assign_func_value(X).\n",
+        )],
         PrologOptions::default(),
-    )
-    .unwrap_err();
-    assert_eq!(
-        (errs[0].file.as_str(), errs[0].line),
-        ("uf.pl", 2),
-        "{errs:?}"
     );
+    assert!(loaded.is_ok(), "{:?}", loaded.err());
     let errs = PrologFunctions::load(
         &[PrologSource::new("uf.pl", "ok(1).\n:- consult(nowhere).\n")],
         PrologOptions::default(),

@@ -1,0 +1,98 @@
+//! An application's settings for `sitlogc`: `sitlog.toml` beside its DMs
+//! ([`AppConfig`]). One key for now, `deny-warnings = true`: `check`, `run`
+//! and `build` of the application treat its warnings as errors, as
+//! `--deny-warnings` does (like `rustc -D warnings`, for an application
+//! that wants to stay free of them).
+//!
+//! Invariant: no file means the defaults; an unknown key, a value of the
+//! wrong type or text that is not TOML is an error naming
+//! `FILE:LINE:COL`, never ignored.
+
+use std::path::{Path, PathBuf};
+
+/// The settings file of an application directory.
+pub const FILE: &str = "sitlog.toml";
+
+/// What `sitlog.toml` sets.
+#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct AppConfig {
+    /// Warnings are errors (`--deny-warnings`).
+    #[serde(default)]
+    pub deny_warnings: bool,
+}
+
+/// The settings file of `app` (an application directory, or the directory
+/// of a DM file).
+pub fn path_of(app: &Path) -> PathBuf {
+    let dir = if app.is_dir() {
+        app.to_path_buf()
+    } else {
+        app.parent().map(Path::to_path_buf).unwrap_or_default()
+    };
+    dir.join(FILE)
+}
+
+/// The settings of `app`: its `sitlog.toml`, or the defaults without one.
+/// `Err`: the message (`FILE:LINE:COL: error: ...`) and the exit status
+/// (1 for bad content, 2 when the file cannot be read).
+pub fn read(app: &Path) -> Result<AppConfig, (u8, String)> {
+    let path = path_of(app);
+    if !path.is_file() {
+        return Ok(AppConfig::default());
+    }
+    let file =
+        sitlog_robot::TextFile::read(&path, "settings").map_err(|e| (e.status, e.message))?;
+    parse(&file.name, &file.text).map_err(|m| (1, m))
+}
+
+/// `text`, a `sitlog.toml` named `name`, read.
+pub fn parse(name: &str, text: &str) -> Result<AppConfig, String> {
+    toml::from_str(text).map_err(|e: toml::de::Error| {
+        let message = e.message().trim().replace('\n', " ");
+        match e.span() {
+            Some(span) => {
+                let (line, column) = line_col(text, span.start);
+                format!("{name}:{line}:{column}: error: {message}")
+            }
+            None => format!("{name}: error: {message}"),
+        }
+    })
+}
+
+/// 1-based line and column (in characters) of byte offset `at` in `text`.
+fn line_col(text: &str, at: usize) -> (usize, usize) {
+    let mut at = at.min(text.len());
+    while !text.is_char_boundary(at) {
+        at -= 1;
+    }
+    let before = &text[..at];
+    let line = before.matches('\n').count() + 1;
+    let start = before.rfind('\n').map_or(0, |i| i + 1);
+    (line, before[start..].chars().count() + 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_the_key_and_refuses_others_with_their_place() {
+        assert_eq!(parse("s.toml", ""), Ok(AppConfig::default()));
+        assert_eq!(
+            parse("s.toml", "deny-warnings = true\n"),
+            Ok(AppConfig {
+                deny_warnings: true
+            })
+        );
+        let e = parse("s.toml", "# settings\ndeny-warning = true\n").unwrap_err();
+        assert!(
+            e.starts_with("s.toml:2:1: error: unknown field `deny-warning`"),
+            "{e}"
+        );
+        let e = parse("s.toml", "deny-warnings = \"yes\"\n").unwrap_err();
+        assert!(e.starts_with("s.toml:1:17: error: "), "{e}");
+        let e = parse("s.toml", "deny-warnings = \n").unwrap_err();
+        assert!(e.starts_with("s.toml:1:"), "{e}");
+    }
+}
