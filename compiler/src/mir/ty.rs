@@ -417,7 +417,7 @@ struct State<'a> {
     ir: &'a Ir,
     mir: &'a Mir,
     t: MirTypes,
-    /// Per DM: whether it is an entry (its parameters and pipe `Term`).
+    /// Whether the current round made a type grow.
     changed: bool,
     /// Names written by Prolog user functions through `var_op`
     /// (`None`: some name unknown, every variable).
@@ -442,13 +442,15 @@ pub fn infer(ir: &Ir, mir: &Mir) -> MirTypes {
                 .collect(),
             sits: (0..dm.situations.len())
                 .map(|s| {
-                    mir.dms.get(d).and_then(|p| p.get(s)).and_then(Option::as_ref).map(|p| {
-                        SitTypes {
+                    mir.dms
+                        .get(d)
+                        .and_then(|p| p.get(s))
+                        .and_then(Option::as_ref)
+                        .map(|p| SitTypes {
                             regs: vec![Typed::never(); p.regs],
                             id_args: vec![Typed::never(); p.id.1],
                             pipe: Typed::never(),
-                        }
-                    })
+                        })
                 })
                 .collect(),
         })
@@ -496,9 +498,13 @@ fn default_ty(store: &Store, t: Term) -> Typed {
 
 /// What the Prolog user functions write through `var_op` (see the module doc).
 fn prolog_writes(ir: &Ir) -> Option<Vec<Atom>> {
+    prolog_writes_in(ir.prolog_sources.iter().map(|f| f.text.as_str()))
+}
+
+/// [`prolog_writes`] of these Prolog texts.
+fn prolog_writes_in<'t>(texts: impl Iterator<Item = &'t str>) -> Option<Vec<Atom>> {
     let mut names = Vec::new();
-    for file in &ir.prolog_sources {
-        let text = file.text.as_str();
+    for text in texts {
         let mut rest = text;
         while let Some(i) = rest.find("var_op(") {
             rest = &rest[i + "var_op(".len()..];
@@ -506,9 +512,7 @@ fn prolog_writes(ir: &Ir) -> Option<Vec<Atom>> {
             if op.starts_with("get(") || op.starts_with("inc(") {
                 continue;
             }
-            let Some(after) = op.strip_prefix("set(") else {
-                return None;
-            };
+            let after = op.strip_prefix("set(")?;
             let after = after.trim_start();
             let name: String = after
                 .chars()
@@ -656,7 +660,8 @@ impl<'a> State<'a> {
             let pipe_in = self.t.dms[d].pipe_in.clone();
             if let Some(s0) = self.t.dms[d].sits.first_mut().and_then(Option::as_mut) {
                 self.changed |= s0.pipe.absorb(&pipe_in);
-                let why = Typed::term("the DM's first situation is entered with its id unbound (D-4)");
+                let why =
+                    Typed::term("the DM's first situation is entered with its id unbound (D-4)");
                 for a in &mut s0.id_args {
                     self.changed |= a.absorb(&why);
                 }
@@ -747,10 +752,9 @@ impl<'a> State<'a> {
                 }
             }
             Build::Reg(r) => self.reg(d, s, *r),
-            Build::Compound(name, args) => compound_ty(
-                *name,
-                args.iter().map(|a| self.build_ty(d, s, a)).collect(),
-            ),
+            Build::Compound(name, args) => {
+                compound_ty(*name, args.iter().map(|a| self.build_ty(d, s, a)).collect())
+            }
         }
     }
 
@@ -922,9 +926,9 @@ impl<'a> State<'a> {
                 Value::Float(_) => *v == Ty::Float,
                 Value::Compound(name, args) => args_of(&Typed::of(v.clone()), name, args.len())
                     .is_some_and(|vs| {
-                        args.iter().zip(&vs).all(|(&a, t)| {
-                            self.can_match(&Build::Const(a), &t.ty, depth + 1)
-                        })
+                        args.iter()
+                            .zip(&vs)
+                            .all(|(&a, t)| self.can_match(&Build::Const(a), &t.ty, depth + 1))
                     }),
                 _ => true,
             },
@@ -944,7 +948,10 @@ impl<'a> State<'a> {
             Ev::Value(r) => Some(Build::Reg(*r)),
             Ev::Built(b) => Some(clone_build(b)),
             Ev::Compound(name, args) => {
-                let args = args.iter().map(Self::pattern_of).collect::<Option<Vec<_>>>()?;
+                let args = args
+                    .iter()
+                    .map(Self::pattern_of)
+                    .collect::<Option<Vec<_>>>()?;
                 Some(Build::Compound(*name, args.into()))
             }
             _ => None,
@@ -1080,7 +1087,11 @@ impl<'a> State<'a> {
             let t = match init {
                 Init::IdArg(i) => id_args.get(*i).cloned().unwrap_or_else(Typed::never),
                 Init::IdPath(path) => self.id_path(p, &id_args, path),
-                Init::HeadArg(i) => self.t.dms[d].params.get(*i).cloned().unwrap_or_else(Typed::never),
+                Init::HeadArg(i) => self.t.dms[d]
+                    .params
+                    .get(*i)
+                    .cloned()
+                    .unwrap_or_else(Typed::never),
                 Init::Pipe => pipe.clone(),
                 Init::Fresh => {
                     fresh.push(*r);
@@ -1111,7 +1122,10 @@ impl<'a> State<'a> {
         // `is` in prog binds its variable before the arcs read it.
         if let Some(Prog::InPlace(evs)) = &p.prog {
             for e in evs {
-                if let Ev::Is { lhs: Build::Reg(r), .. } = e {
+                if let Ev::Is {
+                    lhs: Build::Reg(r), ..
+                } = e
+                {
                     if fresh.contains(r) {
                         bound.push(*r);
                     }
@@ -1147,7 +1161,12 @@ impl<'a> State<'a> {
                 self.changed |= self.t.dms[d].pipe_out.absorb(&leaves);
             }
             KindPlan::Perceptual(arcs) => self.arcs(d, s, arcs, None, &pipe, out.as_ref()),
-            KindPlan::Recursive { call, eval_call, exit, .. } => {
+            KindPlan::Recursive {
+                call,
+                eval_call,
+                exit,
+                ..
+            } => {
                 let callee = self.callee(call);
                 let args: Option<Vec<Typed>> = match call {
                     Build::Compound(_, args) => Some(
@@ -1189,7 +1208,9 @@ impl<'a> State<'a> {
                         self.arcs(d, s, exit, Some(&finals), &back, None);
                     }
                     None => {
-                        let finals = vec![Typed::term("the final situation of a DM computed at run time")];
+                        let finals = vec![Typed::term(
+                            "the final situation of a DM computed at run time",
+                        )];
                         let back = Typed::term("the pipe of a DM computed at run time");
                         self.arcs(d, s, exit, Some(&finals), &back, None);
                     }
@@ -1226,7 +1247,10 @@ impl<'a> State<'a> {
                 }
             }
             Build::Compound(name, args) if eval::evaluates_arguments_only(*name, args.len()) => {
-                compound_ty(*name, args.iter().map(|a| self.eval_build(d, s, a)).collect())
+                compound_ty(
+                    *name,
+                    args.iter().map(|a| self.eval_build(d, s, a)).collect(),
+                )
             }
             Build::Compound(..) => Typed::term("the value of a user function or the evaluator"),
         }
@@ -1242,7 +1266,9 @@ impl<'a> State<'a> {
             }
             match self.mir.plan(c as u32, s as SitIx) {
                 Some(p) => out.push(self.final_value(c, s, p)),
-                None => out.push(Typed::term("a final situation instantiated from its template")),
+                None => out.push(Typed::term(
+                    "a final situation instantiated from its template",
+                )),
             }
         }
         out
@@ -1358,7 +1384,10 @@ fn action_is_lhs(a: &Action, out: &mut Vec<Reg>) {
         Action::One(e) => std::slice::from_ref(e),
     };
     for e in items {
-        if let Ev::Is { lhs: Build::Reg(r), .. } = e {
+        if let Ev::Is {
+            lhs: Build::Reg(r), ..
+        } = e
+        {
             out.push(*r);
         }
     }
@@ -1396,7 +1425,9 @@ fn shape_certain(pat: &Build, v: &Ty) -> bool {
     match (pat, v) {
         (Build::Reg(_), _) => true,
         (Build::Compound(name, args), Ty::Tagged(f, ts)) => {
-            name == f && args.len() == ts.len() && args.iter().zip(ts.iter()).all(|(a, t)| shape_certain(a, t))
+            name == f
+                && args.len() == ts.len()
+                && args.iter().zip(ts.iter()).all(|(a, t)| shape_certain(a, t))
         }
         _ => false,
     }
@@ -1407,5 +1438,391 @@ fn clone_build(b: &Build) -> Build {
         Build::Const(t) => Build::Const(*t),
         Build::Reg(r) => Build::Reg(*r),
         Build::Compound(n, args) => Build::Compound(*n, args.iter().map(clone_build).collect()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{check, ir, load};
+    use proptest::prelude::*;
+
+    fn ir_of(src: &str) -> Ir {
+        let (program, diags) = load::load_sources(&[("t.dm", src)]);
+        let (result, diags) = check::check(program, diags);
+        let checked = result.unwrap_or_else(|_| {
+            let errors: Vec<_> = diags.iter().filter(|d| d.is_error()).collect();
+            panic!("does not check: {errors:#?}")
+        });
+        ir::lower(&checked)
+    }
+
+    fn types_of(src: &str) -> (Ir, Mir, MirTypes) {
+        let ir = ir_of(src);
+        let mir = crate::mir::lower(&ir);
+        let t = infer(&ir, &mir);
+        (ir, mir, t)
+    }
+
+    fn dm(ir: &Ir, name: &str) -> usize {
+        ir.dm_by_name(Atom::intern(name)).unwrap() as usize
+    }
+
+    /// The situation at this position of the DM's list.
+    fn sit(_: &Ir, _: usize, k: usize) -> usize {
+        k
+    }
+
+    /// The type of the situation's register that the variable `var` starts in.
+    fn var_ty(ir: &Ir, mir: &Mir, t: &MirTypes, d: usize, s: usize, var: &str) -> Ty {
+        let p = mir.plan(d as u32, s as SitIx).expect("a plan");
+        let dmv = &ir.dms[d];
+        let index = dmv
+            .var_index_names
+            .iter()
+            .find(|(_, n)| n == var)
+            .unwrap_or_else(|| panic!("no variable {var}"))
+            .0;
+        // The variable's register: the init whose source term is the variable.
+        let f = ir.store.args(dmv.situations[s].template);
+        let mut vars = Vec::new();
+        for &x in &f[..ARCS] {
+            Planner::new(&ir.store, dmv).term_vars(x, &mut vars);
+        }
+        let k = vars
+            .iter()
+            .position(|&v| v == index)
+            .expect("a situation variable");
+        let r = p.inits[k].0;
+        t.dms[d].sits[s].as_ref().unwrap().regs[r as usize]
+            .ty
+            .clone()
+    }
+
+    fn all_native(t: &MirTypes, d: usize, s: usize) -> bool {
+        t.dms[d].sits[s]
+            .as_ref()
+            .unwrap()
+            .regs
+            .iter()
+            .all(Typed::is_native)
+    }
+
+    /// Workload (d) of issue 37, the list given by a caller as a constant.
+    const SEARCH: &str = r#"
+diag_mod(main,
+  [ [ id ==> round, type ==> recursive,
+      embedded_dm ==> search([kitchen, hall, bedroom], bedroom),
+      arcs ==> [ found(P) : say(P) => fs, not_found : empty => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+diag_mod(search(Places, Target),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => try(Places) ] ],
+    [ id ==> try([]), type ==> neutral, arcs ==> [ empty : empty => not_found ] ],
+    [ id ==> try([P|Ps]), type ==> neutral,
+      arcs ==> [ empty : empty => (P == Target -> found(P) ; otherwise -> try(Ps)) ] ],
+    [ id ==> found(P), type ==> final ],
+    [ id ==> not_found, type ==> final ] ],
+  []).
+"#;
+
+    #[test]
+    fn a_list_walk_by_compound_id_is_typed() {
+        let (ir, mir, t) = types_of(SEARCH);
+        let s = dm(&ir, "search");
+        let syms = Ty::list(Ty::Sym);
+        assert_eq!(t.dms[s].params[0].ty, syms);
+        assert_eq!(t.dms[s].params[1].ty, Ty::Sym);
+        let walk = sit(&ir, s, 2);
+        assert_eq!(t.dms[s].sits[walk].as_ref().unwrap().id_args[0].ty, syms);
+        assert_eq!(var_ty(&ir, &mir, &t, s, walk, "P"), Ty::Sym);
+        assert_eq!(var_ty(&ir, &mir, &t, s, walk, "Ps"), syms);
+        let found = sit(&ir, s, 3);
+        assert_eq!(var_ty(&ir, &mir, &t, s, found, "P"), Ty::Sym);
+        for k in 0..ir.dms[s].situations.len() {
+            assert!(all_native(&t, s, k), "{}", t.sit_line(s, k));
+        }
+        // The caller's exit arc `found(P)` gets the callee's atom.
+        let m = dm(&ir, "main");
+        let round = &t.dms[m].sits[0].as_ref().unwrap();
+        assert!(
+            round.regs.iter().all(Typed::is_native),
+            "{}",
+            t.sit_line(m, 0)
+        );
+        assert!(t.summary().starts_with("MIR registers typed: "));
+    }
+
+    /// Workload (c) of issue 37, the limit put in the pipe by the caller.
+    #[test]
+    fn the_pipe_is_followed_through_a_call_and_back() {
+        let (ir, mir, t) = types_of(
+            r#"
+diag_mod(main,
+  [ [ id ==> start, type ==> neutral, out_arg ==> 5, arcs ==> [ empty : empty => call ] ],
+    [ id ==> call, type ==> recursive, in_arg ==> Limit, embedded_dm ==> echo,
+      arcs ==> [ back : [inc(n, N)] => (N >= Limit -> fs ; otherwise -> call) ] ],
+    [ id ==> fs, type ==> final ] ],
+  [ n ==> 0 ]).
+diag_mod(echo,
+  [ [ id ==> is, type ==> neutral, in_arg ==> X, out_arg ==> X,
+      arcs ==> [ empty : empty => back ] ],
+    [ id ==> back, type ==> final ] ],
+  []).
+"#,
+        );
+        let m = dm(&ir, "main");
+        let e = dm(&ir, "echo");
+        // `start` receives the command line's in_arg, sends an int.
+        assert_eq!(t.dms[m].sits[0].as_ref().unwrap().pipe.ty, Ty::Term);
+        let call = sit(&ir, m, 1);
+        assert_eq!(var_ty(&ir, &mir, &t, m, call, "Limit"), Ty::Int);
+        assert_eq!(t.dms[e].pipe_in.ty, Ty::Int);
+        assert_eq!(t.dms[e].pipe_out.ty, Ty::Int);
+        assert_eq!(var_ty(&ir, &mir, &t, e, 0, "X"), Ty::Int);
+        assert!(all_native(&t, m, call), "{}", t.sit_line(m, call));
+        assert_eq!(t.dms[m].locals[0].1.ty, Ty::Int);
+        // The main DM's pipe is the command line's: a term, and why.
+        let line = t.dm_line(&ir, m);
+        assert!(line.contains("pipe in term (the main DM"), "{line}");
+    }
+
+    #[test]
+    fn a_countdown_through_an_id_argument_is_an_int() {
+        let (ir, mir, t) = types_of(
+            r#"
+diag_mod(main,
+  [ [ id ==> go, type ==> recursive, embedded_dm ==> down(3), arcs ==> [ done : empty => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+diag_mod(down(Max),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => count(Max) ] ],
+    [ id ==> count(N), type ==> neutral,
+      arcs ==> [ empty : [M is N - 1] => (N > 0 -> count(M) ; otherwise -> done) ] ],
+    [ id ==> done, type ==> final ] ],
+  []).
+"#,
+        );
+        let d = dm(&ir, "down");
+        assert_eq!(t.dms[d].params[0].ty, Ty::Int);
+        let count = sit(&ir, d, 1);
+        assert_eq!(var_ty(&ir, &mir, &t, d, count, "N"), Ty::Int);
+        assert!(all_native(&t, d, count), "{}", t.sit_line(d, count));
+    }
+
+    #[test]
+    fn a_list_built_by_cons_keeps_its_element_type() {
+        let (ir, mir, t) = types_of(
+            r#"
+diag_mod(main,
+  [ [ id ==> go, type ==> recursive, embedded_dm ==> rev([a, b, c]), arcs ==> [ out(_) : empty => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+diag_mod(rev(Items),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => acc([], Items) ] ],
+    [ id ==> acc(Done, []), type ==> neutral, arcs ==> [ empty : empty => out(Done) ] ],
+    [ id ==> acc(Done, [O|Os]), type ==> neutral,
+      arcs ==> [ empty : empty => acc([O|Done], Os) ] ],
+    [ id ==> out(R), type ==> final ] ],
+  []).
+"#,
+        );
+        let d = dm(&ir, "rev");
+        let walk = sit(&ir, d, 2);
+        assert_eq!(var_ty(&ir, &mir, &t, d, walk, "Done"), Ty::list(Ty::Sym));
+        assert_eq!(var_ty(&ir, &mir, &t, d, walk, "O"), Ty::Sym);
+        let out = sit(&ir, d, 3);
+        assert_eq!(var_ty(&ir, &mir, &t, d, out, "R"), Ty::list(Ty::Sym));
+    }
+
+    #[test]
+    fn what_stays_a_term_says_why() {
+        let (ir, mir, t) = types_of(
+            r#"
+diag_mod(main(Arg),
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : [set(mode, 1)] => c1 ] ],
+    [ id ==> c1, type ==> recursive, embedded_dm ==> take(1, _),
+      arcs ==> [ fs : empty => c2 ] ],
+    [ id ==> c2, type ==> recursive, embedded_dm ==> take(x, Arg),
+      arcs ==> [ fs : empty => listen ] ],
+    [ id ==> listen, type ==> listening,
+      arcs ==> [ said(W) : say(W) => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  [ mode ==> idle ]).
+diag_mod(take(A, B),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : [say(A), say(B)] => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#,
+        );
+        let m = dm(&ir, "main");
+        let take = dm(&ir, "take");
+        let why = |x: &Typed| x.why.clone().unwrap_or_default();
+        assert_eq!(t.dms[m].params[0].ty, Ty::Term);
+        assert!(why(&t.dms[m].params[0]).contains("main DM"));
+        // int and atom meet.
+        let a = &t.dms[take].params[0];
+        assert_eq!(a.ty, Ty::Term);
+        assert!(why(a).contains("meet here"), "{a:?}");
+        // An unbound argument, then the caller's term parameter.
+        let b = &t.dms[take].params[1];
+        assert!(why(b).contains("fresh variable"), "{b:?}");
+        let mode = &t.dms[m].locals[0].1;
+        assert_eq!(mode.ty, Ty::Term);
+        let listen = sit(&ir, m, 3);
+        let line = t.sit_line(m, listen);
+        assert!(line.contains("perception"), "{line}");
+        let _ = var_ty(&ir, &mir, &t, m, 0, "Arg");
+    }
+
+    #[test]
+    fn prolog_writes_through_var_op() {
+        let n = prolog_writes_in(["f(X) :- var_op(set(count, X)), var_op(get(k, _))."].into_iter());
+        assert_eq!(n, Some(vec![Atom::intern("count")]));
+        assert_eq!(
+            prolog_writes_in(["g(N) :- var_op(set(N, 1))."].into_iter()),
+            None
+        );
+        assert_eq!(prolog_writes_in(["h(O) :- var_op(O)."].into_iter()), None);
+        assert_eq!(
+            prolog_writes_in(["i :- var_op(inc(n, _))."].into_iter()),
+            Some(vec![])
+        );
+    }
+
+    #[test]
+    fn constants_have_their_ground_type() {
+        let mut store = Store::new();
+        let mut ty = |s: &str| {
+            let t = store.parse(s).unwrap().0;
+            of_ground(&store, t).to_string()
+        };
+        assert_eq!(ty("[a, b]"), "list<atom>");
+        assert_eq!(ty("[]"), "list<never>");
+        assert_eq!(ty("[a, 1]"), "list<term>");
+        assert_eq!(ty("p(1, 2.0, x)"), "p(int, float, atom)");
+        assert_eq!(ty("[a | b]"), "term");
+        assert_eq!(ty("123456789012345678901234567890"), "term");
+        assert_eq!(ty("p(X)"), "p(term)");
+    }
+
+    /// A small random DM over the shapes above: compound ids, lists,
+    /// calls with arguments, the pipe, locals.
+    fn random_dm() -> impl Strategy<Value = String> {
+        let value = prop_oneof![
+            Just("a"),
+            Just("1"),
+            Just("2.5"),
+            Just("[]"),
+            Just("[a, b]"),
+            Just("f(a)"),
+            Just("X"),
+            Just("_"),
+            Just("[X|Xs]"),
+            Just("Xs"),
+            Just("get(n, _)"),
+        ];
+        let next = prop_oneof![
+            Just("s(V)".to_owned()),
+            Just("s([V|Xs])".to_owned()),
+            Just("t".to_owned()),
+            Just("r(Xs)".to_owned()),
+            Just("fs".to_owned()),
+            Just("(V == a -> s(V) ; otherwise -> fs)".to_owned()),
+        ];
+        (
+            proptest::collection::vec(value.clone(), 4),
+            proptest::collection::vec(next, 3),
+            any::<bool>(),
+        )
+            .prop_map(move |(v, n, pipe)| {
+                let io = if pipe {
+                    "in_arg ==> X, out_arg ==> V,"
+                } else {
+                    ""
+                };
+                format!(
+                    r#"
+diag_mod(main,
+  [ [ id ==> go, type ==> recursive, embedded_dm ==> d({}, {}),
+      arcs ==> [ r(R) : say(R) => fs, t : empty => go, fs : empty => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  [ n ==> 0 ]).
+diag_mod(d(X, Xs),
+  [ [ id ==> is, type ==> neutral, {io} arcs ==> [ empty : [V is 1, set(n, {})] => {} ] ],
+    [ id ==> s(V), type ==> neutral, arcs ==> [ empty : empty => {} ] ],
+    [ id ==> s([V|W]), type ==> neutral, arcs ==> [ empty : set(n, W) => {} ] ],
+    [ id ==> t, type ==> final ],
+    [ id ==> r(Q), type ==> final, out_arg ==> Q ],
+    [ id ==> fs, type ==> final, out_arg ==> {} ] ],
+  [ n ==> 0 ]).
+"#,
+                    v[0].replace("X", "a").replace('_', "b"),
+                    v[1].replace("X", "b").replace('_', "c"),
+                    v[2],
+                    n[0],
+                    n[1],
+                    n[2],
+                    v[3],
+                )
+            })
+    }
+
+    #[test]
+    fn the_random_dms_mostly_check() {
+        use proptest::strategy::ValueTree;
+        let mut runner = proptest::test_runner::TestRunner::deterministic();
+        let mut ok = 0;
+        for _ in 0..40 {
+            let src = random_dm().new_tree(&mut runner).unwrap().current();
+            let (program, diags) = load::load_sources(&[("t.dm", src.as_str())]);
+            let (result, diags) = check::check(program, diags);
+            if result.is_ok() {
+                ok += 1;
+            } else if ok == 0 {
+                eprintln!(
+                    "{src}\n{:?}",
+                    diags
+                        .iter()
+                        .filter(|d| d.is_error())
+                        .map(|d| &d.message)
+                        .collect::<Vec<_>>()
+                );
+            }
+        }
+        assert!(ok >= 20, "{ok} of 40 random DMs check");
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+        #[test]
+        fn inference_never_fails(src in random_dm()) {
+            let (program, diags) = load::load_sources(&[("t.dm", src.as_str())]);
+            let (result, _) = check::check(program, diags);
+            if let Ok(checked) = result {
+                let ir = ir::lower(&checked);
+                let mir = crate::mir::lower(&ir);
+                let t = infer(&ir, &mir);
+                let (typed, regs, clean, sits) = t.counts();
+                prop_assert!(typed <= regs && clean <= sits);
+                for (d, plans) in mir.dms.iter().enumerate() {
+                    for (s, p) in plans.iter().enumerate() {
+                        if let Some(p) = p {
+                            let st = t.dms[d].sits[s].as_ref().unwrap();
+                            prop_assert_eq!(st.regs.len(), p.regs);
+                            // Every constant has its ground type.
+                            let mut ks = Vec::new();
+                            p.constants(&mut ks);
+                            for k in ks {
+                                prop_assert!(of_ground(&ir.store, k).depth() <= sitlog_runtime::native::MAX_DEPTH);
+                            }
+                            let _ = t.sit_line(d, s);
+                        }
+                    }
+                    let _ = t.dm_line(&ir, d);
+                }
+            }
+        }
     }
 }
