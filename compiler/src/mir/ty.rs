@@ -808,6 +808,10 @@ impl<'a> State<'a> {
             Ev::Value(r) => self.reg(d, s, *r),
             Ev::Built(b) => self.build_ty(d, s, b),
             Ev::Eval(b) => {
+                if let Some((op, name, arg)) = self.var_op_of(d, s, b) {
+                    // `set(n, c)` written out: a variable operation.
+                    return self.var_op_value(d, op, name, Some(arg));
+                }
                 self.scan_writes(d, s, b, 0);
                 Typed::term("the value of a user function or the evaluator")
             }
@@ -843,6 +847,31 @@ impl<'a> State<'a> {
                 let args = args.iter().map(|a| self.ev(d, s, a)).collect();
                 compound_ty(*name, args)
             }
+        }
+    }
+
+    /// `get`/`set`/`inc` of a named variable, as a term the evaluator
+    /// runs: the operation, the name and the argument's type.
+    fn var_op_of(&self, d: usize, s: usize, b: &Build) -> Option<(Atom, Atom, Typed)> {
+        let ops = [atoms::GET, atoms::SET, atoms::INC];
+        match b {
+            Build::Const(t) => match self.store().value(*t) {
+                Value::Compound(op, &[n, arg]) if ops.contains(&op) => Some((
+                    op,
+                    self.store().atom_of(n)?,
+                    Typed::of(of_ground(self.store(), arg)),
+                )),
+                _ => None,
+            },
+            Build::Compound(op, args) if args.len() == 2 && ops.contains(op) => match &args[0] {
+                Build::Const(n) => Some((
+                    *op,
+                    self.store().atom_of(*n)?,
+                    self.build_ty(d, s, &args[1]),
+                )),
+                _ => None,
+            },
+            _ => None,
         }
     }
 
@@ -1222,6 +1251,21 @@ impl<'a> State<'a> {
     /// A call's argument as the machine evaluates it (arguments of a
     /// compound evaluated; a constant evaluated if it is not inert).
     fn eval_build(&self, d: usize, s: usize, b: &Build) -> Typed {
+        if let Some((op, name, arg)) = self.var_op_of(d, s, b) {
+            // `set` gives the value written, `get`/`inc` the variable's
+            // (the write itself is found by `scan_writes`).
+            if op == atoms::SET {
+                return arg;
+            }
+            let cur = self.var(d, name);
+            return match &cur.why {
+                Some(w) if !cur.is_native() => Typed {
+                    why: Some(format!("variable `{}` is a term: {w}", name.as_str())),
+                    ty: cur.ty,
+                },
+                _ => cur,
+            };
+        }
         match b {
             Build::Reg(r) => self.reg(d, s, *r),
             Build::Const(t) => {
