@@ -289,11 +289,19 @@ fn of_ground_at(store: &Store, t: Term, depth: usize) -> Ty {
         Value::Float(_) => Ty::Float,
         Value::Atom(a) if a == atoms::NIL => Ty::list(Ty::Never),
         Value::Atom(_) => Ty::Sym,
-        Value::Compound(name, &[h, tl]) if name == atoms::DOT => {
-            let head = of_ground_at(store, h, depth + 1);
-            match of_ground_at(store, tl, depth) {
-                Ty::List(e) => Ty::list(head.join(&e)),
-                _ => Ty::Term,
+        Value::Compound(name, &[_, _]) if name == atoms::DOT => {
+            // Along the spine without recursion (a list may be long).
+            let mut elem = Ty::Never;
+            let mut rest = t;
+            loop {
+                match store.value(rest) {
+                    Value::Compound(name, &[h, tl]) if name == atoms::DOT => {
+                        elem = elem.join(&of_ground_at(store, h, depth + 1));
+                        rest = tl;
+                    }
+                    Value::Atom(a) if a == atoms::NIL => return Ty::list(elem),
+                    _ => return Ty::Term,
+                }
             }
         }
         Value::Compound(name, args) => Ty::tagged(
@@ -1749,6 +1757,8 @@ diag_mod(take(A, B),
         assert_eq!(ty("[a | b]"), "term");
         assert_eq!(ty("123456789012345678901234567890"), "term");
         assert_eq!(ty("p(X)"), "p(term)");
+        let long = format!("[{}]", vec!["a"; 100_000].join(", "));
+        assert_eq!(ty(&long), "list<atom>");
     }
 
     /// A small random DM over the shapes above: compound ids, lists,
