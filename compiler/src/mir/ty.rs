@@ -128,6 +128,8 @@ pub struct SitTypes {
     pub id_args: Vec<Typed>,
     /// The pipe entering the situation.
     pub pipe: Typed,
+    /// Whether the situation has an in_arg (reads the pipe).
+    pub reads_pipe: bool,
 }
 
 /// The types of one DM.
@@ -230,6 +232,13 @@ impl MirTypes {
         let mut line = format!("    MIR registers {typed}/{n} typed");
         if n > 0 {
             line.push_str(&format!(" [{}]", tys.join(", ")));
+        }
+        if !s.id_args.is_empty() {
+            let a: Vec<String> = s.id_args.iter().map(|t| t.ty.to_string()).collect();
+            line.push_str(&format!("; id arguments ({})", a.join(", ")));
+        }
+        if s.reads_pipe {
+            line.push_str(&format!("; pipe in {}", s.pipe.ty));
         }
         // The reasons, grouped: `term: r3, r5 (why); r4 (why)`.
         let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
@@ -458,6 +467,7 @@ pub fn infer(ir: &Ir, mir: &Mir) -> MirTypes {
                             regs: vec![Typed::never(); p.regs],
                             id_args: vec![Typed::never(); p.id.1],
                             pipe: Typed::never(),
+                            reads_pipe: p.in_arg.is_some(),
                         })
                 })
                 .collect(),
