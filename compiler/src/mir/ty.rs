@@ -40,7 +40,8 @@
 //!   user functions' source is scanned, `var_op(set(name, ..))` makes
 //!   `name` a `Term`, a `var_op` whose operation or name is not written
 //!   there makes every local and global a `Term`; `var_op(get(..))` and
-//!   `var_op(inc(..))` change no type.
+//!   `var_op(inc(..))` change no type. A situation without a plan writes
+//!   what its template's `set(n, V)` terms say (V's type when ground).
 //! - **fresh variables** are `Term` (they may be read unbound), except
 //!   where one is bound before any read: by matching an exit arc's
 //!   expectation against the callee's final situation ids (`found(P)`
@@ -697,7 +698,10 @@ impl<'a> State<'a> {
     /// A situation instantiated from its template: what leaves it is unknown.
     fn unplanned(&mut self, d: usize, s: usize) {
         let why = Typed::term("a situation of the DM is instantiated from its template");
-        let sit = &self.ir.dms[d].situations[s];
+        let ir = self.ir;
+        let sit = &ir.dms[d].situations[s];
+        // Its writes: `set(n, V)` anywhere in it (V's type when ground).
+        self.scan_const_writes(d, sit.template);
         if sit.kind == Kind::Final {
             self.changed |= self.t.dms[d].pipe_out.absorb(&why);
         }
@@ -811,7 +815,15 @@ impl<'a> State<'a> {
             if let Value::Compound(name, args) = store.value(u) {
                 if name == atoms::SET && args.len() == 2 {
                     if let Some(n) = store.atom_of(args[0]) {
-                        let ty = Typed::of(of_ground(store, args[1]));
+                        let ty = of_ground(store, args[1]);
+                        let ty = if ty.is_native() {
+                            Typed::of(ty)
+                        } else {
+                            Typed {
+                                ty,
+                                why: Some("a value not ground where it is written".to_owned()),
+                            }
+                        };
                         self.write_var(d, n, &ty);
                     }
                 }
@@ -1736,6 +1748,31 @@ diag_mod(take(A, B),
         let line = t.sit_line(m, listen);
         assert!(line.contains("perception"), "{line}");
         let _ = var_ty(&ir, &mir, &t, m, 0, "Arg");
+    }
+
+    #[test]
+    fn a_situation_without_a_plan_still_writes_its_locals() {
+        let (ir, _, t) = types_of(
+            r#"
+diag_mod(main,
+  [ [ id ==> go, type ==> recursive, embedded_dm ==> fixed(a), arcs ==> [ fs : empty => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+diag_mod(fixed(a),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : set(k, b) => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  [ k ==> 0 ]).
+"#,
+        );
+        let f = dm(&ir, "fixed");
+        assert!(t.dms[f].sits.iter().all(Option::is_none));
+        assert_eq!(t.dms[f].locals[0].1.ty, Ty::Term);
+        assert!(t.dms[f]
+            .pipe_out
+            .why
+            .as_deref()
+            .unwrap_or("")
+            .contains("template"));
     }
 
     #[test]
