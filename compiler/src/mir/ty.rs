@@ -1180,16 +1180,14 @@ impl<'a> State<'a> {
         }
         // `is` in prog binds its variable before the arcs read it.
         if let Some(Prog::InPlace(evs)) = &p.prog {
-            for e in evs {
-                if let Ev::Is {
-                    lhs: Build::Reg(r), ..
-                } = e
-                {
-                    if fresh.contains(r) {
-                        bound.push(*r);
-                    }
-                }
-            }
+            let in_arg = p.in_arg.as_ref().map(|(b, _, _)| b);
+            let mut lhs = Vec::new();
+            is_lhs(
+                evs,
+                |r| in_arg.is_some_and(|b| build_mentions(b, r, 0)),
+                &mut lhs,
+            );
+            bound.extend(lhs.into_iter().filter(|r| fresh.contains(r)));
         }
         for r in &fresh {
             if !bound.contains(r) {
@@ -1420,7 +1418,7 @@ impl<'a> State<'a> {
                 }
             }
             let mut lhs = Vec::new();
-            action_is_lhs(&arc.action, &mut lhs);
+            action_is_lhs(&arc.action, &arc.expectation, &mut lhs);
             let fresh_why = Typed::term("a fresh variable: may be unbound where it is read");
             for &r in &arc.fresh {
                 if !bound.contains(&r) && !lhs.contains(&r) {
@@ -1452,18 +1450,62 @@ impl<'a> State<'a> {
 }
 
 /// `V is E` at the top of an action list: V is bound there.
-fn action_is_lhs(a: &Action, out: &mut Vec<Reg>) {
+fn action_is_lhs(a: &Action, exp: &Ev, out: &mut Vec<Reg>) {
     let items: &[Ev] = match a {
         Action::List { items, .. } => items,
         Action::One(e) => std::slice::from_ref(e),
     };
-    for e in items {
+    is_lhs(items, |r| ev_mentions(exp, r, 0), out);
+}
+
+/// The fresh variables bound by a `V is E` of `items` before anything
+/// reads them: not in an earlier item, not in `E`, not where `before` says.
+fn is_lhs(items: &[Ev], before: impl Fn(Reg) -> bool, out: &mut Vec<Reg>) {
+    for (i, e) in items.iter().enumerate() {
         if let Ev::Is {
-            lhs: Build::Reg(r), ..
+            lhs: Build::Reg(r),
+            expr,
         } = e
         {
-            out.push(*r);
+            let read = before(*r)
+                || build_mentions(expr, *r, 0)
+                || items[..i].iter().any(|x| ev_mentions(x, *r, 0));
+            if !read {
+                out.push(*r);
+            }
         }
+    }
+}
+
+fn build_mentions(b: &Build, r: Reg, depth: usize) -> bool {
+    match b {
+        Build::Const(_) => false,
+        Build::Reg(x) => *x == r,
+        Build::Compound(_, args) => {
+            depth > MAX_DEPTH || args.iter().any(|a| build_mentions(a, r, depth + 1))
+        }
+    }
+}
+
+fn ev_mentions(e: &Ev, r: Reg, depth: usize) -> bool {
+    if depth > MAX_DEPTH {
+        return true;
+    }
+    let cond = |c: &Cond| match c {
+        Cond::Arith(_, a, b) => ev_mentions(a, r, depth + 1) || ev_mentions(b, r, depth + 1),
+        Cond::Other(b) => build_mentions(b, r, depth + 1),
+    };
+    match e {
+        Ev::Value(x) => *x == r,
+        Ev::Built(b) | Ev::Eval(b) | Ev::VarOp { arg: b, .. } | Ev::IsFresh { expr: b, .. } => {
+            build_mentions(b, r, depth + 1)
+        }
+        Ev::If(c, a, b) => cond(c) || ev_mentions(a, r, depth + 1) || ev_mentions(b, r, depth + 1),
+        Ev::VarOpFresh { dst, .. } => *dst == r,
+        Ev::Is { lhs, expr } => {
+            build_mentions(lhs, r, depth + 1) || build_mentions(expr, r, depth + 1)
+        }
+        Ev::Compound(_, args) => args.iter().any(|a| ev_mentions(a, r, depth + 1)),
     }
 }
 
@@ -1773,6 +1815,25 @@ diag_mod(fixed(a),
             .as_deref()
             .unwrap_or("")
             .contains("template"));
+    }
+
+    #[test]
+    fn a_variable_bound_by_is_in_an_action_is_a_number() {
+        // (Reading it before its `is` is refused by the checker, E0228;
+        // inference would leave it a term.)
+        let (ir, _, t) = types_of(
+            r#"
+diag_mod(main,
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : [W is 2, say(W), X is W * 1.5, say(X)] => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#,
+        );
+        let m = dm(&ir, "main");
+        let line = t.sit_line(m, 0);
+        assert!(all_native(&t, m, 0), "{line}");
+        assert!(line.contains("int") && line.contains("float"), "{line}");
     }
 
     #[test]
