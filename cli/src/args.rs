@@ -250,7 +250,8 @@ pub enum Command {
         emit: Option<Emit>,
         /// Print which situations run as generated code (on native values
         /// or on terms) and which variables are typed, each with the reason
-        /// when not, and stop.
+        /// when not, with the types inferred on the MIR's registers (not
+        /// yet used by the generated code), and stop.
         #[arg(long)]
         explain_types: bool,
         /// Compile even if next situations, embedded DMs, exit arcs or

@@ -8,6 +8,8 @@
 //! SitLog layer) → [`check`] (diagnostics, rendered by [`diag`]; produces
 //! [`check::Checked`], the only input later stages accept; [`codes`] lists
 //! every diagnostic code, [`suggest`] gives their "did you mean") → [`ir::lower`]
+//! → [`mir::lower`] (plans over registers, typed by [`mir::ty::infer`],
+//! shown by `--explain-types`, not yet used by the back ends)
 //! → the back ends: [`interp`] (plans the runtime's machine runs, with
 //! [`instantiate`] the reference path from templates; [`run`] hands them to
 //! the one runner, `sitlog_runtime::app::run`), [`types`] + [`codegen`]

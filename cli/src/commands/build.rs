@@ -10,8 +10,10 @@ use std::path::PathBuf;
 pub fn explain_types_of(app: &std::path::Path) -> u8 {
     match checked_ir(app) {
         Ok(ir) => {
-            let types = sitlog_compiler::types::infer(&ir, &sitlog_compiler::mir::lower(&ir));
-            let text = sitlog_compiler::types::explain(&ir, &types);
+            let mir = sitlog_compiler::mir::lower(&ir);
+            let types = sitlog_compiler::types::infer(&ir, &mir);
+            let mir_types = sitlog_compiler::mir::ty::infer(&ir, &mir);
+            let text = sitlog_compiler::types::explain_with(&ir, &types, Some(&mir_types));
             write_stdout(&text, "the type listing")
         }
         Err(code) => code,

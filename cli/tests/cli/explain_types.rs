@@ -1,6 +1,7 @@
 //! `sitlogc build --explain-types`: what type inference found, as a user
 //! reads it (insta snapshots over the benchmark DMs, the examples and the
-//! typed test DMs), each ending with its one summary line.
+//! typed test DMs), each ending with its one summary line, after the
+//! MIR inference's per-situation lines and summary (`mir::ty`).
 
 use crate::support::{sitlogc, workspace};
 
@@ -24,6 +25,8 @@ fn explain_types_listing() {
     for app in [
         "benches/dms/counter_loop",
         "benches/dms/counter_loop_in_arg",
+        "benches/dms/echo_calls",
+        "benches/dms/list_search",
         "benches/dms/pipe_calls",
         "benches/dms/scripted_loop",
         "tests/typed/loops",
@@ -54,6 +57,17 @@ fn explain_types_ends_with_one_summary_line() {
         assert_eq!(summaries.len(), 1, "{app}: {text}");
         let last = text.lines().last().unwrap();
         assert_eq!(last, summaries[0], "{app}");
+        // Before today's two lines, the MIR inference's, saying it is not used yet.
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[lines.len() - 2].starts_with("situations on native values: "));
+        let mir = lines[lines.len() - 3];
+        assert!(
+            mir.starts_with("MIR registers typed: ")
+                && mir.contains("; situations with no term register: ")
+                && mir.ends_with("(MIR inference, not yet used by generated code)"),
+            "{app}: {mir}"
+        );
+        println!("{app}: {mir}");
         let (sits, vars) = last
             .strip_prefix("situations compiled as code: ")
             .and_then(|r| r.split_once("; variables typed: "))

@@ -23,6 +23,7 @@ use sitlog_syntax::atoms;
 use std::collections::{HashMap, HashSet};
 
 mod lower;
+pub mod ty;
 
 use lower::Planner;
 

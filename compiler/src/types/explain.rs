@@ -8,10 +8,20 @@ use super::*;
 /// situations, typed or not and why; then the globals; last, exactly one
 /// line [`summary`].
 pub fn explain(ir: &Ir, types: &Types) -> String {
+    explain_with(ir, types, None)
+}
+
+/// [`explain`] with, when given, what [`crate::mir::ty::infer`] found on
+/// the MIR: a line per DM and per situation, and its summary line just
+/// before this listing's two summary lines.
+pub fn explain_with(ir: &Ir, types: &Types, mir: Option<&crate::mir::ty::MirTypes>) -> String {
     let store = &ir.store;
     let mut out = String::new();
-    for (dm, t) in ir.dms.iter().zip(&types.dms) {
+    for (d, (dm, t)) in ir.dms.iter().zip(&types.dms).enumerate() {
         let _ = writeln!(out, "DM {}/{}", dm.name.as_str(), dm.arity);
+        if let Some(m) = mir {
+            let _ = writeln!(out, "{}", m.dm_line(ir, d));
+        }
         for (i, p) in t.params.iter().enumerate() {
             match p {
                 Some(p) => {
@@ -88,6 +98,9 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
                     );
                 }
             }
+            if let Some(m) = mir {
+                let _ = writeln!(out, "{}", m.sit_line(d, n));
+            }
         }
     }
     if !types.globals.is_empty() {
@@ -95,6 +108,9 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
         for g in &types.globals {
             let _ = writeln!(out, "  `{}`: {} ({})", g.name, g.ty, g.why);
         }
+    }
+    if let Some(m) = mir {
+        let _ = writeln!(out, "{}", m.summary());
     }
     let _ = writeln!(out, "{}", summary(types));
     out

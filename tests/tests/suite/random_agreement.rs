@@ -288,3 +288,23 @@ proptest! {
         }
     }
 }
+
+/// The MIR's type inference (`mir::ty`, phase 1 of the typed MIR) over
+/// every random program: it ends without a panic and types every register
+/// of every plan.
+#[test]
+fn mir_types_of_every_random_program() {
+    for index in 0..RANDOM_APPS.len() {
+        let ir = ir(index);
+        let mir = sitlog_compiler::mir::lower(&ir);
+        let t = sitlog_compiler::mir::ty::infer(&ir, &mir);
+        for (d, plans) in mir.dms.iter().enumerate() {
+            for (s, p) in plans.iter().enumerate() {
+                let regs = t.dms[d].sits[s].as_ref().map(|x| x.regs.len());
+                assert_eq!(regs, p.as_ref().map(|p| p.regs), "program {index}");
+            }
+        }
+        let (typed, regs, clean, sits) = t.counts();
+        assert!(typed <= regs && clean <= sits, "program {index}");
+    }
+}
