@@ -87,14 +87,7 @@ pub(crate) fn names() -> &'static Names {
         semicolon: atoms::SEMICOLON,
         bar: atoms::BAR,
         otherwise: atoms::OTHERWISE,
-        comparisons: [
-            atoms::EQ_EQ,
-            atoms::NOT_EQ_EQ,
-            atoms::GREATER,
-            atoms::LESS,
-            atoms::GREATER_EQ,
-            atoms::LESS_EQ,
-        ],
+        comparisons: crate::special::COMPARISONS,
         member: atoms::MEMBER,
         not_member: atoms::NOT_MEMBER,
     })

@@ -40,6 +40,38 @@ const LIST_OPERATORS: &[(&str, Option<usize>)] = &[
     ("arrived_posit", None),
 ];
 
+/// The comparisons of L (D-34): arguments evaluated, then compared.
+pub(crate) const COMPARISONS: [Atom; 6] = [
+    atoms::EQ_EQ,
+    atoms::NOT_EQ_EQ,
+    atoms::GREATER,
+    atoms::LESS,
+    atoms::GREATER_EQ,
+    atoms::LESS_EQ,
+];
+
+/// The binary constructs of L (D-29..D-38): conditionals, `apply`,
+/// `get`/`set`/`inc`, unification, arithmetic, membership, comparisons.
+const BINARY: [Atom; 17] = [
+    atoms::ASSIGN,
+    atoms::EQUALS,
+    atoms::IS,
+    atoms::MEMBER,
+    atoms::NOT_MEMBER,
+    atoms::SEMICOLON,
+    atoms::BAR,
+    atoms::APPLY,
+    atoms::GET,
+    atoms::SET,
+    atoms::INC,
+    COMPARISONS[0],
+    COMPARISONS[1],
+    COMPARISONS[2],
+    COMPARISONS[3],
+    COMPARISONS[4],
+    COMPARISONS[5],
+];
+
 struct Table {
     /// Bit `i` set: the atom of index `i` names a construct of L at some
     /// arity (a superset: the arity is checked after).
@@ -55,26 +87,7 @@ fn table() -> &'static Table {
             .iter()
             .map(|&(name, arity)| (Atom::intern(name), arity))
             .collect();
-        let binary = [
-            atoms::ASSIGN,
-            atoms::EQUALS,
-            atoms::IS,
-            atoms::MEMBER,
-            atoms::NOT_MEMBER,
-            atoms::SEMICOLON,
-            atoms::BAR,
-            atoms::APPLY,
-            atoms::GET,
-            atoms::SET,
-            atoms::INC,
-            atoms::EQ_EQ,
-            atoms::NOT_EQ_EQ,
-            atoms::GREATER,
-            atoms::LESS,
-            atoms::GREATER_EQ,
-            atoms::LESS_EQ,
-        ];
-        let all = binary
+        let all = BINARY
             .iter()
             .copied()
             .chain(list_ops.iter().map(|&(a, _)| a));
@@ -117,28 +130,7 @@ pub fn evaluates_arguments_only(name: Atom, arity: usize) -> bool {
     if !may_be_special(name) {
         return true;
     }
-    if arity == 2
-        && matches!(
-            name,
-            atoms::ASSIGN
-                | atoms::EQUALS
-                | atoms::IS
-                | atoms::MEMBER
-                | atoms::NOT_MEMBER
-                | atoms::SEMICOLON
-                | atoms::BAR
-                | atoms::APPLY
-                | atoms::GET
-                | atoms::SET
-                | atoms::INC
-                | atoms::EQ_EQ
-                | atoms::NOT_EQ_EQ
-                | atoms::GREATER
-                | atoms::LESS
-                | atoms::GREATER_EQ
-                | atoms::LESS_EQ
-        )
-    {
+    if arity == 2 && BINARY.contains(&name) {
         return false;
     }
     !is_list_operator(name, arity)
