@@ -45,7 +45,7 @@ impl Checker<'_> {
                             loc,
                             match access {
                                 OsAccess::Open => format!(
-                                    "{who} calls `{f}/{n}` to write a file: a run refuses writes outside the application and its KB unless given {ALLOW_OS}"
+                                    "{who} calls `{f}/{n}` to write a file: a run refuses writes outside the application unless given {ALLOW_OS}"
                                 ),
                                 OsAccess::Consult => format!(
                                     "{who} calls `{f}/{n}`, which loads code: a run refuses files outside the application unless given {ALLOW_OS}"

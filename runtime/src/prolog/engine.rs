@@ -15,7 +15,7 @@ use super::translate::{from_prolog, read_reply, write_atom, Prepared, Writer};
 use crate::functions::{CallLimits, FnCall, Functions};
 use crate::store::Store;
 use crate::term::Term;
-use crate::trust::Trust;
+use crate::trust::{Confine, Trust};
 use scryer_prolog::{
     InputStreamConfig, LeafAnswer, Machine, MachineBuilder, OutputStreamConfig, StreamConfig,
     Term as PTerm,
@@ -80,8 +80,14 @@ fn resident_bytes() -> Option<u64> {
 /// What the engine thread is asked to do.
 enum Request {
     /// Run the application's directives, code reaching the operating
-    /// system allowed or not.
-    Start(bool, mpsc::Sender<Vec<PrologLoadError>>),
+    /// system allowed or not, the thread first confined by the sandbox
+    /// (with the directories the application may write into) if the run
+    /// has one.
+    Start(
+        bool,
+        Option<(Confine, Vec<PathBuf>)>,
+        mpsc::Sender<Vec<PrologLoadError>>,
+    ),
     Query(String, mpsc::Sender<Result<Option<PTerm>, String>>),
 }
 
@@ -247,7 +253,7 @@ impl PrologFunctions {
     /// outcome), with what `trust` allows of the operating system: without
     /// `--allow-os` a `consult/1` of a file outside the application is
     /// refused here, and the guards refuse shell, processes, sockets and
-    /// writes outside the application and its KB. A refusal or a failing
+    /// writes outside the application. A refusal or a failing
     /// directive is an error at the directive's position.
     pub fn start(&self, trust: &Trust) -> Result<(), Vec<PrologLoadError>> {
         let mut started = self
@@ -276,9 +282,11 @@ impl PrologFunctions {
                 return Err(refused);
             }
         }
+        let roots = permissions::roots(&self.inner.source_dirs, trust);
         if let Ok(mut r) = self.inner.roots.lock() {
-            *r = permissions::roots(&self.inner.source_dirs, trust);
+            r.clone_from(&roots);
         }
+        let confine = trust.confine.clone().map(|c| (c, roots));
         if trust.allow_os {
             crate::trust::default_shell();
         }
@@ -287,7 +295,7 @@ impl PrologFunctions {
             .tx
             .lock()
             .map_err(|_| vec![engine_error("the Prolog engine is poisoned")])?
-            .send(Request::Start(trust.allow_os, tx))
+            .send(Request::Start(trust.allow_os, confine, tx))
             .map_err(|_| vec![engine_error("the Prolog engine has stopped")])?;
         let errors = rx
             .recv()
@@ -521,7 +529,15 @@ fn engine_thread(
     let mut started: Option<bool> = None;
     while let Ok(request) = rx.recv() {
         let (q, reply) = match request {
-            Request::Start(allow_os, reply) => {
+            Request::Start(allow_os, confine, reply) => {
+                // The sandbox binds this thread before any application
+                // code runs on it.
+                if let Some((confine, writable)) = confine {
+                    if let Err(e) = confine.apply(&writable) {
+                        let _ = reply.send(vec![engine_error(&e)]);
+                        continue;
+                    }
+                }
                 started = Some(allow_os);
                 let _ = reply.send(run_directives(&mut machine, &prepared, allow_os));
                 continue;
