@@ -25,8 +25,9 @@
 //!   directories (where the Prolog level lets code write); files opened
 //!   before the sandbox (the trace, the KB's lock) stay writable as
 //!   opened. No program is executed from any file, no TCP port is bound or
-//!   connected to (UDP, which DDS speaks, is not Landlock's to restrict),
-//!   and no signal reaches a process outside the sandbox.
+//!   connected to (UDP, which DDS speaks, is not Landlock's to restrict;
+//!   the live view's server accepts on the socket it bound before), and no
+//!   signal reaches a process outside the sandbox.
 //!
 //! Reads stay allowed everywhere: the Prolog level allows reading any file
 //! (an application reads its data where it lies), the engine, the C

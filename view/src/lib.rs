@@ -198,8 +198,7 @@ impl View {
             st.stopping = true;
             self.shared.changed.notify_all();
         }
-        // wake the acceptor
-        let _ = TcpStream::connect_timeout(&self.addr, Duration::from_millis(500));
+        // the acceptor sees `stopping` within its polling interval
         if let Some(h) = self.acceptor.take() {
             let _ = h.join();
         }
@@ -265,12 +264,31 @@ impl Observer for ViewObserver {
     }
 }
 
+/// Accepts connections until the view stops. The listener does not block,
+/// so that stopping needs no connection to wake it: a sandboxed run
+/// (`sitlog_robot::sandbox`) may open no socket by then.
 fn accept(listener: TcpListener, shared: Arc<Shared>) {
-    for stream in listener.incoming() {
+    let polled = listener.set_nonblocking(true).is_ok();
+    loop {
         if shared.lock().stopping {
             break;
         }
-        let Ok(stream) = stream else { continue };
+        let stream = match listener.accept() {
+            Ok((stream, _)) => stream,
+            Err(e) if e.kind() == io::ErrorKind::WouldBlock => {
+                std::thread::sleep(Duration::from_millis(20));
+                continue;
+            }
+            Err(_) if !polled => break,
+            Err(_) => {
+                std::thread::sleep(Duration::from_millis(20));
+                continue;
+            }
+        };
+        // Connections block (as the request handling expects).
+        if stream.set_nonblocking(false).is_err() {
+            continue;
+        }
         let s = shared.clone();
         let _ = std::thread::Builder::new()
             .name("sitlog-view-conn".to_owned())
