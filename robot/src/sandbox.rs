@@ -364,3 +364,101 @@ mod os {
         (0, false)
     }
 }
+
+#[cfg(all(test, target_os = "linux"))]
+mod tests {
+    use super::*;
+
+    /// Runs this test binary again on `test` with `SITLOG_SANDBOX_CHILD`
+    /// set: the sandbox binds the whole process, so each case confines a
+    /// child of its own. `None` when the kernel lacks the sandbox.
+    fn in_child(test: &str) -> Option<std::process::Output> {
+        if std::env::var_os("SITLOG_SANDBOX_CHILD").is_some() {
+            return None;
+        }
+        let (abi, seccomp) = support();
+        if abi < 4 || !seccomp {
+            eprintln!("skipping {test}: no sandbox here (Landlock ABI {abi}, seccomp {seccomp})");
+            return None;
+        }
+        let dir = scratch("child");
+        let out = std::process::Command::new(std::env::current_exe().unwrap())
+            .args([test, "--exact", "--nocapture", "--test-threads=1"])
+            .env("SITLOG_SANDBOX_CHILD", "1")
+            .env("SITLOG_SANDBOX_DIR", &dir)
+            .output()
+            .unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        Some(out)
+    }
+
+    fn scratch(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("sitlog-sandbox-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(d.join("own")).unwrap();
+        d
+    }
+
+    /// In the confined process: threads start (from the confined thread
+    /// and from one started before), no process does, files are written
+    /// only where allowed, a thread started before the sandbox is bound
+    /// once it applies the hook, and no TCP socket is bound.
+    #[test]
+    fn threads_work_and_every_thread_is_held() {
+        if let Some(out) = in_child("sandbox::tests::threads_work_and_every_thread_is_held") {
+            let text = String::from_utf8_lossy(&out.stdout).into_owned()
+                + &String::from_utf8_lossy(&out.stderr);
+            assert!(out.status.success(), "{text}");
+            assert!(text.contains("child checked"), "{text}");
+            return;
+        }
+        if std::env::var_os("SITLOG_SANDBOX_CHILD").is_none() {
+            return;
+        }
+        let dir = PathBuf::from(
+            std::env::var("SITLOG_SANDBOX_DIR")
+                .unwrap_or_else(|_| scratch("child").display().to_string()),
+        );
+        std::fs::create_dir_all(dir.join("own")).unwrap();
+        // A thread started before the sandbox, as the Prolog engine's is.
+        let (tx, rx) = std::sync::mpsc::channel::<Confine>();
+        let (done_tx, done_rx) = std::sync::mpsc::channel::<Result<(), String>>();
+        let d2 = dir.clone();
+        let early = std::thread::spawn(move || {
+            let confine = rx.recv().unwrap();
+            let own = vec![d2.join("own")];
+            let r = confine.apply(&own).and_then(|()| {
+                std::fs::write(d2.join("own/ok"), "x").map_err(|e| format!("own dir: {e}"))?;
+                match std::fs::write(d2.join("outside"), "x") {
+                    Ok(()) => Err("the early thread wrote outside".to_owned()),
+                    Err(_) => Ok(()),
+                }
+            });
+            done_tx.send(r).unwrap();
+        });
+        let args = RunArgs {
+            sandbox: SandboxMode::Require,
+            ..RunArgs::default()
+        };
+        let mut err = Vec::new();
+        let confine = enter(&args, None, &mut err)
+            .expect("the sandbox is entered")
+            .expect("a hook for the engine's thread");
+        // Threads still start, from this thread.
+        let h = std::thread::spawn(|| 40 + 2);
+        assert_eq!(h.join().unwrap(), 42);
+        // No process.
+        assert!(std::process::Command::new("/bin/true").status().is_err());
+        // This thread writes nowhere but /dev/null.
+        assert!(std::fs::write(dir.join("main"), "x").is_err());
+        std::fs::write("/dev/null", "x").expect("/dev/null stays writable");
+        // No TCP, no internet socket.
+        assert!(std::net::TcpListener::bind("127.0.0.1:0").is_err());
+        assert!(std::net::UdpSocket::bind("127.0.0.1:0").is_err());
+        tx.send(confine).unwrap();
+        done_rx.recv().unwrap().unwrap();
+        early.join().unwrap();
+        assert!(dir.join("own/ok").exists());
+        println!("child checked");
+    }
+}

@@ -127,6 +127,29 @@ fn a_shell_command_as_a_closure_does_not_run() {
     });
     s.run(&[]);
     assert_eq!(s.outside_names(), Vec::<String>::new(), "a command ran");
+    // Under the debugger too (its engine thread is the same kind).
+    let commands = s.app().join("commands.txt");
+    std::fs::write(&commands, "continue\n").unwrap();
+    let out = sitlogc()
+        .env("SHELL", "/bin/sh")
+        .arg("debug")
+        .arg(s.app())
+        .arg("--script")
+        .arg(s.app().join("script.txt"))
+        .arg("--commands")
+        .arg(&commands)
+        .output()
+        .unwrap();
+    assert!(
+        matches!(out.status.code(), Some(0 | 1)),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        s.outside_names(),
+        Vec::<String>::new(),
+        "a command ran under the debugger"
+    );
     // --allow-os lifts the sandbox with the refusals: the same code runs.
     s.run(&["--allow-os"]);
     assert_eq!(s.outside_names(), ["p1", "p2", "p3", "p4"]);
