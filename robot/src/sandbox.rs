@@ -378,7 +378,9 @@ mod tests {
         }
         let (abi, seccomp) = support();
         if abi < 4 || !seccomp {
-            eprintln!("skipping {test}: no sandbox here (Landlock ABI {abi}, seccomp {seccomp})");
+            sitlog_runtime::errln!(
+                "skipping {test}: no sandbox here (Landlock ABI {abi}, seccomp {seccomp})"
+            );
             return None;
         }
         let dir = scratch("child");
