@@ -327,3 +327,68 @@ fn sandbox_require_and_off() {
     s.run(&["--sandbox", "off"]);
     assert_eq!(s.outside_names(), ["p"]);
 }
+
+/// `:- consult('lnk.pl').` where `lnk.pl` is a symbolic link to a file
+/// outside the application: refused at the start (its directive never
+/// runs), as an outside path is; with `--allow-os` it loads.
+#[cfg(unix)]
+#[test]
+fn a_consult_through_a_link_out_of_the_application_is_refused() {
+    let s = Scratch::new("link", |_| {
+        ":- consult('lnk.pl').\nattack(_) :- assign_func_value(d).\n".to_owned()
+    });
+    let evil = s.root.join("evil.pl");
+    let ran = s.outside().join("ran");
+    std::fs::write(
+        &evil,
+        format!(":- open('{}', write, S), close(S).\n", ran.display()),
+    )
+    .unwrap();
+    std::os::unix::fs::symlink(&evil, s.app().join("lnk.pl")).unwrap();
+    let out = s.run(&["--sandbox", "off"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("lnk.pl") && stderr.contains("--allow-os"),
+        "{stderr}"
+    );
+    assert!(!ran.exists(), "the linked file's directive ran");
+    s.run(&["--allow-os"]);
+    assert!(ran.exists(), "--allow-os did not load the linked file");
+}
+
+/// A side file or DM file that is a symbolic link out of the application
+/// (`global_vars.pl` to a secret) is refused before it is read, by `check`
+/// and `run`: no message quotes it.
+#[cfg(unix)]
+#[test]
+fn a_side_file_linked_out_of_the_application_is_refused_unread() {
+    let s = Scratch::new("side", |_| {
+        "attack(_) :- assign_func_value(d).\n".to_owned()
+    });
+    let secret = s.outside().join("secret");
+    std::fs::write(&secret, "root:SECRETHASH:19000:0:99999:7:::\n").unwrap();
+    for name in ["global_vars.pl", "other.dm"] {
+        let link = s.app().join(name);
+        std::os::unix::fs::symlink(&secret, &link).unwrap();
+        for args in [
+            vec!["check".to_owned(), s.app().display().to_string()],
+            vec![
+                "run".to_owned(),
+                s.app().display().to_string(),
+                "--script".to_owned(),
+                s.app().join("script.txt").display().to_string(),
+            ],
+        ] {
+            let out = sitlogc().args(&args).output().unwrap();
+            let text = String::from_utf8_lossy(&out.stdout).into_owned()
+                + &String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{name} {args:?}: {text}");
+            assert!(
+                text.contains(name) && text.contains("symbolic link") && !text.contains("SECRET"),
+                "{name} {args:?}: {text}"
+            );
+        }
+        std::fs::remove_file(&link).unwrap();
+    }
+}
