@@ -392,3 +392,38 @@ fn a_side_file_linked_out_of_the_application_is_refused_unread() {
         std::fs::remove_file(&link).unwrap();
     }
 }
+
+/// `--trace` naming one of the application's own files (its DM, its
+/// Prolog file, a hard link to one) is refused before anything runs and
+/// leaves the file as it was (issue 38).
+#[test]
+fn a_trace_over_an_application_file_is_refused() {
+    let s = Scratch::new("trace", |_| {
+        "attack(_) :- assign_func_value(d).\n".to_owned()
+    });
+    let link = s.outside().join("hard.dm");
+    std::fs::hard_link(s.app().join("main.dm"), &link).unwrap();
+    for target in [
+        s.app().join("main.dm"),
+        s.app().join("user_functions.pl"),
+        link.clone(),
+    ] {
+        let before = std::fs::read(&target).unwrap();
+        let out = sitlogc()
+            .arg("run")
+            .arg(s.app())
+            .arg("--script")
+            .arg(s.app().join("script.txt"))
+            .arg("--trace")
+            .arg(&target)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{}: {stderr}", target.display());
+        assert!(
+            stderr.contains("--trace") && stderr.contains("overwrite"),
+            "{stderr}"
+        );
+        assert_eq!(std::fs::read(&target).unwrap(), before);
+    }
+}
