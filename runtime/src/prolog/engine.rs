@@ -256,6 +256,17 @@ impl PrologFunctions {
     /// writes outside the application. A refusal or a failing
     /// directive is an error at the directive's position.
     pub fn start(&self, trust: &Trust) -> Result<(), Vec<PrologLoadError>> {
+        self.start_with(trust, None)
+    }
+
+    /// [`start`](Self::start) under `limits` (a run's call limits, else the
+    /// engine's): the directives together run under the time and memory
+    /// limits of one call (issue 38: `:- loop.` is stopped).
+    pub fn start_with(
+        &self,
+        trust: &Trust,
+        limits: Option<CallLimits>,
+    ) -> Result<(), Vec<PrologLoadError>> {
         let mut started = self
             .inner
             .started
@@ -264,12 +275,13 @@ impl PrologFunctions {
         if let Some(outcome) = &*started {
             return outcome.clone();
         }
-        let outcome = self.start_now(trust);
+        let options = limits.map_or(self.inner.options, PrologOptions::from);
+        let outcome = self.start_now(trust, options);
         *started = Some(outcome.clone());
         outcome
     }
 
-    fn start_now(&self, trust: &Trust) -> Result<(), Vec<PrologLoadError>> {
+    fn start_now(&self, trust: &Trust, options: PrologOptions) -> Result<(), Vec<PrologLoadError>> {
         if !trust.allow_os {
             let refused: Vec<PrologLoadError> = self
                 .inner
@@ -297,9 +309,10 @@ impl PrologFunctions {
             .map_err(|_| vec![engine_error("the Prolog engine is poisoned")])?
             .send(Request::Start(trust.allow_os, confine, tx))
             .map_err(|_| vec![engine_error("the Prolog engine has stopped")])?;
-        let errors = rx
-            .recv()
-            .unwrap_or_else(|_| vec![engine_error("the Prolog engine stopped while starting")]);
+        let errors = match self.watch(&rx, options, "the application's directives") {
+            Ok(errors) => errors,
+            Err(message) => vec![engine_error(&message)],
+        };
         if errors.is_empty() {
             Ok(())
         } else {
@@ -327,13 +340,16 @@ impl PrologFunctions {
                 return None;
             }
             // A call before the run's start (a debugger's evaluation) starts it.
-            if let Err(errors) = me.start(call.functions.trust()) {
+            if let Err(errors) = me.start_with(call.functions.trust(), call.functions.call_limits())
+            {
                 return Some(Err(show_errors(&errors)));
             }
             Some(me.call(call, name, args))
         });
         let me = self.clone();
-        functions.set_start(move |trust| me.start(trust).map_err(|e| show_errors(&e)));
+        functions.set_start(move |trust, limits| {
+            me.start_with(trust, limits).map_err(|e| show_errors(&e))
+        });
     }
 
     /// Runs a raw query (for tests and tools): the first answer's binding
@@ -361,12 +377,24 @@ impl PrologFunctions {
             .map_err(|_| "the Prolog engine is poisoned".to_owned())?
             .send(Request::Query(query, tx))
             .map_err(|_| "the Prolog engine has stopped".to_owned())?;
+        self.watch(&rx, options, what)?
+    }
+
+    /// Waits for the engine's answer on `rx` within the time and memory
+    /// limits of `options`; over one, the engine is abandoned and the
+    /// error names the limit (`what` the call).
+    fn watch<T>(
+        &self,
+        rx: &mpsc::Receiver<T>,
+        options: PrologOptions,
+        what: &str,
+    ) -> Result<T, String> {
         let start = std::time::Instant::now();
         let rss0 = resident_bytes();
         let slice = std::time::Duration::from_millis(10);
         loop {
             match rx.recv_timeout(slice) {
-                Ok(answer) => return answer,
+                Ok(answer) => return Ok(answer),
                 Err(mpsc::RecvTimeoutError::Disconnected) => {
                     return Err("the Prolog engine has stopped".to_owned())
                 }
