@@ -495,6 +495,12 @@ fn add_prolog_file(
                     }
                 },
             };
+            // A symbolic link out of the application is not read (the run
+            // refuses to consult it without --allow-os).
+            if bytes.is_none() && linked_outside(&dir, &path).is_some() {
+                program.unread_consults.push(unread);
+                continue;
+            }
             let known = program
                 .prolog_files
                 .iter()
@@ -847,6 +853,7 @@ fn load_dir(
         dm_files.extend(overlay_dm_files(dir));
         dm_files.sort();
         for path in dm_files {
+            refuse_linked_outside(dir, &path)?;
             load_dm_file(cx, &path, program, diags)?;
         }
     }
@@ -894,6 +901,37 @@ fn foreign_entry(dir: &Path, path: &Path, loc: Loc) -> Option<Diagnostic> {
     )
 }
 
+/// Where `path`, a file of the application in `dir` by its name, really is
+/// when a symbolic link takes it out of `dir` (issue 38: `global_vars.pl`
+/// linked to `/etc/shadow`). Files only in the LSP's overlay, and those
+/// that cannot be resolved, are not links out.
+fn linked_outside(dir: &Path, path: &Path) -> Option<PathBuf> {
+    if in_overlay(path) {
+        return None;
+    }
+    let real = std::fs::canonicalize(path).ok()?;
+    let home = std::fs::canonicalize(dir).ok()?;
+    (!real.starts_with(&home)).then_some(real)
+}
+
+/// Refuses, before reading it, a file of the application that a symbolic
+/// link takes out of `dir`: no diagnostic ever quotes what it holds.
+fn refuse_linked_outside(dir: &Path, path: &Path) -> Result<(), LoadError> {
+    match linked_outside(dir, path) {
+        None => Ok(()),
+        Some(real) => Err(LoadError {
+            path: path.to_path_buf(),
+            error: io::Error::new(
+                io::ErrorKind::PermissionDenied,
+                format!(
+                    "a symbolic link to {}, outside the application: refused, not read (copy the file into the application)",
+                    real.display()
+                ),
+            ),
+        }),
+    }
+}
+
 /// The side files of the application in `dir` (those that exist).
 fn load_side_files(
     cx: Cx<'_>,
@@ -913,6 +951,7 @@ fn load_side_files(
     {
         let path = dir.join(side);
         if path.is_file() {
+            refuse_linked_outside(dir, &path)?;
             let file = read_text(cx, &path, program, diags)?;
             let clauses = read_file_clauses(program, file, diags);
             add_file_by_role(cx, program, file, side, clauses, diags);

@@ -4,7 +4,8 @@
 //! [`task_command`], [`parse_task_args`]). The option set and the output
 //! contract are the notes' "Our convention for `sitlogc run` output", plus
 //! the robot's options: `--world`, `--no-world`, `--seed`, `--robot`, `--kb`,
-//! `--kb-persist`, `--quiet`, and the trust model's `--allow-os`. What a run does with them is
+//! `--kb-persist`, `--quiet`, and the trust model's `--allow-os` and
+//! `--sandbox`. What a run does with them is
 //! [`crate::Runner`]'s.
 
 use crate::assets::Assets;
@@ -34,6 +35,19 @@ pub enum RobotKind {
     /// table (names in the application's `ros2.toml`), on the DDS domain
     /// `ROS_DOMAIN_ID`.
     Ros2,
+}
+
+/// `--sandbox`: whether the operating system confines the task
+/// ([`crate::sandbox`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum SandboxMode {
+    /// Confine where the kernel can; say once where it cannot.
+    #[default]
+    Auto,
+    /// Confine, or refuse to run (exit 2) where the kernel cannot.
+    Require,
+    /// Only the Prolog-level refusals.
+    Off,
 }
 
 /// Whether the task history is kept.
@@ -110,10 +124,18 @@ pub struct RunArgs {
     pub prolog_heap_limit: u64,
     /// Let the application's Prolog code reach the operating system: run
     /// shell commands and processes, open sockets, write files outside the
-    /// application and its KB, consult files outside the application.
-    /// Without it these are refused with an error naming this option.
+    /// application, consult files outside the application. Without it
+    /// these are refused with an error naming this option, and the
+    /// operating system's sandbox holds the task (see --sandbox).
     #[arg(long)]
     pub allow_os: bool,
+    /// The operating system's sandbox of the task (Linux: Landlock and
+    /// seccomp), set once every file of the run is open: `auto` confines
+    /// the task where the kernel can and says once where it cannot,
+    /// `require` makes a kernel that cannot an error (exit 2), `off` leaves
+    /// only the Prolog-level refusals. --allow-os lifts it.
+    #[arg(long, value_enum, value_name = "MODE", default_value_t = SandboxMode::Auto)]
+    pub sandbox: SandboxMode,
     /// Directories the application's code may also write into and consult
     /// from without `--allow-os` (not an option: `sitlogc run --legacy`
     /// gives the original's tree, whose apps consult one another's files).
@@ -210,26 +232,14 @@ impl RunArgs {
     }
 
     /// What the application's code may reach of the operating system
-    /// (`--allow-os`; without it, writes stay inside the application and
-    /// the directory of `kb`, the run's KB file).
-    pub fn trust(&self, kb: Option<&Path>) -> Trust {
-        let roots = kb
-            .and_then(|k| k.parent())
-            .map(|d| {
-                if d.as_os_str().is_empty() {
-                    Path::new(".")
-                } else {
-                    d
-                }
-            })
-            .map(|d| vec![d.to_path_buf()])
-            .unwrap_or_default()
-            .into_iter()
-            .chain(self.trust_roots.iter().cloned())
-            .collect();
+    /// (`--allow-os`; without it, writes stay inside the application: the
+    /// KB's directory is no permission, issue 38). The runner adds the
+    /// sandbox ([`Trust::confine`]).
+    pub fn trust(&self) -> Trust {
         Trust {
             allow_os: self.allow_os,
-            roots,
+            roots: self.trust_roots.clone(),
+            confine: None,
         }
     }
 
@@ -265,6 +275,7 @@ impl Default for RunArgs {
             prolog_time_limit: CallLimits::TIME,
             prolog_heap_limit: CallLimits::HEAP_BYTES >> 20,
             allow_os: false,
+            sandbox: SandboxMode::Auto,
             trust_roots: Vec::new(),
             view: false,
             view_port: 0,

@@ -22,7 +22,8 @@
 //! [`kb_services`], `shop_functions` and the simulated robot (`robot`,
 //! feature `sim`), `robot_hook` (another robot: [`RobotHook`]),
 //! `debug_hooks` ([`DebugHooks`]), `observers` and
-//! `live_view` (what watches a run), `runner` ([`Runner`]: the run), and
+//! `live_view` (what watches a run), [`sandbox`] (the operating system's
+//! confinement of a task), `runner` ([`Runner`]: the run), and
 //! `task` (a compiled task's [`main`]). The public items of the private
 //! modules are re-exported here.
 //!
@@ -42,6 +43,7 @@ pub mod prompt;
 pub mod robot;
 mod robot_hook;
 mod runner;
+pub mod sandbox;
 #[cfg(feature = "sim")]
 mod shop_functions;
 mod streams;
@@ -50,7 +52,7 @@ mod task;
 pub use assets::{
     app_name, AssetError, Assets, FileError, TextFile, KB_FILE, ROS2_FILE, WORLD_FILE,
 };
-pub use cli::{Format, HistoryMode, RobotKind, RunArgs};
+pub use cli::{Format, HistoryMode, RobotKind, RunArgs, SandboxMode};
 pub use debug_hooks::{DebugHooks, MakePerception, WorldProbe};
 pub use robot_hook::{RobotHook, RobotParts, RobotSetup};
 pub use runner::{KbProbe, PerceptionWrap, Runner};

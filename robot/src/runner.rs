@@ -37,7 +37,6 @@ use sitlog_runtime::report;
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
 use sitlog_runtime::Functions;
 use std::io::Write;
-use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
 /// Wraps the perception a run makes (the simulated user's, the script's or
@@ -244,7 +243,7 @@ impl Runner {
         let console = Console::new(transcript_out, progress, !args.quiet).shared();
 
         // The KB; a persisted one stays locked until the run ends.
-        let _kb_lock =
+        let kb_lock =
             match kb_services::open(args.kb.as_deref(), args.kb_persist, assets.kb.as_ref()) {
                 Ok(Some(kb)) => {
                     let narrate = with_world.then(|| console.clone());
@@ -385,16 +384,22 @@ impl Runner {
             ..Options::default()
         };
         functions.set_call_limits(args.call_limits());
+        // Every file is open: the operating system's sandbox closes the
+        // rest, on this thread and (through the trust's hook) on the
+        // Prolog engine's before the first directive (issue 38).
+        // (A persisted KB is written by replacing its real file.)
+        let persist = kb_lock.as_ref().map(|lock| lock.path());
+        let confine = match crate::sandbox::enter(args, persist, &mut streams.stderr) {
+            Ok(confine) => confine,
+            Err((code, message)) => fail!(code, "{message}"),
+        };
         // What the application's code may reach (Prolog directives run at
         // the first transition, with this).
-        let kb_file = args
-            .kb
-            .clone()
-            .or_else(|| assets.kb.as_ref().map(|k| PathBuf::from(&k.name)));
-        functions.set_trust(args.trust(kb_file.as_deref()));
+        let mut trust = args.trust();
+        trust.confine = confine;
+        functions.set_trust(trust);
 
-        // every file is open: from here a signal stops the task between
-        // transitions
+        // from here a signal stops the task between transitions
         if let Some(i) = &interrupt {
             i.started();
         }

@@ -269,17 +269,26 @@ impl Link {
             .count()
     }
 
-    /// How many writers of other participants the domain has on topic `name`.
-    pub fn remote_writers(&self, name: &str) -> usize {
+    /// The writers of other participants on topic `name`: how many
+    /// publish `type_name` (a DDS type name, `std_msgs::msg::dds_::Bool_`),
+    /// and the types of the others (a foreign node's, issue 38).
+    pub fn remote_writers(&self, name: &str, type_name: &str) -> (usize, Vec<String>) {
         let dds = format!("rt{name}");
         let me = rustdds::RTPSEntity::guid(&self.context.domain_participant()).prefix;
-        self.context
-            .domain_participant()
-            .discovered_writers()
-            .iter()
-            .filter(|w| w.publication_topic_data.topic_name == dds)
-            .filter(|w| w.writer_proxy.remote_writer_guid.prefix != me)
-            .count()
+        let mut same = 0;
+        let mut foreign = Vec::new();
+        for w in self.context.domain_participant().discovered_writers() {
+            let data = &w.publication_topic_data;
+            if data.topic_name != dds || w.writer_proxy.remote_writer_guid.prefix == me {
+                continue;
+            }
+            if data.type_name == type_name {
+                same += 1;
+            } else {
+                foreign.push(data.type_name.clone());
+            }
+        }
+        (same, foreign)
     }
 }
 

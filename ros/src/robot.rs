@@ -174,7 +174,16 @@ impl RosRobot {
         // One task per robot: another writer on the listening topic is
         // another task (give discovery a moment to tell).
         std::thread::sleep(Duration::from_millis(300));
-        if link.remote_writers(&t.listening) > 0 {
+        let (tasks, foreign) = link.remote_writers(&t.listening, "std_msgs::msg::dds_::Bool_");
+        // A node publishing another type there is not a task: logged and
+        // ignored (issue 38), also under -q.
+        for type_name in foreign {
+            sitlog_runtime::errln!(
+                "note: a node publishes {type_name} on {} (not a task's std_msgs/Bool): ignored",
+                t.listening
+            );
+        }
+        if tasks > 0 {
             return Err((
                 2,
                 format!(

@@ -41,9 +41,9 @@ pub type FallbackFn =
     dyn Fn(&mut FnCall<'_>, Atom, &[Term]) -> Option<Result<Term, String>> + Send + Sync;
 
 /// Run once when a run starts (its first transition), with the run's
-/// [`Trust`]: an engine's own code (Prolog directives) runs here, never
-/// while a program or its options are being checked.
-pub type StartFn = dyn Fn(&Trust) -> Result<(), String> + Send + Sync;
+/// [`Trust`] and call limits: an engine's own code (Prolog directives)
+/// runs here, never while a program or its options are being checked.
+pub type StartFn = dyn Fn(&Trust, Option<CallLimits>) -> Result<(), String> + Send + Sync;
 
 /// Bounds on one call of a user function that runs outside Rust (Prolog):
 /// set by a run's options (`--prolog-inferences`, `--prolog-time-limit`,
@@ -139,7 +139,10 @@ impl Functions {
 
     /// Sets what runs when a run starts (see [`StartFn`]), replacing an
     /// earlier one.
-    pub fn set_start(&mut self, f: impl Fn(&Trust) -> Result<(), String> + Send + Sync + 'static) {
+    pub fn set_start(
+        &mut self,
+        f: impl Fn(&Trust, Option<CallLimits>) -> Result<(), String> + Send + Sync + 'static,
+    ) {
         self.start = Some(Arc::new(f));
     }
 
@@ -147,7 +150,7 @@ impl Functions {
     /// [`Functions::trust`]; the machine calls it at a run's first transition.
     pub fn start(&self) -> Result<(), String> {
         match &self.start {
-            Some(f) => f(&self.trust),
+            Some(f) => f(&self.trust, self.limits),
             None => Ok(()),
         }
     }

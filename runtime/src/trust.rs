@@ -23,7 +23,7 @@ pub enum OsAccess {
     Network,
     /// Loads native code.
     Foreign,
-    /// Opens a file: refused for writing outside the application and its KB.
+    /// Opens a file: refused for writing outside the application.
     Open,
     /// Loads Prolog code from a file: refused outside the application.
     Consult,
@@ -37,9 +37,7 @@ impl OsAccess {
             OsAccess::Process => "creates or controls a process",
             OsAccess::Network => "opens a network socket",
             OsAccess::Foreign => "loads native code",
-            OsAccess::Open => {
-                "opens a file (writing is refused outside the application and its KB)"
-            }
+            OsAccess::Open => "opens a file (writing is refused outside the application)",
             OsAccess::Consult => "loads code from a file (refused outside the application)",
         }
     }
@@ -104,9 +102,46 @@ pub struct Trust {
     /// consults anywhere.
     pub allow_os: bool,
     /// Directories code may write into and consult from without the flag,
-    /// besides those of the application's own Prolog files (the KB's).
+    /// besides those of the application's own Prolog files.
     pub roots: Vec<PathBuf>,
+    /// The operating system's sandbox for a thread that runs application
+    /// code (set by the runner when the run is confined): the Prolog
+    /// engine's thread calls it on itself before the first directive.
+    pub confine: Option<Confine>,
 }
+
+/// Confines the calling thread to what a task may do (the OS sandbox of
+/// `sitlog-robot`, which owns it): given the directories the thread's code
+/// may also write into (the application's), an error says why it could
+/// not. Landlock binds a thread and those it starts afterwards, so each
+/// thread that runs application code and was started before the sandbox
+/// calls it on itself.
+#[derive(Clone)]
+pub struct Confine(pub std::sync::Arc<ConfineFn>);
+
+/// What a [`Confine`] runs.
+pub type ConfineFn = dyn Fn(&[PathBuf]) -> Result<(), String> + Send + Sync;
+
+impl Confine {
+    /// Confines the calling thread, `writable` its code's own directories.
+    pub fn apply(&self, writable: &[PathBuf]) -> Result<(), String> {
+        (self.0)(writable)
+    }
+}
+
+impl std::fmt::Debug for Confine {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Confine(..)")
+    }
+}
+
+impl PartialEq for Confine {
+    fn eq(&self, other: &Confine) -> bool {
+        std::sync::Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl Eq for Confine {}
 
 impl Trust {
     /// Whether `path` (relative to the current directory) lies inside one

@@ -10,22 +10,25 @@
 //! Routes: `/` the page, `/diagram.svg`, `/events` (an event stream that
 //! replays the last [`WINDOW`] transitions, then follows the run, and ends
 //! with `{"end":true,...}`), `/state` (the last transition, JSON). Only
-//! requests whose `Host` and `Origin` (when sent) name this server on
-//! 127.0.0.1 or localhost are answered: another site's page cannot read or
-//! start a task by DNS rebinding or a cross-origin request.
+//! requests with one `Host` naming this server on 127.0.0.1 or localhost,
+//! and at most one `Origin`, this server's, are answered: another site's
+//! page cannot read or start a task by DNS rebinding or a cross-origin
+//! request.
 //!
 //! **Invariant:** the server only reads; it never changes the run. The
 //! observer it hands out costs one JSON line and a lock per transition.
 //! The server is ours (std's `TcpListener`, GET only, one thread per
 //! connection): an event stream must be written unbuffered as it happens,
-//! and nothing more is needed on a loopback port.
+//! and nothing more is needed on a loopback port; requests are parsed by
+//! `httparse` (issue 38), so that the header rules are not ours to get
+//! wrong.
 
 use sitlog_graph::trace::{chain, find_dm, find_situation};
 use sitlog_graph::Diagram;
 use sitlog_runtime::history::Entry;
 use sitlog_runtime::machine::Observer;
 use sitlog_runtime::{Store, Term};
-use std::io::{self, BufRead, BufReader, Read, Write};
+use std::io::{self, Read, Write};
 use std::net::{SocketAddr, TcpListener, TcpStream};
 use std::sync::{Arc, Condvar, Mutex};
 use std::thread::JoinHandle;
@@ -198,8 +201,7 @@ impl View {
             st.stopping = true;
             self.shared.changed.notify_all();
         }
-        // wake the acceptor
-        let _ = TcpStream::connect_timeout(&self.addr, Duration::from_millis(500));
+        // the acceptor sees `stopping` within its polling interval
         if let Some(h) = self.acceptor.take() {
             let _ = h.join();
         }
@@ -265,12 +267,31 @@ impl Observer for ViewObserver {
     }
 }
 
+/// Accepts connections until the view stops. The listener does not block,
+/// so that stopping needs no connection to wake it: a sandboxed run
+/// (`sitlog_robot::sandbox`) may open no socket by then.
 fn accept(listener: TcpListener, shared: Arc<Shared>) {
-    for stream in listener.incoming() {
+    let polled = listener.set_nonblocking(true).is_ok();
+    loop {
         if shared.lock().stopping {
             break;
         }
-        let Ok(stream) = stream else { continue };
+        let stream = match listener.accept() {
+            Ok((stream, _)) => stream,
+            Err(e) if e.kind() == io::ErrorKind::WouldBlock => {
+                std::thread::sleep(Duration::from_millis(20));
+                continue;
+            }
+            Err(_) if !polled => break,
+            Err(_) => {
+                std::thread::sleep(Duration::from_millis(20));
+                continue;
+            }
+        };
+        // Connections block (as the request handling expects).
+        if stream.set_nonblocking(false).is_err() {
+            continue;
+        }
         let s = shared.clone();
         let _ = std::thread::Builder::new()
             .name("sitlog-view-conn".to_owned())
@@ -280,45 +301,63 @@ fn accept(listener: TcpListener, shared: Arc<Shared>) {
     }
 }
 
-/// A request's head: the path of a GET (`None` for another method or
-/// garbage) and the `Host` and `Origin` headers.
+/// A request's head: the path of a GET (`None` for another method), its
+/// `Host` and `Origin` headers (every one sent), or `None` when it is not
+/// an HTTP request.
 struct Head {
     get: Option<String>,
-    host: Option<String>,
-    origin: Option<String>,
+    hosts: Vec<String>,
+    origins: Vec<String>,
 }
 
-/// Reads the request head (at most 64 KiB, 5 s).
-fn request_head(stream: &TcpStream) -> io::Result<Head> {
+/// The largest request head read.
+const MAX_HEAD: usize = 64 * 1024;
+
+/// Reads the request head (at most [`MAX_HEAD`] bytes, 5 s) and parses it
+/// (`httparse`); `Ok(None)` for bytes that are not an HTTP request head.
+fn request_head(mut stream: &TcpStream) -> io::Result<Option<Head>> {
     stream.set_read_timeout(Some(Duration::from_secs(5)))?;
-    let mut reader = BufReader::new(stream);
-    let mut first = String::new();
-    reader.by_ref().take(8192).read_line(&mut first)?;
-    let (mut host, mut origin) = (None, None);
-    // the rest of the head, up to the blank line
-    let mut total = first.len();
+    let mut buf = Vec::with_capacity(1024);
+    let mut chunk = [0u8; 4096];
     loop {
-        let mut line = String::new();
-        let n = reader.by_ref().take(8192).read_line(&mut line)?;
-        total += n;
-        if n == 0 || line == "\r\n" || line == "\n" || total > 64 * 1024 {
+        let n = stream.read(&mut chunk)?;
+        if n == 0 {
             break;
         }
-        if let Some((name, value)) = line.split_once(':') {
-            let value = Some(value.trim().to_owned());
-            if name.eq_ignore_ascii_case("host") {
-                host = value;
-            } else if name.eq_ignore_ascii_case("origin") {
-                origin = value;
-            }
+        let from = buf.len().saturating_sub(3);
+        buf.extend_from_slice(&chunk[..n]);
+        if buf[from..].windows(4).any(|w| w == b"\r\n\r\n")
+            || buf[from..].windows(2).any(|w| w == b"\n\n")
+            || buf.len() > MAX_HEAD
+        {
+            break;
         }
     }
-    let mut parts = first.split_whitespace();
-    let get = match (parts.next(), parts.next()) {
+    let mut headers = [httparse::EMPTY_HEADER; 64];
+    let mut request = httparse::Request::new(&mut headers);
+    match request.parse(&buf) {
+        Ok(httparse::Status::Complete(_)) => {}
+        _ => return Ok(None),
+    }
+    let text = |v: &[u8]| String::from_utf8_lossy(v).trim().to_owned();
+    let named = |name: &str| -> Vec<String> {
+        request
+            .headers
+            .iter()
+            .filter(|h| h.name.eq_ignore_ascii_case(name))
+            .map(|h| text(h.value))
+            .collect()
+    };
+    let (hosts, origins) = (named("host"), named("origin"));
+    let get = match (request.method, request.path) {
         (Some("GET"), Some(path)) => Some(path.to_owned()),
         _ => None,
     };
-    Ok(Head { get, host, origin })
+    Ok(Some(Head {
+        get,
+        hosts,
+        origins,
+    }))
 }
 
 /// The names a page of this server is reached by: `127.0.0.1`, `localhost`
@@ -332,16 +371,20 @@ fn own_host(host: &str, port: u16) -> bool {
         && (name == "127.0.0.1" || name.eq_ignore_ascii_case("localhost") || name == "[::1]")
 }
 
-/// Whether a request may be answered: a `Host` naming another server (a
-/// page of another site reaching this one by DNS rebinding) or an `Origin`
-/// other than this server's (a cross-site `fetch` or `EventSource`) is
-/// refused. A request without either (a tool, not a browser) is served.
+/// Whether a request may be answered: exactly one `Host`, naming this
+/// server (a `Host` naming another server is a page of another site
+/// reaching this one by DNS rebinding; none, as HTTP/1.0 allows, or two,
+/// leave the server to guess), and at most one `Origin`, this server's (a
+/// cross-site `fetch` or `EventSource` sends its own).
 fn allowed(head: &Head, port: u16) -> bool {
-    let host_ok = head.host.as_deref().is_none_or(|h| own_host(h, port));
-    let origin_ok = head.origin.as_deref().is_none_or(|o| {
-        o.strip_prefix("http://")
-            .is_some_and(|rest| own_host(rest.trim_end_matches('/'), port))
-    });
+    let host_ok = matches!(head.hosts.as_slice(), [h] if own_host(h, port));
+    let origin_ok = match head.origins.as_slice() {
+        [] => true,
+        [o] => o
+            .strip_prefix("http://")
+            .is_some_and(|rest| own_host(rest.trim_end_matches('/'), port)),
+        _ => false,
+    };
     host_ok && origin_ok
 }
 
@@ -356,13 +399,20 @@ fn respond(mut stream: &TcpStream, status: &str, kind: &str, body: &[u8]) -> io:
 }
 
 fn handle(stream: TcpStream, shared: &Shared) -> io::Result<()> {
-    let head = request_head(&stream)?;
+    let Some(head) = request_head(&stream)? else {
+        return respond(
+            &stream,
+            "400 Bad Request",
+            "text/plain",
+            b"not an HTTP request\n",
+        );
+    };
     if !allowed(&head, shared.port) {
         return respond(
             &stream,
             "403 Forbidden",
             "text/plain",
-            b"this live view answers only pages it served itself (Host and Origin 127.0.0.1 or localhost)\n",
+            b"this live view answers only pages it served itself (one Host, and at most one Origin, 127.0.0.1 or localhost)\n",
         );
     }
     let Some(path) = head.get else {

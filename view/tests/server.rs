@@ -29,12 +29,14 @@ fn routes_replay_and_stop() {
     let view = View::start(diagram(), 0).unwrap();
     let addr = view.addr();
     assert!(view.url().starts_with("http://127.0.0.1:"));
-    let page = request(addr, "GET / HTTP/1.1\r\n\r\n");
+    let host = format!("Host: {addr}\r\n");
+    let req = |line: &str| request(addr, &format!("{line}\r\n{host}\r\n"));
+    let page = req("GET / HTTP/1.1");
     assert!(page.starts_with("HTTP/1.1 200 OK"));
     assert!(page.contains("t&lt;&amp;&gt;"));
-    assert!(request(addr, "POST / HTTP/1.1\r\n\r\n").starts_with("HTTP/1.1 405"));
-    assert!(request(addr, "garbage\r\n\r\n").starts_with("HTTP/1.1 405"));
-    let state = request(addr, "GET /state HTTP/1.1\r\n\r\n");
+    assert!(req("POST / HTTP/1.1").starts_with("HTTP/1.1 405"));
+    assert!(request(addr, "garbage\r\n\r\n").starts_with("HTTP/1.1 400"));
+    let state = req("GET /state HTTP/1.1");
     assert!(state.contains(r#"{"transitions":0,"ended":false,"last":null}"#));
     assert!(!view.wait_for_viewer(Some(Duration::from_millis(50))));
     // two transitions before anyone looks: a late page still gets them
@@ -51,9 +53,14 @@ fn routes_replay_and_stop() {
     };
     obs.transition(&store, &entry, 0, Some(is));
     obs.transition(&store, &entry, 0, None);
-    let state = request(addr, "GET /state HTTP/1.1\r\n\r\n");
+    let state = req("GET /state HTTP/1.1");
     assert!(state.contains(r#""transitions":2"#), "{state}");
-    let reader = std::thread::spawn(move || request(addr, "GET /events HTTP/1.1\r\n\r\n"));
+    let reader = std::thread::spawn(move || {
+        request(
+            addr,
+            &format!("GET /events HTTP/1.1\r\nHost: {addr}\r\n\r\n"),
+        )
+    });
     assert!(view.wait_for_viewer(Some(Duration::from_secs(10))));
     view.finish("ok", "done", Duration::from_secs(5));
     let stream = reader.join().unwrap();
@@ -88,10 +95,18 @@ fn only_its_own_host_and_origin_are_answered() {
         format!("Host: 127.0.0.1:{port}\r\nOrigin: http://evil.example.com\r\n"),
         format!("Host: 127.0.0.1:{port}\r\nOrigin: https://127.0.0.1:{port}\r\n"),
         format!("Host: 127.0.0.1:{port}\r\nOrigin: null\r\n"),
+        // issue 38: two Hosts (a foreign one first), none, two Origins
+        format!("Host: evil.example.com\r\nHost: 127.0.0.1:{port}\r\n"),
+        format!("Host: 127.0.0.1:{port}\r\nHost: evil.example.com\r\n"),
+        String::new(),
+        format!("Host: 127.0.0.1:{port}\r\nOrigin: http://evil.example.com\r\nOrigin: http://127.0.0.1:{port}\r\n"),
     ] {
         let answer = get(&bad);
         assert!(answer.starts_with("HTTP/1.1 403"), "{bad}: {answer}");
     }
+    // HTTP/1.0 without a Host
+    let answer = request(addr, "GET /state HTTP/1.0\r\n\r\n");
+    assert!(answer.starts_with("HTTP/1.1 403"), "{answer}");
     // a cross-site event stream does not count as a viewer (it would start the task)
     let answer = request(
         addr,
@@ -120,9 +135,17 @@ fn a_long_run_keeps_a_bounded_window() {
     for _ in 0..n {
         obs.transition(&store, &entry, 0, Some(main));
     }
-    let state = request(addr, "GET /state HTTP/1.1\r\n\r\n");
+    let state = request(
+        addr,
+        &format!("GET /state HTTP/1.1\r\nHost: {addr}\r\n\r\n"),
+    );
     assert!(state.contains(&format!(r#""transitions":{n}"#)), "{state}");
-    let reader = std::thread::spawn(move || request(addr, "GET /events HTTP/1.1\r\n\r\n"));
+    let reader = std::thread::spawn(move || {
+        request(
+            addr,
+            &format!("GET /events HTTP/1.1\r\nHost: {addr}\r\n\r\n"),
+        )
+    });
     assert!(view.wait_for_viewer(Some(Duration::from_secs(10))));
     view.finish("ok", "done", Duration::from_secs(5));
     let stream = reader.join().unwrap();

@@ -73,6 +73,30 @@ pub fn run_app(
         Ok(ir) => ir,
         Err(code) => return code,
     };
+    // An output that is one of the application's files (`--trace
+    // APP/main.dm`) would destroy it: refused before anything runs (issue
+    // 38). Options naming each other's files are the runner's check.
+    if let Some(trace) = &args.trace {
+        let sources = ir
+            .sources
+            .files()
+            .map(|(_, f)| f.path.clone())
+            .filter(|p| !p.starts_with(sitlog_compiler::load::EMBEDDED));
+        let side = [
+            sitlog_robot::WORLD_FILE,
+            sitlog_robot::ROS2_FILE,
+            sitlog_robot::KB_FILE,
+        ]
+        .map(|name| app.join(name));
+        if let Some(input) = sources.chain(side).find(|p| same_inode(p, trace)) {
+            sitlog_runtime::errln!(
+                "error: --trace {} is the application's file {}: the trace would overwrite it; give another file",
+                trace.display(),
+                input.display()
+            );
+            return 2;
+        }
+    }
     let mut assets = match sitlog_robot::Assets::from_app(app) {
         Ok(a) => a,
         Err(e) => {
@@ -227,4 +251,22 @@ fn runner() -> sitlog_robot::Runner {
     #[cfg(feature = "ros2")]
     let runner = runner.robot(sitlog_ros::hook());
     runner
+}
+
+/// Whether `a` and `b` are the same existing file (through links, `..` and
+/// hard links).
+fn same_inode(a: &std::path::Path, b: &std::path::Path) -> bool {
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        #[cfg(unix)]
+        (Ok(ma), Ok(mb)) => {
+            use std::os::unix::fs::MetadataExt;
+            ma.dev() == mb.dev() && ma.ino() == mb.ino()
+        }
+        #[cfg(not(unix))]
+        (Ok(_), Ok(_)) => match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+            (Ok(x), Ok(y)) => x == y,
+            _ => false,
+        },
+        _ => false,
+    }
 }

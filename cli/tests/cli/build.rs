@@ -365,7 +365,7 @@ fn built_executable_runs_like_sitlogc_run() {
     };
     let mut stream = std::net::TcpStream::connect(&addr).unwrap();
     use std::io::{Read, Write};
-    write!(stream, "GET /events HTTP/1.1\r\n\r\n").unwrap();
+    write!(stream, "GET /events HTTP/1.1\r\nHost: {addr}\r\n\r\n").unwrap();
     let mut events = String::new();
     stream.read_to_string(&mut events).unwrap();
     assert!(

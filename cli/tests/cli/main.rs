@@ -21,6 +21,7 @@ mod reliability;
 #[cfg(feature = "ros2")]
 mod ros;
 mod run;
+mod sandbox;
 mod trust;
 mod tutorial;
 mod view;

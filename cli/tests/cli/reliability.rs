@@ -875,3 +875,43 @@ fn models_entries_outside_the_application_are_not_quoted() {
     assert!(!err.contains("TOP SECRET"), "{err}");
     assert!(!err.contains("PATH="), "{err}");
 }
+
+/// A directive that never ends (`:- loop.`) is stopped by
+/// `--prolog-time-limit` like a user function, with a located error and
+/// the JSON report (issue 38; it ran until a second signal before).
+#[test]
+fn a_looping_directive_is_stopped_by_the_time_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("main.dm"),
+        "diag_mod(main,\n  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : say(apply(f(X), [1])) => fs ] ],\n    [ id ==> fs, type ==> final ] ],\n  []).\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("user_functions.pl"),
+        "loop :- loop.\n:- loop.\nf(_) :- assign_func_value(d).\n",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("script.txt"), "").unwrap();
+    let start = std::time::Instant::now();
+    let out = crate::support::sitlogc()
+        .arg("run")
+        .arg(dir.path())
+        .arg("--script")
+        .arg(dir.path().join("script.txt"))
+        .args(["--prolog-time-limit", "0.5", "--format", "json"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(start.elapsed() < std::time::Duration::from_secs(120));
+    assert!(
+        stdout.contains(r#""status":"error""#) && stdout.contains("--prolog-time-limit"),
+        "{stdout}"
+    );
+    assert!(
+        stderr.contains("directives exceeded the time limit"),
+        "{stderr}"
+    );
+}

@@ -458,3 +458,29 @@ while says and time.time() < deadline:
     time.sleep(0.01)
 time.sleep(2)
 "#;
+
+/// A node of another kind publishing another type on `/sitlog/listening`
+/// does not stop the task from starting: it is logged and ignored (issue
+/// 38; it was taken for another task, exit 2).
+#[test]
+fn a_foreign_publisher_on_the_listening_topic_is_logged_and_ignored() {
+    let home = workspace().join("dms/apps/home");
+    let d = domain();
+    let foreign = sitlog_ros::link::Link::open_on("foreign", d, true).unwrap();
+    let qos = sitlog_ros::config::Qos {
+        reliability: "reliable".into(),
+        durability: "volatile".into(),
+        depth: 1,
+    };
+    let _writer = foreign
+        .writer::<sitlog_ros::msgs::StdString>("/sitlog/listening", ("std_msgs", "String"), &qos)
+        .unwrap();
+    let _robot = sim(&home, d, &["--speech", "external"]);
+    let mut t = task(&home, d, &["-q"]);
+    t.wait_for("Golem: Please tell me", Duration::from_secs(60));
+    assert!(
+        t.stderr().contains("std_msgs::msg::dds_::String_") && t.stderr().contains("ignored"),
+        "{}",
+        t.stderr()
+    );
+}

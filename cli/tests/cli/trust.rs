@@ -243,3 +243,44 @@ fn a_user_function_reaching_the_os_is_a_located_error() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `check` warns (W0240) at module-qualified calls and closures of the
+/// system's libraries (`call(os:shell, C)`, `process:process_create`,
+/// `files:delete_file`) and at goals built by name from a table predicate
+/// (`G =.. [shell, C]`), which the Prolog-level refusal does not see
+/// (issue 38); not at other module-qualified calls.
+#[test]
+fn check_warns_at_module_qualified_and_name_built_os_calls() {
+    let (dir, _) = app("qualified", |_| {
+        ":- use_module(library(os)).\n\
+         a(C) :- call(os:shell, C).\n\
+         b(C) :- maplist(os:shell, [C]).\n\
+         c(T, A) :- call(process:process_create, T, A, []).\n\
+         d(T, A) :- process:process_create(T, A, []).\n\
+         e(F) :- call(files:delete_file, F).\n\
+         f(C) :- G =.. [shell, C], call(G).\n\
+         g(A) :- call(sockets:socket_server_open, A, _).\n\
+         h(L, X) :- lists:append(L, [x], X).\n"
+            .to_owned()
+    });
+    let out = sitlogc().arg("check").arg(&dir).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    for (line, what) in [
+        (2, "`os:shell`"),
+        (3, "`os:shell`"),
+        (4, "`process:process_create`"),
+        (5, "`process:process_create`"),
+        (6, "`files:delete_file`"),
+        (7, "named `shell`"),
+        (8, "`sockets:socket_server_open`"),
+    ] {
+        assert!(
+            stderr.contains(&format!("user_functions.pl:{line}:")) && stderr.contains(what),
+            "line {line}, {what}:\n{stderr}"
+        );
+    }
+    assert_eq!(stderr.matches("[W0240]").count(), 7, "{stderr}");
+    assert!(!stderr.contains("user_functions.pl:9:"), "{stderr}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -180,9 +180,13 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
                     }
                     match resolve(&f, source.dir.as_deref()) {
                         // A relative name is part of the application (the
-                        // checker reads it, a compiled task embeds it).
+                        // checker reads it, a compiled task embeds it),
+                        // unless a symbolic link takes it out (resolved
+                        // before the test, issue 38).
                         Some(path)
-                            if (f.starts_with('$') || Path::new(&f).is_absolute())
+                            if (f.starts_with('$')
+                                || Path::new(&f).is_absolute()
+                                || linked_out(&path, source.dir.as_deref()))
                                 && !inside_sources(&path, cx.embedded) =>
                         {
                             cx.outside.push((
@@ -271,6 +275,24 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
             line,
             col,
         });
+    }
+}
+
+/// Whether `path`, named relative to `dir`, is a symbolic link (or lies
+/// under one) that takes it out of `dir`.
+fn linked_out(path: &Path, dir: Option<&Path>) -> bool {
+    let Some(dir) = dir else {
+        return false;
+    };
+    match (std::fs::canonicalize(path), std::fs::canonicalize(dir)) {
+        (Ok(real), Ok(home)) => {
+            let lexical =
+                normalize(&std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf()));
+            let lexical_home =
+                normalize(&std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf()));
+            lexical.starts_with(&lexical_home) && !real.starts_with(&home)
+        }
+        _ => false,
     }
 }
 

@@ -15,7 +15,7 @@ use super::translate::{from_prolog, read_reply, write_atom, Prepared, Writer};
 use crate::functions::{CallLimits, FnCall, Functions};
 use crate::store::Store;
 use crate::term::Term;
-use crate::trust::Trust;
+use crate::trust::{Confine, Trust};
 use scryer_prolog::{
     InputStreamConfig, LeafAnswer, Machine, MachineBuilder, OutputStreamConfig, StreamConfig,
     Term as PTerm,
@@ -80,8 +80,14 @@ fn resident_bytes() -> Option<u64> {
 /// What the engine thread is asked to do.
 enum Request {
     /// Run the application's directives, code reaching the operating
-    /// system allowed or not.
-    Start(bool, mpsc::Sender<Vec<PrologLoadError>>),
+    /// system allowed or not, the thread first confined by the sandbox
+    /// (with the directories the application may write into) if the run
+    /// has one.
+    Start(
+        bool,
+        Option<(Confine, Vec<PathBuf>)>,
+        mpsc::Sender<Vec<PrologLoadError>>,
+    ),
     Query(String, mpsc::Sender<Result<Option<PTerm>, String>>),
 }
 
@@ -247,9 +253,20 @@ impl PrologFunctions {
     /// outcome), with what `trust` allows of the operating system: without
     /// `--allow-os` a `consult/1` of a file outside the application is
     /// refused here, and the guards refuse shell, processes, sockets and
-    /// writes outside the application and its KB. A refusal or a failing
+    /// writes outside the application. A refusal or a failing
     /// directive is an error at the directive's position.
     pub fn start(&self, trust: &Trust) -> Result<(), Vec<PrologLoadError>> {
+        self.start_with(trust, None)
+    }
+
+    /// [`start`](Self::start) under `limits` (a run's call limits, else the
+    /// engine's): the directives together run under the time and memory
+    /// limits of one call (issue 38: `:- loop.` is stopped).
+    pub fn start_with(
+        &self,
+        trust: &Trust,
+        limits: Option<CallLimits>,
+    ) -> Result<(), Vec<PrologLoadError>> {
         let mut started = self
             .inner
             .started
@@ -258,12 +275,13 @@ impl PrologFunctions {
         if let Some(outcome) = &*started {
             return outcome.clone();
         }
-        let outcome = self.start_now(trust);
+        let options = limits.map_or(self.inner.options, PrologOptions::from);
+        let outcome = self.start_now(trust, options);
         *started = Some(outcome.clone());
         outcome
     }
 
-    fn start_now(&self, trust: &Trust) -> Result<(), Vec<PrologLoadError>> {
+    fn start_now(&self, trust: &Trust, options: PrologOptions) -> Result<(), Vec<PrologLoadError>> {
         if !trust.allow_os {
             let refused: Vec<PrologLoadError> = self
                 .inner
@@ -276,9 +294,11 @@ impl PrologFunctions {
                 return Err(refused);
             }
         }
+        let roots = permissions::roots(&self.inner.source_dirs, trust);
         if let Ok(mut r) = self.inner.roots.lock() {
-            *r = permissions::roots(&self.inner.source_dirs, trust);
+            r.clone_from(&roots);
         }
+        let confine = trust.confine.clone().map(|c| (c, roots));
         if trust.allow_os {
             crate::trust::default_shell();
         }
@@ -287,11 +307,12 @@ impl PrologFunctions {
             .tx
             .lock()
             .map_err(|_| vec![engine_error("the Prolog engine is poisoned")])?
-            .send(Request::Start(trust.allow_os, tx))
+            .send(Request::Start(trust.allow_os, confine, tx))
             .map_err(|_| vec![engine_error("the Prolog engine has stopped")])?;
-        let errors = rx
-            .recv()
-            .unwrap_or_else(|_| vec![engine_error("the Prolog engine stopped while starting")]);
+        let errors = match self.watch(&rx, options, "the application's directives") {
+            Ok(errors) => errors,
+            Err(message) => vec![engine_error(&message)],
+        };
         if errors.is_empty() {
             Ok(())
         } else {
@@ -319,13 +340,16 @@ impl PrologFunctions {
                 return None;
             }
             // A call before the run's start (a debugger's evaluation) starts it.
-            if let Err(errors) = me.start(call.functions.trust()) {
+            if let Err(errors) = me.start_with(call.functions.trust(), call.functions.call_limits())
+            {
                 return Some(Err(show_errors(&errors)));
             }
             Some(me.call(call, name, args))
         });
         let me = self.clone();
-        functions.set_start(move |trust| me.start(trust).map_err(|e| show_errors(&e)));
+        functions.set_start(move |trust, limits| {
+            me.start_with(trust, limits).map_err(|e| show_errors(&e))
+        });
     }
 
     /// Runs a raw query (for tests and tools): the first answer's binding
@@ -353,12 +377,24 @@ impl PrologFunctions {
             .map_err(|_| "the Prolog engine is poisoned".to_owned())?
             .send(Request::Query(query, tx))
             .map_err(|_| "the Prolog engine has stopped".to_owned())?;
+        self.watch(&rx, options, what)?
+    }
+
+    /// Waits for the engine's answer on `rx` within the time and memory
+    /// limits of `options`; over one, the engine is abandoned and the
+    /// error names the limit (`what` the call).
+    fn watch<T>(
+        &self,
+        rx: &mpsc::Receiver<T>,
+        options: PrologOptions,
+        what: &str,
+    ) -> Result<T, String> {
         let start = std::time::Instant::now();
         let rss0 = resident_bytes();
         let slice = std::time::Duration::from_millis(10);
         loop {
             match rx.recv_timeout(slice) {
-                Ok(answer) => return answer,
+                Ok(answer) => return Ok(answer),
                 Err(mpsc::RecvTimeoutError::Disconnected) => {
                     return Err("the Prolog engine has stopped".to_owned())
                 }
@@ -521,7 +557,15 @@ fn engine_thread(
     let mut started: Option<bool> = None;
     while let Ok(request) = rx.recv() {
         let (q, reply) = match request {
-            Request::Start(allow_os, reply) => {
+            Request::Start(allow_os, confine, reply) => {
+                // The sandbox binds this thread before any application
+                // code runs on it.
+                if let Some((confine, writable)) = confine {
+                    if let Err(e) = confine.apply(&writable) {
+                        let _ = reply.send(vec![engine_error(&e)]);
+                        continue;
+                    }
+                }
                 started = Some(allow_os);
                 let _ = reply.send(run_directives(&mut machine, &prepared, allow_os));
                 continue;

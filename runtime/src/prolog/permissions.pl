@@ -6,7 +6,7 @@
 %
 % Without --allow-os ('$sitlog_allow_os' not asserted): shell, processes,
 % sockets and native code are refused; open/3,4 may read anywhere but
-% write only inside the application and its KB; consult/1 and friends load
+% write only inside the application; consult/1 and friends load
 % only files inside the application. A refusal is the exception
 %     error(permission_error(Action, sitlog_trust, Culprit), '--allow-os')
 % that the host turns into a message naming the culprit and the flag.
@@ -46,7 +46,7 @@
     ;   throw(error(permission_error(consult, sitlog_trust, F), '--allow-os'))
     ).
 
-% Whether the host finds File inside the application or its KB (a file
+% Whether the host finds File inside the application (a file
 % name as an atom or a list of characters; a stream or a variable is left
 % to the engine's own checks).
 '$sitlog_inside'(File) :-

@@ -82,7 +82,7 @@ pub(super) fn refusal(error: &PTerm, show: impl Fn(&PTerm) -> String) -> Option<
     let culprit = show(&pa[2]);
     let what = match &pa[0] {
         PTerm::Atom(a) if a == "write" => {
-            format!("writing `{culprit}` (outside the application and its KB)")
+            format!("writing `{culprit}` (outside the application)")
         }
         PTerm::Atom(a) if a == "consult" => {
             format!("loading `{culprit}` (outside the application)")

@@ -144,7 +144,7 @@ fn the_flag_lets_the_os_be_and_consults_outside_need_it() {
     );
     let trust = Trust {
         allow_os: true,
-        roots: Vec::new(),
+        ..Trust::default()
     };
     load().start(&trust).expect("starts");
     assert!(pwned.exists());
