@@ -12,6 +12,8 @@ pub mod replay;
 pub mod run;
 #[cfg(feature = "ros2")]
 pub mod sim;
+#[cfg(feature = "ros2")]
+pub mod user;
 
 pub use build::{build_app, explain_types_of};
 pub use check::check;
@@ -23,3 +25,5 @@ pub use replay::replay;
 pub use run::run_app;
 #[cfg(feature = "ros2")]
 pub use sim::sim;
+#[cfg(feature = "ros2")]
+pub use user::user;

@@ -1,0 +1,197 @@
+//! A person plays the user over ROS 2 ([`serve`], `sitlogc user --ros2`):
+//! a node that shows what the robot says (the say topic) and when it
+//! listens (the listening topic), and sends the lines the person types on
+//! the heard topic, as a speech recogniser would.
+//!
+//! A line goes out only while the robot listens, one line per listen: a
+//! line typed while it does not is held, in order, until it next listens
+//! (so a file of lines on stdin plays a whole conversation). A new run of
+//! the task (the run topic) drops the state of the old one's listening.
+//!
+//! Invariant: nothing here waits without looking at the stop flag at
+//! least every [`POLL`]; a line is sent at most once.
+
+use crate::config::Interface;
+use crate::link::{Link, Writer};
+use crate::msgs::{StdBool, StdString};
+use ros2_client::Subscription;
+use std::collections::VecDeque;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, TryRecvError};
+use std::time::Duration;
+
+/// How often the node looks at its topics, its lines and the stop flag.
+pub const POLL: Duration = Duration::from_millis(20);
+
+/// What [`serve`] prints, a line at a time, as the transcript does.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Shown {
+    /// The robot said it (`Golem: text`).
+    Said(String),
+    /// The robot listens (`(Golem listens)`).
+    Listens,
+    /// A line went out on the heard topic (`Luis: text`; a terminal shows
+    /// the typed line already).
+    Sent(String),
+    /// A line typed while the robot does not listen, held until it does.
+    Held(String),
+    /// A task started a run (its id).
+    NewRun(String),
+}
+
+impl Shown {
+    /// The line as printed, with the robot's and the user's names.
+    pub fn text(&self, iface: &Interface) -> String {
+        let (robot, user) = (&iface.robot_name, &iface.user_name);
+        match self {
+            Shown::Said(t) => format!("{robot}: {t}"),
+            Shown::Listens => format!("  ({robot} listens)"),
+            Shown::Sent(t) => format!("{user}: {t}"),
+            Shown::Held(_) => format!("  (held until {robot} listens)"),
+            Shown::NewRun(id) => format!("  (a task starts a run: {id})"),
+        }
+    }
+}
+
+/// Serves until `stop` is set, or `lines` has ended (its sender dropped)
+/// and every line it gave has gone out. Each line of `lines` is what the
+/// user says (blank lines are skipped); `show` gets what to print. `Err`:
+/// the node could not start, or a line could not be published.
+pub fn serve(
+    iface: &Interface,
+    lines: Receiver<String>,
+    show: &mut dyn FnMut(Shown),
+    stop: &AtomicBool,
+) -> Result<(), String> {
+    let mut link = Link::open("user")?;
+    let t = &iface.topics;
+    let q = &iface.qos;
+    // Keep every message until taken: a `false` then a `true` are two listens.
+    let deep = |q: &crate::config::Qos| crate::config::Qos {
+        depth: q.depth.max(1000),
+        ..q.clone()
+    };
+    let say: Subscription<StdString> =
+        link.subscription(&t.say, ("std_msgs", "String"), &deep(&q.say))?;
+    let listening: Subscription<StdBool> =
+        link.subscription(&t.listening, ("std_msgs", "Bool"), &deep(&q.listening))?;
+    let run: Subscription<StdString> =
+        link.subscription(&t.run, ("std_msgs", "String"), &deep(&q.run))?;
+    let heard: Writer<StdString> = link.writer(&t.heard, ("std_msgs", "String"), &q.heard)?;
+    let answer = Interface::secs(iface.timeouts.answer);
+    let discovery = Interface::secs(iface.timeouts.discovery);
+
+    let mut held: VecDeque<String> = VecDeque::new();
+    let mut ended = false;
+    let mut listens = false;
+    let mut sent = false;
+    loop {
+        if stop.load(Ordering::SeqCst) {
+            return Ok(());
+        }
+        loop {
+            match lines.try_recv() {
+                Ok(line) if line.trim().is_empty() => {}
+                Ok(line) => {
+                    if !(listens && !sent && held.is_empty()) {
+                        show(Shown::Held(line.clone()));
+                    }
+                    held.push_back(line);
+                }
+                Err(TryRecvError::Empty) => break,
+                Err(TryRecvError::Disconnected) => {
+                    ended = true;
+                    break;
+                }
+            }
+        }
+        // The task's messages, in the order it published them.
+        let mut inputs: Vec<(Option<ros2_client::ROSTime>, u8, Input)> = Vec::new();
+        take(&run, 0, &mut inputs, Input::Run);
+        take(&say, 1, &mut inputs, Input::Say);
+        take(&listening, 2, &mut inputs, |b: StdBool| Input::Listening(b.data));
+        inputs.sort_by_key(|a| (a.0, a.1));
+        for (_, _, input) in inputs {
+            match input {
+                Input::Run(m) => {
+                    listens = false;
+                    sent = false;
+                    show(Shown::NewRun(m.data));
+                }
+                Input::Say(m) => show(Shown::Said(m.data)),
+                Input::Listening(true) if listens => {}
+                Input::Listening(true) => {
+                    listens = true;
+                    sent = false;
+                    show(Shown::Listens);
+                }
+                Input::Listening(false) => {
+                    listens = false;
+                    sent = false;
+                }
+            }
+        }
+        if listens && !sent {
+            if let Some(line) = held.pop_front() {
+                // The task's reader of the heard topic, matched (the
+                // message is volatile: a reader not yet matched misses it).
+                heard.wait_matched(&link, discovery, stop);
+                heard.send(
+                    StdString {
+                        data: line.trim().to_owned(),
+                    },
+                    Some(answer),
+                )?;
+                sent = true;
+                show(Shown::Sent(line.trim().to_owned()));
+            }
+        }
+        if ended && held.is_empty() {
+            return Ok(());
+        }
+        std::thread::sleep(POLL);
+    }
+}
+
+/// A message of the task.
+enum Input {
+    Run(StdString),
+    Say(StdString),
+    Listening(bool),
+}
+
+/// Takes what `sub` has, with the publisher's timestamps (a malformed
+/// message is dropped).
+fn take<M: 'static + serde::de::DeserializeOwned>(
+    sub: &Subscription<M>,
+    rank: u8,
+    into: &mut Vec<(Option<ros2_client::ROSTime>, u8, Input)>,
+    make: impl Fn(M) -> Input,
+) {
+    loop {
+        match sub.take() {
+            Ok(Some((m, info))) => into.push((info.source_timestamp(), rank, make(m))),
+            Ok(None) => break,
+            Err(_) => continue,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_as_printed() {
+        let mut i = Interface::load(None, None).unwrap();
+        i.robot_name = "Golem".into();
+        i.user_name = "Luis".into();
+        assert_eq!(Shown::Said("Hi.".into()).text(&i), "Golem: Hi.");
+        assert_eq!(Shown::Listens.text(&i), "  (Golem listens)");
+        assert_eq!(Shown::Sent("malz".into()).text(&i), "Luis: malz");
+        assert_eq!(
+            Shown::Held("x".into()).text(&i),
+            "  (held until Golem listens)"
+        );
+    }
+}
