@@ -179,7 +179,9 @@ pub enum Command {
     /// on a real robot whose recogniser is not running. A line goes out only
     /// while the robot listens, one a listen; one typed earlier is held
     /// until it does. When stdin is not a terminal, its lines are said in
-    /// turn and the node ends after the last has gone out. Exit status: 0
+    /// turn and the node ends once the last has gone out and no task runs.
+    /// The node reads with best effort: a task never waits for it, and
+    /// closing it does not stop a run. Exit status: 0
     /// at the end of the input (Ctrl-D), 130 / 143 on SIGINT / SIGTERM
     /// (or Ctrl-C at the prompt), 2 on usage or I/O problems, or when ROS 2
     /// cannot start.

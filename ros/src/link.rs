@@ -342,9 +342,7 @@ impl<M: Serialize> Writer<M> {
     pub fn matched(&self) -> usize {
         use rustdds::StatusEvented;
         while let Some(status) = self.writer.try_recv_status() {
-            if let rustdds::DataWriterStatus::PublicationMatched { current, .. } =
-                status
-            {
+            if let rustdds::DataWriterStatus::PublicationMatched { current, .. } = status {
                 let n = usize::try_from(current.count()).unwrap_or(0);
                 self.matched.store(n, Ordering::SeqCst);
             }

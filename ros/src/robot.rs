@@ -29,9 +29,9 @@
 
 use crate::config::Interface;
 use crate::link::{wait_for, Link, Waited, Writer};
-use futures::future::Either;
 use crate::msgs::*;
 use crate::terms::{goal_pose, hand_arg, lower_first, name_arg, number, report, status_term};
+use futures::future::Either;
 use ros2_client::action::GoalStatusEnum;
 use ros2_client::{ActionClient, Client, Subscription};
 use sitlog_robot::console::SharedConsole;
@@ -50,7 +50,12 @@ fn run_id() -> String {
     let t = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .unwrap_or_default();
-    format!("pid {} at {}.{:09}", std::process::id(), t.as_secs(), t.subsec_nanos())
+    format!(
+        "pid {} at {}.{:09}",
+        std::process::id(),
+        t.as_secs(),
+        t.subsec_nanos()
+    )
 }
 
 /// The connection a `--robot ros2` run makes.

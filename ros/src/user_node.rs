@@ -7,6 +7,8 @@
 //! line typed while it does not is held, in order, until it next listens
 //! (so a file of lines on stdin plays a whole conversation). A new run of
 //! the task (the run topic) drops the state of the old one's listening.
+//! The node reads with best effort, so that the task never waits for it:
+//! closing it mid-run does not stop the run.
 //!
 //! Invariant: nothing here waits without looking at the stop flag at
 //! least every [`POLL`]; a line is sent at most once.
@@ -18,10 +20,13 @@ use ros2_client::Subscription;
 use std::collections::VecDeque;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, TryRecvError};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// How often the node looks at its topics, its lines and the stop flag.
 pub const POLL: Duration = Duration::from_millis(20);
+
+/// How long the node stays once its lines are out and no task runs.
+const LINGER: Duration = Duration::from_millis(500);
 
 /// What [`serve`] prints, a line at a time, as the transcript does.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -53,8 +58,8 @@ impl Shown {
     }
 }
 
-/// Serves until `stop` is set, or `lines` has ended (its sender dropped)
-/// and every line it gave has gone out. Each line of `lines` is what the
+/// Serves until `stop` is set, or `lines` has ended (its sender dropped),
+/// every line it gave has gone out and no task runs. Each line of `lines` is what the
 /// user says (blank lines are skipped); `show` gets what to print. `Err`:
 /// the node could not start, or a line could not be published.
 pub fn serve(
@@ -66,17 +71,19 @@ pub fn serve(
     let mut link = Link::open("user")?;
     let t = &iface.topics;
     let q = &iface.qos;
+    // Best effort: the task never waits for this node (a console closed
+    // mid-run is no robot gone), which then misses what was said before it
+    // started; a listening task says so again every `timeouts.answer`.
     // Keep every message until taken: a `false` then a `true` are two listens.
-    let deep = |q: &crate::config::Qos| crate::config::Qos {
-        depth: q.depth.max(1000),
-        ..q.clone()
+    let watch = crate::config::Qos {
+        reliability: "best_effort".into(),
+        durability: "volatile".into(),
+        depth: 1000,
     };
-    let say: Subscription<StdString> =
-        link.subscription(&t.say, ("std_msgs", "String"), &deep(&q.say))?;
+    let say: Subscription<StdString> = link.subscription(&t.say, ("std_msgs", "String"), &watch)?;
     let listening: Subscription<StdBool> =
-        link.subscription(&t.listening, ("std_msgs", "Bool"), &deep(&q.listening))?;
-    let run: Subscription<StdString> =
-        link.subscription(&t.run, ("std_msgs", "String"), &deep(&q.run))?;
+        link.subscription(&t.listening, ("std_msgs", "Bool"), &watch)?;
+    let run: Subscription<StdString> = link.subscription(&t.run, ("std_msgs", "String"), &watch)?;
     let heard: Writer<StdString> = link.writer(&t.heard, ("std_msgs", "String"), &q.heard)?;
     let answer = Interface::secs(iface.timeouts.answer);
     let discovery = Interface::secs(iface.timeouts.discovery);
@@ -85,6 +92,7 @@ pub fn serve(
     let mut ended = false;
     let mut listens = false;
     let mut sent = false;
+    let mut done: Option<Instant> = None;
     loop {
         if stop.load(Ordering::SeqCst) {
             return Ok(());
@@ -109,7 +117,9 @@ pub fn serve(
         let mut inputs: Vec<(Option<ros2_client::ROSTime>, u8, Input)> = Vec::new();
         take(&run, 0, &mut inputs, Input::Run);
         take(&say, 1, &mut inputs, Input::Say);
-        take(&listening, 2, &mut inputs, |b: StdBool| Input::Listening(b.data));
+        take(&listening, 2, &mut inputs, |b: StdBool| {
+            Input::Listening(b.data)
+        });
         inputs.sort_by_key(|a| (a.0, a.1));
         for (_, _, input) in inputs {
             match input {
@@ -146,8 +156,15 @@ pub fn serve(
                 show(Shown::Sent(line.trim().to_owned()));
             }
         }
-        if ended && held.is_empty() {
-            return Ok(());
+        // Every line out, and no task runs (its listening writer is gone)
+        // for a moment: what it said last may come after discovery tells.
+        if ended && held.is_empty() && link.remote_writers(&t.listening) == 0 {
+            let since = *done.get_or_insert_with(Instant::now);
+            if since.elapsed() >= LINGER {
+                return Ok(());
+            }
+        } else {
+            done = None;
         }
         std::thread::sleep(POLL);
     }

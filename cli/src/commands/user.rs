@@ -106,6 +106,7 @@ pub fn user(app: Option<&Path>) -> u8 {
             sitlog_runtime::errln!("{e}");
             2
         }
+        Ok(()) if interrupt.ended_by_input() => 0,
         Ok(()) => interrupt.exit_status().unwrap_or(0),
     }
 }
@@ -156,7 +157,11 @@ fn prompt(
                     break;
                 }
             }
-            Err(ReadlineError::Eof) => break,
+            // Ctrl-D: the node ends now, a line not yet out with it.
+            Err(ReadlineError::Eof) => {
+                interrupt.request_end_of_input();
+                break;
+            }
             // Ctrl-C in raw mode is a key, not a signal: stop as SIGINT would.
             Err(ReadlineError::Interrupted) => {
                 interrupt.request(i32::from(EXIT_SIGINT) - 128);

@@ -34,12 +34,17 @@ struct Node {
 }
 
 impl Node {
-    fn spawn(mut cmd: Command) -> Node {
+    fn spawn(cmd: Command) -> Node {
+        Node::spawn_with(cmd, Stdio::null())
+    }
+
+    /// [`Node::spawn`] with `stdin`.
+    fn spawn_with(mut cmd: Command, stdin: Stdio) -> Node {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("out");
         let err = dir.path().join("err");
         let child = cmd
-            .stdin(Stdio::null())
+            .stdin(stdin)
             .stdout(std::fs::File::create(&out).unwrap())
             .stderr(std::fs::File::create(&err).unwrap())
             .spawn()
@@ -234,6 +239,140 @@ fn an_aborted_goal_runs_the_recovery_protocol_as_in_process() {
         "the variant blocks a route:\n{want}"
     );
     same_over_dds(&home, &["--world", w]);
+}
+
+/// A small robot task on the home world (no Prolog: a run takes a fraction
+/// of a second): it asks, says what it heard, goes to the living room
+/// (where it is) and listens again. Beside it `one.toml`, the home world
+/// whose user says one line.
+fn small_app() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("main.dm"),
+        "diag_mod(main,\n  [\n\
+         [id ==> is, type ==> neutral, arcs ==> [empty : say('What shall I do?') => ask]],\n\
+         [id ==> ask, type ==> speech,\n arcs ==> [said(T) : say(['You said', T]) => go, nobody : empty => ask]],\n\
+         [id ==> go, type ==> neutral, arcs ==> [empty : navigate(living_room, S) => again(S)]],\n\
+         [id ==> again(S), type ==> speech,\n arcs ==> [said(T) : say(['Here', S, T]) => fs, nobody : empty => fs]],\n\
+         [id ==> fs, type ==> final]\n  ],\n  []).\n",
+    )
+    .unwrap();
+    let home = std::fs::read_to_string(workspace().join("dms/apps/home/world.toml")).unwrap();
+    std::fs::write(dir.path().join("world.toml"), &home).unwrap();
+    // One utterance, and no moves after the later ones.
+    let start = home.find("says = [").unwrap();
+    let end = start + home[start..].find(']').unwrap();
+    let mut one = format!("{}says = [\"hi golem\"{}", &home[..start], &home[end..]);
+    while let Some(at) = one.find("[[user.moves]]") {
+        let stop = one[at..].find("\n\n").map_or(one.len(), |n| at + n + 2);
+        one.replace_range(at..stop, "");
+    }
+    std::fs::write(dir.path().join("one.toml"), one).unwrap();
+    dir
+}
+
+/// Three task runs against one simulator: each starts a new episode on a
+/// fresh world, so each prints the in-process conversation and history
+/// (the user's first two lines each time), and the node prints the
+/// in-process world transcript three times.
+#[test]
+fn the_simulator_serves_run_after_run_each_on_a_fresh_world() {
+    let app = small_app();
+    let want = in_process(app.path(), &[]);
+    assert!(want.contains("Luis: i like noodles best"), "{want}");
+    let d = domain();
+    let mut robot = sim(app.path(), d, &[]);
+    for run in 1..=3 {
+        let (code, out, err) = task(app.path(), d, &[]).finish(Duration::from_secs(60));
+        assert_eq!(code, Some(0), "run {run}:\n{out}\n{err}");
+        assert_eq!(
+            conversation_and_history(&out),
+            conversation_and_history(&want),
+            "run {run} over DDS:\n{out}\nin-process:\n{want}"
+        );
+    }
+    robot.stop("TERM");
+    assert_eq!(robot.stdout(), world_transcript(&want).repeat(3));
+    let notes = robot.stderr();
+    assert!(notes.contains("run 3 (pid "), "{notes}");
+    assert_eq!(notes.matches(": a fresh world").count(), 2, "{notes}");
+}
+
+/// The world's user has nothing more to say: the task stops with the
+/// in-process run-time error, the node says why and serves the next run.
+#[test]
+fn a_user_with_nothing_more_to_say_stops_the_run_on_both_sides() {
+    let app = small_app();
+    let one = app.path().join("one.toml");
+    let one = ["--world", one.to_str().unwrap()];
+    let out = sitlogc()
+        .arg("run")
+        .arg(app.path())
+        .args(one)
+        .output()
+        .unwrap();
+    let in_code = out.status.code();
+    let in_err = String::from_utf8(out.stderr).unwrap();
+    let why = "the user has nothing more to say: all 1 utterances";
+    assert!(in_err.contains(why), "in-process: {in_err}");
+    let d = domain();
+    let mut robot = sim(app.path(), d, &one);
+    for _ in 0..2 {
+        let (code, out, err) = task(app.path(), d, &one).finish(Duration::from_secs(60));
+        assert_eq!(code, in_code, "as in-process:\n{out}\n{err}");
+        assert!(err.contains(why), "the task: {err}");
+    }
+    robot.stop("TERM");
+    let notes = robot.stderr();
+    assert_eq!(notes.matches(why).count(), 2, "the node: {notes}");
+}
+
+/// `sitlogc user --ros2` fed the user's lines on stdin plays the user for a
+/// simulator with `--speech external`: the task prints the in-process
+/// conversation and history; the console prints what the robot said, when
+/// it listened and what it sent, and ends after its last line, once the
+/// task has ended.
+#[test]
+fn the_user_console_plays_the_user_from_stdin() {
+    let app = small_app();
+    let want = in_process(app.path(), &[]);
+    let d = domain();
+    let _robot = sim(app.path(), d, &["--speech", "external"]);
+    let lines = app.path().join("lines.txt");
+    std::fs::write(&lines, "hi golem i like malz\n\ni like noodles best\n").unwrap();
+    let mut cmd = sitlogc();
+    cmd.arg("user").arg(app.path()).arg("--ros2");
+    on_domain(&mut cmd, d);
+    let mut user = Node::spawn_with(cmd, std::fs::File::open(&lines).unwrap().into());
+    user.wait_for(
+        "sitlogc user: Luis on ROS 2 domain",
+        Duration::from_secs(30),
+    );
+    let (code, out, err) = task(app.path(), d, &[]).finish(Duration::from_secs(60));
+    assert_eq!(code, Some(0), "{out}\n{err}\n{}", user.stderr());
+    assert_eq!(
+        conversation_and_history(&out),
+        conversation_and_history(&want)
+    );
+    let (code, shown, err) = user.finish(Duration::from_secs(30));
+    assert_eq!(code, Some(0), "{shown}\n{err}");
+    let turns: Vec<&str> = shown
+        .lines()
+        .filter(|l| !l.contains("a task starts a run"))
+        .collect();
+    assert_eq!(
+        turns,
+        [
+            "Golem: What shall I do?",
+            "  (Golem listens)",
+            "Luis: hi golem i like malz",
+            "Golem: You said hi golem i like malz",
+            "  (Golem listens)",
+            "Luis: i like noodles best",
+            "Golem: Here ok i like noodles best",
+        ],
+        "{shown}"
+    );
 }
 
 /// A robot's side with `ros2` as its `ros2.toml` (and the home world).
