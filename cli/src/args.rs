@@ -179,7 +179,8 @@ pub enum Command {
     /// on a real robot whose recogniser is not running. A line goes out only
     /// while the robot listens, one a listen; one typed earlier is held
     /// until it does. When stdin is not a terminal, its lines are said in
-    /// turn and the node ends once the last has gone out and no task runs.
+    /// turn and the node ends a moment after the task has heard the last
+    /// (or once no task runs).
     /// The node reads with best effort: a task never waits for it, and
     /// closing it does not stop a run. Exit status: 0
     /// at the end of the input (Ctrl-D), 130 / 143 on SIGINT / SIGTERM

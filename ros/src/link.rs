@@ -270,6 +270,27 @@ impl Link {
             .count()
     }
 
+    /// How many readers of other participants on topic `name` are
+    /// reliable (they acknowledge what they get: a robot, not a console
+    /// that only watches).
+    pub fn remote_reliable_readers(&self, name: &str) -> usize {
+        let dds = format!("rt{name}");
+        let me = rustdds::RTPSEntity::guid(&self.context.domain_participant()).prefix;
+        self.context
+            .domain_participant()
+            .discovered_readers()
+            .iter()
+            .filter(|r| r.subscription_topic_data.topic_name() == &dds)
+            .filter(|r| r.reader_proxy.remote_reader_guid.prefix != me)
+            .filter(|r| {
+                matches!(
+                    r.subscription_topic_data.qos().reliability(),
+                    Some(rustdds::policy::Reliability::Reliable { .. })
+                )
+            })
+            .count()
+    }
+
     /// How many writers of other participants the domain has on topic `name`.
     pub fn remote_writers(&self, name: &str) -> usize {
         let dds = format!("rt{name}");

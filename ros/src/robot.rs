@@ -183,10 +183,11 @@ impl RosRobot {
         let hands = link
             .client(&s.hands, ("sitlog_msgs", "GetHands"))
             .map_err(fail)?;
-        // The robot: something that hears what the task says.
+        // The robot: something that hears what the task says (reliably: a
+        // console that only watches, `sitlogc user`, is no robot).
         let start = Instant::now();
         let limit = Interface::secs(iface.timeouts.discovery);
-        while link.remote_readers(&t.say) == 0 {
+        while link.remote_reliable_readers(&t.say) == 0 {
             if start.elapsed() >= limit || stop.requested() {
                 return Err((
                     sitlog_robot::interrupt::EXIT_ROBOT_GONE,

@@ -292,12 +292,14 @@ pub fn serve(
     // The run being served (its id) and how many have started.
     let mut current: Option<String> = None;
     let mut runs = 0usize;
+    let mut stopped: Option<std::time::Instant> = None;
     loop {
-        if stop.load(Ordering::SeqCst) {
-            w.console.finish();
-            return Ok(());
+        // Stopped: a moment more through what comes (a task's last
+        // message, acknowledged, is the robot's to print), then out.
+        if stop.load(Ordering::SeqCst) && stopped.is_none() {
+            stopped = Some(std::time::Instant::now());
         }
-        let _ = poll.poll(&mut events, Some(Duration::from_millis(100)));
+        let _ = poll.poll(&mut events, Some(Duration::from_millis(50)));
         // The task's messages, in the order it published them.
         let mut inputs: Vec<(Option<ros2_client::ROSTime>, u8, Input)> = Vec::new();
         fn drain<M: 'static + serde::de::DeserializeOwned>(
@@ -514,6 +516,10 @@ pub fn serve(
                 right: hand(Hand::Right),
             };
             let _ = hands.send_response(req, response);
+        }
+        if stopped.is_some_and(|at| at.elapsed() >= Duration::from_millis(300)) {
+            w.console.finish();
+            return Ok(());
         }
     }
 }

@@ -58,8 +58,9 @@ impl Shown {
     }
 }
 
-/// Serves until `stop` is set, or `lines` has ended (its sender dropped),
-/// every line it gave has gone out and no task runs. Each line of `lines` is what the
+/// Serves until `stop` is set, or `lines` has ended (its sender dropped)
+/// and every line it gave has gone out, and either the task took the last
+/// (a second ago) or no task runs. Each line of `lines` is what the
 /// user says (blank lines are skipped); `show` gets what to print. `Err`:
 /// the node could not start, or a line could not be published.
 pub fn serve(
@@ -93,6 +94,8 @@ pub fn serve(
     let mut listens = false;
     let mut sent = false;
     let mut done: Option<Instant> = None;
+    // When the task last took a line (its listening ended after it).
+    let mut taken: Option<Instant> = None;
     loop {
         if stop.load(Ordering::SeqCst) {
             return Ok(());
@@ -136,6 +139,9 @@ pub fn serve(
                     show(Shown::Listens);
                 }
                 Input::Listening(false) => {
+                    if sent {
+                        taken = Some(Instant::now());
+                    }
                     listens = false;
                     sent = false;
                 }
@@ -156,15 +162,22 @@ pub fn serve(
                 show(Shown::Sent(line.trim().to_owned()));
             }
         }
-        // Every line out, and no task runs (its listening writer is gone)
-        // for a moment: what it said last may come after discovery tells.
-        if ended && held.is_empty() && link.remote_writers(&t.listening) == 0 {
-            let since = *done.get_or_insert_with(Instant::now);
-            if since.elapsed() >= LINGER {
+        // Every line out and heard, or every line out and no task runs (its
+        // listening writer is gone) for a moment: what it said last may come
+        // after discovery tells. (A task's end may go unannounced: then
+        // discovery tells only when its lease ends, a minute later.)
+        if ended && held.is_empty() {
+            if link.remote_writers(&t.listening) == 0 {
+                let since = *done.get_or_insert_with(Instant::now);
+                if since.elapsed() >= LINGER {
+                    return Ok(());
+                }
+            } else {
+                done = None;
+            }
+            if !sent && taken.is_some_and(|at| at.elapsed() >= LINGER * 2) {
                 return Ok(());
             }
-        } else {
-            done = None;
         }
         std::thread::sleep(POLL);
     }

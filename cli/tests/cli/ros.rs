@@ -330,8 +330,7 @@ fn a_user_with_nothing_more_to_say_stops_the_run_on_both_sides() {
 /// `sitlogc user --ros2` fed the user's lines on stdin plays the user for a
 /// simulator with `--speech external`: the task prints the in-process
 /// conversation and history; the console prints what the robot said, when
-/// it listened and what it sent, and ends after its last line, once the
-/// task has ended.
+/// it listened and what it sent, and ends after its last line.
 #[test]
 fn the_user_console_plays_the_user_from_stdin() {
     let app = small_app();
@@ -354,11 +353,14 @@ fn the_user_console_plays_the_user_from_stdin() {
         conversation_and_history(&out),
         conversation_and_history(&want)
     );
+    // It ends a moment after its last line was heard (what the task says
+    // then may or may not be shown).
     let (code, shown, err) = user.finish(Duration::from_secs(30));
     assert_eq!(code, Some(0), "{shown}\n{err}");
     let turns: Vec<&str> = shown
         .lines()
         .filter(|l| !l.contains("a task starts a run"))
+        .take(6)
         .collect();
     assert_eq!(
         turns,
@@ -369,7 +371,6 @@ fn the_user_console_plays_the_user_from_stdin() {
             "Golem: You said hi golem i like malz",
             "  (Golem listens)",
             "Luis: i like noodles best",
-            "Golem: Here ok i like noodles best",
         ],
         "{shown}"
     );
