@@ -380,7 +380,10 @@ pub fn serve(
                                     runs.max(1),
                                     t.abort
                                 ));
-                                let _ = abort.send(StdString { data: why }, None);
+                                // (Volatile: to the task's reader, matched.)
+                                let answer = Interface::secs(iface.timeouts.answer);
+                                abort.wait_matched(&link, answer, stop);
+                                let _ = abort.send(StdString { data: why }, Some(answer));
                             }
                         }
                     }
