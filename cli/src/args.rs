@@ -172,20 +172,18 @@ pub enum Command {
     /// Play the user of a robot over ROS 2: read what it says, type what you say.
     ///
     /// `sitlogc user --ros2` is a ROS 2 node on the DDS domain
-    /// ROS_DOMAIN_ID that prints what the robot says (the say topic), shows
-    /// when it listens (the listening topic), and sends each line typed at
-    /// the prompt (line editing, history) on the heard topic, as a speech
-    /// recogniser would: with `sitlogc sim APP --ros2 --speech external`, or
-    /// on a real robot whose recogniser is not running. A line goes out only
-    /// while the robot listens, one a listen; one typed earlier is held
-    /// until it does. When stdin is not a terminal, its lines are said in
-    /// turn and the node ends a moment after the task has heard the last
-    /// (or once no task runs).
-    /// The node reads with best effort: a task never waits for it, and
-    /// closing it does not stop a run. Exit status: 0
-    /// at the end of the input (Ctrl-D), 130 / 143 on SIGINT / SIGTERM
-    /// (or Ctrl-C at the prompt), 2 on usage or I/O problems, or when ROS 2
-    /// cannot start.
+    /// ROS_DOMAIN_ID that prints what the robot says (the say topic) and,
+    /// each time the robot listens (the listening topic), reads a line at a
+    /// prompt (line editing, history) and sends it on the heard topic, as a
+    /// speech recogniser would: with `sitlogc sim APP --ros2 --speech
+    /// external`, or on a real robot whose recogniser is not running. When
+    /// stdin is not a terminal, its lines are said in turn, one each time the
+    /// robot listens (a line read before is held until it does), and the
+    /// node ends a moment after the task has heard the last (or once no task
+    /// runs). The node reads with best effort: a task never waits for it,
+    /// and closing it does not stop a run. Exit status: 0 at the end of the
+    /// input (Ctrl-D at the prompt), 130 / 143 on Ctrl-C, SIGINT or SIGTERM,
+    /// 2 on usage or I/O problems, or when ROS 2 cannot start.
     #[cfg(feature = "ros2")]
     User {
         /// The application whose `ros2.toml` (topic names) and world file

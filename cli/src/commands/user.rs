@@ -1,11 +1,11 @@
 //! `sitlogc user --ros2` (feature `ros2`): a person plays the user of a
-//! robot over ROS 2 ([`sitlog_ros::user_node`]). On a terminal, lines are
-//! typed at a prompt with line editing and history (rustyline) while the
-//! node prints what the robot says above it; otherwise stdin's lines are
-//! said in turn, each echoed as a turn of the transcript when it goes out.
+//! robot over ROS 2 ([`sitlog_ros::user_node`]). On a terminal, what the
+//! robot says is printed, and each time it listens a line is read at a
+//! prompt with line editing and history (rustyline); otherwise stdin's
+//! lines are said in turn, each echoed as a turn of the transcript when it
+//! goes out.
 
 use rustyline::error::ReadlineError;
-use rustyline::ExternalPrinter;
 use sitlog_robot::interrupt::{Interrupt, EXIT_SIGINT};
 use sitlog_robot::Assets;
 use sitlog_ros::user_node::{serve, Shown};
@@ -75,7 +75,11 @@ pub fn user(app: Option<&Path>) -> u8 {
         iface.topics.say,
         iface.topics.heard,
         iface.robot_name,
-        if terminal { " (Ctrl-D ends)" } else { "" }
+        if terminal {
+            " (Ctrl-C ends, or Ctrl-D at the prompt)"
+        } else {
+            ""
+        }
     );
     let (tx, rx) = mpsc::channel::<String>();
     let result = if terminal {
@@ -111,8 +115,13 @@ pub fn user(app: Option<&Path>) -> u8 {
     }
 }
 
-/// The prompt on the terminal, the node on a thread of its own printing
-/// above it.
+/// The prompt on the terminal: the node on a thread of its own hands
+/// what to show to this one, which prints it and, each time the robot
+/// listens, reads a line (line editing, history). Nothing is printed while
+/// a line is read: a robot does not speak while it listens, and what comes
+/// meanwhile (a new run) is printed after. (rustyline's external printer
+/// would print during the read, but then keys that arrive together, as
+/// under load, wait for the next key: its issue 976.)
 fn prompt(
     iface: &Interface,
     tx: mpsc::Sender<String>,
@@ -120,58 +129,80 @@ fn prompt(
     interrupt: &Interrupt,
 ) -> Result<(), String> {
     use rustyline::config::{Behavior, Config};
-    let config = Config::builder()
-        .behavior(Behavior::PreferTerm)
-        .auto_add_history(false)
-        .build();
-    let mut editor = rustyline::DefaultEditor::with_config(config)
-        .map_err(|e| format!("error: the terminal: {e}"))?;
-    let mut printer = editor
-        .create_external_printer()
-        .map_err(|e| format!("error: the terminal: {e}"))?;
+    // An editor only while a line is read: rustyline takes SIGINT while
+    // one exists (without its `signal-hook` feature), and between two
+    // reads Ctrl-C must stop the node. The history goes from one to the next.
+    let editor = |history: &[String]| {
+        let config = Config::builder()
+            .behavior(Behavior::PreferTerm)
+            .auto_add_history(false)
+            .build();
+        let mut editor = rustyline::DefaultEditor::with_config(config)
+            .map_err(|e| format!("error: the terminal: {e}"))?;
+        for line in history {
+            let _ = editor.add_history_entry(line.as_str());
+        }
+        Ok::<_, String>(editor)
+    };
+    let mut history: Vec<String> = Vec::new();
+    let (shown_tx, shown) = mpsc::channel::<Shown>();
     let node_iface = iface.clone();
     let flag = interrupt.flag.clone();
     let node = std::thread::Builder::new()
         .name("sitlogc-user-node".into())
         .spawn(move || {
             let mut show = |s: Shown| {
-                // The typed line is on the screen already.
-                if !matches!(s, Shown::Sent(_)) {
-                    let _ = printer.print(format!("{}\n", s.text(&node_iface)));
-                }
+                let _ = shown_tx.send(s);
             };
             serve(&node_iface, rx, &mut show, &flag)
         })
         .map_err(|e| format!("error: a thread: {e}"))?;
     let prompt = format!("{}> ", iface.user_name);
+    let mut out = std::io::stdout();
+    let stop = |why: i32| interrupt.request(why);
     loop {
-        if interrupt.requested() || node.is_finished() {
-            break;
+        let s = match shown.recv_timeout(std::time::Duration::from_millis(100)) {
+            Ok(s) => s,
+            Err(mpsc::RecvTimeoutError::Timeout) => continue,
+            // The node has ended (stopped, or it could not start).
+            Err(mpsc::RecvTimeoutError::Disconnected) => break,
+        };
+        // The typed line is on the screen already; nothing is held here.
+        if !matches!(s, Shown::Sent(_) | Shown::Held(_)) {
+            let _ = writeln!(out, "{}", s.text(iface));
+            let _ = out.flush();
         }
-        match editor.readline(&prompt) {
-            Ok(line) => {
-                if !line.trim().is_empty() {
-                    let _ = editor.add_history_entry(line.as_str());
+        if s != Shown::Listens {
+            continue;
+        }
+        // A line for this listen (a blank one is not said: read again).
+        let mut editor = editor(&history)?;
+        let line = loop {
+            match editor.readline(&prompt) {
+                Ok(line) if line.trim().is_empty() => continue,
+                Ok(line) => break Some(line),
+                // Ctrl-D: the node ends now.
+                Err(ReadlineError::Eof) => {
+                    interrupt.request_end_of_input();
+                    break None;
                 }
-                if tx.send(line).is_err() {
-                    break;
+                // Ctrl-C in raw mode is a key, not a signal: stop as SIGINT would.
+                Err(ReadlineError::Interrupted) => {
+                    stop(i32::from(EXIT_SIGINT) - 128);
+                    break None;
+                }
+                Err(e) => {
+                    stop(i32::from(EXIT_SIGINT) - 128);
+                    let _ = node.join();
+                    return Err(format!("error: the terminal: {e}"));
                 }
             }
-            // Ctrl-D: the node ends now, a line not yet out with it.
-            Err(ReadlineError::Eof) => {
-                interrupt.request_end_of_input();
-                break;
-            }
-            // Ctrl-C in raw mode is a key, not a signal: stop as SIGINT would.
-            Err(ReadlineError::Interrupted) => {
-                interrupt.request(i32::from(EXIT_SIGINT) - 128);
-                break;
-            }
-            Err(e) => {
-                interrupt.request(i32::from(EXIT_SIGINT) - 128);
-                let _ = node.join();
-                return Err(format!("error: the terminal: {e}"));
-            }
+        };
+        drop(editor);
+        let Some(line) = line else { break };
+        history.push(line.clone());
+        if tx.send(line).is_err() {
+            break;
         }
     }
     drop(tx);

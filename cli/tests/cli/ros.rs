@@ -376,6 +376,122 @@ fn the_user_console_plays_the_user_from_stdin() {
     );
 }
 
+/// `sitlogc user --ros2` on a terminal (a pty): each time the robot
+/// listens, what is typed at the prompt, edited (a backspace) or taken from
+/// the history (the up arrow), is what the task hears; Ctrl-C ends it.
+/// A line goes in one write, as pasted.
+#[cfg(target_os = "linux")]
+#[test]
+fn the_user_console_on_a_terminal_edits_and_remembers_lines() {
+    use std::io::{Read, Write};
+    use std::os::fd::{FromRawFd, OwnedFd};
+    use std::sync::mpsc;
+
+    let app = small_app();
+    let d = domain();
+    let _robot = sim(app.path(), d, &["--speech", "external"]);
+    let (mut master, slave) = unsafe {
+        let (mut m, mut s) = (0, 0);
+        let r = libc::openpty(
+            &mut m,
+            &mut s,
+            std::ptr::null_mut(),
+            std::ptr::null(),
+            std::ptr::null(),
+        );
+        if r != 0 {
+            eprintln!("skipped: openpty: {}", std::io::Error::last_os_error());
+            return;
+        }
+        (std::fs::File::from_raw_fd(m), OwnedFd::from_raw_fd(s))
+    };
+    let mut cmd = sitlogc();
+    // The pty is the console's controlling terminal, as a shell's is.
+    unsafe {
+        use std::os::unix::process::CommandExt;
+        cmd.pre_exec(|| {
+            if libc::setsid() < 0 || libc::ioctl(0, libc::TIOCSCTTY, 0) < 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    cmd.env("TERM", "xterm")
+        .arg("user")
+        .arg(app.path())
+        .arg("--ros2")
+        .stdout(Stdio::from(slave.try_clone().unwrap()))
+        .stderr(Stdio::from(slave.try_clone().unwrap()));
+    on_domain(&mut cmd, d);
+    /// Killed if the test fails before it ends.
+    struct Killed(Child);
+    impl Drop for Killed {
+        fn drop(&mut self) {
+            let _ = self.0.kill();
+            let _ = self.0.wait();
+        }
+    }
+    let mut user = Killed(
+        cmd.stdin(Stdio::from(slave.try_clone().unwrap()))
+            .spawn()
+            .unwrap(),
+    );
+    drop(slave);
+    let (tx, rx) = mpsc::channel::<Vec<u8>>();
+    let mut reader = master.try_clone().unwrap();
+    std::thread::spawn(move || {
+        let mut buf = [0u8; 4096];
+        while let Ok(n) = reader.read(&mut buf) {
+            if n == 0 || tx.send(buf[..n].to_vec()).is_err() {
+                return;
+            }
+        }
+    });
+    let mut screen = String::new();
+    let mut wait = |text: &str, count: usize| {
+        let start = Instant::now();
+        while screen.matches(text).count() < count {
+            let left = Duration::from_secs(60).saturating_sub(start.elapsed());
+            match rx.recv_timeout(left) {
+                Ok(bytes) => screen.push_str(&String::from_utf8_lossy(&bytes)),
+                Err(_) => panic!("no {text:?} (x{count}) on the terminal:\n{screen}"),
+            }
+        }
+    };
+    let mut type_keys = |keys: &[&[u8]]| {
+        for k in keys {
+            master.write_all(k).unwrap();
+            std::thread::sleep(Duration::from_millis(15));
+        }
+    };
+    wait("sitlogc user: Luis on ROS 2 domain", 1);
+    let t = task(app.path(), d, &[]);
+    wait("(Golem listens)", 1);
+    wait("Luis> ", 1);
+    type_keys(&[b"hi golem i like malx\x7fz\r"]);
+    wait("Golem: You said hi golem i like malz", 1);
+    wait("(Golem listens)", 2);
+    wait("Luis> ", 2);
+    type_keys(&[b"\x1b[A", b"\r"]);
+    let (code, out, err) = t.finish(Duration::from_secs(60));
+    assert_eq!(code, Some(0), "{out}\n{err}\n{screen}");
+    assert!(
+        out.contains("Luis: hi golem i like malz\nGolem: Here ok hi golem i like malz\n"),
+        "{out}"
+    );
+    // Ctrl-C (no prompt: the terminal makes it SIGINT).
+    type_keys(&[b"\x03"]);
+    let start = Instant::now();
+    let status = loop {
+        if let Some(s) = user.0.try_wait().unwrap() {
+            break s;
+        }
+        assert!(start.elapsed() < Duration::from_secs(30), "{screen}");
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    assert_eq!(status.code(), Some(130), "{screen}");
+}
+
 /// A robot's side with `ros2` as its `ros2.toml` (and the home world).
 fn robot_dir(ros2: &str) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
