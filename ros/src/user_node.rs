@@ -132,8 +132,14 @@ pub fn serve(
                     show(Shown::NewRun(m.data));
                 }
                 Input::Say(m) => show(Shown::Said(m.data)),
-                Input::Listening(true) if listens => {}
+                // The task says again that it listens while it waits.
+                Input::Listening(true) if listens && !sent => {}
+                // A new listen (after a line went out to the last one: its
+                // `false` may be lost, this node reading with best effort).
                 Input::Listening(true) => {
+                    if sent {
+                        taken = Some(Instant::now());
+                    }
                     listens = true;
                     sent = false;
                     show(Shown::Listens);
