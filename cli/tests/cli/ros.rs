@@ -1,8 +1,10 @@
-//! `--robot ros2` and `sitlogc sim --ros2` (feature `ros2`): the scenarios
-//! over DDS between two processes print the in-process conversation and
-//! history, a world variant's recovery runs over it, and each fault of
-//! the guide behaves as documented (no server, the robot killed, a
-//! malformed message, two tasks, no robot). Every test has its own
+//! `--robot ros2`, `sitlogc sim --ros2` and `sitlogc user --ros2` (feature
+//! `ros2`): the scenarios over DDS between two processes print the
+//! in-process conversation and history, a world variant's recovery runs
+//! over it, one simulator serves run after run on a fresh world, a person
+//! plays the user (from a file and on a terminal), and each fault of the
+//! guide behaves as documented (no server, the robot killed, a malformed
+//! message, two tasks, no robot, a user with nothing more to say). Every test has its own
 //! `ROS_DOMAIN_ID` and stays on loopback (`ROS_LOCALHOST_ONLY=1`); every
 //! child is killed when its test ends, and every wait has a deadline.
 
