@@ -144,10 +144,13 @@ pub enum Command {
     /// interface of the guide's table (names from the application's
     /// `ros2.toml`), on the DDS domain ROS_DOMAIN_ID: a task in another
     /// process (`sitlogc run APP --robot ros2`, or a compiled task) runs on
-    /// it. It prints the world's transcript and serves until it is stopped.
-    /// Exit status: 0 when stopped by SIGINT or SIGTERM, 1 when the world's
-    /// user has said everything the world file gives them, 2 on usage, I/O
-    /// or world file problems, or when ROS 2 cannot start.
+    /// it. It prints the world's transcript and serves until it is stopped,
+    /// run after run: each task run starts a new episode on a fresh world
+    /// (the world file's, same seed). When the world's user has nothing more
+    /// to say, the task is told (its run stops with that error, as
+    /// in-process) and the node waits for the next run. Exit status: 0 when
+    /// stopped by SIGINT or SIGTERM, 2 on usage, I/O or world file
+    /// problems, or when ROS 2 cannot start.
     #[cfg(feature = "ros2")]
     Sim {
         /// The application directory (or a single DM file).
@@ -172,6 +175,32 @@ pub enum Command {
         /// No narration lines (the conversation stays).
         #[arg(long, short)]
         quiet: bool,
+    },
+    /// Play the user of a robot over ROS 2: read what it says, type what you say.
+    ///
+    /// `sitlogc user --ros2` is a ROS 2 node on the DDS domain
+    /// ROS_DOMAIN_ID that prints what the robot says (the say topic) and,
+    /// each time the robot listens (the listening topic), reads a line at a
+    /// prompt (line editing, history) and sends it on the heard topic, as a
+    /// speech recogniser would: with `sitlogc sim APP --ros2 --speech
+    /// external`, or on a real robot whose recogniser is not running. When
+    /// stdin is not a terminal, its lines are said in turn, one each time the
+    /// robot listens (a line read before is held until it does), and the
+    /// node ends a moment after the task has heard the last (or once no task
+    /// runs). The node reads with best effort: a task never waits for it,
+    /// and closing it does not stop a run. Exit status: 0 at the end of the
+    /// input (Ctrl-D at the prompt), 130 / 143 on Ctrl-C, SIGINT or SIGTERM,
+    /// 2 on usage or I/O problems, or when ROS 2 cannot start.
+    #[cfg(feature = "ros2")]
+    User {
+        /// The application whose `ros2.toml` (topic names) and world file
+        /// (the robot's and the user's names) to use (default: the
+        /// interface's defaults).
+        #[arg(value_name = "APP")]
+        app: Option<PathBuf>,
+        /// Over ROS 2 (the only way `sitlogc user` connects for now).
+        #[arg(long, required = true)]
+        ros2: bool,
     },
     /// Run an application under the step debugger (interpreted).
     ///

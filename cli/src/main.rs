@@ -94,6 +94,8 @@ fn run(cli: Cli) -> u8 {
             speech == sitlog_cli::args::Speech::External,
             quiet,
         ),
+        #[cfg(feature = "ros2")]
+        Command::User { app, ros2: _ } => user(app.as_deref()),
         Command::Debug { app, run, commands } => run_app(
             &app,
             &run,

@@ -55,6 +55,10 @@ section!(
         heard: String = "/sitlog/heard",
         screen: String = "/sitlog/screen",
         message: String = "/sitlog/message",
+        /// Task → robot: a run starts (its id, once, latched).
+        run: String = "/sitlog/run",
+        /// Robot → task: the robot cannot go on with this run (why).
+        abort: String = "/sitlog/abort",
     }
 );
 
@@ -94,6 +98,8 @@ section!(
         heard: Qos = Qos::new("reliable", "volatile", 10),
         screen: Qos = Qos::new("reliable", "transient_local", 10),
         message: Qos = Qos::new("reliable", "transient_local", 10),
+        run: Qos = Qos::new("reliable", "transient_local", 1),
+        abort: Qos = Qos::new("reliable", "volatile", 10),
     }
 );
 
@@ -184,6 +190,8 @@ impl Interface {
             ("heard", &parsed.qos.heard),
             ("screen", &parsed.qos.screen),
             ("message", &parsed.qos.message),
+            ("run", &parsed.qos.run),
+            ("abort", &parsed.qos.abort),
         ] {
             if !matches!(q.reliability.as_str(), "reliable" | "best_effort")
                 || !matches!(q.durability.as_str(), "transient_local" | "volatile")

@@ -136,6 +136,7 @@ impl Link {
         Ok(Writer {
             writer,
             name: name.to_owned(),
+            matched: Default::default(),
         })
     }
 
@@ -269,6 +270,27 @@ impl Link {
             .count()
     }
 
+    /// How many readers of other participants on topic `name` are
+    /// reliable (they acknowledge what they get: a robot, not a console
+    /// that only watches).
+    pub fn remote_reliable_readers(&self, name: &str) -> usize {
+        let dds = format!("rt{name}");
+        let me = rustdds::RTPSEntity::guid(&self.context.domain_participant()).prefix;
+        self.context
+            .domain_participant()
+            .discovered_readers()
+            .iter()
+            .filter(|r| r.subscription_topic_data.topic_name() == &dds)
+            .filter(|r| r.reader_proxy.remote_reader_guid.prefix != me)
+            .filter(|r| {
+                matches!(
+                    r.subscription_topic_data.qos().reliability(),
+                    Some(rustdds::policy::Reliability::Reliable { .. })
+                )
+            })
+            .count()
+    }
+
     /// The writers of other participants on topic `name`: how many
     /// publish `type_name` (a DDS type name, `std_msgs::msg::dds_::Bool_`),
     /// and the types of the others (a foreign node's, issue 38).
@@ -324,6 +346,8 @@ pub fn profile(q: &Qos) -> QosProfile {
 pub struct Writer<M: Serialize> {
     writer: rustdds::no_key::DataWriterCdr<M>,
     pub name: String,
+    /// Readers matched, as the last status event said.
+    matched: std::sync::atomic::AtomicUsize,
 }
 
 impl<M: Serialize> Writer<M> {
@@ -340,6 +364,36 @@ impl<M: Serialize> Writer<M> {
                 .writer
                 .wait_for_acknowledgments(d)
                 .map_err(|e| format!("publishing on {}: {e}", self.name)),
+        }
+    }
+
+    /// How many readers this writer has matched (a reader discovery has
+    /// announced may not be matched yet), from its status events.
+    pub fn matched(&self) -> usize {
+        use rustdds::StatusEvented;
+        while let Some(status) = self.writer.try_recv_status() {
+            if let rustdds::DataWriterStatus::PublicationMatched { current, .. } = status {
+                let n = usize::try_from(current.count()).unwrap_or(0);
+                self.matched.store(n, Ordering::SeqCst);
+            }
+        }
+        self.matched.load(Ordering::SeqCst)
+    }
+
+    /// Waits (at most `limit`, looking at `stop` every [`TICK`]) until this
+    /// writer has matched every reader discovery knows on its topic, so
+    /// that a volatile message reaches them all. `false`: it has not.
+    pub fn wait_matched(&self, link: &Link, limit: Duration, stop: &AtomicBool) -> bool {
+        let start = Instant::now();
+        loop {
+            let known = link.remote_readers(&self.name);
+            if known > 0 && self.matched() >= known {
+                return true;
+            }
+            if start.elapsed() >= limit || stop.load(Ordering::SeqCst) {
+                return false;
+            }
+            std::thread::sleep(Duration::from_millis(10).min(TICK));
         }
     }
 }

@@ -5,9 +5,13 @@
 //! - `say(Text)` is published on the say topic and waited on until every
 //!   reader has it (so the robot hears it before the next action);
 //!   `screen/1` and `message/2` likewise on theirs.
+//! - A run announces itself once, at its start: its id on the run topic
+//!   (a robot that serves episodes, the simulator, starts a fresh one).
 //! - A speech situation publishes `true` on the listening topic, waits for
 //!   one message on the heard topic (`said(Text)`; an empty one: `nobody`),
 //!   then publishes `false`. What arrives while nothing listens is dropped.
+//!   A message on the abort topic (the robot cannot go on with this run)
+//!   ends the listening with a run-time error, its text.
 //! - `navigate/2` sends the place's pose to NavigateToPose; `grasp/3`,
 //!   `place/2`, `hand_over/2` their sitlog_msgs actions; `vision` and
 //!   `hands` call services; `presence(S)` the WaitForPerson action.
@@ -27,6 +31,7 @@ use crate::config::Interface;
 use crate::link::{wait_for, Link, Waited, Writer};
 use crate::msgs::*;
 use crate::terms::{goal_pose, hand_arg, lower_first, name_arg, number, report, status_term};
+use futures::future::Either;
 use ros2_client::action::GoalStatusEnum;
 use ros2_client::{ActionClient, Client, Subscription};
 use sitlog_robot::console::SharedConsole;
@@ -39,6 +44,19 @@ use sitlog_sim::{Sim, World};
 use std::sync::atomic::AtomicBool;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
+
+/// A run's id on the run topic: this process and the time it started.
+fn run_id() -> String {
+    let t = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .unwrap_or_default();
+    format!(
+        "pid {} at {}.{:09}",
+        std::process::id(),
+        t.as_secs(),
+        t.subsec_nanos()
+    )
+}
 
 /// The connection a `--robot ros2` run makes.
 pub fn hook() -> RobotHook {
@@ -77,6 +95,9 @@ struct Inner {
     screen: Writer<StdString>,
     message: Writer<TextMessage>,
     heard: Subscription<StdString>,
+    abort: Subscription<StdString>,
+    /// The run's announcement, kept for as long as the run.
+    _run: Writer<StdString>,
     navigate: Nav,
     grasp: ActionClient<GraspGoal, StatusResult, Empty>,
     place: ActionClient<HandGoal, StatusResult, Empty>,
@@ -135,6 +156,12 @@ impl RosRobot {
         let heard = link
             .subscription(&t.heard, ("std_msgs", "String"), &q.heard)
             .map_err(fail)?;
+        let run = link
+            .writer(&t.run, ("std_msgs", "String"), &q.run)
+            .map_err(fail)?;
+        let abort = link
+            .subscription(&t.abort, ("std_msgs", "String"), &q.abort)
+            .map_err(fail)?;
         let navigate = link
             .action_client(&a.navigate, ("nav2_msgs", "NavigateToPose"))
             .map_err(fail)?;
@@ -156,10 +183,11 @@ impl RosRobot {
         let hands = link
             .client(&s.hands, ("sitlog_msgs", "GetHands"))
             .map_err(fail)?;
-        // The robot: something that hears what the task says.
+        // The robot: something that hears what the task says (reliably: a
+        // console that only watches, `sitlogc user`, is no robot).
         let start = Instant::now();
         let limit = Interface::secs(iface.timeouts.discovery);
-        while link.remote_readers(&t.say) == 0 {
+        while link.remote_reliable_readers(&t.say) == 0 {
             if start.elapsed() >= limit || stop.requested() {
                 return Err((
                     sitlog_robot::interrupt::EXIT_ROBOT_GONE,
@@ -192,6 +220,26 @@ impl RosRobot {
                 ),
             ));
         }
+        // The run starts: announced once the robot's reader of the run topic
+        // (if it has one: a robot that serves episodes) is matched, and
+        // acknowledged before anything else is sent.
+        if link.remote_readers(&t.run) > 0 {
+            run.wait_matched(&link, Interface::secs(iface.timeouts.discovery), &stop.flag);
+        }
+        let answer = iface.timeouts.answer;
+        match run.send(StdString { data: run_id() }, Some(Interface::secs(answer))) {
+            Ok(true) => {}
+            Ok(false) => {
+                return Err((
+                    sitlog_robot::interrupt::EXIT_ROBOT_GONE,
+                    format!(
+                        "error: the robot did not acknowledge the start of the run on {} within {answer:.1} s",
+                        t.run
+                    ),
+                ))
+            }
+            Err(e) => return Err((2, format!("error: ROS 2: {e}"))),
+        }
         let inner = Inner {
             link,
             iface,
@@ -202,6 +250,8 @@ impl RosRobot {
             screen,
             message,
             heard,
+            abort,
+            _run: run,
             navigate,
             grasp,
             place,
@@ -434,6 +484,9 @@ impl Inner {
                 Err(e) => self.narrate(&format!("dropped a malformed message on {topic}: {e:?}")),
             }
         }
+        if let Some(why) = self.aborted() {
+            return Heard::Aborted(why);
+        }
         if !self.publish(&self.listening, StdBool { data: true }) {
             return Heard::Gone;
         }
@@ -452,11 +505,21 @@ impl Inner {
                 }
                 None => probe,
             };
-            match wait_for(self.heard.async_take(), Some(limit), &self.stop.flag) {
-                Waited::Done(Ok((m, _))) => break Heard::Said(m.data),
-                Waited::Done(Err(e)) => {
+            let either = futures::future::select(
+                Box::pin(self.heard.async_take()),
+                Box::pin(self.abort.async_take()),
+            );
+            let took = wait_for(either, Some(limit), &self.stop.flag);
+            match took {
+                Waited::Done(Either::Left((Ok((m, _)), _))) => break Heard::Said(m.data),
+                Waited::Done(Either::Left((Err(e), _))) => {
                     self.narrate(&format!("dropped a malformed message on {topic}: {e:?}"))
                 }
+                Waited::Done(Either::Right((Ok((m, _)), _))) => break Heard::Aborted(m.data),
+                Waited::Done(Either::Right((Err(e), _))) => self.narrate(&format!(
+                    "dropped a malformed message on {}: {e:?}",
+                    self.iface.topics.abort
+                )),
                 // Still listening? The robot must acknowledge it again.
                 Waited::TimedOut => {
                     if !self.publish(&self.listening, StdBool { data: true }) {
@@ -466,10 +529,24 @@ impl Inner {
                 Waited::Stopped => break Heard::Stopped,
             }
         };
-        if matches!(heard, Heard::Said(_) | Heard::Nobody) {
+        if matches!(heard, Heard::Said(_) | Heard::Nobody | Heard::Aborted(_)) {
             self.publish(&self.listening, StdBool { data: false });
         }
         heard
+    }
+
+    /// The text of a message on the abort topic, if one came.
+    fn aborted(&self) -> Option<String> {
+        loop {
+            match self.abort.take() {
+                Ok(Some((m, _))) => return Some(m.data),
+                Ok(None) => return None,
+                Err(e) => self.narrate(&format!(
+                    "dropped a malformed message on {}: {e:?}",
+                    self.iface.topics.abort
+                )),
+            }
+        }
     }
 }
 
@@ -477,6 +554,8 @@ impl Inner {
 enum Heard {
     Said(String),
     Nobody,
+    /// The robot ended the run (why).
+    Aborted(String),
     Gone,
     Stopped,
 }
@@ -516,6 +595,7 @@ impl Perception for Senses {
                     store.compound(Atom::intern("said"), &[t])
                 }
                 Heard::Said(_) | Heard::Nobody => atom("nobody"),
+                Heard::Aborted(why) => return Err(why),
                 Heard::Gone | Heard::Stopped => return Ok(Perceived::EndOfInput),
             },
             "vision" => {

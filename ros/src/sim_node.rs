@@ -4,7 +4,13 @@
 //! simulated robot in-process ([`serve`]).
 //!
 //! The node prints the world's transcript (turns and narration) as the
-//! simulated robot does in-process, and serves until it is stopped.
+//! simulated robot does in-process, and serves until it is stopped, run
+//! after run: each task run announces itself on the run topic (its id),
+//! and a new id starts a new episode on a fresh world (the world file's,
+//! with the same seed), so every run sees what a run in-process sees. When
+//! the world's user has nothing more to say, the node tells the task on the
+//! abort topic (the task stops with that run-time error, as in-process)
+//! and waits for the next run.
 //! Messages on the task's topics are taken in the order the task published
 //! them (by source timestamp: the task waits until each is acknowledged
 //! before it publishes the next or sends a goal), then goals, results and
@@ -35,15 +41,6 @@ pub struct Options {
     pub speech_external: bool,
     /// Narration lines as well as the conversation.
     pub narrate: bool,
-}
-
-/// Why the node stopped serving.
-#[derive(Debug, PartialEq, Eq)]
-pub enum Ended {
-    /// The stop flag.
-    Stopped,
-    /// The world's user has said all the world file gives them.
-    NothingMore(usize),
 }
 
 type Status = (GoalStatusEnum, bool);
@@ -151,6 +148,13 @@ struct World2 {
 }
 
 impl World2 {
+    /// A new episode: the world as the world file gives it.
+    fn fresh(&mut self, world: &World, seed: u64) {
+        self.sim = Sim::new(world, seed);
+        self.printed = 0;
+        self.heard = 0;
+    }
+
     /// Prints the events since the last call (as the simulated robot does).
     fn flush(&mut self) {
         let events = self.sim.events();
@@ -176,18 +180,20 @@ enum Input {
     Message(TextMessage),
     Listening(bool),
     Heard(String),
+    Run(String),
 }
 
-/// Serves `world` on `iface` until `stop` is set (or the world's user has
-/// nothing more to say); prints the transcript on `out`. `Err`: the node
-/// could not start.
+/// Serves `world` on `iface` until `stop` is set, a fresh episode for
+/// each task run; prints the transcript on `out`, and on `note` a line
+/// when a run starts or is told to stop. `Err`: the node could not start.
 pub fn serve(
     world: &World,
     iface: &Interface,
     options: &Options,
     out: Box<dyn Write + Send>,
+    note: &mut dyn FnMut(&str),
     stop: &AtomicBool,
-) -> Result<Ended, String> {
+) -> Result<(), String> {
     let seed = options.seed.or(world.seed()).unwrap_or(0);
     let mut w = World2 {
         sim: Sim::new(world, seed),
@@ -223,6 +229,9 @@ pub fn serve(
     } else {
         None
     };
+    let mut run: Subscription<StdString> =
+        link.subscription(&t.run, ("std_msgs", "String"), &deep(&q.run))?;
+    let abort: Writer<StdString> = link.writer(&t.abort, ("std_msgs", "String"), &q.abort)?;
     let heard_out: Option<Writer<StdString>> = if options.speech_external {
         None
     } else {
@@ -268,6 +277,7 @@ pub fn serve(
         if let Some(h) = heard_in.as_mut() {
             reg(h.register(r, mio1::Token(5), readable))?;
         }
+        reg(run.register(r, mio1::Token(6), readable))?;
         reg(navigate.register(r, 10))?;
         reg(grasp.register(r, 12))?;
         reg(place.register(r, 14))?;
@@ -279,12 +289,17 @@ pub fn serve(
     let robot = world.robot_name().to_owned();
     let mut events = mio1::Events::with_capacity(64);
     let mut is_listening = false;
+    // The run being served (its id) and how many have started.
+    let mut current: Option<String> = None;
+    let mut runs = 0usize;
+    let mut stopped: Option<std::time::Instant> = None;
     loop {
-        if stop.load(Ordering::SeqCst) {
-            w.console.finish();
-            return Ok(Ended::Stopped);
+        // Stopped: a moment more through what comes (a task's last
+        // message, acknowledged, is the robot's to print), then out.
+        if stop.load(Ordering::SeqCst) && stopped.is_none() {
+            stopped = Some(std::time::Instant::now());
         }
-        let _ = poll.poll(&mut events, Some(Duration::from_millis(100)));
+        let _ = poll.poll(&mut events, Some(Duration::from_millis(50)));
         // The task's messages, in the order it published them.
         let mut inputs: Vec<(Option<ros2_client::ROSTime>, u8, Input)> = Vec::new();
         fn drain<M: 'static + serde::de::DeserializeOwned>(
@@ -301,6 +316,7 @@ pub fn serve(
                 }
             }
         }
+        drain(&run, 0, &mut inputs, |m| Input::Run(m.data));
         drain(&say, 0, &mut inputs, |m| Input::Say(m.data));
         drain(&screen, 1, &mut inputs, |m| Input::Screen(m.data));
         drain(&message, 2, &mut inputs, Input::Message);
@@ -311,6 +327,17 @@ pub fn serve(
         inputs.sort_by_key(|a| (a.0, a.1));
         for (_, _, input) in inputs {
             match input {
+                Input::Run(id) if current.as_ref() == Some(&id) => {}
+                Input::Run(id) => {
+                    runs += 1;
+                    if runs > 1 {
+                        w.fresh(world, seed);
+                        is_listening = false;
+                    }
+                    let fresh = if runs > 1 { ": a fresh world" } else { "" };
+                    note(&format!("run {runs} ({id}){fresh}"));
+                    current = Some(id);
+                }
                 Input::Say(text) => w.sim.say(&text),
                 Input::Screen(text) => w
                     .console
@@ -332,17 +359,33 @@ pub fn serve(
                         let text = match w.sim.hear() {
                             Heard::Said(text) | Heard::Misheard(text) => {
                                 w.heard += 1;
-                                text
+                                Some(text)
                             }
-                            Heard::Nobody => String::new(),
-                            Heard::NothingMore => {
-                                w.flush();
-                                w.console.finish();
-                                return Ok(Ended::NothingMore(w.heard));
-                            }
+                            Heard::Nobody => Some(String::new()),
+                            Heard::NothingMore => None,
                         };
                         w.flush();
-                        let _ = out.send(StdString { data: text }, None);
+                        match text {
+                            Some(text) => {
+                                let _ = out.send(StdString { data: text }, None);
+                            }
+                            // As in-process: a run-time error of the task.
+                            None => {
+                                let why = format!(
+                                    "the user has nothing more to say: all {} utterances of the world's `user.says` have been heard",
+                                    w.heard
+                                );
+                                note(&format!(
+                                    "run {}: {why}: the task is told so on {}; waiting for the next run",
+                                    runs.max(1),
+                                    t.abort
+                                ));
+                                // (Volatile: to the task's reader, matched.)
+                                let answer = Interface::secs(iface.timeouts.answer);
+                                abort.wait_matched(&link, answer, stop);
+                                let _ = abort.send(StdString { data: why }, Some(answer));
+                            }
+                        }
                     }
                 }
                 Input::Heard(text) => {
@@ -476,6 +519,10 @@ pub fn serve(
                 right: hand(Hand::Right),
             };
             let _ = hands.send_response(req, response);
+        }
+        if stopped.is_some_and(|at| at.elapsed() >= Duration::from_millis(300)) {
+            w.console.finish();
+            return Ok(());
         }
     }
 }

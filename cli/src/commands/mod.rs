@@ -13,6 +13,8 @@ pub mod run;
 #[cfg(feature = "ros2")]
 pub mod sim;
 pub mod test;
+#[cfg(feature = "ros2")]
+pub mod user;
 
 pub use build::{build_app, explain_types_of};
 pub use check::check;
@@ -35,3 +37,5 @@ pub struct Strictness {
     /// refuse the program.
     pub deny_warnings: bool,
 }
+#[cfg(feature = "ros2")]
+pub use user::user;

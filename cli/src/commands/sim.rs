@@ -1,10 +1,11 @@
 //! `sitlogc sim APP --ros2` (feature `ros2`): the application's simulated
 //! world served as a robot over ROS 2 ([`sitlog_ros::sim_node`]), its
-//! transcript on stdout, until SIGINT or SIGTERM.
+//! transcript on stdout, an episode per task run (each announced on
+//! stderr), until SIGINT or SIGTERM.
 
 use sitlog_robot::interrupt::Interrupt;
 use sitlog_robot::{Assets, TextFile};
-use sitlog_ros::sim_node::{serve, Ended, Options};
+use sitlog_ros::sim_node::{serve, Options};
 use sitlog_ros::{link, Interface};
 use std::path::Path;
 
@@ -83,20 +84,16 @@ pub fn sim(app: &Path, world: Option<&Path>, seed: Option<u64>, external: bool, 
         speech_external: external,
         narrate: !quiet,
     };
+    let mut note = |line: &str| sitlog_runtime::errln!("sitlogc sim: {line}");
     match serve(
         &world,
         &iface,
         &options,
         Box::new(std::io::stdout()),
+        &mut note,
         &interrupt.flag,
     ) {
-        Ok(Ended::Stopped) => 0,
-        Ok(Ended::NothingMore(n)) => {
-            sitlog_runtime::errln!(
-                "sitlogc sim: the user has nothing more to say: all {n} utterances of the world's `user.says` have been heard"
-            );
-            1
-        }
+        Ok(()) => 0,
         Err(e) => {
             sitlog_runtime::errln!("{e}");
             2

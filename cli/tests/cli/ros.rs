@@ -1,8 +1,10 @@
-//! `--robot ros2` and `sitlogc sim --ros2` (feature `ros2`): the scenarios
-//! over DDS between two processes print the in-process conversation and
-//! history, a world variant's recovery runs over it, and each fault of
-//! the guide behaves as documented (no server, the robot killed, a
-//! malformed message, two tasks, no robot). Every test has its own
+//! `--robot ros2`, `sitlogc sim --ros2` and `sitlogc user --ros2` (feature
+//! `ros2`): the scenarios over DDS between two processes print the
+//! in-process conversation and history, a world variant's recovery runs
+//! over it, one simulator serves run after run on a fresh world, a person
+//! plays the user (from a file and on a terminal), and each fault of the
+//! guide behaves as documented (no server, the robot killed, a malformed
+//! message, two tasks, no robot, a user with nothing more to say). Every test has its own
 //! `ROS_DOMAIN_ID` and stays on loopback (`ROS_LOCALHOST_ONLY=1`); every
 //! child is killed when its test ends, and every wait has a deadline.
 
@@ -34,12 +36,17 @@ struct Node {
 }
 
 impl Node {
-    fn spawn(mut cmd: Command) -> Node {
+    fn spawn(cmd: Command) -> Node {
+        Node::spawn_with(cmd, Stdio::null())
+    }
+
+    /// [`Node::spawn`] with `stdin`.
+    fn spawn_with(mut cmd: Command, stdin: Stdio) -> Node {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("out");
         let err = dir.path().join("err");
         let child = cmd
-            .stdin(Stdio::null())
+            .stdin(stdin)
             .stdout(std::fs::File::create(&out).unwrap())
             .stderr(std::fs::File::create(&err).unwrap())
             .spawn()
@@ -234,6 +241,257 @@ fn an_aborted_goal_runs_the_recovery_protocol_as_in_process() {
         "the variant blocks a route:\n{want}"
     );
     same_over_dds(&home, &["--world", w]);
+}
+
+/// A small robot task on the home world (no Prolog: a run takes a fraction
+/// of a second): it asks, says what it heard, goes to the living room
+/// (where it is) and listens again. Beside it `one.toml`, the home world
+/// whose user says one line.
+fn small_app() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("main.dm"),
+        "diag_mod(main,\n  [\n\
+         [id ==> is, type ==> neutral, arcs ==> [empty : say('What shall I do?') => ask]],\n\
+         [id ==> ask, type ==> speech,\n arcs ==> [said(T) : say(['You said', T]) => go, nobody : empty => ask]],\n\
+         [id ==> go, type ==> neutral, arcs ==> [empty : navigate(living_room, S) => again(S)]],\n\
+         [id ==> again(S), type ==> speech,\n arcs ==> [said(T) : say(['Here', S, T]) => fs, nobody : empty => fs]],\n\
+         [id ==> fs, type ==> final]\n  ],\n  []).\n",
+    )
+    .unwrap();
+    let home = std::fs::read_to_string(workspace().join("dms/apps/home/world.toml")).unwrap();
+    std::fs::write(dir.path().join("world.toml"), &home).unwrap();
+    // One utterance, and no moves after the later ones.
+    let start = home.find("says = [").unwrap();
+    let end = start + home[start..].find(']').unwrap();
+    let mut one = format!("{}says = [\"hi golem\"{}", &home[..start], &home[end..]);
+    while let Some(at) = one.find("[[user.moves]]") {
+        let stop = one[at..].find("\n\n").map_or(one.len(), |n| at + n + 2);
+        one.replace_range(at..stop, "");
+    }
+    std::fs::write(dir.path().join("one.toml"), one).unwrap();
+    dir
+}
+
+/// Three task runs against one simulator: each starts a new episode on a
+/// fresh world, so each prints the in-process conversation and history
+/// (the user's first two lines each time), and the node prints the
+/// in-process world transcript three times.
+#[test]
+fn the_simulator_serves_run_after_run_each_on_a_fresh_world() {
+    let app = small_app();
+    let want = in_process(app.path(), &[]);
+    assert!(want.contains("Luis: i like noodles best"), "{want}");
+    let d = domain();
+    let mut robot = sim(app.path(), d, &[]);
+    for run in 1..=3 {
+        let (code, out, err) = task(app.path(), d, &[]).finish(Duration::from_secs(60));
+        assert_eq!(code, Some(0), "run {run}:\n{out}\n{err}");
+        assert_eq!(
+            conversation_and_history(&out),
+            conversation_and_history(&want),
+            "run {run} over DDS:\n{out}\nin-process:\n{want}"
+        );
+    }
+    robot.stop("TERM");
+    assert_eq!(robot.stdout(), world_transcript(&want).repeat(3));
+    let notes = robot.stderr();
+    assert!(notes.contains("run 3 (pid "), "{notes}");
+    assert_eq!(notes.matches(": a fresh world").count(), 2, "{notes}");
+}
+
+/// The world's user has nothing more to say: the task stops with the
+/// in-process run-time error, the node says why and serves the next run.
+#[test]
+fn a_user_with_nothing_more_to_say_stops_the_run_on_both_sides() {
+    let app = small_app();
+    let one = app.path().join("one.toml");
+    let one = ["--world", one.to_str().unwrap()];
+    let out = sitlogc()
+        .arg("run")
+        .arg(app.path())
+        .args(one)
+        .output()
+        .unwrap();
+    let in_code = out.status.code();
+    let in_err = String::from_utf8(out.stderr).unwrap();
+    let why = "the user has nothing more to say: all 1 utterances";
+    assert!(in_err.contains(why), "in-process: {in_err}");
+    let d = domain();
+    let mut robot = sim(app.path(), d, &one);
+    for _ in 0..2 {
+        let (code, out, err) = task(app.path(), d, &one).finish(Duration::from_secs(60));
+        assert_eq!(code, in_code, "as in-process:\n{out}\n{err}");
+        assert!(err.contains(why), "the task: {err}");
+    }
+    robot.stop("TERM");
+    let notes = robot.stderr();
+    assert_eq!(notes.matches(why).count(), 2, "the node: {notes}");
+}
+
+/// `sitlogc user --ros2` fed the user's lines on stdin plays the user for a
+/// simulator with `--speech external`: the task prints the in-process
+/// conversation and history; the console prints what the robot said, when
+/// it listened and what it sent, and ends after its last line.
+#[test]
+fn the_user_console_plays_the_user_from_stdin() {
+    let app = small_app();
+    let want = in_process(app.path(), &[]);
+    let d = domain();
+    let _robot = sim(app.path(), d, &["--speech", "external"]);
+    let lines = app.path().join("lines.txt");
+    std::fs::write(&lines, "hi golem i like malz\n\ni like noodles best\n").unwrap();
+    let mut cmd = sitlogc();
+    cmd.arg("user").arg(app.path()).arg("--ros2");
+    on_domain(&mut cmd, d);
+    let mut user = Node::spawn_with(cmd, std::fs::File::open(&lines).unwrap().into());
+    user.wait_for(
+        "sitlogc user: Luis on ROS 2 domain",
+        Duration::from_secs(30),
+    );
+    let (code, out, err) = task(app.path(), d, &[]).finish(Duration::from_secs(60));
+    assert_eq!(code, Some(0), "{out}\n{err}\n{}", user.stderr());
+    assert_eq!(
+        conversation_and_history(&out),
+        conversation_and_history(&want)
+    );
+    // It ends a moment after its last line was heard (what the task says
+    // then may or may not be shown).
+    let (code, shown, err) = user.finish(Duration::from_secs(30));
+    assert_eq!(code, Some(0), "{shown}\n{err}");
+    let turns: Vec<&str> = shown
+        .lines()
+        .filter(|l| !l.contains("a task starts a run"))
+        .take(6)
+        .collect();
+    assert_eq!(
+        turns,
+        [
+            "Golem: What shall I do?",
+            "  (Golem listens)",
+            "Luis: hi golem i like malz",
+            "Golem: You said hi golem i like malz",
+            "  (Golem listens)",
+            "Luis: i like noodles best",
+        ],
+        "{shown}"
+    );
+}
+
+/// `sitlogc user --ros2` on a terminal (a pty): each time the robot
+/// listens, what is typed at the prompt, edited (a backspace) or taken from
+/// the history (the up arrow), is what the task hears; Ctrl-C ends it.
+/// A line goes in one write, as pasted.
+#[cfg(target_os = "linux")]
+#[test]
+fn the_user_console_on_a_terminal_edits_and_remembers_lines() {
+    use std::io::{Read, Write};
+    use std::os::fd::{FromRawFd, OwnedFd};
+    use std::sync::mpsc;
+
+    let app = small_app();
+    let d = domain();
+    let _robot = sim(app.path(), d, &["--speech", "external"]);
+    let (mut master, slave) = unsafe {
+        let (mut m, mut s) = (0, 0);
+        let r = libc::openpty(
+            &mut m,
+            &mut s,
+            std::ptr::null_mut(),
+            std::ptr::null(),
+            std::ptr::null(),
+        );
+        if r != 0 {
+            eprintln!("skipped: openpty: {}", std::io::Error::last_os_error());
+            return;
+        }
+        (std::fs::File::from_raw_fd(m), OwnedFd::from_raw_fd(s))
+    };
+    let mut cmd = sitlogc();
+    // The pty is the console's controlling terminal, as a shell's is.
+    unsafe {
+        use std::os::unix::process::CommandExt;
+        cmd.pre_exec(|| {
+            if libc::setsid() < 0 || libc::ioctl(0, libc::TIOCSCTTY, 0) < 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    cmd.env("TERM", "xterm")
+        .arg("user")
+        .arg(app.path())
+        .arg("--ros2")
+        .stdout(Stdio::from(slave.try_clone().unwrap()))
+        .stderr(Stdio::from(slave.try_clone().unwrap()));
+    on_domain(&mut cmd, d);
+    /// Killed if the test fails before it ends.
+    struct Killed(Child);
+    impl Drop for Killed {
+        fn drop(&mut self) {
+            let _ = self.0.kill();
+            let _ = self.0.wait();
+        }
+    }
+    let mut user = Killed(
+        cmd.stdin(Stdio::from(slave.try_clone().unwrap()))
+            .spawn()
+            .unwrap(),
+    );
+    drop(slave);
+    let (tx, rx) = mpsc::channel::<Vec<u8>>();
+    let mut reader = master.try_clone().unwrap();
+    std::thread::spawn(move || {
+        let mut buf = [0u8; 4096];
+        while let Ok(n) = reader.read(&mut buf) {
+            if n == 0 || tx.send(buf[..n].to_vec()).is_err() {
+                return;
+            }
+        }
+    });
+    let mut screen = String::new();
+    let mut wait = |text: &str, count: usize| {
+        let start = Instant::now();
+        while screen.matches(text).count() < count {
+            let left = Duration::from_secs(60).saturating_sub(start.elapsed());
+            match rx.recv_timeout(left) {
+                Ok(bytes) => screen.push_str(&String::from_utf8_lossy(&bytes)),
+                Err(_) => panic!("no {text:?} (x{count}) on the terminal:\n{screen}"),
+            }
+        }
+    };
+    let mut type_keys = |keys: &[&[u8]]| {
+        for k in keys {
+            master.write_all(k).unwrap();
+            std::thread::sleep(Duration::from_millis(15));
+        }
+    };
+    wait("sitlogc user: Luis on ROS 2 domain", 1);
+    let t = task(app.path(), d, &[]);
+    wait("(Golem listens)", 1);
+    wait("Luis> ", 1);
+    type_keys(&[b"hi golem i like malx\x7fz\r"]);
+    wait("Golem: You said hi golem i like malz", 1);
+    wait("(Golem listens)", 2);
+    wait("Luis> ", 2);
+    type_keys(&[b"\x1b[A", b"\r"]);
+    let (code, out, err) = t.finish(Duration::from_secs(60));
+    assert_eq!(code, Some(0), "{out}\n{err}\n{screen}");
+    assert!(
+        out.contains("Luis: hi golem i like malz\nGolem: Here ok hi golem i like malz\n"),
+        "{out}"
+    );
+    // Ctrl-C (no prompt: the terminal makes it SIGINT).
+    type_keys(&[b"\x03"]);
+    let start = Instant::now();
+    let status = loop {
+        if let Some(s) = user.0.try_wait().unwrap() {
+            break s;
+        }
+        assert!(start.elapsed() < Duration::from_secs(30), "{screen}");
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    assert_eq!(status.code(), Some(130), "{screen}");
 }
 
 /// A robot's side with `ros2` as its `ros2.toml` (and the home world).
