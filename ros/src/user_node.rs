@@ -173,7 +173,11 @@ pub fn serve(
         // after discovery tells. (A task's end may go unannounced: then
         // discovery tells only when its lease ends, a minute later.)
         if ended && held.is_empty() {
-            if link.remote_writers(&t.listening, "std_msgs::msg::dds_::Bool_").0 == 0 {
+            if link
+                .remote_writers(&t.listening, "std_msgs::msg::dds_::Bool_")
+                .0
+                == 0
+            {
                 let since = *done.get_or_insert_with(Instant::now);
                 if since.elapsed() >= LINGER {
                     return Ok(());
