@@ -234,16 +234,39 @@ pub fn run_case(suite: &Suite<'_>, case: &Case, case_text: &str) -> Outcome {
     let kb: Arc<Mutex<Option<sitlog_robot::kb_services::SharedKb>>> = Arc::default();
     let kb_slot = kb.clone();
     let resolved = sitlog_compiler::interp::Resolved::new(suite.ir);
-    let code = Runner::new(streams)
-        .interrupt(interrupt)
-        .observe(Box::new(recorder))
-        .actions_to(Box::new(actions.clone()))
-        .kb_probe(Box::new(move |k| {
-            if let Ok(mut slot) = kb_slot.lock() {
-                *slot = Some(k);
-            }
-        }))
-        .run(&resolved, functions, &args, &assets);
+    let actions_out = actions.clone();
+    let run = move || {
+        Runner::new(streams)
+            .interrupt(interrupt)
+            .observe(Box::new(recorder))
+            .actions_to(Box::new(actions_out))
+            .kb_probe(Box::new(move |k| {
+                if let Ok(mut slot) = kb_slot.lock() {
+                    *slot = Some(k);
+                }
+            }))
+            .run(&resolved, functions, &args, &assets)
+    };
+    // The task runs on a thread of its own: the operating system's sandbox
+    // (Landlock binds the thread that enters it and the threads it starts)
+    // confines that run, not this worker, which goes on to write the next
+    // test's files (issue 38).
+    let code = std::thread::scope(|scope| {
+        std::thread::Builder::new()
+            .stack_size(256 * 1024 * 1024)
+            .spawn_scoped(scope, run)
+            .map(|h| h.join())
+    });
+    let code = match code {
+        Ok(Ok(code)) => code,
+        Ok(Err(panic)) => std::panic::resume_unwind(panic),
+        Err(e) => {
+            outcome
+                .failures
+                .push(format!("the test's run could not start a thread: {e}"));
+            return finish(outcome, started);
+        }
+    };
     outcome.stdout = out.text();
     outcome.stderr = format!("{}{}", actions.text(), err.text());
     outcome.trace = trace.text();
