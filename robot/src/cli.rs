@@ -253,6 +253,11 @@ impl RunArgs {
     }
 }
 
+/// The defaults of a program that embeds the runner (tests, benchmarks,
+/// `sitlogc test`'s harness): as the command line's, except that the OS
+/// sandbox is off (`SandboxMode::Off`): seccomp binds every thread of the
+/// process, so an embedding program opts in for itself; the command line
+/// (`sitlogc run`, `sitlogc debug`, a compiled task) defaults to `auto`.
 impl Default for RunArgs {
     fn default() -> RunArgs {
         RunArgs {
@@ -275,7 +280,7 @@ impl Default for RunArgs {
             prolog_time_limit: CallLimits::TIME,
             prolog_heap_limit: CallLimits::HEAP_BYTES >> 20,
             allow_os: false,
-            sandbox: SandboxMode::Auto,
+            sandbox: SandboxMode::Off,
             trust_roots: Vec::new(),
             view: false,
             view_port: 0,

@@ -10,7 +10,7 @@
 use super::case::{Case, Input, Status};
 use sitlog_robot::console::SharedBuf;
 use sitlog_robot::interrupt::Interrupt;
-use sitlog_robot::{Assets, Format, RunArgs, Runner, Streams, TextFile};
+use sitlog_robot::{Assets, Format, RunArgs, Runner, SandboxMode, Streams, TextFile};
 use sitlog_runtime::history::Entry;
 use sitlog_runtime::machine::Observer;
 use sitlog_runtime::report::JsonTrace;
@@ -115,6 +115,8 @@ pub fn run_case(suite: &Suite<'_>, case: &Case, case_text: &str) -> Outcome {
     let mut assets = suite.assets.clone();
     let mut args = RunArgs {
         format: Format::Text,
+        // each test's run is a task: confined as `sitlogc run` confines one
+        sandbox: SandboxMode::Auto,
         ..RunArgs::default()
     };
     if let Some(main) = &case.main {

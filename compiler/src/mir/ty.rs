@@ -1936,24 +1936,26 @@ diag_mod(d(X, Xs),
         use proptest::strategy::ValueTree;
         let mut runner = proptest::test_runner::TestRunner::deterministic();
         let mut ok = 0;
+        let mut first_refused = String::new();
         for _ in 0..40 {
             let src = random_dm().new_tree(&mut runner).unwrap().current();
             let (program, diags) = load::load_sources(&[("t.dm", src.as_str())]);
             let (result, diags) = check::check(program, diags);
             if result.is_ok() {
                 ok += 1;
-            } else if ok == 0 {
-                eprintln!(
-                    "{src}\n{:?}",
-                    diags
-                        .iter()
-                        .filter(|d| d.is_error())
-                        .map(|d| &d.message)
-                        .collect::<Vec<_>>()
-                );
+            } else if first_refused.is_empty() {
+                let errors: Vec<_> = diags
+                    .iter()
+                    .filter(|d| d.is_error())
+                    .map(|d| &d.message)
+                    .collect();
+                first_refused = format!("{src}\n{errors:?}");
             }
         }
-        assert!(ok >= 20, "{ok} of 40 random DMs check");
+        assert!(
+            ok >= 20,
+            "{ok} of 40 random DMs check; the first refused:\n{first_refused}"
+        );
     }
 
     proptest! {
