@@ -13,6 +13,15 @@
 
 use std::path::{Path, PathBuf};
 
+/// Inferences one Prolog call may make under `--legacy` unless
+/// `--prolog-inferences` says otherwise: the original has no such limit,
+/// and its `rips` task needs more than ten times our default.
+pub const LEGACY_INFERENCES: u64 = 1_000_000_000;
+
+/// Wall-clock time of one Prolog call under `--legacy` unless
+/// `--prolog-time-limit` says otherwise (the original has no limit).
+pub const LEGACY_TIME: std::time::Duration = std::time::Duration::from_secs(300);
+
 /// The original's start-up file, relative to `SITLOG_HOME`.
 pub const INIT_FILE: &str = "src/init.pl";
 

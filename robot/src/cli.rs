@@ -119,6 +119,10 @@ pub struct RunArgs {
     /// gives the original's tree, whose apps consult one another's files).
     #[arg(skip)]
     pub trust_roots: Vec<PathBuf>,
+    /// The original's evaluation of DM calls (not an option: set by
+    /// `sitlogc run --legacy`): see `Options::close_list_tails`.
+    #[arg(skip)]
+    pub close_list_tails: bool,
     /// Follow the run in a web page: the program's diagram (as `sitlogc
     /// graph` draws it) with the current situation, the arcs taken, the DM
     /// stack and the last transitions. Served on 127.0.0.1 only; the task
@@ -266,6 +270,7 @@ impl Default for RunArgs {
             prolog_heap_limit: CallLimits::HEAP_BYTES >> 20,
             allow_os: false,
             trust_roots: Vec::new(),
+            close_list_tails: false,
             view: false,
             view_port: 0,
             view_delay: 0,

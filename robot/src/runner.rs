@@ -382,6 +382,7 @@ impl Runner {
             keep_history: args.history == HistoryMode::Keep,
             input_limits: args.input_limits(),
             stop: ended.as_ref().map(|i| i.flag.clone()).or(debug_stop),
+            close_list_tails: args.close_list_tails,
             ..Options::default()
         };
         functions.set_call_limits(args.call_limits());
