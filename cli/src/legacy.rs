@@ -22,6 +22,21 @@ pub const LEGACY_INFERENCES: u64 = 1_000_000_000;
 /// `--prolog-time-limit` says otherwise (the original has no limit).
 pub const LEGACY_TIME: std::time::Duration = std::time::Duration::from_secs(300);
 
+/// The limits of one Prolog call under `--legacy`: the original has no
+/// limit, and its own applications need more than ours by default (`rips`
+/// initialises its parser from a KB read code by code), so a default limit
+/// becomes [`LEGACY_INFERENCES`] or [`LEGACY_TIME`]; a value given on the
+/// command line other than the default is kept.
+pub fn raise_call_limits(args: &mut sitlog_robot::cli::RunArgs) {
+    use sitlog_runtime::functions::CallLimits;
+    if args.prolog_inferences == CallLimits::INFERENCES {
+        args.prolog_inferences = LEGACY_INFERENCES;
+    }
+    if args.prolog_time_limit == CallLimits::TIME {
+        args.prolog_time_limit = LEGACY_TIME;
+    }
+}
+
 /// The original's start-up file, relative to `SITLOG_HOME`.
 pub const INIT_FILE: &str = "src/init.pl";
 
@@ -235,6 +250,24 @@ fn kb_request(kbs: &mut Vec<sitlog_kb::Kb>, request: &str) -> Result<String, Str
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn legacy_raises_the_default_call_limits_and_keeps_given_ones() {
+        use sitlog_runtime::functions::CallLimits;
+        let mut args = sitlog_robot::cli::RunArgs::default();
+        raise_call_limits(&mut args);
+        assert_eq!(args.prolog_inferences, LEGACY_INFERENCES);
+        assert_eq!(args.prolog_time_limit, LEGACY_TIME);
+        assert!(LEGACY_INFERENCES >= 10 * CallLimits::INFERENCES);
+        let mut args = sitlog_robot::cli::RunArgs {
+            prolog_inferences: 5000,
+            prolog_time_limit: std::time::Duration::from_secs(2),
+            ..Default::default()
+        };
+        raise_call_limits(&mut args);
+        assert_eq!(args.prolog_inferences, 5000);
+        assert_eq!(args.prolog_time_limit, std::time::Duration::from_secs(2));
+    }
 
     #[test]
     fn reads_the_home_consults_of_init_pl() {

@@ -37,16 +37,7 @@ pub fn run_app(
         legacy_args = args.clone();
         legacy_args.trust_roots.push(home.clone());
         legacy_args.close_list_tails = true;
-        // The original has no limit on a Prolog call: its own applications
-        // need more than ours by default (`rips` initialises its parser from
-        // a KB read code by code), so under --legacy the defaults are
-        // LEGACY_INFERENCES and LEGACY_TIME (a value given is kept).
-        if legacy_args.prolog_inferences == sitlog_runtime::functions::CallLimits::INFERENCES {
-            legacy_args.prolog_inferences = crate::legacy::LEGACY_INFERENCES;
-        }
-        if legacy_args.prolog_time_limit == sitlog_runtime::functions::CallLimits::TIME {
-            legacy_args.prolog_time_limit = crate::legacy::LEGACY_TIME;
-        }
+        legacy::raise_call_limits(&mut legacy_args);
         args = &legacy_args;
         {
             use sitlog_runtime::prolog::PrologSource;
