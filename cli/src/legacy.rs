@@ -258,7 +258,7 @@ mod tests {
         raise_call_limits(&mut args);
         assert_eq!(args.prolog_inferences, LEGACY_INFERENCES);
         assert_eq!(args.prolog_time_limit, LEGACY_TIME);
-        assert!(LEGACY_INFERENCES >= 10 * CallLimits::INFERENCES);
+        const { assert!(LEGACY_INFERENCES >= 10 * CallLimits::INFERENCES) };
         let mut args = sitlog_robot::cli::RunArgs {
             prolog_inferences: 5000,
             prolog_time_limit: std::time::Duration::from_secs(2),
