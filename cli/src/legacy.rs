@@ -37,6 +37,32 @@ pub fn raise_call_limits(args: &mut sitlog_robot::cli::RunArgs) {
     }
 }
 
+/// The application's first `caption(Id, Text)` fact (its `templates.pl`,
+/// then its `user_functions.pl`), both atoms: what the original's
+/// `screen(X)` shows, and binds `X` to, when `X` is unbound
+/// (`TextActions::with_unbound_screen`). `None` when there is none.
+pub fn first_caption(app: &Path) -> Option<(String, String)> {
+    use sitlog_syntax::{Atom, Node};
+    let caption = Atom::intern("caption");
+    for file in ["templates.pl", "user_functions.pl"] {
+        let Ok(bytes) = std::fs::read(app.join(file)) else {
+            continue;
+        };
+        let (clauses, _) = sitlog_syntax::read_clauses_bytes(&bytes);
+        for c in &clauses {
+            if let Some(&[id, text]) = c.terms.compound(c.root, caption, 2) {
+                return match (c.terms.node(id), c.terms.node(text)) {
+                    (Node::Atom(i), Node::Atom(t)) => {
+                        Some((i.as_str().to_owned(), t.as_str().to_owned()))
+                    }
+                    _ => None,
+                };
+            }
+        }
+    }
+    None
+}
+
 /// The original's start-up file, relative to `SITLOG_HOME`.
 pub const INIT_FILE: &str = "src/init.pl";
 

@@ -334,11 +334,17 @@ impl Runner {
                     ),
                 };
                 let actions: Box<dyn Actions> = match actions_out {
-                    Some(out) => Box::new(TextActions::new(out, app.basic_actions())),
-                    None => Box::new(TextActions::new(
-                        crate::console::ConsoleStderr::new(console.clone()),
-                        app.basic_actions(),
-                    )),
+                    Some(out) => Box::new(
+                        TextActions::new(out, app.basic_actions())
+                            .with_unbound_screen(args.unbound_screen.clone()),
+                    ),
+                    None => Box::new(
+                        TextActions::new(
+                            crate::console::ConsoleStderr::new(console.clone()),
+                            app.basic_actions(),
+                        )
+                        .with_unbound_screen(args.unbound_screen.clone()),
+                    ),
                 };
                 (perception, actions)
             }

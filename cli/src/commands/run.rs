@@ -38,6 +38,7 @@ pub fn run_app(
         legacy_args.trust_roots.push(home.clone());
         legacy_args.close_list_tails = true;
         legacy::raise_call_limits(&mut legacy_args);
+        legacy_args.unbound_screen = legacy::first_caption(app);
         args = &legacy_args;
         {
             use sitlog_runtime::prolog::PrologSource;

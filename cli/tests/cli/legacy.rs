@@ -472,3 +472,52 @@ diag_mod(pick(B, L),
     assert!(ours[0].contains('|'), "{ours:?}");
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// The original's `screen(X)` with `X` unbound: its service's clause for
+/// `screen([A|Rest])` matches and its message formatter takes the first
+/// `caption(Id, Text)` fact, so `X` is `[caption(Id)]` afterwards and the
+/// caption's text is shown. `--legacy` does the same.
+#[test]
+fn screen_of_an_unbound_variable_shows_the_first_caption_under_legacy() {
+    let root = tree("screen");
+    write(&root, "apps/caps/models", "'main.dm'.\n");
+    write(
+        &root,
+        "apps/caps/templates.pl",
+        "caption(greet, 'Welcome to the shop').\ncaption(bye, 'See you').\n",
+    );
+    write(
+        &root,
+        "apps/caps/main.dm",
+        r#"diag_mod(main,
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : [screen(X), screen(shown(X))] => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#,
+    );
+    let run = |legacy: bool| {
+        let mut cmd = sitlogc();
+        cmd.current_dir(&root)
+            .args(["run", "apps/caps"])
+            .env_remove("SITLOG_HOME");
+        if legacy {
+            cmd.arg("--legacy");
+        }
+        let out = cmd.output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!(out.status.code(), Some(0), "{stderr}");
+        stderr
+            .lines()
+            .filter_map(|l| l.strip_prefix("Golem prints on screen: "))
+            .map(str::to_owned)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        run(true),
+        ["Welcome to the shop", "shown([caption(greet)])"]
+    );
+    let ours = run(false);
+    assert!(!ours.iter().any(|l| l.contains("Welcome")), "{ours:?}");
+    let _ = std::fs::remove_dir_all(&root);
+}
