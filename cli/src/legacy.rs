@@ -13,6 +13,56 @@
 
 use std::path::{Path, PathBuf};
 
+/// Inferences one Prolog call may make under `--legacy` unless
+/// `--prolog-inferences` says otherwise: the original has no such limit,
+/// and its `rips` task needs more than ten times our default.
+pub const LEGACY_INFERENCES: u64 = 1_000_000_000;
+
+/// Wall-clock time of one Prolog call under `--legacy` unless
+/// `--prolog-time-limit` says otherwise (the original has no limit).
+pub const LEGACY_TIME: std::time::Duration = std::time::Duration::from_secs(300);
+
+/// The limits of one Prolog call under `--legacy`: the original has no
+/// limit, and its own applications need more than ours by default (`rips`
+/// initialises its parser from a KB read code by code), so a default limit
+/// becomes [`LEGACY_INFERENCES`] or [`LEGACY_TIME`]; a value given on the
+/// command line other than the default is kept.
+pub fn raise_call_limits(args: &mut sitlog_robot::cli::RunArgs) {
+    use sitlog_runtime::functions::CallLimits;
+    if args.prolog_inferences == CallLimits::INFERENCES {
+        args.prolog_inferences = LEGACY_INFERENCES;
+    }
+    if args.prolog_time_limit == CallLimits::TIME {
+        args.prolog_time_limit = LEGACY_TIME;
+    }
+}
+
+/// The application's first `caption(Id, Text)` fact (its `templates.pl`,
+/// then its `user_functions.pl`), both atoms: what the original's
+/// `screen(X)` shows, and binds `X` to, when `X` is unbound
+/// (`TextActions::with_unbound_screen`). `None` when there is none.
+pub fn first_caption(app: &Path) -> Option<(String, String)> {
+    use sitlog_syntax::{Atom, Node};
+    let caption = Atom::intern("caption");
+    for file in ["templates.pl", "user_functions.pl"] {
+        let Ok(bytes) = std::fs::read(app.join(file)) else {
+            continue;
+        };
+        let (clauses, _) = sitlog_syntax::read_clauses_bytes(&bytes);
+        for c in &clauses {
+            if let Some(&[id, text]) = c.terms.compound(c.root, caption, 2) {
+                return match (c.terms.node(id), c.terms.node(text)) {
+                    (Node::Atom(i), Node::Atom(t)) => {
+                        Some((i.as_str().to_owned(), t.as_str().to_owned()))
+                    }
+                    _ => None,
+                };
+            }
+        }
+    }
+    None
+}
+
 /// The original's start-up file, relative to `SITLOG_HOME`.
 pub const INIT_FILE: &str = "src/init.pl";
 
@@ -226,6 +276,24 @@ fn kb_request(kbs: &mut Vec<sitlog_kb::Kb>, request: &str) -> Result<String, Str
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn legacy_raises_the_default_call_limits_and_keeps_given_ones() {
+        use sitlog_runtime::functions::CallLimits;
+        let mut args = sitlog_robot::cli::RunArgs::default();
+        raise_call_limits(&mut args);
+        assert_eq!(args.prolog_inferences, LEGACY_INFERENCES);
+        assert_eq!(args.prolog_time_limit, LEGACY_TIME);
+        const { assert!(LEGACY_INFERENCES >= 10 * CallLimits::INFERENCES) };
+        let mut args = sitlog_robot::cli::RunArgs {
+            prolog_inferences: 5000,
+            prolog_time_limit: std::time::Duration::from_secs(2),
+            ..Default::default()
+        };
+        raise_call_limits(&mut args);
+        assert_eq!(args.prolog_inferences, 5000);
+        assert_eq!(args.prolog_time_limit, std::time::Duration::from_secs(2));
+    }
 
     #[test]
     fn reads_the_home_consults_of_init_pl() {

@@ -141,6 +141,15 @@ pub struct RunArgs {
     /// gives the original's tree, whose apps consult one another's files).
     #[arg(skip)]
     pub trust_roots: Vec<PathBuf>,
+    /// The original's evaluation of DM calls (not an option: set by
+    /// `sitlogc run --legacy`): see `Options::close_list_tails`.
+    #[arg(skip)]
+    pub close_list_tails: bool,
+    /// What `screen(X)` with `X` unbound shows in test mode (not an
+    /// option: `sitlogc run --legacy` gives the application's first
+    /// `caption(Id, Text)`): see `TextActions::with_unbound_screen`.
+    #[arg(skip)]
+    pub unbound_screen: Option<(String, String)>,
     /// Follow the run in a web page: the program's diagram (as `sitlogc
     /// graph` draws it) with the current situation, the arcs taken, the DM
     /// stack and the last transitions. Served on 127.0.0.1 only; the task
@@ -282,6 +291,8 @@ impl Default for RunArgs {
             allow_os: false,
             sandbox: SandboxMode::Off,
             trust_roots: Vec::new(),
+            close_list_tails: false,
+            unbound_screen: None,
             view: false,
             view_port: 0,
             view_delay: 0,

@@ -333,11 +333,17 @@ impl Runner {
                     ),
                 };
                 let actions: Box<dyn Actions> = match actions_out {
-                    Some(out) => Box::new(TextActions::new(out, app.basic_actions())),
-                    None => Box::new(TextActions::new(
-                        crate::console::ConsoleStderr::new(console.clone()),
-                        app.basic_actions(),
-                    )),
+                    Some(out) => Box::new(
+                        TextActions::new(out, app.basic_actions())
+                            .with_unbound_screen(args.unbound_screen.clone()),
+                    ),
+                    None => Box::new(
+                        TextActions::new(
+                            crate::console::ConsoleStderr::new(console.clone()),
+                            app.basic_actions(),
+                        )
+                        .with_unbound_screen(args.unbound_screen.clone()),
+                    ),
                 };
                 (perception, actions)
             }
@@ -381,6 +387,7 @@ impl Runner {
             keep_history: args.history == HistoryMode::Keep,
             input_limits: args.input_limits(),
             stop: ended.as_ref().map(|i| i.flag.clone()).or(debug_stop),
+            close_list_tails: args.close_list_tails,
             ..Options::default()
         };
         functions.set_call_limits(args.call_limits());

@@ -36,6 +36,9 @@ pub fn run_app(
         // another's files (without --allow-os as well).
         legacy_args = args.clone();
         legacy_args.trust_roots.push(home.clone());
+        legacy_args.close_list_tails = true;
+        legacy::raise_call_limits(&mut legacy_args);
+        legacy_args.unbound_screen = legacy::first_caption(app);
         args = &legacy_args;
         {
             use sitlog_runtime::prolog::PrologSource;

@@ -419,3 +419,105 @@ fn the_original_tree_is_the_application_under_legacy() {
     let _ = std::fs::remove_file(&elsewhere);
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// The original evaluates a DM call's arguments, and its evaluator of lists
+/// closes a list whose tail is unbound: `pick([First|Rest])` calls
+/// `pick([First])` and the caller's `Rest` is `[]` afterwards. `--legacy`
+/// does the same; our own applications keep the open tail.
+#[test]
+fn a_dm_call_closes_its_lists_open_tails_under_legacy() {
+    let root = tree("tails");
+    write(&root, "apps/tails/models", "'main.dm'.\n");
+    write(
+        &root,
+        "apps/tails/main.dm",
+        r#"diag_mod(main,
+  [ [ id ==> is, type ==> recursive,
+      embedded_dm ==> pick(box(Kind, [First|Rest]), [[a|Inner]]),
+      arcs ==> [ fs : say(after(Rest, Inner)) => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+diag_mod(pick(B, L),
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : say(got(B, L)) => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#,
+    );
+    let said = |legacy: bool| {
+        let mut cmd = sitlogc();
+        cmd.current_dir(&root)
+            .args(["run", "apps/tails"])
+            .env_remove("SITLOG_HOME");
+        if legacy {
+            cmd.arg("--legacy");
+        }
+        let out = cmd.output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!(out.status.code(), Some(0), "{stderr}");
+        stderr
+            .lines()
+            .filter_map(|l| l.strip_prefix("Golem says: "))
+            .map(str::to_owned)
+            .collect::<Vec<_>>()
+    };
+    let legacy = said(true);
+    assert_eq!(legacy.len(), 2, "{legacy:?}");
+    assert!(
+        legacy[0].contains("[[a]]") && !legacy[0].contains('|'),
+        "{legacy:?}"
+    );
+    assert!(legacy[1].contains("[]"), "{legacy:?}");
+    let ours = said(false);
+    assert!(ours[0].contains('|'), "{ours:?}");
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// The original's `screen(X)` with `X` unbound: its service's clause for
+/// `screen([A|Rest])` matches and its message formatter takes the first
+/// `caption(Id, Text)` fact, so `X` is `[caption(Id)]` afterwards and the
+/// caption's text is shown. `--legacy` does the same.
+#[test]
+fn screen_of_an_unbound_variable_shows_the_first_caption_under_legacy() {
+    let root = tree("screen");
+    write(&root, "apps/caps/models", "'main.dm'.\n");
+    write(
+        &root,
+        "apps/caps/templates.pl",
+        "caption(greet, 'Welcome to the shop').\ncaption(bye, 'See you').\n",
+    );
+    write(
+        &root,
+        "apps/caps/main.dm",
+        r#"diag_mod(main,
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : [screen(X), screen(shown(X))] => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#,
+    );
+    let run = |legacy: bool| {
+        let mut cmd = sitlogc();
+        cmd.current_dir(&root)
+            .args(["run", "apps/caps"])
+            .env_remove("SITLOG_HOME");
+        if legacy {
+            cmd.arg("--legacy");
+        }
+        let out = cmd.output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!(out.status.code(), Some(0), "{stderr}");
+        stderr
+            .lines()
+            .filter_map(|l| l.strip_prefix("Golem prints on screen: "))
+            .map(str::to_owned)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        run(true),
+        ["Welcome to the shop", "shown([caption(greet)])"]
+    );
+    let ours = run(false);
+    assert!(!ours.iter().any(|l| l.contains("Welcome")), "{ours:?}");
+    let _ = std::fs::remove_dir_all(&root);
+}

@@ -19,6 +19,11 @@ pub struct Options {
     /// When set (by a signal handler), the run stops before its next
     /// transition with an error and [`Outcome::interrupted`](super::Outcome::interrupted).
     pub stop: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    /// The original's evaluation of a DM call's arguments (`sitlogc run
+    /// --legacy`): a list whose tail is an unbound variable is closed (the
+    /// tail is bound to `[]`), as the original's evaluator of lists, whose
+    /// first case is `[]`, does; `[First|Rest]` is called as `[First]`.
+    pub close_list_tails: bool,
 }
 
 impl Default for Options {
@@ -30,6 +35,7 @@ impl Default for Options {
             gc_threshold: 1 << 20,
             input_limits: Default::default(),
             stop: None,
+            close_list_tails: false,
         }
     }
 }

@@ -77,6 +77,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     fn call_dm(&mut self, call: Term, sit: Option<(SitIx, Term)>) -> Result<(), RunError> {
         self.check_depth(sit)?;
         let call = self.store.deref(call);
+        if self.options.close_list_tails && sit.is_some() {
+            close_list_tails(&mut self.store, call);
+        }
         let Some((name, _)) = self.store.functor(call) else {
             return Err(self.err(
                 format!("`{}` does not name a DM", self.store.writeq(call)),
@@ -728,6 +731,40 @@ fn restore_history_level(items: &mut [Item], it: &mut dyn Iterator<Item = Term>)
                 e.action = it.next().expect("history root");
             }
             Item::Nested(inner) => restore_history_roots(inner, it),
+        }
+    }
+}
+
+/// Most cells [`close_list_tails`] visits: a term bigger (or a cyclic one)
+/// is left as it is beyond that.
+const CLOSE_LIST_TAILS_BUDGET: usize = 1 << 22;
+
+/// Binds to `[]` the unbound tail of every list in `t` (the original's
+/// evaluation of a DM call's arguments, [`Options::close_list_tails`](super::options::Options::close_list_tails)):
+/// `[a|T]` becomes `[a]`, in lists nested in lists and compounds too; an
+/// unbound variable that is not a list's tail stays unbound.
+pub(crate) fn close_list_tails(store: &mut Store, t: Term) {
+    let mut stack = vec![(t, false)];
+    let mut budget = CLOSE_LIST_TAILS_BUDGET;
+    while let Some((t, is_tail)) = stack.pop() {
+        if budget == 0 {
+            return;
+        }
+        budget -= 1;
+        let t = store.deref(t);
+        if store.is_var(t) {
+            if is_tail {
+                store.bind(t, Term::NIL);
+            }
+            continue;
+        }
+        if let Some(&[head, tail]) = store.compound_args(t, atoms::DOT, 2) {
+            stack.push((tail, true));
+            stack.push((head, false));
+            continue;
+        }
+        for &a in store.args(t).iter().rev() {
+            stack.push((a, false));
         }
     }
 }

@@ -467,11 +467,26 @@ impl<R: BufRead> Perception for PromptPerception<R> {
 pub struct TextActions<W: Write> {
     out: W,
     declared: Vec<Atom>,
+    unbound_screen: Option<(Atom, String)>,
 }
 
 impl<W: Write> TextActions<W> {
     pub fn new(out: W, declared: Vec<Atom>) -> Self {
-        TextActions { out, declared }
+        TextActions {
+            out,
+            declared,
+            unbound_screen: None,
+        }
+    }
+
+    /// `screen(X)` with `X` unbound as the original performs it (`sitlogc
+    /// run --legacy`): its `screen([A|Rest])` service clause matches, and
+    /// its message formatter takes the application's first `caption(Id,
+    /// Text)` fact, so `X` becomes `[caption(Id)]` and `Text` is shown.
+    /// `caption` is that fact's `(Id, Text)`; `None` leaves `X` unbound.
+    pub fn with_unbound_screen(mut self, caption: Option<(String, String)>) -> Self {
+        self.unbound_screen = caption.map(|(id, text)| (Atom::intern(&id), text));
+        self
     }
 }
 
@@ -481,6 +496,16 @@ impl<W: Write> Actions for TextActions<W> {
         let Some((name, arity)) = store.functor(a) else {
             return Ok(());
         };
+        if let (("screen", 1), Some((id, text))) = ((name.as_str(), arity), &self.unbound_screen) {
+            let x = store.args(a)[0];
+            if store.is_var(x) {
+                let caption = store.compound(Atom::intern("caption"), &[Term::atom(*id)]);
+                let list = store.compound(sitlog_syntax::atoms::DOT, &[caption, Term::NIL]);
+                store.bind(x, list);
+                let _ = writeln!(self.out, "Golem prints on screen: {text}");
+                return Ok(());
+            }
+        }
         let arg = |i: usize| store.write(store.args(a)[i]);
         let line = match (name.as_str(), arity) {
             ("screen", 1) => format!("Golem prints on screen: {}", arg(0)),
