@@ -49,6 +49,15 @@
 //!   adds nothing), by an in_arg pattern of variables only matching the
 //!   pipe's shape, by `get`/`inc`/`is` into a variable not made yet, or
 //!   as the left side of `is` (an int or float).
+//! - **no value** (`_`): a fresh variable that is not bound before it is
+//!   read and occurs once in its plan (a register met once: `_`, a name
+//!   used once) is never read as a value: its register stays `never` and
+//!   is marked in [`SitTypes::unbound`]. Contract for the back ends: such
+//!   a register holds nothing; the one term built from it (a call's
+//!   argument, `apply(name_of(_), ..)`, `get(vocab, _)`) gets a fresh
+//!   variable there. Where its value flows on (a DM parameter, a next
+//!   situation's argument, the pipe, an arc's import) it counts as `Term`
+//!   (maybe unbound), so no receiver is typed by it.
 //! - **boundaries**: what a perception binds, what a Prolog user function
 //!   or the evaluator (`apply`, a conditional goal) returns, a KB answer:
 //!   `Term` (phase 6 decodes them where they enter).
@@ -131,6 +140,12 @@ pub struct SitTypes {
     pub pipe: Typed,
     /// Whether the situation has an in_arg (reads the pipe).
     pub reads_pipe: bool,
+    /// Per register: it holds no value (a variable met once and not
+    /// bound before that use, `_`): its type stays `never`, the one place
+    /// that builds a term from it makes a fresh variable there, and where
+    /// that value flows (a call's argument, a next situation, the pipe) it
+    /// is `term`, maybe unbound.
+    pub unbound: Vec<bool>,
 }
 
 /// The types of one DM.
@@ -440,6 +455,9 @@ struct State<'a> {
     /// Names written by Prolog user functions through `var_op`
     /// (`None`: some name unknown, every variable).
     prolog_writes: Option<Vec<Atom>>,
+    /// Per DM, per planned situation: how often each register occurs in
+    /// its plan ([`occurrences`]).
+    occ: Vec<Vec<Vec<u32>>>,
 }
 
 /// Runs inference over a lowered program and its MIR.
@@ -469,6 +487,7 @@ pub fn infer(ir: &Ir, mir: &Mir) -> MirTypes {
                             id_args: vec![Typed::never(); p.id.1],
                             pipe: Typed::never(),
                             reads_pipe: p.in_arg.is_some(),
+                            unbound: vec![false; p.regs],
                         })
                 })
                 .collect(),
@@ -485,6 +504,16 @@ pub fn infer(ir: &Ir, mir: &Mir) -> MirTypes {
         t: MirTypes { dms, globals },
         changed: false,
         prolog_writes: prolog_writes(ir),
+        occ: mir
+            .dms
+            .iter()
+            .map(|plans| {
+                plans
+                    .iter()
+                    .map(|p| p.as_ref().map(occurrences).unwrap_or_default())
+                    .collect()
+            })
+            .collect(),
     };
     st.entries();
     let mut rounds = 0;
@@ -713,12 +742,33 @@ impl<'a> State<'a> {
         }
     }
 
+    /// The value of register `r` where it is read or flows on (a
+    /// register that holds no value is an unbound variable there).
     fn reg(&self, d: usize, s: usize, r: Reg) -> Typed {
-        self.t.dms[d].sits[s]
-            .as_ref()
-            .and_then(|t| t.regs.get(r as usize))
-            .cloned()
-            .unwrap_or_else(Typed::never)
+        let Some(t) = self.t.dms[d].sits[s].as_ref() else {
+            return Typed::never();
+        };
+        if t.unbound.get(r as usize).copied().unwrap_or(false) {
+            return Typed::term(UNBOUND_WHY);
+        }
+        t.regs.get(r as usize).cloned().unwrap_or_else(Typed::never)
+    }
+
+    /// Register `r` is fresh and not bound before it is read: it holds no
+    /// value when it occurs once (`_`), else it is a term.
+    fn unbound_or_term(&mut self, d: usize, s: usize, r: Reg, why: &Typed) {
+        let once = self.occ[d][s].get(r as usize).is_some_and(|&n| n <= 1);
+        if once {
+            if let Some(slot) = self.t.dms[d].sits[s]
+                .as_mut()
+                .and_then(|x| x.unbound.get_mut(r as usize))
+            {
+                self.changed |= !*slot;
+                *slot = true;
+            }
+        } else {
+            self.def(d, s, r, why);
+        }
     }
 
     fn def(&mut self, d: usize, s: usize, r: Reg, t: &Typed) {
@@ -1191,7 +1241,7 @@ impl<'a> State<'a> {
         }
         for r in &fresh {
             if !bound.contains(r) {
-                self.def(d, s, *r, &fresh_why);
+                self.unbound_or_term(d, s, *r, &fresh_why);
             }
         }
         if let Some((b, r)) = &p.out_arg {
@@ -1422,7 +1472,7 @@ impl<'a> State<'a> {
             let fresh_why = Typed::term("a fresh variable: may be unbound where it is read");
             for &r in &arc.fresh {
                 if !bound.contains(&r) && !lhs.contains(&r) {
-                    self.def(d, s, r, &fresh_why);
+                    self.unbound_or_term(d, s, r, &fresh_why);
                 }
             }
             match &arc.action {
@@ -1447,6 +1497,127 @@ impl<'a> State<'a> {
             }
         }
     }
+}
+
+/// Why a register that holds no value is a term where it flows on.
+const UNBOUND_WHY: &str = "an unbound variable (`_`, or a variable used once)";
+
+/// How often each register occurs in plan `p`: in a term built or
+/// evaluated, as a destination (`get`/`is` into it), as an arc's import
+/// source; `inits` and fresh lists are not occurrences.
+fn occurrences(p: &SitPlan) -> Vec<u32> {
+    let mut n = vec![0u32; p.regs];
+    let mut bump = |r: Reg| {
+        if let Some(c) = n.get_mut(r as usize) {
+            *c += 1;
+        }
+    };
+    fn build(b: &Build, f: &mut dyn FnMut(Reg), depth: usize) {
+        match b {
+            Build::Const(_) => {}
+            Build::Reg(r) => f(*r),
+            Build::Compound(_, args) => {
+                if depth <= MAX_DEPTH {
+                    args.iter().for_each(|a| build(a, f, depth + 1));
+                }
+            }
+        }
+    }
+    fn cond(c: &Cond, f: &mut dyn FnMut(Reg), depth: usize) {
+        match c {
+            Cond::Arith(_, a, b) => {
+                ev(a, f, depth + 1);
+                ev(b, f, depth + 1);
+            }
+            Cond::Other(b) => build(b, f, depth + 1),
+        }
+    }
+    fn ev(e: &Ev, f: &mut dyn FnMut(Reg), depth: usize) {
+        if depth > MAX_DEPTH {
+            return;
+        }
+        match e {
+            Ev::Value(r) => f(*r),
+            Ev::Built(b) | Ev::Eval(b) | Ev::VarOp { arg: b, .. } => build(b, f, depth + 1),
+            Ev::If(c, a, b) => {
+                cond(c, f, depth + 1);
+                ev(a, f, depth + 1);
+                ev(b, f, depth + 1);
+            }
+            Ev::VarOpFresh { dst, .. } => f(*dst),
+            Ev::IsFresh { expr, dst } => {
+                build(expr, f, depth + 1);
+                f(*dst);
+            }
+            Ev::Is { lhs, expr } => {
+                build(lhs, f, depth + 1);
+                build(expr, f, depth + 1);
+            }
+            Ev::Compound(_, args) => args.iter().for_each(|a| ev(a, f, depth + 1)),
+        }
+    }
+    fn next(x: &Next, f: &mut dyn FnMut(Reg), depth: usize) {
+        if depth > MAX_DEPTH {
+            return;
+        }
+        match x {
+            Next::Static(..) => {}
+            Next::If(c, a, b) => {
+                cond(c, f, depth + 1);
+                next(a, f, depth + 1);
+                next(b, f, depth + 1);
+            }
+            Next::Eval(e) => ev(e, f, depth + 1),
+        }
+    }
+    fn arcs(a: &Arcs, f: &mut dyn FnMut(Reg)) {
+        build(&a.type_term, f, 0);
+        for arc in &a.arcs {
+            arc.import_from.iter().for_each(|&r| f(r));
+            ev(&arc.expectation, f, 0);
+            match &arc.action {
+                Action::List { items, .. } => items.iter().for_each(|e| ev(e, f, 0)),
+                Action::One(e) => ev(e, f, 0),
+            }
+            next(&arc.next, f, 0);
+            for b in arc.out_arg.iter().chain(&arc.diag_mod) {
+                build(b, f, 0);
+            }
+        }
+    }
+    let f: &mut dyn FnMut(Reg) = &mut bump;
+    for part in p.compound_id.iter().flatten() {
+        if let IdPart::Fresh(r) = part {
+            f(*r);
+        }
+    }
+    if let Some(pat) = &p.pattern {
+        build(&pat.build, f, 0);
+    }
+    if let Some((b, _, _)) = &p.in_arg {
+        build(b, f, 0);
+    }
+    if let Some((b, _)) = &p.out_arg {
+        build(b, f, 0);
+    }
+    match &p.prog {
+        Some(Prog::InPlace(evs)) => evs.iter().for_each(|e| ev(e, f, 0)),
+        Some(Prog::Copy(b)) => build(b, f, 0),
+        None => {}
+    }
+    match &p.kind {
+        KindPlan::Final { diag_mod } => {
+            if let Some(b) = diag_mod {
+                build(b, f, 0);
+            }
+        }
+        KindPlan::Perceptual(a) => arcs(a, f),
+        KindPlan::Recursive { call, exit, .. } => {
+            build(call, f, 0);
+            arcs(exit, f);
+        }
+    }
+    n
 }
 
 /// `V is E` at the top of an action list: V is bound there.
@@ -1783,7 +1954,7 @@ diag_mod(take(A, B),
         assert!(why(a).contains("meet here"), "{a:?}");
         // An unbound argument, then the caller's term parameter.
         let b = &t.dms[take].params[1];
-        assert!(why(b).contains("fresh variable"), "{b:?}");
+        assert!(why(b).contains("unbound variable"), "{b:?}");
         let mode = &t.dms[m].locals[0].1;
         assert_eq!(mode.ty, Ty::Term);
         let listen = sit(&ir, m, 3);
@@ -1834,6 +2005,46 @@ diag_mod(main,
         let line = t.sit_line(m, 0);
         assert!(all_native(&t, m, 0), "{line}");
         assert!(line.contains("int") && line.contains("float"), "{line}");
+    }
+
+    #[test]
+    fn a_variable_used_once_holds_no_value() {
+        let (ir, mir, t) = types_of(
+            r#"
+diag_mod(main,
+  [ [ id ==> go, type ==> recursive, embedded_dm ==> take(_),
+      arcs ==> [ fs : say([hi, _]) => two ] ],
+    [ id ==> two, type ==> neutral,
+      arcs ==> [ empty : [say(X), say(X)] => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+diag_mod(take(A),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : say(A) => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#,
+        );
+        let m = dm(&ir, "main");
+        let go = t.dms[m].sits[0].as_ref().unwrap();
+        // Both `_`: no value, `never`, flagged.
+        let flagged: Vec<usize> = (0..go.regs.len()).filter(|&r| go.unbound[r]).collect();
+        assert_eq!(flagged.len(), 2, "{}", t.sit_line(m, 0));
+        for r in flagged {
+            assert_eq!(go.regs[r].ty, Ty::Never);
+        }
+        // What it stands for where it flows: maybe unbound, a term.
+        let take = dm(&ir, "take");
+        assert_eq!(t.dms[take].params[0].ty, Ty::Term);
+        assert!(t.dms[take].params[0]
+            .why
+            .as_deref()
+            .unwrap()
+            .contains("unbound variable"));
+        // `X` read twice, unbound: the same variable both times, a term.
+        let two = sit(&ir, m, 1);
+        let line = t.sit_line(m, two);
+        assert!(line.contains("(a fresh variable: may be unbound"), "{line}");
+        let _ = (&mir, var_ty);
     }
 
     #[test]
