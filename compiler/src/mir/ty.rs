@@ -42,25 +42,70 @@
 //!   there makes every local and global a `Term`; `var_op(get(..))` and
 //!   `var_op(inc(..))` change no type. A situation without a plan writes
 //!   what its template's `set(n, V)` terms say (V's type when ground).
-//! - **fresh variables** are `Term` (they may be read unbound), except
-//!   where one is bound before any read: by matching an exit arc's
-//!   expectation against the callee's final situation ids (`found(P)`
-//!   gives `P` the type of `found`'s argument; a final that cannot match
-//!   adds nothing), by an in_arg pattern of variables only matching the
-//!   pipe's shape, by `get`/`inc`/`is` into a variable not made yet, or
-//!   as the left side of `is` (an int or float).
+//! - **fresh variables**: a variable not made from the id, the
+//!   parameters or the pipe is typed by what binds it before its first
+//!   read, in evaluation order (in_arg, prog, the call, then per arc the
+//!   expectation, the action's elements in order, the next situation,
+//!   out_arg): matching an exit arc's expectation against the callee's
+//!   final ids (`found(P)` gives `P` the type of `found`'s argument; a
+//!   final that cannot match adds nothing), an in_arg pattern of
+//!   variables only matching the pipe's shape, `get`/`inc`/`is` into a
+//!   variable not made yet, the left side of `is` (an int or float), a
+//!   callee's final `diag_mod` (an output argument, below), or a boundary
+//!   (below). One read before any of these leaves it `Term`. This is the
+//!   question the checker's W0228 (`check/unbound.rs`) asks on the
+//!   source; that analysis is coarser (anything inside an evaluated
+//!   construct counts as bound, which is right for a warning and wrong for
+//!   a type), so the order is followed here on the MIR, not shared.
 //! - **no value** (`_`): a fresh variable that is not bound before it is
-//!   read and occurs once in its plan (a register met once: `_`, a name
-//!   used once) is never read as a value: its register stays `never` and
-//!   is marked in [`SitTypes::unbound`]. Contract for the back ends: such
-//!   a register holds nothing; the one term built from it (a call's
+//!   read and occurs once in its plan (`_`, a name used once), and a
+//!   parameter or id argument that nothing in the plan reads
+//!   (`ask(.., _Answer, _Status)`, `understood(Answer, _)`), hold no
+//!   value: the register stays `never` and is marked in
+//!   [`SitTypes::unbound`] (shown `_`). Contract for the back ends: such a
+//!   register holds nothing; the one term built from it (a call's
 //!   argument, `apply(name_of(_), ..)`, `get(vocab, _)`) gets a fresh
 //!   variable there. Where its value flows on (a DM parameter, a next
 //!   situation's argument, the pipe, an arc's import) it counts as `Term`
 //!   (maybe unbound), so no receiver is typed by it.
-//! - **boundaries**: what a perception binds, what a Prolog user function
-//!   or the evaluator (`apply`, a conditional goal) returns, a KB answer:
-//!   `Term` (phase 6 decodes them where they enter).
+//! - **output arguments** (D-20, D-23): a fresh variable given as an
+//!   argument of a DM call, read nowhere before the call, is bound when
+//!   the call returns by the callee's final `diag_mod` (`welcome(Items)`
+//!   in DM `welcome(_Order)`): it takes the join of that argument over
+//!   every final situation of the callee, when every one has a planned
+//!   `diag_mod` of the DM's name and arity with a value there (else it
+//!   stays `Term`). The callee's parameter gets `Term` from it (unbound
+//!   when the DM is called).
+//! - **an expectation that is a pattern** (`said(Text)`, `success(X)`:
+//!   constants and variables, nothing evaluated) is matched, not held:
+//!   its expectation register stays `never`; a back end matches the
+//!   perception or the callee's final id against the pattern and fills
+//!   the pattern's registers (building the term only for a history or an
+//!   observer, from the registers).
+//! - **boundaries: `ground`, a checked conversion.** The value of a Prolog
+//!   user function or of the evaluator (`apply(..)`, `assign(..)`, a goal
+//!   the evaluator runs, a call argument it evaluates), what a perception
+//!   binds (`said(X)`), and a fresh variable whose first occurrence is
+//!   inside such a call or is an argument of an action of two or more
+//!   arguments the robot performs (`navigate(Place, Result)`: a status)
+//!   are [`Ty::Ground`]: any ground value, held natively (`Val` without
+//!   its `Term` variant). `Ground` is also the join of different native
+//!   shapes (`int ⊔ atom`). **Contract** (the code generator and the
+//!   interpreter follow it): the term is converted once, where it enters
+//!   (after the call returns, the perception arrives, the action
+//!   reports), with `Val::from_term(store, t, &Ty::Ground)` for each
+//!   register so typed; when the check fails (the term is not ground:
+//!   a user function returning an unbound variable, `said(_)` from a test
+//!   script, a status the action left unbound; a big integer; a partial
+//!   list) the visit does not go on natively: it goes on from that step on
+//!   the term path (every live register converted back with
+//!   `Val::to_term`, as the instantiating path would hold it), so a
+//!   `ground` register never holds a store term and no behaviour changes.
+//!   A back end that does not implement that guard must treat `ground` as
+//!   `term`. Still `Term`: a DM computed at run time (its finals and
+//!   pipe), the parameters and pipe of an entry DM (the command line; a
+//!   checked entry conversion would type them, not done), a variable read
+//!   before anything binds it.
 
 use super::*;
 use sitlog_runtime::native::Ty;
@@ -161,6 +206,11 @@ pub struct DmTypes {
     pub locals: Vec<(Atom, Typed)>,
     /// Per situation, its types when it runs as code.
     pub sits: Vec<Option<SitTypes>>,
+    /// Per parameter: when no situation of the DM reads it (every
+    /// situation has a plan) and every final situation binds it through
+    /// its `diag_mod`, the type it has when the DM returns (an output
+    /// argument, `ask(.., _Answer, _Status)`); else `None`.
+    pub outputs: Vec<Option<Typed>>,
 }
 
 /// What [`infer`] found.
@@ -186,12 +236,38 @@ impl MirTypes {
         (typed, regs, clean, sits)
     }
 
+    /// Variables typed natively and all variables: every DM parameter,
+    /// the pipe of every DM one of whose situations reads it (in_arg),
+    /// every local, every global.
+    pub fn var_counts(&self) -> (usize, usize) {
+        let (mut typed, mut all) = (0, 0);
+        let mut count = |t: &Typed| {
+            all += 1;
+            typed += usize::from(t.is_native());
+        };
+        for d in &self.dms {
+            for (i, p) in d.params.iter().enumerate() {
+                match d.outputs.get(i).and_then(Option::as_ref) {
+                    Some(out) if !p.is_native() => count(out),
+                    _ => count(p),
+                }
+            }
+            if d.sits.iter().flatten().any(|s| s.reads_pipe) {
+                count(&d.pipe_in);
+            }
+            d.locals.iter().for_each(|(_, t)| count(t));
+        }
+        self.globals.iter().for_each(|(_, t)| count(t));
+        (typed, all)
+    }
+
     /// The `--explain-types` summary line of this inference.
     pub fn summary(&self) -> String {
         let (typed, regs, clean, sits) = self.counts();
+        let (vars_typed, vars) = self.var_counts();
         format!(
-            "MIR registers typed: {typed}/{regs}; situations with no term register: {clean}/{sits} \
-             (MIR inference, not yet used by generated code)"
+            "MIR registers typed: {typed}/{regs}; situations with no term register: {clean}/{sits}; \
+             variables typed: {vars_typed}/{vars} (MIR inference, not yet used by generated code)"
         )
     }
 
@@ -212,7 +288,14 @@ impl MirTypes {
                     .get(i)
                     .map(|&t| var_text(ir, idm, t))
                     .unwrap_or_default();
-                format!("{name}: {}", with_why(p))
+                match d.outputs.get(i).and_then(Option::as_ref) {
+                    Some(out) => format!(
+                        "{name}: {} (an output: {} when it returns)",
+                        with_why(p),
+                        out.ty
+                    ),
+                    None => format!("{name}: {}", with_why(p)),
+                }
             })
             .collect();
         if !params.is_empty() {
@@ -241,7 +324,13 @@ impl MirTypes {
             .regs
             .iter()
             .enumerate()
-            .map(|(i, r)| format!("r{i} {}", r.ty))
+            .map(|(i, r)| {
+                if s.unbound.get(i).copied().unwrap_or(false) && r.ty == Ty::Never {
+                    format!("r{i} _")
+                } else {
+                    format!("r{i} {}", r.ty)
+                }
+            })
             .collect();
         let n = s.regs.len();
         let typed = s.regs.iter().filter(|r| r.is_native()).count();
@@ -354,6 +443,8 @@ fn compound_ty(name: Atom, args: Vec<Typed>) -> Typed {
                     .clone()
                     .unwrap_or_else(|| "a list whose tail may not be a list".to_owned()),
             ),
+            // No value reaches the tail (yet): none reaches the cell.
+            Ty::Never => Typed::never(),
             _ => Typed::term("a partial list (its tail is not a list)"),
         };
     }
@@ -372,6 +463,10 @@ fn args_of(t: &Typed, name: Atom, n: usize) -> Option<Vec<Typed>> {
     match &t.ty {
         Ty::Never => None,
         Ty::Term => Some(vec![t.clone(); n]),
+        Ty::Ground if name == atoms::DOT && n == 2 => {
+            Some(vec![Typed::of(Ty::Ground), Typed::of(Ty::list(Ty::Ground))])
+        }
+        Ty::Ground => Some(vec![Typed::of(Ty::Ground); n]),
         Ty::List(e) if name == atoms::DOT && n == 2 => Some(vec![
             Typed {
                 ty: (**e).clone(),
@@ -396,7 +491,7 @@ fn can_be_atom(t: &Ty, a: Atom) -> bool {
     match t {
         Ty::Sym => a != atoms::NIL,
         Ty::List(_) => a == atoms::NIL,
-        Ty::Term => true,
+        Ty::Term | Ty::Ground => true,
         _ => false,
     }
 }
@@ -476,6 +571,7 @@ pub fn infer(ir: &Ir, mir: &Mir) -> MirTypes {
                 .iter()
                 .map(|&(n, t)| (n, default_ty(store, t)))
                 .collect(),
+            outputs: vec![None; store.args(dm.head).len()],
             sits: (0..dm.situations.len())
                 .map(|s| {
                     mir.dms
@@ -529,6 +625,7 @@ pub fn infer(ir: &Ir, mir: &Mir) -> MirTypes {
             break;
         }
     }
+    st.outputs();
     st.t
 }
 
@@ -893,7 +990,7 @@ impl<'a> State<'a> {
                     return self.var_op_value(d, op, name, Some(arg));
                 }
                 self.scan_writes(d, s, b, 0);
-                Typed::term("the value of a user function or the evaluator")
+                Typed::of(Ty::Ground)
             }
             Ev::If(c, a, b) => {
                 self.cond(d, s, c);
@@ -1031,8 +1128,8 @@ impl<'a> State<'a> {
             (Build::Reg(_), _) => true,
             (Build::Const(t), v) => match self.store().value(*t) {
                 Value::Atom(a) => can_be_atom(v, a),
-                Value::Int(_) => *v == Ty::Int,
-                Value::Float(_) => *v == Ty::Float,
+                Value::Int(_) => matches!(v, Ty::Int | Ty::Ground),
+                Value::Float(_) => matches!(v, Ty::Float | Ty::Ground),
                 Value::Compound(name, args) => args_of(&Typed::of(v.clone()), name, args.len())
                     .is_some_and(|vs| {
                         args.iter()
@@ -1193,6 +1290,13 @@ impl<'a> State<'a> {
             .unwrap_or_default();
         let mut fresh = Vec::new();
         for (r, init) in &p.inits {
+            // A parameter or id argument nothing in the plan reads
+            // (`_Answer`, `understood(Answer, _)`): no value is needed.
+            let unread = self.occ[d][s].get(*r as usize) == Some(&0);
+            if unread && matches!(init, Init::HeadArg(_) | Init::IdArg(_) | Init::IdPath(_)) {
+                self.unbound_or_term(d, s, *r, &fresh_why);
+                continue;
+            }
             let t = match init {
                 Init::IdArg(i) => id_args.get(*i).cloned().unwrap_or_else(Typed::never),
                 Init::IdPath(path) => self.id_path(p, &id_args, path),
@@ -1239,6 +1343,38 @@ impl<'a> State<'a> {
             );
             bound.extend(lhs.into_iter().filter(|r| fresh.contains(r)));
         }
+        // Output arguments: a fresh variable given to a DM call, bound by
+        // the callee's final `diag_mod` (D-20, D-23).
+        let mut outs: Vec<Reg> = Vec::new();
+        if let KindPlan::Recursive {
+            call: Build::Compound(_, args),
+            ..
+        } = &p.kind
+        {
+            let before = |r: Reg| {
+                p.in_arg
+                    .as_ref()
+                    .is_some_and(|(b, _, _)| build_mentions(b, r, 0))
+                    || match &p.prog {
+                        Some(Prog::InPlace(evs)) => evs.iter().any(|e| ev_mentions(e, r, 0)),
+                        Some(Prog::Copy(b)) => build_mentions(b, r, 0),
+                        None => false,
+                    }
+            };
+            if let Some(c) = self.callee(&p_call(p)) {
+                for (i, a) in args.iter().enumerate() {
+                    let Build::Reg(r) = a else { continue };
+                    let once = args.iter().filter(|x| build_mentions(x, *r, 0)).count() == 1;
+                    if fresh.contains(r) && !bound.contains(r) && once && !before(*r) {
+                        if let Some(t) = self.out_param(c, i) {
+                            self.def(d, s, *r, &t);
+                            outs.push(*r);
+                        }
+                    }
+                }
+            }
+        }
+        bound.extend(outs.iter().copied());
         for r in &fresh {
             if !bound.contains(r) {
                 self.unbound_or_term(d, s, *r, &fresh_why);
@@ -1279,7 +1415,9 @@ impl<'a> State<'a> {
                     Build::Compound(_, args) => Some(
                         args.iter()
                             .map(|a| {
-                                if *eval_call {
+                                if matches!(a, Build::Reg(r) if outs.contains(r)) {
+                                    Typed::term("an output argument: unbound when the DM is called")
+                                } else if *eval_call {
                                     self.eval_build(d, s, a)
                                 } else {
                                     self.build_ty(d, s, a)
@@ -1365,7 +1503,7 @@ impl<'a> State<'a> {
                 if inert {
                     self.build_ty(d, s, b)
                 } else {
-                    Typed::term("the value of a user function or the evaluator")
+                    Typed::of(Ty::Ground)
                 }
             }
             Build::Compound(name, args) if eval::evaluates_arguments_only(*name, args.len()) => {
@@ -1374,8 +1512,71 @@ impl<'a> State<'a> {
                     args.iter().map(|a| self.eval_build(d, s, a)).collect(),
                 )
             }
-            Build::Compound(..) => Typed::term("the value of a user function or the evaluator"),
+            Build::Compound(..) => Typed::of(Ty::Ground),
         }
+    }
+
+    /// [`DmTypes::outputs`], once the fixpoint is reached.
+    fn outputs(&mut self) {
+        for c in 0..self.ir.dms.len() {
+            let plans = &self.mir.dms[c];
+            if plans.iter().any(Option::is_none) {
+                continue;
+            }
+            for i in 0..self.t.dms[c].params.len() {
+                let read = plans.iter().enumerate().any(|(s, p)| {
+                    let p = p.as_ref().expect("planned");
+                    p.inits.iter().any(|(r, init)| {
+                        matches!(init, Init::HeadArg(k) if *k == i)
+                            && self.occ[c][s].get(*r as usize) != Some(&0)
+                    })
+                });
+                if !read {
+                    self.t.dms[c].outputs[i] = self.out_param(c, i);
+                }
+            }
+        }
+    }
+
+    /// The type argument `i` of a call of DM `c` has when the call
+    /// returns, when every final situation of `c` binds it: its
+    /// `diag_mod` is `c`'s head with a value there (D-20); else `None`.
+    fn out_param(&self, c: usize, i: usize) -> Option<Typed> {
+        let dm = &self.ir.dms[c];
+        let arity = self.store().args(dm.head).len();
+        let mut out = Typed::never();
+        let mut any = false;
+        for (s, sit) in dm.situations.iter().enumerate() {
+            if sit.kind != Kind::Final {
+                continue;
+            }
+            let p = self.mir.plan(c as u32, s as SitIx)?;
+            let KindPlan::Final { diag_mod: Some(b) } = &p.kind else {
+                return None;
+            };
+            let t = match b {
+                Build::Compound(name, args)
+                    if *name == dm.name && args.len() == arity && i < arity =>
+                {
+                    self.build_ty(c, s, &args[i])
+                }
+                Build::Const(k) => match self.store().value(*k) {
+                    Value::Compound(name, args)
+                        if name == dm.name && args.len() == arity && i < arity =>
+                    {
+                        self.build_ty(c, s, &Build::Const(args[i]))
+                    }
+                    _ => return None,
+                },
+                _ => return None,
+            };
+            if !t.is_native() {
+                return None;
+            }
+            any = true;
+            out.absorb(&t);
+        }
+        any.then_some(out)
     }
 
     /// The id values DM `c`'s final situations hand back.
@@ -1441,7 +1642,11 @@ impl<'a> State<'a> {
                 self.def(d, s, arc.import_at + n as Reg, &t);
             }
             let exp = self.ev(d, s, &arc.expectation);
-            self.def(d, s, arcs.exps + k as Reg, &exp);
+            // An expectation that is a pattern is matched, not held: its
+            // register stays `never` (see the module doc).
+            if Self::pattern_of(&arc.expectation).is_none() {
+                self.def(d, s, arcs.exps + k as Reg, &exp);
+            }
             let mut bound = Vec::new();
             match (finals, Self::pattern_of(&arc.expectation)) {
                 (Some(finals), Some(pat)) => {
@@ -1459,7 +1664,7 @@ impl<'a> State<'a> {
                     if let Some(pat) = pat {
                         let mut regs = Vec::new();
                         pattern_regs(&pat, &mut regs, 0);
-                        let why = Typed::term("bound by a perception (perception input is a term)");
+                        let why = Typed::of(Ty::Ground);
                         for r in regs.into_iter().filter(|r| arc.fresh.contains(r)) {
                             self.def(d, s, r, &why);
                             bound.push(r);
@@ -1472,7 +1677,11 @@ impl<'a> State<'a> {
             let fresh_why = Typed::term("a fresh variable: may be unbound where it is read");
             for &r in &arc.fresh {
                 if !bound.contains(&r) && !lhs.contains(&r) {
-                    self.unbound_or_term(d, s, r, &fresh_why);
+                    if arc_first_use(arc, r) == Use::Boundary {
+                        self.def(d, s, r, &Typed::of(Ty::Ground));
+                    } else {
+                        self.unbound_or_term(d, s, r, &fresh_why);
+                    }
                 }
             }
             match &arc.action {
@@ -1496,6 +1705,149 @@ impl<'a> State<'a> {
                 self.scan_writes(d, s, b, 0);
             }
         }
+    }
+}
+
+/// The call of a recursive situation's plan (a constant otherwise).
+fn p_call(p: &SitPlan) -> Build {
+    match &p.kind {
+        KindPlan::Recursive { call, .. } => clone_build(call),
+        _ => Build::Const(Term::NIL),
+    }
+}
+
+/// Where a register is first met in evaluation order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Use {
+    /// Not met.
+    None,
+    /// Inside a term a boundary runs (the evaluator, a user function,
+    /// `get`), which may bind it.
+    Boundary,
+    /// Read as a value (or passed on unbound).
+    Read,
+}
+
+/// The first use of `r` in an arc: expectation, action, next, out_arg.
+fn arc_first_use(arc: &ArcPlan, r: Reg) -> Use {
+    let items: &[Ev] = match &arc.action {
+        Action::List { items, .. } => items,
+        Action::One(e) => std::slice::from_ref(e),
+    };
+    match ev_first_use(&arc.expectation, r, 0) {
+        Use::None => {}
+        u => return u,
+    }
+    for e in items {
+        if performed_with(e, r) {
+            // An argument of an action the robot performs, met there
+            // first: the robot may bind it (a status).
+            return Use::Boundary;
+        }
+        match ev_first_use(e, r, 0) {
+            Use::None => {}
+            u => return u,
+        }
+    }
+    match next_first_use(&arc.next, r, 0) {
+        Use::None => {}
+        u => return u,
+    }
+    match &arc.out_arg {
+        Some(b) if build_mentions(b, r, 0) => Use::Read,
+        _ => Use::None,
+    }
+}
+
+/// Whether action `e` is a compound of two or more arguments, performed
+/// as it is built, with `r` as one of its arguments and nowhere else in
+/// it (`navigate(P, R)`): the robot may bind it, as a status. A superset
+/// of the checker's status arguments (`check/unbound.rs`: a declared
+/// `status` argument, else the last of two or more): soundness rests on
+/// the checked conversion after the action, not on which one it is.
+fn performed_with(e: &Ev, r: Reg) -> bool {
+    match e {
+        Ev::Compound(_, args) if args.len() >= 2 => {
+            args.iter().any(|a| matches!(a, Ev::Value(x) if *x == r))
+                && args.iter().filter(|a| ev_mentions(a, r, 0)).count() == 1
+        }
+        Ev::Built(Build::Compound(_, args)) if args.len() >= 2 => {
+            args.iter().any(|a| matches!(a, Build::Reg(x) if *x == r))
+                && args.iter().filter(|a| build_mentions(a, r, 0)).count() == 1
+        }
+        _ => false,
+    }
+}
+
+fn cond_first_use(c: &Cond, r: Reg, depth: usize) -> Use {
+    match c {
+        Cond::Arith(_, a, b) => match ev_first_use(a, r, depth + 1) {
+            Use::None => ev_first_use(b, r, depth + 1),
+            u => u,
+        },
+        Cond::Other(b) if build_mentions(b, r, depth + 1) => Use::Boundary,
+        Cond::Other(_) => Use::None,
+    }
+}
+
+fn ev_first_use(e: &Ev, r: Reg, depth: usize) -> Use {
+    if depth > MAX_DEPTH {
+        return Use::Read;
+    }
+    let met = |b: &Build, u: Use| {
+        if build_mentions(b, r, depth + 1) {
+            u
+        } else {
+            Use::None
+        }
+    };
+    match e {
+        Ev::Value(x) if *x == r => Use::Read,
+        Ev::Value(_) => Use::None,
+        Ev::Built(b) => met(b, Use::Read),
+        Ev::Eval(b) | Ev::VarOp { arg: b, .. } => met(b, Use::Boundary),
+        Ev::If(c, a, b) => match cond_first_use(c, r, depth + 1) {
+            Use::None if ev_mentions(a, r, depth + 1) || ev_mentions(b, r, depth + 1) => {
+                // One branch or the other: not certainly bound.
+                Use::Read
+            }
+            u => u,
+        },
+        Ev::VarOpFresh { dst, .. } if *dst == r => Use::Boundary,
+        Ev::VarOpFresh { .. } => Use::None,
+        Ev::IsFresh { expr, dst } => match met(expr, Use::Read) {
+            Use::None if *dst == r => Use::Boundary,
+            u => u,
+        },
+        Ev::Is { lhs, expr } => match met(expr, Use::Read) {
+            Use::None => met(lhs, Use::Read),
+            u => u,
+        },
+        Ev::Compound(_, args) => args
+            .iter()
+            .map(|a| ev_first_use(a, r, depth + 1))
+            .find(|u| *u != Use::None)
+            .unwrap_or(Use::None),
+    }
+}
+
+fn next_first_use(n: &Next, r: Reg, depth: usize) -> Use {
+    if depth > MAX_DEPTH {
+        return Use::Read;
+    }
+    match n {
+        Next::Static(..) => Use::None,
+        Next::If(c, a, b) => match cond_first_use(c, r, depth + 1) {
+            Use::None => match (
+                next_first_use(a, r, depth + 1),
+                next_first_use(b, r, depth + 1),
+            ) {
+                (Use::None, Use::None) => Use::None,
+                _ => Use::Read,
+            },
+            u => u,
+        },
+        Next::Eval(e) => ev_first_use(e, r, depth + 1),
     }
 }
 
@@ -1824,8 +2176,14 @@ diag_mod(search(Places, Target),
         assert_eq!(t.dms[s].sits[walk].as_ref().unwrap().id_args[0].ty, syms);
         assert_eq!(var_ty(&ir, &mir, &t, s, walk, "P"), Ty::Sym);
         assert_eq!(var_ty(&ir, &mir, &t, s, walk, "Ps"), syms);
+        // The final hands its id back; its variable is read by nothing
+        // in its plan: no value there.
         let found = sit(&ir, s, 3);
-        assert_eq!(var_ty(&ir, &mir, &t, s, found, "P"), Ty::Sym);
+        assert_eq!(
+            t.dms[s].sits[found].as_ref().unwrap().id_args[0].ty,
+            Ty::Sym
+        );
+        assert_eq!(var_ty(&ir, &mir, &t, s, found, "P"), Ty::Never);
         for k in 0..ir.dms[s].situations.len() {
             assert!(all_native(&t, s, k), "{}", t.sit_line(s, k));
         }
@@ -1919,7 +2277,8 @@ diag_mod(rev(Items),
         assert_eq!(var_ty(&ir, &mir, &t, d, walk, "Done"), Ty::list(Ty::Sym));
         assert_eq!(var_ty(&ir, &mir, &t, d, walk, "O"), Ty::Sym);
         let out = sit(&ir, d, 3);
-        assert_eq!(var_ty(&ir, &mir, &t, d, out, "R"), Ty::list(Ty::Sym));
+        let id = &t.dms[d].sits[out].as_ref().unwrap().id_args[0];
+        assert_eq!(id.ty, Ty::list(Ty::Sym));
     }
 
     #[test]
@@ -1948,18 +2307,20 @@ diag_mod(take(A, B),
         let why = |x: &Typed| x.why.clone().unwrap_or_default();
         assert_eq!(t.dms[m].params[0].ty, Ty::Term);
         assert!(why(&t.dms[m].params[0]).contains("main DM"));
-        // int and atom meet.
+        // int and atom meet: any ground value.
         let a = &t.dms[take].params[0];
-        assert_eq!(a.ty, Ty::Term);
-        assert!(why(a).contains("meet here"), "{a:?}");
+        assert_eq!(a.ty, Ty::Ground);
         // An unbound argument, then the caller's term parameter.
         let b = &t.dms[take].params[1];
         assert!(why(b).contains("unbound variable"), "{b:?}");
+        // `idle` then 1: any ground value.
         let mode = &t.dms[m].locals[0].1;
-        assert_eq!(mode.ty, Ty::Term);
+        assert_eq!(mode.ty, Ty::Ground);
+        // What a perception binds: decoded where it enters (checked).
         let listen = sit(&ir, m, 3);
         let line = t.sit_line(m, listen);
-        assert!(line.contains("perception"), "{line}");
+        assert!(all_native(&t, m, listen), "{line}");
+        assert!(line.contains("ground"), "{line}");
         let _ = var_ty(&ir, &mir, &t, m, 0, "Arg");
     }
 
@@ -1979,7 +2340,7 @@ diag_mod(fixed(a),
         );
         let f = dm(&ir, "fixed");
         assert!(t.dms[f].sits.iter().all(Option::is_none));
-        assert_eq!(t.dms[f].locals[0].1.ty, Ty::Term);
+        assert_eq!(t.dms[f].locals[0].1.ty, Ty::Ground);
         assert!(t.dms[f]
             .pipe_out
             .why
@@ -2071,7 +2432,7 @@ diag_mod(take(A),
         };
         assert_eq!(ty("[a, b]"), "list<atom>");
         assert_eq!(ty("[]"), "list<never>");
-        assert_eq!(ty("[a, 1]"), "list<term>");
+        assert_eq!(ty("[a, 1]"), "list<ground>");
         assert_eq!(ty("p(1, 2.0, x)"), "p(int, float, atom)");
         assert_eq!(ty("[a | b]"), "term");
         assert_eq!(ty("123456789012345678901234567890"), "term");

@@ -6,7 +6,9 @@
 //!
 //! Invariant: [`Ty::join`] is the least upper bound of the order
 //! `Never < {Int, Float, Sym, List<T>, Tagged} < Term`, with `List` and
-//! `Tagged` ordered pointwise; it is commutative, associative, idempotent,
+//! `Tagged` ordered pointwise and `Ground` above every type that holds no
+//! `Term` (so `Int ⊔ Sym = Ground`, `List<Int> ⊔ List<Sym> = List<Ground>`,
+//! `Ground ⊔ List<Term> = Term`); it is commutative, associative, idempotent,
 //! and a type never grows past [`MAX_DEPTH`] levels (deeper joins are
 //! `Term`), so every fixpoint over it terminates.
 
@@ -30,6 +32,13 @@ pub enum Ty {
     /// A compound of this name and arity whose arguments have these types
     /// (`found(P)`, `shelf-Objects`); never a list cell.
     Tagged(Atom, Box<[Ty]>),
+    /// Any ground value, held natively (a [`Val`](super::Val) that is an
+    /// int, a float, an atom, a proper list or a compound of ground
+    /// values, never a term): the join of different native types, and
+    /// what a boundary (a Prolog user function, the evaluator, a KB
+    /// answer, a perception) gives after a checked conversion (the
+    /// contract is in `sitlog_compiler::mir::ty`).
+    Ground,
     /// Anything, a term of the store (the top: also a value that may be
     /// unbound where it is read).
     Term,
@@ -57,6 +66,8 @@ impl Ty {
             (Ty::Tagged(f, a), Ty::Tagged(g, b)) if f == g && a.len() == b.len() => {
                 Ty::tagged(*f, a.iter().zip(b.iter()).map(|(x, y)| x.join(y)).collect())
             }
+            // Two native values of different shapes: any ground value.
+            (a, b) if a.is_native() && b.is_native() => Ty::Ground,
             _ => Ty::Term,
         }
     }
@@ -70,7 +81,7 @@ impl Ty {
     /// anywhere in it.
     pub fn is_native(&self) -> bool {
         match self {
-            Ty::Never | Ty::Int | Ty::Float | Ty::Sym => true,
+            Ty::Never | Ty::Int | Ty::Float | Ty::Sym | Ty::Ground => true,
             Ty::List(e) => e.is_native(),
             Ty::Tagged(_, args) => args.iter().all(Ty::is_native),
             Ty::Term => false,
@@ -116,6 +127,7 @@ impl fmt::Display for Ty {
                 }
                 f.write_str(")")
             }
+            Ty::Ground => f.write_str("ground"),
             Ty::Term => f.write_str("term"),
         }
     }
@@ -132,6 +144,7 @@ mod tests {
             Just(Ty::Int),
             Just(Ty::Float),
             Just(Ty::Sym),
+            Just(Ty::Ground),
             Just(Ty::Term),
         ];
         leaf.prop_recursive(8, 64, 3, |inner| {
@@ -161,8 +174,13 @@ mod tests {
     fn lists_join_their_elements() {
         let syms = Ty::list(Ty::Sym);
         assert_eq!(Ty::list(Ty::Never).join(&syms), syms);
-        assert_eq!(syms.join(&Ty::list(Ty::Int)), Ty::list(Ty::Term));
-        assert_eq!(syms.join(&Ty::Sym), Ty::Term);
+        assert_eq!(syms.join(&Ty::list(Ty::Int)), Ty::list(Ty::Ground));
+        // Different native shapes meet in `ground`; a term anywhere is `term`.
+        assert_eq!(syms.join(&Ty::Sym), Ty::Ground);
+        assert_eq!(Ty::Int.join(&Ty::Float).to_string(), "ground");
+        assert_eq!(Ty::list(Ty::Term).join(&Ty::Sym), Ty::Term);
+        assert_eq!(Ty::Ground.join(&Ty::list(Ty::Term)), Ty::Term);
+        assert!(Ty::list(Ty::Ground).le(&Ty::Ground) && Ty::Ground.is_native());
         assert!(syms.is_native() && !Ty::list(Ty::Term).is_native());
         let found = Ty::tagged(Atom::intern("found"), vec![Ty::Sym]);
         assert_eq!(found.to_string(), "found(atom)");

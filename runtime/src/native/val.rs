@@ -224,6 +224,25 @@ fn from_term_at(store: &Store, t: Term, ty: &Ty, depth: usize) -> Option<Val> {
         Ty::Float => store.float_of(t).map(Val::Float),
         Ty::Sym => store.atom_of(t).map(Val::Sym),
         Ty::Term => Some(Val::from(t)),
+        Ty::Ground => match store.value(t) {
+            Value::Int(i) => Some(Val::Int(i)),
+            Value::Float(_) => store.float_of(t).map(Val::Float),
+            Value::Atom(a) if a == atoms::NIL => Some(Val::List(List::from_vec(Vec::new()))),
+            Value::Atom(a) => Some(Val::Sym(a)),
+            Value::Compound(name, &[_, _]) if name == atoms::DOT => {
+                from_term_at(store, t, &Ty::list(Ty::Ground), depth)
+            }
+            Value::Compound(name, args) => {
+                let parts = std::iter::once(Some(Val::Sym(name)))
+                    .chain(
+                        args.iter()
+                            .map(|&u| from_term_at(store, u, &Ty::Ground, depth + 1)),
+                    )
+                    .collect::<Option<Rc<[Val]>>>()?;
+                Some(Val::Tagged(Compound(parts)))
+            }
+            Value::Var(_) | Value::BigInt(_) => None,
+        },
         Ty::List(elem) => {
             // A proper list has at most one cell per three store cells;
             // more steps than that means the spine is cyclic.

@@ -11,6 +11,7 @@ fn arb_ty() -> impl Strategy<Value = Ty> {
         Just(Ty::Int),
         Just(Ty::Float),
         Just(Ty::Sym),
+        Just(Ty::Ground),
         Just(Ty::Term),
         Just(Ty::list(Ty::Never)),
     ];
@@ -132,6 +133,17 @@ fn arb_spec(ty: &Ty) -> BoxedStrategy<Spec> {
             .prop_map(Spec::Sym)
             .boxed(),
         Ty::Term => arb_seed().prop_map(Spec::Term).boxed(),
+        // (not `[]` as an atom: a ground `[]` is the empty list)
+        Ty::Ground => prop_oneof![
+            any::<i64>().prop_map(Spec::Int),
+            prop_oneof![Just("a"), Just("b")].prop_map(Spec::Sym),
+            (
+                proptest::collection::vec(any::<i64>().prop_map(Spec::Int), 0..4),
+                0usize..6
+            )
+                .prop_map(|(items, cons)| Spec::List(items, cons)),
+        ]
+        .boxed(),
         Ty::List(elem) if **elem == Ty::Never => Just(Spec::List(vec![], 0)).boxed(),
         Ty::List(elem) => (proptest::collection::vec(arb_spec(elem), 0..5), 0usize..6)
             .prop_map(|(items, cons)| Spec::List(items, cons))
@@ -155,6 +167,14 @@ fn conforms(store: &Store, t: Term, ty: &Ty) -> bool {
         Ty::Float => store.float_of(t).is_some(),
         Ty::Sym => store.atom_of(t).is_some(),
         Ty::Term => true,
+        Ty::Ground => match store.value(t) {
+            Value::Int(_) | Value::Float(_) | Value::Atom(_) => true,
+            Value::Var(_) | Value::BigInt(_) => false,
+            Value::Compound(name, &[_, _]) if name == sitlog_syntax::atoms::DOT => store
+                .list_to_vec(t)
+                .is_some_and(|items| items.iter().all(|&x| conforms(store, x, ty))),
+            Value::Compound(_, args) => args.iter().all(|&u| conforms(store, u, ty)),
+        },
         Ty::List(e) => store
             .list_to_vec(t)
             .is_some_and(|items| items.iter().all(|&x| conforms(store, x, e))),
@@ -380,4 +400,25 @@ fn terms_gathered_by_hand_move_too() {
 fn small() {
     assert_eq!(std::mem::size_of::<Val>(), 24);
     assert_eq!(std::mem::size_of::<List<Val>>(), 24);
+}
+
+#[test]
+fn ground_takes_any_ground_term_and_no_other() {
+    let mut store = Store::new();
+    let mut conv = |s: &str| {
+        let t = store.parse(s).unwrap().0;
+        Val::from_term(&store, t, &Ty::Ground).map(|v| {
+            let mut st = Store::new();
+            let back = v.to_term(&mut st);
+            st.writeq(back)
+        })
+    };
+    assert_eq!(conv("[]").as_deref(), Some("[]"));
+    assert_eq!(
+        conv("f(a, [1, 2.5], g(b))").as_deref(),
+        Some("f(a,[1,2.5],g(b))")
+    );
+    assert_eq!(conv("said(_)"), None);
+    assert_eq!(conv("[a | b]"), None);
+    assert_eq!(conv("123456789012345678901234567890"), None);
 }
