@@ -18,10 +18,14 @@
 //!   list `list<T>`, another compound `f(T1..Tn)`, an integer outside
 //!   `i64` `Term`); a compound built from registers is typed from them.
 //! - **DM parameters**: the join over the call sites of the argument's
-//!   type (the call evaluated as the machine does); the DM named `main`,
+//!   type (the call evaluated as the machine does). The DM named `main`,
 //!   a DM no situation calls (it can only be started from the command
-//!   line), a recovery DM and every DM when some call's DM is computed
-//!   (not written as a name) get `Term` parameters and a `Term` in_arg.
+//!   line), a recovery DM, a DM called from a situation without a plan and
+//!   every DM when some call's DM is computed (not written as a name) are
+//!   entered from outside ([`DmTypes::entry`]): their parameters and
+//!   in_arg are `ground`, converted where the frame starts, under the
+//!   boundary contract below (a failed check runs that frame on the term
+//!   path from its start).
 //! - **the pipe** is followed from situation to situation: what enters a
 //!   situation is the join of what leaves its predecessors (an out_arg's
 //!   value, else the pipe that came in; after a call, the callee's
@@ -211,6 +215,10 @@ pub struct DmTypes {
     /// its `diag_mod`, the type it has when the DM returns (an output
     /// argument, `ask(.., _Answer, _Status)`); else `None`.
     pub outputs: Vec<Option<Typed>>,
+    /// Why the DM can be started from outside the program's own calls
+    /// (the command line, the machine, a computed call), if it can: its
+    /// parameters and pipe are then converted where its frame starts.
+    pub entry: Option<String>,
 }
 
 /// What [`infer`] found.
@@ -310,6 +318,11 @@ impl MirTypes {
                 .map(|(n, t)| format!("{}: {}", n.as_str(), with_why(t)))
                 .collect();
             parts.push(format!("locals {}", l.join(", ")));
+        }
+        if let Some(why) = &d.entry {
+            parts.push(format!(
+                "entered from outside ({why}): parameters and pipe checked ground where the frame starts"
+            ));
         }
         format!("  MIR types: {}", parts.join("; "))
     }
@@ -572,6 +585,7 @@ pub fn infer(ir: &Ir, mir: &Mir) -> MirTypes {
                 .map(|&(n, t)| (n, default_ty(store, t)))
                 .collect(),
             outputs: vec![None; store.args(dm.head).len()],
+            entry: None,
             sits: (0..dm.situations.len())
                 .map(|s| {
                     mir.dms
@@ -758,12 +772,18 @@ impl<'a> State<'a> {
         }
     }
 
+    /// DM `d` can be started from outside the program's own calls: its
+    /// parameters and pipe are converted where the frame starts (checked,
+    /// `ground`; see the module doc).
     fn entry(&mut self, d: usize, why: &str) {
         let dm = &mut self.t.dms[d];
         for p in &mut dm.params {
-            p.absorb(&Typed::term(why));
+            p.absorb(&Typed::of(Ty::Ground));
         }
-        dm.pipe_in.absorb(&Typed::term(why));
+        dm.pipe_in.absorb(&Typed::of(Ty::Ground));
+        if dm.entry.is_none() {
+            dm.entry = Some(why.to_owned());
+        }
     }
 
     fn give_up(&mut self) {
@@ -2218,8 +2238,9 @@ diag_mod(echo,
         );
         let m = dm(&ir, "main");
         let e = dm(&ir, "echo");
-        // `start` receives the command line's in_arg, sends an int.
-        assert_eq!(t.dms[m].sits[0].as_ref().unwrap().pipe.ty, Ty::Term);
+        // `start` receives the command line's in_arg (checked ground
+        // where the frame starts), sends an int.
+        assert_eq!(t.dms[m].sits[0].as_ref().unwrap().pipe.ty, Ty::Ground);
         let call = sit(&ir, m, 1);
         assert_eq!(var_ty(&ir, &mir, &t, m, call, "Limit"), Ty::Int);
         assert_eq!(t.dms[e].pipe_in.ty, Ty::Int);
@@ -2227,9 +2248,10 @@ diag_mod(echo,
         assert_eq!(var_ty(&ir, &mir, &t, e, 0, "X"), Ty::Int);
         assert!(all_native(&t, m, call), "{}", t.sit_line(m, call));
         assert_eq!(t.dms[m].locals[0].1.ty, Ty::Int);
-        // The main DM's pipe is the command line's: a term, and why.
+        // The main DM's pipe is the command line's, converted at entry.
         let line = t.dm_line(&ir, m);
-        assert!(line.contains("pipe in term (the main DM"), "{line}");
+        assert!(line.contains("pipe in ground"), "{line}");
+        assert!(line.contains("entered from outside (the main DM"), "{line}");
     }
 
     #[test]
@@ -2305,8 +2327,8 @@ diag_mod(take(A, B),
         let m = dm(&ir, "main");
         let take = dm(&ir, "take");
         let why = |x: &Typed| x.why.clone().unwrap_or_default();
-        assert_eq!(t.dms[m].params[0].ty, Ty::Term);
-        assert!(why(&t.dms[m].params[0]).contains("main DM"));
+        assert_eq!(t.dms[m].params[0].ty, Ty::Ground);
+        assert!(t.dms[m].entry.as_deref().unwrap().contains("main DM"));
         // int and atom meet: any ground value.
         let a = &t.dms[take].params[0];
         assert_eq!(a.ty, Ty::Ground);
@@ -2406,6 +2428,77 @@ diag_mod(take(A),
         let line = t.sit_line(m, two);
         assert!(line.contains("(a fresh variable: may be unbound"), "{line}");
         let _ = (&mir, var_ty);
+    }
+
+    /// Output arguments, unread parameters, boundaries (a perception, the
+    /// evaluator, an action's status) and pattern expectations.
+    #[test]
+    fn outputs_and_boundaries_are_typed() {
+        let (ir, mir, t) = types_of(
+            r#"
+diag_mod(main,
+  [ [ id ==> go, type ==> recursive, embedded_dm ==> sub(Out, _),
+      arcs ==> [ done : say(Out) => look ] ],
+    [ id ==> look, type ==> listening,
+      arcs ==> [ said(W) : [assign(X, W), say(X), navigate(kitchen, St), say(St)] => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+diag_mod(sub(_R, _S),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => done ] ],
+    [ id ==> done, type ==> final, diag_mod ==> sub(ok, 1) ] ],
+  []).
+"#,
+        );
+        let m = dm(&ir, "main");
+        let sub = dm(&ir, "sub");
+        // `Out` is bound by the callee's final diag_mod.
+        assert_eq!(var_ty(&ir, &mir, &t, m, 0, "Out"), Ty::Sym);
+        assert!(all_native(&t, m, 0), "{}", t.sit_line(m, 0));
+        // The callee's parameters: unbound when called, outputs when it returns.
+        let outs: Vec<Option<Ty>> = t.dms[sub]
+            .outputs
+            .iter()
+            .map(|o| o.as_ref().map(|o| o.ty.clone()))
+            .collect();
+        assert_eq!(outs, vec![Some(Ty::Sym), Some(Ty::Int)]);
+        assert_eq!(t.dms[sub].params[0].ty, Ty::Term);
+        assert!(t
+            .dm_line(&ir, sub)
+            .contains("an output: int when it returns"));
+        assert_eq!(t.var_counts(), (2, 2));
+        // A perception, `assign` and an action's status: ground, checked
+        // where they enter; the pattern `said(W)` is matched, not held.
+        let look = sit(&ir, m, 1);
+        let line = t.sit_line(m, look);
+        assert!(all_native(&t, m, look), "{line}");
+        assert!(line.contains("ground"), "{line}");
+        let KindPlan::Perceptual(arcs) = &mir.plan(m as u32, look as SitIx).unwrap().kind else {
+            panic!("a perceptual plan")
+        };
+        let st = t.dms[m].sits[look].as_ref().unwrap();
+        assert_eq!(st.regs[arcs.exps as usize].ty, Ty::Never);
+        // The callee's unread parameters: no value (`_` given to the call
+        // is an output too, bound to 1).
+        assert!(t.sit_line(sub, 0).contains(" _"), "{}", t.sit_line(sub, 0));
+    }
+
+    /// A variable read before what could bind it stays a term.
+    #[test]
+    fn a_read_before_the_binding_is_a_term() {
+        let (ir, _, t) = types_of(
+            r#"
+diag_mod(main,
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : [say(X), assign(X, 1), navigate(X, S), say(S)] => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#,
+        );
+        let m = dm(&ir, "main");
+        let line = t.sit_line(m, 0);
+        assert!(line.contains("(a fresh variable: may be unbound"), "{line}");
+        // `S`, met first as the status of `navigate`: ground.
+        assert!(line.contains("ground"), "{line}");
     }
 
     #[test]
