@@ -244,6 +244,31 @@ impl MirTypes {
         (typed, regs, clean, sits)
     }
 
+    /// How the native registers are typed: with a shape (`int`, `atom`,
+    /// `list<atom>`, `found(atom)`: no `ground` inside), holding `ground`
+    /// somewhere (a boundary's checked value, a join of shapes), holding
+    /// no value (`_`, unread, a matched pattern: `never`); and the
+    /// situations whose registers all have a shape or no value.
+    pub fn breakdown(&self) -> (usize, usize, usize, usize) {
+        let (mut shaped, mut ground, mut none, mut sits) = (0, 0, 0, 0);
+        for s in self.dms.iter().flat_map(|d| d.sits.iter().flatten()) {
+            let mut all_shaped = true;
+            for r in s.regs.iter().filter(|r| r.is_native()) {
+                if r.ty == Ty::Never {
+                    none += 1;
+                } else if has_ground(&r.ty) {
+                    ground += 1;
+                    all_shaped = false;
+                } else {
+                    shaped += 1;
+                }
+            }
+            all_shaped &= s.regs.iter().all(Typed::is_native);
+            sits += usize::from(all_shaped);
+        }
+        (shaped, ground, none, sits)
+    }
+
     /// Variables typed natively and all variables: every DM parameter,
     /// the pipe of every DM one of whose situations reads it (in_arg),
     /// every local, every global.
@@ -273,8 +298,10 @@ impl MirTypes {
     pub fn summary(&self) -> String {
         let (typed, regs, clean, sits) = self.counts();
         let (vars_typed, vars) = self.var_counts();
+        let (shaped, ground, none, shaped_sits) = self.breakdown();
         format!(
-            "MIR registers typed: {typed}/{regs}; situations with no term register: {clean}/{sits}; \
+            "MIR registers typed: {typed}/{regs} ({shaped} with a shape, {ground} ground, {none} no value); \
+             situations with no term register: {clean}/{sits} ({shaped_sits} without ground); \
              variables typed: {vars_typed}/{vars} (MIR inference, not yet used by generated code)"
         )
     }
@@ -399,6 +426,16 @@ fn var_text(ir: &Ir, dm: &IrDm, t: Term) -> String {
             .find(|(i, _)| *i == v.index())
             .map_or_else(|| format!("_G{}", v.index()), |(_, n)| n.clone()),
         _ => ir.store.writeq(t),
+    }
+}
+
+/// Whether `ground` occurs in `t`.
+fn has_ground(t: &Ty) -> bool {
+    match t {
+        Ty::Ground => true,
+        Ty::List(e) => has_ground(e),
+        Ty::Tagged(_, args) => args.iter().any(has_ground),
+        _ => false,
     }
 }
 
