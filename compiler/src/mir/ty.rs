@@ -54,7 +54,8 @@
 //!   final ids (`found(P)` gives `P` the type of `found`'s argument; a
 //!   final that cannot match adds nothing), an in_arg pattern of
 //!   variables only matching the pipe's shape, `get`/`inc`/`is` into a
-//!   variable not made yet, the left side of `is` (an int or float), a
+//!   variable not made yet, the left side of `is` (an int or float when
+//!   its operands are, else `ground`: the evaluator's number), a
 //!   callee's final `diag_mod` (an output argument, below), or a boundary
 //!   (below). One read before any of these leaves it `Term`. This is the
 //!   question the checker's W0228 (`check/unbound.rs`) asks on the
@@ -1112,7 +1113,9 @@ impl<'a> State<'a> {
     fn is_ty(&self, d: usize, s: usize, expr: &Build) -> Typed {
         let reg = |r: Reg| self.reg(d, s, r).ty;
         match arith_ty(expr, &reg, self.store()) {
-            Ty::Term => Typed::term("`is` over values not known to be numbers"),
+            // The evaluator's arithmetic: a number (an int or a float, or a
+            // big integer the checked conversion turns away).
+            Ty::Term => Typed::of(Ty::Ground),
             t => Typed::of(t),
         }
     }
