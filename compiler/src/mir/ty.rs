@@ -1407,7 +1407,7 @@ impl<'a> State<'a> {
         // the callee's final `diag_mod` (D-20, D-23).
         let mut outs: Vec<Reg> = Vec::new();
         if let KindPlan::Recursive {
-            call: Build::Compound(_, args),
+            call: call @ Build::Compound(_, args),
             ..
         } = &p.kind
         {
@@ -1421,7 +1421,7 @@ impl<'a> State<'a> {
                         None => false,
                     }
             };
-            if let Some(c) = self.callee(&p_call(p)) {
+            if let Some(c) = self.callee(call) {
                 for (i, a) in args.iter().enumerate() {
                     let Build::Reg(r) = a else { continue };
                     let once = args.iter().filter(|x| build_mentions(x, *r, 0)).count() == 1;
@@ -1765,14 +1765,6 @@ impl<'a> State<'a> {
                 self.scan_writes(d, s, b, 0);
             }
         }
-    }
-}
-
-/// The call of a recursive situation's plan (a constant otherwise).
-fn p_call(p: &SitPlan) -> Build {
-    match &p.kind {
-        KindPlan::Recursive { call, .. } => clone_build(call),
-        _ => Build::Const(Term::NIL),
     }
 }
 
