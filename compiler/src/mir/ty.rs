@@ -24,8 +24,8 @@
 //!   every DM when some call's DM is computed (not written as a name) are
 //!   entered from outside ([`DmTypes::entry`]): their parameters and
 //!   in_arg are `ground`, converted where the frame starts, under the
-//!   boundary contract below (a failed check runs that frame on the term
-//!   path from its start).
+//!   boundary contract below (a failed check at entry runs the task on
+//!   the term path from its start).
 //! - **the pipe** is followed from situation to situation: what enters a
 //!   situation is the join of what leaves its predecessors (an out_arg's
 //!   value, else the pipe that came in; after a call, the callee's
@@ -95,22 +95,31 @@
 //!   arguments the robot performs (`navigate(Place, Result)`: a status)
 //!   are [`Ty::Ground`]: any ground value, held natively (`Val` without
 //!   its `Term` variant). `Ground` is also the join of different native
-//!   shapes (`int ⊔ atom`). **Contract** (the code generator and the
-//!   interpreter follow it): the term is converted once, where it enters
-//!   (after the call returns, the perception arrives, the action
-//!   reports), with `Val::from_term(store, t, &Ty::Ground)` for each
-//!   register so typed; when the check fails (the term is not ground:
-//!   a user function returning an unbound variable, `said(_)` from a test
+//!   shapes (`int ⊔ atom`). A user function whose clauses assign only
+//!   ground terms or its arguments (`Ir::function_values`) gives the join
+//!   of those instead (`atom`, `list<atom>`, ...): the target of the same
+//!   checked conversion. `is` over values not known to be numbers gives
+//!   `ground` (the evaluator's number). **Contract** (the code generator
+//!   and the interpreter follow it): the term is converted once, where it
+//!   enters (after the call returns, the perception arrives, the action
+//!   reports, the frame starts), with `Val::from_term(store, t, &ty)` to
+//!   the register's type; when the check fails (the term is not ground: a
+//!   user function returning an unbound variable, `said(_)` from a test
 //!   script, a status the action left unbound; a big integer; a partial
-//!   list) the visit does not go on natively: it goes on from that step on
-//!   the term path (every live register converted back with
-//!   `Val::to_term`, as the instantiating path would hold it), so a
-//!   `ground` register never holds a store term and no behaviour changes.
-//!   A back end that does not implement that guard must treat `ground` as
-//!   `term`. Still `Term`: a DM computed at run time (its finals and
-//!   pipe), the parameters and pipe of an entry DM (the command line; a
-//!   checked entry conversion would type them, not done), a variable read
-//!   before anything binds it.
+//!   list; a value outside a user function's assigned shapes) the task
+//!   does not go on natively: from that step on it runs on the term path
+//!   (every live native value, registers, frames' parameters, locals,
+//!   globals, the pipe, converted back with `Val::to_term`, as the
+//!   instantiating path would hold them). So a typed register never holds
+//!   a store term and no behaviour changes. A finer switch (that visit,
+//!   that frame) is as sound only where every value flowing from the term
+//!   path back into native code (a next situation's id, the pipe, locals
+//!   and globals, a callee's final id and outputs) is converted with the
+//!   same check, since the types below a failed check assumed it held.
+//!   A back end that does not implement the guard must treat `ground` (and
+//!   a boundary's narrower type) as `term`. Still `Term`: a DM computed at
+//!   run time (its finals and pipe), a variable read before anything binds
+//!   it, a value built from those.
 
 use super::*;
 use sitlog_runtime::native::Ty;
@@ -1048,7 +1057,8 @@ impl<'a> State<'a> {
                     return self.var_op_value(d, op, name, Some(arg));
                 }
                 self.scan_writes(d, s, b, 0);
-                Typed::of(Ty::Ground)
+                self.function_value(d, s, b)
+                    .unwrap_or_else(|| Typed::of(Ty::Ground))
             }
             Ev::If(c, a, b) => {
                 self.cond(d, s, c);
@@ -1083,6 +1093,59 @@ impl<'a> State<'a> {
                 compound_ty(*name, args)
             }
         }
+    }
+
+    /// The value of `apply(f(..), Args)` when every value user function
+    /// `f`'s clauses assign is a ground term or one of its arguments
+    /// (`Ir::function_values`) of a native type: the join of those (the
+    /// target of the checked conversion where the value enters; a value
+    /// of another type fails the check like a non-ground one).
+    fn function_value(&self, d: usize, s: usize, b: &Build) -> Option<Typed> {
+        let Build::Compound(apply, parts) = b else {
+            return None;
+        };
+        if apply.as_str() != "apply" || parts.len() != 2 {
+            return None;
+        }
+        let store = self.store();
+        let (name, arity) = match &parts[0] {
+            Build::Const(t) => store.functor(*t)?,
+            Build::Compound(name, args) => (*name, args.len()),
+            Build::Reg(_) => return None,
+        };
+        let values = self
+            .ir
+            .function_values
+            .iter()
+            .find(|f| f.name == name && f.arity == arity)?
+            .values
+            .as_ref()?;
+        // The argument list, element by element.
+        let mut args: Vec<Build> = Vec::new();
+        let mut rest = clone_build(&parts[1]);
+        loop {
+            match rest {
+                Build::Compound(dot, mut cell) if dot == atoms::DOT && cell.len() == 2 => {
+                    let tail = std::mem::replace(&mut cell[1], Build::Const(Term::NIL));
+                    args.push(std::mem::replace(&mut cell[0], Build::Const(Term::NIL)));
+                    rest = tail;
+                }
+                Build::Const(t) => {
+                    args.extend(store.list_to_vec(t)?.into_iter().map(Build::Const));
+                    break;
+                }
+                _ => return None,
+            }
+        }
+        let mut out = Typed::never();
+        for v in values {
+            let t = match *v {
+                crate::ir::IrFnValue::Term(t) => Typed::of(of_ground(store, t)),
+                crate::ir::IrFnValue::Arg(i) => self.eval_build(d, s, args.get(i)?),
+            };
+            out.absorb(&t);
+        }
+        (out.is_native() && out.ty != Ty::Never).then_some(out)
     }
 
     /// `get`/`set`/`inc` of a named variable, as a term the evaluator
@@ -1572,7 +1635,9 @@ impl<'a> State<'a> {
                     args.iter().map(|a| self.eval_build(d, s, a)).collect(),
                 )
             }
-            Build::Compound(..) => Typed::of(Ty::Ground),
+            Build::Compound(..) => self
+                .function_value(d, s, b)
+                .unwrap_or_else(|| Typed::of(Ty::Ground)),
         }
     }
 
@@ -1738,7 +1803,17 @@ impl<'a> State<'a> {
             for &r in &arc.fresh {
                 if !bound.contains(&r) && !lhs.contains(&r) {
                     if arc_first_use(arc, r) == Use::Boundary {
-                        self.def(d, s, r, &Typed::of(Ty::Ground));
+                        // `assign(R, E)` first: E's value, else any ground value.
+                        let t = match assign_of(arc, r) {
+                            Some(e) => self.eval_build(d, s, e),
+                            None => Typed::of(Ty::Ground),
+                        };
+                        let t = if t.is_native() && t.ty != Ty::Never {
+                            t
+                        } else {
+                            Typed::of(Ty::Ground)
+                        };
+                        self.def(d, s, r, &t);
                     } else {
                         self.unbound_or_term(d, s, r, &fresh_why);
                     }
@@ -1765,6 +1840,23 @@ impl<'a> State<'a> {
                 self.scan_writes(d, s, b, 0);
             }
         }
+    }
+}
+
+/// `E` when the first action element that mentions `r` is `assign(R, E)`
+/// with `r` as `R` and not in `E`.
+fn assign_of(arc: &ArcPlan, r: Reg) -> Option<&Build> {
+    let items: &[Ev] = match &arc.action {
+        Action::List { items, .. } => items,
+        Action::One(e) => std::slice::from_ref(e),
+    };
+    let first = items.iter().find(|e| ev_mentions(e, r, 0))?;
+    match first {
+        Ev::Eval(Build::Compound(name, args)) if name.as_str() == "assign" && args.len() == 2 => {
+            (matches!(&args[0], Build::Reg(x) if *x == r) && !build_mentions(&args[1], r, 0))
+                .then_some(&args[1])
+        }
+        _ => None,
     }
 }
 
@@ -2512,6 +2604,50 @@ diag_mod(sub(_R, _S),
         // The callee's unread parameters: no value (`_` given to the call
         // is an output too, bound to 1).
         assert!(t.sit_line(sub, 0).contains(" _"), "{}", t.sit_line(sub, 0));
+    }
+
+    /// A user function whose clauses assign atoms or its argument: the
+    /// join of those, not `ground`; one that assigns a computed value:
+    /// `ground`.
+    #[test]
+    fn a_user_function_gives_what_its_clauses_assign() {
+        let (program, diags) = load::load_sources(&[
+            (
+                "t.dm",
+                r#"
+diag_mod(main,
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : [assign(A, apply(yes_no(_), [1])), say(A),
+                          assign(B, apply(same(_), [x])), say(B),
+                          assign(C, apply(len(_), [[a]])), say(C)] => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#,
+            ),
+            (
+                "user_functions.pl",
+                "yes_no(1) :- assign_func_value(yes).\n\
+                 yes_no(_) :- assign_func_value(no).\n\
+                 same(X) :- assign_func_value(X).\n\
+                 len(L) :- length(L, N), assign_func_value(N).\n",
+            ),
+        ]);
+        let (result, _) = check::check(program, diags);
+        let ir = ir::lower(&result.expect("checks"));
+        let mir = crate::mir::lower(&ir);
+        let t = infer(&ir, &mir);
+        let line = t.sit_line(0, 0);
+        let tys: Vec<String> = t.dms[0].sits[0]
+            .as_ref()
+            .unwrap()
+            .regs
+            .iter()
+            .map(|r| r.ty.to_string())
+            .collect();
+        assert!(all_native(&t, 0, 0), "{line}");
+        // yes/no and `x` (the argument) are atoms; the length is computed.
+        assert!(tys.iter().filter(|t| *t == "atom").count() >= 2, "{line}");
+        assert!(tys.iter().any(|t| t == "ground"), "{line}");
     }
 
     /// A variable read before what could bind it stays a term.
