@@ -915,3 +915,97 @@ fn a_looping_directive_is_stopped_by_the_time_limit() {
         "{stderr}"
     );
 }
+
+/// A directive that never ends is stopped by `--prolog-inferences` too,
+/// at its place in `user_functions.pl` (issue 38).
+#[test]
+fn a_looping_directive_is_stopped_by_the_inference_limit() {
+    let dm = "diag_mod(main, [
+  [id ==> is, type ==> neutral, arcs ==> [empty : say(apply(f(X), [1])) => fs]],
+  [id ==> fs, type ==> final]
+], []).
+";
+    let dir = app(
+        "loop-inferences",
+        &[
+            ("main.dm", dm.as_bytes()),
+            (
+                "user_functions.pl",
+                b"loop :- loop.\n:- loop.\nf(_) :- assign_func_value(d).\n",
+            ),
+            ("script.txt", b""),
+        ],
+    );
+    let out = sitlogc()
+        .arg("run")
+        .arg(&dir)
+        .arg("--script")
+        .arg(dir.join("script.txt"))
+        .args(["--prolog-inferences", "20000", "--format", "json"])
+        .args(["--prolog-time-limit", "100"])
+        .output()
+        .unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["status"], "error");
+    assert!(
+        err.contains(
+            "user_functions.pl:2:1: the directive exceeded the inference limit (20000; option --prolog-inferences)"
+        ),
+        "{err}"
+    );
+}
+
+/// The first SIGTERM ends a run whose directive loops, with its status
+/// and report (issue 38: a second signal was needed).
+#[cfg(unix)]
+#[test]
+fn the_first_signal_ends_a_looping_directive() {
+    let dm = "diag_mod(main, [
+  [id ==> is, type ==> neutral, arcs ==> [empty : say(apply(f(X), [1])) => fs]],
+  [id ==> fs, type ==> final]
+], []).
+";
+    let dir = app(
+        "loop-signal",
+        &[
+            ("main.dm", dm.as_bytes()),
+            (
+                "user_functions.pl",
+                b"loop :- loop.\n:- open(started, write, S), close(S), loop.\nf(_) :- assign_func_value(d).\n",
+            ),
+            ("script.txt", b""),
+        ],
+    );
+    let child = sitlogc()
+        .arg("run")
+        .arg(&dir)
+        .arg("--script")
+        .arg(dir.join("script.txt"))
+        .args(["--format", "json", "--prolog-inferences", "100000000000"])
+        .args(["--prolog-time-limit", "600"])
+        .current_dir(&dir)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while !dir.join("started").exists() {
+        assert!(
+            start.elapsed() < Duration::from_secs(120),
+            "the directive did not start"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    kill(child.id(), "TERM");
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(143), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["status"], "interrupted");
+    assert!(
+        stderr(&out).contains("stopped by a signal"),
+        "{}",
+        stderr(&out)
+    );
+}

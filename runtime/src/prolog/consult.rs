@@ -61,6 +61,10 @@ pub struct PrologLoadError {
 
 impl std::fmt::Display for PrologLoadError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // An error of the engine itself has no place in the application.
+        if self.line == 0 && self.file.starts_with('<') {
+            return f.write_str(&self.message);
+        }
         write!(
             f,
             "{}:{}:{}: {}",
