@@ -46,6 +46,15 @@ pub type FallbackFn =
 /// runs here, never while a program or its options are being checked.
 pub type StartFn = dyn Fn(&Functions) -> Result<(), String> + Send + Sync;
 
+/// The deepest term handed to the Prolog engine: a clause of the
+/// application's Prolog files, or the arguments, variables and history
+/// of a call (a list counts one level per element: the engine reads a
+/// list as nested cells). The engine's reader and compiler recurse on the
+/// engine's thread; deeper, they would overflow its stack and abort the
+/// process, so a deeper clause is an error at its place (`sitlogc check`
+/// too) and a deeper call an error naming the function.
+pub const PROLOG_MAX_DEPTH: usize = 100_000;
+
 /// Bounds on one call of a user function that runs outside Rust (Prolog):
 /// set by a run's options (`--prolog-inferences`, `--prolog-time-limit`,
 /// `--prolog-heap-limit`) and read by the engine at each call.

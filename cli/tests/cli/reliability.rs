@@ -1009,3 +1009,40 @@ fn the_first_signal_ends_a_looping_directive() {
         stderr(&out)
     );
 }
+
+/// A clause of `user_functions.pl` nested deeper than the Prolog engine
+/// takes is an error of `check` (E0241, its long line not quoted) and of
+/// `run`, which stops before the engine starts (issue 38: the engine's
+/// reader overflowed its thread's stack, SIGABRT, no report).
+#[test]
+fn a_prolog_clause_too_deep_for_the_engine_is_an_error_not_an_abort() {
+    let n = 150_000;
+    let clause = format!("d({}a{}).\n", "s(".repeat(n), ")".repeat(n));
+    let dir = app(
+        "deep-clause",
+        &[
+            ("main.dm", ECHO.as_bytes()),
+            ("user_functions.pl", clause.as_bytes()),
+        ],
+    );
+    let out = sitlogc().arg("check").arg(&dir).output().unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("[E0241] Error: this clause nests 150002 levels deep"),
+        "{err}"
+    );
+    assert!(err.contains("user_functions.pl:1:300003"), "{err}");
+    assert!(
+        err.len() < 10_000,
+        "the line is not quoted: {} bytes",
+        err.len()
+    );
+    let out = sitlogc()
+        .args(["run", "--format", "json"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("E0241") || stderr(&out).contains("1 error"));
+}

@@ -11,8 +11,8 @@ use super::consult::{prepare, Prep, PrologLoadError, PrologSource, Redefinitions
 use super::legacy_kb::{KbHost, NativeKb, NativeState};
 use super::permissions;
 use super::swi::{LIBRARIES, PRELUDE, PRELUDE_SWI, SWI_PREDICATES};
-use super::translate::{from_prolog, read_reply, write_atom, Prepared, Writer};
-use crate::functions::{CallLimits, FnCall, Functions};
+use super::translate::{drop_deep, from_prolog, read_reply, write_atom, Prepared, Writer};
+use crate::functions::{CallLimits, FnCall, Functions, PROLOG_MAX_DEPTH};
 use crate::store::Store;
 use crate::term::Term;
 use crate::trust::{Confine, Trust};
@@ -218,7 +218,9 @@ impl PrologFunctions {
         let thread_roots = roots.clone();
         std::thread::Builder::new()
             .name("sitlog-prolog".into())
-            .stack_size(64 << 20)
+            // The engine's reader and compiler recurse: room for terms
+            // PROLOG_MAX_DEPTH deep in a debug build (reserved, not used).
+            .stack_size(512 << 20)
             .spawn(move || engine_thread(prepared, host, thread_roots, rx, ready_tx))
             .map_err(|e| {
                 vec![PrologLoadError {
@@ -490,6 +492,13 @@ impl PrologFunctions {
         w.out.push(',');
         w.term(history);
         let _ = write!(w.out, ",{},R).", options.inference_limit);
+        if w.too_deep() {
+            return Err(format!(
+                "`{name}/{}`: its arguments, the caller's variables or the history nest {} levels deep (a list counts a level per element); the Prolog engine takes at most {PROLOG_MAX_DEPTH}",
+                args.len(),
+                w.deepest
+            ));
+        }
         let env = std::mem::take(&mut w.out);
         let mut query = rest;
         query.push_str(",[");
@@ -512,11 +521,26 @@ impl PrologFunctions {
         let Some(r) = answer else {
             return Err(format!("the Prolog call of `{}` did not answer", shown()));
         };
+        let result = self.answer(call, &r, &vars, options, &shown);
+        drop_deep(r);
+        result
+    }
+
+    /// The value of a call's answer `r`, the caller's variables `vars`
+    /// bound and its SitLog variables changed as the answer says.
+    fn answer(
+        &self,
+        call: &mut FnCall<'_>,
+        r: &PTerm,
+        vars: &[crate::term::Var],
+        options: PrologOptions,
+        shown: &dyn Fn() -> String,
+    ) -> Result<Term, String> {
         let mut names: HashMap<String, Term> = vars
             .iter()
             .map(|&v| (format!("_S{}", v.0), Term::from(v)))
             .collect();
-        match &r {
+        match r {
             PTerm::Compound(f, a) if f == "ok" && a.len() == 3 => {
                 let value = from_prolog(call.store, &a[0], &mut names);
                 if let PTerm::List(outs) = &a[1] {
@@ -615,7 +639,11 @@ fn engine_thread(
                 Err("the Prolog engine panicked (it was restarted)".to_owned())
             }
         };
-        let _ = reply.send(r);
+        // An answer nobody waits for any more (a call abandoned over a
+        // limit) is dropped here, without recursion.
+        if let Err(mpsc::SendError(Ok(Some(t)))) = reply.send(r) {
+            drop_deep(t);
+        }
     }
 }
 
@@ -860,7 +888,8 @@ fn run_directives(
 }
 
 fn check_load(machine: &mut Machine, q: &str, p: &Prepared, errors: &mut Vec<PrologLoadError>) {
-    let message = match first_answer(machine, q, "R") {
+    let answer = first_answer(machine, q, "R");
+    let message = match &answer {
         Ok(Some(PTerm::Atom(a))) if a == "ok" => return,
         Ok(Some(PTerm::Atom(a))) if a == "fail" => "directive failed".to_owned(),
         Ok(Some(PTerm::Compound(f, a))) if f == "limit" && a.len() == 1 => format!(
@@ -873,9 +902,13 @@ fn check_load(machine: &mut Machine, q: &str, p: &Prepared, errors: &mut Vec<Pro
                 None => format!("the Prolog engine refused it: {}", show_pterm(&a[0])),
             }
         }
-        Ok(other) => format!("the Prolog engine refused it: {other:?}"),
-        Err(e) => e,
+        Ok(Some(other)) => format!("the Prolog engine refused it: {}", show_pterm(other)),
+        Ok(None) => "the Prolog engine refused it (no answer)".to_owned(),
+        Err(e) => e.clone(),
     };
+    if let Ok(Some(t)) = answer {
+        drop_deep(t);
+    }
     errors.push(PrologLoadError {
         file: p.file.clone(),
         line: p.line,
@@ -897,12 +930,20 @@ fn first_answer(machine: &mut Machine, query: &str, var: &str) -> Result<Option<
     let mut answers = machine.run_query(query.to_owned());
     let first = answers.next();
     drop(answers);
+    // Terms of any depth are taken, not copied, and dropped without
+    // recursion (`drop_deep`).
     match first {
         None | Some(Ok(LeafAnswer::False)) => Ok(None),
         Some(Ok(LeafAnswer::True)) => Ok(Some(PTerm::Atom("true".into()))),
-        Some(Ok(LeafAnswer::LeafAnswer { bindings, .. })) => Ok(bindings.get(var).cloned()),
+        Some(Ok(LeafAnswer::LeafAnswer { mut bindings, .. })) => {
+            let value = bindings.remove(var);
+            bindings.into_values().for_each(drop_deep);
+            Ok(value)
+        }
         Some(Ok(LeafAnswer::Exception(e))) | Some(Err(e)) => {
-            Err(format!("Prolog exception: {}", show_pterm(&e)))
+            let message = format!("Prolog exception: {}", show_pterm(&e));
+            drop_deep(e);
+            Err(message)
         }
     }
 }
