@@ -1046,3 +1046,42 @@ fn a_prolog_clause_too_deep_for_the_engine_is_an_error_not_an_abort() {
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     assert!(stderr(&out).contains("E0241") || stderr(&out).contains("1 error"));
 }
+
+/// Two runs persisting one KB through a hard link (issue 38: both ran and
+/// split the link): each is refused (exit 2, naming the links) and the
+/// link stays whole.
+#[cfg(unix)]
+#[test]
+fn a_hard_linked_kb_is_not_persisted_and_its_link_never_split() {
+    use std::os::unix::fs::MetadataExt;
+    let dir = app(
+        "hardlink",
+        &[
+            ("main.dm", KB_LOOP.as_bytes()),
+            ("k.kb", b"[class(top,none,[],[],[])].\n"),
+        ],
+    );
+    let kb = dir.join("k.kb");
+    let elsewhere = temp("hardlink-other").join("same.kb");
+    std::fs::hard_link(&kb, &elsewhere).unwrap();
+    for name in [&kb, &elsewhere] {
+        let out = sitlogc()
+            .args(["run", "--history", "none", "--kb-persist", "--kb"])
+            .arg(name)
+            .arg(&dir)
+            .output()
+            .unwrap();
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains("has 2 hard links"), "{err}");
+    }
+    let (a, b) = (
+        std::fs::metadata(&kb).unwrap(),
+        std::fs::metadata(&elsewhere).unwrap(),
+    );
+    assert_eq!((a.ino(), a.nlink()), (b.ino(), 2));
+    assert_eq!(
+        std::fs::read(&kb).unwrap(),
+        b"[class(top,none,[],[],[])].\n"
+    );
+}
