@@ -1,7 +1,9 @@
 //! The engine: [`PrologFunctions`] loads the prepared clauses into a
 //! scryer-prolog machine on a thread of its own (the engine is not `Send`)
 //! and calls user functions as queries sent to it, watched for their time
-//! and memory limits ([`PrologOptions`]) from the calling thread.
+//! and memory limits ([`PrologOptions`]) and the run's stop flag (a
+//! signal) from the calling thread; directives and calls run under the
+//! inference limit inside the engine.
 //! Invariant (the trust model): loading only stores clauses; the
 //! application's directives run at [`PrologFunctions::start`] (a run's
 //! first transition, or the first call), after the run's permissions are
