@@ -145,6 +145,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         check::OS_ACCESS,
         "a directive or clause of the application's Prolog files reaches the operating system (shell, processes, sockets, native code, `open/3,4` for writing, loading code at run time or from an absolute or `$SITLOG_HOME` path): a run refuses it unless given `--allow-os` (the trust model, [reliability](reliability.md#trust-model))",
     ),
+    (
+        check::PROLOG_TOO_DEEP,
+        "a clause of the application's Prolog files nests deeper than the Prolog engine takes (100 000 levels, a list counting a level per element): a run refuses it",
+    ),
 ];
 
 /// The meaning of `code`, if it is one.

@@ -81,6 +81,9 @@ pub fn render_human(diag: &Diagnostic, sources: &SourceMap, color: bool) -> Stri
         Severity::Warning => ReportKind::Warning,
     };
     let range = clamp(diag.loc.span, &file.text);
+    if let Some(text) = long_line(diag, sources, color) {
+        return text;
+    }
     let mut report = Report::build(kind, (file.name.clone(), range.clone())).with_config(
         Config::default()
             .with_index_type(IndexType::Byte)
@@ -123,6 +126,57 @@ pub fn render_human(diag: &Diagnostic, sources: &SourceMap, color: bool) -> Stri
         return render_short(diag, sources) + "\n";
     }
     String::from_utf8_lossy(&out).into_owned()
+}
+
+/// Lines longer than this are not quoted (a generated 2 MB line would be
+/// printed whole, with as many spaces under it).
+const LONG_LINE: usize = 2000;
+
+/// A diagnostic whose labelled lines include one over [`LONG_LINE`]
+/// bytes, without the snippet: its header, place and help.
+fn long_line(diag: &Diagnostic, sources: &SourceMap, color: bool) -> Option<String> {
+    let line_len = |loc: &Loc| {
+        let text = &sources.get(loc.file).text;
+        let r = clamp(loc.span, text);
+        let start = text[..r.start].rfind('\n').map_or(0, |i| i + 1);
+        let end = text[r.end..].find('\n').map_or(text.len(), |i| r.end + i);
+        // The longest line the span touches.
+        text[start..end]
+            .split('\n')
+            .map(str::len)
+            .max()
+            .unwrap_or(0)
+    };
+    let longest = std::iter::once(&diag.loc)
+        .chain(diag.labels.iter().map(|(l, _)| l))
+        .map(line_len)
+        .max()
+        .unwrap_or(0);
+    if longest <= LONG_LINE {
+        return None;
+    }
+    let file = sources.get(diag.loc.file);
+    let pos = file.line_col(diag.loc.span.start);
+    let kind = match diag.severity {
+        Severity::Error if color => "\x1b[31mError\x1b[0m",
+        Severity::Error => "Error",
+        Severity::Warning if color => "\x1b[33mWarning\x1b[0m",
+        Severity::Warning => "Warning",
+    };
+    let code = if diag.code.is_empty() {
+        String::new()
+    } else {
+        format!("[{}] ", diag.code)
+    };
+    let mut out = format!(
+        "{code}{kind}: {}\n   ╭─[ {}:{}:{} ]\n   │ (a line of {longest} bytes: not quoted)\n",
+        diag.message, file.name, pos.line, pos.column
+    );
+    if let Some(help) = &diag.help {
+        out.push_str(&format!("   │ Help: {help}\n"));
+    }
+    out.push_str("───╯\n");
+    Some(out)
 }
 
 /// A span as a byte range of `text` that the renderer can slice: clamped to

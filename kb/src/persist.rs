@@ -8,7 +8,9 @@
 //! process is refused instead of silently overwriting the first one's
 //! updates. Taking the lock removes the temporary files (`.NAME.PID.XXXXXX.tmp`)
 //! that a killed run left behind; the lock file itself stays (one empty
-//! file per KB, reused by every run).
+//! file per KB, reused by every run). A KB file with more than one hard
+//! link is refused (when locked and at each save): replacing it would
+//! split the link, and its names would have two locks.
 
 use crate::entry::ARROW;
 use crate::model::{Kb, ModelError};
@@ -111,6 +113,9 @@ pub fn lock_for_persist(path: &Path) -> Result<PersistLock, LoadError> {
             )));
         }
     }
+    if let Some(message) = hard_linked(path) {
+        return Err(err(message));
+    }
     let (dir, name) = dir_and_name(path);
     let lock_path = dir.join(format!(".{name}.lock"));
     let file = std::fs::OpenOptions::new()
@@ -141,6 +146,32 @@ pub fn lock_for_persist(path: &Path) -> Result<PersistLock, LoadError> {
         path: path.to_owned(),
         _file: file,
     })
+}
+
+/// Why `path` (a real file) cannot be persisted when it has more than one
+/// hard link, `None` otherwise. A save replaces the file (a new one renamed
+/// over it, so that a crash never leaves half a KB): the other names would
+/// keep the old file, the link split; and two runs persisting the file
+/// under two names would take two different locks. So a hard-linked KB is
+/// refused, by both runs, and never written (a symbolic link is followed
+/// instead: it stays a link).
+fn hard_linked(path: &Path) -> Option<String> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let links = std::fs::metadata(path).ok()?.nlink();
+        (links > 1).then(|| {
+            format!(
+                "{} has {links} hard links: persisting replaces the file (a new one renamed over it), which would split them, and two runs persisting it under two names would not exclude each other; persist a copy, or point the other names at it with symbolic links",
+                path.display()
+            )
+        })
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = path;
+        None
+    }
 }
 
 /// Removes `.NAME.PID.XXXXXX.tmp` (and the older `.NAME.PID.tmp`) in `dir`
@@ -306,6 +337,10 @@ impl Kb {
 /// directory.
 fn write_atomic(path: &Path, data: &[u8]) -> std::io::Result<()> {
     let path = &real_path(path);
+    // A hard link made while the run persists: refused, not split.
+    if let Some(message) = hard_linked(path) {
+        return Err(std::io::Error::other(message));
+    }
     let (dir, file_name) = dir_and_name(path);
     // `.NAME.PID.XXXXXX.tmp`: what `remove_stale_temporaries` recognises.
     let mut tmp = tempfile::Builder::new()
@@ -359,5 +394,32 @@ mod lock_tests {
         drop(lock);
         assert!(lock_for_persist(&kb).is_ok());
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Issue 38: a hard-linked KB is refused under both names, and a link
+    /// made while a run persists is refused at the next save; the link is
+    /// never split.
+    #[cfg(unix)]
+    #[test]
+    fn a_hard_linked_kb_is_refused_and_never_split() {
+        use std::os::unix::fs::MetadataExt;
+        let dir = tempfile::tempdir().unwrap();
+        let kb = dir.path().join("k.kb");
+        let other = dir.path().join("other.kb");
+        std::fs::write(&kb, "[class(top,none,[],[],[])].\n").unwrap();
+        let (mut loaded, lock) = Kb::open_persistent(&kb).unwrap();
+        std::fs::hard_link(&kb, &other).unwrap();
+        for name in [&kb, &other] {
+            let e = lock_for_persist(name).unwrap_err();
+            assert!(e.message.contains("has 2 hard links"), "{e}");
+        }
+        let update = sitlog_syntax::read_term("add_class(b, top)").unwrap();
+        let e = loaded.update_persist(&update, lock.path()).unwrap_err();
+        assert!(e.to_string().contains("has 2 hard links"), "{e}");
+        let (a, b) = (
+            std::fs::metadata(&kb).unwrap(),
+            std::fs::metadata(&other).unwrap(),
+        );
+        assert_eq!((a.ino(), a.nlink()), (b.ino(), 2));
     }
 }

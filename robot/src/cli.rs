@@ -346,8 +346,17 @@ pub fn task_command<C: CommandFactory>(assets: &Assets, more: &str) -> clap::Com
 pub fn parse_task_args<C: FromArgMatches>(
     command: clap::Command,
 ) -> Result<C, std::process::ExitCode> {
+    parse_task_args_from(command, std::env::args_os())
+}
+
+/// [`parse_task_args`] of the command line `args` (the program's name
+/// first), for a task run in process (tests).
+pub fn parse_task_args_from<C: FromArgMatches>(
+    command: clap::Command,
+    args: impl IntoIterator<Item = std::ffi::OsString>,
+) -> Result<C, std::process::ExitCode> {
     match command
-        .try_get_matches()
+        .try_get_matches_from(args)
         .and_then(|m| C::from_arg_matches(&m))
     {
         Ok(cli) => Ok(cli),

@@ -391,6 +391,8 @@ impl Runner {
             ..Options::default()
         };
         functions.set_call_limits(args.call_limits());
+        // A signal also ends a Prolog directive or call under way (issue 38).
+        functions.set_stop(options.stop.clone());
         // Every file is open: the operating system's sandbox closes the
         // rest, on this thread and (through the trust's hook) on the
         // Prolog engine's before the first directive (issue 38).

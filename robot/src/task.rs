@@ -3,7 +3,7 @@
 //! thread with a big stack ([`on_big_stack`], as `sitlogc` runs).
 
 use crate::assets::Assets;
-use crate::cli::{parse_task_args, task_command, TaskCli};
+use crate::cli::{parse_task_args, parse_task_args_from, task_command, TaskCli};
 use crate::robot_hook::RobotHook;
 use crate::runner::Runner;
 use sitlog_runtime::app::App;
@@ -26,7 +26,19 @@ pub fn on_big_stack(f: impl FnOnce() -> u8 + Send) -> std::process::ExitCode {
 /// options of `sitlogc run`, named after the application), runs on a thread
 /// with a big stack (as `sitlogc` does), returns the exit status.
 pub fn main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std::process::ExitCode {
-    let args = match parse_task_args::<TaskCli>(task_command::<TaskCli>(assets, "")) {
+    main_from(app, functions, assets, std::env::args_os())
+}
+
+/// [`main`] on the command line `args` (the program's name first) instead
+/// of the process's: what a compiled task runs, callable in process (the
+/// tests run a compiled program through it, the OS sandbox included).
+pub fn main_from<A: App>(
+    app: &A,
+    functions: Functions,
+    assets: &Assets,
+    args: impl IntoIterator<Item = std::ffi::OsString>,
+) -> std::process::ExitCode {
+    let args = match parse_task_args_from::<TaskCli>(task_command::<TaskCli>(assets, ""), args) {
         Ok(cli) => {
             sitlog_syntax::decode::set_max_file_bytes(cli.max_file_bytes);
             cli.run
@@ -46,7 +58,10 @@ pub fn main_with_robot<A: App>(
     robot: impl FnOnce() -> RobotHook + Send,
 ) -> std::process::ExitCode {
     let args = match parse_task_args::<TaskCli>(task_command::<TaskCli>(assets, "")) {
-        Ok(cli) => cli.run,
+        Ok(cli) => {
+            sitlog_syntax::decode::set_max_file_bytes(cli.max_file_bytes);
+            cli.run
+        }
         Err(code) => return code,
     };
     on_big_stack(|| {

@@ -10,6 +10,7 @@ use crate::trust::Trust;
 use crate::vars::Vars;
 use sitlog_syntax::{atoms, Atom};
 use std::collections::HashMap;
+use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
 /// What a user function gets besides its arguments.
@@ -40,10 +41,19 @@ pub type UserFn = dyn Fn(&mut FnCall<'_>, &[Term]) -> Result<Term, String> + Sen
 pub type FallbackFn =
     dyn Fn(&mut FnCall<'_>, Atom, &[Term]) -> Option<Result<Term, String>> + Send + Sync;
 
-/// Run once when a run starts (its first transition), with the run's
-/// [`Trust`] and call limits: an engine's own code (Prolog directives)
+/// Run once when a run starts (its first transition), given the registry
+/// (the run's [`Trust`], call limits and stop flag): an engine's own code (Prolog directives)
 /// runs here, never while a program or its options are being checked.
-pub type StartFn = dyn Fn(&Trust, Option<CallLimits>) -> Result<(), String> + Send + Sync;
+pub type StartFn = dyn Fn(&Functions) -> Result<(), String> + Send + Sync;
+
+/// The deepest term handed to the Prolog engine: a clause of the
+/// application's Prolog files, or the arguments, variables and history
+/// of a call (a list counts one level per element: the engine reads a
+/// list as nested cells). The engine's reader and compiler recurse on the
+/// engine's thread; deeper, they would overflow its stack and abort the
+/// process, so a deeper clause is an error at its place (`sitlogc check`
+/// too) and a deeper call an error naming the function.
+pub const PROLOG_MAX_DEPTH: usize = 100_000;
 
 /// Bounds on one call of a user function that runs outside Rust (Prolog):
 /// set by a run's options (`--prolog-inferences`, `--prolog-time-limit`,
@@ -82,6 +92,7 @@ pub struct Functions {
     limits: Option<CallLimits>,
     start: Option<Arc<StartFn>>,
     trust: Trust,
+    stop: Option<Arc<AtomicBool>>,
 }
 
 impl std::fmt::Debug for Functions {
@@ -141,16 +152,29 @@ impl Functions {
     /// earlier one.
     pub fn set_start(
         &mut self,
-        f: impl Fn(&Trust, Option<CallLimits>) -> Result<(), String> + Send + Sync + 'static,
+        f: impl Fn(&Functions) -> Result<(), String> + Send + Sync + 'static,
     ) {
         self.start = Some(Arc::new(f));
     }
 
-    /// Runs the start hook set by [`Functions::set_start`] with
-    /// [`Functions::trust`]; the machine calls it at a run's first transition.
+    /// Sets the run's stop flag (SIGINT, SIGTERM: the machine's
+    /// `Options::stop`): a call running outside Rust (a Prolog directive or
+    /// user function) is abandoned when it is set, so the first signal ends
+    /// the run even while such a call runs.
+    pub fn set_stop(&mut self, stop: Option<Arc<AtomicBool>>) {
+        self.stop = stop;
+    }
+
+    /// The flag set by [`Functions::set_stop`].
+    pub fn stop(&self) -> Option<&AtomicBool> {
+        self.stop.as_deref()
+    }
+
+    /// Runs the start hook set by [`Functions::set_start`] with this
+    /// registry (its trust, limits and stop flag); the machine calls it at a run's first transition.
     pub fn start(&self) -> Result<(), String> {
         match &self.start {
-            Some(f) => f(&self.trust, self.limits),
+            Some(f) => f(self),
             None => Ok(()),
         }
     }

@@ -915,3 +915,173 @@ fn a_looping_directive_is_stopped_by_the_time_limit() {
         "{stderr}"
     );
 }
+
+/// A directive that never ends is stopped by `--prolog-inferences` too,
+/// at its place in `user_functions.pl` (issue 38).
+#[test]
+fn a_looping_directive_is_stopped_by_the_inference_limit() {
+    let dm = "diag_mod(main, [
+  [id ==> is, type ==> neutral, arcs ==> [empty : say(apply(f(X), [1])) => fs]],
+  [id ==> fs, type ==> final]
+], []).
+";
+    let dir = app(
+        "loop-inferences",
+        &[
+            ("main.dm", dm.as_bytes()),
+            (
+                "user_functions.pl",
+                b"loop :- loop.\n:- loop.\nf(_) :- assign_func_value(d).\n",
+            ),
+            ("script.txt", b""),
+        ],
+    );
+    let out = sitlogc()
+        .arg("run")
+        .arg(&dir)
+        .arg("--script")
+        .arg(dir.join("script.txt"))
+        .args(["--prolog-inferences", "20000", "--format", "json"])
+        .args(["--prolog-time-limit", "100"])
+        .output()
+        .unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["status"], "error");
+    assert!(
+        err.contains(
+            "user_functions.pl:2:1: the directive exceeded the inference limit (20000; option --prolog-inferences)"
+        ),
+        "{err}"
+    );
+}
+
+/// The first SIGTERM ends a run whose directive loops, with its status
+/// and report (issue 38: a second signal was needed).
+#[cfg(unix)]
+#[test]
+fn the_first_signal_ends_a_looping_directive() {
+    let dm = "diag_mod(main, [
+  [id ==> is, type ==> neutral, arcs ==> [empty : say(apply(f(X), [1])) => fs]],
+  [id ==> fs, type ==> final]
+], []).
+";
+    let dir = app(
+        "loop-signal",
+        &[
+            ("main.dm", dm.as_bytes()),
+            (
+                "user_functions.pl",
+                b"loop :- loop.\n:- open(started, write, S), close(S), loop.\nf(_) :- assign_func_value(d).\n",
+            ),
+            ("script.txt", b""),
+        ],
+    );
+    let child = sitlogc()
+        .arg("run")
+        .arg(&dir)
+        .arg("--script")
+        .arg(dir.join("script.txt"))
+        .args(["--format", "json", "--prolog-inferences", "100000000000"])
+        .args(["--prolog-time-limit", "600"])
+        .current_dir(&dir)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while !dir.join("started").exists() {
+        assert!(
+            start.elapsed() < Duration::from_secs(120),
+            "the directive did not start"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    kill(child.id(), "TERM");
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(143), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["status"], "interrupted");
+    assert!(
+        stderr(&out).contains("stopped by a signal"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+/// A clause of `user_functions.pl` nested deeper than the Prolog engine
+/// takes is an error of `check` (E0241, its long line not quoted) and of
+/// `run`, which stops before the engine starts (issue 38: the engine's
+/// reader overflowed its thread's stack, SIGABRT, no report).
+#[test]
+fn a_prolog_clause_too_deep_for_the_engine_is_an_error_not_an_abort() {
+    let n = 150_000;
+    let clause = format!("d({}a{}).\n", "s(".repeat(n), ")".repeat(n));
+    let dir = app(
+        "deep-clause",
+        &[
+            ("main.dm", ECHO.as_bytes()),
+            ("user_functions.pl", clause.as_bytes()),
+        ],
+    );
+    let out = sitlogc().arg("check").arg(&dir).output().unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("[E0241] Error: this clause nests 150002 levels deep"),
+        "{err}"
+    );
+    assert!(err.contains("user_functions.pl:1:300003"), "{err}");
+    assert!(
+        err.len() < 10_000,
+        "the line is not quoted: {} bytes",
+        err.len()
+    );
+    let out = sitlogc()
+        .args(["run", "--format", "json"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("E0241") || stderr(&out).contains("1 error"));
+}
+
+/// Two runs persisting one KB through a hard link (issue 38: both ran and
+/// split the link): each is refused (exit 2, naming the links) and the
+/// link stays whole.
+#[cfg(unix)]
+#[test]
+fn a_hard_linked_kb_is_not_persisted_and_its_link_never_split() {
+    use std::os::unix::fs::MetadataExt;
+    let dir = app(
+        "hardlink",
+        &[
+            ("main.dm", KB_LOOP.as_bytes()),
+            ("k.kb", b"[class(top,none,[],[],[])].\n"),
+        ],
+    );
+    let kb = dir.join("k.kb");
+    let elsewhere = temp("hardlink-other").join("same.kb");
+    std::fs::hard_link(&kb, &elsewhere).unwrap();
+    for name in [&kb, &elsewhere] {
+        let out = sitlogc()
+            .args(["run", "--history", "none", "--kb-persist", "--kb"])
+            .arg(name)
+            .arg(&dir)
+            .output()
+            .unwrap();
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains("has 2 hard links"), "{err}");
+    }
+    let (a, b) = (
+        std::fs::metadata(&kb).unwrap(),
+        std::fs::metadata(&elsewhere).unwrap(),
+    );
+    assert_eq!((a.ino(), a.nlink()), (b.ino(), 2));
+    assert_eq!(
+        std::fs::read(&kb).unwrap(),
+        b"[class(top,none,[],[],[])].\n"
+    );
+}

@@ -16,6 +16,7 @@ use std::collections::{HashMap, HashSet};
 
 mod calls;
 mod os_access;
+mod prolog_depth;
 mod situations;
 mod terms;
 mod unbound;
@@ -58,6 +59,7 @@ pub mod codes {
     pub const UNKNOWN_SITUATION_TYPE: &str = "E0230";
     pub const DEAD_EXIT: &str = "W0231";
     pub const OS_ACCESS: &str = "W0240";
+    pub const PROLOG_TOO_DEEP: &str = "E0241";
 }
 
 /// A program the checker accepted (no errors; warnings allowed).
@@ -258,6 +260,7 @@ impl<'p> Checker<'p> {
             self.functions();
         }
         self.os_access();
+        self.prolog_depth();
         if !broken.basic_actions && !program.basic_actions.is_empty() {
             self.actions();
         }

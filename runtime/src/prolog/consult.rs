@@ -61,6 +61,10 @@ pub struct PrologLoadError {
 
 impl std::fmt::Display for PrologLoadError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // An error of the engine itself has no place in the application.
+        if self.line == 0 && self.file.starts_with('<') {
+            return f.write_str(&self.message);
+        }
         write!(
             f,
             "{}:{}:{}: {}",
@@ -145,6 +149,15 @@ impl Redefinitions {
 }
 
 /// Prepares the clauses of `source` (recursively for consulted files).
+/// The error of a clause nested `depth` levels deep, deeper than the
+/// engine takes.
+fn too_deep(depth: usize) -> String {
+    format!(
+        "this clause nests {depth} levels deep (a list counts a level per element); the Prolog engine takes at most {} (deeper, its reader would overflow its stack)",
+        crate::functions::PROLOG_MAX_DEPTH
+    )
+}
+
 pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
     if !cx.seen.insert(normalize(Path::new(&source.name))) {
         return;
@@ -215,6 +228,10 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
             }
             let mut w = Writer::new(&store, true);
             w.term(goal);
+            if w.too_deep() {
+                cx.errors.push(err(too_deep(w.deepest)));
+                continue;
+            }
             cx.out.push(Prepared {
                 text: w.out,
                 directive: true,
@@ -267,6 +284,10 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
                 w.out.push(')');
             }
             None => w.head(t),
+        }
+        if w.too_deep() {
+            cx.errors.push(err(too_deep(w.deepest)));
+            continue;
         }
         cx.out.push(Prepared {
             text: w.out,

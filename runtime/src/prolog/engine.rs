@@ -1,7 +1,9 @@
 //! The engine: [`PrologFunctions`] loads the prepared clauses into a
 //! scryer-prolog machine on a thread of its own (the engine is not `Send`)
 //! and calls user functions as queries sent to it, watched for their time
-//! and memory limits ([`PrologOptions`]) from the calling thread.
+//! and memory limits ([`PrologOptions`]) and the run's stop flag (a
+//! signal) from the calling thread; directives and calls run under the
+//! inference limit inside the engine.
 //! Invariant (the trust model): loading only stores clauses; the
 //! application's directives run at [`PrologFunctions::start`] (a run's
 //! first transition, or the first call), after the run's permissions are
@@ -11,8 +13,8 @@ use super::consult::{prepare, Prep, PrologLoadError, PrologSource, Redefinitions
 use super::legacy_kb::{KbHost, NativeKb, NativeState};
 use super::permissions;
 use super::swi::{LIBRARIES, PRELUDE, PRELUDE_SWI, SWI_PREDICATES};
-use super::translate::{from_prolog, read_reply, write_atom, Prepared, Writer};
-use crate::functions::{CallLimits, FnCall, Functions};
+use super::translate::{drop_deep, from_prolog, read_reply, write_atom, Prepared, Writer};
+use crate::functions::{CallLimits, FnCall, Functions, PROLOG_MAX_DEPTH};
 use crate::store::Store;
 use crate::term::Term;
 use crate::trust::{Confine, Trust};
@@ -25,6 +27,7 @@ use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
 
@@ -80,11 +83,12 @@ fn resident_bytes() -> Option<u64> {
 /// What the engine thread is asked to do.
 enum Request {
     /// Run the application's directives, code reaching the operating
-    /// system allowed or not, the thread first confined by the sandbox
+    /// system allowed or not, under an inference limit, the thread first confined by the sandbox
     /// (with the directories the application may write into) if the run
     /// has one.
     Start(
         bool,
+        u64,
         Option<(Confine, Vec<PathBuf>)>,
         mpsc::Sender<Vec<PrologLoadError>>,
     ),
@@ -216,7 +220,9 @@ impl PrologFunctions {
         let thread_roots = roots.clone();
         std::thread::Builder::new()
             .name("sitlog-prolog".into())
-            .stack_size(64 << 20)
+            // The engine's reader and compiler recurse: room for terms
+            // PROLOG_MAX_DEPTH deep in a debug build (reserved, not used).
+            .stack_size(512 << 20)
             .spawn(move || engine_thread(prepared, host, thread_roots, rx, ready_tx))
             .map_err(|e| {
                 vec![PrologLoadError {
@@ -256,16 +262,18 @@ impl PrologFunctions {
     /// writes outside the application. A refusal or a failing
     /// directive is an error at the directive's position.
     pub fn start(&self, trust: &Trust) -> Result<(), Vec<PrologLoadError>> {
-        self.start_with(trust, None)
+        self.start_with(trust, None, None)
     }
 
     /// [`start`](Self::start) under `limits` (a run's call limits, else the
-    /// engine's): the directives together run under the time and memory
-    /// limits of one call (issue 38: `:- loop.` is stopped).
+    /// engine's): the directives together run under the inference, time
+    /// and memory limits of one call, and are abandoned when `stop` is set
+    /// (issue 38: `:- loop.` is stopped, by its limits or the first signal).
     pub fn start_with(
         &self,
         trust: &Trust,
         limits: Option<CallLimits>,
+        stop: Option<&AtomicBool>,
     ) -> Result<(), Vec<PrologLoadError>> {
         let mut started = self
             .inner
@@ -276,12 +284,22 @@ impl PrologFunctions {
             return outcome.clone();
         }
         let options = limits.map_or(self.inner.options, PrologOptions::from);
-        let outcome = self.start_now(trust, options);
+        let outcome = self.start_now(trust, options, stop);
         *started = Some(outcome.clone());
         outcome
     }
 
-    fn start_now(&self, trust: &Trust, options: PrologOptions) -> Result<(), Vec<PrologLoadError>> {
+    /// [`start_with`](Self::start_with) with what a run's registry holds.
+    fn start_from(&self, functions: &Functions) -> Result<(), Vec<PrologLoadError>> {
+        self.start_with(functions.trust(), functions.call_limits(), functions.stop())
+    }
+
+    fn start_now(
+        &self,
+        trust: &Trust,
+        options: PrologOptions,
+        stop: Option<&AtomicBool>,
+    ) -> Result<(), Vec<PrologLoadError>> {
         if !trust.allow_os {
             let refused: Vec<PrologLoadError> = self
                 .inner
@@ -307,9 +325,14 @@ impl PrologFunctions {
             .tx
             .lock()
             .map_err(|_| vec![engine_error("the Prolog engine is poisoned")])?
-            .send(Request::Start(trust.allow_os, confine, tx))
+            .send(Request::Start(
+                trust.allow_os,
+                options.inference_limit,
+                confine,
+                tx,
+            ))
             .map_err(|_| vec![engine_error("the Prolog engine has stopped")])?;
-        let errors = match self.watch(&rx, options, "the application's directives") {
+        let errors = match self.watch(&rx, options, stop, "the application's directives") {
             Ok(errors) => errors,
             Err(message) => vec![engine_error(&message)],
         };
@@ -340,31 +363,30 @@ impl PrologFunctions {
                 return None;
             }
             // A call before the run's start (a debugger's evaluation) starts it.
-            if let Err(errors) = me.start_with(call.functions.trust(), call.functions.call_limits())
-            {
+            if let Err(errors) = me.start_from(call.functions) {
                 return Some(Err(show_errors(&errors)));
             }
             Some(me.call(call, name, args))
         });
         let me = self.clone();
-        functions.set_start(move |trust, limits| {
-            me.start_with(trust, limits).map_err(|e| show_errors(&e))
-        });
+        functions.set_start(move |functions| me.start_from(functions).map_err(|e| show_errors(&e)));
     }
 
     /// Runs a raw query (for tests and tools): the first answer's binding
     /// of `Result`, `None` on failure.
     pub fn query_raw(&self, query: &str) -> Result<Option<String>, String> {
-        self.ask(query.to_owned(), self.inner.options, "the query")
+        self.ask(query.to_owned(), self.inner.options, None, "the query")
             .map(|a| a.map(|t| format!("{t:?}")))
     }
 
     /// Sends `query` and waits for its answer within the time and memory
-    /// limits of `options`; `what` names the call in errors.
+    /// limits of `options` (and until `stop` is set); `what` names the call
+    /// in errors.
     pub(super) fn ask(
         &self,
         query: String,
         options: PrologOptions,
+        stop: Option<&AtomicBool>,
         what: &str,
     ) -> Result<Option<PTerm>, String> {
         if let Some(why) = self.inner.abandoned.lock().ok().and_then(|a| a.clone()) {
@@ -377,16 +399,18 @@ impl PrologFunctions {
             .map_err(|_| "the Prolog engine is poisoned".to_owned())?
             .send(Request::Query(query, tx))
             .map_err(|_| "the Prolog engine has stopped".to_owned())?;
-        self.watch(&rx, options, what)?
+        self.watch(&rx, options, stop, what)?
     }
 
     /// Waits for the engine's answer on `rx` within the time and memory
     /// limits of `options`; over one, the engine is abandoned and the
-    /// error names the limit (`what` the call).
+    /// error names the limit (`what` the call). The same when `stop` is set
+    /// (a signal: the run ends, reported as interrupted).
     fn watch<T>(
         &self,
         rx: &mpsc::Receiver<T>,
         options: PrologOptions,
+        stop: Option<&AtomicBool>,
         what: &str,
     ) -> Result<T, String> {
         let start = std::time::Instant::now();
@@ -400,7 +424,11 @@ impl PrologFunctions {
                 }
                 Err(mpsc::RecvTimeoutError::Timeout) => {}
             }
-            let over = if start.elapsed() > options.time_limit {
+            let over = if stop.is_some_and(|s| s.load(Ordering::SeqCst)) {
+                Some(format!(
+                    "interrupted (the run was stopped by a signal during {what})"
+                ))
+            } else if start.elapsed() > options.time_limit {
                 Some(format!(
                     "{what} exceeded the time limit of {:?} per call (option --prolog-time-limit)",
                     options.time_limit
@@ -466,6 +494,13 @@ impl PrologFunctions {
         w.out.push(',');
         w.term(history);
         let _ = write!(w.out, ",{},R).", options.inference_limit);
+        if w.too_deep() {
+            return Err(format!(
+                "`{name}/{}`: its arguments, the caller's variables or the history nest {} levels deep (a list counts a level per element); the Prolog engine takes at most {PROLOG_MAX_DEPTH}",
+                args.len(),
+                w.deepest
+            ));
+        }
         let env = std::mem::take(&mut w.out);
         let mut query = rest;
         query.push_str(",[");
@@ -479,15 +514,35 @@ impl PrologFunctions {
         query.push_str(&env);
         let vars = w.vars.clone();
         let shown = || format!("{}/{}", name, args.len());
-        let answer = self.ask(query, options, &format!("`{}`", shown()))?;
+        let answer = self.ask(
+            query,
+            options,
+            call.functions.stop(),
+            &format!("`{}`", shown()),
+        )?;
         let Some(r) = answer else {
             return Err(format!("the Prolog call of `{}` did not answer", shown()));
         };
+        let result = self.answer(call, &r, &vars, options, &shown);
+        drop_deep(r);
+        result
+    }
+
+    /// The value of a call's answer `r`, the caller's variables `vars`
+    /// bound and its SitLog variables changed as the answer says.
+    fn answer(
+        &self,
+        call: &mut FnCall<'_>,
+        r: &PTerm,
+        vars: &[crate::term::Var],
+        options: PrologOptions,
+        shown: &dyn Fn() -> String,
+    ) -> Result<Term, String> {
         let mut names: HashMap<String, Term> = vars
             .iter()
             .map(|&v| (format!("_S{}", v.0), Term::from(v)))
             .collect();
-        match &r {
+        match r {
             PTerm::Compound(f, a) if f == "ok" && a.len() == 3 => {
                 let value = from_prolog(call.store, &a[0], &mut names);
                 if let PTerm::List(outs) = &a[1] {
@@ -553,11 +608,11 @@ fn engine_thread(
 ) {
     let (mut machine, errors) = build_machine(&prepared, host.clone(), roots.clone());
     let _ = ready.send(errors);
-    // `Some(allow_os)` once started.
-    let mut started: Option<bool> = None;
+    // `Some((allow_os, inference limit))` once started.
+    let mut started: Option<(bool, u64)> = None;
     while let Ok(request) = rx.recv() {
         let (q, reply) = match request {
-            Request::Start(allow_os, confine, reply) => {
+            Request::Start(allow_os, limit, confine, reply) => {
                 // The sandbox binds this thread before any application
                 // code runs on it.
                 if let Some((confine, writable)) = confine {
@@ -566,8 +621,8 @@ fn engine_thread(
                         continue;
                     }
                 }
-                started = Some(allow_os);
-                let _ = reply.send(run_directives(&mut machine, &prepared, allow_os));
+                started = Some((allow_os, limit));
+                let _ = reply.send(run_directives(&mut machine, &prepared, allow_os, limit));
                 continue;
             }
             Request::Query(q, reply) => (q, reply),
@@ -580,13 +635,17 @@ fn engine_thread(
             Err(_) => {
                 // The engine may be in any state: start afresh.
                 machine = build_machine(&prepared, host.clone(), roots.clone()).0;
-                if let Some(allow_os) = started {
-                    let _ = run_directives(&mut machine, &prepared, allow_os);
+                if let Some((allow_os, limit)) = started {
+                    let _ = run_directives(&mut machine, &prepared, allow_os, limit);
                 }
                 Err("the Prolog engine panicked (it was restarted)".to_owned())
             }
         };
-        let _ = reply.send(r);
+        // An answer nobody waits for any more (a call abandoned over a
+        // limit) is dropped here, without recursion.
+        if let Err(mpsc::SendError(Ok(Some(t)))) = reply.send(r) {
+            drop_deep(t);
+        }
     }
 }
 
@@ -811,36 +870,47 @@ pub(super) fn toplevel() -> String {
     text
 }
 
-/// Sets the permissions, then runs the application's directives in order.
+/// Sets the permissions, then runs the application's directives in order,
+/// each under the inference limit `limit` (`--prolog-inferences`).
 fn run_directives(
     machine: &mut Machine,
     prepared: &[Prepared],
     allow_os: bool,
+    limit: u64,
 ) -> Vec<PrologLoadError> {
     if allow_os {
         let _ = first_answer(machine, "assertz('$sitlog_allow_os'), R = ok.", "R");
     }
     let mut errors = Vec::new();
     for p in prepared.iter().filter(|p| p.directive) {
-        let q = format!("'$sitlog_directive'({},R).", p.text);
+        let q = format!("'$sitlog_directive'({},{limit},R).", p.text);
         check_load(machine, &q, p, &mut errors);
     }
     errors
 }
 
 fn check_load(machine: &mut Machine, q: &str, p: &Prepared, errors: &mut Vec<PrologLoadError>) {
-    let message = match first_answer(machine, q, "R") {
+    let answer = first_answer(machine, q, "R");
+    let message = match &answer {
         Ok(Some(PTerm::Atom(a))) if a == "ok" => return,
         Ok(Some(PTerm::Atom(a))) if a == "fail" => "directive failed".to_owned(),
+        Ok(Some(PTerm::Compound(f, a))) if f == "limit" && a.len() == 1 => format!(
+            "the directive exceeded the inference limit ({}; option --prolog-inferences)",
+            show_pterm(&a[0])
+        ),
         Ok(Some(PTerm::Compound(f, a))) if f == "error" && a.len() == 1 => {
             match permissions::refusal(&a[0], show_pterm) {
                 Some(m) => m,
                 None => format!("the Prolog engine refused it: {}", show_pterm(&a[0])),
             }
         }
-        Ok(other) => format!("the Prolog engine refused it: {other:?}"),
-        Err(e) => e,
+        Ok(Some(other)) => format!("the Prolog engine refused it: {}", show_pterm(other)),
+        Ok(None) => "the Prolog engine refused it (no answer)".to_owned(),
+        Err(e) => e.clone(),
     };
+    if let Ok(Some(t)) = answer {
+        drop_deep(t);
+    }
     errors.push(PrologLoadError {
         file: p.file.clone(),
         line: p.line,
@@ -862,12 +932,20 @@ fn first_answer(machine: &mut Machine, query: &str, var: &str) -> Result<Option<
     let mut answers = machine.run_query(query.to_owned());
     let first = answers.next();
     drop(answers);
+    // Terms of any depth are taken, not copied, and dropped without
+    // recursion (`drop_deep`).
     match first {
         None | Some(Ok(LeafAnswer::False)) => Ok(None),
         Some(Ok(LeafAnswer::True)) => Ok(Some(PTerm::Atom("true".into()))),
-        Some(Ok(LeafAnswer::LeafAnswer { bindings, .. })) => Ok(bindings.get(var).cloned()),
+        Some(Ok(LeafAnswer::LeafAnswer { mut bindings, .. })) => {
+            let value = bindings.remove(var);
+            bindings.into_values().for_each(drop_deep);
+            Ok(value)
+        }
         Some(Ok(LeafAnswer::Exception(e))) | Some(Err(e)) => {
-            Err(format!("Prolog exception: {}", show_pterm(&e)))
+            let message = format!("Prolog exception: {}", show_pterm(&e));
+            drop_deep(e);
+            Err(message)
         }
     }
 }

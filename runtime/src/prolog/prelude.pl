@@ -180,6 +180,16 @@ get_last_situation(History, S) :-
 '$sitlog_directive'(Goal, R) :-
     catch(( call(Goal) -> R = ok ; R = fail ), E, R = error(E)).
 
+% An application's directive, under the run's inference limit.
+'$sitlog_directive'(Goal, Limit, R) :-
+    catch('$sitlog_run'(Goal, Limit, R0), E, R0 = error(E)),
+    (   R0 == done
+    ->  R = ok
+    ;   R0 == limit
+    ->  R = limit(Limit)
+    ;   R = R0
+    ).
+
 % Imports a library's predicates except those the application defines
 % (SWI-Prolog's autoloading gives user definitions precedence).
 '$sitlog_import'(Library, Preds, R) :-

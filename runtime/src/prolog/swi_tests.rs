@@ -82,7 +82,7 @@ pub(super) fn engine() -> &'static PrologFunctions {
 
 fn ask(q: &str) -> String {
     let query = format!("{q}(R0), R = R0.");
-    match engine().ask(query, PrologOptions::default(), "the test query") {
+    match engine().ask(query, PrologOptions::default(), None, "the test query") {
         Ok(Some(p)) => {
             let mut store = Store::new();
             let mut names = HashMap::new();

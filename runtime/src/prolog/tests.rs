@@ -312,3 +312,62 @@ fn the_toplevel_keeps_scryers_directives_whole() {
     }
     assert!(text.contains(":- dynamic(started/0)."));
 }
+
+/// Issue 38: terms of any depth cross between engine and store without
+/// recursion on the engine's side (a 500 000-deep answer aborted the
+/// process: its copy and drop recursed), and what the engine's reader
+/// would overflow on is refused before it is sent, with an error.
+#[test]
+fn deep_terms_never_overflow_a_stack() {
+    use super::translate::{drop_deep, from_prolog};
+    use scryer_prolog::Term as PTerm;
+    // An engine term a million levels deep: read into the store (stacker)
+    // and dropped (iteratively).
+    let mut t = PTerm::Atom("a".into());
+    for _ in 0..1_000_000 {
+        t = PTerm::Compound("s".into(), vec![t]);
+    }
+    let mut store = Store::new();
+    let mut names = std::collections::HashMap::new();
+    let s = from_prolog(&mut store, &t, &mut names);
+    drop_deep(t);
+    assert!(store.compound_args(s, Atom::intern("s"), 1).is_some());
+    // A call whose argument nests deeper than the engine takes.
+    let mut e = env();
+    let depth = crate::functions::PROLOG_MAX_DEPTH + 1;
+    let deep = format!("{}a{}", "s(".repeat(depth), ")".repeat(depth));
+    let err = run(&mut e, &format!("apply(echo(X), [{deep}])")).unwrap_err();
+    assert!(
+        err.contains("`echo/1`") && err.contains("the Prolog engine takes at most 100000"),
+        "{err}"
+    );
+    // A list counts a level per element.
+    let long = format!("[{}]", vec!["1"; depth].join(","));
+    let err = run(&mut e, &format!("apply(echo(X), [{long}])")).unwrap_err();
+    assert!(err.contains("levels deep"), "{err}");
+    // Just under the limit, the engine takes it.
+    let list = format!("[{}]", vec!["1"; 50_000].join(","));
+    assert_eq!(
+        run(&mut e, &format!("apply(sum(X), [{list}])")).unwrap(),
+        "50000"
+    );
+}
+
+/// A clause nested deeper than the engine takes is an error at its place,
+/// before any engine starts (it aborted the process before).
+#[test]
+fn a_clause_too_deep_for_the_engine_is_a_located_error() {
+    let depth = crate::functions::PROLOG_MAX_DEPTH;
+    let text = format!("ok(1).\nd({}a{}).\n", "s(".repeat(depth), ")".repeat(depth));
+    let errors = PrologFunctions::load(
+        &[PrologSource::new("user_functions.pl", &text)],
+        PrologOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!(errors.len(), 1);
+    let shown = errors[0].to_string();
+    assert!(
+        shown.starts_with("user_functions.pl:2:1: this clause nests 100001 levels deep"),
+        "{shown}"
+    );
+}

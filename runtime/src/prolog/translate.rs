@@ -4,10 +4,13 @@
 //! renamed), engine terms read back into the store ([`from_prolog`]), text
 //! read as a term by our reader for the engine ([`read_reply`]), and a
 //! clause ready for the engine ([`Prepared`]). Both walks grow their stack
-//! on the heap.
+//! on the heap; an engine term is dropped without recursion
+//! ([`drop_deep`]), and the [`Writer`] measures how deep what it writes
+//! nests, the engine's reader being recursive (see [`PROLOG_MAX_DEPTH`]).
 
 use super::permissions::guard_name;
 use super::swi::{closure_extra, swi_renamed};
+use crate::functions::PROLOG_MAX_DEPTH;
 use crate::store::Store;
 use crate::term::{Term, Value, Var};
 use scryer_prolog::Term as PTerm;
@@ -42,6 +45,11 @@ pub(super) struct Writer<'s> {
     /// Off while a clause head is written (an application's own `shell/1`
     /// keeps its name).
     guard: bool,
+    /// Nesting of the term being written (a list element counts one level
+    /// per element before it: the engine reads a list as nested cells).
+    depth: usize,
+    /// The deepest nesting written.
+    pub(super) deepest: usize,
 }
 
 impl<'s> Writer<'s> {
@@ -53,7 +61,15 @@ impl<'s> Writer<'s> {
             seen: HashSet::new(),
             bar_is_or,
             guard: true,
+            depth: 0,
+            deepest: 0,
         }
+    }
+
+    /// Whether what was written nests deeper than the engine takes
+    /// ([`PROLOG_MAX_DEPTH`]).
+    pub(super) fn too_deep(&self) -> bool {
+        self.deepest > PROLOG_MAX_DEPTH
     }
 
     /// A clause head: written as [`term`](Self::term) does, except that its
@@ -94,7 +110,10 @@ impl<'s> Writer<'s> {
     }
 
     pub(super) fn term(&mut self, t: Term) {
+        self.depth += 1;
+        self.deepest = self.deepest.max(self.depth);
         stacker::maybe_grow(64 * 1024, 1024 * 1024, || self.term_inner(t));
+        self.depth -= 1;
     }
 
     fn term_inner(&mut self, t: Term) {
@@ -123,6 +142,7 @@ impl<'s> Writer<'s> {
             }
             Value::Compound(f, args) if f == atoms::DOT && args.len() == 2 => {
                 self.out.push('[');
+                let base = self.depth;
                 let mut it = self.store.list_iter(t);
                 let mut first = true;
                 for item in it.by_ref() {
@@ -131,12 +151,14 @@ impl<'s> Writer<'s> {
                     }
                     first = false;
                     self.term(item);
+                    self.depth += 1;
                 }
                 let tail = it.tail();
                 if tail != Term::NIL {
                     self.out.push('|');
                     self.term(tail);
                 }
+                self.depth = base;
                 self.out.push(']');
             }
             Value::Compound(f, args) => {
@@ -267,6 +289,18 @@ pub(super) fn from_prolog(store: &mut Store, t: &PTerm, names: &mut HashMap<Stri
         }
         _ => Term::atom(Atom::intern("$unknown")),
     })
+}
+
+/// Drops an engine term without recursion (the derived drop of a term
+/// nested 500 000 levels deep overflows the stack).
+pub(super) fn drop_deep(t: PTerm) {
+    let mut stack = vec![t];
+    while let Some(t) = stack.pop() {
+        match t {
+            PTerm::List(items) | PTerm::Compound(_, items) => stack.extend(items),
+            _ => {}
+        }
+    }
 }
 
 /// Reads `text` as one term with our reader (SWI-Prolog syntax, SitLog
