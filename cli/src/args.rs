@@ -274,6 +274,11 @@ pub enum Command {
         /// Build without optimizations (faster to build).
         #[arg(long)]
         debug: bool,
+        /// Whole-program optimisation (fat LTO, one codegen unit): the
+        /// fastest code, but every build takes minutes (the default release
+        /// build rebuilds only the task's own crate).
+        #[arg(long, conflicts_with_all = ["debug", "release"])]
+        lto: bool,
         /// `rust`: only write the generated code.
         #[arg(long, value_enum)]
         emit: Option<Emit>,

@@ -115,6 +115,7 @@ fn run(cli: Cli) -> u8 {
             output,
             release: _,
             debug,
+            lto,
             emit,
             explain_types,
             allow_unresolved,
@@ -122,14 +123,19 @@ fn run(cli: Cli) -> u8 {
             debugger,
             ros2,
         } => {
-            let release = !debug;
+            use sitlog_cli::package::Profile;
+            let profile = match (debug, lto) {
+                (true, _) => Profile::Debug,
+                (false, true) => Profile::Lto,
+                (false, false) => Profile::Release,
+            };
             if explain_types {
                 explain_types_of(&app)
             } else {
                 build_app(
                     &app,
                     output,
-                    release,
+                    profile,
                     emit,
                     Strictness {
                         allow_unresolved,

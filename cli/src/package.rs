@@ -195,8 +195,14 @@ pub fn write_package(
          sitlog-robot = {{ path = \"{robot}\", default-features = false{robot_features} }}\n\
          {debug_dep}{ros_dep}\n\
          # Not a member of the enclosing workspace.\n[workspace]\n\n\
-         # A shipped task: whole-program optimisation (measured in the README).\n\
-         [profile.release]\nlto = \"fat\"\ncodegen-units = 1\n",
+         # The edit loop (issue 40, docs/guide/compiling.md): the dependencies\n\
+         # (runtime, simulator, Prolog engine) are optimised once and cached; the\n\
+         # task's own crate is rebuilt incrementally; no LTO, no debug info.\n\
+         [profile.release]\nlto = \"off\"\ncodegen-units = 16\ndebug = false\n\n\
+         [profile.release.package.{package}]\nincremental = true\n\n\
+         # `sitlogc build --lto`: whole-program optimisation, the fastest code.\n\
+         [profile.lto]\ninherits = \"release\"\nlto = \"fat\"\ncodegen-units = 1\n\n\
+         [profile.lto.package.{package}]\nincremental = false\n",
         src = app.display(),
         // The embedded Prolog engine only where the application has Prolog sources.
         features = if has_prolog { ", features = [\"prolog\"]" } else { "" },
@@ -277,13 +283,46 @@ pub fn write_package(
     Ok((dir, package))
 }
 
+/// The cargo profile a package is built with (see the `[profile]` tables
+/// [`write_package`] writes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Profile {
+    /// `--debug`: unoptimised, the fastest to build.
+    Debug,
+    /// The default: optimised dependencies (built once into the cache) and
+    /// the task's crate rebuilt incrementally, no LTO.
+    Release,
+    /// `--lto`: whole-program optimisation (fat LTO, one codegen unit), the
+    /// fastest code, minutes for every build.
+    Lto,
+}
+
+impl Profile {
+    fn cargo_args(self) -> &'static [&'static str] {
+        match self {
+            Profile::Debug => &[],
+            Profile::Release => &["--release"],
+            Profile::Lto => &["--profile", "lto"],
+        }
+    }
+
+    /// The directory of the target dir the executable is written to.
+    fn dir(self) -> &'static str {
+        match self {
+            Profile::Debug => "debug",
+            Profile::Release => "release",
+            Profile::Lto => "lto",
+        }
+    }
+}
+
 /// Builds the package in `dir` (see [`write_package`]) and copies the
 /// executable to `output`.
 pub fn build_package(
     dir: &Path,
     package: &str,
     layout: &Layout,
-    release: bool,
+    profile: Profile,
     output: &Path,
 ) -> Result<(), Error> {
     let err = |m: String| Error { messages: vec![m] };
@@ -304,9 +343,7 @@ pub fn build_package(
     if offline {
         cmd.arg("--offline");
     }
-    if release {
-        cmd.arg("--release");
-    }
+    cmd.args(profile.cargo_args());
     // Progress goes to our stderr; our stdout stays clean.
     cmd.stdout(Stdio::inherit()).stderr(Stdio::inherit());
     let status = cmd
@@ -316,7 +353,7 @@ pub fn build_package(
         return Err(err(format!("cargo build failed ({status})")));
     }
     let exe = target_dir
-        .join(if release { "release" } else { "debug" })
+        .join(profile.dir())
         .join(format!("{package}{}", std::env::consts::EXE_SUFFIX));
     if let Some(parent) = output.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent)

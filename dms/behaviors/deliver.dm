@@ -28,7 +28,7 @@ diag_mod(deliver(Hand, _Object, _Status),
     [ id ==> give(Object),
       type ==> neutral,
       arcs ==> [
-        empty : [ say(['Here', apply(is_are(_), [Object]), 'the', Object, '.']),
+        empty : [ say(['Here', apply(is_are(_), [Object]), the, Object]),
                   hand_over(Hand, Result) ] => given(Object, Result)
       ]
     ],

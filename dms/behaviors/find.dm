@@ -15,7 +15,7 @@ diag_mod(find(Object, Shelves, _Shelf, _Seen, _Status),
     [ id ==> look([], Seen),
       type ==> neutral,
       arcs ==> [
-        empty : say(['I could not find the', Object, '.']) => error(not_found, Seen)
+        empty : say(['I could not find', the, Object]) => error(not_found, Seen)
       ]
     ],
     [ id ==> look([S|Ss], Seen),
@@ -24,7 +24,7 @@ diag_mod(find(Object, Shelves, _Shelf, _Seen, _Status),
       arcs ==> [
         success : empty => at(S, Ss, Seen),
         % a shelf it cannot reach: say so and try the next one
-        error(_) : say(['I cannot reach', apply(name_of(_), [S]), '.']) => look(Ss, Seen)
+        error(_) : say(['I cannot', reach, apply(name_of(_), [S])]) => look(Ss, Seen)
       ]
     ],
     [ id ==> at(S, Ss, Seen),
@@ -40,7 +40,7 @@ diag_mod(find(Object, Shelves, _Shelf, _Seen, _Status),
       type ==> neutral,
       arcs ==> [
         empty : say(['The', Object, apply(is_are(_), [Object]), 'not in',
-                     apply(name_of(_), [S]), '.']) => look(Ss, Seen)
+                     apply(name_of(_), [S])]) => look(Ss, Seen)
       ]
     ],
     [ id ==> found(S, Seen),

@@ -353,6 +353,63 @@ lang_unscore([], []).
 lang_unscore([0'_|Cs], [32|Ds]) :- !, lang_unscore(Cs, Ds).
 lang_unscore([C|Cs], [C|Ds]) :- lang_unscore(Cs, Ds).
 
+% ------------------------------------------------------------ sentences
+
+% `say([...])` writes a list by the original's rule (its msg_format/2, in
+% test mode and on the robot alike): a space before every element, and a
+% final `.` from three elements on. A sentence whose punctuation follows a
+% value, or a question, is made into one atom first:
+% `say(apply(words(_), [['Which', C, 'would you like?']]))`.
+
+% words(+Words): Words as one sentence, an atom: a space between two words
+% but before one that starts with , ; : . ? or !, nested lists spliced in,
+% underscores said as spaces, the first letter a capital.
+words(Ws) :-
+    lang_join(Ws, Codes0),
+    lang_capital(Codes0, Codes),
+    atom_codes(A, Codes),
+    assign_func_value(A).
+
+% lang_words(+Words, -Atom): as words/1, the first letter as it is.
+lang_words(Ws, A) :-
+    lang_join(Ws, Codes),
+    atom_codes(A, Codes).
+
+lang_join(Ws, Codes) :-
+    lang_flat(Ws, Fs, []),
+    lang_glue(Fs, first, Codes).
+
+lang_flat([], Fs, Fs) :- !.
+lang_flat([W|Ws], Fs0, Fs) :- !,
+    lang_flat(W, Fs0, Fs1),
+    lang_flat(Ws, Fs1, Fs).
+lang_flat(W, [W|Fs], Fs).
+
+lang_glue([], _, []).
+lang_glue([W|Ws], Pos, Codes) :-
+    lang_codes(W, C),
+    lang_glue(Ws, next, Rest),
+    (   C == []
+    ->  Codes = Rest
+    ;   Pos == first
+    ->  lang_append(C, Rest, Codes)
+    ;   C = [P|_], lang_punct(P)
+    ->  lang_append(C, Rest, Codes)
+    ;   lang_append([32|C], Rest, Codes)
+    ).
+
+lang_punct(44).
+lang_punct(59).
+lang_punct(58).
+lang_punct(46).
+lang_punct(63).
+lang_punct(33).
+
+lang_capital([C|Cs], [U|Cs]) :-
+    C >= 97, C =< 122, !,
+    U is C - 32.
+lang_capital(Cs, Cs).
+
 % ------------------------------------------------------- naming things
 
 % The behaviours speak of a thing by the application's global variables

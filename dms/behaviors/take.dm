@@ -21,13 +21,13 @@ diag_mod(take(Object, _Hand, _Status),
     [ id ==> grab(Hand),
       type ==> neutral,
       arcs ==> [
-        empty : [ say(['Attempting to grab the', Object, 'with my', Hand, 'arm.']),
+        empty : [ say(['Attempting to grab the', Object, 'with my', Hand, arm]),
                   grasp(Object, Hand, Result) ] => grabbed(Hand, Result, first)
       ]
     ],
     [ id ==> grabbed(Hand, ok, _),
       type ==> neutral,
-      arcs ==> [ empty : say(['I took the', Object, '.']) => success(Hand) ]
+      arcs ==> [ empty : say(apply(words(_), [['I took the', Object, '.']])) => success(Hand) ]
     ],
     [ id ==> grabbed(Hand, grasp_failed, first),
       type ==> recursive,
@@ -37,13 +37,13 @@ diag_mod(take(Object, _Hand, _Status),
     [ id ==> grabbed(Hand, not_in_view, _),
       type ==> neutral,
       arcs ==> [
-        empty : say(['I cannot see the', Object, 'here.']) => error(not_in_view, Hand)
+        empty : say(['I cannot see the', Object, here]) => error(not_in_view, Hand)
       ]
     ],
     [ id ==> grabbed(Hand, Error, _),
       type ==> neutral,
       arcs ==> [
-        empty : say(['I could not take the', Object, '.']) => error(Error, Hand)
+        empty : say(['I could not take', the, Object]) => error(Error, Hand)
       ]
     ],
     [ id ==> success(Hand),

@@ -332,44 +332,16 @@ fn report(store: &mut Store, action: Term, i: usize, status: Term) -> Result<(),
     }
 }
 
-/// What `say(Text)` says: an atom as it is, a list as one sentence.
+/// What `say(Text)`, `screen(Text)` and `message(To, Text)` say: what
+/// test mode shows, as the original says the same text in its test mode and
+/// on its robot (issue 40): a list is one sentence made by the original's
+/// rule ([`sitlog_runtime::builtins::sentence`]: words separated by a
+/// space, a final `.` from three words on), anything else is written as it is.
 pub fn sentence(store: &Store, text: Term) -> String {
-    let mut words = Vec::new();
-    collect_words(store, text, &mut words, 0);
-    let mut out = String::new();
-    for w in words {
-        if w.is_empty() {
-            continue;
-        }
-        let glue = w.starts_with(['.', ',', ';', ':', '?', '!']);
-        if !out.is_empty() && !glue {
-            out.push(' ');
-        }
-        out.push_str(&w);
-    }
-    let mut chars = out.chars();
-    match chars.next() {
-        Some(c) if c.is_lowercase() => c.to_uppercase().chain(chars).collect(),
-        _ => out,
-    }
-}
-
-fn collect_words(store: &Store, t: Term, out: &mut Vec<String>, depth: usize) {
-    let t = store.deref(t);
-    if depth < 64 {
-        if let Some(items) = store.list_to_vec(t) {
-            if store.atom_of(t).is_none() {
-                for x in items {
-                    collect_words(store, x, out, depth + 1);
-                }
-                return;
-            }
-        }
-    }
-    match store.atom_of(t) {
-        Some(a) if a.as_str() == "[]" => {}
-        Some(a) => out.push(a.as_str().replace('_', " ")),
-        None => out.push(store.write(t)),
+    let t = store.deref(text);
+    match store.list_to_vec(t).filter(|items| !items.is_empty()) {
+        Some(items) => sitlog_runtime::builtins::sentence(store, &items),
+        None => store.write(t),
     }
 }
 
@@ -495,25 +467,56 @@ mod tests {
     #[test]
     fn sentences() {
         let mut store = Store::new();
-        let t = store.parse("['I will get the', malz, '.']").unwrap().0;
+        let t = store.parse("['I will get', the, malz]").unwrap().0;
         assert_eq!(sentence(&store, t), "I will get the malz.");
+        let t = store.parse("['Hi,', 'Luis']").unwrap().0;
+        assert_eq!(sentence(&store, t), "Hi, Luis");
         let t = store
-            .parse("['Hi,', 'Luis', ', how was your day?']")
+            .parse("[here, is, [the, living_room], '?']")
             .unwrap()
             .0;
-        assert_eq!(sentence(&store, t), "Hi, Luis, how was your day?");
-        let t = store
-            .parse("[here, is, the, [the, living_room, and, the, noodles], '!']")
-            .unwrap()
-            .0;
-        assert_eq!(
-            sentence(&store, t),
-            "Here is the the living room and the noodles!"
-        );
+        assert_eq!(sentence(&store, t), "here is [the,living_room] ?.");
         let t = store.parse("'Goodbye.'").unwrap().0;
         assert_eq!(sentence(&store, t), "Goodbye.");
         let t = store.parse("[count, 3, f(x)]").unwrap().0;
-        assert_eq!(sentence(&store, t), "Count 3 f(x)");
+        assert_eq!(sentence(&store, t), "count 3 f(x).");
+    }
+
+    /// The simulated (and ROS 2) robot says what test mode shows, the
+    /// original's text in both its modes (issue 40): the same `say([...])`
+    /// once printed `Hello Bob, welcome! I am Golem.` on the simulator and
+    /// `Hello Bob , welcome! I am Golem..` in test mode.
+    #[test]
+    fn the_robot_says_what_test_mode_shows() {
+        use sitlog_runtime::machine::Actions;
+        for text in [
+            "['Hello', 'Bob', ', welcome! I am Golem.']",
+            "['I will get', the, malz]",
+            "['Hi,', 'Luis']",
+            "[a, pause, b, c]",
+            "[one]",
+            "[the, [malz, and, coke], please]",
+            "'Goodbye.'",
+            "hello_world",
+        ] {
+            let mut store = Store::new();
+            let t = store.parse(&format!("say({text})")).unwrap().0;
+            let mut shown = Vec::new();
+            sitlog_runtime::testmode::TextActions::new(&mut shown, Vec::new())
+                .perform(&mut store, t)
+                .unwrap();
+            let said = sentence(&store, store.args(t)[0]);
+            assert_eq!(
+                String::from_utf8(shown).unwrap(),
+                format!("Golem says: {said}\n")
+            );
+        }
+        let mut store = Store::new();
+        let t = store
+            .parse("['Hello', 'Bob', ', welcome! I am Golem.']")
+            .unwrap()
+            .0;
+        assert_eq!(sentence(&store, t), "Hello Bob , welcome! I am Golem..");
     }
 
     /// [`shop_functions::FUNCTIONS`] lists exactly what a robot on a world

@@ -192,10 +192,13 @@ fn run(store: &mut Store, name: Atom, t: Term) -> Result<Term, EvalError> {
     }
 }
 
-/// A message given as a list, as the original says it (its `msg_format/2`):
-/// the elements written one after the other, separated by a space; `pause`
-/// is a full stop (`". "` between elements); a message of three or more
-/// elements ends with `.`. `[A]` is `A`; two elements get no final stop.
+/// A message given as a list, as the original says it (its `msg_format/2`)
+/// in test mode and on its robot alike, and so what test mode shows and
+/// the simulated and ROS 2 robots say (issue 40): the elements written one
+/// after the other, separated by a space; `pause` is a full stop (`". "`
+/// between elements); a message of three or more elements ends with `.`.
+/// `[A]` is `A`; two elements get no final stop. An element is written as
+/// a term (a list among them as `[a,b]`, as the original prints it).
 pub fn sentence(store: &Store, items: &[Term]) -> String {
     let is_pause = |t: Term| store.atom_of(store.deref(t)).map(|a| a.as_str()) == Some("pause");
     let text = |t: Term| store.write(t);

@@ -23,7 +23,7 @@ pub fn explain_types_of(app: &std::path::Path) -> u8 {
 pub fn build_app(
     app: &std::path::Path,
     output: Option<PathBuf>,
-    release: bool,
+    profile: crate::package::Profile,
     emit: Option<Emit>,
     strictness: Strictness,
     debugger: bool,
@@ -81,7 +81,7 @@ pub fn build_app(
     let built =
         package::write_package(&compiled, app, &layout, debugger, ros2).and_then(|(dir, name)| {
             sitlog_runtime::errln!("sitlogc: building {} in {}", name, dir.display());
-            package::build_package(&dir, &name, &layout, release, &output)
+            package::build_package(&dir, &name, &layout, profile, &output)
         });
     match built {
         Ok(()) => {

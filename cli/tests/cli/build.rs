@@ -206,6 +206,33 @@ fn generated_package_uses_the_embedded_runtime() {
         .unwrap();
     assert_eq!(again.status.code(), Some(2));
     assert_eq!(std::fs::read_dir(cache.join("runtime")).unwrap().count(), 1);
+    // The edit loop's profile (issue 40): no LTO, the task's crate
+    // incremental; `--lto` builds with the `lto` profile (fat LTO).
+    for line in [
+        "[profile.release]\nlto = \"off\"\ncodegen-units = 16\ndebug = false\n",
+        "[profile.release.package.sitlog-app-countdown]\nincremental = true\n",
+        "[profile.lto]\ninherits = \"release\"\nlto = \"fat\"\ncodegen-units = 1\n",
+    ] {
+        assert!(manifest.contains(line), "{line}\n{manifest}");
+    }
+    let lto = sitlogc()
+        .env("SITLOGC_CACHE_DIR", &cache)
+        .env("CARGO", fake_cargo(tmp.path()))
+        .args(["build", "--lto"])
+        .arg(&app)
+        .arg("-o")
+        .arg(tmp.path().join("t"))
+        .output()
+        .unwrap();
+    assert_eq!(lto.status.code(), Some(2));
+    assert!(
+        stderr(&lto).contains(&format!(
+            "{}",
+            Path::new("lto").join("sitlog-app-countdown").display()
+        )),
+        "{}",
+        stderr(&lto)
+    );
     // Only with --debugger does the task link the debugger and start in it.
     let main = std::fs::read_to_string(cache.join("apps/countdown/src/main.rs")).unwrap();
     assert!(!manifest.contains("sitlog-debug"), "{manifest}");

@@ -478,7 +478,7 @@ fn the_user_console_on_a_terminal_edits_and_remembers_lines() {
     let (code, out, err) = t.finish(Duration::from_secs(60));
     assert_eq!(code, Some(0), "{out}\n{err}\n{screen}");
     assert!(
-        out.contains("Luis: hi golem i like malz\nGolem: Here ok hi golem i like malz\n"),
+        out.contains("Luis: hi golem i like malz\nGolem: Here ok hi golem i like malz.\n"),
         "{out}"
     );
     // Ctrl-C (no prompt: the terminal makes it SIGINT).

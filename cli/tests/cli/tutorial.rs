@@ -10,6 +10,14 @@
 //!   prompt with what the user typed: TEXT is given on stdin. `$ mkdir DIR`
 //!   is done; any other `$` line is not run and shows nothing.
 //! - An `sh` block holds commands (what they print is in other blocks).
+//!   Every `sh` and `console` block of README.md and of every guide page
+//!   is run by [`every_command_block_of_the_readme_and_the_guide_is_run_or_says_why_not`]
+//!   (issue 40), or says why not: its marker holds `run` (each `sitlogc` or
+//!   `mkdir` line is run in a scratch directory with links to the
+//!   repository's `dms`, `kb`, `tests` and `benches`, and must succeed;
+//!   `sitlogc ... | diff FILE -` compares stdout with FILE; `# ...` is a
+//!   comment) or `skip: REASON` (ROS 2, a release build, a browser, a
+//!   synopsis with placeholders, ...).
 //! - Any other block (`text`, `json`, `prolog`, ...) has a marker right
 //!   before it, `<!-- test` ... `-->`, one instruction per line:
 //!   `$ sitlogc ARGS` runs a command (as in a console block); `write FILE:
@@ -111,6 +119,8 @@ struct Scratch {
     cargo: Option<PathBuf>,
     /// The text of the block above the one checked.
     above: String,
+    /// The exit status of the last `sitlogc` run.
+    status: std::cell::Cell<Option<i32>>,
 }
 
 impl Scratch {
@@ -127,11 +137,33 @@ impl Scratch {
             dir,
             cargo: None,
             above: String::new(),
+            status: std::cell::Cell::new(None),
         }
     }
 
     fn path(&self) -> &Path {
         self.dir.path()
+    }
+
+    /// Links to the repository's `kb`, `benches`, `tests` and `dms` (each
+    /// directory of it but the copied tutorial), for the guide's commands
+    /// that name them.
+    #[cfg(unix)]
+    fn link_repository(&self) {
+        use std::os::unix::fs::symlink;
+        let root = workspace();
+        for dir in ["kb", "benches", "tests"] {
+            symlink(root.join(dir), self.path().join(dir)).unwrap();
+        }
+        for (parent, keep) in [("dms", "examples"), ("dms/examples", "tutorial")] {
+            for entry in std::fs::read_dir(root.join(parent)).unwrap() {
+                let entry = entry.unwrap();
+                if entry.file_name() != keep {
+                    let to = self.path().join(parent).join(entry.file_name());
+                    symlink(entry.path(), to).unwrap();
+                }
+            }
+        }
     }
 
     /// Runs `sitlogc ARGS` with `stdin`: (stdout, stderr), the scratch
@@ -155,6 +187,7 @@ impl Scratch {
         use std::io::Write;
         let _ = child.stdin.take().unwrap().write_all(stdin.as_bytes());
         let out = child.wait_with_output().unwrap();
+        self.status.set(out.status.code());
         let home = format!("{}", self.path().display());
         let text = |b: &[u8]| String::from_utf8_lossy(b).replace(&home, "~");
         (text(&out.stdout), text(&out.stderr))
@@ -165,11 +198,34 @@ impl Scratch {
     /// other command (not run).
     fn command(&self, line: &str, stdin: &str) -> Option<(String, String)> {
         let mut args = words(line);
+        // A comment ends the command.
+        if let Some(i) = args.iter().position(|a| a.starts_with('#')) {
+            args.truncate(i);
+        }
+        // `| diff FILE -`: stdout compared with FILE (a golden test).
+        let n = args.len();
+        if n >= 5 && args[n - 4] == "|" && args[n - 3] == "diff" && args[n - 1] == "-" {
+            let golden = args[n - 2].clone();
+            args.truncate(n - 4);
+            let (stdout, stderr) = self.command_words(args, stdin)?;
+            let want = std::fs::read_to_string(self.path().join(&golden)).unwrap_or_default();
+            if want != stdout {
+                self.status.set(Some(1));
+                return Some((format!("{stdout}\n(differs from {golden})"), stderr));
+            }
+            return Some((String::new(), stderr));
+        }
+        self.command_words(args, stdin)
+    }
+
+    /// [`Scratch::command`] on its words.
+    fn command_words(&self, mut args: Vec<String>, stdin: &str) -> Option<(String, String)> {
         match args.first().map(String::as_str) {
             Some("mkdir") => {
                 for dir in &args[1..] {
                     std::fs::create_dir_all(self.path().join(dir)).unwrap();
                 }
+                self.status.set(Some(0));
                 Some((String::new(), String::new()))
             }
             Some("sitlogc") => {
@@ -377,6 +433,8 @@ fn check_marked(block: &Block, scratch: &mut Scratch) -> Result<(), String> {
                 return Err(format!("no `{old}` in {file}"));
             }
             std::fs::write(&path, text.replacen(old, new, 1)).map_err(|e| e.to_string())?;
+        } else if line == "run" || line.starts_with("skip:") {
+            // Said of a command block (see `check_command_block`).
         } else if line == "fake cargo" {
             #[cfg(unix)]
             scratch.fake_cargo();
@@ -455,12 +513,16 @@ fn check_page(page: &str, all: bool) -> usize {
             scratch.above = above.text.clone();
         }
         above = Some(block);
+        if block.marker.iter().any(|l| l.starts_with("skip:")) {
+            continue;
+        }
         let result = match (block.lang.as_str(), block.marker.is_empty()) {
             (_, true) if !all => continue,
             ("console", _) => {
                 check_marked_setup(block, &mut scratch).and_then(|_| check_console(block, &scratch))
             }
-            ("sh", true) => Ok(()),
+            // Run by the README and guide test when marked `run`.
+            ("sh", _) => Ok(()),
             (_, true) => Err("no `<!-- test` marker says what this block is".to_owned()),
             (_, false) => check_marked(block, &mut scratch),
         };
@@ -520,4 +582,100 @@ fn the_checker_of_the_page_catches_drift() {
         "{\n  \"a\": [\n    1,\n    {\n      \"b\": \"x,y\"\n    }\n  ],\n  \"c\": []\n}\n"
     );
     assert_eq!(words("run 'a b' c"), ["run", "a b", "c"]);
+}
+
+/// Runs an `sh` block marked `run`: each line (comments and blank lines
+/// aside) is a `sitlogc` or `mkdir` command, run in turn, and succeeds.
+fn check_sh(block: &Block, scratch: &Scratch) -> Result<(), String> {
+    for line in block.text.lines().map(str::trim) {
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let (stdout, stderr) = scratch
+            .command(line, "")
+            .ok_or_else(|| format!("only sitlogc and mkdir are run: {line}"))?;
+        if scratch.status.get() != Some(0) {
+            return Err(format!(
+                "`{line}` exits {:?}\n{stderr}{stdout}",
+                scratch.status.get()
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Checks a command block (`sh` or `console`) of any page; `Ok(false)`
+/// when its marker says `skip: REASON`, or another test checks it.
+fn check_command_block(page: &str, block: &Block, above: &str) -> Result<bool, String> {
+    if let Some(reason) = block.marker.iter().find_map(|l| l.strip_prefix("skip:")) {
+        return if reason.trim().len() < 8 {
+            Err("`skip:` needs a reason".to_owned())
+        } else {
+            Ok(false)
+        };
+    }
+    // The tutorial's test checks its console blocks, and the language and
+    // app-testing pages' tests their marked ones.
+    let elsewhere = match page {
+        "tutorial.md" => block.lang == "console",
+        "language.md" | "testing-apps.md" => !block.marker.is_empty() && block.lang == "console",
+        _ => false,
+    };
+    if elsewhere {
+        return Ok(false);
+    }
+    let mut scratch = Scratch::new();
+    scratch.above = above.to_owned();
+    #[cfg(unix)]
+    scratch.link_repository();
+    check_marked_setup(block, &mut scratch)?;
+    match block.lang.as_str() {
+        "console" => check_console(block, &scratch)?,
+        _ if block.marker.iter().any(|l| l == "run") => check_sh(block, &scratch)?,
+        _ => {
+            return Err("a command block is marked `<!-- test` with `run` \
+                        (its commands are run) or `skip: REASON`"
+                .to_owned())
+        }
+    }
+    Ok(true)
+}
+
+/// Every command block (`sh`, `console`) of README.md and of the guide is
+/// run as shown, or its marker says why not: `skip: REASON` (ROS 2, a
+/// release build, a browser, the original's tree, a synopsis with
+/// placeholders such as `APP`) (issue 40). Only fast blocks are run.
+#[test]
+fn every_command_block_of_the_readme_and_the_guide_is_run_or_says_why_not() {
+    let root = workspace();
+    let mut pages = vec![("README.md".to_owned(), root.join("README.md"))];
+    let mut guide: Vec<_> = std::fs::read_dir(root.join("docs/guide"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .map(|p| (p.file_name().unwrap().to_string_lossy().into_owned(), p))
+        .collect();
+    guide.sort();
+    pages.extend(guide);
+    let mut problems = Vec::new();
+    let mut run = 0;
+    for (name, path) in &pages {
+        let text = std::fs::read_to_string(path).unwrap();
+        let blocks = blocks(&text);
+        let mut above = "";
+        for block in &blocks {
+            if matches!(block.lang.as_str(), "sh" | "console" | "bash" | "shell") {
+                match check_command_block(name, block, above) {
+                    Ok(true) => run += 1,
+                    Ok(false) => {}
+                    Err(e) => {
+                        problems.push(format!("{name}:{}: ```{}: {e}", block.line, block.lang))
+                    }
+                }
+            }
+            above = &block.text;
+        }
+    }
+    assert!(problems.is_empty(), "\n{}", problems.join("\n\n"));
+    assert!(run >= 4, "only {run} command blocks are run");
 }

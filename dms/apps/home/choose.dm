@@ -26,7 +26,7 @@ diag_mod(choose(Order, _Items),
     ],
     [ id ==> favourite(C, P, Is, Chosen),
       type ==> recursive,
-      embedded_dm ==> ask(['Ok. I will bring you', P, ', your favorite', C, '.'],
+      embedded_dm ==> ask(apply(words(_), [['Ok. I will bring you', P, ', your favorite', C, '.']]),
                           offer(P, none), get(vocab, _), _, _),
       arcs ==> [
         success(none) : empty => pick(C, Is, Chosen),
@@ -36,7 +36,7 @@ diag_mod(choose(Order, _Items),
     ],
     [ id ==> pick(C, Is, Chosen),
       type ==> recursive,
-      embedded_dm ==> ask(['Which', C, 'would you like?'],
+      embedded_dm ==> ask(apply(words(_), [['Which', C, 'would you like?']]),
                           choice(apply(class_extension(_), [C])), get(vocab, _), _, _),
       arcs ==> [
         success(X) : empty => each(Is, [X|Chosen]),
@@ -55,7 +55,7 @@ diag_mod(choose(Order, _Items),
     ],
     [ id ==> better(O, P, Is, Chosen),
       type ==> recursive,
-      embedded_dm ==> ask(['But you like', P, 'better than', O, '! Shall I bring you the', O, '?'],
+      embedded_dm ==> ask(apply(words(_), [['But you like', P, 'better than', O, '! Shall I bring you the', O, '?']]),
                           offer(O, P), get(vocab, _), _, _),
       arcs ==> [
         success(X) : empty => each(Is, [X|Chosen]),
@@ -65,7 +65,7 @@ diag_mod(choose(Order, _Items),
     [ id ==> each([unknown(W)|Is], Chosen),
       type ==> neutral,
       arcs ==> [
-        empty : say(['Sorry, I do not know what', W, 'is.']) => each(Is, Chosen)
+        empty : say(['Sorry, I do not know what', W, is]) => each(Is, Chosen)
       ]
     ],
     [ id ==> confirm([]),
@@ -75,7 +75,7 @@ diag_mod(choose(Order, _Items),
     [ id ==> confirm(Items),
       type ==> neutral,
       arcs ==> [
-        empty : say(['Ok. I will bring you', apply(things(_), [Items]), '.']) => done(Items)
+        empty : say(['Ok. I will bring', you, apply(things(_), [Items])]) => done(Items)
       ]
     ],
     [ id ==> done(Items),

@@ -9,7 +9,7 @@ diag_mod(preferences,
     [ id ==> is,
       type ==> neutral,
       arcs ==> [
-        empty : say(['Hi,', apply(name_of(_), [user]), '.']) =>
+        empty : say(apply(words(_), [['Hi,', apply(name_of(_), [user]), '.']])) =>
           classes(apply(sons_of_class(_), [comestible]), first)
       ]
     ],
@@ -33,8 +33,8 @@ diag_mod(preferences,
     ],
     [ id ==> compare(C, [A, B|Rest], Others, Cs, Turn),
       type ==> recursive,
-      embedded_dm ==> ask(( Turn == first -> ['Please tell me what do you like best:', A, or, B, '?']
-                          ; otherwise -> ['What do you like best:', A, or, B, '?'] ),
+      embedded_dm ==> ask(( Turn == first -> apply(words(_), [['Please tell me what do you like best:', A, or, B, '?']])
+                          ; otherwise -> apply(words(_), [['What do you like best:', A, or, B, '?']]) ),
                           choice([A, B]), get(vocab, _), _, _),
       arcs ==> [
         success(W) : [ assign(O, ( W == A -> B ; otherwise -> A )),
@@ -69,7 +69,7 @@ diag_mod(preferences,
     ],
     [ id ==> thanks,
       type ==> neutral,
-      arcs ==> [ empty : say(['Thank you,', apply(name_of(_), [user]), '.']) => done ]
+      arcs ==> [ empty : say(['Thank', 'you,', apply(name_of(_), [user])]) => done ]
     ],
     [ id ==> done,
       type ==> final

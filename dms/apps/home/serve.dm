@@ -30,7 +30,7 @@ diag_mod(serve(Items),
     [ id ==> fetch(O, Os),
       type ==> neutral,
       arcs ==> [
-        empty : [ say(['I will get the', O, '.']),
+        empty : [ say(['I will get', the, O]),
                   assign(Shelves, apply(unique(_),
                                         [apply(object_property_list(_, _), [O, loc])])) ]
                 => search(O, Shelves, Os)

@@ -38,9 +38,9 @@ diag_mod(tidy,
       arcs ==> [
         empty : [ apply(add_object_property(_, _, _), [O, misplaced, yes]),
                   say(['I also noticed that the', O, apply(is_are(_), [O]),
-                       'not in its right place.']),
-                  say([apply(explanation_words(_, _),
-                             [O, apply(explanation_of_individual(_), [O])]), '.']) ]
+                       'not in its right place']),
+                  say(apply(explanation_words(_, _),
+                            [O, apply(explanation_of_individual(_), [O])])) ]
                 => offer(O, Shelf, P, Ps, Fixed)
       ]
     ],
@@ -49,7 +49,7 @@ diag_mod(tidy,
       embedded_dm ==> ask('Do you want me to take it to its right shelf?', yes_no,
                           get(vocab, _), _, _),
       arcs ==> [
-        success(yes) : say(['Ok. I will take it to', apply(name_of(_), [P]), '.'])
+        success(yes) : say(['Ok. I will take', 'it to', apply(name_of(_), [P])])
                        => fetch(O, Shelf, P, Ps, Fixed),
         success(_) : say('Ok, I will leave it there.') => each(Ps, Fixed),
         error(_) : empty => each(Ps, Fixed)
@@ -78,7 +78,7 @@ diag_mod(tidy,
         success : [ apply(change_value_object_property(_, _, _), [O, last_seen, P]),
                     apply(rm_object_property(_, _), [O, misplaced]) ]
                   => each(Ps, [O|Fixed]),
-        error(_) : say(['I could not put the', O, 'back.']) => each(Ps, Fixed)
+        error(_) : say(['I could not put the', O, back]) => each(Ps, Fixed)
       ]
     ],
     % back with the user: what was put back, and the state of the shelves
@@ -92,7 +92,7 @@ diag_mod(tidy,
     ],
     [ id ==> report([O|Os], Fixed),
       type ==> neutral,
-      arcs ==> [ empty : say(['I put the', O, 'on its right shelf.']) => report(Os, Fixed) ]
+      arcs ==> [ empty : say(['I put the', O, 'on its right shelf']) => report(Os, Fixed) ]
     ],
     [ id ==> report([], []),
       type ==> neutral,

@@ -63,7 +63,8 @@ home_delete_first(X, [Y|Ys], Out) :-
 % things(+Objects): the words "the a, the b and the c".
 things(Objects) :-
     home_things(Objects, Words),
-    assign_func_value(Words).
+    lang_words(Words, Sentence),
+    assign_func_value(Sentence).
 
 home_things([], []).
 home_things([O], [the, O]) :- !.
@@ -128,9 +129,11 @@ reversed(List) :-
 % robot says of a choice, from what the KB says of both.
 health_remark(Chosen, Other, yes, no) :-
     !,
-    assign_func_value(['Excellent!', Chosen, is, much, healthier, than, the, Other, '!']).
+    lang_words(['Excellent!', Chosen, is, much, healthier, than, the, Other, '!'], S),
+    assign_func_value(S).
 health_remark(Chosen, Other, no, yes) :-
     !,
-    assign_func_value(['Ok, I will recall your choice, although', Other, is, healthier, than, Chosen, '.']).
+    lang_words(['Ok, I will recall your choice, although', Other, is, healthier, than, Chosen, '.'], S),
+    assign_func_value(S).
 health_remark(_, _, _, _) :-
     assign_func_value('Great! I will recall your choice!').

@@ -16,7 +16,7 @@ diag_mod(welcome(_Order),
     ],
     [ id ==> greet,
       type ==> recursive,
-      embedded_dm ==> ask(['Hi,', apply(name_of(_), [user]), ', how was your day?'],
+      embedded_dm ==> ask(apply(words(_), [['Hi,', apply(name_of(_), [user]), ', how was your day?']]),
                           mood, get(vocab, _), _, _),
       arcs ==> [
         success(bad) : apply(add_object_property(_, _, _), [user, bad_day, yes])

@@ -53,7 +53,7 @@ diag_mod(main,
     ],
     [ id ==> product(unknown(W)),
       type ==> neutral,
-      arcs ==> [ empty : say(['Sorry, we do not sell', W, '.']) => closing ]
+      arcs ==> [ empty : say(['Sorry, we do not', sell, W]) => closing ]
     ],
     [ id ==> restricted(none),
       type ==> neutral,
@@ -72,12 +72,12 @@ diag_mod(main,
     ],
     [ id ==> age(O, Age),
       type ==> recursive,
-      embedded_dm ==> ask(['The', O, 'is only for people over', Age, '. Are you over', Age, '?'],
+      embedded_dm ==> ask(apply(words(_), [['The', O, 'is only for people over', Age, '. Are you over', Age, '?']]),
                           yes_no, get(vocab, _), _, _),
       arcs ==> [
-        success(yes) : say(['Ok. I will bring you the', O, '.']) => serve(O),
-        success(no) : say(['Sorry, I cannot bring you the', O, '.']) => closing,
-        error(_) : say(['Sorry, I cannot bring you the', O, '.']) => closing
+        success(yes) : say(['Ok. I will bring you', the, O]) => serve(O),
+        success(no) : say(['Sorry, I cannot bring you', the, O]) => closing,
+        error(_) : say(['Sorry, I cannot bring you', the, O]) => closing
       ]
     ],
     [ id ==> serve(O),
@@ -94,7 +94,7 @@ diag_mod(main,
         empty : [ say('Thank you for shopping with us. Goodbye!'),
                   assign(P, apply(pending_objects(_), [get(pending, _)])),
                   ( P == [] -> empty
-                  ; otherwise -> message(apply(name_of(_), [manager]), ['Still to put back:', apply(things(_), [P]), '.']) ) ]
+                  ; otherwise -> message(apply(name_of(_), [manager]), ['Still to put', 'back:', apply(things(_), [P])]) ) ]
                 => fs
       ]
     ],

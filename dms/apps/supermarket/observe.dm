@@ -33,10 +33,10 @@ diag_mod(observe(Shelf, Objects, Sought),
       arcs ==> [
         empty : ( Objects == []
                 -> say(['I do not see', apply(things(_), [Missing]), 'on',
-                        apply(name_of(_), [Shelf]), '.'])
+                        apply(name_of(_), [Shelf])])
                 ; otherwise
-                -> say(['I see', apply(things(_), [Objects]), ', but I do not see',
-                        apply(things(_), [Missing]), '.']) )
+                -> say(apply(words(_), [['I see', apply(things(_), [Objects]), ', but I do not see',
+                        apply(things(_), [Missing]), '.']])) )
                 => lost(Missing, Misplaced)
       ]
     ],
@@ -52,7 +52,7 @@ diag_mod(observe(Shelf, Objects, Sought),
                   ; otherwise -> apply(change_value_object_property(_, _, _), [M, loc, unknown]) ),
                   message(apply(name_of(_), [manager]),
                           ['The', M, apply(is_are(_), [M]), 'missing from',
-                           apply(name_of(_), [Shelf]), '.']) ]
+                           apply(name_of(_), [Shelf])]) ]
                 => lost(Ms, Misplaced)
       ]
     ],
@@ -83,7 +83,7 @@ diag_mod(observe(Shelf, Objects, Sought),
                   apply(change_value_object_property(_, _, _), [X, loc, Shelf]),
                   apply(add_object_property(_, _, _), [X, misplaced, yes]),
                   say(['The', X, apply(is_are(_), [X]), 'not in the right place: the',
-                       X, 'should be on', apply(name_of(_), [Home]), '.']),
+                       X, 'should be on', apply(name_of(_), [Home])]),
                   assign(Pending, apply(add_pending_for(_, _, _),
                                         [put(X, Shelf, Home), get(pending, _), Sought])),
                   set(pending, Pending) ]

@@ -30,7 +30,7 @@ diag_mod(run_plan(Plan, Sought),
                     apply(rm_object_property(_, _), [X, misplaced]),
                     assign(Pending, apply(drop_pending(_, _), [X, get(pending, _)])),
                     set(pending, Pending),
-                    say(['I put the', X, 'back on', apply(name_of(_), [Shelf]), '.']) ]
+                    say(['I put the', X, 'back on', apply(name_of(_), [Shelf])]) ]
                   => next(Rest),
         error(E) : empty => error(E)
       ]

@@ -32,7 +32,7 @@ diag_mod(serve(O),
       arcs ==> [
         done : empty => done,
         missing(Shelf) : empty => infer(Shelf),
-        error(_) : say(['Sorry, I could not bring you the', O, '.']) => none
+        error(_) : say(['Sorry, I could not bring you', the, O]) => none
       ]
     ],
     % 1. Diagnosis.
@@ -58,7 +58,7 @@ diag_mod(serve(O),
       type ==> neutral,
       arcs ==> [
         empty : [ say(['I think that the', O, 'was placed on',
-                       apply(name_of(_), [Shelf]), '.']),
+                       apply(name_of(_), [Shelf])]),
                   assign(RMax, apply(object_property_value(_, _), [golem, r_max])),
                   assign(Obligations, apply(cons(_, _), [fetch(O, Shelf), get(pending, _)])),
                   assign(Decision, apply(shop_decide(_, _, _, _),
@@ -74,8 +74,8 @@ diag_mod(serve(O),
     [ id ==> ran_out,
       type ==> neutral,
       arcs ==> [
-        empty : [ say(['I am sorry, we ran out of', O, '.']),
-                  message(apply(name_of(_), [manager]), ['We ran out of', O, '.']),
+        empty : [ say(['I am sorry, we ran', 'out of', O]),
+                  message(apply(name_of(_), [manager]), ['We ran', 'out of', O]),
                   assign(Kind, apply(mother_of_a_class(_), [apply(class_of_an_object(_), [O])])),
                   assign(Alternative, apply(first_seen(_, _, _),
                                             [apply(objects_of_a_class(_), [Kind]),
@@ -89,7 +89,7 @@ diag_mod(serve(O),
     ],
     [ id ==> alternative(A),
       type ==> recursive,
-      embedded_dm ==> ask(['Would you like the', A, 'instead?'], yes_no, get(vocab, _), _, _),
+      embedded_dm ==> ask(apply(words(_), [['Would you like the', A, 'instead?']]), yes_no, get(vocab, _), _, _),
       arcs ==> [
         success(yes) : empty => other(A),
         success(no) : say('Ok.') => none,

@@ -132,7 +132,8 @@ member_of(X, List) :-
 % things(+Objects): the words "the a, the b and the c" (nothing: "nothing").
 things(Objects) :-
     shop_things(Objects, Words),
-    assign_func_value(Words).
+    lang_words(Words, Sentence),
+    assign_func_value(Sentence).
 
 shop_things([], [nothing]).
 shop_things([O], [the, O]) :- !.
@@ -143,7 +144,8 @@ shop_things([O|Os], [the, O, ','|Ws]) :- shop_things(Os, Ws).
 % of a plan (take(O, S), place(O, S), deliver(O)).
 plan_words(Plan) :-
     shop_plan_words(Plan, Ws),
-    assign_func_value(['I will' | Ws]).
+    lang_words(['I will' | Ws], Sentence),
+    assign_func_value(Sentence).
 
 shop_plan_words([], ['.']).
 shop_plan_words([B], Ws) :- !,

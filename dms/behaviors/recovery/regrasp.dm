@@ -6,7 +6,7 @@ diag_mod(regrasp(Object, Hand, _Result),
     [ id ==> is,
       type ==> neutral,
       arcs ==> [
-        empty : [ say(['I could not grasp the', Object, '; I will try again.']),
+        empty : [ say(apply(words(_), [['I could not grasp the', Object, '; I will try again.']])),
                   grasp(Object, Hand, Result) ] => result(Result)
       ]
     ],

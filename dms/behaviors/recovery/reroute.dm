@@ -8,7 +8,7 @@ diag_mod(reroute(Place, From, To, _Result),
       type ==> neutral,
       arcs ==> [
         empty : [ say(['The way from', apply(name_of(_), [From]), 'to',
-                       apply(name_of(_), [To]), 'is blocked; I will take another route.']),
+                       apply(name_of(_), [To]), 'is blocked; I will take another route']),
                   navigate(Place, Result) ] => result(Result)
       ]
     ],

@@ -1,10 +1,10 @@
-//! `include_dm!`'s compile tests (`tests/ui.rs`, trybuild): a good DM
-//! compiles and runs, bad ones give `compile_error!`s naming the `.dm` file,
-//! line and column.
+//! `include_dm!`'s compile tests (`tests/ui.rs`): a good DM compiles and
+//! runs, bad ones give `compile_error!`s naming the `.dm` file, line and
+//! column (each bad case one `rustc` run against the proc macro the
+//! workspace build made; until issue 40 a trybuild project, whose nested
+//! cargo build compiled the compiler and the runtime again).
 //!
-//! They live in this empty crate, not in `sitlog-macros`, because trybuild's
-//! project depends on every dependency of the crate the test is in: from
-//! `sitlog-macros` that made the test program depend on the compiler, `syn`
-//! and the rest of the proc macro's own dependencies, so its nested cargo
-//! build compiled them twice, for the host and for the target (issue 30).
+//! They live in this empty crate, not in `sitlog-macros`: the proc-macro
+//! crate's own tests would need the runtime as a dependency of the macro's
+//! crate, and this crate's tests see only what a user of `include_dm!` sees.
 //! Invariant: this crate's dependencies are what the test programs use.
