@@ -45,6 +45,7 @@
 
 mod emit;
 mod names;
+mod native;
 mod step;
 mod typed;
 
@@ -105,10 +106,35 @@ pub fn generate(ir: &Ir, source: &str) -> TokenStream {
 pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
     let mir = crate::mir::lower(ir);
     let types = options.typed.then(|| crate::types::infer(ir, &mir));
+    let mir_types = options.typed.then(|| crate::mir::ty::infer(ir, &mir));
     let mut g = Gen::new(&ir.store, mir);
     g.types = types;
+    g.mir_types = mir_types;
     g.collect(ir);
     g.emit(ir, source)
+}
+
+/// Per DM, whether generated code runs it natively ([`native`]): how many
+/// situations then run on Rust values, or why it runs on terms.
+pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
+    let mir = crate::mir::lower(ir);
+    let types = crate::types::infer(ir, &mir);
+    let mir_types = crate::mir::ty::infer(ir, &mir);
+    let mut g = Gen::new(&ir.store, mir);
+    g.types = Some(types);
+    g.collect(ir);
+    ir.dms
+        .iter()
+        .enumerate()
+        .map(|(d, dm)| {
+            let typed = g.types.as_ref().map(|t| &t.dms[d]);
+            if typed.is_some_and(typed::has_typed_code) {
+                return Err("it runs on the typed frame of its typed situations".to_owned());
+            }
+            g.native_code(dm, d, &mir_types.dms[d])
+                .map(|_| dm.situations.len())
+        })
+        .collect()
 }
 
 // --------------------------------------------------------------- generator
@@ -124,6 +150,8 @@ struct Gen<'s> {
     const_ix: HashMap<String, usize>,
     /// What type inference found (typed situations run on native frames).
     types: Option<crate::types::Types>,
+    /// The types of the MIR's registers (DMs that are native run on them).
+    mir_types: Option<crate::mir::ty::MirTypes>,
     /// The plans of the situations that run as code.
     mir: crate::mir::Mir,
 }
@@ -146,6 +174,7 @@ impl<'s> Gen<'s> {
             consts: Vec::new(),
             const_ix: HashMap::new(),
             types: None,
+            mir_types: None,
         }
     }
 
