@@ -54,6 +54,9 @@ use std::collections::HashMap;
 /// `--explain-types`).
 type N<T> = Result<T, String>;
 
+/// Per register of a visit, the Rust local holding its value and its type.
+type Regs = HashMap<Reg, (Ident, Ty)>;
+
 /// A native value in generated code: an expression of an owned Rust value
 /// and its type.
 #[derive(Clone)]
@@ -134,8 +137,9 @@ impl Gen<'_> {
                 .ok_or("a situation is instantiated from its template")?;
             let st = t.sits[i].as_ref().ok_or("a situation has no types")?;
             if let Some(r) = st.regs.iter().position(|r| !r.is_native()) {
+                let why = st.regs[r].why.as_deref().unwrap_or("no reason given");
                 return Err(format!(
-                    "situation {} has register r{r} typed {}",
+                    "situation {} has register r{r} typed {}: {why}",
                     i + 1,
                     st.regs[r].ty
                 ));
@@ -147,7 +151,12 @@ impl Gen<'_> {
             return Err("its initial situation's id is not an atom".into());
         }
         if let Some(p) = t.params.iter().position(|p| !p.is_native()) {
-            return Err(format!("parameter {} is typed {}", p + 1, t.params[p].ty));
+            let why = t.params[p].why.as_deref().unwrap_or("no reason given");
+            return Err(format!(
+                "parameter {} is typed {}: {why}",
+                p + 1,
+                t.params[p].ty
+            ));
         }
         let d = Dm {
             dm,
@@ -392,7 +401,11 @@ impl Gen<'_> {
         if plan.in_arg.is_some() || plan.out_arg.is_some() || plan.prog.is_some() {
             return Err(format!("situation {} uses the pipe or prog", ix + 1));
         }
-        let mut regs: HashMap<Reg, Ty> = fields.iter().cloned().collect();
+        // Where each register's value lives: a field, a parameter, a local.
+        let mut regs: Regs = fields
+            .iter()
+            .map(|(r, ty)| (*r, (reg(*r), ty.clone())))
+            .collect();
         let mut stmts = Vec::new();
         for (r, init) in &plan.inits {
             match init {
@@ -407,10 +420,14 @@ impl Gen<'_> {
                             .cloned()
                             .ok_or("a head argument out of range")?,
                     };
-                    let e = coerce(&pv, &ty)?;
-                    let rr = reg(*r);
-                    stmts.push(quote!(let #rr = #e;));
-                    regs.insert(*r, ty);
+                    if pv.ty == ty {
+                        regs.insert(*r, (p, ty));
+                    } else {
+                        let e = coerce(&pv, &ty)?;
+                        let rr = reg(*r);
+                        stmts.push(quote!(let #rr = #e;));
+                        regs.insert(*r, (rr, ty));
+                    }
                 }
                 Init::Pipe => return Err(format!("situation {} reads the pipe", ix + 1)),
                 Init::Fresh | Init::IdArg(_) | Init::IdPath(_) => {}
@@ -440,10 +457,9 @@ impl Gen<'_> {
                     return Err(format!("situation {} has out_arg or diag_mod", ix + 1));
                 }
                 for (k, from) in arc.import_from.iter().enumerate() {
-                    if let Some(ty) = regs.get(from).cloned() {
-                        let (to, from) = (reg(arc.import_at + k as Reg), reg(*from));
-                        stmts.push(quote!(let #to = #from.clone();));
-                        regs.insert(arc.import_at + k as Reg, ty);
+                    // An imported copy of a ground value is the value.
+                    if let Some(at) = regs.get(from).cloned() {
+                        regs.insert(arc.import_at + k as Reg, at);
                     }
                 }
                 let action = match &arc.action {
@@ -478,14 +494,13 @@ impl Gen<'_> {
     }
 
     /// The value of a register or constant.
-    fn nat_value(&self, b: &Build, regs: &HashMap<Reg, Ty>) -> N<V> {
+    fn nat_value(&self, b: &Build, regs: &Regs) -> N<V> {
         let rt = quote!(::sitlog_runtime);
         match b {
             Build::Reg(r) => {
-                let ty = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
-                let rr = reg(*r);
+                let (x, ty) = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
                 Ok(V {
-                    e: quote!(#rr.clone()),
+                    e: quote!(#x.clone()),
                     ty: ty.clone(),
                 })
             }
@@ -519,7 +534,7 @@ impl Gen<'_> {
         }
     }
 
-    fn nat_ev_value(&self, e: &Ev, regs: &HashMap<Reg, Ty>) -> N<V> {
+    fn nat_ev_value(&self, e: &Ev, regs: &Regs) -> N<V> {
         match e {
             Ev::Value(r) => self.nat_value(&Build::Reg(*r), regs),
             Ev::Built(b) => self.nat_value(b, regs),
@@ -532,7 +547,7 @@ impl Gen<'_> {
         }
     }
 
-    fn nat_cond(&self, c: &Cond, regs: &HashMap<Reg, Ty>) -> N<TokenStream> {
+    fn nat_cond(&self, c: &Cond, regs: &Regs) -> N<TokenStream> {
         match c {
             Cond::Arith(op, l, r) => {
                 let (l, r) = (self.nat_ev_value(l, regs)?, self.nat_ev_value(r, regs)?);
@@ -577,7 +592,7 @@ impl Gen<'_> {
         d: &Dm,
         cur: usize,
         n: &Next,
-        regs: &HashMap<Reg, Ty>,
+        regs: &Regs,
         cur_name: &TokenStream,
     ) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
