@@ -115,7 +115,8 @@ pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
 }
 
 /// Per DM, whether generated code runs it natively ([`native`]): how many
-/// situations then run on Rust values, or why it runs on terms.
+/// of its situations then hold no ground term (no register typed `term`),
+/// or why it runs on terms.
 pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
     let mir = crate::mir::lower(ir);
     let types = crate::types::infer(ir, &mir);
@@ -131,8 +132,15 @@ pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
             if typed.is_some_and(typed::has_typed_code) {
                 return Err("it runs on the typed frame of its typed situations".to_owned());
             }
-            g.native_code(dm, d, &mir_types.dms[d])
-                .map(|_| dm.situations.len())
+            g.native_code(dm, d, &mir_types.dms[d]).map(|_| {
+                // On native values: no register a ground term.
+                mir_types.dms[d]
+                    .sits
+                    .iter()
+                    .flatten()
+                    .filter(|s| s.regs.iter().all(|r| r.is_native()))
+                    .count()
+            })
         })
         .collect()
 }

@@ -31,12 +31,24 @@
 //!   the machine entered in the situation (its errors located there);
 //!   transitions are counted and handed to the machine before it runs.
 //!
-//! What is not (yet) native keeps the DM on its term code: a register or
-//! parameter typed `term`, the pipe (`in_arg`, `out_arg`), `prog`, DM calls,
+//! - *ground terms*: a register typed `term` is held as a
+//!   [`Ground`](sitlog_runtime::native::Ground) handle: every value a
+//!   native run holds was converted at entry (a parameter: checked ground
+//!   and inert, so evaluating it, as the term path does in a condition or a
+//!   next situation, gives it back) or taken apart from one; the handles stay
+//!   valid because the machine collects garbage only after native code has
+//!   handed over. `==` on them is [`Store::identical`], a pattern is matched
+//!   by reading the store; such a situation does not count as on native
+//!   values in `--explain-types`.
+//!
+//! What is not (yet) native keeps the DM on its term code: a register
+//! read before it is set (a fresh variable), a fixed-shape compound type,
+//! the pipe (`in_arg`, `out_arg`), `prog`, DM calls,
 //! perceptual situations other than the neutral `empty` arc, actions other
 //! than atoms, expressions other than registers and constants.
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
+//! [`Store::identical`]: sitlog_runtime::Store::identical
 
 use super::Gen;
 use crate::ir::IrDm;
@@ -77,7 +89,9 @@ fn rust_ty(ty: &Ty) -> N<TokenStream> {
             let e = rust_ty(e)?;
             quote!(#rt::native::List<#e>)
         }
-        Ty::Tagged(..) | Ty::Term => return Err(format!("a value of type {ty} is not native yet")),
+        // Known ground where native code holds it (see the module doc).
+        Ty::Term => quote!(#rt::native::Ground),
+        Ty::Tagged(..) => return Err(format!("a value of type {ty} is not native yet")),
     })
 }
 
@@ -106,6 +120,9 @@ enum MatchStep {
     Let(Ident, TokenStream),
     /// `if let Some((h, t)) = v.split_first()`, the head cloned.
     Split(TokenStream, Ident, Ident),
+    /// The arguments of a ground term `v` that is `name/arity`, each a
+    /// ground term: `if let Some(&[x0, ..]) = store.compound_args(..)`.
+    Args(TokenStream, TokenStream, Literal, Vec<Ident>),
 }
 
 /// The DM's native code, for the module.
@@ -136,7 +153,7 @@ impl Gen<'_> {
                 .plan(dm_ix as u32, i as u32)
                 .ok_or("a situation is instantiated from its template")?;
             let st = t.sits[i].as_ref().ok_or("a situation has no types")?;
-            if let Some(r) = st.regs.iter().position(|r| !r.is_native()) {
+            if let Some(r) = st.regs.iter().position(|r| rust_ty(&r.ty).is_err()) {
                 let why = st.regs[r].why.as_deref().unwrap_or("no reason given");
                 return Err(format!(
                     "situation {} has register r{r} typed {}: {why}",
@@ -150,7 +167,7 @@ impl Gen<'_> {
         if plans.first().is_none_or(|p| p.id.1 != 0) {
             return Err("its initial situation's id is not an atom".into());
         }
-        if let Some(p) = t.params.iter().position(|p| !p.is_native()) {
+        if let Some(p) = t.params.iter().position(|p| rust_ty(&p.ty).is_err()) {
             let why = t.params[p].why.as_deref().unwrap_or("no reason given");
             return Err(format!(
                 "parameter {} is typed {}: {why}",
@@ -571,14 +588,12 @@ impl Gen<'_> {
                     self.nat_value(&args[0], regs)?,
                     self.nat_value(&args[1], regs)?,
                 );
-                if l.ty != r.ty || !eq_safe(&l.ty) {
-                    return Err(format!("`{}` on {} and {}", op.as_str(), l.ty, r.ty));
-                }
-                let (l, r) = (l.e, r.e);
+                let same = identical(&l, &r)
+                    .ok_or_else(|| format!("`{}` on {} and {}", op.as_str(), l.ty, r.ty))?;
                 Ok(if op.as_str() == "==" {
-                    quote!((#l == #r))
+                    same
                 } else {
-                    quote!((#l != #r))
+                    quote!((!#same))
                 })
             }
             _ => Err("a condition is not `==`, `\\==` or an int comparison".into()),
@@ -728,6 +743,14 @@ impl Gen<'_> {
                 code = match s {
                     MatchStep::If(c) => quote!(if #c { #code }),
                     MatchStep::Let(x, e) => quote!({ let #x = #e; #code }),
+                    MatchStep::Args(v, f, arity, xs) => quote! {
+                        if let ::std::option::Option::Some(&[#(#xs),*]) =
+                            cx.store_ref().compound_args(#v.0, #f, #arity)
+                        {
+                            #(let #xs = ::sitlog_runtime::native::Ground(#xs);)*
+                            #code
+                        }
+                    },
                     MatchStep::Split(l, h, t) => quote! {
                         if let ::std::option::Option::Some((#h, #t)) = #l.split_first() {
                             let #h = #h.clone();
@@ -773,10 +796,13 @@ impl Gen<'_> {
         match self.store.value(pat) {
             Value::Var(var) => {
                 if let Some((x, ty)) = vars.get(&var.index()) {
-                    if *ty != v.ty || !eq_safe(ty) {
-                        return Err("a repeated id variable on values of another type".into());
-                    }
-                    steps.push(MatchStep::If(quote!(#x == #e)));
+                    let prev = V {
+                        e: quote!(#x),
+                        ty: ty.clone(),
+                    };
+                    let same = identical(&prev, v)
+                        .ok_or("a repeated id variable on values of another type")?;
+                    steps.push(MatchStep::If(same));
                     return Ok(true);
                 }
                 let r = Self::nat_id_reg(d, j, path).ok_or("an id variable has no register")?;
@@ -791,6 +817,48 @@ impl Gen<'_> {
                 )?;
                 steps.push(MatchStep::Let(x.clone(), val));
                 vars.insert(var.index(), (x, ty));
+                Ok(true)
+            }
+            // A ground term: read in the store.
+            Value::Atom(a) if v.ty == Ty::Term => {
+                let a = self.atom_native(a)?;
+                steps.push(MatchStep::If(quote!(
+                    cx.store_ref().atom_of(#e.0) == ::std::option::Option::Some(#a)
+                )));
+                Ok(true)
+            }
+            Value::Int(i) if v.ty == Ty::Term => {
+                let i = Literal::i64_suffixed(i);
+                steps.push(MatchStep::If(quote!(
+                    cx.store_ref().int_of(#e.0) == ::std::option::Option::Some(#i)
+                )));
+                Ok(true)
+            }
+            Value::Compound(name, args) if v.ty == Ty::Term => {
+                let args = args.to_vec();
+                let f = if name == atoms::DOT {
+                    quote!(::sitlog_runtime::atoms::DOT)
+                } else {
+                    self.atom_native(name)?
+                };
+                let xs: Vec<Ident> = (0..args.len())
+                    .map(|k| format_ident!("g{}_{}", *n, k))
+                    .collect();
+                *n += 1;
+                let arity = Literal::usize_unsuffixed(args.len());
+                steps.push(MatchStep::Args(quote!(#e), f, arity, xs.clone()));
+                for (k, (&a, x)) in args.iter().zip(&xs).enumerate() {
+                    let xv = V {
+                        e: quote!(#x),
+                        ty: Ty::Term,
+                    };
+                    path.push(k);
+                    let ok = self.native_match(d, j, a, &xv, path, vars, steps, n)?;
+                    path.pop();
+                    if !ok {
+                        return Ok(false);
+                    }
+                }
                 Ok(true)
             }
             Value::Atom(a) if a == atoms::NIL => match &v.ty {
@@ -862,6 +930,22 @@ impl Gen<'_> {
     }
 }
 
+/// Prolog's `==` on two native values, when their types allow it in Rust
+/// (ground terms compared in the store).
+fn identical(l: &V, r: &V) -> Option<TokenStream> {
+    let (le, re) = (&l.e, &r.e);
+    let some = quote!(::std::option::Option::Some);
+    match (&l.ty, &r.ty) {
+        (a, b) if a == b && eq_safe(a) => Some(quote!((#le == #re))),
+        (Ty::Term, Ty::Term) => Some(quote!(cx.store_ref().identical(#le.0, #re.0))),
+        (Ty::Term, Ty::Sym) => Some(quote!((cx.store_ref().atom_of(#le.0) == #some(#re)))),
+        (Ty::Sym, Ty::Term) => Some(quote!((cx.store_ref().atom_of(#re.0) == #some(#le)))),
+        (Ty::Term, Ty::Int) => Some(quote!((cx.store_ref().int_of(#le.0) == #some(#re)))),
+        (Ty::Int, Ty::Term) => Some(quote!((cx.store_ref().int_of(#re.0) == #some(#le)))),
+        _ => None,
+    }
+}
+
 /// `[h|t]` of native values.
 fn cons(h: V, t: V) -> N<V> {
     let ty = match &t.ty {
@@ -894,6 +978,21 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
         (Ty::Never, _) => {
             let e = &v.e;
             Ok(quote!(match #e {}))
+        }
+        // An immediate term of a native scalar, or `[]`.
+        (Ty::Sym, Ty::Term) => {
+            let e = &v.e;
+            Ok(quote!(::sitlog_runtime::native::Ground(::sitlog_runtime::Term::atom(#e))))
+        }
+        (Ty::Int, Ty::Term) => {
+            let e = &v.e;
+            Ok(quote!(::sitlog_runtime::native::Ground(::sitlog_runtime::Term::int(#e))))
+        }
+        (Ty::List(e), Ty::Term) if **e == Ty::Never => {
+            let e = &v.e;
+            Ok(
+                quote!({ let _ = #e; ::sitlog_runtime::native::Ground(::sitlog_runtime::Term::NIL) }),
+            )
         }
         _ => Err(format!("a value of type {} where {} is expected", v.ty, to)),
     }

@@ -24,8 +24,15 @@ pub fn explain_with(ir: &Ir, types: &Types, mir: Option<&crate::mir::ty::MirType
             let _ = writeln!(out, "{}", m.dm_line(ir, d));
         }
         match native.as_ref().map(|n| &n[d]) {
-            Some(Ok(_)) => {
+            Some(Ok(n)) if *n == dm.situations.len() => {
                 let _ = writeln!(out, "  native code: every situation, on Rust values");
+            }
+            Some(Ok(n)) => {
+                let _ = writeln!(
+                    out,
+                    "  native code: every situation, on Rust values ({} holding ground terms where the types say `term`)",
+                    dm.situations.len() - n
+                );
             }
             Some(Err(why)) => {
                 let _ = writeln!(out, "  native code: no ({why})");

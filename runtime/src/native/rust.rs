@@ -1,17 +1,19 @@
 //! [`Native`]: the Rust types generated code holds a typed register in
 //! (`i64` for `int`, `f64` for `float`, [`Atom`] for `sym`, [`List<T>`]
 //! for `list<T>`, [`Never`] for the elements of a list that is always
-//! empty), and their checked conversions from and to terms, the one place
-//! such a value meets the store.
+//! empty, [`Ground`] for a `term` known to be ground), and their checked
+//! conversions from and to terms, the one place such a value meets the
+//! store.
 //!
 //! Invariant: `T::from_term(store, t)` is `Some` exactly when
 //! [`Val::from_term`](super::Val::from_term) with the matching [`Ty`](super::Ty)
 //! is (an unbound variable, a partial or cyclic list, a big integer or
-//! another shape give `None`, never a panic), and `to_term` builds the
-//! term that conversion reads back (compounds through the store's
-//! constructors, so ground/inert flags are right). Equality (`==` of the
-//! Rust values) is Prolog's `==` on those terms for every type but `f64`
-//! (generated code compares floats by bits, as [`Val`](super::Val) does).
+//! another shape give `None`, never a panic), for `Ground` exactly when
+//! `t` is ground and inert (evaluates to itself); `to_term` builds the term that conversion reads back
+//! (compounds through the store's constructors, so ground/inert flags are
+//! right). Equality (`==` of the Rust values) is Prolog's `==` on those
+//! terms for every type but `f64` (generated code compares floats by bits,
+//! as [`Val`](super::Val) does) and `Ground` (compared in the store).
 
 use super::List;
 use crate::{Store, Term};
@@ -20,6 +22,13 @@ use sitlog_syntax::{atoms, Atom};
 /// A type no value has: the elements of `list<never>` (`[]`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Never {}
+
+/// A register typed `term` whose value native code knows to be ground: a
+/// handle of the store, valid while native code runs (it hands over to the
+/// machine before any collection). Compared with [`Store::identical`], not
+/// `==` (the derived `PartialEq` compares handles).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Ground(pub Term);
 
 /// A Rust type generated code holds a typed register in.
 pub trait Native: Clone + PartialEq + Sized {
@@ -68,6 +77,21 @@ impl Native for Never {
     }
     fn to_term(&self, _: &mut Store) -> Term {
         match *self {}
+    }
+}
+
+impl Native for Ground {
+    /// `None` for a term with an unbound variable in it, or one that is not
+    /// known to evaluate to itself in L ([`Store::is_inert`]): native code
+    /// reads, compares and passes it on where the term path evaluates it
+    /// (a condition's arguments, a next situation's).
+    fn from_term(store: &Store, t: Term) -> Option<Ground> {
+        let t = store.deref(t);
+        (store.is_inert(t) && (store.known_ground(t) || store.is_ground(t))).then_some(Ground(t))
+    }
+    #[inline]
+    fn to_term(&self, _: &mut Store) -> Term {
+        self.0
     }
 }
 

@@ -363,7 +363,7 @@ fn typed_calls_agree() {
 /// that do not convert (another shape, a partial list, a float in a list
 /// of ints) they run on terms; a next value no situation takes is the
 /// machine's error; with a tiny GC threshold native code hands over after
-/// every visit. The same on both back ends, history kept or not.
+/// every visit; `find`, started with any arguments, holds ground terms. The same on both back ends, history kept or not.
 #[test]
 fn native_dms_agree() {
     let ir = interpreter("typed/native");
@@ -375,6 +375,7 @@ fn native_dms_agree() {
         native::dm_pairs::run_native,
         native::dm_nested::run_native,
         native::dm_lost::run_native,
+        native::dm_find::run_native,
     );
     for main in [
         "main",
@@ -387,16 +388,24 @@ fn native_dms_agree() {
         "pairs([x, y, stop])",
         "nested([[a], [b, c]])",
         "nested([[a], [[b]]])",
+        "cmd([item(a, 1), item(b, 3), item(c, 2)], c)",
+        "cmd([item(a, 1), pair(q, q)], z)",
+        "cmd([x, pair(q, r), item(c, f(g))], c)",
+        "cmd([item(c, 1 + 1)], c)",
+        "cmd(foo, c)",
+        "cmd([], [])",
     ] {
         agree(app, &ir, main, "");
     }
-    // A partial list does not convert: the term code runs (the observer's
+    // A partial list, an unbound variable do not convert: the term code runs (the observer's
     // trace names fresh variables differently on the two back ends, so
     // without it).
-    for keep in [false, true] {
-        let c = run(app, "search([a|_], b)", "", keep, false, false);
-        let i = run(&ir, "search([a|_], b)", "", keep, false, false);
-        assert_eq!(c, i, "a partial list, history {keep}");
+    for main in ["search([a|_], b)", "cmd([item(c, X)], c)"] {
+        for keep in [false, true] {
+            let c = run(app, main, "", keep, false, false);
+            let i = run(&ir, main, "", keep, false, false);
+            assert_eq!(c, i, "{main}, history {keep}");
+        }
     }
     // A next value no situation takes: the machine's error, as the term
     // code gives it (the interpreter names the situation `try([_V0|_V1])`

@@ -84,3 +84,28 @@ diag_mod(lost(L),
   ],
   []
 ).
+
+% Started from the command line: `find`'s parameters are typed `term`, so
+% its native code holds ground terms (checked ground and inert at entry),
+% matched against compound patterns in the store.
+diag_mod(cmd(Items, Target),
+  [ [ id ==> c, type ==> recursive, embedded_dm ==> find(Items, Target),
+      arcs ==> [ got(X) : empty => fs, none : empty => fs ] ],
+    [ id ==> fs, type ==> final ]
+  ],
+  []
+).
+
+diag_mod(find(Items, Target),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => look(Items) ] ],
+    [ id ==> look([]), type ==> neutral, arcs ==> [ empty : empty => none ] ],
+    [ id ==> look([item(K, 3)|_]), type ==> neutral, arcs ==> [ empty : empty => got(K) ] ],
+    [ id ==> look([item(K, V)|Rest]), type ==> neutral,
+      arcs ==> [ empty : empty => (K == Target -> got(V) ; otherwise -> look(Rest)) ] ],
+    [ id ==> look([pair(X, X)|Rest]), type ==> neutral, arcs ==> [ empty : empty => got(X) ] ],
+    [ id ==> look([_|Rest]), type ==> neutral, arcs ==> [ empty : empty => look(Rest) ] ],
+    [ id ==> got(X), type ==> final ],
+    [ id ==> none, type ==> final ]
+  ],
+  []
+).
