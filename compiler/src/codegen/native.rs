@@ -239,7 +239,7 @@ impl Gen<'_> {
             }
 
             #[doc = #doc]
-            #[allow(unused_variables, unused_mut, unreachable_code, clippy::all)]
+            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, clippy::all)]
             pub fn run_native(
                 p: &super::Program,
                 cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
