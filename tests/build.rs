@@ -5,7 +5,7 @@
 //! (named after its path below `dms/`) and a table `APPS`.
 //!
 //! It also writes the random programs of `gen/random_dm.rs` (seeds
-//! `0..random_dm::PROGRAMS`) as application directories into
+//! `random_dm::seeds()`) as application directories into
 //! `OUT_DIR/random/seed_<seed>/`, compiles each, and adds a module
 //! `random_<seed>` per program and the table `RANDOM_APPS` (seed, app
 //! directory, `run`, `functions`) for `tests/tests/suite/random_agreement.rs`.
@@ -100,7 +100,7 @@ fn main() {
 fn random_programs(out_dir: &Path, index: &mut String) -> String {
     println!("cargo:rerun-if-changed=gen/random_dm.rs");
     let mut table = String::new();
-    for seed in 0..random_dm::PROGRAMS {
+    for seed in random_dm::seeds() {
         let dir = out_dir.join("random").join(format!("seed_{seed}"));
         std::fs::create_dir_all(&dir).expect("create the random program's directory");
         for (name, text) in random_dm::program(seed) {

@@ -15,7 +15,10 @@
 //! - `list_search_8`, `list_search_256` (workload d of issue 37): rounds of
 //!   a call `search(Places, Target)` walking a list by the compound id
 //!   `try([P|Ps])`, ending in `found(P)` or `not_found`, no history; 8 and
-//!   256 places, to see that a walk costs the same per transition.
+//!   256 places, to see that a walk costs the same per transition;
+//!   `list_search_const_8`, `list_search_const_256`: the same with the
+//!   call's arguments constants, so that `search` runs as native code
+//!   (`codegen::native`: its parameters typed by the MIR's inference).
 //!
 //! Each program is also compiled `untyped` (every value a term: the code
 //! generator before typed code), so that one run compares both. Sizes 10⁴
@@ -96,6 +99,12 @@ mod echo_calls {
 mod list_search {
     sitlog_macros::include_dm!("dms/list_search");
 }
+mod list_search_const_8 {
+    sitlog_macros::include_dm!("dms/list_search_const_8");
+}
+mod list_search_const_256 {
+    sitlog_macros::include_dm!("dms/list_search_const_256");
+}
 // The same programs with every value a term (the code generator before typed code).
 mod counter_loop_untyped {
     sitlog_macros::include_dm!("dms/counter_loop", untyped);
@@ -114,6 +123,12 @@ mod echo_calls_untyped {
 }
 mod list_search_untyped {
     sitlog_macros::include_dm!("dms/list_search", untyped);
+}
+mod list_search_const_8_untyped {
+    sitlog_macros::include_dm!("dms/list_search_const_8", untyped);
+}
+mod list_search_const_256_untyped {
+    sitlog_macros::include_dm!("dms/list_search_const_256", untyped);
 }
 mod appendix_a {
     sitlog_macros::include_dm!("../dms/examples/appendix_a");
@@ -620,6 +635,42 @@ fn bench(c: &mut Criterion) {
                 )
             },
         );
+    }
+
+    // Workload (d) with the call's arguments constants: `search` runs as
+    // native code (`codegen::native`).
+    for (rounds, len) in [
+        (1_000u64, 8usize),
+        (100_000, 8),
+        (1_000, 256),
+        (10_000, 256),
+    ] {
+        let dir = format!("dms/list_search_const_{len}");
+        let ir = interpreter(&root.join(&dir));
+        let main = format!("main({rounds})");
+        let syms: Vec<Sym> = (0..len as u32).map(Sym).collect();
+        let hand = || {
+            hand_list_search(
+                black_box(rounds as i64),
+                black_box(&syms),
+                black_box(Sym(len as u32 - 1)),
+            )
+        };
+        let name = format!("list_search_const_{len}");
+        let w = Workload::plain(&main);
+        if len == 8 {
+            let (typed, untyped) = (
+                list_search_const_8::program(),
+                list_search_const_8_untyped::program(),
+            );
+            three_ways(c, &name, rounds, typed, untyped, &ir, &w, hand);
+        } else {
+            let (typed, untyped) = (
+                list_search_const_256::program(),
+                list_search_const_256_untyped::program(),
+            );
+            three_ways(c, &name, rounds, typed, untyped, &ir, &w, hand);
+        }
     }
 
     // 10^8 transitions: typed code and the hand-written loop only (the

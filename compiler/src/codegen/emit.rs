@@ -523,6 +523,16 @@ impl Gen<'_> {
             quote!(let step = #untyped;)
         };
         let typed_items = typed.items;
+        // A DM with no situation typed the old way may run natively
+        // (`native`): tried first when its initial situation runs.
+        let native = match (&self.mir_types, typed.present) {
+            (Some(t), false) => self.native_code(dm, dm_ix, &t.dms[dm_ix]).ok(),
+            _ => None,
+        };
+        let (native_first, native_items) = match native {
+            Some(n) => (n.first, n.items),
+            None => (quote!(), quote!()),
+        };
         let variant_names: Vec<TokenStream> =
             vnames.iter().map(|v| quote!(Situation::#v)).collect();
         let head_body = self.builder_body(&[(format_ident!("head"), dm.head)]);
@@ -645,6 +655,7 @@ impl Gen<'_> {
                     sit: #rt::machine::SitIx,
                     cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
                 ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    #native_first
                     let mut sit = sit;
                     loop {
                         #typed_first
@@ -695,6 +706,8 @@ impl Gen<'_> {
                 }
 
                 #typed_items
+
+                #native_items
 
                 #(#fns)*
             }

@@ -45,6 +45,7 @@
 
 mod emit;
 mod names;
+mod native;
 mod step;
 mod typed;
 
@@ -105,10 +106,43 @@ pub fn generate(ir: &Ir, source: &str) -> TokenStream {
 pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
     let mir = crate::mir::lower(ir);
     let types = options.typed.then(|| crate::types::infer(ir, &mir));
+    let mir_types = options.typed.then(|| crate::mir::ty::infer(ir, &mir));
     let mut g = Gen::new(&ir.store, mir);
     g.types = types;
+    g.mir_types = mir_types;
     g.collect(ir);
     g.emit(ir, source)
+}
+
+/// Per DM, whether generated code runs it natively ([`native`]): how many
+/// of its situations then hold no ground term (no register typed `term`),
+/// or why it runs on terms.
+pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
+    let mir = crate::mir::lower(ir);
+    let types = crate::types::infer(ir, &mir);
+    let mir_types = crate::mir::ty::infer(ir, &mir);
+    let mut g = Gen::new(&ir.store, mir);
+    g.types = Some(types);
+    g.collect(ir);
+    ir.dms
+        .iter()
+        .enumerate()
+        .map(|(d, dm)| {
+            let typed = g.types.as_ref().map(|t| &t.dms[d]);
+            if typed.is_some_and(typed::has_typed_code) {
+                return Err("it runs on the typed frame of its typed situations".to_owned());
+            }
+            g.native_code(dm, d, &mir_types.dms[d]).map(|_| {
+                // On native values: no register a ground term.
+                mir_types.dms[d]
+                    .sits
+                    .iter()
+                    .flatten()
+                    .filter(|s| s.regs.iter().all(|r| r.is_native()))
+                    .count()
+            })
+        })
+        .collect()
 }
 
 // --------------------------------------------------------------- generator
@@ -124,6 +158,8 @@ struct Gen<'s> {
     const_ix: HashMap<String, usize>,
     /// What type inference found (typed situations run on native frames).
     types: Option<crate::types::Types>,
+    /// The types of the MIR's registers (DMs that are native run on them).
+    mir_types: Option<crate::mir::ty::MirTypes>,
     /// The plans of the situations that run as code.
     mir: crate::mir::Mir,
 }
@@ -146,6 +182,7 @@ impl<'s> Gen<'s> {
             consts: Vec::new(),
             const_ix: HashMap::new(),
             types: None,
+            mir_types: None,
         }
     }
 

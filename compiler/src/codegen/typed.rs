@@ -43,6 +43,13 @@ pub(super) struct TypedCode {
     pub present: bool,
 }
 
+/// Whether a DM has typed code (a typed situation that is not final).
+pub(super) fn has_typed_code(t: &DmTypes) -> bool {
+    t.situations
+        .iter()
+        .any(|s| matches!(s, Ok(TSit::Perceptual { .. } | TSit::Call { .. })))
+}
+
 fn local_field(i: usize) -> Ident {
     format_ident!("l{}", i)
 }
@@ -56,11 +63,7 @@ fn atoms_enum(i: usize) -> Ident {
 impl Gen<'_> {
     pub(super) fn typed_code(&self, dm: &IrDm, t: &DmTypes) -> TypedCode {
         let rt = quote!(::sitlog_runtime);
-        if !t
-            .situations
-            .iter()
-            .any(|s| matches!(s, Ok(TSit::Perceptual { .. } | TSit::Call { .. })))
-        {
+        if !has_typed_code(t) {
             return TypedCode {
                 items: quote!(),
                 present: false,

@@ -17,10 +17,27 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
 pub fn explain_with(ir: &Ir, types: &Types, mir: Option<&crate::mir::ty::MirTypes>) -> String {
     let store = &ir.store;
     let mut out = String::new();
+    let native = mir.map(|_| crate::codegen::native_dms(ir));
     for (d, (dm, t)) in ir.dms.iter().zip(&types.dms).enumerate() {
         let _ = writeln!(out, "DM {}/{}", dm.name.as_str(), dm.arity);
         if let Some(m) = mir {
             let _ = writeln!(out, "{}", m.dm_line(ir, d));
+        }
+        match native.as_ref().map(|n| &n[d]) {
+            Some(Ok(n)) if *n == dm.situations.len() => {
+                let _ = writeln!(out, "  native code: every situation, on Rust values");
+            }
+            Some(Ok(n)) => {
+                let _ = writeln!(
+                    out,
+                    "  native code: every situation, on Rust values ({} holding ground terms where the types say `term`)",
+                    dm.situations.len() - n
+                );
+            }
+            Some(Err(why)) => {
+                let _ = writeln!(out, "  native code: no ({why})");
+            }
+            None => {}
         }
         for (i, p) in t.params.iter().enumerate() {
             match p {
@@ -112,7 +129,12 @@ pub fn explain_with(ir: &Ir, types: &Types, mir: Option<&crate::mir::ty::MirType
     if let Some(m) = mir {
         let _ = writeln!(out, "{}", m.summary());
     }
-    let _ = writeln!(out, "{}", summary(types));
+    let native_sits = native
+        .iter()
+        .flatten()
+        .map(|n| n.as_ref().map_or(0, |&s| s))
+        .sum();
+    let _ = writeln!(out, "{}", summary_with(types, native_sits));
     out
 }
 
@@ -139,6 +161,12 @@ fn template_why(store: &Store, s: &crate::ir::IrSituation) -> &'static str {
 /// of its B variables (DM parameters, pipes read by typed code, locals
 /// and globals) have a type other than `term`.
 pub fn summary(types: &Types) -> String {
+    summary_with(types, 0)
+}
+
+/// [`summary`] counting also `native` situations of DMs that run natively
+/// (`crate::codegen::native`; none of them has a typed plan).
+pub fn summary_with(types: &Types, native: usize) -> String {
     let (mut sits, mut code, mut typed_sits, mut vars, mut typed_vars) = (0, 0, 0, 0, 0);
     let mut count = |v: &VarTy| {
         vars += 1;
@@ -155,6 +183,7 @@ pub fn summary(types: &Types) -> String {
         typed_sits += dm.situations.iter().filter(|s| s.is_ok()).count();
     }
     types.globals.iter().for_each(&mut count);
+    let typed_sits = typed_sits + native;
     format!(
         "situations on native values: {typed_sits}/{sits}\n\
          situations compiled as code: {code}/{sits}; variables typed: {typed_vars}/{vars}"

@@ -29,6 +29,21 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         &mut self.m.store
     }
 
+    /// The run's store, read only (native code converting a term).
+    #[inline]
+    pub fn store_ref(&self) -> &Store {
+        &self.m.store
+    }
+
+    /// Goes on to situation `sit` of the running DM with the id `id` (a
+    /// term: native code handing a compound situation to the machine).
+    #[inline]
+    pub fn enter_with_id(&mut self, sit: SitIx, id: Term) {
+        self.sit = sit;
+        self.id = id;
+        self.selected = None;
+    }
+
     /// The value of the next situation that selected this one (its id
     /// then), or `None` when the situation was entered by index (an atom
     /// id) or as its DM's initial situation.

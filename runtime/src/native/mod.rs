@@ -20,9 +20,11 @@
 //! [`gc`], the one place a native value becomes a term or back.
 
 mod list;
+mod rust;
 mod ty;
 mod val;
 
 pub use list::{Iter, List};
+pub use rust::{compound, Ground, Native, Never};
 pub use ty::{Ty, MAX_DEPTH};
 pub use val::{gc, Compound, Val};

@@ -1,0 +1,180 @@
+//! [`Native`]: the Rust types generated code holds a typed register in
+//! (`i64` for `int`, `f64` for `float`, [`Atom`] for `sym`, [`List<T>`]
+//! for `list<T>`, [`Never`] for the elements of a list that is always
+//! empty, [`Ground`] for a `term` known to be ground), and their checked
+//! conversions from and to terms, the one place such a value meets the
+//! store.
+//!
+//! Invariant: `T::from_term(store, t)` is `Some` exactly when
+//! [`Val::from_term`](super::Val::from_term) with the matching [`Ty`](super::Ty)
+//! is (an unbound variable, a partial or cyclic list, a big integer or
+//! another shape give `None`, never a panic), for `Ground` exactly when
+//! `t` is ground and inert (evaluates to itself); `to_term` builds the term that conversion reads back
+//! (compounds through the store's constructors, so ground/inert flags are
+//! right). Equality (`==` of the Rust values) is Prolog's `==` on those
+//! terms for every type but `f64` (generated code compares floats by bits,
+//! as [`Val`](super::Val) does) and `Ground` (compared in the store).
+
+use super::List;
+use crate::{Store, Term};
+use sitlog_syntax::{atoms, Atom};
+
+/// A type no value has: the elements of `list<never>` (`[]`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Never {}
+
+/// A register typed `term` whose value native code knows to be ground: a
+/// handle of the store, valid while native code runs (it hands over to the
+/// machine before any collection). Compared with [`Store::identical`], not
+/// `==` (the derived `PartialEq` compares handles).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Ground(pub Term);
+
+/// A Rust type generated code holds a typed register in.
+pub trait Native: Clone + PartialEq + Sized {
+    /// The value `t` (dereferenced) is, when it has this type.
+    fn from_term(store: &Store, t: Term) -> Option<Self>;
+    /// The term of this value.
+    fn to_term(&self, store: &mut Store) -> Term;
+}
+
+impl Native for i64 {
+    #[inline]
+    fn from_term(store: &Store, t: Term) -> Option<i64> {
+        store.int_of(t)
+    }
+    #[inline]
+    fn to_term(&self, _: &mut Store) -> Term {
+        Term::int(*self)
+    }
+}
+
+impl Native for f64 {
+    #[inline]
+    fn from_term(store: &Store, t: Term) -> Option<f64> {
+        store.float_of(t)
+    }
+    #[inline]
+    fn to_term(&self, _: &mut Store) -> Term {
+        Term::float(*self)
+    }
+}
+
+impl Native for Atom {
+    #[inline]
+    fn from_term(store: &Store, t: Term) -> Option<Atom> {
+        store.atom_of(t)
+    }
+    #[inline]
+    fn to_term(&self, _: &mut Store) -> Term {
+        Term::atom(*self)
+    }
+}
+
+impl Native for Never {
+    fn from_term(_: &Store, _: Term) -> Option<Never> {
+        None
+    }
+    fn to_term(&self, _: &mut Store) -> Term {
+        match *self {}
+    }
+}
+
+impl Native for Ground {
+    /// `None` for a term with an unbound variable in it, or one that is not
+    /// known to evaluate to itself in L ([`Store::is_inert`]): native code
+    /// reads, compares and passes it on where the term path evaluates it
+    /// (a condition's arguments, a next situation's).
+    fn from_term(store: &Store, t: Term) -> Option<Ground> {
+        let t = store.deref(t);
+        (store.is_inert(t) && (store.known_ground(t) || store.is_ground(t))).then_some(Ground(t))
+    }
+    #[inline]
+    fn to_term(&self, _: &mut Store) -> Term {
+        self.0
+    }
+}
+
+impl<T: Native> Native for List<T> {
+    fn from_term(store: &Store, t: Term) -> Option<List<T>> {
+        // A proper list has at most one cell per three store cells; more
+        // steps than that means the spine is cyclic.
+        let most = store.cells.len() / 3;
+        let mut items = Vec::new();
+        let mut it = store.list_iter(t);
+        for item in it.by_ref() {
+            if items.len() >= most {
+                return None;
+            }
+            // Nesting follows the type, at most `MAX_DEPTH` levels.
+            items.push(T::from_term(store, item)?);
+        }
+        (it.tail() == Term::NIL).then(|| List::from_vec(items))
+    }
+
+    fn to_term(&self, store: &mut Store) -> Term {
+        let terms: Vec<Term> = self.iter().map(|v| v.to_term(store)).collect();
+        store.list(&terms)
+    }
+}
+
+/// `name(args..)` built from native values (a compound situation id or
+/// next situation handed to the machine).
+pub fn compound(store: &mut Store, name: Atom, args: &[Term]) -> Term {
+    if args.is_empty() {
+        Term::atom(name)
+    } else if name == atoms::DOT && args.len() == 2 {
+        store.cons(args[0], args[1])
+    } else {
+        store.compound(name, args)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::native::{Ty, Val};
+
+    fn agrees<T: Native + std::fmt::Debug>(store: &mut Store, t: Term, ty: &Ty) {
+        let ours = T::from_term(store, t);
+        let val = Val::from_term(store, t, ty);
+        assert_eq!(ours.is_some(), val.is_some(), "{}", store.writeq(t));
+        if let Some(v) = ours {
+            let back = v.to_term(store);
+            assert!(store.identical(back, t), "{}", store.writeq(t));
+        }
+    }
+
+    #[test]
+    fn conversions_agree_with_val() {
+        let mut s = Store::new();
+        let a = Atom::intern("a");
+        let b = Atom::intern("b");
+        let ab = s.list(&[Term::atom(a), Term::atom(b)]);
+        let ints = s.list(&[Term::int(1), Term::int(2)]);
+        let v = s.new_var();
+        let partial = s.list_with_tail(&[Term::atom(a)], v);
+        let nested = s.list(&[ab, Term::NIL]);
+        for t in [
+            ab,
+            ints,
+            partial,
+            nested,
+            Term::NIL,
+            Term::atom(a),
+            Term::int(3),
+            v,
+        ] {
+            agrees::<List<Atom>>(&mut s, t, &Ty::list(Ty::Sym));
+            agrees::<List<i64>>(&mut s, t, &Ty::list(Ty::Int));
+            agrees::<List<List<Atom>>>(&mut s, t, &Ty::list(Ty::list(Ty::Sym)));
+            agrees::<List<Never>>(&mut s, t, &Ty::list(Ty::Never));
+            agrees::<Atom>(&mut s, t, &Ty::Sym);
+            agrees::<i64>(&mut s, t, &Ty::Int);
+        }
+        let f = Atom::intern("f");
+        let id = compound(&mut s, f, &[Term::atom(a)]);
+        assert_eq!(s.writeq(id), "f(a)");
+        assert_eq!(compound(&mut s, f, &[]), Term::atom(f));
+    }
+}

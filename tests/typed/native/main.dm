@@ -1,0 +1,111 @@
+% Native code (issue 37): DMs whose registers are all native by the MIR's
+% types run on Rust values in generated code (`codegen::native`). Their
+% parameters are constants here, so inference types them: lists of atoms
+% and of ints, an atom, an int. Shapes: a list walk by compound ids
+% (`try([P|Ps])`) ending in `found(P)` or `not_found`, which the caller's
+% exit arcs match; an int walk with an arithmetic comparison; a pattern
+% with a repeated variable and a constant (`pair([X, X|_])`,
+% `step([stop|_])`); nested lists.
+diag_mod(main,
+  [ [ id ==> a1, type ==> recursive, embedded_dm ==> search([x, y, z, w], z),
+      arcs ==> [ found(P) : [inc(n, _)] => a2, not_found : empty => a2 ] ],
+    [ id ==> a2, type ==> recursive, embedded_dm ==> search([x, y], q),
+      arcs ==> [ found(P) : empty => a3, not_found : [inc(n, _)] => a3 ] ],
+    [ id ==> a3, type ==> recursive, embedded_dm ==> above([1, 5, 2, 9, 3], 4),
+      arcs ==> [ big(N) : empty => a4, none : empty => a4 ] ],
+    [ id ==> a4, type ==> recursive, embedded_dm ==> above([], 4),
+      arcs ==> [ big(N) : empty => a5, none : empty => a5 ] ],
+    [ id ==> a5, type ==> recursive, embedded_dm ==> pairs([a, b, b, c, stop, d]),
+      arcs ==> [ done(X) : empty => a6 ] ],
+    [ id ==> a6, type ==> recursive, embedded_dm ==> nested([[a, b], [], [c]]),
+      arcs ==> [ flat : empty => fs ] ],
+    [ id ==> fs, type ==> final ]
+  ],
+  [ n ==> 0 ]
+).
+
+diag_mod(search(Places, Target),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => try(Places) ] ],
+    [ id ==> try([]), type ==> neutral, arcs ==> [ empty : empty => not_found ] ],
+    [ id ==> try([P|Ps]), type ==> neutral,
+      arcs ==> [ empty : empty => (P == Target -> found(P) ; otherwise -> try(Ps)) ] ],
+    [ id ==> found(P), type ==> final ],
+    [ id ==> not_found, type ==> final ]
+  ],
+  []
+).
+
+diag_mod(above(Ns, Limit),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => next(Ns) ] ],
+    [ id ==> next([N|Rest]), type ==> neutral,
+      arcs ==> [ empty : empty => (N > Limit -> big(N) ; otherwise -> next(Rest)) ] ],
+    [ id ==> next([]), type ==> neutral, arcs ==> [ empty : empty => none ] ],
+    [ id ==> big(N), type ==> final ],
+    [ id ==> none, type ==> final ]
+  ],
+  []
+).
+
+diag_mod(pairs(Items),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => step(Items) ] ],
+    [ id ==> step([stop|_]), type ==> neutral, arcs ==> [ empty : empty => done(stop) ] ],
+    [ id ==> step([X, X|Rest]), type ==> neutral, arcs ==> [ empty : empty => done(X) ] ],
+    [ id ==> step([_|Rest]), type ==> neutral, arcs ==> [ empty : empty => step(Rest) ] ],
+    [ id ==> step([]), type ==> neutral, arcs ==> [ empty : empty => done(none) ] ],
+    [ id ==> done(X), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(nested(Lists),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => walk(Lists) ] ],
+    [ id ==> walk([[]|Ls]), type ==> neutral, arcs ==> [ empty : empty => walk(Ls) ] ],
+    [ id ==> walk([[X|Xs]|Ls]), type ==> neutral, arcs ==> [ empty : empty => walk([Xs|Ls]) ] ],
+    [ id ==> walk([]), type ==> neutral, arcs ==> [ empty : empty => flat ] ],
+    [ id ==> flat, type ==> final ]
+  ],
+  []
+).
+
+% Started from the command line: a next value no situation takes (the
+% machine's error, located at `try([P|Ps])`).
+diag_mod(stray,
+  [ [ id ==> s, type ==> recursive, embedded_dm ==> lost([a, b]),
+      arcs ==> [ gone : empty => fs ] ],
+    [ id ==> fs, type ==> final ]
+  ],
+  []
+).
+
+diag_mod(lost(L),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => try(L) ] ],
+    [ id ==> try([P|Ps]), type ==> neutral, arcs ==> [ empty : empty => try(Ps) ] ],
+    [ id ==> gone, type ==> final ]
+  ],
+  []
+).
+
+% Started from the command line: `find`'s parameters are typed `term`, so
+% its native code holds ground terms (checked ground and inert at entry),
+% matched against compound patterns in the store.
+diag_mod(cmd(Items, Target),
+  [ [ id ==> c, type ==> recursive, embedded_dm ==> find(Items, Target),
+      arcs ==> [ got(X) : empty => fs, none : empty => fs ] ],
+    [ id ==> fs, type ==> final ]
+  ],
+  []
+).
+
+diag_mod(find(Items, Target),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => look(Items) ] ],
+    [ id ==> look([]), type ==> neutral, arcs ==> [ empty : empty => none ] ],
+    [ id ==> look([item(K, 3)|_]), type ==> neutral, arcs ==> [ empty : empty => got(K) ] ],
+    [ id ==> look([item(K, V)|Rest]), type ==> neutral,
+      arcs ==> [ empty : empty => (K == Target -> got(V) ; otherwise -> look(Rest)) ] ],
+    [ id ==> look([pair(X, X)|Rest]), type ==> neutral, arcs ==> [ empty : empty => got(X) ] ],
+    [ id ==> look([_|Rest]), type ==> neutral, arcs ==> [ empty : empty => look(Rest) ] ],
+    [ id ==> got(X), type ==> final ],
+    [ id ==> none, type ==> final ]
+  ],
+  []
+).
