@@ -344,3 +344,55 @@ fn no_progress_line_while_the_prompt_waits() {
     let status = child.wait().unwrap();
     assert_eq!(status.code(), Some(0), "{screen}");
 }
+
+/// Standard input at the prompt is read under the input limits, in time
+/// linear in it (issue 38): a line that never ends (`< /dev/zero`) is
+/// refused at `--max-input-bytes`, naming the input and the limit, instead
+/// of growing until the process aborts; a term over 20,000 lines is read
+/// once, not once a line.
+#[test]
+fn typed_input_is_read_under_the_limits_in_linear_time() {
+    use std::time::{Duration, Instant};
+    let dir = app("limits");
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main, [
+  [id ==> is, type ==> listening, arcs ==> [X : screen(got) => fs]],
+  [id ==> fs, type ==> final]
+], []).
+",
+    )
+    .unwrap();
+    let start = Instant::now();
+    let out = sitlogc()
+        .arg("run")
+        .arg(&dir)
+        .args(["--max-input-bytes", "100000"])
+        .stdin(std::fs::File::open("/dev/zero").unwrap())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(
+            "standard input:1:1: the input is longer than 100000 bytes (100001 bytes or more); the limit is set by --max-input-bytes"
+        ),
+        "{err}"
+    );
+    let lines = 20_000;
+    let term = "[\n".to_owned() + &"a,\n".repeat(lines) + "b].\n";
+    let out = run_piped(&dir, &[], &term);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    // quadratic reading took 74 s for 20,000 lines
+    assert!(start.elapsed() < Duration::from_secs(30));
+    // the same term over the limit, refused at the line where it starts
+    let small = "[\n".to_owned() + &"a,\n".repeat(2_000) + "b].\n";
+    let out = run_piped(&dir, &["--max-input-bytes", "1000"], &format!("\n{small}"));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("standard input:2:1: the input is longer than 1000 bytes"),
+        "{err}"
+    );
+}

@@ -18,6 +18,8 @@ use std::io::{BufRead, Read, Write};
 
 pub mod original;
 pub use original::OriginalTestMode;
+mod prompt;
+pub use prompt::PromptPerception;
 
 /// Types whose perceptual interpreter wraps the input as `said(Term)` (D-14).
 pub(crate) fn wraps_said(store: &Store, ty: Term) -> bool {
@@ -344,121 +346,6 @@ pub fn waiting_text(store: &Store, dm: Term, situation: Term) -> (String, String
         None => store.writeq(dm),
     };
     (dm, store.writeq(situation))
-}
-
-/// Inputs typed at a prompt (stdin), with the expectations listed on stderr.
-pub struct PromptPerception<R: BufRead> {
-    input: R,
-    limits: InputLimits,
-    /// Lines read so far (for positions in errors).
-    line: usize,
-    /// The DM and situation waiting, when the machine said.
-    at: Option<(String, String)>,
-}
-
-impl<R: BufRead> PromptPerception<R> {
-    pub fn new(input: R) -> Self {
-        PromptPerception {
-            input,
-            limits: InputLimits::default(),
-            line: 0,
-            at: None,
-        }
-    }
-
-    /// Reads each input under `limits` (default: [`InputLimits::default`]).
-    pub fn with_limits(mut self, limits: InputLimits) -> Self {
-        self.limits = limits;
-        self
-    }
-
-    /// One line of input (with its `\n`), at most `max` bytes read: `Ok(None)`
-    /// at end of input; an error for text that is not UTF-8.
-    fn read_line(&mut self, max: usize) -> Result<Option<String>, String> {
-        let mut bytes = Vec::new();
-        let n = (&mut self.input)
-            .take(max as u64 + 1)
-            .read_until(b'\n', &mut bytes)
-            .map_err(|e| format!("standard input: {e}"))?;
-        if n == 0 {
-            return Ok(None);
-        }
-        self.line += 1;
-        match sitlog_syntax::decode_owned(bytes) {
-            Ok(text) => Ok(Some(text)),
-            Err(e) => Err(format!(
-                "standard input:{}:{}: {}",
-                self.line, e.column, e.message
-            )),
-        }
-    }
-}
-
-impl<R: BufRead> Perception for PromptPerception<R> {
-    fn perceive(
-        &mut self,
-        store: &mut Store,
-        ty: Term,
-        expectations: &[Term],
-    ) -> Result<Perceived, String> {
-        let mut err = std::io::stderr();
-        let header = prompt_header(store, self.at.as_ref(), ty, expectations);
-        let _ = writeln!(err, "{header}");
-        let mut text = String::new();
-        let mut start_line = self.line + 1;
-        loop {
-            let _ = write!(err, "{}", if text.is_empty() { "|: " } else { "|  " });
-            let _ = err.flush();
-            if text.is_empty() {
-                start_line = self.line + 1;
-            }
-            let what = || format!("standard input:{start_line}:1: the input");
-            let room = self.limits.max_bytes.saturating_sub(text.len());
-            let line = self.read_line(room)?.unwrap_or_default();
-            if text.len() + line.len() > self.limits.max_bytes {
-                return Err(self.limits.size_error(&what(), text.len() + line.len()));
-            }
-            let n = line.len();
-            if n == 0 {
-                if text.trim().is_empty() {
-                    return Ok(Perceived::EndOfInput);
-                }
-                text.push('\n');
-            }
-            text.push_str(&line);
-            if text.trim().is_empty() {
-                text.clear();
-                continue;
-            }
-            match sitlog_syntax::read_term_limited(
-                text.trim(),
-                OpTable::sitlog_shared(),
-                self.limits.max_depth,
-            ) {
-                Ok(clause) => {
-                    let (t, _) = store.from_clause(&clause);
-                    return Ok(deliver(store, ty, t));
-                }
-                Err(e) if e.is_too_deep() => return Err(self.limits.depth_error(&what())),
-                Err(e) if e.incomplete && n > 0 => continue,
-                Err(e) => {
-                    let _ = writeln!(
-                        err,
-                        "syntax error: {} (type a term ending with `.`)",
-                        e.message
-                    );
-                    text.clear();
-                    if n == 0 {
-                        return Ok(Perceived::EndOfInput);
-                    }
-                }
-            }
-        }
-    }
-
-    fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
-        self.at = Some(waiting_text(store, dm, situation));
-    }
 }
 
 /// Renders actions as text, like the original's test mode: `screen(M)` and
