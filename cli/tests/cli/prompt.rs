@@ -396,3 +396,43 @@ fn typed_input_is_read_under_the_limits_in_linear_time() {
         "{err}"
     );
 }
+
+/// Prolog's `read/1` in a user function takes the run's next input, from
+/// the script or typed, in order with the perceptions (issue 39, as the
+/// original's test mode): one reader serves the runner's perception and
+/// the engine's thread (each run starts an engine: a few seconds in a
+/// debug build).
+#[test]
+fn read_in_a_user_function_takes_the_next_input() {
+    let dir = app("read");
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main, [
+  [id ==> is, type ==> listening,
+   arcs ==> [said(X) : say(X) => ask(apply(answer, []))]],
+  [id ==> ask(A), type ==> listening,
+   arcs ==> [said(Y) : [say(A), say(Y)] => fs]],
+  [id ==> fs, type ==> final]
+], []).
+",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("user_functions.pl"),
+        "answer :- read(X), assign_func_value(got(X)).\n",
+    )
+    .unwrap();
+    let said = "Golem says: first\nGolem says: got(second(2))\nGolem says: third\n";
+    std::fs::write(dir.join("s.txt"), "first.\nsecond(2).\nthird.\n").unwrap();
+    let script = dir.join("s.txt").display().to_string();
+    let out = run_piped(&dir, &["--script", &script], "");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert_eq!(err, said);
+    // typed, a term over two lines
+    let out = run_piped(&dir, &[], "first.\nsecond(\n2).\nthird.\n");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert_eq!(err.matches("Golem says").count(), 3, "{err}");
+    assert!(err.contains("Golem says: got(second(2))\n"), "{err}");
+}

@@ -88,11 +88,28 @@ enum Request {
         Option<(Confine, Vec<PathBuf>)>,
         mpsc::Sender<Vec<PrologLoadError>>,
     ),
-    Query(String, mpsc::Sender<Result<Option<PTerm>, String>>),
+    /// A query, with the run's input its `read/1` takes terms from.
+    Query(
+        String,
+        Option<crate::input::SharedInput>,
+        mpsc::Sender<Result<Option<PTerm>, String>>,
+    ),
 }
 
 /// Directories the guards let code write into and load from (set at start).
 type Roots = Arc<Mutex<Vec<PathBuf>>>;
+
+/// The run's input that `read/1` takes terms from, as the running call's
+/// [`Functions::input`] set it (none: `read/1` gives `end_of_file`).
+type RunInput = Arc<Mutex<Option<crate::input::SharedInput>>>;
+
+/// What the engine thread shares with the handle: the trust roots and the
+/// run's input.
+#[derive(Clone)]
+struct Shared {
+    roots: Roots,
+    input: RunInput,
+}
 
 /// The application's Prolog user functions, running in an embedded engine.
 /// Cheap to clone (a handle to the engine thread).
@@ -213,11 +230,15 @@ impl PrologFunctions {
         let roots: Roots = Arc::new(Mutex::new(source_dirs.clone()));
         let (tx, rx) = mpsc::channel::<Request>();
         let (ready_tx, ready_rx) = mpsc::channel();
-        let thread_roots = roots.clone();
+        let input: RunInput = Arc::new(Mutex::new(None));
+        let shared = Shared {
+            roots: roots.clone(),
+            input,
+        };
         std::thread::Builder::new()
             .name("sitlog-prolog".into())
             .stack_size(64 << 20)
-            .spawn(move || engine_thread(prepared, host, thread_roots, rx, ready_tx))
+            .spawn(move || engine_thread(prepared, host, shared, rx, ready_tx))
             .map_err(|e| {
                 vec![PrologLoadError {
                     file: "<engine>".into(),
@@ -367,6 +388,19 @@ impl PrologFunctions {
         options: PrologOptions,
         what: &str,
     ) -> Result<Option<PTerm>, String> {
+        self.ask_with(query, None, options, what)
+    }
+
+    /// [`ask`](Self::ask) with the input `read/1` takes terms from (set on
+    /// the engine thread with the query, so runs sharing one engine each
+    /// read their own).
+    fn ask_with(
+        &self,
+        query: String,
+        input: Option<crate::input::SharedInput>,
+        options: PrologOptions,
+        what: &str,
+    ) -> Result<Option<PTerm>, String> {
         if let Some(why) = self.inner.abandoned.lock().ok().and_then(|a| a.clone()) {
             return Err(format!("the Prolog engine is stopped: {why}"));
         }
@@ -375,7 +409,7 @@ impl PrologFunctions {
             .tx
             .lock()
             .map_err(|_| "the Prolog engine is poisoned".to_owned())?
-            .send(Request::Query(query, tx))
+            .send(Request::Query(query, input, tx))
             .map_err(|_| "the Prolog engine has stopped".to_owned())?;
         self.watch(&rx, options, what)?
     }
@@ -479,7 +513,9 @@ impl PrologFunctions {
         query.push_str(&env);
         let vars = w.vars.clone();
         let shown = || format!("{}/{}", name, args.len());
-        let answer = self.ask(query, options, &format!("`{}`", shown()))?;
+        // read/1 in this call takes the run's next input
+        let input = call.functions.input().cloned();
+        let answer = self.ask_with(query, input, options, &format!("`{}`", shown()))?;
         let Some(r) = answer else {
             return Err(format!("the Prolog call of `{}` did not answer", shown()));
         };
@@ -547,11 +583,11 @@ impl PrologFunctions {
 fn engine_thread(
     prepared: Vec<Prepared>,
     host: Option<KbHost>,
-    roots: Roots,
+    shared: Shared,
     rx: mpsc::Receiver<Request>,
     ready: mpsc::Sender<Vec<PrologLoadError>>,
 ) {
-    let (mut machine, errors) = build_machine(&prepared, host.clone(), roots.clone());
+    let (mut machine, errors) = build_machine(&prepared, host.clone(), shared.clone());
     let _ = ready.send(errors);
     // `Some(allow_os)` once started.
     let mut started: Option<bool> = None;
@@ -570,7 +606,12 @@ fn engine_thread(
                 let _ = reply.send(run_directives(&mut machine, &prepared, allow_os));
                 continue;
             }
-            Request::Query(q, reply) => (q, reply),
+            Request::Query(q, input, reply) => {
+                if let Ok(mut slot) = shared.input.lock() {
+                    *slot = input;
+                }
+                (q, reply)
+            }
         };
         let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
             first_answer(&mut machine, &q, "R")
@@ -579,7 +620,7 @@ fn engine_thread(
             Ok(r) => r,
             Err(_) => {
                 // The engine may be in any state: start afresh.
-                machine = build_machine(&prepared, host.clone(), roots.clone()).0;
+                machine = build_machine(&prepared, host.clone(), shared.clone()).0;
                 if let Some(allow_os) = started {
                     let _ = run_directives(&mut machine, &prepared, allow_os);
                 }
@@ -597,7 +638,7 @@ fn engine_thread(
 /// saying which), answered on `user_input` ([`read_reply`],
 /// [`system_reply`], [`permissions::inside_reply`]); anything else written
 /// there goes to stderr.
-fn engine_streams(host: Option<KbHost>, roots: Roots) -> StreamConfig {
+fn engine_streams(host: Option<KbHost>, shared: Shared) -> StreamConfig {
     type StreamCallback = Box<dyn FnMut(&mut std::io::Cursor<Vec<u8>>)>;
     let (mut replies, input) = InputStreamConfig::channel();
     let mut pending: Vec<u8> = Vec::new();
@@ -630,8 +671,10 @@ fn engine_streams(host: Option<KbHost>, roots: Roots) -> StreamConfig {
             } else if let Some(request) = text.strip_prefix('S') {
                 system_reply(request)
             } else if let Some(file) = text.strip_prefix('P') {
-                let roots = roots.lock().map(|r| r.clone()).unwrap_or_default();
+                let roots = shared.roots.lock().map(|r| r.clone()).unwrap_or_default();
                 permissions::inside_reply(file, &roots)
+            } else if text.starts_with('I') {
+                input_reply(&shared.input)
             } else {
                 read_reply(text.strip_prefix('R').unwrap_or(&text))
             };
@@ -646,6 +689,31 @@ fn engine_streams(host: Option<KbHost>, roots: Roots) -> StreamConfig {
         .with_user_input(input)
         .with_user_output(OutputStreamConfig::callback(on_output))
         .with_user_error(OutputStreamConfig::callback(on_error))
+}
+
+/// The answer to a `read/1` of the application (`I` request): the run's
+/// next input, read as `read_from_chars/2` reads text ([`read_reply`]);
+/// `'$eof'` at its end or without an input; an input error (over the
+/// limits, not UTF-8) is thrown as `error(input_error(Message), read/1)`.
+fn input_reply(input: &RunInput) -> String {
+    let source = input.lock().ok().and_then(|i| i.clone());
+    let Some(source) = source else {
+        return "'$eof'.\n".to_owned();
+    };
+    let next = match source.lock() {
+        Ok(mut s) => s.next_term_text(),
+        Err(_) => Err("the input's reader failed earlier (poisoned)".to_owned()),
+    };
+    match next {
+        Ok(Some(text)) => read_reply(&text),
+        Ok(None) => "'$eof'.\n".to_owned(),
+        Err(message) => {
+            let mut out = String::from("'$error'(error(input_error(");
+            write_atom(&mut out, Atom::intern(&message));
+            out.push_str("),read/1)).\n");
+            out
+        }
+    }
 }
 
 /// When the first engine was built: `statistics(walltime, _)` counts from
@@ -749,11 +817,11 @@ fn clause_position(text: &str, offset: usize) -> (usize, usize) {
 fn build_machine(
     prepared: &[Prepared],
     host: Option<KbHost>,
-    roots: Roots,
+    shared: Shared,
 ) -> (Machine, Vec<PrologLoadError>) {
     started();
     let mut machine = MachineBuilder::default()
-        .with_streams(engine_streams(host, roots))
+        .with_streams(engine_streams(host, shared))
         .with_toplevel(toplevel())
         .build();
     machine.consult_module_string("user", PRELUDE);

@@ -147,7 +147,7 @@ impl<R: BufRead> PromptPerception<R> {
 
     /// The next term's text for Prolog's `read/1` (the run's next input),
     /// with SWI-Prolog's prompt `|: ` on stderr; `None` at the end.
-    pub fn next_term_text(&mut self) -> Result<Option<String>, String> {
+    pub fn read_term_text(&mut self) -> Result<Option<String>, String> {
         let mut err = std::io::stderr();
         Ok(self.read_clause(&mut err)?.map(|(_, text)| text))
     }
