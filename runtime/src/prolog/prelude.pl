@@ -572,22 +572,6 @@ get_last_situation(History, S) :-
     ;   Term = end_of_file, Bindings = []
     ).
 
-% read(-Term): the run's next input (the next term of the script, or
-% typed), as the original's test mode reads it; end_of_file at its end.
-'$swi_read'(Term) :-
-    put_char(user_error, '\x1\'),
-    put_char(user_error, 'I'),
-    put_char(user_error, '\x2\'),
-    flush_output(user_error),
-    get_line_to_chars(user_input, Line, []),
-    read_from_chars(Line, Reply),
-    (   Reply = '$ok'(T, _)
-    ->  Term = T
-    ;   Reply = '$error'(E)
-    ->  throw(E)
-    ;   Term = end_of_file
-    ).
-
 '$swi_read_from_chars'(Text, Term) :- '$sitlog_read_text'(Text, Term, _).
 '$swi_read_term_from_atom'(A, Term, _) :- '$sitlog_read_text'(A, Term, _).
 '$swi_atom_to_term'(A, Term, Bindings) :- '$sitlog_read_text'(A, Term, Bindings).
