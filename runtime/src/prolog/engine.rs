@@ -103,6 +103,28 @@ type Roots = Arc<Mutex<Vec<PathBuf>>>;
 /// [`Functions::input`] set it (none: `read/1` gives `end_of_file`).
 type RunInput = Arc<Mutex<Option<crate::input::SharedInput>>>;
 
+/// The KB host of the native KB layer, set when the application is loaded
+/// (an engine built ahead has none yet).
+type HostSlot = Arc<Mutex<Option<KbHost>>>;
+
+/// An engine thread started ahead ([`PrologFunctions::prewarm`]): its
+/// machine built with the prelude, waiting for an application to load.
+struct Warm {
+    setup: mpsc::Sender<Setup>,
+    host: HostSlot,
+    shared: Shared,
+}
+
+/// What a warm engine thread gets to load its application and serve it.
+struct Setup {
+    prepared: Vec<Prepared>,
+    rx: mpsc::Receiver<Request>,
+    ready: mpsc::Sender<Vec<PrologLoadError>>,
+}
+
+/// The engine built ahead, if any; the next load takes it.
+static WARM: Mutex<Option<Warm>> = Mutex::new(None);
+
 /// What the engine thread shares with the handle: the trust roots and the
 /// run's input.
 #[derive(Clone)]
@@ -227,18 +249,51 @@ impl PrologFunctions {
         }
         let host = native.map(|n| n.host);
         let source_dirs: Vec<PathBuf> = sources.iter().filter_map(|s| s.dir.clone()).collect();
-        let roots: Roots = Arc::new(Mutex::new(source_dirs.clone()));
         let (tx, rx) = mpsc::channel::<Request>();
         let (ready_tx, ready_rx) = mpsc::channel();
-        let input: RunInput = Arc::new(Mutex::new(None));
+        // The engine built ahead, if one is waiting; else one built now.
+        let warm = WARM.lock().ok().and_then(|mut w| w.take());
+        let mut setup = Setup {
+            prepared,
+            rx,
+            ready: ready_tx,
+        };
+        if let Some(w) = warm {
+            if let Ok(mut h) = w.host.lock() {
+                *h = host.clone();
+            }
+            if let Ok(mut r) = w.shared.roots.lock() {
+                r.clone_from(&source_dirs);
+            }
+            match w.setup.send(setup) {
+                Ok(()) => {
+                    return Ok(PrologFunctions::handle(
+                        w.shared.roots,
+                        tx,
+                        ready_rx,
+                        defined,
+                        options,
+                        outside,
+                        source_dirs,
+                    ));
+                }
+                // its thread is gone: one built now
+                Err(mpsc::SendError(back)) => setup = back,
+            }
+        }
+        let roots: Roots = Arc::new(Mutex::new(source_dirs.clone()));
         let shared = Shared {
             roots: roots.clone(),
-            input,
+            input: Arc::new(Mutex::new(None)),
         };
+        let host: HostSlot = Arc::new(Mutex::new(host));
         std::thread::Builder::new()
             .name("sitlog-prolog".into())
             .stack_size(64 << 20)
-            .spawn(move || engine_thread(prepared, host, shared, rx, ready_tx))
+            .spawn(move || {
+                let machine = base_machine(host.clone(), shared.clone());
+                engine_thread(machine, setup, host, shared)
+            })
             .map_err(|e| {
                 vec![PrologLoadError {
                     file: "<engine>".into(),
@@ -247,6 +302,65 @@ impl PrologFunctions {
                     message: format!("cannot start the Prolog engine thread: {e}"),
                 }]
             })?;
+        Ok(PrologFunctions::handle(
+            roots,
+            tx,
+            ready_rx,
+            defined,
+            options,
+            outside,
+            source_dirs,
+        ))
+    }
+
+    /// Starts, ahead of [`load_with`](Self::load_with), an engine thread
+    /// that builds the machine every application's engine starts from (the
+    /// engine's libraries and the prelude: most of its start-up), so that
+    /// it runs while the caller reads and checks the application; the next
+    /// load takes it. Does nothing when one is waiting already.
+    pub fn prewarm() {
+        let Ok(mut slot) = WARM.lock() else {
+            return;
+        };
+        if slot.is_some() {
+            return;
+        }
+        let host: HostSlot = Arc::new(Mutex::new(None));
+        let shared = Shared {
+            roots: Arc::new(Mutex::new(Vec::new())),
+            input: Arc::new(Mutex::new(None)),
+        };
+        let (tx, setup_rx) = mpsc::channel::<Setup>();
+        let (h, sh) = (host.clone(), shared.clone());
+        let spawned = std::thread::Builder::new()
+            .name("sitlog-prolog".into())
+            .stack_size(64 << 20)
+            .spawn(move || {
+                let machine = base_machine(h.clone(), sh.clone());
+                if let Ok(setup) = setup_rx.recv() {
+                    engine_thread(machine, setup, h, sh);
+                }
+            });
+        if spawned.is_ok() {
+            *slot = Some(Warm {
+                setup: tx,
+                host,
+                shared,
+            });
+        }
+    }
+
+    /// The handle of an engine thread loading its application: waits for
+    /// its load errors.
+    fn handle(
+        roots: Roots,
+        tx: mpsc::Sender<Request>,
+        ready_rx: mpsc::Receiver<Vec<PrologLoadError>>,
+        defined: HashSet<(Atom, usize)>,
+        options: PrologOptions,
+        outside: Vec<(PathBuf, PrologLoadError)>,
+        source_dirs: Vec<PathBuf>,
+    ) -> (PrologFunctions, Vec<PrologLoadError>) {
         let load_errors = ready_rx.recv().unwrap_or_else(|_| {
             vec![PrologLoadError {
                 file: "<engine>".into(),
@@ -267,7 +381,7 @@ impl PrologFunctions {
                 roots,
             }),
         };
-        Ok((engine, load_errors))
+        (engine, load_errors)
     }
 
     /// Runs the application's directives, once (later calls give the first
@@ -580,14 +694,13 @@ impl PrologFunctions {
 
 /// The engine thread: builds the machine, loads, then starts and answers
 /// queries.
-fn engine_thread(
-    prepared: Vec<Prepared>,
-    host: Option<KbHost>,
-    shared: Shared,
-    rx: mpsc::Receiver<Request>,
-    ready: mpsc::Sender<Vec<PrologLoadError>>,
-) {
-    let (mut machine, errors) = build_machine(&prepared, host.clone(), shared.clone());
+fn engine_thread(mut machine: Machine, setup: Setup, host: HostSlot, shared: Shared) {
+    let Setup {
+        prepared,
+        rx,
+        ready,
+    } = setup;
+    let errors = load_application(&mut machine, &prepared);
     let _ = ready.send(errors);
     // `Some(allow_os)` once started.
     let mut started: Option<bool> = None;
@@ -638,7 +751,7 @@ fn engine_thread(
 /// saying which), answered on `user_input` ([`read_reply`],
 /// [`system_reply`], [`permissions::inside_reply`]); anything else written
 /// there goes to stderr.
-fn engine_streams(host: Option<KbHost>, shared: Shared) -> StreamConfig {
+fn engine_streams(host: HostSlot, shared: Shared) -> StreamConfig {
     type StreamCallback = Box<dyn FnMut(&mut std::io::Cursor<Vec<u8>>)>;
     let (mut replies, input) = InputStreamConfig::channel();
     let mut pending: Vec<u8> = Vec::new();
@@ -664,7 +777,8 @@ fn engine_streams(host: Option<KbHost>, shared: Shared) -> StreamConfig {
             // `S` the system (clock, sleep), `P` whether a file is inside
             // the application (the guards).
             let reply = if let Some(request) = text.strip_prefix('K') {
-                match &host {
+                let h = host.lock().ok().and_then(|h| h.clone());
+                match h {
                     Some(h) => h(request),
                     None => "'$error'(error(existence_error(kb_host, sitlog), kb)).\n".to_owned(),
                 }
@@ -816,9 +930,17 @@ fn clause_position(text: &str, offset: usize) -> (usize, usize) {
 /// (no directive run: see [`run_directives`]).
 fn build_machine(
     prepared: &[Prepared],
-    host: Option<KbHost>,
+    host: HostSlot,
     shared: Shared,
 ) -> (Machine, Vec<PrologLoadError>) {
+    let mut machine = base_machine(host, shared);
+    let errors = load_application(&mut machine, prepared);
+    (machine, errors)
+}
+
+/// A machine with the prelude and the guards: what every application's
+/// engine starts from.
+fn base_machine(host: HostSlot, shared: Shared) -> Machine {
     started();
     let mut machine = MachineBuilder::default()
         .with_streams(engine_streams(host, shared))
@@ -826,6 +948,12 @@ fn build_machine(
         .build();
     machine.consult_module_string("user", PRELUDE);
     machine.consult_module_string("user", permissions::guards());
+    machine
+}
+
+/// Loads the application's clauses (`prepared`, no directive run) into a
+/// [`base_machine`], then its libraries and the SWI-Prolog bridge.
+fn load_application(machine: &mut Machine, prepared: &[Prepared]) -> Vec<PrologLoadError> {
     let mut errors = Vec::new();
     // The prelude's second part is asserted clause by clause, like the
     // application's (consulted in one string with the first part, the
@@ -836,15 +964,15 @@ fn build_machine(
         } else {
             format!("'$sitlog_add'({},R).", p.text)
         };
-        check_load(&mut machine, &q, &p, &mut errors);
+        check_load(machine, &q, &p, &mut errors);
     }
     for p in prepared.iter().filter(|p| !p.directive) {
         let q = format!("'$sitlog_add'({},R).", p.text);
-        check_load(&mut machine, &q, p, &mut errors);
+        check_load(machine, &q, p, &mut errors);
     }
     for (lib, preds) in LIBRARIES {
         let q = format!("'$sitlog_import'({lib},[{}],R).", preds.join(","));
-        let _ = first_answer(&mut machine, &q, "R");
+        let _ = first_answer(machine, &q, "R");
     }
     let q = format!(
         "'$sitlog_bridge'([{}],R).",
@@ -859,8 +987,8 @@ fn build_machine(
             .collect::<Vec<_>>()
             .join(",")
     );
-    let _ = first_answer(&mut machine, &q, "R");
-    (machine, errors)
+    let _ = first_answer(machine, &q, "R");
+    errors
 }
 
 /// The engine's toplevel module without its interactive loop, which an
