@@ -14,10 +14,9 @@
 use std::path::{Path, PathBuf};
 
 /// Inferences one Prolog call may make under `--legacy` unless
-/// `--prolog-inferences` says otherwise: none counted (`u64::MAX`), as the
-/// original, whose `rips` task needs more than ten times our default; the
-/// time limit still holds.
-pub const LEGACY_INFERENCES: u64 = u64::MAX;
+/// `--prolog-inferences` says otherwise: the original has no such limit,
+/// and its `rips` task needs more than ten times our default.
+pub const LEGACY_INFERENCES: u64 = 1_000_000_000;
 
 /// Wall-clock time of one Prolog call under `--legacy` unless
 /// `--prolog-time-limit` says otherwise (the original has no limit).

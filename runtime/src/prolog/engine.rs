@@ -613,13 +613,7 @@ impl PrologFunctions {
         }
         w.out.push(',');
         w.term(history);
-        // u64::MAX: no limit (the engine then counts no inferences of
-        // the call: a quarter of a Prolog-heavy call's time, issue 39)
-        if options.inference_limit == u64::MAX {
-            w.out.push_str(",none,R).");
-        } else {
-            let _ = write!(w.out, ",{},R).", options.inference_limit);
-        }
+        let _ = write!(w.out, ",{},R).", options.inference_limit);
         let env = std::mem::take(&mut w.out);
         let mut query = rest;
         query.push_str(",[");
