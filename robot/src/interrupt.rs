@@ -156,7 +156,8 @@ fn status_of(signal: i32) -> u8 {
 
 /// Standard input read on a thread of its own, so that a reader blocked at
 /// the prompt sees an interrupt: reading fails with the error "interrupted"
-/// once the flag is set.
+/// once the flag is set. The thread holds at most a few pieces of at most
+/// one buffer (8 KiB) each.
 pub struct InterruptibleStdin {
     rx: mpsc::Receiver<io::Result<Vec<u8>>>,
     buf: Vec<u8>,
@@ -174,21 +175,28 @@ impl InterruptibleStdin {
                 let stdin = io::stdin();
                 let mut lock = stdin.lock();
                 loop {
-                    let mut line = Vec::new();
-                    match lock.read_until(b'\n', &mut line) {
-                        Ok(0) => {
+                    // What one read gave (at most a buffer): a line that
+                    // never ends (`< /dev/zero`) is passed on in pieces,
+                    // never gathered here, and many short lines go
+                    // together (issue 38).
+                    let piece = match lock.fill_buf() {
+                        Ok([]) => {
                             let _ = tx.send(Ok(Vec::new()));
                             return;
                         }
-                        Ok(_) => {
-                            if tx.send(Ok(line)).is_err() {
-                                return;
-                            }
+                        Ok(buf) => {
+                            let piece = buf.to_vec();
+                            lock.consume(piece.len());
+                            piece
                         }
+                        Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
                         Err(e) => {
                             let _ = tx.send(Err(e));
                             return;
                         }
+                    };
+                    if tx.send(Ok(piece)).is_err() {
+                        return;
                     }
                 }
             });

@@ -20,7 +20,7 @@
 use crate::console::SharedConsole;
 use crate::interrupt::{Interrupt, InterruptibleStdin};
 use sitlog_runtime::machine::{Perceived, Perception};
-use sitlog_runtime::testmode::{InputLimits, PromptPerception};
+use sitlog_runtime::testmode::{InputLimits, PromptPerception, SharedInput, SharedPerception};
 use sitlog_runtime::{Store, Term};
 
 /// The perception of typed input: line editing on a terminal; else lines
@@ -28,25 +28,39 @@ use sitlog_runtime::{Store, Term};
 /// the prompt sees them), or straight from stdin. The end of the input is
 /// recorded in `ended`; `console`'s progress indicator is paused while
 /// the prompt waits.
+///
+/// Off a terminal, the second part is the same reader for Prolog's
+/// `read/1` (issue 39); on a terminal `read/1` gets `end_of_file`.
 pub(crate) fn typed_input(
     limits: InputLimits,
     signals: Option<&Interrupt>,
     ended: Interrupt,
     console: SharedConsole,
-) -> Box<dyn Perception> {
-    let prompt: Box<dyn Perception> = match edited_prompt(limits, &ended) {
-        Some(p) => p,
+) -> (Box<dyn Perception>, Option<SharedInput>) {
+    let (prompt, input): (Box<dyn Perception>, _) = match edited_prompt(limits, &ended) {
+        Some(p) => (p, None),
         None => match signals {
-            Some(i) => Box::new(
-                PromptPerception::new(InterruptibleStdin::new(i.flag.clone())).with_limits(limits),
-            ),
-            None => Box::new(PromptPerception::new(std::io::stdin().lock()).with_limits(limits)),
+            Some(i) => {
+                let p = SharedPerception::new(
+                    PromptPerception::new(InterruptibleStdin::new(i.flag.clone()))
+                        .with_limits(limits),
+                );
+                let input = p.input();
+                (Box::new(p), Some(input))
+            }
+            None => {
+                let stdin = std::io::BufReader::new(std::io::stdin());
+                let p = SharedPerception::new(PromptPerception::new(stdin).with_limits(limits));
+                let input = p.input();
+                (Box::new(p), Some(input))
+            }
         },
     };
-    Box::new(PausesProgress {
+    let perception = Box::new(PausesProgress {
         inner: Box::new(EndOfInputStops::new(prompt, ended)),
         console,
-    })
+    });
+    (perception, input)
 }
 
 /// Takes the progress indicator off the terminal while `inner` waits for

@@ -34,7 +34,7 @@ use crate::streams::Streams;
 use sitlog_runtime::app::{run, App};
 use sitlog_runtime::machine::{Actions, Observer, Options, Perception};
 use sitlog_runtime::report;
-use sitlog_runtime::testmode::{ScriptPerception, TextActions};
+use sitlog_runtime::testmode::{ScriptPerception, SharedPerception, TextActions};
 use sitlog_runtime::Functions;
 use std::io::Write;
 use std::sync::{Arc, Mutex};
@@ -316,7 +316,11 @@ impl Runner {
                 {
                     (Some(path), debugger) => match read_script(path) {
                         Ok(script) => {
-                            let script = Box::new(script.with_limits(limits));
+                            // one reader of the script for the perception and
+                            // the Prolog engine's read/1 (issue 39)
+                            let script = SharedPerception::new(script.with_limits(limits));
+                            functions.set_input(Some(script.input()));
+                            let script: Box<dyn Perception> = Box::new(script);
                             match debugger {
                                 Some(make) => make(Some(script)),
                                 None => script,
@@ -325,12 +329,16 @@ impl Runner {
                         Err(e) => fail!(e.status, "{e}"),
                     },
                     (None, Some(make)) => make(None),
-                    (None, None) => crate::prompt::typed_input(
-                        limits,
-                        interrupt.as_ref(),
-                        ended.clone().unwrap_or_default(),
-                        console.clone(),
-                    ),
+                    (None, None) => {
+                        let (perception, input) = crate::prompt::typed_input(
+                            limits,
+                            interrupt.as_ref(),
+                            ended.clone().unwrap_or_default(),
+                            console.clone(),
+                        );
+                        functions.set_input(input);
+                        perception
+                    }
                 };
                 let actions: Box<dyn Actions> = match actions_out {
                     Some(out) => Box::new(

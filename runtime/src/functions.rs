@@ -93,6 +93,7 @@ pub struct Functions {
     start: Option<Arc<StartFn>>,
     trust: Trust,
     stop: Option<Arc<AtomicBool>>,
+    input: Option<crate::input::SharedInput>,
 }
 
 impl std::fmt::Debug for Functions {
@@ -188,6 +189,17 @@ impl Functions {
     /// system unless set).
     pub fn trust(&self) -> &Trust {
         &self.trust
+    }
+
+    /// Sets the run's input that code run outside Rust reads terms from
+    /// (Prolog's `read/1`): the perception's own reader (issue 39).
+    pub fn set_input(&mut self, input: Option<crate::input::SharedInput>) {
+        self.input = input;
+    }
+
+    /// The run's input set by [`Functions::set_input`].
+    pub fn input(&self) -> Option<&crate::input::SharedInput> {
+        self.input.as_ref()
     }
 
     /// Removes `name/arity`; `true` if it was registered.

@@ -66,3 +66,18 @@ impl Default for InputLimits {
         }
     }
 }
+
+/// The run's input read term by term by code other than the perception
+/// that owns it: Prolog's `read/1` in a user function takes the next term
+/// of the script, or of standard input, as the original's test mode does
+/// (issue 39). One reader serves both, in order.
+pub trait TermInput: Send {
+    /// The text of the next term of the input (its end token included or
+    /// not), `None` at the end of the input; an error names the input and
+    /// the position (or the limit) as the perception's errors do.
+    fn next_term_text(&mut self) -> Result<Option<String>, String>;
+}
+
+/// A [`TermInput`] shared between the perception that owns it (on the
+/// runner's thread) and the Prolog engine (on its own thread).
+pub type SharedInput = std::sync::Arc<std::sync::Mutex<dyn TermInput>>;

@@ -25,8 +25,10 @@
 #
 # Usage: tests/conformance/legacy_apps.sh [APP/TASK]...   (default: all)
 # Prints one line per task and KB mode (`APP/TASK kb=MODE: agree (N
-# transitions, M utterances)` or `... DIFFER` with the first differences),
-# then `N of M tasks agree`. Exit status: 0 when all agree (or skipped), 1
+# transitions, M utterances; time: original S s, sitlogc S s)` or `...
+# DIFFER` with the first differences; times are wall-clock seconds of the
+# whole process, the original's launcher included), then `N of M tasks
+# agree` and the tasks where sitlogc took longer than the original. Exit status: 0 when all agree (or skipped), 1
 # otherwise.
 set -u
 
@@ -63,6 +65,9 @@ fi
 status=0
 total=0
 agreed=0
+slower=()
+now() { date +%s.%N; }
+secs() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", b - a }'; }
 for task in "${tasks[@]}"; do
     app=${task%%/*}
     input="$here/legacy_apps/$task.txt"
@@ -75,8 +80,10 @@ for task in "${tasks[@]}"; do
     d="$work/${task//\//.}"
     mkdir -p "$d"
     fresh "$d/tree"
+    t0=$(now)
     (cd "$d/tree" && PATH="$work/shim:$PATH" SITLOG_HOME="$d/tree/" \
         timeout "$limit" bash "scripts/$app" test <"$input" >"$d/original.out" 2>&1)
+    t_original=$(secs "$t0" "$(now)")
     if ! completed "$d/original.out"; then
         echo "$task: DIFFER: the original does not complete this task with these inputs"
         status=1
@@ -86,15 +93,21 @@ for task in "${tasks[@]}"; do
     ok=1
     for kb in "${kbs[@]}"; do
         fresh "$d/tree"
+        t0=$(now)
         (cd "$d/tree" && SITLOG_HOME="$d/tree/" timeout "$limit" \
             "$sitlogc" run "apps/$app" --legacy --legacy-kb "$kb" --script "$input" \
             >"$d/ours-$kb.out" 2>"$d/ours-$kb.err")
         rc=$?
+        t_ours=$(secs "$t0" "$(now)")
+        times="time: original $t_original s, sitlogc $t_ours s"
+        if awk -v a="$t_ours" -v b="$t_original" 'BEGIN { exit !(a > b) }'; then
+            slower+=("$task kb=$kb ($times)")
+        fi
         python3 "$here/legacy_demos.py" "$d/original.out" "$d/ours-$kb.out" "$d/ours-$kb.err" \
             >"$d/compare-$kb.txt"
         cmp=$?
         if [ "$cmp" = 0 ] && [ "$rc" = 0 ]; then
-            echo "$task kb=$kb: agree ($(head -n 1 "$d/compare-$kb.txt"))"
+            echo "$task kb=$kb: agree ($(head -n 1 "$d/compare-$kb.txt"); $times)"
         else
             echo "$task kb=$kb: DIFFER (exit status $rc)"
             sed 's/^/    /' "$d/compare-$kb.txt"
@@ -108,4 +121,8 @@ for task in "${tasks[@]}"; do
     [ "${CONFORMANCE_KEEP:-0}" = 1 ] || rm -rf "$d/tree"
 done
 echo "$agreed of $total tasks agree"
+if [ ${#slower[@]} -gt 0 ]; then
+    echo "sitlogc took longer than the original on ${#slower[@]} run(s):"
+    printf '    %s\n' "${slower[@]}"
+fi
 exit $status

@@ -17,6 +17,15 @@ pub fn run_app(
     debug: Option<Option<&std::path::Path>>,
     watch: bool,
 ) -> u8 {
+    // The Prolog engine's start-up (most of a --legacy run's start) runs
+    // on its own thread while the application is read and checked.
+    if legacy.is_some()
+        || ["user_functions.pl", "templates.pl"]
+            .iter()
+            .any(|f| app.join(f).exists())
+    {
+        sitlog_runtime::prolog::PrologFunctions::prewarm();
+    }
     // The legacy profile: the original's Prolog layer from SITLOG_HOME.
     let mut before: Vec<sitlog_runtime::prolog::PrologSource> = Vec::new();
     let mut legacy_args;

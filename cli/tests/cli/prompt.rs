@@ -344,3 +344,95 @@ fn no_progress_line_while_the_prompt_waits() {
     let status = child.wait().unwrap();
     assert_eq!(status.code(), Some(0), "{screen}");
 }
+
+/// Standard input at the prompt is read under the input limits, in time
+/// linear in it (issue 38): a line that never ends (`< /dev/zero`) is
+/// refused at `--max-input-bytes`, naming the input and the limit, instead
+/// of growing until the process aborts; a term over 20,000 lines is read
+/// once, not once a line.
+#[test]
+fn typed_input_is_read_under_the_limits_in_linear_time() {
+    use std::time::{Duration, Instant};
+    let dir = app("limits");
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main, [
+  [id ==> is, type ==> listening, arcs ==> [X : screen(got) => fs]],
+  [id ==> fs, type ==> final]
+], []).
+",
+    )
+    .unwrap();
+    let start = Instant::now();
+    let out = sitlogc()
+        .arg("run")
+        .arg(&dir)
+        .args(["--max-input-bytes", "100000"])
+        .stdin(std::fs::File::open("/dev/zero").unwrap())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(
+            "standard input:1:1: the input is longer than 100000 bytes (100001 bytes or more); the limit is set by --max-input-bytes"
+        ),
+        "{err}"
+    );
+    let lines = 20_000;
+    let term = "[\n".to_owned() + &"a,\n".repeat(lines) + "b].\n";
+    let out = run_piped(&dir, &[], &term);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    // quadratic reading took 74 s for 20,000 lines
+    assert!(start.elapsed() < Duration::from_secs(30));
+    // the same term over the limit, refused at the line where it starts
+    let small = "[\n".to_owned() + &"a,\n".repeat(2_000) + "b].\n";
+    let out = run_piped(&dir, &["--max-input-bytes", "1000"], &format!("\n{small}"));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("standard input:2:1: the input is longer than 1000 bytes"),
+        "{err}"
+    );
+}
+
+/// Prolog's `read/1` in a user function takes the run's next input, from
+/// the script or typed, in order with the perceptions (issue 39, as the
+/// original's test mode): one reader serves the runner's perception and
+/// the engine's thread (each run starts an engine: a few seconds in a
+/// debug build).
+#[test]
+fn read_in_a_user_function_takes_the_next_input() {
+    let dir = app("read");
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main, [
+  [id ==> is, type ==> listening,
+   arcs ==> [said(X) : say(X) => ask(apply(answer, []))]],
+  [id ==> ask(A), type ==> listening,
+   arcs ==> [said(Y) : [say(A), say(Y)] => fs]],
+  [id ==> fs, type ==> final]
+], []).
+",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("user_functions.pl"),
+        "answer :- read(X), assign_func_value(got(X)).\n",
+    )
+    .unwrap();
+    let said = "Golem says: first\nGolem says: got(second(2))\nGolem says: third\n";
+    std::fs::write(dir.join("s.txt"), "first.\nsecond(2).\nthird.\n").unwrap();
+    let script = dir.join("s.txt").display().to_string();
+    let out = run_piped(&dir, &["--script", &script], "");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert_eq!(err, said);
+    // typed, a term over two lines
+    let out = run_piped(&dir, &[], "first.\nsecond(\n2).\nthird.\n");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert_eq!(err.matches("Golem says").count(), 3, "{err}");
+    assert!(err.contains("Golem says: got(second(2))\n"), "{err}");
+}

@@ -92,11 +92,54 @@ enum Request {
         Option<(Confine, Vec<PathBuf>)>,
         mpsc::Sender<Vec<PrologLoadError>>,
     ),
-    Query(String, mpsc::Sender<Result<Option<PTerm>, String>>),
+    /// A query, with the run's input its `read/1` takes terms from.
+    Query(
+        String,
+        Option<crate::input::SharedInput>,
+        mpsc::Sender<Result<Option<PTerm>, String>>,
+    ),
 }
 
 /// Directories the guards let code write into and load from (set at start).
 type Roots = Arc<Mutex<Vec<PathBuf>>>;
+
+/// The run's input that `read/1` takes terms from, as the running call's
+/// [`Functions::input`] set it (none: `read/1` gives `end_of_file`).
+type RunInput = Arc<Mutex<Option<crate::input::SharedInput>>>;
+
+/// The KB host of the native KB layer, set when the application is loaded
+/// (an engine built ahead has none yet).
+type HostSlot = Arc<Mutex<Option<KbHost>>>;
+
+/// An engine thread started ahead ([`PrologFunctions::prewarm`]): its
+/// machine built with the prelude, waiting for an application to load.
+struct Warm {
+    setup: mpsc::Sender<Setup>,
+    host: HostSlot,
+    shared: Shared,
+}
+
+/// What a warm engine thread gets to load its application and serve it.
+struct Setup {
+    prepared: Vec<Prepared>,
+    rx: mpsc::Receiver<Request>,
+    ready: mpsc::Sender<Vec<PrologLoadError>>,
+}
+
+/// The engine built ahead, if any; the next load takes it.
+static WARM: Mutex<Option<Warm>> = Mutex::new(None);
+
+/// The engine thread's stack: its reader and compiler recurse, so room for
+/// terms `PROLOG_MAX_DEPTH` deep in a debug build (reserved, not used).
+const ENGINE_STACK: usize = 512 << 20;
+
+/// What the engine thread shares with the handle: the trust roots and the
+/// run's input.
+#[derive(Clone)]
+struct Shared {
+    roots: Roots,
+    input: RunInput,
+}
 
 /// The application's Prolog user functions, running in an embedded engine.
 /// Cheap to clone (a handle to the engine thread).
@@ -214,16 +257,53 @@ impl PrologFunctions {
         }
         let host = native.map(|n| n.host);
         let source_dirs: Vec<PathBuf> = sources.iter().filter_map(|s| s.dir.clone()).collect();
-        let roots: Roots = Arc::new(Mutex::new(source_dirs.clone()));
         let (tx, rx) = mpsc::channel::<Request>();
         let (ready_tx, ready_rx) = mpsc::channel();
-        let thread_roots = roots.clone();
+        // The engine built ahead, if one is waiting; else one built now.
+        let warm = WARM.lock().ok().and_then(|mut w| w.take());
+        let mut setup = Setup {
+            prepared,
+            rx,
+            ready: ready_tx,
+        };
+        if let Some(w) = warm {
+            if let Ok(mut h) = w.host.lock() {
+                *h = host.clone();
+            }
+            if let Ok(mut r) = w.shared.roots.lock() {
+                r.clone_from(&source_dirs);
+            }
+            match w.setup.send(setup) {
+                Ok(()) => {
+                    return Ok(PrologFunctions::handle(
+                        w.shared.roots,
+                        tx,
+                        ready_rx,
+                        defined,
+                        options,
+                        outside,
+                        source_dirs,
+                    ));
+                }
+                // its thread is gone: one built now
+                Err(mpsc::SendError(back)) => setup = back,
+            }
+        }
+        let roots: Roots = Arc::new(Mutex::new(source_dirs.clone()));
+        let shared = Shared {
+            roots: roots.clone(),
+            input: Arc::new(Mutex::new(None)),
+        };
+        let host: HostSlot = Arc::new(Mutex::new(host));
         std::thread::Builder::new()
             .name("sitlog-prolog".into())
             // The engine's reader and compiler recurse: room for terms
             // PROLOG_MAX_DEPTH deep in a debug build (reserved, not used).
-            .stack_size(512 << 20)
-            .spawn(move || engine_thread(prepared, host, thread_roots, rx, ready_tx))
+            .stack_size(ENGINE_STACK)
+            .spawn(move || {
+                let machine = base_machine(host.clone(), shared.clone());
+                engine_thread(machine, setup, host, shared)
+            })
             .map_err(|e| {
                 vec![PrologLoadError {
                     file: "<engine>".into(),
@@ -232,6 +312,65 @@ impl PrologFunctions {
                     message: format!("cannot start the Prolog engine thread: {e}"),
                 }]
             })?;
+        Ok(PrologFunctions::handle(
+            roots,
+            tx,
+            ready_rx,
+            defined,
+            options,
+            outside,
+            source_dirs,
+        ))
+    }
+
+    /// Starts, ahead of [`load_with`](Self::load_with), an engine thread
+    /// that builds the machine every application's engine starts from (the
+    /// engine's libraries and the prelude: most of its start-up), so that
+    /// it runs while the caller reads and checks the application; the next
+    /// load takes it. Does nothing when one is waiting already.
+    pub fn prewarm() {
+        let Ok(mut slot) = WARM.lock() else {
+            return;
+        };
+        if slot.is_some() {
+            return;
+        }
+        let host: HostSlot = Arc::new(Mutex::new(None));
+        let shared = Shared {
+            roots: Arc::new(Mutex::new(Vec::new())),
+            input: Arc::new(Mutex::new(None)),
+        };
+        let (tx, setup_rx) = mpsc::channel::<Setup>();
+        let (h, sh) = (host.clone(), shared.clone());
+        let spawned = std::thread::Builder::new()
+            .name("sitlog-prolog".into())
+            .stack_size(ENGINE_STACK)
+            .spawn(move || {
+                let machine = base_machine(h.clone(), sh.clone());
+                if let Ok(setup) = setup_rx.recv() {
+                    engine_thread(machine, setup, h, sh);
+                }
+            });
+        if spawned.is_ok() {
+            *slot = Some(Warm {
+                setup: tx,
+                host,
+                shared,
+            });
+        }
+    }
+
+    /// The handle of an engine thread loading its application: waits for
+    /// its load errors.
+    fn handle(
+        roots: Roots,
+        tx: mpsc::Sender<Request>,
+        ready_rx: mpsc::Receiver<Vec<PrologLoadError>>,
+        defined: HashSet<(Atom, usize)>,
+        options: PrologOptions,
+        outside: Vec<(PathBuf, PrologLoadError)>,
+        source_dirs: Vec<PathBuf>,
+    ) -> (PrologFunctions, Vec<PrologLoadError>) {
         let load_errors = ready_rx.recv().unwrap_or_else(|_| {
             vec![PrologLoadError {
                 file: "<engine>".into(),
@@ -252,7 +391,7 @@ impl PrologFunctions {
                 roots,
             }),
         };
-        Ok((engine, load_errors))
+        (engine, load_errors)
     }
 
     /// Runs the application's directives, once (later calls give the first
@@ -389,6 +528,20 @@ impl PrologFunctions {
         stop: Option<&AtomicBool>,
         what: &str,
     ) -> Result<Option<PTerm>, String> {
+        self.ask_with(query, None, options, stop, what)
+    }
+
+    /// [`ask`](Self::ask) with the input `read/1` takes terms from (set on
+    /// the engine thread with the query, so runs sharing one engine each
+    /// read their own).
+    fn ask_with(
+        &self,
+        query: String,
+        input: Option<crate::input::SharedInput>,
+        options: PrologOptions,
+        stop: Option<&AtomicBool>,
+        what: &str,
+    ) -> Result<Option<PTerm>, String> {
         if let Some(why) = self.inner.abandoned.lock().ok().and_then(|a| a.clone()) {
             return Err(format!("the Prolog engine is stopped: {why}"));
         }
@@ -397,7 +550,7 @@ impl PrologFunctions {
             .tx
             .lock()
             .map_err(|_| "the Prolog engine is poisoned".to_owned())?
-            .send(Request::Query(query, tx))
+            .send(Request::Query(query, input, tx))
             .map_err(|_| "the Prolog engine has stopped".to_owned())?;
         self.watch(&rx, options, stop, what)?
     }
@@ -514,8 +667,11 @@ impl PrologFunctions {
         query.push_str(&env);
         let vars = w.vars.clone();
         let shown = || format!("{}/{}", name, args.len());
-        let answer = self.ask(
+        // read/1 in this call takes the run's next input
+        let input = call.functions.input().cloned();
+        let answer = self.ask_with(
             query,
+            input,
             options,
             call.functions.stop(),
             &format!("`{}`", shown()),
@@ -599,14 +755,13 @@ impl PrologFunctions {
 
 /// The engine thread: builds the machine, loads, then starts and answers
 /// queries.
-fn engine_thread(
-    prepared: Vec<Prepared>,
-    host: Option<KbHost>,
-    roots: Roots,
-    rx: mpsc::Receiver<Request>,
-    ready: mpsc::Sender<Vec<PrologLoadError>>,
-) {
-    let (mut machine, errors) = build_machine(&prepared, host.clone(), roots.clone());
+fn engine_thread(mut machine: Machine, setup: Setup, host: HostSlot, shared: Shared) {
+    let Setup {
+        prepared,
+        rx,
+        ready,
+    } = setup;
+    let errors = load_application(&mut machine, &prepared);
     let _ = ready.send(errors);
     // `Some((allow_os, inference limit))` once started.
     let mut started: Option<(bool, u64)> = None;
@@ -625,7 +780,12 @@ fn engine_thread(
                 let _ = reply.send(run_directives(&mut machine, &prepared, allow_os, limit));
                 continue;
             }
-            Request::Query(q, reply) => (q, reply),
+            Request::Query(q, input, reply) => {
+                if let Ok(mut slot) = shared.input.lock() {
+                    *slot = input;
+                }
+                (q, reply)
+            }
         };
         let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
             first_answer(&mut machine, &q, "R")
@@ -634,7 +794,7 @@ fn engine_thread(
             Ok(r) => r,
             Err(_) => {
                 // The engine may be in any state: start afresh.
-                machine = build_machine(&prepared, host.clone(), roots.clone()).0;
+                machine = build_machine(&prepared, host.clone(), shared.clone()).0;
                 if let Some((allow_os, limit)) = started {
                     let _ = run_directives(&mut machine, &prepared, allow_os, limit);
                 }
@@ -656,7 +816,7 @@ fn engine_thread(
 /// saying which), answered on `user_input` ([`read_reply`],
 /// [`system_reply`], [`permissions::inside_reply`]); anything else written
 /// there goes to stderr.
-fn engine_streams(host: Option<KbHost>, roots: Roots) -> StreamConfig {
+fn engine_streams(host: HostSlot, shared: Shared) -> StreamConfig {
     type StreamCallback = Box<dyn FnMut(&mut std::io::Cursor<Vec<u8>>)>;
     let (mut replies, input) = InputStreamConfig::channel();
     let mut pending: Vec<u8> = Vec::new();
@@ -682,15 +842,18 @@ fn engine_streams(host: Option<KbHost>, roots: Roots) -> StreamConfig {
             // `S` the system (clock, sleep), `P` whether a file is inside
             // the application (the guards).
             let reply = if let Some(request) = text.strip_prefix('K') {
-                match &host {
+                let h = host.lock().ok().and_then(|h| h.clone());
+                match h {
                     Some(h) => h(request),
                     None => "'$error'(error(existence_error(kb_host, sitlog), kb)).\n".to_owned(),
                 }
             } else if let Some(request) = text.strip_prefix('S') {
                 system_reply(request)
             } else if let Some(file) = text.strip_prefix('P') {
-                let roots = roots.lock().map(|r| r.clone()).unwrap_or_default();
+                let roots = shared.roots.lock().map(|r| r.clone()).unwrap_or_default();
                 permissions::inside_reply(file, &roots)
+            } else if text.starts_with('I') {
+                input_reply(&shared.input)
             } else {
                 read_reply(text.strip_prefix('R').unwrap_or(&text))
             };
@@ -705,6 +868,31 @@ fn engine_streams(host: Option<KbHost>, roots: Roots) -> StreamConfig {
         .with_user_input(input)
         .with_user_output(OutputStreamConfig::callback(on_output))
         .with_user_error(OutputStreamConfig::callback(on_error))
+}
+
+/// The answer to a `read/1` of the application (`I` request): the run's
+/// next input, read as `read_from_chars/2` reads text ([`read_reply`]);
+/// `'$eof'` at its end or without an input; an input error (over the
+/// limits, not UTF-8) is thrown as `error(input_error(Message), read/1)`.
+fn input_reply(input: &RunInput) -> String {
+    let source = input.lock().ok().and_then(|i| i.clone());
+    let Some(source) = source else {
+        return "'$eof'.\n".to_owned();
+    };
+    let next = match source.lock() {
+        Ok(mut s) => s.next_term_text(),
+        Err(_) => Err("the input's reader failed earlier (poisoned)".to_owned()),
+    };
+    match next {
+        Ok(Some(text)) => read_reply(&text),
+        Ok(None) => "'$eof'.\n".to_owned(),
+        Err(message) => {
+            let mut out = String::from("'$error'(error(input_error(");
+            write_atom(&mut out, Atom::intern(&message));
+            out.push_str("),read/1)).\n");
+            out
+        }
+    }
 }
 
 /// When the first engine was built: `statistics(walltime, _)` counts from
@@ -807,16 +995,30 @@ fn clause_position(text: &str, offset: usize) -> (usize, usize) {
 /// (no directive run: see [`run_directives`]).
 fn build_machine(
     prepared: &[Prepared],
-    host: Option<KbHost>,
-    roots: Roots,
+    host: HostSlot,
+    shared: Shared,
 ) -> (Machine, Vec<PrologLoadError>) {
+    let mut machine = base_machine(host, shared);
+    let errors = load_application(&mut machine, prepared);
+    (machine, errors)
+}
+
+/// A machine with the prelude and the guards: what every application's
+/// engine starts from.
+fn base_machine(host: HostSlot, shared: Shared) -> Machine {
     started();
     let mut machine = MachineBuilder::default()
-        .with_streams(engine_streams(host, roots))
+        .with_streams(engine_streams(host, shared))
         .with_toplevel(toplevel())
         .build();
     machine.consult_module_string("user", PRELUDE);
     machine.consult_module_string("user", permissions::guards());
+    machine
+}
+
+/// Loads the application's clauses (`prepared`, no directive run) into a
+/// [`base_machine`], then its libraries and the SWI-Prolog bridge.
+fn load_application(machine: &mut Machine, prepared: &[Prepared]) -> Vec<PrologLoadError> {
     let mut errors = Vec::new();
     // The prelude's second part is asserted clause by clause, like the
     // application's (consulted in one string with the first part, the
@@ -827,15 +1029,15 @@ fn build_machine(
         } else {
             format!("'$sitlog_add'({},R).", p.text)
         };
-        check_load(&mut machine, &q, &p, &mut errors);
+        check_load(machine, &q, &p, &mut errors);
     }
     for p in prepared.iter().filter(|p| !p.directive) {
         let q = format!("'$sitlog_add'({},R).", p.text);
-        check_load(&mut machine, &q, p, &mut errors);
+        check_load(machine, &q, p, &mut errors);
     }
     for (lib, preds) in LIBRARIES {
         let q = format!("'$sitlog_import'({lib},[{}],R).", preds.join(","));
-        let _ = first_answer(&mut machine, &q, "R");
+        let _ = first_answer(machine, &q, "R");
     }
     let q = format!(
         "'$sitlog_bridge'([{}],R).",
@@ -850,8 +1052,8 @@ fn build_machine(
             .collect::<Vec<_>>()
             .join(",")
     );
-    let _ = first_answer(&mut machine, &q, "R");
-    (machine, errors)
+    let _ = first_answer(machine, &q, "R");
+    errors
 }
 
 /// The engine's toplevel module without its interactive loop, which an

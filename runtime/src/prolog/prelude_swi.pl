@@ -368,6 +368,28 @@
     ( '$swi_opened'(see, F, S) -> '$swi_close'(see, F), close(S) ; true ),
     '$swi_user'(see, U),
     set_input(U).
+% read(-Term): from a file see/1 opened, as read/1; else the run's next
+% input (the next term of the script, or typed), as the original's test
+% mode reads it (the host answers an `I` request); end_of_file at its end.
+'$swi_read'(Term) :-
+    current_input(S),
+    '$swi_opened'(see, _, S),
+    !,
+    read(S, Term).
+'$swi_read'(Term) :-
+    put_char(user_error, '\x1\'),
+    put_char(user_error, 'I'),
+    put_char(user_error, '\x2\'),
+    flush_output(user_error),
+    get_line_to_chars(user_input, Line, []),
+    read_from_chars(Line, Reply),
+    (   Reply = '$ok'(T, _)
+    ->  Term = T
+    ;   Reply = '$error'(E)
+    ->  throw(E)
+    ;   Term = end_of_file
+    ).
+
 '$swi_tell'(F) :-
     '$swi_user'(tell, U),
     (   F == user -> set_output(U)

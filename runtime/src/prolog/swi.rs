@@ -156,6 +156,7 @@ pub const SWI_RENAMED: &[(&str, usize)] = &[
     ("atom_to_term", 3),
     ("format", 2),
     ("format", 3),
+    ("read", 1),
 ];
 
 pub(super) fn swi_renamed(name: Atom, arity: usize) -> Option<Atom> {

@@ -9,7 +9,7 @@
 //! type what the original's test mode gives it instead (`detected(T)`,
 //! `doas(T)`, `speaker(T)`, several terms read...).
 
-pub use crate::input::InputLimits;
+pub use crate::input::{InputLimits, SharedInput, TermInput};
 use crate::machine::{Actions, Perceived, Perception};
 use crate::store::Store;
 use crate::term::Term;
@@ -18,6 +18,8 @@ use std::io::{BufRead, Read, Write};
 
 pub mod original;
 pub use original::OriginalTestMode;
+mod prompt;
+pub use prompt::PromptPerception;
 
 /// Types whose perceptual interpreter wraps the input as `said(Term)` (D-14).
 pub(crate) fn wraps_said(store: &Store, ty: Term) -> bool {
@@ -249,25 +251,30 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
-impl Perception for ScriptPerception {
-    fn perceive(
-        &mut self,
-        store: &mut Store,
-        ty: Term,
-        _expectations: &[Term],
-    ) -> Result<Perceived, String> {
+/// One input of a script: a plain atom (read without the term reader) or
+/// a clause.
+enum ScriptInput {
+    Atom(Atom),
+    Clause(sitlog_syntax::Clause),
+}
+
+impl ScriptPerception {
+    /// The next input and the offsets in `text` of its text (`None` at
+    /// the end of the script); past it once read.
+    fn next_input(&mut self) -> Result<Option<(ScriptInput, usize, usize)>, String> {
         self.fill()?;
         let ops = OpTable::sitlog_shared();
         let rest = &self.text[self.pos..];
         if self.atoms_fast {
             if let Some((name, end)) = plain_atom(rest, ops) {
                 if end <= self.limits.max_bytes {
+                    let start = self.pos;
                     self.pos += end;
-                    let t = Term::atom(Atom::intern(name));
-                    if self.echo {
-                        crate::errln!("input: {}", store.writeq(t));
-                    }
-                    return Ok(deliver(store, ty, t));
+                    return Ok(Some((
+                        ScriptInput::Atom(Atom::intern(name)),
+                        start,
+                        self.pos,
+                    )));
                 }
             }
         }
@@ -286,19 +293,15 @@ impl Perception for ScriptPerception {
         };
         match reader.next_clause() {
             None if truncated => Err(self.limits.size_error(&what(), cut)),
-            None => Ok(Perceived::EndOfInput),
+            None => Ok(None),
             Some(Err(e)) if truncated && (e.incomplete || reader.position() >= cut) => {
                 Err(self.limits.size_error(&what(), cut))
             }
             Some(Err(e)) if e.is_too_deep() => Err(self.limits.depth_error(&what())),
             Some(Ok(clause)) => {
-                let base = self.pos;
-                self.pos = base + reader.position();
-                let (t, _) = store.from_clause(&clause);
-                if self.echo {
-                    crate::errln!("input: {}", store.writeq(t));
-                }
-                Ok(deliver(store, ty, t))
+                let start = self.pos + leading_layout(rest);
+                self.pos += reader.position();
+                Ok(Some((ScriptInput::Clause(clause), start, self.pos)))
             }
             Some(Err(e)) => {
                 let (line, col) = line_col(&self.text, self.pos + e.span.start as usize);
@@ -308,6 +311,86 @@ impl Perception for ScriptPerception {
                     self.name, e.message
                 ))
             }
+        }
+    }
+}
+
+impl Perception for ScriptPerception {
+    fn perceive(
+        &mut self,
+        store: &mut Store,
+        ty: Term,
+        _expectations: &[Term],
+    ) -> Result<Perceived, String> {
+        let t = match self.next_input()? {
+            None => return Ok(Perceived::EndOfInput),
+            Some((ScriptInput::Atom(a), _, _)) => Term::atom(a),
+            Some((ScriptInput::Clause(clause), _, _)) => store.from_clause(&clause).0,
+        };
+        if self.echo {
+            crate::errln!("input: {}", store.writeq(t));
+        }
+        Ok(deliver(store, ty, t))
+    }
+}
+
+/// Prolog's `read/1` takes the script's next input (issue 39).
+impl TermInput for ScriptPerception {
+    fn next_term_text(&mut self) -> Result<Option<String>, String> {
+        let Some((_, start, end)) = self.next_input()? else {
+            return Ok(None);
+        };
+        let text = self.text[start..end].to_owned();
+        if self.echo {
+            crate::errln!("input: {}", text.trim().trim_end_matches('.'));
+        }
+        Ok(Some(text))
+    }
+}
+
+/// Prolog's `read/1` takes the next term typed (issue 39).
+impl<R: BufRead + Send> TermInput for PromptPerception<R> {
+    fn next_term_text(&mut self) -> Result<Option<String>, String> {
+        self.read_term_text()
+    }
+}
+
+/// A perception shared with the run's Prolog engine: the perception
+/// perceives through it, and [`SharedPerception::input`] gives the engine
+/// the same reader (one input, read in order by both).
+pub struct SharedPerception<P: Perception + TermInput + 'static> {
+    inner: std::sync::Arc<std::sync::Mutex<P>>,
+}
+
+impl<P: Perception + TermInput + 'static> SharedPerception<P> {
+    pub fn new(perception: P) -> Self {
+        SharedPerception {
+            inner: std::sync::Arc::new(std::sync::Mutex::new(perception)),
+        }
+    }
+
+    /// The reader the engine's `read/1` takes terms from.
+    pub fn input(&self) -> SharedInput {
+        self.inner.clone()
+    }
+}
+
+impl<P: Perception + TermInput + 'static> Perception for SharedPerception<P> {
+    fn perceive(
+        &mut self,
+        store: &mut Store,
+        ty: Term,
+        expectations: &[Term],
+    ) -> Result<Perceived, String> {
+        match self.inner.lock() {
+            Ok(mut p) => p.perceive(store, ty, expectations),
+            Err(_) => Err("the input's reader failed earlier (poisoned)".to_owned()),
+        }
+    }
+
+    fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
+        if let Ok(mut p) = self.inner.lock() {
+            p.waiting_at(store, dm, situation);
         }
     }
 }
@@ -344,121 +427,6 @@ pub fn waiting_text(store: &Store, dm: Term, situation: Term) -> (String, String
         None => store.writeq(dm),
     };
     (dm, store.writeq(situation))
-}
-
-/// Inputs typed at a prompt (stdin), with the expectations listed on stderr.
-pub struct PromptPerception<R: BufRead> {
-    input: R,
-    limits: InputLimits,
-    /// Lines read so far (for positions in errors).
-    line: usize,
-    /// The DM and situation waiting, when the machine said.
-    at: Option<(String, String)>,
-}
-
-impl<R: BufRead> PromptPerception<R> {
-    pub fn new(input: R) -> Self {
-        PromptPerception {
-            input,
-            limits: InputLimits::default(),
-            line: 0,
-            at: None,
-        }
-    }
-
-    /// Reads each input under `limits` (default: [`InputLimits::default`]).
-    pub fn with_limits(mut self, limits: InputLimits) -> Self {
-        self.limits = limits;
-        self
-    }
-
-    /// One line of input (with its `\n`), at most `max` bytes read: `Ok(None)`
-    /// at end of input; an error for text that is not UTF-8.
-    fn read_line(&mut self, max: usize) -> Result<Option<String>, String> {
-        let mut bytes = Vec::new();
-        let n = (&mut self.input)
-            .take(max as u64 + 1)
-            .read_until(b'\n', &mut bytes)
-            .map_err(|e| format!("standard input: {e}"))?;
-        if n == 0 {
-            return Ok(None);
-        }
-        self.line += 1;
-        match sitlog_syntax::decode_owned(bytes) {
-            Ok(text) => Ok(Some(text)),
-            Err(e) => Err(format!(
-                "standard input:{}:{}: {}",
-                self.line, e.column, e.message
-            )),
-        }
-    }
-}
-
-impl<R: BufRead> Perception for PromptPerception<R> {
-    fn perceive(
-        &mut self,
-        store: &mut Store,
-        ty: Term,
-        expectations: &[Term],
-    ) -> Result<Perceived, String> {
-        let mut err = std::io::stderr();
-        let header = prompt_header(store, self.at.as_ref(), ty, expectations);
-        let _ = writeln!(err, "{header}");
-        let mut text = String::new();
-        let mut start_line = self.line + 1;
-        loop {
-            let _ = write!(err, "{}", if text.is_empty() { "|: " } else { "|  " });
-            let _ = err.flush();
-            if text.is_empty() {
-                start_line = self.line + 1;
-            }
-            let what = || format!("standard input:{start_line}:1: the input");
-            let room = self.limits.max_bytes.saturating_sub(text.len());
-            let line = self.read_line(room)?.unwrap_or_default();
-            if text.len() + line.len() > self.limits.max_bytes {
-                return Err(self.limits.size_error(&what(), text.len() + line.len()));
-            }
-            let n = line.len();
-            if n == 0 {
-                if text.trim().is_empty() {
-                    return Ok(Perceived::EndOfInput);
-                }
-                text.push('\n');
-            }
-            text.push_str(&line);
-            if text.trim().is_empty() {
-                text.clear();
-                continue;
-            }
-            match sitlog_syntax::read_term_limited(
-                text.trim(),
-                OpTable::sitlog_shared(),
-                self.limits.max_depth,
-            ) {
-                Ok(clause) => {
-                    let (t, _) = store.from_clause(&clause);
-                    return Ok(deliver(store, ty, t));
-                }
-                Err(e) if e.is_too_deep() => return Err(self.limits.depth_error(&what())),
-                Err(e) if e.incomplete && n > 0 => continue,
-                Err(e) => {
-                    let _ = writeln!(
-                        err,
-                        "syntax error: {} (type a term ending with `.`)",
-                        e.message
-                    );
-                    text.clear();
-                    if n == 0 {
-                        return Ok(Perceived::EndOfInput);
-                    }
-                }
-            }
-        }
-    }
-
-    fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
-        self.at = Some(waiting_text(store, dm, situation));
-    }
 }
 
 /// Renders actions as text, like the original's test mode: `screen(M)` and

@@ -84,6 +84,68 @@ mod limit_tests {
         let e = first(&mut p).unwrap_err();
         assert!(e.starts_with("standard input:2:4:"), "{e}");
     }
+
+    #[test]
+    fn endless_typed_input_is_refused_at_the_limit() {
+        // `< /dev/zero`: one line that never ends
+        let limits = InputLimits {
+            max_bytes: 4096,
+            max_depth: 10,
+        };
+        let zeros = std::io::BufReader::new(std::io::repeat(0));
+        let mut p = PromptPerception::new(zeros).with_limits(limits);
+        let e = first(&mut p).unwrap_err();
+        assert!(
+            e.starts_with("standard input:1:1: the input is longer than 4096 bytes"),
+            "{e}"
+        );
+        // a term over many lines, each under the limit, together over it
+        let many = "[\n".to_owned() + &"a,\n".repeat(3000) + "b].\n";
+        let mut p = PromptPerception::new(many.as_bytes()).with_limits(limits);
+        let e = first(&mut p).unwrap_err();
+        assert!(e.contains("longer than 4096 bytes"), "{e}");
+    }
+
+    #[test]
+    fn a_term_over_many_lines_is_read_once() {
+        let lines = 5_000;
+        let text = "[\n".to_owned() + &"a,\n".repeat(lines) + "b].\nok.\n";
+        let mut store = Store::new();
+        let ty = Term::atom(Atom::intern("speech"));
+        let mut p = PromptPerception::new(text.as_bytes());
+        let Ok(Perceived::Input(t)) = p.perceive(&mut store, ty, &[]) else {
+            panic!("no input");
+        };
+        assert_eq!(store.list_to_vec(t).map(|v| v.len()), Some(lines + 1));
+        let Ok(Perceived::Input(t)) = p.perceive(&mut store, ty, &[]) else {
+            panic!("no second input");
+        };
+        assert_eq!(store.writeq(t), "ok");
+        assert!(matches!(
+            p.perceive(&mut store, ty, &[]),
+            Ok(Perceived::EndOfInput)
+        ));
+    }
+
+    #[test]
+    fn the_end_scan_finds_end_tokens_outside_quotes_and_comments() {
+        let ends = |lines: &[&str]| {
+            let mut s = prompt::EndScan::default();
+            lines.iter().map(|l| s.feed(l)).collect::<Vec<bool>>()
+        };
+        assert_eq!(ends(&["f(a).\n"]), [true]);
+        assert_eq!(ends(&["f(a)."]), [true]);
+        assert_eq!(ends(&["f(a).% c\n"]), [true]);
+        assert_eq!(ends(&["[1.5,\n", "2]\n"]), [false, false]);
+        assert_eq!(ends(&["X =.. Y\n"]), [false]);
+        assert_eq!(ends(&["'a. \n", "b'.\n"]), [false, true]);
+        assert_eq!(ends(&["\"a. \\\" b. \n", "\".\n"]), [false, true]);
+        assert_eq!(ends(&["/* a. \n", "b. */ c.\n"]), [false, true]);
+        assert_eq!(ends(&["% a. \n", "b.\n"]), [false, true]);
+        assert_eq!(ends(&["X = 0'a, Y = 0''', Z = 0'\\'.\n"]), [true]);
+        assert_eq!(ends(&["X = 0'. \n"]), [false]);
+        assert_eq!(ends(&["X = 16'FF.\n"]), [true]);
+    }
 }
 
 #[cfg(test)]
