@@ -105,17 +105,56 @@ fn ground_as_term(ty: &Ty) -> Ty {
     }
 }
 
-/// A DM's types with every `ground` read as `term`.
+/// A DM's types with every `ground` read as `term`, and every register,
+/// parameter or id argument that holds no value (`never` since `mir::ty`
+/// types `_`) as `term`.
 fn ground_as_term_dm(t: &DmTypes) -> DmTypes {
     let mut t = t.clone();
     let fix = |x: &mut crate::mir::ty::Typed| x.ty = ground_as_term(&x.ty);
+    // A parameter or id argument nothing reads holds no value (`never`):
+    // native code still receives one there, a term.
+    let unread = |x: &mut crate::mir::ty::Typed| {
+        if x.ty == Ty::Never {
+            x.ty = Ty::Term;
+        }
+    };
     t.params.iter_mut().for_each(fix);
+    t.params.iter_mut().for_each(unread);
     for st in t.sits.iter_mut().flatten() {
         st.regs.iter_mut().for_each(fix);
         st.id_args.iter_mut().for_each(fix);
+        st.id_args.iter_mut().for_each(unread);
         fix(&mut st.pipe);
     }
     t
+}
+
+/// The type of a register that holds no value for `mir::ty` (`_`: a
+/// parameter, an id argument or a part of one that the situation does not
+/// read): native code still loads it from where it starts, so it has the
+/// type of that place (a fresh variable's is `term`).
+fn unread_reg_ty(t: &DmTypes, st: &SitTypes, init: Option<&Init>) -> Ty {
+    match init {
+        Some(Init::HeadArg(i)) => t.params.get(*i).map_or(Ty::Term, |p| p.ty.clone()),
+        Some(Init::IdArg(i)) => st.id_args.get(*i).map_or(Ty::Term, |a| a.ty.clone()),
+        Some(Init::IdPath(path)) => {
+            let Some((first, rest)) = path.split_first() else {
+                return Ty::Term;
+            };
+            let mut ty = st.id_args.get(*first).map_or(Ty::Term, |a| a.ty.clone());
+            for &k in rest {
+                ty = match (&ty, k) {
+                    (Ty::List(e), 0) => (**e).clone(),
+                    (Ty::List(_), 1) => ty.clone(),
+                    (Ty::Tagged(_, args), k) => args.get(k).cloned().unwrap_or(Ty::Term),
+                    _ => Ty::Term,
+                };
+            }
+            ty
+        }
+        Some(Init::Pipe) => st.pipe.ty.clone(),
+        Some(Init::Fresh) | None => Ty::Term,
+    }
 }
 
 /// Whether Rust's `==` on values of this type is Prolog's `==`.
@@ -159,7 +198,7 @@ pub(super) struct NativeCode {
 struct Dm<'a> {
     dm: &'a IrDm,
     plans: Vec<&'a SitPlan>,
-    types: Vec<&'a SitTypes>,
+    types: Vec<SitTypes>,
     /// The parameters' types.
     params: Vec<Ty>,
 }
@@ -180,18 +219,23 @@ impl Gen<'_> {
                 .plan(dm_ix as u32, i as u32)
                 .ok_or("a situation is instantiated from its template")?;
             let st = t.sits[i].as_ref().ok_or("a situation has no types")?;
+            let mut st = st.clone();
+            for r in 0..st.regs.len() {
+                if st.unbound.get(r).copied().unwrap_or(false) {
+                    let init = plan
+                        .inits
+                        .iter()
+                        .find(|(x, _)| *x as usize == r)
+                        .map(|(_, i)| i);
+                    st.regs[r].ty = unread_reg_ty(t, &st, init);
+                }
+            }
             if let Some(r) = st.regs.iter().position(|r| rust_ty(&r.ty).is_err()) {
                 let why = st.regs[r].why.as_deref().unwrap_or("no reason given");
                 return Err(format!(
                     "situation {} has register r{r} typed {}: {why}",
                     i + 1,
                     st.regs[r].ty
-                ));
-            }
-            if let Some(r) = st.unbound.iter().position(|&u| u) {
-                return Err(format!(
-                    "situation {} has register r{r} holding no value (`_`): native code has no fresh variables",
-                    i + 1
                 ));
             }
             plans.push(plan);
@@ -447,7 +491,7 @@ impl Gen<'_> {
     fn native_visit(&self, d: &Dm, ix: usize, fields: &[(Reg, Ty)]) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
         let plan = d.plans[ix];
-        let st = d.types[ix];
+        let st = &d.types[ix];
         if plan.in_arg.is_some() || plan.out_arg.is_some() || plan.prog.is_some() {
             return Err(format!("situation {} uses the pipe or prog", ix + 1));
         }

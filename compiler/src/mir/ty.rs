@@ -505,6 +505,9 @@ fn compound_ty(name: Atom, args: Vec<Typed>) -> Typed {
             ),
             // No value reaches the tail (yet): none reaches the cell.
             Ty::Never => Typed::never(),
+            // An improper list of ground values (`[a|b]`, or a tail that is
+            // any ground value) is ground.
+            _ if args[0].ty.is_native() && args[1].ty.is_native() => Typed::of(Ty::Ground),
             _ => Typed::term("a partial list (its tail is not a list)"),
         };
     }
@@ -523,9 +526,8 @@ fn args_of(t: &Typed, name: Atom, n: usize) -> Option<Vec<Typed>> {
     match &t.ty {
         Ty::Never => None,
         Ty::Term => Some(vec![t.clone(); n]),
-        Ty::Ground if name == atoms::DOT && n == 2 => {
-            Some(vec![Typed::of(Ty::Ground), Typed::of(Ty::list(Ty::Ground))])
-        }
+        // A ground `[H|T]` may be an improper list (`[a|b]`): its tail is
+        // any ground value, not a list.
         Ty::Ground => Some(vec![Typed::of(Ty::Ground); n]),
         Ty::List(e) if name == atoms::DOT && n == 2 => Some(vec![
             Typed {
