@@ -13,7 +13,9 @@ pub fn explain_types_of(app: &std::path::Path) -> u8 {
             let mir = sitlog_compiler::mir::lower(&ir);
             let types = sitlog_compiler::types::infer(&ir, &mir);
             let mir_types = sitlog_compiler::mir::ty::infer(&ir, &mir);
-            let text = sitlog_compiler::types::explain_with(&ir, &types, Some(&mir_types));
+            let native = sitlog_compiler::codegen::native_dms(&ir);
+            let text =
+                sitlog_compiler::types::explain_with(&ir, &types, Some((&mir_types, &native)));
             write_stdout(&text, "the type listing")
         }
         Err(code) => code,

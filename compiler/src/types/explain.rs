@@ -13,11 +13,20 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
 
 /// [`explain`] with, when given, what [`crate::mir::ty::infer`] found on
 /// the MIR: a line per DM and per situation, and its summary line just
-/// before this listing's two summary lines.
-pub fn explain_with(ir: &Ir, types: &Types, mir: Option<&crate::mir::ty::MirTypes>) -> String {
+/// before this listing's two summary lines; and per DM whether the code
+/// generator gives it native code (`crate::codegen::native_dms`, passed
+/// in: inference does not reach up into the back end).
+pub fn explain_with(
+    ir: &Ir,
+    types: &Types,
+    mir: Option<(&crate::mir::ty::MirTypes, &[Result<usize, String>])>,
+) -> String {
     let store = &ir.store;
     let mut out = String::new();
-    let native = mir.map(|_| crate::codegen::native_dms(ir));
+    let (mir, native) = match mir {
+        Some((m, n)) => (Some(m), Some(n)),
+        None => (None, None),
+    };
     for (d, (dm, t)) in ir.dms.iter().zip(&types.dms).enumerate() {
         let _ = writeln!(out, "DM {}/{}", dm.name.as_str(), dm.arity);
         if let Some(m) = mir {
@@ -130,7 +139,7 @@ pub fn explain_with(ir: &Ir, types: &Types, mir: Option<&crate::mir::ty::MirType
         let _ = writeln!(out, "{}", m.summary());
     }
     let native_sits = native
-        .iter()
+        .into_iter()
         .flatten()
         .map(|n| n.as_ref().map_or(0, |&s| s))
         .sum();
