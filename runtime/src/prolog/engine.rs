@@ -295,23 +295,14 @@ impl PrologFunctions {
             input: Arc::new(Mutex::new(None)),
         };
         let host: HostSlot = Arc::new(Mutex::new(host));
-        std::thread::Builder::new()
-            .name("sitlog-prolog".into())
-            // The engine's reader and compiler recurse: room for terms
-            // PROLOG_MAX_DEPTH deep in a debug build (reserved, not used).
-            .stack_size(ENGINE_STACK)
-            .spawn(move || {
-                let machine = base_machine(host.clone(), shared.clone());
-                engine_thread(machine, setup, host, shared)
-            })
-            .map_err(|e| {
-                vec![PrologLoadError {
-                    file: "<engine>".into(),
-                    line: 0,
-                    col: 0,
-                    message: format!("cannot start the Prolog engine thread: {e}"),
-                }]
-            })?;
+        spawn_engine(host, shared, move || Some(setup)).map_err(|e| {
+            vec![PrologLoadError {
+                file: "<engine>".into(),
+                line: 0,
+                col: 0,
+                message: format!("cannot start the Prolog engine thread: {e}"),
+            }]
+        })?;
         Ok(PrologFunctions::handle(
             roots,
             tx,
@@ -341,16 +332,7 @@ impl PrologFunctions {
             input: Arc::new(Mutex::new(None)),
         };
         let (tx, setup_rx) = mpsc::channel::<Setup>();
-        let (h, sh) = (host.clone(), shared.clone());
-        let spawned = std::thread::Builder::new()
-            .name("sitlog-prolog".into())
-            .stack_size(ENGINE_STACK)
-            .spawn(move || {
-                let machine = base_machine(h.clone(), sh.clone());
-                if let Ok(setup) = setup_rx.recv() {
-                    engine_thread(machine, setup, h, sh);
-                }
-            });
+        let spawned = spawn_engine(host.clone(), shared.clone(), move || setup_rx.recv().ok());
         if spawned.is_ok() {
             *slot = Some(Warm {
                 setup: tx,
@@ -751,6 +733,27 @@ impl PrologFunctions {
             other => Err(format!("`{}`: unexpected answer {other:?}", shown())),
         }
     }
+}
+
+/// Starts an engine thread: it builds the machine every application's
+/// engine starts from, then takes its application from `setup` (none: the
+/// thread ends) and serves it ([`engine_thread`]).
+fn spawn_engine(
+    host: HostSlot,
+    shared: Shared,
+    setup: impl FnOnce() -> Option<Setup> + Send + 'static,
+) -> std::io::Result<std::thread::JoinHandle<()>> {
+    std::thread::Builder::new()
+        .name("sitlog-prolog".into())
+        // The engine's reader and compiler recurse: room for terms
+        // PROLOG_MAX_DEPTH deep in a debug build (reserved, not used).
+        .stack_size(ENGINE_STACK)
+        .spawn(move || {
+            let machine = base_machine(host.clone(), shared.clone());
+            if let Some(setup) = setup() {
+                engine_thread(machine, setup, host, shared);
+            }
+        })
 }
 
 /// The engine thread: builds the machine, loads, then starts and answers
