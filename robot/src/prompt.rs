@@ -3,7 +3,7 @@
 //! before each read.
 //!
 //! - On a terminal (stdin and stderr both terminals, feature `edit`), lines
-//!   are read with line editing and history ([`EditedPrompt`], rustyline,
+//!   are read with line editing and history (`EditedPrompt`, rustyline,
 //!   on the terminal itself); Ctrl-C stops the run as SIGINT does.
 //! - Otherwise lines are read as they come ([`PromptPerception`] of the
 //!   runtime), so scripts and pipes work as before.

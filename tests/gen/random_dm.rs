@@ -49,7 +49,7 @@
 /// How many programs `tests/build.rs` generates (seeds `0..PROGRAMS`).
 pub const PROGRAMS: u64 = 24;
 
-/// The first seed of the walker programs (issue 37, [`walkers`]):
+/// The first seed of the walker programs (issue 37, `walkers`):
 /// seeds `WALKER_SEED..WALKER_SEED + WALKERS`.
 pub const WALKER_SEED: u64 = 1000;
 /// How many walker programs `tests/build.rs` generates.

@@ -71,7 +71,7 @@ pub fn interpreter(app: &Path) -> (sitlog_compiler::ir::Ir, Functions) {
 }
 
 /// [`interpreter`], with the Prolog engine of `app` shared by the tests of
-/// the process where that is sound (see [`shared_engine`]).
+/// the process where that is sound (see `shared_engine`).
 pub fn shared_interpreter(app: &Path) -> (sitlog_compiler::ir::Ir, Functions) {
     interpreter_with(app, true)
 }

@@ -114,7 +114,7 @@ pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
     g.emit(ir, source)
 }
 
-/// Per DM, whether generated code runs it natively ([`native`]): how many
+/// Per DM, whether generated code runs it natively (`codegen::native`): how many
 /// of its situations then hold no ground term (no register typed `term`),
 /// or why it runs on terms.
 pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
