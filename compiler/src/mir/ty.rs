@@ -2312,6 +2312,33 @@ diag_mod(search(Places, Target),
 "#;
 
     #[test]
+    fn a_ground_list_cell_may_be_improper() {
+        // `main`'s parameter is `ground` (the command line gives it): it
+        // may be `[a|b]`, so the tail matched by `[X|Rest]` is `ground`,
+        // not `list<ground>`; a cell built of ground values whose tail is
+        // not a list is `ground`, not a partial-list `term`.
+        let (ir, mir, t) = types_of(
+            r#"
+diag_mod(main(Items),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => w(Items) ] ],
+    [ id ==> w([]), type ==> final ],
+    [ id ==> w([X|Rest]), type ==> neutral, arcs ==> [ empty : empty => pair([X|X], Rest) ] ],
+    [ id ==> pair(P, R), type ==> neutral, arcs ==> [ empty : [say(P)] => w(R) ] ] ],
+  []).
+"#,
+        );
+        let m = dm(&ir, "main");
+        let walk = sit(&ir, m, 2);
+        assert_eq!(var_ty(&ir, &mir, &t, m, walk, "X"), Ty::Ground);
+        assert_eq!(var_ty(&ir, &mir, &t, m, walk, "Rest"), Ty::Ground);
+        let pair = sit(&ir, m, 3);
+        assert_eq!(
+            t.dms[m].sits[pair].as_ref().unwrap().id_args[0].ty,
+            Ty::Ground
+        );
+    }
+
+    #[test]
     fn a_list_walk_by_compound_id_is_typed() {
         let (ir, mir, t) = types_of(SEARCH);
         let s = dm(&ir, "search");
