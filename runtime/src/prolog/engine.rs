@@ -266,43 +266,36 @@ impl PrologFunctions {
             rx,
             ready: ready_tx,
         };
-        if let Some(w) = warm {
-            if let Ok(mut h) = w.host.lock() {
-                *h = host.clone();
-            }
-            if let Ok(mut r) = w.shared.roots.lock() {
-                r.clone_from(&source_dirs);
-            }
-            match w.setup.send(setup) {
-                Ok(()) => {
-                    return Ok(PrologFunctions::handle(
-                        w.shared.roots,
-                        tx,
-                        ready_rx,
-                        defined,
-                        options,
-                        outside,
-                        source_dirs,
-                    ));
+        let roots = 'engine: {
+            if let Some(w) = warm {
+                if let Ok(mut h) = w.host.lock() {
+                    *h = host.clone();
                 }
-                // its thread is gone: one built now
-                Err(mpsc::SendError(back)) => setup = back,
+                if let Ok(mut r) = w.shared.roots.lock() {
+                    r.clone_from(&source_dirs);
+                }
+                match w.setup.send(setup) {
+                    Ok(()) => break 'engine w.shared.roots,
+                    // its thread is gone: one built now
+                    Err(mpsc::SendError(back)) => setup = back,
+                }
             }
-        }
-        let roots: Roots = Arc::new(Mutex::new(source_dirs.clone()));
-        let shared = Shared {
-            roots: roots.clone(),
-            input: Arc::new(Mutex::new(None)),
+            let roots: Roots = Arc::new(Mutex::new(source_dirs.clone()));
+            let shared = Shared {
+                roots: roots.clone(),
+                input: Arc::new(Mutex::new(None)),
+            };
+            let host: HostSlot = Arc::new(Mutex::new(host));
+            spawn_engine(host, shared, move || Some(setup)).map_err(|e| {
+                vec![PrologLoadError {
+                    file: "<engine>".into(),
+                    line: 0,
+                    col: 0,
+                    message: format!("cannot start the Prolog engine thread: {e}"),
+                }]
+            })?;
+            roots
         };
-        let host: HostSlot = Arc::new(Mutex::new(host));
-        spawn_engine(host, shared, move || Some(setup)).map_err(|e| {
-            vec![PrologLoadError {
-                file: "<engine>".into(),
-                line: 0,
-                col: 0,
-                message: format!("cannot start the Prolog engine thread: {e}"),
-            }]
-        })?;
         Ok(PrologFunctions::handle(
             roots,
             tx,
