@@ -297,6 +297,22 @@ fn fits(expected: &str, actual: &str) -> bool {
     same_term(expected, actual) || (has_var && sitlog_graph::trace::may_match(expected, actual))
 }
 
+/// What is wrong when a value the run gave (`None`: it gave none) does not
+/// fit the expected one: `expected WHAT `want`, GOT `got`` or `.., NONE`.
+fn mismatch(
+    want: &super::case::Located,
+    got: Option<String>,
+    what: &str,
+    got_word: &str,
+    none: &str,
+) -> Option<String> {
+    match got {
+        Some(g) if fits(&want.text, &g) => None,
+        Some(g) => Some(format!("expected {what} `{}`, {got_word} `{g}`", want.text)),
+        None => Some(format!("expected {what} `{}`, {none}", want.text)),
+    }
+}
+
 /// Checks the expectations of `case` on what its run did.
 fn check(
     case: &Case,
@@ -358,19 +374,15 @@ fn check(
             .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
             .find(|v| v.get("unmatched").is_none() && v["depth"] == 0)
             .and_then(|v| v["situation"].as_str().map(str::to_owned));
-        match last {
-            Some(s) if fits(&want.text, &s) => {}
-            Some(s) => o.failures.push(format!(
-                "{}: expected the main DM to end in situation `{}`, it ended in `{s}`",
-                at(want),
-                want.text
-            )),
-            None => o.failures.push(format!(
-                "{}: expected the main DM to end in situation `{}`, it made no transition",
-                at(want),
-                want.text
-            )),
-        }
+        let failure = mismatch(
+            want,
+            last,
+            "the main DM to end in situation",
+            "it ended in",
+            "it made no transition",
+        );
+        o.failures
+            .extend(failure.map(|f| format!("{}: {f}", at(want))));
     }
     if let Some(want) = &e.out_arg {
         let got = o
@@ -379,19 +391,9 @@ fn check(
             .rev()
             .find_map(|l| l.strip_prefix("Out Arg: "))
             .map(str::to_owned);
-        match got {
-            Some(g) if fits(&want.text, &g) => {}
-            Some(g) => o.failures.push(format!(
-                "{}: expected the out_arg `{}`, it was `{g}`",
-                at(want),
-                want.text
-            )),
-            None => o.failures.push(format!(
-                "{}: expected the out_arg `{}`, the run printed none",
-                at(want),
-                want.text
-            )),
-        }
+        let failure = mismatch(want, got, "the out_arg", "it was", "the run printed none");
+        o.failures
+            .extend(failure.map(|f| format!("{}: {f}", at(want))));
     }
     if let Some(max) = e.max_transitions {
         if o.transitions > max {
