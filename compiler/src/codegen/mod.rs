@@ -132,15 +132,8 @@ pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
             if typed.is_some_and(typed::has_typed_code) {
                 return Err("it runs on the typed frame of its typed situations".to_owned());
             }
-            g.native_code(dm, d, &mir_types.dms[d]).map(|_| {
-                // On native values: no register a ground term.
-                mir_types.dms[d]
-                    .sits
-                    .iter()
-                    .flatten()
-                    .filter(|s| s.regs.iter().all(|r| r.is_native()))
-                    .count()
-            })
+            g.native_code(dm, d, &mir_types.dms[d])
+                .map(|n| n.on_native_values)
         })
         .collect()
 }

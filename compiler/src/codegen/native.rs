@@ -193,6 +193,10 @@ pub(super) struct NativeCode {
     pub items: TokenStream,
     /// The hook `run_situation` tries first.
     pub first: TokenStream,
+    /// How many situations hold no ground handle (no register `term`, or
+    /// `ground`, which native code holds as a handle too): the ones on
+    /// native values.
+    pub on_native_values: usize,
 }
 
 struct Dm<'a> {
@@ -352,7 +356,16 @@ impl Gen<'_> {
                 }
             }
         };
-        Ok(NativeCode { items, first })
+        let on_native_values = d
+            .types
+            .iter()
+            .filter(|st| st.regs.iter().all(|r| r.ty.is_native()))
+            .count();
+        Ok(NativeCode {
+            items,
+            first,
+            on_native_values,
+        })
     }
 
     fn nat_id_of(&self, d: &Dm, ix: usize) -> Term {
