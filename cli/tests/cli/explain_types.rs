@@ -64,7 +64,7 @@ fn explain_types_ends_with_one_summary_line() {
         assert!(
             mir.starts_with("MIR registers typed: ")
                 && mir.contains("; situations with no term register: ")
-                && mir.ends_with("(MIR inference, not yet used by generated code)"),
+                && mir.ends_with("(MIR inference; generated code uses it for native DMs only)"),
             "{app}: {mir}"
         );
         println!("{app}: {mir}");
