@@ -92,11 +92,13 @@ enum Request {
         Option<(Confine, Vec<PathBuf>)>,
         mpsc::Sender<Vec<PrologLoadError>>,
     ),
-    /// A query, with the run's input its `read/1` takes terms from.
+    /// A query, with the run's input its `read/1` takes terms from; the
+    /// engine answers on the channel, and asks there for the history while
+    /// the query runs ([`Reply::History`]).
     Query(
         String,
         Option<crate::input::SharedInput>,
-        mpsc::Sender<Result<Option<PTerm>, String>>,
+        mpsc::Sender<Reply>,
     ),
 }
 
@@ -133,12 +135,37 @@ static WARM: Mutex<Option<Warm>> = Mutex::new(None);
 /// terms `PROLOG_MAX_DEPTH` deep in a debug build (reserved, not used).
 const ENGINE_STACK: usize = 512 << 20;
 
-/// What the engine thread shares with the handle: the trust roots and the
-/// run's input.
+/// What the engine thread sends back for a query.
+enum Reply {
+    /// The query's answer.
+    Answer(Result<Option<PTerm>, String>),
+    /// `get_history/1` in the running query asks for the history from the
+    /// element given on (the caller, waiting for the answer, writes that
+    /// part and sends it back).
+    History(usize, mpsc::Sender<String>),
+}
+
+/// Where the running query's `get_history/1` asks for the history: its
+/// reply channel while it runs.
+type HistoryLink = Arc<Mutex<Option<mpsc::Sender<Reply>>>>;
+
+/// What the engine thread shares with the handle: the trust roots, the
+/// run's input and the running query's history link.
 #[derive(Clone)]
 struct Shared {
     roots: Roots,
     input: RunInput,
+    history: HistoryLink,
+}
+
+impl Shared {
+    fn new(roots: Roots) -> Shared {
+        Shared {
+            roots,
+            input: Arc::new(Mutex::new(None)),
+            history: Arc::new(Mutex::new(None)),
+        }
+    }
 }
 
 /// The application's Prolog user functions, running in an embedded engine.
@@ -281,10 +308,7 @@ impl PrologFunctions {
                 }
             }
             let roots: Roots = Arc::new(Mutex::new(source_dirs.clone()));
-            let shared = Shared {
-                roots: roots.clone(),
-                input: Arc::new(Mutex::new(None)),
-            };
+            let shared = Shared::new(roots.clone());
             let host: HostSlot = Arc::new(Mutex::new(host));
             spawn_engine(host, shared, move || Some(setup)).map_err(|e| {
                 vec![PrologLoadError {
@@ -320,10 +344,7 @@ impl PrologFunctions {
             return;
         }
         let host: HostSlot = Arc::new(Mutex::new(None));
-        let shared = Shared {
-            roots: Arc::new(Mutex::new(Vec::new())),
-            input: Arc::new(Mutex::new(None)),
-        };
+        let shared = Shared::new(Arc::new(Mutex::new(Vec::new())));
         let (tx, setup_rx) = mpsc::channel::<Setup>();
         let spawned = spawn_engine(host.clone(), shared.clone(), move || setup_rx.recv().ok());
         if spawned.is_ok() {
@@ -503,12 +524,16 @@ impl PrologFunctions {
         stop: Option<&AtomicBool>,
         what: &str,
     ) -> Result<Option<PTerm>, String> {
-        self.ask_with(query, None, options, stop, what)
+        self.ask_with(query, None, options, stop, what, &mut |_| {
+            NO_HISTORY.to_owned()
+        })
     }
 
     /// [`ask`](Self::ask) with the input `read/1` takes terms from (set on
     /// the engine thread with the query, so runs sharing one engine each
-    /// read their own).
+    /// read their own), and `history` writing the part of the history from
+    /// an element on that `get_history/1` asks for, if the query calls it
+    /// ([`history_part`]).
     fn ask_with(
         &self,
         query: String,
@@ -516,6 +541,7 @@ impl PrologFunctions {
         options: PrologOptions,
         stop: Option<&AtomicBool>,
         what: &str,
+        history: &mut dyn FnMut(usize) -> String,
     ) -> Result<Option<PTerm>, String> {
         if let Some(why) = self.inner.abandoned.lock().ok().and_then(|a| a.clone()) {
             return Err(format!("the Prolog engine is stopped: {why}"));
@@ -527,7 +553,13 @@ impl PrologFunctions {
             .map_err(|_| "the Prolog engine is poisoned".to_owned())?
             .send(Request::Query(query, input, tx))
             .map_err(|_| "the Prolog engine has stopped".to_owned())?;
-        self.watch(&rx, options, stop, what)?
+        self.watch_with(&rx, options, stop, what, |reply| match reply {
+            Reply::Answer(answer) => Some(answer),
+            Reply::History(from, back) => {
+                let _ = back.send(history(from));
+                None
+            }
+        })?
     }
 
     /// Waits for the engine's answer on `rx` within the time and memory
@@ -541,12 +573,29 @@ impl PrologFunctions {
         stop: Option<&AtomicBool>,
         what: &str,
     ) -> Result<T, String> {
+        self.watch_with(rx, options, stop, what, Some)
+    }
+
+    /// [`watch`](Self::watch), each message given to `take`: `None` (a
+    /// request it served) waits on, within the same limits.
+    fn watch_with<T, R>(
+        &self,
+        rx: &mpsc::Receiver<T>,
+        options: PrologOptions,
+        stop: Option<&AtomicBool>,
+        what: &str,
+        mut take: impl FnMut(T) -> Option<R>,
+    ) -> Result<R, String> {
         let start = std::time::Instant::now();
         let rss0 = resident_bytes();
         let slice = std::time::Duration::from_millis(10);
         loop {
             match rx.recv_timeout(slice) {
-                Ok(answer) => return Ok(answer),
+                Ok(message) => {
+                    if let Some(answer) = take(message) {
+                        return Ok(answer);
+                    }
+                }
                 Err(mpsc::RecvTimeoutError::Disconnected) => {
                     return Err("the Prolog engine has stopped".to_owned())
                 }
@@ -585,7 +634,6 @@ impl PrologFunctions {
             Some(l) => PrologOptions::from(l),
             None => self.inner.options,
         };
-        let history = call.history_term();
         let store: &Store = call.store;
         let mut w = Writer::new(store, false);
         w.out.push_str("'$sitlog_call'(");
@@ -619,12 +667,13 @@ impl PrologFunctions {
             }
             w.out.push(']');
         }
-        w.out.push(',');
-        w.term(history);
+        // The history is not sent: `get_history/1` asks for it while the
+        // call runs (issue 38: sent with every call, it cost time per call
+        // and, past 100 000 entries, the engine's depth limit).
         let _ = write!(w.out, ",{},R).", options.inference_limit);
         if w.too_deep() {
             return Err(format!(
-                "`{name}/{}`: its arguments, the caller's variables or the history nest {} levels deep (a list counts a level per element); the Prolog engine takes at most {PROLOG_MAX_DEPTH}",
+                "`{name}/{}`: its arguments or the caller's variables nest {} levels deep (a list counts a level per element); the Prolog engine takes at most {PROLOG_MAX_DEPTH}",
                 args.len(),
                 w.deepest
             ));
@@ -644,12 +693,14 @@ impl PrologFunctions {
         let shown = || format!("{}/{}", name, args.len());
         // read/1 in this call takes the run's next input
         let input = call.functions.input().cloned();
+        let (store, history) = (&mut *call.store, call.history);
         let answer = self.ask_with(
             query,
             input,
             options,
             call.functions.stop(),
             &format!("`{}`", shown()),
+            &mut |from| history_part(store, history, from),
         )?;
         let Some(r) = answer else {
             return Err(format!("the Prolog call of `{}` did not answer", shown()));
@@ -780,6 +831,9 @@ fn engine_thread(mut machine: Machine, setup: Setup, host: HostSlot, shared: Sha
                 if let Ok(mut slot) = shared.input.lock() {
                     *slot = input;
                 }
+                if let Ok(mut slot) = shared.history.lock() {
+                    *slot = Some(reply.clone());
+                }
                 (q, reply)
             }
         };
@@ -797,9 +851,12 @@ fn engine_thread(mut machine: Machine, setup: Setup, host: HostSlot, shared: Sha
                 Err("the Prolog engine panicked (it was restarted)".to_owned())
             }
         };
+        if let Ok(mut slot) = shared.history.lock() {
+            *slot = None;
+        }
         // An answer nobody waits for any more (a call abandoned over a
         // limit) is dropped here, without recursion.
-        if let Err(mpsc::SendError(Ok(Some(t)))) = reply.send(r) {
+        if let Err(mpsc::SendError(Reply::Answer(Ok(Some(t))))) = reply.send(Reply::Answer(r)) {
             drop_deep(t);
         }
     }
@@ -850,6 +907,8 @@ fn engine_streams(host: HostSlot, shared: Shared) -> StreamConfig {
                 permissions::inside_reply(file, &roots)
             } else if text.starts_with('I') {
                 input_reply(&shared.input)
+            } else if let Some(from) = text.strip_prefix('H') {
+                history_reply(&shared.history, from)
             } else {
                 read_reply(text.strip_prefix('R').unwrap_or(&text))
             };
@@ -864,6 +923,76 @@ fn engine_streams(host: HostSlot, shared: Shared) -> StreamConfig {
         .with_user_input(input)
         .with_user_output(OutputStreamConfig::callback(on_output))
         .with_user_error(OutputStreamConfig::callback(on_error))
+}
+
+/// How many elements of the history one answer to `get_history/1` holds
+/// (an answer is one term for the engine's reader, which recurses on a
+/// list's cells: see [`PROLOG_MAX_DEPTH`]).
+const HISTORY_PART: usize = if cfg!(test) { 2 } else { 1000 };
+
+/// The history of a query that has none to give (a raw query).
+const NO_HISTORY: &str = "'$ok'([],end).\n";
+
+/// The answer to `get_history/1` (`H` request, `From` the first element
+/// wanted): asked of the caller waiting for the running query
+/// ([`Reply::History`]), and sent after a line giving its length in
+/// characters, so that the engine takes it in one read (its
+/// `get_line_to_chars/3` takes a character at a time: 70 µs each in a
+/// debug build).
+fn history_reply(link: &HistoryLink, from: &str) -> String {
+    let text = history_text(link, from);
+    format!("{}\n{text}", text.chars().count())
+}
+
+/// [`history_reply`]'s answer.
+fn history_text(link: &HistoryLink, from: &str) -> String {
+    let refused =
+        || "'$error'(error(existence_error(history, sitlog), get_history/1)).\n".to_owned();
+    let Ok(from) = from.trim().parse::<usize>() else {
+        return refused();
+    };
+    let Some(caller) = link.lock().ok().and_then(|l| l.clone()) else {
+        return NO_HISTORY.to_owned();
+    };
+    let (tx, rx) = mpsc::channel();
+    if caller.send(Reply::History(from, tx)).is_err() {
+        return refused();
+    }
+    rx.recv().unwrap_or_else(|_| refused())
+}
+
+/// The part of `history` (the current DM's, as `get_history/1` gives it)
+/// from element `from` on, at most [`HISTORY_PART`] elements, as the
+/// engine reads it: `'$ok'(Elements, Next)`, `Next` the next element's
+/// index or `end`. An element too deep for the engine's reader (an
+/// embedded DM's history over 100 000 entries) is an error naming the
+/// limit. Its terms are built in `store` only when a function asks.
+fn history_part(store: &mut Store, history: &[crate::history::Item], from: usize) -> String {
+    use crate::history::Item;
+    let from = from.min(history.len());
+    let end = (from + HISTORY_PART).min(history.len());
+    let terms: Vec<Term> = history[from..end]
+        .iter()
+        .map(|item| match item {
+            Item::Entry(e) => e.to_term(store),
+            Item::Nested(inner) => crate::history::to_term(inner, store),
+        })
+        .collect();
+    let list = store.list(&terms);
+    let mut w = Writer::new(store, false);
+    w.out.push_str("'$ok'(");
+    w.term(list);
+    if w.too_deep() {
+        return format!(
+            "'$error'(error(representation_error(history_depth({PROLOG_MAX_DEPTH})), get_history/1)).\n"
+        );
+    }
+    if end < history.len() {
+        let _ = writeln!(w.out, ",{end}).");
+    } else {
+        w.out.push_str(",end).\n");
+    }
+    w.out
 }
 
 /// The answer to a `read/1` of the application (`I` request): the run's

@@ -3,10 +3,11 @@
 % embedded engine (scryer-prolog) before them. Written for sitlog-rs.
 %
 % One call of a user function is one query
-%     '$sitlog_call'(Goal, Vars, Locals, Globals, History, Limit, Result)
-% where Locals and Globals are lists Name-Value, History is the task
-% history in the original's shape and Vars lists the caller's unbound
-% variables (so that their bindings flow back). The environment lives in
+%     '$sitlog_call'(Goal, Vars, Locals, Globals, Limit, Result)
+% where Locals and Globals are lists Name-Value and Vars lists the
+% caller's unbound variables (so that their bindings flow back). The task
+% history is not sent with the call: get_history/1 asks the host for it,
+% in parts, when a function reads it. The environment lives in
 % backtrackable global variables for the length of the call (no copies:
 % a function that binds a variable inside a SitLog variable's value binds
 % the caller's variable).
@@ -30,9 +31,9 @@ mode_exe(test).
 
 % ---------------------------------------------------------------- the call
 
-'$sitlog_call'(Goal, Vars, Locals, Globals, History, Limit, Result) :-
+'$sitlog_call'(Goal, Vars, Locals, Globals, Limit, Result) :-
     bb_b_put('$sitlog_env', env(Locals, Globals, [])),
-    bb_b_put('$sitlog_history', History),
+    bb_b_put('$sitlog_history', '$ask'),
     bb_b_put('$sitlog_value', '$none'),
     catch('$sitlog_run'(Goal, Limit, R0), E, R0 = error(E)),
     '$sitlog_result'(R0, Vars, Result).
@@ -73,9 +74,49 @@ mode_exe(test).
 assign_func_value(V) :-
     bb_b_put('$sitlog_value', v(V)).
 
-% get_history(H): the task history as it stands (read only).
+% get_history(H): the task history as it stands (read only), asked of the
+% host at the first call of the function's query and kept for the rest of
+% it.
 get_history(H) :-
-    bb_get('$sitlog_history', H).
+    bb_get('$sitlog_history', H0),
+    (   H0 = h(H1)
+    ->  true
+    ;   '$sitlog_history_from'(0, H1),
+        bb_b_put('$sitlog_history', h(H1))
+    ),
+    H = H1.
+
+% The history from element From on: the host answers a part of it at a
+% time, '$ok'(Elements, Next) with Next the next part's index or `end`
+% (engine.rs, history_part), after a line with its length in characters
+% (read in one go: get_line_to_chars/3 reads a character at a time).
+'$sitlog_history_from'(From, H) :-
+    put_char(user_error, '\x1\'),
+    put_char(user_error, 'H'),
+    write(user_error, From),
+    put_char(user_error, '\x2\'),
+    flush_output(user_error),
+    get_line_to_chars(user_input, Line, []),
+    '$sitlog_history_append'(Digits, ['\n'], Line),
+    number_chars(Length, Digits),
+    get_n_chars(user_input, Length, Text),
+    read_from_chars(Text, Reply),
+    (   Reply = '$ok'(Part, Next)
+    ->  true
+    ;   Reply = '$error'(E)
+    ->  throw(E)
+    ),
+    '$sitlog_history_join'(Part, Tail, H),
+    (   Next == end
+    ->  Tail = []
+    ;   '$sitlog_history_from'(Next, Tail)
+    ).
+
+'$sitlog_history_append'([], L, L).
+'$sitlog_history_append'([X|Xs], L, [X|Ys]) :- '$sitlog_history_append'(Xs, L, Ys).
+
+'$sitlog_history_join'([], T, T).
+'$sitlog_history_join'([X|Xs], T, [X|Ys]) :- '$sitlog_history_join'(Xs, T, Ys).
 
 % var_op(Op): get/set/inc of a local (first) or global SitLog variable,
 % with the semantics of the L evaluator; a list of operations is done in

@@ -371,3 +371,40 @@ fn a_clause_too_deep_for_the_engine_is_a_located_error() {
         "{shown}"
     );
 }
+
+/// Issue 38: the history is not sent with every call (it cost time per
+/// call, 0.18 s per 1 000 entries for the engine's reader in a debug
+/// build, and past 100 000 entries it was deeper than the engine takes):
+/// `get_history/1` asks for it, in parts, when a function reads it. A task
+/// past 100 000 transitions keeps calling Prolog; what a function reads is
+/// the history as it stands, assembled from parts (of two elements in a
+/// test build: `history_helpers` reads three).
+#[test]
+fn a_history_past_the_engines_depth_is_given_on_demand() {
+    let mut e = env();
+    let n = crate::functions::PROLOG_MAX_DEPTH + 1_500;
+    let (m, s, a) = (Atom::intern("m"), Atom::intern("s"), Atom::intern("a"));
+    let mut history: Vec<Item> = (0..n)
+        .map(|i| {
+            Item::Entry(Entry {
+                dm: Term::atom(m),
+                situation: Term::atom(s),
+                expectation: Term::int(i as i64),
+                action: Term::atom(a),
+            })
+        })
+        .collect();
+    history.insert(1, e.history.swap_remove(1));
+    e.history = history;
+    // A function that does not read the history costs nothing per entry
+    // (before: an error, the history too deep for the engine).
+    assert_eq!(run(&mut e, "apply(echo(X), [ok])").unwrap(), "ok");
+    // One that reads it gets it in parts (the last five entries here: the
+    // engine's reader takes 0.18 s per 1 000 entries in a debug build).
+    e.history.drain(..n - 4);
+    assert_eq!(
+        run(&mut e, "apply(g(X), [_])").unwrap(),
+        format!("{}:a", n - 1)
+    );
+    assert_eq!(run(&mut e, "apply(cur(X), [_])").unwrap(), "5");
+}
