@@ -81,11 +81,16 @@ pub fn checked_ir_opts(
 /// `sitlog.toml` says so. `Err`: the exit status, the settings file's error
 /// printed.
 pub fn deny_warnings(app: &Path, flag: bool) -> Result<bool, u8> {
+    deny_warnings_said(app, flag).map_err(|(code, _)| code)
+}
+
+/// [`deny_warnings`]; `Err` also holds the message printed.
+pub fn deny_warnings_said(app: &Path, flag: bool) -> Result<bool, (u8, String)> {
     match crate::config::read(app) {
         Ok(config) => Ok(flag || config.deny_warnings),
         Err((code, message)) => {
             sitlog_runtime::errln!("{message}");
-            Err(code)
+            Err((code, message))
         }
     }
 }
@@ -97,12 +102,24 @@ pub fn checked_ir_strict(
     options: sitlog_compiler::check::CheckOptions,
     deny_warnings: bool,
 ) -> Result<sitlog_compiler::ir::Ir, u8> {
+    checked_ir_said(app, options, deny_warnings).map_err(|(code, _)| code)
+}
+
+/// [`checked_ir_strict`]; `Err` also holds what refused the program in
+/// one line: the first error's `file:line:col: error[CODE]: message` (for
+/// `run --format json`'s report).
+pub fn checked_ir_said(
+    app: &std::path::Path,
+    options: sitlog_compiler::check::CheckOptions,
+    deny_warnings: bool,
+) -> Result<sitlog_compiler::ir::Ir, (u8, String)> {
     let loaded = check_app(app, options);
     let (result, diags) = match loaded {
         Ok(r) => r,
         Err(e) => {
-            sitlog_runtime::errln!("error: cannot read {e}");
-            return Err(2);
+            let message = format!("error: cannot read {e}");
+            sitlog_runtime::errln!("{message}");
+            return Err((2, message));
         }
     };
     let color = color_stderr();
@@ -119,20 +136,31 @@ pub fn checked_ir_strict(
     }
     let errors = diags.iter().filter(|d| d.is_error()).count();
     let warnings = diags.len() - errors;
+    // The first diagnostic that refuses the program, in one line.
+    let first = diags
+        .iter()
+        .find(|d| d.is_error())
+        .or_else(|| diags.iter().find(|_| deny_warnings))
+        .map(|d| {
+            let short = diag::render_short(d, program_sources);
+            short.lines().next().unwrap_or_default().to_owned()
+        })
+        .unwrap_or_default();
     match result {
         Ok(_) if deny_warnings && warnings > 0 => {
-            sitlog_runtime::errln!(
+            let message = format!(
                 "error: the application has {warnings} warning(s), and warnings are denied (--deny-warnings, or `deny-warnings = true` in {})",
                 crate::config::FILE
             );
-            Err(1)
+            sitlog_runtime::errln!("{message}");
+            Err((1, format!("{message}; the first: {first}")))
         }
         Ok(c) => Ok(sitlog_compiler::ir::lower(&c)),
         Err(_) => {
             sitlog_runtime::errln!(
                 "error: the application has {errors} error(s); run `sitlogc check` for details"
             );
-            Err(1)
+            Err((1, first))
         }
     }
 }

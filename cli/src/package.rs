@@ -245,10 +245,7 @@ pub fn write_package(
          }};\n    \
          match program::functions() {{\n        \
          Ok(functions) => {task_main}(program::program(), functions, &assets{robot}),\n        \
-         Err(e) => {{\n            \
-         sitlog_runtime::errln!(\"error: {{e}}\");\n            \
-         std::process::ExitCode::from(1)\n        \
-         }}\n    \
+         Err(e) => sitlog_robot::main_failed(&assets, &e),\n    \
          }}\n}}\n",
         src = app.display(),
         app_name = assets.app_name,

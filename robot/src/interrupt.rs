@@ -32,6 +32,18 @@ pub const EXIT_END_OF_INPUT: u8 = 3;
 /// with its history and report.
 pub const EXIT_ROBOT_GONE: u8 = 4;
 
+/// Whether the run reports in JSON (`--format json`): a signal before the
+/// task starts then writes the report (status `interrupted`) as it ends
+/// the process ([`report_json_before_start`]).
+static JSON_REPORT: AtomicBool = AtomicBool::new(false);
+
+/// Says that this process's run reports in JSON, so that a signal ending
+/// it before its task starts writes that report (status `interrupted`)
+/// on stdout: a caller reading the report always finds one.
+pub fn report_json_before_start(json: bool) {
+    JSON_REPORT.store(json, Ordering::SeqCst);
+}
+
 /// What [`Interrupt::request_end_of_input`] records in place of a signal.
 const END_OF_INPUT: i32 = -1;
 /// What [`Interrupt::request_robot_gone`] records in place of a signal.
@@ -78,7 +90,18 @@ impl Interrupt {
                     .spawn(move || {
                         for sig in signals.forever() {
                             if !watch.running.load(Ordering::SeqCst) {
-                                sitlog_runtime::errln!("interrupted before the task started");
+                                const MESSAGE: &str = "interrupted before the task started";
+                                sitlog_runtime::errln!("{MESSAGE}");
+                                if JSON_REPORT.load(Ordering::SeqCst) {
+                                    use std::io::Write as _;
+                                    let report = sitlog_runtime::report::stopped_json(
+                                        "interrupted",
+                                        MESSAGE,
+                                    );
+                                    let mut out = std::io::stdout();
+                                    let _ =
+                                        out.write_all(report.as_bytes()).and_then(|_| out.flush());
+                                }
                                 std::process::exit(i32::from(status_of(sig)));
                             }
                             if watch.flag.load(Ordering::SeqCst) {

@@ -21,39 +21,36 @@ pub(crate) struct LiveView {
 #[cfg(feature = "view")]
 impl LiveView {
     /// Serves the diagram of `assets` on `args.view_port` and waits for the
-    /// page; `Err` holds the exit status of a failure, reported on `stderr`.
+    /// page; `Err` holds the exit status and the message of a failure.
     pub(crate) fn start(
         args: &RunArgs,
         assets: &Assets,
         stderr: &mut dyn Write,
-    ) -> Result<LiveView, u8> {
+    ) -> Result<LiveView, (u8, String)> {
         let diagram = match assets
             .diagram
             .as_deref()
             .map(sitlog_graph::Diagram::from_json)
         {
             Some(Ok(d)) => d,
-            Some(Err(e)) => {
-                let _ = writeln!(stderr, "error: the task's diagram: {e}");
-                return Err(2);
-            }
+            Some(Err(e)) => return Err((2, format!("error: the task's diagram: {e}"))),
             None => {
-                let _ = writeln!(
-                    stderr,
-                    "error: --view needs the program's diagram, and this task has none"
-                );
-                return Err(2);
+                return Err((
+                    2,
+                    "error: --view needs the program's diagram, and this task has none".to_owned(),
+                ))
             }
         };
         let view = match sitlog_view::View::start(diagram, args.view_port) {
             Ok(v) => v,
             Err(e) => {
-                let _ = writeln!(
-                    stderr,
-                    "error: cannot serve the live view on 127.0.0.1:{}: {e}",
-                    args.view_port
-                );
-                return Err(2);
+                return Err((
+                    2,
+                    format!(
+                        "error: cannot serve the live view on 127.0.0.1:{}: {e}",
+                        args.view_port
+                    ),
+                ))
             }
         };
         let _ = writeln!(
@@ -90,12 +87,16 @@ impl LiveView {
 #[cfg(not(feature = "view"))]
 impl LiveView {
     /// Without the feature: refused, exit status 2.
-    pub(crate) fn start(_: &RunArgs, _: &Assets, stderr: &mut dyn Write) -> Result<LiveView, u8> {
-        let _ = writeln!(
-            stderr,
+    pub(crate) fn start(
+        _: &RunArgs,
+        _: &Assets,
+        _: &mut dyn Write,
+    ) -> Result<LiveView, (u8, String)> {
+        Err((
+            2,
             "error: --view: this build has no live view (feature `view` of sitlog-robot)"
-        );
-        Err(2)
+                .to_owned(),
+        ))
     }
 
     pub(crate) fn observer(&self, _: u64) -> Box<dyn Observer + Send> {

@@ -168,12 +168,23 @@ impl Runner {
         args: &RunArgs,
         assets: &Assets,
     ) -> u8 {
+        crate::interrupt::report_json_before_start(args.format == Format::Json);
         if !args.view {
             return self.run_task(app, functions, args, assets, None);
         }
         let view = match LiveView::start(args, assets, &mut self.streams.stderr) {
             Ok(view) => view,
-            Err(code) => return code,
+            Err((code, message)) => {
+                let _ = writeln!(self.streams.stderr, "{message}");
+                if args.format == Format::Json {
+                    let _ = self
+                        .streams
+                        .stdout
+                        .write_all(report::stopped_json("error", &message).as_bytes())
+                        .and_then(|_| self.streams.stdout.flush());
+                }
+                return code;
+            }
         };
         let observer = view.observer(args.view_delay);
         let code = self.run_task(app, functions, args, assets, Some(observer));
@@ -213,9 +224,20 @@ impl Runner {
         // Without the simulator there is no world to look at.
         #[cfg(not(feature = "sim"))]
         let _ = debug_world.take();
+        let json = args.format == Format::Json;
+        // Until the report is written, a run stopped by an error still
+        // writes one with --format json (status `error`, the message).
+        let mut reported = false;
         macro_rules! fail {
             ($code:expr, $($msg:tt)*) => {{
-                let _ = writeln!(streams.stderr, $($msg)*);
+                let message = format!($($msg)*);
+                let _ = writeln!(streams.stderr, "{message}");
+                if json && !reported {
+                    let _ = streams
+                        .stdout
+                        .write_all(report::stopped_json("error", &message).as_bytes())
+                        .and_then(|_| streams.stdout.flush());
+                }
                 return $code;
             }};
         }
@@ -224,7 +246,6 @@ impl Runner {
             Err((code, message)) => fail!(code, "{message}"),
         };
         let other_robot = args.robot == RobotKind::Ros2;
-        let json = args.format == Format::Json;
         // The transcript: stdout before the text report, stderr with JSON.
         let with_world = world.is_some() || other_robot;
         let progress = !args.quiet && streams.stdout_is_terminal && streams.stderr_is_terminal;
@@ -469,6 +490,7 @@ impl Runner {
                 report::outcome_text_with(&mut store, &outcome, args.history == HistoryMode::Keep)
             }
         };
+        reported = true;
         let written = streams
             .stdout
             .write_all(report.as_bytes())

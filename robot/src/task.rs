@@ -48,6 +48,41 @@ pub fn main_from<A: App>(
     on_big_stack(|| Runner::process().run(app, functions, &args, assets))
 }
 
+/// The `main` of a compiled task whose functions could not be made
+/// (`message`: its Prolog refused, e.g. a clause too deep for the engine):
+/// the command line is parsed as [`main`] parses it (`--help` still
+/// answers), the error goes to stderr and, with `--format json`, the
+/// report (status `error`, the message) to stdout; exit status 1.
+pub fn main_failed(assets: &Assets, message: &str) -> std::process::ExitCode {
+    main_failed_from(assets, message, std::env::args_os())
+}
+
+/// [`main_failed`] on the command line `args` (the program's name first).
+pub fn main_failed_from(
+    assets: &Assets,
+    message: &str,
+    args: impl IntoIterator<Item = std::ffi::OsString>,
+) -> std::process::ExitCode {
+    let args = match parse_task_args_from::<TaskCli>(task_command::<TaskCli>(assets, ""), args) {
+        Ok(cli) => cli.run,
+        Err(code) => return code,
+    };
+    sitlog_runtime::errln!("error: {message}");
+    if args.format == crate::cli::Format::Json {
+        use std::io::Write as _;
+        let mut out = std::io::stdout();
+        let report = sitlog_runtime::report::stopped_json("error", message);
+        if out
+            .write_all(report.as_bytes())
+            .and_then(|_| out.flush())
+            .is_err()
+        {
+            return std::process::ExitCode::from(2);
+        }
+    }
+    std::process::ExitCode::from(1)
+}
+
 /// [`main`] for a task that can also run on another robot (`--robot
 /// ros2`): `robot` makes the hook ([`Runner::robot`]) when the run asks
 /// for it.

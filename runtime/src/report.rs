@@ -141,6 +141,30 @@ impl Serialize for OutcomeJson<'_> {
     }
 }
 
+/// The `--format json` object of a run whose task did not run, or
+/// stopped before it could report (the program refused by its check, a
+/// file that cannot be opened, the sandbox required and missing, a signal
+/// before the start): `status` (`"error"` or `"interrupted"`), the error's
+/// message, an empty history, `out_arg` `null`, no globals. A caller
+/// reading the report always finds one.
+pub fn stopped_json(status: &str, message: &str) -> String {
+    struct Stopped<'a>(&'a str, &'a str);
+    impl Serialize for Stopped<'_> {
+        fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+            let mut m = s.serialize_struct("Outcome", 5)?;
+            m.serialize_field("status", self.0)?;
+            m.serialize_field("error", self.1)?;
+            m.serialize_field("history", &[(); 0])?;
+            m.serialize_field("out_arg", &None::<&str>)?;
+            m.serialize_field("globals", &std::collections::BTreeMap::<&str, &str>::new())?;
+            m.end()
+        }
+    }
+    let message = message.trim_end();
+    let message = message.strip_prefix("error: ").unwrap_or(message);
+    format!("{}\n", to_json(&Stopped(status, message)))
+}
+
 /// The history as a JSON array (nested arrays for embedded DMs).
 pub fn history_json(store: &Store, items: &[Item]) -> String {
     to_json(&ItemsJson { store, items })

@@ -3,7 +3,7 @@
 //! the debugger, or reloading its sources (`--watch`, [`crate::watch`]).
 
 use super::Strictness;
-use crate::output::{checked_ir_strict, deny_warnings};
+use crate::output::{checked_ir_said, deny_warnings_said};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
@@ -17,6 +17,16 @@ pub fn run_app(
     debug: Option<Option<&std::path::Path>>,
     watch: bool,
 ) -> u8 {
+    // With --format json, whatever stops the run writes the report, an
+    // error found before the task runs included (issue 38: a clause too
+    // deep for the engine, refused by the check, left no report).
+    let json = args.format == sitlog_robot::Format::Json;
+    sitlog_robot::interrupt::report_json_before_start(json);
+    // An error before the task runs: `message` on stderr, and the report.
+    let stop = |code: u8, message: &str| -> u8 {
+        sitlog_runtime::errln!("{message}");
+        stopped(json, code, message)
+    };
     // The Prolog engine's start-up (most of a --legacy run's start) runs
     // on its own thread while the application is read and checked.
     if legacy.is_some()
@@ -36,10 +46,7 @@ pub fn run_app(
             .and_then(|home| legacy::init_consults(&home).map(|f| (home, f)));
         let (home, files) = match files {
             Ok(x) => x,
-            Err(e) => {
-                sitlog_runtime::errln!("error: {e}");
-                return 2;
-            }
+            Err(e) => return stop(2, &format!("error: {e}")),
         };
         // The original's tree is the application: its apps consult one
         // another's files (without --allow-os as well).
@@ -65,8 +72,10 @@ pub fn run_app(
                 match PrologSource::from_path(f) {
                     Ok(s) => before.push(s),
                     Err(e) => {
-                        sitlog_runtime::errln!("error: --legacy: cannot read {}: {e}", f.display());
-                        return 2;
+                        return stop(
+                            2,
+                            &format!("error: --legacy: cannot read {}: {e}", f.display()),
+                        )
                     }
                 }
             }
@@ -77,13 +86,13 @@ pub fn run_app(
         legacy: legacy.is_some(),
         ..Default::default()
     };
-    let deny = match deny_warnings(app, strictness.deny_warnings) {
+    let deny = match deny_warnings_said(app, strictness.deny_warnings) {
         Ok(deny) => deny,
-        Err(code) => return code,
+        Err((code, message)) => return stopped(json, code, &message),
     };
-    let ir = match checked_ir_strict(app, check_options, deny) {
+    let ir = match checked_ir_said(app, check_options, deny) {
         Ok(ir) => ir,
-        Err(code) => return code,
+        Err((code, message)) => return stopped(json, code, &message),
     };
     // An output that is one of the application's files (`--trace
     // APP/main.dm`) would destroy it: refused before anything runs (issue
@@ -101,20 +110,19 @@ pub fn run_app(
         ]
         .map(|name| app.join(name));
         if let Some(input) = sources.chain(side).find(|p| same_inode(p, trace)) {
-            sitlog_runtime::errln!(
-                "error: --trace {} is the application's file {}: the trace would overwrite it; give another file",
-                trace.display(),
-                input.display()
+            return stop(
+                2,
+                &format!(
+                    "error: --trace {} is the application's file {}: the trace would overwrite it; give another file",
+                    trace.display(),
+                    input.display()
+                ),
             );
-            return 2;
         }
     }
     let mut assets = match sitlog_robot::Assets::from_app(app) {
         Ok(a) => a,
-        Err(e) => {
-            sitlog_runtime::errln!("{e}");
-            return e.status;
-        }
+        Err(e) => return stop(e.status, &e.to_string()),
     };
     // A plain run checks its options and world file before the Prolog
     // engine starts, so a run that cannot start says so at once (issue 30),
@@ -129,10 +137,7 @@ pub fn run_app(
                 args = &preflighted;
                 assets = checked_assets;
             }
-            Err((code, message)) => {
-                sitlog_runtime::errln!("{message}");
-                return code;
-            }
+            Err((code, message)) => return stop(code, &message),
         }
         plain_runner = Some(runner);
     }
@@ -145,10 +150,11 @@ pub fn run_app(
         before,
         native_kb.then(crate::legacy::native_kb),
     ) {
-        for e in errors {
+        for e in &errors {
             sitlog_runtime::errln!("error: {e}");
         }
-        return 1;
+        let first = errors.first().map(|e| e.to_string()).unwrap_or_default();
+        return stopped(json, 1, &first);
     }
     if args.view {
         // the live view draws the program as `sitlogc graph` does
@@ -159,10 +165,7 @@ pub fn run_app(
         };
         match sitlog_compiler::diagram::diagram(&ir, &options) {
             Ok(d) => assets.diagram = Some(d.to_json()),
-            Err(e) => {
-                sitlog_runtime::errln!("error: {e}");
-                return 2;
-            }
+            Err(e) => return stop(2, &format!("error: {e}")),
         }
     }
     if watch {
@@ -190,10 +193,7 @@ pub fn run_app(
             };
             let source = match source {
                 Ok(s) => s,
-                Err(e) => {
-                    sitlog_runtime::errln!("{e}");
-                    return 2;
-                }
+                Err(e) => return stop(2, &e.to_string()),
             };
             // Plans, back to the machine's loop after each situation, so the
             // debugger sees every one.
@@ -222,6 +222,7 @@ pub fn run_watched(
     options: sitlog_compiler::check::CheckOptions,
 ) -> u8 {
     use crate::watch::{ReloadAware, Watched};
+    let json = args.format == sitlog_robot::Format::Json;
     let files: Vec<PathBuf> = match sitlog_compiler::load::load_with(app, crate::library::library())
     {
         Ok((program, _)) => program
@@ -231,8 +232,9 @@ pub fn run_watched(
             .filter(|p| !p.starts_with(sitlog_compiler::load::EMBEDDED))
             .collect(),
         Err(e) => {
-            sitlog_runtime::errln!("error: cannot read {e}");
-            return 2;
+            let message = format!("error: cannot read {e}");
+            sitlog_runtime::errln!("{message}");
+            return stopped(json, 2, &message);
         }
     };
     let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
@@ -240,8 +242,9 @@ pub fn run_watched(
         std::sync::Arc::new(std::sync::Mutex::new(Box::new(std::io::stderr())));
     let watched = Watched::new(ir, messages);
     if let Err(e) = watched.watch(app, &files, options, color) {
-        sitlog_runtime::errln!("error: --watch: {e}");
-        return 2;
+        let message = format!("error: --watch: {e}");
+        sitlog_runtime::errln!("{message}");
+        return stopped(json, 2, &message);
     }
     sitlog_runtime::errln!(
         "watch: watching {} ({} file(s)); edits take effect between transitions",
@@ -254,6 +257,23 @@ pub fn run_watched(
     runner()
         .wrap_perception(wrap)
         .run(&watched, functions, args, assets)
+}
+
+/// `code`, after the report of a run stopped before its task ran (with
+/// `--format json`; status `error`, `message`) is written on stdout.
+fn stopped(json: bool, code: u8, message: &str) -> u8 {
+    if json {
+        use std::io::Write as _;
+        let mut out = std::io::stdout();
+        let report = sitlog_runtime::report::stopped_json("error", message);
+        if let Err(e) = out.write_all(report.as_bytes()).and_then(|_| out.flush()) {
+            if e.kind() != std::io::ErrorKind::BrokenPipe {
+                sitlog_runtime::errln!("error: cannot write the report: {e}");
+                return 2;
+            }
+        }
+    }
+    code
 }
 
 /// The runner of `sitlogc run`: on the process's streams, stopped by

@@ -1045,6 +1045,15 @@ fn a_prolog_clause_too_deep_for_the_engine_is_an_error_not_an_abort() {
         .unwrap();
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     assert!(stderr(&out).contains("E0241") || stderr(&out).contains("1 error"));
+    // The JSON report is written all the same, the error located in it.
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON report");
+    assert_eq!(report["status"], "error", "{report}");
+    let error = report["error"].as_str().unwrap_or_default();
+    assert!(
+        error.contains("user_functions.pl:1:300003: error[E0241]: this clause nests"),
+        "{report}"
+    );
+    assert_eq!(report["history"], serde_json::json!([]), "{report}");
 }
 
 /// Two runs persisting one KB through a hard link (issue 38: both ran and

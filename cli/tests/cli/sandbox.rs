@@ -326,6 +326,99 @@ fn sandbox_require_and_off() {
     assert_eq!(s.outside_names(), Vec::<String>::new());
     s.run(&["--sandbox", "off"]);
     assert_eq!(s.outside_names(), ["p"]);
+    // A kernel without Landlock (its system calls answer ENOSYS, as an old
+    // kernel's do): `require` is an error before any application code
+    // runs, exit 2, its JSON report written; `auto` says so once and runs
+    // on the engine's refusals and seccomp.
+    #[cfg(target_os = "linux")]
+    without_landlock_require_and_auto(&s);
+}
+
+/// The end of [`sandbox_require_and_off`]: `--sandbox require` and `auto`
+/// on a kernel without Landlock.
+#[cfg(target_os = "linux")]
+fn without_landlock_require_and_auto(s: &Scratch) {
+    std::fs::remove_file(s.outside().join("p")).unwrap();
+    let without = |mode: &str| {
+        let mut cmd = sitlogc();
+        cmd.env("SHELL", "/bin/sh")
+            .arg("run")
+            .arg(s.app())
+            .arg("--script")
+            .arg(s.app().join("script.txt"))
+            .args(["-q", "--format", "json", "--sandbox", mode]);
+        without_landlock(&mut cmd);
+        cmd.output().unwrap()
+    };
+    let out = without("require");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a JSON report");
+    assert_eq!(report["status"], "error", "{report}");
+    assert!(
+        report["error"]
+            .as_str()
+            .is_some_and(|e| e
+                .starts_with("--sandbox require: this system cannot confine the task: Landlock")),
+        "{report}"
+    );
+    let out = without("auto");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert_eq!(
+        err.matches("note: the task runs without the operating system's sandbox (Landlock")
+            .count(),
+        1,
+        "{err}"
+    );
+    assert_eq!(
+        s.outside_names(),
+        Vec::<String>::new(),
+        "seccomp alone held"
+    );
+}
+
+#[cfg(target_os = "linux")]
+/// Makes `cmd`'s process see a kernel without Landlock: a seccomp filter,
+/// installed before it starts, answers Landlock's system calls (444 to
+/// 446 on every architecture) with ENOSYS and lets every other call
+/// through.
+fn without_landlock(cmd: &mut std::process::Command) {
+    use std::os::unix::process::CommandExt;
+    const LD_W_ABS: u16 = 0x20;
+    const JMP_JGE_K: u16 = 0x35;
+    const JMP_JGT_K: u16 = 0x25;
+    const RET_K: u16 = 0x06;
+    const RET_ERRNO: u32 = 0x0005_0000;
+    const RET_ALLOW: u32 = 0x7fff_0000;
+    let op = |code, jt, jf, k| libc::sock_filter { code, jt, jf, k };
+    let program = [
+        op(LD_W_ABS, 0, 0, 0),                            // the call's number
+        op(JMP_JGE_K, 0, 2, 444),                         // below 444: allow
+        op(JMP_JGT_K, 1, 0, 446),                         // above 446: allow
+        op(RET_K, 0, 0, RET_ERRNO | libc::ENOSYS as u32), // Landlock's
+        op(RET_K, 0, 0, RET_ALLOW),
+    ];
+    // SAFETY: between fork and exec the closure makes two prctl calls on a
+    // filter that lives on this (copied) stack; nothing is allocated.
+    unsafe {
+        cmd.pre_exec(move || {
+            let prog = libc::sock_fprog {
+                len: program.len() as u16,
+                filter: program.as_ptr() as *mut libc::sock_filter,
+            };
+            if libc::prctl(libc::PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0
+                || libc::prctl(
+                    libc::PR_SET_SECCOMP,
+                    libc::SECCOMP_MODE_FILTER,
+                    &prog as *const libc::sock_fprog,
+                ) != 0
+            {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
 }
 
 /// `:- consult('lnk.pl').` where `lnk.pl` is a symbolic link to a file
