@@ -782,7 +782,8 @@ fn waits_on_a_fifo(pid: u32) -> bool {
 
 /// The first SIGTERM ends a run blocked before its task starts (a FIFO
 /// with no writer for --kb, --script, --world or --trace; the live view
-/// waiting for its page) with the documented status.
+/// waiting for its page) with the documented status, and its JSON report
+/// (status `interrupted`) written.
 #[cfg(target_os = "linux")]
 #[test]
 fn the_first_signal_ends_a_run_that_has_not_started() {
@@ -796,7 +797,7 @@ fn the_first_signal_ends_a_run_that_has_not_started() {
         .success());
     for opt in ["--kb", "--script", "--world", "--trace", "--view"] {
         let mut cmd = sitlogc();
-        cmd.arg("run").arg(&app).arg(opt);
+        cmd.args(["run", "--format", "json"]).arg(&app).arg(opt);
         if opt == "--view" {
             cmd.args(["--view-port", "0"]);
         } else {
@@ -804,7 +805,7 @@ fn the_first_signal_ends_a_run_that_has_not_started() {
         }
         let mut child = cmd
             .stdin(Stdio::null())
-            .stdout(Stdio::null())
+            .stdout(Stdio::piped())
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
@@ -836,6 +837,14 @@ fn the_first_signal_ends_a_run_that_has_not_started() {
             std::thread::sleep(Duration::from_millis(20));
         }
         assert_eq!(child.wait().unwrap().code(), Some(143), "{opt}");
+        let mut report = String::new();
+        std::io::Read::read_to_string(&mut child.stdout.take().unwrap(), &mut report).unwrap();
+        assert!(
+            report.starts_with(
+                r#"{"status":"interrupted","error":"interrupted before the task started","history":[]"#
+            ),
+            "{opt}: {report}"
+        );
     }
 }
 
