@@ -82,7 +82,11 @@ fn nothing_runs_before_start_and_the_os_is_off_without_the_flag() {
          wr(_) :- open({outside}, write, S), close(S), assign_func_value(wrote).\n\
          rd(_) :- open({made}, read, S), close(S), assign_func_value(read).\n\
          net(_) :- socket_client_open('127.0.0.1':9, S, []), close(S), assign_func_value(net).\n\
-         dyn(_) :- G = shell(x), call(G), assign_func_value(dyn).\n",
+         dyn(_) :- G = shell(x), call(G), assign_func_value(dyn).\n\
+         :- op(700, xfx, ===>).\n\
+         :- op(1200, xfx, :-).\n\
+         opx(_) :- X = '===>'(a, b), assign_func_value(X).\n\
+         hl(_) :- halt.\n",
         made = quoted(&made),
         outside = quoted(&outside),
     );
@@ -110,6 +114,14 @@ fn nothing_runs_before_start_and_the_os_is_off_without_the_flag() {
     );
     let e = call(&engine, Trust::default(), "apply(dyn(X), [1])").unwrap_err();
     assert!(e.contains("`shell/1`") && e.contains("--allow-os"), "{e}");
+    // Issue 38's last rows: `op/3` directives leave the calls' canonical
+    // text as it was; `halt` ends the call with an error, not the process.
+    assert_eq!(
+        call(&engine, Trust::default(), "apply(opx(X), [1])").unwrap(),
+        "===>(a,b)"
+    );
+    let e = call(&engine, Trust::default(), "apply(hl(X), [1])").unwrap_err();
+    assert!(e.contains("`hl/1`") && e.contains("did not answer"), "{e}");
     let _ = std::fs::remove_dir_all(&d);
 }
 
