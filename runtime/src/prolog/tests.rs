@@ -255,6 +255,29 @@ fn load_errors_have_positions() {
         "{errs:?}"
     );
     assert!(errs.iter().any(|e| e.line == 3), "{errs:?}");
+    // A directive runs under the call's memory limit (issue 38: `:- length(L,
+    // 100000000).`, a builtin making no inferences, grew to 4.9 GB and
+    // aborted); the list here stops growing at 5 M cells.
+    let engine = PrologFunctions::load_with(
+        &[PrologSource::new("uf.pl", ":- length(L, 5000000).\n")],
+        PrologOptions::default(),
+        0,
+        None,
+    )
+    .expect("loads");
+    let limits = crate::functions::CallLimits {
+        heap_bytes: 8 << 20,
+        ..Default::default()
+    };
+    let errs = engine
+        .start_with(&crate::trust::Trust::default(), Some(limits), None)
+        .unwrap_err();
+    assert!(
+        errs[0].message.contains(
+            "directives exceeded the memory limit of 8 MiB per call (option --prolog-heap-limit)"
+        ),
+        "{errs:?}"
+    );
 }
 
 /// A library file the compiler's loader found elsewhere (issue 30) is
