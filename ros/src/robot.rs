@@ -481,7 +481,7 @@ impl Inner {
                     self.narrate(&format!("not listening: dropped `{}` from {topic}", m.data))
                 }
                 Ok(None) => break,
-                Err(e) => self.narrate(&format!("dropped a malformed message on {topic}: {e:?}")),
+                Err(e) => dropped(&topic, &e),
             }
         }
         if let Some(why) = self.aborted() {
@@ -512,14 +512,9 @@ impl Inner {
             let took = wait_for(either, Some(limit), &self.stop.flag);
             match took {
                 Waited::Done(Either::Left((Ok((m, _)), _))) => break Heard::Said(m.data),
-                Waited::Done(Either::Left((Err(e), _))) => {
-                    self.narrate(&format!("dropped a malformed message on {topic}: {e:?}"))
-                }
+                Waited::Done(Either::Left((Err(e), _))) => dropped(&topic, &e),
                 Waited::Done(Either::Right((Ok((m, _)), _))) => break Heard::Aborted(m.data),
-                Waited::Done(Either::Right((Err(e), _))) => self.narrate(&format!(
-                    "dropped a malformed message on {}: {e:?}",
-                    self.iface.topics.abort
-                )),
+                Waited::Done(Either::Right((Err(e), _))) => dropped(&self.iface.topics.abort, &e),
                 // Still listening? The robot must acknowledge it again.
                 Waited::TimedOut => {
                     if !self.publish(&self.listening, StdBool { data: true }) {
@@ -541,13 +536,18 @@ impl Inner {
             match self.abort.take() {
                 Ok(Some((m, _))) => return Some(m.data),
                 Ok(None) => return None,
-                Err(e) => self.narrate(&format!(
-                    "dropped a malformed message on {}: {e:?}",
-                    self.iface.topics.abort
-                )),
+                Err(e) => dropped(&self.iface.topics.abort, &e),
             }
         }
     }
+}
+
+/// A message dropped because its bytes are not its topic's type (a
+/// wrong layout): one line on stderr, also under `-q` (issue 38: such
+/// messages on the heard topic were heard as `nobody`, then said only on
+/// the transcript).
+fn dropped(topic: &str, e: &dyn std::fmt::Debug) {
+    sitlog_runtime::errln!("note: dropped a malformed message on {topic}: {e:?}");
 }
 
 /// What a speech situation heard.
