@@ -510,6 +510,32 @@
 
 % ------------------------------------------------------------- time
 
+% dynamic(Specs) as a goal: an application's `:- dynamic foo/1.` is run
+% as a goal, under the call's limits, and the engine has no such
+% predicate. Each Name/Arity (in a list or a conjunction) becomes a
+% dynamic predicate with no clauses; one that is dynamic already (an
+% application's predicates are asserted) is left as it is.
+'$swi_dynamic'(S) :-
+    var(S),
+    !,
+    throw(error(instantiation_error, dynamic/1)).
+'$swi_dynamic'([]) :- !.
+'$swi_dynamic'([S|Ss]) :- !, '$swi_dynamic'(S), '$swi_dynamic'(Ss).
+'$swi_dynamic'((A, B)) :- !, '$swi_dynamic'(A), '$swi_dynamic'(B).
+'$swi_dynamic'(_:S) :- !, '$swi_dynamic'(S).
+'$swi_dynamic'(N/A) :-
+    atom(N),
+    integer(A),
+    !,
+    functor(H, N, A),
+    (   catch(predicate_property(H, dynamic), _, fail)
+    ->  true
+    ;   assertz(H),
+        retract(H)
+    ).
+'$swi_dynamic'(S) :-
+    throw(error(type_error(predicate_indicator, S), dynamic/1)).
+
 % Asks the host: `S` requests (time, cputime, walltime, epoch, sleep(T))
 % are answered with a number (engine.rs, system_reply).
 '$sitlog_system'(Request, Value) :-

@@ -157,6 +157,7 @@ pub const SWI_RENAMED: &[(&str, usize)] = &[
     ("format", 2),
     ("format", 3),
     ("read", 1),
+    ("dynamic", 1),
 ];
 
 pub(super) fn swi_renamed(name: Atom, arity: usize) -> Option<Atom> {

@@ -18,6 +18,10 @@ chars_plain(R) :- atom_chars(abc, R).
 to_chars(R) :- atom_to_chars(ab, R).
 flat(R) :- flatten([a, [b, [c, []], d], [[e]]], R).
 asserting(R) :- assert(counter(7)), counter(R).
+% SWI declarations run as directives (issue 38: directives are goals now)
+:- dynamic(seen/1).
+:- dynamic([seen_too/1, seen_list/2]).
+declared(R) :- findall(X, seen(X), L), assertz(seen_list(a, b)), findall(Y, seen_too(Y), M), seen_list(A, B), R = [L, M, A-B].
 perm(R) :- random_permutation([only], R).
 perm_all(R) :- random_permutation([1,2,3,4,5], P), msort(P, R).
 last_of(R) :- last([a, b, c], R).
@@ -138,6 +142,8 @@ fn flatten() {
 #[test]
 fn assert() {
     assert_eq!(ask("asserting"), "7");
+    // `:- dynamic` declarations: the predicates exist, with no clauses.
+    assert_eq!(ask("declared"), "[[],[],a-b]");
 }
 
 #[test]
