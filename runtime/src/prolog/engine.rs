@@ -3,7 +3,10 @@
 //! and calls user functions as queries sent to it, watched for their time
 //! and memory limits ([`PrologOptions`]) and the run's stop flag (a
 //! signal) from the calling thread; directives and calls run under the
-//! inference limit inside the engine.
+//! inference limit inside the engine. A call's query holds its arguments
+//! and the caller's variables; the task's history is written only when the
+//! function's `get_history/1` asks the waiting caller for it
+//! ([`Reply::History`]), in parts the engine's reader takes.
 //! Invariant (the trust model): loading only stores clauses; the
 //! application's directives run at [`PrologFunctions::start`] (a run's
 //! first transition, or the first call), after the run's permissions are
