@@ -337,11 +337,15 @@ pub fn load_sources(files: &[(&str, &str)]) -> (Program, Vec<Diagnostic>) {
             program
                 .sources
                 .add_named(PathBuf::from(name), name.to_string(), text.to_string());
-        let clauses = read_file_clauses(&program, file, &mut diags);
         let name = Path::new(name)
             .file_name()
             .and_then(|n| n.to_str())
             .unwrap_or("");
+        let clauses = if PROLOG_FILES.contains(&name) {
+            read_prolog_file_clauses(&program, file, &mut diags)
+        } else {
+            read_file_clauses(&program, file, &mut diags)
+        };
         add_file_by_role(Cx::NONE, &mut program, file, name, clauses, &mut diags);
     }
     skipped_prolog_clauses(&program, &mut diags);
@@ -355,11 +359,15 @@ pub fn load_source_bytes(files: &[(&str, &[u8])]) -> (Program, Vec<Diagnostic>) 
     let mut diags = Vec::new();
     for (name, bytes) in files {
         let file = add_bytes(Path::new(name), bytes.to_vec(), &mut program, &mut diags);
-        let clauses = read_file_clauses(&program, file, &mut diags);
         let name = Path::new(name)
             .file_name()
             .and_then(|n| n.to_str())
             .unwrap_or("");
+        let clauses = if PROLOG_FILES.contains(&name) {
+            read_prolog_file_clauses(&program, file, &mut diags)
+        } else {
+            read_file_clauses(&program, file, &mut diags)
+        };
         add_file_by_role(Cx::NONE, &mut program, file, name, clauses, &mut diags);
     }
     skipped_prolog_clauses(&program, &mut diags);
@@ -521,7 +529,7 @@ fn add_prolog_file(
                         overrides,
                     });
                 }
-                let clauses = read_file_clauses(program, id, diags);
+                let clauses = read_prolog_file_clauses(program, id, diags);
                 add_prolog_file(cx, program, id, clauses, diags, depth + 1);
             }
         }
@@ -700,6 +708,25 @@ fn read_file_clauses(program: &Program, file: FileId, diags: &mut Vec<Diagnostic
         return Vec::new();
     }
     let (clauses, errors) = read_clauses(&program.sources.get(file).text);
+    diags.extend(errors.into_iter().map(|e| syntax_diagnostic(file, e)));
+    clauses
+}
+
+/// Reads the clauses of a Prolog source file (`user_functions.pl`,
+/// `templates.pl`, what they consult) with SWI-Prolog's operators
+/// ([`sitlog_syntax::read_prolog_clauses`]).
+fn read_prolog_file_clauses(
+    program: &Program,
+    file: FileId,
+    diags: &mut Vec<Diagnostic>,
+) -> Vec<Clause> {
+    if diags
+        .iter()
+        .any(|d| d.loc.file == file && d.code == codes::NOT_UTF8)
+    {
+        return Vec::new();
+    }
+    let (clauses, errors) = sitlog_syntax::read_prolog_clauses(&program.sources.get(file).text);
     diags.extend(errors.into_iter().map(|e| syntax_diagnostic(file, e)));
     clauses
 }
@@ -953,7 +980,11 @@ fn load_side_files(
         if path.is_file() {
             refuse_linked_outside(dir, &path)?;
             let file = read_text(cx, &path, program, diags)?;
-            let clauses = read_file_clauses(program, file, diags);
+            let clauses = if PROLOG_FILES.contains(&side) {
+                read_prolog_file_clauses(program, file, diags)
+            } else {
+                read_file_clauses(program, file, diags)
+            };
             add_file_by_role(cx, program, file, side, clauses, diags);
         }
     }

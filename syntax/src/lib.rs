@@ -27,8 +27,9 @@ pub use decode::{decode, decode_owned, read_file, DecodeError};
 pub use error::{line_col, SyntaxError};
 pub use ops::{OpDef, OpTable, OpType};
 pub use read::{
-    read_clauses, read_clauses_bytes, read_clauses_bytes_with, read_clauses_with, read_term,
-    read_term_limited, read_term_with, source_from_bytes, ClauseReader,
+    read_clauses, read_clauses_bytes, read_clauses_bytes_with, read_clauses_with,
+    read_prolog_clauses, read_term, read_term_limited, read_term_with, source_from_bytes,
+    ClauseReader,
 };
 pub use term::{Clause, Node, Span, TermId, Terms, VarId, VarInfo};
 pub use write::{write_term, writeq, TermSource, VarLabel, View, WriteOptions};

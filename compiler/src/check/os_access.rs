@@ -23,7 +23,7 @@ impl Checker<'_> {
         let program = self.program;
         let neck = Atom::intern(":-");
         for &file in &program.prolog_files {
-            let (clauses, _) = sitlog_syntax::read_clauses(&program.sources.get(file).text);
+            let (clauses, _) = sitlog_syntax::read_prolog_clauses(&program.sources.get(file).text);
             for c in &clauses {
                 let t = &c.terms;
                 let (who, body, directive) = if let Some(&[goal]) = t.compound(c.root, neck, 1) {

@@ -15,7 +15,7 @@ impl Checker<'_> {
     pub(super) fn prolog_depth(&mut self) {
         let program = self.program;
         for &file in &program.prolog_files {
-            let (clauses, _) = sitlog_syntax::read_clauses(&program.sources.get(file).text);
+            let (clauses, _) = sitlog_syntax::read_prolog_clauses(&program.sources.get(file).text);
             for c in &clauses {
                 let (depth, deepest) = nesting(&c.terms, c.root);
                 if depth <= PROLOG_MAX_DEPTH {

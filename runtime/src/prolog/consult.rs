@@ -11,7 +11,7 @@ use super::translate::{Prepared, Writer};
 use crate::paths::normalize;
 use crate::store::Store;
 use crate::term::{Term, Value};
-use sitlog_syntax::{atoms, read_clauses, Atom};
+use sitlog_syntax::{atoms, read_prolog_clauses, Atom};
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
@@ -165,7 +165,7 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
     // A clause that does not read is skipped and the rest loaded, as
     // SWI-Prolog's consult does for the original (`sitlogc check` warns of
     // it, with its place).
-    let (clauses, _skipped) = read_clauses(&source.text);
+    let (clauses, _skipped) = read_prolog_clauses(&source.text);
     for clause in &clauses {
         let (line, col) = line_col(&source.text, clause.span.start as usize);
         let mut store = Store::new();

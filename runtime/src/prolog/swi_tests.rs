@@ -21,7 +21,9 @@ asserting(R) :- assert(counter(7)), counter(R).
 % SWI declarations run as directives (issue 38: directives are goals now)
 :- dynamic(seen/1).
 :- dynamic([seen_too/1, seen_list/2]).
-declared(R) :- findall(X, seen(X), L), assertz(seen_list(a, b)), findall(Y, seen_too(Y), M), seen_list(A, B), R = [L, M, A-B].
+% the prefix form, read with SWI-Prolog's operators as the original reads it
+:- dynamic seen_prefix/1, seen_prefix2/0.
+declared(R) :- findall(X, seen(X), L), assertz(seen_list(a, b)), findall(Y, seen_too(Y), M), seen_list(A, B), findall(Z, seen_prefix(Z), N), ( seen_prefix2 -> P = yes ; P = no ), R = [L, M, A-B, N, P].
 perm(R) :- random_permutation([only], R).
 perm_all(R) :- random_permutation([1,2,3,4,5], P), msort(P, R).
 last_of(R) :- last([a, b, c], R).
@@ -143,7 +145,7 @@ fn flatten() {
 fn assert() {
     assert_eq!(ask("asserting"), "7");
     // `:- dynamic` declarations: the predicates exist, with no clauses.
-    assert_eq!(ask("declared"), "[[],[],a-b]");
+    assert_eq!(ask("declared"), "[[],[],a-b,[],no]");
 }
 
 #[test]

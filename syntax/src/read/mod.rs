@@ -66,6 +66,16 @@ pub fn read_clauses(src: &str) -> (Vec<Clause>, Vec<SyntaxError>) {
     read_clauses_with(src, OpTable::sitlog_shared())
 }
 
+/// Reads all clauses of a Prolog source file (an application's
+/// `user_functions.pl`, `templates.pl` and what they consult) with
+/// SWI-Prolog's operator table, as the original's SWI-Prolog consults
+/// them: `:- dynamic foo/1.` and the other directive operators
+/// (`discontiguous`, `initialization`, `multifile`, ...) read as prefix
+/// operators. DMs and the other side files keep SitLog's table.
+pub fn read_prolog_clauses(src: &str) -> (Vec<Clause>, Vec<SyntaxError>) {
+    read_clauses_with(src, OpTable::swi_shared())
+}
+
 /// [`read_clauses`] with another operator table.
 pub fn read_clauses_with(src: &str, ops: &OpTable) -> (Vec<Clause>, Vec<SyntaxError>) {
     let mut clauses = Vec::new();
