@@ -12,7 +12,7 @@
 //! first transition, or the first call), after the run's permissions are
 //! set in the engine.
 
-use super::consult::{prepare, Prep, PrologLoadError, PrologSource, Redefinitions};
+use super::consult::{prepare, LineCursor, Prep, PrologLoadError, PrologSource, Redefinitions};
 use super::legacy_kb::{KbHost, NativeKb, NativeState};
 use super::permissions;
 use super::swi::{LIBRARIES, PRELUDE, PRELUDE_SWI, SWI_PREDICATES};
@@ -796,22 +796,29 @@ fn spawn_engine(
         // PROLOG_MAX_DEPTH deep in a debug build (reserved, not used).
         .stack_size(ENGINE_STACK)
         .spawn(move || {
-            let machine = base_machine(host.clone(), shared.clone());
+            let (machine, errors) = base_machine(host.clone(), shared.clone());
             if let Some(setup) = setup() {
-                engine_thread(machine, setup, host, shared);
+                engine_thread(machine, errors, setup, host, shared);
             }
         })
 }
 
-/// The engine thread: builds the machine, loads, then starts and answers
-/// queries.
-fn engine_thread(mut machine: Machine, setup: Setup, host: HostSlot, shared: Shared) {
+/// The engine thread: loads the application into the machine built (with
+/// `base_errors`, those of the prelude), then starts and answers queries.
+fn engine_thread(
+    mut machine: Machine,
+    base_errors: Vec<PrologLoadError>,
+    setup: Setup,
+    host: HostSlot,
+    shared: Shared,
+) {
     let Setup {
         prepared,
         rx,
         ready,
     } = setup;
-    let errors = load_application(&mut machine, &prepared);
+    let mut errors = base_errors;
+    errors.extend(load_application(&mut machine, &prepared));
     let _ = ready.send(errors);
     // `Some((allow_os, inference limit))` once started.
     let mut started: Option<(bool, u64)> = None;
@@ -1090,6 +1097,7 @@ fn system_reply(request: &str) -> String {
 /// by our reader; no call renamed).
 fn prelude_swi() -> Vec<Prepared> {
     let (clauses, _) = sitlog_syntax::read_clauses(PRELUDE_SWI);
+    let mut positions = LineCursor::new();
     clauses
         .iter()
         .map(|clause| {
@@ -1098,7 +1106,7 @@ fn prelude_swi() -> Vec<Prepared> {
             let directive = store.compound_args(t, Atom::intern(":-"), 1).map(|a| a[0]);
             let mut w = Writer::new(&store, false);
             w.term(directive.unwrap_or(t));
-            let (line, col) = clause_position(PRELUDE_SWI, clause.span.start as usize);
+            let (line, col) = positions.line_col(PRELUDE_SWI, clause.span.start as usize);
             Prepared {
                 text: w.out,
                 directive: directive.is_some(),
@@ -1110,15 +1118,6 @@ fn prelude_swi() -> Vec<Prepared> {
         .collect()
 }
 
-fn clause_position(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    (
-        line,
-        before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1,
-    )
-}
-
 /// A machine with the prelude, the guards and the application's clauses
 /// (no directive run: see [`run_directives`]).
 fn build_machine(
@@ -1126,14 +1125,16 @@ fn build_machine(
     host: HostSlot,
     shared: Shared,
 ) -> (Machine, Vec<PrologLoadError>) {
-    let mut machine = base_machine(host, shared);
-    let errors = load_application(&mut machine, prepared);
+    let (mut machine, mut errors) = base_machine(host, shared);
+    errors.extend(load_application(&mut machine, prepared));
     (machine, errors)
 }
 
-/// A machine with the prelude and the guards: what every application's
-/// engine starts from.
-fn base_machine(host: HostSlot, shared: Shared) -> Machine {
+/// A machine with the prelude (both parts) and the guards: what every
+/// application's engine starts from, built ahead of the application by
+/// [`PrologFunctions::prewarm`]; the errors of the prelude's second part
+/// (none but in development).
+fn base_machine(host: HostSlot, shared: Shared) -> (Machine, Vec<PrologLoadError>) {
     started();
     let mut machine = MachineBuilder::default()
         .with_streams(engine_streams(host, shared))
@@ -1141,12 +1142,6 @@ fn base_machine(host: HostSlot, shared: Shared) -> Machine {
         .build();
     machine.consult_module_string("user", PRELUDE);
     machine.consult_module_string("user", permissions::guards());
-    machine
-}
-
-/// Loads the application's clauses (`prepared`, no directive run) into a
-/// [`base_machine`], then its libraries and the SWI-Prolog bridge.
-fn load_application(machine: &mut Machine, prepared: &[Prepared]) -> Vec<PrologLoadError> {
     let mut errors = Vec::new();
     // The prelude's second part is asserted clause by clause, like the
     // application's (consulted in one string with the first part, the
@@ -1157,8 +1152,15 @@ fn load_application(machine: &mut Machine, prepared: &[Prepared]) -> Vec<PrologL
         } else {
             format!("'$sitlog_add'({},R).", p.text)
         };
-        check_load(machine, &q, &p, &mut errors);
+        check_load(&mut machine, &q, &p, &mut errors);
     }
+    (machine, errors)
+}
+
+/// Loads the application's clauses (`prepared`, no directive run) into a
+/// [`base_machine`], then its libraries and the SWI-Prolog bridge.
+fn load_application(machine: &mut Machine, prepared: &[Prepared]) -> Vec<PrologLoadError> {
+    let mut errors = Vec::new();
     for p in prepared.iter().filter(|p| !p.directive) {
         let q = format!("'$sitlog_add'({},R).", p.text);
         check_load(machine, &q, p, &mut errors);

@@ -208,14 +208,24 @@ impl NativeState {
             if *arity == 0 {
                 continue;
             }
+            // The handles are looked for inline (no call per argument: a
+            // call of the layer's own predicates, recursion included, costs
+            // one inference more than the original's, not n + 2).
+            let any_handle: Vec<String> = v
+                .iter()
+                .map(|x| format!("nonvar({x}), {x} = '$kb'(_)"))
+                .collect();
             clauses.push(format!(
-                "{}({}) :- '$sitlog_kb_terms'([{}], [{}]), {}({})",
+                "{}({}) :- ( ( {} ) -> '$sitlog_kb_terms'([{}], [{}]), {}({}) ; {}({}) )",
                 name(p.as_str()),
                 v.join(","),
+                any_handle.join(" ; "),
                 v.join(","),
                 w.join(","),
                 legacy,
-                w.join(",")
+                w.join(","),
+                legacy,
+                v.join(",")
             ));
         }
         for text in clauses {

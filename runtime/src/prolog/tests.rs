@@ -280,6 +280,28 @@ fn load_errors_have_positions() {
     );
 }
 
+/// Clause positions are found in one pass over a file (they were a scan
+/// from its start per clause), the same as a scan gives: columns in
+/// characters, a position asked again or earlier rescanned.
+#[test]
+fn clause_positions_in_one_pass() {
+    let text = "a.\n\n  é(x). b.\nc.";
+    let scan = |at: usize| {
+        let before = &text[..at];
+        let line = before.matches('\n').count() + 1;
+        let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        (line, col)
+    };
+    let mut cursor = super::consult::LineCursor::new();
+    for at in [0, 4, 6, 12, 16, 16, 5, text.len(), 99] {
+        assert_eq!(
+            cursor.line_col(text, at),
+            scan(at.min(text.len())),
+            "at {at}"
+        );
+    }
+}
+
 /// A library file the compiler's loader found elsewhere (issue 30) is
 /// consulted by its library name: the source whose name ends with it.
 #[test]
