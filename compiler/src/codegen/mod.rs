@@ -115,9 +115,10 @@ pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
 }
 
 /// Per DM, whether generated code runs it natively (`codegen::native`): how many
-/// of its situations then hold no ground term (no register typed `term`),
-/// or why it runs on terms.
-pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
+/// of its situations then hold no ground term (no register typed `term`)
+/// and how many of those hold no `Val` either (only fixed shapes), or why
+/// it runs on terms.
+pub fn native_dms(ir: &Ir) -> Vec<Result<(usize, usize), String>> {
     let mir = crate::mir::lower(ir);
     let types = crate::types::infer(ir, &mir);
     let mir_types = crate::mir::ty::infer(ir, &mir);
@@ -133,7 +134,7 @@ pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
                 return Err("it runs on the typed frame of its typed situations".to_owned());
             }
             g.native_code(dm, d, &mir_types.dms[d])
-                .map(|n| n.on_native_values)
+                .map(|n| (n.on_native_values, n.fixed_shapes))
         })
         .collect()
 }

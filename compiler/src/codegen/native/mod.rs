@@ -77,6 +77,35 @@ struct V {
     ty: Ty,
 }
 
+/// Whether native code holds a value of this type as a canonical
+/// [`Val`](sitlog_runtime::native::Val): `ground` (a boundary's value
+/// after the checked conversion, or the join of different shapes) and a
+/// fixed-shape compound of native values.
+fn held_as_val(ty: &Ty) -> bool {
+    match ty {
+        Ty::Ground => true,
+        Ty::Tagged(..) => ty.is_native(),
+        _ => false,
+    }
+}
+
+/// Whether a value of this type is held with a `Val` somewhere in it (a
+/// dynamic shape, counted apart in `--explain-types`).
+fn holds_val(ty: &Ty) -> bool {
+    match ty {
+        Ty::List(e) => holds_val(e),
+        t => held_as_val(t),
+    }
+}
+
+/// Whether values of the two types have the same Rust representation.
+fn same_rep(a: &Ty, b: &Ty) -> bool {
+    match (a, b) {
+        (Ty::List(x), Ty::List(y)) => same_rep(x, y),
+        (x, y) => x == y || (held_as_val(x) && held_as_val(y)),
+    }
+}
+
 /// The Rust type of a native type.
 fn rust_ty(ty: &Ty) -> N<TokenStream> {
     let rt = quote!(::sitlog_runtime);
@@ -89,28 +118,17 @@ fn rust_ty(ty: &Ty) -> N<TokenStream> {
             let e = rust_ty(e)?;
             quote!(#rt::native::List<#e>)
         }
+        t if held_as_val(t) => quote!(#rt::native::Val),
         // Known ground where native code holds it (see the module doc).
-        Ty::Term | Ty::Ground => quote!(#rt::native::Ground),
-        Ty::Tagged(..) => return Err(format!("a value of type {ty} is not native yet")),
+        Ty::Term => quote!(#rt::native::Ground),
+        _ => return Err(format!("a value of type {ty} is not native yet")),
     })
 }
 
-/// `ty` with every `ground` read as `term` (see [`Gen::native_code`]).
-fn ground_as_term(ty: &Ty) -> Ty {
-    match ty {
-        Ty::Ground => Ty::Term,
-        Ty::List(e) => Ty::list(ground_as_term(e)),
-        Ty::Tagged(name, args) => Ty::Tagged(*name, args.iter().map(ground_as_term).collect()),
-        other => other.clone(),
-    }
-}
-
-/// A DM's types with every `ground` read as `term`, and every register,
-/// parameter or id argument that holds no value (`never` since `mir::ty`
-/// types `_`) as `term`.
-fn ground_as_term_dm(t: &DmTypes) -> DmTypes {
+/// A DM's types with every register, parameter or id argument that holds
+/// no value (`never` since `mir::ty` types `_`) as `term`.
+fn unread_as_term_dm(t: &DmTypes) -> DmTypes {
     let mut t = t.clone();
-    let fix = |x: &mut crate::mir::ty::Typed| x.ty = ground_as_term(&x.ty);
     // A parameter or id argument nothing reads holds no value (`never`):
     // native code still receives one there, a term.
     let unread = |x: &mut crate::mir::ty::Typed| {
@@ -118,13 +136,9 @@ fn ground_as_term_dm(t: &DmTypes) -> DmTypes {
             x.ty = Ty::Term;
         }
     };
-    t.params.iter_mut().for_each(fix);
     t.params.iter_mut().for_each(unread);
     for st in t.sits.iter_mut().flatten() {
-        st.regs.iter_mut().for_each(fix);
-        st.id_args.iter_mut().for_each(fix);
         st.id_args.iter_mut().for_each(unread);
-        fix(&mut st.pipe);
     }
     t
 }
@@ -162,7 +176,8 @@ fn eq_safe(ty: &Ty) -> bool {
     match ty {
         Ty::Int | Ty::Sym | Ty::Never => true,
         Ty::List(e) => eq_safe(e),
-        _ => false,
+        // Canonical `Val`s: `==` is Prolog's (`sitlog_runtime::native`).
+        t => held_as_val(t),
     }
 }
 
@@ -185,6 +200,10 @@ enum MatchStep {
     /// The arguments of a ground term `v` that is `name/arity`, each a
     /// ground term: `if let Some(&[x0, ..]) = store.compound_args(..)`.
     Args(TokenStream, TokenStream, Literal, Vec<Ident>),
+    /// `[H|T]` of a `Val`: `if let Some((h, t)) = v.split_list()`.
+    SplitVal(TokenStream, Ident, Ident),
+    /// The arguments of a `Val` that is `name/arity`, each a `Val`.
+    ArgsVal(TokenStream, TokenStream, Literal, Vec<Ident>),
 }
 
 /// The DM's native code, for the module.
@@ -193,10 +212,12 @@ pub(super) struct NativeCode {
     pub items: TokenStream,
     /// The hook `run_situation` tries first.
     pub first: TokenStream,
-    /// How many situations hold no ground handle (no register `term`, or
-    /// `ground`, which native code holds as a handle too): the ones on
-    /// native values.
+    /// How many situations hold no ground handle (no register `term`):
+    /// the ones on native values.
     pub on_native_values: usize,
+    /// How many of those hold no `Val` either (only fixed shapes: no
+    /// register `ground` or a compound type).
+    pub fixed_shapes: usize,
 }
 
 struct Dm<'a> {
@@ -211,10 +232,9 @@ impl Gen<'_> {
     /// The native code of DM `dm_ix`, or why it has none.
     pub(super) fn native_code(&self, dm: &IrDm, dm_ix: usize, t: &DmTypes) -> N<NativeCode> {
         let rt = quote!(::sitlog_runtime);
-        // `ground` (a boundary's value after a checked conversion, or the
-        // join of different shapes) is held as a ground handle here, as
-        // `term` is: native code has no boundary conversion yet.
-        let t = &ground_as_term_dm(t);
+        // `ground` is held as a `Val`, converted where it enters (a
+        // parameter at entry); `term` as a ground handle.
+        let t = &unread_as_term_dm(t);
         let mut plans = Vec::new();
         let mut types = Vec::new();
         for i in 0..dm.situations.len() {
@@ -356,15 +376,20 @@ impl Gen<'_> {
                 }
             }
         };
-        let on_native_values = d
+        let native: Vec<&SitTypes> = d
             .types
             .iter()
             .filter(|st| st.regs.iter().all(|r| r.ty.is_native()))
+            .collect();
+        let fixed_shapes = native
+            .iter()
+            .filter(|st| !st.regs.iter().any(|r| holds_val(&r.ty)))
             .count();
         Ok(NativeCode {
             items,
             first,
-            on_native_values,
+            on_native_values: native.len(),
+            fixed_shapes,
         })
     }
 
@@ -460,10 +485,7 @@ impl Gen<'_> {
                     *n += 1;
                     let rr = reg(r);
                     stmts.push(quote! {
-                        let #x = {
-                            use #rt::native::Native as _;
-                            (&#rr).to_term(#store)
-                        };
+                        let #x = #rt::native::Native::to_term(&#rr, #store);
                     });
                     vars.insert(v.index(), x.clone());
                     quote!(#x)
@@ -841,6 +863,17 @@ impl Gen<'_> {
                             #code
                         }
                     },
+                    MatchStep::SplitVal(l, h, t) => quote! {
+                        if let ::std::option::Option::Some((#h, #t)) = #l.split_list() {
+                            #code
+                        }
+                    },
+                    MatchStep::ArgsVal(v, f, arity, xs) => quote! {
+                        if let ::std::option::Option::Some([#(#xs),*]) = #v.args_of(#f, #arity) {
+                            #(let #xs = #xs.clone();)*
+                            #code
+                        }
+                    },
                     MatchStep::Split(l, h, t) => quote! {
                         if let ::std::option::Option::Some((#h, #t)) = #l.split_first() {
                             let #h = #h.clone();
@@ -909,6 +942,8 @@ impl Gen<'_> {
                 vars.insert(var.index(), (x, ty));
                 Ok(true)
             }
+            // A canonical `Val`: read by its variant.
+            _ if held_as_val(&v.ty) => self.val_match(d, j, pat, v, path, vars, steps, n),
             // A ground term: read in the store.
             Value::Atom(a) if v.ty == Ty::Term => {
                 let a = self.atom_native(a)?;
@@ -1020,13 +1055,115 @@ impl Gen<'_> {
     }
 }
 
+impl Gen<'_> {
+    /// [`Gen::native_match`] on a value held as a canonical `Val` (type
+    /// `ground` or a fixed-shape compound): the pattern is not a variable.
+    #[allow(clippy::too_many_arguments)]
+    fn val_match(
+        &self,
+        d: &Dm,
+        j: usize,
+        pat: Term,
+        v: &V,
+        path: &mut Vec<usize>,
+        vars: &mut HashMap<u32, (Ident, Ty)>,
+        steps: &mut Vec<MatchStep>,
+        n: &mut usize,
+    ) -> N<bool> {
+        let e = &v.e;
+        let some = quote!(::std::option::Option::Some);
+        let tagged = match &v.ty {
+            Ty::Tagged(name, args) => Some((*name, args.len())),
+            _ => None,
+        };
+        match self.store.value(pat) {
+            Value::Atom(a) if a == atoms::NIL => {
+                steps.push(MatchStep::If(quote!(#e.is_nil())));
+                Ok(true)
+            }
+            Value::Atom(a) => {
+                let a = self.atom_native(a)?;
+                steps.push(MatchStep::If(quote!((#e.sym() == #some(#a)))));
+                Ok(true)
+            }
+            Value::Int(i) => {
+                let i = Literal::i64_suffixed(i);
+                steps.push(MatchStep::If(quote!((#e.int() == #some(#i)))));
+                Ok(true)
+            }
+            Value::Compound(name, args) if name == atoms::DOT && args.len() == 2 => {
+                if tagged.is_some() {
+                    return Ok(false);
+                }
+                let (h, t) = (args[0], args[1]);
+                let hx = format_ident!("h{}", *n);
+                let tx = format_ident!("l{}", *n);
+                *n += 1;
+                steps.push(MatchStep::SplitVal(quote!(#e), hx.clone(), tx.clone()));
+                for (k, (p, x)) in [(h, hx), (t, tx)].into_iter().enumerate() {
+                    let xv = V {
+                        e: quote!(#x),
+                        ty: Ty::Ground,
+                    };
+                    path.push(k);
+                    let ok = self.native_match(d, j, p, &xv, path, vars, steps, n)?;
+                    path.pop();
+                    if !ok {
+                        return Ok(false);
+                    }
+                }
+                Ok(true)
+            }
+            Value::Compound(name, args) => {
+                if tagged.is_some_and(|t| t != (name, args.len())) {
+                    return Ok(false);
+                }
+                let args = args.to_vec();
+                let f = self.atom_native(name)?;
+                let xs: Vec<Ident> = (0..args.len())
+                    .map(|k| format_ident!("g{}_{}", *n, k))
+                    .collect();
+                *n += 1;
+                let arity = Literal::usize_unsuffixed(args.len());
+                steps.push(MatchStep::ArgsVal(quote!(#e), f, arity, xs.clone()));
+                for (k, (&a, x)) in args.iter().zip(&xs).enumerate() {
+                    // Held as `Val`s inside the compound, whatever the type.
+                    let xv = V {
+                        e: quote!(#x),
+                        ty: Ty::Ground,
+                    };
+                    path.push(k);
+                    let ok = self.native_match(d, j, a, &xv, path, vars, steps, n)?;
+                    path.pop();
+                    if !ok {
+                        return Ok(false);
+                    }
+                }
+                Ok(true)
+            }
+            _ => Err("an id pattern holds a constant that is not native".into()),
+        }
+    }
+}
+
 /// Prolog's `==` on two native values, when their types allow it in Rust
 /// (ground terms compared in the store).
 fn identical(l: &V, r: &V) -> Option<TokenStream> {
     let (le, re) = (&l.e, &r.e);
     let some = quote!(::std::option::Option::Some);
+    let rt = quote!(::sitlog_runtime);
     match (&l.ty, &r.ty) {
         (a, b) if a == b && eq_safe(a) => Some(quote!((#le == #re))),
+        // Canonical `Val`s and other native values as `Val`s.
+        (a, b) if held_as_val(a) && held_as_val(b) => Some(quote!((#le == #re))),
+        (Ty::Term, b) if held_as_val(b) => Some(quote!((#re).identical_to(cx.store_ref(), #le.0))),
+        (a, Ty::Term) if held_as_val(a) => Some(quote!((#le).identical_to(cx.store_ref(), #re.0))),
+        (a, b) if held_as_val(a) && b.is_native() && *b != Ty::Float => {
+            Some(quote!((#le == #rt::native::IntoVal::into_val(#re))))
+        }
+        (a, b) if held_as_val(b) && a.is_native() && *a != Ty::Float => {
+            Some(quote!((#rt::native::IntoVal::into_val(#le) == #re)))
+        }
         (Ty::Term, Ty::Term) => Some(quote!(cx.store_ref().identical(#le.0, #re.0))),
         (Ty::Term, Ty::Sym) => Some(quote!((cx.store_ref().atom_of(#le.0) == #some(#re)))),
         (Ty::Sym, Ty::Term) => Some(quote!((cx.store_ref().atom_of(#re.0) == #some(#le)))),
@@ -1055,19 +1192,42 @@ fn cons(h: V, t: V) -> N<V> {
 
 /// `v` as a value of type `to`.
 fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
-    if v.ty == *to {
+    if v.ty == *to || same_rep(&v.ty, to) {
         return Ok(v.e.clone());
     }
+    let rt = quote!(::sitlog_runtime);
     match (&v.ty, to) {
+        (Ty::Never, _) => {
+            let e = &v.e;
+            Ok(quote!(match #e {}))
+        }
+        // A native value entering a `ground` register.
+        (from, Ty::Ground) if from.is_native() => {
+            let e = &v.e;
+            Ok(quote!(#rt::native::IntoVal::into_val(#e)))
+        }
+        // Lists of native values as lists of `Val`s.
+        (Ty::List(a), Ty::List(b)) if a.is_native() && held_as_val(b) && **b == Ty::Ground => {
+            let e = &v.e;
+            Ok(
+                quote!(#e.iter().cloned().map(#rt::native::IntoVal::into_val).collect::<#rt::native::List<#rt::native::Val>>()),
+            )
+        }
+        // A `Val` where a ground term is held: built in the store (inert:
+        // it came from an inert term or from native values).
+        (from, Ty::Term)
+            if holds_val(from)
+                || (from.is_native() && !matches!(from, Ty::Sym | Ty::Int | Ty::List(_))) =>
+        {
+            let ty = rust_ty(from)?;
+            let e = &v.e;
+            Ok(quote!(#rt::native::Ground(<#ty as #rt::native::Native>::to_term(&#e, cx.store()))))
+        }
         // An empty list is an empty list of anything.
         (Ty::List(e), Ty::List(_)) if **e == Ty::Never => {
             let ty = rust_ty(to)?;
             let e = &v.e;
             Ok(quote!({ let _ = #e; <#ty>::nil() }))
-        }
-        (Ty::Never, _) => {
-            let e = &v.e;
-            Ok(quote!(match #e {}))
         }
         // An immediate term of a native scalar, or `[]`.
         (Ty::Sym, Ty::Term) => {
