@@ -16,11 +16,13 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
 /// before this listing's two summary lines; and per DM whether the code
 /// generator gives it native code (`crate::codegen::native_dms`, passed
 /// in: inference does not reach up into the back end).
-#[allow(clippy::type_complexity)]
 pub fn explain_with(
     ir: &Ir,
     types: &Types,
-    mir: Option<(&crate::mir::ty::MirTypes, &[Result<(usize, usize), String>])>,
+    mir: Option<(
+        &crate::mir::ty::MirTypes,
+        &[Result<crate::codegen::NativeDm, String>],
+    )>,
 ) -> String {
     let store = &ir.store;
     let mut out = String::new();
@@ -34,15 +36,30 @@ pub fn explain_with(
             let _ = writeln!(out, "{}", m.dm_line(ir, d));
         }
         match native.as_ref().map(|n| &n[d]) {
-            Some(Ok((n, _))) if *n == dm.situations.len() => {
-                let _ = writeln!(out, "  native code: every situation, on Rust values");
-            }
-            Some(Ok((n, _))) => {
+            Some(Ok(n)) if n.values == dm.situations.len() && n.fixed == n.values => {
                 let _ = writeln!(
                     out,
-                    "  native code: every situation, on Rust values ({} holding ground terms where the types say `term`)",
-                    dm.situations.len() - n
+                    "  native code: every situation, on Rust values of fixed shapes"
                 );
+            }
+            Some(Ok(n)) if n.values == dm.situations.len() => {
+                let _ = writeln!(out, "  native code: every situation, on Rust values");
+            }
+            Some(Ok(n)) => {
+                let _ = writeln!(
+                    out,
+                    "  native code: {}/{} situations ({} on Rust values, {} of them only fixed shapes)",
+                    n.native,
+                    dm.situations.len(),
+                    n.values,
+                    n.fixed
+                );
+                for (s, why) in dm.situations.iter().zip(&n.why) {
+                    if let Some(why) = why {
+                        let id = show(store, dm, store.args(s.template)[1]);
+                        let _ = writeln!(out, "    no native code for `{id}`: {why}");
+                    }
+                }
             }
             Some(Err(why)) => {
                 let _ = writeln!(out, "  native code: no ({why})");
@@ -141,7 +158,7 @@ pub fn explain_with(
     }
     let native_sits = native.map(|n| {
         n.iter()
-            .map(|n| n.as_ref().map_or((0, 0), |&s| s))
+            .map(|n| n.as_ref().map_or((0, 0), |n| (n.values, n.fixed)))
             .fold((0, 0), |(a, b), (x, y)| (a + x, b + y))
     });
     let _ = writeln!(out, "{}", summary_with(types, native_sits));

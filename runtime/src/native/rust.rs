@@ -244,6 +244,16 @@ impl<T: Native> Native for List<T> {
     }
 }
 
+/// The part of a (selected) situation id at `path` (argument indices,
+/// outermost first), dereferenced; `None` when the id has no such part.
+pub fn id_part(store: &Store, id: Term, path: &[usize]) -> Option<Term> {
+    let mut t = store.deref(id);
+    for &k in path {
+        t = store.deref(store.arg(t, k)?);
+    }
+    Some(t)
+}
+
 /// `name(args..)` built from native values (a compound situation id or
 /// next situation handed to the machine).
 pub fn compound(store: &mut Store, name: Atom, args: &[Term]) -> Term {

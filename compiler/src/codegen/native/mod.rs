@@ -218,7 +218,15 @@ pub(super) struct NativeCode {
     /// How many of those hold no `Val` either (only fixed shapes: no
     /// register `ground` or a compound type).
     pub fixed_shapes: usize,
+    /// How many situations have native code.
+    pub native_sits: usize,
+    /// Per situation, why it has no native code (`None`: it has).
+    pub why: Vec<Option<String>>,
 }
+
+/// A situation's native code: its variant's fields, the visit, its id as
+/// a term.
+type SitCode = (Vec<(Reg, Ty)>, TokenStream, TokenStream);
 
 struct Dm<'a> {
     dm: &'a IrDm,
@@ -226,6 +234,9 @@ struct Dm<'a> {
     types: Vec<SitTypes>,
     /// The parameters' types.
     params: Vec<Ty>,
+    /// Per situation, whether it has native code (else a next situation
+    /// that selects it is handed to the machine).
+    native: Vec<bool>,
 }
 
 impl Gen<'_> {
@@ -237,6 +248,8 @@ impl Gen<'_> {
         let t = &unread_as_term_dm(t);
         let mut plans = Vec::new();
         let mut types = Vec::new();
+        // Per situation, why it has no native code (`None`: it may).
+        let mut why: Vec<Option<String>> = Vec::new();
         for i in 0..dm.situations.len() {
             let plan = self
                 .mir
@@ -254,38 +267,66 @@ impl Gen<'_> {
                     st.regs[r].ty = unread_reg_ty(t, &st, init);
                 }
             }
+            let mut w = None;
             if let Some(r) = st.regs.iter().position(|r| rust_ty(&r.ty).is_err()) {
-                let why = st.regs[r].why.as_deref().unwrap_or("no reason given");
-                return Err(format!(
-                    "situation {} has register r{r} typed {}: {why}",
-                    i + 1,
-                    st.regs[r].ty
-                ));
+                let reason = st.regs[r].why.as_deref().unwrap_or("no reason given");
+                w = Some(format!("register r{r} typed {}: {reason}", st.regs[r].ty));
             }
+            // A parameter it reads must be native too.
+            for (_, init) in &plan.inits {
+                if let Init::HeadArg(p) = init {
+                    let ty = t.params.get(*p).map_or(Ty::Term, |p| p.ty.clone());
+                    if w.is_none() && rust_ty(&ty).is_err() {
+                        w = Some(format!("parameter {} is typed {ty}", p + 1));
+                    }
+                }
+            }
+            why.push(w);
             plans.push(plan);
             types.push(st);
         }
-        if plans.first().is_none_or(|p| p.id.1 != 0) {
-            return Err("its initial situation's id is not an atom".into());
-        }
-        if let Some(p) = t.params.iter().position(|p| rust_ty(&p.ty).is_err()) {
-            let why = t.params[p].why.as_deref().unwrap_or("no reason given");
-            return Err(format!(
-                "parameter {} is typed {}: {why}",
-                p + 1,
-                t.params[p].ty
-            ));
-        }
-        let d = Dm {
+        let mut d = Dm {
             dm,
             plans,
             types,
             params: t.params.iter().map(|p| p.ty.clone()).collect(),
+            native: why.iter().map(Option::is_none).collect(),
         };
-        // Parameters, converted at entry.
+        // Each situation's code, given which others have native code (a
+        // next situation without is handed to the machine): a fixpoint,
+        // since a situation that fails only makes others hand over more.
+        let mut code: Vec<Option<SitCode>>;
+        loop {
+            code = vec![None; d.plans.len()];
+            let mut changed = false;
+            for ix in 0..d.plans.len() {
+                if !d.native[ix] {
+                    continue;
+                }
+                let c = self.nat_fields(&d, ix).and_then(|fields| {
+                    let body = self.native_visit(&d, ix, &fields)?;
+                    let (id_stmts, id) = self.nat_id_term(&d, ix, quote!(store))?;
+                    Ok((fields, body, quote!({ #(#id_stmts)* #id })))
+                });
+                match c {
+                    Ok(c) => code[ix] = Some(c),
+                    Err(e) => {
+                        why[ix] = Some(e);
+                        d.native[ix] = false;
+                        changed = true;
+                    }
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        // With no situation native, `items` is never emitted (the caller
+        // looks at `native_sits`); `why` says why for each.
+        // Parameters, converted at entry (those of a native type).
         let mut loads = Vec::new();
         for (i, p) in t.params.iter().enumerate() {
-            let ty = rust_ty(&p.ty)?;
+            let Ok(ty) = rust_ty(&p.ty) else { continue };
             let name = format_ident!("p{}", i);
             let ix = Literal::usize_unsuffixed(i);
             loads.push(quote! {
@@ -300,9 +341,12 @@ impl Gen<'_> {
         let mut variants = Vec::new();
         let mut arms = Vec::new();
         let mut id_arms = Vec::new();
-        for ix in 0..d.plans.len() {
+        let mut entries = Vec::new();
+        for (ix, c) in code.iter().enumerate() {
+            let Some((fields, body, id)) = c else {
+                continue;
+            };
             let v = variant(ix);
-            let fields = self.nat_fields(&d, ix)?;
             let decls = fields
                 .iter()
                 .map(|(r, ty)| {
@@ -313,19 +357,51 @@ impl Gen<'_> {
             let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
             let doc = format!(" `{}`", self.store.writeq(self.nat_id_of(&d, ix)));
             variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
-            let (id_stmts, id) = self.nat_id_term(&d, ix, quote!(store))?;
-            id_arms.push(quote!(Nat::#v { #(#names),* } => { #(#id_stmts)* #id }));
-            let body = self.native_visit(&d, ix, &fields)?;
+            id_arms.push(quote!(Nat::#v { #(#names),* } => #id));
             arms.push(quote!(Nat::#v { #(#names),* } => { #body }));
+            // Entered by the machine: the fields from the value that
+            // selected it, converted (else the term code runs it).
+            let ixl = Literal::u32_unsuffixed(ix as u32);
+            let mut conv = Vec::new();
+            for (r, ty) in fields {
+                let path: Vec<usize> = match d.plans[ix].inits.iter().find(|(x, _)| x == r) {
+                    Some((_, Init::IdArg(a))) => vec![*a],
+                    Some((_, Init::IdPath(p))) => p.to_vec(),
+                    _ => return Err("an id field has no place in the id".into()),
+                };
+                let rr = reg(*r);
+                let ty = rust_ty(ty)?;
+                let path = path.iter().map(|&k| Literal::usize_unsuffixed(k));
+                conv.push(quote! {
+                    let ::std::option::Option::Some(#rr) = #rt::native::id_part(cx.store_ref(), id, &[#(#path),*])
+                        .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
+                    else {
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    };
+                });
+            }
+            entries.push(if fields.is_empty() {
+                quote!(#ixl => Nat::#v {},)
+            } else {
+                quote!(#ixl => {
+                    let ::std::option::Option::Some(id) = cx.selected() else {
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    };
+                    #(#conv)*
+                    Nat::#v { #(#names),* }
+                })
+            });
         }
         let doc = format!(
-            " Runs DM `{}` natively from its initial situation (see \
-             `sitlog_compiler::codegen::native`); `None`, nothing done, when a \
-             history is kept or observed or a parameter does not convert.",
+            " Runs DM `{}` natively from situation `sit` (see \
+             `sitlog_compiler::codegen::native`); `None`, nothing done, when the \
+             situation has no native code, a history is kept or observed, or a \
+             parameter or id argument does not convert.",
             dm.name.as_str()
         );
         let items = quote! {
-            /// The DM's situations as native values: the fields are the id's variables.
+            /// The DM's situations that have native code, as native values:
+            /// the fields are the id's variables.
             #[allow(dead_code, non_camel_case_types, clippy::all)]
             #[derive(Clone, Debug)]
             pub enum Nat { #(#variants)* }
@@ -340,21 +416,25 @@ impl Gen<'_> {
             }
 
             #[doc = #doc]
-            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, clippy::all)]
+            #[allow(unused_variables, unused_mut, unused_parens, unused_labels, unreachable_code, clippy::all)]
             pub fn run_native(
                 p: &super::Program,
                 cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                sit: #rt::machine::SitIx,
             ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
                 let run = cx.typed_run();
                 if run.records {
                     return ::std::result::Result::Ok(::std::option::Option::None);
                 }
-                cx.materialize_frames();
                 let a = &p.atoms;
+                let mut at = match sit {
+                    #(#entries)*
+                    _ => return ::std::result::Result::Ok(::std::option::Option::None),
+                };
+                cx.materialize_frames();
                 #(#loads)*
                 // Transitions done, not yet given to the machine.
                 let mut count: u64 = 0;
-                let mut at = Nat::S0 {};
                 loop {
                     at = match at { #(#arms)* };
                     // The machine wants control (garbage, a stop asked):
@@ -368,18 +448,19 @@ impl Gen<'_> {
             }
         };
         let first = quote! {
-            // The DM runs natively from its initial situation when its
-            // parameters convert and no history is kept or observed.
-            if sit == 0 && cx.selected().is_none() {
-                if let ::std::option::Option::Some(step) = run_native(p, cx)? {
-                    return ::std::result::Result::Ok(step);
-                }
+            // The situation runs natively when it has native code, its id's
+            // arguments and the DM's parameters convert, and no history is
+            // kept or observed.
+            if let ::std::option::Option::Some(step) = run_native(p, cx, sit)? {
+                return ::std::result::Result::Ok(step);
             }
         };
         let native: Vec<&SitTypes> = d
             .types
             .iter()
-            .filter(|st| st.regs.iter().all(|r| r.ty.is_native()))
+            .zip(&d.native)
+            .filter(|(st, &n)| n && st.regs.iter().all(|r| r.ty.is_native()))
+            .map(|(st, _)| st)
             .collect();
         let fixed_shapes = native
             .iter()
@@ -390,6 +471,8 @@ impl Gen<'_> {
             first,
             on_native_values: native.len(),
             fixed_shapes,
+            native_sits: d.native.iter().filter(|&&n| n).count(),
+            why,
         })
     }
 
@@ -485,7 +568,11 @@ impl Gen<'_> {
                     *n += 1;
                     let rr = reg(r);
                     stmts.push(quote! {
-                        let #x = #rt::native::Native::to_term(&#rr, #store);
+                        let #x = {
+                            #[allow(unused_imports)]
+                            use #rt::native::Native as _;
+                            (&#rr).to_term(#store)
+                        };
                     });
                     vars.insert(v.index(), x.clone());
                     quote!(#x)
@@ -527,8 +614,14 @@ impl Gen<'_> {
         let rt = quote!(::sitlog_runtime);
         let plan = d.plans[ix];
         let st = &d.types[ix];
-        if plan.in_arg.is_some() || plan.out_arg.is_some() || plan.prog.is_some() {
-            return Err(format!("situation {} uses the pipe or prog", ix + 1));
+        if plan.in_arg.is_some() {
+            return Err("it has an in_arg (the pipe)".into());
+        }
+        if plan.out_arg.is_some() {
+            return Err("it has an out_arg (the pipe)".into());
+        }
+        if plan.prog.is_some() {
+            return Err("it has a prog".into());
         }
         // Where each register's value lives: a field, a parameter, a local.
         let mut regs: Regs = fields
@@ -565,15 +658,29 @@ impl Gen<'_> {
         let cur = Literal::u32_unsuffixed(ix as u32);
         let kind = d.dm.situations[ix].kind;
         match (&plan.kind, kind) {
-            (KindPlan::Final { diag_mod: None }, Kind::Final) => {
+            (KindPlan::Final { diag_mod }, Kind::Final) => {
                 let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
                 let empty = quote!(#rt::Term::atom(#rt::atoms::EMPTY));
+                // `diag_mod`: the DM's head bound (its output arguments),
+                // a term built from native values at that boundary.
+                let diag = match diag_mod {
+                    Some(b) => {
+                        let mut ts = Vec::new();
+                        let mut n = 0;
+                        let t = self
+                            .nat_build_term(b, &regs, &mut ts, &mut n)
+                            .map_err(|e| format!("its diag_mod: {e}"))?;
+                        quote!(#(#ts)* cx.diag_mod(#t)?;)
+                    }
+                    None => quote!(),
+                };
                 Ok(quote! {
                     #(#stmts)*
                     cx.count_transitions(count);
                     #(#id_stmts)*
                     cx.enter_with_id(#cur, #id);
                     cx.final_out_arg(::std::option::Option::None)?;
+                    #diag
                     cx.record(#empty, #empty, ::std::option::Option::None);
                     return ::std::result::Result::Ok(::std::option::Option::Some(#rt::machine::Step::Final));
                 })
@@ -582,8 +689,11 @@ impl Gen<'_> {
                 if arcs.always_first && arcs.arcs.len() == 1 =>
             {
                 let arc = &arcs.arcs[0];
-                if arc.out_arg.is_some() || arc.diag_mod.is_some() {
-                    return Err(format!("situation {} has out_arg or diag_mod", ix + 1));
+                if arc.out_arg.is_some() {
+                    return Err("its arc has an out_arg (the pipe)".into());
+                }
+                if arc.diag_mod.is_some() {
+                    return Err("its arc has a diag_mod".into());
                 }
                 for (k, from) in arc.import_from.iter().enumerate() {
                     // An imported copy of a ground value is the value.
@@ -591,34 +701,232 @@ impl Gen<'_> {
                         regs.insert(arc.import_at + k as Reg, at);
                     }
                 }
-                let action = match &arc.action {
+                let atom = match &arc.action {
                     Action::One(Ev::Built(Build::Const(t))) => self.store.atom_of(*t),
                     _ => None,
+                };
+                // A `_` of the action (a fresh variable met once) is made
+                // where its term is built.
+                let mut regs = regs.clone();
+                for r in arc.fresh.iter().chain(
+                    plan.inits
+                        .iter()
+                        .filter_map(|(r, i)| matches!(i, Init::Fresh).then_some(r)),
+                ) {
+                    if st.unbound.get(*r as usize).copied().unwrap_or(false)
+                        && !regs.contains_key(r)
+                    {
+                        regs.insert(*r, (format_ident!("fresh"), Ty::Term));
+                    }
                 }
-                .ok_or(format!("situation {}: its action is not an atom", ix + 1))?;
                 let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
-                let act = self.atom_native(action)?;
-                let perform = quote! {
+                let enter = quote! {
                     cx.count_transitions(count);
                     count = 0;
                     #(#id_stmts)*
                     cx.enter_with_id(#cur, #id);
-                    cx.perform(#rt::Term::atom(#act), ::std::option::Option::Some(0))?;
                 };
-                stmts.push(if action == atoms::EMPTY {
-                    quote!(if !run.quiet_empty { #perform })
-                } else {
-                    perform
-                });
+                match atom {
+                    Some(action) => {
+                        let act = self.atom_native(action)?;
+                        let perform = quote! {
+                            #enter
+                            cx.perform(#rt::Term::atom(#act), ::std::option::Option::Some(0))?;
+                        };
+                        stmts.push(if action == atoms::EMPTY {
+                            quote!(if !run.quiet_empty { #perform })
+                        } else {
+                            perform
+                        });
+                    }
+                    None => {
+                        // An effector's action (`say([.., Name])`): its term
+                        // built from native values where it is performed.
+                        let why = |e: String| {
+                            format!("its action {}: {e}", self.action_shape(&arc.action))
+                        };
+                        let mut ts = Vec::new();
+                        let mut n = 0;
+                        let perform = match &arc.action {
+                            Action::One(e) => {
+                                let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
+                                quote!(cx.perform(#t, ::std::option::Option::Some(0))?;)
+                            }
+                            Action::List { items, .. } => {
+                                let ts_items = items
+                                    .iter()
+                                    .map(|e| self.nat_ev_term(e, &regs, &mut ts, &mut n))
+                                    .collect::<N<Vec<_>>>()
+                                    .map_err(why)?;
+                                quote!(cx.perform_each(&[#(#ts_items),*], ::std::option::Option::Some(0))?;)
+                            }
+                        };
+                        stmts.push(quote! {
+                            #enter
+                            #(#ts)*
+                            #perform
+                        });
+                    }
+                }
                 stmts.push(quote!(count += 1;));
                 let name = self.atom_native(plan.id.0)?;
                 let next = self.nat_next(d, ix, &arc.next, &regs, &name)?;
                 Ok(quote! { #(#stmts)* #next })
             }
+            (KindPlan::Final { .. }, _) => Err("a final situation with diag_mod".into()),
+            (KindPlan::Recursive { .. }, _) => Err("a recursive situation (a DM call)".into()),
+            (KindPlan::Perceptual(arcs), Kind::Perceptual) if arcs.always_first => {
+                Err("a neutral situation with several arcs".into())
+            }
+            (KindPlan::Perceptual(_), _) => {
+                Err("a perceptual situation (expectations on a perception)".into())
+            }
+        }
+    }
+
+    /// The term of `b` built from native values (a boundary: an effector's
+    /// action, `diag_mod`): statements pushed to `ts`, the term's
+    /// expression returned.
+    fn nat_build_term(
+        &self,
+        b: &Build,
+        regs: &Regs,
+        ts: &mut Vec<TokenStream>,
+        n: &mut usize,
+    ) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let x = format_ident!("b{}", *n);
+        *n += 1;
+        let e = match b {
+            // `_` (met once): a fresh variable where the term is built.
+            Build::Reg(r) if regs.get(r).is_some_and(|(v, _)| *v == "fresh") => quote!(cx.var()),
+            Build::Reg(r) => {
+                let (v, _) = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
+                quote!(#rt::native::Native::to_term(&#v, cx.store()))
+            }
+            Build::Const(t) => return self.nat_const_term(*t, ts, n),
+            Build::Compound(f, args) => {
+                let args = args
+                    .iter()
+                    .map(|a| self.nat_build_term(a, regs, ts, n))
+                    .collect::<N<Vec<_>>>()?;
+                let f = self.functor_native(*f)?;
+                quote!(#rt::native::compound(cx.store(), #f, &[#(#args),*]))
+            }
+        };
+        ts.push(quote!(let #x = #e;));
+        Ok(quote!(#x))
+    }
+
+    /// The term of `e` evaluated, when evaluating builds it from native
+    /// values (they evaluate to themselves: native values are inert).
+    fn nat_ev_term(
+        &self,
+        e: &Ev,
+        regs: &Regs,
+        ts: &mut Vec<TokenStream>,
+        n: &mut usize,
+    ) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        match e {
+            Ev::Value(r) => self.nat_build_term(&Build::Reg(*r), regs, ts, n),
+            Ev::Built(b) => self.nat_build_term(b, regs, ts, n),
+            Ev::Compound(f, args) => {
+                let args = args
+                    .iter()
+                    .map(|a| self.nat_ev_term(a, regs, ts, n))
+                    .collect::<N<Vec<_>>>()?;
+                let f = self.functor_native(*f)?;
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = #rt::native::compound(cx.store(), #f, &[#(#args),*]);));
+                Ok(quote!(#x))
+            }
+            // A user function, the KB, `assign`...: the evaluator, on the
+            // term built from native values (a boundary); its value is a
+            // term, performed as it is.
+            Ev::Eval(b) => {
+                let t = self.nat_build_term(b, regs, ts, n)?;
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = cx.eval(#t, ::std::option::Option::Some(0))?;));
+                Ok(quote!(#x))
+            }
+            _ => Err(
+                "an expression with side effects or bindings (`is`, `get`, `set`, `inc`)".into(),
+            ),
+        }
+    }
+
+    /// A constant term (atoms, numbers, compounds of them), built.
+    fn nat_const_term(&self, t: Term, ts: &mut Vec<TokenStream>, n: &mut usize) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        match self.store.value(t) {
+            Value::Atom(a) => {
+                let a = self.functor_native(a)?;
+                Ok(quote!(#rt::Term::atom(#a)))
+            }
+            Value::Int(i) => {
+                let i = Literal::i64_suffixed(i);
+                Ok(quote!(#rt::Term::int(#i)))
+            }
+            Value::Float(f) if f.is_finite() => {
+                let f = Literal::f64_suffixed(f);
+                Ok(quote!(#rt::Term::float(#f)))
+            }
+            Value::Compound(f, args) => {
+                let args = args.to_vec();
+                let args = args
+                    .into_iter()
+                    .map(|a| self.nat_const_term(a, ts, n))
+                    .collect::<N<Vec<_>>>()?;
+                let f = self.functor_native(f)?;
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = #rt::native::compound(cx.store(), #f, &[#(#args),*]);));
+                Ok(quote!(#x))
+            }
             _ => Err(format!(
-                "situation {} is not a final or a neutral `empty` situation",
-                ix + 1
+                "constant `{}` is not native yet",
+                self.store.writeq(t)
             )),
+        }
+    }
+
+    /// An atom as a functor or constant in generated code.
+    fn functor_native(&self, a: Atom) -> N<TokenStream> {
+        if a == atoms::DOT {
+            Ok(quote!(::sitlog_runtime::atoms::DOT))
+        } else {
+            self.atom_native(a)
+        }
+    }
+
+    /// What an action is, for `--explain-types`: `say/1`, a list of them.
+    fn action_shape(&self, a: &Action) -> String {
+        let ev = |e: &Ev| -> String {
+            let b = match e {
+                Ev::Built(b) | Ev::Eval(b) => b,
+                Ev::Compound(name, args) => return format!("`{}/{}`", name.as_str(), args.len()),
+                Ev::Value(_) => return "a variable".into(),
+                _ => return "an expression".into(),
+            };
+            match b {
+                Build::Const(t) => match self.store.functor(*t) {
+                    Some((f, n)) => format!("`{}/{n}`", f.as_str()),
+                    None => "a constant".into(),
+                },
+                Build::Reg(_) => "a variable".into(),
+                Build::Compound(f, args) => format!("`{}/{}`", f.as_str(), args.len()),
+            }
+        };
+        match a {
+            Action::One(e) => ev(e),
+            Action::List { items, .. } => {
+                let mut shapes: Vec<String> = items.iter().map(ev).collect();
+                shapes.dedup();
+                format!("a list of {}", shapes.join(", "))
+            }
         }
     }
 
@@ -628,6 +936,9 @@ impl Gen<'_> {
         match b {
             Build::Reg(r) => {
                 let (x, ty) = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
+                if *x == "fresh" {
+                    return Err(format!("register r{r} is a fresh variable"));
+                }
                 Ok(V {
                     e: quote!(#x.clone()),
                     ty: ty.clone(),
@@ -725,6 +1036,17 @@ impl Gen<'_> {
         let rt = quote!(::sitlog_runtime);
         let curl = Literal::u32_unsuffixed(cur as u32);
         match n {
+            Next::Static(t, Some(ix))
+                if self.store.atom_of(*t).is_some() && !d.native[*ix as usize] =>
+            {
+                // A situation without native code: the machine enters it.
+                let a = self.atom_native(self.store.atom_of(*t).unwrap_or(atoms::NIL))?;
+                Ok(quote! {{
+                    cx.count_transitions(count);
+                    cx.enter(#curl, #cur_name);
+                    return cx.goto(#rt::Term::atom(#a), ::std::option::Option::Some(0)).map(::std::option::Option::Some);
+                }})
+            }
             Next::Static(t, Some(ix)) if self.store.atom_of(*t).is_some() => {
                 let v = variant(*ix as usize);
                 if d.plans[*ix as usize].id.1 != 0 {
@@ -806,6 +1128,10 @@ impl Gen<'_> {
         for j in 0..d.plans.len() {
             if d.plans[j].id != (name, args.len()) {
                 continue;
+            }
+            if !d.native[j] {
+                // The machine selects from here on (D-21: source order).
+                break;
             }
             let id = self.nat_id_of(d, j);
             let id_args = self.store.args(id).to_vec();
