@@ -1,54 +1,64 @@
-//! Native code (phase 4 of `docs/design/typed-mir.md`): a DM whose
-//! situations all run as code and whose MIR registers are all native by
-//! [`crate::mir::ty`] runs, when it is entered, on Rust values: each
-//! register a Rust local of its type (`i64`, `f64`, `Atom`, `List<T>`,
-//! through [`sitlog_runtime::native::Native`]), each situation a variant
-//! of the DM's `enum Nat` whose fields are its id's variables
+//! Native code (phases 4 and 6 of `docs/design/typed-mir.md`): the
+//! situations of a DM that can run natively do, on Rust values, and the
+//! others run on the DM's term code; the two cross at a situation boundary
+//! through the machine. In a native situation each MIR register is a Rust
+//! local of its type (`i64`, `f64`, `Atom`, `List<T>`, and a canonical
+//! [`Val`](sitlog_runtime::native::Val) for `ground` and fixed-shape
+//! compounds, through [`sitlog_runtime::native::Native`]), each situation a
+//! variant of the DM's `enum Nat` whose fields are its id's variables
 //! (`S2 { r5: Atom, r6: List<Atom> }` for `try([P|Ps])`), a computed next
 //! situation selected by a Rust `match`/`if let` on the value, in source
 //! order, as the machine selects (D-21), and `==`/`\==` and integer
 //! comparisons done in Rust.
 //!
 //! The boundaries, and why the run is the term path's, step for step:
-//! - *entry*: `run_native` is tried when the DM's initial situation runs
-//!   (its id an atom) and no history is kept or observed; each parameter
-//!   is converted once with a checked conversion (`Native::from_term`). A
-//!   value that does not fit (a term of another shape, unbound, a partial
-//!   list) leaves the whole visit to the term code, nothing done.
+//! - *entry*: `run_native(sit)` is tried whenever situation `sit` runs
+//!   with no history kept or observed. The id's arguments (from the value
+//!   that selected it) and the parameters the native situations read are
+//!   converted with the checked conversion (`Native::from_term`; for a
+//!   `Val`: ground, inert, proper lists, no big integer). A value that does
+//!   not fit leaves the visit to the term code, nothing done.
 //! - *values*: native values are ground and evaluate to themselves in L
-//!   (atoms, numbers and lists of them are inert, D-28/D-36), so a
-//!   condition `X == Y` is Rust's `==` on them, and a value matched
-//!   against an id pattern binds exactly what unification would.
-//! - *hand-over*: a next value no situation takes natively is built as a
-//!   term and given to the machine ([`Cx::goto`]), which selects (or
-//!   reports the error) itself; so is the id of the situation reached when
-//!   the machine wants control (garbage to collect, a stop asked), checked
-//!   after each visit (so each native run makes progress).
+//!   (atoms, numbers and lists of them are inert, D-28/D-36; a `Val` is
+//!   converted from an inert term), so a condition `X == Y` is Rust's `==`
+//!   on them (a `Val` is canonical: `[]` an empty list, so `==` is
+//!   Prolog's), and a value matched against an id pattern binds exactly
+//!   what unification would.
+//! - *situations without native code*: a next situation that selects one
+//!   (the first candidate in source order without native code, or a
+//!   constant name) is built as a term and given to the machine
+//!   ([`Cx::goto`]), which selects and runs its term code; so is a value no
+//!   situation takes natively (the machine selects or reports the error),
+//!   and the id of the situation reached when the machine wants control
+//!   (garbage to collect, a stop asked), checked after each visit.
+//! - *effectors and the evaluator*: an action's term (`say(['Hi', Name])`,
+//!   `navigate(P, S)`, a list of them) is built from native values where it
+//!   is performed, as the term code would evaluate it; a part the evaluator
+//!   computes (`apply(name_of(_), [user])`, `assign/2`) is handed to it as
+//!   a term built from native values. A fresh variable of the action is a
+//!   term made there; one the next situation reads (a status, a value a
+//!   user function bound) is converted back with the checked conversion,
+//!   and when that fails the rest of the arc (the next situation) runs as
+//!   the term code runs it, on the native values converted to terms.
 //! - *finals*: the final situation's id is built as a term, the machine
-//!   entered in it, its (empty) out_arg and history entry taken as the term
-//!   code takes them; the caller's exit arcs read that id.
-//! - *effects*: an action other than an ignored `empty` is performed with
-//!   the machine entered in the situation (its errors located there);
-//!   transitions are counted and handed to the machine before it runs.
+//!   entered in it, its (empty) out_arg, its `diag_mod` (a term built from
+//!   native values: the DM's output arguments) and history entry taken as
+//!   the term code takes them; the caller's exit arcs read that id.
+//! - *`term` registers* (a parameter or id part nothing reads, loaded from
+//!   a place typed `term`): held as a
+//!   [`Ground`](sitlog_runtime::native::Ground) handle, checked ground and
+//!   inert where converted; the handles stay valid because the machine
+//!   collects garbage only after native code has handed over.
 //!
-//! - *ground terms*: a register typed `term` is held as a
-//!   [`Ground`](sitlog_runtime::native::Ground) handle: every value a
-//!   native run holds was converted at entry (a parameter: checked ground
-//!   and inert, so evaluating it, as the term path does in a condition or a
-//!   next situation, gives it back) or taken apart from one; the handles stay
-//!   valid because the machine collects garbage only after native code has
-//!   handed over. `==` on them is [`Store::identical`], a pattern is matched
-//!   by reading the store; such a situation does not count as on native
-//!   values in `--explain-types`.
-//!
-//! What is not (yet) native keeps the DM on its term code: a register
-//! read before it is set (a fresh variable), a fixed-shape compound type,
-//! the pipe (`in_arg`, `out_arg`), `prog`, DM calls,
-//! perceptual situations other than the neutral `empty` arc, actions other
-//! than atoms, expressions other than registers and constants.
+//! What is not (yet) native keeps a situation on its term code: a
+//! register read before it is set (a fresh variable) other than at an
+//! action, the pipe (`in_arg`, `out_arg`), `prog`, DM calls (recursive
+//! situations), perceptual situations other than the neutral `empty` arc,
+//! several arcs, actions with `is`/`get`/`set`/`inc`, expressions other
+//! than registers, constants and lists. `--explain-types` says which and
+//! why, per situation.
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
-//! [`Store::identical`]: sitlog_runtime::Store::identical
 
 use super::Gen;
 use crate::ir::IrDm;
@@ -179,6 +189,11 @@ fn eq_safe(ty: &Ty) -> bool {
         // Canonical `Val`s: `==` is Prolog's (`sitlog_runtime::native`).
         t => held_as_val(t),
     }
+}
+
+/// Whether a local holds a fresh variable (a term) made for an action.
+fn is_fresh(x: &Ident) -> bool {
+    x.to_string().starts_with("fresh_")
 }
 
 fn reg(r: Reg) -> Ident {
@@ -325,7 +340,22 @@ impl Gen<'_> {
         // looks at `native_sits`); `why` says why for each.
         // Parameters, converted at entry (those of a native type).
         let mut loads = Vec::new();
+        let read: std::collections::BTreeSet<usize> = (0..d.plans.len())
+            .filter(|&ix| d.native[ix])
+            .flat_map(|ix| {
+                let st = &d.types[ix];
+                d.plans[ix].inits.iter().filter_map(move |(r, i)| match i {
+                    Init::HeadArg(p) if !st.unbound.get(*r as usize).copied().unwrap_or(false) => {
+                        Some(*p)
+                    }
+                    _ => None,
+                })
+            })
+            .collect();
         for (i, p) in t.params.iter().enumerate() {
+            if !read.contains(&i) {
+                continue;
+            }
             let Ok(ty) = rust_ty(&p.ty) else { continue };
             let name = format_ident!("p{}", i);
             let ix = Literal::usize_unsuffixed(i);
@@ -455,9 +485,13 @@ impl Gen<'_> {
                 return ::std::result::Result::Ok(step);
             }
         };
-        let native: Vec<&SitTypes> = d
-            .types
+        // Counted on inference's types: a register that holds no value
+        // (`never`: `_`, a parameter or id part nothing reads) is native
+        // there although native code may carry a term in its place.
+        let native: Vec<&SitTypes> = t
+            .sits
             .iter()
+            .flatten()
             .zip(&d.native)
             .filter(|(st, &n)| n && st.regs.iter().all(|r| r.ty.is_native()))
             .map(|(st, _)| st)
@@ -631,6 +665,8 @@ impl Gen<'_> {
         let mut stmts = Vec::new();
         for (r, init) in &plan.inits {
             match init {
+                // A parameter nothing reads here is not loaded.
+                Init::HeadArg(_) if st.unbound.get(*r as usize).copied().unwrap_or(false) => {}
                 Init::HeadArg(i) => {
                     let ty = st.regs[*r as usize].ty.clone();
                     let p = format_ident!("p{}", i);
@@ -705,18 +741,23 @@ impl Gen<'_> {
                     Action::One(Ev::Built(Build::Const(t))) => self.store.atom_of(*t),
                     _ => None,
                 };
-                // A `_` of the action (a fresh variable met once) is made
-                // where its term is built.
+                // A fresh variable of the action (`_`, or one a boundary
+                // binds: `apply(name_of(_), [user])`) is made as a term
+                // where the action's terms are built, and only used there
+                // (native code reading it later is not native yet).
                 let mut regs = regs.clone();
-                for r in arc.fresh.iter().chain(
-                    plan.inits
+                let mut fresh = Vec::new();
+                if atom.is_none() {
+                    let inits = plan
+                        .inits
                         .iter()
-                        .filter_map(|(r, i)| matches!(i, Init::Fresh).then_some(r)),
-                ) {
-                    if st.unbound.get(*r as usize).copied().unwrap_or(false)
-                        && !regs.contains_key(r)
-                    {
-                        regs.insert(*r, (format_ident!("fresh"), Ty::Term));
+                        .filter_map(|(r, i)| matches!(i, Init::Fresh).then_some(r));
+                    for r in inits.chain(&arc.fresh) {
+                        if !regs.contains_key(r) {
+                            let x = format_ident!("fresh_r{}", r);
+                            fresh.push(quote!(let #x = cx.var();));
+                            regs.insert(*r, (x, Ty::Term));
+                        }
                     }
                 }
                 let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
@@ -763,12 +804,31 @@ impl Gen<'_> {
                         };
                         stmts.push(quote! {
                             #enter
+                            #(#fresh)*
                             #(#ts)*
                             #perform
                         });
                     }
                 }
                 stmts.push(quote!(count += 1;));
+                // A fresh variable the action bound (a boundary's value)
+                // and the next situation reads: converted with the checked
+                // conversion; when that fails, the rest of the arc runs as
+                // the term code runs it (live native values as terms).
+                let conv = self.nat_bound_at_boundary(st, &arc.next, &regs)?;
+                if let Some((fallback, conv)) = conv {
+                    for (r, ty) in conv {
+                        let (x, _) = regs[&r].clone();
+                        let rr = reg(r);
+                        let rty = rust_ty(&ty)?;
+                        stmts.push(quote! {
+                            let ::std::option::Option::Some(#rr) =
+                                <#rty as #rt::native::Native>::from_term(cx.store_ref(), #x)
+                            else #fallback;
+                        });
+                        regs.insert(r, (rr, ty));
+                    }
+                }
                 let name = self.atom_native(plan.id.0)?;
                 let next = self.nat_next(d, ix, &arc.next, &regs, &name)?;
                 Ok(quote! { #(#stmts)* #next })
@@ -798,8 +858,11 @@ impl Gen<'_> {
         let x = format_ident!("b{}", *n);
         *n += 1;
         let e = match b {
-            // `_` (met once): a fresh variable where the term is built.
-            Build::Reg(r) if regs.get(r).is_some_and(|(v, _)| *v == "fresh") => quote!(cx.var()),
+            // A fresh variable, made where the action's terms are built.
+            Build::Reg(r) if regs.get(r).is_some_and(|(v, _)| is_fresh(v)) => {
+                let (v, _) = &regs[r];
+                return Ok(quote!(#v));
+            }
             Build::Reg(r) => {
                 let (v, _) = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
                 quote!(#rt::native::Native::to_term(&#v, cx.store()))
@@ -902,6 +965,59 @@ impl Gen<'_> {
         }
     }
 
+    /// The fresh variables an action bound (made as terms for it) that
+    /// `next` reads, with their types, and the code that runs the rest of
+    /// the arc as the term code does (`None`: `next` reads none).
+    #[allow(clippy::type_complexity)]
+    fn nat_bound_at_boundary(
+        &self,
+        st: &SitTypes,
+        next: &Next,
+        regs: &Regs,
+    ) -> N<Option<(TokenStream, Vec<(Reg, Ty)>)>> {
+        let rt = quote!(::sitlog_runtime);
+        let at = quote!(::std::option::Option::Some(0));
+        let mut b = super::step::Body::new();
+        let v = self.next_code(next, &at, &mut b);
+        let stmts = b.stmts;
+        let body = quote!(#(#stmts)* #v);
+        let used = super::step::registers(&body);
+        let conv: Vec<(Reg, Ty)> = used
+            .iter()
+            .filter(|r| regs.get(r).is_some_and(|(x, _)| is_fresh(x)))
+            .map(|&r| (r, st.regs[r as usize].ty.clone()))
+            .collect();
+        if conv.is_empty() {
+            return Ok(None);
+        }
+        let mut lets = Vec::new();
+        for r in &used {
+            let rr = reg(*r);
+            match regs.get(r) {
+                Some((x, _)) if is_fresh(x) => lets.push(quote!(let #rr: #rt::Term = #x;)),
+                Some((x, _)) => lets.push(quote! {
+                    let #rr: #rt::Term = #rt::native::Native::to_term(&#x, cx.store());
+                }),
+                None => return Err(format!("register r{r} is read unset")),
+            }
+        }
+        let prelude = Self::prelude(&body);
+        let fallback = quote! {{
+            cx.count_transitions(count);
+            #prelude
+            #(#lets)*
+            #(#stmts)*
+            let (next, target) = #v;
+            return match target {
+                ::std::option::Option::Some(ix) => ::std::result::Result::Ok(
+                    ::std::option::Option::Some(#rt::machine::Step::GotoSit(ix)),
+                ),
+                ::std::option::Option::None => cx.goto(next, #at).map(::std::option::Option::Some),
+            };
+        }};
+        Ok(Some((fallback, conv)))
+    }
+
     /// What an action is, for `--explain-types`: `say/1`, a list of them.
     fn action_shape(&self, a: &Action) -> String {
         let ev = |e: &Ev| -> String {
@@ -936,8 +1052,10 @@ impl Gen<'_> {
         match b {
             Build::Reg(r) => {
                 let (x, ty) = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
-                if *x == "fresh" {
-                    return Err(format!("register r{r} is a fresh variable"));
+                if is_fresh(x) {
+                    return Err(format!(
+                        "register r{r} is a fresh variable, bound at a boundary"
+                    ));
                 }
                 Ok(V {
                     e: quote!(#x.clone()),
