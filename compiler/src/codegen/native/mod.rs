@@ -63,7 +63,7 @@
 use super::Gen;
 use crate::ir::IrDm;
 use crate::mir::ty::{DmTypes, SitTypes};
-use crate::mir::{Action, Build, Cond, Ev, Init, KindPlan, Next, Reg, SitPlan, ID};
+use crate::mir::{Action, ArcPlan, Build, Cond, Ev, Init, KindPlan, Next, Reg, SitPlan, ID};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_runtime::machine::Kind;
@@ -191,9 +191,22 @@ fn eq_safe(ty: &Ty) -> bool {
     }
 }
 
-/// Whether a local holds a fresh variable (a term) made for an action.
+/// Whether a local holds a fresh variable (a term) made for an arc.
 fn is_fresh(x: &Ident) -> bool {
     x.to_string().starts_with("fresh_")
+}
+
+/// The fresh-variable locals (`fresh_rN`) `ts` uses.
+fn fresh_used(ts: &TokenStream, out: &mut std::collections::BTreeSet<Ident>) {
+    for tt in ts.clone() {
+        match tt {
+            proc_macro2::TokenTree::Group(g) => fresh_used(&g.stream(), out),
+            proc_macro2::TokenTree::Ident(i) if is_fresh(&i) => {
+                out.insert(i);
+            }
+            _ => {}
+        }
+    }
 }
 
 fn reg(r: Reg) -> Ident {
@@ -721,127 +734,193 @@ impl Gen<'_> {
                     return ::std::result::Result::Ok(::std::option::Option::Some(#rt::machine::Step::Final));
                 })
             }
-            (KindPlan::Perceptual(arcs), Kind::Perceptual)
-                if arcs.always_first && arcs.arcs.len() == 1 =>
-            {
-                let arc = &arcs.arcs[0];
-                if arc.out_arg.is_some() {
-                    return Err("its arc has an out_arg (the pipe)".into());
+            (KindPlan::Perceptual(arcs), kind) => {
+                let single = kind == Kind::Perceptual && arcs.always_first && arcs.arcs.len() == 1;
+                if !single && !arcs.pure {
+                    return Err("its expectations can change variables".into());
                 }
-                if arc.diag_mod.is_some() {
-                    return Err("its arc has a diag_mod".into());
-                }
-                for (k, from) in arc.import_from.iter().enumerate() {
-                    // An imported copy of a ground value is the value.
-                    if let Some(at) = regs.get(from).cloned() {
-                        regs.insert(arc.import_at + k as Reg, at);
-                    }
-                }
-                let atom = match &arc.action {
-                    Action::One(Ev::Built(Build::Const(t))) => self.store.atom_of(*t),
-                    _ => None,
-                };
-                // A fresh variable of the action (`_`, or one a boundary
-                // binds: `apply(name_of(_), [user])`) is made as a term
-                // where the action's terms are built, and only used there
-                // (native code reading it later is not native yet).
                 let mut regs = regs.clone();
-                let mut fresh = Vec::new();
-                if atom.is_none() {
-                    let inits = plan
-                        .inits
-                        .iter()
-                        .filter_map(|(r, i)| matches!(i, Init::Fresh).then_some(r));
-                    for r in inits.chain(&arc.fresh) {
-                        if !regs.contains_key(r) {
-                            let x = format_ident!("fresh_r{}", r);
-                            fresh.push(quote!(let #x = cx.var();));
-                            regs.insert(*r, (x, Ty::Term));
+                for arc in &arcs.arcs {
+                    if arc.out_arg.is_some() {
+                        return Err("its arc has an out_arg (the pipe)".into());
+                    }
+                    if arc.diag_mod.is_some() {
+                        return Err("its arc has a diag_mod".into());
+                    }
+                    for (k, from) in arc.import_from.iter().enumerate() {
+                        // An imported copy of a ground value is the value.
+                        if let Some(at) = regs.get(from).cloned() {
+                            regs.insert(arc.import_at + k as Reg, at);
                         }
                     }
                 }
-                let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
-                let enter = quote! {
-                    cx.count_transitions(count);
-                    count = 0;
-                    #(#id_stmts)*
-                    cx.enter_with_id(#cur, #id);
-                };
-                match atom {
-                    Some(action) => {
-                        let act = self.atom_native(action)?;
-                        let perform = quote! {
-                            #enter
-                            cx.perform(#rt::Term::atom(#act), ::std::option::Option::Some(0))?;
-                        };
-                        stmts.push(if action == atoms::EMPTY {
-                            quote!(if !run.quiet_empty { #perform })
-                        } else {
-                            perform
-                        });
+                // A fresh variable (`_`, one a perception or a boundary binds:
+                // `said(X)`, `apply(name_of(_), [user])`) is a term, made at
+                // the start of the visit when the code uses it (as the term
+                // code makes it), read natively only after a checked
+                // conversion.
+                let inits = plan
+                    .inits
+                    .iter()
+                    .filter_map(|(r, i)| matches!(i, Init::Fresh).then_some(r));
+                for r in inits.chain(arcs.arcs.iter().flat_map(|a| a.fresh.iter())) {
+                    if !regs.contains_key(r) {
+                        regs.insert(*r, (format_ident!("fresh_r{}", r), Ty::Term));
                     }
-                    None => {
-                        // An effector's action (`say([.., Name])`): its term
-                        // built from native values where it is performed.
-                        let why = |e: String| {
-                            format!("its action {}: {e}", self.action_shape(&arc.action))
-                        };
+                }
+                let mut bodies = Vec::new();
+                for arc in &arcs.arcs {
+                    bodies.push(self.nat_arc(d, ix, arc, &regs)?);
+                }
+                let body = if single {
+                    let b = &bodies[0];
+                    quote!(let arc_at = ::std::option::Option::Some(0usize); #b)
+                } else {
+                    // The machine chooses the arc (a perception matched
+                    // against the expectations, built from native values).
+                    let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+                    let mut exps = Vec::new();
+                    let mut names = Vec::new();
+                    for (i, arc) in arcs.arcs.iter().enumerate() {
                         let mut ts = Vec::new();
                         let mut n = 0;
-                        let perform = match &arc.action {
-                            Action::One(e) => {
-                                let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
-                                quote!(cx.perform(#t, ::std::option::Option::Some(0))?;)
-                            }
-                            Action::List { items, .. } => {
-                                let ts_items = items
-                                    .iter()
-                                    .map(|e| self.nat_ev_term(e, &regs, &mut ts, &mut n))
-                                    .collect::<N<Vec<_>>>()
-                                    .map_err(why)?;
-                                quote!(cx.perform_each(&[#(#ts_items),*], ::std::option::Option::Some(0))?;)
-                            }
+                        let t = self
+                            .nat_ev_term(&arc.expectation, &regs, &mut ts, &mut n)
+                            .map_err(|e| format!("its expectation {}: {e}", i + 1))?;
+                        let x = format_ident!("e{}", i);
+                        let il = Literal::usize_unsuffixed(i);
+                        exps.push(quote! {
+                            let #x = {
+                                let arc_at = ::std::option::Option::Some(#il);
+                                #(#ts)*
+                                #t
+                            };
+                        });
+                        names.push(x);
+                    }
+                    let mut ts = Vec::new();
+                    let mut n = 0;
+                    let ty = self
+                        .nat_build_term(&arcs.type_term, &regs, &mut ts, &mut n)
+                        .map_err(|e| format!("its type: {e}"))?;
+                    let arms = bodies.iter().enumerate().map(|(i, b)| {
+                        let il = Literal::usize_unsuffixed(i);
+                        quote!(#il => { let arc_at = ::std::option::Option::Some(#il); #b })
+                    });
+                    quote! {
+                        cx.count_transitions(count);
+                        count = 0;
+                        #(#id_stmts)*
+                        cx.enter_with_id(#cur, #id);
+                        #(#exps)*
+                        cx.set_expectations(&[#(#names),*]);
+                        #(#ts)*
+                        let type_term = #ty;
+                        let ::std::option::Option::Some(chosen) = cx.choose(type_term)? else {
+                            return ::std::result::Result::Ok(::std::option::Option::Some(
+                                #rt::machine::Step::Unmet { type_term },
+                            ));
                         };
-                        stmts.push(quote! {
-                            #enter
-                            #(#fresh)*
-                            #(#ts)*
-                            #perform
-                        });
+                        match chosen {
+                            #(#arms)*
+                            _ => unreachable!("the machine chose an arc of this situation"),
+                        }
                     }
-                }
-                stmts.push(quote!(count += 1;));
-                // A fresh variable the action bound (a boundary's value)
-                // and the next situation reads: converted with the checked
-                // conversion; when that fails, the rest of the arc runs as
-                // the term code runs it (live native values as terms).
-                let conv = self.nat_bound_at_boundary(st, &arc.next, &regs)?;
-                if let Some((fallback, conv)) = conv {
-                    for (r, ty) in conv {
-                        let (x, _) = regs[&r].clone();
-                        let rr = reg(r);
-                        let rty = rust_ty(&ty)?;
-                        stmts.push(quote! {
-                            let ::std::option::Option::Some(#rr) =
-                                <#rty as #rt::native::Native>::from_term(cx.store_ref(), #x)
-                            else #fallback;
-                        });
-                        regs.insert(r, (rr, ty));
-                    }
-                }
-                let name = self.atom_native(plan.id.0)?;
-                let next = self.nat_next(d, ix, &arc.next, &regs, &name)?;
-                Ok(quote! { #(#stmts)* #next })
+                };
+                // The fresh variables the code uses, made first.
+                let mut used = std::collections::BTreeSet::new();
+                fresh_used(&body, &mut used);
+                let fresh = used.iter().map(|x| quote!(let #x = cx.var();));
+                Ok(quote! { #(#stmts)* #(#fresh)* #body })
             }
             (KindPlan::Final { .. }, _) => Err("a final situation with diag_mod".into()),
             (KindPlan::Recursive { .. }, _) => Err("a recursive situation (a DM call)".into()),
-            (KindPlan::Perceptual(arcs), Kind::Perceptual) if arcs.always_first => {
-                Err("a neutral situation with several arcs".into())
+        }
+    }
+
+    /// The code of arc `arc` of situation `ix` once chosen (its action,
+    /// the values a boundary bound converted, its next situation), with
+    /// `arc_at` its index.
+    fn nat_arc(&self, d: &Dm, ix: usize, arc: &ArcPlan, regs: &Regs) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let plan = d.plans[ix];
+        let st = &d.types[ix];
+        let cur = Literal::u32_unsuffixed(ix as u32);
+        let mut regs = regs.clone();
+        let mut stmts = Vec::new();
+        let atom = match &arc.action {
+            Action::One(Ev::Built(Build::Const(t))) => self.store.atom_of(*t),
+            _ => None,
+        };
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let enter = quote! {
+            cx.count_transitions(count);
+            count = 0;
+            #(#id_stmts)*
+            cx.enter_with_id(#cur, #id);
+        };
+        match atom {
+            Some(action) => {
+                let act = self.atom_native(action)?;
+                let perform = quote! {
+                    #enter
+                    cx.perform(#rt::Term::atom(#act), arc_at)?;
+                };
+                stmts.push(if action == atoms::EMPTY {
+                    quote!(if !run.quiet_empty { #perform })
+                } else {
+                    perform
+                });
             }
-            (KindPlan::Perceptual(_), _) => {
-                Err("a perceptual situation (expectations on a perception)".into())
+            None => {
+                // An effector's action (`say([.., Name])`): its term
+                // built from native values where it is performed.
+                let why = |e: String| format!("its action {}: {e}", self.action_shape(&arc.action));
+                let mut ts = Vec::new();
+                let mut n = 0;
+                let perform = match &arc.action {
+                    Action::One(e) => {
+                        let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
+                        quote!(cx.perform(#t, arc_at)?;)
+                    }
+                    Action::List { items, .. } => {
+                        let ts_items = items
+                            .iter()
+                            .map(|e| self.nat_ev_term(e, &regs, &mut ts, &mut n))
+                            .collect::<N<Vec<_>>>()
+                            .map_err(why)?;
+                        quote!(cx.perform_each(&[#(#ts_items),*], arc_at)?;)
+                    }
+                };
+                stmts.push(quote! {
+                    #enter
+                    #(#ts)*
+                    #perform
+                });
             }
         }
+        stmts.push(quote!(count += 1;));
+        // A fresh variable the action bound (a boundary's value)
+        // and the next situation reads: converted with the checked
+        // conversion; when that fails, the rest of the arc runs as
+        // the term code runs it (live native values as terms).
+        let conv = self.nat_bound_at_boundary(st, &arc.next, &regs)?;
+        if let Some((fallback, conv)) = conv {
+            for (r, ty) in conv {
+                let (x, _) = regs[&r].clone();
+                let rr = reg(r);
+                let rty = rust_ty(&ty)?;
+                stmts.push(quote! {
+                    let ::std::option::Option::Some(#rr) =
+                        <#rty as #rt::native::Native>::from_term(cx.store_ref(), #x)
+                    else #fallback;
+                });
+                regs.insert(r, (rr, ty));
+            }
+        }
+        let name = self.atom_native(plan.id.0)?;
+        let next = self.nat_next(d, ix, &arc.next, &regs, &name)?;
+        Ok(quote! { #(#stmts)* #next })
     }
 
     /// The term of `b` built from native values (a boundary: an effector's
@@ -912,12 +991,48 @@ impl Gen<'_> {
                 let t = self.nat_build_term(b, regs, ts, n)?;
                 let x = format_ident!("b{}", *n);
                 *n += 1;
-                ts.push(quote!(let #x = cx.eval(#t, ::std::option::Option::Some(0))?;));
+                ts.push(quote!(let #x = cx.eval(#t, arc_at)?;));
                 Ok(quote!(#x))
             }
-            _ => Err(
-                "an expression with side effects or bindings (`is`, `get`, `set`, `inc`)".into(),
-            ),
+            // `get`/`set`/`inc` of a local or global, `is`: the machine's
+            // own calls, on terms built from native values; a variable
+            // they bind is a fresh variable's local (a term), read
+            // natively only after a checked conversion.
+            Ev::VarOp { op, name, arg } => {
+                let t = self.nat_build_term(arg, regs, ts, n)?;
+                let (op, name) = (self.atom_native(*op)?, self.atom_native(*name)?);
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = cx.var_op(#op, #name, #t, arc_at)?;));
+                Ok(quote!(#x))
+            }
+            Ev::VarOpFresh { op, name, dst } => {
+                let x = match regs.get(dst) {
+                    Some((x, _)) if is_fresh(x) => x.clone(),
+                    _ => return Err(format!("register r{dst} is set twice")),
+                };
+                let (op, name) = (self.atom_native(*op)?, self.atom_native(*name)?);
+                ts.push(quote!(let #x = cx.var_op_fresh(#op, #name, arc_at)?;));
+                Ok(quote!(#x))
+            }
+            Ev::IsFresh { expr, dst } => {
+                let x = match regs.get(dst) {
+                    Some((x, _)) if is_fresh(x) => x.clone(),
+                    _ => return Err(format!("register r{dst} is set twice")),
+                };
+                let t = self.nat_build_term(expr, regs, ts, n)?;
+                ts.push(quote!(let #x = cx.is(::std::option::Option::None, #t, arc_at)?;));
+                Ok(quote!(#x))
+            }
+            Ev::Is { lhs, expr } => {
+                let e = self.nat_build_term(expr, regs, ts, n)?;
+                let l = self.nat_build_term(lhs, regs, ts, n)?;
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = cx.is(::std::option::Option::Some(#l), #e, arc_at)?;));
+                Ok(quote!(#x))
+            }
+            Ev::If(..) => Err("a conditional expression is not native yet".into()),
         }
     }
 
@@ -976,7 +1091,7 @@ impl Gen<'_> {
         regs: &Regs,
     ) -> N<Option<(TokenStream, Vec<(Reg, Ty)>)>> {
         let rt = quote!(::sitlog_runtime);
-        let at = quote!(::std::option::Option::Some(0));
+        let at = quote!(arc_at);
         let mut b = super::step::Body::new();
         let v = self.next_code(next, &at, &mut b);
         let stmts = b.stmts;
@@ -1162,7 +1277,7 @@ impl Gen<'_> {
                 Ok(quote! {{
                     cx.count_transitions(count);
                     cx.enter(#curl, #cur_name);
-                    return cx.goto(#rt::Term::atom(#a), ::std::option::Option::Some(0)).map(::std::option::Option::Some);
+                    return cx.goto(#rt::Term::atom(#a), arc_at).map(::std::option::Option::Some);
                 }})
             }
             Next::Static(t, Some(ix)) if self.store.atom_of(*t).is_some() => {
@@ -1178,7 +1293,7 @@ impl Gen<'_> {
                 Ok(quote! {{
                     cx.count_transitions(count);
                     cx.enter(#curl, #cur_name);
-                    return cx.goto(#rt::Term::atom(#a), ::std::option::Option::Some(0)).map(::std::option::Option::Some);
+                    return cx.goto(#rt::Term::atom(#a), arc_at).map(::std::option::Option::Some);
                 }})
             }
             Next::Static(t, _) | Next::Eval(Ev::Built(Build::Const(t)))
@@ -1199,6 +1314,68 @@ impl Gen<'_> {
                 let a = self.nat_next(d, cur, a, regs, cur_name)?;
                 let b = self.nat_next(d, cur, b, regs, cur_name)?;
                 Ok(quote!(if #c { #a } else { #b }))
+            }
+            Next::Eval(Ev::Compound(name, args))
+                if args.iter().any(|a| matches!(a, Ev::Eval(_))) =>
+            {
+                // A part the evaluator computes (`confirm(apply(f(_),
+                // [X]))`): given to it as a term built from native values,
+                // its value converted with the checked conversion; when
+                // that fails, the whole value goes to the machine as a term.
+                let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+                let mut pre = vec![quote! {
+                    cx.count_transitions(count);
+                    count = 0;
+                    #(#id_stmts)*
+                    cx.enter_with_id(#curl, #id);
+                }];
+                let mut n = 0;
+                let mut parts = Vec::new();
+                for a in args.iter() {
+                    match a {
+                        Ev::Eval(_) => {
+                            let t = self.nat_ev_term(a, regs, &mut pre, &mut n)?;
+                            parts.push(Err(t));
+                        }
+                        a => parts.push(Ok(self.nat_ev_value(a, regs)?)),
+                    }
+                }
+                let terms: Vec<TokenStream> = parts
+                    .iter()
+                    .map(|p| match p {
+                        Ok(v) => {
+                            let e = &v.e;
+                            quote!(#rt::native::Native::to_term(&#e, cx.store()))
+                        }
+                        Err(t) => quote!(#t),
+                    })
+                    .collect();
+                let f = self.functor_native(*name)?;
+                let fallback = quote! {{
+                    let ts = [#(#terms),*];
+                    let value = #rt::native::compound(cx.store(), #f, &ts);
+                    return cx.goto(value, arc_at).map(::std::option::Option::Some);
+                }};
+                let mut vals = Vec::new();
+                for (k, p) in parts.into_iter().enumerate() {
+                    match p {
+                        Ok(v) => vals.push(v),
+                        Err(t) => {
+                            let x = format_ident!("x{}", k);
+                            pre.push(quote! {
+                                let ::std::option::Option::Some(#x) =
+                                    <#rt::native::Val as #rt::native::Native>::from_term(cx.store_ref(), #t)
+                                else #fallback;
+                            });
+                            vals.push(V {
+                                e: quote!(#x.clone()),
+                                ty: Ty::Ground,
+                            });
+                        }
+                    }
+                }
+                let sel = self.nat_select(d, cur, *name, vals, cur_name)?;
+                Ok(quote!({ #(#pre)* #sel }))
             }
             Next::Eval(Ev::Compound(name, args)) => {
                 let vals = args
@@ -1340,7 +1517,7 @@ impl Gen<'_> {
                 cx.enter(#curl, #cur_name);
                 #(let #arg_terms = #rt::native::Native::to_term(&#arg_names, cx.store());)*
                 let value = #rt::native::compound(cx.store(), #f, &[#(#arg_terms),*]);
-                return cx.goto(value, ::std::option::Option::Some(0)).map(::std::option::Option::Some);
+                return cx.goto(value, arc_at).map(::std::option::Option::Some);
             }
         })
     }
