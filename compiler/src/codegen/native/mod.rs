@@ -50,13 +50,21 @@
 //!   inert where converted; the handles stay valid because the machine
 //!   collects garbage only after native code has handed over.
 //!
-//! What is not (yet) native keeps a situation on its term code: a
-//! register read before it is set (a fresh variable) other than at an
-//! action, the pipe (`in_arg`, `out_arg`), `prog`, DM calls (recursive
-//! situations), perceptual situations other than the neutral `empty` arc,
-//! several arcs, actions with `is`/`get`/`set`/`inc`, expressions other
-//! than registers, constants and lists. `--explain-types` says which and
-//! why, per situation.
+//! - *perceptions*: a perceptual situation (or a neutral one with several
+//!   arcs) builds its expectations as terms from native values, and the
+//!   machine chooses the arc (`Cx::choose`: the perception matched, or
+//!   `Step::Unmet` handed back); a variable the perception bound is read
+//!   natively only after the checked conversion, as above.
+//! - *locals, globals, `is`*: `get`/`set`/`inc` and `is` are the machine's
+//!   own calls (`Cx::var_op`, `Cx::is`) on terms built from native values;
+//!   what they bind is converted like a boundary's value.
+//!
+//! What is not (yet) native keeps a situation on its term code: DM calls
+//! (recursive situations), the pipe (`in_arg`, `out_arg`), `prog`,
+//! expectations that change variables, conditional expressions (`A -> B ;
+//! C` as a value), a register read natively before it is set, narrowing a
+//! `ground` value to a shape, arithmetic other than integer comparisons.
+//! `--explain-types` says which and why, per situation.
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 
