@@ -204,6 +204,20 @@ fn is_fresh(x: &Ident) -> bool {
     x.to_string().starts_with("fresh_")
 }
 
+/// The registers an expression binds (`V is E`, `get(n, V)` of a `V` not
+/// made yet), in evaluation order.
+fn ev_binds(e: &Ev, out: &mut Vec<Reg>) {
+    match e {
+        Ev::VarOpFresh { dst, .. } | Ev::IsFresh { dst, .. } => out.push(*dst),
+        Ev::Compound(_, args) => args.iter().for_each(|a| ev_binds(a, out)),
+        Ev::If(_, a, b) => {
+            ev_binds(a, out);
+            ev_binds(b, out);
+        }
+        _ => {}
+    }
+}
+
 /// The fresh-variable locals (`fresh_rN`) `ts` uses.
 fn fresh_used(ts: &TokenStream, out: &mut std::collections::BTreeSet<Ident>) {
     for tt in ts.clone() {
@@ -771,7 +785,18 @@ impl Gen<'_> {
                     .inits
                     .iter()
                     .filter_map(|(r, i)| matches!(i, Init::Fresh).then_some(r));
-                for r in inits.chain(arcs.arcs.iter().flat_map(|a| a.fresh.iter())) {
+                // What an action's `is`/`get` binds (`[X is M * M]`) too.
+                let mut bound = Vec::new();
+                for arc in &arcs.arcs {
+                    match &arc.action {
+                        Action::One(e) => ev_binds(e, &mut bound),
+                        Action::List { items, .. } => {
+                            items.iter().for_each(|e| ev_binds(e, &mut bound))
+                        }
+                    }
+                }
+                let arc_fresh = arcs.arcs.iter().flat_map(|a| a.fresh.iter());
+                for r in inits.chain(arc_fresh).chain(bound.iter()) {
                     if !regs.contains_key(r) {
                         regs.insert(*r, (format_ident!("fresh_r{}", r), Ty::Term));
                     }
