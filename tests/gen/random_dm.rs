@@ -156,7 +156,9 @@ fn generate(seed: u64) -> (Vec<(String, String)>, Vec<String>) {
 /// its list by the compound id `st(..)`: `st([])`; in random order some of
 /// `st([c|_])` (a constant head), `st([X, X|_])` (a repeated variable); then
 /// `st([X|R])` comparing `X` with the target (`==`, `\==`, or `>` on ints),
-/// ending in `hit(X)`, `dup(X)`, `fixed(c)` or `none`. No input is read.
+/// maybe saying `X` (an effector's action), ending in `hit(X)`, `dup(X)`,
+/// `fixed(c)` or `none`; `st([])` maybe on terms (a `get`: the walk crosses
+/// from native code to term code and back). No input is read.
 fn walkers(seed: u64) -> (Vec<(String, String)>, Vec<String>) {
     let mut rng = Rng::new(seed);
     let lists: [&[&str]; 3] = [
@@ -198,11 +200,19 @@ fn walkers(seed: u64) -> (Vec<(String, String)>, Vec<String>) {
     }
     text.push_str("    [ id ==> fs, type ==> final ]\n  ],\n  []\n).\n");
     for (w, &kind) in kinds.iter().enumerate() {
+        // Native code per situation (issue 37): `st([])` sometimes stays
+        // on terms (a `get`), so the walk crosses to the term code and back.
+        let nil_action = if rng.chance(40) {
+            "get(g_count, _)"
+        } else {
+            "empty"
+        };
         let mut sits = vec![
             "    [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => st(L) ] ],\n"
                 .to_owned(),
-            "    [ id ==> st([]), type ==> neutral, arcs ==> [ empty : empty => none ] ],\n"
-                .to_owned(),
+            format!(
+                "    [ id ==> st([]), type ==> neutral, arcs ==> [ empty : {nil_action} => none ] ],\n"
+            ),
         ];
         let mut extra = Vec::new();
         if rng.chance(50) {
@@ -226,9 +236,15 @@ fn walkers(seed: u64) -> (Vec<(String, String)>, Vec<String>) {
             (_, 1) => "X \\== T",
             _ => "X == T",
         };
+        // An effector's action built from native values.
+        let action = if rng.chance(50) {
+            "say(['at', X, of, T])"
+        } else {
+            "empty"
+        };
         sits.push(format!(
             "    [ id ==> st([X|R]), type ==> neutral,\n      \
-             arcs ==> [ empty : empty => ({cmp} -> hit(X) ; otherwise -> st(R)) ] ],\n"
+             arcs ==> [ empty : {action} => ({cmp} -> hit(X) ; otherwise -> st(R)) ] ],\n"
         ));
         for f in ["hit(X)", "dup(X)", "fixed(X)", "none"] {
             sits.push(format!("    [ id ==> {f}, type ==> final ],\n"));

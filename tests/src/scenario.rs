@@ -43,8 +43,23 @@ pub fn assets(app: &Path, world: &str, kb: Option<&str>) -> Assets {
 
 /// Runs `program` with `functions` on `assets`, JSON report.
 pub fn execute<A: App>(program: &A, functions: Functions, assets: &Assets) -> Run {
+    execute_with(program, functions, assets, true)
+}
+
+/// [`execute`], keeping the history or not (`--history none`).
+pub fn execute_with<A: App>(
+    program: &A,
+    functions: Functions,
+    assets: &Assets,
+    history: bool,
+) -> Run {
     let args = RunArgs {
         format: Format::Json,
+        history: if history {
+            sitlog_robot::cli::HistoryMode::Keep
+        } else {
+            sitlog_robot::cli::HistoryMode::None
+        },
         ..RunArgs::default()
     };
     let (out, err) = (SharedBuf::default(), SharedBuf::default());
@@ -161,6 +176,7 @@ pub fn both<A: App>(
     let assets = assets(app, world, kb);
     let (ir, functions) = shared_interpreter(app);
     let a = execute(&ir, functions, &assets);
+    let again = compiled_functions.clone();
     let b = execute(compiled, compiled_functions, &assets);
     assert_eq!(
         a.transcript, b.transcript,
@@ -177,6 +193,14 @@ pub fn both<A: App>(
         a.transcript, a.report["error"]
     );
     assert_eq!(a.code, 0);
+    // Without a history the compiled task runs its native code (issue
+    // 37): the same transcript and outcome.
+    let c = execute_with(compiled, again, &assets, false);
+    assert_eq!(
+        a.transcript, c.transcript,
+        "compiled without history differs"
+    );
+    assert_eq!(a.report["status"], c.report["status"]);
     a.transcript
 }
 

@@ -526,7 +526,10 @@ impl Gen<'_> {
         // A DM with no situation typed the old way may run natively
         // (`native`): tried first when its initial situation runs.
         let native = match (&self.mir_types, typed.present) {
-            (Some(t), false) => self.native_code(dm, dm_ix, &t.dms[dm_ix]).ok(),
+            (Some(t), false) => self
+                .native_code(dm, dm_ix, &t.dms[dm_ix])
+                .ok()
+                .filter(|n| n.native_sits > 0),
             _ => None,
         };
         let (native_first, native_items) = match native {

@@ -114,10 +114,24 @@ pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
     g.emit(ir, source)
 }
 
-/// Per DM, whether generated code runs it natively (`codegen::native`): how many
-/// of its situations then hold no ground term (no register typed `term`),
-/// or why it runs on terms.
-pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
+/// What the code generator does with one DM's situations
+/// ([`native_dms`]).
+#[derive(Clone, Debug)]
+pub struct NativeDm {
+    /// How many situations have native code.
+    pub native: usize,
+    /// How many of those hold no ground term (no register typed `term`):
+    /// on native values.
+    pub values: usize,
+    /// How many of those hold no `Val` either (only fixed shapes).
+    pub fixed: usize,
+    /// Per situation, why it has no native code (`None`: it has).
+    pub why: Vec<Option<String>>,
+}
+
+/// Per DM, which of its situations generated code runs natively
+/// (`codegen::native`) and on what values, or why none does.
+pub fn native_dms(ir: &Ir) -> Vec<Result<NativeDm, String>> {
     let mir = crate::mir::lower(ir);
     let types = crate::types::infer(ir, &mir);
     let mir_types = crate::mir::ty::infer(ir, &mir);
@@ -132,8 +146,12 @@ pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
             if typed.is_some_and(typed::has_typed_code) {
                 return Err("it runs on the typed frame of its typed situations".to_owned());
             }
-            g.native_code(dm, d, &mir_types.dms[d])
-                .map(|n| n.on_native_values)
+            g.native_code(dm, d, &mir_types.dms[d]).map(|n| NativeDm {
+                native: n.native_sits,
+                values: n.on_native_values,
+                fixed: n.fixed_shapes,
+                why: n.why,
+            })
         })
         .collect()
 }

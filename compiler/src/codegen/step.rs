@@ -33,13 +33,13 @@ fn reg(r: Reg) -> Ident {
 
 /// Statements being written for one generated function, and its
 /// temporaries' counter.
-struct Body {
-    stmts: Vec<TokenStream>,
+pub(super) struct Body {
+    pub(super) stmts: Vec<TokenStream>,
     next_tmp: usize,
 }
 
 impl Body {
-    fn new() -> Body {
+    pub(super) fn new() -> Body {
         Body {
             stmts: Vec::new(),
             next_tmp: 0,
@@ -220,7 +220,7 @@ impl Gen<'_> {
 
     /// `(Term, Option<SitIx>)`: a next situation's value and, when known,
     /// its index.
-    fn next_code(&self, n: &Next, arc: &TokenStream, b: &mut Body) -> TokenStream {
+    pub(super) fn next_code(&self, n: &Next, arc: &TokenStream, b: &mut Body) -> TokenStream {
         match n {
             Next::Static(t, ix) => {
                 let v = self.frozen(*t, b);
@@ -691,7 +691,7 @@ impl Gen<'_> {
 }
 
 /// The registers a body uses (`r0`, `r1`, ...), in order.
-fn registers(body: &TokenStream) -> BTreeSet<u32> {
+pub(super) fn registers(body: &TokenStream) -> BTreeSet<u32> {
     fn walk(ts: TokenStream, out: &mut BTreeSet<u32>) {
         for tt in ts {
             match tt {

@@ -19,7 +19,10 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
 pub fn explain_with(
     ir: &Ir,
     types: &Types,
-    mir: Option<(&crate::mir::ty::MirTypes, &[Result<usize, String>])>,
+    mir: Option<(
+        &crate::mir::ty::MirTypes,
+        &[Result<crate::codegen::NativeDm, String>],
+    )>,
 ) -> String {
     let store = &ir.store;
     let mut out = String::new();
@@ -33,15 +36,30 @@ pub fn explain_with(
             let _ = writeln!(out, "{}", m.dm_line(ir, d));
         }
         match native.as_ref().map(|n| &n[d]) {
-            Some(Ok(n)) if *n == dm.situations.len() => {
+            Some(Ok(n)) if n.values == dm.situations.len() && n.fixed == n.values => {
+                let _ = writeln!(
+                    out,
+                    "  native code: every situation, on Rust values of fixed shapes"
+                );
+            }
+            Some(Ok(n)) if n.values == dm.situations.len() => {
                 let _ = writeln!(out, "  native code: every situation, on Rust values");
             }
             Some(Ok(n)) => {
                 let _ = writeln!(
                     out,
-                    "  native code: every situation, on Rust values ({} holding ground terms where the types say `term`)",
-                    dm.situations.len() - n
+                    "  native code: {}/{} situations ({} on Rust values, {} of them only fixed shapes)",
+                    n.native,
+                    dm.situations.len(),
+                    n.values,
+                    n.fixed
                 );
+                for (s, why) in dm.situations.iter().zip(&n.why) {
+                    if let Some(why) = why {
+                        let id = show(store, dm, store.args(s.template)[1]);
+                        let _ = writeln!(out, "    no native code for `{id}`: {why}");
+                    }
+                }
             }
             Some(Err(why)) => {
                 let _ = writeln!(out, "  native code: no ({why})");
@@ -138,11 +156,11 @@ pub fn explain_with(
     if let Some(m) = mir {
         let _ = writeln!(out, "{}", m.summary());
     }
-    let native_sits = native
-        .into_iter()
-        .flatten()
-        .map(|n| n.as_ref().map_or(0, |&s| s))
-        .sum();
+    let native_sits = native.map(|n| {
+        n.iter()
+            .map(|n| n.as_ref().map_or((0, 0), |n| (n.values, n.fixed)))
+            .fold((0, 0), |(a, b), (x, y)| (a + x, b + y))
+    });
     let _ = writeln!(out, "{}", summary_with(types, native_sits));
     out
 }
@@ -170,12 +188,15 @@ fn template_why(store: &Store, s: &crate::ir::IrSituation) -> &'static str {
 /// of its B variables (DM parameters, pipes read by typed code, locals
 /// and globals) have a type other than `term`.
 pub fn summary(types: &Types) -> String {
-    summary_with(types, 0)
+    summary_with(types, None)
 }
 
 /// [`summary`] counting also `native` situations of DMs that run natively
-/// (`crate::codegen::native`; none of them has a typed plan).
-pub fn summary_with(types: &Types, native: usize) -> String {
+/// (`crate::codegen::native`; none of them has a typed plan): how many,
+/// and how many of those hold only fixed shapes (no `Val`: no register
+/// typed `ground` or a compound), said after the count as `(M with only
+/// fixed shapes)` (typed plans hold fixed shapes only).
+pub fn summary_with(types: &Types, native: Option<(usize, usize)>) -> String {
     let (mut sits, mut code, mut typed_sits, mut vars, mut typed_vars) = (0, 0, 0, 0, 0);
     let mut count = |v: &VarTy| {
         vars += 1;
@@ -192,9 +213,14 @@ pub fn summary_with(types: &Types, native: usize) -> String {
         typed_sits += dm.situations.iter().filter(|s| s.is_ok()).count();
     }
     types.globals.iter().for_each(&mut count);
-    let typed_sits = typed_sits + native;
+    let (n, fixed) = native.unwrap_or((0, 0));
+    let shapes = match native {
+        Some(_) => format!(" ({} with only fixed shapes)", typed_sits + fixed),
+        None => String::new(),
+    };
+    let typed_sits = typed_sits + n;
     format!(
-        "situations on native values: {typed_sits}/{sits}\n\
+        "situations on native values: {typed_sits}/{sits}{shapes}\n\
          situations compiled as code: {code}/{sits}; variables typed: {typed_vars}/{vars}"
     )
 }

@@ -1,21 +1,28 @@
 //! [`Native`]: the Rust types generated code holds a typed register in
 //! (`i64` for `int`, `f64` for `float`, [`Atom`] for `sym`, [`List<T>`]
 //! for `list<T>`, [`Never`] for the elements of a list that is always
-//! empty, [`Ground`] for a `term` known to be ground), and their checked
-//! conversions from and to terms, the one place such a value meets the
-//! store.
+//! empty, [`Val`] for `ground` and fixed-shape compounds, [`Ground`] for a
+//! `term` known to be ground), and their checked conversions from and to
+//! terms, the one place such a value meets the store; [`IntoVal`], a
+//! typed value as a `Val` (no store involved).
 //!
 //! Invariant: `T::from_term(store, t)` is `Some` exactly when
 //! [`Val::from_term`](super::Val::from_term) with the matching [`Ty`](super::Ty)
 //! is (an unbound variable, a partial or cyclic list, a big integer or
 //! another shape give `None`, never a panic), for `Ground` exactly when
-//! `t` is ground and inert (evaluates to itself); `to_term` builds the term that conversion reads back
+//! `t` is ground and inert (evaluates to itself), for `Val` exactly when
+//! `t` is inert and `Val::from_term(.., &Ty::Ground)` is `Some`; `to_term` builds the term that conversion reads back
 //! (compounds through the store's constructors, so ground/inert flags are
 //! right). Equality (`==` of the Rust values) is Prolog's `==` on those
 //! terms for every type but `f64` (generated code compares floats by bits,
 //! as [`Val`](super::Val) does) and `Ground` (compared in the store).
+//!
+//! A `Val` held by generated code is *canonical*: no `Term` inside, `[]`
+//! an empty `List` (never `Sym([])`), no compound without arguments or
+//! named `'.'/2`. [`Native::from_term`] and [`IntoVal`] make only those,
+//! so Rust's `==` on two of them is Prolog's `==` on their terms.
 
-use super::List;
+use super::{List, Ty, Val};
 use crate::{Store, Term};
 use sitlog_syntax::{atoms, Atom};
 
@@ -95,6 +102,125 @@ impl Native for Ground {
     }
 }
 
+impl Native for Val {
+    /// A `ground` register's value (or a fixed-shape compound's), the
+    /// checked conversion of a boundary: `None` for a term that is not
+    /// ground, not inert (the term path would evaluate it: `1 + 1`), a
+    /// partial list, a big integer.
+    fn from_term(store: &Store, t: Term) -> Option<Val> {
+        let t = store.deref(t);
+        if !store.is_inert(t) {
+            return None;
+        }
+        Val::from_term(store, t, &Ty::Ground)
+    }
+    fn to_term(&self, store: &mut Store) -> Term {
+        Val::to_term(self, store)
+    }
+}
+
+/// A typed native value as a canonical [`Val`] (`[]` an empty list): a
+/// value entering a register typed `ground`.
+pub trait IntoVal {
+    fn into_val(self) -> Val;
+}
+
+impl IntoVal for i64 {
+    #[inline]
+    fn into_val(self) -> Val {
+        Val::Int(self)
+    }
+}
+
+impl IntoVal for f64 {
+    #[inline]
+    fn into_val(self) -> Val {
+        Val::Float(self)
+    }
+}
+
+impl IntoVal for Atom {
+    #[inline]
+    fn into_val(self) -> Val {
+        if self == atoms::NIL {
+            Val::List(List::nil())
+        } else {
+            Val::Sym(self)
+        }
+    }
+}
+
+impl IntoVal for Never {
+    fn into_val(self) -> Val {
+        match self {}
+    }
+}
+
+impl IntoVal for Val {
+    #[inline]
+    fn into_val(self) -> Val {
+        self
+    }
+}
+
+impl<T: IntoVal + Clone> IntoVal for List<T> {
+    fn into_val(self) -> Val {
+        Val::List(self.iter().cloned().map(IntoVal::into_val).collect())
+    }
+}
+
+/// Reading a canonical [`Val`] as generated code matches it against an id
+/// pattern.
+impl Val {
+    /// Whether this is `[]`.
+    #[inline]
+    pub fn is_nil(&self) -> bool {
+        match self {
+            Val::List(l) => l.is_empty(),
+            Val::Sym(a) => *a == atoms::NIL,
+            _ => false,
+        }
+    }
+
+    /// The atom this is (`[]` too).
+    #[inline]
+    pub fn sym(&self) -> Option<Atom> {
+        match self {
+            Val::Sym(a) => Some(*a),
+            v if v.is_nil() => Some(atoms::NIL),
+            _ => None,
+        }
+    }
+
+    /// The integer this is.
+    #[inline]
+    pub fn int(&self) -> Option<i64> {
+        match self {
+            Val::Int(i) => Some(*i),
+            _ => None,
+        }
+    }
+
+    /// `[H|T]` of a non-empty list: the head and the rest (sharing this
+    /// list's storage).
+    #[inline]
+    pub fn split_list(&self) -> Option<(Val, Val)> {
+        match self {
+            Val::List(l) => l.split_first().map(|(h, t)| (h.clone(), Val::List(t))),
+            _ => None,
+        }
+    }
+
+    /// The arguments of a compound `name/arity` (arity ≥ 1, not a list).
+    #[inline]
+    pub fn args_of(&self, name: Atom, arity: usize) -> Option<&[Val]> {
+        match self {
+            Val::Tagged(c) if c.name() == name && c.args().len() == arity => Some(c.args()),
+            _ => None,
+        }
+    }
+}
+
 impl<T: Native> Native for List<T> {
     fn from_term(store: &Store, t: Term) -> Option<List<T>> {
         // A proper list has at most one cell per three store cells; more
@@ -116,6 +242,16 @@ impl<T: Native> Native for List<T> {
         let terms: Vec<Term> = self.iter().map(|v| v.to_term(store)).collect();
         store.list(&terms)
     }
+}
+
+/// The part of a (selected) situation id at `path` (argument indices,
+/// outermost first), dereferenced; `None` when the id has no such part.
+pub fn id_part(store: &Store, id: Term, path: &[usize]) -> Option<Term> {
+    let mut t = store.deref(id);
+    for &k in path {
+        t = store.deref(store.arg(t, k)?);
+    }
+    Some(t)
 }
 
 /// `name(args..)` built from native values (a compound situation id or
@@ -173,6 +309,28 @@ mod tests {
             agrees::<i64>(&mut s, t, &Ty::Int);
         }
         let f = Atom::intern("f");
+        // `ground` values: inert ground terms only, canonical.
+        let fa = s.compound(f, &[Term::atom(a), ints]);
+        for t in [ab, ints, nested, Term::NIL, Term::atom(a), fa] {
+            let v = <Val as Native>::from_term(&s, t).expect("converts");
+            let back = Native::to_term(&v, &mut s);
+            assert!(s.identical(back, t));
+        }
+        for t in [partial, v] {
+            assert!(<Val as Native>::from_term(&s, t).is_none());
+        }
+        let plus = s.compound(atoms::GET, &[Term::atom(a), Term::atom(b)]);
+        assert!(<Val as Native>::from_term(&s, plus).is_none(), "not inert");
+        let nil = <Val as Native>::from_term(&s, Term::NIL).expect("[]");
+        assert_eq!(atoms::NIL.into_val(), nil);
+        assert!(nil.is_nil() && nil.sym() == Some(atoms::NIL));
+        let l = <Val as Native>::from_term(&s, ab).expect("list");
+        let (h, t) = l.split_list().expect("a cell");
+        assert_eq!(h, a.into_val());
+        assert_eq!(t, List::from_vec(vec![b]).into_val());
+        let c = <Val as Native>::from_term(&s, fa).expect("f(a, [1, 2])");
+        assert_eq!(c.args_of(f, 2).map(|x| x[0].clone()), Some(Val::Sym(a)));
+        assert!(c.args_of(f, 1).is_none() && c.sym().is_none());
         let id = compound(&mut s, f, &[Term::atom(a)]);
         assert_eq!(s.writeq(id), "f(a)");
         assert_eq!(compound(&mut s, f, &[]), Term::atom(f));

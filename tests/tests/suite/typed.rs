@@ -363,7 +363,10 @@ fn typed_calls_agree() {
 /// that do not convert (another shape, a partial list, a float in a list
 /// of ints) they run on terms; a next value no situation takes is the
 /// machine's error; with a tiny GC threshold native code hands over after
-/// every visit; `find`, started with any arguments, holds ground terms. The same on both back ends, history kept or not.
+/// every visit; `find`, started with any arguments, holds ground terms;
+/// `big` performs `say`, `is`, `set` and `get` natively (terms built at
+/// the machine's calls, what they bind converted). The same on both back
+/// ends, history kept or not.
 #[test]
 fn native_dms_agree() {
     let ir = interpreter("typed/native");
@@ -376,6 +379,7 @@ fn native_dms_agree() {
         native::dm_nested::run_native,
         native::dm_lost::run_native,
         native::dm_find::run_native,
+        native::dm_big::run_native,
     );
     for main in [
         "main",
@@ -394,6 +398,8 @@ fn native_dms_agree() {
         "cmd([item(c, 1 + 1)], c)",
         "cmd(foo, c)",
         "cmd([], [])",
+        "big(3)",
+        "big(2.5)",
     ] {
         agree(app, &ir, main, "");
     }

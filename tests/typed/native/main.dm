@@ -109,3 +109,17 @@ diag_mod(find(Items, Target),
   ],
   []
 ).
+
+% Boundaries inside a visit: an effector's action built from a native
+% value; `is`, `set` and `get` through the machine, what they bind
+% converted where the next situation reads it.
+diag_mod(big(N),
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : say(['square of', N]) => sq(N) ] ],
+    [ id ==> sq(M), type ==> neutral,
+      arcs ==> [ empty : [X is M * M, set(v, X), get(v, V)] => sq2(X, V) ] ],
+    [ id ==> sq2(X, _), type ==> neutral, arcs ==> [ empty : empty => done(X) ] ],
+    [ id ==> done(_), type ==> final ]
+  ],
+  [ v ==> none ]
+).

@@ -1,59 +1,77 @@
-//! Native code (phase 4 of `docs/design/typed-mir.md`): a DM whose
-//! situations all run as code and whose MIR registers are all native by
-//! [`crate::mir::ty`] runs, when it is entered, on Rust values: each
-//! register a Rust local of its type (`i64`, `f64`, `Atom`, `List<T>`,
-//! through [`sitlog_runtime::native::Native`]), each situation a variant
-//! of the DM's `enum Nat` whose fields are its id's variables
+//! Native code (phases 4 and 6 of `docs/design/typed-mir.md`): the
+//! situations of a DM that can run natively do, on Rust values, and the
+//! others run on the DM's term code; the two cross at a situation boundary
+//! through the machine. In a native situation each MIR register is a Rust
+//! local of its type (`i64`, `f64`, `Atom`, `List<T>`, and a canonical
+//! [`Val`](sitlog_runtime::native::Val) for `ground` and fixed-shape
+//! compounds, through [`sitlog_runtime::native::Native`]), each situation a
+//! variant of the DM's `enum Nat` whose fields are its id's variables
 //! (`S2 { r5: Atom, r6: List<Atom> }` for `try([P|Ps])`), a computed next
 //! situation selected by a Rust `match`/`if let` on the value, in source
 //! order, as the machine selects (D-21), and `==`/`\==` and integer
 //! comparisons done in Rust.
 //!
 //! The boundaries, and why the run is the term path's, step for step:
-//! - *entry*: `run_native` is tried when the DM's initial situation runs
-//!   (its id an atom) and no history is kept or observed; each parameter
-//!   is converted once with a checked conversion (`Native::from_term`). A
-//!   value that does not fit (a term of another shape, unbound, a partial
-//!   list) leaves the whole visit to the term code, nothing done.
+//! - *entry*: `run_native(sit)` is tried whenever situation `sit` runs
+//!   with no history kept or observed. The id's arguments (from the value
+//!   that selected it) and the parameters the native situations read are
+//!   converted with the checked conversion (`Native::from_term`; for a
+//!   `Val`: ground, inert, proper lists, no big integer). A value that does
+//!   not fit leaves the visit to the term code, nothing done.
 //! - *values*: native values are ground and evaluate to themselves in L
-//!   (atoms, numbers and lists of them are inert, D-28/D-36), so a
-//!   condition `X == Y` is Rust's `==` on them, and a value matched
-//!   against an id pattern binds exactly what unification would.
-//! - *hand-over*: a next value no situation takes natively is built as a
-//!   term and given to the machine ([`Cx::goto`]), which selects (or
-//!   reports the error) itself; so is the id of the situation reached when
-//!   the machine wants control (garbage to collect, a stop asked), checked
-//!   after each visit (so each native run makes progress).
+//!   (atoms, numbers and lists of them are inert, D-28/D-36; a `Val` is
+//!   converted from an inert term), so a condition `X == Y` is Rust's `==`
+//!   on them (a `Val` is canonical: `[]` an empty list, so `==` is
+//!   Prolog's), and a value matched against an id pattern binds exactly
+//!   what unification would.
+//! - *situations without native code*: a next situation that selects one
+//!   (the first candidate in source order without native code, or a
+//!   constant name) is built as a term and given to the machine
+//!   ([`Cx::goto`]), which selects and runs its term code; so is a value no
+//!   situation takes natively (the machine selects or reports the error),
+//!   and the id of the situation reached when the machine wants control
+//!   (garbage to collect, a stop asked), checked after each visit.
+//! - *effectors and the evaluator*: an action's term (`say(['Hi', Name])`,
+//!   `navigate(P, S)`, a list of them) is built from native values where it
+//!   is performed, as the term code would evaluate it; a part the evaluator
+//!   computes (`apply(name_of(_), [user])`, `assign/2`) is handed to it as
+//!   a term built from native values. A fresh variable of the action is a
+//!   term made there; one the next situation reads (a status, a value a
+//!   user function bound) is converted back with the checked conversion,
+//!   and when that fails the rest of the arc (the next situation) runs as
+//!   the term code runs it, on the native values converted to terms.
 //! - *finals*: the final situation's id is built as a term, the machine
-//!   entered in it, its (empty) out_arg and history entry taken as the term
-//!   code takes them; the caller's exit arcs read that id.
-//! - *effects*: an action other than an ignored `empty` is performed with
-//!   the machine entered in the situation (its errors located there);
-//!   transitions are counted and handed to the machine before it runs.
+//!   entered in it, its (empty) out_arg, its `diag_mod` (a term built from
+//!   native values: the DM's output arguments) and history entry taken as
+//!   the term code takes them; the caller's exit arcs read that id.
+//! - *`term` registers* (a parameter or id part nothing reads, loaded from
+//!   a place typed `term`): held as a
+//!   [`Ground`](sitlog_runtime::native::Ground) handle, checked ground and
+//!   inert where converted; the handles stay valid because the machine
+//!   collects garbage only after native code has handed over.
 //!
-//! - *ground terms*: a register typed `term` is held as a
-//!   [`Ground`](sitlog_runtime::native::Ground) handle: every value a
-//!   native run holds was converted at entry (a parameter: checked ground
-//!   and inert, so evaluating it, as the term path does in a condition or a
-//!   next situation, gives it back) or taken apart from one; the handles stay
-//!   valid because the machine collects garbage only after native code has
-//!   handed over. `==` on them is [`Store::identical`], a pattern is matched
-//!   by reading the store; such a situation does not count as on native
-//!   values in `--explain-types`.
+//! - *perceptions*: a perceptual situation (or a neutral one with several
+//!   arcs) builds its expectations as terms from native values, and the
+//!   machine chooses the arc (`Cx::choose`: the perception matched, or
+//!   `Step::Unmet` handed back); a variable the perception bound is read
+//!   natively only after the checked conversion, as above.
+//! - *locals, globals, `is`*: `get`/`set`/`inc` and `is` are the machine's
+//!   own calls (`Cx::var_op`, `Cx::is`) on terms built from native values;
+//!   what they bind is converted like a boundary's value.
 //!
-//! What is not (yet) native keeps the DM on its term code: a register
-//! read before it is set (a fresh variable), a fixed-shape compound type,
-//! the pipe (`in_arg`, `out_arg`), `prog`, DM calls,
-//! perceptual situations other than the neutral `empty` arc, actions other
-//! than atoms, expressions other than registers and constants.
+//! What is not (yet) native keeps a situation on its term code: DM calls
+//! (recursive situations), the pipe (`in_arg`, `out_arg`), `prog`,
+//! expectations that change variables, conditional expressions (`A -> B ;
+//! C` as a value), a register read natively before it is set, narrowing a
+//! `ground` value to a shape, arithmetic other than integer comparisons.
+//! `--explain-types` says which and why, per situation.
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
-//! [`Store::identical`]: sitlog_runtime::Store::identical
 
 use super::Gen;
 use crate::ir::IrDm;
 use crate::mir::ty::{DmTypes, SitTypes};
-use crate::mir::{Action, Build, Cond, Ev, Init, KindPlan, Next, Reg, SitPlan, ID};
+use crate::mir::{Action, ArcPlan, Build, Cond, Ev, Init, KindPlan, Next, Reg, SitPlan, ID};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_runtime::machine::Kind;
@@ -77,6 +95,35 @@ struct V {
     ty: Ty,
 }
 
+/// Whether native code holds a value of this type as a canonical
+/// [`Val`](sitlog_runtime::native::Val): `ground` (a boundary's value
+/// after the checked conversion, or the join of different shapes) and a
+/// fixed-shape compound of native values.
+fn held_as_val(ty: &Ty) -> bool {
+    match ty {
+        Ty::Ground => true,
+        Ty::Tagged(..) => ty.is_native(),
+        _ => false,
+    }
+}
+
+/// Whether a value of this type is held with a `Val` somewhere in it (a
+/// dynamic shape, counted apart in `--explain-types`).
+fn holds_val(ty: &Ty) -> bool {
+    match ty {
+        Ty::List(e) => holds_val(e),
+        t => held_as_val(t),
+    }
+}
+
+/// Whether values of the two types have the same Rust representation.
+fn same_rep(a: &Ty, b: &Ty) -> bool {
+    match (a, b) {
+        (Ty::List(x), Ty::List(y)) => same_rep(x, y),
+        (x, y) => x == y || (held_as_val(x) && held_as_val(y)),
+    }
+}
+
 /// The Rust type of a native type.
 fn rust_ty(ty: &Ty) -> N<TokenStream> {
     let rt = quote!(::sitlog_runtime);
@@ -89,28 +136,17 @@ fn rust_ty(ty: &Ty) -> N<TokenStream> {
             let e = rust_ty(e)?;
             quote!(#rt::native::List<#e>)
         }
+        t if held_as_val(t) => quote!(#rt::native::Val),
         // Known ground where native code holds it (see the module doc).
-        Ty::Term | Ty::Ground => quote!(#rt::native::Ground),
-        Ty::Tagged(..) => return Err(format!("a value of type {ty} is not native yet")),
+        Ty::Term => quote!(#rt::native::Ground),
+        _ => return Err(format!("a value of type {ty} is not native yet")),
     })
 }
 
-/// `ty` with every `ground` read as `term` (see [`Gen::native_code`]).
-fn ground_as_term(ty: &Ty) -> Ty {
-    match ty {
-        Ty::Ground => Ty::Term,
-        Ty::List(e) => Ty::list(ground_as_term(e)),
-        Ty::Tagged(name, args) => Ty::Tagged(*name, args.iter().map(ground_as_term).collect()),
-        other => other.clone(),
-    }
-}
-
-/// A DM's types with every `ground` read as `term`, and every register,
-/// parameter or id argument that holds no value (`never` since `mir::ty`
-/// types `_`) as `term`.
-fn ground_as_term_dm(t: &DmTypes) -> DmTypes {
+/// A DM's types with every register, parameter or id argument that holds
+/// no value (`never` since `mir::ty` types `_`) as `term`.
+fn unread_as_term_dm(t: &DmTypes) -> DmTypes {
     let mut t = t.clone();
-    let fix = |x: &mut crate::mir::ty::Typed| x.ty = ground_as_term(&x.ty);
     // A parameter or id argument nothing reads holds no value (`never`):
     // native code still receives one there, a term.
     let unread = |x: &mut crate::mir::ty::Typed| {
@@ -118,13 +154,9 @@ fn ground_as_term_dm(t: &DmTypes) -> DmTypes {
             x.ty = Ty::Term;
         }
     };
-    t.params.iter_mut().for_each(fix);
     t.params.iter_mut().for_each(unread);
     for st in t.sits.iter_mut().flatten() {
-        st.regs.iter_mut().for_each(fix);
-        st.id_args.iter_mut().for_each(fix);
         st.id_args.iter_mut().for_each(unread);
-        fix(&mut st.pipe);
     }
     t
 }
@@ -162,7 +194,40 @@ fn eq_safe(ty: &Ty) -> bool {
     match ty {
         Ty::Int | Ty::Sym | Ty::Never => true,
         Ty::List(e) => eq_safe(e),
-        _ => false,
+        // Canonical `Val`s: `==` is Prolog's (`sitlog_runtime::native`).
+        t => held_as_val(t),
+    }
+}
+
+/// Whether a local holds a fresh variable (a term) made for an arc.
+fn is_fresh(x: &Ident) -> bool {
+    x.to_string().starts_with("fresh_")
+}
+
+/// The registers an expression binds (`V is E`, `get(n, V)` of a `V` not
+/// made yet), in evaluation order.
+fn ev_binds(e: &Ev, out: &mut Vec<Reg>) {
+    match e {
+        Ev::VarOpFresh { dst, .. } | Ev::IsFresh { dst, .. } => out.push(*dst),
+        Ev::Compound(_, args) => args.iter().for_each(|a| ev_binds(a, out)),
+        Ev::If(_, a, b) => {
+            ev_binds(a, out);
+            ev_binds(b, out);
+        }
+        _ => {}
+    }
+}
+
+/// The fresh-variable locals (`fresh_rN`) `ts` uses.
+fn fresh_used(ts: &TokenStream, out: &mut std::collections::BTreeSet<Ident>) {
+    for tt in ts.clone() {
+        match tt {
+            proc_macro2::TokenTree::Group(g) => fresh_used(&g.stream(), out),
+            proc_macro2::TokenTree::Ident(i) if is_fresh(&i) => {
+                out.insert(i);
+            }
+            _ => {}
+        }
     }
 }
 
@@ -185,6 +250,10 @@ enum MatchStep {
     /// The arguments of a ground term `v` that is `name/arity`, each a
     /// ground term: `if let Some(&[x0, ..]) = store.compound_args(..)`.
     Args(TokenStream, TokenStream, Literal, Vec<Ident>),
+    /// `[H|T]` of a `Val`: `if let Some((h, t)) = v.split_list()`.
+    SplitVal(TokenStream, Ident, Ident),
+    /// The arguments of a `Val` that is `name/arity`, each a `Val`.
+    ArgsVal(TokenStream, TokenStream, Literal, Vec<Ident>),
 }
 
 /// The DM's native code, for the module.
@@ -193,11 +262,21 @@ pub(super) struct NativeCode {
     pub items: TokenStream,
     /// The hook `run_situation` tries first.
     pub first: TokenStream,
-    /// How many situations hold no ground handle (no register `term`, or
-    /// `ground`, which native code holds as a handle too): the ones on
-    /// native values.
+    /// How many situations hold no ground handle (no register `term`):
+    /// the ones on native values.
     pub on_native_values: usize,
+    /// How many of those hold no `Val` either (only fixed shapes: no
+    /// register `ground` or a compound type).
+    pub fixed_shapes: usize,
+    /// How many situations have native code.
+    pub native_sits: usize,
+    /// Per situation, why it has no native code (`None`: it has).
+    pub why: Vec<Option<String>>,
 }
+
+/// A situation's native code: its variant's fields, the visit, its id as
+/// a term.
+type SitCode = (Vec<(Reg, Ty)>, TokenStream, TokenStream);
 
 struct Dm<'a> {
     dm: &'a IrDm,
@@ -205,18 +284,22 @@ struct Dm<'a> {
     types: Vec<SitTypes>,
     /// The parameters' types.
     params: Vec<Ty>,
+    /// Per situation, whether it has native code (else a next situation
+    /// that selects it is handed to the machine).
+    native: Vec<bool>,
 }
 
 impl Gen<'_> {
     /// The native code of DM `dm_ix`, or why it has none.
     pub(super) fn native_code(&self, dm: &IrDm, dm_ix: usize, t: &DmTypes) -> N<NativeCode> {
         let rt = quote!(::sitlog_runtime);
-        // `ground` (a boundary's value after a checked conversion, or the
-        // join of different shapes) is held as a ground handle here, as
-        // `term` is: native code has no boundary conversion yet.
-        let t = &ground_as_term_dm(t);
+        // `ground` is held as a `Val`, converted where it enters (a
+        // parameter at entry); `term` as a ground handle.
+        let t = &unread_as_term_dm(t);
         let mut plans = Vec::new();
         let mut types = Vec::new();
+        // Per situation, why it has no native code (`None`: it may).
+        let mut why: Vec<Option<String>> = Vec::new();
         for i in 0..dm.situations.len() {
             let plan = self
                 .mir
@@ -234,38 +317,81 @@ impl Gen<'_> {
                     st.regs[r].ty = unread_reg_ty(t, &st, init);
                 }
             }
+            let mut w = None;
             if let Some(r) = st.regs.iter().position(|r| rust_ty(&r.ty).is_err()) {
-                let why = st.regs[r].why.as_deref().unwrap_or("no reason given");
-                return Err(format!(
-                    "situation {} has register r{r} typed {}: {why}",
-                    i + 1,
-                    st.regs[r].ty
-                ));
+                let reason = st.regs[r].why.as_deref().unwrap_or("no reason given");
+                w = Some(format!("register r{r} typed {}: {reason}", st.regs[r].ty));
             }
+            // A parameter it reads must be native too.
+            for (_, init) in &plan.inits {
+                if let Init::HeadArg(p) = init {
+                    let ty = t.params.get(*p).map_or(Ty::Term, |p| p.ty.clone());
+                    if w.is_none() && rust_ty(&ty).is_err() {
+                        w = Some(format!("parameter {} is typed {ty}", p + 1));
+                    }
+                }
+            }
+            why.push(w);
             plans.push(plan);
             types.push(st);
         }
-        if plans.first().is_none_or(|p| p.id.1 != 0) {
-            return Err("its initial situation's id is not an atom".into());
-        }
-        if let Some(p) = t.params.iter().position(|p| rust_ty(&p.ty).is_err()) {
-            let why = t.params[p].why.as_deref().unwrap_or("no reason given");
-            return Err(format!(
-                "parameter {} is typed {}: {why}",
-                p + 1,
-                t.params[p].ty
-            ));
-        }
-        let d = Dm {
+        let mut d = Dm {
             dm,
             plans,
             types,
             params: t.params.iter().map(|p| p.ty.clone()).collect(),
+            native: why.iter().map(Option::is_none).collect(),
         };
-        // Parameters, converted at entry.
+        // Each situation's code, given which others have native code (a
+        // next situation without is handed to the machine): a fixpoint,
+        // since a situation that fails only makes others hand over more.
+        let mut code: Vec<Option<SitCode>>;
+        loop {
+            code = vec![None; d.plans.len()];
+            let mut changed = false;
+            for ix in 0..d.plans.len() {
+                if !d.native[ix] {
+                    continue;
+                }
+                let c = self.nat_fields(&d, ix).and_then(|fields| {
+                    let body = self.native_visit(&d, ix, &fields)?;
+                    let (id_stmts, id) = self.nat_id_term(&d, ix, quote!(store))?;
+                    Ok((fields, body, quote!({ #(#id_stmts)* #id })))
+                });
+                match c {
+                    Ok(c) => code[ix] = Some(c),
+                    Err(e) => {
+                        why[ix] = Some(e);
+                        d.native[ix] = false;
+                        changed = true;
+                    }
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        // With no situation native, `items` is never emitted (the caller
+        // looks at `native_sits`); `why` says why for each.
+        // Parameters, converted at entry (those of a native type).
         let mut loads = Vec::new();
+        let read: std::collections::BTreeSet<usize> = (0..d.plans.len())
+            .filter(|&ix| d.native[ix])
+            .flat_map(|ix| {
+                let st = &d.types[ix];
+                d.plans[ix].inits.iter().filter_map(move |(r, i)| match i {
+                    Init::HeadArg(p) if !st.unbound.get(*r as usize).copied().unwrap_or(false) => {
+                        Some(*p)
+                    }
+                    _ => None,
+                })
+            })
+            .collect();
         for (i, p) in t.params.iter().enumerate() {
-            let ty = rust_ty(&p.ty)?;
+            if !read.contains(&i) {
+                continue;
+            }
+            let Ok(ty) = rust_ty(&p.ty) else { continue };
             let name = format_ident!("p{}", i);
             let ix = Literal::usize_unsuffixed(i);
             loads.push(quote! {
@@ -280,9 +406,12 @@ impl Gen<'_> {
         let mut variants = Vec::new();
         let mut arms = Vec::new();
         let mut id_arms = Vec::new();
-        for ix in 0..d.plans.len() {
+        let mut entries = Vec::new();
+        for (ix, c) in code.iter().enumerate() {
+            let Some((fields, body, id)) = c else {
+                continue;
+            };
             let v = variant(ix);
-            let fields = self.nat_fields(&d, ix)?;
             let decls = fields
                 .iter()
                 .map(|(r, ty)| {
@@ -293,19 +422,51 @@ impl Gen<'_> {
             let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
             let doc = format!(" `{}`", self.store.writeq(self.nat_id_of(&d, ix)));
             variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
-            let (id_stmts, id) = self.nat_id_term(&d, ix, quote!(store))?;
-            id_arms.push(quote!(Nat::#v { #(#names),* } => { #(#id_stmts)* #id }));
-            let body = self.native_visit(&d, ix, &fields)?;
+            id_arms.push(quote!(Nat::#v { #(#names),* } => #id));
             arms.push(quote!(Nat::#v { #(#names),* } => { #body }));
+            // Entered by the machine: the fields from the value that
+            // selected it, converted (else the term code runs it).
+            let ixl = Literal::u32_unsuffixed(ix as u32);
+            let mut conv = Vec::new();
+            for (r, ty) in fields {
+                let path: Vec<usize> = match d.plans[ix].inits.iter().find(|(x, _)| x == r) {
+                    Some((_, Init::IdArg(a))) => vec![*a],
+                    Some((_, Init::IdPath(p))) => p.to_vec(),
+                    _ => return Err("an id field has no place in the id".into()),
+                };
+                let rr = reg(*r);
+                let ty = rust_ty(ty)?;
+                let path = path.iter().map(|&k| Literal::usize_unsuffixed(k));
+                conv.push(quote! {
+                    let ::std::option::Option::Some(#rr) = #rt::native::id_part(cx.store_ref(), id, &[#(#path),*])
+                        .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
+                    else {
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    };
+                });
+            }
+            entries.push(if fields.is_empty() {
+                quote!(#ixl => Nat::#v {},)
+            } else {
+                quote!(#ixl => {
+                    let ::std::option::Option::Some(id) = cx.selected() else {
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    };
+                    #(#conv)*
+                    Nat::#v { #(#names),* }
+                })
+            });
         }
         let doc = format!(
-            " Runs DM `{}` natively from its initial situation (see \
-             `sitlog_compiler::codegen::native`); `None`, nothing done, when a \
-             history is kept or observed or a parameter does not convert.",
+            " Runs DM `{}` natively from situation `sit` (see \
+             `sitlog_compiler::codegen::native`); `None`, nothing done, when the \
+             situation has no native code, a history is kept or observed, or a \
+             parameter or id argument does not convert.",
             dm.name.as_str()
         );
         let items = quote! {
-            /// The DM's situations as native values: the fields are the id's variables.
+            /// The DM's situations that have native code, as native values:
+            /// the fields are the id's variables.
             #[allow(dead_code, non_camel_case_types, clippy::all)]
             #[derive(Clone, Debug)]
             pub enum Nat { #(#variants)* }
@@ -320,21 +481,25 @@ impl Gen<'_> {
             }
 
             #[doc = #doc]
-            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, clippy::all)]
+            #[allow(unused_variables, unused_mut, unused_parens, unused_labels, unreachable_code, clippy::all)]
             pub fn run_native(
                 p: &super::Program,
                 cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                sit: #rt::machine::SitIx,
             ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
                 let run = cx.typed_run();
                 if run.records {
                     return ::std::result::Result::Ok(::std::option::Option::None);
                 }
-                cx.materialize_frames();
                 let a = &p.atoms;
+                let mut at = match sit {
+                    #(#entries)*
+                    _ => return ::std::result::Result::Ok(::std::option::Option::None),
+                };
+                cx.materialize_frames();
                 #(#loads)*
                 // Transitions done, not yet given to the machine.
                 let mut count: u64 = 0;
-                let mut at = Nat::S0 {};
                 loop {
                     at = match at { #(#arms)* };
                     // The machine wants control (garbage, a stop asked):
@@ -348,23 +513,35 @@ impl Gen<'_> {
             }
         };
         let first = quote! {
-            // The DM runs natively from its initial situation when its
-            // parameters convert and no history is kept or observed.
-            if sit == 0 && cx.selected().is_none() {
-                if let ::std::option::Option::Some(step) = run_native(p, cx)? {
-                    return ::std::result::Result::Ok(step);
-                }
+            // The situation runs natively when it has native code, its id's
+            // arguments and the DM's parameters convert, and no history is
+            // kept or observed.
+            if let ::std::option::Option::Some(step) = run_native(p, cx, sit)? {
+                return ::std::result::Result::Ok(step);
             }
         };
-        let on_native_values = d
-            .types
+        // Counted on inference's types: a register that holds no value
+        // (`never`: `_`, a parameter or id part nothing reads) is native
+        // there although native code may carry a term in its place.
+        let native: Vec<&SitTypes> = t
+            .sits
             .iter()
-            .filter(|st| st.regs.iter().all(|r| r.ty.is_native()))
+            .flatten()
+            .zip(&d.native)
+            .filter(|(st, &n)| n && st.regs.iter().all(|r| r.ty.is_native()))
+            .map(|(st, _)| st)
+            .collect();
+        let fixed_shapes = native
+            .iter()
+            .filter(|st| !st.regs.iter().any(|r| holds_val(&r.ty)))
             .count();
         Ok(NativeCode {
             items,
             first,
-            on_native_values,
+            on_native_values: native.len(),
+            fixed_shapes,
+            native_sits: d.native.iter().filter(|&&n| n).count(),
+            why,
         })
     }
 
@@ -461,6 +638,7 @@ impl Gen<'_> {
                     let rr = reg(r);
                     stmts.push(quote! {
                         let #x = {
+                            #[allow(unused_imports)]
                             use #rt::native::Native as _;
                             (&#rr).to_term(#store)
                         };
@@ -505,8 +683,14 @@ impl Gen<'_> {
         let rt = quote!(::sitlog_runtime);
         let plan = d.plans[ix];
         let st = &d.types[ix];
-        if plan.in_arg.is_some() || plan.out_arg.is_some() || plan.prog.is_some() {
-            return Err(format!("situation {} uses the pipe or prog", ix + 1));
+        if plan.in_arg.is_some() {
+            return Err("it has an in_arg (the pipe)".into());
+        }
+        if plan.out_arg.is_some() {
+            return Err("it has an out_arg (the pipe)".into());
+        }
+        if plan.prog.is_some() {
+            return Err("it has a prog".into());
         }
         // Where each register's value lives: a field, a parameter, a local.
         let mut regs: Regs = fields
@@ -516,6 +700,8 @@ impl Gen<'_> {
         let mut stmts = Vec::new();
         for (r, init) in &plan.inits {
             match init {
+                // A parameter nothing reads here is not loaded.
+                Init::HeadArg(_) if st.unbound.get(*r as usize).copied().unwrap_or(false) => {}
                 Init::HeadArg(i) => {
                     let ty = st.regs[*r as usize].ty.clone();
                     let p = format_ident!("p{}", i);
@@ -543,60 +729,468 @@ impl Gen<'_> {
         let cur = Literal::u32_unsuffixed(ix as u32);
         let kind = d.dm.situations[ix].kind;
         match (&plan.kind, kind) {
-            (KindPlan::Final { diag_mod: None }, Kind::Final) => {
+            (KindPlan::Final { diag_mod }, Kind::Final) => {
                 let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
                 let empty = quote!(#rt::Term::atom(#rt::atoms::EMPTY));
+                // `diag_mod`: the DM's head bound (its output arguments),
+                // a term built from native values at that boundary.
+                let diag = match diag_mod {
+                    Some(b) => {
+                        let mut ts = Vec::new();
+                        let mut n = 0;
+                        let t = self
+                            .nat_build_term(b, &regs, &mut ts, &mut n)
+                            .map_err(|e| format!("its diag_mod: {e}"))?;
+                        quote!(#(#ts)* cx.diag_mod(#t)?;)
+                    }
+                    None => quote!(),
+                };
                 Ok(quote! {
                     #(#stmts)*
                     cx.count_transitions(count);
                     #(#id_stmts)*
                     cx.enter_with_id(#cur, #id);
                     cx.final_out_arg(::std::option::Option::None)?;
+                    #diag
                     cx.record(#empty, #empty, ::std::option::Option::None);
                     return ::std::result::Result::Ok(::std::option::Option::Some(#rt::machine::Step::Final));
                 })
             }
-            (KindPlan::Perceptual(arcs), Kind::Perceptual)
-                if arcs.always_first && arcs.arcs.len() == 1 =>
-            {
-                let arc = &arcs.arcs[0];
-                if arc.out_arg.is_some() || arc.diag_mod.is_some() {
-                    return Err(format!("situation {} has out_arg or diag_mod", ix + 1));
+            (KindPlan::Perceptual(arcs), kind) => {
+                let single = kind == Kind::Perceptual && arcs.always_first && arcs.arcs.len() == 1;
+                if !single && !arcs.pure {
+                    return Err("its expectations can change variables".into());
                 }
-                for (k, from) in arc.import_from.iter().enumerate() {
-                    // An imported copy of a ground value is the value.
-                    if let Some(at) = regs.get(from).cloned() {
-                        regs.insert(arc.import_at + k as Reg, at);
+                let mut regs = regs.clone();
+                for arc in &arcs.arcs {
+                    if arc.out_arg.is_some() {
+                        return Err("its arc has an out_arg (the pipe)".into());
+                    }
+                    if arc.diag_mod.is_some() {
+                        return Err("its arc has a diag_mod".into());
+                    }
+                    for (k, from) in arc.import_from.iter().enumerate() {
+                        // An imported copy of a ground value is the value.
+                        if let Some(at) = regs.get(from).cloned() {
+                            regs.insert(arc.import_at + k as Reg, at);
+                        }
                     }
                 }
-                let action = match &arc.action {
-                    Action::One(Ev::Built(Build::Const(t))) => self.store.atom_of(*t),
-                    _ => None,
+                // A fresh variable (`_`, one a perception or a boundary binds:
+                // `said(X)`, `apply(name_of(_), [user])`) is a term, made at
+                // the start of the visit when the code uses it (as the term
+                // code makes it), read natively only after a checked
+                // conversion.
+                let inits = plan
+                    .inits
+                    .iter()
+                    .filter_map(|(r, i)| matches!(i, Init::Fresh).then_some(r));
+                // What an action's `is`/`get` binds (`[X is M * M]`) too.
+                let mut bound = Vec::new();
+                for arc in &arcs.arcs {
+                    match &arc.action {
+                        Action::One(e) => ev_binds(e, &mut bound),
+                        Action::List { items, .. } => {
+                            items.iter().for_each(|e| ev_binds(e, &mut bound))
+                        }
+                    }
                 }
-                .ok_or(format!("situation {}: its action is not an atom", ix + 1))?;
-                let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+                let arc_fresh = arcs.arcs.iter().flat_map(|a| a.fresh.iter());
+                for r in inits.chain(arc_fresh).chain(bound.iter()) {
+                    if !regs.contains_key(r) {
+                        regs.insert(*r, (format_ident!("fresh_r{}", r), Ty::Term));
+                    }
+                }
+                let mut bodies = Vec::new();
+                for arc in &arcs.arcs {
+                    bodies.push(self.nat_arc(d, ix, arc, &regs)?);
+                }
+                let body = if single {
+                    let b = &bodies[0];
+                    quote!(let arc_at = ::std::option::Option::Some(0usize); #b)
+                } else {
+                    // The machine chooses the arc (a perception matched
+                    // against the expectations, built from native values).
+                    let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+                    let mut exps = Vec::new();
+                    let mut names = Vec::new();
+                    for (i, arc) in arcs.arcs.iter().enumerate() {
+                        let mut ts = Vec::new();
+                        let mut n = 0;
+                        let t = self
+                            .nat_ev_term(&arc.expectation, &regs, &mut ts, &mut n)
+                            .map_err(|e| format!("its expectation {}: {e}", i + 1))?;
+                        let x = format_ident!("e{}", i);
+                        let il = Literal::usize_unsuffixed(i);
+                        exps.push(quote! {
+                            let #x = {
+                                let arc_at = ::std::option::Option::Some(#il);
+                                #(#ts)*
+                                #t
+                            };
+                        });
+                        names.push(x);
+                    }
+                    let mut ts = Vec::new();
+                    let mut n = 0;
+                    let ty = self
+                        .nat_build_term(&arcs.type_term, &regs, &mut ts, &mut n)
+                        .map_err(|e| format!("its type: {e}"))?;
+                    let arms = bodies.iter().enumerate().map(|(i, b)| {
+                        let il = Literal::usize_unsuffixed(i);
+                        quote!(#il => { let arc_at = ::std::option::Option::Some(#il); #b })
+                    });
+                    quote! {
+                        cx.count_transitions(count);
+                        count = 0;
+                        #(#id_stmts)*
+                        cx.enter_with_id(#cur, #id);
+                        #(#exps)*
+                        cx.set_expectations(&[#(#names),*]);
+                        #(#ts)*
+                        let type_term = #ty;
+                        let ::std::option::Option::Some(chosen) = cx.choose(type_term)? else {
+                            return ::std::result::Result::Ok(::std::option::Option::Some(
+                                #rt::machine::Step::Unmet { type_term },
+                            ));
+                        };
+                        match chosen {
+                            #(#arms)*
+                            _ => unreachable!("the machine chose an arc of this situation"),
+                        }
+                    }
+                };
+                // The fresh variables the code uses, made first.
+                let mut used = std::collections::BTreeSet::new();
+                fresh_used(&body, &mut used);
+                let fresh = used.iter().map(|x| quote!(let #x = cx.var();));
+                Ok(quote! { #(#stmts)* #(#fresh)* #body })
+            }
+            (KindPlan::Final { .. }, _) => Err("a final situation with diag_mod".into()),
+            (KindPlan::Recursive { .. }, _) => Err("a recursive situation (a DM call)".into()),
+        }
+    }
+
+    /// The code of arc `arc` of situation `ix` once chosen (its action,
+    /// the values a boundary bound converted, its next situation), with
+    /// `arc_at` its index.
+    fn nat_arc(&self, d: &Dm, ix: usize, arc: &ArcPlan, regs: &Regs) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let plan = d.plans[ix];
+        let st = &d.types[ix];
+        let cur = Literal::u32_unsuffixed(ix as u32);
+        let mut regs = regs.clone();
+        let mut stmts = Vec::new();
+        let atom = match &arc.action {
+            Action::One(Ev::Built(Build::Const(t))) => self.store.atom_of(*t),
+            _ => None,
+        };
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let enter = quote! {
+            cx.count_transitions(count);
+            count = 0;
+            #(#id_stmts)*
+            cx.enter_with_id(#cur, #id);
+        };
+        match atom {
+            Some(action) => {
                 let act = self.atom_native(action)?;
                 let perform = quote! {
-                    cx.count_transitions(count);
-                    count = 0;
-                    #(#id_stmts)*
-                    cx.enter_with_id(#cur, #id);
-                    cx.perform(#rt::Term::atom(#act), ::std::option::Option::Some(0))?;
+                    #enter
+                    cx.perform(#rt::Term::atom(#act), arc_at)?;
                 };
                 stmts.push(if action == atoms::EMPTY {
                     quote!(if !run.quiet_empty { #perform })
                 } else {
                     perform
                 });
-                stmts.push(quote!(count += 1;));
-                let name = self.atom_native(plan.id.0)?;
-                let next = self.nat_next(d, ix, &arc.next, &regs, &name)?;
-                Ok(quote! { #(#stmts)* #next })
+            }
+            None => {
+                // An effector's action (`say([.., Name])`): its term
+                // built from native values where it is performed.
+                let why = |e: String| format!("its action {}: {e}", self.action_shape(&arc.action));
+                let mut ts = Vec::new();
+                let mut n = 0;
+                let perform = match &arc.action {
+                    Action::One(e) => {
+                        let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
+                        quote!(cx.perform(#t, arc_at)?;)
+                    }
+                    Action::List { items, .. } => {
+                        let ts_items = items
+                            .iter()
+                            .map(|e| self.nat_ev_term(e, &regs, &mut ts, &mut n))
+                            .collect::<N<Vec<_>>>()
+                            .map_err(why)?;
+                        quote!(cx.perform_each(&[#(#ts_items),*], arc_at)?;)
+                    }
+                };
+                stmts.push(quote! {
+                    #enter
+                    #(#ts)*
+                    #perform
+                });
+            }
+        }
+        stmts.push(quote!(count += 1;));
+        // A fresh variable the action bound (a boundary's value)
+        // and the next situation reads: converted with the checked
+        // conversion; when that fails, the rest of the arc runs as
+        // the term code runs it (live native values as terms).
+        let conv = self.nat_bound_at_boundary(st, &arc.next, &regs)?;
+        if let Some((fallback, conv)) = conv {
+            for (r, ty) in conv {
+                let (x, _) = regs[&r].clone();
+                let rr = reg(r);
+                let rty = rust_ty(&ty)?;
+                stmts.push(quote! {
+                    let ::std::option::Option::Some(#rr) =
+                        <#rty as #rt::native::Native>::from_term(cx.store_ref(), #x)
+                    else #fallback;
+                });
+                regs.insert(r, (rr, ty));
+            }
+        }
+        let name = self.atom_native(plan.id.0)?;
+        let next = self.nat_next(d, ix, &arc.next, &regs, &name)?;
+        Ok(quote! { #(#stmts)* #next })
+    }
+
+    /// The term of `b` built from native values (a boundary: an effector's
+    /// action, `diag_mod`): statements pushed to `ts`, the term's
+    /// expression returned.
+    fn nat_build_term(
+        &self,
+        b: &Build,
+        regs: &Regs,
+        ts: &mut Vec<TokenStream>,
+        n: &mut usize,
+    ) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let x = format_ident!("b{}", *n);
+        *n += 1;
+        let e = match b {
+            // A fresh variable, made where the action's terms are built.
+            Build::Reg(r) if regs.get(r).is_some_and(|(v, _)| is_fresh(v)) => {
+                let (v, _) = &regs[r];
+                return Ok(quote!(#v));
+            }
+            Build::Reg(r) => {
+                let (v, _) = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
+                quote!(#rt::native::Native::to_term(&#v, cx.store()))
+            }
+            Build::Const(t) => return self.nat_const_term(*t, ts, n),
+            Build::Compound(f, args) => {
+                let args = args
+                    .iter()
+                    .map(|a| self.nat_build_term(a, regs, ts, n))
+                    .collect::<N<Vec<_>>>()?;
+                let f = self.functor_native(*f)?;
+                quote!(#rt::native::compound(cx.store(), #f, &[#(#args),*]))
+            }
+        };
+        ts.push(quote!(let #x = #e;));
+        Ok(quote!(#x))
+    }
+
+    /// The term of `e` evaluated, when evaluating builds it from native
+    /// values (they evaluate to themselves: native values are inert).
+    fn nat_ev_term(
+        &self,
+        e: &Ev,
+        regs: &Regs,
+        ts: &mut Vec<TokenStream>,
+        n: &mut usize,
+    ) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        match e {
+            Ev::Value(r) => self.nat_build_term(&Build::Reg(*r), regs, ts, n),
+            Ev::Built(b) => self.nat_build_term(b, regs, ts, n),
+            Ev::Compound(f, args) => {
+                let args = args
+                    .iter()
+                    .map(|a| self.nat_ev_term(a, regs, ts, n))
+                    .collect::<N<Vec<_>>>()?;
+                let f = self.functor_native(*f)?;
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = #rt::native::compound(cx.store(), #f, &[#(#args),*]);));
+                Ok(quote!(#x))
+            }
+            // A user function, the KB, `assign`...: the evaluator, on the
+            // term built from native values (a boundary); its value is a
+            // term, performed as it is.
+            Ev::Eval(b) => {
+                let t = self.nat_build_term(b, regs, ts, n)?;
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = cx.eval(#t, arc_at)?;));
+                Ok(quote!(#x))
+            }
+            // `get`/`set`/`inc` of a local or global, `is`: the machine's
+            // own calls, on terms built from native values; a variable
+            // they bind is a fresh variable's local (a term), read
+            // natively only after a checked conversion.
+            Ev::VarOp { op, name, arg } => {
+                let t = self.nat_build_term(arg, regs, ts, n)?;
+                let (op, name) = (self.atom_native(*op)?, self.atom_native(*name)?);
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = cx.var_op(#op, #name, #t, arc_at)?;));
+                Ok(quote!(#x))
+            }
+            Ev::VarOpFresh { op, name, dst } => {
+                let x = match regs.get(dst) {
+                    Some((x, _)) if is_fresh(x) => x.clone(),
+                    _ => return Err(format!("register r{dst} is set twice")),
+                };
+                let (op, name) = (self.atom_native(*op)?, self.atom_native(*name)?);
+                ts.push(quote!(let #x = cx.var_op_fresh(#op, #name, arc_at)?;));
+                Ok(quote!(#x))
+            }
+            Ev::IsFresh { expr, dst } => {
+                let x = match regs.get(dst) {
+                    Some((x, _)) if is_fresh(x) => x.clone(),
+                    _ => return Err(format!("register r{dst} is set twice")),
+                };
+                let t = self.nat_build_term(expr, regs, ts, n)?;
+                ts.push(quote!(let #x = cx.is(::std::option::Option::None, #t, arc_at)?;));
+                Ok(quote!(#x))
+            }
+            Ev::Is { lhs, expr } => {
+                let e = self.nat_build_term(expr, regs, ts, n)?;
+                let l = self.nat_build_term(lhs, regs, ts, n)?;
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = cx.is(::std::option::Option::Some(#l), #e, arc_at)?;));
+                Ok(quote!(#x))
+            }
+            Ev::If(..) => Err("a conditional expression is not native yet".into()),
+        }
+    }
+
+    /// A constant term (atoms, numbers, compounds of them), built.
+    fn nat_const_term(&self, t: Term, ts: &mut Vec<TokenStream>, n: &mut usize) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        match self.store.value(t) {
+            Value::Atom(a) => {
+                let a = self.functor_native(a)?;
+                Ok(quote!(#rt::Term::atom(#a)))
+            }
+            Value::Int(i) => {
+                let i = Literal::i64_suffixed(i);
+                Ok(quote!(#rt::Term::int(#i)))
+            }
+            Value::Float(f) if f.is_finite() => {
+                let f = Literal::f64_suffixed(f);
+                Ok(quote!(#rt::Term::float(#f)))
+            }
+            Value::Compound(f, args) => {
+                let args = args.to_vec();
+                let args = args
+                    .into_iter()
+                    .map(|a| self.nat_const_term(a, ts, n))
+                    .collect::<N<Vec<_>>>()?;
+                let f = self.functor_native(f)?;
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = #rt::native::compound(cx.store(), #f, &[#(#args),*]);));
+                Ok(quote!(#x))
             }
             _ => Err(format!(
-                "situation {} is not a final or a neutral `empty` situation",
-                ix + 1
+                "constant `{}` is not native yet",
+                self.store.writeq(t)
             )),
+        }
+    }
+
+    /// An atom as a functor or constant in generated code.
+    fn functor_native(&self, a: Atom) -> N<TokenStream> {
+        if a == atoms::DOT {
+            Ok(quote!(::sitlog_runtime::atoms::DOT))
+        } else {
+            self.atom_native(a)
+        }
+    }
+
+    /// The fresh variables an action bound (made as terms for it) that
+    /// `next` reads, with their types, and the code that runs the rest of
+    /// the arc as the term code does (`None`: `next` reads none).
+    #[allow(clippy::type_complexity)]
+    fn nat_bound_at_boundary(
+        &self,
+        st: &SitTypes,
+        next: &Next,
+        regs: &Regs,
+    ) -> N<Option<(TokenStream, Vec<(Reg, Ty)>)>> {
+        let rt = quote!(::sitlog_runtime);
+        let at = quote!(arc_at);
+        let mut b = super::step::Body::new();
+        let v = self.next_code(next, &at, &mut b);
+        let stmts = b.stmts;
+        let body = quote!(#(#stmts)* #v);
+        let used = super::step::registers(&body);
+        let conv: Vec<(Reg, Ty)> = used
+            .iter()
+            .filter(|r| regs.get(r).is_some_and(|(x, _)| is_fresh(x)))
+            .map(|&r| (r, st.regs[r as usize].ty.clone()))
+            .collect();
+        if conv.is_empty() {
+            return Ok(None);
+        }
+        let mut lets = Vec::new();
+        for r in &used {
+            let rr = reg(*r);
+            match regs.get(r) {
+                Some((x, _)) if is_fresh(x) => lets.push(quote!(let #rr: #rt::Term = #x;)),
+                Some((x, _)) => lets.push(quote! {
+                    let #rr: #rt::Term = #rt::native::Native::to_term(&#x, cx.store());
+                }),
+                None => return Err(format!("register r{r} is read unset")),
+            }
+        }
+        let prelude = Self::prelude(&body);
+        let fallback = quote! {{
+            cx.count_transitions(count);
+            #prelude
+            #(#lets)*
+            #(#stmts)*
+            let (next, target) = #v;
+            return match target {
+                ::std::option::Option::Some(ix) => ::std::result::Result::Ok(
+                    ::std::option::Option::Some(#rt::machine::Step::GotoSit(ix)),
+                ),
+                ::std::option::Option::None => cx.goto(next, #at).map(::std::option::Option::Some),
+            };
+        }};
+        Ok(Some((fallback, conv)))
+    }
+
+    /// What an action is, for `--explain-types`: `say/1`, a list of them.
+    fn action_shape(&self, a: &Action) -> String {
+        let ev = |e: &Ev| -> String {
+            let b = match e {
+                Ev::Built(b) | Ev::Eval(b) => b,
+                Ev::Compound(name, args) => return format!("`{}/{}`", name.as_str(), args.len()),
+                Ev::Value(_) => return "a variable".into(),
+                _ => return "an expression".into(),
+            };
+            match b {
+                Build::Const(t) => match self.store.functor(*t) {
+                    Some((f, n)) => format!("`{}/{n}`", f.as_str()),
+                    None => "a constant".into(),
+                },
+                Build::Reg(_) => "a variable".into(),
+                Build::Compound(f, args) => format!("`{}/{}`", f.as_str(), args.len()),
+            }
+        };
+        match a {
+            Action::One(e) => ev(e),
+            Action::List { items, .. } => {
+                let mut shapes: Vec<String> = items.iter().map(ev).collect();
+                shapes.dedup();
+                format!("a list of {}", shapes.join(", "))
+            }
         }
     }
 
@@ -606,6 +1200,11 @@ impl Gen<'_> {
         match b {
             Build::Reg(r) => {
                 let (x, ty) = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
+                if is_fresh(x) {
+                    return Err(format!(
+                        "register r{r} is a fresh variable, bound at a boundary"
+                    ));
+                }
                 Ok(V {
                     e: quote!(#x.clone()),
                     ty: ty.clone(),
@@ -703,6 +1302,17 @@ impl Gen<'_> {
         let rt = quote!(::sitlog_runtime);
         let curl = Literal::u32_unsuffixed(cur as u32);
         match n {
+            Next::Static(t, Some(ix))
+                if self.store.atom_of(*t).is_some() && !d.native[*ix as usize] =>
+            {
+                // A situation without native code: the machine enters it.
+                let a = self.atom_native(self.store.atom_of(*t).unwrap_or(atoms::NIL))?;
+                Ok(quote! {{
+                    cx.count_transitions(count);
+                    cx.enter(#curl, #cur_name);
+                    return cx.goto(#rt::Term::atom(#a), arc_at).map(::std::option::Option::Some);
+                }})
+            }
             Next::Static(t, Some(ix)) if self.store.atom_of(*t).is_some() => {
                 let v = variant(*ix as usize);
                 if d.plans[*ix as usize].id.1 != 0 {
@@ -716,7 +1326,7 @@ impl Gen<'_> {
                 Ok(quote! {{
                     cx.count_transitions(count);
                     cx.enter(#curl, #cur_name);
-                    return cx.goto(#rt::Term::atom(#a), ::std::option::Option::Some(0)).map(::std::option::Option::Some);
+                    return cx.goto(#rt::Term::atom(#a), arc_at).map(::std::option::Option::Some);
                 }})
             }
             Next::Static(t, _) | Next::Eval(Ev::Built(Build::Const(t)))
@@ -737,6 +1347,68 @@ impl Gen<'_> {
                 let a = self.nat_next(d, cur, a, regs, cur_name)?;
                 let b = self.nat_next(d, cur, b, regs, cur_name)?;
                 Ok(quote!(if #c { #a } else { #b }))
+            }
+            Next::Eval(Ev::Compound(name, args))
+                if args.iter().any(|a| matches!(a, Ev::Eval(_))) =>
+            {
+                // A part the evaluator computes (`confirm(apply(f(_),
+                // [X]))`): given to it as a term built from native values,
+                // its value converted with the checked conversion; when
+                // that fails, the whole value goes to the machine as a term.
+                let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+                let mut pre = vec![quote! {
+                    cx.count_transitions(count);
+                    count = 0;
+                    #(#id_stmts)*
+                    cx.enter_with_id(#curl, #id);
+                }];
+                let mut n = 0;
+                let mut parts = Vec::new();
+                for a in args.iter() {
+                    match a {
+                        Ev::Eval(_) => {
+                            let t = self.nat_ev_term(a, regs, &mut pre, &mut n)?;
+                            parts.push(Err(t));
+                        }
+                        a => parts.push(Ok(self.nat_ev_value(a, regs)?)),
+                    }
+                }
+                let terms: Vec<TokenStream> = parts
+                    .iter()
+                    .map(|p| match p {
+                        Ok(v) => {
+                            let e = &v.e;
+                            quote!(#rt::native::Native::to_term(&#e, cx.store()))
+                        }
+                        Err(t) => quote!(#t),
+                    })
+                    .collect();
+                let f = self.functor_native(*name)?;
+                let fallback = quote! {{
+                    let ts = [#(#terms),*];
+                    let value = #rt::native::compound(cx.store(), #f, &ts);
+                    return cx.goto(value, arc_at).map(::std::option::Option::Some);
+                }};
+                let mut vals = Vec::new();
+                for (k, p) in parts.into_iter().enumerate() {
+                    match p {
+                        Ok(v) => vals.push(v),
+                        Err(t) => {
+                            let x = format_ident!("x{}", k);
+                            pre.push(quote! {
+                                let ::std::option::Option::Some(#x) =
+                                    <#rt::native::Val as #rt::native::Native>::from_term(cx.store_ref(), #t)
+                                else #fallback;
+                            });
+                            vals.push(V {
+                                e: quote!(#x.clone()),
+                                ty: Ty::Ground,
+                            });
+                        }
+                    }
+                }
+                let sel = self.nat_select(d, cur, *name, vals, cur_name)?;
+                Ok(quote!({ #(#pre)* #sel }))
             }
             Next::Eval(Ev::Compound(name, args)) => {
                 let vals = args
@@ -784,6 +1456,10 @@ impl Gen<'_> {
         for j in 0..d.plans.len() {
             if d.plans[j].id != (name, args.len()) {
                 continue;
+            }
+            if !d.native[j] {
+                // The machine selects from here on (D-21: source order).
+                break;
             }
             let id = self.nat_id_of(d, j);
             let id_args = self.store.args(id).to_vec();
@@ -841,6 +1517,17 @@ impl Gen<'_> {
                             #code
                         }
                     },
+                    MatchStep::SplitVal(l, h, t) => quote! {
+                        if let ::std::option::Option::Some((#h, #t)) = #l.split_list() {
+                            #code
+                        }
+                    },
+                    MatchStep::ArgsVal(v, f, arity, xs) => quote! {
+                        if let ::std::option::Option::Some([#(#xs),*]) = #v.args_of(#f, #arity) {
+                            #(let #xs = #xs.clone();)*
+                            #code
+                        }
+                    },
                     MatchStep::Split(l, h, t) => quote! {
                         if let ::std::option::Option::Some((#h, #t)) = #l.split_first() {
                             let #h = #h.clone();
@@ -863,7 +1550,7 @@ impl Gen<'_> {
                 cx.enter(#curl, #cur_name);
                 #(let #arg_terms = #rt::native::Native::to_term(&#arg_names, cx.store());)*
                 let value = #rt::native::compound(cx.store(), #f, &[#(#arg_terms),*]);
-                return cx.goto(value, ::std::option::Option::Some(0)).map(::std::option::Option::Some);
+                return cx.goto(value, arc_at).map(::std::option::Option::Some);
             }
         })
     }
@@ -909,6 +1596,8 @@ impl Gen<'_> {
                 vars.insert(var.index(), (x, ty));
                 Ok(true)
             }
+            // A canonical `Val`: read by its variant.
+            _ if held_as_val(&v.ty) => self.val_match(d, j, pat, v, path, vars, steps, n),
             // A ground term: read in the store.
             Value::Atom(a) if v.ty == Ty::Term => {
                 let a = self.atom_native(a)?;
@@ -1020,13 +1709,115 @@ impl Gen<'_> {
     }
 }
 
+impl Gen<'_> {
+    /// [`Gen::native_match`] on a value held as a canonical `Val` (type
+    /// `ground` or a fixed-shape compound): the pattern is not a variable.
+    #[allow(clippy::too_many_arguments)]
+    fn val_match(
+        &self,
+        d: &Dm,
+        j: usize,
+        pat: Term,
+        v: &V,
+        path: &mut Vec<usize>,
+        vars: &mut HashMap<u32, (Ident, Ty)>,
+        steps: &mut Vec<MatchStep>,
+        n: &mut usize,
+    ) -> N<bool> {
+        let e = &v.e;
+        let some = quote!(::std::option::Option::Some);
+        let tagged = match &v.ty {
+            Ty::Tagged(name, args) => Some((*name, args.len())),
+            _ => None,
+        };
+        match self.store.value(pat) {
+            Value::Atom(a) if a == atoms::NIL => {
+                steps.push(MatchStep::If(quote!(#e.is_nil())));
+                Ok(true)
+            }
+            Value::Atom(a) => {
+                let a = self.atom_native(a)?;
+                steps.push(MatchStep::If(quote!((#e.sym() == #some(#a)))));
+                Ok(true)
+            }
+            Value::Int(i) => {
+                let i = Literal::i64_suffixed(i);
+                steps.push(MatchStep::If(quote!((#e.int() == #some(#i)))));
+                Ok(true)
+            }
+            Value::Compound(name, args) if name == atoms::DOT && args.len() == 2 => {
+                if tagged.is_some() {
+                    return Ok(false);
+                }
+                let (h, t) = (args[0], args[1]);
+                let hx = format_ident!("h{}", *n);
+                let tx = format_ident!("l{}", *n);
+                *n += 1;
+                steps.push(MatchStep::SplitVal(quote!(#e), hx.clone(), tx.clone()));
+                for (k, (p, x)) in [(h, hx), (t, tx)].into_iter().enumerate() {
+                    let xv = V {
+                        e: quote!(#x),
+                        ty: Ty::Ground,
+                    };
+                    path.push(k);
+                    let ok = self.native_match(d, j, p, &xv, path, vars, steps, n)?;
+                    path.pop();
+                    if !ok {
+                        return Ok(false);
+                    }
+                }
+                Ok(true)
+            }
+            Value::Compound(name, args) => {
+                if tagged.is_some_and(|t| t != (name, args.len())) {
+                    return Ok(false);
+                }
+                let args = args.to_vec();
+                let f = self.atom_native(name)?;
+                let xs: Vec<Ident> = (0..args.len())
+                    .map(|k| format_ident!("g{}_{}", *n, k))
+                    .collect();
+                *n += 1;
+                let arity = Literal::usize_unsuffixed(args.len());
+                steps.push(MatchStep::ArgsVal(quote!(#e), f, arity, xs.clone()));
+                for (k, (&a, x)) in args.iter().zip(&xs).enumerate() {
+                    // Held as `Val`s inside the compound, whatever the type.
+                    let xv = V {
+                        e: quote!(#x),
+                        ty: Ty::Ground,
+                    };
+                    path.push(k);
+                    let ok = self.native_match(d, j, a, &xv, path, vars, steps, n)?;
+                    path.pop();
+                    if !ok {
+                        return Ok(false);
+                    }
+                }
+                Ok(true)
+            }
+            _ => Err("an id pattern holds a constant that is not native".into()),
+        }
+    }
+}
+
 /// Prolog's `==` on two native values, when their types allow it in Rust
 /// (ground terms compared in the store).
 fn identical(l: &V, r: &V) -> Option<TokenStream> {
     let (le, re) = (&l.e, &r.e);
     let some = quote!(::std::option::Option::Some);
+    let rt = quote!(::sitlog_runtime);
     match (&l.ty, &r.ty) {
         (a, b) if a == b && eq_safe(a) => Some(quote!((#le == #re))),
+        // Canonical `Val`s and other native values as `Val`s.
+        (a, b) if held_as_val(a) && held_as_val(b) => Some(quote!((#le == #re))),
+        (Ty::Term, b) if held_as_val(b) => Some(quote!((#re).identical_to(cx.store_ref(), #le.0))),
+        (a, Ty::Term) if held_as_val(a) => Some(quote!((#le).identical_to(cx.store_ref(), #re.0))),
+        (a, b) if held_as_val(a) && b.is_native() && *b != Ty::Float => {
+            Some(quote!((#le == #rt::native::IntoVal::into_val(#re))))
+        }
+        (a, b) if held_as_val(b) && a.is_native() && *a != Ty::Float => {
+            Some(quote!((#rt::native::IntoVal::into_val(#le) == #re)))
+        }
         (Ty::Term, Ty::Term) => Some(quote!(cx.store_ref().identical(#le.0, #re.0))),
         (Ty::Term, Ty::Sym) => Some(quote!((cx.store_ref().atom_of(#le.0) == #some(#re)))),
         (Ty::Sym, Ty::Term) => Some(quote!((cx.store_ref().atom_of(#re.0) == #some(#le)))),
@@ -1055,19 +1846,42 @@ fn cons(h: V, t: V) -> N<V> {
 
 /// `v` as a value of type `to`.
 fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
-    if v.ty == *to {
+    if v.ty == *to || same_rep(&v.ty, to) {
         return Ok(v.e.clone());
     }
+    let rt = quote!(::sitlog_runtime);
     match (&v.ty, to) {
+        (Ty::Never, _) => {
+            let e = &v.e;
+            Ok(quote!(match #e {}))
+        }
+        // A native value entering a `ground` register.
+        (from, Ty::Ground) if from.is_native() => {
+            let e = &v.e;
+            Ok(quote!(#rt::native::IntoVal::into_val(#e)))
+        }
+        // Lists of native values as lists of `Val`s.
+        (Ty::List(a), Ty::List(b)) if a.is_native() && held_as_val(b) && **b == Ty::Ground => {
+            let e = &v.e;
+            Ok(
+                quote!(#e.iter().cloned().map(#rt::native::IntoVal::into_val).collect::<#rt::native::List<#rt::native::Val>>()),
+            )
+        }
+        // A `Val` where a ground term is held: built in the store (inert:
+        // it came from an inert term or from native values).
+        (from, Ty::Term)
+            if holds_val(from)
+                || (from.is_native() && !matches!(from, Ty::Sym | Ty::Int | Ty::List(_))) =>
+        {
+            let ty = rust_ty(from)?;
+            let e = &v.e;
+            Ok(quote!(#rt::native::Ground(<#ty as #rt::native::Native>::to_term(&#e, cx.store()))))
+        }
         // An empty list is an empty list of anything.
         (Ty::List(e), Ty::List(_)) if **e == Ty::Never => {
             let ty = rust_ty(to)?;
             let e = &v.e;
             Ok(quote!({ let _ = #e; <#ty>::nil() }))
-        }
-        (Ty::Never, _) => {
-            let e = &v.e;
-            Ok(quote!(match #e {}))
         }
         // An immediate term of a native scalar, or `[]`.
         (Ty::Sym, Ty::Term) => {
