@@ -114,20 +114,10 @@ pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
     g.emit(ir, source)
 }
 
-/// What the code generator does with one DM's situations
-/// ([`native_dms`]).
-#[derive(Clone, Debug)]
-pub struct NativeDm {
-    /// How many situations have native code.
-    pub native: usize,
-    /// How many of those hold no ground term (no register typed `term`):
-    /// on native values.
-    pub values: usize,
-    /// How many of those hold no `Val` either (only fixed shapes).
-    pub fixed: usize,
-    /// Per situation, why it has no native code (`None`: it has).
-    pub why: Vec<Option<String>>,
-}
+/// What the code generator does with one DM's situations ([`native_dms`]):
+/// a report `types::explain` reads, defined there so that `types` does not
+/// import `codegen`.
+pub use crate::types::NativeDm;
 
 /// Per DM, which of its situations generated code runs natively
 /// (`codegen::native`) and on what values, or why none does.

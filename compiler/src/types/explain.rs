@@ -19,10 +19,7 @@ pub fn explain(ir: &Ir, types: &Types) -> String {
 pub fn explain_with(
     ir: &Ir,
     types: &Types,
-    mir: Option<(
-        &crate::mir::ty::MirTypes,
-        &[Result<crate::codegen::NativeDm, String>],
-    )>,
+    mir: Option<(&crate::mir::ty::MirTypes, &[Result<NativeDm, String>])>,
 ) -> String {
     let store = &ir.store;
     let mut out = String::new();
@@ -223,4 +220,19 @@ pub fn summary_with(types: &Types, native: Option<(usize, usize)>) -> String {
         "situations on native values: {typed_sits}/{sits}{shapes}\n\
          situations compiled as code: {code}/{sits}; variables typed: {typed_vars}/{vars}"
     )
+}
+
+/// What the code generator does with one DM's situations
+/// (`crate::codegen::native_dms`).
+#[derive(Clone, Debug)]
+pub struct NativeDm {
+    /// How many situations have native code.
+    pub native: usize,
+    /// How many of those hold no ground term (no register typed `term`):
+    /// on native values.
+    pub values: usize,
+    /// How many of those hold no `Val` either (only fixed shapes).
+    pub fixed: usize,
+    /// Per situation, why it has no native code (`None`: it has).
+    pub why: Vec<Option<String>>,
 }

@@ -61,7 +61,7 @@ use std::fmt::Write as _;
 mod explain;
 mod infer;
 
-pub use explain::{explain, explain_with, summary};
+pub use explain::{explain, explain_with, summary, NativeDm};
 pub use infer::infer;
 use infer::var_name;
 
