@@ -200,6 +200,11 @@ pub fn write_package(
          # task's own crate is rebuilt incrementally; no LTO, no debug info.\n\
          [profile.release]\nlto = \"off\"\ncodegen-units = 16\ndebug = false\n\n\
          [profile.release.package.{package}]\nincremental = true\n\n\
+         # `sitlogc build --debug`: the same, unoptimised. The runtime crates are\n\
+         # path dependencies, which cargo compiles incrementally by default; they\n\
+         # never change in the cache, so that only costs time and disk.\n\
+         [profile.dev]\nincremental = false\n\n\
+         [profile.dev.package.{package}]\nincremental = true\n\n\
          # `sitlogc build --lto`: whole-program optimisation, the fastest code.\n\
          [profile.lto]\ninherits = \"release\"\nlto = \"fat\"\ncodegen-units = 1\n\n\
          [profile.lto.package.{package}]\nincremental = false\n",

@@ -207,10 +207,13 @@ fn generated_package_uses_the_embedded_runtime() {
     assert_eq!(again.status.code(), Some(2));
     assert_eq!(std::fs::read_dir(cache.join("runtime")).unwrap().count(), 1);
     // The edit loop's profile (issue 40): no LTO, the task's crate
-    // incremental; `--lto` builds with the `lto` profile (fat LTO).
+    // incremental, the runtime crates not (in `--debug` builds too);
+    // `--lto` builds with the `lto` profile (fat LTO).
     for line in [
         "[profile.release]\nlto = \"off\"\ncodegen-units = 16\ndebug = false\n",
         "[profile.release.package.sitlog-app-countdown]\nincremental = true\n",
+        "[profile.dev]\nincremental = false\n",
+        "[profile.dev.package.sitlog-app-countdown]\nincremental = true\n",
         "[profile.lto]\ninherits = \"release\"\nlto = \"fat\"\ncodegen-units = 1\n",
     ] {
         assert!(manifest.contains(line), "{line}\n{manifest}");
