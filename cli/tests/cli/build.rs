@@ -218,6 +218,29 @@ fn generated_package_uses_the_embedded_runtime() {
     ] {
         assert!(manifest.contains(line), "{line}\n{manifest}");
     }
+    // The Prolog engine's never-run dependencies are not optimised, only
+    // where the engine is linked (an application with Prolog functions).
+    assert!(
+        !manifest.contains("[profile.release.package.crrl]"),
+        "{manifest}"
+    );
+    let (_prolog_tmp, prolog_app) = copy_example("appendix_a");
+    let out = sitlogc()
+        .env("SITLOGC_CACHE_DIR", &cache)
+        .env("CARGO", fake_cargo(tmp.path()))
+        .arg("build")
+        .arg(&prolog_app)
+        .arg("-o")
+        .arg(tmp.path().join("t"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let prolog = std::fs::read_to_string(cache.join("apps/appendix_a/Cargo.toml")).unwrap();
+    assert!(prolog.contains("features = [\"prolog\"]"), "{prolog}");
+    assert!(
+        prolog.contains("[profile.release.package.crrl]\nopt-level = 0\n"),
+        "{prolog}"
+    );
     let lto = sitlogc()
         .env("SITLOGC_CACHE_DIR", &cache)
         .env("CARGO", fake_cargo(tmp.path()))
