@@ -156,6 +156,31 @@ impl Layout {
     }
 }
 
+/// The dependencies of the Prolog engine (scryer-prolog) that a task never
+/// runs: its cryptography, HTML and XML parsers and async runtime
+/// (predicates of libraries the engine loads only on request; not `chrono`
+/// and `futures-util`, which the ROS 2 stack runs), compiled
+/// unoptimised in `sitlogc build`'s release profile. A fifth of a robot
+/// application's first build is the engine; these crates ahead of it on the
+/// critical path (docs/guide/compiling.md, "Robot builds", issue 40).
+const PROLOG_PROFILE: &str = "\
+# Dependencies of the Prolog engine that a task does not run (cryptography,\n\
+# HTML, XML, async): not optimised, a shorter first build.\n\
+[profile.release.package.crrl]\nopt-level = 0\n\
+[profile.release.package.ring]\nopt-level = 0\n\
+[profile.release.package.scraper]\nopt-level = 0\n\
+[profile.release.package.html5ever]\nopt-level = 0\n\
+[profile.release.package.markup5ever]\nopt-level = 0\n\
+[profile.release.package.selectors]\nopt-level = 0\n\
+[profile.release.package.cssparser]\nopt-level = 0\n\
+[profile.release.package.roxmltree]\nopt-level = 0\n\
+[profile.release.package.ego-tree]\nopt-level = 0\n\
+[profile.release.package.blake2]\nopt-level = 0\n\
+[profile.release.package.sha2]\nopt-level = 0\n\
+[profile.release.package.sha3]\nopt-level = 0\n\
+[profile.release.package.ripemd]\nopt-level = 0\n\
+[profile.release.package.tokio]\nopt-level = 0\n\n";
+
 /// Writes the Cargo package of a compiled application; returns its
 /// directory and package name. With `debugger` the task also links the
 /// step debugger (`sitlog_debug::task_main`: it runs under the debugger,
@@ -200,12 +225,19 @@ pub fn write_package(
          # task's own crate is rebuilt incrementally; no LTO, no debug info.\n\
          [profile.release]\nlto = \"off\"\ncodegen-units = 16\ndebug = false\n\n\
          [profile.release.package.{package}]\nincremental = true\n\n\
+         # `sitlogc build --debug`: the same, unoptimised. The runtime crates are\n\
+         # path dependencies, which cargo compiles incrementally by default; they\n\
+         # never change in the cache, so that only costs time and disk.\n\
+         [profile.dev]\nincremental = false\n\n\
+         [profile.dev.package.{package}]\nincremental = true\n\n\
+         {prolog_profile}\
          # `sitlogc build --lto`: whole-program optimisation, the fastest code.\n\
          [profile.lto]\ninherits = \"release\"\nlto = \"fat\"\ncodegen-units = 1\n\n\
          [profile.lto.package.{package}]\nincremental = false\n",
         src = app.display(),
         // The embedded Prolog engine only where the application has Prolog sources.
         features = if has_prolog { ", features = [\"prolog\"]" } else { "" },
+        prolog_profile = if has_prolog { PROLOG_PROFILE } else { "" },
         // `--debugger`: the step debugger (its own main, see `task_main` below).
         debug_dep = if debugger {
             format!("sitlog-debug = {{ path = \"{}\" }}\n", path_of(&layout.debug))

@@ -207,14 +207,40 @@ fn generated_package_uses_the_embedded_runtime() {
     assert_eq!(again.status.code(), Some(2));
     assert_eq!(std::fs::read_dir(cache.join("runtime")).unwrap().count(), 1);
     // The edit loop's profile (issue 40): no LTO, the task's crate
-    // incremental; `--lto` builds with the `lto` profile (fat LTO).
+    // incremental, the runtime crates not (in `--debug` builds too);
+    // `--lto` builds with the `lto` profile (fat LTO).
     for line in [
         "[profile.release]\nlto = \"off\"\ncodegen-units = 16\ndebug = false\n",
         "[profile.release.package.sitlog-app-countdown]\nincremental = true\n",
+        "[profile.dev]\nincremental = false\n",
+        "[profile.dev.package.sitlog-app-countdown]\nincremental = true\n",
         "[profile.lto]\ninherits = \"release\"\nlto = \"fat\"\ncodegen-units = 1\n",
     ] {
         assert!(manifest.contains(line), "{line}\n{manifest}");
     }
+    // The Prolog engine's never-run dependencies are not optimised, only
+    // where the engine is linked (an application with Prolog functions).
+    assert!(
+        !manifest.contains("[profile.release.package.crrl]"),
+        "{manifest}"
+    );
+    let (_prolog_tmp, prolog_app) = copy_example("appendix_a");
+    let out = sitlogc()
+        .env("SITLOGC_CACHE_DIR", &cache)
+        .env("CARGO", fake_cargo(tmp.path()))
+        .arg("build")
+        .arg(&prolog_app)
+        .arg("-o")
+        .arg(tmp.path().join("t"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let prolog = std::fs::read_to_string(cache.join("apps/appendix_a/Cargo.toml")).unwrap();
+    assert!(prolog.contains("features = [\"prolog\"]"), "{prolog}");
+    assert!(
+        prolog.contains("[profile.release.package.crrl]\nopt-level = 0\n"),
+        "{prolog}"
+    );
     let lto = sitlogc()
         .env("SITLOGC_CACHE_DIR", &cache)
         .env("CARGO", fake_cargo(tmp.path()))
