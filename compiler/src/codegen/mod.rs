@@ -110,6 +110,7 @@ pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
     let mut g = Gen::new(&ir.store, mir);
     g.types = types;
     g.mir_types = mir_types;
+    g.ir = Some(ir);
     g.collect(ir);
     g.emit(ir, source)
 }
@@ -123,6 +124,8 @@ pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
     let mir_types = crate::mir::ty::infer(ir, &mir);
     let mut g = Gen::new(&ir.store, mir);
     g.types = Some(types);
+    g.mir_types = Some(mir_types);
+    g.ir = Some(ir);
     g.collect(ir);
     ir.dms
         .iter()
@@ -132,7 +135,8 @@ pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
             if typed.is_some_and(typed::has_typed_code) {
                 return Err("it runs on the typed frame of its typed situations".to_owned());
             }
-            g.native_code(dm, d, &mir_types.dms[d])
+            let t = g.mir_types.as_ref().map(|t| &t.dms[d]).ok_or("no types")?;
+            g.native_code(dm, d, t)
                 .map(|n| n.on_native_values)
         })
         .collect()
@@ -155,6 +159,10 @@ struct Gen<'s> {
     mir_types: Option<crate::mir::ty::MirTypes>,
     /// The plans of the situations that run as code.
     mir: crate::mir::Mir,
+    /// The program (native calls look at their callee).
+    ir: Option<&'s Ir>,
+    /// Per DM, whether it runs natively (`native::frame`).
+    native_ok: std::cell::RefCell<HashMap<usize, bool>>,
 }
 
 /// Code that builds one term: statements, then the expression of its value.
@@ -176,6 +184,8 @@ impl<'s> Gen<'s> {
             const_ix: HashMap::new(),
             types: None,
             mir_types: None,
+            ir: None,
+            native_ok: std::cell::RefCell::new(HashMap::new()),
         }
     }
 

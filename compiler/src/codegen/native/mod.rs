@@ -51,6 +51,10 @@
 //! [`Store::identical`]: sitlog_runtime::Store::identical
 
 use super::Gen;
+
+mod call;
+mod frame;
+mod pipe;
 use crate::ir::IrDm;
 use crate::mir::ty::{DmTypes, SitTypes};
 use crate::mir::{Action, Build, Cond, Ev, Init, KindPlan, Next, Reg, SitPlan, ID};
@@ -58,7 +62,7 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_runtime::machine::Kind;
 use sitlog_runtime::native::Ty;
-use sitlog_runtime::{ArithCmp, Term, Value};
+use sitlog_runtime::{Term, Value};
 use sitlog_syntax::{atoms, Atom};
 use std::collections::HashMap;
 
@@ -205,12 +209,233 @@ struct Dm<'a> {
     types: Vec<SitTypes>,
     /// The parameters' types.
     params: Vec<Ty>,
+    /// The DM's index, its locals' names and types (frame fields `l0..`).
+    ix: usize,
+    locals: Vec<(Atom, Ty)>,
+    /// Code run before native code hands over to the machine: the native
+    /// stack below materialized, the locals written back (`frame`).
+    hand: TokenStream,
+    /// Calls made as if no callee were native (deciding native-ness).
+    shallow: bool,
+    /// The arc whose code is being generated (for errors located there).
+    arc: std::cell::Cell<usize>,
+    /// The arc's out_arg, set where its next situation is handed over.
+    out: std::cell::RefCell<TokenStream>,
 }
 
 impl Gen<'_> {
     /// The native code of DM `dm_ix`, or why it has none.
     pub(super) fn native_code(&self, dm: &IrDm, dm_ix: usize, t: &DmTypes) -> N<NativeCode> {
+        self.native_code_with(dm, dm_ix, t, false)
+    }
+
+    /// [`Gen::native_code`]; `shallow`: every DM call handed to the machine
+    /// (whether a DM is native does not depend on its callees).
+    fn native_code_with(
+        &self,
+        dm: &IrDm,
+        dm_ix: usize,
+        t: &DmTypes,
+        shallow: bool,
+    ) -> N<NativeCode> {
         let rt = quote!(::sitlog_runtime);
+        let d = self.nat_dm(dm, dm_ix, t, shallow)?;
+        // Parameters, converted at entry.
+        let mut loads = Vec::new();
+        for (i, p) in d.params.iter().enumerate() {
+            let ty = rust_ty(p)?;
+            let name = format_ident!("p{}", i);
+            let ix = Literal::usize_unsuffixed(i);
+            loads.push(quote! {
+                let ::std::option::Option::Some(#name) = cx
+                    .param(#ix)
+                    .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
+                else {
+                    return ::std::result::Result::Ok(::std::option::Option::None);
+                };
+            });
+        }
+        // Locals, read from the machine's frame at entry.
+        for (i, (name, ty)) in d.locals.iter().enumerate() {
+            let ty = rust_ty(ty)?;
+            let l = format_ident!("l{}", i);
+            let a = self.atom_native(*name)?;
+            loads.push(quote! {
+                let ::std::option::Option::Some(#l) = cx
+                    .local(#a)
+                    .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
+                else {
+                    return ::std::result::Result::Ok(::std::option::Option::None);
+                };
+            });
+        }
+        let mut variants = Vec::new();
+        let mut arms = Vec::new();
+        let mut id_arms = Vec::new();
+        let mut exit_arms = Vec::new();
+        let mut wait_arms = Vec::new();
+        for ix in 0..d.plans.len() {
+            let v = variant(ix);
+            let fields = self.nat_fields(&d, ix)?;
+            let decls = fields
+                .iter()
+                .map(|(r, ty)| {
+                    let (r, ty) = (reg(*r), rust_ty(ty)?);
+                    Ok(quote!(#r: #ty))
+                })
+                .collect::<N<Vec<_>>>()?;
+            let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
+            let doc = format!(" `{}`", self.store.writeq(self.nat_id_of(&d, ix)));
+            variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
+            let (id_stmts, id) = self.nat_id_term(&d, ix, quote!(store))?;
+            id_arms.push(quote!(Nat::#v { #(#names),* } => { #(#id_stmts)* #id }));
+            let body = self.native_visit(&d, ix, &fields)?;
+            arms.push(quote!(Nat::#v { #(#names),* } => 'visit: { #body }));
+            // A recursive situation waiting for its callee: its own variant.
+            if let Some(w) = self.nat_wait_variant(&d, ix)? {
+                variants.push(w.variant);
+                id_arms.push(w.id_arm);
+                exit_arms.push(w.exit_arm);
+                wait_arms.push(w.wait_arm);
+            }
+        }
+        let frame = self.nat_frame_items(&d, &wait_arms)?;
+        let field_names = frame.names.clone();
+        let ixl = Literal::usize_unsuffixed(dm_ix);
+        let variant_d = format_ident!("D{}", dm_ix);
+        let hand = &d.hand;
+        // The machine wants control (garbage, a stop asked): the situation
+        // reached is handed over as its id.
+        let gc = quote! {
+            if cx.gc_due() {
+                #hand
+                cx.count_transitions(count);
+                let id = at.id_term(p, cx.store());
+                return ::std::result::Result::Ok(::std::option::Option::Some(#rt::machine::Step::Goto(id)));
+            }
+        };
+        let frame_items = frame.items;
+        let pipe_check = self.nat_pipe_entry(&d)?;
+        let doc = format!(
+            " Runs DM `{}` natively from its initial situation (see \
+             `sitlog_compiler::codegen::native`); `None`, nothing done, when a \
+             history is kept or observed or a parameter or local does not convert.",
+            dm.name.as_str()
+        );
+        let items = quote! {
+            /// The DM's situations as native values: the fields are the id's variables.
+            #[allow(dead_code, non_camel_case_types, clippy::all)]
+            #[derive(Clone, Debug)]
+            pub enum Nat { #(#variants)* }
+
+            #[allow(unused_variables, clippy::all)]
+            impl Nat {
+                /// The situation's id as a term.
+                pub(crate) fn id_term(&self, p: &super::Program, store: &mut #rt::Store) -> #rt::Term {
+                    let a = &p.atoms;
+                    match self { #(#id_arms)* }
+                }
+            }
+
+            #frame_items
+
+            /// Runs the frame on top of the native stack until it calls a DM
+            /// (`call` set), ends in a final situation below the base
+            /// (`Ok(None)`), or hands over to the machine (`Ok(Some(step))`).
+            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, unused_labels, irrefutable_let_patterns, clippy::all)]
+            pub(crate) fn nat_step(
+                p: &super::Program,
+                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                frame: &mut Frame,
+                ret: ::std::option::Option<super::NatFrame>,
+                stack: &mut ::std::vec::Vec<super::NatFrame>,
+                call: &mut ::std::option::Option<super::NatFrame>,
+                run: &#rt::machine::TypedRun,
+            ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
+                let a = &p.atoms;
+                let Frame { #(#field_names,)* at: slot } = frame;
+                // Transitions done, not yet given to the machine.
+                let mut count: u64 = 0;
+                // A final reached below the base, or a call made.
+                let mut done = false;
+                let mut at = ::std::mem::replace(slot, Nat::S0 {});
+                if let ::std::option::Option::Some(ret) = ret {
+                    at = match at {
+                        #(#exit_arms)*
+                        _ => return ::std::result::Result::Err(cx.error("native code resumed a situation that waits for no DM", ::std::option::Option::None)),
+                    };
+                    if done {
+                        cx.count_transitions(count);
+                        *slot = at;
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    }
+                    #gc
+                }
+                loop {
+                    at = match at {
+                        #(#arms)*
+                        _ => return ::std::result::Result::Err(cx.error("native code visited a waiting situation", ::std::option::Option::None)),
+                    };
+                    if done {
+                        cx.count_transitions(count);
+                        *slot = at;
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    }
+                    #gc
+                }
+            }
+
+            #[doc = #doc]
+            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, clippy::all)]
+            pub fn run_native(
+                p: &super::Program,
+                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+            ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
+                let run = cx.typed_run();
+                if run.records {
+                    return ::std::result::Result::Ok(::std::option::Option::None);
+                }
+                cx.materialize_frames();
+                let a = &p.atoms;
+                #(#loads)*
+                #pipe_check
+                let frame = Frame { #(#field_names,)* at: Nat::S0 {} };
+                let _ = #ixl;
+                super::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run)
+                    .map(::std::option::Option::Some)
+            }
+        };
+        let first = quote! {
+            // The DM runs natively from its initial situation when its
+            // parameters convert and no history is kept or observed.
+            if sit == 0 && cx.selected().is_none() {
+                if let ::std::option::Option::Some(step) = run_native(p, cx)? {
+                    return ::std::result::Result::Ok(step);
+                }
+            }
+        };
+        let on_native_values = d
+            .types
+            .iter()
+            .filter(|st| st.regs.iter().all(|r| r.ty.is_native()))
+            .count();
+        Ok(NativeCode {
+            items,
+            first,
+            on_native_values,
+        })
+    }
+
+
+    /// The plans and types native code of DM `dm_ix` works from, or why
+    /// it has none.
+    fn nat_dm<'a>(
+        &'a self,
+        dm: &'a IrDm,
+        dm_ix: usize,
+        t: &DmTypes,
+        shallow: bool,
+    ) -> N<Dm<'a>> {
         // `ground` (a boundary's value after a checked conversion, or the
         // join of different shapes) is held as a ground handle here, as
         // `term` is: native code has no boundary conversion yet.
@@ -256,116 +481,21 @@ impl Gen<'_> {
                 t.params[p].ty
             ));
         }
-        let d = Dm {
+        let locals = self.nat_locals(dm, t)?;
+        let mut d = Dm {
             dm,
             plans,
             types,
             params: t.params.iter().map(|p| p.ty.clone()).collect(),
+            ix: dm_ix,
+            locals,
+            hand: quote!(),
+            shallow,
+            arc: std::cell::Cell::new(0),
+            out: std::cell::RefCell::new(quote!()),
         };
-        // Parameters, converted at entry.
-        let mut loads = Vec::new();
-        for (i, p) in t.params.iter().enumerate() {
-            let ty = rust_ty(&p.ty)?;
-            let name = format_ident!("p{}", i);
-            let ix = Literal::usize_unsuffixed(i);
-            loads.push(quote! {
-                let ::std::option::Option::Some(#name) = cx
-                    .param(#ix)
-                    .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
-                else {
-                    return ::std::result::Result::Ok(::std::option::Option::None);
-                };
-            });
-        }
-        let mut variants = Vec::new();
-        let mut arms = Vec::new();
-        let mut id_arms = Vec::new();
-        for ix in 0..d.plans.len() {
-            let v = variant(ix);
-            let fields = self.nat_fields(&d, ix)?;
-            let decls = fields
-                .iter()
-                .map(|(r, ty)| {
-                    let (r, ty) = (reg(*r), rust_ty(ty)?);
-                    Ok(quote!(#r: #ty))
-                })
-                .collect::<N<Vec<_>>>()?;
-            let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
-            let doc = format!(" `{}`", self.store.writeq(self.nat_id_of(&d, ix)));
-            variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
-            let (id_stmts, id) = self.nat_id_term(&d, ix, quote!(store))?;
-            id_arms.push(quote!(Nat::#v { #(#names),* } => { #(#id_stmts)* #id }));
-            let body = self.native_visit(&d, ix, &fields)?;
-            arms.push(quote!(Nat::#v { #(#names),* } => { #body }));
-        }
-        let doc = format!(
-            " Runs DM `{}` natively from its initial situation (see \
-             `sitlog_compiler::codegen::native`); `None`, nothing done, when a \
-             history is kept or observed or a parameter does not convert.",
-            dm.name.as_str()
-        );
-        let items = quote! {
-            /// The DM's situations as native values: the fields are the id's variables.
-            #[allow(dead_code, non_camel_case_types, clippy::all)]
-            #[derive(Clone, Debug)]
-            pub enum Nat { #(#variants)* }
-
-            #[allow(unused_variables, clippy::all)]
-            impl Nat {
-                /// The situation's id as a term.
-                fn id_term(&self, p: &super::Program, store: &mut #rt::Store) -> #rt::Term {
-                    let a = &p.atoms;
-                    match self { #(#id_arms)* }
-                }
-            }
-
-            #[doc = #doc]
-            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, clippy::all)]
-            pub fn run_native(
-                p: &super::Program,
-                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
-            ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
-                let run = cx.typed_run();
-                if run.records {
-                    return ::std::result::Result::Ok(::std::option::Option::None);
-                }
-                cx.materialize_frames();
-                let a = &p.atoms;
-                #(#loads)*
-                // Transitions done, not yet given to the machine.
-                let mut count: u64 = 0;
-                let mut at = Nat::S0 {};
-                loop {
-                    at = match at { #(#arms)* };
-                    // The machine wants control (garbage, a stop asked):
-                    // the situation reached is handed over as its id.
-                    if cx.gc_due() {
-                        cx.count_transitions(count);
-                        let id = at.id_term(p, cx.store());
-                        return ::std::result::Result::Ok(::std::option::Option::Some(#rt::machine::Step::Goto(id)));
-                    }
-                }
-            }
-        };
-        let first = quote! {
-            // The DM runs natively from its initial situation when its
-            // parameters convert and no history is kept or observed.
-            if sit == 0 && cx.selected().is_none() {
-                if let ::std::option::Option::Some(step) = run_native(p, cx)? {
-                    return ::std::result::Result::Ok(step);
-                }
-            }
-        };
-        let on_native_values = d
-            .types
-            .iter()
-            .filter(|st| st.regs.iter().all(|r| r.ty.is_native()))
-            .count();
-        Ok(NativeCode {
-            items,
-            first,
-            on_native_values,
-        })
+        d.hand = self.nat_hand(&d)?;
+        Ok(d)
     }
 
     fn nat_id_of(&self, d: &Dm, ix: usize) -> Term {
@@ -505,8 +635,11 @@ impl Gen<'_> {
         let rt = quote!(::sitlog_runtime);
         let plan = d.plans[ix];
         let st = &d.types[ix];
-        if plan.in_arg.is_some() || plan.out_arg.is_some() || plan.prog.is_some() {
-            return Err(format!("situation {} uses the pipe or prog", ix + 1));
+        if plan.prog.is_some() {
+            return Err(format!("situation {} has prog", ix + 1));
+        }
+        if matches!(plan.in_arg, Some((_, true, _))) {
+            return Err(format!("situation {}: its in_arg is a pattern", ix + 1));
         }
         // Where each register's value lives: a field, a parameter, a local.
         let mut regs: Regs = fields
@@ -536,8 +669,18 @@ impl Gen<'_> {
                         regs.insert(*r, (rr, ty));
                     }
                 }
-                Init::Pipe => return Err(format!("situation {} reads the pipe", ix + 1)),
+                Init::Pipe => {
+                    let ty = st.regs[*r as usize].ty.clone();
+                    stmts.push(self.nat_pipe_in(d, ix, *r, &ty)?);
+                    regs.insert(*r, (reg(*r), ty));
+                }
                 Init::Fresh | Init::IdArg(_) | Init::IdPath(_) => {}
+            }
+        }
+        // A variable in_arg: its register holds the pipe's value.
+        if let Some((Build::Reg(src), false, r)) = &plan.in_arg {
+            if let Some(at) = regs.get(src).cloned() {
+                regs.insert(*r, at);
             }
         }
         let cur = Literal::u32_unsuffixed(ix as u32);
@@ -546,12 +689,41 @@ impl Gen<'_> {
             (KindPlan::Final { diag_mod: None }, Kind::Final) => {
                 let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
                 let empty = quote!(#rt::Term::atom(#rt::atoms::EMPTY));
+                let v = variant(ix);
+                let names = fields.iter().map(|(r, _)| reg(*r));
+                // out_arg: the pipe's new value (never unbound here).
+                let (out_set, out_final) = match &plan.out_arg {
+                    Some((b, _)) => {
+                        let v = self.nat_value(b, &regs)?.e;
+                        (
+                            quote! {
+                                let out = #rt::native::Native::to_term(&#v, cx.store());
+                                cx.set_pipe(out);
+                            },
+                            quote! {
+                                let out = #rt::native::Native::to_term(&#v, cx.store());
+                                cx.final_out_arg(::std::option::Option::Some(out))?;
+                            },
+                        )
+                    }
+                    None => (
+                        quote!(),
+                        quote!(cx.final_out_arg(::std::option::Option::None)?;),
+                    ),
+                };
                 Ok(quote! {
                     #(#stmts)*
+                    // Below the base: the caller's exit arcs read the variant.
+                    if !stack.is_empty() {
+                        #out_set
+                        count += 1;
+                        done = true;
+                        break 'visit Nat::#v { #(#names),* };
+                    }
                     cx.count_transitions(count);
                     #(#id_stmts)*
                     cx.enter_with_id(#cur, #id);
-                    cx.final_out_arg(::std::option::Option::None)?;
+                    #out_final
                     cx.record(#empty, #empty, ::std::option::Option::None);
                     return ::std::result::Result::Ok(::std::option::Option::Some(#rt::machine::Step::Final));
                 })
@@ -560,8 +732,8 @@ impl Gen<'_> {
                 if arcs.always_first && arcs.arcs.len() == 1 =>
             {
                 let arc = &arcs.arcs[0];
-                if arc.out_arg.is_some() || arc.diag_mod.is_some() {
-                    return Err(format!("situation {} has out_arg or diag_mod", ix + 1));
+                if arc.diag_mod.is_some() {
+                    return Err(format!("situation {} has diag_mod", ix + 1));
                 }
                 for (k, from) in arc.import_from.iter().enumerate() {
                     // An imported copy of a ground value is the value.
@@ -576,7 +748,9 @@ impl Gen<'_> {
                 .ok_or(format!("situation {}: its action is not an atom", ix + 1))?;
                 let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
                 let act = self.atom_native(action)?;
+                let hand = &d.hand;
                 let perform = quote! {
+                    #hand
                     cx.count_transitions(count);
                     count = 0;
                     #(#id_stmts)*
@@ -590,11 +764,16 @@ impl Gen<'_> {
                 });
                 stmts.push(quote!(count += 1;));
                 let name = self.atom_native(plan.id.0)?;
-                let next = self.nat_next(d, ix, &arc.next, &regs, &name)?;
+                d.arc.set(0);
+                let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &name)?;
                 Ok(quote! { #(#stmts)* #next })
             }
+            (KindPlan::Recursive { .. }, Kind::Recursive) => {
+                let call = self.nat_recursive(d, ix, &regs)?;
+                Ok(quote! { #(#stmts)* #call })
+            }
             _ => Err(format!(
-                "situation {} is not a final or a neutral `empty` situation",
+                "situation {} is not a final, a neutral `empty` or a recursive situation",
                 ix + 1
             )),
         }
@@ -654,22 +833,11 @@ impl Gen<'_> {
         }
     }
 
-    fn nat_cond(&self, c: &Cond, regs: &Regs) -> N<TokenStream> {
+    fn nat_cond(&self, d: &Dm, cur: usize, c: &Cond, regs: &Regs) -> N<TokenStream> {
         match c {
             Cond::Arith(op, l, r) => {
                 let (l, r) = (self.nat_ev_value(l, regs)?, self.nat_ev_value(r, regs)?);
-                if l.ty != Ty::Int || r.ty != Ty::Int {
-                    return Err("an arithmetic comparison is not on two ints".into());
-                }
-                let (l, r) = (l.e, r.e);
-                Ok(match op {
-                    ArithCmp::Eq => quote!((#l == #r)),
-                    ArithCmp::Ne => quote!((#l != #r)),
-                    ArithCmp::Lt => quote!((#l < #r)),
-                    ArithCmp::Gt => quote!((#l > #r)),
-                    ArithCmp::Le => quote!((#l <= #r)),
-                    ArithCmp::Ge => quote!((#l >= #r)),
-                })
+                self.nat_arith(d, cur, *op, l, r)
             }
             Cond::Other(Build::Compound(op, args))
                 if args.len() == 2 && matches!(op.as_str(), "==" | "\\==") =>
@@ -713,9 +881,13 @@ impl Gen<'_> {
             Next::Static(t, None) if self.store.atom_of(*t).is_some() => {
                 // No situation has this name: the machine says so.
                 let a = self.atom_native(self.store.atom_of(*t).unwrap_or(atoms::NIL))?;
+                let hand = &d.hand;
+                let out = d.out.borrow().clone();
                 Ok(quote! {{
+                    #hand
                     cx.count_transitions(count);
                     cx.enter(#curl, #cur_name);
+                    #out
                     return cx.goto(#rt::Term::atom(#a), ::std::option::Option::Some(0)).map(::std::option::Option::Some);
                 }})
             }
@@ -733,7 +905,7 @@ impl Gen<'_> {
                 self.nat_select(d, cur, name, vals, cur_name)
             }
             Next::If(c, a, b) => {
-                let c = self.nat_cond(c, regs)?;
+                let c = self.nat_cond(d, cur, c, regs)?;
                 let a = self.nat_next(d, cur, a, regs, cur_name)?;
                 let b = self.nat_next(d, cur, b, regs, cur_name)?;
                 Ok(quote!(if #c { #a } else { #b }))
@@ -852,6 +1024,8 @@ impl Gen<'_> {
             candidates.push(code);
         }
         let f = self.atom_native(name)?;
+        let hand = &d.hand;
+        let out = d.out.borrow().clone();
         let arg_terms: Vec<Ident> = (0..args.len()).map(|i| format_ident!("w{}", i)).collect();
         Ok(quote! {
             'sel: {
@@ -859,10 +1033,12 @@ impl Gen<'_> {
                 #(#candidates)*
                 // No situation takes it here: the machine selects (or says
                 // that none does).
+                #hand
                 cx.count_transitions(count);
                 cx.enter(#curl, #cur_name);
                 #(let #arg_terms = #rt::native::Native::to_term(&#arg_names, cx.store());)*
                 let value = #rt::native::compound(cx.store(), #f, &[#(#arg_terms),*]);
+                #out
                 return cx.goto(value, ::std::option::Option::Some(0)).map(::std::option::Option::Some);
             }
         })
