@@ -581,7 +581,11 @@ fn hand_count_pipe(max: i64, step: i64) -> u64 {
                 stack.pop();
                 count = black_box(count + 1);
                 if let Some(t) = stack.last_mut() {
-                    *t = if count >= pipe { Frame::Stop } else { Frame::Go };
+                    *t = if count >= pipe {
+                        Frame::Stop
+                    } else {
+                        Frame::Go
+                    };
                 }
             }
         }

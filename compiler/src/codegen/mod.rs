@@ -136,8 +136,7 @@ pub fn native_dms(ir: &Ir) -> Vec<Result<usize, String>> {
                 return Err("it runs on the typed frame of its typed situations".to_owned());
             }
             let t = g.mir_types.as_ref().map(|t| &t.dms[d]).ok_or("no types")?;
-            g.native_code(dm, d, t)
-                .map(|n| n.on_native_values)
+            g.native_code(dm, d, t).map(|n| n.on_native_values)
         })
         .collect()
 }

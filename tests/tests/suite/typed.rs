@@ -382,6 +382,8 @@ fn native_dms_agree() {
         native::dm_rounds::run_native,
         native::dm_outer::run_native,
         native::dm_want::run_native,
+        native::dm_relay::run_native,
+        native::dm_echo::run_native,
     );
     for main in [
         "main",
@@ -409,6 +411,10 @@ fn native_dms_agree() {
     ] {
         agree(app, &ir, main, "");
     }
+    // The pipe: an int, an atom (the comparison on terms: an error), none.
+    for in_arg in [Some("3"), Some("1"), Some("a"), None] {
+        agree_piped(app, &ir, "relay(t)", in_arg, "");
+    }
     // The depth limit reached by native calls: the machine's error.
     for depth in [1, 2, 3, 4] {
         let options = || Options {
@@ -416,8 +422,24 @@ fn native_dms_agree() {
             max_depth: depth,
             ..Options::default()
         };
-        let c = run_with(app, "rounds(2, [a, b], b)", None, "", options(), false, false);
-        let i = run_with(&ir, "rounds(2, [a, b], b)", None, "", options(), false, false);
+        let c = run_with(
+            app,
+            "rounds(2, [a, b], b)",
+            None,
+            "",
+            options(),
+            false,
+            false,
+        );
+        let i = run_with(
+            &ir,
+            "rounds(2, [a, b], b)",
+            None,
+            "",
+            options(),
+            false,
+            false,
+        );
         assert_eq!(c, i, "max_depth {depth}");
     }
     // A partial list, an unbound variable do not convert: the term code runs (the observer's

@@ -129,8 +129,8 @@ diag_mod(outer(Places, Target, K),
   [ [ id ==> o, type ==> recursive, embedded_dm ==> search(Places, Target),
       arcs ==> [ found(Target) : [inc(c, _)] => hit(Target, K),
                  not_found : empty => miss(K) ] ],
-    [ id ==> hit(P, K), type ==> final ],
-    [ id ==> miss(K), type ==> final ]
+    [ id ==> hit(P, Q), type ==> final ],
+    [ id ==> miss(Q), type ==> final ]
   ],
   [ c ==> 0 ]
 ).
@@ -140,6 +140,25 @@ diag_mod(want(Places, Target),
   [ [ id ==> w, type ==> recursive, embedded_dm ==> search(Places, Target),
       arcs ==> [ found(P) : empty => fs ] ],
     [ id ==> fs, type ==> final ]
+  ],
+  []
+).
+
+% The pipe in native code: the limit as the recursive situation's in_arg
+% (a ground term: compared with an int on terms when it is not one), the
+% callee handing its in_arg back with `out_arg ==> X`, a final's out_arg.
+diag_mod(relay(Tag),
+  [ [ id ==> call, type ==> recursive, in_arg ==> Limit, embedded_dm ==> echo(Tag),
+      arcs ==> [ back(T) : [inc(n, N)] => (N >= Limit -> fs ; otherwise -> call) ] ],
+    [ id ==> fs, type ==> final, out_arg ==> [done, Tag] ]
+  ],
+  [ n ==> 0 ]
+).
+
+diag_mod(echo(Tag),
+  [ [ id ==> is, type ==> neutral, in_arg ==> X, out_arg ==> X,
+      arcs ==> [ empty : empty => back(Tag) ] ],
+    [ id ==> back(T), type ==> final ]
   ],
   []
 ).

@@ -127,7 +127,11 @@ impl Gen<'_> {
                 let p = format_ident!("p{}", i);
                 let pv = V {
                     e: quote!(#p.clone()),
-                    ty: d.params.get(*i).cloned().ok_or("a head argument out of range")?,
+                    ty: d
+                        .params
+                        .get(*i)
+                        .cloned()
+                        .ok_or("a head argument out of range")?,
                 };
                 if pv.ty == ty {
                     regs.insert(*r, (p, ty));
@@ -500,7 +504,9 @@ impl Gen<'_> {
                     x
                 }
             }),
-            Value::Atom(_) | Value::Int(_) => Some(self.nat_value(&Build::Const(pat), &Regs::new())?),
+            Value::Atom(_) | Value::Int(_) => {
+                Some(self.nat_value(&Build::Const(pat), &Regs::new())?)
+            }
             _ => None,
         };
         match b {
@@ -703,14 +709,7 @@ impl Gen<'_> {
     /// `l op r` on ints: in Rust when both are ints (a ground term read as
     /// one), else evaluated on terms as the term code does (the machine
     /// entered in situation `cur`: its result or its error).
-    pub(super) fn nat_arith(
-        &self,
-        d: &Dm,
-        cur: usize,
-        op: ArithCmp,
-        l: V,
-        r: V,
-    ) -> N<TokenStream> {
+    pub(super) fn nat_arith(&self, d: &Dm, cur: usize, op: ArithCmp, l: V, r: V) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
         let some = quote!(::std::option::Option::Some);
         let as_int = |v: &V, x: &Ident| -> N<TokenStream> {
@@ -746,10 +745,12 @@ impl Gen<'_> {
             match (#li, #ri) {
                 (#some(x), #some(y)) => #cmp,
                 _ => {
-                    // Not two ints: the term code's evaluation decides.
+                    // Not two ints: the term code's evaluation decides. The
+                    // arc's own transition (counted before its next
+                    // situation) is not the machine's until that succeeds.
                     #hand
-                    cx.count_transitions(count);
-                    count = 0;
+                    cx.count_transitions(count - 1);
+                    count = 1;
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
                     let lt = #rt::native::Native::to_term(&#lx, cx.store());

@@ -16,8 +16,8 @@
 //! and after writing its locals back ([`Dm::hand`]), so the machine sees,
 //! at each such point, the stack and the locals the term path would have.
 
-use super::{rust_ty, ground_as_term, Dm, N};
 use super::Gen;
+use super::{ground_as_term, rust_ty, Dm, N};
 use crate::ir::{Ir, IrDm};
 use crate::mir::ty::DmTypes;
 use proc_macro2::{Ident, Literal, TokenStream};
@@ -55,8 +55,12 @@ impl Gen<'_> {
     fn nat_call_term(&self, d: &Dm) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
         let name = self.atom_native(d.dm.name)?;
-        let ps: Vec<Ident> = (0..d.params.len()).map(|i| format_ident!("p{}", i)).collect();
-        let ts: Vec<Ident> = (0..d.params.len()).map(|i| format_ident!("pt{}", i)).collect();
+        let ps: Vec<Ident> = (0..d.params.len())
+            .map(|i| format_ident!("p{}", i))
+            .collect();
+        let ts: Vec<Ident> = (0..d.params.len())
+            .map(|i| format_ident!("pt{}", i))
+            .collect();
         Ok(quote! {{
             #(let #ts = #rt::native::Native::to_term(&*#ps, cx.store());)*
             #rt::native::compound(cx.store(), #name, &[#(#ts),*])
@@ -82,15 +86,52 @@ impl Gen<'_> {
     /// see its state, the native frames below become machine frames and
     /// the locals are written back.
     pub(super) fn nat_hand(&self, d: &Dm) -> N<TokenStream> {
+        let names = Self::nat_frame_names(d);
+        Ok(quote!(nat_hand_over(p, cx, stack, #(&*#names),*)?;))
+    }
+
+    /// The frame's fields but `at`: `p0.., l0..`.
+    fn nat_frame_names(d: &Dm) -> Vec<Ident> {
+        (0..d.params.len())
+            .map(|i| format_ident!("p{}", i))
+            .chain((0..d.locals.len()).map(|i| format_ident!("l{}", i)))
+            .collect()
+    }
+
+    /// `nat_hand_over`, the code of [`Dm::hand`], out of line.
+    fn nat_hand_fn(&self, d: &Dm) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
         let call = self.nat_call_term(d)?;
         let dm = Literal::u32_unsuffixed(d.ix as u32);
         let locals = self.nat_write_locals(d)?;
+        let names = Self::nat_frame_names(d);
+        let tys = d
+            .params
+            .iter()
+            .chain(d.locals.iter().map(|(_, t)| t))
+            .map(rust_ty)
+            .collect::<N<Vec<_>>>()?;
         Ok(quote! {
-            if !stack.is_empty() {
-                let own_call = #call;
-                super::nat_materialize(p, cx, stack, own_call, #dm)?;
+            /// Before native code hands over or lets the machine see its
+            /// state: the native frames below made machine frames, the
+            /// locals written back.
+            #[cold]
+            #[inline(never)]
+            #[allow(unused_variables, clippy::all)]
+            fn nat_hand_over(
+                p: &super::Program,
+                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                stack: &mut ::std::vec::Vec<super::NatFrame>,
+                #(#names: &#tys,)*
+            ) -> ::std::result::Result<(), #rt::machine::RunError> {
+                let a = &p.atoms;
+                if !stack.is_empty() {
+                    let own_call = #call;
+                    super::nat_materialize(p, cx, stack, own_call, #dm)?;
+                }
+                #locals
+                ::std::result::Result::Ok(())
             }
-            #locals
         })
     }
 
@@ -115,7 +156,10 @@ impl Gen<'_> {
         }
         let call = self.nat_call_term(d)?;
         let locals = self.nat_write_locals(d)?;
+        let hand_fn = self.nat_hand_fn(d)?;
         let items = quote! {
+            #hand_fn
+
             /// The DM's frame on the native stack: parameters, locals, the
             /// situation it is in.
             #[allow(dead_code, clippy::all)]

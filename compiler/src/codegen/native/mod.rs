@@ -41,11 +41,22 @@
 //!   by reading the store; such a situation does not count as on native
 //!   values in `--explain-types`.
 //!
+//! - *frames and calls* ([`frame`], [`call`]): each native DM has a
+//!   `Frame` (parameters, locals, its `Nat`); the program's `nat_drive`
+//!   runs them on an explicit stack: a recursive situation whose DM is
+//!   native pushes the callee's frame (no Rust recursion, no term), the
+//!   callee's final variant resumes the caller, whose exit arcs match it
+//!   natively; every other call, and every step that needs the machine's
+//!   state, first makes the native frames machine frames (`nat_hand_over`).
+//! - *the pipe* ([`pipe`]): read into a variable in_arg's register with a
+//!   checked conversion, written back where an out_arg sets it.
+//!
 //! What is not (yet) native keeps the DM on its term code: a register
 //! read before it is set (a fresh variable), a fixed-shape compound type,
-//! the pipe (`in_arg`, `out_arg`), `prog`, DM calls,
-//! perceptual situations other than the neutral `empty` arc, actions other
-//! than atoms, expressions other than registers and constants.
+//! an in_arg that is a pattern, `prog`, perceptual situations other than
+//! the neutral `empty` arc, actions other than atoms (and, in exit arcs,
+//! `inc`/`get` of a local and values), expressions other than registers,
+//! constants and lists of them.
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 //! [`Store::identical`]: sitlog_runtime::Store::identical
@@ -426,16 +437,9 @@ impl Gen<'_> {
         })
     }
 
-
     /// The plans and types native code of DM `dm_ix` works from, or why
     /// it has none.
-    fn nat_dm<'a>(
-        &'a self,
-        dm: &'a IrDm,
-        dm_ix: usize,
-        t: &DmTypes,
-        shallow: bool,
-    ) -> N<Dm<'a>> {
+    fn nat_dm<'a>(&'a self, dm: &'a IrDm, dm_ix: usize, t: &DmTypes, shallow: bool) -> N<Dm<'a>> {
         // `ground` (a boundary's value after a checked conversion, or the
         // join of different shapes) is held as a ground handle here, as
         // `term` is: native code has no boundary conversion yet.
@@ -765,7 +769,8 @@ impl Gen<'_> {
                 stmts.push(quote!(count += 1;));
                 let name = self.atom_native(plan.id.0)?;
                 d.arc.set(0);
-                let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &name)?;
+                let next =
+                    self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &name)?;
                 Ok(quote! { #(#stmts)* #next })
             }
             (KindPlan::Recursive { .. }, Kind::Recursive) => {
@@ -806,6 +811,8 @@ impl Gen<'_> {
                         ty: Ty::Int,
                     })
                 }
+                // A constant list of atoms or of ints, built natively.
+                Value::Compound(..) => self.nat_const_list(*t),
                 _ => Err(format!(
                     "constant `{}` is not native yet",
                     self.store.writeq(*t)
@@ -818,6 +825,48 @@ impl Gen<'_> {
             }
             Build::Compound(..) => Err("a compound value is not native yet".into()),
         }
+    }
+
+    /// A ground list of atoms or of ints (`[x, y]`, `[1, 2]`) as a native list.
+    fn nat_const_list(&self, t: Term) -> N<V> {
+        let rt = quote!(::sitlog_runtime);
+        let not = || format!("constant `{}` is not native yet", self.store.writeq(t));
+        let items = self.store.list_to_vec(t).ok_or_else(not)?;
+        let mut vals = Vec::new();
+        for &x in &items {
+            match self.store.value(x) {
+                Value::Atom(a) if a != atoms::NIL => vals.push(V {
+                    e: self.atom_native(a)?,
+                    ty: Ty::Sym,
+                }),
+                Value::Atom(_) => vals.push(self.nat_value(&Build::Const(x), &Regs::new())?),
+                Value::Int(i) => {
+                    let i = Literal::i64_suffixed(i);
+                    vals.push(V {
+                        e: quote!(#i),
+                        ty: Ty::Int,
+                    })
+                }
+                Value::Compound(..) => vals.push(self.nat_const_list(x)?),
+                _ => return Err(not()),
+            }
+        }
+        // The elements' type: the first that is not `[]`'s.
+        let ty = vals
+            .iter()
+            .map(|v| v.ty.clone())
+            .find(|t| *t != Ty::list(Ty::Never))
+            .or_else(|| vals.first().map(|v| v.ty.clone()))
+            .ok_or_else(not)?;
+        let es = vals
+            .iter()
+            .map(|v| coerce(v, &ty).map_err(|_| not()))
+            .collect::<N<Vec<_>>>()?;
+        let rty = rust_ty(&ty)?;
+        Ok(V {
+            e: quote!(#rt::native::List::<#rty>::from_vec(::std::vec![#(#es),*])),
+            ty: Ty::list(ty),
+        })
     }
 
     fn nat_ev_value(&self, e: &Ev, regs: &Regs) -> N<V> {
@@ -1217,6 +1266,17 @@ fn cons(h: V, t: V) -> N<V> {
     let ty = match &t.ty {
         Ty::List(e) if **e == Ty::Never => Ty::list(h.ty.clone()),
         Ty::List(e) if **e == h.ty => t.ty.clone(),
+        // An atom or int among ground terms: its term.
+        Ty::List(e) if **e == Ty::Term && matches!(h.ty, Ty::Sym | Ty::Int) => {
+            let head = coerce(&h, &Ty::Term)?;
+            return cons(
+                V {
+                    e: head,
+                    ty: Ty::Term,
+                },
+                t,
+            );
+        }
         _ => return Err(format!("`[_|_]` of {} and {}", h.ty, t.ty)),
     };
     let rt = ty.clone();

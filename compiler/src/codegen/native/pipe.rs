@@ -27,10 +27,11 @@ impl Gen<'_> {
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         let _ = Literal::u32_unsuffixed(ix as u32);
         Ok(quote! {
-            let ::std::option::Option::Some(#rr) = {
+            let pipe_value = {
                 let t = cx.store_ref().deref(cx.pipe());
                 <#rty as #rt::native::Native>::from_term(cx.store_ref(), t)
-            } else {
+            };
+            let ::std::option::Option::Some(#rr) = pipe_value else {
                 // Not of the in_arg's type: the term code runs the visit.
                 #hand
                 cx.count_transitions(count);
