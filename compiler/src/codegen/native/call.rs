@@ -346,7 +346,6 @@ impl Gen<'_> {
     /// callee `callee` (DM `j`) in `ret`: evaluates to the next `Nat` (or
     /// returns, handing over).
     fn nat_exit(&self, d: &Dm, ix: usize, callee: &Dm, j: usize) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let KindPlan::Recursive { exit, .. } = &d.plans[ix].kind else {
             return Err("not a recursive situation".into());
         };
@@ -461,10 +460,6 @@ impl Gen<'_> {
                     ::std::option::Option::None,
                 )),
             };
-        })
-        .map(|ts| {
-            let _ = &rt;
-            ts
         })
     }
 

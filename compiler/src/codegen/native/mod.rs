@@ -828,17 +828,34 @@ impl Gen<'_> {
     }
 
     /// A ground list of atoms or of ints (`[x, y]`, `[1, 2]`) as a native list.
+    /// Built once per thread and shared (`Rc`): no allocation per use.
     fn nat_const_list(&self, t: Term) -> N<V> {
+        let v = self.nat_const_list_in(t)?;
+        let (e, rty) = (v.e, rust_ty(&v.ty)?);
+        Ok(V {
+            e: quote!({
+                ::std::thread_local! { static K: #rty = #e; }
+                K.with(|k| k.clone())
+            }),
+            ty: v.ty,
+        })
+    }
+
+    /// The list's value, its atoms interned by name (no `Program` in scope).
+    fn nat_const_list_in(&self, t: Term) -> N<V> {
         let rt = quote!(::sitlog_runtime);
         let not = || format!("constant `{}` is not native yet", self.store.writeq(t));
         let items = self.store.list_to_vec(t).ok_or_else(not)?;
         let mut vals = Vec::new();
         for &x in &items {
             match self.store.value(x) {
-                Value::Atom(a) if a != atoms::NIL => vals.push(V {
-                    e: self.atom_native(a)?,
-                    ty: Ty::Sym,
-                }),
+                Value::Atom(a) if a != atoms::NIL => {
+                    let lit = Literal::string(a.as_str());
+                    vals.push(V {
+                        e: quote!(#rt::Atom::intern(#lit)),
+                        ty: Ty::Sym,
+                    })
+                }
                 Value::Atom(_) => vals.push(self.nat_value(&Build::Const(x), &Regs::new())?),
                 Value::Int(i) => {
                     let i = Literal::i64_suffixed(i);
@@ -847,7 +864,7 @@ impl Gen<'_> {
                         ty: Ty::Int,
                     })
                 }
-                Value::Compound(..) => vals.push(self.nat_const_list(x)?),
+                Value::Compound(..) => vals.push(self.nat_const_list_in(x)?),
                 _ => return Err(not()),
             }
         }
