@@ -422,7 +422,8 @@ impl Gen<'_> {
                         #(#lets)*
                         #action
                         count += 1;
-                        break 'visit { #next };
+                        let next_at = { #next };
+                        break 'visit next_at;
                     }
                 });
             }

@@ -339,7 +339,7 @@ impl Gen<'_> {
             #[derive(Clone, Debug)]
             pub enum Nat { #(#variants)* }
 
-            #[allow(unused_variables, clippy::all)]
+            #[allow(unused_variables, unreachable_patterns, clippy::all)]
             impl Nat {
                 /// The situation's id as a term.
                 pub(crate) fn id_term(&self, p: &super::Program, store: &mut #rt::Store) -> #rt::Term {
@@ -353,7 +353,7 @@ impl Gen<'_> {
             /// Runs the frame on top of the native stack until it calls a DM
             /// (`call` set), ends in a final situation below the base
             /// (`Ok(None)`), or hands over to the machine (`Ok(Some(step))`).
-            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, unused_labels, irrefutable_let_patterns, clippy::all)]
+            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, unused_labels, irrefutable_let_patterns, unreachable_patterns, unused_braces, break_with_label_and_loop, clippy::all)]
             pub(crate) fn nat_step(
                 p: &super::Program,
                 cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
