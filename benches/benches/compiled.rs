@@ -498,7 +498,15 @@ fn hand_route_walk(trips: i64, stops: &[i64], goal: i64, tag: Sym) -> u64 {
                     fin = Some(Fin::Lost(tag));
                 }
                 (Frame::Main(_), f) => {
-                    black_box(f);
+                    match f {
+                        Fin::Reached(s, t) => {
+                            black_box((s, t));
+                        }
+                        Fin::Lost(t) => {
+                            black_box(t);
+                        }
+                        Fin::At(_) | Fin::Gone => unreachable!(),
+                    }
                     k = black_box(k + 1);
                     *top = Frame::Main(if k >= trips { Main::Done } else { Main::Trip });
                 }
