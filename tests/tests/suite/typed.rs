@@ -380,6 +380,14 @@ fn native_dms_agree() {
         native::dm_lost::run_native,
         native::dm_find::run_native,
         native::dm_big::run_native,
+        // Callers (`codegen::native::call`): their calls and exit arcs too.
+        native::dm_main::run_native,
+        native::dm_cmd::run_native,
+        native::dm_rounds::run_native,
+        native::dm_outer::run_native,
+        native::dm_want::run_native,
+        native::dm_relay::run_native,
+        native::dm_echo::run_native,
     );
     for main in [
         "main",
@@ -400,8 +408,45 @@ fn native_dms_agree() {
         "cmd([], [])",
         "big(3)",
         "big(2.5)",
+        "rounds(3, [a, b, c], b)",
+        "rounds(2, [a, b], z)",
+        "rounds(x, [a], a)",
+        "rounds(2, [f(a), b], f(a))",
+        "want([a, b], b)",
+        "want([a, b], c)",
     ] {
         agree(app, &ir, main, "");
+    }
+    // The pipe: an int, an atom (the comparison on terms: an error), none.
+    for in_arg in [Some("3"), Some("1"), Some("a"), None] {
+        agree_piped(app, &ir, "relay(t)", in_arg, "");
+    }
+    // The depth limit reached by native calls: the machine's error.
+    for depth in [1, 2, 3, 4] {
+        let options = || Options {
+            keep_history: false,
+            max_depth: depth,
+            ..Options::default()
+        };
+        let c = run_with(
+            app,
+            "rounds(2, [a, b], b)",
+            None,
+            "",
+            options(),
+            false,
+            false,
+        );
+        let i = run_with(
+            &ir,
+            "rounds(2, [a, b], b)",
+            None,
+            "",
+            options(),
+            false,
+            false,
+        );
+        assert_eq!(c, i, "max_depth {depth}");
     }
     // A partial list, an unbound variable do not convert: the term code runs (the observer's
     // trace names fresh variables differently on the two back ends, so
@@ -422,7 +467,12 @@ fn native_dms_agree() {
     assert_eq!(native.0["error"], terms.0["error"]);
     assert_eq!(native.0["status"], "error");
     assert_eq!(native.1, terms.1);
-    for main in ["main", "search([a, b, c], c)", "pairs([x, y, stop])"] {
+    for main in [
+        "main",
+        "search([a, b, c], c)",
+        "pairs([x, y, stop])",
+        "rounds(3, [a, b, c], c)",
+    ] {
         let options = || Options {
             keep_history: false,
             gc_threshold: 1,
