@@ -176,3 +176,23 @@ diag_mod(echo(Tag),
   ],
   []
 ).
+
+% An output argument (`_` given, bound by the callee's `diag_mod`): the
+% caller's recursive situation has native code that hands the call to the
+% machine on terms (the fresh variable made there); the callee runs natively
+% and its final, with `diag_mod`, is the machine's; the caller's exit arc
+% reads the bound value.
+diag_mod(outer_out(K),
+  [ [ id ==> c, type ==> recursive, embedded_dm ==> give(K, V),
+      arcs ==> [ given : say(V) => got(V) ] ],
+    [ id ==> got(V), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(give(K, Out),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => given ] ],
+    [ id ==> given, type ==> final, diag_mod ==> give(K, [K, K]) ]
+  ],
+  []
+).

@@ -1,5 +1,6 @@
-//! The caller's side of native DMs: a recursive situation whose embedded
-//! DM is native pushes the callee's typed frame on the driver's native
+//! The caller's side of native DMs: a recursive situation with native
+//! code whose embedded DM's initial situation has native code (its locals
+//! native, the arguments converting to its frame) pushes the callee's typed frame on the driver's native
 //! stack ([`super::frame`]) and waits in its own variant `W<ix>` (the
 //! situation's id variables and the registers its exit arcs read, as the
 //! term code's `saved` keeps them); when the callee reaches a final, the
@@ -8,8 +9,9 @@
 //! and `get` of a local, atoms, numbers) and next situation run natively.
 //!
 //! Hand-over, so behaviour stays the term path's:
-//! - a call whose DM is not native, whose arguments do not fit the
-//!   callee's frame, or whose exit arcs are not native here, or that
+//! - a call whose DM is not native there, whose arguments do not fit the
+//!   callee's frame (an output argument: a fresh variable, made as a term
+//!   for the visit), or whose exit arcs are not native here, or that
 //!   would reach the depth limit, is given to the machine as the term
 //!   code gives it (`Step::Call` with the same `saved`): the machine runs
 //!   the callee and the caller's term code takes the exit;
@@ -19,8 +21,9 @@
 //! - no exit arc matching is an error the machine reports itself
 //!   (`Cx::choose_exit` on the final's id, built then).
 //!
-//! Whether a DM is native never depends on its callees (a call that is not
-//! native here is handed over), so native-ness is decided per DM.
+//! Which situations of a DM have native code never depends on its callees
+//! (a call that is not native here is handed over), so it is decided once
+//! per DM.
 
 use super::{coerce, identical, reg, rust_ty, Dm, Gen, Regs, N, V};
 use crate::mir::{Action, Build, Ev, Init, KindPlan, Reg};
@@ -78,15 +81,6 @@ impl Gen<'_> {
         else {
             return Err("not a recursive situation".into());
         };
-        fn inert(b: &Build) -> bool {
-            match b {
-                Build::Const(_) | Build::Reg(_) => true,
-                Build::Compound(name, args) => {
-                    sitlog_runtime::eval::evaluates_arguments_only(*name, args.len())
-                        && args.iter().all(inert)
-                }
-            }
-        }
         match call {
             Build::Const(t) => {
                 if *eval_call {
@@ -193,7 +187,13 @@ impl Gen<'_> {
     /// The visit of recursive situation `ix` (registers `regs` set).
     pub(super) fn nat_recursive(&self, d: &Dm, ix: usize, regs: &Regs) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
-        let (name, args) = self.nat_call_values(d, ix, regs)?;
+        let (name, args) = match self.nat_call_values(d, ix, regs) {
+            Ok(x) => x,
+            // An argument is a fresh variable (an output argument): the
+            // machine's call, on terms.
+            Err(e) if e.starts_with("register r") => return self.nat_call_on_terms(d, ix, regs),
+            Err(e) => return Err(e),
+        };
         let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
             return Err("not a recursive situation".into());
         };
@@ -286,6 +286,63 @@ impl Gen<'_> {
                 break 'visit Nat::#wv { #(#wf),* };
             }
             #hand_call
+        })
+    }
+
+    /// The call of recursive situation `ix` given to the machine as the
+    /// term code gives it, its term built from native values and the
+    /// fresh variables made for the visit (`fresh_r<r>`, terms).
+    fn nat_call_on_terms(&self, d: &Dm, ix: usize, regs: &Regs) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let KindPlan::Recursive {
+            call,
+            eval_call,
+            saved,
+            ..
+        } = &d.plans[ix].kind
+        else {
+            return Err("not a recursive situation".into());
+        };
+        if *eval_call && !matches!(call, Build::Const(_)) && !inert(call) {
+            return Err("the embedded DM call is evaluated".into());
+        }
+        let curl = Literal::u32_unsuffixed(ix as u32);
+        let hand = &d.hand;
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let mut ts = Vec::new();
+        let mut n = 0;
+        let call_t = self.nat_build_term(call, regs, &mut ts, &mut n)?;
+        let mut saved_terms = Vec::new();
+        let mut saved_names = Vec::new();
+        for (k, &r) in saved.iter().enumerate() {
+            let x = format_ident!("s{}", k);
+            match regs.get(&r) {
+                Some((f, _)) if super::is_fresh(f) => saved_terms.push(quote!(let #x = #f;)),
+                _ => {
+                    let e = self.nat_value(&Build::Reg(r), regs)?.e;
+                    saved_terms
+                        .push(quote!(let #x = #rt::native::Native::to_term(&#e, cx.store());));
+                }
+            }
+            saved_names.push(x);
+        }
+        let saved_value = if saved.is_empty() {
+            quote!(#rt::Term::NIL)
+        } else {
+            quote!(cx.compound(#rt::atoms::DOT, &[#(#saved_names),*]))
+        };
+        Ok(quote! {
+            #hand
+            cx.count_transitions(count);
+            #(#id_stmts)*
+            cx.enter_with_id(#curl, #id);
+            #(#ts)*
+            let call = #call_t;
+            #(#saved_terms)*
+            let saved = #saved_value;
+            return ::std::result::Result::Ok(::std::option::Option::Some(
+                #rt::machine::Step::Call { call, saved },
+            ));
         })
     }
 
@@ -801,5 +858,16 @@ fn ev_as_build(e: &Ev) -> Option<Build> {
             args.iter().map(ev_as_build).collect::<Option<_>>()?,
         )),
         _ => None,
+    }
+}
+
+/// Whether evaluating the call term gives it back (built from values).
+fn inert(b: &Build) -> bool {
+    match b {
+        Build::Const(_) | Build::Reg(_) => true,
+        Build::Compound(name, args) => {
+            sitlog_runtime::eval::evaluates_arguments_only(*name, args.len())
+                && args.iter().all(inert)
+        }
     }
 }

@@ -70,12 +70,13 @@
 //!   a situation handed over, `get`/`set`/`inc` through the machine), first
 //!   makes the native frames machine frames and writes the locals back
 //!   (`nat_hand_over`), and reads the locals again after the machine's
-//!   call.
+//!   call. A call with an output argument (`_`) is always the machine's,
+//!   its term built with the fresh variable made for the visit.
 //! - *the pipe* ([`pipe`]): read into a variable in_arg's register with a
 //!   checked conversion, written back where an out_arg sets it.
 //!
-//! What is not (yet) native keeps a situation on its term code: an in_arg
-//! that is a pattern, `prog`, expectations that change variables,
+//! What is not (yet) native keeps a situation on its term code: an
+//! evaluated DM call, an in_arg that is a pattern, `prog`, expectations that change variables,
 //! conditional expressions (`A -> B ; C` as a value), a register read
 //! natively before it is set, narrowing a `ground` value to a shape,
 //! arithmetic other than integer comparisons. `--explain-types` says which
@@ -1109,8 +1110,20 @@ impl Gen<'_> {
             }
             (KindPlan::Final { .. }, _) => Err("a final situation with diag_mod".into()),
             (KindPlan::Recursive { .. }, Kind::Recursive) => {
+                // A fresh variable (an output argument, `_`) is a term made
+                // at the start of the visit when the code uses it, as the
+                // term code makes it; such a call is the machine's.
+                let mut regs = regs.clone();
+                for (r, i) in &plan.inits {
+                    if matches!(i, Init::Fresh) && !regs.contains_key(r) {
+                        regs.insert(*r, (format_ident!("fresh_r{}", r), Ty::Term));
+                    }
+                }
                 let call = self.nat_recursive(d, ix, &regs)?;
-                Ok(quote! { #(#stmts)* #call })
+                let mut used = std::collections::BTreeSet::new();
+                fresh_used(&call, &mut used);
+                let fresh = used.iter().map(|x| quote!(let #x = cx.var();));
+                Ok(quote! { #(#stmts)* #(#fresh)* #call })
             }
             (KindPlan::Recursive { .. }, _) => Err("a recursive plan of another kind".into()),
         }
