@@ -105,6 +105,12 @@ mod list_search_const_8 {
 mod list_search_const_256 {
     sitlog_macros::include_dm!("dms/list_search_const_256");
 }
+mod route_walk {
+    sitlog_macros::include_dm!("dms/route_walk");
+}
+mod count_pipe {
+    sitlog_macros::include_dm!("dms/count_pipe");
+}
 // The same programs with every value a term (the code generator before typed code).
 mod counter_loop_untyped {
     sitlog_macros::include_dm!("dms/counter_loop", untyped);
@@ -129,6 +135,12 @@ mod list_search_const_8_untyped {
 }
 mod list_search_const_256_untyped {
     sitlog_macros::include_dm!("dms/list_search_const_256", untyped);
+}
+mod route_walk_untyped {
+    sitlog_macros::include_dm!("dms/route_walk", untyped);
+}
+mod count_pipe_untyped {
+    sitlog_macros::include_dm!("dms/count_pipe", untyped);
 }
 mod appendix_a {
     sitlog_macros::include_dm!("../dms/examples/appendix_a");
@@ -436,6 +448,159 @@ fn hand_list_search(rounds: i64, places: &[Sym], target: Sym) -> u64 {
     transitions
 }
 
+/// The hand-written floor for `route_walk` (shape d with ints and a nested
+/// call): stops as ints walked as a slice, three kinds of frames on an
+/// explicit stack, each final carrying its fields to the caller.
+fn hand_route_walk(trips: i64, stops: &[i64], goal: i64, tag: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Main {
+        Trip,
+        Done,
+    }
+    #[derive(Clone, Copy)]
+    enum Route {
+        Start,
+    }
+    #[derive(Clone, Copy)]
+    enum Walk<'a> {
+        Begin,
+        Visit(&'a [i64]),
+    }
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Main(Main),
+        Route(Route),
+        Walk(Walk<'a>),
+    }
+    /// A final's fields, handed to the caller's exit arcs.
+    enum Fin {
+        At(i64),
+        Gone,
+        Reached(i64, Sym),
+        Lost(Sym),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Main(Main::Trip)];
+    let (mut k, mut transitions) = (0i64, 0u64);
+    let mut fin: Option<Fin> = None;
+    while let Some(top) = stack.last_mut() {
+        if let Some(f) = fin.take() {
+            // The caller's exit arcs on the callee's final.
+            transitions += 1;
+            match (*top, f) {
+                (Frame::Route(Route::Start), Fin::At(s)) => {
+                    stack.pop();
+                    transitions += 1;
+                    fin = Some(Fin::Reached(s, tag));
+                }
+                (Frame::Route(Route::Start), _) => {
+                    stack.pop();
+                    transitions += 1;
+                    fin = Some(Fin::Lost(tag));
+                }
+                (Frame::Main(_), f) => {
+                    match f {
+                        Fin::Reached(s, t) => {
+                            black_box((s, t));
+                        }
+                        Fin::Lost(t) => {
+                            black_box(t);
+                        }
+                        Fin::At(_) | Fin::Gone => unreachable!(),
+                    }
+                    k = black_box(k + 1);
+                    *top = Frame::Main(if k >= trips { Main::Done } else { Main::Trip });
+                }
+                _ => unreachable!(),
+            }
+            continue;
+        }
+        match *top {
+            Frame::Main(Main::Trip) => stack.push(Frame::Route(Route::Start)),
+            Frame::Main(Main::Done) => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Route(Route::Start) => stack.push(Frame::Walk(Walk::Begin)),
+            Frame::Walk(w) => {
+                transitions += 1;
+                match w {
+                    Walk::Begin => *top = Frame::Walk(Walk::Visit(stops)),
+                    Walk::Visit([]) => {
+                        stack.pop();
+                        transitions += 1;
+                        fin = Some(Fin::Gone);
+                    }
+                    Walk::Visit([s, rest @ ..]) => {
+                        if *s == goal {
+                            stack.pop();
+                            transitions += 1;
+                            fin = Some(Fin::At(*s));
+                        } else {
+                            *top = Frame::Walk(Walk::Visit(rest));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// The hand-written floor for `count_pipe` (shape c with a nested call and
+/// a parameter): the pipe an int handed to the innermost callee and back,
+/// three kinds of frames on an explicit stack.
+fn hand_count_pipe(max: i64, step: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Go,
+        Stop,
+        Hop,
+        Bounce,
+        Back,
+        Passed(i64),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Go];
+    let (mut pipe, mut count, mut transitions) = (max, 0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Go => stack.push(Frame::Hop),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Hop => stack.push(Frame::Bounce),
+            Frame::Bounce => {
+                transitions += 1;
+                // in_arg X, out_arg X: the pipe goes back as it came.
+                pipe = black_box(pipe);
+                *top = Frame::Back;
+            }
+            Frame::Back => {
+                transitions += 2;
+                stack.pop();
+                // relay's exit arc: `back` => passed(Step).
+                if let Some(t) = stack.last_mut() {
+                    *t = Frame::Passed(step);
+                }
+            }
+            Frame::Passed(s) => {
+                transitions += 2;
+                black_box(s);
+                stack.pop();
+                count = black_box(count + 1);
+                if let Some(t) = stack.last_mut() {
+                    *t = if count >= pipe {
+                        Frame::Stop
+                    } else {
+                        Frame::Go
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
 /// The hand-written floor for `scripted_loop`: the same script read line by
 /// line, each input compared with the expectations as text (no term is
 /// parsed), the counter an integer.
@@ -632,6 +797,49 @@ fn bench(c: &mut Criterion) {
                     black_box(rounds as i64),
                     black_box(&syms),
                     black_box(Sym(len as u32 - 1)),
+                )
+            },
+        );
+    }
+
+    // Workloads of shapes (c) and (d) written for the caller side of native
+    // DMs (other names, ints, an extra parameter, a nested call).
+    let count_ir = interpreter(&root.join("dms/count_pipe"));
+    for n in [10_000u64, 1_000_000] {
+        let limit = n.to_string();
+        three_ways(
+            c,
+            "count_pipe",
+            n,
+            count_pipe::program(),
+            count_pipe_untyped::program(),
+            &count_ir,
+            &Workload {
+                in_arg: Some(&limit),
+                ..Workload::plain("main(3)")
+            },
+            || hand_count_pipe(black_box(n as i64), black_box(3)),
+        );
+    }
+    let route_ir = interpreter(&root.join("dms/route_walk"));
+    for (trips, len) in [(1_000u64, 8usize), (100_000, 8), (1_000, 256)] {
+        let stops: Vec<String> = (0..len).map(|i| (i + 1).to_string()).collect();
+        let main = format!("main({trips}, [{}], {len}, east)", stops.join(","));
+        let ints: Vec<i64> = (1..=len as i64).collect();
+        three_ways(
+            c,
+            &format!("route_walk_{len}"),
+            trips,
+            route_walk::program(),
+            route_walk_untyped::program(),
+            &route_ir,
+            &Workload::plain(&main),
+            || {
+                hand_route_walk(
+                    black_box(trips as i64),
+                    black_box(&ints),
+                    black_box(len as i64),
+                    black_box(Sym(0)),
                 )
             },
         );

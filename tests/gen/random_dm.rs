@@ -158,7 +158,10 @@ fn generate(seed: u64) -> (Vec<(String, String)>, Vec<String>) {
 /// `st([X|R])` comparing `X` with the target (`==`, `\==`, or `>` on ints),
 /// maybe saying `X` (an effector's action), ending in `hit(X)`, `dup(X)`,
 /// `fixed(c)` or `none`; `st([])` maybe on terms (a `get`: the walk crosses
-/// from native code to term code and back). No input is read.
+/// from native code to term code and back). Some calls go through a relay
+/// `rI(List, Target)` that calls `wI` and hands its final on (nested native
+/// calls, a local counted by `inc` in an exit arc); `main` counts hits in a
+/// local too. No input is read.
 fn walkers(seed: u64) -> (Vec<(String, String)>, Vec<String>) {
     let mut rng = Rng::new(seed);
     let lists: [&[&str]; 3] = [
@@ -171,9 +174,16 @@ fn walkers(seed: u64) -> (Vec<(String, String)>, Vec<String>) {
     // Element kind of each walker: its first call's; later calls may mix.
     let kinds: Vec<usize> = (0..n).map(|_| rng.below(3)).collect();
     let mut main_sits = Vec::new();
+    let mut relayed = vec![false; n];
     let calls = rng.range(2, 4);
     for j in 0..calls {
         let w = rng.below(n);
+        let callee = if rng.chance(40) {
+            relayed[w] = true;
+            format!("r{w}")
+        } else {
+            format!("w{w}")
+        };
         let kind = if rng.chance(20) {
             rng.below(3)
         } else {
@@ -188,8 +198,8 @@ fn walkers(seed: u64) -> (Vec<(String, String)>, Vec<String>) {
             format!("s{}", j + 1)
         };
         main_sits.push(format!(
-            "    [ id ==> s{j}, type ==> recursive, embedded_dm ==> w{w}([{}], {target}),\n      \
-             arcs ==> [ hit(_) : empty => {next}, dup(_) : empty => {next}, \
+            "    [ id ==> s{j}, type ==> recursive, embedded_dm ==> {callee}([{}], {target}),\n      \
+             arcs ==> [ hit(_) : [inc(k, _)] => {next}, dup(_) : empty => {next}, \
              fixed(_) : empty => {next}, none : empty => {next} ] ],\n",
             items.join(", ")
         ));
@@ -198,7 +208,17 @@ fn walkers(seed: u64) -> (Vec<(String, String)>, Vec<String>) {
     for s in &main_sits {
         text.push_str(s);
     }
-    text.push_str("    [ id ==> fs, type ==> final ]\n  ],\n  []\n).\n");
+    text.push_str("    [ id ==> fs, type ==> final ]\n  ],\n  [ k ==> 0 ]\n).\n");
+    for (w, _) in relayed.iter().enumerate().filter(|(_, r)| **r) {
+        text.push_str(&format!(
+            "\ndiag_mod(r{w}(L, T),\n  [ [ id ==> go, type ==> recursive, embedded_dm ==> w{w}(L, T),\n      \
+             arcs ==> [ hit(X) : [inc(c, _)] => hit(X), dup(X) : empty => dup(X), \
+             fixed(X) : empty => fixed(X), none : empty => none ] ],\n    \
+             [ id ==> hit(X), type ==> final ], [ id ==> dup(X), type ==> final ],\n    \
+             [ id ==> fixed(X), type ==> final ], [ id ==> none, type ==> final ]\n  ],\n  \
+             [ c ==> 0 ]\n).\n"
+        ));
+    }
     for (w, &kind) in kinds.iter().enumerate() {
         // Native code per situation (issue 37): `st([])` sometimes stays
         // on terms (a `get`), so the walk crosses to the term code and back.

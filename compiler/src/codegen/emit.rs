@@ -62,6 +62,7 @@ impl Gen<'_> {
             modules.push(self.emit_dm(dm, i, &m));
         }
         let typed_driver = self.typed_driver(&dm_mods);
+        let native_driver = self.native_driver(ir, &dm_mods);
         let dm_ix: Vec<Literal> = (0..ir.dms.len() as u32)
             .map(Literal::u32_unsuffixed)
             .collect();
@@ -341,6 +342,7 @@ impl Gen<'_> {
             }
 
             #typed_driver
+            #native_driver
 
             #(#modules)*
         }

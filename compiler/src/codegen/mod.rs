@@ -110,6 +110,7 @@ pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
     let mut g = Gen::new(&ir.store, mir);
     g.types = types;
     g.mir_types = mir_types;
+    g.ir = Some(ir);
     g.collect(ir);
     g.emit(ir, source)
 }
@@ -127,6 +128,8 @@ pub fn native_dms(ir: &Ir) -> Vec<Result<NativeDm, String>> {
     let mir_types = crate::mir::ty::infer(ir, &mir);
     let mut g = Gen::new(&ir.store, mir);
     g.types = Some(types);
+    g.mir_types = Some(mir_types);
+    g.ir = Some(ir);
     g.collect(ir);
     ir.dms
         .iter()
@@ -136,7 +139,8 @@ pub fn native_dms(ir: &Ir) -> Vec<Result<NativeDm, String>> {
             if typed.is_some_and(typed::has_typed_code) {
                 return Err("it runs on the typed frame of its typed situations".to_owned());
             }
-            g.native_code(dm, d, &mir_types.dms[d]).map(|n| NativeDm {
+            let t = g.mir_types.as_ref().map(|t| &t.dms[d]).ok_or("no types")?;
+            g.native_code(dm, d, t).map(|n| NativeDm {
                 native: n.native_sits,
                 values: n.on_native_values,
                 fixed: n.fixed_shapes,
@@ -163,6 +167,11 @@ struct Gen<'s> {
     mir_types: Option<crate::mir::ty::MirTypes>,
     /// The plans of the situations that run as code.
     mir: crate::mir::Mir,
+    /// The program (native calls look at their callee).
+    ir: Option<&'s Ir>,
+    /// Per DM, whether it has native code and whether its calls may push
+    /// its frame (`native::frame`).
+    native_ok: std::cell::RefCell<HashMap<usize, (bool, bool)>>,
 }
 
 /// Code that builds one term: statements, then the expression of its value.
@@ -184,6 +193,8 @@ impl<'s> Gen<'s> {
             const_ix: HashMap::new(),
             types: None,
             mir_types: None,
+            ir: None,
+            native_ok: std::cell::RefCell::new(HashMap::new()),
         }
     }
 

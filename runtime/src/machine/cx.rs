@@ -178,6 +178,18 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         Ok(())
     }
 
+    /// How many more DMs may be called before the depth limit
+    /// ([`Options::max_depth`](super::Options::max_depth)): native code
+    /// keeping callee frames of its own hands a call over to the machine
+    /// (which reports the error) when its stack would reach it.
+    #[inline]
+    pub fn depth_room(&self) -> usize {
+        self.m
+            .options
+            .max_depth
+            .saturating_sub(self.m.frames.len() + self.m.lazy.len())
+    }
+
     /// Pushes the frames of the DMs [`Cx::call_typed_lazy`] called: the DM
     /// stack as the machine would have it. Typed code calls it before it
     /// hands over.

@@ -15,7 +15,7 @@ use sitlog_runtime::history::Entry;
 use sitlog_runtime::machine::{Actions, Observer, Options, Outcome};
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
 use sitlog_runtime::{app, atoms, report, Atom, Functions, Store, Term};
-use sitlog_tests::compiled::canonical_vars;
+use sitlog_tests::compiled::{canonical_vars, rename};
 use std::path::Path;
 
 mod loops {
@@ -154,7 +154,16 @@ fn run_with<A: app::App>(
         serde_json::from_str(&report::outcome_json(&store, &outcome)).expect("JSON");
     let mut seen = log.0;
     seen.extend(String::from_utf8(text).unwrap().lines().map(str::to_owned));
-    (canonical_vars(&report), outcome.transitions, seen, trace.0)
+    // Variables renamed in the order first seen, as in the report: native
+    // code makes fewer terms than the term path, so its fresh variables
+    // (an output argument's) get other store numbers.
+    let mut names = std::collections::HashMap::new();
+    let trace = trace
+        .0
+        .iter()
+        .map(|l| rename(l, &mut names))
+        .collect::<Vec<_>>();
+    (canonical_vars(&report), outcome.transitions, seen, trace)
 }
 
 fn agree<A: app::App>(compiled: &A, interpreted: &Ir, main: &str, script: &str) {
@@ -380,6 +389,16 @@ fn native_dms_agree() {
         native::dm_lost::run_native,
         native::dm_find::run_native,
         native::dm_big::run_native,
+        // Callers (`codegen::native::call`): their calls and exit arcs too.
+        native::dm_main::run_native,
+        native::dm_cmd::run_native,
+        native::dm_rounds::run_native,
+        native::dm_outer::run_native,
+        native::dm_want::run_native,
+        native::dm_relay::run_native,
+        native::dm_echo::run_native,
+        // An output argument: the call handed over on terms.
+        native::dm_outer_out::run_native,
     );
     for main in [
         "main",
@@ -400,8 +419,47 @@ fn native_dms_agree() {
         "cmd([], [])",
         "big(3)",
         "big(2.5)",
+        "rounds(3, [a, b, c], b)",
+        "rounds(2, [a, b], z)",
+        "rounds(x, [a], a)",
+        "rounds(2, [f(a), b], f(a))",
+        "want([a, b], b)",
+        "want([a, b], c)",
+        "outer_out(a)",
+        "outer_out(3)",
     ] {
         agree(app, &ir, main, "");
+    }
+    // The pipe: an int, an atom (the comparison on terms: an error), none.
+    for in_arg in [Some("3"), Some("1"), Some("a"), None] {
+        agree_piped(app, &ir, "relay(t)", in_arg, "");
+    }
+    // The depth limit reached by native calls: the machine's error.
+    for depth in [1, 2, 3, 4] {
+        let options = || Options {
+            keep_history: false,
+            max_depth: depth,
+            ..Options::default()
+        };
+        let c = run_with(
+            app,
+            "rounds(2, [a, b], b)",
+            None,
+            "",
+            options(),
+            false,
+            false,
+        );
+        let i = run_with(
+            &ir,
+            "rounds(2, [a, b], b)",
+            None,
+            "",
+            options(),
+            false,
+            false,
+        );
+        assert_eq!(c, i, "max_depth {depth}");
     }
     // A partial list, an unbound variable do not convert: the term code runs (the observer's
     // trace names fresh variables differently on the two back ends, so
@@ -422,7 +480,12 @@ fn native_dms_agree() {
     assert_eq!(native.0["error"], terms.0["error"]);
     assert_eq!(native.0["status"], "error");
     assert_eq!(native.1, terms.1);
-    for main in ["main", "search([a, b, c], c)", "pairs([x, y, stop])"] {
+    for main in [
+        "main",
+        "search([a, b, c], c)",
+        "pairs([x, y, stop])",
+        "rounds(3, [a, b, c], c)",
+    ] {
         let options = || Options {
             keep_history: false,
             gc_threshold: 1,

@@ -123,3 +123,76 @@ diag_mod(big(N),
   ],
   [ v ==> none ]
 ).
+
+% Native callers (issue 37, `codegen::native::call`): `rounds` is workload
+% (d)'s shape with an extra level: a counter loop (`inc` of a local, its
+% value compared with the ground parameter `Rounds`) calling `outer`, which
+% calls `search` and maps its finals; the exit arcs match the callee's final
+% variants natively, the calls push frames on the native stack. `Rounds`
+% not an int: the comparison is evaluated on terms (the machine's error).
+diag_mod(rounds(Rounds, Places, Target),
+  [ [ id ==> round, type ==> recursive, embedded_dm ==> outer(Places, Target, 7),
+      arcs ==> [ hit(P, K) : [inc(n, N), P] => (N >= Rounds -> fs ; otherwise -> round),
+                 miss(K) : [inc(n, N), inc(m, _)] => (N >= Rounds -> fs ; otherwise -> round) ] ],
+    [ id ==> fs, type ==> final ]
+  ],
+  [ n ==> 0, m ==> 10 ]
+).
+
+diag_mod(outer(Places, Target, K),
+  [ [ id ==> o, type ==> recursive, embedded_dm ==> search(Places, Target),
+      arcs ==> [ found(Target) : [inc(c, _)] => hit(Target, K),
+                 not_found : empty => miss(K) ] ],
+    [ id ==> hit(P, Q), type ==> final ],
+    [ id ==> miss(Q), type ==> final ]
+  ],
+  [ c ==> 0 ]
+).
+
+% No exit arc takes `not_found`: the machine's error, at `w`.
+diag_mod(want(Places, Target),
+  [ [ id ==> w, type ==> recursive, embedded_dm ==> search(Places, Target),
+      arcs ==> [ found(P) : empty => fs ] ],
+    [ id ==> fs, type ==> final ]
+  ],
+  []
+).
+
+% The pipe in native code: the limit as the recursive situation's in_arg
+% (a ground term: compared with an int on terms when it is not one), the
+% callee handing its in_arg back with `out_arg ==> X`, a final's out_arg.
+diag_mod(relay(Tag),
+  [ [ id ==> call, type ==> recursive, in_arg ==> Limit, embedded_dm ==> echo(Tag),
+      arcs ==> [ back(T) : [inc(n, N)] => (N >= Limit -> fs ; otherwise -> call) ] ],
+    [ id ==> fs, type ==> final, out_arg ==> [done, Tag] ]
+  ],
+  [ n ==> 0 ]
+).
+
+diag_mod(echo(Tag),
+  [ [ id ==> is, type ==> neutral, in_arg ==> X, out_arg ==> X,
+      arcs ==> [ empty : empty => back(Tag) ] ],
+    [ id ==> back(T), type ==> final ]
+  ],
+  []
+).
+
+% An output argument (`_` given, bound by the callee's `diag_mod`): the
+% caller's recursive situation has native code that hands the call to the
+% machine on terms (the fresh variable made there); the callee runs natively
+% and its final, with `diag_mod`, is the machine's; the caller's exit arc
+% reads the bound value.
+diag_mod(outer_out(K),
+  [ [ id ==> c, type ==> recursive, embedded_dm ==> give(K, V),
+      arcs ==> [ given : say(V) => got(V) ] ],
+    [ id ==> got(V), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(give(K, Out),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => given ] ],
+    [ id ==> given, type ==> final, diag_mod ==> give(K, [K, K]) ]
+  ],
+  []
+).

@@ -59,16 +59,36 @@
 //!   own calls (`Cx::var_op`, `Cx::is`) on terms built from native values;
 //!   what they bind is converted like a boundary's value.
 //!
-//! What is not (yet) native keeps a situation on its term code: DM calls
-//! (recursive situations), the pipe (`in_arg`, `out_arg`), `prog`,
-//! expectations that change variables, conditional expressions (`A -> B ;
-//! C` as a value), a register read natively before it is set, narrowing a
-//! `ground` value to a shape, arithmetic other than integer comparisons.
-//! `--explain-types` says which and why, per situation.
+//! - *frames and calls* ([`frame`], [`call`]): each DM with native code
+//!   has a `Frame` (parameters, locals, its `Nat`); the program's
+//!   `nat_drive` runs frames on an explicit stack: a recursive situation
+//!   with native code whose callee's initial situation has native code
+//!   (and whose arguments fit the callee's frame) pushes the callee's
+//!   frame (no Rust recursion, no term), the callee's final variant resumes
+//!   the caller, whose exit arcs match it natively; every other call, and
+//!   every step that lets the machine see its state (an action performed,
+//!   a situation handed over, `get`/`set`/`inc` through the machine), first
+//!   makes the native frames machine frames and writes the locals back
+//!   (`nat_hand_over`), and reads the locals again after the machine's
+//!   call. A call with an output argument (`_`) is always the machine's,
+//!   its term built with the fresh variable made for the visit.
+//! - *the pipe* ([`pipe`]): read into a variable in_arg's register with a
+//!   checked conversion, written back where an out_arg sets it.
+//!
+//! What is not (yet) native keeps a situation on its term code: an
+//! evaluated DM call, an in_arg that is a pattern, `prog`, expectations that change variables,
+//! conditional expressions (`A -> B ; C` as a value), a register read
+//! natively before it is set, narrowing a `ground` value to a shape,
+//! arithmetic other than integer comparisons. `--explain-types` says which
+//! and why, per situation.
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 
 use super::Gen;
+
+mod call;
+mod frame;
+mod pipe;
 use crate::ir::IrDm;
 use crate::mir::ty::{DmTypes, SitTypes};
 use crate::mir::{Action, ArcPlan, Build, Cond, Ev, Init, KindPlan, Next, Reg, SitPlan, ID};
@@ -76,7 +96,7 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_runtime::machine::Kind;
 use sitlog_runtime::native::Ty;
-use sitlog_runtime::{ArithCmp, Term, Value};
+use sitlog_runtime::{Term, Value};
 use sitlog_syntax::{atoms, Atom};
 use std::collections::HashMap;
 
@@ -272,11 +292,15 @@ pub(super) struct NativeCode {
     pub native_sits: usize,
     /// Per situation, why it has no native code (`None`: it has).
     pub why: Vec<Option<String>>,
+    /// Whether a call of the DM may push its frame on the native stack:
+    /// its initial situation has native code and its locals are in the
+    /// frame.
+    pub callee_ok: bool,
 }
 
 /// A situation's native code: its variant's fields, the visit, its id as
 /// a term.
-type SitCode = (Vec<(Reg, Ty)>, TokenStream, TokenStream);
+type SitCode = (Vec<(Reg, Ty)>, TokenStream, TokenStream, Option<call::Wait>);
 
 struct Dm<'a> {
     dm: &'a IrDm,
@@ -287,15 +311,332 @@ struct Dm<'a> {
     /// Per situation, whether it has native code (else a next situation
     /// that selects it is handed to the machine).
     native: Vec<bool>,
+    /// The DM's index, its locals' names and types (frame fields `l0..`).
+    ix: usize,
+    locals: Vec<(Atom, Ty)>,
+    /// Whether the locals are held in the frame (each has a native type);
+    /// else the DM is never a native callee.
+    locals_ok: bool,
+    /// Code run before native code hands over to the machine: the native
+    /// stack below materialized, the locals written back (`frame`).
+    hand: TokenStream,
+    /// Calls made as if no callee were native (deciding native-ness).
+    shallow: bool,
+    /// The arc's out_arg, set where its next situation is handed over.
+    out: std::cell::RefCell<TokenStream>,
+}
+
+impl Dm<'_> {
+    /// The parameters the situations with native code read.
+    fn read_params(&self) -> std::collections::BTreeSet<usize> {
+        (0..self.plans.len())
+            .filter(|&ix| self.native[ix])
+            .flat_map(|ix| {
+                let st = &self.types[ix];
+                self.plans[ix]
+                    .inits
+                    .iter()
+                    .filter_map(move |(r, i)| match i {
+                        Init::HeadArg(p)
+                            if !st.unbound.get(*r as usize).copied().unwrap_or(false) =>
+                        {
+                            Some(*p)
+                        }
+                        _ => None,
+                    })
+            })
+            .collect()
+    }
 }
 
 impl Gen<'_> {
     /// The native code of DM `dm_ix`, or why it has none.
     pub(super) fn native_code(&self, dm: &IrDm, dm_ix: usize, t: &DmTypes) -> N<NativeCode> {
+        self.native_code_with(dm, dm_ix, t, false)
+    }
+
+    /// [`Gen::native_code`]; `shallow`: every DM call handed to the machine
+    /// (whether a DM is native does not depend on its callees).
+    fn native_code_with(
+        &self,
+        dm: &IrDm,
+        dm_ix: usize,
+        t: &DmTypes,
+        shallow: bool,
+    ) -> N<NativeCode> {
         let rt = quote!(::sitlog_runtime);
         // `ground` is held as a `Val`, converted where it enters (a
         // parameter at entry); `term` as a ground handle.
         let t = &unread_as_term_dm(t);
+        let (d, why, code) = self.nat_dm_fix(dm, dm_ix, t, shallow)?;
+        // With no situation native, `items` is never emitted (the caller
+        // looks at `native_sits`); `why` says why for each.
+        // Parameters, converted at entry (those native situations read),
+        // the others held as the machine's terms (see `nat_dm_fix`).
+        let mut loads = Vec::new();
+        let read = d.read_params();
+        for (i, p) in d.params.iter().enumerate() {
+            let name = format_ident!("p{}", i);
+            let ix = Literal::usize_unsuffixed(i);
+            if !read.contains(&i) {
+                loads.push(quote! {
+                    let ::std::option::Option::Some(#name) = cx.param(#ix).map(#rt::native::Ground) else {
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    };
+                });
+                continue;
+            }
+            let ty = rust_ty(p)?;
+            loads.push(quote! {
+                let ::std::option::Option::Some(#name) = cx
+                    .param(#ix)
+                    .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
+                else {
+                    return ::std::result::Result::Ok(::std::option::Option::None);
+                };
+            });
+        }
+        // Locals, read from the machine's frame at entry.
+        for (i, (name, ty)) in d.locals.iter().enumerate() {
+            let ty = rust_ty(ty)?;
+            let l = format_ident!("l{}", i);
+            let a = self.atom_native(*name)?;
+            loads.push(quote! {
+                let ::std::option::Option::Some(#l) = cx
+                    .local(#a)
+                    .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
+                else {
+                    return ::std::result::Result::Ok(::std::option::Option::None);
+                };
+            });
+        }
+        let mut variants = Vec::new();
+        let mut arms = Vec::new();
+        let mut id_arms = Vec::new();
+        let mut entries = Vec::new();
+        let mut exit_arms = Vec::new();
+        let mut wait_arms = Vec::new();
+        for (ix, c) in code.iter().enumerate() {
+            let Some((fields, body, id, wait)) = c else {
+                continue;
+            };
+            let v = variant(ix);
+            let decls = fields
+                .iter()
+                .map(|(r, ty)| {
+                    let (r, ty) = (reg(*r), rust_ty(ty)?);
+                    Ok(quote!(#r: #ty))
+                })
+                .collect::<N<Vec<_>>>()?;
+            let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
+            let doc = format!(" `{}`", self.store.writeq(self.nat_id_of(&d, ix)));
+            variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
+            id_arms.push(quote!(Nat::#v { #(#names),* } => #id));
+            arms.push(quote!(Nat::#v { #(#names),* } => 'visit: { #body }));
+            if let Some(w) = wait {
+                variants.push(w.variant.clone());
+                id_arms.push(w.id_arm.clone());
+                exit_arms.push(w.exit_arm.clone());
+                wait_arms.push(w.wait_arm.clone());
+            }
+            // Entered by the machine: the fields from the value that
+            // selected it, converted (else the term code runs it).
+            let ixl = Literal::u32_unsuffixed(ix as u32);
+            let mut conv = Vec::new();
+            for (r, ty) in fields {
+                let path: Vec<usize> = match d.plans[ix].inits.iter().find(|(x, _)| x == r) {
+                    Some((_, Init::IdArg(a))) => vec![*a],
+                    Some((_, Init::IdPath(p))) => p.to_vec(),
+                    _ => return Err("an id field has no place in the id".into()),
+                };
+                let rr = reg(*r);
+                let ty = rust_ty(ty)?;
+                let path = path.iter().map(|&k| Literal::usize_unsuffixed(k));
+                conv.push(quote! {
+                    let ::std::option::Option::Some(#rr) = #rt::native::id_part(cx.store_ref(), id, &[#(#path),*])
+                        .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
+                    else {
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    };
+                });
+            }
+            // The pipe read there converts, else the term code runs it.
+            let pipe = self.nat_pipe_entry(&d, ix)?;
+            entries.push(if fields.is_empty() {
+                quote!(#ixl => { #pipe Nat::#v {} })
+            } else {
+                quote!(#ixl => {
+                    let ::std::option::Option::Some(id) = cx.selected() else {
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    };
+                    #(#conv)*
+                    #pipe
+                    Nat::#v { #(#names),* }
+                })
+            });
+        }
+        let frame = self.nat_frame_items(&d, &wait_arms)?;
+        let field_names = frame.names.clone();
+        let variant_d = format_ident!("D{}", dm_ix);
+        let hand = &d.hand;
+        // The machine wants control (garbage, a stop asked): the situation
+        // reached is handed over as its id.
+        let gc = quote! {
+            if cx.gc_due() {
+                #hand
+                cx.count_transitions(count);
+                let id = at.id_term(p, cx.store());
+                return ::std::result::Result::Ok(::std::option::Option::Some(#rt::machine::Step::Goto(id)));
+            }
+        };
+        let frame_items = frame.items;
+        let doc = format!(
+            " Runs DM `{}` natively from situation `sit` (see \
+             `sitlog_compiler::codegen::native`); `None`, nothing done, when the \
+             situation has no native code, a history is kept or observed, or a \
+             parameter, local, id argument or the pipe does not convert.",
+            dm.name.as_str()
+        );
+        let items = quote! {
+            /// The DM's situations that have native code, as native values:
+            /// the fields are the id's variables.
+            #[allow(dead_code, non_camel_case_types, clippy::all)]
+            #[derive(Clone, Debug)]
+            pub enum Nat {
+                #(#variants)*
+                /// No situation (a frame's place while it runs).
+                Moved {},
+            }
+
+            #[allow(unused_variables, unreachable_patterns, clippy::all)]
+            impl Nat {
+                /// The situation's id as a term.
+                pub(crate) fn id_term(&self, p: &super::Program, store: &mut #rt::Store) -> #rt::Term {
+                    let a = &p.atoms;
+                    match self {
+                        #(#id_arms)*
+                        Nat::Moved {} => #rt::Term::NIL,
+                    }
+                }
+            }
+
+            #frame_items
+
+            /// Runs the frame on top of the native stack until it calls a DM
+            /// (`call` set), ends in a final situation below the base
+            /// (`Ok(None)`), or hands over to the machine (`Ok(Some(step))`).
+            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, unused_labels, irrefutable_let_patterns, unreachable_patterns, unused_braces, break_with_label_and_loop, clippy::all)]
+            pub(crate) fn nat_step(
+                p: &super::Program,
+                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                frame: &mut Frame,
+                ret: ::std::option::Option<super::NatFrame>,
+                stack: &mut ::std::vec::Vec<super::NatFrame>,
+                call: &mut ::std::option::Option<super::NatFrame>,
+                run: &#rt::machine::TypedRun,
+            ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
+                let a = &p.atoms;
+                let Frame { #(#field_names,)* at: slot } = frame;
+                // Transitions done, not yet given to the machine.
+                let mut count: u64 = 0;
+                // A final reached below the base, or a call made.
+                let mut done = false;
+                let mut at = ::std::mem::replace(slot, Nat::Moved {});
+                if let ::std::option::Option::Some(ret) = ret {
+                    at = match at {
+                        #(#exit_arms)*
+                        _ => return ::std::result::Result::Err(cx.error("native code resumed a situation that waits for no DM", ::std::option::Option::None)),
+                    };
+                    if done {
+                        cx.count_transitions(count);
+                        *slot = at;
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    }
+                    #gc
+                }
+                loop {
+                    at = match at {
+                        #(#arms)*
+                        _ => return ::std::result::Result::Err(cx.error("native code visited a waiting situation", ::std::option::Option::None)),
+                    };
+                    if done {
+                        cx.count_transitions(count);
+                        *slot = at;
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    }
+                    #gc
+                }
+            }
+
+            #[doc = #doc]
+            #[allow(unused_variables, unused_mut, unused_parens, unused_labels, unreachable_code, clippy::all)]
+            pub fn run_native(
+                p: &super::Program,
+                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                sit: #rt::machine::SitIx,
+            ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
+                let run = cx.typed_run();
+                if run.records {
+                    return ::std::result::Result::Ok(::std::option::Option::None);
+                }
+                let a = &p.atoms;
+                let at = match sit {
+                    #(#entries)*
+                    _ => return ::std::result::Result::Ok(::std::option::Option::None),
+                };
+                cx.materialize_frames();
+                #(#loads)*
+                let frame = Frame { #(#field_names,)* at };
+                super::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run)
+                    .map(::std::option::Option::Some)
+            }
+        };
+        let first = quote! {
+            // The situation runs natively when it has native code, its id's
+            // arguments and the DM's parameters convert, and no history is
+            // kept or observed.
+            if let ::std::option::Option::Some(step) = run_native(p, cx, sit)? {
+                return ::std::result::Result::Ok(step);
+            }
+        };
+        // Counted on inference's types: a register that holds no value
+        // (`never`: `_`, a parameter or id part nothing reads) is native
+        // there although native code may carry a term in its place.
+        let native: Vec<&SitTypes> = t
+            .sits
+            .iter()
+            .flatten()
+            .zip(&d.native)
+            .filter(|(st, &n)| n && st.regs.iter().all(|r| r.ty.is_native()))
+            .map(|(st, _)| st)
+            .collect();
+        let fixed_shapes = native
+            .iter()
+            .filter(|st| !st.regs.iter().any(|r| holds_val(&r.ty)))
+            .count();
+        Ok(NativeCode {
+            items,
+            first,
+            callee_ok: d.native.first().copied().unwrap_or(false) && d.locals_ok,
+            on_native_values: native.len(),
+            fixed_shapes,
+            native_sits: d.native.iter().filter(|&&n| n).count(),
+            why,
+        })
+    }
+
+    /// The plans and types native code of DM `dm_ix` works from (`t` with
+    /// unread registers as `term`), which situations have native code and
+    /// their code, or why the DM has none; why each other situation has
+    /// none.
+    #[allow(clippy::type_complexity)]
+    fn nat_dm_fix<'a>(
+        &'a self,
+        dm: &'a IrDm,
+        dm_ix: usize,
+        t: &DmTypes,
+        shallow: bool,
+    ) -> N<(Dm<'a>, Vec<Option<String>>, Vec<Option<SitCode>>)> {
         let mut plans = Vec::new();
         let mut types = Vec::new();
         // Per situation, why it has no native code (`None`: it may).
@@ -335,13 +676,25 @@ impl Gen<'_> {
             plans.push(plan);
             types.push(st);
         }
+        // The locals, held in the frame when each has a native type.
+        let (locals, locals_ok) = match self.nat_locals(dm, t) {
+            Ok(l) => (l, true),
+            Err(_) => (Vec::new(), false),
+        };
         let mut d = Dm {
             dm,
             plans,
             types,
             params: t.params.iter().map(|p| p.ty.clone()).collect(),
             native: why.iter().map(Option::is_none).collect(),
+            ix: dm_ix,
+            locals,
+            locals_ok,
+            hand: quote!(),
+            shallow,
+            out: std::cell::RefCell::new(quote!()),
         };
+        d.hand = self.nat_hand(&d)?;
         // Each situation's code, given which others have native code (a
         // next situation without is handed to the machine): a fixpoint,
         // since a situation that fails only makes others hand over more.
@@ -356,7 +709,10 @@ impl Gen<'_> {
                 let c = self.nat_fields(&d, ix).and_then(|fields| {
                     let body = self.native_visit(&d, ix, &fields)?;
                     let (id_stmts, id) = self.nat_id_term(&d, ix, quote!(store))?;
-                    Ok((fields, body, quote!({ #(#id_stmts)* #id })))
+                    // A recursive situation waiting for its callee: its own
+                    // variant.
+                    let wait = self.nat_wait_variant(&d, ix)?;
+                    Ok((fields, body, quote!({ #(#id_stmts)* #id }), wait))
                 });
                 match c {
                     Ok(c) => code[ix] = Some(c),
@@ -371,178 +727,17 @@ impl Gen<'_> {
                 break;
             }
         }
-        // With no situation native, `items` is never emitted (the caller
-        // looks at `native_sits`); `why` says why for each.
-        // Parameters, converted at entry (those of a native type).
-        let mut loads = Vec::new();
-        let read: std::collections::BTreeSet<usize> = (0..d.plans.len())
-            .filter(|&ix| d.native[ix])
-            .flat_map(|ix| {
-                let st = &d.types[ix];
-                d.plans[ix].inits.iter().filter_map(move |(r, i)| match i {
-                    Init::HeadArg(p) if !st.unbound.get(*r as usize).copied().unwrap_or(false) => {
-                        Some(*p)
-                    }
-                    _ => None,
-                })
-            })
-            .collect();
-        for (i, p) in t.params.iter().enumerate() {
-            if !read.contains(&i) {
-                continue;
+        // The frame's parameters: those native situations read, of their
+        // type (converted at entry); the others held as the machine's
+        // terms (`Ground`, unchecked: read only to rebuild the call term of
+        // a native callee, whose arguments are native values).
+        let read = d.read_params();
+        for (i, ty) in d.params.iter_mut().enumerate() {
+            if !read.contains(&i) || rust_ty(ty).is_err() {
+                *ty = Ty::Term;
             }
-            let Ok(ty) = rust_ty(&p.ty) else { continue };
-            let name = format_ident!("p{}", i);
-            let ix = Literal::usize_unsuffixed(i);
-            loads.push(quote! {
-                let ::std::option::Option::Some(#name) = cx
-                    .param(#ix)
-                    .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
-                else {
-                    return ::std::result::Result::Ok(::std::option::Option::None);
-                };
-            });
         }
-        let mut variants = Vec::new();
-        let mut arms = Vec::new();
-        let mut id_arms = Vec::new();
-        let mut entries = Vec::new();
-        for (ix, c) in code.iter().enumerate() {
-            let Some((fields, body, id)) = c else {
-                continue;
-            };
-            let v = variant(ix);
-            let decls = fields
-                .iter()
-                .map(|(r, ty)| {
-                    let (r, ty) = (reg(*r), rust_ty(ty)?);
-                    Ok(quote!(#r: #ty))
-                })
-                .collect::<N<Vec<_>>>()?;
-            let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
-            let doc = format!(" `{}`", self.store.writeq(self.nat_id_of(&d, ix)));
-            variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
-            id_arms.push(quote!(Nat::#v { #(#names),* } => #id));
-            arms.push(quote!(Nat::#v { #(#names),* } => { #body }));
-            // Entered by the machine: the fields from the value that
-            // selected it, converted (else the term code runs it).
-            let ixl = Literal::u32_unsuffixed(ix as u32);
-            let mut conv = Vec::new();
-            for (r, ty) in fields {
-                let path: Vec<usize> = match d.plans[ix].inits.iter().find(|(x, _)| x == r) {
-                    Some((_, Init::IdArg(a))) => vec![*a],
-                    Some((_, Init::IdPath(p))) => p.to_vec(),
-                    _ => return Err("an id field has no place in the id".into()),
-                };
-                let rr = reg(*r);
-                let ty = rust_ty(ty)?;
-                let path = path.iter().map(|&k| Literal::usize_unsuffixed(k));
-                conv.push(quote! {
-                    let ::std::option::Option::Some(#rr) = #rt::native::id_part(cx.store_ref(), id, &[#(#path),*])
-                        .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
-                    else {
-                        return ::std::result::Result::Ok(::std::option::Option::None);
-                    };
-                });
-            }
-            entries.push(if fields.is_empty() {
-                quote!(#ixl => Nat::#v {},)
-            } else {
-                quote!(#ixl => {
-                    let ::std::option::Option::Some(id) = cx.selected() else {
-                        return ::std::result::Result::Ok(::std::option::Option::None);
-                    };
-                    #(#conv)*
-                    Nat::#v { #(#names),* }
-                })
-            });
-        }
-        let doc = format!(
-            " Runs DM `{}` natively from situation `sit` (see \
-             `sitlog_compiler::codegen::native`); `None`, nothing done, when the \
-             situation has no native code, a history is kept or observed, or a \
-             parameter or id argument does not convert.",
-            dm.name.as_str()
-        );
-        let items = quote! {
-            /// The DM's situations that have native code, as native values:
-            /// the fields are the id's variables.
-            #[allow(dead_code, non_camel_case_types, clippy::all)]
-            #[derive(Clone, Debug)]
-            pub enum Nat { #(#variants)* }
-
-            #[allow(unused_variables, clippy::all)]
-            impl Nat {
-                /// The situation's id as a term.
-                fn id_term(&self, p: &super::Program, store: &mut #rt::Store) -> #rt::Term {
-                    let a = &p.atoms;
-                    match self { #(#id_arms)* }
-                }
-            }
-
-            #[doc = #doc]
-            #[allow(unused_variables, unused_mut, unused_parens, unused_labels, unreachable_code, clippy::all)]
-            pub fn run_native(
-                p: &super::Program,
-                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
-                sit: #rt::machine::SitIx,
-            ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
-                let run = cx.typed_run();
-                if run.records {
-                    return ::std::result::Result::Ok(::std::option::Option::None);
-                }
-                let a = &p.atoms;
-                let mut at = match sit {
-                    #(#entries)*
-                    _ => return ::std::result::Result::Ok(::std::option::Option::None),
-                };
-                cx.materialize_frames();
-                #(#loads)*
-                // Transitions done, not yet given to the machine.
-                let mut count: u64 = 0;
-                loop {
-                    at = match at { #(#arms)* };
-                    // The machine wants control (garbage, a stop asked):
-                    // the situation reached is handed over as its id.
-                    if cx.gc_due() {
-                        cx.count_transitions(count);
-                        let id = at.id_term(p, cx.store());
-                        return ::std::result::Result::Ok(::std::option::Option::Some(#rt::machine::Step::Goto(id)));
-                    }
-                }
-            }
-        };
-        let first = quote! {
-            // The situation runs natively when it has native code, its id's
-            // arguments and the DM's parameters convert, and no history is
-            // kept or observed.
-            if let ::std::option::Option::Some(step) = run_native(p, cx, sit)? {
-                return ::std::result::Result::Ok(step);
-            }
-        };
-        // Counted on inference's types: a register that holds no value
-        // (`never`: `_`, a parameter or id part nothing reads) is native
-        // there although native code may carry a term in its place.
-        let native: Vec<&SitTypes> = t
-            .sits
-            .iter()
-            .flatten()
-            .zip(&d.native)
-            .filter(|(st, &n)| n && st.regs.iter().all(|r| r.ty.is_native()))
-            .map(|(st, _)| st)
-            .collect();
-        let fixed_shapes = native
-            .iter()
-            .filter(|st| !st.regs.iter().any(|r| holds_val(&r.ty)))
-            .count();
-        Ok(NativeCode {
-            items,
-            first,
-            on_native_values: native.len(),
-            fixed_shapes,
-            native_sits: d.native.iter().filter(|&&n| n).count(),
-            why,
-        })
+        Ok((d, why, code))
     }
 
     fn nat_id_of(&self, d: &Dm, ix: usize) -> Term {
@@ -683,14 +878,11 @@ impl Gen<'_> {
         let rt = quote!(::sitlog_runtime);
         let plan = d.plans[ix];
         let st = &d.types[ix];
-        if plan.in_arg.is_some() {
-            return Err("it has an in_arg (the pipe)".into());
-        }
-        if plan.out_arg.is_some() {
-            return Err("it has an out_arg (the pipe)".into());
-        }
         if plan.prog.is_some() {
             return Err("it has a prog".into());
+        }
+        if matches!(plan.in_arg, Some((_, true, _))) {
+            return Err("its in_arg is a pattern (the pipe)".into());
         }
         // Where each register's value lives: a field, a parameter, a local.
         let mut regs: Regs = fields
@@ -714,7 +906,10 @@ impl Gen<'_> {
                             .ok_or("a head argument out of range")?,
                     };
                     if pv.ty == ty {
-                        regs.insert(*r, (p, ty));
+                        // A copy (the frame's field is a reference here).
+                        let rr = reg(*r);
+                        stmts.push(quote!(let #rr = #p.clone();));
+                        regs.insert(*r, (rr, ty));
                     } else {
                         let e = coerce(&pv, &ty)?;
                         let rr = reg(*r);
@@ -722,8 +917,18 @@ impl Gen<'_> {
                         regs.insert(*r, (rr, ty));
                     }
                 }
-                Init::Pipe => return Err(format!("situation {} reads the pipe", ix + 1)),
+                Init::Pipe => {
+                    let ty = st.regs[*r as usize].ty.clone();
+                    stmts.push(self.nat_pipe_in(d, ix, *r, &ty)?);
+                    regs.insert(*r, (reg(*r), ty));
+                }
                 Init::Fresh | Init::IdArg(_) | Init::IdPath(_) => {}
+            }
+        }
+        // A variable in_arg: its register holds the pipe's value.
+        if let Some((Build::Reg(src), false, r)) = &plan.in_arg {
+            if let Some(at) = regs.get(src).cloned() {
+                regs.insert(*r, at);
             }
         }
         let cur = Literal::u32_unsuffixed(ix as u32);
@@ -745,12 +950,50 @@ impl Gen<'_> {
                     }
                     None => quote!(),
                 };
+                let v = variant(ix);
+                let names = fields.iter().map(|(r, _)| reg(*r));
+                // out_arg: the pipe's new value (never unbound here).
+                let (out_set, out_final) = match &plan.out_arg {
+                    Some((b, _)) => {
+                        let v = self.nat_value(b, &regs)?.e;
+                        (
+                            quote! {
+                                let out = #rt::native::Native::to_term(&#v, cx.store());
+                                cx.set_pipe(out);
+                            },
+                            quote! {
+                                let out = #rt::native::Native::to_term(&#v, cx.store());
+                                cx.final_out_arg(::std::option::Option::Some(out))?;
+                            },
+                        )
+                    }
+                    None => (
+                        quote!(),
+                        quote!(cx.final_out_arg(::std::option::Option::None)?;),
+                    ),
+                };
+                // Below the base the caller's exit arcs read the variant
+                // (with a `diag_mod`, the machine takes the final).
+                let hand = &d.hand;
+                let below = if diag_mod.is_none() {
+                    quote! {
+                        if !stack.is_empty() {
+                            #out_set
+                            count += 1;
+                            done = true;
+                            break 'visit Nat::#v { #(#names),* };
+                        }
+                    }
+                } else {
+                    quote!(#hand)
+                };
                 Ok(quote! {
                     #(#stmts)*
+                    #below
                     cx.count_transitions(count);
                     #(#id_stmts)*
                     cx.enter_with_id(#cur, #id);
-                    cx.final_out_arg(::std::option::Option::None)?;
+                    #out_final
                     #diag
                     cx.record(#empty, #empty, ::std::option::Option::None);
                     return ::std::result::Result::Ok(::std::option::Option::Some(#rt::machine::Step::Final));
@@ -763,9 +1006,6 @@ impl Gen<'_> {
                 }
                 let mut regs = regs.clone();
                 for arc in &arcs.arcs {
-                    if arc.out_arg.is_some() {
-                        return Err("its arc has an out_arg (the pipe)".into());
-                    }
                     if arc.diag_mod.is_some() {
                         return Err("its arc has a diag_mod".into());
                     }
@@ -840,7 +1080,9 @@ impl Gen<'_> {
                         let il = Literal::usize_unsuffixed(i);
                         quote!(#il => { let arc_at = ::std::option::Option::Some(#il); #b })
                     });
+                    let hand = &d.hand;
                     quote! {
+                        #hand
                         cx.count_transitions(count);
                         count = 0;
                         #(#id_stmts)*
@@ -867,7 +1109,23 @@ impl Gen<'_> {
                 Ok(quote! { #(#stmts)* #(#fresh)* #body })
             }
             (KindPlan::Final { .. }, _) => Err("a final situation with diag_mod".into()),
-            (KindPlan::Recursive { .. }, _) => Err("a recursive situation (a DM call)".into()),
+            (KindPlan::Recursive { .. }, Kind::Recursive) => {
+                // A fresh variable (an output argument, `_`) is a term made
+                // at the start of the visit when the code uses it, as the
+                // term code makes it; such a call is the machine's.
+                let mut regs = regs.clone();
+                for (r, i) in &plan.inits {
+                    if matches!(i, Init::Fresh) && !regs.contains_key(r) {
+                        regs.insert(*r, (format_ident!("fresh_r{}", r), Ty::Term));
+                    }
+                }
+                let call = self.nat_recursive(d, ix, &regs)?;
+                let mut used = std::collections::BTreeSet::new();
+                fresh_used(&call, &mut used);
+                let fresh = used.iter().map(|x| quote!(let #x = cx.var();));
+                Ok(quote! { #(#stmts)* #(#fresh)* #call })
+            }
+            (KindPlan::Recursive { .. }, _) => Err("a recursive plan of another kind".into()),
         }
     }
 
@@ -886,12 +1144,24 @@ impl Gen<'_> {
             _ => None,
         };
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let hand = &d.hand;
         let enter = quote! {
+            #hand
             cx.count_transitions(count);
             count = 0;
             #(#id_stmts)*
             cx.enter_with_id(#cur, #id);
         };
+        // A fresh variable the action binds (a boundary's value) and the
+        // next situation reads is converted with the checked conversion;
+        // when that fails, or when a local the machine's calls changed no
+        // longer fits the frame, the rest of the arc runs as the term code
+        // runs it (live native values as terms).
+        let reloads = atom.is_none() && !d.locals.is_empty();
+        let conv = self.nat_bound_at_boundary(st, &arc.next, &regs, reloads)?;
+        if conv.is_some() && arc.out_arg.is_some() {
+            return Err("its arc has an out_arg and a value bound at a boundary".into());
+        }
         match atom {
             Some(action) => {
                 let act = self.atom_native(action)?;
@@ -933,11 +1203,10 @@ impl Gen<'_> {
             }
         }
         stmts.push(quote!(count += 1;));
-        // A fresh variable the action bound (a boundary's value)
-        // and the next situation reads: converted with the checked
-        // conversion; when that fails, the rest of the arc runs as
-        // the term code runs it (live native values as terms).
-        let conv = self.nat_bound_at_boundary(st, &arc.next, &regs)?;
+        // What the machine's calls changed of the locals, read again.
+        if let (Some((fallback, _)), None) = (&conv, atom) {
+            stmts.push(self.nat_reload_locals(d, fallback)?);
+        }
         if let Some((fallback, conv)) = conv {
             for (r, ty) in conv {
                 let (x, _) = regs[&r].clone();
@@ -952,8 +1221,28 @@ impl Gen<'_> {
             }
         }
         let name = self.atom_native(plan.id.0)?;
-        let next = self.nat_next(d, ix, &arc.next, &regs, &name)?;
+        let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &name)?;
         Ok(quote! { #(#stmts)* #next })
+    }
+
+    /// The frame's locals read again from the machine's frame after its
+    /// calls (`get`/`set`/`inc`, the evaluator) may have changed them;
+    /// one that no longer converts: `fallback` (the term code's way on).
+    fn nat_reload_locals(&self, d: &Dm, fallback: &TokenStream) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let mut out = Vec::new();
+        for (i, (name, ty)) in d.locals.iter().enumerate() {
+            let l = format_ident!("l{}", i);
+            let a = self.atom_native(*name)?;
+            let ty = rust_ty(ty)?;
+            out.push(quote! {
+                match cx.local(#a).and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t)) {
+                    ::std::option::Option::Some(v) => *#l = v,
+                    ::std::option::Option::None => #fallback,
+                }
+            });
+        }
+        Ok(quote!(#(#out)*))
     }
 
     /// The term of `b` built from native values (a boundary: an effector's
@@ -1115,13 +1404,15 @@ impl Gen<'_> {
 
     /// The fresh variables an action bound (made as terms for it) that
     /// `next` reads, with their types, and the code that runs the rest of
-    /// the arc as the term code does (`None`: `next` reads none).
+    /// the arc as the term code does (`None`: `next` reads none and
+    /// `always` is false).
     #[allow(clippy::type_complexity)]
     fn nat_bound_at_boundary(
         &self,
         st: &SitTypes,
         next: &Next,
         regs: &Regs,
+        always: bool,
     ) -> N<Option<(TokenStream, Vec<(Reg, Ty)>)>> {
         let rt = quote!(::sitlog_runtime);
         let at = quote!(arc_at);
@@ -1135,7 +1426,7 @@ impl Gen<'_> {
             .filter(|r| regs.get(r).is_some_and(|(x, _)| is_fresh(x)))
             .map(|&r| (r, st.regs[r as usize].ty.clone()))
             .collect();
-        if conv.is_empty() {
+        if conv.is_empty() && !always {
             return Ok(None);
         }
         let mut lets = Vec::new();
@@ -1226,6 +1517,8 @@ impl Gen<'_> {
                         ty: Ty::Int,
                     })
                 }
+                // A constant list of atoms or of ints, built natively.
+                Value::Compound(..) => self.nat_const_list(*t),
                 _ => Err(format!(
                     "constant `{}` is not native yet",
                     self.store.writeq(*t)
@@ -1238,6 +1531,65 @@ impl Gen<'_> {
             }
             Build::Compound(..) => Err("a compound value is not native yet".into()),
         }
+    }
+
+    /// A ground list of atoms or of ints (`[x, y]`, `[1, 2]`) as a native list.
+    /// Built once per thread and shared (`Rc`): no allocation per use.
+    fn nat_const_list(&self, t: Term) -> N<V> {
+        let v = self.nat_const_list_in(t)?;
+        let (e, rty) = (v.e, rust_ty(&v.ty)?);
+        Ok(V {
+            e: quote!({
+                ::std::thread_local! { static K: #rty = #e; }
+                K.with(|k| k.clone())
+            }),
+            ty: v.ty,
+        })
+    }
+
+    /// The list's value, its atoms interned by name (no `Program` in scope).
+    fn nat_const_list_in(&self, t: Term) -> N<V> {
+        let rt = quote!(::sitlog_runtime);
+        let not = || format!("constant `{}` is not native yet", self.store.writeq(t));
+        let items = self.store.list_to_vec(t).ok_or_else(not)?;
+        let mut vals = Vec::new();
+        for &x in &items {
+            match self.store.value(x) {
+                Value::Atom(a) if a != atoms::NIL => {
+                    let lit = Literal::string(a.as_str());
+                    vals.push(V {
+                        e: quote!(#rt::Atom::intern(#lit)),
+                        ty: Ty::Sym,
+                    })
+                }
+                Value::Atom(_) => vals.push(self.nat_value(&Build::Const(x), &Regs::new())?),
+                Value::Int(i) => {
+                    let i = Literal::i64_suffixed(i);
+                    vals.push(V {
+                        e: quote!(#i),
+                        ty: Ty::Int,
+                    })
+                }
+                Value::Compound(..) => vals.push(self.nat_const_list_in(x)?),
+                _ => return Err(not()),
+            }
+        }
+        // The elements' type: the first that is not `[]`'s.
+        let ty = vals
+            .iter()
+            .map(|v| v.ty.clone())
+            .find(|t| *t != Ty::list(Ty::Never))
+            .or_else(|| vals.first().map(|v| v.ty.clone()))
+            .ok_or_else(not)?;
+        let es = vals
+            .iter()
+            .map(|v| coerce(v, &ty).map_err(|_| not()))
+            .collect::<N<Vec<_>>>()?;
+        let rty = rust_ty(&ty)?;
+        Ok(V {
+            e: quote!(#rt::native::List::<#rty>::from_vec(::std::vec![#(#es),*])),
+            ty: Ty::list(ty),
+        })
     }
 
     fn nat_ev_value(&self, e: &Ev, regs: &Regs) -> N<V> {
@@ -1253,22 +1605,11 @@ impl Gen<'_> {
         }
     }
 
-    fn nat_cond(&self, c: &Cond, regs: &Regs) -> N<TokenStream> {
+    fn nat_cond(&self, d: &Dm, cur: usize, c: &Cond, regs: &Regs) -> N<TokenStream> {
         match c {
             Cond::Arith(op, l, r) => {
                 let (l, r) = (self.nat_ev_value(l, regs)?, self.nat_ev_value(r, regs)?);
-                if l.ty != Ty::Int || r.ty != Ty::Int {
-                    return Err("an arithmetic comparison is not on two ints".into());
-                }
-                let (l, r) = (l.e, r.e);
-                Ok(match op {
-                    ArithCmp::Eq => quote!((#l == #r)),
-                    ArithCmp::Ne => quote!((#l != #r)),
-                    ArithCmp::Lt => quote!((#l < #r)),
-                    ArithCmp::Gt => quote!((#l > #r)),
-                    ArithCmp::Le => quote!((#l <= #r)),
-                    ArithCmp::Ge => quote!((#l >= #r)),
-                })
+                self.nat_arith(d, cur, *op, l, r)
             }
             Cond::Other(Build::Compound(op, args))
                 if args.len() == 2 && matches!(op.as_str(), "==" | "\\==") =>
@@ -1307,9 +1648,13 @@ impl Gen<'_> {
             {
                 // A situation without native code: the machine enters it.
                 let a = self.atom_native(self.store.atom_of(*t).unwrap_or(atoms::NIL))?;
+                let hand = &d.hand;
+                let out = d.out.borrow().clone();
                 Ok(quote! {{
+                    #hand
                     cx.count_transitions(count);
                     cx.enter(#curl, #cur_name);
+                    #out
                     return cx.goto(#rt::Term::atom(#a), arc_at).map(::std::option::Option::Some);
                 }})
             }
@@ -1323,9 +1668,13 @@ impl Gen<'_> {
             Next::Static(t, None) if self.store.atom_of(*t).is_some() => {
                 // No situation has this name: the machine says so.
                 let a = self.atom_native(self.store.atom_of(*t).unwrap_or(atoms::NIL))?;
+                let hand = &d.hand;
+                let out = d.out.borrow().clone();
                 Ok(quote! {{
+                    #hand
                     cx.count_transitions(count);
                     cx.enter(#curl, #cur_name);
+                    #out
                     return cx.goto(#rt::Term::atom(#a), arc_at).map(::std::option::Option::Some);
                 }})
             }
@@ -1343,7 +1692,7 @@ impl Gen<'_> {
                 self.nat_select(d, cur, name, vals, cur_name)
             }
             Next::If(c, a, b) => {
-                let c = self.nat_cond(c, regs)?;
+                let c = self.nat_cond(d, cur, c, regs)?;
                 let a = self.nat_next(d, cur, a, regs, cur_name)?;
                 let b = self.nat_next(d, cur, b, regs, cur_name)?;
                 Ok(quote!(if #c { #a } else { #b }))
@@ -1356,7 +1705,9 @@ impl Gen<'_> {
                 // its value converted with the checked conversion; when
                 // that fails, the whole value goes to the machine as a term.
                 let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+                let hand = &d.hand;
                 let mut pre = vec![quote! {
+                    #hand
                     cx.count_transitions(count);
                     count = 0;
                     #(#id_stmts)*
@@ -1384,9 +1735,11 @@ impl Gen<'_> {
                     })
                     .collect();
                 let f = self.functor_native(*name)?;
+                let out = d.out.borrow().clone();
                 let fallback = quote! {{
                     let ts = [#(#terms),*];
                     let value = #rt::native::compound(cx.store(), #f, &ts);
+                    #out
                     return cx.goto(value, arc_at).map(::std::option::Option::Some);
                 }};
                 let mut vals = Vec::new();
@@ -1407,6 +1760,8 @@ impl Gen<'_> {
                         }
                     }
                 }
+                // What the evaluator changed of the locals, read again.
+                pre.push(self.nat_reload_locals(d, &fallback)?);
                 let sel = self.nat_select(d, cur, *name, vals, cur_name)?;
                 Ok(quote!({ #(#pre)* #sel }))
             }
@@ -1539,6 +1894,8 @@ impl Gen<'_> {
             candidates.push(code);
         }
         let f = self.atom_native(name)?;
+        let hand = &d.hand;
+        let out = d.out.borrow().clone();
         let arg_terms: Vec<Ident> = (0..args.len()).map(|i| format_ident!("w{}", i)).collect();
         Ok(quote! {
             'sel: {
@@ -1546,10 +1903,12 @@ impl Gen<'_> {
                 #(#candidates)*
                 // No situation takes it here: the machine selects (or says
                 // that none does).
+                #hand
                 cx.count_transitions(count);
                 cx.enter(#curl, #cur_name);
                 #(let #arg_terms = #rt::native::Native::to_term(&#arg_names, cx.store());)*
                 let value = #rt::native::compound(cx.store(), #f, &[#(#arg_terms),*]);
+                #out
                 return cx.goto(value, arc_at).map(::std::option::Option::Some);
             }
         })
@@ -1832,6 +2191,17 @@ fn cons(h: V, t: V) -> N<V> {
     let ty = match &t.ty {
         Ty::List(e) if **e == Ty::Never => Ty::list(h.ty.clone()),
         Ty::List(e) if **e == h.ty => t.ty.clone(),
+        // An atom or int among ground terms: its term.
+        Ty::List(e) if **e == Ty::Term && matches!(h.ty, Ty::Sym | Ty::Int) => {
+            let head = coerce(&h, &Ty::Term)?;
+            return cons(
+                V {
+                    e: head,
+                    ty: Ty::Term,
+                },
+                t,
+            );
+        }
         _ => return Err(format!("`[_|_]` of {} and {}", h.ty, t.ty)),
     };
     let rt = ty.clone();

@@ -1,0 +1,365 @@
+//! Native frames and the program's native driver (phase 5 of
+//! `docs/design/typed-mir.md`, for native DMs): each native DM's `Frame`
+//! (its parameters `p0..`, its locals `l0..` and the situation it is in,
+//! all native values), and in the program's module `enum NatFrame` (a
+//! variant per native DM), `nat_drive` (the explicit stack of native
+//! frames: a call pushes the callee's frame, a final pops it and resumes
+//! the caller with it, no Rust recursion per nested DM, no term built) and
+//! `nat_materialize` (the hand-over: every native frame below the running
+//! one becomes a machine frame, waiting in its recursive situation as the
+//! term code's call would have left it).
+//!
+//! Invariant: the machine's DM stack is the native stack's bottom frame
+//! (the DM the machine entered) and what is below it; native code reads or
+//! writes the machine's frames (an action performed, an error, a value
+//! handed over, a value evaluated on terms) only after `nat_materialize`
+//! and after writing its locals back ([`Dm::hand`]), so the machine sees,
+//! at each such point, the stack and the locals the term path would have.
+
+use super::Gen;
+use super::{rust_ty, Dm, N};
+use crate::ir::{Ir, IrDm};
+use crate::mir::ty::DmTypes;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
+use sitlog_runtime::native::Ty;
+use sitlog_syntax::Atom;
+
+/// A native DM's `Frame` and the functions the driver calls on it.
+pub(super) struct FrameItems {
+    pub items: TokenStream,
+    /// The frame's fields but `at`: `p0.., l0..`.
+    pub names: Vec<Ident>,
+}
+
+impl Gen<'_> {
+    /// The DM's locals with their types, as native code holds them.
+    pub(super) fn nat_locals(&self, dm: &IrDm, t: &DmTypes) -> N<Vec<(Atom, Ty)>> {
+        dm.locals
+            .iter()
+            .map(|(name, _)| {
+                let ty = t
+                    .locals
+                    .iter()
+                    .find(|(n, _)| n == name)
+                    .map_or(Ty::Term, |(_, x)| x.ty.clone());
+                let ty = if ty == Ty::Never { Ty::Term } else { ty };
+                rust_ty(&ty).map_err(|e| format!("local `{}`: {e}", name.as_str()))?;
+                Ok((*name, ty))
+            })
+            .collect()
+    }
+
+    /// The call term of the running frame, from its parameters (bound as
+    /// references `p0..`).
+    fn nat_call_term(&self, d: &Dm) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let name = self.atom_native(d.dm.name)?;
+        let ps: Vec<Ident> = (0..d.params.len())
+            .map(|i| format_ident!("p{}", i))
+            .collect();
+        let ts: Vec<Ident> = (0..d.params.len())
+            .map(|i| format_ident!("pt{}", i))
+            .collect();
+        Ok(quote! {{
+            #(let #ts = #rt::native::Native::to_term(&*#ps, cx.store());)*
+            #rt::native::compound(cx.store(), #name, &[#(#ts),*])
+        }})
+    }
+
+    /// The locals written back to the machine's frame of this DM.
+    fn nat_write_locals(&self, d: &Dm) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let mut out = Vec::new();
+        for (i, (name, _)) in d.locals.iter().enumerate() {
+            let a = self.atom_native(*name)?;
+            let l = format_ident!("l{}", i);
+            out.push(quote! {
+                let lt = #rt::native::Native::to_term(&*#l, cx.store());
+                cx.set_local(#a, lt);
+            });
+        }
+        Ok(quote!(#(#out)*))
+    }
+
+    /// [`Dm::hand`]: before native code hands over or lets the machine
+    /// see its state, the native frames below become machine frames and
+    /// the locals are written back.
+    pub(super) fn nat_hand(&self, d: &Dm) -> N<TokenStream> {
+        let names = Self::nat_frame_names(d);
+        Ok(quote!(nat_hand_over(p, cx, stack, #(&*#names),*)?;))
+    }
+
+    /// The frame's fields but `at`: `p0.., l0..`.
+    fn nat_frame_names(d: &Dm) -> Vec<Ident> {
+        (0..d.params.len())
+            .map(|i| format_ident!("p{}", i))
+            .chain((0..d.locals.len()).map(|i| format_ident!("l{}", i)))
+            .collect()
+    }
+
+    /// `nat_hand_over`, the code of [`Dm::hand`], out of line.
+    fn nat_hand_fn(&self, d: &Dm) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let call = self.nat_call_term(d)?;
+        let dm = Literal::u32_unsuffixed(d.ix as u32);
+        let locals = self.nat_write_locals(d)?;
+        let names = Self::nat_frame_names(d);
+        let tys = d
+            .params
+            .iter()
+            .chain(d.locals.iter().map(|(_, t)| t))
+            .map(rust_ty)
+            .collect::<N<Vec<_>>>()?;
+        Ok(quote! {
+            /// Before native code hands over or lets the machine see its
+            /// state: the native frames below made machine frames, the
+            /// locals written back.
+            #[cold]
+            #[inline(never)]
+            #[allow(unused_variables, unused_braces, clippy::all)]
+            fn nat_hand_over(
+                p: &super::Program,
+                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                stack: &mut ::std::vec::Vec<super::NatFrame>,
+                #(#names: &#tys,)*
+            ) -> ::std::result::Result<(), #rt::machine::RunError> {
+                let a = &p.atoms;
+                if !stack.is_empty() {
+                    let own_call = #call;
+                    super::nat_materialize(p, cx, stack, own_call, #dm)?;
+                }
+                #locals
+                ::std::result::Result::Ok(())
+            }
+        })
+    }
+
+    /// `struct Frame`, `nat_call_term`, `nat_wait` of a native DM
+    /// (`wait_arms`: per recursive situation, its waiting variant made a
+    /// machine frame's pending situation).
+    pub(super) fn nat_frame_items(&self, d: &Dm, wait_arms: &[TokenStream]) -> N<FrameItems> {
+        let rt = quote!(::sitlog_runtime);
+        let mut names = Vec::new();
+        let mut decls = Vec::new();
+        for (i, ty) in d.params.iter().enumerate() {
+            let n = format_ident!("p{}", i);
+            let ty = rust_ty(ty)?;
+            decls.push(quote!(pub #n: #ty));
+            names.push(n);
+        }
+        for (i, (_, ty)) in d.locals.iter().enumerate() {
+            let n = format_ident!("l{}", i);
+            let ty = rust_ty(ty)?;
+            decls.push(quote!(pub #n: #ty));
+            names.push(n);
+        }
+        let call = self.nat_call_term(d)?;
+        let locals = self.nat_write_locals(d)?;
+        let hand_fn = self.nat_hand_fn(d)?;
+        let items = quote! {
+            #hand_fn
+
+            /// The DM's frame on the native stack: parameters, locals, the
+            /// situation it is in.
+            #[allow(dead_code, clippy::all)]
+            pub struct Frame { #(#decls,)* pub at: Nat }
+
+            /// The DM's call term, from the frame's parameters.
+            #[allow(unused_variables, unused_braces, clippy::all)]
+            pub(crate) fn nat_call_term(
+                p: &super::Program,
+                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                frame: &Frame,
+            ) -> #rt::Term {
+                let a = &p.atoms;
+                let Frame { #(#names,)* .. } = frame;
+                #call
+            }
+
+            /// The frame, waiting for its callee (called as `callee`),
+            /// made the machine's: its locals written back, the callee's
+            /// frame pushed as the term code's call would (the caller's
+            /// registers saved as that code keeps them).
+            #[allow(unused_variables, unreachable_code, unreachable_patterns, clippy::all)]
+            pub(crate) fn nat_wait(
+                p: &super::Program,
+                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                frame: &Frame,
+                callee: #rt::Term,
+                callee_dm: #rt::machine::DmIx,
+            ) -> ::std::result::Result<(), #rt::machine::RunError> {
+                let a = &p.atoms;
+                let Frame { #(#names,)* at } = frame;
+                #locals
+                match at {
+                    #(#wait_arms)*
+                    _ => ::std::result::Result::Err(cx.error(
+                        "native code handed over a frame that waits for no DM",
+                        ::std::option::Option::None,
+                    )),
+                }
+            }
+        };
+        Ok(FrameItems { items, names })
+    }
+
+    /// Whether DM `d` has native code (a `Frame`), and whether a call of
+    /// it may push its frame on the native stack (see
+    /// [`NativeCode::callee_ok`](super::NativeCode)); decided with every
+    /// call handed to the machine, memoized.
+    pub(super) fn native_ok(&self, d: usize) -> (bool, bool) {
+        if let Some(&ok) = self.native_ok.borrow().get(&d) {
+            return ok;
+        }
+        let ok = match (self.ir, &self.mir_types) {
+            (Some(ir), Some(t)) => {
+                let typed = self
+                    .types
+                    .as_ref()
+                    .is_some_and(|ty| super::super::typed::has_typed_code(&ty.dms[d]));
+                match self.native_code_with(&ir.dms[d], d, &t.dms[d], true) {
+                    Ok(n) if !typed && n.native_sits > 0 => (true, n.callee_ok),
+                    _ => (false, false),
+                }
+            }
+            _ => (false, false),
+        };
+        self.native_ok.borrow_mut().insert(d, ok);
+        ok
+    }
+
+    /// The native DM `j`'s plans and types, as its own code sees them,
+    /// when a call of it may push its frame.
+    pub(super) fn nat_dm_of(&self, j: usize) -> Option<Dm<'_>> {
+        let (ir, t) = (self.ir?, self.mir_types.as_ref()?);
+        if !self.native_ok(j).1 {
+            return None;
+        }
+        let t = super::unread_as_term_dm(&t.dms[j]);
+        self.nat_dm_fix(&ir.dms[j], j, &t, true)
+            .ok()
+            .map(|(d, _, _)| d)
+    }
+
+    /// The program's native driver (see the module doc); nothing when no
+    /// DM is native.
+    pub(in crate::codegen) fn native_driver(&self, ir: &Ir, mods: &[Ident]) -> TokenStream {
+        let rt = quote!(::sitlog_runtime);
+        let native: Vec<usize> = (0..ir.dms.len()).filter(|&d| self.native_ok(d).0).collect();
+        if native.is_empty() {
+            return quote!();
+        }
+        let vs: Vec<Ident> = native.iter().map(|d| format_ident!("D{}", d)).collect();
+        let ms: Vec<&Ident> = native.iter().map(|&d| &mods[d]).collect();
+        let fs: Vec<Ident> = native.iter().map(|d| format_ident!("NatF{}", d)).collect();
+        let ns: Vec<Ident> = native.iter().map(|d| format_ident!("NatN{}", d)).collect();
+        let ixs: Vec<Literal> = native
+            .iter()
+            .map(|&d| Literal::u32_unsuffixed(d as u32))
+            .collect();
+        quote! {
+            /// A frame of the native stack: one variant per native DM.
+            #[allow(dead_code, clippy::all)]
+            pub(crate) enum NatFrame { #(#vs(#ms::Frame),)* }
+
+            #(
+                #[allow(dead_code)]
+                pub(crate) type #fs = #ms::Frame;
+                #[allow(dead_code)]
+                pub(crate) type #ns = #ms::Nat;
+            )*
+
+            #[allow(clippy::all)]
+            impl NatFrame {
+                fn step(
+                    &mut self,
+                    p: &Program,
+                    cx: &mut #rt::machine::Cx<'_, '_, Program>,
+                    ret: ::std::option::Option<NatFrame>,
+                    stack: &mut ::std::vec::Vec<NatFrame>,
+                    call: &mut ::std::option::Option<NatFrame>,
+                    run: &#rt::machine::TypedRun,
+                ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
+                    match self { #(NatFrame::#vs(f) => #ms::nat_step(p, cx, f, ret, stack, call, run),)* }
+                }
+                fn call_term(&self, p: &Program, cx: &mut #rt::machine::Cx<'_, '_, Program>) -> #rt::Term {
+                    match self { #(NatFrame::#vs(f) => #ms::nat_call_term(p, cx, f),)* }
+                }
+                fn dm(&self) -> #rt::machine::DmIx {
+                    match self { #(NatFrame::#vs(_) => #ixs,)* }
+                }
+                fn wait(
+                    &self,
+                    p: &Program,
+                    cx: &mut #rt::machine::Cx<'_, '_, Program>,
+                    callee: #rt::Term,
+                    callee_dm: #rt::machine::DmIx,
+                ) -> ::std::result::Result<(), #rt::machine::RunError> {
+                    match self { #(NatFrame::#vs(f) => #ms::nat_wait(p, cx, f, callee, callee_dm),)* }
+                }
+            }
+
+            /// Runs native frames from `base` (the DM the machine entered)
+            /// on an explicit stack until one hands over to the machine.
+            #[allow(clippy::all)]
+            pub(crate) fn nat_drive(
+                p: &Program,
+                cx: &mut #rt::machine::Cx<'_, '_, Program>,
+                base: NatFrame,
+                run: &#rt::machine::TypedRun,
+            ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                let mut stack: ::std::vec::Vec<NatFrame> = ::std::vec::Vec::new();
+                let mut top = base;
+                let mut ret = ::std::option::Option::None;
+                let mut call = ::std::option::Option::None;
+                loop {
+                    if let ::std::option::Option::Some(step) =
+                        top.step(p, cx, ret.take(), &mut stack, &mut call, run)?
+                    {
+                        return ::std::result::Result::Ok(step);
+                    }
+                    match call.take() {
+                        ::std::option::Option::Some(callee) => {
+                            stack.push(::std::mem::replace(&mut top, callee));
+                        }
+                        ::std::option::Option::None => match stack.pop() {
+                            ::std::option::Option::Some(caller) => {
+                                ret = ::std::option::Option::Some(::std::mem::replace(&mut top, caller));
+                            }
+                            ::std::option::Option::None => {
+                                return ::std::result::Result::Err(cx.error(
+                                    "native code ended its base DM without handing over",
+                                    ::std::option::Option::None,
+                                ));
+                            }
+                        },
+                    }
+                }
+            }
+
+            /// Makes the native frames below the running one (called as
+            /// `top`, DM `top_dm`) machine frames, bottom first.
+            #[allow(clippy::all)]
+            pub(crate) fn nat_materialize(
+                p: &Program,
+                cx: &mut #rt::machine::Cx<'_, '_, Program>,
+                stack: &mut ::std::vec::Vec<NatFrame>,
+                top: #rt::Term,
+                top_dm: #rt::machine::DmIx,
+            ) -> ::std::result::Result<(), #rt::machine::RunError> {
+                let frames = ::std::mem::take(stack);
+                let n = frames.len();
+                for i in 0..n {
+                    let (callee, callee_dm) = if i + 1 < n {
+                        (frames[i + 1].call_term(p, cx), frames[i + 1].dm())
+                    } else {
+                        (top, top_dm)
+                    };
+                    frames[i].wait(p, cx, callee, callee_dm)?;
+                }
+                ::std::result::Result::Ok(())
+            }
+        }
+    }
+}

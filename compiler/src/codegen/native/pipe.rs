@@ -1,0 +1,99 @@
+//! The pipe in native code: the machine keeps the pipe as a term (it is
+//! the one value every DM of the stack shares); native code reads it into
+//! a register of the type `mir::ty` gives the in_arg's variable (a checked
+//! conversion; an int or an atom costs no allocation) and writes an
+//! out_arg's value back as a term, where the term code does (an arc's
+//! out_arg after its next situation is evaluated, a final's out_arg).
+//!
+//! A pipe value that does not convert hands the situation over to the
+//! machine before anything of its visit is done (its term code runs it);
+//! where the machine enters native code, `run_native` checks the
+//! conversion first and leaves that situation to its term code, so a
+//! hand-over never comes back to native code that would hand over again.
+
+use super::{reg, Dm, Gen, Regs, N};
+use crate::mir::{Build, Init, Next, Reg};
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+use sitlog_runtime::native::Ty;
+
+impl Gen<'_> {
+    /// `let r<r> = <the pipe as ty>;`, else the situation handed over.
+    pub(super) fn nat_pipe_in(&self, d: &Dm, ix: usize, r: Reg, ty: &Ty) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let rty = super::rust_ty(ty)?;
+        let rr = reg(r);
+        let hand = &d.hand;
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let _ = Literal::u32_unsuffixed(ix as u32);
+        Ok(quote! {
+            let pipe_value = {
+                let t = cx.store_ref().deref(cx.pipe());
+                <#rty as #rt::native::Native>::from_term(cx.store_ref(), t)
+            };
+            let ::std::option::Option::Some(#rr) = pipe_value else {
+                // Not of the in_arg's type: the term code runs the visit.
+                #hand
+                cx.count_transitions(count);
+                #(#id_stmts)*
+                return ::std::result::Result::Ok(::std::option::Option::Some(
+                    #rt::machine::Step::Goto(#id),
+                ));
+            };
+        })
+    }
+
+    /// In `run_native`: the in_arg of situation `ix` (where the machine
+    /// enters native code) converts, else the situation runs on terms.
+    pub(super) fn nat_pipe_entry(&self, d: &Dm, ix: usize) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let Some(plan) = d.plans.get(ix) else {
+            return Ok(quote!());
+        };
+        let mut checks = Vec::new();
+        for (r, init) in &plan.inits {
+            if let Init::Pipe = init {
+                let ty = super::rust_ty(&d.types[ix].regs[*r as usize].ty)?;
+                checks.push(quote! {
+                    let t = cx.store_ref().deref(cx.pipe());
+                    if <#ty as #rt::native::Native>::from_term(cx.store_ref(), t).is_none() {
+                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    }
+                });
+            }
+        }
+        Ok(quote!(#(#checks)*))
+    }
+
+    /// The next situation of an arc whose out_arg is `out`: the pipe set
+    /// after the next value is evaluated, before any hand-over.
+    pub(super) fn nat_next_out(
+        &self,
+        d: &Dm,
+        cur: usize,
+        next: &Next,
+        out: Option<&Build>,
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let Some(b) = out else {
+            return self.nat_next(d, cur, next, regs, cur_name);
+        };
+        let v = self.nat_value(b, regs)?.e;
+        let set = quote! {
+            let out = #rt::native::Native::to_term(&out_v, cx.store());
+            cx.set_pipe(out);
+        };
+        *d.out.borrow_mut() = set.clone();
+        let n = self.nat_next(d, cur, next, regs, cur_name);
+        *d.out.borrow_mut() = quote!();
+        let n = n?;
+        Ok(quote! {{
+            let out_v = #v;
+            let next_at = { #n };
+            #set
+            next_at
+        }})
+    }
+}
