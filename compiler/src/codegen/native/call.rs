@@ -129,26 +129,7 @@ impl Gen<'_> {
                     continue;
                 }
                 let ty = d.types[ix].regs[*r as usize].ty.clone();
-                let p = format_ident!("p{}", i);
-                let pv = V {
-                    e: quote!(#p.clone()),
-                    ty: d
-                        .params
-                        .get(*i)
-                        .cloned()
-                        .ok_or("a head argument out of range")?,
-                };
-                if pv.ty == ty {
-                    // A copy (the frame's field is a reference here).
-                    let rr = reg(*r);
-                    stmts.push(quote!(let #rr = #p.clone();));
-                    regs.insert(*r, (rr, ty));
-                } else {
-                    let e = coerce(&pv, &ty)?;
-                    let rr = reg(*r);
-                    stmts.push(quote!(let #rr = #e;));
-                    regs.insert(*r, (rr, ty));
-                }
+                stmts.push(super::load_head_arg(d, *r, *i, ty, regs)?);
             }
         }
         Ok(stmts)

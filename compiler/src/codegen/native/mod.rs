@@ -209,6 +209,25 @@ fn unread_reg_ty(t: &DmTypes, st: &SitTypes, init: Option<&Init>) -> Ty {
     }
 }
 
+/// Loads parameter `i` (the frame's field `p{i}`, a reference here) into
+/// register `r` of type `ty`: a copy, converted when the parameter's type
+/// is another (one rule for a visit and for a native call's caller).
+fn load_head_arg(d: &Dm, r: Reg, i: usize, ty: Ty, regs: &mut Regs) -> N<TokenStream> {
+    let p = format_ident!("p{}", i);
+    let pv = V {
+        e: quote!(#p.clone()),
+        ty: d
+            .params
+            .get(i)
+            .cloned()
+            .ok_or("a head argument out of range")?,
+    };
+    let rr = reg(r);
+    let e = if pv.ty == ty { pv.e } else { coerce(&pv, &ty)? };
+    regs.insert(r, (rr.clone(), ty));
+    Ok(quote!(let #rr = #e;))
+}
+
 /// Whether Rust's `==` on values of this type is Prolog's `==`.
 fn eq_safe(ty: &Ty) -> bool {
     match ty {
@@ -896,26 +915,7 @@ impl Gen<'_> {
                 Init::HeadArg(_) if st.unbound.get(*r as usize).copied().unwrap_or(false) => {}
                 Init::HeadArg(i) => {
                     let ty = st.regs[*r as usize].ty.clone();
-                    let p = format_ident!("p{}", i);
-                    let pv = V {
-                        e: quote!(#p.clone()),
-                        ty: d
-                            .params
-                            .get(*i)
-                            .cloned()
-                            .ok_or("a head argument out of range")?,
-                    };
-                    if pv.ty == ty {
-                        // A copy (the frame's field is a reference here).
-                        let rr = reg(*r);
-                        stmts.push(quote!(let #rr = #p.clone();));
-                        regs.insert(*r, (rr, ty));
-                    } else {
-                        let e = coerce(&pv, &ty)?;
-                        let rr = reg(*r);
-                        stmts.push(quote!(let #rr = #e;));
-                        regs.insert(*r, (rr, ty));
-                    }
+                    stmts.push(load_head_arg(d, *r, *i, ty, &mut regs)?);
                 }
                 Init::Pipe => {
                     let ty = st.regs[*r as usize].ty.clone();
