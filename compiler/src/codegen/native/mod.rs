@@ -1979,25 +1979,19 @@ impl Gen<'_> {
                 } else {
                     self.atom_native(name)?
                 };
-                let xs: Vec<Ident> = (0..args.len())
-                    .map(|k| format_ident!("g{}_{}", *n, k))
-                    .collect();
-                *n += 1;
+                let xs = arg_idents(n, args.len());
                 let arity = Literal::usize_unsuffixed(args.len());
                 steps.push(MatchStep::Args(quote!(#e), f, arity, xs.clone()));
-                for (k, (&a, x)) in args.iter().zip(&xs).enumerate() {
-                    let xv = V {
-                        e: quote!(#x),
-                        ty: Ty::Term,
-                    };
-                    path.push(k);
-                    let ok = self.native_match(d, j, a, &xv, path, vars, steps, n)?;
-                    path.pop();
-                    if !ok {
-                        return Ok(false);
-                    }
-                }
-                Ok(true)
+                let parts = args.iter().zip(&xs).map(|(&a, x)| {
+                    (
+                        a,
+                        V {
+                            e: quote!(#x),
+                            ty: Ty::Term,
+                        },
+                    )
+                });
+                self.match_parts(d, j, parts, path, vars, steps, n)
             }
             Value::Atom(a) if a == atoms::NIL => match &v.ty {
                 Ty::List(_) => {
@@ -2044,16 +2038,7 @@ impl Gen<'_> {
                             e: quote!(#tx),
                             ty: v.ty.clone(),
                         };
-                        path.push(0);
-                        let ok = self.native_match(d, j, h, &hv, path, vars, steps, n)?;
-                        path.pop();
-                        if !ok {
-                            return Ok(false);
-                        }
-                        path.push(1);
-                        let ok = self.native_match(d, j, t, &tv, path, vars, steps, n)?;
-                        path.pop();
-                        Ok(ok)
+                        self.match_parts(d, j, [(h, hv), (t, tv)], path, vars, steps, n)
                     }
                     Ty::Sym | Ty::Int => Ok(false),
                     _ => Err("a list pattern on a value that is not native".into()),
@@ -2069,6 +2054,30 @@ impl Gen<'_> {
 }
 
 impl Gen<'_> {
+    /// [`Gen::native_match`] of each part `k` (pattern, value) at `path`
+    /// extended by `k`, in order; `false` as soon as one cannot match.
+    #[allow(clippy::too_many_arguments)]
+    fn match_parts(
+        &self,
+        d: &Dm,
+        j: usize,
+        parts: impl IntoIterator<Item = (Term, V)>,
+        path: &mut Vec<usize>,
+        vars: &mut HashMap<u32, (Ident, Ty)>,
+        steps: &mut Vec<MatchStep>,
+        n: &mut usize,
+    ) -> N<bool> {
+        for (k, (p, v)) in parts.into_iter().enumerate() {
+            path.push(k);
+            let ok = self.native_match(d, j, p, &v, path, vars, steps, n)?;
+            path.pop();
+            if !ok {
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    }
+
     /// [`Gen::native_match`] on a value held as a canonical `Val` (type
     /// `ground` or a fixed-shape compound): the pattern is not a variable.
     #[allow(clippy::too_many_arguments)]
@@ -2113,19 +2122,16 @@ impl Gen<'_> {
                 let tx = format_ident!("l{}", *n);
                 *n += 1;
                 steps.push(MatchStep::SplitVal(quote!(#e), hx.clone(), tx.clone()));
-                for (k, (p, x)) in [(h, hx), (t, tx)].into_iter().enumerate() {
-                    let xv = V {
-                        e: quote!(#x),
-                        ty: Ty::Ground,
-                    };
-                    path.push(k);
-                    let ok = self.native_match(d, j, p, &xv, path, vars, steps, n)?;
-                    path.pop();
-                    if !ok {
-                        return Ok(false);
-                    }
-                }
-                Ok(true)
+                let parts = [(h, hx), (t, tx)].map(|(p, x)| {
+                    (
+                        p,
+                        V {
+                            e: quote!(#x),
+                            ty: Ty::Ground,
+                        },
+                    )
+                });
+                self.match_parts(d, j, parts, path, vars, steps, n)
             }
             Value::Compound(name, args) => {
                 if tagged.is_some_and(|t| t != (name, args.len())) {
@@ -2133,30 +2139,32 @@ impl Gen<'_> {
                 }
                 let args = args.to_vec();
                 let f = self.atom_native(name)?;
-                let xs: Vec<Ident> = (0..args.len())
-                    .map(|k| format_ident!("g{}_{}", *n, k))
-                    .collect();
-                *n += 1;
+                let xs = arg_idents(n, args.len());
                 let arity = Literal::usize_unsuffixed(args.len());
                 steps.push(MatchStep::ArgsVal(quote!(#e), f, arity, xs.clone()));
-                for (k, (&a, x)) in args.iter().zip(&xs).enumerate() {
-                    // Held as `Val`s inside the compound, whatever the type.
-                    let xv = V {
-                        e: quote!(#x),
-                        ty: Ty::Ground,
-                    };
-                    path.push(k);
-                    let ok = self.native_match(d, j, a, &xv, path, vars, steps, n)?;
-                    path.pop();
-                    if !ok {
-                        return Ok(false);
-                    }
-                }
-                Ok(true)
+                // Held as `Val`s inside the compound, whatever the type.
+                let parts = args.iter().zip(&xs).map(|(&a, x)| {
+                    (
+                        a,
+                        V {
+                            e: quote!(#x),
+                            ty: Ty::Ground,
+                        },
+                    )
+                });
+                self.match_parts(d, j, parts, path, vars, steps, n)
             }
             _ => Err("an id pattern holds a constant that is not native".into()),
         }
     }
+}
+
+/// Fresh names `g{n}_{k}` for the `len` arguments of a compound matched
+/// natively (`n` counts the matches of a situation).
+fn arg_idents(n: &mut usize, len: usize) -> Vec<Ident> {
+    let xs = (0..len).map(|k| format_ident!("g{}_{}", *n, k)).collect();
+    *n += 1;
+    xs
 }
 
 /// Prolog's `==` on two native values, when their types allow it in Rust
