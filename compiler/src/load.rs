@@ -18,7 +18,7 @@
 use crate::ast::{self, Program};
 use crate::diag::{Diagnostic, Loc};
 use crate::source::FileId;
-use sitlog_syntax::{read_clauses, Clause, Span, SyntaxError};
+use sitlog_syntax::{read_clauses_with, Clause, OpTable, Span, SyntaxError};
 use std::io;
 use std::path::{Path, PathBuf};
 
@@ -701,13 +701,23 @@ fn add_bytes(
 
 /// Reads the clauses of a file, turning syntax errors into diagnostics.
 fn read_file_clauses(program: &Program, file: FileId, diags: &mut Vec<Diagnostic>) -> Vec<Clause> {
+    read_file_clauses_with(program, file, diags, OpTable::sitlog_shared())
+}
+
+/// [`read_file_clauses`] with the operator table `ops`.
+fn read_file_clauses_with(
+    program: &Program,
+    file: FileId,
+    diags: &mut Vec<Diagnostic>,
+    ops: &OpTable,
+) -> Vec<Clause> {
     if diags
         .iter()
         .any(|d| d.loc.file == file && d.code == codes::NOT_UTF8)
     {
         return Vec::new();
     }
-    let (clauses, errors) = read_clauses(&program.sources.get(file).text);
+    let (clauses, errors) = read_clauses_with(&program.sources.get(file).text, ops);
     diags.extend(errors.into_iter().map(|e| syntax_diagnostic(file, e)));
     clauses
 }
@@ -720,15 +730,7 @@ fn read_prolog_file_clauses(
     file: FileId,
     diags: &mut Vec<Diagnostic>,
 ) -> Vec<Clause> {
-    if diags
-        .iter()
-        .any(|d| d.loc.file == file && d.code == codes::NOT_UTF8)
-    {
-        return Vec::new();
-    }
-    let (clauses, errors) = sitlog_syntax::read_prolog_clauses(&program.sources.get(file).text);
-    diags.extend(errors.into_iter().map(|e| syntax_diagnostic(file, e)));
-    clauses
+    read_file_clauses_with(program, file, diags, OpTable::swi_shared())
 }
 
 /// A reader error as a diagnostic.
