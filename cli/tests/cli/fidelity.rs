@@ -219,7 +219,9 @@ fn misspelt_variable_gets_did_you_mean() {
 
 /// A clause of `user_functions.pl` that does not read (marcopolo's
 /// `parse/2`, whose body starts with `|`) is skipped, as SWI-Prolog's
-/// consult skips it: W0008, and the run uses the rest of the file.
+/// consult skips it: W0008, and the run uses the rest of the file. A
+/// clause that reads with SWI-Prolog's operators (`:- dynamic seen/1.`)
+/// is not skipped.
 #[test]
 fn a_prolog_clause_that_does_not_read_is_skipped() {
     let tmp = tempfile::tempdir().unwrap();
@@ -230,7 +232,7 @@ fn a_prolog_clause_that_does_not_read_is_skipped() {
     .unwrap();
     std::fs::write(
         tmp.path().join("user_functions.pl"),
-        "parse(In, Out) :-\n  % the interpreter\n|  ( In = Out -> true | otherwise -> fail ).\nhi(_) :- assign_func_value(hello).\n",
+        "parse(In, Out) :-\n  % the interpreter\n|  ( In = Out -> true | otherwise -> fail ).\nhi(_) :- assign_func_value(hello).\n:- dynamic seen/1, other/2.\n",
     )
     .unwrap();
     let (code, diags) = check(tmp.path());
