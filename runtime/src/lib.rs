@@ -8,8 +8,15 @@
 //! - Every walk over a term is iterative or grows its stack on the heap
 //!   (`stacker`), so terms of any depth are safe on a 2 MiB thread; nesting
 //!   DMs costs heap too (the machine's DM stack is a `Vec`).
-//! - Semantics live here once: the interpreter and generated code run on
-//!   the same [`machine`] and its steps, so they cannot disagree.
+//! - Semantics live here once for terms: the interpreter and generated
+//!   code on terms run on the same [`machine`] and its steps. Generated
+//!   *native* code (native values, `sitlog_compiler::codegen::native`) does a
+//!   few steps itself: integer arithmetic and comparisons, list heads and
+//!   tails, matching a callee's final situation against exit arcs, its own
+//!   stack of typed frames. There agreement is not by construction but by
+//!   test: the goldens, the typed agreement cases and the random-program
+//!   agreement (`tests/tests/suite/{typed,random_agreement}.rs`) compare the
+//!   two back ends' histories, reports and errors.
 //! - The `use crate::` edges between its modules form a DAG (below); within
 //!   `machine`, `prolog` and `arith` the submodules are ordered the same
 //!   way (see their module docs).

@@ -6,7 +6,9 @@
 //!
 //! The program itself is behind [`DmProgram`]: the reference interpreter
 //! implements it over the compiler's IR, generated code implements it with
-//! code. Both share every step below, so they cannot disagree on semantics.
+//! code. Both share every step below on terms; native code (values held as
+//! Rust values) does integer arithmetic, list walks, exit matching and its
+//! frames itself, and agrees with this machine by test (see the crate doc).
 //!
 //! One job per submodule, bottom to top (each uses only those before it;
 //! this file only re-exports, so every public item keeps its path
