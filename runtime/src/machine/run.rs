@@ -470,14 +470,18 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     .chose
                     .take()
                     .filter(|&(sit, _)| (sit as usize) < self.program.situation_count(dm));
-                // The situation's id as written: its name when it runs as
-                // code (no instance of it is built), else a fresh instance's.
+                // The situation by its id's name, on both back ends (a
+                // compiled situation builds no instance; an instance's fresh
+                // variables would name it differently in each run).
                 let id = chose.and_then(|(sit, _)| match self.program.compiled_id(dm, sit) {
                     Some((name, _)) => Some(Term::atom(name)),
-                    None => self
-                        .program
-                        .instantiate(dm, sit, &mut self.store)
-                        .map(|inst| inst.id),
+                    None => {
+                        let inst = self.program.instantiate(dm, sit, &mut self.store)?;
+                        match self.store.functor(inst.id) {
+                            Some((name, _)) => Some(Term::atom(name)),
+                            None => Some(inst.id),
+                        }
+                    }
                 });
                 match (chose, id) {
                     (Some((sit, arc)), Some(id)) => Err(self.err(message, Some((sit, id)), arc)),
