@@ -638,10 +638,11 @@ impl Gen<'_> {
         }
     }
 
-    /// An exit arc's action: `inc`/`get` of a local into a fresh variable,
+    /// An exit arc's action (and a perceptual or neutral arc's, when it
+    /// has only these): `inc`/`get` of a local into a fresh variable,
     /// atoms and numbers performed (skipped where the run's actions ignore
     /// them).
-    fn nat_exit_action(
+    pub(super) fn nat_exit_action(
         &self,
         d: &Dm,
         ix: usize,

@@ -1319,6 +1319,22 @@ impl Gen<'_> {
             #(#id_stmts)*
             cx.enter_with_id(#cur, #id);
         };
+        // An action of `inc`/`get` of the frame's locals, constants and
+        // values (`[inc(n, N)]`): done natively, as an exit arc's is; the
+        // machine sees only what is performed.
+        let arc_ix = match &plan.kind {
+            KindPlan::Perceptual(arcs) => arcs.arcs.iter().position(|a| std::ptr::eq(a, arc)),
+            _ => None,
+        };
+        if let (None, Some(k)) = (atom, arc_ix) {
+            let mut nregs = regs.clone();
+            if let Ok(act) = self.nat_exit_action(d, ix, k, &arc.action, &mut nregs) {
+                let name = self.atom_native(plan.id.0)?;
+                let next =
+                    self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &nregs, &name)?;
+                return Ok(quote! { #act count += 1; #next });
+            }
+        }
         // A fresh variable the action binds (a boundary's value) and the
         // next situation reads is converted with the checked conversion;
         // when that fails, or when a local the machine's calls changed no
