@@ -93,7 +93,9 @@ pub fn explain_types(ir: &Ir) -> String {
             let _ = writeln!(out, "  situation `{id}`: {line}");
             let _ = writeln!(out, "{}", types.sit_line(d, i));
         }
-        totals.add(ir, d, types, native.as_ref().ok());
+        if let Some(line) = totals.add(ir, d, types, native.as_ref().ok()) {
+            let _ = writeln!(out, "{line}");
+        }
     }
     if !types.globals.is_empty() {
         let gs: Vec<String> = types
@@ -135,13 +137,16 @@ struct Totals {
 }
 
 impl Totals {
+    /// Adds DM `d`'s figures; gives its line saying which of its
+    /// variables generated code holds as Rust values (none when it has
+    /// no variable).
     fn add(
         &mut self,
         ir: &Ir,
         d: usize,
         types: &crate::mir::ty::MirTypes,
         native: Option<&NativeCode>,
-    ) {
+    ) -> Option<String> {
         let dm = &ir.dms[d];
         let t = &types.dms[d];
         self.sits += dm.situations.len();
@@ -156,10 +161,39 @@ impl Totals {
         let reads_pipe = t.sits.iter().flatten().any(|s| s.reads_pipe);
         // The variables `mir::ty` counts: parameters, the pipe when read,
         // locals (globals are added once, never held natively).
-        self.vars += t.params.len() + usize::from(reads_pipe) + t.locals.len();
-        self.held += held.params.iter().filter(|&&h| h).count()
-            + usize::from(reads_pipe && held.pipe)
-            + held.locals.iter().filter(|&&h| h).count();
+        let mut vars: Vec<(String, bool)> = Vec::new();
+        for (i, &p) in ir.store.args(dm.head).iter().enumerate() {
+            let name = format!("parameter {}", show(&ir.store, dm, p));
+            vars.push((name, held.params.get(i).copied().unwrap_or(false)));
+        }
+        if reads_pipe {
+            vars.push(("the pipe".to_owned(), held.pipe));
+        }
+        for (i, (name, _)) in dm.locals.iter().enumerate() {
+            let name = format!("local {}", name.as_str());
+            vars.push((name, held.locals.get(i).copied().unwrap_or(false)));
+        }
+        let n = vars.iter().filter(|v| v.1).count();
+        self.vars += vars.len();
+        self.held += n;
+        if vars.is_empty() {
+            return None;
+        }
+        let names = |h: bool| {
+            vars.iter()
+                .filter(|v| v.1 == h)
+                .map(|v| v.0.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let mut line = format!("  variables held as Rust values: {n}/{}", vars.len());
+        if n > 0 {
+            line.push_str(&format!(" ({})", names(true)));
+        }
+        if n < vars.len() {
+            line.push_str(&format!("; as terms: {}", names(false)));
+        }
+        Some(line)
     }
 }
 
