@@ -8,12 +8,14 @@
 //! SitLog layer) → [`check`] (diagnostics, rendered by [`diag`]; produces
 //! [`check::Checked`], the only input later stages accept; [`codes`] lists
 //! every diagnostic code, [`suggest`] gives their "did you mean") → [`ir::lower`]
-//! → [`mir::lower`] (plans over registers, typed by [`mir::ty::infer`],
-//! shown by `--explain-types`, not yet used by the back ends)
+//! → [`mir::lower`] (plans over registers, typed by [`mir::ty::infer`];
+//! built and typed once per program by the code generator, which also
+//! gives `--explain-types` ([`codegen::explain_types`]))
 //! → the back ends: [`interp`] (plans the runtime's machine runs, with
 //! [`instantiate`] the reference path from templates; [`run`] hands them to
-//! the one runner, `sitlog_runtime::app::run`), [`types`] + [`codegen`]
-//! (Rust for `include_dm!`, build scripts ([`build`]) and `sitlogc build`),
+//! the one runner, `sitlog_runtime::app::run`), [`codegen`] (Rust for
+//! `include_dm!`, build scripts ([`build`]) and `sitlogc build`: term code
+//! from the MIR's plans, native code from its types),
 //! [`diagram`] (the papers' notation, drawn by `sitlog-graph`).
 //!
 //! Invariants: no stage reaches back to an earlier one; this crate never
@@ -40,7 +42,6 @@ pub mod mir;
 pub mod run;
 pub mod source;
 pub mod suggest;
-pub mod types;
 
 use std::path::Path;
 

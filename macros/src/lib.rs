@@ -16,7 +16,7 @@
 //! changes. Errors in the DM sources become `compile_error!`s naming
 //! `file.dm:line:col` and showing the source line. The invoking crate needs
 //! `sitlog-runtime` as a dependency. `include_dm!("path", untyped)` keeps
-//! every value a term (no typed code; for comparisons).
+//! every value a term (no native code; for comparisons).
 
 use proc_macro::TokenStream;
 use quote::quote;

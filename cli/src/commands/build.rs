@@ -1,6 +1,6 @@
 //! `sitlogc build`: an application compiled to one executable
-//! ([`crate::package`]), its generated Rust (`--emit rust`), or what type
-//! inference found (`--explain-types`).
+//! ([`crate::package`]), its generated Rust (`--emit rust`), or what the typed
+//! MIR and native code are (`--explain-types`).
 
 use super::Strictness;
 use crate::args::Emit;
@@ -9,15 +9,10 @@ use std::path::PathBuf;
 
 pub fn explain_types_of(app: &std::path::Path) -> u8 {
     match checked_ir(app) {
-        Ok(ir) => {
-            let mir = sitlog_compiler::mir::lower(&ir);
-            let types = sitlog_compiler::types::infer(&ir, &mir);
-            let mir_types = sitlog_compiler::mir::ty::infer(&ir, &mir);
-            let native = sitlog_compiler::codegen::native_dms(&ir);
-            let text =
-                sitlog_compiler::types::explain_with(&ir, &types, Some((&mir_types, &native)));
-            write_stdout(&text, "the type listing")
-        }
+        Ok(ir) => write_stdout(
+            &sitlog_compiler::codegen::explain_types(&ir),
+            "the type listing",
+        ),
         Err(code) => code,
     }
 }

@@ -1,7 +1,8 @@
 //! The program and its DMs as Rust items: `Program` and its
 //! `DmProgram`/`App` impls, the entry points (`program()`, `run`, `main`),
 //! and one module per DM (its situation enum, instance builders, dispatch).
-//! The per-situation code is [`super::step`]'s and [`super::typed`]'s.
+//! The per-situation code is [`super::step`]'s (on terms) and
+//! [`super::native`]'s (on Rust values).
 
 use super::*;
 
@@ -61,7 +62,6 @@ impl Gen<'_> {
             dm_mods.push(m.clone());
             modules.push(self.emit_dm(dm, i, &m));
         }
-        let typed_driver = self.typed_driver(&dm_mods);
         let native_driver = self.native_driver(ir, &dm_mods);
         let dm_ix: Vec<Literal> = (0..ir.dms.len() as u32)
             .map(Literal::u32_unsuffixed)
@@ -341,7 +341,6 @@ impl Gen<'_> {
                 ::std::result::Result::Ok(functions)
             }
 
-            #typed_driver
             #native_driver
 
             #(#modules)*
@@ -381,13 +380,8 @@ impl Gen<'_> {
                 Kind::Recursive => "recursive",
                 Kind::Perceptual => "perceptual",
             };
-            let typing = match self.types.as_ref().map(|t| &t.dms[dm_ix].situations[i]) {
-                Some(Ok(_)) => " Typed: runs on the DM's native `Frame`.".to_owned(),
-                Some(Err(why)) => format!(" Runs on terms: {why}."),
-                None => String::new(),
-            };
             let doc = format!(
-                " `{}` ({}, type `{}`, {kind_text}).{typing}",
+                " `{}` ({}, type `{}`, {kind_text}).",
                 id_text,
                 s.location,
                 self.store.writeq(f[2])
@@ -486,54 +480,19 @@ impl Gen<'_> {
             }
         }
         let count = dm.situations.len();
-        let typed = match &self.types {
-            Some(types) => self.typed_code(dm, &types.dms[dm_ix]),
-            None => typed::TypedCode {
-                items: quote!(),
-                present: false,
-            },
-        };
-        let untyped = quote! {
+        let term_code = quote! {
             match sit {
                 #(#run_arms)*
                 _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
             }?
         };
-        let typed_first = if typed.present && self.typed_calls() {
-            let ix = Literal::u32_unsuffixed(dm_ix as u32);
-            quote! {
-                // Typed situations first, on the native frames of the
-                // program's typed driver (which may go into other DMs: the
-                // machine then takes the step); else as terms (from the
-                // situation where typed code handed over).
-                let step = match super::run_typed(p, #ix, &mut sit, cx)? {
-                    ::std::option::Option::Some((step, true)) => step,
-                    ::std::option::Option::Some((step, false)) => return ::std::result::Result::Ok(step),
-                    ::std::option::Option::None => #untyped,
-                };
-            }
-        } else if typed.present {
-            quote! {
-                // Typed situations first, on the native frame; else as terms
-                // (from the situation where typed code handed over).
-                let step = match run_typed(p, &mut sit, cx)? {
-                    ::std::option::Option::Some(step) => step,
-                    ::std::option::Option::None => #untyped,
-                };
-            }
-        } else {
-            quote!(let step = #untyped;)
-        };
-        let typed_items = typed.items;
-        // A DM with no situation typed the old way may run natively
-        // (`native`): tried first when its initial situation runs.
-        let native = match (&self.mir_types, typed.present) {
-            (Some(t), false) => self
-                .native_code(dm, dm_ix, &t.dms[dm_ix])
+        // The DM's situations with native code run natively: tried first
+        // whenever a situation runs (`native`).
+        let native = self.mir_types.as_ref().and_then(|t| {
+            self.native_code(dm, dm_ix, &t.dms[dm_ix])
                 .ok()
-                .filter(|n| n.native_sits > 0),
-            _ => None,
-        };
+                .filter(|n| n.native_sits > 0)
+        });
         let (native_first, native_items) = match native {
             Some(n) => (n.first, n.items),
             None => (quote!(), quote!()),
@@ -663,7 +622,7 @@ impl Gen<'_> {
                     #native_first
                     let mut sit = sit;
                     loop {
-                        #typed_first
+                        let step = #term_code;
                         match step {
                             #rt::machine::Step::GotoSit(next) if !cx.gc_due() => {
                                 // A compound id is built by the situation's code.
@@ -709,8 +668,6 @@ impl Gen<'_> {
                 ) -> ::std::option::Option<#rt::machine::Instance> {
                     #instantiate_body
                 }
-
-                #typed_items
 
                 #native_items
 

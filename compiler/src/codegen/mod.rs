@@ -21,13 +21,13 @@
 //!   needed), DM calls as frames on the machine's stack (`step`); every
 //!   step is a call on the runtime's `Cx`, so semantics stay in the
 //!   runtime;
-//! - for the situations type inference ([`crate::types`]) gave a typed plan,
-//!   a native `Frame` of the DM and `run_typed`, tried first: typed
-//!   situations run one after the other on `i64`/`f64`/enum values, the
-//!   frame loaded from the machine's variables with a check and written back
-//!   when untyped code or the machine is needed (`typed`); with typed DM
-//!   calls, one driver for the program runs typed code across DMs, the
-//!   callee's typed frame pushed over the caller's (no Rust recursion);
+//! - for the situations whose [MIR](crate::mir) registers have Rust types
+//!   ([`crate::mir::ty`]), native code (`native`), tried first: the DM's
+//!   `enum Nat` (a variant per situation, the id's variables as typed
+//!   fields), its `Frame` (parameters and locals as `i64`/`f64`/`Atom`/
+//!   `List`/`Val`) and one driver for the program running native frames on
+//!   an explicit stack (no Rust recursion); the term code above runs the
+//!   situations native code does not take;
 //! - for every situation that does not run as code, a function building a
 //!   fresh instance (D-7) for the machine's general path (situations with
 //!   parameters; the machine never instantiates the others): fresh variables
@@ -44,10 +44,12 @@
 //! order, no hash-map order).
 
 mod emit;
+mod explain;
 mod names;
 mod native;
 mod step;
-mod typed;
+
+pub use explain::explain_types;
 
 use names::*;
 
@@ -85,9 +87,9 @@ pub fn generate_file(ir: &Ir, source: &str) -> String {
 /// Choices of the code generator.
 #[derive(Clone, Copy, Debug)]
 pub struct Options {
-    /// Typed code for the situations type inference can type (the
-    /// default); `false` keeps every value a term (to compare, or to rule
-    /// typed code out when chasing a bug).
+    /// Native code for the situations whose MIR registers have Rust types
+    /// (the default); `false` keeps every value a term (to compare, or to
+    /// rule native code out when chasing a bug).
     pub typed: bool,
 }
 
@@ -102,52 +104,12 @@ pub fn generate(ir: &Ir, source: &str) -> TokenStream {
     generate_with(ir, source, Options::default())
 }
 
-/// [`generate`] with options.
+/// [`generate`] with options. The MIR is built once here ([`crate::mir::lower`])
+/// and typed once ([`crate::mir::ty::infer`]).
 pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
-    let mir = crate::mir::lower(ir);
-    let types = options.typed.then(|| crate::types::infer(ir, &mir));
-    let mir_types = options.typed.then(|| crate::mir::ty::infer(ir, &mir));
-    let mut g = Gen::new(&ir.store, mir);
-    g.types = types;
-    g.mir_types = mir_types;
-    g.ir = Some(ir);
+    let mut g = Gen::new(ir, options.typed);
     g.collect(ir);
     g.emit(ir, source)
-}
-
-/// What the code generator does with one DM's situations ([`native_dms`]):
-/// a report `types::explain` reads, defined there so that `types` does not
-/// import `codegen`.
-pub use crate::types::NativeDm;
-
-/// Per DM, which of its situations generated code runs natively
-/// (`codegen::native`) and on what values, or why none does.
-pub fn native_dms(ir: &Ir) -> Vec<Result<NativeDm, String>> {
-    let mir = crate::mir::lower(ir);
-    let types = crate::types::infer(ir, &mir);
-    let mir_types = crate::mir::ty::infer(ir, &mir);
-    let mut g = Gen::new(&ir.store, mir);
-    g.types = Some(types);
-    g.mir_types = Some(mir_types);
-    g.ir = Some(ir);
-    g.collect(ir);
-    ir.dms
-        .iter()
-        .enumerate()
-        .map(|(d, dm)| {
-            let typed = g.types.as_ref().map(|t| &t.dms[d]);
-            if typed.is_some_and(typed::has_typed_code) {
-                return Err("it runs on the typed frame of its typed situations".to_owned());
-            }
-            let t = g.mir_types.as_ref().map(|t| &t.dms[d]).ok_or("no types")?;
-            g.native_code(dm, d, t).map(|n| NativeDm {
-                native: n.native_sits,
-                values: n.on_native_values,
-                fixed: n.fixed_shapes,
-                why: n.why,
-            })
-        })
-        .collect()
 }
 
 // --------------------------------------------------------------- generator
@@ -161,9 +123,8 @@ struct Gen<'s> {
     /// Ground compounds (and big integers) built once, by their writeq text.
     consts: Vec<(String, Term)>,
     const_ix: HashMap<String, usize>,
-    /// What type inference found (typed situations run on native frames).
-    types: Option<crate::types::Types>,
-    /// The types of the MIR's registers (DMs that are native run on them).
+    /// The types of the MIR's registers (native situations run on them;
+    /// `None`: every value a term).
     mir_types: Option<crate::mir::ty::MirTypes>,
     /// The plans of the situations that run as code.
     mir: crate::mir::Mir,
@@ -182,18 +143,20 @@ struct Built {
 }
 
 impl<'s> Gen<'s> {
-    fn new(store: &'s Store, mir: crate::mir::Mir) -> Self {
+    /// The generator of `ir`: its MIR lowered and, when `typed`, typed.
+    fn new(ir: &'s Ir, typed: bool) -> Self {
+        let mir = crate::mir::lower(ir);
+        let mir_types = typed.then(|| crate::mir::ty::infer(ir, &mir));
         Gen {
             mir,
-            store,
+            store: &ir.store,
             atoms: Vec::new(),
             atom_ix: HashMap::new(),
             atom_namer: Namer::default(),
             consts: Vec::new(),
             const_ix: HashMap::new(),
-            types: None,
-            mir_types: None,
-            ir: None,
+            mir_types,
+            ir: Some(ir),
             native_ok: std::cell::RefCell::new(HashMap::new()),
         }
     }
@@ -257,16 +220,6 @@ impl<'s> Gen<'s> {
         for &(n, v) in &ir.globals {
             self.atom(n);
             self.visit(v);
-        }
-        // Constants typed code uses on their own (elements of a ground list).
-        let mut typed_consts = Vec::new();
-        for dm in self.types.iter().flat_map(|t| &t.dms) {
-            for plan in dm.situations.iter().flatten() {
-                plan.constants(&mut typed_consts);
-            }
-        }
-        for t in typed_consts {
-            self.visit(t);
         }
         let mir = std::mem::replace(&mut self.mir, crate::mir::Mir { dms: Vec::new() });
         self.collect_plans(&mir);

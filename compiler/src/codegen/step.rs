@@ -89,11 +89,6 @@ impl Gen<'_> {
         quote!(a.#id)
     }
 
-    pub(super) fn atom_term(&self, a: Atom) -> TokenStream {
-        let id = &self.atoms[self.atom_ix[&a]].1;
-        quote!(::sitlog_runtime::Term::atom(a.#id))
-    }
-
     /// A frozen term: an immediate, a constant of the program, or (a
     /// compound the program did not register) built here.
     fn frozen(&self, t: Term, b: &mut Body) -> TokenStream {

@@ -312,7 +312,7 @@ impl MirTypes {
         format!(
             "MIR registers typed: {typed}/{regs} ({shaped} with a shape, {ground} ground, {none} no value); \
              situations with no term register: {clean}/{sits} ({shaped_sits} without ground); \
-             variables typed: {vars_typed}/{vars} (MIR inference; generated code uses it for native DMs only)"
+             variables typed: {vars_typed}/{vars} (MIR inference)"
         )
     }
 

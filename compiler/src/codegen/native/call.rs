@@ -638,10 +638,11 @@ impl Gen<'_> {
         }
     }
 
-    /// An exit arc's action: `inc`/`get` of a local into a fresh variable,
+    /// An exit arc's action (and a perceptual or neutral arc's, when it
+    /// has only these): `inc`/`get` of a local into a fresh variable,
     /// atoms and numbers performed (skipped where the run's actions ignore
     /// them).
-    fn nat_exit_action(
+    pub(super) fn nat_exit_action(
         &self,
         d: &Dm,
         ix: usize,
@@ -755,25 +756,42 @@ impl Gen<'_> {
         Ok(quote!(#(#stmts)* #(#performs)*))
     }
 
-    /// `l op r` on ints: in Rust when both are ints (a ground term read as
-    /// one), else evaluated on terms as the term code does (the machine
-    /// entered in situation `cur`: its result or its error).
+    /// `l op r` on numbers: in Rust when both are ints or both floats (a
+    /// ground term or a `Val` read as one), else evaluated on terms as the
+    /// term code does (the machine entered in situation `cur`: its result
+    /// or its error; an int against a float goes there too).
     pub(super) fn nat_arith(&self, d: &Dm, cur: usize, op: ArithCmp, l: V, r: V) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
         let some = quote!(::std::option::Option::Some);
+        let none = quote!(::std::option::Option::None::<i64>);
         let as_int = |v: &V, x: &Ident| -> N<TokenStream> {
             Ok(match v.ty {
                 Ty::Int => quote!(#some(#x)),
+                Ty::Float => none.clone(),
                 Ty::Term => quote!(cx.store_ref().int_of(#x.0)),
-                _ => return Err("an arithmetic comparison is not on ints".into()),
+                // A `Val` (`ground`: a parameter, the pipe) holding an int.
+                ref t if super::held_as_val(t) => quote!(#x.int()),
+                _ => return Err("an arithmetic comparison is not on numbers".into()),
             })
         };
+        let nonef = quote!(::std::option::Option::None::<f64>);
+        let as_float = |v: &V, x: &Ident| -> TokenStream {
+            match v.ty {
+                Ty::Float => quote!(#some(#x)),
+                Ty::Term => quote!(cx.store_ref().float_of(#x.0)),
+                ref t if super::held_as_val(t) => quote! {
+                    match &#x { #rt::native::Val::Float(f) => #some(*f), _ => #nonef }
+                },
+                _ => nonef.clone(),
+            }
+        };
         let (lx, rx) = (format_ident!("cl"), format_ident!("cr"));
-        if l.ty == Ty::Int && r.ty == Ty::Int {
+        if (l.ty == Ty::Int && r.ty == Ty::Int) || (l.ty == Ty::Float && r.ty == Ty::Float) {
             let (le, re) = (l.e, r.e);
             return Ok(cmp_tokens(op, quote!(#le), quote!(#re)));
         }
         let (li, ri) = (as_int(&l, &lx)?, as_int(&r, &rx)?);
+        let (lf, rf) = (as_float(&l, &lx), as_float(&r, &rx));
         let cmp = cmp_tokens(op, quote!(x), quote!(y));
         let hand = &d.hand;
         let curl = Literal::u32_unsuffixed(cur as u32);
@@ -790,8 +808,9 @@ impl Gen<'_> {
         Ok(quote! {{
             let #lx = #le;
             let #rx = #re;
-            match (#li, #ri) {
-                (#some(x), #some(y)) => #cmp,
+            match (#li, #ri, #lf, #rf) {
+                (#some(x), #some(y), _, _) => #cmp,
+                (_, _, #some(x), #some(y)) => #cmp,
                 _ => {
                     // Not two ints: the term code's evaluation decides. The
                     // arc's own transition (counted before its next

@@ -213,16 +213,10 @@ impl Gen<'_> {
             return ok;
         }
         let ok = match (self.ir, &self.mir_types) {
-            (Some(ir), Some(t)) => {
-                let typed = self
-                    .types
-                    .as_ref()
-                    .is_some_and(|ty| super::super::typed::has_typed_code(&ty.dms[d]));
-                match self.native_code_with(&ir.dms[d], d, &t.dms[d], true) {
-                    Ok(n) if !typed && n.native_sits > 0 => (true, n.callee_ok),
-                    _ => (false, false),
-                }
-            }
+            (Some(ir), Some(t)) => match self.native_code_with(&ir.dms[d], d, &t.dms[d], true) {
+                Ok(n) if n.native_sits > 0 => (true, n.callee_ok),
+                _ => (false, false),
+            },
             _ => (false, false),
         };
         self.native_ok.borrow_mut().insert(d, ok);

@@ -91,7 +91,7 @@ mod frame;
 mod pipe;
 use crate::ir::IrDm;
 use crate::mir::ty::{DmTypes, SitTypes};
-use crate::mir::{Action, ArcPlan, Build, Cond, Ev, Init, KindPlan, Next, Reg, SitPlan, ID};
+use crate::mir::{Action, ArcPlan, Build, Cond, Ev, Init, KindPlan, Next, Prog, Reg, SitPlan, ID};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_runtime::machine::Kind;
@@ -240,7 +240,10 @@ fn eq_safe(ty: &Ty) -> bool {
 
 /// Whether a local holds a fresh variable (a term) made for an arc.
 fn is_fresh(x: &Ident) -> bool {
-    x.to_string().starts_with("fresh_")
+    // `fresh_r<n>` only: an atom's field (`a.fresh_water`) is not one.
+    x.to_string()
+        .strip_prefix("fresh_r")
+        .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
 }
 
 /// The registers an expression binds (`V is E`, `get(n, V)` of a `V` not
@@ -315,6 +318,26 @@ pub(super) struct NativeCode {
     /// its initial situation has native code and its locals are in the
     /// frame.
     pub callee_ok: bool,
+    /// Which of the DM's variables native code holds as Rust values
+    /// (`--explain-types`' `variables typed`).
+    pub held: Held,
+}
+
+/// Which of a DM's variables its generated code holds as native Rust
+/// values (`i64`, `f64`, `Atom`, `List`, `Val`: not a `Ground` handle, not
+/// a term of the machine) in every situation of the DM: only when every
+/// situation has native code; a parameter when native code reads it
+/// (converted at entry; an unread one is a handle), a local when the
+/// frame holds the locals, the pipe when every in_arg reading it is a
+/// register of such a type. Globals stay the machine's terms.
+#[derive(Clone, Debug, Default)]
+pub struct Held {
+    /// Per parameter.
+    pub params: Vec<bool>,
+    /// Per local, in the DM's order.
+    pub locals: Vec<bool>,
+    /// The pipe, as read by the DM's in_args.
+    pub pipe: bool,
 }
 
 /// A situation's native code: its variant's fields, the visit, its id as
@@ -633,7 +656,9 @@ impl Gen<'_> {
             .iter()
             .filter(|st| !st.regs.iter().any(|r| holds_val(&r.ty)))
             .count();
+        let held = Self::nat_held(&d);
         Ok(NativeCode {
+            held,
             items,
             first,
             callee_ok: d.native.first().copied().unwrap_or(false) && d.locals_ok,
@@ -642,6 +667,32 @@ impl Gen<'_> {
             native_sits: d.native.iter().filter(|&&n| n).count(),
             why,
         })
+    }
+
+    /// [`NativeCode::held`]: what native code holds as Rust values, read
+    /// from the frame's and the registers' types it decided.
+    fn nat_held(d: &Dm) -> Held {
+        let all = !d.native.is_empty() && d.native.iter().all(|&n| n);
+        let native = |ty: &Ty| *ty != Ty::Term && rust_ty(ty).is_ok();
+        let params = d.params.iter().map(|ty| all && native(ty)).collect();
+        let locals =
+            d.dm.locals
+                .iter()
+                .map(|(name, _)| {
+                    all && d.locals_ok && d.locals.iter().any(|(n, ty)| n == name && native(ty))
+                })
+                .collect();
+        let pipe = all
+            && d.plans.iter().zip(&d.types).all(|(plan, st)| {
+                plan.inits.iter().all(|(r, init)| {
+                    !matches!(init, Init::Pipe) || native(&st.regs[*r as usize].ty)
+                })
+            });
+        Held {
+            params,
+            locals,
+            pipe,
+        }
     }
 
     /// The plans and types native code of DM `dm_ix` works from (`t` with
@@ -897,9 +948,6 @@ impl Gen<'_> {
         let rt = quote!(::sitlog_runtime);
         let plan = d.plans[ix];
         let st = &d.types[ix];
-        if plan.prog.is_some() {
-            return Err("it has a prog".into());
-        }
         if matches!(plan.in_arg, Some((_, true, _))) {
             return Err("its in_arg is a pattern (the pipe)".into());
         }
@@ -930,6 +978,9 @@ impl Gen<'_> {
             if let Some(at) = regs.get(src).cloned() {
                 regs.insert(*r, at);
             }
+        }
+        if let Some(prog) = &plan.prog {
+            stmts.push(self.nat_prog(d, ix, prog, &mut regs)?);
         }
         let cur = Literal::u32_unsuffixed(ix as u32);
         let kind = d.dm.situations[ix].kind;
@@ -1129,6 +1180,122 @@ impl Gen<'_> {
         }
     }
 
+    /// A `prog` of `V is E` elements (`V` not set yet, `E` integer `+`, `-`,
+    /// `*` over registers and integer constants): computed in Rust with
+    /// checked operations; when an operand is not an int or an operation
+    /// overflows, the element is evaluated on terms where the term code
+    /// evaluates it (the machine entered in the situation: its value or
+    /// its error), and its value converted to `V`'s type.
+    fn nat_prog(&self, d: &Dm, ix: usize, prog: &Prog, regs: &mut Regs) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let Prog::InPlace(parts) = prog else {
+            return Err("its prog shares variables with a copy (D-10)".into());
+        };
+        let cur = Literal::u32_unsuffixed(ix as u32);
+        let hand = &d.hand;
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        // A register that starts unbound in this visit (not a parameter,
+        // an id part or the pipe, which may hold a value).
+        let fresh = |r: Reg| {
+            d.plans[ix]
+                .inits
+                .iter()
+                .all(|(x, i)| *x != r || matches!(i, Init::Fresh))
+        };
+        let mut out = Vec::new();
+        for part in parts {
+            // `V is E` with `V` not set yet (fresh, or the out_arg's variable).
+            let (expr, dst) = match part {
+                Ev::IsFresh { expr, dst } => (expr, dst),
+                Ev::Is {
+                    lhs: Build::Reg(dst),
+                    expr,
+                } if !regs.contains_key(dst) && fresh(*dst) => (expr, dst),
+                _ => return Err("its prog is not `V is E` of integer arithmetic".into()),
+            };
+            let e = self.nat_int_expr(expr, regs)?;
+            let ty = d.types[ix].regs[*dst as usize].ty.clone();
+            let rty = rust_ty(&ty)?;
+            let x = reg(*dst);
+            let native = match &ty {
+                Ty::Int => quote!(v),
+                t if held_as_val(t) => quote!(#rt::native::Val::Int(v)),
+                _ => return Err(format!("its prog's `is` gives a value of type {ty}")),
+            };
+            let mut ts = Vec::new();
+            let mut n = 0;
+            let t = self.nat_build_term(expr, regs, &mut ts, &mut n)?;
+            out.push(quote! {
+                let prog_v: ::std::option::Option<i64> = #e;
+                let #x: #rty = match prog_v {
+                    ::std::option::Option::Some(v) => #native,
+                    ::std::option::Option::None => {
+                        // Not ints, or an overflow: the term code's evaluation.
+                        #hand
+                        cx.count_transitions(count);
+                        count = 0;
+                        #(#id_stmts)*
+                        cx.enter_with_id(#cur, #id);
+                        #(#ts)*
+                        let v = cx.is(::std::option::Option::None, #t, ::std::option::Option::None)?;
+                        let v = cx.store_ref().deref(v);
+                        match <#rty as #rt::native::Native>::from_term(cx.store_ref(), v) {
+                            ::std::option::Option::Some(v) => v,
+                            ::std::option::Option::None => {
+                                return ::std::result::Result::Err(cx.error(
+                                    "`is` in a prog gave a value native code cannot hold",
+                                    ::std::option::Option::None,
+                                ))
+                            }
+                        }
+                    }
+                };
+            });
+            regs.insert(*dst, (x, ty));
+        }
+        Ok(quote!(#(#out)*))
+    }
+
+    /// An integer expression (`+`, `-`, `*`, unary `-` over registers
+    /// holding ints and integer constants) as a Rust expression of an
+    /// `Option<i64>`: `None` when an operand is not an int or an operation
+    /// overflows.
+    fn nat_int_expr(&self, b: &Build, regs: &Regs) -> N<TokenStream> {
+        let some = quote!(::std::option::Option::Some);
+        Ok(match b {
+            Build::Reg(r) => {
+                let (x, ty) = regs
+                    .get(r)
+                    .ok_or_else(|| format!("register r{r} is read before it is set"))?;
+                match ty {
+                    Ty::Int => quote!(#some(#x)),
+                    t if held_as_val(t) => quote!(#x.int()),
+                    _ => return Err(format!("an arithmetic operand of type {ty}")),
+                }
+            }
+            Build::Const(t) => match self.store.value(*t) {
+                Value::Int(i) => {
+                    let i = Literal::i64_suffixed(i);
+                    quote!(#some(#i))
+                }
+                _ => return Err("an arithmetic operand that is not an int".into()),
+            },
+            Build::Compound(op, args) => {
+                let args = args
+                    .iter()
+                    .map(|a| self.nat_int_expr(a, regs))
+                    .collect::<N<Vec<_>>>()?;
+                match (op.as_str(), args.as_slice()) {
+                    ("+", [a, b]) => quote!(#a.and_then(|a| #b.and_then(|b| a.checked_add(b)))),
+                    ("-", [a, b]) => quote!(#a.and_then(|a| #b.and_then(|b| a.checked_sub(b)))),
+                    ("*", [a, b]) => quote!(#a.and_then(|a| #b.and_then(|b| a.checked_mul(b)))),
+                    ("-", [a]) => quote!(#a.and_then(|a| a.checked_neg())),
+                    _ => return Err(format!("arithmetic `{}` is not native yet", op.as_str())),
+                }
+            }
+        })
+    }
+
     /// The code of arc `arc` of situation `ix` once chosen (its action,
     /// the values a boundary bound converted, its next situation), with
     /// `arc_at` its index.
@@ -1152,6 +1319,22 @@ impl Gen<'_> {
             #(#id_stmts)*
             cx.enter_with_id(#cur, #id);
         };
+        // An action of `inc`/`get` of the frame's locals, constants and
+        // values (`[inc(n, N)]`): done natively, as an exit arc's is; the
+        // machine sees only what is performed.
+        let arc_ix = match &plan.kind {
+            KindPlan::Perceptual(arcs) => arcs.arcs.iter().position(|a| std::ptr::eq(a, arc)),
+            _ => None,
+        };
+        if let (None, Some(k)) = (atom, arc_ix) {
+            let mut nregs = regs.clone();
+            if let Ok(act) = self.nat_exit_action(d, ix, k, &arc.action, &mut nregs) {
+                let name = self.atom_native(plan.id.0)?;
+                let next =
+                    self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &nregs, &name)?;
+                return Ok(quote! { #act count += 1; #next });
+            }
+        }
         // A fresh variable the action binds (a boundary's value) and the
         // next situation reads is converted with the checked conversion;
         // when that fails, or when a local the machine's calls changed no
@@ -1515,6 +1698,13 @@ impl Gen<'_> {
                     Ok(V {
                         e: quote!(#i),
                         ty: Ty::Int,
+                    })
+                }
+                Value::Float(f) if f.is_finite() => {
+                    let f = Literal::f64_suffixed(f);
+                    Ok(V {
+                        e: quote!(#f),
+                        ty: Ty::Float,
                     })
                 }
                 // A constant list of atoms or of ints, built natively.
