@@ -258,6 +258,13 @@ mod tests {
         let cells = s.stats().cells;
         assert_eq!(s.copy_term(list), list);
         assert_eq!(s.stats().cells, cells);
+        // Nor walks it inside a term with a variable (`try(Ps)` of issue
+        // 37): the copy's work stack never holds more than a few terms.
+        let v = s.new_var();
+        let id = s.compound(Atom::intern("try"), &[v, list]);
+        let c = s.copy_term(id);
+        assert_eq!(s.arg(c, 1), Some(list));
+        assert!(s.work.capacity() < 16, "walked: {}", s.work.capacity());
         // A variable handle, even bound, is not known ground (a binding may
         // be undone); the term is still ground when walked.
         let x = s.new_var();

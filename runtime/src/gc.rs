@@ -270,6 +270,49 @@ mod tests {
     }
 
     #[test]
+    fn a_ground_list_stays_shared_and_known_ground() {
+        // Issue 37: situation ids of a list walk share the rest of the list;
+        // a collection keeps one copy of it, still known ground, so copying
+        // an id after it still shares the list.
+        let mut s = Store::new();
+        let items: Vec<Term> = (0..300)
+            .map(|i| Atom::intern(&format!("p{i}")).into())
+            .collect();
+        let list = s.list(&items);
+        let at = |s: &Store, l: Term, k: usize| {
+            let mut t = l;
+            for _ in 0..k {
+                t = s.arg(t, 1).unwrap();
+            }
+            t
+        };
+        let f = Atom::intern("try");
+        let ids: Vec<Term> = (0..10).map(|k| s.compound(f, &[at(&s, list, k)])).collect();
+        for _ in 0..1000 {
+            s.compound(f, &[Term::int(0)]);
+        }
+        let mut roots = ids.clone();
+        roots.push(list);
+        s.gc(&mut roots);
+        let list = roots[10];
+        assert_eq!(s.stats().cells, 300 * 3 + 10 * 2, "the list once, ten ids");
+        assert!(s.known_ground(list));
+        for (k, &id) in roots[..10].iter().enumerate() {
+            assert_eq!(s.arg(id, 0), Some(at(&s, list, k)), "shared, not copied");
+        }
+        let cells = s.stats().cells;
+        let x = s.new_var();
+        let t = s.compound(f, &[x, roots[9]]);
+        let c = s.copy_term(t);
+        assert_eq!(
+            s.stats().cells,
+            cells + 3 + 3,
+            "the two compounds, not the list"
+        );
+        assert_eq!(s.arg(s.arg(c, 1).unwrap(), 0), Some(at(&s, list, 9)));
+    }
+
+    #[test]
     fn stale_marks_are_ignored() {
         let mut s = Store::new();
         let x = s.new_var();

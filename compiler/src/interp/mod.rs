@@ -425,6 +425,86 @@ diag_mod(m(X), [
         );
     }
 
+    /// Store cells and variables made by each visit of `try(..)` in a walk
+    /// of `places` atoms (issue 37: a visit shares the rest of the list).
+    fn growth_per_visit(ir: &Ir, places: usize, plans: bool, keep_history: bool) -> usize {
+        struct Growth {
+            last: Option<usize>,
+            most: usize,
+        }
+        impl sitlog_runtime::machine::Observer for Growth {
+            fn transition(
+                &mut self,
+                store: &Store,
+                entry: &sitlog_runtime::history::Entry,
+                _depth: usize,
+                _next: Option<Term>,
+            ) {
+                let st = store.stats();
+                let now = st.cells + st.vars;
+                if store.writeq(entry.situation).starts_with("try([") {
+                    if let Some(last) = self.last {
+                        self.most = self.most.max(now.saturating_sub(last));
+                    }
+                    self.last = Some(now);
+                }
+            }
+        }
+        let names: Vec<String> = (0..places).map(|i| format!("p{i}")).collect();
+        let mut perception = ScriptPerception::new("script", String::new());
+        let mut actions = TextActions::new(std::io::sink(), Vec::new());
+        let config = RunConfig {
+            main: format!("main([{}], p{})", names.join(","), places - 1),
+            options: Options {
+                keep_history,
+                // No collection: the store's size is what the visits made.
+                gc_threshold: usize::MAX / 2,
+                ..Options::default()
+            },
+            ..RunConfig::default()
+        };
+        let mut growth = Growth {
+            last: None,
+            most: 0,
+        };
+        let runner = if plans { run::run } else { run::run_unresolved };
+        let (outcome, _) =
+            runner(ir, config, &mut perception, &mut actions, Some(&mut growth)).expect("runs");
+        assert!(outcome.result.is_ok(), "{:?}", outcome.result);
+        growth.most
+    }
+
+    #[test]
+    fn a_visit_of_a_list_walk_shares_the_rest_of_the_list() {
+        // Workload (d) of issue 37, with the list also inside a nested
+        // compound of the id and in a local (any ground argument is shared).
+        let ir = agree(
+            "diag_mod(main(Places, Target), [
+  [id ==> is, type ==> recursive, embedded_dm ==> search(Places, Target),
+   arcs ==> [found(P) : say(P) => fs, not_found : empty => fs]],
+  [id ==> fs, type ==> final]], []).
+diag_mod(search(Places, Target), [
+  [id ==> is, type ==> neutral, arcs ==> [empty : empty => try(Places, st(Places, Target))]],
+  [id ==> try([], _), type ==> neutral, arcs ==> [empty : empty => not_found]],
+  [id ==> try([P|Ps], st(All, T)), type ==> neutral,
+   arcs ==> [empty : [set(rest, Ps)] => (P == T -> found(P) ; otherwise -> try(Ps, st(All, T)))]],
+  [id ==> found(P), type ==> final],
+  [id ==> not_found, type ==> final]], [rest ==> []]).\n",
+            "",
+        );
+        for plans in [true, false] {
+            for keep in [true, false] {
+                let short = growth_per_visit(&ir, 8, plans, keep);
+                let long = growth_per_visit(&ir, 256, plans, keep);
+                // A copy of the rest of the list would be 3 cells an element.
+                assert!(
+                    long <= short && long < 256,
+                    "cells made per visit, 8 places: {short}, 256: {long} (plans: {plans}, history kept: {keep})"
+                );
+            }
+        }
+    }
+
     #[test]
     fn a_deep_term_keeps_its_situation_on_templates() {
         let mut list = String::from("_X");
