@@ -270,6 +270,21 @@ impl Link {
             .count()
     }
 
+    /// Whether another participant serves the service `name` (a ROS name:
+    /// it reads the `rq/...Request` topic), as far as discovery knows.
+    pub fn remote_server(&self, name: &str) -> bool {
+        let dds = format!("rq{name}Request");
+        let me = rustdds::RTPSEntity::guid(&self.context.domain_participant()).prefix;
+        self.context
+            .domain_participant()
+            .discovered_readers()
+            .iter()
+            .any(|r| {
+                r.subscription_topic_data.topic_name() == &dds
+                    && r.reader_proxy.remote_reader_guid.prefix != me
+            })
+    }
+
     /// How many readers of other participants on topic `name` are
     /// reliable (they acknowledge what they get: a robot, not a console
     /// that only watches).

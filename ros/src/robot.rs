@@ -12,6 +12,9 @@
 //!   then publishes `false`. What arrives while nothing listens is dropped.
 //!   A message on the abort topic (the robot cannot go on with this run)
 //!   ends the listening with a run-time error, its text.
+//! - A run ends with one call of the hands service (if the robot serves
+//!   one), answered once the robot has taken everything the run published
+//!   (see `impl Drop for Inner`).
 //! - `navigate/2` sends the place's pose to NavigateToPose; `grasp/3`,
 //!   `place/2`, `hand_over/2` their sitlog_msgs actions; `vision` and
 //!   `hands` call services; `presence(S)` the WaitForPerson action.
@@ -84,6 +87,35 @@ pub fn hook() -> RobotHook {
 }
 
 type Nav = ActionClient<NavigateToPoseGoal, NavigateToPoseResult, NavigateToPoseFeedback>;
+
+/// The run's end: before the task's participant leaves the domain, one
+/// round trip to the robot's hands service (it changes nothing), if the
+/// robot serves one. An acknowledgement says that a message is in the
+/// robot's reader, not that the robot has taken it; when a writer's
+/// participant leaves, RustDDS forgets what a reliable reader had from it
+/// and had not yet taken (a simulator that lost the run's last `say` that
+/// way, under load). The simulator takes every message on its topics
+/// before it answers a request that came after them, so once the answer is
+/// here the robot has everything this run published. Bounded by
+/// `timeouts.answer`; skipped once the robot is gone.
+impl Drop for Inner {
+    fn drop(&mut self) {
+        if self.stop.robot_gone() || !self.link.remote_server(&self.iface.services.hands) {
+            return;
+        }
+        let answer = Some(Interface::secs(self.iface.timeouts.answer));
+        let never = AtomicBool::new(false);
+        if let Waited::Done(()) =
+            wait_for(self.hands.wait_for_service(&self.link.node), answer, &never)
+        {
+            let _ = wait_for(
+                self.hands.async_call_service(Empty::default()),
+                answer,
+                &never,
+            );
+        }
+    }
+}
 
 struct Inner {
     link: Link,

@@ -14,7 +14,11 @@
 //! Messages on the task's topics are taken in the order the task published
 //! them (by source timestamp: the task waits until each is acknowledged
 //! before it publishes the next or sends a goal), then goals, results and
-//! service calls; the simulator answers each at once.
+//! service calls; the simulator answers each at once. Goals and service
+//! calls are received before the topics are read, so a message acknowledged
+//! before a request was sent is taken before that request is answered: a
+//! task ends its run with such a round trip (`crate::robot`), since the
+//! messages a reader has not taken are lost when their writer leaves.
 //!
 //! With `speech_external` the user's words are not the world file's: they
 //! are what some other node publishes on the heard topic while the task
@@ -83,8 +87,9 @@ where
         )
     }
 
-    /// Accepts every goal and carries it out at once with `run`.
-    fn goals(&mut self, mut run: impl FnMut(G) -> (Status, R)) {
+    /// Takes and accepts every goal that has come.
+    fn receive(&mut self) -> Vec<(GoalId, G)> {
+        let mut goals = Vec::new();
         loop {
             let (req, request) = match self.server.receive_goal() {
                 Ok(Some(r)) => r,
@@ -98,8 +103,17 @@ where
                     stamp: ros2_client::builtin_interfaces::Time::now(),
                 },
             );
-            let ((status, _), result) = run(request.goal);
-            self.results.insert(request.goal_id, (status, result));
+            goals.push((request.goal_id, request.goal));
+        }
+        goals
+    }
+
+    /// Carries out `goals` (from [`Served::receive`]) at once with `run`,
+    /// then answers the result requests.
+    fn goals(&mut self, goals: Vec<(GoalId, G)>, mut run: impl FnMut(G) -> (Status, R)) {
+        for (id, goal) in goals {
+            let ((status, _), result) = run(goal);
+            self.results.insert(id, (status, result));
         }
         loop {
             let (req, request) = match self.server.receive_result_request() {
@@ -300,6 +314,23 @@ pub fn serve(
             stopped = Some(std::time::Instant::now());
         }
         let _ = poll.poll(&mut events, Some(Duration::from_millis(50)));
+        // Requests first, then the topics: a message the task had
+        // acknowledged before it sent a request is then taken before the
+        // request is answered (the run's end waits on that, see
+        // `crate::robot`), and said before a goal that came after it.
+        let navigate_goals = navigate.receive();
+        let grasp_goals = grasp.receive();
+        let place_goals = place.receive();
+        let hand_over_goals = hand_over.receive();
+        let wait_goals = wait_for_person.receive();
+        let mut detect_calls = Vec::new();
+        while let Ok(Some((req, _))) = detect.receive_request() {
+            detect_calls.push(req);
+        }
+        let mut hands_calls = Vec::new();
+        while let Ok(Some((req, _))) = hands.receive_request() {
+            hands_calls.push(req);
+        }
         // The task's messages, in the order it published them.
         let mut inputs: Vec<(Option<ros2_client::ROSTime>, u8, Input)> = Vec::new();
         fn drain<M: 'static + serde::de::DeserializeOwned>(
@@ -398,7 +429,7 @@ pub fn serve(
             w.flush();
         }
         // Goals, results and service calls.
-        navigate.goals(|goal| {
+        navigate.goals(navigate_goals, |goal| {
             let (x, y) = (goal.pose.pose.position.x, goal.pose.pose.position.y);
             let at = world.place_names().into_iter().find(|p| {
                 world
@@ -431,7 +462,7 @@ pub fn serve(
             Ok(s) => (ok(), StatusResult { status: s.into() }),
             Err(s) => (aborted(), StatusResult { status: s.into() }),
         };
-        grasp.goals(|goal| {
+        grasp.goals(grasp_goals, |goal| {
             let r = match goal.hand.parse::<Hand>() {
                 Err(_) => Err("unknown_hand"),
                 Ok(h) => w
@@ -443,7 +474,7 @@ pub fn serve(
             w.flush();
             status_of(r)
         });
-        place.goals(|goal| {
+        place.goals(place_goals, |goal| {
             let r = match goal.hand.parse::<Hand>() {
                 Err(_) => Err("unknown_hand"),
                 Ok(h) => match w.sim.place(h) {
@@ -455,7 +486,7 @@ pub fn serve(
             w.flush();
             status_of(r)
         });
-        hand_over.goals(|goal| {
+        hand_over.goals(hand_over_goals, |goal| {
             let r = match goal.hand.parse::<Hand>() {
                 Err(_) => Err("unknown_hand"),
                 Ok(h) => w.sim.hand_over(h).map(|_| "ok").map_err(|e| e.code()),
@@ -463,12 +494,12 @@ pub fn serve(
             w.flush();
             status_of(r)
         });
-        wait_for_person.goals(|goal| {
+        wait_for_person.goals(wait_goals, |goal| {
             let present = w.sim.wait_for_user(goal.max_seconds);
             w.flush();
             (ok(), WaitForPersonResult { present })
         });
-        while let Ok(Some((req, _))) = detect.receive_request() {
+        for req in detect_calls {
             let seen = w.sim.see();
             w.flush();
             let detections = seen
@@ -512,7 +543,7 @@ pub fn serve(
             };
             let _ = detect.send_response(req, response);
         }
-        while let Ok(Some((req, _))) = hands.receive_request() {
+        for req in hands_calls {
             let hand = |h: Hand| w.sim.holding(h).unwrap_or("").to_owned();
             let response = GetHandsResponse {
                 left: hand(Hand::Left),
