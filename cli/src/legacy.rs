@@ -414,6 +414,21 @@ mod tests {
         assert!(find_home(Path::new("/"), Some(Path::new("/nonexistent")))
             .unwrap_err()
             .contains("no src/init.pl"));
+        // The profile of a run: the layer after the `getenv` fact, the tree
+        // a trust root, the limits raised, list tails closed.
+        let mut args = sitlog_robot::cli::RunArgs::default();
+        let caption = Some(("c".to_owned(), "Hi".to_owned()));
+        let (home, before) = prepare(&dir, Some(&dir), &mut args, caption.clone()).unwrap();
+        assert_eq!(home, dir);
+        let names: Vec<&str> = before.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(names[0], "<legacy environment>");
+        assert!(before[0].text.starts_with("'$sitlog_env'('SITLOG_HOME', "));
+        assert_eq!(before.len(), 3);
+        assert_eq!(before[2].text, "b.\n");
+        assert_eq!(args.trust_roots, vec![dir.clone()]);
+        assert!(args.close_list_tails);
+        assert_eq!(args.prolog_inferences, LEGACY_INFERENCES);
+        assert_eq!(args.unbound_screen, caption);
         std::fs::write(dir.join(INIT_FILE), ":- consult('$SITLOG_HOME/kb/c').\n").unwrap();
         assert!(init_consults(&dir).unwrap_err().contains("kb/c"));
         let _ = std::fs::remove_dir_all(&dir);

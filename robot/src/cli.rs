@@ -425,6 +425,29 @@ mod tests {
     }
 
     #[test]
+    fn a_run_legacy_command_line_works_unchanged_on_a_legacy_task() {
+        let cli = LegacyTaskCli::try_parse_from([
+            "t",
+            "--legacy",
+            "--sitlog-home",
+            "/tree",
+            "--legacy-kb",
+            "native",
+            "--script",
+            "in.txt",
+            "--allow-unresolved",
+        ])
+        .unwrap();
+        assert!(cli.legacy);
+        assert_eq!(cli.sitlog_home.as_deref(), Some(Path::new("/tree")));
+        assert_eq!(cli.legacy_kb, LegacyKb::Native);
+        assert_eq!(cli.task.run.script, Some(PathBuf::from("in.txt")));
+        let cli = LegacyTaskCli::try_parse_from(["t"]).unwrap();
+        assert_eq!(cli.legacy_kb, LegacyKb::Prolog);
+        assert!(LegacyTaskCli::try_parse_from(["t", "--legacy-kb", "sql"]).is_err());
+    }
+
+    #[test]
     fn options_parse() {
         let cli = TaskCli::try_parse_from([
             "t",
