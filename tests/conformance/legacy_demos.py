@@ -9,9 +9,11 @@ usage: legacy_demos.py ORIGINAL_OUTPUT OUR_STDOUT OUR_STDERR
 
 With --same the two runs must be identical: stdout (the history listing,
 `Out Arg:`, the globals; or the `--format json` report) and stderr (what
-the robot says and does, warnings, errors) line by line, variable names
-normalised as above; the first differing history entry (DM and situation)
-and the first differing line of each stream are printed.
+the robot says and does, errors) line by line, variable names normalised
+as above; the check's diagnostics that `sitlogc run` prints before the run
+(W0203 for a DM defined twice; the task printed them when it was built)
+are left out of the run's stderr. The first differing history entry (DM
+and situation) and the first differing line of each stream are printed.
 
 ORIGINAL_OUTPUT is the original's whole test-mode output (stdout and stderr);
 OUR_STDOUT is sitlogc's report (the history listing) and OUR_STDERR its
@@ -23,6 +25,7 @@ utterances in order. The original prints the expectation of a perceptual
 situation unbound (defect E1 of shared/notes/semantics.md), so expectations
 are not compared. Variable names are normalised (`_123`, `_G12` -> `_`).
 Prints a summary and the first differences; exit status 1 if any."""
+import json
 import re
 import sys
 
@@ -149,14 +152,44 @@ def first_differences(name, a, b, limit=5):
     return diffs
 
 
+DIAGNOSTIC = re.compile(r"^\[[EW]\d{4}\] ")
+DIAGNOSTIC_END = re.compile(r"^─*╯\s*$")
+
+
+def without_diagnostics(lines):
+    """`lines` without the check's diagnostics at their start (each from
+    `[W0203] Warning: ...` to its closing `───╯`)."""
+    i = 0
+    while i < len(lines) and DIAGNOSTIC.match(lines[i]):
+        j = i + 1
+        while j < len(lines) and not DIAGNOSTIC_END.match(lines[j]) and not DIAGNOSTIC.match(lines[j]):
+            j += 1
+        i = j + 1 if j < len(lines) and DIAGNOSTIC_END.match(lines[j]) else j
+    return lines[i:]
+
+
+def json_history(lines):
+    """[(0, dm, situation, action)] of a `--format json` report."""
+    try:
+        report = json.loads("".join(lines))
+    except ValueError:
+        return []
+    norm = lambda s: VAR.sub("_", str(s))
+    return [
+        (0, norm(h.get("dm")), norm(h.get("situation")), norm(h.get("action")))
+        for h in report.get("history") or []
+    ]
+
+
 def same(paths):
     """--same: the interpreter's run against the compiled task's."""
     read = lambda p: open(p, encoding="utf-8", errors="replace").readlines()
     run_out, run_err, task_out, task_err = map(read, paths)
+    run_err = without_diagnostics(run_err)
     norm = lambda lines: [VAR.sub("_", l.rstrip("\n")) for l in lines]
     diffs = []
-    hr = history(section(run_out, "Execution history:", "Out Arg:"))
-    ht = history(section(task_out, "Execution history:", "Out Arg:"))
+    hr = history(section(run_out, "Execution history:", "Out Arg:")) or json_history(run_out)
+    ht = history(section(task_out, "Execution history:", "Out Arg:")) or json_history(task_out)
     for i, (a, b) in enumerate(zip(hr, ht)):
         if a != b:
             diffs.append(

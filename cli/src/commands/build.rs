@@ -22,6 +22,8 @@ pub fn explain_types_of(app: &std::path::Path) -> u8 {
     }
 }
 
+/// `legacy`: `Some(--sitlog-home)` under `--legacy`.
+#[allow(clippy::too_many_arguments)] // the command's options, as `run_app` takes them
 pub fn build_app(
     app: &std::path::Path,
     output: Option<PathBuf>,
