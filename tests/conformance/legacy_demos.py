@@ -175,10 +175,17 @@ def json_history(lines):
     except ValueError:
         return []
     norm = lambda s: VAR.sub("_", str(s))
-    return [
-        (0, norm(h.get("dm")), norm(h.get("situation")), norm(h.get("action")))
-        for h in report.get("history") or []
-    ]
+    out = []
+
+    def walk(entries, depth):
+        for h in entries:
+            if isinstance(h, list):
+                walk(h, depth + 1)
+            elif isinstance(h, dict):
+                out.append((depth, norm(h.get("dm")), norm(h.get("situation")), norm(h.get("action"))))
+
+    walk(report.get("history") or [], 0)
+    return out
 
 
 def same(paths):
