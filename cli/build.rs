@@ -2,7 +2,8 @@
 //! runtime and what it needs), the workspace manifest and `Cargo.lock` into
 //! `sitlogc`, so that `sitlogc build` works without the checkout it was
 //! built from (see `src/package.rs`, which extracts them into the user's
-//! cache directory). Writes `$OUT_DIR/embedded_runtime.rs`: the files as
+//! cache directory), and `src/legacy.rs` (a task of `sitlogc build --legacy`
+//! compiles it in). Writes `$OUT_DIR/embedded_runtime.rs`: the files as
 //! `(relative path, bytes)` and a hash of them all that names the extracted
 //! copy.
 //!
@@ -41,6 +42,11 @@ fn main() {
         }
         walk(&dir.join("src"), &format!("{krate}/src"), &mut files);
     }
+    // The legacy profile, compiled into a task of `sitlogc build --legacy`
+    // as a module of its own (see `src/legacy.rs`).
+    let legacy = manifest_dir.join("src").join("legacy.rs");
+    println!("cargo:rerun-if-changed={}", legacy.display());
+    files.push(("cli/src/legacy.rs".to_owned(), legacy));
     let lock = root.join("Cargo.lock");
     println!("cargo:rerun-if-changed={}", lock.display());
     files.push(("Cargo.lock".to_owned(), lock));

@@ -310,6 +310,21 @@ pub enum Command {
         /// "A robot over ROS 2"). Not with --debugger.
         #[arg(long, conflicts_with = "debugger")]
         ros2: bool,
+        /// Compile an application written for the original interpreter, in
+        /// the original's tree, as `run --legacy` runs it: the original's
+        /// rules for its DMs (implies --allow-unresolved). The task loads,
+        /// when it starts, the Prolog files the tree's src/init.pl consults
+        /// (from its --sitlog-home DIR, else $SITLOG_HOME, else the nearest
+        /// directory above the current one that has src/init.pl; not the
+        /// tree it was built from) and takes `run --legacy`'s options
+        /// (--sitlog-home, --legacy-kb). Not with --debugger or --ros2.
+        #[arg(long, conflicts_with_all = ["debugger", "ros2", "explain_types"])]
+        legacy: bool,
+        /// The original's tree for --legacy at build time, where the
+        /// application is placed (default: $SITLOG_HOME, else the nearest
+        /// directory above APP that has src/init.pl).
+        #[arg(long, value_name = "DIR", requires = "legacy")]
+        sitlog_home: Option<PathBuf>,
     },
     /// Draw an application in the notation of the SitLog papers.
     ///

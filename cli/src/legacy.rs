@@ -10,6 +10,14 @@
 //! files of those `$SITLOG_HOME` directives, in order, read from `init.pl`
 //! itself; nothing of the original is part of sitlog-rs. The files are then
 //! loaded like `user_functions.pl` (our reader, the embedded engine).
+//!
+//! One profile for both back ends: [`prepare`] applies it to a run
+//! (`sitlogc run --legacy`), and a task compiled with `sitlogc build
+//! --legacy` compiles this very file into itself (the package's `main.rs`
+//! has it as a module: `crate::package`) and calls [`task_setup`] at start.
+//! So this file uses only the crates a compiled task links (`sitlog_robot`,
+//! `sitlog_runtime` with its `prolog` feature, `sitlog_syntax`,
+//! `sitlog_kb`), never `crate::`.
 
 use std::path::{Path, PathBuf};
 
@@ -156,6 +164,93 @@ pub fn init_consults(home: &Path) -> Result<Vec<PathBuf>, String> {
         }
     }
     Ok(files)
+}
+
+/// The legacy profile applied to the options of a run whose application
+/// is `app` (or, for a compiled task, the current directory: where the tree
+/// is looked for when neither `explicit` (`--sitlog-home`) nor
+/// `$SITLOG_HOME` names it): the tree becomes a trust root, list tails are
+/// closed, the call limits raised, `screen(X)` with `X` unbound shows
+/// `caption` (see [`first_caption`]). Returns the tree and the Prolog
+/// sources to load before the application's: the `SITLOG_HOME` fact of
+/// `getenv/2` (as the original's launchers set it, with a trailing `/`),
+/// then the files `init.pl` consults. The error is a message without the
+/// `error: ` prefix.
+pub fn prepare(
+    app: &Path,
+    explicit: Option<&Path>,
+    args: &mut sitlog_robot::cli::RunArgs,
+    caption: Option<(String, String)>,
+) -> Result<(PathBuf, Vec<sitlog_runtime::prolog::PrologSource>), String> {
+    use sitlog_runtime::prolog::PrologSource;
+    let home = find_home(app, explicit)?;
+    let files = init_consults(&home)?;
+    // The original's tree is the application: its apps consult one
+    // another's files (without --allow-os as well).
+    args.trust_roots.push(home.clone());
+    args.close_list_tails = true;
+    raise_call_limits(args);
+    args.unbound_screen = caption;
+    let value = std::env::var("SITLOG_HOME")
+        .ok()
+        .filter(|v| !v.is_empty())
+        .unwrap_or_else(|| format!("{}/", home.display()));
+    let mut fact = String::from("'$sitlog_env'('SITLOG_HOME', ");
+    sitlog_syntax::write::write_atom(&mut fact, sitlog_syntax::Atom::intern(&value), true);
+    fact.push_str(").\n");
+    let mut before = vec![PrologSource::new("<legacy environment>", fact)];
+    for f in &files {
+        match PrologSource::from_path(f) {
+            Ok(s) => before.push(s),
+            Err(e) => return Err(format!("--legacy: cannot read {}: {e}", f.display())),
+        }
+    }
+    Ok((home, before))
+}
+
+/// What a task compiled with `sitlogc build --legacy` does at start
+/// (`sitlog_robot::main_legacy`'s `setup`), as `sitlogc run --legacy` does
+/// before it runs: [`prepare`] from the current directory, then the
+/// functions: the standard ones, the original's Prolog layer read from the
+/// tree now, and the application's embedded Prolog `sources` (as the
+/// interpreter loads them: consults relative to the application's
+/// directory, `app_in_home` inside the tree), its KB layer served by
+/// [`native_kb`] under `--legacy-kb native`. The error: the exit status,
+/// the lines for stderr and the message of the `--format json` report.
+pub fn task_setup(
+    cli: &sitlog_robot::cli::LegacyTaskCli,
+    args: &mut sitlog_robot::cli::RunArgs,
+    app_in_home: Option<&str>,
+    caption: Option<(&str, &str)>,
+    sources: &[(&str, &str)],
+) -> Result<sitlog_runtime::Functions, (u8, Vec<String>, String)> {
+    use sitlog_runtime::prolog::{PrologFunctions, PrologSource};
+    let caption = caption.map(|(i, t)| (i.to_owned(), t.to_owned()));
+    let (home, mut all) = prepare(Path::new("."), cli.sitlog_home.as_deref(), args, caption)
+        .map_err(|e| {
+            let message = format!("error: {e}");
+            (2, vec![message.clone()], message)
+        })?;
+    let layer = all.len();
+    let dir = app_in_home.map(|rel| home.join(rel));
+    all.extend(sources.iter().map(|(name, text)| PrologSource {
+        name: (*name).to_owned(),
+        text: (*text).to_owned(),
+        dir: dir.clone(),
+    }));
+    let native = (cli.legacy_kb == sitlog_robot::cli::LegacyKb::Native).then(native_kb);
+    let mut functions = sitlog_runtime::Functions::standard();
+    match PrologFunctions::load_with(&all, Default::default(), layer, native) {
+        Ok(prolog) => {
+            prolog.install(&mut functions);
+            Ok(functions)
+        }
+        Err(errors) => {
+            let first = errors.first().map(|e| e.to_string()).unwrap_or_default();
+            let lines = errors.iter().map(|e| format!("error: {e}")).collect();
+            Err((1, lines, first))
+        }
+    }
 }
 
 /// `--legacy-kb native`: the original's KB layer served by our KB
@@ -319,6 +414,21 @@ mod tests {
         assert!(find_home(Path::new("/"), Some(Path::new("/nonexistent")))
             .unwrap_err()
             .contains("no src/init.pl"));
+        // The profile of a run: the layer after the `getenv` fact, the tree
+        // a trust root, the limits raised, list tails closed.
+        let mut args = sitlog_robot::cli::RunArgs::default();
+        let caption = Some(("c".to_owned(), "Hi".to_owned()));
+        let (home, before) = prepare(&dir, Some(&dir), &mut args, caption.clone()).unwrap();
+        assert_eq!(home, dir);
+        let names: Vec<&str> = before.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(names[0], "<legacy environment>");
+        assert!(before[0].text.starts_with("'$sitlog_env'('SITLOG_HOME', "));
+        assert_eq!(before.len(), 3);
+        assert_eq!(before[2].text, "b.\n");
+        assert_eq!(args.trust_roots, vec![dir.clone()]);
+        assert!(args.close_list_tails);
+        assert_eq!(args.prolog_inferences, LEGACY_INFERENCES);
+        assert_eq!(args.unbound_screen, caption);
         std::fs::write(dir.join(INIT_FILE), ":- consult('$SITLOG_HOME/kb/c').\n").unwrap();
         assert!(init_consults(&dir).unwrap_err().contains("kb/c"));
         let _ = std::fs::remove_dir_all(&dir);

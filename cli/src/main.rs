@@ -122,6 +122,8 @@ fn run(cli: Cli) -> u8 {
             deny_warnings,
             debugger,
             ros2,
+            legacy,
+            sitlog_home,
         } => {
             use sitlog_cli::package::Profile;
             let profile = match (debug, lto) {
@@ -143,6 +145,7 @@ fn run(cli: Cli) -> u8 {
                     },
                     debugger,
                     ros2,
+                    legacy.then_some(sitlog_home.as_deref()),
                 )
             }
         }

@@ -318,6 +318,43 @@ pub struct TaskCli {
     pub max_file_bytes: u64,
 }
 
+/// `--legacy-kb`: how a task of the original's tree (`--legacy`) serves the
+/// original's KB layer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum LegacyKb {
+    /// The original's KB layer runs as it is (the KB a Prolog term).
+    #[default]
+    Prolog,
+    /// Its services, updates, loads and saves are served by sitlog-kb (the
+    /// KB a handle).
+    Native,
+}
+
+/// The command line of a task compiled with `sitlogc build --legacy` (an
+/// application of the original's tree): the options of `sitlogc run
+/// --legacy`, so that its command line works unchanged.
+#[derive(Parser, Debug)]
+pub struct LegacyTaskCli {
+    #[command(flatten)]
+    pub task: TaskCli,
+    /// Accepted so that a `sitlogc run --legacy` command line works
+    /// unchanged: this task always runs under the original's rules.
+    #[arg(long)]
+    pub legacy: bool,
+    /// The original's tree, whose `src/init.pl` names the Prolog layer
+    /// loaded at start and whose files the application reads and writes
+    /// (default: $SITLOG_HOME, else the nearest directory above the current
+    /// one that has src/init.pl). Read when the task starts, not when it
+    /// was built.
+    #[arg(long, value_name = "DIR")]
+    pub sitlog_home: Option<PathBuf>,
+    /// `prolog` runs the original's KB layer as it is; `native` serves its
+    /// KB services, updates, loads and saves from our KB (sitlog-kb), the
+    /// KB being a handle.
+    #[arg(long, value_enum, value_name = "HOW", default_value_t = LegacyKb::Prolog)]
+    pub legacy_kb: LegacyKb,
+}
+
 /// The clap command of a compiled task whose command line is `C` (e.g.
 /// [`TaskCli`]), named after the application; `more` is appended to its
 /// description.
@@ -385,6 +422,29 @@ mod tests {
         assert!(cli.allow_unresolved);
         assert_eq!(cli.run.kb.as_deref(), Some(Path::new("k.kb")));
         assert!(cli.run.kb_persist);
+    }
+
+    #[test]
+    fn a_run_legacy_command_line_works_unchanged_on_a_legacy_task() {
+        let cli = LegacyTaskCli::try_parse_from([
+            "t",
+            "--legacy",
+            "--sitlog-home",
+            "/tree",
+            "--legacy-kb",
+            "native",
+            "--script",
+            "in.txt",
+            "--allow-unresolved",
+        ])
+        .unwrap();
+        assert!(cli.legacy);
+        assert_eq!(cli.sitlog_home.as_deref(), Some(Path::new("/tree")));
+        assert_eq!(cli.legacy_kb, LegacyKb::Native);
+        assert_eq!(cli.task.run.script, Some(PathBuf::from("in.txt")));
+        let cli = LegacyTaskCli::try_parse_from(["t"]).unwrap();
+        assert_eq!(cli.legacy_kb, LegacyKb::Prolog);
+        assert!(LegacyTaskCli::try_parse_from(["t", "--legacy-kb", "sql"]).is_err());
     }
 
     #[test]

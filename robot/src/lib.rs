@@ -57,7 +57,9 @@ pub use debug_hooks::{DebugHooks, MakePerception, WorldProbe};
 pub use robot_hook::{RobotHook, RobotParts, RobotSetup};
 pub use runner::{KbProbe, PerceptionWrap, Runner};
 pub use streams::Streams;
-pub use task::{main, main_failed, main_failed_from, main_from, main_with_robot, on_big_stack};
+pub use task::{
+    main, main_failed, main_failed_from, main_from, main_legacy, main_with_robot, on_big_stack,
+};
 
 /// The world's user functions (`shop_diagnose/4`, ...) over a simulator
 /// that another robot keeps as its belief of the world (sitlog-ros).

@@ -3,7 +3,9 @@
 //! thread with a big stack ([`on_big_stack`], as `sitlogc` runs).
 
 use crate::assets::Assets;
-use crate::cli::{parse_task_args, parse_task_args_from, task_command, TaskCli};
+use crate::cli::{
+    parse_task_args, parse_task_args_from, task_command, LegacyTaskCli, RunArgs, TaskCli,
+};
 use crate::robot_hook::RobotHook;
 use crate::runner::Runner;
 use sitlog_runtime::app::App;
@@ -46,6 +48,72 @@ pub fn main_from<A: App>(
         Err(code) => return code,
     };
     on_big_stack(|| Runner::process().run(app, functions, &args, assets))
+}
+
+/// The `main` of a task compiled with `sitlogc build --legacy`: its
+/// command line is [`LegacyTaskCli`] (`sitlogc run --legacy`'s options);
+/// `setup` applies the legacy profile to the run's options and makes the
+/// functions (the original's Prolog layer, read from its tree at start,
+/// before the application's own), or says why not (exit status, the lines
+/// for stderr and the message of the `--format json` report, as `sitlogc
+/// run --legacy` gives them); in test mode
+/// each situation type is given what the original's test mode gives it
+/// ([`sitlog_runtime::testmode::OriginalTestMode`]), as under `sitlogc run
+/// --legacy`.
+pub fn main_legacy<A: App>(
+    app: &A,
+    assets: &Assets,
+    setup: impl FnOnce(&LegacyTaskCli, &mut RunArgs) -> Result<Functions, (u8, Vec<String>, String)>,
+) -> std::process::ExitCode {
+    let about = "\nAn application of the original SitLog's tree (`sitlogc build --legacy`): \
+                 at start it loads the Prolog files the tree's src/init.pl consults, from \
+                 --sitlog-home DIR, else $SITLOG_HOME, else the nearest directory above the \
+                 current one that has src/init.pl.";
+    let cli = match parse_task_args::<LegacyTaskCli>(task_command::<LegacyTaskCli>(assets, about)) {
+        Ok(cli) => cli,
+        Err(code) => return code,
+    };
+    sitlog_syntax::decode::set_max_file_bytes(cli.task.max_file_bytes);
+    let mut args = cli.task.run.clone();
+    let json = args.format == crate::cli::Format::Json;
+    crate::interrupt::report_json_before_start(json);
+    let functions = match setup(&cli, &mut args) {
+        Ok(f) => f,
+        Err((code, lines, message)) => {
+            for line in &lines {
+                sitlog_runtime::errln!("{line}");
+            }
+            return stopped(json, code, &message);
+        }
+    };
+    on_big_stack(|| {
+        let test_mode = args.no_world || (args.world.is_none() && assets.world.is_none());
+        let mut runner = Runner::process();
+        if test_mode {
+            runner = runner.wrap_perception(Box::new(|inner| {
+                Box::new(sitlog_runtime::testmode::OriginalTestMode::new(inner))
+            }));
+        }
+        runner.run(app, functions, &args, assets)
+    })
+}
+
+/// `code`, after the report of a run stopped before its task ran (with
+/// `--format json`: status `error`, `message`) is written on stdout.
+fn stopped(json: bool, code: u8, message: &str) -> std::process::ExitCode {
+    if json {
+        use std::io::Write as _;
+        let mut out = std::io::stdout();
+        let report = sitlog_runtime::report::stopped_json("error", message);
+        if out
+            .write_all(report.as_bytes())
+            .and_then(|_| out.flush())
+            .is_err()
+        {
+            return std::process::ExitCode::from(2);
+        }
+    }
+    std::process::ExitCode::from(code)
 }
 
 /// The `main` of a compiled task whose functions could not be made

@@ -3,7 +3,11 @@
 # authors wrote them, on the original interpreter and on
 # `sitlogc run --legacy`, each from a fresh copy of the original's tree, and
 # compares the runs (legacy_demos.py: transitions, DM/situation sequence,
-# actions, utterances in order).
+# actions, utterances in order). With LEGACY_COMPILED=1, also on the task
+# `sitlogc build --legacy` compiles from each app (one build per app, run
+# for each of its tasks), compared with the original's run as ours is and
+# with `sitlogc run --legacy`'s (legacy_demos.py --same: stdout, stderr and
+# exit status identical).
 #
 # The tasks are the files legacy_apps/APP/TASK.txt next to this script: the
 # inputs a user types in test mode, one term a line (for a dispatcher app,
@@ -20,6 +24,10 @@
 #                as `swipl --traditional` (SWI-6 lists, see legacy_demos.sh)
 #   SITLOGC      our binary (default target/release/sitlogc)
 #   LEGACY_KB    our KB modes to run, default "prolog native"
+#   LEGACY_COMPILED=1    also run the compiled tasks (a build per app takes
+#                        minutes: set SITLOGC_CACHE_DIR to share its cache);
+#                        =only: the compiled tasks and the original only
+#   LEGACY_TASKS         a directory keeping the compiled tasks (legacy_task.sh)
 #   CONFORMANCE_TIMEOUT  seconds per run (default 120)
 #   CONFORMANCE_KEEP=1   keep the work directory and print its path
 #
@@ -39,6 +47,8 @@ root=$(cd "$here/../.." && pwd)
 . "$here/original/original.sh"
 original_legacy_setup legacy-apps 120 || exit 0
 read -r -a kbs <<<"${LEGACY_KB:-prolog native}"
+# shellcheck source=legacy_task.sh
+. "$here/legacy_task.sh"
 
 # A fresh copy of the original's tree (tasks rewrite its KB files).
 fresh() {
@@ -92,6 +102,7 @@ for task in "${tasks[@]}"; do
     fi
     ok=1
     for kb in "${kbs[@]}"; do
+      if [ "${LEGACY_COMPILED:-0}" != only ]; then
         fresh "$d/tree"
         t0=$(now)
         (cd "$d/tree" && SITLOG_HOME="$d/tree/" timeout "$limit" \
@@ -112,6 +123,40 @@ for task in "${tasks[@]}"; do
             echo "$task kb=$kb: DIFFER (exit status $rc)"
             sed 's/^/    /' "$d/compare-$kb.txt"
             [ "$rc" = 0 ] || tail -n 3 "$d/ours-$kb.err" | sed 's/^/    stderr: /'
+            ok=0
+            status=1
+        fi
+      fi
+        [ "${LEGACY_COMPILED:-0}" != 0 ] || continue
+        if ! task_exe=$(legacy_task "apps/$app"); then
+            echo "$task kb=$kb compiled: DIFFER (no compiled task)"
+            ok=0
+            status=1
+            continue
+        fi
+        fresh "$d/tree"
+        t0=$(now)
+        (cd "$d/tree" && SITLOG_HOME="$d/tree/" timeout "$limit" \
+            "$task_exe" --legacy --legacy-kb "$kb" --script "$input" \
+            >"$d/task-$kb.out" 2>"$d/task-$kb.err")
+        rc_task=$?
+        t_task=$(secs "$t0" "$(now)")
+        python3 "$here/legacy_demos.py" "$d/original.out" "$d/task-$kb.out" "$d/task-$kb.err" \
+            >"$d/compare-task-$kb.txt"
+        cmp=$?
+        if [ "${LEGACY_COMPILED:-0}" = only ]; then
+            rc=0 same=0
+            echo "not run (LEGACY_COMPILED=only)" >"$d/same-$kb.txt"
+        else
+            legacy_same "$d/ours-$kb" "$d/task-$kb" >"$d/same-$kb.txt"
+            same=$?
+        fi
+        if [ "$cmp" = 0 ] && [ "$same" = 0 ] && [ "$rc" = "$rc_task" ]; then
+            echo "$task kb=$kb compiled: agree ($(head -n 1 "$d/compare-task-$kb.txt")), $(head -n 1 "$d/same-$kb.txt") (compiled task $t_task s)"
+        else
+            echo "$task kb=$kb compiled: DIFFER (exit status $rc_task, run --legacy $rc)"
+            sed 's/^/    against the original: /' "$d/compare-task-$kb.txt"
+            sed 's/^/    against run --legacy: /' "$d/same-$kb.txt"
             ok=0
             status=1
         fi

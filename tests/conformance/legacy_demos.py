@@ -1,8 +1,19 @@
 #!/usr/bin/env python3
 """Compare one run of the original SitLog interpreter with one run of
-`sitlogc run --legacy` on the same application and inputs.
+`sitlogc run --legacy` on the same application and inputs; or (--same) a
+run of `sitlogc run --legacy` with a run of the task `sitlogc build
+--legacy` compiled from it.
 
 usage: legacy_demos.py ORIGINAL_OUTPUT OUR_STDOUT OUR_STDERR
+       legacy_demos.py --same RUN_STDOUT RUN_STDERR TASK_STDOUT TASK_STDERR
+
+With --same the two runs must be identical: stdout (the history listing,
+`Out Arg:`, the globals; or the `--format json` report) and stderr (what
+the robot says and does, errors) line by line, variable names normalised
+as above; the check's diagnostics that `sitlogc run` prints before the run
+(W0203 for a DM defined twice; the task printed them when it was built)
+are left out of the run's stderr. The first differing history entry (DM
+and situation) and the first differing line of each stream are printed.
 
 ORIGINAL_OUTPUT is the original's whole test-mode output (stdout and stderr);
 OUR_STDOUT is sitlogc's report (the history listing) and OUR_STDERR its
@@ -14,6 +25,7 @@ utterances in order. The original prints the expectation of a perceptual
 situation unbound (defect E1 of shared/notes/semantics.md), so expectations
 are not compared. Variable names are normalised (`_123`, `_G12` -> `_`).
 Prints a summary and the first differences; exit status 1 if any."""
+import json
 import re
 import sys
 
@@ -140,7 +152,88 @@ def first_differences(name, a, b, limit=5):
     return diffs
 
 
+DIAGNOSTIC = re.compile(r"^\[[EW]\d{4}\] ")
+DIAGNOSTIC_END = re.compile(r"^─*╯\s*$")
+
+
+def without_diagnostics(lines):
+    """`lines` without the check's diagnostics at their start (each from
+    `[W0203] Warning: ...` to its closing `───╯`)."""
+    i = 0
+    while i < len(lines) and DIAGNOSTIC.match(lines[i]):
+        j = i + 1
+        while j < len(lines) and not DIAGNOSTIC_END.match(lines[j]) and not DIAGNOSTIC.match(lines[j]):
+            j += 1
+        i = j + 1 if j < len(lines) and DIAGNOSTIC_END.match(lines[j]) else j
+    return lines[i:]
+
+
+def json_history(lines):
+    """[(0, dm, situation, action)] of a `--format json` report."""
+    try:
+        report = json.loads("".join(lines))
+    except ValueError:
+        return []
+    norm = lambda s: VAR.sub("_", str(s))
+    out = []
+
+    def walk(entries, depth):
+        for h in entries:
+            if isinstance(h, list):
+                walk(h, depth + 1)
+            elif isinstance(h, dict):
+                out.append((depth, norm(h.get("dm")), norm(h.get("situation")), norm(h.get("action"))))
+
+    walk(report.get("history") or [], 0)
+    return out
+
+
+def same(paths):
+    """--same: the interpreter's run against the compiled task's."""
+    read = lambda p: open(p, encoding="utf-8", errors="replace").readlines()
+    run_out, run_err, task_out, task_err = map(read, paths)
+    run_err = without_diagnostics(run_err)
+    norm = lambda lines: [VAR.sub("_", l.rstrip("\n")) for l in lines]
+    diffs = []
+    hr = history(section(run_out, "Execution history:", "Out Arg:")) or json_history(run_out)
+    ht = history(section(task_out, "Execution history:", "Out Arg:")) or json_history(task_out)
+    for i, (a, b) in enumerate(zip(hr, ht)):
+        if a != b:
+            diffs.append(
+                f"  first differing history entry #{i + 1}:\n"
+                f"    run:  {a[1]}:({a[2]}, ...: {a[3]}) (depth {a[0]})\n"
+                f"    task: {b[1]}:({b[2]}, ...: {b[3]}) (depth {b[0]})"
+            )
+            break
+    else:
+        if len(hr) != len(ht):
+            n = min(len(hr), len(ht))
+            who, extra = ("run", hr[n]) if len(hr) > len(ht) else ("task", ht[n])
+            diffs.append(f"  history: the {who} has more from #{n + 1}: {extra[1]}:({extra[2]}, ...)")
+    for name, a, b in (("stdout", run_out, task_out), ("stderr", run_err, task_err)):
+        a, b = norm(a), norm(b)
+        for i, (x, y) in enumerate(zip(a, b)):
+            if x != y:
+                diffs.append(f"  {name} line {i + 1}:\n    run:  {x}\n    task: {y}")
+                break
+        else:
+            if len(a) != len(b):
+                n = min(len(a), len(b))
+                who, extra = ("run", a[n]) if len(a) > len(b) else ("task", b[n])
+                diffs.append(f"  {name}: the {who} has more from line {n + 1}: {extra}")
+    print(
+        f"run --legacy and the compiled task: transitions {len(hr)} / {len(ht)}; "
+        f"stdout {len(run_out)} / {len(task_out)} lines, stderr {len(run_err)} / {len(task_err)} lines"
+    )
+    for d in diffs:
+        print(d)
+    print("identical" if not diffs else "DIFFER")
+    return 1 if diffs else 0
+
+
 def main():
+    if len(sys.argv) == 6 and sys.argv[1] == "--same":
+        return same(sys.argv[2:])
     if len(sys.argv) != 4:
         print(__doc__.split("\n\n")[1])
         return 2

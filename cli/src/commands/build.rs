@@ -17,6 +17,8 @@ pub fn explain_types_of(app: &std::path::Path) -> u8 {
     }
 }
 
+/// `legacy`: `Some(--sitlog-home)` under `--legacy`.
+#[allow(clippy::too_many_arguments)] // the command's options, as `run_app` takes them
 pub fn build_app(
     app: &std::path::Path,
     output: Option<PathBuf>,
@@ -25,11 +27,38 @@ pub fn build_app(
     strictness: Strictness,
     debugger: bool,
     ros2: bool,
+    legacy: Option<Option<&std::path::Path>>,
 ) -> u8 {
     use crate::package;
     use sitlog_compiler::build;
+    // `--legacy`: the original's rules, as `sitlogc run --legacy` checks
+    // the application; its tree is found now only to place the application
+    // in it (the task reads the tree's Prolog layer when it starts).
+    let legacy = match legacy {
+        Some(explicit) => match crate::legacy::find_home(app, explicit) {
+            Ok(home) => {
+                let canonical = |p: &std::path::Path| {
+                    std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf())
+                };
+                let app_in_home = canonical(app)
+                    .strip_prefix(canonical(&home))
+                    .ok()
+                    .map(|rel| rel.display().to_string());
+                Some(package::Legacy {
+                    app_in_home,
+                    caption: crate::legacy::first_caption(app),
+                })
+            }
+            Err(e) => {
+                sitlog_runtime::errln!("error: {e}");
+                return 2;
+            }
+        },
+        None => None,
+    };
     let options = with_world(sitlog_compiler::check::CheckOptions {
-        unresolved_as_warnings: strictness.allow_unresolved,
+        unresolved_as_warnings: strictness.allow_unresolved || legacy.is_some(),
+        legacy: legacy.is_some(),
         ..Default::default()
     });
     let deny = match deny_warnings(app, strictness.deny_warnings) {
@@ -75,8 +104,8 @@ pub fn build_app(
             return 2;
         }
     };
-    let built =
-        package::write_package(&compiled, app, &layout, debugger, ros2).and_then(|(dir, name)| {
+    let built = package::write_package(&compiled, app, &layout, debugger, ros2, legacy.as_ref())
+        .and_then(|(dir, name)| {
             sitlog_runtime::errln!("sitlogc: building {} in {}", name, dir.display());
             package::build_package(&dir, &name, &layout, profile, &output)
         });

@@ -42,44 +42,12 @@ pub fn run_app(
     let mut args = args;
     if let Some(explicit) = legacy {
         use crate::legacy;
-        let files = legacy::find_home(app, explicit)
-            .and_then(|home| legacy::init_consults(&home).map(|f| (home, f)));
-        let (home, files) = match files {
-            Ok(x) => x,
-            Err(e) => return stop(2, &format!("error: {e}")),
-        };
-        // The original's tree is the application: its apps consult one
-        // another's files (without --allow-os as well).
         legacy_args = args.clone();
-        legacy_args.trust_roots.push(home.clone());
-        legacy_args.close_list_tails = true;
-        legacy::raise_call_limits(&mut legacy_args);
-        legacy_args.unbound_screen = legacy::first_caption(app);
-        args = &legacy_args;
-        {
-            use sitlog_runtime::prolog::PrologSource;
-            // getenv('SITLOG_HOME', H) as the original's launchers set it
-            // (with a trailing `/`).
-            let value = std::env::var("SITLOG_HOME")
-                .ok()
-                .filter(|v| !v.is_empty())
-                .unwrap_or_else(|| format!("{}/", home.display()));
-            let mut fact = String::from("'$sitlog_env'('SITLOG_HOME', ");
-            sitlog_syntax::write::write_atom(&mut fact, sitlog_syntax::Atom::intern(&value), true);
-            fact.push_str(").\n");
-            before.push(PrologSource::new("<legacy environment>", fact));
-            for f in &files {
-                match PrologSource::from_path(f) {
-                    Ok(s) => before.push(s),
-                    Err(e) => {
-                        return stop(
-                            2,
-                            &format!("error: --legacy: cannot read {}: {e}", f.display()),
-                        )
-                    }
-                }
-            }
+        match legacy::prepare(app, explicit, &mut legacy_args, legacy::first_caption(app)) {
+            Ok((_, layer)) => before = layer,
+            Err(e) => return stop(2, &format!("error: {e}")),
         }
+        args = &legacy_args;
     }
     let check_options = sitlog_compiler::check::CheckOptions {
         unresolved_as_warnings: strictness.allow_unresolved || legacy.is_some(),

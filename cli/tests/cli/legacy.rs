@@ -248,6 +248,28 @@ fn sitlog_home_is_explicit_or_from_the_environment() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("cannot find the original's tree"));
+    // `sitlogc build --legacy` places the application in its tree the same
+    // way, and checks it under the original's rules (the DM defined twice
+    // identically: W0203, not E0201); its Prolog layer is read when the
+    // task starts (the compiled task itself: legacy_demos.sh).
+    let out = sitlogc()
+        .args(["build", "--legacy"])
+        .arg(&elsewhere)
+        .env_remove("SITLOG_HOME")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot find the original's tree"));
+    let out = sitlogc()
+        .current_dir(&root)
+        .args(["build", "apps/shop", "--legacy", "--emit", "rust"])
+        .env_remove("SITLOG_HOME")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("W0203"), "{stderr}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("pub fn program()"));
     // A consult of init.pl naming a missing file.
     write(
         &root,

@@ -457,7 +457,12 @@ impl Gen<'_> {
             // The situation as code, when it can be compiled.
             if let Some(plan) = self.mir.plan(dm_ix as u32, i as u32) {
                 let (id, arity) = plan.id;
-                let base = snake(&vname.to_string());
+                let mut base = snake(&vname.to_string());
+                // Not one of the module's own `run_*` functions (a
+                // situation `exit`: the original's `robocup_2015`).
+                if ["exit", "situation", "native", "typed"].contains(&base.as_str()) {
+                    base.push_str("_sit");
+                }
                 let run_name = format_ident!("run_{}", base);
                 let exit_name = format_ident!("exit_{}", base);
                 let code = self.situation_code(plan, &run_name, &exit_name);

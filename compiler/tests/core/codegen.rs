@@ -65,13 +65,20 @@ fn names_are_valid_identifiers() {
 diag_mod('type',
   [ [ id ==> 'self', type ==> neutral, arcs ==> [ empty : ['a b', 'a_b', 'A-B', [], '$x'(-3, -0.0, 123456789012345678901234567890)] => 'fn' ] ],
     [ id ==> 'fn', type ==> final ],
-    [ id ==> X, type ==> final ] ],
+    [ id ==> X, type ==> final ],
+    [ id ==> exit, type ==> final ],
+    [ id ==> situation, type ==> final ] ],
   []).
 "#;
     let text = generate(&[("kw.dm", src)]);
     // It parses as Rust (generate_file formats it through syn).
     assert!(text.contains("pub mod dm_type"), "{text}");
     assert!(text.contains("Any = 2"), "{text}");
+    // Situations named like the module's own functions (`exit`: the
+    // original's robocup_2015) get functions of their own.
+    for f in ["fn run_exit_sit(", "fn run_situation_sit("] {
+        assert!(text.contains(f), "{f}\n{text}");
+    }
 }
 
 /// The tutorial's generated code (`sitlogc build --emit rust

@@ -414,7 +414,14 @@ impl Gen<'_> {
         let callee_n = format_ident!("NatN{}", j);
         let mut final_arms = Vec::new();
         for k in 0..callee.plans.len() {
-            if callee.dm.situations[k].kind != Kind::Final {
+            // Only a final situation the callee hands back as its `Nat`
+            // variant reaches these arms: one without native code, or with
+            // a `diag_mod` (the machine takes it, see `native_visit`), goes
+            // to the machine, which returns to the caller's term code. Its
+            // variant may not exist (an application of the original's
+            // tree: `see_body`'s finals with `diag_mod`, issue 37).
+            let diag_mod = matches!(&callee.plans[k].kind, KindPlan::Final { diag_mod: Some(_) });
+            if callee.dm.situations[k].kind != Kind::Final || !callee.native[k] || diag_mod {
                 continue;
             }
             let fields = self.nat_fields(callee, k)?;
