@@ -117,16 +117,117 @@ type RunInput = Arc<Mutex<Option<crate::input::SharedInput>>>;
 type HostSlot = Arc<Mutex<Option<KbHost>>>;
 
 /// An engine thread started ahead ([`PrologFunctions::prewarm`]): its
-/// machine built with the prelude, waiting for an application to load.
-struct Warm {
+/// machine built with the prelude (and the legacy layer's clauses, if it
+/// was given one), waiting for an application to load.
+pub(super) struct Warm {
     setup: mpsc::Sender<Setup>,
     host: HostSlot,
     shared: Shared,
+    layer: Option<WarmLayer>,
+}
+
+/// The query services and updates a [`NativeKb`] serves.
+type Served = (Vec<(String, usize)>, Vec<(String, usize)>);
+
+/// The legacy layer a warm engine prepares and asserts ahead
+/// ([`PrologFunctions::prewarm_layer`]): a load whose first sources are
+/// these, served the same way, continues from it.
+struct WarmLayer {
+    sources: Vec<PrologSource>,
+    /// The natively served KB predicates (`None`: the layer as written).
+    native: Option<Served>,
+    /// The layer's sources read, sent before its clauses are asserted.
+    prepped: mpsc::Receiver<Prepping>,
+}
+
+impl WarmLayer {
+    fn serves(&self, layer: &[PrologSource], native: Option<&NativeKb>) -> bool {
+        self.sources.len() == layer.len()
+            && self
+                .sources
+                .iter()
+                .zip(layer)
+                .all(|(a, b)| a.name == b.name && a.dir == b.dir && a.text == b.text)
+            && self.native == native.map(|n| (n.queries.clone(), n.updates.clone()))
+    }
+}
+
+/// The sources read so far ([`prepare`]'s state): a warm engine reads the
+/// legacy layer ahead, the load then reads the application's files after it.
+struct Prepping {
+    prepared: Vec<Prepared>,
+    errors: Vec<PrologLoadError>,
+    defined: HashSet<(Atom, usize)>,
+    seen: HashSet<PathBuf>,
+    outside: Vec<(PathBuf, PrologLoadError)>,
+    native: Option<NativeState>,
+    redefinitions: Option<Redefinitions>,
+}
+
+impl Prepping {
+    fn new(native: Option<&NativeKb>, legacy: bool) -> Prepping {
+        Prepping {
+            prepared: Vec::new(),
+            errors: Vec::new(),
+            defined: HashSet::new(),
+            seen: HashSet::new(),
+            outside: Vec::new(),
+            native: native.map(NativeState::new),
+            redefinitions: legacy.then(Redefinitions::default),
+        }
+    }
+
+    /// Reads `sources[from..]`, the first `layer` of them being the legacy
+    /// layer (served natively if `native` was given).
+    fn add(&mut self, sources: &[PrologSource], from: usize, layer: usize) {
+        for (i, s) in sources.iter().enumerate().skip(from) {
+            let mut cx = Prep {
+                out: &mut self.prepared,
+                defined: &mut self.defined,
+                errors: &mut self.errors,
+                seen: &mut self.seen,
+                outside: &mut self.outside,
+                embedded: sources,
+                native: if i < layer {
+                    self.native.as_mut()
+                } else {
+                    None
+                },
+                redefine: self.redefinitions.as_mut(),
+            };
+            prepare(s, &mut cx, 0);
+        }
+    }
+
+    fn dropped(&self) -> HashSet<usize> {
+        self.redefinitions
+            .as_ref()
+            .map(|r| r.dropped().clone())
+            .unwrap_or_default()
+    }
+}
+
+/// The legacy layer's clauses asserted ahead by a warm engine: their
+/// texts and the engine's refusals, by index in the layer's prepared
+/// clauses.
+struct LayerLoaded {
+    clauses: Vec<(usize, String)>,
+    errors: Vec<(usize, PrologLoadError)>,
+}
+
+/// What of the application's prepared clauses a warm engine asserted
+/// ahead: the first `kept` (the layer's, less those a later file
+/// redefines), and the layer's clauses to retract (by index in the
+/// layer's prepared clauses), redefined by the application's files.
+struct Preloaded {
+    kept: usize,
+    drop: HashSet<usize>,
 }
 
 /// What a warm engine thread gets to load its application and serve it.
 struct Setup {
     prepared: Vec<Prepared>,
+    preloaded: Option<Preloaded>,
     rx: mpsc::Receiver<Request>,
     ready: mpsc::Sender<Vec<PrologLoadError>>,
 }
@@ -213,7 +314,8 @@ impl PrologFunctions {
         sources: &[PrologSource],
         options: PrologOptions,
     ) -> Result<PrologFunctions, Vec<PrologLoadError>> {
-        let (engine, mut errors) = Self::spawn(sources, options, 0, None)?;
+        let warm = WARM.lock().ok().and_then(|mut w| w.take());
+        let (engine, mut errors) = Self::spawn_from(warm, sources, options, 0, None)?;
         if let Err(e) = engine.start(&Trust::default()) {
             errors.extend(e);
         }
@@ -238,44 +340,64 @@ impl PrologFunctions {
         layer: usize,
         native: Option<NativeKb>,
     ) -> Result<PrologFunctions, Vec<PrologLoadError>> {
-        match Self::spawn(sources, options, layer, native)? {
+        let warm = WARM.lock().ok().and_then(|mut w| w.take());
+        match Self::spawn_from(warm, sources, options, layer, native)? {
             (engine, errors) if errors.is_empty() => Ok(engine),
             (_, errors) => Err(errors),
         }
     }
 
-    /// [`load_with`](Self::load_with), the clauses the engine refused
-    /// given beside the engine.
-    fn spawn(
+    /// [`load_with`](Self::load_with) on `warm` (an engine built ahead, if
+    /// it serves this load; else one built now), the clauses the engine
+    /// refused given beside the engine.
+    pub(super) fn spawn_from(
+        mut warm: Option<Warm>,
         sources: &[PrologSource],
         options: PrologOptions,
         layer: usize,
         native: Option<NativeKb>,
     ) -> Result<(PrologFunctions, Vec<PrologLoadError>), Vec<PrologLoadError>> {
-        let mut prepared = Vec::new();
-        let mut errors = Vec::new();
-        let mut defined = HashSet::new();
-        let mut seen_files = HashSet::new();
-        let mut outside = Vec::new();
-        let mut native_state = native.as_ref().map(NativeState::new);
-        let mut redefinitions = (layer > 0).then(Redefinitions::default);
-        for (i, s) in sources.iter().enumerate() {
-            let mut cx = Prep {
-                out: &mut prepared,
-                defined: &mut defined,
-                errors: &mut errors,
-                seen: &mut seen_files,
-                outside: &mut outside,
-                embedded: sources,
-                native: if i < layer {
-                    native_state.as_mut()
-                } else {
-                    None
-                },
-                redefine: redefinitions.as_mut(),
-            };
-            prepare(s, &mut cx, 0);
+        // The engine built ahead's legacy layer, read (and being asserted) ahead, if this load's
+        // first sources are that layer; an engine that holds another
+        // layer's clauses is not used.
+        let mut ahead = None;
+        if let Some(l) = warm.as_mut().and_then(|w| w.layer.take()) {
+            if layer <= sources.len() && l.serves(&sources[..layer], native.as_ref()) {
+                ahead = l.prepped.recv().ok();
+            }
+            if ahead.is_none() {
+                warm = None;
+            }
         }
+        let (mut st, from, base) = match ahead {
+            Some(p) => {
+                let base = (p.prepared.len(), p.dropped());
+                (p, layer, Some(base))
+            }
+            None => (Prepping::new(native.as_ref(), layer > 0), 0, None),
+        };
+        st.add(sources, from, layer);
+        // The layer's clauses asserted ahead that the application's files
+        // redefine are retracted before its clauses are added.
+        let preloaded = base.map(|(n, before)| {
+            let all = st.dropped();
+            Preloaded {
+                kept: n - all.iter().filter(|&&i| i < n).count(),
+                drop: all
+                    .into_iter()
+                    .filter(|i| *i < n && !before.contains(i))
+                    .collect(),
+            }
+        });
+        let Prepping {
+            mut prepared,
+            errors,
+            defined,
+            outside,
+            native: native_state,
+            redefinitions,
+            ..
+        } = st;
         if let Some(r) = &redefinitions {
             r.apply(&mut prepared);
         }
@@ -289,10 +411,9 @@ impl PrologFunctions {
         let source_dirs: Vec<PathBuf> = sources.iter().filter_map(|s| s.dir.clone()).collect();
         let (tx, rx) = mpsc::channel::<Request>();
         let (ready_tx, ready_rx) = mpsc::channel();
-        // The engine built ahead, if one is waiting; else one built now.
-        let warm = WARM.lock().ok().and_then(|mut w| w.take());
         let mut setup = Setup {
             prepared,
+            preloaded,
             rx,
             ready: ready_tx,
         };
@@ -306,14 +427,15 @@ impl PrologFunctions {
                 }
                 match w.setup.send(setup) {
                     Ok(()) => break 'engine w.shared.roots,
-                    // its thread is gone: one built now
+                    // its thread is gone: one built now, with every clause
                     Err(mpsc::SendError(back)) => setup = back,
                 }
+                setup.preloaded = None;
             }
             let roots: Roots = Arc::new(Mutex::new(source_dirs.clone()));
             let shared = Shared::new(roots.clone());
             let host: HostSlot = Arc::new(Mutex::new(host));
-            spawn_engine(host, shared, move || Some(setup)).map_err(|e| {
+            spawn_engine(host, shared, move |_| Some((setup, None))).map_err(|e| {
                 vec![PrologLoadError {
                     file: "<engine>".into(),
                     line: 0,
@@ -340,23 +462,58 @@ impl PrologFunctions {
     /// it runs while the caller reads and checks the application; the next
     /// load takes it. Does nothing when one is waiting already.
     pub fn prewarm() {
+        Self::prewarm_with(None);
+    }
+
+    /// [`prewarm`](Self::prewarm), the engine also reading `layer` (the
+    /// legacy profile's Prolog layer of the original, its KB layer served
+    /// by `native` if given) and asserting its clauses (1,720 for the
+    /// original's: most of a small `--legacy` run's start after the
+    /// engine's own) while the caller checks the application. A
+    /// [`load_with`](Self::load_with) whose first `layer` sources are these,
+    /// served the same way, takes it and reads only the application's
+    /// files; a file of the application that redefines a predicate of the
+    /// layer then has the layer's clauses retracted before its own are
+    /// added (SWI-Prolog's rule, as without this). Another load does not
+    /// take it. No directive runs ahead.
+    pub fn prewarm_layer(layer: Vec<PrologSource>, native: Option<NativeKb>) {
+        Self::prewarm_with(Some((layer, native)));
+    }
+
+    fn prewarm_with(layer: Option<(Vec<PrologSource>, Option<NativeKb>)>) {
         let Ok(mut slot) = WARM.lock() else {
             return;
         };
-        if slot.is_some() {
-            return;
+        if slot.is_none() {
+            *slot = Self::warm(layer);
         }
+    }
+
+    /// An engine thread started ahead ([`prewarm_with`](Self::prewarm_with)).
+    pub(super) fn warm(layer: Option<(Vec<PrologSource>, Option<NativeKb>)>) -> Option<Warm> {
         let host: HostSlot = Arc::new(Mutex::new(None));
         let shared = Shared::new(Arc::new(Mutex::new(Vec::new())));
         let (tx, setup_rx) = mpsc::channel::<Setup>();
-        let spawned = spawn_engine(host.clone(), shared.clone(), move || setup_rx.recv().ok());
-        if spawned.is_ok() {
-            *slot = Some(Warm {
-                setup: tx,
-                host,
-                shared,
+        let (prepped_tx, prepped) = mpsc::channel();
+        let warm_layer = layer.as_ref().map(|(sources, native)| WarmLayer {
+            sources: sources.clone(),
+            native: native
+                .as_ref()
+                .map(|n| (n.queries.clone(), n.updates.clone())),
+            prepped,
+        });
+        let spawned = spawn_engine(host.clone(), shared.clone(), move |machine| {
+            let loaded = layer.map(|(sources, native)| {
+                assert_layer(machine, &sources, native.as_ref(), &prepped_tx)
             });
-        }
+            setup_rx.recv().ok().map(|s| (s, loaded))
+        });
+        spawned.ok().map(|_| Warm {
+            setup: tx,
+            host,
+            shared,
+            layer: warm_layer,
+        })
     }
 
     /// The handle of an engine thread loading its application: waits for
@@ -788,7 +945,7 @@ impl PrologFunctions {
 fn spawn_engine(
     host: HostSlot,
     shared: Shared,
-    setup: impl FnOnce() -> Option<Setup> + Send + 'static,
+    setup: impl FnOnce(&mut Machine) -> Option<(Setup, Option<LayerLoaded>)> + Send + 'static,
 ) -> std::io::Result<std::thread::JoinHandle<()>> {
     std::thread::Builder::new()
         .name("sitlog-prolog".into())
@@ -796,9 +953,9 @@ fn spawn_engine(
         // PROLOG_MAX_DEPTH deep in a debug build (reserved, not used).
         .stack_size(ENGINE_STACK)
         .spawn(move || {
-            let (machine, errors) = base_machine(host.clone(), shared.clone());
-            if let Some(setup) = setup() {
-                engine_thread(machine, errors, setup, host, shared);
+            let (mut machine, errors) = base_machine(host.clone(), shared.clone());
+            if let Some((setup, loaded)) = setup(&mut machine) {
+                engine_thread(machine, errors, setup, loaded, host, shared);
             }
         })
 }
@@ -809,16 +966,37 @@ fn engine_thread(
     mut machine: Machine,
     base_errors: Vec<PrologLoadError>,
     setup: Setup,
+    loaded: Option<LayerLoaded>,
     host: HostSlot,
     shared: Shared,
 ) {
     let Setup {
         prepared,
+        preloaded,
         rx,
         ready,
     } = setup;
     let mut errors = base_errors;
-    errors.extend(load_application(&mut machine, &prepared));
+    match (preloaded, loaded) {
+        (Some(pre), Some(loaded)) => {
+            // The layer's clauses are in: those the application's files
+            // redefine go, then the application's are added.
+            for (i, text) in &loaded.clauses {
+                if pre.drop.contains(i) {
+                    let _ = first_answer(&mut machine, &format!("'$sitlog_drop'({text},R)."), "R");
+                }
+            }
+            errors.extend(
+                loaded
+                    .errors
+                    .into_iter()
+                    .filter(|(i, _)| !pre.drop.contains(i))
+                    .map(|(_, e)| e),
+            );
+            errors.extend(load_application(&mut machine, &prepared[pre.kept..]));
+        }
+        _ => errors.extend(load_application(&mut machine, &prepared)),
+    }
     let _ = ready.send(errors);
     // `Some((allow_os, inference limit))` once started.
     let mut started: Option<(bool, u64)> = None;
@@ -1155,6 +1333,40 @@ fn base_machine(host: HostSlot, shared: Shared) -> (Machine, Vec<PrologLoadError
         check_load(&mut machine, &q, &p, &mut errors);
     }
     (machine, errors)
+}
+
+/// On a warm engine: reads the legacy `layer` (served by `native` if given),
+/// sends what it read on `prepped`, then asserts the layer's clauses that no
+/// later file of the layer redefines (no directive run).
+fn assert_layer(
+    machine: &mut Machine,
+    layer: &[PrologSource],
+    native: Option<&NativeKb>,
+    prepped: &mpsc::Sender<Prepping>,
+) -> LayerLoaded {
+    let mut st = Prepping::new(native, true);
+    st.add(layer, 0, layer.len());
+    let dropped = st.dropped();
+    let clauses: Vec<(usize, Prepared)> = st
+        .prepared
+        .iter()
+        .enumerate()
+        .filter(|(i, p)| !p.directive && !dropped.contains(i))
+        .map(|(i, p)| (i, p.clone()))
+        .collect();
+    // The load reads the application's files meanwhile.
+    let _ = prepped.send(st);
+    let mut errors = Vec::new();
+    let mut refused = Vec::new();
+    for (i, p) in &clauses {
+        let q = format!("'$sitlog_add'({},R).", p.text);
+        check_load(machine, &q, p, &mut refused);
+        errors.extend(refused.drain(..).map(|e| (*i, e)));
+    }
+    LayerLoaded {
+        clauses: clauses.into_iter().map(|(i, p)| (i, p.text)).collect(),
+        errors,
+    }
 }
 
 /// Loads the application's clauses (`prepared`, no directive run) into a

@@ -218,6 +218,14 @@ get_last_situation(History, S) :-
 '$sitlog_add'(Clause, R) :-
     catch((assertz(Clause), R = ok), E, R = error(E)).
 
+% A clause asserted ahead (the legacy layer, by an engine built ahead) of
+% a predicate that a later file redefines: the predicate's clauses go.
+'$sitlog_drop'(Clause, R) :-
+    (   Clause = (H :- _) -> true ; H = Clause ),
+    functor(H, N, A),
+    functor(G, N, A),
+    catch((retractall(G), R = ok), E, R = error(E)).
+
 '$sitlog_directive'(Goal, R) :-
     catch(( call(Goal) -> R = ok ; R = fail ), E, R = error(E)).
 

@@ -339,6 +339,23 @@ fn legacy_files_redefine_as_swi_consult() {
     .expect("loads");
     assert!(has(&legacy, "[[b],[x]]"));
     drop(legacy);
+    // The same with the layer read and asserted ahead by an engine built
+    // ahead (`sitlogc run --legacy`): its clauses that the application
+    // redefines are retracted, those a later file of the layer redefines
+    // never asserted.
+    let layer2 = PrologSource::new("layer2.pl", "r(y).\n");
+    let warm = PrologFunctions::warm(Some((vec![layer.clone(), layer2.clone()], None)));
+    let (ahead, errors) = PrologFunctions::spawn_from(
+        warm,
+        &[layer.clone(), layer2, app.clone()],
+        PrologOptions::default(),
+        2,
+        None,
+    )
+    .expect("loads");
+    assert!(errors.is_empty(), "{errors:?}");
+    assert!(has(&ahead, "[[b],[y]]"));
+    drop(ahead);
     // Our own applications keep every clause.
     let own = PrologFunctions::load(&[layer, app], PrologOptions::default()).expect("loads");
     assert!(has(&own, "[[a1,a2,b],[x]]"));
