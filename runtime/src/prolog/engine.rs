@@ -1357,12 +1357,7 @@ fn assert_layer(
     // The load reads the application's files meanwhile.
     let _ = prepped.send(st);
     let mut errors = Vec::new();
-    let mut refused = Vec::new();
-    for (i, p) in &clauses {
-        let q = format!("'$sitlog_add'({},R).", p.text);
-        check_load(machine, &q, p, &mut refused);
-        errors.extend(refused.drain(..).map(|e| (*i, e)));
-    }
+    add_clauses(machine, &clauses, |i, e| errors.push((i, e)));
     LayerLoaded {
         clauses: clauses.into_iter().map(|(i, p)| (i, p.text)).collect(),
         errors,
@@ -1373,10 +1368,12 @@ fn assert_layer(
 /// [`base_machine`], then its libraries and the SWI-Prolog bridge.
 fn load_application(machine: &mut Machine, prepared: &[Prepared]) -> Vec<PrologLoadError> {
     let mut errors = Vec::new();
-    for p in prepared.iter().filter(|p| !p.directive) {
-        let q = format!("'$sitlog_add'({},R).", p.text);
-        check_load(machine, &q, p, &mut errors);
-    }
+    let clauses: Vec<(usize, &Prepared)> = prepared
+        .iter()
+        .filter(|p| !p.directive)
+        .enumerate()
+        .collect();
+    add_clauses(machine, &clauses, |_, e| errors.push(e));
     for (lib, preds) in LIBRARIES {
         let q = format!("'$sitlog_import'({lib},[{}],R).", preds.join(","));
         let _ = first_answer(machine, &q, "R");
@@ -1433,8 +1430,74 @@ fn run_directives(
     errors
 }
 
+/// Clauses asserted per query by [`add_clauses`]: a query per clause cost
+/// more than the clause's own compilation; a bounded batch keeps a query's
+/// term small.
+const ADD_BATCH: usize = 64;
+
+/// Asserts `clauses` in order, [`ADD_BATCH`] a query; `refused` gets each
+/// clause the engine refuses (by its number in `clauses`), with its error
+/// at its position.
+fn add_clauses<P: std::borrow::Borrow<Prepared>>(
+    machine: &mut Machine,
+    clauses: &[(usize, P)],
+    mut refused: impl FnMut(usize, PrologLoadError),
+) {
+    for batch in clauses.chunks(ADD_BATCH) {
+        let mut q = String::from("'$sitlog_add_all'([");
+        for (k, (_, p)) in batch.iter().enumerate() {
+            if k > 0 {
+                q.push(',');
+            }
+            let _ = write!(q, "{k}-({})", p.borrow().text);
+        }
+        q.push_str("],R).");
+        match first_answer(machine, &q, "R") {
+            Ok(Some(PTerm::List(refusals))) => {
+                for r in refusals {
+                    let (k, e) = match r {
+                        PTerm::Compound(f, mut a) if f == "-" && a.len() == 2 => {
+                            let e = a.pop();
+                            (a.pop(), e)
+                        }
+                        other => (None, Some(other)),
+                    };
+                    let k = match k {
+                        Some(PTerm::Integer(k)) => usize::try_from(&k).ok(),
+                        _ => None,
+                    };
+                    let (i, p) = match k.and_then(|k| batch.get(k)) {
+                        Some((i, p)) => (*i, p.borrow()),
+                        None => (batch[0].0, batch[0].1.borrow()),
+                    };
+                    let answer = Ok(e.map(|e| PTerm::Compound("error".into(), vec![e])));
+                    let mut one = Vec::new();
+                    load_error(answer, p, &mut one);
+                    one.into_iter().for_each(|e| refused(i, e));
+                }
+            }
+            Ok(Some(PTerm::Atom(a))) if a == "[]" => {}
+            // The batch as a whole failed (not expected; some of its
+            // clauses may be in): an error at its first clause.
+            other => {
+                let mut one = Vec::new();
+                load_error(other, batch[0].1.borrow(), &mut one);
+                one.into_iter().for_each(|e| refused(batch[0].0, e));
+            }
+        }
+    }
+}
+
 fn check_load(machine: &mut Machine, q: &str, p: &Prepared, errors: &mut Vec<PrologLoadError>) {
-    let answer = first_answer(machine, q, "R");
+    load_error(first_answer(machine, q, "R"), p, errors);
+}
+
+/// The load error of `p` for its query's `answer` (none for `ok`).
+fn load_error(
+    answer: Result<Option<PTerm>, String>,
+    p: &Prepared,
+    errors: &mut Vec<PrologLoadError>,
+) {
     let message = match &answer {
         Ok(Some(PTerm::Atom(a))) if a == "ok" => return,
         Ok(Some(PTerm::Atom(a))) if a == "fail" => "directive failed".to_owned(),

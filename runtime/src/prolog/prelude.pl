@@ -218,6 +218,13 @@ get_last_situation(History, S) :-
 '$sitlog_add'(Clause, R) :-
     catch((assertz(Clause), R = ok), E, R = error(E)).
 
+% Asserts the clauses of a list of `K-Clause`, in order; R: `K-E` for
+% each clause refused with the error E.
+'$sitlog_add_all'([], []).
+'$sitlog_add_all'([K-C|Cs], R) :-
+    catch((assertz(C), R = R1), E, R = [K-E|R1]),
+    '$sitlog_add_all'(Cs, R1).
+
 % A clause asserted ahead (the legacy layer, by an engine built ahead) of
 % a predicate that a later file redefines: the predicate's clauses go.
 '$sitlog_drop'(Clause, R) :-
