@@ -14,9 +14,12 @@
 use std::path::{Path, PathBuf};
 
 /// Inferences one Prolog call may make under `--legacy` unless
-/// `--prolog-inferences` says otherwise: the original has no such limit,
-/// and its `rips` task needs more than ten times our default.
-pub const LEGACY_INFERENCES: u64 = 1_000_000_000;
+/// `--prolog-inferences` says otherwise: no limit, as the original (its
+/// `rips` task needs more than ten times our default; a runaway call is
+/// stopped by the time and memory limits). Without a limit a call does not
+/// go through `call_with_inference_limit/3`, whose count costs on every
+/// inference (8-10 % of `rips`).
+pub const LEGACY_INFERENCES: u64 = sitlog_runtime::prolog::NO_INFERENCE_LIMIT;
 
 /// Wall-clock time of one Prolog call under `--legacy` unless
 /// `--prolog-time-limit` says otherwise (the original has no limit).

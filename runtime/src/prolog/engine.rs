@@ -37,7 +37,8 @@ use std::sync::{Arc, Mutex};
 /// Limits of one call (the defaults of an engine; a run's
 /// [`Functions::set_call_limits`] overrides them).
 ///
-/// The inference limit is the engine's own (`call_with_inference_limit/3`).
+/// The inference limit is the engine's own (`call_with_inference_limit/3`);
+/// [`NO_INFERENCE_LIMIT`] is none (the original's rule, under `--legacy`).
 /// Time and memory are watched from the calling thread, which waits for the
 /// answer in short slices: a call that runs longer than `time_limit`, or
 /// during which the process grows by more than `heap_limit` bytes (resident
@@ -75,6 +76,10 @@ impl From<CallLimits> for PrologOptions {
         }
     }
 }
+
+/// The inference limit that is none: a call runs without counting its
+/// inferences against a limit (the engine still counts them, cheaper).
+pub const NO_INFERENCE_LIMIT: u64 = u64::MAX;
 
 /// Resident memory of this process in bytes, where the system tells it.
 fn resident_bytes() -> Option<u64> {
@@ -830,7 +835,7 @@ impl PrologFunctions {
         // The history is not sent: `get_history/1` asks for it while the
         // call runs (issue 38: sent with every call, it cost time per call
         // and, past 100 000 entries, the engine's depth limit).
-        let _ = write!(w.out, ",{},R).", options.inference_limit);
+        let _ = write!(w.out, ",{},R).", limit_text(options.inference_limit));
         if w.too_deep() {
             return Err(format!(
                 "`{name}/{}`: its arguments or the caller's variables nest {} levels deep (a list counts a level per element); the Prolog engine takes at most {PROLOG_MAX_DEPTH}",
@@ -1411,6 +1416,17 @@ pub(super) fn toplevel() -> String {
     text
 }
 
+/// An inference limit as the prelude's `'$sitlog_run'/3` takes it:
+/// [`NO_INFERENCE_LIMIT`] is `inf` (the goal is called without
+/// `call_with_inference_limit/3`, whose count costs on every call).
+fn limit_text(limit: u64) -> String {
+    if limit == NO_INFERENCE_LIMIT {
+        "inf".to_owned()
+    } else {
+        limit.to_string()
+    }
+}
+
 /// Sets the permissions, then runs the application's directives in order,
 /// each under the inference limit `limit` (`--prolog-inferences`).
 fn run_directives(
@@ -1424,7 +1440,7 @@ fn run_directives(
     }
     let mut errors = Vec::new();
     for p in prepared.iter().filter(|p| p.directive) {
-        let q = format!("'$sitlog_directive'({},{limit},R).", p.text);
+        let q = format!("'$sitlog_directive'({},{},R).", p.text, limit_text(limit));
         check_load(machine, &q, p, &mut errors);
     }
     errors

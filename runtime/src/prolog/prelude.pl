@@ -38,6 +38,12 @@ mode_exe(test).
     catch('$sitlog_run'(Goal, Limit, R0), E, R0 = error(E)),
     '$sitlog_result'(R0, Vars, Result).
 
+'$sitlog_run'(Goal, inf, R) :-
+    !,
+    (   call(Goal)
+    ->  R = done
+    ;   R = fail
+    ).
 '$sitlog_run'(Goal, Limit, R) :-
     (   call_with_inference_limit(Goal, Limit, LR)
     ->  (   LR == inference_limit_exceeded
