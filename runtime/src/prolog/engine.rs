@@ -440,7 +440,7 @@ impl PrologFunctions {
             let roots: Roots = Arc::new(Mutex::new(source_dirs.clone()));
             let shared = Shared::new(roots.clone());
             let host: HostSlot = Arc::new(Mutex::new(host));
-            spawn_engine(host, shared, move |_| Some((setup, None))).map_err(|e| {
+            spawn_engine(host, shared, || (), move |_, ()| Some((setup, None))).map_err(|e| {
                 vec![PrologLoadError {
                     file: "<engine>".into(),
                     line: 0,
@@ -507,12 +507,20 @@ impl PrologFunctions {
                 .map(|n| (n.queries.clone(), n.updates.clone())),
             prepped,
         });
-        let spawned = spawn_engine(host.clone(), shared.clone(), move |machine| {
-            let loaded = layer.map(|(sources, native)| {
-                assert_layer(machine, &sources, native.as_ref(), &prepped_tx)
-            });
-            setup_rx.recv().ok().map(|s| (s, loaded))
-        });
+        // The layer is read first (the load waits for what was read, not
+        // for the machine), its clauses asserted once the machine is built.
+        let read = move || {
+            layer.map(|(sources, native)| read_layer(&sources, native.as_ref(), &prepped_tx))
+        };
+        let spawned = spawn_engine(
+            host.clone(),
+            shared.clone(),
+            read,
+            move |machine, clauses| {
+                let loaded = clauses.map(|c| assert_layer(machine, c));
+                setup_rx.recv().ok().map(|s| (s, loaded))
+            },
+        );
         spawned.ok().map(|_| Warm {
             setup: tx,
             host,
@@ -947,10 +955,11 @@ impl PrologFunctions {
 /// Starts an engine thread: it builds the machine every application's
 /// engine starts from, then takes its application from `setup` (none: the
 /// thread ends) and serves it ([`engine_thread`]).
-fn spawn_engine(
+fn spawn_engine<X>(
     host: HostSlot,
     shared: Shared,
-    setup: impl FnOnce(&mut Machine) -> Option<(Setup, Option<LayerLoaded>)> + Send + 'static,
+    first: impl FnOnce() -> X + Send + 'static,
+    setup: impl FnOnce(&mut Machine, X) -> Option<(Setup, Option<LayerLoaded>)> + Send + 'static,
 ) -> std::io::Result<std::thread::JoinHandle<()>> {
     std::thread::Builder::new()
         .name("sitlog-prolog".into())
@@ -958,8 +967,9 @@ fn spawn_engine(
         // PROLOG_MAX_DEPTH deep in a debug build (reserved, not used).
         .stack_size(ENGINE_STACK)
         .spawn(move || {
+            let x = first();
             let (mut machine, errors) = base_machine(host.clone(), shared.clone());
-            if let Some((setup, loaded)) = setup(&mut machine) {
+            if let Some((setup, loaded)) = setup(&mut machine, x) {
                 engine_thread(machine, errors, setup, loaded, host, shared);
             }
         })
@@ -1340,15 +1350,14 @@ fn base_machine(host: HostSlot, shared: Shared) -> (Machine, Vec<PrologLoadError
     (machine, errors)
 }
 
-/// On a warm engine: reads the legacy `layer` (served by `native` if given),
-/// sends what it read on `prepped`, then asserts the layer's clauses that no
-/// later file of the layer redefines (no directive run).
-fn assert_layer(
-    machine: &mut Machine,
+/// On a warm engine: reads the legacy `layer` (served by `native` if given)
+/// and sends what it read on `prepped`; gives the layer's clauses that no
+/// later file of the layer redefines, by index (no directive).
+fn read_layer(
     layer: &[PrologSource],
     native: Option<&NativeKb>,
     prepped: &mpsc::Sender<Prepping>,
-) -> LayerLoaded {
+) -> Vec<(usize, Prepared)> {
     let mut st = Prepping::new(native, true);
     st.add(layer, 0, layer.len());
     let dropped = st.dropped();
@@ -1361,6 +1370,11 @@ fn assert_layer(
         .collect();
     // The load reads the application's files meanwhile.
     let _ = prepped.send(st);
+    clauses
+}
+
+/// On a warm engine: asserts the layer's `clauses` ([`read_layer`]).
+fn assert_layer(machine: &mut Machine, clauses: Vec<(usize, Prepared)>) -> LayerLoaded {
     let mut errors = Vec::new();
     add_clauses(machine, &clauses, |i, e| errors.push((i, e)));
     LayerLoaded {
