@@ -1460,9 +1460,10 @@ fn run_directives(
     errors
 }
 
-/// Clauses asserted per query by [`add_clauses`]: a query per clause cost
-/// more than the clause's own compilation; a bounded batch keeps a query's
-/// term small.
+/// Clauses asserted per query by [`add_clauses`]: a query has a cost of
+/// its own (the engine's query set-up, the answer read back), paid 1,720
+/// times for the original's layer with a query per clause; a bounded batch
+/// keeps a query's term small.
 const ADD_BATCH: usize = 64;
 
 /// Asserts `clauses` in order, [`ADD_BATCH`] a query; `refused` gets each
@@ -1474,14 +1475,14 @@ fn add_clauses<P: std::borrow::Borrow<Prepared>>(
     mut refused: impl FnMut(usize, PrologLoadError),
 ) {
     for batch in clauses.chunks(ADD_BATCH) {
-        let mut q = String::from("'$sitlog_add_all'([");
+        let mut q = String::from("'$sitlog_add_all'(c(");
         for (k, (_, p)) in batch.iter().enumerate() {
             if k > 0 {
                 q.push(',');
             }
-            let _ = write!(q, "{k}-({})", p.borrow().text);
+            let _ = write!(q, "({})", p.borrow().text);
         }
-        q.push_str("],R).");
+        q.push_str("),R).");
         match first_answer(machine, &q, "R") {
             Ok(Some(PTerm::List(refusals))) => {
                 for r in refusals {
@@ -1492,10 +1493,12 @@ fn add_clauses<P: std::borrow::Borrow<Prepared>>(
                         }
                         other => (None, Some(other)),
                     };
+                    // `K`: the clause's argument number in `c(...)`.
                     let k = match k {
                         Some(PTerm::Integer(k)) => usize::try_from(&k).ok(),
                         _ => None,
                     };
+                    let k = k.and_then(|k| k.checked_sub(1));
                     let (i, p) = match k.and_then(|k| batch.get(k)) {
                         Some((i, p)) => (*i, p.borrow()),
                         None => (batch[0].0, batch[0].1.borrow()),

@@ -224,12 +224,20 @@ get_last_situation(History, S) :-
 '$sitlog_add'(Clause, R) :-
     catch((assertz(Clause), R = ok), E, R = error(E)).
 
-% Asserts the clauses of a list of `K-Clause`, in order; R: `K-E` for
-% each clause refused with the error E.
-'$sitlog_add_all'([], []).
-'$sitlog_add_all'([K-C|Cs], R) :-
-    catch((assertz(C), R = R1), E, R = [K-E|R1]),
-    '$sitlog_add_all'(Cs, R1).
+% Asserts the clauses that are the arguments of Cs (`c(C1, ..., Cn)`: two
+% levels above a clause, where a list would add one per element), in order;
+% R: `K-E` for each clause Ck refused with the error E.
+'$sitlog_add_all'(Cs, R) :-
+    functor(Cs, _, N),
+    '$sitlog_add_all'(1, N, Cs, R).
+'$sitlog_add_all'(K, N, Cs, R) :-
+    (   K > N
+    ->  R = []
+    ;   arg(K, Cs, C),
+        catch((assertz(C), R = R1), E, R = [K-E|R1]),
+        K1 is K + 1,
+        '$sitlog_add_all'(K1, N, Cs, R1)
+    ).
 
 % A clause asserted ahead (the legacy layer, by an engine built ahead) of
 % a predicate that a later file redefines: the predicate's clauses go.
