@@ -22,9 +22,12 @@
 use std::path::{Path, PathBuf};
 
 /// Inferences one Prolog call may make under `--legacy` unless
-/// `--prolog-inferences` says otherwise: the original has no such limit,
-/// and its `rips` task needs more than ten times our default.
-pub const LEGACY_INFERENCES: u64 = 1_000_000_000;
+/// `--prolog-inferences` says otherwise: no limit, as the original (its
+/// `rips` task needs more than ten times our default; a runaway call is
+/// stopped by the time and memory limits). Without a limit a call does not
+/// go through `call_with_inference_limit/3`, whose count (a big-integer
+/// compare and add) costs on every inference.
+pub const LEGACY_INFERENCES: u64 = sitlog_runtime::prolog::NO_INFERENCE_LIMIT;
 
 /// Wall-clock time of one Prolog call under `--legacy` unless
 /// `--prolog-time-limit` says otherwise (the original has no limit).
@@ -374,12 +377,14 @@ mod tests {
 
     #[test]
     fn legacy_raises_the_default_call_limits_and_keeps_given_ones() {
-        use sitlog_runtime::functions::CallLimits;
         let mut args = sitlog_robot::cli::RunArgs::default();
         raise_call_limits(&mut args);
-        assert_eq!(args.prolog_inferences, LEGACY_INFERENCES);
+        // No inference limit, as the original.
+        assert_eq!(
+            args.prolog_inferences,
+            sitlog_runtime::prolog::NO_INFERENCE_LIMIT
+        );
         assert_eq!(args.prolog_time_limit, LEGACY_TIME);
-        const { assert!(LEGACY_INFERENCES >= 10 * CallLimits::INFERENCES) };
         let mut args = sitlog_robot::cli::RunArgs {
             prolog_inferences: 5000,
             prolog_time_limit: std::time::Duration::from_secs(2),

@@ -33,11 +33,13 @@
 #
 # Usage: tests/conformance/legacy_apps.sh [APP/TASK]...   (default: all)
 # Prints one line per task and KB mode (`APP/TASK kb=MODE: agree (N
-# transitions, M utterances; time: original S s, sitlogc S s)` or `...
-# DIFFER` with the first differences; times are wall-clock seconds of the
-# whole process, the original's launcher included), then `N of M tasks
-# agree` and the tasks where sitlogc took longer than the original. Exit status: 0 when all agree (or skipped), 1
-# otherwise.
+# transitions, M utterances; time: original S s (cpu C s), sitlogc S s
+# (cpu C s))` or `... DIFFER` with the first differences; times are
+# wall-clock seconds and CPU seconds (user + system, children included) of
+# the whole process, the original's launcher included), then `N of M tasks
+# agree` and the runs where sitlogc used more CPU time than the original
+# (the fairer figure on a loaded machine). Exit status: 0 when all agree
+# (or skipped), 1 otherwise.
 set -u
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -78,6 +80,10 @@ agreed=0
 slower=()
 now() { date +%s.%N; }
 secs() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", b - a }'; }
+# CPU seconds (user + system) of a command's process and its children, as
+# bash's `time` reports them with TIMEFORMAT='%U %S' in the file $1.
+cpu() { awk '{ printf "%.2f", $1 + $2 }' "$1"; }
+TIMEFORMAT='%U %S'
 for task in "${tasks[@]}"; do
     app=${task%%/*}
     input="$here/legacy_apps/$task.txt"
@@ -91,9 +97,10 @@ for task in "${tasks[@]}"; do
     mkdir -p "$d"
     fresh "$d/tree"
     t0=$(now)
-    (cd "$d/tree" && PATH="$work/shim:$PATH" SITLOG_HOME="$d/tree/" \
-        timeout "$limit" bash "scripts/$app" test <"$input" >"$d/original.out" 2>&1)
+    { time (cd "$d/tree" && PATH="$work/shim:$PATH" SITLOG_HOME="$d/tree/" \
+        timeout "$limit" bash "scripts/$app" test <"$input" >"$d/original.out" 2>&1); } 2>"$d/cpu-original"
     t_original=$(secs "$t0" "$(now)")
+    c_original=$(cpu "$d/cpu-original")
     if ! completed "$d/original.out"; then
         echo "$task: DIFFER: the original does not complete this task with these inputs"
         status=1
@@ -105,13 +112,14 @@ for task in "${tasks[@]}"; do
       if [ "${LEGACY_COMPILED:-0}" != only ]; then
         fresh "$d/tree"
         t0=$(now)
-        (cd "$d/tree" && SITLOG_HOME="$d/tree/" timeout "$limit" \
+        { time (cd "$d/tree" && SITLOG_HOME="$d/tree/" timeout "$limit" \
             "$sitlogc" run "apps/$app" --legacy --legacy-kb "$kb" --script "$input" \
-            >"$d/ours-$kb.out" 2>"$d/ours-$kb.err")
+            >"$d/ours-$kb.out" 2>"$d/ours-$kb.err"); } 2>"$d/cpu-$kb"
         rc=$?
         t_ours=$(secs "$t0" "$(now)")
-        times="time: original $t_original s, sitlogc $t_ours s"
-        if awk -v a="$t_ours" -v b="$t_original" 'BEGIN { exit !(a > b) }'; then
+        c_ours=$(cpu "$d/cpu-$kb")
+        times="time: original $t_original s (cpu $c_original s), sitlogc $t_ours s (cpu $c_ours s)"
+        if awk -v a="$c_ours" -v b="$c_original" 'BEGIN { exit !(a > b) }'; then
             slower+=("$task kb=$kb ($times)")
         fi
         python3 "$here/legacy_demos.py" "$d/original.out" "$d/ours-$kb.out" "$d/ours-$kb.err" \
@@ -167,7 +175,7 @@ for task in "${tasks[@]}"; do
 done
 echo "$agreed of $total tasks agree"
 if [ ${#slower[@]} -gt 0 ]; then
-    echo "sitlogc took longer than the original on ${#slower[@]} run(s):"
+    echo "sitlogc used more CPU time than the original on ${#slower[@]} run(s):"
     printf '    %s\n' "${slower[@]}"
 fi
 exit $status

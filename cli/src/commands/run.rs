@@ -28,9 +28,10 @@ pub fn run_app(
         stopped(json, code, message)
     };
     // The Prolog engine's start-up (most of a --legacy run's start) runs
-    // on its own thread while the application is read and checked.
-    if legacy.is_some()
-        || ["user_functions.pl", "templates.pl"]
+    // on its own thread while the application is read and checked (under
+    // --legacy, below: with the original's Prolog layer).
+    if legacy.is_none()
+        && ["user_functions.pl", "templates.pl"]
             .iter()
             .any(|f| app.join(f).exists())
     {
@@ -47,6 +48,12 @@ pub fn run_app(
             Ok((_, layer)) => before = layer,
             Err(e) => return stop(2, &format!("error: {e}")),
         }
+        // The engine reads the layer and asserts its clauses while the
+        // application is checked.
+        sitlog_runtime::prolog::PrologFunctions::prewarm_layer(
+            before.clone(),
+            native_kb.then(crate::legacy::native_kb),
+        );
         args = &legacy_args;
     }
     let check_options = sitlog_compiler::check::CheckOptions {

@@ -162,6 +162,11 @@ impl Redefinitions {
         entry.1.push(index);
     }
 
+    /// The indices of the clauses replaced by a later file so far.
+    pub(super) fn dropped(&self) -> &HashSet<usize> {
+        &self.dropped
+    }
+
     /// `prepared` without the clauses replaced by a later file.
     pub(super) fn apply(&self, prepared: &mut Vec<Prepared>) {
         if self.dropped.is_empty() {

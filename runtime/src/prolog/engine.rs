@@ -37,7 +37,8 @@ use std::sync::{Arc, Mutex};
 /// Limits of one call (the defaults of an engine; a run's
 /// [`Functions::set_call_limits`] overrides them).
 ///
-/// The inference limit is the engine's own (`call_with_inference_limit/3`).
+/// The inference limit is the engine's own (`call_with_inference_limit/3`);
+/// [`NO_INFERENCE_LIMIT`] is none (the original's rule, under `--legacy`).
 /// Time and memory are watched from the calling thread, which waits for the
 /// answer in short slices: a call that runs longer than `time_limit`, or
 /// during which the process grows by more than `heap_limit` bytes (resident
@@ -75,6 +76,10 @@ impl From<CallLimits> for PrologOptions {
         }
     }
 }
+
+/// The inference limit that is none: a call runs without counting its
+/// inferences against a limit (the engine still counts them, cheaper).
+pub const NO_INFERENCE_LIMIT: u64 = u64::MAX;
 
 /// Resident memory of this process in bytes, where the system tells it.
 fn resident_bytes() -> Option<u64> {
@@ -117,16 +122,117 @@ type RunInput = Arc<Mutex<Option<crate::input::SharedInput>>>;
 type HostSlot = Arc<Mutex<Option<KbHost>>>;
 
 /// An engine thread started ahead ([`PrologFunctions::prewarm`]): its
-/// machine built with the prelude, waiting for an application to load.
-struct Warm {
+/// machine built with the prelude (and the legacy layer's clauses, if it
+/// was given one), waiting for an application to load.
+pub(super) struct Warm {
     setup: mpsc::Sender<Setup>,
     host: HostSlot,
     shared: Shared,
+    layer: Option<WarmLayer>,
+}
+
+/// The query services and updates a [`NativeKb`] serves.
+type Served = (Vec<(String, usize)>, Vec<(String, usize)>);
+
+/// The legacy layer a warm engine prepares and asserts ahead
+/// ([`PrologFunctions::prewarm_layer`]): a load whose first sources are
+/// these, served the same way, continues from it.
+struct WarmLayer {
+    sources: Vec<PrologSource>,
+    /// The natively served KB predicates (`None`: the layer as written).
+    native: Option<Served>,
+    /// The layer's sources read, sent before its clauses are asserted.
+    prepped: mpsc::Receiver<Prepping>,
+}
+
+impl WarmLayer {
+    fn serves(&self, layer: &[PrologSource], native: Option<&NativeKb>) -> bool {
+        self.sources.len() == layer.len()
+            && self
+                .sources
+                .iter()
+                .zip(layer)
+                .all(|(a, b)| a.name == b.name && a.dir == b.dir && a.text == b.text)
+            && self.native == native.map(|n| (n.queries.clone(), n.updates.clone()))
+    }
+}
+
+/// The sources read so far ([`prepare`]'s state): a warm engine reads the
+/// legacy layer ahead, the load then reads the application's files after it.
+struct Prepping {
+    prepared: Vec<Prepared>,
+    errors: Vec<PrologLoadError>,
+    defined: HashSet<(Atom, usize)>,
+    seen: HashSet<PathBuf>,
+    outside: Vec<(PathBuf, PrologLoadError)>,
+    native: Option<NativeState>,
+    redefinitions: Option<Redefinitions>,
+}
+
+impl Prepping {
+    fn new(native: Option<&NativeKb>, legacy: bool) -> Prepping {
+        Prepping {
+            prepared: Vec::new(),
+            errors: Vec::new(),
+            defined: HashSet::new(),
+            seen: HashSet::new(),
+            outside: Vec::new(),
+            native: native.map(NativeState::new),
+            redefinitions: legacy.then(Redefinitions::default),
+        }
+    }
+
+    /// Reads `sources[from..]`, the first `layer` of them being the legacy
+    /// layer (served natively if `native` was given).
+    fn add(&mut self, sources: &[PrologSource], from: usize, layer: usize) {
+        for (i, s) in sources.iter().enumerate().skip(from) {
+            let mut cx = Prep {
+                out: &mut self.prepared,
+                defined: &mut self.defined,
+                errors: &mut self.errors,
+                seen: &mut self.seen,
+                outside: &mut self.outside,
+                embedded: sources,
+                native: if i < layer {
+                    self.native.as_mut()
+                } else {
+                    None
+                },
+                redefine: self.redefinitions.as_mut(),
+            };
+            prepare(s, &mut cx, 0);
+        }
+    }
+
+    fn dropped(&self) -> HashSet<usize> {
+        self.redefinitions
+            .as_ref()
+            .map(|r| r.dropped().clone())
+            .unwrap_or_default()
+    }
+}
+
+/// The legacy layer's clauses asserted ahead by a warm engine: their
+/// texts and the engine's refusals, by index in the layer's prepared
+/// clauses.
+struct LayerLoaded {
+    clauses: Vec<(usize, String)>,
+    errors: Vec<(usize, PrologLoadError)>,
+}
+
+/// What of the application's prepared clauses a warm engine asserted
+/// ahead: the first `kept` (the layer's, less those a later file
+/// redefines), and the layer's clauses to retract (by index in the
+/// layer's prepared clauses), redefined by the application's files.
+struct Preloaded {
+    kept: usize,
+    drop: HashSet<usize>,
 }
 
 /// What a warm engine thread gets to load its application and serve it.
 struct Setup {
     prepared: Vec<Prepared>,
+    preloaded: Option<Preloaded>,
     rx: mpsc::Receiver<Request>,
     ready: mpsc::Sender<Vec<PrologLoadError>>,
 }
@@ -213,7 +319,8 @@ impl PrologFunctions {
         sources: &[PrologSource],
         options: PrologOptions,
     ) -> Result<PrologFunctions, Vec<PrologLoadError>> {
-        let (engine, mut errors) = Self::spawn(sources, options, 0, None)?;
+        let warm = WARM.lock().ok().and_then(|mut w| w.take());
+        let (engine, mut errors) = Self::spawn_from(warm, sources, options, 0, None)?;
         if let Err(e) = engine.start(&Trust::default()) {
             errors.extend(e);
         }
@@ -238,44 +345,64 @@ impl PrologFunctions {
         layer: usize,
         native: Option<NativeKb>,
     ) -> Result<PrologFunctions, Vec<PrologLoadError>> {
-        match Self::spawn(sources, options, layer, native)? {
+        let warm = WARM.lock().ok().and_then(|mut w| w.take());
+        match Self::spawn_from(warm, sources, options, layer, native)? {
             (engine, errors) if errors.is_empty() => Ok(engine),
             (_, errors) => Err(errors),
         }
     }
 
-    /// [`load_with`](Self::load_with), the clauses the engine refused
-    /// given beside the engine.
-    fn spawn(
+    /// [`load_with`](Self::load_with) on `warm` (an engine built ahead, if
+    /// it serves this load; else one built now), the clauses the engine
+    /// refused given beside the engine.
+    pub(super) fn spawn_from(
+        mut warm: Option<Warm>,
         sources: &[PrologSource],
         options: PrologOptions,
         layer: usize,
         native: Option<NativeKb>,
     ) -> Result<(PrologFunctions, Vec<PrologLoadError>), Vec<PrologLoadError>> {
-        let mut prepared = Vec::new();
-        let mut errors = Vec::new();
-        let mut defined = HashSet::new();
-        let mut seen_files = HashSet::new();
-        let mut outside = Vec::new();
-        let mut native_state = native.as_ref().map(NativeState::new);
-        let mut redefinitions = (layer > 0).then(Redefinitions::default);
-        for (i, s) in sources.iter().enumerate() {
-            let mut cx = Prep {
-                out: &mut prepared,
-                defined: &mut defined,
-                errors: &mut errors,
-                seen: &mut seen_files,
-                outside: &mut outside,
-                embedded: sources,
-                native: if i < layer {
-                    native_state.as_mut()
-                } else {
-                    None
-                },
-                redefine: redefinitions.as_mut(),
-            };
-            prepare(s, &mut cx, 0);
+        // The engine built ahead's legacy layer, read (and being asserted) ahead, if this load's
+        // first sources are that layer; an engine that holds another
+        // layer's clauses is not used.
+        let mut ahead = None;
+        if let Some(l) = warm.as_mut().and_then(|w| w.layer.take()) {
+            if layer <= sources.len() && l.serves(&sources[..layer], native.as_ref()) {
+                ahead = l.prepped.recv().ok();
+            }
+            if ahead.is_none() {
+                warm = None;
+            }
         }
+        let (mut st, from, base) = match ahead {
+            Some(p) => {
+                let base = (p.prepared.len(), p.dropped());
+                (p, layer, Some(base))
+            }
+            None => (Prepping::new(native.as_ref(), layer > 0), 0, None),
+        };
+        st.add(sources, from, layer);
+        // The layer's clauses asserted ahead that the application's files
+        // redefine are retracted before its clauses are added.
+        let preloaded = base.map(|(n, before)| {
+            let all = st.dropped();
+            Preloaded {
+                kept: n - all.iter().filter(|&&i| i < n).count(),
+                drop: all
+                    .into_iter()
+                    .filter(|i| *i < n && !before.contains(i))
+                    .collect(),
+            }
+        });
+        let Prepping {
+            mut prepared,
+            errors,
+            defined,
+            outside,
+            native: native_state,
+            redefinitions,
+            ..
+        } = st;
         if let Some(r) = &redefinitions {
             r.apply(&mut prepared);
         }
@@ -289,10 +416,9 @@ impl PrologFunctions {
         let source_dirs: Vec<PathBuf> = sources.iter().filter_map(|s| s.dir.clone()).collect();
         let (tx, rx) = mpsc::channel::<Request>();
         let (ready_tx, ready_rx) = mpsc::channel();
-        // The engine built ahead, if one is waiting; else one built now.
-        let warm = WARM.lock().ok().and_then(|mut w| w.take());
         let mut setup = Setup {
             prepared,
+            preloaded,
             rx,
             ready: ready_tx,
         };
@@ -306,14 +432,15 @@ impl PrologFunctions {
                 }
                 match w.setup.send(setup) {
                     Ok(()) => break 'engine w.shared.roots,
-                    // its thread is gone: one built now
+                    // its thread is gone: one built now, with every clause
                     Err(mpsc::SendError(back)) => setup = back,
                 }
+                setup.preloaded = None;
             }
             let roots: Roots = Arc::new(Mutex::new(source_dirs.clone()));
             let shared = Shared::new(roots.clone());
             let host: HostSlot = Arc::new(Mutex::new(host));
-            spawn_engine(host, shared, move || Some(setup)).map_err(|e| {
+            spawn_engine(host, shared, || (), move |_, ()| Some((setup, None))).map_err(|e| {
                 vec![PrologLoadError {
                     file: "<engine>".into(),
                     line: 0,
@@ -340,23 +467,66 @@ impl PrologFunctions {
     /// it runs while the caller reads and checks the application; the next
     /// load takes it. Does nothing when one is waiting already.
     pub fn prewarm() {
+        Self::prewarm_with(None);
+    }
+
+    /// [`prewarm`](Self::prewarm), the engine also reading `layer` (the
+    /// legacy profile's Prolog layer of the original, its KB layer served
+    /// by `native` if given) and asserting its clauses (1,720 for the
+    /// original's: most of a small `--legacy` run's start after the
+    /// engine's own) while the caller checks the application. A
+    /// [`load_with`](Self::load_with) whose first `layer` sources are these,
+    /// served the same way, takes it and reads only the application's
+    /// files; a file of the application that redefines a predicate of the
+    /// layer then has the layer's clauses retracted before its own are
+    /// added (SWI-Prolog's rule, as without this). Another load does not
+    /// take it. No directive runs ahead.
+    pub fn prewarm_layer(layer: Vec<PrologSource>, native: Option<NativeKb>) {
+        Self::prewarm_with(Some((layer, native)));
+    }
+
+    fn prewarm_with(layer: Option<(Vec<PrologSource>, Option<NativeKb>)>) {
         let Ok(mut slot) = WARM.lock() else {
             return;
         };
-        if slot.is_some() {
-            return;
+        if slot.is_none() {
+            *slot = Self::warm(layer);
         }
+    }
+
+    /// An engine thread started ahead ([`prewarm_with`](Self::prewarm_with)).
+    pub(super) fn warm(layer: Option<(Vec<PrologSource>, Option<NativeKb>)>) -> Option<Warm> {
         let host: HostSlot = Arc::new(Mutex::new(None));
         let shared = Shared::new(Arc::new(Mutex::new(Vec::new())));
         let (tx, setup_rx) = mpsc::channel::<Setup>();
-        let spawned = spawn_engine(host.clone(), shared.clone(), move || setup_rx.recv().ok());
-        if spawned.is_ok() {
-            *slot = Some(Warm {
-                setup: tx,
-                host,
-                shared,
-            });
-        }
+        let (prepped_tx, prepped) = mpsc::channel();
+        let warm_layer = layer.as_ref().map(|(sources, native)| WarmLayer {
+            sources: sources.clone(),
+            native: native
+                .as_ref()
+                .map(|n| (n.queries.clone(), n.updates.clone())),
+            prepped,
+        });
+        // The layer is read first (the load waits for what was read, not
+        // for the machine), its clauses asserted once the machine is built.
+        let read = move || {
+            layer.map(|(sources, native)| read_layer(&sources, native.as_ref(), &prepped_tx))
+        };
+        let spawned = spawn_engine(
+            host.clone(),
+            shared.clone(),
+            read,
+            move |machine, clauses| {
+                let loaded = clauses.map(|c| assert_layer(machine, c));
+                setup_rx.recv().ok().map(|s| (s, loaded))
+            },
+        );
+        spawned.ok().map(|_| Warm {
+            setup: tx,
+            host,
+            shared,
+            layer: warm_layer,
+        })
     }
 
     /// The handle of an engine thread loading its application: waits for
@@ -673,7 +843,7 @@ impl PrologFunctions {
         // The history is not sent: `get_history/1` asks for it while the
         // call runs (issue 38: sent with every call, it cost time per call
         // and, past 100 000 entries, the engine's depth limit).
-        let _ = write!(w.out, ",{},R).", options.inference_limit);
+        let _ = write!(w.out, ",{},R).", limit_text(options.inference_limit));
         if w.too_deep() {
             return Err(format!(
                 "`{name}/{}`: its arguments or the caller's variables nest {} levels deep (a list counts a level per element); the Prolog engine takes at most {PROLOG_MAX_DEPTH}",
@@ -785,10 +955,11 @@ impl PrologFunctions {
 /// Starts an engine thread: it builds the machine every application's
 /// engine starts from, then takes its application from `setup` (none: the
 /// thread ends) and serves it ([`engine_thread`]).
-fn spawn_engine(
+fn spawn_engine<X>(
     host: HostSlot,
     shared: Shared,
-    setup: impl FnOnce() -> Option<Setup> + Send + 'static,
+    first: impl FnOnce() -> X + Send + 'static,
+    setup: impl FnOnce(&mut Machine, X) -> Option<(Setup, Option<LayerLoaded>)> + Send + 'static,
 ) -> std::io::Result<std::thread::JoinHandle<()>> {
     std::thread::Builder::new()
         .name("sitlog-prolog".into())
@@ -796,9 +967,10 @@ fn spawn_engine(
         // PROLOG_MAX_DEPTH deep in a debug build (reserved, not used).
         .stack_size(ENGINE_STACK)
         .spawn(move || {
-            let (machine, errors) = base_machine(host.clone(), shared.clone());
-            if let Some(setup) = setup() {
-                engine_thread(machine, errors, setup, host, shared);
+            let x = first();
+            let (mut machine, errors) = base_machine(host.clone(), shared.clone());
+            if let Some((setup, loaded)) = setup(&mut machine, x) {
+                engine_thread(machine, errors, setup, loaded, host, shared);
             }
         })
 }
@@ -809,16 +981,37 @@ fn engine_thread(
     mut machine: Machine,
     base_errors: Vec<PrologLoadError>,
     setup: Setup,
+    loaded: Option<LayerLoaded>,
     host: HostSlot,
     shared: Shared,
 ) {
     let Setup {
         prepared,
+        preloaded,
         rx,
         ready,
     } = setup;
     let mut errors = base_errors;
-    errors.extend(load_application(&mut machine, &prepared));
+    match (preloaded, loaded) {
+        (Some(pre), Some(loaded)) => {
+            // The layer's clauses are in: those the application's files
+            // redefine go, then the application's are added.
+            for (i, text) in &loaded.clauses {
+                if pre.drop.contains(i) {
+                    let _ = first_answer(&mut machine, &format!("'$sitlog_drop'({text},R)."), "R");
+                }
+            }
+            errors.extend(
+                loaded
+                    .errors
+                    .into_iter()
+                    .filter(|(i, _)| !pre.drop.contains(i))
+                    .map(|(_, e)| e),
+            );
+            errors.extend(load_application(&mut machine, &prepared[pre.kept..]));
+        }
+        _ => errors.extend(load_application(&mut machine, &prepared)),
+    }
     let _ = ready.send(errors);
     // `Some((allow_os, inference limit))` once started.
     let mut started: Option<(bool, u64)> = None;
@@ -1157,14 +1350,49 @@ fn base_machine(host: HostSlot, shared: Shared) -> (Machine, Vec<PrologLoadError
     (machine, errors)
 }
 
+/// On a warm engine: reads the legacy `layer` (served by `native` if given)
+/// and sends what it read on `prepped`; gives the layer's clauses that no
+/// later file of the layer redefines, by index (no directive).
+fn read_layer(
+    layer: &[PrologSource],
+    native: Option<&NativeKb>,
+    prepped: &mpsc::Sender<Prepping>,
+) -> Vec<(usize, Prepared)> {
+    let mut st = Prepping::new(native, true);
+    st.add(layer, 0, layer.len());
+    let dropped = st.dropped();
+    let clauses: Vec<(usize, Prepared)> = st
+        .prepared
+        .iter()
+        .enumerate()
+        .filter(|(i, p)| !p.directive && !dropped.contains(i))
+        .map(|(i, p)| (i, p.clone()))
+        .collect();
+    // The load reads the application's files meanwhile.
+    let _ = prepped.send(st);
+    clauses
+}
+
+/// On a warm engine: asserts the layer's `clauses` ([`read_layer`]).
+fn assert_layer(machine: &mut Machine, clauses: Vec<(usize, Prepared)>) -> LayerLoaded {
+    let mut errors = Vec::new();
+    add_clauses(machine, &clauses, |i, e| errors.push((i, e)));
+    LayerLoaded {
+        clauses: clauses.into_iter().map(|(i, p)| (i, p.text)).collect(),
+        errors,
+    }
+}
+
 /// Loads the application's clauses (`prepared`, no directive run) into a
 /// [`base_machine`], then its libraries and the SWI-Prolog bridge.
 fn load_application(machine: &mut Machine, prepared: &[Prepared]) -> Vec<PrologLoadError> {
     let mut errors = Vec::new();
-    for p in prepared.iter().filter(|p| !p.directive) {
-        let q = format!("'$sitlog_add'({},R).", p.text);
-        check_load(machine, &q, p, &mut errors);
-    }
+    let clauses: Vec<(usize, &Prepared)> = prepared
+        .iter()
+        .filter(|p| !p.directive)
+        .enumerate()
+        .collect();
+    add_clauses(machine, &clauses, |_, e| errors.push(e));
     for (lib, preds) in LIBRARIES {
         let q = format!("'$sitlog_import'({lib},[{}],R).", preds.join(","));
         let _ = first_answer(machine, &q, "R");
@@ -1202,6 +1430,17 @@ pub(super) fn toplevel() -> String {
     text
 }
 
+/// An inference limit as the prelude's `'$sitlog_run'/3` takes it:
+/// [`NO_INFERENCE_LIMIT`] is `inf` (the goal is called without
+/// `call_with_inference_limit/3`, whose count costs on every call).
+fn limit_text(limit: u64) -> String {
+    if limit == NO_INFERENCE_LIMIT {
+        "inf".to_owned()
+    } else {
+        limit.to_string()
+    }
+}
+
 /// Sets the permissions, then runs the application's directives in order,
 /// each under the inference limit `limit` (`--prolog-inferences`).
 fn run_directives(
@@ -1215,14 +1454,83 @@ fn run_directives(
     }
     let mut errors = Vec::new();
     for p in prepared.iter().filter(|p| p.directive) {
-        let q = format!("'$sitlog_directive'({},{limit},R).", p.text);
+        let q = format!("'$sitlog_directive'({},{},R).", p.text, limit_text(limit));
         check_load(machine, &q, p, &mut errors);
     }
     errors
 }
 
+/// Clauses asserted per query by [`add_clauses`]: a query has a cost of
+/// its own (the engine's query set-up, the answer read back), paid 1,720
+/// times for the original's layer with a query per clause; a bounded batch
+/// keeps a query's term small.
+const ADD_BATCH: usize = 64;
+
+/// Asserts `clauses` in order, [`ADD_BATCH`] a query; `refused` gets each
+/// clause the engine refuses (by its number in `clauses`), with its error
+/// at its position.
+fn add_clauses<P: std::borrow::Borrow<Prepared>>(
+    machine: &mut Machine,
+    clauses: &[(usize, P)],
+    mut refused: impl FnMut(usize, PrologLoadError),
+) {
+    for batch in clauses.chunks(ADD_BATCH) {
+        let mut q = String::from("'$sitlog_add_all'(c(");
+        for (k, (_, p)) in batch.iter().enumerate() {
+            if k > 0 {
+                q.push(',');
+            }
+            let _ = write!(q, "({})", p.borrow().text);
+        }
+        q.push_str("),R).");
+        match first_answer(machine, &q, "R") {
+            Ok(Some(PTerm::List(refusals))) => {
+                for r in refusals {
+                    let (k, e) = match r {
+                        PTerm::Compound(f, mut a) if f == "-" && a.len() == 2 => {
+                            let e = a.pop();
+                            (a.pop(), e)
+                        }
+                        other => (None, Some(other)),
+                    };
+                    // `K`: the clause's argument number in `c(...)`.
+                    let k = match k {
+                        Some(PTerm::Integer(k)) => usize::try_from(&k).ok(),
+                        _ => None,
+                    };
+                    let k = k.and_then(|k| k.checked_sub(1));
+                    let (i, p) = match k.and_then(|k| batch.get(k)) {
+                        Some((i, p)) => (*i, p.borrow()),
+                        None => (batch[0].0, batch[0].1.borrow()),
+                    };
+                    let answer = Ok(e.map(|e| PTerm::Compound("error".into(), vec![e])));
+                    let mut one = Vec::new();
+                    load_error(answer, p, &mut one);
+                    one.into_iter().for_each(|e| refused(i, e));
+                }
+            }
+            Ok(Some(PTerm::Atom(a))) if a == "[]" => {}
+            // The batch as a whole failed (not expected; some of its
+            // clauses may be in): an error at its first clause.
+            other => {
+                let mut one = Vec::new();
+                load_error(other, batch[0].1.borrow(), &mut one);
+                one.into_iter().for_each(|e| refused(batch[0].0, e));
+            }
+        }
+    }
+}
+
 fn check_load(machine: &mut Machine, q: &str, p: &Prepared, errors: &mut Vec<PrologLoadError>) {
-    let answer = first_answer(machine, q, "R");
+    load_error(first_answer(machine, q, "R"), p, errors);
+}
+
+/// The load error of `p` for its query's `answer` (none for `ok`).
+fn load_error(
+    answer: Result<Option<PTerm>, String>,
+    p: &Prepared,
+    errors: &mut Vec<PrologLoadError>,
+) {
     let message = match &answer {
         Ok(Some(PTerm::Atom(a))) if a == "ok" => return,
         Ok(Some(PTerm::Atom(a))) if a == "fail" => "directive failed".to_owned(),

@@ -62,7 +62,7 @@ mod swi;
 mod translate;
 
 pub use consult::{PrologLoadError, PrologSource};
-pub use engine::{PrologFunctions, PrologOptions};
+pub use engine::{PrologFunctions, PrologOptions, NO_INFERENCE_LIMIT};
 pub use legacy_kb::{KbHost, NativeKb};
 pub use swi::{PRELUDE, SWI_PREDICATES, SWI_RENAMED};
 pub use translate::read_reply;

@@ -38,6 +38,12 @@ mode_exe(test).
     catch('$sitlog_run'(Goal, Limit, R0), E, R0 = error(E)),
     '$sitlog_result'(R0, Vars, Result).
 
+'$sitlog_run'(Goal, inf, R) :-
+    !,
+    (   call(Goal)
+    ->  R = done
+    ;   R = fail
+    ).
 '$sitlog_run'(Goal, Limit, R) :-
     (   call_with_inference_limit(Goal, Limit, LR)
     ->  (   LR == inference_limit_exceeded
@@ -217,6 +223,29 @@ get_last_situation(History, S) :-
 
 '$sitlog_add'(Clause, R) :-
     catch((assertz(Clause), R = ok), E, R = error(E)).
+
+% Asserts the clauses that are the arguments of Cs (`c(C1, ..., Cn)`: two
+% levels above a clause, where a list would add one per element), in order;
+% R: `K-E` for each clause Ck refused with the error E.
+'$sitlog_add_all'(Cs, R) :-
+    functor(Cs, _, N),
+    '$sitlog_add_all'(1, N, Cs, R).
+'$sitlog_add_all'(K, N, Cs, R) :-
+    (   K > N
+    ->  R = []
+    ;   arg(K, Cs, C),
+        catch((assertz(C), R = R1), E, R = [K-E|R1]),
+        K1 is K + 1,
+        '$sitlog_add_all'(K1, N, Cs, R1)
+    ).
+
+% A clause asserted ahead (the legacy layer, by an engine built ahead) of
+% a predicate that a later file redefines: the predicate's clauses go.
+'$sitlog_drop'(Clause, R) :-
+    (   Clause = (H :- _) -> true ; H = Clause ),
+    functor(H, N, A),
+    functor(G, N, A),
+    catch((retractall(G), R = ok), E, R = error(E)).
 
 '$sitlog_directive'(Goal, R) :-
     catch(( call(Goal) -> R = ok ; R = fail ), E, R = error(E)).

@@ -339,6 +339,30 @@ fn legacy_files_redefine_as_swi_consult() {
     .expect("loads");
     assert!(has(&legacy, "[[b],[x]]"));
     drop(legacy);
+    // The same with the layer read and asserted ahead by an engine built
+    // ahead (`sitlogc run --legacy`): its clauses that the application
+    // redefines are retracted, those a later file of the layer redefines
+    // never asserted.
+    let layer2 = PrologSource::new("layer2.pl", "r(y).\n");
+    let warm = PrologFunctions::warm(Some((vec![layer.clone(), layer2.clone()], None)));
+    // A clause the engine refuses is an error at its place, the clauses
+    // after it in its batch loaded.
+    let app2 = PrologSource::new("user_functions.pl", "p(b).\nq :- 1.\np(c).\n");
+    let (ahead, errors) = PrologFunctions::spawn_from(
+        warm,
+        &[layer.clone(), layer2, app2],
+        PrologOptions::default(),
+        2,
+        None,
+    )
+    .expect("loads");
+    assert_eq!(errors.len(), 1, "{errors:?}");
+    assert_eq!(
+        (errors[0].file.as_str(), errors[0].line),
+        ("user_functions.pl", 2)
+    );
+    assert!(has(&ahead, "[[b,c],[y]]"));
+    drop(ahead);
     // Our own applications keep every clause.
     let own = PrologFunctions::load(&[layer, app], PrologOptions::default()).expect("loads");
     assert!(has(&own, "[[a1,a2,b],[x]]"));

@@ -19,6 +19,7 @@ use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
 
 /// A clause ready for the engine.
+#[derive(Clone)]
 pub(super) struct Prepared {
     /// Canonical text of the clause term (no final `.`).
     pub(super) text: String,
