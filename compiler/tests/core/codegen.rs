@@ -95,3 +95,34 @@ fn tutorial() {
     let code = codegen::generate_file(&ir, "dms/examples/tutorial");
     insta::assert_snapshot!(code);
 }
+
+/// A behaviour-library DM as the home butler compiles it: `find`'s module
+/// (its situation enum, its native frame and `match`, its term code),
+/// cut from `sitlogc build --emit rust dms/apps/home`.
+#[test]
+fn behaviour_library_find() {
+    let app = std::path::Path::new("../dms/apps/home");
+    // `behaviors/...` read from the repository's dms/, as sitlogc embeds
+    // it; the world's functions are the robot's (unresolved here).
+    let library: &'static load::Library = Box::leak(Box::new(load::Library {
+        roots: vec![load::LibraryRoot {
+            what: "the repository's dms/".to_owned(),
+            files: load::LibraryFiles::Dir("../dms".into()),
+        }],
+    }));
+    let options = check::CheckOptions {
+        library: Some(library),
+        unresolved_as_warnings: true,
+        ..Default::default()
+    };
+    let (checked, diags) = sitlog_compiler::check_path_opts(app, options).expect("readable");
+    let checked = checked.unwrap_or_else(|_| panic!("does not check: {diags:#?}"));
+    let ir = ir::lower(&checked);
+    let code = codegen::generate_file(&ir, "dms/apps/home");
+    let start = code
+        .find("pub mod dm_find {")
+        .expect("the home butler compiles find");
+    // The module ends at the first line that closes it at column 0.
+    let len = code[start..].find("\n}\n").expect("the module ends") + 3;
+    insta::assert_snapshot!(&code[start..start + len]);
+}
