@@ -113,6 +113,11 @@ pub enum Step {
     Final,
     /// No expectation was met: the recovery DM of the type, or a new instance (D-15, D-42a).
     Unmet { type_term: Term },
+    /// The situation entered (the code's `Cx` situation, id and selecting
+    /// value) runs from its template, as the interpreter runs it: the code
+    /// handed it over before doing anything (native code whose values do
+    /// not convert, in a situation the program has no term code for).
+    Template,
 }
 
 /// What compiled typed code keeps while it runs typed situations one after

@@ -320,10 +320,9 @@ enum MatchStep {
 
 /// The DM's native code, for the module.
 pub(super) struct NativeCode {
-    /// `enum Nat`, `run_native`.
+    /// `enum Nat`, `run_native` (which `run_situation` calls for each
+    /// situation with native code).
     pub items: TokenStream,
-    /// The hook `run_situation` tries first.
-    pub first: TokenStream,
     /// How many situations hold no ground handle (no register `term`):
     /// the ones on native values.
     pub on_native_values: usize,
@@ -635,13 +634,6 @@ impl Gen<'_> {
                     .map(::std::option::Option::Some)
             }
         };
-        let first = quote! {
-            // The situation runs natively when it has native code and its
-            // id's arguments and the DM's parameters convert.
-            if let ::std::option::Option::Some(step) = run_native(p, cx, sit)? {
-                return ::std::result::Result::Ok(step);
-            }
-        };
         // Counted on inference's types: a register that holds no value
         // (`never`: `_`, a parameter or id part nothing reads) is native
         // there although native code may carry a term in its place.
@@ -659,7 +651,6 @@ impl Gen<'_> {
             .count();
         Ok(NativeCode {
             items,
-            first,
             callee_ok: d.native.first().copied().unwrap_or(false) && d.locals_ok,
             on_native_values: native.len(),
             fixed_shapes,
