@@ -25,9 +25,9 @@ pub trait DmProgram {
     /// A fresh copy of the DM's head (its identifier term).
     fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Term;
     /// A fresh instance of a situation (D-7), head included; `None` for a
-    /// situation that runs as code ([`DmProgram::compiled_id`] is `Some`),
-    /// which the machine never instantiates (generated code has no builder
-    /// for it).
+    /// situation that runs as code ([`DmProgram::compiled_id`] is `Some`)
+    /// and never hands a visit to its template ([`Step::Template`]): the
+    /// machine never instantiates it (generated code has no builder for it).
     fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Option<Instance>;
     /// Whether situation `sit`'s id could unify with `value` (a cheap filter
     /// before instantiating; `true` is always a correct answer).

@@ -17,7 +17,11 @@
 //!   that selected it) and the parameters the native situations read are
 //!   converted with the checked conversion (`Native::from_term`; for a
 //!   `Val`: ground, inert, proper lists, no big integer). A value that does
-//!   not fit leaves the visit to the term code, nothing done.
+//!   not fit leaves the visit to the machine, nothing done: a situation with
+//!   native code has no term code (`codegen::emit`), so `run_situation`
+//!   returns `Step::Template` and the machine runs it from its template,
+//!   as the interpreter does (correct, slower, rare). "Term code" below
+//!   means, for such a situation, that path.
 //! - *values*: native values are ground and evaluate to themselves in L
 //!   (atoms, numbers and lists of them are inert, D-28/D-36; a `Val` is
 //!   converted from an inert term), so a condition `X == Y` is Rust's `==`
@@ -239,13 +243,13 @@ fn load_head_arg(d: &Dm, r: Reg, i: usize, ty: Ty, regs: &mut Regs) -> N<TokenSt
 }
 
 /// The history entry of an arc (`rec_exp`, `rec_act` and `rec_next` in
-/// scope, the situation entered with its id), when recorded: made as the
-/// term code makes it, the locals written back first (`hand`) so that an
+/// scope), when recorded: made as the term code makes it. The arc entered
+/// its situation first (its id set, the locals written back: `Dm::hand`),
+/// and what changed the locals since were the machine's own calls, so an
 /// observer sees the frame the term path would have.
-fn rec_entry(hand: &TokenStream) -> TokenStream {
+fn rec_entry() -> TokenStream {
     quote! {
         if run.records {
-            #hand
             cx.record(rec_exp, rec_act, ::std::option::Option::Some(rec_next));
         }
     }
@@ -1191,8 +1195,7 @@ impl Gen<'_> {
         // longer fits the frame, the rest of the arc runs as the term code
         // runs it (live native values as terms).
         let reloads = atom.is_none() && !d.locals.is_empty();
-        let conv =
-            self.nat_bound_at_boundary(st, &arc.next, &regs, reloads, &rec_entry(&d.hand))?;
+        let conv = self.nat_bound_at_boundary(st, &arc.next, &regs, reloads, &rec_entry())?;
         if conv.is_some() && arc.out_arg.is_some() {
             return Err("its arc has an out_arg and a value bound at a boundary".into());
         }
@@ -1285,8 +1288,7 @@ impl Gen<'_> {
             }
         }
         let name = self.atom_native(plan.id.0)?;
-        let rec = rec_entry(&d.hand);
-        *d.rec.borrow_mut() = rec.clone();
+        *d.rec.borrow_mut() = rec_entry();
         let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &name);
         *d.rec.borrow_mut() = quote!();
         let next = next?;
@@ -1295,7 +1297,7 @@ impl Gen<'_> {
             let next_at: Nat = { #next };
             if run.records {
                 let rec_next = next_at.id_term(p, cx.store());
-                #rec
+                cx.record(rec_exp, rec_act, ::std::option::Option::Some(rec_next));
             }
             next_at
         })
