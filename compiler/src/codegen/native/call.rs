@@ -9,7 +9,9 @@
 //! and `get` of a local, atoms, numbers) and next situation run natively.
 //!
 //! Hand-over, so behaviour stays the term path's:
-//! - a call whose DM is not native there, whose arguments do not fit the
+//! - a call made while a history is kept or observed (`run.records`: the
+//!   machine pushes the callee's frame, its entries nest in the caller's),
+//!   a call whose DM is not native there, whose arguments do not fit the
 //!   callee's frame (an output argument: a fresh variable, made as a term
 //!   for the visit), or whose exit arcs are not native here, or that
 //!   would reach the depth limit, is given to the machine as the term
@@ -259,8 +261,10 @@ impl Gen<'_> {
         }
         Ok(quote! {
             #(#lets)*
-            // The callee's frame on the native stack, within the depth limit.
-            if stack.len() < cx.depth_room() {
+            // The callee's frame on the native stack, within the depth
+            // limit, when no history is kept or observed (else the machine
+            // pushes it: the callee's entries nest in the caller's).
+            if !run.records && stack.len() < cx.depth_room() {
                 let callee = super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} };
                 *call = ::std::option::Option::Some(super::NatFrame::#callee_v(callee));
                 done = true;
