@@ -818,10 +818,13 @@ impl Gen<'_> {
                 _ => {
                     // Not two ints: the term code's evaluation decides. The
                     // arc's own transition (counted before its next
-                    // situation) is not the machine's until that succeeds.
+                    // situation when nothing is recorded; recorded, its
+                    // entry counts it) is not the machine's until that
+                    // succeeds.
                     #hand
-                    cx.count_transitions(count - 1);
-                    count = 1;
+                    let own = u64::from(!run.records);
+                    cx.count_transitions(count.saturating_sub(own));
+                    count = own.min(count);
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
                     let lt = #rt::native::Native::to_term(&#lx, cx.store());

@@ -71,7 +71,12 @@
 //!   natively only after the checked conversion, as above.
 //! - *locals, globals, `is`*: `get`/`set`/`inc` and `is` are the machine's
 //!   own calls (`Cx::var_op`, `Cx::is`) on terms built from native values;
-//!   what they bind is converted like a boundary's value.
+//!   what they bind is converted like a boundary's value. Except, when
+//!   nothing is recorded, an arc whose action is only `inc`/`get` of the
+//!   frame's locals, constants and values (`[inc(n, N)]`): done on the
+//!   frame's Rust locals, as an exit arc's (recorded, the arc takes the
+//!   machine's calls and makes its entry). A fresh variable is made at
+//!   the start of a visit only when code uses it before declaring it.
 //!
 //! - *frames and calls* ([`frame`], [`call`]): each DM with native code
 //!   has a `Frame` (parameters, locals, its `Nat`); the program's
@@ -287,17 +292,37 @@ fn ev_binds(e: &Ev, out: &mut Vec<Reg>) {
     }
 }
 
-/// The fresh-variable locals (`fresh_rN`) `ts` uses.
+/// The fresh-variable locals (`fresh_rN`) `ts` uses before its own code
+/// declares them (`let fresh_rN = cx.var_op_fresh(..);` in a branch that
+/// runs only when recorded makes no variable on the other branch).
 fn fresh_used(ts: &TokenStream, out: &mut std::collections::BTreeSet<Ident>) {
+    fresh_used_in(ts, &mut Vec::new(), out);
+}
+
+fn fresh_used_in(
+    ts: &TokenStream,
+    declared: &mut Vec<Ident>,
+    out: &mut std::collections::BTreeSet<Ident>,
+) {
+    let outer = declared.len();
+    let mut pending = Vec::new();
+    let mut after_let = false;
     for tt in ts.clone() {
+        let is_let = matches!(&tt, proc_macro2::TokenTree::Ident(i) if i == "let");
         match tt {
-            proc_macro2::TokenTree::Group(g) => fresh_used(&g.stream(), out),
-            proc_macro2::TokenTree::Ident(i) if is_fresh(&i) => {
+            proc_macro2::TokenTree::Group(g) => fresh_used_in(&g.stream(), declared, out),
+            proc_macro2::TokenTree::Ident(i) if after_let && is_fresh(&i) => pending.push(i),
+            proc_macro2::TokenTree::Ident(i) if is_fresh(&i) && !declared.contains(&i) => {
                 out.insert(i);
+            }
+            proc_macro2::TokenTree::Punct(p) if p.as_char() == ';' => {
+                declared.append(&mut pending);
             }
             _ => {}
         }
+        after_let = is_let;
     }
+    declared.truncate(outer);
 }
 
 fn reg(r: Reg) -> Ident {
@@ -1363,13 +1388,16 @@ impl Gen<'_> {
             KindPlan::Perceptual(arcs) => arcs.arcs.iter().position(|a| std::ptr::eq(a, arc)),
             _ => None,
         };
+        // Only when nothing is recorded: recorded, the arc takes the
+        // general way below (the machine's `inc`/`get`, the entry made).
+        let mut fast = None;
         if let (None, Some(k)) = (atom, arc_ix) {
             let mut nregs = regs.clone();
             if let Ok(act) = self.nat_exit_action(d, ix, k, &arc.action, &mut nregs) {
                 let name = self.atom_native(plan.id.0)?;
                 let next =
                     self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &nregs, &name)?;
-                return Ok(quote! { #act count += 1; #next });
+                fast = Some(quote! { #act count += 1; #next });
             }
         }
         // A fresh variable the action binds (a boundary's value) and the
@@ -1475,7 +1503,7 @@ impl Gen<'_> {
         let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &name);
         *d.rec.borrow_mut() = quote!();
         let next = next?;
-        Ok(quote! {
+        let general = quote! {
             #(#stmts)*
             let next_at: Nat = { #next };
             if run.records {
@@ -1483,6 +1511,12 @@ impl Gen<'_> {
                 cx.record(rec_exp, rec_act, ::std::option::Option::Some(rec_next));
             }
             next_at
+        };
+        Ok(match fast {
+            Some(fast) => quote! {
+                if !run.records { #fast } else { #general }
+            },
+            None => general,
         })
     }
 
