@@ -755,8 +755,8 @@ impl Gen<'_> {
         Ok(quote!(#(#stmts)* #(#performs)*))
     }
 
-    /// `l op r` on ints: in Rust when both are ints (a ground term read as
-    /// one), else evaluated on terms as the term code does (the machine
+    /// `l op r` on ints: in Rust when both are ints (a ground term or a
+    /// `ground` value read as one), else evaluated on terms as the term code does (the machine
     /// entered in situation `cur`: its result or its error).
     pub(super) fn nat_arith(&self, d: &Dm, cur: usize, op: ArithCmp, l: V, r: V) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
@@ -765,6 +765,8 @@ impl Gen<'_> {
             Ok(match v.ty {
                 Ty::Int => quote!(#some(#x)),
                 Ty::Term => quote!(cx.store_ref().int_of(#x.0)),
+                // A `ground` value (a canonical `Val`): an int when it is one.
+                ref t if super::held_as_val(t) => quote!(#x.int()),
                 _ => return Err("an arithmetic comparison is not on ints".into()),
             })
         };
