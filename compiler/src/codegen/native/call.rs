@@ -113,8 +113,9 @@ impl Gen<'_> {
         }
     }
 
-    /// The registers of a visit that come from the frame's parameters.
-    fn nat_head_regs(&self, d: &Dm, ix: usize, regs: &mut Regs) -> N<Vec<TokenStream>> {
+    /// The registers of a visit that come from the frame's parameters:
+    /// each register's local and the statement that loads it.
+    fn nat_head_regs(&self, d: &Dm, ix: usize, regs: &mut Regs) -> N<Vec<(Ident, TokenStream)>> {
         let mut stmts = Vec::new();
         let unbound = |r: Reg| {
             d.types[ix]
@@ -129,7 +130,7 @@ impl Gen<'_> {
                     continue;
                 }
                 let ty = d.types[ix].regs[*r as usize].ty.clone();
-                stmts.push(super::load_head_arg(d, *r, *i, ty, regs)?);
+                stmts.push((reg(*r), super::load_head_arg(d, *r, *i, ty, regs)?));
             }
         }
         Ok(stmts)
@@ -487,8 +488,7 @@ impl Gen<'_> {
                 }
             });
         }
-        Ok(quote! {
-            #(#head)*
+        let body = quote! {
             let super::NatFrame::#callee_v(done_frame) = ret else {
                 return ::std::result::Result::Err(cx.error(
                     "native code resumed a caller with another DM's frame",
@@ -514,7 +514,14 @@ impl Gen<'_> {
                     ::std::option::Option::None,
                 )),
             };
-        })
+        };
+        // Only the parameters the exit arcs read are loaded (a load is a
+        // clone: a list's count changed and changed back on every return).
+        let head = head
+            .into_iter()
+            .filter(|(r, _)| mentions(&body, r))
+            .map(|(_, stmt)| stmt);
+        Ok(quote!(#(#head)* #body))
     }
 
     /// Unifies the expectation `b` (the caller's registers, fresh or set)
@@ -842,6 +849,15 @@ fn ev_as_build(e: &Ev) -> Option<Build> {
         )),
         _ => None,
     }
+}
+
+/// Whether generated code `ts` mentions the identifier `x`.
+fn mentions(ts: &TokenStream, x: &Ident) -> bool {
+    ts.clone().into_iter().any(|t| match t {
+        proc_macro2::TokenTree::Ident(i) => i == *x,
+        proc_macro2::TokenTree::Group(g) => mentions(&g.stream(), x),
+        _ => false,
+    })
 }
 
 /// Whether evaluating the call term gives it back (built from values).
