@@ -115,8 +115,9 @@ impl Gen<'_> {
         }
     }
 
-    /// The registers of a visit that come from the frame's parameters.
-    fn nat_head_regs(&self, d: &Dm, ix: usize, regs: &mut Regs) -> N<Vec<TokenStream>> {
+    /// The registers of a visit that come from the frame's parameters:
+    /// each register's local and the statement that loads it.
+    fn nat_head_regs(&self, d: &Dm, ix: usize, regs: &mut Regs) -> N<Vec<(Ident, TokenStream)>> {
         let mut stmts = Vec::new();
         let unbound = |r: Reg| {
             d.types[ix]
@@ -131,7 +132,7 @@ impl Gen<'_> {
                     continue;
                 }
                 let ty = d.types[ix].regs[*r as usize].ty.clone();
-                stmts.push(super::load_head_arg(d, *r, *i, ty, regs)?);
+                stmts.push((reg(*r), super::load_head_arg(d, *r, *i, ty, regs)?));
             }
         }
         Ok(stmts)
@@ -491,8 +492,7 @@ impl Gen<'_> {
                 }
             });
         }
-        Ok(quote! {
-            #(#head)*
+        let body = quote! {
             let super::NatFrame::#callee_v(done_frame) = ret else {
                 return ::std::result::Result::Err(cx.error(
                     "native code resumed a caller with another DM's frame",
@@ -518,7 +518,14 @@ impl Gen<'_> {
                     ::std::option::Option::None,
                 )),
             };
-        })
+        };
+        // Only the parameters the exit arcs read are loaded (a load is a
+        // clone: a list's count changed and changed back on every return).
+        let head = head
+            .into_iter()
+            .filter(|(r, _)| mentions(&body, r))
+            .map(|(_, stmt)| stmt);
+        Ok(quote!(#(#head)* #body))
     }
 
     /// Unifies the expectation `b` (the caller's registers, fresh or set)
@@ -866,6 +873,15 @@ fn ev_as_build(e: &Ev) -> Option<Build> {
         )),
         _ => None,
     }
+}
+
+/// Whether generated code `ts` mentions the identifier `x`.
+fn mentions(ts: &TokenStream, x: &Ident) -> bool {
+    ts.clone().into_iter().any(|t| match t {
+        proc_macro2::TokenTree::Ident(i) => i == *x,
+        proc_macro2::TokenTree::Group(g) => mentions(&g.stream(), x),
+        _ => false,
+    })
 }
 
 /// Whether evaluating the call term gives it back (built from values).
