@@ -193,8 +193,9 @@ pub fn both<A: App>(
         a.transcript, a.report["error"]
     );
     assert_eq!(a.code, 0);
-    // Without a history the compiled task runs its native code (issue
-    // 37): the same transcript and outcome.
+    // The compiled task runs its native code with the history kept (the
+    // default run, compared above) and without (issue 37), where native
+    // DM calls stay on the native stack: the same transcript and outcome.
     let c = execute_with(compiled, again, &assets, false);
     assert_eq!(
         a.transcript, c.transcript,

@@ -362,6 +362,15 @@ impl Gen<'_> {
         let mut select_arms = Vec::new();
         let mut run_arms = Vec::new();
         let mut exit_arms = Vec::new();
+        // A DM's situations with native code have no term code (they run
+        // natively with the history kept or not); when their values do not
+        // convert, the machine runs them from their templates, as the
+        // interpreter does.
+        let native = self.mir_types.as_ref().and_then(|t| {
+            self.native_code(dm, dm_ix, &t.dms[dm_ix])
+                .ok()
+                .filter(|n| n.native_sits > 0)
+        });
         for (i, s) in dm.situations.iter().enumerate() {
             let f = self.store.args(s.template);
             let id_text = self.store.writeq(f[1]);
@@ -405,8 +414,11 @@ impl Gen<'_> {
             });
 
             // The instance builder, for a situation that does not run as
-            // code (the machine instantiates only those).
-            let planned = self.mir.plan(dm_ix as u32, i as u32).is_some();
+            // code or runs natively (the machine instantiates only those).
+            let nat_sit = native
+                .as_ref()
+                .is_some_and(|n| n.why.get(i).is_some_and(Option::is_none));
+            let planned = self.mir.plan(dm_ix as u32, i as u32).is_some() && !nat_sit;
             let fname = format_ident!("sit_{}", snake(&vname.to_string()));
             let names = [
                 "head",
@@ -473,10 +485,20 @@ impl Gen<'_> {
                 if let Some(select) = self.select_code(plan) {
                     select_arms.push(quote!(#ix => { #select }));
                 }
-                run_arms.push(quote!(#ix => #run_name(p, cx),));
-                let rdoc = format!(" A visit of `{id_text}` as code.");
-                let run = code.run;
-                fns.push(quote!(#[doc = #rdoc] #run));
+                if nat_sit {
+                    // Natively, else from the template (nothing done); the
+                    // step straight to the machine (native code may have
+                    // left this DM: its calls run on the native stack).
+                    run_arms.push(quote! {
+                        #ix => return run_native(p, cx, #ix)
+                            .map(|s| s.unwrap_or(#rt::machine::Step::Template)),
+                    });
+                } else {
+                    run_arms.push(quote!(#ix => #run_name(p, cx),));
+                    let rdoc = format!(" A visit of `{id_text}` as code.");
+                    let run = code.run;
+                    fns.push(quote!(#[doc = #rdoc] #run));
+                }
                 if let Some(exit) = code.exit {
                     exit_arms.push(quote!(#ix => #exit_name(p, saved, final_id, cx),));
                     let edoc = format!(" The exit arcs of `{id_text}` as code.");
@@ -491,16 +513,9 @@ impl Gen<'_> {
                 _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
             }?
         };
-        // The DM's situations with native code run natively: tried first
-        // whenever a situation runs (`native`).
-        let native = self.mir_types.as_ref().and_then(|t| {
-            self.native_code(dm, dm_ix, &t.dms[dm_ix])
-                .ok()
-                .filter(|n| n.native_sits > 0)
-        });
-        let (native_first, native_items) = match native {
-            Some(n) => (n.first, n.items),
-            None => (quote!(), quote!()),
+        let native_items = match native {
+            Some(n) => n.items,
+            None => quote!(),
         };
         let variant_names: Vec<TokenStream> =
             vnames.iter().map(|v| quote!(Situation::#v)).collect();
@@ -624,7 +639,6 @@ impl Gen<'_> {
                     sit: #rt::machine::SitIx,
                     cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
                 ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
-                    #native_first
                     let mut sit = sit;
                     loop {
                         let step = #term_code;
@@ -665,7 +679,9 @@ impl Gen<'_> {
                 }
 
                 /// A fresh instance of a situation; `None` for one that runs
-                /// as code (the machine never instantiates it).
+                /// as term code (the machine never instantiates it; one that
+                /// runs natively is instantiated when its code hands it over,
+                /// `Step::Template`).
                 pub fn instantiate(
                     p: &super::Program,
                     sit: Situation,

@@ -25,9 +25,9 @@ pub trait DmProgram {
     /// A fresh copy of the DM's head (its identifier term).
     fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Term;
     /// A fresh instance of a situation (D-7), head included; `None` for a
-    /// situation that runs as code ([`DmProgram::compiled_id`] is `Some`),
-    /// which the machine never instantiates (generated code has no builder
-    /// for it).
+    /// situation that runs as code ([`DmProgram::compiled_id`] is `Some`)
+    /// and never hands a visit to its template ([`Step::Template`]): the
+    /// machine never instantiates it (generated code has no builder for it).
     fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Option<Instance>;
     /// Whether situation `sit`'s id could unify with `value` (a cheap filter
     /// before instantiating; `true` is always a correct answer).
@@ -113,6 +113,11 @@ pub enum Step {
     Final,
     /// No expectation was met: the recovery DM of the type, or a new instance (D-15, D-42a).
     Unmet { type_term: Term },
+    /// The situation entered (the code's `Cx` situation, id and selecting
+    /// value) runs from its template, as the interpreter runs it: the code
+    /// handed it over before doing anything (native code whose values do
+    /// not convert, in a situation the program has no term code for).
+    Template,
 }
 
 /// What compiled typed code keeps while it runs typed situations one after

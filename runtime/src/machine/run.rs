@@ -202,7 +202,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     return Err(self.err(message, None, None));
                 }
             }
-            let (sit, inst) = self.select(&goto)?;
+            let (mut sit, inst) = self.select(&goto)?;
             let dm = self.frames.last().expect("a frame is running").dm;
             let inst = match inst {
                 Selected::Instance(inst) => inst,
@@ -220,16 +220,23 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     };
                     let step = program.run_situation(dm, sit, &mut cx)?;
                     // The code may have gone on to other situations of the DM.
-                    let (sit, id) = (cx.sit, cx.id);
+                    let (at, id, selected) = (cx.sit, cx.id, cx.selected);
                     debug_assert!(self.lazy.is_empty(), "typed code left lazy frames");
-                    match self.take_step(step, sit, id, pipe, perception, actions, observer)? {
-                        Some(next) => goto = next,
-                        None => {
-                            *final_situation = Some(id);
-                            return Ok(());
+                    if let Step::Template = step {
+                        // Nothing of the visit done: the situation from its template.
+                        sit = at;
+                        self.template_instance(dm, at, selected)?
+                    } else {
+                        let sit = at;
+                        match self.take_step(step, sit, id, pipe, perception, actions, observer)? {
+                            Some(next) => goto = next,
+                            None => {
+                                *final_situation = Some(id);
+                                return Ok(());
+                            }
                         }
+                        continue;
                     }
-                    continue;
                 }
             };
             let here = Some((sit, inst.id));
@@ -304,6 +311,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             match step {
                 Step::Goto(next) => return Ok(Some(Goto::Situation(next))),
                 Step::GotoSit(next) => return Ok(Some(Goto::Index(next))),
+                // Taken where the code returns it (the run loop).
+                Step::Template => {
+                    return Err(self.err(
+                        "compiled code handed a situation to its template outside a visit",
+                        here,
+                        None,
+                    ))
+                }
                 Step::Call { call, saved } => {
                     self.frames.last_mut().expect("frame").pending =
                         Some(Pending::Compiled { sit, saved, id });
@@ -376,6 +391,34 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 }
             }
         }
+    }
+
+    /// A fresh instance of compiled situation `sit` whose code handed it
+    /// over ([`Step::Template`]), as the machine's selection would have
+    /// made it: its id unified with the value that selected it (`selected`;
+    /// the code's selection said it unifies), its head linked to the call.
+    fn template_instance(
+        &mut self,
+        dm: DmIx,
+        sit: SitIx,
+        selected: Option<Term>,
+    ) -> Result<Instance, RunError> {
+        let inst = self.instance(dm, sit)?;
+        if let Some(value) = selected {
+            if !self.store.unify(inst.id, value) {
+                return Err(self.err(
+                    format!(
+                        "the situation handed over does not take `{}`",
+                        self.store.writeq(value)
+                    ),
+                    Some((sit, inst.id)),
+                    None,
+                ));
+            }
+        }
+        let dm_id = self.frames.last().expect("a frame is running").dm_id;
+        self.link_head(inst.head, dm_id);
+        Ok(inst)
     }
 
     /// A fresh instance of a situation that does not run as code.

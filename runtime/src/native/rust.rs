@@ -107,15 +107,29 @@ impl Native for Val {
     /// checked conversion of a boundary: `None` for a term that is not
     /// ground, not inert (the term path would evaluate it: `1 + 1`), a
     /// partial list, a big integer.
+    #[inline]
     fn from_term(store: &Store, t: Term) -> Option<Val> {
         let t = store.deref(t);
+        // An int or an atom other than `[]` (atomic, so inert): what
+        // `Val::from_term(.., &Ty::Ground)` gives, without its walk (the
+        // pipe read at every in_arg).
+        match t.0 {
+            crate::term::Repr::Int(i) => return Some(Val::Int(i)),
+            crate::term::Repr::Atom(a) if a != atoms::NIL => return Some(Val::Sym(a)),
+            _ => {}
+        }
         if !store.is_inert(t) {
             return None;
         }
         Val::from_term(store, t, &Ty::Ground)
     }
+    #[inline]
     fn to_term(&self, store: &mut Store) -> Term {
-        Val::to_term(self, store)
+        match self {
+            Val::Int(i) => Term::int(*i),
+            Val::Sym(a) => Term::atom(*a),
+            v => Val::to_term(v, store),
+        }
     }
 }
 

@@ -471,10 +471,10 @@ fn native_dms_agree() {
             assert_eq!(c, i, "{main}, history {keep}");
         }
     }
-    // A next value no situation takes: the machine's error, as the term
-    // code gives it (the interpreter names the situation `try([_V0|_V1])`
-    // there, the generated term code `try`: a difference older than native
-    // code).
+    // A next value no situation takes: the machine's error, the same with
+    // the history kept or not (the interpreter names the situation
+    // `try([_V0|_V1])` there, the generated code `try`: a difference older
+    // than native code).
     let native = run(app, "stray", "", false, false, false);
     let terms = run(app, "stray", "", true, false, false);
     assert_eq!(native.0["error"], terms.0["error"]);

@@ -9,7 +9,9 @@
 //! and `get` of a local, atoms, numbers) and next situation run natively.
 //!
 //! Hand-over, so behaviour stays the term path's:
-//! - a call whose DM is not native there, whose arguments do not fit the
+//! - a call made while a history is kept or observed (`run.records`: the
+//!   machine pushes the callee's frame, its entries nest in the caller's),
+//!   a call whose DM is not native there, whose arguments do not fit the
 //!   callee's frame (an output argument: a fresh variable, made as a term
 //!   for the visit), or whose exit arcs are not native here, or that
 //!   would reach the depth limit, is given to the machine as the term
@@ -113,8 +115,9 @@ impl Gen<'_> {
         }
     }
 
-    /// The registers of a visit that come from the frame's parameters.
-    fn nat_head_regs(&self, d: &Dm, ix: usize, regs: &mut Regs) -> N<Vec<TokenStream>> {
+    /// The registers of a visit that come from the frame's parameters:
+    /// each register's local and the statement that loads it.
+    fn nat_head_regs(&self, d: &Dm, ix: usize, regs: &mut Regs) -> N<Vec<(Ident, TokenStream)>> {
         let mut stmts = Vec::new();
         let unbound = |r: Reg| {
             d.types[ix]
@@ -129,7 +132,7 @@ impl Gen<'_> {
                     continue;
                 }
                 let ty = d.types[ix].regs[*r as usize].ty.clone();
-                stmts.push(super::load_head_arg(d, *r, *i, ty, regs)?);
+                stmts.push((reg(*r), super::load_head_arg(d, *r, *i, ty, regs)?));
             }
         }
         Ok(stmts)
@@ -259,8 +262,10 @@ impl Gen<'_> {
         }
         Ok(quote! {
             #(#lets)*
-            // The callee's frame on the native stack, within the depth limit.
-            if stack.len() < cx.depth_room() {
+            // The callee's frame on the native stack, within the depth
+            // limit, when no history is kept or observed (else the machine
+            // pushes it: the callee's entries nest in the caller's).
+            if !run.records && stack.len() < cx.depth_room() {
                 let callee = super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} };
                 *call = ::std::option::Option::Some(super::NatFrame::#callee_v(callee));
                 done = true;
@@ -494,8 +499,7 @@ impl Gen<'_> {
                 }
             });
         }
-        Ok(quote! {
-            #(#head)*
+        let body = quote! {
             let super::NatFrame::#callee_v(done_frame) = ret else {
                 return ::std::result::Result::Err(cx.error(
                     "native code resumed a caller with another DM's frame",
@@ -521,7 +525,14 @@ impl Gen<'_> {
                     ::std::option::Option::None,
                 )),
             };
-        })
+        };
+        // Only the parameters the exit arcs read are loaded (a load is a
+        // clone: a list's count changed and changed back on every return).
+        let head = head
+            .into_iter()
+            .filter(|(r, _)| mentions(&body, r))
+            .map(|(_, stmt)| stmt);
+        Ok(quote!(#(#head)* #body))
     }
 
     /// Unifies the expectation `b` (the caller's registers, fresh or set)
@@ -821,10 +832,13 @@ impl Gen<'_> {
                 _ => {
                     // Not two ints: the term code's evaluation decides. The
                     // arc's own transition (counted before its next
-                    // situation) is not the machine's until that succeeds.
+                    // situation when nothing is recorded; recorded, its
+                    // entry counts it) is not the machine's until that
+                    // succeeds.
                     #hand
-                    cx.count_transitions(count - 1);
-                    count = 1;
+                    let own = u64::from(!run.records);
+                    cx.count_transitions(count.saturating_sub(own));
+                    count = own.min(count);
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
                     let lt = #rt::native::Native::to_term(&#lx, cx.store());
@@ -866,6 +880,15 @@ fn ev_as_build(e: &Ev) -> Option<Build> {
         )),
         _ => None,
     }
+}
+
+/// Whether generated code `ts` mentions the identifier `x`.
+fn mentions(ts: &TokenStream, x: &Ident) -> bool {
+    ts.clone().into_iter().any(|t| match t {
+        proc_macro2::TokenTree::Ident(i) => i == *x,
+        proc_macro2::TokenTree::Group(g) => mentions(&g.stream(), x),
+        _ => false,
+    })
 }
 
 /// Whether evaluating the call term gives it back (built from values).

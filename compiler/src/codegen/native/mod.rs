@@ -12,12 +12,16 @@
 //! comparisons done in Rust.
 //!
 //! The boundaries, and why the run is the term path's, step for step:
-//! - *entry*: `run_native(sit)` is tried whenever situation `sit` runs
-//!   with no history kept or observed. The id's arguments (from the value
+//! - *entry*: `run_native(sit)` is tried whenever situation `sit` runs,
+//!   with the history kept or not. The id's arguments (from the value
 //!   that selected it) and the parameters the native situations read are
 //!   converted with the checked conversion (`Native::from_term`; for a
 //!   `Val`: ground, inert, proper lists, no big integer). A value that does
-//!   not fit leaves the visit to the term code, nothing done.
+//!   not fit leaves the visit to the machine, nothing done: a situation with
+//!   native code has no term code (`codegen::emit`), so `run_situation`
+//!   returns `Step::Template` and the machine runs it from its template,
+//!   as the interpreter does (correct, slower, rare). "Term code" below
+//!   means, for such a situation, that path.
 //! - *values*: native values are ground and evaluate to themselves in L
 //!   (atoms, numbers and lists of them are inert, D-28/D-36; a `Val` is
 //!   converted from an inert term), so a condition `X == Y` is Rust's `==`
@@ -44,6 +48,16 @@
 //!   entered in it, its (empty) out_arg, its `diag_mod` (a term built from
 //!   native values: the DM's output arguments) and history entry taken as
 //!   the term code takes them; the caller's exit arcs read that id.
+//! - *the history*: where the term code records an entry (an arc: after
+//!   its action, next situation and out_arg; a final), native code records
+//!   the same one (`cx.record`: the situation entered with its id, the
+//!   expectation the machine matched or one built from native values, the
+//!   action performed, the next situation: the next `Nat`'s id or the
+//!   value handed over), its terms built only when a history is kept or
+//!   observed (`run.records`); otherwise it counts the transition, no term
+//!   made. When recorded every call is the machine's (the callee's frame
+//!   pushed so that its entries nest in the caller's), so the native stack
+//!   stays empty and `nat_hand_over` only writes the locals back.
 //! - *`term` registers* (a parameter or id part nothing reads, loaded from
 //!   a place typed `term`): held as a
 //!   [`Ground`](sitlog_runtime::native::Ground) handle, checked ground and
@@ -57,7 +71,12 @@
 //!   natively only after the checked conversion, as above.
 //! - *locals, globals, `is`*: `get`/`set`/`inc` and `is` are the machine's
 //!   own calls (`Cx::var_op`, `Cx::is`) on terms built from native values;
-//!   what they bind is converted like a boundary's value.
+//!   what they bind is converted like a boundary's value. Except, when
+//!   nothing is recorded, an arc whose action is only `inc`/`get` of the
+//!   frame's locals, constants and values (`[inc(n, N)]`): done on the
+//!   frame's Rust locals, as an exit arc's (recorded, the arc takes the
+//!   machine's calls and makes its entry). A fresh variable is made at
+//!   the start of a visit only when code uses it before declaring it.
 //!
 //! - *frames and calls* ([`frame`], [`call`]): each DM with native code
 //!   has a `Frame` (parameters, locals, its `Nat`); the program's
@@ -228,6 +247,19 @@ fn load_head_arg(d: &Dm, r: Reg, i: usize, ty: Ty, regs: &mut Regs) -> N<TokenSt
     Ok(quote!(let #rr = #e;))
 }
 
+/// The history entry of an arc (`rec_exp`, `rec_act` and `rec_next` in
+/// scope), when recorded: made as the term code makes it. The arc entered
+/// its situation first (its id set, the locals written back: `Dm::hand`),
+/// and what changed the locals since were the machine's own calls, so an
+/// observer sees the frame the term path would have.
+fn rec_entry() -> TokenStream {
+    quote! {
+        if run.records {
+            cx.record(rec_exp, rec_act, ::std::option::Option::Some(rec_next));
+        }
+    }
+}
+
 /// Whether Rust's `==` on values of this type is Prolog's `==`.
 fn eq_safe(ty: &Ty) -> bool {
     match ty {
@@ -260,17 +292,37 @@ fn ev_binds(e: &Ev, out: &mut Vec<Reg>) {
     }
 }
 
-/// The fresh-variable locals (`fresh_rN`) `ts` uses.
+/// The fresh-variable locals (`fresh_rN`) `ts` uses before its own code
+/// declares them (`let fresh_rN = cx.var_op_fresh(..);` in a branch that
+/// runs only when recorded makes no variable on the other branch).
 fn fresh_used(ts: &TokenStream, out: &mut std::collections::BTreeSet<Ident>) {
+    fresh_used_in(ts, &mut Vec::new(), out);
+}
+
+fn fresh_used_in(
+    ts: &TokenStream,
+    declared: &mut Vec<Ident>,
+    out: &mut std::collections::BTreeSet<Ident>,
+) {
+    let outer = declared.len();
+    let mut pending = Vec::new();
+    let mut after_let = false;
     for tt in ts.clone() {
+        let is_let = matches!(&tt, proc_macro2::TokenTree::Ident(i) if i == "let");
         match tt {
-            proc_macro2::TokenTree::Group(g) => fresh_used(&g.stream(), out),
-            proc_macro2::TokenTree::Ident(i) if is_fresh(&i) => {
+            proc_macro2::TokenTree::Group(g) => fresh_used_in(&g.stream(), declared, out),
+            proc_macro2::TokenTree::Ident(i) if after_let && is_fresh(&i) => pending.push(i),
+            proc_macro2::TokenTree::Ident(i) if is_fresh(&i) && !declared.contains(&i) => {
                 out.insert(i);
+            }
+            proc_macro2::TokenTree::Punct(p) if p.as_char() == ';' => {
+                declared.append(&mut pending);
             }
             _ => {}
         }
+        after_let = is_let;
     }
+    declared.truncate(outer);
 }
 
 fn reg(r: Reg) -> Ident {
@@ -300,10 +352,9 @@ enum MatchStep {
 
 /// The DM's native code, for the module.
 pub(super) struct NativeCode {
-    /// `enum Nat`, `run_native`.
+    /// `enum Nat`, `run_native` (which `run_situation` calls for each
+    /// situation with native code).
     pub items: TokenStream,
-    /// The hook `run_situation` tries first.
-    pub first: TokenStream,
     /// How many situations hold no ground handle (no register `term`):
     /// the ones on native values.
     pub on_native_values: usize,
@@ -366,6 +417,11 @@ struct Dm<'a> {
     shallow: bool,
     /// The arc's out_arg, set where its next situation is handed over.
     out: std::cell::RefCell<TokenStream>,
+    /// The arc's history entry where its next situation (`rec_next`, a
+    /// term) is handed over: made when the history is kept or observed
+    /// (`run.records`), as the term code makes it; empty in exit arcs
+    /// (native only when no history is kept, see `call`).
+    rec: std::cell::RefCell<TokenStream>,
 }
 
 impl Dm<'_> {
@@ -535,8 +591,8 @@ impl Gen<'_> {
         let doc = format!(
             " Runs DM `{}` natively from situation `sit` (see \
              `sitlog_compiler::codegen::native`); `None`, nothing done, when the \
-             situation has no native code, a history is kept or observed, or a \
-             parameter, local, id argument or the pipe does not convert.",
+             situation has no native code, or a parameter, local, id argument or \
+             the pipe does not convert.",
             dm.name.as_str()
         );
         let items = quote! {
@@ -618,9 +674,6 @@ impl Gen<'_> {
                 sit: #rt::machine::SitIx,
             ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
                 let run = cx.typed_run();
-                if run.records {
-                    return ::std::result::Result::Ok(::std::option::Option::None);
-                }
                 let a = &p.atoms;
                 let at = match sit {
                     #(#entries)*
@@ -631,14 +684,6 @@ impl Gen<'_> {
                 let frame = Frame { #(#field_names,)* at };
                 super::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run)
                     .map(::std::option::Option::Some)
-            }
-        };
-        let first = quote! {
-            // The situation runs natively when it has native code, its id's
-            // arguments and the DM's parameters convert, and no history is
-            // kept or observed.
-            if let ::std::option::Option::Some(step) = run_native(p, cx, sit)? {
-                return ::std::result::Result::Ok(step);
             }
         };
         // Counted on inference's types: a register that holds no value
@@ -660,7 +705,6 @@ impl Gen<'_> {
         Ok(NativeCode {
             held,
             items,
-            first,
             callee_ok: d.native.first().copied().unwrap_or(false) && d.locals_ok,
             on_native_values: native.len(),
             fixed_shapes,
@@ -763,6 +807,7 @@ impl Gen<'_> {
             hand: quote!(),
             shallow,
             out: std::cell::RefCell::new(quote!()),
+            rec: std::cell::RefCell::new(quote!()),
         };
         d.hand = self.nat_hand(&d)?;
         // Each situation's code, given which others have native code (a
@@ -1093,8 +1138,11 @@ impl Gen<'_> {
                     }
                 }
                 let mut bodies = Vec::new();
-                for arc in &arcs.arcs {
-                    bodies.push(self.nat_arc(d, ix, arc, &regs)?);
+                for (i, arc) in arcs.arcs.iter().enumerate() {
+                    // The expectation the history records: the one the
+                    // machine matched (`e<i>`), or built when recorded.
+                    let exp = (!single).then(|| format_ident!("e{}", i));
+                    bodies.push(self.nat_arc(d, ix, arc, &regs, exp)?);
                 }
                 let body = if single {
                     let b = &bodies[0];
@@ -1299,7 +1347,21 @@ impl Gen<'_> {
     /// The code of arc `arc` of situation `ix` once chosen (its action,
     /// the values a boundary bound converted, its next situation), with
     /// `arc_at` its index.
-    fn nat_arc(&self, d: &Dm, ix: usize, arc: &ArcPlan, regs: &Regs) -> N<TokenStream> {
+    ///
+    /// When the history is kept or observed (`run.records`) the arc's
+    /// entry is recorded as the term code records it (after the action,
+    /// the next situation and the out_arg; `exp`: the expectation's term
+    /// when the machine chose the arc, else built here), the situation's
+    /// id entered first: on the next `Nat`'s id where native code goes on,
+    /// on the value handed over where it hands over ([`Dm::rec`]).
+    fn nat_arc(
+        &self,
+        d: &Dm,
+        ix: usize,
+        arc: &ArcPlan,
+        regs: &Regs,
+        exp: Option<Ident>,
+    ) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
         let plan = d.plans[ix];
         let st = &d.types[ix];
@@ -1326,13 +1388,16 @@ impl Gen<'_> {
             KindPlan::Perceptual(arcs) => arcs.arcs.iter().position(|a| std::ptr::eq(a, arc)),
             _ => None,
         };
+        // Only when nothing is recorded: recorded, the arc takes the
+        // general way below (the machine's `inc`/`get`, the entry made).
+        let mut fast = None;
         if let (None, Some(k)) = (atom, arc_ix) {
             let mut nregs = regs.clone();
             if let Ok(act) = self.nat_exit_action(d, ix, k, &arc.action, &mut nregs) {
                 let name = self.atom_native(plan.id.0)?;
                 let next =
                     self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &nregs, &name)?;
-                return Ok(quote! { #act count += 1; #next });
+                fast = Some(quote! { #act count += 1; #next });
             }
         }
         // A fresh variable the action binds (a boundary's value) and the
@@ -1341,10 +1406,23 @@ impl Gen<'_> {
         // longer fits the frame, the rest of the arc runs as the term code
         // runs it (live native values as terms).
         let reloads = atom.is_none() && !d.locals.is_empty();
-        let conv = self.nat_bound_at_boundary(st, &arc.next, &regs, reloads)?;
+        let conv = self.nat_bound_at_boundary(st, &arc.next, &regs, reloads, &rec_entry())?;
         if conv.is_some() && arc.out_arg.is_some() {
             return Err("its arc has an out_arg and a value bound at a boundary".into());
         }
+        // The expectation's term for the history, built only when recorded.
+        let rec_exp = match exp {
+            Some(e) => quote!(#e),
+            None => {
+                let mut ts = Vec::new();
+                let mut n = 0;
+                let t = self
+                    .nat_ev_term(&arc.expectation, &regs, &mut ts, &mut n)
+                    .map_err(|e| format!("its expectation: {e}"))?;
+                quote!(if run.records { #(#ts)* #t } else { #rt::Term::NIL })
+            }
+        };
+        stmts.push(quote!(let rec_exp: #rt::Term = #rec_exp;));
         match atom {
             Some(action) => {
                 let act = self.atom_native(action)?;
@@ -1353,10 +1431,12 @@ impl Gen<'_> {
                     cx.perform(#rt::Term::atom(#act), arc_at)?;
                 };
                 stmts.push(if action == atoms::EMPTY {
-                    quote!(if !run.quiet_empty { #perform })
+                    // Recorded: the situation entered (its id in the entry).
+                    quote!(if run.records || !run.quiet_empty { #perform })
                 } else {
                     perform
                 });
+                stmts.push(quote!(let rec_act = #rt::Term::atom(#act);));
             }
             None => {
                 // An effector's action (`say([.., Name])`): its term
@@ -1367,7 +1447,10 @@ impl Gen<'_> {
                 let perform = match &arc.action {
                     Action::One(e) => {
                         let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
-                        quote!(cx.perform(#t, arc_at)?;)
+                        quote! {
+                            let rec_act = #t;
+                            cx.perform(rec_act, arc_at)?;
+                        }
                     }
                     Action::List { items, .. } => {
                         let ts_items = items
@@ -1375,7 +1458,16 @@ impl Gen<'_> {
                             .map(|e| self.nat_ev_term(e, &regs, &mut ts, &mut n))
                             .collect::<N<Vec<_>>>()
                             .map_err(why)?;
-                        quote!(cx.perform_each(&[#(#ts_items),*], arc_at)?;)
+                        // The list itself is built only for the history.
+                        quote! {
+                            let act_items = [#(#ts_items),*];
+                            cx.perform_each(&act_items, arc_at)?;
+                            let rec_act = if run.records {
+                                cx.store().list(&act_items)
+                            } else {
+                                #rt::Term::NIL
+                            };
+                        }
                     }
                 };
                 stmts.push(quote! {
@@ -1385,7 +1477,10 @@ impl Gen<'_> {
                 });
             }
         }
-        stmts.push(quote!(count += 1;));
+        // Recorded, the entry counts the transition.
+        stmts.push(quote!(if !run.records {
+            count += 1;
+        }));
         // What the machine's calls changed of the locals, read again.
         if let (Some((fallback, _)), None) = (&conv, atom) {
             stmts.push(self.nat_reload_locals(d, fallback)?);
@@ -1404,8 +1499,25 @@ impl Gen<'_> {
             }
         }
         let name = self.atom_native(plan.id.0)?;
-        let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &name)?;
-        Ok(quote! { #(#stmts)* #next })
+        *d.rec.borrow_mut() = rec_entry();
+        let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &name);
+        *d.rec.borrow_mut() = quote!();
+        let next = next?;
+        let general = quote! {
+            #(#stmts)*
+            let next_at: Nat = { #next };
+            if run.records {
+                let rec_next = next_at.id_term(p, cx.store());
+                cx.record(rec_exp, rec_act, ::std::option::Option::Some(rec_next));
+            }
+            next_at
+        };
+        Ok(match fast {
+            Some(fast) => quote! {
+                if !run.records { #fast } else { #general }
+            },
+            None => general,
+        })
     }
 
     /// The frame's locals read again from the machine's frame after its
@@ -1596,6 +1708,7 @@ impl Gen<'_> {
         next: &Next,
         regs: &Regs,
         always: bool,
+        rec: &TokenStream,
     ) -> N<Option<(TokenStream, Vec<(Reg, Ty)>)>> {
         let rt = quote!(::sitlog_runtime);
         let at = quote!(arc_at);
@@ -1630,6 +1743,8 @@ impl Gen<'_> {
             #(#lets)*
             #(#stmts)*
             let (next, target) = #v;
+            let rec_next = next;
+            #rec
             return match target {
                 ::std::option::Option::Some(ix) => ::std::result::Result::Ok(
                     ::std::option::Option::Some(#rt::machine::Step::GotoSit(ix)),
@@ -1840,12 +1955,18 @@ impl Gen<'_> {
                 let a = self.atom_native(self.store.atom_of(*t).unwrap_or(atoms::NIL))?;
                 let hand = &d.hand;
                 let out = d.out.borrow().clone();
+                let rec = d.rec.borrow().clone();
                 Ok(quote! {{
                     #hand
                     cx.count_transitions(count);
-                    cx.enter(#curl, #cur_name);
+                    // Recorded, the situation was entered with its id.
+                    if !run.records {
+                        cx.enter(#curl, #cur_name);
+                    }
                     #out
-                    return cx.goto(#rt::Term::atom(#a), arc_at).map(::std::option::Option::Some);
+                    let rec_next = #rt::Term::atom(#a);
+                    #rec
+                    return cx.goto(rec_next, arc_at).map(::std::option::Option::Some);
                 }})
             }
             Next::Static(t, Some(ix)) if self.store.atom_of(*t).is_some() => {
@@ -1860,12 +1981,18 @@ impl Gen<'_> {
                 let a = self.atom_native(self.store.atom_of(*t).unwrap_or(atoms::NIL))?;
                 let hand = &d.hand;
                 let out = d.out.borrow().clone();
+                let rec = d.rec.borrow().clone();
                 Ok(quote! {{
                     #hand
                     cx.count_transitions(count);
-                    cx.enter(#curl, #cur_name);
+                    // Recorded, the situation was entered with its id.
+                    if !run.records {
+                        cx.enter(#curl, #cur_name);
+                    }
                     #out
-                    return cx.goto(#rt::Term::atom(#a), arc_at).map(::std::option::Option::Some);
+                    let rec_next = #rt::Term::atom(#a);
+                    #rec
+                    return cx.goto(rec_next, arc_at).map(::std::option::Option::Some);
                 }})
             }
             Next::Static(t, _) | Next::Eval(Ev::Built(Build::Const(t)))
@@ -1926,11 +2053,13 @@ impl Gen<'_> {
                     .collect();
                 let f = self.functor_native(*name)?;
                 let out = d.out.borrow().clone();
+                let rec = d.rec.borrow().clone();
                 let fallback = quote! {{
                     let ts = [#(#terms),*];
-                    let value = #rt::native::compound(cx.store(), #f, &ts);
+                    let rec_next = #rt::native::compound(cx.store(), #f, &ts);
                     #out
-                    return cx.goto(value, arc_at).map(::std::option::Option::Some);
+                    #rec
+                    return cx.goto(rec_next, arc_at).map(::std::option::Option::Some);
                 }};
                 let mut vals = Vec::new();
                 for (k, p) in parts.into_iter().enumerate() {
@@ -2086,6 +2215,7 @@ impl Gen<'_> {
         let f = self.atom_native(name)?;
         let hand = &d.hand;
         let out = d.out.borrow().clone();
+        let rec = d.rec.borrow().clone();
         let arg_terms: Vec<Ident> = (0..args.len()).map(|i| format_ident!("w{}", i)).collect();
         Ok(quote! {
             'sel: {
@@ -2095,11 +2225,15 @@ impl Gen<'_> {
                 // that none does).
                 #hand
                 cx.count_transitions(count);
-                cx.enter(#curl, #cur_name);
+                // Recorded, the situation was entered with its id.
+                if !run.records {
+                    cx.enter(#curl, #cur_name);
+                }
                 #(let #arg_terms = #rt::native::Native::to_term(&#arg_names, cx.store());)*
-                let value = #rt::native::compound(cx.store(), #f, &[#(#arg_terms),*]);
+                let rec_next = #rt::native::compound(cx.store(), #f, &[#(#arg_terms),*]);
                 #out
-                return cx.goto(value, arc_at).map(::std::option::Option::Some);
+                #rec
+                return cx.goto(rec_next, arc_at).map(::std::option::Option::Some);
             }
         })
     }
