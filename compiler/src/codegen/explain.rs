@@ -17,7 +17,7 @@ use std::fmt::Write as _;
 /// The `--explain-types` listing of a program: per DM its MIR types, its
 /// native code and each situation; then the globals, the MIR inference's
 /// summary, the native code's total, and last the two lines of
-/// [`summary`].
+/// `summary`.
 pub fn explain_types(ir: &Ir) -> String {
     let mut g = Gen::new(ir, true);
     g.collect(ir);
