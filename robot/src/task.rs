@@ -136,19 +136,7 @@ pub fn main_failed_from(
         Err(code) => return code,
     };
     sitlog_runtime::errln!("error: {message}");
-    if args.format == crate::cli::Format::Json {
-        use std::io::Write as _;
-        let mut out = std::io::stdout();
-        let report = sitlog_runtime::report::stopped_json("error", message);
-        if out
-            .write_all(report.as_bytes())
-            .and_then(|_| out.flush())
-            .is_err()
-        {
-            return std::process::ExitCode::from(2);
-        }
-    }
-    std::process::ExitCode::from(1)
+    stopped(args.format == crate::cli::Format::Json, 1, message)
 }
 
 /// [`main`] for a task that can also run on another robot (`--robot

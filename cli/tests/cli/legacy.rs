@@ -240,26 +240,24 @@ fn sitlog_home_is_explicit_or_from_the_environment() {
         std::env::temp_dir().join(format!("sitlogc-legacy-none-{}", std::process::id()));
     std::fs::create_dir_all(&elsewhere).unwrap();
     std::fs::copy(app.join("main.dm"), elsewhere.join("main.dm")).unwrap();
-    let out = sitlogc()
-        .args(["run", "--legacy"])
-        .arg(&elsewhere)
-        .env_remove("SITLOG_HOME")
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot find the original's tree"));
     // `sitlogc build --legacy` places the application in its tree the same
     // way, and checks it under the original's rules (the DM defined twice
     // identically: W0203, not E0201); its Prolog layer is read when the
     // task starts (the compiled task itself: legacy_demos.sh).
-    let out = sitlogc()
-        .args(["build", "--legacy"])
-        .arg(&elsewhere)
-        .env_remove("SITLOG_HOME")
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot find the original's tree"));
+    for command in ["run", "build"] {
+        let out = sitlogc()
+            .args([command, "--legacy"])
+            .arg(&elsewhere)
+            .env_remove("SITLOG_HOME")
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{command}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            stderr.contains("cannot find the original's tree"),
+            "{command}: {stderr}"
+        );
+    }
     let out = sitlogc()
         .current_dir(&root)
         .args(["build", "apps/shop", "--legacy", "--emit", "rust"])
