@@ -1948,10 +1948,12 @@ impl Gen<'_> {
         let rt = quote!(::sitlog_runtime);
         let curl = Literal::u32_unsuffixed(cur as u32);
         match n {
-            Next::Static(t, Some(ix))
-                if self.store.atom_of(*t).is_some() && !d.native[*ix as usize] =>
+            Next::Static(t, ix)
+                if self.store.atom_of(*t).is_some()
+                    && ix.is_none_or(|ix| !d.native[ix as usize]) =>
             {
-                // A situation without native code: the machine enters it.
+                // A situation without native code, or no situation of this
+                // name (the machine says so): the machine enters it.
                 let a = self.atom_native(self.store.atom_of(*t).unwrap_or(atoms::NIL))?;
                 let hand = &d.hand;
                 let out = d.out.borrow().clone();
@@ -1975,25 +1977,6 @@ impl Gen<'_> {
                     return Err("a constant next situation selects a compound id".into());
                 }
                 Ok(quote!(Nat::#v {}))
-            }
-            Next::Static(t, None) if self.store.atom_of(*t).is_some() => {
-                // No situation has this name: the machine says so.
-                let a = self.atom_native(self.store.atom_of(*t).unwrap_or(atoms::NIL))?;
-                let hand = &d.hand;
-                let out = d.out.borrow().clone();
-                let rec = d.rec.borrow().clone();
-                Ok(quote! {{
-                    #hand
-                    cx.count_transitions(count);
-                    // Recorded, the situation was entered with its id.
-                    if !run.records {
-                        cx.enter(#curl, #cur_name);
-                    }
-                    #out
-                    let rec_next = #rt::Term::atom(#a);
-                    #rec
-                    return cx.goto(rec_next, arc_at).map(::std::option::Option::Some);
-                }})
             }
             Next::Static(t, _) | Next::Eval(Ev::Built(Build::Const(t)))
                 if self.store.functor(*t).is_some_and(|(_, n)| n > 0) =>
