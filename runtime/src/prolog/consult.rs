@@ -133,6 +133,9 @@ pub(super) struct Prep<'a> {
     pub(super) native: Option<&'a mut NativeState>,
     /// Set for the `--legacy` profile: SWI-Prolog's redefinition rule.
     pub(super) redefine: Option<&'a mut Redefinitions>,
+    /// Set when a clause or directive names one of the calls that change
+    /// or look at clauses as data (`Writer::touching_atom`).
+    pub(super) touching: &'a mut bool,
 }
 
 /// SWI-Prolog's `consult/1` rule, which the original's code relies on: the
@@ -260,17 +263,21 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
                 continue;
             }
             let mut w = Writer::new(&store, true);
+            w.touch = cx.redefine.is_some();
             w.term(goal);
             if w.too_deep() {
                 cx.errors.push(err(too_deep(w.deepest)));
                 continue;
             }
+            *cx.touching |= w.touching_atom;
             cx.out.push(Prepared {
                 text: w.out,
                 directive: true,
                 file: source.name.clone(),
                 line,
                 col,
+                key: None,
+                lazy: false,
             });
             continue;
         }
@@ -308,6 +315,7 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
             r.clause(key, &source.name, cx.out.len());
         }
         let mut w = Writer::new(&store, true);
+        w.touch = cx.redefine.is_some();
         match store.compound_args(t, neck(), 2) {
             Some(a) => {
                 w.out.push_str("':-'(");
@@ -322,14 +330,44 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
             cx.errors.push(err(too_deep(w.deepest)));
             continue;
         }
+        *cx.touching |= w.touching_atom;
+        // The predicate as asserted (renamed by the native KB layer).
+        let head = store.compound_args(t, neck(), 2).map_or(t, |a| a[0]);
+        let key = store.functor(head);
         cx.out.push(Prepared {
             text: w.out,
             directive: false,
             file: source.name.clone(),
             line,
             col,
+            key,
+            lazy: cx.redefine.is_some() && body.is_none_or(|b| assertable(&store, b)),
         });
     }
+}
+
+/// Whether the engine asserts a clause with this body without an error:
+/// no goal of its control structure (conjunctions, disjunctions,
+/// if-then-else, negation) is a number. A clause of the legacy layer that
+/// is not stays eager, so that the engine's refusal is a load error at its
+/// place, as without lazy loading.
+fn assertable(store: &Store, body: Term) -> bool {
+    let mut stack = vec![body];
+    while let Some(g) = stack.pop() {
+        match store.value(store.deref(g)) {
+            Value::Int(_) | Value::BigInt(_) | Value::Float(_) => return false,
+            Value::Compound(f, a)
+                if matches!(
+                    (f.as_str(), a.len()),
+                    (",", 2) | (";", 2) | ("->", 2) | ("*->", 2) | ("|", 2) | ("\\+", 1)
+                ) =>
+            {
+                stack.extend(a.iter().copied());
+            }
+            _ => {}
+        }
+    }
+    true
 }
 
 /// Whether `path`, named relative to `dir`, is a symbolic link (or lies

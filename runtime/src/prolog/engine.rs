@@ -167,6 +167,9 @@ struct Prepping {
     outside: Vec<(PathBuf, PrologLoadError)>,
     native: Option<NativeState>,
     redefinitions: Option<Redefinitions>,
+    /// A file names a call that changes clauses as data
+    /// (`Prep::touching`): the layer is then loaded whole.
+    touching: bool,
 }
 
 impl Prepping {
@@ -179,6 +182,7 @@ impl Prepping {
             outside: Vec::new(),
             native: native.map(NativeState::new),
             redefinitions: legacy.then(Redefinitions::default),
+            touching: false,
         }
     }
 
@@ -199,6 +203,7 @@ impl Prepping {
                     None
                 },
                 redefine: self.redefinitions.as_mut(),
+                touching: &mut self.touching,
             };
             prepare(s, &mut cx, 0);
         }
@@ -233,6 +238,10 @@ struct Preloaded {
 struct Setup {
     prepared: Vec<Prepared>,
     preloaded: Option<Preloaded>,
+    /// The application's files name a call that changes clauses as data
+    /// (`Prep::touching`): the layer's predicates still waiting for their
+    /// first call are loaded before it starts.
+    load_all: bool,
     rx: mpsc::Receiver<Request>,
     ready: mpsc::Sender<Vec<PrologLoadError>>,
 }
@@ -265,6 +274,7 @@ struct Shared {
     roots: Roots,
     input: RunInput,
     history: HistoryLink,
+    lazy: LazyStore,
 }
 
 impl Shared {
@@ -273,8 +283,20 @@ impl Shared {
             roots,
             input: Arc::new(Mutex::new(None)),
             history: Arc::new(Mutex::new(None)),
+            lazy: Arc::new(Mutex::new(Vec::new())),
         }
     }
+}
+
+/// The legacy layer's predicates asserted at their first call
+/// ([`lazify`]), by number: name, arity and clauses (canonical text, in
+/// order), taken when the engine asks for them (`L` requests).
+type LazyStore = Arc<Mutex<Vec<Option<LazyPred>>>>;
+
+struct LazyPred {
+    name: Atom,
+    arity: usize,
+    clauses: Vec<String>,
 }
 
 /// The application's Prolog user functions, running in an embedded engine.
@@ -401,6 +423,7 @@ impl PrologFunctions {
             outside,
             native: native_state,
             redefinitions,
+            touching,
             ..
         } = st;
         if let Some(r) = &redefinitions {
@@ -408,6 +431,11 @@ impl PrologFunctions {
         }
         if let Some(st) = native_state {
             st.finish(&mut prepared);
+        }
+        if touching {
+            for p in &mut prepared {
+                p.lazy = false;
+            }
         }
         if !errors.is_empty() {
             return Err(errors);
@@ -419,6 +447,7 @@ impl PrologFunctions {
         let mut setup = Setup {
             prepared,
             preloaded,
+            load_all: touching,
             rx,
             ready: ready_tx,
         };
@@ -512,12 +541,13 @@ impl PrologFunctions {
         let read = move || {
             layer.map(|(sources, native)| read_layer(&sources, native.as_ref(), &prepped_tx))
         };
+        let lazy = shared.lazy.clone();
         let spawned = spawn_engine(
             host.clone(),
             shared.clone(),
             read,
             move |machine, clauses| {
-                let loaded = clauses.map(|c| assert_layer(machine, c));
+                let loaded = clauses.map(|c| assert_layer(machine, c, &lazy));
                 setup_rx.recv().ok().map(|s| (s, loaded))
             },
         );
@@ -988,6 +1018,7 @@ fn engine_thread(
     let Setup {
         prepared,
         preloaded,
+        load_all,
         rx,
         ready,
     } = setup;
@@ -1008,9 +1039,20 @@ fn engine_thread(
                     .filter(|(i, _)| !pre.drop.contains(i))
                     .map(|(_, e)| e),
             );
-            errors.extend(load_application(&mut machine, &prepared[pre.kept..]));
+            errors.extend(load_application(
+                &mut machine,
+                &prepared[pre.kept..],
+                Some(&shared.lazy),
+            ));
         }
-        _ => errors.extend(load_application(&mut machine, &prepared)),
+        _ => errors.extend(load_application(
+            &mut machine,
+            &prepared,
+            Some(&shared.lazy),
+        )),
+    }
+    if load_all {
+        load_lazy(&mut machine, &shared.lazy);
     }
     let _ = ready.send(errors);
     // `Some((allow_os, inference limit))` once started.
@@ -1112,6 +1154,8 @@ fn engine_streams(host: HostSlot, shared: Shared) -> StreamConfig {
                 input_reply(&shared.input)
             } else if let Some(from) = text.strip_prefix('H') {
                 history_reply(&shared.history, from)
+            } else if let Some(id) = text.strip_prefix('L') {
+                lazy_reply(&shared.lazy, id)
             } else {
                 read_reply(text.strip_prefix('R').unwrap_or(&text))
             };
@@ -1306,6 +1350,8 @@ fn prelude_swi() -> Vec<Prepared> {
                 file: "prelude_swi.pl".to_owned(),
                 line,
                 col,
+                key: None,
+                lazy: false,
             }
         })
         .collect()
@@ -1319,7 +1365,7 @@ fn build_machine(
     shared: Shared,
 ) -> (Machine, Vec<PrologLoadError>) {
     let (mut machine, mut errors) = base_machine(host, shared);
-    errors.extend(load_application(&mut machine, prepared));
+    errors.extend(load_application(&mut machine, prepared, None));
     (machine, errors)
 }
 
@@ -1361,22 +1407,32 @@ fn read_layer(
     let mut st = Prepping::new(native, true);
     st.add(layer, 0, layer.len());
     let dropped = st.dropped();
+    let touching = st.touching;
     let clauses: Vec<(usize, Prepared)> = st
         .prepared
         .iter()
         .enumerate()
         .filter(|(i, p)| !p.directive && !dropped.contains(i))
-        .map(|(i, p)| (i, p.clone()))
+        .map(|(i, p)| {
+            let mut p = p.clone();
+            p.lazy &= !touching;
+            (i, p)
+        })
         .collect();
     // The load reads the application's files meanwhile.
     let _ = prepped.send(st);
     clauses
 }
 
-/// On a warm engine: asserts the layer's `clauses` ([`read_layer`]).
-fn assert_layer(machine: &mut Machine, clauses: Vec<(usize, Prepared)>) -> LayerLoaded {
+/// On a warm engine: asserts the layer's `clauses` ([`read_layer`]), its
+/// predicates that can wait as stubs ([`lazify`]).
+fn assert_layer(
+    machine: &mut Machine,
+    clauses: Vec<(usize, Prepared)>,
+    lazy: &LazyStore,
+) -> LayerLoaded {
     let mut errors = Vec::new();
-    add_clauses(machine, &clauses, |i, e| errors.push((i, e)));
+    lazify(machine, &clauses, lazy, |i, e| errors.push((i, e)));
     LayerLoaded {
         clauses: clauses.into_iter().map(|(i, p)| (i, p.text)).collect(),
         errors,
@@ -1385,14 +1441,21 @@ fn assert_layer(machine: &mut Machine, clauses: Vec<(usize, Prepared)>) -> Layer
 
 /// Loads the application's clauses (`prepared`, no directive run) into a
 /// [`base_machine`], then its libraries and the SWI-Prolog bridge.
-fn load_application(machine: &mut Machine, prepared: &[Prepared]) -> Vec<PrologLoadError> {
+fn load_application(
+    machine: &mut Machine,
+    prepared: &[Prepared],
+    lazy: Option<&LazyStore>,
+) -> Vec<PrologLoadError> {
     let mut errors = Vec::new();
     let clauses: Vec<(usize, &Prepared)> = prepared
         .iter()
         .filter(|p| !p.directive)
         .enumerate()
         .collect();
-    add_clauses(machine, &clauses, |_, e| errors.push(e));
+    match lazy {
+        Some(lazy) => lazify(machine, &clauses, lazy, |_, e| errors.push(e)),
+        None => add_clauses(machine, &clauses, |_, e| errors.push(e)),
+    }
     for (lib, preds) in LIBRARIES {
         let q = format!("'$sitlog_import'({lib},[{}],R).", preds.join(","));
         let _ = first_answer(machine, &q, "R");
@@ -1518,6 +1581,181 @@ fn add_clauses<P: std::borrow::Borrow<Prepared>>(
                 one.into_iter().for_each(|e| refused(batch[0].0, e));
             }
         }
+    }
+}
+
+/// Asserts `clauses` ([`add_clauses`]), except that the predicates whose
+/// clauses are all [`Prepared::lazy`] (the legacy profile's: the
+/// original's layer and the application's files) get one stub clause
+/// each, `P(V..) :- '$sitlog_lazy'(N, P, A), P(V..)`, their clauses kept
+/// in `store` (number `N`): the stub's first call retracts it, asks the
+/// host for the clauses (an `L` request) and asserts them, then calls the
+/// predicate. The original's layer has 1,720 clauses and
+/// `apps/test_behaviors` 800, of which a task calls a few. Calls that
+/// change or look at clauses (`TOUCHING`, renamed in the legacy profile's
+/// clauses) load the predicate first, so that a stub is never seen,
+/// retracted, or followed by clauses asserted before the predicate's own.
+/// A stub the engine refuses (a predicate it does not let the application
+/// define) has its clauses asserted now, each refusal an error at its
+/// clause's place as without stubs.
+fn lazify<P: std::borrow::Borrow<Prepared>>(
+    machine: &mut Machine,
+    clauses: &[(usize, P)],
+    store: &LazyStore,
+    mut refused: impl FnMut(usize, PrologLoadError),
+) {
+    // A predicate waits only if all its clauses may.
+    let mut waits: HashMap<(Atom, usize), bool> = HashMap::new();
+    for (_, p) in clauses {
+        let p = p.borrow();
+        if let Some(key) = p.key {
+            *waits.entry(key).or_insert(true) &= p.lazy;
+        }
+    }
+    let waits_key = |p: &Prepared| p.key.filter(|k| waits.get(k) == Some(&true));
+    let eager: Vec<(usize, &Prepared)> = clauses
+        .iter()
+        .map(|(i, p)| (*i, p.borrow()))
+        .filter(|(_, p)| waits_key(p).is_none())
+        .collect();
+    add_clauses(machine, &eager, &mut refused);
+    // The waiting predicates in the order of their first clauses.
+    let mut order: Vec<(Atom, usize)> = Vec::new();
+    let mut members: HashMap<(Atom, usize), Vec<(usize, &Prepared)>> = HashMap::new();
+    for (i, p) in clauses {
+        let p = p.borrow();
+        if let Some(key) = waits_key(p) {
+            members
+                .entry(key)
+                .or_insert_with(|| {
+                    order.push(key);
+                    Vec::new()
+                })
+                .push((*i, p));
+        }
+    }
+    if order.is_empty() {
+        return;
+    }
+    let Ok(mut lazy) = store.lock() else {
+        // Not expected: everything now.
+        let rest: Vec<(usize, &Prepared)> = order.iter().flat_map(|k| members[k].clone()).collect();
+        add_clauses(machine, &rest, &mut refused);
+        return;
+    };
+    let mut stubs = Vec::with_capacity(order.len());
+    for (k, key) in order.iter().enumerate() {
+        let first = members[key][0].1;
+        let id = lazy.len();
+        lazy.push(Some(LazyPred {
+            name: key.0,
+            arity: key.1,
+            clauses: members[key].iter().map(|(_, p)| p.text.clone()).collect(),
+        }));
+        stubs.push((
+            k,
+            Prepared {
+                text: stub_text(id, *key),
+                directive: false,
+                file: first.file.clone(),
+                line: first.line,
+                col: first.col,
+                key: Some(*key),
+                lazy: false,
+            },
+        ));
+    }
+    let base = lazy.len() - order.len();
+    drop(lazy);
+    let mut refused_stubs = Vec::new();
+    add_clauses(machine, &stubs, |k, _| refused_stubs.push(k));
+    if refused_stubs.is_empty() {
+        return;
+    }
+    refused_stubs.dedup();
+    let mut now = Vec::new();
+    if let Ok(mut lazy) = store.lock() {
+        for &k in &refused_stubs {
+            lazy[base + k] = None;
+            now.extend(members[&order[k]].iter().cloned());
+        }
+    }
+    now.sort_by_key(|(i, _)| *i);
+    add_clauses(machine, &now, &mut refused);
+}
+
+/// The stub clause of the waiting predicate `key`, number `id` ([`lazify`]).
+fn stub_text(id: usize, (name, arity): (Atom, usize)) -> String {
+    let mut head = String::new();
+    write_atom(&mut head, name);
+    if arity > 0 {
+        head.push('(');
+        for i in 0..arity {
+            if i > 0 {
+                head.push(',');
+            }
+            let _ = write!(head, "_V{i}");
+        }
+        head.push(')');
+    }
+    let mut n = String::new();
+    write_atom(&mut n, name);
+    format!("':-'({head},','('$sitlog_lazy'({id},{n},{arity}),{head}))")
+}
+
+/// The answer to an `L` request (a waiting predicate's number): its clauses
+/// as `'$ok'([c(C1, ..), ..])`, at most [`ADD_BATCH`] a group (taken: a
+/// second request gets none), after a line with the text's length in
+/// characters, as [`history_reply`].
+fn lazy_reply(store: &LazyStore, id: &str) -> String {
+    let pred = id.trim().parse::<usize>().ok().and_then(|id| {
+        store
+            .lock()
+            .ok()
+            .and_then(|mut s| s.get_mut(id).and_then(Option::take))
+    });
+    let mut text = String::from("'$ok'([");
+    if let Some(pred) = pred {
+        for (g, group) in pred.clauses.chunks(ADD_BATCH).enumerate() {
+            if g > 0 {
+                text.push(',');
+            }
+            text.push_str("c(");
+            for (k, c) in group.iter().enumerate() {
+                if k > 0 {
+                    text.push(',');
+                }
+                let _ = write!(text, "({c})");
+            }
+            text.push(')');
+        }
+    }
+    text.push_str("]).\n");
+    format!("{}\n{text}", text.chars().count())
+}
+
+/// Loads every predicate of the legacy layer still waiting for its first
+/// call ([`lazify`]; one that a file of the application redefined has no
+/// stub any more and stays out).
+fn load_lazy(machine: &mut Machine, store: &LazyStore) {
+    let waiting: Vec<(usize, Atom, usize)> = match store.lock() {
+        Ok(s) => s
+            .iter()
+            .enumerate()
+            .filter_map(|(id, p)| p.as_ref().map(|p| (id, p.name, p.arity)))
+            .collect(),
+        Err(_) => return,
+    };
+    for batch in waiting.chunks(ADD_BATCH) {
+        let mut q = String::new();
+        for (id, name, arity) in batch {
+            q.push_str("'$sitlog_lazy'(");
+            let _ = write!(q, "{id},");
+            write_atom(&mut q, *name);
+            let _ = write!(q, ",{arity}),");
+        }
+        q.push_str("R = ok.");
+        let _ = first_answer(machine, &q, "R");
     }
 }
 

@@ -120,7 +120,10 @@ impl NativeState {
     /// The clauses that serve the layer's predicates and wrap the others.
     pub(super) fn finish(self, out: &mut Vec<Prepared>) {
         let vars = |n: usize| -> Vec<String> { (0..n).map(|i| format!("V{i}")).collect() };
-        let mut clauses = Vec::new();
+        // Each clause with its predicate and whether it may be asserted at
+        // the predicate's first call (the wrappers: one a predicate of the
+        // layer, see `engine::lazify`).
+        let mut clauses: Vec<(String, (Atom, usize), bool)> = Vec::new();
         let name = |a: &str| {
             let mut s = String::new();
             write_atom(&mut s, Atom::intern(a));
@@ -155,49 +158,61 @@ impl NativeState {
         for (q, arity) in &self.queries {
             let v = vars(arity - 1);
             let all = [v.clone(), vec!["KB".into(), "A".into()]].concat();
-            clauses.push(format!(
-                "{}({}) :- ( ground([{}]){} -> '$sitlog_kb_query'({}, [{}], KB, A){} )",
-                name(q),
-                all.join(","),
-                v.join(","),
-                native(q, all.len()),
-                name(q),
-                v.join(","),
-                fallback(q, &all)
+            clauses.push((
+                format!(
+                    "{}({}) :- ( ground([{}]){} -> '$sitlog_kb_query'({}, [{}], KB, A){} )",
+                    name(q),
+                    all.join(","),
+                    v.join(","),
+                    native(q, all.len()),
+                    name(q),
+                    v.join(","),
+                    fallback(q, &all)
+                ),
+                (Atom::intern(q), all.len()),
+                false,
             ));
         }
         for (u, arity) in &self.updates {
             let v = vars(*arity);
             let all = [v.clone(), vec!["KB".into(), "New".into()]].concat();
-            clauses.push(format!(
-                "{}({}) :- ( ground([{}]){} -> '$sitlog_kb_update'({}, [{}], KB, New){} )",
-                name(u),
-                all.join(","),
-                v.join(","),
-                native(u, all.len()),
-                name(u),
-                v.join(","),
-                fallback(u, &all)
+            clauses.push((
+                format!(
+                    "{}({}) :- ( ground([{}]){} -> '$sitlog_kb_update'({}, [{}], KB, New){} )",
+                    name(u),
+                    all.join(","),
+                    v.join(","),
+                    native(u, all.len()),
+                    name(u),
+                    v.join(","),
+                    fallback(u, &all)
+                ),
+                (Atom::intern(u), all.len()),
+                false,
             ));
         }
         for (p, file, save) in &self.files {
             let mut legacy = String::new();
             write_atom(&mut legacy, legacy_name(*p));
-            clauses.push(format!(
-                "{}(KB) :- getenv('SITLOG_HOME', H), atomic_concat(H, {}, P), \
+            clauses.push((
+                format!(
+                    "{}(KB) :- getenv('SITLOG_HOME', H), atomic_concat(H, {}, P), \
                  catch({}(P, KB), error(kb_error(_), native_kb), {})",
-                name(p.as_str()),
-                name(file.as_str()),
-                if *save {
-                    "'$sitlog_kb_save'"
-                } else {
-                    "'$sitlog_kb_open'"
-                },
-                if *save {
-                    format!("('$sitlog_kb_terms'([KB], [T]), {legacy}(T))")
-                } else {
-                    format!("(bb_put('$sitlog_kb_off', true), {legacy}(KB))")
-                }
+                    name(p.as_str()),
+                    name(file.as_str()),
+                    if *save {
+                        "'$sitlog_kb_save'"
+                    } else {
+                        "'$sitlog_kb_open'"
+                    },
+                    if *save {
+                        format!("('$sitlog_kb_terms'([KB], [T]), {legacy}(T))")
+                    } else {
+                        format!("(bb_put('$sitlog_kb_off', true), {legacy}(KB))")
+                    }
+                ),
+                (*p, 1),
+                false,
             ));
         }
         for (p, arity) in &self.wrapped {
@@ -215,26 +230,32 @@ impl NativeState {
                 .iter()
                 .map(|x| format!("nonvar({x}), {x} = '$kb'(_)"))
                 .collect();
-            clauses.push(format!(
-                "{}({}) :- ( ( {} ) -> '$sitlog_kb_terms'([{}], [{}]), {}({}) ; {}({}) )",
-                name(p.as_str()),
-                v.join(","),
-                any_handle.join(" ; "),
-                v.join(","),
-                w.join(","),
-                legacy,
-                w.join(","),
-                legacy,
-                v.join(",")
+            clauses.push((
+                format!(
+                    "{}({}) :- ( ( {} ) -> '$sitlog_kb_terms'([{}], [{}]), {}({}) ; {}({}) )",
+                    name(p.as_str()),
+                    v.join(","),
+                    any_handle.join(" ; "),
+                    v.join(","),
+                    w.join(","),
+                    legacy,
+                    w.join(","),
+                    legacy,
+                    v.join(",")
+                ),
+                (*p, *arity),
+                true,
             ));
         }
-        for text in clauses {
+        for (text, key, lazy) in clauses {
             out.push(Prepared {
                 text: format!("({text})"),
                 directive: false,
                 file: "<native KB layer>".into(),
                 line: 0,
                 col: 0,
+                key: Some(key),
+                lazy,
             });
         }
     }

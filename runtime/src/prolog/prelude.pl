@@ -239,6 +239,71 @@ get_last_situation(History, S) :-
         '$sitlog_add_all'(K1, N, Cs, R1)
     ).
 
+% A predicate of the legacy layer loaded at its first call (engine.rs,
+% lazify): its stub clause `P(V..) :- '$sitlog_lazy'(Id, N, A), P(V..)`
+% goes, and its clauses, asked of the host (a line with the answer's
+% length, then '$ok'([c(C1, ..), ..])), are asserted. Nothing when the
+% stub is gone (loaded already, or redefined by a later file).
+'$sitlog_lazy'(Id, N, A) :-
+    functor(H, N, A),
+    (   retract((H :- '$sitlog_lazy'(Id, _, _), _))
+    ->  put_char(user_error, '\x1\'),
+        put_char(user_error, 'L'),
+        write(user_error, Id),
+        put_char(user_error, '\x2\'),
+        flush_output(user_error),
+        get_line_to_chars(user_input, Line, []),
+        '$sitlog_history_append'(Digits, ['\n'], Line),
+        number_chars(Length, Digits),
+        get_n_chars(user_input, Length, Text),
+        read_from_chars(Text, '$ok'(Groups)),
+        '$sitlog_lazy_add'(Groups)
+    ;   true
+    ).
+
+'$sitlog_lazy_add'([]).
+'$sitlog_lazy_add'([Cs|Gs]) :-
+    '$sitlog_add_all'(Cs, R),
+    (   R = [_-E|_] -> throw(E) ; true ),
+    '$sitlog_lazy_add'(Gs).
+
+% The calls that change or look at a predicate's clauses, as the legacy
+% layer's and the application's clauses call them (translate.rs,
+% TOUCHING): a predicate still waiting for its first call is loaded first.
+'$sitlog_lz_assert'(C) :- '$sitlog_lz_clause_touch'(C), assertz(C).
+'$sitlog_lz_asserta'(C) :- '$sitlog_lz_clause_touch'(C), asserta(C).
+'$sitlog_lz_assertz'(C) :- '$sitlog_lz_clause_touch'(C), assertz(C).
+'$sitlog_lz_retract'(C) :- '$sitlog_lz_clause_touch'(C), retract(C).
+'$sitlog_lz_retractall'(H) :- '$sitlog_lz_touch'(H), retractall(H).
+'$sitlog_lz_abolish'(PI) :-
+    (   nonvar(PI), PI = N/A -> '$sitlog_lz_touch'(N, A)
+    ;   nonvar(PI), PI = _:(N/A) -> '$sitlog_lz_touch'(N, A)
+    ;   true
+    ),
+    abolish(PI).
+'$sitlog_lz_abolish'(N, A) :- '$sitlog_lz_touch'(N, A), abolish(N/A).
+'$sitlog_lz_clause'(H, B) :- '$sitlog_lz_touch'(H), clause(H, B).
+
+'$sitlog_lz_clause_touch'(C) :-
+    (   nonvar(C), C = (_:C1) -> '$sitlog_lz_clause_touch'(C1)
+    ;   nonvar(C), C = (H :- _) -> '$sitlog_lz_touch'(H)
+    ;   '$sitlog_lz_touch'(C)
+    ).
+'$sitlog_lz_touch'(H) :-
+    (   nonvar(H), H = (_:H1) -> '$sitlog_lz_touch'(H1)
+    ;   callable(H) -> functor(H, N, A), '$sitlog_lz_touch'(N, A)
+    ;   true
+    ).
+% The stub, if it is there, is the predicate's only clause.
+'$sitlog_lz_touch'(N, A) :-
+    (   atom(N), integer(A), A >= 0,
+        functor(G, N, A),
+        catch(once(clause(G, B)), _, fail),
+        nonvar(B), B = ('$sitlog_lazy'(Id, _, _), _)
+    ->  '$sitlog_lazy'(Id, N, A)
+    ;   true
+    ).
+
 % A clause asserted ahead (the legacy layer, by an engine built ahead) of
 % a predicate that a later file redefines: the predicate's clauses go.
 '$sitlog_drop'(Clause, R) :-

@@ -318,8 +318,15 @@ fn a_consulted_library_name_is_taken_from_the_sources_given() {
 
 #[test]
 fn legacy_files_redefine_as_swi_consult() {
-    let layer = PrologSource::new("layer.pl", "p(a1).\np(a2).\nr(x).\n");
-    let app = PrologSource::new("user_functions.pl", "p(b).\n");
+    let layer = PrologSource::new(
+        "layer.pl",
+        "p(a1).\np(a2).\nr(x).\ns(1).\ns(2).\nu(1).\nu(2).\nw(X) :- s(X).\n",
+    );
+    let app = PrologSource::new(
+        "user_functions.pl",
+        "p(b).\nadd :- assertz(s(3)).\ncl(L) :- findall(X-B, clause(u(X), B), L).\n\
+         rt :- retract(u(1)).\n",
+    );
     // `R` is the binding query_raw gives back: `yes` when p/1 and r/1
     // have the clauses `want`.
     let has = |p: &PrologFunctions, want: &str| {
@@ -338,12 +345,25 @@ fn legacy_files_redefine_as_swi_consult() {
     )
     .expect("loads");
     assert!(has(&legacy, "[[b],[x]]"));
+    // The layer's predicates are asserted at their first call (a stub
+    // until then), or at the first call that changes or looks at their
+    // clauses: clauses asserted before the first call come after the
+    // layer's, `clause/2` and `retract/1` see the layer's clauses.
+    let yes = |p: &PrologFunctions, q: &str| {
+        let q = format!("( {q} -> R = yes ; R = no ).");
+        p.query_raw(&q).unwrap().unwrap().contains("yes")
+    };
+    assert!(yes(&legacy, "add, findall(X, w(X), L), L == [1,2,3]"));
+    assert!(yes(&legacy, "cl(L), L == [1-true,2-true]"));
+    assert!(yes(&legacy, "rt, findall(X, u(X), L), L == [2]"));
     drop(legacy);
     // The same with the layer read and asserted ahead by an engine built
     // ahead (`sitlogc run --legacy`): its clauses that the application
     // redefines are retracted, those a later file of the layer redefines
     // never asserted.
-    let layer2 = PrologSource::new("layer2.pl", "r(y).\n");
+    // (`v :- 2`: a clause of the layer the engine refuses is an error at
+    // its place too, asserted at load, not at its first call.)
+    let layer2 = PrologSource::new("layer2.pl", "r(y).\nv :- true.\nv :- 2.\n");
     let warm = PrologFunctions::warm(Some((vec![layer.clone(), layer2.clone()], None)));
     // A clause the engine refuses is an error at its place, the clauses
     // after it in its batch loaded.
@@ -356,9 +376,10 @@ fn legacy_files_redefine_as_swi_consult() {
         None,
     )
     .expect("loads");
-    assert_eq!(errors.len(), 1, "{errors:?}");
+    assert_eq!(errors.len(), 2, "{errors:?}");
+    assert_eq!((errors[0].file.as_str(), errors[0].line), ("layer2.pl", 3));
     assert_eq!(
-        (errors[0].file.as_str(), errors[0].line),
+        (errors[1].file.as_str(), errors[1].line),
         ("user_functions.pl", 2)
     );
     assert!(has(&ahead, "[[b,c],[y]]"));

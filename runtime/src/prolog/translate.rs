@@ -27,6 +27,14 @@ pub(super) struct Prepared {
     pub(super) file: String,
     pub(super) line: usize,
     pub(super) col: usize,
+    /// A clause's predicate (name and arity of its head as written), if
+    /// known.
+    pub(super) key: Option<(Atom, usize)>,
+    /// Under the legacy profile, a clause (of the original's layer or of
+    /// the application) that may be asserted at its predicate's first call
+    /// rather than at load (see `engine::lazify`): its body calls nothing
+    /// the engine refuses at assert time.
+    pub(super) lazy: bool,
 }
 
 /// Writes store terms as canonical Prolog text the engine reads back
@@ -51,6 +59,38 @@ pub(super) struct Writer<'s> {
     depth: usize,
     /// The deepest nesting written.
     pub(super) deepest: usize,
+    /// The legacy profile: the calls that change or look at a predicate's
+    /// clauses ([`TOUCHING`]) are renamed to the prelude's versions that
+    /// first load a predicate asserted lazily (see `engine::lazify`).
+    pub(super) touch: bool,
+    /// Set when an atom naming one of [`TOUCHING`] was written as data
+    /// (a goal that may be built at run time, `G =.. [assertz, C]`): the
+    /// legacy layer is then loaded whole.
+    pub(super) touching_atom: bool,
+}
+
+/// The built-ins that change or look at the clauses of a predicate, by
+/// name and arity: under the legacy profile, an application's and the
+/// layer's calls of them are renamed to `'$sitlog_lz_NAME'`, which loads
+/// the predicate first if it is still a stub (`engine::lazify`).
+pub(super) const TOUCHING: &[(&str, usize)] = &[
+    ("assert", 1),
+    ("asserta", 1),
+    ("assertz", 1),
+    ("retract", 1),
+    ("retractall", 1),
+    ("abolish", 1),
+    ("abolish", 2),
+    ("clause", 2),
+];
+
+/// The name a call of `f/n` is renamed to under the legacy profile, if it
+/// is one of [`TOUCHING`].
+fn touch_renamed(f: Atom, n: usize) -> Option<Atom> {
+    TOUCHING
+        .iter()
+        .any(|&(name, arity)| arity == n && name == f.as_str())
+        .then(|| Atom::intern(&format!("$sitlog_lz_{}", f.as_str())))
 }
 
 impl<'s> Writer<'s> {
@@ -64,6 +104,8 @@ impl<'s> Writer<'s> {
             guard: true,
             depth: 0,
             deepest: 0,
+            touch: false,
+            touching_atom: false,
         }
     }
 
@@ -106,6 +148,13 @@ impl<'s> Writer<'s> {
     /// The name a compound `f/n` of an application clause is written with.
     fn renamed(&self, f: Atom, n: usize) -> Atom {
         swi_renamed(f, n)
+            .or_else(|| {
+                if self.touch {
+                    touch_renamed(f, n)
+                } else {
+                    None
+                }
+            })
             .or_else(|| if self.guard { guard_name(f, n) } else { None })
             .unwrap_or(f)
     }
@@ -125,7 +174,12 @@ impl<'s> Writer<'s> {
                 }
                 let _ = write!(self.out, "_S{}", v.0);
             }
-            Value::Atom(a) => write_atom(&mut self.out, a),
+            Value::Atom(a) => {
+                if self.touch && TOUCHING.iter().any(|&(n, _)| n == a.as_str()) {
+                    self.touching_atom = true;
+                }
+                write_atom(&mut self.out, a)
+            }
             Value::Int(i) => {
                 let _ = write!(self.out, "{i}");
             }
