@@ -6,7 +6,9 @@
 //! inference limit inside the engine. A call's query holds its arguments
 //! and the caller's variables; the task's history is written only when the
 //! function's `get_history/1` asks the waiting caller for it
-//! ([`Reply::History`]), in parts the engine's reader takes.
+//! ([`Reply::History`]), in parts the engine's reader takes. Under the
+//! legacy profile a predicate is asserted at its first call (a stub until
+//! then, [`lazify`]); no call sees the difference.
 //! Invariant (the trust model): loading only stores clauses; the
 //! application's directives run at [`PrologFunctions::start`] (a run's
 //! first transition, or the first call), after the run's permissions are

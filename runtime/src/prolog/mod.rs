@@ -19,6 +19,10 @@
 //! `ensure_loaded/1` directives load the named file the same way
 //! (`$SITLOG_HOME/...` is the `SITLOG_HOME` environment variable, else the
 //! nearest ancestor directory in which the rest of the path exists).
+//! Under the legacy profile (the original's layer of 1,720 clauses, and an
+//! application's own files) each predicate is a stub until its first call
+//! or the first call that changes or looks at its clauses, which asserts
+//! its clauses (`engine::lazify`).
 //!
 //! SWI-Prolog. Code written for the original expects SWI-Prolog: the
 //! prelude provides its built-ins and library predicates the engine lacks

@@ -256,8 +256,11 @@ get_last_situation(History, S) :-
         '$sitlog_history_append'(Digits, ['\n'], Line),
         number_chars(Length, Digits),
         get_n_chars(user_input, Length, Text),
-        read_from_chars(Text, '$ok'(Groups)),
-        '$sitlog_lazy_add'(Groups)
+        read_from_chars(Text, Reply),
+        (   Reply = '$ok'(Groups)
+        ->  '$sitlog_lazy_add'(Groups)
+        ;   throw(error(existence_error(procedure, N/A), '$sitlog_lazy'/3))
+        )
     ;   true
     ).
 
