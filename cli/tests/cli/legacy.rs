@@ -429,6 +429,9 @@ fn without_legacy_the_same_applications_keep_our_semantics() {
     let _ = std::fs::remove_dir_all(&root);
 }
 
+/// The original's tree is found from the application's directory, named by
+/// `--sitlog-home` or by `SITLOG_HOME` (the successful runs of the first two:
+/// [`runs_an_application_of_the_original_unmodified`]); here, what is refused.
 #[test]
 fn sitlog_home_is_explicit_or_from_the_environment() {
     let root = tree("home");
