@@ -84,32 +84,27 @@ fn a_new_robot_app_tests_its_apology_and_a_failure_is_shown() {
     };
     let made = run(&["new", "x", "--robot"]);
     assert_eq!(made.status.code(), Some(0), "{}", text(&made.stderr));
-    let ok = run(&["test", "x", "--coverage"]);
-    let stdout = text(&ok.stdout);
-    assert_eq!(ok.status.code(), Some(0), "{stdout}{}", text(&ok.stderr));
-    assert!(stdout.contains("test fetch_juice ... ok\ntest juice_missing ... ok\n"));
-    assert!(stdout.contains("test result: ok. 2 passed; 0 failed; 0 filtered out"));
-    // the apology arc of main is taken (by juice_missing): only ask's
-    // error arc of main is left
-    let never: Vec<&str> = stdout
-        .lines()
-        .filter(|l| l.trim_start().starts_with("x/main.dm:"))
-        .collect();
-    assert_eq!(never.len(), 1, "{stdout}");
-    assert!(never[0].contains("ask: error(_)"), "{stdout}");
-
-    // A test expecting what the robot does not say fails, with the output
-    // marked; the filter runs it alone; JSON lines.
+    // One run serves the passing case, the failing one and the coverage
+    // (each case starts a Prolog engine): a test expecting what the robot
+    // does not say fails, with the output marked.
     let t = tmp.path().join("x/tests/juice_missing.toml");
     let changed = std::fs::read_to_string(&t).unwrap().replace(
         "\"Golem: Goodbye.\",",
         "\"Golem: Goodbye.\",\n  \"Golem: See you tomorrow.\",",
     );
     std::fs::write(&t, changed).unwrap();
-    let failed = run(&["test", "x", "missing"]);
+    let failed = run(&["test", "x", "--coverage"]);
     let stdout = text(&failed.stdout);
-    assert_eq!(failed.status.code(), Some(1), "{stdout}");
-    assert!(stdout.contains("test juice_missing ... FAILED"), "{stdout}");
+    assert_eq!(
+        failed.status.code(),
+        Some(1),
+        "{stdout}{}",
+        text(&failed.stderr)
+    );
+    assert!(
+        stdout.contains("test fetch_juice ... ok\ntest juice_missing ... FAILED"),
+        "{stdout}"
+    );
     assert!(
         stdout.contains("x/tests/juice_missing.toml:16:3: expected a line containing `Golem: See you tomorrow.` after line"),
         "{stdout}"
@@ -120,10 +115,20 @@ fn a_new_robot_app_tests_its_apology_and_a_failure_is_shown() {
         "{stdout}"
     );
     assert!(
-        stdout.contains("test result: FAILED. 0 passed; 1 failed; 1 filtered out"),
+        stdout.contains("test result: FAILED. 1 passed; 1 failed; 0 filtered out"),
         "{stdout}"
     );
-    let json = run(&["test", "x", "juice_missing", "--exact", "--format", "json"]);
+    // the apology arc of main is taken (by juice_missing, which ran to its
+    // end): only ask's error arc of main is left
+    let never: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.trim_start().starts_with("x/main.dm:"))
+        .collect();
+    assert_eq!(never.len(), 1, "{stdout}");
+    assert!(never[0].contains("ask: error(_)"), "{stdout}");
+
+    // The filter (a part of the name) runs the failing case alone; JSON lines.
+    let json = run(&["test", "x", "missing", "--format", "json"]);
     assert_eq!(json.status.code(), Some(1));
     let lines: Vec<serde_json::Value> = text(&json.stdout)
         .lines()
@@ -134,6 +139,16 @@ fn a_new_robot_app_tests_its_apology_and_a_failure_is_shown() {
     assert_eq!(lines[0]["status"], "failed");
     assert_eq!(lines[1]["type"], "summary");
     assert_eq!(lines[1]["failed"], 1);
+    assert_eq!(lines[1]["filtered_out"], 1);
+    // With --exact a part of the name is no name: nothing runs.
+    let exact = run(&["test", "x", "missing", "--exact", "--format", "json"]);
+    let lines: Vec<serde_json::Value> = text(&exact.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 1, "{}", text(&exact.stdout));
+    assert_eq!(lines[0]["type"], "summary");
+    assert_eq!(lines[0]["filtered_out"], 2);
 }
 
 #[test]

@@ -47,25 +47,54 @@ fn copy_example(name: &str) -> (tempfile::TempDir, PathBuf) {
     (tmp, to)
 }
 
-/// A `cargo` that succeeds without building anything: `sitlogc build` then
-/// fails when it copies the (missing) executable.
-#[cfg(unix)]
-fn fake_cargo(dir: &Path) -> PathBuf {
-    use std::os::unix::fs::PermissionsExt;
-    let path = dir.join("fake-cargo");
-    std::fs::write(&path, "#!/bin/sh\nexit 0\n").unwrap();
-    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
-    path
+/// What the tests of `sitlogc build` without a real build share: a copy of
+/// an example in a temporary directory, a sitlogc cache of its own there,
+/// and (on unix) a `cargo` that succeeds without building anything, so that
+/// `sitlogc build` writes the package and then fails when it copies the
+/// (missing) executable.
+struct Scratch {
+    tmp: tempfile::TempDir,
+    app: PathBuf,
+    cache: PathBuf,
+}
+
+impl Scratch {
+    fn new(example: &str) -> Scratch {
+        let (tmp, app) = copy_example(example);
+        let cache = tmp.path().join("cache");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let cargo = tmp.path().join("fake-cargo");
+            std::fs::write(&cargo, "#!/bin/sh\nexit 0\n").unwrap();
+            std::fs::set_permissions(&cargo, std::fs::Permissions::from_mode(0o755)).unwrap();
+        }
+        Scratch { tmp, app, cache }
+    }
+
+    /// `sitlogc build` with this cache and the fake cargo.
+    fn build(&self) -> Command {
+        let mut cmd = sitlogc();
+        cmd.env("SITLOGC_CACHE_DIR", &self.cache);
+        #[cfg(unix)]
+        cmd.env("CARGO", self.tmp.path().join("fake-cargo"));
+        cmd.arg("build");
+        cmd
+    }
+
+    /// A path in the temporary directory.
+    fn path(&self, name: &str) -> PathBuf {
+        self.tmp.path().join(name)
+    }
 }
 
 #[test]
 fn default_output_that_is_the_app_directory_is_refused_before_building() {
-    let (tmp, _app) = copy_example("countdown");
-    let cache = tmp.path().join("cache");
-    let out = sitlogc()
-        .env("SITLOGC_CACHE_DIR", &cache)
-        .args(["build", "countdown"])
-        .current_dir(tmp.path())
+    let s = Scratch::new("countdown");
+    let out = s
+        .build()
+        .arg("countdown")
+        .current_dir(s.tmp.path())
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
@@ -76,12 +105,12 @@ fn default_output_that_is_the_app_directory_is_refused_before_building() {
     );
     assert!(err.contains("-o countdown-task"), "{err}");
     // Refused before anything was extracted, generated or built.
-    assert!(!cache.exists());
+    assert!(!s.cache.exists());
     // -o naming a directory is refused too.
-    let out = sitlogc()
-        .env("SITLOGC_CACHE_DIR", &cache)
-        .args(["build", "countdown", "-o", "."])
-        .current_dir(tmp.path())
+    let out = s
+        .build()
+        .args(["countdown", "-o", "."])
+        .current_dir(s.tmp.path())
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
@@ -97,20 +126,14 @@ fn default_output_that_is_the_app_directory_is_refused_before_building() {
 #[cfg(unix)]
 #[test]
 fn build_dot_is_named_after_the_directory_and_failures_leave_nothing() {
-    let (tmp, app) = copy_example("countdown");
-    let cache = tmp.path().join("cache");
-    let out = sitlogc()
-        .env("SITLOGC_CACHE_DIR", &cache)
-        .env("CARGO", fake_cargo(tmp.path()))
-        .args(["build", "."])
-        .current_dir(&app)
-        .output()
-        .unwrap();
+    let s = Scratch::new("countdown");
+    let app = &s.app;
+    let out = s.build().arg(".").current_dir(app).output().unwrap();
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(stderr(&out).contains("cannot copy"), "{}", stderr(&out));
-    assert!(cache.join("apps/countdown/Cargo.toml").is_file());
+    assert!(s.cache.join("apps/countdown/Cargo.toml").is_file());
     // Nothing but the application's own files beside it.
-    let mut names: Vec<String> = std::fs::read_dir(&app)
+    let mut names: Vec<String> = std::fs::read_dir(app)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
@@ -126,11 +149,11 @@ fn build_dot_is_named_after_the_directory_and_failures_leave_nothing() {
         ]
     );
     // cargo itself failing: the same.
-    let out = sitlogc()
-        .env("SITLOGC_CACHE_DIR", &cache)
+    let out = s
+        .build()
         .env("CARGO", "false")
-        .args(["build", ".", "-o", "out/task"])
-        .current_dir(&app)
+        .args([".", "-o", "out/task"])
+        .current_dir(app)
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
@@ -147,15 +170,13 @@ fn build_dot_is_named_after_the_directory_and_failures_leave_nothing() {
 #[cfg(unix)]
 #[test]
 fn generated_package_uses_the_embedded_runtime() {
-    let (tmp, app) = copy_example("countdown");
-    let cache = tmp.path().join("cache");
-    let out = sitlogc()
-        .env("SITLOGC_CACHE_DIR", &cache)
-        .env("CARGO", fake_cargo(tmp.path()))
-        .arg("build")
-        .arg(&app)
+    let s = Scratch::new("countdown");
+    let (app, cache) = (&s.app, &s.cache);
+    let out = s
+        .build()
+        .arg(app)
         .arg("-o")
-        .arg(tmp.path().join("countdown-task"))
+        .arg(s.path("countdown-task"))
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
@@ -195,13 +216,11 @@ fn generated_package_uses_the_embedded_runtime() {
     assert!(!root.contains("\"compiler\", \"graph\""), "{root}");
     assert!(!root.contains("[profile"), "{root}");
     // Extracted once: a second build reuses it, and leaves no temporary directory.
-    let again = sitlogc()
-        .env("SITLOGC_CACHE_DIR", &cache)
-        .env("CARGO", fake_cargo(tmp.path()))
-        .arg("build")
-        .arg(&app)
+    let again = s
+        .build()
+        .arg(app)
         .arg("-o")
-        .arg(tmp.path().join("t"))
+        .arg(s.path("t"))
         .output()
         .unwrap();
     assert_eq!(again.status.code(), Some(2));
@@ -225,13 +244,11 @@ fn generated_package_uses_the_embedded_runtime() {
         "{manifest}"
     );
     let (_prolog_tmp, prolog_app) = copy_example("appendix_a");
-    let out = sitlogc()
-        .env("SITLOGC_CACHE_DIR", &cache)
-        .env("CARGO", fake_cargo(tmp.path()))
-        .arg("build")
+    let out = s
+        .build()
         .arg(&prolog_app)
         .arg("-o")
-        .arg(tmp.path().join("t"))
+        .arg(s.path("t"))
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
@@ -241,13 +258,12 @@ fn generated_package_uses_the_embedded_runtime() {
         prolog.contains("[profile.release.package.crrl]\nopt-level = 0\n"),
         "{prolog}"
     );
-    let lto = sitlogc()
-        .env("SITLOGC_CACHE_DIR", &cache)
-        .env("CARGO", fake_cargo(tmp.path()))
-        .args(["build", "--lto"])
-        .arg(&app)
+    let lto = s
+        .build()
+        .arg("--lto")
+        .arg(app)
         .arg("-o")
-        .arg(tmp.path().join("t"))
+        .arg(s.path("t"))
         .output()
         .unwrap();
     assert_eq!(lto.status.code(), Some(2));
@@ -263,13 +279,12 @@ fn generated_package_uses_the_embedded_runtime() {
     let main = std::fs::read_to_string(cache.join("apps/countdown/src/main.rs")).unwrap();
     assert!(!manifest.contains("sitlog-debug"), "{manifest}");
     assert!(main.contains("sitlog_robot::main("), "{main}");
-    let debugger = sitlogc()
-        .env("SITLOGC_CACHE_DIR", &cache)
-        .env("CARGO", fake_cargo(tmp.path()))
-        .args(["build", "--debugger"])
-        .arg(&app)
+    let debugger = s
+        .build()
+        .arg("--debugger")
+        .arg(app)
         .arg("-o")
-        .arg(tmp.path().join("t"))
+        .arg(s.path("t"))
         .output()
         .unwrap();
     assert_eq!(debugger.status.code(), Some(2));

@@ -154,7 +154,7 @@ fn a_copy_of_the_home_app_runs_anywhere() {
         assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
         String::from_utf8_lossy(&out.stdout).into_owned()
     };
-    let theirs = run(&home);
+    let theirs = crate::support::home_run();
     assert!(theirs.contains("Golem: Hi, Luis."), "{theirs}");
     assert_eq!(run(&copy), theirs);
 }

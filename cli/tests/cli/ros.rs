@@ -191,34 +191,40 @@ fn world_transcript(text: &str) -> String {
 
 /// The scenario `app` (with `args`, e.g. `--world FILE`) over DDS prints the
 /// in-process conversation and history (task), and the in-process world
-/// transcript (sim node).
-fn same_over_dds(app: &Path, args: &[&str]) {
-    let want = in_process(app, args);
+/// transcript (sim node): `want`, the in-process run's stdout.
+fn same_over_dds(app: &Path, args: &[&str], want: &str) {
     let d = domain();
     let mut robot = sim(app, d, args);
     let (code, out, err) = task(app, d, args).finish(Duration::from_secs(180));
     assert_eq!(code, Some(0), "{err}");
     assert_eq!(
         conversation_and_history(&out),
-        conversation_and_history(&want),
+        conversation_and_history(want),
         "the task over DDS:\n{out}\nin-process:\n{want}"
     );
     robot.stop("TERM");
     assert_eq!(
         robot.stdout(),
-        world_transcript(&want),
+        world_transcript(want),
         "the sim node's transcript"
     );
 }
 
 #[test]
 fn home_over_dds_prints_the_in_process_conversation_and_history() {
-    same_over_dds(&workspace().join("dms/apps/home"), &[]);
+    // The in-process run is the one `new::a_copy_of_the_home_app_runs_anywhere`
+    // compares with: one engine start for both.
+    same_over_dds(
+        &workspace().join("dms/apps/home"),
+        &[],
+        crate::support::home_run(),
+    );
 }
 
 #[test]
 fn supermarket_over_dds_prints_the_in_process_conversation_and_history() {
-    same_over_dds(&workspace().join("dms/apps/supermarket"), &[]);
+    let app = workspace().join("dms/apps/supermarket");
+    same_over_dds(&app, &[], &in_process(&app, &[]));
 }
 
 /// A blocked route: the navigation goal is aborted with `blocked(From, To)`,
@@ -240,7 +246,7 @@ fn an_aborted_goal_runs_the_recovery_protocol_as_in_process() {
         want.contains("blocked"),
         "the variant blocks a route:\n{want}"
     );
-    same_over_dds(&home, &["--world", w]);
+    same_over_dds(&home, &["--world", w], &want);
 }
 
 /// A small robot task on the home world (no Prolog: a run takes a fraction

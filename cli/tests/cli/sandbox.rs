@@ -155,26 +155,18 @@ fn a_shell_command_as_a_closure_does_not_run() {
     assert_eq!(s.outside_names(), ["p1", "p2", "p3", "p4"]);
 }
 
+/// The attacks on processes, sockets and files outside the application, in
+/// one function (one run, one Prolog engine start): no process is created
+/// (`process_create` as a closure and built by name), no socket is opened
+/// (a server on a free port, a client to a listener, by closure and by
+/// name: the function says what it opened), no file is written (`tell`,
+/// `phrase_to_file`, `open` by name and as a closure), and none is deleted,
+/// renamed or created (`delete_file` plain, qualified and by name,
+/// `rename_file`, `make_directory`). Inside the application, writing stays
+/// allowed.
 #[test]
-fn a_process_is_not_created() {
-    if !kernel_confines("a_process_is_not_created") {
-        return;
-    }
-    let s = Scratch::new("process", |o| {
-        format!(
-            "attack(_) :- {}, {}, t(call(process:process_create, T, [P1], [])), {}, t((G =.. [process_create, T, [P2], []], call(G))), assign_func_value(d).\n",
-            chars("T", "/usr/bin/touch"),
-            chars("P1", &format!("{o}/p1")),
-            chars("P2", &format!("{o}/p2")),
-        )
-    });
-    s.run(&[]);
-    assert_eq!(s.outside_names(), Vec::<String>::new(), "a process ran");
-}
-
-#[test]
-fn no_socket_is_opened() {
-    if !kernel_confines("no_socket_is_opened") {
+fn processes_sockets_and_files_outside_are_out_of_reach() {
+    if !kernel_confines("processes_sockets_and_files_outside_are_out_of_reach") {
         return;
     }
     // A listener the attack tries to reach, and a port it tries to open.
@@ -184,18 +176,44 @@ fn no_socket_is_opened() {
     let free = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
     let free_port = free.local_addr().unwrap().port();
     drop(free);
-    let s = Scratch::new("socket", |_| {
+    let s = Scratch::new("attacks", |o| {
         format!(
             "r(G, R) :- (catch(G, _, fail) -> R = opened ; R = refused).\n\
              attack(_) :- \
+             {}, {}, t(call(process:process_create, T, [P1], [])), {}, t((G =.. [process_create, T, [P2], []], call(G))), \
              r(call(sockets:socket_server_open, '127.0.0.1':{free_port}, _), R1), \
              r(call(sockets:socket_client_open, '127.0.0.1':{port}, _, []), R2), \
-             r((G =.. [socket_client_open, '127.0.0.1':{port}, _, []], call(G)), R3), \
-             assign_func_value([R1, R2, R3]).\n"
+             r((G2 =.. [socket_client_open, '127.0.0.1':{port}, _, []], call(G2)), R3), \
+             t((tell('{o}/told'), write(x), told)), \
+             t(phrase_to_file(\"x\", '{o}/phrase')), \
+             t((G3 =.. [open, '{o}/named', write, S], call(G3), write(S, x), close(S))), \
+             t((call(open, '{o}/closure', append, S2), write(S2, x), close(S2))), \
+             {}, t(delete_file(C1)), t(call(files:delete_file, C1)), {}, {}, t(call(files:rename_file, C2, R)), {}, t(call(files:make_directory, M)), {}, t((G4 =.. [delete_file, C3], call(G4))), \
+             assign_func_value([R1, R2, R3]).\n",
+            chars("T", "/usr/bin/touch"),
+            chars("P1", &format!("{o}/p1")),
+            chars("P2", &format!("{o}/p2")),
+            chars("C1", &format!("{o}/canary1")),
+            chars("C2", &format!("{o}/canary2")),
+            chars("R", &format!("{o}/renamed")),
+            chars("M", &format!("{o}/made")),
+            chars("C3", &format!("{o}/canary3")),
         )
     });
-    // The function says what it opened.
+    for c in ["canary1", "canary2", "canary3"] {
+        s.canary(c);
+    }
     let out = s.run(&[]);
+    // Nothing created (no process's p1/p2, no written file, nothing renamed
+    // or made), nothing deleted.
+    assert_eq!(s.outside_names(), ["canary1", "canary2", "canary3"]);
+    for c in ["canary1", "canary2", "canary3"] {
+        assert_eq!(
+            std::fs::read_to_string(s.outside().join(c)).unwrap(),
+            "canary"
+        );
+    }
+    // The function says what it opened.
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         stdout.contains("say([refused,refused,refused])"),
@@ -205,29 +223,6 @@ fn no_socket_is_opened() {
     assert!(
         matches!(listener.accept(), Err(e) if e.kind() == std::io::ErrorKind::WouldBlock),
         "the task connected"
-    );
-}
-
-#[test]
-fn files_are_not_written_anywhere() {
-    if !kernel_confines("files_are_not_written_anywhere") {
-        return;
-    }
-    let s = Scratch::new("write", |o| {
-        format!(
-            "attack(_) :- \
-             t((tell('{o}/told'), write(x), told)), \
-             t(phrase_to_file(\"x\", '{o}/phrase')), \
-             t((G =.. [open, '{o}/named', write, S], call(G), write(S, x), close(S))), \
-             t((call(open, '{o}/closure', append, S2), write(S2, x), close(S2))), \
-             assign_func_value(d).\n"
-        )
-    });
-    s.run(&[]);
-    assert_eq!(
-        s.outside_names(),
-        Vec::<String>::new(),
-        "a file was written"
     );
     // Inside the application, writing stays allowed.
     let inside = Scratch::new("write-inside", |_| {
@@ -247,34 +242,6 @@ fn files_are_not_written_anywhere() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(marker.exists());
-}
-
-#[test]
-fn files_are_not_deleted_renamed_or_created() {
-    if !kernel_confines("files_are_not_deleted_renamed_or_created") {
-        return;
-    }
-    let s = Scratch::new("files", |o| {
-        format!(
-            "attack(_) :- {}, t(delete_file(C1)), t(call(files:delete_file, C1)), {}, {}, t(call(files:rename_file, C2, P1)), {}, t(call(files:make_directory, P2)), {}, t((G =.. [delete_file, C3], call(G))), assign_func_value(d).\n",
-            chars("C1", &format!("{o}/canary1")),
-            chars("C2", &format!("{o}/canary2")),
-            chars("P1", &format!("{o}/renamed")),
-            chars("P2", &format!("{o}/made")),
-            chars("C3", &format!("{o}/canary3")),
-        )
-    });
-    for c in ["canary1", "canary2", "canary3"] {
-        s.canary(c);
-    }
-    s.run(&[]);
-    assert_eq!(s.outside_names(), ["canary1", "canary2", "canary3"]);
-    for c in ["canary1", "canary2", "canary3"] {
-        assert_eq!(
-            std::fs::read_to_string(s.outside().join(c)).unwrap(),
-            "canary"
-        );
-    }
 }
 
 #[test]

@@ -1,8 +1,10 @@
 //! What the command-line tests share: the `sitlogc` under test, the
-//! workspace's paths, and running a child process with a signal.
+//! workspace's paths, running a child process with a signal, and the home
+//! butler's plain run (made once for the binary).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::OnceLock;
 
 /// The `sitlogc` executable Cargo built for these tests.
 pub const SITLOGC: &str = env!("CARGO_BIN_EXE_sitlogc");
@@ -18,6 +20,30 @@ pub fn workspace() -> PathBuf {
         .parent()
         .unwrap()
         .to_path_buf()
+}
+
+/// The stdout of `sitlogc run dms/apps/home` (no options, `SITLOG_LIBRARY`
+/// unset), which must succeed: run once for the whole test binary, for the
+/// tests that compare another run of the home butler with it (each run is
+/// a Prolog engine start and the whole scenario: seconds of CPU in a debug
+/// build).
+pub fn home_run() -> &'static str {
+    static RUN: OnceLock<String> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let out = sitlogc()
+            .arg("run")
+            .arg(workspace().join("dms/apps/home"))
+            .env_remove("SITLOG_LIBRARY")
+            .output()
+            .unwrap();
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    })
 }
 
 /// Sends `signal` (`INT`, `TERM`, `KILL`, ...) to `pid` with unix `kill`.

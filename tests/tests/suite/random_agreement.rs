@@ -225,12 +225,84 @@ fn every_random_program_is_compiled_and_checks_clean() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    // The programs together make every construct the generator has (the
+    // seeds are chosen for it: `random_dm::SEEDS`).
+    let texts: Vec<String> = RANDOM_APPS
+        .iter()
+        .filter(|a| a.0 < random_dm::WALKER_SEED)
+        .map(|a| {
+            random_dm::program(a.0)
+                .into_iter()
+                .filter(|(name, _)| name.ends_with(".dm"))
+                .map(|(_, text)| text + "\n")
+                .collect()
+        })
+        .collect();
+    let missing: Vec<&str> = CONSTRUCTS
+        .iter()
+        .filter(|(_, made)| !texts.iter().any(|t| made(t)))
+        .map(|(what, _)| *what)
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "no random program of random_dm::SEEDS makes: {}",
+        missing.join("; ")
+    );
     assert!(
         short.is_empty(),
         "random programs that never make 3 transitions: {}",
         short.join(", ")
     );
 }
+
+/// Whether a program's DM text shows a construct.
+type Shows = fn(&str) -> bool;
+
+/// Every construct of `tests/gen/random_dm.rs`'s random programs, with how
+/// a program's DM text shows it.
+const CONSTRUCTS: &[(&str, Shows)] = &[
+    ("a third DM", |t| t.contains("diag_mod(sub2")),
+    ("a sub without parameters", |t| {
+        t.contains("diag_mod(sub1,\n") || t.contains("diag_mod(sub2,\n")
+    }),
+    ("a sub(Result)", |t| t.contains("(Hr),\n")),
+    ("a sub(Param, Result)", |t| t.contains("(Hp, Hr),\n")),
+    ("a list walk tick([H|T])", |t| {
+        t.contains("([H") && t.contains("|T")
+    }),
+    ("a countdown tick(0)/tick(N)", |t| t.contains("(0),\n")),
+    ("a speech situation ask(K)", |t| t.contains("id ==> ask")),
+    ("a final with a parameter", |t| t.contains("id ==> got")),
+    ("an in_arg", |t| t.contains("in_arg ==>")),
+    ("an in_arg pattern w(In)", |t| t.contains("in_arg ==> w(In")),
+    ("an out_arg", |t| t.contains("out_arg ==>")),
+    ("a final's diag_mod", |t| t.contains("diag_mod ==>")),
+    ("a diag_mod that does not unify (E9)", |t| {
+        t.contains("(zz, ")
+    }),
+    ("a diag_mod value zz", |t| t.contains("(zz)")),
+    ("a recursive situation", |t| t.contains("embedded_dm ==>")),
+    ("a conditional", |t| t.contains(" -> ")),
+    ("prog", |t| t.contains("prog ==>")),
+    ("said(X)", |t| t.contains("said(")),
+    ("num(N)", |t| t.contains("num(")),
+    ("a list expected", |t| t.contains("[a, ")),
+    ("append", |t| t.contains("append(")),
+    ("member", |t| t.contains("member(")),
+    ("is", |t| t.contains(" is ")),
+    ("the global g_log", |t| t.contains("g_log")),
+    ("inc of a non-number (E7)", |t| {
+        t.contains("inc(v, _)") || t.contains("inc(g_log, _)")
+    }),
+    ("a next situation named by the input (E8)", |t| {
+        t.lines().any(|l| {
+            let l = l.trim_end_matches(',');
+            l.split_once("said(")
+                .and_then(|(_, rest)| rest.split_once(") : "))
+                .is_some_and(|(x, rest)| rest.ends_with(&format!("=> {x}")))
+        })
+    }),
+];
 
 /// A program's index in `RANDOM_APPS` and a script of 0–39 terms drawn from
 /// its inputs (terms its arcs expect, and terms that match nothing).
