@@ -240,6 +240,7 @@ pub fn task_setup(
         name: (*name).to_owned(),
         text: (*text).to_owned(),
         dir: dir.clone(),
+        clauses: None,
     }));
     let native = (cli.legacy_kb == sitlog_robot::cli::LegacyKb::Native).then(native_kb);
     let mut functions = sitlog_runtime::Functions::standard();

@@ -24,6 +24,13 @@ pub struct Program {
     pub function_values: Vec<FunctionValues>,
     /// Prolog files to consult at run time (user functions, templates), in load order.
     pub prolog_files: Vec<FileId>,
+    /// The clauses of each of `prolog_files` (same index), read once by the
+    /// loader with SWI-Prolog's operators: the checks and the engine's load
+    /// use them instead of reading the file again. `None` where the loader
+    /// read none from a text that is not blank (a file that is not UTF-8,
+    /// whose text the loader does not read): read again where needed, as
+    /// before. See [`Program::prolog_clauses`].
+    pub prolog_file_clauses: Vec<Option<std::sync::Arc<Vec<Clause>>>>,
     /// Whether a `global_vars.pl` was read (if not, every `get`/`set` needs a local).
     pub has_globals_file: bool,
     /// Recovery protocols (`recovery_protocols.pl`): situation type name → DM to run
@@ -47,6 +54,20 @@ pub struct Program {
     /// The files named by a library name (`'behaviors/say.dm'` in `models`,
     /// `:- consult('behaviors/language.pl')`) and where each was read from.
     pub library_files: Vec<LibraryFile>,
+}
+
+impl Program {
+    /// The clauses of Prolog file `file` (one of `prolog_files`), as the
+    /// loader read them; read again only for a file the loader did not add.
+    pub fn prolog_clauses(&self, file: FileId) -> std::sync::Arc<Vec<Clause>> {
+        let known = self.prolog_files.iter().position(|&f| f == file);
+        match known.and_then(|i| self.prolog_file_clauses.get(i)) {
+            Some(Some(clauses)) => clauses.clone(),
+            _ => std::sync::Arc::new(
+                sitlog_syntax::read_prolog_clauses(&self.sources.get(file).text).0,
+            ),
+        }
+    }
 }
 
 /// A file named by a library name, and where the loader found it.

@@ -114,6 +114,9 @@ pub struct PrologFile {
     pub name: String,
     pub path: std::path::PathBuf,
     pub text: String,
+    /// The clauses of `text` as the loader read them (SWI-Prolog's
+    /// operators), for the engine's load: `None` to read `text` again.
+    pub clauses: Option<std::sync::Arc<Vec<sitlog_syntax::Clause>>>,
 }
 
 #[derive(Debug)]
@@ -320,12 +323,14 @@ pub fn lower(checked: &Checked) -> Ir {
         prolog_sources: program
             .prolog_files
             .iter()
-            .map(|&id| {
+            .enumerate()
+            .map(|(i, &id)| {
                 let f = program.sources.get(id);
                 PrologFile {
                     name: f.name.clone(),
                     path: f.path.clone(),
                     text: f.text.clone(),
+                    clauses: program.prolog_file_clauses.get(i).cloned().flatten(),
                 }
             })
             .collect(),

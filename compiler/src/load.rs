@@ -541,6 +541,12 @@ fn add_prolog_file(
         &mut program.function_values,
     );
     program.prolog_files.push(file);
+    // No clause from a text that is not blank: maybe a file the loader
+    // did not read (not UTF-8); whoever needs its clauses reads it.
+    let read = !clauses.is_empty() || program.sources.get(file).text.trim().is_empty();
+    program
+        .prolog_file_clauses
+        .push(read.then(|| std::sync::Arc::new(clauses)));
 }
 
 /// The file names of the consult directives among `clauses`, each with
@@ -756,8 +762,14 @@ fn load_dm_file(
     diags: &mut Vec<Diagnostic>,
 ) -> Result<(), LoadError> {
     let file = read_text(cx, path, program, diags)?;
-    let clauses = read_file_clauses(program, file, diags);
     let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
+    // A Prolog file read as the engine reads it (its clauses are the ones
+    // the engine loads: `Program::prolog_file_clauses`).
+    let clauses = if PROLOG_FILES.contains(&name) {
+        read_prolog_file_clauses(program, file, diags)
+    } else {
+        read_file_clauses(program, file, diags)
+    };
     add_file_by_role(cx, program, file, name, clauses, diags);
     Ok(())
 }

@@ -140,6 +140,7 @@ pub fn prolog_sources(ir: &Ir) -> Vec<sitlog_runtime::prolog::PrologSource> {
             name: f.name.clone(),
             text: f.text.clone(),
             dir: f.path.parent().map(|d| d.to_path_buf()),
+            clauses: f.clauses.clone(),
         })
         .collect()
 }

@@ -372,6 +372,33 @@ mod tests {
     use super::{did_you_mean, is_ground, may_unify, static_values};
     use proptest::prelude::*;
 
+    /// A Prolog file is read once: the loader's clauses serve the checks
+    /// (their diagnostics as before) and the engine's load (the IR).
+    #[test]
+    fn prolog_files_are_read_once_for_the_check_and_the_load() {
+        let uf = "f(X) :- X = 1, assign_func_value(X).\ng :- shell(ls).\n";
+        let (program, diags) = crate::load::load_sources(&[
+            ("templates.pl", "% none\n"),
+            ("user_functions.pl", uf),
+            (
+                "main.dm",
+                "diag_mod(main, [[id ==> is, type ==> neutral, arcs ==> [empty : empty => fs]], [id ==> fs, type ==> final]], []).",
+            ),
+        ]);
+        let read = sitlog_syntax::read_prolog_clauses(uf).0;
+        let uf_file = program.prolog_files[1];
+        assert_eq!(*program.prolog_clauses(uf_file), read);
+        // A file without clauses is read again where needed (nothing).
+        assert!(program.prolog_file_clauses[0].is_none());
+        let (checked, diags) = super::check(program, diags);
+        let codes: Vec<_> = diags.iter().map(|d| d.code).collect();
+        assert_eq!(codes, [super::codes::OS_ACCESS], "{diags:?}");
+        let ir = crate::ir::lower(&checked.expect("checks"));
+        let uf = &ir.prolog_sources[1];
+        assert_eq!(uf.clauses.as_deref(), Some(&read));
+        assert!(ir.prolog_sources[0].clauses.is_none());
+    }
+
     const IDS: &[&str] = &[
         "a", "b", "s(1)", "s(X)", "s(a)", "s(1.0)", "t(X, Y)", "t(a, b)", "X", "1", "'s'",
     ];

@@ -23,8 +23,8 @@ impl Checker<'_> {
         let program = self.program;
         let neck = Atom::intern(":-");
         for &file in &program.prolog_files {
-            let (clauses, _) = sitlog_syntax::read_prolog_clauses(&program.sources.get(file).text);
-            for c in &clauses {
+            let clauses = program.prolog_clauses(file);
+            for c in clauses.iter() {
                 let t = &c.terms;
                 let (who, body, directive) = if let Some(&[goal]) = t.compound(c.root, neck, 1) {
                     ("this directive".to_owned(), goal, true)

@@ -15,8 +15,8 @@ impl Checker<'_> {
     pub(super) fn prolog_depth(&mut self) {
         let program = self.program;
         for &file in &program.prolog_files {
-            let (clauses, _) = sitlog_syntax::read_prolog_clauses(&program.sources.get(file).text);
-            for c in &clauses {
+            let clauses = program.prolog_clauses(file);
+            for c in clauses.iter() {
                 let (depth, deepest) = nesting(&c.terms, c.root);
                 if depth <= PROLOG_MAX_DEPTH {
                     continue;

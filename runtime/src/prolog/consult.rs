@@ -24,6 +24,10 @@ pub struct PrologSource {
     /// Directory relative to which `consult/1` directives are resolved
     /// (`None` for embedded sources: such directives are then errors).
     pub dir: Option<PathBuf>,
+    /// The clauses of `text` already read by [`read_prolog_clauses`] (the
+    /// checker's loader reads the application's files so): the load uses
+    /// them instead of reading `text` again. `None`: read at load.
+    pub clauses: Option<std::sync::Arc<Vec<sitlog_syntax::Clause>>>,
 }
 
 impl PrologSource {
@@ -32,6 +36,7 @@ impl PrologSource {
             name: name.into(),
             text: text.into(),
             dir: None,
+            clauses: None,
         }
     }
     /// Reads `path`; text that is not UTF-8 is an `InvalidData` error naming
@@ -46,6 +51,7 @@ impl PrologSource {
             name,
             text,
             dir: path.parent().map(Path::to_path_buf),
+            clauses: None,
         })
     }
 }
@@ -200,9 +206,16 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
     // A clause that does not read is skipped and the rest loaded, as
     // SWI-Prolog's consult does for the original (`sitlogc check` warns of
     // it, with its place).
-    let (clauses, _skipped) = read_prolog_clauses(&source.text);
+    let read;
+    let clauses: &[sitlog_syntax::Clause] = match &source.clauses {
+        Some(clauses) => clauses,
+        None => {
+            read = read_prolog_clauses(&source.text).0;
+            &read
+        }
+    };
     let mut positions = LineCursor::new();
-    for clause in &clauses {
+    for clause in clauses {
         let (line, col) = positions.line_col(&source.text, clause.span.start as usize);
         let mut store = Store::new();
         let (t, _) = store.from_clause(clause);
@@ -480,5 +493,50 @@ fn resolve(name: &str, dir: Option<&Path>) -> Option<PathBuf> {
         with_ext(p.to_path_buf())
     } else {
         with_ext(dir?.join(p))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The clauses `source` gives (text, line, column) as [`prepare`] reads them.
+    fn prepared(source: &PrologSource) -> Vec<(String, usize, usize)> {
+        let (mut out, mut defined, mut errors) = (Vec::new(), HashSet::new(), Vec::new());
+        let (mut seen, mut outside, mut touching) = (HashSet::new(), Vec::new(), false);
+        let mut cx = Prep {
+            out: &mut out,
+            defined: &mut defined,
+            errors: &mut errors,
+            seen: &mut seen,
+            outside: &mut outside,
+            embedded: std::slice::from_ref(source),
+            native: None,
+            redefine: None,
+            touching: &mut touching,
+        };
+        prepare(source, &mut cx, 0);
+        assert!(errors.is_empty(), "{errors:?}");
+        out.into_iter().map(|p| (p.text, p.line, p.col)).collect()
+    }
+
+    #[test]
+    fn clauses_read_before_are_loaded_without_reading_the_text_again() {
+        let text = "a(1).\n% note\n  b(X) :- a(X).\n";
+        let plain = PrologSource::new("u.pl", text);
+        let read = prepared(&plain);
+        assert_eq!(read.len(), 2);
+        assert_eq!((read[1].1, read[1].2), (3, 3));
+        // The checker's clauses of the same text: the same load.
+        let mut given = plain.clone();
+        given.clauses = Some(std::sync::Arc::new(read_prolog_clauses(text).0));
+        assert_eq!(prepared(&given), read);
+        // They are what is loaded (the text only places them).
+        given.clauses = Some(std::sync::Arc::new(
+            read_prolog_clauses("a(2).\n% note\n  b(Y) :- a(Y).\n").0,
+        ));
+        let loaded = prepared(&given);
+        assert_eq!(loaded[0].0, "'a'(2)");
+        assert_eq!((loaded[1].1, loaded[1].2), (3, 3));
     }
 }

@@ -22,6 +22,7 @@ fn source(dir: &Path, text: String) -> PrologSource {
         name: dir.join("app/user_functions.pl").display().to_string(),
         text,
         dir: Some(dir.join("app")),
+        clauses: None,
     }
 }
 
