@@ -60,6 +60,7 @@ mod input;
 pub mod machine;
 pub mod native;
 pub mod paths;
+pub mod prelude;
 #[cfg(feature = "prolog")]
 pub mod prolog;
 pub mod report;

@@ -6,6 +6,7 @@ use super::outcome::RunError;
 use super::program::{Cx, DmProgram, Step};
 use super::situation::SitIx;
 use crate::eval;
+use crate::native::{self, Native};
 use crate::store::Store;
 use crate::term::Term;
 use sitlog_syntax::Atom;
@@ -492,6 +493,31 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         debug_assert!(self.m.lazy.is_empty(), "parameters read under a lazy frame");
         let dm_id = self.m.frames.last().expect("a frame is running").dm_id;
         self.m.store.arg(dm_id, i).map(|t| self.m.store.deref(t))
+    }
+
+    /// The native value of type `T` term `t` is (`None`: it has not that
+    /// type).
+    pub fn to_native<T: Native>(&self, t: Term) -> Option<T> {
+        T::from_term(&self.m.store, t)
+    }
+
+    /// [`Cx::param`] as a native value (`None`: none, or it does not
+    /// convert), for native code entering a DM.
+    pub fn param_as<T: Native>(&self, i: usize) -> Option<T> {
+        self.param(i).and_then(|t| T::from_term(&self.m.store, t))
+    }
+
+    /// [`Cx::local`] as a native value (`None`: none, or it does not
+    /// convert).
+    pub fn local_as<T: Native>(&self, name: Atom) -> Option<T> {
+        self.local(name)
+            .and_then(|t| T::from_term(&self.m.store, t))
+    }
+
+    /// The part of situation id `id` at `path` ([`native::id_part`]) as a
+    /// native value (`None`: no such part, or it does not convert).
+    pub fn id_part_as<T: Native>(&self, id: Term, path: &[usize]) -> Option<T> {
+        native::id_part(&self.m.store, id, path).and_then(|t| T::from_term(&self.m.store, t))
     }
 
     /// The integer a (dereferenced) term is, if it is one.
