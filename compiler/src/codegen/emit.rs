@@ -19,15 +19,6 @@ impl Gen<'_> {
             .iter()
             .map(|f| Literal::string(&f.text))
             .collect();
-        // Atoms.
-        let atom_fields = self.atoms.iter().map(|(a, id)| {
-            let doc = format!(" `{}`", quote_atom(a.as_str()));
-            quote!(#[doc = #doc] pub #id: Atom,)
-        });
-        let atom_inits = self.atoms.iter().map(|(a, id)| {
-            let lit = Literal::string(a.as_str());
-            quote!(#id: Atom::intern(#lit),)
-        });
 
         // Constants.
         let const_fields = self.consts.iter().enumerate().map(|(i, (text, _))| {
@@ -113,10 +104,7 @@ impl Gen<'_> {
             .collect();
         let source_doc = format!(" The SitLog program `{source}`, compiled by sitlog-compiler.");
 
-        quote! {
-            #[allow(unused_imports)]
-            use ::sitlog_runtime::prelude::*;
-
+        let body = quote! {
             #[doc = #source_doc]
             ///
             /// Runs on the runtime's DM machine (`sitlog_runtime::machine`), which
@@ -133,10 +121,6 @@ impl Gen<'_> {
                 templates: Vec<Vec<Option<Term>>>,
             }
 
-            /// The program's atoms, interned once.
-            #[allow(dead_code, non_snake_case, clippy::all)]
-            pub struct Atoms { #(#atom_fields)* }
-
             /// The program's ground compound terms, built once in [`Program::new`].
             #[allow(dead_code, clippy::all)]
             pub struct Consts { #(#const_fields)* }
@@ -146,7 +130,7 @@ impl Gen<'_> {
                 /// Interns the atoms and builds the constants.
                 pub fn new() -> Program {
                     let mut store = Store::new();
-                    let a = Atoms { #(#atom_inits)* };
+                    let a = Atoms::new();
                     let store = &mut store;
                     #(#const_inits)*
                     let k = Consts { #(#const_names),* };
@@ -358,6 +342,41 @@ impl Gen<'_> {
             #native_driver
 
             #(#modules)*
+        };
+
+        // Atoms: those the code names (a template's atoms are read with
+        // its text).
+        let mut used = std::collections::HashSet::new();
+        idents_in(&body, &mut used);
+        let atoms: Vec<&(Atom, Ident)> = self
+            .atoms
+            .iter()
+            .filter(|(_, id)| used.contains(&id.to_string()))
+            .collect();
+        let atom_fields = atoms.iter().map(|(a, id)| {
+            let doc = format!(" `{}`", quote_atom(a.as_str()));
+            quote!(#[doc = #doc] pub #id: Atom,)
+        });
+        let atom_inits = atoms.iter().map(|(a, id)| {
+            let lit = Literal::string(a.as_str());
+            quote!(#id: Atom::intern(#lit),)
+        });
+        quote! {
+            #[allow(unused_imports)]
+            use ::sitlog_runtime::prelude::*;
+
+            #body
+
+            /// The atoms the program's code names, interned once.
+            #[allow(dead_code, non_snake_case, clippy::all)]
+            pub struct Atoms { #(#atom_fields)* }
+
+            #[allow(clippy::all)]
+            impl Atoms {
+                fn new() -> Atoms {
+                    Atoms { #(#atom_inits)* }
+                }
+            }
         }
     }
 
@@ -509,7 +528,7 @@ impl Gen<'_> {
                     // left this DM: its calls run on the native stack).
                     native_ixs.push(ix.clone());
                 } else {
-                    run_arms.push(quote!(#ix => #run_name(p, cx),));
+                    run_arms.push(quote!(#ix => #run_name(p, cx).map(Visit::Go),));
                     let rdoc = format!(" A visit of `{id_text}` as code.");
                     let run = code.run;
                     fns.push(quote!(#[doc = #rdoc] #run));
@@ -527,7 +546,7 @@ impl Gen<'_> {
         } else {
             quote! {
                 #(#native_ixs)|* => {
-                    return run_native(p, cx, sit).map(|s| s.unwrap_or(Step::Template));
+                    run_native(p, cx, sit).map(|s| Visit::Stop(s.unwrap_or(Step::Template)))
                 }
             }
         };
@@ -536,7 +555,7 @@ impl Gen<'_> {
                 #(#run_arms)*
                 #native_arm
                 _ => Err(cx.error("the situation has no compiled code", None)),
-            }?
+            }
         };
         let native_items = match native {
             Some(n) => n.items,
@@ -674,38 +693,14 @@ impl Gen<'_> {
                 }
 
                 /// Runs a situation that runs as code, and the compiled
-                /// situations it goes to (by index, or selected by the
-                /// value of its next situation), until the machine is
-                /// needed (another kind of step, a situation instantiated
-                /// from its template, or garbage to collect).
+                /// situations it goes to (`Cx::run_compiled`): term code
+                /// goes on by itself, native code's step goes to the machine.
                 pub fn run_situation(
                     p: &super::Program,
                     sit: SitIx,
                     cx: &mut Cx<'_, '_, super::Program>,
                 ) -> Result<Step, RunError> {
-                    let mut sit = sit;
-                    loop {
-                        let step = #term_code;
-                        match step {
-                            Step::GotoSit(next) if !cx.gc_due() => {
-                                // A compound id is built by the situation's code.
-                                let Some((id, _)) = compiled_id(p, next) else {
-                                    return Ok(step);
-                                };
-                                cx.enter(next, id);
-                                sit = next;
-                            }
-                            // A next situation computed at run time: selected
-                            // here when the machine would select compiled code.
-                            Step::Goto(value) if !cx.gc_due() => {
-                                let Some(next) = cx.enter_selected(value) else {
-                                    return Ok(step);
-                                };
-                                sit = next;
-                            }
-                            _ => return Ok(step),
-                        }
-                    }
+                    cx.run_compiled(#dm_lit, sit, |cx, sit| #term_code)
                 }
 
                 /// The exit arcs of a recursive situation that runs as code.
@@ -741,6 +736,19 @@ impl Gen<'_> {
 
                 #(#fns)*
             }
+        }
+    }
+}
+
+/// The identifiers in `ts`, as text.
+fn idents_in(ts: &TokenStream, out: &mut std::collections::HashSet<String>) {
+    for tt in ts.clone() {
+        match tt {
+            proc_macro2::TokenTree::Group(g) => idents_in(&g.stream(), out),
+            proc_macro2::TokenTree::Ident(i) => {
+                out.insert(i.to_string());
+            }
+            _ => {}
         }
     }
 }

@@ -667,10 +667,7 @@ impl Gen<'_> {
         }
         b.stmts.push(quote! {
             cx.record(#expectation, action, Some(next));
-            match target {
-                Some(ix) => Ok(Step::GotoSit(ix)),
-                None => cx.goto(next, #at),
-            }
+            cx.go(next, target, #at)
         });
     }
 }

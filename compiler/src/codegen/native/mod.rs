@@ -1732,12 +1732,7 @@ impl Gen<'_> {
             let (next, target) = #v;
             let rec_next = next;
             #rec
-            return match target {
-                Some(ix) => Ok(
-                    Some(Step::GotoSit(ix)),
-                ),
-                None => cx.goto(next, #at).map(Some),
-            };
+            return cx.go(next, target, #at).map(Some);
         }};
         Ok(Some((fallback, conv)))
     }
