@@ -349,8 +349,8 @@ impl Gen<'_> {
             self.store.writeq(self.nat_id_of(d, ix))
         );
         let variant = quote!(#[doc = #doc] #wv { #(#decls),* },);
-        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(store))?;
-        let id_arm = quote!(Nat::#wv { #(#names),* } => { #(#id_stmts)* #id });
+        let id = self.nat_id_value(d, ix, quote!(store))?;
+        let id_arm = quote!(Nat::#wv { #(#names),* } => #id,);
         let exit_arm = match self.nat_call_plan(d, ix) {
             Some(plan) => {
                 let exit = plan.exit;

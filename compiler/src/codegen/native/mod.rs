@@ -251,6 +251,46 @@ fn load_head_arg(d: &Dm, r: Reg, i: usize, ty: Ty, regs: &mut Regs) -> N<TokenSt
 /// its situation first (its id set, the locals written back: `Dm::hand`),
 /// and what changed the locals since were the machine's own calls, so an
 /// observer sees the frame the term path would have.
+/// Whether `code` is one block whose last statement is a `return` (code
+/// that hands over, never a value).
+fn always_returns(code: &TokenStream) -> bool {
+    use proc_macro2::{Delimiter, TokenTree};
+    let mut it = code.clone().into_iter();
+    let (Some(TokenTree::Group(g)), None) = (it.next(), it.next()) else {
+        return false;
+    };
+    if g.delimiter() != Delimiter::Brace {
+        return false;
+    }
+    let tokens: Vec<TokenTree> = g.stream().into_iter().collect();
+    // A block of one block: look inside.
+    if tokens.len() == 1 {
+        return always_returns(&g.stream());
+    }
+    let Some(TokenTree::Punct(last)) = tokens.last() else {
+        return false;
+    };
+    if last.as_char() != ';' {
+        return false;
+    }
+    // The last statement starts with `return`: the last top-level `return`
+    // (a `{ ... }` group is one token, so nested ones do not count) starts a
+    // statement (after a `;` or a block) and no `;` follows it but the last.
+    let Some(k) = tokens
+        .iter()
+        .rposition(|t| matches!(t, TokenTree::Ident(i) if i == "return"))
+    else {
+        return false;
+    };
+    let starts = k == 0
+        || matches!(&tokens[k - 1], TokenTree::Punct(p) if p.as_char() == ';')
+        || matches!(&tokens[k - 1], TokenTree::Group(g) if g.delimiter() == Delimiter::Brace);
+    starts
+        && !tokens[k..tokens.len() - 1]
+            .iter()
+            .any(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == ';'))
+}
+
 fn rec_entry() -> TokenStream {
     quote! {
         if run.records {
@@ -416,6 +456,11 @@ struct Dm<'a> {
     shallow: bool,
     /// The arc's out_arg, set where its next situation is handed over.
     out: std::cell::RefCell<TokenStream>,
+    /// The situations whose id is built by the DM's `id_s<N>` function
+    /// (one per situation, from its fields; [`Gen::nat_id_term`]).
+    ids: std::cell::RefCell<std::collections::BTreeSet<usize>>,
+    /// Names of the ids built (`id0`, `id1`, ...).
+    id_n: std::cell::Cell<usize>,
     /// The arc's history entry where its next situation (`rec_next`, a
     /// term) is handed over: made when the history is kept or observed
     /// (`run.records`), as the term code makes it; empty in exit arcs
@@ -521,7 +566,7 @@ impl Gen<'_> {
             let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
             let doc = format!(" `{}`", self.store.writeq(self.nat_id_of(&d, ix)));
             variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
-            id_arms.push(quote!(Nat::#v { #(#names),* } => #id));
+            id_arms.push(quote!(Nat::#v { #(#names),* } => #id,));
             arms.push(quote!(Nat::#v { #(#names),* } => 'visit: { #body }));
             if let Some(w) = wait {
                 variants.push(w.variant.clone());
@@ -585,7 +630,15 @@ impl Gen<'_> {
              the pipe does not convert.",
             dm.name.as_str()
         );
+        // The situations' ids, each built by one function.
+        let ids: Vec<usize> = d.ids.borrow().iter().copied().collect();
+        let id_fns = ids
+            .into_iter()
+            .map(|ix| self.nat_id_fn(&d, ix))
+            .collect::<N<Vec<_>>>()?;
         let items = quote! {
+            #(#id_fns)*
+
             /// The DM's situations that have native code, as native values:
             /// the fields are the id's variables.
             #[allow(dead_code, non_camel_case_types, clippy::all)]
@@ -798,6 +851,8 @@ impl Gen<'_> {
             shallow,
             out: std::cell::RefCell::new(quote!()),
             rec: std::cell::RefCell::new(quote!()),
+            ids: Default::default(),
+            id_n: Default::default(),
         };
         d.hand = self.nat_hand(&d)?;
         // Each situation's code, given which others have native code (a
@@ -806,6 +861,7 @@ impl Gen<'_> {
         let mut code: Vec<Option<SitCode>>;
         loop {
             code = vec![None; d.plans.len()];
+            d.ids.borrow_mut().clear();
             let mut changed = false;
             for ix in 0..d.plans.len() {
                 if !d.native[ix] {
@@ -813,11 +869,11 @@ impl Gen<'_> {
                 }
                 let c = self.nat_fields(&d, ix).and_then(|fields| {
                     let body = self.native_visit(&d, ix, &fields)?;
-                    let (id_stmts, id) = self.nat_id_term(&d, ix, quote!(store))?;
+                    let id = self.nat_id_value(&d, ix, quote!(store))?;
                     // A recursive situation waiting for its callee: its own
                     // variant.
                     let wait = self.nat_wait_variant(&d, ix)?;
-                    Ok((fields, body, quote!({ #(#id_stmts)* #id }), wait))
+                    Ok((fields, body, id, wait))
                 });
                 match c {
                     Ok(c) => code[ix] = Some(c),
@@ -888,8 +944,90 @@ impl Gen<'_> {
     }
 
     /// The id of situation `ix` as a term, from its fields (`store`: the
-    /// store expression): statements and the value.
+    /// store expression): statements and the value; a call of the DM's
+    /// `id_s<ix>` ([`Gen::nat_id_fn`]) where the fields have Rust types.
     fn nat_id_term(
+        &self,
+        d: &Dm,
+        ix: usize,
+        store: TokenStream,
+    ) -> N<(Vec<TokenStream>, TokenStream)> {
+        let (stmts, v) = self.nat_id_inline(d, ix, store.clone())?;
+        if stmts.is_empty() {
+            return Ok((stmts, v));
+        }
+        match self.nat_id_params(d, ix) {
+            Ok(params) => {
+                d.ids.borrow_mut().insert(ix);
+                let f = format_ident!("id_s{}", ix);
+                let args = params.iter().map(|(r, _)| quote!(&#r));
+                // A statement: the id is often an argument of a `cx` call.
+                let n = d.id_n.get();
+                d.id_n.set(n + 1);
+                let x = format_ident!("id{}", n);
+                Ok((
+                    vec![quote!(let #x = #f(p, #store, #(#args),*);)],
+                    quote!(#x),
+                ))
+            }
+            Err(_) => Ok((stmts, v)),
+        }
+    }
+
+    /// [`Gen::nat_id_term`] as one expression (the `id_s<ix>` call itself
+    /// where there is one), for `Nat::id_term`'s arms.
+    fn nat_id_value(&self, d: &Dm, ix: usize, store: TokenStream) -> N<TokenStream> {
+        let (stmts, v) = self.nat_id_inline(d, ix, store.clone())?;
+        if stmts.is_empty() {
+            return Ok(v);
+        }
+        match self.nat_id_params(d, ix) {
+            Ok(params) => {
+                d.ids.borrow_mut().insert(ix);
+                let f = format_ident!("id_s{}", ix);
+                let args = params.iter().map(|(r, _)| quote!(&#r));
+                Ok(quote!(#f(p, #store, #(#args),*)))
+            }
+            Err(_) => Ok(quote!({ #(#stmts)* #v })),
+        }
+    }
+
+    /// The fields situation `ix`'s id is built from, with their Rust types.
+    fn nat_id_params(&self, d: &Dm, ix: usize) -> N<Vec<(Ident, TokenStream)>> {
+        let (stmts, v) = self.nat_id_inline(d, ix, quote!(store))?;
+        let used = super::step::registers(&quote!(#(#stmts)* #v));
+        self.nat_fields(d, ix)?
+            .into_iter()
+            .filter(|(r, _)| used.contains(r))
+            .map(|(r, ty)| Ok((reg(r), rust_ty(&ty)?)))
+            .collect()
+    }
+
+    /// `fn id_s<ix>`: situation `ix`'s id as a term, from its fields (the
+    /// one place native code builds it).
+    fn nat_id_fn(&self, d: &Dm, ix: usize) -> N<TokenStream> {
+        let (stmts, v) = self.nat_id_inline(d, ix, quote!(store))?;
+        let params = self.nat_id_params(d, ix)?;
+        let params = params.iter().map(|(r, ty)| quote!(#r: &#ty));
+        let f = format_ident!("id_s{}", ix);
+        let doc = format!(
+            " The id `{}` from its variables.",
+            self.store.writeq(self.nat_id_of(d, ix))
+        );
+        let body = quote!(#(#stmts)* #v);
+        let prelude = super::Gen::prelude(&body);
+        Ok(quote! {
+            #[doc = #doc]
+            #[allow(clippy::all)]
+            fn #f(p: &super::Program, store: &mut Store, #(#params),*) -> Term {
+                #prelude
+                #body
+            }
+        })
+    }
+
+    /// [`Gen::nat_id_term`] built inline.
+    fn nat_id_inline(
         &self,
         d: &Dm,
         ix: usize,
@@ -1488,14 +1626,22 @@ impl Gen<'_> {
         let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &name);
         *d.rec.borrow_mut() = quote!();
         let next = next?;
-        let general = quote! {
-            #(#stmts)*
-            let next_at: Nat = { #next };
-            if run.records {
-                let rec_next = next_at.id_term(p, cx.store());
-                cx.record(rec_exp, rec_act, Some(rec_next));
+        let general = if always_returns(&next) {
+            // Handed over (recorded there): no next variant.
+            quote! {
+                #(#stmts)*
+                #next
             }
-            next_at
+        } else {
+            quote! {
+                #(#stmts)*
+                let next_at: Nat = { #next };
+                if run.records {
+                    let rec_next = next_at.id_term(p, cx.store());
+                    cx.record(rec_exp, rec_act, Some(rec_next));
+                }
+                next_at
+            }
         };
         Ok(match fast {
             Some(fast) => quote! {
