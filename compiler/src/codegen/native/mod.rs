@@ -521,17 +521,13 @@ impl Gen<'_> {
             let ix = Literal::usize_unsuffixed(i);
             if !read.contains(&i) {
                 loads.push(quote! {
-                    let Some(#name) = cx.param(#ix).map(Ground) else {
-                        return Ok(None);
-                    };
+                    let #name = cx.param(#ix).map(Ground)?;
                 });
                 continue;
             }
             let ty = rust_ty(p)?;
             loads.push(quote! {
-                let Some(#name) = cx.param_as::<#ty>(#ix) else {
-                    return Ok(None);
-                };
+                let #name = cx.param_as::<#ty>(#ix)?;
             });
         }
         // Locals, read from the machine's frame at entry.
@@ -540,9 +536,7 @@ impl Gen<'_> {
             let l = format_ident!("l{}", i);
             let a = self.atom_native(*name)?;
             loads.push(quote! {
-                let Some(#l) = cx.local_as::<#ty>(#a) else {
-                    return Ok(None);
-                };
+                let #l = cx.local_as::<#ty>(#a)?;
             });
         }
         let mut variants = Vec::new();
@@ -588,9 +582,7 @@ impl Gen<'_> {
                 let ty = rust_ty(ty)?;
                 let path = path.iter().map(|&k| Literal::usize_unsuffixed(k));
                 conv.push(quote! {
-                    let Some(#rr) = cx.id_part_as::<#ty>(id, &[#(#path),*]) else {
-                        return Ok(None);
-                    };
+                    let #rr = cx.id_part_as::<#ty>(id, &[#(#path),*])?;
                 });
             }
             // The pipe read there converts, else the term code runs it.
@@ -599,9 +591,7 @@ impl Gen<'_> {
                 quote!(#ixl => { #pipe Nat::#v {} })
             } else {
                 quote!(#ixl => {
-                    let Some(id) = cx.selected() else {
-                        return Ok(None);
-                    };
+                    let id = cx.selected()?;
                     #(#conv)*
                     #pipe
                     Nat::#v { #(#names),* }
@@ -717,16 +707,30 @@ impl Gen<'_> {
                 sit: SitIx,
             ) -> Result<Option<Step>, RunError> {
                 let run = cx.typed_run();
+                let Some(frame) = nat_entry(p, cx, sit) else {
+                    return Ok(None);
+                };
+                super::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run).map(Some)
+            }
+
+            /// The frame native code starts with at situation `sit`: the
+            /// id's arguments, the pipe, the parameters and locals it reads
+            /// converted (`None`, nothing done but the machine's frames
+            /// materialized, when one does not convert).
+            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, clippy::all)]
+            fn nat_entry(
+                p: &super::Program,
+                cx: &mut Cx<'_, '_, super::Program>,
+                sit: SitIx,
+            ) -> Option<Frame> {
                 let a = &p.atoms;
                 let at = match sit {
                     #(#entries)*
-                    _ => return Ok(None),
+                    _ => return None,
                 };
                 cx.materialize_frames();
                 #(#loads)*
-                let frame = Frame { #(#field_names,)* at };
-                super::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run)
-                    .map(Some)
+                Some(Frame { #(#field_names,)* at })
             }
         };
         // Counted on inference's types: a register that holds no value

@@ -55,7 +55,7 @@ impl Gen<'_> {
                 checks.push(quote! {
                     let t = cx.store_ref().deref(cx.pipe());
                     if cx.to_native::<#ty>(t).is_none() {
-                        return Ok(None);
+                        return None;
                     }
                 });
             }
