@@ -15,13 +15,16 @@
 //! - *entry*: `run_native(sit)` is tried whenever situation `sit` runs,
 //!   with the history kept or not. The id's arguments (from the value
 //!   that selected it) and the parameters the native situations read are
-//!   converted with the checked conversion (`Native::from_term`; for a
+//!   converted with the checked conversion (`Native::from_term` through
+//!   `Cx::id_part_as`/`param_as`/`local_as`, in the DM's `nat_entry`; for a
 //!   `Val`: ground, inert, proper lists, no big integer). A value that does
 //!   not fit leaves the visit to the machine, nothing done: a situation with
 //!   native code has no term code (`codegen::emit`), so `run_situation`
 //!   returns `Step::Template` and the machine runs it from its template,
 //!   as the interpreter does (correct, slower, rare). "Term code" below
-//!   means, for such a situation, that path.
+//!   means, for such a situation, that path. Where native code needs a
+//!   situation's id as a term (entering it, its history entry, a
+//!   hand-over, a wait), the DM's `id_s<N>` builds it from the fields.
 //! - *values*: native values are ground and evaluate to themselves in L
 //!   (atoms, numbers and lists of them are inert, D-28/D-36; a `Val` is
 //!   converted from an inert term), so a condition `X == Y` is Rust's `==`
