@@ -170,7 +170,6 @@ impl Gen<'_> {
 
     /// The visit of recursive situation `ix` (registers `regs` set).
     pub(super) fn nat_recursive(&self, d: &Dm, ix: usize, regs: &Regs) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let (name, args) = match self.nat_call_values(d, ix, regs) {
             Ok(x) => x,
             // An argument is a fresh variable (an output argument): the
@@ -197,13 +196,13 @@ impl Gen<'_> {
             let v = self.nat_value(&Build::Reg(r), regs)?;
             let e = v.e;
             let x = format_ident!("s{}", k);
-            saved_terms.push(quote!(let #x = #rt::native::Native::to_term(&#e, cx.store());));
+            saved_terms.push(quote!(let #x = Native::to_term(&#e, cx.store());));
             saved_names.push(x);
         }
         let saved_value = if saved.is_empty() {
-            quote!(#rt::Term::NIL)
+            quote!(Term::NIL)
         } else {
-            quote!(cx.compound(#rt::atoms::DOT, &[#(#saved_names),*]))
+            quote!(cx.compound(atoms::DOT, &[#(#saved_names),*]))
         };
         // The call given to the machine, as the term code gives it.
         let hand_call = quote! {
@@ -211,12 +210,12 @@ impl Gen<'_> {
             cx.count_transitions(count);
             #(#id_stmts)*
             cx.enter_with_id(#curl, #id);
-            #(let #ts = #rt::native::Native::to_term(&#vs, cx.store());)*
-            let call = #rt::native::compound(cx.store(), #f, &[#(#ts),*]);
+            #(let #ts = Native::to_term(&#vs, cx.store());)*
+            let call = native::compound(cx.store(), #f, &[#(#ts),*]);
             #(#saved_terms)*
             let saved = #saved_value;
-            return ::std::result::Result::Ok(::std::option::Option::Some(
-                #rt::machine::Step::Call { call, saved },
+            return Ok(Some(
+                Step::Call { call, saved },
             ));
         };
         let Some(plan) = self.nat_call_plan(d, ix) else {
@@ -267,7 +266,7 @@ impl Gen<'_> {
             // pushes it: the callee's entries nest in the caller's).
             if !run.records && stack.len() < cx.depth_room() {
                 let callee = super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} };
-                *call = ::std::option::Option::Some(super::NatFrame::#callee_v(callee));
+                *call = Some(super::NatFrame::#callee_v(callee));
                 done = true;
                 break 'visit Nat::#wv { #(#wf),* };
             }
@@ -279,7 +278,6 @@ impl Gen<'_> {
     /// term code gives it, its term built from native values and the
     /// fresh variables made for the visit (`fresh_r<r>`, terms).
     fn nat_call_on_terms(&self, d: &Dm, ix: usize, regs: &Regs) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let KindPlan::Recursive {
             call,
             eval_call,
@@ -306,16 +304,15 @@ impl Gen<'_> {
                 Some((f, _)) if super::is_fresh(f) => saved_terms.push(quote!(let #x = #f;)),
                 _ => {
                     let e = self.nat_value(&Build::Reg(r), regs)?.e;
-                    saved_terms
-                        .push(quote!(let #x = #rt::native::Native::to_term(&#e, cx.store());));
+                    saved_terms.push(quote!(let #x = Native::to_term(&#e, cx.store());));
                 }
             }
             saved_names.push(x);
         }
         let saved_value = if saved.is_empty() {
-            quote!(#rt::Term::NIL)
+            quote!(Term::NIL)
         } else {
-            quote!(cx.compound(#rt::atoms::DOT, &[#(#saved_names),*]))
+            quote!(cx.compound(atoms::DOT, &[#(#saved_names),*]))
         };
         Ok(quote! {
             #hand
@@ -326,15 +323,14 @@ impl Gen<'_> {
             let call = #call_t;
             #(#saved_terms)*
             let saved = #saved_value;
-            return ::std::result::Result::Ok(::std::option::Option::Some(
-                #rt::machine::Step::Call { call, saved },
+            return Ok(Some(
+                Step::Call { call, saved },
             ));
         })
     }
 
     /// The waiting variant of situation `ix` when it is recursive.
     pub(super) fn nat_wait_variant(&self, d: &Dm, ix: usize) -> N<Option<Wait>> {
-        let rt = quote!(::sitlog_runtime);
         let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
             return Ok(None);
         };
@@ -353,8 +349,8 @@ impl Gen<'_> {
             self.store.writeq(self.nat_id_of(d, ix))
         );
         let variant = quote!(#[doc = #doc] #wv { #(#decls),* },);
-        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(store))?;
-        let id_arm = quote!(Nat::#wv { #(#names),* } => { #(#id_stmts)* #id });
+        let id = self.nat_id_value(d, ix, quote!(store))?;
+        let id_arm = quote!(Nat::#wv { #(#names),* } => #id,);
         let exit_arm = match self.nat_call_plan(d, ix) {
             Some(plan) => {
                 let exit = plan.exit;
@@ -371,16 +367,16 @@ impl Gen<'_> {
             let rr = reg(r);
             let x = format_ident!("s{}", k);
             if names.contains(&rr) {
-                saved_terms.push(quote!(let #x = #rt::native::Native::to_term(&*#rr, cx.store());));
+                saved_terms.push(quote!(let #x = Native::to_term(&*#rr, cx.store());));
             } else {
                 return Err("a saved register is not kept".into());
             }
             saved_names.push(x);
         }
         let saved_value = if saved.is_empty() {
-            quote!(#rt::Term::NIL)
+            quote!(Term::NIL)
         } else {
-            quote!(cx.compound(#rt::atoms::DOT, &[#(#saved_names),*]))
+            quote!(cx.compound(atoms::DOT, &[#(#saved_names),*]))
         };
         let wait_arm = quote! {
             Nat::#wv { #(#names),* } => {
@@ -483,7 +479,7 @@ impl Gen<'_> {
                 let il = Literal::usize_unsuffixed(i);
                 arcs_code.push(quote! {
                     if #cond {
-                        let arc_at = ::std::option::Option::Some(#il);
+                        let arc_at = Some(#il);
                         #(#lets)*
                         #action
                         count += 1;
@@ -501,9 +497,9 @@ impl Gen<'_> {
         }
         let body = quote! {
             let super::NatFrame::#callee_v(done_frame) = ret else {
-                return ::std::result::Result::Err(cx.error(
+                return Err(cx.error(
                     "native code resumed a caller with another DM's frame",
-                    ::std::option::Option::None,
+                    None,
                 ));
             };
             let final_at = done_frame.at;
@@ -519,10 +515,10 @@ impl Gen<'_> {
             let final_id = final_at.id_term(p, cx.store());
             cx.set_expectations(&[]);
             return match cx.choose_exit(final_id) {
-                ::std::result::Result::Err(e) => ::std::result::Result::Err(e),
-                ::std::result::Result::Ok(_) => ::std::result::Result::Err(cx.error(
+                Err(e) => Err(e),
+                Ok(_) => Err(cx.error(
                     "native exit arcs disagree with the machine's",
-                    ::std::option::Option::None,
+                    None,
                 )),
             };
         };
@@ -668,7 +664,6 @@ impl Gen<'_> {
         action: &Action,
         regs: &mut Regs,
     ) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let hand = &d.hand;
         let curl = Literal::u32_unsuffixed(ix as u32);
         let arc = Literal::usize_unsuffixed(arc_ix);
@@ -704,14 +699,14 @@ impl Gen<'_> {
                     let value = if *op == atoms::INC && lty == Ty::Int {
                         quote! {
                             match #l.checked_add(1) {
-                                ::std::option::Option::Some(v) => { *#l = v; v }
-                                ::std::option::Option::None => {
+                                Some(v) => { *#l = v; v }
+                                None => {
                                     #enter
-                                    return match cx.var_op_fresh(#opa, #namea, ::std::option::Option::Some(#arc)) {
-                                        ::std::result::Result::Err(e) => ::std::result::Result::Err(e),
-                                        ::std::result::Result::Ok(_) => ::std::result::Result::Err(cx.error(
+                                    return match cx.var_op_fresh(#opa, #namea, Some(#arc)) {
+                                        Err(e) => Err(e),
+                                        Ok(_) => Err(cx.error(
                                             "`inc` overflowed in native code only",
-                                            ::std::option::Option::None,
+                                            None,
                                         )),
                                     };
                                 }
@@ -752,20 +747,20 @@ impl Gen<'_> {
             let perform = if list {
                 quote! {
                     #enter
-                    let t = #rt::native::Native::to_term(&#x, cx.store());
-                    cx.perform_each(&[t], ::std::option::Option::Some(#arc))?;
+                    let t = Native::to_term(&#x, cx.store());
+                    cx.perform_each(&[t], Some(#arc))?;
                 }
             } else {
                 quote! {
                     #enter
-                    let t = #rt::native::Native::to_term(&#x, cx.store());
-                    cx.perform(t, ::std::option::Option::Some(#arc))?;
+                    let t = Native::to_term(&#x, cx.store());
+                    cx.perform(t, Some(#arc))?;
                 }
             };
             performs.push(match ty {
                 Ty::Int | Ty::Float => quote!(if !run.quiet_numbers { #perform }),
                 Ty::Sym => quote! {
-                    if !(run.quiet_empty && #x == #rt::atoms::EMPTY) { #perform }
+                    if !(run.quiet_empty && #x == atoms::EMPTY) { #perform }
                 },
                 Ty::Term | Ty::List(_) => perform,
                 _ => return Err("an action of this type".into()),
@@ -780,8 +775,8 @@ impl Gen<'_> {
     /// or its error; an int against a float goes there too).
     pub(super) fn nat_arith(&self, d: &Dm, cur: usize, op: ArithCmp, l: V, r: V) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
-        let some = quote!(::std::option::Option::Some);
-        let none = quote!(::std::option::Option::None::<i64>);
+        let some = quote!(Some);
+        let none = quote!(None::<i64>);
         let as_int = |v: &V, x: &Ident| -> N<TokenStream> {
             Ok(match v.ty {
                 Ty::Int => quote!(#some(#x)),
@@ -792,13 +787,13 @@ impl Gen<'_> {
                 _ => return Err("an arithmetic comparison is not on numbers".into()),
             })
         };
-        let nonef = quote!(::std::option::Option::None::<f64>);
+        let nonef = quote!(None::<f64>);
         let as_float = |v: &V, x: &Ident| -> TokenStream {
             match v.ty {
                 Ty::Float => quote!(#some(#x)),
                 Ty::Term => quote!(cx.store_ref().float_of(#x.0)),
                 ref t if super::held_as_val(t) => quote! {
-                    match &#x { #rt::native::Val::Float(f) => #some(*f), _ => #nonef }
+                    match &#x { Val::Float(f) => #some(*f), _ => #nonef }
                 },
                 _ => nonef.clone(),
             }
@@ -841,8 +836,8 @@ impl Gen<'_> {
                     count = own.min(count);
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
-                    let lt = #rt::native::Native::to_term(&#lx, cx.store());
-                    let rterm = #rt::native::Native::to_term(&#rx, cx.store());
+                    let lt = Native::to_term(&#lx, cx.store());
+                    let rterm = Native::to_term(&#rx, cx.store());
                     cx.arith_condition(#rt::ArithCmp::#opt, lt, rterm, arc_at)?
                 }
             }

@@ -53,7 +53,6 @@ impl Gen<'_> {
     /// The call term of the running frame, from its parameters (bound as
     /// references `p0..`).
     fn nat_call_term(&self, d: &Dm) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let name = self.atom_native(d.dm.name)?;
         let ps: Vec<Ident> = (0..d.params.len())
             .map(|i| format_ident!("p{}", i))
@@ -62,20 +61,19 @@ impl Gen<'_> {
             .map(|i| format_ident!("pt{}", i))
             .collect();
         Ok(quote! {{
-            #(let #ts = #rt::native::Native::to_term(&*#ps, cx.store());)*
-            #rt::native::compound(cx.store(), #name, &[#(#ts),*])
+            #(let #ts = Native::to_term(&*#ps, cx.store());)*
+            native::compound(cx.store(), #name, &[#(#ts),*])
         }})
     }
 
     /// The locals written back to the machine's frame of this DM.
     fn nat_write_locals(&self, d: &Dm) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let mut out = Vec::new();
         for (i, (name, _)) in d.locals.iter().enumerate() {
             let a = self.atom_native(*name)?;
             let l = format_ident!("l{}", i);
             out.push(quote! {
-                let lt = #rt::native::Native::to_term(&*#l, cx.store());
+                let lt = Native::to_term(&*#l, cx.store());
                 cx.set_local(#a, lt);
             });
         }
@@ -100,7 +98,6 @@ impl Gen<'_> {
 
     /// `nat_hand_over`, the code of [`Dm::hand`], out of line.
     fn nat_hand_fn(&self, d: &Dm) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let call = self.nat_call_term(d)?;
         let dm = Literal::u32_unsuffixed(d.ix as u32);
         let locals = self.nat_write_locals(d)?;
@@ -120,17 +117,17 @@ impl Gen<'_> {
             #[allow(unused_variables, unused_braces, clippy::all)]
             fn nat_hand_over(
                 p: &super::Program,
-                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
-                stack: &mut ::std::vec::Vec<super::NatFrame>,
+                cx: &mut Cx<'_, '_, super::Program>,
+                stack: &mut Vec<super::NatFrame>,
                 #(#names: &#tys,)*
-            ) -> ::std::result::Result<(), #rt::machine::RunError> {
+            ) -> Result<(), RunError> {
                 let a = &p.atoms;
                 if !stack.is_empty() {
                     let own_call = #call;
                     super::nat_materialize(p, cx, stack, own_call, #dm)?;
                 }
                 #locals
-                ::std::result::Result::Ok(())
+                Ok(())
             }
         })
     }
@@ -139,7 +136,6 @@ impl Gen<'_> {
     /// (`wait_arms`: per recursive situation, its waiting variant made a
     /// machine frame's pending situation).
     pub(super) fn nat_frame_items(&self, d: &Dm, wait_arms: &[TokenStream]) -> N<FrameItems> {
-        let rt = quote!(::sitlog_runtime);
         let mut names = Vec::new();
         let mut decls = Vec::new();
         for (i, ty) in d.params.iter().enumerate() {
@@ -169,9 +165,9 @@ impl Gen<'_> {
             #[allow(unused_variables, unused_braces, clippy::all)]
             pub(crate) fn nat_call_term(
                 p: &super::Program,
-                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                cx: &mut Cx<'_, '_, super::Program>,
                 frame: &Frame,
-            ) -> #rt::Term {
+            ) -> Term {
                 let a = &p.atoms;
                 let Frame { #(#names,)* .. } = frame;
                 #call
@@ -184,19 +180,19 @@ impl Gen<'_> {
             #[allow(unused_variables, unreachable_code, unreachable_patterns, clippy::all)]
             pub(crate) fn nat_wait(
                 p: &super::Program,
-                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                cx: &mut Cx<'_, '_, super::Program>,
                 frame: &Frame,
-                callee: #rt::Term,
-                callee_dm: #rt::machine::DmIx,
-            ) -> ::std::result::Result<(), #rt::machine::RunError> {
+                callee: Term,
+                callee_dm: DmIx,
+            ) -> Result<(), RunError> {
                 let a = &p.atoms;
                 let Frame { #(#names,)* at } = frame;
                 #locals
                 match at {
                     #(#wait_arms)*
-                    _ => ::std::result::Result::Err(cx.error(
+                    _ => Err(cx.error(
                         "native code handed over a frame that waits for no DM",
-                        ::std::option::Option::None,
+                        None,
                     )),
                 }
             }
@@ -239,7 +235,6 @@ impl Gen<'_> {
     /// The program's native driver (see the module doc); nothing when no
     /// DM is native.
     pub(in crate::codegen) fn native_driver(&self, ir: &Ir, mods: &[Ident]) -> TokenStream {
-        let rt = quote!(::sitlog_runtime);
         let native: Vec<usize> = (0..ir.dms.len()).filter(|&d| self.native_ok(d).0).collect();
         if native.is_empty() {
             return quote!();
@@ -269,27 +264,27 @@ impl Gen<'_> {
                 fn step(
                     &mut self,
                     p: &Program,
-                    cx: &mut #rt::machine::Cx<'_, '_, Program>,
-                    ret: ::std::option::Option<NatFrame>,
-                    stack: &mut ::std::vec::Vec<NatFrame>,
-                    call: &mut ::std::option::Option<NatFrame>,
-                    run: &#rt::machine::TypedRun,
-                ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
+                    cx: &mut Cx<'_, '_, Program>,
+                    ret: Option<NatFrame>,
+                    stack: &mut Vec<NatFrame>,
+                    call: &mut Option<NatFrame>,
+                    run: &TypedRun,
+                ) -> Result<Option<Step>, RunError> {
                     match self { #(NatFrame::#vs(f) => #ms::nat_step(p, cx, f, ret, stack, call, run),)* }
                 }
-                fn call_term(&self, p: &Program, cx: &mut #rt::machine::Cx<'_, '_, Program>) -> #rt::Term {
+                fn call_term(&self, p: &Program, cx: &mut Cx<'_, '_, Program>) -> Term {
                     match self { #(NatFrame::#vs(f) => #ms::nat_call_term(p, cx, f),)* }
                 }
-                fn dm(&self) -> #rt::machine::DmIx {
+                fn dm(&self) -> DmIx {
                     match self { #(NatFrame::#vs(_) => #ixs,)* }
                 }
                 fn wait(
                     &self,
                     p: &Program,
-                    cx: &mut #rt::machine::Cx<'_, '_, Program>,
-                    callee: #rt::Term,
-                    callee_dm: #rt::machine::DmIx,
-                ) -> ::std::result::Result<(), #rt::machine::RunError> {
+                    cx: &mut Cx<'_, '_, Program>,
+                    callee: Term,
+                    callee_dm: DmIx,
+                ) -> Result<(), RunError> {
                     match self { #(NatFrame::#vs(f) => #ms::nat_wait(p, cx, f, callee, callee_dm),)* }
                 }
             }
@@ -299,32 +294,32 @@ impl Gen<'_> {
             #[allow(clippy::all)]
             pub(crate) fn nat_drive(
                 p: &Program,
-                cx: &mut #rt::machine::Cx<'_, '_, Program>,
+                cx: &mut Cx<'_, '_, Program>,
                 base: NatFrame,
-                run: &#rt::machine::TypedRun,
-            ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
-                let mut stack: ::std::vec::Vec<NatFrame> = ::std::vec::Vec::new();
+                run: &TypedRun,
+            ) -> Result<Step, RunError> {
+                let mut stack: Vec<NatFrame> = Vec::new();
                 let mut top = base;
-                let mut ret = ::std::option::Option::None;
-                let mut call = ::std::option::Option::None;
+                let mut ret = None;
+                let mut call = None;
                 loop {
-                    if let ::std::option::Option::Some(step) =
+                    if let Some(step) =
                         top.step(p, cx, ret.take(), &mut stack, &mut call, run)?
                     {
-                        return ::std::result::Result::Ok(step);
+                        return Ok(step);
                     }
                     match call.take() {
-                        ::std::option::Option::Some(callee) => {
+                        Some(callee) => {
                             stack.push(::std::mem::replace(&mut top, callee));
                         }
-                        ::std::option::Option::None => match stack.pop() {
-                            ::std::option::Option::Some(caller) => {
-                                ret = ::std::option::Option::Some(::std::mem::replace(&mut top, caller));
+                        None => match stack.pop() {
+                            Some(caller) => {
+                                ret = Some(::std::mem::replace(&mut top, caller));
                             }
-                            ::std::option::Option::None => {
-                                return ::std::result::Result::Err(cx.error(
+                            None => {
+                                return Err(cx.error(
                                     "native code ended its base DM without handing over",
-                                    ::std::option::Option::None,
+                                    None,
                                 ));
                             }
                         },
@@ -337,11 +332,11 @@ impl Gen<'_> {
             #[allow(clippy::all)]
             pub(crate) fn nat_materialize(
                 p: &Program,
-                cx: &mut #rt::machine::Cx<'_, '_, Program>,
-                stack: &mut ::std::vec::Vec<NatFrame>,
-                top: #rt::Term,
-                top_dm: #rt::machine::DmIx,
-            ) -> ::std::result::Result<(), #rt::machine::RunError> {
+                cx: &mut Cx<'_, '_, Program>,
+                stack: &mut Vec<NatFrame>,
+                top: Term,
+                top_dm: DmIx,
+            ) -> Result<(), RunError> {
                 let frames = ::std::mem::take(stack);
                 let n = frames.len();
                 for i in 0..n {
@@ -352,7 +347,7 @@ impl Gen<'_> {
                     };
                     frames[i].wait(p, cx, callee, callee_dm)?;
                 }
-                ::std::result::Result::Ok(())
+                Ok(())
             }
         }
     }
