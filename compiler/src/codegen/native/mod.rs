@@ -97,8 +97,10 @@
 //! What is not (yet) native keeps a situation on its term code: an
 //! evaluated DM call, an in_arg that is a pattern, `prog`, expectations that change variables,
 //! conditional expressions (`A -> B ; C` as a value), a register read
-//! natively before it is set, narrowing a `ground` value to a shape,
-//! arithmetic other than integer comparisons. `--explain-types` says which
+//! natively before it is set, narrowing a `ground` value to a list or a
+//! compound, arithmetic other than integer comparisons. (A `ground` value
+//! selecting a situation whose id field is an atom or an int is narrowed
+//! with a check, `narrow`; when it is another shape the machine selects.) `--explain-types` says which
 //! and why, per situation.
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
@@ -348,6 +350,13 @@ enum MatchStep {
     SplitVal(TokenStream, Ident, Ident),
     /// The arguments of a `Val` that is `name/arity`, each a `Val`.
     ArgsVal(TokenStream, TokenStream, Literal, Vec<Ident>),
+    /// `let Some(NAME) = EXPR else { the machine selects }`: a value held
+    /// wider than the field it binds (`ground` into an `atom` field),
+    /// narrowed with a check ([`narrow`]). The pattern variable takes any
+    /// value, so when the check fails this candidate would still be the
+    /// machine's choice: the value is handed to the machine, never tried
+    /// on a later candidate.
+    Narrow(Ident, TokenStream),
 }
 
 /// The DM's native code, for the module.
@@ -2166,6 +2175,10 @@ impl Gen<'_> {
                 code = match s {
                     MatchStep::If(c) => quote!(if #c { #code }),
                     MatchStep::Let(x, e) => quote!({ let #x = #e; #code }),
+                    MatchStep::Narrow(x, e) => quote! {{
+                        let ::std::option::Option::Some(#x) = #e else { break 'hand; };
+                        #code
+                    }},
                     MatchStep::Args(v, f, arity, xs) => quote! {
                         if let ::std::option::Option::Some(&[#(#xs),*]) =
                             cx.store_ref().compound_args(#v.0, #f, #arity)
@@ -2203,7 +2216,7 @@ impl Gen<'_> {
         Ok(quote! {
             'sel: {
                 #(#lets)*
-                #(#candidates)*
+                'hand: { #(#candidates)* }
                 // No situation takes it here: the machine selects (or says
                 // that none does).
                 #hand
@@ -2251,14 +2264,17 @@ impl Gen<'_> {
                 let r = Self::nat_id_reg(d, j, path).ok_or("an id variable has no register")?;
                 let ty = d.types[j].regs[r as usize].ty.clone();
                 let x = format_ident!("f{}", r);
-                let val = coerce(
-                    &V {
-                        e: quote!(#e.clone()),
-                        ty: v.ty.clone(),
+                let from = V {
+                    e: quote!(#e.clone()),
+                    ty: v.ty.clone(),
+                };
+                match coerce(&from, &ty) {
+                    Ok(val) => steps.push(MatchStep::Let(x.clone(), val)),
+                    Err(e) => match narrow(&from, &ty) {
+                        Some(val) => steps.push(MatchStep::Narrow(x.clone(), val)),
+                        None => return Err(e),
                     },
-                    &ty,
-                )?;
-                steps.push(MatchStep::Let(x.clone(), val));
+                }
                 vars.insert(var.index(), (x, ty));
                 Ok(true)
             }
@@ -2527,6 +2543,25 @@ fn cons(h: V, t: V) -> N<V> {
         e: quote!(<#r>::cons(#head, #tail)),
         ty,
     })
+}
+
+/// `v`, held with a wider type, as a value of the narrower native type
+/// `to` when it is one (an `Option` expression): a `Val` (`ground`) read
+/// as an atom or an integer by its variant, a ground handle (`term`)
+/// converted with the checked conversion. `None` when no check narrows
+/// these types.
+fn narrow(v: &V, to: &Ty) -> Option<TokenStream> {
+    let rt = quote!(::sitlog_runtime);
+    let e = &v.e;
+    match (&v.ty, to) {
+        (Ty::Ground, Ty::Sym) => Some(quote!((#e).sym())),
+        (Ty::Ground, Ty::Int) => Some(quote!((#e).int())),
+        (Ty::Term, to) if to.is_native() && *to != Ty::Never => {
+            let ty = rust_ty(to).ok()?;
+            Some(quote!(<#ty as #rt::native::Native>::from_term(cx.store_ref(), (#e).0)))
+        }
+        _ => None,
+    }
 }
 
 /// `v` as a value of type `to`.
