@@ -48,6 +48,14 @@
 //!   entered in it, its (empty) out_arg, its `diag_mod` (a term built from
 //!   native values: the DM's output arguments) and history entry taken as
 //!   the term code takes them; the caller's exit arcs read that id.
+//!   *Output parameters* (`DmTypes::outputs`: unbound when the DM is
+//!   called, bound by every final's `diag_mod`) are output slots: the frame
+//!   keeps the caller's term (an unbound variable, shown as the term path
+//!   shows it in the DM's id), and a final computes the value it binds as
+//!   a Rust local of the output type (`let o2: Atom = ..`), converted once
+//!   where `diag_mod` hands it to the machine (`Gen::nat_output_slots`). A
+//!   native caller still gets it through the machine: a call with an output
+//!   argument is the machine's call (not pushed natively yet).
 //! - *the history*: where the term code records an entry (an arc: after
 //!   its action, next situation and out_arg; a final), native code records
 //!   the same one (`cx.record`: the situation entered with its id, the
@@ -100,8 +108,8 @@
 //! natively before it is set, narrowing a `ground` value to a list or a
 //! compound, arithmetic other than integer comparisons. (A `ground` value
 //! selecting a situation whose id field is an atom or an int is narrowed
-//! with a check, `narrow`; when it is another shape the machine selects.) `--explain-types` says which
-//! and why, per situation.
+//! with a check, `narrow`; when it is another shape the machine selects.)
+//! `--explain-types` says which and why, per situation.
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 
@@ -280,6 +288,31 @@ fn is_fresh(x: &Ident) -> bool {
         .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
 }
 
+/// The registers of an expression that evaluates to itself built from
+/// them (`Value`, `Built`, compounds of those), pushed to `out`; `false`
+/// when evaluating it does more.
+fn built_regs(e: &Ev, out: &mut Vec<Reg>) -> bool {
+    fn build(b: &Build, out: &mut Vec<Reg>) {
+        match b {
+            Build::Reg(r) => out.push(*r),
+            Build::Const(_) => {}
+            Build::Compound(_, args) => args.iter().for_each(|a| build(a, out)),
+        }
+    }
+    match e {
+        Ev::Value(r) => {
+            out.push(*r);
+            true
+        }
+        Ev::Built(b) => {
+            build(b, out);
+            true
+        }
+        Ev::Compound(_, args) => args.iter().all(|a| built_regs(a, out)),
+        _ => false,
+    }
+}
+
 /// The registers an expression binds (`V is E`, `get(n, V)` of a `V` not
 /// made yet), in evaluation order.
 fn ev_binds(e: &Ev, out: &mut Vec<Reg>) {
@@ -426,6 +459,12 @@ struct Dm<'a> {
     shallow: bool,
     /// The arc's out_arg, set where its next situation is handed over.
     out: std::cell::RefCell<TokenStream>,
+    /// Per parameter, its type when the DM returns if it is an output
+    /// (`DmTypes::outputs`) of a native type, else `None`.
+    outputs: Vec<Option<Ty>>,
+    /// Per parameter: an output that every final with native code binds
+    /// from a Rust local of its output type (`Gen::nat_output_slots`).
+    outs: std::cell::RefCell<Vec<bool>>,
     /// The arc's history entry where its next situation (`rec_next`, a
     /// term) is handed over: made when the history is kept or observed
     /// (`run.records`), as the term code makes it; empty in exit arcs
@@ -727,7 +766,19 @@ impl Gen<'_> {
     fn nat_held(d: &Dm) -> Held {
         let all = !d.native.is_empty() && d.native.iter().all(|&n| n);
         let native = |ty: &Ty| *ty != Ty::Term && rust_ty(ty).is_ok();
-        let params = d.params.iter().map(|ty| all && native(ty)).collect();
+        // An output parameter is held in its output slot, bound at the
+        // final from a Rust value of its output type.
+        let outs = d.outs.borrow();
+        let params = d
+            .params
+            .iter()
+            .enumerate()
+            .map(|(i, ty)| {
+                let out = d.outputs.get(i).is_some_and(Option::is_some)
+                    && outs.get(i).copied().unwrap_or(false);
+                all && (native(ty) || out)
+            })
+            .collect();
         let locals =
             d.dm.locals
                 .iter()
@@ -804,6 +855,15 @@ impl Gen<'_> {
             Ok(l) => (l, true),
             Err(_) => (Vec::new(), false),
         };
+        let outputs: Vec<Option<Ty>> = t
+            .outputs
+            .iter()
+            .map(|o| {
+                o.as_ref()
+                    .map(|o| o.ty.clone())
+                    .filter(|ty| *ty != Ty::Term && ty.is_native() && rust_ty(ty).is_ok())
+            })
+            .collect();
         let mut d = Dm {
             dm,
             plans,
@@ -817,6 +877,8 @@ impl Gen<'_> {
             shallow,
             out: std::cell::RefCell::new(quote!()),
             rec: std::cell::RefCell::new(quote!()),
+            outputs: outputs.clone(),
+            outs: std::cell::RefCell::new(outputs.iter().map(Option::is_some).collect()),
         };
         d.hand = self.nat_hand(&d)?;
         // Each situation's code, given which others have native code (a
@@ -1046,14 +1108,38 @@ impl Gen<'_> {
                 // a term built from native values at that boundary.
                 let diag = match diag_mod {
                     Some(b) => {
-                        let mut ts = Vec::new();
+                        let (mut ts, slots) = self.nat_output_slots(d, b, &regs);
                         let mut n = 0;
-                        let t = self
-                            .nat_build_term(b, &regs, &mut ts, &mut n)
-                            .map_err(|e| format!("its diag_mod: {e}"))?;
+                        let t = match b {
+                            Build::Compound(f, args) if slots.iter().any(Option::is_some) => {
+                                let mut parts = Vec::new();
+                                for (a, slot) in args.iter().zip(&slots) {
+                                    parts.push(match slot {
+                                        Some(o) => {
+                                            let x = format_ident!("{}_t", o);
+                                            ts.push(quote!(let #x = #rt::native::Native::to_term(&#o, cx.store());));
+                                            quote!(#x)
+                                        }
+                                        None => self
+                                            .nat_build_term(a, &regs, &mut ts, &mut n)
+                                            .map_err(|e| format!("its diag_mod: {e}"))?,
+                                    });
+                                }
+                                let f = self.functor_native(*f)?;
+                                ts.push(quote!(let diag_t = #rt::native::compound(cx.store(), #f, &[#(#parts),*]);));
+                                quote!(diag_t)
+                            }
+                            b => self
+                                .nat_build_term(b, &regs, &mut ts, &mut n)
+                                .map_err(|e| format!("its diag_mod: {e}"))?,
+                        };
                         quote!(#(#ts)* cx.diag_mod(#t)?;)
                     }
-                    None => quote!(),
+                    None => {
+                        // No output bound here: none is held.
+                        d.outs.borrow_mut().iter_mut().for_each(|o| *o = false);
+                        quote!()
+                    }
                 };
                 let v = variant(ix);
                 let names = fields.iter().map(|(r, _)| reg(*r));
@@ -1106,7 +1192,7 @@ impl Gen<'_> {
             }
             (KindPlan::Perceptual(arcs), kind) => {
                 let single = kind == Kind::Perceptual && arcs.always_first && arcs.arcs.len() == 1;
-                if !single && !arcs.pure {
+                if !single && !arcs.pure && !self.nat_pure_arcs(arcs, &regs) {
                     return Err("its expectations can change variables".into());
                 }
                 let mut regs = regs.clone();
@@ -1235,6 +1321,32 @@ impl Gen<'_> {
             }
             (KindPlan::Recursive { .. }, _) => Err("a recursive plan of another kind".into()),
         }
+    }
+
+    /// Whether matching the arcs' expectations can bind only the arcs' own
+    /// fresh variables, although the MIR says they may change the
+    /// situation's (`Arcs::pure` false: `hands(_, Object)` names the
+    /// situation's `Object`): each expectation is built (nothing
+    /// evaluated) and every situation variable in it is held natively
+    /// here, a value, so ground: unifying cannot bind it.
+    fn nat_pure_arcs(&self, arcs: &crate::mir::Arcs, regs: &Regs) -> bool {
+        arcs.arcs.iter().all(|arc| {
+            let mut used = Vec::new();
+            if !built_regs(&arc.expectation, &mut used) {
+                return false;
+            }
+            used.iter().all(|r| {
+                let Some(k) = r.checked_sub(arc.import_at) else {
+                    return true;
+                };
+                let Some(from) = arc.import_from.get(k as usize) else {
+                    return true; // the arc's own variable
+                };
+                regs.get(from).is_some_and(|(x, ty)| {
+                    !is_fresh(x) && *ty != Ty::Term && ty.is_native() && rust_ty(ty).is_ok()
+                })
+            })
+        })
     }
 
     /// A `prog` of `V is E` elements (`V` not set yet, `E` integer `+`, `-`,
@@ -1547,6 +1659,51 @@ impl Gen<'_> {
             });
         }
         Ok(quote!(#(#out)*))
+    }
+
+    /// A final's output slots: for each output parameter of the DM
+    /// (`DmTypes::outputs`: unbound when called, bound by every final's
+    /// `diag_mod`) whose output type is native, the value this final binds
+    /// it to as a Rust local of that type (`let o2: Atom = ..;`), computed
+    /// from the visit's native values; the `diag_mod` term then takes it
+    /// there (`Native::to_term`, the one conversion, at the boundary).
+    /// An output this final cannot compute so (a value of another shape, a
+    /// fresh variable) is built as before and marks the parameter not held
+    /// (`Dm::outs`).
+    fn nat_output_slots(
+        &self,
+        d: &Dm,
+        b: &Build,
+        regs: &Regs,
+    ) -> (Vec<TokenStream>, Vec<Option<Ident>>) {
+        let mut stmts = Vec::new();
+        let args: &[Build] = match b {
+            Build::Compound(name, args) if *name == d.dm.name && args.len() == d.dm.arity => args,
+            _ => {
+                d.outs.borrow_mut().iter_mut().for_each(|o| *o = false);
+                return (stmts, Vec::new());
+            }
+        };
+        let mut slots = vec![None; args.len()];
+        let mut outs = d.outs.borrow_mut();
+        for (i, a) in args.iter().enumerate() {
+            let Some(Some(ty)) = d.outputs.get(i) else {
+                continue;
+            };
+            let slot = self.nat_value(a, regs).and_then(|v| {
+                let e = coerce(&v, ty)?;
+                Ok((e, rust_ty(ty)?))
+            });
+            match slot {
+                Ok((e, rt)) => {
+                    let o = format_ident!("o{}", i);
+                    stmts.push(quote!(let #o: #rt = #e;));
+                    slots[i] = Some(o);
+                }
+                Err(_) => outs[i] = false,
+            }
+        }
+        (stmts, slots)
     }
 
     /// The term of `b` built from native values (a boundary: an effector's
