@@ -1815,8 +1815,83 @@ impl Gen<'_> {
                 ts.push(quote!(let #x = cx.is(::std::option::Option::Some(#l), #e, arc_at)?;));
                 Ok(quote!(#x))
             }
-            Ev::If(..) => Err("a conditional expression is not native yet".into()),
+            // `(C -> A ; otherwise -> B)` as a value: `C` decided here
+            // (`==`/`\==`, [`Gen::nat_cond_term`]), then only the branch
+            // taken is built and evaluated, in the evaluator's order.
+            Ev::If(c, a, b) => {
+                let mut binds = Vec::new();
+                ev_binds(a, &mut binds);
+                ev_binds(b, &mut binds);
+                if !binds.is_empty() {
+                    return Err("a conditional expression binds a variable".into());
+                }
+                let c = self.nat_cond_term(c, regs, ts, n)?;
+                let (mut ta, mut tb) = (Vec::new(), Vec::new());
+                let ea = self.nat_ev_term(a, regs, &mut ta, n)?;
+                let eb = self.nat_ev_term(b, regs, &mut tb, n)?;
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = if #c { #(#ta)* #ea } else { #(#tb)* #eb };));
+                Ok(quote!(#x))
+            }
         }
+    }
+
+    /// The condition `L == R` or `L \== R` of a conditional expression
+    /// where an action is evaluated (the machine entered, `arc_at` in
+    /// scope): a `bool` expression, statements pushed to `ts`. Native
+    /// values compare in Rust ([`identical`]); otherwise each side that is
+    /// not a native value is built and evaluated as the evaluator's
+    /// `condition` evaluates it (`cx.eval`: a fresh variable an earlier
+    /// element bound gives its value, `apply(..)` its function's), and the
+    /// terms compare with the store's `==`.
+    fn nat_cond_term(
+        &self,
+        c: &Cond,
+        regs: &Regs,
+        ts: &mut Vec<TokenStream>,
+        n: &mut usize,
+    ) -> N<TokenStream> {
+        let rt = quote!(::sitlog_runtime);
+        let Cond::Other(Build::Compound(op, args)) = c else {
+            return Err("a condition is not `==` or `\\==`".into());
+        };
+        if args.len() != 2 || !matches!(op.as_str(), "==" | "\\==") {
+            return Err("a condition is not `==` or `\\==`".into());
+        }
+        let native = (
+            self.nat_value(&args[0], regs),
+            self.nat_value(&args[1], regs),
+        );
+        let same = match native {
+            (Ok(l), Ok(r)) if identical(&l, &r).is_some() => identical(&l, &r).unwrap_or_default(),
+            _ => {
+                let mut sides = Vec::new();
+                for a in args.iter() {
+                    let t = match self.nat_value(a, regs) {
+                        Ok(v) if v.ty.is_native() && v.ty != Ty::Term => {
+                            let e = v.e;
+                            quote!(#rt::native::Native::to_term(&#e, cx.store()))
+                        }
+                        _ => {
+                            let t = self.nat_build_term(a, regs, ts, n)?;
+                            quote!(cx.eval(#t, arc_at)?)
+                        }
+                    };
+                    let x = format_ident!("b{}", *n);
+                    *n += 1;
+                    ts.push(quote!(let #x = #t;));
+                    sides.push(x);
+                }
+                let (l, r) = (&sides[0], &sides[1]);
+                quote!(cx.store_ref().identical(#l, #r))
+            }
+        };
+        Ok(if op.as_str() == "==" {
+            same
+        } else {
+            quote!((!#same))
+        })
     }
 
     /// A constant term (atoms, numbers, compounds of them), built.
@@ -2000,8 +2075,33 @@ impl Gen<'_> {
                 let t = self.nat_value(&args[1], regs)?;
                 cons(h, t)
             }
-            Build::Compound(..) => Err("a compound value is not native yet".into()),
+            Build::Compound(name, args) => {
+                let parts = args
+                    .iter()
+                    .map(|a| self.nat_value(a, regs))
+                    .collect::<N<Vec<_>>>()?;
+                self.nat_compound(*name, parts)
+            }
         }
+    }
+
+    /// `name(parts..)` of native values (not a list cell): a fixed-shape
+    /// compound, a canonical `Val` (`Val::Tagged`, its arguments `Val`s),
+    /// typed `name(T1, ..)` (or `ground` past the depth limit).
+    fn nat_compound(&self, name: Atom, parts: Vec<V>) -> N<V> {
+        let rt = quote!(::sitlog_runtime);
+        if parts.iter().any(|p| p.ty == Ty::Term || !p.ty.is_native()) {
+            return Err("a compound value holds a term".into());
+        }
+        let f = self.atom_native(name)?;
+        let es = parts.iter().map(|p| {
+            let e = &p.e;
+            quote!(#rt::native::IntoVal::into_val(#e))
+        });
+        Ok(V {
+            e: quote!(#rt::native::Val::Tagged(#rt::native::Compound::new(#f, [#(#es),*]))),
+            ty: Ty::tagged(name, parts.iter().map(|p| p.ty.clone()).collect()),
+        })
     }
 
     /// A ground list of atoms or of ints (`[x, y]`, `[1, 2]`) as a native list.
@@ -2071,6 +2171,14 @@ impl Gen<'_> {
                 let h = self.nat_ev_value(&args[0], regs)?;
                 let t = self.nat_ev_value(&args[1], regs)?;
                 cons(h, t)
+            }
+            // A compound that evaluates its arguments only, of native values.
+            Ev::Compound(name, args) => {
+                let parts = args
+                    .iter()
+                    .map(|a| self.nat_ev_value(a, regs))
+                    .collect::<N<Vec<_>>>()?;
+                self.nat_compound(*name, parts)
             }
             _ => Err("an expression is not native yet".into()),
         }
@@ -2158,10 +2266,38 @@ impl Gen<'_> {
                 self.nat_select(d, cur, name, vals, cur_name)
             }
             Next::If(c, a, b) => {
-                let c = self.nat_cond(d, cur, c, regs)?;
+                let (c, pre) = match self.nat_cond(d, cur, c, regs) {
+                    Ok(c) => (c, quote!()),
+                    // A condition the evaluator computes a side of
+                    // (`apply(member_of(_, _), [O, L]) == yes`): the
+                    // machine entered in the situation, as for a next
+                    // situation's evaluated part; only in a DM without
+                    // locals (the evaluator cannot change the frame's).
+                    Err(e) => {
+                        let mut ts = Vec::new();
+                        let mut n = 0;
+                        let cond = match self.nat_cond_term(c, regs, &mut ts, &mut n) {
+                            Ok(c) if d.locals.is_empty() && d.dm.locals.is_empty() => c,
+                            _ => return Err(e),
+                        };
+                        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+                        let hand = &d.hand;
+                        (
+                            cond,
+                            quote! {
+                                #hand
+                                cx.count_transitions(count);
+                                count = 0;
+                                #(#id_stmts)*
+                                cx.enter_with_id(#curl, #id);
+                                #(#ts)*
+                            },
+                        )
+                    }
+                };
                 let a = self.nat_next(d, cur, a, regs, cur_name)?;
                 let b = self.nat_next(d, cur, b, regs, cur_name)?;
-                Ok(quote!(if #c { #a } else { #b }))
+                Ok(quote!({ #pre if #c { #a } else { #b } }))
             }
             Next::Eval(Ev::Compound(name, args))
                 if args.iter().any(|a| matches!(a, Ev::Eval(_))) =>
@@ -2232,6 +2368,31 @@ impl Gen<'_> {
                 pre.push(self.nat_reload_locals(d, &fallback)?);
                 let sel = self.nat_select(d, cur, *name, vals, cur_name)?;
                 Ok(quote!({ #(#pre)* #sel }))
+            }
+            // A next situation the evaluator computes whole
+            // (`infer(apply(here, []))`, ground): evaluated where the term
+            // code evaluates it, the machine entered in the situation, and
+            // its value handed to the machine, which selects.
+            Next::Eval(Ev::Eval(b)) => {
+                let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+                let hand = &d.hand;
+                let mut ts = Vec::new();
+                let mut n = 0;
+                let t = self.nat_build_term(b, regs, &mut ts, &mut n)?;
+                let out = d.out.borrow().clone();
+                let rec = d.rec.borrow().clone();
+                Ok(quote! {{
+                    #hand
+                    cx.count_transitions(count);
+                    count = 0;
+                    #(#id_stmts)*
+                    cx.enter_with_id(#curl, #id);
+                    #(#ts)*
+                    let rec_next = cx.eval(#t, arc_at)?;
+                    #out
+                    #rec
+                    return cx.goto(rec_next, arc_at).map(::std::option::Option::Some);
+                }})
             }
             Next::Eval(Ev::Compound(name, args)) => {
                 let vals = args
@@ -2679,6 +2840,18 @@ fn cons(h: V, t: V) -> N<V> {
     let ty = match &t.ty {
         Ty::List(e) if **e == Ty::Never => Ty::list(h.ty.clone()),
         Ty::List(e) if **e == h.ty => t.ty.clone(),
+        // Values of different shapes, each held as a `Val` or with a Rust
+        // type of its own: a list of `Val`s (`[take(O, S), deliver(O)]`).
+        Ty::List(e) if e.is_native() && h.ty.is_native() && **e != Ty::Term && h.ty != Ty::Term => {
+            let ty = Ty::list(Ty::Ground);
+            let head = coerce(&h, &Ty::Ground)?;
+            let tail = coerce(&t, &ty)?;
+            let r = rust_ty(&ty)?;
+            return Ok(V {
+                e: quote!(<#r>::cons(#head, #tail)),
+                ty,
+            });
+        }
         // An atom or int among ground terms: its term.
         Ty::List(e) if **e == Ty::Term && matches!(h.ty, Ty::Sym | Ty::Int) => {
             let head = coerce(&h, &Ty::Term)?;
