@@ -196,3 +196,38 @@ diag_mod(give(K, Out),
   ],
   []
 ).
+
+% Boundaries in native code (issue 37, `codegen::native`): an embedded DM
+% call the evaluator computes (`twice/1`, a host function the test
+% registers, gives `[X, X]`), handed to the machine as evaluated; a
+% conditional expression as an action (its condition decided natively or
+% on evaluated sides); a conditional next situation whose condition the
+% evaluator computes a side of; a next situation the evaluator computes
+% whole; compound values and a list of different shapes built natively
+% and selected by a pattern.
+diag_mod(evals(X),
+  [ [ id ==> c, type ==> recursive, embedded_dm ==> search(apply(twice(_), [X]), X),
+      arcs ==> [ found(P) : empty => d(P), not_found : empty => d(none) ] ],
+    [ id ==> d(P), type ==> neutral,
+      arcs ==> [ empty : (P == none -> say(apply(twice(_), [P])) ; otherwise -> say([P, P]))
+                 => (apply(twice(_), [P]) == [a, a] -> e(P) ; otherwise -> got(apply(twice(_), [b]))) ] ],
+    [ id ==> e(P), type ==> neutral,
+      arcs ==> [ empty : [say(P), (apply(twice(_), [P]) \== [P, P] -> say(no) ; otherwise -> say(yes))]
+                 => plan([take(P, 1), deliver(P), P]) ] ],
+    [ id ==> plan([take(Q, N)|Rest]), type ==> neutral, arcs ==> [ empty : say(Rest) => fs(Q) ] ],
+    [ id ==> plan(_), type ==> neutral, arcs ==> [ empty : empty => fs(none) ] ],
+    [ id ==> got([A|_]), type ==> neutral, arcs ==> [ empty : say(A) => fs(A) ] ],
+    [ id ==> fs(_), type ==> final ]
+  ],
+  []
+).
+
+% Expectations naming a situation variable (`said(W)`, `W` a parameter):
+% held natively, a value, so matching cannot bind it; the machine chooses.
+diag_mod(hear(W),
+  [ [ id ==> l, type ==> speech,
+      arcs ==> [ said(W) : say(W) => fs(W), said(X) : empty => fs(X), other : empty => fs(other) ] ],
+    [ id ==> fs(_), type ==> final ]
+  ],
+  []
+).
