@@ -204,7 +204,7 @@ diag_mod(give(K, Out),
 % on evaluated sides); a conditional next situation whose condition the
 % evaluator computes a side of; a next situation the evaluator computes
 % whole; compound values and a list of different shapes built natively
-% and selected by a pattern.
+% and selected by a pattern; conditions that are Prolog goals (`member`).
 diag_mod(evals(X),
   [ [ id ==> c, type ==> recursive, embedded_dm ==> search(apply(twice(_), [X]), X),
       arcs ==> [ found(P) : empty => d(P), not_found : empty => d(none) ] ],
@@ -215,8 +215,10 @@ diag_mod(evals(X),
       arcs ==> [ empty : [say(P), (apply(twice(_), [P]) \== [P, P] -> say(no) ; otherwise -> say(yes))]
                  => plan([take(P, 1), deliver(P), P]) ] ],
     [ id ==> plan([take(Q, N)|Rest]), type ==> neutral, arcs ==> [ empty : say(Rest) => fs(Q) ] ],
-    [ id ==> plan(_), type ==> neutral, arcs ==> [ empty : empty => fs(none) ] ],
-    [ id ==> got([A|_]), type ==> neutral, arcs ==> [ empty : say(A) => fs(A) ] ],
+    [ id ==> plan(_), type ==> neutral,
+      arcs ==> [ empty : (member(X, [a, b]) -> say(in) ; otherwise -> say(out))
+                 => (member(X, [b, c]) -> fs(X) ; otherwise -> fs(none)) ] ],
+    [ id ==> got([A|_]), type ==> neutral, arcs ==> [ empty : say(A) => plan(A) ] ],
     [ id ==> fs(_), type ==> final ]
   ],
   []

@@ -1837,14 +1837,16 @@ impl Gen<'_> {
         }
     }
 
-    /// The condition `L == R` or `L \== R` of a conditional expression
-    /// where an action is evaluated (the machine entered, `arc_at` in
-    /// scope): a `bool` expression, statements pushed to `ts`. Native
-    /// values compare in Rust ([`identical`]); otherwise each side that is
-    /// not a native value is built and evaluated as the evaluator's
-    /// `condition` evaluates it (`cx.eval`: a fresh variable an earlier
-    /// element bound gives its value, `apply(..)` its function's), and the
-    /// terms compare with the store's `==`.
+    /// The condition of a conditional expression where an action or a
+    /// next situation is evaluated (the machine entered, `arc_at` in
+    /// scope): a `bool` expression, statements pushed to `ts`. `==`/`\==`
+    /// of native values compare in Rust ([`identical`]); any other
+    /// condition is decided as the term code decides it
+    /// (`codegen::step`): an arithmetic comparison on its sides evaluated
+    /// (`Cx::arith_condition`), anything else by `Cx::condition` on the
+    /// term built from native values (`member(P, [O, unknown])`,
+    /// `apply(f(_), [X]) == yes`; a fresh variable an earlier element bound
+    /// stands for its value).
     fn nat_cond_term(
         &self,
         c: &Cond,
@@ -1852,46 +1854,37 @@ impl Gen<'_> {
         ts: &mut Vec<TokenStream>,
         n: &mut usize,
     ) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
-        let Cond::Other(Build::Compound(op, args)) = c else {
-            return Err("a condition is not `==` or `\\==`".into());
-        };
-        if args.len() != 2 || !matches!(op.as_str(), "==" | "\\==") {
-            return Err("a condition is not `==` or `\\==`".into());
-        }
-        let native = (
-            self.nat_value(&args[0], regs),
-            self.nat_value(&args[1], regs),
-        );
-        let same = match native {
-            (Ok(l), Ok(r)) if identical(&l, &r).is_some() => identical(&l, &r).unwrap_or_default(),
-            _ => {
-                let mut sides = Vec::new();
-                for a in args.iter() {
-                    let t = match self.nat_value(a, regs) {
-                        Ok(v) if v.ty.is_native() && v.ty != Ty::Term => {
-                            let e = v.e;
-                            quote!(#rt::native::Native::to_term(&#e, cx.store()))
+        let x = format_ident!("b{}", *n);
+        *n += 1;
+        match c {
+            Cond::Other(b) => {
+                if let Build::Compound(op, args) = b {
+                    if args.len() == 2 && matches!(op.as_str(), "==" | "\\==") {
+                        let l = self.nat_value(&args[0], regs);
+                        let r = self.nat_value(&args[1], regs);
+                        if let Some(same) = l.ok().zip(r.ok()).and_then(|(l, r)| identical(&l, &r))
+                        {
+                            return Ok(if op.as_str() == "==" {
+                                same
+                            } else {
+                                quote!((!#same))
+                            });
                         }
-                        _ => {
-                            let t = self.nat_build_term(a, regs, ts, n)?;
-                            quote!(cx.eval(#t, arc_at)?)
-                        }
-                    };
-                    let x = format_ident!("b{}", *n);
-                    *n += 1;
-                    ts.push(quote!(let #x = #t;));
-                    sides.push(x);
+                    }
                 }
-                let (l, r) = (&sides[0], &sides[1]);
-                quote!(cx.store_ref().identical(#l, #r))
+                let t = self.nat_build_term(b, regs, ts, n)?;
+                ts.push(quote!(let #x = cx.condition(#t, arc_at)?;));
             }
-        };
-        Ok(if op.as_str() == "==" {
-            same
-        } else {
-            quote!((!#same))
-        })
+            Cond::Arith(op, l, r) => {
+                let l = self.nat_ev_term(l, regs, ts, n)?;
+                let r = self.nat_ev_term(r, regs, ts, n)?;
+                let op = format_ident!("{}", format!("{op:?}"));
+                ts.push(quote! {
+                    let #x = cx.arith_condition(::sitlog_runtime::ArithCmp::#op, #l, #r, arc_at)?;
+                });
+            }
+        }
+        Ok(quote!(#x))
     }
 
     /// A constant term (atoms, numbers, compounds of them), built.
