@@ -407,6 +407,7 @@ fn native_dms_agree() {
         // expectations naming a parameter.
         native::dm_evals::run_native,
         native::dm_hear::run_native,
+        native::dm_walkv::run_native,
     );
     for main in [
         "main",
@@ -438,6 +439,7 @@ fn native_dms_agree() {
         "evals(a)",
         "evals(b)",
         "evals(f(c))",
+        "walkv",
     ] {
         agree(app, &ir, main, "");
     }

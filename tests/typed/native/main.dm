@@ -233,3 +233,15 @@ diag_mod(hear(W),
   ],
   []
 ).
+
+% A local read by `get` inside a next situation (`walk(get(v, _))`, `v`
+% typed `ground`: `none` or a list): the machine's `get`, its value
+% converted and selected natively.
+diag_mod(walkv,
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : set(v, [a, b]) => w ] ],
+    [ id ==> w, type ==> neutral, arcs ==> [ empty : empty => walk(get(v, _)) ] ],
+    [ id ==> walk([X|Xs]), type ==> neutral, arcs ==> [ empty : say(X) => walk(Xs) ] ],
+    [ id ==> walk([]), type ==> final ]
+  ],
+  [ v ==> none ]
+).

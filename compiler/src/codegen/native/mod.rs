@@ -2293,7 +2293,9 @@ impl Gen<'_> {
                 Ok(quote!({ #pre if #c { #a } else { #b } }))
             }
             Next::Eval(Ev::Compound(name, args))
-                if args.iter().any(|a| matches!(a, Ev::Eval(_))) =>
+                if args.iter().any(|a| {
+                    matches!(a, Ev::Eval(_) | Ev::VarOp { .. } | Ev::VarOpFresh { .. })
+                }) =>
             {
                 // A part the evaluator computes (`confirm(apply(f(_),
                 // [X]))`): given to it as a term built from native values,
@@ -2310,9 +2312,19 @@ impl Gen<'_> {
                 }];
                 let mut n = 0;
                 let mut parts = Vec::new();
+                // A `get(g, _)` part (a local's or global's value read by
+                // the machine, `review`'s `each(get(taken, _))`): the
+                // fresh variable it takes is a term made there.
+                let mut regs = regs.clone();
+                for a in args.iter() {
+                    if let Ev::VarOpFresh { dst, .. } = a {
+                        regs.insert(*dst, (format_ident!("fresh_r{}", dst), Ty::Term));
+                    }
+                }
+                let regs = &regs;
                 for a in args.iter() {
                     match a {
-                        Ev::Eval(_) => {
+                        Ev::Eval(_) | Ev::VarOp { .. } | Ev::VarOpFresh { .. } => {
                             let t = self.nat_ev_term(a, regs, &mut pre, &mut n)?;
                             parts.push(Err(t));
                         }
