@@ -49,8 +49,10 @@ fn functions() -> Functions {
         call.var_op(set)?;
         Ok(Term::atom(atoms::TRUE))
     });
-    // `twice(X)`: `[X, X]` (`typed/native`'s evaluated parts).
+    // `twice(X)`: `[X, X]` (`typed/native`'s evaluated parts); `nofun(_)`
+    // fails.
     f.register("twice", 1, |call, args| Ok(call.store.list(&[args[0], args[0]])));
+    f.register("nofun", 1, |_, _| Err("nofun fails".to_owned()));
     f
 }
 
@@ -408,6 +410,7 @@ fn native_dms_agree() {
         native::dm_evals::run_native,
         native::dm_hear::run_native,
         native::dm_walkv::run_native,
+        native::dm_fails::run_native,
     );
     for main in [
         "main",
@@ -440,6 +443,9 @@ fn native_dms_agree() {
         "evals(b)",
         "evals(f(c))",
         "walkv",
+        "fails(2)",
+        "fails(3)",
+        "fails(1)",
     ] {
         agree(app, &ir, main, "");
     }

@@ -245,3 +245,18 @@ diag_mod(walkv,
   ],
   [ v ==> none ]
 ).
+
+% The evaluator failing where native code evaluates a next situation (no
+% function `nofun/1`): the machine's error, and the failed transition not
+% counted, as on the term path.
+diag_mod(fails(K),
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : empty => (K == 1 -> part ; otherwise -> (K == 2 -> whole ; otherwise -> cond)) ] ],
+    [ id ==> part, type ==> neutral, arcs ==> [ empty : empty => got(apply(nofun(_), [K])) ] ],
+    [ id ==> whole, type ==> neutral, arcs ==> [ empty : empty => got(apply(nofun(_), [x])) ] ],
+    [ id ==> cond, type ==> neutral,
+      arcs ==> [ empty : empty => (apply(nofun(_), [K]) == x -> got(x) ; otherwise -> got(y)) ] ],
+    [ id ==> got(_), type ==> final ]
+  ],
+  []
+).

@@ -1527,7 +1527,9 @@ impl Gen<'_> {
         // longer fits the frame, the rest of the arc runs as the term code
         // runs it (live native values as terms).
         let reloads = atom.is_none() && !d.locals.is_empty();
-        let conv = self.nat_bound_at_boundary(st, &arc.next, &regs, reloads, &rec_entry())?;
+        let enter_id = quote!(#(#id_stmts)* cx.enter_with_id(#cur, #id););
+        let conv =
+            self.nat_bound_at_boundary(st, &arc.next, &regs, reloads, &rec_entry(), &enter_id)?;
         if conv.is_some() && arc.out_arg.is_some() {
             return Err("its arc has an out_arg and a value bound at a boundary".into());
         }
@@ -1943,6 +1945,7 @@ impl Gen<'_> {
         regs: &Regs,
         always: bool,
         rec: &TokenStream,
+        enter: &TokenStream,
     ) -> N<Option<(TokenStream, Vec<(Reg, Ty)>)>> {
         let rt = quote!(::sitlog_runtime);
         let at = quote!(arc_at);
@@ -1971,12 +1974,19 @@ impl Gen<'_> {
             }
         }
         let prelude = Self::prelude(&body);
+        // The arc's transition (counted in `count` when nothing is
+        // recorded) counts once its next situation is computed, as on the
+        // term path: an error evaluating it leaves it out. The machine is
+        // in the situation then (an empty action performed nothing).
         let fallback = quote! {{
-            cx.count_transitions(count);
+            let this = u64::from(!run.records).min(count);
+            cx.count_transitions(count - this);
+            #enter
             #prelude
             #(#lets)*
             #(#stmts)*
             let (next, target) = #v;
+            cx.count_transitions(this);
             let rec_next = next;
             #rec
             return match target {
@@ -2279,8 +2289,11 @@ impl Gen<'_> {
                             cond,
                             quote! {
                                 #hand
-                                cx.count_transitions(count);
-                                count = 0;
+                                // This transition counts once its next situation is computed
+                                // (an error evaluating it leaves it out, as on the term path).
+                                let this = u64::from(!run.records).min(count);
+                                cx.count_transitions(count - this);
+                                count = this;
                                 #(#id_stmts)*
                                 cx.enter_with_id(#curl, #id);
                                 #(#ts)*
@@ -2305,8 +2318,11 @@ impl Gen<'_> {
                 let hand = &d.hand;
                 let mut pre = vec![quote! {
                     #hand
-                    cx.count_transitions(count);
-                    count = 0;
+                    // This transition counts once its next situation is computed
+                    // (an error evaluating it leaves it out, as on the term path).
+                    let this = u64::from(!run.records).min(count);
+                    cx.count_transitions(count - this);
+                    count = this;
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
                 }];
@@ -2345,6 +2361,7 @@ impl Gen<'_> {
                 let out = d.out.borrow().clone();
                 let rec = d.rec.borrow().clone();
                 let fallback = quote! {{
+                    cx.count_transitions(count);
                     let ts = [#(#terms),*];
                     let rec_next = #rt::native::compound(cx.store(), #f, &ts);
                     #out
@@ -2388,12 +2405,16 @@ impl Gen<'_> {
                 let rec = d.rec.borrow().clone();
                 Ok(quote! {{
                     #hand
-                    cx.count_transitions(count);
-                    count = 0;
+                    // This transition counts once its next situation is computed
+                    // (an error evaluating it leaves it out, as on the term path).
+                    let this = u64::from(!run.records).min(count);
+                    cx.count_transitions(count - this);
+                    count = this;
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
                     #(#ts)*
                     let rec_next = cx.eval(#t, arc_at)?;
+                    cx.count_transitions(count);
                     #out
                     #rec
                     return cx.goto(rec_next, arc_at).map(::std::option::Option::Some);
