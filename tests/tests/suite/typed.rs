@@ -51,7 +51,9 @@ fn functions() -> Functions {
     });
     // `twice(X)`: `[X, X]` (`typed/native`'s evaluated parts); `nofun(_)`
     // fails.
-    f.register("twice", 1, |call, args| Ok(call.store.list(&[args[0], args[0]])));
+    f.register("twice", 1, |call, args| {
+        Ok(call.store.list(&[args[0], args[0]]))
+    });
     f.register("nofun", 1, |_, _| Err("nofun fails".to_owned()));
     f
 }
@@ -411,6 +413,8 @@ fn native_dms_agree() {
         native::dm_hear::run_native,
         native::dm_walkv::run_native,
         native::dm_fails::run_native,
+        native::dm_cells::run_native,
+        native::dm_sums::run_native,
     );
     for main in [
         "main",
@@ -446,6 +450,12 @@ fn native_dms_agree() {
         "fails(2)",
         "fails(3)",
         "fails(1)",
+        "cells(a, b)",
+        "cells(a, [b, c])",
+        "cells(a, [])",
+        "cells(f(x), g([y]))",
+        "sums(2)",
+        "sums(5)",
     ] {
         agree(app, &ir, main, "");
     }

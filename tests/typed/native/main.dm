@@ -260,3 +260,25 @@ diag_mod(fails(K),
   ],
   []
 ).
+
+% `[H|T]` of ground values built natively (`Val::cons`): a list when `T` is
+% one, else an improper list (`[a|b]`), matched again by `[Y|Ys]`.
+diag_mod(cells(H, T),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : say([H|T]) => back([H|T]) ] ],
+    [ id ==> back([Y|Ys]), type ==> neutral, arcs ==> [ empty : empty => fs([Y|Ys], Ys) ] ],
+    [ id ==> back(_), type ==> neutral, arcs ==> [ empty : empty => fs(none, none) ] ],
+    [ id ==> fs(_, _), type ==> final ]
+  ],
+  []
+).
+
+% A condition on a compound that evaluates (`N + 1`): not a native value,
+% the machine's condition decides it.
+diag_mod(sums(N),
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : empty => (N + 1 == 3 -> fs(yes) ; otherwise -> fs(took(N, [N]))) ] ],
+    [ id ==> fs(took(M, [M])), type ==> neutral, arcs ==> [ empty : empty => fs(M) ] ],
+    [ id ==> fs(_), type ==> final ]
+  ],
+  []
+).

@@ -102,14 +102,28 @@
 //! - *the pipe* ([`pipe`]): read into a variable in_arg's register with a
 //!   checked conversion, written back where an out_arg sets it.
 //!
-//! What is not (yet) native keeps a situation on its term code: an
-//! evaluated DM call, an in_arg that is a pattern, `prog`, expectations that change variables,
-//! conditional expressions (`A -> B ; C` as a value), a register read
-//! natively before it is set, narrowing a `ground` value to a list or a
-//! compound, arithmetic other than integer comparisons. (A `ground` value
-//! selecting a situation whose id field is an atom or an int is narrowed
-//! with a check, `narrow`; when it is another shape the machine selects.)
-//! `--explain-types` says which and why, per situation.
+//! - *the evaluator's constructs*: an evaluated embedded DM call is built
+//!   from native values and evaluated by `Cx::embedded_dm` (the machine's
+//!   call); a conditional expression (`A -> B ; C`) as an action decides
+//!   its condition in Rust (`==`/`\==` of native values) or as the term
+//!   code does (`Cx::condition`, `Cx::arith_condition` on terms built from
+//!   native values) and builds only the branch taken; so does a
+//!   conditional next situation whose condition Rust cannot decide (the
+//!   machine entered first; DMs without locals); a next situation the
+//!   evaluator computes whole is evaluated and handed to the machine;
+//!   compounds that evaluate to themselves (`take(O, S)`) and `[H|T]` of
+//!   any native values are built as `Val`s (`Val::cons`). An error
+//!   evaluating a next situation leaves its transition uncounted, as on
+//!   the term path.
+//!
+//! What is not (yet) native keeps a situation on its term code: an in_arg
+//! that is a pattern, a `prog` other than `V is E`, expectations that can
+//! change a variable not held natively, a register read natively before it
+//! is set, narrowing a `ground` value to a list or a compound, arithmetic
+//! other than integer comparisons. (A `ground` value selecting a situation
+//! whose id field is an atom or an int is narrowed with a check, `narrow`;
+//! when it is another shape the machine selects.) `--explain-types` says
+//! which and why, per situation.
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 
@@ -2096,6 +2110,15 @@ impl Gen<'_> {
         if parts.iter().any(|p| p.ty == Ty::Term || !p.ty.is_native()) {
             return Err("a compound value holds a term".into());
         }
+        // Only a compound that evaluates to itself (`take(O, S)`, not
+        // `N + 1` or `get(n, _)`, which a condition evaluates).
+        if !sitlog_runtime::eval::evaluates_arguments_only(name, parts.len()) {
+            return Err(format!(
+                "`{}/{}` is evaluated, not a value",
+                name.as_str(),
+                parts.len()
+            ));
+        }
         let f = self.atom_native(name)?;
         let es = parts.iter().map(|p| {
             let e = &p.e;
@@ -2888,6 +2911,17 @@ fn cons(h: V, t: V) -> N<V> {
                 },
                 t,
             );
+        }
+        // A ground tail (`[O|Os]`, `Os` the rest of a `ground` value): a
+        // list, or an improper one (`Val::cons`).
+        Ty::Ground if h.ty.is_native() && h.ty != Ty::Term => {
+            let rt = quote!(::sitlog_runtime);
+            let head = coerce(&h, &Ty::Ground)?;
+            let tail = t.e;
+            return Ok(V {
+                e: quote!(#rt::native::Val::cons(#head, #tail)),
+                ty: Ty::Ground,
+            });
         }
         _ => return Err(format!("`[_|_]` of {} and {}", h.ty, t.ty)),
     };
