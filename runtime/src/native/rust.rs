@@ -221,7 +221,25 @@ impl Val {
     pub fn split_list(&self) -> Option<(Val, Val)> {
         match self {
             Val::List(l) => l.split_first().map(|(h, t)| (h.clone(), Val::List(t))),
+            // A cell whose tail is not a list ([`Val::cons`]).
+            Val::Tagged(c) if c.name() == atoms::DOT && c.args().len() == 2 => {
+                Some((c.args()[0].clone(), c.args()[1].clone()))
+            }
             _ => None,
+        }
+    }
+
+    /// `[head|tail]` of ground values, canonical: a list when `tail` is one
+    /// (sharing it), else the cell `'.'(head, tail)` as a compound (an
+    /// improper list such as `[a|b]`, which a conversion never gives:
+    /// `from_term` takes only proper lists, so only this builds one, and
+    /// two equal terms built so are `==`). [`Val::split_list`] reads both.
+    #[inline]
+    pub fn cons(head: Val, tail: Val) -> Val {
+        match tail {
+            Val::List(l) => Val::List(List::cons(head, l)),
+            Val::Sym(a) if a == atoms::NIL => Val::List(List::cons(head, List::nil())),
+            t => Val::Tagged(super::Compound::new(atoms::DOT, [head, t])),
         }
     }
 

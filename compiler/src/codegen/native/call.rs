@@ -37,6 +37,10 @@ use sitlog_runtime::{ArithCmp, Term, Value};
 use sitlog_syntax::atoms;
 use std::collections::HashMap;
 
+/// Why a call is not native: its DM call is evaluated (given to the
+/// machine on terms, evaluated there by `Cx::embedded_dm`).
+const EVALUATED: &str = "the embedded DM call is evaluated";
+
 /// The waiting variant of a recursive situation and its uses.
 #[derive(Clone)]
 pub(super) struct Wait {
@@ -86,7 +90,7 @@ impl Gen<'_> {
         match call {
             Build::Const(t) => {
                 if *eval_call {
-                    return Err("the embedded DM call is evaluated".into());
+                    return Err(EVALUATED.into());
                 }
                 match self.store.value(*t) {
                     Value::Atom(a) => Ok((a, Vec::new())),
@@ -103,7 +107,7 @@ impl Gen<'_> {
             }
             Build::Compound(name, args) => {
                 if *eval_call && !inert(call) {
-                    return Err("the embedded DM call is evaluated".into());
+                    return Err(EVALUATED.into());
                 }
                 let vals = args
                     .iter()
@@ -172,9 +176,12 @@ impl Gen<'_> {
     pub(super) fn nat_recursive(&self, d: &Dm, ix: usize, regs: &Regs) -> N<TokenStream> {
         let (name, args) = match self.nat_call_values(d, ix, regs) {
             Ok(x) => x,
-            // An argument is a fresh variable (an output argument): the
+            // An argument is a fresh variable (an output argument), or the
+            // call is evaluated (`ask(apply(f(_), [X]), ..)`): the
             // machine's call, on terms.
-            Err(e) if e.starts_with("register r") => return self.nat_call_on_terms(d, ix, regs),
+            Err(e) if e.starts_with("register r") || e == EVALUATED => {
+                return self.nat_call_on_terms(d, ix, regs)
+            }
             Err(e) => return Err(e),
         };
         let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
@@ -287,15 +294,21 @@ impl Gen<'_> {
         else {
             return Err("not a recursive situation".into());
         };
-        if *eval_call && !matches!(call, Build::Const(_)) && !inert(call) {
-            return Err("the embedded DM call is evaluated".into());
-        }
+        // Evaluated as the term code evaluates it (`Cx::embedded_dm`: the
+        // evaluator and user functions at this boundary, on the term built
+        // from native values), in the situation entered.
+        let evaluated = *eval_call && (matches!(call, Build::Const(_)) || !inert(call));
         let curl = Literal::u32_unsuffixed(ix as u32);
         let hand = &d.hand;
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         let mut ts = Vec::new();
         let mut n = 0;
         let call_t = self.nat_build_term(call, regs, &mut ts, &mut n)?;
+        let eval = if evaluated {
+            quote!(let call = cx.embedded_dm(call)?;)
+        } else {
+            quote!()
+        };
         let mut saved_terms = Vec::new();
         let mut saved_names = Vec::new();
         for (k, &r) in saved.iter().enumerate() {
@@ -321,6 +334,7 @@ impl Gen<'_> {
             cx.enter_with_id(#curl, #id);
             #(#ts)*
             let call = #call_t;
+            #eval
             #(#saved_terms)*
             let saved = #saved_value;
             return Ok(Some(

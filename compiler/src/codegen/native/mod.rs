@@ -51,6 +51,14 @@
 //!   entered in it, its (empty) out_arg, its `diag_mod` (a term built from
 //!   native values: the DM's output arguments) and history entry taken as
 //!   the term code takes them; the caller's exit arcs read that id.
+//!   *Output parameters* (`DmTypes::outputs`: unbound when the DM is
+//!   called, bound by every final's `diag_mod`) are output slots: the frame
+//!   keeps the caller's term (an unbound variable, shown as the term path
+//!   shows it in the DM's id), and a final computes the value it binds as
+//!   a Rust local of the output type (`let o2: Atom = ..`), converted once
+//!   where `diag_mod` hands it to the machine (`Gen::nat_output_slots`). A
+//!   native caller still gets it through the machine: a call with an output
+//!   argument is the machine's call (not pushed natively yet).
 //! - *the history*: where the term code records an entry (an arc: after
 //!   its action, next situation and out_arg; a final), native code records
 //!   the same one (`cx.record`: the situation entered with its id, the
@@ -97,12 +105,28 @@
 //! - *the pipe* ([`pipe`]): read into a variable in_arg's register with a
 //!   checked conversion, written back where an out_arg sets it.
 //!
-//! What is not (yet) native keeps a situation on its term code: an
-//! evaluated DM call, an in_arg that is a pattern, `prog`, expectations that change variables,
-//! conditional expressions (`A -> B ; C` as a value), a register read
-//! natively before it is set, narrowing a `ground` value to a shape,
-//! arithmetic other than integer comparisons. `--explain-types` says which
-//! and why, per situation.
+//! - *the evaluator's constructs*: an evaluated embedded DM call is built
+//!   from native values and evaluated by `Cx::embedded_dm` (the machine's
+//!   call); a conditional expression (`A -> B ; C`) as an action decides
+//!   its condition in Rust (`==`/`\==` of native values) or as the term
+//!   code does (`Cx::condition`, `Cx::arith_condition` on terms built from
+//!   native values) and builds only the branch taken; so does a
+//!   conditional next situation whose condition Rust cannot decide (the
+//!   machine entered first; DMs without locals); a next situation the
+//!   evaluator computes whole is evaluated and handed to the machine;
+//!   compounds that evaluate to themselves (`take(O, S)`) and `[H|T]` of
+//!   any native values are built as `Val`s (`Val::cons`). An error
+//!   evaluating a next situation leaves its transition uncounted, as on
+//!   the term path.
+//!
+//! What is not (yet) native keeps a situation on its term code: an in_arg
+//! that is a pattern, a `prog` other than `V is E`, expectations that can
+//! change a variable not held natively, a register read natively before it
+//! is set, narrowing a `ground` value to a list or a compound, arithmetic
+//! other than integer comparisons. (A `ground` value selecting a situation
+//! whose id field is an atom or an int is narrowed with a check, `narrow`;
+//! when it is another shape the machine selects.) `--explain-types` says
+//! which and why, per situation.
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 
@@ -320,6 +344,31 @@ fn is_fresh(x: &Ident) -> bool {
         .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
 }
 
+/// The registers of an expression that evaluates to itself built from
+/// them (`Value`, `Built`, compounds of those), pushed to `out`; `false`
+/// when evaluating it does more.
+fn built_regs(e: &Ev, out: &mut Vec<Reg>) -> bool {
+    fn build(b: &Build, out: &mut Vec<Reg>) {
+        match b {
+            Build::Reg(r) => out.push(*r),
+            Build::Const(_) => {}
+            Build::Compound(_, args) => args.iter().for_each(|a| build(a, out)),
+        }
+    }
+    match e {
+        Ev::Value(r) => {
+            out.push(*r);
+            true
+        }
+        Ev::Built(b) => {
+            build(b, out);
+            true
+        }
+        Ev::Compound(_, args) => args.iter().all(|a| built_regs(a, out)),
+        _ => false,
+    }
+}
+
 /// The registers an expression binds (`V is E`, `get(n, V)` of a `V` not
 /// made yet), in evaluation order.
 fn ev_binds(e: &Ev, out: &mut Vec<Reg>) {
@@ -390,6 +439,13 @@ enum MatchStep {
     SplitVal(TokenStream, Ident, Ident),
     /// The arguments of a `Val` that is `name/arity`, each a `Val`.
     ArgsVal(TokenStream, TokenStream, Literal, Vec<Ident>),
+    /// `let Some(NAME) = EXPR else { the machine selects }`: a value held
+    /// wider than the field it binds (`ground` into an `atom` field),
+    /// narrowed with a check ([`narrow`]). The pattern variable takes any
+    /// value, so when the check fails this candidate would still be the
+    /// machine's choice: the value is handed to the machine, never tried
+    /// on a later candidate.
+    Narrow(Ident, TokenStream),
 }
 
 /// The DM's native code, for the module.
@@ -464,6 +520,12 @@ struct Dm<'a> {
     ids: std::cell::RefCell<std::collections::BTreeSet<usize>>,
     /// Names of the ids built (`id0`, `id1`, ...).
     id_n: std::cell::Cell<usize>,
+    /// Per parameter, its type when the DM returns if it is an output
+    /// (`DmTypes::outputs`) of a native type, else `None`.
+    outputs: Vec<Option<Ty>>,
+    /// Per parameter: an output that every final with native code binds
+    /// from a Rust local of its output type (`Gen::nat_output_slots`).
+    outs: std::cell::RefCell<Vec<bool>>,
     /// The arc's history entry where its next situation (`rec_next`, a
     /// term) is handed over: made when the history is kept or observed
     /// (`run.records`), as the term code makes it; empty in exit arcs
@@ -768,7 +830,19 @@ impl Gen<'_> {
     fn nat_held(d: &Dm) -> Held {
         let all = !d.native.is_empty() && d.native.iter().all(|&n| n);
         let native = |ty: &Ty| *ty != Ty::Term && rust_ty(ty).is_ok();
-        let params = d.params.iter().map(|ty| all && native(ty)).collect();
+        // An output parameter is held in its output slot, bound at the
+        // final from a Rust value of its output type.
+        let outs = d.outs.borrow();
+        let params = d
+            .params
+            .iter()
+            .enumerate()
+            .map(|(i, ty)| {
+                let out = d.outputs.get(i).is_some_and(Option::is_some)
+                    && outs.get(i).copied().unwrap_or(false);
+                all && (native(ty) || out)
+            })
+            .collect();
         let locals =
             d.dm.locals
                 .iter()
@@ -845,6 +919,15 @@ impl Gen<'_> {
             Ok(l) => (l, true),
             Err(_) => (Vec::new(), false),
         };
+        let outputs: Vec<Option<Ty>> = t
+            .outputs
+            .iter()
+            .map(|o| {
+                o.as_ref()
+                    .map(|o| o.ty.clone())
+                    .filter(|ty| *ty != Ty::Term && ty.is_native() && rust_ty(ty).is_ok())
+            })
+            .collect();
         let mut d = Dm {
             dm,
             plans,
@@ -860,6 +943,8 @@ impl Gen<'_> {
             rec: std::cell::RefCell::new(quote!()),
             ids: Default::default(),
             id_n: Default::default(),
+            outputs: outputs.clone(),
+            outs: std::cell::RefCell::new(outputs.iter().map(Option::is_some).collect()),
         };
         d.hand = self.nat_hand(&d)?;
         // Each situation's code, given which others have native code (a
@@ -1167,14 +1252,38 @@ impl Gen<'_> {
                 // a term built from native values at that boundary.
                 let diag = match diag_mod {
                     Some(b) => {
-                        let mut ts = Vec::new();
+                        let (mut ts, slots) = self.nat_output_slots(d, b, &regs);
                         let mut n = 0;
-                        let t = self
-                            .nat_build_term(b, &regs, &mut ts, &mut n)
-                            .map_err(|e| format!("its diag_mod: {e}"))?;
+                        let t = match b {
+                            Build::Compound(f, args) if slots.iter().any(Option::is_some) => {
+                                let mut parts = Vec::new();
+                                for (a, slot) in args.iter().zip(&slots) {
+                                    parts.push(match slot {
+                                        Some(o) => {
+                                            let x = format_ident!("{}_t", o);
+                                            ts.push(quote!(let #x = Native::to_term(&#o, cx.store());));
+                                            quote!(#x)
+                                        }
+                                        None => self
+                                            .nat_build_term(a, &regs, &mut ts, &mut n)
+                                            .map_err(|e| format!("its diag_mod: {e}"))?,
+                                    });
+                                }
+                                let f = self.functor_native(*f)?;
+                                ts.push(quote!(let diag_t = native::compound(cx.store(), #f, &[#(#parts),*]);));
+                                quote!(diag_t)
+                            }
+                            b => self
+                                .nat_build_term(b, &regs, &mut ts, &mut n)
+                                .map_err(|e| format!("its diag_mod: {e}"))?,
+                        };
                         quote!(#(#ts)* cx.diag_mod(#t)?;)
                     }
-                    None => quote!(),
+                    None => {
+                        // No output bound here: none is held.
+                        d.outs.borrow_mut().iter_mut().for_each(|o| *o = false);
+                        quote!()
+                    }
                 };
                 let v = variant(ix);
                 let names = fields.iter().map(|(r, _)| reg(*r));
@@ -1224,7 +1333,7 @@ impl Gen<'_> {
             }
             (KindPlan::Perceptual(arcs), kind) => {
                 let single = kind == Kind::Perceptual && arcs.always_first && arcs.arcs.len() == 1;
-                if !single && !arcs.pure {
+                if !single && !arcs.pure && !self.nat_pure_arcs(arcs, &regs) {
                     return Err("its expectations can change variables".into());
                 }
                 let mut regs = regs.clone();
@@ -1353,6 +1462,32 @@ impl Gen<'_> {
             }
             (KindPlan::Recursive { .. }, _) => Err("a recursive plan of another kind".into()),
         }
+    }
+
+    /// Whether matching the arcs' expectations can bind only the arcs' own
+    /// fresh variables, although the MIR says they may change the
+    /// situation's (`Arcs::pure` false: `hands(_, Object)` names the
+    /// situation's `Object`): each expectation is built (nothing
+    /// evaluated) and every situation variable in it is held natively
+    /// here, a value, so ground: unifying cannot bind it.
+    fn nat_pure_arcs(&self, arcs: &crate::mir::Arcs, regs: &Regs) -> bool {
+        arcs.arcs.iter().all(|arc| {
+            let mut used = Vec::new();
+            if !built_regs(&arc.expectation, &mut used) {
+                return false;
+            }
+            used.iter().all(|r| {
+                let Some(k) = r.checked_sub(arc.import_at) else {
+                    return true;
+                };
+                let Some(from) = arc.import_from.get(k as usize) else {
+                    return true; // the arc's own variable
+                };
+                regs.get(from).is_some_and(|(x, ty)| {
+                    !is_fresh(x) && *ty != Ty::Term && ty.is_native() && rust_ty(ty).is_ok()
+                })
+            })
+        })
     }
 
     /// A `prog` of `V is E` elements (`V` not set yet, `E` integer `+`, `-`,
@@ -1531,7 +1666,9 @@ impl Gen<'_> {
         // longer fits the frame, the rest of the arc runs as the term code
         // runs it (live native values as terms).
         let reloads = atom.is_none() && !d.locals.is_empty();
-        let conv = self.nat_bound_at_boundary(st, &arc.next, &regs, reloads, &rec_entry())?;
+        let enter_id = quote!(#(#id_stmts)* cx.enter_with_id(#cur, #id););
+        let conv =
+            self.nat_bound_at_boundary(st, &arc.next, &regs, reloads, &rec_entry(), &enter_id)?;
         if conv.is_some() && arc.out_arg.is_some() {
             return Err("its arc has an out_arg and a value bound at a boundary".into());
         }
@@ -1677,6 +1814,51 @@ impl Gen<'_> {
         Ok(quote!(#(#out)*))
     }
 
+    /// A final's output slots: for each output parameter of the DM
+    /// (`DmTypes::outputs`: unbound when called, bound by every final's
+    /// `diag_mod`) whose output type is native, the value this final binds
+    /// it to as a Rust local of that type (`let o2: Atom = ..;`), computed
+    /// from the visit's native values; the `diag_mod` term then takes it
+    /// there (`Native::to_term`, the one conversion, at the boundary).
+    /// An output this final cannot compute so (a value of another shape, a
+    /// fresh variable) is built as before and marks the parameter not held
+    /// (`Dm::outs`).
+    fn nat_output_slots(
+        &self,
+        d: &Dm,
+        b: &Build,
+        regs: &Regs,
+    ) -> (Vec<TokenStream>, Vec<Option<Ident>>) {
+        let mut stmts = Vec::new();
+        let args: &[Build] = match b {
+            Build::Compound(name, args) if *name == d.dm.name && args.len() == d.dm.arity => args,
+            _ => {
+                d.outs.borrow_mut().iter_mut().for_each(|o| *o = false);
+                return (stmts, Vec::new());
+            }
+        };
+        let mut slots = vec![None; args.len()];
+        let mut outs = d.outs.borrow_mut();
+        for (i, a) in args.iter().enumerate() {
+            let Some(Some(ty)) = d.outputs.get(i) else {
+                continue;
+            };
+            let slot = self.nat_value(a, regs).and_then(|v| {
+                let e = coerce(&v, ty)?;
+                Ok((e, rust_ty(ty)?))
+            });
+            match slot {
+                Ok((e, rt)) => {
+                    let o = format_ident!("o{}", i);
+                    stmts.push(quote!(let #o: #rt = #e;));
+                    slots[i] = Some(o);
+                }
+                Err(_) => outs[i] = false,
+            }
+        }
+        (stmts, slots)
+    }
+
     /// The term of `b` built from native values (a boundary: an effector's
     /// action, `diag_mod`): statements pushed to `ts`, the term's
     /// expression returned.
@@ -1784,8 +1966,76 @@ impl Gen<'_> {
                 ts.push(quote!(let #x = cx.is(Some(#l), #e, arc_at)?;));
                 Ok(quote!(#x))
             }
-            Ev::If(..) => Err("a conditional expression is not native yet".into()),
+            // `(C -> A ; otherwise -> B)` as a value: `C` decided here
+            // (`==`/`\==`, [`Gen::nat_cond_term`]), then only the branch
+            // taken is built and evaluated, in the evaluator's order.
+            Ev::If(c, a, b) => {
+                let mut binds = Vec::new();
+                ev_binds(a, &mut binds);
+                ev_binds(b, &mut binds);
+                if !binds.is_empty() {
+                    return Err("a conditional expression binds a variable".into());
+                }
+                let c = self.nat_cond_term(c, regs, ts, n)?;
+                let (mut ta, mut tb) = (Vec::new(), Vec::new());
+                let ea = self.nat_ev_term(a, regs, &mut ta, n)?;
+                let eb = self.nat_ev_term(b, regs, &mut tb, n)?;
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = if #c { #(#ta)* #ea } else { #(#tb)* #eb };));
+                Ok(quote!(#x))
+            }
         }
+    }
+
+    /// The condition of a conditional expression where an action or a
+    /// next situation is evaluated (the machine entered, `arc_at` in
+    /// scope): a `bool` expression, statements pushed to `ts`. `==`/`\==`
+    /// of native values compare in Rust ([`identical`]); any other
+    /// condition is decided as the term code decides it
+    /// (`codegen::step`): an arithmetic comparison on its sides evaluated
+    /// (`Cx::arith_condition`), anything else by `Cx::condition` on the
+    /// term built from native values (`member(P, [O, unknown])`,
+    /// `apply(f(_), [X]) == yes`; a fresh variable an earlier element bound
+    /// stands for its value).
+    fn nat_cond_term(
+        &self,
+        c: &Cond,
+        regs: &Regs,
+        ts: &mut Vec<TokenStream>,
+        n: &mut usize,
+    ) -> N<TokenStream> {
+        let x = format_ident!("b{}", *n);
+        *n += 1;
+        match c {
+            Cond::Other(b) => {
+                if let Build::Compound(op, args) = b {
+                    if args.len() == 2 && matches!(op.as_str(), "==" | "\\==") {
+                        let l = self.nat_value(&args[0], regs);
+                        let r = self.nat_value(&args[1], regs);
+                        if let Some(same) = l.ok().zip(r.ok()).and_then(|(l, r)| identical(&l, &r))
+                        {
+                            return Ok(if op.as_str() == "==" {
+                                same
+                            } else {
+                                quote!((!#same))
+                            });
+                        }
+                    }
+                }
+                let t = self.nat_build_term(b, regs, ts, n)?;
+                ts.push(quote!(let #x = cx.condition(#t, arc_at)?;));
+            }
+            Cond::Arith(op, l, r) => {
+                let l = self.nat_ev_term(l, regs, ts, n)?;
+                let r = self.nat_ev_term(r, regs, ts, n)?;
+                let op = format_ident!("{}", format!("{op:?}"));
+                ts.push(quote! {
+                    let #x = cx.arith_condition(::sitlog_runtime::ArithCmp::#op, #l, #r, arc_at)?;
+                });
+            }
+        }
+        Ok(quote!(#x))
     }
 
     /// A constant term (atoms, numbers, compounds of them), built.
@@ -1850,6 +2100,7 @@ impl Gen<'_> {
         regs: &Regs,
         always: bool,
         rec: &TokenStream,
+        enter: &TokenStream,
     ) -> N<Option<(TokenStream, Vec<(Reg, Ty)>)>> {
         let at = quote!(arc_at);
         let mut b = super::step::Body::new();
@@ -1877,12 +2128,19 @@ impl Gen<'_> {
             }
         }
         let prelude = Self::prelude(&body);
+        // The arc's transition (counted in `count` when nothing is
+        // recorded) counts once its next situation is computed, as on the
+        // term path: an error evaluating it leaves it out. The machine is
+        // in the situation then (an empty action performed nothing).
         let fallback = quote! {{
-            cx.count_transitions(count);
+            let this = u64::from(!run.records).min(count);
+            cx.count_transitions(count - this);
+            #enter
             #prelude
             #(#lets)*
             #(#stmts)*
             let (next, target) = #v;
+            cx.count_transitions(this);
             let rec_next = next;
             #rec
             return cx.go(next, target, #at).map(Some);
@@ -1968,8 +2226,41 @@ impl Gen<'_> {
                 let t = self.nat_value(&args[1], regs)?;
                 cons(h, t)
             }
-            Build::Compound(..) => Err("a compound value is not native yet".into()),
+            Build::Compound(name, args) => {
+                let parts = args
+                    .iter()
+                    .map(|a| self.nat_value(a, regs))
+                    .collect::<N<Vec<_>>>()?;
+                self.nat_compound(*name, parts)
+            }
         }
+    }
+
+    /// `name(parts..)` of native values (not a list cell): a fixed-shape
+    /// compound, a canonical `Val` (`Val::Tagged`, its arguments `Val`s),
+    /// typed `name(T1, ..)` (or `ground` past the depth limit).
+    fn nat_compound(&self, name: Atom, parts: Vec<V>) -> N<V> {
+        if parts.iter().any(|p| p.ty == Ty::Term || !p.ty.is_native()) {
+            return Err("a compound value holds a term".into());
+        }
+        // Only a compound that evaluates to itself (`take(O, S)`, not
+        // `N + 1` or `get(n, _)`, which a condition evaluates).
+        if !sitlog_runtime::eval::evaluates_arguments_only(name, parts.len()) {
+            return Err(format!(
+                "`{}/{}` is evaluated, not a value",
+                name.as_str(),
+                parts.len()
+            ));
+        }
+        let f = self.atom_native(name)?;
+        let es = parts.iter().map(|p| {
+            let e = &p.e;
+            quote!(IntoVal::into_val(#e))
+        });
+        Ok(V {
+            e: quote!(Val::Tagged(native::Compound::new(#f, [#(#es),*]))),
+            ty: Ty::tagged(name, parts.iter().map(|p| p.ty.clone()).collect()),
+        })
     }
 
     /// A ground list of atoms or of ints (`[x, y]`, `[1, 2]`) as a native list.
@@ -2038,6 +2329,14 @@ impl Gen<'_> {
                 let h = self.nat_ev_value(&args[0], regs)?;
                 let t = self.nat_ev_value(&args[1], regs)?;
                 cons(h, t)
+            }
+            // A compound that evaluates its arguments only, of native values.
+            Ev::Compound(name, args) => {
+                let parts = args
+                    .iter()
+                    .map(|a| self.nat_ev_value(a, regs))
+                    .collect::<N<Vec<_>>>()?;
+                self.nat_compound(*name, parts)
             }
             _ => Err("an expression is not native yet".into()),
         }
@@ -2124,13 +2423,46 @@ impl Gen<'_> {
                 self.nat_select(d, cur, name, vals, cur_name)
             }
             Next::If(c, a, b) => {
-                let c = self.nat_cond(d, cur, c, regs)?;
+                let (c, pre) = match self.nat_cond(d, cur, c, regs) {
+                    Ok(c) => (c, quote!()),
+                    // A condition the evaluator computes a side of
+                    // (`apply(member_of(_, _), [O, L]) == yes`): the
+                    // machine entered in the situation, as for a next
+                    // situation's evaluated part; only in a DM without
+                    // locals (the evaluator cannot change the frame's).
+                    Err(e) => {
+                        let mut ts = Vec::new();
+                        let mut n = 0;
+                        let cond = match self.nat_cond_term(c, regs, &mut ts, &mut n) {
+                            Ok(c) if d.locals.is_empty() && d.dm.locals.is_empty() => c,
+                            _ => return Err(e),
+                        };
+                        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+                        let hand = &d.hand;
+                        (
+                            cond,
+                            quote! {
+                                #hand
+                                // This transition counts once its next situation is computed
+                                // (an error evaluating it leaves it out, as on the term path).
+                                let this = u64::from(!run.records).min(count);
+                                cx.count_transitions(count - this);
+                                count = this;
+                                #(#id_stmts)*
+                                cx.enter_with_id(#curl, #id);
+                                #(#ts)*
+                            },
+                        )
+                    }
+                };
                 let a = self.nat_next(d, cur, a, regs, cur_name)?;
                 let b = self.nat_next(d, cur, b, regs, cur_name)?;
-                Ok(quote!(if #c { #a } else { #b }))
+                Ok(quote!({ #pre if #c { #a } else { #b } }))
             }
             Next::Eval(Ev::Compound(name, args))
-                if args.iter().any(|a| matches!(a, Ev::Eval(_))) =>
+                if args.iter().any(|a| {
+                    matches!(a, Ev::Eval(_) | Ev::VarOp { .. } | Ev::VarOpFresh { .. })
+                }) =>
             {
                 // A part the evaluator computes (`confirm(apply(f(_),
                 // [X]))`): given to it as a term built from native values,
@@ -2140,16 +2472,29 @@ impl Gen<'_> {
                 let hand = &d.hand;
                 let mut pre = vec![quote! {
                     #hand
-                    cx.count_transitions(count);
-                    count = 0;
+                    // This transition counts once its next situation is computed
+                    // (an error evaluating it leaves it out, as on the term path).
+                    let this = u64::from(!run.records).min(count);
+                    cx.count_transitions(count - this);
+                    count = this;
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
                 }];
                 let mut n = 0;
                 let mut parts = Vec::new();
+                // A `get(g, _)` part (a local's or global's value read by
+                // the machine, `review`'s `each(get(taken, _))`): the
+                // fresh variable it takes is a term made there.
+                let mut regs = regs.clone();
+                for a in args.iter() {
+                    if let Ev::VarOpFresh { dst, .. } = a {
+                        regs.insert(*dst, (format_ident!("fresh_r{}", dst), Ty::Term));
+                    }
+                }
+                let regs = &regs;
                 for a in args.iter() {
                     match a {
-                        Ev::Eval(_) => {
+                        Ev::Eval(_) | Ev::VarOp { .. } | Ev::VarOpFresh { .. } => {
                             let t = self.nat_ev_term(a, regs, &mut pre, &mut n)?;
                             parts.push(Err(t));
                         }
@@ -2170,6 +2515,7 @@ impl Gen<'_> {
                 let out = d.out.borrow().clone();
                 let rec = d.rec.borrow().clone();
                 let fallback = quote! {{
+                    cx.count_transitions(count);
                     let ts = [#(#terms),*];
                     let rec_next = native::compound(cx.store(), #f, &ts);
                     #out
@@ -2198,6 +2544,35 @@ impl Gen<'_> {
                 pre.push(self.nat_reload_locals(d, &fallback)?);
                 let sel = self.nat_select(d, cur, *name, vals, cur_name)?;
                 Ok(quote!({ #(#pre)* #sel }))
+            }
+            // A next situation the evaluator computes whole
+            // (`infer(apply(here, []))`, ground): evaluated where the term
+            // code evaluates it, the machine entered in the situation, and
+            // its value handed to the machine, which selects.
+            Next::Eval(Ev::Eval(b)) => {
+                let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+                let hand = &d.hand;
+                let mut ts = Vec::new();
+                let mut n = 0;
+                let t = self.nat_build_term(b, regs, &mut ts, &mut n)?;
+                let out = d.out.borrow().clone();
+                let rec = d.rec.borrow().clone();
+                Ok(quote! {{
+                    #hand
+                    // This transition counts once its next situation is computed
+                    // (an error evaluating it leaves it out, as on the term path).
+                    let this = u64::from(!run.records).min(count);
+                    cx.count_transitions(count - this);
+                    count = this;
+                    #(#id_stmts)*
+                    cx.enter_with_id(#curl, #id);
+                    #(#ts)*
+                    let rec_next = cx.eval(#t, arc_at)?;
+                    cx.count_transitions(count);
+                    #out
+                    #rec
+                    return cx.goto(rec_next, arc_at).map(::std::option::Option::Some);
+                }})
             }
             Next::Eval(Ev::Compound(name, args)) => {
                 let vals = args
@@ -2297,6 +2672,10 @@ impl Gen<'_> {
                 code = match s {
                     MatchStep::If(c) => quote!(if #c { #code }),
                     MatchStep::Let(x, e) => quote!({ let #x = #e; #code }),
+                    MatchStep::Narrow(x, e) => quote! {{
+                        let ::std::option::Option::Some(#x) = #e else { break 'hand; };
+                        #code
+                    }},
                     MatchStep::Args(v, f, arity, xs) => quote! {
                         if let Some(&[#(#xs),*]) =
                             cx.store_ref().compound_args(#v.0, #f, #arity)
@@ -2334,7 +2713,7 @@ impl Gen<'_> {
         Ok(quote! {
             'sel: {
                 #(#lets)*
-                #(#candidates)*
+                'hand: { #(#candidates)* }
                 // No situation takes it here: the machine selects (or says
                 // that none does).
                 #hand
@@ -2382,14 +2761,17 @@ impl Gen<'_> {
                 let r = Self::nat_id_reg(d, j, path).ok_or("an id variable has no register")?;
                 let ty = d.types[j].regs[r as usize].ty.clone();
                 let x = format_ident!("f{}", r);
-                let val = coerce(
-                    &V {
-                        e: quote!(#e.clone()),
-                        ty: v.ty.clone(),
+                let from = V {
+                    e: quote!(#e.clone()),
+                    ty: v.ty.clone(),
+                };
+                match coerce(&from, &ty) {
+                    Ok(val) => steps.push(MatchStep::Let(x.clone(), val)),
+                    Err(e) => match narrow(&from, &ty) {
+                        Some(val) => steps.push(MatchStep::Narrow(x.clone(), val)),
+                        None => return Err(e),
                     },
-                    &ty,
-                )?;
-                steps.push(MatchStep::Let(x.clone(), val));
+                }
                 vars.insert(var.index(), (x, ty));
                 Ok(true)
             }
@@ -2636,6 +3018,18 @@ fn cons(h: V, t: V) -> N<V> {
     let ty = match &t.ty {
         Ty::List(e) if **e == Ty::Never => Ty::list(h.ty.clone()),
         Ty::List(e) if **e == h.ty => t.ty.clone(),
+        // Values of different shapes, each held as a `Val` or with a Rust
+        // type of its own: a list of `Val`s (`[take(O, S), deliver(O)]`).
+        Ty::List(e) if e.is_native() && h.ty.is_native() && **e != Ty::Term && h.ty != Ty::Term => {
+            let ty = Ty::list(Ty::Ground);
+            let head = coerce(&h, &Ty::Ground)?;
+            let tail = coerce(&t, &ty)?;
+            let r = rust_ty(&ty)?;
+            return Ok(V {
+                e: quote!(<#r>::cons(#head, #tail)),
+                ty,
+            });
+        }
         // An atom or int among ground terms: its term.
         Ty::List(e) if **e == Ty::Term && matches!(h.ty, Ty::Sym | Ty::Int) => {
             let head = coerce(&h, &Ty::Term)?;
@@ -2647,6 +3041,16 @@ fn cons(h: V, t: V) -> N<V> {
                 t,
             );
         }
+        // A ground tail (`[O|Os]`, `Os` the rest of a `ground` value): a
+        // list, or an improper one (`Val::cons`).
+        Ty::Ground if h.ty.is_native() && h.ty != Ty::Term => {
+            let head = coerce(&h, &Ty::Ground)?;
+            let tail = t.e;
+            return Ok(V {
+                e: quote!(Val::cons(#head, #tail)),
+                ty: Ty::Ground,
+            });
+        }
         _ => return Err(format!("`[_|_]` of {} and {}", h.ty, t.ty)),
     };
     let rt = ty.clone();
@@ -2657,6 +3061,24 @@ fn cons(h: V, t: V) -> N<V> {
         e: quote!(<#r>::cons(#head, #tail)),
         ty,
     })
+}
+
+/// `v`, held with a wider type, as a value of the narrower native type
+/// `to` when it is one (an `Option` expression): a `Val` (`ground`) read
+/// as an atom or an integer by its variant, a ground handle (`term`)
+/// converted with the checked conversion. `None` when no check narrows
+/// these types.
+fn narrow(v: &V, to: &Ty) -> Option<TokenStream> {
+    let e = &v.e;
+    match (&v.ty, to) {
+        (Ty::Ground, Ty::Sym) => Some(quote!((#e).sym())),
+        (Ty::Ground, Ty::Int) => Some(quote!((#e).int())),
+        (Ty::Term, to) if to.is_native() && *to != Ty::Never => {
+            let ty = rust_ty(to).ok()?;
+            Some(quote!(<#ty as Native>::from_term(cx.store_ref(), (#e).0)))
+        }
+        _ => None,
+    }
 }
 
 /// `v` as a value of type `to`.
