@@ -1261,7 +1261,9 @@ impl Gen<'_> {
                                     parts.push(match slot {
                                         Some(o) => {
                                             let x = format_ident!("{}_t", o);
-                                            ts.push(quote!(let #x = Native::to_term(&#o, cx.store());));
+                                            ts.push(
+                                                quote!(let #x = Native::to_term(&#o, cx.store());),
+                                            );
                                             quote!(#x)
                                         }
                                         None => self
