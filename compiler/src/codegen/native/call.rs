@@ -506,7 +506,7 @@ impl Gen<'_> {
                     ::std::option::Option::None,
                 ));
             };
-            let final_at = done_frame.at;
+            let final_at = &done_frame.at;
             match &final_at {
                 #(#final_arms)*
                 _ => {}
@@ -782,9 +782,11 @@ impl Gen<'_> {
         let rt = quote!(::sitlog_runtime);
         let some = quote!(::std::option::Option::Some);
         let none = quote!(::std::option::Option::None::<i64>);
+        // `cl`, `cr`: references to the operands where they are (no clone
+        // of a `Val` to read an int from it).
         let as_int = |v: &V, x: &Ident| -> N<TokenStream> {
             Ok(match v.ty {
-                Ty::Int => quote!(#some(#x)),
+                Ty::Int => quote!(#some(*#x)),
                 Ty::Float => none.clone(),
                 Ty::Term => quote!(cx.store_ref().int_of(#x.0)),
                 // A `Val` (`ground`: a parameter, the pipe) holding an int.
@@ -795,10 +797,10 @@ impl Gen<'_> {
         let nonef = quote!(::std::option::Option::None::<f64>);
         let as_float = |v: &V, x: &Ident| -> TokenStream {
             match v.ty {
-                Ty::Float => quote!(#some(#x)),
+                Ty::Float => quote!(#some(*#x)),
                 Ty::Term => quote!(cx.store_ref().float_of(#x.0)),
                 ref t if super::held_as_val(t) => quote! {
-                    match &#x { #rt::native::Val::Float(f) => #some(*f), _ => #nonef }
+                    match #x { #rt::native::Val::Float(f) => #some(*f), _ => #nonef }
                 },
                 _ => nonef.clone(),
             }
@@ -822,10 +824,11 @@ impl Gen<'_> {
             ArithCmp::Le => quote!(Le),
             ArithCmp::Ge => quote!(Ge),
         };
-        let (le, re) = (l.e, r.e);
+        let (lp, rp) = (super::place(&l), super::place(&r));
+        let (lt, rt_) = (rust_ty(&l.ty)?, rust_ty(&r.ty)?);
         Ok(quote! {{
-            let #lx = #le;
-            let #rx = #re;
+            let #lx: &#lt = &#lp;
+            let #rx: &#rt_ = &#rp;
             match (#li, #ri, #lf, #rf) {
                 (#some(x), #some(y), _, _) => #cmp,
                 (_, _, #some(x), #some(y)) => #cmp,
@@ -841,8 +844,8 @@ impl Gen<'_> {
                     count = own.min(count);
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
-                    let lt = #rt::native::Native::to_term(&#lx, cx.store());
-                    let rterm = #rt::native::Native::to_term(&#rx, cx.store());
+                    let lt = #rt::native::Native::to_term(#lx, cx.store());
+                    let rterm = #rt::native::Native::to_term(#rx, cx.store());
                     cx.arith_condition(#rt::ArithCmp::#opt, lt, rterm, arc_at)?
                 }
             }

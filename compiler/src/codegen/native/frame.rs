@@ -121,7 +121,7 @@ impl Gen<'_> {
             fn nat_hand_over(
                 p: &super::Program,
                 cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
-                stack: &mut ::std::vec::Vec<super::NatFrame>,
+                stack: &mut super::NatBelow<'_>,
                 #(#names: &#tys,)*
             ) -> ::std::result::Result<(), #rt::machine::RunError> {
                 let a = &p.atoms;
@@ -270,8 +270,8 @@ impl Gen<'_> {
                     &mut self,
                     p: &Program,
                     cx: &mut #rt::machine::Cx<'_, '_, Program>,
-                    ret: ::std::option::Option<NatFrame>,
-                    stack: &mut ::std::vec::Vec<NatFrame>,
+                    ret: ::std::option::Option<&mut NatFrame>,
+                    stack: &mut NatBelow<'_>,
                     call: &mut ::std::option::Option<NatFrame>,
                     run: &#rt::machine::TypedRun,
                 ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
@@ -294,8 +294,36 @@ impl Gen<'_> {
                 }
             }
 
+            /// The native frames below the running one, bottom first (the
+            /// base frame, then the pushed ones); `gone` once they were made
+            /// machine frames (`nat_materialize`): the running frame is the
+            /// native stack's bottom from then on.
+            pub(crate) struct NatBelow<'s> {
+                base: ::std::option::Option<&'s NatFrame>,
+                mid: &'s [NatFrame],
+                gone: &'s mut bool,
+            }
+
+            #[allow(clippy::all)]
+            impl NatBelow<'_> {
+                /// How many native frames are below the running one.
+                #[inline]
+                pub(crate) fn len(&self) -> usize {
+                    if *self.gone { 0 } else { usize::from(self.base.is_some()) + self.mid.len() }
+                }
+                /// Whether the running frame is the native stack's bottom.
+                #[inline]
+                pub(crate) fn is_empty(&self) -> bool {
+                    self.len() == 0
+                }
+            }
+
             /// Runs native frames from `base` (the DM the machine entered)
             /// on an explicit stack until one hands over to the machine.
+            /// Frames stay where they are while they run (`frames`, above
+            /// `base`): a call pushes the callee's, and a callee that
+            /// reached its final is read in place by its caller's exit arcs,
+            /// then popped.
             #[allow(clippy::all)]
             pub(crate) fn nat_drive(
                 p: &Program,
@@ -303,31 +331,59 @@ impl Gen<'_> {
                 base: NatFrame,
                 run: &#rt::machine::TypedRun,
             ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
-                let mut stack: ::std::vec::Vec<NatFrame> = ::std::vec::Vec::new();
-                let mut top = base;
-                let mut ret = ::std::option::Option::None;
+                let mut base = base;
+                let mut frames: ::std::vec::Vec<NatFrame> = ::std::vec::Vec::new();
                 let mut call = ::std::option::Option::None;
+                // The top frame reached a final: its caller runs next.
+                let mut returning = false;
+                let mut gone = false;
                 loop {
-                    if let ::std::option::Option::Some(step) =
-                        top.step(p, cx, ret.take(), &mut stack, &mut call, run)?
-                    {
+                    let n = frames.len();
+                    let stepped = match (n, returning) {
+                        (0, _) => {
+                            let mut below = NatBelow { base: ::std::option::Option::None, mid: &[], gone: &mut gone };
+                            base.step(p, cx, ::std::option::Option::None, &mut below, &mut call, run)
+                        }
+                        (1, true) => {
+                            let mut below = NatBelow { base: ::std::option::Option::None, mid: &[], gone: &mut gone };
+                            base.step(p, cx, frames.last_mut(), &mut below, &mut call, run)
+                        }
+                        (_, true) => {
+                            let (callee, rest) = frames.split_last_mut().unwrap();
+                            let (top, mid) = rest.split_last_mut().unwrap();
+                            let mut below = NatBelow { base: ::std::option::Option::Some(&base), mid, gone: &mut gone };
+                            top.step(p, cx, ::std::option::Option::Some(callee), &mut below, &mut call, run)
+                        }
+                        (_, false) => {
+                            let (top, mid) = frames.split_last_mut().unwrap();
+                            let mut below = NatBelow { base: ::std::option::Option::Some(&base), mid, gone: &mut gone };
+                            top.step(p, cx, ::std::option::Option::None, &mut below, &mut call, run)
+                        }
+                    };
+                    if let ::std::option::Option::Some(step) = stepped? {
                         return ::std::result::Result::Ok(step);
                     }
-                    match call.take() {
-                        ::std::option::Option::Some(callee) => {
-                            stack.push(::std::mem::replace(&mut top, callee));
+                    if returning {
+                        frames.pop();
+                        returning = false;
+                    }
+                    if gone {
+                        // The frames below the running one are the machine's now.
+                        if let ::std::option::Option::Some(top) = frames.pop() {
+                            base = top;
                         }
-                        ::std::option::Option::None => match stack.pop() {
-                            ::std::option::Option::Some(caller) => {
-                                ret = ::std::option::Option::Some(::std::mem::replace(&mut top, caller));
-                            }
-                            ::std::option::Option::None => {
-                                return ::std::result::Result::Err(cx.error(
-                                    "native code ended its base DM without handing over",
-                                    ::std::option::Option::None,
-                                ));
-                            }
-                        },
+                        frames.clear();
+                        gone = false;
+                    }
+                    match call.take() {
+                        ::std::option::Option::Some(callee) => frames.push(callee),
+                        ::std::option::Option::None if frames.is_empty() => {
+                            return ::std::result::Result::Err(cx.error(
+                                "native code ended its base DM without handing over",
+                                ::std::option::Option::None,
+                            ));
+                        }
+                        ::std::option::Option::None => returning = true,
                     }
                 }
             }
@@ -338,19 +394,21 @@ impl Gen<'_> {
             pub(crate) fn nat_materialize(
                 p: &Program,
                 cx: &mut #rt::machine::Cx<'_, '_, Program>,
-                stack: &mut ::std::vec::Vec<NatFrame>,
+                stack: &mut NatBelow<'_>,
                 top: #rt::Term,
                 top_dm: #rt::machine::DmIx,
             ) -> ::std::result::Result<(), #rt::machine::RunError> {
-                let frames = ::std::mem::take(stack);
-                let n = frames.len();
-                for i in 0..n {
-                    let (callee, callee_dm) = if i + 1 < n {
-                        (frames[i + 1].call_term(p, cx), frames[i + 1].dm())
-                    } else {
-                        (top, top_dm)
+                if *stack.gone {
+                    return ::std::result::Result::Ok(());
+                }
+                *stack.gone = true;
+                let mut frames = stack.base.into_iter().chain(stack.mid.iter()).peekable();
+                while let ::std::option::Option::Some(f) = frames.next() {
+                    let (callee, callee_dm) = match frames.peek() {
+                        ::std::option::Option::Some(next) => (next.call_term(p, cx), next.dm()),
+                        ::std::option::Option::None => (top, top_dm),
                     };
-                    frames[i].wait(p, cx, callee, callee_dm)?;
+                    f.wait(p, cx, callee, callee_dm)?;
                 }
                 ::std::result::Result::Ok(())
             }
