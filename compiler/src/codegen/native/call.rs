@@ -257,7 +257,9 @@ impl Gen<'_> {
         let mut wf = Vec::new();
         for (r, _) in self.nat_wait_fields(d, ix)? {
             let v = self.nat_value(&Build::Reg(r), regs)?;
-            let (rr, e) = (reg(r), v.e);
+            // The visit ends here: its own registers move into the
+            // waiting variant (not cloned and dropped).
+            let (rr, e) = (reg(r), super::moved(&v));
             wf.push(quote!(#rr: #e));
         }
         Ok(quote! {

@@ -3,8 +3,10 @@
 //! (its parameters `p0..`, its locals `l0..` and the situation it is in,
 //! all native values), and in the program's module `enum NatFrame` (a
 //! variant per native DM), `nat_drive` (the explicit stack of native
-//! frames: a call pushes the callee's frame, a final pops it and resumes
-//! the caller with it, no Rust recursion per nested DM, no term built) and
+//! frames, each run where it lies: a call pushes the callee's frame, a
+//! final resumes the caller with a reference to it, then pops it; no frame
+//! moved out and back per step, no Rust recursion per nested DM, no term
+//! built) and
 //! `nat_materialize` (the hand-over: every native frame below the running
 //! one becomes a machine frame, waiting in its recursive situation as the
 //! term code's call would have left it).

@@ -2527,6 +2527,29 @@ fn place(v: &V) -> TokenStream {
     quote!((#e))
 }
 
+/// A value read as `r<n>.clone()`, a register of the visit (an owned Rust
+/// local), as a move of that local: for a use that is the visit's last.
+fn moved(v: &V) -> TokenStream {
+    let ts: Vec<proc_macro2::TokenTree> = v.e.clone().into_iter().collect();
+    if let [proc_macro2::TokenTree::Ident(x), proc_macro2::TokenTree::Punct(dot), proc_macro2::TokenTree::Ident(clone), proc_macro2::TokenTree::Group(g)] =
+        ts.as_slice()
+    {
+        let s = x.to_string();
+        let is_reg = s
+            .strip_prefix('r')
+            .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()));
+        if is_reg
+            && dot.as_char() == '.'
+            && clone == "clone"
+            && g.delimiter() == proc_macro2::Delimiter::Parenthesis
+            && g.stream().is_empty()
+        {
+            return quote!(#x);
+        }
+    }
+    v.e.clone()
+}
+
 /// `[h|t]` of native values.
 fn cons(h: V, t: V) -> N<V> {
     let ty = match &t.ty {
