@@ -114,14 +114,10 @@ impl Native for Val {
         // `Val::from_term(.., &Ty::Ground)` gives, without its walk (the
         // pipe read at every in_arg).
         match t.0 {
-            crate::term::Repr::Int(i) => return Some(Val::Int(i)),
-            crate::term::Repr::Atom(a) if a != atoms::NIL => return Some(Val::Sym(a)),
-            _ => {}
+            crate::term::Repr::Int(i) => Some(Val::Int(i)),
+            crate::term::Repr::Atom(a) if a != atoms::NIL => Some(Val::Sym(a)),
+            _ => ground_val(store, t),
         }
-        if !store.is_inert(t) {
-            return None;
-        }
-        Val::from_term(store, t, &Ty::Ground)
     }
     #[inline]
     fn to_term(&self, store: &mut Store) -> Term {
@@ -131,6 +127,16 @@ impl Native for Val {
             v => Val::to_term(v, store),
         }
     }
+}
+
+/// `Native for Val`'s general case, out of line so that the int and atom
+/// case inlines where it is read (the pipe at every in_arg).
+#[inline(never)]
+fn ground_val(store: &Store, t: Term) -> Option<Val> {
+    if !store.is_inert(t) {
+        return None;
+    }
+    Val::from_term(store, t, &Ty::Ground)
 }
 
 /// A typed native value as a canonical [`Val`] (`[]` an empty list): a

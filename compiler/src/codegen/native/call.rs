@@ -263,7 +263,9 @@ impl Gen<'_> {
         let mut wf = Vec::new();
         for (r, _) in self.nat_wait_fields(d, ix)? {
             let v = self.nat_value(&Build::Reg(r), regs)?;
-            let (rr, e) = (reg(r), v.e);
+            // The visit ends here: its own registers move into the
+            // waiting variant (not cloned and dropped).
+            let (rr, e) = (reg(r), super::moved(&v));
             wf.push(quote!(#rr: #e));
         }
         Ok(quote! {
@@ -516,7 +518,7 @@ impl Gen<'_> {
                     None,
                 ));
             };
-            let final_at = done_frame.at;
+            let final_at = &done_frame.at;
             match &final_at {
                 #(#final_arms)*
                 _ => {}
@@ -791,9 +793,11 @@ impl Gen<'_> {
         let rt = quote!(::sitlog_runtime);
         let some = quote!(Some);
         let none = quote!(None::<i64>);
+        // `cl`, `cr`: references to the operands where they are (no clone
+        // of a `Val` to read an int from it).
         let as_int = |v: &V, x: &Ident| -> N<TokenStream> {
             Ok(match v.ty {
-                Ty::Int => quote!(#some(#x)),
+                Ty::Int => quote!(#some(*#x)),
                 Ty::Float => none.clone(),
                 Ty::Term => quote!(cx.store_ref().int_of(#x.0)),
                 // A `Val` (`ground`: a parameter, the pipe) holding an int.
@@ -804,10 +808,10 @@ impl Gen<'_> {
         let nonef = quote!(None::<f64>);
         let as_float = |v: &V, x: &Ident| -> TokenStream {
             match v.ty {
-                Ty::Float => quote!(#some(#x)),
+                Ty::Float => quote!(#some(*#x)),
                 Ty::Term => quote!(cx.store_ref().float_of(#x.0)),
                 ref t if super::held_as_val(t) => quote! {
-                    match &#x { Val::Float(f) => #some(*f), _ => #nonef }
+                    match #x { Val::Float(f) => #some(*f), _ => #nonef }
                 },
                 _ => nonef.clone(),
             }
@@ -831,10 +835,11 @@ impl Gen<'_> {
             ArithCmp::Le => quote!(Le),
             ArithCmp::Ge => quote!(Ge),
         };
-        let (le, re) = (l.e, r.e);
+        let (lp, rp) = (super::place(&l), super::place(&r));
+        let (lt, rt_) = (rust_ty(&l.ty)?, rust_ty(&r.ty)?);
         Ok(quote! {{
-            let #lx = #le;
-            let #rx = #re;
+            let #lx: &#lt = &#lp;
+            let #rx: &#rt_ = &#rp;
             match (#li, #ri, #lf, #rf) {
                 (#some(x), #some(y), _, _) => #cmp,
                 (_, _, #some(x), #some(y)) => #cmp,
@@ -850,8 +855,8 @@ impl Gen<'_> {
                     count = own.min(count);
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
-                    let lt = Native::to_term(&#lx, cx.store());
-                    let rterm = Native::to_term(&#rx, cx.store());
+                    let lt = Native::to_term(#lx, cx.store());
+                    let rterm = Native::to_term(#rx, cx.store());
                     cx.arith_condition(#rt::ArithCmp::#opt, lt, rterm, arc_at)?
                 }
             }

@@ -3,8 +3,10 @@
 //! (its parameters `p0..`, its locals `l0..` and the situation it is in,
 //! all native values), and in the program's module `enum NatFrame` (a
 //! variant per native DM), `nat_drive` (the explicit stack of native
-//! frames: a call pushes the callee's frame, a final pops it and resumes
-//! the caller with it, no Rust recursion per nested DM, no term built) and
+//! frames, each run where it lies: a call pushes the callee's frame, a
+//! final resumes the caller with a reference to it, then pops it; no frame
+//! moved out and back per step, no Rust recursion per nested DM, no term
+//! built) and
 //! `nat_materialize` (the hand-over: every native frame below the running
 //! one becomes a machine frame, waiting in its recursive situation as the
 //! term code's call would have left it).
@@ -118,7 +120,7 @@ impl Gen<'_> {
             fn nat_hand_over(
                 p: &super::Program,
                 cx: &mut Cx<'_, '_, super::Program>,
-                stack: &mut Vec<super::NatFrame>,
+                stack: &mut super::NatBelow<'_>,
                 #(#names: &#tys,)*
             ) -> Result<(), RunError> {
                 let a = &p.atoms;
@@ -265,8 +267,8 @@ impl Gen<'_> {
                     &mut self,
                     p: &Program,
                     cx: &mut Cx<'_, '_, Program>,
-                    ret: Option<NatFrame>,
-                    stack: &mut Vec<NatFrame>,
+                    ret: Option<&mut NatFrame>,
+                    stack: &mut NatBelow<'_>,
                     call: &mut Option<NatFrame>,
                     run: &TypedRun,
                 ) -> Result<Option<Step>, RunError> {
@@ -289,8 +291,36 @@ impl Gen<'_> {
                 }
             }
 
+            /// The native frames below the running one, bottom first (the
+            /// base frame, then the pushed ones); `gone` once they were made
+            /// machine frames (`nat_materialize`): the running frame is the
+            /// native stack's bottom from then on.
+            pub(crate) struct NatBelow<'s> {
+                base: Option<&'s NatFrame>,
+                mid: &'s [NatFrame],
+                gone: &'s mut bool,
+            }
+
+            #[allow(clippy::all)]
+            impl NatBelow<'_> {
+                /// How many native frames are below the running one.
+                #[inline]
+                pub(crate) fn len(&self) -> usize {
+                    if *self.gone { 0 } else { usize::from(self.base.is_some()) + self.mid.len() }
+                }
+                /// Whether the running frame is the native stack's bottom.
+                #[inline]
+                pub(crate) fn is_empty(&self) -> bool {
+                    self.len() == 0
+                }
+            }
+
             /// Runs native frames from `base` (the DM the machine entered)
             /// on an explicit stack until one hands over to the machine.
+            /// Frames stay where they are while they run (`frames`, above
+            /// `base`): a call pushes the callee's, and a callee that
+            /// reached its final is read in place by its caller's exit arcs,
+            /// then popped.
             #[allow(clippy::all)]
             pub(crate) fn nat_drive(
                 p: &Program,
@@ -298,31 +328,59 @@ impl Gen<'_> {
                 base: NatFrame,
                 run: &TypedRun,
             ) -> Result<Step, RunError> {
-                let mut stack: Vec<NatFrame> = Vec::new();
-                let mut top = base;
-                let mut ret = None;
+                let mut base = base;
+                let mut frames: Vec<NatFrame> = Vec::new();
                 let mut call = None;
+                // The top frame reached a final: its caller runs next.
+                let mut returning = false;
+                let mut gone = false;
                 loop {
-                    if let Some(step) =
-                        top.step(p, cx, ret.take(), &mut stack, &mut call, run)?
-                    {
+                    let n = frames.len();
+                    let stepped = match (n, returning) {
+                        (0, _) => {
+                            let mut below = NatBelow { base: None, mid: &[], gone: &mut gone };
+                            base.step(p, cx, None, &mut below, &mut call, run)
+                        }
+                        (1, true) => {
+                            let mut below = NatBelow { base: None, mid: &[], gone: &mut gone };
+                            base.step(p, cx, frames.last_mut(), &mut below, &mut call, run)
+                        }
+                        (_, true) => {
+                            let (callee, rest) = frames.split_last_mut().unwrap();
+                            let (top, mid) = rest.split_last_mut().unwrap();
+                            let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone };
+                            top.step(p, cx, Some(callee), &mut below, &mut call, run)
+                        }
+                        (_, false) => {
+                            let (top, mid) = frames.split_last_mut().unwrap();
+                            let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone };
+                            top.step(p, cx, None, &mut below, &mut call, run)
+                        }
+                    };
+                    if let Some(step) = stepped? {
                         return Ok(step);
                     }
-                    match call.take() {
-                        Some(callee) => {
-                            stack.push(::std::mem::replace(&mut top, callee));
+                    if returning {
+                        frames.pop();
+                        returning = false;
+                    }
+                    if gone {
+                        // The frames below the running one are the machine's now.
+                        if let Some(top) = frames.pop() {
+                            base = top;
                         }
-                        None => match stack.pop() {
-                            Some(caller) => {
-                                ret = Some(::std::mem::replace(&mut top, caller));
-                            }
-                            None => {
-                                return Err(cx.error(
-                                    "native code ended its base DM without handing over",
-                                    None,
-                                ));
-                            }
-                        },
+                        frames.clear();
+                        gone = false;
+                    }
+                    match call.take() {
+                        Some(callee) => frames.push(callee),
+                        None if frames.is_empty() => {
+                            return Err(cx.error(
+                                "native code ended its base DM without handing over",
+                                None,
+                            ));
+                        }
+                        None => returning = true,
                     }
                 }
             }
@@ -333,19 +391,21 @@ impl Gen<'_> {
             pub(crate) fn nat_materialize(
                 p: &Program,
                 cx: &mut Cx<'_, '_, Program>,
-                stack: &mut Vec<NatFrame>,
+                stack: &mut NatBelow<'_>,
                 top: Term,
                 top_dm: DmIx,
             ) -> Result<(), RunError> {
-                let frames = ::std::mem::take(stack);
-                let n = frames.len();
-                for i in 0..n {
-                    let (callee, callee_dm) = if i + 1 < n {
-                        (frames[i + 1].call_term(p, cx), frames[i + 1].dm())
-                    } else {
-                        (top, top_dm)
+                if *stack.gone {
+                    return Ok(());
+                }
+                *stack.gone = true;
+                let mut frames = stack.base.into_iter().chain(stack.mid.iter()).peekable();
+                while let Some(f) = frames.next() {
+                    let (callee, callee_dm) = match frames.peek() {
+                        Some(next) => (next.call_term(p, cx), next.dm()),
+                        None => (top, top_dm),
                     };
-                    frames[i].wait(p, cx, callee, callee_dm)?;
+                    f.wait(p, cx, callee, callee_dm)?;
                 }
                 Ok(())
             }

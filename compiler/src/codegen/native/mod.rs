@@ -726,8 +726,8 @@ impl Gen<'_> {
                 p: &super::Program,
                 cx: &mut Cx<'_, '_, super::Program>,
                 frame: &mut Frame,
-                ret: Option<super::NatFrame>,
-                stack: &mut Vec<super::NatFrame>,
+                ret: Option<&mut super::NatFrame>,
+                stack: &mut super::NatBelow<'_>,
                 call: &mut Option<super::NatFrame>,
                 run: &TypedRun,
             ) -> Result<Option<Step>, RunError> {
@@ -2573,7 +2573,7 @@ impl Gen<'_> {
                     cx.count_transitions(count);
                     #out
                     #rec
-                    return cx.goto(rec_next, arc_at).map(::std::option::Option::Some);
+                    return cx.goto(rec_next, arc_at).map(Some);
                 }})
             }
             Next::Eval(Ev::Compound(name, args)) => {
@@ -2675,7 +2675,7 @@ impl Gen<'_> {
                     MatchStep::If(c) => quote!(if #c { #code }),
                     MatchStep::Let(x, e) => quote!({ let #x = #e; #code }),
                     MatchStep::Narrow(x, e) => quote! {{
-                        let ::std::option::Option::Some(#x) = #e else { break 'hand; };
+                        let Some(#x) = #e else { break 'hand; };
                         #code
                     }},
                     MatchStep::Args(v, f, arity, xs) => quote! {
@@ -2993,13 +2993,16 @@ fn arg_idents(n: &mut usize, len: usize) -> Vec<Ident> {
 /// (ground terms compared in the store).
 fn identical(l: &V, r: &V) -> Option<TokenStream> {
     let (le, re) = (&l.e, &r.e);
+    // Compared where they are: no clone (a `Val`'s list or compound
+    // count changed and changed back) to compare.
+    let (lp, rp) = (place(l), place(r));
     let some = quote!(Some);
     match (&l.ty, &r.ty) {
-        (a, b) if a == b && eq_safe(a) => Some(quote!((#le == #re))),
+        (a, b) if a == b && eq_safe(a) => Some(quote!((#lp == #rp))),
         // Canonical `Val`s and other native values as `Val`s.
-        (a, b) if held_as_val(a) && held_as_val(b) => Some(quote!((#le == #re))),
-        (Ty::Term, b) if held_as_val(b) => Some(quote!((#re).identical_to(cx.store_ref(), #le.0))),
-        (a, Ty::Term) if held_as_val(a) => Some(quote!((#le).identical_to(cx.store_ref(), #re.0))),
+        (a, b) if held_as_val(a) && held_as_val(b) => Some(quote!((#lp == #rp))),
+        (Ty::Term, b) if held_as_val(b) => Some(quote!(#rp.identical_to(cx.store_ref(), #le.0))),
+        (a, Ty::Term) if held_as_val(a) => Some(quote!(#lp.identical_to(cx.store_ref(), #re.0))),
         (a, b) if held_as_val(a) && b.is_native() && *b != Ty::Float => {
             Some(quote!((#le == IntoVal::into_val(#re))))
         }
@@ -3013,6 +3016,52 @@ fn identical(l: &V, r: &V) -> Option<TokenStream> {
         (Ty::Int, Ty::Term) => Some(quote!((cx.store_ref().int_of(#re.0) == #some(#le)))),
         _ => None,
     }
+}
+
+/// The place a value is read from, for reading it by reference: a
+/// register or frame field `x` read as `x.clone()` is `x` itself (through
+/// `Borrow`, whether the binding is the value or a reference to it), any
+/// other value the expression's temporary.
+fn place(v: &V) -> TokenStream {
+    let ts: Vec<proc_macro2::TokenTree> = v.e.clone().into_iter().collect();
+    if let [proc_macro2::TokenTree::Ident(x), proc_macro2::TokenTree::Punct(dot), proc_macro2::TokenTree::Ident(clone), proc_macro2::TokenTree::Group(g)] =
+        ts.as_slice()
+    {
+        if dot.as_char() == '.'
+            && clone == "clone"
+            && g.delimiter() == proc_macro2::Delimiter::Parenthesis
+            && g.stream().is_empty()
+        {
+            if let Ok(t) = rust_ty(&v.ty) {
+                return quote!((*::std::borrow::Borrow::<#t>::borrow(&#x)));
+            }
+        }
+    }
+    let e = &v.e;
+    quote!((#e))
+}
+
+/// A value read as `r<n>.clone()`, a register of the visit (an owned Rust
+/// local), as a move of that local: for a use that is the visit's last.
+fn moved(v: &V) -> TokenStream {
+    let ts: Vec<proc_macro2::TokenTree> = v.e.clone().into_iter().collect();
+    if let [proc_macro2::TokenTree::Ident(x), proc_macro2::TokenTree::Punct(dot), proc_macro2::TokenTree::Ident(clone), proc_macro2::TokenTree::Group(g)] =
+        ts.as_slice()
+    {
+        let s = x.to_string();
+        let is_reg = s
+            .strip_prefix('r')
+            .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()));
+        if is_reg
+            && dot.as_char() == '.'
+            && clone == "clone"
+            && g.delimiter() == proc_macro2::Delimiter::Parenthesis
+            && g.stream().is_empty()
+        {
+            return quote!(#x);
+        }
+    }
+    v.e.clone()
 }
 
 /// `[h|t]` of native values.

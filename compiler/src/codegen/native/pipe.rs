@@ -77,17 +77,18 @@ impl Gen<'_> {
         let Some(b) = out else {
             return self.nat_next(d, cur, next, regs, cur_name);
         };
-        let v = self.nat_value(b, regs)?.e;
+        // The value read where it is (no clone of a `Val`), made a term
+        // once: an int or an atom costs nothing.
+        let v = super::place(&self.nat_value(b, regs)?);
         let set = quote! {
-            let out = Native::to_term(&out_v, cx.store());
-            cx.set_pipe(out);
+            cx.set_pipe(pipe_out);
         };
         *d.out.borrow_mut() = set.clone();
         let n = self.nat_next(d, cur, next, regs, cur_name);
         *d.out.borrow_mut() = quote!();
         let n = n?;
         Ok(quote! {{
-            let out_v = #v;
+            let pipe_out = Native::to_term(&#v, cx.store());
             let next_at = { #n };
             #set
             next_at
