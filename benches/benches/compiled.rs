@@ -775,6 +775,32 @@ fn bench(c: &mut Criterion) {
             || hand_echo_calls(black_box(n as i64)),
         );
     }
+    // Flat cost of (c): compiled and hand-written only, 10^4 to 10^7 calls
+    // (the interpreter at 10^7 would take minutes per sample). Allocations
+    // per run are printed as for the other groups.
+    {
+        let mut group = group(c, "echo_calls_flat", 10, 2);
+        for n in [10_000u64, 100_000, 1_000_000, 10_000_000] {
+            let limit = n.to_string();
+            let w = Workload {
+                in_arg: Some(&limit),
+                ..Workload::plain("main")
+            };
+            let t = w.run(echo_calls::program());
+            assert_eq!(t, hand_echo_calls(n as i64));
+            allocations(&format!("echo_calls_flat/compiled/{n}"), || {
+                w.run(echo_calls::program())
+            });
+            group.throughput(Throughput::Elements(t));
+            group.bench_with_input(BenchmarkId::new("compiled", n), &n, |b, _| {
+                b.iter(|| w.run(echo_calls::program()))
+            });
+            group.bench_with_input(BenchmarkId::new("hand_written", n), &n, |b, _| {
+                b.iter(|| hand_echo_calls(black_box(n as i64)))
+            });
+        }
+        group.finish();
+    }
     for (rounds, len) in [
         (1_000u64, 8usize),
         (100_000, 8),

@@ -4,7 +4,7 @@
 //! fallback of both for situations they do not plan. Never parses, never
 //! re-checks; every semantic step is the runtime's.
 
-use crate::ir::{none_marker, Ir};
+use crate::ir::Ir;
 use sitlog_runtime::machine::{DmIx, DmProgram, Instance, Kind, SitIx};
 use sitlog_runtime::{Store, Term, Vars};
 use sitlog_syntax::Atom;
@@ -27,8 +27,7 @@ impl DmProgram for Ir {
     }
     fn instantiate(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Option<Instance> {
         let template = self.dms[dm as usize].situations[sit as usize].template;
-        let t = store.copy_term(template);
-        Some(instance_of(store, t))
+        Some(Instance::fresh(store, template))
     }
     fn may_select(&self, dm: DmIx, sit: SitIx, value: Term, store: &Store) -> bool {
         match self.dms[dm as usize].situations[sit as usize].id_functor {
@@ -70,18 +69,5 @@ impl Ir {
 /// The [`Instance`] of a fresh copy `t` of a situation template (its nine
 /// fields in order; the `none` marker stands for an absent one).
 pub fn instance_of(store: &Store, t: Term) -> Instance {
-    let a = store.args(t);
-    let none = Term::atom(none_marker());
-    let opt = |x: Term| (x != none).then_some(x);
-    Instance {
-        head: a[0],
-        id: a[1],
-        type_term: a[2],
-        in_arg: opt(a[3]),
-        out_arg: opt(a[4]),
-        prog: opt(a[5]),
-        embedded_dm: opt(a[6]),
-        diag_mod: opt(a[7]),
-        arcs: a[8],
-    }
+    Instance::of_template(store, t)
 }

@@ -153,7 +153,7 @@ pub struct IrSituation {
 
 /// The marker of an absent attribute in a situation template.
 pub fn none_marker() -> Atom {
-    Atom::intern("$none")
+    sitlog_runtime::machine::none_marker()
 }
 
 impl Ir {

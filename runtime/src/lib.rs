@@ -25,7 +25,7 @@
 //!
 //! | floor | modules |
 //! |---|---|
-//! | 6 | [`app`], [`report`], [`testmode`] |
+//! | 6 | [`app`], [`prelude`] (the names generated code imports), [`report`], [`testmode`] |
 //! | 5 | [`machine`] (the DM machine) |
 //! | 4 | [`eval`] (the language L), `prolog` (feature `prolog`: Prolog user functions) |
 //! | 3 | `arith`, `copy`, [`functions`], [`native`] (native values: their types, `List`, `Val`, conversions to and from terms, gc of the terms inside) |
@@ -60,6 +60,7 @@ mod input;
 pub mod machine;
 pub mod native;
 pub mod paths;
+pub mod prelude;
 #[cfg(feature = "prolog")]
 pub mod prolog;
 pub mod report;

@@ -19,21 +19,12 @@ impl Gen<'_> {
             .iter()
             .map(|f| Literal::string(&f.text))
             .collect();
-        // Atoms.
-        let atom_fields = self.atoms.iter().map(|(a, id)| {
-            let doc = format!(" `{}`", quote_atom(a.as_str()));
-            quote!(#[doc = #doc] pub #id: #rt::Atom,)
-        });
-        let atom_inits = self.atoms.iter().map(|(a, id)| {
-            let lit = Literal::string(a.as_str());
-            quote!(#id: #rt::Atom::intern(#lit),)
-        });
 
         // Constants.
         let const_fields = self.consts.iter().enumerate().map(|(i, (text, _))| {
             let id = Self::const_ident(i);
             let doc = format!(" `{text}`");
-            quote!(#[doc = #doc] pub #id: #rt::Term,)
+            quote!(#[doc = #doc] pub #id: Term,)
         });
         let empty = HashMap::new();
         let const_inits = self.consts.iter().enumerate().map(|(i, (_, t))| {
@@ -113,7 +104,7 @@ impl Gen<'_> {
             .collect();
         let source_doc = format!(" The SitLog program `{source}`, compiled by sitlog-compiler.");
 
-        quote! {
+        let body = quote! {
             #[doc = #source_doc]
             ///
             /// Runs on the runtime's DM machine (`sitlog_runtime::machine`), which
@@ -122,14 +113,13 @@ impl Gen<'_> {
             #[allow(dead_code, non_camel_case_types, unused_variables, clippy::all)]
             pub struct Program {
                 /// Frozen store holding the constants; every run starts from a clone.
-                store: #rt::Store,
+                store: Store,
                 pub atoms: Atoms,
                 pub k: Consts,
+                /// The situations' templates in the frozen store, by DM and
+                /// situation (each DM's `TEMPLATES`).
+                templates: Vec<Vec<Option<Term>>>,
             }
-
-            /// The program's atoms, interned once.
-            #[allow(dead_code, non_snake_case, clippy::all)]
-            pub struct Atoms { #(#atom_fields)* }
 
             /// The program's ground compound terms, built once in [`Program::new`].
             #[allow(dead_code, clippy::all)]
@@ -139,30 +129,38 @@ impl Gen<'_> {
             impl Program {
                 /// Interns the atoms and builds the constants.
                 pub fn new() -> Program {
-                    let mut store = #rt::Store::new();
-                    let a = Atoms { #(#atom_inits)* };
+                    let mut store = Store::new();
+                    let a = Atoms::new();
                     let store = &mut store;
                     #(#const_inits)*
                     let k = Consts { #(#const_names),* };
+                    let templates = vec![#(machine::read_templates(store, &#dm_mods::TEMPLATES)),*];
                     let mut store = ::std::mem::take(store);
                     store.freeze();
-                    Program { store, atoms: a, k }
+                    Program { store, atoms: a, k, templates }
+                }
+
+                /// A fresh instance of situation `sit` of DM `dm` from its
+                /// template (`None`: it has none).
+                pub fn instance(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Option<Instance> {
+                    let template = self.templates[dm as usize][sit as usize]?;
+                    Some(Instance::fresh(store, template))
                 }
 
                 /// The names of the declared basic actions (`basic_actions.pl`).
-                pub fn basic_actions(&self) -> ::std::vec::Vec<#rt::Atom> {
-                    ::std::vec![#(#basic_actions),*]
+                pub fn basic_actions(&self) -> Vec<Atom> {
+                    vec![#(#basic_actions),*]
                 }
 
                 /// A store for one run (a clone of the frozen one) and fresh
                 /// initial values of the global variables.
-                pub fn initial_state(&self) -> (#rt::Store, #rt::Vars) {
+                pub fn initial_state(&self) -> (Store, Vars) {
                     let p = self;
                     let mut store = self.store.clone();
                     let store = &mut store;
                     #globals_prelude
                     #globals_body
-                    let globals = #rt::Vars::from_entries(::std::vec![#(#global_entries),*]);
+                    let globals = Vars::from_entries(vec![#(#global_entries),*]);
                     (::std::mem::take(store), globals)
                 }
             }
@@ -175,30 +173,30 @@ impl Gen<'_> {
             }
 
             #[allow(clippy::all)]
-            impl #rt::machine::DmProgram for Program {
-                fn dm_by_name(&self, name: #rt::Atom) -> ::std::option::Option<#rt::machine::DmIx> {
+            impl machine::DmProgram for Program {
+                fn dm_by_name(&self, name: Atom) -> Option<DmIx> {
                     #(#lookup)*
                     None
                 }
-                fn dm_name(&self, dm: #rt::machine::DmIx) -> #rt::Atom {
+                fn dm_name(&self, dm: DmIx) -> Atom {
                     match dm {
                         #(#dm_name_arms)*
                         _ => panic!("no DM number {dm}"),
                     }
                 }
-                fn situation_count(&self, dm: #rt::machine::DmIx) -> usize {
+                fn situation_count(&self, dm: DmIx) -> usize {
                     match dm {
                         #(#dm_ix => #dm_mods::Situation::ALL.len(),)*
                         _ => panic!("no DM number {dm}"),
                     }
                 }
-                fn kind(&self, dm: #rt::machine::DmIx, sit: #rt::machine::SitIx) -> #rt::machine::Kind {
+                fn kind(&self, dm: DmIx, sit: SitIx) -> Kind {
                     match dm {
                         #(#dm_ix => #dm_mods::Situation::from_ix(sit).kind(),)*
                         _ => panic!("no DM number {dm}"),
                     }
                 }
-                fn fresh_head(&self, dm: #rt::machine::DmIx, store: &mut #rt::Store) -> #rt::Term {
+                fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Term {
                     match dm {
                         #(#dm_ix => #dm_mods::head(self, store),)*
                         _ => panic!("no DM number {dm}"),
@@ -206,10 +204,10 @@ impl Gen<'_> {
                 }
                 fn instantiate(
                     &self,
-                    dm: #rt::machine::DmIx,
-                    sit: #rt::machine::SitIx,
-                    store: &mut #rt::Store,
-                ) -> ::std::option::Option<#rt::machine::Instance> {
+                    dm: DmIx,
+                    sit: SitIx,
+                    store: &mut Store,
+                ) -> Option<Instance> {
                     match dm {
                         #(#dm_ix => #dm_mods::instantiate(self, #dm_mods::Situation::from_ix(sit), store),)*
                         _ => panic!("no DM number {dm}"),
@@ -217,10 +215,10 @@ impl Gen<'_> {
                 }
                 fn may_select(
                     &self,
-                    dm: #rt::machine::DmIx,
-                    sit: #rt::machine::SitIx,
-                    value: #rt::Term,
-                    store: &#rt::Store,
+                    dm: DmIx,
+                    sit: SitIx,
+                    value: Term,
+                    store: &Store,
                 ) -> bool {
                     let functor = store.functor(value);
                     match dm {
@@ -228,7 +226,7 @@ impl Gen<'_> {
                         _ => panic!("no DM number {dm}"),
                     }
                 }
-                fn locals(&self, dm: #rt::machine::DmIx, store: &mut #rt::Store) -> #rt::Vars {
+                fn locals(&self, dm: DmIx, store: &mut Store) -> Vars {
                     match dm {
                         #(#dm_ix => #dm_mods::locals(self, store),)*
                         _ => panic!("no DM number {dm}"),
@@ -236,9 +234,9 @@ impl Gen<'_> {
                 }
                 fn location(
                     &self,
-                    dm: #rt::machine::DmIx,
-                    sit: #rt::machine::SitIx,
-                ) -> ::std::option::Option<::std::string::String> {
+                    dm: DmIx,
+                    sit: SitIx,
+                ) -> Option<String> {
                     let at = match dm {
                         #(#dm_ix => #dm_mods::Situation::from_ix(sit).location(),)*
                         _ => panic!("no DM number {dm}"),
@@ -247,20 +245,20 @@ impl Gen<'_> {
                 }
                 fn compiled_id(
                     &self,
-                    dm: #rt::machine::DmIx,
-                    sit: #rt::machine::SitIx,
-                ) -> ::std::option::Option<(#rt::Atom, usize)> {
+                    dm: DmIx,
+                    sit: SitIx,
+                ) -> Option<(Atom, usize)> {
                     match dm {
                         #(#dm_ix => #dm_mods::compiled_id(self, sit),)*
-                        _ => ::std::option::Option::None,
+                        _ => None,
                     }
                 }
                 fn select_compiled(
                     &self,
-                    dm: #rt::machine::DmIx,
-                    sit: #rt::machine::SitIx,
-                    value: #rt::Term,
-                    store: &mut #rt::Store,
+                    dm: DmIx,
+                    sit: SitIx,
+                    value: Term,
+                    store: &mut Store,
                 ) -> bool {
                     match dm {
                         #(#dm_ix => #dm_mods::select_compiled(self, sit, value, store),)*
@@ -269,40 +267,40 @@ impl Gen<'_> {
                 }
                 fn run_situation(
                     &self,
-                    dm: #rt::machine::DmIx,
-                    sit: #rt::machine::SitIx,
-                    cx: &mut #rt::machine::Cx<'_, '_, Self>,
-                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    dm: DmIx,
+                    sit: SitIx,
+                    cx: &mut Cx<'_, '_, Self>,
+                ) -> Result<Step, RunError> {
                     match dm {
                         #(#dm_ix => #dm_mods::run_situation(self, sit, cx),)*
-                        _ => ::std::result::Result::Err(cx.error("no such DM", None)),
+                        _ => Err(cx.error("no such DM", None)),
                     }
                 }
                 fn run_exit(
                     &self,
-                    dm: #rt::machine::DmIx,
-                    sit: #rt::machine::SitIx,
-                    saved: #rt::Term,
-                    final_id: #rt::Term,
-                    cx: &mut #rt::machine::Cx<'_, '_, Self>,
-                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    dm: DmIx,
+                    sit: SitIx,
+                    saved: Term,
+                    final_id: Term,
+                    cx: &mut Cx<'_, '_, Self>,
+                ) -> Result<Step, RunError> {
                     match dm {
                         #(#dm_ix => #dm_mods::run_exit(self, sit, saved, final_id, cx),)*
-                        _ => ::std::result::Result::Err(cx.error("no such DM", None)),
+                        _ => Err(cx.error("no such DM", None)),
                     }
                 }
             }
 
             #[allow(clippy::all)]
             impl #rt::app::App for Program {
-                fn initial_state(&self) -> (#rt::Store, #rt::Vars) {
+                fn initial_state(&self) -> (Store, Vars) {
                     Program::initial_state(self)
                 }
-                fn basic_actions(&self) -> ::std::vec::Vec<#rt::Atom> {
+                fn basic_actions(&self) -> Vec<Atom> {
                     Program::basic_actions(self)
                 }
-                fn recovery(&self) -> ::std::vec::Vec<(#rt::Atom, #rt::Atom)> {
-                    ::std::vec![#(#recovery),*]
+                fn recovery(&self) -> Vec<(Atom, Atom)> {
+                    vec![#(#recovery),*]
                 }
             }
 
@@ -319,13 +317,13 @@ impl Gen<'_> {
             #[allow(dead_code)]
             pub fn run(
                 main: &str,
-                in_arg: ::std::option::Option<&str>,
-                options: #rt::machine::Options,
+                in_arg: Option<&str>,
+                options: machine::Options,
                 functions: #rt::Functions,
-                perception: &mut dyn #rt::machine::Perception,
-                actions: &mut dyn #rt::machine::Actions,
-                observer: ::std::option::Option<&mut dyn #rt::machine::Observer>,
-            ) -> ::std::result::Result<(#rt::machine::Outcome, #rt::Store), ::std::string::String> {
+                perception: &mut dyn machine::Perception,
+                actions: &mut dyn machine::Actions,
+                observer: Option<&mut dyn machine::Observer>,
+            ) -> Result<(machine::Outcome, Store), String> {
                 #rt::app::run(program(), main, in_arg, options, functions, perception, actions, observer)
             }
 
@@ -335,21 +333,56 @@ impl Gen<'_> {
 
             /// The standard user functions plus the application's Prolog ones.
             #[allow(dead_code)]
-            pub fn functions() -> ::std::result::Result<#rt::Functions, ::std::string::String> {
+            pub fn functions() -> Result<#rt::Functions, String> {
                 let mut functions = #rt::Functions::standard();
                 #rt::install_prolog_sources(&mut functions, PROLOG_SOURCES)?;
-                ::std::result::Result::Ok(functions)
+                Ok(functions)
             }
 
             #native_driver
 
             #(#modules)*
+        };
+
+        // Atoms: those the code names (a template's atoms are read with
+        // its text).
+        let mut used = std::collections::HashSet::new();
+        idents_in(&body, &mut used);
+        let atoms: Vec<&(Atom, Ident)> = self
+            .atoms
+            .iter()
+            .filter(|(_, id)| used.contains(&id.to_string()))
+            .collect();
+        let atom_fields = atoms.iter().map(|(a, id)| {
+            let doc = format!(" `{}`", quote_atom(a.as_str()));
+            quote!(#[doc = #doc] pub #id: Atom,)
+        });
+        let atom_inits = atoms.iter().map(|(a, id)| {
+            let lit = Literal::string(a.as_str());
+            quote!(#id: Atom::intern(#lit),)
+        });
+        quote! {
+            #[allow(unused_imports)]
+            use ::sitlog_runtime::prelude::*;
+
+            #body
+
+            /// The atoms the program's code names, interned once.
+            #[allow(dead_code, non_snake_case, clippy::all)]
+            pub struct Atoms { #(#atom_fields)* }
+
+            #[allow(clippy::all)]
+            impl Atoms {
+                fn new() -> Atoms {
+                    Atoms { #(#atom_inits)* }
+                }
+            }
         }
     }
 
     fn emit_dm(&self, dm: &crate::ir::IrDm, dm_ix: usize, module: &Ident) -> TokenStream {
-        let rt = quote!(::sitlog_runtime);
         let none = Term::atom(none_marker());
+        let dm_lit = Literal::u32_unsuffixed(dm_ix as u32);
         let mut namer = Namer::default();
         let mut variants = Vec::new();
         let mut vnames = Vec::new();
@@ -358,9 +391,11 @@ impl Gen<'_> {
         let mut selects = Vec::new();
         let mut locations = Vec::new();
         let mut instantiate_arms = Vec::new();
+        let mut templates = Vec::new();
         let mut compiled_arms = Vec::new();
         let mut select_arms = Vec::new();
         let mut run_arms = Vec::new();
+        let mut native_ixs = Vec::new();
         let mut exit_arms = Vec::new();
         // A DM's situations with native code have no term code (they run
         // natively with the history kept or not); when their values do not
@@ -401,7 +436,7 @@ impl Gen<'_> {
                 Kind::Recursive => quote!(Recursive),
                 Kind::Perceptual => quote!(Perceptual),
             };
-            kinds.push(quote!(Situation::#vname => #rt::machine::Kind::#kind,));
+            kinds.push(quote!(Situation::#vname => Kind::#kind,));
             let loc = Literal::string(&s.location);
             locations.push(quote!(Situation::#vname => #loc,));
             selects.push(match s.id_functor {
@@ -448,22 +483,25 @@ impl Gen<'_> {
                 });
             }
             if planned {
-                instantiate_arms.push(quote!(Situation::#vname => ::std::option::Option::None,));
+                templates.push(quote!(None));
+            } else if let Some(text) = self.template_text(s.template) {
+                templates.push(quote!(Some(#text)));
             } else {
+                // A template whose text does not read back as itself: built
+                // by code.
+                templates.push(quote!(None));
                 let body = self.builder_body(&parts);
                 let prelude = Self::prelude(&body);
                 let fdoc = format!(" A fresh instance of `{id_text}` (D-7).");
                 fns.push(quote! {
                     #[doc = #fdoc]
-                    fn #fname(p: &super::Program, store: &mut #rt::Store) -> #rt::machine::Instance {
+                    fn #fname(p: &super::Program, store: &mut Store) -> Instance {
                         #prelude
                         #body
-                        #rt::machine::Instance { #(#fields)* }
+                        Instance { #(#fields)* }
                     }
                 });
-                instantiate_arms.push(
-                    quote!(Situation::#vname => ::std::option::Option::Some(#fname(p, store)),),
-                );
+                instantiate_arms.push(quote!(Situation::#vname => Some(#fname(p, store)),));
             }
 
             // The situation as code, when it can be compiled.
@@ -480,8 +518,7 @@ impl Gen<'_> {
                 let code = self.situation_code(plan, &run_name, &exit_name);
                 let a = &self.atoms[self.atom_ix[&id]].1;
                 let arity = Literal::usize_unsuffixed(arity);
-                compiled_arms
-                    .push(quote!(#ix => ::std::option::Option::Some((p.atoms.#a, #arity)),));
+                compiled_arms.push(quote!(#ix => Some((p.atoms.#a, #arity)),));
                 if let Some(select) = self.select_code(plan) {
                     select_arms.push(quote!(#ix => { #select }));
                 }
@@ -489,12 +526,9 @@ impl Gen<'_> {
                     // Natively, else from the template (nothing done); the
                     // step straight to the machine (native code may have
                     // left this DM: its calls run on the native stack).
-                    run_arms.push(quote! {
-                        #ix => return run_native(p, cx, #ix)
-                            .map(|s| s.unwrap_or(#rt::machine::Step::Template)),
-                    });
+                    native_ixs.push(ix.clone());
                 } else {
-                    run_arms.push(quote!(#ix => #run_name(p, cx),));
+                    run_arms.push(quote!(#ix => #run_name(p, cx).map(Visit::Go),));
                     let rdoc = format!(" A visit of `{id_text}` as code.");
                     let run = code.run;
                     fns.push(quote!(#[doc = #rdoc] #run));
@@ -507,11 +541,21 @@ impl Gen<'_> {
             }
         }
         let count = dm.situations.len();
+        let native_arm = if native_ixs.is_empty() {
+            quote!()
+        } else {
+            quote! {
+                #(#native_ixs)|* => {
+                    run_native(p, cx, sit).map(|s| Visit::Stop(s.unwrap_or(Step::Template)))
+                }
+            }
+        };
         let term_code = quote! {
             match sit {
                 #(#run_arms)*
-                _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
-            }?
+                #native_arm
+                _ => Err(cx.error("the situation has no compiled code", None)),
+            }
         };
         let native_items = match native {
             Some(n) => n.items,
@@ -543,20 +587,39 @@ impl Gen<'_> {
                 quote!(match self {}),
                 quote!(match self {}),
                 quote!(match self {}),
-                quote!(match sit {}),
+                quote!(p.instance(#dm_lit, sit as SitIx, store)),
+            )
+        } else if instantiate_arms.is_empty() {
+            (
+                quote!(match self { #(#selects)* }),
+                quote!(match self { #(#kinds)* }),
+                quote!(match self { #(#locations)* }),
+                quote!(p.instance(#dm_lit, sit as SitIx, store)),
             )
         } else {
             (
                 quote!(match self { #(#selects)* }),
                 quote!(match self { #(#kinds)* }),
                 quote!(match self { #(#locations)* }),
-                quote!(match sit { #(#instantiate_arms)* }),
+                quote!(match sit {
+                    #(#instantiate_arms)*
+                    _ => p.instance(#dm_lit, sit as SitIx, store),
+                }),
             )
         };
+        let dm_name = self.store.writeq(dm.head);
+        let templates_doc = format!(
+            " The templates of DM `{dm_name}`'s situations (D-7) as `writeq` text, read once into \
+             the program's store; `None` for a situation that runs as term code (never \
+             instantiated) or whose instance is built by code."
+        );
         quote! {
             #[doc = #mod_doc]
             #[allow(dead_code, unused_variables, unused_assignments, unused_mut, non_camel_case_types, clippy::all)]
             pub mod #module {
+                #[allow(unused_imports)]
+                use ::sitlog_runtime::prelude::*;
+
                 /// The situations, in source order; the discriminant is the
                 /// machine's situation index.
                 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -566,11 +629,11 @@ impl Gen<'_> {
                 impl Situation {
                     pub const ALL: [Situation; #count_lit] = [#(#variant_names),*];
 
-                    pub fn from_ix(ix: #rt::machine::SitIx) -> Situation {
+                    pub fn from_ix(ix: SitIx) -> Situation {
                         Situation::ALL[ix as usize]
                     }
 
-                    pub fn kind(self) -> #rt::machine::Kind {
+                    pub fn kind(self) -> Kind {
                         #kind_body
                     }
 
@@ -579,7 +642,7 @@ impl Gen<'_> {
                     pub fn may_select(
                         self,
                         p: &super::Program,
-                        functor: ::std::option::Option<(#rt::Atom, usize)>,
+                        functor: Option<(Atom, usize)>,
                     ) -> bool {
                         #may_select_body
                     }
@@ -591,36 +654,36 @@ impl Gen<'_> {
                 }
 
                 /// A fresh copy of the DM's head.
-                pub fn head(p: &super::Program, store: &mut #rt::Store) -> #rt::Term {
+                pub fn head(p: &super::Program, store: &mut Store) -> Term {
                     #head_prelude
                     #head_body
                     head
                 }
 
                 /// Fresh default values of the local variables (D-5).
-                pub fn locals(p: &super::Program, store: &mut #rt::Store) -> #rt::Vars {
+                pub fn locals(p: &super::Program, store: &mut Store) -> Vars {
                     #locals_prelude
                     #locals_body
-                    #rt::Vars::from_entries(::std::vec![#(#local_entries),*])
+                    Vars::from_entries(vec![#(#local_entries),*])
                 }
 
                 /// The id of a situation that runs as code.
                 pub fn compiled_id(
                     p: &super::Program,
-                    sit: #rt::machine::SitIx,
-                ) -> ::std::option::Option<(#rt::Atom, usize)> {
+                    sit: SitIx,
+                ) -> Option<(Atom, usize)> {
                     match sit {
                         #(#compiled_arms)*
-                        _ => ::std::option::Option::None,
+                        _ => None,
                     }
                 }
 
                 /// Whether a compiled situation's id unifies with `value` (its constant arguments, or the whole id when it is a pattern).
                 pub fn select_compiled(
                     p: &super::Program,
-                    sit: #rt::machine::SitIx,
-                    value: #rt::Term,
-                    store: &mut #rt::Store,
+                    sit: SitIx,
+                    value: Term,
+                    store: &mut Store,
                 ) -> bool {
                     let a = &p.atoms;
                     match sit {
@@ -630,63 +693,42 @@ impl Gen<'_> {
                 }
 
                 /// Runs a situation that runs as code, and the compiled
-                /// situations it goes to (by index, or selected by the
-                /// value of its next situation), until the machine is
-                /// needed (another kind of step, a situation instantiated
-                /// from its template, or garbage to collect).
+                /// situations it goes to (`Cx::run_compiled`): term code
+                /// goes on by itself, native code's step goes to the machine.
                 pub fn run_situation(
                     p: &super::Program,
-                    sit: #rt::machine::SitIx,
-                    cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
-                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
-                    let mut sit = sit;
-                    loop {
-                        let step = #term_code;
-                        match step {
-                            #rt::machine::Step::GotoSit(next) if !cx.gc_due() => {
-                                // A compound id is built by the situation's code.
-                                let ::std::option::Option::Some((id, _)) = compiled_id(p, next) else {
-                                    return ::std::result::Result::Ok(step);
-                                };
-                                cx.enter(next, id);
-                                sit = next;
-                            }
-                            // A next situation computed at run time: selected
-                            // here when the machine would select compiled code.
-                            #rt::machine::Step::Goto(value) if !cx.gc_due() => {
-                                let ::std::option::Option::Some(next) = cx.enter_selected(value) else {
-                                    return ::std::result::Result::Ok(step);
-                                };
-                                sit = next;
-                            }
-                            _ => return ::std::result::Result::Ok(step),
-                        }
-                    }
+                    sit: SitIx,
+                    cx: &mut Cx<'_, '_, super::Program>,
+                ) -> Result<Step, RunError> {
+                    cx.run_compiled(#dm_lit, sit, |cx, sit| #term_code)
                 }
 
                 /// The exit arcs of a recursive situation that runs as code.
                 pub fn run_exit(
                     p: &super::Program,
-                    sit: #rt::machine::SitIx,
-                    saved: #rt::Term,
-                    final_id: #rt::Term,
-                    cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
-                ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
+                    sit: SitIx,
+                    saved: Term,
+                    final_id: Term,
+                    cx: &mut Cx<'_, '_, super::Program>,
+                ) -> Result<Step, RunError> {
                     match sit {
                         #(#exit_arms)*
-                        _ => ::std::result::Result::Err(cx.error("the situation has no compiled code", None)),
+                        _ => Err(cx.error("the situation has no compiled code", None)),
                     }
                 }
 
-                /// A fresh instance of a situation; `None` for one that runs
-                /// as term code (the machine never instantiates it; one that
-                /// runs natively is instantiated when its code hands it over,
-                /// `Step::Template`).
+                #[doc = #templates_doc]
+                pub const TEMPLATES: [Option<&str>; #count_lit] = [#(#templates),*];
+
+                /// A fresh instance of a situation, a copy of its template;
+                /// `None` for one that runs as term code (the machine never
+                /// instantiates it; one that runs natively is instantiated
+                /// when its code hands it over, `Step::Template`).
                 pub fn instantiate(
                     p: &super::Program,
                     sit: Situation,
-                    store: &mut #rt::Store,
-                ) -> ::std::option::Option<#rt::machine::Instance> {
+                    store: &mut Store,
+                ) -> Option<Instance> {
                     #instantiate_body
                 }
 
@@ -694,6 +736,19 @@ impl Gen<'_> {
 
                 #(#fns)*
             }
+        }
+    }
+}
+
+/// The identifiers in `ts`, as text.
+fn idents_in(ts: &TokenStream, out: &mut std::collections::HashSet<String>) {
+    for tt in ts.clone() {
+        match tt {
+            proc_macro2::TokenTree::Group(g) => idents_in(&g.stream(), out),
+            proc_macro2::TokenTree::Ident(i) => {
+                out.insert(i.to_string());
+            }
+            _ => {}
         }
     }
 }

@@ -28,20 +28,25 @@
 //!   `List`/`Val`) and one driver for the program running native frames on
 //!   an explicit stack (no Rust recursion); the term code above runs the
 //!   situations native code does not take;
-//! - for every situation that does not run as code, a function building a
-//!   fresh instance (D-7) for the machine's general path (situations with
-//!   parameters; the machine never instantiates the others): fresh variables
-//!   first (in the order a `copy_term` of the interpreter's template would
-//!   make them), then the non-ground parts, ground parts being constants;
+//! - for every situation that does not run as code, its template (D-7) as
+//!   `writeq` text in the DM's `TEMPLATES`, read once into the program's
+//!   store (`machine::read_templates`) and copied for a fresh instance
+//!   (`Instance::fresh`, the `copy_term` the interpreter makes); a template
+//!   whose text does not read back as itself gets a builder function
+//!   instead (fresh variables first, in that `copy_term`'s order, then the
+//!   non-ground parts, ground parts being constants);
 //! - `may_select`, `kind`, `location` as `match`es on the situation enum,
 //!   and DM lookup by comparing interned atoms;
 //! - entry points: `program()` (one `Program` per process), `run(...)` and
 //!   `main()` (the `sitlogc run` command line, shared through
 //!   `sitlog_runtime::app`).
 //!
-//! Every runtime path is fully qualified (`::sitlog_runtime::...`), so the
-//! code can be `include!`d anywhere; the output is deterministic (source
-//! order, no hash-map order).
+//! The file and each DM module start with `use ::sitlog_runtime::prelude::*;`
+//! (a glob import: an item of the same name where the code is `include!`d
+//! shadows it, no conflict), so the code names `Term`, `Step`, `Cx`,
+//! `native::compound` and the standard prelude's `Option`/`Some`/`Ok`
+//! without full paths; the output is deterministic (source order, no
+//! hash-map order).
 
 mod emit;
 mod explain;
@@ -302,7 +307,7 @@ impl<'s> Gen<'s> {
 
     /// Expression of a leaf (no statements needed), or `None` for compounds.
     fn leaf(&self, t: Term, vars: &HashMap<u32, Ident>, in_consts: bool) -> Option<TokenStream> {
-        let term = quote!(::sitlog_runtime::Term);
+        let term = quote!(Term);
         Some(match self.store.value(t) {
             Value::Var(v) => {
                 let id = &vars[&v.index()];
@@ -453,6 +458,21 @@ impl<'s> Gen<'s> {
         quote!(#(#var_stmts)* #(#stmts)*)
     }
 
+    /// A situation template's `writeq` text as a string literal (wrapped,
+    /// the breaks escaped away), when the text reads back as the template
+    /// itself (the generated program reads it with the same reader,
+    /// `machine::read_templates`); `None` otherwise.
+    fn template_text(&self, template: Term) -> Option<TokenStream> {
+        let text = self.store.writeq(template);
+        let mut scratch = Store::new();
+        let (back, _) = scratch.parse(&text).ok()?;
+        let mut vars = HashMap::new();
+        if !same_term(self.store, template, &scratch, back, &mut vars) {
+            return None;
+        }
+        wrapped_literal(&text, 88).parse().ok()
+    }
+
     /// An expression building one term with its own fresh variables.
     fn builder_expr(&self, t: Term) -> TokenStream {
         let (var_stmts, vars) = self.fresh_vars(&[t]);
@@ -501,4 +521,67 @@ impl<'s> Gen<'s> {
         let k = k.then(|| quote!(let k = &p.k;));
         quote!(#a #k)
     }
+}
+
+/// Whether `a` (in `sa`) and `b` (in `sb`) are the same term up to a
+/// renaming of variables (`vars`: `a`'s variable to `b`'s, one to one).
+fn same_term(sa: &Store, a: Term, sb: &Store, b: Term, vars: &mut HashMap<u32, u32>) -> bool {
+    match (sa.value(a), sb.value(b)) {
+        (Value::Var(x), Value::Var(y)) => {
+            let (x, y) = (x.index(), y.index());
+            match vars.get(&x) {
+                Some(&z) => z == y,
+                None => {
+                    if vars.values().any(|&z| z == y) {
+                        return false;
+                    }
+                    vars.insert(x, y);
+                    true
+                }
+            }
+        }
+        (Value::Atom(x), Value::Atom(y)) => x == y,
+        (Value::Int(x), Value::Int(y)) => x == y,
+        (Value::BigInt(x), Value::BigInt(y)) => x == y,
+        (Value::Float(x), Value::Float(y)) => x.to_bits() == y.to_bits(),
+        (Value::Compound(f, xs), Value::Compound(g, ys)) => {
+            f == g
+                && xs.len() == ys.len()
+                && xs
+                    .iter()
+                    .zip(ys)
+                    .all(|(&x, &y)| same_term(sa, x, sb, y, vars))
+        }
+        _ => false,
+    }
+}
+
+/// The source of a Rust string literal holding `text`, broken into lines of
+/// about `width` characters by escaped line breaks (`\` at the end of a
+/// line: the break and the next line's indentation are not part of the
+/// string), each break before a character that is not white space.
+fn wrapped_literal(text: &str, width: usize) -> String {
+    let mut out = String::from("\"");
+    let mut line = 0;
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        let escaped: String = match c {
+            '"' => "\\\"".into(),
+            '\\' => "\\\\".into(),
+            '\n' => "\\n".into(),
+            '\t' => "\\t".into(),
+            '\r' => "\\r".into(),
+            c if c.is_control() => c.escape_default().collect(),
+            c => c.to_string(),
+        };
+        out.push_str(&escaped);
+        line += escaped.len();
+        let next_ok = chars.peek().is_some_and(|n| !n.is_whitespace());
+        if line >= width && next_ok && matches!(c, ',' | '(' | '[') {
+            out.push_str("\\\n        ");
+            line = 0;
+        }
+    }
+    out.push('"');
+    out
 }

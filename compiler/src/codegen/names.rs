@@ -131,7 +131,7 @@ pub(super) fn quote_atom(text: &str) -> String {
 }
 
 pub(super) fn int_expr(i: i64) -> TokenStream {
-    let term = quote!(::sitlog_runtime::Term);
+    let term = quote!(Term);
     if i == i64::MIN {
         quote!(#term::int(i64::MIN))
     } else if i < 0 {
@@ -144,7 +144,7 @@ pub(super) fn int_expr(i: i64) -> TokenStream {
 }
 
 pub(super) fn float_expr(f: f64) -> TokenStream {
-    let term = quote!(::sitlog_runtime::Term);
+    let term = quote!(Term);
     if f.is_finite() && f.is_sign_positive() && f != 0.0 {
         let lit = Literal::f64_unsuffixed(f);
         quote!(#term::float(#lit))

@@ -83,7 +83,7 @@ impl Gen<'_> {
 
     pub(super) fn atom_expr(&self, a: Atom) -> TokenStream {
         if a == atoms::DOT {
-            return quote!(::sitlog_runtime::atoms::DOT);
+            return quote!(atoms::DOT);
         }
         let id = &self.atoms[self.atom_ix[&a]].1;
         quote!(a.#id)
@@ -166,8 +166,7 @@ impl Gen<'_> {
             Ev::IsFresh { expr, dst } => {
                 let expr = self.build_code(expr, b);
                 let dst = reg(*dst);
-                b.stmts
-                    .push(quote!(#dst = cx.is(::std::option::Option::None, #expr, #arc)?;));
+                b.stmts.push(quote!(#dst = cx.is(None, #expr, #arc)?;));
                 quote!(#dst)
             }
             Ev::Is { lhs, expr } => {
@@ -175,7 +174,7 @@ impl Gen<'_> {
                 let lhs = self.build_code(lhs, b);
                 let x = b.tmp();
                 b.stmts
-                    .push(quote!(let #x = cx.is(::std::option::Option::Some(#lhs), #expr, #arc)?;));
+                    .push(quote!(let #x = cx.is(Some(#lhs), #expr, #arc)?;));
                 quote!(#x)
             }
             Ev::Compound(name, args) => {
@@ -222,9 +221,9 @@ impl Gen<'_> {
                 match ix {
                     Some(ix) => {
                         let ix = Literal::u32_unsuffixed(*ix);
-                        quote!((#v, ::std::option::Option::Some(#ix)))
+                        quote!((#v, Some(#ix)))
                     }
-                    None => quote!((#v, ::std::option::Option::None)),
+                    None => quote!((#v, None)),
                 }
             }
             Next::If(c, then, other) => {
@@ -239,7 +238,7 @@ impl Gen<'_> {
             }
             Next::Eval(e) => {
                 let v = self.ev_code(e, arc, b);
-                quote!((#v, ::std::option::Option::None))
+                quote!((#v, None))
             }
         }
     }
@@ -346,7 +345,7 @@ impl Gen<'_> {
                         #(#stmts)*
                         let _ = store.unify(#y, #copy);
                     } else {
-                        let ::std::option::Option::Some(args) = store.compound_args(#y, #f, #arity) else {
+                        let Some(args) = store.compound_args(#y, #f, #arity) else {
                             return false;
                         };
                         let [#(#parts),*] = [#(args[#ixs]),*];
@@ -366,8 +365,7 @@ impl Gen<'_> {
         run_name: &Ident,
         exit_name: &Ident,
     ) -> SituationCode {
-        let rt = quote!(::sitlog_runtime);
-        let none = quote!(::std::option::Option::None);
+        let none = quote!(None);
         let mut b = Body::new();
         // A compound id: the value that selected the situation, else built
         // with fresh variables (initial situation).
@@ -387,8 +385,8 @@ impl Gen<'_> {
             let f = self.atom_expr(plan.id.0);
             b.stmts.push(quote! {
                 let id = match cx.selected() {
-                    ::std::option::Option::Some(value) => value,
-                    ::std::option::Option::None => {
+                    Some(value) => value,
+                    None => {
                         #(#fresh)*
                         let id = cx.compound(#f, &[#(#values),*]);
                         cx.set_id(id);
@@ -405,8 +403,8 @@ impl Gen<'_> {
             let (stmts, v) = b.nested(|b| self.build_code(&pat.build, b));
             b.stmts.push(quote! {
                 let id = match cx.selected() {
-                    ::std::option::Option::Some(value) => value,
-                    ::std::option::Option::None => {
+                    Some(value) => value,
+                    None => {
                         #(#fresh)*
                         #(#stmts)*
                         let id = #v;
@@ -449,13 +447,13 @@ impl Gen<'_> {
             if *unify {
                 b.stmts.push(quote!(cx.in_arg(#r)?;));
             }
-            links.push(quote!(::std::option::Option::Some(#r)));
+            links.push(quote!(Some(#r)));
         }
         if let Some((o, r)) = &plan.out_arg {
             let o = self.build_code(o, &mut b);
             let r = reg(*r);
             b.stmts.push(quote!(#r = #o;));
-            links.push(quote!(::std::option::Option::Some(#r)));
+            links.push(quote!(Some(#r)));
         }
         match &plan.prog {
             None => {}
@@ -471,15 +469,15 @@ impl Gen<'_> {
                 b.stmts.push(quote!(cx.prog(#p, &[#(#links),*])?;));
             }
         }
-        let sig = quote!(cx: &mut #rt::machine::Cx<'_, '_, super::Program>);
-        let result = quote!(::std::result::Result<#rt::machine::Step, #rt::machine::RunError>);
+        let sig = quote!(cx: &mut Cx<'_, '_, super::Program>);
+        let result = quote!(Result<Step, RunError>);
         let mut exit = None;
         match &plan.kind {
             KindPlan::Final { diag_mod } => {
                 let out = match &plan.out_arg {
                     Some((_, r)) => {
                         let r = reg(*r);
-                        quote!(::std::option::Option::Some(#r))
+                        quote!(Some(#r))
                     }
                     None => none.clone(),
                 };
@@ -488,11 +486,9 @@ impl Gen<'_> {
                     let d = self.build_code(d, &mut b);
                     b.stmts.push(quote!(cx.diag_mod(#d)?;));
                 }
-                let empty = quote!(#rt::Term::atom(#rt::atoms::EMPTY));
-                b.stmts
-                    .push(quote!(cx.record(#empty, #empty, ::std::option::Option::None);));
-                b.stmts
-                    .push(quote!(::std::result::Result::Ok(#rt::machine::Step::Final)));
+                let empty = quote!(Term::atom(atoms::EMPTY));
+                b.stmts.push(quote!(cx.record(#empty, #empty, None);));
+                b.stmts.push(quote!(Ok(Step::Final)));
             }
             KindPlan::Perceptual(arcs) => self.arcs_code(arcs, false, &mut b),
             KindPlan::Recursive {
@@ -510,13 +506,13 @@ impl Gen<'_> {
                 }
                 let saved_regs: Vec<Ident> = saved.iter().map(|&r| reg(r)).collect();
                 let saved_value = if saved.is_empty() {
-                    quote!(#rt::Term::NIL)
+                    quote!(Term::NIL)
                 } else {
-                    quote!(cx.compound(#rt::atoms::DOT, &[#(#saved_regs),*]))
+                    quote!(cx.compound(atoms::DOT, &[#(#saved_regs),*]))
                 };
                 b.stmts.push(quote! {
                     let saved = #saved_value;
-                    ::std::result::Result::Ok(#rt::machine::Step::Call { call, saved })
+                    Ok(Step::Call { call, saved })
                 });
                 // The exit arcs: the situation's variables back from `saved`.
                 let mut e = Body::new();
@@ -529,8 +525,8 @@ impl Gen<'_> {
                     quote! {
                         fn #exit_name(
                             p: &super::Program,
-                            saved: #rt::Term,
-                            final_id: #rt::Term,
+                            saved: Term,
+                            final_id: Term,
                             #sig,
                         ) -> #result
                     },
@@ -552,7 +548,6 @@ impl Gen<'_> {
     /// the chosen arc's action, next situation, out_arg, diag_mod and
     /// history entry.
     fn arcs_code(&self, a: &Arcs, exit: bool, b: &mut Body) {
-        let rt = quote!(::sitlog_runtime);
         // Each arc's variables: imported copies of the situation's, fresh otherwise (D-11).
         for (i, arc) in a.arcs.iter().enumerate() {
             for &r in &arc.fresh {
@@ -580,11 +575,7 @@ impl Gen<'_> {
                 .enumerate()
                 .map(|(i, arc)| {
                     let ix = Literal::usize_unsuffixed(i);
-                    self.ev_code(
-                        &arc.expectation,
-                        &quote!(::std::option::Option::Some(#ix)),
-                        b,
-                    )
+                    self.ev_code(&arc.expectation, &quote!(Some(#ix)), b)
                 })
                 .collect::<Vec<_>>()
         });
@@ -596,9 +587,9 @@ impl Gen<'_> {
         } else {
             b.stmts.push(quote! {
                 cx.save_vars();
-                let expectations = (|| -> ::std::result::Result<_, #rt::machine::RunError> {
+                let expectations = (|| -> Result<_, RunError> {
                     #(#exp_stmts)*
-                    ::std::result::Result::Ok([#(#values),*])
+                    Ok([#(#values),*])
                 })();
                 cx.restore_vars();
                 [#(#exps),*] = expectations?;
@@ -615,8 +606,8 @@ impl Gen<'_> {
             } else {
                 let ty = self.build_code(&a.type_term, b);
                 b.stmts.push(quote! {
-                    let ::std::option::Option::Some(chosen) = cx.choose(#ty)? else {
-                        return ::std::result::Result::Ok(#rt::machine::Step::Unmet { type_term: #ty });
+                    let Some(chosen) = cx.choose(#ty)? else {
+                        return Ok(Step::Unmet { type_term: #ty });
                     };
                 });
             }
@@ -638,9 +629,8 @@ impl Gen<'_> {
     /// The chosen arc `i`: its action, next situation, out_arg, diag_mod,
     /// history entry, and where the machine goes.
     fn arc_code(&self, arc: &ArcPlan, i: usize, expectation: &Ident, b: &mut Body) {
-        let rt = quote!(::sitlog_runtime);
         let ix = Literal::usize_unsuffixed(i);
-        let at = quote!(::std::option::Option::Some(#ix));
+        let at = quote!(Some(#ix));
         match &arc.action {
             // A list of actions, written out: its elements evaluated and
             // performed in order; the list itself is built only for the history.
@@ -655,7 +645,7 @@ impl Gen<'_> {
                     let action = if cx.records() {
                         cx.store().list(&[#(#values),*])
                     } else {
-                        #rt::Term::NIL
+                        Term::NIL
                     };
                 });
             }
@@ -676,11 +666,8 @@ impl Gen<'_> {
             b.stmts.push(quote!(cx.diag_mod(#d)?;));
         }
         b.stmts.push(quote! {
-            cx.record(#expectation, action, ::std::option::Option::Some(next));
-            match target {
-                ::std::option::Option::Some(ix) => ::std::result::Result::Ok(#rt::machine::Step::GotoSit(ix)),
-                ::std::option::Option::None => cx.goto(next, #at),
-            }
+            cx.record(#expectation, action, Some(next));
+            cx.go(next, target, #at)
         });
     }
 }
@@ -714,7 +701,7 @@ fn wrap(signature: TokenStream, body: Vec<TokenStream>) -> TokenStream {
     let regs = registers(&body).into_iter().map(reg);
     quote!(#signature {
         #prelude
-        #(let mut #regs = ::sitlog_runtime::Term::NIL;)*
+        #(let mut #regs = Term::NIL;)*
         #body
     })
 }

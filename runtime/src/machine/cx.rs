@@ -3,9 +3,10 @@
 //! the one the interpreted path takes.
 
 use super::outcome::RunError;
-use super::program::{Cx, DmProgram, Step};
-use super::situation::SitIx;
+use super::program::{Cx, DmProgram, Step, Visit};
+use super::situation::{DmIx, SitIx};
 use crate::eval;
+use crate::native::{self, Native};
 use crate::store::Store;
 use crate::term::Term;
 use sitlog_syntax::Atom;
@@ -67,6 +68,59 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         let stats = self.m.store.stats();
         stats.cells + stats.vars >= self.m.cells_after_gc + self.m.options.gc_threshold
             || self.m.stop_requested()
+    }
+
+    /// Where an arc of compiled code goes: compiled situation `target` of
+    /// the running DM when the code resolved it (a constant next
+    /// situation), else the situation the evaluated `next` selects
+    /// ([`Cx::goto`]; `arc`: 0-based, for errors).
+    #[inline]
+    pub fn go(
+        &mut self,
+        next: Term,
+        target: Option<SitIx>,
+        arc: Option<usize>,
+    ) -> Result<Step, RunError> {
+        match target {
+            Some(ix) => Ok(Step::GotoSit(ix)),
+            None => self.goto(next, arc),
+        }
+    }
+
+    /// Runs compiled situation `sit` of the running DM (number `dm`) with
+    /// `visit`, and the compiled situations it goes to (by index, or
+    /// selected by the value of its next situation), until the machine is
+    /// needed (another kind of step, a situation instantiated from its
+    /// template, or garbage to collect) or `visit` stops ([`Visit::Stop`]).
+    /// The loop of every DM's `run_situation` in generated code.
+    pub fn run_compiled(
+        &mut self,
+        dm: DmIx,
+        mut sit: SitIx,
+        mut visit: impl FnMut(&mut Self, SitIx) -> Result<Visit, RunError>,
+    ) -> Result<Step, RunError> {
+        loop {
+            let step = match visit(self, sit)? {
+                Visit::Go(step) => step,
+                Visit::Stop(step) => return Ok(step),
+            };
+            match step {
+                Step::GotoSit(next) if !self.gc_due() => {
+                    let Some((id, _)) = self.m.program.compiled_id(dm, next) else {
+                        return Ok(step);
+                    };
+                    self.enter(next, id);
+                    sit = next;
+                }
+                Step::Goto(value) if !self.gc_due() => {
+                    let Some(next) = self.enter_selected(value) else {
+                        return Ok(step);
+                    };
+                    sit = next;
+                }
+                _ => return Ok(step),
+            }
+        }
     }
 
     /// Goes on to compiled situation `sit` of the running DM, whose id is the atom `id`.
@@ -492,6 +546,31 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         debug_assert!(self.m.lazy.is_empty(), "parameters read under a lazy frame");
         let dm_id = self.m.frames.last().expect("a frame is running").dm_id;
         self.m.store.arg(dm_id, i).map(|t| self.m.store.deref(t))
+    }
+
+    /// The native value of type `T` term `t` is (`None`: it has not that
+    /// type).
+    pub fn to_native<T: Native>(&self, t: Term) -> Option<T> {
+        T::from_term(&self.m.store, t)
+    }
+
+    /// [`Cx::param`] as a native value (`None`: none, or it does not
+    /// convert), for native code entering a DM.
+    pub fn param_as<T: Native>(&self, i: usize) -> Option<T> {
+        self.param(i).and_then(|t| T::from_term(&self.m.store, t))
+    }
+
+    /// [`Cx::local`] as a native value (`None`: none, or it does not
+    /// convert).
+    pub fn local_as<T: Native>(&self, name: Atom) -> Option<T> {
+        self.local(name)
+            .and_then(|t| T::from_term(&self.m.store, t))
+    }
+
+    /// The part of situation id `id` at `path` ([`native::id_part`]) as a
+    /// native value (`None`: no such part, or it does not convert).
+    pub fn id_part_as<T: Native>(&self, id: Term, path: &[usize]) -> Option<T> {
+        native::id_part(&self.m.store, id, path).and_then(|t| T::from_term(&self.m.store, t))
     }
 
     /// The integer a (dereferenced) term is, if it is one.

@@ -39,6 +39,6 @@ pub use io::{Actions, Perceived, Perception};
 pub use observe::{Inspection, Observer};
 pub use options::Options;
 pub use outcome::{ErrorSite, Outcome, RunError};
-pub use program::{Between, Cx, DmProgram, Next, Step, TypedRun};
-pub use situation::{DmIx, Instance, Kind, SitIx};
+pub use program::{Between, Cx, DmProgram, Next, Step, TypedRun, Visit};
+pub use situation::{none_marker, read_templates, DmIx, Instance, Kind, SitIx};
 pub use state::Machine;

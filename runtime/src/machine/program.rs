@@ -15,6 +15,16 @@ use crate::term::Term;
 use crate::vars::Vars;
 use sitlog_syntax::Atom;
 
+/// What one visit of compiled code gives [`Cx::run_compiled`]'s loop.
+#[derive(Debug)]
+pub enum Visit {
+    /// A step the loop may go on from by itself (to a compiled situation).
+    Go(Step),
+    /// A step for the machine as it is (native code left the DM, or handed
+    /// the situation to its template).
+    Stop(Step),
+}
+
 /// A program the machine can run.
 pub trait DmProgram {
     /// The first DM in load order with this name (D-3: arity is not compared).

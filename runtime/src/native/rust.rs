@@ -114,14 +114,10 @@ impl Native for Val {
         // `Val::from_term(.., &Ty::Ground)` gives, without its walk (the
         // pipe read at every in_arg).
         match t.0 {
-            crate::term::Repr::Int(i) => return Some(Val::Int(i)),
-            crate::term::Repr::Atom(a) if a != atoms::NIL => return Some(Val::Sym(a)),
-            _ => {}
+            crate::term::Repr::Int(i) => Some(Val::Int(i)),
+            crate::term::Repr::Atom(a) if a != atoms::NIL => Some(Val::Sym(a)),
+            _ => ground_val(store, t),
         }
-        if !store.is_inert(t) {
-            return None;
-        }
-        Val::from_term(store, t, &Ty::Ground)
     }
     #[inline]
     fn to_term(&self, store: &mut Store) -> Term {
@@ -131,6 +127,16 @@ impl Native for Val {
             v => Val::to_term(v, store),
         }
     }
+}
+
+/// `Native for Val`'s general case, out of line so that the int and atom
+/// case inlines where it is read (the pipe at every in_arg).
+#[inline(never)]
+fn ground_val(store: &Store, t: Term) -> Option<Val> {
+    if !store.is_inert(t) {
+        return None;
+    }
+    Val::from_term(store, t, &Ty::Ground)
 }
 
 /// A typed native value as a canonical [`Val`] (`[]` an empty list): a
@@ -221,7 +227,25 @@ impl Val {
     pub fn split_list(&self) -> Option<(Val, Val)> {
         match self {
             Val::List(l) => l.split_first().map(|(h, t)| (h.clone(), Val::List(t))),
+            // A cell whose tail is not a list ([`Val::cons`]).
+            Val::Tagged(c) if c.name() == atoms::DOT && c.args().len() == 2 => {
+                Some((c.args()[0].clone(), c.args()[1].clone()))
+            }
             _ => None,
+        }
+    }
+
+    /// `[head|tail]` of ground values, canonical: a list when `tail` is one
+    /// (sharing it), else the cell `'.'(head, tail)` as a compound (an
+    /// improper list such as `[a|b]`, which a conversion never gives:
+    /// `from_term` takes only proper lists, so only this builds one, and
+    /// two equal terms built so are `==`). [`Val::split_list`] reads both.
+    #[inline]
+    pub fn cons(head: Val, tail: Val) -> Val {
+        match tail {
+            Val::List(l) => Val::List(List::cons(head, l)),
+            Val::Sym(a) if a == atoms::NIL => Val::List(List::cons(head, List::nil())),
+            t => Val::Tagged(super::Compound::new(atoms::DOT, [head, t])),
         }
     }
 

@@ -44,7 +44,9 @@ pub enum Val {
     Sym(Atom),
     /// A proper list.
     List(List<Val>),
-    /// `name(args..)` (with no arguments, the atom `name`).
+    /// `name(args..)` (with no arguments, the atom `name`); `'.'(H, T)`
+    /// with `T` not a list is an improper list, built only by
+    /// [`Val::cons`] (a conversion takes proper lists only).
     Tagged(Compound),
     /// Any term of the store, as it was given (it may be an unbound
     /// variable, bound later). In a `Cell` so that [`gc`] can move it

@@ -49,6 +49,12 @@ fn functions() -> Functions {
         call.var_op(set)?;
         Ok(Term::atom(atoms::TRUE))
     });
+    // `twice(X)`: `[X, X]` (`typed/native`'s evaluated parts); `nofun(_)`
+    // fails.
+    f.register("twice", 1, |call, args| {
+        Ok(call.store.list(&[args[0], args[0]]))
+    });
+    f.register("nofun", 1, |_, _| Err("nofun fails".to_owned()));
     f
 }
 
@@ -374,8 +380,10 @@ fn typed_calls_agree() {
 /// machine's error; with a tiny GC threshold native code hands over after
 /// every visit; `find`, started with any arguments, holds ground terms;
 /// `big` performs `say`, `is`, `set` and `get` natively (terms built at
-/// the machine's calls, what they bind converted). The same on both back
-/// ends, history kept or not.
+/// the machine's calls, what they bind converted); `evals` has an
+/// evaluated embedded call, conditional expressions with evaluated sides,
+/// a next situation evaluated whole, compound values; `hear` expectations
+/// naming its parameter. The same on both back ends, history kept or not.
 #[test]
 fn native_dms_agree() {
     let ir = interpreter("typed/native");
@@ -399,6 +407,14 @@ fn native_dms_agree() {
         native::dm_echo::run_native,
         // An output argument: the call handed over on terms.
         native::dm_outer_out::run_native,
+        // Evaluated calls, conditions and next situations, compound values;
+        // expectations naming a parameter.
+        native::dm_evals::run_native,
+        native::dm_hear::run_native,
+        native::dm_walkv::run_native,
+        native::dm_fails::run_native,
+        native::dm_cells::run_native,
+        native::dm_sums::run_native,
     );
     for main in [
         "main",
@@ -427,8 +443,24 @@ fn native_dms_agree() {
         "want([a, b], c)",
         "outer_out(a)",
         "outer_out(3)",
+        "evals(a)",
+        "evals(b)",
+        "evals(f(c))",
+        "walkv",
+        "fails(2)",
+        "fails(3)",
+        "fails(1)",
+        "cells(a, b)",
+        "cells(a, [b, c])",
+        "cells(a, [])",
+        "cells(f(x), g([y]))",
+        "sums(2)",
+        "sums(5)",
     ] {
         agree(app, &ir, main, "");
+    }
+    for script in ["said(hi).\n", "said(ho).\n", "other.\n", "zzz.\n", ""] {
+        agree(app, &ir, "hear(hi)", script);
     }
     // The pipe: an int, an atom (the comparison on terms: an error), none.
     for in_arg in [Some("3"), Some("1"), Some("a"), None] {

@@ -196,3 +196,89 @@ diag_mod(give(K, Out),
   ],
   []
 ).
+
+% Boundaries in native code (issue 37, `codegen::native`): an embedded DM
+% call the evaluator computes (`twice/1`, a host function the test
+% registers, gives `[X, X]`), handed to the machine as evaluated; a
+% conditional expression as an action (its condition decided natively or
+% on evaluated sides); a conditional next situation whose condition the
+% evaluator computes a side of; a next situation the evaluator computes
+% whole; compound values and a list of different shapes built natively
+% and selected by a pattern; conditions that are Prolog goals (`member`).
+diag_mod(evals(X),
+  [ [ id ==> c, type ==> recursive, embedded_dm ==> search(apply(twice(_), [X]), X),
+      arcs ==> [ found(P) : empty => d(P), not_found : empty => d(none) ] ],
+    [ id ==> d(P), type ==> neutral,
+      arcs ==> [ empty : (P == none -> say(apply(twice(_), [P])) ; otherwise -> say([P, P]))
+                 => (apply(twice(_), [P]) == [a, a] -> e(P) ; otherwise -> got(apply(twice(_), [b]))) ] ],
+    [ id ==> e(P), type ==> neutral,
+      arcs ==> [ empty : [say(P), (apply(twice(_), [P]) \== [P, P] -> say(no) ; otherwise -> say(yes))]
+                 => plan([take(P, 1), deliver(P), P]) ] ],
+    [ id ==> plan([take(Q, N)|Rest]), type ==> neutral, arcs ==> [ empty : say(Rest) => fs(Q) ] ],
+    [ id ==> plan(_), type ==> neutral,
+      arcs ==> [ empty : (member(X, [a, b]) -> say(in) ; otherwise -> say(out))
+                 => (member(X, [b, c]) -> fs(X) ; otherwise -> fs(none)) ] ],
+    [ id ==> got([A|_]), type ==> neutral, arcs ==> [ empty : say(A) => plan(A) ] ],
+    [ id ==> fs(_), type ==> final ]
+  ],
+  []
+).
+
+% Expectations naming a situation variable (`said(W)`, `W` a parameter):
+% held natively, a value, so matching cannot bind it; the machine chooses.
+diag_mod(hear(W),
+  [ [ id ==> l, type ==> speech,
+      arcs ==> [ said(W) : say(W) => fs(W), said(X) : empty => fs(X), other : empty => fs(other) ] ],
+    [ id ==> fs(_), type ==> final ]
+  ],
+  []
+).
+
+% A local read by `get` inside a next situation (`walk(get(v, _))`, `v`
+% typed `ground`: `none` or a list): the machine's `get`, its value
+% converted and selected natively.
+diag_mod(walkv,
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : set(v, [a, b]) => w ] ],
+    [ id ==> w, type ==> neutral, arcs ==> [ empty : empty => walk(get(v, _)) ] ],
+    [ id ==> walk([X|Xs]), type ==> neutral, arcs ==> [ empty : say(X) => walk(Xs) ] ],
+    [ id ==> walk([]), type ==> final ]
+  ],
+  [ v ==> none ]
+).
+
+% The evaluator failing where native code evaluates a next situation (no
+% function `nofun/1`): the machine's error, and the failed transition not
+% counted, as on the term path.
+diag_mod(fails(K),
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : empty => (K == 1 -> part ; otherwise -> (K == 2 -> whole ; otherwise -> cond)) ] ],
+    [ id ==> part, type ==> neutral, arcs ==> [ empty : empty => got(apply(nofun(_), [K])) ] ],
+    [ id ==> whole, type ==> neutral, arcs ==> [ empty : empty => got(apply(nofun(_), [x])) ] ],
+    [ id ==> cond, type ==> neutral,
+      arcs ==> [ empty : empty => (apply(nofun(_), [K]) == x -> got(x) ; otherwise -> got(y)) ] ],
+    [ id ==> got(_), type ==> final ]
+  ],
+  []
+).
+
+% `[H|T]` of ground values built natively (`Val::cons`): a list when `T` is
+% one, else an improper list (`[a|b]`), matched again by `[Y|Ys]`.
+diag_mod(cells(H, T),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : say([H|T]) => back([H|T]) ] ],
+    [ id ==> back([Y|Ys]), type ==> neutral, arcs ==> [ empty : empty => fs([Y|Ys], Ys) ] ],
+    [ id ==> back(_), type ==> neutral, arcs ==> [ empty : empty => fs(none, none) ] ],
+    [ id ==> fs(_, _), type ==> final ]
+  ],
+  []
+).
+
+% A condition on a compound that evaluates (`N + 1`): not a native value,
+% the machine's condition decides it.
+diag_mod(sums(N),
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : empty => (N + 1 == 3 -> fs(yes) ; otherwise -> fs(took(N, [N]))) ] ],
+    [ id ==> fs(took(M, [M])), type ==> neutral, arcs ==> [ empty : empty => fs(M) ] ],
+    [ id ==> fs(_), type ==> final ]
+  ],
+  []
+).

@@ -37,6 +37,10 @@ use sitlog_runtime::{ArithCmp, Term, Value};
 use sitlog_syntax::atoms;
 use std::collections::HashMap;
 
+/// Why a call is not native: its DM call is evaluated (given to the
+/// machine on terms, evaluated there by `Cx::embedded_dm`).
+const EVALUATED: &str = "the embedded DM call is evaluated";
+
 /// The waiting variant of a recursive situation and its uses.
 #[derive(Clone)]
 pub(super) struct Wait {
@@ -86,7 +90,7 @@ impl Gen<'_> {
         match call {
             Build::Const(t) => {
                 if *eval_call {
-                    return Err("the embedded DM call is evaluated".into());
+                    return Err(EVALUATED.into());
                 }
                 match self.store.value(*t) {
                     Value::Atom(a) => Ok((a, Vec::new())),
@@ -103,7 +107,7 @@ impl Gen<'_> {
             }
             Build::Compound(name, args) => {
                 if *eval_call && !inert(call) {
-                    return Err("the embedded DM call is evaluated".into());
+                    return Err(EVALUATED.into());
                 }
                 let vals = args
                     .iter()
@@ -170,12 +174,14 @@ impl Gen<'_> {
 
     /// The visit of recursive situation `ix` (registers `regs` set).
     pub(super) fn nat_recursive(&self, d: &Dm, ix: usize, regs: &Regs) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let (name, args) = match self.nat_call_values(d, ix, regs) {
             Ok(x) => x,
-            // An argument is a fresh variable (an output argument): the
+            // An argument is a fresh variable (an output argument), or the
+            // call is evaluated (`ask(apply(f(_), [X]), ..)`): the
             // machine's call, on terms.
-            Err(e) if e.starts_with("register r") => return self.nat_call_on_terms(d, ix, regs),
+            Err(e) if e.starts_with("register r") || e == EVALUATED => {
+                return self.nat_call_on_terms(d, ix, regs)
+            }
             Err(e) => return Err(e),
         };
         let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
@@ -197,13 +203,13 @@ impl Gen<'_> {
             let v = self.nat_value(&Build::Reg(r), regs)?;
             let e = v.e;
             let x = format_ident!("s{}", k);
-            saved_terms.push(quote!(let #x = #rt::native::Native::to_term(&#e, cx.store());));
+            saved_terms.push(quote!(let #x = Native::to_term(&#e, cx.store());));
             saved_names.push(x);
         }
         let saved_value = if saved.is_empty() {
-            quote!(#rt::Term::NIL)
+            quote!(Term::NIL)
         } else {
-            quote!(cx.compound(#rt::atoms::DOT, &[#(#saved_names),*]))
+            quote!(cx.compound(atoms::DOT, &[#(#saved_names),*]))
         };
         // The call given to the machine, as the term code gives it.
         let hand_call = quote! {
@@ -211,12 +217,12 @@ impl Gen<'_> {
             cx.count_transitions(count);
             #(#id_stmts)*
             cx.enter_with_id(#curl, #id);
-            #(let #ts = #rt::native::Native::to_term(&#vs, cx.store());)*
-            let call = #rt::native::compound(cx.store(), #f, &[#(#ts),*]);
+            #(let #ts = Native::to_term(&#vs, cx.store());)*
+            let call = native::compound(cx.store(), #f, &[#(#ts),*]);
             #(#saved_terms)*
             let saved = #saved_value;
-            return ::std::result::Result::Ok(::std::option::Option::Some(
-                #rt::machine::Step::Call { call, saved },
+            return Ok(Some(
+                Step::Call { call, saved },
             ));
         };
         let Some(plan) = self.nat_call_plan(d, ix) else {
@@ -257,7 +263,9 @@ impl Gen<'_> {
         let mut wf = Vec::new();
         for (r, _) in self.nat_wait_fields(d, ix)? {
             let v = self.nat_value(&Build::Reg(r), regs)?;
-            let (rr, e) = (reg(r), v.e);
+            // The visit ends here: its own registers move into the
+            // waiting variant (not cloned and dropped).
+            let (rr, e) = (reg(r), super::moved(&v));
             wf.push(quote!(#rr: #e));
         }
         Ok(quote! {
@@ -267,7 +275,7 @@ impl Gen<'_> {
             // pushes it: the callee's entries nest in the caller's).
             if !run.records && stack.len() < cx.depth_room() {
                 let callee = super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} };
-                *call = ::std::option::Option::Some(super::NatFrame::#callee_v(callee));
+                *call = Some(super::NatFrame::#callee_v(callee));
                 done = true;
                 break 'visit Nat::#wv { #(#wf),* };
             }
@@ -279,7 +287,6 @@ impl Gen<'_> {
     /// term code gives it, its term built from native values and the
     /// fresh variables made for the visit (`fresh_r<r>`, terms).
     fn nat_call_on_terms(&self, d: &Dm, ix: usize, regs: &Regs) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let KindPlan::Recursive {
             call,
             eval_call,
@@ -289,15 +296,21 @@ impl Gen<'_> {
         else {
             return Err("not a recursive situation".into());
         };
-        if *eval_call && !matches!(call, Build::Const(_)) && !inert(call) {
-            return Err("the embedded DM call is evaluated".into());
-        }
+        // Evaluated as the term code evaluates it (`Cx::embedded_dm`: the
+        // evaluator and user functions at this boundary, on the term built
+        // from native values), in the situation entered.
+        let evaluated = *eval_call && (matches!(call, Build::Const(_)) || !inert(call));
         let curl = Literal::u32_unsuffixed(ix as u32);
         let hand = &d.hand;
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         let mut ts = Vec::new();
         let mut n = 0;
         let call_t = self.nat_build_term(call, regs, &mut ts, &mut n)?;
+        let eval = if evaluated {
+            quote!(let call = cx.embedded_dm(call)?;)
+        } else {
+            quote!()
+        };
         let mut saved_terms = Vec::new();
         let mut saved_names = Vec::new();
         for (k, &r) in saved.iter().enumerate() {
@@ -306,16 +319,15 @@ impl Gen<'_> {
                 Some((f, _)) if super::is_fresh(f) => saved_terms.push(quote!(let #x = #f;)),
                 _ => {
                     let e = self.nat_value(&Build::Reg(r), regs)?.e;
-                    saved_terms
-                        .push(quote!(let #x = #rt::native::Native::to_term(&#e, cx.store());));
+                    saved_terms.push(quote!(let #x = Native::to_term(&#e, cx.store());));
                 }
             }
             saved_names.push(x);
         }
         let saved_value = if saved.is_empty() {
-            quote!(#rt::Term::NIL)
+            quote!(Term::NIL)
         } else {
-            quote!(cx.compound(#rt::atoms::DOT, &[#(#saved_names),*]))
+            quote!(cx.compound(atoms::DOT, &[#(#saved_names),*]))
         };
         Ok(quote! {
             #hand
@@ -324,17 +336,17 @@ impl Gen<'_> {
             cx.enter_with_id(#curl, #id);
             #(#ts)*
             let call = #call_t;
+            #eval
             #(#saved_terms)*
             let saved = #saved_value;
-            return ::std::result::Result::Ok(::std::option::Option::Some(
-                #rt::machine::Step::Call { call, saved },
+            return Ok(Some(
+                Step::Call { call, saved },
             ));
         })
     }
 
     /// The waiting variant of situation `ix` when it is recursive.
     pub(super) fn nat_wait_variant(&self, d: &Dm, ix: usize) -> N<Option<Wait>> {
-        let rt = quote!(::sitlog_runtime);
         let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
             return Ok(None);
         };
@@ -353,8 +365,8 @@ impl Gen<'_> {
             self.store.writeq(self.nat_id_of(d, ix))
         );
         let variant = quote!(#[doc = #doc] #wv { #(#decls),* },);
-        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(store))?;
-        let id_arm = quote!(Nat::#wv { #(#names),* } => { #(#id_stmts)* #id });
+        let id = self.nat_id_value(d, ix, quote!(store))?;
+        let id_arm = quote!(Nat::#wv { #(#names),* } => #id,);
         let exit_arm = match self.nat_call_plan(d, ix) {
             Some(plan) => {
                 let exit = plan.exit;
@@ -371,16 +383,16 @@ impl Gen<'_> {
             let rr = reg(r);
             let x = format_ident!("s{}", k);
             if names.contains(&rr) {
-                saved_terms.push(quote!(let #x = #rt::native::Native::to_term(&*#rr, cx.store());));
+                saved_terms.push(quote!(let #x = Native::to_term(&*#rr, cx.store());));
             } else {
                 return Err("a saved register is not kept".into());
             }
             saved_names.push(x);
         }
         let saved_value = if saved.is_empty() {
-            quote!(#rt::Term::NIL)
+            quote!(Term::NIL)
         } else {
-            quote!(cx.compound(#rt::atoms::DOT, &[#(#saved_names),*]))
+            quote!(cx.compound(atoms::DOT, &[#(#saved_names),*]))
         };
         let wait_arm = quote! {
             Nat::#wv { #(#names),* } => {
@@ -483,7 +495,7 @@ impl Gen<'_> {
                 let il = Literal::usize_unsuffixed(i);
                 arcs_code.push(quote! {
                     if #cond {
-                        let arc_at = ::std::option::Option::Some(#il);
+                        let arc_at = Some(#il);
                         #(#lets)*
                         #action
                         count += 1;
@@ -501,12 +513,12 @@ impl Gen<'_> {
         }
         let body = quote! {
             let super::NatFrame::#callee_v(done_frame) = ret else {
-                return ::std::result::Result::Err(cx.error(
+                return Err(cx.error(
                     "native code resumed a caller with another DM's frame",
-                    ::std::option::Option::None,
+                    None,
                 ));
             };
-            let final_at = done_frame.at;
+            let final_at = &done_frame.at;
             match &final_at {
                 #(#final_arms)*
                 _ => {}
@@ -519,10 +531,10 @@ impl Gen<'_> {
             let final_id = final_at.id_term(p, cx.store());
             cx.set_expectations(&[]);
             return match cx.choose_exit(final_id) {
-                ::std::result::Result::Err(e) => ::std::result::Result::Err(e),
-                ::std::result::Result::Ok(_) => ::std::result::Result::Err(cx.error(
+                Err(e) => Err(e),
+                Ok(_) => Err(cx.error(
                     "native exit arcs disagree with the machine's",
-                    ::std::option::Option::None,
+                    None,
                 )),
             };
         };
@@ -668,7 +680,6 @@ impl Gen<'_> {
         action: &Action,
         regs: &mut Regs,
     ) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let hand = &d.hand;
         let curl = Literal::u32_unsuffixed(ix as u32);
         let arc = Literal::usize_unsuffixed(arc_ix);
@@ -704,14 +715,14 @@ impl Gen<'_> {
                     let value = if *op == atoms::INC && lty == Ty::Int {
                         quote! {
                             match #l.checked_add(1) {
-                                ::std::option::Option::Some(v) => { *#l = v; v }
-                                ::std::option::Option::None => {
+                                Some(v) => { *#l = v; v }
+                                None => {
                                     #enter
-                                    return match cx.var_op_fresh(#opa, #namea, ::std::option::Option::Some(#arc)) {
-                                        ::std::result::Result::Err(e) => ::std::result::Result::Err(e),
-                                        ::std::result::Result::Ok(_) => ::std::result::Result::Err(cx.error(
+                                    return match cx.var_op_fresh(#opa, #namea, Some(#arc)) {
+                                        Err(e) => Err(e),
+                                        Ok(_) => Err(cx.error(
                                             "`inc` overflowed in native code only",
-                                            ::std::option::Option::None,
+                                            None,
                                         )),
                                     };
                                 }
@@ -752,20 +763,20 @@ impl Gen<'_> {
             let perform = if list {
                 quote! {
                     #enter
-                    let t = #rt::native::Native::to_term(&#x, cx.store());
-                    cx.perform_each(&[t], ::std::option::Option::Some(#arc))?;
+                    let t = Native::to_term(&#x, cx.store());
+                    cx.perform_each(&[t], Some(#arc))?;
                 }
             } else {
                 quote! {
                     #enter
-                    let t = #rt::native::Native::to_term(&#x, cx.store());
-                    cx.perform(t, ::std::option::Option::Some(#arc))?;
+                    let t = Native::to_term(&#x, cx.store());
+                    cx.perform(t, Some(#arc))?;
                 }
             };
             performs.push(match ty {
                 Ty::Int | Ty::Float => quote!(if !run.quiet_numbers { #perform }),
                 Ty::Sym => quote! {
-                    if !(run.quiet_empty && #x == #rt::atoms::EMPTY) { #perform }
+                    if !(run.quiet_empty && #x == atoms::EMPTY) { #perform }
                 },
                 Ty::Term | Ty::List(_) => perform,
                 _ => return Err("an action of this type".into()),
@@ -780,11 +791,13 @@ impl Gen<'_> {
     /// or its error; an int against a float goes there too).
     pub(super) fn nat_arith(&self, d: &Dm, cur: usize, op: ArithCmp, l: V, r: V) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
-        let some = quote!(::std::option::Option::Some);
-        let none = quote!(::std::option::Option::None::<i64>);
+        let some = quote!(Some);
+        let none = quote!(None::<i64>);
+        // `cl`, `cr`: references to the operands where they are (no clone
+        // of a `Val` to read an int from it).
         let as_int = |v: &V, x: &Ident| -> N<TokenStream> {
             Ok(match v.ty {
-                Ty::Int => quote!(#some(#x)),
+                Ty::Int => quote!(#some(*#x)),
                 Ty::Float => none.clone(),
                 Ty::Term => quote!(cx.store_ref().int_of(#x.0)),
                 // A `Val` (`ground`: a parameter, the pipe) holding an int.
@@ -792,13 +805,13 @@ impl Gen<'_> {
                 _ => return Err("an arithmetic comparison is not on numbers".into()),
             })
         };
-        let nonef = quote!(::std::option::Option::None::<f64>);
+        let nonef = quote!(None::<f64>);
         let as_float = |v: &V, x: &Ident| -> TokenStream {
             match v.ty {
-                Ty::Float => quote!(#some(#x)),
+                Ty::Float => quote!(#some(*#x)),
                 Ty::Term => quote!(cx.store_ref().float_of(#x.0)),
                 ref t if super::held_as_val(t) => quote! {
-                    match &#x { #rt::native::Val::Float(f) => #some(*f), _ => #nonef }
+                    match #x { Val::Float(f) => #some(*f), _ => #nonef }
                 },
                 _ => nonef.clone(),
             }
@@ -822,10 +835,11 @@ impl Gen<'_> {
             ArithCmp::Le => quote!(Le),
             ArithCmp::Ge => quote!(Ge),
         };
-        let (le, re) = (l.e, r.e);
+        let (lp, rp) = (super::place(&l), super::place(&r));
+        let (lt, rt_) = (rust_ty(&l.ty)?, rust_ty(&r.ty)?);
         Ok(quote! {{
-            let #lx = #le;
-            let #rx = #re;
+            let #lx: &#lt = &#lp;
+            let #rx: &#rt_ = &#rp;
             match (#li, #ri, #lf, #rf) {
                 (#some(x), #some(y), _, _) => #cmp,
                 (_, _, #some(x), #some(y)) => #cmp,
@@ -841,8 +855,8 @@ impl Gen<'_> {
                     count = own.min(count);
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
-                    let lt = #rt::native::Native::to_term(&#lx, cx.store());
-                    let rterm = #rt::native::Native::to_term(&#rx, cx.store());
+                    let lt = Native::to_term(#lx, cx.store());
+                    let rterm = Native::to_term(#rx, cx.store());
                     cx.arith_condition(#rt::ArithCmp::#opt, lt, rterm, arc_at)?
                 }
             }

@@ -3,8 +3,10 @@
 //! (its parameters `p0..`, its locals `l0..` and the situation it is in,
 //! all native values), and in the program's module `enum NatFrame` (a
 //! variant per native DM), `nat_drive` (the explicit stack of native
-//! frames: a call pushes the callee's frame, a final pops it and resumes
-//! the caller with it, no Rust recursion per nested DM, no term built) and
+//! frames, each run where it lies: a call pushes the callee's frame, a
+//! final resumes the caller with a reference to it, then pops it; no frame
+//! moved out and back per step, no Rust recursion per nested DM, no term
+//! built) and
 //! `nat_materialize` (the hand-over: every native frame below the running
 //! one becomes a machine frame, waiting in its recursive situation as the
 //! term code's call would have left it).
@@ -53,7 +55,6 @@ impl Gen<'_> {
     /// The call term of the running frame, from its parameters (bound as
     /// references `p0..`).
     fn nat_call_term(&self, d: &Dm) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let name = self.atom_native(d.dm.name)?;
         let ps: Vec<Ident> = (0..d.params.len())
             .map(|i| format_ident!("p{}", i))
@@ -62,20 +63,19 @@ impl Gen<'_> {
             .map(|i| format_ident!("pt{}", i))
             .collect();
         Ok(quote! {{
-            #(let #ts = #rt::native::Native::to_term(&*#ps, cx.store());)*
-            #rt::native::compound(cx.store(), #name, &[#(#ts),*])
+            #(let #ts = Native::to_term(&*#ps, cx.store());)*
+            native::compound(cx.store(), #name, &[#(#ts),*])
         }})
     }
 
     /// The locals written back to the machine's frame of this DM.
     fn nat_write_locals(&self, d: &Dm) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let mut out = Vec::new();
         for (i, (name, _)) in d.locals.iter().enumerate() {
             let a = self.atom_native(*name)?;
             let l = format_ident!("l{}", i);
             out.push(quote! {
-                let lt = #rt::native::Native::to_term(&*#l, cx.store());
+                let lt = Native::to_term(&*#l, cx.store());
                 cx.set_local(#a, lt);
             });
         }
@@ -100,7 +100,6 @@ impl Gen<'_> {
 
     /// `nat_hand_over`, the code of [`Dm::hand`], out of line.
     fn nat_hand_fn(&self, d: &Dm) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let call = self.nat_call_term(d)?;
         let dm = Literal::u32_unsuffixed(d.ix as u32);
         let locals = self.nat_write_locals(d)?;
@@ -120,17 +119,17 @@ impl Gen<'_> {
             #[allow(unused_variables, unused_braces, clippy::all)]
             fn nat_hand_over(
                 p: &super::Program,
-                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
-                stack: &mut ::std::vec::Vec<super::NatFrame>,
+                cx: &mut Cx<'_, '_, super::Program>,
+                stack: &mut super::NatBelow<'_>,
                 #(#names: &#tys,)*
-            ) -> ::std::result::Result<(), #rt::machine::RunError> {
+            ) -> Result<(), RunError> {
                 let a = &p.atoms;
                 if !stack.is_empty() {
                     let own_call = #call;
                     super::nat_materialize(p, cx, stack, own_call, #dm)?;
                 }
                 #locals
-                ::std::result::Result::Ok(())
+                Ok(())
             }
         })
     }
@@ -139,7 +138,6 @@ impl Gen<'_> {
     /// (`wait_arms`: per recursive situation, its waiting variant made a
     /// machine frame's pending situation).
     pub(super) fn nat_frame_items(&self, d: &Dm, wait_arms: &[TokenStream]) -> N<FrameItems> {
-        let rt = quote!(::sitlog_runtime);
         let mut names = Vec::new();
         let mut decls = Vec::new();
         for (i, ty) in d.params.iter().enumerate() {
@@ -169,9 +167,9 @@ impl Gen<'_> {
             #[allow(unused_variables, unused_braces, clippy::all)]
             pub(crate) fn nat_call_term(
                 p: &super::Program,
-                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                cx: &mut Cx<'_, '_, super::Program>,
                 frame: &Frame,
-            ) -> #rt::Term {
+            ) -> Term {
                 let a = &p.atoms;
                 let Frame { #(#names,)* .. } = frame;
                 #call
@@ -184,19 +182,19 @@ impl Gen<'_> {
             #[allow(unused_variables, unreachable_code, unreachable_patterns, clippy::all)]
             pub(crate) fn nat_wait(
                 p: &super::Program,
-                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                cx: &mut Cx<'_, '_, super::Program>,
                 frame: &Frame,
-                callee: #rt::Term,
-                callee_dm: #rt::machine::DmIx,
-            ) -> ::std::result::Result<(), #rt::machine::RunError> {
+                callee: Term,
+                callee_dm: DmIx,
+            ) -> Result<(), RunError> {
                 let a = &p.atoms;
                 let Frame { #(#names,)* at } = frame;
                 #locals
                 match at {
                     #(#wait_arms)*
-                    _ => ::std::result::Result::Err(cx.error(
+                    _ => Err(cx.error(
                         "native code handed over a frame that waits for no DM",
-                        ::std::option::Option::None,
+                        None,
                     )),
                 }
             }
@@ -239,7 +237,6 @@ impl Gen<'_> {
     /// The program's native driver (see the module doc); nothing when no
     /// DM is native.
     pub(in crate::codegen) fn native_driver(&self, ir: &Ir, mods: &[Ident]) -> TokenStream {
-        let rt = quote!(::sitlog_runtime);
         let native: Vec<usize> = (0..ir.dms.len()).filter(|&d| self.native_ok(d).0).collect();
         if native.is_empty() {
             return quote!();
@@ -269,65 +266,121 @@ impl Gen<'_> {
                 fn step(
                     &mut self,
                     p: &Program,
-                    cx: &mut #rt::machine::Cx<'_, '_, Program>,
-                    ret: ::std::option::Option<NatFrame>,
-                    stack: &mut ::std::vec::Vec<NatFrame>,
-                    call: &mut ::std::option::Option<NatFrame>,
-                    run: &#rt::machine::TypedRun,
-                ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
+                    cx: &mut Cx<'_, '_, Program>,
+                    ret: Option<&mut NatFrame>,
+                    stack: &mut NatBelow<'_>,
+                    call: &mut Option<NatFrame>,
+                    run: &TypedRun,
+                ) -> Result<Option<Step>, RunError> {
                     match self { #(NatFrame::#vs(f) => #ms::nat_step(p, cx, f, ret, stack, call, run),)* }
                 }
-                fn call_term(&self, p: &Program, cx: &mut #rt::machine::Cx<'_, '_, Program>) -> #rt::Term {
+                fn call_term(&self, p: &Program, cx: &mut Cx<'_, '_, Program>) -> Term {
                     match self { #(NatFrame::#vs(f) => #ms::nat_call_term(p, cx, f),)* }
                 }
-                fn dm(&self) -> #rt::machine::DmIx {
+                fn dm(&self) -> DmIx {
                     match self { #(NatFrame::#vs(_) => #ixs,)* }
                 }
                 fn wait(
                     &self,
                     p: &Program,
-                    cx: &mut #rt::machine::Cx<'_, '_, Program>,
-                    callee: #rt::Term,
-                    callee_dm: #rt::machine::DmIx,
-                ) -> ::std::result::Result<(), #rt::machine::RunError> {
+                    cx: &mut Cx<'_, '_, Program>,
+                    callee: Term,
+                    callee_dm: DmIx,
+                ) -> Result<(), RunError> {
                     match self { #(NatFrame::#vs(f) => #ms::nat_wait(p, cx, f, callee, callee_dm),)* }
+                }
+            }
+
+            /// The native frames below the running one, bottom first (the
+            /// base frame, then the pushed ones); `gone` once they were made
+            /// machine frames (`nat_materialize`): the running frame is the
+            /// native stack's bottom from then on.
+            pub(crate) struct NatBelow<'s> {
+                base: Option<&'s NatFrame>,
+                mid: &'s [NatFrame],
+                gone: &'s mut bool,
+            }
+
+            #[allow(clippy::all)]
+            impl NatBelow<'_> {
+                /// How many native frames are below the running one.
+                #[inline]
+                pub(crate) fn len(&self) -> usize {
+                    if *self.gone { 0 } else { usize::from(self.base.is_some()) + self.mid.len() }
+                }
+                /// Whether the running frame is the native stack's bottom.
+                #[inline]
+                pub(crate) fn is_empty(&self) -> bool {
+                    self.len() == 0
                 }
             }
 
             /// Runs native frames from `base` (the DM the machine entered)
             /// on an explicit stack until one hands over to the machine.
+            /// Frames stay where they are while they run (`frames`, above
+            /// `base`): a call pushes the callee's, and a callee that
+            /// reached its final is read in place by its caller's exit arcs,
+            /// then popped.
             #[allow(clippy::all)]
             pub(crate) fn nat_drive(
                 p: &Program,
-                cx: &mut #rt::machine::Cx<'_, '_, Program>,
+                cx: &mut Cx<'_, '_, Program>,
                 base: NatFrame,
-                run: &#rt::machine::TypedRun,
-            ) -> ::std::result::Result<#rt::machine::Step, #rt::machine::RunError> {
-                let mut stack: ::std::vec::Vec<NatFrame> = ::std::vec::Vec::new();
-                let mut top = base;
-                let mut ret = ::std::option::Option::None;
-                let mut call = ::std::option::Option::None;
+                run: &TypedRun,
+            ) -> Result<Step, RunError> {
+                let mut base = base;
+                let mut frames: Vec<NatFrame> = Vec::new();
+                let mut call = None;
+                // The top frame reached a final: its caller runs next.
+                let mut returning = false;
+                let mut gone = false;
                 loop {
-                    if let ::std::option::Option::Some(step) =
-                        top.step(p, cx, ret.take(), &mut stack, &mut call, run)?
-                    {
-                        return ::std::result::Result::Ok(step);
+                    let n = frames.len();
+                    let stepped = match (n, returning) {
+                        (0, _) => {
+                            let mut below = NatBelow { base: None, mid: &[], gone: &mut gone };
+                            base.step(p, cx, None, &mut below, &mut call, run)
+                        }
+                        (1, true) => {
+                            let mut below = NatBelow { base: None, mid: &[], gone: &mut gone };
+                            base.step(p, cx, frames.last_mut(), &mut below, &mut call, run)
+                        }
+                        (_, true) => {
+                            let (callee, rest) = frames.split_last_mut().unwrap();
+                            let (top, mid) = rest.split_last_mut().unwrap();
+                            let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone };
+                            top.step(p, cx, Some(callee), &mut below, &mut call, run)
+                        }
+                        (_, false) => {
+                            let (top, mid) = frames.split_last_mut().unwrap();
+                            let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone };
+                            top.step(p, cx, None, &mut below, &mut call, run)
+                        }
+                    };
+                    if let Some(step) = stepped? {
+                        return Ok(step);
+                    }
+                    if returning {
+                        frames.pop();
+                        returning = false;
+                    }
+                    if gone {
+                        // The frames below the running one are the machine's now.
+                        if let Some(top) = frames.pop() {
+                            base = top;
+                        }
+                        frames.clear();
+                        gone = false;
                     }
                     match call.take() {
-                        ::std::option::Option::Some(callee) => {
-                            stack.push(::std::mem::replace(&mut top, callee));
+                        Some(callee) => frames.push(callee),
+                        None if frames.is_empty() => {
+                            return Err(cx.error(
+                                "native code ended its base DM without handing over",
+                                None,
+                            ));
                         }
-                        ::std::option::Option::None => match stack.pop() {
-                            ::std::option::Option::Some(caller) => {
-                                ret = ::std::option::Option::Some(::std::mem::replace(&mut top, caller));
-                            }
-                            ::std::option::Option::None => {
-                                return ::std::result::Result::Err(cx.error(
-                                    "native code ended its base DM without handing over",
-                                    ::std::option::Option::None,
-                                ));
-                            }
-                        },
+                        None => returning = true,
                     }
                 }
             }
@@ -337,22 +390,24 @@ impl Gen<'_> {
             #[allow(clippy::all)]
             pub(crate) fn nat_materialize(
                 p: &Program,
-                cx: &mut #rt::machine::Cx<'_, '_, Program>,
-                stack: &mut ::std::vec::Vec<NatFrame>,
-                top: #rt::Term,
-                top_dm: #rt::machine::DmIx,
-            ) -> ::std::result::Result<(), #rt::machine::RunError> {
-                let frames = ::std::mem::take(stack);
-                let n = frames.len();
-                for i in 0..n {
-                    let (callee, callee_dm) = if i + 1 < n {
-                        (frames[i + 1].call_term(p, cx), frames[i + 1].dm())
-                    } else {
-                        (top, top_dm)
-                    };
-                    frames[i].wait(p, cx, callee, callee_dm)?;
+                cx: &mut Cx<'_, '_, Program>,
+                stack: &mut NatBelow<'_>,
+                top: Term,
+                top_dm: DmIx,
+            ) -> Result<(), RunError> {
+                if *stack.gone {
+                    return Ok(());
                 }
-                ::std::result::Result::Ok(())
+                *stack.gone = true;
+                let mut frames = stack.base.into_iter().chain(stack.mid.iter()).peekable();
+                while let Some(f) = frames.next() {
+                    let (callee, callee_dm) = match frames.peek() {
+                        Some(next) => (next.call_term(p, cx), next.dm()),
+                        None => (top, top_dm),
+                    };
+                    f.wait(p, cx, callee, callee_dm)?;
+                }
+                Ok(())
             }
         }
     }

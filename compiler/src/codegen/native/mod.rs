@@ -15,13 +15,16 @@
 //! - *entry*: `run_native(sit)` is tried whenever situation `sit` runs,
 //!   with the history kept or not. The id's arguments (from the value
 //!   that selected it) and the parameters the native situations read are
-//!   converted with the checked conversion (`Native::from_term`; for a
+//!   converted with the checked conversion (`Native::from_term` through
+//!   `Cx::id_part_as`/`param_as`/`local_as`, in the DM's `nat_entry`; for a
 //!   `Val`: ground, inert, proper lists, no big integer). A value that does
 //!   not fit leaves the visit to the machine, nothing done: a situation with
 //!   native code has no term code (`codegen::emit`), so `run_situation`
 //!   returns `Step::Template` and the machine runs it from its template,
 //!   as the interpreter does (correct, slower, rare). "Term code" below
-//!   means, for such a situation, that path.
+//!   means, for such a situation, that path. Where native code needs a
+//!   situation's id as a term (entering it, its history entry, a
+//!   hand-over, a wait), the DM's `id_s<N>` builds it from the fields.
 //! - *values*: native values are ground and evaluate to themselves in L
 //!   (atoms, numbers and lists of them are inert, D-28/D-36; a `Val` is
 //!   converted from an inert term), so a condition `X == Y` is Rust's `==`
@@ -48,6 +51,14 @@
 //!   entered in it, its (empty) out_arg, its `diag_mod` (a term built from
 //!   native values: the DM's output arguments) and history entry taken as
 //!   the term code takes them; the caller's exit arcs read that id.
+//!   *Output parameters* (`DmTypes::outputs`: unbound when the DM is
+//!   called, bound by every final's `diag_mod`) are output slots: the frame
+//!   keeps the caller's term (an unbound variable, shown as the term path
+//!   shows it in the DM's id), and a final computes the value it binds as
+//!   a Rust local of the output type (`let o2: Atom = ..`), converted once
+//!   where `diag_mod` hands it to the machine (`Gen::nat_output_slots`). A
+//!   native caller still gets it through the machine: a call with an output
+//!   argument is the machine's call (not pushed natively yet).
 //! - *the history*: where the term code records an entry (an arc: after
 //!   its action, next situation and out_arg; a final), native code records
 //!   the same one (`cx.record`: the situation entered with its id, the
@@ -94,12 +105,28 @@
 //! - *the pipe* ([`pipe`]): read into a variable in_arg's register with a
 //!   checked conversion, written back where an out_arg sets it.
 //!
-//! What is not (yet) native keeps a situation on its term code: an
-//! evaluated DM call, an in_arg that is a pattern, `prog`, expectations that change variables,
-//! conditional expressions (`A -> B ; C` as a value), a register read
-//! natively before it is set, narrowing a `ground` value to a shape,
-//! arithmetic other than integer comparisons. `--explain-types` says which
-//! and why, per situation.
+//! - *the evaluator's constructs*: an evaluated embedded DM call is built
+//!   from native values and evaluated by `Cx::embedded_dm` (the machine's
+//!   call); a conditional expression (`A -> B ; C`) as an action decides
+//!   its condition in Rust (`==`/`\==` of native values) or as the term
+//!   code does (`Cx::condition`, `Cx::arith_condition` on terms built from
+//!   native values) and builds only the branch taken; so does a
+//!   conditional next situation whose condition Rust cannot decide (the
+//!   machine entered first; DMs without locals); a next situation the
+//!   evaluator computes whole is evaluated and handed to the machine;
+//!   compounds that evaluate to themselves (`take(O, S)`) and `[H|T]` of
+//!   any native values are built as `Val`s (`Val::cons`). An error
+//!   evaluating a next situation leaves its transition uncounted, as on
+//!   the term path.
+//!
+//! What is not (yet) native keeps a situation on its term code: an in_arg
+//! that is a pattern, a `prog` other than `V is E`, expectations that can
+//! change a variable not held natively, a register read natively before it
+//! is set, narrowing a `ground` value to a list or a compound, arithmetic
+//! other than integer comparisons. (A `ground` value selecting a situation
+//! whose id field is an atom or an int is narrowed with a check, `narrow`;
+//! when it is another shape the machine selects.) `--explain-types` says
+//! which and why, per situation.
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 
@@ -165,19 +192,18 @@ fn same_rep(a: &Ty, b: &Ty) -> bool {
 
 /// The Rust type of a native type.
 fn rust_ty(ty: &Ty) -> N<TokenStream> {
-    let rt = quote!(::sitlog_runtime);
     Ok(match ty {
         Ty::Int => quote!(i64),
         Ty::Float => quote!(f64),
-        Ty::Sym => quote!(#rt::Atom),
-        Ty::Never => quote!(#rt::native::Never),
+        Ty::Sym => quote!(Atom),
+        Ty::Never => quote!(Never),
         Ty::List(e) => {
             let e = rust_ty(e)?;
-            quote!(#rt::native::List<#e>)
+            quote!(List<#e>)
         }
-        t if held_as_val(t) => quote!(#rt::native::Val),
+        t if held_as_val(t) => quote!(Val),
         // Known ground where native code holds it (see the module doc).
-        Ty::Term => quote!(#rt::native::Ground),
+        Ty::Term => quote!(Ground),
         _ => return Err(format!("a value of type {ty} is not native yet")),
     })
 }
@@ -252,10 +278,50 @@ fn load_head_arg(d: &Dm, r: Reg, i: usize, ty: Ty, regs: &mut Regs) -> N<TokenSt
 /// its situation first (its id set, the locals written back: `Dm::hand`),
 /// and what changed the locals since were the machine's own calls, so an
 /// observer sees the frame the term path would have.
+/// Whether `code` is one block whose last statement is a `return` (code
+/// that hands over, never a value).
+fn always_returns(code: &TokenStream) -> bool {
+    use proc_macro2::{Delimiter, TokenTree};
+    let mut it = code.clone().into_iter();
+    let (Some(TokenTree::Group(g)), None) = (it.next(), it.next()) else {
+        return false;
+    };
+    if g.delimiter() != Delimiter::Brace {
+        return false;
+    }
+    let tokens: Vec<TokenTree> = g.stream().into_iter().collect();
+    // A block of one block: look inside.
+    if tokens.len() == 1 {
+        return always_returns(&g.stream());
+    }
+    let Some(TokenTree::Punct(last)) = tokens.last() else {
+        return false;
+    };
+    if last.as_char() != ';' {
+        return false;
+    }
+    // The last statement starts with `return`: the last top-level `return`
+    // (a `{ ... }` group is one token, so nested ones do not count) starts a
+    // statement (after a `;` or a block) and no `;` follows it but the last.
+    let Some(k) = tokens
+        .iter()
+        .rposition(|t| matches!(t, TokenTree::Ident(i) if i == "return"))
+    else {
+        return false;
+    };
+    let starts = k == 0
+        || matches!(&tokens[k - 1], TokenTree::Punct(p) if p.as_char() == ';')
+        || matches!(&tokens[k - 1], TokenTree::Group(g) if g.delimiter() == Delimiter::Brace);
+    starts
+        && !tokens[k..tokens.len() - 1]
+            .iter()
+            .any(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == ';'))
+}
+
 fn rec_entry() -> TokenStream {
     quote! {
         if run.records {
-            cx.record(rec_exp, rec_act, ::std::option::Option::Some(rec_next));
+            cx.record(rec_exp, rec_act, Some(rec_next));
         }
     }
 }
@@ -276,6 +342,31 @@ fn is_fresh(x: &Ident) -> bool {
     x.to_string()
         .strip_prefix("fresh_r")
         .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// The registers of an expression that evaluates to itself built from
+/// them (`Value`, `Built`, compounds of those), pushed to `out`; `false`
+/// when evaluating it does more.
+fn built_regs(e: &Ev, out: &mut Vec<Reg>) -> bool {
+    fn build(b: &Build, out: &mut Vec<Reg>) {
+        match b {
+            Build::Reg(r) => out.push(*r),
+            Build::Const(_) => {}
+            Build::Compound(_, args) => args.iter().for_each(|a| build(a, out)),
+        }
+    }
+    match e {
+        Ev::Value(r) => {
+            out.push(*r);
+            true
+        }
+        Ev::Built(b) => {
+            build(b, out);
+            true
+        }
+        Ev::Compound(_, args) => args.iter().all(|a| built_regs(a, out)),
+        _ => false,
+    }
 }
 
 /// The registers an expression binds (`V is E`, `get(n, V)` of a `V` not
@@ -348,6 +439,13 @@ enum MatchStep {
     SplitVal(TokenStream, Ident, Ident),
     /// The arguments of a `Val` that is `name/arity`, each a `Val`.
     ArgsVal(TokenStream, TokenStream, Literal, Vec<Ident>),
+    /// `let Some(NAME) = EXPR else { the machine selects }`: a value held
+    /// wider than the field it binds (`ground` into an `atom` field),
+    /// narrowed with a check ([`narrow`]). The pattern variable takes any
+    /// value, so when the check fails this candidate would still be the
+    /// machine's choice: the value is handed to the machine, never tried
+    /// on a later candidate.
+    Narrow(Ident, TokenStream),
 }
 
 /// The DM's native code, for the module.
@@ -417,6 +515,17 @@ struct Dm<'a> {
     shallow: bool,
     /// The arc's out_arg, set where its next situation is handed over.
     out: std::cell::RefCell<TokenStream>,
+    /// The situations whose id is built by the DM's `id_s<N>` function
+    /// (one per situation, from its fields; [`Gen::nat_id_term`]).
+    ids: std::cell::RefCell<std::collections::BTreeSet<usize>>,
+    /// Names of the ids built (`id0`, `id1`, ...).
+    id_n: std::cell::Cell<usize>,
+    /// Per parameter, its type when the DM returns if it is an output
+    /// (`DmTypes::outputs`) of a native type, else `None`.
+    outputs: Vec<Option<Ty>>,
+    /// Per parameter: an output that every final with native code binds
+    /// from a Rust local of its output type (`Gen::nat_output_slots`).
+    outs: std::cell::RefCell<Vec<bool>>,
     /// The arc's history entry where its next situation (`rec_next`, a
     /// term) is handed over: made when the history is kept or observed
     /// (`run.records`), as the term code makes it; empty in exit arcs
@@ -462,7 +571,6 @@ impl Gen<'_> {
         t: &DmTypes,
         shallow: bool,
     ) -> N<NativeCode> {
-        let rt = quote!(::sitlog_runtime);
         // `ground` is held as a `Val`, converted where it enters (a
         // parameter at entry); `term` as a ground handle.
         let t = &unread_as_term_dm(t);
@@ -478,20 +586,13 @@ impl Gen<'_> {
             let ix = Literal::usize_unsuffixed(i);
             if !read.contains(&i) {
                 loads.push(quote! {
-                    let ::std::option::Option::Some(#name) = cx.param(#ix).map(#rt::native::Ground) else {
-                        return ::std::result::Result::Ok(::std::option::Option::None);
-                    };
+                    let #name = cx.param(#ix).map(Ground)?;
                 });
                 continue;
             }
             let ty = rust_ty(p)?;
             loads.push(quote! {
-                let ::std::option::Option::Some(#name) = cx
-                    .param(#ix)
-                    .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
-                else {
-                    return ::std::result::Result::Ok(::std::option::Option::None);
-                };
+                let #name = cx.param_as::<#ty>(#ix)?;
             });
         }
         // Locals, read from the machine's frame at entry.
@@ -500,12 +601,7 @@ impl Gen<'_> {
             let l = format_ident!("l{}", i);
             let a = self.atom_native(*name)?;
             loads.push(quote! {
-                let ::std::option::Option::Some(#l) = cx
-                    .local(#a)
-                    .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
-                else {
-                    return ::std::result::Result::Ok(::std::option::Option::None);
-                };
+                let #l = cx.local_as::<#ty>(#a)?;
             });
         }
         let mut variants = Vec::new();
@@ -529,7 +625,7 @@ impl Gen<'_> {
             let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
             let doc = format!(" `{}`", self.store.writeq(self.nat_id_of(&d, ix)));
             variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
-            id_arms.push(quote!(Nat::#v { #(#names),* } => #id));
+            id_arms.push(quote!(Nat::#v { #(#names),* } => #id,));
             arms.push(quote!(Nat::#v { #(#names),* } => 'visit: { #body }));
             if let Some(w) = wait {
                 variants.push(w.variant.clone());
@@ -551,11 +647,7 @@ impl Gen<'_> {
                 let ty = rust_ty(ty)?;
                 let path = path.iter().map(|&k| Literal::usize_unsuffixed(k));
                 conv.push(quote! {
-                    let ::std::option::Option::Some(#rr) = #rt::native::id_part(cx.store_ref(), id, &[#(#path),*])
-                        .and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t))
-                    else {
-                        return ::std::result::Result::Ok(::std::option::Option::None);
-                    };
+                    let #rr = cx.id_part_as::<#ty>(id, &[#(#path),*])?;
                 });
             }
             // The pipe read there converts, else the term code runs it.
@@ -564,9 +656,7 @@ impl Gen<'_> {
                 quote!(#ixl => { #pipe Nat::#v {} })
             } else {
                 quote!(#ixl => {
-                    let ::std::option::Option::Some(id) = cx.selected() else {
-                        return ::std::result::Result::Ok(::std::option::Option::None);
-                    };
+                    let id = cx.selected()?;
                     #(#conv)*
                     #pipe
                     Nat::#v { #(#names),* }
@@ -584,7 +674,7 @@ impl Gen<'_> {
                 #hand
                 cx.count_transitions(count);
                 let id = at.id_term(p, cx.store());
-                return ::std::result::Result::Ok(::std::option::Option::Some(#rt::machine::Step::Goto(id)));
+                return Ok(Some(Step::Goto(id)));
             }
         };
         let frame_items = frame.items;
@@ -595,7 +685,15 @@ impl Gen<'_> {
              the pipe does not convert.",
             dm.name.as_str()
         );
+        // The situations' ids, each built by one function.
+        let ids: Vec<usize> = d.ids.borrow().iter().copied().collect();
+        let id_fns = ids
+            .into_iter()
+            .map(|ix| self.nat_id_fn(&d, ix))
+            .collect::<N<Vec<_>>>()?;
         let items = quote! {
+            #(#id_fns)*
+
             /// The DM's situations that have native code, as native values:
             /// the fields are the id's variables.
             #[allow(dead_code, non_camel_case_types, clippy::all)]
@@ -609,11 +707,11 @@ impl Gen<'_> {
             #[allow(unused_variables, unreachable_patterns, clippy::all)]
             impl Nat {
                 /// The situation's id as a term.
-                pub(crate) fn id_term(&self, p: &super::Program, store: &mut #rt::Store) -> #rt::Term {
+                pub(crate) fn id_term(&self, p: &super::Program, store: &mut Store) -> Term {
                     let a = &p.atoms;
                     match self {
                         #(#id_arms)*
-                        Nat::Moved {} => #rt::Term::NIL,
+                        Nat::Moved {} => Term::NIL,
                     }
                 }
             }
@@ -626,13 +724,13 @@ impl Gen<'_> {
             #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, unused_labels, irrefutable_let_patterns, unreachable_patterns, unused_braces, break_with_label_and_loop, clippy::all)]
             pub(crate) fn nat_step(
                 p: &super::Program,
-                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
+                cx: &mut Cx<'_, '_, super::Program>,
                 frame: &mut Frame,
-                ret: ::std::option::Option<super::NatFrame>,
-                stack: &mut ::std::vec::Vec<super::NatFrame>,
-                call: &mut ::std::option::Option<super::NatFrame>,
-                run: &#rt::machine::TypedRun,
-            ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
+                ret: Option<&mut super::NatFrame>,
+                stack: &mut super::NatBelow<'_>,
+                call: &mut Option<super::NatFrame>,
+                run: &TypedRun,
+            ) -> Result<Option<Step>, RunError> {
                 let a = &p.atoms;
                 let Frame { #(#field_names,)* at: slot } = frame;
                 // Transitions done, not yet given to the machine.
@@ -640,27 +738,27 @@ impl Gen<'_> {
                 // A final reached below the base, or a call made.
                 let mut done = false;
                 let mut at = ::std::mem::replace(slot, Nat::Moved {});
-                if let ::std::option::Option::Some(ret) = ret {
+                if let Some(ret) = ret {
                     at = match at {
                         #(#exit_arms)*
-                        _ => return ::std::result::Result::Err(cx.error("native code resumed a situation that waits for no DM", ::std::option::Option::None)),
+                        _ => return Err(cx.error("native code resumed a situation that waits for no DM", None)),
                     };
                     if done {
                         cx.count_transitions(count);
                         *slot = at;
-                        return ::std::result::Result::Ok(::std::option::Option::None);
+                        return Ok(None);
                     }
                     #gc
                 }
                 loop {
                     at = match at {
                         #(#arms)*
-                        _ => return ::std::result::Result::Err(cx.error("native code visited a waiting situation", ::std::option::Option::None)),
+                        _ => return Err(cx.error("native code visited a waiting situation", None)),
                     };
                     if done {
                         cx.count_transitions(count);
                         *slot = at;
-                        return ::std::result::Result::Ok(::std::option::Option::None);
+                        return Ok(None);
                     }
                     #gc
                 }
@@ -670,20 +768,34 @@ impl Gen<'_> {
             #[allow(unused_variables, unused_mut, unused_parens, unused_labels, unreachable_code, clippy::all)]
             pub fn run_native(
                 p: &super::Program,
-                cx: &mut #rt::machine::Cx<'_, '_, super::Program>,
-                sit: #rt::machine::SitIx,
-            ) -> ::std::result::Result<::std::option::Option<#rt::machine::Step>, #rt::machine::RunError> {
+                cx: &mut Cx<'_, '_, super::Program>,
+                sit: SitIx,
+            ) -> Result<Option<Step>, RunError> {
                 let run = cx.typed_run();
+                let Some(frame) = nat_entry(p, cx, sit) else {
+                    return Ok(None);
+                };
+                super::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run).map(Some)
+            }
+
+            /// The frame native code starts with at situation `sit`: the
+            /// id's arguments, the pipe, the parameters and locals it reads
+            /// converted (`None`, nothing done but the machine's frames
+            /// materialized, when one does not convert).
+            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, clippy::all)]
+            fn nat_entry(
+                p: &super::Program,
+                cx: &mut Cx<'_, '_, super::Program>,
+                sit: SitIx,
+            ) -> Option<Frame> {
                 let a = &p.atoms;
                 let at = match sit {
                     #(#entries)*
-                    _ => return ::std::result::Result::Ok(::std::option::Option::None),
+                    _ => return None,
                 };
                 cx.materialize_frames();
                 #(#loads)*
-                let frame = Frame { #(#field_names,)* at };
-                super::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run)
-                    .map(::std::option::Option::Some)
+                Some(Frame { #(#field_names,)* at })
             }
         };
         // Counted on inference's types: a register that holds no value
@@ -718,7 +830,19 @@ impl Gen<'_> {
     fn nat_held(d: &Dm) -> Held {
         let all = !d.native.is_empty() && d.native.iter().all(|&n| n);
         let native = |ty: &Ty| *ty != Ty::Term && rust_ty(ty).is_ok();
-        let params = d.params.iter().map(|ty| all && native(ty)).collect();
+        // An output parameter is held in its output slot, bound at the
+        // final from a Rust value of its output type.
+        let outs = d.outs.borrow();
+        let params = d
+            .params
+            .iter()
+            .enumerate()
+            .map(|(i, ty)| {
+                let out = d.outputs.get(i).is_some_and(Option::is_some)
+                    && outs.get(i).copied().unwrap_or(false);
+                all && (native(ty) || out)
+            })
+            .collect();
         let locals =
             d.dm.locals
                 .iter()
@@ -795,6 +919,15 @@ impl Gen<'_> {
             Ok(l) => (l, true),
             Err(_) => (Vec::new(), false),
         };
+        let outputs: Vec<Option<Ty>> = t
+            .outputs
+            .iter()
+            .map(|o| {
+                o.as_ref()
+                    .map(|o| o.ty.clone())
+                    .filter(|ty| *ty != Ty::Term && ty.is_native() && rust_ty(ty).is_ok())
+            })
+            .collect();
         let mut d = Dm {
             dm,
             plans,
@@ -808,6 +941,10 @@ impl Gen<'_> {
             shallow,
             out: std::cell::RefCell::new(quote!()),
             rec: std::cell::RefCell::new(quote!()),
+            ids: Default::default(),
+            id_n: Default::default(),
+            outputs: outputs.clone(),
+            outs: std::cell::RefCell::new(outputs.iter().map(Option::is_some).collect()),
         };
         d.hand = self.nat_hand(&d)?;
         // Each situation's code, given which others have native code (a
@@ -816,6 +953,7 @@ impl Gen<'_> {
         let mut code: Vec<Option<SitCode>>;
         loop {
             code = vec![None; d.plans.len()];
+            d.ids.borrow_mut().clear();
             let mut changed = false;
             for ix in 0..d.plans.len() {
                 if !d.native[ix] {
@@ -823,11 +961,11 @@ impl Gen<'_> {
                 }
                 let c = self.nat_fields(&d, ix).and_then(|fields| {
                     let body = self.native_visit(&d, ix, &fields)?;
-                    let (id_stmts, id) = self.nat_id_term(&d, ix, quote!(store))?;
+                    let id = self.nat_id_value(&d, ix, quote!(store))?;
                     // A recursive situation waiting for its callee: its own
                     // variant.
                     let wait = self.nat_wait_variant(&d, ix)?;
-                    Ok((fields, body, quote!({ #(#id_stmts)* #id }), wait))
+                    Ok((fields, body, id, wait))
                 });
                 match c {
                     Ok(c) => code[ix] = Some(c),
@@ -880,10 +1018,10 @@ impl Gen<'_> {
 
     fn atom_native(&self, a: Atom) -> N<TokenStream> {
         if a == atoms::NIL {
-            return Ok(quote!(::sitlog_runtime::atoms::NIL));
+            return Ok(quote!(atoms::NIL));
         }
         if a == atoms::EMPTY {
-            return Ok(quote!(::sitlog_runtime::atoms::EMPTY));
+            return Ok(quote!(atoms::EMPTY));
         }
         match self.atom_ix.get(&a) {
             Some(&i) => {
@@ -898,8 +1036,90 @@ impl Gen<'_> {
     }
 
     /// The id of situation `ix` as a term, from its fields (`store`: the
-    /// store expression): statements and the value.
+    /// store expression): statements and the value; a call of the DM's
+    /// `id_s<ix>` ([`Gen::nat_id_fn`]) where the fields have Rust types.
     fn nat_id_term(
+        &self,
+        d: &Dm,
+        ix: usize,
+        store: TokenStream,
+    ) -> N<(Vec<TokenStream>, TokenStream)> {
+        let (stmts, v) = self.nat_id_inline(d, ix, store.clone())?;
+        if stmts.is_empty() {
+            return Ok((stmts, v));
+        }
+        match self.nat_id_params(d, ix) {
+            Ok(params) => {
+                d.ids.borrow_mut().insert(ix);
+                let f = format_ident!("id_s{}", ix);
+                let args = params.iter().map(|(r, _)| quote!(&#r));
+                // A statement: the id is often an argument of a `cx` call.
+                let n = d.id_n.get();
+                d.id_n.set(n + 1);
+                let x = format_ident!("id{}", n);
+                Ok((
+                    vec![quote!(let #x = #f(p, #store, #(#args),*);)],
+                    quote!(#x),
+                ))
+            }
+            Err(_) => Ok((stmts, v)),
+        }
+    }
+
+    /// [`Gen::nat_id_term`] as one expression (the `id_s<ix>` call itself
+    /// where there is one), for `Nat::id_term`'s arms.
+    fn nat_id_value(&self, d: &Dm, ix: usize, store: TokenStream) -> N<TokenStream> {
+        let (stmts, v) = self.nat_id_inline(d, ix, store.clone())?;
+        if stmts.is_empty() {
+            return Ok(v);
+        }
+        match self.nat_id_params(d, ix) {
+            Ok(params) => {
+                d.ids.borrow_mut().insert(ix);
+                let f = format_ident!("id_s{}", ix);
+                let args = params.iter().map(|(r, _)| quote!(&#r));
+                Ok(quote!(#f(p, #store, #(#args),*)))
+            }
+            Err(_) => Ok(quote!({ #(#stmts)* #v })),
+        }
+    }
+
+    /// The fields situation `ix`'s id is built from, with their Rust types.
+    fn nat_id_params(&self, d: &Dm, ix: usize) -> N<Vec<(Ident, TokenStream)>> {
+        let (stmts, v) = self.nat_id_inline(d, ix, quote!(store))?;
+        let used = super::step::registers(&quote!(#(#stmts)* #v));
+        self.nat_fields(d, ix)?
+            .into_iter()
+            .filter(|(r, _)| used.contains(r))
+            .map(|(r, ty)| Ok((reg(r), rust_ty(&ty)?)))
+            .collect()
+    }
+
+    /// `fn id_s<ix>`: situation `ix`'s id as a term, from its fields (the
+    /// one place native code builds it).
+    fn nat_id_fn(&self, d: &Dm, ix: usize) -> N<TokenStream> {
+        let (stmts, v) = self.nat_id_inline(d, ix, quote!(store))?;
+        let params = self.nat_id_params(d, ix)?;
+        let params = params.iter().map(|(r, ty)| quote!(#r: &#ty));
+        let f = format_ident!("id_s{}", ix);
+        let doc = format!(
+            " The id `{}` from its variables.",
+            self.store.writeq(self.nat_id_of(d, ix))
+        );
+        let body = quote!(#(#stmts)* #v);
+        let prelude = super::Gen::prelude(&body);
+        Ok(quote! {
+            #[doc = #doc]
+            #[allow(clippy::all)]
+            fn #f(p: &super::Program, store: &mut Store, #(#params),*) -> Term {
+                #prelude
+                #body
+            }
+        })
+    }
+
+    /// [`Gen::nat_id_term`] built inline.
+    fn nat_id_inline(
         &self,
         d: &Dm,
         ix: usize,
@@ -934,7 +1154,6 @@ impl Gen<'_> {
         n: &mut usize,
         store: &TokenStream,
     ) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         Ok(match self.store.value(t) {
             Value::Var(v) => {
                 if let Some(r) = vars.get(&v.index()) {
@@ -947,23 +1166,20 @@ impl Gen<'_> {
                     *n += 1;
                     let rr = reg(r);
                     stmts.push(quote! {
-                        let #x = {
-                            #[allow(unused_imports)]
-                            use #rt::native::Native as _;
-                            (&#rr).to_term(#store)
-                        };
+                        let #x = #rr.to_term(#store);
                     });
                     vars.insert(v.index(), x.clone());
                     quote!(#x)
                 }
             }
+            Value::Atom(a) if a == atoms::NIL => quote!(Term::NIL),
             Value::Atom(a) => {
                 let a = self.atom_native(a)?;
-                quote!(#rt::Term::atom(#a))
+                quote!(Term::atom(#a))
             }
             Value::Int(i) => {
                 let i = Literal::i64_suffixed(i);
-                quote!(#rt::Term::int(#i))
+                quote!(Term::int(#i))
             }
             Value::Compound(name, args) => {
                 let args = args.to_vec();
@@ -974,13 +1190,13 @@ impl Gen<'_> {
                     path.pop();
                 }
                 let f = if name == atoms::DOT {
-                    quote!(#rt::atoms::DOT)
+                    quote!(atoms::DOT)
                 } else {
                     self.atom_native(name)?
                 };
                 let x = format_ident!("t{}", *n);
                 *n += 1;
-                stmts.push(quote!(let #x = #rt::native::compound(#store, #f, &[#(#parts),*]);));
+                stmts.push(quote!(let #x = native::compound(#store, #f, &[#(#parts),*]);));
                 quote!(#x)
             }
             _ => return Err("an id holds a constant that is not native".into()),
@@ -990,7 +1206,6 @@ impl Gen<'_> {
     /// The code of one visit of situation `ix` (its fields bound): returns
     /// from `run_native` or gives the next `Nat`.
     fn native_visit(&self, d: &Dm, ix: usize, fields: &[(Reg, Ty)]) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let plan = d.plans[ix];
         let st = &d.types[ix];
         if matches!(plan.in_arg, Some((_, true, _))) {
@@ -1032,19 +1247,45 @@ impl Gen<'_> {
         match (&plan.kind, kind) {
             (KindPlan::Final { diag_mod }, Kind::Final) => {
                 let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
-                let empty = quote!(#rt::Term::atom(#rt::atoms::EMPTY));
+                let empty = quote!(Term::atom(atoms::EMPTY));
                 // `diag_mod`: the DM's head bound (its output arguments),
                 // a term built from native values at that boundary.
                 let diag = match diag_mod {
                     Some(b) => {
-                        let mut ts = Vec::new();
+                        let (mut ts, slots) = self.nat_output_slots(d, b, &regs);
                         let mut n = 0;
-                        let t = self
-                            .nat_build_term(b, &regs, &mut ts, &mut n)
-                            .map_err(|e| format!("its diag_mod: {e}"))?;
+                        let t = match b {
+                            Build::Compound(f, args) if slots.iter().any(Option::is_some) => {
+                                let mut parts = Vec::new();
+                                for (a, slot) in args.iter().zip(&slots) {
+                                    parts.push(match slot {
+                                        Some(o) => {
+                                            let x = format_ident!("{}_t", o);
+                                            ts.push(
+                                                quote!(let #x = Native::to_term(&#o, cx.store());),
+                                            );
+                                            quote!(#x)
+                                        }
+                                        None => self
+                                            .nat_build_term(a, &regs, &mut ts, &mut n)
+                                            .map_err(|e| format!("its diag_mod: {e}"))?,
+                                    });
+                                }
+                                let f = self.functor_native(*f)?;
+                                ts.push(quote!(let diag_t = native::compound(cx.store(), #f, &[#(#parts),*]);));
+                                quote!(diag_t)
+                            }
+                            b => self
+                                .nat_build_term(b, &regs, &mut ts, &mut n)
+                                .map_err(|e| format!("its diag_mod: {e}"))?,
+                        };
                         quote!(#(#ts)* cx.diag_mod(#t)?;)
                     }
-                    None => quote!(),
+                    None => {
+                        // No output bound here: none is held.
+                        d.outs.borrow_mut().iter_mut().for_each(|o| *o = false);
+                        quote!()
+                    }
                 };
                 let v = variant(ix);
                 let names = fields.iter().map(|(r, _)| reg(*r));
@@ -1054,19 +1295,16 @@ impl Gen<'_> {
                         let v = self.nat_value(b, &regs)?.e;
                         (
                             quote! {
-                                let out = #rt::native::Native::to_term(&#v, cx.store());
+                                let out = Native::to_term(&#v, cx.store());
                                 cx.set_pipe(out);
                             },
                             quote! {
-                                let out = #rt::native::Native::to_term(&#v, cx.store());
-                                cx.final_out_arg(::std::option::Option::Some(out))?;
+                                let out = Native::to_term(&#v, cx.store());
+                                cx.final_out_arg(Some(out))?;
                             },
                         )
                     }
-                    None => (
-                        quote!(),
-                        quote!(cx.final_out_arg(::std::option::Option::None)?;),
-                    ),
+                    None => (quote!(), quote!(cx.final_out_arg(None)?;)),
                 };
                 // Below the base the caller's exit arcs read the variant
                 // (with a `diag_mod`, the machine takes the final).
@@ -1091,13 +1329,13 @@ impl Gen<'_> {
                     cx.enter_with_id(#cur, #id);
                     #out_final
                     #diag
-                    cx.record(#empty, #empty, ::std::option::Option::None);
-                    return ::std::result::Result::Ok(::std::option::Option::Some(#rt::machine::Step::Final));
+                    cx.record(#empty, #empty, None);
+                    return Ok(Some(Step::Final));
                 })
             }
             (KindPlan::Perceptual(arcs), kind) => {
                 let single = kind == Kind::Perceptual && arcs.always_first && arcs.arcs.len() == 1;
-                if !single && !arcs.pure {
+                if !single && !arcs.pure && !self.nat_pure_arcs(arcs, &regs) {
                     return Err("its expectations can change variables".into());
                 }
                 let mut regs = regs.clone();
@@ -1146,7 +1384,7 @@ impl Gen<'_> {
                 }
                 let body = if single {
                     let b = &bodies[0];
-                    quote!(let arc_at = ::std::option::Option::Some(0usize); #b)
+                    quote!(let arc_at = Some(0usize); #b)
                 } else {
                     // The machine chooses the arc (a perception matched
                     // against the expectations, built from native values).
@@ -1163,7 +1401,7 @@ impl Gen<'_> {
                         let il = Literal::usize_unsuffixed(i);
                         exps.push(quote! {
                             let #x = {
-                                let arc_at = ::std::option::Option::Some(#il);
+                                let arc_at = Some(#il);
                                 #(#ts)*
                                 #t
                             };
@@ -1177,7 +1415,7 @@ impl Gen<'_> {
                         .map_err(|e| format!("its type: {e}"))?;
                     let arms = bodies.iter().enumerate().map(|(i, b)| {
                         let il = Literal::usize_unsuffixed(i);
-                        quote!(#il => { let arc_at = ::std::option::Option::Some(#il); #b })
+                        quote!(#il => { let arc_at = Some(#il); #b })
                     });
                     let hand = &d.hand;
                     quote! {
@@ -1190,9 +1428,9 @@ impl Gen<'_> {
                         cx.set_expectations(&[#(#names),*]);
                         #(#ts)*
                         let type_term = #ty;
-                        let ::std::option::Option::Some(chosen) = cx.choose(type_term)? else {
-                            return ::std::result::Result::Ok(::std::option::Option::Some(
-                                #rt::machine::Step::Unmet { type_term },
+                        let Some(chosen) = cx.choose(type_term)? else {
+                            return Ok(Some(
+                                Step::Unmet { type_term },
                             ));
                         };
                         match chosen {
@@ -1228,6 +1466,32 @@ impl Gen<'_> {
         }
     }
 
+    /// Whether matching the arcs' expectations can bind only the arcs' own
+    /// fresh variables, although the MIR says they may change the
+    /// situation's (`Arcs::pure` false: `hands(_, Object)` names the
+    /// situation's `Object`): each expectation is built (nothing
+    /// evaluated) and every situation variable in it is held natively
+    /// here, a value, so ground: unifying cannot bind it.
+    fn nat_pure_arcs(&self, arcs: &crate::mir::Arcs, regs: &Regs) -> bool {
+        arcs.arcs.iter().all(|arc| {
+            let mut used = Vec::new();
+            if !built_regs(&arc.expectation, &mut used) {
+                return false;
+            }
+            used.iter().all(|r| {
+                let Some(k) = r.checked_sub(arc.import_at) else {
+                    return true;
+                };
+                let Some(from) = arc.import_from.get(k as usize) else {
+                    return true; // the arc's own variable
+                };
+                regs.get(from).is_some_and(|(x, ty)| {
+                    !is_fresh(x) && *ty != Ty::Term && ty.is_native() && rust_ty(ty).is_ok()
+                })
+            })
+        })
+    }
+
     /// A `prog` of `V is E` elements (`V` not set yet, `E` integer `+`, `-`,
     /// `*` over registers and integer constants): computed in Rust with
     /// checked operations; when an operand is not an int or an operation
@@ -1235,7 +1499,6 @@ impl Gen<'_> {
     /// evaluates it (the machine entered in the situation: its value or
     /// its error), and its value converted to `V`'s type.
     fn nat_prog(&self, d: &Dm, ix: usize, prog: &Prog, regs: &mut Regs) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let Prog::InPlace(parts) = prog else {
             return Err("its prog shares variables with a copy (D-10)".into());
         };
@@ -1267,17 +1530,17 @@ impl Gen<'_> {
             let x = reg(*dst);
             let native = match &ty {
                 Ty::Int => quote!(v),
-                t if held_as_val(t) => quote!(#rt::native::Val::Int(v)),
+                t if held_as_val(t) => quote!(Val::Int(v)),
                 _ => return Err(format!("its prog's `is` gives a value of type {ty}")),
             };
             let mut ts = Vec::new();
             let mut n = 0;
             let t = self.nat_build_term(expr, regs, &mut ts, &mut n)?;
             out.push(quote! {
-                let prog_v: ::std::option::Option<i64> = #e;
+                let prog_v: Option<i64> = #e;
                 let #x: #rty = match prog_v {
-                    ::std::option::Option::Some(v) => #native,
-                    ::std::option::Option::None => {
+                    Some(v) => #native,
+                    None => {
                         // Not ints, or an overflow: the term code's evaluation.
                         #hand
                         cx.count_transitions(count);
@@ -1285,14 +1548,14 @@ impl Gen<'_> {
                         #(#id_stmts)*
                         cx.enter_with_id(#cur, #id);
                         #(#ts)*
-                        let v = cx.is(::std::option::Option::None, #t, ::std::option::Option::None)?;
+                        let v = cx.is(None, #t, None)?;
                         let v = cx.store_ref().deref(v);
-                        match <#rty as #rt::native::Native>::from_term(cx.store_ref(), v) {
-                            ::std::option::Option::Some(v) => v,
-                            ::std::option::Option::None => {
-                                return ::std::result::Result::Err(cx.error(
+                        match cx.to_native::<#rty>(v) {
+                            Some(v) => v,
+                            None => {
+                                return Err(cx.error(
                                     "`is` in a prog gave a value native code cannot hold",
-                                    ::std::option::Option::None,
+                                    None,
                                 ))
                             }
                         }
@@ -1309,7 +1572,7 @@ impl Gen<'_> {
     /// `Option<i64>`: `None` when an operand is not an int or an operation
     /// overflows.
     fn nat_int_expr(&self, b: &Build, regs: &Regs) -> N<TokenStream> {
-        let some = quote!(::std::option::Option::Some);
+        let some = quote!(Some);
         Ok(match b {
             Build::Reg(r) => {
                 let (x, ty) = regs
@@ -1362,7 +1625,6 @@ impl Gen<'_> {
         regs: &Regs,
         exp: Option<Ident>,
     ) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let plan = d.plans[ix];
         let st = &d.types[ix];
         let cur = Literal::u32_unsuffixed(ix as u32);
@@ -1406,7 +1668,9 @@ impl Gen<'_> {
         // longer fits the frame, the rest of the arc runs as the term code
         // runs it (live native values as terms).
         let reloads = atom.is_none() && !d.locals.is_empty();
-        let conv = self.nat_bound_at_boundary(st, &arc.next, &regs, reloads, &rec_entry())?;
+        let enter_id = quote!(#(#id_stmts)* cx.enter_with_id(#cur, #id););
+        let conv =
+            self.nat_bound_at_boundary(st, &arc.next, &regs, reloads, &rec_entry(), &enter_id)?;
         if conv.is_some() && arc.out_arg.is_some() {
             return Err("its arc has an out_arg and a value bound at a boundary".into());
         }
@@ -1419,16 +1683,21 @@ impl Gen<'_> {
                 let t = self
                     .nat_ev_term(&arc.expectation, &regs, &mut ts, &mut n)
                     .map_err(|e| format!("its expectation: {e}"))?;
-                quote!(if run.records { #(#ts)* #t } else { #rt::Term::NIL })
+                if ts.is_empty() {
+                    // A leaf: nothing built.
+                    quote!(#t)
+                } else {
+                    quote!(if run.records { #(#ts)* #t } else { Term::NIL })
+                }
             }
         };
-        stmts.push(quote!(let rec_exp: #rt::Term = #rec_exp;));
+        stmts.push(quote!(let rec_exp: Term = #rec_exp;));
         match atom {
             Some(action) => {
                 let act = self.atom_native(action)?;
                 let perform = quote! {
                     #enter
-                    cx.perform(#rt::Term::atom(#act), arc_at)?;
+                    cx.perform(Term::atom(#act), arc_at)?;
                 };
                 stmts.push(if action == atoms::EMPTY {
                     // Recorded: the situation entered (its id in the entry).
@@ -1436,7 +1705,7 @@ impl Gen<'_> {
                 } else {
                     perform
                 });
-                stmts.push(quote!(let rec_act = #rt::Term::atom(#act);));
+                stmts.push(quote!(let rec_act = Term::atom(#act);));
             }
             None => {
                 // An effector's action (`say([.., Name])`): its term
@@ -1465,7 +1734,7 @@ impl Gen<'_> {
                             let rec_act = if run.records {
                                 cx.store().list(&act_items)
                             } else {
-                                #rt::Term::NIL
+                                Term::NIL
                             };
                         }
                     }
@@ -1491,8 +1760,8 @@ impl Gen<'_> {
                 let rr = reg(r);
                 let rty = rust_ty(&ty)?;
                 stmts.push(quote! {
-                    let ::std::option::Option::Some(#rr) =
-                        <#rty as #rt::native::Native>::from_term(cx.store_ref(), #x)
+                    let Some(#rr) =
+                        cx.to_native::<#rty>(#x)
                     else #fallback;
                 });
                 regs.insert(r, (rr, ty));
@@ -1503,14 +1772,22 @@ impl Gen<'_> {
         let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &name);
         *d.rec.borrow_mut() = quote!();
         let next = next?;
-        let general = quote! {
-            #(#stmts)*
-            let next_at: Nat = { #next };
-            if run.records {
-                let rec_next = next_at.id_term(p, cx.store());
-                cx.record(rec_exp, rec_act, ::std::option::Option::Some(rec_next));
+        let general = if always_returns(&next) {
+            // Handed over (recorded there): no next variant.
+            quote! {
+                #(#stmts)*
+                #next
             }
-            next_at
+        } else {
+            quote! {
+                #(#stmts)*
+                let next_at: Nat = { #next };
+                if run.records {
+                    let rec_next = next_at.id_term(p, cx.store());
+                    cx.record(rec_exp, rec_act, Some(rec_next));
+                }
+                next_at
+            }
         };
         Ok(match fast {
             Some(fast) => quote! {
@@ -1524,20 +1801,64 @@ impl Gen<'_> {
     /// calls (`get`/`set`/`inc`, the evaluator) may have changed them;
     /// one that no longer converts: `fallback` (the term code's way on).
     fn nat_reload_locals(&self, d: &Dm, fallback: &TokenStream) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let mut out = Vec::new();
         for (i, (name, ty)) in d.locals.iter().enumerate() {
             let l = format_ident!("l{}", i);
             let a = self.atom_native(*name)?;
             let ty = rust_ty(ty)?;
             out.push(quote! {
-                match cx.local(#a).and_then(|t| <#ty as #rt::native::Native>::from_term(cx.store_ref(), t)) {
-                    ::std::option::Option::Some(v) => *#l = v,
-                    ::std::option::Option::None => #fallback,
+                match cx.local_as::<#ty>(#a) {
+                    Some(v) => *#l = v,
+                    None => #fallback,
                 }
             });
         }
         Ok(quote!(#(#out)*))
+    }
+
+    /// A final's output slots: for each output parameter of the DM
+    /// (`DmTypes::outputs`: unbound when called, bound by every final's
+    /// `diag_mod`) whose output type is native, the value this final binds
+    /// it to as a Rust local of that type (`let o2: Atom = ..;`), computed
+    /// from the visit's native values; the `diag_mod` term then takes it
+    /// there (`Native::to_term`, the one conversion, at the boundary).
+    /// An output this final cannot compute so (a value of another shape, a
+    /// fresh variable) is built as before and marks the parameter not held
+    /// (`Dm::outs`).
+    fn nat_output_slots(
+        &self,
+        d: &Dm,
+        b: &Build,
+        regs: &Regs,
+    ) -> (Vec<TokenStream>, Vec<Option<Ident>>) {
+        let mut stmts = Vec::new();
+        let args: &[Build] = match b {
+            Build::Compound(name, args) if *name == d.dm.name && args.len() == d.dm.arity => args,
+            _ => {
+                d.outs.borrow_mut().iter_mut().for_each(|o| *o = false);
+                return (stmts, Vec::new());
+            }
+        };
+        let mut slots = vec![None; args.len()];
+        let mut outs = d.outs.borrow_mut();
+        for (i, a) in args.iter().enumerate() {
+            let Some(Some(ty)) = d.outputs.get(i) else {
+                continue;
+            };
+            let slot = self.nat_value(a, regs).and_then(|v| {
+                let e = coerce(&v, ty)?;
+                Ok((e, rust_ty(ty)?))
+            });
+            match slot {
+                Ok((e, rt)) => {
+                    let o = format_ident!("o{}", i);
+                    stmts.push(quote!(let #o: #rt = #e;));
+                    slots[i] = Some(o);
+                }
+                Err(_) => outs[i] = false,
+            }
+        }
+        (stmts, slots)
     }
 
     /// The term of `b` built from native values (a boundary: an effector's
@@ -1550,7 +1871,6 @@ impl Gen<'_> {
         ts: &mut Vec<TokenStream>,
         n: &mut usize,
     ) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let x = format_ident!("b{}", *n);
         *n += 1;
         let e = match b {
@@ -1561,7 +1881,7 @@ impl Gen<'_> {
             }
             Build::Reg(r) => {
                 let (v, _) = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
-                quote!(#rt::native::Native::to_term(&#v, cx.store()))
+                quote!(Native::to_term(&#v, cx.store()))
             }
             Build::Const(t) => return self.nat_const_term(*t, ts, n),
             Build::Compound(f, args) => {
@@ -1570,7 +1890,7 @@ impl Gen<'_> {
                     .map(|a| self.nat_build_term(a, regs, ts, n))
                     .collect::<N<Vec<_>>>()?;
                 let f = self.functor_native(*f)?;
-                quote!(#rt::native::compound(cx.store(), #f, &[#(#args),*]))
+                quote!(native::compound(cx.store(), #f, &[#(#args),*]))
             }
         };
         ts.push(quote!(let #x = #e;));
@@ -1586,7 +1906,6 @@ impl Gen<'_> {
         ts: &mut Vec<TokenStream>,
         n: &mut usize,
     ) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         match e {
             Ev::Value(r) => self.nat_build_term(&Build::Reg(*r), regs, ts, n),
             Ev::Built(b) => self.nat_build_term(b, regs, ts, n),
@@ -1598,7 +1917,7 @@ impl Gen<'_> {
                 let f = self.functor_native(*f)?;
                 let x = format_ident!("b{}", *n);
                 *n += 1;
-                ts.push(quote!(let #x = #rt::native::compound(cx.store(), #f, &[#(#args),*]);));
+                ts.push(quote!(let #x = native::compound(cx.store(), #f, &[#(#args),*]);));
                 Ok(quote!(#x))
             }
             // A user function, the KB, `assign`...: the evaluator, on the
@@ -1638,7 +1957,7 @@ impl Gen<'_> {
                     _ => return Err(format!("register r{dst} is set twice")),
                 };
                 let t = self.nat_build_term(expr, regs, ts, n)?;
-                ts.push(quote!(let #x = cx.is(::std::option::Option::None, #t, arc_at)?;));
+                ts.push(quote!(let #x = cx.is(None, #t, arc_at)?;));
                 Ok(quote!(#x))
             }
             Ev::Is { lhs, expr } => {
@@ -1646,28 +1965,102 @@ impl Gen<'_> {
                 let l = self.nat_build_term(lhs, regs, ts, n)?;
                 let x = format_ident!("b{}", *n);
                 *n += 1;
-                ts.push(quote!(let #x = cx.is(::std::option::Option::Some(#l), #e, arc_at)?;));
+                ts.push(quote!(let #x = cx.is(Some(#l), #e, arc_at)?;));
                 Ok(quote!(#x))
             }
-            Ev::If(..) => Err("a conditional expression is not native yet".into()),
+            // `(C -> A ; otherwise -> B)` as a value: `C` decided here
+            // (`==`/`\==`, [`Gen::nat_cond_term`]), then only the branch
+            // taken is built and evaluated, in the evaluator's order.
+            Ev::If(c, a, b) => {
+                let mut binds = Vec::new();
+                ev_binds(a, &mut binds);
+                ev_binds(b, &mut binds);
+                if !binds.is_empty() {
+                    return Err("a conditional expression binds a variable".into());
+                }
+                let c = self.nat_cond_term(c, regs, ts, n)?;
+                let (mut ta, mut tb) = (Vec::new(), Vec::new());
+                let ea = self.nat_ev_term(a, regs, &mut ta, n)?;
+                let eb = self.nat_ev_term(b, regs, &mut tb, n)?;
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = if #c { #(#ta)* #ea } else { #(#tb)* #eb };));
+                Ok(quote!(#x))
+            }
         }
+    }
+
+    /// The condition of a conditional expression where an action or a
+    /// next situation is evaluated (the machine entered, `arc_at` in
+    /// scope): a `bool` expression, statements pushed to `ts`. `==`/`\==`
+    /// of native values compare in Rust ([`identical`]); any other
+    /// condition is decided as the term code decides it
+    /// (`codegen::step`): an arithmetic comparison on its sides evaluated
+    /// (`Cx::arith_condition`), anything else by `Cx::condition` on the
+    /// term built from native values (`member(P, [O, unknown])`,
+    /// `apply(f(_), [X]) == yes`; a fresh variable an earlier element bound
+    /// stands for its value).
+    fn nat_cond_term(
+        &self,
+        c: &Cond,
+        regs: &Regs,
+        ts: &mut Vec<TokenStream>,
+        n: &mut usize,
+    ) -> N<TokenStream> {
+        let x = format_ident!("b{}", *n);
+        *n += 1;
+        match c {
+            Cond::Other(b) => {
+                if let Build::Compound(op, args) = b {
+                    if args.len() == 2 && matches!(op.as_str(), "==" | "\\==") {
+                        let l = self.nat_value(&args[0], regs);
+                        let r = self.nat_value(&args[1], regs);
+                        if let Some(same) = l.ok().zip(r.ok()).and_then(|(l, r)| identical(&l, &r))
+                        {
+                            return Ok(if op.as_str() == "==" {
+                                same
+                            } else {
+                                quote!((!#same))
+                            });
+                        }
+                    }
+                }
+                let t = self.nat_build_term(b, regs, ts, n)?;
+                ts.push(quote!(let #x = cx.condition(#t, arc_at)?;));
+            }
+            Cond::Arith(op, l, r) => {
+                let l = self.nat_ev_term(l, regs, ts, n)?;
+                let r = self.nat_ev_term(r, regs, ts, n)?;
+                let op = format_ident!("{}", format!("{op:?}"));
+                ts.push(quote! {
+                    let #x = cx.arith_condition(::sitlog_runtime::ArithCmp::#op, #l, #r, arc_at)?;
+                });
+            }
+        }
+        Ok(quote!(#x))
     }
 
     /// A constant term (atoms, numbers, compounds of them), built.
     fn nat_const_term(&self, t: Term, ts: &mut Vec<TokenStream>, n: &mut usize) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         match self.store.value(t) {
+            Value::Atom(a) if a == atoms::NIL => Ok(quote!(Term::NIL)),
             Value::Atom(a) => {
                 let a = self.functor_native(a)?;
-                Ok(quote!(#rt::Term::atom(#a)))
+                Ok(quote!(Term::atom(#a)))
             }
             Value::Int(i) => {
                 let i = Literal::i64_suffixed(i);
-                Ok(quote!(#rt::Term::int(#i)))
+                Ok(quote!(Term::int(#i)))
             }
             Value::Float(f) if f.is_finite() => {
                 let f = Literal::f64_suffixed(f);
-                Ok(quote!(#rt::Term::float(#f)))
+                Ok(quote!(Term::float(#f)))
+            }
+            // A ground compound the program built once (the term code's
+            // `k.kN`).
+            Value::Compound(..) if self.const_ix.contains_key(&self.store.writeq(t)) => {
+                let id = Self::const_ident(self.const_ix[&self.store.writeq(t)]);
+                Ok(quote!(p.k.#id))
             }
             Value::Compound(f, args) => {
                 let args = args.to_vec();
@@ -1678,7 +2071,7 @@ impl Gen<'_> {
                 let f = self.functor_native(f)?;
                 let x = format_ident!("b{}", *n);
                 *n += 1;
-                ts.push(quote!(let #x = #rt::native::compound(cx.store(), #f, &[#(#args),*]);));
+                ts.push(quote!(let #x = native::compound(cx.store(), #f, &[#(#args),*]);));
                 Ok(quote!(#x))
             }
             _ => Err(format!(
@@ -1691,7 +2084,7 @@ impl Gen<'_> {
     /// An atom as a functor or constant in generated code.
     fn functor_native(&self, a: Atom) -> N<TokenStream> {
         if a == atoms::DOT {
-            Ok(quote!(::sitlog_runtime::atoms::DOT))
+            Ok(quote!(atoms::DOT))
         } else {
             self.atom_native(a)
         }
@@ -1709,8 +2102,8 @@ impl Gen<'_> {
         regs: &Regs,
         always: bool,
         rec: &TokenStream,
+        enter: &TokenStream,
     ) -> N<Option<(TokenStream, Vec<(Reg, Ty)>)>> {
-        let rt = quote!(::sitlog_runtime);
         let at = quote!(arc_at);
         let mut b = super::step::Body::new();
         let v = self.next_code(next, &at, &mut b);
@@ -1729,28 +2122,30 @@ impl Gen<'_> {
         for r in &used {
             let rr = reg(*r);
             match regs.get(r) {
-                Some((x, _)) if is_fresh(x) => lets.push(quote!(let #rr: #rt::Term = #x;)),
+                Some((x, _)) if is_fresh(x) => lets.push(quote!(let #rr: Term = #x;)),
                 Some((x, _)) => lets.push(quote! {
-                    let #rr: #rt::Term = #rt::native::Native::to_term(&#x, cx.store());
+                    let #rr: Term = Native::to_term(&#x, cx.store());
                 }),
                 None => return Err(format!("register r{r} is read unset")),
             }
         }
         let prelude = Self::prelude(&body);
+        // The arc's transition (counted in `count` when nothing is
+        // recorded) counts once its next situation is computed, as on the
+        // term path: an error evaluating it leaves it out. The machine is
+        // in the situation then (an empty action performed nothing).
         let fallback = quote! {{
-            cx.count_transitions(count);
+            let this = u64::from(!run.records).min(count);
+            cx.count_transitions(count - this);
+            #enter
             #prelude
             #(#lets)*
             #(#stmts)*
             let (next, target) = #v;
+            cx.count_transitions(this);
             let rec_next = next;
             #rec
-            return match target {
-                ::std::option::Option::Some(ix) => ::std::result::Result::Ok(
-                    ::std::option::Option::Some(#rt::machine::Step::GotoSit(ix)),
-                ),
-                ::std::option::Option::None => cx.goto(next, #at).map(::std::option::Option::Some),
-            };
+            return cx.go(next, target, #at).map(Some);
         }};
         Ok(Some((fallback, conv)))
     }
@@ -1785,7 +2180,6 @@ impl Gen<'_> {
 
     /// The value of a register or constant.
     fn nat_value(&self, b: &Build, regs: &Regs) -> N<V> {
-        let rt = quote!(::sitlog_runtime);
         match b {
             Build::Reg(r) => {
                 let (x, ty) = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
@@ -1801,7 +2195,7 @@ impl Gen<'_> {
             }
             Build::Const(t) => match self.store.value(*t) {
                 Value::Atom(a) if a == atoms::NIL => Ok(V {
-                    e: quote!(#rt::native::List::<#rt::native::Never>::nil()),
+                    e: quote!(List::<Never>::nil()),
                     ty: Ty::list(Ty::Never),
                 }),
                 Value::Atom(a) => Ok(V {
@@ -1834,8 +2228,41 @@ impl Gen<'_> {
                 let t = self.nat_value(&args[1], regs)?;
                 cons(h, t)
             }
-            Build::Compound(..) => Err("a compound value is not native yet".into()),
+            Build::Compound(name, args) => {
+                let parts = args
+                    .iter()
+                    .map(|a| self.nat_value(a, regs))
+                    .collect::<N<Vec<_>>>()?;
+                self.nat_compound(*name, parts)
+            }
         }
+    }
+
+    /// `name(parts..)` of native values (not a list cell): a fixed-shape
+    /// compound, a canonical `Val` (`Val::Tagged`, its arguments `Val`s),
+    /// typed `name(T1, ..)` (or `ground` past the depth limit).
+    fn nat_compound(&self, name: Atom, parts: Vec<V>) -> N<V> {
+        if parts.iter().any(|p| p.ty == Ty::Term || !p.ty.is_native()) {
+            return Err("a compound value holds a term".into());
+        }
+        // Only a compound that evaluates to itself (`take(O, S)`, not
+        // `N + 1` or `get(n, _)`, which a condition evaluates).
+        if !sitlog_runtime::eval::evaluates_arguments_only(name, parts.len()) {
+            return Err(format!(
+                "`{}/{}` is evaluated, not a value",
+                name.as_str(),
+                parts.len()
+            ));
+        }
+        let f = self.atom_native(name)?;
+        let es = parts.iter().map(|p| {
+            let e = &p.e;
+            quote!(IntoVal::into_val(#e))
+        });
+        Ok(V {
+            e: quote!(Val::Tagged(native::Compound::new(#f, [#(#es),*]))),
+            ty: Ty::tagged(name, parts.iter().map(|p| p.ty.clone()).collect()),
+        })
     }
 
     /// A ground list of atoms or of ints (`[x, y]`, `[1, 2]`) as a native list.
@@ -1854,7 +2281,6 @@ impl Gen<'_> {
 
     /// The list's value, its atoms interned by name (no `Program` in scope).
     fn nat_const_list_in(&self, t: Term) -> N<V> {
-        let rt = quote!(::sitlog_runtime);
         let not = || format!("constant `{}` is not native yet", self.store.writeq(t));
         let items = self.store.list_to_vec(t).ok_or_else(not)?;
         let mut vals = Vec::new();
@@ -1863,7 +2289,7 @@ impl Gen<'_> {
                 Value::Atom(a) if a != atoms::NIL => {
                     let lit = Literal::string(a.as_str());
                     vals.push(V {
-                        e: quote!(#rt::Atom::intern(#lit)),
+                        e: quote!(Atom::intern(#lit)),
                         ty: Ty::Sym,
                     })
                 }
@@ -1892,7 +2318,7 @@ impl Gen<'_> {
             .collect::<N<Vec<_>>>()?;
         let rty = rust_ty(&ty)?;
         Ok(V {
-            e: quote!(#rt::native::List::<#rty>::from_vec(::std::vec![#(#es),*])),
+            e: quote!(List::<#rty>::from_vec(vec![#(#es),*])),
             ty: Ty::list(ty),
         })
     }
@@ -1905,6 +2331,14 @@ impl Gen<'_> {
                 let h = self.nat_ev_value(&args[0], regs)?;
                 let t = self.nat_ev_value(&args[1], regs)?;
                 cons(h, t)
+            }
+            // A compound that evaluates its arguments only, of native values.
+            Ev::Compound(name, args) => {
+                let parts = args
+                    .iter()
+                    .map(|a| self.nat_ev_value(a, regs))
+                    .collect::<N<Vec<_>>>()?;
+                self.nat_compound(*name, parts)
             }
             _ => Err("an expression is not native yet".into()),
         }
@@ -1945,7 +2379,6 @@ impl Gen<'_> {
         regs: &Regs,
         cur_name: &TokenStream,
     ) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let curl = Literal::u32_unsuffixed(cur as u32);
         match n {
             Next::Static(t, ix)
@@ -1966,9 +2399,9 @@ impl Gen<'_> {
                         cx.enter(#curl, #cur_name);
                     }
                     #out
-                    let rec_next = #rt::Term::atom(#a);
+                    let rec_next = Term::atom(#a);
                     #rec
-                    return cx.goto(rec_next, arc_at).map(::std::option::Option::Some);
+                    return cx.goto(rec_next, arc_at).map(Some);
                 }})
             }
             Next::Static(t, Some(ix)) if self.store.atom_of(*t).is_some() => {
@@ -1992,13 +2425,46 @@ impl Gen<'_> {
                 self.nat_select(d, cur, name, vals, cur_name)
             }
             Next::If(c, a, b) => {
-                let c = self.nat_cond(d, cur, c, regs)?;
+                let (c, pre) = match self.nat_cond(d, cur, c, regs) {
+                    Ok(c) => (c, quote!()),
+                    // A condition the evaluator computes a side of
+                    // (`apply(member_of(_, _), [O, L]) == yes`): the
+                    // machine entered in the situation, as for a next
+                    // situation's evaluated part; only in a DM without
+                    // locals (the evaluator cannot change the frame's).
+                    Err(e) => {
+                        let mut ts = Vec::new();
+                        let mut n = 0;
+                        let cond = match self.nat_cond_term(c, regs, &mut ts, &mut n) {
+                            Ok(c) if d.locals.is_empty() && d.dm.locals.is_empty() => c,
+                            _ => return Err(e),
+                        };
+                        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+                        let hand = &d.hand;
+                        (
+                            cond,
+                            quote! {
+                                #hand
+                                // This transition counts once its next situation is computed
+                                // (an error evaluating it leaves it out, as on the term path).
+                                let this = u64::from(!run.records).min(count);
+                                cx.count_transitions(count - this);
+                                count = this;
+                                #(#id_stmts)*
+                                cx.enter_with_id(#curl, #id);
+                                #(#ts)*
+                            },
+                        )
+                    }
+                };
                 let a = self.nat_next(d, cur, a, regs, cur_name)?;
                 let b = self.nat_next(d, cur, b, regs, cur_name)?;
-                Ok(quote!(if #c { #a } else { #b }))
+                Ok(quote!({ #pre if #c { #a } else { #b } }))
             }
             Next::Eval(Ev::Compound(name, args))
-                if args.iter().any(|a| matches!(a, Ev::Eval(_))) =>
+                if args.iter().any(|a| {
+                    matches!(a, Ev::Eval(_) | Ev::VarOp { .. } | Ev::VarOpFresh { .. })
+                }) =>
             {
                 // A part the evaluator computes (`confirm(apply(f(_),
                 // [X]))`): given to it as a term built from native values,
@@ -2008,16 +2474,29 @@ impl Gen<'_> {
                 let hand = &d.hand;
                 let mut pre = vec![quote! {
                     #hand
-                    cx.count_transitions(count);
-                    count = 0;
+                    // This transition counts once its next situation is computed
+                    // (an error evaluating it leaves it out, as on the term path).
+                    let this = u64::from(!run.records).min(count);
+                    cx.count_transitions(count - this);
+                    count = this;
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
                 }];
                 let mut n = 0;
                 let mut parts = Vec::new();
+                // A `get(g, _)` part (a local's or global's value read by
+                // the machine, `review`'s `each(get(taken, _))`): the
+                // fresh variable it takes is a term made there.
+                let mut regs = regs.clone();
+                for a in args.iter() {
+                    if let Ev::VarOpFresh { dst, .. } = a {
+                        regs.insert(*dst, (format_ident!("fresh_r{}", dst), Ty::Term));
+                    }
+                }
+                let regs = &regs;
                 for a in args.iter() {
                     match a {
-                        Ev::Eval(_) => {
+                        Ev::Eval(_) | Ev::VarOp { .. } | Ev::VarOpFresh { .. } => {
                             let t = self.nat_ev_term(a, regs, &mut pre, &mut n)?;
                             parts.push(Err(t));
                         }
@@ -2029,7 +2508,7 @@ impl Gen<'_> {
                     .map(|p| match p {
                         Ok(v) => {
                             let e = &v.e;
-                            quote!(#rt::native::Native::to_term(&#e, cx.store()))
+                            quote!(Native::to_term(&#e, cx.store()))
                         }
                         Err(t) => quote!(#t),
                     })
@@ -2038,11 +2517,12 @@ impl Gen<'_> {
                 let out = d.out.borrow().clone();
                 let rec = d.rec.borrow().clone();
                 let fallback = quote! {{
+                    cx.count_transitions(count);
                     let ts = [#(#terms),*];
-                    let rec_next = #rt::native::compound(cx.store(), #f, &ts);
+                    let rec_next = native::compound(cx.store(), #f, &ts);
                     #out
                     #rec
-                    return cx.goto(rec_next, arc_at).map(::std::option::Option::Some);
+                    return cx.goto(rec_next, arc_at).map(Some);
                 }};
                 let mut vals = Vec::new();
                 for (k, p) in parts.into_iter().enumerate() {
@@ -2051,8 +2531,8 @@ impl Gen<'_> {
                         Err(t) => {
                             let x = format_ident!("x{}", k);
                             pre.push(quote! {
-                                let ::std::option::Option::Some(#x) =
-                                    <#rt::native::Val as #rt::native::Native>::from_term(cx.store_ref(), #t)
+                                let Some(#x) =
+                                    cx.to_native::<Val>(#t)
                                 else #fallback;
                             });
                             vals.push(V {
@@ -2066,6 +2546,35 @@ impl Gen<'_> {
                 pre.push(self.nat_reload_locals(d, &fallback)?);
                 let sel = self.nat_select(d, cur, *name, vals, cur_name)?;
                 Ok(quote!({ #(#pre)* #sel }))
+            }
+            // A next situation the evaluator computes whole
+            // (`infer(apply(here, []))`, ground): evaluated where the term
+            // code evaluates it, the machine entered in the situation, and
+            // its value handed to the machine, which selects.
+            Next::Eval(Ev::Eval(b)) => {
+                let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+                let hand = &d.hand;
+                let mut ts = Vec::new();
+                let mut n = 0;
+                let t = self.nat_build_term(b, regs, &mut ts, &mut n)?;
+                let out = d.out.borrow().clone();
+                let rec = d.rec.borrow().clone();
+                Ok(quote! {{
+                    #hand
+                    // This transition counts once its next situation is computed
+                    // (an error evaluating it leaves it out, as on the term path).
+                    let this = u64::from(!run.records).min(count);
+                    cx.count_transitions(count - this);
+                    count = this;
+                    #(#id_stmts)*
+                    cx.enter_with_id(#curl, #id);
+                    #(#ts)*
+                    let rec_next = cx.eval(#t, arc_at)?;
+                    cx.count_transitions(count);
+                    #out
+                    #rec
+                    return cx.goto(rec_next, arc_at).map(Some);
+                }})
             }
             Next::Eval(Ev::Compound(name, args)) => {
                 let vals = args
@@ -2098,7 +2607,6 @@ impl Gen<'_> {
         args: Vec<V>,
         cur_name: &TokenStream,
     ) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let curl = Literal::u32_unsuffixed(cur as u32);
         let arg_names: Vec<Ident> = (0..args.len()).map(|i| format_ident!("v{}", i)).collect();
         let lets: Vec<TokenStream> = args
@@ -2166,27 +2674,31 @@ impl Gen<'_> {
                 code = match s {
                     MatchStep::If(c) => quote!(if #c { #code }),
                     MatchStep::Let(x, e) => quote!({ let #x = #e; #code }),
+                    MatchStep::Narrow(x, e) => quote! {{
+                        let Some(#x) = #e else { break 'hand; };
+                        #code
+                    }},
                     MatchStep::Args(v, f, arity, xs) => quote! {
-                        if let ::std::option::Option::Some(&[#(#xs),*]) =
+                        if let Some(&[#(#xs),*]) =
                             cx.store_ref().compound_args(#v.0, #f, #arity)
                         {
-                            #(let #xs = ::sitlog_runtime::native::Ground(#xs);)*
+                            #(let #xs = Ground(#xs);)*
                             #code
                         }
                     },
                     MatchStep::SplitVal(l, h, t) => quote! {
-                        if let ::std::option::Option::Some((#h, #t)) = #l.split_list() {
+                        if let Some((#h, #t)) = #l.split_list() {
                             #code
                         }
                     },
                     MatchStep::ArgsVal(v, f, arity, xs) => quote! {
-                        if let ::std::option::Option::Some([#(#xs),*]) = #v.args_of(#f, #arity) {
+                        if let Some([#(#xs),*]) = #v.args_of(#f, #arity) {
                             #(let #xs = #xs.clone();)*
                             #code
                         }
                     },
                     MatchStep::Split(l, h, t) => quote! {
-                        if let ::std::option::Option::Some((#h, #t)) = #l.split_first() {
+                        if let Some((#h, #t)) = #l.split_first() {
                             let #h = #h.clone();
                             #code
                         }
@@ -2203,7 +2715,7 @@ impl Gen<'_> {
         Ok(quote! {
             'sel: {
                 #(#lets)*
-                #(#candidates)*
+                'hand: { #(#candidates)* }
                 // No situation takes it here: the machine selects (or says
                 // that none does).
                 #hand
@@ -2212,11 +2724,11 @@ impl Gen<'_> {
                 if !run.records {
                     cx.enter(#curl, #cur_name);
                 }
-                #(let #arg_terms = #rt::native::Native::to_term(&#arg_names, cx.store());)*
-                let rec_next = #rt::native::compound(cx.store(), #f, &[#(#arg_terms),*]);
+                #(let #arg_terms = Native::to_term(&#arg_names, cx.store());)*
+                let rec_next = native::compound(cx.store(), #f, &[#(#arg_terms),*]);
                 #out
                 #rec
-                return cx.goto(rec_next, arc_at).map(::std::option::Option::Some);
+                return cx.goto(rec_next, arc_at).map(Some);
             }
         })
     }
@@ -2251,14 +2763,17 @@ impl Gen<'_> {
                 let r = Self::nat_id_reg(d, j, path).ok_or("an id variable has no register")?;
                 let ty = d.types[j].regs[r as usize].ty.clone();
                 let x = format_ident!("f{}", r);
-                let val = coerce(
-                    &V {
-                        e: quote!(#e.clone()),
-                        ty: v.ty.clone(),
+                let from = V {
+                    e: quote!(#e.clone()),
+                    ty: v.ty.clone(),
+                };
+                match coerce(&from, &ty) {
+                    Ok(val) => steps.push(MatchStep::Let(x.clone(), val)),
+                    Err(e) => match narrow(&from, &ty) {
+                        Some(val) => steps.push(MatchStep::Narrow(x.clone(), val)),
+                        None => return Err(e),
                     },
-                    &ty,
-                )?;
-                steps.push(MatchStep::Let(x.clone(), val));
+                }
                 vars.insert(var.index(), (x, ty));
                 Ok(true)
             }
@@ -2268,21 +2783,21 @@ impl Gen<'_> {
             Value::Atom(a) if v.ty == Ty::Term => {
                 let a = self.atom_native(a)?;
                 steps.push(MatchStep::If(quote!(
-                    cx.store_ref().atom_of(#e.0) == ::std::option::Option::Some(#a)
+                    cx.store_ref().atom_of(#e.0) == Some(#a)
                 )));
                 Ok(true)
             }
             Value::Int(i) if v.ty == Ty::Term => {
                 let i = Literal::i64_suffixed(i);
                 steps.push(MatchStep::If(quote!(
-                    cx.store_ref().int_of(#e.0) == ::std::option::Option::Some(#i)
+                    cx.store_ref().int_of(#e.0) == Some(#i)
                 )));
                 Ok(true)
             }
             Value::Compound(name, args) if v.ty == Ty::Term => {
                 let args = args.to_vec();
                 let f = if name == atoms::DOT {
-                    quote!(::sitlog_runtime::atoms::DOT)
+                    quote!(atoms::DOT)
                 } else {
                     self.atom_native(name)?
                 };
@@ -2306,7 +2821,7 @@ impl Gen<'_> {
                     Ok(true)
                 }
                 Ty::Sym => {
-                    steps.push(MatchStep::If(quote!(#e == ::sitlog_runtime::atoms::NIL)));
+                    steps.push(MatchStep::If(quote!(#e == atoms::NIL)));
                     Ok(true)
                 }
                 _ => Ok(false),
@@ -2400,7 +2915,7 @@ impl Gen<'_> {
         n: &mut usize,
     ) -> N<bool> {
         let e = &v.e;
-        let some = quote!(::std::option::Option::Some);
+        let some = quote!(Some);
         let tagged = match &v.ty {
             Ty::Tagged(name, args) => Some((*name, args.len())),
             _ => None,
@@ -2478,19 +2993,21 @@ fn arg_idents(n: &mut usize, len: usize) -> Vec<Ident> {
 /// (ground terms compared in the store).
 fn identical(l: &V, r: &V) -> Option<TokenStream> {
     let (le, re) = (&l.e, &r.e);
-    let some = quote!(::std::option::Option::Some);
-    let rt = quote!(::sitlog_runtime);
+    // Compared where they are: no clone (a `Val`'s list or compound
+    // count changed and changed back) to compare.
+    let (lp, rp) = (place(l), place(r));
+    let some = quote!(Some);
     match (&l.ty, &r.ty) {
-        (a, b) if a == b && eq_safe(a) => Some(quote!((#le == #re))),
+        (a, b) if a == b && eq_safe(a) => Some(quote!((#lp == #rp))),
         // Canonical `Val`s and other native values as `Val`s.
-        (a, b) if held_as_val(a) && held_as_val(b) => Some(quote!((#le == #re))),
-        (Ty::Term, b) if held_as_val(b) => Some(quote!((#re).identical_to(cx.store_ref(), #le.0))),
-        (a, Ty::Term) if held_as_val(a) => Some(quote!((#le).identical_to(cx.store_ref(), #re.0))),
+        (a, b) if held_as_val(a) && held_as_val(b) => Some(quote!((#lp == #rp))),
+        (Ty::Term, b) if held_as_val(b) => Some(quote!(#rp.identical_to(cx.store_ref(), #le.0))),
+        (a, Ty::Term) if held_as_val(a) => Some(quote!(#lp.identical_to(cx.store_ref(), #re.0))),
         (a, b) if held_as_val(a) && b.is_native() && *b != Ty::Float => {
-            Some(quote!((#le == #rt::native::IntoVal::into_val(#re))))
+            Some(quote!((#le == IntoVal::into_val(#re))))
         }
         (a, b) if held_as_val(b) && a.is_native() && *a != Ty::Float => {
-            Some(quote!((#rt::native::IntoVal::into_val(#le) == #re)))
+            Some(quote!((IntoVal::into_val(#le) == #re)))
         }
         (Ty::Term, Ty::Term) => Some(quote!(cx.store_ref().identical(#le.0, #re.0))),
         (Ty::Term, Ty::Sym) => Some(quote!((cx.store_ref().atom_of(#le.0) == #some(#re)))),
@@ -2501,11 +3018,69 @@ fn identical(l: &V, r: &V) -> Option<TokenStream> {
     }
 }
 
+/// The place a value is read from, for reading it by reference: a
+/// register or frame field `x` read as `x.clone()` is `x` itself (through
+/// `Borrow`, whether the binding is the value or a reference to it), any
+/// other value the expression's temporary.
+fn place(v: &V) -> TokenStream {
+    let ts: Vec<proc_macro2::TokenTree> = v.e.clone().into_iter().collect();
+    if let [proc_macro2::TokenTree::Ident(x), proc_macro2::TokenTree::Punct(dot), proc_macro2::TokenTree::Ident(clone), proc_macro2::TokenTree::Group(g)] =
+        ts.as_slice()
+    {
+        if dot.as_char() == '.'
+            && clone == "clone"
+            && g.delimiter() == proc_macro2::Delimiter::Parenthesis
+            && g.stream().is_empty()
+        {
+            if let Ok(t) = rust_ty(&v.ty) {
+                return quote!((*::std::borrow::Borrow::<#t>::borrow(&#x)));
+            }
+        }
+    }
+    let e = &v.e;
+    quote!((#e))
+}
+
+/// A value read as `r<n>.clone()`, a register of the visit (an owned Rust
+/// local), as a move of that local: for a use that is the visit's last.
+fn moved(v: &V) -> TokenStream {
+    let ts: Vec<proc_macro2::TokenTree> = v.e.clone().into_iter().collect();
+    if let [proc_macro2::TokenTree::Ident(x), proc_macro2::TokenTree::Punct(dot), proc_macro2::TokenTree::Ident(clone), proc_macro2::TokenTree::Group(g)] =
+        ts.as_slice()
+    {
+        let s = x.to_string();
+        let is_reg = s
+            .strip_prefix('r')
+            .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()));
+        if is_reg
+            && dot.as_char() == '.'
+            && clone == "clone"
+            && g.delimiter() == proc_macro2::Delimiter::Parenthesis
+            && g.stream().is_empty()
+        {
+            return quote!(#x);
+        }
+    }
+    v.e.clone()
+}
+
 /// `[h|t]` of native values.
 fn cons(h: V, t: V) -> N<V> {
     let ty = match &t.ty {
         Ty::List(e) if **e == Ty::Never => Ty::list(h.ty.clone()),
         Ty::List(e) if **e == h.ty => t.ty.clone(),
+        // Values of different shapes, each held as a `Val` or with a Rust
+        // type of its own: a list of `Val`s (`[take(O, S), deliver(O)]`).
+        Ty::List(e) if e.is_native() && h.ty.is_native() && **e != Ty::Term && h.ty != Ty::Term => {
+            let ty = Ty::list(Ty::Ground);
+            let head = coerce(&h, &Ty::Ground)?;
+            let tail = coerce(&t, &ty)?;
+            let r = rust_ty(&ty)?;
+            return Ok(V {
+                e: quote!(<#r>::cons(#head, #tail)),
+                ty,
+            });
+        }
         // An atom or int among ground terms: its term.
         Ty::List(e) if **e == Ty::Term && matches!(h.ty, Ty::Sym | Ty::Int) => {
             let head = coerce(&h, &Ty::Term)?;
@@ -2516,6 +3091,16 @@ fn cons(h: V, t: V) -> N<V> {
                 },
                 t,
             );
+        }
+        // A ground tail (`[O|Os]`, `Os` the rest of a `ground` value): a
+        // list, or an improper one (`Val::cons`).
+        Ty::Ground if h.ty.is_native() && h.ty != Ty::Term => {
+            let head = coerce(&h, &Ty::Ground)?;
+            let tail = t.e;
+            return Ok(V {
+                e: quote!(Val::cons(#head, #tail)),
+                ty: Ty::Ground,
+            });
         }
         _ => return Err(format!("`[_|_]` of {} and {}", h.ty, t.ty)),
     };
@@ -2529,12 +3114,29 @@ fn cons(h: V, t: V) -> N<V> {
     })
 }
 
+/// `v`, held with a wider type, as a value of the narrower native type
+/// `to` when it is one (an `Option` expression): a `Val` (`ground`) read
+/// as an atom or an integer by its variant, a ground handle (`term`)
+/// converted with the checked conversion. `None` when no check narrows
+/// these types.
+fn narrow(v: &V, to: &Ty) -> Option<TokenStream> {
+    let e = &v.e;
+    match (&v.ty, to) {
+        (Ty::Ground, Ty::Sym) => Some(quote!((#e).sym())),
+        (Ty::Ground, Ty::Int) => Some(quote!((#e).int())),
+        (Ty::Term, to) if to.is_native() && *to != Ty::Never => {
+            let ty = rust_ty(to).ok()?;
+            Some(quote!(<#ty as Native>::from_term(cx.store_ref(), (#e).0)))
+        }
+        _ => None,
+    }
+}
+
 /// `v` as a value of type `to`.
 fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
     if v.ty == *to || same_rep(&v.ty, to) {
         return Ok(v.e.clone());
     }
-    let rt = quote!(::sitlog_runtime);
     match (&v.ty, to) {
         (Ty::Never, _) => {
             let e = &v.e;
@@ -2543,14 +3145,12 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
         // A native value entering a `ground` register.
         (from, Ty::Ground) if from.is_native() => {
             let e = &v.e;
-            Ok(quote!(#rt::native::IntoVal::into_val(#e)))
+            Ok(quote!(IntoVal::into_val(#e)))
         }
         // Lists of native values as lists of `Val`s.
         (Ty::List(a), Ty::List(b)) if a.is_native() && held_as_val(b) && **b == Ty::Ground => {
             let e = &v.e;
-            Ok(
-                quote!(#e.iter().cloned().map(#rt::native::IntoVal::into_val).collect::<#rt::native::List<#rt::native::Val>>()),
-            )
+            Ok(quote!(#e.iter().cloned().map(IntoVal::into_val).collect::<List<Val>>()))
         }
         // A `Val` where a ground term is held: built in the store (inert:
         // it came from an inert term or from native values).
@@ -2560,7 +3160,7 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
         {
             let ty = rust_ty(from)?;
             let e = &v.e;
-            Ok(quote!(#rt::native::Ground(<#ty as #rt::native::Native>::to_term(&#e, cx.store()))))
+            Ok(quote!(Ground(<#ty as Native>::to_term(&#e, cx.store()))))
         }
         // An empty list is an empty list of anything.
         (Ty::List(e), Ty::List(_)) if **e == Ty::Never => {
@@ -2571,17 +3171,15 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
         // An immediate term of a native scalar, or `[]`.
         (Ty::Sym, Ty::Term) => {
             let e = &v.e;
-            Ok(quote!(::sitlog_runtime::native::Ground(::sitlog_runtime::Term::atom(#e))))
+            Ok(quote!(Ground(Term::atom(#e))))
         }
         (Ty::Int, Ty::Term) => {
             let e = &v.e;
-            Ok(quote!(::sitlog_runtime::native::Ground(::sitlog_runtime::Term::int(#e))))
+            Ok(quote!(Ground(Term::int(#e))))
         }
         (Ty::List(e), Ty::Term) if **e == Ty::Never => {
             let e = &v.e;
-            Ok(
-                quote!({ let _ = #e; ::sitlog_runtime::native::Ground(::sitlog_runtime::Term::NIL) }),
-            )
+            Ok(quote!({ let _ = #e; Ground(Term::NIL) }))
         }
         _ => Err(format!("a value of type {} where {} is expected", v.ty, to)),
     }

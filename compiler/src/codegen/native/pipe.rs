@@ -20,7 +20,6 @@ use sitlog_runtime::native::Ty;
 impl Gen<'_> {
     /// `let r<r> = <the pipe as ty>;`, else the situation handed over.
     pub(super) fn nat_pipe_in(&self, d: &Dm, ix: usize, r: Reg, ty: &Ty) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let rty = super::rust_ty(ty)?;
         let rr = reg(r);
         let hand = &d.hand;
@@ -29,15 +28,15 @@ impl Gen<'_> {
         Ok(quote! {
             let pipe_value = {
                 let t = cx.store_ref().deref(cx.pipe());
-                <#rty as #rt::native::Native>::from_term(cx.store_ref(), t)
+                cx.to_native::<#rty>(t)
             };
-            let ::std::option::Option::Some(#rr) = pipe_value else {
+            let Some(#rr) = pipe_value else {
                 // Not of the in_arg's type: the term code runs the visit.
                 #hand
                 cx.count_transitions(count);
                 #(#id_stmts)*
-                return ::std::result::Result::Ok(::std::option::Option::Some(
-                    #rt::machine::Step::Goto(#id),
+                return Ok(Some(
+                    Step::Goto(#id),
                 ));
             };
         })
@@ -46,7 +45,6 @@ impl Gen<'_> {
     /// In `run_native`: the in_arg of situation `ix` (where the machine
     /// enters native code) converts, else the situation runs on terms.
     pub(super) fn nat_pipe_entry(&self, d: &Dm, ix: usize) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let Some(plan) = d.plans.get(ix) else {
             return Ok(quote!());
         };
@@ -56,8 +54,8 @@ impl Gen<'_> {
                 let ty = super::rust_ty(&d.types[ix].regs[*r as usize].ty)?;
                 checks.push(quote! {
                     let t = cx.store_ref().deref(cx.pipe());
-                    if <#ty as #rt::native::Native>::from_term(cx.store_ref(), t).is_none() {
-                        return ::std::result::Result::Ok(::std::option::Option::None);
+                    if cx.to_native::<#ty>(t).is_none() {
+                        return None;
                     }
                 });
             }
@@ -76,21 +74,21 @@ impl Gen<'_> {
         regs: &Regs,
         cur_name: &TokenStream,
     ) -> N<TokenStream> {
-        let rt = quote!(::sitlog_runtime);
         let Some(b) = out else {
             return self.nat_next(d, cur, next, regs, cur_name);
         };
-        let v = self.nat_value(b, regs)?.e;
+        // The value read where it is (no clone of a `Val`), made a term
+        // once: an int or an atom costs nothing.
+        let v = super::place(&self.nat_value(b, regs)?);
         let set = quote! {
-            let out = #rt::native::Native::to_term(&out_v, cx.store());
-            cx.set_pipe(out);
+            cx.set_pipe(pipe_out);
         };
         *d.out.borrow_mut() = set.clone();
         let n = self.nat_next(d, cur, next, regs, cur_name);
         *d.out.borrow_mut() = quote!();
         let n = n?;
         Ok(quote! {{
-            let out_v = #v;
+            let pipe_out = Native::to_term(&#v, cx.store());
             let next_at = { #n };
             #set
             next_at

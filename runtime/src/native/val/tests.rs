@@ -422,3 +422,31 @@ fn ground_takes_any_ground_term_and_no_other() {
     assert_eq!(conv("[a | b]"), None);
     assert_eq!(conv("123456789012345678901234567890"), None);
 }
+
+#[test]
+fn cons_builds_a_list_or_an_improper_cell() {
+    let mut s = Store::new();
+    let (a, b) = (Val::Sym(atom("a")), Val::Sym(atom("b")));
+    // A list tail: a list, sharing it.
+    let l = Val::cons(
+        a.clone(),
+        Val::List(List::from_slice(std::slice::from_ref(&b))),
+    );
+    assert!(matches!(l, Val::List(_)));
+    let t = l.to_term(&mut s);
+    assert_eq!(s.writeq(t), "[a,b]");
+    assert_eq!(Val::from_term(&s, t, &Ty::Ground), Some(l.clone()));
+    assert_eq!(
+        Val::cons(a.clone(), Val::Sym(atoms::NIL)),
+        Val::cons(a.clone(), Val::List(List::nil()))
+    );
+    // Another tail: the improper cell, read back by `split_list`.
+    let c = Val::cons(a.clone(), b.clone());
+    let t = c.to_term(&mut s);
+    assert_eq!(s.writeq(t), "[a|b]");
+    assert!(c.identical_to(&s, t));
+    assert_eq!(c.split_list(), Some((a.clone(), b.clone())));
+    assert_eq!(Val::cons(a.clone(), b.clone()), c);
+    // No conversion gives one.
+    assert_eq!(Val::from_term(&s, t, &Ty::Ground), None);
+}

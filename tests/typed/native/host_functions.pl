@@ -1,0 +1,3 @@
+% Functions the test registers in Rust (tests/tests/suite/typed.rs).
+twice/1.
+nofun/1.
