@@ -2369,6 +2369,27 @@ impl Gen<'_> {
         }
     }
 
+    /// Before the evaluator computes (part of) a next situation: the native
+    /// stack handed over, the transitions counted so far given to the
+    /// machine except this one, which counts once its next situation is
+    /// computed (an error evaluating it leaves it out, as on the term path),
+    /// and the machine entered in situation `cur` with its id.
+    fn nat_enter_to_evaluate(&self, d: &Dm, cur: usize) -> N<TokenStream> {
+        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+        let hand = &d.hand;
+        let curl = Literal::u32_unsuffixed(cur as u32);
+        Ok(quote! {
+            #hand
+            // This transition counts once its next situation is computed
+            // (an error evaluating it leaves it out, as on the term path).
+            let this = u64::from(!run.records).min(count);
+            cx.count_transitions(count - this);
+            count = this;
+            #(#id_stmts)*
+            cx.enter_with_id(#curl, #id);
+        })
+    }
+
     /// The next `Nat` of situation `cur` (named `cur_name`), or a return
     /// handing the value to the machine.
     fn nat_next(
@@ -2439,19 +2460,11 @@ impl Gen<'_> {
                             Ok(c) if d.locals.is_empty() && d.dm.locals.is_empty() => c,
                             _ => return Err(e),
                         };
-                        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
-                        let hand = &d.hand;
+                        let enter = self.nat_enter_to_evaluate(d, cur)?;
                         (
                             cond,
                             quote! {
-                                #hand
-                                // This transition counts once its next situation is computed
-                                // (an error evaluating it leaves it out, as on the term path).
-                                let this = u64::from(!run.records).min(count);
-                                cx.count_transitions(count - this);
-                                count = this;
-                                #(#id_stmts)*
-                                cx.enter_with_id(#curl, #id);
+                                #enter
                                 #(#ts)*
                             },
                         )
@@ -2470,18 +2483,7 @@ impl Gen<'_> {
                 // [X]))`): given to it as a term built from native values,
                 // its value converted with the checked conversion; when
                 // that fails, the whole value goes to the machine as a term.
-                let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
-                let hand = &d.hand;
-                let mut pre = vec![quote! {
-                    #hand
-                    // This transition counts once its next situation is computed
-                    // (an error evaluating it leaves it out, as on the term path).
-                    let this = u64::from(!run.records).min(count);
-                    cx.count_transitions(count - this);
-                    count = this;
-                    #(#id_stmts)*
-                    cx.enter_with_id(#curl, #id);
-                }];
+                let mut pre = vec![self.nat_enter_to_evaluate(d, cur)?];
                 let mut n = 0;
                 let mut parts = Vec::new();
                 // A `get(g, _)` part (a local's or global's value read by
@@ -2552,22 +2554,14 @@ impl Gen<'_> {
             // code evaluates it, the machine entered in the situation, and
             // its value handed to the machine, which selects.
             Next::Eval(Ev::Eval(b)) => {
-                let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
-                let hand = &d.hand;
+                let enter = self.nat_enter_to_evaluate(d, cur)?;
                 let mut ts = Vec::new();
                 let mut n = 0;
                 let t = self.nat_build_term(b, regs, &mut ts, &mut n)?;
                 let out = d.out.borrow().clone();
                 let rec = d.rec.borrow().clone();
                 Ok(quote! {{
-                    #hand
-                    // This transition counts once its next situation is computed
-                    // (an error evaluating it leaves it out, as on the term path).
-                    let this = u64::from(!run.records).min(count);
-                    cx.count_transitions(count - this);
-                    count = this;
-                    #(#id_stmts)*
-                    cx.enter_with_id(#curl, #id);
+                    #enter
                     #(#ts)*
                     let rec_next = cx.eval(#t, arc_at)?;
                     cx.count_transitions(count);
