@@ -92,21 +92,27 @@ get_history(H) :-
     ),
     H = H1.
 
-% The history from element From on: the host answers a part of it at a
-% time, '$ok'(Elements, Next) with Next the next part's index or `end`
-% (engine.rs, history_part), after a line with its length in characters
-% (read in one go: get_line_to_chars/3 reads a character at a time).
-'$sitlog_history_from'(From, H) :-
+% A request to the host whose answer may be long: Tag and Arg framed by
+% \x1\ and \x2\ on user_error; the host answers a line with the answer's
+% length in characters, then the answer (read in one go:
+% get_line_to_chars/3 reads a character at a time).
+'$sitlog_ask_long'(Tag, Arg, Reply) :-
     put_char(user_error, '\x1\'),
-    put_char(user_error, 'H'),
-    write(user_error, From),
+    put_char(user_error, Tag),
+    write(user_error, Arg),
     put_char(user_error, '\x2\'),
     flush_output(user_error),
     get_line_to_chars(user_input, Line, []),
     '$sitlog_history_append'(Digits, ['\n'], Line),
     number_chars(Length, Digits),
     get_n_chars(user_input, Length, Text),
-    read_from_chars(Text, Reply),
+    read_from_chars(Text, Reply).
+
+% The history from element From on: the host answers a part of it at a
+% time, '$ok'(Elements, Next) with Next the next part's index or `end`
+% (engine.rs, history_part).
+'$sitlog_history_from'(From, H) :-
+    '$sitlog_ask_long'('H', From, Reply),
     (   Reply = '$ok'(Part, Next)
     ->  true
     ;   Reply = '$error'(E)
@@ -247,16 +253,7 @@ get_last_situation(History, S) :-
 '$sitlog_lazy'(Id, N, A) :-
     functor(H, N, A),
     (   retract((H :- '$sitlog_lazy'(Id, _, _), _))
-    ->  put_char(user_error, '\x1\'),
-        put_char(user_error, 'L'),
-        write(user_error, Id),
-        put_char(user_error, '\x2\'),
-        flush_output(user_error),
-        get_line_to_chars(user_input, Line, []),
-        '$sitlog_history_append'(Digits, ['\n'], Line),
-        number_chars(Length, Digits),
-        get_n_chars(user_input, Length, Text),
-        read_from_chars(Text, Reply),
+    ->  '$sitlog_ask_long'('L', Id, Reply),
         (   Reply = '$ok'(Groups)
         ->  '$sitlog_lazy_add'(Groups)
         ;   throw(error(existence_error(procedure, N/A), '$sitlog_lazy'/3))
