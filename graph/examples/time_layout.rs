@@ -60,10 +60,11 @@ fn main() {
         let n: usize = a.parse().expect("a number");
         let d = synthetic(n, 88172645463325252);
         let cost = layout::engine_cost(&d.dms[0]);
+        let work = layout::engine_work(&d.dms[0], cost <= layout::OPT_LIMIT, false);
         let t = std::time::Instant::now();
         let l = layout::layout(&d);
         println!(
-            "{n} situations, cost {cost}: {:.3} s {:?}",
+            "{n} situations, cost {cost}, work {work}: {:.3} s {:?}",
             t.elapsed().as_secs_f64(),
             l.notes
         );

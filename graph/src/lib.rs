@@ -14,9 +14,10 @@
 //! (`sitlog_compiler::diagram`), never from source text; this crate knows
 //! nothing of terms or files (no sitlog crate among its dependencies). Every
 //! output is a pure function of the model: same model, same bytes (no
-//! hash-map order, fixed float formatting). The one exception is time: a DM
-//! the layout engine has not finished within [`layout::ENGINE_BUDGET`] gets
-//! the simple layered layout instead, and a note in the layout says so.
+//! hash-map order, fixed float formatting). What the layout engine may take
+//! is counted in work, not time ([`layout::engine_work`]): a DM past the
+//! work limits gets the simple layered layout, the same on any machine, and
+//! a note in the layout says so.
 //!
 //! Modules, each using only the model (defined here) and those listed before it:
 //! [`layout`], [`trace`], [`svg`], [`dot`].

@@ -1,11 +1,13 @@
-//! Everything that drives `layout-rs`: one DM laid out by the engine (on a
-//! thread of its own, given up after a time limit or a panic) and read back
+//! Everything that drives `layout-rs`: the work it would do on one DM,
+//! counted before it runs ([`engine_work`]), one DM laid out by the engine
+//! (on a thread of its own, given up after a panic or a hang) and read back
 //! from the arrows it draws, and the boxes of the program's call graph
 //! placed by it (a grid when it cannot).
 
 use super::dm::{bounded, Local};
 use super::geometry::{label_lines, node_size, route_points, Cmd, Placed, Route, P};
 use crate::{DmGraph, NodeKind};
+use layout::adt::dag::NodeHandle;
 use layout::core::base::Orientation;
 use layout::core::color::Color;
 use layout::core::format::{ClipHandle, RenderBackend};
@@ -15,17 +17,15 @@ use layout::std_shapes::shapes::{Arrow, Element, LineEndKind, ShapeKind};
 use layout::topo::layout::VisualGraph;
 use std::collections::HashMap;
 
-/// [`engine`] on a thread of its own, given up after `time` (the thread is
-/// left to finish on its own) or when the engine fails.
+/// [`engine`] on a thread of its own, given up after `time` (a guard
+/// against a hang of the engine; the thread is left to finish on its own)
+/// or when the engine fails.
 pub(super) fn engine_within(
     dm: &DmGraph,
     optimize: bool,
     across: bool,
     time: std::time::Duration,
 ) -> Result<Local, String> {
-    if time.is_zero() {
-        return Err("out of layout time".to_owned());
-    }
     let (tx, rx) = std::sync::mpsc::channel();
     let owned = dm.clone();
     let spawned = std::thread::Builder::new()
@@ -40,7 +40,7 @@ pub(super) fn engine_within(
     match rx.recv_timeout(time) {
         Ok(Some(l)) => Ok(l),
         Ok(None) => Err("the layout engine could not place it".to_owned()),
-        Err(_) => Err("the layout engine took too long".to_owned()),
+        Err(_) => Err("the layout engine did not finish (hung)".to_owned()),
     }
 }
 
@@ -100,9 +100,11 @@ fn engine_label(lines: &[String]) -> String {
     text
 }
 
-/// `layout-rs` on one DM (ranks top to bottom, or left to right
-/// `across`); `None` when its output cannot be read back.
-fn engine(dm: &DmGraph, optimize: bool, across: bool) -> Option<Local> {
+/// The graph `layout-rs` is given for one DM (ranks top to bottom, or left
+/// to right `across`): a node per node, an edge per edge whose ends are
+/// there (its properties its index), and the first handle that is not a
+/// node (label connectors come after the nodes).
+fn visual_graph(dm: &DmGraph, across: bool) -> (VisualGraph, Vec<NodeHandle>) {
     let orientation = if across {
         Orientation::LeftToRight
     } else {
@@ -127,7 +129,6 @@ fn engine(dm: &DmGraph, optimize: bool, across: bool) -> Option<Local> {
         handles.push(vg.add_node(el));
         index.insert(n.id.as_str(), i);
     }
-    let first = handles.len();
     for (i, e) in dm.edges.iter().enumerate() {
         let (Some(&a), Some(&b)) = (index.get(e.from.as_str()), index.get(e.to.as_str())) else {
             continue;
@@ -139,6 +140,71 @@ fn engine(dm: &DmGraph, optimize: bool, across: bool) -> Option<Local> {
         arrow.end = LineEndKind::Arrow;
         vg.add_edge(arrow, handles[a], handles[b]);
     }
+    (vg, handles)
+}
+
+/// The work `layout-rs` would do on one DM, counted, not timed. The DM's
+/// graph is lowered as the engine lowers it, on a copy: back edges turned
+/// round, a connector for each label, ranks by longest path; the dummy
+/// nodes a long edge needs (one for each rank it crosses) are counted, not
+/// made, and the engine's rank sinking, which only removes dummy nodes, is
+/// left out, so this never counts less than the engine has. On those ranks
+/// it counts the engine's passes: the placement schedules every node
+/// against every other, four times; the crossing reduction (`optimize`)
+/// compares each pair of a rank with each node of the next rank, 50 times,
+/// each comparison a scan of both nodes' edges (counted as 8 steps; so
+/// measured, a step of either pass takes about the same time, 10–25 ns in
+/// a debug build). The same on any machine: this, not a clock, decides
+/// what the engine lays out.
+pub fn engine_work(dm: &DmGraph, optimize: bool, across: bool) -> u64 {
+    let (mut vg, _) = visual_graph(dm, across);
+    if vg.num_nodes() == 0 {
+        return 0;
+    }
+    // the engine's own checks of its DAG after each edge: not needed to count
+    vg.dag.set_validate(false);
+    vg.to_valid_dag();
+    vg.split_text_edges();
+    vg.dag.recompute_node_ranks();
+    let dag = &vg.dag;
+    let levels = dag.num_levels();
+    // nodes in each rank, then the dummy nodes of the edges crossing it
+    let mut width = vec![0u64; levels];
+    let mut crossing = vec![0i64; levels + 1];
+    for a in dag.iter() {
+        let la = dag.level(a);
+        width[la] += 1;
+        for &b in dag.successors(a) {
+            let lb = dag.level(b);
+            if lb > la + 1 {
+                crossing[la + 1] += 1;
+                crossing[lb] -= 1;
+            }
+        }
+    }
+    let mut through = 0i64;
+    for (w, c) in width.iter_mut().zip(&crossing) {
+        through += c;
+        *w += through.max(0) as u64;
+    }
+    // a self edge becomes a connector beside its node
+    let loops = dm.edges.iter().filter(|e| e.from == e.to).count() as u64;
+    let nodes = width.iter().sum::<u64>() + loops;
+    let mut work = 4 * nodes * nodes;
+    if optimize {
+        for pair in width.windows(2) {
+            let (w, next) = (pair[0], pair[1]);
+            work += 50 * 8 * (w * w * next / 2 + w * next);
+        }
+    }
+    work
+}
+
+/// `layout-rs` on one DM (ranks top to bottom, or left to right
+/// `across`); `None` when its output cannot be read back.
+fn engine(dm: &DmGraph, optimize: bool, across: bool) -> Option<Local> {
+    let (mut vg, handles) = visual_graph(dm, across);
+    let first = handles.len();
     let mut cap = Capture::default();
     vg.do_it(false, !optimize, false, &mut cap);
     let mut nodes = Vec::new();

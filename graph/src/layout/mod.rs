@@ -11,6 +11,17 @@
 //! [`PLAIN_LIMIT`], or one the engine cannot lay out, is placed by a simple
 //! layered layout of ours instead. A note says so each time.
 //!
+//! Invariant: the layout is a function of the diagram, never of the
+//! machine's speed. What the engine may take is a *work* budget, counted by
+//! [`engine_work`] before it runs (the engine's lowering done on a copy, its
+//! passes counted on the ranks it gets), not a clock: a DM whose crossing
+//! reduction would count more than [`DM_WORK_LIMIT`] is laid out without
+//! it, one whose layout would still count more, or more than is left of
+//! [`ENGINE_WORK_BUDGET`] for the whole diagram, gets the simple layered
+//! layout. The one clock left is [`ENGINE_HANG_GUARD`], against a bug of the
+//! engine (a loop that does not end): the work limits keep every DM it is
+//! given far below it.
+//!
 //! This module is the whole-diagram step; its parts, each using only those
 //! before it: `geometry` (the layout's types, label lines and node sizes),
 //! `dm` (one DM in its own coordinates, the simple layered layout),
@@ -23,6 +34,7 @@ mod geometry;
 mod route;
 
 pub use dm::engine_cost;
+pub use engine::engine_work;
 pub use geometry::{
     function_lines, label_lines, node_lines, node_size, node_text, path_data, return_dot_offsets,
     Cmd, Layout, Oval, Placed, Route, CHAR_W, LABEL_MAX, LINE_H, NODE_LABEL_MAX, P,
@@ -34,9 +46,23 @@ use engine::{engine_within, place_boxes};
 use geometry::boundary;
 use std::collections::HashMap;
 
-/// Time the engine may take for a whole diagram; a DM not laid out by then
-/// gets the simple layered layout.
-pub const ENGINE_BUDGET: std::time::Duration = std::time::Duration::from_secs(4);
+/// The [`engine_work`] the engine may do for a whole diagram; a DM for
+/// which not enough is left gets the simple layered layout. About 1–2.5 s
+/// of a debug build on a 2-core machine; the home butler's 28 DMs count
+/// about 3 million.
+pub const ENGINE_WORK_BUDGET: u64 = 100_000_000;
+
+/// The [`engine_work`] the engine may do for one DM: past it, first the
+/// crossing reduction is left out, then the engine. The largest DM of the
+/// home butler counts 0.45 million; a synthetic DM of 20 situations with
+/// an arc to a random one each, 14 million with crossing reduction (0.16 s
+/// of a debug build); of 30, 72 million (1.1 s), 2.7 million without.
+pub const DM_WORK_LIMIT: u64 = 20_000_000;
+
+/// How long one run of the engine may take before it is given up as hung
+/// (a bug of the engine, not a large DM: the work limits decide those).
+/// The engine runs on a thread of its own, left to finish on its own.
+pub const ENGINE_HANG_GUARD: std::time::Duration = std::time::Duration::from_secs(60);
 
 /// Up to this [`engine_cost`] the engine reduces edge crossings.
 pub const OPT_LIMIT: usize = 250;
@@ -97,7 +123,15 @@ fn overview(d: &Diagram) -> Layout {
         ));
         layered(&g)
     } else {
-        match engine_within(&g, cost <= OPT_LIMIT, true, ENGINE_BUDGET) {
+        let mut left = ENGINE_WORK_BUDGET;
+        match within_work(
+            &g,
+            cost <= OPT_LIMIT,
+            true,
+            "the overview",
+            &mut left,
+            &mut out.notes,
+        ) {
             Ok(l) => l,
             Err(why) => {
                 out.notes.push(format!(
@@ -136,8 +170,7 @@ pub fn layout(d: &Diagram) -> Layout {
         return overview(d);
     }
     let mut out = Layout::default();
-    let started = std::time::Instant::now();
-    let budget = ENGINE_BUDGET;
+    let mut left = ENGINE_WORK_BUDGET;
     let attached = attached(d);
     // 1. Each DM on its own, in local coordinates, with the external
     // nodes that belong with it and their links.
@@ -180,8 +213,15 @@ pub fn layout(d: &Diagram) -> Layout {
                     dm.name
                 ));
             }
-            let left = budget.saturating_sub(started.elapsed());
-            match engine_within(dm, cost <= OPT_LIMIT, false, left) {
+            let what = format!("DM {}", dm.name);
+            match within_work(
+                dm,
+                cost <= OPT_LIMIT,
+                false,
+                &what,
+                &mut left,
+                &mut out.notes,
+            ) {
                 Ok(l) => l,
                 Err(why) => {
                     out.notes.push(format!(
@@ -321,6 +361,42 @@ pub fn layout(d: &Diagram) -> Layout {
     out
 }
 
+/// The engine on `dm` (`what` in notes) if its [`engine_work`] fits: with crossing reduction
+/// (`optimize`) if that fits [`DM_WORK_LIMIT`] (else a note, and without),
+/// then if the layout fits both the limit and what is `left` of the
+/// diagram's budget, which it takes from. `Err`: why not, for a note.
+fn within_work(
+    dm: &crate::DmGraph,
+    optimize: bool,
+    across: bool,
+    what: &str,
+    left: &mut u64,
+    notes: &mut Vec<String>,
+) -> Result<dm::Local, String> {
+    let mut optimize = optimize;
+    let mut work = engine_work(dm, optimize, across);
+    if optimize && work > DM_WORK_LIMIT {
+        optimize = false;
+        work = engine_work(dm, false, across);
+        notes.push(format!(
+            "{what}: edge crossings are not reduced (too much work for the layout engine)"
+        ));
+    }
+    if work > DM_WORK_LIMIT {
+        return Err(format!(
+            "too much work for the layout engine ({work} steps, limit {DM_WORK_LIMIT})"
+        ));
+    }
+    if work > *left {
+        return Err(format!(
+            "the diagram's layout work is spent ({work} steps needed, {} left of {ENGINE_WORK_BUDGET})",
+            *left
+        ));
+    }
+    *left -= work;
+    engine_within(dm, optimize, across, ENGINE_HANG_GUARD)
+}
+
 fn translate(c: &mut Cmd, t: P) {
     match c {
         Cmd::M(a) | Cmd::L(a) => *a = a.plus(t),
@@ -386,4 +462,73 @@ fn link_route(l: &Layout, d: &Diagram, e: &Edge) -> Option<Route> {
         label_at: if e.label.is_empty() { None } else { Some(mid) },
         label_lines: label_lines(&e.label),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{DmGraph, Node, NodeKind};
+
+    fn chain(n: usize) -> DmGraph {
+        let node = |i: usize| Node {
+            id: format!("s{i}"),
+            kind: NodeKind::Situation,
+            label: format!("s{i}"),
+            situation_type: None,
+            situation_kind: None,
+            initial: i == 0,
+            functor: None,
+            embedded_dm: None,
+            returns: Vec::new(),
+            detail: None,
+            link: None,
+            location: String::new(),
+        };
+        let edge = |i: usize| Edge {
+            id: format!("e{i}"),
+            kind: EdgeKind::Arc,
+            from: format!("s{i}"),
+            from_port: None,
+            to: format!("s{}", i + 1),
+            to_port: None,
+            label: "a : empty".into(),
+            expectation: None,
+            location: String::new(),
+        };
+        DmGraph {
+            id: "d".into(),
+            name: "d".into(),
+            location: String::new(),
+            nodes: (0..n).map(node).collect(),
+            edges: (0..n.saturating_sub(1)).map(edge).collect(),
+        }
+    }
+
+    /// The diagram's budget is taken DM by DM: what needs more than is
+    /// left is refused, with the counts, and takes nothing.
+    #[test]
+    fn the_work_budget_is_counted_down() {
+        let dm = chain(4);
+        // 4 nodes, 3 label connectors, in 7 ranks
+        let work = engine_work(&dm, false, false);
+        assert_eq!(work, 4 * 7 * 7);
+        assert_eq!(engine_work(&dm, true, false), work + 6 * 400);
+        let mut notes = Vec::new();
+        let mut left = work;
+        assert!(within_work(&dm, false, false, "DM d", &mut left, &mut notes).is_ok());
+        assert_eq!(left, 0);
+        let mut left = work - 1;
+        let why = within_work(&dm, false, false, "DM d", &mut left, &mut notes)
+            .err()
+            .unwrap();
+        assert_eq!(left, work - 1);
+        assert_eq!(
+            why,
+            format!(
+                "the diagram's layout work is spent ({work} steps needed, {} left of {ENGINE_WORK_BUDGET})",
+                work - 1
+            )
+        );
+        assert!(notes.is_empty());
+    }
 }
