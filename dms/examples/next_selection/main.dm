@@ -21,5 +21,5 @@ diag_mod(walk(X),
     [ id ==> s(Y), type ==> neutral, arcs ==> [ empty : say(Y) => t([3]) ] ],
     [ id ==> t([]), type ==> neutral, arcs ==> [ empty : say(empty) => u(X) ] ],
     [ id ==> t([H|T]), type ==> neutral, arcs ==> [ empty : say(H) => t(T) ] ],
-    [ id ==> u(N), type ==> final ] ],
+    [ id ==> u(_N), type ==> final ] ],
   []).
