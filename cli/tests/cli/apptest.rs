@@ -4,7 +4,7 @@
 //! filter, JSON lines and JUnit XML; a bad test file is an error at its
 //! file:line:col before anything runs.
 
-use crate::support::{sitlogc, workspace};
+use crate::support::{assert_ok, sitlogc, workspace};
 use std::path::Path;
 
 fn text(b: &[u8]) -> String {
@@ -63,7 +63,7 @@ fn the_scenario_apps_pass_their_world_variant_tests() {
             .args(["--dm", dm, "--coverage", &cov])
             .output()
             .unwrap();
-        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+        assert_ok(&out);
         let svg = text(&out.stdout);
         assert!(svg.contains("never taken"), "{dm}");
         assert!(svg.contains("arrow-untaken"), "{dm}");
@@ -83,7 +83,7 @@ fn a_new_robot_app_tests_its_apology_and_a_failure_is_shown() {
             .unwrap()
     };
     let made = run(&["new", "x", "--robot"]);
-    assert_eq!(made.status.code(), Some(0), "{}", text(&made.stderr));
+    assert_ok(&made);
     // One run serves the passing case, the failing one and the coverage
     // (each case starts a Prolog engine): a test expecting what the robot
     // does not say fails, with the output marked.

@@ -2,7 +2,7 @@
 //! and where messages go (the sessions themselves are golden-tested in
 //! tests/tests/suite/debug.rs).
 
-use crate::support::sitlogc;
+use crate::support::{assert_ok, sitlogc};
 use std::path::{Path, PathBuf};
 
 fn app() -> PathBuf {
@@ -28,12 +28,7 @@ fn record(trace: &Path, script: &str) {
         .arg(trace)
         .output()
         .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
 }
 
 #[test]

@@ -4,7 +4,7 @@
 //! the elements the papers name; determinism; a recorded run coloured on
 //! the diagram; bad input; a 10 000-situation DM.
 
-use crate::support::sitlogc;
+use crate::support::{assert_ok, sitlogc};
 use sitlog_compiler::diagram::{self, Options};
 use sitlog_graph::{Diagram, EdgeKind, NodeKind};
 use std::path::Path;
@@ -343,11 +343,7 @@ fn cli_writes_each_format() {
             .arg(&file)
             .output()
             .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_ok(&out);
         assert!(std::fs::read_to_string(&file).unwrap().starts_with(start));
     }
     // one DM to stdout
@@ -726,11 +722,7 @@ fn cli_overview_and_pages() {
         .arg(&dir)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let index = std::fs::read_to_string(dir.join("index.svg")).unwrap();
     assert!(index.contains("<a href=\"take.svg\">"));
     let html = std::fs::read_to_string(dir.join("index.html")).unwrap();

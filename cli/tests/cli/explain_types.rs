@@ -4,7 +4,7 @@
 //! summary lines, after the MIR inference's summary (`mir::ty`) and the
 //! native code's total.
 
-use crate::support::{sitlogc, workspace};
+use crate::support::{assert_ok, sitlogc, workspace};
 
 fn explain(app: &str) -> String {
     let out = sitlogc()
@@ -12,11 +12,7 @@ fn explain(app: &str) -> String {
         .arg(workspace().join(app))
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     String::from_utf8(out.stdout).unwrap()
 }
 

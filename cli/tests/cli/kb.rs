@@ -1,7 +1,7 @@
 //! `sitlogc kb` (the convention of shared/notes/kb.md §6) and KB services as
 //! user functions in `sitlogc run --kb`.
 
-use crate::support::sitlogc;
+use crate::support::{assert_ok, sitlogc};
 use std::path::{Path, PathBuf};
 
 fn office() -> PathBuf {
@@ -80,12 +80,7 @@ fn kb_services_are_user_functions() {
         .arg(&dir)
         .output()
         .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(
         v["history"][0]["action"],

@@ -4,7 +4,7 @@
 //! without a path, so an application copied anywhere runs (issue 30), a
 //! local copy of a library file wins, and `check --origins` says which.
 
-use crate::support::{sitlogc, workspace};
+use crate::support::{assert_ok, sitlogc, workspace};
 use std::path::Path;
 
 fn stderr(out: &std::process::Output) -> String {
@@ -23,16 +23,16 @@ fn new_app_checks_and_runs_at_once() {
             .unwrap()
     };
     let made = run(&["new", "x"]);
-    assert_eq!(made.status.code(), Some(0), "{}", stderr(&made));
+    assert_ok(&made);
     let checked = run(&["check", "x"]);
-    assert_eq!(checked.status.code(), Some(0), "{}", stderr(&checked));
+    assert_ok(&checked);
     assert!(
         stderr(&checked).contains("0 error(s), 0 warning(s)"),
         "{}",
         stderr(&checked)
     );
     let ran = run(&["run", "x", "--script", "x/script.txt"]);
-    assert_eq!(ran.status.code(), Some(0), "{}", stderr(&ran));
+    assert_ok(&ran);
     // The golden test the application ships passes.
     let expected = std::fs::read_to_string(tmp.path().join("x/expected.txt")).unwrap();
     assert_eq!(String::from_utf8_lossy(&ran.stdout), expected);
@@ -73,10 +73,10 @@ fn new_makes_missing_parents() {
     let tmp = tempfile::tempdir().unwrap();
     let app = tmp.path().join("a/b/robot_task");
     let out = sitlogc().arg("new").arg(&app).output().unwrap();
-    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_ok(&out);
     assert!(Path::new(&app.join("main.dm")).is_file());
     let out = sitlogc().arg("check").arg(&app).output().unwrap();
-    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_ok(&out);
 }
 
 /// `sitlogc new x --robot && sitlogc check x && sitlogc run x`: the task on
@@ -94,18 +94,18 @@ fn new_robot_app_checks_and_runs_at_once() {
             .unwrap()
     };
     let made = run(&["new", "x", "--robot"]);
-    assert_eq!(made.status.code(), Some(0), "{}", stderr(&made));
+    assert_ok(&made);
     assert!(tmp.path().join("x/world.toml").is_file());
     assert!(tmp.path().join("x/knowledge.kb").is_file());
     let checked = run(&["check", "x"]);
-    assert_eq!(checked.status.code(), Some(0), "{}", stderr(&checked));
+    assert_ok(&checked);
     assert!(
         stderr(&checked).contains("0 error(s), 0 warning(s)"),
         "{}",
         stderr(&checked)
     );
     let ran = run(&["run", "x"]);
-    assert_eq!(ran.status.code(), Some(0), "{}", stderr(&ran));
+    assert_ok(&ran);
     let out = String::from_utf8_lossy(&ran.stdout);
     let expected = std::fs::read_to_string(tmp.path().join("x/expected.txt")).unwrap();
     assert_eq!(out, expected);
@@ -151,7 +151,7 @@ fn a_copy_of_the_home_app_runs_anywhere() {
             .env_remove("SITLOG_LIBRARY")
             .output()
             .unwrap();
-        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        assert_ok(&out);
         String::from_utf8_lossy(&out.stdout).into_owned()
     };
     let theirs = crate::support::home_run();
@@ -172,7 +172,7 @@ fn library_files_local_copies_and_origins() {
         .arg("--robot")
         .output()
         .unwrap();
-    assert_eq!(made.status.code(), Some(0), "{}", stderr(&made));
+    assert_ok(&made);
     let check = |app: &Path, library: Option<&Path>| {
         let mut cmd = sitlogc();
         cmd.args(["check", "--origins"]).arg(app);
@@ -183,7 +183,7 @@ fn library_files_local_copies_and_origins() {
         cmd.output().unwrap()
     };
     let out = check(&app, None);
-    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_ok(&out);
     let text = stderr(&out);
     let version = env!("CARGO_PKG_VERSION");
     assert!(

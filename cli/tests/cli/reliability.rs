@@ -4,7 +4,7 @@
 
 #[cfg(unix)]
 use crate::support::kill;
-use crate::support::sitlogc;
+use crate::support::{assert_ok, sitlogc};
 use std::path::{Path, PathBuf};
 use std::process::{Output, Stdio};
 use std::time::{Duration, Instant};
@@ -110,7 +110,7 @@ fn a_utf8_bom_is_skipped() {
         .arg(dir.join("s.txt"))
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_ok(&out);
 }
 
 #[test]
@@ -262,7 +262,7 @@ fn output_that_cannot_be_written_is_an_error() {
         .unwrap();
     drop(child.stdout.take());
     let out = child.wait_with_output().unwrap();
-    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_ok(&out);
 }
 
 // --------------------------------------------------- outside input
@@ -312,7 +312,7 @@ fn a_deep_or_long_perception_is_refused_quickly_naming_the_limit() {
         .current_dir(&dir)
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_ok(&out);
     // --in-arg has the same limits (a usage error).
     let out = sitlogc()
         .args(["run", "--script", "s.txt", "--max-input-bytes", "10"])
@@ -715,7 +715,7 @@ fn a_piped_script_is_read_term_by_term() {
     }
     let out = child.wait_with_output().unwrap();
     writer.join().unwrap();
-    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_ok(&out);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("Out Arg: water"), "{text}");
 }

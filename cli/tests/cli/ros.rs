@@ -8,7 +8,7 @@
 //! `ROS_DOMAIN_ID` and stays on loopback (`ROS_LOCALHOST_ONLY=1`); every
 //! child is killed when its test ends, and every wait has a deadline.
 
-use crate::support::{sitlogc, workspace};
+use crate::support::{assert_ok, sitlogc, workspace};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::sync::atomic::{AtomicU16, Ordering};
@@ -159,12 +159,7 @@ fn task(app: &Path, domain: u16, args: &[&str]) -> Node {
 
 fn in_process(app: &Path, args: &[&str]) -> String {
     let out: Output = sitlogc().arg("run").arg(app).args(args).output().unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     String::from_utf8(out.stdout).unwrap()
 }
 

@@ -1,6 +1,6 @@
 //! `sitlogc run`: the fixed output conventions (text, JSON, trace), exit codes.
 
-use crate::support::sitlogc;
+use crate::support::{assert_ok, sitlogc};
 use std::path::{Path, PathBuf};
 
 fn example(name: &str) -> PathBuf {
@@ -18,12 +18,7 @@ fn json_report_is_one_object_on_stdout() {
         .arg(&app)
         .output()
         .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let stdout = String::from_utf8(out.stdout).unwrap();
     assert_eq!(stdout.lines().count(), 1);
     let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();

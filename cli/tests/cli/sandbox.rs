@@ -8,7 +8,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::support::sitlogc;
+use crate::support::{assert_ok, sitlogc};
 
 const MAIN: &str = "diag_mod(main,\n  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : say(apply(attack(X), [1])) => fs ] ],\n    [ id ==> fs, type ==> final ] ],\n  []).\n";
 
@@ -235,12 +235,7 @@ fn processes_sockets_and_files_outside_are_out_of_reach() {
         .args(["run", ".", "--script", "script.txt", "-q"])
         .output()
         .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     assert!(marker.exists());
 }
 

@@ -1,6 +1,7 @@
 //! What the command-line tests share: the `sitlogc` under test, the
-//! workspace's paths, running a child process with a signal, and the home
-//! butler's plain run (made once for the binary).
+//! workspace's paths, asserting a run succeeded (`assert_ok`), running a
+//! child process with a signal, and the home butler's plain run (made once
+//! for the binary).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -36,14 +37,21 @@ pub fn home_run() -> &'static str {
             .env_remove("SITLOG_LIBRARY")
             .output()
             .unwrap();
-        assert_eq!(
-            out.status.code(),
-            Some(0),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_ok(&out);
         String::from_utf8(out.stdout).unwrap()
     })
+}
+
+/// Asserts that a finished `sitlogc` (or compiled task) exited with status
+/// 0; else the test fails showing its stderr.
+#[track_caller]
+pub fn assert_ok(out: &std::process::Output) {
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 /// Sends `signal` (`INT`, `TERM`, `KILL`, ...) to `pid` with unix `kill`.

@@ -9,7 +9,7 @@ use std::io::{BufRead, BufReader, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 
-use crate::support::sitlogc;
+use crate::support::{assert_ok, sitlogc};
 
 const MAIN: &str = "diag_mod(main,\n  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : say(hello) => fs ] ],\n    [ id ==> fs, type ==> final ] ],\n  []).\n";
 
@@ -90,12 +90,7 @@ fn directives_run_only_when_the_run_starts() {
     assert!(!marker.exists(), "lsp ran a directive");
     // The run itself.
     let out = run(&dir, &[]);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     assert!(marker.exists(), "the run did not run the directive");
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -210,12 +205,7 @@ fn the_shell_is_off_without_allow_os() {
     );
     // With the flag the shell runs.
     let out = run(&dir, &["--allow-os"]);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     assert!(marker.exists(), "--allow-os did not let the shell run");
     let _ = std::fs::remove_dir_all(&dir);
 }
