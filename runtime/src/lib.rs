@@ -14,9 +14,11 @@
 //!   few steps itself: integer arithmetic and comparisons, list heads and
 //!   tails, matching a callee's final situation against exit arcs, its own
 //!   stack of typed frames. There agreement is not by construction but by
-//!   test: the goldens, the typed agreement cases and the random-program
-//!   agreement (`tests/tests/suite/{typed,random_agreement}.rs`) compare the
-//!   two back ends' histories, reports and errors.
+//!   test, with the history kept and without (native code's own DM stack):
+//!   the examples (`tests/tests/suite/agreement.rs`), every scenario and
+//!   world variant (`home.rs`, `supermarket.rs`), the typed agreement cases
+//!   (`typed.rs`) and the random-program agreement (`random_agreement.rs`)
+//!   compare the two back ends' histories, reports and errors.
 //! - The `use crate::` edges between its modules form a DAG (below); within
 //!   `machine`, `prolog` and `arith` the submodules are ordered the same
 //!   way (see their module docs).

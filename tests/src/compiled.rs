@@ -28,26 +28,55 @@ pub fn compiled(app: &Path) -> Option<(generated::RunFn, generated::FunctionsFn)
 /// Runs the compiled example on its `script.txt` (as
 /// [`crate::run_example`] does with the interpreter); returns the JSON report.
 pub fn run_example_compiled(app: &Path) -> serde_json::Value {
+    let (run, functions) = compiled_and_functions(app);
+    run_compiled(app, run, functions, Options::default())
+}
+
+/// [`run_example_compiled`] twice on one set of functions (one Prolog
+/// engine; the examples' Prolog files keep no state between calls): with
+/// the history kept, then without (`--history none`, where native code runs
+/// DM calls on its own stack). Returns the two reports in that order.
+pub fn run_example_compiled_histories(app: &Path) -> (serde_json::Value, serde_json::Value) {
+    let (run, functions) = compiled_and_functions(app);
+    let kept = run_compiled(app, run, functions.clone(), Options::default());
+    let options = Options {
+        keep_history: false,
+        ..Options::default()
+    };
+    (kept, run_compiled(app, run, functions, options))
+}
+
+/// The compiled `run` of `app` and its functions: standard ones plus its
+/// embedded Prolog sources (issue 10); Rust stand-ins only when Prolog is
+/// compiled out.
+fn compiled_and_functions(app: &Path) -> (generated::RunFn, Functions) {
     let (run, embedded_functions) =
         compiled(app).unwrap_or_else(|| panic!("{} was not compiled", app.display()));
-    let args = example_args(app);
-    let script = std::fs::read_to_string(app.join("script.txt")).unwrap_or_default();
-    let mut perception = ScriptPerception::new("script.txt", script);
-    let mut actions = TextActions::new(std::io::sink(), Vec::new());
-    // The program's own functions: standard ones plus its embedded Prolog
-    // sources (issue 10); Rust stand-ins only when Prolog is compiled out.
     let mut functions = if cfg!(feature = "prolog") {
         embedded_functions().expect("embedded Prolog sources load")
     } else {
         Functions::standard()
     };
-    if args.appendix_a && !cfg!(feature = "prolog") {
+    if example_args(app).appendix_a && !cfg!(feature = "prolog") {
         appendix_a_functions(&mut functions);
     }
+    (run, functions)
+}
+
+fn run_compiled(
+    app: &Path,
+    run: generated::RunFn,
+    functions: Functions,
+    options: Options,
+) -> serde_json::Value {
+    let args = example_args(app);
+    let script = std::fs::read_to_string(app.join("script.txt")).unwrap_or_default();
+    let mut perception = ScriptPerception::new("script.txt", script);
+    let mut actions = TextActions::new(std::io::sink(), Vec::new());
     let (outcome, store) = run(
         &args.main,
         args.in_arg.as_deref(),
-        Options::default(),
+        options,
         functions,
         &mut perception,
         &mut actions,

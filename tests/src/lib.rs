@@ -118,10 +118,6 @@ pub fn run_example(app: &Path) -> serde_json::Value {
         Err(_) => panic!("{} does not check: {diags:#?}", app.display()),
     };
     let ir = sitlog_compiler::ir::lower(&checked);
-    let args = example_args(app);
-    let script = std::fs::read_to_string(app.join("script.txt")).unwrap_or_default();
-    let mut perception = ScriptPerception::new("script.txt", script);
-    let mut actions = TextActions::new(std::io::sink(), ir.basic_actions.clone());
     let mut functions = Functions::standard();
     // With the `prolog` feature the application's own user_functions.pl
     // runs; without it, Appendix A falls back to the Rust stand-ins.
@@ -130,17 +126,40 @@ pub fn run_example(app: &Path) -> serde_json::Value {
         panic!("{}: Prolog files do not load: {errors:?}", app.display());
     }
     #[cfg(not(feature = "prolog"))]
-    if args.appendix_a {
+    if example_args(app).appendix_a {
         appendix_a_functions(&mut functions);
     }
+    run_example_ir(app, &ir, functions, Options::default())
+}
+
+/// [`run_example`] with the machine's `options` (`keep_history: false` is
+/// `--history none`), on the Prolog engine the test process shares for the
+/// application's sources where that is sound
+/// ([`scenario::shared_interpreter`]): runs of one example with other
+/// options start no engine of their own.
+pub fn run_example_shared(app: &Path, options: Options) -> serde_json::Value {
+    let (ir, functions) = scenario::shared_interpreter(app);
+    run_example_ir(app, &ir, functions, options)
+}
+
+fn run_example_ir(
+    app: &Path,
+    ir: &sitlog_compiler::ir::Ir,
+    functions: Functions,
+    options: Options,
+) -> serde_json::Value {
+    let args = example_args(app);
+    let script = std::fs::read_to_string(app.join("script.txt")).unwrap_or_default();
+    let mut perception = ScriptPerception::new("script.txt", script);
+    let mut actions = TextActions::new(std::io::sink(), ir.basic_actions.clone());
     let config = RunConfig {
         main: args.main,
         in_arg: args.in_arg,
-        options: Options::default(),
+        options,
         functions,
     };
     let (outcome, store) =
-        run::run(&ir, config, &mut perception, &mut actions, None).expect("valid run config");
+        run::run(ir, config, &mut perception, &mut actions, None).expect("valid run config");
     serde_json::from_str(&report::outcome_json(&store, &outcome)).expect("report is JSON")
 }
 

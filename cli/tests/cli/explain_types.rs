@@ -38,7 +38,8 @@ fn explain_types_listing() {
     insta::assert_snapshot!(all);
 }
 
-/// The listing of each application ends with exactly one summary line.
+/// The listing of each application ends with exactly one summary line;
+/// the home butler and the supermarket meet issue 37's 80 % targets.
 #[test]
 fn explain_types_ends_with_one_summary_line() {
     for app in [
@@ -62,10 +63,12 @@ fn explain_types_ends_with_one_summary_line() {
             .strip_prefix("situations on native values: ")
             .and_then(|r| r.split_once('/'))
             .unwrap_or_else(|| panic!("{app}: {native}"));
-        assert!(
-            n.parse::<usize>().unwrap() <= y.parse::<usize>().unwrap(),
-            "{app}: {native}"
-        );
+        let (n, y): (usize, usize) = (n.parse().unwrap(), y.parse().unwrap());
+        assert!(n <= y, "{app}: {native}");
+        // Issue 37's target for the two applications: at least 80 % of the
+        // situations on native values, and of the variables typed (below).
+        let app_target = app.starts_with("dms/apps/");
+        assert!(!app_target || 5 * n >= 4 * y, "{app}: {native}");
         assert!(lines[lines.len() - 3].starts_with("native code: "));
         let mir = lines[lines.len() - 4];
         assert!(
@@ -79,10 +82,11 @@ fn explain_types_ends_with_one_summary_line() {
             .strip_prefix("situations compiled as code: ")
             .and_then(|r| r.split_once("; variables typed: "))
             .unwrap_or_else(|| panic!("{app}: {last}"));
-        for ratio in [sits, vars] {
+        for (ratio, target) in [(sits, false), (vars, app_target)] {
             let (x, y) = ratio.split_once('/').unwrap();
             let (x, y): (usize, usize) = (x.parse().unwrap(), y.parse().unwrap());
             assert!(x <= y && y > 0, "{app}: {last}");
+            assert!(!target || 5 * x >= 4 * y, "{app}: {last}");
         }
         println!("{app}: {last}");
     }

@@ -1,10 +1,13 @@
 //! Agreement: every application under `dms/` with a `script.txt` runs once
 //! on the reference interpreter and once as generated Rust (compiled by
 //! `tests/build.rs`); the JSON reports (history, out_arg, globals, status,
-//! error) must be equal up to a consistent renaming of variables.
+//! error) must be equal up to a consistent renaming of variables. Each runs
+//! again on both without a history (`--history none`: native code keeps
+//! its own stack of DM calls), and those reports must be equal too.
 
-use sitlog_tests::compiled::{canonical_vars, compiled, run_example_compiled};
-use sitlog_tests::{run_example, workspace};
+use sitlog_runtime::machine::Options;
+use sitlog_tests::compiled::{canonical_vars, compiled, run_example_compiled_histories};
+use sitlog_tests::{run_example_shared, workspace};
 use std::path::PathBuf;
 
 fn apps_with_scripts() -> Vec<PathBuf> {
@@ -31,14 +34,26 @@ fn every_example_is_compiled() {
 fn compiled_and_interpreted_runs_agree() {
     let mut failures = Vec::new();
     let apps = apps_with_scripts();
+    let none = Options {
+        keep_history: false,
+        ..Options::default()
+    };
     for app in &apps {
-        let interpreted = canonical_vars(&run_example(app));
-        let generated = canonical_vars(&run_example_compiled(app));
-        if interpreted != generated {
-            failures.push(format!(
-                "{}:\n  interpreter {interpreted}\n  compiled    {generated}",
-                app.display()
-            ));
+        // the interpreter's runs share one Prolog engine (the examples'
+        // golden test, `examples.rs`, runs each on a fresh one)
+        let (kept, without) = run_example_compiled_histories(app);
+        for (how, options, generated) in [
+            ("history kept", Options::default(), kept),
+            ("--history none", none.clone(), without),
+        ] {
+            let interpreted = canonical_vars(&run_example_shared(app, options));
+            let generated = canonical_vars(&generated);
+            if interpreted != generated {
+                failures.push(format!(
+                    "{} ({how}):\n  interpreter {interpreted}\n  compiled    {generated}",
+                    app.display()
+                ));
+            }
         }
     }
     assert!(

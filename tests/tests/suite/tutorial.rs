@@ -1,11 +1,11 @@
 //! The tutorial's application (`dms/examples/tutorial`, walked through in
 //! `docs/guide/tutorial.md`) checks without a warning and runs on its
 //! script as `sitlogc run dms/examples/tutorial --script
-//! dms/examples/tutorial/script.txt` does, on the interpreter and on the
-//! generated code; what it prints is an insta snapshot, and the guide must
-//! show exactly that output, so the tutorial cannot rot. (Every other block
-//! of the page is checked against a run of the `sitlogc` binary by
-//! `cli/tests/cli/tutorial.rs`.)
+//! dms/examples/tutorial/script.txt` does (and on `script_no_drink.txt`),
+//! on the interpreter and on the generated code; what it prints is an insta
+//! snapshot, and the guide must show exactly that output, so the tutorial
+//! cannot rot. (Every other block of the page is checked against a run of
+//! the `sitlogc` binary by `cli/tests/cli/tutorial.rs`.)
 
 use sitlog_robot::console::SharedBuf;
 use sitlog_robot::{Assets, RunArgs, Runner, Streams};
@@ -98,6 +98,13 @@ fn the_tutorial_app_gives_up_after_three_questions() {
     let (ir, functions) = sitlog_tests::scenario::interpreter(&app());
     let (out, err, code) = run(&ir, functions, "script_no_drink.txt");
     assert_eq!(code, 0, "{out}\n{err}");
+    // the same on the code tests/build.rs generated
+    let compiled = run(
+        examples_tutorial::program(),
+        Functions::standard(),
+        "script_no_drink.txt",
+    );
+    assert_eq!((&out, &err, code), (&compiled.0, &compiled.1, compiled.2));
     insta::assert_snapshot!("tutorial_gave_up", out);
     assert!(guide().contains(out.trim_end()));
 }
