@@ -61,6 +61,7 @@ fn main() {
         let d = synthetic(n, 88172645463325252);
         let cost = layout::engine_cost(&d.dms[0]);
         let work = layout::engine_work(&d.dms[0], cost <= layout::OPT_LIMIT, false);
+        let work = work.map_or("-".to_owned(), |w| w.to_string());
         let t = std::time::Instant::now();
         let l = layout::layout(&d);
         println!(

@@ -100,7 +100,8 @@ fn medium_dms_are_laid_out_by_their_work() {
         assert_eq!(l.nodes.len(), n);
         assert_eq!(l.routes.len(), d.dms[0].edges.len());
     }
-    let work = |n: usize, optimize| layout::engine_work(&synthetic(n).dms[0], optimize, false);
+    let work =
+        |n: usize, optimize| layout::engine_work(&synthetic(n).dms[0], optimize, false).unwrap();
     assert!(work(20, true) <= layout::DM_WORK_LIMIT);
     assert!(work(40, true) > layout::DM_WORK_LIMIT);
     assert!(work(40, false) <= layout::DM_WORK_LIMIT);

@@ -156,7 +156,14 @@ fn visual_graph(dm: &DmGraph, across: bool) -> (VisualGraph, Vec<NodeHandle>) {
 /// measured, a step of either pass takes about the same time, 10–25 ns in
 /// a debug build). The same on any machine: this, not a clock, decides
 /// what the engine lays out.
-pub fn engine_work(dm: &DmGraph, optimize: bool, across: bool) -> u64 {
+///
+/// `None` when the engine's lowering fails on the DM (a panic of the
+/// engine, caught): the engine could not place it either.
+pub fn engine_work(dm: &DmGraph, optimize: bool, across: bool) -> Option<u64> {
+    std::panic::catch_unwind(|| count_work(dm, optimize, across)).ok()
+}
+
+fn count_work(dm: &DmGraph, optimize: bool, across: bool) -> u64 {
     let (mut vg, _) = visual_graph(dm, across);
     if vg.num_nodes() == 0 {
         return 0;
@@ -190,11 +197,13 @@ pub fn engine_work(dm: &DmGraph, optimize: bool, across: bool) -> u64 {
     // a self edge becomes a connector beside its node
     let loops = dm.edges.iter().filter(|e| e.from == e.to).count() as u64;
     let nodes = width.iter().sum::<u64>() + loops;
-    let mut work = 4 * nodes * nodes;
+    let mut work = nodes.saturating_mul(nodes).saturating_mul(4);
     if optimize {
         for pair in width.windows(2) {
             let (w, next) = (pair[0], pair[1]);
-            work += 50 * 8 * (w * w * next / 2 + w * next);
+            let pairs = w.saturating_mul(w).saturating_mul(next) / 2;
+            let step = pairs.saturating_add(w.saturating_mul(next));
+            work = work.saturating_add(step.saturating_mul(50 * 8));
         }
     }
     work

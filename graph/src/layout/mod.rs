@@ -373,11 +373,12 @@ fn within_work(
     left: &mut u64,
     notes: &mut Vec<String>,
 ) -> Result<dm::Local, String> {
+    let unplaced = || "the layout engine could not place it".to_owned();
     let mut optimize = optimize;
-    let mut work = engine_work(dm, optimize, across);
+    let mut work = engine_work(dm, optimize, across).ok_or_else(unplaced)?;
     if optimize && work > DM_WORK_LIMIT {
         optimize = false;
-        work = engine_work(dm, false, across);
+        work = engine_work(dm, false, across).ok_or_else(unplaced)?;
         notes.push(format!(
             "{what}: edge crossings are not reduced (too much work for the layout engine)"
         ));
@@ -510,9 +511,9 @@ mod tests {
     fn the_work_budget_is_counted_down() {
         let dm = chain(4);
         // 4 nodes, 3 label connectors, in 7 ranks
-        let work = engine_work(&dm, false, false);
+        let work = engine_work(&dm, false, false).unwrap();
         assert_eq!(work, 4 * 7 * 7);
-        assert_eq!(engine_work(&dm, true, false), work + 6 * 400);
+        assert_eq!(engine_work(&dm, true, false), Some(work + 6 * 400));
         let mut notes = Vec::new();
         let mut left = work;
         assert!(within_work(&dm, false, false, "DM d", &mut left, &mut notes).is_ok());
