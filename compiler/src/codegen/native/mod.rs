@@ -1669,11 +1669,15 @@ impl Gen<'_> {
         // runs it (live native values as terms).
         let reloads = atom.is_none() && !d.locals.is_empty();
         let enter_id = quote!(#(#id_stmts)* cx.enter_with_id(#cur, #id););
-        let conv =
-            self.nat_bound_at_boundary(st, &arc.next, &regs, reloads, &rec_entry(), &enter_id)?;
-        if conv.is_some() && arc.out_arg.is_some() {
-            return Err("its arc has an out_arg and a value bound at a boundary".into());
-        }
+        let conv = self.nat_bound_at_boundary(
+            st,
+            &arc.next,
+            arc.out_arg.as_ref(),
+            &regs,
+            reloads,
+            &rec_entry(),
+            &enter_id,
+        )?;
         // The expectation's term for the history, built only when recorded.
         let rec_exp = match exp {
             Some(e) => quote!(#e),
@@ -2091,14 +2095,17 @@ impl Gen<'_> {
     }
 
     /// The fresh variables an action bound (made as terms for it) that
-    /// `next` reads, with their types, and the code that runs the rest of
-    /// the arc as the term code does (`None`: `next` reads none and
-    /// `always` is false).
-    #[allow(clippy::type_complexity)]
+    /// `next` or the arc's out_arg `out` reads, with their types, and the
+    /// code that runs the rest of the arc as the term code does: the next
+    /// situation, then the out_arg (`Cx::out_arg`, before the entry is
+    /// recorded and the transition counted, as `step::arc_code` orders
+    /// them) (`None`: neither reads one and `always` is false).
+    #[allow(clippy::type_complexity, clippy::too_many_arguments)]
     fn nat_bound_at_boundary(
         &self,
         st: &SitTypes,
         next: &Next,
+        out: Option<&Build>,
         regs: &Regs,
         always: bool,
         rec: &TokenStream,
@@ -2107,8 +2114,12 @@ impl Gen<'_> {
         let at = quote!(arc_at);
         let mut b = super::step::Body::new();
         let v = self.next_code(next, &at, &mut b);
+        let out = out.map(|o| {
+            let o = self.build_code(o, &mut b);
+            quote!(cx.out_arg(#o, #at)?;)
+        });
         let stmts = b.stmts;
-        let body = quote!(#(#stmts)* #v);
+        let body = quote!(#(#stmts)* #v #out);
         let used = super::step::registers(&body);
         let conv: Vec<(Reg, Ty)> = used
             .iter()
@@ -2142,6 +2153,7 @@ impl Gen<'_> {
             #(#lets)*
             #(#stmts)*
             let (next, target) = #v;
+            #out
             cx.count_transitions(this);
             let rec_next = next;
             #rec
