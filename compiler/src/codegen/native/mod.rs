@@ -1571,7 +1571,7 @@ impl Gen<'_> {
     /// holding ints and integer constants) as a Rust expression of an
     /// `Option<i64>`: `None` when an operand is not an int or an operation
     /// overflows.
-    fn nat_int_expr(&self, b: &Build, regs: &Regs) -> N<TokenStream> {
+    pub(super) fn nat_int_expr(&self, b: &Build, regs: &Regs) -> N<TokenStream> {
         let some = quote!(Some);
         Ok(match b {
             Build::Reg(r) => {
@@ -1868,7 +1868,7 @@ impl Gen<'_> {
     /// The term of `b` built from native values (a boundary: an effector's
     /// action, `diag_mod`): statements pushed to `ts`, the term's
     /// expression returned.
-    fn nat_build_term(
+    pub(super) fn nat_build_term(
         &self,
         b: &Build,
         regs: &Regs,
