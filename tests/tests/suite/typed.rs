@@ -534,11 +534,12 @@ fn native_dms_agree() {
 
 /// Workloads of issue 37's shapes written as another engineer would
 /// (`typed/shapes`, all 14 explained in the compiler's `core::shapes`
-/// snapshot); three compiled here: the callee counting in a global and
+/// snapshot); four compiled here: the callee counting in a global and
 /// handing the pipe back (an arc with an out_arg and a value bound at a
 /// boundary), an output argument bound by the finals' `diag_mod` read
 /// after an exit arc that is a variable, a walk by `get`/`set` of a local
-/// list. Each also from arguments that do not fit.
+/// list, a walk counting its position with `J is I + 1` in the action.
+/// Each also from arguments that do not fit.
 mod shapes {
     pub mod callee_counts {
         sitlog_macros::include_dm!("typed/shapes/c_pipe_callee_counts");
@@ -548,6 +549,9 @@ mod shapes {
     }
     pub mod getset_local {
         sitlog_macros::include_dm!("typed/shapes/d_getset_local");
+    }
+    pub mod ints_fields {
+        sitlog_macros::include_dm!("typed/shapes/d_ints_fields");
     }
 }
 
@@ -570,6 +574,13 @@ fn other_engineers_shapes_agree() {
         "patrol(1, [hall|bath], cellar)",
         "patrol(1, hall, hall)",
     ] {
+        agree(app, &ir, main, "");
+    }
+    // `[J is I + 1]` in a walk's action: Rust arithmetic.
+    let ir = interpreter("typed/shapes/d_ints_fields");
+    let app = shapes::ints_fields::program();
+    let _ = shapes::ints_fields::dm_first_above::run_native;
+    for main in ["rounds(3)", "rounds(x)", "rounds(2.5)"] {
         agree(app, &ir, main, "");
     }
 }
