@@ -84,9 +84,13 @@
 //!   own calls (`Cx::var_op`, `Cx::is`) on terms built from native values;
 //!   what they bind is converted like a boundary's value. Except, when
 //!   nothing is recorded, an arc whose action is only `inc`/`get` of the
-//!   frame's locals, constants and values (`[inc(n, N)]`): done on the
-//!   frame's Rust locals, as an exit arc's (recorded, the arc takes the
-//!   machine's calls and makes its entry). A fresh variable is made at
+//!   frame's locals, `V is E` of ints into a fresh `int` variable
+//!   (checked `i64`; an overflow is the machine's `is`), constants and
+//!   values (`[inc(n, N)]`, `[J is I + 1]`): done on the frame's Rust
+//!   locals and values, as an exit arc's (recorded, the arc takes the
+//!   machine's calls and makes its entry). An arc whose action binds a
+//!   value at a boundary falls back to the term code's next situation and
+//!   out_arg when that value does not convert. A fresh variable is made at
 //!   the start of a visit only when code uses it before declaring it.
 //!
 //! - *frames and calls* ([`frame`], [`call`]): each DM with native code
