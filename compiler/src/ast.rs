@@ -603,7 +603,8 @@ pub fn build_expectation_types(
 /// The values a user function `name/arity` gives through
 /// `assign_func_value/1`, as far as its clauses show them: `values` is
 /// `None` when some clause gives something else than a term written in the
-/// clause (directly or through `V = Term`) or one of its arguments.
+/// clause (directly or through `V = Term`, V bound by no other goal) or one
+/// of its arguments.
 #[derive(Debug, Clone)]
 pub struct FunctionValues {
     pub name: Atom,
@@ -665,6 +666,30 @@ fn clause_values(clause: &Clause, head: TermId, body: Option<TermId>) -> Option<
         if let Some(i) = arg_index(v) {
             out.push(FnValue::Arg(i));
             continue;
+        }
+        // Bound by another goal too (`(lang_answer(K, As, A) -> true ; A =
+        // no)`): its values cannot be told from the `=` goals alone.
+        let occurs = |t: TermId| {
+            let mut work = vec![t];
+            while let Some(x) = work.pop() {
+                match terms.node(x) {
+                    Node::Var(w) if *w == v => return true,
+                    Node::Compound { .. } => work.extend(terms.args(x)),
+                    _ => {}
+                }
+            }
+            false
+        };
+        let binds_v = |u: TermId| {
+            terms
+                .compound(u, eq, 2)
+                .is_some_and(|b| var_of(b[0]) == Some(v) || var_of(b[1]) == Some(v))
+        };
+        if goals
+            .iter()
+            .any(|&u| u != g && !binds_v(u) && terms.compound(u, assign, 1).is_none() && occurs(u))
+        {
+            return None;
         }
         let mut found = false;
         for &u in &goals {

@@ -105,7 +105,7 @@ impl Gen<'_> {
     }
 
     /// The term `x` builds (not evaluated).
-    fn build_code(&self, x: &Build, b: &mut Body) -> TokenStream {
+    pub(super) fn build_code(&self, x: &Build, b: &mut Body) -> TokenStream {
         match x {
             Build::Const(t) => self.frozen(*t, b),
             Build::Reg(r) => {

@@ -98,7 +98,10 @@
 //!   shapes (`int ⊔ atom`). A user function whose clauses assign only
 //!   ground terms or its arguments (`Ir::function_values`) gives the join
 //!   of those instead (`atom`, `list<atom>`, ...): the target of the same
-//!   checked conversion. `is` over values not known to be numbers gives
+//!   checked conversion. A compound the evaluator rebuilds from its
+//!   evaluated arguments (D-36) is typed from its arguments' values, each
+//!   by these rules, whether written with variables or ground
+//!   (`round(apply(rooms, []))`: `round(list<atom>)`, not `ground`). `is` over values not known to be numbers gives
 //!   `ground` (the evaluator's number). **Contract** (the code generator
 //!   and the interpreter follow it): the term is converted once, where it
 //!   enters (after the call returns, the perception arrives, the action
@@ -1059,8 +1062,7 @@ impl<'a> State<'a> {
                     return self.var_op_value(d, op, name, Some(arg));
                 }
                 self.scan_writes(d, s, b, 0);
-                self.function_value(d, s, b)
-                    .unwrap_or_else(|| Typed::of(Ty::Ground))
+                self.eval_build(d, s, b)
             }
             Ev::If(c, a, b) => {
                 self.cond(d, s, c);
@@ -1626,9 +1628,19 @@ impl<'a> State<'a> {
                     ok
                 };
                 if inert {
-                    self.build_ty(d, s, b)
-                } else {
-                    Typed::of(Ty::Ground)
+                    return self.build_ty(d, s, b);
+                }
+                // A ground compound with an evaluated part
+                // (`round(apply(rooms, []))`): typed as its parts are,
+                // each evaluated (the same rule as for a compound built
+                // from registers, below).
+                match st.value(*t) {
+                    Value::Compound(name, args) => {
+                        let parts =
+                            Build::Compound(name, args.iter().map(|&a| Build::Const(a)).collect());
+                        self.eval_build(d, s, &parts)
+                    }
+                    _ => Typed::of(Ty::Ground),
                 }
             }
             Build::Compound(name, args) if eval::evaluates_arguments_only(*name, args.len()) => {
@@ -2648,7 +2660,9 @@ diag_mod(main,
   [ [ id ==> is, type ==> neutral,
       arcs ==> [ empty : [assign(A, apply(yes_no(_), [1])), say(A),
                           assign(B, apply(same(_), [x])), say(B),
-                          assign(C, apply(len(_), [[a]])), say(C)] => fs ] ],
+                          assign(C, apply(len(_), [[a]])), say(C),
+                          assign(D, apply(ans(_), [k])), say(D),
+                          say(pair(apply(rooms, []), b))] => fs ] ],
     [ id ==> fs, type ==> final ] ],
   []).
 "#,
@@ -2658,7 +2672,9 @@ diag_mod(main,
                 "yes_no(1) :- assign_func_value(yes).\n\
                  yes_no(_) :- assign_func_value(no).\n\
                  same(X) :- assign_func_value(X).\n\
-                 len(L) :- length(L, N), assign_func_value(N).\n",
+                 len(L) :- length(L, N), assign_func_value(N).\n\
+                 ans(K) :- (lookup(K, A) -> true ; A = none), assign_func_value(A).\n\
+                 rooms :- assign_func_value([hall, bath]).\n",
             ),
         ]);
         let (result, _) = check::check(program, diags);
@@ -2677,6 +2693,16 @@ diag_mod(main,
         // yes/no and `x` (the argument) are atoms; the length is computed.
         assert!(tys.iter().filter(|t| *t == "atom").count() >= 2, "{line}");
         assert!(tys.iter().any(|t| t == "ground"), "{line}");
+        // `ans`'s `A` is bound by `lookup` too, not only by `A = none`:
+        // its value cannot be told (was `atom`).
+        let said_ground = tys.iter().filter(|t| *t == "say(ground)").count();
+        assert_eq!(said_ground, 2, "{line}");
+        // A ground compound with an evaluated part: typed from its parts
+        // (the function's list), not `ground`.
+        assert!(
+            tys.iter().any(|t| t == "say(pair(list<atom>, atom))"),
+            "{line}"
+        );
     }
 
     /// A variable read before what could bind it stays a term.

@@ -4,3 +4,4 @@
 mod codegen;
 mod diagnostics;
 mod never_panic;
+mod shapes;

@@ -531,3 +531,56 @@ fn native_dms_agree() {
     assert_eq!(report["status"], "ok", "{report}");
     assert!(transitions > 30, "{transitions}");
 }
+
+/// Workloads of issue 37's shapes written as another engineer would
+/// (`typed/shapes`, all 14 explained in the compiler's `core::shapes`
+/// snapshot); four compiled here: the callee counting in a global and
+/// handing the pipe back (an arc with an out_arg and a value bound at a
+/// boundary), an output argument bound by the finals' `diag_mod` read
+/// after an exit arc that is a variable, a walk by `get`/`set` of a local
+/// list, a walk counting its position with `J is I + 1` in the action.
+/// Each also from arguments that do not fit.
+mod shapes {
+    pub mod callee_counts {
+        sitlog_macros::include_dm!("typed/shapes/c_pipe_callee_counts");
+    }
+    pub mod output_var_exit {
+        sitlog_macros::include_dm!("typed/shapes/d_output_var_exit");
+    }
+    pub mod getset_local {
+        sitlog_macros::include_dm!("typed/shapes/d_getset_local");
+    }
+    pub mod ints_fields {
+        sitlog_macros::include_dm!("typed/shapes/d_ints_fields");
+    }
+}
+
+#[test]
+fn other_engineers_shapes_agree() {
+    let ir = interpreter("typed/shapes/c_pipe_callee_counts");
+    let app = shapes::callee_counts::program();
+    let _ = shapes::callee_counts::dm_tick::run_native;
+    for in_arg in ["4", "a", "4.0"] {
+        agree_piped(app, &ir, "driver", Some(in_arg), "");
+    }
+    let ir = interpreter("typed/shapes/d_output_var_exit");
+    agree(shapes::output_var_exit::program(), &ir, "hunt(3)", "");
+    agree(shapes::output_var_exit::program(), &ir, "hunt(x)", "");
+    let ir = interpreter("typed/shapes/d_getset_local");
+    let app = shapes::getset_local::program();
+    for main in [
+        "patrol(3, [hall, bath, bed], bed)",
+        "patrol(2, [hall, bath], cellar)",
+        "patrol(1, [hall|bath], cellar)",
+        "patrol(1, hall, hall)",
+    ] {
+        agree(app, &ir, main, "");
+    }
+    // `[J is I + 1]` in a walk's action: Rust arithmetic.
+    let ir = interpreter("typed/shapes/d_ints_fields");
+    let app = shapes::ints_fields::program();
+    let _ = shapes::ints_fields::dm_first_above::run_native;
+    for main in ["rounds(3)", "rounds(x)", "rounds(2.5)"] {
+        agree(app, &ir, main, "");
+    }
+}

@@ -670,8 +670,8 @@ impl Gen<'_> {
 
     /// An exit arc's action (and a perceptual or neutral arc's, when it
     /// has only these): `inc`/`get` of a local into a fresh variable,
-    /// atoms and numbers performed (skipped where the run's actions ignore
-    /// them).
+    /// `V is E` of ints into a fresh variable, atoms and numbers performed
+    /// (skipped where the run's actions ignore them).
     pub(super) fn nat_exit_action(
         &self,
         d: &Dm,
@@ -745,6 +745,41 @@ impl Gen<'_> {
                     stmts.push(quote!(let #rr = #e;));
                     regs.insert(*dst, (rr, dty));
                     lty
+                }
+                // `J is I + 1` into a fresh variable that inference types
+                // `int` (so its operands are ints): checked `i64`
+                // arithmetic as in a native `prog`; an overflow is the
+                // machine's evaluation (its value, if native code can hold
+                // it, else an error, as `nat_prog` does).
+                Ev::IsFresh { expr, dst } if d.types[ix].regs[*dst as usize].ty == Ty::Int => {
+                    let e = self.nat_int_expr(expr, regs)?;
+                    let mut ts = Vec::new();
+                    let mut n = 0;
+                    let t = self.nat_build_term(expr, regs, &mut ts, &mut n)?;
+                    stmts.push(quote! {
+                        let #x: i64 = match #e {
+                            Some(v) => v,
+                            None => {
+                                #enter
+                                #(#ts)*
+                                let v = cx.is(None, #t, Some(#arc))?;
+                                let v = cx.store_ref().deref(v);
+                                match cx.to_native::<i64>(v) {
+                                    Some(v) => v,
+                                    None => {
+                                        return Err(cx.error(
+                                            "`is` gave a value native code cannot hold",
+                                            Some(#arc),
+                                        ))
+                                    }
+                                }
+                            }
+                        };
+                    });
+                    let rr = reg(*dst);
+                    stmts.push(quote!(let #rr = #x;));
+                    regs.insert(*dst, (rr, Ty::Int));
+                    Ty::Int
                 }
                 Ev::Built(Build::Const(t)) => {
                     let v = self.nat_value(&Build::Const(*t), regs)?;

@@ -84,9 +84,13 @@
 //!   own calls (`Cx::var_op`, `Cx::is`) on terms built from native values;
 //!   what they bind is converted like a boundary's value. Except, when
 //!   nothing is recorded, an arc whose action is only `inc`/`get` of the
-//!   frame's locals, constants and values (`[inc(n, N)]`): done on the
-//!   frame's Rust locals, as an exit arc's (recorded, the arc takes the
-//!   machine's calls and makes its entry). A fresh variable is made at
+//!   frame's locals, `V is E` of ints into a fresh `int` variable
+//!   (checked `i64`; an overflow is the machine's `is`), constants and
+//!   values (`[inc(n, N)]`, `[J is I + 1]`): done on the frame's Rust
+//!   locals and values, as an exit arc's (recorded, the arc takes the
+//!   machine's calls and makes its entry). An arc whose action binds a
+//!   value at a boundary falls back to the term code's next situation and
+//!   out_arg when that value does not convert. A fresh variable is made at
 //!   the start of a visit only when code uses it before declaring it.
 //!
 //! - *frames and calls* ([`frame`], [`call`]): each DM with native code
@@ -1571,7 +1575,7 @@ impl Gen<'_> {
     /// holding ints and integer constants) as a Rust expression of an
     /// `Option<i64>`: `None` when an operand is not an int or an operation
     /// overflows.
-    fn nat_int_expr(&self, b: &Build, regs: &Regs) -> N<TokenStream> {
+    pub(super) fn nat_int_expr(&self, b: &Build, regs: &Regs) -> N<TokenStream> {
         let some = quote!(Some);
         Ok(match b {
             Build::Reg(r) => {
@@ -1669,11 +1673,15 @@ impl Gen<'_> {
         // runs it (live native values as terms).
         let reloads = atom.is_none() && !d.locals.is_empty();
         let enter_id = quote!(#(#id_stmts)* cx.enter_with_id(#cur, #id););
-        let conv =
-            self.nat_bound_at_boundary(st, &arc.next, &regs, reloads, &rec_entry(), &enter_id)?;
-        if conv.is_some() && arc.out_arg.is_some() {
-            return Err("its arc has an out_arg and a value bound at a boundary".into());
-        }
+        let conv = self.nat_bound_at_boundary(
+            st,
+            &arc.next,
+            arc.out_arg.as_ref(),
+            &regs,
+            reloads,
+            &rec_entry(),
+            &enter_id,
+        )?;
         // The expectation's term for the history, built only when recorded.
         let rec_exp = match exp {
             Some(e) => quote!(#e),
@@ -1864,7 +1872,7 @@ impl Gen<'_> {
     /// The term of `b` built from native values (a boundary: an effector's
     /// action, `diag_mod`): statements pushed to `ts`, the term's
     /// expression returned.
-    fn nat_build_term(
+    pub(super) fn nat_build_term(
         &self,
         b: &Build,
         regs: &Regs,
@@ -2091,14 +2099,17 @@ impl Gen<'_> {
     }
 
     /// The fresh variables an action bound (made as terms for it) that
-    /// `next` reads, with their types, and the code that runs the rest of
-    /// the arc as the term code does (`None`: `next` reads none and
-    /// `always` is false).
-    #[allow(clippy::type_complexity)]
+    /// `next` or the arc's out_arg `out` reads, with their types, and the
+    /// code that runs the rest of the arc as the term code does: the next
+    /// situation, then the out_arg (`Cx::out_arg`, before the entry is
+    /// recorded and the transition counted, as `step::arc_code` orders
+    /// them) (`None`: neither reads one and `always` is false).
+    #[allow(clippy::type_complexity, clippy::too_many_arguments)]
     fn nat_bound_at_boundary(
         &self,
         st: &SitTypes,
         next: &Next,
+        out: Option<&Build>,
         regs: &Regs,
         always: bool,
         rec: &TokenStream,
@@ -2107,8 +2118,12 @@ impl Gen<'_> {
         let at = quote!(arc_at);
         let mut b = super::step::Body::new();
         let v = self.next_code(next, &at, &mut b);
+        let out = out.map(|o| {
+            let o = self.build_code(o, &mut b);
+            quote!(cx.out_arg(#o, #at)?;)
+        });
         let stmts = b.stmts;
-        let body = quote!(#(#stmts)* #v);
+        let body = quote!(#(#stmts)* #v #out);
         let used = super::step::registers(&body);
         let conv: Vec<(Reg, Ty)> = used
             .iter()
@@ -2142,6 +2157,7 @@ impl Gen<'_> {
             #(#lets)*
             #(#stmts)*
             let (next, target) = #v;
+            #out
             cx.count_transitions(this);
             let rec_next = next;
             #rec
