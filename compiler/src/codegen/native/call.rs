@@ -897,7 +897,7 @@ fn ev_as_build(e: &Ev) -> Option<Build> {
 }
 
 /// Whether generated code `ts` mentions the identifier `x`.
-fn mentions(ts: &TokenStream, x: &Ident) -> bool {
+pub(super) fn mentions(ts: &TokenStream, x: &Ident) -> bool {
     ts.clone().into_iter().any(|t| match t {
         proc_macro2::TokenTree::Ident(i) => i == *x,
         proc_macro2::TokenTree::Group(g) => mentions(&g.stream(), x),

@@ -448,6 +448,20 @@ enum MatchStep {
     Narrow(Ident, TokenStream),
 }
 
+impl MatchStep {
+    /// Whether the step's code mentions `x`.
+    fn mentions(&self, x: &Ident) -> bool {
+        match self {
+            MatchStep::If(c) => call::mentions(c, x),
+            MatchStep::Let(_, e) | MatchStep::Narrow(_, e) => call::mentions(e, x),
+            MatchStep::Split(v, ..)
+            | MatchStep::SplitVal(v, ..)
+            | MatchStep::Args(v, ..)
+            | MatchStep::ArgsVal(v, ..) => call::mentions(v, x),
+        }
+    }
+}
+
 /// The DM's native code, for the module.
 pub(super) struct NativeCode {
     /// `enum Nat`, `run_native` (which `run_situation` calls for each
@@ -2651,6 +2665,17 @@ impl Gen<'_> {
             if !ok {
                 continue; // cannot match a value of this type
             }
+            // A field bound by a `let` that no test reads is computed
+            // where the variant is built (no block per field, no clone
+            // when an earlier test fails).
+            let mut inline: HashMap<Ident, TokenStream> = HashMap::new();
+            for (k, s) in steps.iter().enumerate() {
+                if let MatchStep::Let(x, e) = s {
+                    if !steps[k + 1..].iter().any(|t| t.mentions(x)) {
+                        inline.insert(x.clone(), e.clone());
+                    }
+                }
+            }
             let fields = self.nat_fields(d, j)?;
             let mut inits = Vec::new();
             for (r, _) in &fields {
@@ -2660,13 +2685,17 @@ impl Gen<'_> {
                     .map(|(x, _)| x.clone())
                     .ok_or("an id field is not bound by its pattern")?;
                 let rr = reg(*r);
-                inits.push(quote!(#rr: #x));
+                match inline.get(&x) {
+                    Some(e) => inits.push(quote!(#rr: #e)),
+                    None => inits.push(quote!(#rr: #x)),
+                }
             }
             let v = variant(j);
             let mut code = quote!(break 'sel Nat::#v { #(#inits),* };);
             for s in steps.into_iter().rev() {
                 code = match s {
                     MatchStep::If(c) => quote!(if #c { #code }),
+                    MatchStep::Let(x, _) if inline.contains_key(&x) => code,
                     MatchStep::Let(x, e) => quote!({ let #x = #e; #code }),
                     MatchStep::Narrow(x, e) => quote! {{
                         let Some(#x) = #e else { break 'hand; };
