@@ -291,6 +291,19 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.m.store.compound(name, args)
     }
 
+    /// A native value as a term ([`Native::to_term`] in the store).
+    #[inline]
+    pub fn term<T: Native>(&mut self, v: &T) -> Term {
+        v.to_term(&mut self.m.store)
+    }
+
+    /// A term built by native code ([`native::compound`]: an atom for no
+    /// arguments, a list cell for `'.'/2`).
+    #[inline]
+    pub fn build(&mut self, name: Atom, args: &[Term]) -> Term {
+        native::compound(&mut self.m.store, name, args)
+    }
+
     /// Argument `i` of compound `t` (as [`Step::Call`]'s `saved` keeps them).
     #[inline]
     pub fn arg(&self, t: Term, i: usize) -> Term {

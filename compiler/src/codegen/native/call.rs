@@ -203,7 +203,7 @@ impl Gen<'_> {
             let v = self.nat_value(&Build::Reg(r), regs)?;
             let e = v.e;
             let x = format_ident!("s{}", k);
-            saved_terms.push(quote!(let #x = Native::to_term(&#e, cx.store());));
+            saved_terms.push(quote!(let #x = cx.term(&#e);));
             saved_names.push(x);
         }
         let saved_value = if saved.is_empty() {
@@ -217,8 +217,8 @@ impl Gen<'_> {
             cx.count_transitions(count);
             #(#id_stmts)*
             cx.enter_with_id(#curl, #id);
-            #(let #ts = Native::to_term(&#vs, cx.store());)*
-            let call = native::compound(cx.store(), #f, &[#(#ts),*]);
+            #(let #ts = cx.term(&#vs);)*
+            let call = cx.build(#f, &[#(#ts),*]);
             #(#saved_terms)*
             let saved = #saved_value;
             return Ok(Some(
@@ -319,7 +319,7 @@ impl Gen<'_> {
                 Some((f, _)) if super::is_fresh(f) => saved_terms.push(quote!(let #x = #f;)),
                 _ => {
                     let e = self.nat_value(&Build::Reg(r), regs)?.e;
-                    saved_terms.push(quote!(let #x = Native::to_term(&#e, cx.store());));
+                    saved_terms.push(quote!(let #x = cx.term(&#e);));
                 }
             }
             saved_names.push(x);
@@ -383,7 +383,7 @@ impl Gen<'_> {
             let rr = reg(r);
             let x = format_ident!("s{}", k);
             if names.contains(&rr) {
-                saved_terms.push(quote!(let #x = Native::to_term(&*#rr, cx.store());));
+                saved_terms.push(quote!(let #x = cx.term(&*#rr);));
             } else {
                 return Err("a saved register is not kept".into());
             }
@@ -763,13 +763,13 @@ impl Gen<'_> {
             let perform = if list {
                 quote! {
                     #enter
-                    let t = Native::to_term(&#x, cx.store());
+                    let t = cx.term(&#x);
                     cx.perform_each(&[t], Some(#arc))?;
                 }
             } else {
                 quote! {
                     #enter
-                    let t = Native::to_term(&#x, cx.store());
+                    let t = cx.term(&#x);
                     cx.perform(t, Some(#arc))?;
                 }
             };
@@ -855,8 +855,8 @@ impl Gen<'_> {
                     count = own.min(count);
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
-                    let lt = Native::to_term(#lx, cx.store());
-                    let rterm = Native::to_term(#rx, cx.store());
+                    let lt = cx.term(#lx);
+                    let rterm = cx.term(#rx);
                     cx.arith_condition(#rt::ArithCmp::#opt, lt, rterm, arc_at)?
                 }
             }

@@ -63,8 +63,8 @@ impl Gen<'_> {
             .map(|i| format_ident!("pt{}", i))
             .collect();
         Ok(quote! {{
-            #(let #ts = Native::to_term(&*#ps, cx.store());)*
-            native::compound(cx.store(), #name, &[#(#ts),*])
+            #(let #ts = cx.term(&*#ps);)*
+            cx.build(#name, &[#(#ts),*])
         }})
     }
 
@@ -75,7 +75,7 @@ impl Gen<'_> {
             let a = self.atom_native(*name)?;
             let l = format_ident!("l{}", i);
             out.push(quote! {
-                let lt = Native::to_term(&*#l, cx.store());
+                let lt = cx.term(&*#l);
                 cx.set_local(#a, lt);
             });
         }

@@ -1275,9 +1275,7 @@ impl Gen<'_> {
                                     parts.push(match slot {
                                         Some(o) => {
                                             let x = format_ident!("{}_t", o);
-                                            ts.push(
-                                                quote!(let #x = Native::to_term(&#o, cx.store());),
-                                            );
+                                            ts.push(quote!(let #x = cx.term(&#o);));
                                             quote!(#x)
                                         }
                                         None => self
@@ -1286,7 +1284,7 @@ impl Gen<'_> {
                                     });
                                 }
                                 let f = self.functor_native(*f)?;
-                                ts.push(quote!(let diag_t = native::compound(cx.store(), #f, &[#(#parts),*]);));
+                                ts.push(quote!(let diag_t = cx.build(#f, &[#(#parts),*]);));
                                 quote!(diag_t)
                             }
                             b => self
@@ -1309,11 +1307,11 @@ impl Gen<'_> {
                         let v = self.nat_value(b, &regs)?.e;
                         (
                             quote! {
-                                let out = Native::to_term(&#v, cx.store());
+                                let out = cx.term(&#v);
                                 cx.set_pipe(out);
                             },
                             quote! {
-                                let out = Native::to_term(&#v, cx.store());
+                                let out = cx.term(&#v);
                                 cx.final_out_arg(Some(out))?;
                             },
                         )
@@ -1764,22 +1762,22 @@ impl Gen<'_> {
         stmts.push(quote!(if !run.records {
             count += 1;
         }));
-        // What the machine's calls changed of the locals, read again.
-        if let (Some((fallback, _)), None) = (&conv, atom) {
-            stmts.push(self.nat_reload_locals(d, fallback)?);
-        }
+        // What the machine's calls changed of the locals, read again, and
+        // the values bound at the boundary, converted: all checked in one
+        // `let .. else`, the fallback written once.
         if let Some((fallback, conv)) = conv {
+            let mut checks = Vec::new();
+            if atom.is_none() {
+                checks = self.nat_local_checks(d)?;
+            }
             for (r, ty) in conv {
                 let (x, _) = regs[&r].clone();
                 let rr = reg(r);
                 let rty = rust_ty(&ty)?;
-                stmts.push(quote! {
-                    let Some(#rr) =
-                        cx.to_native::<#rty>(#x)
-                    else #fallback;
-                });
+                checks.push((rr.clone(), quote!(cx.to_native::<#rty>(#x)), quote!()));
                 regs.insert(r, (rr, ty));
             }
+            stmts.push(checked(checks, &fallback));
         }
         let name = self.atom_native(plan.id.0)?;
         *d.rec.borrow_mut() = rec_entry();
@@ -1812,22 +1810,19 @@ impl Gen<'_> {
     }
 
     /// The frame's locals read again from the machine's frame after its
-    /// calls (`get`/`set`/`inc`, the evaluator) may have changed them;
-    /// one that no longer converts: `fallback` (the term code's way on).
-    fn nat_reload_locals(&self, d: &Dm, fallback: &TokenStream) -> N<TokenStream> {
+    /// calls (`get`/`set`/`inc`, the evaluator) may have changed them, as
+    /// checks for [`checked`] (one that no longer converts: the fallback,
+    /// the term code's way on).
+    fn nat_local_checks(&self, d: &Dm) -> N<Vec<Check>> {
         let mut out = Vec::new();
         for (i, (name, ty)) in d.locals.iter().enumerate() {
             let l = format_ident!("l{}", i);
+            let v = format_ident!("new_l{}", i);
             let a = self.atom_native(*name)?;
             let ty = rust_ty(ty)?;
-            out.push(quote! {
-                match cx.local_as::<#ty>(#a) {
-                    Some(v) => *#l = v,
-                    None => #fallback,
-                }
-            });
+            out.push((v.clone(), quote!(cx.local_as::<#ty>(#a)), quote!(*#l = #v;)));
         }
-        Ok(quote!(#(#out)*))
+        Ok(out)
     }
 
     /// A final's output slots: for each output parameter of the DM
@@ -1895,7 +1890,7 @@ impl Gen<'_> {
             }
             Build::Reg(r) => {
                 let (v, _) = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
-                quote!(Native::to_term(&#v, cx.store()))
+                quote!(cx.term(&#v))
             }
             Build::Const(t) => return self.nat_const_term(*t, ts, n),
             Build::Compound(f, args) => {
@@ -1904,7 +1899,7 @@ impl Gen<'_> {
                     .map(|a| self.nat_build_term(a, regs, ts, n))
                     .collect::<N<Vec<_>>>()?;
                 let f = self.functor_native(*f)?;
-                quote!(native::compound(cx.store(), #f, &[#(#args),*]))
+                quote!(cx.build(#f, &[#(#args),*]))
             }
         };
         ts.push(quote!(let #x = #e;));
@@ -1931,7 +1926,7 @@ impl Gen<'_> {
                 let f = self.functor_native(*f)?;
                 let x = format_ident!("b{}", *n);
                 *n += 1;
-                ts.push(quote!(let #x = native::compound(cx.store(), #f, &[#(#args),*]);));
+                ts.push(quote!(let #x = cx.build(#f, &[#(#args),*]);));
                 Ok(quote!(#x))
             }
             // A user function, the KB, `assign`...: the evaluator, on the
@@ -2085,7 +2080,7 @@ impl Gen<'_> {
                 let f = self.functor_native(f)?;
                 let x = format_ident!("b{}", *n);
                 *n += 1;
-                ts.push(quote!(let #x = native::compound(cx.store(), #f, &[#(#args),*]);));
+                ts.push(quote!(let #x = cx.build(#f, &[#(#args),*]);));
                 Ok(quote!(#x))
             }
             _ => Err(format!(
@@ -2138,7 +2133,7 @@ impl Gen<'_> {
             match regs.get(r) {
                 Some((x, _)) if is_fresh(x) => lets.push(quote!(let #rr: Term = #x;)),
                 Some((x, _)) => lets.push(quote! {
-                    let #rr: Term = Native::to_term(&#x, cx.store());
+                    let #rr: Term = cx.term(&#x);
                 }),
                 None => return Err(format!("register r{r} is read unset")),
             }
@@ -2524,7 +2519,7 @@ impl Gen<'_> {
                     .map(|p| match p {
                         Ok(v) => {
                             let e = &v.e;
-                            quote!(Native::to_term(&#e, cx.store()))
+                            quote!(cx.term(&#e))
                         }
                         Err(t) => quote!(#t),
                     })
@@ -2535,22 +2530,19 @@ impl Gen<'_> {
                 let fallback = quote! {{
                     cx.count_transitions(count);
                     let ts = [#(#terms),*];
-                    let rec_next = native::compound(cx.store(), #f, &ts);
+                    let rec_next = cx.build(#f, &ts);
                     #out
                     #rec
                     return cx.goto(rec_next, arc_at).map(Some);
                 }};
                 let mut vals = Vec::new();
+                let mut checks = Vec::new();
                 for (k, p) in parts.into_iter().enumerate() {
                     match p {
                         Ok(v) => vals.push(v),
                         Err(t) => {
                             let x = format_ident!("x{}", k);
-                            pre.push(quote! {
-                                let Some(#x) =
-                                    cx.to_native::<Val>(#t)
-                                else #fallback;
-                            });
+                            checks.push((x.clone(), quote!(cx.to_native::<Val>(#t)), quote!()));
                             vals.push(V {
                                 e: quote!(#x.clone()),
                                 ty: Ty::Ground,
@@ -2559,7 +2551,8 @@ impl Gen<'_> {
                     }
                 }
                 // What the evaluator changed of the locals, read again.
-                pre.push(self.nat_reload_locals(d, &fallback)?);
+                checks.extend(self.nat_local_checks(d)?);
+                pre.push(checked(checks, &fallback));
                 let sel = self.nat_select(d, cur, *name, vals, cur_name)?;
                 Ok(quote!({ #(#pre)* #sel }))
             }
@@ -2747,8 +2740,8 @@ impl Gen<'_> {
                 if !run.records {
                     cx.enter(#curl, #cur_name);
                 }
-                #(let #arg_terms = Native::to_term(&#arg_names, cx.store());)*
-                let rec_next = native::compound(cx.store(), #f, &[#(#arg_terms),*]);
+                #(let #arg_terms = cx.term(&#arg_names);)*
+                let rec_next = cx.build(#f, &[#(#arg_terms),*]);
                 #out
                 #rec
                 return cx.goto(rec_next, arc_at).map(Some);
@@ -3205,5 +3198,28 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
             Ok(quote!({ let _ = #e; Ground(Term::NIL) }))
         }
         _ => Err(format!("a value of type {} where {} is expected", v.ty, to)),
+    }
+}
+
+/// A checked conversion: the name it binds, the `Option` expression, what
+/// is done with the value once all have converted.
+type Check = (Ident, TokenStream, TokenStream);
+
+/// The checked conversions `checks` in one `let .. else`, the `fallback`
+/// (a block that returns) written once; then the stores.
+fn checked(checks: Vec<Check>, fallback: &TokenStream) -> TokenStream {
+    let names: Vec<&Ident> = checks.iter().map(|c| &c.0).collect();
+    let exprs: Vec<&TokenStream> = checks.iter().map(|c| &c.1).collect();
+    let stores: Vec<&TokenStream> = checks.iter().map(|c| &c.2).collect();
+    match checks.len() {
+        0 => quote!(),
+        1 => quote! {
+            let Some(#(#names)*) = #(#exprs)* else #fallback;
+            #(#stores)*
+        },
+        _ => quote! {
+            let (#(Some(#names)),*) = (#(#exprs),*) else #fallback;
+            #(#stores)*
+        },
     }
 }
