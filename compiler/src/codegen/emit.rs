@@ -48,10 +48,18 @@ impl Gen<'_> {
         let mut dm_namer = Namer::default();
         let mut modules = Vec::new();
         let mut dm_mods = Vec::new();
+        // The DMs with instance builders (a template whose text does not
+        // read back): their own `instantiate`.
+        let mut builder_arms = Vec::new();
         for (i, dm) in ir.dms.iter().enumerate() {
             let m = ident(&dm_namer.fresh(format!("dm_{}", snake(dm.name.as_str()))));
             dm_mods.push(m.clone());
-            modules.push(self.emit_dm(dm, i, &m));
+            let (module, builders) = self.emit_dm(dm, i, &m);
+            modules.push(module);
+            if builders {
+                let ix = Literal::u32_unsuffixed(i as u32);
+                builder_arms.push(quote!(#ix => #m::instantiate(self, sit, store),));
+            }
         }
         let native_driver = self.native_driver(ir, &dm_mods);
         let dm_ix: Vec<Literal> = (0..ir.dms.len() as u32)
@@ -119,6 +127,8 @@ impl Gen<'_> {
                 /// The situations' templates in the frozen store, by DM and
                 /// situation (each DM's `TEMPLATES`).
                 templates: Vec<Vec<Option<Term>>>,
+                /// The situations' kinds, ids and places (each DM's `SITUATIONS`).
+                sits: SitTable,
             }
 
             /// The program's ground compound terms, built once in [`Program::new`].
@@ -135,9 +145,10 @@ impl Gen<'_> {
                     #(#const_inits)*
                     let k = Consts { #(#const_names),* };
                     let templates = vec![#(machine::read_templates(store, &#dm_mods::TEMPLATES)),*];
+                    let sits = SitTable::new(&[#((#dm_mods::FILE, &#dm_mods::SITUATIONS)),*]);
                     let mut store = ::std::mem::take(store);
                     store.freeze();
-                    Program { store, atoms: a, k, templates }
+                    Program { store, atoms: a, k, templates, sits }
                 }
 
                 /// A fresh instance of situation `sit` of DM `dm` from its
@@ -185,16 +196,10 @@ impl Gen<'_> {
                     }
                 }
                 fn situation_count(&self, dm: DmIx) -> usize {
-                    match dm {
-                        #(#dm_ix => #dm_mods::Situation::ALL.len(),)*
-                        _ => panic!("no DM number {dm}"),
-                    }
+                    self.sits.count(dm)
                 }
                 fn kind(&self, dm: DmIx, sit: SitIx) -> Kind {
-                    match dm {
-                        #(#dm_ix => #dm_mods::Situation::from_ix(sit).kind(),)*
-                        _ => panic!("no DM number {dm}"),
-                    }
+                    self.sits.kind(dm, sit)
                 }
                 fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Term {
                     match dm {
@@ -209,8 +214,8 @@ impl Gen<'_> {
                     store: &mut Store,
                 ) -> Option<Instance> {
                     match dm {
-                        #(#dm_ix => #dm_mods::instantiate(self, #dm_mods::Situation::from_ix(sit), store),)*
-                        _ => panic!("no DM number {dm}"),
+                        #(#builder_arms)*
+                        _ => self.instance(dm, sit, store),
                     }
                 }
                 fn may_select(
@@ -220,11 +225,7 @@ impl Gen<'_> {
                     value: Term,
                     store: &Store,
                 ) -> bool {
-                    let functor = store.functor(value);
-                    match dm {
-                        #(#dm_ix => #dm_mods::Situation::from_ix(sit).may_select(self, functor),)*
-                        _ => panic!("no DM number {dm}"),
-                    }
+                    self.sits.may_select(dm, sit, store.functor(value))
                 }
                 fn locals(&self, dm: DmIx, store: &mut Store) -> Vars {
                     match dm {
@@ -237,21 +238,14 @@ impl Gen<'_> {
                     dm: DmIx,
                     sit: SitIx,
                 ) -> Option<String> {
-                    let at = match dm {
-                        #(#dm_ix => #dm_mods::Situation::from_ix(sit).location(),)*
-                        _ => panic!("no DM number {dm}"),
-                    };
-                    Some(at.to_owned())
+                    Some(self.sits.location(dm, sit))
                 }
                 fn compiled_id(
                     &self,
                     dm: DmIx,
                     sit: SitIx,
                 ) -> Option<(Atom, usize)> {
-                    match dm {
-                        #(#dm_ix => #dm_mods::compiled_id(self, sit),)*
-                        _ => None,
-                    }
+                    self.sits.compiled_id(dm, sit)
                 }
                 fn select_compiled(
                     &self,
@@ -380,19 +374,18 @@ impl Gen<'_> {
         }
     }
 
-    fn emit_dm(&self, dm: &crate::ir::IrDm, dm_ix: usize, module: &Ident) -> TokenStream {
+    /// DM `dm`'s module, and whether it has instance builders (its own
+    /// `instantiate`).
+    fn emit_dm(&self, dm: &crate::ir::IrDm, dm_ix: usize, module: &Ident) -> (TokenStream, bool) {
         let none = Term::atom(none_marker());
         let dm_lit = Literal::u32_unsuffixed(dm_ix as u32);
         let mut namer = Namer::default();
         let mut variants = Vec::new();
         let mut vnames = Vec::new();
         let mut fns = Vec::new();
-        let mut kinds = Vec::new();
-        let mut selects = Vec::new();
-        let mut locations = Vec::new();
+        let mut rows = Vec::new();
         let mut instantiate_arms = Vec::new();
         let mut templates = Vec::new();
-        let mut compiled_arms = Vec::new();
         let mut select_arms = Vec::new();
         let mut run_arms = Vec::new();
         let mut native_ixs = Vec::new();
@@ -436,16 +429,25 @@ impl Gen<'_> {
                 Kind::Recursive => quote!(Recursive),
                 Kind::Perceptual => quote!(Perceptual),
             };
-            kinds.push(quote!(Situation::#vname => Kind::#kind,));
-            let loc = Literal::string(&s.location);
-            locations.push(quote!(Situation::#vname => #loc,));
-            selects.push(match s.id_functor {
-                Some((name, arity)) => {
-                    let a = &self.atoms[self.atom_ix[&name]].1;
-                    let ar = Literal::usize_unsuffixed(arity);
-                    quote!(Situation::#vname => functor == Some((p.atoms.#a, #ar)),)
+            // Its row of `SITUATIONS`: a situation that runs as code by its
+            // compiled id (the machine asks no cheap filter of it), another
+            // by its id's functor.
+            // (Its DM's file is `FILE`: a DM is written in one file.)
+            let (line, col) = line_col(&s.location);
+            rows.push(match self.mir.plan(dm_ix as u32, i as u32) {
+                Some(plan) => {
+                    let name = Literal::string(plan.id.0.as_str());
+                    let ar = Literal::usize_unsuffixed(plan.id.1);
+                    quote!(SitRow::code(Kind::#kind, #name, #ar, #line, #col))
                 }
-                None => quote!(Situation::#vname => true,),
+                None => match s.id_functor {
+                    Some((name, arity)) => {
+                        let name = Literal::string(name.as_str());
+                        let ar = Literal::usize_unsuffixed(arity);
+                        quote!(SitRow::template(Kind::#kind, Some((#name, #ar)), #line, #col))
+                    }
+                    None => quote!(SitRow::template(Kind::#kind, None, #line, #col)),
+                },
             });
 
             // The instance builder, for a situation that does not run as
@@ -501,12 +503,11 @@ impl Gen<'_> {
                         Instance { #(#fields)* }
                     }
                 });
-                instantiate_arms.push(quote!(Situation::#vname => Some(#fname(p, store)),));
+                instantiate_arms.push(quote!(#ix => Some(#fname(p, store)),));
             }
 
             // The situation as code, when it can be compiled.
             if let Some(plan) = self.mir.plan(dm_ix as u32, i as u32) {
-                let (id, arity) = plan.id;
                 let mut base = snake(&vname.to_string());
                 // Not one of the module's own `run_*` functions (a
                 // situation `exit`: the original's `robocup_2015`).
@@ -516,9 +517,6 @@ impl Gen<'_> {
                 let run_name = format_ident!("run_{}", base);
                 let exit_name = format_ident!("exit_{}", base);
                 let code = self.situation_code(plan, &run_name, &exit_name);
-                let a = &self.atoms[self.atom_ix[&id]].1;
-                let arity = Literal::usize_unsuffixed(arity);
-                compiled_arms.push(quote!(#ix => Some((p.atoms.#a, #arity)),));
                 if let Some(select) = self.select_code(plan) {
                     select_arms.push(quote!(#ix => { #select }));
                 }
@@ -561,8 +559,6 @@ impl Gen<'_> {
             Some(n) => n.items,
             None => quote!(),
         };
-        let variant_names: Vec<TokenStream> =
-            vnames.iter().map(|v| quote!(Situation::#v)).collect();
         let head_body = self.builder_body(&[(format_ident!("head"), dm.head)]);
         let head_prelude = Self::prelude(&head_body);
         let local_names: Vec<Ident> = (0..dm.locals.len())
@@ -582,30 +578,26 @@ impl Gen<'_> {
         let head_text = self.store.writeq(dm.head);
         let mod_doc = format!(" DM `{head_text}`.");
         let count_lit = Literal::usize_unsuffixed(count);
-        let (may_select_body, kind_body, location_body, instantiate_body) = if count == 0 {
-            (
-                quote!(match self {}),
-                quote!(match self {}),
-                quote!(match self {}),
-                quote!(p.instance(#dm_lit, sit as SitIx, store)),
-            )
-        } else if instantiate_arms.is_empty() {
-            (
-                quote!(match self { #(#selects)* }),
-                quote!(match self { #(#kinds)* }),
-                quote!(match self { #(#locations)* }),
-                quote!(p.instance(#dm_lit, sit as SitIx, store)),
-            )
+        let builders = !instantiate_arms.is_empty();
+        let file = Literal::string(dm.location.rsplitn(3, ':').nth(2).unwrap_or(&dm.location));
+        let instantiate = if builders {
+            quote! {
+                /// A fresh instance of a situation: built by code where its
+                /// template's text does not read back, else a copy of its
+                /// template.
+                pub fn instantiate(
+                    p: &super::Program,
+                    sit: SitIx,
+                    store: &mut Store,
+                ) -> Option<Instance> {
+                    match sit {
+                        #(#instantiate_arms)*
+                        _ => p.instance(#dm_lit, sit, store),
+                    }
+                }
+            }
         } else {
-            (
-                quote!(match self { #(#selects)* }),
-                quote!(match self { #(#kinds)* }),
-                quote!(match self { #(#locations)* }),
-                quote!(match sit {
-                    #(#instantiate_arms)*
-                    _ => p.instance(#dm_lit, sit as SitIx, store),
-                }),
-            )
+            quote!()
         };
         let dm_name = self.store.writeq(dm.head);
         let templates_doc = format!(
@@ -613,7 +605,7 @@ impl Gen<'_> {
              the program's store; `None` for a situation that runs as term code (never \
              instantiated) or whose instance is built by code."
         );
-        quote! {
+        let module = quote! {
             #[doc = #mod_doc]
             #[allow(dead_code, unused_variables, unused_assignments, unused_mut, non_camel_case_types, clippy::all)]
             pub mod #module {
@@ -626,32 +618,14 @@ impl Gen<'_> {
                 #[repr(u32)]
                 pub enum Situation { #(#variants)* }
 
-                impl Situation {
-                    pub const ALL: [Situation; #count_lit] = [#(#variant_names),*];
+                /// Per situation (by index): its kind, its id (the name
+                /// and arity it runs as code by, or its template's id
+                /// functor), where it is written; read by the program's
+                /// generic `DmProgram` methods (`SitTable`).
+                pub const SITUATIONS: [SitRow; #count_lit] = [#(#rows),*];
 
-                    pub fn from_ix(ix: SitIx) -> Situation {
-                        Situation::ALL[ix as usize]
-                    }
-
-                    pub fn kind(self) -> Kind {
-                        #kind_body
-                    }
-
-                    /// Whether the situation's id may unify with a value of this
-                    /// principal functor (D-21's cheap filter).
-                    pub fn may_select(
-                        self,
-                        p: &super::Program,
-                        functor: Option<(Atom, usize)>,
-                    ) -> bool {
-                        #may_select_body
-                    }
-
-                    /// Where the situation is written.
-                    pub fn location(self) -> &'static str {
-                        #location_body
-                    }
-                }
+                /// The file the DM is written in.
+                pub const FILE: &str = #file;
 
                 /// A fresh copy of the DM's head.
                 pub fn head(p: &super::Program, store: &mut Store) -> Term {
@@ -665,17 +639,6 @@ impl Gen<'_> {
                     #locals_prelude
                     #locals_body
                     Vars::from_entries(vec![#(#local_entries),*])
-                }
-
-                /// The id of a situation that runs as code.
-                pub fn compiled_id(
-                    p: &super::Program,
-                    sit: SitIx,
-                ) -> Option<(Atom, usize)> {
-                    match sit {
-                        #(#compiled_arms)*
-                        _ => None,
-                    }
                 }
 
                 /// Whether a compiled situation's id unifies with `value` (its constant arguments, or the whole id when it is a pattern).
@@ -720,24 +683,23 @@ impl Gen<'_> {
                 #[doc = #templates_doc]
                 pub const TEMPLATES: [Option<&str>; #count_lit] = [#(#templates),*];
 
-                /// A fresh instance of a situation, a copy of its template;
-                /// `None` for one that runs as term code (the machine never
-                /// instantiates it; one that runs natively is instantiated
-                /// when its code hands it over, `Step::Template`).
-                pub fn instantiate(
-                    p: &super::Program,
-                    sit: Situation,
-                    store: &mut Store,
-                ) -> Option<Instance> {
-                    #instantiate_body
-                }
+                #instantiate
 
                 #native_items
 
                 #(#fns)*
             }
-        }
+        };
+        (module, builders)
     }
+}
+
+/// The line and column of a `file:line:col` location, as literals.
+fn line_col(location: &str) -> (Literal, Literal) {
+    let mut parts = location.rsplitn(3, ':');
+    let col = parts.next().and_then(|c| c.parse().ok()).unwrap_or(0);
+    let line = parts.next().and_then(|l| l.parse().ok()).unwrap_or(0);
+    (Literal::u32_unsuffixed(line), Literal::u32_unsuffixed(col))
 }
 
 /// The identifiers in `ts`, as text.

@@ -2,7 +2,10 @@
 //! the [`Kind`] of a situation, and the fields of a situation [`Instance`],
 //! made fresh from the situation's template ([`Instance::fresh`], the one
 //! way both back ends instantiate; a compiled program reads its templates
-//! from text once, [`read_templates`]).
+//! from text once, [`read_templates`]), and a compiled program's table of
+//! its situations ([`SitRow`] per situation, [`SitTable`] for the program:
+//! kind, id functor, whether it runs as code, where it is written), read by
+//! the generic `DmProgram` methods instead of a `match` per DM.
 
 use crate::store::Store;
 use crate::term::Term;
@@ -89,4 +92,126 @@ pub fn read_templates(store: &mut Store, texts: &[Option<&str>]) -> Vec<Option<T
             })
         })
         .collect()
+}
+
+/// A situation's row in a compiled program's table (each DM module's
+/// `SITUATIONS`, by situation index): what the machine asks of a situation
+/// before it runs it.
+#[derive(Clone, Copy, Debug)]
+pub struct SitRow {
+    pub kind: Kind,
+    /// Its id's name and arity (`None`: the id is a variable).
+    pub id: Option<(&'static str, usize)>,
+    /// Whether it runs as code (its id is then `id`'s functor:
+    /// [`DmProgram::compiled_id`](super::DmProgram::compiled_id)).
+    pub code: bool,
+    /// Where it is written: line and column in its DM's file.
+    pub at: (u32, u32),
+}
+
+impl SitRow {
+    /// A situation that runs as code, its id named `name/arity`.
+    pub const fn code(kind: Kind, name: &'static str, arity: usize, line: u32, col: u32) -> SitRow {
+        SitRow {
+            kind,
+            id: Some((name, arity)),
+            code: true,
+            at: (line, col),
+        }
+    }
+
+    /// A situation the machine instantiates from its template.
+    pub const fn template(
+        kind: Kind,
+        id: Option<(&'static str, usize)>,
+        line: u32,
+        col: u32,
+    ) -> SitRow {
+        SitRow {
+            kind,
+            id,
+            code: false,
+            at: (line, col),
+        }
+    }
+}
+
+/// One situation of a [`SitTable`], its id's name interned.
+#[derive(Clone, Copy, Debug)]
+struct SitEntry {
+    kind: Kind,
+    id: Option<(Atom, usize)>,
+    code: bool,
+    at: (u32, u32),
+}
+
+/// A compiled program's situations, by DM and situation index (the rows of
+/// each DM's `SITUATIONS`, names interned once when the program is built).
+#[derive(Clone, Debug, Default)]
+pub struct SitTable {
+    /// Per DM: its file, its situations.
+    dms: Vec<(&'static str, Vec<SitEntry>)>,
+}
+
+impl SitTable {
+    /// The table of a program whose DM number `i` is written in file
+    /// `dms[i].0` and has the rows `dms[i].1`.
+    pub fn new(dms: &[(&'static str, &[SitRow])]) -> SitTable {
+        let dms = dms
+            .iter()
+            .map(|&(file, rows)| {
+                let rows = rows
+                    .iter()
+                    .map(|r| SitEntry {
+                        kind: r.kind,
+                        id: r.id.map(|(name, arity)| (Atom::intern(name), arity)),
+                        code: r.code,
+                        at: r.at,
+                    })
+                    .collect();
+                (file, rows)
+            })
+            .collect();
+        SitTable { dms }
+    }
+
+    #[inline]
+    fn entry(&self, dm: DmIx, sit: SitIx) -> &SitEntry {
+        &self.dms[dm as usize].1[sit as usize]
+    }
+
+    /// How many situations DM `dm` has.
+    pub fn count(&self, dm: DmIx) -> usize {
+        self.dms[dm as usize].1.len()
+    }
+
+    pub fn kind(&self, dm: DmIx, sit: SitIx) -> Kind {
+        self.entry(dm, sit).kind
+    }
+
+    /// Whether the situation's id may unify with a value of principal
+    /// functor `functor` (D-21's cheap filter; a variable id: always).
+    pub fn may_select(&self, dm: DmIx, sit: SitIx, functor: Option<(Atom, usize)>) -> bool {
+        match self.entry(dm, sit).id {
+            Some(id) => functor == Some(id),
+            None => true,
+        }
+    }
+
+    /// Where the situation is written (`file:line:col`).
+    pub fn location(&self, dm: DmIx, sit: SitIx) -> String {
+        let (line, col) = self.entry(dm, sit).at;
+        format!("{}:{line}:{col}", self.dms[dm as usize].0)
+    }
+
+    /// Its id's functor when it runs as code.
+    #[inline]
+    pub fn compiled_id(&self, dm: DmIx, sit: SitIx) -> Option<(Atom, usize)> {
+        let e = self.entry(dm, sit);
+        if e.code {
+            e.id
+        } else {
+            None
+        }
+    }
 }
