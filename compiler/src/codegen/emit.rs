@@ -51,14 +51,31 @@ impl Gen<'_> {
         // The DMs with instance builders (a template whose text does not
         // read back): their own `instantiate`.
         let mut builder_arms = Vec::new();
+        // The DMs with compiled situations that have no template: their
+        // own `select_compiled`.
+        let mut select_dm_arms = Vec::new();
+        let mut run_arms = Vec::new();
+        let mut exit_dm_arms = Vec::new();
         for (i, dm) in ir.dms.iter().enumerate() {
             let m = ident(&dm_namer.fresh(format!("dm_{}", snake(dm.name.as_str()))));
             dm_mods.push(m.clone());
-            let (module, builders) = self.emit_dm(dm, i, &m);
-            modules.push(module);
-            if builders {
-                let ix = Literal::u32_unsuffixed(i as u32);
+            let items = self.emit_dm(dm, i, &m);
+            modules.push(items.module);
+            let ix = Literal::u32_unsuffixed(i as u32);
+            if items.builders {
                 builder_arms.push(quote!(#ix => #m::instantiate(self, sit, store),));
+            }
+            if items.selects {
+                select_dm_arms.push(quote!(#ix => #m::select_compiled(self, sit, value, store),));
+            }
+            run_arms.push(if items.all_native {
+                // Every situation natively, else from its template.
+                quote!(#ix => #m::run_native(self, cx, sit).map(|s| s.unwrap_or(Step::Template)),)
+            } else {
+                quote!(#ix => #m::run_situation(self, sit, cx),)
+            });
+            if items.exits {
+                exit_dm_arms.push(quote!(#ix => #m::run_exit(self, sit, saved, final_id, cx),));
             }
         }
         let native_driver = self.native_driver(ir, &dm_mods);
@@ -126,7 +143,7 @@ impl Gen<'_> {
                 pub k: Consts,
                 /// The situations' templates in the frozen store, by DM and
                 /// situation (each DM's `TEMPLATES`).
-                templates: Vec<Vec<Option<Term>>>,
+                templates: machine::Templates,
                 /// The situations' kinds, ids and places (each DM's `SITUATIONS`).
                 sits: SitTable,
             }
@@ -144,7 +161,7 @@ impl Gen<'_> {
                     let store = &mut store;
                     #(#const_inits)*
                     let k = Consts { #(#const_names),* };
-                    let templates = vec![#(machine::read_templates(store, &#dm_mods::TEMPLATES)),*];
+                    let templates = machine::Templates::read(store, &[#(&#dm_mods::TEMPLATES),*]);
                     let sits = SitTable::new(&[#((#dm_mods::FILE, &#dm_mods::SITUATIONS)),*]);
                     let mut store = ::std::mem::take(store);
                     store.freeze();
@@ -154,8 +171,7 @@ impl Gen<'_> {
                 /// A fresh instance of situation `sit` of DM `dm` from its
                 /// template (`None`: it has none).
                 pub fn instance(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Option<Instance> {
-                    let template = self.templates[dm as usize][sit as usize]?;
-                    Some(Instance::fresh(store, template))
+                    self.templates.instance(dm, sit, store)
                 }
 
                 /// The names of the declared basic actions (`basic_actions.pl`).
@@ -254,9 +270,12 @@ impl Gen<'_> {
                     value: Term,
                     store: &mut Store,
                 ) -> bool {
-                    match dm {
-                        #(#dm_ix => #dm_mods::select_compiled(self, sit, value, store),)*
-                        _ => true,
+                    match self.templates.select(dm, sit, value, store) {
+                        Some(taken) => taken,
+                        None => match dm {
+                            #(#select_dm_arms)*
+                            _ => true,
+                        },
                     }
                 }
                 fn run_situation(
@@ -266,7 +285,7 @@ impl Gen<'_> {
                     cx: &mut Cx<'_, '_, Self>,
                 ) -> Result<Step, RunError> {
                     match dm {
-                        #(#dm_ix => #dm_mods::run_situation(self, sit, cx),)*
+                        #(#run_arms)*
                         _ => Err(cx.error("no such DM", None)),
                     }
                 }
@@ -279,7 +298,7 @@ impl Gen<'_> {
                     cx: &mut Cx<'_, '_, Self>,
                 ) -> Result<Step, RunError> {
                     match dm {
-                        #(#dm_ix => #dm_mods::run_exit(self, sit, saved, final_id, cx),)*
+                        #(#exit_dm_arms)*
                         _ => Err(cx.error("no such DM", None)),
                     }
                 }
@@ -374,9 +393,8 @@ impl Gen<'_> {
         }
     }
 
-    /// DM `dm`'s module, and whether it has instance builders (its own
-    /// `instantiate`).
-    fn emit_dm(&self, dm: &crate::ir::IrDm, dm_ix: usize, module: &Ident) -> (TokenStream, bool) {
+    /// DM `dm`'s module and which of the per-DM functions it has.
+    fn emit_dm(&self, dm: &crate::ir::IrDm, dm_ix: usize, module: &Ident) -> DmItems {
         let none = Term::atom(none_marker());
         let dm_lit = Literal::u32_unsuffixed(dm_ix as u32);
         let mut namer = Namer::default();
@@ -484,10 +502,12 @@ impl Gen<'_> {
                     quote!(#id,)
                 });
             }
+            let mut has_template = false;
             if planned {
                 templates.push(quote!(None));
             } else if let Some(text) = self.template_text(s.template) {
                 templates.push(quote!(Some(#text)));
+                has_template = true;
             } else {
                 // A template whose text does not read back as itself: built
                 // by code.
@@ -517,7 +537,7 @@ impl Gen<'_> {
                 let run_name = format_ident!("run_{}", base);
                 let exit_name = format_ident!("exit_{}", base);
                 let code = self.situation_code(plan, &run_name, &exit_name);
-                if let Some(select) = self.select_code(plan) {
+                if let Some(select) = self.select_code(plan).filter(|_| !has_template) {
                     select_arms.push(quote!(#ix => { #select }));
                 }
                 if nat_sit {
@@ -579,6 +599,67 @@ impl Gen<'_> {
         let mod_doc = format!(" DM `{head_text}`.");
         let count_lit = Literal::usize_unsuffixed(count);
         let builders = !instantiate_arms.is_empty();
+        // Every situation native: the program calls `run_native` (no
+        // `run_situation` loop: native code's step goes to the machine).
+        let all_native = run_arms.is_empty() && native_ixs.len() == count && count > 0;
+        let run_situation = if all_native {
+            quote!()
+        } else {
+            quote! {
+                /// Runs a situation that runs as code, and the compiled
+                /// situations it goes to (`Cx::run_compiled`): term code
+                /// goes on by itself, native code's step goes to the machine.
+                pub fn run_situation(
+                    p: &super::Program,
+                    sit: SitIx,
+                    cx: &mut Cx<'_, '_, super::Program>,
+                ) -> Result<Step, RunError> {
+                    cx.run_compiled(#dm_lit, sit, |cx, sit| #term_code)
+                }
+            }
+        };
+        let exits = !exit_arms.is_empty();
+        let run_exit = if exits {
+            quote! {
+                /// The exit arcs of a recursive situation that runs as code.
+                pub fn run_exit(
+                    p: &super::Program,
+                    sit: SitIx,
+                    saved: Term,
+                    final_id: Term,
+                    cx: &mut Cx<'_, '_, super::Program>,
+                ) -> Result<Step, RunError> {
+                    match sit {
+                        #(#exit_arms)*
+                        _ => Err(cx.error("the situation has no compiled code", None)),
+                    }
+                }
+            }
+        } else {
+            quote!()
+        };
+        let selects = !select_arms.is_empty();
+        let select_compiled = if selects {
+            quote! {
+                /// Whether a compiled situation without a template is
+                /// selected by `value` (its id's constant arguments, or the
+                /// whole id when it is a pattern), as its plan selects.
+                pub fn select_compiled(
+                    p: &super::Program,
+                    sit: SitIx,
+                    value: Term,
+                    store: &mut Store,
+                ) -> bool {
+                    let a = &p.atoms;
+                    match sit {
+                        #(#select_arms)*
+                        _ => true,
+                    }
+                }
+            }
+        } else {
+            quote!()
+        };
         let file = Literal::string(dm.location.rsplitn(3, ':').nth(2).unwrap_or(&dm.location));
         let instantiate = if builders {
             quote! {
@@ -641,44 +722,10 @@ impl Gen<'_> {
                     Vars::from_entries(vec![#(#local_entries),*])
                 }
 
-                /// Whether a compiled situation's id unifies with `value` (its constant arguments, or the whole id when it is a pattern).
-                pub fn select_compiled(
-                    p: &super::Program,
-                    sit: SitIx,
-                    value: Term,
-                    store: &mut Store,
-                ) -> bool {
-                    let a = &p.atoms;
-                    match sit {
-                        #(#select_arms)*
-                        _ => true,
-                    }
-                }
+                #select_compiled
 
-                /// Runs a situation that runs as code, and the compiled
-                /// situations it goes to (`Cx::run_compiled`): term code
-                /// goes on by itself, native code's step goes to the machine.
-                pub fn run_situation(
-                    p: &super::Program,
-                    sit: SitIx,
-                    cx: &mut Cx<'_, '_, super::Program>,
-                ) -> Result<Step, RunError> {
-                    cx.run_compiled(#dm_lit, sit, |cx, sit| #term_code)
-                }
-
-                /// The exit arcs of a recursive situation that runs as code.
-                pub fn run_exit(
-                    p: &super::Program,
-                    sit: SitIx,
-                    saved: Term,
-                    final_id: Term,
-                    cx: &mut Cx<'_, '_, super::Program>,
-                ) -> Result<Step, RunError> {
-                    match sit {
-                        #(#exit_arms)*
-                        _ => Err(cx.error("the situation has no compiled code", None)),
-                    }
-                }
+                #run_situation
+                #run_exit
 
                 #[doc = #templates_doc]
                 pub const TEMPLATES: [Option<&str>; #count_lit] = [#(#templates),*];
@@ -690,8 +737,29 @@ impl Gen<'_> {
                 #(#fns)*
             }
         };
-        (module, builders)
+        DmItems {
+            module,
+            builders,
+            selects,
+            all_native,
+            exits,
+        }
     }
+}
+
+/// A DM's module, and which of the per-DM functions the program's
+/// dispatch calls it has.
+struct DmItems {
+    module: TokenStream,
+    /// Instance builders: its own `instantiate`.
+    builders: bool,
+    /// Compiled situations without a template: its own `select_compiled`
+    /// (the others select on their template's id, `machine::Templates`).
+    selects: bool,
+    /// Every situation native: no `run_situation`, `run_native` is called.
+    all_native: bool,
+    /// Recursive situations with exit arcs as code: its own `run_exit`.
+    exits: bool,
 }
 
 /// The line and column of a `file:line:col` location, as literals.

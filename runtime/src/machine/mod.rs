@@ -40,5 +40,7 @@ pub use observe::{Inspection, Observer};
 pub use options::Options;
 pub use outcome::{ErrorSite, Outcome, RunError};
 pub use program::{Between, Cx, DmProgram, Next, Step, TypedRun, Visit};
-pub use situation::{none_marker, read_templates, DmIx, Instance, Kind, SitIx, SitRow, SitTable};
+pub use situation::{
+    none_marker, read_templates, DmIx, Instance, Kind, SitIx, SitRow, SitTable, Templates,
+};
 pub use state::Machine;

@@ -94,6 +94,103 @@ pub fn read_templates(store: &mut Store, texts: &[Option<&str>]) -> Vec<Option<T
         .collect()
 }
 
+/// How a compiled situation's id takes a value, as the interpreter's plan
+/// of it does (`sitlog_compiler::mir`'s `select` / `pattern`).
+#[derive(Clone, Copy, Debug)]
+enum IdSelect {
+    /// An atom id: the functor says it all.
+    Name,
+    /// Distinct variables and atomic constants: each constant unified with
+    /// the value's argument there.
+    Args,
+    /// Any other compound: a fresh copy unified with the value.
+    Pattern,
+}
+
+/// A compiled program's situation templates (each DM module's
+/// `TEMPLATES`, read once into the program's store, [`read_templates`]),
+/// by DM and situation, with how each id selects.
+#[derive(Clone, Debug, Default)]
+pub struct Templates {
+    dms: Vec<Vec<Option<(Term, IdSelect)>>>,
+}
+
+impl Templates {
+    /// Reads DM number `i`'s templates from `dms[i]` into `store`.
+    pub fn read(store: &mut Store, dms: &[&[Option<&str>]]) -> Templates {
+        let dms = dms
+            .iter()
+            .map(|texts| {
+                read_templates(store, texts)
+                    .into_iter()
+                    .map(|t| t.map(|t| (t, id_select(store, store.args(t)[1]))))
+                    .collect()
+            })
+            .collect();
+        Templates { dms }
+    }
+
+    /// A fresh instance of situation `sit` of DM `dm` from its template
+    /// (`None`: it has none).
+    pub fn instance(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Option<Instance> {
+        let (t, _) = self.dms[dm as usize][sit as usize]?;
+        Some(Instance::fresh(store, t))
+    }
+
+    /// Whether compiled situation `sit` of DM `dm`, whose id has the
+    /// principal functor of `value`, is selected by `value`
+    /// ([`DmProgram::select_compiled`](super::DmProgram::select_compiled)),
+    /// decided on its template's id as the interpreter decides on its plan:
+    /// `Args` ids by their constants, other compound ids as a fresh copy
+    /// unified with the value (bindings kept when it is taken). `None`: the
+    /// situation has no template (the program's code decides).
+    pub fn select(&self, dm: DmIx, sit: SitIx, value: Term, store: &mut Store) -> Option<bool> {
+        let (t, how) = self.dms[dm as usize][sit as usize]?;
+        let id = store.args(t)[1];
+        Some(match how {
+            IdSelect::Name => true,
+            IdSelect::Args => {
+                let n = store.args(id).len();
+                (0..n).all(|i| {
+                    let c = store.args(id)[i];
+                    if matches!(store.value(c), crate::term::Value::Var(_)) {
+                        return true;
+                    }
+                    let x = store.args(value)[i];
+                    store.unify(x, c)
+                })
+            }
+            IdSelect::Pattern => {
+                let c = store.copy_term(id);
+                store.unify(value, c)
+            }
+        })
+    }
+}
+
+/// How the id `id` (a template's) selects: an atom, a simple compound
+/// (distinct variables and atoms or numbers), another compound.
+fn id_select(store: &Store, id: Term) -> IdSelect {
+    use crate::term::Value;
+    let Value::Compound(_, args) = store.value(id) else {
+        return IdSelect::Name;
+    };
+    let mut seen = Vec::new();
+    let simple = args.iter().all(|&a| match store.value(a) {
+        Value::Var(v) if !seen.contains(&v) => {
+            seen.push(v);
+            true
+        }
+        Value::Atom(_) | Value::Int(_) | Value::Float(_) => true,
+        _ => false,
+    });
+    if simple {
+        IdSelect::Args
+    } else {
+        IdSelect::Pattern
+    }
+}
+
 /// A situation's row in a compiled program's table (each DM module's
 /// `SITUATIONS`, by situation index): what the machine asks of a situation
 /// before it runs it.
