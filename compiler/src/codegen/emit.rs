@@ -199,7 +199,7 @@ impl Gen<'_> {
                 }
             }
 
-            #[allow(clippy::all)]
+            #[allow(unused_variables, clippy::all)]
             impl machine::DmProgram for Program {
                 fn dm_by_name(&self, name: Atom) -> Option<DmIx> {
                     #(#lookup)*

@@ -45,6 +45,28 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.selected = None;
     }
 
+    /// Native code entering situation `sit` with its id `id` (built from
+    /// its fields), after counting the `count` transitions it made since
+    /// it last counted (then zero): the sequence an arc's native run ends
+    /// with before the machine sees the situation, as one call.
+    #[inline]
+    pub fn enter_counted(&mut self, count: &mut u64, sit: SitIx, id: Term) {
+        self.m.transitions += *count;
+        *count = 0;
+        self.enter_with_id(sit, id);
+    }
+
+    /// Native code handing a value to the machine: counts the `count`
+    /// transitions it made, and enters situation `sit` by its name `name`
+    /// unless `recorded` (then it was entered with its id).
+    #[inline]
+    pub fn count_and_enter(&mut self, count: u64, recorded: bool, sit: SitIx, name: Atom) {
+        self.m.transitions += count;
+        if !recorded {
+            self.enter(sit, name);
+        }
+    }
+
     /// The value of the next situation that selected this one (its id
     /// then), or `None` when the situation was entered by index (an atom
     /// id) or as its DM's initial situation.
@@ -619,6 +641,19 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         let pipe = *self.pipe;
         self.m
             .record(id, expectation, action, next, pipe, &mut self.observer);
+    }
+
+    /// [`Cx::record`] of an arc whose next situation native code computed:
+    /// its id built (`next`, in the store) only here, when recorded.
+    #[inline]
+    pub fn record_next(
+        &mut self,
+        expectation: Term,
+        action: Term,
+        next: impl FnOnce(&mut Store) -> Term,
+    ) {
+        let next = next(&mut self.m.store);
+        self.record(expectation, action, Some(next));
     }
 
     /// The step to an evaluated next situation, which must name one (D-19).

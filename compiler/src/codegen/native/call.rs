@@ -686,10 +686,8 @@ impl Gen<'_> {
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         let enter = quote! {
             #hand
-            cx.count_transitions(count);
-            count = 0;
             #(#id_stmts)*
-            cx.enter_with_id(#curl, #id);
+            cx.enter_counted(&mut count, #curl, #id);
         };
         let mut stmts = Vec::new();
         let mut performs = Vec::new();

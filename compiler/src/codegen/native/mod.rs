@@ -1432,10 +1432,8 @@ impl Gen<'_> {
                     let hand = &d.hand;
                     quote! {
                         #hand
-                        cx.count_transitions(count);
-                        count = 0;
                         #(#id_stmts)*
-                        cx.enter_with_id(#cur, #id);
+                        cx.enter_counted(&mut count, #cur, #id);
                         #(#exps)*
                         cx.set_expectations(&[#(#names),*]);
                         #(#ts)*
@@ -1555,10 +1553,8 @@ impl Gen<'_> {
                     None => {
                         // Not ints, or an overflow: the term code's evaluation.
                         #hand
-                        cx.count_transitions(count);
-                        count = 0;
                         #(#id_stmts)*
-                        cx.enter_with_id(#cur, #id);
+                        cx.enter_counted(&mut count, #cur, #id);
                         #(#ts)*
                         let v = cx.is(None, #t, None)?;
                         let v = cx.store_ref().deref(v);
@@ -1650,10 +1646,8 @@ impl Gen<'_> {
         let hand = &d.hand;
         let enter = quote! {
             #hand
-            cx.count_transitions(count);
-            count = 0;
             #(#id_stmts)*
-            cx.enter_with_id(#cur, #id);
+            cx.enter_counted(&mut count, #cur, #id);
         };
         // An action of `inc`/`get` of the frame's locals, constants and
         // values (`[inc(n, N)]`): done natively, as an exit arc's is; the
@@ -1759,9 +1753,7 @@ impl Gen<'_> {
             }
         }
         // Recorded, the entry counts the transition.
-        stmts.push(quote!(if !run.records {
-            count += 1;
-        }));
+        stmts.push(quote!(count += u64::from(!run.records);));
         // What the machine's calls changed of the locals, read again, and
         // the values bound at the boundary, converted: all checked in one
         // `let .. else`, the fallback written once.
@@ -1795,8 +1787,7 @@ impl Gen<'_> {
                 #(#stmts)*
                 let next_at: Nat = { #next };
                 if run.records {
-                    let rec_next = next_at.id_term(p, cx.store());
-                    cx.record(rec_exp, rec_act, Some(rec_next));
+                    cx.record_next(rec_exp, rec_act, |s| next_at.id_term(p, s));
                 }
                 next_at
             }
@@ -2423,11 +2414,8 @@ impl Gen<'_> {
                 let rec = d.rec.borrow().clone();
                 Ok(quote! {{
                     #hand
-                    cx.count_transitions(count);
                     // Recorded, the situation was entered with its id.
-                    if !run.records {
-                        cx.enter(#curl, #cur_name);
-                    }
+                    cx.count_and_enter(count, run.records, #curl, #cur_name);
                     #out
                     let rec_next = Term::atom(#a);
                     #rec
@@ -2735,11 +2723,8 @@ impl Gen<'_> {
                 // No situation takes it here: the machine selects (or says
                 // that none does).
                 #hand
-                cx.count_transitions(count);
                 // Recorded, the situation was entered with its id.
-                if !run.records {
-                    cx.enter(#curl, #cur_name);
-                }
+                cx.count_and_enter(count, run.records, #curl, #cur_name);
                 #(let #arg_terms = cx.term(&#arg_names);)*
                 let rec_next = cx.build(#f, &[#(#arg_terms),*]);
                 #out
