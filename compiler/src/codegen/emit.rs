@@ -79,6 +79,32 @@ impl Gen<'_> {
             }
         }
         let native_driver = self.native_driver(ir, &dm_mods);
+        // The dispatches to the DMs that have their own function (none:
+        // the generic case alone).
+        let instantiate_body = if builder_arms.is_empty() {
+            quote!(self.instance(dm, sit, store))
+        } else {
+            quote!(match dm {
+                #(#builder_arms)*
+                _ => self.instance(dm, sit, store),
+            })
+        };
+        let select_rest = if select_dm_arms.is_empty() {
+            quote!(true)
+        } else {
+            quote!(match dm {
+                #(#select_dm_arms)*
+                _ => true,
+            })
+        };
+        let run_exit_body = if exit_dm_arms.is_empty() {
+            quote!(Err(cx.error("the situation has no compiled code", None)))
+        } else {
+            quote!(match dm {
+                #(#exit_dm_arms)*
+                _ => Err(cx.error("the situation has no compiled code", None)),
+            })
+        };
         let dm_ix: Vec<Literal> = (0..ir.dms.len() as u32)
             .map(Literal::u32_unsuffixed)
             .collect();
@@ -229,10 +255,7 @@ impl Gen<'_> {
                     sit: SitIx,
                     store: &mut Store,
                 ) -> Option<Instance> {
-                    match dm {
-                        #(#builder_arms)*
-                        _ => self.instance(dm, sit, store),
-                    }
+                    #instantiate_body
                 }
                 fn may_select(
                     &self,
@@ -272,10 +295,7 @@ impl Gen<'_> {
                 ) -> bool {
                     match self.templates.select(dm, sit, value, store) {
                         Some(taken) => taken,
-                        None => match dm {
-                            #(#select_dm_arms)*
-                            _ => true,
-                        },
+                        None => #select_rest,
                     }
                 }
                 fn run_situation(
@@ -297,10 +317,7 @@ impl Gen<'_> {
                     final_id: Term,
                     cx: &mut Cx<'_, '_, Self>,
                 ) -> Result<Step, RunError> {
-                    match dm {
-                        #(#exit_dm_arms)*
-                        _ => Err(cx.error("no such DM", None)),
-                    }
+                    #run_exit_body
                 }
             }
 

@@ -643,6 +643,20 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             .record(id, expectation, action, next, pipe, &mut self.observer);
     }
 
+    /// [`Cx::record`] when `recorded` (native code's `run.records`).
+    #[inline]
+    pub fn record_if(
+        &mut self,
+        recorded: bool,
+        expectation: Term,
+        action: Term,
+        next: Option<Term>,
+    ) {
+        if recorded {
+            self.record(expectation, action, next);
+        }
+    }
+
     /// [`Cx::record`] of an arc whose next situation native code computed:
     /// its id built (`next`, in the store) only here, when recorded.
     #[inline]

@@ -320,9 +320,7 @@ fn always_returns(code: &TokenStream) -> bool {
 
 fn rec_entry() -> TokenStream {
     quote! {
-        if run.records {
-            cx.record(rec_exp, rec_act, Some(rec_next));
-        }
+        cx.record_if(run.records, rec_exp, rec_act, Some(rec_next));
     }
 }
 
