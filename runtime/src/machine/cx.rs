@@ -326,6 +326,38 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         native::compound(&mut self.m.store, name, args)
     }
 
+    /// [`Cx::build`] of values, each made a term in order
+    /// ([`Native::to_term`]): a next situation or call term native code
+    /// hands to the machine.
+    pub fn build_of(&mut self, name: Atom, args: &[&dyn AsTerm]) -> Term {
+        self.with_terms(args, |store, ts| native::compound(store, name, ts))
+    }
+
+    /// [`Cx::compound`] of values, each made a term in order: the
+    /// registers a [`Step::Call`](super::Step::Call) keeps (`saved`).
+    pub fn compound_of(&mut self, name: Atom, args: &[&dyn AsTerm]) -> Term {
+        self.with_terms(args, |store, ts| store.compound(name, ts))
+    }
+
+    /// `f` of `args` made terms (no allocation up to eight).
+    fn with_terms(
+        &mut self,
+        args: &[&dyn AsTerm],
+        f: impl FnOnce(&mut Store, &[Term]) -> Term,
+    ) -> Term {
+        let store = &mut self.m.store;
+        if args.len() <= 8 {
+            let mut ts = [Term::NIL; 8];
+            for (t, a) in ts.iter_mut().zip(args) {
+                *t = a.as_term(store);
+            }
+            f(store, &ts[..args.len()])
+        } else {
+            let ts: Vec<Term> = args.iter().map(|a| a.as_term(store)).collect();
+            f(store, &ts)
+        }
+    }
+
     /// Argument `i` of compound `t` (as [`Step::Call`]'s `saved` keeps them).
     #[inline]
     pub fn arg(&self, t: Term, i: usize) -> Term {
@@ -684,5 +716,25 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             ));
         }
         Ok(Step::Goto(n))
+    }
+}
+
+/// A value native code makes a term of, of any native type (a term is
+/// itself): the arguments of [`Cx::build_of`] and [`Cx::compound_of`].
+pub trait AsTerm {
+    fn as_term(&self, store: &mut Store) -> Term;
+}
+
+impl<T: Native> AsTerm for T {
+    #[inline]
+    fn as_term(&self, store: &mut Store) -> Term {
+        self.to_term(store)
+    }
+}
+
+impl AsTerm for Term {
+    #[inline]
+    fn as_term(&self, _: &mut Store) -> Term {
+        *self
     }
 }

@@ -35,6 +35,7 @@ mod situation;
 mod state;
 mod steps;
 
+pub use cx::AsTerm;
 pub use io::{Actions, Perceived, Perception};
 pub use observe::{Inspection, Observer};
 pub use options::Options;

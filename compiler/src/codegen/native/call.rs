@@ -195,21 +195,16 @@ impl Gen<'_> {
             let e = &v.e;
             quote!(let #x = #e;)
         });
-        let ts: Vec<Ident> = (0..args.len()).map(|i| format_ident!("w{}", i)).collect();
         let f = self.atom_native(name)?;
-        let mut saved_terms = Vec::new();
-        let mut saved_names = Vec::new();
-        for (k, &r) in saved.iter().enumerate() {
+        let mut saved_vals = Vec::new();
+        for &r in saved.iter() {
             let v = self.nat_value(&Build::Reg(r), regs)?;
-            let e = v.e;
-            let x = format_ident!("s{}", k);
-            saved_terms.push(quote!(let #x = cx.term(&#e);));
-            saved_names.push(x);
+            saved_vals.push(super::place(&v));
         }
         let saved_value = if saved.is_empty() {
             quote!(Term::NIL)
         } else {
-            quote!(cx.compound(atoms::DOT, &[#(#saved_names),*]))
+            quote!(cx.compound_of(atoms::DOT, &[#(&#saved_vals),*]))
         };
         // The call given to the machine, as the term code gives it.
         let hand_call = quote! {
@@ -217,9 +212,7 @@ impl Gen<'_> {
             cx.count_transitions(count);
             #(#id_stmts)*
             cx.enter_with_id(#curl, #id);
-            #(let #ts = cx.term(&#vs);)*
-            let call = cx.build(#f, &[#(#ts),*]);
-            #(#saved_terms)*
+            let call = cx.build_of(#f, &[#(&#vs),*]);
             let saved = #saved_value;
             return Ok(Some(
                 Step::Call { call, saved },
@@ -311,23 +304,17 @@ impl Gen<'_> {
         } else {
             quote!()
         };
-        let mut saved_terms = Vec::new();
-        let mut saved_names = Vec::new();
-        for (k, &r) in saved.iter().enumerate() {
-            let x = format_ident!("s{}", k);
+        let mut saved_vals = Vec::new();
+        for &r in saved.iter() {
             match regs.get(&r) {
-                Some((f, _)) if super::is_fresh(f) => saved_terms.push(quote!(let #x = #f;)),
-                _ => {
-                    let e = self.nat_value(&Build::Reg(r), regs)?.e;
-                    saved_terms.push(quote!(let #x = cx.term(&#e);));
-                }
+                Some((f, _)) if super::is_fresh(f) => saved_vals.push(quote!(#f)),
+                _ => saved_vals.push(super::place(&self.nat_value(&Build::Reg(r), regs)?)),
             }
-            saved_names.push(x);
         }
         let saved_value = if saved.is_empty() {
             quote!(Term::NIL)
         } else {
-            quote!(cx.compound(atoms::DOT, &[#(#saved_names),*]))
+            quote!(cx.compound_of(atoms::DOT, &[#(&#saved_vals),*]))
         };
         Ok(quote! {
             #hand
@@ -337,7 +324,6 @@ impl Gen<'_> {
             #(#ts)*
             let call = #call_t;
             #eval
-            #(#saved_terms)*
             let saved = #saved_value;
             return Ok(Some(
                 Step::Call { call, saved },
@@ -377,28 +363,24 @@ impl Gen<'_> {
         // In `nat_wait` (fields are references there).
         let curl = Literal::u32_unsuffixed(ix as u32);
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
-        let mut saved_terms = Vec::new();
-        let mut saved_names = Vec::new();
-        for (k, &r) in saved.iter().enumerate() {
+        let mut saved_vals = Vec::new();
+        for &r in saved.iter() {
             let rr = reg(r);
-            let x = format_ident!("s{}", k);
             if names.contains(&rr) {
-                saved_terms.push(quote!(let #x = cx.term(&*#rr);));
+                saved_vals.push(quote!(#rr));
             } else {
                 return Err("a saved register is not kept".into());
             }
-            saved_names.push(x);
         }
         let saved_value = if saved.is_empty() {
             quote!(Term::NIL)
         } else {
-            quote!(cx.compound(atoms::DOT, &[#(#saved_names),*]))
+            quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
         };
         let wait_arm = quote! {
             Nat::#wv { #(#names),* } => {
                 #(#id_stmts)*
                 cx.enter_with_id(#curl, #id);
-                #(#saved_terms)*
                 let saved = #saved_value;
                 cx.call_typed(callee_dm, callee, saved)
             }

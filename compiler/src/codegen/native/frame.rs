@@ -59,13 +59,7 @@ impl Gen<'_> {
         let ps: Vec<Ident> = (0..d.params.len())
             .map(|i| format_ident!("p{}", i))
             .collect();
-        let ts: Vec<Ident> = (0..d.params.len())
-            .map(|i| format_ident!("pt{}", i))
-            .collect();
-        Ok(quote! {{
-            #(let #ts = cx.term(&*#ps);)*
-            cx.build(#name, &[#(#ts),*])
-        }})
+        Ok(quote!(cx.build_of(#name, &[#(#ps),*])))
     }
 
     /// The locals written back to the machine's frame of this DM.

@@ -2713,7 +2713,6 @@ impl Gen<'_> {
         let hand = &d.hand;
         let out = d.out.borrow().clone();
         let rec = d.rec.borrow().clone();
-        let arg_terms: Vec<Ident> = (0..args.len()).map(|i| format_ident!("w{}", i)).collect();
         Ok(quote! {
             'sel: {
                 #(#lets)*
@@ -2723,8 +2722,7 @@ impl Gen<'_> {
                 #hand
                 // Recorded, the situation was entered with its id.
                 cx.count_and_enter(count, run.records, #curl, #cur_name);
-                #(let #arg_terms = cx.term(&#arg_names);)*
-                let rec_next = cx.build(#f, &[#(#arg_terms),*]);
+                let rec_next = cx.build_of(#f, &[#(&#arg_names),*]);
                 #out
                 #rec
                 return cx.goto(rec_next, arc_at).map(Some);
