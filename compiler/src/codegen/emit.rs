@@ -383,9 +383,15 @@ impl Gen<'_> {
             .iter()
             .filter(|(_, id)| used.contains(&id.to_string()))
             .collect();
+        // A field named as its atom needs no doc (`Atoms::new` shows the
+        // text of every one).
         let atom_fields = atoms.iter().map(|(a, id)| {
-            let doc = format!(" `{}`", quote_atom(a.as_str()));
-            quote!(#[doc = #doc] pub #id: Atom,)
+            if *id == a.as_str() {
+                quote!(pub #id: Atom,)
+            } else {
+                let doc = format!(" `{}`", quote_atom(a.as_str()));
+                quote!(#[doc = #doc] pub #id: Atom,)
+            }
         });
         let atom_inits = atoms.iter().map(|(a, id)| {
             let lit = Literal::string(a.as_str());

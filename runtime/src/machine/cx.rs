@@ -330,7 +330,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// ([`Native::to_term`]): a next situation or call term native code
     /// hands to the machine.
     pub fn build_of(&mut self, name: Atom, args: &[&dyn AsTerm]) -> Term {
-        self.with_terms(args, |store, ts| native::compound(store, name, ts))
+        build_of(&mut self.m.store, name, args)
     }
 
     /// [`Cx::compound`] of values, each made a term in order: the
@@ -339,23 +339,12 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.with_terms(args, |store, ts| store.compound(name, ts))
     }
 
-    /// `f` of `args` made terms (no allocation up to eight).
     fn with_terms(
         &mut self,
         args: &[&dyn AsTerm],
         f: impl FnOnce(&mut Store, &[Term]) -> Term,
     ) -> Term {
-        let store = &mut self.m.store;
-        if args.len() <= 8 {
-            let mut ts = [Term::NIL; 8];
-            for (t, a) in ts.iter_mut().zip(args) {
-                *t = a.as_term(store);
-            }
-            f(store, &ts[..args.len()])
-        } else {
-            let ts: Vec<Term> = args.iter().map(|a| a.as_term(store)).collect();
-            f(store, &ts)
-        }
+        with_terms(&mut self.m.store, args, f)
     }
 
     /// Argument `i` of compound `t` (as [`Step::Call`]'s `saved` keeps them).
@@ -736,5 +725,29 @@ impl AsTerm for Term {
     #[inline]
     fn as_term(&self, _: &mut Store) -> Term {
         *self
+    }
+}
+
+/// [`native::compound`] of values, each made a term in order: how native
+/// code builds a situation's id from its fields (`id_s<N>`).
+pub fn build_of(store: &mut Store, name: Atom, args: &[&dyn AsTerm]) -> Term {
+    with_terms(store, args, |store, ts| native::compound(store, name, ts))
+}
+
+/// `f` of `args` made terms (no allocation up to eight).
+fn with_terms(
+    store: &mut Store,
+    args: &[&dyn AsTerm],
+    f: impl FnOnce(&mut Store, &[Term]) -> Term,
+) -> Term {
+    if args.len() <= 8 {
+        let mut ts = [Term::NIL; 8];
+        for (t, a) in ts.iter_mut().zip(args) {
+            *t = a.as_term(store);
+        }
+        f(store, &ts[..args.len()])
+    } else {
+        let ts: Vec<Term> = args.iter().map(|a| a.as_term(store)).collect();
+        f(store, &ts)
     }
 }

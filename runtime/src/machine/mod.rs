@@ -35,7 +35,7 @@ mod situation;
 mod state;
 mod steps;
 
-pub use cx::AsTerm;
+pub use cx::{build_of, AsTerm};
 pub use io::{Actions, Perceived, Perception};
 pub use observe::{Inspection, Observer};
 pub use options::Options;

@@ -1108,9 +1108,14 @@ impl Gen<'_> {
     }
 
     /// `fn id_s<ix>`: situation `ix`'s id as a term, from its fields (the
-    /// one place native code builds it).
+    /// one place native code builds it): a `machine::build_of` per
+    /// compound of the id, the fields (references) and constants its
+    /// arguments.
     fn nat_id_fn(&self, d: &Dm, ix: usize) -> N<TokenStream> {
-        let (stmts, v) = self.nat_id_inline(d, ix, quote!(store))?;
+        let mut stmts = Vec::new();
+        let mut n = 0;
+        let id = self.nat_id_of(d, ix);
+        let (v, _) = self.nat_id_part(d, ix, id, &mut Vec::new(), &mut stmts, &mut n, true)?;
         let params = self.nat_id_params(d, ix)?;
         let params = params.iter().map(|(r, ty)| quote!(#r: &#ty));
         let f = format_ident!("id_s{}", ix);
@@ -1128,6 +1133,92 @@ impl Gen<'_> {
                 #body
             }
         })
+    }
+
+    /// Part `t` (at `path`) of situation `ix`'s id, for [`Gen::nat_id_fn`]:
+    /// the expression and whether it is a reference already (a field); a
+    /// compound is a statement unless it is the whole id (`top`).
+    #[allow(clippy::too_many_arguments)]
+    fn nat_id_part(
+        &self,
+        d: &Dm,
+        ix: usize,
+        t: Term,
+        path: &mut Vec<usize>,
+        stmts: &mut Vec<TokenStream>,
+        n: &mut usize,
+        top: bool,
+    ) -> N<(TokenStream, bool)> {
+        Ok(match self.store.value(t) {
+            Value::Var(_) => {
+                // A repeated variable: its first occurrence's field.
+                let r = match Self::nat_id_reg(d, ix, path) {
+                    Some(r) => r,
+                    None => self.nat_first_reg(d, ix, t)?,
+                };
+                let rr = reg(r);
+                (quote!(#rr), true)
+            }
+            Value::Atom(a) if a == atoms::NIL => (quote!(Term::NIL), false),
+            Value::Atom(a) => {
+                let a = self.atom_native(a)?;
+                (quote!(Term::atom(#a)), false)
+            }
+            Value::Int(i) => {
+                let i = Literal::i64_suffixed(i);
+                (quote!(Term::int(#i)), false)
+            }
+            Value::Compound(name, args) => {
+                let args = args.to_vec();
+                let mut parts = Vec::new();
+                for (i, &a) in args.iter().enumerate() {
+                    path.push(i);
+                    let (e, by_ref) = self.nat_id_part(d, ix, a, path, stmts, n, false)?;
+                    path.pop();
+                    parts.push(if by_ref { e } else { quote!(&#e) });
+                }
+                let f = if name == atoms::DOT {
+                    quote!(atoms::DOT)
+                } else {
+                    self.atom_native(name)?
+                };
+                let e = quote!(machine::build_of(store, #f, &[#(#parts),*]));
+                if top {
+                    return Ok((e, false));
+                }
+                let x = format_ident!("t{}", *n);
+                *n += 1;
+                stmts.push(quote!(let #x = #e;));
+                (quote!(#x), false)
+            }
+            _ => return Err("an id holds a constant that is not native".into()),
+        })
+    }
+
+    /// The register of the first occurrence (pre-order, left to right) of
+    /// id variable `t` of situation `ix`.
+    fn nat_first_reg(&self, d: &Dm, ix: usize, t: Term) -> N<Reg> {
+        fn find(store: &sitlog_runtime::Store, at: Term, var: Term, path: &mut Vec<usize>) -> bool {
+            if store.deref(at) == var {
+                return true;
+            }
+            if let Value::Compound(_, args) = store.value(at) {
+                for (i, &a) in args.iter().enumerate() {
+                    path.push(i);
+                    if find(store, a, var, path) {
+                        return true;
+                    }
+                    path.pop();
+                }
+            }
+            false
+        }
+        let mut path = Vec::new();
+        let var = self.store.deref(t);
+        if !find(self.store, self.nat_id_of(d, ix), var, &mut path) {
+            return Err("an id variable has no register".into());
+        }
+        Self::nat_id_reg(d, ix, &path).ok_or_else(|| "an id variable has no register".into())
     }
 
     /// [`Gen::nat_id_term`] built inline.
