@@ -1,6 +1,6 @@
 //! The program and its DMs as Rust items: `Program` and its
 //! `DmProgram`/`App` impls, the entry points (`program()`, `run`, `main`),
-//! and one module per DM (its situation enum, instance builders, dispatch).
+//! and one module per DM (its situation enum and table, instance builders, dispatch).
 //! The per-situation code is [`super::step`]'s (on terms) and
 //! [`super::native`]'s (on Rust values).
 
