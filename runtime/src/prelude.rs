@@ -6,6 +6,8 @@
 //! included, and the generated code names functions (`native::compound`)
 //! through their module, so no local name can shadow them.
 
-pub use crate::machine::{Cx, DmIx, Instance, Kind, RunError, SitIx, Step, TypedRun, Visit};
+pub use crate::machine::{
+    Cx, DmIx, Instance, Kind, RunError, SitIx, SitRow, SitTable, Step, TypedRun, Visit,
+};
 pub use crate::native::{Ground, IntoVal, List, Native, Never, Val};
 pub use crate::{atoms, machine, native, Atom, Store, Term, Vars};

@@ -1,6 +1,6 @@
 //! The program and its DMs as Rust items: `Program` and its
 //! `DmProgram`/`App` impls, the entry points (`program()`, `run`, `main`),
-//! and one module per DM (its situation enum, instance builders, dispatch).
+//! and one module per DM (its situation enum and table, instance builders, dispatch).
 //! The per-situation code is [`super::step`]'s (on terms) and
 //! [`super::native`]'s (on Rust values).
 
@@ -48,12 +48,63 @@ impl Gen<'_> {
         let mut dm_namer = Namer::default();
         let mut modules = Vec::new();
         let mut dm_mods = Vec::new();
+        // The DMs with instance builders (a template whose text does not
+        // read back): their own `instantiate`.
+        let mut builder_arms = Vec::new();
+        // The DMs with compiled situations that have no template: their
+        // own `select_compiled`.
+        let mut select_dm_arms = Vec::new();
+        let mut run_arms = Vec::new();
+        let mut exit_dm_arms = Vec::new();
         for (i, dm) in ir.dms.iter().enumerate() {
             let m = ident(&dm_namer.fresh(format!("dm_{}", snake(dm.name.as_str()))));
             dm_mods.push(m.clone());
-            modules.push(self.emit_dm(dm, i, &m));
+            let items = self.emit_dm(dm, i, &m);
+            modules.push(items.module);
+            let ix = Literal::u32_unsuffixed(i as u32);
+            if items.builders {
+                builder_arms.push(quote!(#ix => #m::instantiate(self, sit, store),));
+            }
+            if items.selects {
+                select_dm_arms.push(quote!(#ix => #m::select_compiled(self, sit, value, store),));
+            }
+            run_arms.push(if items.all_native {
+                // Every situation natively, else from its template.
+                quote!(#ix => #m::run_native(self, cx, sit).map(|s| s.unwrap_or(Step::Template)),)
+            } else {
+                quote!(#ix => #m::run_situation(self, sit, cx),)
+            });
+            if items.exits {
+                exit_dm_arms.push(quote!(#ix => #m::run_exit(self, sit, saved, final_id, cx),));
+            }
         }
         let native_driver = self.native_driver(ir, &dm_mods);
+        // The dispatches to the DMs that have their own function (none:
+        // the generic case alone).
+        let instantiate_body = if builder_arms.is_empty() {
+            quote!(self.instance(dm, sit, store))
+        } else {
+            quote!(match dm {
+                #(#builder_arms)*
+                _ => self.instance(dm, sit, store),
+            })
+        };
+        let select_rest = if select_dm_arms.is_empty() {
+            quote!(true)
+        } else {
+            quote!(match dm {
+                #(#select_dm_arms)*
+                _ => true,
+            })
+        };
+        let run_exit_body = if exit_dm_arms.is_empty() {
+            quote!(Err(cx.error("the situation has no compiled code", None)))
+        } else {
+            quote!(match dm {
+                #(#exit_dm_arms)*
+                _ => Err(cx.error("the situation has no compiled code", None)),
+            })
+        };
         let dm_ix: Vec<Literal> = (0..ir.dms.len() as u32)
             .map(Literal::u32_unsuffixed)
             .collect();
@@ -118,7 +169,9 @@ impl Gen<'_> {
                 pub k: Consts,
                 /// The situations' templates in the frozen store, by DM and
                 /// situation (each DM's `TEMPLATES`).
-                templates: Vec<Vec<Option<Term>>>,
+                templates: machine::Templates,
+                /// The situations' kinds, ids and places (each DM's `SITUATIONS`).
+                sits: SitTable,
             }
 
             /// The program's ground compound terms, built once in [`Program::new`].
@@ -134,17 +187,17 @@ impl Gen<'_> {
                     let store = &mut store;
                     #(#const_inits)*
                     let k = Consts { #(#const_names),* };
-                    let templates = vec![#(machine::read_templates(store, &#dm_mods::TEMPLATES)),*];
+                    let templates = machine::Templates::read(store, &[#(&#dm_mods::TEMPLATES),*]);
+                    let sits = SitTable::new(&[#((#dm_mods::FILE, &#dm_mods::SITUATIONS)),*]);
                     let mut store = ::std::mem::take(store);
                     store.freeze();
-                    Program { store, atoms: a, k, templates }
+                    Program { store, atoms: a, k, templates, sits }
                 }
 
                 /// A fresh instance of situation `sit` of DM `dm` from its
                 /// template (`None`: it has none).
                 pub fn instance(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Option<Instance> {
-                    let template = self.templates[dm as usize][sit as usize]?;
-                    Some(Instance::fresh(store, template))
+                    self.templates.instance(dm, sit, store)
                 }
 
                 /// The names of the declared basic actions (`basic_actions.pl`).
@@ -172,7 +225,7 @@ impl Gen<'_> {
                 }
             }
 
-            #[allow(clippy::all)]
+            #[allow(unused_variables, clippy::all)]
             impl machine::DmProgram for Program {
                 fn dm_by_name(&self, name: Atom) -> Option<DmIx> {
                     #(#lookup)*
@@ -185,16 +238,10 @@ impl Gen<'_> {
                     }
                 }
                 fn situation_count(&self, dm: DmIx) -> usize {
-                    match dm {
-                        #(#dm_ix => #dm_mods::Situation::ALL.len(),)*
-                        _ => panic!("no DM number {dm}"),
-                    }
+                    self.sits.count(dm)
                 }
                 fn kind(&self, dm: DmIx, sit: SitIx) -> Kind {
-                    match dm {
-                        #(#dm_ix => #dm_mods::Situation::from_ix(sit).kind(),)*
-                        _ => panic!("no DM number {dm}"),
-                    }
+                    self.sits.kind(dm, sit)
                 }
                 fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Term {
                     match dm {
@@ -208,10 +255,7 @@ impl Gen<'_> {
                     sit: SitIx,
                     store: &mut Store,
                 ) -> Option<Instance> {
-                    match dm {
-                        #(#dm_ix => #dm_mods::instantiate(self, #dm_mods::Situation::from_ix(sit), store),)*
-                        _ => panic!("no DM number {dm}"),
-                    }
+                    #instantiate_body
                 }
                 fn may_select(
                     &self,
@@ -220,11 +264,7 @@ impl Gen<'_> {
                     value: Term,
                     store: &Store,
                 ) -> bool {
-                    let functor = store.functor(value);
-                    match dm {
-                        #(#dm_ix => #dm_mods::Situation::from_ix(sit).may_select(self, functor),)*
-                        _ => panic!("no DM number {dm}"),
-                    }
+                    self.sits.may_select(dm, sit, store.functor(value))
                 }
                 fn locals(&self, dm: DmIx, store: &mut Store) -> Vars {
                     match dm {
@@ -237,21 +277,14 @@ impl Gen<'_> {
                     dm: DmIx,
                     sit: SitIx,
                 ) -> Option<String> {
-                    let at = match dm {
-                        #(#dm_ix => #dm_mods::Situation::from_ix(sit).location(),)*
-                        _ => panic!("no DM number {dm}"),
-                    };
-                    Some(at.to_owned())
+                    Some(self.sits.location(dm, sit))
                 }
                 fn compiled_id(
                     &self,
                     dm: DmIx,
                     sit: SitIx,
                 ) -> Option<(Atom, usize)> {
-                    match dm {
-                        #(#dm_ix => #dm_mods::compiled_id(self, sit),)*
-                        _ => None,
-                    }
+                    self.sits.compiled_id(dm, sit)
                 }
                 fn select_compiled(
                     &self,
@@ -260,9 +293,9 @@ impl Gen<'_> {
                     value: Term,
                     store: &mut Store,
                 ) -> bool {
-                    match dm {
-                        #(#dm_ix => #dm_mods::select_compiled(self, sit, value, store),)*
-                        _ => true,
+                    match self.templates.select(dm, sit, value, store) {
+                        Some(taken) => taken,
+                        None => #select_rest,
                     }
                 }
                 fn run_situation(
@@ -272,7 +305,7 @@ impl Gen<'_> {
                     cx: &mut Cx<'_, '_, Self>,
                 ) -> Result<Step, RunError> {
                     match dm {
-                        #(#dm_ix => #dm_mods::run_situation(self, sit, cx),)*
+                        #(#run_arms)*
                         _ => Err(cx.error("no such DM", None)),
                     }
                 }
@@ -284,10 +317,7 @@ impl Gen<'_> {
                     final_id: Term,
                     cx: &mut Cx<'_, '_, Self>,
                 ) -> Result<Step, RunError> {
-                    match dm {
-                        #(#dm_ix => #dm_mods::run_exit(self, sit, saved, final_id, cx),)*
-                        _ => Err(cx.error("no such DM", None)),
-                    }
+                    #run_exit_body
                 }
             }
 
@@ -353,9 +383,15 @@ impl Gen<'_> {
             .iter()
             .filter(|(_, id)| used.contains(&id.to_string()))
             .collect();
+        // A field named as its atom needs no doc (`Atoms::new` shows the
+        // text of every one).
         let atom_fields = atoms.iter().map(|(a, id)| {
-            let doc = format!(" `{}`", quote_atom(a.as_str()));
-            quote!(#[doc = #doc] pub #id: Atom,)
+            if *id == a.as_str() {
+                quote!(pub #id: Atom,)
+            } else {
+                let doc = format!(" `{}`", quote_atom(a.as_str()));
+                quote!(#[doc = #doc] pub #id: Atom,)
+            }
         });
         let atom_inits = atoms.iter().map(|(a, id)| {
             let lit = Literal::string(a.as_str());
@@ -380,19 +416,17 @@ impl Gen<'_> {
         }
     }
 
-    fn emit_dm(&self, dm: &crate::ir::IrDm, dm_ix: usize, module: &Ident) -> TokenStream {
+    /// DM `dm`'s module and which of the per-DM functions it has.
+    fn emit_dm(&self, dm: &crate::ir::IrDm, dm_ix: usize, module: &Ident) -> DmItems {
         let none = Term::atom(none_marker());
         let dm_lit = Literal::u32_unsuffixed(dm_ix as u32);
         let mut namer = Namer::default();
         let mut variants = Vec::new();
         let mut vnames = Vec::new();
         let mut fns = Vec::new();
-        let mut kinds = Vec::new();
-        let mut selects = Vec::new();
-        let mut locations = Vec::new();
+        let mut rows = Vec::new();
         let mut instantiate_arms = Vec::new();
         let mut templates = Vec::new();
-        let mut compiled_arms = Vec::new();
         let mut select_arms = Vec::new();
         let mut run_arms = Vec::new();
         let mut native_ixs = Vec::new();
@@ -436,16 +470,25 @@ impl Gen<'_> {
                 Kind::Recursive => quote!(Recursive),
                 Kind::Perceptual => quote!(Perceptual),
             };
-            kinds.push(quote!(Situation::#vname => Kind::#kind,));
-            let loc = Literal::string(&s.location);
-            locations.push(quote!(Situation::#vname => #loc,));
-            selects.push(match s.id_functor {
-                Some((name, arity)) => {
-                    let a = &self.atoms[self.atom_ix[&name]].1;
-                    let ar = Literal::usize_unsuffixed(arity);
-                    quote!(Situation::#vname => functor == Some((p.atoms.#a, #ar)),)
+            // Its row of `SITUATIONS`: a situation that runs as code by its
+            // compiled id (the machine asks no cheap filter of it), another
+            // by its id's functor.
+            // (Its DM's file is `FILE`: a DM is written in one file.)
+            let (line, col) = line_col(&s.location);
+            rows.push(match self.mir.plan(dm_ix as u32, i as u32) {
+                Some(plan) => {
+                    let name = Literal::string(plan.id.0.as_str());
+                    let ar = Literal::usize_unsuffixed(plan.id.1);
+                    quote!(SitRow::code(Kind::#kind, #name, #ar, #line, #col))
                 }
-                None => quote!(Situation::#vname => true,),
+                None => match s.id_functor {
+                    Some((name, arity)) => {
+                        let name = Literal::string(name.as_str());
+                        let ar = Literal::usize_unsuffixed(arity);
+                        quote!(SitRow::template(Kind::#kind, Some((#name, #ar)), #line, #col))
+                    }
+                    None => quote!(SitRow::template(Kind::#kind, None, #line, #col)),
+                },
             });
 
             // The instance builder, for a situation that does not run as
@@ -482,10 +525,12 @@ impl Gen<'_> {
                     quote!(#id,)
                 });
             }
+            let mut has_template = false;
             if planned {
                 templates.push(quote!(None));
             } else if let Some(text) = self.template_text(s.template) {
                 templates.push(quote!(Some(#text)));
+                has_template = true;
             } else {
                 // A template whose text does not read back as itself: built
                 // by code.
@@ -501,12 +546,11 @@ impl Gen<'_> {
                         Instance { #(#fields)* }
                     }
                 });
-                instantiate_arms.push(quote!(Situation::#vname => Some(#fname(p, store)),));
+                instantiate_arms.push(quote!(#ix => Some(#fname(p, store)),));
             }
 
             // The situation as code, when it can be compiled.
             if let Some(plan) = self.mir.plan(dm_ix as u32, i as u32) {
-                let (id, arity) = plan.id;
                 let mut base = snake(&vname.to_string());
                 // Not one of the module's own `run_*` functions (a
                 // situation `exit`: the original's `robocup_2015`).
@@ -516,10 +560,7 @@ impl Gen<'_> {
                 let run_name = format_ident!("run_{}", base);
                 let exit_name = format_ident!("exit_{}", base);
                 let code = self.situation_code(plan, &run_name, &exit_name);
-                let a = &self.atoms[self.atom_ix[&id]].1;
-                let arity = Literal::usize_unsuffixed(arity);
-                compiled_arms.push(quote!(#ix => Some((p.atoms.#a, #arity)),));
-                if let Some(select) = self.select_code(plan) {
+                if let Some(select) = self.select_code(plan).filter(|_| !has_template) {
                     select_arms.push(quote!(#ix => { #select }));
                 }
                 if nat_sit {
@@ -561,8 +602,6 @@ impl Gen<'_> {
             Some(n) => n.items,
             None => quote!(),
         };
-        let variant_names: Vec<TokenStream> =
-            vnames.iter().map(|v| quote!(Situation::#v)).collect();
         let head_body = self.builder_body(&[(format_ident!("head"), dm.head)]);
         let head_prelude = Self::prelude(&head_body);
         let local_names: Vec<Ident> = (0..dm.locals.len())
@@ -582,30 +621,87 @@ impl Gen<'_> {
         let head_text = self.store.writeq(dm.head);
         let mod_doc = format!(" DM `{head_text}`.");
         let count_lit = Literal::usize_unsuffixed(count);
-        let (may_select_body, kind_body, location_body, instantiate_body) = if count == 0 {
-            (
-                quote!(match self {}),
-                quote!(match self {}),
-                quote!(match self {}),
-                quote!(p.instance(#dm_lit, sit as SitIx, store)),
-            )
-        } else if instantiate_arms.is_empty() {
-            (
-                quote!(match self { #(#selects)* }),
-                quote!(match self { #(#kinds)* }),
-                quote!(match self { #(#locations)* }),
-                quote!(p.instance(#dm_lit, sit as SitIx, store)),
-            )
+        let builders = !instantiate_arms.is_empty();
+        // Every situation native: the program calls `run_native` (no
+        // `run_situation` loop: native code's step goes to the machine).
+        let all_native = run_arms.is_empty() && native_ixs.len() == count && count > 0;
+        let run_situation = if all_native {
+            quote!()
         } else {
-            (
-                quote!(match self { #(#selects)* }),
-                quote!(match self { #(#kinds)* }),
-                quote!(match self { #(#locations)* }),
-                quote!(match sit {
-                    #(#instantiate_arms)*
-                    _ => p.instance(#dm_lit, sit as SitIx, store),
-                }),
-            )
+            quote! {
+                /// Runs a situation that runs as code, and the compiled
+                /// situations it goes to (`Cx::run_compiled`): term code
+                /// goes on by itself, native code's step goes to the machine.
+                pub fn run_situation(
+                    p: &super::Program,
+                    sit: SitIx,
+                    cx: &mut Cx<'_, '_, super::Program>,
+                ) -> Result<Step, RunError> {
+                    cx.run_compiled(#dm_lit, sit, |cx, sit| #term_code)
+                }
+            }
+        };
+        let exits = !exit_arms.is_empty();
+        let run_exit = if exits {
+            quote! {
+                /// The exit arcs of a recursive situation that runs as code.
+                pub fn run_exit(
+                    p: &super::Program,
+                    sit: SitIx,
+                    saved: Term,
+                    final_id: Term,
+                    cx: &mut Cx<'_, '_, super::Program>,
+                ) -> Result<Step, RunError> {
+                    match sit {
+                        #(#exit_arms)*
+                        _ => Err(cx.error("the situation has no compiled code", None)),
+                    }
+                }
+            }
+        } else {
+            quote!()
+        };
+        let selects = !select_arms.is_empty();
+        let select_compiled = if selects {
+            quote! {
+                /// Whether a compiled situation without a template is
+                /// selected by `value` (its id's constant arguments, or the
+                /// whole id when it is a pattern), as its plan selects.
+                pub fn select_compiled(
+                    p: &super::Program,
+                    sit: SitIx,
+                    value: Term,
+                    store: &mut Store,
+                ) -> bool {
+                    let a = &p.atoms;
+                    match sit {
+                        #(#select_arms)*
+                        _ => true,
+                    }
+                }
+            }
+        } else {
+            quote!()
+        };
+        let file = Literal::string(dm.location.rsplitn(3, ':').nth(2).unwrap_or(&dm.location));
+        let instantiate = if builders {
+            quote! {
+                /// A fresh instance of a situation: built by code where its
+                /// template's text does not read back, else a copy of its
+                /// template.
+                pub fn instantiate(
+                    p: &super::Program,
+                    sit: SitIx,
+                    store: &mut Store,
+                ) -> Option<Instance> {
+                    match sit {
+                        #(#instantiate_arms)*
+                        _ => p.instance(#dm_lit, sit, store),
+                    }
+                }
+            }
+        } else {
+            quote!()
         };
         let dm_name = self.store.writeq(dm.head);
         let templates_doc = format!(
@@ -613,7 +709,7 @@ impl Gen<'_> {
              the program's store; `None` for a situation that runs as term code (never \
              instantiated) or whose instance is built by code."
         );
-        quote! {
+        let module = quote! {
             #[doc = #mod_doc]
             #[allow(dead_code, unused_variables, unused_assignments, unused_mut, non_camel_case_types, clippy::all)]
             pub mod #module {
@@ -626,32 +722,14 @@ impl Gen<'_> {
                 #[repr(u32)]
                 pub enum Situation { #(#variants)* }
 
-                impl Situation {
-                    pub const ALL: [Situation; #count_lit] = [#(#variant_names),*];
+                /// Per situation (by index): its kind, its id (the name
+                /// and arity it runs as code by, or its template's id
+                /// functor), where it is written; read by the program's
+                /// generic `DmProgram` methods (`SitTable`).
+                pub const SITUATIONS: [SitRow; #count_lit] = [#(#rows),*];
 
-                    pub fn from_ix(ix: SitIx) -> Situation {
-                        Situation::ALL[ix as usize]
-                    }
-
-                    pub fn kind(self) -> Kind {
-                        #kind_body
-                    }
-
-                    /// Whether the situation's id may unify with a value of this
-                    /// principal functor (D-21's cheap filter).
-                    pub fn may_select(
-                        self,
-                        p: &super::Program,
-                        functor: Option<(Atom, usize)>,
-                    ) -> bool {
-                        #may_select_body
-                    }
-
-                    /// Where the situation is written.
-                    pub fn location(self) -> &'static str {
-                        #location_body
-                    }
-                }
+                /// The file the DM is written in.
+                pub const FILE: &str = #file;
 
                 /// A fresh copy of the DM's head.
                 pub fn head(p: &super::Program, store: &mut Store) -> Term {
@@ -667,77 +745,52 @@ impl Gen<'_> {
                     Vars::from_entries(vec![#(#local_entries),*])
                 }
 
-                /// The id of a situation that runs as code.
-                pub fn compiled_id(
-                    p: &super::Program,
-                    sit: SitIx,
-                ) -> Option<(Atom, usize)> {
-                    match sit {
-                        #(#compiled_arms)*
-                        _ => None,
-                    }
-                }
+                #select_compiled
 
-                /// Whether a compiled situation's id unifies with `value` (its constant arguments, or the whole id when it is a pattern).
-                pub fn select_compiled(
-                    p: &super::Program,
-                    sit: SitIx,
-                    value: Term,
-                    store: &mut Store,
-                ) -> bool {
-                    let a = &p.atoms;
-                    match sit {
-                        #(#select_arms)*
-                        _ => true,
-                    }
-                }
-
-                /// Runs a situation that runs as code, and the compiled
-                /// situations it goes to (`Cx::run_compiled`): term code
-                /// goes on by itself, native code's step goes to the machine.
-                pub fn run_situation(
-                    p: &super::Program,
-                    sit: SitIx,
-                    cx: &mut Cx<'_, '_, super::Program>,
-                ) -> Result<Step, RunError> {
-                    cx.run_compiled(#dm_lit, sit, |cx, sit| #term_code)
-                }
-
-                /// The exit arcs of a recursive situation that runs as code.
-                pub fn run_exit(
-                    p: &super::Program,
-                    sit: SitIx,
-                    saved: Term,
-                    final_id: Term,
-                    cx: &mut Cx<'_, '_, super::Program>,
-                ) -> Result<Step, RunError> {
-                    match sit {
-                        #(#exit_arms)*
-                        _ => Err(cx.error("the situation has no compiled code", None)),
-                    }
-                }
+                #run_situation
+                #run_exit
 
                 #[doc = #templates_doc]
                 pub const TEMPLATES: [Option<&str>; #count_lit] = [#(#templates),*];
 
-                /// A fresh instance of a situation, a copy of its template;
-                /// `None` for one that runs as term code (the machine never
-                /// instantiates it; one that runs natively is instantiated
-                /// when its code hands it over, `Step::Template`).
-                pub fn instantiate(
-                    p: &super::Program,
-                    sit: Situation,
-                    store: &mut Store,
-                ) -> Option<Instance> {
-                    #instantiate_body
-                }
+                #instantiate
 
                 #native_items
 
                 #(#fns)*
             }
+        };
+        DmItems {
+            module,
+            builders,
+            selects,
+            all_native,
+            exits,
         }
     }
+}
+
+/// A DM's module, and which of the per-DM functions the program's
+/// dispatch calls it has.
+struct DmItems {
+    module: TokenStream,
+    /// Instance builders: its own `instantiate`.
+    builders: bool,
+    /// Compiled situations without a template: its own `select_compiled`
+    /// (the others select on their template's id, `machine::Templates`).
+    selects: bool,
+    /// Every situation native: no `run_situation`, `run_native` is called.
+    all_native: bool,
+    /// Recursive situations with exit arcs as code: its own `run_exit`.
+    exits: bool,
+}
+
+/// The line and column of a `file:line:col` location, as literals.
+fn line_col(location: &str) -> (Literal, Literal) {
+    let mut parts = location.rsplitn(3, ':');
+    let col = parts.next().and_then(|c| c.parse().ok()).unwrap_or(0);
+    let line = parts.next().and_then(|l| l.parse().ok()).unwrap_or(0);
+    (Literal::u32_unsuffixed(line), Literal::u32_unsuffixed(col))
 }
 
 /// The identifiers in `ts`, as text.

@@ -35,8 +35,15 @@
 //!   whose text does not read back as itself gets a builder function
 //!   instead (fresh variables first, in that `copy_term`'s order, then the
 //!   non-ground parts, ground parts being constants);
-//! - `may_select`, `kind`, `location` as `match`es on the situation enum,
-//!   and DM lookup by comparing interned atoms;
+//! - each DM's `SITUATIONS` table (a `SitRow` per situation: kind, id
+//!   name and arity, whether it runs as code, line and column in the DM's
+//!   `FILE`), read by the runtime's `SitTable` for `kind`, `may_select`,
+//!   `location`, `compiled_id`; a compiled situation with a template
+//!   selects on that template's id as the interpreter's plan does
+//!   (`machine::Templates::select`), so only one without a template has
+//!   generated `select_compiled` code; per-DM `run_situation`, `run_exit`,
+//!   `instantiate` only where a DM needs one; DM lookup by comparing
+//!   interned atoms;
 //! - entry points: `program()` (one `Program` per process), `run(...)` and
 //!   `main()` (the `sitlogc run` command line, shared through
 //!   `sitlog_runtime::app`).

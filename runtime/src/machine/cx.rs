@@ -45,6 +45,28 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.selected = None;
     }
 
+    /// Native code entering situation `sit` with its id `id` (built from
+    /// its fields), after counting the `count` transitions it made since
+    /// it last counted (then zero): the sequence an arc's native run ends
+    /// with before the machine sees the situation, as one call.
+    #[inline]
+    pub fn enter_counted(&mut self, count: &mut u64, sit: SitIx, id: Term) {
+        self.m.transitions += *count;
+        *count = 0;
+        self.enter_with_id(sit, id);
+    }
+
+    /// Native code handing a value to the machine: counts the `count`
+    /// transitions it made, and enters situation `sit` by its name `name`
+    /// unless `recorded` (then it was entered with its id).
+    #[inline]
+    pub fn count_and_enter(&mut self, count: u64, recorded: bool, sit: SitIx, name: Atom) {
+        self.m.transitions += count;
+        if !recorded {
+            self.enter(sit, name);
+        }
+    }
+
     /// The value of the next situation that selected this one (its id
     /// then), or `None` when the situation was entered by index (an atom
     /// id) or as its DM's initial situation.
@@ -289,6 +311,40 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     #[inline]
     pub fn compound(&mut self, name: Atom, args: &[Term]) -> Term {
         self.m.store.compound(name, args)
+    }
+
+    /// A native value as a term ([`Native::to_term`] in the store).
+    #[inline]
+    pub fn term<T: Native>(&mut self, v: &T) -> Term {
+        v.to_term(&mut self.m.store)
+    }
+
+    /// A term built by native code ([`native::compound`]: an atom for no
+    /// arguments, a list cell for `'.'/2`).
+    #[inline]
+    pub fn build(&mut self, name: Atom, args: &[Term]) -> Term {
+        native::compound(&mut self.m.store, name, args)
+    }
+
+    /// [`Cx::build`] of values, each made a term in order
+    /// ([`Native::to_term`]): a next situation or call term native code
+    /// hands to the machine.
+    pub fn build_of(&mut self, name: Atom, args: &[&dyn AsTerm]) -> Term {
+        build_of(&mut self.m.store, name, args)
+    }
+
+    /// [`Cx::compound`] of values, each made a term in order: the
+    /// registers a [`Step::Call`](super::Step::Call) keeps (`saved`).
+    pub fn compound_of(&mut self, name: Atom, args: &[&dyn AsTerm]) -> Term {
+        self.with_terms(args, |store, ts| store.compound(name, ts))
+    }
+
+    fn with_terms(
+        &mut self,
+        args: &[&dyn AsTerm],
+        f: impl FnOnce(&mut Store, &[Term]) -> Term,
+    ) -> Term {
+        with_terms(&mut self.m.store, args, f)
     }
 
     /// Argument `i` of compound `t` (as [`Step::Call`]'s `saved` keeps them).
@@ -608,6 +664,33 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             .record(id, expectation, action, next, pipe, &mut self.observer);
     }
 
+    /// [`Cx::record`] when `recorded` (native code's `run.records`).
+    #[inline]
+    pub fn record_if(
+        &mut self,
+        recorded: bool,
+        expectation: Term,
+        action: Term,
+        next: Option<Term>,
+    ) {
+        if recorded {
+            self.record(expectation, action, next);
+        }
+    }
+
+    /// [`Cx::record`] of an arc whose next situation native code computed:
+    /// its id built (`next`, in the store) only here, when recorded.
+    #[inline]
+    pub fn record_next(
+        &mut self,
+        expectation: Term,
+        action: Term,
+        next: impl FnOnce(&mut Store) -> Term,
+    ) {
+        let next = next(&mut self.m.store);
+        self.record(expectation, action, Some(next));
+    }
+
     /// The step to an evaluated next situation, which must name one (D-19).
     pub fn goto(&mut self, next: Term, arc: Option<usize>) -> Result<Step, RunError> {
         self.m.chose = Some((self.sit, arc));
@@ -622,5 +705,49 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             ));
         }
         Ok(Step::Goto(n))
+    }
+}
+
+/// A value native code makes a term of, of any native type (a term is
+/// itself): the arguments of [`Cx::build_of`] and [`Cx::compound_of`].
+pub trait AsTerm {
+    fn as_term(&self, store: &mut Store) -> Term;
+}
+
+impl<T: Native> AsTerm for T {
+    #[inline]
+    fn as_term(&self, store: &mut Store) -> Term {
+        self.to_term(store)
+    }
+}
+
+impl AsTerm for Term {
+    #[inline]
+    fn as_term(&self, _: &mut Store) -> Term {
+        *self
+    }
+}
+
+/// [`native::compound`] of values, each made a term in order: how native
+/// code builds a situation's id from its fields (`id_s<N>`).
+pub fn build_of(store: &mut Store, name: Atom, args: &[&dyn AsTerm]) -> Term {
+    with_terms(store, args, |store, ts| native::compound(store, name, ts))
+}
+
+/// `f` of `args` made terms (no allocation up to eight).
+fn with_terms(
+    store: &mut Store,
+    args: &[&dyn AsTerm],
+    f: impl FnOnce(&mut Store, &[Term]) -> Term,
+) -> Term {
+    if args.len() <= 8 {
+        let mut ts = [Term::NIL; 8];
+        for (t, a) in ts.iter_mut().zip(args) {
+            *t = a.as_term(store);
+        }
+        f(store, &ts[..args.len()])
+    } else {
+        let ts: Vec<Term> = args.iter().map(|a| a.as_term(store)).collect();
+        f(store, &ts)
     }
 }

@@ -9,6 +9,12 @@
 //! code. Both share every step below on terms; native code (values held as
 //! Rust values) does integer arithmetic, list walks, exit matching and its
 //! frames itself, and agrees with this machine by test (see the crate doc).
+//! What a compiled program tells the machine about its situations is data,
+//! read by generic code here: each situation's row (`SitTable`: kind, id
+//! functor, whether it runs as code, where it is written) and its template
+//! (`Templates`), on whose id a compiled situation is selected exactly as
+//! the interpreter's plan selects it (constants of a simple id, else a
+//! fresh copy unified), so selection agrees by construction.
 //!
 //! One job per submodule, bottom to top (each uses only those before it;
 //! this file only re-exports, so every public item keeps its path
@@ -35,10 +41,13 @@ mod situation;
 mod state;
 mod steps;
 
+pub use cx::{build_of, AsTerm};
 pub use io::{Actions, Perceived, Perception};
 pub use observe::{Inspection, Observer};
 pub use options::Options;
 pub use outcome::{ErrorSite, Outcome, RunError};
 pub use program::{Between, Cx, DmProgram, Next, Step, TypedRun, Visit};
-pub use situation::{none_marker, read_templates, DmIx, Instance, Kind, SitIx};
+pub use situation::{
+    none_marker, read_templates, DmIx, Instance, Kind, SitIx, SitRow, SitTable, Templates,
+};
 pub use state::Machine;

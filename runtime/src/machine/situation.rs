@@ -2,7 +2,10 @@
 //! the [`Kind`] of a situation, and the fields of a situation [`Instance`],
 //! made fresh from the situation's template ([`Instance::fresh`], the one
 //! way both back ends instantiate; a compiled program reads its templates
-//! from text once, [`read_templates`]).
+//! from text once, [`read_templates`]), and a compiled program's table of
+//! its situations ([`SitRow`] per situation, [`SitTable`] for the program:
+//! kind, id functor, whether it runs as code, where it is written), read by
+//! the generic `DmProgram` methods instead of a `match` per DM.
 
 use crate::store::Store;
 use crate::term::Term;
@@ -89,4 +92,223 @@ pub fn read_templates(store: &mut Store, texts: &[Option<&str>]) -> Vec<Option<T
             })
         })
         .collect()
+}
+
+/// How a compiled situation's id takes a value, as the interpreter's plan
+/// of it does (`sitlog_compiler::mir`'s `select` / `pattern`).
+#[derive(Clone, Copy, Debug)]
+enum IdSelect {
+    /// An atom id: the functor says it all.
+    Name,
+    /// Distinct variables and atomic constants: each constant unified with
+    /// the value's argument there.
+    Args,
+    /// Any other compound: a fresh copy unified with the value.
+    Pattern,
+}
+
+/// A compiled program's situation templates (each DM module's
+/// `TEMPLATES`, read once into the program's store, [`read_templates`]),
+/// by DM and situation, with how each id selects.
+#[derive(Clone, Debug, Default)]
+pub struct Templates {
+    dms: Vec<Vec<Option<(Term, IdSelect)>>>,
+}
+
+impl Templates {
+    /// Reads DM number `i`'s templates from `dms[i]` into `store`.
+    pub fn read(store: &mut Store, dms: &[&[Option<&str>]]) -> Templates {
+        let dms = dms
+            .iter()
+            .map(|texts| {
+                read_templates(store, texts)
+                    .into_iter()
+                    .map(|t| t.map(|t| (t, id_select(store, store.args(t)[1]))))
+                    .collect()
+            })
+            .collect();
+        Templates { dms }
+    }
+
+    /// A fresh instance of situation `sit` of DM `dm` from its template
+    /// (`None`: it has none).
+    pub fn instance(&self, dm: DmIx, sit: SitIx, store: &mut Store) -> Option<Instance> {
+        let (t, _) = self.dms[dm as usize][sit as usize]?;
+        Some(Instance::fresh(store, t))
+    }
+
+    /// Whether compiled situation `sit` of DM `dm`, whose id has the
+    /// principal functor of `value`, is selected by `value`
+    /// ([`DmProgram::select_compiled`](super::DmProgram::select_compiled)),
+    /// decided on its template's id as the interpreter decides on its plan:
+    /// `Args` ids by their constants, other compound ids as a fresh copy
+    /// unified with the value (bindings kept when it is taken). `None`: the
+    /// situation has no template (the program's code decides).
+    pub fn select(&self, dm: DmIx, sit: SitIx, value: Term, store: &mut Store) -> Option<bool> {
+        let (t, how) = self.dms[dm as usize][sit as usize]?;
+        let id = store.args(t)[1];
+        Some(match how {
+            IdSelect::Name => true,
+            IdSelect::Args => {
+                let n = store.args(id).len();
+                (0..n).all(|i| {
+                    let c = store.args(id)[i];
+                    if matches!(store.value(c), crate::term::Value::Var(_)) {
+                        return true;
+                    }
+                    let x = store.args(value)[i];
+                    store.unify(x, c)
+                })
+            }
+            IdSelect::Pattern => {
+                let c = store.copy_term(id);
+                store.unify(value, c)
+            }
+        })
+    }
+}
+
+/// How the id `id` (a template's) selects: an atom, a simple compound
+/// (distinct variables and atoms or numbers), another compound.
+fn id_select(store: &Store, id: Term) -> IdSelect {
+    use crate::term::Value;
+    let Value::Compound(_, args) = store.value(id) else {
+        return IdSelect::Name;
+    };
+    let mut seen = Vec::new();
+    let simple = args.iter().all(|&a| match store.value(a) {
+        Value::Var(v) if !seen.contains(&v) => {
+            seen.push(v);
+            true
+        }
+        Value::Atom(_) | Value::Int(_) | Value::Float(_) => true,
+        _ => false,
+    });
+    if simple {
+        IdSelect::Args
+    } else {
+        IdSelect::Pattern
+    }
+}
+
+/// A situation's row in a compiled program's table (each DM module's
+/// `SITUATIONS`, by situation index): what the machine asks of a situation
+/// before it runs it.
+#[derive(Clone, Copy, Debug)]
+pub struct SitRow {
+    pub kind: Kind,
+    /// Its id's name and arity (`None`: the id is a variable).
+    pub id: Option<(&'static str, usize)>,
+    /// Whether it runs as code (its id is then `id`'s functor:
+    /// [`DmProgram::compiled_id`](super::DmProgram::compiled_id)).
+    pub code: bool,
+    /// Where it is written: line and column in its DM's file.
+    pub at: (u32, u32),
+}
+
+impl SitRow {
+    /// A situation that runs as code, its id named `name/arity`.
+    pub const fn code(kind: Kind, name: &'static str, arity: usize, line: u32, col: u32) -> SitRow {
+        SitRow {
+            kind,
+            id: Some((name, arity)),
+            code: true,
+            at: (line, col),
+        }
+    }
+
+    /// A situation the machine instantiates from its template.
+    pub const fn template(
+        kind: Kind,
+        id: Option<(&'static str, usize)>,
+        line: u32,
+        col: u32,
+    ) -> SitRow {
+        SitRow {
+            kind,
+            id,
+            code: false,
+            at: (line, col),
+        }
+    }
+}
+
+/// One situation of a [`SitTable`], its id's name interned.
+#[derive(Clone, Copy, Debug)]
+struct SitEntry {
+    kind: Kind,
+    id: Option<(Atom, usize)>,
+    code: bool,
+    at: (u32, u32),
+}
+
+/// A compiled program's situations, by DM and situation index (the rows of
+/// each DM's `SITUATIONS`, names interned once when the program is built).
+#[derive(Clone, Debug, Default)]
+pub struct SitTable {
+    /// Per DM: its file, its situations.
+    dms: Vec<(&'static str, Vec<SitEntry>)>,
+}
+
+impl SitTable {
+    /// The table of a program whose DM number `i` is written in file
+    /// `dms[i].0` and has the rows `dms[i].1`.
+    pub fn new(dms: &[(&'static str, &[SitRow])]) -> SitTable {
+        let dms = dms
+            .iter()
+            .map(|&(file, rows)| {
+                let rows = rows
+                    .iter()
+                    .map(|r| SitEntry {
+                        kind: r.kind,
+                        id: r.id.map(|(name, arity)| (Atom::intern(name), arity)),
+                        code: r.code,
+                        at: r.at,
+                    })
+                    .collect();
+                (file, rows)
+            })
+            .collect();
+        SitTable { dms }
+    }
+
+    #[inline]
+    fn entry(&self, dm: DmIx, sit: SitIx) -> &SitEntry {
+        &self.dms[dm as usize].1[sit as usize]
+    }
+
+    /// How many situations DM `dm` has.
+    pub fn count(&self, dm: DmIx) -> usize {
+        self.dms[dm as usize].1.len()
+    }
+
+    pub fn kind(&self, dm: DmIx, sit: SitIx) -> Kind {
+        self.entry(dm, sit).kind
+    }
+
+    /// Whether the situation's id may unify with a value of principal
+    /// functor `functor` (D-21's cheap filter; a variable id: always).
+    pub fn may_select(&self, dm: DmIx, sit: SitIx, functor: Option<(Atom, usize)>) -> bool {
+        match self.entry(dm, sit).id {
+            Some(id) => functor == Some(id),
+            None => true,
+        }
+    }
+
+    /// Where the situation is written (`file:line:col`).
+    pub fn location(&self, dm: DmIx, sit: SitIx) -> String {
+        let (line, col) = self.entry(dm, sit).at;
+        format!("{}:{line}:{col}", self.dms[dm as usize].0)
+    }
+
+    /// Its id's functor when it runs as code.
+    #[inline]
+    pub fn compiled_id(&self, dm: DmIx, sit: SitIx) -> Option<(Atom, usize)> {
+        let e = self.entry(dm, sit);
+        if e.code {
+            e.id
+        } else {
+            None
+        }
+    }
 }

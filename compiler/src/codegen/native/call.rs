@@ -195,21 +195,16 @@ impl Gen<'_> {
             let e = &v.e;
             quote!(let #x = #e;)
         });
-        let ts: Vec<Ident> = (0..args.len()).map(|i| format_ident!("w{}", i)).collect();
         let f = self.atom_native(name)?;
-        let mut saved_terms = Vec::new();
-        let mut saved_names = Vec::new();
-        for (k, &r) in saved.iter().enumerate() {
+        let mut saved_vals = Vec::new();
+        for &r in saved.iter() {
             let v = self.nat_value(&Build::Reg(r), regs)?;
-            let e = v.e;
-            let x = format_ident!("s{}", k);
-            saved_terms.push(quote!(let #x = Native::to_term(&#e, cx.store());));
-            saved_names.push(x);
+            saved_vals.push(super::place(&v));
         }
         let saved_value = if saved.is_empty() {
             quote!(Term::NIL)
         } else {
-            quote!(cx.compound(atoms::DOT, &[#(#saved_names),*]))
+            quote!(cx.compound_of(atoms::DOT, &[#(&#saved_vals),*]))
         };
         // The call given to the machine, as the term code gives it.
         let hand_call = quote! {
@@ -217,9 +212,7 @@ impl Gen<'_> {
             cx.count_transitions(count);
             #(#id_stmts)*
             cx.enter_with_id(#curl, #id);
-            #(let #ts = Native::to_term(&#vs, cx.store());)*
-            let call = native::compound(cx.store(), #f, &[#(#ts),*]);
-            #(#saved_terms)*
+            let call = cx.build_of(#f, &[#(&#vs),*]);
             let saved = #saved_value;
             return Ok(Some(
                 Step::Call { call, saved },
@@ -311,23 +304,17 @@ impl Gen<'_> {
         } else {
             quote!()
         };
-        let mut saved_terms = Vec::new();
-        let mut saved_names = Vec::new();
-        for (k, &r) in saved.iter().enumerate() {
-            let x = format_ident!("s{}", k);
+        let mut saved_vals = Vec::new();
+        for &r in saved.iter() {
             match regs.get(&r) {
-                Some((f, _)) if super::is_fresh(f) => saved_terms.push(quote!(let #x = #f;)),
-                _ => {
-                    let e = self.nat_value(&Build::Reg(r), regs)?.e;
-                    saved_terms.push(quote!(let #x = Native::to_term(&#e, cx.store());));
-                }
+                Some((f, _)) if super::is_fresh(f) => saved_vals.push(quote!(#f)),
+                _ => saved_vals.push(super::place(&self.nat_value(&Build::Reg(r), regs)?)),
             }
-            saved_names.push(x);
         }
         let saved_value = if saved.is_empty() {
             quote!(Term::NIL)
         } else {
-            quote!(cx.compound(atoms::DOT, &[#(#saved_names),*]))
+            quote!(cx.compound_of(atoms::DOT, &[#(&#saved_vals),*]))
         };
         Ok(quote! {
             #hand
@@ -337,7 +324,6 @@ impl Gen<'_> {
             #(#ts)*
             let call = #call_t;
             #eval
-            #(#saved_terms)*
             let saved = #saved_value;
             return Ok(Some(
                 Step::Call { call, saved },
@@ -377,28 +363,24 @@ impl Gen<'_> {
         // In `nat_wait` (fields are references there).
         let curl = Literal::u32_unsuffixed(ix as u32);
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
-        let mut saved_terms = Vec::new();
-        let mut saved_names = Vec::new();
-        for (k, &r) in saved.iter().enumerate() {
+        let mut saved_vals = Vec::new();
+        for &r in saved.iter() {
             let rr = reg(r);
-            let x = format_ident!("s{}", k);
             if names.contains(&rr) {
-                saved_terms.push(quote!(let #x = Native::to_term(&*#rr, cx.store());));
+                saved_vals.push(quote!(#rr));
             } else {
                 return Err("a saved register is not kept".into());
             }
-            saved_names.push(x);
         }
         let saved_value = if saved.is_empty() {
             quote!(Term::NIL)
         } else {
-            quote!(cx.compound(atoms::DOT, &[#(#saved_names),*]))
+            quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
         };
         let wait_arm = quote! {
             Nat::#wv { #(#names),* } => {
                 #(#id_stmts)*
                 cx.enter_with_id(#curl, #id);
-                #(#saved_terms)*
                 let saved = #saved_value;
                 cx.call_typed(callee_dm, callee, saved)
             }
@@ -686,10 +668,8 @@ impl Gen<'_> {
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         let enter = quote! {
             #hand
-            cx.count_transitions(count);
-            count = 0;
             #(#id_stmts)*
-            cx.enter_with_id(#curl, #id);
+            cx.enter_counted(&mut count, #curl, #id);
         };
         let mut stmts = Vec::new();
         let mut performs = Vec::new();
@@ -798,13 +778,13 @@ impl Gen<'_> {
             let perform = if list {
                 quote! {
                     #enter
-                    let t = Native::to_term(&#x, cx.store());
+                    let t = cx.term(&#x);
                     cx.perform_each(&[t], Some(#arc))?;
                 }
             } else {
                 quote! {
                     #enter
-                    let t = Native::to_term(&#x, cx.store());
+                    let t = cx.term(&#x);
                     cx.perform(t, Some(#arc))?;
                 }
             };
@@ -890,8 +870,8 @@ impl Gen<'_> {
                     count = own.min(count);
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
-                    let lt = Native::to_term(#lx, cx.store());
-                    let rterm = Native::to_term(#rx, cx.store());
+                    let lt = cx.term(#lx);
+                    let rterm = cx.term(#rx);
                     cx.arith_condition(#rt::ArithCmp::#opt, lt, rterm, arc_at)?
                 }
             }
@@ -932,7 +912,7 @@ fn ev_as_build(e: &Ev) -> Option<Build> {
 }
 
 /// Whether generated code `ts` mentions the identifier `x`.
-fn mentions(ts: &TokenStream, x: &Ident) -> bool {
+pub(super) fn mentions(ts: &TokenStream, x: &Ident) -> bool {
     ts.clone().into_iter().any(|t| match t {
         proc_macro2::TokenTree::Ident(i) => i == *x,
         proc_macro2::TokenTree::Group(g) => mentions(&g.stream(), x),

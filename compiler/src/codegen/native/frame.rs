@@ -59,13 +59,7 @@ impl Gen<'_> {
         let ps: Vec<Ident> = (0..d.params.len())
             .map(|i| format_ident!("p{}", i))
             .collect();
-        let ts: Vec<Ident> = (0..d.params.len())
-            .map(|i| format_ident!("pt{}", i))
-            .collect();
-        Ok(quote! {{
-            #(let #ts = Native::to_term(&*#ps, cx.store());)*
-            native::compound(cx.store(), #name, &[#(#ts),*])
-        }})
+        Ok(quote!(cx.build_of(#name, &[#(#ps),*])))
     }
 
     /// The locals written back to the machine's frame of this DM.
@@ -75,7 +69,7 @@ impl Gen<'_> {
             let a = self.atom_native(*name)?;
             let l = format_ident!("l{}", i);
             out.push(quote! {
-                let lt = Native::to_term(&*#l, cx.store());
+                let lt = cx.term(&*#l);
                 cx.set_local(#a, lt);
             });
         }

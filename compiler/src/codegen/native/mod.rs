@@ -324,9 +324,7 @@ fn always_returns(code: &TokenStream) -> bool {
 
 fn rec_entry() -> TokenStream {
     quote! {
-        if run.records {
-            cx.record(rec_exp, rec_act, Some(rec_next));
-        }
+        cx.record_if(run.records, rec_exp, rec_act, Some(rec_next));
     }
 }
 
@@ -450,6 +448,50 @@ enum MatchStep {
     /// machine's choice: the value is handed to the machine, never tried
     /// on a later candidate.
     Narrow(Ident, TokenStream),
+}
+
+/// A field's value `e`, `part.clone()` of a part the match owns (the head
+/// or tail of a split, an argument of a compound) that no other step reads:
+/// the part itself, moved into the variant (no clone and drop per visit).
+fn moved_part(e: &TokenStream, steps: &[MatchStep]) -> TokenStream {
+    let ts: Vec<proc_macro2::TokenTree> = e.clone().into_iter().collect();
+    let [proc_macro2::TokenTree::Ident(x), proc_macro2::TokenTree::Punct(dot), proc_macro2::TokenTree::Ident(clone), proc_macro2::TokenTree::Group(g)] =
+        ts.as_slice()
+    else {
+        return e.clone();
+    };
+    if dot.as_char() != '.'
+        || clone != "clone"
+        || g.delimiter() != proc_macro2::Delimiter::Parenthesis
+        || !g.stream().is_empty()
+    {
+        return e.clone();
+    }
+    let owned = steps.iter().any(|s| match s {
+        MatchStep::SplitVal(_, h, t) | MatchStep::Split(_, h, t) => h == x || t == x,
+        MatchStep::ArgsVal(_, _, _, xs) | MatchStep::Args(_, _, _, xs) => xs.contains(x),
+        _ => false,
+    });
+    let reads = steps.iter().filter(|s| s.mentions(x)).count();
+    if owned && reads == 1 {
+        quote!(#x)
+    } else {
+        e.clone()
+    }
+}
+
+impl MatchStep {
+    /// Whether the step's code mentions `x`.
+    fn mentions(&self, x: &Ident) -> bool {
+        match self {
+            MatchStep::If(c) => call::mentions(c, x),
+            MatchStep::Let(_, e) | MatchStep::Narrow(_, e) => call::mentions(e, x),
+            MatchStep::Split(v, ..)
+            | MatchStep::SplitVal(v, ..)
+            | MatchStep::Args(v, ..)
+            | MatchStep::ArgsVal(v, ..) => call::mentions(v, x),
+        }
+    }
 }
 
 /// The DM's native code, for the module.
@@ -1100,9 +1142,14 @@ impl Gen<'_> {
     }
 
     /// `fn id_s<ix>`: situation `ix`'s id as a term, from its fields (the
-    /// one place native code builds it).
+    /// one place native code builds it): a `machine::build_of` per
+    /// compound of the id, the fields (references) and constants its
+    /// arguments.
     fn nat_id_fn(&self, d: &Dm, ix: usize) -> N<TokenStream> {
-        let (stmts, v) = self.nat_id_inline(d, ix, quote!(store))?;
+        let mut stmts = Vec::new();
+        let mut n = 0;
+        let id = self.nat_id_of(d, ix);
+        let (v, _) = self.nat_id_part(d, ix, id, &mut Vec::new(), &mut stmts, &mut n, true)?;
         let params = self.nat_id_params(d, ix)?;
         let params = params.iter().map(|(r, ty)| quote!(#r: &#ty));
         let f = format_ident!("id_s{}", ix);
@@ -1120,6 +1167,92 @@ impl Gen<'_> {
                 #body
             }
         })
+    }
+
+    /// Part `t` (at `path`) of situation `ix`'s id, for [`Gen::nat_id_fn`]:
+    /// the expression and whether it is a reference already (a field); a
+    /// compound is a statement unless it is the whole id (`top`).
+    #[allow(clippy::too_many_arguments)]
+    fn nat_id_part(
+        &self,
+        d: &Dm,
+        ix: usize,
+        t: Term,
+        path: &mut Vec<usize>,
+        stmts: &mut Vec<TokenStream>,
+        n: &mut usize,
+        top: bool,
+    ) -> N<(TokenStream, bool)> {
+        Ok(match self.store.value(t) {
+            Value::Var(_) => {
+                // A repeated variable: its first occurrence's field.
+                let r = match Self::nat_id_reg(d, ix, path) {
+                    Some(r) => r,
+                    None => self.nat_first_reg(d, ix, t)?,
+                };
+                let rr = reg(r);
+                (quote!(#rr), true)
+            }
+            Value::Atom(a) if a == atoms::NIL => (quote!(Term::NIL), false),
+            Value::Atom(a) => {
+                let a = self.atom_native(a)?;
+                (quote!(Term::atom(#a)), false)
+            }
+            Value::Int(i) => {
+                let i = Literal::i64_suffixed(i);
+                (quote!(Term::int(#i)), false)
+            }
+            Value::Compound(name, args) => {
+                let args = args.to_vec();
+                let mut parts = Vec::new();
+                for (i, &a) in args.iter().enumerate() {
+                    path.push(i);
+                    let (e, by_ref) = self.nat_id_part(d, ix, a, path, stmts, n, false)?;
+                    path.pop();
+                    parts.push(if by_ref { e } else { quote!(&#e) });
+                }
+                let f = if name == atoms::DOT {
+                    quote!(atoms::DOT)
+                } else {
+                    self.atom_native(name)?
+                };
+                let e = quote!(machine::build_of(store, #f, &[#(#parts),*]));
+                if top {
+                    return Ok((e, false));
+                }
+                let x = format_ident!("t{}", *n);
+                *n += 1;
+                stmts.push(quote!(let #x = #e;));
+                (quote!(#x), false)
+            }
+            _ => return Err("an id holds a constant that is not native".into()),
+        })
+    }
+
+    /// The register of the first occurrence (pre-order, left to right) of
+    /// id variable `t` of situation `ix`.
+    fn nat_first_reg(&self, d: &Dm, ix: usize, t: Term) -> N<Reg> {
+        fn find(store: &sitlog_runtime::Store, at: Term, var: Term, path: &mut Vec<usize>) -> bool {
+            if store.deref(at) == var {
+                return true;
+            }
+            if let Value::Compound(_, args) = store.value(at) {
+                for (i, &a) in args.iter().enumerate() {
+                    path.push(i);
+                    if find(store, a, var, path) {
+                        return true;
+                    }
+                    path.pop();
+                }
+            }
+            false
+        }
+        let mut path = Vec::new();
+        let var = self.store.deref(t);
+        if !find(self.store, self.nat_id_of(d, ix), var, &mut path) {
+            return Err("an id variable has no register".into());
+        }
+        Self::nat_id_reg(d, ix, &path).ok_or_else(|| "an id variable has no register".into())
     }
 
     /// [`Gen::nat_id_term`] built inline.
@@ -1265,9 +1398,7 @@ impl Gen<'_> {
                                     parts.push(match slot {
                                         Some(o) => {
                                             let x = format_ident!("{}_t", o);
-                                            ts.push(
-                                                quote!(let #x = Native::to_term(&#o, cx.store());),
-                                            );
+                                            ts.push(quote!(let #x = cx.term(&#o);));
                                             quote!(#x)
                                         }
                                         None => self
@@ -1276,7 +1407,7 @@ impl Gen<'_> {
                                     });
                                 }
                                 let f = self.functor_native(*f)?;
-                                ts.push(quote!(let diag_t = native::compound(cx.store(), #f, &[#(#parts),*]);));
+                                ts.push(quote!(let diag_t = cx.build(#f, &[#(#parts),*]);));
                                 quote!(diag_t)
                             }
                             b => self
@@ -1299,11 +1430,11 @@ impl Gen<'_> {
                         let v = self.nat_value(b, &regs)?.e;
                         (
                             quote! {
-                                let out = Native::to_term(&#v, cx.store());
+                                let out = cx.term(&#v);
                                 cx.set_pipe(out);
                             },
                             quote! {
-                                let out = Native::to_term(&#v, cx.store());
+                                let out = cx.term(&#v);
                                 cx.final_out_arg(Some(out))?;
                             },
                         )
@@ -1424,10 +1555,8 @@ impl Gen<'_> {
                     let hand = &d.hand;
                     quote! {
                         #hand
-                        cx.count_transitions(count);
-                        count = 0;
                         #(#id_stmts)*
-                        cx.enter_with_id(#cur, #id);
+                        cx.enter_counted(&mut count, #cur, #id);
                         #(#exps)*
                         cx.set_expectations(&[#(#names),*]);
                         #(#ts)*
@@ -1547,10 +1676,8 @@ impl Gen<'_> {
                     None => {
                         // Not ints, or an overflow: the term code's evaluation.
                         #hand
-                        cx.count_transitions(count);
-                        count = 0;
                         #(#id_stmts)*
-                        cx.enter_with_id(#cur, #id);
+                        cx.enter_counted(&mut count, #cur, #id);
                         #(#ts)*
                         let v = cx.is(None, #t, None)?;
                         let v = cx.store_ref().deref(v);
@@ -1642,10 +1769,8 @@ impl Gen<'_> {
         let hand = &d.hand;
         let enter = quote! {
             #hand
-            cx.count_transitions(count);
-            count = 0;
             #(#id_stmts)*
-            cx.enter_with_id(#cur, #id);
+            cx.enter_counted(&mut count, #cur, #id);
         };
         // An action of `inc`/`get` of the frame's locals, constants and
         // values (`[inc(n, N)]`): done natively, as an exit arc's is; the
@@ -1758,22 +1883,22 @@ impl Gen<'_> {
         stmts.push(quote!(if !run.records {
             count += 1;
         }));
-        // What the machine's calls changed of the locals, read again.
-        if let (Some((fallback, _)), None) = (&conv, atom) {
-            stmts.push(self.nat_reload_locals(d, fallback)?);
-        }
+        // What the machine's calls changed of the locals, read again, and
+        // the values bound at the boundary, converted: all checked in one
+        // `let .. else`, the fallback written once.
         if let Some((fallback, conv)) = conv {
+            let mut checks = Vec::new();
+            if atom.is_none() {
+                checks = self.nat_local_checks(d)?;
+            }
             for (r, ty) in conv {
                 let (x, _) = regs[&r].clone();
                 let rr = reg(r);
                 let rty = rust_ty(&ty)?;
-                stmts.push(quote! {
-                    let Some(#rr) =
-                        cx.to_native::<#rty>(#x)
-                    else #fallback;
-                });
+                checks.push((rr.clone(), quote!(cx.to_native::<#rty>(#x)), quote!()));
                 regs.insert(r, (rr, ty));
             }
+            stmts.push(checked(checks, &fallback));
         }
         let name = self.atom_native(plan.id.0)?;
         *d.rec.borrow_mut() = rec_entry();
@@ -1791,8 +1916,7 @@ impl Gen<'_> {
                 #(#stmts)*
                 let next_at: Nat = { #next };
                 if run.records {
-                    let rec_next = next_at.id_term(p, cx.store());
-                    cx.record(rec_exp, rec_act, Some(rec_next));
+                    cx.record_next(rec_exp, rec_act, |s| next_at.id_term(p, s));
                 }
                 next_at
             }
@@ -1806,22 +1930,19 @@ impl Gen<'_> {
     }
 
     /// The frame's locals read again from the machine's frame after its
-    /// calls (`get`/`set`/`inc`, the evaluator) may have changed them;
-    /// one that no longer converts: `fallback` (the term code's way on).
-    fn nat_reload_locals(&self, d: &Dm, fallback: &TokenStream) -> N<TokenStream> {
+    /// calls (`get`/`set`/`inc`, the evaluator) may have changed them, as
+    /// checks for [`checked`] (one that no longer converts: the fallback,
+    /// the term code's way on).
+    fn nat_local_checks(&self, d: &Dm) -> N<Vec<Check>> {
         let mut out = Vec::new();
         for (i, (name, ty)) in d.locals.iter().enumerate() {
             let l = format_ident!("l{}", i);
+            let v = format_ident!("new_l{}", i);
             let a = self.atom_native(*name)?;
             let ty = rust_ty(ty)?;
-            out.push(quote! {
-                match cx.local_as::<#ty>(#a) {
-                    Some(v) => *#l = v,
-                    None => #fallback,
-                }
-            });
+            out.push((v.clone(), quote!(cx.local_as::<#ty>(#a)), quote!(*#l = #v;)));
         }
-        Ok(quote!(#(#out)*))
+        Ok(out)
     }
 
     /// A final's output slots: for each output parameter of the DM
@@ -1889,7 +2010,7 @@ impl Gen<'_> {
             }
             Build::Reg(r) => {
                 let (v, _) = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
-                quote!(Native::to_term(&#v, cx.store()))
+                quote!(cx.term(&#v))
             }
             Build::Const(t) => return self.nat_const_term(*t, ts, n),
             Build::Compound(f, args) => {
@@ -1898,7 +2019,7 @@ impl Gen<'_> {
                     .map(|a| self.nat_build_term(a, regs, ts, n))
                     .collect::<N<Vec<_>>>()?;
                 let f = self.functor_native(*f)?;
-                quote!(native::compound(cx.store(), #f, &[#(#args),*]))
+                quote!(cx.build(#f, &[#(#args),*]))
             }
         };
         ts.push(quote!(let #x = #e;));
@@ -1925,7 +2046,7 @@ impl Gen<'_> {
                 let f = self.functor_native(*f)?;
                 let x = format_ident!("b{}", *n);
                 *n += 1;
-                ts.push(quote!(let #x = native::compound(cx.store(), #f, &[#(#args),*]);));
+                ts.push(quote!(let #x = cx.build(#f, &[#(#args),*]);));
                 Ok(quote!(#x))
             }
             // A user function, the KB, `assign`...: the evaluator, on the
@@ -2079,7 +2200,7 @@ impl Gen<'_> {
                 let f = self.functor_native(f)?;
                 let x = format_ident!("b{}", *n);
                 *n += 1;
-                ts.push(quote!(let #x = native::compound(cx.store(), #f, &[#(#args),*]);));
+                ts.push(quote!(let #x = cx.build(#f, &[#(#args),*]);));
                 Ok(quote!(#x))
             }
             _ => Err(format!(
@@ -2139,7 +2260,7 @@ impl Gen<'_> {
             match regs.get(r) {
                 Some((x, _)) if is_fresh(x) => lets.push(quote!(let #rr: Term = #x;)),
                 Some((x, _)) => lets.push(quote! {
-                    let #rr: Term = Native::to_term(&#x, cx.store());
+                    let #rr: Term = cx.term(&#x);
                 }),
                 None => return Err(format!("register r{r} is read unset")),
             }
@@ -2430,11 +2551,8 @@ impl Gen<'_> {
                 let rec = d.rec.borrow().clone();
                 Ok(quote! {{
                     #hand
-                    cx.count_transitions(count);
                     // Recorded, the situation was entered with its id.
-                    if !run.records {
-                        cx.enter(#curl, #cur_name);
-                    }
+                    cx.count_and_enter(count, run.records, #curl, #cur_name);
                     #out
                     let rec_next = Term::atom(#a);
                     #rec
@@ -2526,7 +2644,7 @@ impl Gen<'_> {
                     .map(|p| match p {
                         Ok(v) => {
                             let e = &v.e;
-                            quote!(Native::to_term(&#e, cx.store()))
+                            quote!(cx.term(&#e))
                         }
                         Err(t) => quote!(#t),
                     })
@@ -2537,22 +2655,19 @@ impl Gen<'_> {
                 let fallback = quote! {{
                     cx.count_transitions(count);
                     let ts = [#(#terms),*];
-                    let rec_next = native::compound(cx.store(), #f, &ts);
+                    let rec_next = cx.build(#f, &ts);
                     #out
                     #rec
                     return cx.goto(rec_next, arc_at).map(Some);
                 }};
                 let mut vals = Vec::new();
+                let mut checks = Vec::new();
                 for (k, p) in parts.into_iter().enumerate() {
                     match p {
                         Ok(v) => vals.push(v),
                         Err(t) => {
                             let x = format_ident!("x{}", k);
-                            pre.push(quote! {
-                                let Some(#x) =
-                                    cx.to_native::<Val>(#t)
-                                else #fallback;
-                            });
+                            checks.push((x.clone(), quote!(cx.to_native::<Val>(#t)), quote!()));
                             vals.push(V {
                                 e: quote!(#x.clone()),
                                 ty: Ty::Ground,
@@ -2561,7 +2676,8 @@ impl Gen<'_> {
                     }
                 }
                 // What the evaluator changed of the locals, read again.
-                pre.push(self.nat_reload_locals(d, &fallback)?);
+                checks.extend(self.nat_local_checks(d)?);
+                pre.push(checked(checks, &fallback));
                 let sel = self.nat_select(d, cur, *name, vals, cur_name)?;
                 Ok(quote!({ #(#pre)* #sel }))
             }
@@ -2667,6 +2783,17 @@ impl Gen<'_> {
             if !ok {
                 continue; // cannot match a value of this type
             }
+            // A field bound by a `let` that no test reads is computed
+            // where the variant is built (no block per field, no clone
+            // when an earlier test fails).
+            let mut inline: HashMap<Ident, TokenStream> = HashMap::new();
+            for (k, s) in steps.iter().enumerate() {
+                if let MatchStep::Let(x, e) = s {
+                    if !steps[k + 1..].iter().any(|t| t.mentions(x)) {
+                        inline.insert(x.clone(), moved_part(e, &steps));
+                    }
+                }
+            }
             let fields = self.nat_fields(d, j)?;
             let mut inits = Vec::new();
             for (r, _) in &fields {
@@ -2676,13 +2803,17 @@ impl Gen<'_> {
                     .map(|(x, _)| x.clone())
                     .ok_or("an id field is not bound by its pattern")?;
                 let rr = reg(*r);
-                inits.push(quote!(#rr: #x));
+                match inline.get(&x) {
+                    Some(e) => inits.push(quote!(#rr: #e)),
+                    None => inits.push(quote!(#rr: #x)),
+                }
             }
             let v = variant(j);
             let mut code = quote!(break 'sel Nat::#v { #(#inits),* };);
             for s in steps.into_iter().rev() {
                 code = match s {
                     MatchStep::If(c) => quote!(if #c { #code }),
+                    MatchStep::Let(x, _) if inline.contains_key(&x) => code,
                     MatchStep::Let(x, e) => quote!({ let #x = #e; #code }),
                     MatchStep::Narrow(x, e) => quote! {{
                         let Some(#x) = #e else { break 'hand; };
@@ -2721,7 +2852,6 @@ impl Gen<'_> {
         let hand = &d.hand;
         let out = d.out.borrow().clone();
         let rec = d.rec.borrow().clone();
-        let arg_terms: Vec<Ident> = (0..args.len()).map(|i| format_ident!("w{}", i)).collect();
         Ok(quote! {
             'sel: {
                 #(#lets)*
@@ -2729,13 +2859,9 @@ impl Gen<'_> {
                 // No situation takes it here: the machine selects (or says
                 // that none does).
                 #hand
-                cx.count_transitions(count);
                 // Recorded, the situation was entered with its id.
-                if !run.records {
-                    cx.enter(#curl, #cur_name);
-                }
-                #(let #arg_terms = Native::to_term(&#arg_names, cx.store());)*
-                let rec_next = native::compound(cx.store(), #f, &[#(#arg_terms),*]);
+                cx.count_and_enter(count, run.records, #curl, #cur_name);
+                let rec_next = cx.build_of(#f, &[#(&#arg_names),*]);
                 #out
                 #rec
                 return cx.goto(rec_next, arc_at).map(Some);
@@ -3192,5 +3318,28 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
             Ok(quote!({ let _ = #e; Ground(Term::NIL) }))
         }
         _ => Err(format!("a value of type {} where {} is expected", v.ty, to)),
+    }
+}
+
+/// A checked conversion: the name it binds, the `Option` expression, what
+/// is done with the value once all have converted.
+type Check = (Ident, TokenStream, TokenStream);
+
+/// The checked conversions `checks` in one `let .. else`, the `fallback`
+/// (a block that returns) written once; then the stores.
+fn checked(checks: Vec<Check>, fallback: &TokenStream) -> TokenStream {
+    let names: Vec<&Ident> = checks.iter().map(|c| &c.0).collect();
+    let exprs: Vec<&TokenStream> = checks.iter().map(|c| &c.1).collect();
+    let stores: Vec<&TokenStream> = checks.iter().map(|c| &c.2).collect();
+    match checks.len() {
+        0 => quote!(),
+        1 => quote! {
+            let Some(#(#names)*) = #(#exprs)* else #fallback;
+            #(#stores)*
+        },
+        _ => quote! {
+            let (#(Some(#names)),*) = (#(#exprs),*) else #fallback;
+            #(#stores)*
+        },
     }
 }

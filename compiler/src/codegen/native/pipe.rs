@@ -88,7 +88,7 @@ impl Gen<'_> {
         *d.out.borrow_mut() = quote!();
         let n = n?;
         Ok(quote! {{
-            let pipe_out = Native::to_term(&#v, cx.store());
+            let pipe_out = cx.term(&#v);
             let next_at = { #n };
             #set
             next_at
