@@ -636,6 +636,13 @@ fn a_broken_dm_refuses_only_the_runs_that_reach_it() {
     for located in ["E0230", "b.dm:2:27", "E0104", "b.dm:3:47", "E0204"] {
         assert!(stderr.contains(located), "{located}: {stderr}");
     }
+    // A main DM that does not exist: every error is said.
+    let (code, stderr) = run(&["--main", "c"]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(
+        stderr.contains("E0230") && !stderr.contains("W0232"),
+        "{stderr}"
+    );
     // Task b typed: the call stops the run with b's first error, located.
     let (code, stderr) = run(&["--script", "b.txt"]);
     assert_eq!(code, Some(1), "{stderr}");

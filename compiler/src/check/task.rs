@@ -71,7 +71,9 @@ pub(super) fn leave_out(
     diags: &mut Vec<Diagnostic>,
     task: Atom,
 ) -> Vec<LeftOut> {
-    if !diags.iter().any(Diagnostic::is_error) {
+    // Without errors there is nothing to leave out; without a DM of that
+    // name the run cannot start, and every error is said.
+    if !diags.iter().any(Diagnostic::is_error) || !program.dms.iter().any(|d| d.name == task) {
         return Vec::new();
     }
     let reached = reachable(program, task);
@@ -140,4 +142,64 @@ pub(super) fn leave_out(
             l
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::check::{check_opts, codes, CheckOptions};
+    use crate::load::load_sources;
+    use sitlog_syntax::Atom;
+
+    /// `main` calls `a(1)`, which calls `c`; `b` is named by nothing.
+    const MAIN: &str = "diag_mod(main, [[id ==> is, type ==> recursive, embedded_dm ==> a(1), arcs ==> [fs : empty => fs]], [id ==> fs, type ==> final]], []).\n";
+    const A: &str = "diag_mod(a(_), [[id ==> is, type ==> recursive, embedded_dm ==> c, arcs ==> [fs : empty => fs]], [id ==> fs, type ==> final]], []).\n";
+    const GOOD: &str = "diag_mod(NAME, [[id ==> is, type ==> neutral, arcs ==> [empty : empty => fs]], [id ==> fs, type ==> final]], []).\n";
+    const BROKEN: &str = "diag_mod(NAME, [[id ==> is, type ==> neutrall, arcs ==> [empty : empty => fs]], [id ==> fs, type ==> final]], []).\n";
+
+    fn run_check(main: &str, b: &str, c: &str) -> (Vec<String>, Vec<String>, bool) {
+        let (b, c) = (b.replace("NAME", "b"), c.replace("NAME", "c"));
+        let files = [
+            ("main.dm", main),
+            ("a.dm", A),
+            ("b.dm", b.as_str()),
+            ("c.dm", c.as_str()),
+        ];
+        let (program, diags) = load_sources(&files);
+        let options = CheckOptions {
+            task: Some(Atom::intern("main")),
+            ..CheckOptions::default()
+        };
+        let (result, diags) = check_opts(program, diags, options);
+        let errors = diags
+            .iter()
+            .filter(|d| d.is_error())
+            .map(|d| d.code.to_owned())
+            .collect();
+        let left = diags
+            .iter()
+            .filter(|d| d.code == codes::LEFT_OUT)
+            .map(|d| d.message.clone())
+            .collect();
+        (errors, left, result.is_ok())
+    }
+
+    #[test]
+    fn only_what_the_task_reaches_by_name_refuses_it() {
+        // c is reached through a(1): its error refuses the run.
+        let (errors, left, ok) = run_check(MAIN, GOOD, BROKEN);
+        assert_eq!(
+            (errors, left.len(), ok),
+            (vec!["E0230".to_owned()], 0, false)
+        );
+        // b is named by nothing: left out, the rest checked.
+        let (errors, left, ok) = run_check(MAIN, BROKEN, GOOD);
+        assert!(errors.is_empty() && ok, "{errors:?}");
+        assert_eq!(left.len(), 1);
+        assert!(left[0].starts_with("DM `b/0` has 1 error(s)"), "{left:?}");
+        // A name computed at run time reaches no DM here: c is left out too.
+        let computed = MAIN.replace("embedded_dm ==> a(1)", "embedded_dm ==> M, in_arg ==> M");
+        let (errors, left, ok) = run_check(&computed, BROKEN, BROKEN);
+        assert!(errors.is_empty() && ok, "{errors:?}");
+        assert_eq!(left.len(), 2, "{left:?}");
+    }
 }
