@@ -237,8 +237,6 @@ pub fn run_watched(
         .run(&watched, functions, args, assets)
 }
 
-/// `code`, after the report of a run stopped before its task ran (with
-/// `--format json`; status `error`, `message`) is written on stdout.
 /// The name of the DM that `--main` names (`m` for `m(1)`), if it reads.
 fn task_name(main: &str) -> Option<sitlog_syntax::Atom> {
     let name = main.split('(').next()?.trim();
@@ -249,6 +247,8 @@ fn task_name(main: &str) -> Option<sitlog_syntax::Atom> {
     (!name.is_empty()).then(|| sitlog_syntax::Atom::intern(name))
 }
 
+/// `code`, after the report of a run stopped before its task ran (with
+/// `--format json`; status `error`, `message`) is written on stdout.
 fn stopped(json: bool, code: u8, message: &str) -> u8 {
     if json {
         use std::io::Write as _;

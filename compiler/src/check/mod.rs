@@ -5,7 +5,10 @@
 //! what a file that could not be read may have declared is not reported as
 //! missing. Linear in the size of the program. A
 //! program without errors becomes a [`Checked`] program: later stages accept
-//! only that type, so an unchecked program cannot reach them.
+//! only that type, so an unchecked program cannot reach them. For a run
+//! ([`CheckOptions::task`]), a DM with errors that the run cannot reach by
+//! name is first left out of the program (module `task`, W0232), so a
+//! [`Checked`] program still holds only DMs without errors.
 
 use crate::ast::{Dm, Program, SituationKind};
 use crate::diag::{Diagnostic, Severity};
