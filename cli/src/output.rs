@@ -131,6 +131,7 @@ pub fn checked_ir_said(
         d.is_error()
             || deny_warnings
             || (options.legacy && d.code == sitlog_compiler::check::codes::DUPLICATE_DM_IDENTICAL)
+            || d.code == sitlog_compiler::check::codes::LEFT_OUT
     }) {
         sitlog_runtime::errprint!("{}", diag::render_human(d, program_sources, color));
     }

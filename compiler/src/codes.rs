@@ -142,6 +142,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         "an exit arc that names no final situation of the embedded DM, while each of its final situations has another exit arc: never taken (E0218 when a final situation is left without one)",
     ),
     (
+        check::LEFT_OUT,
+        "(`sitlogc run`) a DM with errors that the run's main DM does not reach by name: left out of the run, its errors warnings; a run that reaches it (a name computed at run time) stops there with its first error",
+    ),
+    (
         check::OS_ACCESS,
         "a directive or clause of the application's Prolog files reaches the operating system (shell, processes, sockets, native code, `open/3,4` for writing, loading code at run time or from an absolute or `$SITLOG_HOME` path): a run refuses it unless given `--allow-os` (the trust model, [reliability](reliability.md#trust-model))",
     ),

@@ -13,6 +13,14 @@ impl DmProgram for Ir {
     fn dm_by_name(&self, name: Atom) -> Option<DmIx> {
         Ir::dm_by_name(self, name)
     }
+    fn left_out(&self, name: Atom) -> Option<String> {
+        self.left_out.iter().find(|l| l.name == name).map(|l| {
+            format!(
+                "DM `{}/{}` was left out of this run for its errors; the first: {}",
+                l.name, l.arity, l.error
+            )
+        })
+    }
     fn dm_name(&self, dm: DmIx) -> Atom {
         self.dms[dm as usize].name
     }

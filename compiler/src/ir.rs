@@ -41,6 +41,10 @@ pub struct Ir {
     /// The DM source files, for run-time errors shown on the source
     /// ([`IrSituation::source`]).
     pub sources: crate::source::SourceMap,
+    /// The DMs the checker left out of this run for their errors
+    /// ([`Checked::left_out`]): a call of one is a run-time error quoting
+    /// its first error.
+    pub left_out: Vec<crate::check::LeftOut>,
 }
 
 /// Where a situation and its expressions are written (run-time errors
@@ -303,6 +307,7 @@ pub fn lower(checked: &Checked) -> Ir {
         .collect();
     store.freeze();
     Ir {
+        left_out: checked.left_out().to_vec(),
         sources: program.sources.clone(),
         function_values,
         store,

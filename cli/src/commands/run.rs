@@ -59,6 +59,9 @@ pub fn run_app(
     let check_options = sitlog_compiler::check::CheckOptions {
         unresolved_as_warnings: strictness.allow_unresolved || legacy.is_some(),
         legacy: legacy.is_some(),
+        // Only what the run can reach refuses it: a DM with errors that
+        // the main DM does not name is left out, with a warning (W0232).
+        task: task_name(&args.main),
         ..Default::default()
     };
     let deny = match deny_warnings_said(app, strictness.deny_warnings) {
@@ -232,6 +235,16 @@ pub fn run_watched(
     runner()
         .wrap_perception(wrap)
         .run(&watched, functions, args, assets)
+}
+
+/// The name of the DM that `--main` names (`m` for `m(1)`), if it reads.
+fn task_name(main: &str) -> Option<sitlog_syntax::Atom> {
+    let name = main.split('(').next()?.trim();
+    let name = name
+        .strip_prefix('\'')
+        .and_then(|n| n.strip_suffix('\''))
+        .unwrap_or(name);
+    (!name.is_empty()).then(|| sitlog_syntax::Atom::intern(name))
 }
 
 /// `code`, after the report of a run stopped before its task ran (with

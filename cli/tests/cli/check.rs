@@ -128,3 +128,32 @@ fn big_file(size: usize) {
     let (code, diags) = check("big.dm", src.as_bytes());
     assert_eq!(code, 0, "{:?}", diags.first());
 }
+
+/// `sitlogc check` reports every DM's errors, a DM that the main DM does
+/// not reach by name included (as `cargo check` reports an error in a
+/// function nothing calls); `sitlogc run` leaves such a DM out (W0232,
+/// legacy::a_broken_dm_refuses_only_the_runs_that_reach_it).
+#[test]
+fn errors_of_a_dm_that_main_does_not_reach_are_errors() {
+    let dir = std::env::temp_dir().join(format!("sitlogc-cli-{}-unreached", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("main.dm"), GOOD).unwrap();
+    std::fs::write(
+        dir.join("other.dm"),
+        "diag_mod(other, [[id ==> is, type ==> neutrall, arcs ==> [empty : [] => fs]], [id ==> fs, type ==> final]], []).\n",
+    )
+    .unwrap();
+    let out = sitlogc()
+        .args(["check", "--format", "json"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("\"E0230\"") && !stdout.contains("W0232"),
+        "{stdout}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

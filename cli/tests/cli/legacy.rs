@@ -243,10 +243,17 @@ individuals(KB, N) :-
     // mode, open tails and `screen` of a variable, each in a DM of its own
     // that `main` calls in turn; its functions also consult a sibling app's
     // file through `$SITLOG_HOME`.
+    // ... and a DM that no task reaches by name, broken as the original
+    // runs it (left out: W0232).
     write(
         &root,
         "apps/all/models",
-        "'main.dm'.\n'tools/helper.dm'.\n'tools/helper_copy.dm'.\n",
+        "'main.dm'.\n'tools/helper.dm'.\n'tools/helper_copy.dm'.\n'tools/broken.dm'.\n",
+    );
+    write(
+        &root,
+        "apps/all/tools/broken.dm",
+        &TASK_B.replace("diag_mod(b,", "diag_mod(broken,"),
     );
     write(
         &root,
@@ -310,8 +317,10 @@ fn run(root: &Path, extra: &[&str], home_env: Option<&Path>) -> std::process::Ou
 /// call's open tails closed as the original's evaluator of lists closes
 /// them; `screen(X)` of an unbound `X` showing the first caption (the
 /// original's service clause for `screen([A|Rest])` and its message
-/// formatter); and the tree is the application: a consult of a sibling
-/// app's file by a `$SITLOG_HOME` path needs no `--allow-os`.
+/// formatter); the tree is the application: a consult of a sibling
+/// app's file by a `$SITLOG_HOME` path needs no `--allow-os`; and a broken
+/// DM that `main` does not reach is left out (W0232), as the original never
+/// looks into it.
 #[test]
 fn runs_an_application_of_the_original_unmodified() {
     let root = tree("run");
@@ -344,6 +353,11 @@ fn runs_an_application_of_the_original_unmodified() {
     );
     // The DM defined twice identically: a warning, the first is used.
     assert!(stderr.contains("W0203"), "{stderr}");
+    // The broken DM no task reaches: left out, with a warning.
+    assert!(
+        stderr.contains("W0232") && stderr.contains("broken.dm:1:10"),
+        "{stderr}"
+    );
     // The update was saved by the layer's own clause (writeq, one line), in
     // a form the layer reads back.
     let kb = root.join("knowledge_base/shop.kb");
@@ -367,6 +381,7 @@ fn runs_an_application_of_the_original_unmodified() {
         .unwrap();
     let native_err = String::from_utf8_lossy(&native.stderr);
     assert_eq!(native.status.code(), Some(0), "{native_err}");
+    assert!(native_err.contains("W0232"), "{native_err}");
     assert_eq!(lines(&native_err, "Golem says: "), said, "{native_err}");
     assert_eq!(
         lines(&native_err, "Golem prints on screen: "),
@@ -552,5 +567,103 @@ fn a_file_outside_the_original_tree_is_refused_under_legacy() {
         "{stderr}"
     );
     let _ = std::fs::remove_file(&elsewhere);
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// The dispatcher of the original's applications: `main` runs the task
+/// typed (`res(T).`), a DM named at run time.
+const DISPATCH: &str = r#"diag_mod(main,
+  [ [ id ==> is, type ==> keyboard, arcs ==> [ res(T) : empty => go(T) ] ],
+    [ id ==> go(T), type ==> recursive, embedded_dm ==> T, arcs ==> [ fs : empty => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#;
+
+const TASK_A: &str = "diag_mod(a, [ [ id ==> is, type ==> neutral, arcs ==> [ empty : say(done) => fs ] ],\n  [ id ==> fs, type ==> final ] ], []).\n";
+
+/// Task `b`'s DM, broken as the original's loader does not see: a type
+/// that is no type (E0230), arcs that are no list (E0104), a situation
+/// without `id` (E0204).
+const TASK_B: &str = r#"diag_mod(b,
+  [ [ id ==> is, type ==> neutrall, arcs ==> [ empty : say(never) => more ] ],
+    [ id ==> more, type ==> neutral, arcs ==> foo ],
+    [ type ==> neutral, arcs ==> [ empty : empty => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#;
+
+/// Issue 39: the original reads every DM file at start (a syntax error in
+/// any stops every task) but looks into a DM only when its run reaches it.
+/// A run refuses only for errors in what it can reach by name from its main
+/// DM; a broken DM it cannot reach is left out with a warning (W0232, at
+/// the DM's head), and a call of it by a name computed at run time stops
+/// the run there with its first error, located. (`apps/all` of [`tree`]
+/// has such a DM too, under `--legacy`.)
+#[test]
+fn a_broken_dm_refuses_only_the_runs_that_reach_it() {
+    let root = std::env::temp_dir().join(format!("sitlogc-legacy-tasks-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    write(&root, "tasks/models", "'main.dm'.\n'a.dm'.\n'b.dm'.\n");
+    write(&root, "tasks/main.dm", DISPATCH);
+    write(&root, "tasks/a.dm", TASK_A);
+    write(&root, "tasks/b.dm", TASK_B);
+    write(&root, "a.txt", "res(a).\n");
+    write(&root, "b.txt", "res(b).\n");
+    let run = |args: &[&str]| {
+        let out = sitlogc()
+            .current_dir(&root)
+            .args(["run", "tasks"])
+            .args(args)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        (out.status.code(), stderr)
+    };
+    // Task a, named (`--main a`) or typed: runs to its end, b left out.
+    for args in [&["--main", "a"][..], &["--script", "a.txt"]] {
+        let (code, stderr) = run(args);
+        assert_eq!(code, Some(0), "{args:?}: {stderr}");
+        assert!(stderr.contains("Golem says: done"), "{stderr}");
+        assert!(
+            stderr.contains("[W0232] Warning") && stderr.contains("b.dm:1:10"),
+            "{args:?}: {stderr}"
+        );
+        assert!(!stderr.contains("] Error"), "{args:?}: {stderr}");
+    }
+    // Task b named: refused with its errors, located.
+    let (code, stderr) = run(&["--main", "b"]);
+    assert_eq!(code, Some(1), "{stderr}");
+    for located in ["E0230", "b.dm:2:27", "E0104", "b.dm:3:47", "E0204"] {
+        assert!(stderr.contains(located), "{located}: {stderr}");
+    }
+    // A main DM that does not exist: every error is said.
+    let (code, stderr) = run(&["--main", "c"]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(
+        stderr.contains("E0230") && !stderr.contains("W0232"),
+        "{stderr}"
+    );
+    // Task b typed: the call stops the run with b's first error, located.
+    let (code, stderr) = run(&["--script", "b.txt"]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(
+        stderr.contains("DM `b/0` was left out of this run")
+            && stderr.contains("b.dm:2:27: error[E0230]"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("Golem says: never"), "{stderr}");
+    // A syntax error in b stops every task at start, as the original's
+    // `read/1` of every DM file does.
+    write(
+        &root,
+        "tasks/b.dm",
+        &TASK_B.replace("final ] ],", "final ] ,"),
+    );
+    let (code, stderr) = run(&["--main", "a"]);
+    assert_ne!(code, Some(0), "{stderr}");
+    assert!(
+        stderr.contains("E0001") && stderr.contains("b.dm:"),
+        "{stderr}"
+    );
     let _ = std::fs::remove_dir_all(&root);
 }

@@ -5,7 +5,10 @@
 //! what a file that could not be read may have declared is not reported as
 //! missing. Linear in the size of the program. A
 //! program without errors becomes a [`Checked`] program: later stages accept
-//! only that type, so an unchecked program cannot reach them.
+//! only that type, so an unchecked program cannot reach them. For a run
+//! ([`CheckOptions::task`]), a DM with errors that the run cannot reach by
+//! name is first left out of the program (module `task`, W0232), so a
+//! [`Checked`] program still holds only DMs without errors.
 
 use crate::ast::{Dm, Program, SituationKind};
 use crate::diag::{Diagnostic, Severity};
@@ -18,11 +21,13 @@ mod calls;
 mod os_access;
 mod prolog_depth;
 mod situations;
+mod task;
 mod terms;
 mod unbound;
 mod variables;
 
 use situations::Broken;
+pub use task::LeftOut;
 use terms::*;
 
 /// Diagnostic codes of the checker.
@@ -58,6 +63,7 @@ pub mod codes {
     pub const ACTION_ARITY: &str = "W0229";
     pub const UNKNOWN_SITUATION_TYPE: &str = "E0230";
     pub const DEAD_EXIT: &str = "W0231";
+    pub const LEFT_OUT: &str = "W0232";
     pub const OS_ACCESS: &str = "W0240";
     pub const PROLOG_TOO_DEEP: &str = "E0241";
 }
@@ -66,11 +72,17 @@ pub mod codes {
 #[derive(Debug)]
 pub struct Checked {
     program: Program,
+    left_out: Vec<LeftOut>,
 }
 
 impl Checked {
     pub fn program(&self) -> &Program {
         &self.program
+    }
+    /// The DMs a run of [`CheckOptions::task`] left out for their errors
+    /// (not in [`Checked::program`]).
+    pub fn left_out(&self) -> &[LeftOut] {
+        &self.left_out
     }
     pub fn into_program(self) -> Program {
         self.program
@@ -148,6 +160,12 @@ pub struct CheckOptions {
     /// application has no copy of (`sitlogc` passes the behaviour library
     /// built into it); `None`: nowhere.
     pub library: Option<&'static crate::load::Library>,
+    /// The DM a run starts from (`sitlogc run`'s `--main`): a DM with
+    /// errors that it cannot reach by name is left out of the program
+    /// (W0232, its errors warnings; [`Checked::left_out`]), as the original
+    /// looks into a DM only when its run reaches it. `None` (`sitlogc
+    /// check`, the editor): every DM's errors are errors.
+    pub task: Option<Atom>,
 }
 
 /// [`check`] with [`CheckOptions`].
@@ -169,11 +187,16 @@ pub fn check_opts(
             d.severity = crate::diag::Severity::Warning;
         }
     }
+    let mut program = program;
+    let left_out = match options.task {
+        Some(task) => task::leave_out(&mut program, &mut diags, task),
+        None => Vec::new(),
+    };
     crate::diag::sort(&mut diags);
     if diags.iter().any(Diagnostic::is_error) {
         (Err(program), diags)
     } else {
-        (Ok(Checked { program }), diags)
+        (Ok(Checked { program, left_out }), diags)
     }
 }
 

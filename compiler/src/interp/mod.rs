@@ -86,6 +86,9 @@ impl DmProgram for Resolved<'_> {
     fn dm_by_name(&self, name: Atom) -> Option<DmIx> {
         self.ir.dm_by_name(name)
     }
+    fn left_out(&self, name: Atom) -> Option<String> {
+        DmProgram::left_out(self.ir, name)
+    }
     fn dm_name(&self, dm: DmIx) -> Atom {
         DmProgram::dm_name(self.ir, dm)
     }

@@ -29,6 +29,12 @@ pub enum Visit {
 pub trait DmProgram {
     /// The first DM in load order with this name (D-3: arity is not compared).
     fn dm_by_name(&self, name: Atom) -> Option<DmIx>;
+    /// Why no DM named `name` is in the program when one was left out of
+    /// this run for its errors (a DM that the run's main DM does not reach
+    /// by name: issue 39): a call of it is a run-time error that says so.
+    fn left_out(&self, _name: Atom) -> Option<String> {
+        None
+    }
     fn dm_name(&self, dm: DmIx) -> Atom;
     fn situation_count(&self, dm: DmIx) -> usize;
     fn kind(&self, dm: DmIx, sit: SitIx) -> Kind;

@@ -88,7 +88,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             ));
         };
         let Some(dm) = self.program.dm_by_name(name) else {
-            return Err(self.err(format!("there is no DM named `{name}`"), sit, None));
+            let why = self.program.left_out(name);
+            let message = why.unwrap_or_else(|| format!("there is no DM named `{name}`"));
+            return Err(self.err(message, sit, None));
         };
         let head = self.program.fresh_head(dm, &mut self.store);
         if !self.store.unify(head, call) {
