@@ -2603,12 +2603,14 @@ impl Gen<'_> {
     ) -> N<TokenStream> {
         let curl = Literal::u32_unsuffixed(cur as u32);
         let arg_names: Vec<Ident> = (0..args.len()).map(|i| format_ident!("v{}", i)).collect();
+        // Each value selected by reference where it lies (a register or
+        // a frame field, not a clone): the candidates read it as `(*v<i>)`.
         let lets: Vec<TokenStream> = args
             .iter()
             .zip(&arg_names)
             .map(|(v, n)| {
-                let e = &v.e;
-                quote!(let #n = #e;)
+                let e = place(v);
+                quote!(let #n = &#e;)
             })
             .collect();
         let mut candidates = Vec::new();
@@ -2630,7 +2632,7 @@ impl Gen<'_> {
                 let arg = V {
                     e: {
                         let x = &arg_names[i];
-                        quote!(#x)
+                        quote!((*#x))
                     },
                     ty: v.ty.clone(),
                 };
@@ -2718,7 +2720,7 @@ impl Gen<'_> {
                 if !run.records {
                     cx.enter(#curl, #cur_name);
                 }
-                #(let #arg_terms = Native::to_term(&#arg_names, cx.store());)*
+                #(let #arg_terms = Native::to_term(#arg_names, cx.store());)*
                 let rec_next = native::compound(cx.store(), #f, &[#(#arg_terms),*]);
                 #out
                 #rec
@@ -2757,8 +2759,16 @@ impl Gen<'_> {
                 let r = Self::nat_id_reg(d, j, path).ok_or("an id variable has no register")?;
                 let ty = d.types[j].regs[r as usize].ty.clone();
                 let x = format_ident!("f{}", r);
+                // A part taken apart for this candidate (`h0`, `l0`,
+                // `g0_1`: its own value, read once) moves into the field;
+                // the selected value itself (`v0`) is read again by later
+                // candidates and the fallback, so it is cloned.
                 let from = V {
-                    e: quote!(#e.clone()),
+                    e: if is_selected_value(e) {
+                        quote!(#e.clone())
+                    } else {
+                        quote!(#e)
+                    },
                     ty: v.ty.clone(),
                 };
                 match coerce(&from, &ty) {
@@ -2977,6 +2987,19 @@ impl Gen<'_> {
 
 /// Fresh names `g{n}_{k}` for the `len` arguments of a compound matched
 /// natively (`n` counts the matches of a situation).
+/// Whether `e` is one of [`Gen::nat_select`]'s selected values `(*v<i>)`
+/// (read by reference, shared by every candidate), not a part one candidate's steps took
+/// apart (`h<n>`, `l<n>`, `g<n>_<k>`: owned by that candidate alone).
+fn is_selected_value(e: &TokenStream) -> bool {
+    let s = e.to_string();
+    let s = s
+        .strip_prefix("(* ")
+        .and_then(|s| s.strip_suffix(')'))
+        .unwrap_or(&s);
+    s.strip_prefix('v')
+        .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
+}
+
 fn arg_idents(n: &mut usize, len: usize) -> Vec<Ident> {
     let xs = (0..len).map(|k| format_ident!("g{}_{}", *n, k)).collect();
     *n += 1;
