@@ -531,6 +531,11 @@ struct Dm<'a> {
     /// (`run.records`), as the term code makes it; empty in exit arcs
     /// (native only when no history is kept, see `call`).
     rec: std::cell::RefCell<TokenStream>,
+    /// While a visit's own arcs are generated: the register its in_arg
+    /// read the pipe into (the term read is `pipe_in`), so that an
+    /// out_arg handing that register back sets the pipe to the term read
+    /// instead of converting the value again ([`Gen::nat_next_out`]).
+    pipe_in: std::cell::Cell<Option<Reg>>,
 }
 
 impl Dm<'_> {
@@ -945,6 +950,7 @@ impl Gen<'_> {
             id_n: Default::default(),
             outputs: outputs.clone(),
             outs: std::cell::RefCell::new(outputs.iter().map(Option::is_some).collect()),
+            pipe_in: std::cell::Cell::new(None),
         };
         d.hand = self.nat_hand(&d)?;
         // Each situation's code, given which others have native code (a
@@ -1206,6 +1212,14 @@ impl Gen<'_> {
     /// The code of one visit of situation `ix` (its fields bound): returns
     /// from `run_native` or gives the next `Nat`.
     fn native_visit(&self, d: &Dm, ix: usize, fields: &[(Reg, Ty)]) -> N<TokenStream> {
+        d.pipe_in.set(None);
+        let code = self.native_visit_arcs(d, ix, fields);
+        d.pipe_in.set(None);
+        code
+    }
+
+    /// [`Gen::native_visit`], with [`Dm::pipe_in`] set once the pipe is read.
+    fn native_visit_arcs(&self, d: &Dm, ix: usize, fields: &[(Reg, Ty)]) -> N<TokenStream> {
         let plan = d.plans[ix];
         let st = &d.types[ix];
         if matches!(plan.in_arg, Some((_, true, _))) {
@@ -1229,6 +1243,7 @@ impl Gen<'_> {
                     let ty = st.regs[*r as usize].ty.clone();
                     stmts.push(self.nat_pipe_in(d, ix, *r, &ty)?);
                     regs.insert(*r, (reg(*r), ty));
+                    d.pipe_in.set(Some(*r));
                 }
                 Init::Fresh | Init::IdArg(_) | Init::IdPath(_) => {}
             }
