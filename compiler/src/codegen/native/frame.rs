@@ -361,8 +361,18 @@ impl Gen<'_> {
                         return Ok(step);
                     }
                     if returning {
-                        frames.pop();
                         returning = false;
+                        // The caller called again (a loop of calls): the
+                        // new callee takes the finished one's place.
+                        if !gone {
+                            if let Some(callee) = call.take() {
+                                if let Some(top) = frames.last_mut() {
+                                    *top = callee;
+                                }
+                                continue;
+                            }
+                        }
+                        frames.pop();
                     }
                     if gone {
                         // The frames below the running one are the machine's now.
