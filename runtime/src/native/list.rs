@@ -100,6 +100,7 @@ impl<T> List<T> {
     /// The first element and the rest, which shares this list's storage
     /// (constant time, no allocation, no element copied): what selecting
     /// `try([P|Ps])` does.
+    #[inline]
     pub fn split_first(&self) -> Option<(&T, List<T>)> {
         match &self.0 {
             Shape::Nil => None,

@@ -227,6 +227,15 @@ impl Val {
     pub fn split_list(&self) -> Option<(Val, Val)> {
         match self {
             Val::List(l) => l.split_first().map(|(h, t)| (h.clone(), Val::List(t))),
+            _ => self.split_cell(),
+        }
+    }
+
+    /// [`Val::split_list`] of anything but a list, out of line (the
+    /// list's case inlines where `[P|Ps]` is selected).
+    #[inline(never)]
+    fn split_cell(&self) -> Option<(Val, Val)> {
+        match self {
             // A cell whose tail is not a list ([`Val::cons`]).
             Val::Tagged(c) if c.name() == atoms::DOT && c.args().len() == 2 => {
                 Some((c.args()[0].clone(), c.args()[1].clone()))

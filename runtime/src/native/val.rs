@@ -80,16 +80,29 @@ impl Compound {
 }
 
 impl PartialEq for Val {
+    /// Atoms and ints compared where the comparison is (native code's
+    /// `==` of a list's element with a target), the rest out of line.
+    #[inline]
     fn eq(&self, other: &Val) -> bool {
         match (self, other) {
-            (Val::Int(a), Val::Int(b)) => a == b,
-            (Val::Float(a), Val::Float(b)) => a.to_bits() == b.to_bits(),
             (Val::Sym(a), Val::Sym(b)) => a == b,
-            (Val::List(a), Val::List(b)) => a == b,
-            (Val::Tagged(a), Val::Tagged(b)) => a == b,
-            (Val::Term(a), Val::Term(b)) => a.get() == b.get(),
-            _ => false,
+            (Val::Int(a), Val::Int(b)) => a == b,
+            _ => eq_slow(self, other),
         }
+    }
+}
+
+/// [`Val`]'s `==` but for two atoms or two ints.
+#[inline(never)]
+fn eq_slow(this: &Val, other: &Val) -> bool {
+    match (this, other) {
+        (Val::Int(a), Val::Int(b)) => a == b,
+        (Val::Float(a), Val::Float(b)) => a.to_bits() == b.to_bits(),
+        (Val::Sym(a), Val::Sym(b)) => a == b,
+        (Val::List(a), Val::List(b)) => a == b,
+        (Val::Tagged(a), Val::Tagged(b)) => a == b,
+        (Val::Term(a), Val::Term(b)) => a.get() == b.get(),
+        _ => false,
     }
 }
 

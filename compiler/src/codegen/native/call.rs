@@ -467,8 +467,13 @@ impl Gen<'_> {
                     continue; // never this arc for this final
                 }
                 let action = self.nat_exit_action(d, ix, i, &arc.action, &mut regs)?;
+                // The callee ran since the pipe was read: an out_arg writes
+                // the saved value back ([`Dm::pipe_in`] is the visit's).
+                let pipe_in = d.pipe_in.take();
                 let next =
-                    self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &cur_name)?;
+                    self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &cur_name);
+                d.pipe_in.set(pipe_in);
+                let next = next?;
                 let cond = if tests.is_empty() {
                     quote!(true)
                 } else {

@@ -4,7 +4,8 @@
 //! all native values), and in the program's module `enum NatFrame` (a
 //! variant per native DM), `nat_drive` (the explicit stack of native
 //! frames, each run where it lies: a call pushes the callee's frame, a
-//! final resumes the caller with a reference to it, then pops it; no frame
+//! final resumes the caller with a reference to it, then pops it (or gives
+//! its slot to the caller's next call, made at once); no frame
 //! moved out and back per step, no Rust recursion per nested DM, no term
 //! built) and
 //! `nat_materialize` (the hand-over: every native frame below the running
@@ -355,8 +356,18 @@ impl Gen<'_> {
                         return Ok(step);
                     }
                     if returning {
-                        frames.pop();
                         returning = false;
+                        // The caller called again (a loop of calls): the
+                        // new callee takes the finished one's place.
+                        if !gone {
+                            if let Some(callee) = call.take() {
+                                if let Some(top) = frames.last_mut() {
+                                    *top = callee;
+                                }
+                                continue;
+                            }
+                        }
+                        frames.pop();
                     }
                     if gone {
                         // The frames below the running one are the machine's now.

@@ -577,6 +577,11 @@ struct Dm<'a> {
     /// (`run.records`), as the term code makes it; empty in exit arcs
     /// (native only when no history is kept, see `call`).
     rec: std::cell::RefCell<TokenStream>,
+    /// While a visit's own arcs are generated: the register its in_arg
+    /// read the pipe into (the term read is `pipe_in`), so that an
+    /// out_arg handing that register back sets the pipe to the term read
+    /// instead of converting the value again ([`Gen::nat_next_out`]).
+    pipe_in: std::cell::Cell<Option<Reg>>,
 }
 
 impl Dm<'_> {
@@ -991,6 +996,7 @@ impl Gen<'_> {
             id_n: Default::default(),
             outputs: outputs.clone(),
             outs: std::cell::RefCell::new(outputs.iter().map(Option::is_some).collect()),
+            pipe_in: std::cell::Cell::new(None),
         };
         d.hand = self.nat_hand(&d)?;
         // Each situation's code, given which others have native code (a
@@ -1343,6 +1349,14 @@ impl Gen<'_> {
     /// The code of one visit of situation `ix` (its fields bound): returns
     /// from `run_native` or gives the next `Nat`.
     fn native_visit(&self, d: &Dm, ix: usize, fields: &[(Reg, Ty)]) -> N<TokenStream> {
+        d.pipe_in.set(None);
+        let code = self.native_visit_arcs(d, ix, fields);
+        d.pipe_in.set(None);
+        code
+    }
+
+    /// [`Gen::native_visit`], with [`Dm::pipe_in`] set once the pipe is read.
+    fn native_visit_arcs(&self, d: &Dm, ix: usize, fields: &[(Reg, Ty)]) -> N<TokenStream> {
         let plan = d.plans[ix];
         let st = &d.types[ix];
         if matches!(plan.in_arg, Some((_, true, _))) {
@@ -1366,6 +1380,7 @@ impl Gen<'_> {
                     let ty = st.regs[*r as usize].ty.clone();
                     stmts.push(self.nat_pipe_in(d, ix, *r, &ty)?);
                     regs.insert(*r, (reg(*r), ty));
+                    d.pipe_in.set(Some(*r));
                 }
                 Init::Fresh | Init::IdArg(_) | Init::IdPath(_) => {}
             }
@@ -2735,12 +2750,14 @@ impl Gen<'_> {
     ) -> N<TokenStream> {
         let curl = Literal::u32_unsuffixed(cur as u32);
         let arg_names: Vec<Ident> = (0..args.len()).map(|i| format_ident!("v{}", i)).collect();
+        // Each value selected by reference where it lies (a register or
+        // a frame field, not a clone): the candidates read it as `(*v<i>)`.
         let lets: Vec<TokenStream> = args
             .iter()
             .zip(&arg_names)
             .map(|(v, n)| {
-                let e = &v.e;
-                quote!(let #n = #e;)
+                let e = place(v);
+                quote!(let #n = &#e;)
             })
             .collect();
         let mut candidates = Vec::new();
@@ -2762,7 +2779,7 @@ impl Gen<'_> {
                 let arg = V {
                     e: {
                         let x = &arg_names[i];
-                        quote!(#x)
+                        quote!((*#x))
                     },
                     ty: v.ty.clone(),
                 };
@@ -2861,7 +2878,7 @@ impl Gen<'_> {
                 #hand
                 // Recorded, the situation was entered with its id.
                 cx.count_and_enter(count, run.records, #curl, #cur_name);
-                let rec_next = cx.build_of(#f, &[#(&#arg_names),*]);
+                let rec_next = cx.build_of(#f, &[#(#arg_names),*]);
                 #out
                 #rec
                 return cx.goto(rec_next, arc_at).map(Some);
@@ -2899,8 +2916,16 @@ impl Gen<'_> {
                 let r = Self::nat_id_reg(d, j, path).ok_or("an id variable has no register")?;
                 let ty = d.types[j].regs[r as usize].ty.clone();
                 let x = format_ident!("f{}", r);
+                // A part taken apart for this candidate (`h0`, `l0`,
+                // `g0_1`: its own value, read once) moves into the field;
+                // the selected value itself (`v0`) is read again by later
+                // candidates and the fallback, so it is cloned.
                 let from = V {
-                    e: quote!(#e.clone()),
+                    e: if is_selected_value(e) {
+                        quote!(#e.clone())
+                    } else {
+                        quote!(#e)
+                    },
                     ty: v.ty.clone(),
                 };
                 match coerce(&from, &ty) {
@@ -3119,6 +3144,19 @@ impl Gen<'_> {
 
 /// Fresh names `g{n}_{k}` for the `len` arguments of a compound matched
 /// natively (`n` counts the matches of a situation).
+/// Whether `e` is one of [`Gen::nat_select`]'s selected values `(*v<i>)`
+/// (read by reference, shared by every candidate), not a part one candidate's steps took
+/// apart (`h<n>`, `l<n>`, `g<n>_<k>`: owned by that candidate alone).
+fn is_selected_value(e: &TokenStream) -> bool {
+    let s = e.to_string();
+    let s = s
+        .strip_prefix("(* ")
+        .and_then(|s| s.strip_suffix(')'))
+        .unwrap_or(&s);
+    s.strip_prefix('v')
+        .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
+}
+
 fn arg_idents(n: &mut usize, len: usize) -> Vec<Ident> {
     let xs = (0..len).map(|k| format_ident!("g{}_{}", *n, k)).collect();
     *n += 1;

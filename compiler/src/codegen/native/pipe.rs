@@ -3,7 +3,11 @@
 //! a register of the type `mir::ty` gives the in_arg's variable (a checked
 //! conversion; an int or an atom costs no allocation) and writes an
 //! out_arg's value back as a term, where the term code does (an arc's
-//! out_arg after its next situation is evaluated, a final's out_arg).
+//! out_arg after its next situation is evaluated, a final's out_arg). An
+//! arc's out_arg that hands back the in_arg's own value in the visit that
+//! read it (`in_arg ==> X, out_arg ==> X`) sets the pipe to the term read
+//! (`pipe_in`, dereferenced: what the term code's evaluated `X` is), not
+//! to the value converted back.
 //!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
@@ -26,10 +30,8 @@ impl Gen<'_> {
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         let _ = Literal::u32_unsuffixed(ix as u32);
         Ok(quote! {
-            let pipe_value = {
-                let t = cx.store_ref().deref(cx.pipe());
-                cx.to_native::<#rty>(t)
-            };
+            let pipe_in = cx.store_ref().deref(cx.pipe());
+            let pipe_value = cx.to_native::<#rty>(pipe_in);
             let Some(#rr) = pipe_value else {
                 // Not of the in_arg's type: the term code runs the visit.
                 #hand
@@ -78,8 +80,19 @@ impl Gen<'_> {
             return self.nat_next(d, cur, next, regs, cur_name);
         };
         // The value read where it is (no clone of a `Val`), made a term
-        // once: an int or an atom costs nothing.
-        let v = super::place(&self.nat_value(b, regs)?);
+        // once: an int or an atom costs nothing. The in_arg's value handed
+        // back in the visit that read it (`out_arg ==> X`, `X` the in_arg)
+        // is the term read, not converted again.
+        let same = match (b, d.pipe_in.get()) {
+            (Build::Reg(x), Some(pr)) => regs.get(x).is_some_and(|(e, _)| *e == super::reg(pr)),
+            _ => false,
+        };
+        let pipe_out = if same {
+            quote!(pipe_in)
+        } else {
+            let v = super::place(&self.nat_value(b, regs)?);
+            quote!(cx.term(&#v))
+        };
         let set = quote! {
             cx.set_pipe(pipe_out);
         };
@@ -88,7 +101,7 @@ impl Gen<'_> {
         *d.out.borrow_mut() = quote!();
         let n = n?;
         Ok(quote! {{
-            let pipe_out = cx.term(&#v);
+            let pipe_out = #pipe_out;
             let next_at = { #n };
             #set
             next_at
