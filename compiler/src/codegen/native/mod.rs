@@ -494,6 +494,9 @@ impl MatchStep {
     }
 }
 
+/// The error of a frame resumed after a call that was not waiting for one.
+const NOT_WAITING: &str = "native code resumed a situation that waits for no DM";
+
 /// The DM's native code, for the module.
 pub(super) struct NativeCode {
     /// `enum Nat`, `run_native` (which `run_situation` calls for each
@@ -723,6 +726,31 @@ impl Gen<'_> {
                 return Ok(Some(Step::Goto(id)));
             }
         };
+        // Resumed after a call returned: the waiting situation's exit arcs,
+        // then the same checks as after a visit. A DM with no situation
+        // that waits (most) only says that it was not waiting.
+        let resume = if exit_arms.iter().all(|a| a.is_empty()) {
+            quote! {
+                if ret.is_some() {
+                    return Err(cx.error(#NOT_WAITING, None));
+                }
+            }
+        } else {
+            quote! {
+                if let Some(ret) = ret {
+                    at = match at {
+                        #(#exit_arms)*
+                        _ => return Err(cx.error(#NOT_WAITING, None)),
+                    };
+                    if done {
+                        cx.count_transitions(count);
+                        *slot = at;
+                        return Ok(None);
+                    }
+                    #gc
+                }
+            }
+        };
         let frame_items = frame.items;
         let doc = format!(
             " Runs DM `{}` natively from situation `sit` (see \
@@ -784,18 +812,7 @@ impl Gen<'_> {
                 // A final reached below the base, or a call made.
                 let mut done = false;
                 let mut at = ::std::mem::replace(slot, Nat::Moved {});
-                if let Some(ret) = ret {
-                    at = match at {
-                        #(#exit_arms)*
-                        _ => return Err(cx.error("native code resumed a situation that waits for no DM", None)),
-                    };
-                    if done {
-                        cx.count_transitions(count);
-                        *slot = at;
-                        return Ok(None);
-                    }
-                    #gc
-                }
+                #resume
                 loop {
                     at = match at {
                         #(#arms)*
