@@ -1929,9 +1929,16 @@ impl Gen<'_> {
                 #next
             }
         } else {
+            // One expression (most: a variant, a `'sel` block) is the
+            // initializer itself, no block around it.
+            let init = if syn::parse2::<syn::Expr>(next.clone()).is_ok() {
+                next
+            } else {
+                quote!({ #next })
+            };
             quote! {
                 #(#stmts)*
-                let next_at: Nat = { #next };
+                let next_at: Nat = #init;
                 if run.records {
                     cx.record_next(rec_exp, rec_act, |s| next_at.id_term(p, s));
                 }
