@@ -674,11 +674,22 @@ impl Gen<'_> {
             let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
             let doc = format!(" `{}`", self.store.writeq(self.nat_id_of(&d, ix)));
             variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
-            id_arms.push(quote!(Nat::#v { #(#names),* } => #id,));
+            // The waiting variant's id is the situation's (the same
+            // fields, the same code): one arm for both.
+            let wv = format_ident!("W{}", ix);
+            let w_arm = quote!(Nat::#wv { #(#names),* } => #id,).to_string();
+            let same_id = wait.as_ref().is_some_and(|w| w.id_arm.to_string() == w_arm);
+            id_arms.push(if same_id {
+                quote!(Nat::#v { #(#names),* } | Nat::#wv { #(#names),* } => #id,)
+            } else {
+                quote!(Nat::#v { #(#names),* } => #id,)
+            });
             arms.push(quote!(Nat::#v { #(#names),* } => 'visit: { #body }));
             if let Some(w) = wait {
                 variants.push(w.variant.clone());
-                id_arms.push(w.id_arm.clone());
+                if !same_id {
+                    id_arms.push(w.id_arm.clone());
+                }
                 exit_arms.push(w.exit_arm.clone());
                 wait_arms.push(w.wait_arm.clone());
             }
