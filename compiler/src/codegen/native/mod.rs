@@ -1908,9 +1908,7 @@ impl Gen<'_> {
             }
         }
         // Recorded, the entry counts the transition.
-        stmts.push(quote!(if !run.records {
-            count += 1;
-        }));
+        stmts.push(quote!(run.tally(&mut count);));
         // What the machine's calls changed of the locals, read again, and
         // the values bound at the boundary, converted: all checked in one
         // `let .. else`, the fallback written once.
