@@ -762,6 +762,18 @@ impl Gen<'_> {
                 }
             }
         };
+        // `a` bound only where the entries or loads name an atom.
+        let entry_body = quote! {
+            let at = match sit {
+                #(#entries)*
+                _ => return None,
+            };
+            cx.materialize_frames();
+            #(#loads)*
+            Some(Frame { #(#field_names,)* at })
+        };
+        let entry_prelude = Gen::prelude(&entry_body);
+        let entry_body = quote!(#entry_prelude #entry_body);
         let frame_items = frame.items;
         let doc = format!(
             " Runs DM `{}` natively from situation `sit` (see \
@@ -862,14 +874,7 @@ impl Gen<'_> {
                 cx: &mut Cx<'_, '_, super::Program>,
                 sit: SitIx,
             ) -> Option<Frame> {
-                let a = &p.atoms;
-                let at = match sit {
-                    #(#entries)*
-                    _ => return None,
-                };
-                cx.materialize_frames();
-                #(#loads)*
-                Some(Frame { #(#field_names,)* at })
+                #entry_body
             }
         };
         // Counted on inference's types: a register that holds no value
