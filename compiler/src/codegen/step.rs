@@ -698,10 +698,100 @@ pub(super) fn registers(body: &TokenStream) -> BTreeSet<u32> {
 fn wrap(signature: TokenStream, body: Vec<TokenStream>) -> TokenStream {
     let body = quote!(#(#body)*);
     let prelude = Gen::prelude(&body);
-    let regs = registers(&body).into_iter().map(reg);
+    let (body, first) = declared_at_first_set(body);
+    let regs = registers(&body)
+        .into_iter()
+        .filter(|r| !first.contains(r))
+        .map(reg);
     quote!(#signature {
         #prelude
         #(let mut #regs = Term::NIL;)*
         #body
     })
+}
+
+/// `body` with each register whose first mention is a statement of its
+/// own at the top of the body, `rN = EXPR;`, declared there (`let mut rN =
+/// EXPR;`), and those registers; the others are declared before the body
+/// (set in branches, or read first).
+fn declared_at_first_set(body: TokenStream) -> (TokenStream, BTreeSet<u32>) {
+    use proc_macro2::{Spacing, TokenTree};
+    let reg_of = |tt: &TokenTree| match tt {
+        TokenTree::Ident(i) => i
+            .to_string()
+            .strip_prefix('r')
+            .and_then(|d| d.parse::<u32>().ok()),
+        _ => None,
+    };
+    // The top-level statements, each up to and with its `;` (a statement
+    // without one, a block, is part of the next).
+    let mut stmts: Vec<Vec<TokenTree>> = vec![Vec::new()];
+    for tt in body {
+        let end = matches!(&tt, TokenTree::Punct(p) if p.as_char() == ';');
+        stmts.last_mut().expect("one statement at least").push(tt);
+        if end {
+            stmts.push(Vec::new());
+        }
+    }
+    let mut seen = BTreeSet::new();
+    let mut first = BTreeSet::new();
+    let mut out = TokenStream::new();
+    for st in stmts {
+        let used = registers(&st.iter().cloned().collect());
+        let set = match st.as_slice() {
+            [r, TokenTree::Punct(eq), rest @ .., TokenTree::Punct(semi)]
+                if eq.as_char() == '='
+                    && eq.spacing() == Spacing::Alone
+                    && semi.as_char() == ';'
+                    && !rest.is_empty() =>
+            {
+                reg_of(r).filter(|n| {
+                    !seen.contains(n) && !registers(&rest.iter().cloned().collect()).contains(n)
+                })
+            }
+            _ => None,
+        };
+        if let Some(n) = set {
+            first.insert(n);
+            let rest: TokenStream = st[2..].iter().cloned().collect();
+            out.extend(quote!(let mut));
+            out.extend(std::iter::once(st[0].clone()));
+            out.extend(quote!(=));
+            out.extend(rest);
+        } else {
+            out.extend(st);
+        }
+        seen.extend(used);
+    }
+    (out, first)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_register_is_declared_where_first_set_only_at_the_top_and_before_any_read() {
+        let body = quote! {
+            r1 = cx.var();
+            cx.f(r2);
+            r2 = r1;
+            if c { r3 = x; }
+            r3 = y;
+            r4 = cx.g(r4);
+            r1 = z;
+        };
+        let (out, first) = declared_at_first_set(body);
+        assert_eq!(first.into_iter().collect::<Vec<_>>(), vec![1]);
+        let want = quote! {
+            let mut r1 = cx.var();
+            cx.f(r2);
+            r2 = r1;
+            if c { r3 = x; }
+            r3 = y;
+            r4 = cx.g(r4);
+            r1 = z;
+        };
+        assert_eq!(out.to_string(), want.to_string());
+    }
 }

@@ -155,6 +155,18 @@ pub struct TypedRun {
     pub call: Option<super::DmIx>,
 }
 
+impl TypedRun {
+    /// An arc's transition, one more for native code to count (`count`,
+    /// given to the machine later) unless recorded: then entering the
+    /// situation counted it.
+    #[inline(always)]
+    pub fn tally(&self, count: &mut u64) {
+        if !self.records {
+            *count += 1;
+        }
+    }
+}
+
 /// What compiled code of a situation sees of the machine: one method per
 /// semantic step, each the one the interpreted path takes, so generated code
 /// decides only *which* steps a situation needs, never how they behave.

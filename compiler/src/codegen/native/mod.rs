@@ -494,6 +494,9 @@ impl MatchStep {
     }
 }
 
+/// The error of a frame resumed after a call that was not waiting for one.
+const NOT_WAITING: &str = "native code resumed a situation that waits for no DM";
+
 /// The DM's native code, for the module.
 pub(super) struct NativeCode {
     /// `enum Nat`, `run_native` (which `run_situation` calls for each
@@ -676,11 +679,22 @@ impl Gen<'_> {
             let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
             let doc = format!(" `{}`", self.store.writeq(self.nat_id_of(&d, ix)));
             variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
-            id_arms.push(quote!(Nat::#v { #(#names),* } => #id,));
+            // The waiting variant's id is the situation's (the same
+            // fields, the same code): one arm for both.
+            let wv = format_ident!("W{}", ix);
+            let w_arm = quote!(Nat::#wv { #(#names),* } => #id,).to_string();
+            let same_id = wait.as_ref().is_some_and(|w| w.id_arm.to_string() == w_arm);
+            id_arms.push(if same_id {
+                quote!(Nat::#v { #(#names),* } | Nat::#wv { #(#names),* } => #id,)
+            } else {
+                quote!(Nat::#v { #(#names),* } => #id,)
+            });
             arms.push(quote!(Nat::#v { #(#names),* } => 'visit: { #body }));
             if let Some(w) = wait {
                 variants.push(w.variant.clone());
-                id_arms.push(w.id_arm.clone());
+                if !same_id {
+                    id_arms.push(w.id_arm.clone());
+                }
                 exit_arms.push(w.exit_arm.clone());
                 wait_arms.push(w.wait_arm.clone());
             }
@@ -728,6 +742,43 @@ impl Gen<'_> {
                 return Ok(Some(Step::Goto(id)));
             }
         };
+        // Resumed after a call returned: the waiting situation's exit arcs,
+        // then the same checks as after a visit. A DM with no situation
+        // that waits (most) only says that it was not waiting.
+        let resume = if exit_arms.iter().all(|a| a.is_empty()) {
+            quote! {
+                if ret.is_some() {
+                    return Err(cx.error(#NOT_WAITING, None));
+                }
+            }
+        } else {
+            quote! {
+                if let Some(ret) = ret {
+                    at = match at {
+                        #(#exit_arms)*
+                        _ => return Err(cx.error(#NOT_WAITING, None)),
+                    };
+                    if done {
+                        cx.count_transitions(count);
+                        *slot = at;
+                        return Ok(None);
+                    }
+                    #gc
+                }
+            }
+        };
+        // `a` bound only where the entries or loads name an atom.
+        let entry_body = quote! {
+            let at = match sit {
+                #(#entries)*
+                _ => return None,
+            };
+            cx.materialize_frames();
+            #(#loads)*
+            Some(Frame { #(#field_names,)* at })
+        };
+        let entry_prelude = Gen::prelude(&entry_body);
+        let entry_body = quote!(#entry_prelude #entry_body);
         let frame_items = frame.items;
         let doc = format!(
             " Runs DM `{}` natively from situation `sit` (see \
@@ -789,18 +840,7 @@ impl Gen<'_> {
                 // A final reached below the base, or a call made.
                 let mut done = false;
                 let mut at = ::std::mem::replace(slot, Nat::Moved {});
-                if let Some(ret) = ret {
-                    at = match at {
-                        #(#exit_arms)*
-                        _ => return Err(cx.error("native code resumed a situation that waits for no DM", None)),
-                    };
-                    if done {
-                        cx.count_transitions(count);
-                        *slot = at;
-                        return Ok(None);
-                    }
-                    #gc
-                }
+                #resume
                 loop {
                     at = match at {
                         #(#arms)*
@@ -839,14 +879,7 @@ impl Gen<'_> {
                 cx: &mut Cx<'_, '_, super::Program>,
                 sit: SitIx,
             ) -> Option<Frame> {
-                let a = &p.atoms;
-                let at = match sit {
-                    #(#entries)*
-                    _ => return None,
-                };
-                cx.materialize_frames();
-                #(#loads)*
-                Some(Frame { #(#field_names,)* at })
+                #entry_body
             }
         };
         // Counted on inference's types: a register that holds no value
@@ -1895,9 +1928,7 @@ impl Gen<'_> {
             }
         }
         // Recorded, the entry counts the transition.
-        stmts.push(quote!(if !run.records {
-            count += 1;
-        }));
+        stmts.push(quote!(run.tally(&mut count);));
         // What the machine's calls changed of the locals, read again, and
         // the values bound at the boundary, converted: all checked in one
         // `let .. else`, the fallback written once.
@@ -1927,9 +1958,16 @@ impl Gen<'_> {
                 #next
             }
         } else {
+            // One expression (most: a variant, a `'sel` block) is the
+            // initializer itself, no block around it.
+            let init = if syn::parse2::<syn::Expr>(next.clone()).is_ok() {
+                next
+            } else {
+                quote!({ #next })
+            };
             quote! {
                 #(#stmts)*
-                let next_at: Nat = { #next };
+                let next_at: Nat = #init;
                 if run.records {
                     cx.record_next(rec_exp, rec_act, |s| next_at.id_term(p, s));
                 }
