@@ -23,7 +23,13 @@ use sitlog_runtime::native::Ty;
 
 impl Gen<'_> {
     /// `let r<r> = <the pipe as ty>;`, else the situation handed over.
+    /// In a visit that never reads `r<r>` ([`Dm::pipe_unread`]) only the
+    /// term read, `pipe_in`: no conversion, no check (see
+    /// [`Gen::nat_pipe_unread`]).
     pub(super) fn nat_pipe_in(&self, d: &Dm, ix: usize, r: Reg, ty: &Ty) -> N<TokenStream> {
+        if d.pipe_unread.get() {
+            return Ok(self.nat_pipe_unread());
+        }
         let rty = super::rust_ty(ty)?;
         let rr = reg(r);
         let hand = &d.hand;
@@ -42,6 +48,21 @@ impl Gen<'_> {
                 ));
             };
         })
+    }
+
+    /// The pipe read by a visit that never reads the in_arg's register:
+    /// the term itself, unconverted. Whatever the pipe holds, native code
+    /// then does what the term code does: the in_arg is a fresh variable
+    /// (a pattern is not native), so its unification binds it to the pipe
+    /// whatever it is, and the only use left is the out_arg handing it
+    /// back, whose evaluated value is the term read, dereferenced
+    /// (`pipe_in`). The conversion's check would only have handed a pipe
+    /// that is not of the register's type to the term code, which does
+    /// the same.
+    pub(super) fn nat_pipe_unread(&self) -> TokenStream {
+        quote! {
+            let pipe_in = cx.store_ref().deref(cx.pipe());
+        }
     }
 
     /// In `run_native`: the in_arg of situation `ix` (where the machine
@@ -107,4 +128,16 @@ impl Gen<'_> {
             next_at
         }})
     }
+}
+
+/// How many times the identifier `name` occurs in `code` (at any depth).
+pub(super) fn mentions(code: &TokenStream, name: &proc_macro2::Ident) -> usize {
+    code.clone()
+        .into_iter()
+        .map(|t| match t {
+            proc_macro2::TokenTree::Ident(i) => usize::from(i == *name),
+            proc_macro2::TokenTree::Group(g) => mentions(&g.stream(), name),
+            _ => 0,
+        })
+        .sum()
 }
