@@ -584,7 +584,7 @@ struct Dm<'a> {
     pipe_in: std::cell::Cell<Option<Reg>>,
     /// While a visit is generated again because nothing of it reads the
     /// in_arg's register (the pipe only handed back as read, or not at
-    /// all): the pipe is read without its checked conversion
+    /// all): the pipe's conversion is only checked, no value kept
     /// ([`Gen::nat_pipe_in`]).
     pipe_unread: std::cell::Cell<bool>,
 }
@@ -1356,7 +1356,7 @@ impl Gen<'_> {
     /// from `run_native` or gives the next `Nat`.
     /// A visit whose code never reads the register the in_arg read the
     /// pipe into (`in_arg ==> X, out_arg ==> X`, or `X` unused) is made
-    /// again without the pipe's conversion ([`Gen::nat_pipe_unread`]).
+    /// again with the pipe's conversion only checked ([`Gen::nat_pipe_in`]).
     fn native_visit(&self, d: &Dm, ix: usize, fields: &[(Reg, Ty)]) -> N<TokenStream> {
         let id_n = d.id_n.get();
         d.pipe_in.set(None);

@@ -7,7 +7,9 @@
 //! arc's out_arg that hands back the in_arg's own value in the visit that
 //! read it (`in_arg ==> X, out_arg ==> X`) sets the pipe to the term read
 //! (`pipe_in`, dereferenced: what the term code's evaluated `X` is), not
-//! to the value converted back.
+//! to the value converted back; a visit whose code reads the in_arg's
+//! register nowhere else only checks that the pipe converts (the same
+//! hand-over), keeping no value.
 //!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
@@ -23,18 +25,31 @@ use sitlog_runtime::native::Ty;
 
 impl Gen<'_> {
     /// `let r<r> = <the pipe as ty>;`, else the situation handed over.
-    /// In a visit that never reads `r<r>` ([`Dm::pipe_unread`]) only the
-    /// term read, `pipe_in`: no conversion, no check (see
-    /// [`Gen::nat_pipe_unread`]).
+    /// In a visit that never reads `r<r>` ([`Dm::pipe_unread`]: the pipe
+    /// only handed back as read, `pipe_in`, or not used) the conversion
+    /// is only checked, no value kept: the same hand-over for a pipe that
+    /// does not convert (not ground, or one the term code would evaluate,
+    /// `1 + 1`), no value built, moved or dropped.
     pub(super) fn nat_pipe_in(&self, d: &Dm, ix: usize, r: Reg, ty: &Ty) -> N<TokenStream> {
-        if d.pipe_unread.get() {
-            return Ok(self.nat_pipe_unread());
-        }
         let rty = super::rust_ty(ty)?;
         let rr = reg(r);
         let hand = &d.hand;
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         let _ = Literal::u32_unsuffixed(ix as u32);
+        if d.pipe_unread.get() {
+            return Ok(quote! {
+                let pipe_in = cx.store_ref().deref(cx.pipe());
+                if !cx.converts_to::<#rty>(pipe_in) {
+                    // Not of the in_arg's type: the term code runs the visit.
+                    #hand
+                    cx.count_transitions(count);
+                    #(#id_stmts)*
+                    return Ok(Some(
+                        Step::Goto(#id),
+                    ));
+                }
+            });
+        }
         Ok(quote! {
             let pipe_in = cx.store_ref().deref(cx.pipe());
             let pipe_value = cx.to_native::<#rty>(pipe_in);
@@ -48,21 +63,6 @@ impl Gen<'_> {
                 ));
             };
         })
-    }
-
-    /// The pipe read by a visit that never reads the in_arg's register:
-    /// the term itself, unconverted. Whatever the pipe holds, native code
-    /// then does what the term code does: the in_arg is a fresh variable
-    /// (a pattern is not native), so its unification binds it to the pipe
-    /// whatever it is, and the only use left is the out_arg handing it
-    /// back, whose evaluated value is the term read, dereferenced
-    /// (`pipe_in`). The conversion's check would only have handed a pipe
-    /// that is not of the register's type to the term code, which does
-    /// the same.
-    pub(super) fn nat_pipe_unread(&self) -> TokenStream {
-        quote! {
-            let pipe_in = cx.store_ref().deref(cx.pipe());
-        }
     }
 
     /// In `run_native`: the in_arg of situation `ix` (where the machine
