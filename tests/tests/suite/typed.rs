@@ -474,6 +474,7 @@ fn native_dms_agree() {
         Some("f(_)"),
     ] {
         agree_piped(app, &ir, "relay(t)", in_arg, "");
+        agree_piped(app, &ir, "pass(t)", in_arg, "");
     }
     // The depth limit reached by native calls: the machine's error.
     for depth in [1, 2, 3, 4] {
