@@ -610,6 +610,12 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         T::from_term(&self.m.store, t)
     }
 
+    /// Whether `t` converts to a `T` ([`Native::converts`]), no value kept.
+    #[inline]
+    pub fn converts_to<T: Native>(&self, t: Term) -> bool {
+        T::converts(&self.m.store, t)
+    }
+
     /// [`Cx::param`] as a native value (`None`: none, or it does not
     /// convert), for native code entering a DM.
     pub fn param_as<T: Native>(&self, i: usize) -> Option<T> {

@@ -43,6 +43,12 @@ pub trait Native: Clone + PartialEq + Sized {
     fn from_term(store: &Store, t: Term) -> Option<Self>;
     /// The term of this value.
     fn to_term(&self, store: &mut Store) -> Term;
+    /// Whether `t` converts ([`Native::from_term`] is `Some`), no value
+    /// kept: native code that reads the pipe only to check it.
+    #[inline]
+    fn converts(store: &Store, t: Term) -> bool {
+        Self::from_term(store, t).is_some()
+    }
 }
 
 impl Native for i64 {
@@ -117,6 +123,17 @@ impl Native for Val {
             crate::term::Repr::Int(i) => Some(Val::Int(i)),
             crate::term::Repr::Atom(a) if a != atoms::NIL => Some(Val::Sym(a)),
             _ => ground_val(store, t),
+        }
+    }
+    /// An int or an atom other than `[]` without building the value; the
+    /// rest out of line ([`ground_val`]).
+    #[inline]
+    fn converts(store: &Store, t: Term) -> bool {
+        let t = store.deref(t);
+        match t.0 {
+            crate::term::Repr::Int(_) => true,
+            crate::term::Repr::Atom(a) if a != atoms::NIL => true,
+            _ => ground_val(store, t).is_some(),
         }
     }
     #[inline]

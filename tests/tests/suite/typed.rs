@@ -462,9 +462,19 @@ fn native_dms_agree() {
     for script in ["said(hi).\n", "said(ho).\n", "other.\n", "zzz.\n", ""] {
         agree(app, &ir, "hear(hi)", script);
     }
-    // The pipe: an int, an atom (the comparison on terms: an error), none.
-    for in_arg in [Some("3"), Some("1"), Some("a"), None] {
+    // The pipe: an int, an atom (the comparison on terms: an error), none,
+    // one the term code evaluates and one not ground (both handed over
+    // where they are read, also by `echo`, which keeps no value of it).
+    for in_arg in [
+        Some("3"),
+        Some("1"),
+        Some("a"),
+        None,
+        Some("1 + 1"),
+        Some("f(_)"),
+    ] {
         agree_piped(app, &ir, "relay(t)", in_arg, "");
+        agree_piped(app, &ir, "pass(t)", in_arg, "");
     }
     // The depth limit reached by native calls: the machine's error.
     for depth in [1, 2, 3, 4] {

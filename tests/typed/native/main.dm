@@ -169,6 +169,16 @@ diag_mod(relay(Tag),
   [ n ==> 0 ]
 ).
 
+% A caller that reads no pipe: `echo` reads it first, natively (a pipe
+% the term code evaluates, `1 + 1`, is handed over there).
+diag_mod(pass(Tag),
+  [ [ id ==> call, type ==> recursive, embedded_dm ==> echo(Tag),
+      arcs ==> [ back(T) : empty => fs ] ],
+    [ id ==> fs, type ==> final ]
+  ],
+  []
+).
+
 diag_mod(echo(Tag),
   [ [ id ==> is, type ==> neutral, in_arg ==> X, out_arg ==> X,
       arcs ==> [ empty : empty => back(Tag) ] ],

@@ -3,9 +3,12 @@
 //! (its parameters `p0..`, its locals `l0..` and the situation it is in,
 //! all native values), and in the program's module `enum NatFrame` (a
 //! variant per native DM), `nat_drive` (the explicit stack of native
-//! frames, each run where it lies: a call pushes the callee's frame, a
-//! final resumes the caller with a reference to it, then pops it (or gives
-//! its slot to the caller's next call, made at once); no frame
+//! frames, each run where it lies: a callee runs where the driver holds
+//! it and, at a final reached without calling, its caller resumes at once
+//! with a reference to it (a call and its return in one turn, nothing
+//! pushed); a callee that calls in turn is pushed, and its final resumes
+//! the caller with a reference to it, then pops it (or gives its slot to
+//! the caller's next call, made at once); no frame
 //! moved out and back per step, no Rust recursion per nested DM, no term
 //! built) and
 //! `nat_materialize` (the hand-over: every native frame below the running
@@ -313,9 +316,13 @@ impl Gen<'_> {
             /// Runs native frames from `base` (the DM the machine entered)
             /// on an explicit stack until one hands over to the machine.
             /// Frames stay where they are while they run (`frames`, above
-            /// `base`): a call pushes the callee's, and a callee that
-            /// reached its final is read in place by its caller's exit arcs,
-            /// then popped.
+            /// `base`): a callee runs where the driver holds it, and when
+            /// it reaches its final without calling, its caller's exit arcs
+            /// read it there at once (a call and its return in one turn of
+            /// the inner loop, no push, no pop); a callee that calls in turn
+            /// (or below which the frames became the machine's) is pushed,
+            /// and a pushed callee that reached its final is read in place
+            /// by its caller's exit arcs, then popped.
             #[allow(clippy::all)]
             pub(crate) fn nat_drive(
                 p: &Program,
@@ -329,46 +336,52 @@ impl Gen<'_> {
                 // The top frame reached a final: its caller runs next.
                 let mut returning = false;
                 let mut gone = false;
+                // The top frame already ran (a callee run where it is held,
+                // below): only what it left is handled.
+                let mut ran = false;
                 loop {
-                    let n = frames.len();
-                    let stepped = match (n, returning) {
-                        (0, _) => {
-                            let mut below = NatBelow { base: None, mid: &[], gone: &mut gone };
-                            base.step(p, cx, None, &mut below, &mut call, run)
-                        }
-                        (1, true) => {
-                            let mut below = NatBelow { base: None, mid: &[], gone: &mut gone };
-                            base.step(p, cx, frames.last_mut(), &mut below, &mut call, run)
-                        }
-                        (_, true) => {
-                            let (callee, rest) = frames.split_last_mut().unwrap();
-                            let (top, mid) = rest.split_last_mut().unwrap();
-                            let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone };
-                            top.step(p, cx, Some(callee), &mut below, &mut call, run)
-                        }
-                        (_, false) => {
-                            let (top, mid) = frames.split_last_mut().unwrap();
-                            let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone };
-                            top.step(p, cx, None, &mut below, &mut call, run)
-                        }
-                    };
-                    if let Some(step) = stepped? {
-                        return Ok(step);
-                    }
-                    if returning {
-                        returning = false;
-                        // The caller called again (a loop of calls): the
-                        // new callee takes the finished one's place.
-                        if !gone {
-                            if let Some(callee) = call.take() {
-                                if let Some(top) = frames.last_mut() {
-                                    *top = callee;
-                                }
-                                continue;
+                    if !ran {
+                        let n = frames.len();
+                        let stepped = match (n, returning) {
+                            (0, _) => {
+                                let mut below = NatBelow { base: None, mid: &[], gone: &mut gone };
+                                base.step(p, cx, None, &mut below, &mut call, run)
                             }
+                            (1, true) => {
+                                let mut below = NatBelow { base: None, mid: &[], gone: &mut gone };
+                                base.step(p, cx, frames.last_mut(), &mut below, &mut call, run)
+                            }
+                            (_, true) => {
+                                let (callee, rest) = frames.split_last_mut().unwrap();
+                                let (top, mid) = rest.split_last_mut().unwrap();
+                                let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone };
+                                top.step(p, cx, Some(callee), &mut below, &mut call, run)
+                            }
+                            (_, false) => {
+                                let (top, mid) = frames.split_last_mut().unwrap();
+                                let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone };
+                                top.step(p, cx, None, &mut below, &mut call, run)
+                            }
+                        };
+                        if let Some(step) = stepped? {
+                            return Ok(step);
                         }
-                        frames.pop();
+                        if returning {
+                            returning = false;
+                            // The caller called again (a loop of calls): the
+                            // new callee takes the finished one's place.
+                            if !gone {
+                                if let Some(callee) = call.take() {
+                                    if let Some(top) = frames.last_mut() {
+                                        *top = callee;
+                                    }
+                                    continue;
+                                }
+                            }
+                            frames.pop();
+                        }
                     }
+                    ran = false;
                     if gone {
                         // The frames below the running one are the machine's now.
                         if let Some(top) = frames.pop() {
@@ -377,16 +390,59 @@ impl Gen<'_> {
                         frames.clear();
                         gone = false;
                     }
-                    match call.take() {
-                        Some(callee) => frames.push(callee),
-                        None if frames.is_empty() => {
+                    let Some(mut callee) = call.take() else {
+                        if frames.is_empty() {
                             return Err(cx.error(
                                 "native code ended its base DM without handing over",
                                 None,
                             ));
                         }
-                        None => returning = true,
+                        returning = true;
+                        continue;
+                    };
+                    // The callee runs where it is held, not pushed: when it
+                    // reaches its final without calling, its caller resumes
+                    // reading it at once (one turn per call, no push, no pop).
+                    loop {
+                        let stepped = {
+                            let mut below = NatBelow { base: Some(&base), mid: &frames, gone: &mut gone };
+                            callee.step(p, cx, None, &mut below, &mut call, run)
+                        };
+                        if let Some(step) = stepped? {
+                            return Ok(step);
+                        }
+                        if gone || call.is_some() {
+                            // It called in turn, or the frames below are the
+                            // machine's: it is the top frame that ran.
+                            frames.push(callee);
+                            break;
+                        }
+                        let stepped = match frames.split_last_mut() {
+                            None => {
+                                let mut below = NatBelow { base: None, mid: &[], gone: &mut gone };
+                                base.step(p, cx, Some(&mut callee), &mut below, &mut call, run)
+                            }
+                            Some((top, mid)) => {
+                                let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone };
+                                top.step(p, cx, Some(&mut callee), &mut below, &mut call, run)
+                            }
+                        };
+                        if let Some(step) = stepped? {
+                            return Ok(step);
+                        }
+                        if !gone {
+                            if let Some(next) = call.take() {
+                                // A loop of calls: the next callee is held
+                                // where the finished one was.
+                                callee = next;
+                                continue;
+                            }
+                        }
+                        // The caller is the top frame that ran; its finished
+                        // callee is dropped.
+                        break;
                     }
+                    ran = true;
                 }
             }
 

@@ -585,6 +585,11 @@ struct Dm<'a> {
     /// out_arg handing that register back sets the pipe to the term read
     /// instead of converting the value again ([`Gen::nat_next_out`]).
     pipe_in: std::cell::Cell<Option<Reg>>,
+    /// While a visit is generated again because nothing of it reads the
+    /// in_arg's register (the pipe only handed back as read, or not at
+    /// all): the pipe's conversion is only checked, no value kept
+    /// ([`Gen::nat_pipe_in`]).
+    pipe_unread: std::cell::Cell<bool>,
 }
 
 impl Dm<'_> {
@@ -1030,6 +1035,7 @@ impl Gen<'_> {
             outputs: outputs.clone(),
             outs: std::cell::RefCell::new(outputs.iter().map(Option::is_some).collect()),
             pipe_in: std::cell::Cell::new(None),
+            pipe_unread: std::cell::Cell::new(false),
         };
         d.hand = self.nat_hand(&d)?;
         // Each situation's code, given which others have native code (a
@@ -1381,9 +1387,24 @@ impl Gen<'_> {
 
     /// The code of one visit of situation `ix` (its fields bound): returns
     /// from `run_native` or gives the next `Nat`.
+    /// A visit whose code never reads the register the in_arg read the
+    /// pipe into (`in_arg ==> X, out_arg ==> X`, or `X` unused) is made
+    /// again with the pipe's conversion only checked ([`Gen::nat_pipe_in`]).
     fn native_visit(&self, d: &Dm, ix: usize, fields: &[(Reg, Ty)]) -> N<TokenStream> {
+        let id_n = d.id_n.get();
         d.pipe_in.set(None);
         let code = self.native_visit_arcs(d, ix, fields);
+        let pipe = d.pipe_in.take();
+        let code = match (code, pipe) {
+            (Ok(code), Some(r)) if pipe::mentions(&code, &reg(r)) == 1 => {
+                d.id_n.set(id_n);
+                d.pipe_unread.set(true);
+                let again = self.native_visit_arcs(d, ix, fields);
+                d.pipe_unread.set(false);
+                again
+            }
+            (code, _) => code,
+        };
         d.pipe_in.set(None);
         code
     }

@@ -7,7 +7,9 @@
 //! arc's out_arg that hands back the in_arg's own value in the visit that
 //! read it (`in_arg ==> X, out_arg ==> X`) sets the pipe to the term read
 //! (`pipe_in`, dereferenced: what the term code's evaluated `X` is), not
-//! to the value converted back.
+//! to the value converted back; a visit whose code reads the in_arg's
+//! register nowhere else only checks that the pipe converts (the same
+//! hand-over), keeping no value.
 //!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
@@ -23,12 +25,31 @@ use sitlog_runtime::native::Ty;
 
 impl Gen<'_> {
     /// `let r<r> = <the pipe as ty>;`, else the situation handed over.
+    /// In a visit that never reads `r<r>` ([`Dm::pipe_unread`]: the pipe
+    /// only handed back as read, `pipe_in`, or not used) the conversion
+    /// is only checked, no value kept: the same hand-over for a pipe that
+    /// does not convert (not ground, or one the term code would evaluate,
+    /// `1 + 1`), no value built, moved or dropped.
     pub(super) fn nat_pipe_in(&self, d: &Dm, ix: usize, r: Reg, ty: &Ty) -> N<TokenStream> {
         let rty = super::rust_ty(ty)?;
         let rr = reg(r);
         let hand = &d.hand;
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         let _ = Literal::u32_unsuffixed(ix as u32);
+        if d.pipe_unread.get() {
+            return Ok(quote! {
+                let pipe_in = cx.store_ref().deref(cx.pipe());
+                if !cx.converts_to::<#rty>(pipe_in) {
+                    // Not of the in_arg's type: the term code runs the visit.
+                    #hand
+                    cx.count_transitions(count);
+                    #(#id_stmts)*
+                    return Ok(Some(
+                        Step::Goto(#id),
+                    ));
+                }
+            });
+        }
         Ok(quote! {
             let pipe_in = cx.store_ref().deref(cx.pipe());
             let pipe_value = cx.to_native::<#rty>(pipe_in);
@@ -107,4 +128,16 @@ impl Gen<'_> {
             next_at
         }})
     }
+}
+
+/// How many times the identifier `name` occurs in `code` (at any depth).
+pub(super) fn mentions(code: &TokenStream, name: &proc_macro2::Ident) -> usize {
+    code.clone()
+        .into_iter()
+        .map(|t| match t {
+            proc_macro2::TokenTree::Ident(i) => usize::from(i == *name),
+            proc_macro2::TokenTree::Group(g) => mentions(&g.stream(), name),
+            _ => 0,
+        })
+        .sum()
 }
