@@ -126,7 +126,7 @@ impl Native for Val {
         }
     }
     /// An int or an atom other than `[]` without building the value; the
-    /// rest out of line ([`ground_val`]).
+    /// rest out of line (`ground_val`).
     #[inline]
     fn converts(store: &Store, t: Term) -> bool {
         let t = store.deref(t);
