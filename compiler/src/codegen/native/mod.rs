@@ -450,36 +450,6 @@ enum MatchStep {
     Narrow(Ident, TokenStream),
 }
 
-/// A field's value `e`, `part.clone()` of a part the match owns (the head
-/// or tail of a split, an argument of a compound) that no other step reads:
-/// the part itself, moved into the variant (no clone and drop per visit).
-fn moved_part(e: &TokenStream, steps: &[MatchStep]) -> TokenStream {
-    let ts: Vec<proc_macro2::TokenTree> = e.clone().into_iter().collect();
-    let [proc_macro2::TokenTree::Ident(x), proc_macro2::TokenTree::Punct(dot), proc_macro2::TokenTree::Ident(clone), proc_macro2::TokenTree::Group(g)] =
-        ts.as_slice()
-    else {
-        return e.clone();
-    };
-    if dot.as_char() != '.'
-        || clone != "clone"
-        || g.delimiter() != proc_macro2::Delimiter::Parenthesis
-        || !g.stream().is_empty()
-    {
-        return e.clone();
-    }
-    let owned = steps.iter().any(|s| match s {
-        MatchStep::SplitVal(_, h, t) | MatchStep::Split(_, h, t) => h == x || t == x,
-        MatchStep::ArgsVal(_, _, _, xs) | MatchStep::Args(_, _, _, xs) => xs.contains(x),
-        _ => false,
-    });
-    let reads = steps.iter().filter(|s| s.mentions(x)).count();
-    if owned && reads == 1 {
-        quote!(#x)
-    } else {
-        e.clone()
-    }
-}
-
 impl MatchStep {
     /// Whether the step's code mentions `x`.
     fn mentions(&self, x: &Ident) -> bool {
@@ -2866,7 +2836,7 @@ impl Gen<'_> {
             for (k, s) in steps.iter().enumerate() {
                 if let MatchStep::Let(x, e) = s {
                     if !steps[k + 1..].iter().any(|t| t.mentions(x)) {
-                        inline.insert(x.clone(), moved_part(e, &steps));
+                        inline.insert(x.clone(), e.clone());
                     }
                 }
             }
