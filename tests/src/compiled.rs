@@ -4,7 +4,7 @@
 use crate::{appendix_a_functions, example_args, workspace};
 use sitlog_runtime::machine::Options;
 use sitlog_runtime::report;
-use sitlog_runtime::testmode::{ScriptPerception, TextActions};
+use sitlog_runtime::testmode::TextActions;
 use sitlog_runtime::Functions;
 use std::path::Path;
 
@@ -70,8 +70,7 @@ fn run_compiled(
     options: Options,
 ) -> serde_json::Value {
     let args = example_args(app);
-    let script = std::fs::read_to_string(app.join("script.txt")).unwrap_or_default();
-    let mut perception = ScriptPerception::new("script.txt", script);
+    let mut perception = crate::example_perception(app);
     let mut actions = TextActions::new(std::io::sink(), Vec::new());
     let (outcome, store) = run(
         &args.main,

@@ -142,6 +142,12 @@ pub fn run_example_shared(app: &Path, options: Options) -> serde_json::Value {
     run_example_ir(app, &ir, functions, options)
 }
 
+/// The example's scripted input (`script.txt`; none: an empty script).
+pub(crate) fn example_perception(app: &Path) -> ScriptPerception {
+    let script = std::fs::read_to_string(app.join("script.txt")).unwrap_or_default();
+    ScriptPerception::new("script.txt", script)
+}
+
 fn run_example_ir(
     app: &Path,
     ir: &sitlog_compiler::ir::Ir,
@@ -149,8 +155,7 @@ fn run_example_ir(
     options: Options,
 ) -> serde_json::Value {
     let args = example_args(app);
-    let script = std::fs::read_to_string(app.join("script.txt")).unwrap_or_default();
-    let mut perception = ScriptPerception::new("script.txt", script);
+    let mut perception = crate::example_perception(app);
     let mut actions = TextActions::new(std::io::sink(), ir.basic_actions.clone());
     let config = RunConfig {
         main: args.main,

@@ -51,8 +51,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// with before the machine sees the situation, as one call.
     #[inline]
     pub fn enter_counted(&mut self, count: &mut u64, sit: SitIx, id: Term) {
-        self.m.transitions += *count;
-        *count = 0;
+        self.count_transitions(std::mem::take(count));
         self.enter_with_id(sit, id);
     }
 
@@ -61,7 +60,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// unless `recorded` (then it was entered with its id).
     #[inline]
     pub fn count_and_enter(&mut self, count: u64, recorded: bool, sit: SitIx, name: Atom) {
-        self.m.transitions += count;
+        self.count_transitions(count);
         if !recorded {
             self.enter(sit, name);
         }
@@ -336,15 +335,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// [`Cx::compound`] of values, each made a term in order: the
     /// registers a [`Step::Call`](super::Step::Call) keeps (`saved`).
     pub fn compound_of(&mut self, name: Atom, args: &[&dyn AsTerm]) -> Term {
-        self.with_terms(args, |store, ts| store.compound(name, ts))
-    }
-
-    fn with_terms(
-        &mut self,
-        args: &[&dyn AsTerm],
-        f: impl FnOnce(&mut Store, &[Term]) -> Term,
-    ) -> Term {
-        with_terms(&mut self.m.store, args, f)
+        with_terms(&mut self.m.store, args, |store, ts| {
+            store.compound(name, ts)
+        })
     }
 
     /// Argument `i` of compound `t` (as [`Step::Call`]'s `saved` keeps them).
