@@ -67,11 +67,16 @@ const KB_FUNCTIONS: &str = r#"kb_talk(_) :-
     open_shop_kb(KB3), object_property_value(malz, size, KB3, Small),
     object_property_value(tea, size, KB3, Tea),
     individuals(KB3, N),
-    assign_func_value([Big, None, Small, Tea, N]).
+    findall(M, call(count_classes, KB3, M), [Classes]),
+    Rule = (kb_count(K, C) :- count_inds(K, C)), assertz(Rule), kb_count(KB3, Inds),
+    assign_func_value([Big, None, Small, Tea, N, Classes, Inds]).
 "#;
 
-/// The KB layer: services, an update saved and read back, and a predicate
-/// of the layer that sitlog-kb does not serve.
+/// The KB layer: services, an update saved and read back, and predicates
+/// of the layer that sitlog-kb does not serve, given the KB (a handle under
+/// `--legacy-kb native`, a KB term for them) directly, through a meta-call
+/// (`count_classes`) and through a rule asserted at run time (`kb_count`,
+/// which calls `count_inds`).
 fn kb_dm(name: &str) -> String {
     format!(
         r#"diag_mod({name},
@@ -83,7 +88,7 @@ fn kb_dm(name: &str) -> String {
     )
 }
 
-const KB_SAID: &str = "big unknown small unknown 2.";
+const KB_SAID: &str = "big unknown small unknown 2 2 2.";
 
 /// Test mode's situation types, as the original's test mode gives them.
 fn wrap_dm(name: &str) -> String {
@@ -204,6 +209,9 @@ add_i(O, P, V, [id=>O, Props, Rels], [id=>O, Props2, Rels]) :- !, append(Props, 
 add_i(_, _, _, I, I).
 % not a service of sitlog-kb: gets the KB term
 individuals(KB, N) :-
+    findall(I, (member(class(_, _, _, _, Is), KB), member(I, Is)), L), length(L, N).
+count_classes(KB, N) :- length(KB, N).
+count_inds(KB, N) :-
     findall(I, (member(class(_, _, _, _, Is), KB), member(I, Is)), L), length(L, N).
 "#,
     );

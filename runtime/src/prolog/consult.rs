@@ -135,7 +135,9 @@ pub(super) struct Prep<'a> {
     /// Every source given: a file they consult is taken from them first
     /// (a compiled task embeds what its sources consult).
     pub(super) embedded: &'a [PrologSource],
-    /// Set while reading the legacy KB layer served natively.
+    /// Set while reading the legacy KB layer served natively (and the
+    /// application's files after it, for `kb_reach`'s analysis:
+    /// `NativeState::in_layer` says which).
     pub(super) native: Option<&'a mut NativeState>,
     /// Set for the `--legacy` profile: SWI-Prolog's redefinition rule.
     pub(super) redefine: Option<&'a mut Redefinitions>,
@@ -282,6 +284,9 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
                 cx.errors.push(err(too_deep(w.deepest)));
                 continue;
             }
+            if let Some(native) = cx.native.as_deref_mut() {
+                native.directive(&store, goal);
+            }
             *cx.touching |= w.touching_atom;
             cx.out.push(Prepared {
                 text: w.out,
@@ -312,7 +317,7 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
         cx.defined.insert(key);
         let mut t = t;
         if let Some(native) = cx.native.as_deref_mut() {
-            match native.clause(&mut store, key, body) {
+            match native.clause(&mut store, key, head, body) {
                 ClauseFate::Keep => {}
                 ClauseFate::Rename(new) => {
                     let args = store.args(head).to_vec();

@@ -15,7 +15,7 @@
 //! set in the engine.
 
 use super::consult::{prepare, LineCursor, Prep, PrologLoadError, PrologSource, Redefinitions};
-use super::legacy_kb::{KbHost, NativeKb, NativeState};
+use super::legacy_kb::{rename_head, KbHost, NativeKb, NativeState, Unwrapped};
 use super::permissions;
 use super::swi::{LIBRARIES, PRELUDE, PRELUDE_SWI, SWI_PREDICATES};
 use super::translate::{drop_deep, from_prolog, read_reply, write_atom, Prepared, Writer};
@@ -192,6 +192,9 @@ impl Prepping {
     /// layer (served natively if `native` was given).
     fn add(&mut self, sources: &[PrologSource], from: usize, layer: usize) {
         for (i, s) in sources.iter().enumerate().skip(from) {
+            if let Some(n) = self.native.as_mut() {
+                n.in_layer = i < layer;
+            }
             let mut cx = Prep {
                 out: &mut self.prepared,
                 defined: &mut self.defined,
@@ -199,11 +202,7 @@ impl Prepping {
                 seen: &mut self.seen,
                 outside: &mut self.outside,
                 embedded: sources,
-                native: if i < layer {
-                    self.native.as_mut()
-                } else {
-                    None
-                },
+                native: self.native.as_mut(),
                 redefine: self.redefinitions.as_mut(),
                 touching: &mut self.touching,
             };
@@ -240,6 +239,9 @@ struct Preloaded {
 struct Setup {
     prepared: Vec<Prepared>,
     preloaded: Option<Preloaded>,
+    /// The layer's predicates no KB handle reaches (`kb_reach`): asserted
+    /// ahead under their wrapped name, they get their own back.
+    unwrapped: Vec<Unwrapped>,
     /// The application's files name a call that changes clauses as data
     /// (`Prep::touching`): the layer's predicates still waiting for their
     /// first call are loaded before it starts.
@@ -323,6 +325,9 @@ struct Inner {
     /// Directories of the application's Prolog files.
     source_dirs: Vec<PathBuf>,
     roots: Roots,
+    /// The native KB layer's host (`--legacy-kb native`): a call's answer
+    /// never gives the caller a handle ([`unhandle`]).
+    kb_host: Option<KbHost>,
 }
 
 impl std::fmt::Debug for PrologFunctions {
@@ -431,9 +436,10 @@ impl PrologFunctions {
         if let Some(r) = &redefinitions {
             r.apply(&mut prepared);
         }
-        if let Some(st) = native_state {
-            st.finish(&mut prepared);
-        }
+        let unwrapped = match native_state {
+            Some(st) => st.finish(&mut prepared, touching),
+            None => Vec::new(),
+        };
         if touching {
             for p in &mut prepared {
                 p.lazy = false;
@@ -443,12 +449,14 @@ impl PrologFunctions {
             return Err(errors);
         }
         let host = native.map(|n| n.host);
+        let kb_host = host.clone();
         let source_dirs: Vec<PathBuf> = sources.iter().filter_map(|s| s.dir.clone()).collect();
         let (tx, rx) = mpsc::channel::<Request>();
         let (ready_tx, ready_rx) = mpsc::channel();
         let mut setup = Setup {
             prepared,
             preloaded,
+            unwrapped,
             load_all: touching,
             rx,
             ready: ready_tx,
@@ -489,6 +497,7 @@ impl PrologFunctions {
             options,
             outside,
             source_dirs,
+            kb_host,
         ))
     }
 
@@ -563,6 +572,7 @@ impl PrologFunctions {
 
     /// The handle of an engine thread loading its application: waits for
     /// its load errors.
+    #[allow(clippy::too_many_arguments)]
     fn handle(
         roots: Roots,
         tx: mpsc::Sender<Request>,
@@ -571,6 +581,7 @@ impl PrologFunctions {
         options: PrologOptions,
         outside: Vec<(PathBuf, PrologLoadError)>,
         source_dirs: Vec<PathBuf>,
+        kb_host: Option<KbHost>,
     ) -> (PrologFunctions, Vec<PrologLoadError>) {
         let load_errors = ready_rx.recv().unwrap_or_else(|_| {
             vec![PrologLoadError {
@@ -590,6 +601,7 @@ impl PrologFunctions {
                 outside,
                 source_dirs,
                 roots,
+                kb_host,
             }),
         };
         (engine, load_errors)
@@ -931,10 +943,13 @@ impl PrologFunctions {
             .collect();
         match r {
             PTerm::Compound(f, a) if f == "ok" && a.len() == 3 => {
+                let host = self.inner.kb_host.as_ref();
                 let value = from_prolog(call.store, &a[0], &mut names);
+                let value = unhandle(call.store, value, host)?;
                 if let PTerm::List(outs) = &a[1] {
                     for (&v, out) in vars.iter().zip(outs) {
                         let t = from_prolog(call.store, out, &mut names);
+                        let t = unhandle(call.store, t, host)?;
                         let var = Term::from(v);
                         if call.store.deref(t) != call.store.deref(var) && !call.store.unify(var, t)
                         {
@@ -948,6 +963,7 @@ impl PrologFunctions {
                             if ca.len() == 2 {
                                 if let PTerm::Atom(n) = &ca[0] {
                                     let v = from_prolog(call.store, &ca[1], &mut names);
+                                    let v = unhandle(call.store, v, host)?;
                                     let n = Atom::intern(n);
                                     if w == "l" {
                                         call.locals.set(n, v);
@@ -977,6 +993,7 @@ impl PrologFunctions {
                 }
                 let mut names = HashMap::new();
                 let e = from_prolog(call.store, &a[0], &mut names);
+                let e = unhandle(call.store, e, self.inner.kb_host.as_ref())?;
                 Err(format!("`{}` raised {}", shown(), call.store.writeq(e)))
             }
             other => Err(format!("`{}`: unexpected answer {other:?}", shown())),
@@ -1020,6 +1037,7 @@ fn engine_thread(
     let Setup {
         prepared,
         preloaded,
+        unwrapped,
         load_all,
         rx,
         ready,
@@ -1041,6 +1059,7 @@ fn engine_thread(
                     .filter(|(i, _)| !pre.drop.contains(i))
                     .map(|(_, e)| e),
             );
+            unwrap_ahead(&mut machine, &shared.lazy, &unwrapped, &mut errors);
             errors.extend(load_application(
                 &mut machine,
                 &prepared[pre.kept..],
@@ -1684,6 +1703,153 @@ fn lazify<P: std::borrow::Borrow<Prepared>>(
     }
     now.sort_by_key(|(i, _)| *i);
     add_clauses(machine, &now, &mut refused);
+}
+
+/// On an engine that asserted the legacy layer ahead: the predicates of
+/// the layer no KB handle reaches (`kb_reach`), asserted ahead under the
+/// wrapped name, get their own name back: a waiting one's clauses are
+/// renamed and its stub replaced; one asserted already is wrapped as
+/// without the analysis (nothing changes for it).
+fn unwrap_ahead(
+    machine: &mut Machine,
+    lazy: &LazyStore,
+    unwrapped: &[Unwrapped],
+    errors: &mut Vec<PrologLoadError>,
+) {
+    if unwrapped.is_empty() {
+        return;
+    }
+    let mut added = Vec::new();
+    let mut gone = String::new();
+    if let Ok(mut store) = lazy.lock() {
+        let mut waiting: HashMap<(Atom, usize), usize> = HashMap::new();
+        for (id, p) in store.iter().enumerate() {
+            if let Some(p) = p {
+                waiting.insert((p.name, p.arity), id);
+            }
+        }
+        for u in unwrapped {
+            let entry = waiting
+                .get(&u.legacy)
+                .and_then(|&id| store[id].as_mut().map(|p| (id, p)));
+            let text = match entry {
+                Some((id, p)) => {
+                    let (mut old, mut new) = (String::new(), String::new());
+                    write_atom(&mut old, u.legacy.0);
+                    write_atom(&mut new, u.key.0);
+                    p.name = u.key.0;
+                    p.clauses = p
+                        .clauses
+                        .iter()
+                        .map(|c| rename_head(c, &old, &new))
+                        .collect();
+                    let _ = write!(gone, "catch(retractall({}),_,true),", stub_head(u.legacy));
+                    stub_text(id, u.key)
+                }
+                None => u.wrapper.clone(),
+            };
+            added.push(Prepared {
+                text,
+                directive: false,
+                file: "<native KB layer>".into(),
+                line: 0,
+                col: 0,
+                key: Some(u.key),
+                lazy: false,
+            });
+        }
+    }
+    gone.push_str("R = ok.");
+    let _ = first_answer(machine, &gone, "R");
+    let added: Vec<(usize, Prepared)> = added.into_iter().enumerate().collect();
+    add_clauses(machine, &added, |_, e| errors.push(e));
+}
+
+/// `name(_V0, ..)` for `key`.
+fn stub_head((name, arity): (Atom, usize)) -> String {
+    let mut head = String::new();
+    write_atom(&mut head, name);
+    if arity > 0 {
+        head.push('(');
+        for i in 0..arity {
+            if i > 0 {
+                head.push(',');
+            }
+            let _ = write!(head, "_V{i}");
+        }
+        head.push(')');
+    }
+    head
+}
+
+/// `t` with every KB handle of the native KB layer (`'$kb'(N)`) replaced
+/// by the KB term it stands for, asked of `host`: what a Prolog call gives
+/// its caller (the original's DMs hold KB terms; a handle given to the
+/// host could come back as an argument where `kb_reach` assumes none).
+fn unhandle(store: &mut Store, t: Term, host: Option<&KbHost>) -> Result<Term, String> {
+    let Some(host) = host else {
+        return Ok(t);
+    };
+    // Most answers have none: looked for first, without building.
+    let mut stack = vec![t];
+    let mut found = false;
+    while let Some(u) = stack.pop() {
+        if handle_number(store, u).is_some() {
+            found = true;
+            break;
+        }
+        if let crate::term::Value::Compound(_, a) = store.value(u) {
+            stack.extend(a.iter().copied());
+        }
+    }
+    if !found {
+        return Ok(t);
+    }
+    let mut terms: HashMap<i64, Term> = HashMap::new();
+    rebuild(store, t, host, &mut terms, 0)
+}
+
+/// `N` if `t` is a handle `'$kb'(N)`.
+fn handle_number(store: &Store, t: Term) -> Option<i64> {
+    store
+        .compound_args(store.deref(t), Atom::intern("$kb"), 1)
+        .and_then(|a| store.int_of(a[0]))
+}
+
+/// [`unhandle`]'s copy of `t` (a term with a handle somewhere).
+fn rebuild(
+    store: &mut Store,
+    t: Term,
+    host: &KbHost,
+    terms: &mut HashMap<i64, Term>,
+    depth: usize,
+) -> Result<Term, String> {
+    if let Some(n) = handle_number(store, t) {
+        if let Some(&k) = terms.get(&n) {
+            return Ok(k);
+        }
+        let reply = host(&format!("term('$kb'({n}))"));
+        let (r, _) = store
+            .parse(&reply)
+            .map_err(|e| format!("the KB of handle {n}: {}", e.message))?;
+        let Some(k) = store.compound_args(r, Atom::intern("$ok"), 2).map(|a| a[0]) else {
+            return Err(format!("the KB of handle {n}: {}", reply.trim()));
+        };
+        terms.insert(n, k);
+        return Ok(k);
+    }
+    let crate::term::Value::Compound(f, a) = store.value(t) else {
+        return Ok(t);
+    };
+    if depth > PROLOG_MAX_DEPTH {
+        return Ok(t);
+    }
+    let args = a.to_vec();
+    let mut new = Vec::with_capacity(args.len());
+    for a in args {
+        new.push(rebuild(store, a, host, terms, depth + 1)?);
+    }
+    Ok(store.compound(f, &new))
 }
 
 /// The stub clause of the waiting predicate `key`, number `id` ([`lazify`]).

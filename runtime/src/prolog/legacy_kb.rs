@@ -3,6 +3,7 @@
 //! prepared, each clause is kept or renamed, and the clauses that
 //! call the host (or turn handles back into KB terms) are added at the end.
 
+use super::kb_reach::{self, Clause, Numbering, Served, T};
 use super::translate::{write_atom, Prepared};
 use crate::store::Store;
 use crate::term::Term;
@@ -29,9 +30,11 @@ pub type KbHost = Arc<dyn Fn(&str) -> String + Send + Sync>;
 ///   host cannot read (a format of its own) is loaded by the layer's clause
 ///   as written, and KB terms are then served by the layer's own clauses
 ///   for the rest of the run (`'$sitlog_kb_native'/1` fails for them);
-/// - every other predicate gets its handles turned back into KB terms (the
-///   host writes the KB) before its own clauses run, so code of the layer
-///   that the host does not serve still works.
+/// - every other predicate that a handle can reach (`kb_reach`: a
+///   data-flow analysis of the layer's and the application's clauses) gets
+///   its handles turned back into KB terms (the host writes the KB) before
+///   its own clauses run, so code of the layer that the host does not serve
+///   still works; one that no handle can reach runs as written, unwrapped.
 ///
 /// Requests (canonical text): `open(Path)`, `save(KB, Path)`,
 /// `query(KB, Goal)`, `update(KB, Goal)`, `term(KB)`, `handle(Term)`; the
@@ -64,6 +67,23 @@ pub(super) struct NativeState {
     defined_served: HashSet<(Atom, usize)>,
     queries: Vec<(String, usize)>,
     updates: Vec<(String, usize)>,
+    /// Whether the file being read is part of the layer (else the
+    /// application's: read for the analysis only).
+    pub(super) in_layer: bool,
+    /// Every clause and directive read, for the analysis.
+    clauses: Vec<Clause>,
+    /// Predicates the application's files define.
+    app_defined: HashSet<(Atom, usize)>,
+}
+
+/// A predicate of the layer left unwrapped: its clauses, read as
+/// `legacy`, are `key`'s. An engine that asserted the layer ahead renames
+/// its waiting clauses, or, if they were asserted already, adds `wrapper`
+/// (the predicate wrapped as without the analysis).
+pub(super) struct Unwrapped {
+    pub(super) legacy: (Atom, usize),
+    pub(super) key: (Atom, usize),
+    pub(super) wrapper: String,
 }
 
 impl NativeState {
@@ -83,10 +103,70 @@ impl NativeState {
             defined_served: HashSet::new(),
             queries: n.queries.clone(),
             updates: n.updates.clone(),
+            in_layer: true,
+            clauses: Vec::new(),
+            app_defined: HashSet::new(),
         }
     }
 
+    /// Records a directive for the analysis.
+    pub(super) fn directive(&mut self, store: &Store, goal: Term) {
+        let mut vars = Numbering::default();
+        let body = T::of(store, goal, &mut vars);
+        self.clauses.push(Clause {
+            key: None,
+            head: Vec::new(),
+            body: Some(body),
+            vars: vars.count(),
+        });
+    }
+
+    /// Records a clause of predicate `key` (as loaded) for the analysis.
+    fn record(&mut self, store: &Store, key: (Atom, usize), head: Term, body: Option<Term>) {
+        let mut vars = Numbering::default();
+        let head = store
+            .args(head)
+            .to_vec()
+            .into_iter()
+            .map(|a| T::of(store, a, &mut vars))
+            .collect();
+        let body = body.map(|b| T::of(store, b, &mut vars));
+        self.clauses.push(Clause {
+            key: Some(key),
+            head,
+            body,
+            vars: vars.count(),
+        });
+    }
+
+    /// What becomes of a clause of `key` (head `head`, body `body`): kept,
+    /// or renamed (the layer's, served or wrapped); recorded for the
+    /// analysis.
     pub(super) fn clause(
+        &mut self,
+        store: &mut Store,
+        key: (Atom, usize),
+        head: Term,
+        body: Option<Term>,
+    ) -> ClauseFate {
+        let fate = if self.in_layer {
+            self.layer_clause(store, key, body)
+        } else {
+            self.app_defined.insert(key);
+            ClauseFate::Keep
+        };
+        // A predicate that may be wrapped is analysed under its own name
+        // (its callers call it so); a served one's clauses are the layer's
+        // fallback, called by the host's clause only.
+        let as_loaded = match &fate {
+            ClauseFate::Rename(a) if !self.wrapped_set.contains(&key) => (*a, key.1),
+            _ => key,
+        };
+        self.record(store, as_loaded, head, body);
+        fate
+    }
+
+    fn layer_clause(
         &mut self,
         store: &mut Store,
         key: (Atom, usize),
@@ -118,7 +198,10 @@ impl NativeState {
     }
 
     /// The clauses that serve the layer's predicates and wrap the others.
-    pub(super) fn finish(self, out: &mut Vec<Prepared>) {
+    /// `give_up`: a file builds a call that changes clauses as data (every
+    /// predicate of the layer is then wrapped). Gives the predicates left
+    /// unwrapped, their clauses in `out` renamed back.
+    pub(super) fn finish(self, out: &mut Vec<Prepared>, give_up: bool) -> Vec<Unwrapped> {
         let vars = |n: usize| -> Vec<String> { (0..n).map(|i| format!("V{i}")).collect() };
         // Each clause with its predicate and whether it may be asserted at
         // the predicate's first call (the wrappers: one a predicate of the
@@ -215,37 +298,106 @@ impl NativeState {
                 false,
             ));
         }
-        for (p, arity) in &self.wrapped {
-            let v = vars(*arity);
-            let w: Vec<String> = (0..*arity).map(|i| format!("W{i}")).collect();
-            let mut legacy = String::new();
-            write_atom(&mut legacy, legacy_name(*p));
-            if *arity == 0 {
+        // Which predicates a handle can reach. A file that builds a call
+        // changing clauses as data (`give_up`) leaves it unknown.
+        let mut served = Served::default();
+        for (q, arity) in &self.queries {
+            served.queries.insert((Atom::intern(q), arity + 1));
+        }
+        for (u, arity) in &self.updates {
+            served.updates.insert((Atom::intern(u), arity + 2));
+        }
+        for (p, _, save) in &self.files {
+            if *save {
+                served.saves.insert((*p, 1));
+            } else {
+                served.loads.insert((*p, 1));
+            }
+        }
+        let reach = if give_up {
+            kb_reach::Reach {
+                top: true,
+                ..Default::default()
+            }
+        } else {
+            kb_reach::analyse(&kb_reach::Program {
+                clauses: &self.clauses,
+                served: &served,
+            })
+        };
+        if std::env::var_os("SITLOG_DEBUG_KB_REACH").is_some() {
+            eprintln!(
+                "kb_reach: top {} inputs {:?} undefined {:?}",
+                reach.top, reach.inputs, reach.undefined
+            );
+        }
+        let mut unwrapped = Vec::new();
+        for &(p, arity) in &self.wrapped {
+            if arity == 0 {
                 continue;
             }
-            // The handles are looked for inline (no call per argument: a
-            // call of the layer's own predicates, recursion included, costs
-            // one inference more than the original's, not n + 2).
-            let any_handle: Vec<String> = v
-                .iter()
-                .map(|x| format!("nonvar({x}), {x} = '$kb'(_)"))
-                .collect();
+            let all: Vec<usize> = (0..arity).collect();
+            // A predicate the application redefines keeps its wrapper (the
+            // layer's clauses are dropped, the wrapper finds none).
+            let positions = if self.app_defined.contains(&(p, arity)) {
+                all.clone()
+            } else {
+                reach.of((p, arity))
+            };
+            if positions.is_empty() {
+                let legacy = (legacy_name(p), arity);
+                rename_clauses(out, legacy, (p, arity));
+                unwrapped.push(Unwrapped {
+                    legacy,
+                    key: (p, arity),
+                    wrapper: format!("({})", wrapper_text(p, arity, &all)),
+                });
+                continue;
+            }
+            clauses.push((wrapper_text(p, arity, &positions), (p, arity), true));
+        }
+        // What the prelude's run-time checks of asserted rules need
+        // (`'$sitlog_kb_rule'/2`); none when every predicate is wrapped.
+        if !reach.top {
             clauses.push((
-                format!(
-                    "{}({}) :- ( ( {} ) -> '$sitlog_kb_terms'([{}], [{}]), {}({}) ; {}({}) )",
-                    name(p.as_str()),
-                    v.join(","),
-                    any_handle.join(" ; "),
-                    v.join(","),
-                    w.join(","),
-                    legacy,
-                    w.join(","),
-                    legacy,
-                    v.join(",")
-                ),
-                (*p, *arity),
-                true,
+                "'$sitlog_kb_watch'".into(),
+                (Atom::intern("$sitlog_kb_watch"), 0),
+                false,
             ));
+            let mut reached: Vec<(Atom, usize)> = reach
+                .inputs
+                .iter()
+                .map(|&(n, a, _)| (n, a))
+                .chain(reach.undefined.iter().copied())
+                .collect::<HashSet<_>>()
+                .into_iter()
+                .collect();
+            reached.sort_by(|a, b| (a.0.as_str(), a.1).cmp(&(b.0.as_str(), b.1)));
+            let fact = |f: &str, (n, a): (Atom, usize)| {
+                let mut t = format!("'{f}'(");
+                write_atom(&mut t, n);
+                t.push_str(&format!(",{a})"));
+                (t, (Atom::intern(f), 2), false)
+            };
+            for &k in &reached {
+                clauses.push(fact("$sitlog_kb_reach", k));
+            }
+            let mut producers: Vec<(Atom, usize)> = reach
+                .positions
+                .iter()
+                .map(|&(n, a, _)| (n, a))
+                .chain(served.updates.iter().copied())
+                .chain(served.loads.iter().copied())
+                .collect::<HashSet<_>>()
+                .into_iter()
+                .collect();
+            producers.sort_by(|a, b| (a.0.as_str(), a.1).cmp(&(b.0.as_str(), b.1)));
+            for &k in &producers {
+                clauses.push(fact("$sitlog_kb_producer", k));
+            }
+            for u in &unwrapped {
+                clauses.push(fact("$sitlog_kb_unwrapped", u.key));
+            }
         }
         for (text, key, lazy) in clauses {
             out.push(Prepared {
@@ -258,7 +410,68 @@ impl NativeState {
                 lazy,
             });
         }
+        unwrapped
     }
+}
+
+/// The clause wrapping `p/arity`: the handles at `positions` turned into
+/// KB terms, then the layer's clauses (renamed) called. The handles are
+/// looked for inline (no call per argument: a call costs one inference
+/// more than the original's, not n + 2).
+fn wrapper_text(p: Atom, arity: usize, positions: &[usize]) -> String {
+    let v: Vec<String> = (0..arity).map(|i| format!("V{i}")).collect();
+    let w: Vec<String> = (0..arity)
+        .map(|i| {
+            if positions.contains(&i) {
+                format!("W{i}")
+            } else {
+                format!("V{i}")
+            }
+        })
+        .collect();
+    let from: Vec<String> = positions.iter().map(|&i| format!("V{i}")).collect();
+    let to: Vec<String> = positions.iter().map(|&i| format!("W{i}")).collect();
+    let mut name = String::new();
+    write_atom(&mut name, p);
+    let mut legacy = String::new();
+    write_atom(&mut legacy, legacy_name(p));
+    let any_handle: Vec<String> = from
+        .iter()
+        .map(|x| format!("nonvar({x}), {x} = '$kb'(_)"))
+        .collect();
+    format!(
+        "{name}({}) :- ( ( {} ) -> '$sitlog_kb_terms'([{}], [{}]), {legacy}({}) ; {legacy}({}) )",
+        v.join(","),
+        any_handle.join(" ; "),
+        from.join(","),
+        to.join(","),
+        w.join(","),
+        v.join(",")
+    )
+}
+
+/// The clauses of `out` read as `from` become `to`'s (the head renamed).
+fn rename_clauses(out: &mut [Prepared], from: (Atom, usize), to: (Atom, usize)) {
+    let (mut old, mut new) = (String::new(), String::new());
+    write_atom(&mut old, from.0);
+    write_atom(&mut new, to.0);
+    for p in out.iter_mut().filter(|p| p.key == Some(from)) {
+        p.text = rename_head(&p.text, &old, &new);
+        p.key = Some(to);
+    }
+}
+
+/// `text`, a clause as prepared (`':-'(Head,Body)` or `Head`), with its
+/// head's name `old` (as written) replaced by `new`.
+pub(super) fn rename_head(text: &str, old: &str, new: &str) -> String {
+    let at = if text.starts_with(old) {
+        0
+    } else if text.starts_with("':-'(") && text[5..].starts_with(old) {
+        5
+    } else {
+        return text.to_owned();
+    };
+    format!("{}{}{}", &text[..at], new, &text[at + old.len()..])
 }
 
 fn legacy_name(a: Atom) -> Atom {

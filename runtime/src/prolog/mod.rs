@@ -60,6 +60,7 @@
 
 mod consult;
 mod engine;
+mod kb_reach;
 mod legacy_kb;
 mod permissions;
 mod swi;

@@ -270,9 +270,12 @@ get_last_situation(History, S) :-
 % The calls that change or look at a predicate's clauses, as the legacy
 % layer's and the application's clauses call them (translate.rs,
 % TOUCHING): a predicate still waiting for its first call is loaded first.
-'$sitlog_lz_assert'(C) :- '$sitlog_lz_clause_touch'(C), assertz(C).
-'$sitlog_lz_asserta'(C) :- '$sitlog_lz_clause_touch'(C), asserta(C).
-'$sitlog_lz_assertz'(C) :- '$sitlog_lz_clause_touch'(C), assertz(C).
+'$sitlog_lz_assert'(C) :-
+    '$sitlog_lz_clause_touch'(C), '$sitlog_kb_rule'(C, C1), assertz(C1).
+'$sitlog_lz_asserta'(C) :-
+    '$sitlog_lz_clause_touch'(C), '$sitlog_kb_rule'(C, C1), asserta(C1).
+'$sitlog_lz_assertz'(C) :-
+    '$sitlog_lz_clause_touch'(C), '$sitlog_kb_rule'(C, C1), assertz(C1).
 '$sitlog_lz_retract'(C) :- '$sitlog_lz_clause_touch'(C), retract(C).
 '$sitlog_lz_retractall'(H) :- '$sitlog_lz_touch'(H), retractall(H).
 '$sitlog_lz_abolish'(PI) :-
@@ -811,3 +814,82 @@ get_last_situation(History, S) :-
         catch((assertz((H :- B)), Done = [N/A|Done1]), _, Done = Done1)
     ),
     '$sitlog_bridge'(Ps, Done1).
+
+% ------------------------------------- the native KB layer's asserted rules
+
+% What kb_reach.rs's analysis left to the run (legacy_kb.rs writes these
+% facts under --legacy-kb native, none when every predicate is wrapped):
+% a rule asserted at run time for a predicate a KB handle may reach turns
+% its head's handles into KB terms first; one whose body may get a handle
+% (it calls a producer of handles, or a goal unknown until run time) makes
+% every predicate of the layer wrapped from then on.
+:- dynamic('$sitlog_kb_watch'/0).
+:- dynamic('$sitlog_kb_reach'/2).
+:- dynamic('$sitlog_kb_producer'/2).
+:- dynamic('$sitlog_kb_unwrapped'/2).
+
+'$sitlog_kb_rule'(C, C1) :-
+    (   '$sitlog_kb_watch',
+        nonvar(C), C = (H :- B), callable(H), H \= (_:_),
+        B \== true
+    ->  (   '$sitlog_kb_unsure'(B) -> '$sitlog_kb_wrap_all' ; true ),
+        functor(H, N, A),
+        (   A > 0, '$sitlog_kb_reach'(N, A)
+        ->  H =.. [N|As],
+            length(Vs, A),
+            H2 =.. [N|Vs],
+            C1 = (H2 :- '$sitlog_kb_terms'(Vs, As), B)
+        ;   C1 = C
+        )
+    ;   C1 = C
+    ).
+
+% Whether goal G may get a handle (coarse: any argument naming a producer).
+'$sitlog_kb_unsure'(G) :- var(G), !.
+'$sitlog_kb_unsure'(_:_) :- !.
+'$sitlog_kb_unsure'(G) :-
+    callable(G),
+    functor(G, N, A),
+    (   '$sitlog_kb_producer'(N, A) -> true
+    ;   ( N == call ; N == apply ), A >= 1, arg(1, G, G1), '$sitlog_kb_unsure'(G1) -> true
+    ;   A > 0, G =.. [_|As], '$sitlog_kb_unsure_args'(As)
+    ).
+'$sitlog_kb_unsure_args'([X|Xs]) :-
+    (   nonvar(X), callable(X), '$sitlog_kb_unsure'(X) -> true
+    ;   nonvar(X), callable(X), functor(X, N, _), '$sitlog_kb_producer'(N, _) -> true
+    ;   '$sitlog_kb_unsure_args'(Xs)
+    ).
+
+'$sitlog_kb_wrap_all' :-
+    (   catch(bb_get('$sitlog_kb_all_wrapped', true), _, fail)
+    ->  true
+    ;   bb_put('$sitlog_kb_all_wrapped', true),
+        findall(N/A, '$sitlog_kb_unwrapped'(N, A), Ps),
+        '$sitlog_kb_wrap_each'(Ps)
+    ).
+'$sitlog_kb_wrap_each'([]).
+'$sitlog_kb_wrap_each'([N/A|Ps]) :-
+    '$sitlog_kb_wrap'(N, A),
+    '$sitlog_kb_wrap_each'(Ps).
+
+% P's clauses become '$legacy_P''s, P the wrapper legacy_kb.rs writes.
+'$sitlog_kb_wrap'(N, A) :-
+    '$sitlog_lz_touch'(N, A),
+    functor(H, N, A),
+    atom_concat('$legacy_', N, L),
+    findall(H-B, clause(H, B), Cs),
+    retractall(H),
+    '$sitlog_kb_moved'(Cs, L),
+    H =.. [_|Vs],
+    length(Ws, A),
+    LV =.. [L|Vs],
+    LW =.. [L|Ws],
+    assertz((H :- ( '$sitlog_kb_any'(Vs) -> '$sitlog_kb_terms'(Vs, Ws), LW ; LV ))).
+'$sitlog_kb_moved'([], _).
+'$sitlog_kb_moved'([H-B|Cs], L) :-
+    H =.. [_|As],
+    LH =.. [L|As],
+    assertz((LH :- B)),
+    '$sitlog_kb_moved'(Cs, L).
+'$sitlog_kb_any'([V|Vs]) :-
+    (   nonvar(V), V = '$kb'(_) -> true ; '$sitlog_kb_any'(Vs) ).

@@ -1,0 +1,681 @@
+//! Which argument positions of the Prolog code's predicates a KB handle
+//! can reach (`--legacy-kb native`, see [`NativeKb`](super::NativeKb)): a
+//! data-flow analysis (abstract interpretation) over the clauses and
+//! directives of the original's layer and of the application's files, so
+//! that only the layer's predicates a handle can reach are wrapped to turn
+//! handles back into KB terms.
+//!
+//! The domain: a position `P/n:i` is *reached* when its argument may hold a
+//! handle anywhere inside it, at the call or on success (one notion for
+//! input and output, an over-approximation). Handles enter where the host
+//! makes them (a KB load's argument, an update's new KB) and flow by
+//! unification (structure-insensitive: a term holding a reached variable is
+//! reached) and by calls. A built-in or a predicate defined by no file
+//! (asserted at run time) passes a reached argument to all its arguments;
+//! the database and global variables (`bb_get/2`, `recorded/3`,
+//! `clause/2`, `retract/1`, the catcher of `catch/3`) give reached values.
+//! Giving the outside a handle (`assert/1`, `bb_put/2`, `nb_setval/2`,
+//! `recorda/3`, `throw/1` of a reached term) or calling an unknown goal (a
+//! variable, `call/N` of one) with a reached argument at that point of its
+//! clause (left to right: a goal called before its argument is bound
+//! cannot see what is bound later, unless the code uses coroutines) makes
+//! the result [`Reach::top`]: every predicate may be reached.
+//!
+//! What the analysis assumes of the run, kept by the engine: the host never
+//! holds a handle (a call's answer has its handles turned into KB terms,
+//! `engine::unhandle`), so a call from the host gives none; a rule asserted
+//! at run time for a predicate that may be called with a handle converts
+//! its head's handles first, and one whose body may get a handle from a
+//! producer or an unknown goal wraps every predicate then (the prelude's
+//! `'$sitlog_kb_rule'/2`).
+
+use crate::store::Store;
+use crate::term::{Term, Value, Var};
+use sitlog_syntax::Atom;
+use std::collections::{HashMap, HashSet};
+
+/// A clause term as the analysis sees it: its variables numbered.
+#[derive(Clone, Debug)]
+pub(super) enum T {
+    Var(u32),
+    Atom(Atom),
+    /// A number or a string.
+    Other,
+    Comp(Atom, Vec<T>),
+    /// A part too deep to keep: only its variables.
+    Vars(Vec<u32>),
+}
+
+/// How deep a clause term is kept as it is (deeper: [`T::Vars`]).
+const KEEP_DEPTH: usize = 64;
+
+/// Numbers the variables of one clause.
+#[derive(Default)]
+pub(super) struct Numbering(HashMap<Var, u32>);
+
+impl Numbering {
+    fn var(&mut self, v: Var) -> u32 {
+        let n = self.0.len() as u32;
+        *self.0.entry(v).or_insert(n)
+    }
+    pub(super) fn count(&self) -> usize {
+        self.0.len()
+    }
+}
+
+impl T {
+    pub(super) fn of(store: &Store, t: Term, vars: &mut Numbering) -> T {
+        T::at(store, t, vars, 0)
+    }
+
+    fn at(store: &Store, t: Term, vars: &mut Numbering, depth: usize) -> T {
+        match store.value(t) {
+            Value::Var(v) => T::Var(vars.var(v)),
+            Value::Atom(a) => T::Atom(a),
+            Value::Compound(f, args) => {
+                if depth >= KEEP_DEPTH {
+                    let mut out = Vec::new();
+                    let mut stack = vec![t];
+                    while let Some(t) = stack.pop() {
+                        match store.value(t) {
+                            Value::Var(v) => out.push(vars.var(v)),
+                            Value::Compound(_, a) => stack.extend(a.iter().copied()),
+                            _ => {}
+                        }
+                    }
+                    return T::Vars(out);
+                }
+                let args = args.to_vec();
+                T::Comp(
+                    f,
+                    args.into_iter()
+                        .map(|a| T::at(store, a, vars, depth + 1))
+                        .collect(),
+                )
+            }
+            _ => T::Other,
+        }
+    }
+
+    fn vars(&self, out: &mut Vec<u32>) {
+        match self {
+            T::Var(v) => out.push(*v),
+            T::Comp(_, a) => a.iter().for_each(|t| t.vars(out)),
+            T::Vars(v) => out.extend(v),
+            T::Atom(_) | T::Other => {}
+        }
+    }
+
+    fn all_vars(&self) -> Vec<u32> {
+        let mut out = Vec::new();
+        self.vars(&mut out);
+        out
+    }
+}
+
+/// One clause (a directive has no head), its predicate as loaded.
+pub(super) struct Clause {
+    pub(super) key: Option<(Atom, usize)>,
+    pub(super) head: Vec<T>,
+    pub(super) body: Option<T>,
+    pub(super) vars: usize,
+}
+
+/// What the analysis knows of the predicates the host serves.
+#[derive(Default)]
+pub(super) struct Served {
+    /// Query services (their answer holds no handle).
+    pub(super) queries: HashSet<(Atom, usize)>,
+    /// Updates (their last argument is a new handle).
+    pub(super) updates: HashSet<(Atom, usize)>,
+    /// KB loads (their argument is a handle).
+    pub(super) loads: HashSet<(Atom, usize)>,
+    /// KB saves.
+    pub(super) saves: HashSet<(Atom, usize)>,
+}
+
+/// The analysis' result.
+#[derive(Debug, Default)]
+pub(super) struct Reach {
+    /// Every position may be reached (the analysis gave up).
+    pub(super) top: bool,
+    /// The reached positions `(name, arity, index)`: may hold a handle at
+    /// the call or on success.
+    pub(super) positions: HashSet<(Atom, usize, usize)>,
+    /// The positions that may hold a handle when the predicate is called
+    /// (those a wrapper looks at).
+    pub(super) inputs: HashSet<(Atom, usize, usize)>,
+    /// Predicates defined by no file called with a reached argument.
+    pub(super) undefined: HashSet<(Atom, usize)>,
+}
+
+impl Reach {
+    /// The positions of `key` that may hold a handle when it is called
+    /// (all under [`top`](Self::top)).
+    pub(super) fn of(&self, key: (Atom, usize)) -> Vec<usize> {
+        (0..key.1)
+            .filter(|&i| self.top || self.inputs.contains(&(key.0, key.1, i)))
+            .collect()
+    }
+}
+
+/// A goal of a clause body, flattened in order.
+enum Goal {
+    /// Unifies its variables (a built-in, `=/2`, a predicate with no file).
+    Unify(Vec<u32>, Option<(Atom, usize)>),
+    /// A call of a predicate defined by a file: each argument's variables.
+    Call((Atom, usize), Vec<Vec<u32>>),
+    /// Binds its variables to what may hold a handle.
+    Source(Vec<u32>),
+    /// A goal unknown until run time, with its variables.
+    Unknown(Vec<u32>),
+    /// Gives its variables to the outside (the database, a global, a ball).
+    Escape(Vec<u32>),
+}
+
+/// Union-find over a clause's variables, each class reached or not.
+struct Classes {
+    parent: Vec<u32>,
+    reached: Vec<bool>,
+}
+
+impl Classes {
+    fn new(n: usize) -> Classes {
+        Classes {
+            parent: (0..n as u32).collect(),
+            reached: vec![false; n],
+        }
+    }
+    fn find(&mut self, mut v: u32) -> u32 {
+        while self.parent[v as usize] != v {
+            let p = self.parent[v as usize];
+            self.parent[v as usize] = self.parent[p as usize];
+            v = p;
+        }
+        v
+    }
+    fn union(&mut self, vs: &[u32]) {
+        let Some(&first) = vs.first() else { return };
+        let root = self.find(first);
+        for &v in &vs[1..] {
+            let r = self.find(v);
+            if r != root {
+                self.parent[r as usize] = root;
+                let both = self.reached[r as usize] || self.reached[root as usize];
+                self.reached[root as usize] = both;
+            }
+        }
+    }
+    fn reach(&mut self, vs: &[u32]) {
+        for &v in vs {
+            let r = self.find(v);
+            self.reached[r as usize] = true;
+        }
+    }
+    fn any(&mut self, vs: &[u32]) -> bool {
+        vs.iter().any(|&v| {
+            let r = self.find(v);
+            self.reached[r as usize]
+        })
+    }
+}
+
+/// The program to analyse.
+pub(super) struct Program<'a> {
+    pub(super) clauses: &'a [Clause],
+    pub(super) served: &'a Served,
+}
+
+struct Flattener<'a> {
+    defined: &'a HashSet<(Atom, usize)>,
+    arities: &'a HashMap<Atom, Vec<usize>>,
+    served: &'a Served,
+    coroutines: bool,
+}
+
+fn is(f: Atom, name: &str) -> bool {
+    f.as_str() == name
+}
+
+impl Flattener<'_> {
+    /// `goal` called with `extra` more arguments (their variables).
+    fn goal(&mut self, goal: &T, extra: &[Vec<u32>], out: &mut Vec<Goal>) {
+        let extra_vars = || extra.iter().flatten().copied().collect::<Vec<u32>>();
+        let (f, args): (Atom, &[T]) = match goal {
+            T::Var(v) => {
+                let mut vs = vec![*v];
+                vs.extend(extra_vars());
+                out.push(Goal::Unknown(vs));
+                return;
+            }
+            T::Vars(v) => {
+                let mut vs = v.clone();
+                vs.extend(extra_vars());
+                out.push(Goal::Unknown(vs));
+                return;
+            }
+            T::Other => return,
+            T::Atom(a) => (*a, &[]),
+            T::Comp(f, a) => (*f, a.as_slice()),
+        };
+        let n = args.len() + extra.len();
+        let key = (f, n);
+        let vars_of = |i: usize| args[i].all_vars();
+        if extra.is_empty() {
+            match (f.as_str(), n) {
+                (",", 2) | (";", 2) | ("->", 2) | ("*->", 2) | ("|", 2) | ("forall", 2) => {
+                    self.goal(&args[0], &[], out);
+                    self.goal(&args[1], &[], out);
+                    return;
+                }
+                ("\\+", 1) | ("call", 1) | ("once", 1) | ("ignore", 1) | ("not", 1) => {
+                    self.goal(&args[0], &[], out);
+                    return;
+                }
+                ("findall", 3)
+                | ("findall", 4)
+                | ("bagof", 3)
+                | ("setof", 3)
+                | ("aggregate_all", 3)
+                | ("aggregate_all", 4) => {
+                    let mut vs = vars_of(0);
+                    for i in 2..n {
+                        vs.extend(vars_of(i));
+                    }
+                    out.push(Goal::Unify(vs, None));
+                    let mut g = &args[1];
+                    while let T::Comp(c, a) = g {
+                        if is(*c, "^") && a.len() == 2 {
+                            g = &a[1];
+                        } else {
+                            break;
+                        }
+                    }
+                    self.goal(g, &[], out);
+                    return;
+                }
+                ("catch", 3) => {
+                    self.goal(&args[0], &[], out);
+                    out.push(Goal::Source(vars_of(1)));
+                    self.goal(&args[2], &[], out);
+                    return;
+                }
+                ("setup_call_cleanup", 3) | ("call_cleanup", 2) => {
+                    for a in args {
+                        self.goal(a, &[], out);
+                    }
+                    return;
+                }
+                ("with_output_to", 2) | ("time", 1) => {
+                    self.goal(&args[n - 1], &[], out);
+                    return;
+                }
+                ("freeze", 2) | ("when", 2) => {
+                    self.coroutines = true;
+                    self.goal(&args[1], &[], out);
+                    return;
+                }
+                ("dif", 2) | ("put_attr", 3) | ("put_atts", 2) => {
+                    self.coroutines = true;
+                }
+                ("assert", 1) | ("asserta", 1) | ("assertz", 1) | ("throw", 1) => {
+                    out.push(Goal::Escape(vars_of(0)));
+                    return;
+                }
+                ("retract", 1)
+                | ("clause", 2)
+                | ("bb_get", 2)
+                | ("b_getval", 2)
+                | ("nb_getval", 2)
+                | ("nb_current", 2)
+                | ("recorded", 2)
+                | ("recorded", 3) => {
+                    out.push(Goal::Source(goal.all_vars()));
+                    return;
+                }
+                ("bb_put", 2)
+                | ("bb_b_put", 2)
+                | ("b_setval", 2)
+                | ("nb_setval", 2)
+                | ("recorda", 2)
+                | ("recordz", 2)
+                | ("recorda", 3)
+                | ("recordz", 3)
+                | ("setarg", 3)
+                | ("nb_setarg", 3) => {
+                    out.push(Goal::Escape(goal.all_vars()));
+                    return;
+                }
+                _ => {}
+            }
+        }
+        // The closure-taking ones: `call/N`, `maplist/N`, `foldl/N`...
+        if extra.is_empty() && !args.is_empty() && !self.defined.contains(&key) {
+            let closure = match (f.as_str(), n) {
+                ("call", _) | ("maplist", 2..=7) | ("foldl", 4..=7) | ("apply", 2) => true,
+                ("include", 3) | ("exclude", 3) | ("partition", 4) => {
+                    out.push(Goal::Unify(goal.all_vars(), None));
+                    true
+                }
+                _ => false,
+            };
+            if closure {
+                let rest: Vec<Vec<u32>> = args[1..].iter().map(T::all_vars).collect();
+                // `apply(G, Args)` adds as many arguments as Args has.
+                if is(f, "apply") {
+                    out.push(Goal::Unknown(goal.all_vars()));
+                    return;
+                }
+                self.goal(&args[0], &rest, out);
+                return;
+            }
+        }
+        let mut per_arg: Vec<Vec<u32>> = args.iter().map(T::all_vars).collect();
+        per_arg.extend(extra.iter().cloned());
+        if self.served.queries.contains(&key) || self.served.saves.contains(&key) {
+            return;
+        }
+        if self.served.updates.contains(&key) || self.served.loads.contains(&key) {
+            if let Some(last) = per_arg.last() {
+                out.push(Goal::Source(last.clone()));
+            }
+            return;
+        }
+        if self.defined.contains(&key) {
+            out.push(Goal::Call(key, per_arg));
+            return;
+        }
+        // A built-in, or a predicate asserted at run time.
+        out.push(Goal::Unify(per_arg.concat(), Some(key)));
+        // An argument naming a predicate of the files may be a goal it
+        // calls (a meta-predicate of the engine's libraries).
+        for (i, a) in args.iter().enumerate() {
+            let (g, k) = match a {
+                T::Atom(g) => (*g, 0),
+                T::Comp(g, ga) => (*g, ga.len()),
+                _ => continue,
+            };
+            let Some(arities) = self.arities.get(&g) else {
+                continue;
+            };
+            let others: Vec<u32> = per_arg
+                .iter()
+                .enumerate()
+                .filter(|&(j, _)| j != i)
+                .flat_map(|(_, v)| v.iter().copied())
+                .collect();
+            for &m in arities {
+                if m >= k && m - k <= 8 {
+                    let extra = vec![others.clone(); m - k];
+                    self.goal(a, &extra, out);
+                }
+            }
+        }
+    }
+}
+
+/// Runs the analysis; `top` from the start when the caller knows better
+/// (a file builds a call that changes clauses as data).
+pub(super) fn analyse(program: &Program<'_>) -> Reach {
+    let mut defined: HashSet<(Atom, usize)> = HashSet::new();
+    let mut arities: HashMap<Atom, Vec<usize>> = HashMap::new();
+    for c in program.clauses {
+        if let Some(k) = c.key {
+            if defined.insert(k) {
+                arities.entry(k.0).or_default().push(k.1);
+            }
+        }
+    }
+    let mut fl = Flattener {
+        defined: &defined,
+        arities: &arities,
+        served: program.served,
+        coroutines: false,
+    };
+    let flat: Vec<Vec<Goal>> = program
+        .clauses
+        .iter()
+        .map(|c| {
+            let mut out = Vec::new();
+            if let Some(b) = &c.body {
+                fl.goal(b, &[], &mut out);
+            }
+            out
+        })
+        .collect();
+    let coroutines = fl.coroutines;
+    let mut reach = Reach::default();
+    loop {
+        let mut changed = false;
+        for (c, goals) in program.clauses.iter().zip(&flat) {
+            let head: Vec<Vec<u32>> = c.head.iter().map(T::all_vars).collect();
+            // Flow-insensitive: every binding of the clause at once, for
+            // what may hold a handle at any time.
+            let mut cl = Classes::new(c.vars);
+            for g in goals {
+                match g {
+                    Goal::Unify(vs, _) | Goal::Escape(vs) => cl.union(vs),
+                    Goal::Unknown(vs) => {
+                        cl.union(vs);
+                        cl.reach(vs);
+                    }
+                    Goal::Source(vs) => cl.reach(vs),
+                    Goal::Call(..) => {}
+                }
+            }
+            if let Some(k) = c.key {
+                for (i, vs) in head.iter().enumerate() {
+                    if reach.positions.contains(&(k.0, k.1, i)) {
+                        cl.reach(vs);
+                    }
+                }
+            }
+            for g in goals {
+                if let Goal::Call(k, args) = g {
+                    for (i, vs) in args.iter().enumerate() {
+                        if reach.positions.contains(&(k.0, k.1, i)) {
+                            cl.reach(vs);
+                        }
+                    }
+                }
+            }
+            for g in goals {
+                if let Goal::Call(k, args) = g {
+                    for (i, vs) in args.iter().enumerate() {
+                        if cl.any(vs) && reach.positions.insert((k.0, k.1, i)) {
+                            changed = true;
+                        }
+                    }
+                }
+            }
+            if let Some(k) = c.key {
+                for (i, vs) in head.iter().enumerate() {
+                    if cl.any(vs) && reach.positions.insert((k.0, k.1, i)) {
+                        changed = true;
+                    }
+                }
+            }
+            // Left to right: what is bound when a goal is called (a goal
+            // called before a variable is bound to a handle does not see
+            // it, unless a coroutine runs it later: then all at once).
+            let mut seq = Classes::new(c.vars);
+            if let Some(k) = c.key {
+                for (i, vs) in head.iter().enumerate() {
+                    if reach.inputs.contains(&(k.0, k.1, i)) {
+                        seq.reach(vs);
+                    }
+                }
+            }
+            let cl = if coroutines { &mut cl } else { &mut seq };
+            for g in goals {
+                match g {
+                    Goal::Unify(vs, key) => {
+                        if let Some(k) = key {
+                            if cl.any(vs) && reach.undefined.insert(*k) {
+                                changed = true;
+                            }
+                        }
+                        cl.union(vs);
+                    }
+                    Goal::Escape(vs) => {
+                        if cl.any(vs) {
+                            reach.top = true;
+                        }
+                        cl.union(vs);
+                    }
+                    Goal::Source(vs) => cl.reach(vs),
+                    Goal::Call(k, args) => {
+                        for (i, vs) in args.iter().enumerate() {
+                            if cl.any(vs) && reach.inputs.insert((k.0, k.1, i)) {
+                                changed = true;
+                            }
+                        }
+                        for (i, vs) in args.iter().enumerate() {
+                            if reach.positions.contains(&(k.0, k.1, i)) {
+                                cl.reach(vs);
+                            }
+                        }
+                    }
+                    Goal::Unknown(vs) => {
+                        if cl.any(vs) {
+                            reach.top = true;
+                        }
+                        cl.union(vs);
+                        cl.reach(vs);
+                    }
+                }
+            }
+            if reach.top {
+                return reach;
+            }
+        }
+        if !changed {
+            return reach;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn program(text: &str) -> Vec<Clause> {
+        let (clauses, errors) = sitlog_syntax::read_prolog_clauses(text);
+        assert!(errors.is_empty(), "{errors:?}");
+        clauses
+            .iter()
+            .map(|c| {
+                let mut store = Store::new();
+                let (t, _) = store.from_clause(c);
+                let neck = Atom::intern(":-");
+                let mut vars = Numbering::default();
+                let (head, body) = match store.compound_args(t, neck, 2) {
+                    Some(a) => (Some(a[0]), Some(a[1])),
+                    None => match store.compound_args(t, neck, 1) {
+                        Some(a) => (None, Some(a[0])),
+                        None => (Some(t), None),
+                    },
+                };
+                let key = head.and_then(|h| store.functor(h));
+                let head = head
+                    .map(|h| {
+                        store
+                            .args(h)
+                            .to_vec()
+                            .into_iter()
+                            .map(|a| T::of(&store, a, &mut vars))
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                let body = body.map(|b| T::of(&store, b, &mut vars));
+                Clause {
+                    key,
+                    head,
+                    body,
+                    vars: vars.count(),
+                }
+            })
+            .collect()
+    }
+
+    fn served() -> Served {
+        let k = |n: &str, a| (Atom::intern(n), a);
+        Served {
+            queries: [k("objects_of_a_class", 3)].into(),
+            updates: [k("add_object", 4)].into(),
+            loads: [k("open_kb", 1)].into(),
+            saves: [k("save_kb", 1)].into(),
+        }
+    }
+
+    fn reached(text: &str) -> Reach {
+        let clauses = program(text);
+        let served = served();
+        analyse(&Program {
+            clauses: &clauses,
+            served: &served,
+        })
+    }
+
+    fn at(r: &Reach, name: &str, arity: usize) -> Vec<usize> {
+        r.of((Atom::intern(name), arity))
+    }
+
+    #[test]
+    fn a_handle_reaches_only_what_it_flows_to() {
+        let r = reached(
+            "load :- open_kb(KB), objects_of_a_class(human, KB, L), add_items(L), show(KB, x).\n\
+             add_items([]).\nadd_items([H|T]) :- atom_length(H, _), add_items(T).\n\
+             show(KB, Y) :- inner(KB), other(Y).\ninner(K) :- write(K).\nother(_).\n\
+             new(N) :- open_kb(K), add_object(a, b, K, N).\nuse :- new(X), keep(X).\nkeep(_).\n\
+             read_all(S, W) :- get_char(S, C), rest(C, S, W).\nrest(_, _, []).\n",
+        );
+        assert!(!r.top);
+        assert_eq!(at(&r, "add_items", 1), Vec::<usize>::new());
+        assert_eq!(at(&r, "show", 2), vec![0]);
+        assert_eq!(at(&r, "inner", 1), vec![0]);
+        assert_eq!(at(&r, "other", 1), Vec::<usize>::new());
+        // Out of a predicate (no handle at its call: not wrapped), then
+        // into another.
+        assert_eq!(at(&r, "new", 1), Vec::<usize>::new());
+        assert!(r.positions.contains(&(Atom::intern("new"), 1, 0)));
+        assert_eq!(at(&r, "keep", 1), vec![0]);
+        assert_eq!(at(&r, "rest", 3), Vec::<usize>::new());
+        // A built-in passes it on.
+        assert!(r.undefined.contains(&(Atom::intern("write"), 1)));
+    }
+
+    #[test]
+    fn meta_calls_are_followed_or_give_up() {
+        // A known goal in a meta-call is followed, with call/N's arguments.
+        let r = reached(
+            "a :- open_kb(KB), call(p, KB), findall(X, q(KB, X), _), maplist(r, [KB]).\n\
+             p(_).\nq(_, _).\nr(_).\ns(_).\n",
+        );
+        assert!(!r.top);
+        assert_eq!(at(&r, "p", 1), vec![0]);
+        assert_eq!(at(&r, "q", 2), vec![0]);
+        assert_eq!(at(&r, "r", 1), vec![0]);
+        assert_eq!(at(&r, "s", 1), Vec::<usize>::new());
+        // An unknown goal given a handle: anything may be reached.
+        let r = reached("a(G) :- open_kb(KB), call(G, KB).\np(_).\n");
+        assert!(r.top);
+        assert_eq!(at(&r, "p", 1), vec![0]);
+        let r = reached("a(G) :- open_kb(KB), X =.. [G, KB], call(X).\n");
+        assert!(r.top);
+        // An unknown goal called before a handle exists does not.
+        let r = reached("a(G) :- call(G, X), open_kb(X).\np(_).\n");
+        assert!(!r.top);
+        assert_eq!(at(&r, "p", 1), Vec::<usize>::new());
+        // ... unless coroutines may run it later.
+        let r = reached("a(G) :- freeze(Y, true), call(G, X), open_kb(X).\n");
+        assert!(r.top);
+        // A handle given to the database or thrown.
+        assert!(reached("a :- open_kb(KB), assertz(kb(KB)).\n").top);
+        assert!(reached("a :- open_kb(KB), throw(kb(KB)).\n").top);
+        assert!(!reached("a :- open_kb(_), assertz(kb(x)).\n").top);
+        // What the database gives back may hold one.
+        let r = reached("a :- bb_get(k, X), p(X).\np(_).\n");
+        assert_eq!(at(&r, "p", 1), vec![0]);
+    }
+}
