@@ -1160,12 +1160,17 @@ fn engine_streams(host: HostSlot, shared: Shared) -> StreamConfig {
             // The first character says what is asked: `R` read, `K` KB,
             // `S` the system (clock, sleep), `P` whether a file is inside
             // the application (the guards).
+            // A KB term or a term read may be long: the engine reads it in
+            // one go after its length (`'$sitlog_read_long'/1`).
+            let long = |text: String| format!("{}\n{text}", text.chars().count());
             let reply = if let Some(request) = text.strip_prefix('K') {
                 let h = host.lock().ok().and_then(|h| h.clone());
-                match h {
+                long(match h {
                     Some(h) => h(request),
                     None => "'$error'(error(existence_error(kb_host, sitlog), kb)).\n".to_owned(),
-                }
+                })
+            } else if let Some(request) = text.strip_prefix('R') {
+                long(read_reply(request))
             } else if let Some(request) = text.strip_prefix('S') {
                 system_reply(request)
             } else if let Some(file) = text.strip_prefix('P') {
@@ -1178,7 +1183,7 @@ fn engine_streams(host: HostSlot, shared: Shared) -> StreamConfig {
             } else if let Some(id) = text.strip_prefix('L') {
                 lazy_reply(&shared.lazy, id)
             } else {
-                read_reply(text.strip_prefix('R').unwrap_or(&text))
+                read_reply(&text)
             };
             let _ = replies.write_all(reply.as_bytes());
         }

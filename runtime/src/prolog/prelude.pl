@@ -102,6 +102,10 @@ get_history(H) :-
     write(user_error, Arg),
     put_char(user_error, '\x2\'),
     flush_output(user_error),
+    '$sitlog_read_long'(Reply).
+
+% A long answer of the host: its length, then the answer in one read.
+'$sitlog_read_long'(Reply) :-
     get_line_to_chars(user_input, Line, []),
     '$sitlog_history_append'(Digits, ['\n'], Line),
     number_chars(Length, Digits),
@@ -397,7 +401,10 @@ get_last_situation(History, S) :-
     ;   X == []
     ->  Cs = []
     ;   X = [C|_], integer(C)
-    ->  '$swi_codes_chars'(X, Cs)
+    ->  (   catch(atom_codes(A, X), _, fail)   % the engine's, in one call
+        ->  atom_chars(A, Cs)
+        ;   '$swi_codes_chars'(X, Cs)
+        )
     ;   X = [_|_]
     ->  Cs = X
     ;   throw(error(type_error(atomic, X), text/1))
@@ -426,8 +433,11 @@ get_last_situation(History, S) :-
 
 % atom_to_chars(+Atom, -Codes) (library(charsio) of SWI).
 '$swi_atom_to_chars'(A, Codes) :-
-    '$swi_text_chars'(A, Cs),
-    '$swi_chars_codes'(Cs, Codes).
+    (   atom(A)
+    ->  atom_codes(A, Codes)
+    ;   '$swi_text_chars'(A, Cs),
+        '$swi_chars_codes'(Cs, Codes)
+    ).
 
 '$swi_chars_codes'([], []).
 '$swi_chars_codes'([C|Cs], [H|Hs]) :- char_code(C, H), '$swi_chars_codes'(Cs, Hs).
@@ -711,8 +721,7 @@ get_last_situation(History, S) :-
     write(user_error, A),
     put_char(user_error, '\x2\'),
     flush_output(user_error),
-    get_line_to_chars(user_input, Line, []),
-    read_from_chars(Line, Reply),
+    '$sitlog_read_long'(Reply),
     (   Reply = '$ok'(T, B)
     ->  Term = T, Bindings = B
     ;   Reply = '$error'(E)
@@ -742,8 +751,7 @@ get_last_situation(History, S) :-
     write_canonical(user_error, Request),
     put_char(user_error, '\x2\'),
     flush_output(user_error),
-    get_line_to_chars(user_input, Line, []),
-    read_from_chars(Line, R),
+    '$sitlog_read_long'(R),
     (   R = '$ok'(T, _) -> Reply = T
     ;   R = '$error'(E) -> throw(E)
     ;   fail
@@ -803,14 +811,22 @@ get_last_situation(History, S) :-
     '$sitlog_kb_terms'(As, Bs).
 
 % Makes '$swi_X' visible as X: Preds lists Name/Arity.
+% The ones whose '$swi_X' is one call of the engine's: X calls it directly
+% (get0/2 is called once per character of a file read code by code).
+'$swi_inline'(get0(C), get_code(C)).
+'$swi_inline'(get0(S, C), get_code(S, C)).
+
 '$sitlog_bridge'([], []).
 '$sitlog_bridge'([N/A|Ps], Done) :-
     functor(H, N, A),
     (   catch(predicate_property(H, dynamic), _, fail)
     ->  Done = Done1                     % the application's own
-    ;   H =.. [_|Args],
-        atom_concat('$swi_', N, SN),
-        B =.. [SN|Args],
+    ;   (   '$swi_inline'(H, B)
+        ->  true
+        ;   H =.. [_|Args],
+            atom_concat('$swi_', N, SN),
+            B =.. [SN|Args]
+        ),
         catch((assertz((H :- B)), Done = [N/A|Done1]), _, Done = Done1)
     ),
     '$sitlog_bridge'(Ps, Done1).
