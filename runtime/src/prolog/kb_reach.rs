@@ -163,6 +163,9 @@ impl Reach {
 enum Goal {
     /// Unifies its variables (a built-in, `=/2`, a predicate with no file).
     Unify(Vec<u32>, Option<(Atom, usize)>),
+    /// A built-in that looks at its arguments and binds none to a part of
+    /// another ([`opaque`]).
+    Look(Vec<u32>, (Atom, usize)),
     /// A call of a predicate defined by a file: each argument's variables.
     Call((Atom, usize), Vec<Vec<u32>>),
     /// Binds its variables to what may hold a handle.
@@ -231,6 +234,68 @@ struct Flattener<'a> {
     arities: &'a HashMap<Atom, Vec<usize>>,
     served: &'a Served,
     coroutines: bool,
+}
+
+/// The engine's built-ins (and the prelude's SWI ones) that never bind an
+/// argument to (a term holding) a part of another: type tests, arithmetic,
+/// comparison, text of atomic values, output. A handle given to them goes
+/// no further.
+fn opaque(f: Atom, n: usize) -> bool {
+    matches!(
+        (f.as_str(), n),
+        (
+            "var" | "nonvar" | "atom" | "number" | "integer" | "float" | "atomic",
+            1
+        ) | ("compound" | "callable" | "is_list" | "ground" | "string", 1)
+            | ("==" | "\\==" | "@<" | "@>" | "@=<" | "@>=", 2)
+            | ("is" | "=:=" | "=\\=" | "<" | ">" | "=<" | ">=" | "succ", 2)
+            | ("compare" | "plus", 3)
+            | (
+                "length" | "atom_length" | "atom_codes" | "atom_chars" | "char_code",
+                2
+            )
+            | (
+                "atom_number" | "number_codes" | "number_chars" | "atom_string",
+                2
+            )
+            | (
+                "upcase_atom" | "downcase_atom" | "string_chars" | "string_codes",
+                2
+            )
+            | (
+                "string_to_atom" | "string_length" | "number_string" | "atom_to_chars",
+                2
+            )
+            | (
+                "atom_concat" | "atomic_concat" | "atomic_list_concat" | "string_concat",
+                3
+            )
+            | ("atomic_list_concat", 2)
+            | ("sub_atom" | "sub_string", 5)
+            | (
+                "write" | "writeq" | "print" | "write_canonical" | "nl" | "tab",
+                1 | 2
+            )
+            | ("write_term", 2 | 3)
+            | ("format", 1..=3)
+            | (
+                "nl" | "true" | "fail" | "false" | "!" | "halt" | "listing",
+                0
+            )
+            | (
+                "put_char" | "put_code" | "flush_output" | "close" | "halt" | "sleep",
+                1
+            )
+            | ("put_char" | "put_code" | "close", 2)
+            | (
+                "get_char" | "get_code" | "get0" | "peek_char" | "peek_code",
+                1 | 2
+            )
+            | ("open", 3 | 4)
+            | ("between", 3)
+            | ("get_time" | "random" | "listing", 1)
+            | ("stamp_date_time", 3)
+    )
 }
 
 fn is(f: Atom, name: &str) -> bool {
@@ -386,6 +451,36 @@ impl Flattener<'_> {
             return;
         }
         // A built-in, or a predicate asserted at run time.
+        if extra.is_empty() && !self.defined.contains(&key) {
+            // The name and numbers these take or give are atomic: only
+            // the term and its arguments share a handle.
+            let shared = match (f.as_str(), n) {
+                ("=..", 2) => match &args[1] {
+                    T::Comp(dot, l) if l.len() == 2 && is(*dot, ".") => {
+                        let mut vs = vars_of(0);
+                        l[1].vars(&mut vs);
+                        Some(vs)
+                    }
+                    _ => None,
+                },
+                ("arg", 3) => {
+                    let mut vs = vars_of(1);
+                    vs.extend(vars_of(2));
+                    Some(vs)
+                }
+                ("functor", 3) => Some(Vec::new()),
+                _ => None,
+            };
+            if let Some(vs) = shared {
+                out.push(Goal::Look(goal.all_vars(), key));
+                out.push(Goal::Unify(vs, None));
+                return;
+            }
+        }
+        if opaque(f, n) {
+            out.push(Goal::Look(per_arg.concat(), key));
+            return;
+        }
         out.push(Goal::Unify(per_arg.concat(), Some(key)));
         // An argument naming a predicate of the files may be a goal it
         // calls (a meta-predicate of the engine's libraries).
@@ -460,7 +555,7 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                         cl.reach(vs);
                     }
                     Goal::Source(vs) => cl.reach(vs),
-                    Goal::Call(..) => {}
+                    Goal::Call(..) | Goal::Look(..) => {}
                 }
             }
             if let Some(k) = c.key {
@@ -517,9 +612,17 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                         }
                         cl.union(vs);
                     }
+                    Goal::Look(vs, k) => {
+                        if cl.any(vs) && reach.undefined.insert(*k) {
+                            changed = true;
+                        }
+                    }
                     Goal::Escape(vs) => {
                         if cl.any(vs) {
                             reach.top = true;
+                            if std::env::var_os("SITLOG_DEBUG_KB_REACH").is_some() {
+                                eprintln!("top: escape in {:?} {:?}", c.key, c.body);
+                            }
                         }
                         cl.union(vs);
                     }
@@ -527,6 +630,12 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                     Goal::Call(k, args) => {
                         for (i, vs) in args.iter().enumerate() {
                             if cl.any(vs) && reach.inputs.insert((k.0, k.1, i)) {
+                                if std::env::var_os("SITLOG_DEBUG_KB_REACH").is_some() {
+                                    eprintln!(
+                                        "input {:?}/{} {i} from {:?} {:?}",
+                                        k.0, k.1, c.key, c.body
+                                    );
+                                }
                                 changed = true;
                             }
                         }
@@ -539,6 +648,9 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                     Goal::Unknown(vs) => {
                         if cl.any(vs) {
                             reach.top = true;
+                            if std::env::var_os("SITLOG_DEBUG_KB_REACH").is_some() {
+                                eprintln!("top: unknown in {:?} {:?}", c.key, c.body);
+                            }
                         }
                         cl.union(vs);
                         cl.reach(vs);
@@ -677,5 +789,17 @@ mod tests {
         // What the database gives back may hold one.
         let r = reached("a :- bb_get(k, X), p(X).\np(_).\n");
         assert_eq!(at(&r, "p", 1), vec![0]);
+        // A goal built with =.. from a list's elements: the name is an atom,
+        // the element given back may be a handle, the name stays none.
+        let r = reached(
+            "inc(_, [], A, A).\ninc(P, [X|R], A, N) :- G =.. [P, X], G, inc(P, R, [X|A], N).\n\
+             f(L, N) :- inc(ok, L, [], N).\n",
+        );
+        assert!(!r.top);
+        assert_eq!(at(&r, "inc", 4), vec![2]);
+        // Type tests, arithmetic and text give no handle on.
+        let r =
+            reached("a :- open_kb(KB), length(KB, N), atom_length(KB, M), p(N, M).\np(_, _).\n");
+        assert_eq!(at(&r, "p", 2), Vec::<usize>::new());
     }
 }
