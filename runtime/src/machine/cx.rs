@@ -564,6 +564,19 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         *self.pipe = value;
     }
 
+    /// An arc's out_arg that hands back the in_arg's value read in the same
+    /// visit (`in_arg ==> X, out_arg ==> X`, the pipe not set in between):
+    /// the pipe set to its own term dereferenced, what [`Cx::set_pipe`] of
+    /// the term read writes, without native code keeping that term across
+    /// the visit.
+    #[inline]
+    pub fn pipe_deref(&mut self) {
+        let t = *self.pipe;
+        if let crate::term::Repr::Var(_) = t.0 {
+            *self.pipe = self.m.store.deref(t);
+        }
+    }
+
     /// An arc's out_arg: its value becomes the pipe unless it is a variable (D-18).
     pub fn out_arg(&mut self, out: Term, arc: Option<usize>) -> Result<(), RunError> {
         let value = self.eval(out, arc)?;
