@@ -11,6 +11,10 @@ use crate::store::Store;
 use crate::term::Term;
 use sitlog_syntax::Atom;
 
+/// How often [`Cx::gc_tick`] asks [`Cx::gc_due`]: once every this many
+/// checks.
+pub const GC_TICKS: u32 = 16;
+
 impl<P: DmProgram> Cx<'_, '_, P> {
     /// A run-time error of `op(name, _)` (`get`, `set`, `inc`, ...) in this
     /// situation, blaming that construct as the machine's evaluator does.
@@ -89,6 +93,21 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         let stats = self.m.store.stats();
         stats.cells + stats.vars >= self.m.cells_after_gc + self.m.options.gc_threshold
             || self.m.stop_requested()
+    }
+
+    /// [`Cx::gc_due`], asked once every [`GC_TICKS`] calls: native code's
+    /// check between two situations of its own loop (a decrement and a
+    /// test, not the store's sizes and the stop flag each time). The
+    /// collection or the stop comes at most `GC_TICKS - 1` situations
+    /// later than with [`Cx::gc_due`]; what runs is the same.
+    #[inline]
+    pub fn gc_tick(&mut self) -> bool {
+        if self.m.gc_ticks > 0 {
+            self.m.gc_ticks -= 1;
+            return false;
+        }
+        self.m.gc_ticks = GC_TICKS - 1;
+        self.gc_due()
     }
 
     /// Where an arc of compiled code goes: compiled situation `target` of
@@ -543,6 +562,19 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     #[inline]
     pub fn set_pipe(&mut self, value: Term) {
         *self.pipe = value;
+    }
+
+    /// An arc's out_arg that hands back the in_arg's value read in the same
+    /// visit (`in_arg ==> X, out_arg ==> X`, the pipe not set in between):
+    /// the pipe set to its own term dereferenced, what [`Cx::set_pipe`] of
+    /// the term read writes, without native code keeping that term across
+    /// the visit.
+    #[inline]
+    pub fn pipe_deref(&mut self) {
+        let t = *self.pipe;
+        if let crate::term::Repr::Var(_) = t.0 {
+            *self.pipe = self.m.store.deref(t);
+        }
     }
 
     /// An arc's out_arg: its value becomes the pipe unless it is a variable (D-18).

@@ -84,6 +84,9 @@ pub struct Machine<'p, P> {
     pub(super) expectations: Vec<Term>,
     pub(super) transitions: u64,
     pub(super) cells_after_gc: usize,
+    /// Native code's checks between two situations left before one asks
+    /// [`Cx::gc_due`](super::Cx::gc_due) ([`Cx::gc_tick`](super::Cx::gc_tick)).
+    pub(super) gc_ticks: u32,
     /// Functor that pairs an arc with its out_arg for one joint copy (D-11);
     /// interned once, not per transition.
     pub(super) arc_functor: Atom,
@@ -124,6 +127,7 @@ impl<'p, P> Machine<'p, P> {
             expectations: Vec::new(),
             transitions: 0,
             cells_after_gc: 0,
+            gc_ticks: 0,
             arc_functor: Atom::intern("$arc"),
             again: false,
             unmatched: Vec::new(),

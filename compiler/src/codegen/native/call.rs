@@ -266,11 +266,13 @@ impl Gen<'_> {
             // The callee's frame on the native stack, within the depth
             // limit, when no history is kept or observed (else the machine
             // pushes it: the callee's entries nest in the caller's).
-            if !run.records && stack.len() < cx.depth_room() {
+            if !run.records && stack.has_room(cx) {
                 let callee = super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} };
                 *call = Some(super::NatFrame::#callee_v(callee));
-                done = true;
-                break 'visit Nat::#wv { #(#wf),* };
+                // Written where the frame keeps it (not through `at`).
+                cx.count_transitions(count);
+                *slot = Nat::#wv { #(#wf),* };
+                return Ok(None);
             }
             #hand_call
         })

@@ -8,8 +8,10 @@
 //! with a reference to it (a call and its return in one turn, nothing
 //! pushed); a callee that calls in turn is pushed, and its final resumes
 //! the caller with a reference to it, then pops it (or gives its slot to
-//! the caller's next call, made at once); no frame
-//! moved out and back per step, no Rust recursion per nested DM, no term
+//! the caller's next call, made at once: without drop code when the
+//! finished callee's DM holds nothing to drop); the depth room read from
+//! the machine once, again only once the frames below became its own; no
+//! frame moved out and back per step, no Rust recursion per nested DM, no term
 //! built) and
 //! `nat_materialize` (the hand-over: every native frame below the running
 //! one becomes a machine frame, waiting in its recursive situation as the
@@ -275,6 +277,17 @@ impl Gen<'_> {
                 fn call_term(&self, p: &Program, cx: &mut Cx<'_, '_, Program>) -> Term {
                     match self { #(NatFrame::#vs(f) => #ms::nat_call_term(p, cx, f),)* }
                 }
+                /// `*self = next`, `self` a frame that reached its final:
+                /// no drop code for a DM whose frame holds nothing to drop.
+                #[inline(always)]
+                fn replace_done(&mut self, next: NatFrame) {
+                    match self {
+                        #(NatFrame::#vs(_) if !::std::mem::needs_drop::<#ms::Frame>() => {
+                            ::std::mem::forget(::std::mem::replace(self, next))
+                        })*
+                        _ => *self = next,
+                    }
+                }
                 fn dm(&self) -> DmIx {
                     match self { #(NatFrame::#vs(_) => #ixs,)* }
                 }
@@ -297,6 +310,10 @@ impl Gen<'_> {
                 base: Option<&'s NatFrame>,
                 mid: &'s [NatFrame],
                 gone: &'s mut bool,
+                /// `Cx::depth_room` when the driver last looked (the
+                /// machine's frames change only when the native ones become
+                /// theirs, `gone`).
+                room: usize,
             }
 
             #[allow(clippy::all)]
@@ -310,6 +327,18 @@ impl Gen<'_> {
                 #[inline]
                 pub(crate) fn is_empty(&self) -> bool {
                     self.len() == 0
+                }
+                /// Whether a callee's frame may go on the native stack: the
+                /// frames below, the running one and the machine's stay
+                /// within the depth limit (`Cx::depth_room` asked again
+                /// once the frames below became the machine's).
+                #[inline]
+                pub(crate) fn has_room(&self, cx: &Cx<'_, '_, Program>) -> bool {
+                    if *self.gone {
+                        0 < cx.depth_room()
+                    } else {
+                        self.len() < self.room
+                    }
                 }
             }
 
@@ -339,27 +368,28 @@ impl Gen<'_> {
                 // The top frame already ran (a callee run where it is held,
                 // below): only what it left is handled.
                 let mut ran = false;
+                let mut room = cx.depth_room();
                 loop {
                     if !ran {
                         let n = frames.len();
                         let stepped = match (n, returning) {
                             (0, _) => {
-                                let mut below = NatBelow { base: None, mid: &[], gone: &mut gone };
+                                let mut below = NatBelow { base: None, mid: &[], gone: &mut gone, room };
                                 base.step(p, cx, None, &mut below, &mut call, run)
                             }
                             (1, true) => {
-                                let mut below = NatBelow { base: None, mid: &[], gone: &mut gone };
+                                let mut below = NatBelow { base: None, mid: &[], gone: &mut gone, room };
                                 base.step(p, cx, frames.last_mut(), &mut below, &mut call, run)
                             }
                             (_, true) => {
                                 let (callee, rest) = frames.split_last_mut().unwrap();
                                 let (top, mid) = rest.split_last_mut().unwrap();
-                                let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone };
+                                let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone, room };
                                 top.step(p, cx, Some(callee), &mut below, &mut call, run)
                             }
                             (_, false) => {
                                 let (top, mid) = frames.split_last_mut().unwrap();
-                                let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone };
+                                let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone, room };
                                 top.step(p, cx, None, &mut below, &mut call, run)
                             }
                         };
@@ -389,6 +419,7 @@ impl Gen<'_> {
                         }
                         frames.clear();
                         gone = false;
+                        room = cx.depth_room();
                     }
                     let Some(mut callee) = call.take() else {
                         if frames.is_empty() {
@@ -405,7 +436,7 @@ impl Gen<'_> {
                     // reading it at once (one turn per call, no push, no pop).
                     loop {
                         let stepped = {
-                            let mut below = NatBelow { base: Some(&base), mid: &frames, gone: &mut gone };
+                            let mut below = NatBelow { base: Some(&base), mid: &frames, gone: &mut gone, room };
                             callee.step(p, cx, None, &mut below, &mut call, run)
                         };
                         if let Some(step) = stepped? {
@@ -419,11 +450,11 @@ impl Gen<'_> {
                         }
                         let stepped = match frames.split_last_mut() {
                             None => {
-                                let mut below = NatBelow { base: None, mid: &[], gone: &mut gone };
+                                let mut below = NatBelow { base: None, mid: &[], gone: &mut gone, room };
                                 base.step(p, cx, Some(&mut callee), &mut below, &mut call, run)
                             }
                             Some((top, mid)) => {
-                                let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone };
+                                let mut below = NatBelow { base: Some(&base), mid, gone: &mut gone, room };
                                 top.step(p, cx, Some(&mut callee), &mut below, &mut call, run)
                             }
                         };
@@ -434,7 +465,7 @@ impl Gen<'_> {
                             if let Some(next) = call.take() {
                                 // A loop of calls: the next callee is held
                                 // where the finished one was.
-                                callee = next;
+                                callee.replace_done(next);
                                 continue;
                             }
                         }

@@ -710,7 +710,7 @@ impl Gen<'_> {
         // The machine wants control (garbage, a stop asked): the situation
         // reached is handed over as its id.
         let gc = quote! {
-            if cx.gc_due() {
+            if cx.gc_tick() {
                 #hand
                 cx.count_transitions(count);
                 let id = at.id_term(p, cx.store());
@@ -733,11 +733,6 @@ impl Gen<'_> {
                         #(#exit_arms)*
                         _ => return Err(cx.error(#NOT_WAITING, None)),
                     };
-                    if done {
-                        cx.count_transitions(count);
-                        *slot = at;
-                        return Ok(None);
-                    }
                     #gc
                 }
             }
@@ -798,6 +793,9 @@ impl Gen<'_> {
             /// Runs the frame on top of the native stack until it calls a DM
             /// (`call` set), ends in a final situation below the base
             /// (`Ok(None)`), or hands over to the machine (`Ok(Some(step))`).
+            /// Never inlined: the driver's dispatch on `NatFrame` then only
+            /// jumps to it, and pays no other DM's prologue on the way.
+            #[inline(never)]
             #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, unused_labels, irrefutable_let_patterns, unreachable_patterns, unused_braces, break_with_label_and_loop, clippy::all)]
             pub(crate) fn nat_step(
                 p: &super::Program,
@@ -812,8 +810,8 @@ impl Gen<'_> {
                 let Frame { #(#field_names,)* at: slot } = frame;
                 // Transitions done, not yet given to the machine.
                 let mut count: u64 = 0;
-                // A final reached below the base, or a call made.
-                let mut done = false;
+                // A final reached below the base, or a call made, writes
+                // its variant to `slot` and returns at once.
                 let mut at = ::std::mem::replace(slot, Nat::Moved {});
                 #resume
                 loop {
@@ -821,11 +819,6 @@ impl Gen<'_> {
                         #(#arms)*
                         _ => return Err(cx.error("native code visited a waiting situation", None)),
                     };
-                    if done {
-                        cx.count_transitions(count);
-                        *slot = at;
-                        return Ok(None);
-                    }
                     #gc
                 }
             }
@@ -1488,8 +1481,9 @@ impl Gen<'_> {
                         if !stack.is_empty() {
                             #out_set
                             count += 1;
-                            done = true;
-                            break 'visit Nat::#v { #(#names),* };
+                            cx.count_transitions(count);
+                            *slot = Nat::#v { #(#names),* };
+                            return Ok(None);
                         }
                     }
                 } else {

@@ -5,9 +5,10 @@
 //! out_arg's value back as a term, where the term code does (an arc's
 //! out_arg after its next situation is evaluated, a final's out_arg). An
 //! arc's out_arg that hands back the in_arg's own value in the visit that
-//! read it (`in_arg ==> X, out_arg ==> X`) sets the pipe to the term read
-//! (`pipe_in`, dereferenced: what the term code's evaluated `X` is), not
-//! to the value converted back; a visit whose code reads the in_arg's
+//! read it (`in_arg ==> X, out_arg ==> X`) sets the pipe to the term read,
+//! dereferenced (what the term code's evaluated `X` is), not to the value
+//! converted back: `Cx::pipe_deref`, the pipe dereferenced where it is
+//! (nothing sets it between a visit's in_arg and its out_arg); a visit whose code reads the in_arg's
 //! register nowhere else only checks that the pipe converts (the same
 //! hand-over), keeping no value.
 //!
@@ -108,21 +109,23 @@ impl Gen<'_> {
             (Build::Reg(x), Some(pr)) => regs.get(x).is_some_and(|(e, _)| *e == super::reg(pr)),
             _ => false,
         };
-        let pipe_out = if same {
-            quote!(pipe_in)
+        // The in_arg's term handed back: the pipe, unchanged since it was
+        // read, only dereferenced (no term kept across the visit).
+        let (pipe_out, set) = if same {
+            (quote!(), quote!(cx.pipe_deref();))
         } else {
             let v = super::place(&self.nat_value(b, regs)?);
-            quote!(cx.term(&#v))
-        };
-        let set = quote! {
-            cx.set_pipe(pipe_out);
+            (
+                quote!(let pipe_out = cx.term(&#v);),
+                quote!(cx.set_pipe(pipe_out);),
+            )
         };
         *d.out.borrow_mut() = set.clone();
         let n = self.nat_next(d, cur, next, regs, cur_name);
         *d.out.borrow_mut() = quote!();
         let n = n?;
         Ok(quote! {{
-            let pipe_out = #pipe_out;
+            #pipe_out
             let next_at = { #n };
             #set
             next_at
