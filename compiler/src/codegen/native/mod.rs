@@ -3311,9 +3311,10 @@ fn moved(v: &V) -> TokenStream {
 /// A register loaded from a frame's parameter or a callee's final field
 /// (`let r3 = p1.clone();`) that the rest of its block reads only by
 /// reference (`Borrow::<T>::borrow(&r3)`, as [`place`] prints it: a
-/// comparison, a selected value) is bound to the value where it lies
-/// (`let r3 = &*p1;`, `Borrow` reads through the reference): no clone and
-/// no drop per visit. Parameters and a final's fields are not written while
+/// comparison, a selected value) or clones (`r3.clone()`: a call's
+/// argument) is bound to the value where it lies (`let r3 = &*p1;`,
+/// `Borrow` and `clone` read through the reference): no clone and no drop
+/// per visit. Parameters and a final's fields are not written while
 /// a visit reads them.
 fn by_ref_loads(ts: TokenStream) -> TokenStream {
     use proc_macro2::{Group, TokenTree as T};
@@ -3359,15 +3360,24 @@ fn by_ref_loads(ts: TokenStream) -> TokenStream {
     out
 }
 
-/// Whether every mention of `r` in `toks` is `borrow(&r)` (a field named
-/// like it, `S3 { r3: .. }`, is not a mention).
+/// Whether every mention of `r` in `toks` is `borrow(&r)` or `r.clone()`
+/// (through a reference, the value it points at cloned); a field named
+/// like it, `S3 { r3: .. }`, is not a mention.
 fn only_borrowed(toks: &[proc_macro2::TokenTree], r: &Ident) -> bool {
     use proc_macro2::{Spacing, TokenTree as T};
     toks.iter().enumerate().all(|(k, t)| match t {
         T::Ident(x) if x == r => {
             let field = matches!(toks.get(k + 1), Some(T::Punct(c)) if c.as_char() == ':' && c.spacing() == Spacing::Alone)
                 && !matches!(k.checked_sub(1).map(|j| &toks[j]), Some(T::Ident(l)) if l == "let");
-            field
+            let cloned = matches!(
+                &toks[k + 1..],
+                [T::Punct(dot), T::Ident(c), T::Group(g), ..]
+                    if dot.as_char() == '.'
+                        && c == "clone"
+                        && g.delimiter() == proc_macro2::Delimiter::Parenthesis
+                        && g.stream().is_empty()
+            ) && !matches!(k.checked_sub(1).map(|j| &toks[j]), Some(T::Punct(p)) if p.as_char() == '.');
+            field || cloned
         }
         T::Ident(_) => true,
         T::Group(g) => {
