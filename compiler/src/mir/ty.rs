@@ -2402,6 +2402,31 @@ diag_mod(main(Items),
     }
 
     #[test]
+    fn only_a_list_pattern_narrows_a_ground_value() {
+        // Cells ending in a variable or `[]` narrow; an improper pattern
+        // or another compound does not.
+        let (ir, _mir, t) = types_of(
+            r#"
+diag_mod(main(Items),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => w(Items) ] ],
+    [ id ==> w([X|a]), type ==> neutral, arcs ==> [ empty : empty => v(X) ] ],
+    [ id ==> w(f(Y)), type ==> neutral, arcs ==> [ empty : empty => v(Y) ] ],
+    [ id ==> w([Z]), type ==> neutral, arcs ==> [ empty : empty => v(Z) ] ],
+    [ id ==> v(_), type ==> final ] ],
+  []).
+"#,
+        );
+        let m = dm(&ir, "main");
+        let arg = |k| {
+            let s = sit(&ir, m, k);
+            t.dms[m].sits[s].as_ref().unwrap().id_args[0].ty.clone()
+        };
+        assert_eq!(arg(1), Ty::Ground);
+        assert_eq!(arg(2), Ty::Ground);
+        assert_eq!(arg(3), Ty::list(Ty::Ground));
+    }
+
+    #[test]
     fn a_list_walk_by_compound_id_is_typed() {
         let (ir, mir, t) = types_of(SEARCH);
         let s = dm(&ir, "search");
