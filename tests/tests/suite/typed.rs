@@ -547,8 +547,8 @@ fn native_dms_agree() {
 }
 
 /// Workloads of issue 37's shapes written as another engineer would
-/// (`typed/shapes`, all 14 explained in the compiler's `core::shapes`
-/// snapshot); four compiled here: the callee counting in a global and
+/// (`typed/shapes`, all 15 explained in the compiler's `core::shapes`
+/// snapshot); five compiled here: the callee counting in a global and
 /// handing the pipe back (an arc with an out_arg and a value bound at a
 /// boundary), an output argument bound by the finals' `diag_mod` read
 /// after an exit arc that is a variable, a walk by `get`/`set` of a local
