@@ -35,6 +35,14 @@
 //!   a value of unknown shape), of that value's argument; a variable met
 //!   deeper in a pattern id is typed by matching structurally
 //!   (`try([P|Ps])` selected by `list<T>` gives `P: T`, `Ps: list<T>`).
+//!   A `ground` value selecting an id argument that is a list pattern
+//!   (`[P|Ps]`, `[X, Y|T]`, `[X]`) gives it `list<ground>`, a checked
+//!   narrowing (`ground` may be an improper list, `[a|b]`): a back end
+//!   takes only a proper list into that situation and hands any other
+//!   value to the machine, which selects as always; a situation the
+//!   machine enters converts its id's parts with the checked conversion,
+//!   which fails for such a value (the term path runs it). So the walk
+//!   after it (`try(Ps)`) is over a typed list.
 //!   The DM's first situation is entered by position with its id's
 //!   variables unbound (D-4): its id arguments are `Term`.
 //! - **locals and globals**: the default's type joined with every write
@@ -548,6 +556,40 @@ fn args_of(t: &Typed, name: Atom, n: usize) -> Option<Vec<Typed>> {
                 .collect(),
         ),
         _ => None,
+    }
+}
+
+/// A `ground` value that an id's list pattern takes apart (`[P|Ps]`,
+/// `[X, Y|T]`, `[X]`: cells ending in a variable or `[]`) is a proper list
+/// of ground values there, `list<ground>`: a checked narrowing. A back end
+/// takes only a proper list into such a situation (a `ground` value that
+/// is an improper list, `[a|b]`, is handed to the machine, which selects
+/// as always, and a situation entered by the machine with one converts
+/// its id's parts with the checked conversion, which fails: the term path
+/// runs it). So the walk `try(Ps)` after it is over a typed list. Any
+/// other value or pattern: the value's own type.
+fn narrowed_by_list_pattern(store: &Store, v: &Typed, pat: Term) -> Typed {
+    if v.ty != Ty::Ground {
+        return v.clone();
+    }
+    let mut cur = pat;
+    let mut cells = 0;
+    while let Value::Compound(name, &[_, tail]) = store.value(cur) {
+        if name != atoms::DOT {
+            break;
+        }
+        cells += 1;
+        cur = tail;
+    }
+    let ends_as_list = match store.value(cur) {
+        Value::Var(_) => true,
+        Value::Atom(a) => a == atoms::NIL,
+        _ => false,
+    };
+    if cells > 0 && ends_as_list {
+        Typed::of(Ty::list(Ty::Ground))
+    } else {
+        v.clone()
     }
 }
 
@@ -1326,6 +1368,11 @@ impl<'a> State<'a> {
             self.enter(d, s, pipe);
             if let Value::Compound(name, args) = self.store().value(id) {
                 if let Some(vs) = args_of(v, name, args.len()) {
+                    let vs: Vec<Typed> = vs
+                        .iter()
+                        .zip(args)
+                        .map(|(a, &pat)| narrowed_by_list_pattern(self.store(), a, pat))
+                        .collect();
                     if let Some(t) = self.t.dms[d].sits[s].as_mut() {
                         for (slot, a) in t.id_args.iter_mut().zip(&vs) {
                             self.changed |= slot.absorb(a);
@@ -2326,9 +2373,11 @@ diag_mod(search(Places, Target),
     #[test]
     fn a_ground_list_cell_may_be_improper() {
         // `main`'s parameter is `ground` (the command line gives it): it
-        // may be `[a|b]`, so the tail matched by `[X|Rest]` is `ground`,
-        // not `list<ground>`; a cell built of ground values whose tail is
-        // not a list is `ground`, not a partial-list `term`.
+        // may be `[a|b]`, so the tail matched by `[X|Rest]` is
+        // `list<ground>` only by a checked narrowing (a back end takes
+        // only a proper list into `w([X|Rest])`); a cell built of ground
+        // values whose tail is not a list is `ground`, not a partial-list
+        // `term`.
         let (ir, mir, t) = types_of(
             r#"
 diag_mod(main(Items),
@@ -2342,12 +2391,39 @@ diag_mod(main(Items),
         let m = dm(&ir, "main");
         let walk = sit(&ir, m, 2);
         assert_eq!(var_ty(&ir, &mir, &t, m, walk, "X"), Ty::Ground);
-        assert_eq!(var_ty(&ir, &mir, &t, m, walk, "Rest"), Ty::Ground);
+        let grounds = Ty::list(Ty::Ground);
+        assert_eq!(var_ty(&ir, &mir, &t, m, walk, "Rest"), grounds);
+        assert_eq!(t.dms[m].sits[walk].as_ref().unwrap().id_args[0].ty, grounds);
         let pair = sit(&ir, m, 3);
         assert_eq!(
             t.dms[m].sits[pair].as_ref().unwrap().id_args[0].ty,
             Ty::Ground
         );
+    }
+
+    #[test]
+    fn only_a_list_pattern_narrows_a_ground_value() {
+        // Cells ending in a variable or `[]` narrow; an improper pattern
+        // or another compound does not.
+        let (ir, _mir, t) = types_of(
+            r#"
+diag_mod(main(Items),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => w(Items) ] ],
+    [ id ==> w([X|a]), type ==> neutral, arcs ==> [ empty : empty => v(X) ] ],
+    [ id ==> w(f(Y)), type ==> neutral, arcs ==> [ empty : empty => v(Y) ] ],
+    [ id ==> w([Z]), type ==> neutral, arcs ==> [ empty : empty => v(Z) ] ],
+    [ id ==> v(_), type ==> final ] ],
+  []).
+"#,
+        );
+        let m = dm(&ir, "main");
+        let arg = |k| {
+            let s = sit(&ir, m, k);
+            t.dms[m].sits[s].as_ref().unwrap().id_args[0].ty.clone()
+        };
+        assert_eq!(arg(1), Ty::Ground);
+        assert_eq!(arg(2), Ty::Ground);
+        assert_eq!(arg(3), Ty::list(Ty::Ground));
     }
 
     #[test]

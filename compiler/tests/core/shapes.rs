@@ -4,8 +4,9 @@
 //! (`tests/typed/shapes/*`: the limit from a parameter, the pipe, a
 //! global or a local; `<`, `=<`, `>`, `=:=`, `==`; the counter in the
 //! callee; computed and constant out_args; calls with 0, 1, 3 arguments
-//! and an output argument; lists of ints, atoms and pairs; a walk by
-//! `get`/`set` of a local; lists from a user function and from the KB;
+//! and an output argument; lists of ints, atoms and pairs, one from the
+//! pipe; a walk by `get`/`set` of a local; lists from a user function and
+//! from the KB;
 //! exit arcs `found(_)`, `found(P)`, a variable; a guard; nested calls).
 //! Their `--explain-types` listings as one insta snapshot, through the
 //! library (no `sitlogc`, no generated code compiled):

@@ -248,6 +248,36 @@ impl Val {
         }
     }
 
+    /// `[H|T]` of a non-empty proper list: the head (cloned) and the rest
+    /// as a list (sharing this list's storage), inline: the walk of a
+    /// `ground` value an id's list pattern narrowed to `list<ground>`.
+    /// `None` for anything else, an improper list too ([`Val::is_cell`]).
+    #[inline]
+    pub fn split_proper(&self) -> Option<(Val, List<Val>)> {
+        match self {
+            Val::List(l) => l.split_first().map(|(h, t)| (h.clone(), t)),
+            _ => None,
+        }
+    }
+
+    /// Whether this is a cell whose tail is not a list (`[a|b]`, built by
+    /// [`Val::cons`]): what [`Val::split_list`] splits and
+    /// [`Val::split_proper`] does not.
+    #[inline]
+    pub fn is_cell(&self) -> bool {
+        matches!(self, Val::Tagged(c) if c.name() == atoms::DOT && c.args().len() == 2)
+    }
+
+    /// The proper list this is (`[]` too), `None` for anything else: a
+    /// `ground` value narrowed to `list<ground>`.
+    #[inline]
+    pub fn into_list(self) -> Option<List<Val>> {
+        match self {
+            Val::List(l) => Some(l),
+            _ => None,
+        }
+    }
+
     /// [`Val::split_list`] of anything but a list, out of line (the
     /// list's case inlines where `[P|Ps]` is selected).
     #[inline(never)]
@@ -392,6 +422,14 @@ mod tests {
         let (h, t) = l.split_list().expect("a cell");
         assert_eq!(h, a.into_val());
         assert_eq!(t, List::from_vec(vec![b]).into_val());
+        // The same as a proper list; an improper one is a cell, not a list.
+        let (h2, t2) = l.split_proper().expect("a proper list");
+        assert_eq!((h2, Val::List(t2)), (h, t));
+        assert!(!l.is_cell() && l.clone().into_list().is_some());
+        let ab_cell = Val::cons(a.into_val(), b.into_val());
+        assert!(ab_cell.is_cell() && ab_cell.split_proper().is_none());
+        assert!(ab_cell.split_list().is_some() && ab_cell.into_list().is_none());
+        assert!(nil.split_proper().is_none() && !nil.is_cell());
         let c = <Val as Native>::from_term(&s, fa).expect("f(a, [1, 2])");
         assert_eq!(c.args_of(f, 2).map(|x| x[0].clone()), Some(Val::Sym(a)));
         assert!(c.args_of(f, 1).is_none() && c.sym().is_none());

@@ -36,7 +36,7 @@ use std::rc::Rc;
 /// type from [`Val::from_term`] are `==` exactly when their terms are `==`
 /// in Prolog, except `Term` values: compare those with
 /// [`Val::identical_to`].
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub enum Val {
     Int(i64),
     Float(f64),
@@ -52,6 +52,41 @@ pub enum Val {
     /// variable, bound later). In a `Cell` so that [`gc`] can move it
     /// in place inside shared lists.
     Term(Cell<Term>),
+}
+
+impl Clone for Val {
+    /// An atom or an int copied where it is cloned (a list's head taken
+    /// into a situation's field at each visit of a walk), the rest out of
+    /// line.
+    #[inline]
+    fn clone(&self) -> Val {
+        // One test of the variant each (a `match` decodes the niche of
+        // the list's tag first: twice the instructions).
+        if matches!(self, Val::Sym(_)) {
+            if let Val::Sym(a) = self {
+                return Val::Sym(*a);
+            }
+        }
+        if matches!(self, Val::Int(_)) {
+            if let Val::Int(i) = self {
+                return Val::Int(*i);
+            }
+        }
+        clone_slow(self)
+    }
+}
+
+/// [`Val`]'s `clone` but for an atom or an int.
+#[inline(never)]
+fn clone_slow(v: &Val) -> Val {
+    match v {
+        Val::Int(i) => Val::Int(*i),
+        Val::Float(f) => Val::Float(*f),
+        Val::Sym(a) => Val::Sym(*a),
+        Val::List(l) => Val::List(l.clone()),
+        Val::Tagged(c) => Val::Tagged(c.clone()),
+        Val::Term(t) => Val::Term(t.clone()),
+    }
 }
 
 /// A compound's name and arguments in one shared allocation: `[name,
@@ -84,11 +119,14 @@ impl PartialEq for Val {
     /// `==` of a list's element with a target), the rest out of line.
     #[inline]
     fn eq(&self, other: &Val) -> bool {
-        match (self, other) {
-            (Val::Sym(a), Val::Sym(b)) => a == b,
-            (Val::Int(a), Val::Int(b)) => a == b,
-            _ => eq_slow(self, other),
+        // One test of the variant each, as in `clone`.
+        if let (Val::Sym(a), Val::Sym(b)) = (self, other) {
+            return a == b;
         }
+        if let (Val::Int(a), Val::Int(b)) = (self, other) {
+            return a == b;
+        }
+        eq_slow(self, other)
     }
 }
 

@@ -421,6 +421,10 @@ fn native_dms_agree() {
         "search([a, b, c], c)",
         "search([], a)",
         "search(foo, a)",
+        // Improper lists: the walk over `list<ground>` hands them to the
+        // machine, at the start and after a step.
+        "search([a|b], b)",
+        "search([a, b|c], c)",
         "above([1, 7], 3)",
         "above([1, 2.5], 1)",
         "pairs([a, a])",
@@ -543,12 +547,13 @@ fn native_dms_agree() {
 }
 
 /// Workloads of issue 37's shapes written as another engineer would
-/// (`typed/shapes`, all 14 explained in the compiler's `core::shapes`
-/// snapshot); four compiled here: the callee counting in a global and
+/// (`typed/shapes`, all 15 explained in the compiler's `core::shapes`
+/// snapshot); five compiled here: the callee counting in a global and
 /// handing the pipe back (an arc with an out_arg and a value bound at a
 /// boundary), an output argument bound by the finals' `diag_mod` read
 /// after an exit arc that is a variable, a walk by `get`/`set` of a local
-/// list, a walk counting its position with `J is I + 1` in the action.
+/// list, a walk counting its position with `J is I + 1` in the action,
+/// a list from the pipe walked as a typed list (`list<ground>`).
 /// Each also from arguments that do not fit.
 mod shapes {
     pub mod callee_counts {
@@ -562,6 +567,9 @@ mod shapes {
     }
     pub mod ints_fields {
         sitlog_macros::include_dm!("typed/shapes/d_ints_fields");
+    }
+    pub mod pipe_list {
+        sitlog_macros::include_dm!("typed/shapes/d_pipe_list");
     }
 }
 
@@ -592,5 +600,21 @@ fn other_engineers_shapes_agree() {
     let _ = shapes::ints_fields::dm_first_above::run_native;
     for main in ["rounds(3)", "rounds(x)", "rounds(2.5)"] {
         agree(app, &ir, main, "");
+    }
+    // The list in the pipe: ints, atoms and mixed, the goal missing, an
+    // improper list and a partial one (the machine's), not a list.
+    let ir = interpreter("typed/shapes/d_pipe_list");
+    let app = shapes::pipe_list::program();
+    let _ = shapes::pipe_list::dm_look::run_native;
+    for (main, in_arg) in [
+        ("seek(3, 12)", "[3, 8, 12, 5]"),
+        ("seek(2, b)", "[a, f(x), b]"),
+        ("seek(2, z)", "[a, 1, [b]]"),
+        ("seek(1, b)", "[a|b]"),
+        ("seek(1, b)", "[a, b|_]"),
+        ("seek(1, a)", "[]"),
+        ("seek(1, a)", "a"),
+    ] {
+        agree_piped(app, &ir, main, Some(in_arg), "");
     }
 }

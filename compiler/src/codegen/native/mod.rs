@@ -129,8 +129,15 @@
 //! is set, narrowing a `ground` value to a list or a compound, arithmetic
 //! other than integer comparisons. (A `ground` value selecting a situation
 //! whose id field is an atom or an int is narrowed with a check, `narrow`;
-//! when it is another shape the machine selects.) `--explain-types` says
-//! which and why, per situation.
+//! when it is another shape the machine selects. One whose id's list
+//! pattern has a tail field typed `list<ground>`, `mir::ty`'s narrowing,
+//! is split as a proper list, `Val::split_proper`, the tail a
+//! `List<Val>`; an improper list goes to the machine.) `--explain-types`
+//! says which and why, per situation.
+//!
+//! A register loaded from a frame's parameter or a callee's final field
+//! that its visit reads only by reference (a comparison, a selected value)
+//! is bound to it where it lies, not cloned (`by_ref_loads`).
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 
@@ -439,6 +446,13 @@ enum MatchStep {
     Args(TokenStream, TokenStream, Literal, Vec<Ident>),
     /// `[H|T]` of a `Val`: `if let Some((h, t)) = v.split_list()`.
     SplitVal(TokenStream, Ident, Ident),
+    /// `[H|T]` of a `Val` whose `T` is a field typed `list<ground>`
+    /// (`mir::ty`'s narrowing of a `ground` value by a list pattern):
+    /// `if let Some((h, t)) = v.split_proper()`, the head a `Val`, the
+    /// tail a `List<Val>`; an improper list (`[a|b]`: this candidate would take
+    /// it on terms) is handed to the machine, never tried on a later
+    /// candidate.
+    SplitValList(TokenStream, Ident, Ident),
     /// The arguments of a `Val` that is `name/arity`, each a `Val`.
     ArgsVal(TokenStream, TokenStream, Literal, Vec<Ident>),
     /// `let Some(NAME) = EXPR else { the machine selects }`: a value held
@@ -458,6 +472,7 @@ impl MatchStep {
             MatchStep::Let(_, e) | MatchStep::Narrow(_, e) => call::mentions(e, x),
             MatchStep::Split(v, ..)
             | MatchStep::SplitVal(v, ..)
+            | MatchStep::SplitValList(v, ..)
             | MatchStep::Args(v, ..)
             | MatchStep::ArgsVal(v, ..) => call::mentions(v, x),
         }
@@ -720,6 +735,7 @@ impl Gen<'_> {
         // Resumed after a call returned: the waiting situation's exit arcs,
         // then the same checks as after a visit. A DM with no situation
         // that waits (most) only says that it was not waiting.
+        let arms = by_ref_loads(quote!(#(#arms)*));
         let resume = if exit_arms.iter().all(|a| a.is_empty()) {
             quote! {
                 if ret.is_some() {
@@ -727,10 +743,11 @@ impl Gen<'_> {
                 }
             }
         } else {
+            let exit_arms = by_ref_loads(quote!(#(#exit_arms)*));
             quote! {
                 if let Some(ret) = ret {
                     at = match at {
-                        #(#exit_arms)*
+                        #exit_arms
                         _ => return Err(cx.error(#NOT_WAITING, None)),
                     };
                     #gc
@@ -816,7 +833,7 @@ impl Gen<'_> {
                 #resume
                 loop {
                     at = match at {
-                        #(#arms)*
+                        #arms
                         _ => return Err(cx.error("native code visited a waiting situation", None)),
                     };
                     #gc
@@ -2872,6 +2889,13 @@ impl Gen<'_> {
                             #code
                         }
                     },
+                    MatchStep::SplitValList(l, h, t) => quote! {
+                        if let Some((#h, #t)) = #l.split_proper() {
+                            #code
+                        } else if #l.is_cell() {
+                            break 'hand;
+                        }
+                    },
                     MatchStep::ArgsVal(v, f, arity, xs) => quote! {
                         if let Some([#(#xs),*]) = #v.args_of(#f, #arity) {
                             #(let #xs = #xs.clone();)*
@@ -3127,16 +3151,24 @@ impl Gen<'_> {
                 let hx = format_ident!("h{}", *n);
                 let tx = format_ident!("l{}", *n);
                 *n += 1;
-                steps.push(MatchStep::SplitVal(quote!(#e), hx.clone(), tx.clone()));
-                let parts = [(h, hx), (t, tx)].map(|(p, x)| {
-                    (
-                        p,
-                        V {
-                            e: quote!(#x),
-                            ty: Ty::Ground,
-                        },
-                    )
-                });
+                // A tail the situation holds as a list (`Ps` of `[P|Ps]`,
+                // narrowed by `mir::ty`): split as a proper list.
+                let tail_list = matches!(self.store.value(t), Value::Var(_)) && {
+                    path.push(1);
+                    let r = Self::nat_id_reg(d, j, path);
+                    path.pop();
+                    r.and_then(|r| d.types[j].regs.get(r as usize))
+                        .is_some_and(|x| x.ty == Ty::list(Ty::Ground))
+                };
+                let tail_ty = if tail_list {
+                    steps.push(MatchStep::SplitValList(quote!(#e), hx.clone(), tx.clone()));
+                    Ty::list(Ty::Ground)
+                } else {
+                    steps.push(MatchStep::SplitVal(quote!(#e), hx.clone(), tx.clone()));
+                    Ty::Ground
+                };
+                let parts = [(h, hx, Ty::Ground), (t, tx, tail_ty)]
+                    .map(|(p, x, ty)| (p, V { e: quote!(#x), ty }));
                 self.match_parts(d, j, parts, path, vars, steps, n)
             }
             Value::Compound(name, args) => {
@@ -3201,10 +3233,19 @@ fn identical(l: &V, r: &V) -> Option<TokenStream> {
         (Ty::Term, b) if held_as_val(b) => Some(quote!(#rp.identical_to(cx.store_ref(), #le.0))),
         (a, Ty::Term) if held_as_val(a) => Some(quote!(#lp.identical_to(cx.store_ref(), #re.0))),
         (a, b) if held_as_val(a) && b.is_native() && *b != Ty::Float => {
-            Some(quote!((#le == IntoVal::into_val(#re))))
+            let rv = coerce(r, &Ty::Ground).ok()?;
+            Some(quote!((#le == #rv)))
         }
         (a, b) if held_as_val(b) && a.is_native() && *a != Ty::Float => {
-            Some(quote!((IntoVal::into_val(#le) == #re)))
+            let lv = coerce(l, &Ty::Ground).ok()?;
+            Some(quote!((#lv == #re)))
+        }
+        // Lists of different element types (`list<ground>`, a list a
+        // pattern narrowed, against `[]` or `list<atom>`): as `Val`s.
+        (Ty::List(_), Ty::List(_)) if l.ty.is_native() && r.ty.is_native() => {
+            let lv = coerce(l, &Ty::Ground).ok()?;
+            let rv = coerce(r, &Ty::Ground).ok()?;
+            Some(quote!((#lv == #rv)))
         }
         (Ty::Term, Ty::Term) => Some(quote!(cx.store_ref().identical(#le.0, #re.0))),
         (Ty::Term, Ty::Sym) => Some(quote!((cx.store_ref().atom_of(#le.0) == #some(#re)))),
@@ -3259,6 +3300,89 @@ fn moved(v: &V) -> TokenStream {
         }
     }
     v.e.clone()
+}
+
+/// A register loaded from a frame's parameter or a callee's final field
+/// (`let r3 = p1.clone();`) that the rest of its block reads only by
+/// reference (`Borrow::<T>::borrow(&r3)`, as [`place`] prints it: a
+/// comparison, a selected value) or clones (`r3.clone()`: a call's
+/// argument) is bound to the value where it lies (`let r3 = &*p1;`,
+/// `Borrow` and `clone` read through the reference): no clone and no drop
+/// per visit. Parameters and a final's fields are not written while
+/// a visit reads them.
+fn by_ref_loads(ts: TokenStream) -> TokenStream {
+    use proc_macro2::{Group, TokenTree as T};
+    let toks: Vec<T> = ts.into_iter().collect();
+    let mut out = TokenStream::new();
+    let mut i = 0;
+    while i < toks.len() {
+        // `let rN = X . clone ( ) ;`, X a parameter `p<n>` or a field `c<n>`.
+        if let [T::Ident(l), T::Ident(r), T::Punct(eq), T::Ident(x), T::Punct(dot), T::Ident(clone), T::Group(g), T::Punct(semi), ..] =
+            &toks[i..]
+        {
+            let numbered = |x: &Ident, pre: &[char]| {
+                let s = x.to_string();
+                s.strip_prefix(pre)
+                    .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+            };
+            if l == "let"
+                && numbered(r, &['r'])
+                && eq.as_char() == '='
+                && numbered(x, &['p', 'c'])
+                && dot.as_char() == '.'
+                && clone == "clone"
+                && g.delimiter() == proc_macro2::Delimiter::Parenthesis
+                && g.stream().is_empty()
+                && semi.as_char() == ';'
+                && only_borrowed(&toks[i + 8..], r)
+            {
+                out.extend(quote!(let #r = &*#x;));
+                i += 8;
+                continue;
+            }
+        }
+        match &toks[i] {
+            T::Group(g) => {
+                let mut ng = Group::new(g.delimiter(), by_ref_loads(g.stream()));
+                ng.set_span(g.span());
+                out.extend([T::Group(ng)]);
+            }
+            t => out.extend([t.clone()]),
+        }
+        i += 1;
+    }
+    out
+}
+
+/// Whether every mention of `r` in `toks` is `borrow(&r)` or `r.clone()`
+/// (through a reference, the value it points at cloned); a field named
+/// like it, `S3 { r3: .. }`, is not a mention.
+fn only_borrowed(toks: &[proc_macro2::TokenTree], r: &Ident) -> bool {
+    use proc_macro2::{Spacing, TokenTree as T};
+    toks.iter().enumerate().all(|(k, t)| match t {
+        T::Ident(x) if x == r => {
+            let field = matches!(toks.get(k + 1), Some(T::Punct(c)) if c.as_char() == ':' && c.spacing() == Spacing::Alone)
+                && !matches!(k.checked_sub(1).map(|j| &toks[j]), Some(T::Ident(l)) if l == "let");
+            let cloned = matches!(
+                &toks[k + 1..],
+                [T::Punct(dot), T::Ident(c), T::Group(g), ..]
+                    if dot.as_char() == '.'
+                        && c == "clone"
+                        && g.delimiter() == proc_macro2::Delimiter::Parenthesis
+                        && g.stream().is_empty()
+            ) && !matches!(k.checked_sub(1).map(|j| &toks[j]), Some(T::Punct(p)) if p.as_char() == '.');
+            field || cloned
+        }
+        T::Ident(_) => true,
+        T::Group(g) => {
+            let inner: Vec<T> = g.stream().into_iter().collect();
+            let borrowed = matches!(inner.as_slice(), [T::Punct(amp), T::Ident(x)] if amp.as_char() == '&' && x == r)
+                && k > 0
+                && matches!(&toks[k - 1], T::Ident(b) if b == "borrow");
+            borrowed || only_borrowed(&inner, r)
+        }
+        _ => true,
+    })
 }
 
 /// `[h|t]` of native values.
@@ -3321,6 +3445,7 @@ fn narrow(v: &V, to: &Ty) -> Option<TokenStream> {
     match (&v.ty, to) {
         (Ty::Ground, Ty::Sym) => Some(quote!((#e).sym())),
         (Ty::Ground, Ty::Int) => Some(quote!((#e).int())),
+        (Ty::Ground, Ty::List(x)) if **x == Ty::Ground => Some(quote!((#e).into_list())),
         (Ty::Term, to) if to.is_native() && *to != Ty::Never => {
             let ty = rust_ty(to).ok()?;
             Some(quote!(<#ty as Native>::from_term(cx.store_ref(), (#e).0)))
@@ -3338,6 +3463,11 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
         (Ty::Never, _) => {
             let e = &v.e;
             Ok(quote!(match #e {}))
+        }
+        // A list of `Val`s is a `Val` as it is (shared, no copy).
+        (Ty::List(e), Ty::Ground) if **e == Ty::Ground => {
+            let e = &v.e;
+            Ok(quote!(Val::List(#e)))
         }
         // A native value entering a `ground` register.
         (from, Ty::Ground) if from.is_native() => {
