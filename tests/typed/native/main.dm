@@ -300,11 +300,15 @@ diag_mod(sums(N),
 % output slot and the caller's exit arcs read it. The other ways fall back
 % to the machine's call: a variable given twice (`two(N, S, S)`, agreeing or
 % not), one inside an argument (`wrap(N, f(X))`), an output the callee leaves
-% unbound (`maybe`), a start value that does not convert (`outs(3, 2.5)`).
+% unbound (`maybe`), a start value that does not convert (`outs(2, 2.5)`).
+% `louder` performs an action while its caller waits: the native frames
+% become the machine's there (the caller's fresh variable made then).
 diag_mod(outs(Max, Start),
   [ [ id ==> start, type ==> neutral, arcs ==> [ empty : empty => loop(Start) ] ],
     [ id ==> loop(I), type ==> recursive, embedded_dm ==> plus(I, 1, J),
-      arcs ==> [ sum(_) : empty => (J >= Max -> shared(J) ; otherwise -> loop(J)) ] ],
+      arcs ==> [ sum(_) : empty => (J >= Max -> loud(J) ; otherwise -> loop(J)) ] ],
+    [ id ==> loud(N), type ==> recursive, embedded_dm ==> louder(N, L),
+      arcs ==> [ said : empty => shared(L) ] ],
     [ id ==> shared(N), type ==> recursive, embedded_dm ==> two(N, S, S),
       arcs ==> [ two : empty => partly(S) ] ],
     [ id ==> partly(N), type ==> recursive, embedded_dm ==> wrap(N, f(X)),
@@ -319,6 +323,15 @@ diag_mod(outs(Max, Start),
 diag_mod(plus(A, B, C),
   [ [ id ==> calc, type ==> neutral, arcs ==> [ empty : [S is A + B] => sum(S) ] ],
     [ id ==> sum(S), type ==> final, diag_mod ==> plus(A, B, S) ]
+  ],
+  []
+).
+
+% An action performed while the caller waits for the output: the native
+% frames made the machine's (the caller's fresh variable made then).
+diag_mod(louder(A, Out),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : say(A) => said ] ],
+    [ id ==> said, type ==> final, diag_mod ==> louder(A, A) ]
   ],
   []
 ).

@@ -8,15 +8,34 @@
 //! (`found(P)` binds `P` from the variant's field), their action (`inc`
 //! and `get` of a local, atoms, numbers) and next situation run natively.
 //!
+//! *Output arguments* (`add(I, 1, J)`, `J` a fresh variable of the
+//! situation written once, as a whole argument: `call_outputs`) given to
+//! an output parameter of the callee (`DmTypes::outputs`: no situation
+//! reads it, every final binds it in its `diag_mod`) are passed as no term
+//! (`Ground::OUT` in the callee's frame); a final whose `diag_mod` is the
+//! head with the outputs computed natively and every other argument the
+//! parameter itself (`slot_final`) writes them to the frame's output slots
+//! (`out<i>: Option<T>`) instead of unifying, and the caller's exit arcs
+//! read them from there (`W<ix>` keeps no output register). That is the
+//! term path's unification exactly: the caller's variable is fresh and
+//! appears nowhere else, the other arguments unify with themselves. Where
+//! the frames become the machine's while the callee runs
+//! (`nat_materialize`), the callee's call term makes the variable
+//! (`Ground::OUT`'s `to_term`) and the caller's `saved` takes it from
+//! there (`cx.arg(callee, k)`), so the machine's `diag_mod` binds it for
+//! the caller's term code. A variable given twice or inside an argument,
+//! an output the callee may leave unbound, an output of a type the
+//! caller's register does not take: the machine's call, as below.
+//!
 //! Hand-over, so behaviour stays the term path's:
 //! - a call made while a history is kept or observed (`run.records`: the
 //!   machine pushes the callee's frame, its entries nest in the caller's),
 //!   a call whose DM is not native there, whose arguments do not fit the
-//!   callee's frame (an output argument: a fresh variable, made as a term
-//!   for the visit), or whose exit arcs are not native here, or that
-//!   would reach the depth limit, is given to the machine as the term
-//!   code gives it (`Step::Call` with the same `saved`): the machine runs
-//!   the callee and the caller's term code takes the exit;
+//!   callee's frame (a fresh variable other than an output argument above,
+//!   made as a term for the visit), or whose exit arcs are not native
+//!   here, or that would reach the depth limit, is given to the machine as
+//!   the term code gives it (`Step::Call` with the same `saved`): the
+//!   machine runs the callee and the caller's term code takes the exit;
 //! - anything that needs the machine's state (an action performed, an
 //!   error, a comparison evaluated on terms) first materializes the native
 //!   stack and writes the locals back ([`super::Dm::hand`]);
@@ -741,8 +760,13 @@ impl Gen<'_> {
         };
         match b {
             Build::Reg(r) if fresh.contains(r) && !regs.contains_key(r) => {
-                // A fresh variable of the arc takes the value.
-                let side = side.ok_or("an exit arc's variable takes a compound")?;
+                // A fresh variable of the arc takes the value. One that
+                // takes a compound (`Result` against `got(P)`) is not held:
+                // code that reads it fails to generate ("read unset"), and
+                // the call is then the machine's.
+                let Some(side) = side else {
+                    return Ok(true);
+                };
                 let ty = d.types[ix].regs[*r as usize].ty.clone();
                 let e = coerce(&side, &ty)?;
                 let rr = reg(*r);

@@ -57,8 +57,10 @@
 //!   shows it in the DM's id), and a final computes the value it binds as
 //!   a Rust local of the output type (`let o2: Atom = ..`), converted once
 //!   where `diag_mod` hands it to the machine (`Gen::nat_output_slots`). A
-//!   native caller still gets it through the machine: a call with an output
-//!   argument is the machine's call (not pushed natively yet).
+//!   native caller that passed its fresh variable as no term
+//!   (`Ground::OUT`, [`call`]) gets the value in the frame's output slot
+//!   (`out<i>`) instead, nothing unified: the final's `diag_mod` is the
+//!   head with every other argument the parameter itself.
 //! - *the history*: where the term code records an entry (an arc: after
 //!   its action, next situation and out_arg; a final), native code records
 //!   the same one (`cx.record`: the situation entered with its id, the
@@ -104,8 +106,10 @@
 //!   a situation handed over, `get`/`set`/`inc` through the machine), first
 //!   makes the native frames machine frames and writes the locals back
 //!   (`nat_hand_over`), and reads the locals again after the machine's
-//!   call. A call with an output argument (`_`) is always the machine's,
-//!   its term built with the fresh variable made for the visit.
+//!   call. A call with an output argument is pushed so too when the
+//!   callee hands it back in an output slot ([`call`]); other calls with a
+//!   fresh variable are the machine's, the term built with the variable
+//!   made for the visit.
 //! - *the pipe* ([`pipe`]): read into a variable in_arg's register with a
 //!   checked conversion, written back where an out_arg sets it.
 //!
