@@ -163,6 +163,11 @@ impl Gen<'_> {
                 outs.push(n);
             }
         }
+        let rest = if outs.is_empty() {
+            quote!()
+        } else {
+            quote!(..)
+        };
         let call = self.nat_call_term(d)?;
         let locals = self.nat_write_locals(d)?;
         let hand_fn = self.nat_hand_fn(d)?;
@@ -199,7 +204,7 @@ impl Gen<'_> {
                 callee_dm: DmIx,
             ) -> Result<(), RunError> {
                 let a = &p.atoms;
-                let Frame { #(#names,)* at, .. } = frame;
+                let Frame { #(#names,)* at, #rest } = frame;
                 #locals
                 match at {
                     #(#wait_arms)*
