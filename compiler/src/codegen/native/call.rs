@@ -6,7 +6,11 @@
 //! term code's `saved` keeps them); when the callee reaches a final, the
 //! exit arcs are matched against the callee's final variant natively
 //! (`found(P)` binds `P` from the variant's field), their action (`inc`
-//! and `get` of a local, atoms, numbers) and next situation run natively.
+//! and `get` of a local, atoms, numbers) and next situation run natively;
+//! exit arcs native code does not know (`say('..')`, `apply(..)` in the
+//! action) are run by the situation's term code (`run_exit`, what the
+//! machine runs after its call) once the frames below are the machine's,
+//! `saved` built from the waiting variant (`nat_exit_on_terms`).
 //!
 //! *Output arguments* (`add(I, 1, J)`, `J` a fresh variable of the
 //! situation written once, as a whole argument: `call_outputs`) given to
@@ -32,10 +36,10 @@
 //!   machine pushes the callee's frame, its entries nest in the caller's),
 //!   a call whose DM is not native there, whose arguments do not fit the
 //!   callee's frame (a fresh variable other than an output argument above,
-//!   made as a term for the visit), or whose exit arcs are not native
-//!   here, or that would reach the depth limit, is given to the machine as
-//!   the term code gives it (`Step::Call` with the same `saved`): the
-//!   machine runs the callee and the caller's term code takes the exit;
+//!   made as a term for the visit), or that would reach the depth limit,
+//!   is given to the machine as the term code gives it (`Step::Call` with
+//!   the same `saved`): the machine runs the callee and the caller's term
+//!   code takes the exit;
 //! - anything that needs the machine's state (an action performed, an
 //!   error, a comparison evaluated on terms) first materializes the native
 //!   stack and writes the locals back ([`super::Dm::hand`]);
@@ -209,11 +213,18 @@ impl Gen<'_> {
         }
         // Each output argument: an output parameter of the callee (no
         // situation reads it, every final binds it) held in a slot of a
-        // type the caller's register takes.
+        // type the caller's register takes, where the exit arcs read it
+        // (`saved`; else nothing reads the slot: `find(O, S, _, _, _)`).
+        let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
+            return None;
+        };
         for &(k, r) in &outs {
             let oty = callee.outputs.get(k)?.as_ref()?;
             if callee.params[k] != Ty::Term || !callee.outs.borrow()[k] {
                 return None;
+            }
+            if !saved.contains(&r) {
+                continue;
             }
             let v = V {
                 e: quote!(v),
@@ -225,7 +236,13 @@ impl Gen<'_> {
             let v = self.nat_value(&Build::Const(*default), &Regs::new()).ok()?;
             coerce(&v, ty).ok()?;
         }
-        let exit = self.nat_exit(d, ix, &callee, j).ok()?;
+        // Exit arcs native code does not run natively (an action or next
+        // situation it does not know): the situation's term code runs them
+        // (`run_exit`), as after the machine's call.
+        let exit = match self.nat_exit(d, ix, &callee, j) {
+            Ok(e) => e,
+            Err(_) => self.nat_exit_on_terms(d, ix, &callee, j).ok()?,
+        };
         Some(CallPlan { j, callee, exit })
     }
 
@@ -542,7 +559,13 @@ impl Gen<'_> {
         // final that hands them back there, `Gen::nat_output_slots`).
         let outs = call_outputs(d, ix);
         let mut out_loads = Vec::new();
+        let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
+            return Err("not a recursive situation".into());
+        };
         for &(k, r) in &outs {
+            if !saved.contains(&r) {
+                continue; // the exit arcs do not read it
+            }
             let oty = callee
                 .outputs
                 .get(k)
@@ -715,6 +738,76 @@ impl Gen<'_> {
             .filter(|(r, _)| mentions(&body, r))
             .map(|(_, stmt)| stmt);
         Ok(quote!(#(#head)* #body))
+    }
+
+    /// The exit arcs of recursive situation `ix` run by its term code
+    /// (`run_exit`, what the machine runs after its call), on the callee's
+    /// final in `ret`: the frames below made the machine's, the caller
+    /// entered in its situation, `saved` built from the waiting variant (an
+    /// output argument from the callee's slot, a term of its value: the
+    /// variable the term path's `diag_mod` bound to it).
+    fn nat_exit_on_terms(&self, d: &Dm, ix: usize, callee: &Dm, j: usize) -> N<TokenStream> {
+        let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
+            return Err("not a recursive situation".into());
+        };
+        let fields = self.nat_wait_fields(d, ix)?;
+        let outs = call_outputs(d, ix);
+        let mut loads = Vec::new();
+        let mut saved_vals = Vec::new();
+        for &r in saved.iter() {
+            let rr = reg(r);
+            if let Some(&(k, _)) = outs.iter().find(|&&(_, o)| o == r) {
+                let oty = callee
+                    .outputs
+                    .get(k)
+                    .cloned()
+                    .flatten()
+                    .ok_or("an output argument of a parameter that is not an output")?;
+                let o = format_ident!("out{}", k);
+                let rt = rust_ty(&oty)?;
+                loads.push(quote! {
+                    let #rr: #rt = match done_frame.#o.take() {
+                        Some(v) => v,
+                        None => {
+                            return Err(cx.error(
+                                "a native callee returned without its output",
+                                None,
+                            ))
+                        }
+                    };
+                });
+                saved_vals.push(quote!(&#rr));
+            } else if fields.iter().any(|(f, _)| *f == r) {
+                saved_vals.push(quote!(&#rr));
+            } else {
+                return Err("a saved register is not kept".into());
+            }
+        }
+        let saved_value = if saved.is_empty() {
+            quote!(Term::NIL)
+        } else {
+            quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
+        };
+        let hand = &d.hand;
+        let curl = Literal::u32_unsuffixed(ix as u32);
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let callee_v = format_ident!("D{}", j);
+        Ok(quote! {
+            let super::NatFrame::#callee_v(done_frame) = ret else {
+                return Err(cx.error(
+                    "native code resumed a caller with another DM's frame",
+                    None,
+                ));
+            };
+            #(#loads)*
+            #hand
+            cx.count_transitions(count);
+            #(#id_stmts)*
+            cx.enter_with_id(#curl, #id);
+            let final_id = done_frame.at.id_term(p, cx.store());
+            let saved = #saved_value;
+            return run_exit(p, #curl, saved, final_id, cx).map(Some);
+        })
     }
 
     /// Unifies the expectation `b` (the caller's registers, fresh or set)
