@@ -407,6 +407,13 @@ mod tests {
         }
         let plus = s.compound(atoms::GET, &[Term::atom(a), Term::atom(b)]);
         assert!(<Val as Native>::from_term(&s, plus).is_none(), "not inert");
+        // `Ground::OUT`: never converted to, a fresh variable each time it
+        // becomes a term.
+        for t in [ab, Term::NIL, Term::atom(a), Term::int(3), fa] {
+            assert!(!Ground::from_term(&s, t).expect("ground").is_out());
+        }
+        let (x, y) = (Ground::OUT.to_term(&mut s), Ground::OUT.to_term(&mut s));
+        assert!(s.is_var(x) && s.is_var(y) && !s.identical(x, y));
         let nil = <Val as Native>::from_term(&s, Term::NIL).expect("[]");
         assert_eq!(atoms::NIL.into_val(), nil);
         assert!(nil.is_nil() && nil.sym() == Some(atoms::NIL));
