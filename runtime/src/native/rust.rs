@@ -37,6 +37,22 @@ pub enum Never {}
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Ground(pub Term);
 
+impl Ground {
+    /// An output argument a native caller passed without making a term for
+    /// it (its fresh variable, `J` in `add(I, 1, J)`): the callee's final
+    /// hands the value back in its frame's output slot. Never a store
+    /// handle (a compound's header cell is never given out), never made by
+    /// [`Native::from_term`]; [`Native::to_term`] makes the variable the
+    /// term path would have passed, where the frame becomes the machine's.
+    pub const OUT: Ground = Ground(Term(crate::term::Repr::Functor(atoms::NIL, 0, 0)));
+
+    /// Whether this is [`Ground::OUT`].
+    #[inline]
+    pub fn is_out(&self) -> bool {
+        *self == Ground::OUT
+    }
+}
+
 /// A Rust type generated code holds a typed register in.
 pub trait Native: Clone + PartialEq + Sized {
     /// The value `t` (dereferenced) is, when it has this type.
@@ -102,9 +118,15 @@ impl Native for Ground {
         let t = store.deref(t);
         (store.is_inert(t) && (store.known_ground(t) || store.is_ground(t))).then_some(Ground(t))
     }
+    /// [`Ground::OUT`]: a fresh variable, made once where its frame
+    /// becomes the machine's.
     #[inline]
-    fn to_term(&self, _: &mut Store) -> Term {
-        self.0
+    fn to_term(&self, store: &mut Store) -> Term {
+        if self.is_out() {
+            store.new_var()
+        } else {
+            self.0
+        }
     }
 }
 
@@ -415,6 +437,13 @@ mod tests {
         }
         let plus = s.compound(atoms::GET, &[Term::atom(a), Term::atom(b)]);
         assert!(<Val as Native>::from_term(&s, plus).is_none(), "not inert");
+        // `Ground::OUT`: never converted to, a fresh variable each time it
+        // becomes a term.
+        for t in [ab, Term::NIL, Term::atom(a), Term::int(3), fa] {
+            assert!(!Ground::from_term(&s, t).expect("ground").is_out());
+        }
+        let (x, y) = (Ground::OUT.to_term(&mut s), Ground::OUT.to_term(&mut s));
+        assert!(s.is_var(x) && s.is_var(y) && !s.identical(x, y));
         let nil = <Val as Native>::from_term(&s, Term::NIL).expect("[]");
         assert_eq!(atoms::NIL.into_val(), nil);
         assert!(nil.is_nil() && nil.sym() == Some(atoms::NIL));

@@ -407,6 +407,12 @@ fn native_dms_agree() {
         native::dm_echo::run_native,
         // An output argument: the call handed over on terms.
         native::dm_outer_out::run_native,
+        // Output arguments pushed natively, and the ways that fall back.
+        native::dm_outs::run_native,
+        native::dm_plus::run_native,
+        native::dm_louder::run_native,
+        native::dm_two::run_native,
+        native::dm_apart::run_native,
         // Evaluated calls, conditions and next situations, compound values;
         // expectations naming a parameter.
         native::dm_evals::run_native,
@@ -447,6 +453,13 @@ fn native_dms_agree() {
         "want([a, b], c)",
         "outer_out(a)",
         "outer_out(3)",
+        "outs(3, 0)",
+        "outs(2, 2.5)",
+        "outs(3, a)",
+        "outs(f(x), 1)",
+        "outs(2, 9223372036854775807)",
+        "split(1)",
+        "split(2)",
         "evals(a)",
         "evals(b)",
         "evals(f(c))",
@@ -548,12 +561,13 @@ fn native_dms_agree() {
 
 /// Workloads of issue 37's shapes written as another engineer would
 /// (`typed/shapes`, all 15 explained in the compiler's `core::shapes`
-/// snapshot); five compiled here: the callee counting in a global and
+/// snapshot); six compiled here: the callee counting in a global and
 /// handing the pipe back (an arc with an out_arg and a value bound at a
 /// boundary), an output argument bound by the finals' `diag_mod` read
 /// after an exit arc that is a variable, a walk by `get`/`set` of a local
 /// list, a walk counting its position with `J is I + 1` in the action,
-/// a list from the pipe walked as a typed list (`list<ground>`).
+/// a list from the pipe walked as a typed list (`list<ground>`), a call
+/// whose output argument the callee's final hands back natively.
 /// Each also from arguments that do not fit.
 mod shapes {
     pub mod callee_counts {
@@ -570,6 +584,9 @@ mod shapes {
     }
     pub mod pipe_list {
         sitlog_macros::include_dm!("typed/shapes/d_pipe_list");
+    }
+    pub mod output_arg {
+        sitlog_macros::include_dm!("typed/shapes/c_output_arg");
     }
 }
 
@@ -616,5 +633,12 @@ fn other_engineers_shapes_agree() {
         ("seek(1, a)", "a"),
     ] {
         agree_piped(app, &ir, main, Some(in_arg), "");
+    }
+    // An output argument of ints pushed natively (`add(I, 1, J)`).
+    let ir = interpreter("typed/shapes/c_output_arg");
+    let app = shapes::output_arg::program();
+    let _ = shapes::output_arg::dm_add::run_native;
+    for main in ["steps(4)", "steps(x)", "steps(2.5)"] {
+        agree(app, &ir, main, "");
     }
 }

@@ -292,3 +292,84 @@ diag_mod(sums(N),
   ],
   []
 ).
+
+% Output arguments pushed natively (issue 37, `codegen::native::call`): a
+% fresh variable of the caller (`J`) given to a parameter the callee never
+% reads and binds in every final's `diag_mod` is passed as no term
+% (`Ground::OUT`); the callee's final hands the value back in its frame's
+% output slot and the caller's exit arcs read it. The other ways fall back
+% to the machine's call: a variable given twice (`two(N, S, S)`, agreeing or
+% not), one inside an argument (`wrap(N, f(X))`), an output the callee leaves
+% unbound (`maybe`), a start value that does not convert (`outs(2, 2.5)`).
+% `louder` performs an action while its caller waits: the native frames
+% become the machine's there (the caller's fresh variable made then).
+diag_mod(outs(Max, Start),
+  [ [ id ==> start, type ==> neutral, arcs ==> [ empty : empty => loop(Start) ] ],
+    [ id ==> loop(I), type ==> recursive, embedded_dm ==> plus(I, 1, J),
+      arcs ==> [ sum(_) : empty => (J >= Max -> loud(J) ; otherwise -> loop(J)) ] ],
+    [ id ==> loud(N), type ==> recursive, embedded_dm ==> louder(N, L),
+      arcs ==> [ said : empty => shared(L) ] ],
+    [ id ==> shared(N), type ==> recursive, embedded_dm ==> two(N, S, S),
+      arcs ==> [ two : empty => partly(S) ] ],
+    [ id ==> partly(N), type ==> recursive, embedded_dm ==> wrap(N, f(X)),
+      arcs ==> [ wrapped : say(X) => unbound(X) ] ],
+    [ id ==> unbound(X), type ==> recursive, embedded_dm ==> maybe(X, Y),
+      arcs ==> [ m : empty => fs(Y) ] ],
+    [ id ==> fs(_), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(plus(A, B, C),
+  [ [ id ==> calc, type ==> neutral, arcs ==> [ empty : [S is A + B] => sum(S) ] ],
+    [ id ==> sum(S), type ==> final, diag_mod ==> plus(A, B, S) ]
+  ],
+  []
+).
+
+% An action performed while the caller waits for the output: the native
+% frames made the machine's (the caller's fresh variable made then).
+diag_mod(louder(A, Out),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : say(A) => said ] ],
+    [ id ==> said, type ==> final, diag_mod ==> louder(A, A) ]
+  ],
+  []
+).
+
+diag_mod(two(A, X, Y),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => two ] ],
+    [ id ==> two, type ==> final, diag_mod ==> two(A, A, A) ]
+  ],
+  []
+).
+
+% `two` with outputs that differ: the machine's error where both are one
+% variable (`split(1)`), two values where they are two (`split(2)`).
+diag_mod(split(K),
+  [ [ id ==> c, type ==> recursive, embedded_dm ==> (K == 1 -> apart(K, S, S) ; otherwise -> apart(K, S, T)),
+      arcs ==> [ two : say(S) => fs ] ],
+    [ id ==> fs, type ==> final ]
+  ],
+  []
+).
+
+diag_mod(apart(A, X, Y),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : [B is A + 1] => two(B) ] ],
+    [ id ==> two(B), type ==> final, diag_mod ==> apart(A, A, B) ]
+  ],
+  []
+).
+
+diag_mod(wrap(A, W),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => wrapped ] ],
+    [ id ==> wrapped, type ==> final, diag_mod ==> wrap(A, f(A)) ]
+  ],
+  []
+).
+
+diag_mod(maybe(A, Out),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => m ] ],
+    [ id ==> m, type ==> final ]
+  ],
+  []
+).

@@ -6,17 +6,40 @@
 //! term code's `saved` keeps them); when the callee reaches a final, the
 //! exit arcs are matched against the callee's final variant natively
 //! (`found(P)` binds `P` from the variant's field), their action (`inc`
-//! and `get` of a local, atoms, numbers) and next situation run natively.
+//! and `get` of a local, atoms, numbers) and next situation run natively;
+//! exit arcs native code does not know (`say('..')`, `apply(..)` in the
+//! action) are run by the situation's term code (`run_exit`, what the
+//! machine runs after its call) once the frames below are the machine's,
+//! `saved` built from the waiting variant (`nat_exit_on_terms`).
+//!
+//! *Output arguments* (`add(I, 1, J)`, `J` a fresh variable of the
+//! situation written once, as a whole argument: `call_outputs`) given to
+//! an output parameter of the callee (`DmTypes::outputs`: no situation
+//! reads it, every final binds it in its `diag_mod`) are passed as no term
+//! (`Ground::OUT` in the callee's frame); a final whose `diag_mod` is the
+//! head with the outputs computed natively and every other argument the
+//! parameter itself (`slot_final`) writes them to the frame's output slots
+//! (`out<i>: Option<T>`) instead of unifying, and the caller's exit arcs
+//! read them from there (`W<ix>` keeps no output register). That is the
+//! term path's unification exactly: the caller's variable is fresh and
+//! appears nowhere else, the other arguments unify with themselves. Where
+//! the frames become the machine's while the callee runs
+//! (`nat_materialize`), the callee's call term makes the variable
+//! (`Ground::OUT`'s `to_term`) and the caller's `saved` takes it from
+//! there (`cx.arg(callee, k)`), so the machine's `diag_mod` binds it for
+//! the caller's term code. A variable given twice or inside an argument,
+//! an output the callee may leave unbound, an output of a type the
+//! caller's register does not take: the machine's call, as below.
 //!
 //! Hand-over, so behaviour stays the term path's:
 //! - a call made while a history is kept or observed (`run.records`: the
 //!   machine pushes the callee's frame, its entries nest in the caller's),
 //!   a call whose DM is not native there, whose arguments do not fit the
-//!   callee's frame (an output argument: a fresh variable, made as a term
-//!   for the visit), or whose exit arcs are not native here, or that
-//!   would reach the depth limit, is given to the machine as the term
-//!   code gives it (`Step::Call` with the same `saved`): the machine runs
-//!   the callee and the caller's term code takes the exit;
+//!   callee's frame (a fresh variable other than an output argument above,
+//!   made as a term for the visit), or that would reach the depth limit,
+//!   is given to the machine as the term code gives it (`Step::Call` with
+//!   the same `saved`): the machine runs the callee and the caller's term
+//!   code takes the exit;
 //! - anything that needs the machine's state (an action performed, an
 //!   error, a comparison evaluated on terms) first materializes the native
 //!   stack and writes the locals back ([`super::Dm::hand`]);
@@ -68,8 +91,14 @@ impl Gen<'_> {
     /// the registers saved for the exit arcs.
     fn nat_wait_fields(&self, d: &Dm, ix: usize) -> N<Vec<(Reg, Ty)>> {
         let mut fields = self.nat_fields(d, ix)?;
+        let outs = call_outputs(d, ix);
         if let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind {
             for &r in saved {
+                // An output argument has no value while the callee runs:
+                // it comes back in the callee's output slot.
+                if outs.iter().any(|&(_, o)| o == r) {
+                    continue;
+                }
                 if !fields.iter().any(|(x, _)| *x == r) {
                     fields.push((r, d.types[ix].regs[r as usize].ty.clone()));
                 }
@@ -80,7 +109,13 @@ impl Gen<'_> {
 
     /// The call's DM name and argument values (`None`: evaluating it is not
     /// giving it back, the DM stays on terms).
-    fn nat_call_values(&self, d: &Dm, ix: usize, regs: &Regs) -> N<(sitlog_syntax::Atom, Vec<V>)> {
+    fn nat_call_values(
+        &self,
+        d: &Dm,
+        ix: usize,
+        regs: &Regs,
+        outs: &[(usize, Reg)],
+    ) -> N<(sitlog_syntax::Atom, Vec<V>)> {
         let KindPlan::Recursive {
             call, eval_call, ..
         } = &d.plans[ix].kind
@@ -111,7 +146,18 @@ impl Gen<'_> {
                 }
                 let vals = args
                     .iter()
-                    .map(|a| self.nat_value(a, regs))
+                    .enumerate()
+                    .map(|(i, a)| {
+                        if outs.iter().any(|&(k, _)| k == i) {
+                            // No term for the caller's fresh variable.
+                            Ok(V {
+                                e: quote!(Ground::OUT),
+                                ty: Ty::Term,
+                            })
+                        } else {
+                            self.nat_value(a, regs)
+                        }
+                    })
                     .collect::<N<Vec<_>>>()?;
                 Ok((*name, vals))
             }
@@ -154,7 +200,8 @@ impl Gen<'_> {
             regs.insert(r, (reg(r), ty));
         }
         self.nat_head_regs(d, ix, &mut regs).ok()?;
-        let (name, args) = self.nat_call_values(d, ix, &regs).ok()?;
+        let outs = call_outputs(d, ix);
+        let (name, args) = self.nat_call_values(d, ix, &regs, &outs).ok()?;
         // The machine's `dm_by_name`: the first DM of that name.
         let j = ir.dms.iter().position(|x| x.name == name)?;
         if ir.dms[j].arity != args.len() {
@@ -164,17 +211,48 @@ impl Gen<'_> {
         for (v, ty) in args.iter().zip(&callee.params) {
             coerce(v, ty).ok()?;
         }
+        // Each output argument: an output parameter of the callee (no
+        // situation reads it, every final binds it) held in a slot of a
+        // type the caller's register takes, where the exit arcs read it
+        // (`saved`; else nothing reads the slot: `find(O, S, _, _, _)`).
+        let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
+            return None;
+        };
+        for &(k, r) in &outs {
+            let oty = callee.outputs.get(k)?.as_ref()?;
+            if callee.params[k] != Ty::Term || !callee.outs.borrow()[k] {
+                return None;
+            }
+            if !saved.contains(&r) {
+                continue;
+            }
+            let v = V {
+                e: quote!(v),
+                ty: oty.clone(),
+            };
+            coerce(&v, &d.types[ix].regs[r as usize].ty).ok()?;
+        }
         for ((_, default), (_, ty)) in ir.dms[j].locals.iter().zip(&callee.locals) {
             let v = self.nat_value(&Build::Const(*default), &Regs::new()).ok()?;
             coerce(&v, ty).ok()?;
         }
-        let exit = self.nat_exit(d, ix, &callee, j).ok()?;
+        // Exit arcs native code does not run natively (an action or next
+        // situation it does not know): the situation's term code runs them
+        // (`run_exit`), as after the machine's call.
+        let exit = match self.nat_exit(d, ix, &callee, j) {
+            Ok(e) => e,
+            Err(_) => self.nat_exit_on_terms(d, ix, &callee, j).ok()?,
+        };
         Some(CallPlan { j, callee, exit })
     }
 
     /// The visit of recursive situation `ix` (registers `regs` set).
     pub(super) fn nat_recursive(&self, d: &Dm, ix: usize, regs: &Regs) -> N<TokenStream> {
-        let (name, args) = match self.nat_call_values(d, ix, regs) {
+        let outs = call_outputs(d, ix);
+        if !outs.is_empty() {
+            return self.nat_recursive_outputs(d, ix, regs, &outs);
+        }
+        let (name, args) = match self.nat_call_values(d, ix, regs, &[]) {
             Ok(x) => x,
             // An argument is a fresh variable (an output argument), or the
             // call is evaluated (`ask(apply(f(_), [X]), ..)`): the
@@ -224,6 +302,66 @@ impl Gen<'_> {
                 #hand_call
             });
         };
+        let push = self.nat_push(d, ix, regs, &plan, &args, &vs)?;
+        Ok(quote! {
+            #(#lets)*
+            #push
+            #hand_call
+        })
+    }
+
+    /// A call with output arguments (`add(I, 1, J)`, `J` a fresh variable
+    /// of the caller, `call_outputs`): pushed natively where
+    /// [`Gen::nat_call_plan`] says so, the callee's frame getting
+    /// `Ground::OUT` for each output parameter (no term made: its final
+    /// hands the value back in the frame's output slot, which the exit
+    /// arcs read) and the waiting variant keeping no output register; else,
+    /// and when recorded or at the depth limit, the machine's call as the
+    /// term code makes it (the fresh variables made there, then).
+    fn nat_recursive_outputs(
+        &self,
+        d: &Dm,
+        ix: usize,
+        regs: &Regs,
+        outs: &[(usize, Reg)],
+    ) -> N<TokenStream> {
+        let on_terms = self.nat_call_on_terms(d, ix, regs)?;
+        let Some(plan) = self.nat_call_plan(d, ix) else {
+            return Ok(on_terms);
+        };
+        let (_, args) = self.nat_call_values(d, ix, regs, outs)?;
+        let vs: Vec<Ident> = (0..args.len()).map(|i| format_ident!("v{}", i)).collect();
+        let lets = args.iter().zip(&vs).map(|(v, x)| {
+            let e = &v.e;
+            quote!(let #x = #e;)
+        });
+        let push = self.nat_push(d, ix, regs, &plan, &args, &vs)?;
+        // The fresh variables, made only where the machine gets the call.
+        let fresh = outs.iter().map(|(_, r)| {
+            let f = format_ident!("fresh_r{}", r);
+            quote!(let #f = cx.var();)
+        });
+        Ok(quote! {
+            #(#lets)*
+            #push
+            #(#fresh)*
+            #on_terms
+        })
+    }
+
+    /// The callee's frame pushed on the native stack (arguments `vs`, of
+    /// values `args`), the caller waiting in its variant `W<ix>`: within
+    /// the depth limit, when no history is kept or observed (else the
+    /// machine pushes it: the callee's entries nest in the caller's).
+    fn nat_push(
+        &self,
+        d: &Dm,
+        ix: usize,
+        regs: &Regs,
+        plan: &CallPlan,
+        args: &[V],
+        vs: &[Ident],
+    ) -> N<TokenStream> {
         let callee_f = format_ident!("NatF{}", plan.j);
         let callee_n = format_ident!("NatN{}", plan.j);
         let callee_v = format_ident!("D{}", plan.j);
@@ -252,6 +390,7 @@ impl Gen<'_> {
             let e = coerce(&v, ty)?;
             inits.push(quote!(#l: #e));
         }
+        inits.extend(out_slots_none(&plan.callee));
         let wv = wait_variant(ix);
         let mut wf = Vec::new();
         for (r, _) in self.nat_wait_fields(d, ix)? {
@@ -262,7 +401,6 @@ impl Gen<'_> {
             wf.push(quote!(#rr: #e));
         }
         Ok(quote! {
-            #(#lets)*
             // The callee's frame on the native stack, within the depth
             // limit, when no history is kept or observed (else the machine
             // pushes it: the callee's entries nest in the caller's).
@@ -274,7 +412,6 @@ impl Gen<'_> {
                 *slot = Nat::#wv { #(#wf),* };
                 return Ok(None);
             }
-            #hand_call
         })
     }
 
@@ -366,9 +503,18 @@ impl Gen<'_> {
         let curl = Literal::u32_unsuffixed(ix as u32);
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         let mut saved_vals = Vec::new();
+        let outs = call_outputs(d, ix);
+        let mut out_stmts = Vec::new();
         for &r in saved.iter() {
             let rr = reg(r);
-            if names.contains(&rr) {
+            if let Some(&(k, _)) = outs.iter().find(|&&(_, o)| o == r) {
+                // An output argument: the variable the callee's call term
+                // was made with (its `Ground::OUT` made a term, just now).
+                let k = Literal::usize_unsuffixed(k);
+                let x = format_ident!("out_r{}", r);
+                out_stmts.push(quote!(let #x = cx.arg(callee, #k);));
+                saved_vals.push(quote!(&#x));
+            } else if names.contains(&rr) {
                 saved_vals.push(quote!(#rr));
             } else {
                 return Err("a saved register is not kept".into());
@@ -381,6 +527,7 @@ impl Gen<'_> {
         };
         let wait_arm = quote! {
             Nat::#wv { #(#names),* } => {
+                #(#out_stmts)*
                 #(#id_stmts)*
                 cx.enter_with_id(#curl, #id);
                 let saved = #saved_value;
@@ -403,10 +550,60 @@ impl Gen<'_> {
             return Err("not a recursive situation".into());
         };
         let mut regs = Regs::new();
-        for (r, ty) in self.nat_wait_fields(d, ix)? {
-            regs.insert(r, (reg(r), ty));
+        let fields = self.nat_wait_fields(d, ix)?;
+        for (r, ty) in &fields {
+            regs.insert(*r, (reg(*r), ty.clone()));
         }
         let head = self.nat_head_regs(d, ix, &mut regs)?;
+        // A parameter the waiting variant keeps is read there, not loaded.
+        let head: Vec<_> = head
+            .into_iter()
+            .filter(|(r, _)| !fields.iter().any(|(f, _)| reg(*f) == *r))
+            .collect();
+        // The output arguments, from the callee's output slots (set by a
+        // final that hands them back there, `Gen::nat_output_slots`).
+        let outs = call_outputs(d, ix);
+        let mut out_loads = Vec::new();
+        let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
+            return Err("not a recursive situation".into());
+        };
+        for &(k, r) in &outs {
+            if !saved.contains(&r) {
+                continue; // the exit arcs do not read it
+            }
+            let oty = callee
+                .outputs
+                .get(k)
+                .cloned()
+                .flatten()
+                .ok_or("an output argument of a parameter that is not an output")?;
+            let rty = d.types[ix].regs[r as usize].ty.clone();
+            let o = format_ident!("out{}", k);
+            let rr = reg(r);
+            let e = coerce(
+                &V {
+                    e: quote!(v),
+                    ty: oty,
+                },
+                &rty,
+            )?;
+            let rt = rust_ty(&rty)?;
+            out_loads.push((
+                rr.clone(),
+                quote! {
+                    let #rr: #rt = match done_frame.#o.take() {
+                        Some(v) => #e,
+                        None => {
+                            return Err(cx.error(
+                                "a native callee returned without its output",
+                                None,
+                            ))
+                        }
+                    };
+                },
+            ));
+            regs.insert(r, (rr, rty));
+        }
         let hand = &d.hand;
         let curl = Literal::u32_unsuffixed(ix as u32);
         let cur_name = self.atom_native(d.plans[ix].id.0)?;
@@ -421,8 +618,14 @@ impl Gen<'_> {
             // to the machine, which returns to the caller's term code. Its
             // variant may not exist (an application of the original's
             // tree: `see_body`'s finals with `diag_mod`, issue 37).
+            // A final with `diag_mod` comes back here only when it hands
+            // the call's outputs back in its slots (`slot_final`).
             let diag_mod = matches!(&callee.plans[k].kind, KindPlan::Final { diag_mod: Some(_) });
-            if callee.dm.situations[k].kind != Kind::Final || !callee.native[k] || diag_mod {
+            let slotted = !outs.is_empty() && slot_final(callee, k);
+            if callee.dm.situations[k].kind != Kind::Final
+                || !callee.native[k]
+                || (diag_mod && !slotted)
+            {
                 continue;
             }
             let fields = self.nat_fields(callee, k)?;
@@ -500,6 +703,11 @@ impl Gen<'_> {
                 }
             });
         }
+        let arms = quote!(#(#final_arms)*);
+        let out_loads = out_loads
+            .into_iter()
+            .filter(|(r, _)| mentions(&arms, r))
+            .map(|(_, stmt)| stmt);
         let body = quote! {
             let super::NatFrame::#callee_v(done_frame) = ret else {
                 return Err(cx.error(
@@ -507,9 +715,10 @@ impl Gen<'_> {
                     None,
                 ));
             };
+            #(#out_loads)*
             let final_at = &done_frame.at;
             match &final_at {
-                #(#final_arms)*
+                #arms
                 _ => {}
             }
             // No exit arc takes the final situation: the machine says so.
@@ -534,6 +743,76 @@ impl Gen<'_> {
             .filter(|(r, _)| mentions(&body, r))
             .map(|(_, stmt)| stmt);
         Ok(quote!(#(#head)* #body))
+    }
+
+    /// The exit arcs of recursive situation `ix` run by its term code
+    /// (`run_exit`, what the machine runs after its call), on the callee's
+    /// final in `ret`: the frames below made the machine's, the caller
+    /// entered in its situation, `saved` built from the waiting variant (an
+    /// output argument from the callee's slot, a term of its value: the
+    /// variable the term path's `diag_mod` bound to it).
+    fn nat_exit_on_terms(&self, d: &Dm, ix: usize, callee: &Dm, j: usize) -> N<TokenStream> {
+        let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
+            return Err("not a recursive situation".into());
+        };
+        let fields = self.nat_wait_fields(d, ix)?;
+        let outs = call_outputs(d, ix);
+        let mut loads = Vec::new();
+        let mut saved_vals = Vec::new();
+        for &r in saved.iter() {
+            let rr = reg(r);
+            if let Some(&(k, _)) = outs.iter().find(|&&(_, o)| o == r) {
+                let oty = callee
+                    .outputs
+                    .get(k)
+                    .cloned()
+                    .flatten()
+                    .ok_or("an output argument of a parameter that is not an output")?;
+                let o = format_ident!("out{}", k);
+                let rt = rust_ty(&oty)?;
+                loads.push(quote! {
+                    let #rr: #rt = match done_frame.#o.take() {
+                        Some(v) => v,
+                        None => {
+                            return Err(cx.error(
+                                "a native callee returned without its output",
+                                None,
+                            ))
+                        }
+                    };
+                });
+                saved_vals.push(quote!(&#rr));
+            } else if fields.iter().any(|(f, _)| *f == r) {
+                saved_vals.push(quote!(&#rr));
+            } else {
+                return Err("a saved register is not kept".into());
+            }
+        }
+        let saved_value = if saved.is_empty() {
+            quote!(Term::NIL)
+        } else {
+            quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
+        };
+        let hand = &d.hand;
+        let curl = Literal::u32_unsuffixed(ix as u32);
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let callee_v = format_ident!("D{}", j);
+        Ok(quote! {
+            let super::NatFrame::#callee_v(done_frame) = ret else {
+                return Err(cx.error(
+                    "native code resumed a caller with another DM's frame",
+                    None,
+                ));
+            };
+            #(#loads)*
+            #hand
+            cx.count_transitions(count);
+            #(#id_stmts)*
+            cx.enter_with_id(#curl, #id);
+            let final_id = done_frame.at.id_term(p, cx.store());
+            let saved = #saved_value;
+            return run_exit(p, #curl, saved, final_id, cx).map(Some);
+        })
     }
 
     /// Unifies the expectation `b` (the caller's registers, fresh or set)
@@ -579,8 +858,13 @@ impl Gen<'_> {
         };
         match b {
             Build::Reg(r) if fresh.contains(r) && !regs.contains_key(r) => {
-                // A fresh variable of the arc takes the value.
-                let side = side.ok_or("an exit arc's variable takes a compound")?;
+                // A fresh variable of the arc takes the value. One that
+                // takes a compound (`Result` against `got(P)`) is not held:
+                // code that reads it fails to generate ("read unset"), and
+                // the call is then the machine's.
+                let Some(side) = side else {
+                    return Ok(true);
+                };
                 let ty = d.types[ix].regs[*r as usize].ty.clone();
                 let e = coerce(&side, &ty)?;
                 let rr = reg(*r);
@@ -936,4 +1220,100 @@ fn inert(b: &Build) -> bool {
                 && args.iter().all(inert)
         }
     }
+}
+
+/// The output arguments of recursive situation `ix`'s call: the arguments
+/// (position, register) that are a fresh variable of the situation, each
+/// written once in the call, as a whole argument (`J` in `add(I, 1, J)`),
+/// and nothing of the visit sets before the call (no `prog`, not the
+/// in_arg's register). A fresh variable written twice (`f(J, J)`) or
+/// inside an argument (`f(g(J))`) is none: such a call stays the
+/// machine's (its arguments do not convert).
+pub(super) fn call_outputs(d: &Dm, ix: usize) -> Vec<(usize, Reg)> {
+    let plan = &d.plans[ix];
+    let KindPlan::Recursive {
+        call, eval_call, ..
+    } = &plan.kind
+    else {
+        return Vec::new();
+    };
+    let Build::Compound(_, args) = call else {
+        return Vec::new();
+    };
+    if plan.prog.is_some() || (*eval_call && !inert(call)) {
+        return Vec::new();
+    }
+    fn count(b: &Build, r: Reg) -> usize {
+        match b {
+            Build::Reg(x) => usize::from(*x == r),
+            Build::Const(_) => 0,
+            Build::Compound(_, args) => args.iter().map(|a| count(a, r)).sum(),
+        }
+    }
+    let in_arg = plan.in_arg.as_ref().map(|(_, _, r)| *r);
+    args.iter()
+        .enumerate()
+        .filter_map(|(k, a)| match a {
+            Build::Reg(r)
+                if plan
+                    .inits
+                    .iter()
+                    .any(|(x, i)| x == r && matches!(i, Init::Fresh))
+                    && in_arg != Some(*r)
+                    && args.iter().map(|b| count(b, *r)).sum::<usize>() == 1 =>
+            {
+                Some((k, *r))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// Whether final situation `k` of DM `d` hands the DM's outputs back in
+/// its frame's output slots when its caller is native and passed them as
+/// `Ground::OUT`: its `diag_mod` is the DM's head with, at each output
+/// parameter, a value computed natively (`Dm::outs`), and at every other
+/// position that parameter itself (so unifying it with the call binds the
+/// outputs and nothing else, as the term path's `diag_mod` does).
+pub(super) fn slot_final(d: &Dm, k: usize) -> bool {
+    let plan = &d.plans[k];
+    let KindPlan::Final {
+        diag_mod: Some(Build::Compound(name, args)),
+    } = &plan.kind
+    else {
+        return false;
+    };
+    if *name != d.dm.name || args.len() != d.dm.arity {
+        return false;
+    }
+    let outs = d.outs.borrow();
+    let mut any = false;
+    for (i, a) in args.iter().enumerate() {
+        if d.outputs.get(i).is_some_and(Option::is_some) {
+            if !outs.get(i).copied().unwrap_or(false) {
+                return false;
+            }
+            any = true;
+        } else {
+            let own = matches!(a, Build::Reg(r) if plan.inits.iter().any(|(x, init)| x == r && matches!(init, Init::HeadArg(p) if *p == i)));
+            if !own {
+                return false;
+            }
+        }
+    }
+    any
+}
+
+/// The output slots of a callee's frame, empty (`out<i>: None`).
+fn out_slots_none(callee: &Dm) -> Vec<TokenStream> {
+    callee
+        .outputs
+        .iter()
+        .enumerate()
+        .filter(|(_, o)| o.is_some())
+        .map(|(i, _)| {
+            let o = format_ident!("out{}", i);
+            quote!(#o: None)
+        })
+        .collect()
 }

@@ -38,6 +38,8 @@ pub(super) struct FrameItems {
     pub items: TokenStream,
     /// The frame's fields but `at`: `p0.., l0..`.
     pub names: Vec<Ident>,
+    /// The output slots `out<i>` (one per output parameter, `Dm::outputs`).
+    pub outs: Vec<Ident>,
 }
 
 impl Gen<'_> {
@@ -152,6 +154,22 @@ impl Gen<'_> {
             decls.push(quote!(pub #n: #ty));
             names.push(n);
         }
+        // An output parameter's slot: the value a final hands back to a
+        // native caller that passed `Ground::OUT` there (`native::call`).
+        let mut outs = Vec::new();
+        for (i, ty) in d.outputs.iter().enumerate() {
+            if let Some(ty) = ty {
+                let n = format_ident!("out{}", i);
+                let ty = rust_ty(ty)?;
+                decls.push(quote!(pub #n: Option<#ty>));
+                outs.push(n);
+            }
+        }
+        let rest = if outs.is_empty() {
+            quote!()
+        } else {
+            quote!(..)
+        };
         let call = self.nat_call_term(d)?;
         let locals = self.nat_write_locals(d)?;
         let hand_fn = self.nat_hand_fn(d)?;
@@ -188,7 +206,7 @@ impl Gen<'_> {
                 callee_dm: DmIx,
             ) -> Result<(), RunError> {
                 let a = &p.atoms;
-                let Frame { #(#names,)* at } = frame;
+                let Frame { #(#names,)* at, #rest } = frame;
                 #locals
                 match at {
                     #(#wait_arms)*
@@ -199,7 +217,7 @@ impl Gen<'_> {
                 }
             }
         };
-        Ok(FrameItems { items, names })
+        Ok(FrameItems { items, names, outs })
     }
 
     /// Whether DM `d` has native code (a `Frame`), and whether a call of

@@ -57,8 +57,10 @@
 //!   shows it in the DM's id), and a final computes the value it binds as
 //!   a Rust local of the output type (`let o2: Atom = ..`), converted once
 //!   where `diag_mod` hands it to the machine (`Gen::nat_output_slots`). A
-//!   native caller still gets it through the machine: a call with an output
-//!   argument is the machine's call (not pushed natively yet).
+//!   native caller that passed its fresh variable as no term
+//!   (`Ground::OUT`, [`call`]) gets the value in the frame's output slot
+//!   (`out<i>`) instead, nothing unified: the final's `diag_mod` is the
+//!   head with every other argument the parameter itself.
 //! - *the history*: where the term code records an entry (an arc: after
 //!   its action, next situation and out_arg; a final), native code records
 //!   the same one (`cx.record`: the situation entered with its id, the
@@ -104,8 +106,10 @@
 //!   a situation handed over, `get`/`set`/`inc` through the machine), first
 //!   makes the native frames machine frames and writes the locals back
 //!   (`nat_hand_over`), and reads the locals again after the machine's
-//!   call. A call with an output argument (`_`) is always the machine's,
-//!   its term built with the fresh variable made for the visit.
+//!   call. A call with an output argument is pushed so too when the
+//!   callee hands it back in an output slot ([`call`]); other calls with a
+//!   fresh variable are the machine's, the term built with the variable
+//!   made for the visit.
 //! - *the pipe* ([`pipe`]): read into a variable in_arg's register with a
 //!   checked conversion, written back where an out_arg sets it.
 //!
@@ -720,6 +724,7 @@ impl Gen<'_> {
         }
         let frame = self.nat_frame_items(&d, &wait_arms)?;
         let field_names = frame.names.clone();
+        let out_names = frame.outs.clone();
         let variant_d = format_ident!("D{}", dm_ix);
         let hand = &d.hand;
         // The machine wants control (garbage, a stop asked): the situation
@@ -762,7 +767,7 @@ impl Gen<'_> {
             };
             cx.materialize_frames();
             #(#loads)*
-            Some(Frame { #(#field_names,)* at })
+            Some(Frame { #(#field_names,)* #(#out_names: None,)* at })
         };
         let entry_prelude = Gen::prelude(&entry_body);
         let entry_body = quote!(#entry_prelude #entry_body);
@@ -824,7 +829,7 @@ impl Gen<'_> {
                 run: &TypedRun,
             ) -> Result<Option<Step>, RunError> {
                 let a = &p.atoms;
-                let Frame { #(#field_names,)* at: slot } = frame;
+                let Frame { #(#field_names,)* #(#out_names,)* at: slot } = frame;
                 // Transitions done, not yet given to the machine.
                 let mut count: u64 = 0;
                 // A final reached below the base, or a call made, writes
@@ -1436,9 +1441,13 @@ impl Gen<'_> {
                 let empty = quote!(Term::atom(atoms::EMPTY));
                 // `diag_mod`: the DM's head bound (its output arguments),
                 // a term built from native values at that boundary.
+                // A native caller that passed its outputs as `Ground::OUT`
+                // gets them in the frame's output slots (`call::slot_final`).
+                let mut slot_below = None;
                 let diag = match diag_mod {
                     Some(b) => {
                         let (mut ts, slots) = self.nat_output_slots(d, b, &regs);
+                        slot_below = self.nat_slot_below(d, ix, b, &ts, &slots);
                         let mut n = 0;
                         let t = match b {
                             Build::Compound(f, args) if slots.iter().any(Option::is_some) => {
@@ -1493,8 +1502,8 @@ impl Gen<'_> {
                 // Below the base the caller's exit arcs read the variant
                 // (with a `diag_mod`, the machine takes the final).
                 let hand = &d.hand;
-                let below = if diag_mod.is_none() {
-                    quote! {
+                let below = match (diag_mod, slot_below) {
+                    (None, _) => quote! {
                         if !stack.is_empty() {
                             #out_set
                             count += 1;
@@ -1502,9 +1511,18 @@ impl Gen<'_> {
                             *slot = Nat::#v { #(#names),* };
                             return Ok(None);
                         }
-                    }
-                } else {
-                    quote!(#hand)
+                    },
+                    (Some(_), Some((cond, set))) => quote! {
+                        if !stack.is_empty() && #cond {
+                            #set
+                            #out_set
+                            count += 1;
+                            done = true;
+                            break 'visit Nat::#v { #(#names),* };
+                        }
+                        #hand
+                    },
+                    (Some(_), None) => quote!(#hand),
                 };
                 Ok(quote! {
                     #(#stmts)*
@@ -1998,6 +2016,49 @@ impl Gen<'_> {
             out.push((v.clone(), quote!(cx.local_as::<#ty>(#a)), quote!(*#l = #v;)));
         }
         Ok(out)
+    }
+
+    /// A final's hand-back through the frame's output slots, when its
+    /// `diag_mod` `b` is the DM's head with every output computed natively
+    /// (`slots`, their statements the start of `ts`) and every other
+    /// argument the parameter itself (`call::slot_final`): the condition
+    /// (each output parameter `Ground::OUT`, so the caller made no term
+    /// for it) and the statements setting the slots.
+    fn nat_slot_below(
+        &self,
+        d: &Dm,
+        ix: usize,
+        b: &Build,
+        ts: &[TokenStream],
+        slots: &[Option<Ident>],
+    ) -> Option<(TokenStream, TokenStream)> {
+        let Build::Compound(name, args) = b else {
+            return None;
+        };
+        if *name != d.dm.name || args.len() != d.dm.arity || slots.len() != args.len() {
+            return None;
+        }
+        let plan = &d.plans[ix];
+        let mut conds = Vec::new();
+        let mut sets = Vec::new();
+        for (i, a) in args.iter().enumerate() {
+            if d.outputs.get(i).is_some_and(Option::is_some) {
+                let o = slots[i].as_ref()?;
+                if d.params[i] != Ty::Term {
+                    return None;
+                }
+                let (p, out) = (format_ident!("p{}", i), format_ident!("out{}", i));
+                conds.push(quote!(#p.is_out()));
+                sets.push(quote!(*#out = Some(#o);));
+            } else if !matches!(a, Build::Reg(r) if plan.inits.iter().any(|(x, init)| x == r && matches!(init, Init::HeadArg(p) if *p == i)))
+            {
+                return None;
+            }
+        }
+        if conds.is_empty() {
+            return None;
+        }
+        Some((quote!(#(#conds)&&*), quote!(#(#ts)* #(#sets)*)))
     }
 
     /// A final's output slots: for each output parameter of the DM
