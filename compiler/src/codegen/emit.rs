@@ -20,29 +20,27 @@ impl Gen<'_> {
             .map(|f| Literal::string(&f.text))
             .collect();
 
-        // Constants.
-        let const_fields = self.consts.iter().enumerate().map(|(i, (text, _))| {
-            let id = Self::const_ident(i);
-            let doc = format!(" `{text}`");
-            quote!(#[doc = #doc] pub #id: Term,)
-        });
+        // Constants: their `writeq` texts, read once by `Program::new`; a
+        // constant whose text does not read back as itself is built by
+        // code after them (its text `[]`).
         let empty = HashMap::new();
-        let const_inits = self.consts.iter().enumerate().map(|(i, (_, t))| {
-            let id = Self::const_ident(i);
+        let mut const_texts = Vec::new();
+        let mut const_fixups = Vec::new();
+        for (i, (text, t)) in self.consts.iter().enumerate() {
+            if let Some(lit) = self.const_text(*t, text) {
+                const_texts.push(lit);
+                continue;
+            }
+            const_texts.push(quote!("[]"));
+            let ix = Literal::usize_unsuffixed(i);
             let mut next_tmp = 0;
             let b = self.build(*t, &empty, true, &mut next_tmp);
-            let stmts = b.stmts;
+            let stmts = b.stmts.iter().map(|(t, e)| quote!(let #t = #e;));
             let value = b.value;
-            if stmts.len() == 1 {
-                // One compound: bind it directly.
-                let expr = &stmts[0].1;
-                quote!(let #id = #expr;)
-            } else {
-                let stmts = stmts.iter().map(|(t, e)| quote!(let #t = #e;));
-                quote!(let #id = { #(#stmts)* #value };)
-            }
-        });
-        let const_names: Vec<Ident> = (0..self.consts.len()).map(Self::const_ident).collect();
+            const_fixups.push(quote!(k[#ix] = { #(#stmts)* #value };));
+        }
+        let const_count = Literal::usize_unsuffixed(self.consts.len());
+        let k_mut = (!const_fixups.is_empty()).then(|| quote!(mut));
 
         // DM modules.
         let mut dm_namer = Namer::default();
@@ -166,7 +164,8 @@ impl Gen<'_> {
                 /// Frozen store holding the constants; every run starts from a clone.
                 store: Store,
                 pub atoms: Atoms,
-                pub k: Consts,
+                /// The constants (`CONSTS`) in the frozen store.
+                pub k: [Term; #const_count],
                 /// The situations' templates in the frozen store, by DM and
                 /// situation (each DM's `TEMPLATES`).
                 templates: machine::Templates,
@@ -174,19 +173,20 @@ impl Gen<'_> {
                 sits: SitTable,
             }
 
-            /// The program's ground compound terms, built once in [`Program::new`].
-            #[allow(dead_code, clippy::all)]
-            pub struct Consts { #(#const_fields)* }
+            /// The program's ground compound terms (and big integers) as
+            /// `writeq` text, read once by [`Program::new`]; code names
+            /// constant `i` `k[i]`.
+            pub const CONSTS: [&str; #const_count] = [#(#const_texts),*];
 
             #[allow(dead_code, unused_variables, clippy::all)]
             impl Program {
-                /// Interns the atoms and builds the constants.
+                /// Interns the atoms and reads the constants and templates.
                 pub fn new() -> Program {
                     let mut store = Store::new();
                     let a = Atoms::new();
                     let store = &mut store;
-                    #(#const_inits)*
-                    let k = Consts { #(#const_names),* };
+                    let #k_mut k = machine::read_consts(store, &CONSTS);
+                    #(#const_fixups)*
                     let templates = machine::Templates::read(store, &[#(&#dm_mods::TEMPLATES),*]);
                     let sits = SitTable::new(&[#((#dm_mods::FILE, &#dm_mods::SITUATIONS)),*]);
                     let mut store = ::std::mem::take(store);
@@ -421,7 +421,6 @@ impl Gen<'_> {
         let none = Term::atom(none_marker());
         let dm_lit = Literal::u32_unsuffixed(dm_ix as u32);
         let mut namer = Namer::default();
-        let mut variants = Vec::new();
         let mut vnames = Vec::new();
         let mut fns = Vec::new();
         let mut rows = Vec::new();
@@ -453,18 +452,6 @@ impl Gen<'_> {
             let vname = ident(&namer.fresh(base));
             vnames.push(vname.clone());
             let ix = Literal::u32_unsuffixed(i as u32);
-            let kind_text = match s.kind {
-                Kind::Final => "final",
-                Kind::Recursive => "recursive",
-                Kind::Perceptual => "perceptual",
-            };
-            let doc = format!(
-                " `{}` ({}, type `{}`, {kind_text}).",
-                id_text,
-                s.location,
-                self.store.writeq(f[2])
-            );
-            variants.push(quote!(#[doc = #doc] #vname = #ix,));
             let kind = match s.kind {
                 Kind::Final => quote!(Final),
                 Kind::Recursive => quote!(Recursive),
@@ -711,16 +698,11 @@ impl Gen<'_> {
         );
         let module = quote! {
             #[doc = #mod_doc]
-            #[allow(dead_code, unused_variables, unused_assignments, unused_mut, non_camel_case_types, clippy::all)]
+            // Generated code: what is unused in a DM (a variable, a
+            // label, a match arm) or irrefutable is left so, once here.
+            #[allow(unused, irrefutable_let_patterns, break_with_label_and_loop, clippy::all)]
             pub mod #module {
-                #[allow(unused_imports)]
                 use ::sitlog_runtime::prelude::*;
-
-                /// The situations, in source order; the discriminant is the
-                /// machine's situation index.
-                #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-                #[repr(u32)]
-                pub enum Situation { #(#variants)* }
 
                 /// Per situation (by index): its kind, its id (the name
                 /// and arity it runs as code by, or its template's id

@@ -308,8 +308,22 @@ impl<'s> Gen<'s> {
         self.consts.push((text, t));
     }
 
-    fn const_ident(i: usize) -> Ident {
-        format_ident!("k{}", i)
+    /// Constant `i` as generated code names it (`k[i]`, `k` the program's).
+    fn const_index(i: usize) -> TokenStream {
+        let i = Literal::usize_unsuffixed(i);
+        quote!([#i])
+    }
+
+    /// A constant's `writeq` text as a string literal (wrapped, the breaks
+    /// escaped away), when it reads back as the constant itself
+    /// (`machine::read_consts` reads it); `None` otherwise.
+    fn const_text(&self, t: Term, text: &str) -> Option<TokenStream> {
+        let mut scratch = Store::new();
+        let (back, _) = scratch.parse(text).ok()?;
+        if !same_term(self.store, t, &scratch, back, &mut HashMap::new()) {
+            return None;
+        }
+        wrapped_literal(text, 88).parse().ok()
     }
 
     /// Expression of a leaf (no statements needed), or `None` for compounds.
@@ -328,8 +342,8 @@ impl<'s> Gen<'s> {
             Value::Float(f) => float_expr(f),
             Value::BigInt(_) | Value::Compound(..) if !in_consts => {
                 if let Some(&k) = self.const_ix.get(&self.store.writeq(t)) {
-                    let id = Self::const_ident(k);
-                    quote!(k.#id)
+                    let ix = Self::const_index(k);
+                    quote!(k #ix)
                 } else {
                     return None;
                 }
@@ -501,6 +515,11 @@ impl<'s> Gen<'s> {
             for tt in ts {
                 match tt {
                     proc_macro2::TokenTree::Group(g) => {
+                        if g.delimiter() == proc_macro2::Delimiter::Bracket
+                            && prev.as_deref() == Some("k")
+                        {
+                            found.1 = true;
+                        }
                         walk(g.stream(), found);
                         prev = None;
                     }

@@ -307,6 +307,12 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.m.store.new_var()
     }
 
+    /// `N` fresh variables, made in order (a visit's fresh variables).
+    #[inline]
+    pub fn vars<const N: usize>(&mut self) -> [Term; N] {
+        std::array::from_fn(|_| self.m.store.new_var())
+    }
+
     #[inline]
     pub fn compound(&mut self, name: Atom, args: &[Term]) -> Term {
         self.m.store.compound(name, args)
@@ -628,6 +634,14 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         native::id_part(&self.m.store, id, path).and_then(|t| T::from_term(&self.m.store, t))
     }
 
+    /// The parts of the selected situation id at `paths`, each as a native
+    /// value, in order ([`Cx::id_part_as`] of each; `None`: no id selected,
+    /// or a part missing or not converting): the fields a situation is
+    /// entered with.
+    pub fn id_parts<T: FromIdParts>(&self, paths: &[&[usize]]) -> Option<T> {
+        T::from_id_parts(&self.m.store, self.selected()?, paths)
+    }
+
     /// The integer a (dereferenced) term is, if it is one.
     #[inline]
     pub fn int_of(&self, t: Term) -> Option<i64> {
@@ -726,6 +740,32 @@ impl AsTerm for Term {
         *self
     }
 }
+
+/// A tuple of native values read from the parts of a situation id, one
+/// path per element, converted in order ([`Cx::id_parts`]).
+pub trait FromIdParts: Sized {
+    fn from_id_parts(store: &Store, id: Term, paths: &[&[usize]]) -> Option<Self>;
+}
+
+macro_rules! from_id_parts {
+    ($($t:ident $i:tt),+) => {
+        impl<$($t: Native),+> FromIdParts for ($($t,)+) {
+            fn from_id_parts(store: &Store, id: Term, paths: &[&[usize]]) -> Option<Self> {
+                Some(($(
+                    native::id_part(store, id, paths.get($i)?)
+                        .and_then(|t| $t::from_term(store, t))?,
+                )+))
+            }
+        }
+    };
+}
+
+from_id_parts!(A 0);
+from_id_parts!(A 0, B 1);
+from_id_parts!(A 0, B 1, C 2);
+from_id_parts!(A 0, B 1, C 2, D 3);
+from_id_parts!(A 0, B 1, C 2, D 3, E 4);
+from_id_parts!(A 0, B 1, C 2, D 3, E 4, F 5);
 
 /// [`native::compound`] of values, each made a term in order: how native
 /// code builds a situation's id from its fields (`id_s<N>`).

@@ -165,6 +165,36 @@ impl TypedRun {
             *count += 1;
         }
     }
+
+    /// [`Cx::record_next`] when recorded: an arc's history entry, its next
+    /// situation's id built only then.
+    #[inline(always)]
+    pub fn record_next<P: DmProgram>(
+        &self,
+        cx: &mut Cx<'_, '_, P>,
+        expectation: Term,
+        action: Term,
+        next: impl FnOnce(&mut crate::Store) -> Term,
+    ) {
+        if self.records {
+            cx.record_next(expectation, action, next);
+        }
+    }
+
+    /// An arc's next situation handed to the machine as a term: its history
+    /// entry made when recorded ([`Cx::record_if`]), then [`Cx::goto`].
+    #[inline]
+    pub fn goto<P: DmProgram>(
+        &self,
+        cx: &mut Cx<'_, '_, P>,
+        expectation: Term,
+        action: Term,
+        next: Term,
+        arc: Option<usize>,
+    ) -> Result<Option<Step>, RunError> {
+        cx.record_if(self.records, expectation, action, Some(next));
+        cx.goto(next, arc).map(Some)
+    }
 }
 
 /// What compiled code of a situation sees of the machine: one method per

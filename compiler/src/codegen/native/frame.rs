@@ -114,7 +114,6 @@ impl Gen<'_> {
             /// locals written back.
             #[cold]
             #[inline(never)]
-            #[allow(unused_variables, unused_braces, clippy::all)]
             fn nat_hand_over(
                 p: &super::Program,
                 cx: &mut Cx<'_, '_, super::Program>,
@@ -158,11 +157,9 @@ impl Gen<'_> {
 
             /// The DM's frame on the native stack: parameters, locals, the
             /// situation it is in.
-            #[allow(dead_code, clippy::all)]
             pub struct Frame { #(#decls,)* pub at: Nat }
 
             /// The DM's call term, from the frame's parameters.
-            #[allow(unused_variables, unused_braces, clippy::all)]
             pub(crate) fn nat_call_term(
                 p: &super::Program,
                 cx: &mut Cx<'_, '_, super::Program>,
@@ -177,7 +174,6 @@ impl Gen<'_> {
             /// made the machine's: its locals written back, the callee's
             /// frame pushed as the term code's call would (the caller's
             /// registers saved as that code keeps them).
-            #[allow(unused_variables, unreachable_code, unreachable_patterns, clippy::all)]
             pub(crate) fn nat_wait(
                 p: &super::Program,
                 cx: &mut Cx<'_, '_, super::Program>,

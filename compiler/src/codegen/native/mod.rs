@@ -322,6 +322,26 @@ fn always_returns(code: &TokenStream) -> bool {
             .any(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == ';'))
 }
 
+/// The fresh variables a visit uses, made first in one call (in order).
+fn fresh_vars(used: &std::collections::BTreeSet<Ident>) -> TokenStream {
+    if used.is_empty() {
+        return quote!();
+    }
+    let used = used.iter();
+    quote!(let [#(#used),*] = cx.vars();)
+}
+
+/// The end of an arc whose next situation is handed to the machine as the
+/// term `rec_next`: its history entry (`rec`, empty where not recorded)
+/// and the step.
+fn goto_tail(rec: &TokenStream) -> TokenStream {
+    if rec.is_empty() {
+        quote!(return cx.goto(rec_next, arc_at).map(Some);)
+    } else {
+        quote!(return run.goto(cx, rec_exp, rec_act, rec_next, arc_at);)
+    }
+}
+
 fn rec_entry() -> TokenStream {
     quote! {
         cx.record_if(run.records, rec_exp, rec_act, Some(rec_next));
@@ -652,7 +672,13 @@ impl Gen<'_> {
                 })
                 .collect::<N<Vec<_>>>()?;
             let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
-            let doc = format!(" `{}`", self.store.writeq(self.nat_id_of(&d, ix)));
+            let s = &d.dm.situations[ix];
+            let doc = format!(
+                " `{}` ({}, type `{}`)",
+                self.store.writeq(self.nat_id_of(&d, ix)),
+                s.location,
+                self.store.writeq(self.store.args(s.template)[2])
+            );
             variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
             // The waiting variant's id is the situation's (the same
             // fields, the same code): one arm for both.
@@ -677,6 +703,7 @@ impl Gen<'_> {
             // selected it, converted (else the term code runs it).
             let ixl = Literal::u32_unsuffixed(ix as u32);
             let mut conv = Vec::new();
+            let mut paths = Vec::new();
             for (r, ty) in fields {
                 let path: Vec<usize> = match d.plans[ix].inits.iter().find(|(x, _)| x == r) {
                     Some((_, Init::IdArg(a))) => vec![*a],
@@ -685,15 +712,39 @@ impl Gen<'_> {
                 };
                 let rr = reg(*r);
                 let ty = rust_ty(ty)?;
-                let path = path.iter().map(|&k| Literal::usize_unsuffixed(k));
+                let path: Vec<Literal> =
+                    path.iter().map(|&k| Literal::usize_unsuffixed(k)).collect();
+                let text: Vec<String> = path.iter().map(|k| k.to_string()).collect();
+                paths.push((quote!(&[#(#path),*]), format!("&[{}]", text.join(", "))));
                 conv.push(quote! {
                     let #rr = cx.id_part_as::<#ty>(id, &[#(#path),*])?;
                 });
             }
             // The pipe read there converts, else the term code runs it.
             let pipe = self.nat_pipe_entry(&d, ix)?;
+            // The fields read in one call where it is one line (the
+            // variant's field types say what each converts to).
+            let path_ts = paths.iter().map(|(t, _)| t);
+            let (tuple, text) = match names.as_slice() {
+                [one] => (quote!((#one,)), format!("({one},)")),
+                _ => {
+                    let text: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+                    (quote!((#(#names),*)), format!("({})", text.join(", ")))
+                }
+            };
+            let parts = quote!(let #tuple = cx.id_parts(&[#(#path_ts),*])?;);
+            let path_text: Vec<&str> = paths.iter().map(|(_, t)| t.as_str()).collect();
+            let line = format!("let {text} = cx.id_parts(&[{}])?;", path_text.join(", "));
+            // prettyplease's margin (89) at the arm's indentation (16).
+            let one_line = (1..=6).contains(&fields.len()) && 16 + line.len() <= 89;
             entries.push(if fields.is_empty() {
                 quote!(#ixl => { #pipe Nat::#v {} })
+            } else if one_line {
+                quote!(#ixl => {
+                    #parts
+                    #pipe
+                    Nat::#v { #(#names),* }
+                })
             } else {
                 quote!(#ixl => {
                     let id = cx.selected()?;
@@ -773,7 +824,6 @@ impl Gen<'_> {
 
             /// The DM's situations that have native code, as native values:
             /// the fields are the id's variables.
-            #[allow(dead_code, non_camel_case_types, clippy::all)]
             #[derive(Clone, Debug)]
             pub enum Nat {
                 #(#variants)*
@@ -781,7 +831,6 @@ impl Gen<'_> {
                 Moved {},
             }
 
-            #[allow(unused_variables, unreachable_patterns, clippy::all)]
             impl Nat {
                 /// The situation's id as a term.
                 pub(crate) fn id_term(&self, p: &super::Program, store: &mut Store) -> Term {
@@ -798,7 +847,6 @@ impl Gen<'_> {
             /// Runs the frame on top of the native stack until it calls a DM
             /// (`call` set), ends in a final situation below the base
             /// (`Ok(None)`), or hands over to the machine (`Ok(Some(step))`).
-            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, unused_labels, irrefutable_let_patterns, unreachable_patterns, unused_braces, break_with_label_and_loop, clippy::all)]
             pub(crate) fn nat_step(
                 p: &super::Program,
                 cx: &mut Cx<'_, '_, super::Program>,
@@ -831,7 +879,6 @@ impl Gen<'_> {
             }
 
             #[doc = #doc]
-            #[allow(unused_variables, unused_mut, unused_parens, unused_labels, unreachable_code, clippy::all)]
             pub fn run_native(
                 p: &super::Program,
                 cx: &mut Cx<'_, '_, super::Program>,
@@ -848,7 +895,6 @@ impl Gen<'_> {
             /// id's arguments, the pipe, the parameters and locals it reads
             /// converted (`None`, nothing done but the machine's frames
             /// materialized, when one does not convert).
-            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, clippy::all)]
             fn nat_entry(
                 p: &super::Program,
                 cx: &mut Cx<'_, '_, super::Program>,
@@ -1176,7 +1222,6 @@ impl Gen<'_> {
         let prelude = super::Gen::prelude(&body);
         Ok(quote! {
             #[doc = #doc]
-            #[allow(clippy::all)]
             fn #f(p: &super::Program, store: &mut Store, #(#params),*) -> Term {
                 #prelude
                 #body
@@ -1614,8 +1659,8 @@ impl Gen<'_> {
                 // The fresh variables the code uses, made first.
                 let mut used = std::collections::BTreeSet::new();
                 fresh_used(&body, &mut used);
-                let fresh = used.iter().map(|x| quote!(let #x = cx.var();));
-                Ok(quote! { #(#stmts)* #(#fresh)* #body })
+                let fresh = fresh_vars(&used);
+                Ok(quote! { #(#stmts)* #fresh #body })
             }
             (KindPlan::Final { .. }, _) => Err("a final situation with diag_mod".into()),
             (KindPlan::Recursive { .. }, Kind::Recursive) => {
@@ -1631,8 +1676,8 @@ impl Gen<'_> {
                 let call = self.nat_recursive(d, ix, &regs)?;
                 let mut used = std::collections::BTreeSet::new();
                 fresh_used(&call, &mut used);
-                let fresh = used.iter().map(|x| quote!(let #x = cx.var();));
-                Ok(quote! { #(#stmts)* #(#fresh)* #call })
+                let fresh = fresh_vars(&used);
+                Ok(quote! { #(#stmts)* #fresh #call })
             }
             (KindPlan::Recursive { .. }, _) => Err("a recursive plan of another kind".into()),
         }
@@ -1959,9 +2004,7 @@ impl Gen<'_> {
             quote! {
                 #(#stmts)*
                 let next_at: Nat = #init;
-                if run.records {
-                    cx.record_next(rec_exp, rec_act, |s| next_at.id_term(p, s));
-                }
+                run.record_next(cx, rec_exp, rec_act, |s| next_at.id_term(p, s));
                 next_at
             }
         };
@@ -2230,10 +2273,10 @@ impl Gen<'_> {
                 Ok(quote!(Term::float(#f)))
             }
             // A ground compound the program built once (the term code's
-            // `k.kN`).
+            // `k[N]`).
             Value::Compound(..) if self.const_ix.contains_key(&self.store.writeq(t)) => {
-                let id = Self::const_ident(self.const_ix[&self.store.writeq(t)]);
-                Ok(quote!(p.k.#id))
+                let ix = Self::const_index(self.const_ix[&self.store.writeq(t)]);
+                Ok(quote!(p.k #ix))
             }
             Value::Compound(f, args) => {
                 let args = args.to_vec();
@@ -2592,15 +2635,14 @@ impl Gen<'_> {
                 let a = self.atom_native(self.store.atom_of(*t).unwrap_or(atoms::NIL))?;
                 let hand = &d.hand;
                 let out = d.out.borrow().clone();
-                let rec = d.rec.borrow().clone();
+                let tail = goto_tail(&d.rec.borrow());
                 Ok(quote! {{
                     #hand
                     // Recorded, the situation was entered with its id.
                     cx.count_and_enter(count, run.records, #curl, #cur_name);
                     #out
                     let rec_next = Term::atom(#a);
-                    #rec
-                    return cx.goto(rec_next, arc_at).map(Some);
+                    #tail
                 }})
             }
             Next::Static(t, Some(ix)) if self.store.atom_of(*t).is_some() => {
@@ -2695,14 +2737,13 @@ impl Gen<'_> {
                     .collect();
                 let f = self.functor_native(*name)?;
                 let out = d.out.borrow().clone();
-                let rec = d.rec.borrow().clone();
+                let tail = goto_tail(&d.rec.borrow());
                 let fallback = quote! {{
                     cx.count_transitions(count);
                     let ts = [#(#terms),*];
                     let rec_next = cx.build(#f, &ts);
                     #out
-                    #rec
-                    return cx.goto(rec_next, arc_at).map(Some);
+                    #tail
                 }};
                 let mut vals = Vec::new();
                 let mut checks = Vec::new();
@@ -2735,15 +2776,14 @@ impl Gen<'_> {
                 let mut n = 0;
                 let t = self.nat_build_term(b, regs, &mut ts, &mut n)?;
                 let out = d.out.borrow().clone();
-                let rec = d.rec.borrow().clone();
+                let tail = goto_tail(&d.rec.borrow());
                 Ok(quote! {{
                     #enter
                     #(#ts)*
                     let rec_next = cx.eval(#t, arc_at)?;
                     cx.count_transitions(count);
                     #out
-                    #rec
-                    return cx.goto(rec_next, arc_at).map(Some);
+                    #tail
                 }})
             }
             Next::Eval(Ev::Compound(name, args)) => {
@@ -2897,7 +2937,7 @@ impl Gen<'_> {
         let f = self.atom_native(name)?;
         let hand = &d.hand;
         let out = d.out.borrow().clone();
-        let rec = d.rec.borrow().clone();
+        let tail = goto_tail(&d.rec.borrow());
         Ok(quote! {
             'sel: {
                 #(#lets)*
@@ -2909,8 +2949,7 @@ impl Gen<'_> {
                 cx.count_and_enter(count, run.records, #curl, #cur_name);
                 let rec_next = cx.build_of(#f, &[#(#arg_names),*]);
                 #out
-                #rec
-                return cx.goto(rec_next, arc_at).map(Some);
+                #tail
             }
         })
     }
