@@ -9,9 +9,10 @@
 //!   `sitlog_runtime::machine::DmProgram`: the runtime's machine keeps the
 //!   DM stack, the pipe, the variables and the history, and owns every
 //!   semantic step;
-//! - one module per DM (`pub mod dm_<name>`) with an `enum Situation` (one
-//!   variant per situation, in source order, `#[repr(u32)]` so the variant is
-//!   the machine's situation index);
+//! - one module per DM (`pub mod dm_<name>`) with its `SITUATIONS` table
+//!   (per situation, in source order: the index is the machine's situation
+//!   index) and its `TEMPLATES`; the program's constants as `writeq` text
+//!   (`CONSTS`, read once: code names constant `i` `k[i]`);
 //! - for each situation the [MIR](crate::mir) gives a plan (the rule is the
 //!   MIR's, shared with the interpreter), a function running a visit as
 //!   code, printed from that plan: a `match` on the chosen arc,
@@ -145,6 +146,9 @@ struct Gen<'s> {
     /// Per DM, whether it has native code and whether its calls may push
     /// its frame (`native::frame`).
     native_ok: std::cell::RefCell<HashMap<usize, (bool, bool)>>,
+    /// The patterns native code fills (`native::fill`), by their text:
+    /// constants after `consts`, pattern `i` constant `consts.len() + i`.
+    patterns: std::cell::RefCell<Vec<String>>,
 }
 
 /// Code that builds one term: statements, then the expression of its value.
@@ -170,6 +174,7 @@ impl<'s> Gen<'s> {
             mir_types,
             ir: Some(ir),
             native_ok: std::cell::RefCell::new(HashMap::new()),
+            patterns: std::cell::RefCell::new(Vec::new()),
         }
     }
 
@@ -312,6 +317,20 @@ impl<'s> Gen<'s> {
     fn const_index(i: usize) -> TokenStream {
         let i = Literal::usize_unsuffixed(i);
         quote!([#i])
+    }
+
+    /// The constant index of a pattern (`native::fill`), registered with
+    /// its text after the program's constants.
+    fn pattern(&self, text: String) -> usize {
+        let mut ps = self.patterns.borrow_mut();
+        let i = match ps.iter().position(|p| *p == text) {
+            Some(i) => i,
+            None => {
+                ps.push(text);
+                ps.len() - 1
+            }
+        };
+        self.consts.len() + i
     }
 
     /// A constant's `writeq` text as a string literal (wrapped, the breaks
@@ -551,7 +570,13 @@ impl<'s> Gen<'s> {
 
 /// Whether `a` (in `sa`) and `b` (in `sb`) are the same term up to a
 /// renaming of variables (`vars`: `a`'s variable to `b`'s, one to one).
-fn same_term(sa: &Store, a: Term, sb: &Store, b: Term, vars: &mut HashMap<u32, u32>) -> bool {
+pub(super) fn same_term(
+    sa: &Store,
+    a: Term,
+    sb: &Store,
+    b: Term,
+    vars: &mut HashMap<u32, u32>,
+) -> bool {
     match (sa.value(a), sb.value(b)) {
         (Value::Var(x), Value::Var(y)) => {
             let (x, y) = (x.index(), y.index());

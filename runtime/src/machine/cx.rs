@@ -301,6 +301,49 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         final_id
     }
 
+    /// The error of native code finding its own frames not as it made
+    /// them (a compiler bug, reported as a run-time error naming it).
+    #[cold]
+    pub fn fault(&self, fault: Fault) -> RunError {
+        let message = match fault {
+            Fault::NotWaiting => "native code resumed a situation that waits for no DM",
+            Fault::WrongFrame => "native code resumed a caller with another DM's frame",
+            Fault::WaitsForNone => "native code handed over a frame that waits for no DM",
+            Fault::Visited => "native code visited a waiting situation",
+            Fault::Exits => "native exit arcs disagree with the machine's",
+        };
+        self.error(message, None)
+    }
+
+    /// The end of a native step without the machine (a call made, a final
+    /// reached below the base): its transitions counted, the frame's
+    /// situation put back in its `slot`.
+    #[inline(always)]
+    pub fn step_done<T>(
+        &mut self,
+        count: u64,
+        slot: &mut T,
+        at: T,
+    ) -> Result<Option<Step>, RunError> {
+        self.count_transitions(count);
+        *slot = at;
+        Ok(None)
+    }
+
+    /// The end of a native step that gives the machine control (garbage to
+    /// collect, a stop asked): its transitions counted, the situation
+    /// reached handed over as its id.
+    #[cold]
+    pub fn step_goto(
+        &mut self,
+        count: u64,
+        id: impl FnOnce(&mut Store) -> Term,
+    ) -> Result<Option<Step>, RunError> {
+        self.count_transitions(count);
+        let id = id(&mut self.m.store);
+        Ok(Some(Step::Goto(id)))
+    }
+
     /// A fresh variable.
     #[inline]
     pub fn var(&mut self) -> Term {
@@ -336,6 +379,17 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// hands to the machine.
     pub fn build_of(&mut self, name: Atom, args: &[&dyn AsTerm]) -> Term {
         build_of(&mut self.m.store, name, args)
+    }
+
+    /// The term `pattern` (a constant of the program, [`hole_atom`]`(i)`
+    /// where a value goes) with `holes[i]` made a term in its place, the
+    /// holes in order: a term native code builds from native values in one
+    /// call. Each compound with a hole below it is built as [`Cx::build`]
+    /// builds it; a part without one is the constant's.
+    pub fn fill(&mut self, pattern: Term, holes: &[&dyn AsTerm]) -> Term {
+        with_terms(&mut self.m.store, holes, |store, ts| {
+            fill_in(store, pattern, ts)
+        })
     }
 
     /// [`Cx::compound`] of values, each made a term in order: the
@@ -721,6 +775,21 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     }
 }
 
+/// What native code found wrong with its own frames ([`Cx::fault`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fault {
+    /// A frame resumed after a call, in a situation that made none.
+    NotWaiting,
+    /// A caller resumed with a callee of another DM than it called.
+    WrongFrame,
+    /// A frame made the machine's as waiting, in a situation that made no call.
+    WaitsForNone,
+    /// A waiting situation visited as if it were running.
+    Visited,
+    /// No native exit arc took the callee's final, but the machine's did.
+    Exits,
+}
+
 /// A value native code makes a term of, of any native type (a term is
 /// itself): the arguments of [`Cx::build_of`] and [`Cx::compound_of`].
 pub trait AsTerm {
@@ -766,11 +835,41 @@ from_id_parts!(A 0, B 1, C 2);
 from_id_parts!(A 0, B 1, C 2, D 3);
 from_id_parts!(A 0, B 1, C 2, D 3, E 4);
 from_id_parts!(A 0, B 1, C 2, D 3, E 4, F 5);
+from_id_parts!(A 0, B 1, C 2, D 3, E 4, F 5, G 6);
+from_id_parts!(A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7);
 
 /// [`native::compound`] of values, each made a term in order: how native
 /// code builds a situation's id from its fields (`id_s<N>`).
 pub fn build_of(store: &mut Store, name: Atom, args: &[&dyn AsTerm]) -> Term {
     with_terms(store, args, |store, ts| native::compound(store, name, ts))
+}
+
+/// The functor of a hole, `'$hole'(i)`, in a pattern [`Cx::fill`] fills
+/// (the compiler makes no pattern with a constant that names it).
+pub fn hole_atom() -> Atom {
+    static HOLE: std::sync::OnceLock<Atom> = std::sync::OnceLock::new();
+    *HOLE.get_or_init(|| Atom::intern("$hole"))
+}
+
+/// [`Cx::fill`] of `t` with the holes' terms.
+fn fill_in(store: &mut Store, t: Term, holes: &[Term]) -> Term {
+    let (name, args) = match store.value(t) {
+        crate::term::Value::Compound(name, args) => (name, args.to_vec()),
+        _ => return t,
+    };
+    if name == hole_atom() && args.len() == 1 {
+        if let Some(&h) = store
+            .int_of(args[0])
+            .and_then(|i| holes.get(usize::try_from(i).ok()?))
+        {
+            return h;
+        }
+    }
+    let filled: Vec<Term> = args.iter().map(|&a| fill_in(store, a, holes)).collect();
+    if filled == args {
+        return t;
+    }
+    native::compound(store, name, &filled)
 }
 
 /// `f` of `args` made terms (no allocation up to eight).

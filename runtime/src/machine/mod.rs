@@ -41,7 +41,7 @@ mod situation;
 mod state;
 mod steps;
 
-pub use cx::{build_of, AsTerm, FromIdParts};
+pub use cx::{build_of, hole_atom, AsTerm, Fault, FromIdParts};
 pub use io::{Actions, Perceived, Perception};
 pub use observe::{Inspection, Observer};
 pub use options::Options;

@@ -199,12 +199,12 @@ impl Gen<'_> {
         let mut saved_vals = Vec::new();
         for &r in saved.iter() {
             let v = self.nat_value(&Build::Reg(r), regs)?;
-            saved_vals.push(super::place(&v));
+            saved_vals.push(super::place_ref(&v));
         }
         let saved_value = if saved.is_empty() {
             quote!(Term::NIL)
         } else {
-            quote!(cx.compound_of(atoms::DOT, &[#(&#saved_vals),*]))
+            quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
         };
         // The call given to the machine, as the term code gives it.
         let hand_call = quote! {
@@ -307,14 +307,14 @@ impl Gen<'_> {
         let mut saved_vals = Vec::new();
         for &r in saved.iter() {
             match regs.get(&r) {
-                Some((f, _)) if super::is_fresh(f) => saved_vals.push(quote!(#f)),
-                _ => saved_vals.push(super::place(&self.nat_value(&Build::Reg(r), regs)?)),
+                Some((f, _)) if super::is_fresh(f) => saved_vals.push(quote!(&#f)),
+                _ => saved_vals.push(super::place_ref(&self.nat_value(&Build::Reg(r), regs)?)),
             }
         }
         let saved_value = if saved.is_empty() {
             quote!(Term::NIL)
         } else {
-            quote!(cx.compound_of(atoms::DOT, &[#(&#saved_vals),*]))
+            quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
         };
         Ok(quote! {
             #hand
@@ -500,10 +500,7 @@ impl Gen<'_> {
         }
         let body = quote! {
             let super::NatFrame::#callee_v(done_frame) = ret else {
-                return Err(cx.error(
-                    "native code resumed a caller with another DM's frame",
-                    None,
-                ));
+                return Err(cx.fault(Fault::WrongFrame));
             };
             let final_at = &done_frame.at;
             match &final_at {
@@ -519,10 +516,7 @@ impl Gen<'_> {
             cx.set_expectations(&[]);
             return match cx.choose_exit(final_id) {
                 Err(e) => Err(e),
-                Ok(_) => Err(cx.error(
-                    "native exit arcs disagree with the machine's",
-                    None,
-                )),
+                Ok(_) => Err(cx.fault(Fault::Exits)),
             };
         };
         // Only the parameters the exit arcs read are loaded (a load is a

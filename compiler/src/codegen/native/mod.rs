@@ -137,6 +137,7 @@
 use super::Gen;
 
 mod call;
+mod fill;
 mod frame;
 mod pipe;
 use crate::ir::IrDm;
@@ -277,7 +278,7 @@ fn load_head_arg(d: &Dm, r: Reg, i: usize, ty: Ty, regs: &mut Regs) -> N<TokenSt
     Ok(quote!(let #rr = #e;))
 }
 
-/// The history entry of an arc (`rec_exp`, `rec_act` and `rec_next` in
+/// The history entry of an arc (`exp`, `act` and `rec_next` in
 /// scope), when recorded: made as the term code makes it. The arc entered
 /// its situation first (its id set, the locals written back: `Dm::hand`),
 /// and what changed the locals since were the machine's own calls, so an
@@ -322,6 +323,29 @@ fn always_returns(code: &TokenStream) -> bool {
             .any(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == ';'))
 }
 
+/// The value of `t` after the statements `ts` when they are none (`t`) or
+/// one, `let t = E;` (`E`).
+fn one_value(ts: &[TokenStream], t: &TokenStream) -> Option<TokenStream> {
+    match ts {
+        [] => Some(t.clone()),
+        [s] => {
+            let tokens: Vec<proc_macro2::TokenTree> = s.clone().into_iter().collect();
+            match tokens.as_slice() {
+                [proc_macro2::TokenTree::Ident(l), proc_macro2::TokenTree::Ident(x), proc_macro2::TokenTree::Punct(eq), rest @ .., proc_macro2::TokenTree::Punct(semi)]
+                    if l == "let"
+                        && *x == t.to_string()
+                        && eq.as_char() == '='
+                        && semi.as_char() == ';' =>
+                {
+                    Some(rest.iter().cloned().collect())
+                }
+                _ => None,
+            }
+        }
+        _ => None,
+    }
+}
+
 /// The fresh variables a visit uses, made first in one call (in order).
 fn fresh_vars(used: &std::collections::BTreeSet<Ident>) -> TokenStream {
     if used.is_empty() {
@@ -338,13 +362,13 @@ fn goto_tail(rec: &TokenStream) -> TokenStream {
     if rec.is_empty() {
         quote!(return cx.goto(rec_next, arc_at).map(Some);)
     } else {
-        quote!(return run.goto(cx, rec_exp, rec_act, rec_next, arc_at);)
+        quote!(return run.goto(cx, exp, act, rec_next, arc_at);)
     }
 }
 
 fn rec_entry() -> TokenStream {
     quote! {
-        cx.record_if(run.records, rec_exp, rec_act, Some(rec_next));
+        cx.record_if(run.records, exp, act, Some(rec_next));
     }
 }
 
@@ -483,9 +507,6 @@ impl MatchStep {
         }
     }
 }
-
-/// The error of a frame resumed after a call that was not waiting for one.
-const NOT_WAITING: &str = "native code resumed a situation that waits for no DM";
 
 /// The DM's native code, for the module.
 pub(super) struct NativeCode {
@@ -734,12 +755,15 @@ impl Gen<'_> {
             };
             let parts = quote!(let #tuple = cx.id_parts(&[#(#path_ts),*])?;);
             let path_text: Vec<&str> = paths.iter().map(|(_, t)| t.as_str()).collect();
-            let line = format!("let {text} = cx.id_parts(&[{}])?;", path_text.join(", "));
-            // prettyplease's margin (89) at the arm's indentation (16).
-            let one_line = (1..=6).contains(&fields.len()) && 16 + line.len() <= 89;
+            // One line or two (prettyplease breaks before `.id_parts` first):
+            // its margin is 89, the arm's statements are indented by 16.
+            let call = format!(".id_parts(&[{}])?;", path_text.join(", "));
+            let in_one_call = (1..=8).contains(&fields.len())
+                && 16 + format!("let {text} = cx").len() <= 89
+                && 20 + call.len() <= 89;
             entries.push(if fields.is_empty() {
                 quote!(#ixl => { #pipe Nat::#v {} })
-            } else if one_line {
+            } else if in_one_call {
                 quote!(#ixl => {
                     #parts
                     #pipe
@@ -763,9 +787,7 @@ impl Gen<'_> {
         let gc = quote! {
             if cx.gc_due() {
                 #hand
-                cx.count_transitions(count);
-                let id = at.id_term(p, cx.store());
-                return Ok(Some(Step::Goto(id)));
+                return cx.step_goto(count, |s| at.id_term(p, s));
             }
         };
         // Resumed after a call returned: the waiting situation's exit arcs,
@@ -774,7 +796,7 @@ impl Gen<'_> {
         let resume = if exit_arms.iter().all(|a| a.is_empty()) {
             quote! {
                 if ret.is_some() {
-                    return Err(cx.error(#NOT_WAITING, None));
+                    return Err(cx.fault(Fault::NotWaiting));
                 }
             }
         } else {
@@ -782,12 +804,10 @@ impl Gen<'_> {
                 if let Some(ret) = ret {
                     at = match at {
                         #(#exit_arms)*
-                        _ => return Err(cx.error(#NOT_WAITING, None)),
+                        _ => return Err(cx.fault(Fault::NotWaiting)),
                     };
                     if done {
-                        cx.count_transitions(count);
-                        *slot = at;
-                        return Ok(None);
+                        return cx.step_done(count, slot, at);
                     }
                     #gc
                 }
@@ -806,13 +826,7 @@ impl Gen<'_> {
         let entry_prelude = Gen::prelude(&entry_body);
         let entry_body = quote!(#entry_prelude #entry_body);
         let frame_items = frame.items;
-        let doc = format!(
-            " Runs DM `{}` natively from situation `sit` (see \
-             `sitlog_compiler::codegen::native`); `None`, nothing done, when the \
-             situation has no native code, or a parameter, local, id argument or \
-             the pipe does not convert.",
-            dm.name.as_str()
-        );
+        let doc = " Runs the DM natively from `sit`; `None`, nothing done, when it cannot.";
         // The situations' ids, each built by one function.
         let ids: Vec<usize> = d.ids.borrow().iter().copied().collect();
         let id_fns = ids
@@ -822,8 +836,7 @@ impl Gen<'_> {
         let items = quote! {
             #(#id_fns)*
 
-            /// The DM's situations that have native code, as native values:
-            /// the fields are the id's variables.
+            /// The situations with native code; the fields are the id's variables.
             #[derive(Clone, Debug)]
             pub enum Nat {
                 #(#variants)*
@@ -844,18 +857,16 @@ impl Gen<'_> {
 
             #frame_items
 
-            /// Runs the frame on top of the native stack until it calls a DM
-            /// (`call` set), ends in a final situation below the base
-            /// (`Ok(None)`), or hands over to the machine (`Ok(Some(step))`).
+            /// Runs the frame until it calls (`call` set), ends (`Ok(None)`) or hands over.
             pub(crate) fn nat_step(
-                p: &super::Program,
-                cx: &mut Cx<'_, '_, super::Program>,
+                p: &Program,
+                cx: &mut Ctx,
                 frame: &mut Frame,
                 ret: Option<&mut super::NatFrame>,
                 stack: &mut super::NatBelow<'_>,
                 call: &mut Option<super::NatFrame>,
                 run: &TypedRun,
-            ) -> Result<Option<Step>, RunError> {
+            ) -> NatResult {
                 let a = &p.atoms;
                 let Frame { #(#field_names,)* at: slot } = frame;
                 // Transitions done, not yet given to the machine.
@@ -867,23 +878,17 @@ impl Gen<'_> {
                 loop {
                     at = match at {
                         #(#arms)*
-                        _ => return Err(cx.error("native code visited a waiting situation", None)),
+                        _ => return Err(cx.fault(Fault::Visited)),
                     };
                     if done {
-                        cx.count_transitions(count);
-                        *slot = at;
-                        return Ok(None);
+                        return cx.step_done(count, slot, at);
                     }
                     #gc
                 }
             }
 
             #[doc = #doc]
-            pub fn run_native(
-                p: &super::Program,
-                cx: &mut Cx<'_, '_, super::Program>,
-                sit: SitIx,
-            ) -> Result<Option<Step>, RunError> {
+            pub fn run_native(p: &Program, cx: &mut Ctx, sit: SitIx) -> NatResult {
                 let run = cx.typed_run();
                 let Some(frame) = nat_entry(p, cx, sit) else {
                     return Ok(None);
@@ -891,15 +896,8 @@ impl Gen<'_> {
                 super::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run).map(Some)
             }
 
-            /// The frame native code starts with at situation `sit`: the
-            /// id's arguments, the pipe, the parameters and locals it reads
-            /// converted (`None`, nothing done but the machine's frames
-            /// materialized, when one does not convert).
-            fn nat_entry(
-                p: &super::Program,
-                cx: &mut Cx<'_, '_, super::Program>,
-                sit: SitIx,
-            ) -> Option<Frame> {
+            /// The frame entered at `sit`, its values converted (`None`: one does not).
+            fn nat_entry(p: &Program, cx: &mut Ctx, sit: SitIx) -> Option<Frame> {
                 #entry_body
             }
         };
@@ -1222,7 +1220,7 @@ impl Gen<'_> {
         let prelude = super::Gen::prelude(&body);
         Ok(quote! {
             #[doc = #doc]
-            fn #f(p: &super::Program, store: &mut Store, #(#params),*) -> Term {
+            fn #f(p: &Program, store: &mut Store, #(#params),*) -> Term {
                 #prelude
                 #body
             }
@@ -1618,12 +1616,19 @@ impl Gen<'_> {
                             .map_err(|e| format!("its expectation {}: {e}", i + 1))?;
                         let x = format_ident!("e{}", i);
                         let il = Literal::usize_unsuffixed(i);
-                        exps.push(quote! {
-                            let #x = {
-                                let arc_at = Some(#il);
-                                #(#ts)*
-                                #t
-                            };
+                        // `arc_at` bound only where its code names it; one
+                        // statement building the value is the value.
+                        let at = ts.iter().any(|s| s.to_string().contains("arc_at"));
+                        exps.push(match (at, one_value(&ts, &t)) {
+                            (false, Some(e)) => quote!(let #x = #e;),
+                            (false, None) => quote!(let #x = { #(#ts)* #t };),
+                            (true, _) => quote! {
+                                let #x = {
+                                    let arc_at = Some(#il);
+                                    #(#ts)*
+                                    #t
+                                };
+                            },
                         });
                         names.push(x);
                     }
@@ -1908,7 +1913,7 @@ impl Gen<'_> {
                 }
             }
         };
-        stmts.push(quote!(let rec_exp: Term = #rec_exp;));
+        stmts.push(quote!(let exp: Term = #rec_exp;));
         match atom {
             Some(action) => {
                 let act = self.atom_native(action)?;
@@ -1922,7 +1927,7 @@ impl Gen<'_> {
                 } else {
                     perform
                 });
-                stmts.push(quote!(let rec_act = Term::atom(#act);));
+                stmts.push(quote!(let act = Term::atom(#act);));
             }
             None => {
                 // An effector's action (`say([.., Name])`): its term
@@ -1934,8 +1939,8 @@ impl Gen<'_> {
                     Action::One(e) => {
                         let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
                         quote! {
-                            let rec_act = #t;
-                            cx.perform(rec_act, arc_at)?;
+                            let act = #t;
+                            cx.perform(act, arc_at)?;
                         }
                     }
                     Action::List { items, .. } => {
@@ -1948,7 +1953,7 @@ impl Gen<'_> {
                         quote! {
                             let act_items = [#(#ts_items),*];
                             cx.perform_each(&act_items, arc_at)?;
-                            let rec_act = if run.records {
+                            let act = if run.records {
                                 cx.store().list(&act_items)
                             } else {
                                 Term::NIL
@@ -2004,7 +2009,7 @@ impl Gen<'_> {
             quote! {
                 #(#stmts)*
                 let next_at: Nat = #init;
-                run.record_next(cx, rec_exp, rec_act, |s| next_at.id_term(p, s));
+                run.record_next(cx, exp, act, |s| next_at.id_term(p, s));
                 next_at
             }
         };
@@ -2101,6 +2106,13 @@ impl Gen<'_> {
             }
             Build::Const(t) => return self.nat_const_term(*t, ts, n),
             Build::Compound(f, args) => {
+                // Two compounds or more: one `cx.fill` where a pattern
+                // fits (module `fill`), its local the next one.
+                let mut m = *n - 1;
+                if let Some(x) = self.nat_fill_build(b, regs, ts, &mut m)? {
+                    *n = m;
+                    return Ok(x);
+                }
                 let args = args
                     .iter()
                     .map(|a| self.nat_build_term(a, regs, ts, n))
@@ -2126,6 +2138,9 @@ impl Gen<'_> {
             Ev::Value(r) => self.nat_build_term(&Build::Reg(*r), regs, ts, n),
             Ev::Built(b) => self.nat_build_term(b, regs, ts, n),
             Ev::Compound(f, args) => {
+                if let Some(x) = self.nat_fill_ev(e, regs, ts, n)? {
+                    return Ok(x);
+                }
                 let args = args
                     .iter()
                     .map(|a| self.nat_ev_term(a, regs, ts, n))
@@ -3281,6 +3296,18 @@ fn place(v: &V) -> TokenStream {
     }
     let e = &v.e;
     quote!((#e))
+}
+
+/// A reference to the value, for a term made of it (`&dyn AsTerm`): a
+/// register of the visit read as `r<n>.clone()` (an owned Rust local) is
+/// `&r<n>`, any other value a reference to its [`place`].
+fn place_ref(v: &V) -> TokenStream {
+    let m = moved(v);
+    if m.to_string() != v.e.to_string() {
+        return quote!(&#m);
+    }
+    let p = place(v);
+    quote!(&#p)
 }
 
 /// A value read as `r<n>.clone()`, a register of the visit (an owned Rust
