@@ -387,9 +387,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// call. Each compound with a hole below it is built as [`Cx::build`]
     /// builds it; a part without one is the constant's.
     pub fn fill(&mut self, pattern: Term, holes: &[&dyn AsTerm]) -> Term {
-        with_terms(&mut self.m.store, holes, |store, ts| {
-            fill_in(store, pattern, ts)
-        })
+        fill(&mut self.m.store, pattern, holes)
     }
 
     /// [`Cx::compound`] of values, each made a term in order: the
@@ -851,25 +849,48 @@ pub fn hole_atom() -> Atom {
     *HOLE.get_or_init(|| Atom::intern("$hole"))
 }
 
-/// [`Cx::fill`] of `t` with the holes' terms.
+/// [`Cx::fill`] in `store`: how native code builds a term of native values
+/// from its pattern (an action's term, a situation's id).
+pub fn fill(store: &mut Store, pattern: Term, holes: &[&dyn AsTerm]) -> Term {
+    with_terms(store, holes, |store, ts| fill_in(store, pattern, ts))
+}
+
+/// [`fill`] of `t` with the holes' terms (no allocation for compounds of up
+/// to eight arguments).
 fn fill_in(store: &mut Store, t: Term, holes: &[Term]) -> Term {
-    let (name, args) = match store.value(t) {
-        crate::term::Value::Compound(name, args) => (name, args.to_vec()),
+    let mut buf = [Term::NIL; 8];
+    let mut spill = Vec::new();
+    let (name, n) = match store.value(t) {
+        crate::term::Value::Compound(name, args) => {
+            match buf.get_mut(..args.len()) {
+                Some(b) => b.copy_from_slice(args),
+                None => spill.extend_from_slice(args),
+            }
+            (name, args.len())
+        }
         _ => return t,
     };
-    if name == hole_atom() && args.len() == 1 {
-        if let Some(&h) = store
-            .int_of(args[0])
-            .and_then(|i| holes.get(usize::try_from(i).ok()?))
-        {
+    let args: &mut [Term] = if spill.is_empty() {
+        &mut buf[..n]
+    } else {
+        &mut spill
+    };
+    if name == hole_atom() && n == 1 {
+        let i = store.int_of(args[0]).and_then(|i| usize::try_from(i).ok());
+        if let Some(&h) = i.and_then(|i| holes.get(i)) {
             return h;
         }
     }
-    let filled: Vec<Term> = args.iter().map(|&a| fill_in(store, a, holes)).collect();
-    if filled == args {
+    let mut changed = false;
+    for a in args.iter_mut() {
+        let f = fill_in(store, *a, holes);
+        changed |= f != *a;
+        *a = f;
+    }
+    if !changed {
         return t;
     }
-    native::compound(store, name, &filled)
+    native::compound(store, name, args)
 }
 
 /// `f` of `args` made terms (no allocation up to eight).

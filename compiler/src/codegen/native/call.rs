@@ -362,7 +362,7 @@ impl Gen<'_> {
         };
         // In `nat_wait` (fields are references there).
         let curl = Literal::u32_unsuffixed(ix as u32);
-        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let (id_stmts, id) = self.nat_id_term_of(d, ix, quote!(cx.store()), true)?;
         let mut saved_vals = Vec::new();
         for &r in saved.iter() {
             let rr = reg(r);

@@ -10,10 +10,10 @@
 //! does not read back as itself, or whose constants name `'$hole'`, is
 //! not used (the statements are generated as before).
 
-use super::{Regs, N};
+use super::{Dm, Regs, N};
 use crate::codegen::Gen;
 use crate::mir::{Build, Ev};
-use proc_macro2::TokenStream;
+use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_runtime::{Store, Term, Value};
 use sitlog_syntax::{atoms, Atom};
@@ -149,6 +149,17 @@ impl Gen<'_> {
         if compounds(pat) < 2 {
             return None;
         }
+        let k = self.pattern_const(pat)?;
+        let x = format_ident!("b{}", *n);
+        *n += 1;
+        let hs = holes.exprs;
+        ts.push(quote!(let #x = cx.fill(p.k #k, &[#(#hs),*]);));
+        Some(quote!(#x))
+    }
+
+    /// The constant of a pattern (`[I]`, constant `I` of the program) when
+    /// its text reads back as itself.
+    fn pattern_const(&self, pat: &Pat) -> Option<TokenStream> {
         let mut text = String::new();
         if !self.pat_text(pat, &mut text) {
             return None;
@@ -158,12 +169,64 @@ impl Gen<'_> {
         if !self.pat_reads_back(pat, &scratch, back) {
             return None;
         }
-        let k = Self::const_index(self.pattern(text));
-        let x = format_ident!("b{}", *n);
-        *n += 1;
-        let hs = holes.exprs;
-        ts.push(quote!(let #x = cx.fill(p.k #k, &[#(#hs),*]);));
-        Some(quote!(#x))
+        Some(Self::const_index(self.pattern(text)))
+    }
+
+    /// Situation `ix`'s id built by `machine::fill` from its pattern, the
+    /// id's variables the holes (`params`, in order: the fields it is built
+    /// from, references where `refs`, else owned); `None` when the pattern
+    /// does not fit.
+    pub(super) fn nat_id_fill(
+        &self,
+        d: &Dm,
+        ix: usize,
+        params: &[Ident],
+        store: &TokenStream,
+        refs: bool,
+    ) -> Option<TokenStream> {
+        let id = self.nat_id_of(d, ix);
+        let pat = self.id_pat(d, ix, id, &mut Vec::new(), params)?;
+        let k = self.pattern_const(&pat)?;
+        let args = params
+            .iter()
+            .map(|r| if refs { quote!(#r) } else { quote!(&#r) });
+        if store.to_string() == quote!(cx.store()).to_string() {
+            return Some(quote!(cx.fill(p.k #k, &[#(#args),*])));
+        }
+        Some(quote!(machine::fill(#store, p.k #k, &[#(#args),*])))
+    }
+
+    fn id_pat(
+        &self,
+        d: &Dm,
+        ix: usize,
+        t: Term,
+        path: &mut Vec<usize>,
+        params: &[Ident],
+    ) -> Option<Pat> {
+        Some(match self.store.value(t) {
+            Value::Var(_) => {
+                // A repeated variable: its first occurrence's field.
+                let r = match Self::nat_id_reg(d, ix, path) {
+                    Some(r) => r,
+                    None => self.nat_first_reg(d, ix, t).ok()?,
+                };
+                let r = super::reg(r);
+                Pat::Hole(params.iter().position(|p| *p == r)?)
+            }
+            Value::Compound(f, args) => {
+                let args = args.to_vec();
+                let mut parts = Vec::new();
+                for (i, a) in args.into_iter().enumerate() {
+                    path.push(i);
+                    parts.push(self.id_pat(d, ix, a, path, params)?);
+                    path.pop();
+                }
+                Pat::Node(f, parts)
+            }
+            Value::Atom(_) | Value::Int(_) => Pat::Const(t),
+            _ => return None,
+        })
     }
 
     /// The pattern's `writeq`-style text (lists in list notation, a

@@ -24,7 +24,11 @@
 //!   as the interpreter does (correct, slower, rare). "Term code" below
 //!   means, for such a situation, that path. Where native code needs a
 //!   situation's id as a term (entering it, its history entry, a
-//!   hand-over, a wait), the DM's `id_s<N>` builds it from the fields.
+//!   hand-over, a wait), it is filled from its pattern, a constant with a
+//!   hole where each field goes (`Cx::fill`, module `fill`; the DM's
+//!   `id_s<N>` builds it where no pattern reads back). Terms of two
+//!   compounds or more built from native values (an action's, an evaluated
+//!   call's) are filled from their patterns too.
 //! - *values*: native values are ground and evaluate to themselves in L
 //!   (atoms, numbers and lists of them are inert, D-28/D-36; a `Val` is
 //!   converted from an inert term), so a condition `X == Y` is Rust's `==`
@@ -844,9 +848,8 @@ impl Gen<'_> {
                 Moved {},
             }
 
-            impl Nat {
-                /// The situation's id as a term.
-                pub(crate) fn id_term(&self, p: &super::Program, store: &mut Store) -> Term {
+            impl NatSit<Program> for Nat {
+                fn id_term(&self, p: &Program, store: &mut Store) -> Term {
                     let a = &p.atoms;
                     match self {
                         #(#id_arms)*
@@ -1149,23 +1152,40 @@ impl Gen<'_> {
         ix: usize,
         store: TokenStream,
     ) -> N<(Vec<TokenStream>, TokenStream)> {
+        self.nat_id_term_of(d, ix, store, false)
+    }
+
+    /// [`Gen::nat_id_term`] from fields that are references (`refs`: a
+    /// frame matched by reference) or owned locals.
+    fn nat_id_term_of(
+        &self,
+        d: &Dm,
+        ix: usize,
+        store: TokenStream,
+        refs: bool,
+    ) -> N<(Vec<TokenStream>, TokenStream)> {
         let (stmts, v) = self.nat_id_inline(d, ix, store.clone())?;
         if stmts.is_empty() {
             return Ok((stmts, v));
         }
         match self.nat_id_params(d, ix) {
             Ok(params) => {
-                d.ids.borrow_mut().insert(ix);
-                let f = format_ident!("id_s{}", ix);
-                let args = params.iter().map(|(r, _)| quote!(&#r));
+                let names: Vec<Ident> = params.iter().map(|(r, _)| r.clone()).collect();
+                // Its pattern filled, or the DM's `id_s<ix>`.
+                let e = match self.nat_id_fill(d, ix, &names, &store, refs) {
+                    Some(e) => e,
+                    None => {
+                        d.ids.borrow_mut().insert(ix);
+                        let f = format_ident!("id_s{}", ix);
+                        let args = params.iter().map(|(r, _)| quote!(&#r));
+                        quote!(#f(p, #store, #(#args),*))
+                    }
+                };
                 // A statement: the id is often an argument of a `cx` call.
                 let n = d.id_n.get();
                 d.id_n.set(n + 1);
                 let x = format_ident!("id{}", n);
-                Ok((
-                    vec![quote!(let #x = #f(p, #store, #(#args),*);)],
-                    quote!(#x),
-                ))
+                Ok((vec![quote!(let #x = #e;)], quote!(#x)))
             }
             Err(_) => Ok((stmts, v)),
         }
@@ -1180,6 +1200,10 @@ impl Gen<'_> {
         }
         match self.nat_id_params(d, ix) {
             Ok(params) => {
+                let names: Vec<Ident> = params.iter().map(|(r, _)| r.clone()).collect();
+                if let Some(e) = self.nat_id_fill(d, ix, &names, &store, true) {
+                    return Ok(e);
+                }
                 d.ids.borrow_mut().insert(ix);
                 let f = format_ident!("id_s{}", ix);
                 let args = params.iter().map(|(r, _)| quote!(&#r));
@@ -2009,8 +2033,7 @@ impl Gen<'_> {
             quote! {
                 #(#stmts)*
                 let next_at: Nat = #init;
-                run.record_next(cx, exp, act, |s| next_at.id_term(p, s));
-                next_at
+                run.next(cx, p, exp, act, next_at)
             }
         };
         Ok(match fast {
