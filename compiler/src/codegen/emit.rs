@@ -1,6 +1,6 @@
 //! The program and its DMs as Rust items: `Program` and its
 //! `DmProgram`/`App` impls, the entry points (`program()`, `run`, `main`),
-//! and one module per DM (its situation enum and table, instance builders, dispatch).
+//! and one module per DM (its situation table and templates, instance builders, dispatch).
 //! The per-situation code is [`super::step`]'s (on terms) and
 //! [`super::native`]'s (on Rust values).
 
@@ -19,30 +19,6 @@ impl Gen<'_> {
             .iter()
             .map(|f| Literal::string(&f.text))
             .collect();
-
-        // Constants.
-        let const_fields = self.consts.iter().enumerate().map(|(i, (text, _))| {
-            let id = Self::const_ident(i);
-            let doc = format!(" `{text}`");
-            quote!(#[doc = #doc] pub #id: Term,)
-        });
-        let empty = HashMap::new();
-        let const_inits = self.consts.iter().enumerate().map(|(i, (_, t))| {
-            let id = Self::const_ident(i);
-            let mut next_tmp = 0;
-            let b = self.build(*t, &empty, true, &mut next_tmp);
-            let stmts = b.stmts;
-            let value = b.value;
-            if stmts.len() == 1 {
-                // One compound: bind it directly.
-                let expr = &stmts[0].1;
-                quote!(let #id = #expr;)
-            } else {
-                let stmts = stmts.iter().map(|(t, e)| quote!(let #t = #e;));
-                quote!(let #id = { #(#stmts)* #value };)
-            }
-        });
-        let const_names: Vec<Ident> = (0..self.consts.len()).map(Self::const_ident).collect();
 
         // DM modules.
         let mut dm_namer = Namer::default();
@@ -79,6 +55,30 @@ impl Gen<'_> {
             }
         }
         let native_driver = self.native_driver(ir, &dm_mods);
+        // Constants: their `writeq` texts, read once by `Program::new`; a
+        // constant whose text does not read back as itself is built by
+        // code after them (its text `[]`).
+        let empty = HashMap::new();
+        let mut const_texts = Vec::new();
+        let mut const_fixups = Vec::new();
+        for (i, (text, t)) in self.consts.iter().enumerate() {
+            if let Some(lit) = self.const_text(*t, text) {
+                const_texts.push(lit);
+                continue;
+            }
+            const_texts.push(quote!("[]"));
+            let ix = Literal::usize_unsuffixed(i);
+            let mut next_tmp = 0;
+            let b = self.build(*t, &empty, true, &mut next_tmp);
+            let stmts = b.stmts.iter().map(|(t, e)| quote!(let #t = #e;));
+            let value = b.value;
+            const_fixups.push(quote!(k[#ix] = { #(#stmts)* #value };));
+        }
+        // The patterns native code fills (`native::fill`), registered while
+        // the DMs' code was made: they read back.
+        for text in self.patterns.borrow().iter() {
+            const_texts.push(wrapped_literal(text, 88).parse().expect("a string literal"));
+        }
         // The dispatches to the DMs that have their own function (none:
         // the generic case alone).
         let instantiate_body = if builder_arms.is_empty() {
@@ -154,6 +154,34 @@ impl Gen<'_> {
             })
             .collect();
         let source_doc = format!(" The SitLog program `{source}`, compiled by sitlog-compiler.");
+        // Only the constants the code names, renumbered in order (a
+        // constant of the program that is only part of a pattern is not).
+        let mut used = std::collections::BTreeSet::new();
+        for ts in modules
+            .iter()
+            .chain([&native_driver, &globals_body])
+            .chain(&const_fixups)
+        {
+            const_uses(ts, &mut used);
+        }
+        let renumbered: HashMap<usize, usize> = used
+            .iter()
+            .enumerate()
+            .map(|(new, &old)| (old, new))
+            .collect();
+        let const_texts: Vec<TokenStream> = const_texts
+            .into_iter()
+            .enumerate()
+            .filter(|(i, _)| used.contains(i))
+            .map(|(_, t)| t)
+            .collect();
+        let renumber = |ts: &TokenStream| renumber_consts(ts.clone(), &renumbered);
+        let modules: Vec<TokenStream> = modules.iter().map(renumber).collect();
+        let native_driver = renumber(&native_driver);
+        let globals_body = renumber(&globals_body);
+        let const_fixups: Vec<TokenStream> = const_fixups.iter().map(renumber).collect();
+        let const_count = Literal::usize_unsuffixed(const_texts.len());
+        let k_mut = (!const_fixups.is_empty()).then(|| quote!(mut));
 
         let body = quote! {
             #[doc = #source_doc]
@@ -161,12 +189,30 @@ impl Gen<'_> {
             /// Runs on the runtime's DM machine (`sitlog_runtime::machine`), which
             /// implements every semantic step: situations with atom ids run as
             /// code calling those steps, the others as instances built here.
+            ///
+            /// Each DM is a module `dm_<name>`: `SITUATIONS` (per situation its
+            /// kind, id and place, read by the runtime's `SitTable`), `TEMPLATES`
+            /// (the situations' templates as `writeq` text, read once into the
+            /// program's store; `None` for a situation never instantiated from
+            /// one), and for the situations with native code (see
+            /// `sitlog_compiler::codegen::native`) `enum Nat` (one variant per
+            /// situation, its fields the id's variables; a `W<n>` variant waits
+            /// for the DM it called; `NatSit::id_term`, its id filled from its pattern),
+            /// `Frame` (parameters, locals, the `Nat` it is in), `nat_entry` (the
+            /// frame entered at a situation, its values converted: `None` when one
+            /// does not), `nat_step` (runs the frame on the program's native stack
+            /// until it calls a DM, ends in a final below the base, or hands over
+            /// to the machine), `nat_hand_over` (before the machine sees the state:
+            /// the native frames below made machine frames, the locals written
+            /// back), `nat_wait` (a frame waiting for its callee made the
+            /// machine's) and `run_native`.
             #[allow(dead_code, non_camel_case_types, unused_variables, clippy::all)]
             pub struct Program {
                 /// Frozen store holding the constants; every run starts from a clone.
                 store: Store,
                 pub atoms: Atoms,
-                pub k: Consts,
+                /// The constants (`CONSTS`) in the frozen store.
+                pub k: [Term; #const_count],
                 /// The situations' templates in the frozen store, by DM and
                 /// situation (each DM's `TEMPLATES`).
                 templates: machine::Templates,
@@ -174,19 +220,29 @@ impl Gen<'_> {
                 sits: SitTable,
             }
 
-            /// The program's ground compound terms, built once in [`Program::new`].
-            #[allow(dead_code, clippy::all)]
-            pub struct Consts { #(#const_fields)* }
+            /// The machine's context of this program's code.
+            #[allow(dead_code)]
+            pub type Ctx<'a, 'b> = Cx<'a, 'b, Program>;
+
+            /// What native code's step gives: the machine's step when it hands
+            /// over (`None`: it did not).
+            #[allow(dead_code)]
+            pub type NatResult = Result<Option<Step>, RunError>;
+
+            /// The program's ground compound terms (and big integers) as
+            /// `writeq` text, read once by [`Program::new`]; code names
+            /// constant `i` `k[i]`.
+            pub const CONSTS: [&str; #const_count] = [#(#const_texts),*];
 
             #[allow(dead_code, unused_variables, clippy::all)]
             impl Program {
-                /// Interns the atoms and builds the constants.
+                /// Interns the atoms and reads the constants and templates.
                 pub fn new() -> Program {
                     let mut store = Store::new();
                     let a = Atoms::new();
                     let store = &mut store;
-                    #(#const_inits)*
-                    let k = Consts { #(#const_names),* };
+                    let #k_mut k = machine::read_consts(store, &CONSTS);
+                    #(#const_fixups)*
                     let templates = machine::Templates::read(store, &[#(&#dm_mods::TEMPLATES),*]);
                     let sits = SitTable::new(&[#((#dm_mods::FILE, &#dm_mods::SITUATIONS)),*]);
                     let mut store = ::std::mem::take(store);
@@ -421,7 +477,6 @@ impl Gen<'_> {
         let none = Term::atom(none_marker());
         let dm_lit = Literal::u32_unsuffixed(dm_ix as u32);
         let mut namer = Namer::default();
-        let mut variants = Vec::new();
         let mut vnames = Vec::new();
         let mut fns = Vec::new();
         let mut rows = Vec::new();
@@ -453,18 +508,6 @@ impl Gen<'_> {
             let vname = ident(&namer.fresh(base));
             vnames.push(vname.clone());
             let ix = Literal::u32_unsuffixed(i as u32);
-            let kind_text = match s.kind {
-                Kind::Final => "final",
-                Kind::Recursive => "recursive",
-                Kind::Perceptual => "perceptual",
-            };
-            let doc = format!(
-                " `{}` ({}, type `{}`, {kind_text}).",
-                id_text,
-                s.location,
-                self.store.writeq(f[2])
-            );
-            variants.push(quote!(#[doc = #doc] #vname = #ix,));
             let kind = match s.kind {
                 Kind::Final => quote!(Final),
                 Kind::Recursive => quote!(Recursive),
@@ -703,29 +746,18 @@ impl Gen<'_> {
         } else {
             quote!()
         };
-        let dm_name = self.store.writeq(dm.head);
-        let templates_doc = format!(
-            " The templates of DM `{dm_name}`'s situations (D-7) as `writeq` text, read once into \
-             the program's store; `None` for a situation that runs as term code (never \
-             instantiated) or whose instance is built by code."
-        );
+        let templates_doc =
+            " The situations' templates (D-7), `writeq` text (`None`: never instantiated).";
         let module = quote! {
             #[doc = #mod_doc]
-            #[allow(dead_code, unused_variables, unused_assignments, unused_mut, non_camel_case_types, clippy::all)]
+            // Generated code: what is unused in a DM (a variable, a
+            // label, a match arm) or irrefutable is left so, once here.
+            #[allow(unused, irrefutable_let_patterns, break_with_label_and_loop, clippy::all)]
             pub mod #module {
-                #[allow(unused_imports)]
                 use ::sitlog_runtime::prelude::*;
+                use super::{Ctx, NatResult, Program};
 
-                /// The situations, in source order; the discriminant is the
-                /// machine's situation index.
-                #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-                #[repr(u32)]
-                pub enum Situation { #(#variants)* }
-
-                /// Per situation (by index): its kind, its id (the name
-                /// and arity it runs as code by, or its template's id
-                /// functor), where it is written; read by the program's
-                /// generic `DmProgram` methods (`SitTable`).
+                /// Per situation: its kind, id (name, arity), line and column (`SitTable`).
                 pub const SITUATIONS: [SitRow; #count_lit] = [#(#rows),*];
 
                 /// The file the DM is written in.
@@ -783,6 +815,65 @@ struct DmItems {
     all_native: bool,
     /// Recursive situations with exit arcs as code: its own `run_exit`.
     exits: bool,
+}
+
+/// The constant `i` of `k[i]` (`k`, then `[i]`), if the group is one.
+fn const_index(prev: Option<&str>, g: &proc_macro2::Group) -> Option<usize> {
+    if prev != Some("k") || g.delimiter() != proc_macro2::Delimiter::Bracket {
+        return None;
+    }
+    match g.stream().into_iter().collect::<Vec<_>>().as_slice() {
+        [proc_macro2::TokenTree::Literal(l)] => l.to_string().parse().ok(),
+        _ => None,
+    }
+}
+
+/// The constants generated code names (`k[i]`, `p.k[i]`).
+fn const_uses(ts: &TokenStream, out: &mut std::collections::BTreeSet<usize>) {
+    let mut prev: Option<String> = None;
+    for tt in ts.clone() {
+        match tt {
+            proc_macro2::TokenTree::Group(g) => {
+                out.extend(const_index(prev.as_deref(), &g));
+                const_uses(&g.stream(), out);
+                prev = None;
+            }
+            proc_macro2::TokenTree::Ident(i) => prev = Some(i.to_string()),
+            _ => prev = None,
+        }
+    }
+}
+
+/// `ts` with each constant `k[i]` it names numbered `k[map[i]]`.
+fn renumber_consts(ts: TokenStream, map: &HashMap<usize, usize>) -> TokenStream {
+    let mut prev: Option<String> = None;
+    let mut out = Vec::new();
+    for tt in ts {
+        match tt {
+            proc_macro2::TokenTree::Group(g) => {
+                let inner = match const_index(prev.as_deref(), &g).and_then(|i| map.get(&i)) {
+                    Some(&j) => {
+                        let j = Literal::usize_unsuffixed(j);
+                        quote!(#j)
+                    }
+                    None => renumber_consts(g.stream(), map),
+                };
+                let mut group = proc_macro2::Group::new(g.delimiter(), inner);
+                group.set_span(g.span());
+                out.push(proc_macro2::TokenTree::Group(group));
+                prev = None;
+            }
+            proc_macro2::TokenTree::Ident(i) => {
+                prev = Some(i.to_string());
+                out.push(proc_macro2::TokenTree::Ident(i));
+            }
+            other => {
+                prev = None;
+                out.push(other);
+            }
+        }
+    }
+    out.into_iter().collect()
 }
 
 /// The line and column of a `file:line:col` location, as literals.

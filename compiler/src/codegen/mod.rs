@@ -9,9 +9,10 @@
 //!   `sitlog_runtime::machine::DmProgram`: the runtime's machine keeps the
 //!   DM stack, the pipe, the variables and the history, and owns every
 //!   semantic step;
-//! - one module per DM (`pub mod dm_<name>`) with an `enum Situation` (one
-//!   variant per situation, in source order, `#[repr(u32)]` so the variant is
-//!   the machine's situation index);
+//! - one module per DM (`pub mod dm_<name>`) with its `SITUATIONS` table
+//!   (per situation, in source order: the index is the machine's situation
+//!   index) and its `TEMPLATES`; the program's constants as `writeq` text
+//!   (`CONSTS`, read once: code names constant `i` `k[i]`);
 //! - for each situation the [MIR](crate::mir) gives a plan (the rule is the
 //!   MIR's, shared with the interpreter), a function running a visit as
 //!   code, printed from that plan: a `match` on the chosen arc,
@@ -145,6 +146,9 @@ struct Gen<'s> {
     /// Per DM, whether it has native code and whether its calls may push
     /// its frame (`native::frame`).
     native_ok: std::cell::RefCell<HashMap<usize, (bool, bool)>>,
+    /// The patterns native code fills (`native::fill`), by their text:
+    /// constants after `consts`, pattern `i` constant `consts.len() + i`.
+    patterns: std::cell::RefCell<Vec<String>>,
 }
 
 /// Code that builds one term: statements, then the expression of its value.
@@ -170,6 +174,7 @@ impl<'s> Gen<'s> {
             mir_types,
             ir: Some(ir),
             native_ok: std::cell::RefCell::new(HashMap::new()),
+            patterns: std::cell::RefCell::new(Vec::new()),
         }
     }
 
@@ -308,8 +313,36 @@ impl<'s> Gen<'s> {
         self.consts.push((text, t));
     }
 
-    fn const_ident(i: usize) -> Ident {
-        format_ident!("k{}", i)
+    /// Constant `i` as generated code names it (`k[i]`, `k` the program's).
+    fn const_index(i: usize) -> TokenStream {
+        let i = Literal::usize_unsuffixed(i);
+        quote!([#i])
+    }
+
+    /// The constant index of a pattern (`native::fill`), registered with
+    /// its text after the program's constants.
+    fn pattern(&self, text: String) -> usize {
+        let mut ps = self.patterns.borrow_mut();
+        let i = match ps.iter().position(|p| *p == text) {
+            Some(i) => i,
+            None => {
+                ps.push(text);
+                ps.len() - 1
+            }
+        };
+        self.consts.len() + i
+    }
+
+    /// A constant's `writeq` text as a string literal (wrapped, the breaks
+    /// escaped away), when it reads back as the constant itself
+    /// (`machine::read_consts` reads it); `None` otherwise.
+    fn const_text(&self, t: Term, text: &str) -> Option<TokenStream> {
+        let mut scratch = Store::new();
+        let (back, _) = scratch.parse(text).ok()?;
+        if !same_term(self.store, t, &scratch, back, &mut HashMap::new()) {
+            return None;
+        }
+        wrapped_literal(text, 88).parse().ok()
     }
 
     /// Expression of a leaf (no statements needed), or `None` for compounds.
@@ -328,8 +361,8 @@ impl<'s> Gen<'s> {
             Value::Float(f) => float_expr(f),
             Value::BigInt(_) | Value::Compound(..) if !in_consts => {
                 if let Some(&k) = self.const_ix.get(&self.store.writeq(t)) {
-                    let id = Self::const_ident(k);
-                    quote!(k.#id)
+                    let ix = Self::const_index(k);
+                    quote!(k #ix)
                 } else {
                     return None;
                 }
@@ -501,6 +534,11 @@ impl<'s> Gen<'s> {
             for tt in ts {
                 match tt {
                     proc_macro2::TokenTree::Group(g) => {
+                        if g.delimiter() == proc_macro2::Delimiter::Bracket
+                            && prev.as_deref() == Some("k")
+                        {
+                            found.1 = true;
+                        }
                         walk(g.stream(), found);
                         prev = None;
                     }
@@ -532,7 +570,13 @@ impl<'s> Gen<'s> {
 
 /// Whether `a` (in `sa`) and `b` (in `sb`) are the same term up to a
 /// renaming of variables (`vars`: `a`'s variable to `b`'s, one to one).
-fn same_term(sa: &Store, a: Term, sb: &Store, b: Term, vars: &mut HashMap<u32, u32>) -> bool {
+pub(super) fn same_term(
+    sa: &Store,
+    a: Term,
+    sb: &Store,
+    b: Term,
+    vars: &mut HashMap<u32, u32>,
+) -> bool {
     match (sa.value(a), sb.value(b)) {
         (Value::Var(x), Value::Var(y)) => {
             let (x, y) = (x.index(), y.index());

@@ -7,7 +7,7 @@
 //! Which situations run as code, which variables are lazy and where a
 //! constant next situation goes are the MIR's decisions, not this
 //! module's: here a register of the plan becomes a Rust local `rN`, a
-//! frozen constant a field of the program's `Consts`, an atom a field of
+//! frozen constant an element `k[i]` of the program's constants, an atom a field of
 //! its `Atoms`, and each step the `Cx` call that performs it. Semantics
 //! stay in the runtime.
 

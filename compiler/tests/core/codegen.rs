@@ -73,7 +73,11 @@ diag_mod('type',
     let text = generate(&[("kw.dm", src)]);
     // It parses as Rust (generate_file formats it through syn).
     assert!(text.contains("pub mod dm_type"), "{text}");
-    assert!(text.contains("Any = 2"), "{text}");
+    // The situation with a variable id: its row, by its template.
+    assert!(
+        text.contains("SitRow::template(Kind::Final, None, 5, 7)"),
+        "{text}"
+    );
     // Situations named like the module's own functions (`exit`: the
     // original's robocup_2015) get functions of their own.
     for f in ["fn run_exit_sit(", "fn run_situation_sit("] {

@@ -320,10 +320,59 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         final_id
     }
 
+    /// The error of native code finding its own frames not as it made
+    /// them (a compiler bug, reported as a run-time error naming it).
+    #[cold]
+    pub fn fault(&self, fault: Fault) -> RunError {
+        let message = match fault {
+            Fault::NotWaiting => "native code resumed a situation that waits for no DM",
+            Fault::WrongFrame => "native code resumed a caller with another DM's frame",
+            Fault::WaitsForNone => "native code handed over a frame that waits for no DM",
+            Fault::Visited => "native code visited a waiting situation",
+            Fault::Exits => "native exit arcs disagree with the machine's",
+        };
+        self.error(message, None)
+    }
+
+    /// The end of a native step without the machine (a call made, a final
+    /// reached below the base): its transitions counted, the frame's
+    /// situation put back in its `slot`.
+    #[inline(always)]
+    pub fn step_done<T>(
+        &mut self,
+        count: u64,
+        slot: &mut T,
+        at: T,
+    ) -> Result<Option<Step>, RunError> {
+        self.count_transitions(count);
+        *slot = at;
+        Ok(None)
+    }
+
+    /// The end of a native step that gives the machine control (garbage to
+    /// collect, a stop asked): its transitions counted, the situation
+    /// reached handed over as its id.
+    #[cold]
+    pub fn step_goto(
+        &mut self,
+        count: u64,
+        id: impl FnOnce(&mut Store) -> Term,
+    ) -> Result<Option<Step>, RunError> {
+        self.count_transitions(count);
+        let id = id(&mut self.m.store);
+        Ok(Some(Step::Goto(id)))
+    }
+
     /// A fresh variable.
     #[inline]
     pub fn var(&mut self) -> Term {
         self.m.store.new_var()
+    }
+
+    /// `N` fresh variables, made in order (a visit's fresh variables).
+    #[inline]
+    pub fn vars<const N: usize>(&mut self) -> [Term; N] {
+        std::array::from_fn(|_| self.m.store.new_var())
     }
 
     #[inline]
@@ -349,6 +398,15 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// hands to the machine.
     pub fn build_of(&mut self, name: Atom, args: &[&dyn AsTerm]) -> Term {
         build_of(&mut self.m.store, name, args)
+    }
+
+    /// The term `pattern` (a constant of the program, [`hole_atom`]`(i)`
+    /// where a value goes) with `holes[i]` made a term in its place, the
+    /// holes in order: a term native code builds from native values in one
+    /// call. Each compound with a hole below it is built as [`Cx::build`]
+    /// builds it; a part without one is the constant's.
+    pub fn fill(&mut self, pattern: Term, holes: &[&dyn AsTerm]) -> Term {
+        fill(&mut self.m.store, pattern, holes)
     }
 
     /// [`Cx::compound`] of values, each made a term in order: the
@@ -660,6 +718,14 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         native::id_part(&self.m.store, id, path).and_then(|t| T::from_term(&self.m.store, t))
     }
 
+    /// The parts of the selected situation id at `paths`, each as a native
+    /// value, in order ([`Cx::id_part_as`] of each; `None`: no id selected,
+    /// or a part missing or not converting): the fields a situation is
+    /// entered with.
+    pub fn id_parts<T: FromIdParts>(&self, paths: &[&[usize]]) -> Option<T> {
+        T::from_id_parts(&self.m.store, self.selected()?, paths)
+    }
+
     /// The integer a (dereferenced) term is, if it is one.
     #[inline]
     pub fn int_of(&self, t: Term) -> Option<i64> {
@@ -739,6 +805,21 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     }
 }
 
+/// What native code found wrong with its own frames ([`Cx::fault`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fault {
+    /// A frame resumed after a call, in a situation that made none.
+    NotWaiting,
+    /// A caller resumed with a callee of another DM than it called.
+    WrongFrame,
+    /// A frame made the machine's as waiting, in a situation that made no call.
+    WaitsForNone,
+    /// A waiting situation visited as if it were running.
+    Visited,
+    /// No native exit arc took the callee's final, but the machine's did.
+    Exits,
+}
+
 /// A value native code makes a term of, of any native type (a term is
 /// itself): the arguments of [`Cx::build_of`] and [`Cx::compound_of`].
 pub trait AsTerm {
@@ -759,10 +840,89 @@ impl AsTerm for Term {
     }
 }
 
+/// A tuple of native values read from the parts of a situation id, one
+/// path per element, converted in order ([`Cx::id_parts`]).
+pub trait FromIdParts: Sized {
+    fn from_id_parts(store: &Store, id: Term, paths: &[&[usize]]) -> Option<Self>;
+}
+
+macro_rules! from_id_parts {
+    ($($t:ident $i:tt),+) => {
+        impl<$($t: Native),+> FromIdParts for ($($t,)+) {
+            fn from_id_parts(store: &Store, id: Term, paths: &[&[usize]]) -> Option<Self> {
+                Some(($(
+                    native::id_part(store, id, paths.get($i)?)
+                        .and_then(|t| $t::from_term(store, t))?,
+                )+))
+            }
+        }
+    };
+}
+
+from_id_parts!(A 0);
+from_id_parts!(A 0, B 1);
+from_id_parts!(A 0, B 1, C 2);
+from_id_parts!(A 0, B 1, C 2, D 3);
+from_id_parts!(A 0, B 1, C 2, D 3, E 4);
+from_id_parts!(A 0, B 1, C 2, D 3, E 4, F 5);
+from_id_parts!(A 0, B 1, C 2, D 3, E 4, F 5, G 6);
+from_id_parts!(A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7);
+
 /// [`native::compound`] of values, each made a term in order: how native
 /// code builds a situation's id from its fields (`id_s<N>`).
 pub fn build_of(store: &mut Store, name: Atom, args: &[&dyn AsTerm]) -> Term {
     with_terms(store, args, |store, ts| native::compound(store, name, ts))
+}
+
+/// The functor of a hole, `'$hole'(i)`, in a pattern [`Cx::fill`] fills
+/// (the compiler makes no pattern with a constant that names it).
+pub fn hole_atom() -> Atom {
+    static HOLE: std::sync::OnceLock<Atom> = std::sync::OnceLock::new();
+    *HOLE.get_or_init(|| Atom::intern("$hole"))
+}
+
+/// [`Cx::fill`] in `store`: how native code builds a term of native values
+/// from its pattern (an action's term, a situation's id).
+pub fn fill(store: &mut Store, pattern: Term, holes: &[&dyn AsTerm]) -> Term {
+    with_terms(store, holes, |store, ts| fill_in(store, pattern, ts))
+}
+
+/// [`fill`] of `t` with the holes' terms (no allocation for compounds of up
+/// to eight arguments).
+fn fill_in(store: &mut Store, t: Term, holes: &[Term]) -> Term {
+    let mut buf = [Term::NIL; 8];
+    let mut spill = Vec::new();
+    let (name, n) = match store.value(t) {
+        crate::term::Value::Compound(name, args) => {
+            match buf.get_mut(..args.len()) {
+                Some(b) => b.copy_from_slice(args),
+                None => spill.extend_from_slice(args),
+            }
+            (name, args.len())
+        }
+        _ => return t,
+    };
+    let args: &mut [Term] = if spill.is_empty() {
+        &mut buf[..n]
+    } else {
+        &mut spill
+    };
+    if name == hole_atom() && n == 1 {
+        let i = store.int_of(args[0]).and_then(|i| usize::try_from(i).ok());
+        if let Some(&h) = i.and_then(|i| holes.get(i)) {
+            return h;
+        }
+    }
+    let mut changed = false;
+    for a in args.iter_mut() {
+        let f = fill_in(store, *a, holes);
+        changed |= f != *a;
+        *a = f;
+    }
+    if !changed {
+        return t;
+    }
+    native::compound(store, name, args)
 }
 
 /// `f` of `args` made terms (no allocation up to eight).

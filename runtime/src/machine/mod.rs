@@ -41,13 +41,14 @@ mod situation;
 mod state;
 mod steps;
 
-pub use cx::{build_of, AsTerm};
+pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, FromIdParts};
 pub use io::{Actions, Perceived, Perception};
 pub use observe::{Inspection, Observer};
 pub use options::Options;
 pub use outcome::{ErrorSite, Outcome, RunError};
-pub use program::{Between, Cx, DmProgram, Next, Step, TypedRun, Visit};
+pub use program::{Between, Cx, DmProgram, NatSit, Next, Step, TypedRun, Visit};
 pub use situation::{
-    none_marker, read_templates, DmIx, Instance, Kind, SitIx, SitRow, SitTable, Templates,
+    none_marker, read_consts, read_templates, DmIx, Instance, Kind, SitIx, SitRow, SitTable,
+    Templates,
 };
 pub use state::Machine;

@@ -155,6 +155,12 @@ pub struct TypedRun {
     pub call: Option<super::DmIx>,
 }
 
+/// A situation native code holds as a Rust value (a DM's `Nat`, generated).
+pub trait NatSit<P> {
+    /// Its id as a term.
+    fn id_term(&self, p: &P, store: &mut Store) -> Term;
+}
+
 impl TypedRun {
     /// An arc's transition, one more for native code to count (`count`,
     /// given to the machine later) unless recorded: then entering the
@@ -164,6 +170,38 @@ impl TypedRun {
         if !self.records {
             *count += 1;
         }
+    }
+
+    /// An arc's next situation (`next`, a DM's `Nat`), its history entry
+    /// made when recorded ([`Cx::record_next`]: its id built only then).
+    #[inline(always)]
+    pub fn next<P: DmProgram, N: NatSit<P>>(
+        &self,
+        cx: &mut Cx<'_, '_, P>,
+        p: &P,
+        expectation: Term,
+        action: Term,
+        next: N,
+    ) -> N {
+        if self.records {
+            cx.record_next(expectation, action, |s| next.id_term(p, s));
+        }
+        next
+    }
+
+    /// An arc's next situation handed to the machine as a term: its history
+    /// entry made when recorded ([`Cx::record_if`]), then [`Cx::goto`].
+    #[inline]
+    pub fn goto<P: DmProgram>(
+        &self,
+        cx: &mut Cx<'_, '_, P>,
+        expectation: Term,
+        action: Term,
+        next: Term,
+        arc: Option<usize>,
+    ) -> Result<Option<Step>, RunError> {
+        cx.record_if(self.records, expectation, action, Some(next));
+        cx.goto(next, arc).map(Some)
     }
 }
 

@@ -94,6 +94,18 @@ pub fn read_templates(store: &mut Store, texts: &[Option<&str>]) -> Vec<Option<T
         .collect()
 }
 
+/// Reads the program's constants (ground terms its code names `k[i]`) from
+/// their `writeq` texts into `store`, the program's store before it is
+/// frozen. The compiler checked each text reads back as the constant (one
+/// that does not is built by code after this, its text `[]`), so a text
+/// that does not read is the compiler's bug, reported with the text.
+pub fn read_consts<const N: usize>(store: &mut Store, texts: &[&str; N]) -> [Term; N] {
+    texts.map(|text| match store.parse(text) {
+        Ok((t, _)) => t,
+        Err(e) => panic!("a generated constant does not read: {e}: {text}"),
+    })
+}
+
 /// How a compiled situation's id takes a value, as the interpreter's plan
 /// of it does (`sitlog_compiler::mir`'s `select` / `pattern`).
 #[derive(Clone, Copy, Debug)]

@@ -277,12 +277,12 @@ impl Gen<'_> {
         let mut saved_vals = Vec::new();
         for &r in saved.iter() {
             let v = self.nat_value(&Build::Reg(r), regs)?;
-            saved_vals.push(super::place(&v));
+            saved_vals.push(super::place_ref(&v));
         }
         let saved_value = if saved.is_empty() {
             quote!(Term::NIL)
         } else {
-            quote!(cx.compound_of(atoms::DOT, &[#(&#saved_vals),*]))
+            quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
         };
         // The call given to the machine, as the term code gives it.
         let hand_call = quote! {
@@ -408,9 +408,7 @@ impl Gen<'_> {
                 let callee = super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} };
                 *call = Some(super::NatFrame::#callee_v(callee));
                 // Written where the frame keeps it (not through `at`).
-                cx.count_transitions(count);
-                *slot = Nat::#wv { #(#wf),* };
-                return Ok(None);
+                return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
             }
         })
     }
@@ -446,14 +444,14 @@ impl Gen<'_> {
         let mut saved_vals = Vec::new();
         for &r in saved.iter() {
             match regs.get(&r) {
-                Some((f, _)) if super::is_fresh(f) => saved_vals.push(quote!(#f)),
-                _ => saved_vals.push(super::place(&self.nat_value(&Build::Reg(r), regs)?)),
+                Some((f, _)) if super::is_fresh(f) => saved_vals.push(quote!(&#f)),
+                _ => saved_vals.push(super::place_ref(&self.nat_value(&Build::Reg(r), regs)?)),
             }
         }
         let saved_value = if saved.is_empty() {
             quote!(Term::NIL)
         } else {
-            quote!(cx.compound_of(atoms::DOT, &[#(&#saved_vals),*]))
+            quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
         };
         Ok(quote! {
             #hand
@@ -501,7 +499,7 @@ impl Gen<'_> {
         };
         // In `nat_wait` (fields are references there).
         let curl = Literal::u32_unsuffixed(ix as u32);
-        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let (id_stmts, id) = self.nat_id_term_of(d, ix, quote!(cx.store()), true)?;
         let mut saved_vals = Vec::new();
         let outs = call_outputs(d, ix);
         let mut out_stmts = Vec::new();
@@ -710,10 +708,7 @@ impl Gen<'_> {
             .map(|(_, stmt)| stmt);
         let body = quote! {
             let super::NatFrame::#callee_v(done_frame) = ret else {
-                return Err(cx.error(
-                    "native code resumed a caller with another DM's frame",
-                    None,
-                ));
+                return Err(cx.fault(Fault::WrongFrame));
             };
             #(#out_loads)*
             let final_at = &done_frame.at;
@@ -730,10 +725,7 @@ impl Gen<'_> {
             cx.set_expectations(&[]);
             return match cx.choose_exit(final_id) {
                 Err(e) => Err(e),
-                Ok(_) => Err(cx.error(
-                    "native exit arcs disagree with the machine's",
-                    None,
-                )),
+                Ok(_) => Err(cx.fault(Fault::Exits)),
             };
         };
         // Only the parameters the exit arcs read are loaded (a load is a

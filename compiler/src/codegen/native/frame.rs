@@ -113,15 +113,12 @@ impl Gen<'_> {
             .map(rust_ty)
             .collect::<N<Vec<_>>>()?;
         Ok(quote! {
-            /// Before native code hands over or lets the machine see its
-            /// state: the native frames below made machine frames, the
-            /// locals written back.
+            /// Before handing over: the frames below made the machine's, locals written back.
             #[cold]
             #[inline(never)]
-            #[allow(unused_variables, unused_braces, clippy::all)]
             fn nat_hand_over(
-                p: &super::Program,
-                cx: &mut Cx<'_, '_, super::Program>,
+                p: &Program,
+                cx: &mut Ctx,
                 stack: &mut super::NatBelow<'_>,
                 #(#names: &#tys,)*
             ) -> Result<(), RunError> {
@@ -176,31 +173,20 @@ impl Gen<'_> {
         let items = quote! {
             #hand_fn
 
-            /// The DM's frame on the native stack: parameters, locals, the
-            /// situation it is in.
-            #[allow(dead_code, clippy::all)]
+            /// The DM's frame on the native stack: parameters, locals, its situation.
             pub struct Frame { #(#decls,)* pub at: Nat }
 
             /// The DM's call term, from the frame's parameters.
-            #[allow(unused_variables, unused_braces, clippy::all)]
-            pub(crate) fn nat_call_term(
-                p: &super::Program,
-                cx: &mut Cx<'_, '_, super::Program>,
-                frame: &Frame,
-            ) -> Term {
+            pub(crate) fn nat_call_term(p: &Program, cx: &mut Ctx, frame: &Frame) -> Term {
                 let a = &p.atoms;
                 let Frame { #(#names,)* .. } = frame;
                 #call
             }
 
-            /// The frame, waiting for its callee (called as `callee`),
-            /// made the machine's: its locals written back, the callee's
-            /// frame pushed as the term code's call would (the caller's
-            /// registers saved as that code keeps them).
-            #[allow(unused_variables, unreachable_code, unreachable_patterns, clippy::all)]
+            /// The frame waiting for `callee` made the machine's, the callee's pushed.
             pub(crate) fn nat_wait(
-                p: &super::Program,
-                cx: &mut Cx<'_, '_, super::Program>,
+                p: &Program,
+                cx: &mut Ctx,
                 frame: &Frame,
                 callee: Term,
                 callee_dm: DmIx,
@@ -210,10 +196,7 @@ impl Gen<'_> {
                 #locals
                 match at {
                     #(#wait_arms)*
-                    _ => Err(cx.error(
-                        "native code handed over a frame that waits for no DM",
-                        None,
-                    )),
+                    _ => Err(cx.fault(Fault::WaitsForNone)),
                 }
             }
         };

@@ -24,7 +24,11 @@
 //!   as the interpreter does (correct, slower, rare). "Term code" below
 //!   means, for such a situation, that path. Where native code needs a
 //!   situation's id as a term (entering it, its history entry, a
-//!   hand-over, a wait), the DM's `id_s<N>` builds it from the fields.
+//!   hand-over, a wait), it is filled from its pattern, a constant with a
+//!   hole where each field goes (`Cx::fill`, module `fill`; the DM's
+//!   `id_s<N>` builds it where no pattern reads back). Terms of two
+//!   compounds or more built from native values (an action's, an evaluated
+//!   call's) are filled from their patterns too.
 //! - *values*: native values are ground and evaluate to themselves in L
 //!   (atoms, numbers and lists of them are inert, D-28/D-36; a `Val` is
 //!   converted from an inert term), so a condition `X == Y` is Rust's `==`
@@ -148,6 +152,7 @@
 use super::Gen;
 
 mod call;
+mod fill;
 mod frame;
 mod pipe;
 use crate::ir::IrDm;
@@ -288,7 +293,7 @@ fn load_head_arg(d: &Dm, r: Reg, i: usize, ty: Ty, regs: &mut Regs) -> N<TokenSt
     Ok(quote!(let #rr = #e;))
 }
 
-/// The history entry of an arc (`rec_exp`, `rec_act` and `rec_next` in
+/// The history entry of an arc (`exp`, `act` and `rec_next` in
 /// scope), when recorded: made as the term code makes it. The arc entered
 /// its situation first (its id set, the locals written back: `Dm::hand`),
 /// and what changed the locals since were the machine's own calls, so an
@@ -333,9 +338,52 @@ fn always_returns(code: &TokenStream) -> bool {
             .any(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == ';'))
 }
 
+/// The value of `t` after the statements `ts` when they are none (`t`) or
+/// one, `let t = E;` (`E`).
+fn one_value(ts: &[TokenStream], t: &TokenStream) -> Option<TokenStream> {
+    match ts {
+        [] => Some(t.clone()),
+        [s] => {
+            let tokens: Vec<proc_macro2::TokenTree> = s.clone().into_iter().collect();
+            match tokens.as_slice() {
+                [proc_macro2::TokenTree::Ident(l), proc_macro2::TokenTree::Ident(x), proc_macro2::TokenTree::Punct(eq), rest @ .., proc_macro2::TokenTree::Punct(semi)]
+                    if l == "let"
+                        && *x == t.to_string()
+                        && eq.as_char() == '='
+                        && semi.as_char() == ';' =>
+                {
+                    Some(rest.iter().cloned().collect())
+                }
+                _ => None,
+            }
+        }
+        _ => None,
+    }
+}
+
+/// The fresh variables a visit uses, made first in one call (in order).
+fn fresh_vars(used: &std::collections::BTreeSet<Ident>) -> TokenStream {
+    if used.is_empty() {
+        return quote!();
+    }
+    let used = used.iter();
+    quote!(let [#(#used),*] = cx.vars();)
+}
+
+/// The end of an arc whose next situation is handed to the machine as the
+/// term `rec_next`: its history entry (`rec`, empty where not recorded)
+/// and the step.
+fn goto_tail(rec: &TokenStream) -> TokenStream {
+    if rec.is_empty() {
+        quote!(return cx.goto(rec_next, arc_at).map(Some);)
+    } else {
+        quote!(return run.goto(cx, exp, act, rec_next, arc_at);)
+    }
+}
+
 fn rec_entry() -> TokenStream {
     quote! {
-        cx.record_if(run.records, rec_exp, rec_act, Some(rec_next));
+        cx.record_if(run.records, exp, act, Some(rec_next));
     }
 }
 
@@ -482,9 +530,6 @@ impl MatchStep {
         }
     }
 }
-
-/// The error of a frame resumed after a call that was not waiting for one.
-const NOT_WAITING: &str = "native code resumed a situation that waits for no DM";
 
 /// The DM's native code, for the module.
 pub(super) struct NativeCode {
@@ -671,7 +716,13 @@ impl Gen<'_> {
                 })
                 .collect::<N<Vec<_>>>()?;
             let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
-            let doc = format!(" `{}`", self.store.writeq(self.nat_id_of(&d, ix)));
+            let s = &d.dm.situations[ix];
+            let doc = format!(
+                " `{}` ({}, type `{}`)",
+                self.store.writeq(self.nat_id_of(&d, ix)),
+                s.location,
+                self.store.writeq(self.store.args(s.template)[2])
+            );
             variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
             // The waiting variant's id is the situation's (the same
             // fields, the same code): one arm for both.
@@ -696,6 +747,7 @@ impl Gen<'_> {
             // selected it, converted (else the term code runs it).
             let ixl = Literal::u32_unsuffixed(ix as u32);
             let mut conv = Vec::new();
+            let mut paths = Vec::new();
             for (r, ty) in fields {
                 let path: Vec<usize> = match d.plans[ix].inits.iter().find(|(x, _)| x == r) {
                     Some((_, Init::IdArg(a))) => vec![*a],
@@ -704,15 +756,42 @@ impl Gen<'_> {
                 };
                 let rr = reg(*r);
                 let ty = rust_ty(ty)?;
-                let path = path.iter().map(|&k| Literal::usize_unsuffixed(k));
+                let path: Vec<Literal> =
+                    path.iter().map(|&k| Literal::usize_unsuffixed(k)).collect();
+                let text: Vec<String> = path.iter().map(|k| k.to_string()).collect();
+                paths.push((quote!(&[#(#path),*]), format!("&[{}]", text.join(", "))));
                 conv.push(quote! {
                     let #rr = cx.id_part_as::<#ty>(id, &[#(#path),*])?;
                 });
             }
             // The pipe read there converts, else the term code runs it.
             let pipe = self.nat_pipe_entry(&d, ix)?;
+            // The fields read in one call where it is one line (the
+            // variant's field types say what each converts to).
+            let path_ts = paths.iter().map(|(t, _)| t);
+            let (tuple, text) = match names.as_slice() {
+                [one] => (quote!((#one,)), format!("({one},)")),
+                _ => {
+                    let text: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+                    (quote!((#(#names),*)), format!("({})", text.join(", ")))
+                }
+            };
+            let parts = quote!(let #tuple = cx.id_parts(&[#(#path_ts),*])?;);
+            let path_text: Vec<&str> = paths.iter().map(|(_, t)| t.as_str()).collect();
+            // One line or two (prettyplease breaks before `.id_parts` first):
+            // its margin is 89, the arm's statements are indented by 16.
+            let call = format!(".id_parts(&[{}])?;", path_text.join(", "));
+            let in_one_call = (1..=8).contains(&fields.len())
+                && 16 + format!("let {text} = cx").len() <= 89
+                && 20 + call.len() <= 89;
             entries.push(if fields.is_empty() {
                 quote!(#ixl => { #pipe Nat::#v {} })
+            } else if in_one_call {
+                quote!(#ixl => {
+                    #parts
+                    #pipe
+                    Nat::#v { #(#names),* }
+                })
             } else {
                 quote!(#ixl => {
                     let id = cx.selected()?;
@@ -732,9 +811,7 @@ impl Gen<'_> {
         let gc = quote! {
             if cx.gc_tick() {
                 #hand
-                cx.count_transitions(count);
-                let id = at.id_term(p, cx.store());
-                return Ok(Some(Step::Goto(id)));
+                return cx.step_goto(count, |s| at.id_term(p, s));
             }
         };
         // Resumed after a call returned: the waiting situation's exit arcs,
@@ -744,7 +821,7 @@ impl Gen<'_> {
         let resume = if exit_arms.iter().all(|a| a.is_empty()) {
             quote! {
                 if ret.is_some() {
-                    return Err(cx.error(#NOT_WAITING, None));
+                    return Err(cx.fault(Fault::NotWaiting));
                 }
             }
         } else {
@@ -753,7 +830,7 @@ impl Gen<'_> {
                 if let Some(ret) = ret {
                     at = match at {
                         #exit_arms
-                        _ => return Err(cx.error(#NOT_WAITING, None)),
+                        _ => return Err(cx.fault(Fault::NotWaiting)),
                     };
                     #gc
                 }
@@ -772,13 +849,7 @@ impl Gen<'_> {
         let entry_prelude = Gen::prelude(&entry_body);
         let entry_body = quote!(#entry_prelude #entry_body);
         let frame_items = frame.items;
-        let doc = format!(
-            " Runs DM `{}` natively from situation `sit` (see \
-             `sitlog_compiler::codegen::native`); `None`, nothing done, when the \
-             situation has no native code, or a parameter, local, id argument or \
-             the pipe does not convert.",
-            dm.name.as_str()
-        );
+        let doc = " Runs the DM natively from `sit`; `None`, nothing done, when it cannot.";
         // The situations' ids, each built by one function.
         let ids: Vec<usize> = d.ids.borrow().iter().copied().collect();
         let id_fns = ids
@@ -788,9 +859,7 @@ impl Gen<'_> {
         let items = quote! {
             #(#id_fns)*
 
-            /// The DM's situations that have native code, as native values:
-            /// the fields are the id's variables.
-            #[allow(dead_code, non_camel_case_types, clippy::all)]
+            /// The situations with native code; the fields are the id's variables.
             #[derive(Clone, Debug)]
             pub enum Nat {
                 #(#variants)*
@@ -798,10 +867,8 @@ impl Gen<'_> {
                 Moved {},
             }
 
-            #[allow(unused_variables, unreachable_patterns, clippy::all)]
-            impl Nat {
-                /// The situation's id as a term.
-                pub(crate) fn id_term(&self, p: &super::Program, store: &mut Store) -> Term {
+            impl NatSit<Program> for Nat {
+                fn id_term(&self, p: &Program, store: &mut Store) -> Term {
                     let a = &p.atoms;
                     match self {
                         #(#id_arms)*
@@ -812,22 +879,19 @@ impl Gen<'_> {
 
             #frame_items
 
-            /// Runs the frame on top of the native stack until it calls a DM
-            /// (`call` set), ends in a final situation below the base
-            /// (`Ok(None)`), or hands over to the machine (`Ok(Some(step))`).
+            /// Runs the frame until it calls (`call` set), ends (`Ok(None)`) or hands over.
             /// Never inlined: the driver's dispatch on `NatFrame` then only
             /// jumps to it, and pays no other DM's prologue on the way.
             #[inline(never)]
-            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, unused_labels, irrefutable_let_patterns, unreachable_patterns, unused_braces, break_with_label_and_loop, clippy::all)]
             pub(crate) fn nat_step(
-                p: &super::Program,
-                cx: &mut Cx<'_, '_, super::Program>,
+                p: &Program,
+                cx: &mut Ctx,
                 frame: &mut Frame,
                 ret: Option<&mut super::NatFrame>,
                 stack: &mut super::NatBelow<'_>,
                 call: &mut Option<super::NatFrame>,
                 run: &TypedRun,
-            ) -> Result<Option<Step>, RunError> {
+            ) -> NatResult {
                 let a = &p.atoms;
                 let Frame { #(#field_names,)* #(#out_names,)* at: slot } = frame;
                 // Transitions done, not yet given to the machine.
@@ -839,19 +903,14 @@ impl Gen<'_> {
                 loop {
                     at = match at {
                         #arms
-                        _ => return Err(cx.error("native code visited a waiting situation", None)),
+                        _ => return Err(cx.fault(Fault::Visited)),
                     };
                     #gc
                 }
             }
 
             #[doc = #doc]
-            #[allow(unused_variables, unused_mut, unused_parens, unused_labels, unreachable_code, clippy::all)]
-            pub fn run_native(
-                p: &super::Program,
-                cx: &mut Cx<'_, '_, super::Program>,
-                sit: SitIx,
-            ) -> Result<Option<Step>, RunError> {
+            pub fn run_native(p: &Program, cx: &mut Ctx, sit: SitIx) -> NatResult {
                 let run = cx.typed_run();
                 let Some(frame) = nat_entry(p, cx, sit) else {
                     return Ok(None);
@@ -859,16 +918,8 @@ impl Gen<'_> {
                 super::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run).map(Some)
             }
 
-            /// The frame native code starts with at situation `sit`: the
-            /// id's arguments, the pipe, the parameters and locals it reads
-            /// converted (`None`, nothing done but the machine's frames
-            /// materialized, when one does not convert).
-            #[allow(unused_variables, unused_mut, unused_parens, unreachable_code, clippy::all)]
-            fn nat_entry(
-                p: &super::Program,
-                cx: &mut Cx<'_, '_, super::Program>,
-                sit: SitIx,
-            ) -> Option<Frame> {
+            /// The frame entered at `sit`, its values converted (`None`: one does not).
+            fn nat_entry(p: &Program, cx: &mut Ctx, sit: SitIx) -> Option<Frame> {
                 #entry_body
             }
         };
@@ -1120,23 +1171,40 @@ impl Gen<'_> {
         ix: usize,
         store: TokenStream,
     ) -> N<(Vec<TokenStream>, TokenStream)> {
+        self.nat_id_term_of(d, ix, store, false)
+    }
+
+    /// [`Gen::nat_id_term`] from fields that are references (`refs`: a
+    /// frame matched by reference) or owned locals.
+    fn nat_id_term_of(
+        &self,
+        d: &Dm,
+        ix: usize,
+        store: TokenStream,
+        refs: bool,
+    ) -> N<(Vec<TokenStream>, TokenStream)> {
         let (stmts, v) = self.nat_id_inline(d, ix, store.clone())?;
         if stmts.is_empty() {
             return Ok((stmts, v));
         }
         match self.nat_id_params(d, ix) {
             Ok(params) => {
-                d.ids.borrow_mut().insert(ix);
-                let f = format_ident!("id_s{}", ix);
-                let args = params.iter().map(|(r, _)| quote!(&#r));
+                let names: Vec<Ident> = params.iter().map(|(r, _)| r.clone()).collect();
+                // Its pattern filled, or the DM's `id_s<ix>`.
+                let e = match self.nat_id_fill(d, ix, &names, &store, refs) {
+                    Some(e) => e,
+                    None => {
+                        d.ids.borrow_mut().insert(ix);
+                        let f = format_ident!("id_s{}", ix);
+                        let args = params.iter().map(|(r, _)| quote!(&#r));
+                        quote!(#f(p, #store, #(#args),*))
+                    }
+                };
                 // A statement: the id is often an argument of a `cx` call.
                 let n = d.id_n.get();
                 d.id_n.set(n + 1);
                 let x = format_ident!("id{}", n);
-                Ok((
-                    vec![quote!(let #x = #f(p, #store, #(#args),*);)],
-                    quote!(#x),
-                ))
+                Ok((vec![quote!(let #x = #e;)], quote!(#x)))
             }
             Err(_) => Ok((stmts, v)),
         }
@@ -1151,6 +1219,10 @@ impl Gen<'_> {
         }
         match self.nat_id_params(d, ix) {
             Ok(params) => {
+                let names: Vec<Ident> = params.iter().map(|(r, _)| r.clone()).collect();
+                if let Some(e) = self.nat_id_fill(d, ix, &names, &store, true) {
+                    return Ok(e);
+                }
                 d.ids.borrow_mut().insert(ix);
                 let f = format_ident!("id_s{}", ix);
                 let args = params.iter().map(|(r, _)| quote!(&#r));
@@ -1191,8 +1263,7 @@ impl Gen<'_> {
         let prelude = super::Gen::prelude(&body);
         Ok(quote! {
             #[doc = #doc]
-            #[allow(clippy::all)]
-            fn #f(p: &super::Program, store: &mut Store, #(#params),*) -> Term {
+            fn #f(p: &Program, store: &mut Store, #(#params),*) -> Term {
                 #prelude
                 #body
             }
@@ -1506,19 +1577,14 @@ impl Gen<'_> {
                     (None, _) => quote! {
                         if !stack.is_empty() {
                             #out_set
-                            count += 1;
-                            cx.count_transitions(count);
-                            *slot = Nat::#v { #(#names),* };
-                            return Ok(None);
+                            return cx.step_done(count + 1, slot, Nat::#v { #(#names),* });
                         }
                     },
                     (Some(_), Some((cond, set))) => quote! {
                         if !stack.is_empty() && #cond {
                             #set
                             #out_set
-                            count += 1;
-                            done = true;
-                            break 'visit Nat::#v { #(#names),* };
+                            return cx.step_done(count + 1, slot, Nat::#v { #(#names),* });
                         }
                         #hand
                     },
@@ -1602,12 +1668,19 @@ impl Gen<'_> {
                             .map_err(|e| format!("its expectation {}: {e}", i + 1))?;
                         let x = format_ident!("e{}", i);
                         let il = Literal::usize_unsuffixed(i);
-                        exps.push(quote! {
-                            let #x = {
-                                let arc_at = Some(#il);
-                                #(#ts)*
-                                #t
-                            };
+                        // `arc_at` bound only where its code names it; one
+                        // statement building the value is the value.
+                        let at = ts.iter().any(|s| s.to_string().contains("arc_at"));
+                        exps.push(match (at, one_value(&ts, &t)) {
+                            (false, Some(e)) => quote!(let #x = #e;),
+                            (false, None) => quote!(let #x = { #(#ts)* #t };),
+                            (true, _) => quote! {
+                                let #x = {
+                                    let arc_at = Some(#il);
+                                    #(#ts)*
+                                    #t
+                                };
+                            },
                         });
                         names.push(x);
                     }
@@ -1643,8 +1716,8 @@ impl Gen<'_> {
                 // The fresh variables the code uses, made first.
                 let mut used = std::collections::BTreeSet::new();
                 fresh_used(&body, &mut used);
-                let fresh = used.iter().map(|x| quote!(let #x = cx.var();));
-                Ok(quote! { #(#stmts)* #(#fresh)* #body })
+                let fresh = fresh_vars(&used);
+                Ok(quote! { #(#stmts)* #fresh #body })
             }
             (KindPlan::Final { .. }, _) => Err("a final situation with diag_mod".into()),
             (KindPlan::Recursive { .. }, Kind::Recursive) => {
@@ -1660,8 +1733,8 @@ impl Gen<'_> {
                 let call = self.nat_recursive(d, ix, &regs)?;
                 let mut used = std::collections::BTreeSet::new();
                 fresh_used(&call, &mut used);
-                let fresh = used.iter().map(|x| quote!(let #x = cx.var();));
-                Ok(quote! { #(#stmts)* #(#fresh)* #call })
+                let fresh = fresh_vars(&used);
+                Ok(quote! { #(#stmts)* #fresh #call })
             }
             (KindPlan::Recursive { .. }, _) => Err("a recursive plan of another kind".into()),
         }
@@ -1892,7 +1965,7 @@ impl Gen<'_> {
                 }
             }
         };
-        stmts.push(quote!(let rec_exp: Term = #rec_exp;));
+        stmts.push(quote!(let exp: Term = #rec_exp;));
         match atom {
             Some(action) => {
                 let act = self.atom_native(action)?;
@@ -1906,7 +1979,7 @@ impl Gen<'_> {
                 } else {
                     perform
                 });
-                stmts.push(quote!(let rec_act = Term::atom(#act);));
+                stmts.push(quote!(let act = Term::atom(#act);));
             }
             None => {
                 // An effector's action (`say([.., Name])`): its term
@@ -1918,8 +1991,8 @@ impl Gen<'_> {
                     Action::One(e) => {
                         let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
                         quote! {
-                            let rec_act = #t;
-                            cx.perform(rec_act, arc_at)?;
+                            let act = #t;
+                            cx.perform(act, arc_at)?;
                         }
                     }
                     Action::List { items, .. } => {
@@ -1932,7 +2005,7 @@ impl Gen<'_> {
                         quote! {
                             let act_items = [#(#ts_items),*];
                             cx.perform_each(&act_items, arc_at)?;
-                            let rec_act = if run.records {
+                            let act = if run.records {
                                 cx.store().list(&act_items)
                             } else {
                                 Term::NIL
@@ -1988,10 +2061,7 @@ impl Gen<'_> {
             quote! {
                 #(#stmts)*
                 let next_at: Nat = #init;
-                if run.records {
-                    cx.record_next(rec_exp, rec_act, |s| next_at.id_term(p, s));
-                }
-                next_at
+                run.next(cx, p, exp, act, next_at)
             }
         };
         Ok(match fast {
@@ -2130,6 +2200,13 @@ impl Gen<'_> {
             }
             Build::Const(t) => return self.nat_const_term(*t, ts, n),
             Build::Compound(f, args) => {
+                // Two compounds or more: one `cx.fill` where a pattern
+                // fits (module `fill`), its local the next one.
+                let mut m = *n - 1;
+                if let Some(x) = self.nat_fill_build(b, regs, ts, &mut m)? {
+                    *n = m;
+                    return Ok(x);
+                }
                 let args = args
                     .iter()
                     .map(|a| self.nat_build_term(a, regs, ts, n))
@@ -2155,6 +2232,9 @@ impl Gen<'_> {
             Ev::Value(r) => self.nat_build_term(&Build::Reg(*r), regs, ts, n),
             Ev::Built(b) => self.nat_build_term(b, regs, ts, n),
             Ev::Compound(f, args) => {
+                if let Some(x) = self.nat_fill_ev(e, regs, ts, n)? {
+                    return Ok(x);
+                }
                 let args = args
                     .iter()
                     .map(|a| self.nat_ev_term(a, regs, ts, n))
@@ -2302,10 +2382,10 @@ impl Gen<'_> {
                 Ok(quote!(Term::float(#f)))
             }
             // A ground compound the program built once (the term code's
-            // `k.kN`).
+            // `k[N]`).
             Value::Compound(..) if self.const_ix.contains_key(&self.store.writeq(t)) => {
-                let id = Self::const_ident(self.const_ix[&self.store.writeq(t)]);
-                Ok(quote!(p.k.#id))
+                let ix = Self::const_index(self.const_ix[&self.store.writeq(t)]);
+                Ok(quote!(p.k #ix))
             }
             Value::Compound(f, args) => {
                 let args = args.to_vec();
@@ -2664,15 +2744,14 @@ impl Gen<'_> {
                 let a = self.atom_native(self.store.atom_of(*t).unwrap_or(atoms::NIL))?;
                 let hand = &d.hand;
                 let out = d.out.borrow().clone();
-                let rec = d.rec.borrow().clone();
+                let tail = goto_tail(&d.rec.borrow());
                 Ok(quote! {{
                     #hand
                     // Recorded, the situation was entered with its id.
                     cx.count_and_enter(count, run.records, #curl, #cur_name);
                     #out
                     let rec_next = Term::atom(#a);
-                    #rec
-                    return cx.goto(rec_next, arc_at).map(Some);
+                    #tail
                 }})
             }
             Next::Static(t, Some(ix)) if self.store.atom_of(*t).is_some() => {
@@ -2767,14 +2846,13 @@ impl Gen<'_> {
                     .collect();
                 let f = self.functor_native(*name)?;
                 let out = d.out.borrow().clone();
-                let rec = d.rec.borrow().clone();
+                let tail = goto_tail(&d.rec.borrow());
                 let fallback = quote! {{
                     cx.count_transitions(count);
                     let ts = [#(#terms),*];
                     let rec_next = cx.build(#f, &ts);
                     #out
-                    #rec
-                    return cx.goto(rec_next, arc_at).map(Some);
+                    #tail
                 }};
                 let mut vals = Vec::new();
                 let mut checks = Vec::new();
@@ -2807,15 +2885,14 @@ impl Gen<'_> {
                 let mut n = 0;
                 let t = self.nat_build_term(b, regs, &mut ts, &mut n)?;
                 let out = d.out.borrow().clone();
-                let rec = d.rec.borrow().clone();
+                let tail = goto_tail(&d.rec.borrow());
                 Ok(quote! {{
                     #enter
                     #(#ts)*
                     let rec_next = cx.eval(#t, arc_at)?;
                     cx.count_transitions(count);
                     #out
-                    #rec
-                    return cx.goto(rec_next, arc_at).map(Some);
+                    #tail
                 }})
             }
             Next::Eval(Ev::Compound(name, args)) => {
@@ -2976,7 +3053,7 @@ impl Gen<'_> {
         let f = self.atom_native(name)?;
         let hand = &d.hand;
         let out = d.out.borrow().clone();
-        let rec = d.rec.borrow().clone();
+        let tail = goto_tail(&d.rec.borrow());
         Ok(quote! {
             'sel: {
                 #(#lets)*
@@ -2988,8 +3065,7 @@ impl Gen<'_> {
                 cx.count_and_enter(count, run.records, #curl, #cur_name);
                 let rec_next = cx.build_of(#f, &[#(#arg_names),*]);
                 #out
-                #rec
-                return cx.goto(rec_next, arc_at).map(Some);
+                #tail
             }
         })
     }
@@ -3338,6 +3414,18 @@ fn place(v: &V) -> TokenStream {
     }
     let e = &v.e;
     quote!((#e))
+}
+
+/// A reference to the value, for a term made of it (`&dyn AsTerm`): a
+/// register of the visit read as `r<n>.clone()` (an owned Rust local) is
+/// `&r<n>`, any other value a reference to its [`place`].
+fn place_ref(v: &V) -> TokenStream {
+    let m = moved(v);
+    if m.to_string() != v.e.to_string() {
+        return quote!(&#m);
+    }
+    let p = place(v);
+    quote!(&#p)
 }
 
 /// A value read as `r<n>.clone()`, a register of the visit (an owned Rust
