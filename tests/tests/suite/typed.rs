@@ -544,6 +544,9 @@ fn native_dms_agree() {
         "search([a, b, c], c)",
         "pairs([x, y, stop])",
         "rounds(3, [a, b, c], c)",
+        // Garbage while a caller waits for an output (its variable made
+        // where the frames become the machine's).
+        "outs(3, 0)",
     ] {
         let options = || Options {
             keep_history: false,
