@@ -370,9 +370,12 @@ impl Gen<'_> {
         for (i, (v, ty)) in args.iter().zip(&plan.callee.params).enumerate() {
             let p = format_ident!("p{}", i);
             let x = &vs[i];
+            // The argument moves into the callee's frame: the branch that
+            // pushes the frame ends the visit, and the machine's call
+            // below (the other branch) reads `v<i>` itself.
             let e = coerce(
                 &V {
-                    e: quote!(#x.clone()),
+                    e: quote!(#x),
                     ty: v.ty.clone(),
                 },
                 ty,
