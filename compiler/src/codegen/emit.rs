@@ -197,7 +197,7 @@ impl Gen<'_> {
             /// one), and for the situations with native code (see
             /// `sitlog_compiler::codegen::native`) `enum Nat` (one variant per
             /// situation, its fields the id's variables; a `W<n>` variant waits
-            /// for the DM it called; `NatSit::id_term`, its id filled from its pattern),
+            /// for the DM it called; `Nat::id_term`, its id filled from its pattern),
             /// `Frame` (parameters, locals, the `Nat` it is in), `nat_entry` (the
             /// frame entered at a situation, its values converted: `None` when one
             /// does not), `nat_step` (runs the frame on the program's native stack
