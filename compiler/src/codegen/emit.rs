@@ -197,7 +197,7 @@ impl Gen<'_> {
             /// one), and for the situations with native code (see
             /// `sitlog_compiler::codegen::native`) `enum Nat` (one variant per
             /// situation, its fields the id's variables; a `W<n>` variant waits
-            /// for the DM it called; `NatSit::id_term`, its id filled from its pattern),
+            /// for the DM it called; `Nat::id_term`, its id filled from its pattern),
             /// `Frame` (parameters, locals, the `Nat` it is in), `nat_entry` (the
             /// frame entered at a situation, its values converted: `None` when one
             /// does not), `nat_step` (runs the frame on the program's native stack
@@ -645,8 +645,18 @@ impl Gen<'_> {
             Some(n) => n.items,
             None => quote!(),
         };
-        let head_body = self.builder_body(&[(format_ident!("head"), dm.head)]);
-        let head_prelude = Self::prelude(&head_body);
+        // An atom head is the atom; another is built with fresh variables.
+        let head_body = match self.store.value(dm.head) {
+            Value::Atom(a) => {
+                let a = &self.atoms[self.atom_ix[&a]].1;
+                quote!(Term::atom(p.atoms.#a))
+            }
+            _ => {
+                let body = self.builder_body(&[(format_ident!("head"), dm.head)]);
+                let prelude = Self::prelude(&body);
+                quote!(#prelude #body head)
+            }
+        };
         let local_names: Vec<Ident> = (0..dm.locals.len())
             .map(|i| format_ident!("l{}", i))
             .collect();
@@ -765,9 +775,7 @@ impl Gen<'_> {
 
                 /// A fresh copy of the DM's head.
                 pub fn head(p: &super::Program, store: &mut Store) -> Term {
-                    #head_prelude
                     #head_body
-                    head
                 }
 
                 /// Fresh default values of the local variables (D-5).

@@ -46,7 +46,7 @@ pub use io::{Actions, Perceived, Perception};
 pub use observe::{Inspection, Observer};
 pub use options::Options;
 pub use outcome::{ErrorSite, Outcome, RunError};
-pub use program::{Between, Cx, DmProgram, NatSit, Next, Step, TypedRun, Visit};
+pub use program::{Between, Cx, DmProgram, Next, Step, TypedRun, Visit};
 pub use situation::{
     none_marker, read_consts, read_templates, DmIx, Instance, Kind, SitIx, SitRow, SitTable,
     Templates,

@@ -155,12 +155,6 @@ pub struct TypedRun {
     pub call: Option<super::DmIx>,
 }
 
-/// A situation native code holds as a Rust value (a DM's `Nat`, generated).
-pub trait NatSit<P> {
-    /// Its id as a term.
-    fn id_term(&self, p: &P, store: &mut Store) -> Term;
-}
-
 impl TypedRun {
     /// An arc's transition, one more for native code to count (`count`,
     /// given to the machine later) unless recorded: then entering the
@@ -172,21 +166,19 @@ impl TypedRun {
         }
     }
 
-    /// An arc's next situation (`next`, a DM's `Nat`), its history entry
-    /// made when recorded ([`Cx::record_next`]: its id built only then).
+    /// [`Cx::record_next`] when recorded: an arc's history entry, its next
+    /// situation's id built only then.
     #[inline(always)]
-    pub fn next<P: DmProgram, N: NatSit<P>>(
+    pub fn record_next<P: DmProgram>(
         &self,
         cx: &mut Cx<'_, '_, P>,
-        p: &P,
         expectation: Term,
         action: Term,
-        next: N,
-    ) -> N {
+        next: impl FnOnce(&mut Store) -> Term,
+    ) {
         if self.records {
-            cx.record_next(expectation, action, |s| next.id_term(p, s));
+            cx.record_next(expectation, action, next);
         }
-        next
     }
 
     /// An arc's next situation handed to the machine as a term: its history

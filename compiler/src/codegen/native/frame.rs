@@ -168,6 +168,8 @@ impl Gen<'_> {
             quote!(..)
         };
         let call = self.nat_call_term(d)?;
+        // The frame's fields the call term reads (none: no statement).
+        let fields = (!names.is_empty()).then(|| quote!(let Frame { #(#names,)* .. } = frame;));
         let locals = self.nat_write_locals(d)?;
         let hand_fn = self.nat_hand_fn(d)?;
         let items = quote! {
@@ -179,7 +181,7 @@ impl Gen<'_> {
             /// The DM's call term, from the frame's parameters.
             pub(crate) fn nat_call_term(p: &Program, cx: &mut Ctx, frame: &Frame) -> Term {
                 let a = &p.atoms;
-                let Frame { #(#names,)* .. } = frame;
+                #fields
                 #call
             }
 

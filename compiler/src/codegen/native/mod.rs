@@ -16,7 +16,7 @@
 //!   with the history kept or not. The id's arguments (from the value
 //!   that selected it) and the parameters the native situations read are
 //!   converted with the checked conversion (`Native::from_term` through
-//!   `Cx::id_part_as`/`param_as`/`local_as`, in the DM's `nat_entry`; for a
+//!   `Cx::id_parts`/`id_part_as`/`param_as`/`local_as`, in the DM's `nat_entry`; for a
 //!   `Val`: ground, inert, proper lists, no big integer). A value that does
 //!   not fit leaves the visit to the machine, nothing done: a situation with
 //!   native code has no term code (`codegen::emit`), so `run_situation`
@@ -867,8 +867,9 @@ impl Gen<'_> {
                 Moved {},
             }
 
-            impl NatSit<Program> for Nat {
-                fn id_term(&self, p: &Program, store: &mut Store) -> Term {
+            impl Nat {
+                /// The situation's id as a term.
+                pub(crate) fn id_term(&self, p: &Program, store: &mut Store) -> Term {
                     let a = &p.atoms;
                     match self {
                         #(#id_arms)*
@@ -2061,7 +2062,8 @@ impl Gen<'_> {
             quote! {
                 #(#stmts)*
                 let next_at: Nat = #init;
-                run.next(cx, p, exp, act, next_at)
+                run.record_next(cx, exp, act, |s| next_at.id_term(p, s));
+                next_at
             }
         };
         Ok(match fast {
