@@ -620,9 +620,6 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                     Goal::Escape(vs) => {
                         if cl.any(vs) {
                             reach.top = true;
-                            if std::env::var_os("SITLOG_DEBUG_KB_REACH").is_some() {
-                                eprintln!("top: escape in {:?} {:?}", c.key, c.body);
-                            }
                         }
                         cl.union(vs);
                     }
@@ -630,12 +627,6 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                     Goal::Call(k, args) => {
                         for (i, vs) in args.iter().enumerate() {
                             if cl.any(vs) && reach.inputs.insert((k.0, k.1, i)) {
-                                if std::env::var_os("SITLOG_DEBUG_KB_REACH").is_some() {
-                                    eprintln!(
-                                        "input {:?}/{} {i} from {:?} {:?}",
-                                        k.0, k.1, c.key, c.body
-                                    );
-                                }
                                 changed = true;
                             }
                         }
@@ -648,9 +639,6 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                     Goal::Unknown(vs) => {
                         if cl.any(vs) {
                             reach.top = true;
-                            if std::env::var_os("SITLOG_DEBUG_KB_REACH").is_some() {
-                                eprintln!("top: unknown in {:?} {:?}", c.key, c.body);
-                            }
                         }
                         cl.union(vs);
                         cl.reach(vs);

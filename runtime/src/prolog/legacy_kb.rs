@@ -325,12 +325,6 @@ impl NativeState {
                 served: &served,
             })
         };
-        if std::env::var_os("SITLOG_DEBUG_KB_REACH").is_some() {
-            eprintln!(
-                "kb_reach: top {} inputs {:?} undefined {:?}",
-                reach.top, reach.inputs, reach.undefined
-            );
-        }
         let mut unwrapped = Vec::new();
         for &(p, arity) in &self.wrapped {
             if arity == 0 {
