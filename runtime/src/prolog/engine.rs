@@ -1713,8 +1713,9 @@ fn lazify<P: std::borrow::Borrow<Prepared>>(
 /// On an engine that asserted the legacy layer ahead: the predicates of
 /// the layer no KB handle reaches (`kb_reach`), asserted ahead under the
 /// wrapped name, get their own name back: a waiting one's clauses are
-/// renamed and its stub replaced; one asserted already is wrapped as
-/// without the analysis (nothing changes for it).
+/// renamed and it gets a stub of its own name (the old stub stays, never
+/// called: its clauses are gone with the renamed entry); one asserted
+/// already is wrapped as without the analysis (nothing changes for it).
 fn unwrap_ahead(
     machine: &mut Machine,
     lazy: &LazyStore,
@@ -1725,7 +1726,6 @@ fn unwrap_ahead(
         return;
     }
     let mut added = Vec::new();
-    let mut gone = String::new();
     if let Ok(mut store) = lazy.lock() {
         let mut waiting: HashMap<(Atom, usize), usize> = HashMap::new();
         for (id, p) in store.iter().enumerate() {
@@ -1748,7 +1748,6 @@ fn unwrap_ahead(
                         .iter()
                         .map(|c| rename_head(c, &old, &new))
                         .collect();
-                    let _ = write!(gone, "catch(retractall({}),_,true),", stub_head(u.legacy));
                     stub_text(id, u.key)
                 }
                 None => u.wrapper.clone(),
@@ -1764,27 +1763,8 @@ fn unwrap_ahead(
             });
         }
     }
-    gone.push_str("R = ok.");
-    let _ = first_answer(machine, &gone, "R");
     let added: Vec<(usize, Prepared)> = added.into_iter().enumerate().collect();
     add_clauses(machine, &added, |_, e| errors.push(e));
-}
-
-/// `name(_V0, ..)` for `key`.
-fn stub_head((name, arity): (Atom, usize)) -> String {
-    let mut head = String::new();
-    write_atom(&mut head, name);
-    if arity > 0 {
-        head.push('(');
-        for i in 0..arity {
-            if i > 0 {
-                head.push(',');
-            }
-            let _ = write!(head, "_V{i}");
-        }
-        head.push(')');
-    }
-    head
 }
 
 /// `t` with every KB handle of the native KB layer (`'$kb'(N)`) replaced

@@ -539,11 +539,45 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
         })
         .collect();
     let coroutines = fl.coroutines;
+    // Per clause: its head's variables, the predicates it names, whether a
+    // handle can start in it. A clause with no start and no predicate a
+    // handle reaches yet has nothing to give (most of them).
+    let heads: Vec<Vec<Vec<u32>>> = program
+        .clauses
+        .iter()
+        .map(|c| c.head.iter().map(T::all_vars).collect())
+        .collect();
+    let names: Vec<Vec<(Atom, usize)>> = program
+        .clauses
+        .iter()
+        .zip(&flat)
+        .map(|(c, goals)| {
+            c.key
+                .into_iter()
+                .chain(goals.iter().filter_map(|g| match g {
+                    Goal::Call(k, _) => Some(*k),
+                    _ => None,
+                }))
+                .collect()
+        })
+        .collect();
+    let starts: Vec<bool> = flat
+        .iter()
+        .map(|goals| {
+            goals
+                .iter()
+                .any(|g| matches!(g, Goal::Source(_) | Goal::Unknown(_)))
+        })
+        .collect();
+    let mut live: HashSet<(Atom, usize)> = HashSet::new();
     let mut reach = Reach::default();
     loop {
         let mut changed = false;
-        for (c, goals) in program.clauses.iter().zip(&flat) {
-            let head: Vec<Vec<u32>> = c.head.iter().map(T::all_vars).collect();
+        for (n, (c, goals)) in program.clauses.iter().zip(&flat).enumerate() {
+            if !starts[n] && !names[n].iter().any(|k| live.contains(k)) {
+                continue;
+            }
+            let head = &heads[n];
             // Flow-insensitive: every binding of the clause at once, for
             // what may hold a handle at any time.
             let mut cl = Classes::new(c.vars);
@@ -652,6 +686,12 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
         if !changed {
             return reach;
         }
+        live = reach
+            .positions
+            .iter()
+            .chain(&reach.inputs)
+            .map(|&(n, a, _)| (n, a))
+            .collect();
     }
 }
 
