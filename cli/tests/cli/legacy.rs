@@ -69,7 +69,8 @@ const KB_FUNCTIONS: &str = r#"kb_talk(_) :-
     individuals(KB3, N),
     findall(M, call(count_classes, KB3, M), [Classes]),
     Rule = (kb_count(K, C) :- count_inds(K, C)), assertz(Rule), kb_count(KB3, Inds),
-    assign_func_value([Big, None, Small, Tea, N, Classes, Inds]).
+    Rule2 = (kb_get(N2) :- open_shop_kb(K2), count_inds2(K2, N2)), assertz(Rule2), kb_get(Inds2),
+    assign_func_value([Big, None, Small, Tea, N, Classes, Inds, Inds2]).
 kb_out(_) :- open_shop_kb(KB), assign_func_value(KB).
 kb_back(KB) :- length(KB, N), assign_func_value(N).
 "#;
@@ -78,7 +79,8 @@ kb_back(KB) :- length(KB, N), assign_func_value(N).
 /// of the layer that sitlog-kb does not serve, given the KB (a handle under
 /// `--legacy-kb native`, a KB term for them) directly, through a meta-call
 /// (`count_classes`) and through a rule asserted at run time (`kb_count`,
-/// which calls `count_inds`); a KB given to the DM is a KB term, as on the
+/// which calls `count_inds`, and through one whose body gets a KB itself,
+/// `kb_get`: every predicate of the layer is wrapped from then on); a KB given to the DM is a KB term, as on the
 /// original (`kb_out`, `kb_back`), never a handle.
 fn kb_dm(name: &str) -> String {
     format!(
@@ -92,7 +94,7 @@ fn kb_dm(name: &str) -> String {
     )
 }
 
-const KB_SAID: [&str; 2] = ["big unknown small unknown 2 2 2.", "2"];
+const KB_SAID: [&str; 2] = ["big unknown small unknown 2 2 2 2.", "2"];
 
 /// Test mode's situation types, as the original's test mode gives them.
 fn wrap_dm(name: &str) -> String {
@@ -216,6 +218,8 @@ individuals(KB, N) :-
     findall(I, (member(class(_, _, _, _, Is), KB), member(I, Is)), L), length(L, N).
 count_classes(KB, N) :- length(KB, N).
 count_inds(KB, N) :-
+    findall(I, (member(class(_, _, _, _, Is), KB), member(I, Is)), L), length(L, N).
+count_inds2(KB, N) :-
     findall(I, (member(class(_, _, _, _, Is), KB), member(I, Is)), L), length(L, N).
 "#,
     );

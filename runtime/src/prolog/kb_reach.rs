@@ -437,6 +437,17 @@ impl Flattener<'_> {
         }
         let mut per_arg: Vec<Vec<u32>> = args.iter().map(T::all_vars).collect();
         per_arg.extend(extra.iter().cloned());
+        // A service called with arguments the host does not take runs the
+        // layer's own clauses (`$legacy_S`) on them, the KB (the
+        // next-to-last) turned into a term.
+        if self.served.queries.contains(&key) || self.served.updates.contains(&key) {
+            let legacy = (super::legacy_kb::legacy_name(f), n);
+            if self.defined.contains(&legacy) && n >= 2 {
+                let mut given = per_arg.clone();
+                given[n - 2].clear();
+                out.push(Goal::Call(legacy, given));
+            }
+        }
         if self.served.queries.contains(&key) || self.served.saves.contains(&key) {
             return;
         }

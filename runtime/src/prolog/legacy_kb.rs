@@ -477,7 +477,7 @@ pub(super) fn rename_head(text: &str, old: &str, new: &str) -> String {
     format!("{}{}{}", &text[..at], new, &text[at + old.len()..])
 }
 
-fn legacy_name(a: Atom) -> Atom {
+pub(super) fn legacy_name(a: Atom) -> Atom {
     Atom::intern(&format!("$legacy_{}", a.as_str()))
 }
 
