@@ -15,7 +15,7 @@
 //! set in the engine.
 
 use super::consult::{prepare, LineCursor, Prep, PrologLoadError, PrologSource, Redefinitions};
-use super::legacy_kb::{rename_head, KbHost, NativeKb, NativeState, Unwrapped};
+use super::legacy_kb::{rename_head, KbHost, NativeKb, NativeState, Wrapped, NATIVE_FILE};
 use super::permissions;
 use super::swi::{LIBRARIES, PRELUDE, PRELUDE_SWI, SWI_PREDICATES};
 use super::translate::{drop_deep, from_prolog, read_reply, write_atom, Prepared, Writer};
@@ -239,9 +239,9 @@ struct Preloaded {
 struct Setup {
     prepared: Vec<Prepared>,
     preloaded: Option<Preloaded>,
-    /// The layer's predicates no KB handle reaches (`kb_reach`): asserted
-    /// ahead under their wrapped name, they get their own back.
-    unwrapped: Vec<Unwrapped>,
+    /// The layer's predicates a KB handle can reach (`kb_reach`): asserted
+    /// ahead under their own name, they are wrapped ([`wrap_ahead`]).
+    wrapped: Vec<Wrapped>,
     /// The application's files name a call that changes clauses as data
     /// (`Prep::touching`): the layer's predicates still waiting for their
     /// first call are loaded before it starts.
@@ -436,7 +436,7 @@ impl PrologFunctions {
         if let Some(r) = &redefinitions {
             r.apply(&mut prepared);
         }
-        let unwrapped = match native_state {
+        let wrapped = match native_state {
             Some(st) => st.finish(&mut prepared, touching),
             None => Vec::new(),
         };
@@ -456,7 +456,7 @@ impl PrologFunctions {
         let mut setup = Setup {
             prepared,
             preloaded,
-            unwrapped,
+            wrapped,
             load_all: touching,
             rx,
             ready: ready_tx,
@@ -1037,7 +1037,7 @@ fn engine_thread(
     let Setup {
         prepared,
         preloaded,
-        unwrapped,
+        wrapped,
         load_all,
         rx,
         ready,
@@ -1059,12 +1059,16 @@ fn engine_thread(
                     .filter(|(i, _)| !pre.drop.contains(i))
                     .map(|(_, e)| e),
             );
-            unwrap_ahead(&mut machine, &shared.lazy, &unwrapped, &mut errors);
-            errors.extend(load_application(
-                &mut machine,
-                &prepared[pre.kept..],
-                Some(&shared.lazy),
-            ));
+            wrap_ahead(&mut machine, &shared.lazy, &wrapped, &mut errors);
+            // Their wrappers are in the waiting clauses now.
+            let keys: HashSet<Option<(Atom, usize)>> =
+                wrapped.iter().map(|w| Some(w.key)).collect();
+            let rest: Vec<Prepared> = prepared[pre.kept..]
+                .iter()
+                .filter(|p| !(p.file == NATIVE_FILE && keys.contains(&p.key)))
+                .cloned()
+                .collect();
+            errors.extend(load_application(&mut machine, &rest, Some(&shared.lazy)));
         }
         _ => errors.extend(load_application(
             &mut machine,
@@ -1710,22 +1714,22 @@ fn lazify<P: std::borrow::Borrow<Prepared>>(
     add_clauses(machine, &now, &mut refused);
 }
 
-/// On an engine that asserted the legacy layer ahead: the predicates of
-/// the layer no KB handle reaches (`kb_reach`), asserted ahead under the
-/// wrapped name, get their own name back: a waiting one's clauses are
-/// renamed and its stub replaced; one asserted already is wrapped as
-/// without the analysis (nothing changes for it).
-fn unwrap_ahead(
+/// On an engine that asserted the legacy layer ahead (each predicate under
+/// its own name): the predicates a KB handle can reach (`kb_reach`) are
+/// wrapped. A waiting one's clauses become `$legacy_P`'s (a new waiting
+/// predicate, its stub added) and its own waiting clause the wrapper; one
+/// asserted already is wrapped by the prelude (`'$sitlog_kb_wrap'/2`).
+fn wrap_ahead(
     machine: &mut Machine,
     lazy: &LazyStore,
-    unwrapped: &[Unwrapped],
+    wrapped: &[Wrapped],
     errors: &mut Vec<PrologLoadError>,
 ) {
-    if unwrapped.is_empty() {
+    if wrapped.is_empty() {
         return;
     }
-    let mut added = Vec::new();
-    let mut gone = String::new();
+    let mut stubs = Vec::new();
+    let mut now = String::new();
     if let Ok(mut store) = lazy.lock() {
         let mut waiting: HashMap<(Atom, usize), usize> = HashMap::new();
         for (id, p) in store.iter().enumerate() {
@@ -1733,58 +1737,50 @@ fn unwrap_ahead(
                 waiting.insert((p.name, p.arity), id);
             }
         }
-        for u in unwrapped {
-            let entry = waiting
-                .get(&u.legacy)
-                .and_then(|&id| store[id].as_mut().map(|p| (id, p)));
-            let text = match entry {
-                Some((id, p)) => {
-                    let (mut old, mut new) = (String::new(), String::new());
-                    write_atom(&mut old, u.legacy.0);
-                    write_atom(&mut new, u.key.0);
-                    p.name = u.key.0;
-                    p.clauses = p
-                        .clauses
-                        .iter()
-                        .map(|c| rename_head(c, &old, &new))
-                        .collect();
-                    let _ = write!(gone, "catch(retractall({}),_,true),", stub_head(u.legacy));
-                    stub_text(id, u.key)
-                }
-                None => u.wrapper.clone(),
+        for w in wrapped {
+            let Some(id) = waiting.get(&w.key).copied() else {
+                let mut n = String::new();
+                write_atom(&mut n, w.key.0);
+                let _ = write!(now, "'$sitlog_kb_wrap'({n},{}),", w.key.1);
+                continue;
             };
-            added.push(Prepared {
-                text,
-                directive: false,
-                file: "<native KB layer>".into(),
-                line: 0,
-                col: 0,
-                key: Some(u.key),
-                lazy: false,
-            });
+            let Some(p) = store[id].as_mut() else {
+                continue;
+            };
+            let (mut old, mut new) = (String::new(), String::new());
+            write_atom(&mut old, w.key.0);
+            write_atom(&mut new, w.legacy.0);
+            let clauses: Vec<String> = p
+                .clauses
+                .iter()
+                .map(|c| rename_head(c, &old, &new))
+                .collect();
+            p.clauses = vec![w.wrapper.clone()];
+            let legacy_id = store.len();
+            store.push(Some(LazyPred {
+                name: w.legacy.0,
+                arity: w.legacy.1,
+                clauses,
+            }));
+            stubs.push((
+                stubs.len(),
+                Prepared {
+                    text: stub_text(legacy_id, w.legacy),
+                    directive: false,
+                    file: NATIVE_FILE.into(),
+                    line: 0,
+                    col: 0,
+                    key: Some(w.legacy),
+                    lazy: false,
+                },
+            ));
         }
     }
-    gone.push_str("R = ok.");
-    let _ = first_answer(machine, &gone, "R");
-    let added: Vec<(usize, Prepared)> = added.into_iter().enumerate().collect();
-    add_clauses(machine, &added, |_, e| errors.push(e));
-}
-
-/// `name(_V0, ..)` for `key`.
-fn stub_head((name, arity): (Atom, usize)) -> String {
-    let mut head = String::new();
-    write_atom(&mut head, name);
-    if arity > 0 {
-        head.push('(');
-        for i in 0..arity {
-            if i > 0 {
-                head.push(',');
-            }
-            let _ = write!(head, "_V{i}");
-        }
-        head.push(')');
+    add_clauses(machine, &stubs, |_, e| errors.push(e));
+    if !now.is_empty() {
+        now.push_str("R = ok.");
+        let _ = first_answer(machine, &now, "R");
     }
-    head
 }
 
 /// `t` with every KB handle of the native KB layer (`'$kb'(N)`) replaced

@@ -437,6 +437,17 @@ impl Flattener<'_> {
         }
         let mut per_arg: Vec<Vec<u32>> = args.iter().map(T::all_vars).collect();
         per_arg.extend(extra.iter().cloned());
+        // A service called with arguments the host does not take runs the
+        // layer's own clauses (`$legacy_S`) on them, the KB (the
+        // next-to-last) turned into a term.
+        if self.served.queries.contains(&key) || self.served.updates.contains(&key) {
+            let legacy = (super::legacy_kb::legacy_name(f), n);
+            if self.defined.contains(&legacy) && n >= 2 {
+                let mut given = per_arg.clone();
+                given[n - 2].clear();
+                out.push(Goal::Call(legacy, given));
+            }
+        }
         if self.served.queries.contains(&key) || self.served.saves.contains(&key) {
             return;
         }
@@ -539,11 +550,45 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
         })
         .collect();
     let coroutines = fl.coroutines;
+    // Per clause: its head's variables, the predicates it names, whether a
+    // handle can start in it. A clause with no start and no predicate a
+    // handle reaches yet has nothing to give (most of them).
+    let heads: Vec<Vec<Vec<u32>>> = program
+        .clauses
+        .iter()
+        .map(|c| c.head.iter().map(T::all_vars).collect())
+        .collect();
+    let names: Vec<Vec<(Atom, usize)>> = program
+        .clauses
+        .iter()
+        .zip(&flat)
+        .map(|(c, goals)| {
+            c.key
+                .into_iter()
+                .chain(goals.iter().filter_map(|g| match g {
+                    Goal::Call(k, _) => Some(*k),
+                    _ => None,
+                }))
+                .collect()
+        })
+        .collect();
+    let starts: Vec<bool> = flat
+        .iter()
+        .map(|goals| {
+            goals
+                .iter()
+                .any(|g| matches!(g, Goal::Source(_) | Goal::Unknown(_)))
+        })
+        .collect();
+    let mut live: HashSet<(Atom, usize)> = HashSet::new();
     let mut reach = Reach::default();
     loop {
         let mut changed = false;
-        for (c, goals) in program.clauses.iter().zip(&flat) {
-            let head: Vec<Vec<u32>> = c.head.iter().map(T::all_vars).collect();
+        for (n, (c, goals)) in program.clauses.iter().zip(&flat).enumerate() {
+            if !starts[n] && !names[n].iter().any(|k| live.contains(k)) {
+                continue;
+            }
+            let head = &heads[n];
             // Flow-insensitive: every binding of the clause at once, for
             // what may hold a handle at any time.
             let mut cl = Classes::new(c.vars);
@@ -620,9 +665,6 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                     Goal::Escape(vs) => {
                         if cl.any(vs) {
                             reach.top = true;
-                            if std::env::var_os("SITLOG_DEBUG_KB_REACH").is_some() {
-                                eprintln!("top: escape in {:?} {:?}", c.key, c.body);
-                            }
                         }
                         cl.union(vs);
                     }
@@ -630,12 +672,6 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                     Goal::Call(k, args) => {
                         for (i, vs) in args.iter().enumerate() {
                             if cl.any(vs) && reach.inputs.insert((k.0, k.1, i)) {
-                                if std::env::var_os("SITLOG_DEBUG_KB_REACH").is_some() {
-                                    eprintln!(
-                                        "input {:?}/{} {i} from {:?} {:?}",
-                                        k.0, k.1, c.key, c.body
-                                    );
-                                }
                                 changed = true;
                             }
                         }
@@ -648,9 +684,6 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                     Goal::Unknown(vs) => {
                         if cl.any(vs) {
                             reach.top = true;
-                            if std::env::var_os("SITLOG_DEBUG_KB_REACH").is_some() {
-                                eprintln!("top: unknown in {:?} {:?}", c.key, c.body);
-                            }
                         }
                         cl.union(vs);
                         cl.reach(vs);
@@ -664,6 +697,12 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
         if !changed {
             return reach;
         }
+        live = reach
+            .positions
+            .iter()
+            .chain(&reach.inputs)
+            .map(|&(n, a, _)| (n, a))
+            .collect();
     }
 }
 

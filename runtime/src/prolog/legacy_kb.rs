@@ -76,15 +76,18 @@ pub(super) struct NativeState {
     app_defined: HashSet<(Atom, usize)>,
 }
 
-/// A predicate of the layer left unwrapped: its clauses, read as
-/// `legacy`, are `key`'s. An engine that asserted the layer ahead renames
-/// its waiting clauses, or, if they were asserted already, adds `wrapper`
-/// (the predicate wrapped as without the analysis).
-pub(super) struct Unwrapped {
+/// A predicate of the layer that a KB handle can reach, wrapped: its
+/// clauses become `legacy`'s, `key`'s clause is `wrapper`. An engine that
+/// asserted the layer ahead (under the predicates' own names) does this to
+/// its waiting clauses (`engine::wrap_ahead`).
+pub(super) struct Wrapped {
     pub(super) legacy: (Atom, usize),
     pub(super) key: (Atom, usize),
     pub(super) wrapper: String,
 }
+
+/// The file name of the clauses the native KB layer adds.
+pub(super) const NATIVE_FILE: &str = "<native KB layer>";
 
 impl NativeState {
     pub(super) fn new(n: &NativeKb) -> NativeState {
@@ -191,17 +194,18 @@ impl NativeState {
                 return ClauseFate::Rename(legacy_name(key.0));
             }
         }
+        // Kept under its own name: renamed at the end if it is wrapped.
         if self.wrapped_set.insert(key) {
             self.wrapped.push(key);
         }
-        ClauseFate::Rename(legacy_name(key.0))
+        ClauseFate::Keep
     }
 
     /// The clauses that serve the layer's predicates and wrap the others.
     /// `give_up`: a file builds a call that changes clauses as data (every
     /// predicate of the layer is then wrapped). Gives the predicates left
-    /// unwrapped, their clauses in `out` renamed back.
-    pub(super) fn finish(self, out: &mut Vec<Prepared>, give_up: bool) -> Vec<Unwrapped> {
+    /// wrapped, their clauses in `out` renamed.
+    pub(super) fn finish(self, out: &mut Vec<Prepared>, give_up: bool) -> Vec<Wrapped> {
         let vars = |n: usize| -> Vec<String> { (0..n).map(|i| format!("V{i}")).collect() };
         // Each clause with its predicate and whether it may be asserted at
         // the predicate's first call (the wrappers: one a predicate of the
@@ -325,36 +329,28 @@ impl NativeState {
                 served: &served,
             })
         };
-        if std::env::var_os("SITLOG_DEBUG_KB_REACH").is_some() {
-            eprintln!(
-                "kb_reach: top {} inputs {:?} undefined {:?}",
-                reach.top, reach.inputs, reach.undefined
-            );
-        }
+        let mut wrapped = Vec::new();
         let mut unwrapped = Vec::new();
         for &(p, arity) in &self.wrapped {
-            if arity == 0 {
+            // A predicate the application redefines has lost the layer's
+            // clauses: its own are the application's, not wrapped.
+            if arity == 0 || self.app_defined.contains(&(p, arity)) {
                 continue;
             }
-            let all: Vec<usize> = (0..arity).collect();
-            // A predicate the application redefines keeps its wrapper (the
-            // layer's clauses are dropped, the wrapper finds none).
-            let positions = if self.app_defined.contains(&(p, arity)) {
-                all.clone()
-            } else {
-                reach.of((p, arity))
-            };
+            let positions = reach.of((p, arity));
             if positions.is_empty() {
-                let legacy = (legacy_name(p), arity);
-                rename_clauses(out, legacy, (p, arity));
-                unwrapped.push(Unwrapped {
-                    legacy,
-                    key: (p, arity),
-                    wrapper: format!("({})", wrapper_text(p, arity, &all)),
-                });
+                unwrapped.push((p, arity));
                 continue;
             }
-            clauses.push((wrapper_text(p, arity, &positions), (p, arity), true));
+            let legacy = (legacy_name(p), arity);
+            rename_clauses(out, (p, arity), legacy);
+            let text = wrapper_text(p, arity, &positions);
+            wrapped.push(Wrapped {
+                legacy,
+                key: (p, arity),
+                wrapper: format!("({text})"),
+            });
+            clauses.push((text, (p, arity), true));
         }
         // What the prelude's run-time checks of asserted rules need
         // (`'$sitlog_kb_rule'/2`); none when every predicate is wrapped.
@@ -395,22 +391,29 @@ impl NativeState {
             for &k in &producers {
                 clauses.push(fact("$sitlog_kb_producer", k));
             }
-            for u in &unwrapped {
-                clauses.push(fact("$sitlog_kb_unwrapped", u.key));
+            let mut list = String::from("'$sitlog_kb_unwrapped'([");
+            for (i, &(n, a)) in unwrapped.iter().enumerate() {
+                if i > 0 {
+                    list.push(',');
+                }
+                write_atom(&mut list, n);
+                list.push_str(&format!("/{a}"));
             }
+            list.push_str("])");
+            clauses.push((list, (Atom::intern("$sitlog_kb_unwrapped"), 1), false));
         }
         for (text, key, lazy) in clauses {
             out.push(Prepared {
                 text: format!("({text})"),
                 directive: false,
-                file: "<native KB layer>".into(),
+                file: NATIVE_FILE.into(),
                 line: 0,
                 col: 0,
                 key: Some(key),
                 lazy,
             });
         }
-        unwrapped
+        wrapped
     }
 }
 
@@ -474,7 +477,7 @@ pub(super) fn rename_head(text: &str, old: &str, new: &str) -> String {
     format!("{}{}{}", &text[..at], new, &text[at + old.len()..])
 }
 
-fn legacy_name(a: Atom) -> Atom {
+pub(super) fn legacy_name(a: Atom) -> Atom {
     Atom::intern(&format!("$legacy_{}", a.as_str()))
 }
 

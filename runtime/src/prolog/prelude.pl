@@ -842,7 +842,7 @@ get_last_situation(History, S) :-
 :- dynamic('$sitlog_kb_watch'/0).
 :- dynamic('$sitlog_kb_reach'/2).
 :- dynamic('$sitlog_kb_producer'/2).
-:- dynamic('$sitlog_kb_unwrapped'/2).
+:- dynamic('$sitlog_kb_unwrapped'/1).
 
 '$sitlog_kb_rule'(C, C1) :-
     (   '$sitlog_kb_watch',
@@ -880,7 +880,7 @@ get_last_situation(History, S) :-
     (   catch(bb_get('$sitlog_kb_all_wrapped', true), _, fail)
     ->  true
     ;   bb_put('$sitlog_kb_all_wrapped', true),
-        findall(N/A, '$sitlog_kb_unwrapped'(N, A), Ps),
+        (   '$sitlog_kb_unwrapped'(Ps) -> true ; Ps = [] ),
         '$sitlog_kb_wrap_each'(Ps)
     ).
 '$sitlog_kb_wrap_each'([]).
