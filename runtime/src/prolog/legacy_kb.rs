@@ -7,7 +7,7 @@
 //! `'$sitlog_kb_unwrapped'/1`).
 //!
 //! Invariant: a predicate of the layer that a handle can reach when it is
-//! called ([`kb_reach`]'s inputs; every one when the analysis gives up)
+//! called (`kb_reach`'s inputs; every one when the analysis gives up)
 //! runs its clauses on KB terms, never on handles; the others (and the
 //! application's own predicates, a layer predicate it redefines included)
 //! run as written.
