@@ -41,7 +41,11 @@
 //! to a meta-predicate missing from the list above (`predsort/3`:
 //! `predsort(P, KBs, S)` is a plain built-in, so `P` is no unknown goal,
 //! and `P = cmp, predsort(P, ..)` puts the call of `cmp/3` at the `=/2`,
-//! before `P` meets a handle); a handle's text read back as a term (a
+//! before `P` meets a handle); a module-qualified goal `M:G` (`user:G`,
+//! `call(user:G)`, `findall(X, user:G, L)`) is a plain built-in `:/2`, so
+//! a `G` known only at run time is no unknown goal (the prelude's
+//! `'$sitlog_kb_unsure'/1` does treat `_:_` as unsure); a handle's text
+//! read back as a term (a
 //! handle is `'$kb'(N)`: `format(atom(A), "~q", [KB])` is opaque, and
 //! `term_to_atom(T, A)` or `read/1` of what was written makes a handle no
 //! position holds).
