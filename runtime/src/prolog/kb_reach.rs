@@ -45,10 +45,9 @@
 //! `call(user:G)`, `findall(X, user:G, L)`) is a plain built-in `:/2`, so
 //! a `G` known only at run time is no unknown goal (the prelude's
 //! `'$sitlog_kb_unsure'/1` does treat `_:_` as unsure); a handle's text
-//! read back as a term (a
-//! handle is `'$kb'(N)`: `format(atom(A), "~q", [KB])` is opaque, and
-//! `term_to_atom(T, A)` or `read/1` of what was written makes a handle no
-//! position holds).
+//! read back as a term (a handle is `'$kb'(N)`: `format(atom(A), "~q",
+//! [KB])` is opaque, and `term_to_atom(T, A)` or `read/1` of what was
+//! written makes a handle no position holds).
 //!
 //! What the analysis assumes of the run, kept by the engine: the host never
 //! holds a handle (a call's answer has its handles turned into KB terms,
