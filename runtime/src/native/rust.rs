@@ -15,9 +15,10 @@
 //! `to_term` builds the term that conversion reads back (compounds through
 //! the store's constructors, so ground/inert flags are right), except for
 //! [`Ground::OUT`], an output argument's place that no conversion makes:
-//! its `to_term` is a fresh variable, the one the term path passes. Equality (`==` of the Rust values) is Prolog's `==` on those
-//! terms for every type but `f64` (generated code compares floats by bits,
-//! as [`Val`](super::Val) does) and `Ground` (compared in the store).
+//! its `to_term` is a fresh variable, the one the term path passes.
+//! Equality (`==` of the Rust values) is Prolog's `==` on those terms for
+//! every type but `f64` (generated code compares floats by bits, as
+//! [`Val`](super::Val) does) and `Ground` (compared in the store).
 //!
 //! A `Val` held by generated code is *canonical*: no `Term` inside, `[]`
 //! an empty `List` (never `Sym([])`), no compound without arguments or
