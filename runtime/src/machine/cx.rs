@@ -1,6 +1,13 @@
 //! The steps [`Cx`] offers the code of a compiled situation (generated
 //! Rust, or an interpreter's plan): one method per semantic step, each
-//! the one the interpreted path takes.
+//! the one the interpreted path takes. Beside them, what native code
+//! needs and the term path does not: terms built from native values
+//! ([`fill`] of a pattern, [`build_of`], [`FromIdParts`] reading an id's
+//! parts), the end of a native step ([`Cx::step_done`],
+//! [`Cx::step_goto`]), its faults ([`Fault`]) and its check of whether
+//! the machine wants control ([`Cx::gc_tick`]). None of them changes
+//! what a run does (`gc_tick` only when the machine collects or stops:
+//! at most `GC_TICKS - 1` situations later than `gc_due` would).
 
 use super::outcome::RunError;
 use super::program::{Cx, DmProgram, Step, Visit};
@@ -869,7 +876,9 @@ from_id_parts!(A 0, B 1, C 2, D 3, E 4, F 5, G 6);
 from_id_parts!(A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7);
 
 /// [`native::compound`] of values, each made a term in order: how native
-/// code builds a situation's id from its fields (`id_s<N>`).
+/// code builds a DM's call term, a compound of one level, or a situation's
+/// id where its pattern does not read back (the DM's `id_s<N>`; else
+/// [`fill`]).
 pub fn build_of(store: &mut Store, name: Atom, args: &[&dyn AsTerm]) -> Term {
     with_terms(store, args, |store, ts| native::compound(store, name, ts))
 }

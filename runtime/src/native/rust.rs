@@ -11,11 +11,14 @@
 //! is (an unbound variable, a partial or cyclic list, a big integer or
 //! another shape give `None`, never a panic), for `Ground` exactly when
 //! `t` is ground and inert (evaluates to itself), for `Val` exactly when
-//! `t` is inert and `Val::from_term(.., &Ty::Ground)` is `Some`; `to_term` builds the term that conversion reads back
-//! (compounds through the store's constructors, so ground/inert flags are
-//! right). Equality (`==` of the Rust values) is Prolog's `==` on those
-//! terms for every type but `f64` (generated code compares floats by bits,
-//! as [`Val`](super::Val) does) and `Ground` (compared in the store).
+//! `t` is inert and `Val::from_term(.., &Ty::Ground)` is `Some`;
+//! `to_term` builds the term that conversion reads back (compounds through
+//! the store's constructors, so ground/inert flags are right), except for
+//! [`Ground::OUT`], an output argument's place that no conversion makes:
+//! its `to_term` is a fresh variable, the one the term path passes.
+//! Equality (`==` of the Rust values) is Prolog's `==` on those terms for
+//! every type but `f64` (generated code compares floats by bits, as
+//! [`Val`](super::Val) does) and `Ground` (compared in the store).
 //!
 //! A `Val` held by generated code is *canonical*: no `Term` inside, `[]`
 //! an empty `List` (never `Sym([])`), no compound without arguments or

@@ -10,16 +10,44 @@
 //! input and output, an over-approximation). Handles enter where the host
 //! makes them (a KB load's argument, an update's new KB) and flow by
 //! unification (structure-insensitive: a term holding a reached variable is
-//! reached) and by calls. A built-in or a predicate defined by no file
-//! (asserted at run time) passes a reached argument to all its arguments;
-//! the database and global variables (`bb_get/2`, `recorded/3`,
-//! `clause/2`, `retract/1`, the catcher of `catch/3`) give reached values.
+//! reached) and by calls (a service's call also reaches the layer's own
+//! clauses it may fall back to, all its arguments but the KB). A built-in
+//! or a predicate defined by no file (asserted at run time) passes a
+//! reached argument to all its arguments, except the built-ins that give
+//! no part of an argument to another (`opaque`: type tests, arithmetic,
+//! comparison, text, output), which stop it, and `=..`, `arg/3`,
+//! `functor/3`, which share it only between a term and its arguments; an
+//! argument of a built-in that names a predicate of the files is taken as
+//! a goal it may call (a library's meta-predicate), as are the closures of
+//! `call/N`, `maplist/N`, `foldl/N`, `include/3`, `exclude/3`,
+//! `partition/4`, `apply/2`; the database and global variables
+//! (`bb_get/2`, `recorded/3`, `clause/2`, `retract/1`, the catcher of
+//! `catch/3`) give reached values.
 //! Giving the outside a handle (`assert/1`, `bb_put/2`, `nb_setval/2`,
 //! `recorda/3`, `throw/1` of a reached term) or calling an unknown goal (a
 //! variable, `call/N` of one) with a reached argument at that point of its
 //! clause (left to right: a goal called before its argument is bound
 //! cannot see what is bound later, unless the code uses coroutines) makes
 //! the result [`Reach::top`]: every predicate may be reached.
+//!
+//! Two results: the positions reached (flow-insensitive: every binding of
+//! a clause at once) and the *inputs*, positions that may hold a handle
+//! when the predicate is called, found left to right as above (all at once
+//! where the files use coroutines); a wrapper looks only at the inputs. The
+//! fixpoint looks again only at the clauses a handle can start in (a
+//! producer, an unknown goal) or that name a predicate a handle reaches.
+//!
+//! Not covered yet (holes, found in review): a closure given as a variable
+//! to a meta-predicate missing from the list above (`predsort/3`:
+//! `predsort(P, KBs, S)` is a plain built-in, so `P` is no unknown goal,
+//! and `P = cmp, predsort(P, ..)` puts the call of `cmp/3` at the `=/2`,
+//! before `P` meets a handle); a module-qualified goal `M:G` (`user:G`,
+//! `call(user:G)`, `findall(X, user:G, L)`) is a plain built-in `:/2`, so
+//! a `G` known only at run time is no unknown goal (the prelude's
+//! `'$sitlog_kb_unsure'/1` does treat `_:_` as unsure); a handle's text
+//! read back as a term (a handle is `'$kb'(N)`: `format(atom(A), "~q",
+//! [KB])` is opaque, and `term_to_atom(T, A)` or `read/1` of what was
+//! written makes a handle no position holds).
 //!
 //! What the analysis assumes of the run, kept by the engine: the host never
 //! holds a handle (a call's answer has its handles turned into KB terms,

@@ -1,7 +1,16 @@
 //! The legacy KB layer served natively: [`NativeKb`] says which of the
 //! original's KB predicates the host serves; while the layer's sources are
 //! prepared, each clause is kept or renamed, and the clauses that
-//! call the host (or turn handles back into KB terms) are added at the end.
+//! call the host (or turn handles back into KB terms) are added at the end,
+//! with the facts the prelude's checks of rules asserted at run time read
+//! (`'$sitlog_kb_reach'/2`, `'$sitlog_kb_producer'/2`,
+//! `'$sitlog_kb_unwrapped'/1`).
+//!
+//! Invariant: a predicate of the layer that a handle can reach when it is
+//! called (`kb_reach`'s inputs; every one when the analysis gives up)
+//! runs its clauses on KB terms, never on handles; the others (and the
+//! application's own predicates, a layer predicate it redefines included)
+//! run as written.
 
 use super::kb_reach::{self, Clause, Numbering, Served, T};
 use super::translate::{write_atom, Prepared};
@@ -60,7 +69,8 @@ pub(super) struct NativeState {
     served: HashSet<(Atom, usize)>,
     /// KB loads and saves found: predicate name, file name, `true` for a save.
     files: Vec<(Atom, Atom, bool)>,
-    /// Predicates wrapped to turn handles into terms, in order met.
+    /// The layer's predicates kept under their own name, in order met: the
+    /// candidates for a wrapper (those `kb_reach` finds reachable get one).
     wrapped: Vec<(Atom, usize)>,
     wrapped_set: HashSet<(Atom, usize)>,
     /// Served predicates the layer defines itself.

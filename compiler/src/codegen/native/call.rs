@@ -1,7 +1,8 @@
 //! The caller's side of native DMs: a recursive situation with native
 //! code whose embedded DM's initial situation has native code (its locals
-//! native, the arguments converting to its frame) pushes the callee's typed frame on the driver's native
-//! stack ([`super::frame`]) and waits in its own variant `W<ix>` (the
+//! native, the arguments converting to its frame) pushes the callee's
+//! typed frame on the driver's native stack ([`super::frame`]), the
+//! arguments moved into it, and waits in its own variant `W<ix>` (the
 //! situation's id variables and the registers its exit arcs read, as the
 //! term code's `saved` keeps them); when the callee reaches a final, the
 //! exit arcs are matched against the callee's final variant natively
@@ -372,7 +373,9 @@ impl Gen<'_> {
             let x = &vs[i];
             // The argument moves into the callee's frame: the branch that
             // pushes the frame ends the visit, and the machine's call
-            // below (the other branch) reads `v<i>` itself.
+            // below (the other branch) reads `v<i>` itself
+            // (`nat_recursive`) or builds its term from the registers
+            // again (`nat_recursive_outputs`: `v<i>` unused there).
             let e = coerce(
                 &V {
                     e: quote!(#x),

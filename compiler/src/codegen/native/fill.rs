@@ -6,9 +6,12 @@
 //! `cx.build` statement per compound. The term built is the one the
 //! statements built: each compound with a value below it made as
 //! `Cx::build` makes it, the values made terms as `Cx::term` makes them,
-//! the rest ground and shared with the constant. A pattern whose text
-//! does not read back as itself, or whose constants name `'$hole'`, is
-//! not used (the statements are generated as before).
+//! the rest ground and shared with the constant. A situation's compound
+//! id is filled so too, from a pattern with a hole per field
+//! (`nat_id_fill`: `Cx::fill`, or `machine::fill` in `Nat::id_term`),
+//! even with one compound. A pattern whose text does not read back as
+//! itself, or whose constants name `'$hole'`, is not used (the
+//! statements are generated as before; for an id, the DM's `id_s<N>`).
 
 use super::{Dm, Regs, N};
 use crate::codegen::Gen;

@@ -1,7 +1,9 @@
 //! Native frames and the program's native driver (phase 5 of
 //! `docs/design/typed-mir.md`, for native DMs): each native DM's `Frame`
-//! (its parameters `p0..`, its locals `l0..` and the situation it is in,
-//! all native values), and in the program's module `enum NatFrame` (a
+//! (its parameters `p0..`, its locals `l0..`, an output slot `out<i>:
+//! Option<T>` per output parameter a native caller may pass as
+//! `Ground::OUT` (`super::call`), and the situation it is in, all native
+//! values), and in the program's module `enum NatFrame` (a
 //! variant per native DM), `nat_drive` (the explicit stack of native
 //! frames, each run where it lies: a callee runs where the driver holds
 //! it and, at a final reached without calling, its caller resumes at once

@@ -41,7 +41,9 @@
 //!   ([`Cx::goto`]), which selects and runs its term code; so is a value no
 //!   situation takes natively (the machine selects or reports the error),
 //!   and the id of the situation reached when the machine wants control
-//!   (garbage to collect, a stop asked), checked after each visit.
+//!   (garbage to collect, a stop asked), checked between two visits of
+//!   the frame's loop by `Cx::gc_tick` (`Cx::gc_due` asked once every
+//!   `GC_TICKS` checks, so at most `GC_TICKS - 1` visits later).
 //! - *effectors and the evaluator*: an action's term (`say(['Hi', Name])`,
 //!   `navigate(P, S)`, a list of them) is built from native values where it
 //!   is performed, as the term code would evaluate it; a part the evaluator
@@ -105,7 +107,9 @@
 //!   with native code whose callee's initial situation has native code
 //!   (and whose arguments fit the callee's frame) pushes the callee's
 //!   frame (no Rust recursion, no term), the callee's final variant resumes
-//!   the caller, whose exit arcs match it natively; every other call, and
+//!   the caller, whose exit arcs match it natively (those native code does
+//!   not run: the situation's term code, `run_exit`, on the final's id once
+//!   the frames below are the machine's); every other call, and
 //!   every step that lets the machine see its state (an action performed,
 //!   a situation handed over, `get`/`set`/`inc` through the machine), first
 //!   makes the native frames machine frames and writes the locals back
@@ -599,7 +603,8 @@ struct Dm<'a> {
     /// The arc's out_arg, set where its next situation is handed over.
     out: std::cell::RefCell<TokenStream>,
     /// The situations whose id is built by the DM's `id_s<N>` function
-    /// (one per situation, from its fields; [`Gen::nat_id_term`]).
+    /// (one per situation, from its fields, where its pattern does not
+    /// read back; [`Gen::nat_id_term`]).
     ids: std::cell::RefCell<std::collections::BTreeSet<usize>>,
     /// Names of the ids built (`id0`, `id1`, ...).
     id_n: std::cell::Cell<usize>,
@@ -1164,8 +1169,10 @@ impl Gen<'_> {
     }
 
     /// The id of situation `ix` as a term, from its fields (`store`: the
-    /// store expression): statements and the value; a call of the DM's
-    /// `id_s<ix>` ([`Gen::nat_id_fn`]) where the fields have Rust types.
+    /// store expression): statements and the value; where the fields have
+    /// Rust types, its pattern filled (`Cx::fill`/`machine::fill`,
+    /// `Gen::nat_id_fill`), or a call of the DM's `id_s<ix>`
+    /// ([`Gen::nat_id_fn`]) where the pattern does not read back.
     fn nat_id_term(
         &self,
         d: &Dm,
@@ -1211,8 +1218,8 @@ impl Gen<'_> {
         }
     }
 
-    /// [`Gen::nat_id_term`] as one expression (the `id_s<ix>` call itself
-    /// where there is one), for `Nat::id_term`'s arms.
+    /// [`Gen::nat_id_term`] as one expression (the pattern filled, or the
+    /// `id_s<ix>` call itself where there is one), for `Nat::id_term`'s arms.
     fn nat_id_value(&self, d: &Dm, ix: usize, store: TokenStream) -> N<TokenStream> {
         let (stmts, v) = self.nat_id_inline(d, ix, store.clone())?;
         if stmts.is_empty() {
@@ -1244,8 +1251,9 @@ impl Gen<'_> {
             .collect()
     }
 
-    /// `fn id_s<ix>`: situation `ix`'s id as a term, from its fields (the
-    /// one place native code builds it): a `machine::build_of` per
+    /// `fn id_s<ix>`: situation `ix`'s id as a term, from its fields (made
+    /// only where its pattern does not read back, `Gen::nat_id_fill`): a
+    /// `machine::build_of` per
     /// compound of the id, the fields (references) and constants its
     /// arguments.
     fn nat_id_fn(&self, d: &Dm, ix: usize) -> N<TokenStream> {
