@@ -7,7 +7,8 @@
 //! [`Cx::step_goto`]), its faults ([`Fault`]) and its check of whether
 //! the machine wants control ([`Cx::gc_tick`]). None of them changes
 //! what a run does (`gc_tick` only when the machine collects or stops:
-//! at most `GC_TICKS - 1` situations later than `gc_due` would).
+//! at most `GC_TICKS - 1` situations later than `gc_due` would; at every
+//! check below `GC_TICKS_BELOW`).
 
 use super::outcome::RunError;
 use super::program::{Cx, DmProgram, Step, Visit};
@@ -21,6 +22,12 @@ use sitlog_syntax::Atom;
 /// How often [`Cx::gc_tick`] asks [`Cx::gc_due`]: once every this many
 /// checks.
 pub const GC_TICKS: u32 = 16;
+
+/// A [`super::Options::gc_threshold`] below this many cells (a run that
+/// asks to collect often: the tests' tiny thresholds) makes
+/// [`Cx::gc_tick`] ask [`Cx::gc_due`] at every check: garbage may then
+/// come between any two visits, as tests of the hand-over want.
+pub const GC_TICKS_BELOW: usize = 1 << 12;
 
 impl<P: DmProgram> Cx<'_, '_, P> {
     /// A run-time error of `op(name, _)` (`get`, `set`, `inc`, ...) in this
@@ -113,7 +120,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             self.m.gc_ticks -= 1;
             return false;
         }
-        self.m.gc_ticks = GC_TICKS - 1;
+        if self.m.options.gc_threshold >= GC_TICKS_BELOW {
+            self.m.gc_ticks = GC_TICKS - 1;
+        }
         self.gc_due()
     }
 

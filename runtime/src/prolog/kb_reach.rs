@@ -37,17 +37,13 @@
 //! fixpoint looks again only at the clauses a handle can start in (a
 //! producer, an unknown goal) or that name a predicate a handle reaches.
 //!
-//! Not covered yet (holes, found in review): a closure given as a variable
-//! to a meta-predicate missing from the list above (`predsort/3`:
-//! `predsort(P, KBs, S)` is a plain built-in, so `P` is no unknown goal,
-//! and `P = cmp, predsort(P, ..)` puts the call of `cmp/3` at the `=/2`,
-//! before `P` meets a handle); a module-qualified goal `M:G` (`user:G`,
-//! `call(user:G)`, `findall(X, user:G, L)`) is a plain built-in `:/2`, so
-//! a `G` known only at run time is no unknown goal (the prelude's
-//! `'$sitlog_kb_unsure'/1` does treat `_:_` as unsure); a handle's text
+//! `predsort/3` calls its closure on the list's elements, and `M:G` is
+//! the goal `G`. Not covered (a hole, found in review): a handle's text
 //! read back as a term (a handle is `'$kb'(N)`: `format(atom(A), "~q",
 //! [KB])` is opaque, and `term_to_atom(T, A)` or `read/1` of what was
-//! written makes a handle no position holds).
+//! written makes a handle no position holds); a closure given to a
+//! meta-predicate of a library not in the list above is a plain
+//! built-in's argument.
 //!
 //! What the analysis assumes of the run, kept by the engine: the host never
 //! holds a handle (a call's answer has its handles turned into KB terms,
@@ -351,6 +347,11 @@ impl Flattener<'_> {
             T::Atom(a) => (*a, &[]),
             T::Comp(f, a) => (*f, a.as_slice()),
         };
+        // `M:G` calls `G` (with the same added arguments).
+        if is(f, ":") && args.len() == 2 {
+            self.goal(&args[1], extra, out);
+            return;
+        }
         let n = args.len() + extra.len();
         let key = (f, n);
         let vars_of = |i: usize| args[i].all_vars();
@@ -449,6 +450,14 @@ impl Flattener<'_> {
                 ("include", 3) | ("exclude", 3) | ("partition", 4) => {
                     out.push(Goal::Unify(goal.all_vars(), None));
                     true
+                }
+                // `predsort(P, List, Sorted)` calls `P(Order, E1, E2)` on
+                // the elements: each added argument may be any of them.
+                ("predsort", 3) => {
+                    out.push(Goal::Unify(goal.all_vars(), None));
+                    let elems = [args[1].all_vars(), args[2].all_vars()].concat();
+                    self.goal(&args[0], &[elems.clone(), elems.clone(), elems], out);
+                    return;
                 }
                 _ => false,
             };
@@ -864,6 +873,19 @@ mod tests {
         );
         assert!(!r.top);
         assert_eq!(at(&r, "inc", 4), vec![2]);
+        // `predsort/3` calls its closure on the elements; `M:G` is `G`.
+        let r = reached(
+            "a :- open_kb(KB), predsort(cmp, [KB, x], _).\ncmp(_, A, B) :- p(A), q(B).\n\
+             p(_).\nq(_).\n",
+        );
+        assert!(!r.top);
+        assert_eq!(at(&r, "p", 1), vec![0]);
+        assert_eq!(at(&r, "q", 1), vec![0]);
+        assert!(reached("a(P) :- open_kb(KB), predsort(P, [KB], _).\n").top);
+        let r = reached("a :- open_kb(KB), user:p(KB), call(user:q, KB).\np(_).\nq(_).\n");
+        assert_eq!(at(&r, "p", 1), vec![0]);
+        assert_eq!(at(&r, "q", 1), vec![0]);
+        assert!(reached("a(G) :- open_kb(KB), findall(X, user:G, _), call(user:G, KB).\n").top);
         // Type tests, arithmetic and text give no handle on.
         let r =
             reached("a :- open_kb(KB), length(KB, N), atom_length(KB, M), p(N, M).\np(_, _).\n");

@@ -545,13 +545,8 @@ fn native_dms_agree() {
         "pairs([x, y, stop])",
         "rounds(3, [a, b, c], c)",
         // Garbage while a caller waits for an output (its variable made
-        // where the frames become the machine's). Since `Cx::gc_tick`
-        // (`GC_TICKS` 16) native code asks only at every 16th check: here
-        // only the first (after `start`, before any call; about seven
-        // checks before `louder`), and with more rounds the 16th falls on
-        // a caller's resume (two checks a call), so this no longer
-        // collects while `outs` waits; the hand-over while it waits is
-        // `louder`'s action.
+        // where the frames become the machine's): with a threshold below
+        // `GC_TICKS_BELOW`, `Cx::gc_tick` asks at every check.
         "outs(3, 0)",
     ] {
         let options = || Options {

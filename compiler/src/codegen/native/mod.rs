@@ -43,7 +43,8 @@
 //!   and the id of the situation reached when the machine wants control
 //!   (garbage to collect, a stop asked), checked between two visits of
 //!   the frame's loop by `Cx::gc_tick` (`Cx::gc_due` asked once every
-//!   `GC_TICKS` checks, so at most `GC_TICKS - 1` visits later).
+//!   `GC_TICKS` checks, so at most `GC_TICKS - 1` visits later; at every
+//!   check for a GC threshold below `GC_TICKS_BELOW`).
 //! - *effectors and the evaluator*: an action's term (`say(['Hi', Name])`,
 //!   `navigate(P, S)`, a list of them) is built from native values where it
 //!   is performed, as the term code would evaluate it; a part the evaluator
