@@ -109,11 +109,12 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             || self.m.stop_requested()
     }
 
-    /// [`Cx::gc_due`], asked once every [`GC_TICKS`] calls: native code's
+    /// [`Cx::gc_due`], asked once every `GC_TICKS` (16) calls: native code's
     /// check between two situations of its own loop (a decrement and a
     /// test, not the store's sizes and the stop flag each time). The
     /// collection or the stop comes at most `GC_TICKS - 1` situations
-    /// later than with [`Cx::gc_due`]; what runs is the same.
+    /// later than with [`Cx::gc_due`]; what runs is the same. With a GC
+    /// threshold below `GC_TICKS_BELOW` (4,096 cells) it asks every time.
     #[inline]
     pub fn gc_tick(&mut self) -> bool {
         if self.m.gc_ticks > 0 {

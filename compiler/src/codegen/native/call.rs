@@ -280,11 +280,7 @@ impl Gen<'_> {
             let v = self.nat_value(&Build::Reg(r), regs)?;
             saved_vals.push(super::place_ref(&v));
         }
-        let saved_value = if saved.is_empty() {
-            quote!(Term::NIL)
-        } else {
-            quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
-        };
+        let saved_value = saved_term(&saved_vals);
         // The call given to the machine, as the term code gives it.
         let hand_call = quote! {
             #hand
@@ -454,11 +450,7 @@ impl Gen<'_> {
                 _ => saved_vals.push(super::place_ref(&self.nat_value(&Build::Reg(r), regs)?)),
             }
         }
-        let saved_value = if saved.is_empty() {
-            quote!(Term::NIL)
-        } else {
-            quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
-        };
+        let saved_value = saved_term(&saved_vals);
         Ok(quote! {
             #hand
             cx.count_transitions(count);
@@ -524,11 +516,7 @@ impl Gen<'_> {
                 return Err("a saved register is not kept".into());
             }
         }
-        let saved_value = if saved.is_empty() {
-            quote!(Term::NIL)
-        } else {
-            quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
-        };
+        let saved_value = saved_term(&saved_vals);
         let wait_arm = quote! {
             Nat::#wv { #(#names),* } => {
                 #(#out_stmts)*
@@ -786,11 +774,7 @@ impl Gen<'_> {
                 return Err("a saved register is not kept".into());
             }
         }
-        let saved_value = if saved.is_empty() {
-            quote!(Term::NIL)
-        } else {
-            quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
-        };
+        let saved_value = saved_term(&saved_vals);
         let hand = &d.hand;
         let curl = Literal::u32_unsuffixed(ix as u32);
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
@@ -1314,4 +1298,14 @@ fn out_slots_none(callee: &Dm) -> Vec<TokenStream> {
             quote!(#o: None)
         })
         .collect()
+}
+
+/// The term a call saves for its caller's exit arcs: `[]` when it keeps
+/// no register, else the list of the values (`&term` expressions) kept.
+fn saved_term(saved_vals: &[TokenStream]) -> TokenStream {
+    if saved_vals.is_empty() {
+        quote!(Term::NIL)
+    } else {
+        quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
+    }
 }
