@@ -61,7 +61,9 @@ impl Clone for Val {
     #[inline]
     fn clone(&self) -> Val {
         // One test of the variant each (a `match` decodes the niche of
-        // the list's tag first: twice the instructions).
+        // the list's tag first: twice the instructions). The `matches!`
+        // before each `if let` is deliberate: without it `list_search_8`
+        // takes 148.5 instructions a transition instead of 144.4.
         if matches!(self, Val::Sym(_)) {
             if let Val::Sym(a) = self {
                 return Val::Sym(*a);

@@ -563,12 +563,7 @@ impl Gen<'_> {
             if !saved.contains(&r) {
                 continue; // the exit arcs do not read it
             }
-            let oty = callee
-                .outputs
-                .get(k)
-                .cloned()
-                .flatten()
-                .ok_or("an output argument of a parameter that is not an output")?;
+            let oty = output_ty(callee, k)?;
             let rty = d.types[ix].regs[r as usize].ty.clone();
             let o = format_ident!("out{}", k);
             let rr = reg(r);
@@ -748,12 +743,7 @@ impl Gen<'_> {
         for &r in saved.iter() {
             let rr = reg(r);
             if let Some(&(k, _)) = outs.iter().find(|&&(_, o)| o == r) {
-                let oty = callee
-                    .outputs
-                    .get(k)
-                    .cloned()
-                    .flatten()
-                    .ok_or("an output argument of a parameter that is not an output")?;
+                let oty = output_ty(callee, k)?;
                 let o = format_ident!("out{}", k);
                 let rt = rust_ty(&oty)?;
                 loads.push(quote! {
@@ -1284,6 +1274,16 @@ pub(super) fn slot_final(d: &Dm, k: usize) -> bool {
         }
     }
     any
+}
+
+/// The type of the callee's output parameter `k` (the slot `out<k>`).
+fn output_ty(callee: &Dm, k: usize) -> N<Ty> {
+    callee
+        .outputs
+        .get(k)
+        .cloned()
+        .flatten()
+        .ok_or_else(|| "an output argument of a parameter that is not an output".to_string())
 }
 
 /// The output slots of a callee's frame, empty (`out<i>: None`).
