@@ -30,6 +30,13 @@
 #   LEGACY_TASKS         a directory keeping the compiled tasks (legacy_task.sh)
 #   CONFORMANCE_TIMEOUT  seconds per run (default 120)
 #   CONFORMANCE_KEEP=1   keep the work directory and print its path
+#   LEGACY_DATE          the clock every run starts at, when `faketime`
+#                        (libfaketime) is on PATH: default a Monday,
+#                        "2027-06-07 20:00:00" UTC; `now` runs on the real
+#                        clock. The original's own `time` task fails on a
+#                        Sunday (its user function `hora` looks up a weekday
+#                        7 that its table lacks) whatever we do; a fixed clock
+#                        gives both sides the same day and hour.
 #
 # Usage: tests/conformance/legacy_apps.sh [APP/TASK]...   (default: all)
 # Prints one line per task and KB mode (`APP/TASK kb=MODE: agree (N
@@ -41,6 +48,12 @@
 # (the fairer figure on a loaded machine). Exit status: 0 when all agree
 # (or skipped), 1 otherwise.
 set -u
+# Every run (the original's and ours) on one fixed clock, when we can.
+if [ -z "${SITLOG_FIXED_CLOCK:-}" ] && [ "${LEGACY_DATE:-}" != now ] &&
+    command -v faketime >/dev/null 2>&1; then
+    export SITLOG_FIXED_CLOCK=1
+    exec faketime "${LEGACY_DATE:-2027-06-07 20:00:00}" bash "$0" "$@"
+fi
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
