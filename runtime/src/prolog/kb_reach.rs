@@ -142,7 +142,7 @@ impl T {
         }
     }
 
-    fn all_vars(&self) -> Vec<u32> {
+    pub(super) fn all_vars(&self) -> Vec<u32> {
         let mut out = Vec::new();
         self.vars(&mut out);
         out

@@ -252,12 +252,23 @@ impl NativeState {
             let w: Vec<String> = (0..all.len()).map(|i| format!("W{i}")).collect();
             let mut legacy = String::new();
             write_atom(&mut legacy, legacy_name(key.0));
+            // The handles looked for inline, as a wrapper does: a service
+            // of the layer calls others (and itself) by their served name,
+            // so this runs at each of those calls once KB terms are left
+            // to the layer.
+            let any_handle: Vec<String> = all
+                .iter()
+                .map(|x| format!("nonvar({x}), {x} = '$kb'(_)"))
+                .collect();
             format!(
-                " ; '$sitlog_kb_terms'([{}], [{}]), {}({})",
+                " ; ( {} ) -> '$sitlog_kb_terms'([{}], [{}]), {}({}) ; {}({})",
+                any_handle.join(" ; "),
                 all.join(","),
                 w.join(","),
                 legacy,
-                w.join(",")
+                w.join(","),
+                legacy,
+                all.join(",")
             )
         };
         for (q, arity) in &self.queries {
@@ -313,7 +324,7 @@ impl NativeState {
                     if *save {
                         format!("('$sitlog_kb_terms'([KB], [T]), {legacy}(T))")
                     } else {
-                        format!("(bb_put('$sitlog_kb_off', true), {legacy}(KB))")
+                        format!("('$sitlog_kb_set_off', {legacy}(KB))")
                     }
                 ),
                 (*p, 1),

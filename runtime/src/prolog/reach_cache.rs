@@ -1,9 +1,11 @@
 //! The KB-reach analysis once per tree (`--legacy-kb native`): its result
 //! ([`Reach`]) kept in a file of the cache directory, named by a hash of
 //! the analysis' whole input (every clause and directive as the analysis
-//! sees it, the served predicates) and of this build's analysis code, so
-//! the tasks of one application, which read the same layer and the same
-//! files, analyse them once.
+//! sees it: a head's variables, not its atoms, which it never looks at;
+//! the served predicates) and of this build's analysis code, so the tasks
+//! of one application, which read the same layer and the same files,
+//! analyse them once (wherever the tree is: the `getenv` fact naming it
+//! is a head).
 //!
 //! Invariant: a cached result is used only for the very input it was
 //! computed from. The file repeats the 128-bit key in its first line and
@@ -112,9 +114,15 @@ fn put_clause(buf: &mut Vec<u8>, c: &Clause) {
         None => buf.push(0),
     }
     put_num(buf, c.vars);
+    // Of a head, the analysis looks only at each argument's variables (its
+    // atoms, a fact's file names say, are no part of the input).
     put_num(buf, c.head.len());
     for t in &c.head {
-        put_t(buf, t);
+        let vs = t.all_vars();
+        put_num(buf, vs.len());
+        for v in vs {
+            buf.extend_from_slice(&v.to_le_bytes());
+        }
     }
     match &c.body {
         Some(b) => {
