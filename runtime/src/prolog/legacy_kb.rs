@@ -253,9 +253,9 @@ impl NativeState {
             let mut legacy = String::new();
             write_atom(&mut legacy, legacy_name(key.0));
             // The handles looked for inline, as a wrapper does: a service
-            // of the layer calls others (and itself) by their served name,
-            // so this runs at each of those calls once KB terms are left
-            // to the layer.
+            // of the layer may call others (or itself) by their served
+            // name, so this may run at each of those calls once KB terms
+            // are left to the layer.
             let any_handle: Vec<String> = all
                 .iter()
                 .map(|x| format!("nonvar({x}), {x} = '$kb'(_)"))
