@@ -259,7 +259,8 @@ pub fn task_setup(
 
 /// `--legacy-kb native`: the original's KB layer served by our KB
 /// (`sitlog-kb`): the services and updates the KB crate has, and the KB
-/// loads and saves of the layer (see `sitlog_runtime::prolog::NativeKb`).
+/// loads and saves of the layer (see `sitlog_runtime::prolog::NativeKb`);
+/// the KB-reach analysis kept in the cache directory (`kb_reach/`).
 pub fn native_kb() -> sitlog_runtime::prolog::NativeKb {
     use sitlog_kb::{SERVICES, UPDATES};
     use std::sync::{Arc, Mutex};
@@ -293,6 +294,7 @@ pub fn native_kb() -> sitlog_runtime::prolog::NativeKb {
             .iter()
             .map(|u| (u.name.to_owned(), u.arity))
             .collect(),
+        reach_cache: sitlog_runtime::prolog::reach_cache_dir(),
     }
 }
 

@@ -393,10 +393,21 @@ fn runs_an_application_of_the_original_unmodified() {
         .arg(&script)
         .arg(root.join("apps/all"))
         .env_remove("SITLOG_HOME")
+        .env("SITLOGC_CACHE_DIR", root.join("cache"))
         .output()
         .unwrap();
     let native_err = String::from_utf8_lossy(&native.stderr);
     assert_eq!(native.status.code(), Some(0), "{native_err}");
+    // The KB-reach analysis was kept for the next task of this tree: one
+    // file, its key in its first line.
+    let cached: Vec<_> = std::fs::read_dir(root.join("cache/kb_reach"))
+        .unwrap()
+        .map(|e| std::fs::read_to_string(e.unwrap().path()).unwrap())
+        .collect();
+    assert!(
+        cached.len() == 1 && cached[0].starts_with("sitlog-kb-reach-1 "),
+        "{cached:?}"
+    );
     assert!(native_err.contains("W0232"), "{native_err}");
     assert_eq!(lines(&native_err, "Golem says: "), said, "{native_err}");
     assert_eq!(
@@ -543,6 +554,7 @@ fn a_kb_that_sitlog_kb_cannot_read_is_served_by_the_layer() {
         .current_dir(&root)
         .args(["run", "apps/kb", "--legacy", "--legacy-kb", "native"])
         .env_remove("SITLOG_HOME")
+        .env("SITLOGC_CACHE_DIR", root.join("cache"))
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);

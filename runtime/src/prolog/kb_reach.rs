@@ -30,12 +30,24 @@
 //! cannot see what is bound later, unless the code uses coroutines) makes
 //! the result [`Reach::top`]: every predicate may be reached.
 //!
-//! Two results: the positions reached (flow-insensitive: every binding of
-//! a clause at once) and the *inputs*, positions that may hold a handle
-//! when the predicate is called, found left to right as above (all at once
-//! where the files use coroutines); a wrapper looks only at the inputs. The
-//! fixpoint looks again only at the clauses a handle can start in (a
-//! producer, an unknown goal) or that name a predicate a handle reaches.
+//! Calls are followed through each predicate's *summary*, whatever its
+//! callers give it (a first fixpoint over every clause, flow-insensitive):
+//! which of its argument positions it may make share (unify any part of
+//! one with any part of another) and which may hold a handle it makes
+//! itself (a producer, an unknown goal, a callee's). At a call, the
+//! arguments of positions that may share are unified and those it makes a
+//! handle in are reached; so a predicate that only passes handles through
+//! (a list utility given a KB by one caller and a character list by
+//! another) does not carry one caller's handle to the other's arguments.
+//!
+//! Two results: the *inputs*, positions that may hold a handle when the
+//! predicate is called, found left to right as above (all at once where
+//! the files use coroutines), and the positions reached (at the call or on
+//! success: an input, one the predicate makes, or one that may share with
+//! an input); a wrapper looks only at the inputs. The second fixpoint looks
+//! again only at the clauses a handle can start in (a producer, an unknown
+//! goal, a call of a predicate that makes one) or of a predicate called
+//! with one.
 //!
 //! `predsort/3` calls its closure on the list's elements, and `M:G` is
 //! the goal `G`. Not covered (a hole, found in review): a handle's text
@@ -130,7 +142,7 @@ impl T {
         }
     }
 
-    fn all_vars(&self) -> Vec<u32> {
+    pub(super) fn all_vars(&self) -> Vec<u32> {
         let mut out = Vec::new();
         self.vars(&mut out);
         out
@@ -587,34 +599,69 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
         })
         .collect();
     let coroutines = fl.coroutines;
-    // Per clause: its head's variables, the predicates it names, whether a
-    // handle can start in it. A clause with no start and no predicate a
-    // handle reaches yet has nothing to give (most of them).
+    // Each predicate's summary (what a call of it does to its arguments,
+    // whatever the caller gives): which argument positions it may unify
+    // with one another (structure-insensitive: sharing any part), and
+    // which may hold a handle it makes itself (a producer, an unknown
+    // goal, a callee's). A fixpoint over every clause: a predicate that
+    // only passes handles through (a list utility called on a KB by one
+    // caller and on a character list by another) does not mix its callers.
+    let mut sums: HashMap<(Atom, usize), Summary> = HashMap::new();
     let heads: Vec<Vec<Vec<u32>>> = program
         .clauses
         .iter()
         .map(|c| c.head.iter().map(T::all_vars).collect())
         .collect();
+    loop {
+        let mut changed = false;
+        for (n, (c, goals)) in program.clauses.iter().zip(&flat).enumerate() {
+            let mut cl = Classes::new(c.vars);
+            apply_all(&mut cl, goals, &sums);
+            let Some(k) = c.key else { continue };
+            let head = &heads[n];
+            let s = sums.entry(k).or_insert_with(|| Summary::new(k.1));
+            for i in 0..head.len() {
+                if !s.gen[i] && cl.any(&head[i]) {
+                    s.gen[i] = true;
+                    changed = true;
+                }
+                for j in 0..i {
+                    if s.same(i, j) {
+                        continue;
+                    }
+                    let shared = head[i].iter().any(|&a| {
+                        let ra = cl.find(a);
+                        head[j].iter().any(|&b| cl.find(b) == ra)
+                    });
+                    if shared {
+                        s.join(i, j);
+                        changed = true;
+                    }
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let gives = |k: &(Atom, usize)| sums.get(k).is_some_and(|s| s.gen.iter().any(|&g| g));
+    // Per clause: the predicates it names, whether a handle can start in
+    // it (a producer, an unknown goal, a callee that makes one). A clause
+    // with no start and no predicate called with a handle yet has nothing
+    // to give (most of them).
     let names: Vec<Vec<(Atom, usize)>> = program
         .clauses
         .iter()
-        .zip(&flat)
-        .map(|(c, goals)| {
-            c.key
-                .into_iter()
-                .chain(goals.iter().filter_map(|g| match g {
-                    Goal::Call(k, _) => Some(*k),
-                    _ => None,
-                }))
-                .collect()
-        })
+        .map(|c| c.key.into_iter().collect())
         .collect();
     let starts: Vec<bool> = flat
         .iter()
         .map(|goals| {
-            goals
-                .iter()
-                .any(|g| matches!(g, Goal::Source(_) | Goal::Unknown(_)))
+            goals.iter().any(|g| match g {
+                Goal::Source(_) | Goal::Unknown(_) => true,
+                Goal::Call(k, _) => gives(k),
+                _ => false,
+            })
         })
         .collect();
     let mut live: HashSet<(Atom, usize)> = HashSet::new();
@@ -626,49 +673,16 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                 continue;
             }
             let head = &heads[n];
-            // Flow-insensitive: every binding of the clause at once, for
-            // what may hold a handle at any time.
-            let mut cl = Classes::new(c.vars);
-            for g in goals {
-                match g {
-                    Goal::Unify(vs, _) | Goal::Escape(vs) => cl.union(vs),
-                    Goal::Unknown(vs) => {
-                        cl.union(vs);
-                        cl.reach(vs);
-                    }
-                    Goal::Source(vs) => cl.reach(vs),
-                    Goal::Call(..) | Goal::Look(..) => {}
-                }
-            }
-            if let Some(k) = c.key {
-                for (i, vs) in head.iter().enumerate() {
-                    if reach.positions.contains(&(k.0, k.1, i)) {
-                        cl.reach(vs);
-                    }
-                }
-            }
-            for g in goals {
-                if let Goal::Call(k, args) = g {
-                    for (i, vs) in args.iter().enumerate() {
-                        if reach.positions.contains(&(k.0, k.1, i)) {
-                            cl.reach(vs);
+            // With coroutines, a goal may run after a later binding: every
+            // binding of the clause at once.
+            let mut all = Classes::new(c.vars);
+            if coroutines {
+                apply_all(&mut all, goals, &sums);
+                if let Some(k) = c.key {
+                    for (i, vs) in head.iter().enumerate() {
+                        if reach.inputs.contains(&(k.0, k.1, i)) {
+                            all.reach(vs);
                         }
-                    }
-                }
-            }
-            for g in goals {
-                if let Goal::Call(k, args) = g {
-                    for (i, vs) in args.iter().enumerate() {
-                        if cl.any(vs) && reach.positions.insert((k.0, k.1, i)) {
-                            changed = true;
-                        }
-                    }
-                }
-            }
-            if let Some(k) = c.key {
-                for (i, vs) in head.iter().enumerate() {
-                    if cl.any(vs) && reach.positions.insert((k.0, k.1, i)) {
-                        changed = true;
                     }
                 }
             }
@@ -683,7 +697,7 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                     }
                 }
             }
-            let cl = if coroutines { &mut cl } else { &mut seq };
+            let cl = if coroutines { &mut all } else { &mut seq };
             for g in goals {
                 match g {
                     Goal::Unify(vs, key) => {
@@ -712,11 +726,7 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
                                 changed = true;
                             }
                         }
-                        for (i, vs) in args.iter().enumerate() {
-                            if reach.positions.contains(&(k.0, k.1, i)) {
-                                cl.reach(vs);
-                            }
-                        }
+                        apply_call(cl, k, args, &sums);
                     }
                     Goal::Unknown(vs) => {
                         if cl.any(vs) {
@@ -732,14 +742,94 @@ pub(super) fn analyse(program: &Program<'_>) -> Reach {
             }
         }
         if !changed {
-            return reach;
+            break;
         }
-        live = reach
-            .positions
-            .iter()
-            .chain(&reach.inputs)
-            .map(|&(n, a, _)| (n, a))
-            .collect();
+        live = reach.inputs.iter().map(|&(n, a, _)| (n, a)).collect();
+    }
+    // The positions that may hold a handle at the call or on success: an
+    // input, one the predicate makes, or one that shares with an input.
+    for (k, s) in &sums {
+        for i in 0..k.1 {
+            let held =
+                s.gen[i] || (0..k.1).any(|j| s.same(i, j) && reach.inputs.contains(&(k.0, k.1, j)));
+            if held {
+                reach.positions.insert((k.0, k.1, i));
+            }
+        }
+    }
+    for &(n, a, i) in &reach.inputs {
+        reach.positions.insert((n, a, i));
+    }
+    reach
+}
+
+/// What a call of a predicate does to its arguments (see [`analyse`]).
+struct Summary {
+    /// Union-find over the argument positions: those that may share.
+    parent: Vec<usize>,
+    /// Positions that may hold a handle the predicate makes.
+    gen: Vec<bool>,
+}
+
+impl Summary {
+    fn new(arity: usize) -> Summary {
+        Summary {
+            parent: (0..arity).collect(),
+            gen: vec![false; arity],
+        }
+    }
+    fn root(&self, mut i: usize) -> usize {
+        while self.parent[i] != i {
+            i = self.parent[i];
+        }
+        i
+    }
+    fn same(&self, i: usize, j: usize) -> bool {
+        self.root(i) == self.root(j)
+    }
+    fn join(&mut self, i: usize, j: usize) {
+        let (a, b) = (self.root(i), self.root(j));
+        if a != b {
+            self.parent[a] = b;
+        }
+    }
+}
+
+/// A call of `k` with `args` (each argument's variables): the arguments it
+/// may make share are unified, those it may give a handle are reached.
+fn apply_call(
+    cl: &mut Classes,
+    k: &(Atom, usize),
+    args: &[Vec<u32>],
+    sums: &HashMap<(Atom, usize), Summary>,
+) {
+    let Some(s) = sums.get(k) else { return };
+    for i in 0..args.len().min(s.gen.len()) {
+        if s.gen[i] {
+            cl.reach(&args[i]);
+        }
+        let r = s.root(i);
+        if r != i && r < args.len() {
+            let mut both = args[i].clone();
+            both.extend(&args[r]);
+            cl.union(&both);
+        }
+    }
+}
+
+/// Every binding of a clause's body at once (flow-insensitive).
+fn apply_all(cl: &mut Classes, goals: &[Goal], sums: &HashMap<(Atom, usize), Summary>) {
+    for g in goals {
+        match g {
+            Goal::Unify(vs, _) | Goal::Escape(vs) => cl.union(vs),
+            Goal::Unknown(vs) => {
+                cl.union(vs);
+                cl.reach(vs);
+            }
+            Goal::Source(vs) => cl.reach(vs),
+            Goal::Look(..) => {}
+            Goal::Call(k, args) => apply_call(cl, k, args, sums),
+        }
     }
 }
 
@@ -831,6 +921,32 @@ mod tests {
         assert_eq!(at(&r, "rest", 3), Vec::<usize>::new());
         // A built-in passes it on.
         assert!(r.undefined.contains(&(Atom::intern("write"), 1)));
+    }
+
+    #[test]
+    fn a_predicate_that_passes_a_handle_through_does_not_mix_its_callers() {
+        // `app/3` gets a KB from one caller and characters from another
+        // (the original's `append/3` in its KB updates and in its reader):
+        // the reader is not reached, the KB user's callee is.
+        let r = reached(
+            "upd(L) :- open_kb(KB), app(KB, [x], New), show(New, L).\nshow(_, _).\n\
+             app([], L, L).\napp([H|T], L, [H|R]) :- app(T, L, R).\n\
+             conv(A, T) :- atom_chars(A, Cs), app(Cs, ['.'], Cs1), parse(Cs1, T).\nparse(_, _).\n\
+             rd(S, T) :- get_char(S, C), conv(C, T).\n",
+        );
+        assert!(!r.top);
+        assert_eq!(at(&r, "app", 3), vec![0]);
+        assert_eq!(at(&r, "show", 2), vec![0]);
+        assert_eq!(at(&r, "parse", 2), Vec::<usize>::new());
+        assert_eq!(at(&r, "conv", 2), Vec::<usize>::new());
+        assert_eq!(at(&r, "rd", 2), Vec::<usize>::new());
+        // `pair/2` makes its arguments share: a handle bound into one
+        // after the call reaches what the other is given to.
+        let r = reached(
+            "pair(X, Y) :- X = f(Z), Y = g(Z).\nshow(_).\n\
+             late :- pair(A, B), open_kb(KB), A = f(KB), show(B).\n",
+        );
+        assert_eq!(at(&r, "show", 1), vec![0]);
     }
 
     #[test]

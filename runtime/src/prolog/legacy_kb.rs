@@ -13,6 +13,7 @@
 //! run as written.
 
 use super::kb_reach::{self, Clause, Numbering, Served, T};
+use super::reach_cache;
 use super::translate::{write_atom, Prepared};
 use crate::store::Store;
 use crate::term::Term;
@@ -56,6 +57,10 @@ pub struct NativeKb {
     pub queries: Vec<(String, usize)>,
     /// Updates: name and arity without the two KBs.
     pub updates: Vec<(String, usize)>,
+    /// Where the KB-reach analysis keeps its results, one file per input
+    /// (`reach_cache`; [`reach_cache_dir`](super::reach_cache_dir) is the
+    /// usual place): the tasks of one tree analyse it once. `None`: no cache.
+    pub reach_cache: Option<std::path::PathBuf>,
 }
 
 /// What becomes of a clause of the natively served legacy layer.
@@ -84,6 +89,8 @@ pub(super) struct NativeState {
     clauses: Vec<Clause>,
     /// Predicates the application's files define.
     app_defined: HashSet<(Atom, usize)>,
+    /// The analysis' cache directory ([`NativeKb::reach_cache`]).
+    reach_cache: Option<std::path::PathBuf>,
 }
 
 /// A predicate of the layer that a KB handle can reach, wrapped: its
@@ -119,6 +126,7 @@ impl NativeState {
             in_layer: true,
             clauses: Vec::new(),
             app_defined: HashSet::new(),
+            reach_cache: n.reach_cache.clone(),
         }
     }
 
@@ -244,12 +252,23 @@ impl NativeState {
             let w: Vec<String> = (0..all.len()).map(|i| format!("W{i}")).collect();
             let mut legacy = String::new();
             write_atom(&mut legacy, legacy_name(key.0));
+            // The handles looked for inline, as a wrapper does: a service
+            // of the layer may call others (or itself) by their served
+            // name, so this may run at each of those calls once KB terms
+            // are left to the layer.
+            let any_handle: Vec<String> = all
+                .iter()
+                .map(|x| format!("nonvar({x}), {x} = '$kb'(_)"))
+                .collect();
             format!(
-                " ; '$sitlog_kb_terms'([{}], [{}]), {}({})",
+                " ; ( {} ) -> '$sitlog_kb_terms'([{}], [{}]), {}({}) ; {}({})",
+                any_handle.join(" ; "),
                 all.join(","),
                 w.join(","),
                 legacy,
-                w.join(",")
+                w.join(","),
+                legacy,
+                all.join(",")
             )
         };
         for (q, arity) in &self.queries {
@@ -305,7 +324,7 @@ impl NativeState {
                     if *save {
                         format!("('$sitlog_kb_terms'([KB], [T]), {legacy}(T))")
                     } else {
-                        format!("(bb_put('$sitlog_kb_off', true), {legacy}(KB))")
+                        format!("('$sitlog_kb_set_off', {legacy}(KB))")
                     }
                 ),
                 (*p, 1),
@@ -334,10 +353,11 @@ impl NativeState {
                 ..Default::default()
             }
         } else {
-            kb_reach::analyse(&kb_reach::Program {
+            let program = kb_reach::Program {
                 clauses: &self.clauses,
                 served: &served,
-            })
+            };
+            reach_cache::analyse(&program, self.reach_cache.as_deref())
         };
         let mut wrapped = Vec::new();
         let mut unwrapped = Vec::new();

@@ -63,12 +63,14 @@ mod engine;
 mod kb_reach;
 mod legacy_kb;
 mod permissions;
+mod reach_cache;
 mod swi;
 mod translate;
 
 pub use consult::{PrologLoadError, PrologSource};
 pub use engine::{PrologFunctions, PrologOptions, NO_INFERENCE_LIMIT};
 pub use legacy_kb::{KbHost, NativeKb};
+pub use reach_cache::default_dir as reach_cache_dir;
 pub use swi::{PRELUDE, SWI_PREDICATES, SWI_RENAMED};
 pub use translate::read_reply;
 

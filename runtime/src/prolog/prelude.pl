@@ -781,11 +781,15 @@ get_last_situation(History, S) :-
     nonvar(KB),
     (   KB = '$kb'(_)
     ->  true
-    ;   catch(bb_get('$sitlog_kb_off', true), _, fail)
+    ;   '$sitlog_kb_off'
     ->  fail
     ;   catch('$sitlog_kb_handle'(KB, _), error(kb_error(_), native_kb),
-              ( bb_put('$sitlog_kb_off', true), fail ))
+              ( '$sitlog_kb_set_off', fail ))
     ).
+% The flag: a fact (one call to test it, where a global variable needs a
+% catch/3 until it is set); served services test it at every call.
+:- dynamic('$sitlog_kb_off'/0).
+'$sitlog_kb_set_off' :- ( '$sitlog_kb_off' -> true ; assertz('$sitlog_kb_off') ).
 
 '$sitlog_kb_query'(Name, Args, KB, Answer) :-
     '$sitlog_kb_handle'(KB, H),
