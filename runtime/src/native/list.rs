@@ -120,6 +120,21 @@ impl<T> List<T> {
         }
     }
 
+    /// [`List::split_first`] of a list its holder keeps non-empty: a
+    /// situation's variant that holds the list `[P|Ps]` its id's pattern
+    /// takes apart, `P` read in place and `Ps` made at each visit
+    /// (`codegen::native`'s cell fields).
+    ///
+    /// # Panics
+    /// On `[]` (the holder's invariant broken).
+    #[inline]
+    pub fn head_tail(&self) -> (&T, List<T>) {
+        match self.split_first() {
+            Some(parts) => parts,
+            None => unreachable!("a cell field holds a non-empty list"),
+        }
+    }
+
     /// The list without its first element (shared), `None` for `[]`.
     pub fn tail(&self) -> Option<List<T>> {
         self.split_first().map(|(_, rest)| rest)
@@ -289,6 +304,8 @@ mod tests {
             assert_eq!(*l, whole);
             let (h, t) = l.split_first().unwrap();
             assert_eq!((*h, t.len()), (1, 2));
+            let (h2, t2) = l.head_tail();
+            assert_eq!((*h2, t2), t);
             assert_eq!(t.tail().unwrap().tail().unwrap(), List::nil());
         }
         assert_ne!(whole, List::from_slice(&[1, 2]));
