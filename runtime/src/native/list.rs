@@ -127,11 +127,23 @@ impl<T> List<T> {
     ///
     /// # Panics
     /// On `[]` (the holder's invariant broken).
-    #[inline]
+    #[inline(always)]
     pub fn head_tail(&self) -> (&T, List<T>) {
-        match self.split_first() {
-            Some(parts) => parts,
-            None => unreachable!("a cell field holds a non-empty list"),
+        match &self.0 {
+            Shape::Slice { items, start } => {
+                let i = *start as usize;
+                let rest = if i + 1 < items.len() {
+                    List(Shape::Slice {
+                        items: Rc::clone(items),
+                        start: *start + 1,
+                    })
+                } else {
+                    List::nil()
+                };
+                (&items[i], rest)
+            }
+            Shape::Cons(cell) => (&cell.head, cell.tail.clone()),
+            Shape::Nil => empty_cell(),
         }
     }
 
@@ -163,6 +175,13 @@ impl<T> List<T> {
             _ => false,
         }
     }
+}
+
+/// [`List::head_tail`] of `[]`: a holder's invariant broken.
+#[cold]
+#[inline(never)]
+fn empty_cell() -> ! {
+    unreachable!("a cell field holds a non-empty list")
 }
 
 impl<T> Clone for List<T> {

@@ -644,7 +644,8 @@ struct Dm<'a> {
 }
 
 /// A situation whose id takes apart a list `[P|Ps]` (`P` and `Ps`
-/// variables, each once in the id, `P` of the list's element type) and
+/// variables, each once in the id, `P` of the list's element type, one
+/// held as a `Val`: `ground` or a compound) and
 /// that is neither final nor recursive holds the list itself in its
 /// variant, one field `k<Ps>` (never empty), not `P` and `Ps`: a visit
 /// reads `P` in place (`&T`, [`List::head_tail`]) where it only compares,
@@ -1267,7 +1268,10 @@ impl Gen<'_> {
             let regs = &d.types[ix].regs;
             let ty = regs.get(tail as usize)?.ty.clone();
             match &ty {
-                Ty::List(e) if **e != Ty::Never && regs.get(head as usize)?.ty == **e => {}
+                // An element copied for nothing (an atom, an int) gains nothing
+                // held this way: measured, `list<atom>` lost 14 instructions a
+                // visit (`performance.md`).
+                Ty::List(e) if held_as_val(e) && regs.get(head as usize)?.ty == **e => {}
                 _ => return None,
             }
             rust_ty(&ty).ok()?;
@@ -3480,7 +3484,9 @@ impl Gen<'_> {
         val: bool,
         steps: &mut Vec<MatchStep>,
     ) -> Ident {
-        let k = self.nat_cell(d, j).map_or_else(|| format_ident!("k"), |c| c.name());
+        let k = self
+            .nat_cell(d, j)
+            .map_or_else(|| format_ident!("k"), |c| c.name());
         let x = format_ident!("f{}", k);
         let e = &v.e;
         let movable = d.movable.borrow();
@@ -3874,7 +3880,8 @@ fn cell_head(ts: &TokenStream, h: &Ident) -> Option<TokenStream> {
                     out.push(T::Ident(x));
                 }
                 T::Group(g) => {
-                    let mut ng = Group::new(g.delimiter(), rewrite(g.stream().into_iter().collect(), h));
+                    let mut ng =
+                        Group::new(g.delimiter(), rewrite(g.stream().into_iter().collect(), h));
                     ng.set_span(g.span());
                     out.push(T::Group(ng));
                 }
