@@ -324,7 +324,7 @@ mod tests {
             let (h, t) = l.split_first().unwrap();
             assert_eq!((*h, t.len()), (1, 2));
             let (h2, t2) = l.head_tail();
-            assert_eq!((*h2, t2), t);
+            assert_eq!((*h2, &t2), (*h, &t));
             assert_eq!(t.tail().unwrap().tail().unwrap(), List::nil());
         }
         assert_ne!(whole, List::from_slice(&[1, 2]));
