@@ -152,6 +152,14 @@
 //! that its visit reads only by reference (a comparison, a selected value)
 //! is bound to it where it lies, not cloned (`by_ref_loads`).
 //!
+//! A situation (neither final nor recursive) whose id takes apart a list of
+//! `Val`s by `[P|Ps]` holds the list itself, one field (`S2 { k5:
+//! List<Val> }`, [`CellField`]): the visit reads `P` in place and makes `Ps`
+//! (`List::head_tail`), a next situation `try(Ps)` moves `Ps` into the
+//! variant after testing it non-empty (a `Val`: `Val::non_empty_list`, an
+//! improper list handed to the machine as before); nothing is split at the
+//! selection, no element cloned or dropped per visit.
+//!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 
 use super::Gen;
