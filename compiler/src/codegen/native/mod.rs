@@ -3127,7 +3127,7 @@ impl Gen<'_> {
             let t = reg(c.tail);
             let of = |a: &V| pipe::mentions(&a.e, &t);
             let own: Vec<usize> = (0..args.len())
-                .filter(|&i| moved(&args[i]).to_string() == t.to_string())
+                .filter(|&i| t == moved(&args[i]).to_string())
                 .collect();
             if let [i] = own[..] {
                 if args.iter().map(of).sum::<usize>() == 1 {
