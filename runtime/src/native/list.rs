@@ -120,6 +120,33 @@ impl<T> List<T> {
         }
     }
 
+    /// [`List::split_first`] of a list its holder keeps non-empty: a
+    /// situation's variant that holds the list `[P|Ps]` its id's pattern
+    /// takes apart, `P` read in place and `Ps` made at each visit
+    /// (`codegen::native`'s cell fields).
+    ///
+    /// # Panics
+    /// On `[]` (the holder's invariant broken).
+    #[inline(always)]
+    pub fn head_tail(&self) -> (&T, List<T>) {
+        match &self.0 {
+            Shape::Slice { items, start } => {
+                let i = *start as usize;
+                let rest = if i + 1 < items.len() {
+                    List(Shape::Slice {
+                        items: Rc::clone(items),
+                        start: *start + 1,
+                    })
+                } else {
+                    List::nil()
+                };
+                (&items[i], rest)
+            }
+            Shape::Cons(cell) => (&cell.head, cell.tail.clone()),
+            Shape::Nil => empty_cell(),
+        }
+    }
+
     /// The list without its first element (shared), `None` for `[]`.
     pub fn tail(&self) -> Option<List<T>> {
         self.split_first().map(|(_, rest)| rest)
@@ -148,6 +175,13 @@ impl<T> List<T> {
             _ => false,
         }
     }
+}
+
+/// [`List::head_tail`] of `[]`: a holder's invariant broken.
+#[cold]
+#[inline(never)]
+fn empty_cell() -> ! {
+    unreachable!("a cell field holds a non-empty list")
 }
 
 impl<T> Clone for List<T> {
@@ -289,6 +323,8 @@ mod tests {
             assert_eq!(*l, whole);
             let (h, t) = l.split_first().unwrap();
             assert_eq!((*h, t.len()), (1, 2));
+            let (h2, t2) = l.head_tail();
+            assert_eq!((*h2, &t2), (*h, &t));
             assert_eq!(t.tail().unwrap().tail().unwrap(), List::nil());
         }
         assert_ne!(whole, List::from_slice(&[1, 2]));

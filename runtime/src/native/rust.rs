@@ -285,6 +285,18 @@ impl Val {
         }
     }
 
+    /// The non-empty proper list this is (shared, not copied), `None`
+    /// for anything else: a `ground` value selecting an id whose list
+    /// pattern `[P|Ps]` is held as the list itself (`codegen::native`'s
+    /// cell fields), as [`Val::split_proper`] would split it.
+    #[inline]
+    pub fn non_empty_list(&self) -> Option<&List<Val>> {
+        match self {
+            Val::List(l) if !l.is_empty() => Some(l),
+            _ => None,
+        }
+    }
+
     /// Whether this is a cell whose tail is not a list (`[a|b]`, built by
     /// [`Val::cons`]): what [`Val::split_list`] splits and
     /// [`Val::split_proper`] does not.
@@ -460,6 +472,7 @@ mod tests {
         assert!(!l.is_cell() && l.clone().into_list().is_some());
         let ab_cell = Val::cons(a.into_val(), b.into_val());
         assert!(ab_cell.is_cell() && ab_cell.split_proper().is_none());
+        assert!(ab_cell.non_empty_list().is_none() && nil.non_empty_list().is_none());
         assert!(ab_cell.split_list().is_some() && ab_cell.into_list().is_none());
         assert!(nil.split_proper().is_none() && !nil.is_cell());
         let c = <Val as Native>::from_term(&s, fa).expect("f(a, [1, 2])");

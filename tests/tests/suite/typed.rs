@@ -622,14 +622,18 @@ fn other_engineers_shapes_agree() {
     for main in ["rounds(3)", "rounds(x)", "rounds(2.5)"] {
         agree(app, &ir, main, "");
     }
-    // The list in the pipe: ints, atoms and mixed, the goal missing, an
-    // improper list and a partial one (the machine's), not a list.
+    // The list in the pipe: ints, atoms and mixed, compounds (the one
+    // found a compound: `next([N|Rest])` holds the list, `N` read in
+    // place), the goal missing, an improper list and a partial one (the
+    // machine's), not a list.
     let ir = interpreter("typed/shapes/d_pipe_list");
     let app = shapes::pipe_list::program();
     let _ = shapes::pipe_list::dm_look::run_native;
     for (main, in_arg) in [
         ("seek(3, 12)", "[3, 8, 12, 5]"),
         ("seek(2, b)", "[a, f(x), b]"),
+        ("seek(2, f(x))", "[a, f(x), b]"),
+        ("seek(1, g(1, [y]))", "[f(x), g(1, [y]), [z]]"),
         ("seek(2, z)", "[a, 1, [b]]"),
         ("seek(1, b)", "[a|b]"),
         ("seek(1, b)", "[a, b|_]"),

@@ -152,6 +152,14 @@
 //! that its visit reads only by reference (a comparison, a selected value)
 //! is bound to it where it lies, not cloned (`by_ref_loads`).
 //!
+//! A situation (neither final nor recursive) whose id takes apart a list of
+//! `Val`s by `[P|Ps]` holds the list itself, one field (`S2 { k5:
+//! List<Val> }`, [`CellField`]): the visit reads `P` in place and makes `Ps`
+//! (`List::head_tail`), a next situation `try(Ps)` moves `Ps` into the
+//! variant after testing it non-empty (a `Val`: `Val::non_empty_list`, an
+//! improper list handed to the machine as before); nothing is split at the
+//! selection, no element cloned or dropped per visit.
+//!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 
 use super::Gen;
@@ -512,6 +520,11 @@ enum MatchStep {
     SplitValList(TokenStream, Ident, Ident),
     /// The arguments of a `Val` that is `name/arity`, each a `Val`.
     ArgsVal(TokenStream, TokenStream, Literal, Vec<Ident>),
+    /// `[P|Ps]` of a [`CellField`]: the list itself (`let x = take;`)
+    /// when it is not empty, not split. `true`: a `Val` (a proper list,
+    /// cloned; an improper one handed to the machine, as
+    /// `SplitValList`).
+    Cell(TokenStream, Ident, TokenStream, bool),
     /// `let Some(NAME) = EXPR else { the machine selects }`: a value held
     /// wider than the field it binds (`ground` into an `atom` field),
     /// narrowed with a check ([`narrow`]). The pattern variable takes any
@@ -531,7 +544,8 @@ impl MatchStep {
             | MatchStep::SplitVal(v, ..)
             | MatchStep::SplitValList(v, ..)
             | MatchStep::Args(v, ..)
-            | MatchStep::ArgsVal(v, ..) => call::mentions(v, x),
+            | MatchStep::ArgsVal(v, ..)
+            | MatchStep::Cell(v, ..) => call::mentions(v, x),
         }
     }
 }
@@ -630,6 +644,40 @@ struct Dm<'a> {
     /// all): the pipe's conversion is only checked, no value kept
     /// ([`Gen::nat_pipe_in`]).
     pipe_unread: std::cell::Cell<bool>,
+    /// While a next situation is selected ([`Gen::nat_select`]): a
+    /// selected value (`(* v0)`, as text) that is the visit's own cell
+    /// tail (`Ps` of `[P|Ps]`, see [`CellField`]), moved (not cloned)
+    /// into a candidate that holds it as its cell, and the register.
+    movable: std::cell::RefCell<Option<(String, Ident)>>,
+}
+
+/// A situation whose id takes apart a list `[P|Ps]` (`P` and `Ps`
+/// variables, each once in the id, `P` of the list's element type, one
+/// held as a `Val`: `ground` or a compound) and
+/// that is neither final nor recursive holds the list itself in its
+/// variant, one field `k<Ps>` (never empty), not `P` and `Ps`: a visit
+/// reads `P` in place (`&T`, [`List::head_tail`]) where it only compares,
+/// selects on or clones it, and makes `Ps` (one `Rc` count, no element
+/// copied); a next situation `try(Ps)` selecting it moves `Ps` in whole
+/// (`Ps` tested non-empty, not split). Entered by the machine, the
+/// field is `List::cons(P, Ps)` of the two converted parts.
+///
+/// [`List::head_tail`]: sitlog_runtime::native::List::head_tail
+#[derive(Clone)]
+struct CellField {
+    head: Reg,
+    tail: Reg,
+    /// Where the list pattern is in the id.
+    path: Vec<usize>,
+    /// The list's type (the tail's).
+    ty: Ty,
+}
+
+impl CellField {
+    /// The variant's field.
+    fn name(&self) -> Ident {
+        format_ident!("k{}", self.tail)
+    }
 }
 
 impl Dm<'_> {
@@ -714,14 +762,46 @@ impl Gen<'_> {
                 continue;
             };
             let v = variant(ix);
-            let decls = fields
+            // The variant's fields: the id's variables, `P` and `Ps` of a
+            // cell one field (the list).
+            let cell = self.nat_cell(&d, ix);
+            let vfields: Vec<(Ident, Ty)> = fields
+                .iter()
+                .filter_map(|(r, ty)| match &cell {
+                    Some(c) if *r == c.head => None,
+                    Some(c) if *r == c.tail => Some((c.name(), c.ty.clone())),
+                    _ => Some((reg(*r), ty.clone())),
+                })
+                .collect();
+            let decls = vfields
                 .iter()
                 .map(|(r, ty)| {
-                    let (r, ty) = (reg(*r), rust_ty(ty)?);
+                    let ty = rust_ty(ty)?;
                     Ok(quote!(#r: #ty))
                 })
                 .collect::<N<Vec<_>>>()?;
-            let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
+            let names: Vec<Ident> = vfields.iter().map(|(r, _)| r.clone()).collect();
+            // A cell's `P` (a reference into the list) and `Ps`, for the
+            // id's arm and the visit.
+            let (id_pre, body) = match &cell {
+                Some(c) => {
+                    let (h, t, k) = (reg(c.head), reg(c.tail), c.name());
+                    let body = match cell_head(body, &h) {
+                        Some(body) => body,
+                        None => quote!(let #h = #h.clone(); #body),
+                    };
+                    (
+                        Some(quote!(let (#h, #t) = #k.head_tail(); let #t = &#t;)),
+                        quote!(let (#h, #t) = #k.head_tail(); #body),
+                    )
+                }
+                None => (None, body.clone()),
+            };
+            let body = &body;
+            let id = &match id_pre {
+                Some(pre) => quote!({ #pre #id }),
+                None => id.clone(),
+            };
             let s = &d.dm.situations[ix];
             let doc = format!(
                 " `{}` ({}, type `{}`)",
@@ -775,11 +855,12 @@ impl Gen<'_> {
             // The fields read in one call where it is one line (the
             // variant's field types say what each converts to).
             let path_ts = paths.iter().map(|(t, _)| t);
-            let (tuple, text) = match names.as_slice() {
+            let regs: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
+            let (tuple, text) = match regs.as_slice() {
                 [one] => (quote!((#one,)), format!("({one},)")),
                 _ => {
-                    let text: Vec<String> = names.iter().map(|n| n.to_string()).collect();
-                    (quote!((#(#names),*)), format!("({})", text.join(", ")))
+                    let text: Vec<String> = regs.iter().map(|n| n.to_string()).collect();
+                    (quote!((#(#regs),*)), format!("({})", text.join(", ")))
                 }
             };
             let parts = quote!(let #tuple = cx.id_parts(&[#(#path_ts),*])?;);
@@ -790,20 +871,35 @@ impl Gen<'_> {
             let in_one_call = (1..=8).contains(&fields.len())
                 && 16 + format!("let {text} = cx").len() <= 89
                 && 20 + call.len() <= 89;
+            let built = match &cell {
+                Some(c) => {
+                    let inits = fields.iter().filter(|(r, _)| *r != c.head).map(|(r, _)| {
+                        let rr = reg(*r);
+                        if *r == c.tail {
+                            let (k, h) = (c.name(), reg(c.head));
+                            quote!(#k: List::cons(#h, #rr))
+                        } else {
+                            quote!(#rr)
+                        }
+                    });
+                    quote!(Nat::#v { #(#inits),* })
+                }
+                None => quote!(Nat::#v { #(#names),* }),
+            };
             entries.push(if fields.is_empty() {
                 quote!(#ixl => { #pipe Nat::#v {} })
             } else if in_one_call {
                 quote!(#ixl => {
                     #parts
                     #pipe
-                    Nat::#v { #(#names),* }
+                    #built
                 })
             } else {
                 quote!(#ixl => {
                     let id = cx.selected()?;
                     #(#conv)*
                     #pipe
-                    Nat::#v { #(#names),* }
+                    #built
                 })
             });
         }
@@ -1079,6 +1175,7 @@ impl Gen<'_> {
             outs: std::cell::RefCell::new(outputs.iter().map(Option::is_some).collect()),
             pipe_in: std::cell::Cell::new(None),
             pipe_unread: std::cell::Cell::new(false),
+            movable: Default::default(),
         };
         d.hand = self.nat_hand(&d)?;
         // Each situation's code, given which others have native code (a
@@ -1148,6 +1245,81 @@ impl Gen<'_> {
             Init::IdPath(p) if **p == *path => Some(*r),
             _ => None,
         })
+    }
+
+    /// Situation `ix`'s [`CellField`], if it has one (the first list
+    /// pattern of its id that qualifies).
+    fn nat_cell(&self, d: &Dm, ix: usize) -> Option<CellField> {
+        if matches!(d.dm.situations[ix].kind, Kind::Final | Kind::Recursive) {
+            return None;
+        }
+        let id = self.nat_id_of(d, ix);
+        let mut vars = Vec::new();
+        let mut cells = Vec::new();
+        let mut path = Vec::new();
+        for (i, &a) in self.store.args(id).iter().enumerate() {
+            path.push(i);
+            self.nat_cells_in(a, &mut path, &mut vars, &mut cells);
+            path.pop();
+        }
+        let once = |v: u32| vars.iter().filter(|&&x| x == v).count() == 1;
+        cells.into_iter().find_map(|(path, h, t)| {
+            if h == t || !once(h) || !once(t) {
+                return None;
+            }
+            let reg_at = |k: usize| {
+                let mut p = path.clone();
+                p.push(k);
+                Self::nat_id_reg(d, ix, &p)
+            };
+            let (head, tail) = (reg_at(0)?, reg_at(1)?);
+            let regs = &d.types[ix].regs;
+            let ty = regs.get(tail as usize)?.ty.clone();
+            match &ty {
+                // An element copied for nothing (an atom, an int) gains nothing
+                // held this way: measured, `list<atom>` lost 14 instructions a
+                // visit (`performance.md`).
+                Ty::List(e) if held_as_val(e) && regs.get(head as usize)?.ty == **e => {}
+                _ => return None,
+            }
+            rust_ty(&ty).ok()?;
+            Some(CellField {
+                head,
+                tail,
+                path,
+                ty,
+            })
+        })
+    }
+
+    /// The variables of `t` (each occurrence) and its list patterns of two
+    /// variables `[H|T]` (path, `H`, `T`), for [`Gen::nat_cell`].
+    fn nat_cells_in(
+        &self,
+        t: Term,
+        path: &mut Vec<usize>,
+        vars: &mut Vec<u32>,
+        cells: &mut Vec<(Vec<usize>, u32, u32)>,
+    ) {
+        match self.store.value(t) {
+            Value::Var(v) => vars.push(v.index()),
+            Value::Compound(name, args) => {
+                let args = args.to_vec();
+                if let (true, [h, tl]) = (name == atoms::DOT, args.as_slice()) {
+                    if let (Value::Var(h), Value::Var(tl)) =
+                        (self.store.value(*h), self.store.value(*tl))
+                    {
+                        cells.push((path.clone(), h.index(), tl.index()));
+                    }
+                }
+                for (k, a) in args.into_iter().enumerate() {
+                    path.push(k);
+                    self.nat_cells_in(a, path, vars, cells);
+                    path.pop();
+                }
+            }
+            _ => {}
+        }
     }
 
     fn atom_native(&self, a: Atom) -> N<TokenStream> {
@@ -2949,6 +3121,22 @@ impl Gen<'_> {
                 quote!(let #n = &#e;)
             })
             .collect();
+        // The visit's own cell tail selected once: moved into a cell.
+        let mut movable = None;
+        if let Some(c) = self.nat_cell(d, cur) {
+            let t = reg(c.tail);
+            let of = |a: &V| pipe::mentions(&a.e, &t);
+            let own: Vec<usize> = (0..args.len())
+                .filter(|&i| t == moved(&args[i]).to_string())
+                .collect();
+            if let [i] = own[..] {
+                if args.iter().map(of).sum::<usize>() == 1 {
+                    let x = &arg_names[i];
+                    movable = Some((quote!((*#x)).to_string(), t));
+                }
+            }
+        }
+        *d.movable.borrow_mut() = movable;
         let mut candidates = Vec::new();
         for j in 0..d.plans.len() {
             if d.plans[j].id != (name, args.len()) {
@@ -3002,18 +3190,54 @@ impl Gen<'_> {
             }
             let fields = self.nat_fields(d, j)?;
             let mut inits = Vec::new();
+            let mut values = HashMap::new();
+            // A cell selected whole (`fk<r>`, [`MatchStep::Cell`]).
+            let cell = self.nat_cell(d, j);
+            let whole = cell.as_ref().map(|c| format_ident!("f{}", c.name()));
+            let whole = whole.filter(|w| vars.values().any(|(x, _)| x == w));
             for (r, _) in &fields {
+                if let (Some(c), Some(w)) = (&cell, &whole) {
+                    if *r == c.head || *r == c.tail {
+                        values.insert(*r, quote!(#w));
+                        inits.push((*r, quote!()));
+                        continue;
+                    }
+                }
                 let x = vars
                     .values()
                     .find(|(x, _)| *x == format_ident!("f{}", r))
                     .map(|(x, _)| x.clone())
                     .ok_or("an id field is not bound by its pattern")?;
                 let rr = reg(*r);
-                match inline.get(&x) {
-                    Some(e) => inits.push(quote!(#rr: #e)),
-                    None => inits.push(quote!(#rr: #x)),
-                }
+                let e = match inline.get(&x) {
+                    Some(e) => e.clone(),
+                    None => quote!(#x),
+                };
+                values.insert(*r, e.clone());
+                inits.push((*r, quote!(#rr: #e)));
             }
+            // A cell's list: as selected (`fk<r>`, [`MatchStep::Cell`]), or
+            // made again of its parts where they were taken apart.
+            let inits: Vec<TokenStream> = match cell {
+                Some(c) => {
+                    let k = c.name();
+                    let list = if let Some(w) = &whole {
+                        quote!(#w)
+                    } else {
+                        let (h, t) = (&values[&c.head], &values[&c.tail]);
+                        quote!(List::cons(#h, #t))
+                    };
+                    inits
+                        .into_iter()
+                        .filter_map(|(r, i)| match r {
+                            r if r == c.head => None,
+                            r if r == c.tail => Some(quote!(#k: #list)),
+                            _ => Some(i),
+                        })
+                        .collect()
+                }
+                None => inits.into_iter().map(|(_, i)| i).collect(),
+            };
             let v = variant(j);
             let mut code = quote!(break 'sel Nat::#v { #(#inits),* };);
             for s in steps.into_iter().rev() {
@@ -3057,10 +3281,25 @@ impl Gen<'_> {
                             #code
                         }
                     },
+                    MatchStep::Cell(l, x, take, false) => quote! {
+                        if !#l.is_empty() {
+                            let #x = #take;
+                            #code
+                        }
+                    },
+                    MatchStep::Cell(l, x, _, true) => quote! {
+                        if let Some(#x) = #l.non_empty_list() {
+                            let #x = #x.clone();
+                            #code
+                        } else if #l.is_cell() {
+                            break 'hand;
+                        }
+                    },
                 };
             }
             candidates.push(code);
         }
+        *d.movable.borrow_mut() = None;
         let f = self.atom_native(name)?;
         let hand = &d.hand;
         let out = d.out.borrow().clone();
@@ -3203,6 +3442,11 @@ impl Gen<'_> {
                 let (h, t) = (args[0], args[1]);
                 match &v.ty {
                     Ty::List(elem) if **elem == Ty::Never => Ok(false),
+                    Ty::List(_) if self.nat_cell_at(d, j, path, &v.ty) => {
+                        let x = self.nat_cell_step(d, j, v, false, steps);
+                        self.nat_cell_vars(h, t, x, &v.ty, vars);
+                        Ok(true)
+                    }
                     Ty::List(elem) => {
                         let hx = format_ident!("h{}", *n);
                         let tx = format_ident!("l{}", *n);
@@ -3232,6 +3476,54 @@ impl Gen<'_> {
 }
 
 impl Gen<'_> {
+    /// Whether the list pattern at `path` of situation `j`'s id is its
+    /// [`CellField`], for a list of type `ty`.
+    fn nat_cell_at(&self, d: &Dm, j: usize, path: &[usize], ty: &Ty) -> bool {
+        self.nat_cell(d, j)
+            .is_some_and(|c| c.path == path && c.ty == *ty)
+    }
+
+    /// [`MatchStep::Cell`] of `v` for situation `j`: its variable.
+    fn nat_cell_step(
+        &self,
+        d: &Dm,
+        j: usize,
+        v: &V,
+        val: bool,
+        steps: &mut Vec<MatchStep>,
+    ) -> Ident {
+        let k = self
+            .nat_cell(d, j)
+            .map_or_else(|| format_ident!("k"), |c| c.name());
+        let x = format_ident!("f{}", k);
+        let e = &v.e;
+        let movable = d.movable.borrow();
+        let take = match movable.as_ref() {
+            Some((text, r)) if *text == e.to_string() => quote!(#r),
+            _ if is_selected_value(e) => quote!(#e.clone()),
+            _ => quote!(#e),
+        };
+        steps.push(MatchStep::Cell(quote!(#e), x.clone(), take, val));
+        x
+    }
+
+    /// The variables of a cell's pattern `[H|T]`: `T` the list (`x`), `H`
+    /// bound with it (read in place by the visit, no value here).
+    fn nat_cell_vars(
+        &self,
+        h: Term,
+        t: Term,
+        x: Ident,
+        ty: &Ty,
+        vars: &mut HashMap<u32, (Ident, Ty)>,
+    ) {
+        for (p, name) in [(h, format_ident!("{}_head", x)), (t, x)] {
+            if let Value::Var(var) = self.store.value(p) {
+                vars.insert(var.index(), (name, ty.clone()));
+            }
+        }
+    }
+
     /// [`Gen::native_match`] of each part `k` (pattern, value) at `path`
     /// extended by `k`, in order; `false` as soon as one cannot match.
     #[allow(clippy::too_many_arguments)]
@@ -3308,6 +3600,12 @@ impl Gen<'_> {
                     r.and_then(|r| d.types[j].regs.get(r as usize))
                         .is_some_and(|x| x.ty == Ty::list(Ty::Ground))
                 };
+                let list = Ty::list(Ty::Ground);
+                if tail_list && self.nat_cell_at(d, j, path, &list) {
+                    let x = self.nat_cell_step(d, j, v, true, steps);
+                    self.nat_cell_vars(h, t, x, &list, vars);
+                    return Ok(true);
+                }
                 let tail_ty = if tail_list {
                     steps.push(MatchStep::SplitValList(quote!(#e), hx.clone(), tx.clone()));
                     Ty::list(Ty::Ground)
@@ -3543,6 +3841,65 @@ fn only_borrowed(toks: &[proc_macro2::TokenTree], r: &Ident) -> bool {
         }
         _ => true,
     })
+}
+
+/// A visit's code with a cell's head `h` (see [`CellField`]) read in
+/// place: `None` when the code takes it by value (then it is cloned),
+/// else the code with each `&h` made `h` (a reference already; `borrow`,
+/// `clone` and `&dyn AsTerm` read through it).
+fn cell_head(ts: &TokenStream, h: &Ident) -> Option<TokenStream> {
+    use proc_macro2::{Group, TokenTree as T};
+    fn ok(toks: &[T], h: &Ident) -> bool {
+        toks.iter().enumerate().all(|(k, t)| match t {
+            T::Ident(x) if x == h => {
+                let prev = k.checked_sub(1).map(|j| &toks[j]);
+                let field = matches!(toks.get(k + 1), Some(T::Punct(c)) if c.as_char() == ':' && c.spacing() == proc_macro2::Spacing::Alone)
+                    && !matches!(prev, Some(T::Ident(l)) if l == "let");
+                let by_ref = borrowed(toks, k);
+                let cloned = matches!(
+                    &toks[k + 1..],
+                    [T::Punct(dot), T::Ident(c), T::Group(g), ..]
+                        if dot.as_char() == '.'
+                            && c == "clone"
+                            && g.delimiter() == proc_macro2::Delimiter::Parenthesis
+                            && g.stream().is_empty()
+                ) && !matches!(prev, Some(T::Punct(p)) if p.as_char() == '.');
+                field || by_ref || cloned
+            }
+            T::Group(g) => ok(&g.stream().into_iter().collect::<Vec<_>>(), h),
+            _ => true,
+        })
+    }
+    /// `&h` alone (not `&&h`, not `&h.f`).
+    fn borrowed(toks: &[T], k: usize) -> bool {
+        let amp = |j: Option<usize>| matches!(j.map(|j| &toks[j]), Some(T::Punct(a)) if a.as_char() == '&');
+        amp(k.checked_sub(1))
+            && !amp(k.checked_sub(2))
+            && !matches!(toks.get(k + 1), Some(T::Punct(d)) if d.as_char() == '.')
+    }
+    fn rewrite(toks: Vec<T>, h: &Ident) -> TokenStream {
+        let mut out = Vec::new();
+        for (k, t) in toks.iter().enumerate() {
+            match t.clone() {
+                T::Ident(x) if x == *h => {
+                    if borrowed(&toks, k) {
+                        out.pop();
+                    }
+                    out.push(T::Ident(x));
+                }
+                T::Group(g) => {
+                    let mut ng =
+                        Group::new(g.delimiter(), rewrite(g.stream().into_iter().collect(), h));
+                    ng.set_span(g.span());
+                    out.push(T::Group(ng));
+                }
+                t => out.push(t),
+            }
+        }
+        out.into_iter().collect()
+    }
+    let toks: Vec<T> = ts.clone().into_iter().collect();
+    ok(&toks, h).then(|| rewrite(toks, h))
 }
 
 /// `[h|t]` of native values.
