@@ -2950,6 +2950,8 @@ impl Gen<'_> {
             })
             .collect();
         let mut candidates = Vec::new();
+        // A candidate took every value: the hand-over below is not reached.
+        let mut taken = false;
         for j in 0..d.plans.len() {
             if d.plans[j].id != (name, args.len()) {
                 continue;
@@ -3015,6 +3017,9 @@ impl Gen<'_> {
                 }
             }
             let v = variant(j);
+            // Only `let`s: this candidate takes every value that reaches
+            // it, so no later one is tried.
+            let takes_all = steps.iter().all(|s| matches!(s, MatchStep::Let(..)));
             let mut code = quote!(break 'sel Nat::#v { #(#inits),* };);
             for s in steps.into_iter().rev() {
                 code = match s {
@@ -3060,15 +3065,37 @@ impl Gen<'_> {
                 };
             }
             candidates.push(code);
+            if takes_all {
+                taken = true;
+                break;
+            }
         }
         let f = self.atom_native(name)?;
         let hand = &d.hand;
         let out = d.out.borrow().clone();
         let tail = goto_tail(&d.rec.borrow());
+        // The `'hand` block only where a candidate leaves it (a value
+        // that no later candidate may take either): every candidate
+        // otherwise ends in `break 'sel` or falls through.
+        let leaves = candidates.iter().any(|c| c.to_string().contains("'hand"));
+        let candidates = if leaves {
+            quote!('hand: { #(#candidates)* })
+        } else {
+            quote!(#(#candidates)*)
+        };
+        if taken && !leaves {
+            // Decided here: every value is taken natively.
+            return Ok(quote! {
+                'sel: {
+                    #(#lets)*
+                    #candidates
+                }
+            });
+        }
         Ok(quote! {
             'sel: {
                 #(#lets)*
-                'hand: { #(#candidates)* }
+                #candidates
                 // No situation takes it here: the machine selects (or says
                 // that none does).
                 #hand
