@@ -538,9 +538,12 @@ impl MatchStep {
 
 /// The DM's native code, for the module.
 pub(super) struct NativeCode {
-    /// `enum Nat`, `run_native` (which `run_situation` calls for each
-    /// situation with native code).
+    /// `enum Nat`, `nat_step`, `nat_entry`, ...
     pub items: TokenStream,
+    /// `run_native`, which a DM's `run_situation` calls for each situation
+    /// with native code (an all-native DM has none: the program enters
+    /// its frame).
+    pub run_native: TokenStream,
     /// How many situations hold no ground handle (no register `term`):
     /// the ones on native values.
     pub on_native_values: usize,
@@ -775,6 +778,7 @@ impl Gen<'_> {
             // The fields read in one call where it is one line (the
             // variant's field types say what each converts to).
             let path_ts = paths.iter().map(|(t, _)| t);
+            let path_ts2 = path_ts.clone();
             let (tuple, text) = match names.as_slice() {
                 [one] => (quote!((#one,)), format!("({one},)")),
                 _ => {
@@ -790,8 +794,18 @@ impl Gen<'_> {
             let in_one_call = (1..=8).contains(&fields.len())
                 && 16 + format!("let {text} = cx").len() <= 89
                 && 20 + call.len() <= 89;
+            // The whole arm on one line where it fits (the arms are
+            // indented by 12): the variant made from the converted parts.
+            let names_text: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+            let one_line = format!(
+                "{ix} => cx.id_parts(&[{}]).map(|{text}| Nat::{v} {{ {} }})?,",
+                path_text.join(", "),
+                names_text.join(", ")
+            );
             entries.push(if fields.is_empty() {
                 quote!(#ixl => { #pipe Nat::#v {} })
+            } else if in_one_call && pipe.is_empty() && 12 + one_line.len() <= 89 {
+                quote!(#ixl => cx.id_parts(&[#(#path_ts2),*]).map(|#tuple| Nat::#v { #(#names),* })?,)
             } else if in_one_call {
                 quote!(#ixl => {
                     #parts
@@ -916,6 +930,14 @@ impl Gen<'_> {
                 }
             }
 
+            /// The frame entered at `sit`, its values converted (`None`: one does not).
+            pub(crate) fn nat_entry(p: &Program, cx: &mut Ctx, sit: SitIx) -> Option<Frame> {
+                #entry_body
+            }
+        };
+        // Only for a DM with term code too (`codegen::emit`): an all-native
+        // DM's frame is entered by the program's `run_situation`.
+        let run_native = quote! {
             #[doc = #doc]
             pub fn run_native(p: &Program, cx: &mut Ctx, sit: SitIx) -> NatResult {
                 let run = cx.typed_run();
@@ -923,11 +945,6 @@ impl Gen<'_> {
                     return Ok(None);
                 };
                 super::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run).map(Some)
-            }
-
-            /// The frame entered at `sit`, its values converted (`None`: one does not).
-            fn nat_entry(p: &Program, cx: &mut Ctx, sit: SitIx) -> Option<Frame> {
-                #entry_body
             }
         };
         // Counted on inference's types: a register that holds no value
@@ -949,6 +966,7 @@ impl Gen<'_> {
         Ok(NativeCode {
             held,
             items,
+            run_native,
             callee_ok: d.native.first().copied().unwrap_or(false) && d.locals_ok,
             on_native_values: native.len(),
             fixed_shapes,
