@@ -144,18 +144,6 @@ impl Gen<'_> {
             .map(Literal::u32_unsuffixed)
             .collect();
 
-        // dm_by_name: the first DM of each name in load order.
-        let mut seen = Vec::new();
-        let mut lookup = Vec::new();
-        for (i, dm) in ir.dms.iter().enumerate() {
-            if seen.contains(&dm.name) {
-                continue;
-            }
-            seen.push(dm.name);
-            let a = &self.atoms[self.atom_ix[&dm.name]].1;
-            let ix = Literal::u32_unsuffixed(i as u32);
-            lookup.push(quote!(if name == self.atoms.#a { return Some(#ix); }));
-        }
         let dm_name_arms = ir.dms.iter().zip(&dm_ix).map(|(dm, ix)| {
             let a = &self.atoms[self.atom_ix[&dm.name]].1;
             quote!(#ix => self.atoms.#a,)
@@ -320,8 +308,8 @@ impl Gen<'_> {
             #[allow(unused_variables, clippy::all)]
             impl machine::DmProgram for Program {
                 fn dm_by_name(&self, name: Atom) -> Option<DmIx> {
-                    #(#lookup)*
-                    None
+                    // The first DM of the name in load order.
+                    (0..#dm_count).find(|&dm| self.dm_name(dm) == name)
                 }
                 fn dm_name(&self, dm: DmIx) -> Atom {
                     match dm {
@@ -604,14 +592,14 @@ impl Gen<'_> {
             }
             let mut has_template = false;
             if planned {
-                templates.push(quote!(None));
+                templates.push(quote!(""));
             } else if let Some(text) = self.template_text(s.template) {
-                templates.push(quote!(Some(#text)));
+                templates.push(quote!(#text));
                 has_template = true;
             } else {
                 // A template whose text does not read back as itself: built
                 // by code.
-                templates.push(quote!(None));
+                templates.push(quote!(""));
                 let body = self.builder_body(&parts);
                 let prelude = Self::prelude(&body);
                 let fdoc = format!(" A fresh instance of `{id_text}` (D-7).");
@@ -813,7 +801,7 @@ impl Gen<'_> {
             quote!()
         };
         let templates_doc =
-            " The situations' templates (D-7), `writeq` text (`None`: never instantiated).";
+            " The situations' templates (D-7), `writeq` text (`\"\"`: never instantiated).";
         let module = quote! {
             #[doc = #mod_doc]
             // Generated code: what is unused in a DM (a variable, a
@@ -842,7 +830,7 @@ impl Gen<'_> {
                 #run_exit
 
                 #[doc = #templates_doc]
-                pub const TEMPLATES: [Option<&str>; #count_lit] = [#(#templates),*];
+                pub const TEMPLATES: [&str; #count_lit] = [#(#templates),*];
 
                 #instantiate
 

@@ -1537,7 +1537,6 @@ impl Gen<'_> {
         match (&plan.kind, kind) {
             (KindPlan::Final { diag_mod }, Kind::Final) => {
                 let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
-                let empty = quote!(Term::atom(atoms::EMPTY));
                 // `diag_mod`: the DM's head bound (its output arguments),
                 // a term built from native values at that boundary.
                 // A native caller that passed its outputs as `Ground::OUT`
@@ -1621,13 +1620,11 @@ impl Gen<'_> {
                 Ok(quote! {
                     #(#stmts)*
                     #below
-                    cx.count_transitions(count);
                     #(#id_stmts)*
-                    cx.enter_with_id(#cur, #id);
+                    cx.enter_counted(&mut count, #cur, #id);
                     #out_final
                     #diag
-                    cx.record(#empty, #empty, None);
-                    return Ok(Some(Step::Final));
+                    return cx.step_final();
                 })
             }
             (KindPlan::Perceptual(arcs), kind) => {
@@ -2490,16 +2487,16 @@ impl Gen<'_> {
                 None => return Err(format!("register r{r} is read unset")),
             }
         }
-        let prelude = Self::prelude(&body);
+        // `a` is `nat_step`'s.
+        let k = Self::uses(&body).1.then(|| quote!(let k = &p.k;));
         // The arc's transition (counted in `count` when nothing is
         // recorded) counts once its next situation is computed, as on the
         // term path: an error evaluating it leaves it out. The machine is
         // in the situation then (an empty action performed nothing).
         let fallback = quote! {{
-            let this = u64::from(!run.records).min(count);
-            cx.count_transitions(count - this);
+            let this = run.count_but_this(cx, count);
             #enter
-            #prelude
+            #k
             #(#lets)*
             #(#stmts)*
             let (next, target) = #v;
@@ -2744,9 +2741,7 @@ impl Gen<'_> {
             #hand
             // This transition counts once its next situation is computed
             // (an error evaluating it leaves it out, as on the term path).
-            let this = u64::from(!run.records).min(count);
-            cx.count_transitions(count - this);
-            count = this;
+            count = run.count_but_this(cx, count);
             #(#id_stmts)*
             cx.enter_with_id(#curl, #id);
         })
