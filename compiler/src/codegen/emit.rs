@@ -34,6 +34,7 @@ impl Gen<'_> {
         let mut any_all_native = false;
         let mut term_arms = Vec::new();
         let mut locals_arms = Vec::new();
+        let mut head_arms = Vec::new();
         let mut exit_dm_arms = Vec::new();
         for (i, dm) in ir.dms.iter().enumerate() {
             let m = ident(&dm_namer.fresh(format!("dm_{}", snake(dm.name.as_str()))));
@@ -57,6 +58,10 @@ impl Gen<'_> {
                 run_arms.push(quote!(#ix => return #m::run_situation(self, sit, cx),));
                 term_arms.push(quote!(#ix => #m::run_situation(self, sit, cx),));
             }
+            head_arms.push(match &items.head {
+                Some(e) => quote!(#ix => #e,),
+                None => quote!(#ix => #m::head(self, store),),
+            });
             if !dm.locals.is_empty() {
                 locals_arms.push(quote!(#ix => #m::locals(self, store),));
             }
@@ -325,7 +330,7 @@ impl Gen<'_> {
                 }
                 fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Term {
                     match dm {
-                        #(#dm_ix => #dm_mods::head(self, store),)*
+                        #(#head_arms)*
                         _ => panic!("no DM number {dm}"),
                     }
                 }
@@ -675,20 +680,27 @@ impl Gen<'_> {
             }
             None => quote!(),
         };
-        // An atom head is the atom; another is built with fresh variables.
-        let head_body = match self.store.value(dm.head) {
+        // An atom head is the atom, `name(A, B, ..)` one call, both made
+        // by the program's `fresh_head`; another is built with fresh
+        // variables by the DM's `head`.
+        let head = match self.store.value(dm.head) {
             Value::Atom(a) => {
                 let a = &self.atoms[self.atom_ix[&a]].1;
-                quote!(Term::atom(p.atoms.#a))
+                Some(quote!(Term::atom(self.atoms.#a)))
             }
-            _ => match self.fresh_head(dm.head) {
-                Some(call) => call,
-                None => {
-                    let body = self.builder_body(&[(format_ident!("head"), dm.head)]);
-                    let prelude = Self::prelude(&body);
-                    quote!(#prelude #body head)
+            _ => self.fresh_head(dm.head),
+        };
+        let head_fn = if head.is_some() {
+            quote!()
+        } else {
+            let body = self.builder_body(&[(format_ident!("head"), dm.head)]);
+            let prelude = Self::prelude(&body);
+            quote! {
+                /// A fresh copy of the DM's head.
+                pub fn head(p: &super::Program, store: &mut Store) -> Term {
+                    #prelude #body head
                 }
-            },
+            }
         };
         let local_names: Vec<Ident> = (0..dm.locals.len())
             .map(|i| format_ident!("l{}", i))
@@ -817,10 +829,7 @@ impl Gen<'_> {
                 /// The file the DM is written in.
                 pub const FILE: &str = #file;
 
-                /// A fresh copy of the DM's head.
-                pub fn head(p: &super::Program, store: &mut Store) -> Term {
-                    #head_body
-                }
+                #head_fn
 
                 #locals_fn
 
@@ -841,6 +850,7 @@ impl Gen<'_> {
         };
         DmItems {
             module,
+            head,
             builders,
             selects,
             all_native,
@@ -860,7 +870,7 @@ impl Gen<'_> {
             .all(|&a| matches!(self.store.value(a), Value::Var(v) if seen.insert(v.index())));
         let a = &self.atoms[self.atom_ix[&name]].1;
         let n = Literal::usize_unsuffixed(n);
-        (distinct && !seen.is_empty()).then(|| quote!(store.fresh_compound::<#n>(p.atoms.#a)))
+        (distinct && !seen.is_empty()).then(|| quote!(store.fresh_compound::<#n>(self.atoms.#a)))
     }
 }
 
@@ -868,6 +878,9 @@ impl Gen<'_> {
 /// dispatch calls it has.
 struct DmItems {
     module: TokenStream,
+    /// The head made by one expression of the program's `fresh_head`
+    /// (`None`: the DM's `head` makes it).
+    head: Option<TokenStream>,
     /// Instance builders: its own `instantiate`.
     builders: bool,
     /// Compiled situations without a template: its own `select_compiled`

@@ -12,7 +12,9 @@
 //! comparisons done in Rust.
 //!
 //! The boundaries, and why the run is the term path's, step for step:
-//! - *entry*: `run_native(sit)` is tried whenever situation `sit` runs,
+//! - *entry*: `nat_entry(sit)` is tried whenever situation `sit` runs
+//!   (by the program's `run_situation` for an all-native DM, else by the
+//!   DM's `run_native(sit)`),
 //!   with the history kept or not. The id's arguments (from the value
 //!   that selected it) and the parameters the native situations read are
 //!   converted with the checked conversion (`Native::from_term` through
@@ -491,9 +493,12 @@ fn variant(ix: usize) -> Ident {
 }
 
 /// One step of matching a value against an id pattern.
+#[derive(Clone)]
 enum MatchStep {
     /// A test.
     If(TokenStream),
+    /// `[]` of a `List<T>`: `if v.is_empty()`.
+    Empty(TokenStream),
     /// `let NAME = EXPR;`
     Let(Ident, TokenStream),
     /// `if let Some((h, t)) = v.split_first()`, the head cloned.
@@ -525,7 +530,7 @@ impl MatchStep {
     /// Whether the step's code mentions `x`.
     fn mentions(&self, x: &Ident) -> bool {
         match self {
-            MatchStep::If(c) => call::mentions(c, x),
+            MatchStep::If(c) | MatchStep::Empty(c) => call::mentions(c, x),
             MatchStep::Let(_, e) | MatchStep::Narrow(_, e) => call::mentions(e, x),
             MatchStep::Split(v, ..)
             | MatchStep::SplitVal(v, ..)
@@ -1470,7 +1475,7 @@ impl Gen<'_> {
     }
 
     /// The code of one visit of situation `ix` (its fields bound): returns
-    /// from `run_native` or gives the next `Nat`.
+    /// from `nat_step` or gives the next `Nat`.
     /// A visit whose code never reads the register the in_arg read the
     /// pipe into (`in_arg ==> X, out_arg ==> X`, or `X` unused) is made
     /// again with the pipe's conversion only checked ([`Gen::nat_pipe_in`]).
@@ -3032,57 +3037,52 @@ impl Gen<'_> {
             let v = variant(j);
             // Only `let`s: this candidate takes every value that reaches
             // it, so no later one is tried.
-            let takes_all = steps.iter().all(|s| matches!(s, MatchStep::Let(..)));
-            let mut code = quote!(break 'sel Nat::#v { #(#inits),* };);
-            for s in steps.into_iter().rev() {
-                code = match s {
-                    MatchStep::If(c) => quote!(if #c { #code }),
-                    MatchStep::Let(x, _) if inline.contains_key(&x) => code,
-                    MatchStep::Let(x, e) => quote!({ let #x = #e; #code }),
-                    MatchStep::Narrow(x, e) => quote! {{
-                        let Some(#x) = #e else { break 'hand; };
-                        #code
-                    }},
-                    MatchStep::Args(v, f, arity, xs) => quote! {
-                        if let Some(&[#(#xs),*]) =
-                            cx.store_ref().compound_args(#v.0, #f, #arity)
-                        {
-                            #(let #xs = Ground(#xs);)*
-                            #code
-                        }
-                    },
-                    MatchStep::SplitVal(l, h, t) => quote! {
-                        if let Some((#h, #t)) = #l.split_list() {
-                            #code
-                        }
-                    },
-                    MatchStep::SplitValList(l, h, t) => quote! {
-                        if let Some((#h, #t)) = #l.split_proper() {
-                            #code
-                        } else if #l.is_cell() {
-                            break 'hand;
-                        }
-                    },
-                    MatchStep::ArgsVal(v, f, arity, xs) => quote! {
-                        if let Some([#(#xs),*]) = #v.args_of(#f, #arity) {
-                            #(let #xs = #xs.clone();)*
-                            #code
-                        }
-                    },
-                    MatchStep::Split(l, h, t) => quote! {
-                        if let Some((#h, #t)) = #l.split_first() {
-                            let #h = #h.clone();
-                            #code
-                        }
-                    },
-                };
-            }
-            candidates.push(code);
+            let lets = |ss: &[MatchStep]| ss.iter().all(|s| matches!(s, MatchStep::Let(..)));
+            let takes_all = lets(&steps);
+            // `[]` or `[H|T]` of one list, and `let`s (see below).
+            let shape = match steps.split_first() {
+                Some((MatchStep::Empty(l), rest)) if lets(rest) => {
+                    let code = wrap_steps(
+                        rest.to_vec(),
+                        &inline,
+                        quote!(break 'sel Nat::#v { #(#inits),* };),
+                    );
+                    Shape::Empty(l.to_string(), code)
+                }
+                Some((MatchStep::Split(l, ..), rest)) if lets(rest) => Shape::Split(l.to_string()),
+                _ => Shape::Other,
+            };
+            let code = wrap_steps(steps, &inline, quote!(break 'sel Nat::#v { #(#inits),* };));
+            candidates.push((code, shape));
             if takes_all {
                 taken = true;
                 break;
             }
         }
+        // `[]` and `[H|T]` of the same list (two adjacent candidates, the
+        // rest of each only `let`s): every list is one or the other, so the
+        // empty list is what the split leaves (the two are disjoint: their
+        // order does not matter), and no later candidate is tried.
+        let mut codes = Vec::new();
+        let mut k = 0;
+        while k < candidates.len() {
+            let pair = match (&candidates[k], candidates.get(k + 1)) {
+                ((_, Shape::Empty(l, empty)), Some((split, Shape::Split(m))))
+                | ((split, Shape::Split(m)), Some((_, Shape::Empty(l, empty)))) => {
+                    (l == m).then_some((split, empty))
+                }
+                _ => None,
+            };
+            if let Some((split, empty)) = pair {
+                codes.push(split.clone());
+                codes.push(empty.clone());
+                taken = true;
+                break;
+            }
+            codes.push(candidates[k].0.clone());
+            k += 1;
+        }
+        let candidates = codes;
         let f = self.atom_native(name)?;
         let hand = &d.hand;
         let out = d.out.borrow().clone();
@@ -3213,7 +3213,7 @@ impl Gen<'_> {
             }
             Value::Atom(a) if a == atoms::NIL => match &v.ty {
                 Ty::List(_) => {
-                    steps.push(MatchStep::If(quote!(#e.is_empty())));
+                    steps.push(MatchStep::Empty(quote!(#e)));
                     Ok(true)
                 }
                 Ty::Sym => {
@@ -3383,6 +3383,70 @@ impl Gen<'_> {
             _ => Err("an id pattern holds a constant that is not native".into()),
         }
     }
+}
+
+/// A candidate's code: `code` (its `break 'sel`) inside its match steps,
+/// the first outermost; a `let` in `inline` is written where it is read.
+fn wrap_steps(
+    steps: Vec<MatchStep>,
+    inline: &HashMap<Ident, TokenStream>,
+    mut code: TokenStream,
+) -> TokenStream {
+    for s in steps.into_iter().rev() {
+        code = match s {
+            MatchStep::If(c) => quote!(if #c { #code }),
+            MatchStep::Empty(l) => quote!(if #l.is_empty() { #code }),
+            MatchStep::Let(x, _) if inline.contains_key(&x) => code,
+            MatchStep::Let(x, e) => quote!({ let #x = #e; #code }),
+            MatchStep::Narrow(x, e) => quote! {{
+                let Some(#x) = #e else { break 'hand; };
+                #code
+            }},
+            MatchStep::Args(v, f, arity, xs) => quote! {
+                if let Some(&[#(#xs),*]) =
+                    cx.store_ref().compound_args(#v.0, #f, #arity)
+                {
+                    #(let #xs = Ground(#xs);)*
+                    #code
+                }
+            },
+            MatchStep::SplitVal(l, h, t) => quote! {
+                if let Some((#h, #t)) = #l.split_list() {
+                    #code
+                }
+            },
+            MatchStep::SplitValList(l, h, t) => quote! {
+                if let Some((#h, #t)) = #l.split_proper() {
+                    #code
+                } else if #l.is_cell() {
+                    break 'hand;
+                }
+            },
+            MatchStep::ArgsVal(v, f, arity, xs) => quote! {
+                if let Some([#(#xs),*]) = #v.args_of(#f, #arity) {
+                    #(let #xs = #xs.clone();)*
+                    #code
+                }
+            },
+            MatchStep::Split(l, h, t) => quote! {
+                if let Some((#h, #t)) = #l.split_first() {
+                    let #h = #h.clone();
+                    #code
+                }
+            },
+        };
+    }
+    code
+}
+
+/// What a candidate of [`Gen::nat_select`] tests, for the pair `[]`,
+/// `[H|T]` of one list (the place's text).
+enum Shape {
+    /// `[]` and `let`s; its code without the test.
+    Empty(String, TokenStream),
+    /// `[H|T]` and `let`s.
+    Split(String),
+    Other,
 }
 
 /// Fresh names `g{n}_{k}` for the `len` arguments of a compound matched
