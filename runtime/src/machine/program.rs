@@ -192,6 +192,26 @@ impl TypedRun {
         this
     }
 
+    /// The end of an arc that native code finished on terms (a value it
+    /// could not convert): its transition `this` counted
+    /// ([`TypedRun::count_but_this`]), its history entry made when recorded
+    /// ([`Cx::record_if`]), then [`Cx::go`] (`next` its next situation and
+    /// target).
+    #[inline]
+    pub fn go<P: DmProgram>(
+        &self,
+        cx: &mut Cx<'_, '_, P>,
+        this: u64,
+        expectation: Term,
+        action: Term,
+        (next, target): (Term, Option<SitIx>),
+        arc: Option<usize>,
+    ) -> Result<Option<Step>, RunError> {
+        cx.count_transitions(this);
+        cx.record_if(self.records, expectation, action, Some(next));
+        cx.go(next, target, arc).map(Some)
+    }
+
     /// An arc's next situation handed to the machine as a term: its history
     /// entry made when recorded ([`Cx::record_if`]), then [`Cx::goto`].
     #[inline]

@@ -116,7 +116,8 @@
 //!   every step that lets the machine see its state (an action performed,
 //!   a situation handed over, `get`/`set`/`inc` through the machine), first
 //!   makes the native frames machine frames and writes the locals back
-//!   (`nat_hand_over`), and reads the locals again after the machine's
+//!   (`nat_hand_over`: the DM's, or the program's for a DM without
+//!   parameters or locals), and reads the locals again after the machine's
 //!   call. A call with an output argument is pushed so too when the
 //!   callee hands it back in an output slot ([`call`]); other calls with a
 //!   fresh variable are the machine's, the term built with the variable
@@ -1975,7 +1976,6 @@ impl Gen<'_> {
             arc.out_arg.as_ref(),
             &regs,
             reloads,
-            &rec_entry(),
             &enter_id,
         )?;
         // The expectation's term for the history, built only when recorded.
@@ -2460,7 +2460,6 @@ impl Gen<'_> {
         out: Option<&Build>,
         regs: &Regs,
         always: bool,
-        rec: &TokenStream,
         enter: &TokenStream,
     ) -> N<Option<(TokenStream, Vec<(Reg, Ty)>)>> {
         let at = quote!(arc_at);
@@ -2498,18 +2497,22 @@ impl Gen<'_> {
         // recorded) counts once its next situation is computed, as on the
         // term path: an error evaluating it leaves it out. The machine is
         // in the situation then (an empty action performed nothing).
+        // The next situation computed before the out_arg.
+        let go = match out {
+            None => quote!(return run.go(cx, this, exp, act, #v, #at);),
+            Some(out) => quote! {
+                let next = #v;
+                #out
+                return run.go(cx, this, exp, act, next, #at);
+            },
+        };
         let fallback = quote! {{
             let this = run.count_but_this(cx, count);
             #enter
             #k
             #(#lets)*
             #(#stmts)*
-            let (next, target) = #v;
-            #out
-            cx.count_transitions(this);
-            let rec_next = next;
-            #rec
-            return cx.go(next, target, #at).map(Some);
+            #go
         }};
         Ok(Some((fallback, conv)))
     }
@@ -3039,6 +3042,17 @@ impl Gen<'_> {
             // it, so no later one is tried.
             let lets = |ss: &[MatchStep]| ss.iter().all(|s| matches!(s, MatchStep::Let(..)));
             let takes_all = lets(&steps);
+            // The first candidate, its id distinct variables: the variant
+            // is the selection, each field the value itself (read once,
+            // no `'sel` block and no reference to clone from).
+            if takes_all
+                && candidates.is_empty()
+                && id_args
+                    .iter()
+                    .all(|&p| matches!(self.store.value(p), Value::Var(_)))
+            {
+                return self.nat_select_direct(d, j, &id_args, &args, &fields);
+            }
             // `[]` or `[H|T]` of one list, and `let`s (see below).
             let shape = match steps.split_first() {
                 Some((MatchStep::Empty(l), rest)) if lets(rest) => {
@@ -3119,6 +3133,44 @@ impl Gen<'_> {
                 #tail
             }
         })
+    }
+
+    /// The variant of situation `j` whose id is distinct variables
+    /// `id_args`, built of `args` (each read once: its own expression,
+    /// converted to its field's type).
+    fn nat_select_direct(
+        &self,
+        d: &Dm,
+        j: usize,
+        id_args: &[Term],
+        args: &[V],
+        fields: &[(Reg, Ty)],
+    ) -> N<TokenStream> {
+        let mut steps = Vec::new();
+        let mut vars: HashMap<u32, (Ident, Ty)> = HashMap::new();
+        let mut n = 0;
+        for (i, (&pat, v)) in id_args.iter().zip(args).enumerate() {
+            let matched =
+                self.native_match(d, j, pat, v, &mut vec![i], &mut vars, &mut steps, &mut n)?;
+            if !matched {
+                return Err("an id variable does not take its value".into());
+            }
+        }
+        let mut inits = Vec::new();
+        for (r, _) in fields {
+            let x = format_ident!("f{}", r);
+            let e = steps
+                .iter()
+                .find_map(|s| match s {
+                    MatchStep::Let(y, e) if *y == x => Some(e),
+                    _ => None,
+                })
+                .ok_or("an id field is not bound by its pattern")?;
+            let rr = reg(*r);
+            inits.push(quote!(#rr: #e));
+        }
+        let v = variant(j);
+        Ok(quote!(Nat::#v { #(#inits),* }))
     }
 
     /// Matching `v` against the id pattern `pat` of situation `j` at `path`:

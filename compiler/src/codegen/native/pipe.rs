@@ -126,7 +126,7 @@ impl Gen<'_> {
         let n = n?;
         Ok(quote! {{
             #pipe_out
-            let next_at = { #n };
+            let next_at = #n;
             #set
             next_at
         }})
