@@ -132,6 +132,13 @@ impl Store {
         t
     }
 
+    /// `name(V1, .., VN)` of `N` fresh variables made in order (a DM's
+    /// head in generated code).
+    pub fn fresh_compound<const N: usize>(&mut self, name: Atom) -> Term {
+        let vars: [Term; N] = std::array::from_fn(|_| self.new_var());
+        self.compound(name, &vars)
+    }
+
     /// The compound `name(args..)`; with no arguments, the atom `name`
     /// (SWI-6 has no zero-arity compounds).
     pub fn compound(&mut self, name: Atom, args: &[Term]) -> Term {

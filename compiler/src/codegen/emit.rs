@@ -31,6 +31,10 @@ impl Gen<'_> {
         // own `select_compiled`.
         let mut select_dm_arms = Vec::new();
         let mut run_arms = Vec::new();
+        let mut any_all_native = false;
+        let mut term_arms = Vec::new();
+        let mut locals_arms = Vec::new();
+        let mut head_arms = Vec::new();
         let mut exit_dm_arms = Vec::new();
         for (i, dm) in ir.dms.iter().enumerate() {
             let m = ident(&dm_namer.fresh(format!("dm_{}", snake(dm.name.as_str()))));
@@ -44,17 +48,52 @@ impl Gen<'_> {
             if items.selects {
                 select_dm_arms.push(quote!(#ix => #m::select_compiled(self, sit, value, store),));
             }
-            run_arms.push(if items.all_native {
-                // Every situation natively, else from its template.
-                quote!(#ix => #m::run_native(self, cx, sit).map(|s| s.unwrap_or(Step::Template)),)
+            if items.all_native {
+                // Every situation natively (its frame entered), else
+                // from its template.
+                let d = format_ident!("D{}", i);
+                any_all_native = true;
+                run_arms.push(quote!(#ix => #m::nat_entry(self, cx, sit).map(NatFrame::#d),));
             } else {
-                quote!(#ix => #m::run_situation(self, sit, cx),)
+                run_arms.push(quote!(#ix => return #m::run_situation(self, sit, cx),));
+                term_arms.push(quote!(#ix => #m::run_situation(self, sit, cx),));
+            }
+            head_arms.push(match &items.head {
+                Some(e) => quote!(#ix => #e,),
+                None => quote!(#ix => #m::head(self, store),),
             });
+            if !dm.locals.is_empty() {
+                locals_arms.push(quote!(#ix => #m::locals(self, store),));
+            }
             if items.exits {
                 exit_dm_arms.push(quote!(#ix => #m::run_exit(self, sit, saved, final_id, cx),));
             }
         }
         let native_driver = self.native_driver(ir, &dm_mods);
+        // A DM with every situation native: its frame entered here and run
+        // by the native driver (`Step::Template`: a value did not convert).
+        let run_body = if any_all_native {
+            quote! {
+                let frame = match dm {
+                    #(#run_arms)*
+                    _ => return Err(cx.error("no such DM", None)),
+                };
+                match frame {
+                    Some(frame) => {
+                        let run = cx.typed_run();
+                        nat_drive(self, cx, frame, &run)
+                    }
+                    None => Ok(Step::Template),
+                }
+            }
+        } else {
+            quote! {
+                match dm {
+                    #(#term_arms)*
+                    _ => Err(cx.error("no such DM", None)),
+                }
+            }
+        };
         // Constants: their `writeq` texts, read once by `Program::new`; a
         // constant whose text does not read back as itself is built by
         // code after them (its text `[]`).
@@ -105,22 +144,11 @@ impl Gen<'_> {
                 _ => Err(cx.error("the situation has no compiled code", None)),
             })
         };
+        let dm_count = Literal::usize_unsuffixed(ir.dms.len());
         let dm_ix: Vec<Literal> = (0..ir.dms.len() as u32)
             .map(Literal::u32_unsuffixed)
             .collect();
 
-        // dm_by_name: the first DM of each name in load order.
-        let mut seen = Vec::new();
-        let mut lookup = Vec::new();
-        for (i, dm) in ir.dms.iter().enumerate() {
-            if seen.contains(&dm.name) {
-                continue;
-            }
-            seen.push(dm.name);
-            let a = &self.atoms[self.atom_ix[&dm.name]].1;
-            let ix = Literal::u32_unsuffixed(i as u32);
-            lookup.push(quote!(if name == self.atoms.#a { return Some(#ix); }));
-        }
         let dm_name_arms = ir.dms.iter().zip(&dm_ix).map(|(dm, ix)| {
             let a = &self.atoms[self.atom_ix[&dm.name]].1;
             quote!(#ix => self.atoms.#a,)
@@ -205,7 +233,8 @@ impl Gen<'_> {
             /// to the machine), `nat_hand_over` (before the machine sees the state:
             /// the native frames below made machine frames, the locals written
             /// back), `nat_wait` (a frame waiting for its callee made the
-            /// machine's) and `run_native`.
+            /// machine's) and, in a DM with term code too, `run_native`
+            /// (an all-native DM's frame is entered by `run_situation`).
             #[allow(dead_code, non_camel_case_types, unused_variables, clippy::all)]
             pub struct Program {
                 /// Frozen store holding the constants; every run starts from a clone.
@@ -284,8 +313,8 @@ impl Gen<'_> {
             #[allow(unused_variables, clippy::all)]
             impl machine::DmProgram for Program {
                 fn dm_by_name(&self, name: Atom) -> Option<DmIx> {
-                    #(#lookup)*
-                    None
+                    // The first DM of the name in load order.
+                    (0..#dm_count).find(|&dm| self.dm_name(dm) == name)
                 }
                 fn dm_name(&self, dm: DmIx) -> Atom {
                     match dm {
@@ -301,7 +330,7 @@ impl Gen<'_> {
                 }
                 fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Term {
                     match dm {
-                        #(#dm_ix => #dm_mods::head(self, store),)*
+                        #(#head_arms)*
                         _ => panic!("no DM number {dm}"),
                     }
                 }
@@ -324,7 +353,8 @@ impl Gen<'_> {
                 }
                 fn locals(&self, dm: DmIx, store: &mut Store) -> Vars {
                     match dm {
-                        #(#dm_ix => #dm_mods::locals(self, store),)*
+                        #(#locals_arms)*
+                        _ if dm < #dm_count => Vars::default(),
                         _ => panic!("no DM number {dm}"),
                     }
                 }
@@ -360,10 +390,7 @@ impl Gen<'_> {
                     sit: SitIx,
                     cx: &mut Cx<'_, '_, Self>,
                 ) -> Result<Step, RunError> {
-                    match dm {
-                        #(#run_arms)*
-                        _ => Err(cx.error("no such DM", None)),
-                    }
+                    #run_body
                 }
                 fn run_exit(
                     &self,
@@ -570,14 +597,14 @@ impl Gen<'_> {
             }
             let mut has_template = false;
             if planned {
-                templates.push(quote!(None));
+                templates.push(quote!(""));
             } else if let Some(text) = self.template_text(s.template) {
-                templates.push(quote!(Some(#text)));
+                templates.push(quote!(#text));
                 has_template = true;
             } else {
                 // A template whose text does not read back as itself: built
                 // by code.
-                templates.push(quote!(None));
+                templates.push(quote!(""));
                 let body = self.builder_body(&parts);
                 let prelude = Self::prelude(&body);
                 let fdoc = format!(" A fresh instance of `{id_text}` (D-7).");
@@ -641,20 +668,38 @@ impl Gen<'_> {
                 _ => Err(cx.error("the situation has no compiled code", None)),
             }
         };
+        // Every situation native: the program enters its frame (no
+        // `run_situation` loop, no `run_native`: native code's step goes to
+        // the machine).
+        let all_native = run_arms.is_empty() && native_ixs.len() == count && count > 0;
         let native_items = match native {
-            Some(n) => n.items,
+            Some(n) if all_native => n.items,
+            Some(n) => {
+                let (items, run_native) = (n.items, n.run_native);
+                quote!(#items #run_native)
+            }
             None => quote!(),
         };
-        // An atom head is the atom; another is built with fresh variables.
-        let head_body = match self.store.value(dm.head) {
+        // An atom head is the atom, `name(A, B, ..)` one call, both made
+        // by the program's `fresh_head`; another is built with fresh
+        // variables by the DM's `head`.
+        let head = match self.store.value(dm.head) {
             Value::Atom(a) => {
                 let a = &self.atoms[self.atom_ix[&a]].1;
-                quote!(Term::atom(p.atoms.#a))
+                Some(quote!(Term::atom(self.atoms.#a)))
             }
-            _ => {
-                let body = self.builder_body(&[(format_ident!("head"), dm.head)]);
-                let prelude = Self::prelude(&body);
-                quote!(#prelude #body head)
+            _ => self.fresh_head(dm.head),
+        };
+        let head_fn = if head.is_some() {
+            quote!()
+        } else {
+            let body = self.builder_body(&[(format_ident!("head"), dm.head)]);
+            let prelude = Self::prelude(&body);
+            quote! {
+                /// A fresh copy of the DM's head.
+                pub fn head(p: &super::Program, store: &mut Store) -> Term {
+                    #prelude #body head
+                }
             }
         };
         let local_names: Vec<Ident> = (0..dm.locals.len())
@@ -671,13 +716,24 @@ impl Gen<'_> {
         }
         let locals_body = quote!(#(#local_stmts)*);
         let locals_prelude = Self::prelude(&locals_body);
+        // A DM without locals has none (the program's `locals` gives it
+        // no entries).
+        let locals_fn = if dm.locals.is_empty() {
+            quote!()
+        } else {
+            quote! {
+                /// Fresh default values of the local variables (D-5).
+                pub fn locals(p: &super::Program, store: &mut Store) -> Vars {
+                    #locals_prelude
+                    #locals_body
+                    Vars::from_entries(vec![#(#local_entries),*])
+                }
+            }
+        };
         let head_text = self.store.writeq(dm.head);
         let mod_doc = format!(" DM `{head_text}`.");
         let count_lit = Literal::usize_unsuffixed(count);
         let builders = !instantiate_arms.is_empty();
-        // Every situation native: the program calls `run_native` (no
-        // `run_situation` loop: native code's step goes to the machine).
-        let all_native = run_arms.is_empty() && native_ixs.len() == count && count > 0;
         let run_situation = if all_native {
             quote!()
         } else {
@@ -757,7 +813,7 @@ impl Gen<'_> {
             quote!()
         };
         let templates_doc =
-            " The situations' templates (D-7), `writeq` text (`None`: never instantiated).";
+            " The situations' templates (D-7), `writeq` text (`\"\"`: never instantiated).";
         let module = quote! {
             #[doc = #mod_doc]
             // Generated code: what is unused in a DM (a variable, a
@@ -773,17 +829,9 @@ impl Gen<'_> {
                 /// The file the DM is written in.
                 pub const FILE: &str = #file;
 
-                /// A fresh copy of the DM's head.
-                pub fn head(p: &super::Program, store: &mut Store) -> Term {
-                    #head_body
-                }
+                #head_fn
 
-                /// Fresh default values of the local variables (D-5).
-                pub fn locals(p: &super::Program, store: &mut Store) -> Vars {
-                    #locals_prelude
-                    #locals_body
-                    Vars::from_entries(vec![#(#local_entries),*])
-                }
+                #locals_fn
 
                 #select_compiled
 
@@ -791,7 +839,7 @@ impl Gen<'_> {
                 #run_exit
 
                 #[doc = #templates_doc]
-                pub const TEMPLATES: [Option<&str>; #count_lit] = [#(#templates),*];
+                pub const TEMPLATES: [&str; #count_lit] = [#(#templates),*];
 
                 #instantiate
 
@@ -802,11 +850,27 @@ impl Gen<'_> {
         };
         DmItems {
             module,
+            head,
             builders,
             selects,
             all_native,
             exits,
         }
+    }
+
+    /// A head `name(A, B, ..)` of distinct variables (every DM's but a
+    /// test's) made by one call: `store.fresh_compound::<N>(p.atoms.name)`.
+    fn fresh_head(&self, head: Term) -> Option<TokenStream> {
+        let (name, n) = self.store.functor(head)?;
+        let mut seen = std::collections::HashSet::new();
+        let distinct = self
+            .store
+            .args(head)
+            .iter()
+            .all(|&a| matches!(self.store.value(a), Value::Var(v) if seen.insert(v.index())));
+        let a = &self.atoms[self.atom_ix[&name]].1;
+        let n = Literal::usize_unsuffixed(n);
+        (distinct && !seen.is_empty()).then(|| quote!(store.fresh_compound::<#n>(self.atoms.#a)))
     }
 }
 
@@ -814,12 +878,16 @@ impl Gen<'_> {
 /// dispatch calls it has.
 struct DmItems {
     module: TokenStream,
+    /// The head made by one expression of the program's `fresh_head`
+    /// (`None`: the DM's `head` makes it).
+    head: Option<TokenStream>,
     /// Instance builders: its own `instantiate`.
     builders: bool,
     /// Compiled situations without a template: its own `select_compiled`
     /// (the others select on their template's id, `machine::Templates`).
     selects: bool,
-    /// Every situation native: no `run_situation`, `run_native` is called.
+    /// Every situation native: no `run_situation` or `run_native`, the
+    /// program calls `nat_entry`.
     all_native: bool,
     /// Recursive situations with exit arcs as code: its own `run_exit`.
     exits: bool,

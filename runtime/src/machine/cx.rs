@@ -366,6 +366,16 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         Ok(None)
     }
 
+    /// The end of a native step in a final situation (the machine entered
+    /// in it, its out_arg and `diag_mod` taken): its history entry, as the
+    /// term path records a final's, and the step.
+    #[inline]
+    pub fn step_final(&mut self) -> Result<Option<Step>, RunError> {
+        let empty = Term::atom(crate::atoms::EMPTY);
+        self.record(empty, empty, None);
+        Ok(Some(Step::Final))
+    }
+
     /// The end of a native step that gives the machine control (garbage to
     /// collect, a stop asked): its transitions counted, the situation
     /// reached handed over as its id.

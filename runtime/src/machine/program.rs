@@ -181,6 +181,37 @@ impl TypedRun {
         }
     }
 
+    /// Counts the `count` transitions native code made but the arc's own
+    /// (its last, not yet counted when nothing is recorded), and gives that
+    /// one (0 or 1): it counts once the arc's next situation is computed,
+    /// as on the term path, where an error evaluating it leaves it out.
+    #[inline]
+    pub fn count_but_this<P: DmProgram>(&self, cx: &mut Cx<'_, '_, P>, count: u64) -> u64 {
+        let this = u64::from(!self.records).min(count);
+        cx.count_transitions(count - this);
+        this
+    }
+
+    /// The end of an arc that native code finished on terms (a value it
+    /// could not convert): its transition `this` counted
+    /// ([`TypedRun::count_but_this`]), its history entry made when recorded
+    /// ([`Cx::record_if`]), then [`Cx::go`] (`next` its next situation and
+    /// target).
+    #[inline]
+    pub fn go<P: DmProgram>(
+        &self,
+        cx: &mut Cx<'_, '_, P>,
+        this: u64,
+        expectation: Term,
+        action: Term,
+        (next, target): (Term, Option<SitIx>),
+        arc: Option<usize>,
+    ) -> Result<Option<Step>, RunError> {
+        cx.count_transitions(this);
+        cx.record_if(self.records, expectation, action, Some(next));
+        cx.go(next, target, arc).map(Some)
+    }
+
     /// An arc's next situation handed to the machine as a term: its history
     /// entry made when recorded ([`Cx::record_if`]), then [`Cx::goto`].
     #[inline]

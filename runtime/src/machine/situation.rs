@@ -76,16 +76,16 @@ impl Instance {
     }
 }
 
-/// Reads the templates of a DM's situations (`None`: a situation that is
-/// never instantiated) into `store`, the program's store before it is
-/// frozen. The texts are `writeq` texts the compiler checked read back as
-/// the template itself, so a text that does not read is the compiler's bug,
-/// reported with the text.
-pub fn read_templates(store: &mut Store, texts: &[Option<&str>]) -> Vec<Option<Term>> {
+/// Reads the templates of a DM's situations (`""`: a situation that is
+/// never instantiated, `None` here) into `store`, the program's store
+/// before it is frozen. The texts are `writeq` texts the compiler checked
+/// read back as the template itself, so a text that does not read is the
+/// compiler's bug, reported with the text.
+pub fn read_templates(store: &mut Store, texts: &[&str]) -> Vec<Option<Term>> {
     texts
         .iter()
-        .map(|text| {
-            text.map(|text| match store.parse(text) {
+        .map(|&text| {
+            (!text.is_empty()).then(|| match store.parse(text) {
                 Ok((t, _)) if store.args(t).len() == 9 => t,
                 Ok(_) => panic!("a generated situation template has not nine fields: {text}"),
                 Err(e) => panic!("a generated situation template does not read: {e}: {text}"),
@@ -129,7 +129,7 @@ pub struct Templates {
 
 impl Templates {
     /// Reads DM number `i`'s templates from `dms[i]` into `store`.
-    pub fn read(store: &mut Store, dms: &[&[Option<&str>]]) -> Templates {
+    pub fn read(store: &mut Store, dms: &[&[&str]]) -> Templates {
         let dms = dms
             .iter()
             .map(|texts| {

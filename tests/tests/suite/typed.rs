@@ -390,37 +390,37 @@ fn native_dms_agree() {
     let app = native::program();
     // These DMs have native code (checked when this compiles).
     let _ = (
-        native::dm_search::run_native,
-        native::dm_above::run_native,
-        native::dm_pairs::run_native,
-        native::dm_nested::run_native,
-        native::dm_lost::run_native,
-        native::dm_find::run_native,
-        native::dm_big::run_native,
+        native::dm_search::nat_entry,
+        native::dm_above::nat_entry,
+        native::dm_pairs::nat_entry,
+        native::dm_nested::nat_entry,
+        native::dm_lost::nat_entry,
+        native::dm_find::nat_entry,
+        native::dm_big::nat_entry,
         // Callers (`codegen::native::call`): their calls and exit arcs too.
-        native::dm_main::run_native,
-        native::dm_cmd::run_native,
-        native::dm_rounds::run_native,
-        native::dm_outer::run_native,
-        native::dm_want::run_native,
-        native::dm_relay::run_native,
-        native::dm_echo::run_native,
+        native::dm_main::nat_entry,
+        native::dm_cmd::nat_entry,
+        native::dm_rounds::nat_entry,
+        native::dm_outer::nat_entry,
+        native::dm_want::nat_entry,
+        native::dm_relay::nat_entry,
+        native::dm_echo::nat_entry,
         // An output argument: the call handed over on terms.
-        native::dm_outer_out::run_native,
+        native::dm_outer_out::nat_entry,
         // Output arguments pushed natively, and the ways that fall back.
-        native::dm_outs::run_native,
-        native::dm_plus::run_native,
-        native::dm_louder::run_native,
-        native::dm_two::run_native,
-        native::dm_apart::run_native,
+        native::dm_outs::nat_entry,
+        native::dm_plus::nat_entry,
+        native::dm_louder::nat_entry,
+        native::dm_two::nat_entry,
+        native::dm_apart::nat_entry,
         // Evaluated calls, conditions and next situations, compound values;
         // expectations naming a parameter.
-        native::dm_evals::run_native,
-        native::dm_hear::run_native,
-        native::dm_walkv::run_native,
-        native::dm_fails::run_native,
-        native::dm_cells::run_native,
-        native::dm_sums::run_native,
+        native::dm_evals::nat_entry,
+        native::dm_hear::nat_entry,
+        native::dm_walkv::nat_entry,
+        native::dm_fails::nat_entry,
+        native::dm_cells::nat_entry,
+        native::dm_sums::nat_entry,
     );
     for main in [
         "main",
@@ -598,7 +598,7 @@ mod shapes {
 fn other_engineers_shapes_agree() {
     let ir = interpreter("typed/shapes/c_pipe_callee_counts");
     let app = shapes::callee_counts::program();
-    let _ = shapes::callee_counts::dm_tick::run_native;
+    let _ = shapes::callee_counts::dm_tick::nat_entry;
     for in_arg in ["4", "a", "4.0"] {
         agree_piped(app, &ir, "driver", Some(in_arg), "");
     }
@@ -618,7 +618,7 @@ fn other_engineers_shapes_agree() {
     // `[J is I + 1]` in a walk's action: Rust arithmetic.
     let ir = interpreter("typed/shapes/d_ints_fields");
     let app = shapes::ints_fields::program();
-    let _ = shapes::ints_fields::dm_first_above::run_native;
+    let _ = shapes::ints_fields::dm_first_above::nat_entry;
     for main in ["rounds(3)", "rounds(x)", "rounds(2.5)"] {
         agree(app, &ir, main, "");
     }
@@ -628,7 +628,7 @@ fn other_engineers_shapes_agree() {
     // machine's), not a list.
     let ir = interpreter("typed/shapes/d_pipe_list");
     let app = shapes::pipe_list::program();
-    let _ = shapes::pipe_list::dm_look::run_native;
+    let _ = shapes::pipe_list::dm_look::nat_entry;
     for (main, in_arg) in [
         ("seek(3, 12)", "[3, 8, 12, 5]"),
         ("seek(2, b)", "[a, f(x), b]"),
@@ -645,7 +645,7 @@ fn other_engineers_shapes_agree() {
     // An output argument of ints pushed natively (`add(I, 1, J)`).
     let ir = interpreter("typed/shapes/c_output_arg");
     let app = shapes::output_arg::program();
-    let _ = shapes::output_arg::dm_add::run_native;
+    let _ = shapes::output_arg::dm_add::nat_entry;
     for main in ["steps(4)", "steps(x)", "steps(2.5)"] {
         agree(app, &ir, main, "");
     }

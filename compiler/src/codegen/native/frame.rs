@@ -91,6 +91,11 @@ impl Gen<'_> {
     /// the locals are written back.
     pub(super) fn nat_hand(&self, d: &Dm) -> N<TokenStream> {
         let names = Self::nat_frame_names(d);
+        if names.is_empty() {
+            // The program's, for a DM without parameters or locals.
+            let dm = Literal::u32_unsuffixed(d.ix as u32);
+            return Ok(quote!(super::nat_hand_over(p, cx, stack, #dm)?;));
+        }
         Ok(quote!(nat_hand_over(p, cx, stack, #(&*#names),*)?;))
     }
 
@@ -102,12 +107,16 @@ impl Gen<'_> {
             .collect()
     }
 
-    /// `nat_hand_over`, the code of [`Dm::hand`], out of line.
+    /// `nat_hand_over`, the code of [`Dm::hand`], out of line (none for
+    /// a DM without parameters or locals: the program's serves it).
     fn nat_hand_fn(&self, d: &Dm) -> N<TokenStream> {
+        let names = Self::nat_frame_names(d);
+        if names.is_empty() {
+            return Ok(quote!());
+        }
         let call = self.nat_call_term(d)?;
         let dm = Literal::u32_unsuffixed(d.ix as u32);
         let locals = self.nat_write_locals(d)?;
-        let names = Self::nat_frame_names(d);
         let tys = d
             .params
             .iter()
@@ -356,8 +365,11 @@ impl Gen<'_> {
             /// the inner loop, no push, no pop); a callee that calls in turn
             /// (or below which the frames became the machine's) is pushed,
             /// and a pushed callee that reached its final is read in place
-            /// by its caller's exit arcs, then popped.
+            /// by its caller's exit arcs, then popped. Never inlined (into the
+            /// program's `run_situation`, its caller for an all-native DM:
+            /// inlined there, its loop measured 2 instructions a call more).
             #[allow(clippy::all)]
+            #[inline(never)]
             pub(crate) fn nat_drive(
                 p: &Program,
                 cx: &mut Cx<'_, '_, Program>,
@@ -480,6 +492,24 @@ impl Gen<'_> {
                     }
                     ran = true;
                 }
+            }
+
+            /// Before DM `dm` (no parameters, no locals) hands over: the
+            /// frames below made the machine's.
+            #[allow(unused)]
+            #[cold]
+            #[inline(never)]
+            pub(crate) fn nat_hand_over(
+                p: &Program,
+                cx: &mut Cx<'_, '_, Program>,
+                stack: &mut NatBelow<'_>,
+                dm: DmIx,
+            ) -> Result<(), RunError> {
+                if !stack.is_empty() {
+                    let own_call = cx.build_of(machine::DmProgram::dm_name(p, dm), &[]);
+                    nat_materialize(p, cx, stack, own_call, dm)?;
+                }
+                Ok(())
             }
 
             /// Makes the native frames below the running one (called as

@@ -12,7 +12,9 @@
 //! comparisons done in Rust.
 //!
 //! The boundaries, and why the run is the term path's, step for step:
-//! - *entry*: `run_native(sit)` is tried whenever situation `sit` runs,
+//! - *entry*: `nat_entry(sit)` is tried whenever situation `sit` runs
+//!   (by the program's `run_situation` for an all-native DM, else by the
+//!   DM's `run_native(sit)`),
 //!   with the history kept or not. The id's arguments (from the value
 //!   that selected it) and the parameters the native situations read are
 //!   converted with the checked conversion (`Native::from_term` through
@@ -114,7 +116,8 @@
 //!   every step that lets the machine see its state (an action performed,
 //!   a situation handed over, `get`/`set`/`inc` through the machine), first
 //!   makes the native frames machine frames and writes the locals back
-//!   (`nat_hand_over`), and reads the locals again after the machine's
+//!   (`nat_hand_over`: the DM's, or the program's for a DM without
+//!   parameters or locals), and reads the locals again after the machine's
 //!   call. A call with an output argument is pushed so too when the
 //!   callee hands it back in an output slot ([`call`]); other calls with a
 //!   fresh variable are the machine's, the term built with the variable
@@ -499,9 +502,12 @@ fn variant(ix: usize) -> Ident {
 }
 
 /// One step of matching a value against an id pattern.
+#[derive(Clone)]
 enum MatchStep {
     /// A test.
     If(TokenStream),
+    /// `[]` of a `List<T>`: `if v.is_empty()`.
+    Empty(TokenStream),
     /// `let NAME = EXPR;`
     Let(Ident, TokenStream),
     /// `if let Some((h, t)) = v.split_first()`, the head cloned.
@@ -538,7 +544,7 @@ impl MatchStep {
     /// Whether the step's code mentions `x`.
     fn mentions(&self, x: &Ident) -> bool {
         match self {
-            MatchStep::If(c) => call::mentions(c, x),
+            MatchStep::If(c) | MatchStep::Empty(c) => call::mentions(c, x),
             MatchStep::Let(_, e) | MatchStep::Narrow(_, e) => call::mentions(e, x),
             MatchStep::Split(v, ..)
             | MatchStep::SplitVal(v, ..)
@@ -552,9 +558,12 @@ impl MatchStep {
 
 /// The DM's native code, for the module.
 pub(super) struct NativeCode {
-    /// `enum Nat`, `run_native` (which `run_situation` calls for each
-    /// situation with native code).
+    /// `enum Nat`, `nat_step`, `nat_entry`, ...
     pub items: TokenStream,
+    /// `run_native`, which a DM's `run_situation` calls for each situation
+    /// with native code (an all-native DM has none: the program enters
+    /// its frame).
+    pub run_native: TokenStream,
     /// How many situations hold no ground handle (no register `term`):
     /// the ones on native values.
     pub on_native_values: usize,
@@ -855,6 +864,7 @@ impl Gen<'_> {
             // The fields read in one call where it is one line (the
             // variant's field types say what each converts to).
             let path_ts = paths.iter().map(|(t, _)| t);
+            let path_ts2 = path_ts.clone();
             let regs: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
             let (tuple, text) = match regs.as_slice() {
                 [one] => (quote!((#one,)), format!("({one},)")),
@@ -886,8 +896,19 @@ impl Gen<'_> {
                 }
                 None => quote!(Nat::#v { #(#names),* }),
             };
+            // The whole arm on one line where it fits (the arms are
+            // indented by 12): the variant made from the converted parts.
+            let names_text: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+            let one_line = format!(
+                "{ix} => cx.id_parts(&[{}]).map(|{text}| Nat::{v} {{ {} }})?,",
+                path_text.join(", "),
+                names_text.join(", ")
+            );
             entries.push(if fields.is_empty() {
                 quote!(#ixl => { #pipe Nat::#v {} })
+            } else if cell.is_none() && in_one_call && pipe.is_empty() && 12 + one_line.len() <= 89
+            {
+                quote!(#ixl => cx.id_parts(&[#(#path_ts2),*]).map(|#tuple| #built)?,)
             } else if in_one_call {
                 quote!(#ixl => {
                     #parts
@@ -1012,6 +1033,14 @@ impl Gen<'_> {
                 }
             }
 
+            /// The frame entered at `sit`, its values converted (`None`: one does not).
+            pub(crate) fn nat_entry(p: &Program, cx: &mut Ctx, sit: SitIx) -> Option<Frame> {
+                #entry_body
+            }
+        };
+        // Only for a DM with term code too (`codegen::emit`): an all-native
+        // DM's frame is entered by the program's `run_situation`.
+        let run_native = quote! {
             #[doc = #doc]
             pub fn run_native(p: &Program, cx: &mut Ctx, sit: SitIx) -> NatResult {
                 let run = cx.typed_run();
@@ -1019,11 +1048,6 @@ impl Gen<'_> {
                     return Ok(None);
                 };
                 super::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run).map(Some)
-            }
-
-            /// The frame entered at `sit`, its values converted (`None`: one does not).
-            fn nat_entry(p: &Program, cx: &mut Ctx, sit: SitIx) -> Option<Frame> {
-                #entry_body
             }
         };
         // Counted on inference's types: a register that holds no value
@@ -1045,6 +1069,7 @@ impl Gen<'_> {
         Ok(NativeCode {
             held,
             items,
+            run_native,
             callee_ok: d.native.first().copied().unwrap_or(false) && d.locals_ok,
             on_native_values: native.len(),
             fixed_shapes,
@@ -1624,7 +1649,7 @@ impl Gen<'_> {
     }
 
     /// The code of one visit of situation `ix` (its fields bound): returns
-    /// from `run_native` or gives the next `Nat`.
+    /// from `nat_step` or gives the next `Nat`.
     /// A visit whose code never reads the register the in_arg read the
     /// pipe into (`in_arg ==> X, out_arg ==> X`, or `X` unused) is made
     /// again with the pipe's conversion only checked ([`Gen::nat_pipe_in`]).
@@ -1691,7 +1716,6 @@ impl Gen<'_> {
         match (&plan.kind, kind) {
             (KindPlan::Final { diag_mod }, Kind::Final) => {
                 let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
-                let empty = quote!(Term::atom(atoms::EMPTY));
                 // `diag_mod`: the DM's head bound (its output arguments),
                 // a term built from native values at that boundary.
                 // A native caller that passed its outputs as `Ground::OUT`
@@ -1775,13 +1799,11 @@ impl Gen<'_> {
                 Ok(quote! {
                     #(#stmts)*
                     #below
-                    cx.count_transitions(count);
                     #(#id_stmts)*
-                    cx.enter_with_id(#cur, #id);
+                    cx.enter_counted(&mut count, #cur, #id);
                     #out_final
                     #diag
-                    cx.record(#empty, #empty, None);
-                    return Ok(Some(Step::Final));
+                    return cx.step_final();
                 })
             }
             (KindPlan::Perceptual(arcs), kind) => {
@@ -2127,7 +2149,6 @@ impl Gen<'_> {
             arc.out_arg.as_ref(),
             &regs,
             reloads,
-            &rec_entry(),
             &enter_id,
         )?;
         // The expectation's term for the history, built only when recorded.
@@ -2612,7 +2633,6 @@ impl Gen<'_> {
         out: Option<&Build>,
         regs: &Regs,
         always: bool,
-        rec: &TokenStream,
         enter: &TokenStream,
     ) -> N<Option<(TokenStream, Vec<(Reg, Ty)>)>> {
         let at = quote!(arc_at);
@@ -2644,24 +2664,28 @@ impl Gen<'_> {
                 None => return Err(format!("register r{r} is read unset")),
             }
         }
-        let prelude = Self::prelude(&body);
+        // `a` is `nat_step`'s.
+        let k = Self::uses(&body).1.then(|| quote!(let k = &p.k;));
         // The arc's transition (counted in `count` when nothing is
         // recorded) counts once its next situation is computed, as on the
         // term path: an error evaluating it leaves it out. The machine is
         // in the situation then (an empty action performed nothing).
+        // The next situation computed before the out_arg.
+        let go = match out {
+            None => quote!(return run.go(cx, this, exp, act, #v, #at);),
+            Some(out) => quote! {
+                let next = #v;
+                #out
+                return run.go(cx, this, exp, act, next, #at);
+            },
+        };
         let fallback = quote! {{
-            let this = u64::from(!run.records).min(count);
-            cx.count_transitions(count - this);
+            let this = run.count_but_this(cx, count);
             #enter
-            #prelude
+            #k
             #(#lets)*
             #(#stmts)*
-            let (next, target) = #v;
-            #out
-            cx.count_transitions(this);
-            let rec_next = next;
-            #rec
-            return cx.go(next, target, #at).map(Some);
+            #go
         }};
         Ok(Some((fallback, conv)))
     }
@@ -2898,9 +2922,7 @@ impl Gen<'_> {
             #hand
             // This transition counts once its next situation is computed
             // (an error evaluating it leaves it out, as on the term path).
-            let this = u64::from(!run.records).min(count);
-            cx.count_transitions(count - this);
-            count = this;
+            count = run.count_but_this(cx, count);
             #(#id_stmts)*
             cx.enter_with_id(#curl, #id);
         })
@@ -3138,6 +3160,8 @@ impl Gen<'_> {
         }
         *d.movable.borrow_mut() = movable;
         let mut candidates = Vec::new();
+        // A candidate took every value: the hand-over below is not reached.
+        let mut taken = false;
         for j in 0..d.plans.len() {
             if d.plans[j].id != (name, args.len()) {
                 continue;
@@ -3239,75 +3263,94 @@ impl Gen<'_> {
                 None => inits.into_iter().map(|(_, i)| i).collect(),
             };
             let v = variant(j);
-            let mut code = quote!(break 'sel Nat::#v { #(#inits),* };);
-            for s in steps.into_iter().rev() {
-                code = match s {
-                    MatchStep::If(c) => quote!(if #c { #code }),
-                    MatchStep::Let(x, _) if inline.contains_key(&x) => code,
-                    MatchStep::Let(x, e) => quote!({ let #x = #e; #code }),
-                    MatchStep::Narrow(x, e) => quote! {{
-                        let Some(#x) = #e else { break 'hand; };
-                        #code
-                    }},
-                    MatchStep::Args(v, f, arity, xs) => quote! {
-                        if let Some(&[#(#xs),*]) =
-                            cx.store_ref().compound_args(#v.0, #f, #arity)
-                        {
-                            #(let #xs = Ground(#xs);)*
-                            #code
-                        }
-                    },
-                    MatchStep::SplitVal(l, h, t) => quote! {
-                        if let Some((#h, #t)) = #l.split_list() {
-                            #code
-                        }
-                    },
-                    MatchStep::SplitValList(l, h, t) => quote! {
-                        if let Some((#h, #t)) = #l.split_proper() {
-                            #code
-                        } else if #l.is_cell() {
-                            break 'hand;
-                        }
-                    },
-                    MatchStep::ArgsVal(v, f, arity, xs) => quote! {
-                        if let Some([#(#xs),*]) = #v.args_of(#f, #arity) {
-                            #(let #xs = #xs.clone();)*
-                            #code
-                        }
-                    },
-                    MatchStep::Split(l, h, t) => quote! {
-                        if let Some((#h, #t)) = #l.split_first() {
-                            let #h = #h.clone();
-                            #code
-                        }
-                    },
-                    MatchStep::Cell(l, x, take, false) => quote! {
-                        if !#l.is_empty() {
-                            let #x = #take;
-                            #code
-                        }
-                    },
-                    MatchStep::Cell(l, x, _, true) => quote! {
-                        if let Some(#x) = #l.non_empty_list() {
-                            let #x = #x.clone();
-                            #code
-                        } else if #l.is_cell() {
-                            break 'hand;
-                        }
-                    },
-                };
+            // Only `let`s: this candidate takes every value that reaches
+            // it, so no later one is tried.
+            let lets = |ss: &[MatchStep]| ss.iter().all(|s| matches!(s, MatchStep::Let(..)));
+            let takes_all = lets(&steps);
+            // The first candidate, its id distinct variables: the variant
+            // is the selection, each field the value itself (read once,
+            // no `'sel` block and no reference to clone from).
+            if takes_all
+                && candidates.is_empty()
+                && id_args
+                    .iter()
+                    .all(|&p| matches!(self.store.value(p), Value::Var(_)))
+            {
+                let direct = self.nat_select_direct(d, j, &id_args, &args, &fields);
+                *d.movable.borrow_mut() = None;
+                return direct;
             }
-            candidates.push(code);
+            // `[]` or `[H|T]` of one list, and `let`s (see below).
+            let shape = match steps.split_first() {
+                Some((MatchStep::Empty(l), rest)) if lets(rest) => {
+                    let code = wrap_steps(
+                        rest.to_vec(),
+                        &inline,
+                        quote!(break 'sel Nat::#v { #(#inits),* };),
+                    );
+                    Shape::Empty(l.to_string(), code)
+                }
+                Some((MatchStep::Split(l, ..), rest)) if lets(rest) => Shape::Split(l.to_string()),
+                _ => Shape::Other,
+            };
+            let code = wrap_steps(steps, &inline, quote!(break 'sel Nat::#v { #(#inits),* };));
+            candidates.push((code, shape));
+            if takes_all {
+                taken = true;
+                break;
+            }
         }
         *d.movable.borrow_mut() = None;
+        // `[]` and `[H|T]` of the same list (two adjacent candidates, the
+        // rest of each only `let`s): every list is one or the other, so the
+        // empty list is what the split leaves (the two are disjoint: their
+        // order does not matter), and no later candidate is tried.
+        let mut codes = Vec::new();
+        let mut k = 0;
+        while k < candidates.len() {
+            let pair = match (&candidates[k], candidates.get(k + 1)) {
+                ((_, Shape::Empty(l, empty)), Some((split, Shape::Split(m))))
+                | ((split, Shape::Split(m)), Some((_, Shape::Empty(l, empty)))) => {
+                    (l == m).then_some((split, empty))
+                }
+                _ => None,
+            };
+            if let Some((split, empty)) = pair {
+                codes.push(split.clone());
+                codes.push(empty.clone());
+                taken = true;
+                break;
+            }
+            codes.push(candidates[k].0.clone());
+            k += 1;
+        }
+        let candidates = codes;
         let f = self.atom_native(name)?;
         let hand = &d.hand;
         let out = d.out.borrow().clone();
         let tail = goto_tail(&d.rec.borrow());
+        // The `'hand` block only where a candidate leaves it (a value
+        // that no later candidate may take either): every candidate
+        // otherwise ends in `break 'sel` or falls through.
+        let leaves = candidates.iter().any(|c| c.to_string().contains("'hand"));
+        let candidates = if leaves {
+            quote!('hand: { #(#candidates)* })
+        } else {
+            quote!(#(#candidates)*)
+        };
+        if taken && !leaves {
+            // Decided here: every value is taken natively.
+            return Ok(quote! {
+                'sel: {
+                    #(#lets)*
+                    #candidates
+                }
+            });
+        }
         Ok(quote! {
             'sel: {
                 #(#lets)*
-                'hand: { #(#candidates)* }
+                #candidates
                 // No situation takes it here: the machine selects (or says
                 // that none does).
                 #hand
@@ -3318,6 +3361,44 @@ impl Gen<'_> {
                 #tail
             }
         })
+    }
+
+    /// The variant of situation `j` whose id is distinct variables
+    /// `id_args`, built of `args` (each read once: its own expression,
+    /// converted to its field's type).
+    fn nat_select_direct(
+        &self,
+        d: &Dm,
+        j: usize,
+        id_args: &[Term],
+        args: &[V],
+        fields: &[(Reg, Ty)],
+    ) -> N<TokenStream> {
+        let mut steps = Vec::new();
+        let mut vars: HashMap<u32, (Ident, Ty)> = HashMap::new();
+        let mut n = 0;
+        for (i, (&pat, v)) in id_args.iter().zip(args).enumerate() {
+            let matched =
+                self.native_match(d, j, pat, v, &mut vec![i], &mut vars, &mut steps, &mut n)?;
+            if !matched {
+                return Err("an id variable does not take its value".into());
+            }
+        }
+        let mut inits = Vec::new();
+        for (r, _) in fields {
+            let x = format_ident!("f{}", r);
+            let e = steps
+                .iter()
+                .find_map(|s| match s {
+                    MatchStep::Let(y, e) if *y == x => Some(e),
+                    _ => None,
+                })
+                .ok_or("an id field is not bound by its pattern")?;
+            let rr = reg(*r);
+            inits.push(quote!(#rr: #e));
+        }
+        let v = variant(j);
+        Ok(quote!(Nat::#v { #(#inits),* }))
     }
 
     /// Matching `v` against the id pattern `pat` of situation `j` at `path`:
@@ -3412,7 +3493,7 @@ impl Gen<'_> {
             }
             Value::Atom(a) if a == atoms::NIL => match &v.ty {
                 Ty::List(_) => {
-                    steps.push(MatchStep::If(quote!(#e.is_empty())));
+                    steps.push(MatchStep::Empty(quote!(#e)));
                     Ok(true)
                 }
                 Ty::Sym => {
@@ -3641,6 +3722,84 @@ impl Gen<'_> {
             _ => Err("an id pattern holds a constant that is not native".into()),
         }
     }
+}
+
+/// A candidate's code: `code` (its `break 'sel`) inside its match steps,
+/// the first outermost; a `let` in `inline` is written where it is read.
+fn wrap_steps(
+    steps: Vec<MatchStep>,
+    inline: &HashMap<Ident, TokenStream>,
+    mut code: TokenStream,
+) -> TokenStream {
+    for s in steps.into_iter().rev() {
+        code = match s {
+            MatchStep::If(c) => quote!(if #c { #code }),
+            MatchStep::Empty(l) => quote!(if #l.is_empty() { #code }),
+            MatchStep::Let(x, _) if inline.contains_key(&x) => code,
+            MatchStep::Let(x, e) => quote!({ let #x = #e; #code }),
+            MatchStep::Narrow(x, e) => quote! {{
+                let Some(#x) = #e else { break 'hand; };
+                #code
+            }},
+            MatchStep::Args(v, f, arity, xs) => quote! {
+                if let Some(&[#(#xs),*]) =
+                    cx.store_ref().compound_args(#v.0, #f, #arity)
+                {
+                    #(let #xs = Ground(#xs);)*
+                    #code
+                }
+            },
+            MatchStep::SplitVal(l, h, t) => quote! {
+                if let Some((#h, #t)) = #l.split_list() {
+                    #code
+                }
+            },
+            MatchStep::SplitValList(l, h, t) => quote! {
+                if let Some((#h, #t)) = #l.split_proper() {
+                    #code
+                } else if #l.is_cell() {
+                    break 'hand;
+                }
+            },
+            MatchStep::ArgsVal(v, f, arity, xs) => quote! {
+                if let Some([#(#xs),*]) = #v.args_of(#f, #arity) {
+                    #(let #xs = #xs.clone();)*
+                    #code
+                }
+            },
+            MatchStep::Split(l, h, t) => quote! {
+                if let Some((#h, #t)) = #l.split_first() {
+                    let #h = #h.clone();
+                    #code
+                }
+            },
+            MatchStep::Cell(l, x, take, false) => quote! {
+                if !#l.is_empty() {
+                    let #x = #take;
+                    #code
+                }
+            },
+            MatchStep::Cell(l, x, _, true) => quote! {
+                if let Some(#x) = #l.non_empty_list() {
+                    let #x = #x.clone();
+                    #code
+                } else if #l.is_cell() {
+                    break 'hand;
+                }
+            },
+        };
+    }
+    code
+}
+
+/// What a candidate of [`Gen::nat_select`] tests, for the pair `[]`,
+/// `[H|T]` of one list (the place's text).
+enum Shape {
+    /// `[]` and `let`s; its code without the test.
+    Empty(String, TokenStream),
+    /// `[H|T]` and `let`s.
+    Split(String),
+    Other,
 }
 
 /// Fresh names `g{n}_{k}` for the `len` arguments of a compound matched

@@ -14,7 +14,7 @@
 //!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
-//! where the machine enters native code, `run_native` checks the
+//! where the machine enters native code, `nat_entry` checks the
 //! conversion first and leaves that situation to its term code, so a
 //! hand-over never comes back to native code that would hand over again.
 
@@ -66,7 +66,7 @@ impl Gen<'_> {
         })
     }
 
-    /// In `run_native`: the in_arg of situation `ix` (where the machine
+    /// In `nat_entry`: the in_arg of situation `ix` (where the machine
     /// enters native code) converts, else the situation runs on terms.
     pub(super) fn nat_pipe_entry(&self, d: &Dm, ix: usize) -> N<TokenStream> {
         let Some(plan) = d.plans.get(ix) else {
@@ -126,7 +126,7 @@ impl Gen<'_> {
         let n = n?;
         Ok(quote! {{
             #pipe_out
-            let next_at = { #n };
+            let next_at = #n;
             #set
             next_at
         }})
