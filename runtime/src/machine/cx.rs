@@ -261,6 +261,65 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         Ok(())
     }
 
+    /// Native code handing the visit of situation `sit` of the running DM
+    /// (its id `id`, built from native values) to the machine, nothing of
+    /// it done: the machine runs it from its template, as the interpreter
+    /// does (a recursive situation whose call is not pushed on the native
+    /// stack: the machine makes the call, nests the callee's entries in the
+    /// DM's history and runs the exit arcs).
+    #[cold]
+    pub fn to_template(&mut self, sit: SitIx, id: Term) -> Step {
+        self.sit = sit;
+        self.id = id;
+        self.selected = Some(id);
+        Step::Template
+    }
+
+    /// A native frame waiting in recursive situation `sit` (id `id`) for
+    /// its native callee, made the machine's: the situation's instance
+    /// from its template as the interpreter holds it while the callee runs
+    /// (its id `id`; its in_arg the pipe value the visit read, `in_arg`,
+    /// when the exit arcs read it; its `embedded_dm` the callee's call
+    /// term `callee`, whose variables the callee's `diag_mod` binds), the
+    /// callee's frame pushed (DM `callee_dm`, the depth limit checked):
+    /// the machine runs the exit arcs at the callee's final. (`prog` is
+    /// not run again: native code ran it, and its variables are renamed
+    /// apart from the exit arcs', D-10.)
+    pub fn wait_template(
+        &mut self,
+        sit: SitIx,
+        id: Term,
+        in_arg: Option<Term>,
+        callee_dm: super::DmIx,
+        callee: Term,
+    ) -> Result<(), RunError> {
+        self.m.materialize();
+        self.enter_with_id(sit, id);
+        let here = Some((sit, id));
+        let dm = self.m.frames.last().expect("a frame is running").dm;
+        let inst = self.m.template_instance(dm, sit, Some(id))?;
+        if let (Some(pattern), Some(value)) = (inst.in_arg, in_arg) {
+            self.m.unify_in_arg(pattern, value, here)?;
+        }
+        let called = inst
+            .embedded_dm
+            .is_some_and(|e| self.m.store.unify(e, callee));
+        if !called {
+            return Err(self.fault(Fault::NotTheCall));
+        }
+        self.m.check_depth(here)?;
+        self.m
+            .frames
+            .last_mut()
+            .expect("a frame is running")
+            .pending = Some(super::state::Pending::Recursive { sit });
+        self.m.instances.push(inst);
+        self.m.push_frame(callee_dm, callee);
+        self.sit = 0;
+        self.selected = None;
+        Ok(())
+    }
+
     /// [`Cx::call_typed`] without pushing the callee's frame, for typed
     /// code that keeps no history: the frame is pushed, with every one
     /// below it, only when something reads the DM stack (any step of this
@@ -347,6 +406,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             Fault::WaitsForNone => "native code handed over a frame that waits for no DM",
             Fault::Visited => "native code visited a waiting situation",
             Fault::Exits => "native exit arcs disagree with the machine's",
+            Fault::NotTheCall => {
+                "native code called a DM its situation's embedded_dm does not call"
+            }
         };
         self.error(message, None)
     }
@@ -835,6 +897,8 @@ pub enum Fault {
     Visited,
     /// No native exit arc took the callee's final, but the machine's did.
     Exits,
+    /// A native callee's call term that its caller's `embedded_dm` does not take.
+    NotTheCall,
 }
 
 /// A value native code makes a term of, of any native type (a term is

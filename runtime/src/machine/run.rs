@@ -205,7 +205,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 }
             }
             let (mut sit, inst) = self.select(&goto)?;
-            let dm = self.frames.last().expect("a frame is running").dm;
+            let mut dm = self.frames.last().expect("a frame is running").dm;
             let inst = match inst {
                 Selected::Instance(inst) => inst,
                 Selected::Compiled { id, selected } => {
@@ -225,8 +225,11 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     let (at, id, selected) = (cx.sit, cx.id, cx.selected);
                     debug_assert!(self.lazy.is_empty(), "typed code left lazy frames");
                     if let Step::Template = step {
-                        // Nothing of the visit done: the situation from its template.
+                        // Nothing of the visit done: the situation from its
+                        // template, in the running DM (native code may have
+                        // made its callers' frames the machine's first).
                         sit = at;
+                        dm = self.frames.last().expect("a frame is running").dm;
                         self.template_instance(dm, at, selected)?
                     } else {
                         let sit = at;
@@ -399,7 +402,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     /// over ([`Step::Template`]), as the machine's selection would have
     /// made it: its id unified with the value that selected it (`selected`;
     /// the code's selection said it unifies), its head linked to the call.
-    fn template_instance(
+    pub(super) fn template_instance(
         &mut self,
         dm: DmIx,
         sit: SitIx,

@@ -405,6 +405,7 @@ fn native_dms_agree() {
         native::dm_want::run_native,
         native::dm_relay::run_native,
         native::dm_echo::run_native,
+        native::dm_shout::run_native,
         // An output argument: the call handed over on terms.
         native::dm_outer_out::run_native,
         // Output arguments pushed natively, and the ways that fall back.
@@ -492,6 +493,7 @@ fn native_dms_agree() {
     ] {
         agree_piped(app, &ir, "relay(t)", in_arg, "");
         agree_piped(app, &ir, "pass(t)", in_arg, "");
+        agree_piped(app, &ir, "shout(t)", in_arg, "");
     }
     // The depth limit reached by native calls: the machine's error.
     for depth in [1, 2, 3, 4] {

@@ -75,9 +75,10 @@
 //!   action performed, the next situation: the next `Nat`'s id or the
 //!   value handed over), its terms built only when a history is kept or
 //!   observed (`run.records`); otherwise it counts the transition, no term
-//!   made. When recorded every call is the machine's (the callee's frame
-//!   pushed so that its entries nest in the caller's), so the native stack
-//!   stays empty and `nat_hand_over` only writes the locals back.
+//!   made. When recorded every call is the machine's (the visit handed to
+//!   the machine, which runs it from its template: the callee's entries
+//!   nest in the caller's), so the native stack stays empty and
+//!   `nat_hand_over` only writes the locals back.
 //! - *`term` registers* (a parameter or id part nothing reads, loaded from
 //!   a place typed `term`): held as a
 //!   [`Ground`](sitlog_runtime::native::Ground) handle, checked ground and
@@ -108,9 +109,8 @@
 //!   with native code whose callee's initial situation has native code
 //!   (and whose arguments fit the callee's frame) pushes the callee's
 //!   frame (no Rust recursion, no term), the callee's final variant resumes
-//!   the caller, whose exit arcs match it natively (those native code does
-//!   not run: the situation's term code, `run_exit`, on the final's id once
-//!   the frames below are the machine's); every other call, and
+//!   the caller, whose exit arcs match it natively; every other call (the
+//!   visit from its template, [`call`]: no exit arcs as term code), and
 //!   every step that lets the machine see its state (an action performed,
 //!   a situation handed over, `get`/`set`/`inc` through the machine), first
 //!   makes the native frames machine frames and writes the locals back
@@ -3425,18 +3425,6 @@ fn place(v: &V) -> TokenStream {
     }
     let e = &v.e;
     quote!((#e))
-}
-
-/// A reference to the value, for a term made of it (`&dyn AsTerm`): a
-/// register of the visit read as `r<n>.clone()` (an owned Rust local) is
-/// `&r<n>`, any other value a reference to its [`place`].
-fn place_ref(v: &V) -> TokenStream {
-    let m = moved(v);
-    if m.to_string() != v.e.to_string() {
-        return quote!(&#m);
-    }
-    let p = place(v);
-    quote!(&#p)
 }
 
 /// A value read as `r<n>.clone()`, a register of the visit (an owned Rust
