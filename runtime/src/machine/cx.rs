@@ -268,6 +268,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// stack: the machine makes the call, nests the callee's entries in the
     /// DM's history and runs the exit arcs).
     #[cold]
+    #[inline(never)]
     pub fn to_template(&mut self, sit: SitIx, id: Term) -> Step {
         self.sit = sit;
         self.id = id;

@@ -130,9 +130,12 @@ pub enum Step {
     /// No expectation was met: the recovery DM of the type, or a new instance (D-15, D-42a).
     Unmet { type_term: Term },
     /// The situation entered (the code's `Cx` situation, id and selecting
-    /// value) runs from its template, as the interpreter runs it: the code
-    /// handed it over before doing anything (native code whose values do
-    /// not convert, in a situation the program has no term code for).
+    /// value) of the running DM (the top frame: native code may have made
+    /// its callers' frames the machine's first) runs from its template, as
+    /// the interpreter runs it: the code handed it over before doing
+    /// anything (native code whose values do not convert, in a situation
+    /// the program has no term code for; a recursive situation whose call
+    /// native code does not push, [`Cx::to_template`]).
     Template,
 }
 
