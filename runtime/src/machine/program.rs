@@ -145,6 +145,10 @@ pub enum Step {
 pub struct TypedRun {
     /// History entries are kept or observed: build and record them.
     pub records: bool,
+    /// The history is kept and nothing observes the run: native code may
+    /// call DMs on its own stack, their entries in levels of their own
+    /// ([`Cx::open_level`]).
+    pub nests: bool,
     /// [`Actions::ignores_numbers`](super::Actions::ignores_numbers).
     pub quiet_numbers: bool,
     /// [`Actions::ignores_empty`](super::Actions::ignores_empty).

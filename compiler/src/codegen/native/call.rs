@@ -30,10 +30,25 @@
 //! argument, an output the callee may leave unbound, an output of a type
 //! the caller's register does not take: the machine's call, as below.
 //!
+//! *With the history kept* (`run.nests`: kept, nothing observing) a call
+//! whose exit arcs record their entries natively (their expectation a term
+//! of the registers, their action of the values computed:
+//! `nat_exit_record`) is pushed too: the callee's call term (`call_term`,
+//! an output argument a fresh variable) opens a history level of its own
+//! (`Cx::open_level`) that takes its entries; its final below the base binds
+//! the outputs in that term, records its entry and closes the level, nested
+//! in the caller's (`Cx::close_level`); the exit arc then records the
+//! caller's entry. Where the frames become the machine's, each pushed frame
+//! takes its level (`Cx::wait_template`). A callee's visit records natively
+//! where its action is `empty` or one native code runs (`inc`, `is`, values:
+//! `Gen::nat_arc_rec_fast`); any other records on the machine's frames
+//! (the native stack materialized first).
+//!
 //! Hand-over, so behaviour stays the term path's:
-//! - a call made while a history is kept or observed (`run.records`: the
-//!   machine pushes the callee's frame, its entries nest in the caller's),
-//!   a call whose DM is not native there, whose arguments do not fit the
+//! - a call made while the run is observed (`run.records` without
+//!   `run.nests`: the machine pushes the callee's frame, its entries nest in
+//!   the caller's), or with the history kept when its exit arcs do not
+//!   record natively, a call whose DM is not native there, whose arguments do not fit the
 //!   callee's frame (a fresh variable other than an output argument above),
 //!   whose exit arcs native code does not run, or that would reach the
 //!   depth limit: the visit is handed to the machine, nothing of it done
@@ -87,6 +102,9 @@ struct CallPlan<'a> {
     j: usize,
     callee: Dm<'a>,
     exit: TokenStream,
+    /// The exit arcs record their entries natively (`run.records`): the
+    /// call may be pushed on the native stack with the history kept.
+    rec: bool,
 }
 
 fn wait_variant(ix: usize) -> Ident {
@@ -245,8 +263,13 @@ impl Gen<'_> {
         }
         // Exit arcs native code does not run (an action or next situation
         // it does not know): the call is the machine's, from the template.
-        let exit = self.nat_exit(d, ix, &callee, j).ok()?;
-        Some(CallPlan { j, callee, exit })
+        let (exit, rec) = self.nat_exit(d, ix, &callee, j).ok()?;
+        Some(CallPlan {
+            j,
+            callee,
+            exit,
+            rec,
+        })
     }
 
     /// The visit of recursive situation `ix` (registers `regs` set).
@@ -371,6 +394,23 @@ impl Gen<'_> {
             let (rr, e) = (reg(r), super::moved(&v));
             wf.push(quote!(#rr: #e));
         }
+        // With the history kept (nothing observing), when the exit arcs
+        // record natively: the callee's entries in a level of their own.
+        let rec = if plan.rec {
+            quote! {
+                else if run.nests && stack.has_room(cx) {
+                    let callee = super::NatFrame::#callee_v(
+                        super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} },
+                    );
+                    let t = callee.call_term(p, cx);
+                    cx.open_level(t);
+                    *call = Some(callee);
+                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
+                }
+            }
+        } else {
+            quote!()
+        };
         Ok(quote! {
             // The callee's frame on the native stack, within the depth
             // limit, when no history is kept or observed (else the machine
@@ -380,7 +420,7 @@ impl Gen<'_> {
                 *call = Some(super::NatFrame::#callee_v(callee));
                 // Written where the frame keeps it (not through `at`).
                 return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
-            }
+            } #rec
         })
     }
 
@@ -471,7 +511,7 @@ impl Gen<'_> {
     /// The exit arcs of recursive situation `ix` on the final variant of
     /// callee `callee` (DM `j`) in `ret`: evaluates to the next `Nat` (or
     /// returns, handing over).
-    fn nat_exit(&self, d: &Dm, ix: usize, callee: &Dm, j: usize) -> N<TokenStream> {
+    fn nat_exit(&self, d: &Dm, ix: usize, callee: &Dm, j: usize) -> N<(TokenStream, bool)> {
         let KindPlan::Recursive { exit, .. } = &d.plans[ix].kind else {
             return Err("not a recursive situation".into());
         };
@@ -532,6 +572,9 @@ impl Gen<'_> {
         let callee_v = format_ident!("D{}", j);
         let callee_n = format_ident!("NatN{}", j);
         let mut final_arms = Vec::new();
+        // Every arc's entry built natively (its expectation a term of the
+        // registers, its action of the values it computed).
+        let mut rec_all = true;
         for k in 0..callee.plans.len() {
             // Only a final situation the callee hands back as its `Nat`
             // variant reaches these arms: one without native code, or with
@@ -600,6 +643,12 @@ impl Gen<'_> {
                     self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &cur_name);
                 d.pipe_in.set(pipe_in);
                 let next = next?;
+                // Recorded: the entry as the machine's `conclude` makes it
+                // (the expectation unified with the final's id, the action's
+                // values), the next situation handing over records it there.
+                let rec = self.nat_exit_record(d, ix, arc, &regs, &cur_name).ok();
+                rec_all &= rec.is_some();
+                let rec = rec.unwrap_or_default();
                 let cond = if tests.is_empty() {
                     quote!(true)
                 } else {
@@ -611,6 +660,7 @@ impl Gen<'_> {
                         let arc_at = Some(#il);
                         #(#lets)*
                         #action
+                        #rec
                         count += 1;
                         let next_at = { #next };
                         break 'visit next_at;
@@ -657,7 +707,57 @@ impl Gen<'_> {
             .into_iter()
             .filter(|(r, _)| mentions(&body, r))
             .map(|(_, stmt)| stmt);
-        Ok(quote!(#(#head)* #body))
+        Ok((quote!(#(#head)* #body), rec_all))
+    }
+
+    /// The recorded way of exit arc `arc` of situation `ix` (its action's
+    /// values `act<n>` computed): the entry's expectation and action as
+    /// terms, the situation's id entered, the next situation computed
+    /// (recording where it hands over) and its entry recorded.
+    fn nat_exit_record(
+        &self,
+        d: &Dm,
+        ix: usize,
+        arc: &crate::mir::ArcPlan,
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<TokenStream> {
+        let mut ts = Vec::new();
+        let mut n = 0;
+        let exp = self.nat_ev_term(&arc.expectation, regs, &mut ts, &mut n)?;
+        let (items, list) = match &arc.action {
+            Action::List { items, .. } => (items.len(), true),
+            Action::One(_) => (1, false),
+        };
+        let acts: Vec<Ident> = (0..items).map(|k| format_ident!("act{}", k)).collect();
+        let act = if list {
+            quote! {
+                let act_items = [#(cx.term(&#acts)),*];
+                let act = cx.store().list(&act_items);
+            }
+        } else {
+            quote!(let act = cx.term(&act0);)
+        };
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let curl = Literal::u32_unsuffixed(ix as u32);
+        let pipe_in = d.pipe_in.take();
+        *d.rec.borrow_mut() = super::rec_entry();
+        let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), regs, cur_name);
+        *d.rec.borrow_mut() = quote!();
+        d.pipe_in.set(pipe_in);
+        let next = next?;
+        Ok(quote! {
+            if run.records {
+                #(#ts)*
+                let exp: Term = #exp;
+                #act
+                #(#id_stmts)*
+                cx.enter_counted(&mut count, #curl, #id);
+                let next_at: Nat = { #next };
+                cx.record_next(exp, act, |s| next_at.id_term(p, s));
+                break 'visit next_at;
+            }
+        })
     }
 
     /// Unifies the expectation `b` (the caller's registers, fresh or set)

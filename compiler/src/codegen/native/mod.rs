@@ -1562,7 +1562,7 @@ impl Gen<'_> {
                     }
                 };
                 let v = variant(ix);
-                let names = fields.iter().map(|(r, _)| reg(*r));
+                let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
                 // out_arg: the pipe's new value (never unbound here).
                 let (out_set, out_final) = match &plan.out_arg {
                     Some((b, _)) => {
@@ -1583,21 +1583,42 @@ impl Gen<'_> {
                 // Below the base the caller's exit arcs read the variant
                 // (with a `diag_mod`, the machine takes the final).
                 let hand = &d.hand;
+                // Recorded (the history kept: the DM's entries in a level
+                // of its own): its outputs bound in its call term, its
+                // entry made, its level closed (`Cx::close_level`).
+                let close = |outs: TokenStream| {
+                    quote! {
+                        if run.records {
+                            #(#id_stmts)*
+                            let outs: &[(usize, Term)] = &#outs;
+                            cx.close_level(#id, outs)?;
+                            return cx.step_done(count, slot, Nat::#v { #(#names),* });
+                        }
+                    }
+                };
                 let below = match (diag_mod, slot_below) {
-                    (None, _) => quote! {
-                        if !stack.is_empty() {
-                            #out_set
-                            return cx.step_done(count + 1, slot, Nat::#v { #(#names),* });
+                    (None, _) => {
+                        let close = close(quote!([]));
+                        quote! {
+                            if !stack.is_empty() {
+                                #out_set
+                                #close
+                                return cx.step_done(count + 1, slot, Nat::#v { #(#names),* });
+                            }
                         }
-                    },
-                    (Some(_), Some((cond, set))) => quote! {
-                        if !stack.is_empty() && #cond {
-                            #set
-                            #out_set
-                            return cx.step_done(count + 1, slot, Nat::#v { #(#names),* });
+                    }
+                    (Some(_), Some((cond, set, outs))) => {
+                        let close = close(outs);
+                        quote! {
+                            if !stack.is_empty() && #cond {
+                                #set
+                                #out_set
+                                #close
+                                return cx.step_done(count + 1, slot, Nat::#v { #(#names),* });
+                            }
+                            #hand
                         }
-                        #hand
-                    },
+                    }
                     (Some(_), None) => quote!(#hand),
                 };
                 Ok(quote! {
@@ -1933,6 +1954,7 @@ impl Gen<'_> {
         // Only when nothing is recorded: recorded, the arc takes the
         // general way below (the machine's `inc`/`get`, the entry made).
         let mut fast = None;
+        let mut rec_fast = None;
         if let (None, Some(k)) = (atom, arc_ix) {
             let mut nregs = regs.clone();
             if let Ok(act) = self.nat_exit_action(d, ix, k, &arc.action, &mut nregs) {
@@ -1940,6 +1962,9 @@ impl Gen<'_> {
                 let next =
                     self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &nregs, &name)?;
                 fast = Some(quote! { #act count += 1; #next });
+                // Recorded above the machine's frames (a level of its
+                // own): the same, the entry made of the values.
+                rec_fast = self.nat_arc_rec_fast(d, ix, arc, &act, exp.as_ref(), &regs, &nregs);
             }
         }
         // A fresh variable the action binds (a boundary's value) and the
@@ -1984,8 +2009,19 @@ impl Gen<'_> {
                     cx.perform(Term::atom(#act), arc_at)?;
                 };
                 stmts.push(if action == atoms::EMPTY {
-                    // Recorded: the situation entered (its id in the entry).
-                    quote!(if run.records || !run.quiet_empty { #perform })
+                    // Recorded: the situation entered (its id in the entry);
+                    // above the machine's frames (a level of its own), with
+                    // nothing to perform, without handing over.
+                    quote! {
+                        if run.records || !run.quiet_empty {
+                            if run.quiet_empty && !stack.is_empty() {
+                                #(#id_stmts)*
+                                cx.enter_counted(&mut count, #cur, #id);
+                            } else {
+                                #perform
+                            }
+                        }
+                    }
                 } else {
                     perform
                 });
@@ -2075,11 +2111,72 @@ impl Gen<'_> {
                 next_at
             }
         };
-        Ok(match fast {
-            Some(fast) => quote! {
+        Ok(match (fast, rec_fast) {
+            (Some(fast), Some(rec)) => quote! {
+                if !run.records { #fast } else if !stack.is_empty() { #rec } else { #general }
+            },
+            (Some(fast), None) => quote! {
                 if !run.records { #fast } else { #general }
             },
-            None => general,
+            _ => general,
+        })
+    }
+
+    /// The recorded way of arc `arc` of situation `ix` whose action
+    /// native code runs (`act`: its values `act<n>`), for a frame above the
+    /// machine's: the entry's expectation and action as terms of the
+    /// values, the situation's id entered, the next situation computed
+    /// (recording where it hands over) and its entry recorded. `None` when
+    /// a term of them cannot be built.
+    #[allow(clippy::too_many_arguments)]
+    fn nat_arc_rec_fast(
+        &self,
+        d: &Dm,
+        ix: usize,
+        arc: &ArcPlan,
+        act: &TokenStream,
+        exp: Option<&Ident>,
+        regs: &Regs,
+        nregs: &Regs,
+    ) -> Option<TokenStream> {
+        let mut ts = Vec::new();
+        let mut n = 0;
+        let exp = match exp {
+            Some(e) => quote!(#e),
+            None => self
+                .nat_ev_term(&arc.expectation, regs, &mut ts, &mut n)
+                .ok()?,
+        };
+        let (items, list) = match &arc.action {
+            Action::List { items, .. } => (items.len(), true),
+            Action::One(_) => (1, false),
+        };
+        let acts: Vec<Ident> = (0..items).map(|k| format_ident!("act{}", k)).collect();
+        let act_t = if list {
+            quote! {
+                let act_items = [#(cx.term(&#acts)),*];
+                let act = cx.store().list(&act_items);
+            }
+        } else {
+            quote!(let act = cx.term(&act0);)
+        };
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store())).ok()?;
+        let cur = Literal::u32_unsuffixed(ix as u32);
+        let name = self.atom_native(d.plans[ix].id.0).ok()?;
+        *d.rec.borrow_mut() = rec_entry();
+        let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), nregs, &name);
+        *d.rec.borrow_mut() = quote!();
+        let next = next.ok()?;
+        Some(quote! {
+            #act
+            #(#ts)*
+            let exp: Term = #exp;
+            #act_t
+            #(#id_stmts)*
+            cx.enter_counted(&mut count, #cur, #id);
+            let next_at: Nat = { #next };
+            cx.record_next(exp, act, |s| next_at.id_term(p, s));
+            next_at
         })
     }
 
@@ -2112,7 +2209,7 @@ impl Gen<'_> {
         b: &Build,
         ts: &[TokenStream],
         slots: &[Option<Ident>],
-    ) -> Option<(TokenStream, TokenStream)> {
+    ) -> Option<(TokenStream, TokenStream, TokenStream)> {
         let Build::Compound(name, args) = b else {
             return None;
         };
@@ -2122,6 +2219,7 @@ impl Gen<'_> {
         let plan = &d.plans[ix];
         let mut conds = Vec::new();
         let mut sets = Vec::new();
+        let mut outs = Vec::new();
         for (i, a) in args.iter().enumerate() {
             if d.outputs.get(i).is_some_and(Option::is_some) {
                 let o = slots[i].as_ref()?;
@@ -2131,6 +2229,10 @@ impl Gen<'_> {
                 let (p, out) = (format_ident!("p{}", i), format_ident!("out{}", i));
                 conds.push(quote!(#p.is_out()));
                 sets.push(quote!(*#out = Some(#o);));
+                let il = Literal::usize_unsuffixed(i);
+                outs.push(quote! {
+                    (#il, match #out.as_ref() { Some(v) => cx.term(v), None => Term::NIL })
+                });
             } else if !matches!(a, Build::Reg(r) if plan.inits.iter().any(|(x, init)| x == r && matches!(init, Init::HeadArg(p) if *p == i)))
             {
                 return None;
@@ -2139,7 +2241,11 @@ impl Gen<'_> {
         if conds.is_empty() {
             return None;
         }
-        Some((quote!(#(#conds)&&*), quote!(#(#ts)* #(#sets)*)))
+        Some((
+            quote!(#(#conds)&&*),
+            quote!(#(#ts)* #(#sets)*),
+            quote!([#(#outs),*]),
+        ))
     }
 
     /// A final's output slots: for each output parameter of the DM
