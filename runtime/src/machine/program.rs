@@ -162,7 +162,26 @@ pub struct TypedRun {
     pub call: Option<super::DmIx>,
 }
 
+/// Marks the path that calls it unlikely (its caller's branch laid out
+/// away from the hot one).
+#[cold]
+#[inline(never)]
+fn unlikely() {}
+
 impl TypedRun {
+    /// [`TypedRun::records`] where native code's hot path is the one that
+    /// does not record (with `--history none`): the recorded branch is
+    /// laid out as a cold one.
+    #[inline(always)]
+    pub fn recorded(&self) -> bool {
+        if self.records {
+            unlikely();
+            true
+        } else {
+            false
+        }
+    }
+
     /// An arc's transition, one more for native code to count (`count`,
     /// given to the machine later) unless recorded: then entering the
     /// situation counted it.

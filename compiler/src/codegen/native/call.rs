@@ -93,6 +93,9 @@ pub(super) struct Wait {
     pub id_arm: TokenStream,
     /// Resumes with the callee's frame (`ret`): the exit arcs.
     pub exit_arm: TokenStream,
+    /// The same, recording the entries (`run.records`; empty when the
+    /// call is never pushed natively then).
+    pub rec_arm: TokenStream,
     /// In `nat_wait`: made a machine frame's pending situation.
     pub wait_arm: TokenStream,
 }
@@ -102,9 +105,10 @@ struct CallPlan<'a> {
     j: usize,
     callee: Dm<'a>,
     exit: TokenStream,
-    /// The exit arcs record their entries natively (`run.records`): the
-    /// call may be pushed on the native stack with the history kept.
-    rec: bool,
+    /// The exit arcs recording their entries natively (`run.records`),
+    /// when they can: the call may then be pushed on the native stack with
+    /// the history kept.
+    rec_exit: Option<TokenStream>,
 }
 
 fn wait_variant(ix: usize) -> Ident {
@@ -263,12 +267,12 @@ impl Gen<'_> {
         }
         // Exit arcs native code does not run (an action or next situation
         // it does not know): the call is the machine's, from the template.
-        let (exit, rec) = self.nat_exit(d, ix, &callee, j).ok()?;
+        let (exit, rec_exit) = self.nat_exit(d, ix, &callee, j).ok()?;
         Some(CallPlan {
             j,
             callee,
             exit,
-            rec,
+            rec_exit,
         })
     }
 
@@ -396,7 +400,7 @@ impl Gen<'_> {
         }
         // With the history kept (nothing observing), when the exit arcs
         // record natively: the callee's entries in a level of their own.
-        let rec = if plan.rec {
+        let rec = if plan.rec_exit.is_some() {
             quote! {
                 else if run.nests && stack.has_room(cx) {
                     let callee = super::NatFrame::#callee_v(
@@ -475,6 +479,10 @@ impl Gen<'_> {
             }
             None => quote!(),
         };
+        let rec_arm = match plan.as_ref().and_then(|p| p.rec_exit.as_ref()) {
+            Some(exit) => quote!(Nat::#wv { #(#names),* } => 'visit: { #exit }),
+            None => quote!(),
+        };
         // In `nat_wait` (fields are references there).
         let curl = Literal::u32_unsuffixed(ix as u32);
         let (id_stmts, id) = self.nat_id_term_of(d, ix, quote!(cx.store()), true)?;
@@ -504,6 +512,7 @@ impl Gen<'_> {
             variant,
             id_arm,
             exit_arm,
+            rec_arm,
             wait_arm,
         }))
     }
@@ -511,7 +520,13 @@ impl Gen<'_> {
     /// The exit arcs of recursive situation `ix` on the final variant of
     /// callee `callee` (DM `j`) in `ret`: evaluates to the next `Nat` (or
     /// returns, handing over).
-    fn nat_exit(&self, d: &Dm, ix: usize, callee: &Dm, j: usize) -> N<(TokenStream, bool)> {
+    fn nat_exit(
+        &self,
+        d: &Dm,
+        ix: usize,
+        callee: &Dm,
+        j: usize,
+    ) -> N<(TokenStream, Option<TokenStream>)> {
         let KindPlan::Recursive { exit, .. } = &d.plans[ix].kind else {
             return Err("not a recursive situation".into());
         };
@@ -565,13 +580,10 @@ impl Gen<'_> {
             ));
             regs.insert(r, (rr, rty));
         }
-        let hand = &d.hand;
-        let curl = Literal::u32_unsuffixed(ix as u32);
         let cur_name = self.atom_native(d.plans[ix].id.0)?;
-        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
-        let callee_v = format_ident!("D{}", j);
         let callee_n = format_ident!("NatN{}", j);
         let mut final_arms = Vec::new();
+        let mut rec_arms = Vec::new();
         // Every arc's entry built natively (its expectation a term of the
         // registers, its action of the values it computed).
         let mut rec_all = true;
@@ -602,6 +614,7 @@ impl Gen<'_> {
                 .collect();
             let pat = self.nat_id_of(callee, k);
             let mut arcs_code = Vec::new();
+            let mut rec_code = Vec::new();
             for (i, arc) in exit.arcs.iter().enumerate() {
                 if arc.diag_mod.is_some() {
                     return Err("an exit arc has diag_mod".into());
@@ -648,7 +661,6 @@ impl Gen<'_> {
                 // values), the next situation handing over records it there.
                 let rec = self.nat_exit_record(d, ix, arc, &regs, &cur_name).ok();
                 rec_all &= rec.is_some();
-                let rec = rec.unwrap_or_default();
                 let cond = if tests.is_empty() {
                     quote!(true)
                 } else {
@@ -660,12 +672,21 @@ impl Gen<'_> {
                         let arc_at = Some(#il);
                         #(#lets)*
                         #action
-                        #rec
                         count += 1;
                         let next_at = { #next };
                         break 'visit next_at;
                     }
                 });
+                if let Some(rec) = rec {
+                    rec_code.push(quote! {
+                        if #cond {
+                            let arc_at = Some(#il);
+                            #(#lets)*
+                            #action
+                            #rec
+                        }
+                    });
+                }
             }
             let sk = format_ident!("S{}", k);
             final_arms.push(quote! {
@@ -673,10 +694,39 @@ impl Gen<'_> {
                     #(#arcs_code)*
                 }
             });
+            rec_arms.push(quote! {
+                super::#callee_n::#sk { #(#cf),* } => {
+                    #(#rec_code)*
+                }
+            });
         }
-        let arms = quote!(#(#final_arms)*);
+        let body = self.nat_exit_body(d, ix, j, quote!(#(#final_arms)*), &out_loads, &head)?;
+        let rec_body = if rec_all {
+            Some(self.nat_exit_body(d, ix, j, quote!(#(#rec_arms)*), &out_loads, &head)?)
+        } else {
+            None
+        };
+        Ok((body, rec_body))
+    }
+
+    /// The body of the exit arcs' arm: the callee's frame taken, the
+    /// outputs the arms `arms` read loaded, the arms, and the machine's
+    /// error when none takes the final.
+    fn nat_exit_body(
+        &self,
+        d: &Dm,
+        ix: usize,
+        j: usize,
+        arms: TokenStream,
+        out_loads: &[(Ident, TokenStream)],
+        head: &[(Ident, TokenStream)],
+    ) -> N<TokenStream> {
+        let hand = &d.hand;
+        let curl = Literal::u32_unsuffixed(ix as u32);
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let callee_v = format_ident!("D{}", j);
         let out_loads = out_loads
-            .into_iter()
+            .iter()
             .filter(|(r, _)| mentions(&arms, r))
             .map(|(_, stmt)| stmt);
         let body = quote! {
@@ -704,10 +754,10 @@ impl Gen<'_> {
         // Only the parameters the exit arcs read are loaded (a load is a
         // clone: a list's count changed and changed back on every return).
         let head = head
-            .into_iter()
+            .iter()
             .filter(|(r, _)| mentions(&body, r))
             .map(|(_, stmt)| stmt);
-        Ok((quote!(#(#head)* #body), rec_all))
+        Ok(quote!(#(#head)* #body))
     }
 
     /// The recorded way of exit arc `arc` of situation `ix` (its action's

@@ -708,6 +708,7 @@ impl Gen<'_> {
         let mut id_arms = Vec::new();
         let mut entries = Vec::new();
         let mut exit_arms = Vec::new();
+        let mut rec_arms = Vec::new();
         let mut wait_arms = Vec::new();
         for (ix, c) in code.iter().enumerate() {
             let Some((fields, body, id, wait)) = c else {
@@ -747,6 +748,7 @@ impl Gen<'_> {
                     id_arms.push(w.id_arm.clone());
                 }
                 exit_arms.push(w.exit_arm.clone());
+                rec_arms.push(w.rec_arm.clone());
                 wait_arms.push(w.wait_arm.clone());
             }
             // Entered by the machine: the fields from the value that
@@ -832,12 +834,34 @@ impl Gen<'_> {
             }
         } else {
             let exit_arms = by_ref_loads(quote!(#(#exit_arms)*));
-            quote! {
-                if let Some(ret) = ret {
-                    at = match at {
+            // Recorded (the history kept), the arms that record the
+            // entries: a call whose exit arcs do not is never pushed then.
+            let exit = if rec_arms.iter().all(|a| a.is_empty()) {
+                quote! {
+                    match at {
                         #exit_arms
                         _ => return Err(cx.fault(Fault::NotWaiting)),
-                    };
+                    }
+                }
+            } else {
+                let rec_arms = by_ref_loads(quote!(#(#rec_arms)*));
+                quote! {
+                    if run.recorded() {
+                        match at {
+                            #rec_arms
+                            _ => return Err(cx.fault(Fault::NotWaiting)),
+                        }
+                    } else {
+                        match at {
+                            #exit_arms
+                            _ => return Err(cx.fault(Fault::NotWaiting)),
+                        }
+                    }
+                }
+            };
+            quote! {
+                if let Some(ret) = ret {
+                    at = #exit;
                     #gc
                 }
             }
@@ -1588,7 +1612,7 @@ impl Gen<'_> {
                 // entry made, its level closed (`Cx::close_level`).
                 let close = |outs: TokenStream| {
                     quote! {
-                        if run.records {
+                        if run.recorded() {
                             #(#id_stmts)*
                             let outs: &[(usize, Term)] = &#outs;
                             cx.close_level(#id, outs)?;
