@@ -38,7 +38,9 @@
 //! (`Cx::open_level`) that takes its entries; its final below the base binds
 //! the outputs in that term, records its entry and closes the level, nested
 //! in the caller's (`Cx::close_level`); the exit arc then records the
-//! caller's entry. Where the frames become the machine's, each pushed frame
+//! caller's entry (the exit arms' recording copy, a second `match` taken
+//! only when recorded: `TypedRun::recorded`, so the arms without history
+//! stay as they were). Where the frames become the machine's, each pushed frame
 //! takes its level (`Cx::wait_template`). A callee's visit records natively
 //! where its action is `empty` or one native code runs (`inc`, `is`, values:
 //! `Gen::nat_arc_rec_fast`); any other records on the machine's frames
