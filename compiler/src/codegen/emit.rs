@@ -644,7 +644,10 @@ impl Gen<'_> {
                     let run = code.run;
                     fns.push(quote!(#[doc = #rdoc] #run));
                 }
-                if let Some(exit) = code.exit {
+                // A situation with native code has no exit arcs as code:
+                // its call is pushed natively and its exit arcs matched
+                // there, or the machine runs its visit from its template.
+                if let Some(exit) = code.exit.filter(|_| !nat_sit) {
                     exit_arms.push(quote!(#ix => #exit_name(p, saved, final_id, cx),));
                     let edoc = format!(" The exit arcs of `{id_text}` as code.");
                     fns.push(quote!(#[doc = #edoc] #exit));

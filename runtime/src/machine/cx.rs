@@ -214,6 +214,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     pub fn typed_run(&self) -> super::TypedRun {
         super::TypedRun {
             records: self.records(),
+            nests: self.m.options.keep_history && self.observer.is_none(),
             quiet_numbers: self.actions.ignores_numbers(),
             quiet_empty: self.actions.ignores_empty(),
             count: 0,
@@ -258,6 +259,129 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.m.push_frame(dm, call);
         self.sit = 0;
         self.selected = None;
+        Ok(())
+    }
+
+    /// Native code handing the visit of situation `sit` of the running DM
+    /// (its id `id`, built from native values) to the machine, nothing of
+    /// it done: the machine runs it from its template, as the interpreter
+    /// does (a recursive situation whose call is not pushed on the native
+    /// stack: the machine makes the call, nests the callee's entries in the
+    /// DM's history and runs the exit arcs).
+    #[cold]
+    #[inline(never)]
+    pub fn to_template(&mut self, sit: SitIx, id: Term) -> Step {
+        self.sit = sit;
+        self.id = id;
+        self.selected = Some(id);
+        Step::Template
+    }
+
+    /// A native frame waiting in recursive situation `sit` (id `id`) for
+    /// its native callee, made the machine's: the situation's instance
+    /// from its template as the interpreter holds it while the callee runs
+    /// (its id `id`; its in_arg the pipe value the visit read, `in_arg`,
+    /// when the exit arcs read it; its `embedded_dm` the callee's call
+    /// term `callee`, whose variables the callee's `diag_mod` binds), the
+    /// callee's frame pushed (DM `callee_dm`, the depth limit checked):
+    /// the machine runs the exit arcs at the callee's final. (`prog` is
+    /// not run again: native code ran it, and its variables are renamed
+    /// apart from the exit arcs', D-10.) The callee's history level, when
+    /// native code kept one, becomes its frame's history, its call term the
+    /// frame's (`callee` then unused). The running situation is left as it
+    /// was.
+    pub fn wait_template(
+        &mut self,
+        sit: SitIx,
+        id: Term,
+        in_arg: Option<Term>,
+        callee_dm: super::DmIx,
+        callee: Term,
+    ) -> Result<(), RunError> {
+        self.m.materialize();
+        // The running frame's situation, as native code entered it (its
+        // history entry may come after the hand-over), given back below.
+        let running = (self.sit, self.id, self.selected);
+        self.enter_with_id(sit, id);
+        let here = Some((sit, id));
+        let dm = self.m.frames.last().expect("a frame is running").dm;
+        let inst = self.m.template_instance(dm, sit, Some(id))?;
+        if let (Some(pattern), Some(value)) = (inst.in_arg, in_arg) {
+            self.m.unify_in_arg(pattern, value, here)?;
+        }
+        // The callee's history so far when native code kept it (its level,
+        // the bottom one left: frames are made the machine's bottom first),
+        // with the call term its entries name.
+        let (callee, history) = match self.m.levels.pop_front() {
+            Some(level) => (level.dm_id, level.history),
+            None => (callee, Vec::new()),
+        };
+        let called = inst
+            .embedded_dm
+            .is_some_and(|e| self.m.store.unify(e, callee));
+        if !called {
+            return Err(self.fault(Fault::NotTheCall));
+        }
+        self.m.check_depth(here)?;
+        self.m
+            .frames
+            .last_mut()
+            .expect("a frame is running")
+            .pending = Some(super::state::Pending::Recursive { sit });
+        self.m.instances.push(inst);
+        self.m.push_frame_with(callee_dm, callee, history);
+        (self.sit, self.id, self.selected) = running;
+        Ok(())
+    }
+
+    /// A DM call native code pushes on its own stack while the history is
+    /// kept ([`TypedRun::nests`](super::TypedRun::nests)): the callee's
+    /// entries go to a level of their own (its call term `call`, the
+    /// entries' `dm`) until its final closes it ([`Cx::close_level`]) or
+    /// its frame becomes the machine's ([`Cx::wait_template`]).
+    #[inline]
+    pub fn open_level(&mut self, call: Term) {
+        self.m.levels.push_back(super::state::Level {
+            dm_id: call,
+            history: Vec::new(),
+        });
+    }
+
+    /// The final situation `id` of the DM whose level is the innermost,
+    /// reached on the native stack: its output arguments bound (each
+    /// `(i, value)`: argument `i` of the call term, a variable the call
+    /// made, takes `value`, as the machine's `diag_mod` binds it), its
+    /// entry recorded, its history nested in its caller's (the level below,
+    /// or the machine's top frame), as the machine's final pops a frame.
+    pub fn close_level(&mut self, id: Term, outs: &[(usize, Term)]) -> Result<(), RunError> {
+        let Some(dm_id) = self.m.levels.back().map(|l| l.dm_id) else {
+            return Err(self.fault(Fault::NoLevel));
+        };
+        for &(i, value) in outs {
+            let bound = self
+                .m
+                .store
+                .arg(self.m.store.deref(dm_id), i)
+                .is_some_and(|arg| self.m.store.unify(arg, value));
+            if !bound {
+                return Err(self.fault(Fault::NoLevel));
+            }
+        }
+        let empty = Term::atom(sitlog_syntax::atoms::EMPTY);
+        self.id = id;
+        self.m.record(id, empty, empty, None, *self.pipe, &mut None);
+        let level = self.m.levels.pop_back().expect("a level");
+        let nested = crate::history::Item::Nested(level.history);
+        match self.m.levels.back_mut() {
+            Some(below) => below.history.push(nested),
+            None => self
+                .m
+                .frames
+                .last_mut()
+                .expect("a frame is running")
+                .history
+                .push(nested),
+        }
         Ok(())
     }
 
@@ -347,6 +471,10 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             Fault::WaitsForNone => "native code handed over a frame that waits for no DM",
             Fault::Visited => "native code visited a waiting situation",
             Fault::Exits => "native exit arcs disagree with the machine's",
+            Fault::NoLevel => "native code closed a history level it did not open",
+            Fault::NotTheCall => {
+                "native code called a DM its situation's embedded_dm does not call"
+            }
         };
         self.error(message, None)
     }
@@ -845,6 +973,11 @@ pub enum Fault {
     Visited,
     /// No native exit arc took the callee's final, but the machine's did.
     Exits,
+    /// A native callee's call term that its caller's `embedded_dm` does not take.
+    NotTheCall,
+    /// A native final closing a history level none opened, or whose call
+    /// term does not take its outputs.
+    NoLevel,
 }
 
 /// A value native code makes a term of, of any native type (a term is

@@ -130,9 +130,12 @@ pub enum Step {
     /// No expectation was met: the recovery DM of the type, or a new instance (D-15, D-42a).
     Unmet { type_term: Term },
     /// The situation entered (the code's `Cx` situation, id and selecting
-    /// value) runs from its template, as the interpreter runs it: the code
-    /// handed it over before doing anything (native code whose values do
-    /// not convert, in a situation the program has no term code for).
+    /// value) of the running DM (the top frame: native code may have made
+    /// its callers' frames the machine's first) runs from its template, as
+    /// the interpreter runs it: the code handed it over before doing
+    /// anything (native code whose values do not convert, in a situation
+    /// the program has no term code for; a recursive situation whose call
+    /// native code does not push, [`Cx::to_template`]).
     Template,
 }
 
@@ -142,6 +145,10 @@ pub enum Step {
 pub struct TypedRun {
     /// History entries are kept or observed: build and record them.
     pub records: bool,
+    /// The history is kept and nothing observes the run: native code may
+    /// call DMs on its own stack, their entries in levels of their own
+    /// ([`Cx::open_level`]).
+    pub nests: bool,
     /// [`Actions::ignores_numbers`](super::Actions::ignores_numbers).
     pub quiet_numbers: bool,
     /// [`Actions::ignores_empty`](super::Actions::ignores_empty).
@@ -155,7 +162,26 @@ pub struct TypedRun {
     pub call: Option<super::DmIx>,
 }
 
+/// Marks the path that calls it unlikely (its caller's branch laid out
+/// away from the hot one).
+#[cold]
+#[inline(never)]
+fn unlikely() {}
+
 impl TypedRun {
+    /// [`TypedRun::records`] where native code's hot path is the one that
+    /// does not record (with `--history none`): the recorded branch is
+    /// laid out as a cold one.
+    #[inline(always)]
+    pub fn recorded(&self) -> bool {
+        if self.records {
+            unlikely();
+            true
+        } else {
+            false
+        }
+    }
+
     /// An arc's transition, one more for native code to count (`count`,
     /// given to the machine later) unless recorded: then entering the
     /// situation counted it.

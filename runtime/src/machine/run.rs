@@ -54,6 +54,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         // On error, the history so far: unwind the stack, nesting each
         // embedded DM's partial history into its caller's, as if it returned.
         let mut history = Vec::new();
+        // Native code's levels first: the frames above the machine's.
+        while let Some(level) = self.levels.pop_back() {
+            let mut h = level.history;
+            if !history.is_empty() {
+                h.push(Item::Nested(std::mem::take(&mut history)));
+            }
+            history = h;
+        }
         while let Some(frame) = self.frames.pop() {
             let mut h = frame.history;
             if !history.is_empty() {
@@ -147,12 +155,17 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     /// Pushes a frame for DM `dm` called as `call` (checked by the caller:
     /// the depth limit, the head unified), with fresh locals.
     pub(super) fn push_frame(&mut self, dm: super::DmIx, call: Term) {
+        self.push_frame_with(dm, call, Vec::new());
+    }
+
+    /// [`Machine::push_frame`] with the history the DM has so far.
+    pub(super) fn push_frame_with(&mut self, dm: super::DmIx, call: Term, history: Vec<Item>) {
         let locals = self.program.locals(dm, &mut self.store);
         self.frames.push(Frame {
             dm,
             dm_id: call,
             locals,
-            history: Vec::new(),
+            history,
             pending: None,
         });
     }
@@ -205,7 +218,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 }
             }
             let (mut sit, inst) = self.select(&goto)?;
-            let dm = self.frames.last().expect("a frame is running").dm;
+            let mut dm = self.frames.last().expect("a frame is running").dm;
             let inst = match inst {
                 Selected::Instance(inst) => inst,
                 Selected::Compiled { id, selected } => {
@@ -224,9 +237,13 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     // The code may have gone on to other situations of the DM.
                     let (at, id, selected) = (cx.sit, cx.id, cx.selected);
                     debug_assert!(self.lazy.is_empty(), "typed code left lazy frames");
+                    debug_assert!(self.levels.is_empty(), "native code left history levels");
                     if let Step::Template = step {
-                        // Nothing of the visit done: the situation from its template.
+                        // Nothing of the visit done: the situation from its
+                        // template, in the running DM (native code may have
+                        // made its callers' frames the machine's first).
                         sit = at;
+                        dm = self.frames.last().expect("a frame is running").dm;
                         self.template_instance(dm, at, selected)?
                     } else {
                         let sit = at;
@@ -399,7 +416,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     /// over ([`Step::Template`]), as the machine's selection would have
     /// made it: its id unified with the value that selected it (`selected`;
     /// the code's selection said it unifies), its head linked to the call.
-    fn template_instance(
+    pub(super) fn template_instance(
         &mut self,
         dm: DmIx,
         sit: SitIx,

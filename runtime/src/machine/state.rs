@@ -52,6 +52,15 @@ pub(super) struct LazyFrame {
     pub(super) caller: Pending,
 }
 
+/// The history of a DM native code called on its own stack while the
+/// history is kept (see [`Machine::levels`]): its call term (the entries'
+/// `dm`, the term its final's `diag_mod` binds) and its entries so far.
+#[derive(Debug)]
+pub(super) struct Level {
+    pub(super) dm_id: Term,
+    pub(super) history: Vec<Item>,
+}
+
 /// Where control goes next in the top frame.
 pub(super) enum Goto {
     Initial,
@@ -74,6 +83,15 @@ pub struct Machine<'p, P> {
     /// that nothing outside typed code ever sees them. Empty outside a
     /// typed run without history.
     pub(super) lazy: Vec<LazyFrame>,
+    /// The histories of the DMs native code called on its own stack with
+    /// the history kept, innermost last, logically above `frames`: an
+    /// entry goes to the innermost; a DM's final closes its level, nested
+    /// in the one below (or the top frame's history), as the machine's
+    /// final pops a frame; where the native frames become the machine's
+    /// (`Cx::wait_template`), each pushed frame takes its level, bottom
+    /// first. Empty whenever the machine runs (so never a garbage-collection
+    /// root), except on an error, whose unwinding nests them.
+    pub(super) levels: std::collections::VecDeque<Level>,
     /// Instances of the recursive situations waiting for their embedded
     /// DMs (interpreted path), innermost last.
     pub(super) instances: Vec<Instance>,
@@ -120,6 +138,7 @@ impl<'p, P> Machine<'p, P> {
             options,
             frames: Vec::new(),
             lazy: Vec::new(),
+            levels: std::collections::VecDeque::new(),
             instances: Vec::new(),
             scratch_locals: Vars::new(),
             scratch_globals: Vars::new(),

@@ -398,6 +398,17 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         }
         self.report_unmatched(observer);
         self.transitions += 1;
+        if let Some(level) = self.levels.back_mut() {
+            // A DM native code runs on its own stack (no observer then).
+            let entry = Entry {
+                dm: level.dm_id,
+                situation,
+                expectation,
+                action,
+            };
+            level.history.push(Item::Entry(entry));
+            return;
+        }
         let frame = self.frames.last_mut().expect("frame");
         let entry = Entry {
             dm: frame.dm_id,

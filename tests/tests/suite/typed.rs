@@ -405,6 +405,7 @@ fn native_dms_agree() {
         native::dm_want::nat_entry,
         native::dm_relay::nat_entry,
         native::dm_echo::nat_entry,
+        native::dm_shout::nat_entry,
         // An output argument: the call handed over on terms.
         native::dm_outer_out::nat_entry,
         // Output arguments pushed natively, and the ways that fall back.
@@ -492,6 +493,7 @@ fn native_dms_agree() {
     ] {
         agree_piped(app, &ir, "relay(t)", in_arg, "");
         agree_piped(app, &ir, "pass(t)", in_arg, "");
+        agree_piped(app, &ir, "shout(t)", in_arg, "");
     }
     // The depth limit reached by native calls: the machine's error.
     for depth in [1, 2, 3, 4] {

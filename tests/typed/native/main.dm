@@ -169,6 +169,26 @@ diag_mod(relay(Tag),
   [ n ==> 0 ]
 ).
 
+% `relay` with a callee that performs an action while its caller waits
+% (`cry`'s `say`): the native frames become the machine's there, the
+% caller waiting as the interpreter's instance would, its in_arg the pipe
+% value its visit read (the callee's out_arg changed the pipe since).
+diag_mod(shout(Tag),
+  [ [ id ==> call, type ==> recursive, in_arg ==> Limit, embedded_dm ==> cry(Tag),
+      arcs ==> [ back(T) : [inc(n, N)] => (N >= Limit -> fs ; otherwise -> call) ] ],
+    [ id ==> fs, type ==> final, out_arg ==> [done, Tag] ]
+  ],
+  [ n ==> 0 ]
+).
+
+diag_mod(cry(Tag),
+  [ [ id ==> is, type ==> neutral, in_arg ==> X, out_arg ==> [X],
+      arcs ==> [ empty : say(Tag) => back(Tag) ] ],
+    [ id ==> back(T), type ==> final, out_arg ==> 2 ]
+  ],
+  []
+).
+
 % A caller that reads no pipe: `echo` reads it first, natively (a pipe
 % the term code evaluates, `1 + 1`, is handed over there).
 diag_mod(pass(Tag),

@@ -3,15 +3,13 @@
 //! native, the arguments converting to its frame) pushes the callee's
 //! typed frame on the driver's native stack ([`super::frame`]), the
 //! arguments moved into it, and waits in its own variant `W<ix>` (the
-//! situation's id variables and the registers its exit arcs read, as the
-//! term code's `saved` keeps them); when the callee reaches a final, the
-//! exit arcs are matched against the callee's final variant natively
-//! (`found(P)` binds `P` from the variant's field), their action (`inc`
-//! and `get` of a local, atoms, numbers) and next situation run natively;
-//! exit arcs native code does not know (`say('..')`, `apply(..)` in the
-//! action) are run by the situation's term code (`run_exit`, what the
-//! machine runs after its call) once the frames below are the machine's,
-//! `saved` built from the waiting variant (`nat_exit_on_terms`).
+//! situation's id variables and the registers its exit arcs read); when
+//! the callee reaches a final, the exit arcs are matched against the
+//! callee's final variant natively (`found(P)` binds `P` from the
+//! variant's field), their action (`inc` and `get` of a local, atoms,
+//! numbers) and next situation run natively. A call whose exit arcs
+//! native code does not run (`say('..')`, `apply(..)` in the action) is
+//! not pushed: the machine's, as below.
 //!
 //! *Output arguments* (`add(I, 1, J)`, `J` a fresh variable of the
 //! situation written once, as a whole argument: `call_outputs`) given to
@@ -26,21 +24,46 @@
 //! appears nowhere else, the other arguments unify with themselves. Where
 //! the frames become the machine's while the callee runs
 //! (`nat_materialize`), the callee's call term makes the variable
-//! (`Ground::OUT`'s `to_term`) and the caller's `saved` takes it from
-//! there (`cx.arg(callee, k)`), so the machine's `diag_mod` binds it for
-//! the caller's term code. A variable given twice or inside an argument,
-//! an output the callee may leave unbound, an output of a type the
-//! caller's register does not take: the machine's call, as below.
+//! (`Ground::OUT`'s `to_term`) and the caller's instance takes it from
+//! there (`Cx::wait_template`, below), so the machine's `diag_mod` binds
+//! it for the caller's exit arcs. A variable given twice or inside an
+//! argument, an output the callee may leave unbound, an output of a type
+//! the caller's register does not take: the machine's call, as below.
+//!
+//! *With the history kept* (`run.nests`: kept, nothing observing) a call
+//! whose exit arcs record their entries natively (their expectation a term
+//! of the registers, their action of the values computed:
+//! `nat_exit_record`) is pushed too: the callee's call term (`call_term`,
+//! an output argument a fresh variable) opens a history level of its own
+//! (`Cx::open_level`) that takes its entries; its final below the base binds
+//! the outputs in that term, records its entry and closes the level, nested
+//! in the caller's (`Cx::close_level`); the exit arc then records the
+//! caller's entry (the exit arms' recording copy, a second `match` taken
+//! only when recorded: `TypedRun::recorded`, so the arms without history
+//! stay as they were). Where the frames become the machine's, each pushed frame
+//! takes its level (`Cx::wait_template`). A callee's visit records natively
+//! where its action is `empty` or one native code runs (`inc`, `is`, values:
+//! `Gen::nat_arc_rec_fast`); any other records on the machine's frames
+//! (the native stack materialized first).
 //!
 //! Hand-over, so behaviour stays the term path's:
-//! - a call made while a history is kept or observed (`run.records`: the
-//!   machine pushes the callee's frame, its entries nest in the caller's),
-//!   a call whose DM is not native there, whose arguments do not fit the
-//!   callee's frame (a fresh variable other than an output argument above,
-//!   made as a term for the visit), or that would reach the depth limit,
-//!   is given to the machine as the term code gives it (`Step::Call` with
-//!   the same `saved`): the machine runs the callee and the caller's term
-//!   code takes the exit;
+//! - a call made while the run is observed (`run.records` without
+//!   `run.nests`: the machine pushes the callee's frame, its entries nest in
+//!   the caller's), or with the history kept when its exit arcs do not
+//!   record natively, a call whose DM is not native there, whose arguments do not fit the
+//!   callee's frame (a fresh variable other than an output argument above),
+//!   whose exit arcs native code does not run, or that would reach the
+//!   depth limit: the visit is handed to the machine, nothing of it done
+//!   (`Cx::to_template`), which runs it from the situation's template as
+//!   the interpreter does (the call, the callee's entries nested, the exit
+//!   arcs); so a situation with native code has no exit arcs as term code
+//!   (`exit_*`, issue 37);
+//! - a waiting frame made the machine's (`nat_wait`, when the frames below
+//!   the running one are materialized) waits as the interpreter's instance
+//!   would (`Cx::wait_template`: the situation's template with its id, the
+//!   in_arg the visit read and the callee's call term as its
+//!   `embedded_dm`), and the machine runs its exit arcs at the callee's
+//!   final;
 //! - anything that needs the machine's state (an action performed, an
 //!   error, a comparison evaluated on terms) first materializes the native
 //!   stack and writes the locals back ([`super::Dm::hand`]);
@@ -72,6 +95,9 @@ pub(super) struct Wait {
     pub id_arm: TokenStream,
     /// Resumes with the callee's frame (`ret`): the exit arcs.
     pub exit_arm: TokenStream,
+    /// The same, recording the entries (`run.records`; empty when the
+    /// call is never pushed natively then).
+    pub rec_arm: TokenStream,
     /// In `nat_wait`: made a machine frame's pending situation.
     pub wait_arm: TokenStream,
 }
@@ -81,6 +107,10 @@ struct CallPlan<'a> {
     j: usize,
     callee: Dm<'a>,
     exit: TokenStream,
+    /// The exit arcs recording their entries natively (`run.records`),
+    /// when they can: the call may then be pushed on the native stack with
+    /// the history kept.
+    rec_exit: Option<TokenStream>,
 }
 
 fn wait_variant(ix: usize) -> Ident {
@@ -237,14 +267,15 @@ impl Gen<'_> {
             let v = self.nat_value(&Build::Const(*default), &Regs::new()).ok()?;
             coerce(&v, ty).ok()?;
         }
-        // Exit arcs native code does not run natively (an action or next
-        // situation it does not know): the situation's term code runs them
-        // (`run_exit`), as after the machine's call.
-        let exit = match self.nat_exit(d, ix, &callee, j) {
-            Ok(e) => e,
-            Err(_) => self.nat_exit_on_terms(d, ix, &callee, j).ok()?,
-        };
-        Some(CallPlan { j, callee, exit })
+        // Exit arcs native code does not run (an action or next situation
+        // it does not know): the call is the machine's, from the template.
+        let (exit, rec_exit) = self.nat_exit(d, ix, &callee, j).ok()?;
+        Some(CallPlan {
+            j,
+            callee,
+            exit,
+            rec_exit,
+        })
     }
 
     /// The visit of recursive situation `ix` (registers `regs` set).
@@ -253,57 +284,30 @@ impl Gen<'_> {
         if !outs.is_empty() {
             return self.nat_recursive_outputs(d, ix, regs, &outs);
         }
-        let (name, args) = match self.nat_call_values(d, ix, regs, &[]) {
-            Ok(x) => x,
+        let args = match self.nat_call_values(d, ix, regs, &[]) {
+            Ok((_, args)) => args,
             // An argument is a fresh variable (an output argument), or the
             // call is evaluated (`ask(apply(f(_), [X]), ..)`): the
-            // machine's call, on terms.
+            // machine's visit, from the template.
             Err(e) if e.starts_with("register r") || e == EVALUATED => {
-                return self.nat_call_on_terms(d, ix, regs)
+                return self.nat_to_template(d, ix)
             }
             Err(e) => return Err(e),
         };
-        let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
-            return Err("not a recursive situation".into());
+        let to_template = self.nat_to_template(d, ix)?;
+        let Some(plan) = self.nat_call_plan(d, ix) else {
+            return Ok(to_template);
         };
-        let curl = Literal::u32_unsuffixed(ix as u32);
-        let hand = &d.hand;
-        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         let vs: Vec<Ident> = (0..args.len()).map(|i| format_ident!("v{}", i)).collect();
         let lets = args.iter().zip(&vs).map(|(v, x)| {
             let e = &v.e;
             quote!(let #x = #e;)
         });
-        let f = self.atom_native(name)?;
-        let mut saved_vals = Vec::new();
-        for &r in saved.iter() {
-            let v = self.nat_value(&Build::Reg(r), regs)?;
-            saved_vals.push(super::place_ref(&v));
-        }
-        let saved_value = saved_term(&saved_vals);
-        // The call given to the machine, as the term code gives it.
-        let hand_call = quote! {
-            #hand
-            cx.count_transitions(count);
-            #(#id_stmts)*
-            cx.enter_with_id(#curl, #id);
-            let call = cx.build_of(#f, &[#(&#vs),*]);
-            let saved = #saved_value;
-            return Ok(Some(
-                Step::Call { call, saved },
-            ));
-        };
-        let Some(plan) = self.nat_call_plan(d, ix) else {
-            return Ok(quote! {
-                #(#lets)*
-                #hand_call
-            });
-        };
         let push = self.nat_push(d, ix, regs, &plan, &args, &vs)?;
         Ok(quote! {
             #(#lets)*
             #push
-            #hand_call
+            #to_template
         })
     }
 
@@ -322,9 +326,9 @@ impl Gen<'_> {
         regs: &Regs,
         outs: &[(usize, Reg)],
     ) -> N<TokenStream> {
-        let on_terms = self.nat_call_on_terms(d, ix, regs)?;
+        let to_template = self.nat_to_template(d, ix)?;
         let Some(plan) = self.nat_call_plan(d, ix) else {
-            return Ok(on_terms);
+            return Ok(to_template);
         };
         let (_, args) = self.nat_call_values(d, ix, regs, outs)?;
         let vs: Vec<Ident> = (0..args.len()).map(|i| format_ident!("v{}", i)).collect();
@@ -333,16 +337,10 @@ impl Gen<'_> {
             quote!(let #x = #e;)
         });
         let push = self.nat_push(d, ix, regs, &plan, &args, &vs)?;
-        // The fresh variables, made only where the machine gets the call.
-        let fresh = outs.iter().map(|(_, r)| {
-            let f = format_ident!("fresh_r{}", r);
-            quote!(let #f = cx.var();)
-        });
         Ok(quote! {
             #(#lets)*
             #push
-            #(#fresh)*
-            #on_terms
+            #to_template
         })
     }
 
@@ -402,6 +400,23 @@ impl Gen<'_> {
             let (rr, e) = (reg(r), super::moved(&v));
             wf.push(quote!(#rr: #e));
         }
+        // With the history kept (nothing observing), when the exit arcs
+        // record natively: the callee's entries in a level of their own.
+        let rec = if plan.rec_exit.is_some() {
+            quote! {
+                else if run.nests && stack.has_room(cx) {
+                    let callee = super::NatFrame::#callee_v(
+                        super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} },
+                    );
+                    let t = callee.call_term(p, cx);
+                    cx.open_level(t);
+                    *call = Some(callee);
+                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
+                }
+            }
+        } else {
+            quote!()
+        };
         Ok(quote! {
             // The callee's frame on the native stack, within the depth
             // limit, when no history is kept or observed (else the machine
@@ -411,66 +426,34 @@ impl Gen<'_> {
                 *call = Some(super::NatFrame::#callee_v(callee));
                 // Written where the frame keeps it (not through `at`).
                 return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
-            }
+            } #rec
         })
     }
 
-    /// The call of recursive situation `ix` given to the machine as the
-    /// term code gives it, its term built from native values and the
-    /// fresh variables made for the visit (`fresh_r<r>`, terms).
-    fn nat_call_on_terms(&self, d: &Dm, ix: usize, regs: &Regs) -> N<TokenStream> {
-        let KindPlan::Recursive {
-            call,
-            eval_call,
-            saved,
-            ..
-        } = &d.plans[ix].kind
-        else {
-            return Err("not a recursive situation".into());
-        };
-        // Evaluated as the term code evaluates it (`Cx::embedded_dm`: the
-        // evaluator and user functions at this boundary, on the term built
-        // from native values), in the situation entered.
-        let evaluated = *eval_call && (matches!(call, Build::Const(_)) || !inert(call));
+    /// The visit of recursive situation `ix` handed to the machine, nothing
+    /// of it done (its call not pushed on the native stack: a history kept
+    /// or observed, a call that is not native, the depth limit): the
+    /// frames below made the machine's, the locals written back, the
+    /// machine runs the visit from the situation's template as the
+    /// interpreter does (its call, the callee's entries nested in the DM's
+    /// history, its exit arcs: no term code of them, `exit_*`, is made).
+    fn nat_to_template(&self, d: &Dm, ix: usize) -> N<TokenStream> {
         let curl = Literal::u32_unsuffixed(ix as u32);
         let hand = &d.hand;
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
-        let mut ts = Vec::new();
-        let mut n = 0;
-        let call_t = self.nat_build_term(call, regs, &mut ts, &mut n)?;
-        let eval = if evaluated {
-            quote!(let call = cx.embedded_dm(call)?;)
-        } else {
-            quote!()
-        };
-        let mut saved_vals = Vec::new();
-        for &r in saved.iter() {
-            match regs.get(&r) {
-                Some((f, _)) if super::is_fresh(f) => saved_vals.push(quote!(&#f)),
-                _ => saved_vals.push(super::place_ref(&self.nat_value(&Build::Reg(r), regs)?)),
-            }
-        }
-        let saved_value = saved_term(&saved_vals);
         Ok(quote! {
             #hand
             cx.count_transitions(count);
             #(#id_stmts)*
-            cx.enter_with_id(#curl, #id);
-            #(#ts)*
-            let call = #call_t;
-            #eval
-            let saved = #saved_value;
-            return Ok(Some(
-                Step::Call { call, saved },
-            ));
+            return Ok(Some(cx.to_template(#curl, #id)));
         })
     }
 
     /// The waiting variant of situation `ix` when it is recursive.
     pub(super) fn nat_wait_variant(&self, d: &Dm, ix: usize) -> N<Option<Wait>> {
-        let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
+        if !matches!(d.plans[ix].kind, KindPlan::Recursive { .. }) {
             return Ok(None);
-        };
+        }
         let wv = wait_variant(ix);
         let fields = self.nat_wait_fields(d, ix)?;
         let decls = fields
@@ -488,48 +471,50 @@ impl Gen<'_> {
         let variant = quote!(#[doc = #doc] #wv { #(#decls),* },);
         let id = self.nat_id_value(d, ix, quote!(store))?;
         let id_arm = quote!(Nat::#wv { #(#names),* } => #id,);
-        let exit_arm = match self.nat_call_plan(d, ix) {
+        // A call never pushed on the native stack: no waiting variant (the
+        // machine's visit from the template waits).
+        let plan = self.nat_call_plan(d, ix);
+        let exit_arm = match &plan {
             Some(plan) => {
-                let exit = plan.exit;
+                let exit = &plan.exit;
                 quote!(Nat::#wv { #(#names),* } => 'visit: { #exit })
             }
+            None => quote!(),
+        };
+        let rec_arm = match plan.as_ref().and_then(|p| p.rec_exit.as_ref()) {
+            Some(exit) => quote!(Nat::#wv { #(#names),* } => 'visit: { #exit }),
             None => quote!(),
         };
         // In `nat_wait` (fields are references there).
         let curl = Literal::u32_unsuffixed(ix as u32);
         let (id_stmts, id) = self.nat_id_term_of(d, ix, quote!(cx.store()), true)?;
-        let mut saved_vals = Vec::new();
-        let outs = call_outputs(d, ix);
-        let mut out_stmts = Vec::new();
-        for &r in saved.iter() {
-            let rr = reg(r);
-            if let Some(&(k, _)) = outs.iter().find(|&&(_, o)| o == r) {
-                // An output argument: the variable the callee's call term
-                // was made with (its `Ground::OUT` made a term, just now).
-                let k = Literal::usize_unsuffixed(k);
-                let x = format_ident!("out_r{}", r);
-                out_stmts.push(quote!(let #x = cx.arg(callee, #k);));
-                saved_vals.push(quote!(&#x));
-            } else if names.contains(&rr) {
-                saved_vals.push(quote!(#rr));
-            } else {
-                return Err("a saved register is not kept".into());
-            }
-        }
-        let saved_value = saved_term(&saved_vals);
+        // The pipe value the visit read, when the waiting variant keeps it
+        // (the exit arcs read it): the template instance's in_arg.
+        let in_arg = d.plans[ix]
+            .inits
+            .iter()
+            .find(|(_, init)| matches!(init, Init::Pipe))
+            .map(|(r, _)| reg(*r))
+            .filter(|r| names.contains(r));
+        let (in_stmt, in_arg) = match in_arg {
+            Some(r) => (quote!(let in_arg = cx.term(#r);), quote!(Some(in_arg))),
+            None => (quote!(), quote!(None)),
+        };
         let wait_arm = quote! {
             Nat::#wv { #(#names),* } => {
-                #(#out_stmts)*
+                #in_stmt
                 #(#id_stmts)*
-                cx.enter_with_id(#curl, #id);
-                let saved = #saved_value;
-                cx.call_typed(callee_dm, callee, saved)
+                cx.wait_template(#curl, #id, #in_arg, callee_dm, callee)
             }
         };
+        if plan.is_none() {
+            return Ok(None);
+        }
         Ok(Some(Wait {
             variant,
             id_arm,
             exit_arm,
+            rec_arm,
             wait_arm,
         }))
     }
@@ -537,7 +522,13 @@ impl Gen<'_> {
     /// The exit arcs of recursive situation `ix` on the final variant of
     /// callee `callee` (DM `j`) in `ret`: evaluates to the next `Nat` (or
     /// returns, handing over).
-    fn nat_exit(&self, d: &Dm, ix: usize, callee: &Dm, j: usize) -> N<TokenStream> {
+    fn nat_exit(
+        &self,
+        d: &Dm,
+        ix: usize,
+        callee: &Dm,
+        j: usize,
+    ) -> N<(TokenStream, Option<TokenStream>)> {
         let KindPlan::Recursive { exit, .. } = &d.plans[ix].kind else {
             return Err("not a recursive situation".into());
         };
@@ -591,13 +582,13 @@ impl Gen<'_> {
             ));
             regs.insert(r, (rr, rty));
         }
-        let hand = &d.hand;
-        let curl = Literal::u32_unsuffixed(ix as u32);
         let cur_name = self.atom_native(d.plans[ix].id.0)?;
-        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
-        let callee_v = format_ident!("D{}", j);
         let callee_n = format_ident!("NatN{}", j);
         let mut final_arms = Vec::new();
+        let mut rec_arms = Vec::new();
+        // Every arc's entry built natively (its expectation a term of the
+        // registers, its action of the values it computed).
+        let mut rec_all = true;
         for k in 0..callee.plans.len() {
             // Only a final situation the callee hands back as its `Nat`
             // variant reaches these arms: one without native code, or with
@@ -625,6 +616,7 @@ impl Gen<'_> {
                 .collect();
             let pat = self.nat_id_of(callee, k);
             let mut arcs_code = Vec::new();
+            let mut rec_code = Vec::new();
             for (i, arc) in exit.arcs.iter().enumerate() {
                 if arc.diag_mod.is_some() {
                     return Err("an exit arc has diag_mod".into());
@@ -666,6 +658,11 @@ impl Gen<'_> {
                     self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &cur_name);
                 d.pipe_in.set(pipe_in);
                 let next = next?;
+                // Recorded: the entry as the machine's `conclude` makes it
+                // (the expectation unified with the final's id, the action's
+                // values), the next situation handing over records it there.
+                let rec = self.nat_exit_record(d, ix, arc, &regs, &cur_name).ok();
+                rec_all &= rec.is_some();
                 let cond = if tests.is_empty() {
                     quote!(true)
                 } else {
@@ -682,6 +679,16 @@ impl Gen<'_> {
                         break 'visit next_at;
                     }
                 });
+                if let Some(rec) = rec {
+                    rec_code.push(quote! {
+                        if #cond {
+                            let arc_at = Some(#il);
+                            #(#lets)*
+                            #action
+                            #rec
+                        }
+                    });
+                }
             }
             let sk = format_ident!("S{}", k);
             final_arms.push(quote! {
@@ -689,10 +696,39 @@ impl Gen<'_> {
                     #(#arcs_code)*
                 }
             });
+            rec_arms.push(quote! {
+                super::#callee_n::#sk { #(#cf),* } => {
+                    #(#rec_code)*
+                }
+            });
         }
-        let arms = quote!(#(#final_arms)*);
+        let body = self.nat_exit_body(d, ix, j, quote!(#(#final_arms)*), &out_loads, &head)?;
+        let rec_body = if rec_all {
+            Some(self.nat_exit_body(d, ix, j, quote!(#(#rec_arms)*), &out_loads, &head)?)
+        } else {
+            None
+        };
+        Ok((body, rec_body))
+    }
+
+    /// The body of the exit arcs' arm: the callee's frame taken, the
+    /// outputs the arms `arms` read loaded, the arms, and the machine's
+    /// error when none takes the final.
+    fn nat_exit_body(
+        &self,
+        d: &Dm,
+        ix: usize,
+        j: usize,
+        arms: TokenStream,
+        out_loads: &[(Ident, TokenStream)],
+        head: &[(Ident, TokenStream)],
+    ) -> N<TokenStream> {
+        let hand = &d.hand;
+        let curl = Literal::u32_unsuffixed(ix as u32);
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let callee_v = format_ident!("D{}", j);
         let out_loads = out_loads
-            .into_iter()
+            .iter()
             .filter(|(r, _)| mentions(&arms, r))
             .map(|(_, stmt)| stmt);
         let body = quote! {
@@ -720,70 +756,59 @@ impl Gen<'_> {
         // Only the parameters the exit arcs read are loaded (a load is a
         // clone: a list's count changed and changed back on every return).
         let head = head
-            .into_iter()
+            .iter()
             .filter(|(r, _)| mentions(&body, r))
             .map(|(_, stmt)| stmt);
         Ok(quote!(#(#head)* #body))
     }
 
-    /// The exit arcs of recursive situation `ix` run by its term code
-    /// (`run_exit`, what the machine runs after its call), on the callee's
-    /// final in `ret`: the frames below made the machine's, the caller
-    /// entered in its situation, `saved` built from the waiting variant (an
-    /// output argument from the callee's slot, a term of its value: the
-    /// variable the term path's `diag_mod` bound to it).
-    fn nat_exit_on_terms(&self, d: &Dm, ix: usize, callee: &Dm, j: usize) -> N<TokenStream> {
-        let KindPlan::Recursive { saved, .. } = &d.plans[ix].kind else {
-            return Err("not a recursive situation".into());
+    /// The recorded way of exit arc `arc` of situation `ix` (its action's
+    /// values `act<n>` computed): the entry's expectation and action as
+    /// terms, the situation's id entered, the next situation computed
+    /// (recording where it hands over) and its entry recorded.
+    fn nat_exit_record(
+        &self,
+        d: &Dm,
+        ix: usize,
+        arc: &crate::mir::ArcPlan,
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<TokenStream> {
+        let mut ts = Vec::new();
+        let mut n = 0;
+        let exp = self.nat_ev_term(&arc.expectation, regs, &mut ts, &mut n)?;
+        let (items, list) = match &arc.action {
+            Action::List { items, .. } => (items.len(), true),
+            Action::One(_) => (1, false),
         };
-        let fields = self.nat_wait_fields(d, ix)?;
-        let outs = call_outputs(d, ix);
-        let mut loads = Vec::new();
-        let mut saved_vals = Vec::new();
-        for &r in saved.iter() {
-            let rr = reg(r);
-            if let Some(&(k, _)) = outs.iter().find(|&&(_, o)| o == r) {
-                let oty = output_ty(callee, k)?;
-                let o = format_ident!("out{}", k);
-                let rt = rust_ty(&oty)?;
-                loads.push(quote! {
-                    let #rr: #rt = match done_frame.#o.take() {
-                        Some(v) => v,
-                        None => {
-                            return Err(cx.error(
-                                "a native callee returned without its output",
-                                None,
-                            ))
-                        }
-                    };
-                });
-                saved_vals.push(quote!(&#rr));
-            } else if fields.iter().any(|(f, _)| *f == r) {
-                saved_vals.push(quote!(&#rr));
-            } else {
-                return Err("a saved register is not kept".into());
+        let acts: Vec<Ident> = (0..items).map(|k| format_ident!("act{}", k)).collect();
+        let act = if list {
+            quote! {
+                let act_items = [#(cx.term(&#acts)),*];
+                let act = cx.store().list(&act_items);
             }
-        }
-        let saved_value = saved_term(&saved_vals);
-        let hand = &d.hand;
-        let curl = Literal::u32_unsuffixed(ix as u32);
+        } else {
+            quote!(let act = cx.term(&act0);)
+        };
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
-        let callee_v = format_ident!("D{}", j);
+        let curl = Literal::u32_unsuffixed(ix as u32);
+        let pipe_in = d.pipe_in.take();
+        *d.rec.borrow_mut() = super::rec_entry();
+        let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), regs, cur_name);
+        *d.rec.borrow_mut() = quote!();
+        d.pipe_in.set(pipe_in);
+        let next = next?;
         Ok(quote! {
-            let super::NatFrame::#callee_v(done_frame) = ret else {
-                return Err(cx.error(
-                    "native code resumed a caller with another DM's frame",
-                    None,
-                ));
-            };
-            #(#loads)*
-            #hand
-            cx.count_transitions(count);
-            #(#id_stmts)*
-            cx.enter_with_id(#curl, #id);
-            let final_id = done_frame.at.id_term(p, cx.store());
-            let saved = #saved_value;
-            return run_exit(p, #curl, saved, final_id, cx).map(Some);
+            if run.records {
+                #(#ts)*
+                let exp: Term = #exp;
+                #act
+                #(#id_stmts)*
+                cx.enter_counted(&mut count, #curl, #id);
+                let next_at: Nat = { #next };
+                cx.record_next(exp, act, |s| next_at.id_term(p, s));
+                break 'visit next_at;
+            }
         })
     }
 
@@ -1298,14 +1323,4 @@ fn out_slots_none(callee: &Dm) -> Vec<TokenStream> {
             quote!(#o: None)
         })
         .collect()
-}
-
-/// The term a call saves for its caller's exit arcs: `[]` when it keeps
-/// no register, else the list of the values (`&term` expressions) kept.
-fn saved_term(saved_vals: &[TokenStream]) -> TokenStream {
-    if saved_vals.is_empty() {
-        quote!(Term::NIL)
-    } else {
-        quote!(cx.compound_of(atoms::DOT, &[#(#saved_vals),*]))
-    }
 }

@@ -17,7 +17,7 @@
 //! built) and
 //! `nat_materialize` (the hand-over: every native frame below the running
 //! one becomes a machine frame, waiting in its recursive situation as the
-//! term code's call would have left it).
+//! interpreter's would, `Cx::wait_template`).
 //!
 //! Invariant: the machine's DM stack is the native stack's bottom frame
 //! (the DM the machine entered) and what is below it; native code reads or

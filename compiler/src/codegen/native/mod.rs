@@ -77,9 +77,10 @@
 //!   action performed, the next situation: the next `Nat`'s id or the
 //!   value handed over), its terms built only when a history is kept or
 //!   observed (`run.records`); otherwise it counts the transition, no term
-//!   made. When recorded every call is the machine's (the callee's frame
-//!   pushed so that its entries nest in the caller's), so the native stack
-//!   stays empty and `nat_hand_over` only writes the locals back.
+//!   made. When recorded every call is the machine's (the visit handed to
+//!   the machine, which runs it from its template: the callee's entries
+//!   nest in the caller's), so the native stack stays empty and
+//!   `nat_hand_over` only writes the locals back.
 //! - *`term` registers* (a parameter or id part nothing reads, loaded from
 //!   a place typed `term`): held as a
 //!   [`Ground`](sitlog_runtime::native::Ground) handle, checked ground and
@@ -110,9 +111,8 @@
 //!   with native code whose callee's initial situation has native code
 //!   (and whose arguments fit the callee's frame) pushes the callee's
 //!   frame (no Rust recursion, no term), the callee's final variant resumes
-//!   the caller, whose exit arcs match it natively (those native code does
-//!   not run: the situation's term code, `run_exit`, on the final's id once
-//!   the frames below are the machine's); every other call, and
+//!   the caller, whose exit arcs match it natively; every other call (the
+//!   visit from its template, [`call`]: no exit arcs as term code), and
 //!   every step that lets the machine see its state (an action performed,
 //!   a situation handed over, `get`/`set`/`inc` through the machine), first
 //!   makes the native frames machine frames and writes the locals back
@@ -765,6 +765,7 @@ impl Gen<'_> {
         let mut id_arms = Vec::new();
         let mut entries = Vec::new();
         let mut exit_arms = Vec::new();
+        let mut rec_arms = Vec::new();
         let mut wait_arms = Vec::new();
         for (ix, c) in code.iter().enumerate() {
             let Some((fields, body, id, wait)) = c else {
@@ -836,6 +837,7 @@ impl Gen<'_> {
                     id_arms.push(w.id_arm.clone());
                 }
                 exit_arms.push(w.exit_arm.clone());
+                rec_arms.push(w.rec_arm.clone());
                 wait_arms.push(w.wait_arm.clone());
             }
             // Entered by the machine: the fields from the value that
@@ -949,12 +951,34 @@ impl Gen<'_> {
             }
         } else {
             let exit_arms = by_ref_loads(quote!(#(#exit_arms)*));
-            quote! {
-                if let Some(ret) = ret {
-                    at = match at {
+            // Recorded (the history kept), the arms that record the
+            // entries: a call whose exit arcs do not is never pushed then.
+            let exit = if rec_arms.iter().all(|a| a.is_empty()) {
+                quote! {
+                    match at {
                         #exit_arms
                         _ => return Err(cx.fault(Fault::NotWaiting)),
-                    };
+                    }
+                }
+            } else {
+                let rec_arms = by_ref_loads(quote!(#(#rec_arms)*));
+                quote! {
+                    if run.recorded() {
+                        match at {
+                            #rec_arms
+                            _ => return Err(cx.fault(Fault::NotWaiting)),
+                        }
+                    } else {
+                        match at {
+                            #exit_arms
+                            _ => return Err(cx.fault(Fault::NotWaiting)),
+                        }
+                    }
+                }
+            };
+            quote! {
+                if let Some(ret) = ret {
+                    at = #exit;
                     #gc
                 }
             }
@@ -1758,7 +1782,7 @@ impl Gen<'_> {
                     }
                 };
                 let v = variant(ix);
-                let names = fields.iter().map(|(r, _)| reg(*r));
+                let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
                 // out_arg: the pipe's new value (never unbound here).
                 let (out_set, out_final) = match &plan.out_arg {
                     Some((b, _)) => {
@@ -1779,21 +1803,42 @@ impl Gen<'_> {
                 // Below the base the caller's exit arcs read the variant
                 // (with a `diag_mod`, the machine takes the final).
                 let hand = &d.hand;
+                // Recorded (the history kept: the DM's entries in a level
+                // of its own): its outputs bound in its call term, its
+                // entry made, its level closed (`Cx::close_level`).
+                let close = |outs: TokenStream| {
+                    quote! {
+                        if run.recorded() {
+                            #(#id_stmts)*
+                            let outs: &[(usize, Term)] = &#outs;
+                            cx.close_level(#id, outs)?;
+                            return cx.step_done(count, slot, Nat::#v { #(#names),* });
+                        }
+                    }
+                };
                 let below = match (diag_mod, slot_below) {
-                    (None, _) => quote! {
-                        if !stack.is_empty() {
-                            #out_set
-                            return cx.step_done(count + 1, slot, Nat::#v { #(#names),* });
+                    (None, _) => {
+                        let close = close(quote!([]));
+                        quote! {
+                            if !stack.is_empty() {
+                                #out_set
+                                #close
+                                return cx.step_done(count + 1, slot, Nat::#v { #(#names),* });
+                            }
                         }
-                    },
-                    (Some(_), Some((cond, set))) => quote! {
-                        if !stack.is_empty() && #cond {
-                            #set
-                            #out_set
-                            return cx.step_done(count + 1, slot, Nat::#v { #(#names),* });
+                    }
+                    (Some(_), Some((cond, set, outs))) => {
+                        let close = close(outs);
+                        quote! {
+                            if !stack.is_empty() && #cond {
+                                #set
+                                #out_set
+                                #close
+                                return cx.step_done(count + 1, slot, Nat::#v { #(#names),* });
+                            }
+                            #hand
                         }
-                        #hand
-                    },
+                    }
                     (Some(_), None) => quote!(#hand),
                 };
                 Ok(quote! {
@@ -2127,6 +2172,7 @@ impl Gen<'_> {
         // Only when nothing is recorded: recorded, the arc takes the
         // general way below (the machine's `inc`/`get`, the entry made).
         let mut fast = None;
+        let mut rec_fast = None;
         if let (None, Some(k)) = (atom, arc_ix) {
             let mut nregs = regs.clone();
             if let Ok(act) = self.nat_exit_action(d, ix, k, &arc.action, &mut nregs) {
@@ -2134,6 +2180,9 @@ impl Gen<'_> {
                 let next =
                     self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &nregs, &name)?;
                 fast = Some(quote! { #act count += 1; #next });
+                // Recorded above the machine's frames (a level of its
+                // own): the same, the entry made of the values.
+                rec_fast = self.nat_arc_rec_fast(d, ix, arc, &act, exp.as_ref(), &regs, &nregs);
             }
         }
         // A fresh variable the action binds (a boundary's value) and the
@@ -2177,8 +2226,19 @@ impl Gen<'_> {
                     cx.perform(Term::atom(#act), arc_at)?;
                 };
                 stmts.push(if action == atoms::EMPTY {
-                    // Recorded: the situation entered (its id in the entry).
-                    quote!(if run.records || !run.quiet_empty { #perform })
+                    // Recorded: the situation entered (its id in the entry);
+                    // above the machine's frames (a level of its own), with
+                    // nothing to perform, without handing over.
+                    quote! {
+                        if run.records || !run.quiet_empty {
+                            if run.quiet_empty && !stack.is_empty() {
+                                #(#id_stmts)*
+                                cx.enter_counted(&mut count, #cur, #id);
+                            } else {
+                                #perform
+                            }
+                        }
+                    }
                 } else {
                     perform
                 });
@@ -2268,11 +2328,72 @@ impl Gen<'_> {
                 next_at
             }
         };
-        Ok(match fast {
-            Some(fast) => quote! {
+        Ok(match (fast, rec_fast) {
+            (Some(fast), Some(rec)) => quote! {
+                if !run.records { #fast } else if !stack.is_empty() { #rec } else { #general }
+            },
+            (Some(fast), None) => quote! {
                 if !run.records { #fast } else { #general }
             },
-            None => general,
+            _ => general,
+        })
+    }
+
+    /// The recorded way of arc `arc` of situation `ix` whose action
+    /// native code runs (`act`: its values `act<n>`), for a frame above the
+    /// machine's: the entry's expectation and action as terms of the
+    /// values, the situation's id entered, the next situation computed
+    /// (recording where it hands over) and its entry recorded. `None` when
+    /// a term of them cannot be built.
+    #[allow(clippy::too_many_arguments)]
+    fn nat_arc_rec_fast(
+        &self,
+        d: &Dm,
+        ix: usize,
+        arc: &ArcPlan,
+        act: &TokenStream,
+        exp: Option<&Ident>,
+        regs: &Regs,
+        nregs: &Regs,
+    ) -> Option<TokenStream> {
+        let mut ts = Vec::new();
+        let mut n = 0;
+        let exp = match exp {
+            Some(e) => quote!(#e),
+            None => self
+                .nat_ev_term(&arc.expectation, regs, &mut ts, &mut n)
+                .ok()?,
+        };
+        let (items, list) = match &arc.action {
+            Action::List { items, .. } => (items.len(), true),
+            Action::One(_) => (1, false),
+        };
+        let acts: Vec<Ident> = (0..items).map(|k| format_ident!("act{}", k)).collect();
+        let act_t = if list {
+            quote! {
+                let act_items = [#(cx.term(&#acts)),*];
+                let act = cx.store().list(&act_items);
+            }
+        } else {
+            quote!(let act = cx.term(&act0);)
+        };
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store())).ok()?;
+        let cur = Literal::u32_unsuffixed(ix as u32);
+        let name = self.atom_native(d.plans[ix].id.0).ok()?;
+        *d.rec.borrow_mut() = rec_entry();
+        let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), nregs, &name);
+        *d.rec.borrow_mut() = quote!();
+        let next = next.ok()?;
+        Some(quote! {
+            #act
+            #(#ts)*
+            let exp: Term = #exp;
+            #act_t
+            #(#id_stmts)*
+            cx.enter_counted(&mut count, #cur, #id);
+            let next_at: Nat = { #next };
+            cx.record_next(exp, act, |s| next_at.id_term(p, s));
+            next_at
         })
     }
 
@@ -2305,7 +2426,7 @@ impl Gen<'_> {
         b: &Build,
         ts: &[TokenStream],
         slots: &[Option<Ident>],
-    ) -> Option<(TokenStream, TokenStream)> {
+    ) -> Option<(TokenStream, TokenStream, TokenStream)> {
         let Build::Compound(name, args) = b else {
             return None;
         };
@@ -2315,6 +2436,7 @@ impl Gen<'_> {
         let plan = &d.plans[ix];
         let mut conds = Vec::new();
         let mut sets = Vec::new();
+        let mut outs = Vec::new();
         for (i, a) in args.iter().enumerate() {
             if d.outputs.get(i).is_some_and(Option::is_some) {
                 let o = slots[i].as_ref()?;
@@ -2324,6 +2446,10 @@ impl Gen<'_> {
                 let (p, out) = (format_ident!("p{}", i), format_ident!("out{}", i));
                 conds.push(quote!(#p.is_out()));
                 sets.push(quote!(*#out = Some(#o);));
+                let il = Literal::usize_unsuffixed(i);
+                outs.push(quote! {
+                    (#il, match #out.as_ref() { Some(v) => cx.term(v), None => Term::NIL })
+                });
             } else if !matches!(a, Build::Reg(r) if plan.inits.iter().any(|(x, init)| x == r && matches!(init, Init::HeadArg(p) if *p == i)))
             {
                 return None;
@@ -2332,7 +2458,11 @@ impl Gen<'_> {
         if conds.is_empty() {
             return None;
         }
-        Some((quote!(#(#conds)&&*), quote!(#(#ts)* #(#sets)*)))
+        Some((
+            quote!(#(#conds)&&*),
+            quote!(#(#ts)* #(#sets)*),
+            quote!([#(#outs),*]),
+        ))
     }
 
     /// A final's output slots: for each output parameter of the DM
@@ -3882,18 +4012,6 @@ fn place(v: &V) -> TokenStream {
     }
     let e = &v.e;
     quote!((#e))
-}
-
-/// A reference to the value, for a term made of it (`&dyn AsTerm`): a
-/// register of the visit read as `r<n>.clone()` (an owned Rust local) is
-/// `&r<n>`, any other value a reference to its [`place`].
-fn place_ref(v: &V) -> TokenStream {
-    let m = moved(v);
-    if m.to_string() != v.e.to_string() {
-        return quote!(&#m);
-    }
-    let p = place(v);
-    quote!(&#p)
 }
 
 /// A value read as `r<n>.clone()`, a register of the visit (an owned Rust
