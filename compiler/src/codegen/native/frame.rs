@@ -91,11 +91,10 @@ impl Gen<'_> {
     /// the locals are written back.
     pub(super) fn nat_hand(&self, d: &Dm) -> N<TokenStream> {
         let names = Self::nat_frame_names(d);
-        if d.locals.is_empty() {
-            // The program's, for a DM without locals: the DM and its
-            // parameters, its call term's arguments.
+        if names.is_empty() {
+            // The program's, for a DM without parameters or locals.
             let dm = Literal::u32_unsuffixed(d.ix as u32);
-            return Ok(quote!(nat_hand_over(p, cx, stack, #dm, &[#(&*#names),*])?;));
+            return Ok(quote!(super::nat_hand_over(p, cx, stack, #dm)?;));
         }
         Ok(quote!(nat_hand_over(p, cx, stack, #(&*#names),*)?;))
     }
@@ -108,14 +107,12 @@ impl Gen<'_> {
             .collect()
     }
 
-    /// `nat_hand_over`, the code of [`Dm::hand`], out of line (for a DM
-    /// without locals the program's, imported).
+    /// `nat_hand_over`, the code of [`Dm::hand`], out of line (none for
+    /// a DM without parameters or locals: the program's serves it).
     fn nat_hand_fn(&self, d: &Dm) -> N<TokenStream> {
         let names = Self::nat_frame_names(d);
-        if d.locals.is_empty() {
-            return Ok(quote!(
-                use super::nat_hand_over;
-            ));
+        if names.is_empty() {
+            return Ok(quote!());
         }
         let call = self.nat_call_term(d)?;
         let dm = Literal::u32_unsuffixed(d.ix as u32);
@@ -497,8 +494,8 @@ impl Gen<'_> {
                 }
             }
 
-            /// Before DM `dm` (without locals, called with `args`) hands
-            /// over: the frames below made the machine's.
+            /// Before DM `dm` (no parameters, no locals) hands over: the
+            /// frames below made the machine's.
             #[allow(unused)]
             #[cold]
             #[inline(never)]
@@ -507,10 +504,9 @@ impl Gen<'_> {
                 cx: &mut Cx<'_, '_, Program>,
                 stack: &mut NatBelow<'_>,
                 dm: DmIx,
-                args: &[&dyn machine::AsTerm],
             ) -> Result<(), RunError> {
                 if !stack.is_empty() {
-                    let own_call = cx.build_of(machine::DmProgram::dm_name(p, dm), args);
+                    let own_call = cx.build_of(machine::DmProgram::dm_name(p, dm), &[]);
                     nat_materialize(p, cx, stack, own_call, dm)?;
                 }
                 Ok(())

@@ -117,7 +117,7 @@
 //!   a situation handed over, `get`/`set`/`inc` through the machine), first
 //!   makes the native frames machine frames and writes the locals back
 //!   (`nat_hand_over`: the DM's, or the program's for a DM without
-//!   locals), and reads the locals again after the machine's
+//!   parameters or locals), and reads the locals again after the machine's
 //!   call. A call with an output argument is pushed so too when the
 //!   callee hands it back in an output slot ([`call`]); other calls with a
 //!   fresh variable are the machine's, the term built with the variable
