@@ -221,7 +221,7 @@ impl Gen<'_> {
             /// Each DM is a module `dm_<name>`: `SITUATIONS` (per situation its
             /// kind, id and place, read by the runtime's `SitTable`), `TEMPLATES`
             /// (the situations' templates as `writeq` text, read once into the
-            /// program's store; `None` for a situation never instantiated from
+            /// program's store; `""` for a situation never instantiated from
             /// one), and for the situations with native code (see
             /// `sitlog_compiler::codegen::native`) `enum Nat` (one variant per
             /// situation, its fields the id's variables; a `W<n>` variant waits
@@ -232,7 +232,8 @@ impl Gen<'_> {
             /// until it calls a DM, ends in a final below the base, or hands over
             /// to the machine), `nat_hand_over` (before the machine sees the state:
             /// the native frames below made machine frames, the locals written
-            /// back), `nat_wait` (a frame waiting for its callee made the
+            /// back; the program's for a DM without parameters or locals),
+            /// `nat_wait` (a frame waiting for its callee made the
             /// machine's) and, in a DM with term code too, `run_native`
             /// (an all-native DM's frame is entered by `run_situation`).
             #[allow(dead_code, non_camel_case_types, unused_variables, clippy::all)]
