@@ -25,6 +25,12 @@
 //! handed over, a value evaluated on terms) only after `nat_materialize`
 //! and after writing its locals back ([`Dm::hand`]), so the machine sees,
 //! at each such point, the stack and the locals the term path would have.
+//! With the history kept (`run.nests`) each native frame above the bottom
+//! one has a history level (`Machine::levels`, opened at its push, closed
+//! at its final); `nat_materialize` pushes each of them as a machine frame
+//! with its level as its history (`Cx::wait_template`), bottom first, so
+//! no level is left when the machine runs (nor for its garbage collector,
+//! which does not scan levels).
 
 use super::Gen;
 use super::{rust_ty, Dm, N};

@@ -77,10 +77,14 @@
 //!   action performed, the next situation: the next `Nat`'s id or the
 //!   value handed over), its terms built only when a history is kept or
 //!   observed (`run.records`); otherwise it counts the transition, no term
-//!   made. When recorded every call is the machine's (the visit handed to
-//!   the machine, which runs it from its template: the callee's entries
-//!   nest in the caller's), so the native stack stays empty and
-//!   `nat_hand_over` only writes the locals back.
+//!   made. When observed (`run.records` without `run.nests`) every call is
+//!   the machine's (the visit handed to the machine, which runs it from its
+//!   template: the callee's entries nest in the caller's), so the native
+//!   stack stays empty and `nat_hand_over` only writes the locals back.
+//!   With the history kept and nothing observing (`run.nests`) a call whose
+//!   exit arcs record natively is pushed, the callee's entries in a history
+//!   level of their own (`Cx::open_level`/`close_level`, [`call`]), which a
+//!   frame made the machine's takes (`Cx::wait_template`).
 //! - *`term` registers* (a parameter or id part nothing reads, loaded from
 //!   a place typed `term`): held as a
 //!   [`Ground`](sitlog_runtime::native::Ground) handle, checked ground and
@@ -99,8 +103,10 @@
 //!   frame's locals, `V is E` of ints into a fresh `int` variable
 //!   (checked `i64`; an overflow is the machine's `is`), constants and
 //!   values (`[inc(n, N)]`, `[J is I + 1]`): done on the frame's Rust
-//!   locals and values, as an exit arc's (recorded, the arc takes the
-//!   machine's calls and makes its entry). An arc whose action binds a
+//!   locals and values, as an exit arc's; recorded, the same in a frame
+//!   above the machine's (a callee pushed with the history kept, its entry
+//!   built from the values: `Gen::nat_arc_rec_fast`), else the arc takes
+//!   the machine's calls and makes its entry. An arc whose action binds a
 //!   value at a boundary falls back to the term code's next situation and
 //!   out_arg when that value does not convert. A fresh variable is made at
 //!   the start of a visit only when code uses it before declaring it.
