@@ -4,7 +4,10 @@
 //! needs and the term path does not: terms built from native values
 //! ([`fill`] of a pattern, [`build_of`], [`FromIdParts`] reading an id's
 //! parts), the end of a native step ([`Cx::step_done`],
-//! [`Cx::step_goto`]), its faults ([`Fault`]) and its check of whether
+//! [`Cx::step_goto`], [`Cx::step_final`], [`Cx::to_template`]), the
+//! history of a DM native code calls on its own stack ([`Cx::open_level`],
+//! [`Cx::close_level`], [`Cx::wait_template`] where its caller's frame
+//! becomes the machine's), its faults ([`Fault`]) and its check of whether
 //! the machine wants control ([`Cx::gc_tick`]). None of them changes
 //! what a run does (`gc_tick` only when the machine collects or stops:
 //! at most `GC_TICKS - 1` situations later than `gc_due` would; at every

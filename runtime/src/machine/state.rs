@@ -1,6 +1,8 @@
 //! The machine's state: [`Machine`] (store, variables, functions, options,
 //! the DM stack of [`Frame`]s and the frames typed code has not pushed yet
-//! ([`LazyFrame`]s, never seen outside typed code), the instances waiting
+//! ([`LazyFrame`]s, never seen outside typed code), the history levels of
+//! the DMs native code runs on its own stack with the history kept
+//! ([`Level`]s, empty whenever the machine runs), the instances waiting
 //! for embedded DMs and the buffers reused per transition) and how it is
 //! made.
 
