@@ -12,6 +12,8 @@
 //! ends with a count of its entries; a file whose key, syntax or count
 //! does not match (stale, corrupt, truncated, written by another build)
 //! is ignored and the analysis runs as without a cache (then rewrites it).
+//! (No checksum of the entries: an edit that keeps the syntax and the
+//! count, another name or position in a line, is read as written.)
 //! A cache that cannot be written is no error: the run goes on.
 
 use super::kb_reach::{self, Clause, Program, Reach, Served, T};
