@@ -3,6 +3,15 @@
 //! and one module per DM (its situation table and templates, instance builders, dispatch).
 //! The per-situation code is [`super::step`]'s (on terms) and
 //! [`super::native`]'s (on Rust values).
+//!
+//! What one function of the program says for every DM is not repeated per
+//! DM: `run_situation` enters an all-native DM's frame (its `nat_entry`,
+//! no `run_situation` or `run_native` of its own), `fresh_head` makes a
+//! head that is an atom or of distinct variables (a DM's own `head` only
+//! for another), `locals` (a DM's own function only when it has locals),
+//! `dm_by_name`, and the native driver's `nat_hand_over` for a DM without
+//! parameters or locals. Invariant: the program's dispatch names only the
+//! per-DM functions a DM's module has (`DmItems` says which).
 
 use super::*;
 
