@@ -379,6 +379,10 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         Ok(())
     }
 
+    /// A history entry of the running situation `situation`: counted, and
+    /// kept (when the history is kept or observed) in the innermost history
+    /// level native code has open ([`Machine::levels`]), else in the top
+    /// frame's history.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn record(
         &mut self,
