@@ -53,6 +53,12 @@
 //! - `permissions`: the trust model's guards (calls reaching the operating
 //!   system renamed to them; refused without `--allow-os`);
 //! - `translate`: store terms to canonical text and engine terms back;
+//! - `kb_reach`: which argument positions of the Prolog code a KB handle
+//!   can reach (a data-flow analysis over its clauses; it names the
+//!   layer's renamed services by `legacy_kb::legacy_name`, the one use of
+//!   a later module);
+//! - `reach_cache`: that analysis' result kept once per input in the cache
+//!   directory ([`reach_cache_dir`]);
 //! - `legacy_kb`: the legacy KB layer served natively ([`NativeKb`]);
 //! - `consult`: sources, their clauses, and `consult/1` resolution;
 //! - `engine`: the engine thread and the calling protocol
