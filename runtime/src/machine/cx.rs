@@ -314,11 +314,10 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         }
         // The callee's history so far when native code kept it (its level,
         // the bottom one left: frames are made the machine's bottom first),
-        // with the call term its entries name.
-        let (callee, history) = match self.m.levels.pop_front() {
-            Some(level) => (level.dm_id, level.history),
-            None => (callee, Vec::new()),
-        };
+        // with the call term its entries name. The level is taken only
+        // once the call is checked: on an error it is still there for the
+        // unwinding to nest (`Machine::run`).
+        let callee = self.m.levels.front().map_or(callee, |level| level.dm_id);
         let called = inst
             .embedded_dm
             .is_some_and(|e| self.m.store.unify(e, callee));
@@ -326,6 +325,11 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             return Err(self.fault(Fault::NotTheCall));
         }
         self.m.check_depth(here)?;
+        let history = self
+            .m
+            .levels
+            .pop_front()
+            .map_or_else(Vec::new, |level| level.history);
         self.m
             .frames
             .last_mut()
