@@ -9,11 +9,10 @@
 //!
 //! Invariant: a cached result is used only for the very input it was
 //! computed from. The file repeats the 128-bit key in its first line and
-//! ends with a count of its entries; a file whose key, syntax or count
-//! does not match (stale, corrupt, truncated, written by another build)
-//! is ignored and the analysis runs as without a cache (then rewrites it).
-//! (No checksum of the entries: an edit that keeps the syntax and the
-//! count, another name or position in a line, is read as written.)
+//! ends with a count of its entries and a 64-bit checksum of the text
+//! before that line; a file whose key, syntax, count or checksum does not
+//! match (stale, corrupt, truncated, edited, written by another build) is
+//! ignored and the analysis runs as without a cache (then rewrites it).
 //! A cache that cannot be written is no error: the run goes on.
 
 use super::kb_reach::{self, Clause, Program, Reach, Served, T};
@@ -166,7 +165,8 @@ fn put_t(buf: &mut Vec<u8>, t: &T) {
 
 /// The file's text: `MAGIC KEY`, `top 0|1`, then one line per entry
 /// (`p`, `i`: position; `u`: predicate), a name written as its length in
-/// bytes, `:`, the name; then `end COUNT`.
+/// bytes, `:`, the name; then `end COUNT SUM`, `SUM` the checksum of all
+/// that comes before it.
 fn text(key: &str, reach: &Reach) -> String {
     let mut out = format!("{MAGIC} {key}\ntop {}\n", u8::from(reach.top));
     let mut lines: Vec<String> = Vec::new();
@@ -184,8 +184,16 @@ fn text(key: &str, reach: &Reach) -> String {
         out.push_str(l);
         out.push('\n');
     }
-    out.push_str(&format!("end {}\n", lines.len()));
+    let sum = checksum(&out);
+    out.push_str(&format!("end {} {sum:016x}\n", lines.len()));
     out
+}
+
+/// A file's checksum: a SipHash of its text before the `end` line.
+fn checksum(body: &str) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    h.write(body.as_bytes());
+    h.finish()
 }
 
 /// The result a cache file holds for `key`; `None` for anything else.
@@ -209,12 +217,16 @@ fn read(text: &str, key: &str) -> Option<Reach> {
     };
     let mut count = 0usize;
     loop {
+        let body = &text[..text.len() - rest.len()];
         let tag = rest.get(..2)?;
         rest = &rest[2..];
         if tag == "en" {
             let l = line(&mut rest)?;
-            let n: usize = l.strip_prefix("d ")?.parse().ok()?;
-            return (n == count && rest.is_empty()).then_some(reach);
+            let (n, sum) = l.strip_prefix("d ")?.split_once(' ')?;
+            let n: usize = n.parse().ok()?;
+            let sum = u64::from_str_radix(sum, 16).ok()?;
+            let whole = n == count && rest.is_empty() && sum == checksum(body);
+            return whole.then_some(reach);
         }
         // A name: its length, `:`, its bytes.
         let (len, r) = rest.split_once(':')?;
@@ -279,6 +291,8 @@ mod tests {
             assert!(read(&t[..cut], "k1").is_none(), "cut at {cut}");
         }
         assert!(read(&t.replace("end 4", "end 3"), "k1").is_none());
+        // An edit that keeps the syntax and the count: the checksum.
+        assert!(read(&t.replace("1:q 1 0", "1:r 1 0"), "k1").is_none());
         assert!(read(&t.replace("q 1 0", "q 1 1"), "k1").is_none());
         assert!(read(&t.replace("top 0", "top 2"), "k1").is_none());
         assert!(read(&format!("{t}p 1:q 1 0\n"), "k1").is_none());
