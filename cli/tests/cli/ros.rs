@@ -271,6 +271,11 @@ fn small_app() -> tempfile::TempDir {
         one.replace_range(at..stop, "");
     }
     std::fs::write(dir.path().join("one.toml"), one).unwrap();
+    // The robot's acknowledgement of a run may take more than the default
+    // 5 s on a loaded 2-core CI machine running the suite (seen once: the
+    // second run of `a_user_with_nothing_more_to_say_...`); no test here
+    // waits for that timeout to expire.
+    std::fs::write(dir.path().join("ros2.toml"), "[timeouts]\nanswer = 30.0\n").unwrap();
     dir
 }
 
