@@ -104,18 +104,7 @@ impl<T> List<T> {
     pub fn split_first(&self) -> Option<(&T, List<T>)> {
         match &self.0 {
             Shape::Nil => None,
-            Shape::Slice { items, start } => {
-                let i = *start as usize;
-                let rest = if i + 1 < items.len() {
-                    List(Shape::Slice {
-                        items: Rc::clone(items),
-                        start: *start + 1,
-                    })
-                } else {
-                    List::nil()
-                };
-                Some((&items[i], rest))
-            }
+            Shape::Slice { items, start } => Some(slice_split(items, *start)),
             Shape::Cons(cell) => Some((&cell.head, cell.tail.clone())),
         }
     }
@@ -130,18 +119,7 @@ impl<T> List<T> {
     #[inline(always)]
     pub fn head_tail(&self) -> (&T, List<T>) {
         match &self.0 {
-            Shape::Slice { items, start } => {
-                let i = *start as usize;
-                let rest = if i + 1 < items.len() {
-                    List(Shape::Slice {
-                        items: Rc::clone(items),
-                        start: *start + 1,
-                    })
-                } else {
-                    List::nil()
-                };
-                (&items[i], rest)
-            }
+            Shape::Slice { items, start } => slice_split(items, *start),
             Shape::Cons(cell) => (&cell.head, cell.tail.clone()),
             Shape::Nil => empty_cell(),
         }
@@ -175,6 +153,23 @@ impl<T> List<T> {
             _ => false,
         }
     }
+}
+
+/// The element at `start` of a shared slice and the rest after it (the
+/// same storage, `[]` at its end): [`List::split_first`] and
+/// [`List::head_tail`] of a slice list.
+#[inline(always)]
+fn slice_split<T>(items: &Rc<[T]>, start: u32) -> (&T, List<T>) {
+    let i = start as usize;
+    let rest = if i + 1 < items.len() {
+        List(Shape::Slice {
+            items: Rc::clone(items),
+            start: start + 1,
+        })
+    } else {
+        List::nil()
+    };
+    (&items[i], rest)
 }
 
 /// [`List::head_tail`] of `[]`: a holder's invariant broken.

@@ -4104,15 +4104,7 @@ fn only_borrowed(toks: &[proc_macro2::TokenTree], r: &Ident) -> bool {
         T::Ident(x) if x == r => {
             let field = matches!(toks.get(k + 1), Some(T::Punct(c)) if c.as_char() == ':' && c.spacing() == Spacing::Alone)
                 && !matches!(k.checked_sub(1).map(|j| &toks[j]), Some(T::Ident(l)) if l == "let");
-            let cloned = matches!(
-                &toks[k + 1..],
-                [T::Punct(dot), T::Ident(c), T::Group(g), ..]
-                    if dot.as_char() == '.'
-                        && c == "clone"
-                        && g.delimiter() == proc_macro2::Delimiter::Parenthesis
-                        && g.stream().is_empty()
-            ) && !matches!(k.checked_sub(1).map(|j| &toks[j]), Some(T::Punct(p)) if p.as_char() == '.');
-            field || cloned
+            field || cloned_at(toks, k)
         }
         T::Ident(_) => true,
         T::Group(g) => {
@@ -4124,6 +4116,20 @@ fn only_borrowed(toks: &[proc_macro2::TokenTree], r: &Ident) -> bool {
         }
         _ => true,
     })
+}
+
+/// The identifier at `toks[k]` cloned there, `x.clone()` (not a field
+/// `.x.clone()`).
+fn cloned_at(toks: &[proc_macro2::TokenTree], k: usize) -> bool {
+    use proc_macro2::TokenTree as T;
+    matches!(
+        &toks[k + 1..],
+        [T::Punct(dot), T::Ident(c), T::Group(g), ..]
+            if dot.as_char() == '.'
+                && c == "clone"
+                && g.delimiter() == proc_macro2::Delimiter::Parenthesis
+                && g.stream().is_empty()
+    ) && !matches!(k.checked_sub(1).map(|j| &toks[j]), Some(T::Punct(p)) if p.as_char() == '.')
 }
 
 /// A visit's code with a cell's head `h` (see [`CellField`]) read in
@@ -4139,15 +4145,7 @@ fn cell_head(ts: &TokenStream, h: &Ident) -> Option<TokenStream> {
                 let field = matches!(toks.get(k + 1), Some(T::Punct(c)) if c.as_char() == ':' && c.spacing() == proc_macro2::Spacing::Alone)
                     && !matches!(prev, Some(T::Ident(l)) if l == "let");
                 let by_ref = borrowed(toks, k);
-                let cloned = matches!(
-                    &toks[k + 1..],
-                    [T::Punct(dot), T::Ident(c), T::Group(g), ..]
-                        if dot.as_char() == '.'
-                            && c == "clone"
-                            && g.delimiter() == proc_macro2::Delimiter::Parenthesis
-                            && g.stream().is_empty()
-                ) && !matches!(prev, Some(T::Punct(p)) if p.as_char() == '.');
-                field || by_ref || cloned
+                field || by_ref || cloned_at(toks, k)
             }
             T::Group(g) => ok(&g.stream().into_iter().collect::<Vec<_>>(), h),
             _ => true,
