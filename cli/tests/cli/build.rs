@@ -339,14 +339,26 @@ fn built_executable_runs_like_sitlogc_run() {
     std::fs::create_dir_all(installed.parent().unwrap()).unwrap();
     std::fs::copy(crate::support::SITLOGC, &installed).unwrap();
     let exe = dir.join("pipe");
-    let status = no_debug_info(&mut Command::new(&installed))
+    let mut build = Command::new(&installed);
+    no_debug_info(&mut build)
         .env("SITLOGC_CACHE_DIR", cache())
         .arg("build")
         .arg("--debug")
         .arg(&app)
-        .current_dir(&dir)
-        .status()
-        .unwrap();
+        .current_dir(&dir);
+    // Another test's thread forking while the copy was open for writing
+    // keeps it open in that child until it execs: the copy is "busy" for
+    // that moment (ETXTBSY); try again.
+    let mut tries = 0;
+    let status = loop {
+        match build.status() {
+            Err(e) if e.kind() == std::io::ErrorKind::ExecutableFileBusy && tries < 100 => {
+                tries += 1;
+                std::thread::sleep(std::time::Duration::from_millis(50));
+            }
+            other => break other.unwrap(),
+        }
+    };
     assert!(status.success());
     assert!(exe.is_file());
     let script = app.join("script.txt");
