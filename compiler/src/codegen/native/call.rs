@@ -298,17 +298,7 @@ impl Gen<'_> {
         let Some(plan) = self.nat_call_plan(d, ix) else {
             return Ok(to_template);
         };
-        let vs: Vec<Ident> = (0..args.len()).map(|i| format_ident!("v{}", i)).collect();
-        let lets = args.iter().zip(&vs).map(|(v, x)| {
-            let e = &v.e;
-            quote!(let #x = #e;)
-        });
-        let push = self.nat_push(d, ix, regs, &plan, &args, &vs)?;
-        Ok(quote! {
-            #(#lets)*
-            #push
-            #to_template
-        })
+        self.nat_push_else(d, ix, regs, &plan, &args, to_template)
     }
 
     /// A call with output arguments (`add(I, 1, J)`, `J` a fresh variable
@@ -317,8 +307,8 @@ impl Gen<'_> {
     /// `Ground::OUT` for each output parameter (no term made: its final
     /// hands the value back in the frame's output slot, which the exit
     /// arcs read) and the waiting variant keeping no output register; else,
-    /// and when recorded or at the depth limit, the machine's call as the
-    /// term code makes it (the fresh variables made there, then).
+    /// and when the push is not made, the machine's visit from the
+    /// template ([`Gen::nat_to_template`]).
     fn nat_recursive_outputs(
         &self,
         d: &Dm,
@@ -331,12 +321,26 @@ impl Gen<'_> {
             return Ok(to_template);
         };
         let (_, args) = self.nat_call_values(d, ix, regs, outs)?;
+        self.nat_push_else(d, ix, regs, &plan, &args, to_template)
+    }
+
+    /// The call's arguments bound as `v0`, `v1`, .. and pushed by
+    /// [`Gen::nat_push`]; `to_template` where the push is not made.
+    fn nat_push_else(
+        &self,
+        d: &Dm,
+        ix: usize,
+        regs: &Regs,
+        plan: &CallPlan,
+        args: &[V],
+        to_template: TokenStream,
+    ) -> N<TokenStream> {
         let vs: Vec<Ident> = (0..args.len()).map(|i| format_ident!("v{}", i)).collect();
         let lets = args.iter().zip(&vs).map(|(v, x)| {
             let e = &v.e;
             quote!(let #x = #e;)
         });
-        let push = self.nat_push(d, ix, regs, &plan, &args, &vs)?;
+        let push = self.nat_push(d, ix, regs, plan, args, &vs)?;
         Ok(quote! {
             #(#lets)*
             #push
