@@ -6,7 +6,9 @@
 //! index: its tail is the same allocation one index further. A list built
 //! by `[X|Xs]` ([`List::cons`]) is a chain of `Rc` cells that may end in such
 //! a slice. So `split_first`, `first`, `tail`, `cons`, `len` and `clone`
-//! take constant time, and a tail never allocates nor copies an element.
+//! take constant time, and a tail never allocates nor copies an element;
+//! `advance` makes a list its own tail in place (a cursor: a slice's start
+//! index moved, no `Rc` count touched).
 //!
 //! Invariant: a slice shape is never empty (`start < items.len()`; the
 //! empty list is `Nil`, which allocates nothing), a cell's `len` is its
@@ -122,6 +124,44 @@ impl<T> List<T> {
             Shape::Slice { items, start } => slice_split(items, *start),
             Shape::Cons(cell) => (&cell.head, cell.tail.clone()),
             Shape::Nil => empty_cell(),
+        }
+    }
+
+    /// The first element of a list its holder keeps non-empty (a cell
+    /// field, as [`List::head_tail`]), read in place.
+    ///
+    /// # Panics
+    /// On `[]` (the holder's invariant broken).
+    #[inline(always)]
+    pub fn head(&self) -> &T {
+        match &self.0 {
+            Shape::Slice { items, start } => &items[*start as usize],
+            Shape::Cons(cell) => &cell.head,
+            Shape::Nil => empty_cell(),
+        }
+    }
+
+    /// Makes this list its own tail, in place: a cursor moved one element
+    /// on. A list that arrived whole moves its start index (no `Rc` count
+    /// touched, no value moved; at its end it becomes `[]`, its storage let
+    /// go); a cell is replaced by its tail (shared). `[]` stays `[]`. What
+    /// a visit of `try([P|Ps])` going on to `try(Ps)` does to the list its
+    /// situation holds (`codegen::native`'s cell fields).
+    #[inline(always)]
+    pub fn advance(&mut self) {
+        match &mut self.0 {
+            Shape::Slice { items, start } => {
+                if (*start as usize) + 1 < items.len() {
+                    *start += 1;
+                } else {
+                    self.0 = Shape::Nil;
+                }
+            }
+            Shape::Cons(cell) => {
+                let tail = cell.tail.clone();
+                *self = tail;
+            }
+            Shape::Nil => {}
         }
     }
 
@@ -419,6 +459,16 @@ mod tests {
             proptest::prop_assert_eq!(rest.iter().len(), model.len());
             proptest::prop_assert!(rest.iter().eq(model.iter()));
             proptest::prop_assert_eq!(rest == whole, model.len() == items.len());
+            // A cursor moved as far, in place, is that rest; past the end, `[]`.
+            let mut cursor = list.clone();
+            for _ in 0..drop_first {
+                if !cursor.is_empty() {
+                    proptest::prop_assert_eq!(Some(cursor.head()), cursor.first());
+                }
+                cursor.advance();
+            }
+            proptest::prop_assert_eq!(&cursor, &rest);
+            proptest::prop_assert_eq!(cursor.len(), model.len());
         }
     }
 

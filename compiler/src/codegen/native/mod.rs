@@ -167,7 +167,12 @@
 //! (`List::head_tail`), a next situation `try(Ps)` moves `Ps` into the
 //! variant after testing it non-empty (a `Val`: `Val::non_empty_list`, an
 //! improper list handed to the machine as before); nothing is split at the
-//! selection, no element cloned or dropped per visit.
+//! selection, no element cloned or dropped per visit. When the variant
+//! holds the cell alone and the visit's next situation is its own with its
+//! own tail (`try([P|Ps])` to `try(Ps)`), the visit is a cursor
+//! ([`Gen::nat_cursor`]): `P` cloned out, the list advanced in place
+//! (`List::advance`), `Ps` the list itself by reference, and the variant
+//! left where it is (`break 'step`, no next variant built nor moved).
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 
@@ -662,8 +667,12 @@ struct Dm<'a> {
     /// While a next situation is selected ([`Gen::nat_select`]): a
     /// selected value (`(* v0)`, as text) that is the visit's own cell
     /// tail (`Ps` of `[P|Ps]`, see [`CellField`]), moved (not cloned)
-    /// into a candidate that holds it as its cell, and the register.
-    movable: std::cell::RefCell<Option<(String, Ident)>>,
+    /// into a candidate that holds it as its cell, and the register; with
+    /// the visit's situation when it advances its list in place (a
+    /// cursor, [`Gen::nat_cursor`]): then the tail is a reference to the
+    /// held list, taken by reference by the visit's own situation and
+    /// cloned into any other.
+    movable: std::cell::RefCell<Option<(String, Ident, Option<usize>)>>,
 }
 
 /// A situation whose id takes apart a list `[P|Ps]` (`P` and `Ps`
@@ -773,6 +782,7 @@ impl Gen<'_> {
         let mut exit_arms = Vec::new();
         let mut rec_arms = Vec::new();
         let mut wait_arms = Vec::new();
+        let mut any_cursor = false;
         for (ix, c) in code.iter().enumerate() {
             let Some((fields, body, id, wait)) = c else {
                 continue;
@@ -799,7 +809,27 @@ impl Gen<'_> {
             let names: Vec<Ident> = vfields.iter().map(|(r, _)| r.clone()).collect();
             // A cell's `P` (a reference into the list) and `Ps`, for the
             // id's arm and the visit.
+            // A cursor's visit (its own candidate took its tail in place,
+            // [`Gen::nat_cursor`]): `P` cloned out, the list advanced, `Ps`
+            // the list itself (by reference where the visit only reads it).
+            let cursor = cell.is_some() && body.to_string().contains("break 'step");
             let (id_pre, body) = match &cell {
+                Some(c) if cursor => {
+                    let (h, t, k) = (reg(c.head), reg(c.tail), c.name());
+                    let head = if pipe::mentions(body, &h) > 0 {
+                        quote!(let #h = #k.head().clone();)
+                    } else {
+                        quote!()
+                    };
+                    let body = match cell_head(body, &t) {
+                        Some(body) => quote!(let #t = &*#k; #body),
+                        None => quote!(let #t = (*#k).clone(); #body),
+                    };
+                    (
+                        Some(quote!(let (#h, #t) = #k.head_tail(); let #t = &#t;)),
+                        quote!(#head #k.advance(); #body),
+                    )
+                }
                 Some(c) => {
                     let (h, t, k) = (reg(c.head), reg(c.tail), c.name());
                     let body = match cell_head(body, &h) {
@@ -836,7 +866,12 @@ impl Gen<'_> {
             } else {
                 quote!(Nat::#v { #(#names),* } => #id,)
             });
-            arms.push(quote!(Nat::#v { #(#names),* } => 'visit: { #body }));
+            arms.push(if cursor {
+                any_cursor = true;
+                quote!(Nat::#v { #(ref mut #names),* } => 'visit: { #body })
+            } else {
+                quote!(Nat::#v { #(#names),* } => 'visit: { #body })
+            });
             if let Some(w) = wait {
                 variants.push(w.variant.clone());
                 if !same_id {
@@ -949,6 +984,18 @@ impl Gen<'_> {
         // then the same checks as after a visit. A DM with no situation
         // that waits (most) only says that it was not waiting.
         let arms = by_ref_loads(quote!(#(#arms)*));
+        // A cursor's visit that stays (`break 'step`) leaves `at` as it is.
+        let step = quote! {
+            at = match at {
+                #arms
+                _ => return Err(cx.fault(Fault::Visited)),
+            };
+        };
+        let step = if any_cursor {
+            quote!('step: { #step })
+        } else {
+            step
+        };
         let resume = if exit_arms.iter().all(|a| a.is_empty()) {
             quote! {
                 if ret.is_some() {
@@ -1055,10 +1102,7 @@ impl Gen<'_> {
                 let mut at = ::std::mem::replace(slot, Nat::Moved {});
                 #resume
                 loop {
-                    at = match at {
-                        #arms
-                        _ => return Err(cx.fault(Fault::Visited)),
-                    };
+                    #step
                     #gc
                 }
             }
@@ -1345,6 +1389,24 @@ impl Gen<'_> {
                 ty,
             })
         })
+    }
+
+    /// Whether situation `ix`'s visit may advance its [`CellField`] in
+    /// place (a cursor): the variant holds the cell alone (no other
+    /// field to move in or out). Such a visit, when its next situation
+    /// is its own with its own tail (`try([P|Ps])` to `try(Ps)`), makes
+    /// the held list its tail in place (`List::advance`: a start index
+    /// moved, no `Rc` count touched) and leaves the variant where it is;
+    /// `P` is cloned out before (an atom copied). Moving the variant
+    /// instead (the next one built, then moved into the loop's `at`)
+    /// cost more by the clock than its instructions say (stores read
+    /// back by wider loads: `performance.md`, `nperf9`).
+    fn nat_cursor(&self, d: &Dm, ix: usize) -> bool {
+        let Some(c) = self.nat_cell(d, ix) else {
+            return false;
+        };
+        self.nat_fields(d, ix)
+            .is_ok_and(|fs| fs.iter().all(|(r, _)| *r == c.head || *r == c.tail))
     }
 
     /// The variables of `t` (each occurrence) and its list patterns of two
@@ -3279,7 +3341,9 @@ impl Gen<'_> {
                 quote!(let #n = &#e;)
             })
             .collect();
-        // The visit's own cell tail selected once: moved into a cell.
+        // The visit's own cell tail selected once: moved into a cell (or,
+        // a cursor, the list advanced in place when it selects the visit's
+        // own situation).
         let mut movable = None;
         if let Some(c) = self.nat_cell(d, cur) {
             let t = reg(c.tail);
@@ -3290,7 +3354,13 @@ impl Gen<'_> {
             if let [i] = own[..] {
                 if args.iter().map(of).sum::<usize>() == 1 {
                     let x = &arg_names[i];
-                    movable = Some((quote!((*#x)).to_string(), t));
+                    // Not with an out_arg to set after the next situation.
+                    let cursor = (d.plans[cur].id == (name, args.len())
+                        && c.path == [i]
+                        && d.out.borrow().is_empty()
+                        && self.nat_cursor(d, cur))
+                    .then_some(cur);
+                    movable = Some((quote!((*#x)).to_string(), t, cursor));
                 }
             }
         }
@@ -3399,6 +3469,29 @@ impl Gen<'_> {
                 None => inits.into_iter().map(|(_, i)| i).collect(),
             };
             let v = variant(j);
+            // The visit's own situation taking its own tail (a cursor): the
+            // list was advanced in place, the variant stays where it is (the
+            // visit ends there, `break 'step`, [`Gen::nat_cursor`]);
+            // recorded, the variant is made again for the entry's next id.
+            let own_cursor = d.movable.borrow().as_ref().and_then(|(_, t, c)| {
+                let take = quote!(&#t).to_string();
+                let took = steps
+                    .iter()
+                    .any(|s| matches!(s, MatchStep::Cell(_, _, x, _) if x.to_string() == take));
+                (*c == Some(j) && took).then_some(())
+            });
+            if let (Some(()), Some(c), Some(w)) = (own_cursor, self.nat_cell(d, j), &whole) {
+                let k = c.name();
+                let stay = quote! {
+                    if !run.records {
+                        break 'step;
+                    }
+                    break 'sel Nat::#v { #k: #w.clone() };
+                };
+                let code = wrap_steps(steps, &inline, stay);
+                candidates.push((code, Shape::Other));
+                continue;
+            }
             // Only `let`s: this candidate takes every value that reaches
             // it, so no later one is tried.
             let lets = |ss: &[MatchStep]| ss.iter().all(|s| matches!(s, MatchStep::Let(..)));
@@ -3716,7 +3809,14 @@ impl Gen<'_> {
         let e = &v.e;
         let movable = d.movable.borrow();
         let take = match movable.as_ref() {
-            Some((text, r)) if *text == e.to_string() => quote!(#r),
+            Some((text, r, Some(c))) if *text == e.to_string() => {
+                if *c == j {
+                    quote!(&#r)
+                } else {
+                    quote!(#r.clone())
+                }
+            }
+            Some((text, r, None)) if *text == e.to_string() => quote!(#r),
             _ if is_selected_value(e) => quote!(#e.clone()),
             _ => quote!(#e),
         };
