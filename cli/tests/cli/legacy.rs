@@ -70,7 +70,8 @@ const KB_FUNCTIONS: &str = r#"kb_talk(_) :-
     findall(M, call(count_classes, KB3, M), [Classes]),
     Rule = (kb_count(K, C) :- count_inds(K, C)), assertz(Rule), kb_count(KB3, Inds),
     Rule2 = (kb_get(N2) :- open_shop_kb(K2), count_inds2(K2, N2)), assertz(Rule2), kb_get(Inds2),
-    assign_func_value([Big, None, Small, Tea, N, Classes, Inds, Inds2]).
+    kb_len(KB3, Len), kb_walk(x, 1, Walk), assertz(kb_len(extra, 7)), kb_len([a|extra], Len2),
+    assign_func_value([Big, None, Small, Tea, N, Classes, Inds, Inds2, Len, Walk, Len2]).
 kb_out(_) :- open_shop_kb(KB), assign_func_value(KB).
 kb_back(KB) :- length(KB, N), assign_func_value(N).
 "#;
@@ -80,7 +81,10 @@ kb_back(KB) :- length(KB, N), assign_func_value(N).
 /// `--legacy-kb native`, a KB term for them) directly, through a meta-call
 /// (`count_classes`) and through a rule asserted at run time (`kb_count`,
 /// which calls `count_inds`, and through one whose body gets a KB itself,
-/// `kb_get`: every predicate of the layer is wrapped from then on); a KB given to the DM is a KB term, as on the
+/// `kb_get`: every predicate of the layer is wrapped from then on), and
+/// recursions (`kb_len`, whose calls of itself go to its clauses directly
+/// under `native`, until a clause is asserted for it; `kb_walk`, which
+/// makes a handle before calling itself); a KB given to the DM is a KB term, as on the
 /// original (`kb_out`, `kb_back`), never a handle.
 fn kb_dm(name: &str) -> String {
     format!(
@@ -94,7 +98,7 @@ fn kb_dm(name: &str) -> String {
     )
 }
 
-const KB_SAID: [&str; 2] = ["big unknown small unknown 2 2 2 2.", "2"];
+const KB_SAID: [&str; 2] = ["big unknown small unknown 2 2 2 2 2 2 8.", "2"];
 
 /// Test mode's situation types, as the original's test mode gives them.
 fn wrap_dm(name: &str) -> String {
@@ -221,6 +225,10 @@ count_inds(KB, N) :-
     findall(I, (member(class(_, _, _, _, Is), KB), member(I, Is)), L), length(L, N).
 count_inds2(KB, N) :-
     findall(I, (member(class(_, _, _, _, Is), KB), member(I, Is)), L), length(L, N).
+kb_len([], 0).
+kb_len([_|T], N) :- kb_len(T, M), N is M + 1.
+kb_walk(KB, 0, N) :- !, kb_len(KB, N).
+kb_walk(_, K, N) :- K1 is K - 1, open_shop_kb(KB), kb_walk(KB, K1, N).
 "#,
     );
     write(

@@ -316,9 +316,12 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
         };
         cx.defined.insert(key);
         let mut t = t;
+        // Under the native KB layer, the clause as it is if its predicate
+        // is wrapped (its calls of itself going to the layer's clauses).
+        let mut alt = None;
         if let Some(native) = cx.native.as_deref_mut() {
             match native.clause(&mut store, key, head, body) {
-                ClauseFate::Keep => {}
+                ClauseFate::Keep => alt = native.direct_recursion(&mut store, key, head, body),
                 ClauseFate::Rename(new) => {
                     let args = store.args(head).to_vec();
                     let h = store.compound(new, &args);
@@ -349,6 +352,20 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
             continue;
         }
         *cx.touching |= w.touching_atom;
+        if let (Some(alt), Some(native)) = (alt, cx.native.as_deref_mut()) {
+            let mut a = Writer::new(&store, true);
+            a.touch = cx.redefine.is_some();
+            if let Some(x) = store.compound_args(alt, neck(), 2) {
+                a.out.push_str("':-'(");
+                a.head(x[0]);
+                a.out.push(',');
+                a.term(x[1]);
+                a.out.push(')');
+                if !a.too_deep() {
+                    native.alt(w.out.clone(), a.out);
+                }
+            }
+        }
         // The predicate as asserted (renamed by the native KB layer).
         let head = store.compound_args(t, neck(), 2).map_or(t, |a| a[0]);
         let key = store.functor(head);

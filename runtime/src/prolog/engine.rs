@@ -279,7 +279,15 @@ struct Shared {
     input: RunInput,
     history: HistoryLink,
     lazy: LazyStore,
+    direct: DirectStore,
 }
+
+/// The wrapped predicates of the native KB layer whose clauses call their
+/// layer's clauses directly (`Wrapped::alts`), numbered as their
+/// `'$sitlog_direct'/3` facts: the name and arity of those clauses'
+/// predicate (`$legacy_P`) and its clauses as written, asked for by a `D`
+/// request when a clause is asserted for the predicate at run time.
+type DirectStore = Arc<Mutex<Vec<(Atom, usize, Vec<String>)>>>;
 
 impl Shared {
     fn new(roots: Roots) -> Shared {
@@ -288,6 +296,7 @@ impl Shared {
             input: Arc::new(Mutex::new(None)),
             history: Arc::new(Mutex::new(None)),
             lazy: Arc::new(Mutex::new(Vec::new())),
+            direct: Arc::new(Mutex::new(Vec::new())),
         }
     }
 }
@@ -1043,6 +1052,13 @@ fn engine_thread(
         ready,
     } = setup;
     let mut errors = base_errors;
+    if let Ok(mut d) = shared.direct.lock() {
+        *d = wrapped
+            .iter()
+            .filter(|w| !w.alts.is_empty())
+            .map(|w| (w.legacy.0, w.legacy.1, w.originals.clone()))
+            .collect();
+    }
     match (preloaded, loaded) {
         (Some(pre), Some(loaded)) => {
             // The layer's clauses are in: those the application's files
@@ -1163,7 +1179,9 @@ fn engine_streams(host: HostSlot, shared: Shared) -> StreamConfig {
             pending.drain(..=end);
             // The first character says what is asked: `R` read, `K` KB,
             // `S` the system (clock, sleep), `P` whether a file is inside
-            // the application (the guards).
+            // the application (the guards), `I` input, `H` the history,
+            // `L` a waiting predicate's clauses, `D` a wrapped predicate's
+            // clauses as written (`direct_reply`).
             // A KB term or a term read may be long: the engine reads it in
             // one go after its length (`'$sitlog_read_long'/1`).
             let long = |text: String| format!("{}\n{text}", text.chars().count());
@@ -1186,6 +1204,8 @@ fn engine_streams(host: HostSlot, shared: Shared) -> StreamConfig {
                 history_reply(&shared.history, from)
             } else if let Some(id) = text.strip_prefix('L') {
                 lazy_reply(&shared.lazy, id)
+            } else if let Some(k) = text.strip_prefix('D') {
+                direct_reply(&shared.lazy, &shared.direct, k)
             } else {
                 read_reply(&text)
             };
@@ -1753,7 +1773,10 @@ fn wrap_ahead(
             let clauses: Vec<String> = p
                 .clauses
                 .iter()
-                .map(|c| rename_head(c, &old, &new))
+                .map(|c| {
+                    let c = w.alts.iter().find(|(t, _)| t == c).map_or(c, |(_, a)| a);
+                    rename_head(c, &old, &new)
+                })
                 .collect();
             p.clauses = vec![w.wrapper.clone()];
             let legacy_id = store.len();
@@ -1885,18 +1908,52 @@ fn lazy_reply(store: &LazyStore, id: &str) -> String {
     });
     let mut text = String::from("'$ok'([");
     if let Some(pred) = pred {
-        for (g, group) in pred.clauses.chunks(ADD_BATCH).enumerate() {
-            if g > 0 {
+        write_groups(&mut text, &pred.clauses);
+    }
+    text.push_str("]).\n");
+    format!("{}\n{text}", text.chars().count())
+}
+
+/// `clauses` as `c(C1, ..)` groups of at most [`ADD_BATCH`], comma
+/// separated (`'$sitlog_lazy_add'/1`'s list).
+fn write_groups(text: &mut String, clauses: &[String]) {
+    for (g, group) in clauses.chunks(ADD_BATCH).enumerate() {
+        if g > 0 {
+            text.push(',');
+        }
+        text.push_str("c(");
+        for (k, c) in group.iter().enumerate() {
+            if k > 0 {
                 text.push(',');
             }
-            text.push_str("c(");
-            for (k, c) in group.iter().enumerate() {
-                if k > 0 {
-                    text.push(',');
-                }
-                let _ = write!(text, "({c})");
-            }
-            text.push(')');
+            let _ = write!(text, "({c})");
+        }
+        text.push(')');
+    }
+}
+
+/// The answer to a `D` request (a `'$sitlog_direct'/3` fact's number): the
+/// clauses as written of that predicate of the layer, whose calls of itself
+/// go through its wrapper again, for the engine to put in place of the
+/// clauses it has: `'$ok'([c(C1, ..), ..])` as [`lazy_reply`]. While the
+/// predicate still waits for its first call, its waiting clauses become
+/// those instead, and the answer is `'$ok'([])`.
+fn direct_reply(lazy: &LazyStore, direct: &DirectStore, k: &str) -> String {
+    let found = k
+        .trim()
+        .parse::<usize>()
+        .ok()
+        .and_then(|k| direct.lock().ok().and_then(|d| d.get(k).cloned()));
+    let mut text = String::from("'$ok'([");
+    if let Some((name, arity, originals)) = found {
+        let waiting = lazy.lock().ok().and_then(|mut s| {
+            s.iter_mut()
+                .flatten()
+                .find(|p| p.name == name && p.arity == arity)
+                .map(|p| p.clauses.clone_from(&originals))
+        });
+        if waiting.is_none() {
+            write_groups(&mut text, &originals);
         }
     }
     text.push_str("]).\n");

@@ -16,9 +16,9 @@ use super::kb_reach::{self, Clause, Numbering, Served, T};
 use super::reach_cache;
 use super::translate::{write_atom, Prepared};
 use crate::store::Store;
-use crate::term::Term;
+use crate::term::{Term, Value, Var};
 use sitlog_syntax::Atom;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
 /// A host answering the KB requests of the engine (see [`NativeKb`]).
@@ -45,6 +45,10 @@ pub type KbHost = Arc<dyn Fn(&str) -> String + Send + Sync>;
 ///   its handles turned back into KB terms (the host writes the KB) before
 ///   its own clauses run, so code of the layer that the host does not serve
 ///   still works; one that no handle can reach runs as written, unwrapped.
+///   A wrapped predicate's calls of itself in its own clauses go to those
+///   clauses directly where no handle can be (a recursion over a list
+///   would go through the wrapper at each step), as long as no clause is
+///   asserted for it at run time ([`NativeState::direct_recursion`]).
 ///
 /// Requests (canonical text): `open(Path)`, `save(KB, Path)`,
 /// `query(KB, Goal)`, `update(KB, Goal)`, `term(KB)`, `handle(Term)`; the
@@ -91,6 +95,10 @@ pub(super) struct NativeState {
     app_defined: HashSet<(Atom, usize)>,
     /// The analysis' cache directory ([`NativeKb::reach_cache`]).
     reach_cache: Option<std::path::PathBuf>,
+    /// A clause's text, as prepared, to the text it has if its predicate
+    /// is wrapped: its calls of itself go to the layer's clauses directly
+    /// ([`NativeState::direct_recursion`]).
+    alts: HashMap<String, String>,
 }
 
 /// A predicate of the layer that a KB handle can reach, wrapped: its
@@ -101,6 +109,15 @@ pub(super) struct Wrapped {
     pub(super) legacy: (Atom, usize),
     pub(super) key: (Atom, usize),
     pub(super) wrapper: String,
+    /// Its clauses' texts that call it again, each with the text whose
+    /// calls go to `legacy` directly when no handle can be there
+    /// ([`NativeState::direct_recursion`]).
+    pub(super) alts: Vec<(String, String)>,
+    /// With `alts`: all its clauses as written, renamed to `legacy`'s,
+    /// which replace `legacy`'s when a clause is asserted for it at run
+    /// time (the prelude's `'$sitlog_lz_undirect'/1`, an engine's `D`
+    /// request: the direct calls would not see that clause).
+    pub(super) originals: Vec<String>,
 }
 
 /// The file name of the clauses the native KB layer adds.
@@ -127,6 +144,7 @@ impl NativeState {
             clauses: Vec::new(),
             app_defined: HashSet::new(),
             reach_cache: n.reach_cache.clone(),
+            alts: HashMap::new(),
         }
     }
 
@@ -217,6 +235,78 @@ impl NativeState {
             self.wrapped.push(key);
         }
         ClauseFate::Keep
+    }
+
+    /// Under [`finish`](Self::finish)'s wrapper (if `key` gets one), the
+    /// clause of `key` (head `head`, body `body`, kept under its own name)
+    /// with each call of `key` itself in its body (through conjunctions,
+    /// disjunctions and if-then-else) going to the layer's clauses directly
+    /// when none of its arguments can be a handle there, and through the
+    /// wrapper only when one is: a wrapper costs a call, and a recursion
+    /// over a list (the layer's `isElement/2`) would go through it at each
+    /// element, two calls where the original makes one. An argument cannot
+    /// be a handle (at run time, whatever the analysis says) when it is a
+    /// term other than `'$kb'(_)`, a variable nothing bound yet (not in the
+    /// head, in no goal before the call), or the variable that is the whole
+    /// argument at the same position of a head with no variable twice and
+    /// no goal before the call naming it (the wrapper looked at it, or does
+    /// not look there); any other one is looked at inline, as the wrapper
+    /// does. `None`: no such call, or not a predicate that may be wrapped.
+    pub(super) fn direct_recursion(
+        &self,
+        store: &mut Store,
+        key: (Atom, usize),
+        head: Term,
+        body: Option<Term>,
+    ) -> Option<Term> {
+        if !self.in_layer || key.1 == 0 || !self.wrapped_set.contains(&key) {
+            return None;
+        }
+        let body = body?;
+        let kb = Atom::intern("$kb");
+        let mut occurrences: HashMap<Var, usize> = HashMap::new();
+        let mut stack: Vec<Term> = store.args(head).to_vec();
+        while let Some(t) = stack.pop() {
+            match store.value(t) {
+                Value::Var(v) => *occurrences.entry(v).or_insert(0) += 1,
+                Value::Compound(f, a) => {
+                    if f == kb && a.len() == 1 {
+                        return None;
+                    }
+                    stack.extend(a.iter().copied());
+                }
+                _ => {}
+            }
+        }
+        let linear = occurrences.values().all(|&n| n == 1);
+        let mut whole: HashMap<Var, usize> = HashMap::new();
+        if linear {
+            for (i, &a) in store.args(head).iter().enumerate() {
+                if let Value::Var(v) = store.value(a) {
+                    whole.insert(v, i);
+                }
+            }
+        }
+        let mut cx = Direct {
+            key,
+            legacy: legacy_name(key.0),
+            kb,
+            in_head: occurrences.keys().copied().collect(),
+            whole,
+            seen: HashSet::new(),
+            changed: false,
+        };
+        let new = cx.goal(store, body);
+        if !cx.changed {
+            return None;
+        }
+        Some(store.compound(Atom::intern(":-"), &[head, new]))
+    }
+
+    /// Keeps `alt` ([`direct_recursion`](Self::direct_recursion)'s clause
+    /// as prepared) for the clause prepared as `text`.
+    pub(super) fn alt(&mut self, text: String, alt: String) {
+        self.alts.insert(text, alt);
     }
 
     /// The clauses that serve the layer's predicates and wrap the others.
@@ -361,6 +451,9 @@ impl NativeState {
         };
         let mut wrapped = Vec::new();
         let mut unwrapped = Vec::new();
+        // The number of the next `'$sitlog_direct'/3` fact: the order of
+        // the wrapped predicates with `alts`.
+        let mut direct = 0usize;
         for &(p, arity) in &self.wrapped {
             // A predicate the application redefines has lost the layer's
             // clauses: its own are the application's, not wrapped.
@@ -373,12 +466,48 @@ impl NativeState {
                 continue;
             }
             let legacy = (legacy_name(p), arity);
+            // Its clauses whose calls of itself may go to the layer's
+            // clauses directly; not when a file builds a call that changes
+            // clauses as data (the prelude would not see a clause asserted
+            // for it, `'$sitlog_lz_undirect'/1`).
+            let mine = |c: &&Prepared| c.key == Some((p, arity));
+            let alts: Vec<(String, String)> = if give_up {
+                Vec::new()
+            } else {
+                out.iter()
+                    .filter(mine)
+                    .filter_map(|c| self.alts.get(&c.text).map(|a| (c.text.clone(), a.clone())))
+                    .collect()
+            };
+            let mut originals = Vec::new();
+            if !alts.is_empty() {
+                let (mut old, mut new) = (String::new(), String::new());
+                write_atom(&mut old, p);
+                write_atom(&mut new, legacy.0);
+                originals = out
+                    .iter()
+                    .filter(mine)
+                    .map(|c| rename_head(&c.text, &old, &new))
+                    .collect();
+                for c in out.iter_mut().filter(|c| c.key == Some((p, arity))) {
+                    if let Some(a) = self.alts.get(&c.text) {
+                        c.text.clone_from(a);
+                    }
+                }
+                let mut fact = String::from("'$sitlog_direct'(");
+                write_atom(&mut fact, p);
+                fact.push_str(&format!(",{arity},{})", direct));
+                direct += 1;
+                clauses.push((fact, (Atom::intern("$sitlog_direct"), 3), false));
+            }
             rename_clauses(out, (p, arity), legacy);
             let text = wrapper_text(p, arity, &positions);
             wrapped.push(Wrapped {
                 legacy,
                 key: (p, arity),
                 wrapper: format!("({text})"),
+                alts,
+                originals,
             });
             clauses.push((text, (p, arity), true));
         }
@@ -494,6 +623,96 @@ fn rename_clauses(out: &mut [Prepared], from: (Atom, usize), to: (Atom, usize)) 
     }
 }
 
+/// [`NativeState::direct_recursion`]'s walk of a body, left to right.
+struct Direct {
+    key: (Atom, usize),
+    legacy: Atom,
+    kb: Atom,
+    /// The head's variables.
+    in_head: HashSet<Var>,
+    /// The head's variables that are a whole argument, by position (none
+    /// when a variable is twice in the head).
+    whole: HashMap<Var, usize>,
+    /// The variables of the goals before.
+    seen: HashSet<Var>,
+    changed: bool,
+}
+
+impl Direct {
+    fn goal(&mut self, store: &mut Store, g: Term) -> Term {
+        let g = store.deref(g);
+        let Some((f, n)) = store.functor(g) else {
+            self.see(store, g);
+            return g;
+        };
+        if n == 2 && matches!(f.as_str(), "," | ";" | "->" | "*->") {
+            let args = store.args(g).to_vec();
+            let l = self.goal(store, args[0]);
+            let r = self.goal(store, args[1]);
+            return store.compound(f, &[l, r]);
+        }
+        if (f, n) != self.key {
+            self.see(store, g);
+            return g;
+        }
+        let args = store.args(g).to_vec();
+        let mut looked: Vec<Term> = Vec::new();
+        for (j, &a) in args.iter().enumerate() {
+            let a = store.deref(a);
+            match store.value(a) {
+                Value::Var(v) => {
+                    let untouched = !self.seen.contains(&v);
+                    let safe =
+                        untouched && (!self.in_head.contains(&v) || self.whole.get(&v) == Some(&j));
+                    if !safe {
+                        looked.push(a);
+                    }
+                }
+                Value::Compound(c, ca) if c == self.kb && ca.len() == 1 => {
+                    self.see(store, g);
+                    return g;
+                }
+                _ => {}
+            }
+        }
+        self.see(store, g);
+        self.changed = true;
+        let direct = store.compound(self.legacy, &args);
+        if looked.is_empty() {
+            return direct;
+        }
+        // `( nonvar(A), A = '$kb'(_) ; .. ) -> P(..) ; '$legacy_P'(..)`
+        let mut cond: Option<Term> = None;
+        for &a in looked.iter().rev() {
+            let nv = store.compound(Atom::intern("nonvar"), &[a]);
+            let hv = store.new_var();
+            let h = store.compound(self.kb, &[hv]);
+            let eq = store.compound(Atom::intern("="), &[a, h]);
+            let test = store.compound(Atom::intern(","), &[nv, eq]);
+            cond = Some(match cond {
+                None => test,
+                Some(rest) => store.compound(Atom::intern(";"), &[test, rest]),
+            });
+        }
+        let cond = cond.unwrap_or_else(|| Term::atom(Atom::intern("fail")));
+        let then = store.compound(Atom::intern("->"), &[cond, g]);
+        store.compound(Atom::intern(";"), &[then, direct])
+    }
+
+    fn see(&mut self, store: &Store, t: Term) {
+        let mut stack = vec![t];
+        while let Some(t) = stack.pop() {
+            match store.value(t) {
+                Value::Var(v) => {
+                    self.seen.insert(v);
+                }
+                Value::Compound(_, a) => stack.extend(a.iter().copied()),
+                _ => {}
+            }
+        }
+    }
+}
+
 /// `text`, a clause as prepared (`':-'(Head,Body)` or `Head`), with its
 /// head's name `old` (as written) replaced by `new`.
 pub(super) fn rename_head(text: &str, old: &str, new: &str) -> String {
@@ -544,4 +763,103 @@ fn kb_file_access(store: &Store, body: Term) -> Option<(Atom, bool)> {
         }
     }
     Some((file?, mode?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::prolog::translate::Writer;
+
+    /// Each clause of `text` as `direct_recursion` gives it (written), or
+    /// `None`.
+    fn direct(text: &str) -> Vec<Option<String>> {
+        let (clauses, errors) = sitlog_syntax::read_prolog_clauses(text);
+        assert!(errors.is_empty(), "{errors:?}");
+        let mut st = NativeState::new(&NativeKb {
+            host: Arc::new(|_| String::new()),
+            queries: Vec::new(),
+            updates: Vec::new(),
+            reach_cache: None,
+        });
+        clauses
+            .iter()
+            .map(|c| {
+                let mut store = Store::new();
+                let (t, _) = store.from_clause(c);
+                let (head, body) = match store.compound_args(t, Atom::intern(":-"), 2) {
+                    Some(a) => (a[0], Some(a[1])),
+                    None => (t, None),
+                };
+                let key = store.functor(head).unwrap();
+                assert!(matches!(
+                    st.clause(&mut store, key, head, body),
+                    ClauseFate::Keep
+                ));
+                st.direct_recursion(&mut store, key, head, body).map(|alt| {
+                    let mut w = Writer::new(&store, true);
+                    w.term(store.args(alt)[1]);
+                    w.out
+                })
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_recursion_calls_the_layers_clauses_unless_a_handle_may_be_there() {
+        let got = direct(
+            "member_of(X, [X|_]).\n\
+             member_of(X, [_|T]) :- member_of(X, T).\n\
+             walk(KB, 0, N) :- !, length(KB, N).\n\
+             walk(_, K, N) :- K1 is K - 1, open_kb(KB2), walk(KB2, K1, N).\n\
+             same(KB, [], KB).\n\
+             same(KB, [_|T], R) :- same(KB, T, R), write(done).\n\
+             twice(X, X) :- twice(X, y).\n\
+             kb(X) :- kb('$kb'(1)), kb(X).\n",
+        );
+        let test = |v: &str, h: &str| format!("','('nonvar'({v}),'='({v},'$kb'({h})))");
+        assert_eq!(got[0], None);
+        assert_eq!(got[2], None);
+        assert_eq!(got[4], None);
+        // X is the head's, untouched, at the same place: not looked at; T,
+        // a part of the head's list, is.
+        assert_eq!(
+            got[1].as_deref().unwrap(),
+            format!(
+                "';'('->'({},'member_of'(_S0,_S2)),'$legacy_member_of'(_S0,_S2))",
+                test("_S2", "_S3")
+            )
+        );
+        // KB2 and K1, bound before the call, are looked at.
+        assert_eq!(
+            got[3].as_deref().unwrap(),
+            format!(
+                "','('is'(_S3,'-'(_S1,1)),','('open_kb'(_S4),';'('->'(';'({},{}),\
+                 'walk'(_S4,_S3,_S2)),'$legacy_walk'(_S4,_S3,_S2))))",
+                test("_S4", "_S6"),
+                test("_S3", "_S5")
+            )
+        );
+        // KB and the unbound R are not; T is.
+        assert_eq!(
+            got[5].as_deref().unwrap(),
+            format!(
+                "','(';'('->'({},'same'(_S0,_S2,_S3)),'$legacy_same'(_S0,_S2,_S3)),'write'('done'))",
+                test("_S2", "_S4")
+            )
+        );
+        // A variable twice in the head is looked at.
+        assert_eq!(
+            got[6].as_deref().unwrap(),
+            format!(
+                "';'('->'({},'twice'(_S0,'y')),'$legacy_twice'(_S0,'y'))",
+                test("_S0", "_S1")
+            )
+        );
+        // A call with a handle written in it is left as it is; the one
+        // after, with nothing that may be a handle, goes directly.
+        assert_eq!(
+            got[7].as_deref().unwrap(),
+            "','('kb'('$kb'(1)),'$legacy_kb'(_S0))"
+        );
+    }
 }

@@ -275,11 +275,40 @@ get_last_situation(History, S) :-
 % layer's and the application's clauses call them (translate.rs,
 % TOUCHING): a predicate still waiting for its first call is loaded first.
 '$sitlog_lz_assert'(C) :-
-    '$sitlog_lz_clause_touch'(C), '$sitlog_kb_rule'(C, C1), assertz(C1).
+    '$sitlog_lz_clause_touch'(C), '$sitlog_lz_undirect'(C),
+    '$sitlog_kb_rule'(C, C1), assertz(C1).
 '$sitlog_lz_asserta'(C) :-
-    '$sitlog_lz_clause_touch'(C), '$sitlog_kb_rule'(C, C1), asserta(C1).
+    '$sitlog_lz_clause_touch'(C), '$sitlog_lz_undirect'(C),
+    '$sitlog_kb_rule'(C, C1), asserta(C1).
 '$sitlog_lz_assertz'(C) :-
-    '$sitlog_lz_clause_touch'(C), '$sitlog_kb_rule'(C, C1), assertz(C1).
+    '$sitlog_lz_clause_touch'(C), '$sitlog_lz_undirect'(C),
+    '$sitlog_kb_rule'(C, C1), assertz(C1).
+
+% A wrapped predicate of the native KB layer whose clauses call their own
+% ('$legacy_P') directly (legacy_kb.rs, direct_recursion; a fact
+% '$sitlog_direct'(P, A, K) each): a clause asserted for P at run time
+% would not be seen by those calls, so '$legacy_P' gets its clauses as
+% written back from the host (a D request), calling P by name.
+:- dynamic('$sitlog_direct'/3).
+'$sitlog_lz_undirect'(C) :-
+    (   '$sitlog_direct'(_, _, _),
+        nonvar(C),
+        ( C = (_:C2) -> true ; C2 = C ),
+        nonvar(C2),
+        ( C2 = (H :- _) -> true ; H = C2 ),
+        callable(H),
+        functor(H, N, A),
+        retract('$sitlog_direct'(N, A, K))
+    ->  '$sitlog_ask_long'('D', K, Reply),
+        (   Reply = '$ok'(Gs), Gs \== []
+        ->  atom_concat('$legacy_', N, L),
+            functor(G, L, A),
+            retractall(G),
+            '$sitlog_lazy_add'(Gs)
+        ;   true
+        )
+    ;   true
+    ).
 '$sitlog_lz_retract'(C) :- '$sitlog_lz_clause_touch'(C), retract(C).
 '$sitlog_lz_retractall'(H) :- '$sitlog_lz_touch'(H), retractall(H).
 '$sitlog_lz_abolish'(PI) :-
