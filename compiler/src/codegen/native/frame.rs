@@ -189,6 +189,22 @@ impl Gen<'_> {
         let fields = (!names.is_empty()).then(|| quote!(let Frame { #(#names,)* .. } = frame;));
         let locals = self.nat_write_locals(d)?;
         let hand_fn = self.nat_hand_fn(d)?;
+        // `nat_wait` binds what its arms read (the atoms, the fields).
+        let wait_body = quote!(#locals #(#wait_arms)*);
+        let wait_a = if super::call::mentions(&wait_body, &format_ident!("a")) {
+            quote!(let a = &p.atoms;)
+        } else {
+            quote!()
+        };
+        let wait_names = names
+            .iter()
+            .filter(|x| super::call::mentions(&wait_body, x))
+            .collect::<Vec<_>>();
+        let rest = if wait_names.len() < names.len() {
+            quote!(..)
+        } else {
+            rest
+        };
         let items = quote! {
             #hand_fn
 
@@ -210,8 +226,8 @@ impl Gen<'_> {
                 callee: Term,
                 callee_dm: DmIx,
             ) -> Result<(), RunError> {
-                let a = &p.atoms;
-                let Frame { #(#names,)* at, #rest } = frame;
+                #wait_a
+                let Frame { #(#wait_names,)* at, #rest } = frame;
                 #locals
                 match at {
                     #(#wait_arms)*

@@ -409,6 +409,16 @@ fn rec_entry() -> TokenStream {
     }
 }
 
+/// `code` as one expression: itself where it is one (a variant, a
+/// `'sel` block, a block), else in a block.
+fn as_expr(code: TokenStream) -> TokenStream {
+    if syn::parse2::<syn::Expr>(code.clone()).is_ok() {
+        code
+    } else {
+        quote!({ #code })
+    }
+}
+
 /// Whether Rust's `==` on values of this type is Prolog's `==`.
 fn eq_safe(ty: &Ty) -> bool {
     match ty {
@@ -771,7 +781,6 @@ impl Gen<'_> {
         let mut id_arms = Vec::new();
         let mut entries = Vec::new();
         let mut exit_arms = Vec::new();
-        let mut rec_arms = Vec::new();
         let mut wait_arms = Vec::new();
         for (ix, c) in code.iter().enumerate() {
             let Some((fields, body, id, wait)) = c else {
@@ -843,7 +852,6 @@ impl Gen<'_> {
                     id_arms.push(w.id_arm.clone());
                 }
                 exit_arms.push(w.exit_arm.clone());
-                rec_arms.push(w.rec_arm.clone());
                 wait_arms.push(w.wait_arm.clone());
             }
             // Entered by the machine: the fields from the value that
@@ -957,29 +965,12 @@ impl Gen<'_> {
             }
         } else {
             let exit_arms = by_ref_loads(quote!(#(#exit_arms)*));
-            // Recorded (the history kept), the arms that record the
+            // Recorded (the history kept) where the arcs record their
             // entries: a call whose exit arcs do not is never pushed then.
-            let exit = if rec_arms.iter().all(|a| a.is_empty()) {
-                quote! {
-                    match at {
-                        #exit_arms
-                        _ => return Err(cx.fault(Fault::NotWaiting)),
-                    }
-                }
-            } else {
-                let rec_arms = by_ref_loads(quote!(#(#rec_arms)*));
-                quote! {
-                    if run.recorded() {
-                        match at {
-                            #rec_arms
-                            _ => return Err(cx.fault(Fault::NotWaiting)),
-                        }
-                    } else {
-                        match at {
-                            #exit_arms
-                            _ => return Err(cx.fault(Fault::NotWaiting)),
-                        }
-                    }
+            let exit = quote! {
+                match at {
+                    #exit_arms
+                    _ => return Err(cx.fault(Fault::NotWaiting)),
                 }
             };
             quote! {
@@ -1377,6 +1368,18 @@ impl Gen<'_> {
         }
     }
 
+    /// The term of atom `a` (`Term::EMPTY` for `empty`, `Term::NIL` for `[]`).
+    fn atom_term(&self, a: Atom) -> N<TokenStream> {
+        if a == atoms::EMPTY {
+            return Ok(quote!(Term::EMPTY));
+        }
+        if a == atoms::NIL {
+            return Ok(quote!(Term::NIL));
+        }
+        let a = self.atom_native(a)?;
+        Ok(quote!(Term::atom(#a)))
+    }
+
     fn atom_native(&self, a: Atom) -> N<TokenStream> {
         if a == atoms::NIL {
             return Ok(quote!(atoms::NIL));
@@ -1757,6 +1760,28 @@ impl Gen<'_> {
                         slot_below = self.nat_slot_below(d, ix, b, &ts, &slots);
                         let mut n = 0;
                         let t = match b {
+                            // Every argument a slot or a register: one
+                            // `build_of` of the values.
+                            Build::Compound(f, args)
+                                if slots.iter().any(Option::is_some)
+                                    && args.iter().zip(&slots).all(|(a, slot)| {
+                                        slot.is_some()
+                                            || matches!(a, Build::Reg(r) if regs.contains_key(r))
+                                    }) =>
+                            {
+                                let parts =
+                                    args.iter().zip(&slots).map(|(a, slot)| match (a, slot) {
+                                        (_, Some(o)) => quote!(&#o),
+                                        (Build::Reg(r), None) => {
+                                            let v = &regs[r].0;
+                                            quote!(&#v)
+                                        }
+                                        _ => quote!(),
+                                    });
+                                let f = self.functor_native(*f)?;
+                                ts.push(quote!(let diag_t = cx.build_of(#f, &[#(#parts),*]);));
+                                quote!(diag_t)
+                            }
                             Build::Compound(f, args) if slots.iter().any(Option::is_some) => {
                                 let mut parts = Vec::new();
                                 for (a, slot) in args.iter().zip(&slots) {
@@ -1908,7 +1933,12 @@ impl Gen<'_> {
                 }
                 let body = if single {
                     let b = &bodies[0];
-                    quote!(let arc_at = Some(0usize); #b)
+                    // `arc_at` only where the code reads it.
+                    if call::mentions(b, &format_ident!("arc_at")) {
+                        quote!(let arc_at = Some(0usize); #b)
+                    } else {
+                        quote!(#b)
+                    }
                 } else {
                     // The machine chooses the arc (a perception matched
                     // against the expectations, built from native values).
@@ -1946,7 +1976,11 @@ impl Gen<'_> {
                         .map_err(|e| format!("its type: {e}"))?;
                     let arms = bodies.iter().enumerate().map(|(i, b)| {
                         let il = Literal::usize_unsuffixed(i);
-                        quote!(#il => { let arc_at = Some(#il); #b })
+                        if call::mentions(b, &format_ident!("arc_at")) {
+                            quote!(#il => { let arc_at = Some(#il); #b })
+                        } else {
+                            quote!(#il => { #b })
+                        }
                     });
                     let hand = &d.hand;
                     quote! {
@@ -2207,6 +2241,7 @@ impl Gen<'_> {
             &enter_id,
         )?;
         // The expectation's term for the history, built only when recorded.
+        let mut exp_leaf = true;
         let rec_exp = match exp {
             Some(e) => quote!(#e),
             None => {
@@ -2219,17 +2254,32 @@ impl Gen<'_> {
                     // A leaf: nothing built.
                     quote!(#t)
                 } else {
+                    exp_leaf = false;
                     quote!(if run.records { #(#ts)* #t } else { Term::NIL })
                 }
             }
         };
-        stmts.push(quote!(let exp: Term = #rec_exp;));
+        // A constant action's term beside an expectation that is a leaf
+        // (both built in any case).
+        let act_paired = atom.is_some() && exp_leaf;
+        match atom {
+            Some(action) if act_paired => {
+                let act = self.atom_term(action)?;
+                stmts.push(quote!(let (exp, act) = (#rec_exp, #act);));
+            }
+            _ => stmts.push(quote!(let exp: Term = #rec_exp;)),
+        }
         match atom {
             Some(action) => {
-                let act = self.atom_native(action)?;
+                let act = self.atom_term(action)?;
                 let perform = quote! {
                     #enter
-                    cx.perform(Term::atom(#act), arc_at)?;
+                    cx.perform(#act, arc_at)?;
+                };
+                let hand_if = if hand.is_empty() {
+                    quote!()
+                } else {
+                    quote!(if performs { #hand })
                 };
                 stmts.push(if action == atoms::EMPTY {
                     // Recorded: the situation entered (its id in the entry);
@@ -2237,18 +2287,18 @@ impl Gen<'_> {
                     // nothing to perform, without handing over.
                     quote! {
                         if run.records || !run.quiet_empty {
-                            if run.quiet_empty && !stack.is_empty() {
-                                #(#id_stmts)*
-                                cx.enter_counted(&mut count, #cur, #id);
-                            } else {
-                                #perform
-                            }
+                            let performs = !run.quiet_empty || stack.is_empty();
+                            #hand_if
+                            #(#id_stmts)*
+                            cx.enter_empty(&mut count, #cur, #id, performs, arc_at)?;
                         }
                     }
                 } else {
                     perform
                 });
-                stmts.push(quote!(let act = Term::atom(#act);));
+                if !act_paired {
+                    stmts.push(quote!(let act = #act;));
+                }
             }
             None => {
                 // An effector's action (`say([.., Name])`): its term
@@ -2454,7 +2504,7 @@ impl Gen<'_> {
                 sets.push(quote!(*#out = Some(#o);));
                 let il = Literal::usize_unsuffixed(i);
                 outs.push(quote! {
-                    (#il, match #out.as_ref() { Some(v) => cx.term(v), None => Term::NIL })
+                    (#il, cx.term_or_nil(#out.as_ref()))
                 });
             } else if !matches!(a, Build::Reg(r) if plan.inits.iter().any(|(x, init)| x == r && matches!(init, Init::HeadArg(p) if *p == i)))
             {
@@ -2709,6 +2759,7 @@ impl Gen<'_> {
     fn nat_const_term(&self, t: Term, ts: &mut Vec<TokenStream>, n: &mut usize) -> N<TokenStream> {
         match self.store.value(t) {
             Value::Atom(a) if a == atoms::NIL => Ok(quote!(Term::NIL)),
+            Value::Atom(a) if a == atoms::EMPTY => Ok(quote!(Term::EMPTY)),
             Value::Atom(a) => {
                 let a = self.functor_native(a)?;
                 Ok(quote!(Term::atom(#a)))
