@@ -801,25 +801,25 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// No exit arc of native code's waiting situation `sit` (id `id`) takes
     /// the embedded DM's final situation (`final_id` builds its id): the
     /// error the machine gives for it ([`Cx::choose_exit`]), the `count`
-    /// transitions native code made counted first. One cold call for the
-    /// tail every native exit `match` ends with.
+    /// transitions native code made counted first (always `Err`). One cold
+    /// call for the tail every native exit `match` ends with.
     #[cold]
     #[inline(never)]
-    pub fn no_exit(
+    pub fn no_exit<T>(
         &mut self,
         count: u64,
         sit: SitIx,
         id: Term,
         final_id: impl FnOnce(&mut Store) -> Term,
-    ) -> RunError {
+    ) -> Result<T, RunError> {
         self.count_transitions(count);
         self.enter_with_id(sit, id);
         let final_id = final_id(self.store());
         self.set_expectations(&[]);
-        match self.choose_exit(final_id) {
+        Err(match self.choose_exit(final_id) {
             Err(e) => e,
             Ok(_) => self.fault(Fault::Exits),
-        }
+        })
     }
 
     /// Performs an evaluated action (D-17).

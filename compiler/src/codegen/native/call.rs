@@ -414,35 +414,37 @@ impl Gen<'_> {
         // With the history kept (nothing observing), when the exit arcs
         // record natively, the callee's entries in a level of their own
         // (`Cx::open_level`); the callee's frame built once.
-        let frame = quote! {
-            super::NatFrame::#callee_v(
-                super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} },
-            )
-        };
-        let (when, push) = if plan.rec_exit {
-            (
-                quote!((!run.records || run.nests)),
-                // Built where the driver takes it (`call`), not moved there.
-                quote! {
-                    let callee = call.insert(#frame);
-                    if run.recorded() {
-                        let t = callee.call_term(p, cx);
-                        cx.open_level(t);
-                    }
-                },
-            )
+        // Recorded (the history kept, nothing observing) where the exit
+        // arcs record natively: the callee's entries in a level of their
+        // own (`Cx::open_level`). A branch of its own: the push without a
+        // history tests `run.records` once and builds the frame in place
+        // (one frame built for both cost `echo_calls` 3 instructions a
+        // transition).
+        let rec = if plan.rec_exit {
+            quote! {
+                else if run.nests && stack.has_room(cx) {
+                    let callee = super::NatFrame::#callee_v(
+                        super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} },
+                    );
+                    let t = callee.call_term(p, cx);
+                    cx.open_level(t);
+                    *call = Some(callee);
+                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
+                }
+            }
         } else {
-            (quote!(!run.records), quote!(*call = Some(#frame);))
+            quote!()
         };
         Ok(quote! {
             // The callee's frame on the native stack, within the depth
             // limit, when no history is kept or observed (else the machine
             // pushes it: the callee's entries nest in the caller's).
-            if #when && stack.has_room(cx) {
-                #push
+            if !run.records && stack.has_room(cx) {
+                let callee = super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} };
+                *call = Some(super::NatFrame::#callee_v(callee));
                 // Written where the frame keeps it (not through `at`).
                 return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
-            }
+            } #rec
         })
     }
 
@@ -701,7 +703,22 @@ impl Gen<'_> {
             let taken = arcs.iter().position(|(c, ..)| c.is_empty());
             let arcs = arcs.into_iter().take(taken.map_or(usize::MAX, |k| k + 1));
             let arcs = arcs.map(|(cond, (il, head), plain, rec)| {
+                let uses_entry = |next: &TokenStream| {
+                    mentions(next, &format_ident!("exp")) || mentions(next, &format_ident!("act"))
+                };
                 let tail = match rec {
+                    // A next situation that does not hand over (no entry
+                    // read there): the recorded way apart, the other as it
+                    // is without a history (nothing kept alive across it).
+                    Some((entry, next)) if rec_all && !uses_entry(&next) => quote! {
+                        if run.recorded() {
+                            #entry
+                            let next_at: Nat = #next;
+                            cx.record_next(exp, act, |s| next_at.id_term(p, s));
+                            break 'visit next_at;
+                        }
+                        #plain
+                    },
                     Some((entry, next)) if rec_all => quote! {
                         let (exp, act) = if run.recorded() {
                             #entry
@@ -768,7 +785,7 @@ impl Gen<'_> {
             // No exit arc takes the final situation: the machine says so.
             #hand
             #(#id_stmts)*
-            return Err(cx.no_exit(count, #curl, #id, |s| final_at.id_term(p, s)));
+            return cx.no_exit(count, #curl, #id, |s| final_at.id_term(p, s));
         };
         // Only the parameters the exit arcs read are loaded (a load is a
         // clone: a list's count changed and changed back on every return).
