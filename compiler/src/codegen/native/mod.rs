@@ -1838,11 +1838,18 @@ impl Gen<'_> {
                 // of its own): its outputs bound in its call term, its
                 // entry made, its level closed (`Cx::close_level`).
                 let close = |outs: TokenStream| {
+                    // No output: `&[]`; else the pairs bound first (they
+                    // borrow `cx`).
+                    let (bind, outs) = if outs.to_string() == quote!([]).to_string() {
+                        (quote!(), quote!(&[]))
+                    } else {
+                        (quote!(let outs = #outs;), quote!(&outs))
+                    };
                     quote! {
                         if run.recorded() {
                             #(#id_stmts)*
-                            let outs: &[(usize, Term)] = &#outs;
-                            cx.close_level(#id, outs)?;
+                            #bind
+                            cx.close_level(#id, #outs)?;
                             return cx.step_done(count, slot, Nat::#v { #(#names),* });
                         }
                     }
