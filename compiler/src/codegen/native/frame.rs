@@ -130,7 +130,6 @@ impl Gen<'_> {
             .map(rust_ty)
             .collect::<N<Vec<_>>>()?;
         Ok(quote! {
-            /// Before handing over: the frames below made the machine's, locals written back.
             #[cold]
             #[inline(never)]
             fn nat_hand_over(
@@ -208,17 +207,14 @@ impl Gen<'_> {
         let items = quote! {
             #hand_fn
 
-            /// The DM's frame on the native stack: parameters, locals, its situation.
             pub struct Frame { #(#decls,)* pub at: Nat }
 
-            /// The DM's call term, from the frame's parameters.
             pub(crate) fn nat_call_term(p: &Program, cx: &mut Ctx, frame: &Frame) -> Term {
                 let a = &p.atoms;
                 #fields
                 #call
             }
 
-            /// The frame waiting for `callee` made the machine's, the callee's pushed.
             pub(crate) fn nat_wait(
                 p: &Program,
                 cx: &mut Ctx,

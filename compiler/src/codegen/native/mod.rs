@@ -1003,16 +1003,13 @@ impl Gen<'_> {
         let items = quote! {
             #(#id_fns)*
 
-            /// The situations with native code; the fields are the id's variables.
             #[derive(Clone, Debug)]
             pub enum Nat {
                 #(#variants)*
-                /// No situation (a frame's place while it runs).
                 Moved {},
             }
 
             impl Nat {
-                /// The situation's id as a term.
                 pub(crate) fn id_term(&self, p: &Program, store: &mut Store) -> Term {
                     let a = &p.atoms;
                     match self {
@@ -1024,9 +1021,7 @@ impl Gen<'_> {
 
             #frame_items
 
-            /// Runs the frame until it calls (`call` set), ends (`Ok(None)`) or hands over.
-            /// Never inlined: the driver's dispatch on `NatFrame` then only
-            /// jumps to it, and pays no other DM's prologue on the way.
+            // Documented once, in the program's doc (`codegen::emit`).
             #[inline(never)]
             pub(crate) fn nat_step(
                 p: &Program,
