@@ -315,6 +315,18 @@ fn load_head_arg(d: &Dm, r: Reg, i: usize, ty: Ty, regs: &mut Regs) -> N<TokenSt
     Ok(quote!(let #rr = #e;))
 }
 
+/// Whether `code` may leave the visit before its end: a `return`, a `?`,
+/// a `break` to a label outside it (any `'visit`).
+fn leaves(code: &TokenStream) -> bool {
+    use proc_macro2::TokenTree;
+    code.clone().into_iter().any(|t| match t {
+        TokenTree::Ident(i) => i == "return" || i == "visit",
+        TokenTree::Punct(p) => p.as_char() == '?',
+        TokenTree::Group(g) => leaves(&g.stream()),
+        TokenTree::Literal(_) => false,
+    })
+}
+
 /// The history entry of an arc (`exp`, `act` and `rec_next` in
 /// scope), when recorded: made as the term code makes it. The arc entered
 /// its situation first (its id set, the locals written back: `Dm::hand`),
@@ -2341,8 +2353,14 @@ impl Gen<'_> {
                 });
             }
         }
-        // Recorded, the entry counts the transition.
-        stmts.push(quote!(run.tally(&mut count);));
+        // Recorded, the entry counts the transition. With nothing converted
+        // after the action, counted at the arc's end instead (below, where
+        // the next situation cannot leave the visit).
+        let tally = quote!(run.tally(&mut count););
+        let tally_apart = conv.is_some();
+        if tally_apart {
+            stmts.push(tally.clone());
+        }
         // What the machine's calls changed of the locals, read again, and
         // the values bound at the boundary, converted: all checked in one
         // `let .. else`, the fallback written once.
@@ -2367,11 +2385,29 @@ impl Gen<'_> {
         let next = next?;
         let general = if always_returns(&next) {
             // Handed over (recorded there): no next variant.
+            let tally = if tally_apart { quote!() } else { tally };
             quote! {
                 #(#stmts)*
+                #tally
                 #next
             }
+        } else if !tally_apart && !leaves(&next) {
+            // The next situation neither returns nor fails: the arc's end
+            // counts it or records its entry (`TypedRun::end`).
+            let init = if syn::parse2::<syn::Expr>(next.clone()).is_ok() {
+                next
+            } else {
+                quote!({ #next })
+            };
+            quote! {
+                #(#stmts)*
+                let next_at: Nat = #init;
+                run.end(cx, &mut count, exp, act, |s| next_at.id_term(p, s));
+                next_at
+            }
         } else {
+            let tally = if tally_apart { quote!() } else { tally };
+            stmts.push(tally);
             // One expression (most: a variant, a `'sel` block) is the
             // initializer itself, no block around it.
             let init = if syn::parse2::<syn::Expr>(next.clone()).is_ok() {
