@@ -249,7 +249,8 @@ impl Gen<'_> {
             /// frames below made machine frames, the locals written back; the
             /// program's for a DM without parameters or locals), `nat_wait` (a
             /// frame waiting for its callee made the machine's, the callee's
-            /// pushed) and, in a DM with term code too, `run_native` (an
+            /// pushed; the program's `nat_wait_none` for a DM without waiting
+            /// situations) and, in a DM with term code too, `run_native` (an
             /// all-native DM's frame is entered by `run_situation`).
             #[allow(dead_code, non_camel_case_types, unused_variables, clippy::all)]
             pub struct Program {

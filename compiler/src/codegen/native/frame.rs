@@ -151,7 +151,8 @@ impl Gen<'_> {
 
     /// `struct Frame`, `nat_call_term`, `nat_wait` of a native DM
     /// (`wait_arms`: per recursive situation, its waiting variant made a
-    /// machine frame's pending situation).
+    /// machine frame's pending situation; none: the program's
+    /// `nat_wait_none`, re-exported).
     pub(super) fn nat_frame_items(&self, d: &Dm, wait_arms: &[TokenStream]) -> N<FrameItems> {
         let mut names = Vec::new();
         let mut decls = Vec::new();
@@ -204,6 +205,30 @@ impl Gen<'_> {
         } else {
             rest
         };
+        // A DM without waiting situations: the program's `nat_wait_none`.
+        let wait_fn = if wait_arms.is_empty() {
+            quote!(
+                pub(crate) use super::nat_wait_none as nat_wait;
+            )
+        } else {
+            quote! {
+                pub(crate) fn nat_wait(
+                    p: &Program,
+                    cx: &mut Ctx,
+                    frame: &Frame,
+                    callee: Term,
+                    callee_dm: DmIx,
+                ) -> Result<(), RunError> {
+                    #wait_a
+                    let Frame { #(#wait_names,)* at, #rest } = frame;
+                    #locals
+                    match at {
+                        #(#wait_arms)*
+                        _ => Err(cx.fault(Fault::WaitsForNone)),
+                    }
+                }
+            }
+        };
         let items = quote! {
             #hand_fn
 
@@ -215,21 +240,7 @@ impl Gen<'_> {
                 #call
             }
 
-            pub(crate) fn nat_wait(
-                p: &Program,
-                cx: &mut Ctx,
-                frame: &Frame,
-                callee: Term,
-                callee_dm: DmIx,
-            ) -> Result<(), RunError> {
-                #wait_a
-                let Frame { #(#wait_names,)* at, #rest } = frame;
-                #locals
-                match at {
-                    #(#wait_arms)*
-                    _ => Err(cx.fault(Fault::WaitsForNone)),
-                }
-            }
+            #wait_fn
         };
         Ok(FrameItems { items, names, outs })
     }
@@ -332,6 +343,19 @@ impl Gen<'_> {
                 ) -> Result<(), RunError> {
                     match self { #(NatFrame::#vs(f) => #ms::nat_wait(p, cx, f, callee, callee_dm),)* }
                 }
+            }
+
+            /// `nat_wait` of a DM without waiting situations: no frame of it
+            /// waits for a callee.
+            #[allow(dead_code, unused_variables)]
+            pub(crate) fn nat_wait_none<F>(
+                p: &Program,
+                cx: &mut Cx<'_, '_, Program>,
+                frame: &F,
+                callee: Term,
+                callee_dm: DmIx,
+            ) -> Result<(), RunError> {
+                Err(cx.fault(Fault::WaitsForNone))
             }
 
             /// The native frames below the running one, bottom first (the
