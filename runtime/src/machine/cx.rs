@@ -85,11 +85,11 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         &mut self,
         count: &mut u64,
         sit: SitIx,
-        id: Term,
+        id: impl Into<Term>,
         performs: bool,
         arc: Option<usize>,
     ) -> Result<(), RunError> {
-        self.enter_counted(count, sit, id);
+        self.enter_counted(count, sit, id.into());
         if performs {
             self.perform(Term::atom(sitlog_syntax::atoms::EMPTY), arc)?;
         }

@@ -2295,6 +2295,20 @@ impl Gen<'_> {
                 } else {
                     quote!(if performs { #hand })
                 };
+                // An atom id given as the atom (`Cx::enter_empty` takes
+                // `impl Into<Term>`): the call fits on one line more often.
+                let id_arg = match syn::parse2::<syn::ExprCall>(id.clone()) {
+                    Ok(c)
+                        if c.args.len() == 1 && {
+                            let f = &c.func;
+                            quote!(#f).to_string() == "Term :: atom"
+                        } =>
+                    {
+                        let x = &c.args[0];
+                        quote!(#x)
+                    }
+                    _ => id.clone(),
+                };
                 stmts.push(if action == atoms::EMPTY {
                     // Recorded: the situation entered (its id in the entry);
                     // above the machine's frames (a level of its own), with
@@ -2304,7 +2318,7 @@ impl Gen<'_> {
                             let performs = !run.quiet_empty || stack.is_empty();
                             #hand_if
                             #(#id_stmts)*
-                            cx.enter_empty(&mut count, #cur, #id, performs, arc_at)?;
+                            cx.enter_empty(&mut count, #cur, #id_arg, performs, arc_at)?;
                         }
                     }
                 } else {
