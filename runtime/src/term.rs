@@ -42,6 +42,8 @@ impl Term {
     pub const NIL: Term = Term(Repr::Atom(atoms::NIL));
     /// The atom `true`.
     pub const TRUE: Term = Term(Repr::Atom(atoms::TRUE));
+    /// The atom `empty` (the empty expectation and action).
+    pub const EMPTY: Term = Term(Repr::Atom(atoms::EMPTY));
 
     /// An atom (needs no store).
     pub const fn atom(a: Atom) -> Term {

@@ -227,24 +227,31 @@ impl Gen<'_> {
             /// implements every semantic step: situations with atom ids run as
             /// code calling those steps, the others as instances built here.
             ///
-            /// Each DM is a module `dm_<name>`: `SITUATIONS` (per situation its
-            /// kind, id and place, read by the runtime's `SitTable`), `TEMPLATES`
-            /// (the situations' templates as `writeq` text, read once into the
-            /// program's store; `""` for a situation never instantiated from
-            /// one), and for the situations with native code (see
-            /// `sitlog_compiler::codegen::native`) `enum Nat` (one variant per
-            /// situation, its fields the id's variables; a `W<n>` variant waits
-            /// for the DM it called; `Nat::id_term`, its id filled from its pattern),
-            /// `Frame` (parameters, locals, the `Nat` it is in), `nat_entry` (the
-            /// frame entered at a situation, its values converted: `None` when one
-            /// does not), `nat_step` (runs the frame on the program's native stack
-            /// until it calls a DM, ends in a final below the base, or hands over
-            /// to the machine), `nat_hand_over` (before the machine sees the state:
-            /// the native frames below made machine frames, the locals written
-            /// back; the program's for a DM without parameters or locals),
-            /// `nat_wait` (a frame waiting for its callee made the
-            /// machine's) and, in a DM with term code too, `run_native`
-            /// (an all-native DM's frame is entered by `run_situation`).
+            /// Each DM is a module `dm_<name>` (its items documented here once):
+            /// `SITUATIONS` (per situation its kind, id (name, arity), line and
+            /// column, read by the runtime's `SitTable`), `FILE` (the file the DM
+            /// is written in), `TEMPLATES` (the situations' templates (D-7) as
+            /// `writeq` text, read once into the program's store; `""` for a
+            /// situation never instantiated from one), and for the situations
+            /// with native code (see `sitlog_compiler::codegen::native`) `enum
+            /// Nat` (one variant per situation, its fields the id's variables; a
+            /// `W<n>` variant waits for the DM it called; `Moved` is a frame's
+            /// place while it runs; `Nat::id_term`, its id filled from its
+            /// pattern), `Frame` (the DM's frame on the native stack: parameters,
+            /// locals, the `Nat` it is in), `nat_call_term` (the DM's call term
+            /// from the frame's parameters), `nat_entry` (the frame entered at a
+            /// situation, its values converted: `None` when one does not),
+            /// `nat_step` (runs the frame on the program's native stack until it
+            /// calls a DM (`call` set), ends in a final below the base, or hands
+            /// over to the machine; never inlined: the driver's dispatch on
+            /// `NatFrame` then only jumps to it and pays no other DM's prologue),
+            /// `nat_hand_over` (before the machine sees the state: the native
+            /// frames below made machine frames, the locals written back; the
+            /// program's for a DM without parameters or locals), `nat_wait` (a
+            /// frame waiting for its callee made the machine's, the callee's
+            /// pushed; the program's `nat_wait_none` for a DM without waiting
+            /// situations) and, in a DM with term code too, `run_native` (an
+            /// all-native DM's frame is entered by `run_situation`).
             #[allow(dead_code, non_camel_case_types, unused_variables, clippy::all)]
             pub struct Program {
                 /// Frozen store holding the constants; every run starts from a clone.
@@ -825,8 +832,6 @@ impl Gen<'_> {
         } else {
             quote!()
         };
-        let templates_doc =
-            " The situations' templates (D-7), `writeq` text (`\"\"`: never instantiated).";
         let module = quote! {
             #[doc = #mod_doc]
             // Generated code: what is unused in a DM (a variable, a
@@ -836,10 +841,8 @@ impl Gen<'_> {
                 use ::sitlog_runtime::prelude::*;
                 use super::{Ctx, NatResult, Program};
 
-                /// Per situation: its kind, id (name, arity), line and column (`SitTable`).
                 pub const SITUATIONS: [SitRow; #count_lit] = [#(#rows),*];
 
-                /// The file the DM is written in.
                 pub const FILE: &str = #file;
 
                 #head_fn
@@ -851,7 +854,6 @@ impl Gen<'_> {
                 #run_situation
                 #run_exit
 
-                #[doc = #templates_doc]
                 pub const TEMPLATES: [&str; #count_lit] = [#(#templates),*];
 
                 #instantiate

@@ -76,6 +76,26 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.enter_with_id(sit, id);
     }
 
+    /// [`Cx::enter_counted`] for an arc whose action is `empty`, then
+    /// the action performed where `performs` (the run's actions do not
+    /// ignore `empty`, or no native frame is above the machine's: native
+    /// code handed over first).
+    #[inline]
+    pub fn enter_empty(
+        &mut self,
+        count: &mut u64,
+        sit: SitIx,
+        id: impl Into<Term>,
+        performs: bool,
+        arc: Option<usize>,
+    ) -> Result<(), RunError> {
+        self.enter_counted(count, sit, id.into());
+        if performs {
+            self.perform(Term::atom(sitlog_syntax::atoms::EMPTY), arc)?;
+        }
+        Ok(())
+    }
+
     /// Native code handing a value to the machine: counts the `count`
     /// transitions it made, and enters situation `sit` by its name `name`
     /// unless `recorded` (then it was entered with its id).
@@ -278,6 +298,20 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.id = id;
         self.selected = Some(id);
         Step::Template
+    }
+
+    /// [`Cx::to_template`] after counting the `count` transitions native
+    /// code made, as the visit's code returns it.
+    #[cold]
+    #[inline(never)]
+    pub fn counted_template(
+        &mut self,
+        count: u64,
+        sit: SitIx,
+        id: Term,
+    ) -> Result<Option<Step>, RunError> {
+        self.count_transitions(count);
+        Ok(Some(self.to_template(sit, id)))
     }
 
     /// A native frame waiting in recursive situation `sit` (id `id`) for
@@ -548,6 +582,16 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         v.to_term(&mut self.m.store)
     }
 
+    /// [`Cx::term`] of a value that may be missing (`[]` then): an
+    /// output slot of a native frame.
+    #[inline]
+    pub fn term_or_nil<T: Native>(&mut self, v: Option<&T>) -> Term {
+        match v {
+            Some(v) => self.term(v),
+            None => Term::NIL,
+        }
+    }
+
     /// A term built by native code ([`native::compound`]: an atom for no
     /// arguments, a list cell for `'.'/2`).
     #[inline]
@@ -752,6 +796,30 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.m.materialize();
         let here = self.here();
         self.m.choose_exit_index(final_id, here)
+    }
+
+    /// No exit arc of native code's waiting situation `sit` (id `id`) takes
+    /// the embedded DM's final situation (`final_id` builds its id): the
+    /// error the machine gives for it ([`Cx::choose_exit`]), the `count`
+    /// transitions native code made counted first (always `Err`). One cold
+    /// call for the tail every native exit `match` ends with.
+    #[cold]
+    #[inline(never)]
+    pub fn no_exit<T>(
+        &mut self,
+        count: u64,
+        sit: SitIx,
+        id: Term,
+        final_id: impl FnOnce(&mut Store) -> Term,
+    ) -> Result<T, RunError> {
+        self.count_transitions(count);
+        self.enter_with_id(sit, id);
+        let final_id = final_id(self.store());
+        self.set_expectations(&[]);
+        Err(match self.choose_exit(final_id) {
+            Err(e) => e,
+            Ok(_) => self.fault(Fault::Exits),
+        })
     }
 
     /// Performs an evaluated action (D-17).

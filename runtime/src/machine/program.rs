@@ -207,6 +207,26 @@ impl TypedRun {
         }
     }
 
+    /// An arc's end: recorded, its history entry ([`Cx::record_next`], the
+    /// next situation's id built only then), else one more transition for
+    /// native code to count ([`TypedRun::tally`] and
+    /// [`TypedRun::record_next`] in one test).
+    #[inline(always)]
+    pub fn end<P: DmProgram>(
+        &self,
+        cx: &mut Cx<'_, '_, P>,
+        count: &mut u64,
+        expectation: Term,
+        action: Term,
+        next: impl FnOnce(&mut Store) -> Term,
+    ) {
+        if self.records {
+            cx.record_next(expectation, action, next);
+        } else {
+            *count += 1;
+        }
+    }
+
     /// Counts the `count` transitions native code made but the arc's own
     /// (its last, not yet counted when nothing is recorded), and gives that
     /// one (0 or 1): it counts once the arc's next situation is computed,

@@ -38,9 +38,12 @@
 //! (`Cx::open_level`) that takes its entries; its final below the base binds
 //! the outputs in that term, records its entry and closes the level, nested
 //! in the caller's (`Cx::close_level`); the exit arc then records the
-//! caller's entry (the exit arms' recording copy, a second `match` taken
-//! only when recorded: `TypedRun::recorded`, so the arms without history
-//! stay as they were). Where the frames become the machine's, each pushed frame
+//! caller's entry (one copy of the exit arms: each arc's tail enters the
+//! situation and builds the entry's terms where `TypedRun::recorded`, a
+//! cold branch, and counts the transition otherwise; the next situation is
+//! the same code either way, its hand-overs recording through `run.goto`).
+//! The callee's frame is built once for both pushes, the level opened only
+//! when recorded. Where the frames become the machine's, each pushed frame
 //! takes its level (`Cx::wait_template`). A callee's visit records natively
 //! where its action is `empty` or one native code runs (`inc`, `is`, values:
 //! `Gen::nat_arc_rec_fast`); any other records on the machine's frames
@@ -68,7 +71,7 @@
 //!   error, a comparison evaluated on terms) first materializes the native
 //!   stack and writes the locals back ([`super::Dm::hand`]);
 //! - no exit arc matching is an error the machine reports itself
-//!   (`Cx::choose_exit` on the final's id, built then).
+//!   (`Cx::no_exit`: `Cx::choose_exit` on the final's id, built then).
 //!
 //! Which situations of a DM have native code never depends on its callees
 //! (a call that is not native here is handed over), so it is decided once
@@ -93,11 +96,9 @@ const EVALUATED: &str = "the embedded DM call is evaluated";
 pub(super) struct Wait {
     pub variant: TokenStream,
     pub id_arm: TokenStream,
-    /// Resumes with the callee's frame (`ret`): the exit arcs.
+    /// Resumes with the callee's frame (`ret`): the exit arcs (recording
+    /// their entries when `run.records`, where the call is pushed then).
     pub exit_arm: TokenStream,
-    /// The same, recording the entries (`run.records`; empty when the
-    /// call is never pushed natively then).
-    pub rec_arm: TokenStream,
     /// In `nat_wait`: made a machine frame's pending situation.
     pub wait_arm: TokenStream,
 }
@@ -107,10 +108,9 @@ struct CallPlan<'a> {
     j: usize,
     callee: Dm<'a>,
     exit: TokenStream,
-    /// The exit arcs recording their entries natively (`run.records`),
-    /// when they can: the call may then be pushed on the native stack with
-    /// the history kept.
-    rec_exit: Option<TokenStream>,
+    /// The exit arcs record their entries natively (`run.records`): the
+    /// call may then be pushed on the native stack with the history kept.
+    rec_exit: bool,
 }
 
 fn wait_variant(ix: usize) -> Ident {
@@ -402,11 +402,25 @@ impl Gen<'_> {
             // The visit ends here: its own registers move into the
             // waiting variant (not cloned and dropped).
             let (rr, e) = (reg(r), super::moved(&v));
-            wf.push(quote!(#rr: #e));
+            // `r5` for `r5: r5` (the shorthand: one line where it fits).
+            if rr == e.to_string() {
+                wf.push(quote!(#rr));
+            } else {
+                wf.push(quote!(#rr: #e));
+            }
         }
         // With the history kept (nothing observing), when the exit arcs
         // record natively: the callee's entries in a level of their own.
-        let rec = if plan.rec_exit.is_some() {
+        // With the history kept (nothing observing), when the exit arcs
+        // record natively, the callee's entries in a level of their own
+        // (`Cx::open_level`); the callee's frame built once.
+        // Recorded (the history kept, nothing observing) where the exit
+        // arcs record natively: the callee's entries in a level of their
+        // own (`Cx::open_level`). A branch of its own: the push without a
+        // history tests `run.records` once and builds the frame in place
+        // (one frame built for both cost `echo_calls` 3 instructions a
+        // transition).
+        let rec = if plan.rec_exit {
             quote! {
                 else if run.nests && stack.has_room(cx) {
                     let callee = super::NatFrame::#callee_v(
@@ -447,9 +461,8 @@ impl Gen<'_> {
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         Ok(quote! {
             #hand
-            cx.count_transitions(count);
             #(#id_stmts)*
-            return Ok(Some(cx.to_template(#curl, #id)));
+            return cx.counted_template(count, #curl, #id);
         })
     }
 
@@ -485,10 +498,6 @@ impl Gen<'_> {
             }
             None => quote!(),
         };
-        let rec_arm = match plan.as_ref().and_then(|p| p.rec_exit.as_ref()) {
-            Some(exit) => quote!(Nat::#wv { #(#names),* } => 'visit: { #exit }),
-            None => quote!(),
-        };
         // In `nat_wait` (fields are references there).
         let curl = Literal::u32_unsuffixed(ix as u32);
         let (id_stmts, id) = self.nat_id_term_of(d, ix, quote!(cx.store()), true)?;
@@ -518,21 +527,18 @@ impl Gen<'_> {
             variant,
             id_arm,
             exit_arm,
-            rec_arm,
             wait_arm,
         }))
     }
 
     /// The exit arcs of recursive situation `ix` on the final variant of
     /// callee `callee` (DM `j`) in `ret`: evaluates to the next `Nat` (or
-    /// returns, handing over).
-    fn nat_exit(
-        &self,
-        d: &Dm,
-        ix: usize,
-        callee: &Dm,
-        j: usize,
-    ) -> N<(TokenStream, Option<TokenStream>)> {
+    /// returns, handing over). With `true` when every arc records its
+    /// entry natively: each arm then records it where `run.records` (one
+    /// copy of the arms; the recorded way enters the situation where the
+    /// other counts the transition, and the next situation's hand-over
+    /// records with `run.goto`, a no-op record otherwise).
+    fn nat_exit(&self, d: &Dm, ix: usize, callee: &Dm, j: usize) -> N<(TokenStream, bool)> {
         let KindPlan::Recursive { exit, .. } = &d.plans[ix].kind else {
             return Err("not a recursive situation".into());
         };
@@ -588,8 +594,15 @@ impl Gen<'_> {
         }
         let cur_name = self.atom_native(d.plans[ix].id.0)?;
         let callee_n = format_ident!("NatN{}", j);
-        let mut final_arms = Vec::new();
-        let mut rec_arms = Vec::new();
+        // Per final: its pattern, and per arc its test, its code before
+        // the entry, its plain tail and its recorded tail.
+        type ArcCode = (
+            TokenStream,
+            (Literal, TokenStream),
+            TokenStream,
+            Option<(TokenStream, TokenStream)>,
+        );
+        let mut finals: Vec<(TokenStream, Vec<ArcCode>)> = Vec::new();
         // Every arc's entry built natively (its expectation a term of the
         // registers, its action of the values it computed).
         let mut rec_all = true;
@@ -620,7 +633,6 @@ impl Gen<'_> {
                 .collect();
             let pat = self.nat_id_of(callee, k);
             let mut arcs_code = Vec::new();
-            let mut rec_code = Vec::new();
             for (i, arc) in exit.arcs.iter().enumerate() {
                 if arc.diag_mod.is_some() {
                     return Err("an exit arc has diag_mod".into());
@@ -661,58 +673,83 @@ impl Gen<'_> {
                 let next =
                     self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &cur_name);
                 d.pipe_in.set(pipe_in);
-                let next = next?;
+                // One expression (a variant, a `'sel` block) as it is; else
+                // a block.
+                let next = super::as_expr(next?);
                 // Recorded: the entry as the machine's `conclude` makes it
                 // (the expectation unified with the final's id, the action's
                 // values), the next situation handing over records it there.
                 let rec = self.nat_exit_record(d, ix, arc, &regs, &cur_name).ok();
                 rec_all &= rec.is_some();
-                let cond = if tests.is_empty() {
-                    quote!(true)
-                } else {
-                    quote!(#(#tests)&&*)
-                };
+                let cond = quote!(#(#tests)&&*);
                 let il = Literal::usize_unsuffixed(i);
-                arcs_code.push(quote! {
-                    if #cond {
-                        let arc_at = Some(#il);
-                        #(#lets)*
-                        #action
-                        count += 1;
-                        let next_at = { #next };
-                        break 'visit next_at;
-                    }
-                });
-                if let Some(rec) = rec {
-                    rec_code.push(quote! {
-                        if #cond {
-                            let arc_at = Some(#il);
-                            #(#lets)*
-                            #action
-                            #rec
-                        }
-                    });
-                }
+                let head = quote! {
+                    #(#lets)*
+                    #action
+                };
+                let plain = quote! {
+                    count += 1;
+                    let next_at = #next;
+                    break 'visit next_at;
+                };
+                arcs_code.push((cond, (il, head), plain, rec));
             }
             let sk = format_ident!("S{}", k);
-            final_arms.push(quote! {
-                super::#callee_n::#sk { #(#cf),* } => {
-                    #(#arcs_code)*
-                }
-            });
-            rec_arms.push(quote! {
-                super::#callee_n::#sk { #(#cf),* } => {
-                    #(#rec_code)*
-                }
-            });
+            finals.push((quote!(super::#callee_n::#sk { #(#cf),* }), arcs_code));
         }
-        let body = self.nat_exit_body(d, ix, j, quote!(#(#final_arms)*), &out_loads, &head)?;
-        let rec_body = if rec_all {
-            Some(self.nat_exit_body(d, ix, j, quote!(#(#rec_arms)*), &out_loads, &head)?)
-        } else {
-            None
-        };
-        Ok((body, rec_body))
+        let arms = finals.into_iter().map(|(pat, arcs)| {
+            // An arc whose test always holds takes every final that
+            // reaches it: the arcs after it are never tried.
+            let taken = arcs.iter().position(|(c, ..)| c.is_empty());
+            let arcs = arcs.into_iter().take(taken.map_or(usize::MAX, |k| k + 1));
+            let arcs = arcs.map(|(cond, (il, head), plain, rec)| {
+                let uses_entry = |next: &TokenStream| {
+                    mentions(next, &format_ident!("exp")) || mentions(next, &format_ident!("act"))
+                };
+                let tail = match rec {
+                    // A next situation that does not hand over (no entry
+                    // read there): the recorded way apart, the other as it
+                    // is without a history (nothing kept alive across it).
+                    Some((entry, next)) if rec_all && !uses_entry(&next) => quote! {
+                        if run.recorded() {
+                            #entry
+                            let next_at: Nat = #next;
+                            cx.record_next(exp, act, |s| next_at.id_term(p, s));
+                            break 'visit next_at;
+                        }
+                        #plain
+                    },
+                    Some((entry, next)) if rec_all => quote! {
+                        let (exp, act) = if run.recorded() {
+                            #entry
+                            (exp, act)
+                        } else {
+                            count += 1;
+                            (Term::NIL, Term::NIL)
+                        };
+                        let next_at: Nat = #next;
+                        run.record_next(cx, exp, act, |s| next_at.id_term(p, s));
+                        break 'visit next_at;
+                    },
+                    _ => plain,
+                };
+                // `arc_at` only where the code reads it.
+                let body = quote!(#head #tail);
+                let arc_at = if mentions(&body, &format_ident!("arc_at")) {
+                    quote!(let arc_at = Some(#il);)
+                } else {
+                    quote!()
+                };
+                if cond.is_empty() {
+                    quote!(#arc_at #body)
+                } else {
+                    quote!(if #cond { #arc_at #body })
+                }
+            });
+            quote!(#pat => { #(#arcs)* })
+        });
+        let body = self.nat_exit_body(d, ix, j, quote!(#(#arms)*), &out_loads, &head)?;
+        Ok((body, rec_all))
     }
 
     /// The body of the exit arcs' arm: the callee's frame taken, the
@@ -747,15 +784,8 @@ impl Gen<'_> {
             }
             // No exit arc takes the final situation: the machine says so.
             #hand
-            cx.count_transitions(count);
             #(#id_stmts)*
-            cx.enter_with_id(#curl, #id);
-            let final_id = final_at.id_term(p, cx.store());
-            cx.set_expectations(&[]);
-            return match cx.choose_exit(final_id) {
-                Err(e) => Err(e),
-                Ok(_) => Err(cx.fault(Fault::Exits)),
-            };
+            return cx.no_exit(count, #curl, #id, |s| final_at.id_term(p, s));
         };
         // Only the parameters the exit arcs read are loaded (a load is a
         // clone: a list's count changed and changed back on every return).
@@ -768,8 +798,8 @@ impl Gen<'_> {
 
     /// The recorded way of exit arc `arc` of situation `ix` (its action's
     /// values `act<n>` computed): the entry's expectation and action as
-    /// terms, the situation's id entered, the next situation computed
-    /// (recording where it hands over) and its entry recorded.
+    /// terms `exp` and `act`, the situation's id entered; and the next
+    /// situation, recording where it hands over (`run.goto`).
     fn nat_exit_record(
         &self,
         d: &Dm,
@@ -777,7 +807,7 @@ impl Gen<'_> {
         arc: &crate::mir::ArcPlan,
         regs: &Regs,
         cur_name: &TokenStream,
-    ) -> N<TokenStream> {
+    ) -> N<(TokenStream, TokenStream)> {
         let mut ts = Vec::new();
         let mut n = 0;
         let exp = self.nat_ev_term(&arc.expectation, regs, &mut ts, &mut n)?;
@@ -801,19 +831,17 @@ impl Gen<'_> {
         let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), regs, cur_name);
         *d.rec.borrow_mut() = quote!();
         d.pipe_in.set(pipe_in);
-        let next = next?;
-        Ok(quote! {
-            if run.records {
+        let next = super::as_expr(next?);
+        Ok((
+            quote! {
                 #(#ts)*
                 let exp: Term = #exp;
                 #act
                 #(#id_stmts)*
                 cx.enter_counted(&mut count, #curl, #id);
-                let next_at: Nat = { #next };
-                cx.record_next(exp, act, |s| next_at.id_term(p, s));
-                break 'visit next_at;
-            }
-        })
+            },
+            next,
+        ))
     }
 
     /// Unifies the expectation `b` (the caller's registers, fresh or set)
@@ -972,6 +1000,8 @@ impl Gen<'_> {
         let list = matches!(action, Action::List { .. });
         for (n, item) in items.into_iter().enumerate() {
             let x = format_ident!("act{}", n);
+            // A constant atom: whether it is `empty` is known here.
+            let mut const_atom = None;
             let ty = match item {
                 Ev::VarOpFresh { op, name, dst } => {
                     let li = d
@@ -1057,6 +1087,9 @@ impl Gen<'_> {
                     let v = self.nat_value(&Build::Const(*t), regs)?;
                     let e = v.e;
                     stmts.push(quote!(let #x = #e;));
+                    if let sitlog_runtime::Value::Atom(a) = self.store.value(*t) {
+                        const_atom = Some(a);
+                    }
                     v.ty
                 }
                 Ev::Value(r) => {
@@ -1082,6 +1115,17 @@ impl Gen<'_> {
             };
             performs.push(match ty {
                 Ty::Int | Ty::Float => quote!(if !run.quiet_numbers { #perform }),
+                Ty::Sym if const_atom == Some(atoms::EMPTY) && !list => quote! {
+                    if !run.quiet_empty {
+                        #hand
+                        #(#id_stmts)*
+                        cx.enter_empty(&mut count, #curl, #id, true, Some(#arc))?;
+                    }
+                },
+                Ty::Sym if const_atom == Some(atoms::EMPTY) => {
+                    quote!(if !run.quiet_empty { #perform })
+                }
+                Ty::Sym if const_atom.is_some() => perform,
                 Ty::Sym => quote! {
                     if !(run.quiet_empty && #x == atoms::EMPTY) { #perform }
                 },

@@ -130,7 +130,6 @@ impl Gen<'_> {
             .map(rust_ty)
             .collect::<N<Vec<_>>>()?;
         Ok(quote! {
-            /// Before handing over: the frames below made the machine's, locals written back.
             #[cold]
             #[inline(never)]
             fn nat_hand_over(
@@ -152,7 +151,8 @@ impl Gen<'_> {
 
     /// `struct Frame`, `nat_call_term`, `nat_wait` of a native DM
     /// (`wait_arms`: per recursive situation, its waiting variant made a
-    /// machine frame's pending situation).
+    /// machine frame's pending situation; none: the program's
+    /// `nat_wait_none`, re-exported).
     pub(super) fn nat_frame_items(&self, d: &Dm, wait_arms: &[TokenStream]) -> N<FrameItems> {
         let mut names = Vec::new();
         let mut decls = Vec::new();
@@ -189,35 +189,58 @@ impl Gen<'_> {
         let fields = (!names.is_empty()).then(|| quote!(let Frame { #(#names,)* .. } = frame;));
         let locals = self.nat_write_locals(d)?;
         let hand_fn = self.nat_hand_fn(d)?;
+        // `nat_wait` binds what its arms read (the atoms, the fields).
+        let wait_body = quote!(#locals #(#wait_arms)*);
+        let wait_a = if super::call::mentions(&wait_body, &format_ident!("a")) {
+            quote!(let a = &p.atoms;)
+        } else {
+            quote!()
+        };
+        let wait_names = names
+            .iter()
+            .filter(|x| super::call::mentions(&wait_body, x))
+            .collect::<Vec<_>>();
+        let rest = if wait_names.len() < names.len() {
+            quote!(..)
+        } else {
+            rest
+        };
+        // A DM without waiting situations: the program's `nat_wait_none`.
+        let wait_fn = if wait_arms.is_empty() {
+            quote!(
+                pub(crate) use super::nat_wait_none as nat_wait;
+            )
+        } else {
+            quote! {
+                pub(crate) fn nat_wait(
+                    p: &Program,
+                    cx: &mut Ctx,
+                    frame: &Frame,
+                    callee: Term,
+                    callee_dm: DmIx,
+                ) -> Result<(), RunError> {
+                    #wait_a
+                    let Frame { #(#wait_names,)* at, #rest } = frame;
+                    #locals
+                    match at {
+                        #(#wait_arms)*
+                        _ => Err(cx.fault(Fault::WaitsForNone)),
+                    }
+                }
+            }
+        };
         let items = quote! {
             #hand_fn
 
-            /// The DM's frame on the native stack: parameters, locals, its situation.
             pub struct Frame { #(#decls,)* pub at: Nat }
 
-            /// The DM's call term, from the frame's parameters.
             pub(crate) fn nat_call_term(p: &Program, cx: &mut Ctx, frame: &Frame) -> Term {
                 let a = &p.atoms;
                 #fields
                 #call
             }
 
-            /// The frame waiting for `callee` made the machine's, the callee's pushed.
-            pub(crate) fn nat_wait(
-                p: &Program,
-                cx: &mut Ctx,
-                frame: &Frame,
-                callee: Term,
-                callee_dm: DmIx,
-            ) -> Result<(), RunError> {
-                let a = &p.atoms;
-                let Frame { #(#names,)* at, #rest } = frame;
-                #locals
-                match at {
-                    #(#wait_arms)*
-                    _ => Err(cx.fault(Fault::WaitsForNone)),
-                }
-            }
+            #wait_fn
         };
         Ok(FrameItems { items, names, outs })
     }
@@ -320,6 +343,19 @@ impl Gen<'_> {
                 ) -> Result<(), RunError> {
                     match self { #(NatFrame::#vs(f) => #ms::nat_wait(p, cx, f, callee, callee_dm),)* }
                 }
+            }
+
+            /// `nat_wait` of a DM without waiting situations: no frame of it
+            /// waits for a callee.
+            #[allow(dead_code, unused_variables)]
+            pub(crate) fn nat_wait_none<F>(
+                p: &Program,
+                cx: &mut Cx<'_, '_, Program>,
+                frame: &F,
+                callee: Term,
+                callee_dm: DmIx,
+            ) -> Result<(), RunError> {
+                Err(cx.fault(Fault::WaitsForNone))
             }
 
             /// The native frames below the running one, bottom first (the

@@ -320,6 +320,18 @@ fn load_head_arg(d: &Dm, r: Reg, i: usize, ty: Ty, regs: &mut Regs) -> N<TokenSt
     Ok(quote!(let #rr = #e;))
 }
 
+/// Whether `code` may leave the visit before its end: a `return`, a `?`,
+/// a `break` to a label outside it (any `'visit`).
+fn leaves(code: &TokenStream) -> bool {
+    use proc_macro2::TokenTree;
+    code.clone().into_iter().any(|t| match t {
+        TokenTree::Ident(i) => i == "return" || i == "visit",
+        TokenTree::Punct(p) => p.as_char() == '?',
+        TokenTree::Group(g) => leaves(&g.stream()),
+        TokenTree::Literal(_) => false,
+    })
+}
+
 /// The history entry of an arc (`exp`, `act` and `rec_next` in
 /// scope), when recorded: made as the term code makes it. The arc entered
 /// its situation first (its id set, the locals written back: `Dm::hand`),
@@ -411,6 +423,16 @@ fn goto_tail(rec: &TokenStream) -> TokenStream {
 fn rec_entry() -> TokenStream {
     quote! {
         cx.record_if(run.records, exp, act, Some(rec_next));
+    }
+}
+
+/// `code` as one expression: itself where it is one (a variant, a
+/// `'sel` block, a block), else in a block.
+fn as_expr(code: TokenStream) -> TokenStream {
+    if syn::parse2::<syn::Expr>(code.clone()).is_ok() {
+        code
+    } else {
+        quote!({ #code })
     }
 }
 
@@ -780,7 +802,6 @@ impl Gen<'_> {
         let mut id_arms = Vec::new();
         let mut entries = Vec::new();
         let mut exit_arms = Vec::new();
-        let mut rec_arms = Vec::new();
         let mut wait_arms = Vec::new();
         let mut any_cursor = false;
         for (ix, c) in code.iter().enumerate() {
@@ -878,7 +899,6 @@ impl Gen<'_> {
                     id_arms.push(w.id_arm.clone());
                 }
                 exit_arms.push(w.exit_arm.clone());
-                rec_arms.push(w.rec_arm.clone());
                 wait_arms.push(w.wait_arm.clone());
             }
             // Entered by the machine: the fields from the value that
@@ -1004,29 +1024,12 @@ impl Gen<'_> {
             }
         } else {
             let exit_arms = by_ref_loads(quote!(#(#exit_arms)*));
-            // Recorded (the history kept), the arms that record the
+            // Recorded (the history kept) where the arcs record their
             // entries: a call whose exit arcs do not is never pushed then.
-            let exit = if rec_arms.iter().all(|a| a.is_empty()) {
-                quote! {
-                    match at {
-                        #exit_arms
-                        _ => return Err(cx.fault(Fault::NotWaiting)),
-                    }
-                }
-            } else {
-                let rec_arms = by_ref_loads(quote!(#(#rec_arms)*));
-                quote! {
-                    if run.recorded() {
-                        match at {
-                            #rec_arms
-                            _ => return Err(cx.fault(Fault::NotWaiting)),
-                        }
-                    } else {
-                        match at {
-                            #exit_arms
-                            _ => return Err(cx.fault(Fault::NotWaiting)),
-                        }
-                    }
+            let exit = quote! {
+                match at {
+                    #exit_arms
+                    _ => return Err(cx.fault(Fault::NotWaiting)),
                 }
             };
             quote! {
@@ -1059,16 +1062,13 @@ impl Gen<'_> {
         let items = quote! {
             #(#id_fns)*
 
-            /// The situations with native code; the fields are the id's variables.
             #[derive(Clone, Debug)]
             pub enum Nat {
                 #(#variants)*
-                /// No situation (a frame's place while it runs).
                 Moved {},
             }
 
             impl Nat {
-                /// The situation's id as a term.
                 pub(crate) fn id_term(&self, p: &Program, store: &mut Store) -> Term {
                     let a = &p.atoms;
                     match self {
@@ -1080,9 +1080,7 @@ impl Gen<'_> {
 
             #frame_items
 
-            /// Runs the frame until it calls (`call` set), ends (`Ok(None)`) or hands over.
-            /// Never inlined: the driver's dispatch on `NatFrame` then only
-            /// jumps to it, and pays no other DM's prologue on the way.
+            // Documented once, in the program's doc (`codegen::emit`).
             #[inline(never)]
             pub(crate) fn nat_step(
                 p: &Program,
@@ -1437,6 +1435,18 @@ impl Gen<'_> {
             }
             _ => {}
         }
+    }
+
+    /// The term of atom `a` (`Term::EMPTY` for `empty`, `Term::NIL` for `[]`).
+    fn atom_term(&self, a: Atom) -> N<TokenStream> {
+        if a == atoms::EMPTY {
+            return Ok(quote!(Term::EMPTY));
+        }
+        if a == atoms::NIL {
+            return Ok(quote!(Term::NIL));
+        }
+        let a = self.atom_native(a)?;
+        Ok(quote!(Term::atom(#a)))
     }
 
     fn atom_native(&self, a: Atom) -> N<TokenStream> {
@@ -1819,6 +1829,28 @@ impl Gen<'_> {
                         slot_below = self.nat_slot_below(d, ix, b, &ts, &slots);
                         let mut n = 0;
                         let t = match b {
+                            // Every argument a slot or a register: one
+                            // `build_of` of the values.
+                            Build::Compound(f, args)
+                                if slots.iter().any(Option::is_some)
+                                    && args.iter().zip(&slots).all(|(a, slot)| {
+                                        slot.is_some()
+                                            || matches!(a, Build::Reg(r) if regs.contains_key(r))
+                                    }) =>
+                            {
+                                let parts =
+                                    args.iter().zip(&slots).map(|(a, slot)| match (a, slot) {
+                                        (_, Some(o)) => quote!(&#o),
+                                        (Build::Reg(r), None) => {
+                                            let v = &regs[r].0;
+                                            quote!(&#v)
+                                        }
+                                        _ => quote!(),
+                                    });
+                                let f = self.functor_native(*f)?;
+                                ts.push(quote!(let diag_t = cx.build_of(#f, &[#(#parts),*]);));
+                                quote!(diag_t)
+                            }
                             Build::Compound(f, args) if slots.iter().any(Option::is_some) => {
                                 let mut parts = Vec::new();
                                 for (a, slot) in args.iter().zip(&slots) {
@@ -1875,11 +1907,18 @@ impl Gen<'_> {
                 // of its own): its outputs bound in its call term, its
                 // entry made, its level closed (`Cx::close_level`).
                 let close = |outs: TokenStream| {
+                    // No output: `&[]`; else the pairs bound first (they
+                    // borrow `cx`).
+                    let (bind, outs) = if outs.to_string() == quote!([]).to_string() {
+                        (quote!(), quote!(&[]))
+                    } else {
+                        (quote!(let outs = #outs;), quote!(&outs))
+                    };
                     quote! {
                         if run.recorded() {
                             #(#id_stmts)*
-                            let outs: &[(usize, Term)] = &#outs;
-                            cx.close_level(#id, outs)?;
+                            #bind
+                            cx.close_level(#id, #outs)?;
                             return cx.step_done(count, slot, Nat::#v { #(#names),* });
                         }
                     }
@@ -1970,7 +2009,12 @@ impl Gen<'_> {
                 }
                 let body = if single {
                     let b = &bodies[0];
-                    quote!(let arc_at = Some(0usize); #b)
+                    // `arc_at` only where the code reads it.
+                    if call::mentions(b, &format_ident!("arc_at")) {
+                        quote!(let arc_at = Some(0usize); #b)
+                    } else {
+                        quote!(#b)
+                    }
                 } else {
                     // The machine chooses the arc (a perception matched
                     // against the expectations, built from native values).
@@ -2008,7 +2052,11 @@ impl Gen<'_> {
                         .map_err(|e| format!("its type: {e}"))?;
                     let arms = bodies.iter().enumerate().map(|(i, b)| {
                         let il = Literal::usize_unsuffixed(i);
-                        quote!(#il => { let arc_at = Some(#il); #b })
+                        if call::mentions(b, &format_ident!("arc_at")) {
+                            quote!(#il => { let arc_at = Some(#il); #b })
+                        } else {
+                            quote!(#il => { #b })
+                        }
                     });
                     let hand = &d.hand;
                     quote! {
@@ -2269,6 +2317,7 @@ impl Gen<'_> {
             &enter_id,
         )?;
         // The expectation's term for the history, built only when recorded.
+        let mut exp_leaf = true;
         let rec_exp = match exp {
             Some(e) => quote!(#e),
             None => {
@@ -2281,17 +2330,46 @@ impl Gen<'_> {
                     // A leaf: nothing built.
                     quote!(#t)
                 } else {
+                    exp_leaf = false;
                     quote!(if run.records { #(#ts)* #t } else { Term::NIL })
                 }
             }
         };
-        stmts.push(quote!(let exp: Term = #rec_exp;));
+        // A constant action's term beside an expectation that is a leaf
+        // (both built in any case).
+        let act_paired = atom.is_some() && exp_leaf;
+        match atom {
+            Some(action) if act_paired => {
+                let act = self.atom_term(action)?;
+                stmts.push(quote!(let (exp, act) = (#rec_exp, #act);));
+            }
+            _ => stmts.push(quote!(let exp: Term = #rec_exp;)),
+        }
         match atom {
             Some(action) => {
-                let act = self.atom_native(action)?;
+                let act = self.atom_term(action)?;
                 let perform = quote! {
                     #enter
-                    cx.perform(Term::atom(#act), arc_at)?;
+                    cx.perform(#act, arc_at)?;
+                };
+                let hand_if = if hand.is_empty() {
+                    quote!()
+                } else {
+                    quote!(if performs { #hand })
+                };
+                // An atom id given as the atom (`Cx::enter_empty` takes
+                // `impl Into<Term>`): the call fits on one line more often.
+                let id_arg = match syn::parse2::<syn::ExprCall>(id.clone()) {
+                    Ok(c)
+                        if c.args.len() == 1 && {
+                            let f = &c.func;
+                            quote!(#f).to_string() == "Term :: atom"
+                        } =>
+                    {
+                        let x = &c.args[0];
+                        quote!(#x)
+                    }
+                    _ => id.clone(),
                 };
                 stmts.push(if action == atoms::EMPTY {
                     // Recorded: the situation entered (its id in the entry);
@@ -2299,18 +2377,18 @@ impl Gen<'_> {
                     // nothing to perform, without handing over.
                     quote! {
                         if run.records || !run.quiet_empty {
-                            if run.quiet_empty && !stack.is_empty() {
-                                #(#id_stmts)*
-                                cx.enter_counted(&mut count, #cur, #id);
-                            } else {
-                                #perform
-                            }
+                            let performs = !run.quiet_empty || stack.is_empty();
+                            #hand_if
+                            #(#id_stmts)*
+                            cx.enter_empty(&mut count, #cur, #id_arg, performs, arc_at)?;
                         }
                     }
                 } else {
                     perform
                 });
-                stmts.push(quote!(let act = Term::atom(#act);));
+                if !act_paired {
+                    stmts.push(quote!(let act = #act;));
+                }
             }
             None => {
                 // An effector's action (`say([.., Name])`): its term
@@ -2351,8 +2429,14 @@ impl Gen<'_> {
                 });
             }
         }
-        // Recorded, the entry counts the transition.
-        stmts.push(quote!(run.tally(&mut count);));
+        // Recorded, the entry counts the transition. With nothing converted
+        // after the action, counted at the arc's end instead (below, where
+        // the next situation cannot leave the visit).
+        let tally = quote!(run.tally(&mut count););
+        let tally_apart = conv.is_some();
+        if tally_apart {
+            stmts.push(tally.clone());
+        }
         // What the machine's calls changed of the locals, read again, and
         // the values bound at the boundary, converted: all checked in one
         // `let .. else`, the fallback written once.
@@ -2377,11 +2461,29 @@ impl Gen<'_> {
         let next = next?;
         let general = if always_returns(&next) {
             // Handed over (recorded there): no next variant.
+            let tally = if tally_apart { quote!() } else { tally };
             quote! {
                 #(#stmts)*
+                #tally
                 #next
             }
+        } else if !tally_apart && !leaves(&next) {
+            // The next situation neither returns nor fails: the arc's end
+            // counts it or records its entry (`TypedRun::end`).
+            let init = if syn::parse2::<syn::Expr>(next.clone()).is_ok() {
+                next
+            } else {
+                quote!({ #next })
+            };
+            quote! {
+                #(#stmts)*
+                let next_at: Nat = #init;
+                run.end(cx, &mut count, exp, act, |s| next_at.id_term(p, s));
+                next_at
+            }
         } else {
+            let tally = if tally_apart { quote!() } else { tally };
+            stmts.push(tally);
             // One expression (most: a variant, a `'sel` block) is the
             // initializer itself, no block around it.
             let init = if syn::parse2::<syn::Expr>(next.clone()).is_ok() {
@@ -2516,7 +2618,7 @@ impl Gen<'_> {
                 sets.push(quote!(*#out = Some(#o);));
                 let il = Literal::usize_unsuffixed(i);
                 outs.push(quote! {
-                    (#il, match #out.as_ref() { Some(v) => cx.term(v), None => Term::NIL })
+                    (#il, cx.term_or_nil(#out.as_ref()))
                 });
             } else if !matches!(a, Build::Reg(r) if plan.inits.iter().any(|(x, init)| x == r && matches!(init, Init::HeadArg(p) if *p == i)))
             {
@@ -2771,6 +2873,7 @@ impl Gen<'_> {
     fn nat_const_term(&self, t: Term, ts: &mut Vec<TokenStream>, n: &mut usize) -> N<TokenStream> {
         match self.store.value(t) {
             Value::Atom(a) if a == atoms::NIL => Ok(quote!(Term::NIL)),
+            Value::Atom(a) if a == atoms::EMPTY => Ok(quote!(Term::EMPTY)),
             Value::Atom(a) => {
                 let a = self.functor_native(a)?;
                 Ok(quote!(Term::atom(#a)))
