@@ -48,7 +48,7 @@ pub type KbHost = Arc<dyn Fn(&str) -> String + Send + Sync>;
 ///   A wrapped predicate's calls of itself in its own clauses go to those
 ///   clauses directly where no handle can be (a recursion over a list
 ///   would go through the wrapper at each step), as long as no clause is
-///   asserted for it at run time ([`NativeState::direct_recursion`]).
+///   asserted for it at run time (`NativeState::direct_recursion`).
 ///
 /// Requests (canonical text): `open(Path)`, `save(KB, Path)`,
 /// `query(KB, Goal)`, `update(KB, Goal)`, `term(KB)`, `handle(Term)`; the
