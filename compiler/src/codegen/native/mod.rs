@@ -171,8 +171,9 @@
 //! holds the cell alone and the visit's next situation is its own with its
 //! own tail (`try([P|Ps])` to `try(Ps)`), the visit is a cursor
 //! ([`Gen::nat_cursor`]): `P` cloned out, the list advanced in place
-//! (`List::advance`), `Ps` the list itself by reference, and the variant
-//! left where it is (`break 'step`, no next variant built nor moved).
+//! (`List::advance`), `Ps` the list itself by reference, and, unrecorded,
+//! the variant left where it is (`break 'step`, no next variant built nor
+//! moved; recorded, built as before for the entry's next id).
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 
@@ -1393,9 +1394,17 @@ impl Gen<'_> {
     /// place (a cursor): the variant holds the cell alone (no other
     /// field to move in or out). Such a visit, when its next situation
     /// is its own with its own tail (`try([P|Ps])` to `try(Ps)`), makes
-    /// the held list its tail in place (`List::advance`: a start index
-    /// moved, no `Rc` count touched) and leaves the variant where it is;
-    /// `P` is cloned out before (an atom copied). Moving the variant
+    /// the held list its tail in place (`List::advance`: a slice's start
+    /// index moved, no `Rc` count touched; a cons cell replaced by its
+    /// tail) and, unrecorded, leaves the variant where it is (`break
+    /// 'step`; recorded, the variant is built again for the entry's next
+    /// id). The list is advanced at the visit's start, whichever arc is
+    /// taken: `P` is cloned out before (a `Val`: an atom copied, a
+    /// compound's `Rc` counted) and `Ps` is the advanced list, so every
+    /// other path (an id built, a hand-over, another next situation) reads
+    /// the values it read before. `break 'step` leaves the arc's code
+    /// after the selection unrun: what must happen for the transition
+    /// (its count) has to come before it. Moving the variant
     /// instead (the next one built, then moved into the loop's `at`)
     /// cost more by the clock than its instructions say (stores read
     /// back by wider loads: `performance.md`, `nperf9`).
