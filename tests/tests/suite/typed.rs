@@ -422,6 +422,8 @@ fn native_dms_agree() {
         native::dm_fails::nat_entry,
         native::dm_cells::nat_entry,
         native::dm_sums::nat_entry,
+        // A cursor with a catch-all situation after it.
+        native::dm_tail::nat_entry,
     );
     for main in [
         "main",
@@ -474,6 +476,9 @@ fn native_dms_agree() {
         "cells(f(x), g([y]))",
         "sums(2)",
         "sums(5)",
+        "tail([f(1), f(2), f(3)])",
+        "tail([a|b])",
+        "tail(x)",
     ] {
         agree(app, &ir, main, "");
     }

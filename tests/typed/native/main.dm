@@ -393,3 +393,16 @@ diag_mod(maybe(A, Out),
   ],
   []
 ).
+
+% A list walked as a cursor (`walk([P|Ps]) => walk(Ps)`, the variant holding
+% the list alone) with a catch-all situation after it, so that the selection
+% has no hand-over fallback: each step of the walk still counts as a
+% transition with the history kept or not.
+diag_mod(tail(L),
+  [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => walk(L) ] ],
+    [ id ==> walk([P|Ps]), type ==> neutral, arcs ==> [ empty : empty => walk(Ps) ] ],
+    [ id ==> walk(_), type ==> neutral, arcs ==> [ empty : empty => fs ] ],
+    [ id ==> fs, type ==> final ]
+  ],
+  []
+).

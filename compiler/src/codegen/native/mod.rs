@@ -322,11 +322,13 @@ fn load_head_arg(d: &Dm, r: Reg, i: usize, ty: Ty, regs: &mut Regs) -> N<TokenSt
 }
 
 /// Whether `code` may leave the visit before its end: a `return`, a `?`,
-/// a `break` to a label outside it (any `'visit`).
+/// a `break` to a label outside it (any `'visit`, or a cursor's `'step`,
+/// which stays in the situation without building a next variant: a tail
+/// after `code` would not run, so the arc's count goes before it).
 fn leaves(code: &TokenStream) -> bool {
     use proc_macro2::TokenTree;
     code.clone().into_iter().any(|t| match t {
-        TokenTree::Ident(i) => i == "return" || i == "visit",
+        TokenTree::Ident(i) => i == "return" || i == "visit" || i == "step",
         TokenTree::Punct(p) => p.as_char() == '?',
         TokenTree::Group(g) => leaves(&g.stream()),
         TokenTree::Literal(_) => false,
