@@ -249,8 +249,9 @@ impl NativeState {
     /// term other than `'$kb'(_)`, a variable nothing bound yet (not in the
     /// head, in no goal before the call), or the variable that is the whole
     /// argument at the same position of a head with no variable twice and
-    /// no goal before the call naming it (the wrapper looked at it, or does
-    /// not look there); any other one is looked at inline, as the wrapper
+    /// no goal before the call naming any variable of the head (the wrapper
+    /// looked at it, or does not look there; two head variables may share a
+    /// value); any other one is looked at inline, as the wrapper
     /// does. `None`: no such call, or not a predicate that may be wrapped.
     pub(super) fn direct_recursion(
         &self,
@@ -656,14 +657,19 @@ impl Direct {
             return g;
         }
         let args = store.args(g).to_vec();
+        let head_seen = self.seen.iter().any(|v| self.in_head.contains(v));
         let mut looked: Vec<Term> = Vec::new();
         for (j, &a) in args.iter().enumerate() {
             let a = store.deref(a);
             match store.value(a) {
                 Value::Var(v) => {
                     let untouched = !self.seen.contains(&v);
-                    let safe =
-                        untouched && (!self.in_head.contains(&v) || self.whole.get(&v) == Some(&j));
+                    // A head variable may share its value with another one
+                    // (`p(X, X)` called with `p(A, B)`'s head): a goal that
+                    // bound any of them may have bound this one too.
+                    let safe = untouched
+                        && (!self.in_head.contains(&v)
+                            || (self.whole.get(&v) == Some(&j) && !head_seen));
                     if !safe {
                         looked.push(a);
                     }
@@ -814,7 +820,8 @@ mod tests {
              same(KB, [], KB).\n\
              same(KB, [_|T], R) :- same(KB, T, R), write(done).\n\
              twice(X, X) :- twice(X, y).\n\
-             kb(X) :- kb('$kb'(1)), kb(X).\n",
+             kb(X) :- kb('$kb'(1)), kb(X).\n\
+             alias(A, B) :- open_kb(B), alias(A, z).\n",
         );
         let test = |v: &str, h: &str| format!("','('nonvar'({v}),'='({v},'$kb'({h})))");
         assert_eq!(got[0], None);
@@ -829,14 +836,16 @@ mod tests {
                 test("_S2", "_S3")
             )
         );
-        // KB2 and K1, bound before the call, are looked at.
+        // KB2 and K1, bound before the call, are looked at; so is N, the
+        // head's, since a goal before names K, another variable of the head.
         assert_eq!(
             got[3].as_deref().unwrap(),
             format!(
-                "','('is'(_S3,'-'(_S1,1)),','('open_kb'(_S4),';'('->'(';'({},{}),\
+                "','('is'(_S3,'-'(_S1,1)),','('open_kb'(_S4),';'('->'(';'({},';'({},{})),\
                  'walk'(_S4,_S3,_S2)),'$legacy_walk'(_S4,_S3,_S2))))",
-                test("_S4", "_S6"),
-                test("_S3", "_S5")
+                test("_S4", "_S7"),
+                test("_S3", "_S6"),
+                test("_S2", "_S5")
             )
         );
         // KB and the unbound R are not; T is.
@@ -860,6 +869,16 @@ mod tests {
         assert_eq!(
             got[7].as_deref().unwrap(),
             "','('kb'('$kb'(1)),'$legacy_kb'(_S0))"
+        );
+        // A, the head's and untouched, is looked at when a goal before
+        // names another variable of the head: the caller may have given
+        // both one value (`alias(X, X)`), bound to a handle by `open_kb`.
+        assert_eq!(
+            got[8].as_deref().unwrap(),
+            format!(
+                "','('open_kb'(_S1),';'('->'({},'alias'(_S0,'z')),'$legacy_alias'(_S0,'z')))",
+                test("_S0", "_S2")
+            )
         );
     }
 }
