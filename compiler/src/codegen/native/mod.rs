@@ -2470,6 +2470,15 @@ impl Gen<'_> {
         let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &name);
         *d.rec.borrow_mut() = quote!();
         let next = next?;
+        // One expression (most: a variant, a `'sel` block) is the
+        // initializer itself, no block around it.
+        let init_of = |next: TokenStream| {
+            if syn::parse2::<syn::Expr>(next.clone()).is_ok() {
+                next
+            } else {
+                quote!({ #next })
+            }
+        };
         let general = if always_returns(&next) {
             // Handed over (recorded there): no next variant.
             let tally = if tally_apart { quote!() } else { tally };
@@ -2481,11 +2490,7 @@ impl Gen<'_> {
         } else if !tally_apart && !leaves(&next) {
             // The next situation neither returns nor fails: the arc's end
             // counts it or records its entry (`TypedRun::end`).
-            let init = if syn::parse2::<syn::Expr>(next.clone()).is_ok() {
-                next
-            } else {
-                quote!({ #next })
-            };
+            let init = init_of(next);
             quote! {
                 #(#stmts)*
                 let next_at: Nat = #init;
@@ -2495,13 +2500,7 @@ impl Gen<'_> {
         } else {
             let tally = if tally_apart { quote!() } else { tally };
             stmts.push(tally);
-            // One expression (most: a variant, a `'sel` block) is the
-            // initializer itself, no block around it.
-            let init = if syn::parse2::<syn::Expr>(next.clone()).is_ok() {
-                next
-            } else {
-                quote!({ #next })
-            };
+            let init = init_of(next);
             quote! {
                 #(#stmts)*
                 let next_at: Nat = #init;
