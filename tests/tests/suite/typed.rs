@@ -424,6 +424,8 @@ fn native_dms_agree() {
         native::dm_sums::nat_entry,
         // A cursor with a catch-all situation after it.
         native::dm_tail::nat_entry,
+        // Lists of atoms and ints walked as cursors.
+        native::dm_consts::nat_entry,
     );
     for main in [
         "main",
@@ -479,6 +481,8 @@ fn native_dms_agree() {
         "tail([f(1), f(2), f(3)])",
         "tail([a|b])",
         "tail(x)",
+        "consts(1)",
+        "consts(2)",
     ] {
         agree(app, &ir, main, "");
     }

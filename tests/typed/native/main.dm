@@ -406,3 +406,17 @@ diag_mod(tail(L),
   ],
   []
 ).
+
+% Lists of atoms and of ints, constants of the DM, walked as cursors (the
+% variant holds the list alone): each element said, the history kept or not.
+diag_mod(consts(K),
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : empty => (K == 1 -> atoms([a, b, c]) ; otherwise -> ints([1, 2, 3])) ] ],
+    [ id ==> atoms([P|Ps]), type ==> neutral, arcs ==> [ empty : say(P) => atoms(Ps) ] ],
+    [ id ==> atoms([]), type ==> neutral, arcs ==> [ empty : empty => fs ] ],
+    [ id ==> ints([N|Ns]), type ==> neutral, arcs ==> [ empty : say(N) => ints(Ns) ] ],
+    [ id ==> ints([]), type ==> neutral, arcs ==> [ empty : empty => fs ] ],
+    [ id ==> fs, type ==> final ]
+  ],
+  []
+).

@@ -1375,11 +1375,19 @@ impl Gen<'_> {
             let (head, tail) = (reg_at(0)?, reg_at(1)?);
             let regs = &d.types[ix].regs;
             let ty = regs.get(tail as usize)?.ty.clone();
+            // An element copied for nothing (an atom, an int) gains nothing
+            // held this way when the variant moves at each visit: measured,
+            // `list<atom>` lost 14 instructions a visit (`performance.md`,
+            // `nperf8`). Held alone (a cursor, [`Gen::nat_cursor`]), the
+            // variant stays where it is, which the clock pays for whatever
+            // the element (`nperf9`; the lead's ninth-session run).
+            let alone = || {
+                self.nat_fields(d, ix)
+                    .is_ok_and(|fs| fs.iter().all(|(r, _)| *r == head || *r == tail))
+            };
             match &ty {
-                // An element copied for nothing (an atom, an int) gains nothing
-                // held this way: measured, `list<atom>` lost 14 instructions a
-                // visit (`performance.md`).
-                Ty::List(e) if held_as_val(e) && regs.get(head as usize)?.ty == **e => {}
+                Ty::List(e)
+                    if regs.get(head as usize)?.ty == **e && (held_as_val(e) || alone()) => {}
                 _ => return None,
             }
             rust_ty(&ty).ok()?;
