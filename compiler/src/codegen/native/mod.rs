@@ -173,7 +173,9 @@
 //! ([`Gen::nat_cursor`]): `P` cloned out, the list advanced in place
 //! (`List::advance`), `Ps` the list itself by reference, and, unrecorded,
 //! the variant left where it is (`break 'step`, no next variant built nor
-//! moved; recorded, built as before for the entry's next id).
+//! moved; recorded, built as before for the entry's next id). A list of
+//! atoms or ints is held that way only when its variant holds it alone
+//! (a cursor): moved at each visit, holding it cost instructions.
 //!
 //! [`Cx::goto`]: sitlog_runtime::machine::Cx::goto
 
