@@ -305,7 +305,11 @@ get_last_situation(History, S) :-
             functor(G, L, A),
             retractall(G),
             '$sitlog_lazy_add'(Gs)
-        ;   true
+        ;   Reply = '$ok'(_)
+        ->  true
+        ;   Reply = '$error'(E)
+        ->  throw(E)
+        ;   throw(error(existence_error(procedure, N/A), '$sitlog_lz_undirect'/1))
         )
     ;   true
     ).
