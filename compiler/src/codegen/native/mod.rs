@@ -1383,13 +1383,10 @@ impl Gen<'_> {
             // `nperf8`). Held alone (a cursor, [`Gen::nat_cursor`]), the
             // variant stays where it is, which the clock pays for whatever
             // the element (`nperf9`; the lead's ninth-session run).
-            let alone = || {
-                self.nat_fields(d, ix)
-                    .is_ok_and(|fs| fs.iter().all(|(r, _)| *r == head || *r == tail))
-            };
             match &ty {
                 Ty::List(e)
-                    if regs.get(head as usize)?.ty == **e && (held_as_val(e) || alone()) => {}
+                    if regs.get(head as usize)?.ty == **e
+                        && (held_as_val(e) || self.nat_holds_only(d, ix, head, tail)) => {}
                 _ => return None,
             }
             rust_ty(&ty).ok()?;
@@ -1421,11 +1418,15 @@ impl Gen<'_> {
     /// cost more by the clock than its instructions say (stores read
     /// back by wider loads: `performance.md`, `nperf9`).
     fn nat_cursor(&self, d: &Dm, ix: usize) -> bool {
-        let Some(c) = self.nat_cell(d, ix) else {
-            return false;
-        };
+        self.nat_cell(d, ix)
+            .is_some_and(|c| self.nat_holds_only(d, ix, c.head, c.tail))
+    }
+
+    /// Whether situation `ix`'s variant holds no field but the cell's
+    /// `head` and `tail` registers (the cursor's condition).
+    fn nat_holds_only(&self, d: &Dm, ix: usize, head: Reg, tail: Reg) -> bool {
         self.nat_fields(d, ix)
-            .is_ok_and(|fs| fs.iter().all(|(r, _)| *r == c.head || *r == c.tail))
+            .is_ok_and(|fs| fs.iter().all(|(r, _)| *r == head || *r == tail))
     }
 
     /// The variables of `t` (each occurrence) and its list patterns of two
