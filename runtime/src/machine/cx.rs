@@ -809,17 +809,34 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         &mut self,
         count: u64,
         sit: SitIx,
-        id: Term,
+        id: impl Into<Term>,
         final_id: impl FnOnce(&mut Store) -> Term,
     ) -> Result<T, RunError> {
         self.count_transitions(count);
-        self.enter_with_id(sit, id);
+        self.enter_with_id(sit, id.into());
         let final_id = final_id(self.store());
         self.set_expectations(&[]);
         Err(match self.choose_exit(final_id) {
             Err(e) => e,
             Ok(_) => self.fault(Fault::Exits),
         })
+    }
+
+    /// The output `out` a native callee's frame hands back to its caller's
+    /// exit arcs (taken from the frame), or the error when the callee
+    /// returned without it.
+    #[inline(always)]
+    pub fn callee_out<T>(&self, out: Option<T>) -> Result<T, RunError> {
+        match out {
+            Some(v) => Ok(v),
+            None => Err(self.no_callee_out()),
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn no_callee_out(&self) -> RunError {
+        self.error("a native callee returned without its output", None)
     }
 
     /// Performs an evaluated action (D-17).

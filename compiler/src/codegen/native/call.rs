@@ -576,18 +576,18 @@ impl Gen<'_> {
                 &rty,
             )?;
             let rt = rust_ty(&rty)?;
+            // The output taken (`Cx::callee_out`: an error when the callee
+            // left it unset), converted where its types differ.
+            let take = quote!(cx.callee_out(done_frame.#o.take())?);
             out_loads.push((
                 rr.clone(),
-                quote! {
-                    let #rr: #rt = match done_frame.#o.take() {
-                        Some(v) => #e,
-                        None => {
-                            return Err(cx.error(
-                                "a native callee returned without its output",
-                                None,
-                            ))
-                        }
-                    };
+                if e.to_string() == "v" {
+                    quote!(let #rr: #rt = #take;)
+                } else {
+                    quote! {
+                        let v = #take;
+                        let #rr: #rt = #e;
+                    }
                 },
             ));
             regs.insert(r, (rr, rty));
@@ -710,7 +710,10 @@ impl Gen<'_> {
                     // A next situation that does not hand over (no entry
                     // read there): the recorded way apart, the other as it
                     // is without a history (nothing kept alive across it).
-                    Some((entry, next)) if rec_all && !uses_entry(&next) => quote! {
+                    // A next situation that may leave the visit (a `?`, a
+                    // `return`: a Prolog condition, a hand-over, a cold path)
+                    // is written once, below, not once a way.
+                    Some((entry, next)) if rec_all && !uses_entry(&next) && !super::leaves(&next) => quote! {
                         if run.recorded() {
                             #entry
                             let next_at: Nat = #next;
@@ -767,6 +770,7 @@ impl Gen<'_> {
         let hand = &d.hand;
         let curl = Literal::u32_unsuffixed(ix as u32);
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let id_arg = super::atom_arg(&id);
         let callee_v = format_ident!("D{}", j);
         let out_loads = out_loads
             .iter()
@@ -785,7 +789,7 @@ impl Gen<'_> {
             // No exit arc takes the final situation: the machine says so.
             #hand
             #(#id_stmts)*
-            return cx.no_exit(count, #curl, #id, |s| final_at.id_term(p, s));
+            return cx.no_exit(count, #curl, #id_arg, |s| final_at.id_term(p, s));
         };
         // Only the parameters the exit arcs read are loaded (a load is a
         // clone: a list's count changed and changed back on every return).
@@ -1115,13 +1119,16 @@ impl Gen<'_> {
             };
             performs.push(match ty {
                 Ty::Int | Ty::Float => quote!(if !run.quiet_numbers { #perform }),
-                Ty::Sym if const_atom == Some(atoms::EMPTY) && !list => quote! {
+                Ty::Sym if const_atom == Some(atoms::EMPTY) && !list => {
+                    let id_arg = super::atom_arg(&id);
+                    quote! {
                     if !run.quiet_empty {
                         #hand
                         #(#id_stmts)*
-                        cx.enter_empty(&mut count, #curl, #id, true, Some(#arc))?;
+                        cx.enter_empty(&mut count, #curl, #id_arg, true, Some(#arc))?;
                     }
-                },
+                }
+                }
                 Ty::Sym if const_atom == Some(atoms::EMPTY) => {
                     quote!(if !run.quiet_empty { #perform })
                 }

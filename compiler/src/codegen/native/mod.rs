@@ -431,6 +431,24 @@ fn rec_entry() -> TokenStream {
     }
 }
 
+/// An id `Term::atom(x)` given as the atom `x` to a call that takes
+/// `impl Into<Term>` (`Cx::enter_empty`, `Cx::no_exit`): the call fits on
+/// one line more often. Any other id as it is.
+fn atom_arg(id: &TokenStream) -> TokenStream {
+    match syn::parse2::<syn::ExprCall>(id.clone()) {
+        Ok(c)
+            if c.args.len() == 1 && {
+                let f = &c.func;
+                quote!(#f).to_string() == "Term :: atom"
+            } =>
+        {
+            let x = &c.args[0];
+            quote!(#x)
+        }
+        _ => id.clone(),
+    }
+}
+
 /// `code` as one expression: itself where it is one (a variant, a
 /// `'sel` block, a block), else in a block.
 fn as_expr(code: TokenStream) -> TokenStream {
@@ -2379,20 +2397,7 @@ impl Gen<'_> {
                 } else {
                     quote!(if performs { #hand })
                 };
-                // An atom id given as the atom (`Cx::enter_empty` takes
-                // `impl Into<Term>`): the call fits on one line more often.
-                let id_arg = match syn::parse2::<syn::ExprCall>(id.clone()) {
-                    Ok(c)
-                        if c.args.len() == 1 && {
-                            let f = &c.func;
-                            quote!(#f).to_string() == "Term :: atom"
-                        } =>
-                    {
-                        let x = &c.args[0];
-                        quote!(#x)
-                    }
-                    _ => id.clone(),
-                };
+                let id_arg = atom_arg(&id);
                 stmts.push(if action == atoms::EMPTY {
                     // Recorded: the situation entered (its id in the entry);
                     // above the machine's frames (a level of its own), with
