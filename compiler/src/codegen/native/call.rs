@@ -77,7 +77,7 @@
 //! (a call that is not native here is handed over), so it is decided once
 //! per DM.
 
-use super::{coerce, identical, reg, rust_ty, Dm, Gen, Regs, N, V};
+use super::{coerce, identical, leaves, reg, rust_ty, Dm, Gen, Regs, N, V};
 use crate::mir::{Action, Build, Ev, Init, KindPlan, Reg};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -707,21 +707,47 @@ impl Gen<'_> {
                     mentions(next, &format_ident!("exp")) || mentions(next, &format_ident!("act"))
                 };
                 let tail = match rec {
+                    // A next situation that is a value made of the
+                    // registers (no call of `cx`, leaving nothing, moving
+                    // nothing the entry reads): made first, once, then the
+                    // entry recorded or the transition counted (the order of
+                    // the store's terms is the entry's alone).
+                    Some((entry, next))
+                        if rec_all
+                            && !leaves(&next)
+                            && !mentions(&next, &format_ident!("cx"))
+                            && !super::moves_any(&next, &entry) =>
+                    {
+                        quote! {
+                            let next_at: Nat = #next;
+                            if run.recorded() {
+                                #entry
+                                cx.record_next(exp, act, |s| next_at.id_term(p, s));
+                                break 'visit next_at;
+                            }
+                            count += 1;
+                            break 'visit next_at;
+                        }
+                    }
                     // A next situation that does not hand over (no entry
                     // read there): the recorded way apart, the other as it
                     // is without a history (nothing kept alive across it).
-                    // A next situation that may leave the visit (a `?`, a
-                    // `return`: a Prolog condition, a hand-over, a cold path)
-                    // is written once, below, not once a way.
-                    Some((entry, next)) if rec_all && !uses_entry(&next) && !super::leaves(&next) => quote! {
-                        if run.recorded() {
-                            #entry
-                            let next_at: Nat = #next;
-                            cx.record_next(exp, act, |s| next_at.id_term(p, s));
-                            break 'visit next_at;
+                    // A next situation that hands over before anything
+                    // else (a Prolog condition: a cold path) is written once,
+                    // below, not once a way.
+                    Some((entry, next))
+                        if rec_all && !uses_entry(&next) && !super::hands_over_first(&next) =>
+                    {
+                        quote! {
+                            if run.recorded() {
+                                #entry
+                                let next_at: Nat = #next;
+                                cx.record_next(exp, act, |s| next_at.id_term(p, s));
+                                break 'visit next_at;
+                            }
+                            #plain
                         }
-                        #plain
-                    },
+                    }
                     Some((entry, next)) if rec_all => quote! {
                         let (exp, act) = if run.recorded() {
                             #entry
@@ -1122,12 +1148,12 @@ impl Gen<'_> {
                 Ty::Sym if const_atom == Some(atoms::EMPTY) && !list => {
                     let id_arg = super::atom_arg(&id);
                     quote! {
-                    if !run.quiet_empty {
-                        #hand
-                        #(#id_stmts)*
-                        cx.enter_empty(&mut count, #curl, #id_arg, true, Some(#arc))?;
+                        if !run.quiet_empty {
+                            #hand
+                            #(#id_stmts)*
+                            cx.enter_empty(&mut count, #curl, #id_arg, true, Some(#arc))?;
+                        }
                     }
-                }
                 }
                 Ty::Sym if const_atom == Some(atoms::EMPTY) => {
                     quote!(if !run.quiet_empty { #perform })

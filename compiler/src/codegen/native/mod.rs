@@ -431,6 +431,66 @@ fn rec_entry() -> TokenStream {
     }
 }
 
+/// Whether `code` is a block that hands the native frames over
+/// (`nat_hand_over`) in its own statements, not only on a path inside
+/// them: code that always calls the machine (a Prolog condition), so not
+/// a hot path.
+fn hands_over_first(code: &TokenStream) -> bool {
+    use proc_macro2::{Delimiter, TokenTree};
+    let Some(TokenTree::Group(g)) = code
+        .clone()
+        .into_iter()
+        .find(|t| matches!(t, TokenTree::Group(g) if g.delimiter() == Delimiter::Brace))
+    else {
+        return false;
+    };
+    g.stream()
+        .into_iter()
+        .any(|t| matches!(t, TokenTree::Ident(i) if i == "nat_hand_over"))
+}
+
+/// Whether `code` may move a variable that `reader` reads: one of
+/// `reader`'s identifiers appears in `code` other than as `x.clone()` or
+/// a field's name (conservative: a borrow counts as a move).
+fn moves_any(code: &TokenStream, reader: &TokenStream) -> bool {
+    use proc_macro2::TokenTree;
+    fn idents(ts: &TokenStream, out: &mut std::collections::BTreeSet<String>) {
+        for t in ts.clone() {
+            match t {
+                TokenTree::Ident(i) => {
+                    out.insert(i.to_string());
+                }
+                TokenTree::Group(g) => idents(&g.stream(), out),
+                _ => {}
+            }
+        }
+    }
+    fn moves(ts: &TokenStream, read: &std::collections::BTreeSet<String>) -> bool {
+        let toks: Vec<TokenTree> = ts.clone().into_iter().collect();
+        toks.iter().enumerate().any(|(k, t)| match t {
+            TokenTree::Ident(i) => {
+                let cloned = matches!(toks.get(k + 1), Some(TokenTree::Punct(p)) if p.as_char() == '.')
+                    && matches!(toks.get(k + 2), Some(TokenTree::Ident(c)) if c == "clone");
+                // A field's name (`r1: ..`), not `r1::`.
+                let field = matches!(toks.get(k + 1), Some(TokenTree::Punct(p))
+                    if p.as_char() == ':' && p.spacing() == proc_macro2::Spacing::Alone);
+                read.contains(&i.to_string()) && !cloned && !field
+            }
+            TokenTree::Group(g) => moves(&g.stream(), read),
+            _ => false,
+        })
+    }
+    let mut read = std::collections::BTreeSet::new();
+    idents(reader, &mut read);
+    // Names that are not variables of the visit.
+    for k in [
+        "cx", "p", "a", "Term", "Nat", "let", "mut", "count", "exp", "act", "atoms",
+    ] {
+        read.remove(k);
+    }
+    moves(code, &read)
+}
+
 /// An id `Term::atom(x)` given as the atom `x` to a call that takes
 /// `impl Into<Term>` (`Cx::enter_empty`, `Cx::no_exit`): the call fits on
 /// one line more often. Any other id as it is.
