@@ -494,6 +494,7 @@ impl Gen<'_> {
         let exit_arm = match &plan {
             Some(plan) => {
                 let exit = &plan.exit;
+                let exit = super::move_last_clones(&exit, &names);
                 quote!(Nat::#wv { #(#names),* } => 'visit: { #exit })
             }
             None => quote!(),

@@ -491,6 +491,150 @@ fn moves_any(code: &TokenStream, reader: &TokenStream) -> bool {
     moves(code, &read)
 }
 
+/// A visit's body `body` (its arm binds `names` by value) with the last
+/// use of a field, `f: x.clone()` in a variant built at its end, moving
+/// `x` instead (`f: x`, `x` where `f` is `x`): no clone of a value the
+/// arm drops right after, and the variant often fits on one line. Only
+/// where nothing reads `x` after it in the code's order, no loop can run
+/// it again, and no `let` or `match` may hold a borrow of `x` (`x` in
+/// its initializer, but for a call of `cx`: `let id = cx.fill(.., &[&x])`).
+fn move_last_clones(body: &TokenStream, names: &[Ident]) -> TokenStream {
+    use proc_macro2::{Group, TokenTree};
+    use std::collections::{HashMap, HashSet};
+    fn walk(
+        ts: &TokenStream,
+        at: &mut usize,
+        last: &mut HashMap<String, usize>,
+        held: &mut HashSet<String>,
+        looped: &mut bool,
+    ) {
+        let toks: Vec<TokenTree> = ts.clone().into_iter().collect();
+        for (k, t) in toks.iter().enumerate() {
+            *at += 1;
+            match t {
+                TokenTree::Ident(i) => {
+                    let s = i.to_string();
+                    if s == "loop" || s == "while" || s == "for" {
+                        *looped = true;
+                    }
+                    if s == "let" || s == "match" {
+                        // `let P = E;` (`if let`, `let .. else`), `match E`:
+                        // every identifier of `E` may be borrowed as long as
+                        // `P` lives, but where `E` is a call of `cx` (its
+                        // result a term, borrowing nothing).
+                        let start = if s == "match" {
+                            Some(k + 1)
+                        } else {
+                            toks[k..]
+                                .iter()
+                                .position(|t| {
+                                    matches!(t, TokenTree::Punct(p) if p.as_char() == '='
+                                        && p.spacing() == proc_macro2::Spacing::Alone)
+                                })
+                                .map(|e| k + e + 1)
+                        };
+                        let of_cx = start.is_some_and(|e| {
+                            matches!(toks.get(e), Some(TokenTree::Ident(c)) if c == "cx")
+                                && matches!(toks.get(e + 1), Some(TokenTree::Punct(p)) if p.as_char() == '.')
+                        });
+                        if let (Some(e), false) = (start, of_cx) {
+                            let init = toks[e..].iter().take_while(
+                                |t| !matches!(t, TokenTree::Punct(p) if p.as_char() == ';'),
+                            );
+                            // A block's own `let`s are looked at inside it.
+                            let init = init.filter(|t| {
+                                !matches!(t, TokenTree::Group(g) if g.delimiter() == proc_macro2::Delimiter::Brace)
+                            });
+                            for t in init {
+                                let mut ids = std::collections::BTreeSet::new();
+                                super_idents(&TokenStream::from(t.clone()), &mut ids);
+                                held.extend(ids);
+                            }
+                        }
+                    }
+                    // A field's name (`f: ..`) is no mention of `f`.
+                    let field = matches!(toks.get(k + 1), Some(TokenTree::Punct(p))
+                        if p.as_char() == ':' && p.spacing() == proc_macro2::Spacing::Alone);
+                    if !field {
+                        last.insert(s, *at);
+                    }
+                }
+                TokenTree::Group(g) => walk(&g.stream(), at, last, held, looped),
+                _ => {}
+            }
+        }
+    }
+    fn super_idents(ts: &TokenStream, out: &mut std::collections::BTreeSet<String>) {
+        for t in ts.clone() {
+            match t {
+                TokenTree::Ident(i) => {
+                    out.insert(i.to_string());
+                }
+                TokenTree::Group(g) => super_idents(&g.stream(), out),
+                _ => {}
+            }
+        }
+    }
+    fn rewrite(
+        ts: &TokenStream,
+        at: &mut usize,
+        last: &HashMap<String, usize>,
+        movable: &HashSet<String>,
+    ) -> TokenStream {
+        let toks: Vec<TokenTree> = ts.clone().into_iter().collect();
+        let mut out: Vec<TokenTree> = Vec::new();
+        let mut k = 0;
+        while k < toks.len() {
+            *at += 1;
+            let t = &toks[k];
+            if let TokenTree::Ident(x) = t {
+                let s = x.to_string();
+                // `f : x . clone ( )`, `x`'s last mention.
+                let field = k >= 2
+                    && matches!(&toks[k - 1], TokenTree::Punct(p) if p.as_char() == ':' && p.spacing() == proc_macro2::Spacing::Alone)
+                    && matches!(&toks[k - 2], TokenTree::Ident(_));
+                let clone = matches!(toks.get(k + 1), Some(TokenTree::Punct(p)) if p.as_char() == '.')
+                    && matches!(toks.get(k + 2), Some(TokenTree::Ident(c)) if c == "clone")
+                    && matches!(toks.get(k + 3), Some(TokenTree::Group(g)) if g.stream().is_empty());
+                let ends = matches!(toks.get(k + 4), None | Some(TokenTree::Punct(_)))
+                    && !matches!(toks.get(k + 4), Some(TokenTree::Punct(p)) if p.as_char() == '.');
+                if field && clone && ends && movable.contains(&s) && last.get(&s) == Some(&*at) {
+                    let same = matches!(&toks[k - 2], TokenTree::Ident(f) if *f == s);
+                    if same {
+                        out.truncate(out.len() - 2);
+                    }
+                    out.push(t.clone());
+                    // `.`, `clone`, `()`: counted, dropped.
+                    *at += 3;
+                    k += 4;
+                    continue;
+                }
+                out.push(t.clone());
+            } else if let TokenTree::Group(g) = t {
+                let mut ng = Group::new(g.delimiter(), rewrite(&g.stream(), at, last, movable));
+                ng.set_span(g.span());
+                out.push(TokenTree::Group(ng));
+            } else {
+                out.push(t.clone());
+            }
+            k += 1;
+        }
+        out.into_iter().collect()
+    }
+    let (mut at, mut last, mut held, mut looped) = (0, HashMap::new(), HashSet::new(), false);
+    walk(body, &mut at, &mut last, &mut held, &mut looped);
+    if looped {
+        return body.clone();
+    }
+    let movable: HashSet<String> = names
+        .iter()
+        .map(|n| n.to_string())
+        .filter(|n| !held.contains(n))
+        .collect();
+    let mut at = 0;
+    rewrite(body, &mut at, &last, &movable)
+}
+
 /// An id `Term::atom(x)` given as the atom `x` to a call that takes
 /// `impl Into<Term>` (`Cx::enter_empty`, `Cx::no_exit`): the call fits on
 /// one line more often. Any other id as it is.
@@ -974,6 +1118,7 @@ impl Gen<'_> {
                 any_cursor = true;
                 quote!(Nat::#v { #(ref mut #names),* } => 'visit: { #body })
             } else {
+                let body = move_last_clones(body, &names);
                 quote!(Nat::#v { #(#names),* } => 'visit: { #body })
             });
             if let Some(w) = wait {
