@@ -764,7 +764,7 @@ impl Gen<'_> {
                     _ => plain,
                 };
                 // `arc_at` only where the code reads it.
-                let body = quote!(#head #tail);
+                let body = drop_unread_let(quote!(#head #tail), "act0");
                 let arc_at = if mentions(&body, &format_ident!("arc_at")) {
                     quote!(let arc_at = Some(#il);)
                 } else {
@@ -842,18 +842,24 @@ impl Gen<'_> {
         let mut ts = Vec::new();
         let mut n = 0;
         let exp = self.nat_ev_term(&arc.expectation, regs, &mut ts, &mut n)?;
-        let (items, list) = match &arc.action {
-            Action::List { items, .. } => (items.len(), true),
-            Action::One(_) => (1, false),
+        let items = match &arc.action {
+            Action::List { items, .. } => items.len(),
+            Action::One(_) => 1,
         };
         let acts: Vec<Ident> = (0..items).map(|k| format_ident!("act{}", k)).collect();
-        let act = if list {
-            quote! {
+        let act = match &arc.action {
+            Action::List { .. } => quote! {
                 let act_items = [#(cx.term(&#acts)),*];
                 let act = cx.store().list(&act_items);
-            }
-        } else {
-            quote!(let act = cx.term(&act0);)
+            },
+            // A constant atom: its term (`act0` then often read nowhere).
+            Action::One(e) => match e {
+                Ev::Built(Build::Const(t)) if self.store.atom_of(*t).is_some() => {
+                    let t = self.atom_term(self.store.atom_of(*t).ok_or("an atom")?)?;
+                    quote!(let act = #t;)
+                }
+                _ => quote!(let act = cx.term(&act0);),
+            },
         };
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         let curl = Literal::u32_unsuffixed(ix as u32);
@@ -1405,4 +1411,30 @@ fn out_slots_none(callee: &Dm) -> Vec<TokenStream> {
             quote!(#o: None)
         })
         .collect()
+}
+
+/// `code` without its statement `let NAME = ..;` (at its top level) when
+/// nothing else in it mentions `NAME`.
+fn drop_unread_let(code: TokenStream, name: &str) -> TokenStream {
+    use proc_macro2::TokenTree;
+    let toks: Vec<TokenTree> = code.clone().into_iter().collect();
+    let Some(k) = toks.windows(3).position(|w| {
+        matches!(&w[0], TokenTree::Ident(l) if l == "let")
+            && matches!(&w[1], TokenTree::Ident(x) if x == name)
+            && matches!(&w[2], TokenTree::Punct(p) if p.as_char() == '=')
+    }) else {
+        return code;
+    };
+    let Some(end) = toks[k..]
+        .iter()
+        .position(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == ';'))
+        .map(|e| k + e)
+    else {
+        return code;
+    };
+    let rest: TokenStream = toks[..k].iter().chain(&toks[end + 1..]).cloned().collect();
+    if mentions(&rest, &format_ident!("{}", name)) {
+        return code;
+    }
+    rest
 }
