@@ -852,14 +852,33 @@ impl Gen<'_> {
                 let act_items = [#(cx.term(&#acts)),*];
                 let act = cx.store().list(&act_items);
             },
-            // A constant atom: its term (`act0` then often read nowhere).
+            // A constant atom: its term (`act0` then often read nowhere),
+            // beside the expectation's.
             Action::One(e) => match e {
                 Ev::Built(Build::Const(t)) if self.store.atom_of(*t).is_some() => {
                     let t = self.atom_term(self.store.atom_of(*t).ok_or("an atom")?)?;
-                    quote!(let act = #t;)
+                    quote!(#t)
                 }
                 _ => quote!(let act = cx.term(&act0);),
             },
+        };
+        // The expectation's last statement, `let b = E;` with `b` its term,
+        // is its `let` (`let exp: Term = E;`).
+        let (ts, exp) = match ts.split_last() {
+            Some((last, rest)) => match super::one_value(std::slice::from_ref(last), &exp) {
+                Some(e) => (rest.to_vec(), e),
+                None => (ts.clone(), exp),
+            },
+            None => (ts, exp),
+        };
+        // A constant action beside a leaf expectation: one `let` of the
+        // pair (a built one beside it would often break the line).
+        let exp_act = if act.to_string().starts_with("let") {
+            quote!(let exp: Term = #exp; #act)
+        } else if ts.is_empty() && !exp.to_string().starts_with("cx") {
+            quote!(let (exp, act) = (#exp, #act);)
+        } else {
+            quote!(let exp: Term = #exp; let act = #act;)
         };
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
         let curl = Literal::u32_unsuffixed(ix as u32);
@@ -872,8 +891,7 @@ impl Gen<'_> {
         Ok((
             quote! {
                 #(#ts)*
-                let exp: Term = #exp;
-                #act
+                #exp_act
                 #(#id_stmts)*
                 cx.enter_counted(&mut count, #curl, #id);
             },
