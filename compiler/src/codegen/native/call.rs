@@ -599,7 +599,7 @@ impl Gen<'_> {
         // the entry, its plain tail and its recorded tail.
         type ArcCode = (
             TokenStream,
-            (Literal, TokenStream),
+            (usize, TokenStream),
             TokenStream,
             Option<(TokenStream, TokenStream)>,
         );
@@ -683,7 +683,6 @@ impl Gen<'_> {
                 let rec = self.nat_exit_record(d, ix, arc, &regs, &cur_name).ok();
                 rec_all &= rec.is_some();
                 let cond = quote!(#(#tests)&&*);
-                let il = Literal::usize_unsuffixed(i);
                 let head = quote! {
                     #(#lets)*
                     #action
@@ -693,7 +692,7 @@ impl Gen<'_> {
                     let next_at = #next;
                     break 'visit next_at;
                 };
-                arcs_code.push((cond, (il, head), plain, rec));
+                arcs_code.push((cond, (i, head), plain, rec));
             }
             let sk = format_ident!("S{}", k);
             finals.push((quote!(super::#callee_n::#sk { #(#cf),* }), arcs_code));
@@ -703,7 +702,7 @@ impl Gen<'_> {
             // reaches it: the arcs after it are never tried.
             let taken = arcs.iter().position(|(c, ..)| c.is_empty());
             let arcs = arcs.into_iter().take(taken.map_or(usize::MAX, |k| k + 1));
-            let arcs = arcs.map(|(cond, (il, head), plain, rec)| {
+            let arcs = arcs.map(|(cond, (i, head), plain, rec)| {
                 let uses_entry = |next: &TokenStream| {
                     mentions(next, &format_ident!("exp")) || mentions(next, &format_ident!("act"))
                 };
@@ -765,15 +764,11 @@ impl Gen<'_> {
                 };
                 // `arc_at` only where the code reads it.
                 let body = drop_unread_let(quote!(#head #tail), "act0");
-                let arc_at = if mentions(&body, &format_ident!("arc_at")) {
-                    quote!(let arc_at = Some(#il);)
-                } else {
-                    quote!()
-                };
+                let body = super::with_arc_at(&body, i);
                 if cond.is_empty() {
-                    quote!(#arc_at #body)
+                    body
                 } else {
-                    quote!(if #cond { #arc_at #body })
+                    quote!(if #cond { #body })
                 }
             });
             quote!(#pat => { #(#arcs)* })

@@ -449,6 +449,46 @@ fn hands_over_first(code: &TokenStream) -> bool {
         .any(|t| matches!(t, TokenTree::Ident(i) if i == "nat_hand_over"))
 }
 
+/// `code` with `arc_at` (the arc's index `i`, `Some(i)`) bound where it
+/// reads it: nothing where it does not, the value itself where it reads it
+/// once, else `let arc_at = Some(i);` first.
+pub(super) fn with_arc_at(code: &TokenStream, i: usize) -> TokenStream {
+    use proc_macro2::{Group, TokenTree};
+    fn count(ts: &TokenStream) -> usize {
+        ts.clone()
+            .into_iter()
+            .map(|t| match t {
+                TokenTree::Ident(x) => usize::from(x == "arc_at"),
+                TokenTree::Group(g) => count(&g.stream()),
+                _ => 0,
+            })
+            .sum()
+    }
+    fn put(ts: &TokenStream, v: &TokenStream) -> TokenStream {
+        ts.clone()
+            .into_iter()
+            .flat_map(|t| -> Vec<TokenTree> {
+                match t {
+                    TokenTree::Ident(x) if x == "arc_at" => v.clone().into_iter().collect(),
+                    TokenTree::Group(g) => {
+                        let mut n = Group::new(g.delimiter(), put(&g.stream(), v));
+                        n.set_span(g.span());
+                        vec![TokenTree::Group(n)]
+                    }
+                    t => vec![t],
+                }
+            })
+            .collect()
+    }
+    let (il, is) = (Literal::usize_unsuffixed(i), Literal::usize_suffixed(i));
+    match count(code) {
+        0 => code.clone(),
+        // Read once: an argument of `Cx`'s (`Option<usize>`).
+        1 => put(code, &quote!(Some(#il))),
+        _ => quote!(let arc_at = Some(#is); #code),
+    }
+}
+
 /// Whether `code` may move a variable that `reader` reads: one of
 /// `reader`'s identifiers appears in `code` other than as `x.clone()` or
 /// a field's name (conservative: a borrow counts as a move).
@@ -2253,13 +2293,8 @@ impl Gen<'_> {
                     bodies.push(self.nat_arc(d, ix, arc, &regs, exp)?);
                 }
                 let body = if single {
-                    let b = &bodies[0];
                     // `arc_at` only where the code reads it.
-                    if call::mentions(b, &format_ident!("arc_at")) {
-                        quote!(let arc_at = Some(0usize); #b)
-                    } else {
-                        quote!(#b)
-                    }
+                    with_arc_at(&bodies[0], 0)
                 } else {
                     // The machine chooses the arc (a perception matched
                     // against the expectations, built from native values).
@@ -2297,11 +2332,8 @@ impl Gen<'_> {
                         .map_err(|e| format!("its type: {e}"))?;
                     let arms = bodies.iter().enumerate().map(|(i, b)| {
                         let il = Literal::usize_unsuffixed(i);
-                        if call::mentions(b, &format_ident!("arc_at")) {
-                            quote!(#il => { let arc_at = Some(#il); #b })
-                        } else {
-                            quote!(#il => { #b })
-                        }
+                        let b = with_arc_at(b, i);
+                        quote!(#il => { #b })
                     });
                     let hand = &d.hand;
                     quote! {
