@@ -493,8 +493,7 @@ impl Gen<'_> {
         let plan = self.nat_call_plan(d, ix);
         let exit_arm = match &plan {
             Some(plan) => {
-                let exit = &plan.exit;
-                let exit = super::move_last_clones(&exit, &names);
+                let exit = super::move_last_clones(&plan.exit, &names);
                 quote!(Nat::#wv { #(#names),* } => 'visit: { #exit })
             }
             None => quote!(),
