@@ -213,7 +213,15 @@ fn hand_walk<T: Copy + PartialEq>(
             }
             Frame::Final(exit) => {
                 transitions += 1;
-                black_box(exit);
+                // The caller's exit arc binds what the final hands back.
+                match exit {
+                    Exit::Found(p) => black_box(Some(p)),
+                    Exit::FoundRest(p, r) => {
+                        black_box(r);
+                        black_box(Some(p))
+                    }
+                    Exit::NotFound => black_box(None),
+                };
                 stack.pop();
                 transitions += 1;
                 n = black_box(n + 1);
@@ -272,7 +280,11 @@ fn hand_walk_seen(rounds: i64, items: &[Sym], target: Sym) -> u64 {
             }
             Frame::Found(_) | Frame::NotFound => {
                 transitions += 1;
-                black_box((&*top, &seen));
+                let found = match *top {
+                    Frame::Found(p) => Some(p),
+                    _ => None,
+                };
+                black_box((found, &seen));
                 stack.pop();
                 transitions += 1;
                 n = black_box(n + 1);
@@ -408,7 +420,11 @@ fn hand_walk_pairs(rounds: i64, pairs: &[(Sym, Sym)], item: Sym) -> u64 {
             }
             Frame::On(_) | Frame::None => {
                 transitions += 1;
-                black_box(&*top);
+                let shelf = match *top {
+                    Frame::On(s) => Some(s),
+                    _ => None,
+                };
+                black_box(shelf);
                 stack.pop();
                 transitions += 1;
                 n = black_box(n + 1);

@@ -352,9 +352,16 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         // once the call is checked: on an error it is still there for the
         // unwinding to nest (`Machine::run`).
         let callee = self.m.levels.front().map_or(callee, |level| level.dm_id);
-        let called = inst
-            .embedded_dm
-            .is_some_and(|e| self.m.store.unify(e, callee));
+        // The template's `embedded_dm` evaluated (read-only, as at the
+        // call): native code pushes calls whose evaluation reads only
+        // locals (`search(get(places, _), T)`) or gives the term itself.
+        let called = match inst.embedded_dm {
+            Some(e) => {
+                let e = self.m.eval_read_only(e, here)?;
+                self.m.store.unify(e, callee)
+            }
+            None => false,
+        };
         if !called {
             return Err(self.fault(Fault::NotTheCall));
         }
