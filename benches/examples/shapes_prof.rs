@@ -36,6 +36,9 @@ mod c_deeper_echo {
 mod d_target_in_id {
     sitlog_macros::include_dm!("../tests/typed/shapes/d_target_in_id");
 }
+mod d_id_shares_param {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_id_shares_param");
+}
 mod d_local_places {
     sitlog_macros::include_dm!("../tests/typed/shapes/d_local_places");
 }
@@ -324,7 +327,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "c_limit_inarg_echo" | "c_counter_param" | "c_outarg_cond" | "c_deeper_echo" => {
             format!("relay({n})")
         }
-        "d_target_in_id" => format!("hunt({n}, {list}, {last})"),
+        "d_target_in_id" | "d_id_shares_param" => format!("hunt({n}, {list}, {last})"),
         "d_local_places" => format!("tour({n}, cellar)"),
         "d_const_ints" => format!("drill({n}, 64)"),
         "d_built_list" => format!("patrol({n}, {list}, p0)"),
@@ -348,7 +351,9 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             "c_limit_inarg_echo" | "c_counter_param" => hand_echo(n, 1, false),
             "c_outarg_cond" => hand_echo(n, 1, true),
             "c_deeper_echo" => hand_echo(n, 2, false),
-            "d_target_in_id" => hand_walk(n, black_box(&syms), black_box(lsym), true, false),
+            "d_target_in_id" | "d_id_shares_param" => {
+                hand_walk(n, black_box(&syms), black_box(lsym), true, false)
+            }
             "d_local_places" => {
                 hand_walk(n, black_box(&syms[..8]), black_box(Sym(7)), false, false)
             }
@@ -372,6 +377,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "c_outarg_cond" => ways!(c_outarg_cond),
         "c_deeper_echo" => ways!(c_deeper_echo),
         "d_target_in_id" => ways!(d_target_in_id),
+        "d_id_shares_param" => ways!(d_id_shares_param),
         "d_local_places" => ways!(d_local_places),
         "d_const_ints" => ways!(d_const_ints),
         "d_built_list" => ways!(d_built_list),
@@ -441,12 +447,13 @@ fn hand_walk_pairs(rounds: i64, pairs: &[(Sym, Sym)], item: Sym) -> u64 {
     transitions
 }
 
-const ALL: [&str; 11] = [
+const ALL: [&str; 12] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
     "c_deeper_echo",
     "d_target_in_id",
+    "d_id_shares_param",
     "d_local_places",
     "d_const_ints",
     "d_built_list",

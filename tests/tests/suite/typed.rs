@@ -669,7 +669,8 @@ fn other_engineers_shapes_agree() {
 /// count in the id, a local or the callee's parameter (`mirror(I)`, its
 /// final `back(N)` sharing the parameter: instantiated from its template),
 /// a conditional out_arg (also read back by the caller), the callee one
-/// level deeper; walks with the target in the id, the places a local, a
+/// level deeper; walks with the target in the id (also under the name of
+/// the DM's parameter: instantiated from its template), the places a local, a
 /// constant list of ints, a list built by `reverse`, an accumulator
 /// (`look(Ps, [P|Seen])`), `found(P, Rest)`, pairs `Item-Shelf`. Each also
 /// with arguments that do not fit (an atom or a float for a limit, an
@@ -692,6 +693,9 @@ mod shapes_ngen11 {
     }
     pub mod target_in_id {
         sitlog_macros::include_dm!("typed/shapes/d_target_in_id");
+    }
+    pub mod id_shares_param {
+        sitlog_macros::include_dm!("typed/shapes/d_id_shares_param");
     }
     pub mod local_places {
         sitlog_macros::include_dm!("typed/shapes/d_local_places");
@@ -763,6 +767,15 @@ fn shapes_written_from_the_issue_agree() {
         );
     }
     agree(s::target_in_id::program(), &ir, "hunt(x, [a], a)", "");
+    let ir = interpreter("typed/shapes/d_id_shares_param");
+    for l in lists {
+        agree(
+            s::id_shares_param::program(),
+            &ir,
+            &format!("hunt(3, {l}, bed)"),
+            "",
+        );
+    }
     let ir = interpreter("typed/shapes/d_local_places");
     for main in [
         "tour(3, cellar)",

@@ -14,8 +14,8 @@ diag_mod(hunt(Rounds, Places, Target),
   []
 ).
 
-diag_mod(seek(L, T),
-  [ [ id ==> begin, type ==> neutral, arcs ==> [ empty : empty => walk(L, T) ] ],
+diag_mod(seek(L, Goal),
+  [ [ id ==> begin, type ==> neutral, arcs ==> [ empty : empty => walk(L, Goal) ] ],
     [ id ==> walk([], _), type ==> neutral, arcs ==> [ empty : empty => not_found ] ],
     [ id ==> walk([P|Ps], T),
       type ==> neutral,
