@@ -318,8 +318,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// its native callee, made the machine's: the situation's instance
     /// from its template as the interpreter holds it while the callee runs
     /// (its id `id`; its in_arg the pipe value the visit read, `in_arg`,
-    /// when the exit arcs read it; its `embedded_dm` the callee's call
-    /// term `callee`, whose variables the callee's `diag_mod` binds), the
+    /// when the exit arcs read it; its `embedded_dm`, evaluated read-only
+    /// as at the call, unified with the callee's call term `callee`, whose
+    /// variables the callee's `diag_mod` binds), the
     /// callee's frame pushed (DM `callee_dm`, the depth limit checked):
     /// the machine runs the exit arcs at the callee's final. (`prog` is
     /// not run again: native code ran it, and its variables are renamed

@@ -9,7 +9,12 @@
 //! variant's field), their action (`inc` and `get` of a local, atoms,
 //! numbers) and next situation run natively. A call whose exit arcs
 //! native code does not run (`say('..')`, `apply(..)` in the action) is
-//! not pushed: the machine's, as below.
+//! not pushed: the machine's, as below. The call's arguments are values
+//! or, evaluated (D-20, read-only), `get(l, _)` of a local held in the
+//! frame, its variable met only there (`search(get(places, _), T)`: the
+//! local's value, `Gen::nat_local_get`); where the frames become the
+//! machine's, `Cx::wait_template` evaluates the template's `embedded_dm`
+//! before matching it with the call.
 //!
 //! *Output arguments* (`add(I, 1, J)`, `J` a fresh variable of the
 //! situation written once, as a whole argument: `call_outputs`) given to

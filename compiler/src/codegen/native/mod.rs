@@ -169,7 +169,10 @@
 //! improper list handed to the machine as before); nothing is split at the
 //! selection, no element cloned or dropped per visit. When the variant
 //! holds the cell alone and the visit's next situation is its own with its
-//! own tail (`try([P|Ps])` to `try(Ps)`), the visit is a cursor
+//! own tail (`try([P|Ps])` to `try(Ps)`), or holds other fields that this
+//! next situation passes on as they are (`walk([P|Ps], T)` to `walk(Ps,
+//! T)`, [`Gen::nat_cursor_passing`]: the fields cloned out for the visit),
+//! the visit is a cursor
 //! ([`Gen::nat_cursor`]): `P` cloned out, the list advanced in place
 //! (`List::advance`), `Ps` the list itself by reference, and, unrecorded,
 //! the variant left where it is (`break 'step`, no next variant built nor
