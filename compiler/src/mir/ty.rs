@@ -1567,8 +1567,11 @@ impl<'a> State<'a> {
             Some(Prog::Copy(b)) => self.scan_writes(d, s, b, 0),
             None => {}
         }
-        // The out_arg of a non-recursive situation, re-read after prog.
-        let out = p.out_arg.as_ref().map(|(b, _)| self.build_ty(d, s, b));
+        // The out_arg of a non-recursive situation, re-read after prog:
+        // the pipe leaves with its value (evaluated, D-9), not the term
+        // as written (`(X > 0 -> X ; otherwise -> 1)` leaves an int or
+        // `X`, not a `;` compound).
+        let out = p.out_arg.as_ref().map(|(b, _)| self.eval_build(d, s, b));
         match &p.kind {
             KindPlan::Final { diag_mod } => {
                 if let Some(b) = diag_mod {
@@ -1892,7 +1895,7 @@ impl<'a> State<'a> {
                 }
             }
             let leaves = match (&arc.out_arg, out) {
-                (Some(b), _) => self.build_ty(d, s, b),
+                (Some(b), _) => self.eval_build(d, s, b),
                 (None, Some(o)) => o.clone(),
                 (None, None) => pipe.clone(),
             };
@@ -2493,6 +2496,34 @@ diag_mod(echo,
         let line = t.dm_line(&ir, m);
         assert!(line.contains("pipe in ground"), "{line}");
         assert!(line.contains("entered from outside (the main DM"), "{line}");
+    }
+
+    /// The pipe leaves with the out_arg's value (D-9): a conditional out_arg
+    /// is not the `;` compound it is written as (it was typed so, and the
+    /// caller's `V =< L` read the pipe as that compound).
+    #[test]
+    fn an_out_arg_leaves_with_its_value_not_its_text() {
+        let (ir, mir, t) = types_of(
+            r#"
+diag_mod(main,
+  [ [ id ==> call, type ==> recursive, embedded_dm ==> succ, arcs ==> [ next : empty => test ] ],
+    [ id ==> test, type ==> neutral, in_arg ==> V,
+      arcs ==> [ empty : [get(limit, L)] => (V =< L -> call ; otherwise -> done) ] ],
+    [ id ==> done, type ==> final ] ],
+  [ limit ==> 3 ]).
+diag_mod(succ,
+  [ [ id ==> add, type ==> neutral, in_arg ==> X,
+      out_arg ==> (X > 0 -> 7 ; otherwise -> 1),
+      arcs ==> [ empty : empty => next ] ],
+    [ id ==> next, type ==> final ] ],
+  []).
+"#,
+        );
+        let s = dm(&ir, "succ");
+        assert_eq!(t.dms[s].pipe_out.ty, Ty::Ground);
+        let m = dm(&ir, "main");
+        let test = sit(&ir, m, 1);
+        assert_eq!(var_ty(&ir, &mir, &t, m, test, "V"), Ty::Ground);
     }
 
     #[test]

@@ -318,8 +318,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// its native callee, made the machine's: the situation's instance
     /// from its template as the interpreter holds it while the callee runs
     /// (its id `id`; its in_arg the pipe value the visit read, `in_arg`,
-    /// when the exit arcs read it; its `embedded_dm` the callee's call
-    /// term `callee`, whose variables the callee's `diag_mod` binds), the
+    /// when the exit arcs read it; its `embedded_dm`, evaluated read-only
+    /// as at the call, unified with the callee's call term `callee`, whose
+    /// variables the callee's `diag_mod` binds), the
     /// callee's frame pushed (DM `callee_dm`, the depth limit checked):
     /// the machine runs the exit arcs at the callee's final. (`prog` is
     /// not run again: native code ran it, and its variables are renamed
@@ -352,9 +353,16 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         // once the call is checked: on an error it is still there for the
         // unwinding to nest (`Machine::run`).
         let callee = self.m.levels.front().map_or(callee, |level| level.dm_id);
-        let called = inst
-            .embedded_dm
-            .is_some_and(|e| self.m.store.unify(e, callee));
+        // The template's `embedded_dm` evaluated (read-only, as at the
+        // call): native code pushes calls whose evaluation reads only
+        // locals (`search(get(places, _), T)`) or gives the term itself.
+        let called = match inst.embedded_dm {
+            Some(e) => {
+                let e = self.m.eval_read_only(e, here)?;
+                self.m.store.unify(e, callee)
+            }
+            None => false,
+        };
         if !called {
             return Err(self.fault(Fault::NotTheCall));
         }

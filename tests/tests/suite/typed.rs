@@ -661,3 +661,181 @@ fn other_engineers_shapes_agree() {
         agree(app, &ir, main, "");
     }
 }
+
+/// Workloads of shapes (c) and (d) written from the issue's text by helper
+/// `ngen11` (`tests/typed/shapes/c_*`, `d_*`; measured against hand-written
+/// machines in `benches/examples/shapes_prof.rs`): the limit the
+/// recursive situation's in_arg, handed back by `out_arg ==> X`, with the
+/// count in the id, a local or the callee's parameter (`mirror(I)`, its
+/// final `back(N)` sharing the parameter: instantiated from its template),
+/// a conditional out_arg (also read back by the caller), the callee one
+/// level deeper; walks with the target in the id (also under the name of
+/// the DM's parameter: instantiated from its template), the places a local, a
+/// constant list of ints, a list built by `reverse`, an accumulator
+/// (`look(Ps, [P|Seen])`), `found(P, Rest)`, pairs `Item-Shelf`. Each also
+/// with arguments that do not fit (an atom or a float for a limit, an
+/// improper or partial list, an atom for the list).
+mod shapes_ngen11 {
+    pub mod limit_inarg_echo {
+        sitlog_macros::include_dm!("typed/shapes/c_limit_inarg_echo");
+    }
+    pub mod counter_param {
+        sitlog_macros::include_dm!("typed/shapes/c_counter_param");
+    }
+    pub mod outarg_cond {
+        sitlog_macros::include_dm!("typed/shapes/c_outarg_cond");
+    }
+    pub mod outarg_cond_read {
+        sitlog_macros::include_dm!("typed/shapes/c_outarg_cond_read");
+    }
+    pub mod deeper_echo {
+        sitlog_macros::include_dm!("typed/shapes/c_deeper_echo");
+    }
+    pub mod target_in_id {
+        sitlog_macros::include_dm!("typed/shapes/d_target_in_id");
+    }
+    pub mod id_shares_param {
+        sitlog_macros::include_dm!("typed/shapes/d_id_shares_param");
+    }
+    pub mod local_places {
+        sitlog_macros::include_dm!("typed/shapes/d_local_places");
+    }
+    pub mod const_ints {
+        sitlog_macros::include_dm!("typed/shapes/d_const_ints");
+    }
+    pub mod built_list {
+        sitlog_macros::include_dm!("typed/shapes/d_built_list");
+    }
+    pub mod acc_seen {
+        sitlog_macros::include_dm!("typed/shapes/d_acc_seen");
+    }
+    pub mod found_rest {
+        sitlog_macros::include_dm!("typed/shapes/d_found_rest");
+    }
+    pub mod shelf_pairs {
+        sitlog_macros::include_dm!("typed/shapes/d_shelf_pairs");
+    }
+}
+
+#[test]
+fn shapes_written_from_the_issue_agree() {
+    use shapes_ngen11 as s;
+    let limits = ["relay(4)", "relay(1)", "relay(0)", "relay(x)", "relay(2.5)"];
+    let ir = interpreter("typed/shapes/c_limit_inarg_echo");
+    for main in limits {
+        agree(s::limit_inarg_echo::program(), &ir, main, "");
+    }
+    let ir = interpreter("typed/shapes/c_counter_param");
+    for main in limits {
+        agree(s::counter_param::program(), &ir, main, "");
+    }
+    let ir = interpreter("typed/shapes/c_outarg_cond");
+    for main in limits.iter().chain(&["relay(-3)"]) {
+        agree(s::outarg_cond::program(), &ir, main, "");
+    }
+    // The conditional's value read back: 7, compared with the limit 3.
+    let ir = interpreter("typed/shapes/c_outarg_cond_read");
+    for in_arg in ["0", "5", "a", "-1"] {
+        agree_piped(
+            s::outarg_cond_read::program(),
+            &ir,
+            "loop",
+            Some(in_arg),
+            "",
+        );
+    }
+    let ir = interpreter("typed/shapes/c_deeper_echo");
+    for main in limits {
+        agree(s::deeper_echo::program(), &ir, main, "");
+    }
+    let lists = [
+        "[hall, bath, bed]",
+        "[hall, bath]",
+        "[]",
+        "[hall|bath]",
+        "[hall, bed|_]",
+        "hall",
+        "[f(x), bed]",
+    ];
+    let ir = interpreter("typed/shapes/d_target_in_id");
+    for l in lists {
+        agree(
+            s::target_in_id::program(),
+            &ir,
+            &format!("hunt(3, {l}, bed)"),
+            "",
+        );
+    }
+    agree(s::target_in_id::program(), &ir, "hunt(x, [a], a)", "");
+    let ir = interpreter("typed/shapes/d_id_shares_param");
+    for l in lists {
+        agree(
+            s::id_shares_param::program(),
+            &ir,
+            &format!("hunt(3, {l}, bed)"),
+            "",
+        );
+    }
+    let ir = interpreter("typed/shapes/d_local_places");
+    for main in [
+        "tour(3, cellar)",
+        "tour(2, hall)",
+        "tour(2, nowhere)",
+        "tour(x, hall)",
+    ] {
+        agree(s::local_places::program(), &ir, main, "");
+    }
+    let ir = interpreter("typed/shapes/d_const_ints");
+    for main in [
+        "drill(3, 64)",
+        "drill(2, 33)",
+        "drill(2, 99)",
+        "drill(2, x)",
+        "drill(1, 5.0)",
+    ] {
+        agree(s::const_ints::program(), &ir, main, "");
+    }
+    let ir = interpreter("typed/shapes/d_built_list");
+    for l in lists {
+        agree(
+            s::built_list::program(),
+            &ir,
+            &format!("patrol(3, {l}, hall)"),
+            "",
+        );
+    }
+    let ir = interpreter("typed/shapes/d_acc_seen");
+    for l in lists {
+        agree(
+            s::acc_seen::program(),
+            &ir,
+            &format!("survey(3, {l}, bed)"),
+            "",
+        );
+    }
+    let ir = interpreter("typed/shapes/d_found_rest");
+    for l in lists {
+        agree(
+            s::found_rest::program(),
+            &ir,
+            &format!("visit(3, {l}, bath)"),
+            "",
+        );
+    }
+    let ir = interpreter("typed/shapes/d_shelf_pairs");
+    for l in [
+        "[milk-s1, tea-s2, jam-s3]",
+        "[milk-s1, tea-s2]",
+        "[]",
+        "[milk-s1, tea]",
+        "[milk-s1|x]",
+        "[k(1)-s1, jam-f(s)]",
+    ] {
+        agree(
+            s::shelf_pairs::program(),
+            &ir,
+            &format!("stock(3, {l}, jam)"),
+            "",
+        );
+    }
+}

@@ -9,7 +9,12 @@
 //! variant's field), their action (`inc` and `get` of a local, atoms,
 //! numbers) and next situation run natively. A call whose exit arcs
 //! native code does not run (`say('..')`, `apply(..)` in the action) is
-//! not pushed: the machine's, as below.
+//! not pushed: the machine's, as below. The call's arguments are values
+//! or, evaluated (D-20, read-only), `get(l, _)` of a local held in the
+//! frame, its variable met only there (`search(get(places, _), T)`: the
+//! local's value, `Gen::nat_local_get`); where the frames become the
+//! machine's, `Cx::wait_template` evaluates the template's `embedded_dm`
+//! before matching it with the call.
 //!
 //! *Output arguments* (`add(I, 1, J)`, `J` a fresh variable of the
 //! situation written once, as a whole argument: `call_outputs`) given to
@@ -172,7 +177,14 @@ impl Gen<'_> {
                 }
             }
             Build::Compound(name, args) => {
-                if *eval_call && !inert(call) {
+                // Evaluated only for `get(l, _)` of locals held natively:
+                // their values (a read, nothing written or bound).
+                if *eval_call
+                    && !inert(call)
+                    && !args
+                        .iter()
+                        .all(|a| inert(a) || self.nat_local_get(d, ix, a).is_some())
+                {
                     return Err(EVALUATED.into());
                 }
                 let vals = args
@@ -185,6 +197,9 @@ impl Gen<'_> {
                                 e: quote!(Ground::OUT),
                                 ty: Ty::Term,
                             })
+                        } else if let Some(v) = self.nat_local_get(d, ix, a).filter(|_| *eval_call)
+                        {
+                            Ok(v)
                         } else {
                             self.nat_value(a, regs)
                         }
@@ -194,6 +209,30 @@ impl Gen<'_> {
             }
             Build::Reg(_) => Err("the embedded DM is a variable".into()),
         }
+    }
+
+    /// `get(l, V)` as an argument of a DM call (evaluated with read-only
+    /// variables, D-20), `l` a local held in the frame and `V` a variable
+    /// met only there (`SitTypes::unbound`: binding it has no other
+    /// effect): the local's value, read natively (`search(get(places, _),
+    /// T)`).
+    fn nat_local_get(&self, d: &Dm, ix: usize, b: &Build) -> Option<V> {
+        let Build::Compound(op, args) = b else {
+            return None;
+        };
+        let [Build::Const(n), Build::Reg(r)] = &args[..] else {
+            return None;
+        };
+        if *op != atoms::GET || !d.locals_ok || !*d.types[ix].unbound.get(*r as usize)? {
+            return None;
+        }
+        let n = self.store.atom_of(*n)?;
+        let li = d.locals.iter().position(|(l, _)| *l == n)?;
+        let l = format_ident!("l{}", li);
+        Some(V {
+            e: quote!((*#l).clone()),
+            ty: d.locals[li].1.clone(),
+        })
     }
 
     /// The registers of a visit that come from the frame's parameters:

@@ -169,7 +169,10 @@
 //! improper list handed to the machine as before); nothing is split at the
 //! selection, no element cloned or dropped per visit. When the variant
 //! holds the cell alone and the visit's next situation is its own with its
-//! own tail (`try([P|Ps])` to `try(Ps)`), the visit is a cursor
+//! own tail (`try([P|Ps])` to `try(Ps)`), or holds other fields that this
+//! next situation passes on as they are (`walk([P|Ps], T)` to `walk(Ps,
+//! T)`, [`Gen::nat_cursor_passing`]: the fields cloned out for the visit),
+//! the visit is a cursor
 //! ([`Gen::nat_cursor`]): `P` cloned out, the list advanced in place
 //! (`List::advance`), `Ps` the list itself by reference, and, unrecorded,
 //! the variant left where it is (`break 'step`, no next variant built nor
@@ -1113,9 +1116,13 @@ impl Gen<'_> {
                         Some(body) => quote!(let #t = &*#k; #body),
                         None => quote!(let #t = (*#k).clone(); #body),
                     };
+                    // The variant's other fields (passed on unchanged by
+                    // the visit's own next situation, `walk(Ps, T)`): their
+                    // values, the variant left holding them.
+                    let others = names.iter().filter(|x| **x != k);
                     (
                         Some(quote!(let (#h, #t) = #k.head_tail(); let #t = &#t;)),
-                        quote!(#head #k.advance(); #body),
+                        quote!(#(let #others = (*#others).clone();)* #head #k.advance(); #body),
                     )
                 }
                 Some(c) => {
@@ -1683,6 +1690,36 @@ impl Gen<'_> {
     fn nat_cursor(&self, d: &Dm, ix: usize) -> bool {
         self.nat_cell(d, ix)
             .is_some_and(|c| self.nat_holds_only(d, ix, c.head, c.tail))
+    }
+
+    /// [`Gen::nat_cursor`], or a variant holding other fields beside its
+    /// cell (`walk([P|Ps], T)`) whose own next situation, the tail at
+    /// argument `i`, passes every other id argument on as it is, each a
+    /// variable of the id held in a field (`walk(Ps, T)`): advanced in
+    /// place, the variant keeps them (the arm clones them out for the
+    /// visit, as the next variant's fields were cloned).
+    fn nat_cursor_passing(&self, d: &Dm, ix: usize, i: usize, args: &[V]) -> bool {
+        if self.nat_cursor(d, ix) {
+            return true;
+        }
+        let Some(c) = self.nat_cell(d, ix) else {
+            return false;
+        };
+        let Ok(fields) = self.nat_fields(d, ix) else {
+            return false;
+        };
+        let mut passed = 0;
+        for (k, a) in args.iter().enumerate() {
+            if k == i {
+                continue;
+            }
+            match Self::nat_id_reg(d, ix, &[k]) {
+                Some(r) if reg(r) == moved(a).to_string() => passed += 1,
+                _ => return false,
+            }
+        }
+        // Every field is the cell's or one of those passed on.
+        fields.len() == passed + 2 && fields.iter().any(|(r, _)| *r == c.tail)
     }
 
     /// Whether situation `ix`'s variant holds no field but the cell's
@@ -3724,7 +3761,7 @@ impl Gen<'_> {
                     let cursor = (d.plans[cur].id == (name, args.len())
                         && c.path == [i]
                         && d.out.borrow().is_empty()
-                        && self.nat_cursor(d, cur))
+                        && self.nat_cursor_passing(d, cur, i, &args))
                     .then_some(cur);
                     movable = Some((quote!((*#x)).to_string(), t, cursor));
                 }
@@ -3848,11 +3885,19 @@ impl Gen<'_> {
             });
             if let (Some(()), Some(c), Some(w)) = (own_cursor, self.nat_cell(d, j), &whole) {
                 let k = c.name();
+                // Fields passed on as they are ([`Gen::nat_cursor_passing`]).
+                let others = fields
+                    .iter()
+                    .filter(|(r, _)| *r != c.head && *r != c.tail)
+                    .map(|(r, _)| {
+                        let (rr, e) = (reg(*r), &values[r]);
+                        quote!(#rr: #e)
+                    });
                 let stay = quote! {
                     if !run.records {
                         break 'step;
                     }
-                    break 'sel Nat::#v { #k: #w.clone() };
+                    break 'sel Nat::#v { #k: #w.clone() #(, #others)* };
                 };
                 let code = wrap_steps(steps, &inline, stay);
                 candidates.push((code, Shape::Other));

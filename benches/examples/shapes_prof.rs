@@ -1,0 +1,486 @@
+//! Workloads of shapes (c) and (d) of issue 37 written from the issue's
+//! text (`tests/typed/shapes/c_*`, `d_*` of helper `ngen11`), each run three
+//! ways for counting instructions with callgrind: the compiled task
+//! (`include_dm!`, native code where the compiler gives it), the
+//! interpreter (`sitlogc run`'s plans) and a hand-written Rust machine doing
+//! the same work (atoms as an interned index, lists as slices, frames on an
+//! explicit stack, `black_box` where `benches/benches/compiled.rs` puts it).
+//!
+//! `shapes_prof WORKLOAD compiled|interp|hand ROUNDS [PLACES]` prints the
+//! transitions; `shapes_prof check` runs every workload all three ways at
+//! a small size and asserts that they make the same transitions.
+//! Instructions per transition: the difference of two callgrind runs of
+//! different lengths over the difference of their transitions
+//! (docs/guide/performance.md, "workloads of the same shapes, not ours").
+
+use sitlog_compiler::interp::Resolved;
+use sitlog_compiler::ir::Ir;
+use sitlog_runtime::machine::{Options, Outcome};
+use sitlog_runtime::testmode::{ScriptPerception, TextActions};
+use sitlog_runtime::{app, Functions, Store};
+use std::hint::black_box;
+use std::path::Path;
+
+mod c_limit_inarg_echo {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_limit_inarg_echo");
+}
+mod c_counter_param {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_counter_param");
+}
+mod c_outarg_cond {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_outarg_cond");
+}
+mod c_deeper_echo {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_deeper_echo");
+}
+mod d_target_in_id {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_target_in_id");
+}
+mod d_id_shares_param {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_id_shares_param");
+}
+mod d_local_places {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_local_places");
+}
+mod d_const_ints {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_const_ints");
+}
+mod d_built_list {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_built_list");
+}
+mod d_acc_seen {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_acc_seen");
+}
+mod d_found_rest {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_found_rest");
+}
+mod d_shelf_pairs {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_shelf_pairs");
+}
+
+/// Runs a program with `--history none`'s options; its transitions.
+fn run<A: app::App>(app: &A, main: &str) -> u64 {
+    let mut perception = ScriptPerception::new("script", String::new());
+    let mut actions = TextActions::new(std::io::sink(), Vec::new());
+    let options = Options {
+        keep_history: false,
+        ..Options::default()
+    };
+    let (outcome, _store): (Outcome, Store) = app::run(
+        app,
+        main,
+        None,
+        options,
+        Functions::standard(),
+        &mut perception,
+        &mut actions,
+        None,
+    )
+    .expect("runs");
+    assert!(outcome.result.is_ok(), "{main}: {:?}", outcome.result);
+    outcome.transitions
+}
+
+fn interpreter(dir: &str) -> Ir {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../tests/typed/shapes")
+        .join(dir);
+    let (checked, _) = sitlog_compiler::check_path(&dir).expect("readable");
+    sitlog_compiler::ir::lower(&checked.expect("checks"))
+}
+
+/// An atom of the hand-written machines: an interned index.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+struct Sym(u32);
+
+/// (c) with the limit in the pipe: `depth` 1 (the callee hands the pipe
+/// back) or 2 (a DM between, passing it through); the count in the
+/// caller's id, a local or the callee's parameter (all an `i64` here).
+/// `start`: the caller's first situation setting the pipe.
+fn hand_echo(limit: i64, depth: u32, cond_out: bool) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask,
+        Over,
+        Hop(bool),
+        Take,
+        Back,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut n, mut transitions) = (0i64, 0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                pipe = black_box(limit);
+                *top = Frame::Ask;
+            }
+            Frame::Ask => {
+                let callee = if depth == 2 {
+                    Frame::Hop(false)
+                } else {
+                    Frame::Take
+                };
+                stack.push(callee);
+            }
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Hop(false) => {
+                *top = Frame::Hop(true);
+                stack.push(Frame::Take);
+            }
+            Frame::Take => {
+                transitions += 1;
+                // in_arg X, out_arg X (or the conditional on X).
+                pipe = black_box(if cond_out && pipe <= 0 { 1 } else { pipe });
+                *top = Frame::Back;
+            }
+            Frame::Back | Frame::Hop(true) => {
+                transitions += 1;
+                stack.pop();
+                if depth == 2 {
+                    if let Some(Frame::Hop(true)) = stack.last() {
+                        // `hop`'s recursive situation concludes, its final.
+                        transitions += 2;
+                        stack.pop();
+                    }
+                }
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < pipe { Frame::Ask } else { Frame::Over };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// What a walk's final hands back.
+#[derive(Clone, Copy)]
+enum Exit<'a, T> {
+    Found(T),
+    FoundRest(T, &'a [T]),
+    NotFound,
+}
+
+/// (d): `rounds` calls of a walk over `items` for `target`, the list a
+/// slice, the element compared by `==`; `start`: the caller's first
+/// situation (one transition); `rest`: the final hands back the rest.
+fn hand_walk<T: Copy + PartialEq>(
+    rounds: i64,
+    items: &[T],
+    target: T,
+    start: bool,
+    rest: bool,
+) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a, T> {
+        Round,
+        Stop,
+        Begin,
+        Try(&'a [T]),
+        Final(Exit<'a, T>),
+    }
+    let mut stack: Vec<Frame<T>> = vec![Frame::Round];
+    let (mut n, mut transitions) = (0i64, u64::from(start));
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items);
+            }
+            Frame::Try([]) => {
+                transitions += 1;
+                *top = Frame::Final(Exit::NotFound);
+            }
+            Frame::Try([p, ps @ ..]) => {
+                transitions += 1;
+                *top = if *p == target {
+                    Frame::Final(if rest {
+                        Exit::FoundRest(*p, ps)
+                    } else {
+                        Exit::Found(*p)
+                    })
+                } else {
+                    Frame::Try(ps)
+                };
+            }
+            Frame::Final(exit) => {
+                transitions += 1;
+                // The caller's exit arc binds what the final hands back.
+                match exit {
+                    Exit::Found(p) => black_box(Some(p)),
+                    Exit::FoundRest(p, r) => {
+                        black_box(r);
+                        black_box(Some(p))
+                    }
+                    Exit::NotFound => black_box(None),
+                };
+                stack.pop();
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) with an accumulator: the places passed kept in a `Vec` (reused
+/// from round to round), handed back by the final.
+fn hand_walk_seen(rounds: i64, items: &[Sym], target: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Look(&'a [Sym]),
+        Found(Sym),
+        NotFound,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let mut seen: Vec<Sym> = Vec::with_capacity(items.len());
+    let (mut n, mut transitions) = (0i64, 1u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                seen.clear();
+                *top = Frame::Look(items);
+            }
+            Frame::Look([]) => {
+                transitions += 1;
+                *top = Frame::NotFound;
+            }
+            Frame::Look([p, ps @ ..]) => {
+                transitions += 1;
+                *top = if *p == target {
+                    Frame::Found(*p)
+                } else {
+                    seen.push(*p);
+                    Frame::Look(ps)
+                };
+            }
+            Frame::Found(_) | Frame::NotFound => {
+                transitions += 1;
+                let found = match *top {
+                    Frame::Found(p) => Some(p),
+                    _ => None,
+                };
+                black_box((found, &seen));
+                stack.pop();
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// A list of `len` places `p0..`, as text, and as symbols.
+fn places(len: usize) -> (String, Vec<Sym>) {
+    let names: Vec<String> = (0..len).map(|i| format!("p{i}")).collect();
+    (
+        format!("[{}]", names.join(",")),
+        (0..len as u32).map(Sym).collect(),
+    )
+}
+
+const INTS: [i64; 8] = [12, 7, 33, 41, 5, 18, 29, 64];
+
+/// Runs workload `name` one way; its transitions.
+fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
+    let (list, syms) = places(len);
+    let last = format!("p{}", len - 1);
+    let lsym = Sym(len as u32 - 1);
+    let pairs: Vec<String> = (0..len).map(|i| format!("p{i}-s{}", i % 5)).collect();
+    let pairs_text = format!("[{}]", pairs.join(","));
+    let sym_pairs: Vec<(Sym, Sym)> = (0..len as u32).map(|i| (Sym(i), Sym(i % 5))).collect();
+    let main = match name {
+        "c_limit_inarg_echo" | "c_counter_param" | "c_outarg_cond" | "c_deeper_echo" => {
+            format!("relay({n})")
+        }
+        "d_target_in_id" | "d_id_shares_param" => format!("hunt({n}, {list}, {last})"),
+        "d_local_places" => format!("tour({n}, cellar)"),
+        "d_const_ints" => format!("drill({n}, 64)"),
+        "d_built_list" => format!("patrol({n}, {list}, p0)"),
+        "d_acc_seen" => format!("survey({n}, {list}, {last})"),
+        "d_found_rest" => format!("visit({n}, {list}, {last})"),
+        "d_shelf_pairs" => format!("stock({n}, {pairs_text}, {last})"),
+        _ => panic!("no workload {name}"),
+    };
+    macro_rules! ways {
+        ($m:ident) => {
+            match way {
+                "compiled" => run($m::program(), &main),
+                "interp" => run(&Resolved::new(&interpreter(name)), &main),
+                _ => unreachable!(),
+            }
+        };
+    }
+    if way == "hand" {
+        let n = black_box(n);
+        return match name {
+            "c_limit_inarg_echo" | "c_counter_param" => hand_echo(n, 1, false),
+            "c_outarg_cond" => hand_echo(n, 1, true),
+            "c_deeper_echo" => hand_echo(n, 2, false),
+            "d_target_in_id" | "d_id_shares_param" => {
+                hand_walk(n, black_box(&syms), black_box(lsym), true, false)
+            }
+            "d_local_places" => {
+                hand_walk(n, black_box(&syms[..8]), black_box(Sym(7)), false, false)
+            }
+            "d_const_ints" => hand_walk(n, black_box(&INTS), black_box(64), true, false),
+            "d_built_list" => {
+                let reversed: Vec<Sym> = syms.iter().rev().copied().collect();
+                1 + hand_walk(n, black_box(&reversed), black_box(Sym(0)), false, false)
+            }
+            "d_acc_seen" => hand_walk_seen(n, black_box(&syms), black_box(lsym)),
+            "d_found_rest" => hand_walk(n, black_box(&syms), black_box(lsym), false, true),
+            "d_shelf_pairs" => {
+                // The item compared, the shelf handed back: a pair's key.
+                hand_walk_pairs(n, black_box(&sym_pairs), black_box(lsym))
+            }
+            _ => unreachable!(),
+        };
+    }
+    match name {
+        "c_limit_inarg_echo" => ways!(c_limit_inarg_echo),
+        "c_counter_param" => ways!(c_counter_param),
+        "c_outarg_cond" => ways!(c_outarg_cond),
+        "c_deeper_echo" => ways!(c_deeper_echo),
+        "d_target_in_id" => ways!(d_target_in_id),
+        "d_id_shares_param" => ways!(d_id_shares_param),
+        "d_local_places" => ways!(d_local_places),
+        "d_const_ints" => ways!(d_const_ints),
+        "d_built_list" => ways!(d_built_list),
+        "d_acc_seen" => ways!(d_acc_seen),
+        "d_found_rest" => ways!(d_found_rest),
+        "d_shelf_pairs" => ways!(d_shelf_pairs),
+        _ => unreachable!(),
+    }
+}
+
+/// (d) over pairs: the key compared, the shelf handed back.
+fn hand_walk_pairs(rounds: i64, pairs: &[(Sym, Sym)], item: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Check(&'a [(Sym, Sym)]),
+        On(Sym),
+        None,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut transitions) = (0i64, 1u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Check(pairs);
+            }
+            Frame::Check([]) => {
+                transitions += 1;
+                *top = Frame::None;
+            }
+            Frame::Check([(i, s), more @ ..]) => {
+                transitions += 1;
+                *top = if *i == item {
+                    Frame::On(*s)
+                } else {
+                    Frame::Check(more)
+                };
+            }
+            Frame::On(_) | Frame::None => {
+                transitions += 1;
+                let shelf = match *top {
+                    Frame::On(s) => Some(s),
+                    _ => None,
+                };
+                black_box(shelf);
+                stack.pop();
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+const ALL: [&str; 12] = [
+    "c_limit_inarg_echo",
+    "c_counter_param",
+    "c_outarg_cond",
+    "c_deeper_echo",
+    "d_target_in_id",
+    "d_id_shares_param",
+    "d_local_places",
+    "d_const_ints",
+    "d_built_list",
+    "d_acc_seen",
+    "d_found_rest",
+    "d_shelf_pairs",
+];
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("check") {
+        for name in ALL {
+            for len in [8, 13] {
+                let t: Vec<u64> = ["compiled", "interp", "hand"]
+                    .iter()
+                    .map(|w| one(name, w, 7, len))
+                    .collect();
+                println!("{name} {len}: {t:?}");
+                assert!(t[0] == t[1] && t[1] == t[2], "{name}: {t:?}");
+            }
+        }
+        return;
+    }
+    let [name, way, n, rest @ ..] = &args[..] else {
+        panic!("usage: shapes_prof WORKLOAD compiled|interp|hand ROUNDS [PLACES]");
+    };
+    let len = rest.first().map_or(8, |l| l.parse().expect("places"));
+    let t = one(name, way, n.parse().expect("rounds"), len);
+    println!("{t}");
+}
