@@ -3,7 +3,7 @@
 //! common ASCII tokens (names, variables, symbol atoms, plain integers, quoted
 //! atoms without escapes) are scanned without the grammar, to the same token
 //! (`fast_token`; the grammar stays the reference and says every error): a
-//! start of `sitlogc run --legacy` reads some 10 MB of DMs and Prolog, and
+//! start of `sitlogc run --legacy` reads about a megabyte of DMs and Prolog, and
 //! pest was a sixth of its instructions.
 
 use crate::atom::{atoms, Atom};
