@@ -1596,41 +1596,86 @@ fn add_clauses<P: std::borrow::Borrow<Prepared>>(
             let _ = write!(q, "({})", p.borrow().text);
         }
         q.push_str("),R).");
-        match first_answer(machine, &q, "R") {
-            Ok(Some(PTerm::List(refusals))) => {
-                for r in refusals {
-                    let (k, e) = match r {
-                        PTerm::Compound(f, mut a) if f == "-" && a.len() == 2 => {
-                            let e = a.pop();
-                            (a.pop(), e)
-                        }
-                        other => (None, Some(other)),
-                    };
-                    // `K`: the clause's argument number in `c(...)`.
-                    let k = match k {
-                        Some(PTerm::Integer(k)) => usize::try_from(&k).ok(),
-                        _ => None,
-                    };
-                    let k = k.and_then(|k| k.checked_sub(1));
-                    let (i, p) = match k.and_then(|k| batch.get(k)) {
-                        Some((i, p)) => (*i, p.borrow()),
-                        None => (batch[0].0, batch[0].1.borrow()),
-                    };
-                    let answer = Ok(e.map(|e| PTerm::Compound("error".into(), vec![e])));
-                    let mut one = Vec::new();
-                    load_error(answer, p, &mut one);
-                    one.into_iter().for_each(|e| refused(i, e));
-                }
-            }
-            Ok(Some(PTerm::Atom(a))) if a == "[]" => {}
-            // The batch as a whole failed (not expected; some of its
-            // clauses may be in): an error at its first clause.
-            other => {
+        refusals(machine, &q, batch, &mut refused);
+    }
+}
+
+/// Runs the query `q`, whose `R` is the list of `K-E` for each element
+/// `K` (from 1) of `batch` the engine refused with the error `E`, and
+/// gives each to `refused` with its error at its position.
+fn refusals<P: std::borrow::Borrow<Prepared>>(
+    machine: &mut Machine,
+    q: &str,
+    batch: &[(usize, P)],
+    refused: &mut impl FnMut(usize, PrologLoadError),
+) {
+    match first_answer(machine, q, "R") {
+        Ok(Some(PTerm::List(refusals))) => {
+            for r in refusals {
+                let (k, e) = match r {
+                    PTerm::Compound(f, mut a) if f == "-" && a.len() == 2 => {
+                        let e = a.pop();
+                        (a.pop(), e)
+                    }
+                    other => (None, Some(other)),
+                };
+                // `K`: the clause's argument number in `c(...)`.
+                let k = match k {
+                    Some(PTerm::Integer(k)) => usize::try_from(&k).ok(),
+                    _ => None,
+                };
+                let k = k.and_then(|k| k.checked_sub(1));
+                let (i, p) = match k.and_then(|k| batch.get(k)) {
+                    Some((i, p)) => (*i, p.borrow()),
+                    None => (batch[0].0, batch[0].1.borrow()),
+                };
+                let answer = Ok(e.map(|e| PTerm::Compound("error".into(), vec![e])));
                 let mut one = Vec::new();
-                load_error(other, batch[0].1.borrow(), &mut one);
-                one.into_iter().for_each(|e| refused(batch[0].0, e));
+                load_error(answer, p, &mut one);
+                one.into_iter().for_each(|e| refused(i, e));
             }
         }
+        Ok(Some(PTerm::Atom(a))) if a == "[]" => {}
+        // The batch as a whole failed (not expected; some of its
+        // clauses may be in): an error at its first clause.
+        other => {
+            let mut one = Vec::new();
+            load_error(other, batch[0].1.borrow(), &mut one);
+            one.into_iter().for_each(|e| refused(batch[0].0, e));
+        }
+    }
+}
+
+/// Stubs asserted by one query.
+const STUB_BATCH: usize = 512;
+
+/// Asserts the stub clause (`P(V..) :- '$sitlog_lazy'(Id, P, A), P(V..)`,
+/// [`lazify`]) of each waiting predicate of
+/// `preds` (its name and arity, its number in the [`LazyStore`]; its place
+/// for errors: the [`Prepared`] at the same index of `stubs`), as
+/// [`add_clauses`] would, but built by the prelude
+/// (`'$sitlog_stubs'/2`) from `s(Name, Arity, Id)`: the engine reads a
+/// few characters a predicate rather than a clause with its head twice
+/// (reading them was a third of a stub's cost: `example` under `--legacy`,
+/// 680 stubs, 60 M instructions less).
+fn add_stubs(
+    machine: &mut Machine,
+    stubs: &[(usize, Prepared)],
+    preds: &[((Atom, usize), usize)],
+    mut refused: impl FnMut(usize, PrologLoadError),
+) {
+    for (batch, preds) in stubs.chunks(STUB_BATCH).zip(preds.chunks(STUB_BATCH)) {
+        let mut q = String::from("'$sitlog_stubs'([");
+        for (k, ((name, arity), id)) in preds.iter().enumerate() {
+            if k > 0 {
+                q.push(',');
+            }
+            q.push_str("s(");
+            write_atom(&mut q, *name);
+            let _ = write!(q, ",{arity},{id})");
+        }
+        q.push_str("],R).");
+        refusals(machine, &q, batch, &mut refused);
     }
 }
 
@@ -1694,6 +1739,7 @@ fn lazify<P: std::borrow::Borrow<Prepared>>(
         return;
     };
     let mut stubs = Vec::with_capacity(order.len());
+    let mut ids = Vec::with_capacity(order.len());
     for (k, key) in order.iter().enumerate() {
         let first = members[key][0].1;
         let id = lazy.len();
@@ -1702,10 +1748,11 @@ fn lazify<P: std::borrow::Borrow<Prepared>>(
             arity: key.1,
             clauses: members[key].iter().map(|(_, p)| p.text.clone()).collect(),
         }));
+        ids.push((*key, id));
         stubs.push((
             k,
             Prepared {
-                text: stub_text(id, *key),
+                text: String::new(),
                 directive: false,
                 file: first.file.clone(),
                 line: first.line,
@@ -1718,7 +1765,7 @@ fn lazify<P: std::borrow::Borrow<Prepared>>(
     let base = lazy.len() - order.len();
     drop(lazy);
     let mut refused_stubs = Vec::new();
-    add_clauses(machine, &stubs, |k, _| refused_stubs.push(k));
+    add_stubs(machine, &stubs, &ids, |k, _| refused_stubs.push(k));
     if refused_stubs.is_empty() {
         return;
     }
@@ -1749,6 +1796,7 @@ fn wrap_ahead(
         return;
     }
     let mut stubs = Vec::new();
+    let mut preds = Vec::new();
     let mut now = String::new();
     if let Ok(mut store) = lazy.lock() {
         let mut waiting: HashMap<(Atom, usize), usize> = HashMap::new();
@@ -1785,10 +1833,11 @@ fn wrap_ahead(
                 arity: w.legacy.1,
                 clauses,
             }));
+            preds.push((w.legacy, legacy_id));
             stubs.push((
                 stubs.len(),
                 Prepared {
-                    text: stub_text(legacy_id, w.legacy),
+                    text: String::new(),
                     directive: false,
                     file: NATIVE_FILE.into(),
                     line: 0,
@@ -1799,7 +1848,7 @@ fn wrap_ahead(
             ));
         }
     }
-    add_clauses(machine, &stubs, |_, e| errors.push(e));
+    add_stubs(machine, &stubs, &preds, |_, e| errors.push(e));
     if !now.is_empty() {
         now.push_str("R = ok.");
         let _ = first_answer(machine, &now, "R");
@@ -1874,25 +1923,6 @@ fn rebuild(
         new.push(rebuild(store, a, host, terms, depth + 1)?);
     }
     Ok(store.compound(f, &new))
-}
-
-/// The stub clause of the waiting predicate `key`, number `id` ([`lazify`]).
-fn stub_text(id: usize, (name, arity): (Atom, usize)) -> String {
-    let mut head = String::new();
-    write_atom(&mut head, name);
-    if arity > 0 {
-        head.push('(');
-        for i in 0..arity {
-            if i > 0 {
-                head.push(',');
-            }
-            let _ = write!(head, "_V{i}");
-        }
-        head.push(')');
-    }
-    let mut n = String::new();
-    write_atom(&mut n, name);
-    format!("':-'({head},','('$sitlog_lazy'({id},{n},{arity}),{head}))")
 }
 
 /// The answer to an `L` request (a waiting predicate's number): its clauses

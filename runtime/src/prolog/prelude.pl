@@ -265,6 +265,17 @@ get_last_situation(History, S) :-
     ;   true
     ).
 
+% The stubs of waiting predicates (engine.rs, add_stubs), from
+% s(N, A, Id) each, in order; R as for '$sitlog_add_all'/2.
+'$sitlog_stubs'(Ss, R) :-
+    '$sitlog_stubs'(Ss, 1, R).
+'$sitlog_stubs'([], _, []).
+'$sitlog_stubs'([s(N, A, Id)|Ss], K, R) :-
+    functor(H, N, A),
+    catch((assertz((H :- '$sitlog_lazy'(Id, N, A), H)), R = R1), E, R = [K-E|R1]),
+    K1 is K + 1,
+    '$sitlog_stubs'(Ss, K1, R1).
+
 '$sitlog_lazy_add'([]).
 '$sitlog_lazy_add'([Cs|Gs]) :-
     '$sitlog_add_all'(Cs, R),
