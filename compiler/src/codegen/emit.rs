@@ -33,6 +33,7 @@ impl Gen<'_> {
         // DM modules.
         let mut dm_namer = Namer::default();
         let mut modules = Vec::new();
+        let mut dm_rows = Vec::new();
         let mut dm_mods = Vec::new();
         // The DMs with instance builders (a template whose text does not
         // read back): their own `instantiate`.
@@ -51,6 +52,7 @@ impl Gen<'_> {
             dm_mods.push(m.clone());
             let items = self.emit_dm(dm, i, &m);
             modules.push(items.module);
+            dm_rows.push(items.row);
             let ix = Literal::u32_unsuffixed(i as u32);
             if items.builders {
                 builder_arms.push(quote!(#ix => #m::instantiate(self, sit, store),));
@@ -231,9 +233,8 @@ impl Gen<'_> {
             ///
             /// Each DM is a module `dm_<name>` (its items documented here once):
             /// `SITUATIONS` (per situation its kind, id (name, arity), line and
-            /// column, read by the runtime's `SitTable`), `DM` (its name, the
-            /// file it is written in, its head's arity when the table makes
-            /// it), `TEMPLATES` (the situations' templates (D-7) as `writeq`
+            /// column, read by the runtime's `SitTable` with the DM's row of
+            /// `DMS`), `TEMPLATES` (the situations' templates (D-7) as `writeq`
             /// text, read once into the program's store; `""` for a
             /// situation never instantiated from one), and for the situations
             /// with native code (see `sitlog_compiler::codegen::native`) `enum
@@ -281,6 +282,11 @@ impl Gen<'_> {
             #[allow(dead_code)]
             pub type NatResult = Result<Option<Step>, RunError>;
 
+            /// The program's DMs in load order: each one's name, the file it
+            /// is written in, its head's arity when the table makes its head
+            /// (`DmRow`).
+            pub const DMS: [DmRow; #dm_count] = [#(#dm_rows),*];
+
             /// The program's ground compound terms (and big integers) as
             /// `writeq` text, read once by [`Program::new`]; code names
             /// constant `i` `k[i]`.
@@ -297,7 +303,8 @@ impl Gen<'_> {
                     #(#const_fixups)*
                     let (templates, sits) = machine::read_dms(
                         store,
-                        &[#((&#dm_mods::DM, &#dm_mods::SITUATIONS, &#dm_mods::TEMPLATES)),*],
+                        &DMS,
+                        &[#((&#dm_mods::SITUATIONS, &#dm_mods::TEMPLATES)),*],
                     );
                     let mut store = ::std::mem::take(store);
                     store.freeze();
@@ -814,6 +821,7 @@ impl Gen<'_> {
         } else {
             quote!()
         };
+        // Its row of the program's `DMS`.
         let file = Literal::string(dm.location.rsplitn(3, ':').nth(2).unwrap_or(&dm.location));
         let dm_name = Literal::string(dm.name.as_str());
         let head_row = match head {
@@ -823,6 +831,7 @@ impl Gen<'_> {
             }
             None => quote!(None),
         };
+        let row = quote!(DmRow::new(#dm_name, #file, #head_row));
         let instantiate = if builders {
             quote! {
                 /// A fresh instance of a situation: built by code where its
@@ -853,8 +862,6 @@ impl Gen<'_> {
 
                 pub const SITUATIONS: [SitRow; #count_lit] = [#(#rows),*];
 
-                pub const DM: DmRow = DmRow::new(#dm_name, #file, #head_row);
-
                 #head_fn
 
                 #locals_fn
@@ -875,6 +882,7 @@ impl Gen<'_> {
         };
         DmItems {
             module,
+            row,
             head,
             builders,
             selects,
@@ -901,6 +909,8 @@ impl Gen<'_> {
 /// dispatch calls it has.
 struct DmItems {
     module: TokenStream,
+    /// Its row of the program's `DMS` (`DmRow::new(name, file, head)`).
+    row: TokenStream,
     /// The arity of a head the program's table makes (its `DmRow::head`;
     /// `None`: the DM's `head` makes it).
     head: Option<usize>,

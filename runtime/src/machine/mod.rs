@@ -10,7 +10,8 @@
 //! Rust values) does integer arithmetic, list walks, exit matching and its
 //! frames itself, and agrees with this machine by test (see the crate doc).
 //! What a compiled program tells the machine about its situations is data,
-//! read by generic code here: each situation's row (`SitTable`: kind, id
+//! read by generic code here: each DM's row (`DmRow`: name, file, head),
+//! each situation's row (`SitTable`: kind, id
 //! functor, whether it runs as code, where it is written) and its template
 //! (`Templates`), on whose id a compiled situation is selected exactly as
 //! the interpreter's plan selects it (constants of a simple id, else a

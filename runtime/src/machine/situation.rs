@@ -245,7 +245,7 @@ impl SitRow {
     }
 }
 
-/// What a compiled program says of one of its DMs (its module's `DM`):
+/// What a compiled program says of one of its DMs (a row of its `DMS`):
 /// its name, the file it is written in, and its head's arity when the head
 /// is the name alone or the name with distinct variables (`None`: another
 /// head, made by the DM's own code). Read once into a [`SitTable`].
@@ -265,13 +265,18 @@ impl DmRow {
 }
 
 /// A compiled program's DMs read once when it is built: their situations'
-/// table and templates (each DM's `DM`, `SITUATIONS` and `TEMPLATES`, in
-/// load order).
-pub fn read_dms(store: &mut Store, dms: &[(&DmRow, &[SitRow], &[&str])]) -> (Templates, SitTable) {
-    let templates = dms.iter().map(|&(_, _, texts)| texts).collect::<Vec<_>>();
+/// table and templates (the program's `DMS`, and each DM's `SITUATIONS`
+/// and `TEMPLATES`, in load order).
+pub fn read_dms(
+    store: &mut Store,
+    dms: &[DmRow],
+    tables: &[(&[SitRow], &[&str])],
+) -> (Templates, SitTable) {
+    let templates = tables.iter().map(|&(_, texts)| texts).collect::<Vec<_>>();
     let sits = dms
         .iter()
-        .map(|&(dm, rows, _)| (dm, rows))
+        .zip(tables)
+        .map(|(dm, &(rows, _))| (dm, rows))
         .collect::<Vec<_>>();
     (Templates::read(store, &templates), SitTable::new(&sits))
 }
