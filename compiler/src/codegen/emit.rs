@@ -243,7 +243,8 @@ impl Gen<'_> {
             /// place while it runs; `Nat::id_term`, its id filled from its
             /// pattern), `Frame` (the DM's frame on the native stack: parameters,
             /// locals, the `Nat` it is in), `nat_call_term` (the DM's call term
-            /// from the frame's parameters), `nat_entry` (the frame entered at a
+            /// from the frame's parameters; none for a DM whose head is an atom,
+            /// made by `NatFrame`'s dispatch), `nat_entry` (the frame entered at a
             /// situation, its values converted: `None` when one does not),
             /// `nat_step` (runs the frame on the program's native stack until it
             /// calls a DM (`call` set), ends in a final below the base, or hands

@@ -3,7 +3,8 @@
 //! (its parameters `p0..`, its locals `l0..`, an output slot `out<i>:
 //! Option<T>` per output parameter a native caller may pass as
 //! `Ground::OUT` (`super::call`), and the situation it is in, all native
-//! values), its `nat_call_term`, `nat_wait` and `nat_hand_over`, and in
+//! values), its `nat_call_term` (none for a DM whose head is an atom),
+//! `nat_wait` and `nat_hand_over`, and in
 //! the program's module `enum NatFrame` (a variant per native DM) with its
 //! `machine::NatFrames` impl: a dispatch to each DM's module. The stack
 //! itself is the runtime's (`sitlog_runtime::machine::nat_drive`, generic
@@ -216,19 +217,34 @@ impl Gen<'_> {
                 }
             }
         };
+        // A DM whose head is an atom: its call term is made by the
+        // program's dispatch (`NatFrames::call_term`), no function here.
+        let call_fn = if self.head_is_atom(d.dm) {
+            quote!()
+        } else {
+            quote! {
+                pub(crate) fn nat_call_term(p: &Program, cx: &mut Ctx, frame: &Frame) -> Term {
+                    let a = &p.atoms;
+                    #call
+                }
+            }
+        };
         let items = quote! {
             #hand_fn
 
             pub struct Frame { #(#decls,)* pub at: Nat }
 
-            pub(crate) fn nat_call_term(p: &Program, cx: &mut Ctx, frame: &Frame) -> Term {
-                let a = &p.atoms;
-                #call
-            }
+            #call_fn
 
             #wait_fn
         };
         Ok(FrameItems { items, names, outs })
+    }
+
+    /// Whether DM `dm`'s head is an atom (no parameters: its call term is
+    /// the atom, made by the program's `NatFrames::call_term`).
+    fn head_is_atom(&self, dm: &IrDm) -> bool {
+        matches!(self.store.value(dm.head), sitlog_runtime::Value::Atom(_))
     }
 
     /// Whether DM `d` has native code (a `Frame`), and whether a call of
@@ -297,6 +313,20 @@ impl Gen<'_> {
                 aliases.push(quote!(pub(crate) type #n = #m::Nat;));
             }
         }
+        // The call term of a DM whose head is an atom: the atom (no
+        // `nat_call_term` in its module).
+        let call_arms: Vec<TokenStream> = native
+            .iter()
+            .map(|&d| {
+                let (v, m) = (format_ident!("D{}", d), &mods[d]);
+                if self.head_is_atom(&ir.dms[d]) {
+                    let a = &self.atoms[self.atom_ix[&ir.dms[d].name]].1;
+                    quote!(NatFrame::#v(_) => cx.build_of(p.atoms.#a, &[]),)
+                } else {
+                    quote!(NatFrame::#v(f) => #m::nat_call_term(p, cx, f),)
+                }
+            })
+            .collect();
         let ixs: Vec<Literal> = native
             .iter()
             .map(|&d| Literal::u32_unsuffixed(d as u32))
@@ -332,7 +362,7 @@ impl Gen<'_> {
                     match self { #(NatFrame::#vs(f) => #ms::nat_step(p, cx, f, ret, stack, call, run),)* }
                 }
                 fn call_term(&self, p: &Program, cx: &mut Cx<'_, '_, Program>) -> Term {
-                    match self { #(NatFrame::#vs(f) => #ms::nat_call_term(p, cx, f),)* }
+                    match self { #(#call_arms)* }
                 }
                 /// `*self = next`, `self` a frame that reached its final:
                 /// no drop code for a DM whose frame holds nothing to drop.
