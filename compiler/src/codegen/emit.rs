@@ -9,8 +9,9 @@
 //! no `run_situation` or `run_native` of its own), `fresh_head` makes a
 //! head that is an atom or of distinct variables (a DM's own `head` only
 //! for another), `locals` (a DM's own function only when it has locals),
-//! `dm_by_name`, and the native driver's `nat_hand_over` for a DM without
-//! parameters or locals. Invariant: the program's dispatch names only the
+//! `dm_by_name`; the runtime's `machine::nat_hand_over` serves a DM without
+//! parameters or locals, and its `machine::nat_drive` runs the native stack
+//! over the program's `NatFrame`. Invariant: the program's dispatch names only the
 //! per-DM functions a DM's module has (`DmItems` says which).
 
 use super::*;
@@ -32,6 +33,7 @@ impl Gen<'_> {
         // DM modules.
         let mut dm_namer = Namer::default();
         let mut modules = Vec::new();
+        let mut dm_rows = Vec::new();
         let mut dm_mods = Vec::new();
         // The DMs with instance builders (a template whose text does not
         // read back): their own `instantiate`.
@@ -50,6 +52,7 @@ impl Gen<'_> {
             dm_mods.push(m.clone());
             let items = self.emit_dm(dm, i, &m);
             modules.push(items.module);
+            dm_rows.push(items.row);
             let ix = Literal::u32_unsuffixed(i as u32);
             if items.builders {
                 builder_arms.push(quote!(#ix => #m::instantiate(self, sit, store),));
@@ -67,10 +70,10 @@ impl Gen<'_> {
                 run_arms.push(quote!(#ix => return #m::run_situation(self, sit, cx),));
                 term_arms.push(quote!(#ix => #m::run_situation(self, sit, cx),));
             }
-            head_arms.push(match &items.head {
-                Some(e) => quote!(#ix => #e,),
-                None => quote!(#ix => #m::head(self, store),),
-            });
+            // A head the table does not make: the DM's `head`.
+            if items.head.is_none() {
+                head_arms.push(quote!(#ix => #m::head(self, store),));
+            }
             if !dm.locals.is_empty() {
                 locals_arms.push(quote!(#ix => #m::locals(self, store),));
             }
@@ -78,7 +81,7 @@ impl Gen<'_> {
                 exit_dm_arms.push(quote!(#ix => #m::run_exit(self, sit, saved, final_id, cx),));
             }
         }
-        let native_driver = self.native_driver(ir, &dm_mods);
+        let native_driver = self.native_driver(ir, &dm_mods, &modules);
         // A DM with every situation native: its frame entered here and run
         // by the native driver (`Step::Template`: a value did not convert).
         let run_body = if any_all_native {
@@ -90,7 +93,7 @@ impl Gen<'_> {
                 match frame {
                     Some(frame) => {
                         let run = cx.typed_run();
-                        nat_drive(self, cx, frame, &run)
+                        machine::nat_drive(self, cx, frame, &run)
                     }
                     None => Ok(Step::Template),
                 }
@@ -145,6 +148,15 @@ impl Gen<'_> {
                 _ => true,
             })
         };
+        // The heads the table does not make (`DmRow::head` `None`).
+        let head_rest = if head_arms.is_empty() {
+            quote!(panic!("no DM number {dm}"))
+        } else {
+            quote!(match dm {
+                #(#head_arms)*
+                _ => panic!("no DM number {dm}"),
+            })
+        };
         let run_exit_body = if exit_dm_arms.is_empty() {
             quote!(Err(cx.error("the situation has no compiled code", None)))
         } else {
@@ -154,14 +166,6 @@ impl Gen<'_> {
             })
         };
         let dm_count = Literal::usize_unsuffixed(ir.dms.len());
-        let dm_ix: Vec<Literal> = (0..ir.dms.len() as u32)
-            .map(Literal::u32_unsuffixed)
-            .collect();
-
-        let dm_name_arms = ir.dms.iter().zip(&dm_ix).map(|(dm, ix)| {
-            let a = &self.atoms[self.atom_ix[&dm.name]].1;
-            quote!(#ix => self.atoms.#a,)
-        });
 
         // Globals.
         let global_names: Vec<Ident> = (0..ir.globals.len())
@@ -229,9 +233,9 @@ impl Gen<'_> {
             ///
             /// Each DM is a module `dm_<name>` (its items documented here once):
             /// `SITUATIONS` (per situation its kind, id (name, arity), line and
-            /// column, read by the runtime's `SitTable`), `FILE` (the file the DM
-            /// is written in), `TEMPLATES` (the situations' templates (D-7) as
-            /// `writeq` text, read once into the program's store; `""` for a
+            /// column, read by the runtime's `SitTable` with the DM's row of
+            /// `DMS`), `TEMPLATES` (the situations' templates (D-7) as `writeq`
+            /// text, read once into the program's store; `""` for a
             /// situation never instantiated from one), and for the situations
             /// with native code (see `sitlog_compiler::codegen::native`) `enum
             /// Nat` (one variant per situation, its fields the id's variables; a
@@ -239,19 +243,23 @@ impl Gen<'_> {
             /// place while it runs; `Nat::id_term`, its id filled from its
             /// pattern), `Frame` (the DM's frame on the native stack: parameters,
             /// locals, the `Nat` it is in), `nat_call_term` (the DM's call term
-            /// from the frame's parameters), `nat_entry` (the frame entered at a
+            /// from the frame's parameters; none for a DM whose head is an atom,
+            /// made by `NatFrame`'s dispatch), `nat_entry` (the frame entered at a
             /// situation, its values converted: `None` when one does not),
             /// `nat_step` (runs the frame on the program's native stack until it
             /// calls a DM (`call` set), ends in a final below the base, or hands
             /// over to the machine; never inlined: the driver's dispatch on
             /// `NatFrame` then only jumps to it and pays no other DM's prologue),
             /// `nat_hand_over` (before the machine sees the state: the native
-            /// frames below made machine frames, the locals written back; the
-            /// program's for a DM without parameters or locals), `nat_wait` (a
-            /// frame waiting for its callee made the machine's, the callee's
-            /// pushed; the program's `nat_wait_none` for a DM without waiting
-            /// situations) and, in a DM with term code too, `run_native` (an
-            /// all-native DM's frame is entered by `run_situation`).
+            /// frames below made machine frames, `machine::nat_hand_over_of`,
+            /// the locals written back; the runtime's `nat_hand_over` for a DM
+            /// without parameters or locals), `nat_wait` (a frame waiting for
+            /// its callee made the machine's, the callee's pushed; the
+            /// runtime's `nat_wait_none` for a DM without waiting situations)
+            /// and, in a DM with term code too, `run_native` (an all-native
+            /// DM's frame is entered by `run_situation`). The native stack
+            /// itself is the runtime's (`machine::nat_drive`), over the
+            /// program's `NatFrame`.
             #[allow(dead_code, non_camel_case_types, unused_variables, clippy::all)]
             pub struct Program {
                 /// Frozen store holding the constants; every run starts from a clone.
@@ -275,6 +283,11 @@ impl Gen<'_> {
             #[allow(dead_code)]
             pub type NatResult = Result<Option<Step>, RunError>;
 
+            /// The program's DMs in load order: each one's name, the file it
+            /// is written in, its head's arity when the table makes its head
+            /// (`DmRow`).
+            pub const DMS: [DmRow; #dm_count] = [#(#dm_rows),*];
+
             /// The program's ground compound terms (and big integers) as
             /// `writeq` text, read once by [`Program::new`]; code names
             /// constant `i` `k[i]`.
@@ -289,8 +302,11 @@ impl Gen<'_> {
                     let store = &mut store;
                     let #k_mut k = machine::read_consts(store, &CONSTS);
                     #(#const_fixups)*
-                    let templates = machine::Templates::read(store, &[#(&#dm_mods::TEMPLATES),*]);
-                    let sits = SitTable::new(&[#((#dm_mods::FILE, &#dm_mods::SITUATIONS)),*]);
+                    let (templates, sits) = machine::read_dms(
+                        store,
+                        &DMS,
+                        &[#((&#dm_mods::SITUATIONS, &#dm_mods::TEMPLATES)),*],
+                    );
                     let mut store = ::std::mem::take(store);
                     store.freeze();
                     Program { store, atoms: a, k, templates, sits }
@@ -334,10 +350,7 @@ impl Gen<'_> {
                     (0..#dm_count).find(|&dm| self.dm_name(dm) == name)
                 }
                 fn dm_name(&self, dm: DmIx) -> Atom {
-                    match dm {
-                        #(#dm_name_arms)*
-                        _ => panic!("no DM number {dm}"),
-                    }
+                    self.sits.dm_name(dm)
                 }
                 fn situation_count(&self, dm: DmIx) -> usize {
                     self.sits.count(dm)
@@ -346,9 +359,9 @@ impl Gen<'_> {
                     self.sits.kind(dm, sit)
                 }
                 fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Term {
-                    match dm {
-                        #(#head_arms)*
-                        _ => panic!("no DM number {dm}"),
+                    match self.sits.fresh_head(dm, store) {
+                        Some(head) => head,
+                        None => #head_rest,
                     }
                 }
                 fn instantiate(
@@ -700,14 +713,11 @@ impl Gen<'_> {
             }
             None => quote!(),
         };
-        // An atom head is the atom, `name(A, B, ..)` one call, both made
-        // by the program's `fresh_head`; another is built with fresh
-        // variables by the DM's `head`.
+        // An atom head is the atom, `name(A, B, ..)` its name with fresh
+        // variables, both made by the program's table (`DmRow::head`);
+        // another is built with fresh variables by the DM's `head`.
         let head = match self.store.value(dm.head) {
-            Value::Atom(a) => {
-                let a = &self.atoms[self.atom_ix[&a]].1;
-                Some(quote!(Term::atom(self.atoms.#a)))
-            }
+            Value::Atom(_) => Some(0),
             _ => self.fresh_head(dm.head),
         };
         let head_fn = if head.is_some() {
@@ -812,7 +822,17 @@ impl Gen<'_> {
         } else {
             quote!()
         };
+        // Its row of the program's `DMS`.
         let file = Literal::string(dm.location.rsplitn(3, ':').nth(2).unwrap_or(&dm.location));
+        let dm_name = Literal::string(dm.name.as_str());
+        let head_row = match head {
+            Some(n) => {
+                let n = Literal::usize_unsuffixed(n);
+                quote!(Some(#n))
+            }
+            None => quote!(None),
+        };
+        let row = quote!(DmRow::new(#dm_name, #file, #head_row));
         let instantiate = if builders {
             quote! {
                 /// A fresh instance of a situation: built by code where its
@@ -843,8 +863,6 @@ impl Gen<'_> {
 
                 pub const SITUATIONS: [SitRow; #count_lit] = [#(#rows),*];
 
-                pub const FILE: &str = #file;
-
                 #head_fn
 
                 #locals_fn
@@ -865,6 +883,7 @@ impl Gen<'_> {
         };
         DmItems {
             module,
+            row,
             head,
             builders,
             selects,
@@ -873,19 +892,17 @@ impl Gen<'_> {
         }
     }
 
-    /// A head `name(A, B, ..)` of distinct variables (every DM's but a
-    /// test's) made by one call: `store.fresh_compound::<N>(p.atoms.name)`.
-    fn fresh_head(&self, head: Term) -> Option<TokenStream> {
-        let (name, n) = self.store.functor(head)?;
+    /// The arity of a head `name(A, B, ..)` of distinct variables (every
+    /// DM's but a test's), made by the program's `SitTable::fresh_head`.
+    fn fresh_head(&self, head: Term) -> Option<usize> {
+        let (_, n) = self.store.functor(head)?;
         let mut seen = std::collections::HashSet::new();
         let distinct = self
             .store
             .args(head)
             .iter()
             .all(|&a| matches!(self.store.value(a), Value::Var(v) if seen.insert(v.index())));
-        let a = &self.atoms[self.atom_ix[&name]].1;
-        let n = Literal::usize_unsuffixed(n);
-        (distinct && !seen.is_empty()).then(|| quote!(store.fresh_compound::<#n>(self.atoms.#a)))
+        (distinct && !seen.is_empty()).then_some(n)
     }
 }
 
@@ -893,9 +910,11 @@ impl Gen<'_> {
 /// dispatch calls it has.
 struct DmItems {
     module: TokenStream,
-    /// The head made by one expression of the program's `fresh_head`
-    /// (`None`: the DM's `head` makes it).
-    head: Option<TokenStream>,
+    /// Its row of the program's `DMS` (`DmRow::new(name, file, head)`).
+    row: TokenStream,
+    /// The arity of a head the program's table makes (its `DmRow::head`;
+    /// `None`: the DM's `head` makes it).
+    head: Option<usize>,
     /// Instance builders: its own `instantiate`.
     builders: bool,
     /// Compiled situations without a template: its own `select_compiled`
@@ -976,7 +995,7 @@ fn line_col(location: &str) -> (Literal, Literal) {
 }
 
 /// The identifiers in `ts`, as text.
-fn idents_in(ts: &TokenStream, out: &mut std::collections::HashSet<String>) {
+pub(super) fn idents_in(ts: &TokenStream, out: &mut std::collections::HashSet<String>) {
     for tt in ts.clone() {
         match tt {
             proc_macro2::TokenTree::Group(g) => idents_in(&g.stream(), out),

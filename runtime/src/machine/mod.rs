@@ -10,7 +10,8 @@
 //! Rust values) does integer arithmetic, list walks, exit matching and its
 //! frames itself, and agrees with this machine by test (see the crate doc).
 //! What a compiled program tells the machine about its situations is data,
-//! read by generic code here: each situation's row (`SitTable`: kind, id
+//! read by generic code here: each DM's row (`DmRow`: name, file, head),
+//! each situation's row (`SitTable`: kind, id
 //! functor, whether it runs as code, where it is written) and its template
 //! (`Templates`), on whose id a compiled situation is selected exactly as
 //! the interpreter's plan selects it (constants of a simple id, else a
@@ -27,11 +28,14 @@
 //! - `program`: [`DmProgram`], [`Step`], [`Cx`], [`Between`];
 //! - `steps`: the semantic steps of one situation;
 //! - `cx`: the steps as [`Cx`] offers them to compiled code;
+//! - `native_stack`: the native stack of compiled code ([`nat_drive`],
+//!   [`NatBelow`], [`NatFrames`]: what the program's frames must offer);
 //! - `run`: the loop (DM calls and returns, selection of situations, garbage
 //!   collection between them).
 
 mod cx;
 mod io;
+mod native_stack;
 mod observe;
 mod options;
 mod outcome;
@@ -43,12 +47,16 @@ mod steps;
 
 pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, FromIdParts};
 pub use io::{Actions, Perceived, Perception};
+pub use native_stack::{
+    nat_drive, nat_hand_over, nat_hand_over_of, nat_materialize, nat_replace_done, nat_wait_none,
+    NatBelow, NatFrames,
+};
 pub use observe::{Inspection, Observer};
 pub use options::Options;
 pub use outcome::{ErrorSite, Outcome, RunError};
 pub use program::{Between, Cx, DmProgram, Next, Step, TypedRun, Visit};
 pub use situation::{
-    none_marker, read_consts, read_templates, DmIx, Instance, Kind, SitIx, SitRow, SitTable,
-    Templates,
+    none_marker, read_consts, read_dms, read_templates, DmIx, DmRow, Instance, Kind, SitIx, SitRow,
+    SitTable, Templates,
 };
 pub use state::Machine;

@@ -245,6 +245,42 @@ impl SitRow {
     }
 }
 
+/// What a compiled program says of one of its DMs (a row of its `DMS`):
+/// its name, the file it is written in, and its head's arity when the head
+/// is the name alone or the name with distinct variables (`None`: another
+/// head, made by the DM's own code). Read once into a [`SitTable`].
+#[derive(Clone, Copy, Debug)]
+pub struct DmRow {
+    pub name: &'static str,
+    pub file: &'static str,
+    pub head: Option<usize>,
+}
+
+impl DmRow {
+    /// DM `name`, written in `file`, its head `name(V1, .., Vn)` of `n`
+    /// distinct variables (`Some(0)`: the atom `name`) or another (`None`).
+    pub const fn new(name: &'static str, file: &'static str, head: Option<usize>) -> DmRow {
+        DmRow { name, file, head }
+    }
+}
+
+/// A compiled program's DMs read once when it is built: their situations'
+/// table and templates (the program's `DMS`, and each DM's `SITUATIONS`
+/// and `TEMPLATES`, in load order).
+pub fn read_dms(
+    store: &mut Store,
+    dms: &[DmRow],
+    tables: &[(&[SitRow], &[&str])],
+) -> (Templates, SitTable) {
+    let templates = tables.iter().map(|&(_, texts)| texts).collect::<Vec<_>>();
+    let sits = dms
+        .iter()
+        .zip(tables)
+        .map(|(dm, &(rows, _))| (dm, rows))
+        .collect::<Vec<_>>();
+    (Templates::read(store, &templates), SitTable::new(&sits))
+}
+
 /// One situation of a [`SitTable`], its id's name interned.
 #[derive(Clone, Copy, Debug)]
 struct SitEntry {
@@ -260,15 +296,21 @@ struct SitEntry {
 pub struct SitTable {
     /// Per DM: its file, its situations.
     dms: Vec<(&'static str, Vec<SitEntry>)>,
+    /// Per DM: its name, interned, and its head's arity ([`DmRow::head`]).
+    heads: Vec<(Atom, Option<usize>)>,
 }
 
 impl SitTable {
-    /// The table of a program whose DM number `i` is written in file
-    /// `dms[i].0` and has the rows `dms[i].1`.
-    pub fn new(dms: &[(&'static str, &[SitRow])]) -> SitTable {
+    /// The table of a program whose DM number `i` is `dms[i].0` and has
+    /// the rows `dms[i].1`.
+    pub fn new(dms: &[(&DmRow, &[SitRow])]) -> SitTable {
+        let heads = dms
+            .iter()
+            .map(|(dm, _)| (Atom::intern(dm.name), dm.head))
+            .collect();
         let dms = dms
             .iter()
-            .map(|&(file, rows)| {
+            .map(|&(dm, rows)| {
                 let rows = rows
                     .iter()
                     .map(|r| SitEntry {
@@ -278,10 +320,37 @@ impl SitTable {
                         at: r.at,
                     })
                     .collect();
-                (file, rows)
+                (dm.file, rows)
             })
             .collect();
-        SitTable { dms }
+        SitTable { dms, heads }
+    }
+
+    /// The name of DM `dm`.
+    pub fn dm_name(&self, dm: DmIx) -> Atom {
+        match self.heads.get(dm as usize) {
+            Some(&(name, _)) => name,
+            None => panic!("no DM number {dm}"),
+        }
+    }
+
+    /// A fresh head of DM `dm`, when it is its name alone or its name with
+    /// distinct variables (`None`: another head, [`DmRow::head`]).
+    pub fn fresh_head(&self, dm: DmIx, store: &mut Store) -> Option<Term> {
+        let (name, arity) = match self.heads.get(dm as usize) {
+            Some(&(name, arity)) => (name, arity?),
+            None => panic!("no DM number {dm}"),
+        };
+        let mut vars = [Term::NIL; 16];
+        if arity <= vars.len() {
+            for v in &mut vars[..arity] {
+                *v = store.new_var();
+            }
+            Some(store.compound(name, &vars[..arity]))
+        } else {
+            let vars: Vec<Term> = (0..arity).map(|_| store.new_var()).collect();
+            Some(store.compound(name, &vars))
+        }
     }
 
     #[inline]

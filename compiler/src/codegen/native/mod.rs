@@ -112,8 +112,8 @@
 //!   the start of a visit only when code uses it before declaring it.
 //!
 //! - *frames and calls* ([`frame`], [`call`]): each DM with native code
-//!   has a `Frame` (parameters, locals, its `Nat`); the program's
-//!   `nat_drive` runs frames on an explicit stack: a recursive situation
+//!   has a `Frame` (parameters, locals, its `Nat`); the runtime's
+//!   `machine::nat_drive` runs the program's `NatFrame`s on an explicit stack: a recursive situation
 //!   with native code whose callee's initial situation has native code
 //!   (and whose arguments fit the callee's frame) pushes the callee's
 //!   frame (no Rust recursion, no term), the callee's final variant resumes
@@ -1394,7 +1394,7 @@ impl Gen<'_> {
                 let Some(frame) = nat_entry(p, cx, sit) else {
                     return Ok(None);
                 };
-                super::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run).map(Some)
+                machine::nat_drive(p, cx, super::NatFrame::#variant_d(frame), &run).map(Some)
             }
         };
         // Counted on inference's types: a register that holds no value

@@ -1,0 +1,356 @@
+//! The native stack of a compiled program: the driver that runs native
+//! frames (`nat_drive`), the frames below the running one as its code sees
+//! them ([`NatBelow`]) and the hand-over that makes them machine frames
+//! (`nat_materialize`), generic over the program's frame type
+//! ([`NatFrames`], its `enum NatFrame`: a variant per native DM). Generated
+//! code implements [`NatFrames`] by a dispatch to each DM's module; what
+//! does not depend on the DMs is written once here, monomorphized in the
+//! program's crate (the same machine code as when it was generated per
+//! program).
+//!
+//! The driver keeps an explicit stack of native frames, each run where it
+//! lies: a callee runs where the driver holds it and, at a final reached
+//! without calling, its caller resumes at once with a reference to it (a
+//! call and its return in one turn, nothing pushed); a callee that calls in
+//! turn is pushed, and its final resumes the caller with a reference to it,
+//! then pops it (or gives its slot to the caller's next call, made at once:
+//! without drop code when the finished callee's DM holds nothing to drop,
+//! [`NatFrames::replace_done`]); the depth room read from the machine once,
+//! again only once the frames below became its own; no frame moved out and
+//! back per step, no Rust recursion per nested DM, no term built.
+//!
+//! Invariant: the machine's DM stack is the native stack's bottom frame
+//! (the DM the machine entered) and what is below it; native code reads or
+//! writes the machine's frames only after [`nat_materialize`] (every native
+//! frame below the running one made a machine frame, waiting in its
+//! recursive situation as the interpreter's would, `Cx::wait_template`,
+//! bottom first) and after writing its locals back.
+
+use super::{Cx, DmIx, DmProgram, Fault, RunError, Step, TypedRun};
+use crate::machine::AsTerm;
+use crate::Term;
+
+/// A program's native frames (its `enum NatFrame`, a variant per native
+/// DM): what the driver asks of a frame, each a dispatch to the frame's DM.
+pub trait NatFrames<P: DmProgram>: Sized {
+    /// Runs the frame (`ret`: the callee it waited for, at its final)
+    /// until it calls a DM (`call` set), ends in a final below the base
+    /// (`None`, no `call`), or hands over to the machine (`Some(step)`).
+    fn step(
+        &mut self,
+        p: &P,
+        cx: &mut Cx<'_, '_, P>,
+        ret: Option<&mut Self>,
+        stack: &mut NatBelow<'_, Self>,
+        call: &mut Option<Self>,
+        run: &TypedRun,
+    ) -> Result<Option<Step>, RunError>;
+    /// The frame's DM call, as a term (from its parameters).
+    fn call_term(&self, p: &P, cx: &mut Cx<'_, '_, P>) -> Term;
+    /// `*self = next`, `self` a frame that reached its final (without
+    /// drop code for a DM whose frame holds nothing to drop).
+    fn replace_done(&mut self, next: Self);
+    /// The frame's DM.
+    fn dm(&self) -> DmIx;
+    /// The frame, waiting for `callee` (of DM `callee_dm`), made the
+    /// machine's, the callee's pushed.
+    fn wait(
+        &self,
+        p: &P,
+        cx: &mut Cx<'_, '_, P>,
+        callee: Term,
+        callee_dm: DmIx,
+    ) -> Result<(), RunError>;
+}
+
+/// The native frames below the running one, bottom first (the base frame,
+/// then the pushed ones); `gone` once they were made machine frames
+/// ([`nat_materialize`]): the running frame is the native stack's bottom
+/// from then on.
+pub struct NatBelow<'s, F> {
+    base: Option<&'s F>,
+    mid: &'s [F],
+    gone: &'s mut bool,
+    /// `Cx::depth_room` when the driver last looked (the machine's frames
+    /// change only when the native ones become theirs, `gone`).
+    room: usize,
+}
+
+impl<F> NatBelow<'_, F> {
+    /// How many native frames are below the running one.
+    #[inline]
+    pub fn len(&self) -> usize {
+        if *self.gone {
+            0
+        } else {
+            usize::from(self.base.is_some()) + self.mid.len()
+        }
+    }
+
+    /// Whether the running frame is the native stack's bottom.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Whether a callee's frame may go on the native stack: the frames
+    /// below, the running one and the machine's stay within the depth
+    /// limit (`Cx::depth_room` asked again once the frames below became the
+    /// machine's).
+    #[inline]
+    pub fn has_room<P: DmProgram>(&self, cx: &Cx<'_, '_, P>) -> bool {
+        if *self.gone {
+            0 < cx.depth_room()
+        } else {
+            self.len() < self.room
+        }
+    }
+}
+
+/// Runs native frames from `base` (the DM the machine entered) on an
+/// explicit stack until one hands over to the machine. Frames stay where
+/// they are while they run (`frames`, above `base`): a callee runs where the
+/// driver holds it, and when it reaches its final without calling, its
+/// caller's exit arcs read it there at once (a call and its return in one
+/// turn of the inner loop, no push, no pop); a callee that calls in turn
+/// (or below which the frames became the machine's) is pushed, and a pushed
+/// callee that reached its final is read in place by its caller's exit
+/// arcs, then popped. Never inlined (into the program's `run_situation`,
+/// its caller for an all-native DM: inlined there, its loop measured 2
+/// instructions a call more).
+#[inline(never)]
+pub fn nat_drive<P: DmProgram, F: NatFrames<P>>(
+    p: &P,
+    cx: &mut Cx<'_, '_, P>,
+    base: F,
+    run: &TypedRun,
+) -> Result<Step, RunError> {
+    let mut base = base;
+    let mut frames: Vec<F> = Vec::new();
+    let mut call = None;
+    // The top frame reached a final: its caller runs next.
+    let mut returning = false;
+    let mut gone = false;
+    // The top frame already ran (a callee run where it is held, below):
+    // only what it left is handled.
+    let mut ran = false;
+    let mut room = cx.depth_room();
+    loop {
+        if !ran {
+            let n = frames.len();
+            let stepped = match (n, returning) {
+                (0, _) => {
+                    let mut below = NatBelow {
+                        base: None,
+                        mid: &[],
+                        gone: &mut gone,
+                        room,
+                    };
+                    base.step(p, cx, None, &mut below, &mut call, run)
+                }
+                (1, true) => {
+                    let mut below = NatBelow {
+                        base: None,
+                        mid: &[],
+                        gone: &mut gone,
+                        room,
+                    };
+                    base.step(p, cx, frames.last_mut(), &mut below, &mut call, run)
+                }
+                (_, true) => {
+                    let (callee, rest) = frames.split_last_mut().unwrap();
+                    let (top, mid) = rest.split_last_mut().unwrap();
+                    let mut below = NatBelow {
+                        base: Some(&base),
+                        mid,
+                        gone: &mut gone,
+                        room,
+                    };
+                    top.step(p, cx, Some(callee), &mut below, &mut call, run)
+                }
+                (_, false) => {
+                    let (top, mid) = frames.split_last_mut().unwrap();
+                    let mut below = NatBelow {
+                        base: Some(&base),
+                        mid,
+                        gone: &mut gone,
+                        room,
+                    };
+                    top.step(p, cx, None, &mut below, &mut call, run)
+                }
+            };
+            if let Some(step) = stepped? {
+                return Ok(step);
+            }
+            if returning {
+                returning = false;
+                // The caller called again (a loop of calls): the new callee
+                // takes the finished one's place.
+                if !gone {
+                    if let Some(callee) = call.take() {
+                        if let Some(top) = frames.last_mut() {
+                            *top = callee;
+                        }
+                        continue;
+                    }
+                }
+                frames.pop();
+            }
+        }
+        ran = false;
+        if gone {
+            // The frames below the running one are the machine's now.
+            if let Some(top) = frames.pop() {
+                base = top;
+            }
+            frames.clear();
+            gone = false;
+            room = cx.depth_room();
+        }
+        let Some(mut callee) = call.take() else {
+            if frames.is_empty() {
+                return Err(cx.error("native code ended its base DM without handing over", None));
+            }
+            returning = true;
+            continue;
+        };
+        // The callee runs where it is held, not pushed: when it reaches its
+        // final without calling, its caller resumes reading it at once (one
+        // turn per call, no push, no pop).
+        loop {
+            let stepped = {
+                let mut below = NatBelow {
+                    base: Some(&base),
+                    mid: &frames,
+                    gone: &mut gone,
+                    room,
+                };
+                callee.step(p, cx, None, &mut below, &mut call, run)
+            };
+            if let Some(step) = stepped? {
+                return Ok(step);
+            }
+            if gone || call.is_some() {
+                // It called in turn, or the frames below are the machine's:
+                // it is the top frame that ran.
+                frames.push(callee);
+                break;
+            }
+            let stepped = match frames.split_last_mut() {
+                None => {
+                    let mut below = NatBelow {
+                        base: None,
+                        mid: &[],
+                        gone: &mut gone,
+                        room,
+                    };
+                    base.step(p, cx, Some(&mut callee), &mut below, &mut call, run)
+                }
+                Some((top, mid)) => {
+                    let mut below = NatBelow {
+                        base: Some(&base),
+                        mid,
+                        gone: &mut gone,
+                        room,
+                    };
+                    top.step(p, cx, Some(&mut callee), &mut below, &mut call, run)
+                }
+            };
+            if let Some(step) = stepped? {
+                return Ok(step);
+            }
+            if !gone {
+                if let Some(next) = call.take() {
+                    // A loop of calls: the next callee is held where the
+                    // finished one was.
+                    callee.replace_done(next);
+                    continue;
+                }
+            }
+            // The caller is the top frame that ran; its finished callee is
+            // dropped.
+            break;
+        }
+        ran = true;
+    }
+}
+
+/// Before the running frame of DM `dm` hands over: the frames below made
+/// the machine's (`args`: the frame's parameters, its call's arguments).
+/// The hand-over of a DM without parameters or locals (`args` empty), and
+/// what a DM's own `nat_hand_over` does before writing its locals back.
+#[cold]
+#[inline(never)]
+pub fn nat_hand_over_of<P: DmProgram, F: NatFrames<P>>(
+    p: &P,
+    cx: &mut Cx<'_, '_, P>,
+    stack: &mut NatBelow<'_, F>,
+    dm: DmIx,
+    args: &[&dyn AsTerm],
+) -> Result<(), RunError> {
+    if !stack.is_empty() {
+        let own_call = cx.build_of(p.dm_name(dm), args);
+        nat_materialize(p, cx, stack, own_call, dm)?;
+    }
+    Ok(())
+}
+
+/// [`nat_hand_over_of`] a DM without parameters or locals.
+#[cold]
+#[inline(never)]
+pub fn nat_hand_over<P: DmProgram, F: NatFrames<P>>(
+    p: &P,
+    cx: &mut Cx<'_, '_, P>,
+    stack: &mut NatBelow<'_, F>,
+    dm: DmIx,
+) -> Result<(), RunError> {
+    nat_hand_over_of(p, cx, stack, dm, &[])
+}
+
+/// Makes the native frames below the running one (called as `top`, DM
+/// `top_dm`) machine frames, bottom first.
+pub fn nat_materialize<P: DmProgram, F: NatFrames<P>>(
+    p: &P,
+    cx: &mut Cx<'_, '_, P>,
+    stack: &mut NatBelow<'_, F>,
+    top: Term,
+    top_dm: DmIx,
+) -> Result<(), RunError> {
+    if *stack.gone {
+        return Ok(());
+    }
+    *stack.gone = true;
+    let mut frames = stack.base.into_iter().chain(stack.mid.iter()).peekable();
+    while let Some(f) = frames.next() {
+        let (callee, callee_dm) = match frames.peek() {
+            Some(next) => (next.call_term(p, cx), next.dm()),
+            None => (top, top_dm),
+        };
+        f.wait(p, cx, callee, callee_dm)?;
+    }
+    Ok(())
+}
+
+/// `*slot = next`, `slot` a frame of DM frame type `T` that reached its
+/// final ([`NatFrames::replace_done`]): without drop code when `T` holds
+/// nothing to drop (decided at compile time, per DM).
+#[inline(always)]
+pub fn nat_replace_done<T, F>(slot: &mut F, next: F) {
+    if std::mem::needs_drop::<T>() {
+        *slot = next;
+    } else {
+        std::mem::forget(std::mem::replace(slot, next));
+    }
+}
+
+/// `nat_wait` of a DM without waiting situations: no frame of it waits for
+/// a callee.
+pub fn nat_wait_none<P: DmProgram, F>(
+    _p: &P,
+    cx: &mut Cx<'_, '_, P>,
+    _frame: &F,
+    _callee: Term,
+    _callee_dm: DmIx,
+) -> Result<(), RunError> {
+    Err(cx.fault(Fault::WaitsForNone))
+}
