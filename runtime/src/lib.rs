@@ -12,8 +12,9 @@
 //!   code on terms run on the same [`machine`] and its steps. Generated
 //!   *native* code (native values, `sitlog_compiler::codegen::native`) does a
 //!   few steps itself: integer arithmetic and comparisons, list heads and
-//!   tails, matching a callee's final situation against exit arcs, its own
-//!   stack of typed frames. There agreement is not by construction but by
+//!   tails, matching a callee's final situation against exit arcs, and its frames
+//!   are typed (`machine::native_stack` drives them, generic over the
+//!   program's frame type). There agreement is not by construction but by
 //!   test, with the history kept and without (native code's own DM stack):
 //!   the examples (`tests/tests/suite/agreement.rs`), every scenario and
 //!   world variant (`home.rs`, `supermarket.rs`), the typed agreement cases

@@ -573,7 +573,7 @@ impl Gen<'_> {
             // Its row of `SITUATIONS`: a situation that runs as code by its
             // compiled id (the machine asks no cheap filter of it), another
             // by its id's functor.
-            // (Its DM's file is `FILE`: a DM is written in one file.)
+            // (Its DM's file is its row of the program's `DMS`: a DM is written in one file.)
             let (line, col) = line_col(&s.location);
             rows.push(match self.mir.plan(dm_ix as u32, i as u32) {
                 Some(plan) => {

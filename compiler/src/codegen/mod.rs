@@ -26,8 +26,10 @@
 //!   ([`crate::mir::ty`]), native code (`native`), tried first: the DM's
 //!   `enum Nat` (a variant per situation, the id's variables as typed
 //!   fields), its `Frame` (parameters and locals as `i64`/`f64`/`Atom`/
-//!   `List`/`Val`) and one driver for the program running native frames on
-//!   an explicit stack (no Rust recursion); the term code above runs the
+//!   `List`/`Val`), and the program's `NatFrame` (a variant per native DM,
+//!   implementing the runtime's `machine::NatFrames`), which the runtime's
+//!   one driver (`machine::native_stack`) runs on an explicit stack (no
+//!   Rust recursion); the term code above runs the
 //!   situations native code does not take;
 //! - for every situation that does not run as code, its template (D-7) as
 //!   `writeq` text in the DM's `TEMPLATES`, read once into the program's
@@ -38,7 +40,7 @@
 //!   non-ground parts, ground parts being constants);
 //! - each DM's `SITUATIONS` table (a `SitRow` per situation: kind, id
 //!   name and arity, whether it runs as code, line and column in the DM's
-//!   `FILE`), read by the runtime's `SitTable` for `kind`, `may_select`,
+//!   file, which the program's `DMS` table names), read by the runtime's `SitTable` for `kind`, `may_select`,
 //!   `location`, `compiled_id`; a compiled situation with a template
 //!   selects on that template's id as the interpreter's plan does
 //!   (`machine::Templates::select`), so only one without a template has

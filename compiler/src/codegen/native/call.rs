@@ -178,12 +178,15 @@ impl Gen<'_> {
             }
             Build::Compound(name, args) => {
                 // Evaluated only for `get(l, _)` of locals held natively:
-                // their values (a read, nothing written or bound).
+                // their values (a read, nothing written or bound). The
+                // call's own name must not be an L construct (`last/2`,
+                // `append/3`, ...): evaluated, it would not name the DM.
                 if *eval_call
                     && !inert(call)
-                    && !args
-                        .iter()
-                        .all(|a| inert(a) || self.nat_local_get(d, ix, a).is_some())
+                    && !(sitlog_runtime::eval::evaluates_arguments_only(*name, args.len())
+                        && args
+                            .iter()
+                            .all(|a| inert(a) || self.nat_local_get(d, ix, a).is_some()))
                 {
                     return Err(EVALUATED.into());
                 }
