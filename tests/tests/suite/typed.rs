@@ -697,6 +697,9 @@ mod shapes_ngen11 {
     pub mod id_shares_param {
         sitlog_macros::include_dm!("typed/shapes/d_id_shares_param");
     }
+    pub mod id_param_links {
+        sitlog_macros::include_dm!("typed/shapes/d_id_param_links");
+    }
     pub mod local_places {
         sitlog_macros::include_dm!("typed/shapes/d_local_places");
     }
@@ -775,6 +778,21 @@ fn shapes_written_from_the_issue_agree() {
             &format!("hunt(3, {l}, bed)"),
             "",
         );
+    }
+    // Ids sharing a parameter's variable (D-7): selected as if it were
+    // fresh, then linked with the call's argument where they unify (a
+    // mismatch, a binding of the caller's variable, of the value's, the
+    // initial situation).
+    let ir = interpreter("typed/shapes/d_id_param_links");
+    for main in [
+        "main(other)",
+        "main(k)",
+        "main(3)",
+        "main(f(x))",
+        "main(f(_))",
+        "main",
+    ] {
+        agree(s::id_param_links::program(), &ir, main, "");
     }
     let ir = interpreter("typed/shapes/d_local_places");
     for main in [
