@@ -57,9 +57,22 @@ mod d_found_rest {
 mod d_shelf_pairs {
     sitlog_macros::include_dm!("../tests/typed/shapes/d_shelf_pairs");
 }
+// Ours (`benches/dms`), for comparing the compiled and interpreted runs
+// of a change with the benchmarks' (no hand-written way here: see
+// `benches/benches/compiled.rs`).
+mod echo_calls {
+    sitlog_macros::include_dm!("dms/echo_calls");
+}
+mod list_search {
+    sitlog_macros::include_dm!("dms/list_search");
+}
 
 /// Runs a program with `--history none`'s options; its transitions.
 fn run<A: app::App>(app: &A, main: &str) -> u64 {
+    run_piped(app, main, None)
+}
+
+fn run_piped<A: app::App>(app: &A, main: &str, in_arg: Option<&str>) -> u64 {
     let mut perception = ScriptPerception::new("script", String::new());
     let mut actions = TextActions::new(std::io::sink(), Vec::new());
     let options = Options {
@@ -69,7 +82,7 @@ fn run<A: app::App>(app: &A, main: &str) -> u64 {
     let (outcome, _store): (Outcome, Store) = app::run(
         app,
         main,
-        None,
+        in_arg,
         options,
         Functions::standard(),
         &mut perception,
@@ -82,9 +95,11 @@ fn run<A: app::App>(app: &A, main: &str) -> u64 {
 }
 
 fn interpreter(dir: &str) -> Ir {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../tests/typed/shapes")
-        .join(dir);
+    let root = match dir {
+        "echo_calls" | "list_search" => "dms",
+        _ => "../tests/typed/shapes",
+    };
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
     let (checked, _) = sitlog_compiler::check_path(&dir).expect("readable");
     sitlog_compiler::ir::lower(&checked.expect("checks"))
 }
@@ -334,6 +349,15 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_acc_seen" => format!("survey({n}, {list}, {last})"),
         "d_found_rest" => format!("visit({n}, {list}, {last})"),
         "d_shelf_pairs" => format!("stock({n}, {pairs_text}, {last})"),
+        "list_search" => format!("main({n}, {list}, {last})"),
+        "echo_calls" => {
+            let n = n.to_string();
+            return match way {
+                "compiled" => run_piped(echo_calls::program(), "main", Some(&n)),
+                "interp" => run_piped(&Resolved::new(&interpreter(name)), "main", Some(&n)),
+                _ => panic!("echo_calls: compiled or interp"),
+            };
+        }
         _ => panic!("no workload {name}"),
     };
     macro_rules! ways {
@@ -384,6 +408,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_acc_seen" => ways!(d_acc_seen),
         "d_found_rest" => ways!(d_found_rest),
         "d_shelf_pairs" => ways!(d_shelf_pairs),
+        "list_search" => ways!(list_search),
         _ => unreachable!(),
     }
 }

@@ -439,6 +439,10 @@ impl Gen<'_> {
             };
             b.stmts.push(quote!(#r = #init;));
         }
+        for &(r, i) in &plan.links {
+            let (r, i) = (reg(r), Literal::usize_unsuffixed(i));
+            b.stmts.push(quote!(cx.link_head_arg(#r, #i);));
+        }
         let mut links = Vec::new();
         if let Some((pattern, unify, r)) = &plan.in_arg {
             let pattern = self.build_code(pattern, &mut b);

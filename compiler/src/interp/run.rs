@@ -220,6 +220,9 @@ pub(super) fn run_plan(p: &SitPlan, cx: Rcx<'_, '_, '_, '_>, regs: &mut [Term]) 
             Init::Fresh => cx.var(),
         };
     }
+    for &(r, i) in &p.links {
+        cx.link_head_arg(regs[r as usize], i);
+    }
     let mut links: [Option<Term>; 2] = [None, None];
     let mut n_links = 0;
     if let Some((b, unify, r)) = &p.in_arg {

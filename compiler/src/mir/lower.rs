@@ -66,15 +66,9 @@ impl<'s> Planner<'s> {
         }
         match self.store.value(f[ID]) {
             Value::Atom(a) if a != none_marker() => Some((a, 0)),
-            Value::Compound(name, args) => {
-                // Its variables are the situation's own: none is a parameter.
-                let mut vars = Vec::new();
-                self.term_vars(f[ID], &mut vars);
-                if vars.iter().any(|v| seen.contains(v)) {
-                    return None;
-                }
-                Some((name, args.len()))
-            }
+            // Its variables shared with the DM's head are linked after
+            // selection ([`SitPlan::links`]).
+            Value::Compound(name, args) => Some((name, args.len())),
             _ => None,
         }
     }
@@ -442,6 +436,13 @@ impl<'s> Planner<'s> {
             inits.push((r, init));
             scope.vars.insert(v, r);
         }
+        // Id variables that are parameters: linked to the call after selection (D-7).
+        let links: Vec<(Reg, usize)> = head_vars
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| id_vars_all.contains(v))
+            .filter_map(|(i, v)| scope.vars.get(v).map(|&r| (r, i)))
+            .collect();
         let in_plan = match in_arg {
             Some(t) => Some((self.build(t, &scope.vars, 0)?, in_var.is_none(), self.reg())),
             None => None,
@@ -522,6 +523,7 @@ impl<'s> Planner<'s> {
             compound_id,
             pattern,
             inits,
+            links,
             in_arg: in_plan,
             out_arg: out_plan,
             prog: prog_plan,

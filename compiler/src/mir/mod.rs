@@ -5,7 +5,8 @@
 //! the instantiating path.
 //!
 //! Invariant: the rules of *which situations run as code* (an atom id, or
-//! a compound id none of whose variables is a DM parameter; any type, a
+//! a compound id, whose variables shared with the DM's parameters are
+//! [`SitPlan::links`]; any type, a
 //! compound one built from the situation's variables; a DM whose
 //! parameters are distinct variables; no term deeper than [`MAX_DEPTH`]),
 //! *which variables are lazy* (first occurring as the argument of
@@ -216,6 +217,12 @@ pub struct SitPlan {
     /// An id that is a pattern (then `select` is empty and `compound_id` `None`).
     pub pattern: Option<IdPattern>,
     pub inits: Vec<(Reg, Init)>,
+    /// Id variables that are also DM parameters (`back(N)` in DM
+    /// `mirror(N)`), in the head's order: the id is selected as if they
+    /// were fresh, then each register (the id's value there) is unified
+    /// with the DM call's argument, undone where it does not unify (D-7:
+    /// an instance's fresh head linked argument by argument).
+    pub links: Vec<(Reg, usize)>,
     /// in_arg: the pattern, unified with the pipe when `unify`; kept in `reg`.
     pub in_arg: Option<(Build, bool, Reg)>,
     /// out_arg of a non-recursive situation, built into `reg`.

@@ -619,12 +619,16 @@ fn arith_ty(expr: &Build, reg: &dyn Fn(Reg) -> Ty, store: &Store) -> Ty {
                 }
                 _ => Ty::Term,
             },
+            // No value yet (the fixpoint has not reached it): none either.
             Build::Reg(r) => match reg(*r) {
-                t @ (Ty::Int | Ty::Float) => t,
+                t @ (Ty::Int | Ty::Float | Ty::Never) => t,
                 _ => Ty::Term,
             },
             Build::Compound(op, args) => {
                 let tys: Vec<Ty> = args.iter().map(|a| go(a, reg, store, depth + 1)).collect();
+                if tys.contains(&Ty::Never) {
+                    return Ty::Never;
+                }
                 let all_int = tys.iter().all(|t| *t == Ty::Int);
                 let numeric = tys.iter().all(|t| matches!(t, Ty::Int | Ty::Float));
                 match (op.as_str(), args.len()) {
@@ -1225,6 +1229,7 @@ impl<'a> State<'a> {
             // The evaluator's arithmetic: a number (an int or a float, or a
             // big integer the checked conversion turns away).
             Ty::Term => Typed::of(Ty::Ground),
+            Ty::Never => Typed::never(),
             t => Typed::of(t),
         }
     }
@@ -1487,6 +1492,26 @@ impl<'a> State<'a> {
             };
             self.def(d, s, *r, &t);
         }
+        // An id argument linked with a parameter (D-7): unified, so a
+        // binding either way unless both are values.
+        for &(r, i) in &p.links {
+            let param = self.t.dms[d].params.get(i).cloned();
+            let own = self.t.dms[d].sits[s]
+                .as_ref()
+                .and_then(|x| x.regs.get(r as usize))
+                .cloned();
+            let values = |t: &Option<Typed>| {
+                t.as_ref()
+                    .is_some_and(|t| t.ty == Ty::Never || t.is_native())
+            };
+            if !(values(&param) && values(&own)) {
+                let why = format!(
+                    "an id argument that is parameter {} too, unified with it (D-7), not both values",
+                    i + 1
+                );
+                self.def(d, s, r, &Typed::term(why));
+            }
+        }
         let mut bound: Vec<Reg> = Vec::new();
         if let Some((b, unify, r)) = &p.in_arg {
             if *unify {
@@ -1715,10 +1740,11 @@ impl<'a> State<'a> {
             for i in 0..self.t.dms[c].params.len() {
                 let read = plans.iter().enumerate().any(|(s, p)| {
                     let p = p.as_ref().expect("planned");
-                    p.inits.iter().any(|(r, init)| {
-                        matches!(init, Init::HeadArg(k) if *k == i)
-                            && self.occ[c][s].get(*r as usize) != Some(&0)
-                    })
+                    p.links.iter().any(|&(_, k)| k == i)
+                        || p.inits.iter().any(|(r, init)| {
+                            matches!(init, Init::HeadArg(k) if *k == i)
+                                && self.occ[c][s].get(*r as usize) != Some(&0)
+                        })
                 });
                 if !read {
                     self.t.dms[c].outputs[i] = self.out_param(c, i);
@@ -2064,7 +2090,7 @@ const UNBOUND_WHY: &str = "an unbound variable (`_`, or a variable used once)";
 
 /// How often each register occurs in plan `p`: in a term built or
 /// evaluated, as a destination (`get`/`is` into it), as an arc's import
-/// source; `inits` and fresh lists are not occurrences.
+/// source, linked with a parameter; `inits` and fresh lists are not occurrences.
 fn occurrences(p: &SitPlan) -> Vec<u32> {
     let mut n = vec![0u32; p.regs];
     let mut bump = |r: Reg| {
@@ -2146,6 +2172,9 @@ fn occurrences(p: &SitPlan) -> Vec<u32> {
         }
     }
     let f: &mut dyn FnMut(Reg) = &mut bump;
+    for &(r, _) in &p.links {
+        f(r);
+    }
     for part in p.compound_id.iter().flatten() {
         if let IdPart::Fresh(r) = part {
             f(*r);

@@ -650,6 +650,21 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         }
     }
 
+    /// Links `x`, the selected id's value of a variable that is also head
+    /// parameter `i`, to the running DM's call: unified with argument `i`,
+    /// undone where they do not unify (D-7: a later situation's fresh head
+    /// is linked argument by argument, where possible).
+    pub fn link_head_arg(&mut self, x: Term, i: usize) {
+        self.m.materialize();
+        let dm_id = self.m.frames.last().expect("a frame is running").dm_id;
+        if let Some(a) = self.m.store.arg(dm_id, i) {
+            let mark = self.m.store.mark();
+            if !self.m.store.unify(x, a) {
+                self.m.store.undo_to(mark);
+            }
+        }
+    }
+
     /// The incoming pipe value.
     #[inline]
     pub fn pipe(&self) -> Term {

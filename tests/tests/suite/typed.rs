@@ -697,6 +697,9 @@ mod shapes_ngen11 {
     pub mod id_shares_param {
         sitlog_macros::include_dm!("typed/shapes/d_id_shares_param");
     }
+    pub mod id_param_links {
+        sitlog_macros::include_dm!("typed/shapes/d_id_param_links");
+    }
     pub mod local_places {
         sitlog_macros::include_dm!("typed/shapes/d_local_places");
     }
@@ -728,6 +731,7 @@ fn shapes_written_from_the_issue_agree() {
     let ir = interpreter("typed/shapes/c_counter_param");
     for main in limits {
         agree(s::counter_param::program(), &ir, main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
     }
     let ir = interpreter("typed/shapes/c_outarg_cond");
     for main in limits.iter().chain(&["relay(-3)"]) {
@@ -769,12 +773,26 @@ fn shapes_written_from_the_issue_agree() {
     agree(s::target_in_id::program(), &ir, "hunt(x, [a], a)", "");
     let ir = interpreter("typed/shapes/d_id_shares_param");
     for l in lists {
-        agree(
-            s::id_shares_param::program(),
-            &ir,
-            &format!("hunt(3, {l}, bed)"),
-            "",
-        );
+        let main = format!("hunt(3, {l}, bed)");
+        agree(s::id_shares_param::program(), &ir, &main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, &main, "");
+    }
+    // Ids sharing a parameter's variable (D-7): selected as if it were
+    // fresh, then linked with the call's argument where they unify (a
+    // mismatch, a binding of the caller's variable, of the value's, the
+    // initial situation).
+    let ir = interpreter("typed/shapes/d_id_param_links");
+    for main in [
+        "main(other)",
+        "main(k)",
+        "main(3)",
+        "main(f(x))",
+        "main(f(_))",
+        "main",
+    ] {
+        agree(s::id_param_links::program(), &ir, main, "");
+        // The interpreter's plans too (`sitlogc run`).
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
     }
     let ir = interpreter("typed/shapes/d_local_places");
     for main in [

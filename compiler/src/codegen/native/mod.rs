@@ -1510,6 +1510,18 @@ impl Gen<'_> {
                     }
                 }
             }
+            // An id argument linked with a parameter (D-7): no code when
+            // both are values (they bind nothing); else the term code's link.
+            for &(r, p) in &plan.links {
+                let param = t.params.get(p).map_or(Ty::Term, |p| p.ty.clone());
+                let own = &st.regs[r as usize].ty;
+                if w.is_none() && !(param.is_native() && own.is_native()) {
+                    w = Some(format!(
+                        "its id's argument r{r} is parameter {} too, linked (D-7) where not both are values",
+                        p + 1
+                    ));
+                }
+            }
             why.push(w);
             plans.push(plan);
             types.push(st);
