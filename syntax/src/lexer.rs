@@ -386,8 +386,7 @@ fn fast_token(bytes: &[u8], i: usize, first: u8) -> Option<(Fast, usize)> {
             };
             Some((kind, j))
         }
-        b'#' | b'$' | b'&' | b'*' | b'+' | b'-' | b'.' | b'/' | b':' | b'<' | b'=' | b'>'
-        | b'?' | b'@' | b'^' | b'~' | b'\\' => {
+        b if is_symbol_char(b) => {
             if first == b'/' && bytes.get(i + 1) == Some(&b'*') {
                 return None;
             }

@@ -492,22 +492,24 @@ pub(super) fn with_arc_at(code: &TokenStream, i: usize) -> TokenStream {
     }
 }
 
+/// The identifiers of generated code `ts`, at any depth.
+fn idents(ts: &TokenStream, out: &mut std::collections::BTreeSet<String>) {
+    for t in ts.clone() {
+        match t {
+            proc_macro2::TokenTree::Ident(i) => {
+                out.insert(i.to_string());
+            }
+            proc_macro2::TokenTree::Group(g) => idents(&g.stream(), out),
+            _ => {}
+        }
+    }
+}
+
 /// Whether `code` may move a variable that `reader` reads: one of
 /// `reader`'s identifiers appears in `code` other than as `x.clone()` or
 /// a field's name (conservative: a borrow counts as a move).
 fn moves_any(code: &TokenStream, reader: &TokenStream) -> bool {
     use proc_macro2::TokenTree;
-    fn idents(ts: &TokenStream, out: &mut std::collections::BTreeSet<String>) {
-        for t in ts.clone() {
-            match t {
-                TokenTree::Ident(i) => {
-                    out.insert(i.to_string());
-                }
-                TokenTree::Group(g) => idents(&g.stream(), out),
-                _ => {}
-            }
-        }
-    }
     fn moves(ts: &TokenStream, read: &std::collections::BTreeSet<String>) -> bool {
         let toks: Vec<TokenTree> = ts.clone().into_iter().collect();
         toks.iter().enumerate().any(|(k, t)| match t {
@@ -590,7 +592,7 @@ fn move_last_clones(body: &TokenStream, names: &[Ident]) -> TokenStream {
                             });
                             for t in init {
                                 let mut ids = std::collections::BTreeSet::new();
-                                super_idents(&TokenStream::from(t.clone()), &mut ids);
+                                idents(&TokenStream::from(t.clone()), &mut ids);
                                 held.extend(ids);
                             }
                         }
@@ -603,17 +605,6 @@ fn move_last_clones(body: &TokenStream, names: &[Ident]) -> TokenStream {
                     }
                 }
                 TokenTree::Group(g) => walk(&g.stream(), at, last, held, looped),
-                _ => {}
-            }
-        }
-    }
-    fn super_idents(ts: &TokenStream, out: &mut std::collections::BTreeSet<String>) {
-        for t in ts.clone() {
-            match t {
-                TokenTree::Ident(i) => {
-                    out.insert(i.to_string());
-                }
-                TokenTree::Group(g) => super_idents(&g.stream(), out),
                 _ => {}
             }
         }
