@@ -25,6 +25,8 @@ pub mod write;
 pub use atom::{atoms, Atom};
 pub use decode::{decode, decode_owned, read_file, DecodeError};
 pub use error::{line_col, SyntaxError};
+#[doc(hidden)]
+pub use lexer::fast_path_disagreement;
 pub use ops::{OpDef, OpTable, OpType};
 pub use read::{
     read_clauses, read_clauses_bytes, read_clauses_bytes_with, read_clauses_with,
