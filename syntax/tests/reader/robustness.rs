@@ -256,7 +256,8 @@ fn fifty_megabytes() {
 }
 
 /// Inputs found by fuzzing (fuzz/): each must read without a panic, quickly,
-/// and every clause read must print and read back as the same term.
+/// every clause read must print and read back as the same term, and the
+/// lexer's fast paths must agree with the grammar alone on it.
 #[test]
 fn fuzz_regressions() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz_regressions");
@@ -264,6 +265,11 @@ fn fuzz_regressions() {
     for entry in std::fs::read_dir(dir).expect("fuzz_regressions folder") {
         let bytes = std::fs::read(entry.expect("entry").path()).expect("readable");
         let t = std::time::Instant::now();
+        if let Ok(text) = std::str::from_utf8(&bytes) {
+            if let Some(diff) = sitlog_syntax::fast_path_disagreement(text) {
+                panic!("{diff}");
+            }
+        }
         let (clauses, _errors) = read_clauses_bytes(&bytes);
         for clause in &clauses {
             let printed = writeq(clause, clause.root);
