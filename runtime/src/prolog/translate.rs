@@ -38,7 +38,8 @@ pub(super) struct Prepared {
 }
 
 /// Writes store terms as canonical Prolog text the engine reads back
-/// exactly: every atom quoted, no operators, lists in list notation,
+/// exactly: every atom quoted but a plain name (`write_atom`), no
+/// operators, lists in list notation,
 /// variables `_S<index>`.
 pub(super) struct Writer<'s> {
     store: &'s Store,
@@ -284,8 +285,8 @@ impl Writer<'_> {
 /// as it is, `[]` and `{}` as they are, any other quoted (ISO escapes).
 /// The engine's reader makes the same token of `abc` and `'abc'` (its
 /// lexer, `name_token`: an operator is one either way), and reads a bare
-/// name at about half the cost of a quoted one (issue 39: the texts the
-/// engine reads are written here: queries, clauses, the host's replies).
+/// name cheaper than a quoted one (issue 39: the texts the engine reads
+/// are written here: queries, clauses, the host's replies).
 pub(super) fn write_atom(out: &mut String, a: Atom) {
     let s = a.as_str();
     if s == "[]" || s == "{}" || is_plain_name(s) {
