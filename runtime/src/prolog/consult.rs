@@ -558,7 +558,7 @@ mod tests {
             read_prolog_clauses("a(2).\n% note\n  b(Y) :- a(Y).\n").0,
         ));
         let loaded = prepared(&given);
-        assert_eq!(loaded[0].0, "'a'(2)");
+        assert_eq!(loaded[0].0, "a(2)");
         assert_eq!((loaded[1].1, loaded[1].2), (3, 3));
     }
 }

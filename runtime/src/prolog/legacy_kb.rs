@@ -728,11 +728,20 @@ impl Direct {
 }
 
 /// `text`, a clause as prepared (`':-'(Head,Body)` or `Head`), with its
-/// head's name `old` (as written) replaced by `new`.
+/// head's name `old` (as written) replaced by `new`. The name is followed
+/// by `(`, `,` (a fact of arity 0 as a rule's head) or nothing: a name
+/// written bare (`foo`) is a prefix of others (`foobar(..)`).
 pub(super) fn rename_head(text: &str, old: &str, new: &str) -> String {
-    let at = if text.starts_with(old) {
+    let named_at = |at: usize| {
+        text[at..].starts_with(old)
+            && matches!(
+                text.as_bytes().get(at + old.len()),
+                None | Some(b'(' | b',')
+            )
+    };
+    let at = if named_at(0) {
         0
-    } else if text.starts_with("':-'(") && text[5..].starts_with(old) {
+    } else if text.starts_with("':-'(") && named_at(5) {
         5
     } else {
         return text.to_owned();
@@ -819,6 +828,23 @@ mod tests {
     }
 
     #[test]
+    fn a_head_is_renamed_by_its_whole_name() {
+        // Names are written bare (`write_atom`): `foo` is a prefix of
+        // `foobar`, whose clauses keep their name.
+        assert_eq!(rename_head("foo(1)", "foo", "'$x'"), "'$x'(1)");
+        assert_eq!(rename_head("foo", "foo", "'$x'"), "'$x'");
+        assert_eq!(
+            rename_head("':-'(foo,true)", "foo", "'$x'"),
+            "':-'('$x',true)"
+        );
+        assert_eq!(rename_head("foobar(1)", "foo", "'$x'"), "foobar(1)");
+        assert_eq!(
+            rename_head("':-'(foob(1),true)", "foo", "'$x'"),
+            "':-'(foob(1),true)"
+        );
+    }
+
+    #[test]
     fn a_recursion_calls_the_layers_clauses_unless_a_handle_may_be_there() {
         let got = direct(
             "member_of(X, [X|_]).\n\
@@ -831,7 +857,7 @@ mod tests {
              kb(X) :- kb('$kb'(1)), kb(X).\n\
              alias(A, B) :- open_kb(B), alias(A, z).\n",
         );
-        let test = |v: &str, h: &str| format!("','('nonvar'({v}),'='({v},'$kb'({h})))");
+        let test = |v: &str, h: &str| format!("','(nonvar({v}),'='({v},'$kb'({h})))");
         assert_eq!(got[0], None);
         assert_eq!(got[2], None);
         assert_eq!(got[4], None);
@@ -840,7 +866,7 @@ mod tests {
         assert_eq!(
             got[1].as_deref().unwrap(),
             format!(
-                "';'('->'({},'member_of'(_S0,_S2)),'$legacy_member_of'(_S0,_S2))",
+                "';'('->'({},member_of(_S0,_S2)),'$legacy_member_of'(_S0,_S2))",
                 test("_S2", "_S3")
             )
         );
@@ -849,8 +875,8 @@ mod tests {
         assert_eq!(
             got[3].as_deref().unwrap(),
             format!(
-                "','('is'(_S3,'-'(_S1,1)),','('open_kb'(_S4),';'('->'(';'({},';'({},{})),\
-                 'walk'(_S4,_S3,_S2)),'$legacy_walk'(_S4,_S3,_S2))))",
+                "','(is(_S3,'-'(_S1,1)),','(open_kb(_S4),';'('->'(';'({},';'({},{})),\
+                 walk(_S4,_S3,_S2)),'$legacy_walk'(_S4,_S3,_S2))))",
                 test("_S4", "_S7"),
                 test("_S3", "_S6"),
                 test("_S2", "_S5")
@@ -860,7 +886,7 @@ mod tests {
         assert_eq!(
             got[5].as_deref().unwrap(),
             format!(
-                "','(';'('->'({},'same'(_S0,_S2,_S3)),'$legacy_same'(_S0,_S2,_S3)),'write'('done'))",
+                "','(';'('->'({},same(_S0,_S2,_S3)),'$legacy_same'(_S0,_S2,_S3)),write(done))",
                 test("_S2", "_S4")
             )
         );
@@ -868,7 +894,7 @@ mod tests {
         assert_eq!(
             got[6].as_deref().unwrap(),
             format!(
-                "';'('->'({},'twice'(_S0,'y')),'$legacy_twice'(_S0,'y'))",
+                "';'('->'({},twice(_S0,y)),'$legacy_twice'(_S0,y))",
                 test("_S0", "_S1")
             )
         );
@@ -876,7 +902,7 @@ mod tests {
         // after, with nothing that may be a handle, goes directly.
         assert_eq!(
             got[7].as_deref().unwrap(),
-            "','('kb'('$kb'(1)),'$legacy_kb'(_S0))"
+            "','(kb('$kb'(1)),'$legacy_kb'(_S0))"
         );
         // A, the head's and untouched, is looked at when a goal before
         // names another variable of the head: the caller may have given
@@ -884,7 +910,7 @@ mod tests {
         assert_eq!(
             got[8].as_deref().unwrap(),
             format!(
-                "','('open_kb'(_S1),';'('->'({},'alias'(_S0,'z')),'$legacy_alias'(_S0,'z')))",
+                "','(open_kb(_S1),';'('->'({},alias(_S0,z)),'$legacy_alias'(_S0,z)))",
                 test("_S0", "_S2")
             )
         );

@@ -162,6 +162,10 @@ fn terms_round_trip() {
         "'\\n\\t\\\\'",
         "'ünï'",
         "f(X, Y, X)",
+        // Names the engine is given bare (`write_atom`), operators among them.
+        "f(mod, is, rem, xor, div, dynamic, table, abc_1X)",
+        "[mod, is, dynamic, a]",
+        "mod(is, rem)",
     ] {
         let src = format!("apply(echo(V), [{t}])");
         let expected = {
@@ -407,6 +411,29 @@ fn the_toplevel_keeps_scryers_directives_whole() {
         );
     }
     assert!(text.contains(":- dynamic(started/0)."));
+}
+
+/// Issue 39: a name is written bare when it reads as itself, any other
+/// atom quoted.
+#[test]
+fn names_are_written_bare_other_atoms_quoted() {
+    let w = |s: &str| {
+        let mut out = String::new();
+        super::translate::write_atom(&mut out, Atom::intern(s));
+        out
+    };
+    for plain in ["a", "abc_1X", "mod", "is"] {
+        assert_eq!(w(plain), plain);
+    }
+    assert_eq!(w("Abc"), "'Abc'");
+    assert_eq!(w("_x"), "'_x'");
+    assert_eq!(w("$x"), "'$x'");
+    assert_eq!(w("a-b"), "'a-b'");
+    assert_eq!(w("a b"), "'a b'");
+    assert_eq!(w("\u{e9}t\u{e9}"), "'\u{e9}t\u{e9}'");
+    assert_eq!(w(""), "''");
+    assert_eq!(w("-"), "'-'");
+    assert_eq!((w("[]"), w("{}")), ("[]".to_owned(), "{}".to_owned()));
 }
 
 /// Issue 38: terms of any depth cross between engine and store without

@@ -38,7 +38,8 @@ pub(super) struct Prepared {
 }
 
 /// Writes store terms as canonical Prolog text the engine reads back
-/// exactly: every atom quoted, no operators, lists in list notation,
+/// exactly: every atom quoted but a plain name (`write_atom`), no
+/// operators, lists in list notation,
 /// variables `_S<index>`.
 pub(super) struct Writer<'s> {
     store: &'s Store,
@@ -280,10 +281,15 @@ impl Writer<'_> {
     }
 }
 
-/// An atom, quoted (ISO escapes), except `[]` and `{}`.
+/// An atom: a name (a small letter, then letters, digits and `_`, ASCII)
+/// as it is, `[]` and `{}` as they are, any other quoted (ISO escapes).
+/// The engine's reader makes the same token of `abc` and `'abc'` (its
+/// lexer, `name_token`: an operator is one either way), and reads a bare
+/// name cheaper than a quoted one (issue 39: the texts the engine reads
+/// are written here: queries, clauses, the host's replies).
 pub(super) fn write_atom(out: &mut String, a: Atom) {
     let s = a.as_str();
-    if s == "[]" || s == "{}" {
+    if s == "[]" || s == "{}" || is_plain_name(s) {
         out.push_str(s);
         return;
     }
@@ -301,6 +307,14 @@ pub(super) fn write_atom(out: &mut String, a: Atom) {
         }
     }
     out.push('\'');
+}
+
+/// Whether `s` reads as itself unquoted: a small letter, then ASCII
+/// letters, digits and `_`.
+pub(super) fn is_plain_name(s: &str) -> bool {
+    let mut cs = s.bytes();
+    cs.next().is_some_and(|c| c.is_ascii_lowercase())
+        && cs.all(|c| c.is_ascii_alphanumeric() || c == b'_')
 }
 
 /// A scryer term as a store term: a variable is `names[name]`, or a fresh
