@@ -258,6 +258,24 @@ impl TypedRun {
         cx.go(next, target, arc).map(Some)
     }
 
+    /// [`TypedRun::go`] of an arc's next situation as written (`next`, a
+    /// term of values), evaluated first as the machine evaluates it
+    /// ([`Cx::eval`]; an error leaves the transition uncounted).
+    #[cold]
+    #[inline(never)]
+    pub fn go_eval<P: DmProgram>(
+        &self,
+        cx: &mut Cx<'_, '_, P>,
+        this: u64,
+        expectation: Term,
+        action: Term,
+        next: Term,
+        arc: Option<usize>,
+    ) -> Result<Option<Step>, RunError> {
+        let next = cx.eval(next, arc)?;
+        self.go(cx, this, expectation, action, (next, None), arc)
+    }
+
     /// An arc's next situation handed to the machine as a term: its history
     /// entry made when recorded ([`Cx::record_if`]), then [`Cx::goto`].
     #[inline]

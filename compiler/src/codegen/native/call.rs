@@ -468,9 +468,7 @@ impl Gen<'_> {
                     let callee = super::NatFrame::#callee_v(
                         super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} },
                     );
-                    let t = callee.call_term(p, cx);
-                    cx.open_level(t);
-                    *call = Some(callee);
+                    cx.push_level(p, call, callee);
                     return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
                 }
             }
