@@ -227,6 +227,25 @@ impl TypedRun {
         }
     }
 
+    /// A final reached above the native stack's bottom, its level closed
+    /// when recorded ([`Cx::close_level`] of its id `id` and outputs
+    /// `outs`): the transitions for the driver to count, `count`, and its
+    /// own when nothing is recorded (else its entry counted it).
+    #[inline(always)]
+    pub fn close_level<P: DmProgram>(
+        &self,
+        cx: &mut Cx<'_, '_, P>,
+        count: u64,
+        id: impl Into<Term>,
+        outs: &[(usize, Term)],
+    ) -> Result<u64, RunError> {
+        if self.recorded() {
+            cx.close_level(id.into(), outs)?;
+            return Ok(count);
+        }
+        Ok(count + 1)
+    }
+
     /// Counts the `count` transitions native code made but the arc's own
     /// (its last, not yet counted when nothing is recorded), and gives that
     /// one (0 or 1): it counts once the arc's next situation is computed,

@@ -2264,6 +2264,22 @@ impl Gen<'_> {
                     }
                 };
                 let below = match (diag_mod, slot_below) {
+                    // An atom id, no output: the level closed when recorded
+                    // by one call (`TypedRun::close_level`), which gives the
+                    // count to hand over (the final's own transition in it
+                    // when nothing is recorded).
+                    (None, _)
+                        if id_stmts.is_empty() && atom_arg(&id).to_string() != id.to_string() =>
+                    {
+                        let id = atom_arg(&id);
+                        quote! {
+                            if !stack.is_empty() {
+                                #out_set
+                                let count = run.close_level(cx, count, #id, &[])?;
+                                return cx.step_done(count, slot, Nat::#v { #(#names),* });
+                            }
+                        }
+                    }
                     (None, _) => {
                         let close = close(quote!([]));
                         quote! {
