@@ -54,8 +54,11 @@
 //!   a term built from native values. A fresh variable of the action is a
 //!   term made there; one the next situation reads (a status, a value a
 //!   user function bound) is converted back with the checked conversion,
-//!   and when that fails the rest of the arc (the next situation) runs as
-//!   the term code runs it, on the native values converted to terms.
+//!   and when that fails the rest of the arc (the next situation) runs on
+//!   terms: the next situation as written, filled with the native values,
+//!   evaluated whole as the machine evaluates an arc's next situation
+//!   (`TypedRun::go_eval`), or, with a condition or a `get`/`is` in it, as
+//!   the term code runs it.
 //! - *finals*: the final situation's id is built as a term, the machine
 //!   entered in it, its (empty) out_arg, its `diag_mod` (a term built from
 //!   native values: the DM's output arguments) and history entry taken as
