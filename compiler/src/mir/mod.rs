@@ -57,7 +57,7 @@ pub(crate) struct Unsupported;
 pub(crate) type Plan<T> = Result<T, Unsupported>;
 
 /// A term built from registers, not evaluated.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub enum Build {
     /// Atomic, or ground: a frozen term of the IR's store.
     Const(Term),

@@ -96,6 +96,21 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         Ok(())
     }
 
+    /// [`Cx::enter_empty`] performing where no native frame is `below`
+    /// the running one (native code handed them over first where the
+    /// actions do not ignore `empty`).
+    #[inline]
+    pub fn enter_empty_on<F>(
+        &mut self,
+        count: &mut u64,
+        sit: SitIx,
+        id: impl Into<Term>,
+        below: &super::NatBelow<'_, F>,
+        arc: Option<usize>,
+    ) -> Result<(), RunError> {
+        self.enter_empty(count, sit, id, below.is_empty(), arc)
+    }
+
     /// Native code handing a value to the machine: counts the `count`
     /// transitions it made, and enters situation `sit` by its name `name`
     /// unless `recorded` (then it was entered with its id).
@@ -394,6 +409,16 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             dm_id: call,
             history: Vec::new(),
         });
+    }
+
+    /// The callee's frame `callee` pushed by native code with the history
+    /// kept: its level opened ([`Cx::open_level`], its call term the
+    /// frame's), the frame put in `call` for the driver to push.
+    #[inline]
+    pub fn push_level<F: super::NatFrames<P>>(&mut self, p: &P, call: &mut Option<F>, callee: F) {
+        let t = callee.call_term(p, self);
+        self.open_level(t);
+        *call = Some(callee);
     }
 
     /// The final situation `id` of the DM whose level is the innermost,

@@ -227,6 +227,25 @@ impl TypedRun {
         }
     }
 
+    /// A final reached above the native stack's bottom, its level closed
+    /// when recorded ([`Cx::close_level`] of its id `id` and outputs
+    /// `outs`): the transitions for the driver to count, `count`, and its
+    /// own when nothing is recorded (else its entry counted it).
+    #[inline(always)]
+    pub fn close_level<P: DmProgram>(
+        &self,
+        cx: &mut Cx<'_, '_, P>,
+        count: u64,
+        id: impl Into<Term>,
+        outs: &[(usize, Term)],
+    ) -> Result<u64, RunError> {
+        if self.recorded() {
+            cx.close_level(id.into(), outs)?;
+            return Ok(count);
+        }
+        Ok(count + 1)
+    }
+
     /// Counts the `count` transitions native code made but the arc's own
     /// (its last, not yet counted when nothing is recorded), and gives that
     /// one (0 or 1): it counts once the arc's next situation is computed,
@@ -256,6 +275,24 @@ impl TypedRun {
         cx.count_transitions(this);
         cx.record_if(self.records, expectation, action, Some(next));
         cx.go(next, target, arc).map(Some)
+    }
+
+    /// [`TypedRun::go`] of an arc's next situation as written (`next`, a
+    /// term of values), evaluated first as the machine evaluates it
+    /// ([`Cx::eval`]; an error leaves the transition uncounted).
+    #[cold]
+    #[inline(never)]
+    pub fn go_eval<P: DmProgram>(
+        &self,
+        cx: &mut Cx<'_, '_, P>,
+        this: u64,
+        expectation: Term,
+        action: Term,
+        next: Term,
+        arc: Option<usize>,
+    ) -> Result<Option<Step>, RunError> {
+        let next = cx.eval(next, arc)?;
+        self.go(cx, this, expectation, action, (next, None), arc)
     }
 
     /// An arc's next situation handed to the machine as a term: its history

@@ -227,7 +227,16 @@ impl IntoVal for Val {
 
 impl<T: IntoVal + Clone> IntoVal for List<T> {
     fn into_val(self) -> Val {
-        Val::List(self.iter().cloned().map(IntoVal::into_val).collect())
+        Val::List(self.to_vals())
+    }
+}
+
+impl<T: IntoVal + Clone> List<T> {
+    /// The list of its elements as `Val`s (a list of native values entering
+    /// a `list<ground>` register): what `into_val` of a `List<T>` holds.
+    #[inline]
+    pub fn to_vals(&self) -> List<Val> {
+        self.iter().cloned().map(IntoVal::into_val).collect()
     }
 }
 

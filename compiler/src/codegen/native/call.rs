@@ -382,7 +382,10 @@ impl Gen<'_> {
             let e = &v.e;
             quote!(let #x = #e;)
         });
-        let push = self.nat_push(d, ix, regs, plan, args, &vs)?;
+        // The frame made by one closure for both pushes where nothing after
+        // them reads the arguments (the closure takes them).
+        let reads_args = mentions_any(&to_template, &vs);
+        let push = self.nat_push(d, ix, regs, plan, args, &vs, !reads_args)?;
         Ok(quote! {
             #(#lets)*
             #push
@@ -394,6 +397,7 @@ impl Gen<'_> {
     /// values `args`), the caller waiting in its variant `W<ix>`: within
     /// the depth limit, when no history is kept or observed (else the
     /// machine pushes it: the callee's entries nest in the caller's).
+    #[allow(clippy::too_many_arguments)]
     fn nat_push(
         &self,
         d: &Dm,
@@ -402,6 +406,7 @@ impl Gen<'_> {
         plan: &CallPlan,
         args: &[V],
         vs: &[Ident],
+        shared: bool,
     ) -> N<TokenStream> {
         let callee_f = format_ident!("NatF{}", plan.j);
         let callee_n = format_ident!("NatN{}", plan.j);
@@ -462,15 +467,29 @@ impl Gen<'_> {
         // history tests `run.records` once and builds the frame in place
         // (one frame built for both cost `echo_calls` 3 instructions a
         // transition).
+        let frame = quote!(super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} });
+        // Both pushes (with a history level and without) build the frame
+        // by one closure, `callee()`, where it reads nothing of `cx`: the
+        // frame built in place where the branch calls it, as before.
+        if plan.rec_exit && shared && !mentions_any(&frame, &[format_ident!("cx")]) {
+            return Ok(quote! {
+                let callee = || #frame;
+                if !run.records && stack.has_room(cx) {
+                    *call = Some(super::NatFrame::#callee_v(callee()));
+                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
+                } else if run.nests && stack.has_room(cx) {
+                    cx.push_level(p, call, super::NatFrame::#callee_v(callee()));
+                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
+                }
+            });
+        }
         let rec = if plan.rec_exit {
             quote! {
                 else if run.nests && stack.has_room(cx) {
                     let callee = super::NatFrame::#callee_v(
                         super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} },
                     );
-                    let t = callee.call_term(p, cx);
-                    cx.open_level(t);
-                    *call = Some(callee);
+                    cx.push_level(p, call, callee);
                     return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
                 }
             }
@@ -1491,4 +1510,13 @@ fn drop_unread_let(code: TokenStream, name: &str) -> TokenStream {
         return code;
     }
     rest
+}
+
+/// Whether `ts` names one of `names` (an identifier token, at any depth).
+fn mentions_any(ts: &TokenStream, names: &[Ident]) -> bool {
+    ts.clone().into_iter().any(|t| match t {
+        proc_macro2::TokenTree::Ident(i) => names.contains(&i),
+        proc_macro2::TokenTree::Group(g) => mentions_any(&g.stream(), names),
+        _ => false,
+    })
 }

@@ -54,8 +54,11 @@
 //!   a term built from native values. A fresh variable of the action is a
 //!   term made there; one the next situation reads (a status, a value a
 //!   user function bound) is converted back with the checked conversion,
-//!   and when that fails the rest of the arc (the next situation) runs as
-//!   the term code runs it, on the native values converted to terms.
+//!   and when that fails the rest of the arc (the next situation) runs on
+//!   terms: the next situation as written, filled with the native values,
+//!   evaluated whole as the machine evaluates an arc's next situation
+//!   (`TypedRun::go_eval`), or, with a condition or a `get`/`is` in it, as
+//!   the term code runs it.
 //! - *finals*: the final situation's id is built as a term, the machine
 //!   entered in it, its (empty) out_arg, its `diag_mod` (a term built from
 //!   native values: the DM's output arguments) and history entry taken as
@@ -197,7 +200,7 @@ use sitlog_runtime::machine::Kind;
 use sitlog_runtime::native::Ty;
 use sitlog_runtime::{Term, Value};
 use sitlog_syntax::{atoms, Atom};
-use std::collections::HashMap;
+use std::collections::{BTreeSet, HashMap};
 
 /// Why a DM is not native (shown in the generated docs and
 /// `--explain-types`).
@@ -713,6 +716,21 @@ fn is_fresh(x: &Ident) -> bool {
     x.to_string()
         .strip_prefix("fresh_r")
         .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// An evaluated term as written (`None` where a part is not a term of
+/// registers and constants: a condition, `get`/`inc`, `is`): what the
+/// machine evaluates whole where the MIR evaluates it part by part.
+fn as_written(e: &Ev) -> Option<Build> {
+    Some(match e {
+        Ev::Value(r) => Build::Reg(*r),
+        Ev::Built(b) | Ev::Eval(b) => b.clone(),
+        Ev::Compound(f, args) => Build::Compound(
+            *f,
+            args.iter().map(as_written).collect::<Option<Box<[_]>>>()?,
+        ),
+        _ => return None,
+    })
 }
 
 /// The registers of an expression that evaluates to itself built from
@@ -2249,6 +2267,22 @@ impl Gen<'_> {
                     }
                 };
                 let below = match (diag_mod, slot_below) {
+                    // An atom id, no output: the level closed when recorded
+                    // by one call (`TypedRun::close_level`), which gives the
+                    // count to hand over (the final's own transition in it
+                    // when nothing is recorded).
+                    (None, _)
+                        if id_stmts.is_empty() && atom_arg(&id).to_string() != id.to_string() =>
+                    {
+                        let id = atom_arg(&id);
+                        quote! {
+                            if !stack.is_empty() {
+                                #out_set
+                                let count = run.close_level(cx, count, #id, &[])?;
+                                return cx.step_done(count, slot, Nat::#v { #(#names),* });
+                            }
+                        }
+                    }
                     (None, _) => {
                         let close = close(quote!([]));
                         quote! {
@@ -2669,22 +2703,32 @@ impl Gen<'_> {
                     #enter
                     cx.perform(#act, arc_at)?;
                 };
+                // `empty` performed where the actions do not ignore it or
+                // no native frame is below: handed over first, after which
+                // none is (`stack.is_empty()` says whether it performs).
+                let id_arg = atom_arg(&id);
+                let enter = if hand.is_empty() {
+                    quote! {
+                        let performs = !run.quiet_empty || stack.is_empty();
+                        cx.enter_empty(&mut count, #cur, #id_arg, performs, arc_at)?;
+                    }
+                } else {
+                    quote!(cx.enter_empty_on(&mut count, #cur, #id_arg, stack, arc_at)?;)
+                };
                 let hand_if = if hand.is_empty() {
                     quote!()
                 } else {
-                    quote!(if performs { #hand })
+                    quote!(if !run.quiet_empty || stack.is_empty() { #hand })
                 };
-                let id_arg = atom_arg(&id);
                 stmts.push(if action == atoms::EMPTY {
                     // Recorded: the situation entered (its id in the entry);
                     // above the machine's frames (a level of its own), with
                     // nothing to perform, without handing over.
                     quote! {
                         if run.records || !run.quiet_empty {
-                            let performs = !run.quiet_empty || stack.is_empty();
                             #hand_if
                             #(#id_stmts)*
-                            cx.enter_empty(&mut count, #cur, #id_arg, performs, arc_at)?;
+                            #enter
                         }
                     }
                 } else {
@@ -3240,6 +3284,7 @@ impl Gen<'_> {
         enter: &TokenStream,
     ) -> N<Option<(TokenStream, Vec<(Reg, Ty)>)>> {
         let at = quote!(arc_at);
+        let out_b = out;
         let mut b = super::step::Body::new();
         let v = self.next_code(next, &at, &mut b);
         let out = out.map(|o| {
@@ -3257,6 +3302,48 @@ impl Gen<'_> {
         if conv.is_empty() && !always {
             return Ok(None);
         }
+        // The next situation as written (an evaluated term of two compounds
+        // or more): filled from its pattern with the registers' values and
+        // evaluated whole, as the machine evaluates an arc's next situation
+        // (`Machine::conclude`); the term code's steps compute the same value
+        // part by part (the MIR's `Ev` says what `eval` does with each part).
+        let written = match next {
+            Next::Eval(e) => as_written(e),
+            _ => None,
+        };
+        let mut filled = Vec::new();
+        let filled_x = match &written {
+            Some(w) => match self.nat_fill_build(w, regs, &mut filled, &mut 0)? {
+                Some(x) => Some(x),
+                // One compound: built of its parts (`Cx::build_of`).
+                None => self.nat_build_of_parts(w, regs, &mut filled)?,
+            },
+            None => None,
+        };
+        let mut eval_go = None;
+        let (stmts, v, used, out, k_of) = match filled_x {
+            Some(x) if out_b.is_none() => {
+                // Evaluated by `TypedRun::go_eval`.
+                eval_go = Some(x);
+                (filled, quote!(), BTreeSet::new(), None, quote!())
+            }
+            Some(x) => {
+                let mut b = super::step::Body::new();
+                let out = out_b.map(|o| {
+                    let o = self.build_code(o, &mut b);
+                    quote!(cx.out_arg(#o, #at)?;)
+                });
+                let mut stmts = filled;
+                stmts.push(quote!(let t = cx.eval(#x, #at)?;));
+                let rest = b.stmts;
+                let rest = quote!(#(#rest)*);
+                let used = super::step::registers(&quote!(#rest #out));
+                let k_of = quote!(#rest #out);
+                stmts.push(rest);
+                (stmts, quote!((t, None)), used, out, k_of)
+            }
+            None => (stmts, v, used, out, body),
+        };
         let mut lets = Vec::new();
         for r in &used {
             let rr = reg(*r);
@@ -3269,15 +3356,16 @@ impl Gen<'_> {
             }
         }
         // `a` is `nat_step`'s.
-        let k = Self::uses(&body).1.then(|| quote!(let k = &p.k;));
+        let k = Self::uses(&k_of).1.then(|| quote!(let k = &p.k;));
         // The arc's transition (counted in `count` when nothing is
         // recorded) counts once its next situation is computed, as on the
         // term path: an error evaluating it leaves it out. The machine is
         // in the situation then (an empty action performed nothing).
         // The next situation computed before the out_arg.
-        let go = match out {
-            None => quote!(return run.go(cx, this, exp, act, #v, #at);),
-            Some(out) => quote! {
+        let go = match (out, eval_go) {
+            (None, Some(x)) => quote!(return run.go_eval(cx, this, exp, act, #x, #at);),
+            (None, None) => quote!(return run.go(cx, this, exp, act, #v, #at);),
+            (Some(out), _) => quote! {
                 let next = #v;
                 #out
                 return run.go(cx, this, exp, act, next, #at);
@@ -3292,6 +3380,41 @@ impl Gen<'_> {
             #go
         }};
         Ok(Some((fallback, conv)))
+    }
+
+    /// `let b0 = cx.build_of(f, &[..]);` of a compound whose arguments are
+    /// registers and constants, pushed to `ts`; `None` for another term.
+    fn nat_build_of_parts(
+        &self,
+        b: &Build,
+        regs: &Regs,
+        ts: &mut Vec<TokenStream>,
+    ) -> N<Option<TokenStream>> {
+        let Build::Compound(f, args) = b else {
+            return Ok(None);
+        };
+        let mut parts = Vec::new();
+        let mut n = 0;
+        for a in args.iter() {
+            match a {
+                Build::Reg(r) => {
+                    let (v, _) = regs.get(r).ok_or(format!("register r{r} is read unset"))?;
+                    parts.push(quote!(&#v));
+                }
+                Build::Const(t) => {
+                    let mut pre = Vec::new();
+                    let c = self.nat_const_term(*t, &mut pre, &mut n)?;
+                    if !pre.is_empty() {
+                        return Ok(None);
+                    }
+                    parts.push(quote!(&#c));
+                }
+                Build::Compound(..) => return Ok(None),
+            }
+        }
+        let f = self.functor_native(*f)?;
+        ts.push(quote!(let b0 = cx.build_of(#f, &[#(#parts),*]);));
+        Ok(Some(quote!(b0)))
     }
 
     /// What an action is, for `--explain-types`: `say/1`, a list of them.
@@ -4789,7 +4912,7 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
         // Lists of native values as lists of `Val`s.
         (Ty::List(a), Ty::List(b)) if a.is_native() && held_as_val(b) && **b == Ty::Ground => {
             let e = &v.e;
-            Ok(quote!(#e.iter().cloned().map(IntoVal::into_val).collect::<List<Val>>()))
+            Ok(quote!(#e.to_vals()))
         }
         // A `Val` where a ground term is held: built in the store (inert:
         // it came from an inert term or from native values).
