@@ -1064,6 +1064,7 @@ impl Gen<'_> {
         let mut entries = Vec::new();
         let mut exit_arms = Vec::new();
         let mut wait_arms = Vec::new();
+        let mut waits_arms = Vec::new();
         let mut any_cursor = false;
         for (ix, c) in code.iter().enumerate() {
             let Some((fields, body, id, wait)) = c else {
@@ -1166,6 +1167,7 @@ impl Gen<'_> {
                 }
                 exit_arms.push(w.exit_arm.clone());
                 wait_arms.push(w.wait_arm.clone());
+                waits_arms.push(w.waits_arm.clone());
             }
             // Entered by the machine: the fields from the value that
             // selected it, converted (else the term code runs it).
@@ -1253,6 +1255,23 @@ impl Gen<'_> {
                 })
             });
         }
+        // Where a waiting variant waits (`NatAt::waits`; the frame made the
+        // machine's by `NatAt::nat_wait`), unless the DM has locals to
+        // write back first: its own `nat_wait` then.
+        let own_wait = !wait_arms.is_empty() && !d.locals.is_empty();
+        let waits_fn = if own_wait || waits_arms.is_empty() {
+            quote!()
+        } else {
+            quote! {
+                fn waits(&self) -> Option<(SitIx, Option<&dyn machine::AsTerm>)> {
+                    match self {
+                        #(#waits_arms)*
+                        _ => None,
+                    }
+                }
+            }
+        };
+        let wait_arms = if own_wait { wait_arms } else { Vec::new() };
         let frame = self.nat_frame_items(&d, &wait_arms)?;
         let field_names = frame.names.clone();
         let out_names = frame.outs.clone();
@@ -1334,14 +1353,15 @@ impl Gen<'_> {
                 Moved {},
             }
 
-            impl Nat {
-                pub(crate) fn id_term(&self, p: &Program, store: &mut Store) -> Term {
+            impl NatAt<Program> for Nat {
+                fn id_term(&self, p: &Program, store: &mut Store) -> Term {
                     let a = &p.atoms;
                     match self {
                         #(#id_arms)*
                         Nat::Moved {} => Term::NIL,
                     }
                 }
+                #waits_fn
             }
 
             #frame_items
