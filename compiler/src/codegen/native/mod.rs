@@ -1032,31 +1032,26 @@ impl Gen<'_> {
         // With no situation native, `items` is never emitted (the caller
         // looks at `native_sits`); `why` says why for each.
         // Parameters, converted at entry (those native situations read),
-        // the others held as the machine's terms (see `nat_dm_fix`).
+        // the others held as the machine's terms (see `nat_dm_fix`): the
+        // frame's fields, made in order where it is made.
         let mut loads = Vec::new();
         let read = d.read_params();
         for (i, p) in d.params.iter().enumerate() {
             let name = format_ident!("p{}", i);
             let ix = Literal::usize_unsuffixed(i);
             if !read.contains(&i) {
-                loads.push(quote! {
-                    let #name = cx.param(#ix).map(Ground)?;
-                });
+                loads.push(quote!(#name: cx.param(#ix).map(Ground)?));
                 continue;
             }
             let ty = rust_ty(p)?;
-            loads.push(quote! {
-                let #name = cx.param_as::<#ty>(#ix)?;
-            });
+            loads.push(quote!(#name: cx.param_as::<#ty>(#ix)?));
         }
         // Locals, read from the machine's frame at entry.
         for (i, (name, ty)) in d.locals.iter().enumerate() {
             let ty = rust_ty(ty)?;
             let l = format_ident!("l{}", i);
             let a = self.atom_native(*name)?;
-            loads.push(quote! {
-                let #l = cx.local_as::<#ty>(#a)?;
-            });
+            loads.push(quote!(#l: cx.local_as::<#ty>(#a)?));
         }
         let mut variants = Vec::new();
         let mut arms = Vec::new();
@@ -1324,6 +1319,25 @@ impl Gen<'_> {
                 }
             }
         };
+        // The frame made of its fields converted in place where that is
+        // fewer lines than a `let` each beside a shorthand literal (which
+        // prettyplease keeps on one line for a few fields).
+        let field_names = &field_names;
+        let in_place = quote!(Some(Frame { #(#loads,)* #(#out_names: None,)* at }));
+        let lets = loads.iter().zip(field_names).map(|(l, n)| {
+            let mut ts = l.clone().into_iter().skip(2);
+            let e: TokenStream = ts.by_ref().collect();
+            quote!(let #n = #e;)
+        });
+        let by_lets = quote! {
+            #(#lets)*
+            Some(Frame { #(#field_names,)* #(#out_names: None,)* at })
+        };
+        let made = if lines_in_dm(&in_place) <= lines_in_dm(&by_lets) {
+            in_place
+        } else {
+            by_lets
+        };
         // `a` bound only where the entries or loads name an atom.
         let entry_body = quote! {
             let at = match sit {
@@ -1331,8 +1345,7 @@ impl Gen<'_> {
                 _ => return None,
             };
             cx.materialize_frames();
-            #(#loads)*
-            Some(Frame { #(#field_names,)* #(#out_names: None,)* at })
+            #made
         };
         let entry_prelude = Gen::prelude(&entry_body);
         let entry_body = quote!(#entry_prelude #entry_body);
@@ -4585,6 +4598,16 @@ fn moved(v: &V) -> TokenStream {
 /// `Borrow` and `clone` read through the reference): no clone and no drop
 /// per visit. Parameters and a final's fields are not written while
 /// a visit reads them.
+/// How many lines prettyplease gives `stmts` as the body of a DM
+/// module's function (indented as `nat_entry`'s).
+fn lines_in_dm(stmts: &TokenStream) -> usize {
+    let file = quote!(mod m { fn f() { #stmts } });
+    match syn::parse2::<syn::File>(file) {
+        Ok(f) => prettyplease::unparse(&f).lines().count(),
+        Err(_) => usize::MAX,
+    }
+}
+
 fn by_ref_loads(ts: TokenStream) -> TokenStream {
     use proc_macro2::{Group, TokenTree as T};
     let toks: Vec<T> = ts.into_iter().collect();
