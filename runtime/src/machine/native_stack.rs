@@ -366,14 +366,21 @@ pub fn nat_materialize<P: DmProgram, F: NatFrames<P>>(
     Ok(())
 }
 
-/// `*slot = next`, `slot` a frame of DM frame type `T` that reached its
-/// final ([`NatFrames::replace_done`]): without drop code when `T` holds
-/// nothing to drop (decided at compile time, per DM).
+/// Whether a DM's frame (of type `T`) holds nothing to drop: a constant
+/// per DM, for [`nat_replace_done`].
 #[inline(always)]
-pub fn nat_replace_done<T, F>(slot: &mut F, next: F) {
-    if std::mem::needs_drop::<T>() {
-        *slot = next;
-    } else {
+pub fn nat_plain<T>(_frame: &T) -> bool {
+    !std::mem::needs_drop::<T>()
+}
+
+/// `*slot = next`, `slot` a frame that reached its final
+/// ([`NatFrames::replace_done`]): without drop code when its DM's frame
+/// holds nothing to drop (`plain`, [`nat_plain`] of the frame's DM).
+#[inline(always)]
+pub fn nat_replace_done<F>(slot: &mut F, next: F, plain: bool) {
+    if plain {
         std::mem::forget(std::mem::replace(slot, next));
+    } else {
+        *slot = next;
     }
 }

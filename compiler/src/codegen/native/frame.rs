@@ -368,9 +368,8 @@ impl Gen<'_> {
                 /// no drop code for a DM whose frame holds nothing to drop.
                 #[inline(always)]
                 fn replace_done(&mut self, next: NatFrame) {
-                    match self {
-                        #(NatFrame::#vs(_) => machine::nat_replace_done::<#ms::Frame, _>(self, next),)*
-                    }
+                    let plain = match self { #(NatFrame::#vs(f) => machine::nat_plain(f),)* };
+                    machine::nat_replace_done(self, next, plain)
                 }
                 fn dm(&self) -> DmIx {
                     match self { #(NatFrame::#vs(_) => #ixs,)* }
