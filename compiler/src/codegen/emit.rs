@@ -240,25 +240,26 @@ impl Gen<'_> {
             /// with native code (see `sitlog_compiler::codegen::native`) `enum
             /// Nat` (one variant per situation, its fields the id's variables; a
             /// `W<n>` variant waits for the DM it called; `Moved` is a frame's
-            /// place while it runs; `Nat::id_term`, its id filled from its
-            /// pattern), `Frame` (the DM's frame on the native stack: parameters,
-            /// locals, the `Nat` it is in), `nat_call_term` (the DM's call term
-            /// from the frame's parameters; none for a DM whose head is an atom,
-            /// made by `NatFrame`'s dispatch), `nat_entry` (the frame entered at a
-            /// situation, its values converted: `None` when one does not),
-            /// `nat_step` (runs the frame on the program's native stack until it
-            /// calls a DM (`call` set), ends in a final below the base, or hands
-            /// over to the machine; never inlined: the driver's dispatch on
-            /// `NatFrame` then only jumps to it and pays no other DM's prologue),
-            /// `nat_hand_over` (before the machine sees the state: the native
-            /// frames below made machine frames, `machine::nat_hand_over_of`,
-            /// the locals written back; the runtime's `nat_hand_over` for a DM
-            /// without parameters or locals), `nat_wait` (a frame waiting for
-            /// its callee made the machine's, the callee's pushed; the
-            /// runtime's `nat_wait_none` for a DM without waiting situations)
-            /// and, in a DM with term code too, `run_native` (an all-native
-            /// DM's frame is entered by `run_situation`). The native stack
-            /// itself is the runtime's (`machine::nat_drive`), over the
+            /// place while it runs; its `machine::NatAt`: `id_term`, its id
+            /// filled from its pattern, and `waits`, the situation a `W<n>`
+            /// waits in and the pipe value it keeps), `Frame` (the DM's frame on
+            /// the native stack: parameters, locals, the `Nat` it is in; its
+            /// call term is made by `NatFrame`'s dispatch), `nat_entry` (the
+            /// frame entered at a situation, its values converted: `None` when
+            /// one does not), `nat_step` (runs the frame on the program's native
+            /// stack until it calls a DM (`call` set), ends in a final below the
+            /// base, or hands over to the machine; never inlined: the driver's
+            /// dispatch on `NatFrame` then only jumps to it and pays no other
+            /// DM's prologue), `nat_hand_over` (before the machine sees the
+            /// state: the native frames below made machine frames,
+            /// `machine::nat_hand_over_of`, the locals written back; the
+            /// runtime's `nat_hand_over` for a DM without parameters or locals),
+            /// `nat_wait` (a DM with locals and waiting situations: a frame
+            /// waiting for its callee made the machine's, the locals written
+            /// back; for the others the runtime's `NatAt::nat_wait` from `waits`
+            /// and `id_term`) and, in a DM with term code too, `run_native` (an
+            /// all-native DM's frame is entered by `run_situation`). The native
+            /// stack itself is the runtime's (`machine::nat_drive`), over the
             /// program's `NatFrame`.
             #[allow(dead_code, non_camel_case_types, unused_variables, clippy::all)]
             pub struct Program {

@@ -29,7 +29,8 @@
 //! - `steps`: the semantic steps of one situation;
 //! - `cx`: the steps as [`Cx`] offers them to compiled code;
 //! - `native_stack`: the native stack of compiled code ([`nat_drive`],
-//!   [`NatBelow`], [`NatFrames`]: what the program's frames must offer);
+//!   [`NatBelow`], [`NatFrames`]: what the program's frames must offer,
+//!   [`NatAt`]: what a DM's situations must offer);
 //! - `run`: the loop (DM calls and returns, selection of situations, garbage
 //!   collection between them).
 
@@ -48,8 +49,8 @@ mod steps;
 pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, FromIdParts};
 pub use io::{Actions, Perceived, Perception};
 pub use native_stack::{
-    nat_drive, nat_hand_over, nat_hand_over_of, nat_materialize, nat_replace_done, nat_wait_none,
-    NatBelow, NatFrames,
+    nat_drive, nat_hand_over, nat_hand_over_of, nat_materialize, nat_plain, nat_replace_done,
+    NatAt, NatBelow, NatFrames,
 };
 pub use observe::{Inspection, Observer};
 pub use options::Options;

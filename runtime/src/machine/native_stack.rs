@@ -26,9 +26,9 @@
 //! recursive situation as the interpreter's would, `Cx::wait_template`,
 //! bottom first) and after writing its locals back.
 
-use super::{Cx, DmIx, DmProgram, Fault, RunError, Step, TypedRun};
+use super::{Cx, DmIx, DmProgram, Fault, RunError, SitIx, Step, TypedRun};
 use crate::machine::AsTerm;
-use crate::Term;
+use crate::{Store, Term};
 
 /// A program's native frames (its `enum NatFrame`, a variant per native
 /// DM): what the driver asks of a frame, each a dispatch to the frame's DM.
@@ -61,6 +61,41 @@ pub trait NatFrames<P: DmProgram>: Sized {
         callee: Term,
         callee_dm: DmIx,
     ) -> Result<(), RunError>;
+}
+
+/// A native DM's situations (its `enum Nat`: a variant per situation and
+/// per recursive situation waiting for its callee, `W<n>`): the id of the
+/// situation a variant is at, and where a waiting variant waits. Generated
+/// code implements the first two; [`NatAt::nat_wait`] is the same for
+/// every DM (a DM with locals writes them back first, in its own
+/// `nat_wait`).
+pub trait NatAt<P: DmProgram> {
+    /// The variant's situation id, as a term.
+    fn id_term(&self, p: &P, store: &mut Store) -> Term;
+    /// A waiting variant's situation and the pipe value the variant keeps
+    /// (the exit arcs read it: the template instance's `in_arg`); `None`
+    /// for a variant that waits for no DM (the default: a DM without
+    /// waiting variants).
+    fn waits(&self) -> Option<(SitIx, Option<&dyn AsTerm>)> {
+        None
+    }
+    /// The frame at this variant, waiting for `callee` (of DM
+    /// `callee_dm`), made the machine's (`Cx::wait_template`): the pipe
+    /// value made a term first, then the id.
+    fn nat_wait(
+        &self,
+        p: &P,
+        cx: &mut Cx<'_, '_, P>,
+        callee: Term,
+        callee_dm: DmIx,
+    ) -> Result<(), RunError> {
+        let Some((sit, in_arg)) = self.waits() else {
+            return Err(cx.fault(Fault::WaitsForNone));
+        };
+        let in_arg = in_arg.map(|v| v.as_term(cx.store()));
+        let id = self.id_term(p, cx.store());
+        cx.wait_template(sit, id, in_arg, callee_dm, callee)
+    }
 }
 
 /// The native frames below the running one, bottom first (the base frame,
@@ -331,26 +366,21 @@ pub fn nat_materialize<P: DmProgram, F: NatFrames<P>>(
     Ok(())
 }
 
-/// `*slot = next`, `slot` a frame of DM frame type `T` that reached its
-/// final ([`NatFrames::replace_done`]): without drop code when `T` holds
-/// nothing to drop (decided at compile time, per DM).
+/// Whether a DM's frame (of type `T`) holds nothing to drop: a constant
+/// per DM, for [`nat_replace_done`].
 #[inline(always)]
-pub fn nat_replace_done<T, F>(slot: &mut F, next: F) {
-    if std::mem::needs_drop::<T>() {
-        *slot = next;
-    } else {
-        std::mem::forget(std::mem::replace(slot, next));
-    }
+pub fn nat_plain<T>(_frame: &T) -> bool {
+    !std::mem::needs_drop::<T>()
 }
 
-/// `nat_wait` of a DM without waiting situations: no frame of it waits for
-/// a callee.
-pub fn nat_wait_none<P: DmProgram, F>(
-    _p: &P,
-    cx: &mut Cx<'_, '_, P>,
-    _frame: &F,
-    _callee: Term,
-    _callee_dm: DmIx,
-) -> Result<(), RunError> {
-    Err(cx.fault(Fault::WaitsForNone))
+/// `*slot = next`, `slot` a frame that reached its final
+/// ([`NatFrames::replace_done`]): without drop code when its DM's frame
+/// holds nothing to drop (`plain`, [`nat_plain`] of the frame's DM).
+#[inline(always)]
+pub fn nat_replace_done<F>(slot: &mut F, next: F, plain: bool) {
+    if plain {
+        std::mem::forget(std::mem::replace(slot, next));
+    } else {
+        *slot = next;
+    }
 }

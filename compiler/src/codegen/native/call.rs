@@ -104,8 +104,12 @@ pub(super) struct Wait {
     /// Resumes with the callee's frame (`ret`): the exit arcs (recording
     /// their entries when `run.records`, where the call is pushed then).
     pub exit_arm: TokenStream,
-    /// In `nat_wait`: made a machine frame's pending situation.
+    /// In `nat_wait` (a DM with locals): made a machine frame's pending
+    /// situation.
     pub wait_arm: TokenStream,
+    /// In `NatAt::waits` (a DM without locals): the situation it waits in
+    /// and the pipe value it keeps.
+    pub waits_arm: TokenStream,
 }
 
 /// A native call: the callee's index and native view, and the exit code.
@@ -570,9 +574,17 @@ impl Gen<'_> {
             .find(|(_, init)| matches!(init, Init::Pipe))
             .map(|(r, _)| reg(*r))
             .filter(|r| names.contains(r));
-        let (in_stmt, in_arg) = match in_arg {
-            Some(r) => (quote!(let in_arg = cx.term(#r);), quote!(Some(in_arg))),
-            None => (quote!(), quote!(None)),
+        let (in_stmt, in_arg, waits_arm) = match in_arg {
+            Some(r) => (
+                quote!(let in_arg = cx.term(#r);),
+                quote!(Some(in_arg)),
+                quote!(Nat::#wv { #r, .. } => Some((#curl, Some(#r))),),
+            ),
+            None => (
+                quote!(),
+                quote!(None),
+                quote!(Nat::#wv { .. } => Some((#curl, None)),),
+            ),
         };
         let wait_arm = quote! {
             Nat::#wv { #(#names),* } => {
@@ -589,6 +601,7 @@ impl Gen<'_> {
             id_arm,
             exit_arm,
             wait_arm,
+            waits_arm,
         }))
     }
 

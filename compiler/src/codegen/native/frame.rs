@@ -3,10 +3,11 @@
 //! (its parameters `p0..`, its locals `l0..`, an output slot `out<i>:
 //! Option<T>` per output parameter a native caller may pass as
 //! `Ground::OUT` (`super::call`), and the situation it is in, all native
-//! values), its `nat_call_term` (none for a DM whose head is an atom),
-//! `nat_wait` and `nat_hand_over`, and in
+//! values), its `nat_wait` (only a DM with locals and waiting situations:
+//! the others use `machine::NatAt::nat_wait`) and `nat_hand_over`, and in
 //! the program's module `enum NatFrame` (a variant per native DM) with its
-//! `machine::NatFrames` impl: a dispatch to each DM's module. The stack
+//! `machine::NatFrames` impl: a dispatch to each DM's module (a frame's call
+//! term built there from its DM's name and parameters). The stack
 //! itself is the runtime's (`sitlog_runtime::machine::nat_drive`, generic
 //! over the frame type: an explicit stack of native frames, each run where
 //! it lies, no Rust recursion per nested DM, no term built), and so is the
@@ -136,10 +137,11 @@ impl Gen<'_> {
         })
     }
 
-    /// `struct Frame`, `nat_call_term`, `nat_wait` of a native DM
+    /// `struct Frame`, `nat_hand_over`, `nat_wait` of a native DM
     /// (`wait_arms`: per recursive situation, its waiting variant made a
-    /// machine frame's pending situation; none: the program's
-    /// `nat_wait_none`, the runtime's, re-exported).
+    /// machine frame's pending situation, given only for a DM with locals;
+    /// none: no `nat_wait`, the program's dispatch calls the runtime's
+    /// `NatAt::nat_wait` on the frame's `Nat`).
     pub(super) fn nat_frame_items(&self, d: &Dm, wait_arms: &[TokenStream]) -> N<FrameItems> {
         let mut names = Vec::new();
         let mut decls = Vec::new();
@@ -171,10 +173,6 @@ impl Gen<'_> {
         } else {
             quote!(..)
         };
-        // The call term of the frame's parameters, read in place.
-        let name = self.atom_native(d.dm.name)?;
-        let ps = (0..d.params.len()).map(|i| format_ident!("p{}", i));
-        let call = quote!(cx.build_of(#name, &[#(&frame.#ps),*]));
         let locals = self.nat_write_locals(d)?;
         let hand_fn = self.nat_hand_fn(d)?;
         // `nat_wait` binds what its arms read (the atoms, the fields).
@@ -193,11 +191,10 @@ impl Gen<'_> {
         } else {
             rest
         };
-        // A DM without waiting situations: the runtime's `nat_wait_none`.
+        // A DM without locals or without waiting situations: `NatAt::nat_wait`
+        // on its `Nat` (the program's dispatch calls it).
         let wait_fn = if wait_arms.is_empty() {
-            quote!(
-                pub(crate) use ::sitlog_runtime::machine::nat_wait_none as nat_wait;
-            )
+            quote!()
         } else {
             quote! {
                 pub(crate) fn nat_wait(
@@ -217,24 +214,10 @@ impl Gen<'_> {
                 }
             }
         };
-        // A DM whose head is an atom: its call term is made by the
-        // program's dispatch (`NatFrames::call_term`), no function here.
-        let call_fn = if self.head_is_atom(d.dm) {
-            quote!()
-        } else {
-            quote! {
-                pub(crate) fn nat_call_term(p: &Program, cx: &mut Ctx, frame: &Frame) -> Term {
-                    let a = &p.atoms;
-                    #call
-                }
-            }
-        };
         let items = quote! {
             #hand_fn
 
             pub struct Frame { #(#decls,)* pub at: Nat }
-
-            #call_fn
 
             #wait_fn
         };
@@ -299,6 +282,21 @@ impl Gen<'_> {
         for m in modules {
             super::super::emit::idents_in(m, &mut used);
         }
+        // A DM with its own `nat_wait` (locals written back first), else
+        // `NatAt::nat_wait` of the frame's situation.
+        let wait_arms: Vec<TokenStream> = native
+            .iter()
+            .map(|&d| {
+                let (v, m) = (format_ident!("D{}", d), &mods[d]);
+                let mut own = std::collections::HashSet::new();
+                super::super::emit::idents_in(&modules[d], &mut own);
+                if own.contains("nat_wait") {
+                    quote!(NatFrame::#v(f) => #m::nat_wait(p, cx, f, callee, callee_dm),)
+                } else {
+                    quote!(NatFrame::#v(f) => f.at.nat_wait(p, cx, callee, callee_dm),)
+                }
+            })
+            .collect();
         let vs: Vec<Ident> = native.iter().map(|d| format_ident!("D{}", d)).collect();
         let ms: Vec<&Ident> = native.iter().map(|&d| &mods[d]).collect();
         let mut aliases = Vec::new();
@@ -313,17 +311,19 @@ impl Gen<'_> {
                 aliases.push(quote!(pub(crate) type #n = #m::Nat;));
             }
         }
-        // The call term of a DM whose head is an atom: the atom (no
-        // `nat_call_term` in its module).
+        // The call term of a frame: its DM's name and parameters (read in
+        // place; an atom for a DM whose head is an atom).
         let call_arms: Vec<TokenStream> = native
             .iter()
             .map(|&d| {
-                let (v, m) = (format_ident!("D{}", d), &mods[d]);
+                let v = format_ident!("D{}", d);
+                let a = &self.atoms[self.atom_ix[&ir.dms[d].name]].1;
                 if self.head_is_atom(&ir.dms[d]) {
-                    let a = &self.atoms[self.atom_ix[&ir.dms[d].name]].1;
                     quote!(NatFrame::#v(_) => cx.build_of(p.atoms.#a, &[]),)
                 } else {
-                    quote!(NatFrame::#v(f) => #m::nat_call_term(p, cx, f),)
+                    let n = self.store.args(ir.dms[d].head).len();
+                    let ps = (0..n).map(|i| format_ident!("p{}", i));
+                    quote!(NatFrame::#v(f) => cx.build_of(p.atoms.#a, &[#(&f.#ps),*]),)
                 }
             })
             .collect();
@@ -368,9 +368,8 @@ impl Gen<'_> {
                 /// no drop code for a DM whose frame holds nothing to drop.
                 #[inline(always)]
                 fn replace_done(&mut self, next: NatFrame) {
-                    match self {
-                        #(NatFrame::#vs(_) => machine::nat_replace_done::<#ms::Frame, _>(self, next),)*
-                    }
+                    let plain = match self { #(NatFrame::#vs(f) => machine::nat_plain(f),)* };
+                    machine::nat_replace_done(self, next, plain)
                 }
                 fn dm(&self) -> DmIx {
                     match self { #(NatFrame::#vs(_) => #ixs,)* }
@@ -382,7 +381,7 @@ impl Gen<'_> {
                     callee: Term,
                     callee_dm: DmIx,
                 ) -> Result<(), RunError> {
-                    match self { #(NatFrame::#vs(f) => #ms::nat_wait(p, cx, f, callee, callee_dm),)* }
+                    match self { #(#wait_arms)* }
                 }
             }
         }

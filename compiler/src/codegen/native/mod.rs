@@ -1050,31 +1050,26 @@ impl Gen<'_> {
         // With no situation native, `items` is never emitted (the caller
         // looks at `native_sits`); `why` says why for each.
         // Parameters, converted at entry (those native situations read),
-        // the others held as the machine's terms (see `nat_dm_fix`).
+        // the others held as the machine's terms (see `nat_dm_fix`): the
+        // frame's fields, made in order where it is made.
         let mut loads = Vec::new();
         let read = d.read_params();
         for (i, p) in d.params.iter().enumerate() {
             let name = format_ident!("p{}", i);
             let ix = Literal::usize_unsuffixed(i);
             if !read.contains(&i) {
-                loads.push(quote! {
-                    let #name = cx.param(#ix).map(Ground)?;
-                });
+                loads.push(quote!(#name: cx.param(#ix).map(Ground)?));
                 continue;
             }
             let ty = rust_ty(p)?;
-            loads.push(quote! {
-                let #name = cx.param_as::<#ty>(#ix)?;
-            });
+            loads.push(quote!(#name: cx.param_as::<#ty>(#ix)?));
         }
         // Locals, read from the machine's frame at entry.
         for (i, (name, ty)) in d.locals.iter().enumerate() {
             let ty = rust_ty(ty)?;
             let l = format_ident!("l{}", i);
             let a = self.atom_native(*name)?;
-            loads.push(quote! {
-                let #l = cx.local_as::<#ty>(#a)?;
-            });
+            loads.push(quote!(#l: cx.local_as::<#ty>(#a)?));
         }
         let mut variants = Vec::new();
         let mut arms = Vec::new();
@@ -1082,6 +1077,7 @@ impl Gen<'_> {
         let mut entries = Vec::new();
         let mut exit_arms = Vec::new();
         let mut wait_arms = Vec::new();
+        let mut waits_arms = Vec::new();
         let mut any_cursor = false;
         for (ix, c) in code.iter().enumerate() {
             let Some((fields, body, id, wait)) = c else {
@@ -1184,6 +1180,7 @@ impl Gen<'_> {
                 }
                 exit_arms.push(w.exit_arm.clone());
                 wait_arms.push(w.wait_arm.clone());
+                waits_arms.push(w.waits_arm.clone());
             }
             // Entered by the machine: the fields from the value that
             // selected it, converted (else the term code runs it).
@@ -1271,6 +1268,23 @@ impl Gen<'_> {
                 })
             });
         }
+        // Where a waiting variant waits (`NatAt::waits`; the frame made the
+        // machine's by `NatAt::nat_wait`), unless the DM has locals to
+        // write back first: its own `nat_wait` then.
+        let own_wait = !wait_arms.is_empty() && !d.locals.is_empty();
+        let waits_fn = if own_wait || waits_arms.is_empty() {
+            quote!()
+        } else {
+            quote! {
+                fn waits(&self) -> Option<(SitIx, Option<&dyn machine::AsTerm>)> {
+                    match self {
+                        #(#waits_arms)*
+                        _ => None,
+                    }
+                }
+            }
+        };
+        let wait_arms = if own_wait { wait_arms } else { Vec::new() };
         let frame = self.nat_frame_items(&d, &wait_arms)?;
         let field_names = frame.names.clone();
         let out_names = frame.outs.clone();
@@ -1323,6 +1337,25 @@ impl Gen<'_> {
                 }
             }
         };
+        // The frame made of its fields converted in place where that is
+        // fewer lines than a `let` each beside a shorthand literal (which
+        // prettyplease keeps on one line for a few fields).
+        let field_names = &field_names;
+        let in_place = quote!(Some(Frame { #(#loads,)* #(#out_names: None,)* at }));
+        let lets = loads.iter().zip(field_names).map(|(l, n)| {
+            let mut ts = l.clone().into_iter().skip(2);
+            let e: TokenStream = ts.by_ref().collect();
+            quote!(let #n = #e;)
+        });
+        let by_lets = quote! {
+            #(#lets)*
+            Some(Frame { #(#field_names,)* #(#out_names: None,)* at })
+        };
+        let made = if lines_in_dm(&in_place) <= lines_in_dm(&by_lets) {
+            in_place
+        } else {
+            by_lets
+        };
         // `a` bound only where the entries or loads name an atom.
         let entry_body = quote! {
             let at = match sit {
@@ -1330,8 +1363,7 @@ impl Gen<'_> {
                 _ => return None,
             };
             cx.materialize_frames();
-            #(#loads)*
-            Some(Frame { #(#field_names,)* #(#out_names: None,)* at })
+            #made
         };
         let entry_prelude = Gen::prelude(&entry_body);
         let entry_body = quote!(#entry_prelude #entry_body);
@@ -1352,14 +1384,15 @@ impl Gen<'_> {
                 Moved {},
             }
 
-            impl Nat {
-                pub(crate) fn id_term(&self, p: &Program, store: &mut Store) -> Term {
+            impl NatAt<Program> for Nat {
+                fn id_term(&self, p: &Program, store: &mut Store) -> Term {
                     let a = &p.atoms;
                     match self {
                         #(#id_arms)*
                         Nat::Moved {} => Term::NIL,
                     }
                 }
+                #waits_fn
             }
 
             #frame_items
@@ -4688,6 +4721,16 @@ fn moved(v: &V) -> TokenStream {
 /// `Borrow` and `clone` read through the reference): no clone and no drop
 /// per visit. Parameters and a final's fields are not written while
 /// a visit reads them.
+/// How many lines prettyplease gives `stmts` as the body of a DM
+/// module's function (indented as `nat_entry`'s).
+fn lines_in_dm(stmts: &TokenStream) -> usize {
+    let file = quote!(mod m { fn f() { #stmts } });
+    match syn::parse2::<syn::File>(file) {
+        Ok(f) => prettyplease::unparse(&f).lines().count(),
+        Err(_) => usize::MAX,
+    }
+}
+
 fn by_ref_loads(ts: TokenStream) -> TokenStream {
     use proc_macro2::{Group, TokenTree as T};
     let toks: Vec<T> = ts.into_iter().collect();
