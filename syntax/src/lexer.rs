@@ -71,7 +71,8 @@ enum Mode {
     /// As `Fast`, without [`fast_token`].
     Grammar,
     /// The grammar alone: every step is the rule `next` (layout then a
-    /// token) from where the last token ended.
+    /// token) from where the last token ended; driven by `tokens_in`, never
+    /// by `next_token`.
     Pest,
 }
 
@@ -97,9 +98,6 @@ impl<'s> Lexer<'s> {
         let begin = self.pos;
         let bytes = self.src.as_bytes();
         let mut i = self.pos;
-        if self.mode == Mode::Pest {
-            return self.grammar_token(begin, false);
-        }
         // Plain layout and comments, in Rust; pest only sees tokens.
         loop {
             match bytes.get(i) {
@@ -698,7 +696,14 @@ fn tokens_in(src: &str, mode: Mode) -> Vec<String> {
     let mut lexer = Lexer::new(src, 0);
     lexer.mode = mode;
     loop {
-        match lexer.next_token() {
+        // `Mode::Pest` is driven from here, so that `next_token` (the
+        // readers' path) does not test for it.
+        let token = if mode == Mode::Pest {
+            lexer.grammar_token(lexer.pos, false)
+        } else {
+            lexer.next_token()
+        };
+        match token {
             Ok(t) if t.kind == TokKind::Eof => {
                 out.push(format!("{t:?}"));
                 return out;

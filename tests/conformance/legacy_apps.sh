@@ -113,7 +113,7 @@ for task in "${tasks[@]}"; do
     fresh "$d/tree"
     t0=$(now)
     { time (cd "$d/tree" && PATH="$work/shim:$PATH" SITLOG_HOME="$d/tree/" \
-        "${clock[@]}" timeout "$limit" bash "scripts/$app" test <"$input" >"$d/original.out" 2>&1); } 2>"$d/cpu-original"
+        ${clock[@]+"${clock[@]}"} timeout "$limit" bash "scripts/$app" test <"$input" >"$d/original.out" 2>&1); } 2>"$d/cpu-original"
     t_original=$(secs "$t0" "$(now)")
     c_original=$(cpu "$d/cpu-original")
     if ! completed "$d/original.out"; then
@@ -127,7 +127,7 @@ for task in "${tasks[@]}"; do
       if [ "${LEGACY_COMPILED:-0}" != only ]; then
         fresh "$d/tree"
         t0=$(now)
-        { time (cd "$d/tree" && SITLOG_HOME="$d/tree/" "${clock[@]}" timeout "$limit" \
+        { time (cd "$d/tree" && SITLOG_HOME="$d/tree/" ${clock[@]+"${clock[@]}"} timeout "$limit" \
             "$sitlogc" run "apps/$app" --legacy --legacy-kb "$kb" --script "$input" \
             >"$d/ours-$kb.out" 2>"$d/ours-$kb.err"); } 2>"$d/cpu-$kb"
         rc=$?
@@ -159,7 +159,7 @@ for task in "${tasks[@]}"; do
         fi
         fresh "$d/tree"
         t0=$(now)
-        (cd "$d/tree" && SITLOG_HOME="$d/tree/" "${clock[@]}" timeout "$limit" \
+        (cd "$d/tree" && SITLOG_HOME="$d/tree/" ${clock[@]+"${clock[@]}"} timeout "$limit" \
             "$task_exe" --legacy --legacy-kb "$kb" --script "$input" \
             >"$d/task-$kb.out" 2>"$d/task-$kb.err")
         rc_task=$?

@@ -57,8 +57,10 @@
 //!   and when that fails the rest of the arc (the next situation) runs on
 //!   terms: the next situation as written, filled with the native values,
 //!   evaluated whole as the machine evaluates an arc's next situation
-//!   (`TypedRun::go_eval`), or, with a condition or a `get`/`is` in it, as
-//!   the term code runs it.
+//!   (`TypedRun::go_eval`, or `cx.eval` then `run.go` when the arc has an
+//!   out_arg), or, with a condition, a `get`/`is` or a constant that is not
+//!   atomic in it (or when it is a constant or a variable alone), by the
+//!   term code's steps.
 //! - *finals*: the final situation's id is built as a term, the machine
 //!   entered in it, its (empty) out_arg, its `diag_mod` (a term built from
 //!   native values: the DM's output arguments) and history entry taken as
@@ -2688,8 +2690,9 @@ impl Gen<'_> {
         // A fresh variable the action binds (a boundary's value) and the
         // next situation reads is converted with the checked conversion;
         // when that fails, or when a local the machine's calls changed no
-        // longer fits the frame, the rest of the arc runs as the term code
-        // runs it (live native values as terms).
+        // longer fits the frame, the rest of the arc runs on terms (live
+        // native values as terms): the next situation as written, evaluated
+        // whole as `Machine::conclude` does, or the term code's steps.
         let reloads = atom.is_none() && !d.locals.is_empty();
         let enter_id = quote!(#(#id_stmts)* cx.enter_with_id(#cur, #id););
         let conv = self.nat_bound_at_boundary(
@@ -3302,8 +3305,9 @@ impl Gen<'_> {
 
     /// The fresh variables an action bound (made as terms for it) that
     /// `next` or the arc's out_arg `out` reads, with their types, and the
-    /// code that runs the rest of the arc as the term code does: the next
-    /// situation, then the out_arg (`Cx::out_arg`, before the entry is
+    /// code that runs the rest of the arc on terms: the next situation (as
+    /// written, evaluated whole as `Machine::conclude` does, or by the term
+    /// code's steps), then the out_arg (`Cx::out_arg`, before the entry is
     /// recorded and the transition counted, as `step::arc_code` orders
     /// them) (`None`: neither reads one and `always` is false).
     #[allow(clippy::type_complexity, clippy::too_many_arguments)]
@@ -3335,8 +3339,7 @@ impl Gen<'_> {
         if conv.is_empty() && !always {
             return Ok(None);
         }
-        // The next situation as written (an evaluated term of two compounds
-        // or more): filled from its pattern with the registers' values and
+        // The next situation as written (an evaluated compound): filled from its pattern with the registers' values and
         // evaluated whole, as the machine evaluates an arc's next situation
         // (`Machine::conclude`); the term code's steps compute the same value
         // part by part (the MIR's `Ev` says what `eval` does with each part).
@@ -3436,11 +3439,12 @@ impl Gen<'_> {
                 }
                 Build::Const(t) => {
                     let mut pre = Vec::new();
-                    let c = self.nat_const_term(*t, &mut pre, &mut n)?;
-                    if !pre.is_empty() {
-                        return Ok(None);
+                    // A constant native code cannot write (or needs statements
+                    // first) keeps the term code's steps: never worse than those.
+                    match self.nat_const_term(*t, &mut pre, &mut n) {
+                        Ok(c) if pre.is_empty() => parts.push(quote!(&#c)),
+                        _ => return Ok(None),
                     }
-                    parts.push(quote!(&#c));
                 }
                 Build::Compound(..) => return Ok(None),
             }
