@@ -770,8 +770,15 @@ fn shapes_written_from_the_issue_agree() {
         agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
     }
     let ir = interpreter("typed/shapes/c_outarg_cond");
-    for main in limits.iter().chain(&["relay(-3)"]) {
+    // The out_arg evaluated natively (`ngen12`): a `Val` with no number
+    // (an atom, `1 + 2` that the comparison evaluates, `f(x)`) lets the
+    // term code's comparison decide or fail.
+    for main in limits
+        .iter()
+        .chain(&["relay(-3)", "relay(1 + 2)", "relay(f(x))", "relay(-2.5)"])
+    {
         agree(s::outarg_cond::program(), &ir, main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
     }
     // The conditional's value read back: 7, compared with the limit 3.
     let ir = interpreter("typed/shapes/c_outarg_cond_read");

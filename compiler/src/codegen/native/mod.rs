@@ -3234,7 +3234,7 @@ impl Gen<'_> {
         &self,
         st: &SitTypes,
         next: &Next,
-        out: Option<&Build>,
+        out: Option<&Ev>,
         regs: &Regs,
         always: bool,
         enter: &TokenStream,
@@ -3243,8 +3243,8 @@ impl Gen<'_> {
         let mut b = super::step::Body::new();
         let v = self.next_code(next, &at, &mut b);
         let out = out.map(|o| {
-            let o = self.build_code(o, &mut b);
-            quote!(cx.out_arg(#o, #at)?;)
+            let o = self.ev_code(o, &at, &mut b);
+            quote!(cx.out_value(#o);)
         });
         let stmts = b.stmts;
         let body = quote!(#(#stmts)* #v #out);
