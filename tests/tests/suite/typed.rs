@@ -756,6 +756,88 @@ mod shapes_ngen11 {
     }
 }
 
+/// Helper `ngen12`'s workloads (session 11): the callee's first situation
+/// named by its parameter (`first(N)` in `bump(N)`, `try(L)` in
+/// `walk(L, T)`), a float limit, the target matched in the id
+/// (`try([T|_], T)`), the count a global.
+mod shapes_ngen12 {
+    pub mod first_param {
+        sitlog_macros::include_dm!("typed/shapes/c_first_param");
+    }
+    pub mod float_limit {
+        sitlog_macros::include_dm!("typed/shapes/c_float_limit");
+    }
+    pub mod global_count {
+        sitlog_macros::include_dm!("typed/shapes/c_global_count");
+    }
+    pub mod walk_first_param {
+        sitlog_macros::include_dm!("typed/shapes/d_walk_first_param");
+    }
+    pub mod target_matched_in_id {
+        sitlog_macros::include_dm!("typed/shapes/d_target_matched_in_id");
+    }
+}
+
+#[test]
+fn more_shapes_from_the_issue_agree() {
+    use shapes_ngen12 as s;
+    let limits = [
+        "relay(4)",
+        "relay(1)",
+        "relay(0)",
+        "relay(x)",
+        "relay(2.5)",
+        "relay(3.0)",
+        "relay(-1.5)",
+    ];
+    macro_rules! limits {
+        ($dir:literal, $m:ident) => {
+            let ir = interpreter($dir);
+            for main in limits {
+                agree(s::$m::program(), &ir, main, "");
+                agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
+            }
+        };
+    }
+    limits!("typed/shapes/c_first_param", first_param);
+    limits!("typed/shapes/c_float_limit", float_limit);
+    limits!("typed/shapes/c_global_count", global_count);
+    let lists = [
+        "[hall, bath, bed]",
+        "[hall, bath]",
+        "[]",
+        "[hall|bath]",
+        "[hall, bed|_]",
+        "hall",
+        "[f(x), bed]",
+        "[bed, bed]",
+    ];
+    let ir = interpreter("typed/shapes/d_walk_first_param");
+    for l in lists {
+        let main = format!("hunt(3, {l}, bed)");
+        agree(s::walk_first_param::program(), &ir, &main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, &main, "");
+    }
+    agree(
+        s::walk_first_param::program(),
+        &ir,
+        "hunt(2, [a, X], X)",
+        "",
+    );
+    let ir = interpreter("typed/shapes/d_target_matched_in_id");
+    for l in lists {
+        let main = format!("hunt(3, {l}, bed)");
+        agree(s::target_matched_in_id::program(), &ir, &main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, &main, "");
+    }
+    agree(
+        s::target_matched_in_id::program(),
+        &ir,
+        "hunt(2, [a, X], b)",
+        "",
+    );
+}
+
 #[test]
 fn shapes_written_from_the_issue_agree() {
     use shapes_ngen11 as s;

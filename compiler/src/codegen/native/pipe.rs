@@ -12,6 +12,10 @@
 //! register nowhere else only checks that the pipe converts (the same
 //! hand-over), keeping no value.
 //!
+//! An arc's out_arg is evaluated (`mir::ArcPlan::out_arg`, an `Ev`): a
+//! conditional `(X > 0 -> X ; otherwise -> 1)` of native branches is a
+//! Rust `if` computed before the next situation (`Gen::nat_out_value`).
+//!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
 //! where the machine enters native code, `nat_entry` checks the
