@@ -527,9 +527,7 @@ fn hand_walk_pairs(rounds: i64, pairs: &[(Sym, Sym)], item: Sym) -> u64 {
     transitions
 }
 
-// `d_compare_fn` is not here: compiled, it fails (`there is no situation
-// try(..) in this DM`: docs/guide/performance.md, helper `ngen12`).
-const ALL: [&str; 17] = [
+const ALL: [&str; 18] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -547,6 +545,7 @@ const ALL: [&str; 17] = [
     "d_walk_first_param",
     "d_target_matched_in_id",
     "c_global_count",
+    "d_compare_fn",
 ];
 
 fn main() {

@@ -40,10 +40,22 @@ fn interpreter(app: &str) -> Ir {
     sitlog_compiler::ir::lower(&checked.expect("checks"))
 }
 
+thread_local! {
+    /// An application whose Prolog user functions [`functions`] installs
+    /// too (`d_compare_fn`'s `same_place/2`), in this test's thread.
+    static PROLOG: std::cell::RefCell<Option<Ir>> = const { std::cell::RefCell::new(None) };
+}
+
 /// `poke(_)`: sets the caller's local `n` to the atom `hello`, which the
 /// compiler cannot see.
 fn functions() -> Functions {
     let mut f = Functions::standard();
+    PROLOG.with(|p| {
+        if let Some(ir) = &*p.borrow() {
+            sitlog_compiler::run::install_prolog(ir, &mut f, Default::default())
+                .expect("the Prolog files load");
+        }
+    });
     f.register("poke", 1, |call, _| {
         let set = call.store.parse("set(n, hello)").map_err(|e| e.message)?.0;
         call.var_op(set)?;
@@ -776,6 +788,31 @@ mod shapes_ngen12 {
     pub mod target_matched_in_id {
         sitlog_macros::include_dm!("typed/shapes/d_target_matched_in_id");
     }
+    pub mod compare_fn {
+        sitlog_macros::include_dm!("typed/shapes/d_compare_fn");
+    }
+}
+
+/// The comparison a Prolog user function (`apply(same_place(_, _), [P,
+/// T]) == yes`) in a callee pushed natively: the arc's rest goes to the term
+/// code (the `_`s do not convert) after the frames below are handed over.
+#[test]
+fn a_comparison_by_a_user_function_agrees() {
+    let ir = interpreter("typed/shapes/d_compare_fn");
+    PROLOG.with(|p| *p.borrow_mut() = Some(interpreter("typed/shapes/d_compare_fn")));
+    // Few runs: each loads the Prolog engine.
+    let main = "hunt(2, [hall, bed], bed)";
+    let c = run(
+        shapes_ngen12::compare_fn::program(),
+        main,
+        "",
+        false,
+        false,
+        false,
+    );
+    let i = run(&ir, main, "", false, false, false);
+    assert_eq!(c, i, "{main}");
+    assert_eq!(c.1, 12, "{main}: {c:?}");
 }
 
 #[test]
