@@ -57,6 +57,25 @@ mod d_found_rest {
 mod d_shelf_pairs {
     sitlog_macros::include_dm!("../tests/typed/shapes/d_shelf_pairs");
 }
+// Helper `ngen12`'s (session 11).
+mod c_first_param {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_first_param");
+}
+mod c_float_limit {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_float_limit");
+}
+mod d_walk_first_param {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_walk_first_param");
+}
+mod d_target_matched_in_id {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_target_matched_in_id");
+}
+mod c_global_count {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_global_count");
+}
+mod d_compare_fn {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_compare_fn");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks' (no hand-written way here: see
 // `benches/benches/compiled.rs`).
@@ -68,11 +87,20 @@ mod list_search {
 }
 
 /// Runs a program with `--history none`'s options; its transitions.
-fn run<A: app::App>(app: &A, main: &str) -> u64 {
-    run_piped(app, main, None)
+fn run_piped<A: app::App>(app: &A, main: &str, in_arg: Option<&str>) -> u64 {
+    run_fns(app, main, in_arg, Functions::standard())
 }
 
-fn run_piped<A: app::App>(app: &A, main: &str, in_arg: Option<&str>) -> u64 {
+/// [`run`] with the Prolog user functions of workload `name` installed
+/// (`d_compare_fn`'s `same_place/2`), both ways alike.
+fn run_prolog<A: app::App>(app: &A, main: &str, name: &str) -> u64 {
+    let mut f = Functions::standard();
+    sitlog_compiler::run::install_prolog(&interpreter(name), &mut f, Default::default())
+        .expect("the workload's Prolog loads");
+    run_fns(app, main, None, f)
+}
+
+fn run_fns<A: app::App>(app: &A, main: &str, in_arg: Option<&str>, functions: Functions) -> u64 {
     let mut perception = ScriptPerception::new("script", String::new());
     let mut actions = TextActions::new(std::io::sink(), Vec::new());
     let options = Options {
@@ -84,7 +112,7 @@ fn run_piped<A: app::App>(app: &A, main: &str, in_arg: Option<&str>) -> u64 {
         main,
         in_arg,
         options,
-        Functions::standard(),
+        functions,
         &mut perception,
         &mut actions,
         None,
@@ -113,6 +141,12 @@ struct Sym(u32);
 /// caller's id, a local or the callee's parameter (all an `i64` here).
 /// `start`: the caller's first situation setting the pipe.
 fn hand_echo(limit: i64, depth: u32, cond_out: bool) -> u64 {
+    hand_echo_as(limit, depth, cond_out, false)
+}
+
+/// [`hand_echo`] with the limit a float (`float`: the count, an int,
+/// compared with it as the machine compares an int with a float).
+fn hand_echo_as(limit: i64, depth: u32, cond_out: bool, float: bool) -> u64 {
     #[derive(Clone, Copy)]
     enum Frame {
         Start,
@@ -124,11 +158,13 @@ fn hand_echo(limit: i64, depth: u32, cond_out: bool) -> u64 {
     }
     let mut stack: Vec<Frame> = vec![Frame::Start];
     let (mut pipe, mut n, mut transitions) = (0i64, 0i64, 0u64);
+    let mut pipe_f = 0f64;
     while let Some(top) = stack.last_mut() {
         match *top {
             Frame::Start => {
                 transitions += 1;
                 pipe = black_box(limit);
+                pipe_f = black_box(limit as f64);
                 *top = Frame::Ask;
             }
             Frame::Ask => {
@@ -166,7 +202,8 @@ fn hand_echo(limit: i64, depth: u32, cond_out: bool) -> u64 {
                 transitions += 1;
                 n = black_box(n + 1);
                 if let Some(m) = stack.last_mut() {
-                    *m = if n < pipe { Frame::Ask } else { Frame::Over };
+                    let more = if float { (n as f64) < pipe_f } else { n < pipe };
+                    *m = if more { Frame::Ask } else { Frame::Over };
                 }
             }
         }
@@ -342,7 +379,14 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "c_limit_inarg_echo" | "c_counter_param" | "c_outarg_cond" | "c_deeper_echo" => {
             format!("relay({n})")
         }
-        "d_target_in_id" | "d_id_shares_param" => format!("hunt({n}, {list}, {last})"),
+        "c_first_param" => format!("relay({n})"),
+        "c_float_limit" => format!("relay({n}.0)"),
+        "c_global_count" => format!("relay({n})"),
+        "d_target_in_id"
+        | "d_id_shares_param"
+        | "d_walk_first_param"
+        | "d_target_matched_in_id"
+        | "d_compare_fn" => format!("hunt({n}, {list}, {last})"),
         "d_local_places" => format!("tour({n}, cellar)"),
         "d_const_ints" => format!("drill({n}, 64)"),
         "d_built_list" => format!("patrol({n}, {list}, p0)"),
@@ -363,8 +407,8 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
     macro_rules! ways {
         ($m:ident) => {
             match way {
-                "compiled" => run($m::program(), &main),
-                "interp" => run(&Resolved::new(&interpreter(name)), &main),
+                "compiled" => run_prolog($m::program(), &main, name),
+                "interp" => run_prolog(&Resolved::new(&interpreter(name)), &main, name),
                 _ => unreachable!(),
             }
         };
@@ -372,12 +416,17 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
     if way == "hand" {
         let n = black_box(n);
         return match name {
-            "c_limit_inarg_echo" | "c_counter_param" => hand_echo(n, 1, false),
+            "c_limit_inarg_echo" | "c_counter_param" | "c_first_param" => hand_echo(n, 1, false),
+            "c_float_limit" => hand_echo_as(n, 1, false, true),
+            // No first situation setting the pipe: one transition less.
+            "c_global_count" => hand_echo(n, 1, false) - 1,
             "c_outarg_cond" => hand_echo(n, 1, true),
             "c_deeper_echo" => hand_echo(n, 2, false),
-            "d_target_in_id" | "d_id_shares_param" => {
-                hand_walk(n, black_box(&syms), black_box(lsym), true, false)
-            }
+            "d_target_in_id"
+            | "d_id_shares_param"
+            | "d_walk_first_param"
+            | "d_target_matched_in_id"
+            | "d_compare_fn" => hand_walk(n, black_box(&syms), black_box(lsym), true, false),
             "d_local_places" => {
                 hand_walk(n, black_box(&syms[..8]), black_box(Sym(7)), false, false)
             }
@@ -409,6 +458,12 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_found_rest" => ways!(d_found_rest),
         "d_shelf_pairs" => ways!(d_shelf_pairs),
         "list_search" => ways!(list_search),
+        "c_first_param" => ways!(c_first_param),
+        "c_float_limit" => ways!(c_float_limit),
+        "c_global_count" => ways!(c_global_count),
+        "d_walk_first_param" => ways!(d_walk_first_param),
+        "d_target_matched_in_id" => ways!(d_target_matched_in_id),
+        "d_compare_fn" => ways!(d_compare_fn),
         _ => unreachable!(),
     }
 }
@@ -472,7 +527,7 @@ fn hand_walk_pairs(rounds: i64, pairs: &[(Sym, Sym)], item: Sym) -> u64 {
     transitions
 }
 
-const ALL: [&str; 12] = [
+const ALL: [&str; 18] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -485,6 +540,12 @@ const ALL: [&str; 12] = [
     "d_acc_seen",
     "d_found_rest",
     "d_shelf_pairs",
+    "c_first_param",
+    "c_float_limit",
+    "d_walk_first_param",
+    "d_target_matched_in_id",
+    "c_global_count",
+    "d_compare_fn",
 ];
 
 fn main() {

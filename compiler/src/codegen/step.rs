@@ -124,7 +124,7 @@ impl Gen<'_> {
     }
 
     /// The value of `e` evaluated in L.
-    fn ev_code(&self, e: &Ev, arc: &TokenStream, b: &mut Body) -> TokenStream {
+    pub(super) fn ev_code(&self, e: &Ev, arc: &TokenStream, b: &mut Body) -> TokenStream {
         match e {
             Ev::Value(r) => {
                 let r = reg(*r);
@@ -662,8 +662,8 @@ impl Gen<'_> {
         let next = self.next_code(&arc.next, &at, b);
         b.stmts.push(quote!(let (next, target) = #next;));
         if let Some(o) = &arc.out_arg {
-            let o = self.build_code(o, b);
-            b.stmts.push(quote!(cx.out_arg(#o, #at)?;));
+            let o = self.ev_code(o, &at, b);
+            b.stmts.push(quote!(cx.out_value(#o);));
         }
         if let Some(d) = &arc.diag_mod {
             let d = self.build_code(d, b);

@@ -374,8 +374,8 @@ pub(super) fn run_arcs(
     };
     let (next_value, target) = next(cx, regs, &arc.next, at)?;
     if let Some(o) = &arc.out_arg {
-        let o = build(cx, regs, o);
-        cx.out_arg(o, at)?;
+        let o = ev(cx, regs, o, at)?;
+        cx.out_value(o);
     }
     if let Some(d) = &arc.diag_mod {
         let d = build(cx, regs, d);

@@ -483,6 +483,14 @@ impl<'s> Planner<'s> {
                 }
             }
         };
+        // The term as written is needed by a final (evaluated when it
+        // ends) and by a `prog` run on a copy (its variables linked);
+        // otherwise each arc evaluates the out_arg itself
+        // ([`ArcPlan::out_arg`]) and building it is wasted work.
+        let out_plan = match out_plan {
+            Some(o) if s.kind == Kind::Final || matches!(prog_plan, Some(Prog::Copy(_))) => Some(o),
+            _ => None,
+        };
         let kind = match s.kind {
             Kind::Final => KindPlan::Final {
                 diag_mod: match diag_mod {
@@ -619,8 +627,10 @@ impl<'s> Planner<'s> {
                 _ => Action::One(self.ev(arc[1], &mut sc, 0)?),
             };
             let next = self.next(arc[2], &mut sc, 0)?;
+            // Evaluated, as the next situation is (a conditional, `get`,
+            // `apply(..)`): its variables are the situation's, never lazy.
             let out_arg = match out_arg {
-                Some(o) => Some(self.build(o, &sc.vars, 0)?),
+                Some(o) => Some(self.ev(o, &mut sc, 0)?),
                 None => None,
             };
             let diag_mod = match diag_mod {

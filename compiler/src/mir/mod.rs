@@ -174,7 +174,9 @@ pub struct ArcPlan {
     pub expectation: Ev,
     pub action: Action,
     pub next: Next,
-    pub out_arg: Option<Build>,
+    /// The situation's out_arg, evaluated after the next situation (D-18):
+    /// its value becomes the pipe unless it is a variable.
+    pub out_arg: Option<Ev>,
     pub diag_mod: Option<Build>,
 }
 
@@ -334,7 +336,10 @@ impl Arcs {
                 Action::One(e) => e.constants(out),
             }
             arc.next.constants(out);
-            for b in arc.out_arg.iter().chain(&arc.diag_mod) {
+            if let Some(e) = &arc.out_arg {
+                e.constants(out);
+            }
+            if let Some(b) = &arc.diag_mod {
                 b.constants(out);
             }
         }

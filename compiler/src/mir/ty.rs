@@ -44,7 +44,10 @@
 //!   which fails for such a value (the term path runs it). So the walk
 //!   after it (`try(Ps)`) is over a typed list.
 //!   The DM's first situation is entered by position with its id's
-//!   variables unbound (D-4): its id arguments are `Term`.
+//!   variables unbound (D-4): its id arguments are `Term`, except one
+//!   that is a parameter's variable too (`first(N)` in DM `bump(N)`),
+//!   which the link (D-7) binds to the call's argument: the parameter's
+//!   type when that is a value (`start_links`).
 //! - **locals and globals**: the default's type joined with every write
 //!   the DM's code makes (`set(n, E)`: E as written; `inc` keeps a number
 //!   a number); a global is written by every DM where it is not a local.
@@ -921,12 +924,26 @@ impl<'a> State<'a> {
         for d in 0..self.ir.dms.len() {
             // A DM's first situation receives its entry pipe.
             let pipe_in = self.t.dms[d].pipe_in.clone();
+            // An id argument that is a parameter's variable (`first(N)`
+            // in DM `count(N)`) is then linked with the call's argument
+            // (D-7): bound to it, so of its type when that is a value.
+            let linked = self
+                .mir
+                .plan(d as u32, 0)
+                .map(start_links)
+                .unwrap_or_default();
+            let params = self.t.dms[d].params.clone();
             if let Some(s0) = self.t.dms[d].sits.first_mut().and_then(Option::as_mut) {
                 self.changed |= s0.pipe.absorb(&pipe_in);
                 let why =
                     Typed::term("the DM's first situation is entered with its id unbound (D-4)");
-                for a in &mut s0.id_args {
-                    self.changed |= a.absorb(&why);
+                for (i, a) in s0.id_args.iter_mut().enumerate() {
+                    let param = linked
+                        .iter()
+                        .find(|(x, _)| *x == i)
+                        .and_then(|&(_, j)| params.get(j))
+                        .filter(|t| t.is_native());
+                    self.changed |= a.absorb(param.unwrap_or(&why));
                 }
             }
             let mir = self.mir;
@@ -1449,11 +1466,19 @@ impl<'a> State<'a> {
             .as_ref()
             .map(|t| t.pipe.clone())
             .unwrap_or_else(Typed::never);
-        // The id built when the DM starts here (unused otherwise).
+        // The id built when the DM starts here (unused otherwise); an
+        // argument linked with a parameter that is a value takes its value.
         if s == 0 {
-            for part in p.compound_id.iter().flatten() {
+            let linked = start_links(p);
+            for (i, part) in p.compound_id.iter().flatten().enumerate() {
                 if let IdPart::Fresh(r) = part {
-                    self.def(d, s, *r, &built_why);
+                    let param = linked
+                        .iter()
+                        .find(|(x, _)| *x == i)
+                        .and_then(|&(_, j)| self.t.dms[d].params.get(j))
+                        .filter(|t| t.is_native())
+                        .cloned();
+                    self.def(d, s, *r, param.as_ref().unwrap_or(&built_why));
                 }
             }
             if let Some(pat) = &p.pattern {
@@ -1921,7 +1946,7 @@ impl<'a> State<'a> {
                 }
             }
             let leaves = match (&arc.out_arg, out) {
-                (Some(b), _) => self.eval_build(d, s, b),
+                (Some(e), _) => self.ev(d, s, e),
                 (None, Some(o)) => o.clone(),
                 (None, None) => pipe.clone(),
             };
@@ -1931,6 +1956,24 @@ impl<'a> State<'a> {
             }
         }
     }
+}
+
+/// The arguments of a DM's first situation's id (a compound of distinct
+/// variables and atomic constants) that are a parameter's variable too,
+/// with that parameter's position: `(id argument, parameter)`. When the
+/// DM starts there the id's variables are unbound (D-4) and the link
+/// binds each such one to the call's argument (D-7).
+pub(crate) fn start_links(p: &SitPlan) -> Vec<(usize, usize)> {
+    if p.compound_id.is_none() {
+        return Vec::new();
+    }
+    p.inits
+        .iter()
+        .filter_map(|(r, init)| match init {
+            Init::IdArg(i) => p.links.iter().find(|(x, _)| x == r).map(|&(_, j)| (*i, j)),
+            _ => None,
+        })
+        .collect()
 }
 
 /// `E` when the first action element that mentions `r` is `assign(R, E)`
@@ -1988,8 +2031,8 @@ fn arc_first_use(arc: &ArcPlan, r: Reg) -> Use {
         u => return u,
     }
     match &arc.out_arg {
-        Some(b) if build_mentions(b, r, 0) => Use::Read,
-        _ => Use::None,
+        Some(e) => ev_first_use(e, r, 0),
+        None => Use::None,
     }
 }
 
@@ -2166,7 +2209,10 @@ fn occurrences(p: &SitPlan) -> Vec<u32> {
                 Action::One(e) => ev(e, f, 0),
             }
             next(&arc.next, f, 0);
-            for b in arc.out_arg.iter().chain(&arc.diag_mod) {
+            if let Some(e) = &arc.out_arg {
+                ev(e, f, 0);
+            }
+            if let Some(b) = &arc.diag_mod {
                 build(b, f, 0);
             }
         }
@@ -2529,7 +2575,8 @@ diag_mod(echo,
 
     /// The pipe leaves with the out_arg's value (D-9): a conditional out_arg
     /// is not the `;` compound it is written as (it was typed so, and the
-    /// caller's `V =< L` read the pipe as that compound).
+    /// caller's `V =< L` read the pipe as that compound), but the join of
+    /// its branches' values.
     #[test]
     fn an_out_arg_leaves_with_its_value_not_its_text() {
         let (ir, mir, t) = types_of(
@@ -2548,11 +2595,12 @@ diag_mod(succ,
   []).
 "#,
         );
+        // Evaluated as the arc's `Ev` (`ngen12`): 7 or 1, an int.
         let s = dm(&ir, "succ");
-        assert_eq!(t.dms[s].pipe_out.ty, Ty::Ground);
+        assert_eq!(t.dms[s].pipe_out.ty, Ty::Int);
         let m = dm(&ir, "main");
         let test = sit(&ir, m, 1);
-        assert_eq!(var_ty(&ir, &mir, &t, m, test, "V"), Ty::Ground);
+        assert_eq!(var_ty(&ir, &mir, &t, m, test, "V"), Ty::Int);
     }
 
     #[test]

@@ -939,6 +939,16 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         Ok(())
     }
 
+    /// An arc's out_arg already evaluated (the plans evaluate it as they
+    /// evaluate a next situation): the value becomes the pipe unless it is
+    /// a variable (D-18), as [`Cx::out_arg`] does after evaluating.
+    #[inline]
+    pub fn out_value(&mut self, value: Term) {
+        if !self.m.store.is_var(value) {
+            *self.pipe = value;
+        }
+    }
+
     /// A final situation's out_arg (or the pipe unchanged when `None`).
     pub fn final_out_arg(&mut self, out: Option<Term>) -> Result<(), RunError> {
         self.m.materialize();

@@ -40,10 +40,22 @@ fn interpreter(app: &str) -> Ir {
     sitlog_compiler::ir::lower(&checked.expect("checks"))
 }
 
+thread_local! {
+    /// An application whose Prolog user functions [`functions`] installs
+    /// too (`d_compare_fn`'s `same_place/2`), in this test's thread.
+    static PROLOG: std::cell::RefCell<Option<Ir>> = const { std::cell::RefCell::new(None) };
+}
+
 /// `poke(_)`: sets the caller's local `n` to the atom `hello`, which the
 /// compiler cannot see.
 fn functions() -> Functions {
     let mut f = Functions::standard();
+    PROLOG.with(|p| {
+        if let Some(ir) = &*p.borrow() {
+            sitlog_compiler::run::install_prolog(ir, &mut f, Default::default())
+                .expect("the Prolog files load");
+        }
+    });
     f.register("poke", 1, |call, _| {
         let set = call.store.parse("set(n, hello)").map_err(|e| e.message)?.0;
         call.var_op(set)?;
@@ -756,6 +768,113 @@ mod shapes_ngen11 {
     }
 }
 
+/// Helper `ngen12`'s workloads (session 11): the callee's first situation
+/// named by its parameter (`first(N)` in `bump(N)`, `try(L)` in
+/// `walk(L, T)`), a float limit, the target matched in the id
+/// (`try([T|_], T)`), the count a global.
+mod shapes_ngen12 {
+    pub mod first_param {
+        sitlog_macros::include_dm!("typed/shapes/c_first_param");
+    }
+    pub mod float_limit {
+        sitlog_macros::include_dm!("typed/shapes/c_float_limit");
+    }
+    pub mod global_count {
+        sitlog_macros::include_dm!("typed/shapes/c_global_count");
+    }
+    pub mod walk_first_param {
+        sitlog_macros::include_dm!("typed/shapes/d_walk_first_param");
+    }
+    pub mod target_matched_in_id {
+        sitlog_macros::include_dm!("typed/shapes/d_target_matched_in_id");
+    }
+    pub mod compare_fn {
+        sitlog_macros::include_dm!("typed/shapes/d_compare_fn");
+    }
+}
+
+/// The comparison a Prolog user function (`apply(same_place(_, _), [P,
+/// T]) == yes`) in a callee pushed natively: the arc's rest goes to the term
+/// code (the `_`s do not convert) after the frames below are handed over.
+#[test]
+fn a_comparison_by_a_user_function_agrees() {
+    let ir = interpreter("typed/shapes/d_compare_fn");
+    PROLOG.with(|p| *p.borrow_mut() = Some(interpreter("typed/shapes/d_compare_fn")));
+    // Few runs: each loads the Prolog engine.
+    let main = "hunt(2, [hall, bed], bed)";
+    let c = run(
+        shapes_ngen12::compare_fn::program(),
+        main,
+        "",
+        false,
+        false,
+        false,
+    );
+    let i = run(&ir, main, "", false, false, false);
+    assert_eq!(c, i, "{main}");
+    assert_eq!(c.1, 12, "{main}: {c:?}");
+}
+
+#[test]
+fn more_shapes_from_the_issue_agree() {
+    use shapes_ngen12 as s;
+    let limits = [
+        "relay(4)",
+        "relay(1)",
+        "relay(0)",
+        "relay(x)",
+        "relay(2.5)",
+        "relay(3.0)",
+        "relay(-1.5)",
+    ];
+    macro_rules! limits {
+        ($dir:literal, $m:ident) => {
+            let ir = interpreter($dir);
+            for main in limits {
+                agree(s::$m::program(), &ir, main, "");
+                agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
+            }
+        };
+    }
+    limits!("typed/shapes/c_first_param", first_param);
+    limits!("typed/shapes/c_float_limit", float_limit);
+    limits!("typed/shapes/c_global_count", global_count);
+    let lists = [
+        "[hall, bath, bed]",
+        "[hall, bath]",
+        "[]",
+        "[hall|bath]",
+        "[hall, bed|_]",
+        "hall",
+        "[f(x), bed]",
+        "[bed, bed]",
+    ];
+    let ir = interpreter("typed/shapes/d_walk_first_param");
+    for l in lists {
+        let main = format!("hunt(3, {l}, bed)");
+        agree(s::walk_first_param::program(), &ir, &main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, &main, "");
+    }
+    agree(
+        s::walk_first_param::program(),
+        &ir,
+        "hunt(2, [a, X], X)",
+        "",
+    );
+    let ir = interpreter("typed/shapes/d_target_matched_in_id");
+    for l in lists {
+        let main = format!("hunt(3, {l}, bed)");
+        agree(s::target_matched_in_id::program(), &ir, &main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, &main, "");
+    }
+    agree(
+        s::target_matched_in_id::program(),
+        &ir,
+        "hunt(2, [a, X], b)",
+        "",
+    );
+}
+
 #[test]
 fn shapes_written_from_the_issue_agree() {
     use shapes_ngen11 as s;
@@ -770,8 +889,15 @@ fn shapes_written_from_the_issue_agree() {
         agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
     }
     let ir = interpreter("typed/shapes/c_outarg_cond");
-    for main in limits.iter().chain(&["relay(-3)"]) {
+    // The out_arg evaluated natively (`ngen12`): a `Val` with no number
+    // (an atom, `1 + 2` that the comparison evaluates, `f(x)`) lets the
+    // term code's comparison decide or fail.
+    for main in limits
+        .iter()
+        .chain(&["relay(-3)", "relay(1 + 2)", "relay(f(x))", "relay(-2.5)"])
+    {
         agree(s::outarg_cond::program(), &ir, main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
     }
     // The conditional's value read back: 7, compared with the limit 3.
     let ir = interpreter("typed/shapes/c_outarg_cond_read");

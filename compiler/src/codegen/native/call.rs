@@ -2,7 +2,9 @@
 //! code whose embedded DM's initial situation has native code (its locals
 //! native, the arguments converting to its frame) pushes the callee's
 //! typed frame on the driver's native stack ([`super::frame`]), the
-//! arguments moved into it, and waits in its own variant `W<ix>` (the
+//! arguments moved into it (a first situation whose id names parameters,
+//! `first(N)` in `bump(N)`, takes them as its fields: the link of D-7 at
+//! the start, `Gen::nat_start_fields`), and waits in its own variant `W<ix>` (the
 //! situation's id variables and the registers its exit arcs read); when
 //! the callee reaches a final, the exit arcs are matched against the
 //! callee's final variant natively (`found(P)` binds `P` from the
@@ -313,6 +315,13 @@ impl Gen<'_> {
             let v = self.nat_value(&Build::Const(*default), &Regs::new()).ok()?;
             coerce(&v, ty).ok()?;
         }
+        // The callee's first situation's fields: its id's variables that
+        // are parameters too (`first(N)` in `bump(N)`), bound to the
+        // arguments by the link (D-7); any other is unbound there (D-4).
+        let start = Self::nat_start_fields(&callee).ok()?;
+        for &(_, k, ref ty) in &start {
+            coerce(args.get(k)?, ty).ok()?;
+        }
         // Exit arcs native code does not run (an action or next situation
         // it does not know): the call is the machine's, from the template.
         let (exit, rec_exit) = self.nat_exit(d, ix, &callee, j).ok()?;
@@ -322,6 +331,31 @@ impl Gen<'_> {
             exit,
             rec_exit,
         })
+    }
+
+    /// The fields of DM `callee`'s first situation, `(register, argument,
+    /// type)`: each a variable of its id that is a parameter too, the
+    /// call's argument once linked (D-7); an error when one is not.
+    fn nat_start_fields(callee: &Dm) -> N<Vec<(Reg, usize, Ty)>> {
+        let Some(p0) = callee.plans.first() else {
+            return Ok(Vec::new());
+        };
+        let links = crate::mir::ty::start_links(p0);
+        let mut out = Vec::new();
+        for (r, init) in &p0.inits {
+            let Init::IdArg(i) = init else {
+                if matches!(init, Init::IdPath(_)) {
+                    return Err("the first situation's id is a pattern".into());
+                }
+                continue;
+            };
+            let &(_, k) = links
+                .iter()
+                .find(|(x, _)| x == i)
+                .ok_or("the first situation's id has a variable of its own (D-4)")?;
+            out.push((*r, k, callee.types[0].regs[*r as usize].ty.clone()));
+        }
+        Ok(out)
     }
 
     /// The visit of recursive situation `ix` (registers `regs` set).
@@ -446,6 +480,27 @@ impl Gen<'_> {
             inits.push(quote!(#l: #e));
         }
         inits.extend(out_slots_none(&plan.callee));
+        // The first situation's fields: the arguments its id's
+        // parameters are linked with (cloned: each also moves into the frame).
+        let mut s0 = Vec::new();
+        for (r, k, ty) in Self::nat_start_fields(&plan.callee)? {
+            let x = &vs[k];
+            let e = coerce(
+                &V {
+                    e: quote!(#x.clone()),
+                    ty: args[k].ty.clone(),
+                },
+                &ty,
+            )?;
+            let rr = reg(r);
+            s0.push(quote!(#rr: #e));
+        }
+        // `at` first where it clones an argument that `inits` moves.
+        let frame = if s0.is_empty() {
+            quote!({ #(#inits,)* at: super::#callee_n::S0 {} })
+        } else {
+            quote!({ at: super::#callee_n::S0 { #(#s0),* }, #(#inits,)* })
+        };
         let wv = wait_variant(ix);
         let mut wf = Vec::new();
         for (r, _) in self.nat_wait_fields(d, ix)? {
@@ -491,7 +546,7 @@ impl Gen<'_> {
             quote! {
                 else if run.nests && stack.has_room(cx) {
                     let callee = super::NatFrame::#callee_v(
-                        super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} },
+                        super::#callee_f #frame,
                     );
                     cx.push_level(p, call, callee);
                     return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
@@ -505,7 +560,7 @@ impl Gen<'_> {
             // limit, when no history is kept or observed (else the machine
             // pushes it: the callee's entries nest in the caller's).
             if !run.records && stack.has_room(cx) {
-                let callee = super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} };
+                let callee = super::#callee_f #frame;
                 *call = Some(super::NatFrame::#callee_v(callee));
                 // Written where the frame keeps it (not through `at`).
                 return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
@@ -1301,6 +1356,23 @@ impl Gen<'_> {
         let (li, ri) = (as_int(&l, &lx)?, as_int(&r, &rx)?);
         let (lf, rf) = (as_float(&l, &lx), as_float(&r, &rx));
         let cmp = cmp_tokens(op, quote!(x), quote!(y));
+        let ord = |o: TokenStream| -> TokenStream {
+            let eq = quote!(::std::cmp::Ordering::Equal);
+            let lt = quote!(::std::cmp::Ordering::Less);
+            let gt = quote!(::std::cmp::Ordering::Greater);
+            match op {
+                ArithCmp::Eq => quote!((#o == Some(#eq))),
+                ArithCmp::Ne => quote!((#o != Some(#eq))),
+                ArithCmp::Lt => quote!((#o == Some(#lt))),
+                ArithCmp::Gt => quote!((#o == Some(#gt))),
+                ArithCmp::Le => quote!(matches!(#o, Some(#lt | #eq))),
+                ArithCmp::Ge => quote!(matches!(#o, Some(#gt | #eq))),
+            }
+        };
+        let mixed_if =
+            ord(quote!(#rt::compare_numbers(#rt::Number::Int(x), #rt::Number::Float(y))));
+        let mixed_fi =
+            ord(quote!(#rt::compare_numbers(#rt::Number::Float(x), #rt::Number::Int(y))));
         let hand = &d.hand;
         let curl = Literal::u32_unsuffixed(cur as u32);
         let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
@@ -1320,6 +1392,10 @@ impl Gen<'_> {
             match (#li, #ri, #lf, #rf) {
                 (#some(x), #some(y), _, _) => #cmp,
                 (_, _, #some(x), #some(y)) => #cmp,
+                // An int and a float (`I < 300.0`): compared exactly, as
+                // the machine compares them (`compare_numbers`).
+                (#some(x), _, _, #some(y)) => #mixed_if,
+                (_, #some(y), #some(x), _) => #mixed_fi,
                 _ => {
                     // Not two ints: the term code's evaluation decides. The
                     // arc's own transition (counted before its next

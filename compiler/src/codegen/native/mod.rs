@@ -1008,8 +1008,14 @@ impl CellField {
 }
 
 impl Dm<'_> {
-    /// The parameters the situations with native code read.
+    /// The parameters the situations with native code read (and those a
+    /// native first situation's id is linked with: its fields are their
+    /// values, `first(N)` in `bump(N)`).
     fn read_params(&self) -> std::collections::BTreeSet<usize> {
+        let start = match (self.plans.first(), self.native.first()) {
+            (Some(p0), Some(true)) => crate::mir::ty::start_links(p0),
+            _ => Vec::new(),
+        };
         (0..self.plans.len())
             .filter(|&ix| self.native[ix])
             .flat_map(|ix| {
@@ -1026,6 +1032,7 @@ impl Dm<'_> {
                         _ => None,
                     })
             })
+            .chain(start.into_iter().map(|(_, j)| j))
             .collect()
     }
 }
@@ -2694,7 +2701,16 @@ impl Gen<'_> {
         // native values as terms): the next situation as written, evaluated
         // whole as `Machine::conclude` does, or the term code's steps.
         let reloads = atom.is_none() && !d.locals.is_empty();
-        let enter_id = quote!(#(#id_stmts)* cx.enter_with_id(#cur, #id););
+        // After an `empty` action (performed, and the frames below handed
+        // over, only when recorded or not quiet) the native frames below
+        // are handed over first: else the machine would be entered in the
+        // caller's frame (`ngen12`'s `d_compare_fn`). Any other action
+        // handed over where it was performed.
+        let enter_id = if atom == Some(atoms::EMPTY) {
+            quote!(#hand #(#id_stmts)* cx.enter_with_id(#cur, #id);)
+        } else {
+            quote!(#(#id_stmts)* cx.enter_with_id(#cur, #id);)
+        };
         let conv = self.nat_bound_at_boundary(
             st,
             &arc.next,
@@ -3315,7 +3331,7 @@ impl Gen<'_> {
         &self,
         st: &SitTypes,
         next: &Next,
-        out: Option<&Build>,
+        out: Option<&Ev>,
         regs: &Regs,
         always: bool,
         enter: &TokenStream,
@@ -3325,8 +3341,8 @@ impl Gen<'_> {
         let mut b = super::step::Body::new();
         let v = self.next_code(next, &at, &mut b);
         let out = out.map(|o| {
-            let o = self.build_code(o, &mut b);
-            quote!(cx.out_arg(#o, #at)?;)
+            let o = self.ev_code(o, &at, &mut b);
+            quote!(cx.out_value(#o);)
         });
         let stmts = b.stmts;
         let body = quote!(#(#stmts)* #v #out);

@@ -12,14 +12,18 @@
 //! register nowhere else only checks that the pipe converts (the same
 //! hand-over), keeping no value.
 //!
+//! An arc's out_arg is evaluated (`mir::ArcPlan::out_arg`, an `Ev`): a
+//! conditional `(X > 0 -> X ; otherwise -> 1)` of native branches is a
+//! Rust `if` computed before the next situation (`Gen::nat_out_value`).
+//!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
 //! where the machine enters native code, `nat_entry` checks the
 //! conversion first and leaves that situation to its term code, so a
 //! hand-over never comes back to native code that would hand over again.
 
-use super::{reg, Dm, Gen, Regs, N};
-use crate::mir::{Build, Init, Next, Reg};
+use super::{reg, Dm, Gen, Regs, N, V};
+use crate::mir::{Build, Cond, Ev, Init, Next, Reg};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 use sitlog_runtime::native::Ty;
@@ -94,19 +98,19 @@ impl Gen<'_> {
         d: &Dm,
         cur: usize,
         next: &Next,
-        out: Option<&Build>,
+        out: Option<&Ev>,
         regs: &Regs,
         cur_name: &TokenStream,
     ) -> N<TokenStream> {
-        let Some(b) = out else {
+        let Some(e) = out else {
             return self.nat_next(d, cur, next, regs, cur_name);
         };
         // The value read where it is (no clone of a `Val`), made a term
         // once: an int or an atom costs nothing. The in_arg's value handed
         // back in the visit that read it (`out_arg ==> X`, `X` the in_arg)
         // is the term read, not converted again.
-        let same = match (b, d.pipe_in.get()) {
-            (Build::Reg(x), Some(pr)) => regs.get(x).is_some_and(|(e, _)| *e == super::reg(pr)),
+        let same = match (e, d.pipe_in.get()) {
+            (Ev::Value(x), Some(pr)) => regs.get(x).is_some_and(|(e, _)| *e == super::reg(pr)),
             _ => false,
         };
         // The in_arg's term handed back: the pipe, unchanged since it was
@@ -114,11 +118,16 @@ impl Gen<'_> {
         let (pipe_out, set) = if same {
             (quote!(), quote!(cx.pipe_deref();))
         } else {
-            let v = super::place(&self.nat_value(b, regs)?);
-            (
-                quote!(let pipe_out = cx.term(&#v);),
-                quote!(cx.set_pipe(pipe_out);),
-            )
+            let v = self.nat_out_value(d, cur, e, next, regs)?;
+            // A conditional's value first (its condition may use `cx`).
+            let pipe_out = if matches!(e, Ev::If(..)) {
+                let e = &v.e;
+                quote!(let out_value = #e; let pipe_out = cx.term(&out_value);)
+            } else {
+                let v = super::place(&v);
+                quote!(let pipe_out = cx.term(&#v);)
+            };
+            (pipe_out, quote!(cx.set_pipe(pipe_out);))
         };
         *d.out.borrow_mut() = set.clone();
         let n = self.nat_next(d, cur, next, regs, cur_name);
@@ -130,6 +139,57 @@ impl Gen<'_> {
             #set
             next_at
         }})
+    }
+}
+
+impl Gen<'_> {
+    /// An arc's out_arg's value, computed before its next situation (the
+    /// pipe is set on every way out of it): what [`Gen::nat_ev_value`]
+    /// makes, and a conditional `(C -> A ; otherwise -> B)` of native
+    /// branches, `if C { A } else { B }` in their join. A comparison of
+    /// two ints (or floats) is plain Rust; one on a `Val` (a `ground`
+    /// parameter or pipe) reads its number and, when it has none, lets the
+    /// term code's comparison decide or fail (the machine entered in the
+    /// situation, as for a next situation's condition): only where the
+    /// next situation is a constant, which cannot fail, so an error is the
+    /// one the term code reports (it evaluates the next situation first).
+    pub(super) fn nat_out_value(
+        &self,
+        d: &Dm,
+        cur: usize,
+        e: &Ev,
+        next: &Next,
+        regs: &Regs,
+    ) -> N<V> {
+        let Ev::If(c, a, b) = e else {
+            return self.nat_ev_value(e, regs);
+        };
+        let c = match &**c {
+            Cond::Arith(op, l, r) => {
+                let (l, r) = (self.nat_ev_value(l, regs)?, self.nat_ev_value(r, regs)?);
+                let plain = (l.ty == Ty::Int && r.ty == Ty::Int)
+                    || (l.ty == Ty::Float && r.ty == Ty::Float);
+                if !plain && !matches!(next, Next::Static(..)) {
+                    return Err("an out_arg's comparison may fail before its next situation".into());
+                }
+                self.nat_arith(d, cur, *op, l, r)?
+            }
+            Cond::Other(Build::Compound(op, _)) if matches!(op.as_str(), "==" | "\\==") => {
+                self.nat_cond(d, cur, c, regs)?
+            }
+            _ => return Err("an out_arg's condition is not native".into()),
+        };
+        let a = self.nat_out_value(d, cur, a, next, regs)?;
+        let b = self.nat_out_value(d, cur, b, next, regs)?;
+        let ty = a.ty.join(&b.ty);
+        if !ty.is_native() || ty == Ty::Term {
+            return Err("an out_arg's branches join to a term".into());
+        }
+        let (ae, be) = (super::coerce(&a, &ty)?, super::coerce(&b, &ty)?);
+        Ok(V {
+            e: quote!((if #c { #ae } else { #be })),
+            ty,
+        })
     }
 }
 
