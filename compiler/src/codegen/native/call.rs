@@ -496,7 +496,7 @@ impl Gen<'_> {
             s0.push(quote!(#rr: #e));
         }
         // `at` first where it clones an argument that `inits` moves.
-        let frame = if s0.is_empty() {
+        let fields = if s0.is_empty() {
             quote!({ #(#inits,)* at: super::#callee_n::S0 {} })
         } else {
             quote!({ at: super::#callee_n::S0 { #(#s0),* }, #(#inits,)* })
@@ -515,18 +515,13 @@ impl Gen<'_> {
                 wf.push(quote!(#rr: #e));
             }
         }
-        // With the history kept (nothing observing), when the exit arcs
-        // record natively: the callee's entries in a level of their own.
-        // With the history kept (nothing observing), when the exit arcs
-        // record natively, the callee's entries in a level of their own
-        // (`Cx::open_level`); the callee's frame built once.
         // Recorded (the history kept, nothing observing) where the exit
         // arcs record natively: the callee's entries in a level of their
-        // own (`Cx::open_level`). A branch of its own: the push without a
+        // own (`Cx::push_level`). A branch of its own: the push without a
         // history tests `run.records` once and builds the frame in place
-        // (one frame built for both cost `echo_calls` 3 instructions a
+        // (one frame built before both cost `echo_calls` 3 instructions a
         // transition).
-        let frame = quote!(super::#callee_f { #(#inits,)* at: super::#callee_n::S0 {} });
+        let frame = quote!(super::#callee_f #fields);
         // Both pushes (with a history level and without) build the frame
         // by one closure, `callee()`, where it reads nothing of `cx`: the
         // frame built in place where the branch calls it, as before.
@@ -545,9 +540,7 @@ impl Gen<'_> {
         let rec = if plan.rec_exit {
             quote! {
                 else if run.nests && stack.has_room(cx) {
-                    let callee = super::NatFrame::#callee_v(
-                        super::#callee_f #frame,
-                    );
+                    let callee = super::NatFrame::#callee_v(#frame);
                     cx.push_level(p, call, callee);
                     return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
                 }
@@ -560,7 +553,7 @@ impl Gen<'_> {
             // limit, when no history is kept or observed (else the machine
             // pushes it: the callee's entries nest in the caller's).
             if !run.records && stack.has_room(cx) {
-                let callee = super::#callee_f #frame;
+                let callee = #frame;
                 *call = Some(super::NatFrame::#callee_v(callee));
                 // Written where the frame keeps it (not through `at`).
                 return cx.step_done(count, slot, Nat::#wv { #(#wf),* });

@@ -3355,8 +3355,9 @@ impl Gen<'_> {
         if conv.is_empty() && !always {
             return Ok(None);
         }
-        // The next situation as written (an evaluated compound): filled from its pattern with the registers' values and
-        // evaluated whole, as the machine evaluates an arc's next situation
+        // The next situation as written (an evaluated compound): filled from
+        // its pattern with the registers' values and evaluated whole, as the
+        // machine evaluates an arc's next situation
         // (`Machine::conclude`); the term code's steps compute the same value
         // part by part (the MIR's `Ev` says what `eval` does with each part).
         let written = match next {
@@ -3382,8 +3383,8 @@ impl Gen<'_> {
             Some(x) => {
                 let mut b = super::step::Body::new();
                 let out = out_b.map(|o| {
-                    let o = self.build_code(o, &mut b);
-                    quote!(cx.out_arg(#o, #at)?;)
+                    let o = self.ev_code(o, &at, &mut b);
+                    quote!(cx.out_value(#o);)
                 });
                 let mut stmts = filled;
                 stmts.push(quote!(let t = cx.eval(#x, #at)?;));
