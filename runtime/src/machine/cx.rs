@@ -930,18 +930,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         }
     }
 
-    /// An arc's out_arg: its value becomes the pipe unless it is a variable (D-18).
-    pub fn out_arg(&mut self, out: Term, arc: Option<usize>) -> Result<(), RunError> {
-        let value = self.eval(out, arc)?;
-        if !self.m.store.is_var(value) {
-            *self.pipe = value;
-        }
-        Ok(())
-    }
-
-    /// An arc's out_arg already evaluated (the plans evaluate it as they
-    /// evaluate a next situation): the value becomes the pipe unless it is
-    /// a variable (D-18), as [`Cx::out_arg`] does after evaluating.
+    /// An arc's out_arg already evaluated (the plans and the generated code
+    /// evaluate it as they evaluate a next situation, after it): the value
+    /// becomes the pipe unless it is a variable (D-18).
     #[inline]
     pub fn out_value(&mut self, value: Term) {
         if !self.m.store.is_var(value) {

@@ -2701,8 +2701,8 @@ impl Gen<'_> {
         // native values as terms): the next situation as written, evaluated
         // whole as `Machine::conclude` does, or the term code's steps.
         let reloads = atom.is_none() && !d.locals.is_empty();
-        // After an `empty` action (performed, and the frames below handed
-        // over, only when recorded or not quiet) the native frames below
+        // After an `empty` action (the frames below handed over where it
+        // is performed only when not quiet or nothing is below) the native frames below
         // are handed over first: else the machine would be entered in the
         // caller's frame (`ngen12`'s `d_compare_fn`). Any other action
         // handed over where it was performed.
@@ -3323,7 +3323,7 @@ impl Gen<'_> {
     /// `next` or the arc's out_arg `out` reads, with their types, and the
     /// code that runs the rest of the arc on terms: the next situation (as
     /// written, evaluated whole as `Machine::conclude` does, or by the term
-    /// code's steps), then the out_arg (`Cx::out_arg`, before the entry is
+    /// code's steps), then the out_arg (evaluated, `Cx::out_value`, before the entry is
     /// recorded and the transition counted, as `step::arc_code` orders
     /// them) (`None`: neither reads one and `always` is false).
     #[allow(clippy::type_complexity, clippy::too_many_arguments)]
