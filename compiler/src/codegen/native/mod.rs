@@ -1008,12 +1008,19 @@ impl CellField {
 }
 
 impl Dm<'_> {
-    /// The parameters the situations with native code read (and those a
-    /// native first situation's id is linked with: its fields are their
-    /// values, `first(N)` in `bump(N)`).
+    /// The parameters the situations with native code read (and those of
+    /// a native type a native first situation's id is linked with: its
+    /// fields are their values, `first(N)` in `bump(N)`; the inference's
+    /// filter, `mir::ty`). A first situation linked with a `term`
+    /// parameter (`q(A)` in `ask(A)` called as `ask(_)`) is not native
+    /// ([`Gen::nat_dm_fix`]), so none is read for it; the filter keeps a
+    /// `term` parameter out of the checked conversion all the same.
     fn read_params(&self) -> std::collections::BTreeSet<usize> {
         let start = match (self.plans.first(), self.native.first()) {
-            (Some(p0), Some(true)) => crate::mir::ty::start_links(p0),
+            (Some(p0), Some(true)) => crate::mir::ty::start_links(p0)
+                .into_iter()
+                .filter(|&(_, j)| self.params.get(j).is_some_and(Ty::is_native))
+                .collect(),
             _ => Vec::new(),
         };
         (0..self.plans.len())
