@@ -2293,7 +2293,7 @@ fn build_mentions(b: &Build, r: Reg, depth: usize) -> bool {
     }
 }
 
-fn ev_mentions(e: &Ev, r: Reg, depth: usize) -> bool {
+pub(crate) fn ev_mentions(e: &Ev, r: Reg, depth: usize) -> bool {
     if depth > MAX_DEPTH {
         return true;
     }

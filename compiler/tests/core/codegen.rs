@@ -130,3 +130,29 @@ fn behaviour_library_find() {
     let len = code[start..].find("\n}\n").expect("the module ends") + 3;
     insta::assert_snapshot!(&code[start..start + len]);
 }
+
+/// A DM whose first situation names its parameter (`q(A)` in `ask(A)`),
+/// called with the argument unbound (`ask(_X)`): the parameter is `term`,
+/// so `q` is code on terms and the frame holds the parameter unconverted
+/// (`cx.param`, not the checked `param_as`, which an unbound variable
+/// fails: the DM would then run wholly on the machine).
+#[test]
+fn a_term_parameter_linked_into_the_first_situation_is_not_converted() {
+    let src = r#"
+diag_mod(main,
+  [ [ id ==> s, type ==> recursive, embedded_dm ==> ask(_X), arcs ==> [ done(_) : empty => fin ] ],
+    [ id ==> fin, type ==> final ] ],
+  []).
+diag_mod(ask(A),
+  [ [ id ==> q(A), type ==> neutral, arcs ==> [ empty : [N is 1 + 1] => r(N) ] ],
+    [ id ==> r(M), type ==> neutral, arcs ==> [ empty : [K is M + 1] => done(K) ] ],
+    [ id ==> done(_), type ==> final ] ],
+  []).
+"#;
+    let text = generate(&[("unbound.dm", src)]);
+    let ask = text.split("pub mod dm_ask").nth(1).expect("ask's module");
+    assert!(ask.contains("let p0 = cx.param(0).map(Ground)?;"), "{ask}");
+    assert!(!ask.contains("param_as"), "{ask}");
+    // Its other situations are native all the same (`r(M)`, `done(_)`).
+    assert!(ask.contains("Nat::S1 { r2 } =>"), "{ask}");
+}

@@ -791,6 +791,43 @@ mod shapes_ngen12 {
     pub mod compare_fn {
         sitlog_macros::include_dm!("typed/shapes/d_compare_fn");
     }
+    pub mod outarg_effects {
+        sitlog_macros::include_dm!("typed/shapes/c_outarg_effects");
+    }
+    pub mod unbound_first_param {
+        sitlog_macros::include_dm!("typed/shapes/d_unbound_first_param");
+    }
+}
+
+/// An out_arg with side effects is evaluated after the arc's next
+/// situation (`get(n, _)` after `t(inc(n, _))` reads 1, `inc(n, _)` after
+/// `u(.., get(n, _), ..)` counts after the read).
+#[test]
+fn an_out_arg_with_effects_is_evaluated_after_the_next_situation() {
+    let ir = interpreter("typed/shapes/c_outarg_effects");
+    agree(shapes_ngen12::outarg_effects::program(), &ir, "main", "");
+    let c = run(
+        shapes_ngen12::outarg_effects::program(),
+        "main",
+        "",
+        true,
+        false,
+        false,
+    );
+    assert!(c.0.to_string().contains("fin(1,1,1,2,2)"), "{c:?}");
+}
+
+/// A DM whose first situation names its parameter, called with it unbound
+/// (`ask(_X)` starting in `q(A)`): `q` on terms, the rest native.
+#[test]
+fn a_first_situation_linked_with_an_unbound_argument_agrees() {
+    let ir = interpreter("typed/shapes/d_unbound_first_param");
+    agree(
+        shapes_ngen12::unbound_first_param::program(),
+        &ir,
+        "main",
+        "",
+    );
 }
 
 /// The comparison a Prolog user function (`apply(same_place(_, _), [P,
@@ -802,17 +839,21 @@ fn a_comparison_by_a_user_function_agrees() {
     PROLOG.with(|p| *p.borrow_mut() = Some(interpreter("typed/shapes/d_compare_fn")));
     // Few runs: each loads the Prolog engine.
     let main = "hunt(2, [hall, bed], bed)";
-    let c = run(
-        shapes_ngen12::compare_fn::program(),
-        main,
-        "",
-        false,
-        false,
-        false,
-    );
-    let i = run(&ir, main, "", false, false, false);
-    assert_eq!(c, i, "{main}");
-    assert_eq!(c.1, 12, "{main}: {c:?}");
+    // Quiet, and with history kept and observed (the hand-over's recorded
+    // path: a quiet `empty`, the natively pushed callee's frames).
+    for (keep, observe) in [(false, false), (true, true)] {
+        let c = run(
+            shapes_ngen12::compare_fn::program(),
+            main,
+            "",
+            keep,
+            observe,
+            false,
+        );
+        let i = run(&ir, main, "", keep, observe, false);
+        assert_eq!(c, i, "{main} (history {keep}, observed {observe})");
+        assert_eq!(c.1, 12, "{main}: {c:?}");
+    }
 }
 
 #[test]

@@ -713,6 +713,34 @@ fn eq_safe(ty: &Ty) -> bool {
 }
 
 /// Whether a local holds a fresh variable (a term) made for an arc.
+/// Whether register `r` is read by `next` only in the conditions' terms
+/// given whole to the machine (`Cond::Other`), not in a situation it goes to.
+fn only_in_conditions(next: &Next, r: Reg) -> bool {
+    fn targets(n: &Next, r: Reg) -> bool {
+        match n {
+            Next::Static(..) => false,
+            Next::Eval(e) => crate::mir::ty::ev_mentions(e, r, 0),
+            Next::If(c, a, b) => cond_mentions(c, r) || targets(a, r) || targets(b, r),
+        }
+    }
+    fn cond_mentions(c: &Cond, r: Reg) -> bool {
+        match c {
+            Cond::Arith(_, a, b) => {
+                crate::mir::ty::ev_mentions(a, r, 0) || crate::mir::ty::ev_mentions(b, r, 0)
+            }
+            Cond::Other(_) => false,
+        }
+    }
+    !targets(next, r)
+}
+
+/// Whether the arc's out_arg reads register `r`.
+fn out_mentions(arc: &ArcPlan, r: Reg) -> bool {
+    arc.out_arg
+        .as_ref()
+        .is_some_and(|o| crate::mir::ty::ev_mentions(o, r, 0))
+}
+
 fn is_fresh(x: &Ident) -> bool {
     // `fresh_r<n>` only: an atom's field (`a.fresh_water`) is not one.
     x.to_string()
@@ -1008,12 +1036,19 @@ impl CellField {
 }
 
 impl Dm<'_> {
-    /// The parameters the situations with native code read (and those a
-    /// native first situation's id is linked with: its fields are their
-    /// values, `first(N)` in `bump(N)`).
+    /// The parameters the situations with native code read (and those of
+    /// a native type a native first situation's id is linked with: its
+    /// fields are their values, `first(N)` in `bump(N)`; the inference's
+    /// filter, `mir::ty`). A first situation linked with a `term`
+    /// parameter (`q(A)` in `ask(A)` called as `ask(_)`) is not native
+    /// ([`Gen::nat_dm_fix`]), so none is read for it; the filter keeps a
+    /// `term` parameter out of the checked conversion all the same.
     fn read_params(&self) -> std::collections::BTreeSet<usize> {
         let start = match (self.plans.first(), self.native.first()) {
-            (Some(p0), Some(true)) => crate::mir::ty::start_links(p0),
+            (Some(p0), Some(true)) => crate::mir::ty::start_links(p0)
+                .into_iter()
+                .filter(|&(_, j)| self.params.get(j).is_some_and(Ty::is_native))
+                .collect(),
             _ => Vec::new(),
         };
         (0..self.plans.len())
@@ -2847,6 +2882,16 @@ impl Gen<'_> {
             }
             for (r, ty) in conv {
                 let (x, _) = regs[&r].clone();
+                // A fresh variable a constant action leaves unbound and
+                // only a condition's term reads (`same_place(_, _)` in
+                // `apply(same_place(_, _), [P, T]) == yes`): never converts,
+                // so passed as the unbound term it is, the arc kept native
+                // (else every visit went to the term code, converting the
+                // id's list to a term: quadratic, `ngen12b`).
+                if atom.is_some() && only_in_conditions(&arc.next, r) && !out_mentions(arc, r) {
+                    regs.insert(r, (x, Ty::Term));
+                    continue;
+                }
                 let rr = reg(r);
                 let rty = rust_ty(&ty)?;
                 checks.push((rr.clone(), quote!(cx.to_native::<#rty>(#x)), quote!()));
