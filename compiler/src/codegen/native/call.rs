@@ -1444,11 +1444,7 @@ fn ev_as_build(e: &Ev) -> Option<Build> {
 
 /// Whether generated code `ts` mentions the identifier `x`.
 pub(super) fn mentions(ts: &TokenStream, x: &Ident) -> bool {
-    ts.clone().into_iter().any(|t| match t {
-        proc_macro2::TokenTree::Ident(i) => i == *x,
-        proc_macro2::TokenTree::Group(g) => mentions(&g.stream(), x),
-        _ => false,
-    })
+    super::pipe::mentions(ts, x) > 0
 }
 
 /// Whether evaluating the call term gives it back (built from values).
@@ -1596,9 +1592,5 @@ fn drop_unread_let(code: TokenStream, name: &str) -> TokenStream {
 
 /// Whether `ts` names one of `names` (an identifier token, at any depth).
 fn mentions_any(ts: &TokenStream, names: &[Ident]) -> bool {
-    ts.clone().into_iter().any(|t| match t {
-        proc_macro2::TokenTree::Ident(i) => names.contains(&i),
-        proc_macro2::TokenTree::Group(g) => mentions_any(&g.stream(), names),
-        _ => false,
-    })
+    super::pipe::mentions_of(ts, names) > 0
 }

@@ -195,11 +195,17 @@ impl Gen<'_> {
 
 /// How many times the identifier `name` occurs in `code` (at any depth).
 pub(super) fn mentions(code: &TokenStream, name: &proc_macro2::Ident) -> usize {
+    mentions_of(code, std::slice::from_ref(name))
+}
+
+/// How many identifier tokens of `code` (at any depth) are one of `names`:
+/// the one walk behind `mentions` here and `call::mentions`/`mentions_any`.
+pub(super) fn mentions_of(code: &TokenStream, names: &[proc_macro2::Ident]) -> usize {
     code.clone()
         .into_iter()
         .map(|t| match t {
-            proc_macro2::TokenTree::Ident(i) => usize::from(i == *name),
-            proc_macro2::TokenTree::Group(g) => mentions(&g.stream(), name),
+            proc_macro2::TokenTree::Ident(i) => usize::from(names.contains(&i)),
+            proc_macro2::TokenTree::Group(g) => mentions_of(&g.stream(), names),
             _ => 0,
         })
         .sum()
