@@ -76,6 +76,28 @@ mod c_global_count {
 mod d_compare_fn {
     sitlog_macros::include_dm!("../tests/typed/shapes/d_compare_fn");
 }
+// Helper `nshape13`'s (session 12).
+mod c_pipe_pair {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_pipe_pair");
+}
+mod c_final_by_inarg {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_final_by_inarg");
+}
+mod c_local_limit_hop {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_local_limit_hop");
+}
+mod d_ints_inarg_threshold {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_ints_inarg_threshold");
+}
+mod d_place_records {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_place_records");
+}
+mod d_confirm_found {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_confirm_found");
+}
+mod d_appended_list {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_appended_list");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks' (no hand-written way here: see
 // `benches/benches/compiled.rs`).
@@ -394,6 +416,20 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_found_rest" => format!("visit({n}, {list}, {last})"),
         "d_shelf_pairs" => format!("stock({n}, {pairs_text}, {last})"),
         "list_search" => format!("main({n}, {list}, {last})"),
+        "c_pipe_pair" | "c_final_by_inarg" | "c_local_limit_hop" => format!("relay({n})"),
+        "d_ints_inarg_threshold" => {
+            let ints: Vec<String> = (0..len).map(|i| i.to_string()).collect();
+            format!("scan({n}, [{}], {})", ints.join(","), len - 2)
+        }
+        "d_place_records" => {
+            let recs: Vec<String> = (0..len).map(|i| format!("place(p{i},{i})")).collect();
+            format!("fetch({n}, [{}], {})", recs.join(","), len - 1)
+        }
+        "d_confirm_found" => format!("hunt({n}, {list}, {last})"),
+        "d_appended_list" => format!("route({n}, [{}], dock)", {
+            let names: Vec<String> = (0..len - 1).map(|i| format!("p{i}")).collect();
+            names.join(",")
+        }),
         "echo_calls" => {
             let n = n.to_string();
             return match way {
@@ -441,6 +477,32 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                 // The item compared, the shelf handed back: a pair's key.
                 hand_walk_pairs(n, black_box(&sym_pairs), black_box(lsym))
             }
+            "c_pipe_pair" => hand_pair(n),
+            "c_final_by_inarg" => hand_final_by_inarg(n),
+            "c_local_limit_hop" => hand_local_limit_hop(n),
+            "d_ints_inarg_threshold" => {
+                let ints: Vec<i64> = (0..len as i64).collect();
+                // The threshold the walk's in_arg: read once a round.
+                let t = black_box(len as i64 - 2);
+                hand_walk_by(n, black_box(&ints), |x| (x > t).then_some(x), true)
+            }
+            "d_place_records" => {
+                let recs: Vec<(Sym, i64)> = (0..len).map(|i| (Sym(i as u32), i as i64)).collect();
+                let f = black_box(len as i64 - 1);
+                hand_walk_by(n, black_box(&recs), |(p, fl)| (fl == f).then_some(p), true)
+            }
+            "d_confirm_found" => hand_walk_confirm(
+                n,
+                black_box(&syms),
+                black_box(lsym),
+                black_box(Sym(u32::MAX)),
+            ),
+            "d_appended_list" => {
+                // `append(Places, [Dock], All)` once, in the first arc.
+                let mut all: Vec<Sym> = black_box(&syms[..len - 1]).to_vec();
+                all.push(black_box(lsym));
+                hand_walk(n, black_box(&all), black_box(lsym), true, false)
+            }
             _ => unreachable!(),
         };
     }
@@ -464,6 +526,13 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_walk_first_param" => ways!(d_walk_first_param),
         "d_target_matched_in_id" => ways!(d_target_matched_in_id),
         "d_compare_fn" => ways!(d_compare_fn),
+        "c_pipe_pair" => ways!(c_pipe_pair),
+        "c_final_by_inarg" => ways!(c_final_by_inarg),
+        "c_local_limit_hop" => ways!(c_local_limit_hop),
+        "d_ints_inarg_threshold" => ways!(d_ints_inarg_threshold),
+        "d_place_records" => ways!(d_place_records),
+        "d_confirm_found" => ways!(d_confirm_found),
+        "d_appended_list" => ways!(d_appended_list),
         _ => unreachable!(),
     }
 }
@@ -527,7 +596,314 @@ fn hand_walk_pairs(rounds: i64, pairs: &[(Sym, Sym)], item: Sym) -> u64 {
     transitions
 }
 
-const ALL: [&str; 18] = [
+/// (c) `c_pipe_pair`: the pipe a pair (count, limit) set once, the callee
+/// counting and handing both back, the caller testing them on a neutral
+/// situation.
+fn hand_pair(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask,
+        Test,
+        Over,
+        Step,
+        Counted,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut transitions) = ((0i64, 0i64), 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                pipe = black_box((0, limit));
+                *top = Frame::Ask;
+            }
+            Frame::Ask => stack.push(Frame::Step),
+            Frame::Step => {
+                transitions += 1;
+                let (n, l) = pipe;
+                pipe = black_box((n + 1, l));
+                *top = Frame::Counted;
+            }
+            Frame::Counted => {
+                // The callee's final, then the caller's exit arc.
+                transitions += 2;
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    *m = Frame::Test;
+                }
+            }
+            Frame::Test => {
+                transitions += 1;
+                let (n, l) = pipe;
+                *top = if n < l { Frame::Ask } else { Frame::Over };
+            }
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
+/// (c) `c_final_by_inarg`: the count in the pipe and the caller's id, the
+/// callee's final chosen by its in_arg (`> 10`).
+fn hand_final_by_inarg(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask(i64),
+        Over,
+        Look,
+        Big,
+        Small,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut transitions) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                pipe = black_box(0);
+                *top = Frame::Ask(0);
+            }
+            Frame::Ask(_) => stack.push(Frame::Look),
+            Frame::Look => {
+                transitions += 1;
+                *top = if pipe > 10 { Frame::Big } else { Frame::Small };
+            }
+            Frame::Big | Frame::Small => {
+                transitions += 2;
+                black_box(matches!(*top, Frame::Big));
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    if let Frame::Ask(i) = *m {
+                        let j = i + 1;
+                        pipe = black_box(j);
+                        *m = if j < limit {
+                            Frame::Ask(j)
+                        } else {
+                            Frame::Over
+                        };
+                    }
+                }
+            }
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
+/// (c) `c_local_limit_hop`: the limit a local, the count in the pipe,
+/// incremented two levels down, passed through `hop`'s neutral situation.
+fn hand_local_limit_hop(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask,
+        Test,
+        Over,
+        Pass,
+        Down,
+        Done,
+        Add,
+        Bumped,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut local, mut transitions) = (0i64, 0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                local = black_box(limit);
+                pipe = black_box(0);
+                *top = Frame::Ask;
+            }
+            Frame::Ask => stack.push(Frame::Pass),
+            Frame::Pass => {
+                transitions += 1;
+                pipe = black_box(pipe);
+                *top = Frame::Down;
+            }
+            Frame::Down => stack.push(Frame::Add),
+            Frame::Add => {
+                transitions += 1;
+                pipe = black_box(pipe + 1);
+                *top = Frame::Bumped;
+            }
+            Frame::Bumped => {
+                transitions += 2;
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    *m = Frame::Done;
+                }
+            }
+            Frame::Done => {
+                transitions += 2;
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    *m = Frame::Test;
+                }
+            }
+            Frame::Test => {
+                transitions += 1;
+                *top = if pipe < black_box(local) {
+                    Frame::Ask
+                } else {
+                    Frame::Over
+                };
+            }
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) with the test a closure: `hit` gives what the final hands back when
+/// an element is the one looked for (a threshold, a record's field).
+fn hand_walk_by<T: Copy, R: Copy>(
+    rounds: i64,
+    items: &[T],
+    hit: impl Fn(T) -> Option<R>,
+    start: bool,
+) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a, T, R> {
+        Round,
+        Stop,
+        Begin,
+        Try(&'a [T]),
+        Final(Option<R>),
+    }
+    let mut stack: Vec<Frame<T, R>> = vec![Frame::Round];
+    let (mut n, mut transitions) = (0i64, u64::from(start));
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items);
+            }
+            Frame::Try([]) => {
+                transitions += 1;
+                *top = Frame::Final(None);
+            }
+            Frame::Try([p, ps @ ..]) => {
+                transitions += 1;
+                *top = match hit(*p) {
+                    Some(r) => Frame::Final(Some(r)),
+                    None => Frame::Try(ps),
+                };
+            }
+            Frame::Final(exit) => {
+                transitions += 2;
+                black_box(exit);
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) `d_confirm_found`: the element found is confirmed by a nested
+/// call (`sure(P)`, one neutral step) before the walk ends.
+fn hand_walk_confirm(rounds: i64, items: &[Sym], target: Sym, unknown: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Try(&'a [Sym]),
+        Confirm(Sym, &'a [Sym]),
+        Ask(Sym),
+        Yes,
+        No,
+        Found(Sym),
+        NotFound,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut transitions) = (0i64, 1u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items);
+            }
+            Frame::Try([]) => {
+                transitions += 1;
+                *top = Frame::NotFound;
+            }
+            Frame::Try([p, ps @ ..]) => {
+                transitions += 1;
+                *top = if *p == target {
+                    Frame::Confirm(*p, ps)
+                } else {
+                    Frame::Try(ps)
+                };
+            }
+            Frame::Confirm(p, _) => stack.push(Frame::Ask(p)),
+            Frame::Ask(p) => {
+                transitions += 1;
+                *top = if p == unknown { Frame::No } else { Frame::Yes };
+            }
+            Frame::Yes | Frame::No => {
+                // `sure`'s final, then `confirm`'s exit arc.
+                transitions += 2;
+                let yes = matches!(*top, Frame::Yes);
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    if let Frame::Confirm(p, ps) = *m {
+                        *m = if yes { Frame::Found(p) } else { Frame::Try(ps) };
+                    }
+                }
+            }
+            Frame::Found(_) | Frame::NotFound => {
+                transitions += 2;
+                let found = match *top {
+                    Frame::Found(p) => Some(p),
+                    _ => None,
+                };
+                black_box(found);
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+const ALL: [&str; 25] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -546,6 +922,13 @@ const ALL: [&str; 18] = [
     "d_target_matched_in_id",
     "c_global_count",
     "d_compare_fn",
+    "c_pipe_pair",
+    "c_final_by_inarg",
+    "c_local_limit_hop",
+    "d_ints_inarg_threshold",
+    "d_place_records",
+    "d_confirm_found",
+    "d_appended_list",
 ];
 
 fn main() {
