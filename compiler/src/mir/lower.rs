@@ -349,15 +349,66 @@ impl<'s> Planner<'s> {
         }
     }
 
+    /// Whether a situation's `prog` runs on a renamed copy (D-10): it
+    /// shares a variable with a part other than the in_arg and (but in a
+    /// recursive situation) the out_arg; otherwise it runs in place.
+    fn prog_on_copy(&self, f: &[Term], kind: Kind, prog: Option<Term>) -> bool {
+        let Some(p) = prog else {
+            return false;
+        };
+        let mut linked = Vec::new();
+        let mut elsewhere = Vec::new();
+        for (i, &t) in f.iter().enumerate() {
+            let link = i == IN_ARG || (i == OUT_ARG && kind != Kind::Recursive);
+            match i {
+                PROG => {}
+                _ if link => self.term_vars(t, &mut linked),
+                _ => self.term_vars(t, &mut elsewhere),
+            }
+        }
+        let mut prog_vars = Vec::new();
+        self.term_vars(p, &mut prog_vars);
+        !prog_vars
+            .iter()
+            .all(|v| linked.contains(v) || !elsewhere.contains(v))
+    }
+
     /// The plan of situation `ix`.
     pub(crate) fn situation(mut self, ix: usize) -> Plan<SitPlan> {
         let s = &self.dm.situations[ix];
         let id = self.compiled_id(s).ok_or(Unsupported)?;
         let f = self.store.args(s.template).to_vec();
         let mut scope = Scope::default();
+        let prog = self.field(s, PROG);
+        let prog_on_copy = self.prog_on_copy(&f, s.kind, prog);
+        // Each arc is renamed apart with its own copy of the out_arg
+        // (D-11): a variable of the out_arg that no other part of the
+        // situation names (`out_arg ==> M-L` with `[M is N + 1]` in the
+        // arc) is the arc's own, fresh in each arc, and not the
+        // instance's, unless the out_arg is built as written (a final, a
+        // `prog` run on a copy, which links it: D-10).
+        let out_own = s.kind != Kind::Final && !prog_on_copy;
+        let mut elsewhere = Vec::new();
+        if out_own {
+            for (i, &t) in f[..ARCS].iter().enumerate() {
+                if i != OUT_ARG {
+                    self.term_vars(t, &mut elsewhere);
+                }
+            }
+        }
         let mut inst_vars = Vec::new();
-        for &t in &f[..ARCS] {
-            self.term_vars(t, &mut inst_vars);
+        for (i, &t) in f[..ARCS].iter().enumerate() {
+            if i == OUT_ARG && out_own {
+                let mut vars = Vec::new();
+                self.term_vars(t, &mut vars);
+                for v in vars {
+                    if elsewhere.contains(&v) && !inst_vars.contains(&v) {
+                        inst_vars.push(v);
+                    }
+                }
+            } else {
+                self.term_vars(t, &mut inst_vars);
+            }
         }
         let head_vars: Vec<u32> = self
             .store
@@ -370,7 +421,6 @@ impl<'s> Planner<'s> {
             .collect::<Plan<_>>()?;
         let in_arg = self.field(s, IN_ARG);
         let out_arg = self.field(s, OUT_ARG);
-        let prog = self.field(s, PROG);
         let diag_mod = self.field(s, DIAG_MOD);
         let mut id_vars_all = Vec::new();
         self.term_vars(f[ID], &mut id_vars_all);
@@ -447,8 +497,12 @@ impl<'s> Planner<'s> {
             Some(t) => Some((self.build(t, &scope.vars, 0)?, in_var.is_none(), self.reg())),
             None => None,
         };
+        // The term as written is needed by a final (evaluated when it
+        // ends) and by a `prog` run on a copy (its variables linked);
+        // otherwise each arc evaluates the out_arg itself
+        // ([`ArcPlan::out_arg`]) and building it is wasted work.
         let out_plan = match out_arg {
-            Some(t) if s.kind != Kind::Recursive => {
+            Some(t) if s.kind == Kind::Final || (s.kind != Kind::Recursive && prog_on_copy) => {
                 Some((self.build(t, &scope.vars, 0)?, self.reg()))
             }
             _ => None,
@@ -456,22 +510,7 @@ impl<'s> Planner<'s> {
         let prog_plan = match prog {
             None => None,
             Some(p) => {
-                let mut linked = Vec::new();
-                let mut elsewhere = Vec::new();
-                for (i, &t) in f.iter().enumerate() {
-                    let link = i == IN_ARG || (i == OUT_ARG && s.kind != Kind::Recursive);
-                    match i {
-                        PROG => {}
-                        _ if link => self.term_vars(t, &mut linked),
-                        _ => self.term_vars(t, &mut elsewhere),
-                    }
-                }
-                let mut prog_vars = Vec::new();
-                self.term_vars(p, &mut prog_vars);
-                if prog_vars
-                    .iter()
-                    .all(|v| linked.contains(v) || !elsewhere.contains(v))
-                {
+                if !prog_on_copy {
                     let parts = self.list_literal(p).unwrap_or_else(|| vec![p]);
                     let evs = parts
                         .into_iter()
@@ -482,14 +521,6 @@ impl<'s> Planner<'s> {
                     Some(Prog::Copy(self.build(p, &scope.vars, 0)?))
                 }
             }
-        };
-        // The term as written is needed by a final (evaluated when it
-        // ends) and by a `prog` run on a copy (its variables linked);
-        // otherwise each arc evaluates the out_arg itself
-        // ([`ArcPlan::out_arg`]) and building it is wasted work.
-        let out_plan = match out_plan {
-            Some(o) if s.kind == Kind::Final || matches!(prog_plan, Some(Prog::Copy(_))) => Some(o),
-            _ => None,
         };
         let kind = match s.kind {
             Kind::Final => KindPlan::Final {

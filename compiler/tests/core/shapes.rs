@@ -7,7 +7,9 @@
 //! and an output argument; lists of ints, atoms and pairs, one from the
 //! pipe; a walk by `get`/`set` of a local; lists from a user function and
 //! from the KB;
-//! exit arcs `found(_)`, `found(P)`, a variable; a guard; nested calls).
+//! exit arcs `found(_)`, `found(P)`, a variable; a guard; nested calls;
+//! a pair in the pipe; a final chosen by the in_arg; records matched by a
+//! field; a recursive found situation; a list built by `append`).
 //! Their `--explain-types` listings as one insta snapshot, through the
 //! library (no `sitlogc`, no generated code compiled):
 //! `docs/guide/performance.md` ("workloads that are not ours") has the table.

@@ -799,6 +799,138 @@ mod shapes_ngen12 {
     }
 }
 
+mod shapes_nshape13 {
+    pub mod pipe_pair {
+        sitlog_macros::include_dm!("typed/shapes/c_pipe_pair");
+    }
+    pub mod final_by_inarg {
+        sitlog_macros::include_dm!("typed/shapes/c_final_by_inarg");
+    }
+    pub mod local_limit_hop {
+        sitlog_macros::include_dm!("typed/shapes/c_local_limit_hop");
+    }
+    pub mod ints_inarg_threshold {
+        sitlog_macros::include_dm!("typed/shapes/d_ints_inarg_threshold");
+    }
+    pub mod place_records {
+        sitlog_macros::include_dm!("typed/shapes/d_place_records");
+    }
+    pub mod confirm_found {
+        sitlog_macros::include_dm!("typed/shapes/d_confirm_found");
+    }
+    pub mod appended_list {
+        sitlog_macros::include_dm!("typed/shapes/d_appended_list");
+    }
+}
+
+/// Helper `nshape13`'s workloads (session 12): the pipe a pair, the
+/// callee's final chosen by its in_arg, the limit a local read in a
+/// condition two levels up; ints above an in_arg threshold, records
+/// matched by a field, a recursive found situation, an appended list.
+/// With arguments that do not fit (an atom or a float for a limit or a
+/// threshold, improper and partial lists, an atom for a list, elements of
+/// another shape).
+#[test]
+fn nshape13_shapes_agree() {
+    use shapes_nshape13 as s;
+    let limits = [
+        "relay(4)",
+        "relay(1)",
+        "relay(0)",
+        "relay(13)",
+        "relay(x)",
+        "relay(2.5)",
+        "relay(f(x))",
+    ];
+    macro_rules! both {
+        ($ir:expr, $m:ident, $main:expr) => {
+            agree(s::$m::program(), &$ir, $main, "");
+            agree(
+                &sitlog_compiler::interp::Resolved::new(&$ir),
+                &$ir,
+                $main,
+                "",
+            );
+        };
+    }
+    for (dir, i) in [
+        ("typed/shapes/c_pipe_pair", 0),
+        ("typed/shapes/c_final_by_inarg", 1),
+        ("typed/shapes/c_local_limit_hop", 2),
+    ] {
+        let ir = interpreter(dir);
+        for main in limits {
+            match i {
+                0 => {
+                    both!(ir, pipe_pair, main);
+                }
+                1 => {
+                    both!(ir, final_by_inarg, main);
+                }
+                _ => {
+                    both!(ir, local_limit_hop, main);
+                }
+            }
+        }
+    }
+    let ir = interpreter("typed/shapes/d_ints_inarg_threshold");
+    for l in [
+        "[3, 7, 12, 5]",
+        "[1, 2]",
+        "[]",
+        "[3|x]",
+        "[3, 12|_]",
+        "x",
+        "[a, 12]",
+        "[2.5, 11.5]",
+    ] {
+        both!(ir, ints_inarg_threshold, &format!("scan(3, {l}, 10)"));
+    }
+    for t in ["a", "7.5", "-1", "f(x)"] {
+        both!(ir, ints_inarg_threshold, &format!("scan(2, [3, 12], {t})"));
+    }
+    let ir = interpreter("typed/shapes/d_place_records");
+    for l in [
+        "[place(a, 1), place(b, 2)]",
+        "[place(a, 1)]",
+        "[]",
+        "[place(a, 1)|x]",
+        "[a, place(b, 2)]",
+        "[place(a, x), place(b, 2)]",
+        "place(a, 2)",
+        "[place(a, 2.0)]",
+        "[place(a, 1, 2), place(b, 2)]",
+    ] {
+        both!(ir, place_records, &format!("fetch(3, {l}, 2)"));
+    }
+    let lists = [
+        "[hall, bath, bed]",
+        "[hall, bath]",
+        "[]",
+        "[hall|bath]",
+        "[hall, bed|_]",
+        "hall",
+        "[f(x), bed]",
+        "[bed, bed]",
+    ];
+    let ir = interpreter("typed/shapes/d_confirm_found");
+    for l in lists {
+        both!(ir, confirm_found, &format!("hunt(3, {l}, bed)"));
+    }
+    both!(ir, confirm_found, "hunt(2, [hall, unknown, bed], unknown)");
+    let ir = interpreter("typed/shapes/d_appended_list");
+    for l in lists {
+        both!(ir, appended_list, &format!("route(3, {l}, bed)"));
+    }
+    // An unbound variable in the list: its number differs (`agree_modulo_vars`).
+    agree_modulo_vars(s::appended_list::program(), &ir, "route(2, [a, b], f(X))");
+    agree_modulo_vars(
+        &sitlog_compiler::interp::Resolved::new(&ir),
+        &ir,
+        "route(2, [a, b], f(X))",
+    );
+}
+
 /// An out_arg with side effects is evaluated after the arc's next
 /// situation (`get(n, _)` after `t(inc(n, _))` reads 1, `inc(n, _)` after
 /// `u(.., get(n, _), ..)` counts after the read).
