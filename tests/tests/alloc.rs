@@ -18,6 +18,11 @@ mod ground_loop {
 mod typed_counter {
     sitlog_macros::include_dm!("dms/typed_counter");
 }
+/// Issue 37's shape (c) written by another engineer (`nshape13`): the count
+/// in the pipe and the caller's id, the callee's final chosen by its in_arg.
+mod c_final_by_inarg {
+    sitlog_macros::include_dm!("typed/shapes/c_final_by_inarg");
+}
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -87,6 +92,11 @@ fn options() -> Options {
 
 /// Runs `app` from `main` without input until [`Ticks`] stops it.
 fn measure<A: App>(app: &A) -> Ticks {
+    measure_from(app, "main")
+}
+
+/// [`measure`] from the given main DM call.
+fn measure_from<A: App>(app: &A, main: &str) -> Ticks {
     let mut ticks = Ticks {
         n: 0,
         last_allocs: 0,
@@ -97,7 +107,7 @@ fn measure<A: App>(app: &A) -> Ticks {
     };
     let (outcome, _store) = app::run(
         app,
-        "main",
+        main,
         None,
         options(),
         Functions::standard(),
@@ -118,6 +128,12 @@ fn transitions_allocate_nothing_in_steady_state() {
     let compiled = measure(ground_loop::program());
     // Typed code (issue 19): the counter is a native int, the store untouched.
     let typed = measure(typed_counter::program());
+    // Shape (c) (issue 37): N calls, stopped long before the limit.
+    // Printed, not asserted: the ticks here are its performed numbers
+    // (`J` of each exit arc), and to perform one native code enters the
+    // machine, building the situation's id in the store at every call
+    // (performance.md, `nshape13`'s section).
+    let calls = measure_from(c_final_by_inarg::program(), "relay(1000000000)");
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("dms/ground_loop");
     let (checked, _) = sitlog_compiler::check_path(&dir).unwrap();
     let ir = sitlog_compiler::ir::lower(&checked.ok().unwrap());
@@ -125,6 +141,7 @@ fn transitions_allocate_nothing_in_steady_state() {
     for (name, t) in [
         ("compiled", &compiled),
         ("typed counter", &typed),
+        ("shape (c) c_final_by_inarg", &calls),
         ("interpreter", &interpreted),
     ] {
         println!(
