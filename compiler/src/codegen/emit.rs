@@ -254,7 +254,8 @@ impl Gen<'_> {
             /// is given back, `ret`), `nat_hand_over` (a DM with locals: before
             /// the machine sees the state, the native frames below made machine
             /// frames by the runtime's `machine::nat_hand_over`, which serves
-            /// the other DMs, then the locals written back), `nat_wait` (a DM with locals and waiting situations: a frame
+            /// the other DMs, then the locals written back), `nat_wait` (a DM
+            /// with locals and waiting situations: a frame
             /// waiting for its callee made the machine's, the locals written
             /// back; for the others the runtime's `NatAt::nat_wait` from `waits`
             /// and `id_term`) and, in a DM with term code too, `run_native` (an

@@ -551,11 +551,10 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     #[cold]
     pub fn fault(&self, fault: Fault) -> RunError {
         let message = match fault {
-            Fault::WrongFrame => {
-                "native code resumed a caller without its callee's frame or with another DM's"
-            }
+            Fault::NotWaiting => "native code resumed a situation that waits for no DM",
+            Fault::WrongFrame => "native code resumed a caller with another DM's frame",
             Fault::WaitsForNone => "native code handed over a frame that waits for no DM",
-            Fault::Visited => "native code visited a frame while it runs",
+            Fault::Visited => "native code visited a waiting situation or a running frame",
             Fault::Exits => "native exit arcs disagree with the machine's",
             Fault::NoLevel => "native code closed a history level it did not open",
             Fault::NotTheCall => {
@@ -1116,13 +1115,14 @@ impl<P: DmProgram> Cx<'_, '_, P> {
 /// What native code found wrong with its own frames ([`Cx::fault`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Fault {
-    /// A caller resumed without its callee or with a callee of another DM
-    /// than it called (a frame waiting in a situation is resumed only
-    /// with the callee it waits for: the driver's `ret`).
+    /// A frame resumed after a call, in a situation that made none.
+    NotWaiting,
+    /// A caller resumed with a callee of another DM than it called.
     WrongFrame,
     /// A frame made the machine's as waiting, in a situation that made no call.
     WaitsForNone,
-    /// A frame visited while it runs (its situation moved out).
+    /// A waiting situation visited as if it were running, or a frame
+    /// visited while it runs (its situation moved out).
     Visited,
     /// No native exit arc took the callee's final, but the machine's did.
     Exits,

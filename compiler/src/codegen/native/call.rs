@@ -920,7 +920,7 @@ impl Gen<'_> {
             .filter(|(r, _)| mentions(&arms, r))
             .map(|(_, stmt)| stmt);
         let body = quote! {
-            let Some(super::NatFrame::#callee_v(done_frame)) = ret.take() else {
+            let super::NatFrame::#callee_v(done_frame) = ret else {
                 return Err(cx.fault(Fault::WrongFrame));
             };
             #(#out_loads)*
