@@ -10,7 +10,7 @@
 //! head that is an atom or of distinct variables (a DM's own `head` only
 //! for another), `locals` (a DM's own function only when it has locals),
 //! `dm_by_name`; the runtime's `machine::nat_hand_over` serves a DM without
-//! parameters or locals, and its `machine::nat_drive` runs the native stack
+//! locals, and its `machine::nat_drive` runs the native stack
 //! over the program's `NatFrame`. Invariant: the program's dispatch names only the
 //! per-DM functions a DM's module has (`DmItems` says which).
 
@@ -250,11 +250,12 @@ impl Gen<'_> {
             /// stack until it calls a DM (`call` set), ends in a final below the
             /// base, or hands over to the machine; never inlined: the driver's
             /// dispatch on `NatFrame` then only jumps to it and pays no other
-            /// DM's prologue), `nat_hand_over` (before the machine sees the
-            /// state: the native frames below made machine frames,
-            /// `machine::nat_hand_over_of`, the locals written back; the
-            /// runtime's `nat_hand_over` for a DM without parameters or locals),
-            /// `nat_wait` (a DM with locals and waiting situations: a frame
+            /// DM's prologue; a `W<n>` arm runs when the callee it waited for
+            /// is given back, `ret`), `nat_hand_over` (a DM with locals: before
+            /// the machine sees the state, the native frames below made machine
+            /// frames by the runtime's `machine::nat_hand_over`, which serves
+            /// the other DMs, then the locals written back), `nat_wait` (a DM
+            /// with locals and waiting situations: a frame
             /// waiting for its callee made the machine's, the locals written
             /// back; for the others the runtime's `NatAt::nat_wait` from `waits`
             /// and `id_term`) and, in a DM with term code too, `run_native` (an

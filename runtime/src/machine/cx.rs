@@ -334,22 +334,21 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// from its template as the interpreter holds it while the callee runs
     /// (its id `id`; its in_arg the pipe value the visit read, `in_arg`,
     /// when the exit arcs read it; its `embedded_dm`, evaluated read-only
-    /// as at the call, unified with the callee's call term `callee`, whose
-    /// variables the callee's `diag_mod` binds), the
-    /// callee's frame pushed (DM `callee_dm`, the depth limit checked):
-    /// the machine runs the exit arcs at the callee's final. (`prog` is
-    /// not run again: native code ran it, and its variables are renamed
-    /// apart from the exit arcs', D-10.) The callee's history level, when
-    /// native code kept one, becomes its frame's history, its call term the
-    /// frame's (`callee` then unused). The running situation is left as it
-    /// was.
+    /// as at the call), the callee's frame pushed (the DM it names, the
+    /// depth limit checked) with that evaluation as its call term, as the
+    /// machine's call makes it (its variables, an output argument's, are
+    /// the instance's, which the callee's `diag_mod` binds): the machine
+    /// runs the exit arcs at the callee's final. (`prog` is not run again:
+    /// native code ran it, and its variables are renamed apart from the
+    /// exit arcs', D-10.) The callee's history level, when native code kept
+    /// one, becomes its frame's history and its call term (built by native
+    /// code at the push) the frame's, checked against the evaluation. The
+    /// running situation is left as it was.
     pub fn wait_template(
         &mut self,
         sit: SitIx,
         id: Term,
         in_arg: Option<Term>,
-        callee_dm: super::DmIx,
-        callee: Term,
     ) -> Result<(), RunError> {
         self.m.materialize();
         // The running frame's situation, as native code entered it (its
@@ -362,25 +361,37 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         if let (Some(pattern), Some(value)) = (inst.in_arg, in_arg) {
             self.m.unify_in_arg(pattern, value, here)?;
         }
-        // The callee's history so far when native code kept it (its level,
-        // the bottom one left: frames are made the machine's bottom first),
-        // with the call term its entries name. The level is taken only
-        // once the call is checked: on an error it is still there for the
-        // unwinding to nest (`Machine::run`).
-        let callee = self.m.levels.front().map_or(callee, |level| level.dm_id);
         // The template's `embedded_dm` evaluated (read-only, as at the
         // call): native code pushes calls whose evaluation reads only
         // locals (`search(get(places, _), T)`) or gives the term itself.
-        let called = match inst.embedded_dm {
-            Some(e) => {
-                let e = self.m.eval_read_only(e, here)?;
-                self.m.store.unify(e, callee)
-            }
-            None => false,
-        };
-        if !called {
+        let Some(e) = inst.embedded_dm else {
             return Err(self.fault(Fault::NotTheCall));
-        }
+        };
+        let e = self.m.eval_read_only(e, here)?;
+        // The callee's history so far when native code kept it (its level,
+        // the bottom one left: frames are made the machine's bottom first),
+        // with the call term its entries name, which must be the call. The
+        // level is taken only once the call is checked: on an error it is
+        // still there for the unwinding to nest (`Machine::run`).
+        let callee = match self.m.levels.front() {
+            Some(level) => {
+                let callee = level.dm_id;
+                if !self.m.store.unify(e, callee) {
+                    return Err(self.fault(Fault::NotTheCall));
+                }
+                callee
+            }
+            None => e,
+        };
+        // The DM it names, as the machine's call finds it.
+        let callee_dm = self
+            .m
+            .store
+            .functor(callee)
+            .and_then(|(name, _)| self.m.program.dm_by_name(name));
+        let Some(callee_dm) = callee_dm else {
+            return Err(self.fault(Fault::NotTheCall));
+        };
         self.m.check_depth(here)?;
         let history = self
             .m
@@ -543,7 +554,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             Fault::NotWaiting => "native code resumed a situation that waits for no DM",
             Fault::WrongFrame => "native code resumed a caller with another DM's frame",
             Fault::WaitsForNone => "native code handed over a frame that waits for no DM",
-            Fault::Visited => "native code visited a waiting situation",
+            Fault::Visited => "native code visited a waiting situation or a running frame",
             Fault::Exits => "native exit arcs disagree with the machine's",
             Fault::NoLevel => "native code closed a history level it did not open",
             Fault::NotTheCall => {
@@ -1110,7 +1121,8 @@ pub enum Fault {
     WrongFrame,
     /// A frame made the machine's as waiting, in a situation that made no call.
     WaitsForNone,
-    /// A waiting situation visited as if it were running.
+    /// A waiting situation visited as if it were running, or a frame
+    /// visited while it runs (its situation moved out).
     Visited,
     /// No native exit arc took the callee's final, but the machine's did.
     Exits,

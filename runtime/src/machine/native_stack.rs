@@ -26,7 +26,7 @@
 //! recursive situation as the interpreter's would, `Cx::wait_template`,
 //! bottom first) and after writing its locals back.
 
-use super::{Cx, DmIx, DmProgram, Fault, RunError, SitIx, Step, TypedRun};
+use super::{Cx, DmProgram, Fault, RunError, SitIx, Step, TypedRun};
 use crate::machine::AsTerm;
 use crate::{Store, Term};
 
@@ -45,22 +45,15 @@ pub trait NatFrames<P: DmProgram>: Sized {
         call: &mut Option<Self>,
         run: &TypedRun,
     ) -> Result<Option<Step>, RunError>;
-    /// The frame's DM call, as a term (from its parameters).
+    /// The frame's DM call, as a term (from its parameters): the call
+    /// term of the history level a push opens (`Cx::push_level`).
     fn call_term(&self, p: &P, cx: &mut Cx<'_, '_, P>) -> Term;
     /// `*self = next`, `self` a frame that reached its final (without
     /// drop code for a DM whose frame holds nothing to drop).
     fn replace_done(&mut self, next: Self);
-    /// The frame's DM.
-    fn dm(&self) -> DmIx;
-    /// The frame, waiting for `callee` (of DM `callee_dm`), made the
-    /// machine's, the callee's pushed.
-    fn wait(
-        &self,
-        p: &P,
-        cx: &mut Cx<'_, '_, P>,
-        callee: Term,
-        callee_dm: DmIx,
-    ) -> Result<(), RunError>;
+    /// The frame, waiting for its callee, made the machine's, the callee's
+    /// pushed.
+    fn wait(&self, p: &P, cx: &mut Cx<'_, '_, P>) -> Result<(), RunError>;
 }
 
 /// A native DM's situations (its `enum Nat`: a variant per situation and
@@ -79,22 +72,16 @@ pub trait NatAt<P: DmProgram> {
     fn waits(&self) -> Option<(SitIx, Option<&dyn AsTerm>)> {
         None
     }
-    /// The frame at this variant, waiting for `callee` (of DM
-    /// `callee_dm`), made the machine's (`Cx::wait_template`): the pipe
-    /// value made a term first, then the id.
-    fn nat_wait(
-        &self,
-        p: &P,
-        cx: &mut Cx<'_, '_, P>,
-        callee: Term,
-        callee_dm: DmIx,
-    ) -> Result<(), RunError> {
+    /// The frame at this variant, waiting for its callee, made the
+    /// machine's (`Cx::wait_template`): the pipe value made a term first,
+    /// then the id.
+    fn nat_wait(&self, p: &P, cx: &mut Cx<'_, '_, P>) -> Result<(), RunError> {
         let Some((sit, in_arg)) = self.waits() else {
             return Err(cx.fault(Fault::WaitsForNone));
         };
         let in_arg = in_arg.map(|v| v.as_term(cx.store()));
         let id = self.id_term(p, cx.store());
-        cx.wait_template(sit, id, in_arg, callee_dm, callee)
+        cx.wait_template(sit, id, in_arg)
     }
 }
 
@@ -310,58 +297,53 @@ pub fn nat_drive<P: DmProgram, F: NatFrames<P>>(
     }
 }
 
-/// Before the running frame of DM `dm` hands over: the frames below made
-/// the machine's (`args`: the frame's parameters, its call's arguments).
-/// The hand-over of a DM without parameters or locals (`args` empty), and
-/// what a DM's own `nat_hand_over` does before writing its locals back.
-#[cold]
-#[inline(never)]
-pub fn nat_hand_over_of<P: DmProgram, F: NatFrames<P>>(
-    p: &P,
-    cx: &mut Cx<'_, '_, P>,
-    stack: &mut NatBelow<'_, F>,
-    dm: DmIx,
-    args: &[&dyn AsTerm],
-) -> Result<(), RunError> {
-    if !stack.is_empty() {
-        let own_call = cx.build_of(p.dm_name(dm), args);
-        nat_materialize(p, cx, stack, own_call, dm)?;
-    }
-    Ok(())
-}
-
-/// [`nat_hand_over_of`] a DM without parameters or locals.
+/// Before the running frame hands over: the frames below made the
+/// machine's ([`nat_materialize`]). A DM with locals writes them back
+/// after it, in its own `nat_hand_over`.
 #[cold]
 #[inline(never)]
 pub fn nat_hand_over<P: DmProgram, F: NatFrames<P>>(
     p: &P,
     cx: &mut Cx<'_, '_, P>,
     stack: &mut NatBelow<'_, F>,
-    dm: DmIx,
 ) -> Result<(), RunError> {
-    nat_hand_over_of(p, cx, stack, dm, &[])
+    nat_materialize(p, cx, stack)
 }
 
-/// Makes the native frames below the running one (called as `top`, DM
-/// `top_dm`) machine frames, bottom first.
+/// The end of a native step that gives the machine control (garbage to
+/// collect, a stop asked: `Cx::gc_tick`) in a DM without locals: the
+/// frames below made the machine's ([`nat_hand_over`]), then
+/// `Cx::step_goto` to `at`, the situation reached, as its id.
+#[cold]
+#[inline(never)]
+pub fn nat_goto<P: DmProgram, F: NatFrames<P>, N: NatAt<P>>(
+    p: &P,
+    cx: &mut Cx<'_, '_, P>,
+    stack: &mut NatBelow<'_, F>,
+    count: u64,
+    at: &N,
+) -> Result<Option<Step>, RunError> {
+    nat_hand_over(p, cx, stack)?;
+    cx.step_goto(count, |s| at.id_term(p, s))
+}
+
+/// Makes the native frames below the running one machine frames, bottom
+/// first: each waits in its recursive situation, its callee's frame
+/// pushed with the call its situation's `embedded_dm` makes
+/// (`Cx::wait_template`), as the machine's call pushes it; so no call
+/// term is built from a native frame's parameters here, and the DMs are
+/// those the calls name.
 pub fn nat_materialize<P: DmProgram, F: NatFrames<P>>(
     p: &P,
     cx: &mut Cx<'_, '_, P>,
     stack: &mut NatBelow<'_, F>,
-    top: Term,
-    top_dm: DmIx,
 ) -> Result<(), RunError> {
-    if *stack.gone {
+    if stack.is_empty() {
         return Ok(());
     }
     *stack.gone = true;
-    let mut frames = stack.base.into_iter().chain(stack.mid.iter()).peekable();
-    while let Some(f) = frames.next() {
-        let (callee, callee_dm) = match frames.peek() {
-            Some(next) => (next.call_term(p, cx), next.dm()),
-            None => (top, top_dm),
-        };
-        f.wait(p, cx, callee, callee_dm)?;
+    for f in stack.base.into_iter().chain(stack.mid.iter()) {
+        f.wait(p, cx)?;
     }
     Ok(())
 }

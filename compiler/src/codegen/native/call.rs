@@ -30,10 +30,10 @@
 //! term path's unification exactly: the caller's variable is fresh and
 //! appears nowhere else, the other arguments unify with themselves. Where
 //! the frames become the machine's while the callee runs
-//! (`nat_materialize`), the callee's call term makes the variable
-//! (`Ground::OUT`'s `to_term`) and the caller's instance takes it from
-//! there (`Cx::wait_template`, below), so the machine's `diag_mod` binds
-//! it for the caller's exit arcs. A variable given twice or inside an
+//! (`nat_materialize`), the callee's frame is pushed with the call the
+//! caller's `embedded_dm` makes (`Cx::wait_template`, below): the variable
+//! is the caller's instance's, so the machine's `diag_mod` binds it for the
+//! caller's exit arcs. A variable given twice or inside an
 //! argument, an output the callee may leave unbound, an output of a type
 //! the caller's register does not take: the machine's call, as below.
 //!
@@ -71,8 +71,8 @@
 //! - a waiting frame made the machine's (`nat_wait`, when the frames below
 //!   the running one are materialized) waits as the interpreter's instance
 //!   would (`Cx::wait_template`: the situation's template with its id, the
-//!   in_arg the visit read and the callee's call term as its
-//!   `embedded_dm`), and the machine runs its exit arcs at the callee's
+//!   in_arg the visit read, the callee's frame pushed with the call its
+//!   `embedded_dm` makes), and the machine runs its exit arcs at the callee's
 //!   final;
 //! - anything that needs the machine's state (an action performed, an
 //!   error, a comparison evaluated on terms) first materializes the native
@@ -638,7 +638,7 @@ impl Gen<'_> {
             Nat::#wv { #(#names),* } => {
                 #in_stmt
                 #(#id_stmts)*
-                cx.wait_template(#curl, #id, #in_arg, callee_dm, callee)
+                cx.wait_template(#curl, #id, #in_arg)
             }
         };
         if plan.is_none() {

@@ -3,17 +3,20 @@
 //! (its parameters `p0..`, its locals `l0..`, an output slot `out<i>:
 //! Option<T>` per output parameter a native caller may pass as
 //! `Ground::OUT` (`super::call`), and the situation it is in, all native
-//! values), its `nat_wait` (only a DM with locals and waiting situations:
-//! the others use `machine::NatAt::nat_wait`) and `nat_hand_over`, and in
+//! values), its `nat_wait` and `nat_hand_over` (only a DM with locals,
+//! written back there: the others use `machine::NatAt::nat_wait` and
+//! `machine::nat_hand_over`), and in
 //! the program's module `enum NatFrame` (a variant per native DM) with its
 //! `machine::NatFrames` impl: a dispatch to each DM's module (a frame's call
-//! term built there from its DM's name and parameters). The stack
+//! term built there from its DM's name and parameters, for a history level
+//! opened at a push). The stack
 //! itself is the runtime's (`sitlog_runtime::machine::nat_drive`, generic
 //! over the frame type: an explicit stack of native frames, each run where
 //! it lies, no Rust recursion per nested DM, no term built), and so is the
 //! hand-over (`machine::nat_materialize`: every native frame below the
 //! running one becomes a machine frame, waiting in its recursive situation
-//! as the interpreter's would, `Cx::wait_template`).
+//! as the interpreter's would, `Cx::wait_template`, its callee's frame
+//! pushed with the call its `embedded_dm` makes).
 //!
 //! Invariant: the machine's DM stack is the native stack's bottom frame
 //! (the DM the machine entered) and what is below it; native code reads or
@@ -32,7 +35,7 @@ use super::Gen;
 use super::{rust_ty, Dm, N};
 use crate::ir::{Ir, IrDm};
 use crate::mir::ty::DmTypes;
-use proc_macro2::{Ident, Literal, TokenStream};
+use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_runtime::native::Ty;
 use sitlog_syntax::Atom;
@@ -79,50 +82,39 @@ impl Gen<'_> {
     }
 
     /// [`Dm::hand`]: before native code hands over or lets the machine
-    /// see its state, the native frames below become machine frames and
-    /// the locals are written back.
+    /// see its state, the native frames below become machine frames (the
+    /// runtime's `nat_hand_over`) and the locals are written
+    /// back (a DM with locals: its own `nat_hand_over`).
     pub(super) fn nat_hand(&self, d: &Dm) -> N<TokenStream> {
-        let names = Self::nat_frame_names(d);
-        if names.is_empty() {
-            // The runtime's, for a DM without parameters or locals.
-            let dm = Literal::u32_unsuffixed(d.ix as u32);
-            return Ok(quote!(super::nat_hand_over(p, cx, stack, #dm)?;));
+        let locals = Self::nat_local_names(d);
+        if locals.is_empty() {
+            return Ok(quote!(super::nat_hand_over(p, cx, stack)?;));
         }
-        Ok(quote!(nat_hand_over(p, cx, stack, #(&*#names),*)?;))
+        Ok(quote!(nat_hand_over(p, cx, stack, #(&*#locals),*)?;))
     }
 
-    /// The frame's fields but `at`: `p0.., l0..`.
-    fn nat_frame_names(d: &Dm) -> Vec<Ident> {
-        (0..d.params.len())
-            .map(|i| format_ident!("p{}", i))
-            .chain((0..d.locals.len()).map(|i| format_ident!("l{}", i)))
+    /// The frame's locals: `l0..`.
+    fn nat_local_names(d: &Dm) -> Vec<Ident> {
+        (0..d.locals.len())
+            .map(|i| format_ident!("l{}", i))
             .collect()
     }
 
-    /// `nat_hand_over`, the code of [`Dm::hand`], out of line: the
-    /// runtime's `machine::nat_hand_over_of` given the DM's call's
-    /// arguments, then its locals written back (none for a DM without
-    /// parameters or locals: the runtime's `nat_hand_over` serves it).
+    /// `nat_hand_over` of a DM with locals, the code of [`Dm::hand`], out
+    /// of line: the runtime's `machine::nat_hand_over`, then the locals
+    /// written back (none for a DM without locals: the runtime's serves
+    /// it).
     fn nat_hand_fn(&self, d: &Dm) -> N<TokenStream> {
-        let names = Self::nat_frame_names(d);
+        let names = Self::nat_local_names(d);
         if names.is_empty() {
             return Ok(quote!());
         }
-        let dm = Literal::u32_unsuffixed(d.ix as u32);
         let locals = self.nat_write_locals(d)?;
         let tys = d
-            .params
+            .locals
             .iter()
-            .chain(d.locals.iter().map(|(_, t)| t))
-            .map(rust_ty)
+            .map(|(_, t)| rust_ty(t))
             .collect::<N<Vec<_>>>()?;
-        let ps = (0..d.params.len()).map(|i| format_ident!("p{}", i));
-        let hand = quote!(machine::nat_hand_over_of(p, cx, stack, #dm, &[#(#ps),*]));
-        let body = if d.locals.is_empty() {
-            hand
-        } else {
-            quote!(let a = &p.atoms; #hand?; #locals Ok(()))
-        };
         Ok(quote! {
             #[cold]
             #[inline(never)]
@@ -132,7 +124,10 @@ impl Gen<'_> {
                 stack: &mut super::NatBelow<'_>,
                 #(#names: &#tys,)*
             ) -> Result<(), RunError> {
-                #body
+                let a = &p.atoms;
+                machine::nat_hand_over(p, cx, stack)?;
+                #locals
+                Ok(())
             }
         })
     }
@@ -201,8 +196,6 @@ impl Gen<'_> {
                     p: &Program,
                     cx: &mut Ctx,
                     frame: &Frame,
-                    callee: Term,
-                    callee_dm: DmIx,
                 ) -> Result<(), RunError> {
                     #wait_a
                     let Frame { #(#wait_names,)* at, #rest } = frame;
@@ -291,9 +284,9 @@ impl Gen<'_> {
                 let mut own = std::collections::HashSet::new();
                 super::super::emit::idents_in(&modules[d], &mut own);
                 if own.contains("nat_wait") {
-                    quote!(NatFrame::#v(f) => #m::nat_wait(p, cx, f, callee, callee_dm),)
+                    quote!(NatFrame::#v(f) => #m::nat_wait(p, cx, f),)
                 } else {
-                    quote!(NatFrame::#v(f) => f.at.nat_wait(p, cx, callee, callee_dm),)
+                    quote!(NatFrame::#v(f) => f.at.nat_wait(p, cx),)
                 }
             })
             .collect();
@@ -327,10 +320,6 @@ impl Gen<'_> {
                 }
             })
             .collect();
-        let ixs: Vec<Literal> = native
-            .iter()
-            .map(|&d| Literal::u32_unsuffixed(d as u32))
-            .collect();
         quote! {
             /// A frame of the native stack: one variant per native DM.
             #[allow(dead_code, clippy::all)]
@@ -342,7 +331,7 @@ impl Gen<'_> {
             /// them (`machine::NatBelow`).
             pub(crate) type NatBelow<'s> = machine::NatBelow<'s, NatFrame>;
 
-            /// The hand-over of a DM without parameters or locals.
+            /// The hand-over of a DM without locals.
             #[allow(unused_imports)]
             pub(crate) use ::sitlog_runtime::machine::nat_hand_over;
 
@@ -371,16 +360,7 @@ impl Gen<'_> {
                     let plain = match self { #(NatFrame::#vs(f) => machine::nat_plain(f),)* };
                     machine::nat_replace_done(self, next, plain)
                 }
-                fn dm(&self) -> DmIx {
-                    match self { #(NatFrame::#vs(_) => #ixs,)* }
-                }
-                fn wait(
-                    &self,
-                    p: &Program,
-                    cx: &mut Cx<'_, '_, Program>,
-                    callee: Term,
-                    callee_dm: DmIx,
-                ) -> Result<(), RunError> {
+                fn wait(&self, p: &Program, cx: &mut Cx<'_, '_, Program>) -> Result<(), RunError> {
                     match self { #(#wait_arms)* }
                 }
             }

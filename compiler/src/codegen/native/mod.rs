@@ -44,7 +44,8 @@
 //!   situation takes natively (the machine selects or reports the error),
 //!   and the id of the situation reached when the machine wants control
 //!   (garbage to collect, a stop asked), checked between two visits of
-//!   the frame's loop by `Cx::gc_tick` (`Cx::gc_due` asked once every
+//!   the frame's loop by `Cx::gc_tick` (then `machine::nat_goto` in a DM
+//!   without locals; `Cx::gc_due` asked once every
 //!   `GC_TICKS` checks, so at most `GC_TICKS - 1` visits later; at every
 //!   check for a GC threshold below `GC_TICKS_BELOW`).
 //! - *effectors and the evaluator*: an action's term (`say(['Hi', Name])`,
@@ -127,8 +128,8 @@
 //!   every step that lets the machine see its state (an action performed,
 //!   a situation handed over, `get`/`set`/`inc` through the machine), first
 //!   makes the native frames machine frames and writes the locals back
-//!   (`nat_hand_over`: the DM's, or the program's for a DM without
-//!   parameters or locals), and reads the locals again after the machine's
+//!   (`nat_hand_over`: the runtime's, or the DM's for a DM with locals),
+//!   and reads the locals again after the machine's
 //!   call. A call with an output argument is pushed so too when the
 //!   callee hands it back in an output slot ([`call`]); other calls with a
 //!   fresh variable are the machine's, the term built with the variable
@@ -955,8 +956,7 @@ struct Dm<'a> {
     /// Per situation, whether it has native code (else a next situation
     /// that selects it is handed to the machine).
     native: Vec<bool>,
-    /// The DM's index, its locals' names and types (frame fields `l0..`).
-    ix: usize,
+    /// The DM's locals' names and types (frame fields `l0..`).
     locals: Vec<(Atom, Ty)>,
     /// Whether the locals are held in the frame (each has a native type);
     /// else the DM is never a native callee.
@@ -1336,15 +1336,21 @@ impl Gen<'_> {
         let hand = &d.hand;
         // The machine wants control (garbage, a stop asked): the situation
         // reached is handed over as its id.
-        let gc = quote! {
-            if cx.gc_tick() {
-                #hand
-                return cx.step_goto(count, |s| at.id_term(p, s));
+        let gc = if d.locals.is_empty() {
+            // The runtime's hand-over then `step_goto`, one call.
+            quote! {
+                if cx.gc_tick() {
+                    return machine::nat_goto(p, cx, stack, count, &at);
+                }
+            }
+        } else {
+            quote! {
+                if cx.gc_tick() {
+                    #hand
+                    return cx.step_goto(count, |s| at.id_term(p, s));
+                }
             }
         };
-        // Resumed after a call returned: the waiting situation's exit arcs,
-        // then the same checks as after a visit. A DM with no situation
-        // that waits (most) only says that it was not waiting.
         let arms = by_ref_loads(quote!(#(#arms)*));
         // A cursor's visit that stays (`break 'step`) leaves `at` as it is.
         let step = quote! {
@@ -1358,25 +1364,21 @@ impl Gen<'_> {
         } else {
             step
         };
+        // Resumed after a call returned: the waiting situation's exit arcs,
+        // then the same checks as after a visit (before the loop: in the
+        // loop's `match`, `echo_calls`' caller measured 8 instructions a
+        // transition more). A DM with no situation that waits (most) does
+        // not read `ret`: the driver gives it only to a frame that called.
         let resume = if exit_arms.iter().all(|a| a.is_empty()) {
-            quote! {
-                if ret.is_some() {
-                    return Err(cx.fault(Fault::NotWaiting));
-                }
-            }
+            quote!()
         } else {
             let exit_arms = by_ref_loads(quote!(#(#exit_arms)*));
-            // Recorded (the history kept) where the arcs record their
-            // entries: a call whose exit arcs do not is never pushed then.
-            let exit = quote! {
-                match at {
-                    #exit_arms
-                    _ => return Err(cx.fault(Fault::NotWaiting)),
-                }
-            };
             quote! {
                 if let Some(ret) = ret {
-                    at = #exit;
+                    at = match at {
+                        #exit_arms
+                        _ => return Err(cx.fault(Fault::NotWaiting)),
+                    };
                     #gc
                 }
             }
@@ -1632,7 +1634,6 @@ impl Gen<'_> {
             types,
             params: t.params.iter().map(|p| p.ty.clone()).collect(),
             native: why.iter().map(Option::is_none).collect(),
-            ix: dm_ix,
             locals,
             locals_ok,
             hand: quote!(),
