@@ -841,12 +841,11 @@ impl Gen<'_> {
                     {
                         quote! {
                             let next_at: Nat = #next;
+                            run.tally(&mut count);
                             if run.recorded() {
                                 #entry
                                 cx.record_next(exp, act, |s| next_at.id_term(p, s));
-                                break 'visit next_at;
                             }
-                            count += 1;
                             break 'visit next_at;
                         }
                     }

@@ -4156,6 +4156,10 @@ impl Gen<'_> {
                     Shape::Empty(l.to_string(), code)
                 }
                 Some((MatchStep::Split(l, ..), rest)) if lets(rest) => Shape::Split(l.to_string()),
+                // `[P|Ps]` of a list taken whole: as exhaustive with `[]`.
+                Some((MatchStep::Cell(l, _, _, false), rest)) if lets(rest) => {
+                    Shape::Split(l.to_string())
+                }
                 _ => Shape::Other,
             };
             let code = wrap_steps(steps, &inline, quote!(break 'sel Nat::#v { #(#inits),* };));
@@ -4633,17 +4637,35 @@ fn wrap_steps(
                     break 'hand;
                 }
             },
-            MatchStep::ArgsVal(v, f, arity, xs) => quote! {
-                if let Some([#(#xs),*]) = #v.args_of(#f, #arity) {
-                    #(let #xs = #xs.clone();)*
-                    #code
+            MatchStep::ArgsVal(v, f, arity, xs) => {
+                // Each argument cloned where a field takes it, read in
+                // place where only tests read it (no `let` a line).
+                let mut lets = Vec::new();
+                for x in &xs {
+                    match read_in_place(&code, x) {
+                        Some(c) => code = c,
+                        None => lets.push(quote!(let #x = #x.clone();)),
+                    }
                 }
-            },
-            MatchStep::Split(l, h, t) => quote! {
-                if let Some((#h, #t)) = #l.split_first() {
-                    let #h = #h.clone();
-                    #code
+                quote! {
+                    if let Some([#(#xs),*]) = #v.args_of(#f, #arity) {
+                        #(#lets)*
+                        #code
+                    }
                 }
+            }
+            MatchStep::Split(l, h, t) => match read_in_place(&code, &h) {
+                Some(code) => quote! {
+                    if let Some((#h, #t)) = #l.split_first() {
+                        #code
+                    }
+                },
+                None => quote! {
+                    if let Some((#h, #t)) = #l.split_first() {
+                        let #h = #h.clone();
+                        #code
+                    }
+                },
             },
             MatchStep::Cell(l, x, take, false) => quote! {
                 if !#l.is_empty() {
@@ -4662,6 +4684,63 @@ fn wrap_steps(
         };
     }
     code
+}
+
+/// `code` reading `x`, a reference to a candidate's part (a list's head,
+/// a compound's argument), without binding a clone of it first: `x` only
+/// a receiver of `args_of` (a test that reads it in place), or mentioned
+/// once as a field's value (`f: x`, then `f: x.clone()`, the clone made
+/// only where the variant is built). `None`: `code` reads it otherwise.
+fn read_in_place(code: &TokenStream, x: &Ident) -> Option<TokenStream> {
+    use proc_macro2::{Group, Spacing, TokenTree as T};
+    fn receivers(toks: &[T], x: &Ident) -> bool {
+        toks.iter().enumerate().all(|(k, t)| match t {
+            T::Ident(i) if i == x => matches!(
+                &toks[k + 1..],
+                [T::Punct(dot), T::Ident(m), ..] if dot.as_char() == '.' && m == "args_of"
+            ),
+            T::Group(g) => receivers(&g.stream().into_iter().collect::<Vec<_>>(), x),
+            _ => true,
+        })
+    }
+    fn at_field(toks: Vec<T>, x: &Ident, done: &mut bool) -> TokenStream {
+        let mut out = TokenStream::new();
+        for (k, t) in toks.iter().enumerate() {
+            match t {
+                T::Ident(i) if i == x => {
+                    let colon = k > 0
+                        && matches!(&toks[k - 1], T::Punct(c) if c.as_char() == ':' && c.spacing() == Spacing::Alone)
+                        && !(k > 1 && matches!(&toks[k - 2], T::Punct(c) if c.as_char() == ':'));
+                    let last = matches!(toks.get(k + 1), None)
+                        || matches!(toks.get(k + 1), Some(T::Punct(c)) if c.as_char() == ',');
+                    if colon && last {
+                        *done = true;
+                        out.extend(quote!(#x.clone()));
+                    } else {
+                        out.extend([t.clone()]);
+                    }
+                }
+                T::Group(g) => {
+                    let inner = at_field(g.stream().into_iter().collect(), x, done);
+                    let mut ng = Group::new(g.delimiter(), inner);
+                    ng.set_span(g.span());
+                    out.extend([T::Group(ng)]);
+                }
+                _ => out.extend([t.clone()]),
+            }
+        }
+        out
+    }
+    let toks: Vec<T> = code.clone().into_iter().collect();
+    if receivers(&toks, x) {
+        return Some(code.clone());
+    }
+    if pipe::mentions(code, x) != 1 {
+        return None;
+    }
+    let mut done = false;
+    let out = at_field(toks, x, &mut done);
+    done.then_some(out)
 }
 
 /// What a candidate of [`Gen::nat_select`] tests, for the pair `[]`,
