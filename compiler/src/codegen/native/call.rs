@@ -831,8 +831,8 @@ impl Gen<'_> {
                     // A next situation that is a value made of the
                     // registers (no call of `cx`, leaving nothing, moving
                     // nothing the entry reads): made first, once, then the
-                    // entry recorded or the transition counted (the order of
-                    // the store's terms is the entry's alone).
+                    // transition counted (`run.tally`) or the entry recorded
+                    // (the order of the store's terms is the entry's alone).
                     Some((entry, next))
                         if rec_all
                             && !leaves(&next)

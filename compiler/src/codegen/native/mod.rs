@@ -511,8 +511,9 @@ fn idents(ts: &TokenStream, out: &mut std::collections::BTreeSet<String>) {
 }
 
 /// Whether `code` may move a variable that `reader` reads: one of
-/// `reader`'s identifiers appears in `code` other than as `x.clone()` or
-/// a field's name (conservative: a borrow counts as a move).
+/// `reader`'s identifiers appears in `code` other than as `x.clone()`, a
+/// field's name or a borrow `&x` (ended with `code`: the value it makes,
+/// a `Nat`, holds no reference; any other use counts as a move).
 fn moves_any(code: &TokenStream, reader: &TokenStream) -> bool {
     use proc_macro2::TokenTree;
     fn moves(ts: &TokenStream, read: &std::collections::BTreeSet<String>) -> bool {
@@ -524,7 +525,10 @@ fn moves_any(code: &TokenStream, reader: &TokenStream) -> bool {
                 // A field's name (`r1: ..`), not `r1::`.
                 let field = matches!(toks.get(k + 1), Some(TokenTree::Punct(p))
                     if p.as_char() == ':' && p.spacing() == proc_macro2::Spacing::Alone);
-                read.contains(&i.to_string()) && !cloned && !field
+                // Borrowed (`&r7`: a selected value, [`Gen::nat_select`]).
+                let borrowed = k > 0
+                    && matches!(&toks[k - 1], TokenTree::Punct(p) if p.as_char() == '&');
+                read.contains(&i.to_string()) && !cloned && !field && !borrowed
             }
             TokenTree::Group(g) => moves(&g.stream(), read),
             _ => false,
