@@ -4998,8 +4998,9 @@ fn by_ref_loads(ts: TokenStream) -> TokenStream {
     out
 }
 
-/// Whether every mention of `r` in `toks` is `borrow(&r)` or `r.clone()`
-/// (through a reference, the value it points at cloned); a field named
+/// Whether every mention of `r` in `toks` is `borrow(&r)`, a selected
+/// value's `let v<i>: &T = &r;` or `r.clone()` (through a reference, the
+/// value it points at cloned); a field named
 /// like it, `S3 { r3: .. }`, is not a mention.
 fn only_borrowed(toks: &[proc_macro2::TokenTree], r: &Ident) -> bool {
     use proc_macro2::{Spacing, TokenTree as T};
