@@ -831,8 +831,8 @@ impl Gen<'_> {
                     // A next situation that is a value made of the
                     // registers (no call of `cx`, leaving nothing, moving
                     // nothing the entry reads): made first, once, then the
-                    // entry recorded or the transition counted (the order of
-                    // the store's terms is the entry's alone).
+                    // transition counted (`run.tally`) or the entry recorded
+                    // (the order of the store's terms is the entry's alone).
                     Some((entry, next))
                         if rec_all
                             && !leaves(&next)
@@ -841,12 +841,11 @@ impl Gen<'_> {
                     {
                         quote! {
                             let next_at: Nat = #next;
+                            run.tally(&mut count);
                             if run.recorded() {
                                 #entry
                                 cx.record_next(exp, act, |s| next_at.id_term(p, s));
-                                break 'visit next_at;
                             }
-                            count += 1;
                             break 'visit next_at;
                         }
                     }

@@ -512,8 +512,9 @@ fn idents(ts: &TokenStream, out: &mut std::collections::BTreeSet<String>) {
 }
 
 /// Whether `code` may move a variable that `reader` reads: one of
-/// `reader`'s identifiers appears in `code` other than as `x.clone()` or
-/// a field's name (conservative: a borrow counts as a move).
+/// `reader`'s identifiers appears in `code` other than as `x.clone()`, a
+/// field's name or a borrow `&x` (ended with `code`: the value it makes,
+/// a `Nat`, holds no reference; any other use counts as a move).
 fn moves_any(code: &TokenStream, reader: &TokenStream) -> bool {
     use proc_macro2::TokenTree;
     fn moves(ts: &TokenStream, read: &std::collections::BTreeSet<String>) -> bool {
@@ -525,7 +526,10 @@ fn moves_any(code: &TokenStream, reader: &TokenStream) -> bool {
                 // A field's name (`r1: ..`), not `r1::`.
                 let field = matches!(toks.get(k + 1), Some(TokenTree::Punct(p))
                     if p.as_char() == ':' && p.spacing() == proc_macro2::Spacing::Alone);
-                read.contains(&i.to_string()) && !cloned && !field
+                // Borrowed (`&r7`: a selected value, [`Gen::nat_select`]).
+                let borrowed = k > 0
+                    && matches!(&toks[k - 1], TokenTree::Punct(p) if p.as_char() == '&');
+                read.contains(&i.to_string()) && !cloned && !field && !borrowed
             }
             TokenTree::Group(g) => moves(&g.stream(), read),
             _ => false,
@@ -3962,12 +3966,18 @@ impl Gen<'_> {
         let arg_names: Vec<Ident> = (0..args.len()).map(|i| format_ident!("v{}", i)).collect();
         // Each value selected by reference where it lies (a register or
         // a frame field, not a clone): the candidates read it as `(*v<i>)`.
+        // A register or field `x` (read as `x.clone()`) is borrowed as
+        // `let v<i>: &T = &x;` (the value or, `x` a reference, the deref
+        // coercion's: what `place`'s `Borrow` gives, in fewer columns).
         let lets: Vec<TokenStream> = args
             .iter()
             .zip(&arg_names)
-            .map(|(v, n)| {
-                let e = place(v);
-                quote!(let #n = &#e;)
+            .map(|(v, n)| match (moved_place(v), rust_ty(&v.ty)) {
+                (Some(x), Ok(t)) => quote!(let #n: &#t = &#x;),
+                _ => {
+                    let e = place(v);
+                    quote!(let #n = &#e;)
+                }
             })
             .collect();
         // The visit's own cell tail selected once: moved into a cell (or,
@@ -4157,6 +4167,10 @@ impl Gen<'_> {
                     Shape::Empty(l.to_string(), code)
                 }
                 Some((MatchStep::Split(l, ..), rest)) if lets(rest) => Shape::Split(l.to_string()),
+                // `[P|Ps]` of a list taken whole: as exhaustive with `[]`.
+                Some((MatchStep::Cell(l, _, _, false), rest)) if lets(rest) => {
+                    Shape::Split(l.to_string())
+                }
                 _ => Shape::Other,
             };
             let code = wrap_steps(steps, &inline, quote!(break 'sel Nat::#v { #(#inits),* };));
@@ -4199,6 +4213,7 @@ impl Gen<'_> {
         // that no later candidate may take either): every candidate
         // otherwise ends in `break 'sel` or falls through.
         let leaves = candidates.iter().any(|c| c.to_string().contains("'hand"));
+        let candidates: Vec<TokenStream> = candidates.iter().map(deref_receivers).collect();
         let candidates = if leaves {
             quote!('hand: { #(#candidates)* })
         } else {
@@ -4634,17 +4649,35 @@ fn wrap_steps(
                     break 'hand;
                 }
             },
-            MatchStep::ArgsVal(v, f, arity, xs) => quote! {
-                if let Some([#(#xs),*]) = #v.args_of(#f, #arity) {
-                    #(let #xs = #xs.clone();)*
-                    #code
+            MatchStep::ArgsVal(v, f, arity, xs) => {
+                // Each argument cloned where a field takes it, read in
+                // place where only tests read it (no `let` a line).
+                let mut lets = Vec::new();
+                for x in &xs {
+                    match read_in_place(&code, x) {
+                        Some(c) => code = c,
+                        None => lets.push(quote!(let #x = #x.clone();)),
+                    }
                 }
-            },
-            MatchStep::Split(l, h, t) => quote! {
-                if let Some((#h, #t)) = #l.split_first() {
-                    let #h = #h.clone();
-                    #code
+                quote! {
+                    if let Some([#(#xs),*]) = #v.args_of(#f, #arity) {
+                        #(#lets)*
+                        #code
+                    }
                 }
+            }
+            MatchStep::Split(l, h, t) => match read_in_place(&code, &h) {
+                Some(code) => quote! {
+                    if let Some((#h, #t)) = #l.split_first() {
+                        #code
+                    }
+                },
+                None => quote! {
+                    if let Some((#h, #t)) = #l.split_first() {
+                        let #h = #h.clone();
+                        #code
+                    }
+                },
             },
             MatchStep::Cell(l, x, take, false) => quote! {
                 if !#l.is_empty() {
@@ -4663,6 +4696,112 @@ fn wrap_steps(
         };
     }
     code
+}
+
+/// `code` reading `x`, a reference to a candidate's part (a list's head,
+/// a compound's argument), without binding a clone of it first: `x` only
+/// a receiver of `args_of` (a test that reads it in place), or mentioned
+/// once as a field's value (`f: x`, then `f: x.clone()`, the clone made
+/// only where the variant is built). `None`: `code` reads it otherwise.
+fn read_in_place(code: &TokenStream, x: &Ident) -> Option<TokenStream> {
+    use proc_macro2::TokenTree as T;
+    fn receivers(toks: &[T], x: &Ident) -> bool {
+        toks.iter().enumerate().all(|(k, t)| match t {
+            T::Ident(i) if i == x => matches!(
+                &toks[k + 1..],
+                [T::Punct(dot), T::Ident(m), ..] if dot.as_char() == '.' && m == "args_of"
+            ),
+            T::Group(g) => receivers(&g.stream().into_iter().collect::<Vec<_>>(), x),
+            _ => true,
+        })
+    }
+    let toks: Vec<T> = code.clone().into_iter().collect();
+    if receivers(&toks, x) {
+        return Some(code.clone());
+    }
+    subst_at_field(code, x, &quote!(#x.clone()))
+}
+
+/// `code` with its one mention of `x`, a field's value (`f: x`), made `e`
+/// (`None`: `x` is mentioned otherwise, or more than once).
+fn subst_at_field(code: &TokenStream, x: &Ident, e: &TokenStream) -> Option<TokenStream> {
+    use proc_macro2::{Group, Spacing, TokenTree as T};
+    fn at_field(toks: Vec<T>, x: &Ident, e: &TokenStream, done: &mut bool) -> TokenStream {
+        let mut out = TokenStream::new();
+        for (k, t) in toks.iter().enumerate() {
+            match t {
+                T::Ident(i) if i == x => {
+                    let colon = k > 0
+                        && matches!(&toks[k - 1], T::Punct(c) if c.as_char() == ':' && c.spacing() == Spacing::Alone)
+                        && !(k > 1 && matches!(&toks[k - 2], T::Punct(c) if c.as_char() == ':'));
+                    let last = toks.get(k + 1).is_none()
+                        || matches!(toks.get(k + 1), Some(T::Punct(c)) if c.as_char() == ',');
+                    if colon && last {
+                        *done = true;
+                        out.extend(e.clone());
+                    } else {
+                        out.extend([t.clone()]);
+                    }
+                }
+                T::Group(g) => {
+                    let inner = at_field(g.stream().into_iter().collect(), x, e, done);
+                    let mut ng = Group::new(g.delimiter(), inner);
+                    ng.set_span(g.span());
+                    out.extend([T::Group(ng)]);
+                }
+                _ => out.extend([t.clone()]),
+            }
+        }
+        out
+    }
+    if pipe::mentions(code, x) != 1 {
+        return None;
+    }
+    let mut done = false;
+    let out = at_field(code.clone().into_iter().collect(), x, e, &mut done);
+    done.then_some(out)
+}
+
+/// A selected value read by a method of its own type, `(*v<i>).m(..)`
+/// ([`Gen::nat_select`]: `v<i>` a reference), as `v<i>.m(..)`: the
+/// method found through the reference (inherent methods of `Val`,
+/// `List`, and `clone`, which gives the value, not the reference).
+fn deref_receivers(ts: &TokenStream) -> TokenStream {
+    use proc_macro2::{Delimiter, Group, TokenTree as T};
+    const METHODS: &[&str] = &[
+        "clone",
+        "is_empty",
+        "split_first",
+        "non_empty_list",
+        "is_nil",
+        "split_list",
+        "split_proper",
+        "is_cell",
+        "args_of",
+    ];
+    let toks: Vec<T> = ts.clone().into_iter().collect();
+    let mut out = TokenStream::new();
+    for (k, t) in toks.iter().enumerate() {
+        match t {
+            T::Group(g) => {
+                let inner: Vec<T> = g.stream().into_iter().collect();
+                let receiver = g.delimiter() == Delimiter::Parenthesis
+                    && matches!(inner.as_slice(), [T::Punct(star), T::Ident(v)]
+                        if star.as_char() == '*' && is_selected_value(&quote!(#v)))
+                    && matches!(&toks[k + 1..], [T::Punct(dot), T::Ident(m), ..]
+                        if dot.as_char() == '.' && METHODS.iter().any(|x| m == x));
+                if receiver {
+                    out.extend([inner[1].clone()]);
+                } else {
+                    let mut ng = Group::new(g.delimiter(), deref_receivers(&g.stream()));
+                    ng.set_span(g.span());
+                    out.extend([T::Group(ng)]);
+                }
+            }
+            _ => out.extend([t.clone()]),
+        }
+    }
+    out
 }
 
 /// What a candidate of [`Gen::nat_select`] tests, for the pair `[]`,
@@ -4757,6 +4896,24 @@ fn place(v: &V) -> TokenStream {
     quote!((#e))
 }
 
+/// The register or field `x` of a value read as `x.clone()` (as [`place`]
+/// reads it by reference).
+fn moved_place(v: &V) -> Option<Ident> {
+    let ts: Vec<proc_macro2::TokenTree> = v.e.clone().into_iter().collect();
+    if let [proc_macro2::TokenTree::Ident(x), proc_macro2::TokenTree::Punct(dot), proc_macro2::TokenTree::Ident(clone), proc_macro2::TokenTree::Group(g)] =
+        ts.as_slice()
+    {
+        if dot.as_char() == '.'
+            && clone == "clone"
+            && g.delimiter() == proc_macro2::Delimiter::Parenthesis
+            && g.stream().is_empty()
+        {
+            return Some(x.clone());
+        }
+    }
+    None
+}
+
 /// A value read as `r<n>.clone()`, a register of the visit (an owned Rust
 /// local), as a move of that local: for a use that is the visit's last.
 fn moved(v: &V) -> TokenStream {
@@ -4842,8 +4999,9 @@ fn by_ref_loads(ts: TokenStream) -> TokenStream {
     out
 }
 
-/// Whether every mention of `r` in `toks` is `borrow(&r)` or `r.clone()`
-/// (through a reference, the value it points at cloned); a field named
+/// Whether every mention of `r` in `toks` is `borrow(&r)`, a selected
+/// value's `let v<i>: &T = &r;` or `r.clone()` (through a reference, the
+/// value it points at cloned); a field named
 /// like it, `S3 { r3: .. }`, is not a mention.
 fn only_borrowed(toks: &[proc_macro2::TokenTree], r: &Ident) -> bool {
     use proc_macro2::{Spacing, TokenTree as T};
@@ -4851,7 +5009,7 @@ fn only_borrowed(toks: &[proc_macro2::TokenTree], r: &Ident) -> bool {
         T::Ident(x) if x == r => {
             let field = matches!(toks.get(k + 1), Some(T::Punct(c)) if c.as_char() == ':' && c.spacing() == Spacing::Alone)
                 && !matches!(k.checked_sub(1).map(|j| &toks[j]), Some(T::Ident(l)) if l == "let");
-            field || cloned_at(toks, k)
+            field || cloned_at(toks, k) || selected_at(toks, k)
         }
         T::Ident(_) => true,
         T::Group(g) => {
@@ -4863,6 +5021,26 @@ fn only_borrowed(toks: &[proc_macro2::TokenTree], r: &Ident) -> bool {
         }
         _ => true,
     })
+}
+
+/// The identifier at `toks[k]` borrowed as a selected value, `let v<i>:
+/// &T = &x;` ([`Gen::nat_select`]; the type written, so a reference `x`
+/// is read through by deref coercion).
+fn selected_at(toks: &[proc_macro2::TokenTree], k: usize) -> bool {
+    use proc_macro2::TokenTree as T;
+    let punct = |j: usize, c: char| matches!(toks.get(j), Some(T::Punct(p)) if p.as_char() == c);
+    if k < 2 || !punct(k - 1, '&') || !punct(k - 2, '=') || !punct(k + 1, ';') {
+        return false;
+    }
+    // The statement's start: `let v<i> : & ..`.
+    let Some(l) = toks[..k]
+        .iter()
+        .rposition(|t| matches!(t, T::Ident(i) if i == "let"))
+    else {
+        return false;
+    };
+    matches!(&toks[l + 1..k - 2], [T::Ident(v), T::Punct(c), T::Punct(a), ..]
+        if c.as_char() == ':' && a.as_char() == '&' && is_selected_value(&quote!(#v)))
 }
 
 /// The identifier at `toks[k]` cloned there, `x.clone()` (not a field
