@@ -98,6 +98,10 @@ mod d_confirm_found {
 mod d_appended_list {
     sitlog_macros::include_dm!("../tests/typed/shapes/d_appended_list");
 }
+// Helper `ngen13`'s (session 12).
+mod c_outarg_apply {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_outarg_apply");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks' (no hand-written way here: see
 // `benches/benches/compiled.rs`).
@@ -403,6 +407,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         }
         "c_first_param" => format!("relay({n})"),
         "c_float_limit" => format!("relay({n}.0)"),
+        "c_outarg_apply" => format!("relay({n})"),
         "c_global_count" => format!("relay({n})"),
         "d_target_in_id"
         | "d_id_shares_param"
@@ -454,6 +459,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         return match name {
             "c_limit_inarg_echo" | "c_counter_param" | "c_first_param" => hand_echo(n, 1, false),
             "c_float_limit" => hand_echo_as(n, 1, false, true),
+            "c_outarg_apply" => hand_succ(n),
             // No first situation setting the pipe: one transition less.
             "c_global_count" => hand_echo(n, 1, false) - 1,
             "c_outarg_cond" => hand_echo(n, 1, true),
@@ -533,8 +539,64 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_place_records" => ways!(d_place_records),
         "d_confirm_found" => ways!(d_confirm_found),
         "d_appended_list" => ways!(d_appended_list),
+        "c_outarg_apply" => ways!(c_outarg_apply),
         _ => unreachable!(),
     }
+}
+
+/// (c) with the callee computing its out_arg (`c_outarg_apply`: the pipe
+/// plus one, which the workload's Prolog user function `succ_of/1`
+/// computes: here a Rust addition, so the ratio is not like with like),
+/// the caller comparing the pipe with the limit on a neutral situation.
+fn hand_succ(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask,
+        Test,
+        Over,
+        Add,
+        Added,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut transitions) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                pipe = black_box(0);
+                *top = Frame::Ask;
+            }
+            Frame::Ask => stack.push(Frame::Add),
+            Frame::Add => {
+                transitions += 1;
+                // in_arg X, out_arg X + 1 (after the next situation).
+                *top = Frame::Added;
+                pipe = black_box(pipe + 1);
+            }
+            Frame::Added => {
+                transitions += 1;
+                stack.pop();
+                transitions += 1;
+                if let Some(m) = stack.last_mut() {
+                    *m = Frame::Test;
+                }
+            }
+            Frame::Test => {
+                transitions += 1;
+                *top = if pipe < black_box(limit) {
+                    Frame::Ask
+                } else {
+                    Frame::Over
+                };
+            }
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
 }
 
 /// (d) over pairs: the key compared, the shelf handed back.
@@ -904,6 +966,7 @@ fn hand_walk_confirm(rounds: i64, items: &[Sym], target: Sym, unknown: Sym) -> u
 }
 
 const ALL: [&str; 25] = [
+const ALL: [&str; 19] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -929,6 +992,7 @@ const ALL: [&str; 25] = [
     "d_place_records",
     "d_confirm_found",
     "d_appended_list",
+    "c_outarg_apply",
 ];
 
 fn main() {

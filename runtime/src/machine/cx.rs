@@ -66,6 +66,30 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.selected = None;
     }
 
+    /// Native code entering situation `sit` to evaluate part of an arc
+    /// (a condition, an out_arg) without building its id, which only an
+    /// error of that evaluation reads (the evaluator does not see it):
+    /// `[]` stands for it until [`Cx::with_id`] puts the id, built then,
+    /// into the error. Recorded, native code enters with the id (the
+    /// history reads it).
+    #[inline]
+    pub fn enter_unbuilt(&mut self, sit: SitIx) {
+        self.enter_with_id(sit, Term::NIL);
+    }
+
+    /// Error `e` of an evaluation run after [`Cx::enter_unbuilt`],
+    /// located at the situation's id `id`: what [`Cx::error`] would have
+    /// given with the id entered.
+    #[cold]
+    pub fn with_id(&mut self, mut e: RunError, id: Term) -> RunError {
+        let here = e.site.as_ref().map(|s| s.situation);
+        if self.id == Term::NIL && e.situation.is_some() && here.is_none_or(|s| s == self.sit) {
+            e.situation = Some(self.m.store.writeq(id));
+        }
+        self.id = id;
+        e
+    }
+
     /// Native code entering situation `sit` with its id `id` (built from
     /// its fields), after counting the `count` transitions it made since
     /// it last counted (then zero): the sequence an arc's native run ends

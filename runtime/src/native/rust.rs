@@ -141,22 +141,23 @@ impl Native for Val {
     #[inline]
     fn from_term(store: &Store, t: Term) -> Option<Val> {
         let t = store.deref(t);
-        // An int or an atom other than `[]` (atomic, so inert): what
-        // `Val::from_term(.., &Ty::Ground)` gives, without its walk (the
-        // pipe read at every in_arg).
+        // An int, a float or an atom other than `[]` (atomic, so inert):
+        // what `Val::from_term(.., &Ty::Ground)` gives, without its walk
+        // (the pipe read at every in_arg, whatever number it holds).
         match t.0 {
             crate::term::Repr::Int(i) => Some(Val::Int(i)),
+            crate::term::Repr::Float(bits) => Some(Val::Float(f64::from_bits(bits))),
             crate::term::Repr::Atom(a) if a != atoms::NIL => Some(Val::Sym(a)),
             _ => ground_val(store, t),
         }
     }
-    /// An int or an atom other than `[]` without building the value; the
-    /// rest out of line (`ground_val`).
+    /// An int, a float or an atom other than `[]` without building the
+    /// value; the rest out of line (`ground_val`).
     #[inline]
     fn converts(store: &Store, t: Term) -> bool {
         let t = store.deref(t);
         match t.0 {
-            crate::term::Repr::Int(_) => true,
+            crate::term::Repr::Int(_) | crate::term::Repr::Float(_) => true,
             crate::term::Repr::Atom(a) if a != atoms::NIL => true,
             _ => ground_val(store, t).is_some(),
         }
@@ -165,6 +166,7 @@ impl Native for Val {
     fn to_term(&self, store: &mut Store) -> Term {
         match self {
             Val::Int(i) => Term::int(*i),
+            Val::Float(f) => Term::float(*f),
             Val::Sym(a) => Term::atom(*a),
             v => Val::to_term(v, store),
         }

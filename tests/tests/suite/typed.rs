@@ -67,6 +67,15 @@ fn functions() -> Functions {
         Ok(call.store.list(&[args[0], args[0]]))
     });
     f.register("nofun", 1, |_, _| Err("nofun fails".to_owned()));
+    // `is_bed(P)`: `yes` for `bed`, `no` for another atom, fails for
+    // `boom` (`typed/compare_fn_error`).
+    f.register("is_bed", 1, |call, args| {
+        match call.store.atom_of(args[0]) {
+            Some(a) if a.as_str() == "boom" => Err("is_bed: boom".to_owned()),
+            Some(a) if a.as_str() == "bed" => Ok(Term::atom(atoms::YES)),
+            _ => Ok(Term::atom(atoms::NO)),
+        }
+    });
     f
 }
 
@@ -929,6 +938,88 @@ fn nshape13_shapes_agree() {
         &ir,
         "route(2, [a, b], f(X))",
     );
+}
+
+/// Helper `ngen13`'s (session 12): an out_arg the evaluator computes, the
+/// id of a list walk built only for an error.
+mod shapes_ngen13 {
+    pub mod outarg_apply {
+        sitlog_macros::include_dm!("typed/shapes/c_outarg_apply");
+    }
+    pub mod outarg_apply_fn {
+        sitlog_macros::include_dm!("typed/outarg_apply");
+    }
+    pub mod compare_fn_error {
+        sitlog_macros::include_dm!("typed/compare_fn_error");
+    }
+}
+
+/// An out_arg the evaluator computes (`apply(succ_of(_), [X])`, a Prolog
+/// user function; `apply(F, [X])` with `F` the callee's parameter), in a
+/// callee the caller pushes natively: native code evaluates it after the
+/// next situation, as the machine does (history kept or not, observed);
+/// a user function that fails, and a parameter that is not one, give the
+/// machine's error.
+#[test]
+fn an_out_arg_the_evaluator_computes_agrees() {
+    use shapes_ngen13 as s;
+    let ir = interpreter("typed/shapes/c_outarg_apply");
+    PROLOG.with(|p| *p.borrow_mut() = Some(interpreter("typed/shapes/c_outarg_apply")));
+    for main in ["relay(3)", "relay(1)", "relay(x)", "relay(2.5)"] {
+        for (keep, observe) in [(false, false), (true, false), (true, true)] {
+            let c = run(s::outarg_apply::program(), main, "", keep, observe, false);
+            let i = run(&ir, main, "", keep, observe, false);
+            assert_eq!(c, i, "{main} (history {keep}, observed {observe})");
+        }
+    }
+    PROLOG.with(|p| *p.borrow_mut() = None);
+    let ir = interpreter("typed/outarg_apply");
+    for main in ["main(twice(_))", "main(nofun(_))", "main(none)", "main(_)"] {
+        agree(s::outarg_apply_fn::program(), &ir, main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
+    }
+    let c = run(
+        s::outarg_apply_fn::program(),
+        "main(twice(_))",
+        "",
+        false,
+        false,
+        false,
+    );
+    assert!(
+        c.0.to_string().contains("[[[1,1],[1,1]],[[1,1],[1,1]]]"),
+        "{c:?}"
+    );
+    let c = run(
+        s::outarg_apply_fn::program(),
+        "main(nofun(_))",
+        "",
+        false,
+        false,
+        false,
+    );
+    assert!(c.0.to_string().contains("nofun fails"), "{c:?}");
+}
+
+/// A list walk compared by a user function that fails on one element: the
+/// error names the situation's id (`try([boom,bed])`), which native code
+/// builds only for the error (`Cx::enter_unbuilt`, `Cx::with_id`).
+#[test]
+fn a_failing_comparison_names_the_walks_id() {
+    let ir = interpreter("typed/compare_fn_error");
+    for l in ["[hall, bed]", "[hall, boom, bed]", "[boom]", "[hall]"] {
+        let main = format!("main({l})");
+        agree(shapes_ngen13::compare_fn_error::program(), &ir, &main, "");
+    }
+    let c = run(
+        shapes_ngen13::compare_fn_error::program(),
+        "main([hall, boom, bed])",
+        "",
+        false,
+        false,
+        false,
+    );
+    assert!(c.0.to_string().contains("try([boom,bed])"), "{c:?}");
 }
 
 /// An out_arg with side effects is evaluated after the arc's next

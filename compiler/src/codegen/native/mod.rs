@@ -2441,6 +2441,18 @@ impl Gen<'_> {
                         regs.insert(*r, (format_ident!("fresh_r{}", r), Ty::Term));
                     }
                 }
+                // An arc's copy of the situation's fresh variable (a `_` of
+                // a situation-level out_arg, `apply(f(_), [X])`) is that
+                // variable.
+                for arc in &arcs.arcs {
+                    for (k, from) in arc.import_from.iter().enumerate() {
+                        let to = arc.import_at + k as Reg;
+                        if let (false, Some(at)) = (regs.contains_key(&to), regs.get(from).cloned())
+                        {
+                            regs.insert(to, at);
+                        }
+                    }
+                }
                 let mut bodies = Vec::new();
                 for (i, arc) in arcs.arcs.iter().enumerate() {
                     // The expectation the history records: the one the
@@ -3759,6 +3771,50 @@ impl Gen<'_> {
         })
     }
 
+    /// [`Gen::nat_enter_to_evaluate`] for an evaluation whose only reader
+    /// of the situation's id is an error (a condition), with the id built
+    /// only where it is read: statements entering the machine (the id
+    /// built when the run records: the history reads it; else
+    /// `Cx::enter_unbuilt`), then `let <name>: <ty>` of `eval`
+    /// (statements ending in a `Result` expression, the machine's calls in
+    /// them with `?`) run so that an error gets the id, built then
+    /// (`Cx::with_id`). A list walk's id (`try(Ps)`, the rest a native
+    /// list) costs O(length) to build: built at every visit, a walk whose
+    /// condition the machine evaluates was quadratic (`d_compare_fn`).
+    fn nat_eval_lazy_id(
+        &self,
+        d: &Dm,
+        cur: usize,
+        name: &Ident,
+        eval: TokenStream,
+        ty: TokenStream,
+    ) -> N<TokenStream> {
+        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+        let hand = &d.hand;
+        let curl = Literal::u32_unsuffixed(cur as u32);
+        Ok(quote! {
+            #hand
+            // This transition counts once its evaluation is done (an
+            // error leaves it out, as on the term path).
+            count = run.count_but_this(cx, count);
+            if run.records {
+                #(#id_stmts)*
+                cx.enter_with_id(#curl, #id);
+            } else {
+                cx.enter_unbuilt(#curl);
+            }
+            let evaluated = (|cx: &mut Ctx| -> Result<#ty, RunError> { #eval })(cx);
+            let #name: #ty = match evaluated {
+                Ok(v) => v,
+                Err(e) => {
+                    #(#id_stmts)*
+                    let id = #id;
+                    return Err(cx.with_id(e, id));
+                }
+            };
+        })
+    }
+
     /// The next `Nat` of situation `cur` (named `cur_name`), or a return
     /// handing the value to the machine.
     fn nat_next(
@@ -3825,14 +3881,16 @@ impl Gen<'_> {
                             Ok(c) if d.locals.is_empty() && d.dm.locals.is_empty() => c,
                             _ => return Err(e),
                         };
-                        let enter = self.nat_enter_to_evaluate(d, cur)?;
-                        (
-                            cond,
-                            quote! {
-                                #enter
-                                #(#ts)*
-                            },
-                        )
+                        // The id built only where an error reads it.
+                        let name = format_ident!("cond_value");
+                        let pre = self.nat_eval_lazy_id(
+                            d,
+                            cur,
+                            &name,
+                            quote!(#(#ts)* Ok(#cond)),
+                            quote!(bool),
+                        )?;
+                        (quote!(#name), pre)
                     }
                 };
                 let a = self.nat_next(d, cur, a, regs, cur_name)?;

@@ -14,7 +14,10 @@
 //!
 //! An arc's out_arg is evaluated (`mir::ArcPlan::out_arg`, an `Ev`): a
 //! conditional `(X > 0 -> X ; otherwise -> 1)` of native branches is a
-//! Rust `if` computed before the next situation (`Gen::nat_out_value`).
+//! Rust `if` computed before the next situation (`Gen::nat_out_value`);
+//! one the evaluator computes (`apply(f(_), [X])`, `get(g, _)` of a
+//! global) is built from native values and evaluated after the next
+//! situation, the machine entered (`Gen::nat_next_out_eval`).
 //!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
@@ -117,6 +120,9 @@ impl Gen<'_> {
         // read, only dereferenced (no term kept across the visit).
         let (pipe_out, set) = if same {
             (quote!(), quote!(cx.pipe_deref();))
+        } else if let Ev::Eval(b) = e {
+            // A user function, the KB, `get` of a global: the evaluator's.
+            return self.nat_next_out_eval(d, cur, next, b, regs, cur_name);
         } else {
             let v = self.nat_out_value(d, cur, e, next, regs)?;
             // A conditional's value first (its condition may use `cx`).
@@ -143,6 +149,62 @@ impl Gen<'_> {
 }
 
 impl Gen<'_> {
+    /// [`Gen::nat_next_out`] for an out_arg the evaluator computes
+    /// (`apply(f(X), [X])`, `get(g, _)` of a global): its term built from
+    /// native values before the next situation (building has no effect),
+    /// evaluated after it, the machine entered in situation `cur` (as for
+    /// a next situation's evaluated part), the pipe set to the value
+    /// unless it is a variable (`Cx::out_value`, D-18): the term code's
+    /// order (`codegen::step`: next situation, then out_arg), on every way
+    /// out (one that hands the next situation to the machine too). The
+    /// situation's id is built before the next situation (whose value may
+    /// take the id's fields), where the evaluation enters with it. Only in
+    /// a DM without locals: the evaluator reads and may change the
+    /// machine's frame, not the native one's.
+    fn nat_next_out_eval(
+        &self,
+        d: &Dm,
+        cur: usize,
+        next: &Next,
+        b: &Build,
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<TokenStream> {
+        if !(d.locals.is_empty() && d.dm.locals.is_empty()) {
+            return Err("an out_arg the evaluator computes, in a DM with locals".into());
+        }
+        let mut ts = Vec::new();
+        let mut n = 0;
+        let t = self.nat_build_term(b, regs, &mut ts, &mut n)?;
+        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+        let curl = Literal::u32_unsuffixed(cur as u32);
+        let eval = quote! {
+            cx.enter_with_id(#curl, out_id);
+            let out_value = cx.eval(out_term, arc_at)?;
+            cx.out_value(out_value);
+        };
+        // Where the next situation is handed to the machine (entered there
+        // by name, or with its id when recorded): entered with its id.
+        *d.out.borrow_mut() = eval.clone();
+        let nx = self.nat_next(d, cur, next, regs, cur_name);
+        *d.out.borrow_mut() = quote!();
+        let nx = nx?;
+        let hand = &d.hand;
+        Ok(quote! {{
+            #(#ts)*
+            let out_term = #t;
+            #(#id_stmts)*
+            let out_id = #id;
+            let next_at = #nx;
+            #hand
+            // This transition counts once its out_arg is evaluated (an
+            // error leaves it out, as on the term path).
+            count = run.count_but_this(cx, count);
+            #eval
+            next_at
+        }})
+    }
+
     /// An arc's out_arg's value, computed before its next situation (the
     /// pipe is set on every way out of it): what [`Gen::nat_ev_value`]
     /// makes, and a conditional `(C -> A ; otherwise -> B)` of native
