@@ -76,6 +76,13 @@ mod c_global_count {
 mod d_compare_fn {
     sitlog_macros::include_dm!("../tests/typed/shapes/d_compare_fn");
 }
+// Helper `nglob13`'s (session 12): globals.
+mod c_global_flag {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_global_flag");
+}
+mod d_global_visited {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_global_visited");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks' (no hand-written way here: see
 // `benches/benches/compiled.rs`).
@@ -382,6 +389,9 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "c_first_param" => format!("relay({n})"),
         "c_float_limit" => format!("relay({n}.0)"),
         "c_global_count" => format!("relay({n})"),
+        "c_global_flag" => format!("boss({n})"),
+        // The budget: `n` rounds of `len` visits (the target the last).
+        "d_global_visited" => format!("hunt({}, {list}, {last})", n * len as i64),
         "d_target_in_id"
         | "d_id_shares_param"
         | "d_walk_first_param"
@@ -421,6 +431,10 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             // No first situation setting the pipe: one transition less.
             "c_global_count" => hand_echo(n, 1, false) - 1,
             "c_outarg_cond" => hand_echo(n, 1, true),
+            "c_global_flag" => hand_flag(n),
+            "d_global_visited" => {
+                hand_walk_visited(n * len as i64, black_box(&syms), black_box(lsym))
+            }
             "c_deeper_echo" => hand_echo(n, 2, false),
             "d_target_in_id"
             | "d_id_shares_param"
@@ -464,6 +478,8 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_walk_first_param" => ways!(d_walk_first_param),
         "d_target_matched_in_id" => ways!(d_target_matched_in_id),
         "d_compare_fn" => ways!(d_compare_fn),
+        "c_global_flag" => ways!(c_global_flag),
+        "d_global_visited" => ways!(d_global_visited),
         _ => unreachable!(),
     }
 }
@@ -527,7 +543,116 @@ fn hand_walk_pairs(rounds: i64, pairs: &[(Sym, Sym)], item: Sym) -> u64 {
     transitions
 }
 
-const ALL: [&str; 18] = [
+/// (c) with a flag: the callee counts in a global (`jobs`) and sets a
+/// global flag (`done`) when the count reaches the limit (one more
+/// transition, `finish`); the caller tests the flag after each call.
+/// The globals are plain Rust variables (`black_box`ed where written).
+fn hand_flag(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Ask,
+        Over,
+        Work,
+        Finish,
+        Back,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Ask];
+    let (mut jobs, mut done, mut transitions) = (0i64, false, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Ask => stack.push(Frame::Work),
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Work => {
+                transitions += 1;
+                jobs = black_box(jobs + 1);
+                *top = if jobs >= limit {
+                    Frame::Finish
+                } else {
+                    Frame::Back
+                };
+            }
+            Frame::Finish => {
+                transitions += 1;
+                done = black_box(true);
+                *top = Frame::Back;
+            }
+            Frame::Back => {
+                transitions += 1;
+                stack.pop();
+                transitions += 1;
+                if let Some(m) = stack.last_mut() {
+                    *m = if black_box(done) {
+                        Frame::Over
+                    } else {
+                        Frame::Ask
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) counting the places visited in a global (a plain `i64` here,
+/// `black_box`ed where written), the caller reading it after each round
+/// against its budget.
+fn hand_walk_visited(budget: i64, items: &[Sym], target: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Try(&'a [Sym]),
+        Final(Option<Sym>),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut visited, mut transitions) = (0i64, 1u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items);
+            }
+            Frame::Try([]) => {
+                transitions += 1;
+                *top = Frame::Final(None);
+            }
+            Frame::Try([p, ps @ ..]) => {
+                transitions += 1;
+                visited = black_box(visited + 1);
+                *top = if *p == target {
+                    Frame::Final(Some(*p))
+                } else {
+                    Frame::Try(ps)
+                };
+            }
+            Frame::Final(found) => {
+                transitions += 1;
+                black_box(found);
+                stack.pop();
+                transitions += 1;
+                if let Some(m) = stack.last_mut() {
+                    *m = if black_box(visited) < budget {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+const ALL: [&str; 20] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -546,6 +671,8 @@ const ALL: [&str; 18] = [
     "d_target_matched_in_id",
     "c_global_count",
     "d_compare_fn",
+    "c_global_flag",
+    "d_global_visited",
 ];
 
 fn main() {
