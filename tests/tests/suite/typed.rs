@@ -846,7 +846,9 @@ fn globals_on_the_fast_path_agree() {
         "[bed, bed]",
     ];
     let ir = interpreter("typed/shapes/d_global_visited");
-    for l in lists {
+    // Not `[]`: nothing is visited, the budget is never reached (a loop
+    // in both back ends).
+    for l in lists.iter().filter(|l| **l != "[]") {
         for budget in ["9", "0", "x", "4.5"] {
             let main = format!("hunt({budget}, {l}, bed)");
             agree(s::global_visited::program(), &ir, &main, "");
