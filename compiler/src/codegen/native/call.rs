@@ -8,8 +8,10 @@
 //! situation's id variables and the registers its exit arcs read); when
 //! the callee reaches a final, the exit arcs are matched against the
 //! callee's final variant natively (`found(P)` binds `P` from the
-//! variant's field), their action (`inc` and `get` of a local, atoms,
-//! numbers) and next situation run natively. A call whose exit arcs
+//! variant's field), their action (`inc` and `get` of a local, `inc`,
+//! `get` and `set` of a global read and written in the machine's globals
+//! at each use (`Gen::nat_global_op`), atoms, numbers) and next situation
+//! run natively. A call whose exit arcs
 //! native code does not run (`say('..')`, `apply(..)` in the action) is
 //! not pushed: the machine's, as below. The call's arguments are values
 //! or, evaluated (D-20, read-only), `get(l, _)` of a local held in the

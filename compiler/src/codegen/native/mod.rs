@@ -105,7 +105,9 @@
 //!   own calls (`Cx::var_op`, `Cx::is`) on terms built from native values;
 //!   what they bind is converted like a boundary's value. Except, when
 //!   nothing is recorded, an arc whose action is only `inc`/`get` of the
-//!   frame's locals, `V is E` of ints into a fresh `int` variable
+//!   frame's locals or of globals (`Cx::global_inc`, `Cx::global_as`: the
+//!   machine's globals read and written at each use, no copy kept; a name
+//!   that is no local of the DM), `set(g, V)` of a global, `V is E` of ints into a fresh `int` variable
 //!   (checked `i64`; an overflow is the machine's `is`), constants and
 //!   values (`[inc(n, N)]`, `[J is I + 1]`): done on the frame's Rust
 //!   locals and values, as an exit arc's; recorded, the same in a frame
