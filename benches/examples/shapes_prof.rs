@@ -102,6 +102,13 @@ mod d_appended_list {
 mod c_outarg_apply {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_outarg_apply");
 }
+// Helper `nglob13`'s (session 12): globals.
+mod c_global_flag {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_global_flag");
+}
+mod d_global_visited {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_global_visited");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks' (no hand-written way here: see
 // `benches/benches/compiled.rs`).
@@ -409,6 +416,9 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "c_float_limit" => format!("relay({n}.0)"),
         "c_outarg_apply" => format!("relay({n})"),
         "c_global_count" => format!("relay({n})"),
+        "c_global_flag" => format!("boss({n})"),
+        // The budget: `n` rounds of `len` visits (the target the last).
+        "d_global_visited" => format!("hunt({}, {list}, {last})", n * len as i64),
         "d_target_in_id"
         | "d_id_shares_param"
         | "d_walk_first_param"
@@ -463,6 +473,10 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             // No first situation setting the pipe: one transition less.
             "c_global_count" => hand_echo(n, 1, false) - 1,
             "c_outarg_cond" => hand_echo(n, 1, true),
+            "c_global_flag" => hand_flag(n),
+            "d_global_visited" => {
+                hand_walk_visited(n * len as i64, black_box(&syms), black_box(lsym))
+            }
             "c_deeper_echo" => hand_echo(n, 2, false),
             "d_target_in_id"
             | "d_id_shares_param"
@@ -506,6 +520,8 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             "d_appended_list" => {
                 // `append(Places, [Dock], All)` once, in the first arc.
                 let mut all: Vec<Sym> = black_box(&syms[..len - 1]).to_vec();
+        "c_global_flag" => ways!(c_global_flag),
+        "d_global_visited" => ways!(d_global_visited),
                 all.push(black_box(lsym));
                 hand_walk(n, black_box(&all), black_box(lsym), true, false)
             }
@@ -965,8 +981,116 @@ fn hand_walk_confirm(rounds: i64, items: &[Sym], target: Sym, unknown: Sym) -> u
     transitions
 }
 
-const ALL: [&str; 25] = [
-const ALL: [&str; 19] = [
+/// (c) with a flag: the callee counts in a global (`jobs`) and sets a
+/// global flag (`done`) when the count reaches the limit (one more
+/// transition, `finish`); the caller tests the flag after each call.
+/// The globals are plain Rust variables (`black_box`ed where written).
+fn hand_flag(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Ask,
+        Over,
+        Work,
+        Finish,
+        Back,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Ask];
+    let (mut jobs, mut done, mut transitions) = (0i64, false, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Ask => stack.push(Frame::Work),
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Work => {
+                transitions += 1;
+                jobs = black_box(jobs + 1);
+                *top = if jobs >= limit {
+                    Frame::Finish
+                } else {
+                    Frame::Back
+                };
+            }
+            Frame::Finish => {
+                transitions += 1;
+                done = black_box(true);
+                *top = Frame::Back;
+            }
+            Frame::Back => {
+                transitions += 1;
+                stack.pop();
+                transitions += 1;
+                if let Some(m) = stack.last_mut() {
+                    *m = if black_box(done) {
+                        Frame::Over
+                    } else {
+                        Frame::Ask
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) counting the places visited in a global (a plain `i64` here,
+/// `black_box`ed where written), the caller reading it after each round
+/// against its budget.
+fn hand_walk_visited(budget: i64, items: &[Sym], target: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Try(&'a [Sym]),
+        Final(Option<Sym>),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut visited, mut transitions) = (0i64, 1u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items);
+            }
+            Frame::Try([]) => {
+                transitions += 1;
+                *top = Frame::Final(None);
+            }
+            Frame::Try([p, ps @ ..]) => {
+                transitions += 1;
+                visited = black_box(visited + 1);
+                *top = if *p == target {
+                    Frame::Final(Some(*p))
+                } else {
+                    Frame::Try(ps)
+                };
+            }
+            Frame::Final(found) => {
+                transitions += 1;
+                black_box(found);
+                stack.pop();
+                transitions += 1;
+                if let Some(m) = stack.last_mut() {
+                    *m = if black_box(visited) < budget {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+const ALL: [&str; 28] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -993,6 +1117,8 @@ const ALL: [&str; 19] = [
     "d_confirm_found",
     "d_appended_list",
     "c_outarg_apply",
+    "c_global_flag",
+    "d_global_visited",
 ];
 
 fn main() {

@@ -24,6 +24,21 @@ impl Vars {
     pub fn get(&self, name: Atom) -> Option<Term> {
         self.entries.iter().find(|(n, _)| *n == name).map(|e| e.1)
     }
+    /// [`Vars::get`], inlined where it is called (native code reading a
+    /// global, `Cx::global_as`).
+    #[inline]
+    pub fn get_inline(&self, name: Atom) -> Option<Term> {
+        self.entries.iter().find(|(n, _)| *n == name).map(|e| e.1)
+    }
+    /// The value of an existing variable, to read and write in place
+    /// (native code's `inc` of a global, `Cx::global_inc`: one search).
+    #[inline]
+    pub fn slot(&mut self, name: Atom) -> Option<&mut Term> {
+        self.entries
+            .iter_mut()
+            .find(|(n, _)| *n == name)
+            .map(|e| &mut e.1)
+    }
     /// Sets an existing variable; `false` if there is none of that name.
     pub fn set(&mut self, name: Atom, value: Term) -> bool {
         match self.entries.iter_mut().find(|(n, _)| *n == name) {

@@ -808,6 +808,51 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         r.map_err(|e| self.var_op_error(e.message, op, name, arc))
     }
 
+    /// `get(name, V)` of a global by native code, the machine not entered:
+    /// its value as a `T`, read now (never a copy kept). `None` when there
+    /// is no global `name` or its value is not a `T`: nothing is changed,
+    /// and native code enters the machine for [`Cx::var_op_fresh`], which
+    /// gives the value or reports the error. Only for a name that is no
+    /// local of the DM whose code runs (the compiler knows that statically;
+    /// the machine's `var_op` looks at the running frame's locals first,
+    /// and the machine's running frame may not be that DM's while native
+    /// frames run).
+    #[inline]
+    pub fn global_as<T: Native>(&self, name: Atom) -> Option<T> {
+        let t = self.m.globals.get_inline(name)?;
+        T::from_term(&self.m.store, self.m.store.deref(t))
+    }
+
+    /// `inc(name, V)` of a global by native code, as [`Cx::global_as`]:
+    /// the new value as a `T`, set. `None` (nothing changed) when there is
+    /// no global `name`, its value is not a number, the int overflows or
+    /// the new value is not a `T`: the machine's [`Cx::var_op_fresh`] then
+    /// does it or reports its error.
+    #[inline]
+    pub fn global_inc<T: Native>(&mut self, name: Atom) -> Option<T> {
+        let m = &mut *self.m;
+        let slot = m.globals.slot(name)?;
+        let cur = m.store.deref(*slot);
+        let next = if let Some(i) = m.store.int_of(cur) {
+            Term::int(i.checked_add(1)?)
+        } else {
+            Term::float(m.store.float_of(cur)? + 1.0)
+        };
+        let v = T::from_term(&m.store, next)?;
+        *slot = next;
+        Some(v)
+    }
+
+    /// `set(name, value)` of a global by native code, `value` the term
+    /// of a native value (as written: a value evaluates to itself), as
+    /// [`Cx::global_as`]: `false` (nothing changed) when there is no
+    /// global `name` (the machine's [`Cx::var_op`] then reports it).
+    #[inline]
+    pub fn global_set(&mut self, name: Atom, value: Term) -> bool {
+        let value = self.m.store.deref(value);
+        self.m.globals.set(name, value)
+    }
+
     /// `v is expr` (D-33), both as written (not evaluated); `v: None` for a
     /// variable that occurs nowhere else yet (the value is returned).
     #[inline]

@@ -1022,6 +1022,74 @@ fn a_failing_comparison_names_the_walks_id() {
     assert!(c.0.to_string().contains("try([boom,bed])"), "{c:?}");
 }
 
+mod globals_nglob13 {
+    pub mod global_flag {
+        sitlog_macros::include_dm!("typed/shapes/c_global_flag");
+    }
+    pub mod global_visited {
+        sitlog_macros::include_dm!("typed/shapes/d_global_visited");
+    }
+    pub mod shadow {
+        sitlog_macros::include_dm!("typed/globals/shadow");
+    }
+    pub mod overflow {
+        sitlog_macros::include_dm!("typed/globals/overflow");
+    }
+}
+
+/// Globals read and written by native code (`nglob13`): `inc`/`get` in an
+/// exit arc or a callee's arc, `get(g, D) == yes` in a condition; a local
+/// of the same name in the callee (its own, D-38), a float global, an
+/// overflow (the machine's error), arguments that do not fit (an atom, a
+/// float, improper and partial lists).
+#[test]
+fn globals_on_the_fast_path_agree() {
+    use globals_nglob13 as s;
+    let limits = [
+        "boss(4)",
+        "boss(1)",
+        "boss(0)",
+        "boss(x)",
+        "boss(2.5)",
+        "boss(-1)",
+    ];
+    let ir = interpreter("typed/shapes/c_global_flag");
+    for main in limits {
+        agree(s::global_flag::program(), &ir, main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
+    }
+    let lists = [
+        "[hall, bath, bed]",
+        "[hall, bath]",
+        "[]",
+        "[hall|bath]",
+        "[hall, bed|_]",
+        "hall",
+        "[f(x), bed]",
+        "[bed, bed]",
+    ];
+    let ir = interpreter("typed/shapes/d_global_visited");
+    // Not `[]`: nothing is visited, the budget is never reached (a loop
+    // in both back ends).
+    for l in lists.iter().filter(|l| **l != "[]") {
+        for budget in ["9", "0", "x", "4.5"] {
+            let main = format!("hunt({budget}, {l}, bed)");
+            agree(s::global_visited::program(), &ir, &main, "");
+            agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, &main, "");
+        }
+    }
+    let ir = interpreter("typed/globals/shadow");
+    for main in ["relay(3)", "relay(0)", "relay(x)"] {
+        agree(s::shadow::program(), &ir, main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
+    }
+    let ir = interpreter("typed/globals/overflow");
+    for main in ["relay(1.0e19)", "relay(1)", "relay(x)"] {
+        agree(s::overflow::program(), &ir, main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
+    }
+}
+
 /// An out_arg with side effects is evaluated after the arc's next
 /// situation (`get(n, _)` after `t(inc(n, _))` reads 1, `inc(n, _)` after
 /// `u(.., get(n, _), ..)` counts after the read).

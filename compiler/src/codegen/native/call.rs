@@ -8,8 +8,10 @@
 //! situation's id variables and the registers its exit arcs read); when
 //! the callee reaches a final, the exit arcs are matched against the
 //! callee's final variant natively (`found(P)` binds `P` from the
-//! variant's field), their action (`inc` and `get` of a local, atoms,
-//! numbers) and next situation run natively. A call whose exit arcs
+//! variant's field), their action (`inc` and `get` of a local, `inc`,
+//! `get` and `set` of a global read and written in the machine's globals
+//! at each use (`Gen::nat_global_op`), atoms, numbers) and next situation
+//! run natively. A call whose exit arcs
 //! native code does not run (`say('..')`, `apply(..)` in the action) is
 //! not pushed: the machine's, as below. The call's arguments are values
 //! or, evaluated (D-20, read-only), `get(l, _)` of a local held in the
@@ -1173,6 +1175,40 @@ impl Gen<'_> {
             // A constant atom: whether it is `empty` is known here.
             let mut const_atom = None;
             let ty = match item {
+                // `get`/`inc` of a global (a name that is no declared local
+                // of this DM, held in the frame or not: the machine's
+                // `var_op` looks at the running DM's locals first).
+                Ev::VarOpFresh { op, name, dst } if !d.dm.locals.iter().any(|(l, _)| l == name) => {
+                    let (gty, value) = self.nat_global_op(*op, *name, None, arc_ix, &enter)?;
+                    let dty = d.types[ix].regs[*dst as usize].ty.clone();
+                    let e = coerce(
+                        &V {
+                            e: quote!(#x.clone()),
+                            ty: gty.clone(),
+                        },
+                        &dty,
+                    )?;
+                    stmts.push(quote!(let #x = #value;));
+                    let rr = reg(*dst);
+                    stmts.push(quote!(let #rr = #e;));
+                    regs.insert(*dst, (rr, dty));
+                    gty
+                }
+                // `set(g, V)` of a global to a native value (stored as
+                // written: a value evaluates to itself).
+                Ev::VarOp { op, name, arg }
+                    if *op == atoms::SET && !d.dm.locals.iter().any(|(l, _)| l == name) =>
+                {
+                    let v = self.nat_value(arg, regs)?;
+                    let (_, value) = self.nat_global_op(*op, *name, Some(&v), arc_ix, &enter)?;
+                    stmts.push(quote!(let #x = #value;));
+                    if let Build::Const(t) = arg {
+                        if let sitlog_runtime::Value::Atom(a) = self.store.value(*t) {
+                            const_atom = Some(a);
+                        }
+                    }
+                    v.ty
+                }
                 Ev::VarOpFresh { op, name, dst } => {
                     let li = d
                         .locals
@@ -1307,6 +1343,83 @@ impl Gen<'_> {
             });
         }
         Ok(quote!(#(#stmts)* #(#performs)*))
+    }
+
+    /// `get`/`inc` (`set: None`) or `set` (`set: Some(v)`, the native
+    /// value written) of global `name` in arc `arc` by native code, the
+    /// machine not entered (`Cx::global_as`, `Cx::global_inc`,
+    /// `Cx::global_set`: read or written in the machine's globals at each
+    /// use, never a typed copy kept, since any DM, a user function or the
+    /// machine's own code may set it). The value's type (the global's MIR
+    /// type; `set`: the value's) and its expression. Where the fast way
+    /// does not apply (no such global, a value that is not a number or not
+    /// of the global's type, an overflow) the machine is entered (`enter`)
+    /// and its `var_op` does the operation or reports its error, with its
+    /// message and place; a value it gives that native code cannot hold
+    /// (only if the inference were wrong) is an error there.
+    fn nat_global_op(
+        &self,
+        op: sitlog_syntax::Atom,
+        name: sitlog_syntax::Atom,
+        set: Option<&V>,
+        arc: usize,
+        enter: &TokenStream,
+    ) -> N<(Ty, TokenStream)> {
+        let arc = Literal::usize_unsuffixed(arc);
+        let (opa, namea) = (self.atom_native(op)?, self.atom_native(name)?);
+        if let Some(v) = set {
+            let e = &v.e;
+            let value = quote! {{
+                let v = #e;
+                let t = cx.term(&v);
+                if !cx.global_set(#namea, t) {
+                    #enter
+                    cx.var_op(#opa, #namea, t, Some(#arc))?;
+                }
+                v
+            }};
+            return Ok((v.ty.clone(), value));
+        }
+        let gty = self
+            .mir_types
+            .as_ref()
+            .and_then(|t| t.globals.iter().find(|(n, _)| *n == name))
+            .map(|(_, t)| t.ty.clone())
+            .ok_or("not a declared global")?;
+        // A global native code holds as a value (not `term`, not `_`).
+        if matches!(gty, Ty::Term | Ty::Never) || !gty.is_native() {
+            return Err(format!("a global of type {gty}"));
+        }
+        let rt = rust_ty(&gty)?;
+        let fast = if op == atoms::INC {
+            if !matches!(gty, Ty::Int | Ty::Float) {
+                return Err("`inc` of a global that is not a number".into());
+            }
+            quote!(cx.global_inc::<#rt>(#namea))
+        } else if op == atoms::GET {
+            quote!(cx.global_as::<#rt>(#namea))
+        } else {
+            return Err("a variable operation is not native".into());
+        };
+        let value = quote! {
+            match #fast {
+                Some(v) => v,
+                None => {
+                    #enter
+                    let t = cx.var_op_fresh(#opa, #namea, Some(#arc))?;
+                    match cx.to_native::<#rt>(t) {
+                        Some(v) => v,
+                        None => {
+                            return Err(cx.error(
+                                "a global's value native code cannot hold",
+                                Some(#arc),
+                            ))
+                        }
+                    }
+                }
+            }
+        };
+        Ok((gty, value))
     }
 
     /// `l op r` on numbers: in Rust when both are ints or both floats (a

@@ -106,7 +106,9 @@
 //!   own calls (`Cx::var_op`, `Cx::is`) on terms built from native values;
 //!   what they bind is converted like a boundary's value. Except, when
 //!   nothing is recorded, an arc whose action is only `inc`/`get` of the
-//!   frame's locals, `V is E` of ints into a fresh `int` variable
+//!   frame's locals or of globals (`Cx::global_inc`, `Cx::global_as`: the
+//!   machine's globals read and written at each use, no copy kept; a name
+//!   that is no local of the DM), `set(g, V)` of a global, `V is E` of ints into a fresh `int` variable
 //!   (checked `i64`; an overflow is the machine's `is`), constants and
 //!   values (`[inc(n, N)]`, `[J is I + 1]`): done on the frame's Rust
 //!   locals and values, as an exit arc's; recorded, the same in a frame
@@ -3736,10 +3738,13 @@ impl Gen<'_> {
             Cond::Other(Build::Compound(op, args))
                 if args.len() == 2 && matches!(op.as_str(), "==" | "\\==") =>
             {
-                let (l, r) = (
-                    self.nat_value(&args[0], regs)?,
-                    self.nat_value(&args[1], regs)?,
-                );
+                // A side `get(g, D)` of a global, `D` read nowhere else:
+                // the global's value, read now (`Gen::nat_global_get`).
+                let side = |b: &Build| match self.nat_global_get(d, cur, b, regs)? {
+                    Some(v) => Ok(v),
+                    None => self.nat_value(b, regs),
+                };
+                let (l, r) = (side(&args[0])?, side(&args[1])?);
                 let same = identical(&l, &r)
                     .ok_or_else(|| format!("`{}` on {} and {}", op.as_str(), l.ty, r.ty))?;
                 Ok(if op.as_str() == "==" {
@@ -3750,6 +3755,70 @@ impl Gen<'_> {
             }
             _ => Err("a condition is not `==`, `\\==` or an int comparison".into()),
         }
+    }
+
+    /// A condition's side `get(g, D)` (evaluated by the machine's
+    /// condition, D-35) where `g` is a global (no local of the DM) and `D`
+    /// a variable not bound before (the evaluation binds it; a later read
+    /// of it finds no register and the code is not native): the global's
+    /// value read by
+    /// native code (`Cx::global_as`, no typed copy kept), of the global's
+    /// MIR type; where it is not of that type (only if the inference were
+    /// wrong) the machine is entered and its `get` gives the value or its
+    /// error. `None`: not such a side.
+    fn nat_global_get(&self, d: &Dm, cur: usize, b: &Build, regs: &Regs) -> N<Option<V>> {
+        let Build::Compound(f, args) = b else {
+            return Ok(None);
+        };
+        let (Some(Build::Const(name)), Some(Build::Reg(r)), 2) =
+            (args.first(), args.get(1), args.len())
+        else {
+            return Ok(None);
+        };
+        let Some(name) = self.store.atom_of(*name) else {
+            return Ok(None);
+        };
+        if f.as_str() != "get"
+            || d.dm.locals.iter().any(|(l, _)| *l == name)
+            || regs.contains_key(r)
+        {
+            return Ok(None);
+        }
+        let Some(gty) = self
+            .mir_types
+            .as_ref()
+            .and_then(|t| t.globals.iter().find(|(n, _)| *n == name))
+            .map(|(_, t)| t.ty.clone())
+        else {
+            return Ok(None);
+        };
+        if matches!(gty, Ty::Term | Ty::Never) || !gty.is_native() {
+            return Ok(None);
+        }
+        let rt = rust_ty(&gty)?;
+        let (opa, namea) = (self.atom_native(atoms::GET)?, self.atom_native(name)?);
+        let enter = self.nat_enter_to_evaluate(d, cur)?;
+        Ok(Some(V {
+            e: quote! {
+                (match cx.global_as::<#rt>(#namea) {
+                    Some(v) => v,
+                    None => {
+                        #enter
+                        let t = cx.var_op_fresh(#opa, #namea, arc_at)?;
+                        match cx.to_native::<#rt>(t) {
+                            Some(v) => v,
+                            None => {
+                                return Err(cx.error(
+                                    "a global's value native code cannot hold",
+                                    arc_at,
+                                ))
+                            }
+                        }
+                    }
+                })
+            },
+            ty: gty,
+        }))
     }
 
     /// Before the evaluator computes (part of) a next situation: the native

@@ -1,0 +1,3 @@
+calls ==> 0.
+weight ==> 0.5.
+last ==> none.
