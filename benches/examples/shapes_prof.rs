@@ -520,8 +520,6 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             "d_appended_list" => {
                 // `append(Places, [Dock], All)` once, in the first arc.
                 let mut all: Vec<Sym> = black_box(&syms[..len - 1]).to_vec();
-        "c_global_flag" => ways!(c_global_flag),
-        "d_global_visited" => ways!(d_global_visited),
                 all.push(black_box(lsym));
                 hand_walk(n, black_box(&all), black_box(lsym), true, false)
             }
@@ -556,6 +554,8 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_confirm_found" => ways!(d_confirm_found),
         "d_appended_list" => ways!(d_appended_list),
         "c_outarg_apply" => ways!(c_outarg_apply),
+        "c_global_flag" => ways!(c_global_flag),
+        "d_global_visited" => ways!(d_global_visited),
         _ => unreachable!(),
     }
 }
