@@ -146,6 +146,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         "(`sitlogc run`) a DM with errors that the run's main DM does not reach by name: left out of the run, its errors warnings; a run that reaches it (a name computed at run time) stops there with its first error",
     ),
     (
+        check::NOT_A_CONDITIONAL,
+        "a term written like a conditional that is not one: `(C -> A ; R)` whose else part is not `otherwise -> B` (an `if`-chain `(C1 -> A ; C2 -> B ; otherwise -> D)`, or `(C -> A ; B)`); the original evaluates it to a compound term like any other (D-35)",
+    ),
+    (
         check::OS_ACCESS,
         "a directive or clause of the application's Prolog files reaches the operating system (shell, processes, sockets, native code, `open/3,4` for writing, loading code at run time or from an absolute or `$SITLOG_HOME` path): a run refuses it unless given `--allow-os` (the trust model, [reliability](reliability.md#trust-model))",
     ),

@@ -1,7 +1,8 @@
 //! What a program calls outside its DMs: user functions (`apply`) against
 //! the standard ones, the Prolog files' clause heads, KB services and the
 //! host's functions; basic actions and their arities against
-//! `basic_actions.pl`.
+//! `basic_actions.pl`; and, among the expressions it evaluates, those
+//! written like a conditional that are not one (W0233).
 
 use super::*;
 
@@ -143,6 +144,30 @@ impl Checker<'_> {
 
     /// The argument names of each action `basic_actions.pl` declares
     /// (`arity ==> [place, status]`); `None` where no such list is given.
+    /// W0233: a term written like a conditional that is not one (D-35).
+    /// The original evaluates it to a compound term like any other, so it
+    /// runs; a next situation or an action made of it is then wrong.
+    pub(super) fn false_conditionals(&mut self) {
+        for dm in &self.program.dms {
+            for (span, chain) in false_conditionals(dm) {
+                let help = if chain {
+                    "nest the chain: `(C1 -> A ; otherwise -> (C2 -> B ; otherwise -> D))`"
+                } else {
+                    "write the else part as `otherwise -> B`: `(C -> A ; otherwise -> B)`"
+                };
+                self.diags.push(
+                    Diagnostic::warning(
+                        codes::NOT_A_CONDITIONAL,
+                        dm.loc(span),
+                        "not a conditional: only `(C -> A ; otherwise -> B)` is one, this evaluates to the term as written",
+                    )
+                    .with_label("its else part is not `otherwise -> ..`")
+                    .with_help(help),
+                );
+            }
+        }
+    }
+
     pub(super) fn declared_actions(&self) -> HashMap<Atom, Option<Vec<Atom>>> {
         let arrow = Atom::intern("==>");
         let arity = Atom::intern("arity");

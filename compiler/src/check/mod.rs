@@ -64,6 +64,7 @@ pub mod codes {
     pub const UNKNOWN_SITUATION_TYPE: &str = "E0230";
     pub const DEAD_EXIT: &str = "W0231";
     pub const LEFT_OUT: &str = "W0232";
+    pub const NOT_A_CONDITIONAL: &str = "W0233";
     pub const OS_ACCESS: &str = "W0240";
     pub const PROLOG_TOO_DEEP: &str = "E0241";
 }
@@ -282,6 +283,7 @@ impl<'p> Checker<'p> {
         if !broken.prolog {
             self.functions();
         }
+        self.false_conditionals();
         self.os_access();
         self.prolog_depth();
         if !broken.basic_actions && !program.basic_actions.is_empty() {

@@ -11,14 +11,41 @@ pub(super) fn is_evaluated(name: Atom, arity: usize) -> bool {
         .any(|&(n, a)| a == arity && n == name.as_str())
 }
 
-/// The branches of `(C -> A ; otherwise -> B)` (also with `|`), if `t` is one.
+/// The branches of `(C -> A ; otherwise -> B)` (also with `|`), if `t` is one:
+/// exactly this shape, as the evaluator reads it (D-35).
 pub(super) fn conditional(terms: &Terms, t: TermId) -> Option<(TermId, TermId)> {
+    let (then, other) = if_then_else(terms, t)?;
+    let other = terms.compound(other, atoms::IF_THEN, 2)?;
+    (terms.atom(other[0]) == Some(atoms::OTHERWISE)).then_some((then, other[1]))
+}
+
+/// `(C -> A ; R)` (also with `|`): the then-part `A` and the else part `R`.
+fn if_then_else(terms: &Terms, t: TermId) -> Option<(TermId, TermId)> {
     let args = terms
         .compound(t, atoms::SEMICOLON, 2)
         .or_else(|| terms.compound(t, atoms::BAR, 2))?;
     let then = terms.compound(args[0], atoms::IF_THEN, 2)?;
-    let other = terms.compound(args[1], atoms::IF_THEN, 2)?;
-    Some((then[1], other[1]))
+    Some((then[1], args[1]))
+}
+
+/// The terms in the evaluated parts of `dm` that are written like a
+/// conditional and are not one (W0233): `(C -> A ; R)` whose else part `R`
+/// is not `otherwise -> B`. With each, whether `R` is itself an
+/// if-then (a chain `(C1 -> A ; C2 -> B ; ..)`).
+pub(super) fn false_conditionals(dm: &Dm) -> Vec<(Span, bool)> {
+    let terms = &dm.clause.terms;
+    let mut out = Vec::new();
+    walk_evaluated(dm, |t| {
+        if let Some((_, other)) = if_then_else(terms, t) {
+            if conditional(terms, t).is_none() {
+                let chain = terms.compound(other, atoms::IF_THEN, 2).is_some()
+                    || if_then_else(terms, other).is_some();
+                out.push((terms.span(t), chain));
+            }
+        }
+    });
+    out.sort_by_key(|&(span, _)| span);
+    out
 }
 
 /// The values `t` can evaluate to, when they are known without running
@@ -183,6 +210,28 @@ pub(super) struct Call {
 pub(super) fn calls(dm: &Dm) -> Vec<Call> {
     let terms = &dm.clause.terms;
     let mut out = Vec::new();
+    walk_evaluated(dm, |t| {
+        if let Some(&[f, _]) = terms.compound(t, atoms::APPLY, 2) {
+            if let Some((name, arity)) = terms.functor(f) {
+                out.push(Call {
+                    name,
+                    arity,
+                    span: terms.span(t),
+                });
+            }
+        }
+    });
+    out.sort_by_key(|c| c.span);
+    out
+}
+
+/// Visits every term the functional language evaluates in `dm` (D-30..D-38):
+/// `prog`, `out_arg`, `embedded_dm`, `diag_mod`, each arc's expectation,
+/// action and next situation, and inside them every argument that is
+/// evaluated (not `apply`'s function, `set`'s stored value, `=`, `is`,
+/// `member`, ..).
+fn walk_evaluated(dm: &Dm, mut visit: impl FnMut(TermId)) {
+    let terms = &dm.clause.terms;
     let mut stack: Vec<TermId> = Vec::new();
     for s in &dm.situations {
         // id and in_arg are patterns, not evaluated
@@ -196,18 +245,12 @@ pub(super) fn calls(dm: &Dm) -> Vec<Call> {
         }
     }
     while let Some(t) = stack.pop() {
-        if let Some(&[f, args]) = terms.compound(t, atoms::APPLY, 2) {
-            if let Some((name, arity)) = terms.functor(f) {
-                out.push(Call {
-                    name,
-                    arity,
-                    span: terms.span(t),
-                });
-            }
+        visit(t);
+        if let Some(&[_, args]) = terms.compound(t, atoms::APPLY, 2) {
             stack.push(args);
             continue;
         }
-        // `set(N, E)` stores E as written (D-38): nothing in it is called.
+        // `set(N, E)` stores E as written (D-38): nothing in it is evaluated.
         if terms.compound(t, atoms::SET, 2).is_some() {
             continue;
         }
@@ -216,8 +259,6 @@ pub(super) fn calls(dm: &Dm) -> Vec<Call> {
         }
         stack.extend_from_slice(terms.args(t));
     }
-    out.sort_by_key(|c| c.span);
-    out
 }
 
 /// The actions an arc's action term performs, as far as they are written
