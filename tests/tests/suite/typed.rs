@@ -1035,6 +1035,9 @@ mod globals_nglob13 {
     pub mod overflow {
         sitlog_macros::include_dm!("typed/globals/overflow");
     }
+    pub mod same_var {
+        sitlog_macros::include_dm!("typed/globals/same_var");
+    }
 }
 
 /// Globals read and written by native code (`nglob13`): `inc`/`get` in an
@@ -1086,6 +1089,21 @@ fn globals_on_the_fast_path_agree() {
     let ir = interpreter("typed/globals/overflow");
     for main in ["relay(1.0e19)", "relay(1)", "relay(x)"] {
         agree(s::overflow::program(), &ir, main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
+    }
+    // `get(left, D) == get(right, D)`: the second `get` unifies, an error
+    // where the values differ (the review of session 12 found native code
+    // that would compare the two values, `false`; not native since).
+    let ir = interpreter("typed/globals/same_var");
+    for main in [
+        "relay(kept)",
+        "relay(other)",
+        "relay(3)",
+        "top(kept)",
+        "top(other)",
+        "top(3)",
+    ] {
+        agree(s::same_var::program(), &ir, main, "");
         agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
     }
 }

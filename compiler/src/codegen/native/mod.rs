@@ -3740,11 +3740,27 @@ impl Gen<'_> {
             {
                 // A side `get(g, D)` of a global, `D` read nowhere else:
                 // the global's value, read now (`Gen::nat_global_get`).
-                let side = |b: &Build| match self.nat_global_get(d, cur, b, regs)? {
-                    Some(v) => Ok(v),
-                    None => self.nat_value(b, regs),
+                // Not where the other side names `D` too: the machine
+                // evaluates left to right, the first side binds `D` and the
+                // second unifies with it (`get(g, D) == get(h, D)` is an
+                // error unless both hold the same value, D-38).
+                let side = |b: &Build, other: &Build| {
+                    let shared = match b {
+                        Build::Compound(_, a) => {
+                            matches!(a.get(1), Some(Build::Reg(r)) if build_names(other, *r))
+                        }
+                        _ => false,
+                    };
+                    match (!shared)
+                        .then(|| self.nat_global_get(d, cur, b, regs))
+                        .transpose()?
+                        .flatten()
+                    {
+                        Some(v) => Ok(v),
+                        None => self.nat_value(b, regs),
+                    }
                 };
-                let (l, r) = (side(&args[0])?, side(&args[1])?);
+                let (l, r) = (side(&args[0], &args[1])?, side(&args[1], &args[0])?);
                 let same = identical(&l, &r)
                     .ok_or_else(|| format!("`{}` on {} and {}", op.as_str(), l.ty, r.ty))?;
                 Ok(if op.as_str() == "==" {
@@ -5233,6 +5249,14 @@ fn cell_head(ts: &TokenStream, h: &Ident) -> Option<TokenStream> {
     }
     let toks: Vec<T> = ts.clone().into_iter().collect();
     ok(&toks, h).then(|| rewrite(toks, h))
+}
+/// Whether `b` names register `r` anywhere.
+fn build_names(b: &Build, r: Reg) -> bool {
+    match b {
+        Build::Reg(x) => *x == r,
+        Build::Const(_) => false,
+        Build::Compound(_, args) => args.iter().any(|a| build_names(a, r)),
+    }
 }
 
 /// `[h|t]` of native values.

@@ -1,0 +1,2 @@
+left ==> none.
+right ==> kept.
