@@ -21,13 +21,10 @@ impl Vars {
     pub fn entries(&self) -> &[(Atom, Term)] {
         &self.entries
     }
-    pub fn get(&self, name: Atom) -> Option<Term> {
-        self.entries.iter().find(|(n, _)| *n == name).map(|e| e.1)
-    }
-    /// [`Vars::get`], inlined where it is called (native code reading a
-    /// global, `Cx::global_as`).
+    /// Inlined where it is called (native code reading a global,
+    /// `Cx::global_as`, is on the hot path).
     #[inline]
-    pub fn get_inline(&self, name: Atom) -> Option<Term> {
+    pub fn get(&self, name: Atom) -> Option<Term> {
         self.entries.iter().find(|(n, _)| *n == name).map(|e| e.1)
     }
     /// The value of an existing variable, to read and write in place

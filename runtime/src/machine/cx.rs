@@ -819,7 +819,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// frames run).
     #[inline]
     pub fn global_as<T: Native>(&self, name: Atom) -> Option<T> {
-        let t = self.m.globals.get_inline(name)?;
+        let t = self.m.globals.get(name)?;
         T::from_term(&self.m.store, self.m.store.deref(t))
     }
 
