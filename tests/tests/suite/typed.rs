@@ -1039,7 +1039,8 @@ mod locals_nloc13 {
 /// A local's and a global's `get(v, _)` read inside a comparison by
 /// native code (`nloc13`), set from the DM's parameters so that either may
 /// be no number (an atom, a float, a compound, an unbound variable: the
-/// comparison's error), a callee's local shadowing the global's name.
+/// comparison's error), a callee's local shadowing the global's name; a
+/// global set to constants natively (`set(mark, 5)`, `yes`, `2.5`).
 #[test]
 fn a_get_inside_a_comparison_agrees() {
     let ir = interpreter("typed/locals/get_in_cond");

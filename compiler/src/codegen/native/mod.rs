@@ -108,7 +108,8 @@
 //!   nothing is recorded, an arc whose action is only `inc`/`get` of the
 //!   frame's locals or of globals (`Cx::global_inc`, `Cx::global_as`: the
 //!   machine's globals read and written at each use, no copy kept; a name
-//!   that is no local of the DM), `set(g, V)` of a global, `V is E` of ints into a fresh `int` variable
+//!   that is no local of the DM), `set(g, V)` of a global (`V` a value or
+//!   a constant as written, `set(done, yes)`), `V is E` of ints into a fresh `int` variable
 //!   (checked `i64`; an overflow is the machine's `is`), constants and
 //!   values (`[inc(n, N)]`, `[J is I + 1]`): done on the frame's Rust
 //!   locals and values, as an exit arc's; recorded, the same in a frame
@@ -117,7 +118,10 @@
 //!   the machine's calls and makes its entry. An arc whose action binds a
 //!   value at a boundary falls back to the term code's next situation and
 //!   out_arg when that value does not convert. A fresh variable is made at
-//!   the start of a visit only when code uses it before declaring it.
+//!   the start of a visit only when code uses it before declaring it. In
+//!   an expression (a comparison's operand, an out_arg), `get(v, _)` of a
+//!   local held in the frame or of a global is the value read
+//!   (`Gen::nat_var_get`), its `_` left unbound (nothing reads it).
 //!
 //! - *frames and calls* ([`frame`], [`call`]): each DM with native code
 //!   has a `Frame` (parameters, locals, its `Nat`); the runtime's

@@ -1,1 +1,2 @@
 glim ==> 0.
+mark ==> none.
