@@ -2134,7 +2134,7 @@ const UNBOUND_WHY: &str = "an unbound variable (`_`, or a variable used once)";
 /// How often each register occurs in plan `p`: in a term built or
 /// evaluated, as a destination (`get`/`is` into it), as an arc's import
 /// source, linked with a parameter; `inits` and fresh lists are not occurrences.
-fn occurrences(p: &SitPlan) -> Vec<u32> {
+pub(crate) fn occurrences(p: &SitPlan) -> Vec<u32> {
     let mut n = vec![0u32; p.regs];
     let mut bump = |r: Reg| {
         if let Some(c) = n.get_mut(r as usize) {

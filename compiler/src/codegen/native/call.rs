@@ -1209,6 +1209,21 @@ impl Gen<'_> {
                     }
                     v.ty
                 }
+                // A ground `set(g, k)` of a global (`set(done, yes)`,
+                // `set(g, 5)`), which the MIR gives the evaluator as a
+                // constant: the same as `set(g, V)` of a native value
+                // (the value stored as written, D-38; `set` gives it).
+                Ev::Eval(Build::Const(t)) if self.ground_global_set(d, *t).is_some() => {
+                    let (name, k) = self.ground_global_set(d, *t).ok_or("not a `set`")?;
+                    let v = self.nat_value(&Build::Const(k), regs)?;
+                    let (_, value) =
+                        self.nat_global_op(atoms::SET, name, Some(&v), arc_ix, &enter)?;
+                    stmts.push(quote!(let #x = #value;));
+                    if let sitlog_runtime::Value::Atom(a) = self.store.value(k) {
+                        const_atom = Some(a);
+                    }
+                    v.ty
+                }
                 Ev::VarOpFresh { op, name, dst } => {
                     let li = d
                         .locals
@@ -1343,6 +1358,26 @@ impl Gen<'_> {
             });
         }
         Ok(quote!(#(#stmts)* #(#performs)*))
+    }
+
+    /// `set(g, k)` as written (a ground constant), `g` no declared local of
+    /// DM `d` and `k` an atom or a number: `g` and `k`.
+    fn ground_global_set(&self, d: &Dm, t: Term) -> Option<(sitlog_syntax::Atom, Term)> {
+        let (name, args) = match self.store.value(t) {
+            sitlog_runtime::Value::Compound(name, args) if args.len() == 2 => (name, args),
+            _ => return None,
+        };
+        let (g, k) = (args[0], args[1]);
+        let g = self.store.atom_of(g)?;
+        if name != atoms::SET || d.dm.locals.iter().any(|(l, _)| *l == g) {
+            return None;
+        }
+        match self.store.value(k) {
+            sitlog_runtime::Value::Atom(a) if a != atoms::NIL => Some((g, k)),
+            sitlog_runtime::Value::Int(_) => Some((g, k)),
+            sitlog_runtime::Value::Float(f) if f.is_finite() => Some((g, k)),
+            _ => None,
+        }
     }
 
     /// `get`/`inc` (`set: None`) or `set` (`set: Some(v)`, the native

@@ -108,7 +108,8 @@
 //!   nothing is recorded, an arc whose action is only `inc`/`get` of the
 //!   frame's locals or of globals (`Cx::global_inc`, `Cx::global_as`: the
 //!   machine's globals read and written at each use, no copy kept; a name
-//!   that is no local of the DM), `set(g, V)` of a global, `V is E` of ints into a fresh `int` variable
+//!   that is no local of the DM), `set(g, V)` of a global (`V` a value or
+//!   a constant as written, `set(done, yes)`), `V is E` of ints into a fresh `int` variable
 //!   (checked `i64`; an overflow is the machine's `is`), constants and
 //!   values (`[inc(n, N)]`, `[J is I + 1]`): done on the frame's Rust
 //!   locals and values, as an exit arc's; recorded, the same in a frame
@@ -117,7 +118,10 @@
 //!   the machine's calls and makes its entry. An arc whose action binds a
 //!   value at a boundary falls back to the term code's next situation and
 //!   out_arg when that value does not convert. A fresh variable is made at
-//!   the start of a visit only when code uses it before declaring it.
+//!   the start of a visit only when code uses it before declaring it. In
+//!   an expression (a comparison's operand, an out_arg), `get(v, _)` of a
+//!   local held in the frame or of a global is the value read
+//!   (`Gen::nat_var_get`), its `_` left unbound (nothing reads it).
 //!
 //! - *frames and calls* ([`frame`], [`call`]): each DM with native code
 //!   has a `Frame` (parameters, locals, its `Nat`); the runtime's
@@ -2897,6 +2901,7 @@ impl Gen<'_> {
         // the values bound at the boundary, converted: all checked in one
         // `let .. else`, the fallback written once.
         if let Some((fallback, conv)) = conv {
+            let occ = crate::mir::ty::occurrences(plan);
             let mut checks = Vec::new();
             if atom.is_none() {
                 checks = self.nat_local_checks(d)?;
@@ -2910,6 +2915,15 @@ impl Gen<'_> {
                 // (else every visit went to the term code, converting the
                 // id's list to a term: quadratic, `ngen12b`).
                 if atom.is_some() && only_in_conditions(&arc.next, r) && !out_mentions(arc, r) {
+                    regs.insert(r, (x, Ty::Term));
+                    continue;
+                }
+                // A fresh variable met only once in the plan, in the next
+                // situation (the `_` of `C < get(limit, _)`): nothing before
+                // binds it, so it is unbound here and converting it could
+                // only fail; the evaluation there binds it
+                // (`Gen::nat_var_get`).
+                if occ.get(r as usize) == Some(&1) && !out_mentions(arc, r) {
                     regs.insert(r, (x, Ty::Term));
                     continue;
                 }
@@ -3710,31 +3724,91 @@ impl Gen<'_> {
         })
     }
 
-    fn nat_ev_value(&self, e: &Ev, regs: &Regs) -> N<V> {
+    /// The value of an evaluated expression of situation `cur`'s arc, by
+    /// native code: a register, a value as written, a compound that
+    /// evaluates its arguments only, and `get(v, _)` of a local held in
+    /// the frame or of a global ([`Gen::nat_var_get`]).
+    fn nat_ev_value(&self, d: &Dm, cur: usize, e: &Ev, regs: &Regs) -> N<V> {
         match e {
             Ev::Value(r) => self.nat_value(&Build::Reg(*r), regs),
             Ev::Built(b) => self.nat_value(b, regs),
             Ev::Compound(name, args) if *name == atoms::DOT && args.len() == 2 => {
-                let h = self.nat_ev_value(&args[0], regs)?;
-                let t = self.nat_ev_value(&args[1], regs)?;
+                let h = self.nat_ev_value(d, cur, &args[0], regs)?;
+                let t = self.nat_ev_value(d, cur, &args[1], regs)?;
                 cons(h, t)
             }
             // A compound that evaluates its arguments only, of native values.
             Ev::Compound(name, args) => {
                 let parts = args
                     .iter()
-                    .map(|a| self.nat_ev_value(a, regs))
+                    .map(|a| self.nat_ev_value(d, cur, a, regs))
                     .collect::<N<Vec<_>>>()?;
                 self.nat_compound(*name, parts)
             }
+            Ev::VarOp {
+                op,
+                name,
+                arg: Build::Reg(r),
+            } if *op == atoms::GET => self
+                .nat_var_get(d, cur, *name, *r, regs)?
+                .ok_or_else(|| "a `get` native code does not read".into()),
             _ => Err("an expression is not native yet".into()),
         }
+    }
+
+    /// `get(v, R)` evaluated inside an expression (`C < get(limit, _)`),
+    /// `R` not bound before (the machine's `get` binds it to the value):
+    /// a register native code does not hold (as for a condition's side
+    /// `get(g, D)`, `Gen::nat_global_get`, a later read of it finds no
+    /// register and that code stays the machine's) or a fresh variable
+    /// occurring nowhere else in the plan (`_`): the value of `v`, read
+    /// now, nothing written. A local of the DM held in
+    /// the frame: its field (what `Gen::nat_local_get` reads for a call's
+    /// argument; the frame's locals are the DM's while its native code
+    /// runs). Else a global ([`Gen::nat_global_read`]). `None`: not such
+    /// a `get` (a local the frame does not hold, `R` bound or read again,
+    /// a global of no native type): the code stays the machine's.
+    fn nat_var_get(&self, d: &Dm, cur: usize, name: Atom, r: Reg, regs: &Regs) -> N<Option<V>> {
+        // Not held, or a fresh variable (made at the visit's start where
+        // the code uses it) that occurs nowhere else in the plan: binding
+        // it has no other effect.
+        let free = match regs.get(&r) {
+            None => true,
+            Some((x, _)) => {
+                is_fresh(x)
+                    && crate::mir::ty::occurrences(d.plans[cur])
+                        .get(r as usize)
+                        .is_some_and(|&n| n == 1)
+            }
+        };
+        if !free {
+            return Ok(None);
+        }
+        if d.dm.locals.iter().any(|(l, _)| *l == name) {
+            if !d.locals_ok {
+                return Ok(None);
+            }
+            let Some(li) = d.locals.iter().position(|(l, _)| *l == name) else {
+                return Ok(None);
+            };
+            let l = format_ident!("l{}", li);
+            // `l.clone()`: read in place where the value is only read
+            // (`place`), a comparison's operand.
+            return Ok(Some(V {
+                e: quote!(#l.clone()),
+                ty: d.locals[li].1.clone(),
+            }));
+        }
+        self.nat_global_read(d, cur, name)
     }
 
     fn nat_cond(&self, d: &Dm, cur: usize, c: &Cond, regs: &Regs) -> N<TokenStream> {
         match c {
             Cond::Arith(op, l, r) => {
-                let (l, r) = (self.nat_ev_value(l, regs)?, self.nat_ev_value(r, regs)?);
+                let (l, r) = (
+                    self.nat_ev_value(d, cur, l, regs)?,
+                    self.nat_ev_value(d, cur, r, regs)?,
+                );
                 self.nat_arith(d, cur, *op, l, r)
             }
             Cond::Other(Build::Compound(op, args))
@@ -3802,6 +3876,15 @@ impl Gen<'_> {
         {
             return Ok(None);
         }
+        self.nat_global_read(d, cur, name)
+    }
+
+    /// The value of global `name` (no local of DM `d`) read by native code
+    /// in situation `cur`'s arc (`Cx::global_as`, no typed copy kept), of
+    /// the global's MIR type; where it is not of that type (only if the
+    /// inference were wrong) the machine is entered and its `get` gives
+    /// the value or its error. `None`: a global of no native type.
+    fn nat_global_read(&self, d: &Dm, cur: usize, name: Atom) -> N<Option<V>> {
         let Some(gty) = self
             .mir_types
             .as_ref()
@@ -4012,7 +4095,7 @@ impl Gen<'_> {
                             let t = self.nat_ev_term(a, regs, &mut pre, &mut n)?;
                             parts.push(Err(t));
                         }
-                        a => parts.push(Ok(self.nat_ev_value(a, regs)?)),
+                        a => parts.push(Ok(self.nat_ev_value(d, cur, a, regs)?)),
                     }
                 }
                 let terms: Vec<TokenStream> = parts
@@ -4079,7 +4162,7 @@ impl Gen<'_> {
             Next::Eval(Ev::Compound(name, args)) => {
                 let vals = args
                     .iter()
-                    .map(|a| self.nat_ev_value(a, regs))
+                    .map(|a| self.nat_ev_value(d, cur, a, regs))
                     .collect::<N<Vec<_>>>()?;
                 self.nat_select(d, cur, *name, vals, cur_name)
             }

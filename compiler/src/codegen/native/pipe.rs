@@ -224,11 +224,14 @@ impl Gen<'_> {
         regs: &Regs,
     ) -> N<V> {
         let Ev::If(c, a, b) = e else {
-            return self.nat_ev_value(e, regs);
+            return self.nat_ev_value(d, cur, e, regs);
         };
         let c = match &**c {
             Cond::Arith(op, l, r) => {
-                let (l, r) = (self.nat_ev_value(l, regs)?, self.nat_ev_value(r, regs)?);
+                let (l, r) = (
+                    self.nat_ev_value(d, cur, l, regs)?,
+                    self.nat_ev_value(d, cur, r, regs)?,
+                );
                 let plain = (l.ty == Ty::Int && r.ty == Ty::Int)
                     || (l.ty == Ty::Float && r.ty == Ty::Float);
                 if !plain && !matches!(next, Next::Static(..)) {

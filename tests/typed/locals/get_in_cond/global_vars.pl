@@ -1,0 +1,2 @@
+glim ==> 0.
+mark ==> none.
