@@ -1181,17 +1181,7 @@ impl Gen<'_> {
                 Ev::VarOpFresh { op, name, dst } if !d.dm.locals.iter().any(|(l, _)| l == name) => {
                     let (gty, value) = self.nat_global_op(*op, *name, None, arc_ix, &enter)?;
                     let dty = d.types[ix].regs[*dst as usize].ty.clone();
-                    let e = coerce(
-                        &V {
-                            e: quote!(#x.clone()),
-                            ty: gty.clone(),
-                        },
-                        &dty,
-                    )?;
-                    stmts.push(quote!(let #x = #value;));
-                    let rr = reg(*dst);
-                    stmts.push(quote!(let #rr = #e;));
-                    regs.insert(*dst, (rr, dty));
+                    bind_fresh(&mut stmts, regs, &x, value, &gty, *dst, dty)?;
                     gty
                 }
                 // `set(g, V)` of a global to a native value (stored as
@@ -1256,17 +1246,7 @@ impl Gen<'_> {
                     } else {
                         return Err("a variable operation is not native".into());
                     };
-                    let e = coerce(
-                        &V {
-                            e: quote!(#x.clone()),
-                            ty: lty.clone(),
-                        },
-                        &dty,
-                    )?;
-                    stmts.push(quote!(let #x = #value;));
-                    let rr = reg(*dst);
-                    stmts.push(quote!(let #rr = #e;));
-                    regs.insert(*dst, (rr, dty));
+                    bind_fresh(&mut stmts, regs, &x, value, &lty, *dst, dty)?;
                     lty
                 }
                 // `J is I + 1` into a fresh variable that inference types
@@ -1740,4 +1720,30 @@ fn drop_unread_let(code: TokenStream, name: &str) -> TokenStream {
 /// Whether `ts` names one of `names` (an identifier token, at any depth).
 fn mentions_any(ts: &TokenStream, names: &[Ident]) -> bool {
     super::pipe::mentions_of(ts, names) > 0
+}
+
+/// An action's value `x` (of type `ty`) taken by the fresh register `dst`
+/// (of type `dty`, converted): `let x = value; let r<dst> = x;`, the
+/// register then known in `regs`.
+fn bind_fresh(
+    stmts: &mut Vec<TokenStream>,
+    regs: &mut Regs,
+    x: &Ident,
+    value: TokenStream,
+    ty: &Ty,
+    dst: Reg,
+    dty: Ty,
+) -> N<()> {
+    let e = coerce(
+        &V {
+            e: quote!(#x.clone()),
+            ty: ty.clone(),
+        },
+        &dty,
+    )?;
+    stmts.push(quote!(let #x = #value;));
+    let rr = reg(dst);
+    stmts.push(quote!(let #rr = #e;));
+    regs.insert(dst, (rr, dty));
+    Ok(())
 }
