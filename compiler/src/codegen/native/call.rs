@@ -1178,7 +1178,7 @@ impl Gen<'_> {
                 // `get`/`inc` of a global (a name that is no declared local
                 // of this DM, held in the frame or not: the machine's
                 // `var_op` looks at the running DM's locals first).
-                Ev::VarOpFresh { op, name, dst } if !d.dm.locals.iter().any(|(l, _)| l == name) => {
+                Ev::VarOpFresh { op, name, dst } if !d.declares_local(*name) => {
                     let (gty, value) = self.nat_global_op(*op, *name, None, arc_ix, &enter)?;
                     let dty = d.types[ix].regs[*dst as usize].ty.clone();
                     bind_fresh(&mut stmts, regs, &x, value, &gty, *dst, dty)?;
@@ -1186,9 +1186,7 @@ impl Gen<'_> {
                 }
                 // `set(g, V)` of a global to a native value (stored as
                 // written: a value evaluates to itself).
-                Ev::VarOp { op, name, arg }
-                    if *op == atoms::SET && !d.dm.locals.iter().any(|(l, _)| l == name) =>
-                {
+                Ev::VarOp { op, name, arg } if *op == atoms::SET && !d.declares_local(*name) => {
                     let v = self.nat_value(arg, regs)?;
                     let (_, value) = self.nat_global_op(*op, *name, Some(&v), arc_ix, &enter)?;
                     stmts.push(quote!(let #x = #value;));
@@ -1349,7 +1347,7 @@ impl Gen<'_> {
         };
         let (g, k) = (args[0], args[1]);
         let g = self.store.atom_of(g)?;
-        if name != atoms::SET || d.dm.locals.iter().any(|(l, _)| *l == g) {
+        if name != atoms::SET || d.declares_local(g) {
             return None;
         }
         match self.store.value(k) {

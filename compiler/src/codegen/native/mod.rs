@@ -1046,6 +1046,12 @@ impl CellField {
 }
 
 impl Dm<'_> {
+    /// Whether `name` is a local the DM declares (held in the frame or
+    /// not): the machine's `var_op` looks at the running DM's locals
+    /// first, a name that is none is a global (D-38).
+    fn declares_local(&self, name: Atom) -> bool {
+        self.dm.locals.iter().any(|(l, _)| *l == name)
+    }
     /// The parameters the situations with native code read (and those of
     /// a native type a native first situation's id is linked with: its
     /// fields are their values, `first(N)` in `bump(N)`; the inference's
@@ -3784,7 +3790,7 @@ impl Gen<'_> {
         if !free {
             return Ok(None);
         }
-        if d.dm.locals.iter().any(|(l, _)| *l == name) {
+        if d.declares_local(name) {
             if !d.locals_ok {
                 return Ok(None);
             }
@@ -3870,10 +3876,7 @@ impl Gen<'_> {
         let Some(name) = self.store.atom_of(*name) else {
             return Ok(None);
         };
-        if f.as_str() != "get"
-            || d.dm.locals.iter().any(|(l, _)| *l == name)
-            || regs.contains_key(r)
-        {
+        if f.as_str() != "get" || d.declares_local(name) || regs.contains_key(r) {
             return Ok(None);
         }
         self.nat_global_read(d, cur, name)
@@ -3928,17 +3931,35 @@ impl Gen<'_> {
     /// computed (an error evaluating it leaves it out, as on the term path),
     /// and the machine entered in situation `cur` with its id.
     fn nat_enter_to_evaluate(&self, d: &Dm, cur: usize) -> N<TokenStream> {
-        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
-        let hand = &d.hand;
-        let curl = Literal::u32_unsuffixed(cur as u32);
+        let (hand_count, id_stmts, id, curl) = self.nat_before_evaluating(d, cur)?;
         Ok(quote! {
-            #hand
-            // This transition counts once its next situation is computed
-            // (an error evaluating it leaves it out, as on the term path).
-            count = run.count_but_this(cx, count);
+            #hand_count
             #(#id_stmts)*
             cx.enter_with_id(#curl, #id);
         })
+    }
+
+    /// What [`Gen::nat_enter_to_evaluate`] and [`Gen::nat_eval_lazy_id`]
+    /// share: the hand-over and the count (this transition counts once the
+    /// evaluation is done: an error leaves it out, as on the term path),
+    /// the statements and expression of situation `cur`'s id, `cur`.
+    fn nat_before_evaluating(
+        &self,
+        d: &Dm,
+        cur: usize,
+    ) -> N<(TokenStream, Vec<TokenStream>, TokenStream, Literal)> {
+        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+        let hand = &d.hand;
+        let hand_count = quote! {
+            #hand
+            count = run.count_but_this(cx, count);
+        };
+        Ok((
+            hand_count,
+            id_stmts,
+            id,
+            Literal::u32_unsuffixed(cur as u32),
+        ))
     }
 
     /// [`Gen::nat_enter_to_evaluate`] for an evaluation whose only reader
@@ -3959,14 +3980,9 @@ impl Gen<'_> {
         eval: TokenStream,
         ty: TokenStream,
     ) -> N<TokenStream> {
-        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
-        let hand = &d.hand;
-        let curl = Literal::u32_unsuffixed(cur as u32);
+        let (hand_count, id_stmts, id, curl) = self.nat_before_evaluating(d, cur)?;
         Ok(quote! {
-            #hand
-            // This transition counts once its evaluation is done (an
-            // error leaves it out, as on the term path).
-            count = run.count_but_this(cx, count);
+            #hand_count
             if run.records {
                 #(#id_stmts)*
                 cx.enter_with_id(#curl, #id);
