@@ -172,10 +172,12 @@ impl<'s> Lexer<'s> {
         // A character that starts no token (a control character, or one
         // beyond ASCII that is neither layout nor a letter) is said here,
         // without the grammar: a failed pest parse costs the length of the
-        // line, so a line of them cost its length squared.
+        // line, so a line of them cost its length squared. "A letter" is
+        // the grammar's `ALPHABETIC`, by pest's Unicode tables: Rust's
+        // `char::is_alphabetic` follows another Unicode version (U+058B).
         if !(0x20..0x7F).contains(&first) {
             let c = rest.chars().next().unwrap_or(' ');
-            if c.is_control() || (!c.is_ascii() && !c.is_alphabetic()) {
+            if c.is_control() || (!c.is_ascii() && !pest::unicode::ALPHABETIC(c)) {
                 let what = if c.is_control() {
                     format!("unexpected control character U+{:04X}", c as u32)
                 } else {

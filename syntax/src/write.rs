@@ -113,7 +113,7 @@ pub fn atom_needs_quotes(text: &str) -> bool {
     let Some(first) = chars.next() else {
         return true;
     };
-    if first.is_lowercase() {
+    if starts_letter_name(first) {
         return !text.chars().all(is_alnum);
     }
     if is_symbol_char(first) {
@@ -123,9 +123,27 @@ pub fn atom_needs_quotes(text: &str) -> bool {
     true
 }
 
-/// Letters, digits and `_`: the characters of names and variables.
+/// Letters, digits, marks and `_`: the characters of names and variables
+/// after their first (`alnum` in `token.pest`). Beyond ASCII the grammar's
+/// own Unicode tables (pest's) decide, not `char`'s methods, whose Unicode
+/// version may differ: what is written unquoted must read back.
 pub fn is_alnum(c: char) -> bool {
-    c.is_alphanumeric() || c == '_'
+    if c.is_ascii() {
+        return c.is_ascii_alphanumeric() || c == '_';
+    }
+    use pest::unicode::{ALPHABETIC, MARK, NUMBER};
+    ALPHABETIC(c) || NUMBER(c) || MARK(c)
+}
+
+/// Whether `c` starts a name written without quotes (`letter_name` in
+/// `token.pest`): a letter that is not upper or title case nor a number
+/// (`ⅰ`, a letter number, starts no name; `中` and `ª` do).
+pub fn starts_letter_name(c: char) -> bool {
+    if c.is_ascii() {
+        return c.is_ascii_lowercase();
+    }
+    use pest::unicode::{ALPHABETIC, NUMBER, TITLECASE_LETTER, UPPERCASE_LETTER};
+    ALPHABETIC(c) && !UPPERCASE_LETTER(c) && !TITLECASE_LETTER(c) && !NUMBER(c)
 }
 
 /// Characters of symbolic atoms such as `==>` and `\+`.
@@ -568,6 +586,11 @@ mod tests {
     #[test]
     fn quoting() {
         assert!(!atom_needs_quotes("abc_1"));
+        // The grammar's letters (pest's Unicode tables), not `char`'s.
+        assert!(!atom_needs_quotes("中文"));
+        assert!(!atom_needs_quotes("na\u{308}me"));
+        assert!(atom_needs_quotes("\u{2170}"));
+        assert!(atom_needs_quotes("\u{1c5}a"));
         assert!(atom_needs_quotes("Abc"));
         assert!(atom_needs_quotes("hello world"));
         assert!(!atom_needs_quotes("==>"));
