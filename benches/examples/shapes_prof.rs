@@ -109,6 +109,10 @@ mod c_global_flag {
 mod d_global_visited {
     sitlog_macros::include_dm!("../tests/typed/shapes/d_global_visited");
 }
+// Helper `nout14`'s (session 13): an evaluated out_arg in a walk.
+mod d_outarg_when {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_outarg_when");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks' (no hand-written way here: see
 // `benches/benches/compiled.rs`).
@@ -423,7 +427,8 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         | "d_id_shares_param"
         | "d_walk_first_param"
         | "d_target_matched_in_id"
-        | "d_compare_fn" => format!("hunt({n}, {list}, {last})"),
+        | "d_compare_fn"
+        | "d_outarg_when" => format!("hunt({n}, {list}, {last})"),
         "d_local_places" => format!("tour({n}, cellar)"),
         "d_const_ints" => format!("drill({n}, 64)"),
         "d_built_list" => format!("patrol({n}, {list}, p0)"),
@@ -483,6 +488,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             | "d_walk_first_param"
             | "d_target_matched_in_id"
             | "d_compare_fn" => hand_walk(n, black_box(&syms), black_box(lsym), true, false),
+            "d_outarg_when" => hand_walk_flag(n, black_box(&syms), black_box(lsym)),
             "d_local_places" => {
                 hand_walk(n, black_box(&syms[..8]), black_box(Sym(7)), false, false)
             }
@@ -556,6 +562,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "c_outarg_apply" => ways!(c_outarg_apply),
         "c_global_flag" => ways!(c_global_flag),
         "d_global_visited" => ways!(d_global_visited),
+        "d_outarg_when" => ways!(d_outarg_when),
         _ => unreachable!(),
     }
 }
@@ -1090,7 +1097,67 @@ fn hand_walk_visited(budget: i64, items: &[Sym], target: Sym) -> u64 {
     transitions
 }
 
-const ALL: [&str; 28] = [
+/// (d) `d_outarg_when`: [`hand_walk`] whose walking step also sets the
+/// pipe to whether the place looked at is the target (`here` or
+/// `elsewhere`, the out_arg `apply(when(_, _, _), [P == Target, ..])`; a
+/// `bool` here, `black_box`ed where written).
+fn hand_walk_flag(rounds: i64, items: &[Sym], target: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Try(&'a [Sym]),
+        Final(Option<Sym>),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut transitions, mut here) = (0i64, 1u64, false);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items);
+            }
+            Frame::Try([]) => {
+                transitions += 1;
+                *top = Frame::Final(None);
+            }
+            Frame::Try([p, ps @ ..]) => {
+                transitions += 1;
+                let found = *p == target;
+                here = black_box(found);
+                *top = if found {
+                    Frame::Final(Some(*p))
+                } else {
+                    Frame::Try(ps)
+                };
+            }
+            Frame::Final(found) => {
+                transitions += 1;
+                black_box(found);
+                stack.pop();
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    black_box(here);
+    transitions
+}
+
+const ALL: [&str; 29] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -1119,6 +1186,7 @@ const ALL: [&str; 28] = [
     "c_outarg_apply",
     "c_global_flag",
     "d_global_visited",
+    "d_outarg_when",
 ];
 
 fn main() {

@@ -1030,6 +1030,124 @@ fn a_failing_comparison_names_the_walks_id() {
     assert!(c.0.to_string().contains("try([boom,bed])"), "{c:?}");
 }
 
+/// Helper `nout14`'s (session 13): an out_arg the evaluator computes in
+/// a list walk, the id built only where it is read.
+mod shapes_nout14 {
+    pub mod outarg_when {
+        sitlog_macros::include_dm!("typed/shapes/d_outarg_when");
+    }
+    pub mod outarg_walk_error {
+        sitlog_macros::include_dm!("typed/outarg_walk_error");
+    }
+}
+
+/// A walk `try([P|Ps])` whose out_arg the evaluator computes
+/// (`apply(when(_, _, _), [P == Target, here, elsewhere])`): native code
+/// evaluates it after the next situation took the list's rest, the
+/// situation's id built only when the run records (history kept or not,
+/// observed, numbers logged: `agree`); the last answer is the run's
+/// out_arg. Lists that do not fit (improper, partial, an atom, compounds).
+#[test]
+fn an_evaluated_out_arg_in_a_walk_agrees() {
+    let ir = interpreter("typed/shapes/d_outarg_when");
+    for l in [
+        "[hall, bath, bed]",
+        "[bed, hall]",
+        "[hall, bath]",
+        "[]",
+        "[hall|bath]",
+        "[hall, bed|_]",
+        "hall",
+        "[f(x), bed]",
+    ] {
+        let main = format!("hunt(2, {l}, bed)");
+        let compiled = shapes_nout14::outarg_when::program();
+        if main.contains('_') {
+            agree_modulo_vars(compiled, &ir, &main);
+        } else {
+            agree(compiled, &ir, &main, "");
+            agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, &main, "");
+        }
+    }
+    for (l, out) in [
+        ("[hall, bed]", "here"),
+        ("[bed, hall]", "here"),
+        ("[hall]", "elsewhere"),
+    ] {
+        let c = run(
+            shapes_nout14::outarg_when::program(),
+            &format!("hunt(1, {l}, bed)"),
+            "",
+            false,
+            false,
+            false,
+        );
+        assert_eq!(c.0["out_arg"], out, "{l}: {c:?}");
+    }
+}
+
+/// The same out_arg a user function that fails on one element (the
+/// tests' `is_bed(_)` on `boom`): the error names the walk's id
+/// (`try([boom,bed])`), built for the error from the fields kept past the
+/// next situation (which moved the rest of the list).
+#[test]
+fn a_failing_out_arg_names_the_walks_id() {
+    let ir = interpreter("typed/outarg_walk_error");
+    for l in ["[hall, bed]", "[hall, boom, bed]", "[boom]", "[hall]"] {
+        let main = format!("main({l})");
+        agree(shapes_nout14::outarg_walk_error::program(), &ir, &main, "");
+    }
+    for keep in [false, true] {
+        let c = run(
+            shapes_nout14::outarg_walk_error::program(),
+            "main([hall, boom, bed])",
+            "",
+            keep,
+            false,
+            false,
+        );
+        assert!(c.0.to_string().contains("try([boom,bed])"), "{c:?}");
+    }
+}
+
+mod locals_nout14 {
+    pub mod outarg_eval {
+        sitlog_macros::include_dm!("typed/locals/outarg_eval");
+    }
+}
+
+/// An out_arg the evaluator computes in a DM whose local native code
+/// holds (`typed/locals/outarg_eval`): it reads the local set in the same
+/// arc, `inc`s it, calls a parameter's function on it (one that fails);
+/// native code writes the local back before and reads it after. Locals
+/// that are no number (an atom, a float, a compound: the comparison's
+/// error, or a value of another type read back).
+#[test]
+fn an_evaluated_out_arg_with_locals_agrees() {
+    let ir = interpreter("typed/locals/outarg_eval");
+    for main in [
+        "main(3, twice(_))",
+        "main(1, twice(_))",
+        "main(3, nofun(_))",
+        "main(x, twice(_))",
+        "main(2.5, twice(_))",
+        "main(f(x), twice(_))",
+    ] {
+        let compiled = locals_nout14::outarg_eval::program();
+        agree_modulo_vars(compiled, &ir, main);
+        agree_modulo_vars(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main);
+    }
+    let c = run(
+        locals_nout14::outarg_eval::program(),
+        "main(3, twice(_))",
+        "",
+        false,
+        false,
+        false,
+    );
+    assert_eq!(c.0["out_arg"], "[4,4]", "{c:?}");
+}
+
 mod locals_nloc13 {
     pub mod get_in_cond {
         sitlog_macros::include_dm!("typed/locals/get_in_cond");

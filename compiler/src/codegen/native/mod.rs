@@ -2929,7 +2929,13 @@ impl Gen<'_> {
                 // binds it, so it is unbound here and converting it could
                 // only fail; the evaluation there binds it
                 // (`Gen::nat_var_get`).
-                if occ.get(r as usize) == Some(&1) && !out_mentions(arc, r) {
+                // The same in an out_arg the evaluator computes whole (the
+                // `_`s of `apply(when(_, _, _), [..])`): a variable of the
+                // term it is given, unbound as on the term path (D-18's
+                // "pipe not set for a variable" is about the value,
+                // `Cx::out_value`).
+                let in_eval_out = matches!(arc.out_arg, Some(Ev::Eval(_)));
+                if occ.get(r as usize) == Some(&1) && (in_eval_out || !out_mentions(arc, r)) {
                     regs.insert(r, (x, Ty::Term));
                     continue;
                 }

@@ -27,8 +27,8 @@
 
 use super::{reg, Dm, Gen, Regs, N, V};
 use crate::mir::{Build, Cond, Ev, Init, Next, Reg};
-use proc_macro2::{Literal, TokenStream};
-use quote::quote;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
 use sitlog_runtime::native::Ty;
 
 impl Gen<'_> {
@@ -157,10 +157,16 @@ impl Gen<'_> {
     /// unless it is a variable (`Cx::out_value`, D-18): the term code's
     /// order (`codegen::step`: next situation, then out_arg), on every way
     /// out (one that hands the next situation to the machine too). The
-    /// situation's id is built before the next situation (whose value may
-    /// take the id's fields), where the evaluation enters with it. Only in
-    /// a DM without locals: the evaluator reads and may change the
-    /// machine's frame, not the native one's.
+    /// situation's id is built only where it is read, as for a condition
+    /// the machine evaluates ([`Gen::nat_eval_lazy_id`]): when the run
+    /// records, and for an error of the evaluation; a list walk's id
+    /// (`try(Ps)`) costs O(length), built at every visit the walk was
+    /// quadratic (`d_outarg_when`). The id's fields the next situation
+    /// may move (`Ps` into the next variant) are kept past it, a clone
+    /// each (`keep_r<N>`: an `Rc` count for a list). In a DM with locals
+    /// held in the frame, they are written back before the evaluation
+    /// (which reads and may change the machine's frame) and read again
+    /// after it, as for a next situation's evaluated part.
     fn nat_next_out_eval(
         &self,
         d: &Dm,
@@ -170,37 +176,82 @@ impl Gen<'_> {
         regs: &Regs,
         cur_name: &TokenStream,
     ) -> N<TokenStream> {
-        if !(d.locals.is_empty() && d.dm.locals.is_empty()) {
-            return Err("an out_arg the evaluator computes, in a DM with locals".into());
-        }
         let mut ts = Vec::new();
         let mut n = 0;
         let t = self.nat_build_term(b, regs, &mut ts, &mut n)?;
         let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+        // The id's registers, read after the next situation as kept.
+        let fields: Vec<Ident> = crate::codegen::step::registers(&quote!(#(#id_stmts)* #id))
+            .into_iter()
+            .map(reg)
+            .collect();
         let curl = Literal::u32_unsuffixed(cur as u32);
+        // Where the next situation is handed to the machine (entered there
+        // by name, or with its id when recorded): entered with its id,
+        // built there.
         let eval = quote! {
-            cx.enter_with_id(#curl, out_id);
+            #(#id_stmts)*
+            cx.enter_with_id(#curl, #id);
             let out_value = cx.eval(out_term, arc_at)?;
             cx.out_value(out_value);
         };
-        // Where the next situation is handed to the machine (entered there
-        // by name, or with its id when recorded): entered with its id.
-        *d.out.borrow_mut() = eval.clone();
+        *d.out.borrow_mut() = rename_kept(eval, &fields);
         let nx = self.nat_next(d, cur, next, regs, cur_name);
         *d.out.borrow_mut() = quote!();
         let nx = nx?;
-        let hand = &d.hand;
+        // What the evaluator changed of the locals (written back before
+        // it, `Dm::hand`), read again, as after a next situation's
+        // evaluated part; a local that no longer converts: the machine
+        // goes on from the next situation (entered with this one's id,
+        // the locals its own).
+        let checks = self.nat_local_checks(d)?;
+        let back = if checks.is_empty() {
+            quote!()
+        } else {
+            let tail = super::goto_tail(&d.rec.borrow());
+            let fallback = quote! {{
+                cx.count_transitions(count);
+                #(#id_stmts)*
+                cx.enter_with_id(#curl, #id);
+                let rec_next = next_at.id_term(p, cx.store());
+                #tail
+            }};
+            super::checked(checks, &fallback)
+        };
+        // Kept: the fields the next situation's code may move.
+        let moved: Vec<Ident> = fields
+            .iter()
+            .filter(|r| super::moves_any(&nx, &quote!(#r)))
+            .cloned()
+            .collect();
+        let back = rename_kept(back, &moved);
+        let unkept: Vec<Ident> = fields
+            .iter()
+            .filter(|r| !moved.contains(r))
+            .cloned()
+            .collect();
+        let nx = unrename_kept(nx, &unkept);
+        let name = format_ident!("out_value");
+        let pre = self.nat_eval_lazy_id(
+            d,
+            cur,
+            &name,
+            quote!(cx.eval(out_term, arc_at)),
+            quote!(Term),
+        )?;
+        let pre = rename_kept(pre, &moved);
+        let kept = moved.iter().map(|r| {
+            let k = kept_name(r);
+            quote!(let #k = #r.clone();)
+        });
         Ok(quote! {{
             #(#ts)*
             let out_term = #t;
-            #(#id_stmts)*
-            let out_id = #id;
+            #(#kept)*
             let next_at = #nx;
-            #hand
-            // This transition counts once its out_arg is evaluated (an
-            // error leaves it out, as on the term path).
-            count = run.count_but_this(cx, count);
-            #eval
+            #pre
+            cx.out_value(#name);
+            #back
             next_at
         }})
     }
@@ -256,6 +307,42 @@ impl Gen<'_> {
             ty,
         })
     }
+}
+
+/// `keep_<r>`: register `r` kept past a next situation that may move it
+/// ([`Gen::nat_next_out_eval`]).
+fn kept_name(r: &Ident) -> Ident {
+    format_ident!("keep_{}", r)
+}
+
+/// `code` with each identifier of `regs` made its kept name.
+fn rename_kept(code: TokenStream, regs: &[Ident]) -> TokenStream {
+    let map: Vec<(Ident, Ident)> = regs.iter().map(|r| (r.clone(), kept_name(r))).collect();
+    rename_idents(code, &map)
+}
+
+/// `code` with each kept name of `regs` made the register again.
+fn unrename_kept(code: TokenStream, regs: &[Ident]) -> TokenStream {
+    let map: Vec<(Ident, Ident)> = regs.iter().map(|r| (kept_name(r), r.clone())).collect();
+    rename_idents(code, &map)
+}
+
+fn rename_idents(code: TokenStream, map: &[(Ident, Ident)]) -> TokenStream {
+    use proc_macro2::{Group, TokenTree as T};
+    code.into_iter()
+        .map(|t| match t {
+            T::Ident(i) => match map.iter().find(|(from, _)| *from == i) {
+                Some((_, to)) => T::Ident(to.clone()),
+                None => T::Ident(i),
+            },
+            T::Group(g) => {
+                let mut ng = Group::new(g.delimiter(), rename_idents(g.stream(), map));
+                ng.set_span(g.span());
+                T::Group(ng)
+            }
+            t => t,
+        })
+        .collect()
 }
 
 /// How many times the identifier `name` occurs in `code` (at any depth).
