@@ -135,6 +135,34 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.enter_empty(count, sit, id, below.is_empty(), arc)
     }
 
+    /// The entry of situation `sit` by arc `arc`, whose action is
+    /// `empty`, as one call, out of native code's hot path (its caller
+    /// tests `run.records || !run.quiet_empty`, or `!run.quiet_empty` in
+    /// an exit arc): the native frames below handed over where the
+    /// actions do not ignore `empty` or none is below (the runtime's
+    /// [`nat_hand_over`](super::nat_hand_over); a DM with locals hands
+    /// over with its own first, then none is below), the situation's id
+    /// filled after it (`pattern` and `holes`, [`Cx::fill`]: the store's
+    /// order), then [`Cx::enter_empty_on`].
+    #[cold]
+    #[inline(never)]
+    pub fn nat_empty<F: super::NatFrames<P>>(
+        &mut self,
+        stack: &mut super::NatBelow<'_, F>,
+        count: &mut u64,
+        sit: SitIx,
+        arc: usize,
+        pattern: impl Into<Term>,
+        holes: &[&dyn AsTerm],
+    ) -> Result<(), RunError> {
+        if !self.actions.ignores_empty() || stack.is_empty() {
+            let p = self.m.program;
+            super::nat_hand_over(p, self, stack)?;
+        }
+        let id = self.fill(pattern.into(), holes);
+        self.enter_empty_on(count, sit, id, stack, Some(arc))
+    }
+
     /// Native code handing a value to the machine: counts the `count`
     /// transitions it made, and enters situation `sit` by its name `name`
     /// unless `recorded` (then it was entered with its id).

@@ -1316,12 +1316,26 @@ impl Gen<'_> {
                 Ty::Int | Ty::Float => quote!(if !run.quiet_numbers { #perform }),
                 Ty::Sym if const_atom == Some(atoms::EMPTY) && !list => {
                     let id_arg = super::atom_arg(&id);
-                    quote! {
-                        if !run.quiet_empty {
-                            #hand
-                            #(#id_stmts)*
-                            cx.enter_empty(&mut count, #curl, #id_arg, true, Some(#arc))?;
+                    // One call where it fits (`Cx::nat_empty` hands over:
+                    // the actions do not ignore `empty`), after a DM's own
+                    // hand-over, which writes its locals back.
+                    let arc_t = quote!(#arc);
+                    match super::empty_call(&id_stmts, &id, &curl, &arc_t) {
+                        Some(call) if !hand.is_empty() => {
+                            let own = if super::runtime_hand(hand) {
+                                quote!()
+                            } else {
+                                hand.clone()
+                            };
+                            quote!(if !run.quiet_empty { #own #call })
                         }
+                        _ => quote! {
+                            if !run.quiet_empty {
+                                #hand
+                                #(#id_stmts)*
+                                cx.enter_empty(&mut count, #curl, #id_arg, true, Some(#arc))?;
+                            }
+                        },
                     }
                 }
                 Ty::Sym if const_atom == Some(atoms::EMPTY) => {

@@ -466,7 +466,8 @@ fn hands_over_first(code: &TokenStream) -> bool {
 
 /// `code` with `arc_at` (the arc's index `i`, `Some(i)`) bound where it
 /// reads it: nothing where it does not, the value itself where it reads it
-/// once, else `let arc_at = Some(i);` first.
+/// once, else `let arc_at = Some(i);` first; `arc_ix` (the index itself,
+/// `Cx::nat_empty`'s) is `i`.
 pub(super) fn with_arc_at(code: &TokenStream, i: usize) -> TokenStream {
     use proc_macro2::{Group, TokenTree};
     fn count(ts: &TokenStream) -> usize {
@@ -479,14 +480,14 @@ pub(super) fn with_arc_at(code: &TokenStream, i: usize) -> TokenStream {
             })
             .sum()
     }
-    fn put(ts: &TokenStream, v: &TokenStream) -> TokenStream {
+    fn put_as(ts: &TokenStream, name: &str, v: &TokenStream) -> TokenStream {
         ts.clone()
             .into_iter()
             .flat_map(|t| -> Vec<TokenTree> {
                 match t {
-                    TokenTree::Ident(x) if x == "arc_at" => v.clone().into_iter().collect(),
+                    TokenTree::Ident(x) if x == name => v.clone().into_iter().collect(),
                     TokenTree::Group(g) => {
-                        let mut n = Group::new(g.delimiter(), put(&g.stream(), v));
+                        let mut n = Group::new(g.delimiter(), put_as(&g.stream(), name, v));
                         n.set_span(g.span());
                         vec![TokenTree::Group(n)]
                     }
@@ -495,7 +496,9 @@ pub(super) fn with_arc_at(code: &TokenStream, i: usize) -> TokenStream {
             })
             .collect()
     }
+    let put = |ts: &TokenStream, v: &TokenStream| put_as(ts, "arc_at", v);
     let (il, is) = (Literal::usize_unsuffixed(i), Literal::usize_suffixed(i));
+    let code = &put_as(code, "arc_ix", &quote!(#il));
     match count(code) {
         0 => code.clone(),
         // Read once: an argument of `Cx`'s (`Option<usize>`).
@@ -701,6 +704,77 @@ fn atom_arg(id: &TokenStream) -> TokenStream {
         }
         _ => id.clone(),
     }
+}
+
+/// Whether `hand` ([`Dm::hand`]) is the runtime's hand-over (a DM
+/// without locals), which `Cx::nat_empty` makes itself.
+fn runtime_hand(hand: &TokenStream) -> bool {
+    hand.to_string() == quote!(super::nat_hand_over(p, cx, stack)?;).to_string()
+}
+
+/// The entry of situation `cur` by arc `arc` (tokens: a literal, or
+/// `arc_ix`, [`with_arc_at`]'s index) whose action is `empty`, as one
+/// `Cx::nat_empty` call (the hand-over, the id filled, the entry, out of
+/// line), from the id's statements and value ([`Gen::nat_id_term`]): an
+/// atom, or one `let idN = cx.fill(pattern, holes);`. `None` for another
+/// id, or where the call would not fit on a line (60 columns, prettyplease's
+/// least room: broken an argument a line it is longer than the statements
+/// it replaces), for the caller's statements instead.
+fn empty_call(
+    id_stmts: &[TokenStream],
+    id: &TokenStream,
+    cur: &Literal,
+    arc: &TokenStream,
+) -> Option<TokenStream> {
+    let (pattern, holes) = match id_stmts {
+        [] => {
+            let x = atom_arg(id);
+            if x.to_string() == id.to_string() {
+                return None;
+            }
+            (x, quote!(&[]))
+        }
+        [s] => {
+            let syn::Stmt::Local(l) = syn::parse2::<syn::Stmt>(s.clone()).ok()? else {
+                return None;
+            };
+            let syn::Pat::Ident(x) = &l.pat else {
+                return None;
+            };
+            let syn::Expr::MethodCall(m) = &*l.init.as_ref()?.expr else {
+                return None;
+            };
+            let receiver = &m.receiver;
+            if x.ident != id.to_string()
+                || m.method != "fill"
+                || quote!(#receiver).to_string() != "cx"
+                || m.args.len() != 2
+            {
+                return None;
+            }
+            let (a, b) = (&m.args[0], &m.args[1]);
+            (quote!(#a), quote!(#b))
+        }
+        _ => return None,
+    };
+    // Its length as printed: its parts (paths, indices, references,
+    // literals) without a space but after a comma, nor a trailing comma;
+    // `arc_ix` a digit.
+    let part = |t: &TokenStream| -> String {
+        let s: String = t.to_string().chars().filter(|c| *c != ' ').collect();
+        s.replace(",]", "]")
+            .replace(',', ", ")
+            .replace("arc_ix", "0")
+    };
+    let printed = format!(
+        "cx.nat_empty(stack, &mut count, {}, {}, {}, {})?;",
+        part(&quote!(#cur)),
+        part(arc),
+        part(&pattern),
+        part(&holes)
+    );
+    (printed.len() <= 60)
+        .then(|| quote!(cx.nat_empty(stack, &mut count, #cur, #arc, #pattern, #holes)?;))
 }
 
 /// `code` as one expression: itself where it is one (a variant, a
@@ -2838,7 +2912,23 @@ impl Gen<'_> {
                 } else {
                     quote!(if !run.quiet_empty || stack.is_empty() { #hand })
                 };
-                stmts.push(if action == atoms::EMPTY {
+                // One call where it fits (after a DM's own hand-over, which
+                // writes its locals back: then none is below).
+                let one = empty_call(&id_stmts, &id, &cur, &quote!(arc_ix))
+                    .filter(|_| action == atoms::EMPTY && !hand.is_empty());
+                let own_hand_if = if runtime_hand(hand) {
+                    quote!()
+                } else {
+                    hand_if.clone()
+                };
+                stmts.push(if let Some(call) = one {
+                    quote! {
+                        if run.records || !run.quiet_empty {
+                            #own_hand_if
+                            #call
+                        }
+                    }
+                } else if action == atoms::EMPTY {
                     // Recorded: the situation entered (its id in the entry);
                     // above the machine's frames (a level of its own), with
                     // nothing to perform, without handing over.
