@@ -2217,9 +2217,6 @@ impl Gen<'_> {
     fn native_visit_arcs(&self, d: &Dm, ix: usize, fields: &[(Reg, Ty)]) -> N<TokenStream> {
         let plan = d.plans[ix];
         let st = &d.types[ix];
-        if matches!(plan.in_arg, Some((_, true, _))) {
-            return Err("its in_arg is a pattern (the pipe)".into());
-        }
         // Where each register's value lives: a field, a parameter, a local.
         let mut regs: Regs = fields
             .iter()
@@ -2248,6 +2245,10 @@ impl Gen<'_> {
             if let Some(at) = regs.get(src).cloned() {
                 regs.insert(*r, at);
             }
+        }
+        // An in_arg that is a pattern: matched against the pipe natively.
+        if let Some((pat, true, _)) = &plan.in_arg {
+            stmts.push(self.nat_pipe_match(d, ix, pat, &mut regs)?);
         }
         if let Some(prog) = &plan.prog {
             stmts.push(self.nat_prog(d, ix, prog, &mut regs)?);

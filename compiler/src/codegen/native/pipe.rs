@@ -28,7 +28,7 @@
 use super::{reg, Dm, Gen, Regs, N, V};
 use crate::mir::{Build, Cond, Ev, Init, Next, Reg};
 use proc_macro2::{Literal, TokenStream};
-use quote::quote;
+use quote::{format_ident, quote};
 use sitlog_runtime::native::Ty;
 
 impl Gen<'_> {
@@ -71,6 +71,180 @@ impl Gen<'_> {
                 ));
             };
         })
+    }
+
+    /// An in_arg that is a pattern (`in_arg ==> N-L`, `f(A, [B|C])`)
+    /// unified with the pipe, natively: the pipe's term taken apart where
+    /// it is (`Store::compound_args`, no value built for the whole), each
+    /// variable met first converted to its register's type (`mir::ty`
+    /// types it by the pipe's type there), a constant, a variable met
+    /// again or one the visit already holds (the id's, a parameter's)
+    /// compared with `==` (Prolog's `==` on ground values, which is their
+    /// unification), a variable met only here (`_`) not read. Anything
+    /// else (another shape, a part not of its type or not ground) hands
+    /// the visit to the machine before anything of it is done: it runs it
+    /// from the situation's template, unifying as the interpreter does,
+    /// and a pipe the pattern does not match is its error (D-8 as E14
+    /// fixes it). The pattern's variables are registers of the visit.
+    pub(super) fn nat_pipe_match(
+        &self,
+        d: &Dm,
+        ix: usize,
+        pat: &Build,
+        regs: &mut Regs,
+    ) -> N<TokenStream> {
+        let mut body = Vec::new();
+        let mut bound = Vec::new();
+        let mut n = 0;
+        self.nat_match_part(
+            d,
+            ix,
+            pat,
+            quote!(pipe_in),
+            regs,
+            &mut bound,
+            &mut body,
+            &mut n,
+            0,
+        )?;
+        let names: Vec<_> = bound.iter().map(|(r, _)| reg(*r)).collect();
+        for (r, ty) in bound {
+            regs.insert(r, (reg(r), ty));
+        }
+        let hand = &d.hand;
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let cur = Literal::u32_unsuffixed(ix as u32);
+        Ok(quote! {
+            let pipe_in = cx.store_ref().deref(cx.pipe());
+            let pipe_parts = (|| {
+                let s = cx.store_ref();
+                #(#body)*
+                Some((#(#names,)*))
+            })();
+            let Some((#(#names,)*)) = pipe_parts else {
+                // Not matched natively: the machine runs the visit.
+                #hand
+                #(#id_stmts)*
+                return cx.counted_template(count, #cur, #id);
+            };
+        })
+    }
+
+    /// [`Gen::nat_pipe_match`] of the part `pat` of the pattern against
+    /// the term `t` (an identifier of the closure that matches): its
+    /// statements in `body` (`return None` where it does not match), the
+    /// registers it binds in `bound`.
+    #[allow(clippy::too_many_arguments)]
+    fn nat_match_part(
+        &self,
+        d: &Dm,
+        ix: usize,
+        pat: &Build,
+        t: TokenStream,
+        regs: &Regs,
+        bound: &mut Vec<(Reg, Ty)>,
+        body: &mut Vec<TokenStream>,
+        n: &mut usize,
+        depth: usize,
+    ) -> N<()> {
+        if depth > crate::mir::MAX_DEPTH {
+            return Err("an in_arg pattern too deep".into());
+        }
+        match pat {
+            Build::Reg(r) => {
+                let held = regs
+                    .get(r)
+                    .map(|(x, ty)| (x.clone(), ty.clone()))
+                    .or_else(|| {
+                        bound
+                            .iter()
+                            .find(|(x, _)| x == r)
+                            .map(|(x, ty)| (reg(*x), ty.clone()))
+                    });
+                let init = d.plans[ix]
+                    .inits
+                    .iter()
+                    .find(|(x, _)| x == r)
+                    .map(|(_, i)| i);
+                match held {
+                    // Held already: compared (unified, both ground).
+                    Some((x, ty)) => {
+                        let rty = super::rust_ty(&ty)?;
+                        let held = quote!((*::std::borrow::Borrow::<#rty>::borrow(&#x)));
+                        body.push(match ty {
+                            Ty::Float => quote! {
+                                if cx.to_native::<f64>(#t)?.to_bits() != #held.to_bits() {
+                                    return None;
+                                }
+                            },
+                            Ty::Int | Ty::Sym | Ty::List(_) => quote! {
+                                if cx.to_native::<#rty>(#t)? != #held {
+                                    return None;
+                                }
+                            },
+                            t2 if super::held_as_val(&t2) => quote! {
+                                if cx.to_native::<#rty>(#t)? != #held {
+                                    return None;
+                                }
+                            },
+                            _ => return Err("an in_arg pattern's variable held as a term".into()),
+                        });
+                    }
+                    None if !matches!(init, Some(Init::Fresh)) => {
+                        return Err("an in_arg pattern's variable is not held".into());
+                    }
+                    // Met only here (`_`): matches anything, not read.
+                    None if d.types[ix]
+                        .unbound
+                        .get(*r as usize)
+                        .copied()
+                        .unwrap_or(false) => {}
+                    None => {
+                        let ty = d.types[ix].regs[*r as usize].ty.clone();
+                        let rty = super::rust_ty(&ty)?;
+                        let x = reg(*r);
+                        body.push(quote!(let #x = cx.to_native::<#rty>(#t)?;));
+                        bound.push((*r, ty));
+                    }
+                }
+            }
+            Build::Const(c) => match self.store.value(*c) {
+                sitlog_runtime::Value::Atom(a) => {
+                    let a = self.atom_native(a)?;
+                    body.push(quote! {
+                        if s.atom_of(#t) != Some(#a) {
+                            return None;
+                        }
+                    });
+                }
+                sitlog_runtime::Value::Int(i) => {
+                    let i = Literal::i64_suffixed(i);
+                    body.push(quote! {
+                        if s.int_of(#t) != Some(#i) {
+                            return None;
+                        }
+                    });
+                }
+                _ => return Err("an in_arg pattern's constant is not native".into()),
+            },
+            Build::Compound(f, args) => {
+                let parts: Vec<_> = (0..args.len())
+                    .map(|k| format_ident!("m{}", *n + k))
+                    .collect();
+                *n += args.len();
+                let fname = self.functor_native(*f)?;
+                let len = Literal::usize_unsuffixed(args.len());
+                body.push(quote! {
+                    let &[#(#parts),*] = s.compound_args(#t, #fname, #len)? else {
+                        return None;
+                    };
+                });
+                for (a, part) in args.iter().zip(parts) {
+                    self.nat_match_part(d, ix, a, quote!(#part), regs, bound, body, n, depth + 1)?;
+                }
+            }
+        }
+        Ok(())
     }
 
     /// In `nat_entry`: the in_arg of situation `ix` (where the machine
