@@ -30,6 +30,7 @@ use crate::mir::{Build, Cond, Ev, Init, Next, Reg};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_runtime::native::Ty;
+use sitlog_syntax::atoms;
 
 impl Gen<'_> {
     /// `let r<r> = <the pipe as ty>;`, else the situation handed over.
@@ -303,6 +304,8 @@ impl Gen<'_> {
             let pipe_out = if matches!(e, Ev::If(..)) {
                 let e = &v.e;
                 quote!(let out_value = #e; let pipe_out = cx.term(&out_value);)
+            } else if let Some(t) = self.nat_out_term(d, cur, e, regs)? {
+                quote!(let pipe_out = #t;)
             } else {
                 let v = super::place(&v);
                 quote!(let pipe_out = cx.term(&#v);)
@@ -323,6 +326,41 @@ impl Gen<'_> {
 }
 
 impl Gen<'_> {
+    /// An arc's out_arg `name(A, B, ..)` (not a list cell, evaluating its
+    /// arguments only) of native values read in place: made a term at
+    /// once from them (`Cx::build_of`), not a `Val` first (`M-L` of an int
+    /// and a `Val`: no `Rc` allocated and dropped per visit); the same
+    /// term. `None`: another out_arg, or a part that reads `cx`.
+    fn nat_out_term(&self, d: &Dm, cur: usize, e: &Ev, regs: &Regs) -> N<Option<TokenStream>> {
+        let (name, parts) = match e {
+            Ev::Compound(name, args) if *name != atoms::DOT => (
+                *name,
+                args.iter()
+                    .map(|a| self.nat_ev_value(d, cur, a, regs))
+                    .collect::<N<Vec<_>>>()?,
+            ),
+            Ev::Built(Build::Compound(name, args)) if *name != atoms::DOT => (
+                *name,
+                args.iter()
+                    .map(|a| self.nat_value(a, regs))
+                    .collect::<N<Vec<_>>>()?,
+            ),
+            _ => return Ok(None),
+        };
+        let cx = proc_macro2::Ident::new("cx", proc_macro2::Span::call_site());
+        if parts.iter().any(|p| mentions(&p.e, &cx) > 0)
+            || !sitlog_runtime::eval::evaluates_arguments_only(name, parts.len())
+        {
+            return Ok(None);
+        }
+        let f = self.functor_native(name)?;
+        let ps = parts.iter().map(|p| {
+            let x = super::place(p);
+            quote!(&#x)
+        });
+        Ok(Some(quote!(cx.build_of(#f, &[#(#ps),*]))))
+    }
+
     /// [`Gen::nat_next_out`] for an out_arg the evaluator computes
     /// (`apply(f(X), [X])`, `get(g, _)` of a global): its term built from
     /// native values before the next situation (building has no effect),
