@@ -32,11 +32,12 @@ diag_mod(count,
   []
 ).
 
-% `shape(P)`: the pipe set to P, matched by the callee's `A-B` (a pipe of
-% another shape: the machine's error, D-8/E14), then by the caller's.
+% `shape(P)`: the pipe set to P, matched by the recursive situation's
+% `A-B` and the callee's (a pipe of another shape: the machine's error,
+% D-8/E14), then by the caller's.
 diag_mod(shape(P),
   [ [ id ==> s0, type ==> neutral, out_arg ==> P, arcs ==> [ empty : empty => s1 ] ],
-    [ id ==> s1, type ==> recursive, embedded_dm ==> split,
+    [ id ==> s1, type ==> recursive, in_arg ==> A-B, out_arg ==> A-B, embedded_dm ==> split,
       arcs ==> [ lt : empty => s2, ge : empty => s2 ] ],
     [ id ==> s2, type ==> neutral, in_arg ==> A-B, out_arg ==> B-A,
       arcs ==> [ empty : empty => (A == B -> s3 ; otherwise -> s3) ] ],

@@ -2247,7 +2247,13 @@ impl Gen<'_> {
             }
         }
         // An in_arg that is a pattern: matched against the pipe natively.
+        // Not in a recursive situation: a waiting frame made the
+        // machine's gives its instance the pipe only as a register
+        // (`Cx::wait_template`), and the exit arcs read its variables.
         if let Some((pat, true, _)) = &plan.in_arg {
+            if matches!(plan.kind, KindPlan::Recursive { .. }) {
+                return Err("its in_arg is a pattern, in a recursive situation".into());
+            }
             stmts.push(self.nat_pipe_match(d, ix, pat, &mut regs)?);
         }
         if let Some(prog) = &plan.prog {

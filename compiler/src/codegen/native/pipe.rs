@@ -19,6 +19,12 @@
 //! global) is built from native values and evaluated after the next
 //! situation, the machine entered (`Gen::nat_next_out_eval`).
 //!
+//! An in_arg that is a pattern (`N-L`, `f(A, [B|C])`) is matched where the
+//! pipe's term is (`Gen::nat_pipe_match`): its variables become registers
+//! of the visit, and a pipe it does not take natively hands the visit to
+//! the machine, nothing done, which runs it from the template (a mismatch
+//! is the machine's error, D-8 as E14 fixes it).
+//!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
 //! where the machine enters native code, `nat_entry` checks the
