@@ -1463,6 +1463,7 @@ fn in_arg_patterns_agree() {
         "shape(_-2)",
         "shape(1-_)",
         "shape(_)",
+        "odd",
     ] {
         if main.contains('_') {
             agree_modulo_vars(m::program(), &ir, main);

@@ -64,3 +64,14 @@ diag_mod(entry,
   ],
   []
 ).
+
+% `odd`: an int pipe matched by `N-L`, which can never match (its
+% variables typed `never`): the machine's error.
+diag_mod(odd,
+  [ [ id ==> o0, type ==> neutral, out_arg ==> 5, arcs ==> [ empty : empty => o1 ] ],
+    [ id ==> o1, type ==> neutral, in_arg ==> N-L, out_arg ==> L,
+      arcs ==> [ empty : empty => (N == 1 -> o2 ; otherwise -> o2) ] ],
+    [ id ==> o2, type ==> final ]
+  ],
+  []
+).
