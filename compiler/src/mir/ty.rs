@@ -63,8 +63,9 @@
 //!   expectation, the action's elements in order, the next situation,
 //!   out_arg): matching an exit arc's expectation against the callee's
 //!   final ids (`found(P)` gives `P` the type of `found`'s argument; a
-//!   final that cannot match adds nothing), an in_arg pattern of
-//!   variables only matching the pipe's shape, `get`/`inc`/`is` into a
+//!   final that cannot match adds nothing), an in_arg pattern (its
+//!   variables the parts of the pipe's type there: a pipe it does not
+//!   match is an error, D-8 as E14 fixes it), `get`/`inc`/`is` into a
 //!   variable not made yet, the left side of `is` (an int or float when
 //!   its operands are, else `ground`: the evaluator's number), a
 //!   callee's final `diag_mod` (an output argument, below), or a boundary
@@ -1540,20 +1541,35 @@ impl<'a> State<'a> {
         let mut bound: Vec<Reg> = Vec::new();
         if let Some((b, unify, r)) = &p.in_arg {
             if *unify {
-                // A pattern of distinct fresh variables matching the
-                // pipe's shape binds them; one that may not unify is
-                // skipped (D-8) and leaves them unbound.
+                // The pattern unified with the pipe binds its fresh
+                // variables to the pipe's parts: where it does not unify
+                // the run ends there, an error (D-8 as fixed by E14,
+                // `Machine::unify_in_arg`), so past it they hold values of
+                // the pipe's type, whatever the pattern's shape (constants,
+                // nested compounds, a variable twice or shared with the id
+                // or a parameter: those are compared, not bound). A
+                // variable met only there (`_`) holds no value; a part of
+                // the pipe not known yet (`never`, the fixpoint has not
+                // reached it) binds nothing so far, nor does a pipe the
+                // pattern can never match (nothing after it runs).
                 let mut regs = Vec::new();
-                let vars_only = pattern_regs(b, &mut regs, 0)
-                    && regs.iter().all(|r| fresh.contains(r))
-                    && distinct(&regs);
-                if vars_only && self.can_match(b, &pipe.ty, 0) && shape_certain(b, &pipe.ty) {
-                    self.bind(d, s, b, &pipe, &fresh, 0);
-                    bound.extend(regs);
+                pattern_regs(b, &mut regs, 0);
+                let live: Vec<Reg> = regs
+                    .into_iter()
+                    .filter(|r| fresh.contains(r))
+                    .filter(|r| self.occ[d][s].get(*r as usize).is_some_and(|&n| n > 1))
+                    .collect();
+                if self.can_match(b, &pipe.ty, 0) {
+                    self.bind(d, s, b, &pipe, &live, 0);
                 }
+                bound.extend(live);
             }
-            let t = self.build_ty(d, s, b);
-            let t = if *unify { t } else { pipe.clone().join(&t) };
+            // Unified, the in_arg is the pipe's value.
+            let t = if *unify {
+                pipe.clone()
+            } else {
+                pipe.clone().join(&self.build_ty(d, s, b))
+            };
             self.def(d, s, *r, &t);
         }
         // `is` in prog binds its variable before the arcs read it.
@@ -2333,25 +2349,6 @@ fn pattern_regs(b: &Build, out: &mut Vec<Reg>, depth: usize) -> bool {
             }
             all
         }
-    }
-}
-
-fn distinct(regs: &[Reg]) -> bool {
-    let set: HashSet<&Reg> = regs.iter().collect();
-    set.len() == regs.len()
-}
-
-/// Whether every value of type `v` matches `pat` (a pattern of distinct
-/// variables): its compounds are exactly the type's shape.
-fn shape_certain(pat: &Build, v: &Ty) -> bool {
-    match (pat, v) {
-        (Build::Reg(_), _) => true,
-        (Build::Compound(name, args), Ty::Tagged(f, ts)) => {
-            name == f
-                && args.len() == ts.len()
-                && args.iter().zip(ts.iter()).all(|(a, t)| shape_certain(a, t))
-        }
-        _ => false,
     }
 }
 

@@ -1540,3 +1540,69 @@ fn shapes_written_from_the_issue_agree() {
         );
     }
 }
+
+mod pipe_npipe14 {
+    pub mod pattern {
+        sitlog_macros::include_dm!("typed/pipe_pattern");
+    }
+}
+
+/// in_arg patterns matched against the pipe by native code (`npipe14`):
+/// a pair read by a callee and by a neutral situation, nested patterns
+/// (`f(A, [B|C])`), a pattern sharing a variable with the situation's id
+/// and one sharing a DM parameter, compiled and plans against the
+/// interpreter: patterns that match, pipes of another shape (the machine's
+/// error, D-8 as E14 fixes it), pipes that are not ground (unbound parts:
+/// the machine unifies), parts of other types (an atom or a float for a
+/// count, a compound), a pipe from the command line.
+#[test]
+fn in_arg_patterns_agree() {
+    use pipe_npipe14::pattern as m;
+    let ir = interpreter("typed/pipe_pattern");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    for main in [
+        "main(3, a)",
+        "main(1, stop)",
+        "main(0, x)",
+        "main(2, [])",
+        "main(x, a)",
+        "main(2.5, a)",
+        "main(f(1), b)",
+        "main(3, _)",
+        "main(_, a)",
+        "main(2, f(_))",
+        "shape(1-2)",
+        "shape(2-1)",
+        "shape(a-a)",
+        "shape(1.5-2)",
+        "shape(foo)",
+        "shape(f(1, 2))",
+        "shape(1-2-3)",
+        "shape(_-2)",
+        "shape(1-_)",
+        "shape(_)",
+        "odd",
+    ] {
+        if main.contains('_') {
+            agree_modulo_vars(m::program(), &ir, main);
+            agree_modulo_vars(&plans, &ir, main);
+        } else {
+            agree(m::program(), &ir, main, "");
+            agree(&plans, &ir, main, "");
+        }
+    }
+    for pipe in [
+        "f(1, [yes])",
+        "f(1, [no, 2])",
+        "f(a, [yes|b])",
+        "f(g(x), [yes, [1]])",
+        "f(1, [])",
+        "f(1, x)",
+        "g(1, [yes])",
+        "x",
+        "f(1, [_])",
+    ] {
+        agree_piped(m::program(), &ir, "entry", Some(pipe), "");
+        agree_piped(&plans, &ir, "entry", Some(pipe), "");
+    }
+}

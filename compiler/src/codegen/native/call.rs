@@ -1601,7 +1601,7 @@ fn inert(b: &Build) -> bool {
 /// (position, register) that are a fresh variable of the situation, each
 /// written once in the call, as a whole argument (`J` in `add(I, 1, J)`),
 /// and nothing of the visit sets before the call (no `prog`, not the
-/// in_arg's register). A fresh variable written twice (`f(J, J)`) or
+/// in_arg's register nor a variable of an in_arg pattern). A fresh variable written twice (`f(J, J)`) or
 /// inside an argument (`f(g(J))`) is none: such a call stays the
 /// machine's (its arguments do not convert).
 pub(super) fn call_outputs(d: &Dm, ix: usize) -> Vec<(usize, Reg)> {
@@ -1635,6 +1635,10 @@ pub(super) fn call_outputs(d: &Dm, ix: usize) -> Vec<(usize, Reg)> {
                     .iter()
                     .any(|(x, i)| x == r && matches!(i, Init::Fresh))
                     && in_arg != Some(*r)
+                    && plan
+                        .in_arg
+                        .as_ref()
+                        .is_none_or(|(b, _, _)| count(b, *r) == 0)
                     && args.iter().map(|b| count(b, *r)).sum::<usize>() == 1 =>
             {
                 Some((k, *r))

@@ -2291,9 +2291,6 @@ impl Gen<'_> {
     fn native_visit_arcs(&self, d: &Dm, ix: usize, fields: &[(Reg, Ty)]) -> N<TokenStream> {
         let plan = d.plans[ix];
         let st = &d.types[ix];
-        if matches!(plan.in_arg, Some((_, true, _))) {
-            return Err("its in_arg is a pattern (the pipe)".into());
-        }
         // Where each register's value lives: a field, a parameter, a local.
         let mut regs: Regs = fields
             .iter()
@@ -2322,6 +2319,16 @@ impl Gen<'_> {
             if let Some(at) = regs.get(src).cloned() {
                 regs.insert(*r, at);
             }
+        }
+        // An in_arg that is a pattern: matched against the pipe natively.
+        // Not in a recursive situation: a waiting frame made the
+        // machine's gives its instance the pipe only as a register
+        // (`Cx::wait_template`), and the exit arcs read its variables.
+        if let Some((pat, true, _)) = &plan.in_arg {
+            if matches!(plan.kind, KindPlan::Recursive { .. }) {
+                return Err("its in_arg is a pattern, in a recursive situation".into());
+            }
+            stmts.push(self.nat_pipe_match(d, ix, pat, &mut regs)?);
         }
         if let Some(prog) = &plan.prog {
             stmts.push(self.nat_prog(d, ix, prog, &mut regs)?);

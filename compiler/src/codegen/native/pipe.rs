@@ -19,6 +19,12 @@
 //! global) is built from native values and evaluated after the next
 //! situation, the machine entered (`Gen::nat_next_out_eval`).
 //!
+//! An in_arg that is a pattern (`N-L`, `f(A, [B|C])`) is matched where the
+//! pipe's term is (`Gen::nat_pipe_match`): its variables become registers
+//! of the visit, and a pipe it does not take natively hands the visit to
+//! the machine, nothing done, which runs it from the template (a mismatch
+//! is the machine's error, D-8 as E14 fixes it).
+//!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
 //! where the machine enters native code, `nat_entry` checks the
@@ -30,6 +36,7 @@ use crate::mir::{Build, Cond, Ev, Init, Next, Reg};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_runtime::native::Ty;
+use sitlog_syntax::atoms;
 
 impl Gen<'_> {
     /// `let r<r> = <the pipe as ty>;`, else the situation handed over.
@@ -71,6 +78,180 @@ impl Gen<'_> {
                 ));
             };
         })
+    }
+
+    /// An in_arg that is a pattern (`in_arg ==> N-L`, `f(A, [B|C])`)
+    /// unified with the pipe, natively: the pipe's term taken apart where
+    /// it is (`Store::compound_args`, no value built for the whole), each
+    /// variable met first converted to its register's type (`mir::ty`
+    /// types it by the pipe's type there), a constant, a variable met
+    /// again or one the visit already holds (the id's, a parameter's)
+    /// compared with `==` (Prolog's `==` on ground values, which is their
+    /// unification), a variable met only here (`_`) not read. Anything
+    /// else (another shape, a part not of its type or not ground) hands
+    /// the visit to the machine before anything of it is done: it runs it
+    /// from the situation's template, unifying as the interpreter does,
+    /// and a pipe the pattern does not match is its error (D-8 as E14
+    /// fixes it). The pattern's variables are registers of the visit.
+    pub(super) fn nat_pipe_match(
+        &self,
+        d: &Dm,
+        ix: usize,
+        pat: &Build,
+        regs: &mut Regs,
+    ) -> N<TokenStream> {
+        let mut body = Vec::new();
+        let mut bound = Vec::new();
+        let mut n = 0;
+        self.nat_match_part(
+            d,
+            ix,
+            pat,
+            quote!(pipe_in),
+            regs,
+            &mut bound,
+            &mut body,
+            &mut n,
+            0,
+        )?;
+        let names: Vec<_> = bound.iter().map(|(r, _)| reg(*r)).collect();
+        for (r, ty) in bound {
+            regs.insert(r, (reg(r), ty));
+        }
+        let hand = &d.hand;
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        let cur = Literal::u32_unsuffixed(ix as u32);
+        Ok(quote! {
+            let pipe_in = cx.store_ref().deref(cx.pipe());
+            let pipe_parts = (|| {
+                let s = cx.store_ref();
+                #(#body)*
+                Some((#(#names,)*))
+            })();
+            let Some((#(#names,)*)) = pipe_parts else {
+                // Not matched natively: the machine runs the visit.
+                #hand
+                #(#id_stmts)*
+                return cx.counted_template(count, #cur, #id);
+            };
+        })
+    }
+
+    /// [`Gen::nat_pipe_match`] of the part `pat` of the pattern against
+    /// the term `t` (an identifier of the closure that matches): its
+    /// statements in `body` (`return None` where it does not match), the
+    /// registers it binds in `bound`.
+    #[allow(clippy::too_many_arguments)]
+    fn nat_match_part(
+        &self,
+        d: &Dm,
+        ix: usize,
+        pat: &Build,
+        t: TokenStream,
+        regs: &Regs,
+        bound: &mut Vec<(Reg, Ty)>,
+        body: &mut Vec<TokenStream>,
+        n: &mut usize,
+        depth: usize,
+    ) -> N<()> {
+        if depth > crate::mir::MAX_DEPTH {
+            return Err("an in_arg pattern too deep".into());
+        }
+        match pat {
+            Build::Reg(r) => {
+                let held = regs
+                    .get(r)
+                    .map(|(x, ty)| (x.clone(), ty.clone()))
+                    .or_else(|| {
+                        bound
+                            .iter()
+                            .find(|(x, _)| x == r)
+                            .map(|(x, ty)| (reg(*x), ty.clone()))
+                    });
+                let init = d.plans[ix]
+                    .inits
+                    .iter()
+                    .find(|(x, _)| x == r)
+                    .map(|(_, i)| i);
+                match held {
+                    // Held already: compared (unified, both ground).
+                    Some((x, ty)) => {
+                        let rty = super::rust_ty(&ty)?;
+                        let held = quote!((*::std::borrow::Borrow::<#rty>::borrow(&#x)));
+                        body.push(match ty {
+                            Ty::Float => quote! {
+                                if cx.to_native::<f64>(#t)?.to_bits() != #held.to_bits() {
+                                    return None;
+                                }
+                            },
+                            Ty::Int | Ty::Sym | Ty::List(_) => quote! {
+                                if cx.to_native::<#rty>(#t)? != #held {
+                                    return None;
+                                }
+                            },
+                            t2 if super::held_as_val(&t2) => quote! {
+                                if cx.to_native::<#rty>(#t)? != #held {
+                                    return None;
+                                }
+                            },
+                            _ => return Err("an in_arg pattern's variable held as a term".into()),
+                        });
+                    }
+                    None if !matches!(init, Some(Init::Fresh)) => {
+                        return Err("an in_arg pattern's variable is not held".into());
+                    }
+                    // Met only here (`_`): matches anything, not read.
+                    None if d.types[ix]
+                        .unbound
+                        .get(*r as usize)
+                        .copied()
+                        .unwrap_or(false) => {}
+                    None => {
+                        let ty = d.types[ix].regs[*r as usize].ty.clone();
+                        let rty = super::rust_ty(&ty)?;
+                        let x = reg(*r);
+                        body.push(quote!(let #x = cx.to_native::<#rty>(#t)?;));
+                        bound.push((*r, ty));
+                    }
+                }
+            }
+            Build::Const(c) => match self.store.value(*c) {
+                sitlog_runtime::Value::Atom(a) => {
+                    let a = self.atom_native(a)?;
+                    body.push(quote! {
+                        if s.atom_of(#t) != Some(#a) {
+                            return None;
+                        }
+                    });
+                }
+                sitlog_runtime::Value::Int(i) => {
+                    let i = Literal::i64_suffixed(i);
+                    body.push(quote! {
+                        if s.int_of(#t) != Some(#i) {
+                            return None;
+                        }
+                    });
+                }
+                _ => return Err("an in_arg pattern's constant is not native".into()),
+            },
+            Build::Compound(f, args) => {
+                let parts: Vec<_> = (0..args.len())
+                    .map(|k| format_ident!("m{}", *n + k))
+                    .collect();
+                *n += args.len();
+                let fname = self.functor_native(*f)?;
+                let len = Literal::usize_unsuffixed(args.len());
+                body.push(quote! {
+                    let &[#(#parts),*] = s.compound_args(#t, #fname, #len)? else {
+                        return None;
+                    };
+                });
+                for (a, part) in args.iter().zip(parts) {
+                    self.nat_match_part(d, ix, a, quote!(#part), regs, bound, body, n, depth + 1)?;
+                }
+            }
+        }
+        Ok(())
     }
 
     /// In `nat_entry`: the in_arg of situation `ix` (where the machine
@@ -129,6 +310,8 @@ impl Gen<'_> {
             let pipe_out = if matches!(e, Ev::If(..)) {
                 let e = &v.e;
                 quote!(let out_value = #e; let pipe_out = cx.term(&out_value);)
+            } else if let Some(t) = self.nat_out_term(d, cur, e, regs)? {
+                quote!(let pipe_out = #t;)
             } else {
                 let v = super::place(&v);
                 quote!(let pipe_out = cx.term(&#v);)
@@ -149,6 +332,41 @@ impl Gen<'_> {
 }
 
 impl Gen<'_> {
+    /// An arc's out_arg `name(A, B, ..)` (not a list cell, evaluating its
+    /// arguments only) of native values read in place: made a term at
+    /// once from them (`Cx::build_of`), not a `Val` first (`M-L` of an int
+    /// and a `Val`: no `Rc` allocated and dropped per visit); the same
+    /// term. `None`: another out_arg, or a part that reads `cx`.
+    fn nat_out_term(&self, d: &Dm, cur: usize, e: &Ev, regs: &Regs) -> N<Option<TokenStream>> {
+        let (name, parts) = match e {
+            Ev::Compound(name, args) if *name != atoms::DOT => (
+                *name,
+                args.iter()
+                    .map(|a| self.nat_ev_value(d, cur, a, regs))
+                    .collect::<N<Vec<_>>>()?,
+            ),
+            Ev::Built(Build::Compound(name, args)) if *name != atoms::DOT => (
+                *name,
+                args.iter()
+                    .map(|a| self.nat_value(a, regs))
+                    .collect::<N<Vec<_>>>()?,
+            ),
+            _ => return Ok(None),
+        };
+        let cx = proc_macro2::Ident::new("cx", proc_macro2::Span::call_site());
+        if parts.iter().any(|p| mentions(&p.e, &cx) > 0)
+            || !sitlog_runtime::eval::evaluates_arguments_only(name, parts.len())
+        {
+            return Ok(None);
+        }
+        let f = self.functor_native(name)?;
+        let ps = parts.iter().map(|p| {
+            let x = super::place(p);
+            quote!(&#x)
+        });
+        Ok(Some(quote!(cx.build_of(#f, &[#(#ps),*]))))
+    }
+
     /// [`Gen::nat_next_out`] for an out_arg the evaluator computes
     /// (`apply(f(X), [X])`, `get(g, _)` of a global): its term built from
     /// native values before the next situation (building has no effect),
