@@ -1212,6 +1212,37 @@ impl Gen<'_> {
                     }
                     v.ty
                 }
+                // `get(v, X)` with `X` made before (bound, or an arc's
+                // variable the machine's `get` binds): `v`'s value unified
+                // with `X` (`Gen::nat_get_unify`), a global's read as for
+                // a fresh `X`, a local's in the frame.
+                Ev::VarOp {
+                    op,
+                    name,
+                    arg: Build::Reg(r),
+                } if *op == atoms::GET => {
+                    let got = if d.declares_local(*name) {
+                        let li = d
+                            .locals
+                            .iter()
+                            .position(|(l, _)| l == name)
+                            .ok_or("`get` of a local the frame does not hold")?;
+                        let l = format_ident!("l{}", li);
+                        V {
+                            e: quote!(#l.clone()),
+                            ty: d.locals[li].1.clone(),
+                        }
+                    } else {
+                        let (gty, e) = self.nat_global_op(*op, *name, None, arc_ix, &enter)?;
+                        V { e, ty: gty }
+                    };
+                    let at = quote!(Some(#arc));
+                    let v =
+                        self.nat_get_unify(d, ix, *name, *r, got, regs, &mut stmts, &enter, &at)?;
+                    let e = v.e;
+                    stmts.push(quote!(let #x = #e;));
+                    v.ty
+                }
                 Ev::VarOpFresh { op, name, dst } => {
                     let li = d
                         .locals
@@ -1341,13 +1372,19 @@ impl Gen<'_> {
     /// `set(g, k)` as written (a ground constant), `g` no declared local of
     /// DM `d` and `k` an atom or a number: `g` and `k`.
     fn ground_global_set(&self, d: &Dm, t: Term) -> Option<(sitlog_syntax::Atom, Term)> {
+        self.ground_set(t).filter(|(g, _)| !d.declares_local(*g))
+    }
+
+    /// `set(v, k)` as written (a ground constant), `k` an atom or a
+    /// number: `v` and `k`.
+    fn ground_set(&self, t: Term) -> Option<(sitlog_syntax::Atom, Term)> {
         let (name, args) = match self.store.value(t) {
             sitlog_runtime::Value::Compound(name, args) if args.len() == 2 => (name, args),
             _ => return None,
         };
         let (g, k) = (args[0], args[1]);
         let g = self.store.atom_of(g)?;
-        if name != atoms::SET || d.declares_local(g) {
+        if name != atoms::SET {
             return None;
         }
         match self.store.value(k) {
