@@ -1153,6 +1153,33 @@ fn globals_on_the_fast_path_agree() {
     }
 }
 
+mod set_local_nget14 {
+    pub mod set_local {
+        sitlog_macros::include_dm!("typed/locals/set_local");
+    }
+}
+
+/// `set(l, ..)` of locals natively (`nget14`): constants and a value the
+/// expectation binds, in neutral arcs and callers' exit arcs; the local
+/// then counted, a value that is no number (an atom, a compound, a list)
+/// the machine's error there, a float counted as one.
+#[test]
+fn set_of_a_local_natively_agrees() {
+    let ir = interpreter("typed/locals/set_local");
+    for main in [
+        "main(5, 1)",
+        "main(2, 1)",
+        "main(5, x)",
+        "main(5, 2.5)",
+        "main(0, f(x))",
+        "main(5, [a])",
+        "main(x, 1)",
+    ] {
+        agree(set_local_nget14::set_local::program(), &ir, main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
+    }
+}
+
 mod get_binds_nget14 {
     pub mod get_binds {
         sitlog_macros::include_dm!("typed/globals/get_binds");

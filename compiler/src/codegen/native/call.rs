@@ -1144,6 +1144,8 @@ impl Gen<'_> {
 
     /// An exit arc's action (and a perceptual or neutral arc's, when it
     /// has only these): `inc`/`get` of a local into a fresh variable,
+    /// `get(v, X)` with `X` made before (unified), `set` of a local the
+    /// frame holds or of a global,
     /// `V is E` of ints into a fresh variable, atoms and numbers performed
     /// (skipped where the run's actions ignore them).
     pub(super) fn nat_exit_action(
@@ -1242,6 +1244,29 @@ impl Gen<'_> {
                     let e = v.e;
                     stmts.push(quote!(let #x = #e;));
                     v.ty
+                }
+                // `set(l, V)` of a local the frame holds, `V` a native value
+                // of its type (stored as written, D-38: the field written;
+                // `set` gives the value).
+                Ev::VarOp { op, name, arg } if *op == atoms::SET => {
+                    let v = self.nat_value(arg, regs)?;
+                    let k = match arg {
+                        Build::Const(t) => self.store.atom_of(*t),
+                        _ => None,
+                    };
+                    self.nat_local_set(d, *name, &x, v, k, &mut stmts, &mut const_atom)?
+                }
+                // A ground `set(l, k)` of a local (`set(n, 0)`), a constant
+                // the MIR gives the evaluator: the same.
+                Ev::Eval(Build::Const(t))
+                    if self
+                        .ground_set(*t)
+                        .is_some_and(|(l, _)| d.declares_local(l)) =>
+                {
+                    let (name, k) = self.ground_set(*t).ok_or("not a `set`")?;
+                    let v = self.nat_value(&Build::Const(k), regs)?;
+                    let a = self.store.atom_of(k);
+                    self.nat_local_set(d, name, &x, v, a, &mut stmts, &mut const_atom)?
                 }
                 Ev::VarOpFresh { op, name, dst } => {
                     let li = d
@@ -1363,10 +1388,60 @@ impl Gen<'_> {
                     if !(run.quiet_empty && #x == atoms::EMPTY) { #perform }
                 },
                 Ty::Term | Ty::List(_) => perform,
+                // A `ground` value (`set(m, W)`, `W` a parameter's value):
+                // a number or `empty` skipped where the run's actions
+                // ignore it, as for a value of those types.
+                Ty::Ground => quote! {
+                    let skip = match &#x {
+                        Val::Int(_) | Val::Float(_) => run.quiet_numbers,
+                        Val::Sym(s) => run.quiet_empty && *s == atoms::EMPTY,
+                        _ => false,
+                    };
+                    if !skip { #perform }
+                },
                 _ => return Err("an action of this type".into()),
             });
         }
         Ok(quote!(#(#stmts)* #(#performs)*))
+    }
+
+    /// `set(l, V)` of local `name` of DM `d` held in the frame, `v` the
+    /// native value `V` (`k`: the atom it is, if a constant one): the field
+    /// written with `v` converted to the local's type (not native where it
+    /// does not convert: a value the local's type does not hold), `x`
+    /// the action's value (`set` gives `V`); its type.
+    #[allow(clippy::too_many_arguments)]
+    fn nat_local_set(
+        &self,
+        d: &Dm,
+        name: sitlog_syntax::Atom,
+        x: &Ident,
+        v: V,
+        k: Option<sitlog_syntax::Atom>,
+        stmts: &mut Vec<TokenStream>,
+        const_atom: &mut Option<sitlog_syntax::Atom>,
+    ) -> N<Ty> {
+        let li = d
+            .locals
+            .iter()
+            .position(|(l, _)| *l == name)
+            .ok_or("`set` of a local the frame does not hold")?;
+        let l = format_ident!("l{}", li);
+        let lty = &d.locals[li].1;
+        let e = &v.e;
+        let to = coerce(
+            &V {
+                e: quote!(#x.clone()),
+                ty: v.ty.clone(),
+            },
+            lty,
+        )?;
+        stmts.push(quote! {
+            let #x = #e;
+            *#l = #to;
+        });
+        *const_atom = k;
+        Ok(v.ty)
     }
 
     /// `set(g, k)` as written (a ground constant), `g` no declared local of
