@@ -1368,8 +1368,19 @@ impl Gen<'_> {
                     cx.perform(t, Some(#arc))?;
                 }
             };
+            // A number or a constant atom other than `empty` (never a
+            // list): handed to the effector without entering the machine
+            // (`Cx::perform_value`); the situation entered (its id built)
+            // only where the effector fails, for its error.
+            let perform_value = quote! {
+                let t = cx.term(&#x);
+                if let Err(e) = cx.perform_value(t) {
+                    #enter
+                    return Err(cx.action_failed(e, Some(#arc)));
+                }
+            };
             performs.push(match ty {
-                Ty::Int | Ty::Float => quote!(if !run.quiet_numbers { #perform }),
+                Ty::Int | Ty::Float => quote!(if !run.quiet_numbers { #perform_value }),
                 Ty::Sym if const_atom == Some(atoms::EMPTY) && !list => {
                     let id_arg = super::atom_arg(&id);
                     quote! {
@@ -1383,7 +1394,7 @@ impl Gen<'_> {
                 Ty::Sym if const_atom == Some(atoms::EMPTY) => {
                     quote!(if !run.quiet_empty { #perform })
                 }
-                Ty::Sym if const_atom.is_some() => perform,
+                Ty::Sym if const_atom.is_some() => perform_value,
                 Ty::Sym => quote! {
                     if !(run.quiet_empty && #x == atoms::EMPTY) { #perform }
                 },
