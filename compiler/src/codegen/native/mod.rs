@@ -121,7 +121,11 @@
 //!   the start of a visit only when code uses it before declaring it. In
 //!   an expression (a comparison's operand, an out_arg), `get(v, _)` of a
 //!   local held in the frame or of a global is the value read
-//!   (`Gen::nat_var_get`), its `_` left unbound (nothing reads it).
+//!   (`Gen::nat_var_get`), its `_` left unbound (nothing reads it). A
+//!   condition's `get(v, D)` side (and an exit action's `get(v, X)`) is
+//!   unified with its variable as the machine's `get` does: `D` bound to
+//!   a register the code after it reads, or compared where it was bound
+//!   before, the machine's error where they differ (`Gen::nat_get_unify`).
 //!
 //! - *frames and calls* ([`frame`], [`call`]): each DM with native code
 //!   has a `Frame` (parameters, locals, its `Nat`); the runtime's
