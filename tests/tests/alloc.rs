@@ -130,9 +130,11 @@ fn transitions_allocate_nothing_in_steady_state() {
     let typed = measure(typed_counter::program());
     // Shape (c) (issue 37): N calls, stopped long before the limit.
     // Printed, not asserted: the ticks here are its performed numbers
-    // (`J` of each exit arc), and to perform one native code enters the
-    // machine, building the situation's id in the store at every call
-    // (performance.md, `nshape13`'s section).
+    // (`J` of each exit arc, handed to the effector without entering the
+    // machine since `nget14`) and the callee's `empty` (this effector does
+    // not ignore it), performed with the caller's native frame handed over
+    // first: about one allocation a call (performance.md, `nshape13`'s and
+    // `nget14`'s sections).
     let calls = measure_from(c_final_by_inarg::program(), "relay(1000000000)");
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("dms/ground_loop");
     let (checked, _) = sitlog_compiler::check_path(&dir).unwrap();

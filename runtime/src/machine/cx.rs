@@ -1012,6 +1012,25 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         Ok(())
     }
 
+    /// Performs `action`, a value native code computed that is neither a
+    /// list nor `empty` (a number, another atom), as [`Cx::perform`] does,
+    /// without entering the machine: the effector is handed the value and
+    /// nothing else, so native code need not build the situation's id nor
+    /// hand its frames over. `Err`: the effector's message; native code
+    /// then enters the situation and reports it ([`Cx::action_failed`]),
+    /// the error [`Cx::perform`] would have given.
+    #[inline]
+    pub fn perform_value(&mut self, action: Term) -> Result<(), String> {
+        self.actions.perform(&mut self.m.store, action)
+    }
+
+    /// The error of an action [`Cx::perform_value`] did not perform, once
+    /// native code has entered its situation: what [`Cx::perform`] gives.
+    #[cold]
+    pub fn action_failed(&mut self, e: String, arc: Option<usize>) -> RunError {
+        self.error(format!("action failed: {e}"), arc)
+    }
+
     /// Whether history entries are observed (kept, or seen by an observer):
     /// when not, an entry's terms need not be built.
     #[inline]

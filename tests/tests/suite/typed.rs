@@ -1271,6 +1271,69 @@ fn globals_on_the_fast_path_agree() {
     }
 }
 
+mod set_local_nget14 {
+    pub mod set_local {
+        sitlog_macros::include_dm!("typed/locals/set_local");
+    }
+}
+
+/// `set(l, ..)` of locals natively (`nget14`): constants and a value the
+/// expectation binds, in neutral arcs and callers' exit arcs; the local
+/// then counted, a value that is no number (an atom, a compound, a list)
+/// the machine's error there, a float counted as one.
+#[test]
+fn set_of_a_local_natively_agrees() {
+    let ir = interpreter("typed/locals/set_local");
+    for main in [
+        "main(5, 1)",
+        "main(2, 1)",
+        "main(5, x)",
+        "main(5, 2.5)",
+        "main(0, f(x))",
+        "main(5, [a])",
+        "main(x, 1)",
+    ] {
+        agree(set_local_nget14::set_local::program(), &ir, main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
+    }
+}
+
+mod get_binds_nget14 {
+    pub mod get_binds {
+        sitlog_macros::include_dm!("typed/globals/get_binds");
+    }
+}
+
+/// `get(v, X)` binds `X` natively (`nget14`): a condition's `get(h, D)`
+/// read in its branches, an action's `get(g, X)` read by the action and
+/// the next situation, `get(v, X)` with `X` bound before unifying (the
+/// machine's error where the values differ), of globals and of a local,
+/// in callers' exit arcs and a neutral arc; `set(l, ..)` of the local, a
+/// constant and a parameter's value. The parameters choose the situations
+/// reached and which `get` fails to unify.
+#[test]
+fn get_binds_its_variable_natively_and_agrees() {
+    let ir = interpreter("typed/globals/get_binds");
+    for main in [
+        "main(1, 1, 1, 2)",
+        "main(3, 3, 3, 3)",
+        "main(0, 0, 0, 0)",
+        "main(x, x, x, x)",
+        "main(x, x, x, 5)",
+        "main(1, 2, 1, 0)",
+        "main(1, 2, 1, 2)",
+        "main(1, 1, 2, 3)",
+        "main(1, 1, 1.0, 3)",
+        "main(x, y, y, -1)",
+        "main(f(x), f(x), f(x), 1.5)",
+        "main([a], [a], [a], x)",
+        "main(2, 2, 2, f(1))",
+    ] {
+        agree(get_binds_nget14::get_binds::program(), &ir, main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
+    }
+}
+
 /// An out_arg with side effects is evaluated after the arc's next
 /// situation (`get(n, _)` after `t(inc(n, _))` reads 1, `inc(n, _)` after
 /// `u(.., get(n, _), ..)` counts after the read).

@@ -1144,6 +1144,8 @@ impl Gen<'_> {
 
     /// An exit arc's action (and a perceptual or neutral arc's, when it
     /// has only these): `inc`/`get` of a local into a fresh variable,
+    /// `get(v, X)` with `X` made before (unified), `set` of a local the
+    /// frame holds or of a global,
     /// `V is E` of ints into a fresh variable, atoms and numbers performed
     /// (skipped where the run's actions ignore them).
     pub(super) fn nat_exit_action(
@@ -1211,6 +1213,60 @@ impl Gen<'_> {
                         const_atom = Some(a);
                     }
                     v.ty
+                }
+                // `get(v, X)` with `X` made before (bound, or an arc's
+                // variable the machine's `get` binds): `v`'s value unified
+                // with `X` (`Gen::nat_get_unify`), a global's read as for
+                // a fresh `X`, a local's in the frame.
+                Ev::VarOp {
+                    op,
+                    name,
+                    arg: Build::Reg(r),
+                } if *op == atoms::GET => {
+                    let got = if d.declares_local(*name) {
+                        let li = d
+                            .locals
+                            .iter()
+                            .position(|(l, _)| l == name)
+                            .ok_or("`get` of a local the frame does not hold")?;
+                        let l = format_ident!("l{}", li);
+                        V {
+                            e: quote!(#l.clone()),
+                            ty: d.locals[li].1.clone(),
+                        }
+                    } else {
+                        let (gty, e) = self.nat_global_op(*op, *name, None, arc_ix, &enter)?;
+                        V { e, ty: gty }
+                    };
+                    let at = quote!(Some(#arc));
+                    let v =
+                        self.nat_get_unify(d, ix, *name, *r, got, regs, &mut stmts, &enter, &at)?;
+                    let e = v.e;
+                    stmts.push(quote!(let #x = #e;));
+                    v.ty
+                }
+                // `set(l, V)` of a local the frame holds, `V` a native value
+                // of its type (stored as written, D-38: the field written;
+                // `set` gives the value).
+                Ev::VarOp { op, name, arg } if *op == atoms::SET => {
+                    let v = self.nat_value(arg, regs)?;
+                    let k = match arg {
+                        Build::Const(t) => self.store.atom_of(*t),
+                        _ => None,
+                    };
+                    self.nat_local_set(d, *name, &x, v, k, &mut stmts, &mut const_atom)?
+                }
+                // A ground `set(l, k)` of a local (`set(n, 0)`), a constant
+                // the MIR gives the evaluator: the same.
+                Ev::Eval(Build::Const(t))
+                    if self
+                        .ground_set(*t)
+                        .is_some_and(|(l, _)| d.declares_local(l)) =>
+                {
+                    let (name, k) = self.ground_set(*t).ok_or("not a `set`")?;
+                    let v = self.nat_value(&Build::Const(k), regs)?;
+                    let a = self.store.atom_of(k);
+                    self.nat_local_set(d, name, &x, v, a, &mut stmts, &mut const_atom)?
                 }
                 Ev::VarOpFresh { op, name, dst } => {
                     let li = d
@@ -1312,8 +1368,19 @@ impl Gen<'_> {
                     cx.perform(t, Some(#arc))?;
                 }
             };
+            // A number or a constant atom other than `empty` (never a
+            // list): handed to the effector without entering the machine
+            // (`Cx::perform_value`); the situation entered (its id built)
+            // only where the effector fails, for its error.
+            let perform_value = quote! {
+                let t = cx.term(&#x);
+                if let Err(e) = cx.perform_value(t) {
+                    #enter
+                    return Err(cx.action_failed(e, Some(#arc)));
+                }
+            };
             performs.push(match ty {
-                Ty::Int | Ty::Float => quote!(if !run.quiet_numbers { #perform }),
+                Ty::Int | Ty::Float => quote!(if !run.quiet_numbers { #perform_value }),
                 Ty::Sym if const_atom == Some(atoms::EMPTY) && !list => {
                     let id_arg = super::atom_arg(&id);
                     // One call where it fits (`Cx::nat_empty` hands over:
@@ -1341,27 +1408,83 @@ impl Gen<'_> {
                 Ty::Sym if const_atom == Some(atoms::EMPTY) => {
                     quote!(if !run.quiet_empty { #perform })
                 }
-                Ty::Sym if const_atom.is_some() => perform,
+                Ty::Sym if const_atom.is_some() => perform_value,
                 Ty::Sym => quote! {
                     if !(run.quiet_empty && #x == atoms::EMPTY) { #perform }
                 },
                 Ty::Term | Ty::List(_) => perform,
+                // A `ground` value (`set(m, W)`, `W` a parameter's value):
+                // a number or `empty` skipped where the run's actions
+                // ignore it, as for a value of those types.
+                Ty::Ground => quote! {
+                    let skip = match &#x {
+                        Val::Int(_) | Val::Float(_) => run.quiet_numbers,
+                        Val::Sym(s) => run.quiet_empty && *s == atoms::EMPTY,
+                        _ => false,
+                    };
+                    if !skip { #perform }
+                },
                 _ => return Err("an action of this type".into()),
             });
         }
         Ok(quote!(#(#stmts)* #(#performs)*))
     }
 
+    /// `set(l, V)` of local `name` of DM `d` held in the frame, `v` the
+    /// native value `V` (`k`: the atom it is, if a constant one): the field
+    /// written with `v` converted to the local's type (not native where it
+    /// does not convert: a value the local's type does not hold), `x`
+    /// the action's value (`set` gives `V`); its type.
+    #[allow(clippy::too_many_arguments)]
+    fn nat_local_set(
+        &self,
+        d: &Dm,
+        name: sitlog_syntax::Atom,
+        x: &Ident,
+        v: V,
+        k: Option<sitlog_syntax::Atom>,
+        stmts: &mut Vec<TokenStream>,
+        const_atom: &mut Option<sitlog_syntax::Atom>,
+    ) -> N<Ty> {
+        let li = d
+            .locals
+            .iter()
+            .position(|(l, _)| *l == name)
+            .ok_or("`set` of a local the frame does not hold")?;
+        let l = format_ident!("l{}", li);
+        let lty = &d.locals[li].1;
+        let e = &v.e;
+        let to = coerce(
+            &V {
+                e: quote!(#x.clone()),
+                ty: v.ty.clone(),
+            },
+            lty,
+        )?;
+        stmts.push(quote! {
+            let #x = #e;
+            *#l = #to;
+        });
+        *const_atom = k;
+        Ok(v.ty)
+    }
+
     /// `set(g, k)` as written (a ground constant), `g` no declared local of
     /// DM `d` and `k` an atom or a number: `g` and `k`.
     fn ground_global_set(&self, d: &Dm, t: Term) -> Option<(sitlog_syntax::Atom, Term)> {
+        self.ground_set(t).filter(|(g, _)| !d.declares_local(*g))
+    }
+
+    /// `set(v, k)` as written (a ground constant), `k` an atom or a
+    /// number: `v` and `k`.
+    fn ground_set(&self, t: Term) -> Option<(sitlog_syntax::Atom, Term)> {
         let (name, args) = match self.store.value(t) {
             sitlog_runtime::Value::Compound(name, args) if args.len() == 2 => (name, args),
             _ => return None,
         };
         let (g, k) = (args[0], args[1]);
         let g = self.store.atom_of(g)?;
-        if name != atoms::SET || d.declares_local(g) {
+        if name != atoms::SET {
             return None;
         }
         match self.store.value(k) {

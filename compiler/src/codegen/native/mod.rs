@@ -121,7 +121,11 @@
 //!   the start of a visit only when code uses it before declaring it. In
 //!   an expression (a comparison's operand, an out_arg), `get(v, _)` of a
 //!   local held in the frame or of a global is the value read
-//!   (`Gen::nat_var_get`), its `_` left unbound (nothing reads it).
+//!   (`Gen::nat_var_get`), its `_` left unbound (nothing reads it). A
+//!   condition's `get(v, D)` side (and an exit action's `get(v, X)`) is
+//!   unified with its variable as the machine's `get` does: `D` bound to
+//!   a register the code after it reads, or compared where it was bound
+//!   before, the machine's error where they differ (`Gen::nat_get_unify`).
 //!
 //! - *frames and calls* ([`frame`], [`call`]): each DM with native code
 //!   has a `Frame` (parameters, locals, its `Nat`); the runtime's
@@ -3893,6 +3897,14 @@ impl Gen<'_> {
         if !free {
             return Ok(None);
         }
+        self.nat_var_read(d, cur, name)
+    }
+
+    /// The value of variable `name` read now by native code in situation
+    /// `cur`'s arc, nothing written: a local of the DM held in the frame
+    /// (its field), else a global ([`Gen::nat_global_read`]). `None`: a
+    /// local the frame does not hold, a global of no native type.
+    fn nat_var_read(&self, d: &Dm, cur: usize, name: Atom) -> N<Option<V>> {
         if d.declares_local(name) {
             if !d.locals_ok {
                 return Ok(None);
@@ -3912,40 +3924,65 @@ impl Gen<'_> {
     }
 
     fn nat_cond(&self, d: &Dm, cur: usize, c: &Cond, regs: &Regs) -> N<TokenStream> {
+        let mut regs = regs.clone();
+        let mut pre = Vec::new();
+        let c = self.nat_cond_bind(d, cur, c, &mut regs, &mut pre)?;
+        Ok(if pre.is_empty() {
+            c
+        } else {
+            quote!({ #(#pre)* #c })
+        })
+    }
+
+    /// A condition of situation `cur`'s arc as native code: the statements
+    /// `pre` (run first) and the test. A side `get(v, R)` (`get(done, D)
+    /// == yes`, `C < get(limit, L)`) is the value of `v` read now
+    /// ([`Gen::nat_var_read`]), unified with `R` as the machine evaluates
+    /// it, left to right ([`Gen::nat_get_unify`]): `R` not bound before is
+    /// bound to it, a register added to `regs` that the code after the
+    /// condition reads (its branches); `R` bound (`get(left, D) ==
+    /// get(right, D)`, the second side) compares, the machine's error
+    /// where the values differ.
+    fn nat_cond_bind(
+        &self,
+        d: &Dm,
+        cur: usize,
+        c: &Cond,
+        regs: &mut Regs,
+        pre: &mut Vec<TokenStream>,
+    ) -> N<TokenStream> {
         match c {
             Cond::Arith(op, l, r) => {
-                let (l, r) = (
-                    self.nat_ev_value(d, cur, l, regs)?,
-                    self.nat_ev_value(d, cur, r, regs)?,
-                );
+                let mut side = |e: &Ev, regs: &mut Regs| match e {
+                    Ev::VarOp {
+                        op,
+                        name,
+                        arg: Build::Reg(r),
+                    } if *op == atoms::GET => self.nat_cond_get(d, cur, *name, *r, regs, pre),
+                    e => self.nat_ev_value(d, cur, e, regs),
+                };
+                let l = side(l, regs)?;
+                let r = side(r, regs)?;
                 self.nat_arith(d, cur, *op, l, r)
             }
             Cond::Other(Build::Compound(op, args))
                 if args.len() == 2 && matches!(op.as_str(), "==" | "\\==") =>
             {
-                // A side `get(g, D)` of a global, `D` read nowhere else:
-                // the global's value, read now (`Gen::nat_global_get`).
-                // Not where the other side names `D` too: the machine
-                // evaluates left to right, the first side binds `D` and the
-                // second unifies with it (`get(g, D) == get(h, D)` is an
-                // error unless both hold the same value, D-38).
-                let side = |b: &Build, other: &Build| {
-                    let shared = match b {
-                        Build::Compound(_, a) => {
-                            matches!(a.get(1), Some(Build::Reg(r)) if build_names(other, *r))
+                // A side `get(v, D)`: evaluated (D-35); any other side is
+                // a value as written.
+                let mut side = |b: &Build, regs: &mut Regs| match b {
+                    Build::Compound(f, a) if *f == atoms::GET && a.len() == 2 => {
+                        match (&a[0], &a[1], self.nat_build_atom(&a[0])) {
+                            (Build::Const(_), Build::Reg(r), Some(name)) => {
+                                self.nat_cond_get(d, cur, name, *r, regs, pre)
+                            }
+                            _ => Err("a `get` that is not `get(v, V)`".into()),
                         }
-                        _ => false,
-                    };
-                    match (!shared)
-                        .then(|| self.nat_global_get(d, cur, b, regs))
-                        .transpose()?
-                        .flatten()
-                    {
-                        Some(v) => Ok(v),
-                        None => self.nat_value(b, regs),
                     }
+                    b => self.nat_value(b, regs),
                 };
-                let (l, r) = (side(&args[0], &args[1])?, side(&args[1], &args[0])?);
+                let l = side(&args[0], regs)?;
+                let r = side(&args[1], regs)?;
                 let same = identical(&l, &r)
                     .ok_or_else(|| format!("`{}` on {} and {}", op.as_str(), l.ty, r.ty))?;
                 Ok(if op.as_str() == "==" {
@@ -3958,31 +3995,119 @@ impl Gen<'_> {
         }
     }
 
-    /// A condition's side `get(g, D)` (evaluated by the machine's
-    /// condition, D-35) where `g` is a global (no local of the DM) and `D`
-    /// a variable not bound before (the evaluation binds it; a later read
-    /// of it finds no register and the code is not native): the global's
-    /// value read by
-    /// native code (`Cx::global_as`, no typed copy kept), of the global's
-    /// MIR type; where it is not of that type (only if the inference were
-    /// wrong) the machine is entered and its `get` gives the value or its
-    /// error. `None`: not such a side.
-    fn nat_global_get(&self, d: &Dm, cur: usize, b: &Build, regs: &Regs) -> N<Option<V>> {
-        let Build::Compound(f, args) = b else {
-            return Ok(None);
-        };
-        let (Some(Build::Const(name)), Some(Build::Reg(r)), 2) =
-            (args.first(), args.get(1), args.len())
-        else {
-            return Ok(None);
-        };
-        let Some(name) = self.store.atom_of(*name) else {
-            return Ok(None);
-        };
-        if f.as_str() != "get" || d.declares_local(name) || regs.contains_key(r) {
-            return Ok(None);
+    /// The atom a constant is, if it is one.
+    fn nat_build_atom(&self, b: &Build) -> Option<Atom> {
+        match b {
+            Build::Const(t) => self.store.atom_of(*t),
+            _ => None,
         }
-        self.nat_global_read(d, cur, name)
+    }
+
+    /// A condition's side `get(v, R)` in situation `cur`'s arc (evaluated
+    /// by the machine's condition, D-35): `v`'s value read now
+    /// ([`Gen::nat_var_read`]: a local held in the frame, a global of a
+    /// native type, read with `Cx::global_as`, no typed copy kept; where
+    /// it is not of the global's MIR type the machine is entered and its
+    /// `get` gives the value or its error), unified with `R`
+    /// ([`Gen::nat_get_unify`]).
+    fn nat_cond_get(
+        &self,
+        d: &Dm,
+        cur: usize,
+        name: Atom,
+        r: Reg,
+        regs: &mut Regs,
+        pre: &mut Vec<TokenStream>,
+    ) -> N<V> {
+        let got = self
+            .nat_var_read(d, cur, name)?
+            .ok_or("a `get` native code does not read")?;
+        let enter = self.nat_enter_to_evaluate(d, cur)?;
+        self.nat_get_unify(d, cur, name, r, got, regs, pre, &enter, &quote!(arc_at))
+    }
+
+    /// `get(v, R)` in situation `cur`'s arc whose value `got` native code
+    /// has read: the machine's `get` unifies it with `R` (D-38), and so
+    /// does this. `R` not held (an arc's variable no code bound before):
+    /// bound, `let r<R> = got;` in `pre`, the register (of `R`'s type)
+    /// added to `regs` for what reads `R` later (a comparison's other
+    /// side, a branch, an action, the next situation). `R` a fresh
+    /// variable occurring nowhere else in the plan (`_`): the value, `R`
+    /// left unbound (nothing reads it). `R` held as a native value:
+    /// compared (ground values unify where they are identical); where they
+    /// differ the machine is entered (`enter`) and its `get` reports its
+    /// error (`arc`: the arc's index for it). `R` a term native code has
+    /// not converted (a perception's value): not native.
+    #[allow(clippy::too_many_arguments)]
+    fn nat_get_unify(
+        &self,
+        d: &Dm,
+        cur: usize,
+        name: Atom,
+        r: Reg,
+        got: V,
+        regs: &mut Regs,
+        pre: &mut Vec<TokenStream>,
+        enter: &TokenStream,
+        arc: &TokenStream,
+    ) -> N<V> {
+        let g = format_ident!("got_r{}", r);
+        let ge = &got.e;
+        // Met only here: nothing reads what it is bound to.
+        let once = crate::mir::ty::occurrences(d.plans[cur])
+            .get(r as usize)
+            .is_some_and(|&n| n == 1);
+        match regs.get(&r).cloned() {
+            _ if once => Ok(got),
+            None => {
+                let dty = d.types[cur].regs[r as usize].ty.clone();
+                let e = coerce(
+                    &V {
+                        e: quote!(#g),
+                        ty: got.ty.clone(),
+                    },
+                    &dty,
+                )?;
+                let rr = reg(r);
+                pre.push(quote!(let #g = #ge; let #rr = #e;));
+                regs.insert(r, (rr.clone(), dty.clone()));
+                Ok(V {
+                    e: quote!(#rr.clone()),
+                    ty: dty,
+                })
+            }
+            Some((x, _)) if is_fresh(&x) => {
+                Err("`get` into a variable that may be bound, a term".into())
+            }
+            Some((x, ty)) => {
+                if !ty.is_native() {
+                    return Err("`get` into a variable that is a term".into());
+                }
+                let held = V {
+                    e: quote!(#x.clone()),
+                    ty,
+                };
+                let same = identical(
+                    &V {
+                        e: quote!(#g.clone()),
+                        ty: got.ty.clone(),
+                    },
+                    &held,
+                )
+                .ok_or("`get` of a value of another type than its variable's")?;
+                let (opa, namea) = (self.atom_native(atoms::GET)?, self.atom_native(name)?);
+                pre.push(quote! {
+                    let #g = #ge;
+                    if !#same {
+                        #enter
+                        let t = cx.term(&#x);
+                        cx.var_op(#opa, #namea, t, #arc)?;
+                        return Err(cx.error("`get` unified in the machine only", #arc));
+                    }
+                });
+                Ok(held)
+            }
+        }
     }
 
     /// The value of global `name` (no local of DM `d`) read by native code
@@ -4156,8 +4281,11 @@ impl Gen<'_> {
                 self.nat_select(d, cur, name, vals, cur_name)
             }
             Next::If(c, a, b) => {
-                let (c, pre) = match self.nat_cond(d, cur, c, regs) {
-                    Ok(c) => (c, quote!()),
+                // A `get(v, D)` of the condition binds `D` for the branches.
+                let mut bregs = regs.clone();
+                let mut binds = Vec::new();
+                let (c, pre) = match self.nat_cond_bind(d, cur, c, &mut bregs, &mut binds) {
+                    Ok(c) => (c, quote!(#(#binds)*)),
                     // A condition the evaluator computes a side of
                     // (`apply(member_of(_, _), [O, L]) == yes`): the
                     // machine entered in the situation, as for a next
@@ -4179,11 +4307,12 @@ impl Gen<'_> {
                             quote!(#(#ts)* Ok(#cond)),
                             quote!(bool),
                         )?;
+                        bregs = regs.clone();
                         (quote!(#name), pre)
                     }
                 };
-                let a = self.nat_next(d, cur, a, regs, cur_name)?;
-                let b = self.nat_next(d, cur, b, regs, cur_name)?;
+                let a = self.nat_next(d, cur, a, &bregs, cur_name)?;
+                let b = self.nat_next(d, cur, b, &bregs, cur_name)?;
                 Ok(quote!({ #pre if #c { #a } else { #b } }))
             }
             Next::Eval(Ev::Compound(name, args))
@@ -5453,14 +5582,6 @@ fn cell_head(ts: &TokenStream, h: &Ident) -> Option<TokenStream> {
     }
     let toks: Vec<T> = ts.clone().into_iter().collect();
     ok(&toks, h).then(|| rewrite(toks, h))
-}
-/// Whether `b` names register `r` anywhere.
-fn build_names(b: &Build, r: Reg) -> bool {
-    match b {
-        Build::Reg(x) => *x == r,
-        Build::Const(_) => false,
-        Build::Compound(_, args) => args.iter().any(|a| build_names(a, r)),
-    }
 }
 
 /// `[h|t]` of native values.
