@@ -4456,8 +4456,13 @@ impl Gen<'_> {
         // The `'hand` block only where a candidate leaves it (a value
         // that no later candidate may take either): every candidate
         // otherwise ends in `break 'sel` or falls through.
-        let leaves = candidates.iter().any(|c| c.to_string().contains("'hand"));
         let candidates: Vec<TokenStream> = candidates.iter().map(deref_receivers).collect();
+        let candidates = if taken {
+            candidates
+        } else {
+            drop_dead_hands(candidates)
+        };
+        let leaves = candidates.iter().any(|c| c.to_string().contains("'hand"));
         let candidates = if leaves {
             quote!('hand: { #(#candidates)* })
         } else {
@@ -5004,6 +5009,98 @@ fn subst_at_field(code: &TokenStream, x: &Ident, e: &TokenStream) -> Option<Toke
     let mut done = false;
     let out = at_field(code.clone().into_iter().collect(), x, e, &mut done);
     done.then_some(out)
+}
+
+/// A `'sel` block's candidates (no candidate taking every value) without
+/// the `else if v.is_cell() { break 'hand; }` that go where falling
+/// through goes: after the last candidate the block's end is the
+/// machine's selection, where `'hand` leads, so the last candidate's are
+/// dropped; a candidate's outermost one is dropped where it and every later
+/// candidate first split the same value (`v.split_proper()`,
+/// `v.non_empty_list()`), which fails for an improper cell (`[a|b]`): none
+/// of them can take it, so it falls through to the machine too.
+fn drop_dead_hands(candidates: Vec<TokenStream>) -> Vec<TokenStream> {
+    let firsts: Vec<Option<String>> = candidates.iter().map(first_split).collect();
+    let last = candidates.len().saturating_sub(1);
+    candidates
+        .into_iter()
+        .enumerate()
+        .map(|(k, c)| match &firsts[k] {
+            _ if k == last => strip_hand(c, None),
+            Some(v) if firsts[k + 1..].iter().all(|f| f.as_ref() == Some(v)) => {
+                strip_hand(c, Some(v))
+            }
+            _ => c,
+        })
+        .collect()
+}
+
+/// The value a candidate first splits, `v` of its outermost
+/// `if let Some(..) = v.split_proper() { .. }` or
+/// `if let Some(..) = v.non_empty_list() { .. }`.
+fn first_split(c: &TokenStream) -> Option<String> {
+    use proc_macro2::{Delimiter, TokenTree as T};
+    let toks: Vec<T> = c.clone().into_iter().collect();
+    let word = |k: usize, w: &str| matches!(toks.get(k), Some(T::Ident(i)) if i == w);
+    if !(word(0, "if") && word(1, "let") && word(2, "Some")) {
+        return None;
+    }
+    if !matches!(toks.get(4), Some(T::Punct(p)) if p.as_char() == '=') {
+        return None;
+    }
+    let m = (5..toks.len()).find(|&k| word(k, "split_proper") || word(k, "non_empty_list"))?;
+    let dot = matches!(&toks[m - 1], T::Punct(p) if p.as_char() == '.');
+    let empty_call = matches!(toks.get(m + 1),
+        Some(T::Group(g)) if g.delimiter() == Delimiter::Parenthesis && g.stream().is_empty());
+    let body = matches!(toks.get(m + 2), Some(T::Group(g)) if g.delimiter() == Delimiter::Brace);
+    let recv = &toks[5..m - 1];
+    let plain = recv
+        .iter()
+        .all(|t| !matches!(t, T::Group(g) if g.delimiter() == Delimiter::Brace));
+    (dot && empty_call && body && plain && m > 6)
+        .then(|| recv.iter().cloned().collect::<TokenStream>().to_string())
+}
+
+/// `c` without its `else if v.is_cell() { break 'hand; }`: every one, at
+/// any depth (`None`), or only the outermost one, of value `v`.
+fn strip_hand(c: TokenStream, only: Option<&String>) -> TokenStream {
+    use proc_macro2::{Delimiter, Group, TokenTree as T};
+    let toks: Vec<T> = c.into_iter().collect();
+    let word = |k: usize, w: &str| matches!(toks.get(k), Some(T::Ident(i)) if i == w);
+    let mut out = Vec::new();
+    let mut k = 0;
+    while k < toks.len() {
+        if word(k, "else") && word(k + 1, "if") {
+            let end = (k + 2..toks.len())
+                .find(|&j| matches!(&toks[j], T::Group(g) if g.delimiter() == Delimiter::Brace));
+            if let Some(j) = end {
+                let test = &toks[k + 2..j];
+                let breaks = matches!(&toks[j], T::Group(g)
+                    if g.stream().to_string().replace(' ', "") == "break'hand;");
+                let n = test.len();
+                let is_cell = n >= 4
+                    && matches!(&test[n - 3], T::Punct(p) if p.as_char() == '.')
+                    && matches!(&test[n - 2], T::Ident(i) if i == "is_cell")
+                    && matches!(&test[n - 1], T::Group(g) if g.stream().is_empty());
+                let recv: TokenStream = test[..n.saturating_sub(3)].iter().cloned().collect();
+                let of = only.is_none_or(|v| recv.to_string() == *v);
+                if breaks && is_cell && of {
+                    k = j + 1;
+                    continue;
+                }
+            }
+        }
+        match &toks[k] {
+            T::Group(g) if only.is_none() => {
+                let mut h = Group::new(g.delimiter(), strip_hand(g.stream(), None));
+                h.set_span(g.span());
+                out.push(T::Group(h));
+            }
+            t => out.push(t.clone()),
+        }
+        k += 1;
+    }
+    out.into_iter().collect()
 }
 
 /// A selected value read by a method of its own type, `(*v<i>).m(..)`
