@@ -574,6 +574,14 @@ impl Gen<'_> {
         let curl = Literal::u32_unsuffixed(ix as u32);
         let hand = &d.hand;
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        // The id's pattern filled by the call (`Fill`) where the call
+        // still fits on a line, else its `let` first.
+        if let Some(fill) = super::fill_arg(&id_stmts, &id) {
+            let ret = quote!(return cx.counted_template(count, #curl, #fill););
+            if super::fits(&ret, 24) {
+                return Ok(quote!(#hand #ret));
+            }
+        }
         Ok(quote! {
             #hand
             #(#id_stmts)*

@@ -703,6 +703,37 @@ fn atom_arg(id: &TokenStream) -> TokenStream {
     }
 }
 
+/// `Fill(pattern, holes)` for an id made by one statement
+/// `let id = cx.fill(pattern, holes);` (`stmts`, `id`): a call that takes
+/// [`IdArg`](sitlog_runtime::machine::IdArg) fills it first.
+fn fill_arg(stmts: &[TokenStream], id: &TokenStream) -> Option<TokenStream> {
+    let [stmt] = stmts else { return None };
+    let syn::Stmt::Local(l) = syn::parse2::<syn::Stmt>(stmt.clone()).ok()? else {
+        return None;
+    };
+    let syn::Pat::Ident(x) = &l.pat else {
+        return None;
+    };
+    let syn::Expr::MethodCall(m) = &*l.init.as_ref()?.expr else {
+        return None;
+    };
+    let recv = &m.receiver;
+    if x.ident != id.to_string() || m.method != "fill" || quote!(#recv).to_string() != "cx" {
+        return None;
+    }
+    let (pattern, holes) = (m.args.first()?, m.args.get(1)?);
+    (m.args.len() == 2).then(|| quote!(Fill(#pattern, #holes)))
+}
+
+/// Whether statement `code` (a keyword first, `return`) fits on one line
+/// at `indent` as prettyplease writes it (margin 89; the length estimated
+/// from its tokens: a space after the keyword and each comma, around `=`).
+fn fits(code: &TokenStream, indent: usize) -> bool {
+    let text = code.to_string().replace(' ', "");
+    let len = text.len() + 1 + text.matches(',').count() + 2 * text.matches('=').count();
+    indent + len <= 89
+}
+
 /// `code` as one expression: itself where it is one (a variant, a
 /// `'sel` block, a block), else in a block.
 fn as_expr(code: TokenStream) -> TokenStream {
@@ -5565,6 +5596,10 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
         (Ty::List(e), Ty::List(_)) if **e == Ty::Never => {
             let ty = rust_ty(to)?;
             let e = &v.e;
+            if reads_only(e) {
+                // Nothing to evaluate: a copy of a selected value or `[]`.
+                return Ok(quote!(<#ty>::nil()));
+            }
             Ok(quote!({ let _ = #e; <#ty>::nil() }))
         }
         // An immediate term of a native scalar, or `[]`.
@@ -5581,6 +5616,22 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
             Ok(quote!({ let _ = #e; Ground(Term::NIL) }))
         }
         _ => Err(format!("a value of type {} where {} is expected", v.ty, to)),
+    }
+}
+
+/// Whether expression `e` only reads: a name, a `clone()` of one, a
+/// reference to one, `List::<Never>::nil()` (no call of `cx`, no `?`).
+fn reads_only(e: &TokenStream) -> bool {
+    use proc_macro2::TokenTree as T;
+    e.clone().into_iter().all(|t| match t {
+        T::Ident(i) => !matches!(i.to_string().as_str(), "cx" | "run" | "stack" | "p"),
+        T::Punct(p) => matches!(p.as_char(), '.' | ':' | '<' | '>' | '&' | '*'),
+        T::Group(g) => g.stream().is_empty() || reads_only(&g.stream()),
+        T::Literal(_) => false,
+    }) && {
+        let text = e.to_string().replace(' ', "");
+        let calls = text.matches("()").count();
+        calls == text.matches(".clone()").count() + text.matches("::nil()").count()
     }
 }
 
