@@ -1269,7 +1269,8 @@ pub fn hole_atom() -> Atom {
 }
 
 /// A situation's id as a cold call of native code takes it
-/// ([`Cx::counted_template`]): a term, or a [`Fill`] the call fills.
+/// ([`Cx::counted_template`]): a term, an atom, or a [`Fill`] the call
+/// fills.
 pub trait IdArg {
     /// The id, built in `store` where it is a [`Fill`].
     fn id_in(self, store: &mut Store) -> Term;
@@ -1279,6 +1280,13 @@ impl IdArg for Term {
     #[inline]
     fn id_in(self, _: &mut Store) -> Term {
         self
+    }
+}
+
+impl IdArg for Atom {
+    #[inline]
+    fn id_in(self, _: &mut Store) -> Term {
+        Term::atom(self)
     }
 }
 
