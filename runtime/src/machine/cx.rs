@@ -369,14 +369,17 @@ impl<P: DmProgram> Cx<'_, '_, P> {
 
     /// [`Cx::to_template`] after counting the `count` transitions native
     /// code made, as the visit's code returns it.
+    /// The id is a term, or [`Fill`]: a pattern and its holes, filled
+    /// first ([`Cx::fill`]), as a `let` before the call would fill it.
     #[cold]
     #[inline(never)]
     pub fn counted_template(
         &mut self,
         count: u64,
         sit: SitIx,
-        id: Term,
+        id: impl IdArg,
     ) -> Result<Option<Step>, RunError> {
+        let id = id.id_in(&mut self.m.store);
         self.count_transitions(count);
         Ok(Some(self.to_template(sit, id)))
     }
@@ -1310,6 +1313,40 @@ pub fn build_of(store: &mut Store, name: Atom, args: &[&dyn AsTerm]) -> Term {
 pub fn hole_atom() -> Atom {
     static HOLE: std::sync::OnceLock<Atom> = std::sync::OnceLock::new();
     *HOLE.get_or_init(|| Atom::intern("$hole"))
+}
+
+/// A situation's id as a cold call of native code takes it
+/// ([`Cx::counted_template`]): a term, an atom, or a [`Fill`] the call
+/// fills.
+pub trait IdArg {
+    /// The id, built in `store` where it is a [`Fill`].
+    fn id_in(self, store: &mut Store) -> Term;
+}
+
+impl IdArg for Term {
+    #[inline]
+    fn id_in(self, _: &mut Store) -> Term {
+        self
+    }
+}
+
+impl IdArg for Atom {
+    #[inline]
+    fn id_in(self, _: &mut Store) -> Term {
+        Term::atom(self)
+    }
+}
+
+/// A pattern and its holes ([`Cx::fill`]'s arguments) given to a call
+/// that fills them first: `Fill(p.k[29], &[&r1])`, where a `let` of the
+/// filled id would come just before the call.
+pub struct Fill<'a>(pub Term, pub &'a [&'a dyn AsTerm]);
+
+impl IdArg for Fill<'_> {
+    #[inline]
+    fn id_in(self, store: &mut Store) -> Term {
+        fill(store, self.0, self.1)
+    }
 }
 
 /// [`Cx::fill`] in `store`: how native code builds a term of native values

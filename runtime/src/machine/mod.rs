@@ -46,11 +46,11 @@ mod situation;
 mod state;
 mod steps;
 
-pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, FromIdParts};
+pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, Fill, FromIdParts, IdArg};
 pub use io::{Actions, Perceived, Perception};
 pub use native_stack::{
-    nat_drive, nat_goto, nat_hand_over, nat_materialize, nat_plain, nat_replace_done, NatAt,
-    NatBelow, NatFrames,
+    nat_drive, nat_goto, nat_hand_over, nat_materialize, nat_plain, nat_replace_done, nat_template,
+    NatAt, NatBelow, NatFrames,
 };
 pub use observe::{Inspection, Observer};
 pub use options::Options;

@@ -27,7 +27,7 @@
 //! bottom first) and after writing its locals back.
 
 use super::{Cx, DmProgram, Fault, RunError, SitIx, Step, TypedRun};
-use crate::machine::AsTerm;
+use crate::machine::{AsTerm, IdArg};
 use crate::{Store, Term};
 
 /// A program's native frames (its `enum NatFrame`, a variant per native
@@ -325,6 +325,24 @@ pub fn nat_goto<P: DmProgram, F: NatFrames<P>, N: NatAt<P>>(
 ) -> Result<Option<Step>, RunError> {
     nat_hand_over(p, cx, stack)?;
     cx.step_goto(count, |s| at.id_term(p, s))
+}
+
+/// A visit handed to its template in a DM without locals: the frames
+/// below made the machine's ([`nat_hand_over`]), then
+/// [`Cx::counted_template`] of situation `sit` with its id (filled after
+/// the hand-over, as where the two are written one after the other).
+#[cold]
+#[inline(never)]
+pub fn nat_template<P: DmProgram, F: NatFrames<P>>(
+    p: &P,
+    cx: &mut Cx<'_, '_, P>,
+    stack: &mut NatBelow<'_, F>,
+    count: u64,
+    sit: SitIx,
+    id: impl IdArg,
+) -> Result<Option<Step>, RunError> {
+    nat_hand_over(p, cx, stack)?;
+    cx.counted_template(count, sit, id)
 }
 
 /// Makes the native frames below the running one machine frames, bottom

@@ -574,6 +574,29 @@ impl Gen<'_> {
         let curl = Literal::u32_unsuffixed(ix as u32);
         let hand = &d.hand;
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        // A DM without locals: the runtime's hand-over and the template in
+        // one call (`machine::nat_template`) where it fits on a line.
+        if d.locals.is_empty() {
+            let arg = match super::fill_arg(&id_stmts, &id) {
+                Some(fill) => Some(fill),
+                None if id_stmts.is_empty() => Some(super::atom_arg(&id)),
+                None => None,
+            };
+            if let Some(arg) = arg {
+                let ret = quote!(return machine::nat_template(p, cx, stack, count, #curl, #arg););
+                if super::fits(&ret, 24) {
+                    return Ok(ret);
+                }
+            }
+        }
+        // The id's pattern filled by the call (`Fill`) where the call
+        // still fits on a line, else its `let` first.
+        if let Some(fill) = super::fill_arg(&id_stmts, &id) {
+            let ret = quote!(return cx.counted_template(count, #curl, #fill););
+            if super::fits(&ret, 24) {
+                return Ok(quote!(#hand #ret));
+            }
+        }
         Ok(quote! {
             #hand
             #(#id_stmts)*

@@ -738,28 +738,7 @@ fn empty_call(
             }
             (x, quote!(&[]))
         }
-        [s] => {
-            let syn::Stmt::Local(l) = syn::parse2::<syn::Stmt>(s.clone()).ok()? else {
-                return None;
-            };
-            let syn::Pat::Ident(x) = &l.pat else {
-                return None;
-            };
-            let syn::Expr::MethodCall(m) = &*l.init.as_ref()?.expr else {
-                return None;
-            };
-            let receiver = &m.receiver;
-            if x.ident != id.to_string()
-                || m.method != "fill"
-                || quote!(#receiver).to_string() != "cx"
-                || m.args.len() != 2
-            {
-                return None;
-            }
-            let (a, b) = (&m.args[0], &m.args[1]);
-            (quote!(#a), quote!(#b))
-        }
-        _ => return None,
+        _ => fill_parts(id_stmts, id)?,
     };
     // Its length as printed: its parts (paths, indices, references,
     // literals) without a space but after a comma, nor a trailing comma;
@@ -779,6 +758,48 @@ fn empty_call(
     );
     (printed.len() <= 60)
         .then(|| quote!(cx.nat_empty(stack, &mut count, #cur, #arc, #pattern, #holes)?;))
+}
+
+/// The pattern and holes of an id made by one statement
+/// `let id = cx.fill(pattern, holes);` (`stmts`, `id`).
+fn fill_parts(stmts: &[TokenStream], id: &TokenStream) -> Option<(TokenStream, TokenStream)> {
+    let [stmt] = stmts else { return None };
+    let syn::Stmt::Local(l) = syn::parse2::<syn::Stmt>(stmt.clone()).ok()? else {
+        return None;
+    };
+    let syn::Pat::Ident(x) = &l.pat else {
+        return None;
+    };
+    let syn::Expr::MethodCall(m) = &*l.init.as_ref()?.expr else {
+        return None;
+    };
+    let recv = &m.receiver;
+    if x.ident != id.to_string()
+        || m.method != "fill"
+        || quote!(#recv).to_string() != "cx"
+        || m.args.len() != 2
+    {
+        return None;
+    }
+    let (pattern, holes) = (&m.args[0], &m.args[1]);
+    Some((quote!(#pattern), quote!(#holes)))
+}
+
+/// `Fill(pattern, holes)` for an id made by one statement
+/// `let id = cx.fill(pattern, holes);` ([`fill_parts`]): a call that takes
+/// [`IdArg`](sitlog_runtime::machine::IdArg) fills it first.
+fn fill_arg(stmts: &[TokenStream], id: &TokenStream) -> Option<TokenStream> {
+    let (pattern, holes) = fill_parts(stmts, id)?;
+    Some(quote!(Fill(#pattern, #holes)))
+}
+
+/// Whether statement `code` (a keyword first, `return`) fits on one line
+/// at `indent` as prettyplease writes it (margin 89; the length estimated
+/// from its tokens: a space after the keyword and each comma, around `=`).
+fn fits(code: &TokenStream, indent: usize) -> bool {
+    let text = code.to_string().replace(' ', "");
+    let len = text.len() + 1 + text.matches(',').count() + 2 * text.matches('=').count();
+    indent + len <= 89
 }
 
 /// `code` as one expression: itself where it is one (a variant, a
@@ -4688,8 +4709,13 @@ impl Gen<'_> {
         // The `'hand` block only where a candidate leaves it (a value
         // that no later candidate may take either): every candidate
         // otherwise ends in `break 'sel` or falls through.
-        let leaves = candidates.iter().any(|c| c.to_string().contains("'hand"));
         let candidates: Vec<TokenStream> = candidates.iter().map(deref_receivers).collect();
+        let candidates = if taken {
+            candidates
+        } else {
+            drop_dead_hands(candidates)
+        };
+        let leaves = candidates.iter().any(|c| c.to_string().contains("'hand"));
         let candidates = if leaves {
             quote!('hand: { #(#candidates)* })
         } else {
@@ -5238,6 +5264,98 @@ fn subst_at_field(code: &TokenStream, x: &Ident, e: &TokenStream) -> Option<Toke
     done.then_some(out)
 }
 
+/// A `'sel` block's candidates (no candidate taking every value) without
+/// the `else if v.is_cell() { break 'hand; }` that go where falling
+/// through goes: after the last candidate the block's end is the
+/// machine's selection, where `'hand` leads, so the last candidate's are
+/// dropped; a candidate's outermost one is dropped where it and every later
+/// candidate first split the same value (`v.split_proper()`,
+/// `v.non_empty_list()`), which fails for an improper cell (`[a|b]`): none
+/// of them can take it, so it falls through to the machine too.
+fn drop_dead_hands(candidates: Vec<TokenStream>) -> Vec<TokenStream> {
+    let firsts: Vec<Option<String>> = candidates.iter().map(first_split).collect();
+    let last = candidates.len().saturating_sub(1);
+    candidates
+        .into_iter()
+        .enumerate()
+        .map(|(k, c)| match &firsts[k] {
+            _ if k == last => strip_hand(c, None),
+            Some(v) if firsts[k + 1..].iter().all(|f| f.as_ref() == Some(v)) => {
+                strip_hand(c, Some(v))
+            }
+            _ => c,
+        })
+        .collect()
+}
+
+/// The value a candidate first splits, `v` of its outermost
+/// `if let Some(..) = v.split_proper() { .. }` or
+/// `if let Some(..) = v.non_empty_list() { .. }`.
+fn first_split(c: &TokenStream) -> Option<String> {
+    use proc_macro2::{Delimiter, TokenTree as T};
+    let toks: Vec<T> = c.clone().into_iter().collect();
+    let word = |k: usize, w: &str| matches!(toks.get(k), Some(T::Ident(i)) if i == w);
+    if !(word(0, "if") && word(1, "let") && word(2, "Some")) {
+        return None;
+    }
+    if !matches!(toks.get(4), Some(T::Punct(p)) if p.as_char() == '=') {
+        return None;
+    }
+    let m = (5..toks.len()).find(|&k| word(k, "split_proper") || word(k, "non_empty_list"))?;
+    let dot = matches!(&toks[m - 1], T::Punct(p) if p.as_char() == '.');
+    let empty_call = matches!(toks.get(m + 1),
+        Some(T::Group(g)) if g.delimiter() == Delimiter::Parenthesis && g.stream().is_empty());
+    let body = matches!(toks.get(m + 2), Some(T::Group(g)) if g.delimiter() == Delimiter::Brace);
+    let recv = &toks[5..m - 1];
+    let plain = recv
+        .iter()
+        .all(|t| !matches!(t, T::Group(g) if g.delimiter() == Delimiter::Brace));
+    (dot && empty_call && body && plain && m > 6)
+        .then(|| recv.iter().cloned().collect::<TokenStream>().to_string())
+}
+
+/// `c` without its `else if v.is_cell() { break 'hand; }`: every one, at
+/// any depth (`None`), or only the outermost one, of value `v`.
+fn strip_hand(c: TokenStream, only: Option<&String>) -> TokenStream {
+    use proc_macro2::{Delimiter, Group, TokenTree as T};
+    let toks: Vec<T> = c.into_iter().collect();
+    let word = |k: usize, w: &str| matches!(toks.get(k), Some(T::Ident(i)) if i == w);
+    let mut out = Vec::new();
+    let mut k = 0;
+    while k < toks.len() {
+        if word(k, "else") && word(k + 1, "if") {
+            let end = (k + 2..toks.len())
+                .find(|&j| matches!(&toks[j], T::Group(g) if g.delimiter() == Delimiter::Brace));
+            if let Some(j) = end {
+                let test = &toks[k + 2..j];
+                let breaks = matches!(&toks[j], T::Group(g)
+                    if g.stream().to_string().replace(' ', "") == "break'hand;");
+                let n = test.len();
+                let is_cell = n >= 4
+                    && matches!(&test[n - 3], T::Punct(p) if p.as_char() == '.')
+                    && matches!(&test[n - 2], T::Ident(i) if i == "is_cell")
+                    && matches!(&test[n - 1], T::Group(g) if g.stream().is_empty());
+                let recv: TokenStream = test[..n.saturating_sub(3)].iter().cloned().collect();
+                let of = only.is_none_or(|v| recv.to_string() == *v);
+                if breaks && is_cell && of {
+                    k = j + 1;
+                    continue;
+                }
+            }
+        }
+        match &toks[k] {
+            T::Group(g) if only.is_none() => {
+                let mut h = Group::new(g.delimiter(), strip_hand(g.stream(), None));
+                h.set_span(g.span());
+                out.push(T::Group(h));
+            }
+            t => out.push(t.clone()),
+        }
+        k += 1;
+    }
+    out.into_iter().collect()
+}
+
 /// A selected value read by a method of its own type, `(*v<i>).m(..)`
 /// ([`Gen::nat_select`]: `v<i>` a reference), as `v<i>.m(..)`: the
 /// method found through the reference (inherent methods of `Val`,
@@ -5692,6 +5810,10 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
         (Ty::List(e), Ty::List(_)) if **e == Ty::Never => {
             let ty = rust_ty(to)?;
             let e = &v.e;
+            if reads_only(e) {
+                // Nothing to evaluate: a copy of a selected value or `[]`.
+                return Ok(quote!(<#ty>::nil()));
+            }
             Ok(quote!({ let _ = #e; <#ty>::nil() }))
         }
         // An immediate term of a native scalar, or `[]`.
@@ -5708,6 +5830,22 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
             Ok(quote!({ let _ = #e; Ground(Term::NIL) }))
         }
         _ => Err(format!("a value of type {} where {} is expected", v.ty, to)),
+    }
+}
+
+/// Whether expression `e` only reads: a name, a `clone()` of one, a
+/// reference to one, `List::<Never>::nil()` (no call of `cx`, no `?`).
+fn reads_only(e: &TokenStream) -> bool {
+    use proc_macro2::TokenTree as T;
+    e.clone().into_iter().all(|t| match t {
+        T::Ident(i) => !matches!(i.to_string().as_str(), "cx" | "run" | "stack" | "p"),
+        T::Punct(p) => matches!(p.as_char(), '.' | ':' | '<' | '>' | '&' | '*'),
+        T::Group(g) => g.stream().is_empty() || reads_only(&g.stream()),
+        T::Literal(_) => false,
+    }) && {
+        let text = e.to_string().replace(' ', "");
+        let calls = text.matches("()").count();
+        calls == text.matches(".clone()").count() + text.matches("::nil()").count()
     }
 }
 
