@@ -563,14 +563,15 @@ impl Gen<'_> {
         })
     }
 
-    /// The visit of recursive situation `ix` handed to the machine, nothing
-    /// of it done (its call not pushed on the native stack: a history kept
-    /// or observed, a call that is not native, the depth limit): the
+    /// The visit of situation `ix` handed to the machine, nothing of it
+    /// done (a recursive situation's call not pushed on the native stack: a
+    /// history kept or observed, a call that is not native, the depth
+    /// limit; an in_arg pattern not matched natively): the
     /// frames below made the machine's, the locals written back, the
     /// machine runs the visit from the situation's template as the
     /// interpreter does (its call, the callee's entries nested in the DM's
     /// history, its exit arcs: no term code of them, `exit_*`, is made).
-    fn nat_to_template(&self, d: &Dm, ix: usize) -> N<TokenStream> {
+    pub(super) fn nat_to_template(&self, d: &Dm, ix: usize) -> N<TokenStream> {
         let curl = Literal::u32_unsuffixed(ix as u32);
         let hand = &d.hand;
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;

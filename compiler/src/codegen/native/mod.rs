@@ -145,7 +145,9 @@
 //!   fresh variable are the machine's, the term built with the variable
 //!   made for the visit.
 //! - *the pipe* ([`pipe`]): read into a variable in_arg's register with a
-//!   checked conversion, written back where an out_arg sets it.
+//!   checked conversion, or matched against an in_arg that is a pattern
+//!   (its variables registers; a pipe not taken natively is the machine's
+//!   visit from the template), written back where an out_arg sets it.
 //!
 //! - *the evaluator's constructs*: an evaluated embedded DM call is built
 //!   from native values and evaluated by `Cx::embedded_dm` (the machine's
@@ -162,7 +164,7 @@
 //!   the term path.
 //!
 //! What is not (yet) native keeps a situation on its term code: an in_arg
-//! that is a pattern, a `prog` other than `V is E`, expectations that can
+//! that is a pattern in a recursive situation, a `prog` other than `V is E`, expectations that can
 //! change a variable not held natively, a register read natively before it
 //! is set, narrowing a `ground` value to a list or a compound, arithmetic
 //! other than integer comparisons. (A `ground` value selecting a situation
@@ -4117,6 +4119,10 @@ impl Gen<'_> {
                 )
                 .ok_or("`get` of a value of another type than its variable's")?;
                 let (opa, namea) = (self.atom_native(atoms::GET)?, self.atom_native(name)?);
+                // `identical` is exact on ground native values (canonical
+                // `Val`s: `==` is Prolog's), so values it calls different
+                // never unify in the machine, whose `get` then fails with its
+                // own error; the last line is unreachable unless that breaks.
                 pre.push(quote! {
                     let #g = #ge;
                     if !#same {
@@ -5302,6 +5308,10 @@ fn first_split(c: &TokenStream) -> Option<String> {
         return None;
     }
     let m = (5..toks.len()).find(|&k| word(k, "split_proper") || word(k, "non_empty_list"))?;
+    if m <= 6 {
+        // No receiver before the method (`toks[5..m - 1]` would be empty or reversed).
+        return None;
+    }
     let dot = matches!(&toks[m - 1], T::Punct(p) if p.as_char() == '.');
     let empty_call = matches!(toks.get(m + 1),
         Some(T::Group(g)) if g.delimiter() == Delimiter::Parenthesis && g.stream().is_empty());
@@ -5310,7 +5320,7 @@ fn first_split(c: &TokenStream) -> Option<String> {
     let plain = recv
         .iter()
         .all(|t| !matches!(t, T::Group(g) if g.delimiter() == Delimiter::Brace));
-    (dot && empty_call && body && plain && m > 6)
+    (dot && empty_call && body && plain)
         .then(|| recv.iter().cloned().collect::<TokenStream>().to_string())
 }
 
@@ -5836,12 +5846,21 @@ fn coerce(v: &V, to: &Ty) -> N<TokenStream> {
 /// Whether expression `e` only reads: a name, a `clone()` of one, a
 /// reference to one, `List::<Never>::nil()` (no call of `cx`, no `?`).
 fn reads_only(e: &TokenStream) -> bool {
-    use proc_macro2::TokenTree as T;
-    e.clone().into_iter().all(|t| match t {
-        T::Ident(i) => !matches!(i.to_string().as_str(), "cx" | "run" | "stack" | "p"),
-        T::Punct(p) => matches!(p.as_char(), '.' | ':' | '<' | '>' | '&' | '*'),
-        T::Group(g) => g.stream().is_empty() || reads_only(&g.stream()),
-        T::Literal(_) => false,
+    use proc_macro2::{Delimiter, TokenTree as T};
+    let mut after_name = false;
+    e.clone().into_iter().all(|t| {
+        let ok = match &t {
+            T::Ident(i) => !matches!(i.to_string().as_str(), "cx" | "run" | "stack" | "p"),
+            T::Punct(p) => matches!(p.as_char(), '.' | ':' | '<' | '>' | '&' | '*'),
+            // A call with arguments (`f(x)`, `v.take(x)`) may do anything.
+            T::Group(g) if g.delimiter() == Delimiter::Parenthesis && after_name => {
+                g.stream().is_empty()
+            }
+            T::Group(g) => g.stream().is_empty() || reads_only(&g.stream()),
+            T::Literal(_) => false,
+        };
+        after_name = matches!(&t, T::Ident(_)) || matches!(&t, T::Punct(p) if p.as_char() == '>');
+        ok
     }) && {
         let text = e.to_string().replace(' ', "");
         let calls = text.matches("()").count();

@@ -118,9 +118,7 @@ impl Gen<'_> {
         for (r, ty) in bound {
             regs.insert(r, (reg(r), ty));
         }
-        let hand = &d.hand;
-        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
-        let cur = Literal::u32_unsuffixed(ix as u32);
+        let to_template = self.nat_to_template(d, ix)?;
         Ok(quote! {
             let pipe_in = cx.store_ref().deref(cx.pipe());
             let pipe_parts = (|| {
@@ -130,9 +128,7 @@ impl Gen<'_> {
             })();
             let Some((#(#names,)*)) = pipe_parts else {
                 // Not matched natively: the machine runs the visit.
-                #hand
-                #(#id_stmts)*
-                return cx.counted_template(count, #cur, #id);
+                #to_template
             };
         })
     }
