@@ -197,6 +197,20 @@ fn agree<A: app::App>(compiled: &A, interpreted: &Ir, main: &str, script: &str) 
     agree_piped(compiled, interpreted, main, None, script);
 }
 
+/// [`agree`] of `compiled` and of the interpreter's plans (`Resolved`) with
+/// the interpreter, for each of `mains`, without a script.
+fn agree_both<A: app::App>(compiled: &A, interpreted: &Ir, mains: &[&str]) {
+    for main in mains {
+        agree(compiled, interpreted, main, "");
+        agree(
+            &sitlog_compiler::interp::Resolved::new(interpreted),
+            interpreted,
+            main,
+            "",
+        );
+    }
+}
+
 fn agree_piped<A: app::App>(
     compiled: &A,
     interpreted: &Ir,
@@ -982,10 +996,11 @@ fn an_out_arg_the_evaluator_computes_agrees() {
     }
     PROLOG.with(|p| *p.borrow_mut() = None);
     let ir = interpreter("typed/outarg_apply");
-    for main in ["main(twice(_))", "main(nofun(_))", "main(none)", "main(_)"] {
-        agree(s::outarg_apply_fn::program(), &ir, main, "");
-        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
-    }
+    agree_both(
+        s::outarg_apply_fn::program(),
+        &ir,
+        &["main(twice(_))", "main(nofun(_))", "main(none)", "main(_)"],
+    );
     let c = run(
         s::outarg_apply_fn::program(),
         "main(twice(_))",
@@ -1245,30 +1260,33 @@ fn globals_on_the_fast_path_agree() {
         }
     }
     let ir = interpreter("typed/globals/shadow");
-    for main in ["relay(3)", "relay(0)", "relay(x)"] {
-        agree(s::shadow::program(), &ir, main, "");
-        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
-    }
+    agree_both(
+        s::shadow::program(),
+        &ir,
+        &["relay(3)", "relay(0)", "relay(x)"],
+    );
     let ir = interpreter("typed/globals/overflow");
-    for main in ["relay(1.0e19)", "relay(1)", "relay(x)"] {
-        agree(s::overflow::program(), &ir, main, "");
-        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
-    }
+    agree_both(
+        s::overflow::program(),
+        &ir,
+        &["relay(1.0e19)", "relay(1)", "relay(x)"],
+    );
     // `get(left, D) == get(right, D)`: the second `get` unifies, an error
     // where the values differ (the review of session 12 found native code
     // that would compare the two values, `false`; not native since).
     let ir = interpreter("typed/globals/same_var");
-    for main in [
-        "relay(kept)",
-        "relay(other)",
-        "relay(3)",
-        "top(kept)",
-        "top(other)",
-        "top(3)",
-    ] {
-        agree(s::same_var::program(), &ir, main, "");
-        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
-    }
+    agree_both(
+        s::same_var::program(),
+        &ir,
+        &[
+            "relay(kept)",
+            "relay(other)",
+            "relay(3)",
+            "top(kept)",
+            "top(other)",
+            "top(3)",
+        ],
+    );
 }
 
 mod set_local_nget14 {
@@ -1284,18 +1302,19 @@ mod set_local_nget14 {
 #[test]
 fn set_of_a_local_natively_agrees() {
     let ir = interpreter("typed/locals/set_local");
-    for main in [
-        "main(5, 1)",
-        "main(2, 1)",
-        "main(5, x)",
-        "main(5, 2.5)",
-        "main(0, f(x))",
-        "main(5, [a])",
-        "main(x, 1)",
-    ] {
-        agree(set_local_nget14::set_local::program(), &ir, main, "");
-        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
-    }
+    agree_both(
+        set_local_nget14::set_local::program(),
+        &ir,
+        &[
+            "main(5, 1)",
+            "main(2, 1)",
+            "main(5, x)",
+            "main(5, 2.5)",
+            "main(0, f(x))",
+            "main(5, [a])",
+            "main(x, 1)",
+        ],
+    );
 }
 
 mod get_binds_nget14 {
@@ -1314,24 +1333,25 @@ mod get_binds_nget14 {
 #[test]
 fn get_binds_its_variable_natively_and_agrees() {
     let ir = interpreter("typed/globals/get_binds");
-    for main in [
-        "main(1, 1, 1, 2)",
-        "main(3, 3, 3, 3)",
-        "main(0, 0, 0, 0)",
-        "main(x, x, x, x)",
-        "main(x, x, x, 5)",
-        "main(1, 2, 1, 0)",
-        "main(1, 2, 1, 2)",
-        "main(1, 1, 2, 3)",
-        "main(1, 1, 1.0, 3)",
-        "main(x, y, y, -1)",
-        "main(f(x), f(x), f(x), 1.5)",
-        "main([a], [a], [a], x)",
-        "main(2, 2, 2, f(1))",
-    ] {
-        agree(get_binds_nget14::get_binds::program(), &ir, main, "");
-        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main, "");
-    }
+    agree_both(
+        get_binds_nget14::get_binds::program(),
+        &ir,
+        &[
+            "main(1, 1, 1, 2)",
+            "main(3, 3, 3, 3)",
+            "main(0, 0, 0, 0)",
+            "main(x, x, x, x)",
+            "main(x, x, x, 5)",
+            "main(1, 2, 1, 0)",
+            "main(1, 2, 1, 2)",
+            "main(1, 1, 2, 3)",
+            "main(1, 1, 1.0, 3)",
+            "main(x, y, y, -1)",
+            "main(f(x), f(x), f(x), 1.5)",
+            "main([a], [a], [a], x)",
+            "main(2, 2, 2, f(1))",
+        ],
+    );
 }
 
 /// An out_arg with side effects is evaluated after the arc's next
