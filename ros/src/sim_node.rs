@@ -423,6 +423,12 @@ pub fn serve(
                     if is_listening && !text.trim().is_empty() {
                         w.sim.hear_from_outside(&text);
                         w.heard += 1;
+                    } else if !text.trim().is_empty() {
+                        // Not silent: the user's moves follow what is heard.
+                        note(&format!(
+                            "run {}: `{text}` arrived while the robot was not listening: not counted as heard",
+                            runs.max(1)
+                        ));
                     }
                 }
             }
