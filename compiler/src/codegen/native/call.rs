@@ -238,11 +238,10 @@ impl Gen<'_> {
             return None;
         }
         let n = self.store.atom_of(*n)?;
-        let li = d.locals.iter().position(|(l, _)| *l == n)?;
-        let l = format_ident!("l{}", li);
+        let (l, ty) = d.local_field(n)?;
         Some(V {
             e: quote!((*#l).clone()),
-            ty: d.locals[li].1.clone(),
+            ty,
         })
     }
 
@@ -1248,15 +1247,12 @@ impl Gen<'_> {
                     arg: Build::Reg(r),
                 } if *op == atoms::GET => {
                     let got = if d.declares_local(*name) {
-                        let li = d
-                            .locals
-                            .iter()
-                            .position(|(l, _)| l == name)
+                        let (l, ty) = d
+                            .local_field(*name)
                             .ok_or("`get` of a local the frame does not hold")?;
-                        let l = format_ident!("l{}", li);
                         V {
                             e: quote!(#l.clone()),
-                            ty: d.locals[li].1.clone(),
+                            ty,
                         }
                     } else {
                         let (gty, e) = self.nat_global_op(*op, *name, None, arc_ix, &enter)?;
@@ -1293,13 +1289,7 @@ impl Gen<'_> {
                     self.nat_local_set(d, name, &x, v, a, &mut stmts, &mut const_atom)?
                 }
                 Ev::VarOpFresh { op, name, dst } => {
-                    let li = d
-                        .locals
-                        .iter()
-                        .position(|(l, _)| l == name)
-                        .ok_or("`inc`/`get` of a global")?;
-                    let l = format_ident!("l{}", li);
-                    let lty = d.locals[li].1.clone();
+                    let (l, lty) = d.local_field(*name).ok_or("`inc`/`get` of a global")?;
                     let dty = d.types[ix].regs[*dst as usize].ty.clone();
                     let opa = self.atom_native(*op)?;
                     let namea = self.atom_native(*name)?;
@@ -1470,20 +1460,16 @@ impl Gen<'_> {
         stmts: &mut Vec<TokenStream>,
         const_atom: &mut Option<sitlog_syntax::Atom>,
     ) -> N<Ty> {
-        let li = d
-            .locals
-            .iter()
-            .position(|(l, _)| *l == name)
+        let (l, lty) = d
+            .local_field(name)
             .ok_or("`set` of a local the frame does not hold")?;
-        let l = format_ident!("l{}", li);
-        let lty = &d.locals[li].1;
         let e = &v.e;
         let to = coerce(
             &V {
                 e: quote!(#x.clone()),
                 ty: v.ty.clone(),
             },
-            lty,
+            &lty,
         )?;
         stmts.push(quote! {
             let #x = #e;

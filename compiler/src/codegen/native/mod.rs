@@ -1147,6 +1147,12 @@ impl CellField {
 }
 
 impl Dm<'_> {
+    /// The frame's field holding local `name` (`l<i>`) and its type, where
+    /// the frame holds it (`None`: a global, or a local not held natively).
+    fn local_field(&self, name: Atom) -> Option<(Ident, Ty)> {
+        let li = self.locals.iter().position(|(l, _)| *l == name)?;
+        Some((format_ident!("l{}", li), self.locals[li].1.clone()))
+    }
     /// Whether `name` is a local the DM declares (held in the frame or
     /// not): the machine's `var_op` looks at the running DM's locals
     /// first, a name that is none is a global (D-38).
@@ -3932,15 +3938,14 @@ impl Gen<'_> {
             if !d.locals_ok {
                 return Ok(None);
             }
-            let Some(li) = d.locals.iter().position(|(l, _)| *l == name) else {
+            let Some((l, lty)) = d.local_field(name) else {
                 return Ok(None);
             };
-            let l = format_ident!("l{}", li);
             // `l.clone()`: read in place where the value is only read
             // (`place`), a comparison's operand.
             return Ok(Some(V {
                 e: quote!(#l.clone()),
-                ty: d.locals[li].1.clone(),
+                ty: lty,
             }));
         }
         self.nat_global_read(d, cur, name)
