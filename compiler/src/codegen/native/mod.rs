@@ -5487,19 +5487,8 @@ fn identical(l: &V, r: &V) -> Option<TokenStream> {
 /// `Borrow`, whether the binding is the value or a reference to it), any
 /// other value the expression's temporary.
 fn place(v: &V) -> TokenStream {
-    let ts: Vec<proc_macro2::TokenTree> = v.e.clone().into_iter().collect();
-    if let [proc_macro2::TokenTree::Ident(x), proc_macro2::TokenTree::Punct(dot), proc_macro2::TokenTree::Ident(clone), proc_macro2::TokenTree::Group(g)] =
-        ts.as_slice()
-    {
-        if dot.as_char() == '.'
-            && clone == "clone"
-            && g.delimiter() == proc_macro2::Delimiter::Parenthesis
-            && g.stream().is_empty()
-        {
-            if let Ok(t) = rust_ty(&v.ty) {
-                return quote!((*::std::borrow::Borrow::<#t>::borrow(&#x)));
-            }
-        }
+    if let (Some(x), Ok(t)) = (moved_place(v), rust_ty(&v.ty)) {
+        return quote!((*::std::borrow::Borrow::<#t>::borrow(&#x)));
     }
     let e = &v.e;
     quote!((#e))
