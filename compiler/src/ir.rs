@@ -30,6 +30,8 @@ pub struct Ir {
     pub basic_actions: Vec<Atom>,
     /// Names and arities of the Prolog user functions (heads of user_functions.pl).
     pub prolog_functions: Vec<(Atom, usize)>,
+    /// Names and arities the host registers in Rust (`host_functions.pl`).
+    pub host_functions: Vec<(Atom, usize)>,
     /// Recovery DM per situation type (D-42a).
     pub recovery: Vec<(Atom, Atom)>,
     /// The Prolog files (templates.pl, then user_functions.pl), consulted
@@ -320,6 +322,7 @@ pub fn lower(checked: &Checked) -> Ir {
             .iter()
             .map(|f| (f.name, f.arity))
             .collect(),
+        host_functions: program.host_functions.clone(),
         recovery: program
             .recovery
             .iter()

@@ -17,11 +17,18 @@ pub(crate) struct Planner<'s> {
     store: &'s Store,
     dm: &'s IrDm,
     regs: Reg,
+    /// `when/3` is the runtime's own ([`super::std_when`]).
+    pub(crate) std_when: bool,
 }
 
 impl<'s> Planner<'s> {
     pub(crate) fn new(store: &'s Store, dm: &'s IrDm) -> Self {
-        Planner { store, dm, regs: 0 }
+        Planner {
+            store,
+            dm,
+            regs: 0,
+            std_when: false,
+        }
     }
 
     pub(crate) fn reg(&mut self) -> Reg {
@@ -224,6 +231,9 @@ impl<'s> Planner<'s> {
             let lhs = self.build(args[0], &scope.vars, depth + 1)?;
             return Ok(Ev::Is { lhs, expr });
         }
+        if let Some(e) = self.when_call(t, scope, depth) {
+            return Ok(e);
+        }
         if eval::evaluates_arguments_only(name, args.len()) {
             let values = args
                 .iter()
@@ -232,6 +242,53 @@ impl<'s> Planner<'s> {
             return Ok(Ev::Compound(name, values.into()));
         }
         Ok(Ev::Eval(self.build(t, &scope.vars, depth + 1)?))
+    }
+
+    /// `apply(when(_, _, _), [C, T, E])` with the runtime's own `when/3`
+    /// (`functions::standard`: `T` if `C`'s value is `true`, else `E`) as
+    /// the conditional `(C -> T ; otherwise -> E)`, where the two cannot
+    /// differ: `when`'s three arguments are variables (each takes its
+    /// value, D-37), `C` is `A == B` or `A \== B` (its value `true` exactly
+    /// when the condition holds: both evaluate `A` then `B` and compare
+    /// them, D-34/D-35, with the same errors) and `T`, `E` are terms whose
+    /// evaluation gives themselves (constants: evaluating both, as `apply`
+    /// does, or one, as the conditional does, is the same). Anything else
+    /// stays the evaluator's call (`None`).
+    pub(crate) fn when_call(&self, t: Term, scope: &mut Scope, depth: usize) -> Option<Ev> {
+        let (c, then, other) = self.when_parts(t)?;
+        let c = Cond::Other(self.build(c, &scope.vars, depth + 1).ok()?);
+        let then = self.ev(then, scope, depth + 1).ok()?;
+        let other = self.ev(other, scope, depth + 1).ok()?;
+        Some(Ev::If(Box::new(c), Box::new(then), Box::new(other)))
+    }
+
+    /// `(C, T, E)` of `apply(when(V1, V2, V3), [C, T, E])` (`V`s variables,
+    /// `C` an `==` or `\==`, the runtime's own `when/3`): see [`Self::when_call`].
+    fn when_parts(&self, t: Term) -> Option<(Term, Term, Term)> {
+        if !self.std_when {
+            return None;
+        }
+        let [f, list] = *self.store.compound_args(t, atoms::APPLY, 2)? else {
+            return None;
+        };
+        let f = self
+            .store
+            .compound_args(self.store.deref(f), Atom::intern("when"), 3)?;
+        if !f.iter().all(|&v| self.store.is_var(v)) {
+            return None;
+        }
+        let items = self.list_literal(list)?;
+        let &[c, then, other] = items.as_slice() else {
+            return None;
+        };
+        let (name, arity) = self.store.functor(c)?;
+        if arity != 2 || (name != atoms::EQ_EQ && name != atoms::NOT_EQ_EQ) {
+            return None;
+        }
+        // Constants whose evaluation gives themselves (what `ev` makes
+        // `Ev::Built`), checked before lowering anything (no scope changed).
+        let constant = |t: Term| self.store.is_ground(t) && self.inert(t, true);
+        (constant(then) && constant(other)).then_some((c, then, other))
     }
 
     pub(crate) fn cond(&self, cond: Term, scope: &mut Scope, depth: usize) -> Plan<Cond> {
@@ -257,6 +314,14 @@ impl<'s> Planner<'s> {
             let then = self.next(then, scope, depth + 1)?;
             let other = self.next(other, scope, depth + 1)?;
             return Ok(Next::If(Box::new(c), Box::new(then), Box::new(other)));
+        }
+        // The runtime's `when/3` as the conditional it is the same as.
+        if let Some(Ev::If(c, ..)) = self.when_call(t, scope, depth) {
+            if let Some((_, then, other)) = self.when_parts(t) {
+                let then = self.next(then, scope, depth + 1)?;
+                let other = self.next(other, scope, depth + 1)?;
+                return Ok(Next::If(c, Box::new(then), Box::new(other)));
+            }
         }
         Ok(Next::Eval(self.ev(t, scope, depth + 1)?))
     }

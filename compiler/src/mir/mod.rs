@@ -257,16 +257,31 @@ impl Mir {
 
 /// Lowers every situation of the IR that can run as code (see the module doc).
 pub fn lower(ir: &Ir) -> Mir {
+    let std_when = std_when(ir);
     let dms = ir
         .dms
         .iter()
         .map(|dm| {
             (0..dm.situations.len())
-                .map(|i| Planner::new(&ir.store, dm).situation(i).ok())
+                .map(|i| {
+                    let mut planner = Planner::new(&ir.store, dm);
+                    planner.std_when = std_when;
+                    planner.situation(i).ok()
+                })
                 .collect()
         })
         .collect();
     Mir { dms }
+}
+
+/// Whether `apply(when(..), ..)` calls the runtime's own `when/3`
+/// (`functions::standard`): neither the application's Prolog nor the host
+/// (`host_functions.pl`) defines `when/3`, which would replace it
+/// (`Engine::install`). Only then does the planner lower it as a
+/// conditional ([`Planner::when_call`](lower::Planner)).
+fn std_when(ir: &Ir) -> bool {
+    let when = (Atom::intern("when"), 3);
+    !ir.prolog_functions.contains(&when) && !ir.host_functions.contains(&when)
 }
 
 impl Build {

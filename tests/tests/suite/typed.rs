@@ -1125,6 +1125,87 @@ fn a_failing_out_arg_names_the_walks_id() {
     }
 }
 
+/// Helper `nwhen15`'s (session 14): the runtime's `when/3`, lowered as a
+/// conditional where it is the same as one.
+mod when_nwhen15 {
+    pub mod when {
+        sitlog_macros::include_dm!("typed/when");
+    }
+    pub mod when_prolog {
+        sitlog_macros::include_dm!("typed/when_prolog");
+    }
+}
+
+/// `apply(when(_, _, _), [C, T, E])` in an out_arg, a next situation and
+/// an action (`typed/when`): a true and a false condition, nested (in a
+/// branch), a condition that errors (an arithmetic comparison of atoms, of
+/// an unbound variable) and one that is not a comparison (`true`, another
+/// atom, an unbound variable, a number): the compiled task and the
+/// interpreter's plans agree with the evaluator, history kept or not.
+#[test]
+fn the_runtimes_when_agrees() {
+    let ir = interpreter("typed/when");
+    let mains = [
+        "main(a, a, x)",
+        "main(b, b, x)",
+        "main(a, b, x)",
+        "main(_, 1, x)",
+        "main(2, 1, true)",
+        "main(2, 1, foo)",
+        "main(2, 1, _)",
+        "main(2, 1, 3)",
+        "main(1, 2, 1)",
+        "main(1, 2, 2)",
+        "main(1, 2, f(_))",
+    ];
+    for main in mains {
+        let compiled = when_nwhen15::when::program();
+        agree_modulo_vars(compiled, &ir, main);
+        agree_modulo_vars(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main);
+    }
+    for (main, out) in [
+        ("main(a, a, x)", "same"),
+        ("main(2, 1, true)", "yes"),
+        ("main(2, 1, foo)", "no"),
+        ("main(1, 2, 1)", "yes"),
+    ] {
+        let c = run(when_nwhen15::when::program(), main, "", false, false, false);
+        assert_eq!(c.0["out_arg"], out, "{main}: {c:?}");
+    }
+    let c = run(
+        when_nwhen15::when::program(),
+        "main(a, b, x)",
+        "",
+        false,
+        false,
+        false,
+    );
+    assert!(c.0.to_string().contains("error"), "{c:?}");
+}
+
+/// `when/3` defined by the application's Prolog replaces the runtime's:
+/// the compiled task keeps the evaluator's call (`typed/when_prolog`, its
+/// `when/3` always the third argument).
+#[test]
+fn a_prolog_when_replaces_the_runtimes() {
+    let ir = interpreter("typed/when_prolog");
+    PROLOG.with(|p| *p.borrow_mut() = Some(interpreter("typed/when_prolog")));
+    for keep in [false, true] {
+        let c = run(
+            when_nwhen15::when_prolog::program(),
+            "main(a)",
+            "",
+            keep,
+            false,
+            false,
+        );
+        let i = run(&ir, "main(a)", "", keep, false, false);
+        assert_eq!(c, i, "history {keep}");
+        assert_eq!(c.0["out_arg"], "elsewhere", "{c:?}");
+    }
+    PROLOG.with(|p| *p.borrow_mut() = None);
+}
+
 mod locals_nout14 {
     pub mod outarg_eval {
         sitlog_macros::include_dm!("typed/locals/outarg_eval");
