@@ -1134,6 +1134,52 @@ mod when_nwhen15 {
     pub mod when_prolog {
         sitlog_macros::include_dm!("typed/when_prolog");
     }
+    pub mod when_host {
+        sitlog_macros::include_dm!("typed/when_host");
+    }
+}
+
+/// `typed/when_host` run with a host's `when/3` (always the third
+/// argument): its report and what it said.
+fn run_host_when<A: app::App>(app: &A) -> String {
+    let mut f = Functions::standard();
+    f.register("when", 3, |_, args| Ok(args[2]));
+    let mut perception = ScriptPerception::new("script", String::new());
+    let mut text = Vec::new();
+    let (outcome, store): (Outcome, Store) = {
+        let mut actions = TextActions::new(&mut text, Vec::new());
+        app::run(
+            app,
+            "main(a)",
+            None,
+            Options::default(),
+            f,
+            &mut perception,
+            &mut actions,
+            None,
+        )
+        .expect("runs")
+    };
+    format!(
+        "{} {}",
+        report::outcome_json(&store, &outcome),
+        String::from_utf8(text).unwrap()
+    )
+}
+
+/// `when/3` declared in `host_functions.pl` (the host registers its own):
+/// the compiled task and the interpreter's plans keep the evaluator's call
+/// and agree with it.
+#[test]
+fn a_host_when_replaces_the_runtimes() {
+    let ir = interpreter("typed/when_host");
+    let i = run_host_when(&ir);
+    assert!(i.contains("elsewhere") && i.contains("fin(y)"), "{i}");
+    assert_eq!(run_host_when(when_nwhen15::when_host::program()), i);
+    assert_eq!(
+        run_host_when(&sitlog_compiler::interp::Resolved::new(&ir)),
+        i
+    );
 }
 
 /// `apply(when(_, _, _), [C, T, E])` in an out_arg, a next situation and
