@@ -55,7 +55,7 @@ pub use native_stack::{
 pub use observe::{Inspection, Observer};
 pub use options::Options;
 pub use outcome::{ErrorSite, Outcome, RunError};
-pub use program::{Between, Cx, DmProgram, Next, Step, TypedRun, Visit};
+pub use program::{Between, Cx, DmProgram, HeldPipe, Next, Step, TypedRun, Visit, HELD_MAX};
 pub use situation::{
     none_marker, read_consts, read_dms, read_templates, DmIx, DmRow, Instance, Kind, SitIx, SitRow,
     SitTable, Templates,

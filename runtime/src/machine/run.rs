@@ -7,7 +7,7 @@
 use super::io::{Actions, Perception};
 use super::observe::Observer;
 use super::outcome::{Outcome, RunError};
-use super::program::{Cx, DmProgram, Step};
+use super::program::{Cx, DmProgram, HeldPipe, Step};
 use super::situation::{DmIx, Instance, Kind, SitIx};
 use super::state::{Frame, Goto, Machine, Pending};
 use super::steps::Chosen;
@@ -232,8 +232,13 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         sit,
                         id,
                         selected,
+                        held: HeldPipe::default(),
                     };
-                    let step = program.run_situation(dm, sit, &mut cx)?;
+                    let step = program.run_situation(dm, sit, &mut cx);
+                    // The pipe native code held, made a term before the
+                    // machine (its report too, on an error) reads it.
+                    cx.flush_pipe();
+                    let step = step?;
                     // The code may have gone on to other situations of the DM.
                     let (at, id, selected) = (cx.sit, cx.id, cx.selected);
                     debug_assert!(self.lazy.is_empty(), "typed code left lazy frames");
@@ -402,8 +407,11 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                                 sit,
                                 id,
                                 selected: Some(id),
+                                held: HeldPipe::default(),
                             };
-                            step = program.run_exit(dm, sit, saved, final_id, &mut cx)?;
+                            let exit = program.run_exit(dm, sit, saved, final_id, &mut cx);
+                            cx.flush_pipe();
+                            step = exit?;
                         }
                         None => unreachable!("a caller frame always has a pending situation"),
                     }
