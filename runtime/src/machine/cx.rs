@@ -14,8 +14,9 @@
 //! check below `GC_TICKS_BELOW`).
 
 use super::outcome::RunError;
-use super::program::{Cx, DmProgram, HeldPipe, Step, Visit};
+use super::program::{Cx, DmProgram, Step, Visit};
 use super::situation::{DmIx, SitIx};
+use super::state::{HeldPipe, Machine};
 use crate::eval;
 use crate::native::{self, Native};
 use crate::store::Store;
@@ -777,7 +778,8 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// machine when compiled code returns, on an error too).
     #[inline]
     pub fn flush_pipe(&mut self) {
-        if *self.pipe == HeldPipe::MARK {
+        // Any header cell is the mark (no handle given out is one).
+        if let crate::term::Repr::Functor(..) = self.pipe.0 {
             self.unhold_pipe();
         }
     }
@@ -785,10 +787,10 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     #[cold]
     #[inline(never)]
     fn unhold_pipe(&mut self) {
+        debug_assert!(*self.pipe == HeldPipe::MARK, "a header cell as the pipe");
         // What `build_of` of the values makes (an argument's term built
         // before the compound, in order), without allocating.
-        let h = &self.held;
-        let store = &mut self.m.store;
+        let Machine { held: h, store, .. } = &mut *self.m;
         let mut ts = [Term::NIL; super::HELD_MAX];
         for (t, v) in ts.iter_mut().zip(&h.args[..h.n]) {
             *t = v.to_term(store);
@@ -803,9 +805,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     #[inline]
     pub fn hold_pipe<const N: usize>(&mut self, name: Atom, args: [native::Val; N]) {
         const { assert!(0 < N && N <= super::HELD_MAX) };
-        self.held.name = name;
-        self.held.n = N;
-        for (slot, v) in self.held.args.iter_mut().zip(args) {
+        self.m.held.name = name;
+        self.m.held.n = N;
+        for (slot, v) in self.m.held.args.iter_mut().zip(args) {
             *slot = v;
         }
         *self.pipe = HeldPipe::MARK;
@@ -816,8 +818,11 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// (the pipe's term then reads it: [`Cx::pipe_in`]).
     #[inline]
     pub fn held_pipe<const N: usize>(&self, name: Atom) -> Option<&[native::Val; N]> {
-        if *self.pipe == HeldPipe::MARK && self.held.n == N && self.held.name == name {
-            self.held.args.first_chunk::<N>()
+        if matches!(self.pipe.0, crate::term::Repr::Functor(..))
+            && self.m.held.n == N
+            && self.m.held.name == name
+        {
+            self.m.held.args.first_chunk::<N>()
         } else {
             None
         }

@@ -55,9 +55,9 @@ pub use native_stack::{
 pub use observe::{Inspection, Observer};
 pub use options::Options;
 pub use outcome::{ErrorSite, Outcome, RunError};
-pub use program::{Between, Cx, DmProgram, HeldPipe, Next, Step, TypedRun, Visit, HELD_MAX};
+pub use program::{Between, Cx, DmProgram, Next, Step, TypedRun, Visit};
 pub use situation::{
     none_marker, read_consts, read_dms, read_templates, DmIx, DmRow, Instance, Kind, SitIx, SitRow,
     SitTable, Templates,
 };
-pub use state::Machine;
+pub use state::{HeldPipe, Machine, HELD_MAX};

@@ -7,7 +7,7 @@
 use super::io::{Actions, Perception};
 use super::observe::Observer;
 use super::outcome::{Outcome, RunError};
-use super::program::{Cx, DmProgram, HeldPipe, Step};
+use super::program::{Cx, DmProgram, Step};
 use super::situation::{DmIx, Instance, Kind, SitIx};
 use super::state::{Frame, Goto, Machine, Pending};
 use super::steps::Chosen;
@@ -232,7 +232,6 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         sit,
                         id,
                         selected,
-                        held: HeldPipe::default(),
                     };
                     let step = program.run_situation(dm, sit, &mut cx);
                     // The pipe native code held, made a term before the
@@ -407,7 +406,6 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                                 sit,
                                 id,
                                 selected: Some(id),
-                                held: HeldPipe::default(),
                             };
                             let exit = program.run_exit(dm, sit, saved, final_id, &mut cx);
                             cx.flush_pipe();

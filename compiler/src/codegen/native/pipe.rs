@@ -25,6 +25,18 @@
 //! the machine, nothing done, which runs it from the template (a mismatch
 //! is the machine's error, D-8 as E14 fixes it).
 //!
+//! The pipe held as native values (`npipe15`): an out_arg `name(A, ..)`
+//! of at most `HELD_MAX` arguments, each an int, a float, an atom or a
+//! `ground` value, is not made a term: `Cx::hold_pipe` keeps the values
+//! (`Gen::nat_out_held`), the machine's pipe term a mark meanwhile. A
+//! pattern `name(..)` of variables and atom or int constants reads them
+//! there (`Cx::held_pipe`, `Gen::nat_held_match`), as the term path reads
+//! the parts; any other reader makes the term first (`Cx::pipe_in`,
+//! `Cx::flush_pipe`), and so does the machine when compiled code returns
+//! (a hand-over, the end of the run, an error): the term is the one
+//! `build_of` of the values makes, so the machine, its history and its
+//! report see what they saw when the pipe was built at once.
+//!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
 //! where the machine enters native code, `nat_entry` checks the
