@@ -222,8 +222,9 @@ impl Gen<'_> {
                                 }
                             });
                         }
-                        None => match bound.iter().find(|(x, _)| x == r) {
-                            Some((_, ty)) => {
+                        // Met first here (one met only here, `_`, is not read).
+                        None => {
+                            if let Some((_, ty)) = bound.iter().find(|(x, _)| x == r) {
                                 if !readable(ty) {
                                     return Ok(None);
                                 }
@@ -232,9 +233,7 @@ impl Gen<'_> {
                                 body.push(quote!(let #x = <#rty as FromVal>::from_val(#v)?;));
                                 met.push(*r);
                             }
-                            // Met only here (`_`): not read.
-                            None => {}
-                        },
+                        }
                     }
                 }
                 Build::Const(c) => match self.store.value(*c) {
