@@ -10,5 +10,5 @@ pub use crate::machine::{
     Cx, DmIx, DmRow, Fault, Fill, Instance, Kind, NatAt, NatFrames, RunError, SitIx, SitRow,
     SitTable, Step, TypedRun, Visit,
 };
-pub use crate::native::{Ground, IntoVal, List, Native, Never, Val};
+pub use crate::native::{FromVal, Ground, IntoVal, List, Native, Never, Val};
 pub use crate::{atoms, machine, native, Atom, Store, Term, Vars};

@@ -16,6 +16,7 @@
 use super::outcome::RunError;
 use super::program::{Cx, DmProgram, Step, Visit};
 use super::situation::{DmIx, SitIx};
+use super::state::{HeldPipe, Machine};
 use crate::eval;
 use crate::native::{self, Native};
 use crate::store::Store;
@@ -509,6 +510,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         }
         let empty = Term::atom(sitlog_syntax::atoms::EMPTY);
         self.id = id;
+        self.flush_pipe();
         self.m.record(id, empty, empty, None, *self.pipe, &mut None);
         let level = self.m.levels.pop_back().expect("a level");
         let nested = crate::history::Item::Nested(level.history);
@@ -756,15 +758,80 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         }
     }
 
-    /// The incoming pipe value.
+    /// The incoming pipe value (made a term first if native code holds
+    /// it, [`Cx::flush_pipe`]).
     #[inline]
-    pub fn pipe(&self) -> Term {
+    pub fn pipe(&mut self) -> Term {
+        self.flush_pipe();
         *self.pipe
+    }
+
+    /// [`Cx::pipe`] dereferenced: what native code's in_arg reads.
+    #[inline]
+    pub fn pipe_in(&mut self) -> Term {
+        let t = self.pipe();
+        self.m.store.deref(t)
+    }
+
+    /// The pipe held as native values made a term, if native code holds
+    /// it ([`HeldPipe`]): before anything reads the pipe's term (the
+    /// machine when compiled code returns, on an error too).
+    #[inline]
+    pub fn flush_pipe(&mut self) {
+        // Any header cell is the mark (no handle given out is one).
+        if let crate::term::Repr::Functor(..) = self.pipe.0 {
+            self.unhold_pipe();
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn unhold_pipe(&mut self) {
+        debug_assert!(*self.pipe == HeldPipe::MARK, "a header cell as the pipe");
+        // What `build_of` of the values makes (an argument's term built
+        // before the compound, in order), without allocating.
+        let Machine { held: h, store, .. } = &mut *self.m;
+        let mut ts = [Term::NIL; super::HELD_MAX];
+        for (t, v) in ts.iter_mut().zip(&h.args[..h.n]) {
+            *t = v.to_term(store);
+        }
+        *self.pipe = native::compound(store, h.name, &ts[..h.n]);
+    }
+
+    /// Sets the pipe to `name(args..)` (an arc's out_arg of native values,
+    /// at most [`HELD_MAX`](super::HELD_MAX) arguments, each canonical),
+    /// held as those values ([`HeldPipe`]): the term `build_of` would make,
+    /// made only where something reads it as a term.
+    #[inline]
+    pub fn hold_pipe<const N: usize>(&mut self, name: Atom, args: [native::Val; N]) {
+        const { assert!(0 < N && N <= super::HELD_MAX) };
+        self.m.held.name = name;
+        self.m.held.n = N;
+        for (slot, v) in self.m.held.args.iter_mut().zip(args) {
+            *slot = v;
+        }
+        *self.pipe = HeldPipe::MARK;
+    }
+
+    /// The pipe's `N` arguments when native code holds it as
+    /// `name(args..)` of `N` arguments ([`Cx::hold_pipe`]), else `None`
+    /// (the pipe's term then reads it: [`Cx::pipe_in`]).
+    #[inline]
+    pub fn held_pipe<const N: usize>(&self, name: Atom) -> Option<&[native::Val; N]> {
+        if matches!(self.pipe.0, crate::term::Repr::Functor(..))
+            && self.m.held.n == N
+            && self.m.held.name == name
+        {
+            self.m.held.args.first_chunk::<N>()
+        } else {
+            None
+        }
     }
 
     /// Unifies the situation's in_arg pattern with the incoming pipe (D-8, E14).
     pub fn in_arg(&mut self, pattern: Term) -> Result<(), RunError> {
         self.m.materialize();
+        self.flush_pipe();
         let here = self.here();
         self.m.unify_in_arg(pattern, *self.pipe, here)
     }
@@ -1054,6 +1121,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// the visit.
     #[inline]
     pub fn pipe_deref(&mut self) {
+        // Held as native values: a compound, nothing to dereference.
         let t = *self.pipe;
         if let crate::term::Repr::Var(_) = t.0 {
             *self.pipe = self.m.store.deref(t);
@@ -1073,6 +1141,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// A final situation's out_arg (or the pipe unchanged when `None`).
     pub fn final_out_arg(&mut self, out: Option<Term>) -> Result<(), RunError> {
         self.m.materialize();
+        self.flush_pipe();
         let here = self.here();
         self.m.final_out_arg(out, self.pipe, here)
     }
@@ -1182,6 +1251,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     pub fn record(&mut self, expectation: Term, action: Term, next: Option<Term>) {
         self.m.materialize();
         let id = self.id;
+        self.flush_pipe();
         let pipe = *self.pipe;
         self.m
             .record(id, expectation, action, next, pipe, &mut self.observer);

@@ -60,4 +60,4 @@ pub use situation::{
     none_marker, read_consts, read_dms, read_templates, DmIx, DmRow, Instance, Kind, SitIx, SitRow,
     SitTable, Templates,
 };
-pub use state::Machine;
+pub use state::{HeldPipe, Machine, HELD_MAX};

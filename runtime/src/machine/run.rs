@@ -233,7 +233,11 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         id,
                         selected,
                     };
-                    let step = program.run_situation(dm, sit, &mut cx)?;
+                    let step = program.run_situation(dm, sit, &mut cx);
+                    // The pipe native code held, made a term before the
+                    // machine (its report too, on an error) reads it.
+                    cx.flush_pipe();
+                    let step = step?;
                     // The code may have gone on to other situations of the DM.
                     let (at, id, selected) = (cx.sit, cx.id, cx.selected);
                     debug_assert!(self.lazy.is_empty(), "typed code left lazy frames");
@@ -403,7 +407,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                                 id,
                                 selected: Some(id),
                             };
-                            step = program.run_exit(dm, sit, saved, final_id, &mut cx)?;
+                            let exit = program.run_exit(dm, sit, saved, final_id, &mut cx);
+                            cx.flush_pipe();
+                            step = exit?;
                         }
                         None => unreachable!("a caller frame always has a pending situation"),
                     }

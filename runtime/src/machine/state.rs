@@ -122,6 +122,47 @@ pub struct Machine<'p, P> {
     /// no situation is written, for its error. No terms: nothing for the
     /// garbage collector.
     pub(super) chose: Option<(SitIx, Option<usize>)>,
+    /// The pipe as native code set it, not made a term yet (the pipe's
+    /// term is then [`HeldPipe::MARK`]): made one where anything reads the
+    /// pipe as a term (`Cx::flush_pipe`), and when compiled code returns.
+    /// Kept here, not in each `Cx`, so that a `Cx` costs nothing more to
+    /// make and drop (the interpreter's plans make one per situation).
+    pub(super) held: HeldPipe,
+}
+
+/// How many arguments a pipe held as native values may have
+/// ([`HeldPipe`]): a compound with more is made a term where it is set.
+pub const HELD_MAX: usize = 3;
+
+/// The pipe `name(args..)` as native code set it (an arc's out_arg of
+/// native values, `Cx::hold_pipe`), while native code runs: no term built
+/// for it and none taken apart where a native in_arg reads it
+/// (`Cx::held_pipe`). Its arguments are canonical [`Val`](crate::native::Val)s
+/// (no term inside), so a collection cannot move anything of it. While
+/// it holds the pipe, the machine's pipe term is [`HeldPipe::MARK`] (a
+/// header cell, never a handle given out); every reader of that term
+/// makes it the term first (`Cx::flush_pipe`: the same term `build_of` of
+/// the values makes), every writer replaces the mark.
+pub struct HeldPipe {
+    pub(super) name: Atom,
+    pub(super) n: usize,
+    pub(super) args: [crate::native::Val; HELD_MAX],
+}
+
+impl HeldPipe {
+    /// The machine's pipe term while native values hold the pipe.
+    pub const MARK: Term = Term(crate::term::Repr::Functor(sitlog_syntax::atoms::NIL, 0, 2));
+}
+
+impl Default for HeldPipe {
+    fn default() -> HeldPipe {
+        use crate::native::Val;
+        HeldPipe {
+            name: sitlog_syntax::atoms::NIL,
+            n: 0,
+            args: [Val::Int(0), Val::Int(0), Val::Int(0)],
+        }
+    }
 }
 
 impl<'p, P> Machine<'p, P> {
@@ -153,6 +194,7 @@ impl<'p, P> Machine<'p, P> {
             again: false,
             unmatched: Vec::new(),
             chose: None,
+            held: HeldPipe::default(),
         }
     }
 

@@ -25,6 +25,6 @@ mod ty;
 mod val;
 
 pub use list::{Iter, List};
-pub use rust::{compound, id_part, Ground, IntoVal, Native, Never};
+pub use rust::{compound, id_part, FromVal, Ground, IntoVal, Native, Never};
 pub use ty::{Ty, MAX_DEPTH};
 pub use val::{gc, Compound, Val};

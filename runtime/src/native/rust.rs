@@ -187,6 +187,45 @@ fn ground_val(store: &Store, t: Term) -> Option<Val> {
     Val::from_term(store, t, &Ty::Ground)
 }
 
+/// A [`Native`] type read from a canonical [`Val`] (an argument of the
+/// pipe native code holds, `Cx::held_pipe`): `Some` exactly when
+/// [`Native::from_term`] of the value's term is (`Val::to_term` then
+/// `from_term` give back an equal value).
+pub trait FromVal: Sized {
+    fn from_val(v: &Val) -> Option<Self>;
+}
+
+impl FromVal for i64 {
+    #[inline]
+    fn from_val(v: &Val) -> Option<i64> {
+        v.int()
+    }
+}
+
+impl FromVal for f64 {
+    #[inline]
+    fn from_val(v: &Val) -> Option<f64> {
+        match v {
+            Val::Float(f) => Some(*f),
+            _ => None,
+        }
+    }
+}
+
+impl FromVal for Atom {
+    #[inline]
+    fn from_val(v: &Val) -> Option<Atom> {
+        v.sym()
+    }
+}
+
+impl FromVal for Val {
+    #[inline]
+    fn from_val(v: &Val) -> Option<Val> {
+        Some(v.clone())
+    }
+}
+
 /// A typed native value as a canonical [`Val`] (`[]` an empty list): a
 /// value entering a register typed `ground`.
 pub trait IntoVal {

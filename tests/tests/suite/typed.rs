@@ -1816,3 +1816,48 @@ fn in_arg_patterns_agree() {
         agree_piped(&plans, &ir, "entry", Some(pipe), "");
     }
 }
+
+mod pipe_npipe15 {
+    pub mod held {
+        sitlog_macros::include_dm!("typed/pipe_held");
+    }
+}
+
+/// The pipe native code holds as native values (`npipe15`,
+/// `Cx::hold_pipe`), compiled and plans against the interpreter, history
+/// kept or not, observed, numbers logged: the pair handed across calls two
+/// levels down and read by the caller; the run's final report printing it;
+/// an error while it is held (`main(a)`: `N < a`); a recursive situation
+/// with an in_arg pattern (term code) reading the pipe native callees
+/// left (`mixed`); a callee leaving a pipe of another shape, held too
+/// (`stop(N, L, end)`: the caller's `N-Lim` does not match it, the
+/// machine's error); a pipe from the command line, of the pair's shape or
+/// not.
+#[test]
+fn held_pipes_agree() {
+    use pipe_npipe15::held as m;
+    let ir = interpreter("typed/pipe_held");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    for main in [
+        "main(0)",
+        "main(3)",
+        "main(7)",
+        "main(a)",
+        "main(2.5)",
+        "main(f(1))",
+        "mixed(0)",
+        "mixed(5)",
+        "mixed(x)",
+        "shaped(1)",
+        "shaped(2)",
+        "shaped(6)",
+        "shaped(b)",
+    ] {
+        agree(m::program(), &ir, main, "");
+        agree(&plans, &ir, main, "");
+    }
+    for pipe in ["0-3", "2-9", "a-3", "1.5-4", "f(1, 2)", "1-2-3", "x"] {
+        agree_piped(m::program(), &ir, "entry", Some(pipe), "");
+        agree_piped(&plans, &ir, "entry", Some(pipe), "");
+    }
+}

@@ -147,7 +147,10 @@
 //! - *the pipe* ([`pipe`]): read into a variable in_arg's register with a
 //!   checked conversion, or matched against an in_arg that is a pattern
 //!   (its variables registers; a pipe not taken natively is the machine's
-//!   visit from the template), written back where an out_arg sets it.
+//!   visit from the template), written back where an out_arg sets it; an
+//!   out_arg `name(..)` of native values is held as those values
+//!   (`Cx::hold_pipe`), which a native in_arg pattern reads where they are
+//!   (`Cx::held_pipe`), a term only where something reads it as one.
 //!
 //! - *the evaluator's constructs*: an evaluated embedded DM call is built
 //!   from native values and evaluated by `Cx::embedded_dm` (the machine's

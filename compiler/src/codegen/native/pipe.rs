@@ -25,6 +25,18 @@
 //! the machine, nothing done, which runs it from the template (a mismatch
 //! is the machine's error, D-8 as E14 fixes it).
 //!
+//! The pipe held as native values (`npipe15`): an out_arg `name(A, ..)`
+//! of at most `HELD_MAX` arguments, each an int, a float, an atom or a
+//! `ground` value, is not made a term: `Cx::hold_pipe` keeps the values
+//! (`Gen::nat_out_held`), the machine's pipe term a mark meanwhile. A
+//! pattern `name(..)` of variables and atom or int constants reads them
+//! there (`Cx::held_pipe`, `Gen::nat_held_match`), as the term path reads
+//! the parts; any other reader makes the term first (`Cx::pipe_in`,
+//! `Cx::flush_pipe`), and so does the machine when compiled code returns
+//! (a hand-over, the end of the run, an error): the term is the one
+//! `build_of` of the values makes, so the machine, its history and its
+//! report see what they saw when the pipe was built at once.
+//!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
 //! where the machine enters native code, `nat_entry` checks the
@@ -53,7 +65,7 @@ impl Gen<'_> {
         let _ = Literal::u32_unsuffixed(ix as u32);
         if d.pipe_unread.get() {
             return Ok(quote! {
-                let pipe_in = cx.store_ref().deref(cx.pipe());
+                let pipe_in = cx.pipe_in();
                 if !cx.converts_to::<#rty>(pipe_in) {
                     // Not of the in_arg's type: the term code runs the visit.
                     #hand
@@ -66,7 +78,7 @@ impl Gen<'_> {
             });
         }
         Ok(quote! {
-            let pipe_in = cx.store_ref().deref(cx.pipe());
+            let pipe_in = cx.pipe_in();
             let pipe_value = cx.to_native::<#rty>(pipe_in);
             let Some(#rr) = pipe_value else {
                 // Not of the in_arg's type: the term code runs the visit.
@@ -115,22 +127,142 @@ impl Gen<'_> {
             0,
         )?;
         let names: Vec<_> = bound.iter().map(|(r, _)| reg(*r)).collect();
+        let held = self.nat_held_match(pat, regs, &bound)?;
         for (r, ty) in bound {
             regs.insert(r, (reg(r), ty));
         }
         let to_template = self.nat_to_template(d, ix)?;
-        Ok(quote! {
-            let pipe_in = cx.store_ref().deref(cx.pipe());
-            let pipe_parts = (|| {
+        let by_term = quote! {
+            let pipe_in = cx.pipe_in();
+            (|| {
                 let s = cx.store_ref();
                 #(#body)*
                 Some((#(#names,)*))
-            })();
+            })()
+        };
+        let parts = match held {
+            // The pipe native code holds as `name(..)` of this arity: its
+            // values read where they are, no term.
+            Some((f, len, held)) => quote! {
+                match cx.held_pipe::<#len>(#f) {
+                    Some(h) => (|| {
+                        #(#held)*
+                        Some((#(#names,)*))
+                    })(),
+                    None => { #by_term }
+                }
+            },
+            None => quote!({ #by_term }),
+        };
+        Ok(quote! {
+            let pipe_parts = #parts;
             let Some((#(#names,)*)) = pipe_parts else {
                 // Not matched natively: the machine runs the visit.
                 #to_template
             };
         })
+    }
+
+    /// [`Gen::nat_pipe_match`] against the pipe native code holds
+    /// (`Cx::held_pipe`): for a pattern `name(..)` of at most `HELD_MAX`
+    /// arguments, each a variable of a type a `Val` gives back
+    /// (`FromVal`: an int, a float, an atom, a `ground` value) or an atom
+    /// or int constant, the statements that read the held values `h[i]`
+    /// as the term path reads the parts (binding `bound`, in its order),
+    /// with the functor and arity; `None` for any other pattern (read from
+    /// the pipe's term only).
+    fn nat_held_match(
+        &self,
+        pat: &Build,
+        regs: &Regs,
+        bound: &[(Reg, Ty)],
+    ) -> N<Option<(TokenStream, Literal, Vec<TokenStream>)>> {
+        let Build::Compound(f, args) = pat else {
+            return Ok(None);
+        };
+        if args.is_empty() || args.len() > sitlog_runtime::machine::HELD_MAX {
+            return Ok(None);
+        }
+        let readable =
+            |ty: &Ty| matches!(ty, Ty::Int | Ty::Float | Ty::Sym) || super::held_as_val(ty);
+        let mut body = Vec::new();
+        let mut met: Vec<Reg> = Vec::new();
+        for (i, a) in args.iter().enumerate() {
+            let i = Literal::usize_unsuffixed(i);
+            let v = quote!((&h[#i]));
+            match a {
+                Build::Reg(r) => {
+                    let held = regs
+                        .get(r)
+                        .map(|(x, ty)| (x.clone(), ty.clone()))
+                        .or_else(|| {
+                            met.contains(r)
+                                .then(|| bound.iter().find(|(x, _)| x == r))
+                                .flatten()
+                                .map(|(x, ty)| (reg(*x), ty.clone()))
+                        });
+                    match held {
+                        Some((x, ty)) => {
+                            if !readable(&ty) {
+                                return Ok(None);
+                            }
+                            let rty = super::rust_ty(&ty)?;
+                            let held = quote!((*::std::borrow::Borrow::<#rty>::borrow(&#x)));
+                            body.push(if ty == Ty::Float {
+                                quote! {
+                                    if <f64 as FromVal>::from_val(#v)?.to_bits() != #held.to_bits() {
+                                        return None;
+                                    }
+                                }
+                            } else {
+                                quote! {
+                                    if <#rty as FromVal>::from_val(#v)? != #held {
+                                        return None;
+                                    }
+                                }
+                            });
+                        }
+                        // Met first here (one met only here, `_`, is not read).
+                        None => {
+                            if let Some((_, ty)) = bound.iter().find(|(x, _)| x == r) {
+                                if !readable(ty) {
+                                    return Ok(None);
+                                }
+                                let rty = super::rust_ty(ty)?;
+                                let x = reg(*r);
+                                body.push(quote!(let #x = <#rty as FromVal>::from_val(#v)?;));
+                                met.push(*r);
+                            }
+                        }
+                    }
+                }
+                Build::Const(c) => match self.store.value(*c) {
+                    sitlog_runtime::Value::Atom(a) => {
+                        let a = self.atom_native(a)?;
+                        body.push(quote! {
+                            if #v.sym() != Some(#a) {
+                                return None;
+                            }
+                        });
+                    }
+                    sitlog_runtime::Value::Int(n) => {
+                        let n = Literal::i64_suffixed(n);
+                        body.push(quote! {
+                            if #v.int() != Some(#n) {
+                                return None;
+                            }
+                        });
+                    }
+                    _ => return Ok(None),
+                },
+                Build::Compound(..) => return Ok(None),
+            }
+        }
+        if met != bound.iter().map(|(r, _)| *r).collect::<Vec<_>>() {
+            return Ok(None);
+        }
+        let fname = self.functor_native(*f)?;
+        Ok(Some((fname, Literal::usize_unsuffixed(args.len()), body)))
     }
 
     /// [`Gen::nat_pipe_match`] of the part `pat` of the pattern against
@@ -261,7 +393,7 @@ impl Gen<'_> {
             if let Init::Pipe = init {
                 let ty = super::rust_ty(&d.types[ix].regs[*r as usize].ty)?;
                 checks.push(quote! {
-                    let t = cx.store_ref().deref(cx.pipe());
+                    let t = cx.pipe_in();
                     if cx.to_native::<#ty>(t).is_none() {
                         return None;
                     }
@@ -302,6 +434,22 @@ impl Gen<'_> {
             return self.nat_next_out_eval(d, cur, next, b, regs, cur_name);
         } else {
             let v = self.nat_out_value(d, cur, e, next, regs)?;
+            if let Some((vals, f)) = self.nat_out_held(d, cur, e, regs)? {
+                // Held as native values (`Cx::hold_pipe`): a term only
+                // where something reads it as one.
+                let pipe_out = quote!(let pipe_out = [#(#vals),*];);
+                let set = quote!(cx.hold_pipe(#f, pipe_out););
+                *d.out.borrow_mut() = set.clone();
+                let n = self.nat_next(d, cur, next, regs, cur_name);
+                *d.out.borrow_mut() = quote!();
+                let n = n?;
+                return Ok(quote! {{
+                    #pipe_out
+                    let next_at = #n;
+                    #set
+                    next_at
+                }});
+            }
             // A conditional's value first (its condition may use `cx`).
             let pipe_out = if matches!(e, Ev::If(..)) {
                 let e = &v.e;
@@ -361,6 +509,54 @@ impl Gen<'_> {
             quote!(&#x)
         });
         Ok(Some(quote!(cx.build_of(#f, &[#(#ps),*]))))
+    }
+
+    /// An arc's out_arg that [`Gen::nat_out_term`] makes a term of, with
+    /// at most `HELD_MAX` arguments each an int, a float, an atom or a
+    /// `ground` value: the values as `Val`s (cloned: a `Val` an `Rc`
+    /// count at most) and the functor, for `Cx::hold_pipe` (the pipe held
+    /// as those values). `None`: another out_arg.
+    fn nat_out_held(
+        &self,
+        d: &Dm,
+        cur: usize,
+        e: &Ev,
+        regs: &Regs,
+    ) -> N<Option<(Vec<TokenStream>, TokenStream)>> {
+        if self.nat_out_term(d, cur, e, regs)?.is_none() {
+            return Ok(None);
+        }
+        let (name, parts) = match e {
+            Ev::Compound(name, args) => (
+                *name,
+                args.iter()
+                    .map(|a| self.nat_ev_value(d, cur, a, regs))
+                    .collect::<N<Vec<_>>>()?,
+            ),
+            Ev::Built(Build::Compound(name, args)) => (
+                *name,
+                args.iter()
+                    .map(|a| self.nat_value(a, regs))
+                    .collect::<N<Vec<_>>>()?,
+            ),
+            _ => return Ok(None),
+        };
+        if parts.is_empty()
+            || parts.len() > sitlog_runtime::machine::HELD_MAX
+            || !parts
+                .iter()
+                .all(|p| matches!(p.ty, Ty::Int | Ty::Float | Ty::Sym) || super::held_as_val(&p.ty))
+        {
+            return Ok(None);
+        }
+        let vals = parts
+            .iter()
+            .map(|p| {
+                let x = super::place(p);
+                quote!(IntoVal::into_val(#x.clone()))
+            })
+            .collect();
+        Ok(Some((vals, self.functor_native(name)?)))
     }
 
     /// [`Gen::nat_next_out`] for an out_arg the evaluator computes
