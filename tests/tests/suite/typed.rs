@@ -240,26 +240,28 @@ fn agree_piped<A: app::App>(
     }
 }
 
+/// `s` with every variable's number dropped (`_G12` is `_G`).
+fn unnumbered(s: String) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut chars = s.chars().peekable();
+    while let Some(c) = chars.next() {
+        out.push(c);
+        if c == '_' && chars.peek() == Some(&'G') {
+            out.push('G');
+            chars.next();
+            while chars.peek().is_some_and(|d| d.is_ascii_digit()) {
+                chars.next();
+            }
+        }
+    }
+    out
+}
+
 /// As [`agree`], unbound variables' names aside: our convention compares
 /// every `_...` variable alike (semantics.md), and the interpreter's plans
 /// make fewer fresh variables than templates, so the numbers differ where a
 /// run prints an unbound variable.
 fn agree_modulo_vars<A: app::App>(compiled: &A, interpreted: &Ir, main: &str) {
-    fn unnumbered(s: String) -> String {
-        let mut out = String::with_capacity(s.len());
-        let mut chars = s.chars().peekable();
-        while let Some(c) = chars.next() {
-            out.push(c);
-            if c == '_' && chars.peek() == Some(&'G') {
-                out.push('G');
-                chars.next();
-                while chars.peek().is_some_and(|d| d.is_ascii_digit()) {
-                    chars.next();
-                }
-            }
-        }
-        out
-    }
     for keep in [false, true] {
         for observe in [false, true] {
             let c = run_piped(compiled, main, None, "", keep, observe, false);
@@ -1674,18 +1676,109 @@ fn in_arg_patterns_agree() {
             agree(&plans, &ir, main, "");
         }
     }
-    for pipe in [
-        "f(1, [yes])",
-        "f(1, [no, 2])",
-        "f(a, [yes|b])",
-        "f(g(x), [yes, [1]])",
-        "f(1, [])",
-        "f(1, x)",
-        "g(1, [yes])",
-        "x",
-        "f(1, [_])",
-    ] {
+    for pipe in PIPES {
         agree_piped(m::program(), &ir, "entry", Some(pipe), "");
         agree_piped(&plans, &ir, "entry", Some(pipe), "");
+    }
+}
+
+/// The pipes [`in_arg_patterns_agree`] gives `entry`.
+const PIPES: [&str; 9] = [
+    "f(1, [yes])",
+    "f(1, [no, 2])",
+    "f(a, [yes|b])",
+    "f(g(x), [yes, [1]])",
+    "f(1, [])",
+    "f(1, x)",
+    "g(1, [yes])",
+    "x",
+    "f(1, [_])",
+];
+
+/// [`in_arg_patterns_agree`]'s runs under the original's in_arg
+/// (`Options::skip_unmatched_in_arg`, `sitlogc run --legacy`, D-8): a
+/// pattern the pipe does not match is skipped, its variables unbound, the
+/// pipe unchanged. Compiled code hands such a visit to the machine (its
+/// native match fails), so it follows the machine's option by
+/// construction: the compiled task and the plans agree with the
+/// interpreter, history kept and not, and `odd` (an int pipe against
+/// `N-L`) and `entry` with `x` run to their end where they are errors
+/// without the option.
+#[test]
+fn in_arg_patterns_agree_when_a_mismatch_is_skipped() {
+    use pipe_npipe14::pattern as m;
+    let ir = interpreter("typed/pipe_pattern");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    let options = |keep_history, skip_unmatched_in_arg| Options {
+        keep_history,
+        skip_unmatched_in_arg,
+        ..Options::default()
+    };
+    let mains = [
+        "main(3, a)",
+        "main(1, stop)",
+        "main(x, a)",
+        "main(2, f(_))",
+        "shape(1-2)",
+        "shape(foo)",
+        "shape(f(1, 2))",
+        "shape(_)",
+        "odd",
+    ];
+    let runs = mains
+        .iter()
+        .map(|m| (*m, None))
+        .chain(PIPES.iter().map(|p| ("entry", Some(*p))));
+    for (main, pipe) in runs {
+        for keep in [false, true] {
+            let i = run_with(&ir, main, pipe, "", options(keep, true), false, false);
+            for (c, by) in [
+                (
+                    run_with(
+                        m::program(),
+                        main,
+                        pipe,
+                        "",
+                        options(keep, true),
+                        false,
+                        false,
+                    ),
+                    "compiled",
+                ),
+                (
+                    run_with(&plans, main, pipe, "", options(keep, true), false, false),
+                    "plans",
+                ),
+            ] {
+                assert_eq!(
+                    unnumbered(format!("{c:?}")),
+                    unnumbered(format!("{i:?}")),
+                    "{by}: {main} with in_arg {pipe:?} (history {keep})"
+                );
+            }
+        }
+    }
+    for (main, pipe) in [("odd", None), ("entry", Some("x"))] {
+        let error = run_with(&ir, main, pipe, "", options(true, false), false, false).0;
+        assert_eq!(error["status"], "error", "{error}");
+        assert!(
+            error["error"].as_str().unwrap().contains("does not match"),
+            "{error}"
+        );
+        for skipped in [
+            run_with(&ir, main, pipe, "", options(true, true), false, false).0,
+            run_with(
+                m::program(),
+                main,
+                pipe,
+                "",
+                options(true, true),
+                false,
+                false,
+            )
+            .0,
+        ] {
+            assert_eq!(skipped["status"], "ok", "{skipped}");
+        }
     }
 }
