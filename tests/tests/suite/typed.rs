@@ -1782,3 +1782,137 @@ fn in_arg_patterns_agree_when_a_mismatch_is_skipped() {
         }
     }
 }
+
+mod call_head_nwait15 {
+    pub mod calls {
+        sitlog_macros::include_dm!("typed/call_head");
+    }
+}
+
+/// The IR run as if native code ran each DM's recursive situation `s0`
+/// and handed its frame to the machine while the callee runs: its call
+/// made (`callee(1)` or `echo(1)`, a history level opened for it first
+/// when `level`, as native code keeping the history does), the frame made
+/// the machine's by `Cx::wait_template`, the callee's first situation
+/// handed to its template. Generated code pushes on its own stack only
+/// calls whose head unifies for sure (distinct variables), so this is the
+/// one way to hand `wait_template` a call whose head does not.
+struct HandsOver {
+    ir: Ir,
+    level: bool,
+}
+
+impl sitlog_runtime::machine::DmProgram for HandsOver {
+    fn dm_by_name(&self, name: Atom) -> Option<sitlog_runtime::machine::DmIx> {
+        self.ir.dm_by_name(name)
+    }
+    fn dm_name(&self, dm: sitlog_runtime::machine::DmIx) -> Atom {
+        self.ir.dm_name(dm)
+    }
+    fn situation_count(&self, dm: sitlog_runtime::machine::DmIx) -> usize {
+        self.ir.situation_count(dm)
+    }
+    fn kind(
+        &self,
+        dm: sitlog_runtime::machine::DmIx,
+        sit: sitlog_runtime::machine::SitIx,
+    ) -> sitlog_runtime::machine::Kind {
+        self.ir.kind(dm, sit)
+    }
+    fn fresh_head(&self, dm: sitlog_runtime::machine::DmIx, store: &mut Store) -> Term {
+        self.ir.fresh_head(dm, store)
+    }
+    fn instantiate(
+        &self,
+        dm: sitlog_runtime::machine::DmIx,
+        sit: sitlog_runtime::machine::SitIx,
+        store: &mut Store,
+    ) -> Option<sitlog_runtime::machine::Instance> {
+        self.ir.instantiate(dm, sit, store)
+    }
+    fn locals(&self, dm: sitlog_runtime::machine::DmIx, store: &mut Store) -> sitlog_runtime::Vars {
+        self.ir.locals(dm, store)
+    }
+    fn location(
+        &self,
+        dm: sitlog_runtime::machine::DmIx,
+        sit: sitlog_runtime::machine::SitIx,
+    ) -> Option<String> {
+        self.ir.location(dm, sit)
+    }
+    fn compiled_id(
+        &self,
+        dm: sitlog_runtime::machine::DmIx,
+        sit: sitlog_runtime::machine::SitIx,
+    ) -> Option<(Atom, usize)> {
+        let caller = ["main", "ok"].contains(&self.ir.dm_name(dm).as_str());
+        (caller && sit == 0).then(|| (Atom::intern("s0"), 0))
+    }
+    fn run_situation(
+        &self,
+        dm: sitlog_runtime::machine::DmIx,
+        sit: sitlog_runtime::machine::SitIx,
+        cx: &mut sitlog_runtime::machine::Cx<'_, '_, Self>,
+    ) -> Result<sitlog_runtime::machine::Step, sitlog_runtime::machine::RunError> {
+        let callee = match self.ir.dm_name(dm).as_str() {
+            "main" => "callee",
+            _ => "echo",
+        };
+        let call = cx.store().compound(Atom::intern(callee), &[Term::int(1)]);
+        if self.level {
+            cx.open_level(call);
+        }
+        cx.wait_template(sit, Term::atom(Atom::intern("s0")), None)?;
+        Ok(cx.to_template(0, Term::atom(Atom::intern("t0"))))
+    }
+}
+
+impl app::App for HandsOver {
+    fn initial_state(&self) -> (Store, sitlog_runtime::Vars) {
+        self.ir.initial_state()
+    }
+    fn basic_actions(&self) -> Vec<Atom> {
+        app::App::basic_actions(&self.ir)
+    }
+}
+
+/// One call with head unification (issue 37): a call whose callee's head
+/// does not unify with it is the same error (E13) whether the machine
+/// makes it or a frame native code hands over makes it
+/// (`Cx::wait_template`, through `Machine::callee`), with the history kept
+/// and not, a level opened for the callee or not; generated code (which
+/// hands such a call to the machine) and the interpreter agree; a head
+/// that unifies runs alike on all of them.
+#[test]
+fn a_call_whose_head_does_not_unify_is_an_error_wherever_it_is_made() {
+    use call_head_nwait15::calls as m;
+    let ir = interpreter("typed/call_head");
+    for main in ["main", "ok"] {
+        agree(m::program(), &ir, main, "");
+        for level in [false, true] {
+            let handed = HandsOver {
+                ir: interpreter("typed/call_head"),
+                level,
+            };
+            for keep in [false, true] {
+                let options = || Options {
+                    keep_history: keep,
+                    ..Options::default()
+                };
+                let h = run_with(&handed, main, None, "", options(), false, false);
+                let i = run_with(&ir, main, None, "", options(), false, false);
+                assert_eq!(h, i, "{main} handed over (level {level}, history {keep})");
+                if main == "main" {
+                    let e = h.0["error"].as_str().unwrap_or_default();
+                    assert!(
+                        e.contains("the call `callee(1)` does not match the DM's head `callee(2)`"),
+                        "{}",
+                        h.0
+                    );
+                } else {
+                    assert_eq!(h.0["status"], "ok", "{}", h.0);
+                }
+            }
+        }
+    }
+}
