@@ -173,7 +173,8 @@ pub fn init_consults(home: &Path) -> Result<Vec<PathBuf>, String> {
 /// is `app` (or, for a compiled task, the current directory: where the tree
 /// is looked for when neither `explicit` (`--sitlog-home`) nor
 /// `$SITLOG_HOME` names it): the tree becomes a trust root, list tails are
-/// closed, the call limits raised, `screen(X)` with `X` unbound shows
+/// closed, an in_arg that does not match the pipe skipped (D-8), the call
+/// limits raised, `screen(X)` with `X` unbound shows
 /// `caption` (see [`first_caption`]). Returns the tree and the Prolog
 /// sources to load before the application's: the `SITLOG_HOME` fact of
 /// `getenv/2` (as the original's launchers set it, with a trailing `/`),
@@ -192,6 +193,7 @@ pub fn prepare(
     // another's files (without --allow-os as well).
     args.trust_roots.push(home.clone());
     args.close_list_tails = true;
+    args.skip_unmatched_in_arg = true;
     raise_call_limits(args);
     args.unbound_screen = caption;
     let value = std::env::var("SITLOG_HOME")
@@ -435,6 +437,7 @@ mod tests {
         assert_eq!(before[2].text, "b.\n");
         assert_eq!(args.trust_roots, vec![dir.clone()]);
         assert!(args.close_list_tails);
+        assert!(args.skip_unmatched_in_arg);
         assert_eq!(args.prolog_inferences, LEGACY_INFERENCES);
         assert_eq!(args.unbound_screen, caption);
         std::fs::write(dir.join(INIT_FILE), ":- consult('$SITLOG_HOME/kb/c').\n").unwrap();

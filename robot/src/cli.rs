@@ -145,6 +145,10 @@ pub struct RunArgs {
     /// `sitlogc run --legacy`): see `Options::close_list_tails`.
     #[arg(skip)]
     pub close_list_tails: bool,
+    /// The original's in_arg (not an option: set by `sitlogc run
+    /// --legacy`): see `Options::skip_unmatched_in_arg`.
+    #[arg(skip)]
+    pub skip_unmatched_in_arg: bool,
     /// What `screen(X)` with `X` unbound shows in test mode (not an
     /// option: `sitlogc run --legacy` gives the application's first
     /// `caption(Id, Text)`): see `TextActions::with_unbound_screen`.
@@ -292,6 +296,7 @@ impl Default for RunArgs {
             sandbox: SandboxMode::Off,
             trust_roots: Vec::new(),
             close_list_tails: false,
+            skip_unmatched_in_arg: false,
             unbound_screen: None,
             view: false,
             view_port: 0,

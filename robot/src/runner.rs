@@ -417,6 +417,7 @@ impl Runner {
             input_limits: args.input_limits(),
             stop: ended.as_ref().map(|i| i.flag.clone()).or(debug_stop),
             close_list_tails: args.close_list_tails,
+            skip_unmatched_in_arg: args.skip_unmatched_in_arg,
             ..Options::default()
         };
         functions.set_call_limits(args.call_limits());

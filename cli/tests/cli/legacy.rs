@@ -137,6 +137,29 @@ diag_mod(pick(B, L),
     )
 }
 
+/// in_arg patterns that do not match the pipe (semantics.md D-8): in a
+/// neutral situation (a compound that matches partly, `f(A, b)` against
+/// `f(1, c)`), a recursive one and a final one.
+fn inarg_dm(name: &str) -> String {
+    format!(
+        r#"diag_mod({name},
+  [ [ id ==> is, type ==> neutral, out_arg ==> f(1, c),
+      arcs ==> [ empty : empty => s1 ] ],
+    [ id ==> s1, type ==> neutral, in_arg ==> f(A, b),
+      arcs ==> [ empty : say(seen(A)) => s2 ] ],
+    [ id ==> s2, type ==> recursive, in_arg ==> g(B), embedded_dm ==> {name}_echo,
+      arcs ==> [ fs : say(back(B)) => fs ] ],
+    [ id ==> fs, type ==> final, in_arg ==> h(_) ] ],
+  []).
+diag_mod({name}_echo,
+  [ [ id ==> is, type ==> neutral, in_arg ==> P,
+      arcs ==> [ empty : say(got(P)) => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  []).
+"#
+    )
+}
+
 /// `screen` of an unbound variable, with caption facts in the app.
 fn caps_dm(name: &str) -> String {
     format!(
@@ -288,7 +311,7 @@ kb_walk(_, K, N) :- K1 is K - 1, open_shop_kb(KB), kb_walk(KB, K1, N).
     write(&root, "apps/all/templates.pl", CAPTIONS);
     write(&root, "apps/all/in.txt", WRAP_SCRIPT);
     let mut main = String::from("diag_mod(main,\n  [ ");
-    let parts = ["shop", "kb", "wrap", "tails", "caps"];
+    let parts = ["shop", "kb", "wrap", "tails", "caps", "inarg"];
     for (i, part) in parts.iter().enumerate() {
         let next = parts.get(i + 1).unwrap_or(&"fs");
         main.push_str(&format!(
@@ -303,6 +326,7 @@ kb_walk(_, K, N) :- K1 is K - 1, open_shop_kb(KB), kb_walk(KB, K1, N).
             "kb" => kb_dm,
             "wrap" => wrap_dm,
             "tails" => tails_dm,
+            "inarg" => inarg_dm,
             _ => caps_dm,
         };
         main.push_str(&dm(&format!("{part}_dm")));
@@ -359,7 +383,7 @@ fn runs_an_application_of_the_original_unmodified() {
     let stderr = String::from_utf8_lossy(&prolog.stderr);
     assert_eq!(prolog.status.code(), Some(0), "{stderr}");
     let said = lines(&stderr, "Golem says: ");
-    assert_eq!(said.len(), 11, "{stderr}");
+    assert_eq!(said.len(), 14, "{stderr}");
     assert_eq!(said[..4], SHOP_SAID, "{stderr}");
     assert_eq!(said[4..6], KB_SAID, "{stderr}");
     assert_eq!(said[6..9], WRAP_SAID, "{stderr}");
@@ -370,6 +394,14 @@ fn runs_an_application_of_the_original_unmodified() {
         "{stderr}"
     );
     assert!(said[10].contains("[]"), "{stderr}");
+    // in_arg patterns the pipe does not match are skipped as the original
+    // skips them (D-8): `f(A, b)` against `f(1, c)` leaves `A` unbound (the
+    // partial binding undone), the pipe goes on unchanged to the callee of
+    // a recursive situation whose own in_arg did not match, and a final
+    // situation's ends the DM.
+    assert!(said[11].starts_with("seen(_"), "{stderr}");
+    assert_eq!(said[12], "got(f(1,c))", "{stderr}");
+    assert!(said[13].starts_with("back(_"), "{stderr}");
     assert_eq!(
         lines(&stderr, "Golem prints on screen: "),
         ["Welcome to the shop", "shown([caption(greet)])"],
@@ -433,8 +465,9 @@ fn runs_an_application_of_the_original_unmodified() {
 /// Where `--legacy` differs, our own applications keep their semantics:
 /// a DM defined twice is an error (E0201), `listening` gets `said(yes)`
 /// and `detect_body` the term as typed (the task stops at its first
-/// situation), a DM call keeps its open tails, and `screen(X)` shows no
-/// caption.
+/// situation), a DM call keeps its open tails, `screen(X)` shows no
+/// caption, and an in_arg the pipe does not match is a located error
+/// (E14).
 #[test]
 fn without_legacy_the_same_applications_keep_our_semantics() {
     let root = tree("ours");
@@ -450,7 +483,8 @@ fn without_legacy_the_same_applications_keep_our_semantics() {
     write(&root, "apps/tails/main.dm", &tails_dm("main"));
     write(&root, "apps/caps/main.dm", &caps_dm("main"));
     write(&root, "apps/caps/templates.pl", CAPTIONS);
-    for app in ["wrap", "tails", "caps"] {
+    write(&root, "apps/inarg/main.dm", &inarg_dm("main"));
+    for app in ["wrap", "tails", "caps", "inarg"] {
         write(&root, &format!("apps/{app}/models"), "'main.dm'.\n");
     }
     let out = sitlogc()
@@ -476,6 +510,19 @@ fn without_legacy_the_same_applications_keep_our_semantics() {
     assert!(ours[0].contains('|'), "{ours:?}");
     let ours = run("apps/caps", "Golem prints on screen: ");
     assert!(!ours.iter().any(|l| l.contains("Welcome")), "{ours:?}");
+    let out = sitlogc()
+        .current_dir(&root)
+        .args(["run", "apps/inarg"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("in_arg `f(_G") && stderr.contains("the incoming pipe value `f(1,c)`"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("main.dm:4:"), "{stderr}");
+    assert!(lines(&stderr, "Golem says: ").is_empty(), "{stderr}");
     let _ = std::fs::remove_dir_all(&root);
 }
 

@@ -82,6 +82,38 @@ fn runtime_error_exits_one_with_history_so_far() {
     assert_eq!(t["next"], "s2");
 }
 
+/// An in_arg pattern that the pipe does not match is an error at the
+/// situation (E14; `sitlogc run --legacy` skips it as the original does:
+/// `legacy.rs`), here the notes' own case: `in_arg ==> foo`, pipe `now`.
+#[test]
+fn an_in_arg_the_pipe_does_not_match_is_a_located_error() {
+    let dir = std::env::temp_dir().join(format!("sitlogc-run-inarg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main,\n  [ [id ==> is, type ==> neutral, in_arg ==> foo, arcs ==> [empty : say(x) => fs]],\n\
+         \x20   [id ==> fs, type ==> final] ], []).\n",
+    )
+    .unwrap();
+    let out = sitlogc()
+        .args(["run", "--format", "json", "--in-arg", "now"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let e = v["error"].as_str().unwrap();
+    assert!(
+        e.contains("in_arg `foo` does not match the incoming pipe value `now`")
+            && e.contains("main.dm:2:"),
+        "{v}"
+    );
+    assert!(v["history"].as_array().unwrap().is_empty(), "{v}");
+    assert!(!stderr.contains("Golem says"), "{stderr}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn usage_errors_exit_two() {
     let out = sitlogc()

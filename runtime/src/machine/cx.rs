@@ -390,9 +390,10 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// from its template as the interpreter holds it while the callee runs
     /// (its id `id`; its in_arg the pipe value the visit read, `in_arg`,
     /// when the exit arcs read it; its `embedded_dm`, evaluated read-only
-    /// as at the call), the callee's frame pushed (the DM it names, the
-    /// depth limit checked) with that evaluation as its call term, as the
-    /// machine's call makes it (its variables, an output argument's, are
+    /// as at the call), the callee's frame pushed with that evaluation as
+    /// its call term by the machine's own call (`Machine::callee`: the
+    /// depth limit, the DM it names, its head unified with the call, E13;
+    /// the call's variables, an output argument's, are
     /// the instance's, which the callee's `diag_mod` binds): the machine
     /// runs the exit arcs at the callee's final. (`prog` is not run again:
     /// native code ran it, and its variables are renamed apart from the
@@ -439,16 +440,10 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             }
             None => e,
         };
-        // The DM it names, as the machine's call finds it.
-        let callee_dm = self
-            .m
-            .store
-            .functor(callee)
-            .and_then(|(name, _)| self.m.program.dm_by_name(name));
-        let Some(callee_dm) = callee_dm else {
-            return Err(self.fault(Fault::NotTheCall));
-        };
-        self.m.check_depth(here)?;
+        // The DM it names, its head unified with the call, by the
+        // machine's own call (one function: a head that does not unify is
+        // the same error, E13, whoever made the call).
+        let (callee_dm, callee) = self.m.callee(callee, here)?;
         let history = self
             .m
             .levels

@@ -83,6 +83,23 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     }
 
     fn call_dm(&mut self, call: Term, sit: Option<(SitIx, Term)>) -> Result<(), RunError> {
+        let (dm, call) = self.callee(call, sit)?;
+        self.push_frame(dm, call);
+        Ok(())
+    }
+
+    /// The DM that `call` calls, as every call of the machine finds it (the
+    /// loop's and a native frame's made the machine's, `Cx::wait_template`):
+    /// the depth limit checked, list tails closed under
+    /// [`Options::close_list_tails`](super::Options::close_list_tails), the
+    /// first DM of its name (D-3), its fresh head unified with the call (a
+    /// head that does not unify is an error, E13). Returns the DM and the
+    /// call term (dereferenced) its frame takes; pushes nothing.
+    pub(super) fn callee(
+        &mut self,
+        call: Term,
+        sit: Option<(SitIx, Term)>,
+    ) -> Result<(super::DmIx, Term), RunError> {
         self.check_depth(sit)?;
         let call = self.store.deref(call);
         if self.options.close_list_tails && sit.is_some() {
@@ -112,8 +129,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 None,
             ));
         }
-        self.push_frame(dm, call);
-        Ok(())
+        Ok((dm, call))
     }
 
     /// The error of a call that would exceed [`Options::max_depth`](super::Options::max_depth).

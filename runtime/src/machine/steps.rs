@@ -24,13 +24,22 @@ pub(super) struct Chosen {
 }
 
 impl<'p, P: DmProgram> Machine<'p, P> {
+    /// The in_arg `pattern` unified with the incoming `pipe` (D-8): a
+    /// mismatch is an error (E14), or, under
+    /// [`Options::skip_unmatched_in_arg`](super::Options::skip_unmatched_in_arg)
+    /// (`--legacy`), skipped as the original skips it (a failed unify
+    /// leaves the store as it was: the pattern's variables stay unbound).
+    /// Every in_arg goes through here: the loop, compiled term code
+    /// (`Cx::in_arg`), a frame native code hands over
+    /// (`Cx::wait_template`) and a pattern native code does not match
+    /// (handed to the machine, nothing of the visit done).
     pub(super) fn unify_in_arg(
         &mut self,
         pattern: Term,
         pipe: Term,
         here: Option<(SitIx, Term)>,
     ) -> Result<(), RunError> {
-        if self.store.unify(pattern, pipe) {
+        if self.store.unify(pattern, pipe) || self.options.skip_unmatched_in_arg {
             return Ok(());
         }
         Err(self.err(

@@ -240,26 +240,28 @@ fn agree_piped<A: app::App>(
     }
 }
 
+/// `s` with every variable's number dropped (`_G12` is `_G`).
+fn unnumbered(s: String) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut chars = s.chars().peekable();
+    while let Some(c) = chars.next() {
+        out.push(c);
+        if c == '_' && chars.peek() == Some(&'G') {
+            out.push('G');
+            chars.next();
+            while chars.peek().is_some_and(|d| d.is_ascii_digit()) {
+                chars.next();
+            }
+        }
+    }
+    out
+}
+
 /// As [`agree`], unbound variables' names aside: our convention compares
 /// every `_...` variable alike (semantics.md), and the interpreter's plans
 /// make fewer fresh variables than templates, so the numbers differ where a
 /// run prints an unbound variable.
 fn agree_modulo_vars<A: app::App>(compiled: &A, interpreted: &Ir, main: &str) {
-    fn unnumbered(s: String) -> String {
-        let mut out = String::with_capacity(s.len());
-        let mut chars = s.chars().peekable();
-        while let Some(c) = chars.next() {
-            out.push(c);
-            if c == '_' && chars.peek() == Some(&'G') {
-                out.push('G');
-                chars.next();
-                while chars.peek().is_some_and(|d| d.is_ascii_digit()) {
-                    chars.next();
-                }
-            }
-        }
-        out
-    }
     for keep in [false, true] {
         for observe in [false, true] {
             let c = run_piped(compiled, main, None, "", keep, observe, false);
@@ -1801,17 +1803,7 @@ fn in_arg_patterns_agree() {
             agree(&plans, &ir, main, "");
         }
     }
-    for pipe in [
-        "f(1, [yes])",
-        "f(1, [no, 2])",
-        "f(a, [yes|b])",
-        "f(g(x), [yes, [1]])",
-        "f(1, [])",
-        "f(1, x)",
-        "g(1, [yes])",
-        "x",
-        "f(1, [_])",
-    ] {
+    for pipe in PIPES {
         agree_piped(m::program(), &ir, "entry", Some(pipe), "");
         agree_piped(&plans, &ir, "entry", Some(pipe), "");
     }
@@ -1859,5 +1851,240 @@ fn held_pipes_agree() {
     for pipe in ["0-3", "2-9", "a-3", "1.5-4", "f(1, 2)", "1-2-3", "x"] {
         agree_piped(m::program(), &ir, "entry", Some(pipe), "");
         agree_piped(&plans, &ir, "entry", Some(pipe), "");
+    }
+}
+
+/// The pipes [`in_arg_patterns_agree`] gives `entry`.
+const PIPES: [&str; 9] = [
+    "f(1, [yes])",
+    "f(1, [no, 2])",
+    "f(a, [yes|b])",
+    "f(g(x), [yes, [1]])",
+    "f(1, [])",
+    "f(1, x)",
+    "g(1, [yes])",
+    "x",
+    "f(1, [_])",
+];
+
+/// [`in_arg_patterns_agree`]'s runs under the original's in_arg
+/// (`Options::skip_unmatched_in_arg`, `sitlogc run --legacy`, D-8): a
+/// pattern the pipe does not match is skipped, its variables unbound, the
+/// pipe unchanged. Compiled code hands such a visit to the machine (its
+/// native match fails), so it follows the machine's option by
+/// construction: the compiled task and the plans agree with the
+/// interpreter, history kept and not, and `odd` (an int pipe against
+/// `N-L`) and `entry` with `x` run to their end where they are errors
+/// without the option.
+#[test]
+fn in_arg_patterns_agree_when_a_mismatch_is_skipped() {
+    use pipe_npipe14::pattern as m;
+    let ir = interpreter("typed/pipe_pattern");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    let options = |keep_history, skip_unmatched_in_arg| Options {
+        keep_history,
+        skip_unmatched_in_arg,
+        ..Options::default()
+    };
+    let mains = [
+        "main(3, a)",
+        "main(1, stop)",
+        "main(x, a)",
+        "main(2, f(_))",
+        "shape(1-2)",
+        "shape(foo)",
+        "shape(f(1, 2))",
+        "shape(_)",
+        "odd",
+    ];
+    let runs = mains
+        .iter()
+        .map(|m| (*m, None))
+        .chain(PIPES.iter().map(|p| ("entry", Some(*p))));
+    for (main, pipe) in runs {
+        for keep in [false, true] {
+            let i = run_with(&ir, main, pipe, "", options(keep, true), false, false);
+            for (c, by) in [
+                (
+                    run_with(
+                        m::program(),
+                        main,
+                        pipe,
+                        "",
+                        options(keep, true),
+                        false,
+                        false,
+                    ),
+                    "compiled",
+                ),
+                (
+                    run_with(&plans, main, pipe, "", options(keep, true), false, false),
+                    "plans",
+                ),
+            ] {
+                assert_eq!(
+                    unnumbered(format!("{c:?}")),
+                    unnumbered(format!("{i:?}")),
+                    "{by}: {main} with in_arg {pipe:?} (history {keep})"
+                );
+            }
+        }
+    }
+    for (main, pipe) in [("odd", None), ("entry", Some("x"))] {
+        let error = run_with(&ir, main, pipe, "", options(true, false), false, false).0;
+        assert_eq!(error["status"], "error", "{error}");
+        assert!(
+            error["error"].as_str().unwrap().contains("does not match"),
+            "{error}"
+        );
+        for skipped in [
+            run_with(&ir, main, pipe, "", options(true, true), false, false).0,
+            run_with(
+                m::program(),
+                main,
+                pipe,
+                "",
+                options(true, true),
+                false,
+                false,
+            )
+            .0,
+        ] {
+            assert_eq!(skipped["status"], "ok", "{skipped}");
+        }
+    }
+}
+
+mod call_head_nwait15 {
+    pub mod calls {
+        sitlog_macros::include_dm!("typed/call_head");
+    }
+}
+
+/// The IR run as if native code ran each DM's recursive situation `s0`
+/// and handed its frame to the machine while the callee runs: its call
+/// made (`callee(1)` or `echo(1)`, a history level opened for it first
+/// when `level`, as native code keeping the history does), the frame made
+/// the machine's by `Cx::wait_template`, the callee's first situation
+/// handed to its template. Generated code pushes on its own stack only
+/// calls whose head unifies for sure (distinct variables), so this is the
+/// one way to hand `wait_template` a call whose head does not.
+struct HandsOver {
+    ir: Ir,
+    level: bool,
+}
+
+impl sitlog_runtime::machine::DmProgram for HandsOver {
+    fn dm_by_name(&self, name: Atom) -> Option<sitlog_runtime::machine::DmIx> {
+        self.ir.dm_by_name(name)
+    }
+    fn dm_name(&self, dm: sitlog_runtime::machine::DmIx) -> Atom {
+        self.ir.dm_name(dm)
+    }
+    fn situation_count(&self, dm: sitlog_runtime::machine::DmIx) -> usize {
+        self.ir.situation_count(dm)
+    }
+    fn kind(
+        &self,
+        dm: sitlog_runtime::machine::DmIx,
+        sit: sitlog_runtime::machine::SitIx,
+    ) -> sitlog_runtime::machine::Kind {
+        self.ir.kind(dm, sit)
+    }
+    fn fresh_head(&self, dm: sitlog_runtime::machine::DmIx, store: &mut Store) -> Term {
+        self.ir.fresh_head(dm, store)
+    }
+    fn instantiate(
+        &self,
+        dm: sitlog_runtime::machine::DmIx,
+        sit: sitlog_runtime::machine::SitIx,
+        store: &mut Store,
+    ) -> Option<sitlog_runtime::machine::Instance> {
+        self.ir.instantiate(dm, sit, store)
+    }
+    fn locals(&self, dm: sitlog_runtime::machine::DmIx, store: &mut Store) -> sitlog_runtime::Vars {
+        self.ir.locals(dm, store)
+    }
+    fn location(
+        &self,
+        dm: sitlog_runtime::machine::DmIx,
+        sit: sitlog_runtime::machine::SitIx,
+    ) -> Option<String> {
+        self.ir.location(dm, sit)
+    }
+    fn compiled_id(
+        &self,
+        dm: sitlog_runtime::machine::DmIx,
+        sit: sitlog_runtime::machine::SitIx,
+    ) -> Option<(Atom, usize)> {
+        let caller = ["main", "ok"].contains(&self.ir.dm_name(dm).as_str());
+        (caller && sit == 0).then(|| (Atom::intern("s0"), 0))
+    }
+    fn run_situation(
+        &self,
+        dm: sitlog_runtime::machine::DmIx,
+        sit: sitlog_runtime::machine::SitIx,
+        cx: &mut sitlog_runtime::machine::Cx<'_, '_, Self>,
+    ) -> Result<sitlog_runtime::machine::Step, sitlog_runtime::machine::RunError> {
+        let callee = match self.ir.dm_name(dm).as_str() {
+            "main" => "callee",
+            _ => "echo",
+        };
+        let call = cx.store().compound(Atom::intern(callee), &[Term::int(1)]);
+        if self.level {
+            cx.open_level(call);
+        }
+        cx.wait_template(sit, Term::atom(Atom::intern("s0")), None)?;
+        Ok(cx.to_template(0, Term::atom(Atom::intern("t0"))))
+    }
+}
+
+impl app::App for HandsOver {
+    fn initial_state(&self) -> (Store, sitlog_runtime::Vars) {
+        self.ir.initial_state()
+    }
+    fn basic_actions(&self) -> Vec<Atom> {
+        app::App::basic_actions(&self.ir)
+    }
+}
+
+/// One call with head unification (issue 37): a call whose callee's head
+/// does not unify with it is the same error (E13) whether the machine
+/// makes it or a frame native code hands over makes it
+/// (`Cx::wait_template`, through `Machine::callee`), with the history kept
+/// and not, a level opened for the callee or not; generated code (which
+/// hands such a call to the machine) and the interpreter agree; a head
+/// that unifies runs alike on all of them.
+#[test]
+fn a_call_whose_head_does_not_unify_is_an_error_wherever_it_is_made() {
+    use call_head_nwait15::calls as m;
+    let ir = interpreter("typed/call_head");
+    for main in ["main", "ok"] {
+        agree(m::program(), &ir, main, "");
+        for level in [false, true] {
+            let handed = HandsOver {
+                ir: interpreter("typed/call_head"),
+                level,
+            };
+            for keep in [false, true] {
+                let options = || Options {
+                    keep_history: keep,
+                    ..Options::default()
+                };
+                let h = run_with(&handed, main, None, "", options(), false, false);
+                let i = run_with(&ir, main, None, "", options(), false, false);
+                assert_eq!(h, i, "{main} handed over (level {level}, history {keep})");
+                if main == "main" {
+                    let e = h.0["error"].as_str().unwrap_or_default();
+                    assert!(
+                        e.contains("the call `callee(1)` does not match the DM's head `callee(2)`"),
+                        "{}",
+                        h.0
+                    );
+                } else {
+                    assert_eq!(h.0["status"], "ok", "{}", h.0);
+                }
+            }
+        }
     }
 }

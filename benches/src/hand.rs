@@ -1,0 +1,1220 @@
+//! The hand-written Rust machines of the benchmarks' workloads, written
+//! once for `benches/benches/compiled.rs` (criterion: the floors of its
+//! ratios) and `benches/examples/shapes_prof.rs` (callgrind: the workloads of
+//! shapes (c) and (d) of issue 37, and `echo_calls`/`list_search`, the same
+//! machines criterion times): each does the work of its workload (atoms an
+//! interned index, lists slices, frames on an explicit stack) and returns
+//! its transitions, which must be the workload's.
+//!
+//! Not a module of the library: each of the two includes this file with
+//! `#[path]`, and `black_box` is its includer's (`super::black_box`):
+//! criterion's in the bench (a volatile read, what its figures were
+//! measured with), `std::hint::black_box` in the example, so that neither
+//! measures other code than before the machines were moved here. Each
+//! includer uses only some of them.
+#![allow(dead_code)]
+
+use super::black_box;
+
+/// An atom of the hand-written machines: an interned index (what a Rust
+/// `enum` of the places compiles to, for a set of any size).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub struct Sym(pub u32);
+
+/// The hand-written floor for `counter_loop`: the same states, the same
+/// counter, the same comparisons, one "transition" per step.
+pub fn hand_counter_loop(max: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum St {
+        Is,
+        Fs,
+    }
+    let (mut n, mut st, mut transitions) = (0i64, St::Is, 0u64);
+    loop {
+        transitions += 1;
+        match st {
+            St::Is => {
+                n = black_box(n + 1);
+                st = if n >= max { St::Fs } else { St::Is };
+            }
+            St::Fs => return transitions,
+        }
+    }
+}
+
+/// `hand_counter_loop` handing each new value of the counter to `perform`
+/// (a dynamic call per transition, as an effector would be).
+pub fn hand_counter_loop_performing(max: i64, perform: &mut dyn FnMut(i64)) -> u64 {
+    #[derive(Clone, Copy)]
+    enum St {
+        Is,
+        Fs,
+    }
+    let (mut n, mut st, mut transitions) = (0i64, St::Is, 0u64);
+    loop {
+        transitions += 1;
+        match st {
+            St::Is => {
+                n += 1;
+                perform(n);
+                st = if n >= max { St::Fs } else { St::Is };
+            }
+            St::Fs => return transitions,
+        }
+    }
+}
+
+/// The hand-written floor for `pipe_calls`: a DM stack of typed frames, the
+/// pipe as an integer.
+pub fn hand_pipe_calls(max: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Main {
+        Call,
+        Check,
+        Fs,
+    }
+    #[derive(Clone, Copy)]
+    enum AddOne {
+        Is,
+        Done,
+    }
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Main(Main),
+        AddOne(AddOne),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Main(Main::Call)];
+    let (mut pipe, mut transitions) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Main(Main::Call) => stack.push(Frame::AddOne(AddOne::Is)),
+            Frame::Main(Main::Check) => {
+                transitions += 1;
+                *top = Frame::Main(if pipe >= max { Main::Fs } else { Main::Call });
+            }
+            Frame::Main(Main::Fs) => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::AddOne(AddOne::Is) => {
+                transitions += 1;
+                pipe = black_box(pipe + 1);
+                *top = Frame::AddOne(AddOne::Done);
+            }
+            Frame::AddOne(AddOne::Done) => {
+                transitions += 1;
+                stack.pop();
+                // The caller's recursive situation concludes.
+                transitions += 1;
+                if let Some(Frame::Main(m)) = stack.last_mut() {
+                    *m = Main::Check;
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// The hand-written floor for `echo_calls` (workload c of issue 37): a DM
+/// stack of typed frames, the pipe handed to the callee and back, a local
+/// counter compared with the limit the recursive situation received.
+pub fn hand_echo_calls(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Main {
+        Call,
+        Fs,
+    }
+    #[derive(Clone, Copy)]
+    enum Echo {
+        Is,
+        Back,
+    }
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Main(Main),
+        Echo(Echo),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Main(Main::Call)];
+    let (mut pipe, mut n, mut transitions) = (limit, 0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Main(Main::Call) => stack.push(Frame::Echo(Echo::Is)),
+            Frame::Main(Main::Fs) => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Echo(Echo::Is) => {
+                transitions += 1;
+                // in_arg X, out_arg X: the pipe goes back as it came.
+                pipe = black_box(pipe);
+                *top = Frame::Echo(Echo::Back);
+            }
+            Frame::Echo(Echo::Back) => {
+                transitions += 1;
+                stack.pop();
+                // The caller's recursive situation concludes on `back`.
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(Frame::Main(m)) = stack.last_mut() {
+                    *m = if n >= pipe { Main::Fs } else { Main::Call };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// The hand-written floor for `list_search` (workload d of issue 37):
+/// places as symbols, the list walked as a slice, frames on an explicit
+/// stack, the callee's final situation carrying the place found.
+pub fn hand_list_search(rounds: i64, places: &[Sym], target: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Main {
+        Round,
+        Fs,
+    }
+    #[derive(Clone, Copy)]
+    enum Search<'a> {
+        Is,
+        Try(&'a [Sym]),
+        Found(Sym),
+        NotFound,
+    }
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Main(Main),
+        Search(Search<'a>),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Main(Main::Round)];
+    let (mut n, mut transitions) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Main(Main::Round) => stack.push(Frame::Search(Search::Is)),
+            Frame::Main(Main::Fs) => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Search(s) => {
+                transitions += 1;
+                let found = match s {
+                    Search::Is => {
+                        *top = Frame::Search(Search::Try(places));
+                        continue;
+                    }
+                    Search::Try([]) => {
+                        *top = Frame::Search(Search::NotFound);
+                        continue;
+                    }
+                    Search::Try([p, rest @ ..]) => {
+                        *top = Frame::Search(if *p == target {
+                            Search::Found(*p)
+                        } else {
+                            Search::Try(rest)
+                        });
+                        continue;
+                    }
+                    Search::Found(p) => Some(p),
+                    Search::NotFound => None,
+                };
+                black_box(found);
+                stack.pop();
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(Frame::Main(m)) = stack.last_mut() {
+                    *m = if n >= rounds { Main::Fs } else { Main::Round };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// The hand-written floor for `route_walk` (shape d with ints and a nested
+/// call): stops as ints walked as a slice, three kinds of frames on an
+/// explicit stack, each final carrying its fields to the caller.
+pub fn hand_route_walk(trips: i64, stops: &[i64], goal: i64, tag: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Main {
+        Trip,
+        Done,
+    }
+    #[derive(Clone, Copy)]
+    enum Route {
+        Start,
+    }
+    #[derive(Clone, Copy)]
+    enum Walk<'a> {
+        Begin,
+        Visit(&'a [i64]),
+    }
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Main(Main),
+        Route(Route),
+        Walk(Walk<'a>),
+    }
+    /// A final's fields, handed to the caller's exit arcs.
+    enum Fin {
+        At(i64),
+        Gone,
+        Reached(i64, Sym),
+        Lost(Sym),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Main(Main::Trip)];
+    let (mut k, mut transitions) = (0i64, 0u64);
+    let mut fin: Option<Fin> = None;
+    while let Some(top) = stack.last_mut() {
+        if let Some(f) = fin.take() {
+            // The caller's exit arcs on the callee's final.
+            transitions += 1;
+            match (*top, f) {
+                (Frame::Route(Route::Start), Fin::At(s)) => {
+                    stack.pop();
+                    transitions += 1;
+                    fin = Some(Fin::Reached(s, tag));
+                }
+                (Frame::Route(Route::Start), _) => {
+                    stack.pop();
+                    transitions += 1;
+                    fin = Some(Fin::Lost(tag));
+                }
+                (Frame::Main(_), f) => {
+                    match f {
+                        Fin::Reached(s, t) => {
+                            black_box((s, t));
+                        }
+                        Fin::Lost(t) => {
+                            black_box(t);
+                        }
+                        Fin::At(_) | Fin::Gone => unreachable!(),
+                    }
+                    k = black_box(k + 1);
+                    *top = Frame::Main(if k >= trips { Main::Done } else { Main::Trip });
+                }
+                _ => unreachable!(),
+            }
+            continue;
+        }
+        match *top {
+            Frame::Main(Main::Trip) => stack.push(Frame::Route(Route::Start)),
+            Frame::Main(Main::Done) => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Route(Route::Start) => stack.push(Frame::Walk(Walk::Begin)),
+            Frame::Walk(w) => {
+                transitions += 1;
+                match w {
+                    Walk::Begin => *top = Frame::Walk(Walk::Visit(stops)),
+                    Walk::Visit([]) => {
+                        stack.pop();
+                        transitions += 1;
+                        fin = Some(Fin::Gone);
+                    }
+                    Walk::Visit([s, rest @ ..]) => {
+                        if *s == goal {
+                            stack.pop();
+                            transitions += 1;
+                            fin = Some(Fin::At(*s));
+                        } else {
+                            *top = Frame::Walk(Walk::Visit(rest));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// The hand-written floor for `count_pipe` (shape c with a nested call and
+/// a parameter): the pipe an int handed to the innermost callee and back,
+/// three kinds of frames on an explicit stack.
+pub fn hand_count_pipe(max: i64, step: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Go,
+        Stop,
+        Hop,
+        Bounce,
+        Back,
+        Passed(i64),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Go];
+    let (mut pipe, mut count, mut transitions) = (max, 0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Go => stack.push(Frame::Hop),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Hop => stack.push(Frame::Bounce),
+            Frame::Bounce => {
+                transitions += 1;
+                // in_arg X, out_arg X: the pipe goes back as it came.
+                pipe = black_box(pipe);
+                *top = Frame::Back;
+            }
+            Frame::Back => {
+                transitions += 2;
+                stack.pop();
+                // relay's exit arc: `back` => passed(Step).
+                if let Some(t) = stack.last_mut() {
+                    *t = Frame::Passed(step);
+                }
+            }
+            Frame::Passed(s) => {
+                transitions += 2;
+                black_box(s);
+                stack.pop();
+                count = black_box(count + 1);
+                if let Some(t) = stack.last_mut() {
+                    *t = if count >= pipe {
+                        Frame::Stop
+                    } else {
+                        Frame::Go
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// The hand-written floor for `scripted_loop`: the same script read line by
+/// line, each input compared with the expectations as text (no term is
+/// parsed), the counter an integer.
+pub fn hand_scripted_loop(script: &str) -> u64 {
+    #[derive(Clone, Copy)]
+    enum St {
+        Is,
+        Fs,
+    }
+    let (mut n, mut st, mut transitions) = (0i64, St::Is, 0u64);
+    let mut lines = script.lines();
+    loop {
+        match st {
+            St::Is => {
+                let input = lines.next().map(|l| l.trim().trim_end_matches('.'));
+                transitions += 1;
+                match input {
+                    Some("tick") => n = black_box(n + 1),
+                    Some("stop") => st = St::Fs,
+                    _ => return transitions,
+                }
+            }
+            St::Fs => return transitions + 1,
+        }
+    }
+}
+
+/// (c) with the limit in the pipe: `depth` 1 (the callee hands the pipe
+/// back) or 2 (a DM between, passing it through); the count in the
+/// caller's id, a local or the callee's parameter (all an `i64` here).
+/// `start`: the caller's first situation setting the pipe.
+pub fn hand_echo(limit: i64, depth: u32, cond_out: bool) -> u64 {
+    hand_echo_as(limit, depth, cond_out, false)
+}
+
+/// [`hand_echo`] with the limit a float (`float`: the count, an int,
+/// compared with it as the machine compares an int with a float).
+pub fn hand_echo_as(limit: i64, depth: u32, cond_out: bool, float: bool) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask,
+        Over,
+        Hop(bool),
+        Take,
+        Back,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut n, mut transitions) = (0i64, 0i64, 0u64);
+    let mut pipe_f = 0f64;
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                pipe = black_box(limit);
+                pipe_f = black_box(limit as f64);
+                *top = Frame::Ask;
+            }
+            Frame::Ask => {
+                let callee = if depth == 2 {
+                    Frame::Hop(false)
+                } else {
+                    Frame::Take
+                };
+                stack.push(callee);
+            }
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Hop(false) => {
+                *top = Frame::Hop(true);
+                stack.push(Frame::Take);
+            }
+            Frame::Take => {
+                transitions += 1;
+                // in_arg X, out_arg X (or the conditional on X).
+                pipe = black_box(if cond_out && pipe <= 0 { 1 } else { pipe });
+                *top = Frame::Back;
+            }
+            Frame::Back | Frame::Hop(true) => {
+                transitions += 1;
+                stack.pop();
+                if depth == 2 {
+                    if let Some(Frame::Hop(true)) = stack.last() {
+                        // `hop`'s recursive situation concludes, its final.
+                        transitions += 2;
+                        stack.pop();
+                    }
+                }
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    let more = if float { (n as f64) < pipe_f } else { n < pipe };
+                    *m = if more { Frame::Ask } else { Frame::Over };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// What a walk's final hands back.
+#[derive(Clone, Copy)]
+pub enum Exit<'a, T> {
+    Found(T),
+    FoundRest(T, &'a [T]),
+    NotFound,
+}
+
+/// (d): `rounds` calls of a walk over `items` for `target`, the list a
+/// slice, the element compared by `==`; `start`: the caller's first
+/// situation (one transition); `rest`: the final hands back the rest.
+pub fn hand_walk<T: Copy + PartialEq>(
+    rounds: i64,
+    items: &[T],
+    target: T,
+    start: bool,
+    rest: bool,
+) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a, T> {
+        Round,
+        Stop,
+        Begin,
+        Try(&'a [T]),
+        Final(Exit<'a, T>),
+    }
+    let mut stack: Vec<Frame<T>> = vec![Frame::Round];
+    let (mut n, mut transitions) = (0i64, u64::from(start));
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items);
+            }
+            Frame::Try([]) => {
+                transitions += 1;
+                *top = Frame::Final(Exit::NotFound);
+            }
+            Frame::Try([p, ps @ ..]) => {
+                transitions += 1;
+                *top = if *p == target {
+                    Frame::Final(if rest {
+                        Exit::FoundRest(*p, ps)
+                    } else {
+                        Exit::Found(*p)
+                    })
+                } else {
+                    Frame::Try(ps)
+                };
+            }
+            Frame::Final(exit) => {
+                transitions += 1;
+                // The caller's exit arc binds what the final hands back.
+                match exit {
+                    Exit::Found(p) => black_box(Some(p)),
+                    Exit::FoundRest(p, r) => {
+                        black_box(r);
+                        black_box(Some(p))
+                    }
+                    Exit::NotFound => black_box(None),
+                };
+                stack.pop();
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) with an accumulator: the places passed kept in a `Vec` (reused
+/// from round to round), handed back by the final.
+pub fn hand_walk_seen(rounds: i64, items: &[Sym], target: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Look(&'a [Sym]),
+        Found(Sym),
+        NotFound,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let mut seen: Vec<Sym> = Vec::with_capacity(items.len());
+    let (mut n, mut transitions) = (0i64, 1u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                seen.clear();
+                *top = Frame::Look(items);
+            }
+            Frame::Look([]) => {
+                transitions += 1;
+                *top = Frame::NotFound;
+            }
+            Frame::Look([p, ps @ ..]) => {
+                transitions += 1;
+                *top = if *p == target {
+                    Frame::Found(*p)
+                } else {
+                    seen.push(*p);
+                    Frame::Look(ps)
+                };
+            }
+            Frame::Found(_) | Frame::NotFound => {
+                transitions += 1;
+                let found = match *top {
+                    Frame::Found(p) => Some(p),
+                    _ => None,
+                };
+                black_box((found, &seen));
+                stack.pop();
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (c) with the callee computing its out_arg (`c_outarg_apply`: the pipe
+/// plus one, which the workload's Prolog user function `succ_of/1`
+/// computes: here a Rust addition, so the ratio is not like with like),
+/// the caller comparing the pipe with the limit on a neutral situation.
+pub fn hand_succ(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask,
+        Test,
+        Over,
+        Add,
+        Added,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut transitions) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                pipe = black_box(0);
+                *top = Frame::Ask;
+            }
+            Frame::Ask => stack.push(Frame::Add),
+            Frame::Add => {
+                transitions += 1;
+                // in_arg X, out_arg X + 1 (after the next situation).
+                *top = Frame::Added;
+                pipe = black_box(pipe + 1);
+            }
+            Frame::Added => {
+                transitions += 1;
+                stack.pop();
+                transitions += 1;
+                if let Some(m) = stack.last_mut() {
+                    *m = Frame::Test;
+                }
+            }
+            Frame::Test => {
+                transitions += 1;
+                *top = if pipe < black_box(limit) {
+                    Frame::Ask
+                } else {
+                    Frame::Over
+                };
+            }
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) over pairs: the key compared, the shelf handed back.
+pub fn hand_walk_pairs(rounds: i64, pairs: &[(Sym, Sym)], item: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Check(&'a [(Sym, Sym)]),
+        On(Sym),
+        None,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut transitions) = (0i64, 1u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Check(pairs);
+            }
+            Frame::Check([]) => {
+                transitions += 1;
+                *top = Frame::None;
+            }
+            Frame::Check([(i, s), more @ ..]) => {
+                transitions += 1;
+                *top = if *i == item {
+                    Frame::On(*s)
+                } else {
+                    Frame::Check(more)
+                };
+            }
+            Frame::On(_) | Frame::None => {
+                transitions += 1;
+                let shelf = match *top {
+                    Frame::On(s) => Some(s),
+                    _ => None,
+                };
+                black_box(shelf);
+                stack.pop();
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (c) `c_pipe_pair`: the pipe a pair (count, limit) set once, the callee
+/// counting and handing both back, the caller testing them on a neutral
+/// situation.
+pub fn hand_pair(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask,
+        Test,
+        Over,
+        Step,
+        Counted,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut transitions) = ((0i64, 0i64), 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                pipe = black_box((0, limit));
+                *top = Frame::Ask;
+            }
+            Frame::Ask => stack.push(Frame::Step),
+            Frame::Step => {
+                transitions += 1;
+                let (n, l) = pipe;
+                pipe = black_box((n + 1, l));
+                *top = Frame::Counted;
+            }
+            Frame::Counted => {
+                // The callee's final, then the caller's exit arc.
+                transitions += 2;
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    *m = Frame::Test;
+                }
+            }
+            Frame::Test => {
+                transitions += 1;
+                let (n, l) = pipe;
+                *top = if n < l { Frame::Ask } else { Frame::Over };
+            }
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
+/// (c) `c_final_by_inarg`: the count in the pipe and the caller's id, the
+/// callee's final chosen by its in_arg (`> 10`).
+pub fn hand_final_by_inarg(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask(i64),
+        Over,
+        Look,
+        Big,
+        Small,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut transitions) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                pipe = black_box(0);
+                *top = Frame::Ask(0);
+            }
+            Frame::Ask(_) => stack.push(Frame::Look),
+            Frame::Look => {
+                transitions += 1;
+                *top = if pipe > 10 { Frame::Big } else { Frame::Small };
+            }
+            Frame::Big | Frame::Small => {
+                transitions += 2;
+                black_box(matches!(*top, Frame::Big));
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    if let Frame::Ask(i) = *m {
+                        let j = i + 1;
+                        pipe = black_box(j);
+                        *m = if j < limit {
+                            Frame::Ask(j)
+                        } else {
+                            Frame::Over
+                        };
+                    }
+                }
+            }
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
+/// (c) `c_local_limit_hop`: the limit a local, the count in the pipe,
+/// incremented two levels down, passed through `hop`'s neutral situation.
+pub fn hand_local_limit_hop(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask,
+        Test,
+        Over,
+        Pass,
+        Down,
+        Done,
+        Add,
+        Bumped,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut local, mut transitions) = (0i64, 0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                local = black_box(limit);
+                pipe = black_box(0);
+                *top = Frame::Ask;
+            }
+            Frame::Ask => stack.push(Frame::Pass),
+            Frame::Pass => {
+                transitions += 1;
+                pipe = black_box(pipe);
+                *top = Frame::Down;
+            }
+            Frame::Down => stack.push(Frame::Add),
+            Frame::Add => {
+                transitions += 1;
+                pipe = black_box(pipe + 1);
+                *top = Frame::Bumped;
+            }
+            Frame::Bumped => {
+                transitions += 2;
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    *m = Frame::Done;
+                }
+            }
+            Frame::Done => {
+                transitions += 2;
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    *m = Frame::Test;
+                }
+            }
+            Frame::Test => {
+                transitions += 1;
+                *top = if pipe < black_box(local) {
+                    Frame::Ask
+                } else {
+                    Frame::Over
+                };
+            }
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) with the test a closure: `hit` gives what the final hands back when
+/// an element is the one looked for (a threshold, a record's field).
+pub fn hand_walk_by<T: Copy, R: Copy>(
+    rounds: i64,
+    items: &[T],
+    hit: impl Fn(T) -> Option<R>,
+    start: bool,
+) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a, T, R> {
+        Round,
+        Stop,
+        Begin,
+        Try(&'a [T]),
+        Final(Option<R>),
+    }
+    let mut stack: Vec<Frame<T, R>> = vec![Frame::Round];
+    let (mut n, mut transitions) = (0i64, u64::from(start));
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items);
+            }
+            Frame::Try([]) => {
+                transitions += 1;
+                *top = Frame::Final(None);
+            }
+            Frame::Try([p, ps @ ..]) => {
+                transitions += 1;
+                *top = match hit(*p) {
+                    Some(r) => Frame::Final(Some(r)),
+                    None => Frame::Try(ps),
+                };
+            }
+            Frame::Final(exit) => {
+                transitions += 2;
+                black_box(exit);
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) `d_confirm_found`: the element found is confirmed by a nested
+/// call (`sure(P)`, one neutral step) before the walk ends.
+pub fn hand_walk_confirm(rounds: i64, items: &[Sym], target: Sym, unknown: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Try(&'a [Sym]),
+        Confirm(Sym, &'a [Sym]),
+        Ask(Sym),
+        Yes,
+        No,
+        Found(Sym),
+        NotFound,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut transitions) = (0i64, 1u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items);
+            }
+            Frame::Try([]) => {
+                transitions += 1;
+                *top = Frame::NotFound;
+            }
+            Frame::Try([p, ps @ ..]) => {
+                transitions += 1;
+                *top = if *p == target {
+                    Frame::Confirm(*p, ps)
+                } else {
+                    Frame::Try(ps)
+                };
+            }
+            Frame::Confirm(p, _) => stack.push(Frame::Ask(p)),
+            Frame::Ask(p) => {
+                transitions += 1;
+                *top = if p == unknown { Frame::No } else { Frame::Yes };
+            }
+            Frame::Yes | Frame::No => {
+                // `sure`'s final, then `confirm`'s exit arc.
+                transitions += 2;
+                let yes = matches!(*top, Frame::Yes);
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    if let Frame::Confirm(p, ps) = *m {
+                        *m = if yes { Frame::Found(p) } else { Frame::Try(ps) };
+                    }
+                }
+            }
+            Frame::Found(_) | Frame::NotFound => {
+                transitions += 2;
+                let found = match *top {
+                    Frame::Found(p) => Some(p),
+                    _ => None,
+                };
+                black_box(found);
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (c) with a flag: the callee counts in a global (`jobs`) and sets a
+/// global flag (`done`) when the count reaches the limit (one more
+/// transition, `finish`); the caller tests the flag after each call.
+/// The globals are plain Rust variables (`black_box`ed where written).
+pub fn hand_flag(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Ask,
+        Over,
+        Work,
+        Finish,
+        Back,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Ask];
+    let (mut jobs, mut done, mut transitions) = (0i64, false, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Ask => stack.push(Frame::Work),
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Work => {
+                transitions += 1;
+                jobs = black_box(jobs + 1);
+                *top = if jobs >= limit {
+                    Frame::Finish
+                } else {
+                    Frame::Back
+                };
+            }
+            Frame::Finish => {
+                transitions += 1;
+                done = black_box(true);
+                *top = Frame::Back;
+            }
+            Frame::Back => {
+                transitions += 1;
+                stack.pop();
+                transitions += 1;
+                if let Some(m) = stack.last_mut() {
+                    *m = if black_box(done) {
+                        Frame::Over
+                    } else {
+                        Frame::Ask
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) counting the places visited in a global (a plain `i64` here,
+/// `black_box`ed where written), the caller reading it after each round
+/// against its budget.
+pub fn hand_walk_visited(budget: i64, items: &[Sym], target: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Try(&'a [Sym]),
+        Final(Option<Sym>),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut visited, mut transitions) = (0i64, 1u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items);
+            }
+            Frame::Try([]) => {
+                transitions += 1;
+                *top = Frame::Final(None);
+            }
+            Frame::Try([p, ps @ ..]) => {
+                transitions += 1;
+                visited = black_box(visited + 1);
+                *top = if *p == target {
+                    Frame::Final(Some(*p))
+                } else {
+                    Frame::Try(ps)
+                };
+            }
+            Frame::Final(found) => {
+                transitions += 1;
+                black_box(found);
+                stack.pop();
+                transitions += 1;
+                if let Some(m) = stack.last_mut() {
+                    *m = if black_box(visited) < budget {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) `d_outarg_when`: [`hand_walk`] whose walking step also sets the
+/// pipe to whether the place looked at is the target (`here` or
+/// `elsewhere`, the out_arg `apply(when(_, _, _), [P == Target, ..])`; a
+/// `bool` here, `black_box`ed where written).
+pub fn hand_walk_flag(rounds: i64, items: &[Sym], target: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Try(&'a [Sym]),
+        Final(Option<Sym>),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut transitions, mut here) = (0i64, 1u64, false);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items);
+            }
+            Frame::Try([]) => {
+                transitions += 1;
+                *top = Frame::Final(None);
+            }
+            Frame::Try([p, ps @ ..]) => {
+                transitions += 1;
+                let found = *p == target;
+                here = black_box(found);
+                *top = if found {
+                    Frame::Final(Some(*p))
+                } else {
+                    Frame::Try(ps)
+                };
+            }
+            Frame::Final(found) => {
+                transitions += 1;
+                black_box(found);
+                stack.pop();
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    black_box(here);
+    transitions
+}
