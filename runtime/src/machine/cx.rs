@@ -493,11 +493,22 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// made, takes `value`, as the machine's `diag_mod` binds it), its
     /// entry recorded, its history nested in its caller's (the level below,
     /// or the machine's top frame), as the machine's final pops a frame.
-    pub fn close_level(&mut self, id: Term, outs: &[(usize, Term)]) -> Result<(), RunError> {
+    ///
+    /// `id` an [`IdArg`] (a [`Fill`] filled first), each output a slot
+    /// of the native frame ([`OutSlot`]: `[]` where empty) made a term in
+    /// order after it: one call where the generated code wrote the id's
+    /// `let` and an array of [`Cx::term_or_nil`].
+    pub fn close_level(
+        &mut self,
+        id: impl IdArg,
+        outs: &[(usize, &dyn OutSlot)],
+    ) -> Result<(), RunError> {
+        let id = id.id_in(&mut self.m.store);
         let Some(dm_id) = self.m.levels.back().map(|l| l.dm_id) else {
             return Err(self.fault(Fault::NoLevel));
         };
-        for &(i, value) in outs {
+        for &(i, slot) in outs {
+            let value = slot.out_term(&mut self.m.store);
             let bound = self
                 .m
                 .store
@@ -1201,6 +1212,28 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         }
     }
 
+    /// A recorded exit arc's entry as one call, out of native code's hot
+    /// path: [`Cx::enter_counted`] of situation `sit` with its id `id`
+    /// (an [`IdArg`]), then [`Cx::record_next`] of the expectation and
+    /// action with the id of `next` (the frame's next variant,
+    /// [`NatAt::id_term`](super::NatAt::id_term)) built only then.
+    #[cold]
+    #[inline(never)]
+    pub fn enter_next(
+        &mut self,
+        count: &mut u64,
+        sit: SitIx,
+        id: impl IdArg,
+        expectation: Term,
+        action: Term,
+        next: &dyn super::NatAt<P>,
+    ) {
+        let id = id.id_in(&mut self.m.store);
+        self.enter_counted(count, sit, id);
+        let p = self.m.program;
+        self.record_next(expectation, action, |s| next.id_term(p, s));
+    }
+
     /// [`Cx::record`] of an arc whose next situation native code computed:
     /// its id built (`next`, in the store) only here, when recorded.
     #[inline]
@@ -1269,6 +1302,23 @@ impl AsTerm for Term {
     #[inline]
     fn as_term(&self, _: &mut Store) -> Term {
         *self
+    }
+}
+
+/// An output slot of a native frame (`Option<T>` of a native value),
+/// made a term where [`Cx::close_level`] binds it: `[]` where empty, as
+/// [`Cx::term_or_nil`].
+pub trait OutSlot {
+    fn out_term(&self, store: &mut Store) -> Term;
+}
+
+impl<T: Native> OutSlot for Option<T> {
+    #[inline]
+    fn out_term(&self, store: &mut Store) -> Term {
+        match self {
+            Some(v) => v.to_term(store),
+            None => Term::NIL,
+        }
     }
 }
 
