@@ -143,7 +143,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// [`nat_hand_over`](super::nat_hand_over); a DM with locals hands
     /// over with its own first, then none is below), the situation's id
     /// filled after it (`pattern` and `holes`, [`Cx::fill`]: the store's
-    /// order), then [`Cx::enter_empty_on`].
+    /// order; `pattern` an [`IdArg`], so a [`Fill`] the generated code
+    /// made beside, filled first, with no holes then), then
+    /// [`Cx::enter_empty_on`].
     #[cold]
     #[inline(never)]
     pub fn nat_empty<F: super::NatFrames<P>>(
@@ -152,14 +154,19 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         count: &mut u64,
         sit: SitIx,
         arc: usize,
-        pattern: impl Into<Term>,
+        pattern: impl IdArg,
         holes: &[&dyn AsTerm],
     ) -> Result<(), RunError> {
         if !self.actions.ignores_empty() || stack.is_empty() {
             let p = self.m.program;
             super::nat_hand_over(p, self, stack)?;
         }
-        let id = self.fill(pattern.into(), holes);
+        let pattern = pattern.id_in(&mut self.m.store);
+        let id = if holes.is_empty() {
+            pattern
+        } else {
+            self.fill(pattern, holes)
+        };
         self.enter_empty_on(count, sit, id, stack, Some(arc))
     }
 
@@ -1024,6 +1031,24 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             }
         }
         Ok(())
+    }
+
+    /// [`Cx::perform_each`], then the action as the history records it
+    /// where `records` (the list of the elements, built only then), else
+    /// `[]`: a list action of native code as one call.
+    #[inline]
+    pub fn perform_list(
+        &mut self,
+        elements: &[Term],
+        records: bool,
+        arc: Option<usize>,
+    ) -> Result<Term, RunError> {
+        self.perform_each(elements, arc)?;
+        Ok(if records {
+            self.m.store.list(elements)
+        } else {
+            Term::NIL
+        })
     }
 
     /// Performs `action`, a value native code computed that is neither a

@@ -749,8 +749,23 @@ fn empty_call(
         arc.clone()
     };
     let measured = quote!(cx.nat_empty(stack, &mut count, #cur, #arc_m, #pattern, #holes)?;);
-    fits_at(&measured, None)
-        .then(|| quote!(cx.nat_empty(stack, &mut count, #cur, #arc, #pattern, #holes)?;))
+    if fits_at(&measured, None) {
+        return Some(quote!(cx.nat_empty(stack, &mut count, #cur, #arc, #pattern, #holes)?;));
+    }
+    // Else the id's pattern and holes as a `Fill` first (they borrow only
+    // registers), which the call fills after the hand-over: two lines
+    // where both fit.
+    if id_stmts.is_empty() {
+        return None;
+    }
+    let fill = quote!(let #id = Fill(#pattern, #holes););
+    let measured = quote!(cx.nat_empty(stack, &mut count, #cur, #arc_m, #id, &[])?;);
+    (fits_at(&fill, None) && fits_at(&measured, None)).then(|| {
+        quote! {
+            #fill
+            cx.nat_empty(stack, &mut count, #cur, #arc, #id, &[])?;
+        }
+    })
 }
 
 /// The pattern and holes of an id made by one statement
@@ -3057,15 +3072,11 @@ impl Gen<'_> {
                             .map(|e| self.nat_ev_term(e, &regs, &mut ts, &mut n))
                             .collect::<N<Vec<_>>>()
                             .map_err(why)?;
-                        // The list itself is built only for the history.
+                        // The list itself is built only for the history
+                        // (`Cx::perform_list`).
                         quote! {
                             let act_items = [#(#ts_items),*];
-                            cx.perform_each(&act_items, arc_at)?;
-                            let act = if run.records {
-                                cx.store().list(&act_items)
-                            } else {
-                                Term::NIL
-                            };
+                            let act = cx.perform_list(&act_items, run.records, arc_at)?;
                         }
                     }
                 };
