@@ -144,7 +144,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// [`nat_hand_over`](super::nat_hand_over); a DM with locals hands
     /// over with its own first, then none is below), the situation's id
     /// filled after it (`pattern` and `holes`, [`Cx::fill`]: the store's
-    /// order), then [`Cx::enter_empty_on`].
+    /// order; `pattern` an [`IdArg`], so a [`Fill`] the generated code
+    /// made beside, filled first, with no holes then), then
+    /// [`Cx::enter_empty_on`].
     #[cold]
     #[inline(never)]
     pub fn nat_empty<F: super::NatFrames<P>>(
@@ -153,14 +155,19 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         count: &mut u64,
         sit: SitIx,
         arc: usize,
-        pattern: impl Into<Term>,
+        pattern: impl IdArg,
         holes: &[&dyn AsTerm],
     ) -> Result<(), RunError> {
         if !self.actions.ignores_empty() || stack.is_empty() {
             let p = self.m.program;
             super::nat_hand_over(p, self, stack)?;
         }
-        let id = self.fill(pattern.into(), holes);
+        let pattern = pattern.id_in(&mut self.m.store);
+        let id = if holes.is_empty() {
+            pattern
+        } else {
+            self.fill(pattern, holes)
+        };
         self.enter_empty_on(count, sit, id, stack, Some(arc))
     }
 
@@ -489,11 +496,22 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// made, takes `value`, as the machine's `diag_mod` binds it), its
     /// entry recorded, its history nested in its caller's (the level below,
     /// or the machine's top frame), as the machine's final pops a frame.
-    pub fn close_level(&mut self, id: Term, outs: &[(usize, Term)]) -> Result<(), RunError> {
+    ///
+    /// `id` an [`IdArg`] (a [`Fill`] filled first), each output a slot
+    /// of the native frame ([`OutSlot`]: `[]` where empty) made a term in
+    /// order after it: one call where the generated code wrote the id's
+    /// `let` and an array of [`Cx::term_or_nil`].
+    pub fn close_level(
+        &mut self,
+        id: impl IdArg,
+        outs: &[(usize, &dyn OutSlot)],
+    ) -> Result<(), RunError> {
+        let id = id.id_in(&mut self.m.store);
         let Some(dm_id) = self.m.levels.back().map(|l| l.dm_id) else {
             return Err(self.fault(Fault::NoLevel));
         };
-        for &(i, value) in outs {
+        for &(i, slot) in outs {
+            let value = slot.out_term(&mut self.m.store);
             let bound = self
                 .m
                 .store
@@ -1077,6 +1095,24 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         Ok(())
     }
 
+    /// [`Cx::perform_each`], then the action as the history records it
+    /// where `records` (the list of the elements, built only then), else
+    /// `[]`: a list action of native code as one call.
+    #[inline]
+    pub fn perform_list(
+        &mut self,
+        elements: &[Term],
+        records: bool,
+        arc: Option<usize>,
+    ) -> Result<Term, RunError> {
+        self.perform_each(elements, arc)?;
+        Ok(if records {
+            self.m.store.list(elements)
+        } else {
+            Term::NIL
+        })
+    }
+
     /// Performs `action`, a value native code computed that is neither a
     /// list nor `empty` (a number, another atom), as [`Cx::perform`] does,
     /// without entering the machine: the effector is handed the value and
@@ -1266,6 +1302,28 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         }
     }
 
+    /// A recorded exit arc's entry as one call, out of native code's hot
+    /// path: [`Cx::enter_counted`] of situation `sit` with its id `id`
+    /// (an [`IdArg`]), then [`Cx::record_next`] of the expectation and
+    /// action with the id of `next` (the frame's next variant,
+    /// [`NatAt::id_term`](super::NatAt::id_term)) built only then.
+    #[cold]
+    #[inline(never)]
+    pub fn enter_next(
+        &mut self,
+        count: &mut u64,
+        sit: SitIx,
+        id: impl IdArg,
+        expectation: Term,
+        action: Term,
+        next: &dyn super::NatAt<P>,
+    ) {
+        let id = id.id_in(&mut self.m.store);
+        self.enter_counted(count, sit, id);
+        let p = self.m.program;
+        self.record_next(expectation, action, |s| next.id_term(p, s));
+    }
+
     /// [`Cx::record`] of an arc whose next situation native code computed:
     /// its id built (`next`, in the store) only here, when recorded.
     #[inline]
@@ -1334,6 +1392,23 @@ impl AsTerm for Term {
     #[inline]
     fn as_term(&self, _: &mut Store) -> Term {
         *self
+    }
+}
+
+/// An output slot of a native frame (`Option<T>` of a native value),
+/// made a term where [`Cx::close_level`] binds it: `[]` where empty, as
+/// [`Cx::term_or_nil`].
+pub trait OutSlot {
+    fn out_term(&self, store: &mut Store) -> Term;
+}
+
+impl<T: Native> OutSlot for Option<T> {
+    #[inline]
+    fn out_term(&self, store: &mut Store) -> Term {
+        match self {
+            Some(v) => v.to_term(store),
+            None => Term::NIL,
+        }
     }
 }
 

@@ -46,7 +46,7 @@ mod situation;
 mod state;
 mod steps;
 
-pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, Fill, FromIdParts, IdArg};
+pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, Fill, FromIdParts, IdArg, OutSlot};
 pub use io::{Actions, Perceived, Perception};
 pub use native_stack::{
     nat_drive, nat_goto, nat_hand_over, nat_materialize, nat_plain, nat_replace_done, nat_template,

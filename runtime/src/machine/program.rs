@@ -237,7 +237,7 @@ impl TypedRun {
         cx: &mut Cx<'_, '_, P>,
         count: u64,
         id: impl Into<Term>,
-        outs: &[(usize, Term)],
+        outs: &[(usize, &dyn super::OutSlot)],
     ) -> Result<u64, RunError> {
         if self.recorded() {
             cx.close_level(id.into(), outs)?;

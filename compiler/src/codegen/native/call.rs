@@ -747,7 +747,7 @@ impl Gen<'_> {
             TokenStream,
             (usize, TokenStream),
             TokenStream,
-            Option<(TokenStream, TokenStream)>,
+            Option<(TokenStream, TokenStream, Option<TokenStream>)>,
         );
         let mut finals: Vec<(TokenStream, Vec<ArcCode>)> = Vec::new();
         // Every arc's entry built natively (its expectation a term of the
@@ -858,18 +858,24 @@ impl Gen<'_> {
                     // nothing the entry reads): made first, once, then the
                     // transition counted (`run.tally`) or the entry recorded
                     // (the order of the store's terms is the entry's alone).
-                    Some((entry, next))
+                    Some((entry, next, one))
                         if rec_all
                             && !leaves(&next)
                             && !mentions(&next, &format_ident!("cx"))
                             && !super::moves_any(&next, &entry) =>
                     {
+                        // The entry and its record one call where it fits.
+                        let rec = one.unwrap_or_else(|| {
+                            quote! {
+                                #entry
+                                cx.record_next(exp, act, |s| next_at.id_term(p, s));
+                            }
+                        });
                         quote! {
                             let next_at: Nat = #next;
                             run.tally(&mut count);
                             if run.recorded() {
-                                #entry
-                                cx.record_next(exp, act, |s| next_at.id_term(p, s));
+                                #rec
                             }
                             break 'visit next_at;
                         }
@@ -880,7 +886,7 @@ impl Gen<'_> {
                     // A next situation that hands over before anything
                     // else (a Prolog condition: a cold path) is written once,
                     // below, not once a way.
-                    Some((entry, next))
+                    Some((entry, next, _))
                         if rec_all && !uses_entry(&next) && !super::hands_over_first(&next) =>
                     {
                         quote! {
@@ -893,7 +899,7 @@ impl Gen<'_> {
                             #plain
                         }
                     }
-                    Some((entry, next)) if rec_all => quote! {
+                    Some((entry, next, _)) if rec_all => quote! {
                         let (exp, act) = if run.recorded() {
                             #entry
                             (exp, act)
@@ -978,7 +984,7 @@ impl Gen<'_> {
         arc: &crate::mir::ArcPlan,
         regs: &Regs,
         cur_name: &TokenStream,
-    ) -> N<(TokenStream, TokenStream)> {
+    ) -> N<(TokenStream, TokenStream, Option<TokenStream>)> {
         let mut ts = Vec::new();
         let mut n = 0;
         let exp = self.nat_ev_term(&arc.expectation, regs, &mut ts, &mut n)?;
@@ -1011,6 +1017,12 @@ impl Gen<'_> {
             },
             None => (ts, exp),
         };
+        // Its terms made by the call that builds it (`cx.build_of`), where
+        // each is a native value's made just before, in order.
+        let (ts, exp) = match built_of(&ts, &exp) {
+            Some(e) => (Vec::new(), e),
+            None => (ts, exp),
+        };
         // A constant action beside a leaf expectation: one `let` of the
         // pair (a built one beside it would often break the line).
         let exp_act = if act.to_string().starts_with("let") {
@@ -1028,6 +1040,19 @@ impl Gen<'_> {
         *d.rec.borrow_mut() = quote!();
         d.pipe_in.set(pipe_in);
         let next = super::as_expr(next?);
+        // The entry and the record of a next situation made before it as
+        // one call (`Cx::enter_next`) where it fits on a line (60 columns:
+        // prettyplease's least room, at any depth).
+        let id_arg = super::atom_arg(&id);
+        let call = quote!(cx.enter_next(&mut count, #curl, #id_arg, exp, act, &next_at););
+        let one = super::fits_at(&call, None).then(|| {
+            quote! {
+                #(#ts)*
+                #exp_act
+                #(#id_stmts)*
+                #call
+            }
+        });
         Ok((
             quote! {
                 #(#ts)*
@@ -1036,6 +1061,7 @@ impl Gen<'_> {
                 cx.enter_counted(&mut count, #curl, #id);
             },
             next,
+            one,
         ))
     }
 
@@ -1895,4 +1921,67 @@ fn bind_fresh(
     stmts.push(quote!(let #rr = #e;));
     regs.insert(dst, (rr, dty));
     Ok(())
+}
+
+/// `exp`, a compound `cx.build(f, &[..])` whose arguments' terms `ts`
+/// made just before (`let bN = cx.term(&x);`, each argument once, in
+/// order), as one `cx.build_of(f, &[&x, ..])`: the same terms made in the
+/// same order (`Cx::build_of` makes each argument's term in turn, a term
+/// argument being itself). `None` for another shape, or an argument that
+/// calls `cx`.
+fn built_of(ts: &[TokenStream], exp: &TokenStream) -> Option<TokenStream> {
+    let syn::Expr::MethodCall(m) = syn::parse2::<syn::Expr>(exp.clone()).ok()? else {
+        return None;
+    };
+    let recv = &m.receiver;
+    if m.method != "build" || quote!(#recv).to_string() != "cx" || m.args.len() != 2 {
+        return None;
+    }
+    let syn::Expr::Reference(r) = &m.args[1] else {
+        return None;
+    };
+    let syn::Expr::Array(args) = &*r.expr else {
+        return None;
+    };
+    // The terms made before: `bN` and the value it is made of.
+    let mut made = Vec::new();
+    for t in ts {
+        let syn::Stmt::Local(l) = syn::parse2::<syn::Stmt>(t.clone()).ok()? else {
+            return None;
+        };
+        let syn::Pat::Ident(x) = &l.pat else {
+            return None;
+        };
+        let syn::Expr::MethodCall(c) = &*l.init.as_ref()?.expr else {
+            return None;
+        };
+        let recv = &c.receiver;
+        if c.method != "term" || quote!(#recv).to_string() != "cx" || c.args.len() != 1 {
+            return None;
+        }
+        let v = &c.args[0];
+        made.push((x.ident.to_string(), quote!(#v)));
+    }
+    let cx = format_ident!("cx");
+    let mut next = 0;
+    let mut out = Vec::new();
+    for a in &args.elems {
+        let a = quote!(#a);
+        if mentions(&a, &cx) {
+            return None;
+        }
+        match made.iter().position(|(b, _)| *b == a.to_string()) {
+            Some(k) if k == next => {
+                out.push(made[k].1.clone());
+                next += 1;
+            }
+            Some(_) => return None,
+            None => out.push(quote!(&#a)),
+        }
+    }
+    if next != made.len() {
+        return None;
+    }
+    let f = &m.args[0];
+    Some(quote!(cx.build_of(#f, &[#(#out),*])))
 }

@@ -745,24 +745,30 @@ fn empty_call(
         }
         _ => fill_parts(id_stmts, id)?,
     };
-    // Its length as printed: its parts (paths, indices, references,
-    // literals) without a space but after a comma, nor a trailing comma;
-    // `arc_ix` a digit.
-    let part = |t: &TokenStream| -> String {
-        let s: String = t.to_string().chars().filter(|c| *c != ' ').collect();
-        s.replace(",]", "]")
-            .replace(',', ", ")
-            .replace("arc_ix", "0")
+    // Measured with `arc_ix` a digit, as `with_arc_at` puts it in.
+    let arc_m = if arc.to_string() == "arc_ix" {
+        quote!(0)
+    } else {
+        arc.clone()
     };
-    let printed = format!(
-        "cx.nat_empty(stack, &mut count, {}, {}, {}, {})?;",
-        part(&quote!(#cur)),
-        part(arc),
-        part(&pattern),
-        part(&holes)
-    );
-    (printed.len() <= 60)
-        .then(|| quote!(cx.nat_empty(stack, &mut count, #cur, #arc, #pattern, #holes)?;))
+    let measured = quote!(cx.nat_empty(stack, &mut count, #cur, #arc_m, #pattern, #holes)?;);
+    if fits_at(&measured, None) {
+        return Some(quote!(cx.nat_empty(stack, &mut count, #cur, #arc, #pattern, #holes)?;));
+    }
+    // Else the id's pattern and holes as a `Fill` first (they borrow only
+    // registers), which the call fills after the hand-over: two lines
+    // where both fit.
+    if id_stmts.is_empty() {
+        return None;
+    }
+    let fill = quote!(let #id = Fill(#pattern, #holes););
+    let measured = quote!(cx.nat_empty(stack, &mut count, #cur, #arc_m, #id, &[])?;);
+    (fits_at(&fill, None) && fits_at(&measured, None)).then(|| {
+        quote! {
+            #fill
+            cx.nat_empty(stack, &mut count, #cur, #arc, #id, &[])?;
+        }
+    })
 }
 
 /// The pattern and holes of an id made by one statement
@@ -798,13 +804,72 @@ fn fill_arg(stmts: &[TokenStream], id: &TokenStream) -> Option<TokenStream> {
     Some(quote!(Fill(#pattern, #holes)))
 }
 
-/// Whether statement `code` (a keyword first, `return`) fits on one line
-/// at `indent` as prettyplease writes it (margin 89; the length estimated
-/// from its tokens: a space after the keyword and each comma, around `=`).
+/// Whether statement `code` fits on one line at `indent` as prettyplease
+/// writes it ([`fits_at`]).
 fn fits(code: &TokenStream, indent: usize) -> bool {
-    let text = code.to_string().replace(' ', "");
-    let len = text.len() + 1 + text.matches(',').count() + 2 * text.matches('=').count();
-    indent + len <= 89
+    fits_at(code, Some(indent))
+}
+
+/// Whether statement `code` fits on one line as prettyplease writes it:
+/// its length ([`printed_len`]) within the room prettyplease leaves at
+/// `indent` (margin 89, never less than 60 columns), or within 60 at any
+/// depth (`None`). The one estimate the generator makes of whether a call
+/// is written on one line.
+pub(super) fn fits_at(code: &TokenStream, indent: Option<usize>) -> bool {
+    let room = indent.map_or(60, |i| 89usize.saturating_sub(i).max(60));
+    printed_len(code) <= room
+}
+
+/// The length of `code` printed on one line, estimated from its tokens as
+/// prettyplease spaces them: a space between two words (`&mut count`,
+/// `return cx`), after a comma (none for a trailing one), after a `:` of a
+/// type, around `=`, inside braces; none else.
+fn printed_len(code: &TokenStream) -> usize {
+    use proc_macro2::{Delimiter, Spacing, TokenTree};
+    fn walk(ts: &TokenStream) -> usize {
+        let toks: Vec<TokenTree> = ts.clone().into_iter().collect();
+        let mut len = 0;
+        let mut word = false;
+        let mut joint = false;
+        for (k, t) in toks.iter().enumerate() {
+            let last = k + 1 == toks.len();
+            match t {
+                TokenTree::Ident(_) | TokenTree::Literal(_) => {
+                    len += t.to_string().len() + usize::from(word);
+                    word = true;
+                    joint = false;
+                }
+                TokenTree::Punct(p) => {
+                    len += match p.as_char() {
+                        ',' if last => 0,
+                        ',' => 2,
+                        ':' | '=' if p.spacing() == Spacing::Alone && !joint => {
+                            if p.as_char() == '=' {
+                                3
+                            } else {
+                                2
+                            }
+                        }
+                        _ => 1,
+                    };
+                    word = false;
+                    joint = p.spacing() == Spacing::Joint;
+                }
+                TokenTree::Group(g) => {
+                    let inner = walk(&g.stream());
+                    len += match g.delimiter() {
+                        Delimiter::Brace if inner > 0 => inner + 4,
+                        Delimiter::None => inner,
+                        _ => inner + 2,
+                    };
+                    word = false;
+                    joint = false;
+                }
+            }
+        }
+        len
+    }
+    walk(code)
 }
 
 /// `code` as one expression: itself where it is one (a variant, a
@@ -2462,19 +2527,20 @@ impl Gen<'_> {
                 // Recorded (the history kept: the DM's entries in a level
                 // of its own): its outputs bound in its call term, its
                 // entry made, its level closed (`Cx::close_level`).
+                // The id an atom, or filled by the call (`Fill`) where the
+                // call still fits on a line (at the depth of a final's
+                // `if run.recorded() { .. }`), else its `let` first.
                 let close = |outs: TokenStream| {
-                    // No output: `&[]`; else the pairs bound first (they
-                    // borrow `cx`).
-                    let (bind, outs) = if outs.to_string() == quote!([]).to_string() {
-                        (quote!(), quote!(&[]))
-                    } else {
-                        (quote!(let outs = #outs;), quote!(&outs))
+                    let atom = atom_arg(&id);
+                    let (lets, id) = match fill_arg(&id_stmts, &id) {
+                        Some(f) if fits(&quote!(cx.close_level(#f, &#outs)?;), 28) => (quote!(), f),
+                        _ if id_stmts.is_empty() => (quote!(), atom),
+                        _ => (quote!(#(#id_stmts)*), id.clone()),
                     };
                     quote! {
                         if run.recorded() {
-                            #(#id_stmts)*
-                            #bind
-                            cx.close_level(#id, #outs)?;
+                            #lets
+                            cx.close_level(#id, &#outs)?;
                             return cx.step_done(count, slot, Nat::#v { #(#names),* });
                         }
                     }
@@ -3009,15 +3075,11 @@ impl Gen<'_> {
                             .map(|e| self.nat_ev_term(e, &regs, &mut ts, &mut n))
                             .collect::<N<Vec<_>>>()
                             .map_err(why)?;
-                        // The list itself is built only for the history.
+                        // The list itself is built only for the history
+                        // (`Cx::perform_list`).
                         quote! {
                             let act_items = [#(#ts_items),*];
-                            cx.perform_each(&act_items, arc_at)?;
-                            let act = if run.records {
-                                cx.store().list(&act_items)
-                            } else {
-                                Term::NIL
-                            };
+                            let act = cx.perform_list(&act_items, run.records, arc_at)?;
                         }
                     }
                 };
@@ -3241,9 +3303,9 @@ impl Gen<'_> {
                 conds.push(quote!(#p.is_out()));
                 sets.push(quote!(*#out = Some(#o);));
                 let il = Literal::usize_unsuffixed(i);
-                outs.push(quote! {
-                    (#il, cx.term_or_nil(#out.as_ref()))
-                });
+                // The slot itself (`&mut Option<T>`, a `&dyn OutSlot`):
+                // `Cx::close_level` makes it a term.
+                outs.push(quote!((#il, #out)));
             } else if !matches!(a, Build::Reg(r) if plan.inits.iter().any(|(x, init)| x == r && matches!(init, Init::HeadArg(p) if *p == i)))
             {
                 return None;
