@@ -232,6 +232,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         sit,
                         id,
                         selected,
+                        empty_failed: None,
                     };
                     let step = program.run_situation(dm, sit, &mut cx)?;
                     // The code may have gone on to other situations of the DM.
@@ -402,6 +403,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                                 sit,
                                 id,
                                 selected: Some(id),
+                                empty_failed: None,
                             };
                             step = program.run_exit(dm, sit, saved, final_id, &mut cx)?;
                         }
