@@ -128,13 +128,13 @@ fn transitions_allocate_nothing_in_steady_state() {
     let compiled = measure(ground_loop::program());
     // Typed code (issue 19): the counter is a native int, the store untouched.
     let typed = measure(typed_counter::program());
-    // Shape (c) (issue 37): N calls, stopped long before the limit.
-    // Printed, not asserted: the ticks here are its performed numbers
-    // (`J` of each exit arc, handed to the effector without entering the
-    // machine since `nget14`) and the callee's `empty` (this effector does
-    // not ignore it), performed with the caller's native frame handed over
-    // first: about one allocation a call (performance.md, `nshape13`'s and
-    // `nget14`'s sections).
+    // Shape (c) (issue 37): N calls, stopped long before the limit. The
+    // ticks are its performed numbers (`J` of each exit arc, handed to the
+    // effector without entering the machine since `nget14`) and the
+    // callee's `empty` (this effector does not ignore it), handed to the
+    // effector without handing the caller's native frame over since
+    // `nalloc15` (performance.md, `nshape13`'s, `nget14`'s and
+    // `nalloc15`'s sections).
     let calls = measure_from(c_final_by_inarg::program(), "relay(1000000000)");
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("dms/ground_loop");
     let (checked, _) = sitlog_compiler::check_path(&dir).unwrap();
@@ -166,6 +166,11 @@ fn transitions_allocate_nothing_in_steady_state() {
         (typed.steady, typed.collections),
         (0, 0),
         "typed code allocated in {MEASURED} transitions"
+    );
+    assert_eq!(
+        (calls.steady, calls.collections),
+        (0, 0),
+        "shape (c) allocated in {MEASURED} transitions, `empty` performed"
     );
     // The interpreter builds each instance in the store; the window is long
     // enough to include collections. What remains outside them is the

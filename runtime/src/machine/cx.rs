@@ -136,17 +136,55 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.enter_empty(count, sit, id, below.is_empty(), arc)
     }
 
+    /// An arc's `empty` performed by native code before its situation is
+    /// entered, where the run's actions do not ignore it (`run`'s
+    /// `quiet_empty`): handed to the effector, which sees the atom and
+    /// nothing else, as from the machine's `perform`, without the native
+    /// frames below handed over nor the situation's id built. `true`:
+    /// the effector failed; native code then hands over (the frames below
+    /// and a DM's locals: what the machine's error sees) and enters the
+    /// situation, whose entry ([`Cx::enter_performed`], [`Cx::nat_enter`])
+    /// reports the error [`Cx::perform`] gives (kept for it until then).
+    #[inline]
+    pub fn empty_fails(&mut self, run: &super::TypedRun) -> bool {
+        !run.quiet_empty && self.perform_empty()
+    }
+
+    /// [`Cx::empty_fails`] where `empty` is performed.
+    #[cold]
+    #[inline(never)]
+    fn perform_empty(&mut self) -> bool {
+        self.empty_failed = self.perform_value(Term::EMPTY).err();
+        self.empty_failed.is_some()
+    }
+
+    /// [`Cx::enter_counted`] for an arc whose action is `empty`, after
+    /// [`Cx::empty_fails`]: the effector's error, if it failed, reported
+    /// in the situation entered (what [`Cx::perform`] gives).
+    #[inline]
+    pub fn enter_performed(
+        &mut self,
+        count: &mut u64,
+        sit: SitIx,
+        id: impl Into<Term>,
+        arc: Option<usize>,
+    ) -> Result<(), RunError> {
+        self.enter_counted(count, sit, id.into());
+        match self.empty_failed.take() {
+            Some(e) => Err(self.action_failed(e, arc)),
+            None => Ok(()),
+        }
+    }
+
     /// The entry of situation `sit` by arc `arc`, whose action is
     /// `empty`, as one call, out of native code's hot path (its caller
     /// tests `run.records || !run.quiet_empty`, or `!run.quiet_empty` in
-    /// an exit arc): the native frames below handed over where the
-    /// actions do not ignore `empty` or none is below (the runtime's
-    /// [`nat_hand_over`](super::nat_hand_over); a DM with locals hands
-    /// over with its own first, then none is below), the situation's id
-    /// filled after it (`pattern` and `holes`, [`Cx::fill`]: the store's
-    /// order; `pattern` an [`IdArg`], so a [`Fill`] the generated code
-    /// made beside, filled first, with no holes then), then
-    /// [`Cx::enter_empty_on`].
+    /// an exit arc): `empty` handed to the effector where the actions do
+    /// not ignore it ([`Cx::perform_value`]: the effector sees the atom
+    /// and nothing else, as from the machine's `perform`), without
+    /// handing the native frames below over; then [`Cx::nat_enter`]
+    /// (`pattern` an [`IdArg`], so a [`Fill`] the generated code made
+    /// beside, with no holes then).
     #[cold]
     #[inline(never)]
     pub fn nat_empty<F: super::NatFrames<P>>(
@@ -158,17 +196,58 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         pattern: impl IdArg,
         holes: &[&dyn AsTerm],
     ) -> Result<(), RunError> {
-        if !self.actions.ignores_empty() || stack.is_empty() {
+        if !self.actions.ignores_empty() {
+            self.empty_failed = self.perform_value(Term::EMPTY).err();
+        }
+        self.nat_enter(stack, count, sit, arc, pattern, holes)
+    }
+
+    /// The entry of situation `sit` by arc `arc`, whose action `empty`
+    /// was performed ([`Cx::nat_empty`], or [`Cx::empty_fails`] in a DM
+    /// with locals, which hands over with its own where it fails), as one
+    /// call: the situation's id filled (`pattern` and `holes`,
+    /// [`Cx::fill`]) and entered where the run records (its entry reads
+    /// it; else nothing reads it, and native code counts the transition
+    /// as where `empty` is not performed). Where the effector failed, the
+    /// native frames below are handed over first (the runtime's
+    /// [`nat_hand_over`](super::nat_hand_over); none is below after a
+    /// DM's own), the id filled after it (the store's order) and
+    /// entered, and the error is [`Cx::perform`]'s.
+    #[cold]
+    #[inline(never)]
+    pub fn nat_enter<F: super::NatFrames<P>>(
+        &mut self,
+        stack: &mut super::NatBelow<'_, F>,
+        count: &mut u64,
+        sit: SitIx,
+        arc: usize,
+        pattern: impl IdArg,
+        holes: &[&dyn AsTerm],
+    ) -> Result<(), RunError> {
+        if let Some(e) = self.empty_failed.take() {
             let p = self.m.program;
             super::nat_hand_over(p, self, stack)?;
+            let id = self.nat_id(pattern, holes);
+            self.enter_counted(count, sit, id);
+            return Err(self.action_failed(e, Some(arc)));
         }
+        if self.records() {
+            let id = self.nat_id(pattern, holes);
+            self.enter_counted(count, sit, id);
+        }
+        Ok(())
+    }
+
+    /// A situation's id from its pattern and holes ([`Cx::fill`]), the
+    /// pattern an [`IdArg`] (a [`Fill`] is filled first, its holes its own).
+    #[inline]
+    fn nat_id(&mut self, pattern: impl IdArg, holes: &[&dyn AsTerm]) -> Term {
         let pattern = pattern.id_in(&mut self.m.store);
-        let id = if holes.is_empty() {
+        if holes.is_empty() {
             pattern
         } else {
             self.fill(pattern, holes)
-        };
-        self.enter_empty_on(count, sit, id, stack, Some(arc))
+        }
     }
 
     /// Native code handing a value to the machine: counts the `count`

@@ -1483,6 +1483,141 @@ fn get_binds_its_variable_natively_and_agrees() {
     );
 }
 
+/// Logs every action and fails at the `at`-th `empty` (1-based).
+struct FailsAt {
+    seen: Vec<String>,
+    empties: usize,
+    at: usize,
+}
+
+impl Actions for FailsAt {
+    fn perform(&mut self, store: &mut Store, action: Term) -> Result<(), String> {
+        self.seen.push(store.writeq(action));
+        if store.atom_of(action) == Some(atoms::EMPTY) {
+            self.empties += 1;
+            if self.empties == self.at {
+                return Err(format!("`empty` number {} refused", self.at));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A run of `main` on `app` whose effector refuses its `at`-th `empty`:
+/// the report, the transitions, the actions performed, the observed ones.
+fn run_refusing<A: app::App>(
+    app: &A,
+    main: &str,
+    keep_history: bool,
+    observe: bool,
+    at: usize,
+) -> (serde_json::Value, u64, Vec<String>, Vec<String>) {
+    let mut perception = ScriptPerception::new("script", String::new());
+    let mut actions = FailsAt {
+        seen: Vec::new(),
+        empties: 0,
+        at,
+    };
+    let mut trace = Trace::default();
+    let observer: Option<&mut dyn Observer> = if observe { Some(&mut trace) } else { None };
+    let options = Options {
+        keep_history,
+        ..Options::default()
+    };
+    let (outcome, store) = app::run(
+        app,
+        main,
+        None,
+        options,
+        functions(),
+        &mut perception,
+        &mut actions,
+        observer,
+    )
+    .expect("runs");
+    let report: serde_json::Value =
+        serde_json::from_str(&report::outcome_json(&store, &outcome)).expect("JSON");
+    let mut names = std::collections::HashMap::new();
+    let trace = trace.0.iter().map(|l| rename(l, &mut names)).collect();
+    (
+        canonical_vars(&report),
+        outcome.transitions,
+        actions.seen,
+        trace,
+    )
+}
+
+/// [`run_refusing`] of `compiled` and of the interpreter agree, for each
+/// of the first `n` `empty`s refused, the history kept or not, observed
+/// or not.
+fn agree_refusing<A: app::App>(compiled: &A, interpreted: &Ir, main: &str, n: usize) {
+    for at in 1..=n {
+        for keep in [false, true] {
+            for observe in [false, true] {
+                let c = run_refusing(compiled, main, keep, observe, at);
+                let i = run_refusing(interpreted, main, keep, observe, at);
+                assert_eq!(
+                    c, i,
+                    "{main}, `empty` {at} refused (history {keep}, observer {observe})"
+                );
+            }
+        }
+    }
+}
+
+/// `empty` performed by native code without handing its frames over
+/// (`nalloc15`): the effector sees the same actions, and where it refuses
+/// one the error, the history and the transitions are the machine's. A
+/// callee's neutral arc (`c_final_by_inarg`'s `look`), a caller's
+/// first arc, exit arcs and neutral arcs of a DM with a local
+/// (`get_binds`).
+#[test]
+fn an_empty_the_effector_refuses_agrees() {
+    let ir = interpreter("typed/shapes/c_final_by_inarg");
+    for main in ["relay(4)", "relay(13)"] {
+        agree_refusing(shapes_nshape13::final_by_inarg::program(), &ir, main, 6);
+    }
+    let ir = interpreter("typed/globals/get_binds");
+    for main in ["main(1, 1, 1, 2)", "main(x, y, y, -1)", "main(3, 3, 3, 3)"] {
+        agree_refusing(get_binds_nget14::get_binds::program(), &ir, main, 9);
+    }
+}
+
+mod order_nalloc15 {
+    pub mod order_lr {
+        sitlog_macros::include_dm!("typed/globals/order_lr");
+    }
+}
+
+/// An arithmetic condition evaluates its sides left to right, then
+/// compares (`nalloc15`, the thirteenth session's review): `get(a, _) <
+/// get(b, C)` with `a` no number and `b` not `C` reports the `get`'s
+/// error, as the machine does; each failing alone, and neither. `C` a
+/// parameter met only there is compared (it was taken for a `_`).
+#[test]
+fn an_arithmetic_condition_evaluates_left_to_right() {
+    let ir = interpreter("typed/globals/order_lr");
+    let app = order_nalloc15::order_lr::program();
+    agree_both(
+        app,
+        &ir,
+        &[
+            "main(yes, 5, 5)",
+            "main(yes, 0, 0)",
+            "main(no, 5, 5)",
+            "main(yes, 5, 6)",
+            "main(no, 5, 6)",
+            "main(yes, x, x)",
+        ],
+    );
+    let (report, _, _, _) = run(app, "main(no, 5, 6)", "", false, false, false);
+    let error = report["error"].as_str().unwrap_or_default();
+    assert!(
+        error.contains("`get(b,6)`: the value `5` does not unify with `6`"),
+        "{report}"
+    );
+}
+
 /// An out_arg with side effects is evaluated after the arc's next
 /// situation (`get(n, _)` after `t(inc(n, _))` reads 1, `inc(n, _)` after
 /// `u(.., get(n, _), ..)` counts after the read).

@@ -1423,19 +1423,24 @@ impl Gen<'_> {
                 Ty::Int | Ty::Float => quote!(if !run.quiet_numbers { #perform_value }),
                 Ty::Sym if const_atom == Some(atoms::EMPTY) && !list => {
                     let id_arg = super::atom_arg(&id);
-                    // One call where it fits (`Cx::nat_empty` hands over:
-                    // the actions do not ignore `empty`), after a DM's own
-                    // hand-over, which writes its locals back.
+                    // One call where it fits in a DM without locals
+                    // (`Cx::nat_empty` performs `empty`, handing over only
+                    // where the effector fails). Else `empty` handed to the
+                    // effector (`Cx::empty_fails`) and, only where it fails,
+                    // the hand-over (a DM's own writes its locals back) and
+                    // the entry that reports the error.
                     let arc_t = quote!(#arc);
-                    match super::empty_call(&id_stmts, &id, &curl, &arc_t) {
-                        Some(call) if !hand.is_empty() => {
-                            let own = if super::runtime_hand(hand) {
-                                quote!()
-                            } else {
-                                hand.clone()
-                            };
-                            quote!(if !run.quiet_empty { #own #call })
+                    match super::empty_call(&id_stmts, &id, &curl, &arc_t, false) {
+                        Some(call) if super::runtime_hand(hand) => {
+                            quote!(if !run.quiet_empty { #call })
                         }
+                        _ if !hand.is_empty() => quote! {
+                            if cx.empty_fails(run) {
+                                #hand
+                                #(#id_stmts)*
+                                cx.enter_performed(&mut count, #curl, #id_arg, Some(#arc))?;
+                            }
+                        },
                         _ => quote! {
                             if !run.quiet_empty {
                                 #hand

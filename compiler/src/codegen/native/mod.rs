@@ -723,17 +723,20 @@ fn runtime_hand(hand: &TokenStream) -> bool {
 
 /// The entry of situation `cur` by arc `arc` (tokens: a literal, or
 /// `arc_ix`, [`with_arc_at`]'s index) whose action is `empty`, as one
-/// `Cx::nat_empty` call (the hand-over, the id filled, the entry, out of
-/// line), from the id's statements and value ([`Gen::nat_id_term`]): an
+/// `Cx::nat_empty` call (`empty` performed, the hand-over only where the
+/// effector fails, the id filled, the entry, out of line), from the id's statements and value ([`Gen::nat_id_term`]): an
 /// atom, or one `let idN = cx.fill(pattern, holes);`. `None` for another
 /// id, or where the call would not fit on a line (60 columns, prettyplease's
 /// least room: broken an argument a line it is longer than the statements
-/// it replaces), for the caller's statements instead.
+/// it replaces), for the caller's statements instead. `entered`: the
+/// `Cx::nat_enter` call instead (`empty` performed before, a DM with
+/// locals: `Cx::empty_fails`), of the same length.
 fn empty_call(
     id_stmts: &[TokenStream],
     id: &TokenStream,
     cur: &Literal,
     arc: &TokenStream,
+    entered: bool,
 ) -> Option<TokenStream> {
     let (pattern, holes) = match id_stmts {
         [] => {
@@ -751,9 +754,14 @@ fn empty_call(
     } else {
         arc.clone()
     };
+    let f = if entered {
+        format_ident!("nat_enter")
+    } else {
+        format_ident!("nat_empty")
+    };
     let measured = quote!(cx.nat_empty(stack, &mut count, #cur, #arc_m, #pattern, #holes)?;);
     if fits_at(&measured, None) {
-        return Some(quote!(cx.nat_empty(stack, &mut count, #cur, #arc, #pattern, #holes)?;));
+        return Some(quote!(cx.#f(stack, &mut count, #cur, #arc, #pattern, #holes)?;));
     }
     // Else the id's pattern and holes as a `Fill` first (they borrow only
     // registers), which the call fills after the hand-over: two lines
@@ -766,7 +774,7 @@ fn empty_call(
     (fits_at(&fill, None) && fits_at(&measured, None)).then(|| {
         quote! {
             #fill
-            cx.nat_empty(stack, &mut count, #cur, #arc, #id, &[])?;
+            cx.#f(stack, &mut count, #cur, #arc, #id, &[])?;
         }
     })
 }
@@ -2950,8 +2958,8 @@ impl Gen<'_> {
         // native values as terms): the next situation as written, evaluated
         // whole as `Machine::conclude` does, or the term code's steps.
         let reloads = atom.is_none() && !d.locals.is_empty();
-        // After an `empty` action (the frames below handed over where it
-        // is performed only when not quiet or nothing is below) the native frames below
+        // After an `empty` action (performed without handing the frames
+        // below over, `Cx::empty_fails`) the native frames below
         // are handed over first: else the machine would be entered in the
         // caller's frame (`ngen12`'s `d_compare_fn`). Any other action
         // handed over where it was performed.
@@ -3004,9 +3012,11 @@ impl Gen<'_> {
                     #enter
                     cx.perform(#act, arc_at)?;
                 };
-                // `empty` performed where the actions do not ignore it or
-                // no native frame is below: handed over first, after which
-                // none is (`stack.is_empty()` says whether it performs).
+                // `empty` performed where the actions do not ignore it,
+                // handed to the effector without handing the native frames
+                // over (`Cx::empty_fails`); handed over only where the
+                // effector fails, for the error the entry reports
+                // (`Cx::enter_performed`).
                 let id_arg = atom_arg(&id);
                 let enter = if hand.is_empty() {
                     quote! {
@@ -3014,16 +3024,17 @@ impl Gen<'_> {
                         cx.enter_empty(&mut count, #cur, #id_arg, performs, arc_at)?;
                     }
                 } else {
-                    quote!(cx.enter_empty_on(&mut count, #cur, #id_arg, stack, arc_at)?;)
+                    quote!(cx.enter_performed(&mut count, #cur, #id_arg, arc_at)?;)
                 };
                 let hand_if = if hand.is_empty() {
                     quote!()
                 } else {
-                    quote!(if !run.quiet_empty || stack.is_empty() { #hand })
+                    quote!(if cx.empty_fails(run) { #hand })
                 };
-                // One call where it fits (after a DM's own hand-over, which
-                // writes its locals back: then none is below).
-                let one = empty_call(&id_stmts, &id, &cur, &quote!(arc_ix))
+                // One call where it fits (after `empty` performed, a DM's
+                // own hand-over where it fails, which writes its locals
+                // back: then none is below).
+                let one = empty_call(&id_stmts, &id, &cur, &quote!(arc_ix), !runtime_hand(hand))
                     .filter(|_| action == atoms::EMPTY && !hand.is_empty());
                 let own_hand_if = if runtime_hand(hand) {
                     quote!()
@@ -3039,8 +3050,8 @@ impl Gen<'_> {
                     }
                 } else if action == atoms::EMPTY {
                     // Recorded: the situation entered (its id in the entry);
-                    // above the machine's frames (a level of its own), with
-                    // nothing to perform, without handing over.
+                    // above the machine's frames (a level of its own),
+                    // without handing over unless the effector fails.
                     quote! {
                         if run.records || !run.quiet_empty {
                             #hand_if
@@ -4046,7 +4057,7 @@ impl Gen<'_> {
     ) -> N<TokenStream> {
         match c {
             Cond::Arith(op, l, r) => {
-                let mut side = |e: &Ev, regs: &mut Regs| match e {
+                let side = |e: &Ev, regs: &mut Regs, pre: &mut Vec<TokenStream>| match e {
                     Ev::VarOp {
                         op,
                         name,
@@ -4054,8 +4065,23 @@ impl Gen<'_> {
                     } if *op == atoms::GET => self.nat_cond_get(d, cur, *name, *r, regs, pre),
                     e => self.nat_ev_value(d, cur, e, regs),
                 };
-                let l = side(l, regs)?;
-                let r = side(r, regs)?;
+                let l = side(l, regs, pre)?;
+                let before = pre.len();
+                let r = side(r, regs, pre)?;
+                // The machine evaluates the left side first: where the
+                // right side's `get` runs first (`pre`, it binds or
+                // compares) and the left side's code may fail (enter the
+                // machine for an error), the left side is read first too.
+                let l = if pre.len() > before && may_leave(&l.e) {
+                    let (le, lt) = (&l.e, rust_ty(&l.ty)?);
+                    pre.insert(before, quote!(let lhs: #lt = #le;));
+                    V {
+                        e: quote!(lhs.clone()),
+                        ty: l.ty,
+                    }
+                } else {
+                    l
+                };
                 self.nat_arith(d, cur, *op, l, r)
             }
             Cond::Other(Build::Compound(op, args))
@@ -4146,10 +4172,12 @@ impl Gen<'_> {
     ) -> N<V> {
         let g = format_ident!("got_r{}", r);
         let ge = &got.e;
-        // Met only here: nothing reads what it is bound to.
+        // Met only here: nothing reads what it is bound to. Not a value
+        // held before (a parameter met only here is bound: compared).
         let once = crate::mir::ty::occurrences(d.plans[cur])
             .get(r as usize)
-            .is_some_and(|&n| n == 1);
+            .is_some_and(|&n| n == 1)
+            && regs.get(&r).is_none_or(|(x, _)| is_fresh(x));
         match regs.get(&r).cloned() {
             _ if once => Ok(got),
             None => {
@@ -4180,21 +4208,27 @@ impl Gen<'_> {
                     e: quote!(#x.clone()),
                     ty,
                 };
-                let same = identical(
-                    &V {
+                // A value read where it is held (a local's field) is
+                // compared there, by reference: no copy (a list's count
+                // changed and changed back) to compare it.
+                let (bind, got_v) = if moved_place(&got).is_some() {
+                    (quote!(), got.clone())
+                } else {
+                    let v = V {
                         e: quote!(#g.clone()),
                         ty: got.ty.clone(),
-                    },
-                    &held,
-                )
-                .ok_or("`get` of a value of another type than its variable's")?;
+                    };
+                    (quote!(let #g = #ge;), v)
+                };
+                let same = identical(&got_v, &held)
+                    .ok_or("`get` of a value of another type than its variable's")?;
                 let (opa, namea) = (self.atom_native(atoms::GET)?, self.atom_native(name)?);
                 // `identical` is exact on ground native values (canonical
                 // `Val`s: `==` is Prolog's), so values it calls different
                 // never unify in the machine, whose `get` then fails with its
                 // own error; the last line is unreachable unless that breaks.
                 pre.push(quote! {
-                    let #g = #ge;
+                    #bind
                     if !#same {
                         #enter
                         let t = cx.term(&#x);
@@ -5545,6 +5579,17 @@ fn identical(l: &V, r: &V) -> Option<TokenStream> {
         (Ty::Int, Ty::Term) => Some(quote!((cx.store_ref().int_of(#re.0) == #some(#le)))),
         _ => None,
     }
+}
+
+/// Whether code `ts` may leave before giving its value (a `return`, a
+/// `?`): a read that enters the machine for its value or its error.
+fn may_leave(ts: &TokenStream) -> bool {
+    ts.clone().into_iter().any(|t| match t {
+        proc_macro2::TokenTree::Ident(i) => i == "return",
+        proc_macro2::TokenTree::Punct(p) => p.as_char() == '?',
+        proc_macro2::TokenTree::Group(g) => may_leave(&g.stream()),
+        _ => false,
+    })
 }
 
 /// The place a value is read from, for reading it by reference: a
