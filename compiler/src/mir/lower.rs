@@ -19,6 +19,10 @@ pub(crate) struct Planner<'s> {
     regs: Reg,
     /// `when/3` is the runtime's own ([`super::std_when`]).
     pub(crate) std_when: bool,
+    /// The variables the situation being planned names once (its template,
+    /// the DM's head included: the `_` idiom). Only these are unbound
+    /// wherever they are evaluated.
+    single: HashSet<u32>,
 }
 
 impl<'s> Planner<'s> {
@@ -28,6 +32,7 @@ impl<'s> Planner<'s> {
             dm,
             regs: 0,
             std_when: false,
+            single: HashSet::new(),
         }
     }
 
@@ -45,6 +50,23 @@ impl<'s> Planner<'s> {
     pub(crate) fn field(&self, s: &IrSituation, i: usize) -> Option<Term> {
         let t = self.store.args(s.template)[i];
         (self.store.atom_of(t) != Some(none_marker())).then_some(t)
+    }
+
+    /// The variables `t` names exactly once.
+    fn named_once(&self, t: Term) -> HashSet<u32> {
+        let mut seen = HashMap::new();
+        let mut stack = vec![t];
+        while let Some(u) = stack.pop() {
+            match self.store.value(u) {
+                Value::Var(v) => *seen.entry(v.index()).or_insert(0u32) += 1,
+                Value::Compound(_, args) => stack.extend(args.iter()),
+                _ => {}
+            }
+        }
+        seen.into_iter()
+            .filter(|&(_, n)| n == 1)
+            .map(|(v, _)| v)
+            .collect()
     }
 
     pub(crate) fn term_vars(&self, t: Term, out: &mut Vec<u32>) {
@@ -262,8 +284,9 @@ impl<'s> Planner<'s> {
         Some(Ev::If(Box::new(c), Box::new(then), Box::new(other)))
     }
 
-    /// `(C, T, E)` of `apply(when(V1, V2, V3), [C, T, E])` (`V`s variables,
-    /// `C` an `==` or `\==`, the runtime's own `when/3`): see [`Self::when_call`].
+    /// `(C, T, E)` of `apply(when(V1, V2, V3), [C, T, E])` (`V`s variables
+    /// the situation names nowhere else, `C` an `==` or `\==`, the
+    /// runtime's own `when/3`): see [`Self::when_call`].
     fn when_parts(&self, t: Term) -> Option<(Term, Term, Term)> {
         if !self.std_when {
             return None;
@@ -274,7 +297,12 @@ impl<'s> Planner<'s> {
         let f = self
             .store
             .compound_args(self.store.deref(f), Atom::intern("when"), 3)?;
-        if !f.iter().all(|&v| self.store.is_var(v)) {
+        // Each `V` unbound where `when/3` is called: named nowhere else in
+        // the situation (a `V` bound at run time, by the in_arg, the id, an
+        // expectation or `C` itself, is passed to `when/3` as its value,
+        // `eval::apply`, not the condition's).
+        let single = |v: Term| matches!(self.store.value(v), Value::Var(x) if self.single.contains(&x.index()));
+        if !f.iter().all(|&v| single(v)) {
             return None;
         }
         let items = self.list_literal(list)?;
@@ -442,6 +470,7 @@ impl<'s> Planner<'s> {
     pub(crate) fn situation(mut self, ix: usize) -> Plan<SitPlan> {
         let s = &self.dm.situations[ix];
         let id = self.compiled_id(s).ok_or(Unsupported)?;
+        self.single = self.named_once(s.template);
         let f = self.store.args(s.template).to_vec();
         let mut scope = Scope::default();
         let prog = self.field(s, PROG);

@@ -1139,6 +1139,39 @@ mod when_nwhen15 {
     pub mod when_host {
         sitlog_macros::include_dm!("typed/when_host");
     }
+    pub mod when_bound {
+        sitlog_macros::include_dm!("typed/when_bound");
+    }
+}
+
+/// `when/3` whose own variables are bound where it is called
+/// (`typed/when_bound`: a DM parameter, a variable named again after the
+/// call, the in_arg): the runtime's `when/3` is given their values, so the
+/// compiled task and the plans keep the evaluator's call and agree with
+/// it, history kept or not.
+#[test]
+fn a_when_of_bound_variables_is_the_evaluators() {
+    let ir = interpreter("typed/when_bound");
+    for main in [
+        "main(true, a)",
+        "main(true, b)",
+        "main(foo, a)",
+        "main(foo, b)",
+        "main(_, a)",
+        "main(_, b)",
+    ] {
+        agree_modulo_vars(when_nwhen15::when_bound::program(), &ir, main);
+        agree_modulo_vars(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main);
+    }
+    let c = run(
+        when_nwhen15::when_bound::program(),
+        "main(true, b)",
+        "",
+        false,
+        false,
+        false,
+    );
+    assert_eq!(c.0["out_arg"], "yes", "{c:?}");
 }
 
 /// `typed/when_host` run with a host's `when/3` (always the third
