@@ -121,21 +121,6 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         Ok(())
     }
 
-    /// [`Cx::enter_empty`] performing where no native frame is `below`
-    /// the running one (native code handed them over first where the
-    /// actions do not ignore `empty`).
-    #[inline]
-    pub fn enter_empty_on<F>(
-        &mut self,
-        count: &mut u64,
-        sit: SitIx,
-        id: impl Into<Term>,
-        below: &super::NatBelow<'_, F>,
-        arc: Option<usize>,
-    ) -> Result<(), RunError> {
-        self.enter_empty(count, sit, id, below.is_empty(), arc)
-    }
-
     /// An arc's `empty` performed by native code before its situation is
     /// entered, where the run's actions do not ignore it (`run`'s
     /// `quiet_empty`): handed to the effector, which sees the atom and
@@ -150,12 +135,12 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         !run.quiet_empty && self.perform_empty()
     }
 
-    /// [`Cx::empty_fails`] where `empty` is performed.
-    #[cold]
+    /// [`Cx::empty_fails`] where `empty` is performed (the run's actions do
+    /// not ignore it: every such arc, so not cold).
     #[inline(never)]
     fn perform_empty(&mut self) -> bool {
-        self.empty_failed = self.perform_value(Term::EMPTY).err();
-        self.empty_failed.is_some()
+        self.m.empty_failed = self.perform_value(Term::EMPTY).err();
+        self.m.empty_failed.is_some()
     }
 
     /// [`Cx::enter_counted`] for an arc whose action is `empty`, after
@@ -170,7 +155,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         arc: Option<usize>,
     ) -> Result<(), RunError> {
         self.enter_counted(count, sit, id.into());
-        match self.empty_failed.take() {
+        match self.m.empty_failed.take() {
             Some(e) => Err(self.action_failed(e, arc)),
             None => Ok(()),
         }
@@ -197,7 +182,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         holes: &[&dyn AsTerm],
     ) -> Result<(), RunError> {
         if !self.actions.ignores_empty() {
-            self.empty_failed = self.perform_value(Term::EMPTY).err();
+            self.perform_empty();
         }
         self.nat_enter(stack, count, sit, arc, pattern, holes)
     }
@@ -224,7 +209,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         pattern: impl IdArg,
         holes: &[&dyn AsTerm],
     ) -> Result<(), RunError> {
-        if let Some(e) = self.empty_failed.take() {
+        if let Some(e) = self.m.empty_failed.take() {
             let p = self.m.program;
             super::nat_hand_over(p, self, stack)?;
             let id = self.nat_id(pattern, holes);
@@ -248,6 +233,14 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         } else {
             self.fill(pattern, holes)
         }
+    }
+
+    /// Whether the effector refused the `empty` of [`Cx::empty_fails`],
+    /// whose error the entry that follows reports: native code hands over
+    /// first.
+    #[inline]
+    pub fn empty_refused(&self) -> bool {
+        self.m.empty_failed.is_some()
     }
 
     /// Native code handing a value to the machine: counts the `count`

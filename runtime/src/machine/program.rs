@@ -326,11 +326,6 @@ pub struct Cx<'a, 'p, P: DmProgram> {
     pub(super) sit: SitIx,
     pub(super) id: Term,
     pub(super) selected: Option<Term>,
-    /// The error of an arc's `empty` the effector refused
-    /// ([`Cx::empty_fails`]), before its situation is entered: taken by
-    /// the entry that follows ([`Cx::enter_performed`], [`Cx::nat_enter`]),
-    /// which reports it.
-    pub(super) empty_failed: Option<String>,
 }
 
 impl<P: DmProgram> Cx<'_, '_, P> {

@@ -248,7 +248,6 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         sit,
                         id,
                         selected,
-                        empty_failed: None,
                     };
                     let step = program.run_situation(dm, sit, &mut cx);
                     // The pipe native code held, made a term before the
@@ -423,7 +422,6 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                                 sit,
                                 id,
                                 selected: Some(id),
-                                empty_failed: None,
                             };
                             let exit = program.run_exit(dm, sit, saved, final_id, &mut cx);
                             cx.flush_pipe();

@@ -128,6 +128,11 @@ pub struct Machine<'p, P> {
     /// Kept here, not in each `Cx`, so that a `Cx` costs nothing more to
     /// make and drop (the interpreter's plans make one per situation).
     pub(super) held: HeldPipe,
+    /// The error of an arc's `empty` the effector refused
+    /// (`Cx::empty_fails`), before its situation is entered: taken by the
+    /// entry that follows (`Cx::enter_performed`, `Cx::nat_enter`), which
+    /// reports it. Here, not in each `Cx`, as `held`.
+    pub(super) empty_failed: Option<String>,
 }
 
 /// How many arguments a pipe held as native values may have
@@ -195,6 +200,7 @@ impl<'p, P> Machine<'p, P> {
             unmatched: Vec::new(),
             chose: None,
             held: HeldPipe::default(),
+            empty_failed: None,
         }
     }
 

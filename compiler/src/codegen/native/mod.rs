@@ -3026,11 +3026,6 @@ impl Gen<'_> {
                 } else {
                     quote!(cx.enter_performed(&mut count, #cur, #id_arg, arc_at)?;)
                 };
-                let hand_if = if hand.is_empty() {
-                    quote!()
-                } else {
-                    quote!(if cx.empty_fails(run) { #hand })
-                };
                 // One call where it fits (after `empty` performed, a DM's
                 // own hand-over where it fails, which writes its locals
                 // back: then none is below).
@@ -3039,7 +3034,7 @@ impl Gen<'_> {
                 let own_hand_if = if runtime_hand(hand) {
                     quote!()
                 } else {
-                    hand_if.clone()
+                    quote!(if cx.empty_fails(run) { #hand })
                 };
                 stmts.push(if let Some(call) = one {
                     quote! {
@@ -3048,13 +3043,23 @@ impl Gen<'_> {
                             #call
                         }
                     }
+                } else if action == atoms::EMPTY && !hand.is_empty() {
+                    // `empty` performed where the actions do not ignore it;
+                    // the situation entered (its id built) where the run
+                    // records or the effector refused it, and handed over
+                    // first only then.
+                    quote! {
+                        if cx.empty_fails(run) || run.records {
+                            if cx.empty_refused() { #hand }
+                            #(#id_stmts)*
+                            #enter
+                        }
+                    }
                 } else if action == atoms::EMPTY {
                     // Recorded: the situation entered (its id in the entry);
-                    // above the machine's frames (a level of its own),
-                    // without handing over unless the effector fails.
+                    // above the machine's frames (a level of its own).
                     quote! {
                         if run.records || !run.quiet_empty {
-                            #hand_if
                             #(#id_stmts)*
                             #enter
                         }
