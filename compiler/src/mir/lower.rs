@@ -19,6 +19,10 @@ pub(crate) struct Planner<'s> {
     regs: Reg,
     /// `when/3` is the runtime's own ([`super::std_when`]).
     pub(crate) std_when: bool,
+    /// A call of the runtime's `when/3` was lowered as a conditional
+    /// ([`Self::when_call`]): the plan relies on the registry's `when/3`
+    /// being the runtime's ([`super::Mir::runtime_when`]).
+    pub(crate) lowered_when: std::rc::Rc<std::cell::Cell<bool>>,
 }
 
 impl<'s> Planner<'s> {
@@ -28,6 +32,7 @@ impl<'s> Planner<'s> {
             dm,
             regs: 0,
             std_when: false,
+            lowered_when: Default::default(),
         }
     }
 
@@ -259,6 +264,7 @@ impl<'s> Planner<'s> {
         let c = Cond::Other(self.build(c, &scope.vars, depth + 1).ok()?);
         let then = self.ev(then, scope, depth + 1).ok()?;
         let other = self.ev(other, scope, depth + 1).ok()?;
+        self.lowered_when.set(true);
         Some(Ev::If(Box::new(c), Box::new(then), Box::new(other)))
     }
 
