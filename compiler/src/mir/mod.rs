@@ -240,7 +240,7 @@ pub struct SitPlan {
 pub struct Mir {
     pub dms: Vec<Vec<Option<SitPlan>>>,
     /// A plan runs a call of the runtime's own `when/3` as the conditional
-    /// it equals ([`Planner::when_call`](lower::Planner)): a run of the
+    /// it equals (`Planner::when_call` in `mir::lower`): a run of the
     /// program needs the registry's `when/3` to be the runtime's
     /// (`DmProgram::lowers_runtime_when`, checked at the run's start).
     pub runtime_when: bool,
