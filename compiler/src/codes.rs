@@ -150,6 +150,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         "a term written like a conditional that is not one: `(C -> A ; R)` whose else part is not `otherwise -> B` (an `if`-chain `(C1 -> A ; C2 -> B ; otherwise -> D)`, or `(C -> A ; B)`); the original evaluates it to a compound term like any other (D-35)",
     ),
     (
+        check::DM_HEAD_MISMATCH,
+        "an `embedded_dm` call whose arguments can never match the called DM's head: an argument whose every value is known without running anything (a constant, a compound, a list, each branch of a conditional; a variable inside matches anything) that cannot unify with the head's argument (`callee(1)` for `diag_mod(callee(2), ..)`, `at(kitchen)` for `to(Place)`, `[a]` for `[First, Second]`); a variable or a computed argument (`get(..)`, `apply(..)`) is never reported",
+    ),
+    (
         check::OS_ACCESS,
         "a directive or clause of the application's Prolog files reaches the operating system (shell, processes, sockets, native code, `open/3,4` for writing, loading code at run time or from an absolute or `$SITLOG_HOME` path): a run refuses it unless given `--allow-os` (the trust model, [reliability](reliability.md#trust-model))",
     ),

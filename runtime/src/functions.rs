@@ -94,6 +94,9 @@ pub struct Functions {
     trust: Trust,
     stop: Option<Arc<AtomicBool>>,
     input: Option<crate::input::SharedInput>,
+    /// The entries that are still the runtime's own ([`standard`]): one
+    /// registered or removed again leaves the set.
+    standard: std::collections::HashSet<(Atom, usize)>,
 }
 
 impl std::fmt::Debug for Functions {
@@ -124,7 +127,17 @@ impl Functions {
         arity: usize,
         f: impl Fn(&mut FnCall<'_>, &[Term]) -> Result<Term, String> + Send + Sync + 'static,
     ) {
-        self.map.insert((Atom::intern(name), arity), Arc::new(f));
+        let key = (Atom::intern(name), arity);
+        self.standard.remove(&key);
+        self.map.insert(key, Arc::new(f));
+    }
+
+    /// Whether `name/arity` is the runtime's own function ([`standard`]),
+    /// not replaced by a later [`Functions::register`] nor removed. A
+    /// program whose plans run the runtime's `when/3` as the conditional
+    /// it equals relies on it (`DmProgram::lowers_runtime_when`).
+    pub fn is_standard(&self, name: Atom, arity: usize) -> bool {
+        self.standard.contains(&(name, arity))
     }
 
     /// Sets the handler for functions without a Rust entry.
@@ -204,6 +217,7 @@ impl Functions {
 
     /// Removes `name/arity`; `true` if it was registered.
     pub fn remove(&mut self, name: Atom, arity: usize) -> bool {
+        self.standard.remove(&(name, arity));
         self.map.remove(&(name, arity)).is_some()
     }
 
@@ -251,6 +265,15 @@ pub mod standard {
         // get_last_transition/2 helper.
         f.register("last_transition", 1, |call, _| Ok(last_transition(call)));
         f.register("last_transition", 0, |call, _| Ok(last_transition(call)));
+        let own = [
+            ("when", 3),
+            ("get_history", 1),
+            ("last_transition", 1),
+            ("last_transition", 0),
+        ];
+        for (name, arity) in own {
+            f.standard.insert((Atom::intern(name), arity));
+        }
     }
 
     /// The original's `get_last_transition/2`: the last entry of the
@@ -266,5 +289,28 @@ pub mod standard {
                 .compound(atoms::COLON, &[e.expectation, e.action]),
             None => Term::atom(atoms::NONE),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The runtime's own entries stay standard until registered again or
+    /// removed (what the machine checks for a program that lowered `when/3`).
+    #[test]
+    fn a_registered_or_removed_function_is_no_longer_standard() {
+        let when = Atom::intern("when");
+        let mut f = Functions::standard();
+        assert!(f.is_standard(when, 3));
+        assert!(f.is_standard(Atom::intern("last_transition"), 0));
+        assert!(!Functions::new().is_standard(when, 3));
+        f.register("when", 3, |_, args| Ok(args[2]));
+        assert!(f.contains(when, 3) && !f.is_standard(when, 3));
+        let mut g = Functions::standard();
+        assert!(g.remove(when, 3));
+        assert!(!g.is_standard(when, 3));
+        let h = Functions::standard();
+        assert!(h.clone().is_standard(when, 3));
     }
 }

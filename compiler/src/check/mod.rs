@@ -65,6 +65,7 @@ pub mod codes {
     pub const DEAD_EXIT: &str = "W0231";
     pub const LEFT_OUT: &str = "W0232";
     pub const NOT_A_CONDITIONAL: &str = "W0233";
+    pub const DM_HEAD_MISMATCH: &str = "E0234";
     pub const OS_ACCESS: &str = "W0240";
     pub const PROLOG_TOO_DEEP: &str = "E0241";
 }
@@ -110,6 +111,7 @@ pub const UNRESOLVED: &[&str] = &[
     codes::UNKNOWN_NEXT,
     codes::UNKNOWN_DM,
     codes::DM_ARITY,
+    codes::DM_HEAD_MISMATCH,
     codes::UNKNOWN_EXIT,
     codes::UNKNOWN_VARIABLE,
     codes::UNKNOWN_FUNCTION,

@@ -342,7 +342,10 @@ impl<'p> Checker<'p> {
                             ),
                         );
                     }
-                    Some(target) => resolved.push(target),
+                    Some(target) => match head_mismatch(terms, v, target) {
+                        Some(k) => self.diags.push(self.head_mismatch_error(dm, v, target, k)),
+                        None => resolved.push(target),
+                    },
                 }
             }
             if resolved.len() != 1 {
@@ -427,6 +430,64 @@ impl<'p> Checker<'p> {
             }
         }
     }
+}
+
+impl Checker<'_> {
+    /// E0234: the call `v` of `dm` never matches the head of `target`
+    /// (argument `k` cannot unify with the head's, [`head_mismatch`]): the
+    /// machine's unification of the call with the head fails whenever the
+    /// situation is entered (E13; the original crashes there too).
+    fn head_mismatch_error(&self, dm: &Dm, v: TermId, target: &Dm, k: usize) -> Diagnostic {
+        let terms = &dm.clause.terms;
+        let arg = terms.args(v)[k];
+        let head_arg = target.clause.terms.args(target.head)[k];
+        let head = show(target, target.head);
+        Diagnostic::error(
+            codes::DM_HEAD_MISMATCH,
+            dm.loc(terms.span(v)),
+            format!(
+                "the call `{}` never matches DM `{}`'s head `{head}`",
+                show(dm, v),
+                target.name
+            ),
+        )
+        .with_label(format!(
+            "argument {} `{}` cannot be `{}`",
+            k + 1,
+            show(dm, arg),
+            show(target, head_arg)
+        ))
+        .with_secondary(
+            target.loc(target.span_of(target.head)),
+            format!("DM `{}` defined here", target.name),
+        )
+        .with_help(format!(
+            "call it with arguments that match `{head}`, or make the head's argument {} a variable to take any value",
+            k + 1
+        ))
+    }
+}
+
+/// The first argument of the call `v` (of `terms`) that certainly cannot
+/// unify with the same argument of `target`'s head: every value the
+/// argument can take is known without running anything
+/// ([`static_values`]: constants, compounds, lists, each branch of a
+/// conditional) and none may unify with the head's argument, itself free
+/// of evaluated functors. A variable anywhere is a wildcard, and an
+/// argument that is computed (`get(..)`, `apply(..)`) or a variable is
+/// never certain. The arities are equal (E0217 checks them first).
+fn head_mismatch(terms: &Terms, v: TermId, target: &Dm) -> Option<usize> {
+    let head_terms = &target.clause.terms;
+    let head_args = head_terms.args(target.head);
+    let args = terms.args(v);
+    if args.len() != head_args.len() {
+        return None;
+    }
+    args.iter().zip(head_args).position(|(&a, &h)| {
+        static_values(head_terms, h).is_some_and(|hv| hv == [h])
+            && static_values(terms, a)
+                .is_some_and(|values| values.iter().all(|&x| !may_unify(terms, x, head_terms, h)))
+    })
 }
 
 /// The candidate (its index, its text) that `v` (a term of `terms`, shown

@@ -149,6 +149,15 @@ impl Gen<'_> {
             })
         };
         // The heads the table does not make (`DmRow::head` `None`).
+        // Only a program whose plans lowered the runtime's `when/3` says
+        // so (the machine checks the registry at the run's start).
+        let runtime_when = self.mir.runtime_when.then(|| {
+            quote! {
+                fn lowers_runtime_when(&self) -> bool {
+                    true
+                }
+            }
+        });
         let head_rest = if head_arms.is_empty() {
             quote!(panic!("no DM number {dm}"))
         } else {
@@ -354,6 +363,7 @@ impl Gen<'_> {
                 fn dm_name(&self, dm: DmIx) -> Atom {
                     self.sits.dm_name(dm)
                 }
+                #runtime_when
                 fn situation_count(&self, dm: DmIx) -> usize {
                     self.sits.count(dm)
                 }

@@ -240,7 +240,13 @@ impl<'s> Gen<'s> {
             self.atom(n);
             self.visit(v);
         }
-        let mir = std::mem::replace(&mut self.mir, crate::mir::Mir { dms: Vec::new() });
+        let mir = std::mem::replace(
+            &mut self.mir,
+            crate::mir::Mir {
+                dms: Vec::new(),
+                runtime_when: false,
+            },
+        );
         self.collect_plans(&mir);
         self.mir = mir;
         for &a in &ir.basic_actions {

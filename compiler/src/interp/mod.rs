@@ -92,6 +92,9 @@ impl DmProgram for Resolved<'_> {
     fn dm_name(&self, dm: DmIx) -> Atom {
         DmProgram::dm_name(self.ir, dm)
     }
+    fn lowers_runtime_when(&self) -> bool {
+        self.plans.runtime_when
+    }
     fn situation_count(&self, dm: DmIx) -> usize {
         DmProgram::situation_count(self.ir, dm)
     }

@@ -23,6 +23,10 @@ pub(crate) struct Planner<'s> {
     /// the DM's head included: the `_` idiom). Only these are unbound
     /// wherever they are evaluated.
     single: HashSet<u32>,
+    /// A call of the runtime's `when/3` was lowered as a conditional
+    /// ([`Self::when_call`]): the plan relies on the registry's `when/3`
+    /// being the runtime's ([`super::Mir::runtime_when`]).
+    pub(crate) lowered_when: std::rc::Rc<std::cell::Cell<bool>>,
 }
 
 impl<'s> Planner<'s> {
@@ -33,6 +37,7 @@ impl<'s> Planner<'s> {
             regs: 0,
             std_when: false,
             single: HashSet::new(),
+            lowered_when: Default::default(),
         }
     }
 
@@ -281,6 +286,7 @@ impl<'s> Planner<'s> {
         let c = Cond::Other(self.build(c, &scope.vars, depth + 1).ok()?);
         let then = self.ev(then, scope, depth + 1).ok()?;
         let other = self.ev(other, scope, depth + 1).ok()?;
+        self.lowered_when.set(true);
         Some(Ev::If(Box::new(c), Box::new(then), Box::new(other)))
     }
 

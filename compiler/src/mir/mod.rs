@@ -239,6 +239,11 @@ pub struct SitPlan {
 #[derive(Debug)]
 pub struct Mir {
     pub dms: Vec<Vec<Option<SitPlan>>>,
+    /// A plan runs a call of the runtime's own `when/3` as the conditional
+    /// it equals (`Planner::when_call` in `mir::lower`): a run of the
+    /// program needs the registry's `when/3` to be the runtime's
+    /// (`DmProgram::lowers_runtime_when`, checked at the run's start).
+    pub runtime_when: bool,
 }
 
 impl Mir {
@@ -258,6 +263,7 @@ impl Mir {
 /// Lowers every situation of the IR that can run as code (see the module doc).
 pub fn lower(ir: &Ir) -> Mir {
     let std_when = std_when(ir);
+    let mut runtime_when = false;
     let dms = ir
         .dms
         .iter()
@@ -266,12 +272,15 @@ pub fn lower(ir: &Ir) -> Mir {
                 .map(|i| {
                     let mut planner = Planner::new(&ir.store, dm);
                     planner.std_when = std_when;
-                    planner.situation(i).ok()
+                    let lowered_when = planner.lowered_when.clone();
+                    let plan = planner.situation(i).ok();
+                    runtime_when |= plan.is_some() && lowered_when.get();
+                    plan
                 })
                 .collect()
         })
         .collect();
-    Mir { dms }
+    Mir { dms, runtime_when }
 }
 
 /// Whether `apply(when(..), ..)` calls the runtime's own `when/3`

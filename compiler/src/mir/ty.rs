@@ -65,7 +65,9 @@
 //!   final ids (`found(P)` gives `P` the type of `found`'s argument; a
 //!   final that cannot match adds nothing), an in_arg pattern (its
 //!   variables the parts of the pipe's type there: a pipe it does not
-//!   match is an error, D-8 as E14 fixes it), `get`/`inc`/`is` into a
+//!   match is an error, D-8 as E14 fixes it, or under `--legacy` skipped
+//!   by the machine, to which native code hands any visit whose pattern
+//!   it does not match), `get`/`inc`/`is` into a
 //!   variable not made yet, the left side of `is` (an int or float when
 //!   its operands are, else `ground`: the evaluator's number), a
 //!   callee's final `diag_mod` (an output argument, below), or a boundary
@@ -1547,7 +1549,14 @@ impl<'a> State<'a> {
                 // `Machine::unify_in_arg`), so past it they hold values of
                 // the pipe's type, whatever the pattern's shape (constants,
                 // nested compounds, a variable twice or shared with the id
-                // or a parameter: those are compared, not bound). A
+                // or a parameter: those are compared, not bound). Under
+                // `--legacy` (`Options::skip_unmatched_in_arg`) a mismatch
+                // is skipped and the visit runs with these variables
+                // unbound, which these types do not describe: native code
+                // still agrees because it runs the typed visit only where
+                // its own match of the pattern succeeds and hands any
+                // other to the machine, nothing of it done
+                // (`Gen::nat_pipe_match`), which skips it there. A
                 // variable met only there (`_`) holds no value; a part of
                 // the pipe not known yet (`never`, the fixpoint has not
                 // reached it) binds nothing so far, nor does a pipe the

@@ -571,8 +571,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     ///
     /// `id` an [`IdArg`] (a [`Fill`] filled first), each output a slot
     /// of the native frame ([`OutSlot`]: `[]` where empty) made a term in
-    /// order after it: one call where the generated code wrote the id's
-    /// `let` and an array of [`Cx::term_or_nil`].
+    /// order after it.
     pub fn close_level(
         &mut self,
         id: impl IdArg,
@@ -766,16 +765,6 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     #[inline]
     pub fn term<T: Native>(&mut self, v: &T) -> Term {
         v.to_term(&mut self.m.store)
-    }
-
-    /// [`Cx::term`] of a value that may be missing (`[]` then): an
-    /// output slot of a native frame.
-    #[inline]
-    pub fn term_or_nil<T: Native>(&mut self, v: Option<&T>) -> Term {
-        match v {
-            Some(v) => self.term(v),
-            None => Term::NIL,
-        }
     }
 
     /// A term built by native code ([`native::compound`]: an atom for no
@@ -1468,8 +1457,8 @@ impl AsTerm for Term {
 }
 
 /// An output slot of a native frame (`Option<T>` of a native value),
-/// made a term where [`Cx::close_level`] binds it: `[]` where empty, as
-/// [`Cx::term_or_nil`].
+/// made a term where [`Cx::close_level`] binds it ([`Cx::term`] of the
+/// value), `[]` where empty.
 pub trait OutSlot {
     fn out_term(&self, store: &mut Store) -> Term;
 }

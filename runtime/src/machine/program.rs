@@ -36,6 +36,16 @@ pub trait DmProgram {
         None
     }
     fn dm_name(&self, dm: DmIx) -> Atom;
+    /// Whether the program runs a call of the runtime's own `when/3`
+    /// (`functions::standard`) as the conditional it equals (its plans or
+    /// native code: the compiler's `Planner::when_call`), which is right
+    /// only while the run's registry holds that `when/3`: the machine
+    /// refuses to start a run whose registry replaced it
+    /// ([`Functions::is_standard`](crate::Functions::is_standard)), where
+    /// the evaluator's path would call the replacement and the plans not.
+    fn lowers_runtime_when(&self) -> bool {
+        false
+    }
     fn situation_count(&self, dm: DmIx) -> usize;
     fn kind(&self, dm: DmIx, sit: SitIx) -> Kind;
     /// A fresh copy of the DM's head (its identifier term).

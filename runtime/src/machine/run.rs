@@ -205,6 +205,32 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         Some(caller.pending.take())
     }
 
+    /// Why the run cannot start when the program runs the runtime's
+    /// `when/3` as a conditional ([`DmProgram::lowers_runtime_when`]) and
+    /// the host's registry no longer holds it (registered its own
+    /// `when/3`, or removed it): the plans and native code would compute
+    /// the runtime's `when` while the evaluator's path calls the host's, a
+    /// silent disagreement. The fix is the declaration that makes the
+    /// compiler keep every `when/3` call the evaluator's.
+    fn replaced_runtime_when(&self) -> Option<String> {
+        let when = Atom::intern("when");
+        if !self.program.lowers_runtime_when() || self.functions.is_standard(when, 3) {
+            return None;
+        }
+        let what = if self.functions.contains(when, 3) {
+            "registers its own `when/3`"
+        } else {
+            "does not hold it (removed, e.g. by a Prolog `when/3` the program was not compiled with)"
+        };
+        Some(format!(
+            "the program was compiled with the runtime's own `when/3` (its \
+             calls run as conditionals) but the host's function registry \
+             {what}: declare `when/3` in the application's \
+             `host_functions.pl` (`when/3` is a host function) and compile \
+             it again, or register the runtime's (`Functions::standard`)"
+        ))
+    }
+
     fn run_loop(
         &mut self,
         main: Term,
@@ -229,6 +255,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             // hooks between transitions (a debugger, a live view) had their say.
             if !started {
                 started = true;
+                if let Some(message) = self.replaced_runtime_when() {
+                    return Err(self.err(message, None, None));
+                }
                 if let Err(message) = self.functions.start() {
                     return Err(self.err(message, None, None));
                 }

@@ -1177,6 +1177,12 @@ fn a_when_of_bound_variables_is_the_evaluators() {
 /// `typed/when_host` run with a host's `when/3` (always the third
 /// argument): its report and what it said.
 fn run_host_when<A: app::App>(app: &A) -> String {
+    run_with_host_when(app, "main(a)")
+}
+
+/// `main` run with a host's `when/3` (always the third argument): its
+/// report and what it said.
+fn run_with_host_when<A: app::App>(app: &A, main: &str) -> String {
     let mut f = Functions::standard();
     f.register("when", 3, |_, args| Ok(args[2]));
     let mut perception = ScriptPerception::new("script", String::new());
@@ -1185,7 +1191,7 @@ fn run_host_when<A: app::App>(app: &A) -> String {
         let mut actions = TextActions::new(&mut text, Vec::new());
         app::run(
             app,
-            "main(a)",
+            main,
             None,
             Options::default(),
             f,
@@ -1215,6 +1221,31 @@ fn a_host_when_replaces_the_runtimes() {
         run_host_when(&sitlog_compiler::interp::Resolved::new(&ir)),
         i
     );
+}
+
+/// `when/3` registered by the host in Rust but not declared in
+/// `host_functions.pl` (`typed/when`, whose calls the plans and native
+/// code run as the runtime's `when`): the compiled task and the
+/// interpreter's plans refuse to start, naming the fix, where they would
+/// compute the runtime's `when` and the evaluator the host's (issue 37);
+/// the evaluator alone (no plans) calls the host's.
+#[test]
+fn an_undeclared_host_when_is_refused() {
+    let ir = interpreter("typed/when");
+    let main = "main(a, a, x)";
+    let i = run_with_host_when(&ir, main);
+    assert!(!i.contains("host_functions.pl"), "{i}");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    for c in [
+        run_with_host_when(when_nwhen15::when::program(), main),
+        run_with_host_when(&plans, main),
+    ] {
+        assert!(
+            c.contains("registers its own `when/3`: declare `when/3`")
+                && c.contains("host_functions.pl"),
+            "{c}"
+        );
+    }
 }
 
 /// `apply(when(_, _, _), [C, T, E])` in an out_arg, a next situation and

@@ -23,7 +23,8 @@
 //! pipe's term is (`Gen::nat_pipe_match`): its variables become registers
 //! of the visit, and a pipe it does not take natively hands the visit to
 //! the machine, nothing done, which runs it from the template (a mismatch
-//! is the machine's error, D-8 as E14 fixes it).
+//! is the machine's error, D-8 as E14 fixes it, or skipped under
+//! `--legacy`, `Options::skip_unmatched_in_arg`).
 //!
 //! The pipe held as native values (`npipe15`): an out_arg `name(A, ..)`
 //! of at most `HELD_MAX` arguments, each an int, a float, an atom or a
@@ -104,7 +105,8 @@ impl Gen<'_> {
     /// the visit to the machine before anything of it is done: it runs it
     /// from the situation's template, unifying as the interpreter does,
     /// and a pipe the pattern does not match is its error (D-8 as E14
-    /// fixes it). The pattern's variables are registers of the visit.
+    /// fixes it) or, under `--legacy`, skipped there. The pattern's
+    /// variables are registers of the visit.
     pub(super) fn nat_pipe_match(
         &self,
         d: &Dm,
