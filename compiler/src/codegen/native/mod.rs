@@ -2543,7 +2543,7 @@ impl Gen<'_> {
                             },
                         )
                     }
-                    None => (quote!(), quote!(cx.final_out_arg(None)?;)),
+                    None => (quote!(), quote!()),
                 };
                 // Below the base the caller's exit arcs read the variant
                 // (with a `diag_mod`, the machine takes the final).
@@ -2610,12 +2610,18 @@ impl Gen<'_> {
                     }
                     (Some(_), None) => quote!(#hand),
                 };
+                // Without an out_arg, the entry and the pipe kept as the
+                // final's output by one call (`Cx::enter_final`).
+                let enter = if plan.out_arg.is_some() {
+                    quote!(cx.enter_counted(&mut count, #cur, #id); #out_final)
+                } else {
+                    quote!(cx.enter_final(&mut count, #cur, #id)?;)
+                };
                 Ok(quote! {
                     #(#stmts)*
                     #below
                     #(#id_stmts)*
-                    cx.enter_counted(&mut count, #cur, #id);
-                    #out_final
+                    #enter
                     #diag
                     return cx.step_final();
                 })
