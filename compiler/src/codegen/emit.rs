@@ -248,8 +248,9 @@ impl Gen<'_> {
             /// situation never instantiated from one), and for the situations
             /// with native code (see `sitlog_compiler::codegen::native`) `enum
             /// Nat` (one variant per situation, its fields the id's variables; a
-            /// `W<n>` variant waits for the DM it called; `Moved` is a frame's
-            /// place while it runs; its `machine::NatAt`: `id_term`, its id
+            /// `W<n>` variant waits for the DM it called; a frame holds its
+            /// first variant without fields (else `Moved`) while it runs; its
+            /// `machine::NatAt`: `id_term`, its id
             /// filled from its pattern, and `waits`, the situation a `W<n>`
             /// waits in and the pipe value it keeps), `Frame` (the DM's frame on
             /// the native stack: parameters, locals, the `Nat` it is in; its

@@ -101,6 +101,16 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.enter_with_id(sit, id);
     }
 
+    /// [`Cx::enter_counted`] in a final the machine takes (the base's, or
+    /// one with a `diag_mod`), then its out_arg the pipe unchanged
+    /// ([`Cx::final_out_arg`] of `None`): the two calls of a final without
+    /// an out_arg, as one.
+    #[inline]
+    pub fn enter_final(&mut self, count: &mut u64, sit: SitIx, id: Term) -> Result<(), RunError> {
+        self.enter_counted(count, sit, id);
+        self.final_out_arg(None)
+    }
+
     /// [`Cx::enter_counted`] for an arc whose action is `empty`, then
     /// the action performed where `performs` (the run's actions do not
     /// ignore `empty`, or no native frame is above the machine's: native

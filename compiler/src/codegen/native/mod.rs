@@ -1322,6 +1322,9 @@ impl Gen<'_> {
         let mut wait_arms = Vec::new();
         let mut waits_arms = Vec::new();
         let mut any_cursor = false;
+        // The variant a frame holds while it runs (`nat_step` takes its own
+        // out of the frame): the first without fields, else `Moved`.
+        let mut placeholder: Option<Ident> = None;
         for (ix, c) in code.iter().enumerate() {
             let Some((fields, body, id, wait)) = c else {
                 continue;
@@ -1398,6 +1401,9 @@ impl Gen<'_> {
                 s.location,
                 self.store.writeq(self.store.args(s.template)[2])
             );
+            if decls.is_empty() && placeholder.is_none() {
+                placeholder = Some(v.clone());
+            }
             variants.push(quote!(#[doc = #doc] #v { #(#decls),* },));
             // The waiting variant's id is the situation's (the same
             // fields, the same code): one arm for both.
@@ -1622,13 +1628,23 @@ impl Gen<'_> {
             .into_iter()
             .map(|ix| self.nat_id_fn(&d, ix))
             .collect::<N<Vec<_>>>()?;
+        // Never read while it is there: a step that returns writes its
+        // variant back, a fault ends the run.
+        let (moved, moved_arm, held_at) = match &placeholder {
+            Some(v) => (quote!(), quote!(), quote!(Nat::#v {})),
+            None => (
+                quote!(Moved {},),
+                quote!(Nat::Moved {} => Term::NIL,),
+                quote!(Nat::Moved {}),
+            ),
+        };
         let items = quote! {
             #(#id_fns)*
 
             #[derive(Clone, Debug)]
             pub enum Nat {
                 #(#variants)*
-                Moved {},
+                #moved
             }
 
             impl NatAt<Program> for Nat {
@@ -1636,7 +1652,7 @@ impl Gen<'_> {
                     let a = &p.atoms;
                     match self {
                         #(#id_arms)*
-                        Nat::Moved {} => Term::NIL,
+                        #moved_arm
                     }
                 }
                 #waits_fn
@@ -1661,7 +1677,7 @@ impl Gen<'_> {
                 let mut count: u64 = 0;
                 // A final reached below the base, or a call made, writes
                 // its variant to `slot` and returns at once.
-                let mut at = ::std::mem::replace(slot, Nat::Moved {});
+                let mut at = ::std::mem::replace(slot, #held_at);
                 #resume
                 loop {
                     #step
@@ -2527,7 +2543,7 @@ impl Gen<'_> {
                             },
                         )
                     }
-                    None => (quote!(), quote!(cx.final_out_arg(None)?;)),
+                    None => (quote!(), quote!()),
                 };
                 // Below the base the caller's exit arcs read the variant
                 // (with a `diag_mod`, the machine takes the final).
@@ -2594,12 +2610,18 @@ impl Gen<'_> {
                     }
                     (Some(_), None) => quote!(#hand),
                 };
+                // Without an out_arg, the entry and the pipe kept as the
+                // final's output by one call (`Cx::enter_final`).
+                let enter = if plan.out_arg.is_some() {
+                    quote!(cx.enter_counted(&mut count, #cur, #id); #out_final)
+                } else {
+                    quote!(cx.enter_final(&mut count, #cur, #id)?;)
+                };
                 Ok(quote! {
                     #(#stmts)*
                     #below
                     #(#id_stmts)*
-                    cx.enter_counted(&mut count, #cur, #id);
-                    #out_final
+                    #enter
                     #diag
                     return cx.step_final();
                 })
