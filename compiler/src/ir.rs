@@ -32,6 +32,11 @@ pub struct Ir {
     pub prolog_functions: Vec<(Atom, usize)>,
     /// Names and arities the host registers in Rust (`host_functions.pl`).
     pub host_functions: Vec<(Atom, usize)>,
+    /// Whether every Prolog file the application consults was read
+    /// (`prolog_functions` is then every function its Prolog defines; a
+    /// file the loader could not read, `$SITLOG_HOME/..` or absolute, may
+    /// define any).
+    pub prolog_complete: bool,
     /// Recovery DM per situation type (D-42a).
     pub recovery: Vec<(Atom, Atom)>,
     /// The Prolog files (templates.pl, then user_functions.pl), consulted
@@ -323,6 +328,7 @@ pub fn lower(checked: &Checked) -> Ir {
             .map(|f| (f.name, f.arity))
             .collect(),
         host_functions: program.host_functions.clone(),
+        prolog_complete: program.unread_consults.is_empty(),
         recovery: program
             .recovery
             .iter()

@@ -284,13 +284,15 @@ pub fn lower(ir: &Ir) -> Mir {
 }
 
 /// Whether `apply(when(..), ..)` calls the runtime's own `when/3`
-/// (`functions::standard`): neither the application's Prolog nor the host
+/// (`functions::standard`): neither the application's Prolog (every file
+/// it consults read: a `:- consult('$SITLOG_HOME/..')` the loader cannot
+/// read may define it, as the original's applications do) nor the host
 /// (`host_functions.pl`) defines `when/3`, which would replace it
 /// (`Engine::install`). Only then does the planner lower it as a
 /// conditional ([`Planner::when_call`](lower::Planner)).
 fn std_when(ir: &Ir) -> bool {
     let when = (Atom::intern("when"), 3);
-    !ir.prolog_functions.contains(&when) && !ir.host_functions.contains(&when)
+    ir.prolog_complete && !ir.prolog_functions.contains(&when) && !ir.host_functions.contains(&when)
 }
 
 impl Build {
