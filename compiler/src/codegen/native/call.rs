@@ -1951,21 +1951,14 @@ fn built_of(ts: &[TokenStream], exp: &TokenStream) -> Option<TokenStream> {
     // The terms made before: `bN` and the value it is made of.
     let mut made = Vec::new();
     for t in ts {
-        let syn::Stmt::Local(l) = syn::parse2::<syn::Stmt>(t.clone()).ok()? else {
+        let (x, method, args) = super::cx_let(t)?;
+        let [v] = args.as_slice() else {
             return None;
         };
-        let syn::Pat::Ident(x) = &l.pat else {
-            return None;
-        };
-        let syn::Expr::MethodCall(c) = &*l.init.as_ref()?.expr else {
-            return None;
-        };
-        let recv = &c.receiver;
-        if c.method != "term" || quote!(#recv).to_string() != "cx" || c.args.len() != 1 {
+        if method != "term" {
             return None;
         }
-        let v = &c.args[0];
-        made.push((x.ident.to_string(), quote!(#v)));
+        made.push((x, v.clone()));
     }
     let cx = format_ident!("cx");
     let mut next = 0;

@@ -779,10 +779,9 @@ fn empty_call(
     })
 }
 
-/// The pattern and holes of an id made by one statement
-/// `let id = cx.fill(pattern, holes);` (`stmts`, `id`).
-fn fill_parts(stmts: &[TokenStream], id: &TokenStream) -> Option<(TokenStream, TokenStream)> {
-    let [stmt] = stmts else { return None };
+/// A statement `let x = cx.method(args..);` taken apart: `x`, the method's
+/// name and its arguments. `None` for any other statement.
+pub(super) fn cx_let(stmt: &TokenStream) -> Option<(String, String, Vec<TokenStream>)> {
     let syn::Stmt::Local(l) = syn::parse2::<syn::Stmt>(stmt.clone()).ok()? else {
         return None;
     };
@@ -793,15 +792,22 @@ fn fill_parts(stmts: &[TokenStream], id: &TokenStream) -> Option<(TokenStream, T
         return None;
     };
     let recv = &m.receiver;
-    if x.ident != id.to_string()
-        || m.method != "fill"
-        || quote!(#recv).to_string() != "cx"
-        || m.args.len() != 2
-    {
+    if quote!(#recv).to_string() != "cx" {
         return None;
     }
-    let (pattern, holes) = (&m.args[0], &m.args[1]);
-    Some((quote!(#pattern), quote!(#holes)))
+    let args = m.args.iter().map(|a| quote!(#a)).collect();
+    Some((x.ident.to_string(), m.method.to_string(), args))
+}
+
+/// The pattern and holes of an id made by one statement
+/// `let id = cx.fill(pattern, holes);` (`stmts`, `id`).
+fn fill_parts(stmts: &[TokenStream], id: &TokenStream) -> Option<(TokenStream, TokenStream)> {
+    let [stmt] = stmts else { return None };
+    let (x, method, args) = cx_let(stmt)?;
+    let [pattern, holes] = args.as_slice() else {
+        return None;
+    };
+    (x == id.to_string() && method == "fill").then(|| (pattern.clone(), holes.clone()))
 }
 
 /// `Fill(pattern, holes)` for an id made by one statement

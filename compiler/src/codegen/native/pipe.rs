@@ -185,8 +185,6 @@ impl Gen<'_> {
         if args.is_empty() || args.len() > sitlog_runtime::machine::HELD_MAX {
             return Ok(None);
         }
-        let readable =
-            |ty: &Ty| matches!(ty, Ty::Int | Ty::Float | Ty::Sym) || super::held_as_val(ty);
         let mut body = Vec::new();
         let mut met: Vec<Reg> = Vec::new();
         for (i, a) in args.iter().enumerate() {
@@ -205,7 +203,7 @@ impl Gen<'_> {
                         });
                     match held {
                         Some((x, ty)) => {
-                            if !readable(&ty) {
+                            if !held_part(&ty) {
                                 return Ok(None);
                             }
                             let rty = super::rust_ty(&ty)?;
@@ -227,7 +225,7 @@ impl Gen<'_> {
                         // Met first here (one met only here, `_`, is not read).
                         None => {
                             if let Some((_, ty)) = bound.iter().find(|(x, _)| x == r) {
-                                if !readable(ty) {
+                                if !held_part(ty) {
                                     return Ok(None);
                                 }
                                 let rty = super::rust_ty(ty)?;
@@ -545,9 +543,7 @@ impl Gen<'_> {
         };
         if parts.is_empty()
             || parts.len() > sitlog_runtime::machine::HELD_MAX
-            || !parts
-                .iter()
-                .all(|p| matches!(p.ty, Ty::Int | Ty::Float | Ty::Sym) || super::held_as_val(&p.ty))
+            || !parts.iter().all(|p| held_part(&p.ty))
         {
             return Ok(None);
         }
@@ -773,4 +769,10 @@ pub(super) fn mentions_of(code: &TokenStream, names: &[proc_macro2::Ident]) -> u
             _ => 0,
         })
         .sum()
+}
+
+/// Whether an argument of this type is held in the pipe as a native value
+/// (`Cx::hold_pipe`): an int, a float, an atom or a value held as a `Val`.
+fn held_part(ty: &Ty) -> bool {
+    matches!(ty, Ty::Int | Ty::Float | Ty::Sym) || super::held_as_val(ty)
 }
