@@ -1700,6 +1700,67 @@ fn an_out_arg_with_effects_is_evaluated_after_the_next_situation() {
     assert!(c.0.to_string().contains("fin(1,1,1,2,2)"), "{c:?}");
 }
 
+mod inc_next_nfx16 {
+    pub mod inc_next {
+        sitlog_macros::include_dm!("typed/locals/inc_next");
+    }
+}
+
+/// `get(n, _)`/`inc(n, _)` of a local (and of a global) in next situations
+/// and out_args done by native code (`nfx16`), each once, the out_arg
+/// after the next situation: a loop counting in both (`count`), called
+/// natively by a DM counting its own local in an exit arc (`calls`), an
+/// `inc` that overflows in a next situation (`big`) and in an out_arg
+/// after the next situation counted (`big_out`), a local a user function
+/// set to an atom (`poked`: the arc's rest on terms, the machine's error)
+/// or that holds one (`atom`), a value no native situation takes handed to
+/// the machine with the out_arg its own (`handed`), globals (`glob`, its
+/// `gbig` overflowing). With the history kept or not, observed or not,
+/// numbers logged or not, and the interpreter's plans.
+#[test]
+fn a_locals_inc_in_next_and_out_arg_agrees() {
+    let ir = interpreter("typed/locals/inc_next");
+    let app = inc_next_nfx16::inc_next::program();
+    let mains = [
+        "count", "calls", "big", "big_out", "poked", "atom", "handed", "glob",
+    ];
+    agree_both(app, &ir, &mains);
+    // What the machine computes (a value counted twice would differ).
+    let ids = [
+        ("count", "fin(10,10,11)\"}],\"out_arg\":\"f(11,12)\""),
+        ("calls", "e(3)\"}],\"out_arg\":\"4\""),
+        ("handed", "fin(7,8)\"}],\"out_arg\":\"g(8,8,8)\""),
+    ];
+    for (main, id) in ids {
+        let (report, ..) = run(app, main, "", true, false, false);
+        assert!(report.to_string().contains(id), "{main}: {report}");
+    }
+    let errors = [
+        ("big", "`inc` of `n`: integer overflow"),
+        ("big_out", "`inc` of `n`: integer overflow"),
+        ("poked", "its value `hello` is not a number"),
+        ("atom", "its value `none` is not a number"),
+        ("glob", "`inc` of `gbig`: integer overflow"),
+    ];
+    for (main, error) in errors {
+        let (report, ..) = run(app, main, "", false, false, false);
+        let e = report["error"].as_str().unwrap_or_default();
+        assert!(e.contains(error), "{main}: {report}");
+    }
+}
+
+/// An `inc` of a local in an out_arg of a situation whose next arc the
+/// effector stops (it refuses the k-th `empty`, k = 1..8): the count the
+/// error and the history show advanced once (`nfx16`).
+#[test]
+fn a_locals_inc_before_a_refused_empty_agrees() {
+    let ir = interpreter("typed/locals/inc_next");
+    let app = inc_next_nfx16::inc_next::program();
+    for main in ["count", "calls", "handed"] {
+        agree_refusing(app, &ir, main, 8);
+    }
+}
+
 /// A DM whose first situation names its parameter, called with it unbound
 /// (`ask(_X)` starting in `q(A)`): `q` on terms, the rest native.
 #[test]

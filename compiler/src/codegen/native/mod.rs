@@ -982,6 +982,23 @@ fn built_regs(e: &Ev, out: &mut Vec<Reg>) -> bool {
     }
 }
 
+/// Whether evaluating `e` does a `get` or an `inc` `op(v, ..)` for which
+/// `which(op, v)` holds (at any depth of its compounds and conditionals).
+fn has_var_op(e: &Ev, which: &dyn Fn(Atom, Atom) -> bool) -> bool {
+    let cond = |c: &Cond| match c {
+        Cond::Arith(_, a, b) => has_var_op(a, which) || has_var_op(b, which),
+        Cond::Other(_) => false,
+    };
+    match e {
+        Ev::VarOp { op, name, .. } | Ev::VarOpFresh { op, name, .. } => {
+            (*op == atoms::GET || *op == atoms::INC) && which(*op, *name)
+        }
+        Ev::Compound(_, args) => args.iter().any(|a| has_var_op(a, which)),
+        Ev::If(c, a, b) => cond(c) || has_var_op(a, which) || has_var_op(b, which),
+        _ => false,
+    }
+}
+
 /// The registers an expression binds (`V is E`, `get(n, V)` of a `V` not
 /// made yet), in evaluation order.
 fn ev_binds(e: &Ev, out: &mut Vec<Reg>) {
@@ -993,6 +1010,18 @@ fn ev_binds(e: &Ev, out: &mut Vec<Reg>) {
             ev_binds(b, out);
         }
         _ => {}
+    }
+}
+
+/// The registers a next situation's expressions bind ([`ev_binds`]).
+fn next_binds(n: &Next, out: &mut Vec<Reg>) {
+    match n {
+        Next::Eval(e) => ev_binds(e, out),
+        Next::If(_, a, b) => {
+            next_binds(a, out);
+            next_binds(b, out);
+        }
+        Next::Static(..) => {}
     }
 }
 
@@ -3728,6 +3757,13 @@ impl Gen<'_> {
             }
             None => (stmts, v, used, out, body),
         };
+        // What the next situation and the out_arg bind (`t(inc(n, _))`):
+        // set by the term code's steps.
+        let mut binds = Vec::new();
+        next_binds(next, &mut binds);
+        if let Some(o) = out_b {
+            ev_binds(o, &mut binds);
+        }
         let mut lets = Vec::new();
         for r in &used {
             let rr = reg(*r);
@@ -3736,6 +3772,7 @@ impl Gen<'_> {
                 Some((x, _)) => lets.push(quote! {
                     let #rr: Term = cx.term(&#x);
                 }),
+                None if binds.contains(r) => lets.push(quote!(let mut #rr = Term::NIL;)),
                 None => return Err(format!("register r{r} is read unset")),
             }
         }
@@ -4058,6 +4095,161 @@ impl Gen<'_> {
             }));
         }
         self.nat_global_read(d, cur, name)
+    }
+
+    /// `get(v, _)` or `inc(v, _)` (the `_` taking the value) computed by
+    /// native code in situation `cur`'s arc, as the machine's `var_op`
+    /// computes it (D-38): a `get` reads ([`Gen::nat_var_read`]); an `inc`
+    /// of a local held in the frame as an int or a float adds 1 to the
+    /// field and gives the new value; an int that would overflow enters the
+    /// machine (the native frames handed over, the locals written back,
+    /// as for an evaluation, [`Gen::nat_enter_to_evaluate`]) whose
+    /// `var_op` reports its error. An `inc` of a global of type int or
+    /// float: `Cx::global_inc`, the machine's `var_op` where the value is
+    /// no number of that type. The code has an effect: it is run once, in
+    /// the evaluator's order ([`Gen::nat_ev_effects`]). `None`: not
+    /// native (a local the frame does not hold, of another type).
+    fn nat_var_op_value(&self, d: &Dm, cur: usize, op: Atom, name: Atom) -> N<Option<V>> {
+        if op == atoms::GET {
+            return self.nat_var_read(d, cur, name);
+        }
+        if op != atoms::INC {
+            return Ok(None);
+        }
+        let (opa, namea) = (self.atom_native(op)?, self.atom_native(name)?);
+        let enter = self.nat_enter_to_evaluate(d, cur)?;
+        if d.declares_local(name) {
+            let Some((l, lty)) = d.local_field(name).filter(|_| d.locals_ok) else {
+                return Ok(None);
+            };
+            let e = match lty {
+                Ty::Int => quote! {
+                    match #l.checked_add(1) {
+                        Some(v) => {
+                            *#l = v;
+                            v
+                        }
+                        None => {
+                            #enter
+                            cx.var_op_fresh(#opa, #namea, arc_at)?;
+                            return Err(cx.error("`inc` overflowed in native code only", arc_at));
+                        }
+                    }
+                },
+                Ty::Float => quote!({
+                    *#l += 1.0;
+                    *#l
+                }),
+                _ => return Ok(None),
+            };
+            return Ok(Some(V { e, ty: lty }));
+        }
+        let Some(gty) = self
+            .mir_types
+            .as_ref()
+            .and_then(|t| t.globals.iter().find(|(n, _)| *n == name))
+            .map(|(_, t)| t.ty.clone())
+            .filter(|t| matches!(t, Ty::Int | Ty::Float))
+        else {
+            return Ok(None);
+        };
+        let rt = rust_ty(&gty)?;
+        Ok(Some(V {
+            e: quote! {
+                match cx.global_inc::<#rt>(#namea) {
+                    Some(v) => v,
+                    None => {
+                        #enter
+                        let t = cx.var_op_fresh(#opa, #namea, arc_at)?;
+                        match cx.to_native::<#rt>(t) {
+                            Some(v) => v,
+                            None => {
+                                return Err(cx.error(
+                                    "a global's value native code cannot hold",
+                                    arc_at,
+                                ))
+                            }
+                        }
+                    }
+                }
+            },
+            ty: gty,
+        }))
+    }
+
+    /// `e` (a next situation's argument, an out_arg) as a native value
+    /// where its `get(v, _)`/`inc(v, _)` ([`Gen::nat_var_op_value`]; `_`
+    /// a variable met nowhere else in the plan, or one native code does
+    /// not hold, as [`Gen::nat_var_get`] takes it) are computed by native
+    /// code: each once, in the evaluator's order (left to right, depth
+    /// first, D-39), into `let <pfx><k> = ..;` pushed to `pre`, the
+    /// value read from there. Any other part as [`Gen::nat_ev_value`]
+    /// makes it (it has no effect). An error: some part is not native.
+    fn nat_ev_effects(
+        &self,
+        d: &Dm,
+        cur: usize,
+        e: &Ev,
+        regs: &Regs,
+        pre: &mut Vec<TokenStream>,
+        pfx: &str,
+    ) -> N<V> {
+        let (op, name) = match e {
+            Ev::VarOpFresh { op, name, dst } => {
+                let once = crate::mir::ty::occurrences(d.plans[cur])
+                    .get(*dst as usize)
+                    .is_some_and(|&n| n == 1);
+                if !once {
+                    return Err("a `get`/`inc` whose variable is read again".into());
+                }
+                (*op, *name)
+            }
+            Ev::VarOp {
+                op,
+                name,
+                arg: Build::Reg(r),
+            } if *op == atoms::GET || *op == atoms::INC => {
+                let free = match regs.get(r) {
+                    None => true,
+                    Some((x, _)) => {
+                        is_fresh(x)
+                            && crate::mir::ty::occurrences(d.plans[cur])
+                                .get(*r as usize)
+                                .is_some_and(|&n| n == 1)
+                    }
+                };
+                if !free {
+                    return Err("a `get`/`inc` into a variable bound before".into());
+                }
+                (*op, *name)
+            }
+            Ev::Compound(f, args) => {
+                let parts = args
+                    .iter()
+                    .map(|a| self.nat_ev_effects(d, cur, a, regs, pre, pfx))
+                    .collect::<N<Vec<_>>>()?;
+                return if *f == atoms::DOT && parts.len() == 2 {
+                    let mut parts = parts.into_iter();
+                    match (parts.next(), parts.next()) {
+                        (Some(h), Some(t)) => cons(h, t),
+                        _ => Err("a list cell".into()),
+                    }
+                } else {
+                    self.nat_compound(*f, parts)
+                };
+            }
+            e => return self.nat_ev_value(d, cur, e, regs),
+        };
+        let v = self
+            .nat_var_op_value(d, cur, op, name)?
+            .ok_or("a `get`/`inc` native code does not compute")?;
+        let x = format_ident!("{}{}", pfx, pre.len());
+        let (ve, rt) = (&v.e, rust_ty(&v.ty)?);
+        pre.push(quote!(let #x: #rt = #ve;));
+        Ok(V {
+            e: quote!(#x.clone()),
+            ty: v.ty,
+        })
     }
 
     fn nat_cond(&self, d: &Dm, cur: usize, c: &Cond, regs: &Regs) -> N<TokenStream> {
@@ -4404,6 +4596,27 @@ impl Gen<'_> {
         cur_name: &TokenStream,
     ) -> N<TokenStream> {
         let curl = Literal::u32_unsuffixed(cur as u32);
+        // A `get(v, _)`/`inc(v, _)` in the value (`t(inc(n, _))`, `u(X,
+        // get(n, _))`) of the frame's local or a global: computed by native
+        // code once, first (the evaluator's order), the value selected as
+        // any other; a value no situation takes natively is handed to the
+        // machine as that value (never evaluated again). Else, as below
+        // (the evaluator's part).
+        // (A `get` of a global alone stays the evaluator's: it has no
+        // effect to keep in order.)
+        if let Next::Eval(e @ Ev::Compound(name, args)) = n {
+            if has_var_op(e, &|op, v| op == atoms::INC || d.declares_local(v)) {
+                let mut pre = Vec::new();
+                let vals = args
+                    .iter()
+                    .map(|a| self.nat_ev_effects(d, cur, a, regs, &mut pre, "op"))
+                    .collect::<N<Vec<_>>>();
+                if let Ok(vals) = vals {
+                    let sel = self.nat_select(d, cur, *name, vals, cur_name)?;
+                    return Ok(quote!({ #(#pre)* #sel }));
+                }
+            }
+        }
         match n {
             Next::Static(t, ix)
                 if self.store.atom_of(*t).is_some()

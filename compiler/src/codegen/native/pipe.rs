@@ -417,6 +417,10 @@ impl Gen<'_> {
         let Some(e) = out else {
             return self.nat_next(d, cur, next, regs, cur_name);
         };
+        // A `get`/`inc` in it (`inc(calls, _)`): after the next situation.
+        if super::has_var_op(e, &|_, _| true) {
+            return self.nat_next_out_after(d, cur, next, e, regs, cur_name);
+        }
         // The value read where it is (no clone of a `Val`), made a term
         // once: an int or an atom costs nothing. The in_arg's value handed
         // back in the visit that read it (`out_arg ==> X`, `X` the in_arg)
@@ -660,6 +664,71 @@ impl Gen<'_> {
             #pre
             cx.out_value(#name);
             #back
+            next_at
+        }})
+    }
+
+    /// [`Gen::nat_next_out`] for an out_arg that does a `get(v, _)` or an
+    /// `inc(v, _)` of the frame's local or a global (`inc(calls, _)`,
+    /// `f(X, get(n, _))`): computed by native code after the next
+    /// situation, as the machine evaluates it (`codegen::step`: next
+    /// situation, then out_arg; the next situation may have changed `v`),
+    /// each operation once ([`Gen::nat_ev_effects`]), the pipe set to the
+    /// value. Where the next situation is handed to the machine (the
+    /// native frames handed over, the locals written back: the machine's
+    /// from there) the machine evaluates the out_arg instead, entered in
+    /// situation `cur` with its id, as for an out_arg the evaluator
+    /// computes ([`Gen::nat_next_out_eval`]): on every way out the
+    /// out_arg is evaluated once, after the next situation. Not native
+    /// where the next situation's code may move a value the out_arg or
+    /// the situation's id reads.
+    fn nat_next_out_after(
+        &self,
+        d: &Dm,
+        cur: usize,
+        next: &Next,
+        e: &Ev,
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<TokenStream> {
+        let mut pre = Vec::new();
+        let v = self.nat_ev_effects(d, cur, e, regs, &mut pre, "out")?;
+        // The machine's evaluation: a fresh variable it binds is a term
+        // made there.
+        let mut mregs = regs.clone();
+        let mut binds = Vec::new();
+        super::ev_binds(e, &mut binds);
+        for r in binds {
+            mregs.insert(r, (format_ident!("fresh_r{}", r), Ty::Term));
+        }
+        let mut ts = Vec::new();
+        let mut n = 0;
+        let t = self.nat_ev_term(e, &mregs, &mut ts, &mut n)?;
+        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+        let curl = Literal::u32_unsuffixed(cur as u32);
+        *d.out.borrow_mut() = quote! {
+            #(#id_stmts)*
+            cx.enter_with_id(#curl, #id);
+            #(#ts)*
+            cx.out_value(#t);
+        };
+        let nx = self.nat_next(d, cur, next, regs, cur_name);
+        *d.out.borrow_mut() = quote!();
+        let nx = nx?;
+        let ve = &v.e;
+        let read = crate::codegen::step::registers(&quote!(#(#id_stmts)* #id #ve));
+        if read.into_iter().any(|r| {
+            let r = reg(r);
+            super::moves_any(&nx, &quote!(#r))
+        }) {
+            return Err("the next situation moves a value its out_arg reads".into());
+        }
+        let pv = super::place(&v);
+        Ok(quote! {{
+            let next_at = #nx;
+            #(#pre)*
+            let pipe_out = cx.term(&#pv);
+            cx.set_pipe(pipe_out);
             next_at
         }})
     }
