@@ -88,6 +88,9 @@ mod c_pipe_pair {
 mod c_final_by_inarg {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_final_by_inarg");
 }
+mod c_local_count {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_local_count");
+}
 mod c_local_limit_hop {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_local_limit_hop");
 }
@@ -218,7 +221,9 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_found_rest" => format!("visit({n}, {list}, {last})"),
         "d_shelf_pairs" => format!("stock({n}, {pairs_text}, {last})"),
         "list_search" => format!("main({n}, {list}, {last})"),
-        "c_pipe_pair" | "c_final_by_inarg" | "c_local_limit_hop" => format!("relay({n})"),
+        "c_pipe_pair" | "c_final_by_inarg" | "c_local_limit_hop" | "c_local_count" => {
+            format!("relay({n})")
+        }
         "d_ints_inarg_threshold" => {
             let ints: Vec<String> = (0..len).map(|i| i.to_string()).collect();
             format!("scan({n}, [{}], {})", ints.join(","), len - 2)
@@ -289,6 +294,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             "list_search" => hand_list_search(n, black_box(&syms), black_box(lsym)),
             "c_pipe_pair" => hand_pair(n),
             "c_final_by_inarg" => hand_final_by_inarg(n),
+            "c_local_count" => hand_local_count(n),
             "c_local_limit_hop" => hand_local_limit_hop(n),
             "d_ints_inarg_threshold" => {
                 let ints: Vec<i64> = (0..len as i64).collect();
@@ -338,6 +344,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_compare_fn" => ways!(d_compare_fn),
         "c_pipe_pair" => ways!(c_pipe_pair),
         "c_final_by_inarg" => ways!(c_final_by_inarg),
+        "c_local_count" => ways!(c_local_count),
         "c_local_limit_hop" => ways!(c_local_limit_hop),
         "d_ints_inarg_threshold" => ways!(d_ints_inarg_threshold),
         "d_place_records" => ways!(d_place_records),
@@ -351,7 +358,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
     }
 }
 
-const ALL: [&str; 29] = [
+const ALL: [&str; 30] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -381,6 +388,7 @@ const ALL: [&str; 29] = [
     "c_global_flag",
     "d_global_visited",
     "d_outarg_when",
+    "c_local_count",
 ];
 
 fn main() {

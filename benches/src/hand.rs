@@ -845,6 +845,53 @@ pub fn hand_final_by_inarg(limit: i64) -> u64 {
     transitions
 }
 
+/// (c) `c_local_count`: N calls of a callee that counts its own local
+/// (0 at each call) into the pipe, the caller counting the calls in its
+/// own local (the id `next(C)`) and comparing the count with the limit.
+/// Each frame holds its DM's local beside its situation.
+pub fn hand_local_count(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Ask,
+        Next(i64),
+        Over,
+        Go,
+        Done,
+    }
+    let mut stack: Vec<(Frame, i64)> = vec![(Frame::Ask, 0)];
+    let (mut pipe, mut transitions) = (0i64, 0u64);
+    while let Some((top, local)) = stack.last_mut() {
+        match *top {
+            Frame::Ask => stack.push((Frame::Go, 0)),
+            Frame::Go => {
+                transitions += 1;
+                *local += 1;
+                pipe = black_box(*local);
+                *top = Frame::Done;
+            }
+            Frame::Done => {
+                // The callee's final, then the caller's exit arc.
+                transitions += 2;
+                stack.pop();
+                if let Some((m, calls)) = stack.last_mut() {
+                    *calls += 1;
+                    *m = Frame::Next(black_box(*calls));
+                }
+            }
+            Frame::Next(c) => {
+                transitions += 1;
+                *top = if c < limit { Frame::Ask } else { Frame::Over };
+            }
+            Frame::Over => {
+                transitions += 1;
+                black_box(pipe);
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
 /// (c) `c_local_limit_hop`: the limit a local, the count in the pipe,
 /// incremented two levels down, passed through `hop`'s neutral situation.
 pub fn hand_local_limit_hop(limit: i64) -> u64 {
