@@ -1708,7 +1708,8 @@ mod inc_next_nfx16 {
 
 /// `get(n, _)`/`inc(n, _)` of a local (and of a global) in next situations
 /// and out_args done by native code (`nfx16`), each once, the out_arg
-/// after the next situation: a loop counting in both (`count`), called
+/// after the next situation: a loop counting in both (`count`, `fcount`
+/// a float), called
 /// natively by a DM counting its own local in an exit arc (`calls`), an
 /// `inc` that overflows in a next situation (`big`) and in an out_arg
 /// after the next situation counted (`big_out`), a local a user function
@@ -1722,13 +1723,14 @@ fn a_locals_inc_in_next_and_out_arg_agrees() {
     let ir = interpreter("typed/locals/inc_next");
     let app = inc_next_nfx16::inc_next::program();
     let mains = [
-        "count", "calls", "big", "big_out", "poked", "atom", "handed", "glob",
+        "count", "calls", "fcount", "big", "big_out", "poked", "atom", "handed", "glob",
     ];
     agree_both(app, &ir, &mains);
     // What the machine computes (a value counted twice would differ).
     let ids = [
         ("count", "fin(10,10,11)\"}],\"out_arg\":\"f(11,12)\""),
         ("calls", "e(3)\"}],\"out_arg\":\"4\""),
+        ("fcount", "fin(7.5,8.5)\"}],\"out_arg\":\"8.5\""),
         ("handed", "fin(7,8)\"}],\"out_arg\":\"g(8,8,8)\""),
     ];
     for (main, id) in ids {

@@ -16,6 +16,17 @@ diag_mod(count,
   [ n ==> 0 ]
 ).
 
+% A float local counted (the machine's `inc` of a float).
+diag_mod(fcount,
+  [ [ id ==> s, type ==> neutral, out_arg ==> inc(n, _),
+      arcs ==> [ empty : empty => t(inc(n, _)) ] ],
+    [ id ==> t(A), type ==> neutral, in_arg ==> P,
+      arcs ==> [ empty : empty => (A < 6.0 -> s ; otherwise -> fin(A, P)) ] ],
+    [ id ==> fin(_, _), type ==> final ]
+  ],
+  [ n ==> 0.5 ]
+).
+
 % The next situation's `inc` overflows (the machine's error).
 diag_mod(big,
   [ [ id ==> s, type ==> neutral, out_arg ==> inc(n, _),
