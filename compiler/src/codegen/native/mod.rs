@@ -126,6 +126,11 @@
 //!   unified with its variable as the machine's `get` does: `D` bound to
 //!   a register the code after it reads, or compared where it was bound
 //!   before, the machine's error where they differ (`Gen::nat_get_unify`).
+//!   `get(v, _)`/`inc(v, _)` of a local held in the frame (or `inc` of a
+//!   global) in a next situation's arguments or an out_arg: computed once
+//!   by native code in the machine's order (the next situation, then the
+//!   out_arg), every fallback after it going on from the value computed
+//!   (`Gen::nat_ev_effects`, `Gen::nat_next_out_after`).
 //!
 //! - *frames and calls* ([`frame`], [`call`]): each DM with native code
 //!   has a `Frame` (parameters, locals, its `Nat`); the runtime's

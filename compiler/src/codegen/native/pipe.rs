@@ -17,7 +17,11 @@
 //! Rust `if` computed before the next situation (`Gen::nat_out_value`);
 //! one the evaluator computes (`apply(f(_), [X])`, `get(g, _)` of a
 //! global) is built from native values and evaluated after the next
-//! situation, the machine entered (`Gen::nat_next_out_eval`).
+//! situation, the machine entered (`Gen::nat_next_out_eval`); one with a
+//! `get(v, _)`/`inc(v, _)` of the frame's local or a global is computed
+//! by native code after the next situation, and by the machine where the
+//! next situation is handed over: once on every way
+//! (`Gen::nat_next_out_after`).
 //!
 //! An in_arg that is a pattern (`N-L`, `f(A, [B|C])`) is matched where the
 //! pipe's term is (`Gen::nat_pipe_match`): its variables become registers
