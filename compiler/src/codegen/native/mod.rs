@@ -4616,8 +4616,7 @@ impl Gen<'_> {
                     .iter()
                     .map(|a| self.nat_ev_effects(d, cur, a, regs, &mut pre, "op"))
                     .collect::<N<Vec<_>>>();
-                if let Ok(vals) = vals {
-                    let sel = self.nat_select(d, cur, *name, vals, cur_name)?;
+                if let Ok(sel) = vals.and_then(|v| self.nat_select(d, cur, *name, v, cur_name)) {
                     return Ok(quote!({ #(#pre)* #sel }));
                 }
             }
