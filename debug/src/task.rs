@@ -52,10 +52,12 @@ pub fn task_main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std:
                 return 2;
             }
         };
+        let mut run = cli.task.run.clone();
+        run.skip_unmatched_in_arg &= !cli.task.deny_warnings;
         crate::debug(
             app,
             functions,
-            &cli.task.run,
+            &run,
             assets,
             Streams::process(),
             source,
