@@ -52,8 +52,7 @@ pub fn task_main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std:
                 return 2;
             }
         };
-        let mut run = cli.task.run.clone();
-        run.skip_unmatched_in_arg &= !cli.task.deny_warnings;
+        let run = cli.task.run_args();
         crate::debug(
             app,
             functions,

@@ -329,6 +329,17 @@ pub struct TaskCli {
     pub max_file_bytes: u64,
 }
 
+impl TaskCli {
+    /// The run's options: its `--deny-warnings` makes an in_arg that does
+    /// not match the incoming pipe an error (E14) instead of skipped, as
+    /// the original skips it, with a warning.
+    pub fn run_args(&self) -> RunArgs {
+        let mut run = self.run.clone();
+        run.skip_unmatched_in_arg &= !self.deny_warnings;
+        run
+    }
+}
+
 /// `--legacy-kb`: how a task of the original's tree (`--legacy`) serves the
 /// original's KB layer.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -424,6 +435,15 @@ pub fn parse_task_args_from<C: FromArgMatches>(
 mod tests {
     use super::*;
     use std::path::Path;
+
+    #[test]
+    fn deny_warnings_makes_a_skipped_in_arg_an_error() {
+        let cli = TaskCli::try_parse_from(["t"]).unwrap();
+        assert!(cli.run_args().skip_unmatched_in_arg);
+        assert!(RunArgs::default().skip_unmatched_in_arg);
+        let cli = TaskCli::try_parse_from(["t", "--deny-warnings"]).unwrap();
+        assert!(!cli.run_args().skip_unmatched_in_arg);
+    }
 
     #[test]
     fn a_run_command_line_works_unchanged() {

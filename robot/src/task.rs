@@ -43,9 +43,7 @@ pub fn main_from<A: App>(
     let args = match parse_task_args_from::<TaskCli>(task_command::<TaskCli>(assets, ""), args) {
         Ok(cli) => {
             sitlog_syntax::decode::set_max_file_bytes(cli.max_file_bytes);
-            let mut run = cli.run;
-            run.skip_unmatched_in_arg &= !cli.deny_warnings;
-            run
+            cli.run_args()
         }
         Err(code) => return code,
     };
@@ -156,9 +154,7 @@ pub fn main_with_robot<A: App>(
     let args = match parse_task_args::<TaskCli>(task_command::<TaskCli>(assets, "")) {
         Ok(cli) => {
             sitlog_syntax::decode::set_max_file_bytes(cli.max_file_bytes);
-            let mut run = cli.run;
-            run.skip_unmatched_in_arg &= !cli.deny_warnings;
-            run
+            cli.run_args()
         }
         Err(code) => return code,
     };
