@@ -63,7 +63,8 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     /// The warning of an in_arg skipped ([`Machine::unify_in_arg`]), the
     /// first time its situation skips one; located at the in_arg
     /// ([`DmProgram::in_arg_location`](super::DmProgram::in_arg_location)),
-    /// else at the situation.
+    /// else at the situation. Cold: the hot path is the unify that succeeds.
+    #[cold]
     fn warn_in_arg_skipped(&mut self, pattern: Term, pipe: Term, here: Option<(SitIx, Term)>) {
         let (dm, call) = match self.lazy.last() {
             Some(l) => (l.dm, l.call),
