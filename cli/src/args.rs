@@ -104,8 +104,11 @@ pub enum Command {
         #[arg(long)]
         allow_unresolved: bool,
         /// Refuse to run a program with warnings, printing them (exit
-        /// status 1), as `sitlogc check --deny-warnings` does; also set by
-        /// `deny-warnings = true` in the application's `sitlog.toml`.
+        /// status 1), as `sitlogc check --deny-warnings` does, and make an
+        /// in_arg that does not match the incoming pipe a run-time error
+        /// (without it the run skips that in_arg, as the original SitLog
+        /// does, with a warning on stderr); also set by `deny-warnings =
+        /// true` in the application's `sitlog.toml`.
         #[arg(long)]
         deny_warnings: bool,
         /// Run an application written for the original interpreter
@@ -296,6 +299,8 @@ pub enum Command {
         allow_unresolved: bool,
         /// Refuse to compile a program with warnings (exit status 1); also
         /// set by `deny-warnings = true` in the application's `sitlog.toml`.
+        /// The compiled task reads neither: its own `--deny-warnings` makes
+        /// an in_arg that does not match the pipe a run-time error.
         #[arg(long)]
         deny_warnings: bool,
         /// Link the step debugger: the executable runs the task under the

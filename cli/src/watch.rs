@@ -406,6 +406,11 @@ impl DmProgram for Watched {
         let dm = s.current.dms.get(s.ix(dm))?;
         dm.situations.get(sit as usize).map(|x| x.location.clone())
     }
+    fn in_arg_location(&self, dm: DmIx, sit: SitIx) -> Option<String> {
+        let s = self.state();
+        let dm = s.current.dms.get(s.ix(dm))?;
+        dm.situations.get(sit as usize)?.in_arg_location.clone()
+    }
     fn between(&self, at: &mut Between<'_>) -> Result<(), String> {
         if !self.ready.load(Ordering::Relaxed) {
             return Ok(());

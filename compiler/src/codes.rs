@@ -154,6 +154,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         "an `embedded_dm` call whose arguments can never match the called DM's head: an argument whose every value is known without running anything (a constant, a compound, a list, each branch of a conditional; a variable inside matches anything) that cannot unify with the head's argument (`callee(1)` for `diag_mod(callee(2), ..)`, `at(kitchen)` for `to(Place)`, `[a]` for `[First, Second]`); a variable or a computed argument (`get(..)`, `apply(..)`) is never reported",
     ),
     (
+        check::IN_ARG_NEVER_MATCHES,
+        "an in_arg pattern that can never match the pipe its situation is given: every situation that can lead to it sets the pipe to a value known without running anything (its `out_arg` a constant, a compound, a list, each branch of a conditional; a variable inside matches anything), or passes on such a value, and none can unify with the pattern (`in_arg ==> foo` after `out_arg ==> now`); the run skips the in_arg, as the original does, its variables unbound (D-8; `--deny-warnings`: an error at run time). Not reported for a DM's first situation (its pipe is the caller's), after a recursive situation without `out_arg`, or where a computed next situation may lead",
+    ),
+    (
         check::OS_ACCESS,
         "a directive or clause of the application's Prolog files reaches the operating system (shell, processes, sockets, native code, `open/3,4` for writing, loading code at run time or from an absolute or `$SITLOG_HOME` path): a run refuses it unless given `--allow-os` (the trust model, [reliability](reliability.md#trust-model))",
     ),

@@ -58,6 +58,11 @@ impl DmProgram for Ir {
                 .clone(),
         )
     }
+    fn in_arg_location(&self, dm: DmIx, sit: SitIx) -> Option<String> {
+        self.dms[dm as usize].situations[sit as usize]
+            .in_arg_location
+            .clone()
+    }
 }
 
 impl Ir {

@@ -156,6 +156,8 @@ pub struct IrSituation {
     pub id_functor: Option<(Atom, usize)>,
     /// `file:line:col` of the situation.
     pub location: String,
+    /// `file:line:col` of its in_arg, when it has one.
+    pub in_arg_location: Option<String>,
     /// `file:line:col` of each arc, in order.
     pub arc_locations: Vec<String>,
     /// Spans of the situation, its arcs and its constructs of L.
@@ -244,11 +246,16 @@ pub fn lower(checked: &Checked) -> Ir {
             };
             let id_functor = s.id.and_then(|id| clause.terms.functor(id));
             let pos = file.line_col(s.span.start);
+            let in_arg_location = s.in_arg.map(|t| {
+                let pos = file.line_col(clause.terms.span(t).start);
+                format!("{}:{}:{}", file.name, pos.line, pos.column)
+            });
             situations.push(IrSituation {
                 kind,
                 template,
                 id_functor,
                 location: format!("{}:{}:{}", file.name, pos.line, pos.column),
+                in_arg_location,
                 arc_locations,
                 source,
             });

@@ -52,10 +52,11 @@ pub fn task_main<A: App>(app: &A, functions: Functions, assets: &Assets) -> std:
                 return 2;
             }
         };
+        let run = cli.task.run_args();
         crate::debug(
             app,
             functions,
-            &cli.task.run,
+            &run,
             assets,
             Streams::process(),
             source,

@@ -145,9 +145,10 @@ pub struct RunArgs {
     /// `sitlogc run --legacy`): see `Options::close_list_tails`.
     #[arg(skip)]
     pub close_list_tails: bool,
-    /// The original's in_arg (not an option: set by `sitlogc run
-    /// --legacy`): see `Options::skip_unmatched_in_arg`.
-    #[arg(skip)]
+    /// The original's in_arg, the default (not an option: `sitlogc run
+    /// --deny-warnings`, the application's `sitlog.toml` or a compiled
+    /// task's `--deny-warnings` clear it): see `Options::skip_unmatched_in_arg`.
+    #[arg(skip = true)]
     pub skip_unmatched_in_arg: bool,
     /// What `screen(X)` with `X` unbound shows in test mode (not an
     /// option: `sitlogc run --legacy` gives the application's first
@@ -296,7 +297,7 @@ impl Default for RunArgs {
             sandbox: SandboxMode::Off,
             trust_roots: Vec::new(),
             close_list_tails: false,
-            skip_unmatched_in_arg: false,
+            skip_unmatched_in_arg: true,
             unbound_screen: None,
             view: false,
             view_port: 0,
@@ -317,10 +318,26 @@ pub struct TaskCli {
     /// the task was compiled (`sitlogc build --allow-unresolved`).
     #[arg(long)]
     pub allow_unresolved: bool,
+    /// Make the run's warnings errors: an in_arg that does not match the
+    /// incoming pipe stops the task with a located error instead of being
+    /// skipped (as the original skips it) with a warning on stderr.
+    #[arg(long)]
+    pub deny_warnings: bool,
     /// Largest file read (a KB, world, script or trace, in bytes): a larger
     /// one is an error naming the file and this option.
     #[arg(long, value_name = "BYTES", default_value_t = sitlog_syntax::decode::DEFAULT_MAX_FILE_BYTES)]
     pub max_file_bytes: u64,
+}
+
+impl TaskCli {
+    /// The run's options: its `--deny-warnings` makes an in_arg that does
+    /// not match the incoming pipe an error (E14) instead of skipped, as
+    /// the original skips it, with a warning.
+    pub fn run_args(&self) -> RunArgs {
+        let mut run = self.run.clone();
+        run.skip_unmatched_in_arg &= !self.deny_warnings;
+        run
+    }
 }
 
 /// `--legacy-kb`: how a task of the original's tree (`--legacy`) serves the
@@ -418,6 +435,15 @@ pub fn parse_task_args_from<C: FromArgMatches>(
 mod tests {
     use super::*;
     use std::path::Path;
+
+    #[test]
+    fn deny_warnings_makes_a_skipped_in_arg_an_error() {
+        let cli = TaskCli::try_parse_from(["t"]).unwrap();
+        assert!(cli.run_args().skip_unmatched_in_arg);
+        assert!(RunArgs::default().skip_unmatched_in_arg);
+        let cli = TaskCli::try_parse_from(["t", "--deny-warnings"]).unwrap();
+        assert!(!cli.run_args().skip_unmatched_in_arg);
+    }
 
     #[test]
     fn a_run_command_line_works_unchanged() {

@@ -485,6 +485,11 @@ impl Runner {
             }
         }
         let transcript_error = console.lock().ok().and_then(|mut c| c.finish());
+        // What the run went on from as the original does (an in_arg
+        // skipped), on stderr: the report on stdout keeps its format.
+        for w in &outcome.warnings {
+            let _ = writeln!(streams.stderr, "{w}");
+        }
         let report = match args.format {
             Format::Json => format!("{}\n", report::outcome_json(&store, &outcome)),
             Format::Text => {

@@ -43,7 +43,7 @@ pub fn main_from<A: App>(
     let args = match parse_task_args_from::<TaskCli>(task_command::<TaskCli>(assets, ""), args) {
         Ok(cli) => {
             sitlog_syntax::decode::set_max_file_bytes(cli.max_file_bytes);
-            cli.run
+            cli.run_args()
         }
         Err(code) => return code,
     };
@@ -78,7 +78,10 @@ pub fn main_legacy<A: App>(
     let json = args.format == crate::cli::Format::Json;
     crate::interrupt::report_json_before_start(json);
     let functions = match setup(&cli, &mut args) {
-        Ok(f) => f,
+        Ok(f) => {
+            args.skip_unmatched_in_arg &= !cli.task.deny_warnings;
+            f
+        }
         Err((code, lines, message)) => {
             for line in &lines {
                 sitlog_runtime::errln!("{line}");
@@ -151,7 +154,7 @@ pub fn main_with_robot<A: App>(
     let args = match parse_task_args::<TaskCli>(task_command::<TaskCli>(assets, "")) {
         Ok(cli) => {
             sitlog_syntax::decode::set_max_file_bytes(cli.max_file_bytes);
-            cli.run
+            cli.run_args()
         }
         Err(code) => return code,
     };

@@ -578,7 +578,7 @@ impl<'a> Gen<'a> {
         if self.rng.chance(percent) {
             let v = self.var("In");
             if may_fail && self.rng.chance(2) {
-                // A pattern the pipe rarely matches: an error (E14).
+                // A pattern the pipe rarely matches: skipped (D-8).
                 attrs.push(format!("in_arg ==> w({v})"));
             } else {
                 attrs.push(format!("in_arg ==> {v}"));
@@ -1106,7 +1106,7 @@ impl<'a> Gen<'a> {
         if self.rng.chance(40) {
             let v = self.var("In");
             if self.me > 0 && self.rng.chance(8) {
-                // Matches only a pipe `w(_)`: else an error (E14).
+                // Matches only a pipe `w(_)`: else skipped (D-8).
                 attrs.push(format!("in_arg ==> w({v})"));
             } else {
                 attrs.push(format!("in_arg ==> {v}"));

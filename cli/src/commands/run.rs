@@ -68,6 +68,15 @@ pub fn run_app(
         Ok(deny) => deny,
         Err((code, message)) => return stopped(json, code, &message),
     };
+    // Denied warnings: an in_arg that does not match the pipe is an error
+    // at run time too (E14), not skipped with a warning.
+    let denied_args;
+    if deny && args.skip_unmatched_in_arg {
+        let mut a = args.clone();
+        a.skip_unmatched_in_arg = false;
+        denied_args = a;
+        args = &denied_args;
+    }
     let ir = match checked_ir_said(app, check_options, deny) {
         Ok(ir) => ir,
         Err((code, message)) => return stopped(json, code, &message),

@@ -472,3 +472,61 @@ fn sitlog_toml_denies_warnings() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// W0235: an in_arg that the pipe it is given can never match, certain from
+/// constants (`out_arg ==> now`, then `in_arg ==> foo`; and through a
+/// situation without `out_arg`, which passes the pipe on), a warning at
+/// the in_arg (the run skips it as the original does); none where the
+/// pipe is not known: a DM's first situation (the caller's pipe), after a
+/// recursive situation without `out_arg`, an in_arg that matches, a DM
+/// with a computed next situation.
+#[test]
+fn an_in_arg_the_pipe_never_matches_is_a_warning_where_certain() {
+    let dir = std::env::temp_dir().join(format!("sitlogc-w0235-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("main.dm"),
+        "diag_mod(main,\n\
+         \x20 [ [id ==> is, type ==> neutral, out_arg ==> now, arcs ==> [empty : empty => s1]],\n\
+         \x20   [id ==> s1, type ==> neutral, in_arg ==> foo, arcs ==> [empty : empty => s2]],\n\
+         \x20   [id ==> s2, type ==> neutral, in_arg ==> f(_), arcs ==> [empty : empty => s3]],\n\
+         \x20   [id ==> s3, type ==> recursive, in_arg ==> now, embedded_dm ==> sub, arcs ==> [fs : empty => s4]],\n\
+         \x20   [id ==> s4, type ==> neutral, in_arg ==> bar, arcs ==> [empty : empty => fs]],\n\
+         \x20   [id ==> fs, type ==> final] ], []).\n\
+         diag_mod(sub,\n\
+         \x20 [ [id ==> is, type ==> neutral, in_arg ==> nothing, out_arg ==> now, arcs ==> [empty : empty => t]],\n\
+         \x20   [id ==> t, type ==> neutral, in_arg ==> later, arcs ==> [empty : empty => get(next, _)]],\n\
+         \x20   [id ==> fs, type ==> final] ], [next ==> fs]).\n",
+    )
+    .unwrap();
+    let (code, diags, stderr) = check_json(&dir);
+    assert_eq!(code, 0, "{stderr}");
+    let found: Vec<(u64, u64, &str)> = diags
+        .iter()
+        .filter(|d| d["code"] == "W0235")
+        .map(|d| {
+            (
+                d["line"].as_u64().unwrap(),
+                d["column"].as_u64().unwrap(),
+                d["message"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        found,
+        [
+            (
+                3,
+                46,
+                "in_arg `foo` never matches the pipe it is given (`now`)"
+            ),
+            (
+                4,
+                46,
+                "in_arg `f(_)` never matches the pipe it is given (`now`)"
+            ),
+        ],
+        "{diags:?}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -82,35 +82,72 @@ fn runtime_error_exits_one_with_history_so_far() {
     assert_eq!(t["next"], "s2");
 }
 
-/// An in_arg pattern that the pipe does not match is an error at the
-/// situation (E14; `sitlogc run --legacy` skips it as the original does:
-/// `legacy.rs`), here the notes' own case: `in_arg ==> foo`, pipe `now`.
+/// An in_arg pattern that the pipe does not match is skipped as the
+/// original skips it (D-8, issue 39; the notes' own case: `in_arg ==>
+/// foo`, pipe `now`): the situation runs, the pipe goes on unchanged, and
+/// stderr has one warning located at the in_arg however often the
+/// situation is entered; stdout is the report of the convention, nothing
+/// added. `--deny-warnings`, or `deny-warnings = true` in the application's
+/// `sitlog.toml`, makes it E14's error, located.
 #[test]
-fn an_in_arg_the_pipe_does_not_match_is_a_located_error() {
+fn an_in_arg_the_pipe_does_not_match_is_skipped_with_one_warning() {
     let dir = std::env::temp_dir().join(format!("sitlogc-run-inarg-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("main.dm"),
-        "diag_mod(main,\n  [ [id ==> is, type ==> neutral, in_arg ==> foo, arcs ==> [empty : say(x) => fs]],\n\
-         \x20   [id ==> fs, type ==> final] ], []).\n",
+        "diag_mod(main,\n  [ [id ==> is, type ==> neutral, in_arg ==> foo,\n\
+         \x20     arcs ==> [empty : [inc(n, N), say(x)] => (N >= 3 -> fs ; otherwise -> is)]],\n\
+         \x20   [id ==> fs, type ==> final] ], [n ==> 0]).\n",
     )
     .unwrap();
-    let out = sitlogc()
-        .args(["run", "--format", "json", "--in-arg", "now"])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{stderr}");
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    let e = v["error"].as_str().unwrap();
+    let run = |extra: &[&str]| {
+        let out = sitlogc()
+            .args(["run", "--format", "json", "--in-arg", "now"])
+            .args(extra)
+            .arg(&dir)
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8(out.stdout).unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        (out.status.code(), stdout, stderr)
+    };
+    let (code, stdout, stderr) = run(&[]);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert_eq!(stdout.lines().count(), 1, "{stdout}");
+    assert!(!stdout.contains("warning"), "{stdout}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(v["status"], "ok", "{v}");
+    assert_eq!(v["out_arg"], "now", "{v}");
+    assert_eq!(v["history"].as_array().unwrap().len(), 4, "{v}");
+    assert_eq!(stderr.matches("Golem says: x").count(), 3, "{stderr}");
+    let warnings: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning:"))
+        .collect();
+    assert_eq!(warnings.len(), 1, "{stderr}");
     assert!(
-        e.contains("in_arg `foo` does not match the incoming pipe value `now`")
-            && e.contains("main.dm:2:"),
-        "{v}"
+        warnings[0].starts_with("warning: in DM `main`, situation `is` (")
+            && warnings[0].contains("main.dm:2:46): in_arg `foo` does not match the incoming pipe value `now`: skipped, as the original SitLog does"),
+        "{stderr}"
     );
-    assert!(v["history"].as_array().unwrap().is_empty(), "{v}");
-    assert!(!stderr.contains("Golem says"), "{stderr}");
+    // Denied, by the option or by the application's sitlog.toml.
+    for extra in [&["--deny-warnings"][..], &[]] {
+        if extra.is_empty() {
+            std::fs::write(dir.join("sitlog.toml"), "deny-warnings = true\n").unwrap();
+        }
+        let (code, stdout, stderr) = run(extra);
+        assert_eq!(code, Some(1), "{stderr}");
+        let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        let e = v["error"].as_str().unwrap();
+        assert!(
+            e.contains("in_arg `foo` does not match the incoming pipe value `now`")
+                && e.contains("main.dm:2:"),
+            "{v}"
+        );
+        assert!(v["history"].as_array().unwrap().is_empty(), "{v}");
+        assert!(!stderr.contains("Golem says"), "{stderr}");
+        assert!(!stderr.contains("warning: in DM"), "{stderr}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -1,6 +1,7 @@
 //! The checks of a DM's situations: their attributes and types, next situations
 //! (resolved through a per-DM index of situation ids), embedded DMs and
-//! their exits, reachability; and what an unreadable file may have
+//! their exits, reachability, in_args the pipe can never match (W0235);
+//! and what an unreadable file may have
 //! declared ([`Broken`]), so that it is not reported missing.
 
 use super::*;
@@ -119,6 +120,7 @@ impl<'p> Checker<'p> {
             );
         }
         self.next_situations(dm);
+        self.in_args_never_matched(dm);
         self.embedded(dm, broken);
         if !broken.globals {
             self.variables(dm);
@@ -274,6 +276,79 @@ impl<'p> Checker<'p> {
             self.diags.push(
                 Diagnostic::warning(code, dm.loc(s.id.map_or(s.span, |id| dm.span_of(id))), msg)
                     .with_label("no arc leads here from the initial situation"),
+            );
+        }
+    }
+
+    /// W0235: an in_arg pattern that no pipe its situation can be given
+    /// matches, known without running anything ([`piped_values`]): the
+    /// run skips it (D-8), as the original does. Only where certain: not
+    /// for the DM's first situation (the caller's pipe), nor in a DM one
+    /// of whose next situations is computed (it may lead anywhere).
+    pub(super) fn in_args_never_matched(&mut self, dm: &Dm) {
+        let terms = &dm.clause.terms;
+        let n = dm.situations.len();
+        let index = SituationIndex::new(dm);
+        // Per situation, the situations with an arc that may lead to it.
+        let mut before: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (i, s) in dm.situations.iter().enumerate() {
+            for arc in s.arcs.iter().flatten() {
+                let Some(values) = static_values(terms, arc.next) else {
+                    return;
+                };
+                for v in values {
+                    for j in index.targets(dm, v) {
+                        if !before[j].contains(&i) {
+                            before[j].push(i);
+                        }
+                    }
+                }
+            }
+        }
+        for (j, s) in dm.situations.iter().enumerate().skip(1) {
+            let Some(pattern) = s.in_arg else { continue };
+            let Some(values) = piped_values(dm, &before, j) else {
+                continue;
+            };
+            let Some(&(from, first)) = values.first() else {
+                continue;
+            };
+            if values
+                .iter()
+                .any(|&(_, v)| may_unify(terms, pattern, terms, v))
+            {
+                continue;
+            }
+            let mut shown: Vec<String> = Vec::new();
+            for &(_, v) in &values {
+                let v = show(dm, v);
+                if !shown.contains(&v) {
+                    shown.push(v);
+                }
+            }
+            let pipes = shown
+                .iter()
+                .map(|v| format!("`{v}`"))
+                .collect::<Vec<_>>()
+                .join(", ");
+            let setter = dm.situations[from].id.map_or_else(String::new, |id| {
+                format!(" of situation `{}`", show(dm, id))
+            });
+            self.diags.push(
+                Diagnostic::warning(
+                    codes::IN_ARG_NEVER_MATCHES,
+                    dm.loc(terms.span(pattern)),
+                    format!(
+                        "in_arg `{}` never matches the pipe it is given ({pipes})",
+                        show(dm, pattern)
+                    ),
+                )
+                .with_label("skipped at run time, as the original skips it: its variables stay unbound, the pipe goes on unchanged")
+                .with_secondary(
+                    dm.loc(terms.span(first)),
+                    format!("the pipe is set here, by the out_arg{setter}"),
+                )
+                .with_help("write the in_arg to match the pipe's shape, or remove it (`--deny-warnings` makes the skip a run-time error)"),
             );
         }
     }
@@ -488,6 +563,38 @@ fn head_mismatch(terms: &Terms, v: TermId, target: &Dm) -> Option<usize> {
             && static_values(terms, a)
                 .is_some_and(|values| values.iter().all(|&x| !may_unify(terms, x, head_terms, h)))
     })
+}
+
+/// Every value the pipe can have when situation `j` of `dm` is entered
+/// from an arc (`before`: per situation, those with an arc that may lead
+/// to it), each with the situation whose `out_arg` sets it: an `out_arg`'s
+/// values known without running anything ([`static_values`]), through
+/// situations without one (the pipe passes them unchanged). `None` when
+/// one is unknown: an `out_arg` computed or a variable, a recursive
+/// situation without `out_arg` (its embedded DM's pipe comes back), or the
+/// DM's first situation without one (the caller's pipe).
+fn piped_values(dm: &Dm, before: &[Vec<usize>], j: usize) -> Option<Vec<(usize, TermId)>> {
+    let terms = &dm.clause.terms;
+    let mut out = Vec::new();
+    let mut seen = vec![false; dm.situations.len()];
+    seen[j] = true;
+    let mut stack = vec![j];
+    while let Some(x) = stack.pop() {
+        for &r in &before[x] {
+            let s = &dm.situations[r];
+            match s.out_arg {
+                Some(o) => out.extend(static_values(terms, o)?.into_iter().map(|v| (r, v))),
+                None if r == 0 || s.kind(&dm.clause) == SituationKind::Recursive => return None,
+                None => {
+                    if !seen[r] {
+                        seen[r] = true;
+                        stack.push(r);
+                    }
+                }
+            }
+        }
+    }
+    Some(out)
 }
 
 /// The candidate (its index, its text) that `v` (a term of `terms`, shown

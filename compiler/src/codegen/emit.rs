@@ -242,7 +242,7 @@ impl Gen<'_> {
             ///
             /// Each DM is a module `dm_<name>` (its items documented here once):
             /// `SITUATIONS` (per situation its kind, id (name, arity), line and
-            /// column, read by the runtime's `SitTable` with the DM's row of
+            /// column, its in_arg's (`.in_arg(..)`), read by the runtime's `SitTable` with the DM's row of
             /// `DMS`), `TEMPLATES` (the situations' templates (D-7) as `writeq`
             /// text, read once into the program's store; `""` for a
             /// situation never instantiated from one), and for the situations
@@ -407,6 +407,13 @@ impl Gen<'_> {
                     sit: SitIx,
                 ) -> Option<String> {
                     Some(self.sits.location(dm, sit))
+                }
+                fn in_arg_location(
+                    &self,
+                    dm: DmIx,
+                    sit: SitIx,
+                ) -> Option<String> {
+                    self.sits.in_arg_location(dm, sit)
                 }
                 fn compiled_id(
                     &self,
@@ -588,7 +595,12 @@ impl Gen<'_> {
             // by its id's functor.
             // (Its DM's file is its row of the program's `DMS`: a DM is written in one file.)
             let (line, col) = line_col(&s.location);
-            rows.push(match self.mir.plan(dm_ix as u32, i as u32) {
+            // Where its in_arg is written (the warning of an in_arg skipped).
+            let in_arg_at = s.in_arg_location.as_deref().map(|l| {
+                let (line, col) = line_col(l);
+                quote!(.in_arg(#line, #col))
+            });
+            let row = match self.mir.plan(dm_ix as u32, i as u32) {
                 Some(plan) => {
                     let name = Literal::string(plan.id.0.as_str());
                     let ar = Literal::usize_unsuffixed(plan.id.1);
@@ -602,7 +614,8 @@ impl Gen<'_> {
                     }
                     None => quote!(SitRow::template(Kind::#kind, None, #line, #col)),
                 },
-            });
+            };
+            rows.push(quote!(#row #in_arg_at));
 
             // The instance builder, for a situation that does not run as
             // code or runs natively (the machine instantiates only those).

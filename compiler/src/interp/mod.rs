@@ -118,6 +118,9 @@ impl DmProgram for Resolved<'_> {
     fn location(&self, dm: DmIx, sit: SitIx) -> Option<String> {
         DmProgram::location(self.ir, dm, sit)
     }
+    fn in_arg_location(&self, dm: DmIx, sit: SitIx) -> Option<String> {
+        DmProgram::in_arg_location(self.ir, dm, sit)
+    }
     fn compiled_id(&self, dm: DmIx, sit: SitIx) -> Option<(Atom, usize)> {
         self.plan(dm, sit).map(|p| p.id)
     }

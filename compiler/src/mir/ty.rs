@@ -65,8 +65,8 @@
 //!   final ids (`found(P)` gives `P` the type of `found`'s argument; a
 //!   final that cannot match adds nothing), an in_arg pattern (its
 //!   variables the parts of the pipe's type there: a pipe it does not
-//!   match is an error, D-8 as E14 fixes it, or under `--legacy` skipped
-//!   by the machine, to which native code hands any visit whose pattern
+//!   match is skipped by the machine, D-8, or its error, E14, under
+//!   `--deny-warnings`; native code hands it any visit whose pattern
 //!   it does not match), `get`/`inc`/`is` into a
 //!   variable not made yet, the left side of `is` (an int or float when
 //!   its operands are, else `ground`: the evaluator's number), a
@@ -1545,12 +1545,12 @@ impl<'a> State<'a> {
             if *unify {
                 // The pattern unified with the pipe binds its fresh
                 // variables to the pipe's parts: where it does not unify
-                // the run ends there, an error (D-8 as fixed by E14,
+                // the run ends there under `--deny-warnings` (E14,
                 // `Machine::unify_in_arg`), so past it they hold values of
                 // the pipe's type, whatever the pattern's shape (constants,
                 // nested compounds, a variable twice or shared with the id
-                // or a parameter: those are compared, not bound). Under
-                // `--legacy` (`Options::skip_unmatched_in_arg`) a mismatch
+                // or a parameter: those are compared, not bound). By
+                // default (`Options::skip_unmatched_in_arg`, D-8) a mismatch
                 // is skipped and the visit runs with these variables
                 // unbound, which these types do not describe: native code
                 // still agrees because it runs the typed visit only where

@@ -22,7 +22,7 @@
 //! `sitlog_runtime::machine::X`):
 //! - `situation`: indices, [`Kind`], [`Instance`]; `io`: [`Perception`],
 //!   [`Actions`]; `options`: [`Options`];
-//! - `outcome`: [`Outcome`], [`RunError`];
+//! - `outcome`: [`Outcome`], [`RunError`], [`RunWarning`];
 //! - `state`: the [`Machine`] and its DM stack;
 //! - `observe`: [`Observer`] and the [`Inspection`] it is shown;
 //! - `program`: [`DmProgram`], [`Step`], [`Cx`], [`Between`];
@@ -54,7 +54,7 @@ pub use native_stack::{
 };
 pub use observe::{Inspection, Observer};
 pub use options::Options;
-pub use outcome::{ErrorSite, Outcome, RunError};
+pub use outcome::{ErrorSite, Outcome, RunError, RunWarning};
 pub use program::{Between, Cx, DmProgram, Next, Step, TypedRun, Visit};
 pub use situation::{
     none_marker, read_consts, read_dms, read_templates, DmIx, DmRow, Instance, Kind, SitIx, SitRow,

@@ -24,11 +24,13 @@ pub struct Options {
     /// tail is bound to `[]`), as the original's evaluator of lists, whose
     /// first case is `[]`, does; `[First|Rest]` is called as `[First]`.
     pub close_list_tails: bool,
-    /// The original's in_arg (`sitlogc run --legacy`, semantics.md D-8):
+    /// The original's in_arg (semantics.md D-8; the default, issue 39):
     /// an in_arg pattern that does not unify with the incoming pipe is
     /// skipped, its partial bindings undone; the situation runs with the
-    /// pattern's variables unbound and the pipe unchanged. Without it the
-    /// mismatch is an error (E14).
+    /// pattern's variables unbound and the pipe unchanged, and the run
+    /// has a [`RunWarning`](super::RunWarning) the first time a situation
+    /// skips. `false` (`sitlogc run --deny-warnings`, a compiled task's
+    /// `--deny-warnings`) makes the mismatch an error (E14).
     pub skip_unmatched_in_arg: bool,
 }
 
@@ -42,7 +44,7 @@ impl Default for Options {
             input_limits: Default::default(),
             stop: None,
             close_list_tails: false,
-            skip_unmatched_in_arg: false,
+            skip_unmatched_in_arg: true,
         }
     }
 }

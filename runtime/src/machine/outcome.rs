@@ -1,5 +1,6 @@
-//! How a run ends: its [`Outcome`], and the [`RunError`] that stops it
-//! (with the [`ErrorSite`] a reporter points at).
+//! How a run ends: its [`Outcome`], the [`RunError`] that stops it
+//! (with the [`ErrorSite`] a reporter points at) and the [`RunWarning`]s
+//! of what it did on, as the original does, that a user may not expect.
 
 use super::situation::{DmIx, SitIx};
 use crate::eval;
@@ -55,6 +56,41 @@ impl std::fmt::Display for RunError {
 
 impl std::error::Error for RunError {}
 
+/// Something the run went on from as the original SitLog does, silently
+/// there: today only an in_arg pattern that does not unify with the
+/// incoming pipe, skipped (semantics D-8; the error of E14 under
+/// `Options::skip_unmatched_in_arg` false). One per situation and DM,
+/// the first time (a loop does not repeat it). Its text
+/// ([`Display`](std::fmt::Display)) names every term with its variables
+/// numbered in order of appearance (`_G0`, `_G1`, ..), so that a compiled
+/// task and the interpreter, whose stores number them apart, print the
+/// same line.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunWarning {
+    pub message: String,
+    /// The running DM's call term.
+    pub dm: String,
+    /// The situation's id.
+    pub situation: String,
+    /// `file:line:col` of the construct (the in_arg), else of the
+    /// situation; `None` when the program keeps no places.
+    pub location: Option<String>,
+}
+
+impl std::fmt::Display for RunWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "warning: in DM `{}`, situation `{}`",
+            self.dm, self.situation
+        )?;
+        if let Some(loc) = &self.location {
+            write!(f, " ({loc})")?;
+        }
+        write!(f, ": {}", self.message)
+    }
+}
+
 /// How a run ended.
 #[derive(Debug)]
 pub struct Outcome {
@@ -72,4 +108,8 @@ pub struct Outcome {
     /// The run was stopped by [`Options::stop`](super::Options::stop) (the result is then an error
     /// saying so).
     pub interrupted: bool,
+    /// What the run went on from as the original does ([`RunWarning`]),
+    /// in the order it happened; a runner prints them on stderr, never
+    /// in the report.
+    pub warnings: Vec<RunWarning>,
 }

@@ -68,6 +68,13 @@ pub trait DmProgram {
         let _ = (dm, sit);
         None
     }
+    /// Where a situation's in_arg is written (`file:line:col`), for the
+    /// warning of an in_arg skipped; `None`: the situation's
+    /// [`DmProgram::location`] stands for it.
+    fn in_arg_location(&self, dm: DmIx, sit: SitIx) -> Option<String> {
+        let _ = (dm, sit);
+        None
+    }
     /// `Some((name, arity))` when situation `sit` runs as code
     /// ([`DmProgram::run_situation`] and, for a recursive one,
     /// [`DmProgram::run_exit`]) instead of being instantiated; its id is

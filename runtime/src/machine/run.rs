@@ -78,6 +78,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             globals: self.globals,
             final_situation,
             transitions: self.transitions,
+            warnings: self.warnings,
         };
         (outcome, self.store)
     }

@@ -216,9 +216,20 @@ pub struct SitRow {
     pub code: bool,
     /// Where it is written: line and column in its DM's file.
     pub at: (u32, u32),
+    /// Where its in_arg is written, when it has one ([`SitRow::in_arg`]).
+    pub in_arg_at: Option<(u32, u32)>,
 }
 
 impl SitRow {
+    /// This row, its in_arg written at `line`, `col` (the warning of an
+    /// in_arg skipped points there: [`SitTable::in_arg_location`]).
+    pub const fn in_arg(self, line: u32, col: u32) -> SitRow {
+        SitRow {
+            in_arg_at: Some((line, col)),
+            ..self
+        }
+    }
+
     /// A situation that runs as code, its id named `name/arity`.
     pub const fn code(kind: Kind, name: &'static str, arity: usize, line: u32, col: u32) -> SitRow {
         SitRow {
@@ -226,6 +237,7 @@ impl SitRow {
             id: Some((name, arity)),
             code: true,
             at: (line, col),
+            in_arg_at: None,
         }
     }
 
@@ -241,6 +253,7 @@ impl SitRow {
             id,
             code: false,
             at: (line, col),
+            in_arg_at: None,
         }
     }
 }
@@ -288,6 +301,7 @@ struct SitEntry {
     id: Option<(Atom, usize)>,
     code: bool,
     at: (u32, u32),
+    in_arg_at: Option<(u32, u32)>,
 }
 
 /// A compiled program's situations, by DM and situation index (the rows of
@@ -318,6 +332,7 @@ impl SitTable {
                         id: r.id.map(|(name, arity)| (Atom::intern(name), arity)),
                         code: r.code,
                         at: r.at,
+                        in_arg_at: r.in_arg_at,
                     })
                     .collect();
                 (dm.file, rows)
@@ -380,6 +395,13 @@ impl SitTable {
     pub fn location(&self, dm: DmIx, sit: SitIx) -> String {
         let (line, col) = self.entry(dm, sit).at;
         format!("{}:{line}:{col}", self.dms[dm as usize].0)
+    }
+
+    /// Where the situation's in_arg is written (`file:line:col`), when
+    /// its row says ([`SitRow::in_arg`]).
+    pub fn in_arg_location(&self, dm: DmIx, sit: SitIx) -> Option<String> {
+        let (line, col) = self.entry(dm, sit).in_arg_at?;
+        Some(format!("{}:{line}:{col}", self.dms[dm as usize].0))
     }
 
     /// Its id's functor when it runs as code.

@@ -133,6 +133,11 @@ pub struct Machine<'p, P> {
     /// entry that follows (`Cx::enter_performed`, `Cx::nat_enter`), which
     /// reports it. Here, not in each `Cx`, as `held`.
     pub(super) empty_failed: Option<String>,
+    /// The run's warnings so far ([`Outcome::warnings`](super::Outcome::warnings)).
+    pub(super) warnings: Vec<super::RunWarning>,
+    /// The situations that skipped their in_arg once (by DM and
+    /// situation index): warned about, not again.
+    pub(super) skipped_in_args: Vec<(DmIx, Option<SitIx>)>,
 }
 
 /// How many arguments a pipe held as native values may have
@@ -201,6 +206,8 @@ impl<'p, P> Machine<'p, P> {
             chose: None,
             held: HeldPipe::default(),
             empty_failed: None,
+            warnings: Vec::new(),
+            skipped_in_args: Vec::new(),
         }
     }
 

@@ -25,21 +25,28 @@ pub(super) struct Chosen {
 
 impl<'p, P: DmProgram> Machine<'p, P> {
     /// The in_arg `pattern` unified with the incoming `pipe` (D-8): a
-    /// mismatch is an error (E14), or, under
-    /// [`Options::skip_unmatched_in_arg`](super::Options::skip_unmatched_in_arg)
-    /// (`--legacy`), skipped as the original skips it (a failed unify
-    /// leaves the store as it was: the pattern's variables stay unbound).
+    /// mismatch is skipped as the original skips it (a failed unify
+    /// leaves the store as it was: the pattern's variables stay unbound,
+    /// the pipe unchanged) with a [`RunWarning`](super::RunWarning) the
+    /// first time the situation skips
+    /// ([`Options::skip_unmatched_in_arg`](super::Options::skip_unmatched_in_arg),
+    /// the default), else an error (E14; `--deny-warnings`).
     /// Every in_arg goes through here: the loop, compiled term code
     /// (`Cx::in_arg`), a frame native code hands over
     /// (`Cx::wait_template`) and a pattern native code does not match
-    /// (handed to the machine, nothing of the visit done).
+    /// (handed to the machine, nothing of the visit done), so both back
+    /// ends skip, warn and fail alike.
     pub(super) fn unify_in_arg(
         &mut self,
         pattern: Term,
         pipe: Term,
         here: Option<(SitIx, Term)>,
     ) -> Result<(), RunError> {
-        if self.store.unify(pattern, pipe) || self.options.skip_unmatched_in_arg {
+        if self.store.unify(pattern, pipe) {
+            return Ok(());
+        }
+        if self.options.skip_unmatched_in_arg {
+            self.warn_in_arg_skipped(pattern, pipe, here);
             return Ok(());
         }
         Err(self.err(
@@ -51,6 +58,41 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             here,
             None,
         ))
+    }
+
+    /// The warning of an in_arg skipped ([`Machine::unify_in_arg`]), the
+    /// first time its situation skips one; located at the in_arg
+    /// ([`DmProgram::in_arg_location`](super::DmProgram::in_arg_location)),
+    /// else at the situation. Cold: the hot path is the unify that succeeds.
+    #[cold]
+    fn warn_in_arg_skipped(&mut self, pattern: Term, pipe: Term, here: Option<(SitIx, Term)>) {
+        let (dm, call) = match self.lazy.last() {
+            Some(l) => (l.dm, l.call),
+            None => match self.frames.last() {
+                Some(f) => (f.dm, f.dm_id),
+                None => return,
+            },
+        };
+        let key = (dm, here.map(|(s, _)| s));
+        if self.skipped_in_args.contains(&key) {
+            return;
+        }
+        self.skipped_in_args.push(key);
+        let id = here.map_or(Term::atom(atoms::NONE), |(_, id)| id);
+        let [call, id, pattern, pipe] = writeq_renumbered(&self.store, [call, id, pattern, pipe]);
+        let location = here.and_then(|(s, _)| {
+            self.program
+                .in_arg_location(dm, s)
+                .or_else(|| self.program.location(dm, s))
+        });
+        self.warnings.push(super::RunWarning {
+            message: format!(
+                "in_arg `{pattern}` does not match the incoming pipe value `{pipe}`: skipped, as the original SitLog does (the situation runs with the in_arg's variables unbound and the pipe unchanged; --deny-warnings makes it an error)"
+            ),
+            dm: call,
+            situation: id,
+            location,
+        });
     }
 
     /// A final situation's out_arg, evaluated, becomes the pipe unless it is a variable.
@@ -443,4 +485,44 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             self.inspect(pipe, None, o);
         }
     }
+}
+
+/// `terms` as `writeq` writes them, their variables numbered in order of
+/// first appearance across all of them (`_G0`, `_G1`, ..): the same text
+/// whichever store holds them (a [`RunWarning`](super::RunWarning)'s).
+fn writeq_renumbered<const N: usize>(store: &crate::Store, terms: [Term; N]) -> [String; N] {
+    use crate::term::Value;
+    use sitlog_syntax::write::{TermSource, VarLabel, View};
+    struct Renumbered<'a> {
+        store: &'a crate::Store,
+        order: Vec<crate::term::Var>,
+    }
+    impl TermSource for Renumbered<'_> {
+        type Ref = Term;
+        fn view(&self, t: Term) -> View<'_, Term> {
+            match self.store.value(t) {
+                Value::Var(v) => {
+                    let n = self
+                        .order
+                        .iter()
+                        .position(|&w| w == v)
+                        .unwrap_or(self.order.len());
+                    View::Var(VarLabel::Numbered(n as u64))
+                }
+                _ => self.store.view(t),
+            }
+        }
+    }
+    let mut order = Vec::new();
+    for &t in &terms {
+        for v in store.term_vars(t) {
+            if let Value::Var(var) = store.value(v) {
+                if !order.contains(&var) {
+                    order.push(var);
+                }
+            }
+        }
+    }
+    let source = Renumbered { store, order };
+    terms.map(|t| sitlog_syntax::write::writeq(&source, t))
 }

@@ -307,10 +307,18 @@ fn next_situation_that_does_not_exist_is_an_error() {
 
 #[test]
 fn in_arg_mismatch_and_diag_mod_mismatch_are_errors() {
-    // E14, E9.
+    // E14 (denied: by default the in_arg is skipped as the original
+    // skips it, D-8, with a warning: typed.rs), E9.
     let dm = "diag_mod(main, [[id ==> is, type ==> neutral, in_arg ==> foo, arcs ==> [empty : [] => fs]],
         [id ==> fs, type ==> final]], []).";
     let v = run_sources(&[("t.dm", dm)], "", "main", Some("now"), Options::default());
+    assert_eq!(v["status"], "ok", "{v}");
+    assert_eq!(v["out_arg"], "now", "{v}");
+    let denied = Options {
+        skip_unmatched_in_arg: false,
+        ..Options::default()
+    };
+    let v = run_sources(&[("t.dm", dm)], "", "main", Some("now"), denied);
     assert!(
         v["error"]
             .as_str()

@@ -181,6 +181,9 @@ fn run_with<A: app::App>(
         serde_json::from_str(&report::outcome_json(&store, &outcome)).expect("JSON");
     let mut seen = log.0;
     seen.extend(String::from_utf8(text).unwrap().lines().map(str::to_owned));
+    // Then the run's warnings as a runner prints them (an in_arg skipped:
+    // both back ends warn alike).
+    seen.extend(outcome.warnings.iter().map(ToString::to_string));
     // Variables renamed in the order first seen, as in the report: native
     // code makes fewer terms than the term path, so its fresh variables
     // (an output argument's) get other store numbers.
@@ -2025,8 +2028,9 @@ mod pipe_npipe14 {
 /// a pair read by a callee and by a neutral situation, nested patterns
 /// (`f(A, [B|C])`), a pattern sharing a variable with the situation's id
 /// and one sharing a DM parameter, compiled and plans against the
-/// interpreter: patterns that match, pipes of another shape (the machine's
-/// error, D-8 as E14 fixes it), pipes that are not ground (unbound parts:
+/// interpreter: patterns that match, pipes of another shape (skipped by
+/// the machine as the original skips them, D-8, with one warning per
+/// situation, compared too), pipes that are not ground (unbound parts:
 /// the machine unifies), parts of other types (an atom or a float for a
 /// count, a compound), a pipe from the command line.
 #[test]
@@ -2084,8 +2088,8 @@ mod pipe_npipe15 {
 /// an error while it is held (`main(a)`: `N < a`); a recursive situation
 /// with an in_arg pattern (term code) reading the pipe native callees
 /// left (`mixed`); a callee leaving a pipe of another shape, held too
-/// (`stop(N, L, end)`: the caller's `N-Lim` does not match it, the
-/// machine's error); a pipe from the command line, of the pair's shape or
+/// (`stop(N, L, end)`: the caller's `N-Lim` does not match it, skipped
+/// with a warning, compared too); a pipe from the command line, of the pair's shape or
 /// not.
 #[test]
 fn held_pipes_agree() {
@@ -2129,17 +2133,18 @@ const PIPES: [&str; 9] = [
     "f(1, [_])",
 ];
 
-/// [`in_arg_patterns_agree`]'s runs under the original's in_arg
-/// (`Options::skip_unmatched_in_arg`, `sitlogc run --legacy`, D-8): a
-/// pattern the pipe does not match is skipped, its variables unbound, the
-/// pipe unchanged. Compiled code hands such a visit to the machine (its
-/// native match fails), so it follows the machine's option by
-/// construction: the compiled task and the plans agree with the
-/// interpreter, history kept and not, and `odd` (an int pipe against
-/// `N-L`) and `entry` with `x` run to their end where they are errors
-/// without the option.
+/// [`in_arg_patterns_agree`]'s runs with an in_arg that does not match
+/// its pipe: skipped as the original skips it (D-8, the default,
+/// `Options::skip_unmatched_in_arg`), its variables unbound, the pipe
+/// unchanged, with a warning located at the in_arg the first time its
+/// situation skips (`looped` skips three times: one warning), the same
+/// text from the compiled task, the plans and the interpreter, history
+/// kept and not; under `--deny-warnings` (the option false) the same runs
+/// stop with E14's error, located at the situation, on all three. Compiled
+/// code hands such a visit to the machine (its native match fails), so it
+/// follows the machine's option by construction.
 #[test]
-fn in_arg_patterns_agree_when_a_mismatch_is_skipped() {
+fn in_arg_mismatches_are_skipped_with_a_warning_or_denied() {
     use pipe_npipe14::pattern as m;
     let ir = interpreter("typed/pipe_pattern");
     let plans = sitlog_compiler::interp::Resolved::new(&ir);
@@ -2148,30 +2153,47 @@ fn in_arg_patterns_agree_when_a_mismatch_is_skipped() {
         skip_unmatched_in_arg,
         ..Options::default()
     };
-    let mains = [
-        "main(3, a)",
-        "main(1, stop)",
-        "main(x, a)",
-        "main(2, f(_))",
-        "shape(1-2)",
-        "shape(foo)",
-        "shape(f(1, 2))",
-        "shape(_)",
-        "odd",
+    let tail = "skipped, as the original SitLog does (the situation runs with the in_arg's \
+                variables unbound and the pipe unchanged; --deny-warnings makes it an error)";
+    let file = |line: u32, col: u32| {
+        let name = ir.sources.files().next().expect("a file").1.name.clone();
+        format!("{name}:{line}:{col}")
+    };
+    let runs: [(&str, Option<&str>, Vec<String>); 4] = [
+        (
+            "odd",
+            None,
+            vec![format!(
+                "warning: in DM `odd`, situation `o1` ({}): in_arg `_G0-_G1` does not match the incoming pipe value `5`: {tail}",
+                file(72, 47)
+            )],
+        ),
+        (
+            "entry",
+            Some("x"),
+            vec![format!(
+                "warning: in DM `entry`, situation `e0` ({}): in_arg `f(_G0,[_G1|_G2])` does not match the incoming pipe value `x`: {tail}",
+                file(60, 47)
+            )],
+        ),
+        ("looped", None, vec![format!(
+            "warning: in DM `looped`, situation `l0` ({}): in_arg `go(_G0)` does not match the incoming pipe value `none`: {tail}",
+            file(82, 47)
+        )]),
+        ("main(3, a)", None, vec![]),
     ];
-    let runs = mains
-        .iter()
-        .map(|m| (*m, None))
-        .chain(PIPES.iter().map(|p| ("entry", Some(*p))));
-    for (main, pipe) in runs {
+    for (main, pipe, warnings) in &runs {
         for keep in [false, true] {
-            let i = run_with(&ir, main, pipe, "", options(keep, true), false, false);
+            let i = run_with(&ir, main, *pipe, "", options(keep, true), false, false);
+            assert_eq!(i.0["status"], "ok", "{main}: {}", i.0);
+            let said: Vec<&String> = i.2.iter().filter(|l| l.starts_with("warning:")).collect();
+            assert_eq!(said, warnings.iter().collect::<Vec<_>>(), "{main}");
             for (c, by) in [
                 (
                     run_with(
                         m::program(),
                         main,
-                        pipe,
+                        *pipe,
                         "",
                         options(keep, true),
                         false,
@@ -2180,7 +2202,7 @@ fn in_arg_patterns_agree_when_a_mismatch_is_skipped() {
                     "compiled",
                 ),
                 (
-                    run_with(&plans, main, pipe, "", options(keep, true), false, false),
+                    run_with(&plans, main, *pipe, "", options(keep, true), false, false),
                     "plans",
                 ),
             ] {
@@ -2190,29 +2212,42 @@ fn in_arg_patterns_agree_when_a_mismatch_is_skipped() {
                     "{by}: {main} with in_arg {pipe:?} (history {keep})"
                 );
             }
-        }
-    }
-    for (main, pipe) in [("odd", None), ("entry", Some("x"))] {
-        let error = run_with(&ir, main, pipe, "", options(true, false), false, false).0;
-        assert_eq!(error["status"], "error", "{error}");
-        assert!(
-            error["error"].as_str().unwrap().contains("does not match"),
-            "{error}"
-        );
-        for skipped in [
-            run_with(&ir, main, pipe, "", options(true, true), false, false).0,
-            run_with(
-                m::program(),
-                main,
-                pipe,
-                "",
-                options(true, true),
-                false,
-                false,
-            )
-            .0,
-        ] {
-            assert_eq!(skipped["status"], "ok", "{skipped}");
+            if warnings.is_empty() {
+                continue;
+            }
+            // Denied: E14's error, located, on the three alike.
+            let i = run_with(&ir, main, *pipe, "", options(keep, false), false, false);
+            let error = i.0["error"].as_str().unwrap_or_default().to_owned();
+            assert!(
+                error.contains("does not match the incoming pipe value")
+                    && error.contains("main.dm:"),
+                "{main}: {}",
+                i.0
+            );
+            for (c, by) in [
+                (
+                    run_with(
+                        m::program(),
+                        main,
+                        *pipe,
+                        "",
+                        options(keep, false),
+                        false,
+                        false,
+                    ),
+                    "compiled",
+                ),
+                (
+                    run_with(&plans, main, *pipe, "", options(keep, false), false, false),
+                    "plans",
+                ),
+            ] {
+                assert_eq!(
+                    unnumbered(format!("{c:?}")),
+                    unnumbered(format!("{i:?}")),
+                    "{by}, denied: {main} with in_arg {pipe:?} (history {keep})"
+                );
+            }
         }
     }
 }

@@ -50,7 +50,7 @@ diag_mod(mixed(Max),
 ).
 
 % The callee leaves `stop(N, L, end)` at the last call: the caller's
-% `N-Lim` does not match it (the machine's error, D-8 as E14 fixes it).
+% `N-Lim` does not match it (skipped by the machine with a warning, D-8).
 diag_mod(shaped(Max),
   [ [ id ==> start, type ==> neutral, out_arg ==> 0-Max, arcs ==> [ empty : empty => ask ] ],
     [ id ==> ask, type ==> recursive, embedded_dm ==> maybe,

@@ -33,8 +33,8 @@ diag_mod(count,
 ).
 
 % `shape(P)`: the pipe set to P, matched by the recursive situation's
-% `A-B` and the callee's (a pipe of another shape: the machine's error,
-% D-8/E14), then by the caller's.
+% `A-B` and the callee's (a pipe of another shape: skipped with a
+% warning, D-8), then by the caller's.
 diag_mod(shape(P),
   [ [ id ==> s0, type ==> neutral, out_arg ==> P, arcs ==> [ empty : empty => s1 ] ],
     [ id ==> s1, type ==> recursive, in_arg ==> A-B, out_arg ==> A-B, embedded_dm ==> split,
@@ -66,7 +66,7 @@ diag_mod(entry,
 ).
 
 % `odd`: an int pipe matched by `N-L`, which can never match (its
-% variables typed `never`): the machine's error.
+% variables typed `never`): skipped with a warning (an error denied).
 diag_mod(odd,
   [ [ id ==> o0, type ==> neutral, out_arg ==> 5, arcs ==> [ empty : empty => o1 ] ],
     [ id ==> o1, type ==> neutral, in_arg ==> N-L, out_arg ==> L,
@@ -74,4 +74,14 @@ diag_mod(odd,
     [ id ==> o2, type ==> final ]
   ],
   []
+).
+
+% `looped`: a situation entered three times with a pipe its in_arg never
+% matches (`none`): skipped each time, warned about once.
+diag_mod(looped,
+  [ [ id ==> l0, type ==> neutral, in_arg ==> go(_),
+      arcs ==> [ empty : [inc(n, N)] => (N >= 3 -> l1 ; otherwise -> l0) ] ],
+    [ id ==> l1, type ==> final ]
+  ],
+  [ n ==> 0 ]
 ).

@@ -27,8 +27,8 @@
 //! pipe's term is (`Gen::nat_pipe_match`): its variables become registers
 //! of the visit, and a pipe it does not take natively hands the visit to
 //! the machine, nothing done, which runs it from the template (a mismatch
-//! is the machine's error, D-8 as E14 fixes it, or skipped under
-//! `--legacy`, `Options::skip_unmatched_in_arg`).
+//! is skipped there with a warning, D-8, `Options::skip_unmatched_in_arg`,
+//! or the machine's error under `--deny-warnings`, E14).
 //!
 //! The pipe held as native values (`npipe15`): an out_arg `name(A, ..)`
 //! of at most `HELD_MAX` arguments, each an int, a float, an atom or a
@@ -108,8 +108,8 @@ impl Gen<'_> {
     /// else (another shape, a part not of its type or not ground) hands
     /// the visit to the machine before anything of it is done: it runs it
     /// from the situation's template, unifying as the interpreter does,
-    /// and a pipe the pattern does not match is its error (D-8 as E14
-    /// fixes it) or, under `--legacy`, skipped there. The pattern's
+    /// and a pipe the pattern does not match is skipped there (D-8) or,
+    /// under `--deny-warnings`, its error (E14). The pattern's
     /// variables are registers of the visit.
     pub(super) fn nat_pipe_match(
         &self,
