@@ -2384,8 +2384,18 @@ fn nsurvey16_shapes_agree() {
     for l in lists {
         both!(ir, first_of_goals, &format!("hunt(3, {l}, [bath, bed])"));
     }
-    for g in ["[]", "bed", "[bed|_]", "[f(x), hall]"] {
+    for g in ["[]", "bed", "[bed|_]", "[f(x), hall]", "[hall|bed]", "'[]'"] {
         both!(ir, first_of_goals, &format!("hunt(2, [hall, bed], {g})"));
+    }
+    // Numbers: an int is not the float of the same value (`member` is
+    // unification, on ground values identity).
+    for (l, g) in [
+        ("[1, 2.0, bed]", "[2.0, x]"),
+        ("[1, 2]", "[1.0]"),
+        ("[f(1), g(2)]", "[g(2)]"),
+        ("[[a], b]", "[[a]]"),
+    ] {
+        both!(ir, first_of_goals, &format!("hunt(2, {l}, {g})"));
     }
     let ir = interpreter("typed/shapes/d_goto_exit_arc");
     for l in lists {
