@@ -121,6 +121,28 @@ mod d_global_visited {
 mod d_outarg_when {
     sitlog_macros::include_dm!("../tests/typed/shapes/d_outarg_when");
 }
+// Helper `nsurvey16`'s (session 15).
+mod d_room_compounds {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_room_compounds");
+}
+mod d_pair_key_rest {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_pair_key_rest");
+}
+mod d_visits_in_id {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_visits_in_id");
+}
+mod d_first_of_goals {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_first_of_goals");
+}
+mod d_goto_exit_arc {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_goto_exit_arc");
+}
+mod d_found_into_next {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_found_into_next");
+}
+mod c_count_two_levels {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_count_two_levels");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -237,6 +259,18 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             let names: Vec<String> = (0..len - 1).map(|i| format!("p{i}")).collect();
             names.join(",")
         }),
+        "d_room_compounds" => {
+            let rooms: Vec<String> = (0..len).map(|i| format!("room(p{i})")).collect();
+            format!("hunt({n}, [{}], {last})", rooms.join(","))
+        }
+        "d_pair_key_rest" => {
+            let pairs: Vec<String> = (0..len).map(|i| format!("p{i}-{i}")).collect();
+            format!("tour({n}, [{}], {last})", pairs.join(","))
+        }
+        "d_visits_in_id" => format!("survey({n}, {list}, {last})"),
+        "d_first_of_goals" => format!("hunt({n}, {list}, [nowhere, {last}])"),
+        "d_goto_exit_arc" | "d_found_into_next" => format!("hunt({n}, {list}, {last})"),
+        "c_count_two_levels" => format!("relay({n})"),
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
             let n = n.to_string();
@@ -319,6 +353,36 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                 all.push(black_box(lsym));
                 hand_walk(n, black_box(&all), black_box(lsym), true, false)
             }
+            "d_room_compounds" => {
+                let rooms: Vec<Room> = syms.iter().map(|&s| Room(s)).collect();
+                let t = black_box(lsym);
+                hand_walk_by(
+                    n,
+                    black_box(&rooms),
+                    |Room(r)| (r == t).then_some(Room(r)),
+                    true,
+                )
+            }
+            "d_pair_key_rest" => {
+                let pairs: Vec<(Sym, i64)> = (0..len).map(|i| (Sym(i as u32), i as i64)).collect();
+                let t = black_box(lsym);
+                hand_walk_by(n, black_box(&pairs), |(p, _)| (p == t).then_some(p), false)
+            }
+            "d_visits_in_id" => hand_walk_count(n, black_box(&syms), black_box(lsym)),
+            "d_first_of_goals" => {
+                // `member(P, Goals)`: a scan of a slice of two.
+                let goals = [Sym(u32::MAX), lsym];
+                let goals = black_box(&goals[..]);
+                hand_walk_by(
+                    n,
+                    black_box(&syms),
+                    |p| goals.contains(&p).then_some(p),
+                    true,
+                )
+            }
+            "d_goto_exit_arc" => hand_walk_goto(n, black_box(&syms), black_box(lsym)),
+            "d_found_into_next" => hand_walk_seen_next(n, black_box(&syms), black_box(lsym)),
+            "c_count_two_levels" => hand_two_levels(n),
             _ => unreachable!(),
         };
     }
@@ -354,11 +418,18 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "c_global_flag" => ways!(c_global_flag),
         "d_global_visited" => ways!(d_global_visited),
         "d_outarg_when" => ways!(d_outarg_when),
+        "d_room_compounds" => ways!(d_room_compounds),
+        "d_pair_key_rest" => ways!(d_pair_key_rest),
+        "d_visits_in_id" => ways!(d_visits_in_id),
+        "d_first_of_goals" => ways!(d_first_of_goals),
+        "d_goto_exit_arc" => ways!(d_goto_exit_arc),
+        "d_found_into_next" => ways!(d_found_into_next),
+        "c_count_two_levels" => ways!(c_count_two_levels),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 30] = [
+const ALL: [&str; 37] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -389,6 +460,13 @@ const ALL: [&str; 30] = [
     "d_global_visited",
     "d_outarg_when",
     "c_local_count",
+    "d_room_compounds",
+    "d_pair_key_rest",
+    "d_visits_in_id",
+    "d_first_of_goals",
+    "d_goto_exit_arc",
+    "d_found_into_next",
+    "c_count_two_levels",
 ];
 
 fn main() {

@@ -1265,3 +1265,248 @@ pub fn hand_walk_flag(rounds: i64, items: &[Sym], target: Sym) -> u64 {
     black_box(here);
     transitions
 }
+
+// Helper `nsurvey16`'s (session 15).
+
+/// A place as the compound `room(Name)` of `d_room_compounds`: a newtype
+/// of its name (what a typed field of one functor compiles to).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub struct Room(pub Sym);
+
+/// (d) `d_visits_in_id`: the walk counts the places it visits in its
+/// frame (`try(Ps, K)`) and hands the count back; the caller adds it to
+/// a total kept in its frame (`round(I, Total)`).
+pub fn hand_walk_count(rounds: i64, items: &[Sym], target: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round(i64, i64),
+        Stop,
+        Begin,
+        Try(&'a [Sym], i64),
+        Final(bool, i64),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round(0, 0)];
+    let mut transitions = 1u64;
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round(..) => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items, 0);
+            }
+            Frame::Try([], k) => {
+                transitions += 1;
+                *top = Frame::Final(false, k);
+            }
+            Frame::Try([p, ps @ ..], k) => {
+                transitions += 1;
+                let k1 = black_box(k + 1);
+                *top = if *p == target {
+                    Frame::Final(true, k1)
+                } else {
+                    Frame::Try(ps, k1)
+                };
+            }
+            Frame::Final(found, k) => {
+                transitions += 2;
+                black_box(found);
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    if let Frame::Round(i, total) = *m {
+                        let (j, t) = (black_box(i + 1), black_box(total + k));
+                        *m = if j < rounds {
+                            Frame::Round(j, t)
+                        } else {
+                            Frame::Stop
+                        };
+                    }
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) `d_goto_exit_arc`: the walk calls a one-step DM per place
+/// (`goto(P)`, ending in `arrived(P)`), whose exit arc in the walking
+/// frame compares the place reached with the target.
+pub fn hand_walk_goto(rounds: i64, items: &[Sym], target: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Visit(&'a [Sym]),
+        Move(Sym),
+        Arrived(Sym),
+        Final(Option<Sym>),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut transitions) = (0i64, 1u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Visit(items);
+            }
+            Frame::Visit([]) => {
+                transitions += 1;
+                *top = Frame::Final(None);
+            }
+            Frame::Visit([p, ..]) => stack.push(Frame::Move(*p)),
+            Frame::Move(p) => {
+                transitions += 1;
+                *top = Frame::Arrived(p);
+            }
+            Frame::Arrived(q) => {
+                // `goto`'s final, then the walking situation's exit arc.
+                transitions += 2;
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    if let Frame::Visit([_, ps @ ..]) = *m {
+                        *m = if q == target {
+                            Frame::Final(Some(q))
+                        } else {
+                            Frame::Visit(ps)
+                        };
+                    }
+                }
+            }
+            Frame::Final(found) => {
+                transitions += 2;
+                black_box(found);
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) `d_found_into_next`: the caller's exit arc binds the place found
+/// into its next frame (`seen(P, I)`), one more step that reads it (a
+/// walk that found nothing stops the run).
+pub fn hand_walk_seen_next(rounds: i64, items: &[Sym], target: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round(i64),
+        Seen(Option<Sym>, i64),
+        Stop,
+        Begin,
+        Walk(&'a [Sym]),
+        Final(Option<Sym>),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round(0)];
+    let mut transitions = 1u64;
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round(_) => stack.push(Frame::Begin),
+            Frame::Seen(p, i) => {
+                transitions += 1;
+                let j = black_box(i + 1);
+                *top = match p {
+                    Some(_) if j < rounds => Frame::Round(j),
+                    _ => Frame::Stop,
+                };
+            }
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Walk(items);
+            }
+            Frame::Walk([]) => {
+                transitions += 1;
+                *top = Frame::Final(None);
+            }
+            Frame::Walk([p, ps @ ..]) => {
+                transitions += 1;
+                *top = if *p == target {
+                    Frame::Final(Some(*p))
+                } else {
+                    Frame::Walk(ps)
+                };
+            }
+            Frame::Final(found) => {
+                transitions += 2;
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    if let Frame::Round(i) = *m {
+                        *m = Frame::Seen(black_box(found), i);
+                    }
+                }
+            }
+        }
+    }
+    transitions
+}
+
+/// (c) `c_count_two_levels`: the count handed back through two levels of
+/// finals (`inner`'s `done(M)`, `outer`'s `back(M)`), each level a frame
+/// holding it; the caller compares it with the limit.
+pub fn hand_two_levels(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Call(i64),
+        Over,
+        Ask(i64),
+        Back(i64),
+        Step(i64),
+        Done(i64),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Call(0)];
+    let mut transitions = 1u64;
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Call(n) => stack.push(Frame::Ask(n)),
+            Frame::Ask(n) => stack.push(Frame::Step(n)),
+            Frame::Step(n) => {
+                transitions += 1;
+                *top = Frame::Done(black_box(n + 1));
+            }
+            Frame::Done(m) => {
+                // `inner`'s final, then `outer`'s exit arc.
+                transitions += 2;
+                stack.pop();
+                if let Some(o) = stack.last_mut() {
+                    *o = Frame::Back(m);
+                }
+            }
+            Frame::Back(m) => {
+                // `outer`'s final, then `relay`'s exit arc.
+                transitions += 2;
+                stack.pop();
+                if let Some(c) = stack.last_mut() {
+                    *c = if black_box(m) < limit {
+                        Frame::Call(m)
+                    } else {
+                        Frame::Over
+                    };
+                }
+            }
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}

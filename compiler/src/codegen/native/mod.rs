@@ -4340,7 +4340,21 @@ impl Gen<'_> {
                     quote!((!#same))
                 })
             }
-            _ => Err("a condition is not `==`, `\\==` or an int comparison".into()),
+            // `member(X, L)`, `not_member(X, L)` of native values (D-33).
+            Cond::Other(Build::Compound(op, args))
+                if args.len() == 2 && (*op == atoms::MEMBER || *op == atoms::NOT_MEMBER) =>
+            {
+                let x = self.nat_value(&args[0], regs)?;
+                let l = self.nat_value(&args[1], regs)?;
+                let found = member_test(&x, &l)
+                    .ok_or_else(|| format!("`{}` on {} and {}", op.as_str(), x.ty, l.ty))?;
+                Ok(if *op == atoms::MEMBER {
+                    found
+                } else {
+                    quote!((!#found))
+                })
+            }
+            _ => Err("a condition is not `==`, `\\==`, `member` or an int comparison".into()),
         }
     }
 
@@ -5827,6 +5841,40 @@ fn identical(l: &V, r: &V) -> Option<TokenStream> {
         (Ty::Sym, Ty::Term) => Some(quote!((cx.store_ref().atom_of(#re.0) == #some(#le)))),
         (Ty::Term, Ty::Int) => Some(quote!((cx.store_ref().int_of(#le.0) == #some(#re)))),
         (Ty::Int, Ty::Term) => Some(quote!((cx.store_ref().int_of(#re.0) == #some(#le)))),
+        _ => None,
+    }
+}
+
+/// `member(X, L)` (D-33) on two native values, when their types allow
+/// it in Rust: whether `X` is an element of the proper list `L`. Native
+/// values are ground, so unifying `X` with an element
+/// (`builtins::member_unify`) is being identical to it
+/// (`builtins::member_identical`, `not_member`'s test), as [`identical`]
+/// compares; a `ground` value that is not a proper list (an improper
+/// list, an atom) has no element, as `list_to_vec` finds none. A float
+/// `X` or a term is left to the machine.
+fn member_test(x: &V, l: &V) -> Option<TokenStream> {
+    if !x.ty.is_native() || matches!(x.ty, Ty::Float | Ty::Term | Ty::Never) {
+        return None;
+    }
+    let (xp, lp) = (place(x), place(l));
+    match &l.ty {
+        Ty::List(e) if **e == Ty::Never => Some(quote!(false)),
+        Ty::List(e) if **e == x.ty && eq_safe(e) => Some(quote!(#lp.iter().any(|y| *y == #xp))),
+        Ty::List(e) if held_as_val(e) => {
+            let xv = coerce(x, &Ty::Ground).ok()?;
+            Some(quote!({
+                let member_x: Val = #xv;
+                #lp.iter().any(|y| *y == member_x)
+            }))
+        }
+        t if held_as_val(t) => {
+            let xv = coerce(x, &Ty::Ground).ok()?;
+            Some(quote!({
+                let member_x: Val = #xv;
+                matches!(#lp, Val::List(ref items) if items.iter().any(|y| *y == member_x))
+            }))
+        }
         _ => None,
     }
 }
