@@ -118,6 +118,10 @@ mod d_global_visited {
 mod d_outarg_when {
     sitlog_macros::include_dm!("../tests/typed/shapes/d_outarg_when");
 }
+// Helper `nwhen16`'s (session 15): `when/3` with an arithmetic condition.
+mod d_when_arith {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_when_arith");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -212,6 +216,10 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         | "d_compare_fn"
         | "d_outarg_when" => format!("hunt({n}, {list}, {last})"),
         "d_local_places" => format!("tour({n}, cellar)"),
+        "d_when_arith" => {
+            let ints: Vec<String> = (0..len).map(|i| i.to_string()).collect();
+            format!("hunt({n}, [{}], {})", ints.join(","), len / 2)
+        }
         "d_const_ints" => format!("drill({n}, 64)"),
         "d_built_list" => format!("patrol({n}, {list}, p0)"),
         "d_acc_seen" => format!("survey({n}, {list}, {last})"),
@@ -272,6 +280,10 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             | "d_target_matched_in_id"
             | "d_compare_fn" => hand_walk(n, black_box(&syms), black_box(lsym), true, false),
             "d_outarg_when" => hand_walk_flag(n, black_box(&syms), black_box(lsym)),
+            "d_when_arith" => {
+                let ints: Vec<i64> = (0..len as i64).collect();
+                hand_walk_when_arith(n, black_box(&ints), black_box(len as i64 / 2))
+            }
             "d_local_places" => {
                 hand_walk(n, black_box(&syms[..8]), black_box(Sym(7)), false, false)
             }
@@ -347,11 +359,12 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "c_global_flag" => ways!(c_global_flag),
         "d_global_visited" => ways!(d_global_visited),
         "d_outarg_when" => ways!(d_outarg_when),
+        "d_when_arith" => ways!(d_when_arith),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 29] = [
+const ALL: [&str; 30] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -381,6 +394,7 @@ const ALL: [&str; 29] = [
     "c_global_flag",
     "d_global_visited",
     "d_outarg_when",
+    "d_when_arith",
 ];
 
 fn main() {

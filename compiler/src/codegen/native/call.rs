@@ -1713,7 +1713,7 @@ impl Gen<'_> {
     }
 }
 
-fn cmp_tokens(op: ArithCmp, l: TokenStream, r: TokenStream) -> TokenStream {
+pub(super) fn cmp_tokens(op: ArithCmp, l: TokenStream, r: TokenStream) -> TokenStream {
     match op {
         ArithCmp::Eq => quote!((#l == #r)),
         ArithCmp::Ne => quote!((#l != #r)),

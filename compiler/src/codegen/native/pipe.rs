@@ -451,7 +451,7 @@ impl Gen<'_> {
                 }});
             }
             // A conditional's value first (its condition may use `cx`).
-            let pipe_out = if matches!(e, Ev::If(..)) {
+            let pipe_out = if matches!(e, Ev::If(..) | Ev::Pick(..)) {
                 let e = &v.e;
                 quote!(let out_value = #e; let pipe_out = cx.term(&out_value);)
             } else if let Some(t) = self.nat_out_term(d, cur, e, regs)? {
@@ -682,10 +682,15 @@ impl Gen<'_> {
         next: &Next,
         regs: &Regs,
     ) -> N<V> {
-        let Ev::If(c, a, b) = e else {
-            return self.nat_ev_value(d, cur, e, regs);
+        let (c, a, b) = match e {
+            Ev::If(c, a, b) => (c, a, b),
+            // `when/3` whose branches do nothing but build native values:
+            // evaluating the one not chosen too changes nothing.
+            Ev::Pick(c, a, b) if Self::nat_inert(a, regs) && Self::nat_inert(b, regs) => (c, a, b),
+            _ => return self.nat_ev_value(d, cur, e, regs),
         };
         let c = match &**c {
+            Cond::Cmp(op, l, r) => self.nat_cmp_plain(*op, l, r, regs)?,
             Cond::Arith(op, l, r) => {
                 let (l, r) = (
                     self.nat_ev_value(d, cur, l, regs)?,
