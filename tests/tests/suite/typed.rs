@@ -2321,6 +2321,12 @@ fn when_with_an_arithmetic_condition_agrees() {
         "main(a, 1)",
         "main(1, b)",
         "main(_, 1)",
+        "second(3)",
+        "second(0)",
+        "second(9)",
+        "second(1.5)",
+        "second(a)",
+        "second(_)",
     ] {
         agree_modulo_vars(when_nwhen16::when_arith::program(), &ir, main);
         agree_modulo_vars(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main);
@@ -2378,7 +2384,15 @@ fn run_error<A: app::App>(app: &A, main: &str) -> Option<sitlog_runtime::machine
 #[test]
 fn a_when_arith_walk_agrees() {
     let ir = interpreter("typed/shapes/d_when_arith");
-    for l in ["[1, 5, 3]", "[9]", "[]", "[1, 2.5, 7]", "[1, x, 2]"] {
+    for l in [
+        "[1, 5, 3]",
+        "[9]",
+        "[]",
+        "[1, 2.5, 7]",
+        "[1, x, 2]",
+        "[5|x]",
+        "[1, f(2)]",
+    ] {
         let main = format!("hunt(2, {l}, 4)");
         agree(when_nwhen16::when_arith_walk::program(), &ir, &main, "");
         agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, &main, "");

@@ -31,3 +31,15 @@ diag_mod(main(X, Y),
   ],
   [n ==> 0, m ==> 10]
 ).
+
+% A comparison in a next situation and in the out_arg of the same arc: the
+% next situation's is evaluated first (D-18), so its error is the one met.
+diag_mod(second(X),
+  [ [ id ==> start, type ==> neutral,
+      out_arg ==> apply(when(_, _, _), [X =< 5, low(X), high]),
+      arcs ==> [ empty : empty => apply(when(_, _, _), [X > 1, big, small]) ] ],
+    [ id ==> big, type ==> final ],
+    [ id ==> small, type ==> final ]
+  ],
+  []
+).

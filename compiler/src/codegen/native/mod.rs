@@ -4029,29 +4029,10 @@ impl Gen<'_> {
         }
     }
 
-    /// `when/3`'s comparison ([`Cond::Cmp`]) of two ints or two floats
-    /// (native values, their own values: it cannot fail), in Rust; any
-    /// other operands stay the term code's (its error is the evaluator's).
-    fn nat_cmp_plain(
-        &self,
-        op: sitlog_runtime::ArithCmp,
-        l: &Build,
-        r: &Build,
-        regs: &Regs,
-    ) -> N<TokenStream> {
-        let (l, r) = (self.nat_value(l, regs)?, self.nat_value(r, regs)?);
-        let plain =
-            (l.ty == Ty::Int && r.ty == Ty::Int) || (l.ty == Ty::Float && r.ty == Ty::Float);
-        if !plain {
-            return Err("a `when`'s comparison is not on two native numbers".into());
-        }
-        let (le, re) = (l.e, r.e);
-        Ok(call::cmp_tokens(op, quote!(#le), quote!(#re)))
-    }
-
     /// Whether evaluating `e` only builds it from registers of types whose
     /// values are their own values (ints, floats, atoms, lists and
-    /// compounds of them with no construct of L as functor) and constants:
+    /// compounds of them with no construct of L as functor, `ground`
+    /// values, inert by their conversion) and constants:
     /// evaluating it or not does nothing else (a branch of `when/3` not
     /// chosen, [`Ev::Pick`]).
     fn nat_inert(e: &Ev, regs: &Regs) -> bool {
@@ -4063,7 +4044,9 @@ impl Gen<'_> {
                     sitlog_runtime::eval::evaluates_arguments_only(*name, args.len())
                         && args.iter().all(inert)
                 }
-                Ty::Ground | Ty::Term => false,
+                // A `Val`: an inert ground term (`sitlog_runtime::native`).
+                Ty::Ground => true,
+                Ty::Term => false,
             }
         }
         let mut rs = Vec::new();
@@ -4183,7 +4166,12 @@ impl Gen<'_> {
                 };
                 self.nat_arith(d, cur, *op, l, r)
             }
-            Cond::Cmp(op, l, r) => self.nat_cmp_plain(*op, l, r, regs),
+            // `when/3`'s comparison: its operands as written (a register,
+            // a constant), its error the evaluator's.
+            Cond::Cmp(op, l, r) => {
+                let (l, r) = (self.nat_value(l, regs)?, self.nat_value(r, regs)?);
+                self.nat_arith_as(d, cur, *op, l, r, true)
+            }
             Cond::Other(Build::Compound(op, args))
                 if args.len() == 2 && matches!(op.as_str(), "==" | "\\==") =>
             {
