@@ -143,6 +143,10 @@ mod d_found_into_next {
 mod c_count_two_levels {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_count_two_levels");
 }
+// Helper `nwhen16`'s (session 15): `when/3` with an arithmetic condition.
+mod d_when_arith {
+    sitlog_macros::include_dm!("../tests/typed/shapes/d_when_arith");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -237,6 +241,10 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         | "d_compare_fn"
         | "d_outarg_when" => format!("hunt({n}, {list}, {last})"),
         "d_local_places" => format!("tour({n}, cellar)"),
+        "d_when_arith" => {
+            let ints: Vec<String> = (0..len).map(|i| i.to_string()).collect();
+            format!("hunt({n}, [{}], {})", ints.join(","), len / 2)
+        }
         "d_const_ints" => format!("drill({n}, 64)"),
         "d_built_list" => format!("patrol({n}, {list}, p0)"),
         "d_acc_seen" => format!("survey({n}, {list}, {last})"),
@@ -311,6 +319,10 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             | "d_target_matched_in_id"
             | "d_compare_fn" => hand_walk(n, black_box(&syms), black_box(lsym), true, false),
             "d_outarg_when" => hand_walk_flag(n, black_box(&syms), black_box(lsym)),
+            "d_when_arith" => {
+                let ints: Vec<i64> = (0..len as i64).collect();
+                hand_walk_when_arith(n, black_box(&ints), black_box(len as i64 / 2))
+            }
             "d_local_places" => {
                 hand_walk(n, black_box(&syms[..8]), black_box(Sym(7)), false, false)
             }
@@ -425,11 +437,12 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_goto_exit_arc" => ways!(d_goto_exit_arc),
         "d_found_into_next" => ways!(d_found_into_next),
         "c_count_two_levels" => ways!(c_count_two_levels),
+        "d_when_arith" => ways!(d_when_arith),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 37] = [
+const ALL: [&str; 38] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -467,6 +480,7 @@ const ALL: [&str; 37] = [
     "d_goto_exit_arc",
     "d_found_into_next",
     "c_count_two_levels",
+    "d_when_arith",
 ];
 
 fn main() {

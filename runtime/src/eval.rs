@@ -288,6 +288,27 @@ pub fn arith_condition(
     }
 }
 
+/// The value of the comparison `A op B` (D-34, `op` an arithmetic one) is
+/// `true`: `written` are `A` and `B` as written (a variable's value not
+/// evaluated), `values` their values. What evaluating the term `A op B`
+/// gives (its error message and the construct it blames, `op/2`), without
+/// building the term except for an error.
+pub fn compare_value(
+    store: &mut Store,
+    op: ArithCmp,
+    written: [Term; 2],
+    values: [Term; 2],
+) -> Result<bool, EvalError> {
+    match store.arith_compare(op, values[0], values[1]) {
+        Ok(holds) => Ok(holds),
+        Err(e) => {
+            let t = store.compound(op.atom(), &written);
+            let e = EvalError::new(format!("in `{}`: {e}", show(store, t)));
+            Err(e.blame(store, t))
+        }
+    }
+}
+
 fn bool_atom(b: bool) -> Term {
     Term::atom(if b { atoms::TRUE } else { atoms::FALSE })
 }

@@ -149,6 +149,16 @@ impl Gen<'_> {
                 });
                 quote!(#x)
             }
+            // `when/3`: both branches evaluated, in order, after the test.
+            Ev::Pick(c, then, other) => {
+                let c = self.cond_code(c, arc, b);
+                let then = self.ev_code(then, arc, b);
+                let other = self.ev_code(other, arc, b);
+                let x = b.tmp();
+                b.stmts
+                    .push(quote!(let #x = if #c { #then } else { #other };));
+                quote!(#x)
+            }
             Ev::VarOpFresh { op, name, dst } => {
                 let (op, name, dst) = (self.atom_expr(*op), self.atom_expr(*name), reg(*dst));
                 b.stmts
@@ -206,6 +216,18 @@ impl Gen<'_> {
                 let t = self.build_code(t, b);
                 let x = b.tmp();
                 b.stmts.push(quote!(let #x = cx.condition(#t, #arc)?;));
+                x
+            }
+            Cond::Cmp(op, l, r) => {
+                let lw = self.build_code(l, b);
+                let rw = self.build_code(r, b);
+                let (l, r, x) = (b.tmp(), b.tmp(), b.tmp());
+                let op = format_ident!("{}", format!("{op:?}"));
+                b.stmts.push(quote! {
+                    let #l = cx.value(#lw, #arc)?;
+                    let #r = cx.value(#rw, #arc)?;
+                    let #x = cx.compare_value(::sitlog_runtime::ArithCmp::#op, [#lw, #rw], [#l, #r], #arc)?;
+                });
                 x
             }
         };

@@ -59,6 +59,12 @@ pub(super) fn ev(
                 ev(cx, regs, other, arc)
             }
         }
+        Ev::Pick(c, then, other) => {
+            let holds = cond(cx, regs, c, arc)?;
+            let a = ev(cx, regs, then, arc)?;
+            let b = ev(cx, regs, other, arc)?;
+            Ok(if holds { a } else { b })
+        }
         Ev::VarOpFresh { op, name, dst } => {
             // `inc` of a local integer that does not overflow: what
             // `var_op_fresh` does, without its general path.
@@ -124,14 +130,7 @@ pub(super) fn cond(
             // Two integers compare as integers (what the runtime's
             // comparison does with them).
             if let (Some(a), Some(b)) = (cx.int_of(l), cx.int_of(r)) {
-                return Ok(match op {
-                    ArithCmp::Eq => a == b,
-                    ArithCmp::Ne => a != b,
-                    ArithCmp::Lt => a < b,
-                    ArithCmp::Gt => a > b,
-                    ArithCmp::Le => a <= b,
-                    ArithCmp::Ge => a >= b,
-                });
+                return Ok(int_cmp(*op, a, b));
             }
             Ok(cx.arith_condition(*op, l, r, arc)?)
         }
@@ -139,6 +138,40 @@ pub(super) fn cond(
             let t = build(cx, regs, b);
             Ok(cx.condition(t, arc)?)
         }
+        Cond::Cmp(op, l, r) => {
+            // Each operand's value as a variable's occurrence has it (a
+            // compound evaluated), then compared (`Cx::compare_value`).
+            let (lw, rw) = (build(cx, regs, l), build(cx, regs, r));
+            let l = ev_written(cx, lw, arc)?;
+            let r = ev_written(cx, rw, arc)?;
+            if let (Some(a), Some(b)) = (cx.int_of(l), cx.int_of(r)) {
+                return Ok(int_cmp(*op, a, b));
+            }
+            Ok(cx.compare_value(*op, [lw, rw], [l, r], arc)?)
+        }
+    }
+}
+
+/// `a op b` on two integers (what the runtime's comparison does with them).
+fn int_cmp(op: ArithCmp, a: i64, b: i64) -> bool {
+    match op {
+        ArithCmp::Eq => a == b,
+        ArithCmp::Ne => a != b,
+        ArithCmp::Lt => a < b,
+        ArithCmp::Gt => a > b,
+        ArithCmp::Le => a <= b,
+        ArithCmp::Ge => a >= b,
+    }
+}
+
+/// The value of a term as written where a variable occurs (`Ev::Value`).
+fn ev_written(cx: Rcx<'_, '_, '_, '_>, t: Term, arc: Option<usize>) -> R<Term> {
+    let store = cx.store();
+    let t = store.deref(t);
+    if store.is_compound(t) {
+        Ok(cx.eval(t, arc)?)
+    } else {
+        Ok(t)
     }
 }
 

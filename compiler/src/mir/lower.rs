@@ -272,27 +272,83 @@ impl<'s> Planner<'s> {
     }
 
     /// `apply(when(_, _, _), [C, T, E])` with the runtime's own `when/3`
-    /// (`functions::standard`: `T` if `C`'s value is `true`, else `E`) as
-    /// the conditional `(C -> T ; otherwise -> E)`, where the two cannot
-    /// differ: `when`'s three arguments are variables (each takes its
-    /// value, D-37), `C` is `A == B` or `A \== B` (its value `true` exactly
-    /// when the condition holds: both evaluate `A` then `B` and compare
-    /// them, D-34/D-35, with the same errors) and `T`, `E` are terms whose
-    /// evaluation gives themselves (constants: evaluating both, as `apply`
-    /// does, or one, as the conditional does, is the same). Anything else
+    /// (`functions::standard`: `T` if `C`'s value is `true`, else `E`;
+    /// `apply` evaluates `C`, `T` and `E` in this order first, D-37) as a
+    /// choice that takes the same steps, where the two cannot differ:
+    /// `when`'s three arguments are variables the situation names nowhere
+    /// else (each takes its value, D-37) and `C` is a comparison whose
+    /// value is `true` exactly when it holds ([`Self::when_cond`]). When
+    /// `T` and `E` are terms whose evaluation gives themselves (constants:
+    /// evaluating both, as `apply` does, or one is the same) it is the
+    /// conditional `(C -> T ; otherwise -> E)` ([`Ev::If`]); otherwise both
+    /// are evaluated, then the value chosen ([`Ev::Pick`]). Anything else
     /// stays the evaluator's call (`None`).
     pub(crate) fn when_call(&self, t: Term, scope: &mut Scope, depth: usize) -> Option<Ev> {
         let (c, then, other) = self.when_parts(t)?;
-        let c = Cond::Other(self.build(c, &scope.vars, depth + 1).ok()?);
-        let then = self.ev(then, scope, depth + 1).ok()?;
-        let other = self.ev(other, scope, depth + 1).ok()?;
+        // Nothing lowered (no scope changed) unless all three parts are.
+        let mut trial = scope.clone();
+        let c = self.when_cond(c, &trial, depth)?;
+        let then = self.ev(then, &mut trial, depth + 1).ok()?;
+        let other = self.ev(other, &mut trial, depth + 1).ok()?;
+        *scope = trial;
         self.lowered_when.set(true);
-        Some(Ev::If(Box::new(c), Box::new(then), Box::new(other)))
+        let (c, then, other) = (Box::new(c), Box::new(then), Box::new(other));
+        Some(if self.when_lazy(t) {
+            Ev::If(c, then, other)
+        } else {
+            Ev::Pick(c, then, other)
+        })
+    }
+
+    /// Whether both branches of a `when` ([`Self::when_parts`]) are
+    /// constants whose evaluation gives themselves (what `ev` makes
+    /// `Ev::Built`): evaluating only the one chosen is the same.
+    fn when_lazy(&self, t: Term) -> bool {
+        let constant = |t: Term| self.store.is_ground(t) && self.inert(t, true);
+        self.when_parts(t)
+            .is_some_and(|(_, then, other)| constant(then) && constant(other))
+    }
+
+    /// `when`'s condition `C` as a [`Cond`] that holds exactly when `C`'s
+    /// value is `true` (D-34), with the same steps and errors: `A == B`,
+    /// `A \== B` (both evaluate `A` then `B` and compare them, never an
+    /// error of their own, D-34/D-35), or `A op B` for `op` one of `<`,
+    /// `>`, `=<`, `>=` with `A` and `B` each a variable or a constant
+    /// whose evaluation gives itself ([`Cond::Cmp`]: the value
+    /// comparison's own error, message and blame). Any other condition
+    /// (`=:=`, `@<`, `(A, B)`, `\+ A`, an atom, a variable: the
+    /// evaluator's value, never `true` but for the atom `true` or a
+    /// variable bound to it) is `None`.
+    fn when_cond(&self, c: Term, scope: &Scope, depth: usize) -> Option<Cond> {
+        let (name, args) = match self.store.value(c) {
+            Value::Compound(name, args) if args.len() == 2 => (name, args),
+            _ => return None,
+        };
+        if name == atoms::EQ_EQ || name == atoms::NOT_EQ_EQ {
+            return Some(Cond::Other(self.build(c, &scope.vars, depth + 1).ok()?));
+        }
+        if ![
+            atoms::GREATER,
+            atoms::LESS,
+            atoms::GREATER_EQ,
+            atoms::LESS_EQ,
+        ]
+        .contains(&name)
+        {
+            return None;
+        }
+        let op = ArithCmp::from_atom(name)?;
+        let operand = |a: Term| match self.store.value(a) {
+            Value::Var(v) => scope.vars.get(&v.index()).map(|&r| Build::Reg(r)),
+            _ if self.store.is_ground(a) && self.inert(a, true) => Some(Build::Const(a)),
+            _ => None,
+        };
+        Some(Cond::Cmp(op, operand(args[0])?, operand(args[1])?))
     }
 
     /// `(C, T, E)` of `apply(when(V1, V2, V3), [C, T, E])` (`V`s variables
-    /// the situation names nowhere else, `C` an `==` or `\==`, the
-    /// runtime's own `when/3`): see [`Self::when_call`].
+    /// the situation names nowhere else, the runtime's own `when/3`): see
+    /// [`Self::when_call`].
     fn when_parts(&self, t: Term) -> Option<(Term, Term, Term)> {
         if !self.std_when {
             return None;
@@ -315,14 +371,7 @@ impl<'s> Planner<'s> {
         let &[c, then, other] = items.as_slice() else {
             return None;
         };
-        let (name, arity) = self.store.functor(c)?;
-        if arity != 2 || (name != atoms::EQ_EQ && name != atoms::NOT_EQ_EQ) {
-            return None;
-        }
-        // Constants whose evaluation gives themselves (what `ev` makes
-        // `Ev::Built`), checked before lowering anything (no scope changed).
-        let constant = |t: Term| self.store.is_ground(t) && self.inert(t, true);
-        (constant(then) && constant(other)).then_some((c, then, other))
+        Some((c, then, other))
     }
 
     pub(crate) fn cond(&self, cond: Term, scope: &mut Scope, depth: usize) -> Plan<Cond> {
@@ -349,12 +398,15 @@ impl<'s> Planner<'s> {
             let other = self.next(other, scope, depth + 1)?;
             return Ok(Next::If(Box::new(c), Box::new(then), Box::new(other)));
         }
-        // The runtime's `when/3` as the conditional it is the same as.
-        if let Some(Ev::If(c, ..)) = self.when_call(t, scope, depth) {
-            if let Some((_, then, other)) = self.when_parts(t) {
-                let then = self.next(then, scope, depth + 1)?;
-                let other = self.next(other, scope, depth + 1)?;
-                return Ok(Next::If(c, Box::new(then), Box::new(other)));
+        // The runtime's `when/3` as the conditional it is the same as
+        // (constant branches: each a next situation of its own).
+        if self.when_lazy(t) {
+            if let Some(Ev::If(c, ..)) = self.when_call(t, scope, depth) {
+                if let Some((_, then, other)) = self.when_parts(t) {
+                    let then = self.next(then, scope, depth + 1)?;
+                    let other = self.next(other, scope, depth + 1)?;
+                    return Ok(Next::If(c, Box::new(then), Box::new(other)));
+                }
             }
         }
         Ok(Next::Eval(self.ev(t, scope, depth + 1)?))

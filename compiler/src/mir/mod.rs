@@ -75,6 +75,10 @@ pub enum Ev {
     /// Anything else: the runtime's evaluator.
     Eval(Build),
     If(Box<Cond>, Box<Ev>, Box<Ev>),
+    /// The runtime's `when/3` (`Planner::when_call`): the condition
+    /// decided, then both branches evaluated in this order (as `apply`
+    /// evaluates its arguments, D-37), the value the condition picks.
+    Pick(Box<Cond>, Box<Ev>, Box<Ev>),
     /// `get`/`inc` into a variable not made yet: it takes the value.
     VarOpFresh {
         op: Atom,
@@ -103,6 +107,12 @@ pub enum Ev {
 pub enum Cond {
     Arith(ArithCmp, Ev, Ev),
     Other(Build),
+    /// The value of `A op B` (`<`, `>`, `=<`, `>=`) is `true` (D-34), the
+    /// condition of a `when/3` (`Planner::when_call`): `A` and `B` (a
+    /// register or a constant, as written) evaluated as a variable's
+    /// occurrence is, then compared; an error is the evaluator's
+    /// (`eval::compare_value`: the term as written, blaming `op/2`).
+    Cmp(ArithCmp, Build, Build),
 }
 
 /// A next situation: its value and, when known, its index.
@@ -312,7 +322,7 @@ impl Ev {
             Ev::Built(b) | Ev::Eval(b) | Ev::VarOp { arg: b, .. } | Ev::IsFresh { expr: b, .. } => {
                 b.constants(out)
             }
-            Ev::If(c, a, b) => {
+            Ev::If(c, a, b) | Ev::Pick(c, a, b) => {
                 c.constants(out);
                 a.constants(out);
                 b.constants(out);
@@ -334,6 +344,10 @@ impl Cond {
                 r.constants(out);
             }
             Cond::Other(b) => b.constants(out),
+            Cond::Cmp(_, l, r) => {
+                l.constants(out);
+                r.constants(out);
+            }
         }
     }
 }

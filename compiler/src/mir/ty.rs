@@ -1130,7 +1130,7 @@ impl<'a> State<'a> {
                 self.scan_writes(d, s, b, 0);
                 self.eval_build(d, s, b)
             }
-            Ev::If(c, a, b) => {
+            Ev::If(c, a, b) | Ev::Pick(c, a, b) => {
                 self.cond(d, s, c);
                 let a = self.ev(d, s, a);
                 let b = self.ev(d, s, b);
@@ -1285,6 +1285,10 @@ impl<'a> State<'a> {
                 self.ev(d, s, r);
             }
             Cond::Other(b) => self.scan_writes(d, s, b, 0),
+            Cond::Cmp(_, l, r) => {
+                self.build_ty(d, s, l);
+                self.build_ty(d, s, r);
+            }
         }
     }
 
@@ -2089,6 +2093,12 @@ fn cond_first_use(c: &Cond, r: Reg, depth: usize) -> Use {
         },
         Cond::Other(b) if build_mentions(b, r, depth + 1) => Use::Boundary,
         Cond::Other(_) => Use::None,
+        Cond::Cmp(_, a, b)
+            if build_mentions(a, r, depth + 1) || build_mentions(b, r, depth + 1) =>
+        {
+            Use::Read
+        }
+        Cond::Cmp(..) => Use::None,
     }
 }
 
@@ -2113,6 +2123,14 @@ fn ev_first_use(e: &Ev, r: Reg, depth: usize) -> Use {
                 // One branch or the other: not certainly bound.
                 Use::Read
             }
+            u => u,
+        },
+        // Both branches evaluated, in order.
+        Ev::Pick(c, a, b) => match cond_first_use(c, r, depth + 1) {
+            Use::None => match ev_first_use(a, r, depth + 1) {
+                Use::None => ev_first_use(b, r, depth + 1),
+                u => u,
+            },
             u => u,
         },
         Ev::VarOpFresh { dst, .. } if *dst == r => Use::Boundary,
@@ -2184,6 +2202,10 @@ pub(crate) fn occurrences(p: &SitPlan) -> Vec<u32> {
                 ev(b, f, depth + 1);
             }
             Cond::Other(b) => build(b, f, depth + 1),
+            Cond::Cmp(_, a, b) => {
+                build(a, f, depth + 1);
+                build(b, f, depth + 1);
+            }
         }
     }
     fn ev(e: &Ev, f: &mut dyn FnMut(Reg), depth: usize) {
@@ -2193,7 +2215,7 @@ pub(crate) fn occurrences(p: &SitPlan) -> Vec<u32> {
         match e {
             Ev::Value(r) => f(*r),
             Ev::Built(b) | Ev::Eval(b) | Ev::VarOp { arg: b, .. } => build(b, f, depth + 1),
-            Ev::If(c, a, b) => {
+            Ev::If(c, a, b) | Ev::Pick(c, a, b) => {
                 cond(c, f, depth + 1);
                 ev(a, f, depth + 1);
                 ev(b, f, depth + 1);
@@ -2308,7 +2330,7 @@ fn is_lhs(items: &[Ev], before: impl Fn(Reg) -> bool, out: &mut Vec<Reg>) {
     }
 }
 
-fn build_mentions(b: &Build, r: Reg, depth: usize) -> bool {
+pub(crate) fn build_mentions(b: &Build, r: Reg, depth: usize) -> bool {
     match b {
         Build::Const(_) => false,
         Build::Reg(x) => *x == r,
@@ -2325,13 +2347,16 @@ pub(crate) fn ev_mentions(e: &Ev, r: Reg, depth: usize) -> bool {
     let cond = |c: &Cond| match c {
         Cond::Arith(_, a, b) => ev_mentions(a, r, depth + 1) || ev_mentions(b, r, depth + 1),
         Cond::Other(b) => build_mentions(b, r, depth + 1),
+        Cond::Cmp(_, a, b) => build_mentions(a, r, depth + 1) || build_mentions(b, r, depth + 1),
     };
     match e {
         Ev::Value(x) => *x == r,
         Ev::Built(b) | Ev::Eval(b) | Ev::VarOp { arg: b, .. } | Ev::IsFresh { expr: b, .. } => {
             build_mentions(b, r, depth + 1)
         }
-        Ev::If(c, a, b) => cond(c) || ev_mentions(a, r, depth + 1) || ev_mentions(b, r, depth + 1),
+        Ev::If(c, a, b) | Ev::Pick(c, a, b) => {
+            cond(c) || ev_mentions(a, r, depth + 1) || ev_mentions(b, r, depth + 1)
+        }
         Ev::VarOpFresh { dst, .. } => *dst == r,
         Ev::Is { lhs, expr } => {
             build_mentions(lhs, r, depth + 1) || build_mentions(expr, r, depth + 1)

@@ -1059,6 +1059,25 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         eval::arith_condition(&mut self.m.store, op, a, b).map_err(|e| self.error(e.message, arc))
     }
 
+    /// Whether the value of `A op B` (an arithmetic comparison) is `true`,
+    /// `lw`/`rw` its operands as written, `l`/`r` their values: the
+    /// evaluator's error (`eval::compare_value`), blaming `op/2` as it does.
+    pub fn compare_value(
+        &mut self,
+        op: crate::arith::ArithCmp,
+        written: [Term; 2],
+        values: [Term; 2],
+        arc: Option<usize>,
+    ) -> Result<bool, RunError> {
+        eval::compare_value(&mut self.m.store, op, written, values).map_err(|e| {
+            let mut err = self.error(e.message, arc);
+            if let Some(site) = err.site.as_mut() {
+                site.culprit = e.culprit;
+            }
+            err
+        })
+    }
+
     /// Any other condition of a conditional (D-35).
     pub fn condition(&mut self, cond: Term, arc: Option<usize>) -> Result<bool, RunError> {
         self.m.materialize();

@@ -2514,5 +2514,113 @@ fn nsurvey16_shapes_agree() {
         "relay(f(x))",
     ] {
         both!(ir, count_two_levels, main);
+/// Helper `nwhen16`'s (session 15): `when/3` with an arithmetic condition
+/// and branches that are not constants.
+mod when_nwhen16 {
+    pub mod when_arith {
+        sitlog_macros::include_dm!("typed/when_arith");
+    }
+    pub mod when_arith_walk {
+        sitlog_macros::include_dm!("typed/shapes/d_when_arith");
+    }
+}
+
+/// `apply(when(_, _, _), [A op B, T, E])` for `op` in `<`, `>`, `=<`, `>=`
+/// (`typed/when_arith`): true and false, on ints and a float, an error on
+/// an atom and on an unbound variable (the same message, situation and
+/// blamed construct), branches built from bound variables, an `inc` in
+/// both branches (both run, as `apply` evaluates its arguments), nested,
+/// in an out_arg, an action and a next situation; `=:=`, `@<` and a
+/// conjunction (never `true`: always `E`, the evaluator's call kept). The
+/// compiled task and the interpreter's plans agree with the evaluator,
+/// history kept or not.
+#[test]
+fn when_with_an_arithmetic_condition_agrees() {
+    let ir = interpreter("typed/when_arith");
+    for main in [
+        "main(3, 1)",
+        "main(1, 2)",
+        "main(0, 0)",
+        "main(2, 2)",
+        "main(2.5, 1)",
+        "main(1, 1.5)",
+        "main(a, 1)",
+        "main(1, b)",
+        "main(_, 1)",
+        "second(3)",
+        "second(0)",
+        "second(9)",
+        "second(1.5)",
+        "second(a)",
+        "second(_)",
+    ] {
+        agree_modulo_vars(when_nwhen16::when_arith::program(), &ir, main);
+        agree_modulo_vars(&sitlog_compiler::interp::Resolved::new(&ir), &ir, main);
+    }
+    let c = run(
+        when_nwhen16::when_arith::program(),
+        "main(0, 0)",
+        "",
+        false,
+        false,
+        false,
+    );
+    // `3 > 0`: `get(n, _)` chosen, the `inc(m, _)` of the other branch run too.
+    assert_eq!(c.0["out_arg"], "1", "{c:?}");
+    assert!(format!("{c:?}").contains("says: 12"), "{c:?}");
+    // The error blames the comparison as the evaluator does.
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    for main in ["main(a, 1)", "main(_, 1)"] {
+        let blame = |r: Option<sitlog_runtime::machine::RunError>| {
+            r.and_then(|e| e.site.and_then(|s| s.culprit))
+        };
+        let i = blame(run_error(&ir, main));
+        assert!(i.is_some_and(|c| c.name.as_str() == "<"), "{i:?}");
+        assert_eq!(blame(run_error(&plans, main)), i, "{main}");
+        assert_eq!(
+            blame(run_error(when_nwhen16::when_arith::program(), main)),
+            i,
+            "{main}"
+        );
+    }
+}
+
+/// The run's error, if it ends with one.
+fn run_error<A: app::App>(app: &A, main: &str) -> Option<sitlog_runtime::machine::RunError> {
+    let mut perception = ScriptPerception::new("script", String::new());
+    let mut text = Vec::new();
+    let mut actions = TextActions::new(&mut text, Vec::new());
+    let (outcome, _store): (Outcome, Store) = app::run(
+        app,
+        main,
+        None,
+        Options::default(),
+        Functions::standard(),
+        &mut perception,
+        &mut actions,
+        None,
+    )
+    .expect("runs");
+    outcome.result.err()
+}
+
+/// A walk whose out_arg is `apply(when(_, _, _), [P > Limit, found(P),
+/// none])` (`typed/shapes/d_when_arith`): the compiled task and the plans
+/// agree with the evaluator, lists of ints, a float, an atom (the error).
+#[test]
+fn a_when_arith_walk_agrees() {
+    let ir = interpreter("typed/shapes/d_when_arith");
+    for l in [
+        "[1, 5, 3]",
+        "[9]",
+        "[]",
+        "[1, 2.5, 7]",
+        "[1, x, 2]",
+        "[5|x]",
+        "[1, f(2)]",
+    ] {
+        let main = format!("hunt(2, {l}, 4)");
+        agree(when_nwhen16::when_arith_walk::program(), &ir, &main, "");
+        agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, &main, "");
     }
 }

@@ -1618,6 +1618,22 @@ impl Gen<'_> {
     /// term code does (the machine entered in situation `cur`: its result
     /// or its error; an int against a float goes there too).
     pub(super) fn nat_arith(&self, d: &Dm, cur: usize, op: ArithCmp, l: V, r: V) -> N<TokenStream> {
+        self.nat_arith_as(d, cur, op, l, r, false)
+    }
+
+    /// [`Gen::nat_arith`]; `value`: the comparison's value is tested
+    /// (`when/3`'s condition, `Cond::Cmp`), whose error where the operands
+    /// are not numbers is the evaluator's (`Cx::compare_value`), not a
+    /// conditional's.
+    pub(super) fn nat_arith_as(
+        &self,
+        d: &Dm,
+        cur: usize,
+        op: ArithCmp,
+        l: V,
+        r: V,
+        value: bool,
+    ) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
         let some = quote!(Some);
         let none = quote!(None::<i64>);
@@ -1682,6 +1698,11 @@ impl Gen<'_> {
         };
         let (lp, rp) = (super::place(&l), super::place(&r));
         let (lt, rt_) = (rust_ty(&l.ty)?, rust_ty(&r.ty)?);
+        let decide = if value {
+            quote!(cx.compare_value(#rt::ArithCmp::#opt, [lt, rterm], [lt, rterm], arc_at)?)
+        } else {
+            quote!(cx.arith_condition(#rt::ArithCmp::#opt, lt, rterm, arc_at)?)
+        };
         Ok(quote! {{
             let #lx: &#lt = &#lp;
             let #rx: &#rt_ = &#rp;
@@ -1706,7 +1727,7 @@ impl Gen<'_> {
                     cx.enter_with_id(#curl, #id);
                     let lt = cx.term(#lx);
                     let rterm = cx.term(#rx);
-                    cx.arith_condition(#rt::ArithCmp::#opt, lt, rterm, arc_at)?
+                    #decide
                 }
             }
         }})

@@ -928,6 +928,9 @@ fn only_in_conditions(next: &Next, r: Reg) -> bool {
                 crate::mir::ty::ev_mentions(a, r, 0) || crate::mir::ty::ev_mentions(b, r, 0)
             }
             Cond::Other(_) => false,
+            Cond::Cmp(_, a, b) => {
+                crate::mir::ty::build_mentions(a, r, 0) || crate::mir::ty::build_mentions(b, r, 0)
+            }
         }
     }
     !targets(next, r)
@@ -1010,7 +1013,7 @@ fn ev_binds(e: &Ev, out: &mut Vec<Reg>) {
     match e {
         Ev::VarOpFresh { dst, .. } | Ev::IsFresh { dst, .. } => out.push(*dst),
         Ev::Compound(_, args) => args.iter().for_each(|a| ev_binds(a, out)),
-        Ev::If(_, a, b) => {
+        Ev::If(_, a, b) | Ev::Pick(_, a, b) => {
             ev_binds(a, out);
             ev_binds(b, out);
         }
@@ -3580,6 +3583,16 @@ impl Gen<'_> {
                 ts.push(quote!(let #x = if #c { #(#ta)* #ea } else { #(#tb)* #eb };));
                 Ok(quote!(#x))
             }
+            // `when/3`: the condition, then both branches, in this order.
+            Ev::Pick(c, a, b) => {
+                let c = self.nat_cond_term(c, regs, ts, n)?;
+                let ea = self.nat_ev_term(a, regs, ts, n)?;
+                let eb = self.nat_ev_term(b, regs, ts, n)?;
+                let x = format_ident!("b{}", *n);
+                *n += 1;
+                ts.push(quote!(let #x = if #c { #ea } else { #eb };));
+                Ok(quote!(#x))
+            }
         }
     }
 
@@ -3627,6 +3640,15 @@ impl Gen<'_> {
                 let op = format_ident!("{}", format!("{op:?}"));
                 ts.push(quote! {
                     let #x = cx.arith_condition(::sitlog_runtime::ArithCmp::#op, #l, #r, arc_at)?;
+                });
+            }
+            // `when/3`'s comparison: native values are their own values.
+            Cond::Cmp(op, l, r) => {
+                let l = self.nat_build_term(l, regs, ts, n)?;
+                let r = self.nat_build_term(r, regs, ts, n)?;
+                let op = format_ident!("{}", format!("{op:?}"));
+                ts.push(quote! {
+                    let #x = cx.compare_value(::sitlog_runtime::ArithCmp::#op, [#l, #r], [#l, #r], arc_at)?;
                 });
             }
         }
@@ -4049,6 +4071,33 @@ impl Gen<'_> {
         }
     }
 
+    /// Whether evaluating `e` only builds it from registers of types whose
+    /// values are their own values (ints, floats, atoms, lists and
+    /// compounds of them with no construct of L as functor, `ground`
+    /// values, inert by their conversion) and constants:
+    /// evaluating it or not does nothing else (a branch of `when/3` not
+    /// chosen, [`Ev::Pick`]).
+    fn nat_inert(e: &Ev, regs: &Regs) -> bool {
+        fn inert(ty: &Ty) -> bool {
+            match ty {
+                Ty::Never | Ty::Int | Ty::Float | Ty::Sym => true,
+                Ty::List(e) => inert(e),
+                Ty::Tagged(name, args) => {
+                    sitlog_runtime::eval::evaluates_arguments_only(*name, args.len())
+                        && args.iter().all(inert)
+                }
+                // A `Val`: an inert ground term (`sitlog_runtime::native`).
+                Ty::Ground => true,
+                Ty::Term => false,
+            }
+        }
+        let mut rs = Vec::new();
+        built_regs(e, &mut rs)
+            && rs
+                .iter()
+                .all(|r| regs.get(r).is_some_and(|(x, ty)| !is_fresh(x) && inert(ty)))
+    }
+
     /// `get(v, R)` evaluated inside an expression (`C < get(limit, _)`),
     /// `R` not bound before (the machine's `get` binds it to the value):
     /// a register native code does not hold (as for a condition's side
@@ -4313,6 +4362,12 @@ impl Gen<'_> {
                     l
                 };
                 self.nat_arith(d, cur, *op, l, r)
+            }
+            // `when/3`'s comparison: its operands as written (a register,
+            // a constant), its error the evaluator's.
+            Cond::Cmp(op, l, r) => {
+                let (l, r) = (self.nat_value(l, regs)?, self.nat_value(r, regs)?);
+                self.nat_arith_as(d, cur, *op, l, r, true)
             }
             Cond::Other(Build::Compound(op, args))
                 if args.len() == 2 && matches!(op.as_str(), "==" | "\\==") =>

@@ -459,7 +459,13 @@ impl Gen<'_> {
                 }});
             }
             // A conditional's value first (its condition may use `cx`).
-            let pipe_out = if matches!(e, Ev::If(..)) {
+            let choice = match e {
+                Ev::Pick(..) => self.nat_out_choice_term(d, cur, e, next, regs)?,
+                _ => None,
+            };
+            let pipe_out = if let Some(t) = choice {
+                quote!(let pipe_out = #t;)
+            } else if matches!(e, Ev::If(..) | Ev::Pick(..)) {
                 let e = &v.e;
                 quote!(let out_value = #e; let pipe_out = cx.term(&out_value);)
             } else if let Some(t) = self.nat_out_term(d, cur, e, regs)? {
@@ -755,10 +761,55 @@ impl Gen<'_> {
         next: &Next,
         regs: &Regs,
     ) -> N<V> {
-        let Ev::If(c, a, b) = e else {
-            return self.nat_ev_value(d, cur, e, regs);
+        let (c, a, b) = match e {
+            Ev::If(c, a, b) => (c, a, b),
+            // `when/3` whose branches do nothing but build native values:
+            // evaluating the one not chosen too changes nothing.
+            Ev::Pick(c, a, b) if Self::nat_inert(a, regs) && Self::nat_inert(b, regs) => (c, a, b),
+            _ => return self.nat_ev_value(d, cur, e, regs),
         };
-        let c = match &**c {
+        let c = self.nat_out_cond(d, cur, c, next, regs)?;
+        let a = self.nat_out_value(d, cur, a, next, regs)?;
+        let b = self.nat_out_value(d, cur, b, next, regs)?;
+        let ty = a.ty.join(&b.ty);
+        if !ty.is_native() || ty == Ty::Term {
+            return Err("an out_arg's branches join to a term".into());
+        }
+        let (ae, be) = (super::coerce(&a, &ty)?, super::coerce(&b, &ty)?);
+        Ok(V {
+            e: quote!((if #c { #ae } else { #be })),
+            ty,
+        })
+    }
+
+    /// The condition of an out_arg's choice ([`Gen::nat_out_value`]).
+    fn nat_out_cond(
+        &self,
+        d: &Dm,
+        cur: usize,
+        c: &Cond,
+        next: &Next,
+        regs: &Regs,
+    ) -> N<TokenStream> {
+        Ok(match c {
+            // `when/3`'s comparison: as an arithmetic condition, its
+            // error the evaluator's; it may fail before the next
+            // situation where that is a constant or only builds native
+            // values (which cannot fail).
+            Cond::Cmp(op, l, r) => {
+                let (l, r) = (self.nat_value(l, regs)?, self.nat_value(r, regs)?);
+                let plain = (l.ty == Ty::Int && r.ty == Ty::Int)
+                    || (l.ty == Ty::Float && r.ty == Ty::Float);
+                let safe = match next {
+                    Next::Static(..) => true,
+                    Next::Eval(e) => Self::nat_inert(e, regs),
+                    Next::If(..) => false,
+                };
+                if !plain && !safe {
+                    return Err("a `when`'s comparison may fail before its next situation".into());
+                }
+                self.nat_arith_as(d, cur, *op, l, r, true)?
+            }
             Cond::Arith(op, l, r) => {
                 let (l, r) = (
                     self.nat_ev_value(d, cur, l, regs)?,
@@ -775,18 +826,43 @@ impl Gen<'_> {
                 self.nat_cond(d, cur, c, regs)?
             }
             _ => return Err("an out_arg's condition is not native".into()),
-        };
-        let a = self.nat_out_value(d, cur, a, next, regs)?;
-        let b = self.nat_out_value(d, cur, b, next, regs)?;
-        let ty = a.ty.join(&b.ty);
-        if !ty.is_native() || ty == Ty::Term {
-            return Err("an out_arg's branches join to a term".into());
-        }
-        let (ae, be) = (super::coerce(&a, &ty)?, super::coerce(&b, &ty)?);
-        Ok(V {
-            e: quote!((if #c { #ae } else { #be })),
-            ty,
         })
+    }
+
+    /// The term of an out_arg that is `when/3`'s choice ([`Ev::Pick`]
+    /// whose branches only build native values, and conditionals inside
+    /// it): `if C { A } else { B }` with each branch's term built where it
+    /// is chosen ([`Gen::nat_out_term`]), not a native value made and
+    /// then converted. `None` where it is not such a choice.
+    fn nat_out_choice_term(
+        &self,
+        d: &Dm,
+        cur: usize,
+        e: &Ev,
+        next: &Next,
+        regs: &Regs,
+    ) -> N<Option<TokenStream>> {
+        let (c, a, b) = match e {
+            Ev::If(c, a, b) => (c, a, b),
+            Ev::Pick(c, a, b) if Self::nat_inert(a, regs) && Self::nat_inert(b, regs) => (c, a, b),
+            _ => return Ok(None),
+        };
+        let c = self.nat_out_cond(d, cur, c, next, regs)?;
+        let branch = |x: &Ev| -> N<Option<TokenStream>> {
+            if matches!(x, Ev::If(..) | Ev::Pick(..)) {
+                return self.nat_out_choice_term(d, cur, x, next, regs);
+            }
+            if let Some(t) = self.nat_out_term(d, cur, x, regs)? {
+                return Ok(Some(t));
+            }
+            let v = self.nat_ev_value(d, cur, x, regs)?;
+            let p = super::place(&v);
+            Ok(Some(quote!(cx.term(&#p))))
+        };
+        let (Some(ta), Some(tb)) = (branch(a)?, branch(b)?) else {
+            return Ok(None);
+        };
+        Ok(Some(quote!((if #c { #ta } else { #tb }))))
     }
 }
 
