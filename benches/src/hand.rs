@@ -1335,12 +1335,6 @@ pub fn hand_walk_count(rounds: i64, items: &[Sym], target: Sym) -> u64 {
 /// (`goto(P)`, ending in `arrived(P)`), whose exit arc in the walking
 /// frame compares the place reached with the target.
 pub fn hand_walk_goto(rounds: i64, items: &[Sym], target: Sym) -> u64 {
-/// (d) `d_when_arith`: a walk over all of `items` (ints) whose every
-/// walking step sets the pipe to `found(X)` when the item is above `limit`,
-/// else `none` (the out_arg `apply(when(_, _, _), [X > Limit, found(X),
-/// none])`; an `Option<i64>` here, `black_box`ed where written), the walk
-/// ending in `done`.
-pub fn hand_walk_when_arith(rounds: i64, items: &[i64], limit: i64) -> u64 {
     #[derive(Clone, Copy)]
     enum Frame<'a> {
         Round,
@@ -1353,11 +1347,6 @@ pub fn hand_walk_when_arith(rounds: i64, items: &[i64], limit: i64) -> u64 {
     }
     let mut stack: Vec<Frame> = vec![Frame::Round];
     let (mut n, mut transitions) = (0i64, 1u64);
-        Try(&'a [i64]),
-        Done,
-    }
-    let mut stack: Vec<Frame> = vec![Frame::Round];
-    let (mut n, mut transitions, mut pipe) = (0i64, 1u64, None);
     while let Some(top) = stack.last_mut() {
         match *top {
             Frame::Round => stack.push(Frame::Begin),
@@ -1396,21 +1385,6 @@ pub fn hand_walk_when_arith(rounds: i64, items: &[i64], limit: i64) -> u64 {
                 transitions += 2;
                 black_box(found);
                 stack.pop();
-                *top = Frame::Try(items);
-            }
-            Frame::Try([]) => {
-                transitions += 1;
-                *top = Frame::Done;
-            }
-            Frame::Try([x, xs @ ..]) => {
-                transitions += 1;
-                pipe = black_box((*x > limit).then_some(*x));
-                *top = Frame::Try(xs);
-            }
-            Frame::Done => {
-                transitions += 1;
-                stack.pop();
-                transitions += 1;
                 n = black_box(n + 1);
                 if let Some(m) = stack.last_mut() {
                     *m = if n < rounds {
@@ -1531,6 +1505,60 @@ pub fn hand_two_levels(limit: i64) -> u64 {
             Frame::Over => {
                 transitions += 1;
                 stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
+/// (d) `d_when_arith`: a walk over all of `items` (ints) whose every
+/// walking step sets the pipe to `found(X)` when the item is above `limit`,
+/// else `none` (the out_arg `apply(when(_, _, _), [X > Limit, found(X),
+/// none])`; an `Option<i64>` here, `black_box`ed where written), the walk
+/// ending in `done`.
+pub fn hand_walk_when_arith(rounds: i64, items: &[i64], limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Begin,
+        Try(&'a [i64]),
+        Done,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut transitions, mut pipe) = (0i64, 1u64, None);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                transitions += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                transitions += 1;
+                *top = Frame::Try(items);
+            }
+            Frame::Try([]) => {
+                transitions += 1;
+                *top = Frame::Done;
+            }
+            Frame::Try([x, xs @ ..]) => {
+                transitions += 1;
+                pipe = black_box((*x > limit).then_some(*x));
+                *top = Frame::Try(xs);
+            }
+            Frame::Done => {
+                transitions += 1;
+                stack.pop();
+                transitions += 1;
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n < rounds {
+                        Frame::Round
+                    } else {
+                        Frame::Stop
+                    };
+                }
             }
         }
     }

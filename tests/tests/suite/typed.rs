@@ -2514,6 +2514,9 @@ fn nsurvey16_shapes_agree() {
         "relay(f(x))",
     ] {
         both!(ir, count_two_levels, main);
+    }
+}
+
 /// Helper `nwhen16`'s (session 15): `when/3` with an arithmetic condition
 /// and branches that are not constants.
 mod when_nwhen16 {
