@@ -118,6 +118,10 @@ mod d_global_visited {
 mod d_outarg_when {
     sitlog_macros::include_dm!("../tests/typed/shapes/d_outarg_when");
 }
+// Helper `nrec16`'s (session 15): a recursive situation's in_arg pattern.
+mod c_rec_inarg_pair {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_rec_inarg_pair");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -218,7 +222,9 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_found_rest" => format!("visit({n}, {list}, {last})"),
         "d_shelf_pairs" => format!("stock({n}, {pairs_text}, {last})"),
         "list_search" => format!("main({n}, {list}, {last})"),
-        "c_pipe_pair" | "c_final_by_inarg" | "c_local_limit_hop" => format!("relay({n})"),
+        "c_pipe_pair" | "c_final_by_inarg" | "c_local_limit_hop" | "c_rec_inarg_pair" => {
+            format!("relay({n})")
+        }
         "d_ints_inarg_threshold" => {
             let ints: Vec<String> = (0..len).map(|i| i.to_string()).collect();
             format!("scan({n}, [{}], {})", ints.join(","), len - 2)
@@ -288,6 +294,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             }
             "list_search" => hand_list_search(n, black_box(&syms), black_box(lsym)),
             "c_pipe_pair" => hand_pair(n),
+            "c_rec_inarg_pair" => hand_rec_pair(n),
             "c_final_by_inarg" => hand_final_by_inarg(n),
             "c_local_limit_hop" => hand_local_limit_hop(n),
             "d_ints_inarg_threshold" => {
@@ -347,11 +354,12 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "c_global_flag" => ways!(c_global_flag),
         "d_global_visited" => ways!(d_global_visited),
         "d_outarg_when" => ways!(d_outarg_when),
+        "c_rec_inarg_pair" => ways!(c_rec_inarg_pair),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 29] = [
+const ALL: [&str; 30] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -381,6 +389,7 @@ const ALL: [&str; 29] = [
     "c_global_flag",
     "d_global_visited",
     "d_outarg_when",
+    "c_rec_inarg_pair",
 ];
 
 fn main() {
