@@ -2155,7 +2155,7 @@ fn recursive_in_arg_mismatches_agree_with_either_option() {
     for (main, pipe) in [
         ("twice(5)", None),
         ("entry", Some("x")),
-        ("entry", Some("1-2-3")),
+        ("entry", Some("f(1, 2)")),
     ] {
         let error = run_with(
             m::program(),

@@ -73,7 +73,8 @@
 //! - a waiting frame made the machine's (`nat_wait`, when the frames below
 //!   the running one are materialized) waits as the interpreter's instance
 //!   would (`Cx::wait_template`: the situation's template with its id, the
-//!   in_arg the visit read, the callee's frame pushed with the call its
+//!   in_arg the visit read (an in_arg pattern built from the variant's
+//!   fields, `nat_in_arg_term`), the callee's frame pushed with the call its
 //!   `embedded_dm` makes), and the machine runs its exit arcs at the callee's
 //!   final;
 //! - anything that needs the machine's state (an action performed, an

@@ -24,7 +24,11 @@
 //! of the visit, and a pipe it does not take natively hands the visit to
 //! the machine, nothing done, which runs it from the template (a mismatch
 //! is the machine's error, D-8 as E14 fixes it, or skipped under
-//! `--legacy`, `Options::skip_unmatched_in_arg`).
+//! `--legacy`, `Options::skip_unmatched_in_arg`). In a recursive
+//! situation the pattern's variables the exit arcs or the call read are
+//! fields of its waiting variant; a waiting frame made the machine's
+//! gives its instance the pattern built from them (`nat_in_arg_term`,
+//! module `call`), which unifies as the pipe did.
 //!
 //! The pipe held as native values (`npipe15`): an out_arg `name(A, ..)`
 //! of at most `HELD_MAX` arguments, each an int, a float, an atom or a
