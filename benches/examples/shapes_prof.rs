@@ -147,6 +147,10 @@ mod c_count_two_levels {
 mod d_when_arith {
     sitlog_macros::include_dm!("../tests/typed/shapes/d_when_arith");
 }
+// Helper `nrec16`'s (session 15): a recursive situation's in_arg pattern.
+mod c_rec_inarg_pair {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_rec_inarg_pair");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -251,7 +255,11 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_found_rest" => format!("visit({n}, {list}, {last})"),
         "d_shelf_pairs" => format!("stock({n}, {pairs_text}, {last})"),
         "list_search" => format!("main({n}, {list}, {last})"),
-        "c_pipe_pair" | "c_final_by_inarg" | "c_local_limit_hop" | "c_local_count" => {
+        "c_pipe_pair"
+        | "c_final_by_inarg"
+        | "c_local_limit_hop"
+        | "c_local_count"
+        | "c_rec_inarg_pair" => {
             format!("relay({n})")
         }
         "d_ints_inarg_threshold" => {
@@ -339,6 +347,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             }
             "list_search" => hand_list_search(n, black_box(&syms), black_box(lsym)),
             "c_pipe_pair" => hand_pair(n),
+            "c_rec_inarg_pair" => hand_rec_pair(n),
             "c_final_by_inarg" => hand_final_by_inarg(n),
             "c_local_count" => hand_local_count(n),
             "c_local_limit_hop" => hand_local_limit_hop(n),
@@ -438,11 +447,12 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_found_into_next" => ways!(d_found_into_next),
         "c_count_two_levels" => ways!(c_count_two_levels),
         "d_when_arith" => ways!(d_when_arith),
+        "c_rec_inarg_pair" => ways!(c_rec_inarg_pair),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 38] = [
+const ALL: [&str; 39] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -481,6 +491,7 @@ const ALL: [&str; 38] = [
     "d_found_into_next",
     "c_count_two_levels",
     "d_when_arith",
+    "c_rec_inarg_pair",
 ];
 
 fn main() {

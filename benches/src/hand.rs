@@ -794,6 +794,61 @@ pub fn hand_pair(limit: i64) -> u64 {
     transitions
 }
 
+/// (c) `c_rec_inarg_pair`: the pipe a pair (count, limit) set once, read
+/// by the recursive situation itself before each call (its in_arg
+/// pattern, the values kept in its waiting frame), the callee counting and
+/// handing both back, the exit arc comparing the count read with the
+/// limit.
+pub fn hand_rec_pair(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask,
+        Wait(i64, i64),
+        Over,
+        Step,
+        Counted,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut transitions) = ((0i64, 0i64), 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                pipe = black_box((1, limit));
+                *top = Frame::Ask;
+            }
+            Frame::Ask => {
+                let (n, l) = pipe;
+                *top = Frame::Wait(n, l);
+                stack.push(Frame::Step);
+            }
+            Frame::Step => {
+                transitions += 1;
+                let (n, l) = pipe;
+                pipe = black_box((n + 1, l));
+                *top = Frame::Counted;
+            }
+            Frame::Counted => {
+                // The callee's final, then the caller's exit arc.
+                transitions += 2;
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    if let Frame::Wait(n, l) = *m {
+                        *m = if n < l { Frame::Ask } else { Frame::Over };
+                    }
+                }
+            }
+            Frame::Wait(..) => unreachable!("a waiting frame is never on top"),
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
 /// (c) `c_final_by_inarg`: the count in the pipe and the caller's id, the
 /// callee's final chosen by its in_arg (`> 10`).
 pub fn hand_final_by_inarg(limit: i64) -> u64 {

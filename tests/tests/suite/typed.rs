@@ -2120,6 +2120,149 @@ fn held_pipes_agree() {
     }
 }
 
+mod pipe_nrec16 {
+    pub mod rec {
+        sitlog_macros::include_dm!("typed/pipe_rec");
+    }
+}
+
+/// A recursive situation whose in_arg is a pattern, native (`nrec16`),
+/// compiled and plans against the interpreter, history kept or not,
+/// observed, numbers logged: the pair `N-Lim` (the pipe held as native
+/// values by the callee), a record `lim(N, L)` whose count the call reads
+/// (`bump(N)`, the callee saying it: the waiting frame made the
+/// machine's, the instance's in_arg built from the waiting variant), a
+/// variable twice (`X-X`, the callee making the parts differ at the third
+/// call: the machine's error), parts that are a list (`[N, L]`,
+/// `N-[First|_]`), pipes from the command line of the pair's shape or not.
+#[test]
+fn recursive_in_arg_patterns_agree() {
+    use pipe_nrec16::rec as m;
+    let ir = interpreter("typed/pipe_rec");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    for main in [
+        "main(1)",
+        "main(4)",
+        "main(a)",
+        "main(2.5)",
+        "record(0)",
+        "record(3)",
+        "record(x)",
+        "twice(1)",
+        "twice(2)",
+        "twice(5)",
+        "listed(1)",
+        "listed(4)",
+        "listed(b)",
+        "headed(0)",
+        "headed(3)",
+    ] {
+        agree(m::program(), &ir, main, "");
+        agree(&plans, &ir, main, "");
+    }
+    for pipe in REC_PIPES {
+        agree_piped(m::program(), &ir, "entry", Some(pipe), "");
+        agree_piped(&plans, &ir, "entry", Some(pipe), "");
+    }
+}
+
+/// The pipes [`recursive_in_arg_patterns_agree`] gives `entry`.
+const REC_PIPES: [&str; 7] = ["0-3", "2-9", "a-3", "1.5-4", "f(1, 2)", "1-2-3", "x"];
+
+/// [`recursive_in_arg_patterns_agree`]'s mismatches under both values of
+/// `Options::skip_unmatched_in_arg` (its default read, not assumed): the
+/// compiled task and the plans agree with the interpreter, history kept
+/// and not; a recursive situation's pattern the pipe does not match is
+/// the machine's error without the option and skipped with it.
+#[test]
+fn recursive_in_arg_mismatches_agree_with_either_option() {
+    use pipe_nrec16::rec as m;
+    let ir = interpreter("typed/pipe_rec");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    let options = |keep_history, skip_unmatched_in_arg| Options {
+        keep_history,
+        skip_unmatched_in_arg,
+        ..Options::default()
+    };
+    let runs = ["twice(5)", "main(a)", "main(3)"]
+        .iter()
+        .map(|m| (*m, None))
+        .chain(REC_PIPES.iter().map(|p| ("entry", Some(*p))));
+    for (main, pipe) in runs {
+        for keep in [false, true] {
+            for skip in [Options::default().skip_unmatched_in_arg, false, true] {
+                let i = run_with(&ir, main, pipe, "", options(keep, skip), false, false);
+                for (c, by) in [
+                    (
+                        run_with(
+                            m::program(),
+                            main,
+                            pipe,
+                            "",
+                            options(keep, skip),
+                            false,
+                            false,
+                        ),
+                        "compiled",
+                    ),
+                    (
+                        run_with(&plans, main, pipe, "", options(keep, skip), false, false),
+                        "plans",
+                    ),
+                ] {
+                    assert_eq!(
+                        unnumbered(format!("{c:?}")),
+                        unnumbered(format!("{i:?}")),
+                        "{by}: {main} with in_arg {pipe:?} (history {keep}, skip {skip})"
+                    );
+                }
+            }
+        }
+    }
+    for (main, pipe) in [
+        ("twice(5)", None),
+        ("entry", Some("x")),
+        ("entry", Some("f(1, 2)")),
+    ] {
+        let error = run_with(
+            m::program(),
+            main,
+            pipe,
+            "",
+            options(true, false),
+            false,
+            false,
+        )
+        .0;
+        assert_eq!(error["status"], "error", "{error}");
+        assert!(
+            error["error"].as_str().unwrap().contains("does not match"),
+            "{error}"
+        );
+        // Skipped: the pattern's variables unbound, the pipe unchanged;
+        // `twice(5)` runs to its end (`entry`'s callee then fails on the
+        // pipe it reads, its own error).
+        let skipped = run_with(
+            m::program(),
+            main,
+            pipe,
+            "",
+            options(true, true),
+            false,
+            false,
+        )
+        .0;
+        let error = skipped["error"].as_str().unwrap_or_default();
+        assert!(
+            !error.contains("does not match"),
+            "{main} {pipe:?}: {skipped}"
+        );
+        if main == "twice(5)" {
+            assert_eq!(skipped["status"], "ok", "{skipped}");
+        }
+    }
+}
+
 /// The pipes [`in_arg_patterns_agree`] gives `entry`.
 const PIPES: [&str; 9] = [
     "f(1, [yes])",

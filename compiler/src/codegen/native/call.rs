@@ -73,7 +73,8 @@
 //! - a waiting frame made the machine's (`nat_wait`, when the frames below
 //!   the running one are materialized) waits as the interpreter's instance
 //!   would (`Cx::wait_template`: the situation's template with its id, the
-//!   in_arg the visit read, the callee's frame pushed with the call its
+//!   in_arg the visit read (an in_arg pattern built from the variant's
+//!   fields, `nat_in_arg_term`), the callee's frame pushed with the call its
 //!   `embedded_dm` makes), and the machine runs its exit arcs at the callee's
 //!   final;
 //! - anything that needs the machine's state (an action performed, an
@@ -114,6 +115,9 @@ pub(super) struct Wait {
     /// In `NatAt::waits` (a DM without locals): the situation it waits in
     /// and the pipe value it keeps.
     pub waits_arm: TokenStream,
+    /// Its in_arg is a pattern: the pipe value is built from the fields,
+    /// in the DM's own `nat_wait` (not `NatAt::waits`).
+    pub pattern: bool,
 }
 
 /// A native call: the callee's index and native view, and the exit code.
@@ -145,6 +149,26 @@ impl Gen<'_> {
                 }
                 if !fields.iter().any(|(x, _)| *x == r) {
                     fields.push((r, d.types[ix].regs[r as usize].ty.clone()));
+                }
+            }
+            // An in_arg pattern's variable the call reads (`in_arg ==>
+            // N-L, embedded_dm ==> count(N)`): a frame made the machine's
+            // evaluates the template's call, the variable bound by the
+            // pipe value built from the fields (`nat_in_arg_term`).
+            if let (Some((pat, true, _)), KindPlan::Recursive { call, .. }) =
+                (&d.plans[ix].in_arg, &d.plans[ix].kind)
+            {
+                let (mut in_pat, mut in_call) = (Vec::new(), Vec::new());
+                build_regs(pat, &mut in_pat);
+                build_regs(call, &mut in_call);
+                for r in in_pat {
+                    let unbound = d.types[ix].unbound.get(r as usize).copied();
+                    if in_call.contains(&r)
+                        && unbound == Some(false)
+                        && !fields.iter().any(|(x, _)| *x == r)
+                    {
+                        fields.push((r, d.types[ix].regs[r as usize].ty.clone()));
+                    }
                 }
             }
         }
@@ -647,13 +671,28 @@ impl Gen<'_> {
             .find(|(_, init)| matches!(init, Init::Pipe))
             .map(|(r, _)| reg(*r))
             .filter(|r| names.contains(r));
-        let (in_stmt, in_arg, waits_arm) = match in_arg {
-            Some(r) => (
+        let pattern = match &d.plans[ix].in_arg {
+            Some((pat, true, _)) => Some(pat),
+            _ => None,
+        };
+        let (in_stmt, in_arg, waits_arm) = match (pattern, in_arg) {
+            // An in_arg pattern: the pipe value built from the fields
+            // (a DM's own `nat_wait`, `Wait::pattern`).
+            (Some(pat), _) => {
+                let mut ts = Vec::new();
+                let t = self.nat_in_arg_term(pat, &names, &mut ts, &mut Vec::new(), &mut 0)?;
+                (
+                    quote!(#(#ts)* let in_arg = #t;),
+                    quote!(Some(in_arg)),
+                    quote!(),
+                )
+            }
+            (None, Some(r)) => (
                 quote!(let in_arg = cx.term(#r);),
                 quote!(Some(in_arg)),
                 quote!(Nat::#wv { #r, .. } => Some((#curl, Some(#r))),),
             ),
-            None => (
+            (None, None) => (
                 quote!(),
                 quote!(None),
                 quote!(Nat::#wv { .. } => Some((#curl, None)),),
@@ -675,7 +714,51 @@ impl Gen<'_> {
             exit_arm,
             wait_arm,
             waits_arm,
+            pattern: pattern.is_some(),
         }))
+    }
+
+    /// The pipe value a waiting variant of a situation with an in_arg
+    /// pattern gives its template instance (`Cx::wait_template`): the
+    /// pattern built with each variable the variant keeps (`names`, a
+    /// reference each) made a term, any other (`_`, one nothing after the
+    /// call reads) a fresh variable, the same one where it is met again.
+    /// The pipe matched the pattern natively, so this unifies with it as
+    /// the pipe did and binds the instance's variables to the same values.
+    fn nat_in_arg_term(
+        &self,
+        pat: &Build,
+        names: &[Ident],
+        ts: &mut Vec<TokenStream>,
+        fresh: &mut Vec<(Reg, Ident)>,
+        n: &mut usize,
+    ) -> N<TokenStream> {
+        let x = format_ident!("b{}", *n);
+        *n += 1;
+        let e = match pat {
+            Build::Reg(r) if names.contains(&reg(*r)) => {
+                let v = reg(*r);
+                quote!(cx.term(#v))
+            }
+            Build::Reg(r) => match fresh.iter().find(|(f, _)| f == r) {
+                Some((_, v)) => return Ok(quote!(#v)),
+                None => {
+                    fresh.push((*r, x.clone()));
+                    quote!(cx.var())
+                }
+            },
+            Build::Const(t) => return self.nat_const_term(*t, ts, n),
+            Build::Compound(f, args) => {
+                let args = args
+                    .iter()
+                    .map(|a| self.nat_in_arg_term(a, names, ts, fresh, n))
+                    .collect::<N<Vec<_>>>()?;
+                let f = self.functor_native(*f)?;
+                quote!(cx.build(#f, &[#(#args),*]))
+            }
+        };
+        ts.push(quote!(let #x = #e;));
+        Ok(quote!(#x))
     }
 
     /// The exit arcs of recursive situation `ix` on the final variant of
@@ -2003,4 +2086,9 @@ fn built_of(ts: &[TokenStream], exp: &TokenStream) -> Option<TokenStream> {
     }
     let f = &m.args[0];
     Some(quote!(cx.build_of(#f, &[#(#out),*])))
+}
+
+/// The registers of `b`, pushed to `out` (a register met twice, twice).
+fn build_regs(b: &Build, out: &mut Vec<Reg>) {
+    super::built_regs(&Ev::Built(b.clone()), out);
 }

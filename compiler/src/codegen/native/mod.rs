@@ -171,8 +171,8 @@
 //!   evaluating a next situation leaves its transition uncounted, as on
 //!   the term path.
 //!
-//! What is not (yet) native keeps a situation on its term code: an in_arg
-//! that is a pattern in a recursive situation, a `prog` other than `V is E`, expectations that can
+//! What is not (yet) native keeps a situation on its term code: a `prog`
+//! other than `V is E`, expectations that can
 //! change a variable not held natively, a register read natively before it
 //! is set, narrowing a `ground` value to a list or a compound, arithmetic
 //! other than integer comparisons. (A `ground` value selecting a situation
@@ -1364,6 +1364,7 @@ impl Gen<'_> {
         let mut exit_arms = Vec::new();
         let mut wait_arms = Vec::new();
         let mut waits_arms = Vec::new();
+        let mut wait_pattern = false;
         let mut any_cursor = false;
         // The variant a frame holds while it runs (`nat_step` takes its own
         // out of the frame): the first without fields, else `Moved`.
@@ -1473,6 +1474,7 @@ impl Gen<'_> {
                 exit_arms.push(w.exit_arm.clone());
                 wait_arms.push(w.wait_arm.clone());
                 waits_arms.push(w.waits_arm.clone());
+                wait_pattern |= w.pattern;
             }
             // Entered by the machine: the fields from the value that
             // selected it, converted (else the term code runs it).
@@ -1563,7 +1565,9 @@ impl Gen<'_> {
         // Where a waiting variant waits (`NatAt::waits`; the frame made the
         // machine's by `NatAt::nat_wait`), unless the DM has locals to
         // write back first: its own `nat_wait` then.
-        let own_wait = !wait_arms.is_empty() && !d.locals.is_empty();
+        // A waiting situation with an in_arg pattern builds the pipe value
+        // from its fields (`Wait::pattern`): its own `nat_wait` too.
+        let own_wait = !wait_arms.is_empty() && (!d.locals.is_empty() || wait_pattern);
         let waits_fn = if own_wait || waits_arms.is_empty() {
             quote!()
         } else {
@@ -2489,13 +2493,11 @@ impl Gen<'_> {
             }
         }
         // An in_arg that is a pattern: matched against the pipe natively.
-        // Not in a recursive situation: a waiting frame made the
-        // machine's gives its instance the pipe only as a register
-        // (`Cx::wait_template`), and the exit arcs read its variables.
+        // In a recursive situation its variables the exit arcs or the call
+        // read are fields of the waiting variant, from which a frame made
+        // the machine's builds the pipe value its instance unifies
+        // (`call::nat_in_arg_term`).
         if let Some((pat, true, _)) = &plan.in_arg {
-            if matches!(plan.kind, KindPlan::Recursive { .. }) {
-                return Err("its in_arg is a pattern, in a recursive situation".into());
-            }
             stmts.push(self.nat_pipe_match(d, ix, pat, &mut regs)?);
         }
         if let Some(prog) = &plan.prog {

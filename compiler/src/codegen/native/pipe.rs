@@ -28,7 +28,11 @@
 //! of the visit, and a pipe it does not take natively hands the visit to
 //! the machine, nothing done, which runs it from the template (a mismatch
 //! is skipped there with a warning, D-8, `Options::skip_unmatched_in_arg`,
-//! or the machine's error under `--deny-warnings`, E14).
+//! or the machine's error under `--deny-warnings`, E14). In a recursive
+//! situation the pattern's variables the exit arcs or the call read are
+//! fields of its waiting variant; a waiting frame made the machine's
+//! gives its instance the pattern built from them (`nat_in_arg_term`,
+//! module `call`), which unifies as the pipe did.
 //!
 //! The pipe held as native values (`npipe15`): an out_arg `name(A, ..)`
 //! of at most `HELD_MAX` arguments, each an int, a float, an atom or a
@@ -196,16 +200,9 @@ impl Gen<'_> {
             let v = quote!((&h[#i]));
             match a {
                 Build::Reg(r) => {
-                    let held = regs
-                        .get(r)
-                        .map(|(x, ty)| (x.clone(), ty.clone()))
-                        .or_else(|| {
-                            met.contains(r)
-                                .then(|| bound.iter().find(|(x, _)| x == r))
-                                .flatten()
-                                .map(|(x, ty)| (reg(*x), ty.clone()))
-                        });
-                    match held {
+                    // Bound by the term path's order, met here so far.
+                    let so_far = bound.iter().filter(|(x, _)| met.contains(x));
+                    match held_reg(regs, so_far, *r) {
                         Some((x, ty)) => {
                             if !held_part(&ty) {
                                 return Ok(None);
@@ -291,15 +288,7 @@ impl Gen<'_> {
         }
         match pat {
             Build::Reg(r) => {
-                let held = regs
-                    .get(r)
-                    .map(|(x, ty)| (x.clone(), ty.clone()))
-                    .or_else(|| {
-                        bound
-                            .iter()
-                            .find(|(x, _)| x == r)
-                            .map(|(x, ty)| (reg(*x), ty.clone()))
-                    });
+                let held = held_reg(regs, bound.iter(), *r);
                 let init = d.plans[ix]
                     .inits
                     .iter()
@@ -442,7 +431,12 @@ impl Gen<'_> {
             return self.nat_next_out_eval(d, cur, next, b, regs, cur_name);
         } else {
             let v = self.nat_out_value(d, cur, e, next, regs)?;
-            if let Some((vals, f)) = self.nat_out_held(d, cur, e, regs)? {
+            let parts = self.nat_out_parts(d, cur, e, regs)?;
+            let held = match &parts {
+                Some((name, parts)) => self.nat_out_held(*name, parts)?,
+                None => None,
+            };
+            if let Some((vals, f)) = held {
                 // Held as native values (`Cx::hold_pipe`): a term only
                 // where something reads it as one.
                 let pipe_out = quote!(let pipe_out = [#(#vals),*];);
@@ -468,7 +462,8 @@ impl Gen<'_> {
             } else if matches!(e, Ev::If(..) | Ev::Pick(..)) {
                 let e = &v.e;
                 quote!(let out_value = #e; let pipe_out = cx.term(&out_value);)
-            } else if let Some(t) = self.nat_out_term(d, cur, e, regs)? {
+            } else if let Some((name, parts)) = &parts {
+                let t = self.nat_out_term(*name, parts)?;
                 quote!(let pipe_out = #t;)
             } else {
                 let v = super::place(&v);
@@ -491,11 +486,17 @@ impl Gen<'_> {
 
 impl Gen<'_> {
     /// An arc's out_arg `name(A, B, ..)` (not a list cell, evaluating its
-    /// arguments only) of native values read in place: made a term at
-    /// once from them (`Cx::build_of`), not a `Val` first (`M-L` of an int
-    /// and a `Val`: no `Rc` allocated and dropped per visit); the same
-    /// term. `None`: another out_arg, or a part that reads `cx`.
-    fn nat_out_term(&self, d: &Dm, cur: usize, e: &Ev, regs: &Regs) -> N<Option<TokenStream>> {
+    /// arguments only) of native values read in place: its functor and
+    /// parts, which [`Gen::nat_out_term`] makes a term of at once and
+    /// [`Gen::nat_out_held`] holds as values. `None`: another out_arg, or
+    /// a part that reads `cx`.
+    fn nat_out_parts(
+        &self,
+        d: &Dm,
+        cur: usize,
+        e: &Ev,
+        regs: &Regs,
+    ) -> N<Option<(sitlog_syntax::Atom, Vec<V>)>> {
         let (name, parts) = match e {
             Ev::Compound(name, args) if *name != atoms::DOT => (
                 *name,
@@ -517,44 +518,31 @@ impl Gen<'_> {
         {
             return Ok(None);
         }
+        Ok(Some((name, parts)))
+    }
+
+    /// An arc's out_arg of [`Gen::nat_out_parts`] made a term at once from
+    /// them (`Cx::build_of`), not a `Val` first (`M-L` of an int and a
+    /// `Val`: no `Rc` allocated and dropped per visit); the same term.
+    fn nat_out_term(&self, name: sitlog_syntax::Atom, parts: &[V]) -> N<TokenStream> {
         let f = self.functor_native(name)?;
         let ps = parts.iter().map(|p| {
             let x = super::place(p);
             quote!(&#x)
         });
-        Ok(Some(quote!(cx.build_of(#f, &[#(#ps),*]))))
+        Ok(quote!(cx.build_of(#f, &[#(#ps),*])))
     }
 
-    /// An arc's out_arg that [`Gen::nat_out_term`] makes a term of, with
-    /// at most `HELD_MAX` arguments each an int, a float, an atom or a
-    /// `ground` value: the values as `Val`s (cloned: a `Val` an `Rc`
-    /// count at most) and the functor, for `Cx::hold_pipe` (the pipe held
-    /// as those values). `None`: another out_arg.
+    /// An arc's out_arg of [`Gen::nat_out_parts`] with at most `HELD_MAX`
+    /// arguments each an int, a float, an atom or a `ground` value: the
+    /// values as `Val`s (cloned: a `Val` an `Rc` count at most) and the
+    /// functor, for `Cx::hold_pipe` (the pipe held as those values).
+    /// `None`: another out_arg.
     fn nat_out_held(
         &self,
-        d: &Dm,
-        cur: usize,
-        e: &Ev,
-        regs: &Regs,
+        name: sitlog_syntax::Atom,
+        parts: &[V],
     ) -> N<Option<(Vec<TokenStream>, TokenStream)>> {
-        if self.nat_out_term(d, cur, e, regs)?.is_none() {
-            return Ok(None);
-        }
-        let (name, parts) = match e {
-            Ev::Compound(name, args) => (
-                *name,
-                args.iter()
-                    .map(|a| self.nat_ev_value(d, cur, a, regs))
-                    .collect::<N<Vec<_>>>()?,
-            ),
-            Ev::Built(Build::Compound(name, args)) => (
-                *name,
-                args.iter()
-                    .map(|a| self.nat_value(a, regs))
-                    .collect::<N<Vec<_>>>()?,
-            ),
-            _ => return Ok(None),
-        };
         if parts.is_empty()
             || parts.len() > sitlog_runtime::machine::HELD_MAX
             || !parts.iter().all(|p| held_part(&p.ty))
@@ -918,6 +906,24 @@ pub(super) fn mentions_of(code: &TokenStream, names: &[proc_macro2::Ident]) -> u
             _ => 0,
         })
         .sum()
+}
+
+/// Where an in_arg pattern's variable `r` is held already, and its type:
+/// a register of the visit (`regs`: the id's field, a parameter) or one
+/// the pattern bound before (`bound`); `None` where it is met first. The
+/// one lookup of [`Gen::nat_match_part`] (the pipe's term) and
+/// [`Gen::nat_held_match`] (the pipe held as values).
+fn held_reg<'a>(
+    regs: &Regs,
+    mut bound: impl Iterator<Item = &'a (Reg, Ty)>,
+    r: Reg,
+) -> Option<(Ident, Ty)> {
+    match regs.get(&r) {
+        Some((x, ty)) => Some((x.clone(), ty.clone())),
+        None => bound
+            .find(|(x, _)| *x == r)
+            .map(|(x, ty)| (reg(*x), ty.clone())),
+    }
 }
 
 /// Whether an argument of this type is held in the pipe as a native value
