@@ -255,10 +255,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_found_rest" => format!("visit({n}, {list}, {last})"),
         "d_shelf_pairs" => format!("stock({n}, {pairs_text}, {last})"),
         "list_search" => format!("main({n}, {list}, {last})"),
-        "c_pipe_pair"
-        | "c_final_by_inarg"
-        | "c_local_limit_hop"
-        | "c_local_count"
+        "c_pipe_pair" | "c_final_by_inarg" | "c_local_limit_hop" | "c_local_count"
         | "c_rec_inarg_pair" => {
             format!("relay({n})")
         }

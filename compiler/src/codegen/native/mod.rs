@@ -995,14 +995,17 @@ fn built_regs(e: &Ev, out: &mut Vec<Reg>) -> bool {
 fn has_var_op(e: &Ev, which: &dyn Fn(Atom, Atom) -> bool) -> bool {
     let cond = |c: &Cond| match c {
         Cond::Arith(_, a, b) => has_var_op(a, which) || has_var_op(b, which),
-        Cond::Other(_) => false,
+        // `when/3`'s comparison of built values: no `get`/`inc` in it.
+        Cond::Cmp(..) | Cond::Other(_) => false,
     };
     match e {
         Ev::VarOp { op, name, .. } | Ev::VarOpFresh { op, name, .. } => {
             (*op == atoms::GET || *op == atoms::INC) && which(*op, *name)
         }
         Ev::Compound(_, args) => args.iter().any(|a| has_var_op(a, which)),
-        Ev::If(c, a, b) => cond(c) || has_var_op(a, which) || has_var_op(b, which),
+        Ev::If(c, a, b) | Ev::Pick(c, a, b) => {
+            cond(c) || has_var_op(a, which) || has_var_op(b, which)
+        }
         _ => false,
     }
 }
