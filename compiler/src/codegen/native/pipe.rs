@@ -840,8 +840,8 @@ impl Gen<'_> {
             if matches!(x, Ev::If(..) | Ev::Pick(..)) {
                 return self.nat_out_choice_term(d, cur, x, next, regs);
             }
-            if let Some(t) = self.nat_out_term(d, cur, x, regs)? {
-                return Ok(Some(t));
+            if let Some((name, parts)) = self.nat_out_parts(d, cur, x, regs)? {
+                return Ok(Some(self.nat_out_term(name, &parts)?));
             }
             let v = self.nat_ev_value(d, cur, x, regs)?;
             let p = super::place(&v);
