@@ -68,8 +68,6 @@ pub(crate) struct Names {
     pub equals: Atom,
     pub is: Atom,
     pub if_then: Atom,
-    pub semicolon: Atom,
-    pub bar: Atom,
     pub otherwise: Atom,
     pub comparisons: [Atom; 6],
     pub member: Atom,
@@ -84,8 +82,6 @@ pub(crate) fn names() -> &'static Names {
         equals: atoms::EQUALS,
         is: atoms::IS,
         if_then: atoms::IF_THEN,
-        semicolon: atoms::SEMICOLON,
-        bar: atoms::BAR,
         otherwise: atoms::OTHERWISE,
         comparisons: crate::special::COMPARISONS,
         member: atoms::MEMBER,
@@ -94,12 +90,7 @@ pub(crate) fn names() -> &'static Names {
 }
 
 fn show(store: &Store, t: Term) -> String {
-    let s = store.writeq(t);
-    if s.chars().count() > 200 {
-        format!("{}…", s.chars().take(199).collect::<String>())
-    } else {
-        s
-    }
+    crate::eval_error::shown(store, t)
 }
 
 /// Evaluates `t` (D-28..D-39).
@@ -321,7 +312,7 @@ fn two(store: &Store, t: Term) -> [Term; 2] {
 /// `(C -> A ; otherwise -> B)`, also written with `|` (E6): `(C, A, B)`.
 pub fn conditional(store: &Store, t: Term) -> Option<(Term, Term, Term)> {
     let n = names();
-    let (cond, then, other) = if_then_else(store, t)?;
+    let (cond, then, other) = crate::goal::if_then_else(store, t)?;
     let other = store.compound_args(other, n.if_then, 2)?;
     if store.atom_of(other[0]) != Some(n.otherwise) {
         return None;
@@ -580,127 +571,5 @@ fn compare(store: &mut Store, op: Atom, a: Term, b: Term) -> Result<bool, String
 
 /// Runs `goal` as a Prolog condition (the `C` of a conditional, D-35).
 pub fn call_goal(ctx: &mut EvalCtx<'_>, goal: Term) -> Result<bool, EvalError> {
-    stacker::maybe_grow(64 * 1024, 1024 * 1024, || call_goal_inner(ctx, goal))
-}
-
-fn call_goal_inner(ctx: &mut EvalCtx<'_>, goal: Term) -> Result<bool, EvalError> {
-    let goal = ctx.store.deref(goal);
-    let Some((name, arity)) = ctx.store.functor(goal) else {
-        return Err(EvalError::new(format!(
-            "`{}` cannot be called as a condition",
-            show(ctx.store, goal)
-        )));
-    };
-    // Every goal handled here has at most two arguments (no allocation per call).
-    let mut args = [Term::NIL; 2];
-    for (slot, &a) in args.iter_mut().zip(ctx.store.args(goal)) {
-        *slot = a;
-    }
-    let text = name.as_str();
-    let holds = match (text, arity) {
-        ("true", 0) | ("otherwise", 0) => true,
-        ("fail", 0) | ("false", 0) => false,
-        ("==", 2) => ctx.store.identical(args[0], args[1]),
-        ("\\==", 2) => !ctx.store.identical(args[0], args[1]),
-        // With occurs check: a cyclic term could not be copied or printed.
-        ("=", 2) => {
-            let mark = ctx.store.mark();
-            let u = ctx.store.unify(args[0], args[1]) && ctx.store.is_acyclic(args[0]);
-            if !u {
-                ctx.store.undo_to(mark);
-            }
-            u
-        }
-        ("\\=", 2) => {
-            let mark = ctx.store.mark();
-            let u = ctx.store.unify(args[0], args[1]);
-            ctx.store.undo_to(mark);
-            !u
-        }
-        ("<" | ">" | "=<" | ">=" | "=:=" | "=\\=", 2) => {
-            let cmp = ArithCmp::from_atom(name).expect("an arithmetic comparison");
-            ctx.store
-                .arith_compare(cmp, args[0], args[1])
-                .map_err(|e| EvalError::new(format!("in `{}`: {e}", show(ctx.store, goal))))?
-        }
-        ("@<" | "@>" | "@=<" | "@>=", 2) => {
-            let ord = ctx.store.compare(args[0], args[1]);
-            match text {
-                "@<" => ord.is_lt(),
-                "@>" => ord.is_gt(),
-                "@=<" => ord.is_le(),
-                _ => ord.is_ge(),
-            }
-        }
-        ("is", 2) => {
-            let v: Term = ctx
-                .store
-                .eval_arith(args[1])
-                .map_err(|e| EvalError::new(format!("in `{}`: {e}", show(ctx.store, goal))))?
-                .into();
-            ctx.store.unify(args[0], v)
-        }
-        ("member" | "memberchk", 2) => builtins::member_unify(ctx.store, args[0], args[1]),
-        ("not_member", 2) => !builtins::member_identical(ctx.store, args[0], args[1]),
-        ("\\+", 1) => {
-            let mark = ctx.store.mark();
-            let r = call_goal(ctx, args[0])?;
-            ctx.store.undo_to(mark);
-            !r
-        }
-        (",", 2) => call_goal(ctx, args[0])? && call_goal(ctx, args[1])?,
-        (";" | "|", 2) => {
-            if let Some((c, a, b)) = if_then_else(ctx.store, goal) {
-                if call_goal(ctx, c)? {
-                    call_goal(ctx, a)?
-                } else {
-                    call_goal(ctx, b)?
-                }
-            } else {
-                let mark = ctx.store.mark();
-                if call_goal(ctx, args[0])? {
-                    true
-                } else {
-                    ctx.store.undo_to(mark);
-                    call_goal(ctx, args[1])?
-                }
-            }
-        }
-        ("->", 2) => call_goal(ctx, args[0])? && call_goal(ctx, args[1])?,
-        ("var", 1) => ctx.store.is_var(args[0]),
-        ("nonvar", 1) => !ctx.store.is_var(args[0]),
-        ("ground", 1) => ctx.store.is_ground(args[0]),
-        ("atom", 1) => ctx.store.atom_of(args[0]).is_some(),
-        ("number" | "integer" | "float" | "atomic" | "compound" | "is_list", 1) => {
-            let v = ctx.store.deref(args[0]);
-            match (text, ctx.store.value(v)) {
-                ("number", Value::Int(_) | Value::BigInt(_) | Value::Float(_)) => true,
-                ("integer", Value::Int(_) | Value::BigInt(_)) => true,
-                ("float", Value::Float(_)) => true,
-                ("atomic", Value::Var(_) | Value::Compound(..)) => false,
-                ("atomic", _) => true,
-                ("compound", Value::Compound(..)) => true,
-                ("is_list", _) => ctx.store.list_to_vec(v).is_some(),
-                _ => false,
-            }
-        }
-        _ => {
-            return Err(EvalError::new(format!(
-                "`{text}/{arity}` cannot be called as a condition here (in `{}`)",
-                show(ctx.store, goal)
-            )))
-        }
-    };
-    Ok(holds)
-}
-
-/// `(C -> A ; B)` as a goal.
-fn if_then_else(store: &Store, t: Term) -> Option<(Term, Term, Term)> {
-    let n = names();
-    let args = store
-        .compound_args(t, n.semicolon, 2)
-        .or_else(|| store.compound_args(t, n.bar, 2))?;
-    let (then, other) = (args[0], args[1]);
-    let then = store.compound_args(then, n.if_then, 2)?;
-    Some((then[0], then[1], other))
+    crate::goal::goal_holds(ctx.store, goal)
 }

@@ -37,3 +37,13 @@ impl std::fmt::Display for EvalError {
         f.write_str(&self.message)
     }
 }
+
+/// `t` as written in an error message, cut at 200 characters.
+pub(crate) fn shown(store: &crate::store::Store, t: crate::term::Term) -> String {
+    let s = store.writeq(t);
+    if s.chars().count() > 200 {
+        format!("{}…", s.chars().take(199).collect::<String>())
+    } else {
+        s
+    }
+}

@@ -249,14 +249,14 @@ pub mod standard {
     use super::*;
 
     pub fn register(f: &mut Functions) {
-        // when(If, Then, Else): Then if If is `true`, else Else.
+        // when(If, Then, Else): Then if If holds, else Else. If is called
+        // as a goal, as by the `when/3` that the original's applications
+        // define in Prolog (`(If -> .. | otherwise -> ..)`): `X == Y` has
+        // been evaluated to `true`/`false` already; `X =:= Y`, `X @< Y`,
+        // `(A, B)` are decided here; a value that is no goal is an error.
         f.register("when", 3, |call, args| {
-            let cond = call.store.deref(args[0]);
-            Ok(if call.store.atom_of(cond) == Some(atoms::TRUE) {
-                args[1]
-            } else {
-                args[2]
-            })
+            let holds = crate::goal::goal_holds(call.store, args[0]).map_err(|e| e.message)?;
+            Ok(if holds { args[1] } else { args[2] })
         });
         // get_history(H): the current DM's history as a term.
         f.register("get_history", 1, |call, _| Ok(call.history_term()));

@@ -58,6 +58,7 @@ pub mod eval;
 mod eval_error;
 pub mod functions;
 mod gc;
+mod goal;
 pub mod history;
 mod input;
 pub mod machine;

@@ -1255,8 +1255,9 @@ fn an_undeclared_host_when_is_refused() {
 /// an action (`typed/when`): a true and a false condition, nested (in a
 /// branch), a condition that errors (an arithmetic comparison of atoms, of
 /// an unbound variable) and one that is not a comparison (`true`, another
-/// atom, an unbound variable, a number): the compiled task and the
-/// interpreter's plans agree with the evaluator, history kept or not.
+/// atom, an unbound variable, a number: called as a goal, the last three
+/// errors): the compiled task and the interpreter's plans agree with the
+/// evaluator, history kept or not.
 #[test]
 fn the_runtimes_when_agrees() {
     let ir = interpreter("typed/when");
@@ -1281,11 +1282,21 @@ fn the_runtimes_when_agrees() {
     for (main, out) in [
         ("main(a, a, x)", "same"),
         ("main(2, 1, true)", "yes"),
-        ("main(2, 1, foo)", "no"),
         ("main(1, 2, 1)", "yes"),
     ] {
         let c = run(when_nwhen15::when::program(), main, "", false, false, false);
         assert_eq!(c.0["out_arg"], out, "{main}: {c:?}");
+    }
+    // A condition that is no goal is an error, as calling it is in the
+    // `when/3` of the original's applications (not a silent `E`).
+    for (main, culprit) in [
+        ("main(2, 1, foo)", "`foo/0` cannot be called as a condition"),
+        ("main(2, 1, 3)", "`3` cannot be called as a condition"),
+        ("main(2, 1, _)", "cannot be called as a condition"),
+    ] {
+        let c = run(when_nwhen15::when::program(), main, "", false, false, false);
+        let e = c.0["error"].as_str().unwrap_or_default();
+        assert!(e.contains(culprit) && e.contains("when/3"), "{main}: {c:?}");
     }
     let c = run(
         when_nwhen15::when::program(),
@@ -2677,9 +2688,9 @@ mod when_nwhen16 {
 /// blamed construct), branches built from bound variables, an `inc` in
 /// both branches (both run, as `apply` evaluates its arguments), nested,
 /// in an out_arg, an action and a next situation; `=:=`, `@<` and a
-/// conjunction (never `true`: always `E`, the evaluator's call kept). The
-/// compiled task and the interpreter's plans agree with the evaluator,
-/// history kept or not.
+/// conjunction (called as goals by the runtime's `when/3`, the evaluator's
+/// call kept). The compiled task and the interpreter's plans agree with
+/// the evaluator, history kept or not.
 #[test]
 fn when_with_an_arithmetic_condition_agrees() {
     let ir = interpreter("typed/when_arith");
@@ -2714,6 +2725,29 @@ fn when_with_an_arithmetic_condition_agrees() {
     // `3 > 0`: `get(n, _)` chosen, the `inc(m, _)` of the other branch run too.
     assert_eq!(c.0["out_arg"], "1", "{c:?}");
     assert!(format!("{c:?}").contains("says: 12"), "{c:?}");
+    // `0 =:= 0`, `0 @< 0`, `(0 > 0, 0 > 0)` decided as goals.
+    let said = format!("{:?}", c.2);
+    assert!(said.contains("says: eq") && said.contains("says: ge"), "{c:?}");
+    assert!(said.contains("says: notboth"), "{c:?}");
+    let c = run(
+        when_nwhen16::when_arith::program(),
+        "main(1, 2)",
+        "",
+        false,
+        false,
+        false,
+    );
+    let said = format!("{:?}", c.2);
+    assert!(said.contains("says: ne") && said.contains("says: lt\""), "{c:?}");
+    let c = run(
+        when_nwhen16::when_arith::program(),
+        "main(3, 1)",
+        "",
+        false,
+        false,
+        false,
+    );
+    assert!(format!("{:?}", c.2).contains("says: both"), "{c:?}");
     // The error blames the comparison as the evaluator does.
     let plans = sitlog_compiler::interp::Resolved::new(&ir);
     for main in ["main(a, 1)", "main(_, 1)"] {

@@ -1,8 +1,9 @@
-% The runtime's `when/3` (`apply(when(_, _, _), [C, T, E])`: `T` if `C`'s
-% value is `true`, else `E`) in an out_arg, a next situation and an action;
-% nested (in a branch: the evaluator's); a condition that errors (an
-% arithmetic comparison of atoms or of an unbound variable) and one that is
-% not a comparison (`Z`: any value but `true` gives `E`).
+% The runtime's `when/3` (`apply(when(_, _, _), [C, T, E])`: `T` if `C`,
+% its value, holds as a goal, else `E`) in an out_arg, a next situation and
+% an action; nested (in a branch: the evaluator's); a condition that errors
+% (an arithmetic comparison of atoms or of an unbound variable) and one that
+% is not a comparison (`Z`: `true` holds, `false` does not, a value that is
+% no goal is an error).
 diag_mod(main(X, Y, Z),
   [ [ id ==> start, type ==> neutral,
       out_arg ==> apply(when(_, _, _), [X == Y, same, other]),

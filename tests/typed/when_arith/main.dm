@@ -5,7 +5,8 @@
 % effect (`inc`: both branches evaluated), nested. In an out_arg, an action
 % and a next situation. `X` and `Y` may be numbers (true, false), atoms or
 % unbound (the comparison's error, blaming it); `=:=`, `@<` and a
-% conjunction are not conditions whose value is `true` (always `E`).
+% conjunction are called as goals by the runtime's `when/3` (its condition's
+% value is the evaluated goal, `true` only for `==`, `<`, ..).
 diag_mod(main(X, Y),
   [ [ id ==> start, type ==> neutral,
       out_arg ==> apply(when(_, _, _), [X > Y, found(X), none]),
