@@ -30,9 +30,10 @@ h(X, Y) :-
     ),
     assign_func_value(Next).
 
-% when(Cond, Then, Else): Then if Cond evaluated to true, else Else.
+% when(Cond, Then, Else): Then if Cond (evaluated: `true` or `false` for
+% `==`) holds when called as a goal, else Else.
 when(Cond, Then, Else) :-
-    (   Cond == true
+    (   call(Cond)
     ->  Value = Then
     ;   Value = Else
     ),
