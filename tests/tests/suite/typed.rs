@@ -2727,7 +2727,10 @@ fn when_with_an_arithmetic_condition_agrees() {
     assert!(format!("{c:?}").contains("says: 12"), "{c:?}");
     // `0 =:= 0`, `0 @< 0`, `(0 > 0, 0 > 0)` decided as goals.
     let said = format!("{:?}", c.2);
-    assert!(said.contains("says: eq") && said.contains("says: ge"), "{c:?}");
+    assert!(
+        said.contains("says: eq") && said.contains("says: ge"),
+        "{c:?}"
+    );
     assert!(said.contains("says: notboth"), "{c:?}");
     let c = run(
         when_nwhen16::when_arith::program(),
@@ -2738,7 +2741,10 @@ fn when_with_an_arithmetic_condition_agrees() {
         false,
     );
     let said = format!("{:?}", c.2);
-    assert!(said.contains("says: ne") && said.contains("says: lt\""), "{c:?}");
+    assert!(
+        said.contains("says: ne") && said.contains("says: lt\""),
+        "{c:?}"
+    );
     let c = run(
         when_nwhen16::when_arith::program(),
         "main(3, 1)",

@@ -4214,24 +4214,7 @@ impl Gen<'_> {
         };
         let rt = rust_ty(&gty)?;
         Ok(Some(V {
-            e: quote! {
-                match cx.global_inc::<#rt>(#namea) {
-                    Some(v) => v,
-                    None => {
-                        #enter
-                        let t = cx.var_op_fresh(#opa, #namea, arc_at)?;
-                        match cx.to_native::<#rt>(t) {
-                            Some(v) => v,
-                            None => {
-                                return Err(cx.error(
-                                    "a global's value native code cannot hold",
-                                    arc_at,
-                                ))
-                            }
-                        }
-                    }
-                }
-            },
+            e: global_op(quote!(global_inc), &rt, &namea, &opa, &enter),
             ty: gty,
         }))
     }
@@ -4566,23 +4549,9 @@ impl Gen<'_> {
         let (opa, namea) = (self.atom_native(atoms::GET)?, self.atom_native(name)?);
         let enter = self.nat_enter_to_evaluate(d, cur)?;
         Ok(Some(V {
-            e: quote! {
-                (match cx.global_as::<#rt>(#namea) {
-                    Some(v) => v,
-                    None => {
-                        #enter
-                        let t = cx.var_op_fresh(#opa, #namea, arc_at)?;
-                        match cx.to_native::<#rt>(t) {
-                            Some(v) => v,
-                            None => {
-                                return Err(cx.error(
-                                    "a global's value native code cannot hold",
-                                    arc_at,
-                                ))
-                            }
-                        }
-                    }
-                })
+            e: {
+                let read = global_op(quote!(global_as), &rt, &namea, &opa, &enter);
+                quote!((#read))
             },
             ty: gty,
         }))
@@ -6350,5 +6319,36 @@ fn checked(checks: Vec<Check>, fallback: &TokenStream) -> TokenStream {
             let (#(Some(#names)),*) = (#(#exprs),*) else #fallback;
             #(#stores)*
         },
+    }
+}
+
+/// A global's `get` (`Cx::global_as`) or `inc` (`Cx::global_inc`) done by
+/// native code, of Rust type `rt`; where the global does not hold such a
+/// value (only if the inference were wrong) the machine is entered
+/// (`enter`) and its `var_op` gives the value or its error.
+fn global_op(
+    method: TokenStream,
+    rt: &TokenStream,
+    namea: &TokenStream,
+    opa: &TokenStream,
+    enter: &TokenStream,
+) -> TokenStream {
+    quote! {
+        match cx.#method::<#rt>(#namea) {
+            Some(v) => v,
+            None => {
+                #enter
+                let t = cx.var_op_fresh(#opa, #namea, arc_at)?;
+                match cx.to_native::<#rt>(t) {
+                    Some(v) => v,
+                    None => {
+                        return Err(cx.error(
+                            "a global's value native code cannot hold",
+                            arc_at,
+                        ))
+                    }
+                }
+            }
+        }
     }
 }
