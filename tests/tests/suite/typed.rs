@@ -68,6 +68,12 @@ fn functions() -> Functions {
         call.var_op(set)?;
         Ok(Term::atom(atoms::TRUE))
     });
+    // `pokel(_)`: sets the caller's local `n` to the float 2.5.
+    f.register("pokel", 1, |call, _| {
+        let set = call.store.parse("set(n, 2.5)").map_err(|e| e.message)?.0;
+        call.var_op(set)?;
+        Ok(Term::atom(atoms::TRUE))
+    });
     // `twice(X)`: `[X, X]` (`typed/native`'s evaluated parts); `nofun(_)`
     // fails.
     f.register("twice", 1, |call, args| {
@@ -2873,4 +2879,33 @@ fn review16_an_inc_of_a_global_a_function_made_a_float_agrees() {
     use review16_dms::review16 as m;
     let ir = interpreter("typed/review16");
     agree_both(m::program(), &ir, &["gfloat", "gfout", "gfloop"]);
+}
+
+/// review16, 5b: the same global read by `get` in a next situation beside
+/// a local's `inc` (`gget`, `Gen::nat_ev_effects` to
+/// `Gen::nat_global_read`): the interpreter reads 2.5 and goes on.
+#[test]
+fn review16_a_get_of_a_global_a_function_made_a_float_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["gget"]);
+}
+
+/// review16, 5c: the same global read by `get` in a condition (`gcond`,
+/// `Gen::nat_global_read`, a path older than this session).
+#[test]
+fn review16_a_global_a_function_made_a_float_in_a_condition_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["gcond"]);
+}
+
+/// review16, 5d: a local the DM keeps an int that a user function sets to
+/// a float (`pokel(_)`), then counted by `inc` in a next situation and an
+/// out_arg (`lfloat`).
+#[test]
+fn review16_an_inc_of_a_local_a_function_made_a_float_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["lfloat"]);
 }

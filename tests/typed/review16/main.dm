@@ -173,3 +173,34 @@ diag_mod(gfloop,
   ],
   []
 ).
+
+% The same global read by `get` in a next situation beside a local's
+% `inc` (`gget`: nfx16's `nat_ev_effects`) and in a condition (`gcond`).
+diag_mod(gget,
+  [ [ id ==> s, type ==> neutral,
+      arcs ==> [ empty : [apply(pokef(_), [x])] => t(inc(n, _), get(gf, _)) ] ],
+    [ id ==> t(_, _), type ==> final ]
+  ],
+  [ n ==> 0 ]
+).
+
+diag_mod(gcond,
+  [ [ id ==> s, type ==> neutral,
+      arcs ==> [ empty : [apply(pokef(_), [x])] => (get(gf, _) < 3 -> low ; otherwise -> high) ] ],
+    [ id ==> low, type ==> final ],
+    [ id ==> high, type ==> final ]
+  ],
+  []
+).
+
+% A local int a user function sets to a float (`pokel(_)`: `n` := 2.5),
+% then counted by `inc` in a next situation and an out_arg.
+diag_mod(lfloat,
+  [ [ id ==> s, type ==> neutral, out_arg ==> inc(n, _),
+      arcs ==> [ empty : [apply(pokel(_), [x])] => t(inc(n, _)) ] ],
+    [ id ==> t(A), type ==> neutral, in_arg ==> P, out_arg ==> inc(n, _),
+      arcs ==> [ empty : empty => fin(A, P) ] ],
+    [ id ==> fin(_, _), type ==> final ]
+  ],
+  [ n ==> 0 ]
+).
