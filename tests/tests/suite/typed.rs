@@ -2909,3 +2909,30 @@ fn review16_an_inc_of_a_local_a_function_made_a_float_agrees() {
     let ir = interpreter("typed/review16");
     agree_both(m::program(), &ir, &["lfloat"]);
 }
+
+/// review16, 6: a recursive situation's in_arg pattern read by the call,
+/// the exit arc's action, next situation and out_arg, with a DM parameter
+/// (`rout`) or an id variable (`rid`) in it; the callee says something
+/// (its frames made the machine's), `empty`s refused.
+#[test]
+fn review16_a_recursive_in_arg_pattern_read_everywhere_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["rout(4)", "rout(1)", "rid"]);
+    for main in ["rout(4)", "rid"] {
+        agree_refusing(m::program(), &ir, main, 8);
+    }
+}
+
+/// review16, 7: an `inc` that overflows in a callee's next situation and
+/// out_arg, its frame on the native stack (one level, `cbig`; two,
+/// `cbig2`): the error and the transitions are the interpreter's.
+#[test]
+fn review16_an_inc_overflow_in_a_callee_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["cbig", "cbig2"]);
+    for main in ["cbig", "cbig2"] {
+        agree_refusing(m::program(), &ir, main, 6);
+    }
+}

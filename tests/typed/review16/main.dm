@@ -204,3 +204,61 @@ diag_mod(lfloat,
   ],
   [ n ==> 0 ]
 ).
+
+% 6. A recursive situation whose in_arg pattern's variables the call, the
+% exit arc's action, its next situation and the out_arg read, the callee
+% saying something (its frames made the machine's), a DM parameter in
+% the pattern, an id variable in it.
+diag_mod(rout(Lim),
+  [ [ id ==> start, type ==> neutral, out_arg ==> 1-Lim, arcs ==> [ empty : empty => ask(0) ] ],
+    [ id ==> ask(K), type ==> recursive, in_arg ==> N-Lim, embedded_dm ==> talk(N), out_arg ==> M-Lim,
+      arcs ==> [ talked(T) : [M is N + T, say(K)] => (M < Lim -> ask(N) ; otherwise -> over(N, K)) ] ],
+    [ id ==> over(_, _), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(talk(X),
+  [ [ id ==> s, type ==> neutral, arcs ==> [ empty : [say(X)] => talked(1) ] ],
+    [ id ==> talked(_), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(rid,
+  [ [ id ==> start, type ==> neutral, out_arg ==> 2-5, arcs ==> [ empty : empty => ask(2) ] ],
+    [ id ==> ask(K), type ==> recursive, in_arg ==> K-L, embedded_dm ==> talk(L), out_arg ==> J-L,
+      arcs ==> [ talked(_) : [J is K + 1] => (J < L -> ask(J) ; otherwise -> over(J)) ] ],
+    [ id ==> over(_), type ==> final ]
+  ],
+  []
+).
+
+% 7. An `inc` that overflows in a callee's next situation and out_arg,
+% the callee's frame on the native stack above its caller's (one and two
+% levels).
+diag_mod(cbig,
+  [ [ id ==> c, type ==> recursive, embedded_dm ==> xb,
+      arcs ==> [ done : empty => d ] ],
+    [ id ==> d, type ==> neutral, in_arg ==> P, arcs ==> [ empty : [say(back)] => (P < 0 -> fin ; otherwise -> c) ] ],
+    [ id ==> fin, type ==> final ]
+  ],
+  []
+).
+
+diag_mod(cbig2,
+  [ [ id ==> c, type ==> recursive, embedded_dm ==> cbig,
+      arcs ==> [ fin : empty => fin ] ],
+    [ id ==> fin, type ==> final ]
+  ],
+  [ k ==> 0 ]
+).
+
+diag_mod(xb,
+  [ [ id ==> s, type ==> neutral, out_arg ==> inc(n, _),
+      arcs ==> [ empty : [say(x)] => t(inc(n, _)) ] ],
+    [ id ==> t(A), type ==> neutral, arcs ==> [ empty : empty => (A < 0 -> done ; otherwise -> s) ] ],
+    [ id ==> done, type ==> final ]
+  ],
+  [ n ==> 9223372036854775800 ]
+).
