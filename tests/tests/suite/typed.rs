@@ -61,6 +61,19 @@ fn functions() -> Functions {
         call.var_op(set)?;
         Ok(Term::atom(atoms::TRUE))
     });
+    // `pokef(_)`: sets the global `gf` (an int in the DMs) to the float
+    // 2.5 (`typed/review16`).
+    f.register("pokef", 1, |call, _| {
+        let set = call.store.parse("set(gf, 2.5)").map_err(|e| e.message)?.0;
+        call.var_op(set)?;
+        Ok(Term::atom(atoms::TRUE))
+    });
+    // `pokel(_)`: sets the caller's local `n` to the float 2.5.
+    f.register("pokel", 1, |call, _| {
+        let set = call.store.parse("set(n, 2.5)").map_err(|e| e.message)?.0;
+        call.var_op(set)?;
+        Ok(Term::atom(atoms::TRUE))
+    });
     // `twice(X)`: `[X, X]` (`typed/native`'s evaluated parts); `nofun(_)`
     // fails.
     f.register("twice", 1, |call, args| {
@@ -2808,5 +2821,158 @@ fn a_when_arith_walk_agrees() {
         let main = format!("hunt(2, {l}, 4)");
         agree(when_nwhen16::when_arith_walk::program(), &ir, &main, "");
         agree(&sitlog_compiler::interp::Resolved::new(&ir), &ir, &main, "");
+    }
+}
+
+mod review16_dms {
+    pub mod review16 {
+        sitlog_macros::include_dm!("typed/review16");
+    }
+}
+
+/// review16, 1: a variable in_arg on a recursive situation whose call
+/// reads it (`in_arg ==> X, embedded_dm ==> shout(X)`) and whose exit arcs
+/// do not: the callee says its argument before and after its frames are
+/// made the machine's (an action performed, an arithmetic error, an
+/// `empty` refused), compiled and plans against the interpreter.
+#[test]
+fn review16_a_variable_in_arg_the_call_reads_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["vcall", "vloop"]);
+    for main in ["vcall", "vloop"] {
+        agree_refusing(m::program(), &ir, main, 8);
+    }
+}
+
+/// review16, 2: an `inc` that overflows in the next situation of a
+/// recursive situation's exit arc (`xbig`), in its out_arg (`xout`), in an
+/// arc with an action (`sbig`) and in an `empty` arc (`gbig`): the error
+/// and the transitions counted are the interpreter's.
+#[test]
+fn review16_an_inc_overflow_counts_as_the_interpreter() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["xbig", "xout", "sbig", "gbig"]);
+    for main in ["xbig", "xout", "sbig", "gbig"] {
+        agree_refusing(m::program(), &ir, main, 6);
+    }
+}
+
+/// review16, 3: `inc` of a local in both branches of `when/3` in a next
+/// situation and an out_arg (`Ev::Pick`): each counted once, in the
+/// evaluator's order.
+#[test]
+fn review16_an_inc_in_a_when_branch_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["wpick(1)", "wpick(5)", "wpick(12)"]);
+    agree_refusing(m::program(), &ir, "wpick(5)", 8);
+}
+
+/// review16, 4: an in_arg skipped three times in a native recursive
+/// situation (`rskip`) and with a held pipe of another shape (`hskip`):
+/// one warning per situation, the same on the three back ends; denied
+/// (`skip_unmatched_in_arg` false), the same error.
+#[test]
+fn review16_a_skipped_in_arg_warns_once_and_is_denied_alike() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    agree_both(m::program(), &ir, &["rskip", "hskip"]);
+    for (main, warnings) in [("rskip", 1), ("hskip", 2)] {
+        for keep in [false, true] {
+            for skip in [true, false] {
+                let options = || Options {
+                    keep_history: keep,
+                    skip_unmatched_in_arg: skip,
+                    ..Options::default()
+                };
+                let i = run_with(&ir, main, None, "", options(), false, false);
+                let c = run_with(m::program(), main, None, "", options(), false, false);
+                let p = run_with(&plans, main, None, "", options(), false, false);
+                let said = |r: &(serde_json::Value, u64, Vec<String>, Vec<String>)| {
+                    r.2.iter().filter(|l| l.starts_with("warning:")).count()
+                };
+                if skip {
+                    assert_eq!(said(&i), warnings, "{main}: {:?}", i.2);
+                }
+                for (x, by) in [(c, "compiled"), (p, "plans")] {
+                    assert_eq!(
+                        unnumbered(format!("{x:?}")),
+                        unnumbered(format!("{i:?}")),
+                        "{by}: {main} (history {keep}, skip {skip})"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// review16, 5: a global the DMs keep an int (`gf ==> 0`) that a user
+/// function sets to a float (`pokef(_)`: 2.5), then counted by `inc` in a
+/// next situation (`gfloat`), an out_arg (`gfout`) and a loop
+/// (`gfloop`): the machine's `inc` gives 3.5 and the run goes on; native
+/// code (`Gen::nat_var_op_value`'s global path) must agree.
+#[test]
+fn review16_an_inc_of_a_global_a_function_made_a_float_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["gfloat", "gfout", "gfloop"]);
+}
+
+/// review16, 5b: the same global read by `get` in a next situation beside
+/// a local's `inc` (`gget`, `Gen::nat_ev_effects` to
+/// `Gen::nat_global_read`): the interpreter reads 2.5 and goes on.
+#[test]
+fn review16_a_get_of_a_global_a_function_made_a_float_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["gget"]);
+}
+
+/// review16, 5c: the same global read by `get` in a condition (`gcond`,
+/// `Gen::nat_global_read`, a path older than this session).
+#[test]
+fn review16_a_global_a_function_made_a_float_in_a_condition_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["gcond"]);
+}
+
+/// review16, 5d: a local the DM keeps an int that a user function sets to
+/// a float (`pokel(_)`), then counted by `inc` in a next situation and an
+/// out_arg (`lfloat`).
+#[test]
+fn review16_an_inc_of_a_local_a_function_made_a_float_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["lfloat"]);
+}
+
+/// review16, 6: a recursive situation's in_arg pattern read by the call,
+/// the exit arc's action, next situation and out_arg, with a DM parameter
+/// (`rout`) or an id variable (`rid`) in it; the callee says something
+/// (its frames made the machine's), `empty`s refused.
+#[test]
+fn review16_a_recursive_in_arg_pattern_read_everywhere_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["rout(4)", "rout(1)", "rid"]);
+    for main in ["rout(4)", "rid"] {
+        agree_refusing(m::program(), &ir, main, 8);
+    }
+}
+
+/// review16, 7: an `inc` that overflows in a callee's next situation and
+/// out_arg, its frame on the native stack (one level, `cbig`; two,
+/// `cbig2`): the error and the transitions are the interpreter's.
+#[test]
+fn review16_an_inc_overflow_in_a_callee_agrees() {
+    use review16_dms::review16 as m;
+    let ir = interpreter("typed/review16");
+    agree_both(m::program(), &ir, &["cbig", "cbig2"]);
+    for main in ["cbig", "cbig2"] {
+        agree_refusing(m::program(), &ir, main, 6);
     }
 }
