@@ -55,7 +55,10 @@
 //!   user functions' source is scanned, `var_op(set(name, ..))` makes
 //!   `name` a `Term`, a `var_op` whose operation or name is not written
 //!   there makes every local and global a `Term`; `var_op(get(..))` and
-//!   `var_op(inc(..))` change no type. A situation without a plan writes
+//!   `var_op(inc(..))` change no type. A function the host registers in
+//!   Rust (`host_functions.pl`) may set any global: every global is a
+//!   `Term` in a program that declares one (a local it sets is read back
+//!   after the call). A situation without a plan writes
 //!   what its template's `set(n, V)` terms say (V's type when ground).
 //! - **fresh variables**: a variable not made from the id, the
 //!   parameters or the pipe is typed by what binds it before its first
@@ -842,6 +845,16 @@ impl<'a> State<'a> {
             };
             if let Some(why) = why {
                 self.entry(d, why);
+            }
+        }
+        // A function the host registers in Rust may set a global through
+        // `var_op` to a value of any type, unseen here; a local it sets is
+        // read back after the call, a global is read where it is used.
+        if !self.ir.host_functions.is_empty() {
+            let why =
+                "a function the host registers (host_functions.pl) may set a global (`var_op`)";
+            for (_, g) in &mut self.t.globals {
+                g.absorb(&Typed::term(why));
             }
         }
         match self.prolog_writes.clone() {
