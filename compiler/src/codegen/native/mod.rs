@@ -943,6 +943,23 @@ fn out_mentions(arc: &ArcPlan, r: Reg) -> bool {
         .is_some_and(|o| crate::mir::ty::ev_mentions(o, r, 0))
 }
 
+/// Whether register `r` occurs once in situation `cur`'s plan (where it
+/// is bound: nothing else reads it).
+fn occurs_once(d: &Dm, cur: usize, r: Reg) -> bool {
+    crate::mir::ty::occurrences(d.plans[cur])
+        .get(r as usize)
+        .is_some_and(|&n| n == 1)
+}
+
+/// Whether binding register `r` here has no other effect: not held, or a
+/// fresh variable ([`is_fresh`]) that occurs nowhere else in the plan.
+fn free_here(d: &Dm, cur: usize, r: Reg, regs: &Regs) -> bool {
+    match regs.get(&r) {
+        None => true,
+        Some((x, _)) => is_fresh(x) && occurs_once(d, cur, r),
+    }
+}
+
 fn is_fresh(x: &Ident) -> bool {
     // `fresh_r<n>` only: an atom's field (`a.fresh_water`) is not one.
     x.to_string()
@@ -4119,15 +4136,7 @@ impl Gen<'_> {
         // Not held, or a fresh variable (made at the visit's start where
         // the code uses it) that occurs nowhere else in the plan: binding
         // it has no other effect.
-        let free = match regs.get(&r) {
-            None => true,
-            Some((x, _)) => {
-                is_fresh(x)
-                    && crate::mir::ty::occurrences(d.plans[cur])
-                        .get(r as usize)
-                        .is_some_and(|&n| n == 1)
-            }
-        };
+        let free = free_here(d, cur, r, regs);
         if !free {
             return Ok(None);
         }
@@ -4238,9 +4247,7 @@ impl Gen<'_> {
     ) -> N<V> {
         let (op, name) = match e {
             Ev::VarOpFresh { op, name, dst } => {
-                let once = crate::mir::ty::occurrences(d.plans[cur])
-                    .get(*dst as usize)
-                    .is_some_and(|&n| n == 1);
+                let once = occurs_once(d, cur, *dst);
                 if !once {
                     return Err("a `get`/`inc` whose variable is read again".into());
                 }
@@ -4251,15 +4258,7 @@ impl Gen<'_> {
                 name,
                 arg: Build::Reg(r),
             } if *op == atoms::GET || *op == atoms::INC => {
-                let free = match regs.get(r) {
-                    None => true,
-                    Some((x, _)) => {
-                        is_fresh(x)
-                            && crate::mir::ty::occurrences(d.plans[cur])
-                                .get(*r as usize)
-                                .is_some_and(|&n| n == 1)
-                    }
-                };
+                let free = free_here(d, cur, *r, regs);
                 if !free {
                     return Err("a `get`/`inc` into a variable bound before".into());
                 }
@@ -4461,10 +4460,7 @@ impl Gen<'_> {
         let ge = &got.e;
         // Met only here: nothing reads what it is bound to. Not a value
         // held before (a parameter met only here is bound: compared).
-        let once = crate::mir::ty::occurrences(d.plans[cur])
-            .get(r as usize)
-            .is_some_and(|&n| n == 1)
-            && regs.get(&r).is_none_or(|(x, _)| is_fresh(x));
+        let once = occurs_once(d, cur, r) && regs.get(&r).is_none_or(|(x, _)| is_fresh(x));
         match regs.get(&r).cloned() {
             _ if once => Ok(got),
             None => {
