@@ -176,6 +176,9 @@ mod r17_d_prog_rooms {
 mod r17_d_readings_deep {
     sitlog_macros::include_dm!("../tests/typed/review17/r17_d_readings_deep");
 }
+mod r17_d_announce {
+    sitlog_macros::include_dm!("../tests/typed/review17/r17_d_announce");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -317,6 +320,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r17_d_dock_when" => format!("fleet({last}, {n}, {list})"),
         "r17_d_two_lists" => format!("audit({n}, {list}, {last})"),
         "r17_d_prog_rooms" => format!("tour({n}, cellar)"),
+        "r17_d_announce" => format!("rounds({n}, {list}, {last})"),
         "r17_d_readings_deep" => {
             let ints: Vec<String> = (0..len).map(|i| i.to_string()).collect();
             format!("monitor({n}, [{}], {})", ints.join(","), len - 2)
@@ -445,6 +449,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             "r17_d_dock_when" => hand_r17_dock(black_box(lsym), n, black_box(&syms)),
             "r17_d_two_lists" => hand_r17_two_lists(n, black_box(&syms), black_box(lsym)),
             "r17_d_prog_rooms" => hand_r17_prog_rooms(n, black_box(Sym(7))),
+            "r17_d_announce" => hand_r17_announce(n, black_box(&syms), black_box(lsym)),
             "r17_d_readings_deep" => {
                 let ints: Vec<i64> = (0..len as i64).collect();
                 hand_r17_readings(n, black_box(&ints), black_box(len as i64 - 2))
@@ -501,11 +506,12 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r17_d_two_lists" => ways!(r17_d_two_lists),
         "r17_d_prog_rooms" => ways!(r17_d_prog_rooms),
         "r17_d_readings_deep" => ways!(r17_d_readings_deep),
+        "r17_d_announce" => ways!(r17_d_announce),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 47] = [
+const ALL: [&str; 48] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -553,6 +559,7 @@ const ALL: [&str; 47] = [
     "r17_d_two_lists",
     "r17_d_prog_rooms",
     "r17_d_readings_deep",
+    "r17_d_announce",
 ];
 
 fn main() {

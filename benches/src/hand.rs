@@ -2107,3 +2107,55 @@ pub fn hand_r17_readings(rounds: i64, readings: &[i64], limit: i64) -> u64 {
     }
     t
 }
+
+/// (d) `r17_d_announce`: [`hand_list_search`]'s walk, each place passed
+/// handed to the effector (`black_box`: the action no effector declares
+/// does nothing).
+pub fn hand_r17_announce(rounds: i64, spots: &[Sym], goal: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Go,
+        Stop,
+        Is,
+        At(&'a [Sym]),
+        Reached(Sym),
+        Lost,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Go];
+    let (mut k, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Go => stack.push(Frame::Is),
+            Frame::Stop => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Is => {
+                t += 1;
+                *top = Frame::At(spots);
+            }
+            Frame::At([]) => {
+                t += 1;
+                *top = Frame::Lost;
+            }
+            Frame::At([s, ss @ ..]) => {
+                t += 1;
+                black_box(*s);
+                *top = if *s == goal {
+                    Frame::Reached(*s)
+                } else {
+                    Frame::At(ss)
+                };
+            }
+            Frame::Reached(_) | Frame::Lost => {
+                t += 2;
+                stack.pop();
+                k = black_box(k + 1);
+                if let Some(c) = stack.last_mut() {
+                    *c = if k >= rounds { Frame::Stop } else { Frame::Go };
+                }
+            }
+        }
+    }
+    t
+}

@@ -3002,6 +3002,9 @@ mod review17_dms {
     pub mod readings {
         sitlog_macros::include_dm!("typed/review17/r17_d_readings_deep");
     }
+    pub mod announce {
+        sitlog_macros::include_dm!("typed/review17/r17_d_announce");
+    }
 }
 
 /// review17 (workloads of shapes (c) and (d) written without reading
@@ -3214,4 +3217,46 @@ fn review17_edges_of_native_values_agree() {
         &ir,
         &["shift(-9223372036854775808)", "shift(99999999999999999999)"],
     );
+}
+
+/// review17, (d) a walk performing an action at each visit (`note(S)`):
+/// found, not found, an empty list, an improper tail, an unbound goal and
+/// element, a non-number where the rounds are compared.
+#[test]
+fn review17_announce_agrees() {
+    use review17_dms::announce as m;
+    let ir = interpreter("typed/review17/r17_d_announce");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "rounds(2, [a, b, c], c)",
+            "rounds(2, [a, b], z)",
+            "rounds(2, [], z)",
+            "rounds(2, [a|b], z)",
+            "rounds(x, [a, b], b)",
+        ],
+    );
+    // An unbound element or goal performed (`note(_G..)`): the same run,
+    // the variables' numbers aside (our convention compares every `_...`
+    // variable alike; native code makes fewer terms).
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    for main in ["rounds(2, [a, _, b], b)", "rounds(2, [a, b], _)"] {
+        for keep in [false, true] {
+            for observe in [false, true] {
+                for numbers in [false, true] {
+                    let i = run_piped(&ir, main, None, "", keep, observe, numbers);
+                    let c = run_piped(m::program(), main, None, "", keep, observe, numbers);
+                    let p = run_piped(&plans, main, None, "", keep, observe, numbers);
+                    for (x, by) in [(c, "compiled"), (p, "plans")] {
+                        assert_eq!(
+                            unnumbered(format!("{x:?}")),
+                            unnumbered(format!("{i:?}")),
+                            "{by}: {main} (history {keep}, observer {observe}, numbers {numbers})"
+                        );
+                    }
+                }
+            }
+        }
+    }
 }
