@@ -246,6 +246,7 @@ impl Interface {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     #[test]
     fn defaults_and_overrides() {
@@ -271,5 +272,119 @@ mod tests {
         assert!(e.contains("sai"), "{e}");
         let e = Interface::load(Some(("r.toml", "[timeouts]\nanswer = -1.0\n")), None).unwrap_err();
         assert!(e.contains("timeouts.answer"), "{e}");
+    }
+
+    /// Pieces of text shaped like a `ros2.toml` (and like what it must refuse).
+    const PIECES: &[&str] = &[
+        "robot_name",
+        "[topics]",
+        "[actions]",
+        "[services]",
+        "[frames]",
+        "[qos.say]",
+        "[qos.heard]",
+        "[timeouts]",
+        "[places.kitchen]",
+        "[places.\"a b\"]",
+        "say",
+        "navigate",
+        "answer",
+        "speech",
+        "reliability",
+        "durability",
+        "depth",
+        "x",
+        "y",
+        "yaw",
+        " = ",
+        "=",
+        "\"reliable\"",
+        "\"volatile\"",
+        "\"/tts\"",
+        "0",
+        "-1",
+        "5.0",
+        "1e6",
+        "1e7",
+        "1e308",
+        "inf",
+        "-inf",
+        "nan",
+        "2147483648",
+        "true",
+        "\"",
+        "'",
+        "[",
+        "]",
+        "{",
+        "}",
+        ",",
+        ".",
+        "#",
+        " ",
+        "\n",
+        "\r\n",
+        "é",
+        "\u{2028}",
+    ];
+
+    /// The home world of `sitlog-sim`'s tests (places and shelves to pose).
+    fn home() -> World {
+        let text = include_str!("../../sim/tests/worlds/home.toml");
+        World::parse("home.toml", text).expect("the home world reads")
+    }
+
+    /// The invariant on `text`: an error naming the file, or a complete
+    /// interface (every timeout finite and in range, every QoS valid,
+    /// every place's pose finite).
+    fn complete_or_refused(text: &str, world: Option<&World>) -> Result<(), TestCaseError> {
+        match Interface::load(Some(("ros2.toml", text)), world) {
+            Err(e) => prop_assert!(e.starts_with("ros2.toml: error: "), "{e:?}"),
+            Ok(i) => {
+                let t = &i.timeouts;
+                for v in [t.discovery, t.answer, t.navigate, t.action, t.speech] {
+                    prop_assert!(v.is_finite() && (0.0..=1.0e6).contains(&v), "{t:?}");
+                    Interface::secs(v);
+                }
+                let q = &i.qos;
+                for q in [
+                    &q.say,
+                    &q.listening,
+                    &q.heard,
+                    &q.screen,
+                    &q.message,
+                    &q.run,
+                    &q.abort,
+                ] {
+                    prop_assert!((1..=10_000).contains(&q.depth), "{q:?}");
+                }
+                for (x, y, yaw) in i.places.values() {
+                    prop_assert!(
+                        x.is_finite() && y.is_finite() && yaw.is_finite(),
+                        "{:?}",
+                        i.places
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+
+        #[test]
+        fn any_text_is_an_interface_or_an_error(text in any::<String>()) {
+            complete_or_refused(&text, None)?;
+        }
+
+        #[test]
+        fn interface_shaped_text_is_an_interface_or_an_error(
+            parts in prop::collection::vec(prop::sample::select(PIECES), 0..32)
+        ) {
+            let text = parts.concat();
+            complete_or_refused(&text, None)?;
+            complete_or_refused(&text, Some(&home()))?;
+        }
     }
 }
