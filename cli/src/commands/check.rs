@@ -172,14 +172,13 @@ fn asset_diagnostics(path: &Path) -> Result<(SourceMap, Vec<Diagnostic>), (u8, S
         if let Err(message) =
             sitlog_ros::Interface::load(Some((&file.name, &file.text)), world.as_ref())
         {
-            let message = message
-                .strip_prefix(&format!("{}: error: ", file.name))
-                .unwrap_or(&message);
-            // toml's own text: "TOML parse error at line L, column C", the
-            // line quoted, then what is wrong.
-            let (line, column, message) = toml_position(message)
-                .map(|(l, c)| (l, c, message.lines().last().unwrap_or("").to_owned()))
-                .unwrap_or((0, 0, message.to_owned()));
+            // `FILE:LINE:COL: error: ...`, or `FILE: error: ...` without a place.
+            let rest = message.strip_prefix(file.name.as_str()).unwrap_or(&message);
+            let (line, column, message) = error_position(rest).unwrap_or((
+                0,
+                0,
+                rest.strip_prefix(": error: ").unwrap_or(rest).to_owned(),
+            ));
             problems.push(sitlog_robot::AssetError {
                 file: file.name.clone(),
                 line,
@@ -218,13 +217,14 @@ fn asset_diagnostics(path: &Path) -> Result<(SourceMap, Vec<Diagnostic>), (u8, S
     Ok((sources, diags))
 }
 
-/// The line and column of toml's "TOML parse error at line L, column C".
+/// The line, column and message of `:LINE:COL: error: MESSAGE` (what
+/// follows the file's name in sitlog-ros's errors).
 #[cfg(feature = "ros2")]
-fn toml_position(message: &str) -> Option<(usize, usize)> {
-    let rest = message.strip_prefix("TOML parse error at line ")?;
-    let (line, rest) = rest.split_once(", column ")?;
-    let column: String = rest.chars().take_while(char::is_ascii_digit).collect();
-    Some((line.parse().ok()?, column.parse().ok()?))
+fn error_position(rest: &str) -> Option<(usize, usize, String)> {
+    let rest = rest.strip_prefix(':')?;
+    let (line, rest) = rest.split_once(':')?;
+    let (column, message) = rest.split_once(": error: ")?;
+    Some((line.parse().ok()?, column.parse().ok()?, message.to_owned()))
 }
 
 /// The byte offset of 1-based `line` and `column` (characters) in `text`;
