@@ -75,6 +75,7 @@ fn line_col(text: &str, at: usize) -> (usize, usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     #[test]
     fn reads_the_key_and_refuses_others_with_their_place() {
@@ -94,5 +95,103 @@ mod tests {
         assert!(e.starts_with("s.toml:1:17: error: "), "{e}");
         let e = parse("s.toml", "deny-warnings = \n").unwrap_err();
         assert!(e.starts_with("s.toml:1:"), "{e}");
+    }
+
+    /// Pieces of text shaped like a `sitlog.toml` (and like what it must refuse).
+    const PIECES: &[&str] = &[
+        "deny-warnings",
+        "deny_warnings",
+        " = ",
+        "=",
+        "true",
+        "false",
+        "1",
+        "1e400",
+        "nan",
+        "\"",
+        "'",
+        "\"\"\"",
+        "[",
+        "]",
+        "[[",
+        "]]",
+        "{",
+        "}",
+        ",",
+        ".",
+        "#",
+        " ",
+        "\t",
+        "\n",
+        "\r\n",
+        "\r",
+        "é",
+        "\u{a0}",
+        "\u{2028}",
+        "\u{feff}",
+        "\\",
+        "\\u{0}",
+        "x",
+        "table",
+        "\u{0}",
+    ];
+
+    /// Checks the invariant on `text`: the settings, or one line
+    /// `s.toml:LINE:COL: error: ...` whose place is in `text` (or
+    /// `s.toml: error: ...` without one).
+    fn located(text: &str) -> Result<(), TestCaseError> {
+        let Err(e) = parse("s.toml", text) else {
+            return Ok(());
+        };
+        prop_assert!(!e.contains('\n'), "{e:?}");
+        let Some(rest) = e.strip_prefix("s.toml:") else {
+            return Err(TestCaseError::fail(format!("no file name: {e:?}")));
+        };
+        if rest.starts_with(" error: ") {
+            return Ok(());
+        }
+        let mut parts = rest.splitn(3, ':');
+        let line: usize = parts
+            .next()
+            .unwrap_or("")
+            .parse()
+            .map_err(|_| TestCaseError::fail(format!("{e:?}")))?;
+        let col: usize = parts
+            .next()
+            .unwrap_or("")
+            .parse()
+            .map_err(|_| TestCaseError::fail(format!("{e:?}")))?;
+        prop_assert!(
+            parts.next().is_some_and(|m| m.starts_with(" error: ")),
+            "{e:?}"
+        );
+        let lines: Vec<&str> = text.split('\n').collect();
+        prop_assert!(
+            line >= 1 && line <= lines.len(),
+            "line {line} of {}: {e:?}",
+            lines.len()
+        );
+        let chars = lines[line - 1].chars().count();
+        prop_assert!(
+            col >= 1 && col <= chars + 1,
+            "column {col} of {chars}: {e:?}"
+        );
+        Ok(())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+
+        #[test]
+        fn any_text_reads_or_is_a_located_error(text in any::<String>()) {
+            located(&text)?;
+        }
+
+        #[test]
+        fn settings_shaped_text_reads_or_is_a_located_error(
+            parts in prop::collection::vec(prop::sample::select(PIECES), 0..24)
+        ) {
+            located(&parts.concat())?;
+        }
     }
 }

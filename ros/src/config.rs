@@ -6,7 +6,8 @@
 //! front of it), then from `[places.NAME]`.
 //!
 //! Invariant: an [`Interface`] is complete (every name set, every timeout
-//! finite and ≥ 0); any unknown key is an error.
+//! finite and ≥ 0); any unknown key is an error; an error is one line,
+//! `FILE:LINE:COL: error: ...` at the value that is wrong.
 
 use serde::Deserialize;
 use sitlog_sim::World;
@@ -162,14 +163,33 @@ pub struct Interface {
 
 impl Interface {
     /// The interface of `ros2.toml` (`file`: its name and text, if there is
-    /// one) over the places and names of `world`. `Err`: `FILE: error: ...`.
+    /// one) over the places and names of `world`. `Err`: one line,
+    /// `FILE:LINE:COL: error: ...` at the value (or text) that is wrong.
     pub fn load(file: Option<(&str, &str)>, world: Option<&World>) -> Result<Interface, String> {
+        let (name, text) = file.unwrap_or(("ros2.toml", ""));
+        let error = |path: &[&str], message: String| {
+            let at = value_at(text, path);
+            match at {
+                Some(at) => {
+                    let (line, column) = line_col(text, at);
+                    format!("{name}:{line}:{column}: error: {message}")
+                }
+                None => format!("{name}: error: {message}"),
+            }
+        };
         let parsed: File = match file {
-            Some((name, text)) => toml::from_str(text)
-                .map_err(|e| format!("{name}: error: {}", e.to_string().trim()))?,
+            Some(_) => toml::from_str(text).map_err(|e: toml::de::Error| {
+                let message = e.message().trim().replace('\n', " ");
+                match e.span() {
+                    Some(span) => {
+                        let (line, column) = line_col(text, span.start);
+                        format!("{name}:{line}:{column}: error: {message}")
+                    }
+                    None => format!("{name}: error: {message}"),
+                }
+            })?,
             None => File::default(),
         };
-        let name = file.map(|f| f.0).unwrap_or("ros2.toml");
         let t = &parsed.timeouts;
         for (key, v) in [
             ("discovery", t.discovery),
@@ -179,8 +199,9 @@ impl Interface {
             ("speech", t.speech),
         ] {
             if !(v.is_finite() && (0.0..=1.0e6).contains(&v)) {
-                return Err(format!(
-                    "{name}: error: timeouts.{key} must be a number of seconds between 0 and 1000000"
+                return Err(error(
+                    &["timeouts", key],
+                    format!("timeouts.{key} must be a number of seconds between 0 and 1000000"),
                 ));
             }
         }
@@ -193,12 +214,19 @@ impl Interface {
             ("run", &parsed.qos.run),
             ("abort", &parsed.qos.abort),
         ] {
-            if !matches!(q.reliability.as_str(), "reliable" | "best_effort")
-                || !matches!(q.durability.as_str(), "transient_local" | "volatile")
-                || !(1..=10_000).contains(&q.depth)
-            {
-                return Err(format!(
-                    "{name}: error: qos.{key}: reliability `reliable` or `best_effort`, durability `transient_local` or `volatile`, depth 1 to 10000"
+            let bad = if !matches!(q.reliability.as_str(), "reliable" | "best_effort") {
+                Some("reliability")
+            } else if !matches!(q.durability.as_str(), "transient_local" | "volatile") {
+                Some("durability")
+            } else if !(1..=10_000).contains(&q.depth) {
+                Some("depth")
+            } else {
+                None
+            };
+            if let Some(field) = bad {
+                return Err(error(
+                    &["qos", key, field],
+                    format!("qos.{key}: reliability `reliable` or `best_effort`, durability `transient_local` or `volatile`, depth 1 to 10000"),
                 ));
             }
         }
@@ -211,9 +239,13 @@ impl Interface {
             }
         }
         for (n, p) in &parsed.places {
-            if !(p.x.is_finite() && p.y.is_finite() && p.yaw.is_finite()) {
-                return Err(format!(
-                    "{name}: error: places.{n}: x, y and yaw must be numbers"
+            if let Some(field) = [("x", p.x), ("y", p.y), ("yaw", p.yaw)]
+                .into_iter()
+                .find_map(|(field, v)| (!v.is_finite()).then_some(field))
+            {
+                return Err(error(
+                    &["places", n, field],
+                    format!("places.{n}: x, y and yaw must be numbers"),
                 ));
             }
             places.insert(n.clone(), (p.x, p.y, p.yaw.to_radians()));
@@ -243,9 +275,38 @@ impl Interface {
     }
 }
 
+/// The byte offset of the value at `path` (`["timeouts", "answer"]`) in
+/// `text`, read as TOML; `None` if there is none or the text does not read.
+fn value_at(text: &str, path: &[&str]) -> Option<usize> {
+    use toml::de::{DeTable, DeValue};
+    let doc = DeTable::parse(text).ok()?;
+    let (last, parents) = path.split_last()?;
+    let mut table = doc.get_ref();
+    for key in parents {
+        match table.get(*key)?.get_ref() {
+            DeValue::Table(t) => table = t,
+            _ => return None,
+        }
+    }
+    Some(table.get(*last)?.span().start)
+}
+
+/// 1-based line and column (in characters) of byte offset `at` in `text`.
+fn line_col(text: &str, at: usize) -> (usize, usize) {
+    let mut at = at.min(text.len());
+    while !text.is_char_boundary(at) {
+        at -= 1;
+    }
+    let before = &text[..at];
+    let line = before.matches('\n').count() + 1;
+    let start = before.rfind('\n').map_or(0, |i| i + 1);
+    (line, before[start..].chars().count() + 1)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     #[test]
     fn defaults_and_overrides() {
@@ -265,11 +326,156 @@ mod tests {
     }
 
     #[test]
-    fn errors_name_the_file() {
+    fn errors_name_the_file_and_the_place() {
         let e = Interface::load(Some(("r.toml", "[topics]\nsai = \"/x\"\n")), None).unwrap_err();
-        assert!(e.starts_with("r.toml: error:"), "{e}");
-        assert!(e.contains("sai"), "{e}");
+        assert!(
+            e.starts_with("r.toml:2:1: error: unknown field `sai`"),
+            "{e}"
+        );
+        assert!(!e.contains('\n'), "{e}");
         let e = Interface::load(Some(("r.toml", "[timeouts]\nanswer = -1.0\n")), None).unwrap_err();
-        assert!(e.contains("timeouts.answer"), "{e}");
+        assert!(e.starts_with("r.toml:2:10: error: timeouts.answer"), "{e}");
+        let text =
+            "[qos.heard]\nreliability = \"reliable\"\ndurability = \"volatile\"\ndepth = 0\n";
+        let e = Interface::load(Some(("r.toml", text)), None).unwrap_err();
+        assert!(e.starts_with("r.toml:4:9: error: qos.heard:"), "{e}");
+        let e =
+            Interface::load(Some(("r.toml", "[places.k]\nx = 1\ny = nan\n")), None).unwrap_err();
+        assert!(e.starts_with("r.toml:3:5: error: places.k:"), "{e}");
+        let e = Interface::load(Some(("r.toml", "qos = 3\n")), None).unwrap_err();
+        assert!(e.starts_with("r.toml:1:7: error: "), "{e}");
+    }
+
+    /// Pieces of text shaped like a `ros2.toml` (and like what it must refuse).
+    const PIECES: &[&str] = &[
+        "robot_name",
+        "[topics]",
+        "[actions]",
+        "[services]",
+        "[frames]",
+        "[qos.say]",
+        "[qos.heard]",
+        "[timeouts]",
+        "[places.kitchen]",
+        "[places.\"a b\"]",
+        "say",
+        "navigate",
+        "answer",
+        "speech",
+        "reliability",
+        "durability",
+        "depth",
+        "x",
+        "y",
+        "yaw",
+        " = ",
+        "=",
+        "\"reliable\"",
+        "\"volatile\"",
+        "\"/tts\"",
+        "0",
+        "-1",
+        "5.0",
+        "1e6",
+        "1e7",
+        "1e308",
+        "inf",
+        "-inf",
+        "nan",
+        "2147483648",
+        "true",
+        "\"",
+        "'",
+        "[",
+        "]",
+        "{",
+        "}",
+        ",",
+        ".",
+        "#",
+        " ",
+        "\n",
+        "\r\n",
+        "é",
+        "\u{2028}",
+    ];
+
+    /// The home world of `sitlog-sim`'s tests (places and shelves to pose).
+    fn home() -> World {
+        let text = include_str!("../../sim/tests/worlds/home.toml");
+        World::parse("home.toml", text).expect("the home world reads")
+    }
+
+    /// The invariant on `text`: one line `ros2.toml:LINE:COL: error: ...`
+    /// whose place is in `text` (`ros2.toml: error: ...` without one), or a complete
+    /// interface (every timeout finite and in range, every QoS valid,
+    /// every place's pose finite).
+    fn complete_or_refused(text: &str, world: Option<&World>) -> Result<(), TestCaseError> {
+        match Interface::load(Some(("ros2.toml", text)), world) {
+            Err(e) => {
+                prop_assert!(!e.contains('\n'), "{e:?}");
+                let rest = e.strip_prefix("ros2.toml:");
+                prop_assert!(rest.is_some(), "{e:?}");
+                let rest = rest.unwrap_or_default();
+                if !rest.starts_with(" error: ") {
+                    let mut parts = rest.splitn(3, ':');
+                    let line: usize = parts.next().unwrap_or("").parse().unwrap_or(0);
+                    let col: usize = parts.next().unwrap_or("").parse().unwrap_or(0);
+                    prop_assert!(
+                        parts.next().is_some_and(|m| m.starts_with(" error: ")),
+                        "{e:?}"
+                    );
+                    let lines: Vec<&str> = text.split('\n').collect();
+                    prop_assert!(line >= 1 && line <= lines.len(), "{e:?}");
+                    let chars = lines[line - 1].chars().count();
+                    prop_assert!(col >= 1 && col <= chars + 1, "{e:?}");
+                }
+            }
+            Ok(i) => {
+                let t = &i.timeouts;
+                for v in [t.discovery, t.answer, t.navigate, t.action, t.speech] {
+                    prop_assert!(v.is_finite() && (0.0..=1.0e6).contains(&v), "{t:?}");
+                    Interface::secs(v);
+                }
+                let q = &i.qos;
+                for q in [
+                    &q.say,
+                    &q.listening,
+                    &q.heard,
+                    &q.screen,
+                    &q.message,
+                    &q.run,
+                    &q.abort,
+                ] {
+                    prop_assert!((1..=10_000).contains(&q.depth), "{q:?}");
+                }
+                for (x, y, yaw) in i.places.values() {
+                    prop_assert!(
+                        x.is_finite() && y.is_finite() && yaw.is_finite(),
+                        "{:?}",
+                        i.places
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+
+        #[test]
+        fn any_text_is_an_interface_or_an_error(text in any::<String>()) {
+            complete_or_refused(&text, None)?;
+        }
+
+        #[test]
+        fn interface_shaped_text_is_an_interface_or_an_error(
+            parts in prop::collection::vec(prop::sample::select(PIECES), 0..32)
+        ) {
+            let text = parts.concat();
+            complete_or_refused(&text, None)?;
+            complete_or_refused(&text, Some(&home()))?;
+        }
     }
 }

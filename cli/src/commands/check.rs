@@ -161,6 +161,11 @@ pub fn check(
 /// cannot be used, as `run` says it (exit status and message).
 fn asset_diagnostics(path: &Path) -> Result<(SourceMap, Vec<Diagnostic>), (u8, String)> {
     let assets = sitlog_robot::Assets::from_app(path).map_err(|e| (e.status, e.message))?;
+    Ok(diagnostics_of(&assets))
+}
+
+/// [`asset_diagnostics`] of files already read.
+fn diagnostics_of(assets: &sitlog_robot::Assets) -> (SourceMap, Vec<Diagnostic>) {
     #[allow(unused_mut)]
     let mut problems = assets.problems();
     #[cfg(feature = "ros2")]
@@ -172,14 +177,13 @@ fn asset_diagnostics(path: &Path) -> Result<(SourceMap, Vec<Diagnostic>), (u8, S
         if let Err(message) =
             sitlog_ros::Interface::load(Some((&file.name, &file.text)), world.as_ref())
         {
-            let message = message
-                .strip_prefix(&format!("{}: error: ", file.name))
-                .unwrap_or(&message);
-            // toml's own text: "TOML parse error at line L, column C", the
-            // line quoted, then what is wrong.
-            let (line, column, message) = toml_position(message)
-                .map(|(l, c)| (l, c, message.lines().last().unwrap_or("").to_owned()))
-                .unwrap_or((0, 0, message.to_owned()));
+            // `FILE:LINE:COL: error: ...`, or `FILE: error: ...` without a place.
+            let rest = message.strip_prefix(file.name.as_str()).unwrap_or(&message);
+            let (line, column, message) = error_position(rest).unwrap_or((
+                0,
+                0,
+                rest.strip_prefix(": error: ").unwrap_or(rest).to_owned(),
+            ));
             problems.push(sitlog_robot::AssetError {
                 file: file.name.clone(),
                 line,
@@ -215,16 +219,17 @@ fn asset_diagnostics(path: &Path) -> Result<(SourceMap, Vec<Diagnostic>), (u8, S
             .with_label("here"),
         );
     }
-    Ok((sources, diags))
+    (sources, diags)
 }
 
-/// The line and column of toml's "TOML parse error at line L, column C".
+/// The line, column and message of `:LINE:COL: error: MESSAGE` (what
+/// follows the file's name in sitlog-ros's errors).
 #[cfg(feature = "ros2")]
-fn toml_position(message: &str) -> Option<(usize, usize)> {
-    let rest = message.strip_prefix("TOML parse error at line ")?;
-    let (line, rest) = rest.split_once(", column ")?;
-    let column: String = rest.chars().take_while(char::is_ascii_digit).collect();
-    Some((line.parse().ok()?, column.parse().ok()?))
+fn error_position(rest: &str) -> Option<(usize, usize, String)> {
+    let rest = rest.strip_prefix(':')?;
+    let (line, rest) = rest.split_once(':')?;
+    let (column, message) = rest.split_once(": error: ")?;
+    Some((line.parse().ok()?, column.parse().ok()?, message.to_owned()))
 }
 
 /// The byte offset of 1-based `line` and `column` (characters) in `text`;
@@ -264,4 +269,146 @@ fn origin_lines(path: &std::path::Path, program: &sitlog_compiler::ast::Program)
             format!("{} uses {} {from}", path.display(), f.name)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+    use sitlog_robot::{Assets, TextFile};
+
+    /// Pieces shaped like a world file, a KB and a `ros2.toml`.
+    const PIECES: &[&str] = &[
+        "[robot]",
+        "[[place]]",
+        "[[shelf]]",
+        "[[object]]",
+        "[places.k]",
+        "[timeouts]",
+        "[qos.say]",
+        "name",
+        "at",
+        "on",
+        "x",
+        "y",
+        "answer",
+        "depth",
+        " = ",
+        "\"kitchen\"",
+        "\"fridge\"",
+        "[1.0, 2.0]",
+        "-1",
+        "0",
+        "3",
+        "nan",
+        "1e400",
+        "class(",
+        "objects",
+        ",",
+        "[",
+        "]",
+        ")",
+        ").",
+        "'",
+        "\"",
+        "#",
+        "%",
+        " ",
+        "\n",
+        "é",
+        "\u{2028}",
+        "\u{a0}",
+    ];
+
+    fn file(name: &str, text: Option<String>) -> Option<TextFile> {
+        text.map(|text| TextFile {
+            name: name.to_owned(),
+            text,
+        })
+    }
+
+    /// Every diagnostic of the three files: a span on character boundaries
+    /// of its file, at the line and column `run` gives (when that is inside
+    /// the text), rendered in the three forms without a panic.
+    fn located(
+        world: Option<String>,
+        kb: Option<String>,
+        ros2: Option<String>,
+    ) -> Result<(), TestCaseError> {
+        let assets = Assets {
+            world: file("world.toml", world),
+            kb: file("knowledge.kb", kb),
+            ros2: file("ros2.toml", ros2),
+            ..Assets::default()
+        };
+        let (sources, diags) = diagnostics_of(&assets);
+        for d in &diags {
+            let f = sources.get(d.loc.file);
+            let (start, end) = (d.loc.span.start as usize, d.loc.span.end as usize);
+            prop_assert!(start <= end && end <= f.text.len(), "{d:?} in {:?}", f.text);
+            prop_assert!(
+                f.text.is_char_boundary(start) && f.text.is_char_boundary(end),
+                "{d:?}"
+            );
+            diag::render_human(d, &sources, false);
+            diag::render_json(d, &sources);
+            diag::render_short(d, &sources);
+        }
+        #[allow(unused_mut)]
+        let mut problems = assets.problems();
+        #[cfg(feature = "ros2")]
+        if let Some(f) = &assets.ros2 {
+            let world = assets
+                .world
+                .as_ref()
+                .and_then(|w| sitlog_sim::World::parse(&w.name, &w.text).ok());
+            if let Err(e) = sitlog_ros::Interface::load(Some((&f.name, &f.text)), world.as_ref()) {
+                if let Some((line, column, message)) = error_position(&e["ros2.toml".len()..]) {
+                    problems.push(sitlog_robot::AssetError {
+                        file: f.name.clone(),
+                        line,
+                        column,
+                        message,
+                    });
+                }
+            }
+        }
+        for p in problems {
+            let lines: Vec<&str> = [&assets.world, &assets.kb, &assets.ros2]
+                .into_iter()
+                .flatten()
+                .find(|f| f.name == p.file)
+                .map(|f| f.text.split('\n').collect())
+                .unwrap_or_default();
+            let inside = p.line >= 1
+                && p.line <= lines.len()
+                && p.column <= lines[p.line - 1].chars().count() + 1;
+            if !inside {
+                continue;
+            }
+            let at = diags.iter().any(|d| {
+                let f = sources.get(d.loc.file);
+                let lc = f.line_col(d.loc.span.start);
+                f.name == p.file && (lc.line as usize, lc.column as usize) == (p.line, p.column)
+            });
+            prop_assert!(at, "{p:?} not at its place in {diags:?}");
+        }
+        Ok(())
+    }
+
+    fn text() -> impl Strategy<Value = Option<String>> {
+        prop::option::of(prop_oneof![
+            any::<String>(),
+            prop::collection::vec(prop::sample::select(PIECES), 0..24).prop_map(|p| p.concat()),
+        ])
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(128))]
+
+        #[test]
+        fn asset_diagnostics_are_located_and_render(world in text(), kb in text(), ros2 in text()) {
+            located(world, kb, ros2)?;
+        }
+    }
 }

@@ -171,6 +171,32 @@ fn check_reads_the_world_kb_and_ros2_files() {
         &["world.toml", "knowledge.kb"]
     };
     assert_eq!(files, expected, "{diags:?}");
+    if cfg!(feature = "ros2") {
+        // At the value that is wrong (`3`, not a table), not at the file's start.
+        assert_eq!(
+            (&diags[2]["line"], &diags[2]["column"]),
+            (&1.into(), &7.into()),
+            "{diags:?}"
+        );
+        std::fs::write(app.join("ros2.toml"), "[timeouts]\nanswer = -1.0\n").unwrap();
+        let (_, diags) = check(&app);
+        let ros2 = diags
+            .iter()
+            .find(|d| d["file"].as_str().unwrap().ends_with("ros2.toml"));
+        let ros2 = ros2.expect("an error of ros2.toml");
+        assert_eq!(
+            (&ros2["line"], &ros2["column"]),
+            (&2.into(), &10.into()),
+            "{ros2:?}"
+        );
+        assert!(
+            ros2["message"]
+                .as_str()
+                .unwrap()
+                .starts_with("timeouts.answer must be"),
+            "{ros2:?}"
+        );
+    }
 }
 
 /// A library DM missing from `models` names the entry to add; a misspelt
