@@ -29,6 +29,9 @@ pub struct ErrorSite {
     pub dm: DmIx,
     pub situation: SitIx,
     pub culprit: Option<eval::Culprit>,
+    /// The error is the situation's in_arg's (E14 under
+    /// `--deny-warnings`): a reporter points at the in_arg.
+    pub in_arg: bool,
 }
 
 impl std::fmt::Display for RunError {

@@ -49,15 +49,42 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             self.warn_in_arg_skipped(pattern, pipe, here);
             return Ok(());
         }
-        Err(self.err(
+        Err(self.in_arg_denied(pattern, pipe, here))
+    }
+
+    /// E14's error (`--deny-warnings`): the warning's text and place (the
+    /// in_arg's `file:line:col`, its variables numbered `_G0`, ..), so
+    /// that the interpreter and a compiled task say the same bytes and a
+    /// reporter with the source points at the in_arg ([`ErrorSite::in_arg`](super::ErrorSite::in_arg)).
+    #[cold]
+    fn in_arg_denied(&self, pattern: Term, pipe: Term, here: Option<(SitIx, Term)>) -> RunError {
+        let frame = match self.lazy.last() {
+            Some(l) => Some((l.dm, l.call)),
+            None => self.frames.last().map(|f| (f.dm, f.dm_id)),
+        };
+        let call = frame.map_or(Term::atom(atoms::NONE), |(_, c)| c);
+        let id = here.map_or(Term::atom(atoms::NONE), |(_, id)| id);
+        let [call, id, pattern, pipe] = writeq_renumbered(&self.store, [call, id, pattern, pipe]);
+        let mut e = self.err(
             format!(
-                "in_arg `{}` does not match the incoming pipe value `{}`",
-                self.store.writeq(pattern),
-                self.store.writeq(pipe)
+                "in_arg `{pattern}` does not match the incoming pipe value `{pipe}` (warnings are denied; without --deny-warnings the run skips this in_arg, as the original SitLog does)"
             ),
             here,
             None,
-        ))
+        );
+        if let Some((dm, _)) = frame {
+            e.dm = Some(call);
+            if let Some((s, _)) = here {
+                e.situation = Some(id);
+                if let Some(at) = self.program.in_arg_location(dm, s) {
+                    e.location = Some(at);
+                }
+            }
+        }
+        if let Some(site) = e.site.as_deref_mut() {
+            site.in_arg = true;
+        }
+        e
     }
 
     /// The warning of an in_arg skipped ([`Machine::unify_in_arg`]), the
