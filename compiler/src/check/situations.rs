@@ -189,6 +189,7 @@ impl<'p> Checker<'p> {
             for arc in s.arcs.iter().flatten() {
                 let Some(values) = static_values(terms, arc.next) else {
                     everything_reachable = true;
+                    self.unknown_next_functor(dm, &index, arc.next);
                     continue;
                 };
                 for v in values {
@@ -276,6 +277,57 @@ impl<'p> Checker<'p> {
             self.diags.push(
                 Diagnostic::warning(code, dm.loc(s.id.map_or(s.span, |id| dm.span_of(id))), msg)
                     .with_label("no arc leads here from the initial situation"),
+            );
+        }
+    }
+
+    /// E0212 for a next situation whose value is computed in part
+    /// (`serch(get(x, _))`, a `(C -> A ; B)` that is not a conditional):
+    /// its principal functor is not evaluated, so whatever the arguments
+    /// become, no situation of the DM has that name and arity (and none
+    /// has a variable id). Each branch of a conditional alike; nothing
+    /// when the functor itself is computed.
+    fn unknown_next_functor(&mut self, dm: &Dm, index: &SituationIndex, next: TermId) {
+        let terms = &dm.clause.terms;
+        if !index.var.is_empty() {
+            return;
+        }
+        for v in callees(terms, next).into_iter().flatten() {
+            let Some(f) = terms.functor(v) else { continue };
+            if index.all.contains_key(&f) {
+                continue;
+            }
+            let shown = show(dm, v);
+            let ids = || {
+                dm.situations
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(j, s)| s.id.map(|id| (j, id)))
+            };
+            let help = match suggest_term(terms, v, &shown, dm, ids()) {
+                Some((_, similar)) => format!("did you mean `{similar}`?"),
+                None => format!(
+                    "situations of this DM: {}",
+                    ids()
+                        .take(8)
+                        .map(|(_, id)| show(dm, id))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            };
+            let what = if f.0 == atoms::SEMICOLON || f.0 == atoms::BAR {
+                " (written like a conditional, it is not one: its value is this term)"
+            } else {
+                ""
+            };
+            self.diags.push(
+                Diagnostic::error(
+                    codes::UNKNOWN_NEXT,
+                    dm.loc(terms.span(v)),
+                    format!("no situation `{}/{}` in DM `{}`{what}", f.0, f.1, dm.name),
+                )
+                .with_label("whatever its arguments, no situation has this name")
+                .with_help(help),
             );
         }
     }
