@@ -91,6 +91,9 @@ impl<'p> Checker<'p> {
                     .with_help("known attributes: id, type, arcs, prog, in_arg, out_arg, embedded_dm, diag_mod"),
                 );
             }
+            if let Some(d) = s.diag_mod {
+                self.diag_mod_mismatch(dm, d);
+            }
             if s.kind_term.and_then(|t| terms.atom(t)) == Some(atoms::NEUTRAL) {
                 if let Some(arcs) = &s.arcs {
                     let ok =
@@ -560,6 +563,51 @@ impl<'p> Checker<'p> {
 }
 
 impl Checker<'_> {
+    /// E0237: a situation's `diag_mod` that never unifies with the DM's
+    /// identifier (the call, an instance of its head): every value it can
+    /// take is known ([`static_values`]) and none may unify with the
+    /// head, or its principal functor is known ([`callees`]) and is not
+    /// the DM's name and arity. The machine stops there whenever the
+    /// situation is reached (the original blocks: semantics E9).
+    fn diag_mod_mismatch(&mut self, dm: &Dm, d: TermId) {
+        let terms = &dm.clause.terms;
+        let never = match static_values(terms, d) {
+            Some(vs) => !vs.iter().any(|&v| may_unify(terms, v, terms, dm.head)),
+            None => callees(terms, d).is_some_and(|cs| {
+                cs.iter()
+                    .all(|&c| terms.functor(c) != Some((dm.name, dm.arity)))
+            }),
+        };
+        if !never {
+            return;
+        }
+        let head = show(dm, dm.head);
+        let help = match terms.functor(d) {
+            Some((name, arity)) if (name, arity) != (dm.name, dm.arity) => format!(
+                "a situation's diag_mod is unified with its DM's identifier: write `{}(..)` with {} argument(s), as the head `{head}`",
+                dm.name, dm.arity
+            ),
+            _ => format!("a situation's diag_mod is unified with its DM's identifier: give it values that match the head `{head}`"),
+        };
+        self.diags.push(
+            Diagnostic::error(
+                codes::DIAG_MOD_MISMATCH,
+                dm.loc(terms.span(d)),
+                format!(
+                    "diag_mod `{}` never matches DM `{}`'s identifier `{head}`",
+                    show(dm, d),
+                    dm.name
+                ),
+            )
+            .with_label("the run stops here when the situation is reached")
+            .with_secondary(
+                dm.loc(dm.span_of(dm.head)),
+                format!("DM `{}` defined here", dm.name),
+            )
+            .with_help(help),
+        );
+    }
+
     /// E0234: the call `v` of `dm` never matches the head of `target`
     /// (argument `k` cannot unify with the head's, [`head_mismatch`]): the
     /// machine's unification of the call with the head fails whenever the
