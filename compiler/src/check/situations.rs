@@ -98,7 +98,30 @@ impl<'p> Checker<'p> {
                 if let Some(arcs) = &s.arcs {
                     let ok =
                         arcs.len() == 1 && terms.atom(arcs[0].expectation) == Some(atoms::EMPTY);
-                    if !ok {
+                    // Certain: not one arc, or one whose expectation is
+                    // never `empty` (every value known, none `empty`); a
+                    // variable or a computed expectation may be.
+                    let never = arcs.len() != 1
+                        || static_values(terms, arcs[0].expectation).is_some_and(|vs| {
+                            vs.iter().all(|&v| terms.atom(v) != Some(atoms::EMPTY))
+                        });
+                    if never {
+                        self.diags.push(
+                            Diagnostic::error(
+                                codes::NEUTRAL_NEVER_PROCEEDS,
+                                dm.loc(s.arcs_span.unwrap_or(s.span)),
+                                format!(
+                                    "a `neutral` situation proceeds only with exactly one arc whose expectation is `empty`; this one has {}",
+                                    match arcs.len() {
+                                        1 => "an arc whose expectation is never `empty`".to_owned(),
+                                        n => format!("{n} arcs"),
+                                    }
+                                ),
+                            )
+                            .with_label("the run stops here when the situation is reached")
+                            .with_help("write `arcs ==> [empty : Action => Next]`, or give the situation a perception type (`speech`, ..) to choose among arcs"),
+                        );
+                    } else if !ok {
                         self.diags.push(
                             Diagnostic::warning(
                                 codes::NEUTRAL_SHAPE,
