@@ -151,6 +151,40 @@ fn an_in_arg_the_pipe_does_not_match_is_skipped_with_one_warning() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A script line that meets no expectation (a misspelt expectation or
+/// input line, session 16's new user) is read again as the original does
+/// (D-15), and no longer silently: one warning on stderr per situation,
+/// located, with the input and the expectations; stdout unchanged.
+#[test]
+fn a_script_line_no_expectation_meets_is_a_warning() {
+    let tmp = tempfile::tempdir().unwrap();
+    let app = tmp.path().join("greet");
+    std::fs::create_dir(&app).unwrap();
+    std::fs::write(
+        app.join("main.dm"),
+        "diag_mod(main,\n  [ [id ==> start, type ==> speech,\n\
+         \x20     arcs ==> [helo : say(hi) => start, bye : say(bye) => done]],\n\
+         \x20   [id ==> done, type ==> final] ], []).\n",
+    )
+    .unwrap();
+    std::fs::write(app.join("script.txt"), "hello.\nname(ada).\nbye.\n").unwrap();
+    let out = sitlogc()
+        .args(["run", "greet", "--script", "greet/script.txt"])
+        .current_dir(tmp.path())
+        .output()
+        .unwrap();
+    assert_ok(&out);
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(stdout.contains("main:(start,bye:say(bye))"), "{stdout}");
+    assert!(!stdout.contains("warning"), "{stdout}");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let warnings: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning:"))
+        .collect();
+    insta::assert_snapshot!("unmatched_script_line", warnings.join("\n"));
+}
+
 #[test]
 fn usage_errors_exit_two() {
     let out = sitlogc()

@@ -122,6 +122,40 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         });
     }
 
+    /// The warning of a typed or scripted input that met no expectation
+    /// ([`Perception::unmatched_is_news`]), the first time its situation
+    /// reads one: the input and the expectations, variables numbered as
+    /// in the in_arg's warning, located at the situation. The run reads
+    /// again, as the original does (D-15). Cold.
+    #[cold]
+    fn warn_unmatched_input(&mut self, input: Term, here: Option<(SitIx, Term)>) {
+        let (dm, call) = match self.lazy.last() {
+            Some(l) => (l.dm, l.call),
+            None => match self.frames.last() {
+                Some(f) => (f.dm, f.dm_id),
+                None => return,
+            },
+        };
+        let key = (dm, here.map(|(s, _)| s));
+        if self.unmatched_warned.contains(&key) {
+            return;
+        }
+        self.unmatched_warned.push(key);
+        let id = here.map_or(Term::atom(atoms::NONE), |(_, id)| id);
+        let expectations = self.store.list(&self.expectations);
+        let [call, id, input, expectations] =
+            writeq_renumbered(&self.store, [call, id, input, expectations]);
+        let location = here.and_then(|(s, _)| self.program.location(dm, s));
+        self.warnings.push(super::RunWarning {
+            message: format!(
+                "the input `{input}` meets none of the expectations {expectations}: read again, as the original SitLog does (it prints `No satisfied expected intention!`); a misspelt expectation or input line? (said once per situation)"
+            ),
+            dm: call,
+            situation: id,
+            location,
+        });
+    }
+
     /// A final situation's out_arg, evaluated, becomes the pipe unless it is a variable.
     pub(super) fn final_out_arg(
         &mut self,
@@ -319,6 +353,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             if let (Some((_, id)), Some(frame)) = (here, self.frames.last()) {
                 let depth = self.frames.len() - 1;
                 self.unmatched.push((frame.dm_id, id, input, depth));
+            }
+            if perception.unmatched_is_news() {
+                self.warn_unmatched_input(input, here);
             }
             if attempt == 0 && !second_read_allowed {
                 break;
