@@ -234,6 +234,43 @@ fn history_none_keeps_no_history() {
     assert!(!text.contains("Execution history"), "{text}");
 }
 
+/// E0237 (a diag_mod that never matches its DM's identifier) fails only
+/// where the run reaches it, as E0234: `--allow-unresolved` (and
+/// `--legacy`, for the original's library DMs that have one) runs the
+/// program, and reaching it is a located run-time error.
+#[test]
+fn allow_unresolved_runs_a_dead_path_with_a_diag_mod_that_never_matches() {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(
+        tmp.path().join("main.dm"),
+        "diag_mod(main, [[id ==> is, type ==> speech, arcs ==> [go : [] => fs, broken : [] => odd]],\n\
+         [id ==> fs, type ==> final], [id ==> odd, type ==> final, diag_mod ==> mian]], []).\n",
+    )
+    .unwrap();
+    let run = |extra: &[&str], script: &str| {
+        std::fs::write(tmp.path().join("script.txt"), script).unwrap();
+        sitlogc()
+            .args(["run", "--format", "json", "--script"])
+            .arg(tmp.path().join("script.txt"))
+            .args(extra)
+            .arg(tmp.path())
+            .output()
+            .unwrap()
+    };
+    let strict = run(&[], "go.\n");
+    assert_eq!(strict.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&strict.stdout).contains("E0237"));
+    assert_eq!(run(&["--allow-unresolved"], "go.\n").status.code(), Some(0));
+    let out = run(&["--allow-unresolved"], "broken.\n");
+    assert_eq!(out.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let e = v["error"].as_str().unwrap();
+    assert!(
+        e.contains("diag_mod `mian`") && e.contains("main.dm:2:"),
+        "{v}"
+    );
+}
+
 #[test]
 fn allow_unresolved_runs_legacy_programs_with_dead_paths() {
     let dir = std::env::temp_dir().join(format!("sitlogc-lenient-{}", std::process::id()));

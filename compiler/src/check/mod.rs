@@ -115,6 +115,7 @@ pub const UNRESOLVED: &[&str] = &[
     codes::UNKNOWN_DM,
     codes::DM_ARITY,
     codes::DM_HEAD_MISMATCH,
+    codes::DIAG_MOD_MISMATCH,
     codes::UNKNOWN_EXIT,
     codes::UNKNOWN_VARIABLE,
     codes::UNKNOWN_FUNCTION,
