@@ -72,7 +72,12 @@ pub fn run_error_diagnostic(ir: &Ir, error: &RunError) -> Option<Diagnostic> {
             .or_else(|| here().find(by_functor))
             .or_else(|| src.exprs.iter().find(exact))
     });
+    let in_arg = src.in_arg.filter(|_| site.in_arg);
     let (span, label) = match (found, arc.and_then(|a| src.arcs.get(a))) {
+        _ if in_arg.is_some() => (
+            in_arg.unwrap_or(src.span),
+            "the pipe does not match this in_arg",
+        ),
         (Some(e), _) => (e.span, "failed here"),
         (None, Some(&span)) => (span, "in this arc"),
         (None, None) => (src.span, "in this situation"),

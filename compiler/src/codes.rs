@@ -158,6 +158,14 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         "an in_arg pattern that can never match the pipe its situation is given: every situation that can lead to it sets the pipe to a value known without running anything (its `out_arg` a constant, a compound, a list, each branch of a conditional; a variable inside matches anything), or passes on such a value, and none can unify with the pattern (`in_arg ==> foo` after `out_arg ==> now`); the run skips the in_arg, as the original does, its variables unbound (D-8; `--deny-warnings`: an error at run time). Not reported for a DM's first situation (its pipe is the caller's), after a recursive situation without `out_arg`, or where a computed next situation may lead",
     ),
     (
+        check::NEUTRAL_NEVER_PROCEEDS,
+        "a `neutral` situation that can never proceed: not exactly one arc, or one whose expectation is known and never `empty` (the run stops when it reaches it; the original re-enters it forever); a variable or computed expectation is only W0210",
+    ),
+    (
+        check::DIAG_MOD_MISMATCH,
+        "a situation's `diag_mod` that never matches its DM's identifier: every value known and none unifies with the head, or its principal functor is not the DM's name and arity (`fecth(Object, ok)` in DM `fetch/2`); the run stops when it reaches the situation (the original blocks, semantics E9)",
+    ),
+    (
         check::OS_ACCESS,
         "a directive or clause of the application's Prolog files reaches the operating system (shell, processes, sockets, native code, `open/3,4` for writing, loading code at run time or from an absolute or `$SITLOG_HOME` path): a run refuses it unless given `--allow-os` (the trust model, [reliability](reliability.md#trust-model))",
     ),

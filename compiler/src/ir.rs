@@ -62,6 +62,8 @@ pub struct SituationSource {
     pub span: sitlog_syntax::Span,
     /// Each arc's span, in order.
     pub arcs: Vec<sitlog_syntax::Span>,
+    /// Its in_arg's span, when it has one.
+    pub in_arg: Option<sitlog_syntax::Span>,
     /// The constructs of L written in the situation (`apply`, `get`, ...),
     /// in source order: which arc holds them (`None`: another attribute),
     /// their functor, their first argument's functor, their span.
@@ -224,6 +226,7 @@ pub fn lower(checked: &Checked) -> Ir {
                 file: dm.file,
                 span: s.span,
                 arcs: s.arcs.iter().flatten().map(|a| a.span).collect(),
+                in_arg: s.in_arg.map(|t| clause.terms.span(t)),
                 exprs,
             };
             for arc in s.arcs.iter().flatten() {

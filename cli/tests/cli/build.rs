@@ -632,3 +632,73 @@ fn allow_unresolved_compiles_what_run_allows() {
     assert_ok(&lenient);
     assert!(String::from_utf8_lossy(&lenient.stdout).contains("pub mod dm_main"));
 }
+
+/// E14 under `--deny-warnings` (issue 39): an in_arg the pipe does not
+/// match is one error, the same bytes from `sitlogc run` and from a
+/// compiled task (its own `--deny-warnings`), located at the in_arg as
+/// the warning is (`file:line:column`), naming the pattern and the pipe
+/// with their variables numbered alike (`_G0`, ..) in both back ends.
+#[test]
+fn a_denied_in_arg_is_the_same_located_error_run_or_compiled() {
+    let tmp = tempfile::tempdir().unwrap();
+    let app = tmp.path().join("inarg");
+    std::fs::create_dir(&app).unwrap();
+    std::fs::write(
+        app.join("main.dm"),
+        "diag_mod(main,
+  [ [id ==> s0, type ==> recursive, embedded_dm ==> sub(_),
+      arcs ==> [done : empty => fs]],
+    [id ==> fs, type ==> final] ], []).
+
+diag_mod(sub(_),
+  [ [id ==> is, type ==> neutral, in_arg ==> f(X, b),
+      arcs ==> [empty : say(X) => done]],
+    [id ==> done, type ==> final] ], []).
+",
+    )
+    .unwrap();
+    let out = sitlogc()
+        .args(["build", "--debug", "-o", "task", "inarg"])
+        .current_dir(tmp.path())
+        .output()
+        .unwrap();
+    assert_ok(&out);
+    let args = ["--deny-warnings", "--in-arg", "f(1,c)", "--format"];
+    let mut errors = Vec::new();
+    for format in ["json", "text"] {
+        let compiled = Command::new(tmp.path().join("task"))
+            .args(args)
+            .arg(format)
+            .current_dir(tmp.path())
+            .output()
+            .unwrap();
+        let interpreted = sitlogc()
+            .args(["run", "inarg"])
+            .args(args)
+            .arg(format)
+            .env("NO_COLOR", "1")
+            .current_dir(tmp.path())
+            .output()
+            .unwrap();
+        assert_eq!(compiled.status.code(), Some(1), "{}", stderr(&compiled));
+        assert_eq!(
+            interpreted.status.code(),
+            Some(1),
+            "{}",
+            stderr(&interpreted)
+        );
+        assert_eq!(compiled.stdout, interpreted.stdout, "{format}");
+        if format == "json" {
+            let v: serde_json::Value = serde_json::from_slice(&compiled.stdout).unwrap();
+            errors.push(v["error"].as_str().unwrap().to_owned());
+        } else {
+            // The compiled task prints the error's line, the interpreter
+            // the same message at the in_arg in the source.
+            errors.push(stderr(&compiled));
+            let text = stderr(&interpreted);
+            let trimmed: Vec<&str> = text.lines().map(str::trim_end).collect();
+            errors.push(trimmed.join("\n"));
+        }
+    }
+    insta::assert_snapshot!("denied_in_arg", errors.join("\n----\n"));
+}

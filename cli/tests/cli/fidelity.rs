@@ -143,7 +143,7 @@ fn check_reads_the_world_kb_and_ros2_files() {
     let (_tmp, app) = robot_app(&[("world.toml", "on = \"fridge\"", "on = \"fridg\"")]);
     let (code, diags) = check(&app);
     assert_eq!(code, 1);
-    let message = "object `milk` is on shelf `fridg`, which is not defined";
+    let message = "object `milk` is on shelf `fridg`, which is not defined; did you mean `fridge`?";
     assert_eq!(
         errors(&diags),
         [("E0007".to_owned(), message.to_owned(), String::new())]

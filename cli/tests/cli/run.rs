@@ -151,6 +151,40 @@ fn an_in_arg_the_pipe_does_not_match_is_skipped_with_one_warning() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A script line that meets no expectation (a misspelt expectation or
+/// input line, session 16's new user) is read again as the original does
+/// (D-15), and no longer silently: one warning on stderr per situation,
+/// located, with the input and the expectations; stdout unchanged.
+#[test]
+fn a_script_line_no_expectation_meets_is_a_warning() {
+    let tmp = tempfile::tempdir().unwrap();
+    let app = tmp.path().join("greet");
+    std::fs::create_dir(&app).unwrap();
+    std::fs::write(
+        app.join("main.dm"),
+        "diag_mod(main,\n  [ [id ==> start, type ==> speech,\n\
+         \x20     arcs ==> [helo : say(hi) => start, bye : say(bye) => done]],\n\
+         \x20   [id ==> done, type ==> final] ], []).\n",
+    )
+    .unwrap();
+    std::fs::write(app.join("script.txt"), "hello.\nname(ada).\nbye.\n").unwrap();
+    let out = sitlogc()
+        .args(["run", "greet", "--script", "greet/script.txt"])
+        .current_dir(tmp.path())
+        .output()
+        .unwrap();
+    assert_ok(&out);
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(stdout.contains("main:(start,bye:say(bye))"), "{stdout}");
+    assert!(!stdout.contains("warning"), "{stdout}");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let warnings: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning:"))
+        .collect();
+    insta::assert_snapshot!("unmatched_script_line", warnings.join("\n"));
+}
+
 #[test]
 fn usage_errors_exit_two() {
     let out = sitlogc()
@@ -198,6 +232,43 @@ fn history_none_keeps_no_history() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.starts_with("Out Arg: "), "{text}");
     assert!(!text.contains("Execution history"), "{text}");
+}
+
+/// E0237 (a diag_mod that never matches its DM's identifier) fails only
+/// where the run reaches it, as E0234: `--allow-unresolved` (and
+/// `--legacy`, for the original's library DMs that have one) runs the
+/// program, and reaching it is a located run-time error.
+#[test]
+fn allow_unresolved_runs_a_dead_path_with_a_diag_mod_that_never_matches() {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(
+        tmp.path().join("main.dm"),
+        "diag_mod(main, [[id ==> is, type ==> speech, arcs ==> [go : [] => fs, broken : [] => odd]],\n\
+         [id ==> fs, type ==> final], [id ==> odd, type ==> final, diag_mod ==> mian]], []).\n",
+    )
+    .unwrap();
+    let run = |extra: &[&str], script: &str| {
+        std::fs::write(tmp.path().join("script.txt"), script).unwrap();
+        sitlogc()
+            .args(["run", "--format", "json", "--script"])
+            .arg(tmp.path().join("script.txt"))
+            .args(extra)
+            .arg(tmp.path())
+            .output()
+            .unwrap()
+    };
+    let strict = run(&[], "go.\n");
+    assert_eq!(strict.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&strict.stdout).contains("E0237"));
+    assert_eq!(run(&["--allow-unresolved"], "go.\n").status.code(), Some(0));
+    let out = run(&["--allow-unresolved"], "broken.\n");
+    assert_eq!(out.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let e = v["error"].as_str().unwrap();
+    assert!(
+        e.contains("diag_mod `mian`") && e.contains("main.dm:2:"),
+        "{v}"
+    );
 }
 
 #[test]

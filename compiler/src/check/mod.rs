@@ -67,6 +67,8 @@ pub mod codes {
     pub const NOT_A_CONDITIONAL: &str = "W0233";
     pub const DM_HEAD_MISMATCH: &str = "E0234";
     pub const IN_ARG_NEVER_MATCHES: &str = "W0235";
+    pub const NEUTRAL_NEVER_PROCEEDS: &str = "E0236";
+    pub const DIAG_MOD_MISMATCH: &str = "E0237";
     pub const OS_ACCESS: &str = "W0240";
     pub const PROLOG_TOO_DEEP: &str = "E0241";
 }
@@ -113,6 +115,7 @@ pub const UNRESOLVED: &[&str] = &[
     codes::UNKNOWN_DM,
     codes::DM_ARITY,
     codes::DM_HEAD_MISMATCH,
+    codes::DIAG_MOD_MISMATCH,
     codes::UNKNOWN_EXIT,
     codes::UNKNOWN_VARIABLE,
     codes::UNKNOWN_FUNCTION,

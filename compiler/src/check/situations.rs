@@ -91,11 +91,37 @@ impl<'p> Checker<'p> {
                     .with_help("known attributes: id, type, arcs, prog, in_arg, out_arg, embedded_dm, diag_mod"),
                 );
             }
+            if let Some(d) = s.diag_mod {
+                self.diag_mod_mismatch(dm, d);
+            }
             if s.kind_term.and_then(|t| terms.atom(t)) == Some(atoms::NEUTRAL) {
                 if let Some(arcs) = &s.arcs {
                     let ok =
                         arcs.len() == 1 && terms.atom(arcs[0].expectation) == Some(atoms::EMPTY);
-                    if !ok {
+                    // Certain: not one arc, or one whose expectation is
+                    // never `empty` (every value known, none `empty`); a
+                    // variable or a computed expectation may be.
+                    let never = arcs.len() != 1
+                        || static_values(terms, arcs[0].expectation).is_some_and(|vs| {
+                            vs.iter().all(|&v| terms.atom(v) != Some(atoms::EMPTY))
+                        });
+                    if never {
+                        self.diags.push(
+                            Diagnostic::error(
+                                codes::NEUTRAL_NEVER_PROCEEDS,
+                                dm.loc(s.arcs_span.unwrap_or(s.span)),
+                                format!(
+                                    "a `neutral` situation proceeds only with exactly one arc whose expectation is `empty`; this one has {}",
+                                    match arcs.len() {
+                                        1 => "an arc whose expectation is never `empty`".to_owned(),
+                                        n => format!("{n} arcs"),
+                                    }
+                                ),
+                            )
+                            .with_label("the run stops here when the situation is reached")
+                            .with_help("write `arcs ==> [empty : Action => Next]`, or give the situation a perception type (`speech`, ..) to choose among arcs"),
+                        );
+                    } else if !ok {
                         self.diags.push(
                             Diagnostic::warning(
                                 codes::NEUTRAL_SHAPE,
@@ -189,6 +215,7 @@ impl<'p> Checker<'p> {
             for arc in s.arcs.iter().flatten() {
                 let Some(values) = static_values(terms, arc.next) else {
                     everything_reachable = true;
+                    self.unknown_next_functor(dm, &index, arc.next);
                     continue;
                 };
                 for v in values {
@@ -276,6 +303,57 @@ impl<'p> Checker<'p> {
             self.diags.push(
                 Diagnostic::warning(code, dm.loc(s.id.map_or(s.span, |id| dm.span_of(id))), msg)
                     .with_label("no arc leads here from the initial situation"),
+            );
+        }
+    }
+
+    /// E0212 for a next situation whose value is computed in part
+    /// (`serch(get(x, _))`, a `(C -> A ; B)` that is not a conditional):
+    /// its principal functor is not evaluated, so whatever the arguments
+    /// become, no situation of the DM has that name and arity (and none
+    /// has a variable id). Each branch of a conditional alike; nothing
+    /// when the functor itself is computed.
+    fn unknown_next_functor(&mut self, dm: &Dm, index: &SituationIndex, next: TermId) {
+        let terms = &dm.clause.terms;
+        if !index.var.is_empty() {
+            return;
+        }
+        for v in callees(terms, next).into_iter().flatten() {
+            let Some(f) = terms.functor(v) else { continue };
+            if index.all.contains_key(&f) {
+                continue;
+            }
+            let shown = show(dm, v);
+            let ids = || {
+                dm.situations
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(j, s)| s.id.map(|id| (j, id)))
+            };
+            let help = match suggest_term(terms, v, &shown, dm, ids()) {
+                Some((_, similar)) => format!("did you mean `{similar}`?"),
+                None => format!(
+                    "situations of this DM: {}",
+                    ids()
+                        .take(8)
+                        .map(|(_, id)| show(dm, id))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            };
+            let what = if f.0 == atoms::SEMICOLON || f.0 == atoms::BAR {
+                " (written like a conditional, it is not one: its value is this term)"
+            } else {
+                ""
+            };
+            self.diags.push(
+                Diagnostic::error(
+                    codes::UNKNOWN_NEXT,
+                    dm.loc(terms.span(v)),
+                    format!("no situation `{}/{}` in DM `{}`{what}", f.0, f.1, dm.name),
+                )
+                .with_label("whatever its arguments, no situation has this name")
+                .with_help(help),
             );
         }
     }
@@ -508,6 +586,51 @@ impl<'p> Checker<'p> {
 }
 
 impl Checker<'_> {
+    /// E0237: a situation's `diag_mod` that never unifies with the DM's
+    /// identifier (the call, an instance of its head): every value it can
+    /// take is known ([`static_values`]) and none may unify with the
+    /// head, or its principal functor is known ([`callees`]) and is not
+    /// the DM's name and arity. The machine stops there whenever the
+    /// situation is reached (the original blocks: semantics E9).
+    fn diag_mod_mismatch(&mut self, dm: &Dm, d: TermId) {
+        let terms = &dm.clause.terms;
+        let never = match static_values(terms, d) {
+            Some(vs) => !vs.iter().any(|&v| may_unify(terms, v, terms, dm.head)),
+            None => callees(terms, d).is_some_and(|cs| {
+                cs.iter()
+                    .all(|&c| terms.functor(c) != Some((dm.name, dm.arity)))
+            }),
+        };
+        if !never {
+            return;
+        }
+        let head = show(dm, dm.head);
+        let help = match terms.functor(d) {
+            Some((name, arity)) if (name, arity) != (dm.name, dm.arity) => format!(
+                "a situation's diag_mod is unified with its DM's identifier: write `{}(..)` with {} argument(s), as the head `{head}`",
+                dm.name, dm.arity
+            ),
+            _ => format!("a situation's diag_mod is unified with its DM's identifier: give it values that match the head `{head}`"),
+        };
+        self.diags.push(
+            Diagnostic::error(
+                codes::DIAG_MOD_MISMATCH,
+                dm.loc(terms.span(d)),
+                format!(
+                    "diag_mod `{}` never matches DM `{}`'s identifier `{head}`",
+                    show(dm, d),
+                    dm.name
+                ),
+            )
+            .with_label("the run stops here when the situation is reached")
+            .with_secondary(
+                dm.loc(dm.span_of(dm.head)),
+                format!("DM `{}` defined here", dm.name),
+            )
+            .with_help(help),
+        );
+    }
+
     /// E0234: the call `v` of `dm` never matches the head of `target`
     /// (argument `k` cannot unify with the head's, [`head_mismatch`]): the
     /// machine's unification of the call with the head fails whenever the

@@ -33,6 +33,16 @@ pub trait Perception {
     fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
         let _ = (store, dm, situation);
     }
+
+    /// Whether an input that meets no expectation is news to the user:
+    /// typed or scripted input (test mode), where it is a misspelt
+    /// expectation or script line, and the machine warns the first time a
+    /// situation reads one (the original prints `No satisfied expected
+    /// intention!`); `false` (the default) for a robot's senses, which
+    /// perceive what they perceive. Wrappers forward it.
+    fn unmatched_is_news(&self) -> bool {
+        false
+    }
 }
 
 /// Basic actions: executed after an arc's action is evaluated.

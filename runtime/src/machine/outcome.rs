@@ -29,6 +29,9 @@ pub struct ErrorSite {
     pub dm: DmIx,
     pub situation: SitIx,
     pub culprit: Option<eval::Culprit>,
+    /// The error is the situation's in_arg's (E14 under
+    /// `--deny-warnings`): a reporter points at the in_arg.
+    pub in_arg: bool,
 }
 
 impl std::fmt::Display for RunError {
@@ -57,9 +60,11 @@ impl std::fmt::Display for RunError {
 impl std::error::Error for RunError {}
 
 /// Something the run went on from as the original SitLog does, silently
-/// there: today only an in_arg pattern that does not unify with the
-/// incoming pipe, skipped (semantics D-8; the error of E14 under
-/// `Options::skip_unmatched_in_arg` false). One per situation and DM,
+/// there: an in_arg pattern that does not unify with the incoming pipe,
+/// skipped (semantics D-8; the error of E14 under
+/// `Options::skip_unmatched_in_arg` false), and a scripted input that
+/// meets no expectation, read again (D-15; only where
+/// `Perception::unmatched_is_news`). One per situation and DM,
 /// the first time (a loop does not repeat it). Its text
 /// ([`Display`](std::fmt::Display)) names every term with its variables
 /// numbered in order of appearance (`_G0`, `_G1`, ..), so that a compiled

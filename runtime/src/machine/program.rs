@@ -434,6 +434,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     dm,
                     situation: s,
                     culprit: None,
+                    in_arg: false,
                 })),
                 _ => None,
             },

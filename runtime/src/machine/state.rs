@@ -138,6 +138,9 @@ pub struct Machine<'p, P> {
     /// The situations that skipped their in_arg once (by DM and
     /// situation index): warned about, not again.
     pub(super) skipped_in_args: Vec<(DmIx, Option<SitIx>)>,
+    /// The situations that warned of an input meeting no expectation
+    /// ([`Perception::unmatched_is_news`](super::Perception::unmatched_is_news)).
+    pub(super) unmatched_warned: Vec<(DmIx, Option<SitIx>)>,
 }
 
 /// How many arguments a pipe held as native values may have
@@ -208,6 +211,7 @@ impl<'p, P> Machine<'p, P> {
             empty_failed: None,
             warnings: Vec::new(),
             skipped_in_args: Vec::new(),
+            unmatched_warned: Vec::new(),
         }
     }
 

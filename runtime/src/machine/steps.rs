@@ -49,15 +49,42 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             self.warn_in_arg_skipped(pattern, pipe, here);
             return Ok(());
         }
-        Err(self.err(
+        Err(self.in_arg_denied(pattern, pipe, here))
+    }
+
+    /// E14's error (`--deny-warnings`): the warning's text and place (the
+    /// in_arg's `file:line:col`, its variables numbered `_G0`, ..), so
+    /// that the interpreter and a compiled task say the same bytes and a
+    /// reporter with the source points at the in_arg ([`ErrorSite::in_arg`](super::ErrorSite::in_arg)).
+    #[cold]
+    fn in_arg_denied(&self, pattern: Term, pipe: Term, here: Option<(SitIx, Term)>) -> RunError {
+        let frame = match self.lazy.last() {
+            Some(l) => Some((l.dm, l.call)),
+            None => self.frames.last().map(|f| (f.dm, f.dm_id)),
+        };
+        let call = frame.map_or(Term::atom(atoms::NONE), |(_, c)| c);
+        let id = here.map_or(Term::atom(atoms::NONE), |(_, id)| id);
+        let [call, id, pattern, pipe] = writeq_renumbered(&self.store, [call, id, pattern, pipe]);
+        let mut e = self.err(
             format!(
-                "in_arg `{}` does not match the incoming pipe value `{}`",
-                self.store.writeq(pattern),
-                self.store.writeq(pipe)
+                "in_arg `{pattern}` does not match the incoming pipe value `{pipe}` (warnings are denied; without --deny-warnings the run skips this in_arg, as the original SitLog does)"
             ),
             here,
             None,
-        ))
+        );
+        if let Some((dm, _)) = frame {
+            e.dm = Some(call);
+            if let Some((s, _)) = here {
+                e.situation = Some(id);
+                if let Some(at) = self.program.in_arg_location(dm, s) {
+                    e.location = Some(at);
+                }
+            }
+        }
+        if let Some(site) = e.site.as_deref_mut() {
+            site.in_arg = true;
+        }
+        e
     }
 
     /// The warning of an in_arg skipped ([`Machine::unify_in_arg`]), the
@@ -88,6 +115,40 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         self.warnings.push(super::RunWarning {
             message: format!(
                 "in_arg `{pattern}` does not match the incoming pipe value `{pipe}`: skipped, as the original SitLog does (the situation runs with the in_arg's variables unbound and the pipe unchanged; --deny-warnings makes it an error)"
+            ),
+            dm: call,
+            situation: id,
+            location,
+        });
+    }
+
+    /// The warning of a typed or scripted input that met no expectation
+    /// ([`Perception::unmatched_is_news`]), the first time its situation
+    /// reads one: the input and the expectations, variables numbered as
+    /// in the in_arg's warning, located at the situation. The run reads
+    /// again, as the original does (D-15). Cold.
+    #[cold]
+    fn warn_unmatched_input(&mut self, input: Term, here: Option<(SitIx, Term)>) {
+        let (dm, call) = match self.lazy.last() {
+            Some(l) => (l.dm, l.call),
+            None => match self.frames.last() {
+                Some(f) => (f.dm, f.dm_id),
+                None => return,
+            },
+        };
+        let key = (dm, here.map(|(s, _)| s));
+        if self.unmatched_warned.contains(&key) {
+            return;
+        }
+        self.unmatched_warned.push(key);
+        let id = here.map_or(Term::atom(atoms::NONE), |(_, id)| id);
+        let expectations = self.store.list(&self.expectations);
+        let [call, id, input, expectations] =
+            writeq_renumbered(&self.store, [call, id, input, expectations]);
+        let location = here.and_then(|(s, _)| self.program.location(dm, s));
+        self.warnings.push(super::RunWarning {
+            message: format!(
+                "the input `{input}` meets none of the expectations {expectations}: read again, as the original SitLog does (it prints `No satisfied expected intention!`); a misspelt expectation or input line? (said once per situation)"
             ),
             dm: call,
             situation: id,
@@ -292,6 +353,9 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             if let (Some((_, id)), Some(frame)) = (here, self.frames.last()) {
                 let depth = self.frames.len() - 1;
                 self.unmatched.push((frame.dm_id, id, input, depth));
+            }
+            if perception.unmatched_is_news() {
+                self.warn_unmatched_input(input, here);
             }
             if attempt == 0 && !second_read_allowed {
                 break;

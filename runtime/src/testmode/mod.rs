@@ -332,6 +332,11 @@ impl Perception for ScriptPerception {
         }
         Ok(deliver(store, ty, t))
     }
+
+    /// A script line that meets no expectation is worth a warning.
+    fn unmatched_is_news(&self) -> bool {
+        true
+    }
 }
 
 /// Prolog's `read/1` takes the script's next input (issue 39).
@@ -392,6 +397,10 @@ impl<P: Perception + TermInput + 'static> Perception for SharedPerception<P> {
         if let Ok(mut p) = self.inner.lock() {
             p.waiting_at(store, dm, situation);
         }
+    }
+
+    fn unmatched_is_news(&self) -> bool {
+        self.inner.lock().is_ok_and(|p| p.unmatched_is_news())
     }
 }
 

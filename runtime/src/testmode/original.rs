@@ -445,6 +445,10 @@ impl Perception for OriginalTestMode {
     fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
         self.inner.waiting_at(store, dm, situation);
     }
+
+    fn unmatched_is_news(&self) -> bool {
+        self.inner.unmatched_is_news()
+    }
 }
 
 #[cfg(test)]

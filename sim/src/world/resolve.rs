@@ -33,7 +33,11 @@ impl Places {
             None => {
                 cx.err(
                     name.at,
-                    format!("{what} place `{}`, which is not defined", name.v),
+                    format!(
+                        "{what} place `{}`, which is not defined{}",
+                        name.v,
+                        did_you_mean(&name.v, self.ix.keys().map(String::as_str))
+                    ),
                 );
                 None
             }
@@ -43,6 +47,38 @@ impl Places {
     fn name(&self, i: usize) -> &str {
         &self.specs[i].name
     }
+}
+
+/// `; did you mean `x`?` when one of `known` is close enough to `name` to
+/// be a typo of it (at most a third of its length apart by edit distance,
+/// at least one edit allowed; names of 3 characters or more), the closest
+/// first; else nothing. The rule of the checker's *did you mean*.
+fn did_you_mean<'a>(name: &str, known: impl Iterator<Item = &'a str>) -> String {
+    fn distance(a: &str, b: &str) -> usize {
+        let b: Vec<char> = b.chars().collect();
+        let mut row: Vec<usize> = (0..=b.len()).collect();
+        for (i, ca) in a.chars().enumerate() {
+            let mut prev = row[0];
+            row[0] = i + 1;
+            for (j, &cb) in b.iter().enumerate() {
+                let cur = row[j + 1];
+                row[j + 1] = (prev + usize::from(ca != cb)).min(cur + 1).min(row[j] + 1);
+                prev = cur;
+            }
+        }
+        row[b.len()]
+    }
+    let len = name.chars().count();
+    if len < 3 {
+        return String::new();
+    }
+    let limit = (len / 3).max(1);
+    known
+        .filter(|k| *k != name)
+        .map(|k| (distance(name, k), k))
+        .filter(|&(d, _)| d <= limit)
+        .min_by_key(|&(d, _)| d)
+        .map_or_else(String::new, |(_, k)| format!("; did you mean `{k}`?"))
 }
 
 /// The user as the checks of moves and faults name it.
@@ -300,8 +336,10 @@ fn objects(
                 cx.err(
                     on.at,
                     format!(
-                        "object `{}` is on shelf `{}`, which is not defined",
-                        o.name.v, on.v
+                        "object `{}` is on shelf `{}`, which is not defined{}",
+                        o.name.v,
+                        on.v,
+                        did_you_mean(&on.v, shelf_names_all.iter().copied())
                     ),
                 );
             }
@@ -349,8 +387,9 @@ fn faults(
                         cx.err(
                             object.at,
                             format!(
-                                "fault `grasp_fails` names object `{}`, which is not defined",
-                                object.v
+                                "fault `grasp_fails` names object `{}`, which is not defined{}",
+                                object.v,
+                                did_you_mean(&object.v, raw_objects.iter().map(|x| x.name.v.as_str()))
                             ),
                         )
                     }

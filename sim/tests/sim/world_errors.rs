@@ -96,6 +96,7 @@ fn cases() -> Vec<(&'static str, String)> {
         ("a shelf at a place that is not defined", replace("at = \"b\"", "at = \"c\"")),
         ("an object on a missing shelf", replace("on = \"s\"", "on = \"shelf_x\"")),
         ("a fault names an object that is not defined", with("[[fault]]\nkind = \"grasp_fails\"\nobject = \"malz\"\n")),
+        ("misspelt names of a place, a shelf and an object: did you mean (session 16)", with("[[place]]\nname = \"kitchen\"\nx = 4\ny = 0\n[[shelf]]\nname = \"fridge\"\nat = \"kitchn\"\n[[object]]\nname = \"milk\"\non = \"nodles_shelf\"\n[[object]]\nname = \"juice\"\non = \"fridg\"\n[[fault]]\nkind = \"grasp_fails\"\nobject = \"noodels\"\n")),
         ("a fault blocks a route between places that are not defined", with("[[fault]]\nkind = \"route_blocked\"\nfrom = \"hall\"\nto = \"kitchen\"\n")),
         ("a fault blocks a route that is not there", with("[[place]]\nname = \"c\"\nx = 4\ny = 0\n[[route]]\nfrom = \"a\"\nto = \"b\"\n[[fault]]\nkind = \"route_blocked\"\nfrom = \"a\"\nto = \"c\"\n")),
         ("mishear of an utterance number that is not there", with("[[fault]]\nkind = \"mishear\"\nutterance = 3\n")),
