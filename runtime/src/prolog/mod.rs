@@ -60,6 +60,9 @@
 //! - `reach_cache`: that analysis' result kept once per input in the cache
 //!   directory ([`reach_cache_dir`]);
 //! - `legacy_kb`: the legacy KB layer served natively ([`NativeKb`]);
+//! - `plain`: the plain user functions' native form, which runs a call
+//!   in Rust where the engine would give the same value and leaves the
+//!   rest to the engine;
 //! - `consult`: sources, their clauses, and `consult/1` resolution;
 //! - `engine`: the engine thread and the calling protocol
 //!   ([`PrologFunctions`]).
@@ -69,6 +72,7 @@ mod engine;
 mod kb_reach;
 mod legacy_kb;
 mod permissions;
+mod plain;
 mod reach_cache;
 mod swi;
 mod translate;
