@@ -1,5 +1,6 @@
 % Plain Prolog user functions (helper `nufn17`, issue 37): each case
-% `c(Op, X, Y)` says `calc(Op, X, Y)` and compares X and Y by `same/2`.
+% `c(Op, X, Y)` says `calc(Op, X, Y)` and compares X and Y by `same/2`
+% (where they are the same, says `kind_of/1` of the rest, not plain).
 % The plain ones run natively where they can; a case whose call the
 % engine decides (a type error, an overflow, a failure, no value) gives
 % the engine's value or error (tests/tests/suite/typed.rs).
@@ -11,7 +12,8 @@ diag_mod(main(Cases),
       arcs ==> [ empty : [say(apply(calc(_, _, _), [Op, X, Y]))] =>
                    (apply(same(_, _), [X, Y]) == yes -> eq(Cs) ; otherwise -> go(Cs)) ]
     ],
-    [ id ==> eq(Cs), type ==> neutral, arcs ==> [ empty : [say(same)] => go(Cs) ] ]
+    [ id ==> eq(Cs), type ==> neutral,
+      arcs ==> [ empty : [say(apply(kind_of(_), [Cs]))] => go(Cs) ] ]
   ],
   []
 ).

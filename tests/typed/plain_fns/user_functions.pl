@@ -27,8 +27,8 @@ calc(isb, X, Y) :- X is Y + 0, assign_func_value(yes).
 calc(isb, _, _) :- assign_func_value(no).
 calc(fails, _, _) :- fail.
 calc(fails, _, _) :- false.
-calc(kind, X, _) :- kind(X, K), assign_func_value(K).
 
 % Not plain (a call of another predicate): the engine runs it.
+kind_of(X) :- kind(X, K), assign_func_value(K).
 kind(X, int) :- integer(X), !.
 kind(_, other).
