@@ -17,7 +17,7 @@
 use super::consult::{prepare, LineCursor, Prep, PrologLoadError, PrologSource, Redefinitions};
 use super::legacy_kb::{rename_head, KbHost, NativeKb, NativeState, Wrapped, NATIVE_FILE};
 use super::permissions;
-use super::plain::{PlainFns, PlainScan};
+use super::plain::{self, PlainFns, PlainScan};
 use super::swi::{LIBRARIES, PRELUDE, PRELUDE_SWI, SWI_PREDICATES};
 use super::translate::{drop_deep, from_prolog, read_reply, write_atom, Prepared, Writer};
 use crate::functions::{CallLimits, FnCall, Functions, PROLOG_MAX_DEPTH};
@@ -779,6 +779,20 @@ impl PrologFunctions {
             .functions
             .call_limits()
             .map_or(self.inner.options.inference_limit, |l| l.inferences);
+        if !self.inner.plain.has(name, args.len()) {
+            return None;
+        }
+        // The caller's variables go with a query: one too deep for the
+        // engine is its error (`call`), not the native form's to skip.
+        let store: &Store = call.store;
+        let shallow = [&*call.locals, &*call.globals].iter().all(|vars| {
+            vars.entries()
+                .iter()
+                .all(|&(_, v)| plain::sure(store, v, false))
+        });
+        if !shallow {
+            return None;
+        }
         let v = self.inner.plain.call(call.store, name, args, limit)?;
         match self.inner.abandoned.lock() {
             Ok(a) if a.is_none() => Some(v),

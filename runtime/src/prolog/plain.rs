@@ -16,6 +16,8 @@
 //! engine gives the same one, and hands every other call to the engine,
 //! whose result and error it then is by construction. It runs a call only
 //! when every argument is ground with no float or big integer in it, and
+//! neither they nor the caller's variables (which a query sends) nest
+//! deeper than [`MAX_DEPTH`], and
 //! gives up (the engine runs the call) on an argument or a value of
 //! another type than an operation takes (a type error, or an atom where
 //! Prolog would fail), an overflow, a division by zero, a function that
@@ -219,6 +221,11 @@ impl PlainScan {
 }
 
 impl PlainFns {
+    /// Whether `name/arity` is a plain function.
+    pub(super) fn has(&self, name: Atom, arity: usize) -> bool {
+        self.map.contains_key(&(name, arity))
+    }
+
     /// The plain functions' names and arities.
     pub(super) fn keys(&self) -> impl Iterator<Item = (Atom, usize)> + '_ {
         self.map.keys().copied()
@@ -238,7 +245,7 @@ impl PlainFns {
         if limit < MIN_INFERENCES.max(f.inferences) {
             return None;
         }
-        if !args.iter().all(|&a| sure(store, a)) {
+        if !args.iter().all(|&a| sure(store, a, true)) {
             return None;
         }
         // Registers on the stack for the usual clause (no allocation).
@@ -262,19 +269,33 @@ impl PlainFns {
     }
 }
 
-/// Whether `t` is ground with no float or big integer anywhere in it.
-fn sure(store: &Store, t: Term) -> bool {
+/// The deepest term the native form takes, as an argument or in the
+/// caller's variables (a list counts a level per element, as for the
+/// engine): deeper, the engine decides (it refuses what nests deeper
+/// than `PROLOG_MAX_DEPTH`, with an error naming the function).
+const MAX_DEPTH: usize = 10_000;
+
+/// Whether `t` nests at most [`MAX_DEPTH`] levels and, if `strict`, is
+/// ground with no float or big integer anywhere in it.
+pub(super) fn sure(store: &Store, t: Term, strict: bool) -> bool {
     match store.value(store.deref(t)) {
         Value::Atom(_) | Value::Int(_) => return true,
-        Value::Var(_) | Value::BigInt(_) | Value::Float(_) => return false,
+        Value::Var(_) | Value::BigInt(_) | Value::Float(_) => return !strict,
         Value::Compound(..) => {}
     }
-    let mut stack = vec![t];
-    while let Some(t) = stack.pop() {
+    let mut stack = vec![(t, 0usize)];
+    while let Some((t, depth)) = stack.pop() {
+        if depth > MAX_DEPTH {
+            return false;
+        }
         match store.value(store.deref(t)) {
             Value::Atom(_) | Value::Int(_) => {}
-            Value::Var(_) | Value::BigInt(_) | Value::Float(_) => return false,
-            Value::Compound(_, args) => stack.extend_from_slice(args),
+            Value::Var(_) | Value::BigInt(_) | Value::Float(_) => {
+                if strict {
+                    return false;
+                }
+            }
+            Value::Compound(_, args) => stack.extend(args.iter().map(|&a| (a, depth + 1))),
         }
     }
     true
@@ -738,5 +759,22 @@ mod tests {
         let name = Atom::intern("succ_of");
         assert!(fns.call(s, name, &[Term::int(1)], 999).is_none());
         assert!(fns.call(s, name, &[Term::int(1)], 1000).is_some());
+    }
+
+    #[test]
+    fn a_deep_argument_or_an_assign_func_value_of_its_own_is_the_engines() {
+        let fns = scan("echo(X) :- assign_func_value(X).\n");
+        let s = &mut Store::new();
+        let sf = Atom::intern("s");
+        let mut t = Term::atom(Atom::intern("a"));
+        for _ in 0..MAX_DEPTH {
+            t = s.compound(sf, &[t]);
+        }
+        let echo = Atom::intern("echo");
+        assert!(fns.call(s, echo, &[t], u64::MAX).is_some());
+        let deeper = s.compound(sf, &[t]);
+        assert!(fns.call(s, echo, &[deeper], u64::MAX).is_none());
+        let fns = scan("echo(X) :- assign_func_value(X).\nassign_func_value(_).\n");
+        assert_eq!(fns.keys().count(), 0);
     }
 }
