@@ -779,9 +779,7 @@ impl PrologFunctions {
             .functions
             .call_limits()
             .map_or(self.inner.options.inference_limit, |l| l.inferences);
-        if !self.inner.plain.has(name, args.len()) {
-            return None;
-        }
+        let v = self.inner.plain.call(call.store, name, args, limit)?;
         // The caller's variables go with a query: one too deep for the
         // engine is its error (`call`), not the native form's to skip.
         let store: &Store = call.store;
@@ -793,7 +791,6 @@ impl PrologFunctions {
         if !shallow {
             return None;
         }
-        let v = self.inner.plain.call(call.store, name, args, limit)?;
         match self.inner.abandoned.lock() {
             Ok(a) if a.is_none() => Some(v),
             _ => None,

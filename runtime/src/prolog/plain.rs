@@ -221,11 +221,6 @@ impl PlainScan {
 }
 
 impl PlainFns {
-    /// Whether `name/arity` is a plain function.
-    pub(super) fn has(&self, name: Atom, arity: usize) -> bool {
-        self.map.contains_key(&(name, arity))
-    }
-
     /// The plain functions' names and arities.
     pub(super) fn keys(&self) -> impl Iterator<Item = (Atom, usize)> + '_ {
         self.map.keys().copied()
