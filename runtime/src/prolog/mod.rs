@@ -42,7 +42,10 @@
 //! canonical text; the answer gives the value passed to
 //! `assign_func_value/1`, the SitLog variables changed by `var_op/1` and
 //! the bindings of the caller's variables. The engine is not `Send`: it
-//! lives on a thread of its own and calls are messages to it.
+//! lives on a thread of its own and calls are messages to it. A call of a
+//! *plain* function (`plain`: integer arithmetic, comparisons, `==`, cut,
+//! `assign_func_value/1`) is first run natively from the clauses the
+//! engine loaded; where that does not give a value, the query decides.
 //!
 //! One job per submodule, bottom to top (each uses only those before it;
 //! this file only re-exports, so every public item keeps its path
