@@ -196,11 +196,17 @@ fn run_piped<A: app::App>(app: &A, main: &str, in_arg: Option<&str>) -> u64 {
 }
 
 /// [`run`] with the Prolog user functions of workload `name` installed
-/// (`d_compare_fn`'s `same_place/2`), both ways alike.
+/// (`d_compare_fn`'s `same_place/2`), both ways alike; with
+/// `SHAPES_ENGINE_ONLY` set, every call a query of the engine (its plain
+/// functions not run natively: the figures before helper `nufn17`).
 fn run_prolog<A: app::App>(app: &A, main: &str, name: &str) -> u64 {
     let mut f = Functions::standard();
-    sitlog_compiler::run::install_prolog(&interpreter(name), &mut f, Default::default())
-        .expect("the workload's Prolog loads");
+    let prolog =
+        sitlog_compiler::run::install_prolog(&interpreter(name), &mut f, Default::default())
+            .expect("the workload's Prolog loads");
+    if let (Some(p), true) = (prolog, std::env::var_os("SHAPES_ENGINE_ONLY").is_some()) {
+        p.install_with(&mut f, false);
+    }
     run_fns(app, main, None, f)
 }
 

@@ -7,6 +7,7 @@
 //! again replaces what an earlier file defined ([`Redefinitions`]).
 
 use super::legacy_kb::{ClauseFate, NativeState};
+use super::plain::PlainScan;
 use super::translate::{Prepared, Writer};
 use crate::paths::normalize;
 use crate::store::Store;
@@ -144,6 +145,9 @@ pub(super) struct Prep<'a> {
     /// Set when a clause or directive names one of the calls that change
     /// or look at clauses as data (`Writer::touching_atom`).
     pub(super) touching: &'a mut bool,
+    /// The plain functions' native forms being read (`plain`), outside
+    /// the legacy profile.
+    pub(super) plain: Option<&'a mut PlainScan>,
 }
 
 /// SWI-Prolog's `consult/1` rule, which the original's code relies on: the
@@ -287,6 +291,9 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
             if let Some(native) = cx.native.as_deref_mut() {
                 native.directive(&store, goal);
             }
+            if let Some(plain) = cx.plain.as_deref_mut() {
+                plain.directive(&store, goal);
+            }
             *cx.touching |= w.touching_atom;
             cx.out.push(Prepared {
                 text: w.out,
@@ -315,6 +322,9 @@ pub(super) fn prepare(source: &PrologSource, cx: &mut Prep<'_>, depth: usize) {
             }
         };
         cx.defined.insert(key);
+        if let Some(plain) = cx.plain.as_deref_mut() {
+            plain.clause(&store, key, head, body);
+        }
         let mut t = t;
         // Under the native KB layer, the clause as it is if its predicate
         // is wrapped (its calls of itself going to the layer's clauses).
@@ -536,6 +546,7 @@ mod tests {
             native: None,
             redefine: None,
             touching: &mut touching,
+            plain: None,
         };
         prepare(source, &mut cx, 0);
         assert!(errors.is_empty(), "{errors:?}");

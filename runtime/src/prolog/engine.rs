@@ -17,6 +17,7 @@
 use super::consult::{prepare, LineCursor, Prep, PrologLoadError, PrologSource, Redefinitions};
 use super::legacy_kb::{rename_head, KbHost, NativeKb, NativeState, Wrapped, NATIVE_FILE};
 use super::permissions;
+use super::plain::{self, PlainFns, PlainScan};
 use super::swi::{LIBRARIES, PRELUDE, PRELUDE_SWI, SWI_PREDICATES};
 use super::translate::{drop_deep, from_prolog, read_reply, write_atom, Prepared, Writer};
 use crate::functions::{CallLimits, FnCall, Functions, PROLOG_MAX_DEPTH};
@@ -172,6 +173,8 @@ struct Prepping {
     /// A file names a call that changes clauses as data
     /// (`Prep::touching`): the layer is then loaded whole.
     touching: bool,
+    /// The plain functions read so far (none under the legacy profile).
+    plain: Option<PlainScan>,
 }
 
 impl Prepping {
@@ -185,6 +188,7 @@ impl Prepping {
             native: native.map(NativeState::new),
             redefinitions: legacy.then(Redefinitions::default),
             touching: false,
+            plain: (!legacy && native.is_none()).then(PlainScan::default),
         }
     }
 
@@ -205,6 +209,7 @@ impl Prepping {
                 native: self.native.as_mut(),
                 redefine: self.redefinitions.as_mut(),
                 touching: &mut self.touching,
+                plain: self.plain.as_mut(),
             };
             prepare(s, &mut cx, 0);
         }
@@ -337,6 +342,9 @@ struct Inner {
     /// The native KB layer's host (`--legacy-kb native`): a call's answer
     /// never gives the caller a handle ([`unhandle`]).
     kb_host: Option<KbHost>,
+    /// The application's plain functions, run natively where they can
+    /// be (`plain`).
+    plain: PlainFns,
 }
 
 impl std::fmt::Debug for PrologFunctions {
@@ -440,8 +448,13 @@ impl PrologFunctions {
             native: native_state,
             redefinitions,
             touching,
+            plain,
             ..
         } = st;
+        let plain = match plain {
+            Some(p) if layer == 0 && !touching => p.finish(),
+            _ => PlainFns::default(),
+        };
         if let Some(r) = &redefinitions {
             r.apply(&mut prepared);
         }
@@ -507,6 +520,7 @@ impl PrologFunctions {
             outside,
             source_dirs,
             kb_host,
+            plain,
         ))
     }
 
@@ -591,6 +605,7 @@ impl PrologFunctions {
         outside: Vec<(PathBuf, PrologLoadError)>,
         source_dirs: Vec<PathBuf>,
         kb_host: Option<KbHost>,
+        plain: PlainFns,
     ) -> (PrologFunctions, Vec<PrologLoadError>) {
         let load_errors = ready_rx.recv().unwrap_or_else(|_| {
             vec![PrologLoadError {
@@ -611,6 +626,7 @@ impl PrologFunctions {
                 source_dirs,
                 roots,
                 kb_host,
+                plain,
             }),
         };
         (engine, load_errors)
@@ -714,7 +730,16 @@ impl PrologFunctions {
     /// Rust (e.g. the standard `when/3`), the application's definition wins:
     /// it is what the author wrote and what the original runs. Names Prolog
     /// does not define stay as they are.
+    ///
+    /// A call of a plain function (`plain`) runs natively when it can (the
+    /// engine runs the rest, so that results and errors are the engine's).
     pub fn install(&self, functions: &mut Functions) {
+        self.install_with(functions, true)
+    }
+
+    /// [`install`](Self::install); with `plain` false every call is a query
+    /// of the engine (the tests compare both paths).
+    pub fn install_with(&self, functions: &mut Functions, plain: bool) {
         for &(name, arity) in &self.inner.defined {
             functions.remove(name, arity);
         }
@@ -727,10 +752,49 @@ impl PrologFunctions {
             if let Err(errors) = me.start_from(call.functions) {
                 return Some(Err(show_errors(&errors)));
             }
+            if plain {
+                if let Some(v) = me.plain_call(call, name, args) {
+                    return Some(Ok(v));
+                }
+            }
             Some(me.call(call, name, args))
         });
         let me = self.clone();
         functions.set_start(move |functions| me.start_from(functions).map_err(|e| show_errors(&e)));
+    }
+
+    /// The application's functions that run natively when they can
+    /// (`plain`), by name and arity, sorted.
+    pub fn plain_functions(&self) -> Vec<(Atom, usize)> {
+        let mut keys: Vec<(Atom, usize)> = self.inner.plain.keys().collect();
+        keys.sort_by(|a, b| (a.0.as_str(), a.1).cmp(&(b.0.as_str(), b.1)));
+        keys
+    }
+
+    /// The value of a call of a plain function run natively, if it runs so
+    /// (`None`: the engine runs it): never on an engine already abandoned
+    /// (its calls are errors).
+    fn plain_call(&self, call: &mut FnCall<'_>, name: Atom, args: &[Term]) -> Option<Term> {
+        let limit = call
+            .functions
+            .call_limits()
+            .map_or(self.inner.options.inference_limit, |l| l.inferences);
+        let v = self.inner.plain.call(call.store, name, args, limit)?;
+        // The caller's variables go with a query: one too deep for the
+        // engine is its error (`call`), not the native form's to skip.
+        let store: &Store = call.store;
+        let shallow = [&*call.locals, &*call.globals].iter().all(|vars| {
+            vars.entries()
+                .iter()
+                .all(|&(_, v)| plain::sure(store, v, false))
+        });
+        if !shallow {
+            return None;
+        }
+        match self.inner.abandoned.lock() {
+            Ok(a) if a.is_none() => Some(v),
+            _ => None,
+        }
     }
 
     /// Runs a raw query (for tests and tools): the first answer's binding

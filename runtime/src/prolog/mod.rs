@@ -42,7 +42,10 @@
 //! canonical text; the answer gives the value passed to
 //! `assign_func_value/1`, the SitLog variables changed by `var_op/1` and
 //! the bindings of the caller's variables. The engine is not `Send`: it
-//! lives on a thread of its own and calls are messages to it.
+//! lives on a thread of its own and calls are messages to it. A call of a
+//! *plain* function (`plain`: integer arithmetic, comparisons, `==`, cut,
+//! `assign_func_value/1`) is first run natively from the clauses the
+//! engine loaded; where that does not give a value, the query decides.
 //!
 //! One job per submodule, bottom to top (each uses only those before it;
 //! this file only re-exports, so every public item keeps its path
@@ -60,6 +63,9 @@
 //! - `reach_cache`: that analysis' result kept once per input in the cache
 //!   directory ([`reach_cache_dir`]);
 //! - `legacy_kb`: the legacy KB layer served natively ([`NativeKb`]);
+//! - `plain`: the plain user functions' native form, which runs a call
+//!   in Rust where the engine would give the same value and leaves the
+//!   rest to the engine;
 //! - `consult`: sources, their clauses, and `consult/1` resolution;
 //! - `engine`: the engine thread and the calling protocol
 //!   ([`PrologFunctions`]).
@@ -69,6 +75,7 @@ mod engine;
 mod kb_reach;
 mod legacy_kb;
 mod permissions;
+mod plain;
 mod reach_cache;
 mod swi;
 mod translate;

@@ -44,14 +44,26 @@ thread_local! {
     /// An application whose Prolog user functions [`functions`] installs
     /// too (`d_compare_fn`'s `same_place/2`), in this test's thread.
     static PROLOG: std::cell::RefCell<Option<Ir>> = const { std::cell::RefCell::new(None) };
+    /// An engine loaded once that [`functions`] installs (instead of
+    /// loading [`PROLOG`]'s), for a test of many runs of one application
+    /// whose Prolog keeps no state; with `true`, every call a query of the
+    /// engine (its plain functions not run natively).
+    static ENGINE: std::cell::RefCell<Option<(sitlog_runtime::prolog::PrologFunctions, bool)>> =
+        const { std::cell::RefCell::new(None) };
 }
 
 /// `poke(_)`: sets the caller's local `n` to the atom `hello`, which the
 /// compiler cannot see.
 fn functions() -> Functions {
     let mut f = Functions::standard();
+    let shared = ENGINE.with(|e| {
+        e.borrow()
+            .as_ref()
+            .map(|(p, engine_only)| p.install_with(&mut f, !engine_only))
+            .is_some()
+    });
     PROLOG.with(|p| {
-        if let Some(ir) = &*p.borrow() {
+        if let (Some(ir), false) = (&*p.borrow(), shared) {
             sitlog_compiler::run::install_prolog(ir, &mut f, Default::default())
                 .expect("the Prolog files load");
         }
@@ -1061,6 +1073,160 @@ fn a_failing_comparison_names_the_walks_id() {
         false,
     );
     assert!(c.0.to_string().contains("try([boom,bed])"), "{c:?}");
+}
+
+/// Helper `nufn17`'s (session 16): plain Prolog user functions.
+mod shapes_nufn17 {
+    pub mod plain_fns {
+        sitlog_macros::include_dm!("typed/plain_fns");
+    }
+}
+
+/// Plain Prolog user functions run natively (issue 37): the compiled
+/// task, the interpreter's plans and the interpreter give the same
+/// history, report and errors as the engine alone (every call a query),
+/// for values the native form computes and for those it leaves to the
+/// engine: a type error (an atom, a float), an overflow (a big integer),
+/// a division by zero, an unbound argument, a function that fails (every
+/// clause, or after its cut), one that succeeds without a value (its
+/// `assign_func_value/1` undone by the failure after it), one that
+/// assigns twice (the last wins), and beside them one that calls a
+/// predicate (not plain); and the shapes `d_compare_fn` and `c_outarg_apply`.
+#[test]
+fn plain_user_functions_agree_with_the_engine() {
+    use shapes_nufn17 as s;
+    // One engine per application, shared by its runs (its Prolog keeps no
+    // state); each run installs it either way.
+    let engine = |app: &str| {
+        let mut f = Functions::standard();
+        sitlog_compiler::run::install_prolog(&interpreter(app), &mut f, Default::default())
+            .expect("the Prolog files load")
+            .expect("an engine")
+    };
+    let set = |p: &sitlog_runtime::prolog::PrologFunctions, engine_only: bool| {
+        ENGINE.with(|e| *e.borrow_mut() = Some((p.clone(), engine_only)))
+    };
+    let ir = interpreter("typed/plain_fns");
+    let resolved = sitlog_compiler::interp::Resolved::new(&ir);
+    let p = engine("typed/plain_fns");
+    let mut cases = Vec::new();
+    for op in [
+        "add", "sub", "mul", "div", "mod", "rem", "minmax", "cmp", "cube", "twice", "pair", "isb",
+    ] {
+        for x in ["7", "-7", "0"] {
+            for y in ["2", "-3", "7"] {
+                cases.push(format!("c({op}, {x}, {y})"));
+            }
+        }
+    }
+    for c in [
+        "c(after, 2000, 0)",
+        "c(cutfail, 2000, 0)",
+        "c(cutfail, -1, 0)",
+        "c(twice, a, f(b))",
+        "c(pair, f(x), f(x))",
+        "c(pair, f(x), g)",
+        "c(pair, a, a)",
+        "c(isb, a, 1)",
+        "c(cube, 3000000000, 0)",
+        "c(add, 9223372036854775807, 1)",
+        "c(add, 2.5, 1)",
+        "c(cmp, 2.5, 1)",
+        "c(pair, 1.0, 1)",
+    ] {
+        cases.push(c.to_owned());
+    }
+    let all = format!("main([{}])", cases.join(", "));
+    for main in [
+        all.as_str(),
+        "main([c(add, abc, 1)])",
+        "main([c(div, 1, 0)])",
+        "main([c(add, _, 1)])",
+        "main([c(nothing, 1, 1)])",
+        "main([c(after, 1, 1)])",
+        "main([c(cutfail, 1, 1)])",
+        "main([c(fails, 1, 1)])",
+        "count(3)",
+        "count(x)",
+    ] {
+        set(&p, true);
+        let by_engine = run(&ir, main, "", true, true, false);
+        set(&p, false);
+        let c = run(s::plain_fns::program(), main, "", true, true, false);
+        let i = run(&resolved, main, "", true, true, false);
+        assert_eq!(c, by_engine, "{main}: compiled / engine only");
+        assert_eq!(i, by_engine, "{main}: plans / engine only");
+        let c = run(s::plain_fns::program(), main, "", false, false, false);
+        let i = run(&ir, main, "", false, false, false);
+        assert_eq!(c, i, "{main}: compiled / interpreter, no history");
+    }
+    assert!(
+        run(s::plain_fns::program(), &all, "", false, false, false).1 > 100,
+        "every case runs"
+    );
+    // The shapes, on their own functions.
+    let ir = interpreter("typed/shapes/d_compare_fn");
+    let p = engine("typed/shapes/d_compare_fn");
+    for main in [
+        "hunt(2, [hall, bath, bed], bed)",
+        "hunt(1, [hall, f(x), 1, 2.5, bed], 2.5)",
+        "hunt(1, [hall, _, bed], bed)",
+    ] {
+        set(&p, true);
+        let by_engine = run(&ir, main, "", true, true, false);
+        set(&p, false);
+        let c = run(
+            shapes_ngen12::compare_fn::program(),
+            main,
+            "",
+            true,
+            true,
+            false,
+        );
+        assert_eq!(
+            unnumbered(format!("{c:?}")),
+            unnumbered(format!("{by_engine:?}")),
+            "{main}"
+        );
+    }
+    let ir = interpreter("typed/shapes/c_outarg_apply");
+    let p = engine("typed/shapes/c_outarg_apply");
+    for main in ["relay(3)", "relay(x)", "relay(2.5)"] {
+        set(&p, true);
+        let by_engine = run(&ir, main, "", true, true, false);
+        set(&p, false);
+        let c = run(
+            shapes_ngen13::outarg_apply::program(),
+            main,
+            "",
+            true,
+            true,
+            false,
+        );
+        assert_eq!(c, by_engine, "{main}");
+    }
+    ENGINE.with(|e| *e.borrow_mut() = None);
+}
+
+/// Which user functions are plain (run natively where they can).
+#[test]
+fn which_user_functions_are_plain() {
+    for (app, plain) in [
+        ("typed/shapes/d_compare_fn", "same_place/2"),
+        ("typed/shapes/c_outarg_apply", "succ_of/1"),
+        ("typed/plain_fns", "calc/3 next_of/1 same/2"),
+    ] {
+        let mut f = Functions::standard();
+        let p = sitlog_compiler::run::install_prolog(&interpreter(app), &mut f, Default::default())
+            .expect("the Prolog files load")
+            .expect("an engine");
+        let names: Vec<String> = p
+            .plain_functions()
+            .iter()
+            .map(|(n, a)| format!("{n}/{a}"))
+            .collect();
+        assert_eq!(names.join(" "), plain, "{app}");
+    }
 }
 
 /// Helper `nout14`'s (session 13): an out_arg the evaluator computes in

@@ -1,0 +1,775 @@
+//! Plain user functions run natively (issue 37): a function whose every
+//! clause is *plain* is also kept, when the engine loads it, in a small
+//! native form ([`PlainFn`]) that a call runs in Rust before it would
+//! become a query; the engine runs everything else.
+//!
+//! Plain: a head whose arguments are variables, atoms or integers; a body
+//! that is a conjunction of `true`, `fail`/`false`, `!`, `V is E` (`E`
+//! over integers and bound variables with `+ - * // mod rem min max abs`,
+//! unary `-` and `+`), `< > =< >= =:= =\=` between such expressions,
+//! `==`/`\==` and `=` between variables and atoms or integers, and
+//! `assign_func_value/1` of a variable or an atom or integer (the last one
+//! wins, as the prelude's `bb_b_put/2` does). A variable read before it is
+//! bound makes the clause not plain.
+//!
+//! Invariant (fidelity): the native form gives a value only where the
+//! engine gives the same one, and hands every other call to the engine,
+//! whose result and error it then is by construction. It runs a call only
+//! when every argument is ground with no float or big integer in it, and
+//! neither they nor the caller's variables (which a query sends) nest
+//! deeper than [`MAX_DEPTH`], and
+//! gives up (the engine runs the call) on an argument or a value of
+//! another type than an operation takes (a type error, or an atom where
+//! Prolog would fail), an overflow, a division by zero, a function that
+//! fails (every clause failed, or a goal failed after a cut) and one that
+//! succeeds without assigning a value. So it only ever takes the path on
+//! which the engine succeeds with a value: the first clause whose head
+//! matches and whose goals all hold, in order, its last assigned value.
+//! Nothing is native in a program whose Prolog changes or looks at clauses
+//! as data (`assert`, `retract`, `clause`, ... named anywhere), defines a
+//! predicate the plain form relies on (`assign_func_value/1`), or runs
+//! under the legacy profile (checked by [`PlainScan`]'s caller).
+
+use crate::store::Store;
+use crate::term::{Term, Value, Var};
+use sitlog_syntax::Atom;
+use std::collections::HashMap;
+
+/// The names whose mention anywhere in the application's Prolog turns the
+/// native form off: they change or look at clauses, or at the code, as
+/// data, or redefine what a plain body calls.
+const OFF: &[&str] = &[
+    "assert",
+    "asserta",
+    "assertz",
+    "retract",
+    "retractall",
+    "abolish",
+    "clause",
+    "term_expansion",
+    "goal_expansion",
+    "load_files",
+    "consult",
+    "ensure_loaded",
+    "include",
+    "module",
+];
+
+/// The fewest inferences a call's limit must allow for the native form to
+/// run it (the engine's inference count of a plain call is a few per
+/// goal: under a smaller limit the engine decides whether it is
+/// exceeded).
+const MIN_INFERENCES: u64 = 1000;
+
+/// An argument of a plain clause's head.
+#[derive(Clone, Debug)]
+enum PArg {
+    /// A variable's first occurrence: it takes the argument.
+    Bind(u16),
+    /// A variable again: the argument must be identical to it.
+    Same(u16),
+    Const(Term),
+}
+
+/// An operand of `==`, `\==`, `=` or `assign_func_value/1`.
+#[derive(Clone, Copy, Debug)]
+enum Opnd {
+    Var(u16),
+    Const(Term),
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Bin {
+    Add,
+    Sub,
+    Mul,
+    IntDiv,
+    Mod,
+    Rem,
+    Min,
+    Max,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Un {
+    Neg,
+    Pos,
+    Abs,
+}
+
+#[derive(Clone, Debug)]
+enum PExpr {
+    Var(u16),
+    Int(i64),
+    Un(Un, Box<PExpr>),
+    Bin(Bin, Box<PExpr>, Box<PExpr>),
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Cmp {
+    Lt,
+    Gt,
+    Le,
+    Ge,
+    Eq,
+    Ne,
+}
+
+#[derive(Clone, Debug)]
+enum PGoal {
+    True,
+    Fail,
+    Cut,
+    /// `V is E`, `V` fresh.
+    IsFresh(u16, PExpr),
+    /// `V is E`, `V` bound: it must be the integer `E` gives.
+    IsBound(u16, PExpr),
+    Cmp(Cmp, PExpr, PExpr),
+    /// `==` (`true`) or `\==` (`false`).
+    Ident(bool, Opnd, Opnd),
+    /// `V = X` with `V` fresh.
+    Bind(u16, Opnd),
+    Assign(Opnd),
+}
+
+#[derive(Clone, Debug)]
+struct PClause {
+    vars: usize,
+    head: Box<[PArg]>,
+    body: Box<[PGoal]>,
+}
+
+/// A plain user function: its clauses in the engine's order.
+#[derive(Clone, Debug)]
+pub(super) struct PlainFn {
+    clauses: Box<[PClause]>,
+    /// At least the inferences the engine counts for a call.
+    inferences: u64,
+}
+
+/// The native forms of an application's plain functions.
+#[derive(Clone, Debug, Default)]
+pub(super) struct PlainFns {
+    map: HashMap<(Atom, usize), PlainFn>,
+}
+
+/// Reads the application's clauses and directives as the engine loads
+/// them ([`super::consult::prepare`]) and keeps the plain functions.
+#[derive(Default)]
+pub(super) struct PlainScan {
+    /// Each predicate's clauses so far, `None` once one is not plain.
+    fns: HashMap<(Atom, usize), Option<Vec<PClause>>>,
+    /// A clause or directive names one of [`OFF`].
+    off: bool,
+}
+
+impl PlainScan {
+    /// A directive: only looked at for the names of [`OFF`].
+    pub(super) fn directive(&mut self, store: &Store, goal: Term) {
+        if names_off(store, goal) {
+            self.off = true;
+        }
+    }
+
+    /// A clause of `key`, as the engine gets it.
+    pub(super) fn clause(
+        &mut self,
+        store: &Store,
+        key: (Atom, usize),
+        head: Term,
+        body: Option<Term>,
+    ) {
+        // A definition of `assign_func_value/1` replaces the prelude's.
+        if key.0.as_str() == "assign_func_value"
+            || names_off(store, head)
+            || body.is_some_and(|b| names_off(store, b))
+        {
+            self.off = true;
+        }
+        let entry = self.fns.entry(key).or_insert_with(|| Some(Vec::new()));
+        if let Some(clauses) = entry {
+            match plain_clause(store, head, body) {
+                Some(c) => clauses.push(c),
+                None => *entry = None,
+            }
+        }
+    }
+
+    /// The plain functions (none if the application names one of [`OFF`]).
+    pub(super) fn finish(self) -> PlainFns {
+        if self.off {
+            return PlainFns::default();
+        }
+        let map = self
+            .fns
+            .into_iter()
+            .filter(|((name, _), _)| !name.as_str().starts_with('$'))
+            .filter_map(|(key, clauses)| {
+                let clauses = clauses?;
+                let goals: usize = clauses.iter().map(|c| c.body.len() + 1).sum();
+                Some((
+                    key,
+                    PlainFn {
+                        clauses: clauses.into(),
+                        inferences: (goals as u64 + 1).saturating_mul(4),
+                    },
+                ))
+            })
+            .collect();
+        PlainFns { map }
+    }
+}
+
+impl PlainFns {
+    /// The plain functions' names and arities.
+    pub(super) fn keys(&self) -> impl Iterator<Item = (Atom, usize)> + '_ {
+        self.map.keys().copied()
+    }
+
+    /// The value of `name(args..)` if it is a plain function that the
+    /// native form runs to a value under an inference limit of `limit`;
+    /// `None`: the engine runs the call (see the module's invariant).
+    pub(super) fn call(
+        &self,
+        store: &mut Store,
+        name: Atom,
+        args: &[Term],
+        limit: u64,
+    ) -> Option<Term> {
+        let f = self.map.get(&(name, args.len()))?;
+        if limit < MIN_INFERENCES.max(f.inferences) {
+            return None;
+        }
+        if !args.iter().all(|&a| sure(store, a, true)) {
+            return None;
+        }
+        // Registers on the stack for the usual clause (no allocation).
+        let mut small = [Term::EMPTY; 16];
+        let mut big = Vec::new();
+        for c in f.clauses.iter() {
+            let regs: &mut [Term] = if c.vars <= small.len() {
+                &mut small[..c.vars]
+            } else {
+                big.clear();
+                big.resize(c.vars, Term::EMPTY);
+                &mut big
+            };
+            match run_clause(store, c, args, regs) {
+                Outcome::Value(v) => return Some(v),
+                Outcome::Fail { cut: false } => continue,
+                Outcome::Fail { cut: true } | Outcome::NoValue | Outcome::Unsure => return None,
+            }
+        }
+        None
+    }
+}
+
+/// The deepest term the native form takes, as an argument or in the
+/// caller's variables (a list counts a level per element, as for the
+/// engine): deeper, the engine decides (it refuses what nests deeper
+/// than `PROLOG_MAX_DEPTH`, with an error naming the function).
+const MAX_DEPTH: usize = 10_000;
+
+/// Whether `t` nests at most [`MAX_DEPTH`] levels and, if `strict`, is
+/// ground with no float or big integer anywhere in it.
+pub(super) fn sure(store: &Store, t: Term, strict: bool) -> bool {
+    match store.value(store.deref(t)) {
+        Value::Atom(_) | Value::Int(_) => return true,
+        Value::Var(_) | Value::BigInt(_) | Value::Float(_) => return !strict,
+        Value::Compound(..) => {}
+    }
+    let mut stack = vec![(t, 0usize)];
+    while let Some((t, depth)) = stack.pop() {
+        if depth > MAX_DEPTH {
+            return false;
+        }
+        match store.value(store.deref(t)) {
+            Value::Atom(_) | Value::Int(_) => {}
+            Value::Var(_) | Value::BigInt(_) | Value::Float(_) => {
+                if strict {
+                    return false;
+                }
+            }
+            Value::Compound(_, args) => stack.extend(args.iter().map(|&a| (a, depth + 1))),
+        }
+    }
+    true
+}
+
+/// Whether `t` names one of [`OFF`] (as an atom or a functor) anywhere.
+fn names_off(store: &Store, t: Term) -> bool {
+    let mut stack = vec![t];
+    while let Some(t) = stack.pop() {
+        match store.value(store.deref(t)) {
+            Value::Atom(a) if OFF.contains(&a.as_str()) => return true,
+            Value::Compound(f, args) => {
+                if OFF.contains(&f.as_str()) {
+                    return true;
+                }
+                stack.extend_from_slice(args);
+            }
+            _ => {}
+        }
+    }
+    false
+}
+
+/// The variables of a clause being read, numbered in order of first
+/// occurrence, and which are bound at the point reached.
+#[derive(Default)]
+struct Scope {
+    vars: Vec<Var>,
+    bound: Vec<bool>,
+}
+
+impl Scope {
+    /// The variable's number and whether it was bound already.
+    fn var(&mut self, v: Var) -> Option<(u16, bool)> {
+        if let Some(i) = self.vars.iter().position(|&w| w == v) {
+            return Some((i as u16, self.bound[i]));
+        }
+        if self.vars.len() >= u16::MAX as usize {
+            return None;
+        }
+        self.vars.push(v);
+        self.bound.push(false);
+        Some(((self.vars.len() - 1) as u16, false))
+    }
+
+    fn bind(&mut self, i: u16) {
+        self.bound[i as usize] = true;
+    }
+}
+
+/// An atom or an integer.
+fn constant(store: &Store, t: Term) -> Option<Term> {
+    match store.value(t) {
+        Value::Atom(a) => Some(Term::atom(a)),
+        Value::Int(i) => Some(Term::int(i)),
+        _ => None,
+    }
+}
+
+fn plain_clause(store: &Store, head: Term, body: Option<Term>) -> Option<PClause> {
+    let mut scope = Scope::default();
+    let mut args = Vec::new();
+    for &a in store.args(head) {
+        let a = store.deref(a);
+        if let Some(v) = store.var_of(a) {
+            let (i, bound) = scope.var(v)?;
+            if bound {
+                args.push(PArg::Same(i));
+            } else {
+                scope.bind(i);
+                args.push(PArg::Bind(i));
+            }
+        } else {
+            args.push(PArg::Const(constant(store, a)?));
+        }
+    }
+    let mut goals = Vec::new();
+    if let Some(b) = body {
+        let mut conj = vec![b];
+        // The conjunction's goals, left to right.
+        let mut flat = Vec::new();
+        while let Some(g) = conj.pop() {
+            let g = store.deref(g);
+            match store.value(g) {
+                Value::Compound(f, a) if f.as_str() == "," && a.len() == 2 => {
+                    conj.push(a[1]);
+                    conj.push(a[0]);
+                }
+                _ => flat.push(g),
+            }
+        }
+        for g in flat {
+            goals.push(plain_goal(store, g, &mut scope)?);
+        }
+    }
+    Some(PClause {
+        vars: scope.vars.len(),
+        head: args.into(),
+        body: goals.into(),
+    })
+}
+
+/// A bound variable or a constant.
+fn operand(store: &Store, t: Term, scope: &mut Scope) -> Option<Opnd> {
+    let t = store.deref(t);
+    match store.var_of(t) {
+        Some(v) => match scope.var(v)? {
+            (i, true) => Some(Opnd::Var(i)),
+            (_, false) => None,
+        },
+        None => constant(store, t).map(Opnd::Const),
+    }
+}
+
+fn expr(store: &Store, t: Term, scope: &mut Scope, depth: usize) -> Option<PExpr> {
+    if depth > 64 {
+        return None;
+    }
+    let t = store.deref(t);
+    match store.value(t) {
+        Value::Var(v) => match scope.var(v)? {
+            (i, true) => Some(PExpr::Var(i)),
+            (_, false) => None,
+        },
+        Value::Int(i) => Some(PExpr::Int(i)),
+        Value::Compound(f, a) if a.len() == 1 => {
+            let op = match f.as_str() {
+                "-" => Un::Neg,
+                "+" => Un::Pos,
+                "abs" => Un::Abs,
+                _ => return None,
+            };
+            Some(PExpr::Un(
+                op,
+                Box::new(expr(store, a[0], scope, depth + 1)?),
+            ))
+        }
+        Value::Compound(f, a) if a.len() == 2 => {
+            let op = match f.as_str() {
+                "+" => Bin::Add,
+                "-" => Bin::Sub,
+                "*" => Bin::Mul,
+                "//" => Bin::IntDiv,
+                "mod" => Bin::Mod,
+                "rem" => Bin::Rem,
+                "min" => Bin::Min,
+                "max" => Bin::Max,
+                _ => return None,
+            };
+            let (x, y) = (a[0], a[1]);
+            Some(PExpr::Bin(
+                op,
+                Box::new(expr(store, x, scope, depth + 1)?),
+                Box::new(expr(store, y, scope, depth + 1)?),
+            ))
+        }
+        _ => None,
+    }
+}
+
+fn plain_goal(store: &Store, g: Term, scope: &mut Scope) -> Option<PGoal> {
+    match store.value(g) {
+        Value::Atom(a) => match a.as_str() {
+            "true" => Some(PGoal::True),
+            "fail" | "false" => Some(PGoal::Fail),
+            "!" => Some(PGoal::Cut),
+            _ => None,
+        },
+        Value::Compound(f, a) if a.len() == 1 && f.as_str() == "assign_func_value" => {
+            Some(PGoal::Assign(operand(store, a[0], scope)?))
+        }
+        Value::Compound(f, a) if a.len() == 2 => {
+            let (x, y) = (a[0], a[1]);
+            let cmp = match f.as_str() {
+                "<" => Some(Cmp::Lt),
+                ">" => Some(Cmp::Gt),
+                "=<" => Some(Cmp::Le),
+                ">=" => Some(Cmp::Ge),
+                "=:=" => Some(Cmp::Eq),
+                "=\\=" => Some(Cmp::Ne),
+                _ => None,
+            };
+            if let Some(c) = cmp {
+                return Some(PGoal::Cmp(
+                    c,
+                    expr(store, x, scope, 0)?,
+                    expr(store, y, scope, 0)?,
+                ));
+            }
+            match f.as_str() {
+                "is" => {
+                    let e = expr(store, y, scope, 0)?;
+                    let v = store.var_of(store.deref(x))?;
+                    match scope.var(v)? {
+                        (i, true) => Some(PGoal::IsBound(i, e)),
+                        (i, false) => {
+                            scope.bind(i);
+                            Some(PGoal::IsFresh(i, e))
+                        }
+                    }
+                }
+                "==" | "\\==" => Some(PGoal::Ident(
+                    f.as_str() == "==",
+                    operand(store, x, scope)?,
+                    operand(store, y, scope)?,
+                )),
+                "=" => {
+                    // One side a fresh variable, the other bound or a constant.
+                    let fresh = |t: Term, scope: &mut Scope| {
+                        let v = store.var_of(store.deref(t))?;
+                        match scope.var(v)? {
+                            (i, false) => Some(i),
+                            (_, true) => None,
+                        }
+                    };
+                    if let Some(i) = fresh(x, scope) {
+                        let o = operand(store, y, scope)?;
+                        scope.bind(i);
+                        return Some(PGoal::Bind(i, o));
+                    }
+                    if let Some(i) = fresh(y, scope) {
+                        let o = operand(store, x, scope)?;
+                        scope.bind(i);
+                        return Some(PGoal::Bind(i, o));
+                    }
+                    // Both bound: ground values unify when identical.
+                    Some(PGoal::Ident(
+                        true,
+                        operand(store, x, scope)?,
+                        operand(store, y, scope)?,
+                    ))
+                }
+                _ => None,
+            }
+        }
+        _ => None,
+    }
+}
+
+/// How a clause ran.
+enum Outcome {
+    Value(Term),
+    /// A head argument or a goal failed (after the clause's cut: `cut`).
+    Fail {
+        cut: bool,
+    },
+    /// The clause succeeded without assigning a value.
+    NoValue,
+    /// Not decided here (a type the operation does not take, an overflow).
+    Unsure,
+}
+
+/// An integer, or `Err` (not decided here) for anything else.
+fn int(store: &Store, t: Term) -> Result<i64, ()> {
+    store.int_of(t).ok_or(())
+}
+
+fn eval(store: &Store, e: &PExpr, regs: &[Term]) -> Result<i64, ()> {
+    Ok(match e {
+        PExpr::Var(i) => int(store, regs[*i as usize])?,
+        PExpr::Int(i) => *i,
+        PExpr::Un(op, x) => {
+            let x = eval(store, x, regs)?;
+            match op {
+                Un::Neg => x.checked_neg().ok_or(())?,
+                Un::Pos => x,
+                Un::Abs => x.checked_abs().ok_or(())?,
+            }
+        }
+        PExpr::Bin(op, x, y) => {
+            let (x, y) = (eval(store, x, regs)?, eval(store, y, regs)?);
+            match op {
+                Bin::Add => x.checked_add(y).ok_or(())?,
+                Bin::Sub => x.checked_sub(y).ok_or(())?,
+                Bin::Mul => x.checked_mul(y).ok_or(())?,
+                // Prolog's `//` truncates toward zero (the engine's
+                // `integer_rounding_function`), as Rust's `/`.
+                Bin::IntDiv => x.checked_div(y).ok_or(())?,
+                Bin::Rem => x.checked_rem(y).ok_or(())?,
+                // `mod`: the sign of the divisor.
+                Bin::Mod => {
+                    let r = x.checked_rem(y).ok_or(())?;
+                    if r != 0 && ((r < 0) != (y < 0)) {
+                        r + y
+                    } else {
+                        r
+                    }
+                }
+                Bin::Min => x.min(y),
+                Bin::Max => x.max(y),
+            }
+        }
+    })
+}
+
+fn value(o: Opnd, regs: &[Term]) -> Term {
+    match o {
+        Opnd::Var(i) => regs[i as usize],
+        Opnd::Const(t) => t,
+    }
+}
+
+fn run_clause(store: &mut Store, c: &PClause, args: &[Term], regs: &mut [Term]) -> Outcome {
+    for (p, &a) in c.head.iter().zip(args) {
+        match p {
+            PArg::Bind(i) => regs[*i as usize] = a,
+            PArg::Same(i) => {
+                if !store.identical(regs[*i as usize], a) {
+                    return Outcome::Fail { cut: false };
+                }
+            }
+            PArg::Const(k) => {
+                if !store.identical(*k, a) {
+                    return Outcome::Fail { cut: false };
+                }
+            }
+        }
+    }
+    let mut cut = false;
+    let mut assigned = None;
+    for g in c.body.iter() {
+        let holds = match g {
+            PGoal::True => true,
+            PGoal::Fail => false,
+            PGoal::Cut => {
+                cut = true;
+                true
+            }
+            PGoal::IsFresh(i, e) => match eval(store, e, regs) {
+                Ok(v) => {
+                    regs[*i as usize] = Term::int(v);
+                    true
+                }
+                Err(()) => return Outcome::Unsure,
+            },
+            PGoal::IsBound(i, e) => match (eval(store, e, regs), int(store, regs[*i as usize])) {
+                (Ok(v), Ok(w)) => v == w,
+                _ => return Outcome::Unsure,
+            },
+            PGoal::Cmp(op, x, y) => match (eval(store, x, regs), eval(store, y, regs)) {
+                (Ok(x), Ok(y)) => match op {
+                    Cmp::Lt => x < y,
+                    Cmp::Gt => x > y,
+                    Cmp::Le => x <= y,
+                    Cmp::Ge => x >= y,
+                    Cmp::Eq => x == y,
+                    Cmp::Ne => x != y,
+                },
+                _ => return Outcome::Unsure,
+            },
+            PGoal::Ident(eq, x, y) => store.identical(value(*x, regs), value(*y, regs)) == *eq,
+            PGoal::Bind(i, o) => {
+                regs[*i as usize] = value(*o, regs);
+                true
+            }
+            PGoal::Assign(o) => {
+                assigned = Some(value(*o, regs));
+                true
+            }
+        };
+        if !holds {
+            return Outcome::Fail { cut };
+        }
+    }
+    match assigned {
+        Some(v) => Outcome::Value(v),
+        None => Outcome::NoValue,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scan(text: &str) -> PlainFns {
+        let (clauses, _) = sitlog_syntax::read_prolog_clauses(text);
+        let mut s = PlainScan::default();
+        let neck = Atom::intern(":-");
+        for c in &clauses {
+            let mut store = Store::new();
+            let (t, _) = store.from_clause(c);
+            if let Some(a) = store.compound_args(t, neck, 1) {
+                let g = a[0];
+                s.directive(&store, g);
+                continue;
+            }
+            let (head, body) = match store.compound_args(t, neck, 2) {
+                Some(a) => (a[0], Some(a[1])),
+                None => (t, None),
+            };
+            let key = store.functor(head).unwrap();
+            s.clause(&store, key, head, body);
+        }
+        s.finish()
+    }
+
+    fn call(fns: &PlainFns, store: &mut Store, q: &str) -> Option<String> {
+        let t = store.parse(q).unwrap().0;
+        let (name, _) = store.functor(t).unwrap();
+        let args = store.args(t).to_vec();
+        fns.call(store, name, &args, 10_000_000)
+            .map(|v| store.writeq(v))
+    }
+
+    #[test]
+    fn plain_functions_and_what_they_leave_to_the_engine() {
+        let fns = scan(
+            "same(A, B) :- A == B, !, assign_func_value(yes).\n\
+             same(_, _) :- assign_func_value(no).\n\
+             succ_of(X) :- Y is X + 1, assign_func_value(Y).\n\
+             m(X) :- Y is X mod -3, Z is X // 2, W is X rem 3, assign_func_value(Y), assign_func_value(W), Z > -100.\n\
+             cf(X) :- X > 0, !, X > 5, assign_func_value(big).\n\
+             cf(_) :- assign_func_value(small).\n\
+             fa(X) :- assign_func_value(a), X > 5.\n\
+             fa(_).\n\
+             k(a, X) :- X = b, assign_func_value(X).\n\
+             notplain(X) :- atom(X), assign_func_value(X).\n",
+        );
+        let mut keys: Vec<String> = fns.keys().map(|(n, a)| format!("{n}/{a}")).collect();
+        keys.sort();
+        assert_eq!(keys, ["cf/1", "fa/1", "k/2", "m/1", "same/2", "succ_of/1"]);
+        let s = &mut Store::new();
+        assert_eq!(call(&fns, s, "same(a, a)").as_deref(), Some("yes"));
+        assert_eq!(call(&fns, s, "same(a, b)").as_deref(), Some("no"));
+        assert_eq!(call(&fns, s, "same(f(x), f(x))").as_deref(), Some("yes"));
+        assert_eq!(call(&fns, s, "same(1, 1.0)"), None); // a float: the engine
+        assert_eq!(call(&fns, s, "same(X, a)"), None); // unbound: the engine
+        assert_eq!(call(&fns, s, "succ_of(41)").as_deref(), Some("42"));
+        assert_eq!(call(&fns, s, "succ_of(abc)"), None); // a type error
+        assert_eq!(call(&fns, s, "succ_of(9223372036854775807)"), None); // overflow
+        assert_eq!(call(&fns, s, "m(-7)").as_deref(), Some("-1")); // rem: -1, mod -3: -1
+        assert_eq!(call(&fns, s, "m(7)").as_deref(), Some("1"));
+        assert_eq!(call(&fns, s, "cf(9)").as_deref(), Some("big"));
+        assert_eq!(call(&fns, s, "cf(1)"), None); // fails after the cut
+        assert_eq!(call(&fns, s, "cf(0)").as_deref(), Some("small"));
+        assert_eq!(call(&fns, s, "fa(9)").as_deref(), Some("a"));
+        assert_eq!(call(&fns, s, "fa(1)"), None); // no value
+        assert_eq!(call(&fns, s, "k(a, z)").as_deref(), None); // X bound: `=` fails, then no clause
+        let fns2 = scan("k2(a, X) :- Y = X, assign_func_value(Y).\n");
+        assert_eq!(call(&fns2, s, "k2(a, z)").as_deref(), Some("z"));
+        assert_eq!(call(&fns2, s, "k2(b, z)"), None);
+    }
+
+    #[test]
+    fn naming_assert_anywhere_turns_it_off() {
+        let fns = scan(
+            "succ_of(X) :- Y is X + 1, assign_func_value(Y).\n\
+             other :- assertz(seen(x)).\n",
+        );
+        assert_eq!(fns.keys().count(), 0);
+        let fns = scan(":- dynamic(foo/1).\nsucc_of(X) :- Y is X + 1, assign_func_value(Y).\n");
+        assert_eq!(fns.keys().count(), 1);
+        let fns = scan(":- G = assert, true.\nsucc_of(X) :- Y is X + 1, assign_func_value(Y).\n");
+        assert_eq!(fns.keys().count(), 0);
+    }
+
+    #[test]
+    fn a_small_inference_limit_leaves_the_call_to_the_engine() {
+        let fns = scan("succ_of(X) :- Y is X + 1, assign_func_value(Y).\n");
+        let s = &mut Store::new();
+        let name = Atom::intern("succ_of");
+        assert!(fns.call(s, name, &[Term::int(1)], 999).is_none());
+        assert!(fns.call(s, name, &[Term::int(1)], 1000).is_some());
+    }
+
+    #[test]
+    fn a_deep_argument_or_an_assign_func_value_of_its_own_is_the_engines() {
+        let fns = scan("echo(X) :- assign_func_value(X).\n");
+        let s = &mut Store::new();
+        let sf = Atom::intern("s");
+        let mut t = Term::atom(Atom::intern("a"));
+        for _ in 0..MAX_DEPTH {
+            t = s.compound(sf, &[t]);
+        }
+        let echo = Atom::intern("echo");
+        assert!(fns.call(s, echo, &[t], u64::MAX).is_some());
+        let deeper = s.compound(sf, &[t]);
+        assert!(fns.call(s, echo, &[deeper], u64::MAX).is_none());
+        let fns = scan("echo(X) :- assign_func_value(X).\nassign_func_value(_).\n");
+        assert_eq!(fns.keys().count(), 0);
+    }
+}
