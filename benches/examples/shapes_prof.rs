@@ -151,6 +151,10 @@ mod d_when_arith {
 mod c_rec_inarg_pair {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_rec_inarg_pair");
 }
+// Helper `nwait17`'s (session 16): a variable in_arg only the call reads.
+mod c_call_reads_inarg {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_call_reads_inarg");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -256,7 +260,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_shelf_pairs" => format!("stock({n}, {pairs_text}, {last})"),
         "list_search" => format!("main({n}, {list}, {last})"),
         "c_pipe_pair" | "c_final_by_inarg" | "c_local_limit_hop" | "c_local_count"
-        | "c_rec_inarg_pair" => {
+        | "c_rec_inarg_pair" | "c_call_reads_inarg" => {
             format!("relay({n})")
         }
         "d_ints_inarg_threshold" => {
@@ -345,6 +349,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             "list_search" => hand_list_search(n, black_box(&syms), black_box(lsym)),
             "c_pipe_pair" => hand_pair(n),
             "c_rec_inarg_pair" => hand_rec_pair(n),
+            "c_call_reads_inarg" => hand_call_reads_inarg(n),
             "c_final_by_inarg" => hand_final_by_inarg(n),
             "c_local_count" => hand_local_count(n),
             "c_local_limit_hop" => hand_local_limit_hop(n),
@@ -445,11 +450,12 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "c_count_two_levels" => ways!(c_count_two_levels),
         "d_when_arith" => ways!(d_when_arith),
         "c_rec_inarg_pair" => ways!(c_rec_inarg_pair),
+        "c_call_reads_inarg" => ways!(c_call_reads_inarg),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 39] = [
+const ALL: [&str; 40] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -489,6 +495,7 @@ const ALL: [&str; 39] = [
     "c_count_two_levels",
     "d_when_arith",
     "c_rec_inarg_pair",
+    "c_call_reads_inarg",
 ];
 
 fn main() {
