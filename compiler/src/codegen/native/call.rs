@@ -151,11 +151,14 @@ impl Gen<'_> {
                     fields.push((r, d.types[ix].regs[r as usize].ty.clone()));
                 }
             }
-            // An in_arg pattern's variable the call reads (`in_arg ==>
-            // N-L, embedded_dm ==> count(N)`): a frame made the machine's
-            // evaluates the template's call, the variable bound by the
-            // pipe value built from the fields (`nat_in_arg_term`).
-            if let (Some((pat, true, _)), KindPlan::Recursive { call, .. }) =
+            // An in_arg's variable the call reads, of a pattern (`in_arg
+            // ==> N-L, embedded_dm ==> count(N)`) or the in_arg itself
+            // (`in_arg ==> N, embedded_dm ==> count(N)`): the call's
+            // argument where it is pushed natively, and a frame made the
+            // machine's evaluates the template's call with the variable
+            // bound by the pipe value built from the fields
+            // (`nat_in_arg_term`) or kept whole (`Cx::wait_template`).
+            if let (Some((pat, _, _)), KindPlan::Recursive { call, .. }) =
                 (&d.plans[ix].in_arg, &d.plans[ix].kind)
             {
                 let (mut in_pat, mut in_call) = (Vec::new(), Vec::new());
