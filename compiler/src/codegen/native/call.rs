@@ -1771,9 +1771,7 @@ impl Gen<'_> {
             ord(quote!(#rt::compare_numbers(#rt::Number::Int(x), #rt::Number::Float(y))));
         let mixed_fi =
             ord(quote!(#rt::compare_numbers(#rt::Number::Float(x), #rt::Number::Int(y))));
-        let hand = &d.hand;
-        let curl = Literal::u32_unsuffixed(cur as u32);
-        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+        let (hand_count, id_stmts, id, curl) = self.nat_before_evaluating(d, cur)?;
         let opt = match op {
             ArithCmp::Eq => quote!(Eq),
             ArithCmp::Ne => quote!(Ne),
@@ -1805,10 +1803,7 @@ impl Gen<'_> {
                     // situation when nothing is recorded; recorded, its
                     // entry counts it) is not the machine's until that
                     // succeeds.
-                    #hand
-                    let own = u64::from(!run.records);
-                    cx.count_transitions(count.saturating_sub(own));
-                    count = own.min(count);
+                    #hand_count
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
                     let lt = cx.term(#lx);
