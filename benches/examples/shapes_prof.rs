@@ -155,6 +155,9 @@ mod c_rec_inarg_pair {
 mod c_call_reads_inarg {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_call_reads_inarg");
 }
+mod c_expr_compare {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_expr_compare");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -260,7 +263,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_shelf_pairs" => format!("stock({n}, {pairs_text}, {last})"),
         "list_search" => format!("main({n}, {list}, {last})"),
         "c_pipe_pair" | "c_final_by_inarg" | "c_local_limit_hop" | "c_local_count"
-        | "c_rec_inarg_pair" | "c_call_reads_inarg" => {
+        | "c_rec_inarg_pair" | "c_call_reads_inarg" | "c_expr_compare" => {
             format!("relay({n})")
         }
         "d_ints_inarg_threshold" => {
@@ -350,6 +353,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             "c_pipe_pair" => hand_pair(n),
             "c_rec_inarg_pair" => hand_rec_pair(n),
             "c_call_reads_inarg" => hand_call_reads_inarg(n),
+            "c_expr_compare" => hand_expr_compare(n),
             "c_final_by_inarg" => hand_final_by_inarg(n),
             "c_local_count" => hand_local_count(n),
             "c_local_limit_hop" => hand_local_limit_hop(n),
@@ -451,11 +455,12 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_when_arith" => ways!(d_when_arith),
         "c_rec_inarg_pair" => ways!(c_rec_inarg_pair),
         "c_call_reads_inarg" => ways!(c_call_reads_inarg),
+        "c_expr_compare" => ways!(c_expr_compare),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 40] = [
+const ALL: [&str; 41] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -496,6 +501,7 @@ const ALL: [&str; 40] = [
     "d_when_arith",
     "c_rec_inarg_pair",
     "c_call_reads_inarg",
+    "c_expr_compare",
 ];
 
 fn main() {

@@ -906,6 +906,60 @@ pub fn hand_call_reads_inarg(limit: i64) -> u64 {
     transitions
 }
 
+/// (c) `c_expr_compare`: the count in the caller's waiting frame, the
+/// callee one step, the exit arc comparing two expressions (`J * 2 <
+/// Max * 2`) computed in Rust.
+pub fn hand_expr_compare(max: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask(i64),
+        Wait(i64),
+        Over,
+        Step,
+        Ticked,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let mut transitions = 0u64;
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                *top = Frame::Ask(0);
+            }
+            Frame::Ask(i) => {
+                *top = Frame::Wait(i);
+                stack.push(Frame::Step);
+            }
+            Frame::Step => {
+                transitions += 1;
+                *top = Frame::Ticked;
+            }
+            Frame::Ticked => {
+                // The callee's final, then the caller's exit arc.
+                transitions += 2;
+                stack.pop();
+                if let Some(w) = stack.last_mut() {
+                    if let Frame::Wait(i) = *w {
+                        let j = black_box(i + 1);
+                        *w = if j * 2 < max * 2 {
+                            Frame::Ask(j)
+                        } else {
+                            Frame::Over
+                        };
+                    }
+                }
+            }
+            Frame::Wait(_) => unreachable!("a waiting frame is never on top"),
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
 /// (c) `c_final_by_inarg`: the count in the pipe and the caller's id, the
 /// callee's final chosen by its in_arg (`> 10`).
 pub fn hand_final_by_inarg(limit: i64) -> u64 {
