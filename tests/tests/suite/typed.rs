@@ -3026,3 +3026,51 @@ fn a_recursive_in_arg_only_the_call_reads_agrees() {
         &["relay(1)", "relay(5)", "relay(x)"],
     );
 }
+
+mod cmp_expr_nwait17 {
+    pub mod dm {
+        sitlog_macros::include_dm!("typed/cmp_expr");
+    }
+    pub mod shape {
+        sitlog_macros::include_dm!("typed/shapes/c_expr_compare");
+    }
+}
+
+/// Comparisons whose operands are arithmetic expressions (`J * 2 < Max *
+/// 2`, `K - 1 =:= Max - 1`, `-K =\= -Max`, `N + 1 > 1.5`, an out_arg's `N
+/// - 1 >= 0`): computed as ints natively (`Gen::nat_arith_exprs`), the
+/// machine's comparison where an operand is no int or an operation
+/// overflows. The compiled task and the plans agree with the interpreter,
+/// history kept or not, observed or not: ints, a float limit (`main(2.5)`,
+/// compared as Prolog compares an int with a float), an atom (the
+/// evaluator's error), `N * 2` overflowing at 2^62 and `N + 1` at the
+/// largest int (the machine's error), negative and zero values.
+#[test]
+fn comparisons_of_expressions_agree() {
+    use cmp_expr_nwait17::{dm, shape};
+    let ir = interpreter("typed/cmp_expr");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    for main in [
+        "main(1)",
+        "main(3)",
+        "main(a)",
+        "main(2.5)",
+        "main(-1)",
+        "big(3)",
+        "big(-3)",
+        "big(0)",
+        "big(1.0)",
+        "big(x)",
+        "big(4611686018427387904)",
+        "big(9223372036854775807)",
+    ] {
+        agree(dm::program(), &ir, main, "");
+        agree(&plans, &ir, main, "");
+    }
+    let shape_ir = interpreter("typed/shapes/c_expr_compare");
+    agree_both(
+        shape::program(),
+        &shape_ir,
+        &["relay(1)", "relay(5)", "relay(x)"],
+    );
+}

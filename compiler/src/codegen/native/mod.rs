@@ -4329,6 +4329,10 @@ impl Gen<'_> {
     ) -> N<TokenStream> {
         match c {
             Cond::Arith(op, l, r) => {
+                // A side an arithmetic expression of ints (`N + 1 > L`).
+                if let Some(t) = self.nat_arith_exprs(d, cur, *op, (l, r), regs)? {
+                    return Ok(t);
+                }
                 let side = |e: &Ev, regs: &mut Regs, pre: &mut Vec<TokenStream>| match e {
                     Ev::VarOp {
                         op,
