@@ -3037,8 +3037,8 @@ mod cmp_expr_nwait17 {
 }
 
 /// Comparisons whose operands are arithmetic expressions (`J * 2 < Max *
-/// 2`, `K - 1 =:= Max - 1`, `-K =\= -Max`, `N + 1 > 1.5`, an out_arg's `N
-/// - 1 >= 0`): computed as ints natively (`Gen::nat_arith_exprs`), the
+/// 2`, `K - 1 =:= Max - 1`, `-K =\= -Max`, `N + 1 > 1.5`, an out_arg's
+/// `N - 1 >= 0`): computed as ints natively (`Gen::nat_arith_exprs`), the
 /// machine's comparison where an operand is no int or an operation
 /// overflows. The compiled task and the plans agree with the interpreter,
 /// history kept or not, observed or not: ints, a float limit (`main(2.5)`,
