@@ -179,6 +179,13 @@ mod r17_d_readings_deep {
 mod r17_d_announce {
     sitlog_macros::include_dm!("../tests/typed/review17/r17_d_announce");
 }
+// Helper `nwait17`'s (session 16): a variable in_arg only the call reads.
+mod c_call_reads_inarg {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_call_reads_inarg");
+}
+mod c_expr_compare {
+    sitlog_macros::include_dm!("../tests/typed/shapes/c_expr_compare");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -291,7 +298,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_shelf_pairs" => format!("stock({n}, {pairs_text}, {last})"),
         "list_search" => format!("main({n}, {list}, {last})"),
         "c_pipe_pair" | "c_final_by_inarg" | "c_local_limit_hop" | "c_local_count"
-        | "c_rec_inarg_pair" => {
+        | "c_rec_inarg_pair" | "c_call_reads_inarg" | "c_expr_compare" => {
             format!("relay({n})")
         }
         "d_ints_inarg_threshold" => {
@@ -392,6 +399,8 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             "list_search" => hand_list_search(n, black_box(&syms), black_box(lsym)),
             "c_pipe_pair" => hand_pair(n),
             "c_rec_inarg_pair" => hand_rec_pair(n),
+            "c_call_reads_inarg" => hand_call_reads_inarg(n),
+            "c_expr_compare" => hand_expr_compare(n),
             "c_final_by_inarg" => hand_final_by_inarg(n),
             "c_local_count" => hand_local_count(n),
             "c_local_limit_hop" => hand_local_limit_hop(n),
@@ -513,11 +522,13 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r17_d_prog_rooms" => ways!(r17_d_prog_rooms),
         "r17_d_readings_deep" => ways!(r17_d_readings_deep),
         "r17_d_announce" => ways!(r17_d_announce),
+        "c_call_reads_inarg" => ways!(c_call_reads_inarg),
+        "c_expr_compare" => ways!(c_expr_compare),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 48] = [
+const ALL: [&str; 50] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -566,6 +577,8 @@ const ALL: [&str; 48] = [
     "r17_d_prog_rooms",
     "r17_d_readings_deep",
     "r17_d_announce",
+    "c_call_reads_inarg",
+    "c_expr_compare",
 ];
 
 fn main() {

@@ -849,6 +849,117 @@ pub fn hand_rec_pair(limit: i64) -> u64 {
     transitions
 }
 
+/// (c) `c_call_reads_inarg`: the count in the pipe, read by the recursive
+/// situation's in_arg and given to the call only (an argument of the
+/// callee's frame), the limit in the caller's id; the callee counts, hands
+/// the count back in the pipe and ends in `more` or `done` by comparing
+/// it with the limit, which the caller's exit arcs match.
+pub fn hand_call_reads_inarg(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask(i64),
+        Wait(i64),
+        Over,
+        Step(i64, i64),
+        More,
+        Done,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut transitions) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                pipe = black_box(0);
+                *top = Frame::Ask(limit);
+            }
+            Frame::Ask(lim) => {
+                let n = pipe;
+                *top = Frame::Wait(lim);
+                stack.push(Frame::Step(n, lim));
+            }
+            Frame::Step(n, lim) => {
+                transitions += 1;
+                let m = n + 1;
+                pipe = black_box(m);
+                *top = if m < lim { Frame::More } else { Frame::Done };
+            }
+            Frame::More | Frame::Done => {
+                // The callee's final, then the caller's exit arc.
+                let more = matches!(*top, Frame::More);
+                transitions += 2;
+                stack.pop();
+                if let Some(w) = stack.last_mut() {
+                    if let Frame::Wait(lim) = *w {
+                        *w = if more { Frame::Ask(lim) } else { Frame::Over };
+                    }
+                }
+            }
+            Frame::Wait(_) => unreachable!("a waiting frame is never on top"),
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
+/// (c) `c_expr_compare`: the count in the caller's waiting frame, the
+/// callee one step, the exit arc comparing two expressions (`J * 2 <
+/// Max * 2`) computed in Rust.
+pub fn hand_expr_compare(max: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Ask(i64),
+        Wait(i64),
+        Over,
+        Step,
+        Ticked,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let mut transitions = 0u64;
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                transitions += 1;
+                *top = Frame::Ask(0);
+            }
+            Frame::Ask(i) => {
+                *top = Frame::Wait(i);
+                stack.push(Frame::Step);
+            }
+            Frame::Step => {
+                transitions += 1;
+                *top = Frame::Ticked;
+            }
+            Frame::Ticked => {
+                // The callee's final, then the caller's exit arc.
+                transitions += 2;
+                stack.pop();
+                if let Some(w) = stack.last_mut() {
+                    if let Frame::Wait(i) = *w {
+                        let j = black_box(i + 1);
+                        *w = if j * 2 < max * 2 {
+                            Frame::Ask(j)
+                        } else {
+                            Frame::Over
+                        };
+                    }
+                }
+            }
+            Frame::Wait(_) => unreachable!("a waiting frame is never on top"),
+            Frame::Over => {
+                transitions += 1;
+                stack.pop();
+            }
+        }
+    }
+    transitions
+}
+
 /// (c) `c_final_by_inarg`: the count in the pipe and the caller's id, the
 /// callee's final chosen by its in_arg (`> 10`).
 pub fn hand_final_by_inarg(limit: i64) -> u64 {

@@ -3426,3 +3426,100 @@ fn review17_announce_agrees() {
         }
     }
 }
+mod call_inarg_nwait17 {
+    pub mod dm {
+        sitlog_macros::include_dm!("typed/call_inarg");
+    }
+    pub mod shape {
+        sitlog_macros::include_dm!("typed/shapes/c_call_reads_inarg");
+    }
+}
+
+/// A recursive situation's variable in_arg that only its call reads
+/// (`in_arg ==> N, embedded_dm ==> count(N, Lim)`; review16's finding 3):
+/// kept in the waiting variant and given to the callee's frame natively
+/// (`Gen::nat_wait_fields`), where it was the machine's visit from the
+/// template at each call. The compiled task and the plans agree with the
+/// interpreter, history kept or not, observed or not: the count (`main`,
+/// the shape workload `c_call_reads_inarg`), a callee that says it (the
+/// waiting frame made the machine's, the instance's in_arg the pipe value
+/// kept), an exit arc reading it too (`both`), a limit that is no number
+/// (`main(a)`: the comparison's error), and pipes from the command line
+/// that are no int (a float, an atom, a compound) or overflow `N + 1`.
+#[test]
+fn a_recursive_in_arg_only_the_call_reads_agrees() {
+    use call_inarg_nwait17::{dm, shape};
+    let ir = interpreter("typed/call_inarg");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    for main in [
+        "main(1)",
+        "main(4)",
+        "main(a)",
+        "main(2.5)",
+        "said(1)",
+        "said(3)",
+        "both(1)",
+        "both(3)",
+    ] {
+        agree(dm::program(), &ir, main, "");
+        agree(&plans, &ir, main, "");
+    }
+    for pipe in ["0", "2", "a", "2.5", "f(1)", "9223372036854775807"] {
+        agree_piped(dm::program(), &ir, "entry", Some(pipe), "");
+        agree_piped(&plans, &ir, "entry", Some(pipe), "");
+    }
+    let shape_ir = interpreter("typed/shapes/c_call_reads_inarg");
+    agree_both(
+        shape::program(),
+        &shape_ir,
+        &["relay(1)", "relay(5)", "relay(x)"],
+    );
+}
+
+mod cmp_expr_nwait17 {
+    pub mod dm {
+        sitlog_macros::include_dm!("typed/cmp_expr");
+    }
+    pub mod shape {
+        sitlog_macros::include_dm!("typed/shapes/c_expr_compare");
+    }
+}
+
+/// Comparisons whose operands are arithmetic expressions (`J * 2 < Max *
+/// 2`, `K - 1 =:= Max - 1`, `-K =\= -Max`, `N + 1 > 1.5`, an out_arg's
+/// `N - 1 >= 0`): computed as ints natively (`Gen::nat_arith_exprs`), the
+/// machine's comparison where an operand is no int or an operation
+/// overflows. The compiled task and the plans agree with the interpreter,
+/// history kept or not, observed or not: ints, a float limit (`main(2.5)`,
+/// compared as Prolog compares an int with a float), an atom (the
+/// evaluator's error), `N * 2` overflowing at 2^62 and `N + 1` at the
+/// largest int (the machine's error), negative and zero values.
+#[test]
+fn comparisons_of_expressions_agree() {
+    use cmp_expr_nwait17::{dm, shape};
+    let ir = interpreter("typed/cmp_expr");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    for main in [
+        "main(1)",
+        "main(3)",
+        "main(a)",
+        "main(2.5)",
+        "main(-1)",
+        "big(3)",
+        "big(-3)",
+        "big(0)",
+        "big(1.0)",
+        "big(x)",
+        "big(4611686018427387904)",
+        "big(9223372036854775807)",
+    ] {
+        agree(dm::program(), &ir, main, "");
+        agree(&plans, &ir, main, "");
+    }
+    let shape_ir = interpreter("typed/shapes/c_expr_compare");
+    agree_both(
+        shape::program(),
+        &shape_ir,
+        &["relay(1)", "relay(5)", "relay(x)"],
+    );
+}

@@ -151,11 +151,14 @@ impl Gen<'_> {
                     fields.push((r, d.types[ix].regs[r as usize].ty.clone()));
                 }
             }
-            // An in_arg pattern's variable the call reads (`in_arg ==>
-            // N-L, embedded_dm ==> count(N)`): a frame made the machine's
-            // evaluates the template's call, the variable bound by the
-            // pipe value built from the fields (`nat_in_arg_term`).
-            if let (Some((pat, true, _)), KindPlan::Recursive { call, .. }) =
+            // An in_arg's variable the call reads, of a pattern (`in_arg
+            // ==> N-L, embedded_dm ==> count(N)`) or the in_arg itself
+            // (`in_arg ==> N, embedded_dm ==> count(N)`): the call's
+            // argument where it is pushed natively, and a frame made the
+            // machine's evaluates the template's call with the variable
+            // bound by the pipe value built from the fields
+            // (`nat_in_arg_term`) or kept whole (`Cx::wait_template`).
+            if let (Some((pat, _, _)), KindPlan::Recursive { call, .. }) =
                 (&d.plans[ix].in_arg, &d.plans[ix].kind)
             {
                 let (mut in_pat, mut in_call) = (Vec::new(), Vec::new());
@@ -1717,6 +1720,63 @@ impl Gen<'_> {
         r: V,
         value: bool,
     ) -> N<TokenStream> {
+        self.nat_arith_fast(d, cur, op, (l, None), (r, None), value)
+    }
+
+    /// `l op r` where a side is an arithmetic expression (`N + 1 > L`,
+    /// `N * 2 =< Max`, `L - 1 =:= K`: `+`, `-`, `*`, unary `-` over
+    /// registers holding ints and int constants, [`Gen::nat_int_expr`]):
+    /// that side computed as an int in Rust (checked), compared with the
+    /// other as [`Gen::nat_arith`] compares (an int, a float, a `Val`
+    /// read as one); where a side is no int or an operation overflows,
+    /// the machine's comparison of the sides' terms as the term code
+    /// evaluates them (`Cx::arith_condition`: Prolog's result, or its
+    /// error), the expression's term built only there. `None`: neither
+    /// side is such an expression (or one reads a value that is no int).
+    pub(super) fn nat_arith_exprs(
+        &self,
+        d: &Dm,
+        cur: usize,
+        op: ArithCmp,
+        (l, r): (&Ev, &Ev),
+        regs: &Regs,
+    ) -> N<Option<TokenStream>> {
+        let arith = |e: &Ev| {
+            ev_as_build(e).filter(|b| {
+                matches!(b, Build::Compound(f, a)
+                    if matches!((f.as_str(), a.len()), ("+" | "-" | "*", 2) | ("-", 1)))
+            })
+        };
+        let (lb, rb) = (arith(l), arith(r));
+        if lb.is_none() && rb.is_none() {
+            return Ok(None);
+        }
+        let side = |e: &Ev, b: &Option<Build>| -> N<Option<(V, Option<TokenStream>)>> {
+            let v = self.nat_ev_value(d, cur, e, regs)?;
+            Ok(match b {
+                Some(b) => self.nat_int_expr(b, regs).ok().map(|x| (v, Some(x))),
+                None => Some((v, None)),
+            })
+        };
+        let (Some(l), Some(r)) = (side(l, &lb)?, side(r, &rb)?) else {
+            return Ok(None);
+        };
+        self.nat_arith_fast(d, cur, op, l, r, false).map(Some)
+    }
+
+    /// [`Gen::nat_arith_as`] with, per side, the Rust expression of its
+    /// value as an `Option<i64>` where it is an arithmetic expression
+    /// ([`Gen::nat_arith_exprs`]): then its `V` (the expression's term as
+    /// a value) is built only where the machine decides.
+    fn nat_arith_fast(
+        &self,
+        d: &Dm,
+        cur: usize,
+        op: ArithCmp,
+        (l, lfast): (V, Option<TokenStream>),
+        (r, rfast): (V, Option<TokenStream>),
+        value: bool,
+    ) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
         let some = quote!(Some);
         let none = quote!(None::<i64>);
@@ -1744,12 +1804,24 @@ impl Gen<'_> {
             }
         };
         let (lx, rx) = (format_ident!("cl"), format_ident!("cr"));
-        if (l.ty == Ty::Int && r.ty == Ty::Int) || (l.ty == Ty::Float && r.ty == Ty::Float) {
+        let (lfa, rfa) = (lfast.is_some(), rfast.is_some());
+        let exprs = lfa || rfa;
+        if !exprs
+            && ((l.ty == Ty::Int && r.ty == Ty::Int) || (l.ty == Ty::Float && r.ty == Ty::Float))
+        {
             let (le, re) = (l.e, r.e);
             return Ok(cmp_tokens(op, quote!(#le), quote!(#re)));
         }
-        let (li, ri) = (as_int(&l, &lx)?, as_int(&r, &rx)?);
-        let (lf, rf) = (as_float(&l, &lx), as_float(&r, &rx));
+        // An expression's int: computed from the registers (`lfast`), no
+        // float of it (an int expression that overflows is the machine's).
+        let (li, lf) = match lfast {
+            Some(x) => (x, nonef.clone()),
+            None => (as_int(&l, &lx)?, as_float(&l, &lx)),
+        };
+        let (ri, rf) = match rfast {
+            Some(x) => (x, nonef.clone()),
+            None => (as_int(&r, &rx)?, as_float(&r, &rx)),
+        };
         let cmp = cmp_tokens(op, quote!(x), quote!(y));
         let ord = |o: TokenStream| -> TokenStream {
             let eq = quote!(::std::cmp::Ordering::Equal);
@@ -1768,9 +1840,7 @@ impl Gen<'_> {
             ord(quote!(#rt::compare_numbers(#rt::Number::Int(x), #rt::Number::Float(y))));
         let mixed_fi =
             ord(quote!(#rt::compare_numbers(#rt::Number::Float(x), #rt::Number::Int(y))));
-        let hand = &d.hand;
-        let curl = Literal::u32_unsuffixed(cur as u32);
-        let (id_stmts, id) = self.nat_id_term(d, cur, quote!(cx.store()))?;
+        let (hand_count, id_stmts, id, curl) = self.nat_before_evaluating(d, cur)?;
         let opt = match op {
             ArithCmp::Eq => quote!(Eq),
             ArithCmp::Ne => quote!(Ne),
@@ -1786,9 +1856,20 @@ impl Gen<'_> {
         } else {
             quote!(cx.arith_condition(#rt::ArithCmp::#opt, lt, rterm, arc_at)?)
         };
+        // A side that is an expression is read in Rust from its registers;
+        // its term (a `Val` compound) made only for the machine.
+        let bind = |x: &Ident, t: &TokenStream, p: &TokenStream, fast: bool| {
+            if fast {
+                (quote!(), quote!(let #x: &#t = &#p;))
+            } else {
+                (quote!(let #x: &#t = &#p;), quote!())
+            }
+        };
+        let (lbind, llate) = bind(&lx, &lt, &lp, lfa);
+        let (rbind, rlate) = bind(&rx, &rt_, &rp, rfa);
         Ok(quote! {{
-            let #lx: &#lt = &#lp;
-            let #rx: &#rt_ = &#rp;
+            #lbind
+            #rbind
             match (#li, #ri, #lf, #rf) {
                 (#some(x), #some(y), _, _) => #cmp,
                 (_, _, #some(x), #some(y)) => #cmp,
@@ -1802,12 +1883,11 @@ impl Gen<'_> {
                     // situation when nothing is recorded; recorded, its
                     // entry counts it) is not the machine's until that
                     // succeeds.
-                    #hand
-                    let own = u64::from(!run.records);
-                    cx.count_transitions(count.saturating_sub(own));
-                    count = own.min(count);
+                    #hand_count
                     #(#id_stmts)*
                     cx.enter_with_id(#curl, #id);
+                    #llate
+                    #rlate
                     let lt = cx.term(#lx);
                     let rterm = cx.term(#rx);
                     #decide

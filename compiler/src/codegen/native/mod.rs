@@ -946,9 +946,7 @@ fn out_mentions(arc: &ArcPlan, r: Reg) -> bool {
 /// Whether register `r` occurs once in situation `cur`'s plan (where it
 /// is bound: nothing else reads it).
 fn occurs_once(d: &Dm, cur: usize, r: Reg) -> bool {
-    crate::mir::ty::occurrences(d.plans[cur])
-        .get(r as usize)
-        .is_some_and(|&n| n == 1)
+    d.occ[cur].get(r as usize).is_some_and(|&n| n == 1)
 }
 
 /// Whether binding register `r` here has no other effect: not held, or a
@@ -1254,6 +1252,9 @@ struct Dm<'a> {
     /// held list, taken by reference by the visit's own situation and
     /// cloned into any other.
     movable: std::cell::RefCell<Option<(String, Ident, Option<usize>)>>,
+    /// Per situation: how often each register occurs in its plan
+    /// (`mir::ty::occurrences`), computed once for every question asked.
+    occ: Vec<Vec<u32>>,
 }
 
 /// A situation whose id takes apart a list `[P|Ps]` (`P` and `Ps`
@@ -1912,6 +1913,10 @@ impl Gen<'_> {
                     .filter(|ty| *ty != Ty::Term && ty.is_native() && rust_ty(ty).is_ok())
             })
             .collect();
+        let occ = plans
+            .iter()
+            .map(|p| crate::mir::ty::occurrences(p))
+            .collect();
         let mut d = Dm {
             dm,
             plans,
@@ -1931,6 +1936,7 @@ impl Gen<'_> {
             pipe_in: std::cell::Cell::new(None),
             pipe_unread: std::cell::Cell::new(false),
             movable: Default::default(),
+            occ,
         };
         d.hand = self.nat_hand(&d)?;
         // Each situation's code, given which others have native code (a
@@ -3205,7 +3211,7 @@ impl Gen<'_> {
         // the values bound at the boundary, converted: all checked in one
         // `let .. else`, the fallback written once.
         if let Some((fallback, conv)) = conv {
-            let occ = crate::mir::ty::occurrences(plan);
+            let occ = &d.occ[ix];
             let mut checks = Vec::new();
             if atom.is_none() {
                 checks = self.nat_local_checks(d)?;
@@ -4323,6 +4329,10 @@ impl Gen<'_> {
     ) -> N<TokenStream> {
         match c {
             Cond::Arith(op, l, r) => {
+                // A side an arithmetic expression of ints (`N + 1 > L`).
+                if let Some(t) = self.nat_arith_exprs(d, cur, *op, (l, r), regs)? {
+                    return Ok(t);
+                }
                 let side = |e: &Ev, regs: &mut Regs, pre: &mut Vec<TokenStream>| match e {
                     Ev::VarOp {
                         op,

@@ -799,6 +799,15 @@ impl Gen<'_> {
                 self.nat_arith_as(d, cur, *op, l, r, true)?
             }
             Cond::Arith(op, l, r) => {
+                // A side an arithmetic expression: it may enter the machine.
+                if let Some(t) = self.nat_arith_exprs(d, cur, *op, (l, r), regs)? {
+                    if !matches!(next, Next::Static(..)) {
+                        return Err(
+                            "an out_arg's comparison may fail before its next situation".into()
+                        );
+                    }
+                    return Ok(t);
+                }
                 let (l, r) = (
                     self.nat_ev_value(d, cur, l, regs)?,
                     self.nat_ev_value(d, cur, r, regs)?,
