@@ -478,6 +478,91 @@ fn hands_over_first(code: &TokenStream) -> bool {
         .any(|t| matches!(t, TokenTree::Ident(i) if i == "nat_hand_over"))
 }
 
+/// What a situation's native visit does at a visit whose inputs have
+/// their inferred types, read from its generated statements up to the
+/// first branch (`--explain-types`, issue 37's "on native values"): an
+/// `if` without `else` that cannot leave the visit (no `return`, `break`,
+/// `continue` in it) is passed over, a block statement (`let x = { .. };`)
+/// read through; any other `if`, a `match`, a `let .. else`, a loop ends
+/// the reading (a `?`'s error path is not a branch).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Visit {
+    /// Branches (or returns) natively before any hand-over or template.
+    Native,
+    /// Hands the native frames below over to the machine on every path
+    /// (`nat_hand_over`: each made a machine frame, its values converted
+    /// to terms; the locals written back), then goes on natively.
+    HandsOver,
+    /// Runs the visit from the situation's template (`machine::nat_template`,
+    /// `Cx::counted_template`) on every path: the frames handed over, an
+    /// instance made.
+    Template,
+}
+
+/// [`Visit`] of a situation's visit code `body`; a template call reached
+/// wins over the hand-over that precedes it.
+fn visit_kind(body: &TokenStream) -> Visit {
+    use proc_macro2::{Delimiter, TokenTree};
+    fn leaves(ts: &TokenStream) -> bool {
+        ts.clone().into_iter().any(|t| match t {
+            TokenTree::Ident(i) => i == "return" || i == "break" || i == "continue",
+            TokenTree::Group(g) => leaves(&g.stream()),
+            _ => false,
+        })
+    }
+    // `false`: a branch ended the reading.
+    fn read(ts: &TokenStream, kind: &mut Visit) -> bool {
+        let toks: Vec<TokenTree> = ts.clone().into_iter().collect();
+        let mut k = 0;
+        while k < toks.len() {
+            match &toks[k] {
+                TokenTree::Ident(i) if i == "if" => {
+                    let Some(then) = (k + 1..toks.len()).find(|&j| {
+                        matches!(&toks[j], TokenTree::Group(g) if g.delimiter() == Delimiter::Brace)
+                    }) else {
+                        return false;
+                    };
+                    let TokenTree::Group(g) = &toks[then] else {
+                        return false;
+                    };
+                    let has_else =
+                        matches!(toks.get(then + 1), Some(TokenTree::Ident(e)) if e == "else");
+                    if has_else || leaves(&g.stream()) {
+                        return false;
+                    }
+                    k = then + 1;
+                    continue;
+                }
+                TokenTree::Ident(i)
+                    if ["match", "else", "loop", "while", "for"].contains(&&*i.to_string()) =>
+                {
+                    return false;
+                }
+                TokenTree::Ident(i) if i == "nat_template" || i == "counted_template" => {
+                    *kind = Visit::Template;
+                    return false;
+                }
+                TokenTree::Ident(i) if i == "nat_hand_over" => *kind = Visit::HandsOver,
+                // A block statement or a `let`'s block value, not a
+                // closure's body.
+                TokenTree::Group(g)
+                    if g.delimiter() == Delimiter::Brace
+                        && !matches!(toks.get(k.wrapping_sub(1)), Some(TokenTree::Punct(p)) if p.as_char() == '|')
+                        && !read(&g.stream(), kind) =>
+                {
+                    return false;
+                }
+                _ => {}
+            }
+            k += 1;
+        }
+        true
+    }
+    let mut kind = Visit::Native;
+    read(body, &mut kind);
+    kind
+}
+
 /// `code` with `arc_at` (the arc's index `i`, `Some(i)`) bound where it
 /// reads it: nothing where it does not, the value itself where it reads it
 /// once, else `let arc_at = Some(i);` first; `arc_ix` (the index itself,
@@ -1157,14 +1242,18 @@ pub(super) struct NativeCode {
     /// with native code (an all-native DM has none: the program enters
     /// its frame).
     pub run_native: TokenStream,
-    /// How many situations hold no ground handle (no register `term`):
-    /// the ones on native values.
+    /// How many situations hold no ground handle (no register `term`) and
+    /// whose visit neither hands the frames over nor runs the template
+    /// before any branch ([`Visit::Native`]): the ones on native values.
     pub on_native_values: usize,
     /// How many of those hold no `Val` either (only fixed shapes: no
     /// register `ground` or a compound type).
     pub fixed_shapes: usize,
     /// How many situations have native code.
     pub native_sits: usize,
+    /// Per situation with native code, what its visit does ([`Visit`]);
+    /// `None`: it has none.
+    pub visits: Vec<Option<Visit>>,
     /// Per situation, why it has no native code (`None`: it has).
     pub why: Vec<Option<String>>,
     /// Whether a call of the DM may push its frame on the native stack:
@@ -1353,6 +1442,10 @@ impl Gen<'_> {
         // parameter at entry); `term` as a ground handle.
         let t = &unread_as_term_dm(t);
         let (d, why, code) = self.nat_dm_fix(dm, dm_ix, t, shallow)?;
+        let visits: Vec<Option<Visit>> = code
+            .iter()
+            .map(|c| c.as_ref().map(|(_, body, _, _)| visit_kind(body)))
+            .collect();
         // With no situation native, `items` is never emitted (the caller
         // looks at `native_sits`); `why` says why for each.
         // Parameters, converted at entry (those native situations read),
@@ -1772,13 +1865,18 @@ impl Gen<'_> {
         // Counted on inference's types: a register that holds no value
         // (`never`: `_`, a parameter or id part nothing reads) is native
         // there although native code may carry a term in its place.
+        // And on what the visit's code does (`Visit`): one that hands the
+        // frames over or runs the template at every visit is not.
         let native: Vec<&SitTypes> = t
             .sits
             .iter()
             .flatten()
             .zip(&d.native)
-            .filter(|(st, &n)| n && st.regs.iter().all(|r| r.ty.is_native()))
-            .map(|(st, _)| st)
+            .zip(&visits)
+            .filter(|((st, &n), v)| {
+                n && **v == Some(Visit::Native) && st.regs.iter().all(|r| r.ty.is_native())
+            })
+            .map(|((st, _), _)| st)
             .collect();
         let fixed_shapes = native
             .iter()
@@ -1793,6 +1891,7 @@ impl Gen<'_> {
             on_native_values: native.len(),
             fixed_shapes,
             native_sits: d.native.iter().filter(|&&n| n).count(),
+            visits,
             why,
         })
     }
@@ -6346,5 +6445,43 @@ fn global_op(
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod visit_tests {
+    use super::{visit_kind, Visit};
+    use quote::quote;
+
+    #[test]
+    fn visit_kind_reads_up_to_the_first_branch() {
+        // The template, alone or after the hand-over.
+        let t = quote!(return machine::nat_template(p, cx, stack, count, 2, a.welcome););
+        assert_eq!(visit_kind(&t), Visit::Template);
+        let t =
+            quote!(super::nat_hand_over(p, cx, stack)?; return cx.counted_template(count, 1, id););
+        assert_eq!(visit_kind(&t), Visit::Template);
+        // A push tried first: native where it is made.
+        let t = quote!(if !run.records { return cx.step_done(count, slot, at); } return machine::nat_template(p, cx, stack, count, 0, a.is););
+        assert_eq!(visit_kind(&t), Visit::Native);
+        // The hand-over first, or after an `if` that cannot leave, or in a
+        // block statement.
+        let t = quote!(let exp = Term::EMPTY; super::nat_hand_over(p, cx, stack)?; cx.perform(act, None)?;);
+        assert_eq!(visit_kind(&t), Visit::HandsOver);
+        let t = quote!(if run.records { cx.nat_empty(stack)?; } let next_at: Nat = { super::nat_hand_over(p, cx, stack)?; Nat::S1 {} }; next_at);
+        assert_eq!(visit_kind(&t), Visit::HandsOver);
+        // Only on a path: native.
+        let t = quote!(let Some(x) = v else { super::nat_hand_over(p, cx, stack)?; return run.goto(); }; x);
+        assert_eq!(visit_kind(&t), Visit::Native);
+        let t = quote!(match chosen {
+            0 => {
+                super::nat_hand_over(p, cx, stack)?;
+            }
+            _ => {}
+        });
+        assert_eq!(visit_kind(&t), Visit::Native);
+        // A closure's body is not run there.
+        let t = quote!(let f = || { super::nat_hand_over(p, cx, stack) }; Nat::S0 {});
+        assert_eq!(visit_kind(&t), Visit::Native);
     }
 }
