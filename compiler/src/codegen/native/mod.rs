@@ -3125,7 +3125,13 @@ impl Gen<'_> {
         // general way below (the machine's `inc`/`get`, the entry made).
         let mut fast = None;
         let mut rec_fast = None;
-        if let (None, Some(k)) = (atom, arc_ix) {
+        // An effector's compound action (`note(S)`): the general way
+        // below performs it without entering the machine.
+        let effector = match &arc.action {
+            Action::One(e) => call::pure_compound(e).is_some_and(|f| f != atoms::DOT),
+            Action::List { .. } => false,
+        };
+        if let (None, Some(k), false) = (atom, arc_ix, effector) {
             let mut nregs = regs.clone();
             if let Ok(act) = self.nat_exit_action(d, ix, k, &arc.action, &mut nregs) {
                 let name = self.atom_native(plan.id.0)?;
@@ -3264,12 +3270,41 @@ impl Gen<'_> {
                 let mut ts = Vec::new();
                 let mut n = 0;
                 let perform = match &arc.action {
+                    // A compound of values made before (`note(S)`), with
+                    // nothing bound at the boundary to convert after it:
+                    // where the run does not record, its term made and
+                    // handed to the effector without handing the frames
+                    // over or entering the situation (its id built only
+                    // where the effector fails, for the error: what
+                    // `Cx::nat_empty` does for `empty`); recorded, as
+                    // below.
+                    Action::One(e) if effector && conv.is_none() && call::made_values(e, &regs) => {
+                        let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
+                        // Recorded, entered first as below (the store's
+                        // order); a compound (not `empty`, not a list) is
+                        // what `Cx::perform` hands to the effector as it is.
+                        stmts.push(quote! {
+                            if run.records {
+                                #enter
+                            }
+                            #(#ts)*
+                            let act = #t;
+                            if let Err(e) = cx.perform_value(act) {
+                                if !run.records {
+                                    #enter
+                                }
+                                return Err(cx.action_failed(e, arc_at));
+                            }
+                        });
+                        ts.clear();
+                        None
+                    }
                     Action::One(e) => {
                         let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
-                        quote! {
+                        Some(quote! {
                             let act = #t;
                             cx.perform(act, arc_at)?;
-                        }
+                        })
                     }
                     Action::List { items, .. } => {
                         let ts_items = items
@@ -3279,17 +3314,19 @@ impl Gen<'_> {
                             .map_err(why)?;
                         // The list itself is built only for the history
                         // (`Cx::perform_list`).
-                        quote! {
+                        Some(quote! {
                             let act_items = [#(#ts_items),*];
                             let act = cx.perform_list(&act_items, run.records, arc_at)?;
-                        }
+                        })
                     }
                 };
-                stmts.push(quote! {
-                    #enter
-                    #(#ts)*
-                    #perform
-                });
+                if let Some(perform) = perform {
+                    stmts.push(quote! {
+                        #enter
+                        #(#ts)*
+                        #perform
+                    });
+                }
             }
         }
         // Recorded, the entry counts the transition. With nothing converted
