@@ -7,7 +7,7 @@
 //! (the MIR built and typed once, the same `Gen` that `generate` uses),
 //! so the listing says what the generated code does.
 
-use super::native::{Held, NativeCode};
+use super::native::{Held, NativeCode, Visit};
 use super::Gen;
 use crate::ir::{none_marker, Ir, IrDm};
 use sitlog_runtime::machine::Kind;
@@ -78,10 +78,23 @@ pub fn explain_types(ir: &Ir) -> String {
                     let values = types.dms[d].sits[i]
                         .as_ref()
                         .is_some_and(|st| st.regs.iter().all(|r| r.ty.is_native()));
-                    if values {
-                        "native code on Rust values".to_owned()
+                    let on = if values {
+                        "native code on Rust values"
                     } else {
-                        "native code, holding ground terms as handles".to_owned()
+                        "native code, holding ground terms as handles"
+                    };
+                    match n.visits.get(i).copied().flatten() {
+                        Some(Visit::Template) => format!(
+                            "{on}, but run from its template at every visit (before any branch its \
+                             code hands the native frames over and calls the machine's template: \
+                             not on native values, not compiled as code)"
+                        ),
+                        Some(Visit::HandsOver) => format!(
+                            "{on}, but handing the native frames over before any branch at every \
+                             visit (`nat_hand_over`: the frames below made machine frames, their \
+                             values terms: not on native values)"
+                        ),
+                        _ => on.to_owned(),
                     }
                 }
                 (Ok(n), true) => format!(
@@ -116,6 +129,25 @@ pub fn explain_types(ir: &Ir) -> String {
         "native code: {}/{} situations ({} on Rust values, {} of them only fixed shapes)",
         totals.native, totals.sits, totals.values, totals.fixed
     );
+    let names = |v: &[String]| {
+        if v.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", v.join(", "))
+        }
+    };
+    let _ = writeln!(
+        out,
+        "situations run from the template at every visit: {}{}",
+        totals.template.len(),
+        names(&totals.template)
+    );
+    let _ = writeln!(
+        out,
+        "situations handing the native frames over before any branch: {}{}",
+        totals.hands.len(),
+        names(&totals.hands)
+    );
     let _ = writeln!(out, "{}", summary(&totals));
     out
 }
@@ -134,6 +166,11 @@ struct Totals {
     /// DM variables, and those generated code holds as Rust values.
     vars: usize,
     held: usize,
+    /// The situations with native code whose every visit runs from the
+    /// template, and those whose every visit hands the native frames
+    /// over before any branch ([`Visit`]), as `dm/id`.
+    template: Vec<String>,
+    hands: Vec<String>,
 }
 
 impl Totals {
@@ -155,6 +192,22 @@ impl Totals {
             self.native += n.native_sits;
             self.values += n.on_native_values;
             self.fixed += n.fixed_shapes;
+            for (i, v) in n.visits.iter().enumerate() {
+                let name = || {
+                    let s = &dm.situations[i];
+                    let id = ir.store.args(s.template)[crate::mir::ID];
+                    format!("{}/{}", dm.name.as_str(), show(&ir.store, dm, id))
+                };
+                match v {
+                    Some(Visit::Template) => {
+                        // Planned, but no visit runs the plan.
+                        self.code -= 1;
+                        self.template.push(name());
+                    }
+                    Some(Visit::HandsOver) => self.hands.push(name()),
+                    _ => {}
+                }
+            }
         }
         let none = Held::default();
         let held = native.map_or(&none, |n| &n.held);
@@ -200,8 +253,12 @@ impl Totals {
 /// The listing's last two lines: exactly `situations on native values:
 /// N/Y`, then `situations compiled as code: X/Y; variables typed: A/B`.
 /// Of the application's Y situations, X run as generated code (a MIR
-/// plan: no template instantiated), N have native code whose registers
-/// all have a Rust type (no term, no ground handle). Of its B variables
+/// plan: no template instantiated; a situation whose native visit runs
+/// its template before any branch, [`Visit::Template`], is not), N have
+/// native code whose registers all have a Rust type (no term, no ground
+/// handle) and whose visit neither hands the native frames over nor runs
+/// the template before any branch ([`Visit::Native`]: the code's
+/// statements up to its first branch, read as generated). Of its B variables
 /// (every DM parameter, the pipe of each DM an in_arg reads, every local,
 /// every global), A are held by the generated code as native Rust values
 /// (`i64`, `f64`, `Atom`, `List`, `Val`) in every situation of their DM

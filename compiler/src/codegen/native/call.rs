@@ -120,6 +120,44 @@ pub(super) struct Wait {
     pub pattern: bool,
 }
 
+/// The functor of an action item that is a compound built of values
+/// only (`note(S)`, `say([hello, Name])`: no evaluation, no variable
+/// operation), whose term native code can build where it is performed.
+pub(super) fn pure_compound(e: &Ev) -> Option<sitlog_syntax::Atom> {
+    fn pure(e: &Ev) -> bool {
+        match e {
+            Ev::Value(_) | Ev::Built(_) => true,
+            Ev::Compound(_, args) => args.iter().all(pure),
+            _ => false,
+        }
+    }
+    match e {
+        Ev::Built(Build::Compound(f, _)) => Some(*f),
+        Ev::Compound(f, args) if args.iter().all(pure) => Some(*f),
+        _ => None,
+    }
+}
+
+/// Whether every register `e` reads holds a value made before (not a
+/// fresh variable, `fresh_rN`, that the effector may bind).
+pub(super) fn made_values(e: &Ev, regs: &Regs) -> bool {
+    fn build(b: &Build, regs: &Regs) -> bool {
+        match b {
+            Build::Const(_) => true,
+            Build::Reg(r) => regs
+                .get(r)
+                .is_some_and(|(x, _)| !x.to_string().starts_with("fresh_r")),
+            Build::Compound(_, args) => args.iter().all(|a| build(a, regs)),
+        }
+    }
+    match e {
+        Ev::Value(r) => build(&Build::Reg(*r), regs),
+        Ev::Built(b) => build(b, regs),
+        Ev::Compound(_, args) => args.iter().all(|a| made_values(a, regs)),
+        _ => false,
+    }
+}
+
 /// A native call: the callee's index and native view, and the exit code.
 struct CallPlan<'a> {
     j: usize,
@@ -1307,10 +1345,29 @@ impl Gen<'_> {
             Action::One(e) => vec![e],
         };
         let list = matches!(action, Action::List { .. });
+        // The terms of effectors' compound actions (`Ev` counter `b<n>`).
+        let mut nb = 0;
         for (n, item) in items.into_iter().enumerate() {
             let x = format_ident!("act{}", n);
             // A constant atom: whether it is `empty` is known here.
             let mut const_atom = None;
+            // An effector's compound action built of values (`note(S)`):
+            // its term made from native values, handed to the effector
+            // without entering the machine (below).
+            if pure_compound(item).is_some_and(|f| f != atoms::DOT) && made_values(item, regs) {
+                let mut ts = Vec::new();
+                let t = self.nat_ev_term(item, regs, &mut ts, &mut nb)?;
+                stmts.push(quote!(#(#ts)* let #x = Ground(#t);));
+                // A compound (not `empty`, not a list): what the machine's
+                // `perform` does with it is the effector's `perform`.
+                performs.push(quote! {
+                    if let Err(e) = cx.perform_value(#x.0) {
+                        #enter
+                        return Err(cx.action_failed(e, Some(#arc)));
+                    }
+                });
+                continue;
+            }
             let ty = match item {
                 // `get`/`inc` of a global (a name that is no declared local
                 // of this DM, held in the frame or not: the machine's

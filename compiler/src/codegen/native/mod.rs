@@ -478,6 +478,91 @@ fn hands_over_first(code: &TokenStream) -> bool {
         .any(|t| matches!(t, TokenTree::Ident(i) if i == "nat_hand_over"))
 }
 
+/// What a situation's native visit does at a visit whose inputs have
+/// their inferred types, read from its generated statements up to the
+/// first branch (`--explain-types`, issue 37's "on native values"): an
+/// `if` without `else` that cannot leave the visit (no `return`, `break`,
+/// `continue` in it) is passed over, a block statement (`let x = { .. };`)
+/// read through; any other `if`, a `match`, a `let .. else`, a loop ends
+/// the reading (a `?`'s error path is not a branch).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Visit {
+    /// Branches (or returns) natively before any hand-over or template.
+    Native,
+    /// Hands the native frames below over to the machine on every path
+    /// (`nat_hand_over`: each made a machine frame, its values converted
+    /// to terms; the locals written back), then goes on natively.
+    HandsOver,
+    /// Runs the visit from the situation's template (`machine::nat_template`,
+    /// `Cx::counted_template`) on every path: the frames handed over, an
+    /// instance made.
+    Template,
+}
+
+/// [`Visit`] of a situation's visit code `body`; a template call reached
+/// wins over the hand-over that precedes it.
+fn visit_kind(body: &TokenStream) -> Visit {
+    use proc_macro2::{Delimiter, TokenTree};
+    fn leaves(ts: &TokenStream) -> bool {
+        ts.clone().into_iter().any(|t| match t {
+            TokenTree::Ident(i) => i == "return" || i == "break" || i == "continue",
+            TokenTree::Group(g) => leaves(&g.stream()),
+            _ => false,
+        })
+    }
+    // `false`: a branch ended the reading.
+    fn read(ts: &TokenStream, kind: &mut Visit) -> bool {
+        let toks: Vec<TokenTree> = ts.clone().into_iter().collect();
+        let mut k = 0;
+        while k < toks.len() {
+            match &toks[k] {
+                TokenTree::Ident(i) if i == "if" => {
+                    let Some(then) = (k + 1..toks.len()).find(|&j| {
+                        matches!(&toks[j], TokenTree::Group(g) if g.delimiter() == Delimiter::Brace)
+                    }) else {
+                        return false;
+                    };
+                    let TokenTree::Group(g) = &toks[then] else {
+                        return false;
+                    };
+                    let has_else =
+                        matches!(toks.get(then + 1), Some(TokenTree::Ident(e)) if e == "else");
+                    if has_else || leaves(&g.stream()) {
+                        return false;
+                    }
+                    k = then + 1;
+                    continue;
+                }
+                TokenTree::Ident(i)
+                    if ["match", "else", "loop", "while", "for"].contains(&&*i.to_string()) =>
+                {
+                    return false;
+                }
+                TokenTree::Ident(i) if i == "nat_template" || i == "counted_template" => {
+                    *kind = Visit::Template;
+                    return false;
+                }
+                TokenTree::Ident(i) if i == "nat_hand_over" => *kind = Visit::HandsOver,
+                // A block statement or a `let`'s block value, not a
+                // closure's body.
+                TokenTree::Group(g)
+                    if g.delimiter() == Delimiter::Brace
+                        && !matches!(toks.get(k.wrapping_sub(1)), Some(TokenTree::Punct(p)) if p.as_char() == '|')
+                        && !read(&g.stream(), kind) =>
+                {
+                    return false;
+                }
+                _ => {}
+            }
+            k += 1;
+        }
+        true
+    }
+    let mut kind = Visit::Native;
+    read(body, &mut kind);
+    kind
+}
+
 /// `code` with `arc_at` (the arc's index `i`, `Some(i)`) bound where it
 /// reads it: nothing where it does not, the value itself where it reads it
 /// once, else `let arc_at = Some(i);` first; `arc_ix` (the index itself,
@@ -1155,14 +1240,18 @@ pub(super) struct NativeCode {
     /// with native code (an all-native DM has none: the program enters
     /// its frame).
     pub run_native: TokenStream,
-    /// How many situations hold no ground handle (no register `term`):
-    /// the ones on native values.
+    /// How many situations hold no ground handle (no register `term`) and
+    /// whose visit neither hands the frames over nor runs the template
+    /// before any branch ([`Visit::Native`]): the ones on native values.
     pub on_native_values: usize,
     /// How many of those hold no `Val` either (only fixed shapes: no
     /// register `ground` or a compound type).
     pub fixed_shapes: usize,
     /// How many situations have native code.
     pub native_sits: usize,
+    /// Per situation with native code, what its visit does ([`Visit`]);
+    /// `None`: it has none.
+    pub visits: Vec<Option<Visit>>,
     /// Per situation, why it has no native code (`None`: it has).
     pub why: Vec<Option<String>>,
     /// Whether a call of the DM may push its frame on the native stack:
@@ -1354,6 +1443,10 @@ impl Gen<'_> {
         // parameter at entry); `term` as a ground handle.
         let t = &unread_as_term_dm(t);
         let (d, why, code) = self.nat_dm_fix(dm, dm_ix, t, shallow)?;
+        let visits: Vec<Option<Visit>> = code
+            .iter()
+            .map(|c| c.as_ref().map(|(_, body, _, _)| visit_kind(body)))
+            .collect();
         // With no situation native, `items` is never emitted (the caller
         // looks at `native_sits`); `why` says why for each.
         // Parameters, converted at entry (those native situations read),
@@ -1773,13 +1866,18 @@ impl Gen<'_> {
         // Counted on inference's types: a register that holds no value
         // (`never`: `_`, a parameter or id part nothing reads) is native
         // there although native code may carry a term in its place.
+        // And on what the visit's code does (`Visit`): one that hands the
+        // frames over or runs the template at every visit is not.
         let native: Vec<&SitTypes> = t
             .sits
             .iter()
             .flatten()
             .zip(&d.native)
-            .filter(|(st, &n)| n && st.regs.iter().all(|r| r.ty.is_native()))
-            .map(|(st, _)| st)
+            .zip(&visits)
+            .filter(|((st, &n), v)| {
+                n && **v == Some(Visit::Native) && st.regs.iter().all(|r| r.ty.is_native())
+            })
+            .map(|((st, _), _)| st)
             .collect();
         let fixed_shapes = native
             .iter()
@@ -1794,6 +1892,7 @@ impl Gen<'_> {
             on_native_values: native.len(),
             fixed_shapes,
             native_sits: d.native.iter().filter(|&&n| n).count(),
+            visits,
             why,
         })
     }
@@ -3032,7 +3131,13 @@ impl Gen<'_> {
         // general way below (the machine's `inc`/`get`, the entry made).
         let mut fast = None;
         let mut rec_fast = None;
-        if let (None, Some(k)) = (atom, arc_ix) {
+        // An effector's compound action (`note(S)`): the general way
+        // below performs it without entering the machine.
+        let effector = match &arc.action {
+            Action::One(e) => call::pure_compound(e).is_some_and(|f| f != atoms::DOT),
+            Action::List { .. } => false,
+        };
+        if let (None, Some(k), false) = (atom, arc_ix, effector) {
             let mut nregs = regs.clone();
             if let Ok(act) = self.nat_exit_action(d, ix, k, &arc.action, &mut nregs) {
                 let name = self.atom_native(plan.id.0)?;
@@ -3171,12 +3276,41 @@ impl Gen<'_> {
                 let mut ts = Vec::new();
                 let mut n = 0;
                 let perform = match &arc.action {
+                    // A compound of values made before (`note(S)`), with
+                    // nothing bound at the boundary to convert after it:
+                    // where the run does not record, its term made and
+                    // handed to the effector without handing the frames
+                    // over or entering the situation (its id built only
+                    // where the effector fails, for the error: what
+                    // `Cx::nat_empty` does for `empty`); recorded, as
+                    // below.
+                    Action::One(e) if effector && conv.is_none() && call::made_values(e, &regs) => {
+                        let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
+                        // Recorded, entered first as below (the store's
+                        // order); a compound (not `empty`, not a list) is
+                        // what `Cx::perform` hands to the effector as it is.
+                        stmts.push(quote! {
+                            if run.records {
+                                #enter
+                            }
+                            #(#ts)*
+                            let act = #t;
+                            if let Err(e) = cx.perform_value(act) {
+                                if !run.records {
+                                    #enter
+                                }
+                                return Err(cx.action_failed(e, arc_at));
+                            }
+                        });
+                        ts.clear();
+                        None
+                    }
                     Action::One(e) => {
                         let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
-                        quote! {
+                        Some(quote! {
                             let act = #t;
                             cx.perform(act, arc_at)?;
-                        }
+                        })
                     }
                     Action::List { items, .. } => {
                         let ts_items = items
@@ -3186,17 +3320,19 @@ impl Gen<'_> {
                             .map_err(why)?;
                         // The list itself is built only for the history
                         // (`Cx::perform_list`).
-                        quote! {
+                        Some(quote! {
                             let act_items = [#(#ts_items),*];
                             let act = cx.perform_list(&act_items, run.records, arc_at)?;
-                        }
+                        })
                     }
                 };
-                stmts.push(quote! {
-                    #enter
-                    #(#ts)*
-                    #perform
-                });
+                if let Some(perform) = perform {
+                    stmts.push(quote! {
+                        #enter
+                        #(#ts)*
+                        #perform
+                    });
+                }
             }
         }
         // Recorded, the entry counts the transition. With nothing converted
@@ -6356,5 +6492,43 @@ fn global_op(
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod visit_tests {
+    use super::{visit_kind, Visit};
+    use quote::quote;
+
+    #[test]
+    fn visit_kind_reads_up_to_the_first_branch() {
+        // The template, alone or after the hand-over.
+        let t = quote!(return machine::nat_template(p, cx, stack, count, 2, a.welcome););
+        assert_eq!(visit_kind(&t), Visit::Template);
+        let t =
+            quote!(super::nat_hand_over(p, cx, stack)?; return cx.counted_template(count, 1, id););
+        assert_eq!(visit_kind(&t), Visit::Template);
+        // A push tried first: native where it is made.
+        let t = quote!(if !run.records { return cx.step_done(count, slot, at); } return machine::nat_template(p, cx, stack, count, 0, a.is););
+        assert_eq!(visit_kind(&t), Visit::Native);
+        // The hand-over first, or after an `if` that cannot leave, or in a
+        // block statement.
+        let t = quote!(let exp = Term::EMPTY; super::nat_hand_over(p, cx, stack)?; cx.perform(act, None)?;);
+        assert_eq!(visit_kind(&t), Visit::HandsOver);
+        let t = quote!(if run.records { cx.nat_empty(stack)?; } let next_at: Nat = { super::nat_hand_over(p, cx, stack)?; Nat::S1 {} }; next_at);
+        assert_eq!(visit_kind(&t), Visit::HandsOver);
+        // Only on a path: native.
+        let t = quote!(let Some(x) = v else { super::nat_hand_over(p, cx, stack)?; return run.goto(); }; x);
+        assert_eq!(visit_kind(&t), Visit::Native);
+        let t = quote!(match chosen {
+            0 => {
+                super::nat_hand_over(p, cx, stack)?;
+            }
+            _ => {}
+        });
+        assert_eq!(visit_kind(&t), Visit::Native);
+        // A closure's body is not run there.
+        let t = quote!(let f = || { super::nat_hand_over(p, cx, stack) }; Nat::S0 {});
+        assert_eq!(visit_kind(&t), Visit::Native);
     }
 }
