@@ -37,7 +37,7 @@ LENGTHS = {
 
 # Walks whose list is a parameter of the run (256 places measured); the others keep a
 # list of their own (`d_local_places`: 8 rooms of the DM, `d_const_ints`: 8 integers).
-FIXED_LIST = {"d_local_places", "d_const_ints"}
+FIXED_LIST = {"d_local_places", "d_const_ints", "r17_d_prog_rooms"}
 
 
 def all_workloads():
@@ -48,7 +48,7 @@ def all_workloads():
 
 
 def shape(name):
-    return "d" if name.startswith("d_") or name == "list_search" else "c"
+    return "d" if name.startswith(("d_", "r17_d_")) or name == "list_search" else "c"
 
 
 def count(name, way, n, places):

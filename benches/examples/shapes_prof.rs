@@ -151,6 +151,34 @@ mod d_when_arith {
 mod c_rec_inarg_pair {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_rec_inarg_pair");
 }
+// Helper `review17`'s (session 16): written without reading `tests/typed/shapes`.
+mod r17_c_charge_when {
+    sitlog_macros::include_dm!("../tests/typed/review17/r17_c_charge_when");
+}
+mod r17_c_courier_global {
+    sitlog_macros::include_dm!("../tests/typed/review17/r17_c_courier_global");
+}
+mod r17_c_odometer {
+    sitlog_macros::include_dm!("../tests/typed/review17/r17_c_odometer");
+}
+mod r17_c_job_pair {
+    sitlog_macros::include_dm!("../tests/typed/review17/r17_c_job_pair");
+}
+mod r17_d_dock_when {
+    sitlog_macros::include_dm!("../tests/typed/review17/r17_d_dock_when");
+}
+mod r17_d_two_lists {
+    sitlog_macros::include_dm!("../tests/typed/review17/r17_d_two_lists");
+}
+mod r17_d_prog_rooms {
+    sitlog_macros::include_dm!("../tests/typed/review17/r17_d_prog_rooms");
+}
+mod r17_d_readings_deep {
+    sitlog_macros::include_dm!("../tests/typed/review17/r17_d_readings_deep");
+}
+mod r17_d_announce {
+    sitlog_macros::include_dm!("../tests/typed/review17/r17_d_announce");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -201,6 +229,7 @@ fn run_fns<A: app::App>(app: &A, main: &str, in_arg: Option<&str>, functions: Fu
 fn interpreter(dir: &str) -> Ir {
     let root = match dir {
         "echo_calls" | "list_search" => "dms",
+        _ if dir.starts_with("r17_") => "../tests/typed/review17",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -284,6 +313,18 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "d_first_of_goals" => format!("hunt({n}, {list}, [nowhere, {last}])"),
         "d_goto_exit_arc" | "d_found_into_next" => format!("hunt({n}, {list}, {last})"),
         "c_count_two_levels" => format!("relay({n})"),
+        "r17_c_charge_when" => format!("charger({n})"),
+        "r17_c_courier_global" => format!("mission({n})"),
+        "r17_c_odometer" => format!("patrol({n})"),
+        "r17_c_job_pair" => format!("shift({n})"),
+        "r17_d_dock_when" => format!("fleet({last}, {n}, {list})"),
+        "r17_d_two_lists" => format!("audit({n}, {list}, {last})"),
+        "r17_d_prog_rooms" => format!("tour({n}, cellar)"),
+        "r17_d_announce" => format!("rounds({n}, {list}, {last})"),
+        "r17_d_readings_deep" => {
+            let ints: Vec<String> = (0..len).map(|i| i.to_string()).collect();
+            format!("monitor({n}, [{}], {})", ints.join(","), len - 2)
+        }
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
             let n = n.to_string();
@@ -401,6 +442,18 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             "d_goto_exit_arc" => hand_walk_goto(n, black_box(&syms), black_box(lsym)),
             "d_found_into_next" => hand_walk_seen_next(n, black_box(&syms), black_box(lsym)),
             "c_count_two_levels" => hand_two_levels(n),
+            "r17_c_charge_when" => hand_r17_charge(n),
+            "r17_c_courier_global" => hand_r17_courier(n),
+            "r17_c_odometer" => hand_r17_odometer(n),
+            "r17_c_job_pair" => hand_r17_job_pair(n),
+            "r17_d_dock_when" => hand_r17_dock(black_box(lsym), n, black_box(&syms)),
+            "r17_d_two_lists" => hand_r17_two_lists(n, black_box(&syms), black_box(lsym)),
+            "r17_d_prog_rooms" => hand_r17_prog_rooms(n, black_box(Sym(7))),
+            "r17_d_announce" => hand_r17_announce(n, black_box(&syms), black_box(lsym)),
+            "r17_d_readings_deep" => {
+                let ints: Vec<i64> = (0..len as i64).collect();
+                hand_r17_readings(n, black_box(&ints), black_box(len as i64 - 2))
+            }
             _ => unreachable!(),
         };
     }
@@ -445,11 +498,20 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "c_count_two_levels" => ways!(c_count_two_levels),
         "d_when_arith" => ways!(d_when_arith),
         "c_rec_inarg_pair" => ways!(c_rec_inarg_pair),
+        "r17_c_charge_when" => ways!(r17_c_charge_when),
+        "r17_c_courier_global" => ways!(r17_c_courier_global),
+        "r17_c_odometer" => ways!(r17_c_odometer),
+        "r17_c_job_pair" => ways!(r17_c_job_pair),
+        "r17_d_dock_when" => ways!(r17_d_dock_when),
+        "r17_d_two_lists" => ways!(r17_d_two_lists),
+        "r17_d_prog_rooms" => ways!(r17_d_prog_rooms),
+        "r17_d_readings_deep" => ways!(r17_d_readings_deep),
+        "r17_d_announce" => ways!(r17_d_announce),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 39] = [
+const ALL: [&str; 48] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -489,6 +551,15 @@ const ALL: [&str; 39] = [
     "c_count_two_levels",
     "d_when_arith",
     "c_rec_inarg_pair",
+    "r17_c_charge_when",
+    "r17_c_courier_global",
+    "r17_c_odometer",
+    "r17_c_job_pair",
+    "r17_d_dock_when",
+    "r17_d_two_lists",
+    "r17_d_prog_rooms",
+    "r17_d_readings_deep",
+    "r17_d_announce",
 ];
 
 fn main() {

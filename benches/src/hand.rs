@@ -1620,3 +1620,542 @@ pub fn hand_walk_when_arith(rounds: i64, items: &[i64], limit: i64) -> u64 {
     black_box(pipe);
     transitions
 }
+
+// Helper `review17`'s (session 16): workloads written without reading
+// `tests/typed/shapes/` (`tests/typed/review17/`).
+
+/// (c) `r17_c_charge_when`: the limit put in the pipe by the first
+/// situation, taken by the recursive situation's in_arg (kept in its
+/// frame), the callee's two steps handing the pipe back, the count a
+/// local of the caller.
+pub fn hand_r17_charge(full: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Plug,
+        Cycle,
+        Unplug,
+        Sense(i64),
+        Idle(i64),
+        Full(i64),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Plug];
+    let (mut pipe, mut cycles, mut t) = (0i64, 0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Plug => {
+                t += 1;
+                pipe = black_box(full);
+                *top = Frame::Cycle;
+            }
+            // in_arg Cap: the pipe as the call starts, kept by the callee's
+            // frames for the exit arc.
+            Frame::Cycle => stack.push(Frame::Sense(pipe)),
+            Frame::Sense(cap) => {
+                t += 1;
+                pipe = black_box(pipe);
+                *top = Frame::Idle(cap);
+            }
+            Frame::Idle(cap) => {
+                t += 1;
+                *top = Frame::Full(cap);
+            }
+            Frame::Full(cap) => {
+                t += 2;
+                stack.pop();
+                cycles = black_box(cycles + 1);
+                if let Some(c) = stack.last_mut() {
+                    *c = if cycles >= cap {
+                        Frame::Unplug
+                    } else {
+                        Frame::Cycle
+                    };
+                }
+            }
+            Frame::Unplug => {
+                t += 1;
+                stack.pop();
+            }
+        }
+    }
+    t
+}
+
+/// (c) `r17_c_courier_global`: three levels of frames, the pipe handed
+/// back by the innermost, the trips done a global (an `i64` here).
+pub fn hand_r17_courier(trips: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Brief,
+        Go,
+        Rest,
+        Leave(i64),
+        Give(i64),
+        Passed(i64),
+        Delivered(i64),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Brief];
+    let (mut pipe, mut done, mut t) = (0i64, 0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Brief => {
+                t += 1;
+                pipe = black_box(trips);
+                *top = Frame::Go;
+            }
+            Frame::Go => stack.push(Frame::Leave(pipe)),
+            Frame::Leave(lim) => stack.push(Frame::Give(lim)),
+            Frame::Give(lim) => {
+                t += 1;
+                pipe = black_box(pipe);
+                *top = Frame::Passed(lim);
+            }
+            Frame::Passed(lim) => {
+                // `handoff`'s final, `courier`'s exit arc.
+                t += 2;
+                stack.pop();
+                if let Some(c) = stack.last_mut() {
+                    *c = Frame::Delivered(lim);
+                }
+            }
+            Frame::Delivered(lim) => {
+                // `courier`'s final, `mission`'s exit arc.
+                t += 2;
+                stack.pop();
+                done = black_box(done + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if done >= lim { Frame::Rest } else { Frame::Go };
+                }
+            }
+            Frame::Rest => {
+                t += 1;
+                stack.pop();
+            }
+        }
+    }
+    t
+}
+
+/// (c) `r17_c_odometer`: the callee adds one to the pipe and hands it
+/// back in its final situation's id too; the caller's exit arc compares it
+/// with its parameter.
+pub fn hand_r17_odometer(laps: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Lap,
+        Park,
+        Tick,
+        Moved(i64),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                t += 1;
+                pipe = black_box(0);
+                *top = Frame::Lap;
+            }
+            Frame::Lap => stack.push(Frame::Tick),
+            Frame::Tick => {
+                t += 1;
+                pipe = black_box(pipe + 1);
+                *top = Frame::Moved(pipe);
+            }
+            Frame::Moved(m) => {
+                t += 2;
+                stack.pop();
+                if let Some(c) = stack.last_mut() {
+                    *c = if m >= laps { Frame::Park } else { Frame::Lap };
+                }
+            }
+            Frame::Park => {
+                t += 1;
+                stack.pop();
+            }
+        }
+    }
+    t
+}
+
+/// (c) `r17_c_job_pair`: the pipe a pair of ints (`job(Left, Done)`), the
+/// callee counting one down and the other up, the caller reading it in
+/// the situation after the call.
+pub fn hand_r17_job_pair(n: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Open,
+        Work,
+        Fork,
+        Close,
+        Punch,
+        Clocked,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Open];
+    let (mut pipe, mut t) = ((0i64, 0i64), 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Open => {
+                t += 1;
+                pipe = black_box((n, 0));
+                *top = Frame::Work;
+            }
+            Frame::Work => stack.push(Frame::Punch),
+            Frame::Punch => {
+                t += 1;
+                let (l, d) = pipe;
+                pipe = black_box((l - 1, d + 1));
+                *top = Frame::Clocked;
+            }
+            Frame::Clocked => {
+                t += 2;
+                stack.pop();
+                if let Some(c) = stack.last_mut() {
+                    *c = Frame::Fork;
+                }
+            }
+            Frame::Fork => {
+                t += 1;
+                *top = if pipe.0 <= 0 {
+                    Frame::Close
+                } else {
+                    Frame::Work
+                };
+            }
+            Frame::Close => {
+                t += 1;
+                stack.pop();
+            }
+        }
+    }
+    black_box(pipe);
+    t
+}
+
+/// (d) `r17_d_dock_when`: the walk of [`hand_list_search`], the exit arc
+/// comparing the place found with the caller's own target and counting in
+/// a local.
+pub fn hand_r17_dock(target: Sym, rounds: i64, docks: &[Sym]) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Dispatch,
+        Halt,
+        Begin,
+        Probe(&'a [Sym]),
+        At(Sym),
+        Missing,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Dispatch];
+    let (mut done, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Dispatch => stack.push(Frame::Begin),
+            Frame::Halt => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                t += 1;
+                *top = Frame::Probe(docks);
+            }
+            Frame::Probe([]) => {
+                t += 1;
+                *top = Frame::Missing;
+            }
+            Frame::Probe([d, rest @ ..]) => {
+                t += 1;
+                *top = if *d == target {
+                    Frame::At(*d)
+                } else {
+                    Frame::Probe(rest)
+                };
+            }
+            Frame::At(d) => {
+                t += 2;
+                stack.pop();
+                done = black_box(done + 1);
+                if let Some(c) = stack.last_mut() {
+                    *c = if d == target && done < rounds {
+                        Frame::Dispatch
+                    } else {
+                        Frame::Halt
+                    };
+                }
+            }
+            Frame::Missing => {
+                t += 2;
+                stack.pop();
+                done = black_box(done + 1);
+                if let Some(c) = stack.last_mut() {
+                    *c = if done < rounds {
+                        Frame::Dispatch
+                    } else {
+                        Frame::Halt
+                    };
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r17_d_two_lists`: the walk keeps the places seen (a vector reused
+/// from round to round, one push a visit) and hands them back with the
+/// place found.
+pub fn hand_r17_two_lists(rounds: i64, shelves: &[Sym], item: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Check,
+        Report,
+        Start,
+        Pass(&'a [Sym]),
+        Spotted(Sym),
+        Absent,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Check];
+    let mut seen: Vec<Sym> = Vec::with_capacity(shelves.len());
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Check => stack.push(Frame::Start),
+            Frame::Report => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Start => {
+                t += 1;
+                seen.clear();
+                *top = Frame::Pass(shelves);
+            }
+            Frame::Pass([]) => {
+                t += 1;
+                *top = Frame::Absent;
+            }
+            Frame::Pass([s, ss @ ..]) => {
+                t += 1;
+                *top = if *s == item {
+                    Frame::Spotted(*s)
+                } else {
+                    seen.push(*s);
+                    Frame::Pass(ss)
+                };
+            }
+            Frame::Spotted(s) => {
+                t += 2;
+                black_box((s, &seen));
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(c) = stack.last_mut() {
+                    *c = if n >= rounds {
+                        Frame::Report
+                    } else {
+                        Frame::Check
+                    };
+                }
+            }
+            Frame::Absent => {
+                // `absent([])` only: a non-empty walk that found nothing
+                // is the run's error.
+                t += 1;
+                if !seen.is_empty() {
+                    return t;
+                }
+                t += 1;
+                stack.pop();
+                if let Some(c) = stack.last_mut() {
+                    *c = Frame::Report;
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r17_d_prog_rooms`: a constant list of rooms set by the walk's
+/// first situation, the visits counted in the walk's frame and handed back
+/// in its final, the rounds counted by the caller.
+pub fn hand_r17_prog_rooms(rounds: i64, goal: Sym) -> u64 {
+    const ROOMS: [Sym; 8] = [
+        Sym(0),
+        Sym(1),
+        Sym(2),
+        Sym(3),
+        Sym(4),
+        Sym(5),
+        Sym(6),
+        Sym(7),
+    ];
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Home,
+        Load,
+        Room(&'a [Sym], i64),
+        There(Sym, i64),
+        Nowhere(i64),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut laps, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Load),
+            Frame::Home => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Load => {
+                t += 1;
+                *top = Frame::Room(black_box(&ROOMS[..]), 0);
+            }
+            Frame::Room([], v) => {
+                t += 1;
+                *top = Frame::Nowhere(v);
+            }
+            Frame::Room([r, rs @ ..], v) => {
+                t += 1;
+                let v = black_box(v + 1);
+                *top = if *r == goal {
+                    Frame::There(*r, v)
+                } else {
+                    Frame::Room(rs, v)
+                };
+            }
+            Frame::There(..) | Frame::Nowhere(_) => {
+                t += 2;
+                black_box(*top);
+                stack.pop();
+                laps = black_box(laps + 1);
+                if let Some(c) = stack.last_mut() {
+                    *c = if laps >= rounds {
+                        Frame::Home
+                    } else {
+                        Frame::Round
+                    };
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r17_d_readings_deep`: a walk over ints three frames deep, each
+/// final turned into the caller's (`high(R)` to `alarm(R)`).
+pub fn hand_r17_readings(rounds: i64, readings: &[i64], limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Poll,
+        Off,
+        Read,
+        Go,
+        Chk(&'a [i64]),
+        High(i64),
+        Low,
+        Alarm(i64),
+        Calm,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Poll];
+    let (mut polls, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Poll => stack.push(Frame::Read),
+            Frame::Off => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Read => stack.push(Frame::Go),
+            Frame::Go => {
+                t += 1;
+                *top = Frame::Chk(readings);
+            }
+            Frame::Chk([]) => {
+                t += 1;
+                *top = Frame::Low;
+            }
+            Frame::Chk([r, rest @ ..]) => {
+                t += 1;
+                *top = if *r > limit {
+                    Frame::High(*r)
+                } else {
+                    Frame::Chk(rest)
+                };
+            }
+            Frame::High(_) | Frame::Low => {
+                t += 2;
+                let fin = *top;
+                stack.pop();
+                if let Some(c) = stack.last_mut() {
+                    *c = match fin {
+                        Frame::High(r) => Frame::Alarm(r),
+                        _ => Frame::Calm,
+                    };
+                }
+            }
+            Frame::Alarm(_) | Frame::Calm => {
+                t += 2;
+                black_box(*top);
+                stack.pop();
+                polls = black_box(polls + 1);
+                if let Some(c) = stack.last_mut() {
+                    *c = if polls >= rounds {
+                        Frame::Off
+                    } else {
+                        Frame::Poll
+                    };
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r17_d_announce`: [`hand_list_search`]'s walk, each place passed
+/// handed to the effector (`black_box`: the action no effector declares
+/// does nothing).
+pub fn hand_r17_announce(rounds: i64, spots: &[Sym], goal: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Go,
+        Stop,
+        Is,
+        At(&'a [Sym]),
+        Reached(Sym),
+        Lost,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Go];
+    let (mut k, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Go => stack.push(Frame::Is),
+            Frame::Stop => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Is => {
+                t += 1;
+                *top = Frame::At(spots);
+            }
+            Frame::At([]) => {
+                t += 1;
+                *top = Frame::Lost;
+            }
+            Frame::At([s, ss @ ..]) => {
+                t += 1;
+                black_box(*s);
+                *top = if *s == goal {
+                    Frame::Reached(*s)
+                } else {
+                    Frame::At(ss)
+                };
+            }
+            Frame::Reached(_) | Frame::Lost => {
+                t += 2;
+                stack.pop();
+                k = black_box(k + 1);
+                if let Some(c) = stack.last_mut() {
+                    *c = if k >= rounds { Frame::Stop } else { Frame::Go };
+                }
+            }
+        }
+    }
+    t
+}

@@ -2976,3 +2976,287 @@ fn review16_an_inc_overflow_in_a_callee_agrees() {
         agree_refusing(m::program(), &ir, main, 6);
     }
 }
+
+mod review17_dms {
+    pub mod charge {
+        sitlog_macros::include_dm!("typed/review17/r17_c_charge_when");
+    }
+    pub mod courier {
+        sitlog_macros::include_dm!("typed/review17/r17_c_courier_global");
+    }
+    pub mod odometer {
+        sitlog_macros::include_dm!("typed/review17/r17_c_odometer");
+    }
+    pub mod job_pair {
+        sitlog_macros::include_dm!("typed/review17/r17_c_job_pair");
+    }
+    pub mod dock {
+        sitlog_macros::include_dm!("typed/review17/r17_d_dock_when");
+    }
+    pub mod two_lists {
+        sitlog_macros::include_dm!("typed/review17/r17_d_two_lists");
+    }
+    pub mod prog_rooms {
+        sitlog_macros::include_dm!("typed/review17/r17_d_prog_rooms");
+    }
+    pub mod readings {
+        sitlog_macros::include_dm!("typed/review17/r17_d_readings_deep");
+    }
+    pub mod announce {
+        sitlog_macros::include_dm!("typed/review17/r17_d_announce");
+    }
+}
+
+/// review17 (workloads of shapes (c) and (d) written without reading
+/// `tests/typed/shapes`), (c): the limit put in the pipe, taken by a
+/// recursive situation's in_arg, a `when/3` next situation; a number, a
+/// float, an atom and an unbound variable where the count is compared.
+#[test]
+fn review17_charge_when_agrees() {
+    use review17_dms::charge as m;
+    let ir = interpreter("typed/review17/r17_c_charge_when");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "charger(3)",
+            "charger(0)",
+            "charger(2.5)",
+            "charger(abc)",
+            "charger(_)",
+            "charger(f(1))",
+        ],
+    );
+}
+
+/// review17, (c) three DMs deep, the count a global: good and bad limits.
+#[test]
+fn review17_courier_global_agrees() {
+    use review17_dms::courier as m;
+    let ir = interpreter("typed/review17/r17_c_courier_global");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "mission(3)",
+            "mission(1.5)",
+            "mission(x)",
+            "mission(_)",
+            "mission([])",
+        ],
+    );
+}
+
+/// review17, (c) the callee adding one to the pipe (`K1 is K + 1`) and
+/// handing it back in its final's id, compared with the caller's
+/// parameter: the parameter a number, an atom, unbound.
+#[test]
+fn review17_odometer_agrees() {
+    use review17_dms::odometer as m;
+    let ir = interpreter("typed/review17/r17_c_odometer");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "patrol(3)",
+            "patrol(-1)",
+            "patrol(2.5)",
+            "patrol(a)",
+            "patrol(_)",
+        ],
+    );
+}
+
+/// review17, (c) the pipe a pair `job(Left, Done)`: counted down from a
+/// number, a float, an atom (the arithmetic's error), unbound.
+#[test]
+fn review17_job_pair_agrees() {
+    use review17_dms::job_pair as m;
+    let ir = interpreter("typed/review17/r17_c_job_pair");
+    agree_both(
+        m::program(),
+        &ir,
+        &["shift(2)", "shift(0)", "shift(1.5)", "shift(z)", "shift(_)"],
+    );
+}
+
+/// review17, (d) a walk with `when/3` in its next situation, the caller's
+/// exit arc comparing the place found with its own parameter: found, not
+/// found, an empty list, an improper tail, an unbound target, a
+/// non-number where the rounds are compared, mixed elements.
+#[test]
+fn review17_dock_when_agrees() {
+    use review17_dms::dock as m;
+    let ir = interpreter("typed/review17/r17_d_dock_when");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "fleet(p2, 2, [p0, p1, p2])",
+            "fleet(zz, 2, [p0, p1])",
+            "fleet(p1, 2, [])",
+            "fleet(p9, 2, [p0, p1|p2])",
+            "fleet(_, 2, [p0, p1])",
+            "fleet(p1, x, [p0, p1])",
+            "fleet(p1, 2, [p0, 3, f(x), p1])",
+            "fleet(p1, 2, [p0, _, p1])",
+        ],
+    );
+}
+
+/// review17, (d) two lists in the walk's id (`pass(Todo, Seen)`), the
+/// caller matching `absent([])` only: a non-empty sweep that finds nothing
+/// ends in a final no exit arc matches (an error, alike).
+#[test]
+fn review17_two_lists_agrees() {
+    use review17_dms::two_lists as m;
+    let ir = interpreter("typed/review17/r17_d_two_lists");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "audit(2, [a, b, c], c)",
+            "audit(2, [a, b], z)",
+            "audit(2, [], z)",
+            "audit(2, [a|b], z)",
+            "audit(q, [a, b], b)",
+            "audit(2, [a, _, b], b)",
+            "audit(_, [a], a)",
+        ],
+    );
+}
+
+/// review17, (d) the rooms a constant list a `prog` stores in a local, the
+/// visits counted in another: found, not found, an unbound goal, a
+/// non-number where the rounds are compared.
+#[test]
+fn review17_prog_rooms_agrees() {
+    use review17_dms::prog_rooms as m;
+    let ir = interpreter("typed/review17/r17_d_prog_rooms");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "tour(2, cellar)",
+            "tour(2, hall)",
+            "tour(2, nowhere)",
+            "tour(2, _)",
+            "tour(x, hall)",
+        ],
+    );
+}
+
+/// review17, (d) a walk over ints three DMs deep: a reading above the
+/// limit, none, an empty list, an atom and an unbound variable compared,
+/// a float, an improper tail, an unbound limit.
+#[test]
+fn review17_readings_deep_agrees() {
+    use review17_dms::readings as m;
+    let ir = interpreter("typed/review17/r17_d_readings_deep");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "monitor(2, [1, 5, 9], 4)",
+            "monitor(2, [1, 2], 4)",
+            "monitor(2, [], 4)",
+            "monitor(2, [1, a, 9], 4)",
+            "monitor(2, [1, _, 9], 4)",
+            "monitor(2, [1, 2.5, 9], 2)",
+            "monitor(2, [1|x], 4)",
+            "monitor(2, [1, 9], _)",
+            "monitor(x, [1, 9], 4)",
+        ],
+    );
+}
+
+/// review17, (d) and (c) at the edges of the native values: an int and a
+/// float that are not `==` (`1.0` against `1`, `-0.0` against `0.0`),
+/// compounds with variables compared by `==`, integers past `i64`, an
+/// `i64` at its limits in arithmetic and comparisons.
+#[test]
+fn review17_edges_of_native_values_agree() {
+    use review17_dms::{dock, job_pair, readings, two_lists};
+    let ir = interpreter("typed/review17/r17_d_dock_when");
+    agree_both(
+        dock::program(),
+        &ir,
+        &[
+            "fleet(1, 2, [1.0, 1])",
+            "fleet(0.0, 2, [-0.0, 0.0])",
+            "fleet(f(_), 2, [f(a), f(_)])",
+            "fleet(99999999999999999999, 2, [1, 99999999999999999999])",
+            "fleet('p 1', 2, [p1, 'p 1'])",
+        ],
+    );
+    let ir = interpreter("typed/review17/r17_d_two_lists");
+    agree_both(
+        two_lists::program(),
+        &ir,
+        &[
+            "audit(2, [1.0, 1], 1)",
+            "audit(2.0, [a, b], b)",
+            "audit(99999999999999999999, [a], a)",
+        ],
+    );
+    let ir = interpreter("typed/review17/r17_d_readings_deep");
+    agree_both(
+        readings::program(),
+        &ir,
+        &[
+            "monitor(2, [9223372036854775807], 9223372036854775806)",
+            "monitor(2, [99999999999999999999], 4)",
+            "monitor(2, [1, 5], 99999999999999999999)",
+            "monitor(2, [1, 5], 4.5)",
+            "monitor(2, [1, 5], -0.0)",
+        ],
+    );
+    let ir = interpreter("typed/review17/r17_c_job_pair");
+    agree_both(
+        job_pair::program(),
+        &ir,
+        &["shift(-9223372036854775808)", "shift(99999999999999999999)"],
+    );
+}
+
+/// review17, (d) a walk performing an action at each visit (`note(S)`):
+/// found, not found, an empty list, an improper tail, an unbound goal and
+/// element, a non-number where the rounds are compared.
+#[test]
+fn review17_announce_agrees() {
+    use review17_dms::announce as m;
+    let ir = interpreter("typed/review17/r17_d_announce");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "rounds(2, [a, b, c], c)",
+            "rounds(2, [a, b], z)",
+            "rounds(2, [], z)",
+            "rounds(2, [a|b], z)",
+            "rounds(x, [a, b], b)",
+        ],
+    );
+    // An unbound element or goal performed (`note(_G..)`): the same run,
+    // the variables' numbers aside (our convention compares every `_...`
+    // variable alike; native code makes fewer terms).
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    for main in ["rounds(2, [a, _, b], b)", "rounds(2, [a, b], _)"] {
+        for keep in [false, true] {
+            for observe in [false, true] {
+                for numbers in [false, true] {
+                    let i = run_piped(&ir, main, None, "", keep, observe, numbers);
+                    let c = run_piped(m::program(), main, None, "", keep, observe, numbers);
+                    let p = run_piped(&plans, main, None, "", keep, observe, numbers);
+                    for (x, by) in [(c, "compiled"), (p, "plans")] {
+                        assert_eq!(
+                            unnumbered(format!("{x:?}")),
+                            unnumbered(format!("{i:?}")),
+                            "{by}: {main} (history {keep}, observer {observe}, numbers {numbers})"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

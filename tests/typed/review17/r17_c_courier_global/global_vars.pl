@@ -1,0 +1,1 @@
+trips_done ==> 0.
