@@ -3260,3 +3260,40 @@ fn review17_announce_agrees() {
         }
     }
 }
+
+mod nis17_dms {
+    pub mod is_list {
+        sitlog_macros::include_dm!("typed/nis17/is_list");
+    }
+}
+
+/// nis17 (issue 37): `V is E` in an action list on `ground` values (a
+/// parameter and the pipe) computed natively with checked arithmetic, the
+/// list's numbers performed without handing the frames over: ints, a
+/// float (the machine's value, a float performed), a non-number and an
+/// unbound variable (the machine's error), an overflow of the sum and of
+/// the product, an `i64` at its limit.
+#[test]
+fn nis17_is_in_an_action_list_agrees() {
+    use nis17_dms::is_list as m;
+    let ir = interpreter("typed/nis17/is_list");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "tally(1, 2)",
+            "tally(-5, 0)",
+            "tally(1.5, 2)",
+            "tally(1, 0.5)",
+            "tally(a, 2)",
+            "tally(1, b)",
+            "tally(_, 2)",
+            "tally(1, _)",
+            "tally(f(1), 2)",
+            "tally(9223372036854775807, 1)",
+            "tally(4611686018427387904, 0)",
+            "tally(-9223372036854775808, -1)",
+            "tally(99999999999999999999, 1)",
+        ],
+    );
+}
