@@ -3265,6 +3265,9 @@ mod nis17_dms {
     pub mod is_list {
         sitlog_macros::include_dm!("typed/nis17/is_list");
     }
+    pub mod when_next {
+        sitlog_macros::include_dm!("typed/nis17/when_next");
+    }
 }
 
 /// nis17 (issue 37): `V is E` in an action list on `ground` values (a
@@ -3294,6 +3297,35 @@ fn nis17_is_in_an_action_list_agrees() {
             "tally(4611686018427387904, 0)",
             "tally(-9223372036854775808, -1)",
             "tally(99999999999999999999, 1)",
+        ],
+    );
+}
+
+/// nis17 (issue 37): `when/3` as a neutral situation's next situation
+/// (branches building values: a compound, the next step, an atom): found,
+/// marked, none, an empty list, a non-number compared (the evaluator's
+/// error), an unbound limit, an improper tail, a float and an int alike,
+/// a compound element.
+#[test]
+fn nis17_when_as_next_situation_agrees() {
+    use nis17_dms::when_next as m;
+    let ir = interpreter("typed/nis17/when_next");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "seek(3, m, [1, 2, 5])",
+            "seek(3, m, [1, m, 5])",
+            "seek(9, m, [1, 2])",
+            "seek(3, m, [])",
+            "seek(3, m, [1, a, 5])",
+            "seek(_, m, [1])",
+            "seek(3, _, [1, 5])",
+            "seek(3, m, [1|x])",
+            "seek(3.0, m, [3, 3.5])",
+            "seek(3, 1.0, [1, 1.0])",
+            "seek(3, f(_), [f(a), 4])",
+            "seek(x, m, [m])",
         ],
     );
 }

@@ -4841,10 +4841,61 @@ impl Gen<'_> {
                     .collect::<N<Vec<_>>>()?;
                 self.nat_select(d, cur, *name, vals, cur_name)
             }
+            // `when/3` whose branches only build native values
+            // (`apply(when(_, _, _), [D == Want, at(D), probe(Rest)])`):
+            // evaluating the branch not chosen too changes nothing and
+            // cannot fail, so it is the conditional `(C -> A ; otherwise
+            // -> B)` of [`Next::If`], the condition's error the
+            // evaluator's (`Cond::Cmp`, [`Gen::nat_cond_bind`]).
+            Next::Eval(Ev::Pick(c, a, b))
+                if Self::nat_inert(a, regs) && Self::nat_inert(b, regs) =>
+            {
+                let mut bregs = regs.clone();
+                let mut binds = Vec::new();
+                let c = self.nat_cond_bind(d, cur, c, &mut bregs, &mut binds)?;
+                let a = self.nat_pick_next(d, cur, a, &bregs, cur_name)?;
+                let b = self.nat_pick_next(d, cur, b, &bregs, cur_name)?;
+                Ok(quote!({ #(#binds)* if #c { #a } else { #b } }))
+            }
             _ => Err(format!(
                 "situation {}: its next situation is not native yet",
                 cur + 1
             )),
+        }
+    }
+
+    /// A branch of a next situation's `when/3` ([`Ev::Pick`] in
+    /// [`Gen::nat_next`]), a value that only builds native values: the
+    /// situation it selects, as for that value written as the next
+    /// situation.
+    fn nat_pick_next(
+        &self,
+        d: &Dm,
+        cur: usize,
+        e: &Ev,
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<TokenStream> {
+        match e {
+            Ev::Built(Build::Const(t)) => match self.store.atom_of(*t) {
+                Some(name) => self.nat_select(d, cur, name, Vec::new(), cur_name),
+                None => self.nat_next(d, cur, &Next::Static(*t, None), regs, cur_name),
+            },
+            Ev::Built(Build::Compound(name, args)) => {
+                let vals = args
+                    .iter()
+                    .map(|a| self.nat_value(a, regs))
+                    .collect::<N<Vec<_>>>()?;
+                self.nat_select(d, cur, *name, vals, cur_name)
+            }
+            Ev::Compound(name, args) => {
+                let vals = args
+                    .iter()
+                    .map(|a| self.nat_ev_value(d, cur, a, regs))
+                    .collect::<N<Vec<_>>>()?;
+                self.nat_select(d, cur, *name, vals, cur_name)
+            }
+            _ => Err("a `when/3` branch of a next situation is not native".into()),
         }
     }
 
