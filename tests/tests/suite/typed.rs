@@ -3268,6 +3268,9 @@ mod nis17_dms {
     pub mod when_next {
         sitlog_macros::include_dm!("typed/nis17/when_next");
     }
+    pub mod prog_set {
+        sitlog_macros::include_dm!("typed/nis17/prog_set");
+    }
 }
 
 /// nis17 (issue 37): `V is E` in an action list on `ground` values (a
@@ -3326,6 +3329,28 @@ fn nis17_when_as_next_situation_agrees() {
             "seek(3, 1.0, [1, 1.0])",
             "seek(3, f(_), [f(a), 4])",
             "seek(x, m, [m])",
+        ],
+    );
+}
+
+/// nis17 (issue 37): a `prog` of `set`s of the frame's locals to
+/// constants, run at each entry of its situation (re-entered while the
+/// count is below the parameter): found, not found, an unbound item, a
+/// non-number compared with the count.
+#[test]
+fn nis17_prog_set_agrees() {
+    use nis17_dms::prog_set as m;
+    let ir = interpreter("typed/nis17/prog_set");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "stock(b, 2)",
+            "stock(c, 1)",
+            "stock(z, 3)",
+            "stock(_, 2)",
+            "stock(b, x)",
+            "stock(z, 1.5)",
         ],
     );
 }

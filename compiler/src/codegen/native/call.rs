@@ -1585,7 +1585,7 @@ impl Gen<'_> {
     /// does not convert: a value the local's type does not hold), `x`
     /// the action's value (`set` gives `V`); its type.
     #[allow(clippy::too_many_arguments)]
-    fn nat_local_set(
+    pub(super) fn nat_local_set(
         &self,
         d: &Dm,
         name: sitlog_syntax::Atom,

@@ -2868,7 +2868,8 @@ impl Gen<'_> {
         })
     }
 
-    /// A `prog` of `V is E` elements (`V` not set yet, `E` integer `+`, `-`,
+    /// A `prog` of `set(l, V)` of the frame's locals and `V is E` elements
+    /// (`V` not set yet, `E` integer `+`, `-`,
     /// `*` over registers and integer constants): computed in Rust with
     /// checked operations; when an operand is not an int or an operation
     /// overflows, the element is evaluated on terms where the term code
@@ -2890,7 +2891,34 @@ impl Gen<'_> {
                 .all(|(x, i)| *x != r || matches!(i, Init::Fresh))
         };
         let mut out = Vec::new();
-        for part in parts {
+        for (k, part) in parts.iter().enumerate() {
+            // `set(l, V)` of a local the frame holds (`set(rooms, [hall,
+            // kitchen])`, a ground `V` or a native value): the field
+            // written with `V` as written (D-38), as an exit arc's action
+            // writes it; a prog performs nothing. A value of another type
+            // than the local's is not native (`Gen::nat_local_set`).
+            let set = match part {
+                Ev::VarOp { op, name, arg } if *op == atoms::SET && d.declares_local(*name) => {
+                    Some((*name, arg.clone()))
+                }
+                Ev::Eval(Build::Const(t)) => match self.store.value(*t) {
+                    Value::Compound(f, args) if f == atoms::SET && args.len() == 2 => self
+                        .store
+                        .atom_of(args[0])
+                        .filter(|l| d.declares_local(*l))
+                        .map(|l| (l, Build::Const(args[1]))),
+                    _ => None,
+                },
+                _ => None,
+            };
+            if let Some((name, arg)) = set {
+                let v = self.nat_value(&arg, regs)?;
+                let x = format_ident!("prog{}", k);
+                let mut stmts = Vec::new();
+                self.nat_local_set(d, name, &x, v, None, &mut stmts, &mut None)?;
+                out.extend(stmts);
+                continue;
+            }
             // `V is E` with `V` not set yet (fresh, or the out_arg's variable).
             let (expr, dst) = match part {
                 Ev::IsFresh { expr, dst } => (expr, dst),
@@ -2898,7 +2926,11 @@ impl Gen<'_> {
                     lhs: Build::Reg(dst),
                     expr,
                 } if !regs.contains_key(dst) && fresh(*dst) => (expr, dst),
-                _ => return Err("its prog is not `V is E` of integer arithmetic".into()),
+                _ => {
+                    return Err(
+                        "its prog is not `V is E` of integer arithmetic or `set` of a local".into(),
+                    )
+                }
             };
             let e = self.nat_int_expr(expr, regs)?;
             let ty = d.types[ix].regs[*dst as usize].ty.clone();
