@@ -3354,3 +3354,27 @@ fn nis17_prog_set_agrees() {
         ],
     );
 }
+
+mod nis17_prog_inc {
+    sitlog_macros::include_dm!("typed/nis17/prog_inc");
+}
+
+/// nis17 (issue 37): a `prog` of `inc`s of an int local (`inc(c, _)`,
+/// `inc(c, V)`), run at each entry: below the limit, an overflow of the
+/// local (the machine's error), a non-number and an unbound variable
+/// compared with it.
+#[test]
+fn nis17_prog_inc_agrees() {
+    let ir = interpreter("typed/nis17/prog_inc");
+    agree_both(
+        nis17_prog_inc::program(),
+        &ir,
+        &[
+            "count(9223372036854775800)",
+            "count(9223372036854775807)",
+            "count(x)",
+            "count(_)",
+            "count(1.5)",
+        ],
+    );
+}

@@ -2868,7 +2868,7 @@ impl Gen<'_> {
         })
     }
 
-    /// A `prog` of `set(l, V)` of the frame's locals and `V is E` elements
+    /// A `prog` of `set(l, V)` and `inc(l, _)` of the frame's locals and `V is E` elements
     /// (`V` not set yet, `E` integer `+`, `-`,
     /// `*` over registers and integer constants): computed in Rust with
     /// checked operations; when an operand is not an int or an operation
@@ -2911,6 +2911,66 @@ impl Gen<'_> {
                 },
                 _ => None,
             };
+            // `inc(l, _)` of an int local the frame holds: checked `i64`
+            // addition, the field written; an overflow is the machine's
+            // `inc` (its error), the situation entered as for `is`.
+            // (`inc(l, V)` with `V` not set yet: the same, `V` bound.)
+            let inc = match part {
+                Ev::VarOpFresh { op, name, dst } => Some((op, name, dst)),
+                Ev::VarOp {
+                    op,
+                    name,
+                    arg: Build::Reg(dst),
+                } if !regs.contains_key(dst) && fresh(*dst) => Some((op, name, dst)),
+                _ => None,
+            };
+            if let Some((op, name, dst)) = inc {
+                if *op == atoms::INC && d.declares_local(*name) {
+                    let (l, lty) = d
+                        .local_field(*name)
+                        .ok_or("its prog's `inc` of a local the frame does not hold")?;
+                    if lty != Ty::Int {
+                        return Err("its prog's `inc` of a local that is not an int".into());
+                    }
+                    let (opa, namea) = (self.atom_native(*op)?, self.atom_native(*name)?);
+                    let x = format_ident!("prog{}", k);
+                    out.push(quote! {
+                        let #x: i64 = match #l.checked_add(1) {
+                            Some(v) => {
+                                *#l = v;
+                                v
+                            }
+                            None => {
+                                #hand
+                                #(#id_stmts)*
+                                cx.enter_counted(&mut count, #cur, #id);
+                                return match cx.var_op_fresh(#opa, #namea, None) {
+                                    Err(e) => Err(e),
+                                    Ok(_) => Err(cx.error(
+                                        "`inc` overflowed in native code only",
+                                        None,
+                                    )),
+                                };
+                            }
+                        };
+                    });
+                    let dty = d.types[ix].regs[*dst as usize].ty.clone();
+                    let r = reg(*dst);
+                    match &dty {
+                        Ty::Int => {
+                            out.push(quote!(let #r = #x;));
+                            regs.insert(*dst, (r, dty));
+                        }
+                        t if held_as_val(t) => {
+                            out.push(quote!(let #r = Val::Int(#x);));
+                            regs.insert(*dst, (r, dty));
+                        }
+                        // Read nowhere as a value native code holds.
+                        _ => out.push(quote!(let _ = #x;)),
+                    }
+                    continue;
+                }
+            }
             if let Some((name, arg)) = set {
                 let v = self.nat_value(&arg, regs)?;
                 let x = format_ident!("prog{}", k);
@@ -2920,18 +2980,18 @@ impl Gen<'_> {
                 continue;
             }
             // `V is E` with `V` not set yet (fresh, or the out_arg's variable).
-            let (expr, dst) = match part {
-                Ev::IsFresh { expr, dst } => (expr, dst),
-                Ev::Is {
-                    lhs: Build::Reg(dst),
-                    expr,
-                } if !regs.contains_key(dst) && fresh(*dst) => (expr, dst),
-                _ => {
-                    return Err(
-                        "its prog is not `V is E` of integer arithmetic or `set` of a local".into(),
-                    )
-                }
-            };
+            let (expr, dst) =
+                match part {
+                    Ev::IsFresh { expr, dst } => (expr, dst),
+                    Ev::Is {
+                        lhs: Build::Reg(dst),
+                        expr,
+                    } if !regs.contains_key(dst) && fresh(*dst) => (expr, dst),
+                    _ => return Err(
+                        "its prog is not `V is E` of integer arithmetic, `set` or `inc` of a local"
+                            .into(),
+                    ),
+                };
             let e = self.nat_int_expr(expr, regs)?;
             let ty = d.types[ix].regs[*dst as usize].ty.clone();
             let rty = rust_ty(&ty)?;
