@@ -24,6 +24,24 @@ mod c_final_by_inarg {
     sitlog_macros::include_dm!("typed/shapes/c_final_by_inarg");
 }
 
+/// Shape (c) written without reading `tests/typed/shapes` (helper
+/// `review17`, moved here from `alloc_review17.rs` by `nis17`: one test
+/// binary less): a `when/3` next situation, a global three DMs deep, the
+/// callee's final handing the pipe back, the pipe a pair counted by `is`
+/// on `ground` values in an action list.
+mod r17_charge {
+    sitlog_macros::include_dm!("typed/review17/r17_c_charge_when");
+}
+mod r17_courier {
+    sitlog_macros::include_dm!("typed/review17/r17_c_courier_global");
+}
+mod r17_odometer {
+    sitlog_macros::include_dm!("typed/review17/r17_c_odometer");
+}
+mod r17_job_pair {
+    sitlog_macros::include_dm!("typed/review17/r17_c_job_pair");
+}
+
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
@@ -136,6 +154,28 @@ fn transitions_allocate_nothing_in_steady_state() {
     // `nalloc15` (performance.md, `nshape13`'s, `nget14`'s and
     // `nalloc15`'s sections).
     let calls = measure_from(c_final_by_inarg::program(), "relay(1000000000)");
+    // review17's shape (c) workloads (`typed::review17_*`); `r17_c_job_pair`
+    // (`L1 is L - 1` on a `ground` pipe value, then the list of numbers
+    // performed) grew the store before `nis17`: 4 collections in 40 000
+    // actions.
+    let r17 = [
+        (
+            "r17_c_charge_when",
+            measure_from(r17_charge::program(), "charger(1000000000)"),
+        ),
+        (
+            "r17_c_courier_global",
+            measure_from(r17_courier::program(), "mission(1000000000)"),
+        ),
+        (
+            "r17_c_odometer",
+            measure_from(r17_odometer::program(), "patrol(1000000000)"),
+        ),
+        (
+            "r17_c_job_pair",
+            measure_from(r17_job_pair::program(), "shift(1000000000)"),
+        ),
+    ];
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("dms/ground_loop");
     let (checked, _) = sitlog_compiler::check_path(&dir).unwrap();
     let ir = sitlog_compiler::ir::lower(&checked.ok().unwrap());
@@ -172,6 +212,24 @@ fn transitions_allocate_nothing_in_steady_state() {
         (0, 0),
         "shape (c) allocated in {MEASURED} transitions, `empty` performed"
     );
+    let mut bad = Vec::new();
+    for (name, t) in &r17 {
+        println!(
+            "{name}: {} allocations in {} actions without a collection; \
+             {} collections made {} allocations",
+            t.steady,
+            MEASURED - t.collections,
+            t.collections,
+            t.gc_allocs
+        );
+        if (t.steady, t.collections) != (0, 0) {
+            bad.push(format!(
+                "{name}: {} steady, {} collections",
+                t.steady, t.collections
+            ));
+        }
+    }
+    assert!(bad.is_empty(), "review17's shape (c) allocated: {bad:?}");
     // The interpreter builds each instance in the store; the window is long
     // enough to include collections. What remains outside them is the
     // store's vectors growing back after each collection (the collector

@@ -3521,5 +3521,121 @@ fn comparisons_of_expressions_agree() {
         shape::program(),
         &shape_ir,
         &["relay(1)", "relay(5)", "relay(x)"],
+
+mod nis17_dms {
+    pub mod is_list {
+        sitlog_macros::include_dm!("typed/nis17/is_list");
+    }
+    pub mod when_next {
+        sitlog_macros::include_dm!("typed/nis17/when_next");
+    }
+    pub mod prog_set {
+        sitlog_macros::include_dm!("typed/nis17/prog_set");
+    }
+}
+
+/// nis17 (issue 37): `V is E` in an action list on `ground` values (a
+/// parameter and the pipe) computed natively with checked arithmetic, the
+/// list's numbers performed without handing the frames over: ints, a
+/// float (the machine's value, a float performed), a non-number and an
+/// unbound variable (the machine's error), an overflow of the sum and of
+/// the product, an `i64` at its limit.
+#[test]
+fn nis17_is_in_an_action_list_agrees() {
+    use nis17_dms::is_list as m;
+    let ir = interpreter("typed/nis17/is_list");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "tally(1, 2)",
+            "tally(-5, 0)",
+            "tally(1.5, 2)",
+            "tally(1, 0.5)",
+            "tally(a, 2)",
+            "tally(1, b)",
+            "tally(_, 2)",
+            "tally(1, _)",
+            "tally(f(1), 2)",
+            "tally(9223372036854775807, 1)",
+            "tally(4611686018427387904, 0)",
+            "tally(-9223372036854775808, -1)",
+            "tally(99999999999999999999, 1)",
+        ],
+    );
+}
+
+/// nis17 (issue 37): `when/3` as a neutral situation's next situation
+/// (branches building values: a compound, the next step, an atom): found,
+/// marked, none, an empty list, a non-number compared (the evaluator's
+/// error), an unbound limit, an improper tail, a float and an int alike,
+/// a compound element.
+#[test]
+fn nis17_when_as_next_situation_agrees() {
+    use nis17_dms::when_next as m;
+    let ir = interpreter("typed/nis17/when_next");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "seek(3, m, [1, 2, 5])",
+            "seek(3, m, [1, m, 5])",
+            "seek(9, m, [1, 2])",
+            "seek(3, m, [])",
+            "seek(3, m, [1, a, 5])",
+            "seek(_, m, [1])",
+            "seek(3, _, [1, 5])",
+            "seek(3, m, [1|x])",
+            "seek(3.0, m, [3, 3.5])",
+            "seek(3, 1.0, [1, 1.0])",
+            "seek(3, f(_), [f(a), 4])",
+            "seek(x, m, [m])",
+        ],
+    );
+}
+
+/// nis17 (issue 37): a `prog` of `set`s of the frame's locals to
+/// constants, run at each entry of its situation (re-entered while the
+/// count is below the parameter): found, not found, an unbound item, a
+/// non-number compared with the count.
+#[test]
+fn nis17_prog_set_agrees() {
+    use nis17_dms::prog_set as m;
+    let ir = interpreter("typed/nis17/prog_set");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "stock(b, 2)",
+            "stock(c, 1)",
+            "stock(z, 3)",
+            "stock(_, 2)",
+            "stock(b, x)",
+            "stock(z, 1.5)",
+        ],
+    );
+}
+
+mod nis17_prog_inc {
+    sitlog_macros::include_dm!("typed/nis17/prog_inc");
+}
+
+/// nis17 (issue 37): a `prog` of `inc`s of an int local (`inc(c, _)`,
+/// `inc(c, V)`), run at each entry: below the limit, an overflow of the
+/// local (the machine's error), a non-number and an unbound variable
+/// compared with it.
+#[test]
+fn nis17_prog_inc_agrees() {
+    let ir = interpreter("typed/nis17/prog_inc");
+    agree_both(
+        nis17_prog_inc::program(),
+        &ir,
+        &[
+            "count(9223372036854775800)",
+            "count(9223372036854775807)",
+            "count(x)",
+            "count(_)",
+            "count(1.5)",
+        ],
     );
 }

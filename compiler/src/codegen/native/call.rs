@@ -1491,20 +1491,33 @@ impl Gen<'_> {
                 // arithmetic as in a native `prog`; an overflow is the
                 // machine's evaluation (its value, if native code can hold
                 // it, else an error, as `nat_prog` does).
-                Ev::IsFresh { expr, dst } if d.types[ix].regs[*dst as usize].ty == Ty::Int => {
+                // Into a fresh variable typed `ground` (`L1 is L - 1`, `L`
+                // read from a `ground` pipe): the same, each `Val` operand
+                // checked for an int at run time; a value that is not an
+                // int (a float, a non-number: the machine's value or its
+                // error) takes the machine's way as an overflow does.
+                Ev::IsFresh { expr, dst }
+                    if matches!(d.types[ix].regs[*dst as usize].ty, Ty::Int | Ty::Ground) =>
+                {
+                    let dty = d.types[ix].regs[*dst as usize].ty.clone();
                     let e = self.nat_int_expr(expr, regs)?;
                     let mut ts = Vec::new();
                     let mut n = 0;
                     let t = self.nat_build_term(expr, regs, &mut ts, &mut n)?;
+                    let (rty, some) = if dty == Ty::Int {
+                        (quote!(i64), quote!(v))
+                    } else {
+                        (quote!(Val), quote!(Val::Int(v)))
+                    };
                     stmts.push(quote! {
-                        let #x: i64 = match #e {
-                            Some(v) => v,
+                        let #x: #rty = match #e {
+                            Some(v) => #some,
                             None => {
                                 #enter
                                 #(#ts)*
                                 let v = cx.is(None, #t, Some(#arc))?;
                                 let v = cx.store_ref().deref(v);
-                                match cx.to_native::<i64>(v) {
+                                match cx.to_native::<#rty>(v) {
                                     Some(v) => v,
                                     None => {
                                         return Err(cx.error(
@@ -1517,9 +1530,14 @@ impl Gen<'_> {
                         };
                     });
                     let rr = reg(*dst);
-                    stmts.push(quote!(let #rr = #x;));
-                    regs.insert(*dst, (rr, Ty::Int));
-                    Ty::Int
+                    let copy = if dty == Ty::Int {
+                        quote!(#x)
+                    } else {
+                        quote!(#x.clone())
+                    };
+                    stmts.push(quote!(let #rr = #copy;));
+                    regs.insert(*dst, (rr, dty.clone()));
+                    dty
                 }
                 Ev::Built(Build::Const(t)) => {
                     let v = self.nat_value(&Build::Const(*t), regs)?;
@@ -1603,14 +1621,17 @@ impl Gen<'_> {
                 Ty::Term | Ty::List(_) => perform,
                 // A `ground` value (`set(m, W)`, `W` a parameter's value):
                 // a number or `empty` skipped where the run's actions
-                // ignore it, as for a value of those types.
+                // ignore it, as for a value of those types; a number
+                // performed, handed to the effector as an `int`'s is
+                // (`Cx::perform_value`, no hand-over).
                 Ty::Ground => quote! {
-                    let skip = match &#x {
-                        Val::Int(_) | Val::Float(_) => run.quiet_numbers,
-                        Val::Sym(s) => run.quiet_empty && *s == atoms::EMPTY,
-                        _ => false,
-                    };
-                    if !skip { #perform }
+                    match &#x {
+                        Val::Int(_) | Val::Float(_) => {
+                            if !run.quiet_numbers { #perform_value }
+                        }
+                        Val::Sym(s) if run.quiet_empty && *s == atoms::EMPTY => {}
+                        _ => { #perform }
+                    }
                 },
                 _ => return Err("an action of this type".into()),
             });
@@ -1624,7 +1645,7 @@ impl Gen<'_> {
     /// does not convert: a value the local's type does not hold), `x`
     /// the action's value (`set` gives `V`); its type.
     #[allow(clippy::too_many_arguments)]
-    fn nat_local_set(
+    pub(super) fn nat_local_set(
         &self,
         d: &Dm,
         name: sitlog_syntax::Atom,

@@ -2973,7 +2973,8 @@ impl Gen<'_> {
         })
     }
 
-    /// A `prog` of `V is E` elements (`V` not set yet, `E` integer `+`, `-`,
+    /// A `prog` of `set(l, V)` and `inc(l, _)` of the frame's locals and `V is E` elements
+    /// (`V` not set yet, `E` integer `+`, `-`,
     /// `*` over registers and integer constants): computed in Rust with
     /// checked operations; when an operand is not an int or an operation
     /// overflows, the element is evaluated on terms where the term code
@@ -2995,16 +2996,107 @@ impl Gen<'_> {
                 .all(|(x, i)| *x != r || matches!(i, Init::Fresh))
         };
         let mut out = Vec::new();
-        for part in parts {
-            // `V is E` with `V` not set yet (fresh, or the out_arg's variable).
-            let (expr, dst) = match part {
-                Ev::IsFresh { expr, dst } => (expr, dst),
-                Ev::Is {
-                    lhs: Build::Reg(dst),
-                    expr,
-                } if !regs.contains_key(dst) && fresh(*dst) => (expr, dst),
-                _ => return Err("its prog is not `V is E` of integer arithmetic".into()),
+        for (k, part) in parts.iter().enumerate() {
+            // `set(l, V)` of a local the frame holds (`set(rooms, [hall,
+            // kitchen])`, a ground `V` or a native value): the field
+            // written with `V` as written (D-38), as an exit arc's action
+            // writes it; a prog performs nothing. A value of another type
+            // than the local's is not native (`Gen::nat_local_set`).
+            let set = match part {
+                Ev::VarOp { op, name, arg } if *op == atoms::SET && d.declares_local(*name) => {
+                    Some((*name, arg.clone()))
+                }
+                Ev::Eval(Build::Const(t)) => match self.store.value(*t) {
+                    Value::Compound(f, args) if f == atoms::SET && args.len() == 2 => self
+                        .store
+                        .atom_of(args[0])
+                        .filter(|l| d.declares_local(*l))
+                        .map(|l| (l, Build::Const(args[1]))),
+                    _ => None,
+                },
+                _ => None,
             };
+            // `inc(l, _)` of an int local the frame holds: checked `i64`
+            // addition, the field written; an overflow is the machine's
+            // `inc` (its error), the situation entered as for `is`.
+            // (`inc(l, V)` with `V` not set yet: the same, `V` bound.)
+            let inc = match part {
+                Ev::VarOpFresh { op, name, dst } => Some((op, name, dst)),
+                Ev::VarOp {
+                    op,
+                    name,
+                    arg: Build::Reg(dst),
+                } if !regs.contains_key(dst) && fresh(*dst) => Some((op, name, dst)),
+                _ => None,
+            };
+            if let Some((op, name, dst)) = inc {
+                if *op == atoms::INC && d.declares_local(*name) {
+                    let (l, lty) = d
+                        .local_field(*name)
+                        .ok_or("its prog's `inc` of a local the frame does not hold")?;
+                    if lty != Ty::Int {
+                        return Err("its prog's `inc` of a local that is not an int".into());
+                    }
+                    let (opa, namea) = (self.atom_native(*op)?, self.atom_native(*name)?);
+                    let x = format_ident!("prog{}", k);
+                    out.push(quote! {
+                        let #x: i64 = match #l.checked_add(1) {
+                            Some(v) => {
+                                *#l = v;
+                                v
+                            }
+                            None => {
+                                #hand
+                                #(#id_stmts)*
+                                cx.enter_counted(&mut count, #cur, #id);
+                                return match cx.var_op_fresh(#opa, #namea, None) {
+                                    Err(e) => Err(e),
+                                    Ok(_) => Err(cx.error(
+                                        "`inc` overflowed in native code only",
+                                        None,
+                                    )),
+                                };
+                            }
+                        };
+                    });
+                    let dty = d.types[ix].regs[*dst as usize].ty.clone();
+                    let r = reg(*dst);
+                    match &dty {
+                        Ty::Int => {
+                            out.push(quote!(let #r = #x;));
+                            regs.insert(*dst, (r, dty));
+                        }
+                        t if held_as_val(t) => {
+                            out.push(quote!(let #r = Val::Int(#x);));
+                            regs.insert(*dst, (r, dty));
+                        }
+                        // Read nowhere as a value native code holds.
+                        _ => out.push(quote!(let _ = #x;)),
+                    }
+                    continue;
+                }
+            }
+            if let Some((name, arg)) = set {
+                let v = self.nat_value(&arg, regs)?;
+                let x = format_ident!("prog{}", k);
+                let mut stmts = Vec::new();
+                self.nat_local_set(d, name, &x, v, None, &mut stmts, &mut None)?;
+                out.extend(stmts);
+                continue;
+            }
+            // `V is E` with `V` not set yet (fresh, or the out_arg's variable).
+            let (expr, dst) =
+                match part {
+                    Ev::IsFresh { expr, dst } => (expr, dst),
+                    Ev::Is {
+                        lhs: Build::Reg(dst),
+                        expr,
+                    } if !regs.contains_key(dst) && fresh(*dst) => (expr, dst),
+                    _ => return Err(
+                        "its prog is not `V is E` of integer arithmetic, `set` or `inc` of a local"
+                            .into(),
+                    ),
+                };
             let e = self.nat_int_expr(expr, regs)?;
             let ty = d.types[ix].regs[*dst as usize].ty.clone();
             let rty = rust_ty(&ty)?;
@@ -4987,10 +5079,61 @@ impl Gen<'_> {
                     .collect::<N<Vec<_>>>()?;
                 self.nat_select(d, cur, *name, vals, cur_name)
             }
+            // `when/3` whose branches only build native values
+            // (`apply(when(_, _, _), [D == Want, at(D), probe(Rest)])`):
+            // evaluating the branch not chosen too changes nothing and
+            // cannot fail, so it is the conditional `(C -> A ; otherwise
+            // -> B)` of [`Next::If`], the condition's error the
+            // evaluator's (`Cond::Cmp`, [`Gen::nat_cond_bind`]).
+            Next::Eval(Ev::Pick(c, a, b))
+                if Self::nat_inert(a, regs) && Self::nat_inert(b, regs) =>
+            {
+                let mut bregs = regs.clone();
+                let mut binds = Vec::new();
+                let c = self.nat_cond_bind(d, cur, c, &mut bregs, &mut binds)?;
+                let a = self.nat_pick_next(d, cur, a, &bregs, cur_name)?;
+                let b = self.nat_pick_next(d, cur, b, &bregs, cur_name)?;
+                Ok(quote!({ #(#binds)* if #c { #a } else { #b } }))
+            }
             _ => Err(format!(
                 "situation {}: its next situation is not native yet",
                 cur + 1
             )),
+        }
+    }
+
+    /// A branch of a next situation's `when/3` ([`Ev::Pick`] in
+    /// [`Gen::nat_next`]), a value that only builds native values: the
+    /// situation it selects, as for that value written as the next
+    /// situation.
+    fn nat_pick_next(
+        &self,
+        d: &Dm,
+        cur: usize,
+        e: &Ev,
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<TokenStream> {
+        match e {
+            Ev::Built(Build::Const(t)) => match self.store.atom_of(*t) {
+                Some(name) => self.nat_select(d, cur, name, Vec::new(), cur_name),
+                None => self.nat_next(d, cur, &Next::Static(*t, None), regs, cur_name),
+            },
+            Ev::Built(Build::Compound(name, args)) => {
+                let vals = args
+                    .iter()
+                    .map(|a| self.nat_value(a, regs))
+                    .collect::<N<Vec<_>>>()?;
+                self.nat_select(d, cur, *name, vals, cur_name)
+            }
+            Ev::Compound(name, args) => {
+                let vals = args
+                    .iter()
+                    .map(|a| self.nat_ev_value(d, cur, a, regs))
+                    .collect::<N<Vec<_>>>()?;
+                self.nat_select(d, cur, *name, vals, cur_name)
+            }
+            _ => Err("a `when/3` branch of a next situation is not native".into()),
         }
     }
 
