@@ -3521,6 +3521,8 @@ fn comparisons_of_expressions_agree() {
         shape::program(),
         &shape_ir,
         &["relay(1)", "relay(5)", "relay(x)"],
+    );
+}
 
 mod nis17_dms {
     pub mod is_list {
