@@ -87,18 +87,23 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         e
     }
 
+    /// The DM a warning is about: the lazy frame's or the top frame's, with
+    /// its call (`None`: no DM runs).
+    fn warning_dm(&self) -> Option<(super::DmIx, Term)> {
+        match self.lazy.last() {
+            Some(l) => Some((l.dm, l.call)),
+            None => self.frames.last().map(|f| (f.dm, f.dm_id)),
+        }
+    }
+
     /// The warning of an in_arg skipped ([`Machine::unify_in_arg`]), the
     /// first time its situation skips one; located at the in_arg
     /// ([`DmProgram::in_arg_location`](super::DmProgram::in_arg_location)),
     /// else at the situation. Cold: the hot path is the unify that succeeds.
     #[cold]
     fn warn_in_arg_skipped(&mut self, pattern: Term, pipe: Term, here: Option<(SitIx, Term)>) {
-        let (dm, call) = match self.lazy.last() {
-            Some(l) => (l.dm, l.call),
-            None => match self.frames.last() {
-                Some(f) => (f.dm, f.dm_id),
-                None => return,
-            },
+        let Some((dm, call)) = self.warning_dm() else {
+            return;
         };
         let key = (dm, here.map(|(s, _)| s));
         if self.skipped_in_args.contains(&key) {
@@ -129,12 +134,8 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     /// again, as the original does (D-15). Cold.
     #[cold]
     fn warn_unmatched_input(&mut self, input: Term, here: Option<(SitIx, Term)>) {
-        let (dm, call) = match self.lazy.last() {
-            Some(l) => (l.dm, l.call),
-            None => match self.frames.last() {
-                Some(f) => (f.dm, f.dm_id),
-                None => return,
-            },
+        let Some((dm, call)) = self.warning_dm() else {
+            return;
         };
         let key = (dm, here.map(|(s, _)| s));
         if self.unmatched_warned.contains(&key) {
