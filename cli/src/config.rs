@@ -52,24 +52,12 @@ pub fn parse(name: &str, text: &str) -> Result<AppConfig, String> {
         let message = e.message().trim().replace('\n', " ");
         match e.span() {
             Some(span) => {
-                let (line, column) = line_col(text, span.start);
+                let (line, column) = sitlog_syntax::line_col(text, span.start);
                 format!("{name}:{line}:{column}: error: {message}")
             }
             None => format!("{name}: error: {message}"),
         }
     })
-}
-
-/// 1-based line and column (in characters) of byte offset `at` in `text`.
-fn line_col(text: &str, at: usize) -> (usize, usize) {
-    let mut at = at.min(text.len());
-    while !text.is_char_boundary(at) {
-        at -= 1;
-    }
-    let before = &text[..at];
-    let line = before.matches('\n').count() + 1;
-    let start = before.rfind('\n').map_or(0, |i| i + 1);
-    (line, before[start..].chars().count() + 1)
 }
 
 #[cfg(test)]
