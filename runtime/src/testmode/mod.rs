@@ -244,13 +244,6 @@ fn plain_atom<'t>(text: &'t str, ops: &OpTable) -> Option<(&'t str, usize)> {
     Some((name, end + 1))
 }
 
-fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, col)
-}
-
 /// One input of a script: a plain atom (read without the term reader) or
 /// a clause.
 enum ScriptInput {
@@ -287,7 +280,7 @@ impl ScriptPerception {
         let truncated = cut < rest.len();
         let mut reader = ClauseReader::new(&rest[..cut], ops).with_max_depth(self.limits.max_depth);
         let what = || {
-            let (line, col) = line_col(&self.text, self.pos + leading_layout(rest));
+            let (line, col) = sitlog_syntax::line_col(&self.text, self.pos + leading_layout(rest));
             let line = line + self.dropped_lines;
             format!("{}:{line}:{col}: the input", self.name)
         };
@@ -304,7 +297,8 @@ impl ScriptPerception {
                 Ok(Some((ScriptInput::Clause(clause), start, self.pos)))
             }
             Some(Err(e)) => {
-                let (line, col) = line_col(&self.text, self.pos + e.span.start as usize);
+                let (line, col) =
+                    sitlog_syntax::line_col(&self.text, self.pos + e.span.start as usize);
                 let line = line + self.dropped_lines;
                 Err(format!(
                     "{}:{line}:{col}: syntax error in input: {}",
