@@ -662,6 +662,10 @@ impl Perception for ReloadAware {
     fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
         self.inner.waiting_at(store, dm, situation);
     }
+
+    fn uses_waiting_at(&self) -> bool {
+        self.inner.uses_waiting_at()
+    }
 }
 
 #[cfg(test)]

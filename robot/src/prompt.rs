@@ -91,6 +91,10 @@ impl Perception for PausesProgress {
     fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
         self.inner.waiting_at(store, dm, situation);
     }
+
+    fn uses_waiting_at(&self) -> bool {
+        self.inner.uses_waiting_at()
+    }
 }
 
 /// The prompt with line editing, when stdin and stderr are terminals (and
@@ -152,6 +156,10 @@ impl Perception for EndOfInputStops {
 
     fn waiting_at(&mut self, store: &Store, dm: Term, situation: Term) {
         self.inner.waiting_at(store, dm, situation);
+    }
+
+    fn uses_waiting_at(&self) -> bool {
+        self.inner.uses_waiting_at()
     }
 }
 

@@ -287,6 +287,11 @@ impl Perception for Senses {
         inner.flush();
         Ok(Perceived::Input(input))
     }
+
+    /// The robot's senses are not told where the program waits.
+    fn uses_waiting_at(&self) -> bool {
+        false
+    }
 }
 
 fn number(store: &Store, t: Term) -> Option<f64> {

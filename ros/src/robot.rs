@@ -721,6 +721,11 @@ impl Perception for Senses {
         };
         Ok(Perceived::Input(input))
     }
+
+    /// The robot's senses are not told where the program waits.
+    fn uses_waiting_at(&self) -> bool {
+        false
+    }
 }
 
 impl Actions for Effectors {

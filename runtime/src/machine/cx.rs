@@ -1117,7 +1117,46 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     pub fn choose(&mut self, type_term: Term) -> Result<Option<usize>, RunError> {
         self.m.materialize();
         let here = self.here();
-        self.m.choose_index(type_term, here, &mut *self.perception)
+        self.m
+            .choose_index(type_term, here, &mut *self.perception, None)
+    }
+
+    /// [`Cx::choose`] after [`Cx::set_expectations`], for native code that
+    /// keeps its frames below (module `perceive` of the code generator;
+    /// `machine::nat_choose` for a DM without locals):
+    /// the perception read and matched without the machine's frames
+    /// (`Machine::perceive_kept`); only where the machine's frames are read
+    /// (the running DM's call for a prompt, an input that meets no
+    /// expectation, an error, `neutral`) `hand` makes the native frames
+    /// the machine's first (`nat_hand_over`), and the machine goes on from
+    /// what was read, as [`Cx::choose`] would.
+    #[inline]
+    pub fn choose_kept(
+        &mut self,
+        type_term: Term,
+        hand: impl FnOnce(&mut Self) -> Result<(), RunError>,
+    ) -> Result<Option<usize>, RunError> {
+        match self.m.perceive_kept(type_term, &mut *self.perception) {
+            Ok(i) => Ok(Some(i)),
+            Err(first) => self.choose_cold(type_term, first, hand),
+        }
+    }
+
+    /// [`Cx::choose_kept`]'s cold path: the frames handed over, then the
+    /// machine's choice going on from `first`.
+    #[cold]
+    #[inline(never)]
+    fn choose_cold(
+        &mut self,
+        type_term: Term,
+        first: Option<Result<super::Perceived, String>>,
+        hand: impl FnOnce(&mut Self) -> Result<(), RunError>,
+    ) -> Result<Option<usize>, RunError> {
+        hand(self)?;
+        self.m.materialize();
+        let here = self.here();
+        self.m
+            .choose_index(type_term, here, &mut *self.perception, first)
     }
 
     /// Which exit arc takes the embedded DM's final situation `final_id` (D-22).

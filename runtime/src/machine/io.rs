@@ -34,6 +34,15 @@ pub trait Perception {
         let _ = (store, dm, situation);
     }
 
+    /// Whether [`Perception::waiting_at`] uses what it is told (the running
+    /// DM's call, for a prompt that names it). `true`, the default, is
+    /// always correct; `false` (a perception whose `waiting_at` does
+    /// nothing) lets compiled code perceive without first making its
+    /// native frames the machine's (`Cx::choose_kept`). Wrappers forward it.
+    fn uses_waiting_at(&self) -> bool {
+        true
+    }
+
     /// Whether an input that meets no expectation is news to the user:
     /// typed or scripted input (test mode), where it is a misspelt
     /// expectation or script line, and the machine warns the first time a

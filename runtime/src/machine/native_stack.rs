@@ -310,6 +310,20 @@ pub fn nat_hand_over<P: DmProgram, F: NatFrames<P>>(
     nat_materialize(p, cx, stack)
 }
 
+/// Which arc's expectation the perception meets (`Cx::choose_kept`), the
+/// frames below kept native unless the machine reads them (an input that
+/// meets nothing, an error, a prompt told where it waits): then handed
+/// over first ([`nat_hand_over`]), in a DM without locals.
+#[inline]
+pub fn nat_choose<P: DmProgram, F: NatFrames<P>>(
+    p: &P,
+    cx: &mut Cx<'_, '_, P>,
+    stack: &mut NatBelow<'_, F>,
+    type_term: Term,
+) -> Result<Option<usize>, RunError> {
+    cx.choose_kept(type_term, |cx| nat_hand_over(p, cx, stack))
+}
+
 /// The end of a native step that gives the machine control (garbage to
 /// collect, a stop asked: `Cx::gc_tick`) in a DM without locals: the
 /// frames below made the machine's ([`nat_hand_over`]), then

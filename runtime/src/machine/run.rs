@@ -688,7 +688,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     ) -> Result<Option<Chosen>, RunError> {
         let here = Some((sit, inst.id));
         self.prepare_arcs(inst, here)?;
-        let Some(i) = self.choose_index(inst.type_term, here, perception)? else {
+        let Some(i) = self.choose_index(inst.type_term, here, perception, None)? else {
             return Ok(None);
         };
         Ok(Some(Chosen {

@@ -292,11 +292,14 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     /// Which of the evaluated expectations (`self.expectations`, one per
     /// arc) is met: the neutral rule, else what the perceptual interpreter
     /// perceived, the last arc whose expectation unifies winning (D-14, E2, E3).
+    /// `first`: what was perceived for this situation already
+    /// ([`Machine::perceive_kept`]), taken as the first read.
     pub(super) fn choose_index(
         &mut self,
         type_term: Term,
         here: Option<(SitIx, Term)>,
         perception: &mut dyn Perception,
+        mut first: Option<Result<Perceived, String>>,
     ) -> Result<Option<usize>, RunError> {
         if self.expectations.is_empty() {
             return Err(self.err("the situation has no arcs", here, None));
@@ -325,9 +328,15 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             perception.waiting_at(&self.store, frame.dm_id, id);
         }
         for attempt in 0..2 {
-            let exps = std::mem::take(&mut self.expectations);
-            let perceived = perception.perceive(&mut self.store, type_term, &exps);
-            self.expectations = exps;
+            let perceived = match first.take() {
+                Some(p) => p,
+                None => {
+                    let exps = std::mem::take(&mut self.expectations);
+                    let p = perception.perceive(&mut self.store, type_term, &exps);
+                    self.expectations = exps;
+                    p
+                }
+            };
             let input = match perceived {
                 Ok(Perceived::Input(t)) => t,
                 Ok(Perceived::Again) => {
@@ -363,6 +372,45 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             }
         }
         Ok(None)
+    }
+
+    /// [`Machine::choose_index`]'s first read, for native code that keeps
+    /// its frames (`Cx::choose_kept`): `Ok(i)` when arc `i`'s expectation
+    /// is met (the last that unifies, as there), with no effect but the
+    /// perception's and the bindings; else `Err(first)`, nothing but the
+    /// read done, for `choose_index` to go on from it (`first`: what was
+    /// read) once the frames are the machine's. Nothing here reads the
+    /// machine's frames: the cases that do are left to `choose_index`
+    /// unread (`Err(None)`): no arcs, a `neutral` type, a perception that
+    /// is told where it waits (`Perception::uses_waiting_at`: the running
+    /// DM's call), and everything after a read that meets no expectation
+    /// (the unmatched input recorded with the DM and depth, the warning,
+    /// a second read) or fails (its error names the running DM).
+    pub(super) fn perceive_kept(
+        &mut self,
+        type_term: Term,
+        perception: &mut dyn Perception,
+    ) -> Result<usize, Option<Result<Perceived, String>>> {
+        if self.expectations.is_empty()
+            || self.store.atom_of(type_term) == Some(atoms::NEUTRAL)
+            || perception.uses_waiting_at()
+        {
+            return Err(None);
+        }
+        let exps = std::mem::take(&mut self.expectations);
+        let perceived = perception.perceive(&mut self.store, type_term, &exps);
+        self.expectations = exps;
+        let Ok(Perceived::Input(input)) = perceived else {
+            return Err(Some(perceived));
+        };
+        for i in (0..self.expectations.len()).rev() {
+            let mark = self.store.mark();
+            if self.store.unify(input, self.expectations[i]) {
+                return Ok(i);
+            }
+            self.store.undo_to(mark);
+        }
+        Err(Some(perceived))
     }
 
     /// The first exit arc whose expectation unifies with the embedded DM's

@@ -331,6 +331,11 @@ impl Perception for ScriptPerception {
     fn unmatched_is_news(&self) -> bool {
         true
     }
+
+    /// A script is not told where it is read.
+    fn uses_waiting_at(&self) -> bool {
+        false
+    }
 }
 
 /// Prolog's `read/1` takes the script's next input (issue 39).
@@ -395,6 +400,10 @@ impl<P: Perception + TermInput + 'static> Perception for SharedPerception<P> {
 
     fn unmatched_is_news(&self) -> bool {
         self.inner.lock().is_ok_and(|p| p.unmatched_is_news())
+    }
+
+    fn uses_waiting_at(&self) -> bool {
+        self.inner.lock().map_or(true, |p| p.uses_waiting_at())
     }
 }
 

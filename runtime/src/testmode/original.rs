@@ -446,6 +446,10 @@ impl Perception for OriginalTestMode {
         self.inner.waiting_at(store, dm, situation);
     }
 
+    fn uses_waiting_at(&self) -> bool {
+        self.inner.uses_waiting_at()
+    }
+
     fn unmatched_is_news(&self) -> bool {
         self.inner.unmatched_is_news()
     }

@@ -97,11 +97,14 @@
 //!   inert where converted; the handles stay valid because the machine
 //!   collects garbage only after native code has handed over.
 //!
-//! - *perceptions*: a perceptual situation (or a neutral one with several
-//!   arcs) builds its expectations as terms from native values, and the
-//!   machine chooses the arc (`Cx::choose`: the perception matched, or
-//!   `Step::Unmet` handed back); a variable the perception bound is read
-//!   natively only after the checked conversion, as above.
+//! - *perceptions* ([`perceive`]): a perceptual situation (or a neutral
+//!   one with several arcs) builds its expectations as terms from native
+//!   values, and the machine chooses the arc (`Cx::choose_kept`,
+//!   `machine::nat_choose`: the perception matched with the native frames
+//!   below kept; handed over only where the machine reads them, an input
+//!   that meets nothing, an error, a prompt; or `Step::Unmet` handed
+//!   back); a variable the perception bound is read natively only after
+//!   the checked conversion, as above.
 //! - *locals, globals, `is`*: `get`/`set`/`inc` and `is` are the machine's
 //!   own calls (`Cx::var_op`, `Cx::is`) on terms built from native values;
 //!   what they bind is converted like a boundary's value. Except, when
@@ -213,6 +216,7 @@ use super::Gen;
 mod call;
 mod fill;
 mod frame;
+mod perceive;
 mod pipe;
 use crate::ir::IrDm;
 use crate::mir::ty::{DmTypes, SitTypes};
@@ -2901,7 +2905,12 @@ impl Gen<'_> {
                         quote!(#il => { #b })
                     });
                     let hand = &d.hand;
-                    quote! {
+                    // The native frames kept unless the input meets nothing
+                    // (module `perceive`), else handed over first.
+                    let arms: Vec<_> = arms.collect();
+                    let enter = quote!(#(#id_stmts)* cx.enter_counted(&mut count, #cur, #id););
+                    let kept = perceive::kept_choice(hand, &enter, &exps, &names, &ts, &ty, &arms);
+                    let handed = quote! {
                         #hand
                         #(#id_stmts)*
                         cx.enter_counted(&mut count, #cur, #id);
@@ -2918,7 +2927,8 @@ impl Gen<'_> {
                             #(#arms)*
                             _ => unreachable!("the machine chose an arc of this situation"),
                         }
-                    }
+                    };
+                    kept.unwrap_or(handed)
                 };
                 // The fresh variables the code uses, made first.
                 let mut used = std::collections::BTreeSet::new();
