@@ -36,7 +36,13 @@ pub const GC_TICKS_BELOW: usize = 1 << 12;
 impl<P: DmProgram> Cx<'_, '_, P> {
     /// A run-time error of `op(name, _)` (`get`, `set`, `inc`, ...) in this
     /// situation, blaming that construct as the machine's evaluator does.
-    fn var_op_error(&self, message: String, op: Atom, name: Atom, arc: Option<usize>) -> RunError {
+    pub(super) fn var_op_error(
+        &self,
+        message: String,
+        op: Atom,
+        name: Atom,
+        arc: Option<usize>,
+    ) -> RunError {
         let mut e = self.error(message, arc);
         if let Some(site) = e.site.as_mut() {
             site.culprit = Some(eval::Culprit {

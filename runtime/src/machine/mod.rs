@@ -31,9 +31,13 @@
 //! - `native_stack`: the native stack of compiled code ([`nat_drive`],
 //!   [`NatBelow`], [`NatFrames`]: what the program's frames must offer,
 //!   [`NatAt`]: what a DM's situations must offer);
+//! - `boundary`: a user function, the KB or a Prolog condition evaluated
+//!   by native code without handing the native frames over
+//!   ([`Cx::nat_eval`], [`Cx::nat_condition`], [`Cx::nat_perform`]);
 //! - `run`: the loop (DM calls and returns, selection of situations, garbage
 //!   collection between them).
 
+mod boundary;
 mod cx;
 mod io;
 mod native_stack;

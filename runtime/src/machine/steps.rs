@@ -488,6 +488,18 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         here: Option<(SitIx, Term)>,
         arc: Option<usize>,
     ) -> Result<(), RunError> {
+        self.perform_raw(action, actions)
+            .map_err(|e| self.err(format!("action failed: {e}"), here, arc))
+    }
+
+    /// [`Machine::perform`] without its error: the effector's message
+    /// (`Cx::nat_perform` makes the error once the native frames are
+    /// handed over).
+    pub(super) fn perform_raw(
+        &mut self,
+        action: Term,
+        actions: &mut dyn Actions,
+    ) -> Result<(), String> {
         let a = self.store.deref(action);
         if a == Term::atom(atoms::EMPTY) && actions.ignores_empty() {
             return Ok(());
@@ -515,7 +527,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         } else {
             actions.perform(&mut self.store, a)
         };
-        result.map_err(|e| self.err(format!("action failed: {e}"), here, arc))
+        result
     }
 
     /// Evaluates `diag_mod` (read-only variables) and unifies it with the DM id (D-20, E9).

@@ -3703,3 +3703,76 @@ fn nperc18_perceptions_kept_agree() {
         }
     }
 }
+
+mod nfun18_boundary {
+    sitlog_macros::include_dm!("typed/boundary18");
+}
+
+/// nfun18 (issue 37): Prolog user functions called at their boundary by
+/// a callee without locals that its caller (with a local `tag`, also a
+/// global) pushed on the native stack, so that no frame is handed over
+/// where the call succeeds: the running DM's variables (the global, not
+/// the caller's local), state between calls (`assert`), a function that
+/// fails, one that throws, one whose value is an unbound variable or a
+/// compound with one (the next situation then the machine's), the
+/// running DM's history, a condition, a global set from a value, a name
+/// that is neither a local nor a global; one case a run and all in one
+/// run, with the history kept or not, observed or not. One engine for
+/// every run (each run resets the counter first); the variables an
+/// action says renamed in the order first seen, as in the report (native
+/// code makes fewer terms, so an unbound variable has another number).
+#[test]
+fn nfun18_user_functions_at_the_boundary_agree() {
+    let ir = interpreter("typed/boundary18");
+    let mut f = Functions::standard();
+    let p = sitlog_compiler::run::install_prolog(&ir, &mut f, Default::default())
+        .expect("the Prolog files load")
+        .expect("an engine");
+    ENGINE.with(|e| *e.borrow_mut() = Some((p, false)));
+    let cases = [
+        "tag", "count", "fail", "throw", "unbound", "shape", "hist", "cond", "global", "nowhere",
+    ];
+    let mut mains: Vec<String> = cases.iter().map(|c| format!("main([{c}, tag])")).collect();
+    mains.push(
+        "main([tag, count, unbound, shape, hist, cond, global, tag, count, hist, other])".into(),
+    );
+    let renamed = |mut r: (serde_json::Value, u64, Vec<String>, Vec<String>)| {
+        let mut names = std::collections::HashMap::new();
+        r.2 = r.2.iter().map(|l| rename(l, &mut names)).collect();
+        r
+    };
+    for main in &mains {
+        for (keep, observe) in [(false, false), (true, false), (true, true)] {
+            let c = renamed(run(
+                nfun18_boundary::program(),
+                main,
+                "",
+                keep,
+                observe,
+                false,
+            ));
+            let i = renamed(run(&ir, main, "", keep, observe, false));
+            assert_eq!(c, i, "{main} (history {keep}, observed {observe})");
+        }
+    }
+    let c = run(
+        nfun18_boundary::program(),
+        &mains[0],
+        "",
+        false,
+        false,
+        false,
+    );
+    assert!(c.2.iter().any(|l| l.contains("global_tag")), "{c:?}");
+    assert!(!c.2.iter().any(|l| l.contains("caller_local")), "{c:?}");
+    let c = run(
+        nfun18_boundary::program(),
+        &mains[1],
+        "",
+        false,
+        false,
+        false,
+    );
+    assert!(c.2.iter().any(|l| l.ends_with(" 2")), "{c:?}");
+    ENGINE.with(|e| *e.borrow_mut() = None);
+}

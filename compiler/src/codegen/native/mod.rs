@@ -148,7 +148,11 @@
 //!   makes the native frames machine frames and writes the locals back
 //!   (`nat_hand_over`: the runtime's, or the DM's for a DM with locals),
 //!   and reads the locals again after the machine's
-//!   call. A call with an output argument is pushed so too when the
+//!   call; except, in a DM without locals, the evaluator's calls (a user
+//!   function, the KB, a Prolog condition, `get`/`set`/`inc` of a
+//!   global) and the performs after them, made where the frames are, the
+//!   frames handed over only where one fails or before what gives the
+//!   machine control ([`boundary`]). A call with an output argument is pushed so too when the
 //!   callee hands it back in an output slot ([`call`]); other calls with a
 //!   fresh variable are the machine's, the term built with the variable
 //!   made for the visit.
@@ -213,6 +217,7 @@
 
 use super::Gen;
 
+mod boundary;
 mod call;
 mod fill;
 mod frame;
@@ -3531,6 +3536,9 @@ impl Gen<'_> {
                 next_at
             }
         };
+        // A user function or a Prolog condition called at its boundary,
+        // the frames below left native ([`boundary`]).
+        let general = boundary::at_boundary(hand, general);
         Ok(match (fast, rec_fast) {
             (Some(fast), Some(rec)) => quote! {
                 if !run.records { #fast } else if !stack.is_empty() { #rec } else { #general }

@@ -1,0 +1,1 @@
+tag ==> global_tag.
