@@ -3641,3 +3641,73 @@ fn nis17_prog_inc_agrees() {
         ],
     );
 }
+
+/// Helper `ncond18`'s (session 17): conjunctions and disjunctions in a
+/// conditional's condition (`Cond::And`, `Cond::Or`).
+mod cond_ncond18 {
+    pub mod junction {
+        sitlog_macros::include_dm!("typed/cond_junction");
+    }
+}
+
+/// `((A, B) -> ..)` and `((A ; B) -> ..)` (`typed/cond_junction`): every
+/// operand computed, left to right (D-35), so the left operand's error
+/// comes first (`conj(a, b)`), an operand errs where the other decides
+/// (`conj(0, a)`: the left false, the right an atom; `disj(2, a)`: the
+/// left true), an unbound operand, a float; `==`, `member/2`,
+/// `not_member/2`, a nested disjunction and `=:=` (the whole condition the
+/// evaluator's) as operands; a local counted in a recursive situation's
+/// exit arc compared in a conjunction (the review's `r17_d_dock_when`
+/// shape); an out_arg's and an action's conditional. The compiled task and
+/// the plans agree with the interpreter, history kept or not, observed or
+/// not.
+#[test]
+fn conjunctions_and_disjunctions_in_conditions_agree() {
+    use cond_ncond18::junction as m;
+    let ir = interpreter("typed/cond_junction");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "conj(2, 1)",
+            "conj(0, 1)",
+            "conj(2, 5)",
+            "conj(0, a)",
+            "conj(a, 5)",
+            "conj(a, b)",
+            "conj(2, _)",
+            "conj(_, 1)",
+            "conj(2.5, 1.5)",
+            "conj(2, 1.5)",
+            "conj(f(1), 1)",
+            "disj(2, 9)",
+            "disj(0, 1)",
+            "disj(0, 9)",
+            "disj(2, a)",
+            "disj(a, 1)",
+            "disj(0, _)",
+            "disj(1.5, x)",
+            "mixed(a, [])",
+            "mixed(b, [b])",
+            "mixed(1, [1, 2])",
+            "mixed(3, [1, 2])",
+            "mixed(2, [a])",
+            "mixed(c, [a])",
+            "mixed(x, y)",
+            "mixed(_, [a])",
+            "lim(3, p)",
+            "lim(3, none)",
+            "lim(0, p)",
+            "lim(x, p)",
+            "lim(x, none)",
+            "lim(_, p)",
+            "lim(2.5, p)",
+            "outc(2, 2)",
+            "outc(2, 0)",
+            "outc(0, 0)",
+            "outc(a, 1)",
+            "outc(2, b)",
+            "outc(_, 1)",
+        ],
+    );
+}
