@@ -313,9 +313,10 @@ impl<'s> Planner<'s> {
     /// value is `true` (D-34), with the same steps and errors: `A == B`,
     /// `A \== B` (both evaluate `A` then `B` and compare them, never an
     /// error of their own, D-34/D-35), or `A op B` for `op` one of `<`,
-    /// `>`, `=<`, `>=` with `A` and `B` each a variable or a constant
-    /// whose evaluation gives itself ([`Cond::Cmp`]: the value
-    /// comparison's own error, message and blame). Any other condition
+    /// `>`, `=<`, `>=` with `A` and `B` each a variable, a constant whose
+    /// evaluation gives itself or an expression of them (`N + 1`,
+    /// [`Self::cmp_operand`]) ([`Cond::Cmp`]: the value comparison's own
+    /// error, message and blame). Any other condition
     /// (`=:=`, `@<`, `(A, B)`, `\+ A`, an atom, a variable: the
     /// evaluator's value, never `true` but for the atom `true` or a
     /// variable bound to it) is `None`.
@@ -454,12 +455,16 @@ impl<'s> Planner<'s> {
         ))
     }
 
-    /// An operand of a value comparison ([`Cond::Cmp`]): a variable or a
-    /// constant whose evaluation gives itself.
+    /// An operand of a value comparison ([`Cond::Cmp`]), as written: a
+    /// variable, a constant whose evaluation gives itself, or a compound
+    /// whose functors only evaluate their arguments over variables and
+    /// such constants (`N + 1`, `Max * 2`: its value is the compound of
+    /// its arguments' values, D-36, which the comparison evaluates).
     fn cmp_operand(&self, a: Term, scope: &Scope) -> Option<Build> {
         match self.store.value(a) {
             Value::Var(v) => scope.vars.get(&v.index()).map(|&r| Build::Reg(r)),
             _ if self.store.is_ground(a) && self.inert(a, true) => Some(Build::Const(a)),
+            Value::Compound(..) if self.inert(a, true) => self.build(a, &scope.vars, 0).ok(),
             _ => None,
         }
     }

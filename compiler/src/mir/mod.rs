@@ -109,10 +109,11 @@ pub enum Cond {
     Other(Build),
     /// The value of `A op B` (`<`, `>`, `=<`, `>=`) is `true` (D-34), the
     /// condition of a `when/3` (`Planner::when_call`) or an operand of
-    /// [`Cond::And`]: `A` and `B` (a register or a constant, as written)
-    /// evaluated as a variable's occurrence is, then compared; an error is
-    /// the evaluator's (`eval::compare_value`: the term as written,
-    /// blaming `op/2`).
+    /// [`Cond::And`]: `A` and `B` (a register, a constant or an expression
+    /// of them such as `N + 1`, as written) evaluated as a variable's
+    /// occurrence is (a compound: the evaluator's value, D-36), then
+    /// compared; an error is the evaluator's (`eval::compare_value`: the
+    /// term as written, blaming `op/2`).
     Cmp(ArithCmp, Build, Build),
     /// `(A, B)` in a conditional's condition (`Planner::junction`): the
     /// condition's arguments are evaluated before it is called (D-35), so

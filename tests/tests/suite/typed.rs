@@ -3711,3 +3711,44 @@ fn conjunctions_and_disjunctions_in_conditions_agree() {
         ],
     );
 }
+
+mod when_expr_ncond18 {
+    pub mod when_expr {
+        sitlog_macros::include_dm!("typed/when_expr");
+    }
+}
+
+/// `when/3` whose comparison has expressions as operands
+/// (`typed/when_expr`: `N + 1 > L`, `N * 2 =< L - 1`, `-N >= 0 - L`, now
+/// `Cond::Cmp` in the MIR): in an action, a next situation, an out_arg and
+/// a conjunction's operand; ints, floats, an atom and an unbound operand
+/// (the comparison's error, blaming it), an int past `2^62` (`N * 2`
+/// overflows: the evaluator's `int_overflow`); a count compared as an
+/// expression with its limit (`count`), the limit an int, a float, an atom.
+#[test]
+fn when_with_expression_operands_agrees() {
+    use when_expr_ncond18::when_expr as m;
+    let ir = interpreter("typed/when_expr");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "wexp(1, 5)",
+            "wexp(9, 2)",
+            "wexp(2, 2)",
+            "wexp(-3, 2)",
+            "wexp(a, 1)",
+            "wexp(1, b)",
+            "wexp(_, 1)",
+            "wexp(1.5, 2)",
+            "wexp(1, 2.5)",
+            "wexp(4611686018427387904, 1)",
+            "wexp(9223372036854775807, 1)",
+            "count(3)",
+            "count(0)",
+            "count(2.5)",
+            "count(x)",
+            "count(_)",
+        ],
+    );
+}
