@@ -170,6 +170,10 @@
 //!   any native values are built as `Val`s (`Val::cons`). An error
 //!   evaluating a next situation leaves its transition uncounted, as on
 //!   the term path.
+//! - *conjunctions and disjunctions* ([`cond`]): a condition `(A, B)` or
+//!   `(A ; B)` the MIR lowered (`Cond::And`, `Cond::Or`) tests each operand
+//!   in order, every one of them (the evaluator computes them all before
+//!   calling the condition, D-35), then combines the `bool`s.
 //!
 //! What is not (yet) native keeps a situation on its term code: a `prog`
 //! other than `V is E`, expectations that can
