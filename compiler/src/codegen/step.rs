@@ -230,8 +230,35 @@ impl Gen<'_> {
                 });
                 x
             }
+            Cond::And(l, r) | Cond::Or(l, r) => {
+                // Both operands computed, left first (D-35), then combined.
+                let l = self.junction_leaf_code(l, arc, b);
+                let r = self.junction_leaf_code(r, arc, b);
+                let x = b.tmp();
+                b.stmts.push(if matches!(c, Cond::And(..)) {
+                    quote!(let #x = #l && #r;)
+                } else {
+                    quote!(let #x = #l || #r;)
+                });
+                x
+            }
         };
         quote!(#x)
+    }
+
+    /// An operand of [`Cond::And`]/[`Cond::Or`] (`mir::lower`): whether
+    /// its value is `true` (`Cx::value_holds` on it as written), its error
+    /// the condition's.
+    fn junction_leaf_code(&self, c: &Cond, arc: &TokenStream, b: &mut Body) -> TokenStream {
+        match c.written() {
+            Some(w) if !matches!(c, Cond::And(..) | Cond::Or(..)) => {
+                let t = self.build_code(&w, b);
+                let x = b.tmp();
+                b.stmts.push(quote!(let #x = cx.value_holds(#t, #arc)?;));
+                quote!(#x)
+            }
+            _ => self.cond_code(c, arc, b),
+        }
     }
 
     /// `(Term, Option<SitIx>)`: a next situation's value and, when known,

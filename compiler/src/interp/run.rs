@@ -149,6 +149,41 @@ pub(super) fn cond(
             }
             Ok(cx.compare_value(*op, [lw, rw], [l, r], arc)?)
         }
+        Cond::And(l, r) | Cond::Or(l, r) => {
+            // Both operands computed, left first (D-35), then combined.
+            let l = junction_leaf(cx, regs, l, arc)?;
+            let r = junction_leaf(cx, regs, r, arc)?;
+            Ok(if matches!(c, Cond::And(..)) {
+                l && r
+            } else {
+                l || r
+            })
+        }
+    }
+}
+
+/// An operand of [`Cond::And`]/[`Cond::Or`]: whether its value is
+/// `true` (`Cx::value_holds` on the operand as written: the evaluator's
+/// value, its error the condition's); a comparison of two registers or
+/// constants holding ints compared here.
+fn junction_leaf(
+    cx: Rcx<'_, '_, '_, '_>,
+    regs: &mut [Term],
+    c: &Cond,
+    arc: Option<usize>,
+) -> R<bool> {
+    if let Cond::Cmp(op, l, r) = c {
+        let (l, r) = (build(cx, regs, l), build(cx, regs, r));
+        if let (Some(a), Some(b)) = (cx.int_of(l), cx.int_of(r)) {
+            return Ok(int_cmp(*op, a, b));
+        }
+    }
+    match c.written() {
+        Some(w) if !matches!(c, Cond::And(..) | Cond::Or(..)) => {
+            let t = build(cx, regs, &w);
+            Ok(cx.value_holds(t, arc)?)
+        }
+        _ => cond(cx, regs, c, arc),
     }
 }
 

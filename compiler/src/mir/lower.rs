@@ -313,9 +313,10 @@ impl<'s> Planner<'s> {
     /// value is `true` (D-34), with the same steps and errors: `A == B`,
     /// `A \== B` (both evaluate `A` then `B` and compare them, never an
     /// error of their own, D-34/D-35), or `A op B` for `op` one of `<`,
-    /// `>`, `=<`, `>=` with `A` and `B` each a variable or a constant
-    /// whose evaluation gives itself ([`Cond::Cmp`]: the value
-    /// comparison's own error, message and blame). Any other condition
+    /// `>`, `=<`, `>=` with `A` and `B` each a variable, a constant whose
+    /// evaluation gives itself or an expression of them (`N + 1`,
+    /// [`Self::cmp_operand`]) ([`Cond::Cmp`]: the value comparison's own
+    /// error, message and blame). Any other condition
     /// (`=:=`, `@<`, `(A, B)`, `\+ A`, an atom, a variable: the
     /// evaluator's value, never `true` but for the atom `true` or a
     /// variable bound to it) is `None`.
@@ -338,12 +339,11 @@ impl<'s> Planner<'s> {
             return None;
         }
         let op = ArithCmp::from_atom(name)?;
-        let operand = |a: Term| match self.store.value(a) {
-            Value::Var(v) => scope.vars.get(&v.index()).map(|&r| Build::Reg(r)),
-            _ if self.store.is_ground(a) && self.inert(a, true) => Some(Build::Const(a)),
-            _ => None,
-        };
-        Some(Cond::Cmp(op, operand(args[0])?, operand(args[1])?))
+        Some(Cond::Cmp(
+            op,
+            self.cmp_operand(args[0], scope)?,
+            self.cmp_operand(args[1], scope)?,
+        ))
     }
 
     /// `(C, T, E)` of `apply(when(V1, V2, V3), [C, T, E])` (`V`s variables
@@ -382,7 +382,91 @@ impl<'s> Planner<'s> {
                 return Ok(Cond::Arith(op, l, r));
             }
         }
+        if let Some(c) = self.junction(cond, scope, depth) {
+            return Ok(c);
+        }
         Ok(Cond::Other(self.build(cond, &scope.vars, depth + 1)?))
+    }
+
+    /// A conditional's condition `(A, B)` or `(A ; B)` whose operands are
+    /// leaves with a value `true` or `false` ([`Cond::And`]): `A op B`
+    /// (`<`, `>`, `=<`, `>=`, D-34) with each side a variable or a constant
+    /// whose evaluation gives itself, as [`Cond::Cmp`]; `A == B`, `A \== B`,
+    /// `member(X, L)`, `not_member(X, L)` (D-33) as [`Cond::Other`]; or
+    /// another such conjunction or disjunction. The condition's arguments
+    /// are evaluated before it is called (D-35): every leaf is computed,
+    /// in order, then the goal of `true`s and `false`s is called. Any
+    /// other operand (`=:=`, whose goal may fail or err where the
+    /// disjunction does not reach it; `\+`, `->`, an atom) keeps the
+    /// whole condition the evaluator's (`None`).
+    fn junction(&self, c: Term, scope: &Scope, depth: usize) -> Option<Cond> {
+        if depth > MAX_DEPTH {
+            return None;
+        }
+        let Value::Compound(name, &[l, r]) = self.store.value(c) else {
+            return None;
+        };
+        if name != atoms::COMMA && name != atoms::SEMICOLON {
+            return None;
+        }
+        let l = self.junction_leaf(l, scope, depth + 1)?;
+        let r = self.junction_leaf(r, scope, depth + 1)?;
+        let (l, r) = (Box::new(l), Box::new(r));
+        Some(if name == atoms::COMMA {
+            Cond::And(l, r)
+        } else {
+            Cond::Or(l, r)
+        })
+    }
+
+    /// An operand of [`Self::junction`].
+    fn junction_leaf(&self, t: Term, scope: &Scope, depth: usize) -> Option<Cond> {
+        if let Some(c) = self.junction(t, scope, depth) {
+            return Some(c);
+        }
+        let Value::Compound(name, &[a, b]) = self.store.value(t) else {
+            return None;
+        };
+        if [
+            atoms::EQ_EQ,
+            atoms::NOT_EQ_EQ,
+            atoms::MEMBER,
+            atoms::NOT_MEMBER,
+        ]
+        .contains(&name)
+        {
+            return Some(Cond::Other(self.build(t, &scope.vars, depth + 1).ok()?));
+        }
+        if ![
+            atoms::GREATER,
+            atoms::LESS,
+            atoms::GREATER_EQ,
+            atoms::LESS_EQ,
+        ]
+        .contains(&name)
+        {
+            return None;
+        }
+        let op = ArithCmp::from_atom(name)?;
+        Some(Cond::Cmp(
+            op,
+            self.cmp_operand(a, scope)?,
+            self.cmp_operand(b, scope)?,
+        ))
+    }
+
+    /// An operand of a value comparison ([`Cond::Cmp`]), as written: a
+    /// variable, a constant whose evaluation gives itself, or a compound
+    /// whose functors only evaluate their arguments over variables and
+    /// such constants (`N + 1`, `Max * 2`: its value is the compound of
+    /// its arguments' values, D-36, which the comparison evaluates).
+    fn cmp_operand(&self, a: Term, scope: &Scope) -> Option<Build> {
+        match self.store.value(a) {
+            Value::Var(v) => scope.vars.get(&v.index()).map(|&r| Build::Reg(r)),
+            _ if self.store.is_ground(a) && self.inert(a, true) => Some(Build::Const(a)),
+            Value::Compound(..) if self.inert(a, true) => self.build(a, &scope.vars, 0).ok(),
+            _ => None,
+        }
     }
 
     pub(crate) fn next(&self, t: Term, scope: &mut Scope, depth: usize) -> Plan<Next> {

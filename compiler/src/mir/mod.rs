@@ -108,11 +108,24 @@ pub enum Cond {
     Arith(ArithCmp, Ev, Ev),
     Other(Build),
     /// The value of `A op B` (`<`, `>`, `=<`, `>=`) is `true` (D-34), the
-    /// condition of a `when/3` (`Planner::when_call`): `A` and `B` (a
-    /// register or a constant, as written) evaluated as a variable's
-    /// occurrence is, then compared; an error is the evaluator's
-    /// (`eval::compare_value`: the term as written, blaming `op/2`).
+    /// condition of a `when/3` (`Planner::when_call`) or an operand of
+    /// [`Cond::And`]: `A` and `B` (a register, a constant or an expression
+    /// of them such as `N + 1`, as written) evaluated as a variable's
+    /// occurrence is (a compound: the evaluator's value, D-36), then
+    /// compared; an error is the evaluator's (`eval::compare_value`: the
+    /// term as written, blaming `op/2`).
     Cmp(ArithCmp, Build, Build),
+    /// `(A, B)` in a conditional's condition (`Planner::junction`): the
+    /// condition's arguments are evaluated before it is called (D-35), so
+    /// both operands are computed, left then right, each an error of its
+    /// own (the left one's first), then both must hold. An operand is a
+    /// leaf whose value is `true` or `false` (a comparison of L, D-34, as
+    /// [`Cond::Cmp`]; `==`, `\==`, `member/2`, `not_member/2` as
+    /// [`Cond::Other`], D-33), or another `And`/`Or`; an error is the
+    /// condition's (`Cx::compare_condition`, `Cx::value_holds`: no culprit).
+    And(Box<Cond>, Box<Cond>),
+    /// `(A ; B)`: as [`Cond::And`] (both computed first), then either holds.
+    Or(Box<Cond>, Box<Cond>),
 }
 
 /// A next situation: its value and, when known, its index.
@@ -348,7 +361,26 @@ impl Cond {
                 l.constants(out);
                 r.constants(out);
             }
+            Cond::And(l, r) | Cond::Or(l, r) => {
+                l.constants(out);
+                r.constants(out);
+            }
         }
+    }
+
+    /// A leaf of [`Cond::And`]/[`Cond::Or`], or one of them, as written:
+    /// the term the condition's evaluator would be given (`None` for
+    /// [`Cond::Arith`], never such a leaf).
+    pub fn written(&self) -> Option<Build> {
+        Some(match self {
+            Cond::Cmp(op, l, r) => Build::Compound(op.atom(), [l.clone(), r.clone()].into()),
+            Cond::And(l, r) => Build::Compound(atoms::COMMA, [l.written()?, r.written()?].into()),
+            Cond::Or(l, r) => {
+                Build::Compound(atoms::SEMICOLON, [l.written()?, r.written()?].into())
+            }
+            Cond::Other(b) => b.clone(),
+            Cond::Arith(..) => return None,
+        })
     }
 }
 

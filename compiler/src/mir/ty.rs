@@ -1302,6 +1302,10 @@ impl<'a> State<'a> {
                 self.build_ty(d, s, l);
                 self.build_ty(d, s, r);
             }
+            Cond::And(l, r) | Cond::Or(l, r) => {
+                self.cond(d, s, l);
+                self.cond(d, s, r);
+            }
         }
     }
 
@@ -2112,6 +2116,10 @@ fn cond_first_use(c: &Cond, r: Reg, depth: usize) -> Use {
             Use::Read
         }
         Cond::Cmp(..) => Use::None,
+        Cond::And(a, b) | Cond::Or(a, b) => match cond_first_use(a, r, depth + 1) {
+            Use::None => cond_first_use(b, r, depth + 1),
+            u => u,
+        },
     }
 }
 
@@ -2218,6 +2226,12 @@ pub(crate) fn occurrences(p: &SitPlan) -> Vec<u32> {
             Cond::Cmp(_, a, b) => {
                 build(a, f, depth + 1);
                 build(b, f, depth + 1);
+            }
+            Cond::And(a, b) | Cond::Or(a, b) => {
+                if depth <= MAX_DEPTH {
+                    cond(a, f, depth + 1);
+                    cond(b, f, depth + 1);
+                }
             }
         }
     }
@@ -2353,15 +2367,26 @@ pub(crate) fn build_mentions(b: &Build, r: Reg, depth: usize) -> bool {
     }
 }
 
+/// Whether condition `c` reads register `r`.
+pub(crate) fn cond_mentions(c: &Cond, r: Reg, depth: usize) -> bool {
+    if depth > MAX_DEPTH {
+        return true;
+    }
+    match c {
+        Cond::Arith(_, a, b) => ev_mentions(a, r, depth + 1) || ev_mentions(b, r, depth + 1),
+        Cond::Other(b) => build_mentions(b, r, depth + 1),
+        Cond::Cmp(_, a, b) => build_mentions(a, r, depth + 1) || build_mentions(b, r, depth + 1),
+        Cond::And(a, b) | Cond::Or(a, b) => {
+            cond_mentions(a, r, depth + 1) || cond_mentions(b, r, depth + 1)
+        }
+    }
+}
+
 pub(crate) fn ev_mentions(e: &Ev, r: Reg, depth: usize) -> bool {
     if depth > MAX_DEPTH {
         return true;
     }
-    let cond = |c: &Cond| match c {
-        Cond::Arith(_, a, b) => ev_mentions(a, r, depth + 1) || ev_mentions(b, r, depth + 1),
-        Cond::Other(b) => build_mentions(b, r, depth + 1),
-        Cond::Cmp(_, a, b) => build_mentions(a, r, depth + 1) || build_mentions(b, r, depth + 1),
-    };
+    let cond = |c: &Cond| cond_mentions(c, r, depth);
     match e {
         Ev::Value(x) => *x == r,
         Ev::Built(b) | Ev::Eval(b) | Ev::VarOp { arg: b, .. } | Ev::IsFresh { expr: b, .. } => {

@@ -1084,6 +1084,34 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         })
     }
 
+    /// [`Cx::compare_value`] for a comparison that is an operand of a
+    /// conditional's `(A, B)` or `(A ; B)` (D-35: the condition's
+    /// arguments are evaluated as values, then it is called): the same
+    /// value, its error as [`Cx::condition`] gives it (no culprit).
+    pub fn compare_condition(
+        &mut self,
+        op: crate::arith::ArithCmp,
+        written: [Term; 2],
+        values: [Term; 2],
+        arc: Option<usize>,
+    ) -> Result<bool, RunError> {
+        eval::compare_value(&mut self.m.store, op, written, values)
+            .map_err(|e| self.error(e.message, arc))
+    }
+
+    /// Whether the value of `t`, an operand of a conditional's `(A, B)` or
+    /// `(A ; B)` whose value is `true` or `false` (`A == B`, `member(X,
+    /// L)`, D-33, D-34), is `true`: what the condition computes of it
+    /// before calling it (D-35), its error as [`Cx::condition`] gives it.
+    pub fn value_holds(&mut self, t: Term, arc: Option<usize>) -> Result<bool, RunError> {
+        self.m.materialize();
+        let r = eval::eval(&mut self.m.eval_ctx(), t);
+        match r {
+            Ok(v) => Ok(self.m.store.atom_of(v) == Some(sitlog_syntax::atoms::TRUE)),
+            Err(e) => Err(self.error(e.message, arc)),
+        }
+    }
+
     /// Any other condition of a conditional (D-35).
     pub fn condition(&mut self, cond: Term, arc: Option<usize>) -> Result<bool, RunError> {
         self.m.materialize();

@@ -3776,3 +3776,114 @@ fn nfun18_user_functions_at_the_boundary_agree() {
     assert!(c.2.iter().any(|l| l.ends_with(" 2")), "{c:?}");
     ENGINE.with(|e| *e.borrow_mut() = None);
 }
+
+/// Helper `ncond18`'s (session 17): conjunctions and disjunctions in a
+/// conditional's condition (`Cond::And`, `Cond::Or`).
+mod cond_ncond18 {
+    pub mod junction {
+        sitlog_macros::include_dm!("typed/cond_junction");
+    }
+}
+
+/// `((A, B) -> ..)` and `((A ; B) -> ..)` (`typed/cond_junction`): every
+/// operand computed, left to right (D-35), so the left operand's error
+/// comes first (`conj(a, b)`), an operand errs where the other decides
+/// (`conj(0, a)`: the left false, the right an atom; `disj(2, a)`: the
+/// left true), an unbound operand, a float; `==`, `member/2`,
+/// `not_member/2`, a nested disjunction and `=:=` (the whole condition the
+/// evaluator's) as operands; a local counted in a recursive situation's
+/// exit arc compared in a conjunction (the review's `r17_d_dock_when`
+/// shape); an out_arg's and an action's conditional. The compiled task and
+/// the plans agree with the interpreter, history kept or not, observed or
+/// not.
+#[test]
+fn conjunctions_and_disjunctions_in_conditions_agree() {
+    use cond_ncond18::junction as m;
+    let ir = interpreter("typed/cond_junction");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "conj(2, 1)",
+            "conj(0, 1)",
+            "conj(2, 5)",
+            "conj(0, a)",
+            "conj(a, 5)",
+            "conj(a, b)",
+            "conj(2, _)",
+            "conj(_, 1)",
+            "conj(2.5, 1.5)",
+            "conj(2, 1.5)",
+            "conj(f(1), 1)",
+            "disj(2, 9)",
+            "disj(0, 1)",
+            "disj(0, 9)",
+            "disj(2, a)",
+            "disj(a, 1)",
+            "disj(0, _)",
+            "disj(1.5, x)",
+            "mixed(a, [])",
+            "mixed(b, [b])",
+            "mixed(1, [1, 2])",
+            "mixed(3, [1, 2])",
+            "mixed(2, [a])",
+            "mixed(c, [a])",
+            "mixed(x, y)",
+            "mixed(_, [a])",
+            "lim(3, p)",
+            "lim(3, none)",
+            "lim(0, p)",
+            "lim(x, p)",
+            "lim(x, none)",
+            "lim(_, p)",
+            "lim(2.5, p)",
+            "outc(2, 2)",
+            "outc(2, 0)",
+            "outc(0, 0)",
+            "outc(a, 1)",
+            "outc(2, b)",
+            "outc(_, 1)",
+        ],
+    );
+}
+
+mod when_expr_ncond18 {
+    pub mod when_expr {
+        sitlog_macros::include_dm!("typed/when_expr");
+    }
+}
+
+/// `when/3` whose comparison has expressions as operands
+/// (`typed/when_expr`: `N + 1 > L`, `N * 2 =< L - 1`, `-N >= 0 - L`, now
+/// `Cond::Cmp` in the MIR): in an action, a next situation, an out_arg and
+/// a conjunction's operand; ints, floats, an atom and an unbound operand
+/// (the comparison's error, blaming it), an int past `2^62` (`N * 2`
+/// overflows: the evaluator's `int_overflow`); a count compared as an
+/// expression with its limit (`count`), the limit an int, a float, an atom.
+#[test]
+fn when_with_expression_operands_agrees() {
+    use when_expr_ncond18::when_expr as m;
+    let ir = interpreter("typed/when_expr");
+    agree_both(
+        m::program(),
+        &ir,
+        &[
+            "wexp(1, 5)",
+            "wexp(9, 2)",
+            "wexp(2, 2)",
+            "wexp(-3, 2)",
+            "wexp(a, 1)",
+            "wexp(1, b)",
+            "wexp(_, 1)",
+            "wexp(1.5, 2)",
+            "wexp(1, 2.5)",
+            "wexp(4611686018427387904, 1)",
+            "wexp(9223372036854775807, 1)",
+            "count(3)",
+            "count(0)",
+            "count(2.5)",
+            "count(x)",
+            "count(_)",
+        ],
+    );
+}

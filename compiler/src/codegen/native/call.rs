@@ -1798,7 +1798,26 @@ impl Gen<'_> {
         r: V,
         value: bool,
     ) -> N<TokenStream> {
-        self.nat_arith_fast(d, cur, op, (l, None), (r, None), value)
+        let how = if value {
+            Decide::Value
+        } else {
+            Decide::Condition
+        };
+        self.nat_arith_fast(d, cur, op, (l, None), (r, None), how)
+    }
+
+    /// [`Gen::nat_arith_as`] for a comparison that is an operand of a
+    /// conditional's `(A, B)`/`(A ; B)` (`Cond::And`): its value tested,
+    /// its error the condition's (`Cx::compare_condition`).
+    pub(super) fn nat_arith_in_junction(
+        &self,
+        d: &Dm,
+        cur: usize,
+        op: ArithCmp,
+        l: V,
+        r: V,
+    ) -> N<TokenStream> {
+        self.nat_arith_fast(d, cur, op, (l, None), (r, None), Decide::Junction)
     }
 
     /// `l op r` where a side is an arithmetic expression (`N + 1 > L`,
@@ -1818,6 +1837,22 @@ impl Gen<'_> {
         op: ArithCmp,
         (l, r): (&Ev, &Ev),
         regs: &Regs,
+    ) -> N<Option<TokenStream>> {
+        self.nat_arith_exprs_as(d, cur, op, (l, r), regs, Decide::Condition)
+    }
+
+    /// [`Gen::nat_arith_exprs`] with the machine's comparison `how`
+    /// (`Cond::Cmp`'s sides as written, `Ev::Built`: the value of `A op
+    /// B`, [`Decide::Value`], or an operand of a conjunction,
+    /// [`Decide::Junction`]).
+    pub(super) fn nat_arith_exprs_as(
+        &self,
+        d: &Dm,
+        cur: usize,
+        op: ArithCmp,
+        (l, r): (&Ev, &Ev),
+        regs: &Regs,
+        how: Decide,
     ) -> N<Option<TokenStream>> {
         let arith = |e: &Ev| {
             ev_as_build(e).filter(|b| {
@@ -1839,7 +1874,7 @@ impl Gen<'_> {
         let (Some(l), Some(r)) = (side(l, &lb)?, side(r, &rb)?) else {
             return Ok(None);
         };
-        self.nat_arith_fast(d, cur, op, l, r, false).map(Some)
+        self.nat_arith_fast(d, cur, op, l, r, how).map(Some)
     }
 
     /// [`Gen::nat_arith_as`] with, per side, the Rust expression of its
@@ -1853,7 +1888,7 @@ impl Gen<'_> {
         op: ArithCmp,
         (l, lfast): (V, Option<TokenStream>),
         (r, rfast): (V, Option<TokenStream>),
-        value: bool,
+        how: Decide,
     ) -> N<TokenStream> {
         let rt = quote!(::sitlog_runtime);
         let some = quote!(Some);
@@ -1929,10 +1964,19 @@ impl Gen<'_> {
         };
         let (lp, rp) = (super::place(&l), super::place(&r));
         let (lt, rt_) = (rust_ty(&l.ty)?, rust_ty(&r.ty)?);
-        let decide = if value {
-            quote!(cx.compare_value(#rt::ArithCmp::#opt, [lt, rterm], [lt, rterm], arc_at)?)
-        } else {
-            quote!(cx.arith_condition(#rt::ArithCmp::#opt, lt, rterm, arc_at)?)
+        let decide = match how {
+            Decide::Value => {
+                quote!(cx.compare_value(#rt::ArithCmp::#opt, [lt, rterm], [lt, rterm], arc_at)?)
+            }
+            Decide::Junction => quote!(cx.compare_condition(
+                #rt::ArithCmp::#opt,
+                [lt, rterm],
+                [lt, rterm],
+                arc_at
+            )?),
+            Decide::Condition => {
+                quote!(cx.arith_condition(#rt::ArithCmp::#opt, lt, rterm, arc_at)?)
+            }
         };
         // A side that is an expression is read in Rust from its registers;
         // its term (a `Val` compound) made only for the machine.
@@ -1973,6 +2017,19 @@ impl Gen<'_> {
             }
         }})
     }
+}
+
+/// Which of the machine's comparisons decides where native code cannot
+/// ([`Gen::nat_arith_fast`]).
+#[derive(Clone, Copy)]
+pub(super) enum Decide {
+    /// A conditional's condition `A op B` (`Cx::arith_condition`).
+    Condition,
+    /// The value of `A op B` (`when/3`'s condition, `Cx::compare_value`).
+    Value,
+    /// An operand of a condition's `(A, B)`/`(A ; B)`
+    /// (`Cx::compare_condition`).
+    Junction,
 }
 
 fn cmp_tokens(op: ArithCmp, l: TokenStream, r: TokenStream) -> TokenStream {

@@ -177,6 +177,10 @@
 //!   any native values are built as `Val`s (`Val::cons`). An error
 //!   evaluating a next situation leaves its transition uncounted, as on
 //!   the term path.
+//! - *conjunctions and disjunctions* ([`cond`]): a condition `(A, B)` or
+//!   `(A ; B)` the MIR lowered (`Cond::And`, `Cond::Or`) tests each operand
+//!   in order, every one of them (the evaluator computes them all before
+//!   calling the condition, D-35), then combines the `bool`s.
 //!
 //! What is not (yet) native keeps a situation on its term code: a `prog`
 //! other than `V is E`, expectations that can
@@ -219,6 +223,7 @@ use super::Gen;
 
 mod boundary;
 mod call;
+mod cond;
 mod fill;
 mod frame;
 mod perceive;
@@ -1025,6 +1030,7 @@ fn only_in_conditions(next: &Next, r: Reg) -> bool {
             Cond::Cmp(_, a, b) => {
                 crate::mir::ty::build_mentions(a, r, 0) || crate::mir::ty::build_mentions(b, r, 0)
             }
+            Cond::And(a, b) | Cond::Or(a, b) => cond_mentions(a, r) || cond_mentions(b, r),
         }
     }
     !targets(next, r)
@@ -1105,7 +1111,7 @@ fn has_var_op(e: &Ev, which: &dyn Fn(Atom, Atom) -> bool) -> bool {
     let cond = |c: &Cond| match c {
         Cond::Arith(_, a, b) => has_var_op(a, which) || has_var_op(b, which),
         // `when/3`'s comparison of built values: no `get`/`inc` in it.
-        Cond::Cmp(..) | Cond::Other(_) => false,
+        Cond::Cmp(..) | Cond::Other(_) | Cond::And(..) | Cond::Or(..) => false,
     };
     match e {
         Ev::VarOp { op, name, .. } | Ev::VarOpFresh { op, name, .. } => {
@@ -3925,6 +3931,12 @@ impl Gen<'_> {
                     let #x = cx.compare_value(::sitlog_runtime::ArithCmp::#op, [#l, #r], [#l, #r], arc_at)?;
                 });
             }
+            // A conjunction or disjunction: the machine's, whole.
+            Cond::And(..) | Cond::Or(..) => {
+                let b = c.written().ok_or("a conjunction's operand")?;
+                let t = self.nat_build_term(&b, regs, ts, n)?;
+                ts.push(quote!(let #x = cx.condition(#t, arc_at)?;));
+            }
         }
         Ok(quote!(#x))
     }
@@ -4608,10 +4620,7 @@ impl Gen<'_> {
             }
             // `when/3`'s comparison: its operands as written (a register,
             // a constant), its error the evaluator's.
-            Cond::Cmp(op, l, r) => {
-                let (l, r) = (self.nat_value(l, regs)?, self.nat_value(r, regs)?);
-                self.nat_arith_as(d, cur, *op, l, r, true)
-            }
+            Cond::Cmp(op, l, r) => self.nat_cmp(d, cur, *op, (l, r), regs, call::Decide::Value),
             Cond::Other(Build::Compound(op, args))
                 if args.len() == 2 && matches!(op.as_str(), "==" | "\\==") =>
             {
@@ -4652,6 +4661,8 @@ impl Gen<'_> {
                     quote!((!#found))
                 })
             }
+            // `(A, B)`, `(A ; B)` (`cond.rs`).
+            Cond::And(..) | Cond::Or(..) => self.nat_junction(d, cur, c, regs, pre),
             _ => Err("a condition is not `==`, `\\==`, `member` or an int comparison".into()),
         }
     }

@@ -784,10 +784,13 @@ impl Gen<'_> {
             // error the evaluator's; it may fail before the next
             // situation where that is a constant or only builds native
             // values (which cannot fail).
-            Cond::Cmp(op, l, r) => {
-                let (l, r) = (self.nat_value(l, regs)?, self.nat_value(r, regs)?);
-                let plain = (l.ty == Ty::Int && r.ty == Ty::Int)
-                    || (l.ty == Ty::Float && r.ty == Ty::Float);
+            Cond::Cmp(op, lb, rb) => {
+                let (l, r) = (self.nat_value(lb, regs)?, self.nat_value(rb, regs)?);
+                // A side that is an expression (`N + 1`) may overflow.
+                let expr = [lb, rb].iter().any(|b| matches!(b, Build::Compound(..)));
+                let plain = !expr
+                    && ((l.ty == Ty::Int && r.ty == Ty::Int)
+                        || (l.ty == Ty::Float && r.ty == Ty::Float));
                 let safe = match next {
                     Next::Static(..) => true,
                     Next::Eval(e) => Self::nat_inert(e, regs),
@@ -796,7 +799,7 @@ impl Gen<'_> {
                 if !plain && !safe {
                     return Err("a `when`'s comparison may fail before its next situation".into());
                 }
-                self.nat_arith_as(d, cur, *op, l, r, true)?
+                self.nat_cmp(d, cur, *op, (lb, rb), regs, super::call::Decide::Value)?
             }
             Cond::Arith(op, l, r) => {
                 // A side an arithmetic expression: it may enter the machine.
@@ -820,6 +823,11 @@ impl Gen<'_> {
                 self.nat_arith(d, cur, *op, l, r)?
             }
             Cond::Other(Build::Compound(op, _)) if matches!(op.as_str(), "==" | "\\==") => {
+                self.nat_cond(d, cur, c, regs)?
+            }
+            // A conjunction's operand may enter the machine: only before a
+            // constant next situation, as a comparison.
+            Cond::And(..) | Cond::Or(..) if matches!(next, Next::Static(..)) => {
                 self.nat_cond(d, cur, c, regs)?
             }
             _ => return Err("an out_arg's condition is not native".into()),
