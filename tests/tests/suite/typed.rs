@@ -3641,3 +3641,6 @@ fn nis17_prog_inc_agrees() {
         ],
     );
 }
+
+/// Helper `review18`'s workloads with bad inputs (issue 37).
+mod review18;
