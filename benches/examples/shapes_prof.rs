@@ -186,6 +186,31 @@ mod c_call_reads_inarg {
 mod c_expr_compare {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_expr_compare");
 }
+// Helper `review18`'s (session 17): written without reading `tests/typed/shapes`
+// or `tests/typed/review17`.
+mod r18_c_deep_limit {
+    sitlog_macros::include_dm!("../tests/typed/review18/r18_c_deep_limit");
+}
+mod r18_c_clerk_global {
+    sitlog_macros::include_dm!("../tests/typed/review18/r18_c_clerk_global");
+}
+mod r18_d_item_qty {
+    sitlog_macros::include_dm!("../tests/typed/review18/r18_d_item_qty");
+}
+mod r18_d_room_of {
+    sitlog_macros::include_dm!("../tests/typed/review18/r18_d_room_of");
+}
+mod r18_d_fn_next {
+    sitlog_macros::include_dm!("../tests/typed/review18/r18_d_fn_next");
+}
+// `r18_d_lockstep`: its generated Rust does not compile on main `0c8eab3` (E0505,
+// see its main.dm; `hand_r18_lockstep` is its machine).
+mod r18_d_callee_list {
+    sitlog_macros::include_dm!("../tests/typed/review18/r18_d_callee_list");
+}
+mod r18_d_yes_no {
+    sitlog_macros::include_dm!("../tests/typed/review18/r18_d_yes_no");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -217,8 +242,15 @@ fn run_prolog<A: app::App>(app: &A, main: &str, name: &str) -> u64 {
     run_fns(app, main, None, f)
 }
 
+thread_local! {
+    /// The script of test mode for the next run (`r18_d_yes_no`'s answers;
+    /// empty for the others).
+    static SCRIPT: std::cell::RefCell<String> = const { std::cell::RefCell::new(String::new()) };
+}
+
 fn run_fns<A: app::App>(app: &A, main: &str, in_arg: Option<&str>, functions: Functions) -> u64 {
-    let mut perception = ScriptPerception::new("script", String::new());
+    let script = SCRIPT.with(|s| s.borrow().clone());
+    let mut perception = ScriptPerception::new("script", script);
     let mut actions = TextActions::new(std::io::sink(), Vec::new());
     let options = Options {
         keep_history: false,
@@ -243,6 +275,7 @@ fn interpreter(dir: &str) -> Ir {
     let root = match dir {
         "echo_calls" | "list_search" => "dms",
         _ if dir.starts_with("r17_") => "../tests/typed/review17",
+        _ if dir.starts_with("r18_") => "../tests/typed/review18",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -263,6 +296,7 @@ const INTS: [i64; 8] = [12, 7, 33, 41, 5, 18, 29, 64];
 
 /// Runs workload `name` one way; its transitions.
 fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
+    SCRIPT.with(|s| s.borrow_mut().clear());
     let (list, syms) = places(len);
     let last = format!("p{}", len - 1);
     let lsym = Sym(len as u32 - 1);
@@ -337,6 +371,30 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r17_d_readings_deep" => {
             let ints: Vec<String> = (0..len).map(|i| i.to_string()).collect();
             format!("monitor({n}, [{}], {})", ints.join(","), len - 2)
+        }
+        "r18_c_deep_limit" => format!("top({n})"),
+        "r18_c_clerk_global" => format!("boss({n})"),
+        "r18_d_item_qty" => {
+            let items: Vec<String> = (0..len)
+                .map(|i| format!("item(p{i},{})", i % 7 + 1))
+                .collect();
+            format!("stock({n}, [{}], {last})", items.join(","))
+        }
+        "r18_d_room_of" => {
+            let pairs: Vec<String> = (0..len).map(|i| format!("s{}-p{i}", i % 5)).collect();
+            format!(
+                "tidy({n}, [{}], {last}, s{})",
+                pairs.join(","),
+                (len - 1) % 5
+            )
+        }
+        "r18_d_fn_next" => format!("errand({n}, {list}, {last})"),
+        "r18_d_callee_list" => format!("courier({n}, {list}, p0)"),
+        "r18_d_yes_no" => {
+            let mut round = "no.\n".repeat(len - 1);
+            round.push_str("yes.\n");
+            SCRIPT.with(|s| *s.borrow_mut() = round.repeat(n as usize));
+            format!("ask({n}, {list})")
         }
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
@@ -457,6 +515,32 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             "d_goto_exit_arc" => hand_walk_goto(n, black_box(&syms), black_box(lsym)),
             "d_found_into_next" => hand_walk_seen_next(n, black_box(&syms), black_box(lsym)),
             "c_count_two_levels" => hand_two_levels(n),
+            "r18_c_deep_limit" => hand_r18_deep_limit(n),
+            "r18_c_clerk_global" => hand_r18_clerk(n),
+            "r18_d_item_qty" => {
+                let items: Vec<Item> = (0..len)
+                    .map(|i| Item(Sym(i as u32), i as i64 % 7 + 1))
+                    .collect();
+                hand_r18_item_qty(n, black_box(&items), black_box(lsym))
+            }
+            "r18_d_room_of" => {
+                let pairs: Vec<(Sym, Sym)> = (0..len as u32)
+                    .map(|i| (Sym(1000 + i % 5), Sym(i)))
+                    .collect();
+                let home = Sym(1000 + (len as u32 - 1) % 5);
+                hand_r18_room_of(n, black_box(&pairs), black_box(lsym), black_box(home))
+            }
+            "r18_d_fn_next" => {
+                let t = black_box(lsym);
+                hand_walk_by(n, black_box(&syms), |p| (p == t).then_some(p), false)
+            }
+            "r18_d_callee_list" => hand_r18_callee_list(n, black_box(&syms), black_box(Sym(0))),
+            "r18_d_yes_no" => {
+                let mut round = "no.\n".repeat(len - 1);
+                round.push_str("yes.\n");
+                let script = round.repeat(n as usize);
+                hand_r18_yes_no(n, black_box(&syms), black_box(&script))
+            }
             "r17_c_charge_when" => hand_r17_charge(n),
             "r17_c_courier_global" => hand_r17_courier(n),
             "r17_c_odometer" => hand_r17_odometer(n),
@@ -513,6 +597,13 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "c_count_two_levels" => ways!(c_count_two_levels),
         "d_when_arith" => ways!(d_when_arith),
         "c_rec_inarg_pair" => ways!(c_rec_inarg_pair),
+        "r18_c_deep_limit" => ways!(r18_c_deep_limit),
+        "r18_c_clerk_global" => ways!(r18_c_clerk_global),
+        "r18_d_item_qty" => ways!(r18_d_item_qty),
+        "r18_d_room_of" => ways!(r18_d_room_of),
+        "r18_d_fn_next" => ways!(r18_d_fn_next),
+        "r18_d_callee_list" => ways!(r18_d_callee_list),
+        "r18_d_yes_no" => ways!(r18_d_yes_no),
         "r17_c_charge_when" => ways!(r17_c_charge_when),
         "r17_c_courier_global" => ways!(r17_c_courier_global),
         "r17_c_odometer" => ways!(r17_c_odometer),
@@ -528,7 +619,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
     }
 }
 
-const ALL: [&str; 50] = [
+const ALL: [&str; 57] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -579,6 +670,13 @@ const ALL: [&str; 50] = [
     "r17_d_announce",
     "c_call_reads_inarg",
     "c_expr_compare",
+    "r18_c_deep_limit",
+    "r18_c_clerk_global",
+    "r18_d_item_qty",
+    "r18_d_room_of",
+    "r18_d_fn_next",
+    "r18_d_callee_list",
+    "r18_d_yes_no",
 ];
 
 fn main() {

@@ -2270,3 +2270,420 @@ pub fn hand_r17_announce(rounds: i64, spots: &[Sym], goal: Sym) -> u64 {
     }
     t
 }
+
+/// (c) `r18_c_deep_limit` (helper `review18`): three DMs deep, the limit
+/// in the pipe handed back by the deepest callee, the calls counted in a
+/// global the middle DM increments and hands up in its final's id.
+pub fn hand_r18_deep_limit(limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Start,
+        Call,
+        Fs,
+        Down,
+        Back(i64),
+        Echo,
+        Up,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Start];
+    let (mut pipe, mut trips, mut t) = (0i64, 0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Start => {
+                t += 1;
+                pipe = black_box(limit);
+                *top = Frame::Call;
+            }
+            // The recursive situation reads the pipe (its in_arg) and calls.
+            Frame::Call => stack.push(Frame::Down),
+            Frame::Down => stack.push(Frame::Echo),
+            Frame::Echo => {
+                t += 1;
+                pipe = black_box(pipe);
+                *top = Frame::Up;
+            }
+            Frame::Up => {
+                // `leaf`'s final, `relay`'s exit arc (`inc(trips, K)`).
+                t += 2;
+                stack.pop();
+                trips = black_box(trips + 1);
+                if let Some(r) = stack.last_mut() {
+                    *r = Frame::Back(trips);
+                }
+            }
+            Frame::Back(k) => {
+                // `relay`'s final, `top`'s exit arc.
+                t += 2;
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    *m = if k >= pipe { Frame::Fs } else { Frame::Call };
+                }
+            }
+            Frame::Fs => {
+                t += 1;
+                stack.pop();
+            }
+        }
+    }
+    t
+}
+
+/// (c) `r18_c_clerk_global`: the callee counts in a global, compares it
+/// with its parameter and picks its final (`more` or `enough(S)`), which
+/// the caller's exit arcs match.
+pub fn hand_r18_clerk(max: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Ask,
+        Done(i64),
+        Serve(i64),
+        More,
+        Enough(i64),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Ask];
+    let (mut served, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Ask => stack.push(Frame::Serve(max)),
+            Frame::Serve(limit) => {
+                t += 1;
+                served = black_box(served + 1);
+                *top = if served >= limit {
+                    Frame::Enough(served)
+                } else {
+                    Frame::More
+                };
+            }
+            Frame::More | Frame::Enough(_) => {
+                let f = *top;
+                t += 2;
+                stack.pop();
+                if let Some(b) = stack.last_mut() {
+                    *b = match f {
+                        Frame::Enough(s) => Frame::Done(s),
+                        _ => Frame::Ask,
+                    };
+                }
+            }
+            Frame::Done(s) => {
+                t += 1;
+                black_box(s);
+                stack.pop();
+            }
+        }
+    }
+    t
+}
+
+/// An inventory line of `r18_d_item_qty`: `item(Name, Qty)`.
+#[derive(Clone, Copy)]
+pub struct Item(pub Sym, pub i64);
+
+/// (d) `r18_d_item_qty`: a walk over `item(Name, Qty)` records adding up
+/// the quantities before the one wanted; the final carries two ints.
+pub fn hand_r18_item_qty(rounds: i64, items: &[Item], want: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Fs,
+        Begin,
+        Look(&'a [Item], i64),
+        Have(i64, i64),
+        None(i64),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Fs => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                t += 1;
+                *top = Frame::Look(items, 0);
+            }
+            Frame::Look([], sum) => {
+                t += 1;
+                *top = Frame::None(sum);
+            }
+            Frame::Look([Item(name, qty), rest @ ..], sum) => {
+                t += 1;
+                let sum1 = sum + qty;
+                *top = if *name == want {
+                    Frame::Have(*qty, sum)
+                } else {
+                    Frame::Look(rest, sum1)
+                };
+            }
+            f @ (Frame::Have(..) | Frame::None(_)) => {
+                t += 2;
+                black_box(match f {
+                    Frame::Have(q, b) => (q, b),
+                    Frame::None(s) => (-1, s),
+                    _ => unreachable!(),
+                });
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n >= rounds { Frame::Fs } else { Frame::Round };
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r18_d_room_of`: `Room-Object` pairs, the object matched (the id's
+/// second clause), the room handed back and compared with the expected
+/// one (`moved(R)` one more transition when it differs).
+pub fn hand_r18_room_of(rounds: i64, pairs: &[(Sym, Sym)], obj: Sym, home: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Fs(Option<Sym>),
+        Moved(Sym),
+        Begin,
+        Scan(&'a [(Sym, Sym)]),
+        In(Sym),
+        Lost,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Fs(r) => {
+                t += 1;
+                black_box(r);
+                stack.pop();
+            }
+            Frame::Moved(r) => {
+                t += 1;
+                black_box(r);
+                *top = Frame::Round;
+            }
+            Frame::Begin => {
+                t += 1;
+                *top = Frame::Scan(pairs);
+            }
+            Frame::Scan([]) => {
+                t += 1;
+                *top = Frame::Lost;
+            }
+            Frame::Scan([(room, o), rest @ ..]) => {
+                t += 1;
+                *top = if *o == obj {
+                    Frame::In(*room)
+                } else {
+                    Frame::Scan(rest)
+                };
+            }
+            f @ (Frame::In(_) | Frame::Lost) => {
+                t += 2;
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = match f {
+                        Frame::In(r) if n >= rounds => Frame::Fs(Some(r)),
+                        Frame::In(r) if r == home => Frame::Round,
+                        Frame::In(r) => Frame::Moved(r),
+                        _ if n >= rounds => Frame::Fs(None),
+                        _ => Frame::Round,
+                    };
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r18_d_lockstep`: two lists of ints walked in step, a dot product
+/// in the id; `uneven` when one ends first; the sum compared with `min`
+/// (`low(S)` one more transition below it).
+pub fn hand_r18_lockstep(rounds: i64, xs: &[i64], ys: &[i64], min: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Fs(Option<i64>),
+        Low(i64),
+        Begin,
+        Step(&'a [i64], &'a [i64], i64),
+        Sum(i64),
+        Uneven,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Fs(s) => {
+                t += 1;
+                black_box(s);
+                stack.pop();
+            }
+            Frame::Low(s) => {
+                t += 1;
+                black_box(s);
+                *top = Frame::Round;
+            }
+            Frame::Begin => {
+                t += 1;
+                *top = Frame::Step(xs, ys, 0);
+            }
+            Frame::Step([], [], acc) => {
+                t += 1;
+                *top = Frame::Sum(acc);
+            }
+            Frame::Step([x, xs1 @ ..], [y, ys1 @ ..], acc) => {
+                t += 1;
+                *top = Frame::Step(xs1, ys1, acc + x * y);
+            }
+            Frame::Step(..) => {
+                t += 1;
+                *top = Frame::Uneven;
+            }
+            f @ (Frame::Sum(_) | Frame::Uneven) => {
+                t += 2;
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = match f {
+                        Frame::Sum(s) if n >= rounds => Frame::Fs(Some(s)),
+                        Frame::Sum(s) if s >= min => Frame::Round,
+                        Frame::Sum(s) => Frame::Low(s),
+                        _ if n >= rounds => Frame::Fs(None),
+                        _ => Frame::Round,
+                    };
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r18_d_callee_list`: the callee reverses the stops into a route
+/// (a new list a round: a `Vec` here, its allocation reused) that the
+/// caller then walks in its own situations looking for the dock.
+pub fn hand_r18_callee_list(rounds: i64, stops: &[Sym], dock: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Go(usize),
+        Docked,
+        Fs,
+        Begin,
+        Rev(&'a [Sym]),
+        Route,
+    }
+    let mut route: Vec<Sym> = Vec::with_capacity(stops.len());
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Begin => {
+                t += 1;
+                route.clear();
+                *top = Frame::Rev(stops);
+            }
+            Frame::Rev([]) => {
+                t += 1;
+                route.reverse();
+                *top = Frame::Route;
+            }
+            Frame::Rev([s, ss @ ..]) => {
+                t += 1;
+                route.push(black_box(*s));
+                *top = Frame::Rev(ss);
+            }
+            Frame::Route => {
+                t += 2;
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    *m = Frame::Go(0);
+                }
+            }
+            Frame::Go(i) => {
+                t += 1;
+                *top = match route.get(i) {
+                    Some(&s) if s == dock => Frame::Docked,
+                    Some(_) => Frame::Go(i + 1),
+                    None => {
+                        n = black_box(n + 1);
+                        if n >= rounds {
+                            Frame::Fs
+                        } else {
+                            Frame::Round
+                        }
+                    }
+                };
+            }
+            Frame::Docked => {
+                t += 1;
+                n = black_box(n + 1);
+                *top = if n >= rounds { Frame::Fs } else { Frame::Round };
+            }
+            Frame::Fs => {
+                t += 1;
+                stack.pop();
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r18_d_yes_no`: a walk asking at each place; the answers read from
+/// a script (one `yes.` or `no.` a line), as `hand_scripted_loop` reads
+/// its own.
+pub fn hand_r18_yes_no(rounds: i64, places: &[Sym], script: &str) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Fs,
+        Begin,
+        Q(&'a [Sym]),
+        Found(Sym),
+        Nowhere,
+    }
+    let mut lines = script.lines();
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Fs => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                t += 1;
+                *top = Frame::Q(places);
+            }
+            Frame::Q([]) => {
+                t += 1;
+                *top = Frame::Nowhere;
+            }
+            Frame::Q([p, ps @ ..]) => {
+                t += 1;
+                let said = lines.next().map(|l| l.trim().trim_end_matches('.'));
+                *top = match said {
+                    Some("yes") => Frame::Found(*p),
+                    Some("no") => Frame::Q(ps),
+                    _ => return t,
+                };
+            }
+            f @ (Frame::Found(_) | Frame::Nowhere) => {
+                t += 2;
+                black_box(f);
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n >= rounds { Frame::Fs } else { Frame::Round };
+                }
+            }
+        }
+    }
+    t
+}

@@ -42,6 +42,17 @@ mod r17_job_pair {
     sitlog_macros::include_dm!("typed/review17/r17_c_job_pair");
 }
 
+/// Shape (c) written without reading `tests/typed/shapes` or
+/// `tests/typed/review17` (helper `review18`): three DMs deep, the limit
+/// handed back by the deepest callee, a global counted in the middle DM and
+/// handed up in its final's id; the callee choosing its final by a global.
+mod r18_deep_limit {
+    sitlog_macros::include_dm!("typed/review18/r18_c_deep_limit");
+}
+mod r18_clerk {
+    sitlog_macros::include_dm!("typed/review18/r18_c_clerk_global");
+}
+
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
@@ -175,6 +186,14 @@ fn transitions_allocate_nothing_in_steady_state() {
             "r17_c_job_pair",
             measure_from(r17_job_pair::program(), "shift(1000000000)"),
         ),
+        (
+            "r18_c_deep_limit",
+            measure_from(r18_deep_limit::program(), "top(1000000000)"),
+        ),
+        (
+            "r18_c_clerk_global",
+            measure_from(r18_clerk::program(), "boss(1000000000)"),
+        ),
     ];
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("dms/ground_loop");
     let (checked, _) = sitlog_compiler::check_path(&dir).unwrap();
@@ -229,7 +248,10 @@ fn transitions_allocate_nothing_in_steady_state() {
             ));
         }
     }
-    assert!(bad.is_empty(), "review17's shape (c) allocated: {bad:?}");
+    assert!(
+        bad.is_empty(),
+        "review17's and review18's shape (c) allocated: {bad:?}"
+    );
     // The interpreter builds each instance in the store; the window is long
     // enough to include collections. What remains outside them is the
     // store's vectors growing back after each collection (the collector

@@ -110,3 +110,77 @@ fn bad_dms_give_located_compile_errors() {
     let _ = std::fs::remove_dir_all(&out);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// The libraries beside this binary whose names start with `prefix` and
+/// end with `suffix`, the newest first.
+fn dep_libs(prefix: &str, suffix: &str) -> Vec<PathBuf> {
+    let exe = std::env::current_exe().expect("the test binary's path");
+    let deps = exe.parent().expect("the deps directory");
+    let mut libs: Vec<(std::time::SystemTime, PathBuf)> = std::fs::read_dir(deps)
+        .expect("read the deps directory")
+        .filter_map(Result::ok)
+        .filter(|e| {
+            let n = e.file_name().to_string_lossy().into_owned();
+            n.starts_with(prefix) && n.ends_with(suffix)
+        })
+        .filter_map(|e| Some((e.metadata().and_then(|m| m.modified()).ok()?, e.path())))
+        .collect();
+    libs.sort_by_key(|l| std::cmp::Reverse(l.0));
+    assert!(
+        !libs.is_empty(),
+        "no {prefix}*{suffix} in {}",
+        deps.display()
+    );
+    libs.into_iter().map(|(_, p)| p).collect()
+}
+
+/// Helper `review18` (issue 37): DMs that check and run on the interpreter
+/// must give Rust that compiles (`tests/typed/review18/r18_d_lockstep*`:
+/// two lists walked in step). One `rustc --emit=metadata` run (type and
+/// borrow checks, no code generated) against the macro and a runtime this
+/// workspace's builds made (each `libsitlog_runtime-*.rlib` beside this
+/// binary, the newest first, until one compiles: the deps directory holds
+/// the runtime of several feature sets).
+#[test]
+fn review18_lockstep_compiles() {
+    let dir = env!("CARGO_MANIFEST_DIR");
+    let out = std::env::temp_dir().join(format!("sitlog-macros-ui-r18-{}", std::process::id()));
+    std::fs::create_dir_all(&out).unwrap();
+    let rustc = std::env::var_os("RUSTC").unwrap_or_else(|| "rustc".into());
+    let mut first_error = None;
+    for runtime in dep_libs("libsitlog_runtime-", ".rlib") {
+        let deps = runtime.parent().unwrap().to_owned();
+        let output = Command::new(&rustc)
+            .current_dir(dir)
+            .env("SITLOG_DM_ROOT", dir)
+            .args([
+                "--edition",
+                "2021",
+                "--crate-type",
+                "bin",
+                "--emit=metadata",
+            ])
+            .args(["--color", "never", "--crate-name", "ui_review18"])
+            .arg("--extern")
+            .arg(format!("sitlog_macros={}", proc_macro_lib().display()))
+            .arg("--extern")
+            .arg(format!("sitlog_runtime={}", runtime.display()))
+            .arg("-L")
+            .arg(format!("dependency={}", deps.display()))
+            .arg("--out-dir")
+            .arg(&out)
+            .arg("tests/ui/review18_lockstep.rs")
+            .output()
+            .expect("run rustc");
+        if output.status.success() {
+            let _ = std::fs::remove_dir_all(&out);
+            return;
+        }
+        first_error.get_or_insert_with(|| String::from_utf8_lossy(&output.stderr).into_owned());
+    }
+    let _ = std::fs::remove_dir_all(&out);
+    panic!(
+        "the generated Rust does not compile:\n{}",
+        first_error.unwrap_or_default()
+    );
+}

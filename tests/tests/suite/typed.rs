@@ -3887,3 +3887,5 @@ fn when_with_expression_operands_agrees() {
         ],
     );
 }
+/// Helper `review18`'s workloads with bad inputs (issue 37).
+mod review18;
