@@ -31,10 +31,13 @@
 //! - `native_stack`: the native stack of compiled code ([`nat_drive`],
 //!   [`NatBelow`], [`NatFrames`]: what the program's frames must offer,
 //!   [`NatAt`]: what a DM's situations must offer);
+//! - `effect`: an action of effectors performed by native code, its
+//!   frames handed over only where it records or the effector fails;
 //! - `run`: the loop (DM calls and returns, selection of situations, garbage
 //!   collection between them).
 
 mod cx;
+mod effect;
 mod io;
 mod native_stack;
 mod observe;
