@@ -18,9 +18,11 @@
 //! [`Cx::perform`] gives in the situation entered, the transitions native
 //! code made before counted (the failing one not, as on the term path).
 //!
-//! Invariant: each item is handed to the effector as [`Cx::perform`]
-//! hands an element of a proper list (or, for [`Cx::nat_perform`], a
-//! compound that is not a list), in order, the first error ending it.
+//! Invariant: the effector is handed what [`Cx::perform`] would hand it
+//! ([`Cx::nat_perform`]: the action, a proper list element by element;
+//! [`Cx::nat_perform_list`]: each item, as an element of a list written
+//! out), in order, the first error ending it, and the error is
+//! [`Cx::perform`]'s in the situation entered.
 
 use super::native_stack::{nat_hand_over, NatBelow, NatFrames};
 use super::outcome::RunError;
@@ -28,16 +30,18 @@ use super::program::{Cx, DmProgram, TypedRun};
 use super::situation::SitIx;
 use super::IdArg;
 use crate::term::Term;
+use sitlog_syntax::atoms;
 
 impl<P: DmProgram> Cx<'_, '_, P> {
-    /// Performs `action` (a compound that is not a list: what [`Cx::perform`]
-    /// hands to the effector as it is) for arc `arc` of situation `sit`
-    /// (its id `id`, built only where it is entered): where the run
-    /// records ([`TypedRun::records`]),
-    /// the native frames below handed over and the situation entered first
-    /// ([`Cx::enter_counted`] of `count`); else without either, and where
-    /// the effector fails, both made then and the error
-    /// [`Cx::perform`]'s.
+    /// Performs `action`, an arc's action evaluated (what [`Cx::perform`]
+    /// does with it: `empty` skipped where the actions ignore it, a proper
+    /// list element by element, anything else handed to the effector as
+    /// it is), for arc `arc` of situation `sit` (its id `id`, built only
+    /// where it is entered): where the run records
+    /// ([`TypedRun::records`]), the native frames below handed over and
+    /// the situation entered first ([`Cx::enter_counted`] of `count`),
+    /// then [`Cx::perform`]; else without either, and where the effector
+    /// fails, both made then and the error [`Cx::perform`]'s.
     #[inline]
     pub fn nat_perform<F: NatFrames<P>>(
         &mut self,
@@ -48,7 +52,40 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         action: Term,
         run: &TypedRun,
     ) -> Result<(), RunError> {
-        self.nat_perform_items(stack, count, (sit, arc), id, &[action], run.records)
+        if run.records {
+            self.nat_enter_first(stack, count, sit, id)?;
+            return self.perform(action, Some(arc));
+        }
+        match self.perform_unentered(action) {
+            Ok(()) => Ok(()),
+            Err(e) => Err(self.nat_action_failed(stack, count, (sit, arc), id, e)),
+        }
+    }
+
+    /// What `Machine::perform` does with `action`, the machine not entered:
+    /// the effector's message where it fails.
+    fn perform_unentered(&mut self, action: Term) -> Result<(), String> {
+        let store = &mut self.m.store;
+        let a = store.deref(action);
+        if a == Term::EMPTY && self.actions.ignores_empty() {
+            return Ok(());
+        }
+        let is_list = store.functor(a).is_some_and(|f| f.0 == atoms::DOT) && {
+            let mut it = store.list_iter(a);
+            it.by_ref().for_each(drop);
+            it.tail() == Term::NIL
+        };
+        if !is_list {
+            return self.actions.perform(store, a);
+        }
+        // Walked by position: an action may bind variables (and so grow
+        // the store) while the list is performed.
+        let mut rest = a;
+        while let Some(&[head, tail]) = store.compound_args(rest, atoms::DOT, 2) {
+            self.actions.perform(store, head)?;
+            rest = tail;
+        }
+        Ok(())
     }
 
     /// [`Cx::nat_perform`] of the elements of an action list, one by one
@@ -83,7 +120,8 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         records: bool,
     ) -> Result<(), RunError> {
         if records {
-            return self.nat_perform_entered(stack, count, (sit, arc), id, items);
+            self.nat_enter_first(stack, count, sit, id)?;
+            return self.perform_each(items, Some(arc));
         }
         for &x in items {
             if let Err(e) = self.actions.perform(&mut self.m.store, x) {
@@ -94,22 +132,22 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     }
 
     /// Recorded: the frames below handed over, the situation entered with
-    /// its id, then the items performed ([`Cx::perform_each`]).
+    /// its id (the `count` transitions before it counted), before the
+    /// action is performed.
     #[cold]
     #[inline(never)]
-    fn nat_perform_entered<F: NatFrames<P>>(
+    fn nat_enter_first<F: NatFrames<P>>(
         &mut self,
         stack: &mut NatBelow<'_, F>,
         count: &mut u64,
-        (sit, arc): (SitIx, usize),
+        sit: SitIx,
         id: impl IdArg,
-        items: &[Term],
     ) -> Result<(), RunError> {
         let p = self.m.program;
         nat_hand_over(p, self, stack)?;
         let id = id.id_in(&mut self.m.store);
         self.enter_counted(count, sit, id);
-        self.perform_each(items, Some(arc))
+        Ok(())
     }
 
     /// The effector's error `e`, not recorded: the frames below handed

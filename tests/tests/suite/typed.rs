@@ -3653,7 +3653,8 @@ mod neff18_dms {
 /// `attic`; `f(_)`, not ground, at `garden`) or fails (`cellar`: the
 /// error of a list's second effector); `grasp(P, _, R)` binds `ok`, or
 /// fails at `pantry` (the second effector of a list), or binds
-/// `slipped` at `shed`.
+/// `slipped` at `shed`; `report(_)` fails where no `navigate` came before
+/// (the second element of a constant list).
 #[derive(Default)]
 struct Errands(Vec<String>);
 
@@ -3668,6 +3669,9 @@ impl Actions for Errands {
             .atom_of(store.args(action)[0])
             .map(|a| a.as_str().to_owned());
         let status = match (name.as_str(), n, place.as_deref()) {
+            ("report", 1, _) if !self.0.iter().any(|a| a.starts_with("navigate")) => {
+                return Err("nothing to report".to_owned())
+            }
             ("navigate", 2, Some("cellar")) => return Err("no map of the cellar".to_owned()),
             ("navigate", 2, Some("hall")) => {
                 let (h, d) = (
@@ -3735,7 +3739,8 @@ fn run_errands<A: app::App>(
 /// effector that fails (the first of a list, `cellar`; the second,
 /// `pantry`: the error names the callee and its situation, the
 /// transitions before it counted), a grasp that reports a failure
-/// (`shed`); the history kept or not, observed or not.
+/// (`shed`), the second element of a constant list failing (`[]`); the
+/// history kept or not, observed or not.
 #[test]
 fn neff18_effectors_without_the_hand_over_agree() {
     use neff18_dms::errand as m;

@@ -2,8 +2,8 @@
 //! its frames over (issue 37, helper `neff18`): `navigate(Place, Result)`,
 //! `[say(['Attempting to grab the', Object]), grasp(Object, Hand,
 //! Result)]`, `[say('Sorry.'), say(Question)]`, a constant action
-//! (`say('I cannot find you.')`, `stop`), a `say` of a list of native
-//! values.
+//! (`say('I cannot find you.')`, `stop`, a constant list of `say`s), a
+//! `say` of a list of native values.
 //!
 //! What the hand-over (`nat_hand_over`: the native frames below made the
 //! machine's, the DM's locals written back) protects, read from the
@@ -50,7 +50,7 @@
 //! the hand-over before the action.
 
 use super::{atom_arg, fill_parts, runtime_hand, Dm, Gen, Regs, N};
-use crate::mir::{Action, Build, Ev};
+use crate::mir::{Action, Ev};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 use sitlog_syntax::{atoms, Atom};
@@ -67,22 +67,6 @@ fn built_of_values(e: &Ev) -> bool {
 }
 
 impl Gen<'_> {
-    /// Whether `e`, an arc's whole action, is what `Cx::perform` hands to
-    /// the effector as it is: a compound that is not a list, built of
-    /// values only (a list or `empty` the machine's `perform` treats
-    /// apart; a register's value may be either).
-    fn performed_as_is(&self, e: &Ev) -> bool {
-        match e {
-            Ev::Built(Build::Const(t)) => self
-                .store
-                .functor(*t)
-                .is_some_and(|(f, n)| n > 0 && f != atoms::DOT),
-            Ev::Built(Build::Compound(f, _)) => *f != atoms::DOT,
-            Ev::Compound(f, args) => *f != atoms::DOT && args.iter().all(built_of_values),
-            _ => false,
-        }
-    }
-
     /// Whether arc actions `action` (`atom`: the action when it is a
     /// constant atom) of a situation of `d` are performed by
     /// [`Gen::nat_effect`]: a DM without locals, an action of effectors
@@ -93,7 +77,7 @@ impl Gen<'_> {
         }
         match (action, atom) {
             (_, Some(a)) => a != atoms::EMPTY,
-            (Action::One(e), None) => self.performed_as_is(e),
+            (Action::One(e), None) => built_of_values(e),
             (Action::List { items, .. }, None) => items.iter().all(built_of_values),
         }
     }

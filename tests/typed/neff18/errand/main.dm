@@ -5,12 +5,13 @@
 % The test's effector answers by place: `ok`, `blocked(A, B)`, a float, a
 % term that is not ground (no native value: the arc's rest on terms), an
 % error (the action fails), and a grasp that fails (the second effector
-% of a list).
+% of a list), and `report(done)`, the second of a constant list, fails
+% where nothing was navigated to.
 diag_mod(errand(Places),
   [ [ id ==> is, type ==> neutral, arcs ==> [ empty : empty => go(Places) ] ],
     [ id ==> go([]),
       type ==> neutral,
-      arcs ==> [ empty : say('All done.') => done ]
+      arcs ==> [ empty : [say('All done.'), report(done)] => done ]
     ],
     [ id ==> go([P|Ps]),
       type ==> recursive,
