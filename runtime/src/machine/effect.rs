@@ -1,6 +1,6 @@
 //! An arc's action of effectors performed by native code without handing
-//! its frames over (issue 37, `neff18`): [`Cx::nat_perform`] and
-//! [`Cx::nat_perform_list`], the code generator's
+//! its frames over (issue 37, `neff18`): [`Cx::nat_perform`],
+//! [`Cx::nat_perform_any`] and [`Cx::nat_perform_list`], the code generator's
 //! `codegen::native::effect`.
 //!
 //! An effector ([`Actions::perform`](super::Actions::perform)) is given the
@@ -19,7 +19,8 @@
 //! code made before counted (the failing one not, as on the term path).
 //!
 //! Invariant: the effector is handed what [`Cx::perform`] would hand it
-//! ([`Cx::nat_perform`]: the action, a proper list element by element;
+//! ([`Cx::nat_perform_any`]: the action, a proper list element by element;
+//! [`Cx::nat_perform`]: the action as it is;
 //! [`Cx::nat_perform_list`]: each item, as an element of a list written
 //! out), in order, the first error ending it, and the error is
 //! [`Cx::perform`]'s in the situation entered.
@@ -43,7 +44,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// then [`Cx::perform`]; else without either, and where the effector
     /// fails, both made then and the error [`Cx::perform`]'s.
     #[inline]
-    pub fn nat_perform<F: NatFrames<P>>(
+    pub fn nat_perform_any<F: NatFrames<P>>(
         &mut self,
         stack: &mut NatBelow<'_, F>,
         count: &mut u64,
@@ -60,6 +61,23 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             Ok(()) => Ok(()),
             Err(e) => Err(self.nat_action_failed(stack, count, (sit, arc), id, e)),
         }
+    }
+
+    /// [`Cx::nat_perform_any`] of an action the code generator knows
+    /// [`Cx::perform`] hands to the effector as it is (an atom other than
+    /// `empty`, a compound that is not a list): handed to it, nothing
+    /// looked at first.
+    #[inline]
+    pub fn nat_perform<F: NatFrames<P>>(
+        &mut self,
+        stack: &mut NatBelow<'_, F>,
+        count: &mut u64,
+        (sit, arc): (SitIx, usize),
+        id: impl IdArg,
+        action: Term,
+        run: &TypedRun,
+    ) -> Result<(), RunError> {
+        self.nat_perform_items(stack, count, (sit, arc), id, &[action], run.records)
     }
 
     /// What `Machine::perform` does with `action`, the machine not entered:

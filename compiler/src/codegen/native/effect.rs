@@ -50,7 +50,7 @@
 //! the hand-over before the action.
 
 use super::{atom_arg, fill_parts, runtime_hand, Dm, Gen, Regs, N};
-use crate::mir::{Action, Ev};
+use crate::mir::{Action, Build, Ev};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 use sitlog_syntax::{atoms, Atom};
@@ -67,6 +67,19 @@ fn built_of_values(e: &Ev) -> bool {
 }
 
 impl Gen<'_> {
+    /// Whether `Cx::perform` hands the value of `e` (built of values) to
+    /// the effector as it is: a compound that is not a list.
+    fn as_is(&self, e: &Ev) -> bool {
+        match e {
+            Ev::Built(Build::Const(t)) => self
+                .store
+                .functor(*t)
+                .is_some_and(|(f, n)| n > 0 && f != atoms::DOT),
+            Ev::Built(Build::Compound(f, _)) | Ev::Compound(f, _) => *f != atoms::DOT,
+            _ => false,
+        }
+    }
+
     /// Whether arc actions `action` (`atom`: the action when it is a
     /// constant atom) of a situation of `d` are performed by
     /// [`Gen::nat_effect`]: a DM without locals, an action of effectors
@@ -120,9 +133,16 @@ impl Gen<'_> {
             }
             (Action::One(e), None) => {
                 let t = self.nat_ev_term(e, regs, &mut ts, &mut n)?;
+                // What `Cx::perform` hands to the effector as it is (a
+                // compound not a list): nothing looked at at run time.
+                let f = if self.as_is(e) {
+                    quote!(nat_perform)
+                } else {
+                    quote!(nat_perform_any)
+                };
                 quote! {
                     let act = #t;
-                    cx.nat_perform(stack, &mut count, (#cur, #arc), #id, act, run)?;
+                    cx.#f(stack, &mut count, (#cur, #arc), #id, act, run)?;
                 }
             }
             (Action::List { items, .. }, None) => {
