@@ -37,7 +37,7 @@
 //!   hold stay valid across the call, as across any native step.
 //!
 //! Invariant: [`Cx::nat_eval`], [`Cx::nat_condition`], [`Cx::nat_var_op`]
-//! and [`Cx::nat_perform`] give what [`Cx::eval`], [`Cx::condition`],
+//! and [`Cx::nat_perform_entered`] give what [`Cx::eval`], [`Cx::condition`],
 //! [`Cx::var_op`] and [`Cx::perform`] give after `nat_hand_over` in a DM without locals: the
 //! same value, the same changes to the globals and the store, the same
 //! error; only the frames below stay native on success.
@@ -225,7 +225,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// effector sees only the store): the frames below handed over only
     /// where the effector fails, for the error.
     #[inline]
-    pub fn nat_perform<F: NatFrames<P>>(
+    pub fn nat_perform_entered<F: NatFrames<P>>(
         &mut self,
         stack: &mut NatBelow<'_, F>,
         action: Term,
@@ -241,10 +241,10 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         }
     }
 
-    /// [`Cx::perform_list`] by native code, as [`Cx::nat_perform`]: the
+    /// [`Cx::perform_list`] by native code, as [`Cx::nat_perform_entered`]: the
     /// elements performed one by one, the list built only where `records`.
     #[inline]
-    pub fn nat_perform_list<F: NatFrames<P>>(
+    pub fn nat_perform_list_entered<F: NatFrames<P>>(
         &mut self,
         stack: &mut NatBelow<'_, F>,
         elements: &[Term],

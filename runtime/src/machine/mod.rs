@@ -33,12 +33,15 @@
 //!   [`NatAt`]: what a DM's situations must offer);
 //! - `boundary`: a user function, the KB or a Prolog condition evaluated
 //!   by native code without handing the native frames over
-//!   ([`Cx::nat_eval`], [`Cx::nat_condition`], [`Cx::nat_perform`]);
+//!   ([`Cx::nat_eval`], [`Cx::nat_condition`], [`Cx::nat_perform_entered`]);
+//! - `effect`: an action of effectors performed by native code, its
+//!   frames handed over only where it records or the effector fails;
 //! - `run`: the loop (DM calls and returns, selection of situations, garbage
 //!   collection between them).
 
 mod boundary;
 mod cx;
+mod effect;
 mod io;
 mod native_stack;
 mod observe;

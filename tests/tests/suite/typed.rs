@@ -3889,3 +3889,148 @@ fn when_with_expression_operands_agrees() {
 }
 /// Helper `review18`'s workloads with bad inputs (issue 37).
 mod review18;
+
+mod neff18_dms {
+    pub mod errand {
+        sitlog_macros::include_dm!("typed/neff18/errand");
+    }
+}
+
+/// A robot for `typed/neff18/errand`: logs every action; `navigate(P, R)`
+/// binds `R` by place (`ok`; `blocked(hall, door)` at `hall`; `2.5` at
+/// `attic`; `f(_)`, not ground, at `garden`) or fails (`cellar`: the
+/// error of a list's second effector); `grasp(P, _, R)` binds `ok`, or
+/// fails at `pantry` (the second effector of a list), or binds
+/// `slipped` at `shed`; `report(_)` fails where no `navigate` came before
+/// (the second element of a constant list).
+#[derive(Default)]
+struct Errands(Vec<String>);
+
+impl Actions for Errands {
+    fn perform(&mut self, store: &mut Store, action: Term) -> Result<(), String> {
+        self.0.push(store.writeq(action));
+        let Some((name, n @ 1..)) = store.functor(action) else {
+            return Ok(());
+        };
+        let action = store.deref(action);
+        let place = store
+            .atom_of(store.args(action)[0])
+            .map(|a| a.as_str().to_owned());
+        let status = match (name.as_str(), n, place.as_deref()) {
+            ("report", 1, _) if !self.0.iter().any(|a| a.starts_with("navigate")) => {
+                return Err("nothing to report".to_owned())
+            }
+            ("navigate", 2, Some("cellar")) => return Err("no map of the cellar".to_owned()),
+            ("navigate", 2, Some("hall")) => {
+                let (h, d) = (
+                    Term::atom(Atom::intern("hall")),
+                    Term::atom(Atom::intern("door")),
+                );
+                store.compound(Atom::intern("blocked"), &[h, d])
+            }
+            ("navigate", 2, Some("attic")) => store.parse("2.5").map_err(|e| e.message)?.0,
+            ("navigate", 2, Some("garden")) => store.parse("f(_)").map_err(|e| e.message)?.0,
+            ("grasp", 3, Some("pantry")) => return Err("the gripper is stuck".to_owned()),
+            ("grasp", 3, Some("shed")) => Term::atom(Atom::intern("slipped")),
+            ("navigate", 2, _) | ("grasp", 3, _) => Term::atom(Atom::intern("ok")),
+            _ => return Ok(()),
+        };
+        let out = store.args(action)[n - 1];
+        if store.unify(out, status) {
+            Ok(())
+        } else {
+            Err("the answer does not match".to_owned())
+        }
+    }
+}
+
+/// A run of `main` on `app` with [`Errands`]: the report, the
+/// transitions, the actions performed, the observed ones.
+fn run_errands<A: app::App>(
+    app: &A,
+    main: &str,
+    keep_history: bool,
+    observe: bool,
+) -> (serde_json::Value, u64, Vec<String>, Vec<String>) {
+    let mut perception = ScriptPerception::new("script", String::new());
+    let mut actions = Errands::default();
+    let mut trace = Trace::default();
+    let observer: Option<&mut dyn Observer> = if observe { Some(&mut trace) } else { None };
+    let options = Options {
+        keep_history,
+        ..Options::default()
+    };
+    let (outcome, store) = app::run(
+        app,
+        main,
+        None,
+        options,
+        functions(),
+        &mut perception,
+        &mut actions,
+        observer,
+    )
+    .expect("runs");
+    let report: serde_json::Value =
+        serde_json::from_str(&report::outcome_json(&store, &outcome)).expect("JSON");
+    let mut names = std::collections::HashMap::new();
+    let trace = trace.0.iter().map(|l| rename(l, &mut names)).collect();
+    let mut names = std::collections::HashMap::new();
+    let seen = actions.0.iter().map(|l| rename(l, &mut names)).collect();
+    (canonical_vars(&report), outcome.transitions, seen, trace)
+}
+
+/// neff18 (issue 37): effectors performed without handing the native
+/// frames over (`Cx::nat_perform`), in a callee below a native caller,
+/// agree with the interpreter: an output variable bound as expected, to a
+/// float, to a term that is not ground (the arc's rest on terms), an
+/// effector that fails (the first of a list, `cellar`; the second,
+/// `pantry`: the error names the callee and its situation, the
+/// transitions before it counted), a grasp that reports a failure
+/// (`shed`), the second element of a constant list failing (`[]`); the
+/// history kept or not, observed or not.
+#[test]
+fn neff18_effectors_without_the_hand_over_agree() {
+    use neff18_dms::errand as m;
+    let ir = interpreter("typed/neff18/errand");
+    for main in [
+        "errand([kitchen, hall, attic, garden, shed])",
+        "errand([kitchen, cellar, hall])",
+        "errand([attic, pantry])",
+        "errand([garden])",
+        "errand([])",
+    ] {
+        for keep in [false, true] {
+            for observe in [false, true] {
+                let c = run_errands(m::program(), main, keep, observe);
+                let i = run_errands(&ir, main, keep, observe);
+                assert_eq!(c, i, "{main} (history {keep}, observer {observe})");
+                let r = run_errands(
+                    &sitlog_compiler::interp::Resolved::new(&ir),
+                    main,
+                    keep,
+                    observe,
+                );
+                assert_eq!(
+                    r, i,
+                    "{main}, resolved (history {keep}, observer {observe})"
+                );
+            }
+        }
+    }
+    // The failing effectors' errors are the machine's, in the callee.
+    let (report, ..) = run_errands(
+        m::program(),
+        "errand([kitchen, cellar, hall])",
+        false,
+        false,
+    );
+    let text = report.to_string();
+    assert!(text.contains("no map of the cellar"), "{text}");
+    assert!(text.contains("visit(cellar"), "{text}");
+    let (report, ..) = run_errands(m::program(), "errand([attic, pantry])", false, false);
+    assert!(
+        report.to_string().contains("the gripper is stuck"),
+        "{report}"
+    );
+}

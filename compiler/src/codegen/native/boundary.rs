@@ -4,7 +4,7 @@
 //! the evaluator (`cx.eval` of `say(apply(words(_), [..]))`'s argument,
 //! `cx.condition` of `apply(same_place(_, _), [P, T]) == yes`) calls it
 //! where the frames are instead (`Cx::nat_eval`, `Cx::nat_condition`, and
-//! the action so computed performed by `Cx::nat_perform`), the frames
+//! the action so computed performed by `Cx::nat_perform_entered`), the frames
 //! handed over only where that fails (the runtime's `machine::boundary`).
 //!
 //! What the hand-over protects before such a call, found by reading the
@@ -78,7 +78,10 @@ const SAFE: &[&str] = &[
     "nat_enter",
     "nat_eval",
     "nat_condition",
+    "nat_perform_entered",
+    "nat_perform_list_entered",
     "nat_perform",
+    "nat_perform_any",
     "nat_perform_list",
     "nat_var_op",
     "nat_var_op_fresh",
@@ -99,8 +102,8 @@ const RUN_TO_MACHINE: &[&str] = &["go", "goto", "go_eval"];
 const MOVED: &[(&str, &str)] = &[
     ("eval", "nat_eval"),
     ("condition", "nat_condition"),
-    ("perform", "nat_perform"),
-    ("perform_list", "nat_perform_list"),
+    ("perform", "nat_perform_entered"),
+    ("perform_list", "nat_perform_list_entered"),
     ("var_op", "nat_var_op"),
     ("var_op_fresh", "nat_var_op_fresh"),
     ("arith_condition", "nat_arith_condition"),
@@ -424,7 +427,7 @@ mod tests {
             "{got}"
         );
         assert!(
-            got.contains(&quote!(cx.nat_perform(stack, act, arc_at)).to_string()),
+            got.contains(&quote!(cx.nat_perform_entered(stack, act, arc_at)).to_string()),
             "{got}"
         );
     }

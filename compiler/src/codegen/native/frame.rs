@@ -20,10 +20,12 @@
 //!
 //! Invariant: the machine's DM stack is the native stack's bottom frame
 //! (the DM the machine entered) and what is below it; native code reads or
-//! writes the machine's frames (an action performed, an error, a value
+//! writes the machine's frames (an action the machine performs, an error, a value
 //! handed over, a value evaluated on terms) only after `nat_materialize`
 //! and after writing its locals back ([`Dm::hand`]), so the machine sees,
-//! at each such point, the stack and the locals the term path would have.
+//! at each such point, the stack and the locals the term path would have
+//! (an effector native code hands an action to sees none of them: module
+//! `effect`).
 //! With the history kept (`run.nests`) each native frame above the bottom
 //! one has a history level (`Machine::levels`, opened at its push, closed
 //! at its final); `nat_materialize` pushes each of them as a machine frame

@@ -224,6 +224,7 @@ use super::Gen;
 mod boundary;
 mod call;
 mod cond;
+mod effect;
 mod fill;
 mod frame;
 mod perceive;
@@ -3269,12 +3270,22 @@ impl Gen<'_> {
         // native values as terms): the next situation as written, evaluated
         // whole as `Machine::conclude` does, or the term code's steps.
         let reloads = atom.is_none() && !d.locals.is_empty();
+        // An action of effectors built of values (`navigate(P, R)`, a
+        // list of `say`s): performed without the hand-over (`effect`).
+        let effect = if self.nat_effect_ok(d, &arc.action, atom) {
+            self.nat_effect(d, ix, &arc.action, atom, &regs)
+                .ok()
+                .flatten()
+        } else {
+            None
+        };
         // After an `empty` action (performed without handing the frames
         // below over, `Cx::empty_fails`) the native frames below
         // are handed over first: else the machine would be entered in the
-        // caller's frame (`ngen12`'s `d_compare_fn`). Any other action
-        // handed over where it was performed.
-        let enter_id = if atom == Some(atoms::EMPTY) {
+        // caller's frame (`ngen12`'s `d_compare_fn`); so after an action
+        // `effect` performs. Any other action handed over where it was
+        // performed.
+        let enter_id = if atom == Some(atoms::EMPTY) || effect.is_some() {
             quote!(#hand #(#id_stmts)* cx.enter_with_id(#cur, #id);)
         } else {
             quote!(#(#id_stmts)* cx.enter_with_id(#cur, #id);)
@@ -3375,6 +3386,8 @@ impl Gen<'_> {
                             #enter
                         }
                     }
+                } else if let Some(effect) = &effect {
+                    effect.clone()
                 } else {
                     perform
                 });
@@ -3389,33 +3402,12 @@ impl Gen<'_> {
                 let mut ts = Vec::new();
                 let mut n = 0;
                 let perform = match &arc.action {
-                    // A compound of values made before (`note(S)`), with
-                    // nothing bound at the boundary to convert after it:
-                    // where the run does not record, its term made and
-                    // handed to the effector without handing the frames
-                    // over or entering the situation (its id built only
-                    // where the effector fails, for the error: what
-                    // `Cx::nat_empty` does for `empty`); recorded, as
-                    // below.
-                    Action::One(e) if effector && conv.is_none() && call::made_values(e, &regs) => {
-                        let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
-                        // Recorded, entered first as below (the store's
-                        // order); a compound (not `empty`, not a list) is
-                        // what `Cx::perform` hands to the effector as it is.
-                        stmts.push(quote! {
-                            if run.records {
-                                #enter
-                            }
-                            #(#ts)*
-                            let act = #t;
-                            if let Err(e) = cx.perform_value(act) {
-                                if !run.records {
-                                    #enter
-                                }
-                                return Err(cx.action_failed(e, arc_at));
-                            }
-                        });
-                        ts.clear();
+                    // Built of values (`note(S)`, `navigate(P, R)`, a list
+                    // of `say`s): performed without handing the frames over
+                    // or entering the situation where the run does not
+                    // record (`effect`, `Cx::nat_perform`).
+                    _ if effect.is_some() => {
+                        stmts.extend(effect.clone());
                         None
                     }
                     Action::One(e) => {
