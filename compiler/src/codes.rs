@@ -34,7 +34,7 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
     ),
     (
         load::APP_FILE,
-        "the application's `world.toml`, `knowledge.kb` or `ros2.toml` has an error that `sitlogc run` stops on (its message and position)",
+        "the application's `world.toml`, `knowledge.kb`, `ros2.toml` or `sitlog.toml` has an error that `sitlogc run` stops on (its message and position; `run` exits 1 on each, 2 when a file cannot be read)",
     ),
     (
         load::PROLOG_SYNTAX,
@@ -184,6 +184,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
     (
         check::INC_NOT_A_NUMBER,
         "`inc` of a local variable whose value is always a default that is not a number (`tries ==> none`; nothing in the DM `set`s it and it applies no user function): the run stops at the `inc`, as the original does (`is not numeric`)",
+    ),
+    (
+        check::UNKNOWN_WORLD_NAME,
+        "(`sitlogc check` of an application with a `world.toml`) a place given by name to `navigate(Place, Status)` or `move(Place, Status)` that is no place or shelf of the world (*did you mean*): the run goes on, `navigate` answering `unknown_place`",
     ),
 ];
 

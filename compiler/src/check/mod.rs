@@ -75,6 +75,8 @@ pub mod codes {
     pub const OS_ACCESS: &str = "W0240";
     pub const PROLOG_TOO_DEEP: &str = "E0241";
     pub const INC_NOT_A_NUMBER: &str = "E0242";
+    /// Given by `sitlogc check`, which reads the world file.
+    pub const UNKNOWN_WORLD_NAME: &str = "W0243";
 }
 
 /// A program the checker accepted (no errors; warnings allowed).
