@@ -15,8 +15,10 @@
 //! Arithmetic on such a variable is an error (E0238): the right side of
 //! `is` or an operand of `<`, `>`, `=<`, `>=` (D-31, D-34) that is
 //! certainly unbound, where the arc certainly evaluates it (not inside a
-//! branch of a conditional that may not be taken): both the original
-//! SitLog and the run stop there with Prolog's instantiation error.
+//! branch of a conditional that may not be taken) and the variable occurs
+//! there first in the arc (an action before may be the robot's to bind):
+//! both the original SitLog and the run stop there with Prolog's
+//! instantiation error.
 
 use super::*;
 use sitlog_syntax::VarId;
@@ -69,8 +71,23 @@ impl Checker<'_> {
                 walk(
                     terms, arc.next, false, outputs, &mut bound, &mut uses, &mut arith,
                 );
-                for (v, t, op) in arith {
-                    no_value.push((v, t, op, bound.iter().copied().collect()));
+                if !arith.is_empty() {
+                    // Only a variable whose first occurrence in the arc is
+                    // this one: one written before in an action the robot
+                    // may bind (a status it reports) is not certain.
+                    let mut first: HashMap<VarId, u32> = HashMap::new();
+                    for root in [arc.action, arc.next] {
+                        collect_vars(terms, root, &mut |v, o| {
+                            let at = terms.span(o).start;
+                            let e = first.entry(v).or_insert(at);
+                            *e = (*e).min(at);
+                        });
+                    }
+                    for (v, t, op) in arith {
+                        if first.get(&v) == Some(&terms.span(t).start) {
+                            no_value.push((v, t, op, bound.iter().copied().collect()));
+                        }
+                    }
                 }
                 let mut seen = HashSet::new();
                 let mut near: Option<Vec<VarId>> = None;
