@@ -89,7 +89,10 @@ pub enum Command {
     /// final out_arg and the global variables are printed. At the prompt,
     /// Ctrl-D (the end of stdin) ends the task where it waits. Exit status: 0
     /// when the main DM reached a final situation, 1 on a run-time error
-    /// (the history so far is still printed), 2 on usage or I/O problems,
+    /// (the history so far is still printed) or an error in the
+    /// application's files (its DMs, world.toml, knowledge.kb, sitlog.toml:
+    /// located, as `sitlogc check` reports them), 2 on usage or I/O
+    /// problems (a file that cannot be read),
     /// 3 when the typed input ended before the task did, 130 / 143 when
     /// stopped by SIGINT / SIGTERM.
     Run {

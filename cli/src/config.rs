@@ -48,15 +48,21 @@ pub fn read(app: &Path) -> Result<AppConfig, (u8, String)> {
 
 /// `text`, a `sitlog.toml` named `name`, read.
 pub fn parse(name: &str, text: &str) -> Result<AppConfig, String> {
+    parse_located(text).map_err(|(place, message)| match place {
+        Some((line, column)) => format!("{name}:{line}:{column}: error: {message}"),
+        None => format!("{name}: error: {message}"),
+    })
+}
+
+/// [`parse`]'s error as its place (1-based line and column, when known)
+/// and message: `sitlogc check` makes it a diagnostic (E0007).
+pub fn parse_located(text: &str) -> Result<AppConfig, (Option<(usize, usize)>, String)> {
     toml::from_str(text).map_err(|e: toml::de::Error| {
         let message = e.message().trim().replace('\n', " ");
-        match e.span() {
-            Some(span) => {
-                let (line, column) = sitlog_syntax::line_col(text, span.start);
-                format!("{name}:{line}:{column}: error: {message}")
-            }
-            None => format!("{name}: error: {message}"),
-        }
+        let place = e
+            .span()
+            .map(|span| sitlog_syntax::line_col(text, span.start));
+        (place, message)
     })
 }
 

@@ -34,7 +34,7 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
     ),
     (
         load::APP_FILE,
-        "the application's `world.toml`, `knowledge.kb` or `ros2.toml` has an error that `sitlogc run` stops on (its message and position)",
+        "the application's `world.toml`, `knowledge.kb`, `ros2.toml` or `sitlog.toml` has an error that `sitlogc run` stops on (its message and position; `run` exits 1 on each, 2 when a file cannot be read)",
     ),
     (
         load::PROLOG_SYNTAX,
@@ -166,12 +166,28 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         "a situation's `diag_mod` that never matches its DM's identifier: every value known and none unifies with the head, or its principal functor is not the DM's name and arity (`fecth(Object, ok)` in DM `fetch/2`); the run stops when it reaches the situation (the original blocks, semantics E9)",
     ),
     (
+        check::ARITHMETIC_WITHOUT_VALUE,
+        "arithmetic on a variable that certainly has no value where the arc certainly evaluates it: the right side of `is` or an operand of `<`, `>`, `=<`, `>=` (`Next is Count + 1` with nothing binding `Count`; not inside a branch of a conditional); the original SitLog and the run both stop there with Prolog's instantiation error (*did you mean* `get(count, Count)` when a SitLog variable has that name)",
+    ),
+    (
+        check::ARC_NEVER_TAKEN,
+        "an arc that is never taken: an arc that wins over it has an expectation matching everything its own matches (in a perceptual situation the last matching arc wins, `confirm(R, R)` before `confirm(_, _)`; in a recursive one the first); only expectations known without running anything, and a winner whose variables are its own",
+    ),
+    (
         check::OS_ACCESS,
         "a directive or clause of the application's Prolog files reaches the operating system (shell, processes, sockets, native code, `open/3,4` for writing, loading code at run time or from an absolute or `$SITLOG_HOME` path): a run refuses it unless given `--allow-os` (the trust model, [reliability](reliability.md#trust-model))",
     ),
     (
         check::PROLOG_TOO_DEEP,
         "a clause of the application's Prolog files nests deeper than the Prolog engine takes (100 000 levels, a list counting a level per element): a run refuses it",
+    ),
+    (
+        check::INC_NOT_A_NUMBER,
+        "`inc` of a local variable whose value is always a default that is not a number (`tries ==> none`; nothing in the DM `set`s it and it applies no user function): the run stops at the `inc`, as the original does (`is not numeric`)",
+    ),
+    (
+        check::UNKNOWN_WORLD_NAME,
+        "(`sitlogc check` of an application with a `world.toml`) a place given by name to `navigate(Place, Status)` or `move(Place, Status)` that is no place or shelf of the world (*did you mean*): the run goes on, `navigate` answering `unknown_place`",
     ),
 ];
 

@@ -139,7 +139,7 @@ impl Runner {
     /// The checks of a run that need only its options and files, as
     /// [`Runner::run`] makes them first: outputs that would destroy an
     /// input, options that exclude each other, the world file read and (with
-    /// the simulator) parsed. For a caller with costly set-up of its own
+    /// the simulator) parsed (an error in it: status 1). For a caller with costly set-up of its own
     /// (`sitlogc run` starts the Prolog engine), so that a run that cannot
     /// start says so at once: it runs with `args` and `assets` as given back
     /// (the world file, read once, moved into the assets: a FIFO is read
@@ -149,7 +149,10 @@ impl Runner {
         let world = run_world(args, assets)?;
         #[cfg(feature = "sim")]
         if let (Some(world), false) = (&world, args.robot == RobotKind::Ros2) {
-            crate::robot::parse_world(world).map_err(|e| (2, e))?;
+            // An error in the world file's content: status 1, as one in
+            // the KB or the DMs (2 is for usage and for a file that cannot
+            // be read).
+            crate::robot::parse_world(world).map_err(|e| (1, e))?;
         }
         let mut args = args.clone();
         let mut assets = assets.clone();
@@ -319,10 +322,11 @@ impl Runner {
                         let (senses, effectors) = robot.split();
                         (Box::new(senses), Box::new(effectors))
                     }
-                    // A world file that is not what the simulator reads: exit 2
-                    // (issue 15), like a missing one; bytes that are not UTF-8
-                    // were refused above with exit 1 (issue 23).
-                    Err(e) => fail!(2, "{e}"),
+                    // A world file that is not what the simulator reads: exit 1,
+                    // an error of the application's files as in its KB, its
+                    // DMs or bytes that are not UTF-8 (issue 23; it was 2
+                    // until issue 39, as for a missing file, which stays 2).
+                    Err(e) => fail!(1, "{e}"),
                 }
             }
             #[cfg(not(feature = "sim"))]

@@ -639,10 +639,16 @@ impl<'a> Gen<'a> {
             let mut action = self.action(&s);
             let start = self.me == 0 && j == 0;
             if a > 0 && !start && self.rng.chance(5) {
-                // Not a number (unless `v` was set to one): an error (E7),
-                // when this arc is taken.
-                let name = if self.plan().has_v { "v" } else { "g_log" };
-                action = with_extra(action, vec![format!("inc({name}, _)")]);
+                // Not a number: an error (E7), when this arc is taken. `v`
+                // is set to `none` first: a local never set from its
+                // non-number default is `check`'s E0242, and the program
+                // would not compile (the error is the run's to show).
+                let extra = if self.plan().has_v {
+                    vec!["set(v, none)".to_owned(), "inc(v, _)".to_owned()]
+                } else {
+                    vec!["inc(g_log, _)".to_owned()]
+                };
+                action = with_extra(action, extra);
             }
             let p = self.plan();
             let to_final = if exp == "stop" {

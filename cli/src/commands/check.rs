@@ -1,5 +1,6 @@
 //! `sitlogc check`: every problem of applications and DM files (with what
-//! `run` would stop on in their world, KB and ROS 2 interface files, E0007),
+//! `run` would stop on in their world, KB, ROS 2 interface and `sitlog.toml`
+//! files, E0007),
 //! as text on stderr or JSON lines on stdout; warnings denied by
 //! `--deny-warnings` or the application's `sitlog.toml`; and (`--origins`)
 //! where the files named by a library name came from.
@@ -49,15 +50,17 @@ pub fn check(
     for path in &programs {
         // The application's sitlog.toml may deny its warnings (a bad one
         // is an error; the program is checked all the same).
+        let mut config_error = None;
         let denied = match crate::config::read(path) {
             Ok(config) => config.deny_warnings,
-            Err((code, message)) => {
+            Err((1, message)) => {
+                // Bad content: a diagnostic (E0007) at its place, below.
+                config_error = Some(message);
+                false
+            }
+            Err((_, message)) => {
                 sitlog_runtime::errln!("{message}");
-                if code == 1 {
-                    errors += 1;
-                } else {
-                    io_failed = true;
-                }
+                io_failed = true;
                 false
             }
         };
@@ -65,7 +68,7 @@ pub fn check(
             legacy,
             ..Default::default()
         };
-        let (result, diags) = match crate::output::check_app(path, options) {
+        let (result, mut diags) = match crate::output::check_app(path, options) {
             Ok(r) => r,
             Err(e) => {
                 sitlog_runtime::errln!("error: cannot read {e}");
@@ -78,7 +81,7 @@ pub fn check(
             Err(program) => program,
         };
         // The world, KB and ROS 2 interface files, as `run` reads them.
-        let (asset_sources, asset_diags) = match asset_diagnostics(path) {
+        let (mut asset_sources, mut asset_diags) = match asset_diagnostics(path) {
             Ok(found) => found,
             Err((status, message)) => {
                 // Text that is not UTF-8 is an error of the file (1), as in
@@ -92,6 +95,10 @@ pub fn check(
                 (SourceMap::new(), Vec::new())
             }
         };
+        diags.extend(world_names(path, program));
+        if let Some(message) = config_error {
+            config_diagnostic(path, message, &mut asset_sources, &mut asset_diags);
+        }
         if origins {
             for line in origin_lines(path, program) {
                 sitlog_runtime::errln!("{line}");
@@ -220,6 +227,106 @@ fn diagnostics_of(assets: &sitlog_robot::Assets) -> (SourceMap, Vec<Diagnostic>)
         );
     }
     (sources, diags)
+}
+
+/// W0243: the places given to `navigate(Place, Status)` or `move(Place,
+/// Status)` by name that the application's `world.toml` does not have (as
+/// a place or a shelf, what the simulated robot navigates to), with *did
+/// you mean*. The run goes on (`navigate` answers `unknown_place`), so a
+/// warning; nothing without a world file or when it has errors (E0007).
+fn world_names(path: &Path, program: &sitlog_compiler::ast::Program) -> Vec<Diagnostic> {
+    let Ok(assets) = sitlog_robot::Assets::from_app(path) else {
+        return Vec::new();
+    };
+    let Some(world) = assets
+        .world
+        .as_ref()
+        .and_then(|w| sitlog_sim::World::parse(&w.name, &w.text).ok())
+    else {
+        return Vec::new();
+    };
+    let known: Vec<&str> = world
+        .place_names()
+        .into_iter()
+        .chain(world.shelf_names())
+        .collect();
+    let mut out = Vec::new();
+    for dm in &program.dms {
+        let terms = &dm.clause.terms;
+        let mut stack = vec![dm.clause.root];
+        while let Some(t) = stack.pop() {
+            stack.extend_from_slice(terms.args(t));
+            let Some((f, 2)) = terms.functor(t) else {
+                continue;
+            };
+            if !matches!(f.as_str(), "navigate" | "move") {
+                continue;
+            }
+            let place = terms.args(t)[0];
+            let Some(name) = terms.atom(place) else {
+                continue;
+            };
+            if known.contains(&name.as_str()) {
+                continue;
+            }
+            let mut d = Diagnostic::warning(
+                sitlog_compiler::check::codes::UNKNOWN_WORLD_NAME,
+                dm.loc(terms.span(place)),
+                format!(
+                    "`{name}` is no place or shelf of {}: `{f}` will answer `unknown_place`",
+                    world.file_name()
+                ),
+            )
+            .with_label("not in the world");
+            d = match sitlog_compiler::suggest::did_you_mean(name.as_str(), known.iter().copied()) {
+                Some(similar) => d.with_help(format!("did you mean `{similar}`?")),
+                None => d.with_help(format!(
+                    "the world's places and shelves: {}",
+                    known.join(", ")
+                )),
+            };
+            out.push(d);
+        }
+    }
+    out
+}
+
+/// The error of the application's `sitlog.toml` (`message`, as `run`
+/// prints it) as a diagnostic E0007 at its place, like those of its world
+/// and KB files; the file is added to `sources`.
+fn config_diagnostic(
+    app: &Path,
+    message: String,
+    sources: &mut SourceMap,
+    diags: &mut Vec<Diagnostic>,
+) {
+    let path = crate::config::path_of(app);
+    let text = sitlog_robot::TextFile::read(&path, "settings")
+        .map(|f| f.text)
+        .unwrap_or_default();
+    let (place, message) = match crate::config::parse_located(&text) {
+        Err((place, m)) => (place, m),
+        // Not UTF-8 (TextFile's error): its message names the place.
+        Ok(_) => (None, message),
+    };
+    let (line, column) = place.unwrap_or((0, 0));
+    let start = offset(&text, line, column);
+    let end = text[start..]
+        .find(['\n', ' ', '='])
+        .map_or(text.len(), |n| start + n.max(1).min(text.len() - start));
+    let file = sources.add(&path, text);
+    let span = sitlog_syntax::Span {
+        start: start as u32,
+        end: end as u32,
+    };
+    diags.push(
+        Diagnostic::error(
+            sitlog_compiler::load::codes::APP_FILE,
+            Loc { file, span },
+            message,
+        )
+        .with_label("here"),
+    );
 }
 
 /// The line, column and message of `:LINE:COL: error: MESSAGE` (what

@@ -149,13 +149,20 @@ fn check_reads_the_world_kb_and_ros2_files() {
         [("E0007".to_owned(), message.to_owned(), String::new())]
     );
     let at = (&diags[0]["line"], &diags[0]["column"]);
+    // An error of the application's files: `run` exits 1 for the world as
+    // for the KB (session 17; the world's was 2, as for a missing file).
     let run = sitlogc().arg("run").arg(&app).output().unwrap();
-    assert_eq!(run.status.code(), Some(2));
+    assert_eq!(run.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(
         stderr.contains(&format!("world.toml:{}:{}: error: {message}", at.0, at.1)),
         "{stderr}"
     );
+    let (_kb_tmp, kb_app) = robot_app(&[]);
+    let kb = std::fs::read_to_string(kb_app.join("knowledge.kb")).unwrap();
+    std::fs::write(kb_app.join("knowledge.kb"), format!("{kb}\narity(\n")).unwrap();
+    let run = sitlogc().arg("run").arg(&kb_app).output().unwrap();
+    assert_eq!(run.status.code(), Some(1), "{run:?}");
     std::fs::write(app.join("ros2.toml"), "qos = 3\n").unwrap();
     let kb = std::fs::read_to_string(app.join("knowledge.kb")).unwrap();
     std::fs::write(app.join("knowledge.kb"), format!("{kb}\narity(\n")).unwrap();
@@ -273,4 +280,18 @@ fn a_prolog_clause_that_does_not_read_is_skipped() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(0), "{stderr}");
     assert!(stderr.contains("Golem says: hello"), "{stderr}");
+}
+
+/// W0243: a place given by name to `move` (or `navigate`) that the world
+/// file does not have: the run goes on (`unknown_place`), so a warning,
+/// with *did you mean*.
+#[test]
+fn a_place_not_in_the_world_gets_did_you_mean() {
+    let (_tmp, app) = robot_app(&[("fetch.dm", "move(living_room, _)", "move(livng_room, _)")]);
+    let (code, diags) = check(&app);
+    assert_eq!(code, 0, "{diags:?}");
+    assert_eq!(diags.len(), 1, "{diags:?}");
+    assert_eq!(diags[0]["code"], "W0243");
+    assert_eq!(diags[0]["help"], "did you mean `living_room`?");
+    assert!(diags[0]["file"].as_str().unwrap().ends_with("fetch.dm"));
 }

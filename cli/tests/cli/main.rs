@@ -12,6 +12,7 @@ mod debug;
 mod diagram;
 mod explain_types;
 mod fidelity;
+mod hunt;
 mod kb;
 mod legacy;
 mod lsp;

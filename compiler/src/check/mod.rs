@@ -18,6 +18,7 @@ use sitlog_syntax::{atoms, Atom, Node, Span, TermId, Terms};
 use std::collections::{HashMap, HashSet};
 
 mod calls;
+mod never_taken;
 mod os_access;
 mod prolog_depth;
 mod situations;
@@ -69,8 +70,13 @@ pub mod codes {
     pub const IN_ARG_NEVER_MATCHES: &str = "W0235";
     pub const NEUTRAL_NEVER_PROCEEDS: &str = "E0236";
     pub const DIAG_MOD_MISMATCH: &str = "E0237";
+    pub const ARITHMETIC_WITHOUT_VALUE: &str = "E0238";
+    pub const ARC_NEVER_TAKEN: &str = "W0239";
     pub const OS_ACCESS: &str = "W0240";
     pub const PROLOG_TOO_DEEP: &str = "E0241";
+    pub const INC_NOT_A_NUMBER: &str = "E0242";
+    /// Given by `sitlogc check`, which reads the world file.
+    pub const UNKNOWN_WORLD_NAME: &str = "W0243";
 }
 
 /// A program the checker accepted (no errors; warnings allowed).

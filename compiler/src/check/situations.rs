@@ -154,6 +154,7 @@ impl<'p> Checker<'p> {
         let unbound = self.unbound(dm, outputs);
         self.singletons(dm, &unbound);
         self.shadowed(dm);
+        self.never_taken(dm);
         let _ = loc;
     }
 

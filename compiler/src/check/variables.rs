@@ -24,6 +24,12 @@ impl<'p> Checker<'p> {
                 || self.program.globals.iter().any(|g| g.name == name)
         };
         let mut found = Vec::new();
+        // For E0242: the `inc`s, the names `set` anywhere, and whether a
+        // user function (which may `var_op(set(..))` the caller's locals)
+        // is applied.
+        let mut incs = Vec::new();
+        let mut set = HashSet::new();
+        let mut applies = false;
         for s in &dm.situations {
             let roots = [s.id, s.prog, s.in_arg, s.out_arg, s.embedded_dm, s.diag_mod];
             let mut stack: Vec<TermId> = roots.into_iter().flatten().collect();
@@ -36,9 +42,14 @@ impl<'p> Checker<'p> {
                         if let Some(name) = terms.atom(terms.args(t)[0]) {
                             if !known(name) {
                                 found.push((f, name, terms.args(t)[0]));
+                            } else if f == atoms::INC {
+                                incs.push((name, terms.args(t)[0]));
+                            } else if f == atoms::SET {
+                                set.insert(name);
                             }
                         }
                     }
+                    applies |= f == atoms::APPLY;
                 }
                 stack.extend_from_slice(terms.args(t));
             }
@@ -64,6 +75,44 @@ impl<'p> Checker<'p> {
                 d.with_help(format!("declare it in the DM's local variables (`{name} ==> Value`) or in a global_vars.pl beside the DMs"))
             };
             self.diags.push(d);
+        }
+        if !applies {
+            self.inc_not_a_number(dm, &incs, &set);
+        }
+    }
+
+    /// E0242: `inc` of a local variable whose value is always its default,
+    /// and that default is not a number (`tries ==> none`): nothing in the
+    /// DM `set`s it and no user function is applied, so the `inc` stops
+    /// the run wherever it is reached, as it stops the original SitLog
+    /// (`the variable "tries" is not numeric`).
+    fn inc_not_a_number(&mut self, dm: &Dm, incs: &[(Atom, TermId)], set: &HashSet<Atom>) {
+        let terms = &dm.clause.terms;
+        let mut incs = incs.to_vec();
+        incs.sort_by_key(|&(_, t)| terms.span(t));
+        for &(name, t) in &incs {
+            let Some(local) = dm.locals.iter().find(|l| l.name == name) else {
+                continue;
+            };
+            if set.contains(&name)
+                || matches!(
+                    terms.node(local.value),
+                    Node::Var(_) | Node::Int(_) | Node::BigInt(_) | Node::Float(_)
+                )
+            {
+                continue;
+            }
+            let value = show(dm, local.value);
+            self.diags.push(
+                Diagnostic::error(
+                    codes::INC_NOT_A_NUMBER,
+                    dm.loc(terms.span(t)),
+                    format!("`inc` of `{name}`, whose value is always `{value}`: not a number, so the run stops here (the original SitLog says the variable is not numeric and stops)"),
+                )
+                .with_label("never a number")
+                .with_secondary(dm.loc(local.span), format!("`{name}` starts as `{value}`, and nothing in DM `{}` sets it", dm.name))
+                .with_help(format!("start it at a number (`{name} ==> 0`), or `set` it to one before")),
+            );
         }
     }
 

@@ -59,9 +59,9 @@ diag_mod(poked,
   [ n ==> 0 ]
 ).
 
-% A local that holds an atom: `inc` is the machine's error.
+% A local set to an atom (not its default: check's E0242): `inc` is the machine's error.
 diag_mod(atom,
-  [ [ id ==> s, type ==> neutral, out_arg ==> inc(n, _),
+  [ [ id ==> s, type ==> neutral, prog ==> [set(n, none)], out_arg ==> inc(n, _),
       arcs ==> [ empty : empty => t(inc(n, _)) ] ],
     [ id ==> t(_), type ==> final ]
   ],

@@ -1,0 +1,91 @@
+//! Issue 39, session 17: small programs of a robotics engineer's first
+//! week (`tests/hunt/NN_name/`), each exercising something the checker
+//! judges, with what `sitlogc check` and `sitlogc run` must do with it in
+//! its `expect` file:
+//!
+//! ```text
+//! original: ok|stops   (what the original SitLog does: tests/conformance/hunt.sh)
+//! check: STATUS CODE.. (exit status of `sitlogc check`, the codes in order)
+//! run: STATUS ok|error (`sitlogc run --script script.txt --format json`)
+//! ```
+//!
+//! The rule they hold us to (docs/guide/checking.md): a program the
+//! original runs to its end is at most warned about, and a program that
+//! certainly fails is refused by `check`. The few where the run stops and
+//! the original does not are listed in checking.md with why.
+
+use crate::support::sitlogc;
+use std::path::{Path, PathBuf};
+
+fn cases() -> Vec<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/hunt");
+    let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("expect").is_file())
+        .collect();
+    dirs.sort();
+    dirs
+}
+
+/// The value of `key:` in `dir/expect`.
+fn expected(dir: &Path, key: &str) -> String {
+    let text = std::fs::read_to_string(dir.join("expect")).unwrap();
+    text.lines()
+        .find_map(|l| l.strip_prefix(&format!("{key}:")))
+        .unwrap_or_else(|| panic!("{}: no `{key}:` line", dir.display()))
+        .trim()
+        .to_owned()
+}
+
+#[test]
+fn first_week_programs() {
+    let dirs = cases();
+    assert!(dirs.len() >= 20, "{dirs:?}");
+    let mut wrong = Vec::new();
+    for dir in &dirs {
+        let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+        let out = sitlogc()
+            .args(["check", "--format", "json"])
+            .arg(dir)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+        let codes: Vec<String> = String::from_utf8(out.stdout)
+            .unwrap()
+            .lines()
+            .map(|l| {
+                let d: serde_json::Value = serde_json::from_str(l).unwrap();
+                d["code"].as_str().unwrap().to_owned()
+            })
+            .collect();
+        let got = format!("{} {}", out.status.code().unwrap(), codes.join(" "));
+        if got.trim() != expected(dir, "check") {
+            wrong.push(format!("{name}: check gave `{}`", got.trim()));
+        }
+        let script = dir.join("script.txt");
+        let mut run = sitlogc();
+        run.args(["run", "--format", "json"]).arg(dir);
+        if script.is_file() {
+            run.arg("--script").arg(&script);
+        } else {
+            run.stdin(std::process::Stdio::null());
+        }
+        let out = run.output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+        let status = serde_json::from_slice::<serde_json::Value>(&out.stdout)
+            .map(|r| r["status"].as_str().unwrap_or("?").to_owned())
+            .unwrap_or_else(|_| "none".into());
+        let got = format!("{} {status}", out.status.code().unwrap());
+        if got != expected(dir, "run") {
+            wrong.push(format!("{name}: run gave `{got}`"));
+        }
+        // The rule: what the original runs to its end, `check` passes.
+        if expected(dir, "original") == "ok" && !expected(dir, "check").starts_with('0') {
+            wrong.push(format!("{name}: the original runs it, check must pass"));
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}

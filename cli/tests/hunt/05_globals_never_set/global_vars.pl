@@ -1,0 +1,2 @@
+user ==> nobody.
+visits ==> 0.
