@@ -5668,7 +5668,6 @@ impl Gen<'_> {
         steps.push(MatchStep::Cell(quote!(#e), x.clone(), take, val));
         x
     }
-
 }
 
 /// The visit's own cell tail `r` taken by move (`let fk = r;`, a
@@ -5682,9 +5681,10 @@ impl Gen<'_> {
 /// reads its variable, the register is cloned instead.
 fn defer_move(steps: &mut Vec<MatchStep>, r: &Ident) {
     let take = quote!(#r).to_string();
-    let Some(k) = steps.iter().position(
-        |s| matches!(s, MatchStep::Cell(_, _, t, false) if t.to_string() == take),
-    ) else {
+    let Some(k) = steps
+        .iter()
+        .position(|s| matches!(s, MatchStep::Cell(_, _, t, false) if t.to_string() == take))
+    else {
         return;
     };
     let Some(last) = steps
