@@ -203,8 +203,14 @@ mod r18_d_room_of {
 mod r18_d_fn_next {
     sitlog_macros::include_dm!("../tests/typed/review18/r18_d_fn_next");
 }
-// `r18_d_lockstep`: its generated Rust does not compile on main `0c8eab3` (E0505,
-// see its main.dm; `hand_r18_lockstep` is its machine).
+// Two lists walked in step (`hand_r18_lockstep` the machine of both; their
+// generated Rust did not compile on main `0c8eab3`, E0505: fixed by `nlock18`).
+mod r18_d_lockstep {
+    sitlog_macros::include_dm!("../tests/typed/review18/r18_d_lockstep");
+}
+mod r18_d_lockstep_any {
+    sitlog_macros::include_dm!("../tests/typed/review18/r18_d_lockstep_any");
+}
 mod r18_d_callee_list {
     sitlog_macros::include_dm!("../tests/typed/review18/r18_d_callee_list");
 }
@@ -390,6 +396,11 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         }
         "r18_d_fn_next" => format!("errand({n}, {list}, {last})"),
         "r18_d_callee_list" => format!("courier({n}, {list}, p0)"),
+        "r18_d_lockstep" | "r18_d_lockstep_any" => {
+            let (xs, ys) = lockstep_lists(len);
+            let show = |v: Vec<i64>| v.iter().map(i64::to_string).collect::<Vec<_>>().join(",");
+            format!("gauge({n}, [{}], [{}], 0)", show(xs), show(ys))
+        }
         "r18_d_yes_no" => {
             let mut round = "no.\n".repeat(len - 1);
             round.push_str("yes.\n");
@@ -535,6 +546,10 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                 hand_walk_by(n, black_box(&syms), |p| (p == t).then_some(p), false)
             }
             "r18_d_callee_list" => hand_r18_callee_list(n, black_box(&syms), black_box(Sym(0))),
+            "r18_d_lockstep" | "r18_d_lockstep_any" => {
+                let (xs, ys) = lockstep_lists(len);
+                hand_r18_lockstep(n, black_box(&xs), black_box(&ys), black_box(0))
+            }
             "r18_d_yes_no" => {
                 let mut round = "no.\n".repeat(len - 1);
                 round.push_str("yes.\n");
@@ -604,6 +619,8 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r18_d_fn_next" => ways!(r18_d_fn_next),
         "r18_d_callee_list" => ways!(r18_d_callee_list),
         "r18_d_yes_no" => ways!(r18_d_yes_no),
+        "r18_d_lockstep" => ways!(r18_d_lockstep),
+        "r18_d_lockstep_any" => ways!(r18_d_lockstep_any),
         "r17_c_charge_when" => ways!(r17_c_charge_when),
         "r17_c_courier_global" => ways!(r17_c_courier_global),
         "r17_c_odometer" => ways!(r17_c_odometer),
@@ -619,7 +636,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
     }
 }
 
-const ALL: [&str; 57] = [
+const ALL: [&str; 59] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -677,7 +694,17 @@ const ALL: [&str; 57] = [
     "r18_d_fn_next",
     "r18_d_callee_list",
     "r18_d_yes_no",
+    "r18_d_lockstep",
+    "r18_d_lockstep_any",
 ];
+
+/// The two lists of `r18_d_lockstep*` at `len` places: `0..len` and a
+/// small weight for each (`i % 3 + 1`), the same length.
+fn lockstep_lists(len: usize) -> (Vec<i64>, Vec<i64>) {
+    let xs = (0..len as i64).collect();
+    let ys = (0..len as i64).map(|i| i % 3 + 1).collect();
+    (xs, ys)
+}
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();

@@ -156,3 +156,121 @@ diag_mod(ask(A),
     // Its other situations are native all the same (`r(M)`, `done(_)`).
     assert!(ask.contains("Nat::S1 { r2 } =>"), "{ask}");
 }
+
+/// The `'sel` blocks of `code` (each from `'sel: {` to its closing brace).
+fn sel_blocks(code: &str) -> Vec<&str> {
+    let mut blocks = Vec::new();
+    let mut rest = code;
+    while let Some(at) = rest.find("'sel: {") {
+        let from = &rest[at..];
+        let mut depth = 0;
+        let mut end = from.len();
+        for (k, c) in from.char_indices() {
+            match c {
+                '{' => depth += 1,
+                '}' => {
+                    depth -= 1;
+                    if depth == 0 {
+                        end = k + 1;
+                        break;
+                    }
+                }
+                _ => {}
+            }
+        }
+        blocks.push(&from[..end]);
+        rest = &from[end..];
+    }
+    blocks
+}
+
+/// Every `let fk<N> = r<N>;` (the visit's own cell tail taken by move) in
+/// `code` is followed by no test before its `break 'sel`: a test that can
+/// still fail would fall through to a later candidate or the hand-over,
+/// which read the moved register (E0505, issue 37, `review18` finding 1).
+fn assert_moves_last(code: &str) {
+    let moves = moved_tails(code);
+    for &at in &moves {
+        let after = &code[at..];
+        let upto = after.find("break 'sel").expect("the variant follows");
+        assert!(
+            !after[..upto].contains("if "),
+            "a test after the move:\n{}",
+            &after[..upto]
+        );
+    }
+    assert!(!moves.is_empty(), "no tail moved:\n{code}");
+}
+
+/// Where `code` moves a cell tail into a candidate (`let fk<N> = r<N>;`).
+fn moved_tails(code: &str) -> Vec<usize> {
+    code.match_indices("let fk")
+        .filter(|&(at, _)| {
+            let line = code[at..].lines().next().unwrap();
+            let (x, e) = line
+                .trim_start_matches("let ")
+                .trim_end_matches(';')
+                .split_once(" = ")
+                .unwrap_or_default();
+            e.strip_prefix('r') == x.strip_prefix("fk")
+        })
+        .map(|(at, _)| at)
+        .collect()
+}
+
+/// Two lists walked in step (`step([X|Xs], [Y|Ys], Acc)`): the visit's own
+/// cell tail is moved into the next situation only after the test of the
+/// second list, so `[]`/`[H|T]` of lists of different lengths falls through
+/// to the hand-over with the register intact (`nlock18`, issue 37).
+#[test]
+fn two_lists_walked_in_step() {
+    let src = r#"
+diag_mod(main(Xs, Ys),
+  [ [ id ==> s, type ==> recursive, embedded_dm ==> dot(Xs, Ys),
+      arcs ==> [ sum(_) : empty => fin, uneven : empty => fin ] ],
+    [ id ==> fin, type ==> final ] ],
+  []).
+diag_mod(dot(Xs, Ys),
+  [ [ id ==> begin, type ==> neutral, arcs ==> [ empty : empty => step(Xs, Ys, 0) ] ],
+    [ id ==> step([], [], Acc), type ==> neutral, arcs ==> [ empty : empty => sum(Acc) ] ],
+    [ id ==> step([X|Xs1], [Y|Ys1], Acc), type ==> neutral,
+      arcs ==> [ empty : [Acc1 is Acc + X * Y] => step(Xs1, Ys1, Acc1) ] ],
+    [ id ==> sum(_), type ==> final ],
+    [ id ==> uneven, type ==> final ] ],
+  []).
+"#;
+    let text = generate(&[("lockstep.dm", src)]);
+    let dot = text.split("pub mod dm_dot").nth(1).expect("dot's module");
+    assert_moves_last(dot);
+    let sel = sel_blocks(dot)
+        .into_iter()
+        .find(|b| !moved_tails(b).is_empty() && b.contains("nat_hand_over"))
+        .expect("a selection that moves the tail and may hand over");
+    insta::assert_snapshot!(sel);
+}
+
+/// Three lists in step, the cell candidate first and the list walked by
+/// the visit's own cell not the first argument, then `[]`s, then a
+/// catch-all: the move still comes after every test of its candidate.
+#[test]
+fn three_lists_walked_in_step_any_order() {
+    let src = r#"
+diag_mod(main(As, Bs, Cs),
+  [ [ id ==> s, type ==> recursive, embedded_dm ==> zip3(As, Bs, Cs),
+      arcs ==> [ done(_) : empty => fin, odd : empty => fin ] ],
+    [ id ==> fin, type ==> final ] ],
+  []).
+diag_mod(zip3(As, Bs, Cs),
+  [ [ id ==> begin, type ==> neutral, arcs ==> [ empty : empty => z(0, As, Bs, Cs) ] ],
+    [ id ==> z(N, [_|As1], [_|Bs1], [_|Cs1]), type ==> neutral,
+      arcs ==> [ empty : [N1 is N + 1] => z(N1, As1, Bs1, Cs1) ] ],
+    [ id ==> z(N, [], [], []), type ==> neutral, arcs ==> [ empty : empty => done(N) ] ],
+    [ id ==> z(_, _, _, _), type ==> neutral, arcs ==> [ empty : empty => odd ] ],
+    [ id ==> done(_), type ==> final ],
+    [ id ==> odd, type ==> final ] ],
+  []).
+"#;
+    let text = generate(&[("zip3.dm", src)]);
+    let zip = text.split("pub mod dm_zip3").nth(1).expect("zip3's module");
+    assert_moves_last(zip);
+}

@@ -5252,6 +5252,9 @@ impl Gen<'_> {
             if !ok {
                 continue; // cannot match a value of this type
             }
+            if let Some((_, r, None)) = d.movable.borrow().as_ref() {
+                defer_move(&mut steps, r);
+            }
             // A field bound by a `let` that no test reads is computed
             // where the variant is built (no block per field, no clone
             // when an earlier test fails).
@@ -5686,7 +5689,46 @@ impl Gen<'_> {
         steps.push(MatchStep::Cell(quote!(#e), x.clone(), take, val));
         x
     }
+}
 
+/// The visit's own cell tail `r` taken by move (`let fk = r;`, a
+/// [`MatchStep::Cell`]) only where nothing after it in the candidate can
+/// fail: a later test that fails (another list of the id walked in step,
+/// `step([X|Xs], [Y|Ys], Acc)`) falls through to the next candidate or the
+/// hand-over, which read `r` again. The step goes after the candidate's
+/// last test (the tests are pure, their order is not observable; the step
+/// tests only that the list is not empty and binds its variable), so the
+/// move is on the path that builds the variant only; where a test after it
+/// reads its variable, the register is cloned instead.
+fn defer_move(steps: &mut Vec<MatchStep>, r: &Ident) {
+    let take = quote!(#r).to_string();
+    let Some(k) = steps
+        .iter()
+        .position(|s| matches!(s, MatchStep::Cell(_, _, t, false) if t.to_string() == take))
+    else {
+        return;
+    };
+    let Some(last) = steps
+        .iter()
+        .rposition(|s| !matches!(s, MatchStep::Let(..)))
+        .filter(|&last| last > k)
+    else {
+        return;
+    };
+    let MatchStep::Cell(_, x, ..) = &steps[k] else {
+        return;
+    };
+    if steps[k + 1..=last].iter().any(|s| s.mentions(x)) {
+        if let MatchStep::Cell(_, _, t, _) = &mut steps[k] {
+            *t = quote!(#r.clone());
+        }
+    } else {
+        let s = steps.remove(k);
+        steps.insert(last, s);
+    }
+}
+
+impl Gen<'_> {
     /// The variables of a cell's pattern `[H|T]`: `T` the list (`x`), `H`
     /// bound with it (read in place by the visit, no value here).
     fn nat_cell_vars(
