@@ -1,7 +1,7 @@
 % review18 (issue 37, shape (d)): two lists walked in step, a dot product
 % kept in the id; ends in `sum(S)`;
 % the caller compares the sum with its threshold. `gauge(Rounds, Xs, Ys, Min)`.
-% Its generated Rust does not compile on main `0c8eab3` (E0505: `let fk8 = r8`
+% Its generated Rust did not compile on main `0c8eab3` (fixed by `nlock18`) (E0505: `let fk8 = r8`
 % moves the first list's tail in the `step([X|Xs1], [Y|Ys1], Acc)` candidate,
 % then the fallback reads it), nor does `r18_d_lockstep_any`'s (a catch-all
 % `step(_, _, _)` for lists of different lengths): not in `shapes_prof`.

@@ -1,5 +1,5 @@
-% review18 (issue 37, shape (d)): the generated Rust of this DM does not compile on
-% main `0c8eab3` (E0505: the catch-all `step(_, _, _)` reads the list the
+% review18 (issue 37, shape (d)): the generated Rust of this DM did not compile on
+% main `0c8eab3`, fixed by `nlock18` (E0505: the catch-all `step(_, _, _)` reads the list the
 % candidate before it moved; `r18_d_lockstep` is the same walk with the
 % uneven ends spelt out). Two lists walked in step, a dot product
 % kept in the id; ends in `sum(S)` or, when the lengths differ, `uneven`;
