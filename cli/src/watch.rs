@@ -666,6 +666,10 @@ impl Perception for ReloadAware {
     fn uses_waiting_at(&self) -> bool {
         self.inner.uses_waiting_at()
     }
+
+    fn unmatched_is_news(&self) -> bool {
+        self.inner.unmatched_is_news()
+    }
 }
 
 #[cfg(test)]

@@ -95,6 +95,10 @@ impl Perception for PausesProgress {
     fn uses_waiting_at(&self) -> bool {
         self.inner.uses_waiting_at()
     }
+
+    fn unmatched_is_news(&self) -> bool {
+        self.inner.unmatched_is_news()
+    }
 }
 
 /// The prompt with line editing, when stdin and stderr are terminals (and
@@ -160,6 +164,10 @@ impl Perception for EndOfInputStops {
 
     fn uses_waiting_at(&self) -> bool {
         self.inner.uses_waiting_at()
+    }
+
+    fn unmatched_is_news(&self) -> bool {
+        self.inner.unmatched_is_news()
     }
 }
 
