@@ -149,9 +149,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         Ok(())
     }
 
-    /// Recorded: the frames below handed over, the situation entered with
-    /// its id (the `count` transitions before it counted), before the
-    /// action is performed.
+    /// The frames below handed over, the situation entered with its id
+    /// (the `count` transitions before it counted): before the action is
+    /// performed where the run records, else where the effector fails.
     #[cold]
     #[inline(never)]
     fn nat_enter_first<F: NatFrames<P>>(
@@ -181,12 +181,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         id: impl IdArg,
         e: String,
     ) -> RunError {
-        let p = self.m.program;
-        if let Err(h) = nat_hand_over(p, self, stack) {
+        if let Err(h) = self.nat_enter_first(stack, count, sit, id) {
             return h;
         }
-        let id = id.id_in(&mut self.m.store);
-        self.enter_counted(count, sit, id);
         self.action_failed(e, Some(arc))
     }
 }
