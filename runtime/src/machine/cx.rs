@@ -1504,7 +1504,8 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     pub fn goto(&mut self, next: Term, arc: Option<usize>) -> Result<Step, RunError> {
         self.m.chose = Some((self.sit, arc));
         let n = self.m.store.deref(next);
-        if self.m.store.functor(n).is_none() {
+        // An unbound one ends the DM (the machine's `take_step`, docs/guide/language.md, "Next").
+        if self.m.store.functor(n).is_none() && !self.m.store.is_var(n) {
             return Err(self.error(
                 format!(
                     "the next situation evaluates to `{}`, which is not a situation name",
