@@ -276,7 +276,13 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         let mut result = Ok(());
         for i in 0..self.arcs.len() {
             match self.eval_in_frame(self.arcs[i][0], here, Some(i)) {
-                Ok(v) => self.expectations.push(v),
+                Ok(v) => {
+                    if self.options.close_list_tails {
+                        // `--legacy`: closed as the original's evaluator closes them.
+                        super::run::close_list_tails(&mut self.store, v);
+                    }
+                    self.expectations.push(v)
+                }
                 Err(e) => {
                     result = Err(e);
                     break;

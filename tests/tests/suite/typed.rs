@@ -4114,3 +4114,58 @@ fn an_unbound_next_situation_ends_the_dm() {
         }
     }
 }
+
+mod legacy_tails_nfid19 {
+    pub mod tails {
+        sitlog_macros::include_dm!("typed/legacy_tails");
+    }
+}
+
+/// Expectations with open list tails (issue 39's program 07): under
+/// `--legacy` (`Options::close_list_tails`) closed as the original's
+/// evaluator closes them, so `[kitchen, hall]` meets no expectation and the
+/// run reads again until its input ends, while `[kitchen]` and
+/// `go([hall])` meet them; without it `Rest` takes the rest. The compiled
+/// task, the plans and the interpreter alike, history kept and not.
+#[test]
+fn legacy_closes_open_tails_of_expectations() {
+    use legacy_tails_nfid19::tails as m;
+    let ir = interpreter("typed/legacy_tails");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    let options = |keep_history, close_list_tails| Options {
+        keep_history,
+        close_list_tails,
+        ..Options::default()
+    };
+    let runs = [
+        ("[kitchen, hall].", true, "error"),
+        ("[kitchen].", true, "ok"),
+        ("go([hall, door]).", true, "error"),
+        ("go([hall]).", true, "ok"),
+        ("[kitchen, hall].", false, "ok"),
+        ("go([hall, door]).", false, "ok"),
+    ];
+    for (script, close, status) in runs {
+        for keep in [false, true] {
+            let o = || options(keep, close);
+            let i = run_with(&ir, "main", None, script, o(), false, false);
+            assert_eq!(i.0["status"], status, "{script} {close}: {}", i.0);
+            for (c, by) in [
+                (
+                    run_with(m::program(), "main", None, script, o(), false, false),
+                    "compiled",
+                ),
+                (
+                    run_with(&plans, "main", None, script, o(), false, false),
+                    "plans",
+                ),
+            ] {
+                assert_eq!(
+                    unnumbered(format!("{c:?}")),
+                    unnumbered(format!("{i:?}")),
+                    "{by}: {script} (closed {close}, history {keep})"
+                );
+            }
+        }
+    }
+}
