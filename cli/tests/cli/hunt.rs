@@ -89,3 +89,28 @@ fn first_week_programs() {
     }
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
 }
+
+/// Program 13 (`=> Next`, `Next` unbound), session 18: `sitlogc run` ends
+/// the main DM after the arc, as the original does (docs/guide/language.md, "Next"): the
+/// arc's entry is the history's last, the out_arg the pipe, one warning
+/// at the situation. The whole transcript, stdout and stderr.
+#[test]
+fn next_variable_transcript() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/hunt");
+    let out = sitlogc()
+        .current_dir(&root)
+        .args([
+            "run",
+            "13_next_variable",
+            "--script",
+            "13_next_variable/script.txt",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    insta::assert_snapshot!(format!(
+        "{}----\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    ));
+}

@@ -759,3 +759,49 @@ fn a_broken_dm_refuses_only_the_runs_that_reach_it() {
     );
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// The hunt's program 07 (`[First|Rest]` as an expectation) under
+/// `--legacy`: the expectation's open tail is closed as the original's
+/// evaluator closes it (`[First]`), so the input `[kitchen, hall]` never
+/// meets it and the run reads until its input ends, as the original does
+/// (`tests/conformance/hunt.sh`: `original: stops`); without `--legacy` it
+/// meets it (`Rest = [hall]`).
+#[test]
+fn legacy_closes_an_expectations_open_tail() {
+    let root = tree("expect-tail");
+    let hunt = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/hunt/07_unbound_tail");
+    for f in ["main.dm", "script.txt"] {
+        write(
+            &root,
+            &format!("apps/tail/{f}"),
+            &std::fs::read_to_string(hunt.join(f)).unwrap(),
+        );
+    }
+    write(&root, "apps/tail/models", "'main.dm'.\n");
+    let run = |legacy: bool| {
+        let mut cmd = sitlogc();
+        cmd.current_dir(&root)
+            .args(["run", "apps/tail", "--script", "apps/tail/script.txt"])
+            .args(["--format", "json"])
+            .env_remove("SITLOG_HOME");
+        if legacy {
+            cmd.arg("--legacy");
+        }
+        let out = cmd.output().unwrap();
+        let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        (report, String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (report, stderr) = run(true);
+    assert_eq!(report["status"], "error", "{report} {stderr}");
+    assert!(
+        report["error"].as_str().unwrap().contains("end of input"),
+        "{report}"
+    );
+    assert!(
+        stderr.contains("the input `[kitchen,hall]` meets none of the expectations [[_G0]]"),
+        "{stderr}"
+    );
+    let (report, stderr) = run(false);
+    assert_eq!(report["status"], "ok", "{report} {stderr}");
+    let _ = std::fs::remove_dir_all(&root);
+}

@@ -1139,6 +1139,21 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     pub fn set_expectations(&mut self, expectations: &[Term]) {
         self.m.expectations.clear();
         self.m.expectations.extend_from_slice(expectations);
+        if self.m.options.close_list_tails {
+            self.close_expectations();
+        }
+    }
+
+    /// `--legacy` ([`Options::close_list_tails`](super::Options::close_list_tails)):
+    /// the expectations' list tails closed, as the original's evaluator
+    /// closes them (`[First|Rest]` expects `[First]`), as the machine's
+    /// own evaluation of them does. Cold: off outside `--legacy`.
+    #[cold]
+    #[inline(never)]
+    fn close_expectations(&mut self) {
+        for &e in &self.m.expectations {
+            super::run::close_list_tails(&mut self.m.store, e);
+        }
     }
 
     /// The met expectation of arc `i`, after [`Cx::choose`] or [`Cx::choose_exit`].
@@ -1504,7 +1519,8 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     pub fn goto(&mut self, next: Term, arc: Option<usize>) -> Result<Step, RunError> {
         self.m.chose = Some((self.sit, arc));
         let n = self.m.store.deref(next);
-        if self.m.store.functor(n).is_none() {
+        // An unbound one ends the DM (the machine's `take_step`, docs/guide/language.md, "Next").
+        if self.m.store.functor(n).is_none() && !self.m.store.is_var(n) {
             return Err(self.error(
                 format!(
                     "the next situation evaluates to `{}`, which is not a situation name",

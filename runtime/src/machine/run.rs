@@ -297,10 +297,19 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                         self.template_instance(dm, at, selected)?
                     } else {
                         let sit = at;
-                        match self.take_step(step, sit, id, pipe, perception, actions, observer)? {
+                        match self.take_step(
+                            step,
+                            sit,
+                            id,
+                            pipe,
+                            perception,
+                            actions,
+                            observer,
+                            final_situation,
+                        )? {
                             Some(next) => goto = next,
                             None => {
-                                *final_situation = Some(id);
+                                final_situation.get_or_insert(id);
                                 return Ok(());
                             }
                         }
@@ -351,10 +360,19 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     }
                 }
             };
-            match self.take_step(step, sit, inst.id, pipe, perception, actions, observer)? {
+            match self.take_step(
+                step,
+                sit,
+                inst.id,
+                pipe,
+                perception,
+                actions,
+                observer,
+                final_situation,
+            )? {
                 Some(next) => goto = next,
                 None => {
-                    *final_situation = Some(inst.id);
+                    final_situation.get_or_insert(inst.id);
                     return Ok(());
                 }
             }
@@ -362,7 +380,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     }
 
     /// Where control goes after situation `sit` (id `id`) of the running DM
-    /// took `step`; `None` when the main DM has ended.
+    /// took `step`; `None` when the main DM has ended (in `final_situation`).
     #[allow(clippy::too_many_arguments)]
     fn take_step(
         &mut self,
@@ -373,11 +391,23 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         perception: &mut dyn Perception,
         actions: &mut dyn Actions,
         observer: &mut Option<&mut dyn Observer>,
+        final_situation: &mut Option<Term>,
     ) -> Result<Option<Goto>, RunError> {
         let program = self.program;
+        let mut unbound_end = false;
         loop {
             let here = Some((sit, id));
             match step {
+                Step::Goto(next) if self.store.is_var(self.store.deref(next)) => {
+                    // docs/guide/language.md, "Next": a next situation without a value ends the DM
+                    // as a final situation would, but with no entry of its
+                    // own and the variable as its final situation (a caller
+                    // takes its first exit arc), as the original's `empty`.
+                    self.warn_unbound_next(next, here);
+                    unbound_end = true;
+                    id = self.store.deref(next);
+                    step = Step::Final;
+                }
                 Step::Goto(next) => return Ok(Some(Goto::Situation(next))),
                 Step::GotoSit(next) => return Ok(Some(Goto::Index(next))),
                 // Taken where the code returns it (the run loop).
@@ -425,8 +455,12 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                 }
                 Step::Final => {
                     let Some(pending) = self.pop_frame() else {
+                        if unbound_end {
+                            *final_situation = Some(id);
+                        }
                         return Ok(None);
                     };
+                    unbound_end = false;
                     match pending {
                         Some(Pending::Recursive { sit }) => {
                             let rinst = self.instances.pop().expect("a pending instance");

@@ -141,6 +141,9 @@ pub struct Machine<'p, P> {
     /// The situations that warned of an input meeting no expectation
     /// ([`Perception::unmatched_is_news`](super::Perception::unmatched_is_news)).
     pub(super) unmatched_warned: Vec<(DmIx, Option<SitIx>)>,
+    /// The situations whose arc ended their DM with a next situation
+    /// without a value ([`Machine::end_unbound_next`]): warned about once.
+    pub(super) unbound_next_warned: Vec<(DmIx, Option<SitIx>)>,
 }
 
 /// How many arguments a pipe held as native values may have
@@ -212,6 +215,7 @@ impl<'p, P> Machine<'p, P> {
             warnings: Vec::new(),
             skipped_in_args: Vec::new(),
             unmatched_warned: Vec::new(),
+            unbound_next_warned: Vec::new(),
         }
     }
 

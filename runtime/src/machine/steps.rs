@@ -276,7 +276,13 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         let mut result = Ok(());
         for i in 0..self.arcs.len() {
             match self.eval_in_frame(self.arcs[i][0], here, Some(i)) {
-                Ok(v) => self.expectations.push(v),
+                Ok(v) => {
+                    if self.options.close_list_tails {
+                        // `--legacy`: closed as the original's evaluator closes them.
+                        super::run::close_list_tails(&mut self.store, v);
+                    }
+                    self.expectations.push(v)
+                }
                 Err(e) => {
                     result = Err(e);
                     break;
@@ -468,7 +474,8 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             observer,
         );
         let n = self.store.deref(next);
-        if self.store.functor(n).is_none() {
+        // An unbound next situation ends the DM (the loop's `take_step`, docs/guide/language.md, "Next").
+        if self.store.functor(n).is_none() && !self.store.is_var(n) {
             return Err(self.err(
                 format!(
                     "the next situation evaluates to `{}`, which is not a situation name",
@@ -479,6 +486,43 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             ));
         }
         Ok(n)
+    }
+
+    /// The warning of an arc whose next situation has no value (docs/guide/language.md, "Next"),
+    /// the first time its situation takes one: the running DM ends there,
+    /// without a final situation, as the original's ends (its unbound next
+    /// situation unifies with the `empty` that ends a DM); a caller takes
+    /// its first exit arc. Located at the situation, the arc named. Cold.
+    #[cold]
+    pub(super) fn warn_unbound_next(&mut self, next: Term, here: Option<(SitIx, Term)>) {
+        let Some((dm, call)) = self.warning_dm() else {
+            return;
+        };
+        let key = (dm, here.map(|(s, _)| s));
+        if self.unbound_next_warned.contains(&key) {
+            return;
+        }
+        self.unbound_next_warned.push(key);
+        let arc = match self.chose {
+            Some((s, Some(a))) if Some(s) == here.map(|(s, _)| s) => format!("arc {}'s ", a + 1),
+            _ => String::new(),
+        };
+        let id = here.map_or(Term::atom(atoms::NONE), |(_, id)| id);
+        let [call, id, next] = writeq_renumbered(&self.store, [call, id, next]);
+        let location = here.and_then(|(s, _)| self.program.location(dm, s));
+        let whom = if self.frames.len() + self.lazy.len() > 1 {
+            "its caller takes its first exit arc"
+        } else {
+            "the task ends"
+        };
+        self.warnings.push(super::RunWarning {
+            message: format!(
+                "{arc}next situation `{next}` has no value: the DM ends here without a final situation, as the original SitLog ends it (an unbound next situation is its `empty`), and {whom}; a variable the arc meant to bind? (said once per situation)"
+            ),
+            dm: call,
+            situation: id,
+            location,
+        });
     }
 
     pub(super) fn perform(

@@ -4034,3 +4034,138 @@ fn neff18_effectors_without_the_hand_over_agree() {
         "{report}"
     );
 }
+
+mod next_unbound_nfid19 {
+    pub mod ends {
+        sitlog_macros::include_dm!("typed/next_unbound");
+    }
+}
+
+/// A next situation without a value ends its DM as the original's `empty`
+/// does (docs/guide/language.md, "Next", issue 39's program 13): the main DM (`main`:
+/// the task ends, its out_arg kept) and a callee called natively
+/// (`caller(1)`: `sub(2)` ends so, its caller takes its first exit arc
+/// `done(R)`, `R` unbound), no final entry in the callee's history, one
+/// warning at the situation; the compiled task, the plans and the
+/// interpreter alike, history kept and not.
+#[test]
+fn an_unbound_next_situation_ends_the_dm() {
+    use next_unbound_nfid19::ends as m;
+    let ir = interpreter("typed/next_unbound");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    let options = |keep_history| Options {
+        keep_history,
+        ..Options::default()
+    };
+    let file = |line: u32, col: u32| {
+        let name = ir.sources.files().next().expect("a file").1.name.clone();
+        format!("{name}:{line}:{col}")
+    };
+    let tail = "has no value: the DM ends here without a final situation, as the original \
+                SitLog ends it (an unbound next situation is its `empty`), and";
+    let runs = [
+        (
+            "main",
+            format!(
+                "warning: in DM `main`, situation `is` ({}): arc 1's next situation `_G0` {tail} the task ends; a variable the arc meant to bind? (said once per situation)",
+                file(9, 7)
+            ),
+            "started",
+        ),
+        (
+            "caller(1)",
+            format!(
+                "warning: in DM `sub(2)`, situation `s1` ({}): arc 1's next situation `_G0` {tail} its caller takes its first exit arc; a variable the arc meant to bind? (said once per situation)",
+                file(23, 7)
+            ),
+            "sub(2)",
+        ),
+    ];
+    for (main, warning, out) in &runs {
+        for keep in [false, true] {
+            let i = run_with(&ir, main, None, "", options(keep), false, false);
+            assert_eq!(i.0["status"], "ok", "{main}: {}", i.0);
+            assert_eq!(i.0["out_arg"], *out, "{main}: {}", i.0);
+            let said: Vec<&String> = i.2.iter().filter(|l| l.starts_with("warning:")).collect();
+            assert_eq!(said, vec![warning], "{main}");
+            if keep && *main == "caller(1)" {
+                // `sub(2)`'s level holds its one arc, no final entry.
+                let h = i.0["history"].to_string();
+                let level = r#"[{"action":"say(n(2))","dm":"sub(2)","expectation":"empty","situation":"s1"}]"#;
+                assert!(h.contains(level), "{h}");
+                assert!(h.contains(r#""expectation":"done(_V0)""#), "{h}");
+            }
+            for (c, by) in [
+                (
+                    run_with(m::program(), main, None, "", options(keep), false, false),
+                    "compiled",
+                ),
+                (
+                    run_with(&plans, main, None, "", options(keep), false, false),
+                    "plans",
+                ),
+            ] {
+                assert_eq!(
+                    unnumbered(format!("{c:?}")),
+                    unnumbered(format!("{i:?}")),
+                    "{by}: {main} (history {keep})"
+                );
+            }
+        }
+    }
+}
+
+mod legacy_tails_nfid19 {
+    pub mod tails {
+        sitlog_macros::include_dm!("typed/legacy_tails");
+    }
+}
+
+/// Expectations with open list tails (issue 39's program 07): under
+/// `--legacy` (`Options::close_list_tails`) closed as the original's
+/// evaluator closes them, so `[kitchen, hall]` meets no expectation and the
+/// run reads again until its input ends, while `[kitchen]` and
+/// `go([hall])` meet them; without it `Rest` takes the rest. The compiled
+/// task, the plans and the interpreter alike, history kept and not.
+#[test]
+fn legacy_closes_open_tails_of_expectations() {
+    use legacy_tails_nfid19::tails as m;
+    let ir = interpreter("typed/legacy_tails");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    let options = |keep_history, close_list_tails| Options {
+        keep_history,
+        close_list_tails,
+        ..Options::default()
+    };
+    let runs = [
+        ("[kitchen, hall].", true, "error"),
+        ("[kitchen].", true, "ok"),
+        ("go([hall, door]).", true, "error"),
+        ("go([hall]).", true, "ok"),
+        ("[kitchen, hall].", false, "ok"),
+        ("go([hall, door]).", false, "ok"),
+    ];
+    for (script, close, status) in runs {
+        for keep in [false, true] {
+            let o = || options(keep, close);
+            let i = run_with(&ir, "main", None, script, o(), false, false);
+            assert_eq!(i.0["status"], status, "{script} {close}: {}", i.0);
+            for (c, by) in [
+                (
+                    run_with(m::program(), "main", None, script, o(), false, false),
+                    "compiled",
+                ),
+                (
+                    run_with(&plans, "main", None, script, o(), false, false),
+                    "plans",
+                ),
+            ] {
+                assert_eq!(
+                    unnumbered(format!("{c:?}")),
+                    unnumbered(format!("{i:?}")),
+                    "{by}: {script} (closed {close}, history {keep})"
+                );
+            }
+        }
+    }
+}
