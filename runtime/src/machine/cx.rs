@@ -107,6 +107,24 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.enter_with_id(sit, id);
     }
 
+    /// [`Cx::enter_counted`] of a perceptual situation whose choice native
+    /// code keeps ([`Cx::choose_at`], [`Cx::choose_kept_at`]): the id `id` (a [`Fill`] of
+    /// native values, which costs a list part's length) built now when the
+    /// run records (the history reads it), else the situation entered
+    /// unbuilt ([`Cx::enter_unbuilt`]) and the id built by the choice's
+    /// cold path, the only other reader before the chosen arc's code
+    /// (which the generator gives only steps that take the id's parts).
+    #[inline]
+    pub fn enter_perceiving(&mut self, count: &mut u64, sit: SitIx, id: impl IdArg) {
+        self.count_transitions(std::mem::take(count));
+        if self.records() {
+            let id = id.id_in(&mut self.m.store);
+            self.enter_with_id(sit, id);
+        } else {
+            self.enter_unbuilt(sit);
+        }
+    }
+
     /// [`Cx::enter_counted`] in a final the machine takes (the base's, or
     /// one with a `diag_mod`), then its out_arg the pipe unchanged
     /// ([`Cx::final_out_arg`] of `None`): the two calls of a final without
@@ -1191,6 +1209,41 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         }
     }
 
+    /// [`Cx::choose_kept`] after [`Cx::enter_perceiving`]: on the cold
+    /// path the situation's id `id` is built first if it was not (the
+    /// machine's choice, a prompt, an error and `Step::Unmet` read it).
+    #[inline]
+    pub fn choose_kept_at(
+        &mut self,
+        type_term: Term,
+        id: impl IdArg,
+        hand: impl FnOnce(&mut Self) -> Result<(), RunError>,
+    ) -> Result<Option<usize>, RunError> {
+        match self.m.perceive_kept(type_term, &mut *self.perception) {
+            Ok(i) => Ok(Some(i)),
+            Err(first) => {
+                if self.id == Term::NIL {
+                    self.id = id.id_in(&mut self.m.store);
+                }
+                self.choose_cold(type_term, first, hand)
+            }
+        }
+    }
+
+    /// [`Cx::choose_kept_at`] in a DM without locals, the frames below
+    /// handed over by the runtime's [`nat_hand_over`](super::nat_hand_over)
+    /// on the cold path (`machine::nat_choose`'s, with the id).
+    #[inline]
+    pub fn choose_at<F: super::NatFrames<P>>(
+        &mut self,
+        stack: &mut super::NatBelow<'_, F>,
+        type_term: Term,
+        id: impl IdArg,
+    ) -> Result<Option<usize>, RunError> {
+        let p = self.m.program;
+        self.choose_kept_at(type_term, id, |cx| super::nat_hand_over(p, cx, stack))
+    }
+
     /// [`Cx::choose_kept`]'s cold path: the frames handed over, then the
     /// machine's choice going on from `first`.
     #[cold]
@@ -1659,6 +1712,7 @@ impl IdArg for Atom {
 /// A pattern and its holes ([`Cx::fill`]'s arguments) given to a call
 /// that fills them first: `Fill(p.k[29], &[&r1])`, where a `let` of the
 /// filled id would come just before the call.
+#[derive(Clone, Copy)]
 pub struct Fill<'a>(pub Term, pub &'a [&'a dyn AsTerm]);
 
 impl IdArg for Fill<'_> {

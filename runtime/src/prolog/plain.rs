@@ -3,14 +3,18 @@
 //! native form ([`PlainFn`]) that a call runs in Rust before it would
 //! become a query; the engine runs everything else.
 //!
-//! Plain: a head whose arguments are variables, atoms or integers; a body
+//! Plain: a head whose arguments are variables, atoms, integers, or
+//! compounds and lists of these (`[P|Ps]`, `at(R, O)`); a body
 //! that is a conjunction of `true`, `fail`/`false`, `!`, `V is E` (`E`
 //! over integers and bound variables with `+ - * // mod rem min max abs`,
 //! unary `-` and `+`), `< > =< >= =:= =\=` between such expressions,
-//! `==`/`\==` and `=` between variables and atoms or integers, and
-//! `assign_func_value/1` of a variable or an atom or integer (the last one
-//! wins, as the prelude's `bb_b_put/2` does). A variable read before it is
-//! bound makes the clause not plain.
+//! `==`/`\==` and `=` between bound variables, atoms, integers and
+//! compounds or lists built of these (`=` with a fresh variable on one
+//! side binds it), and `assign_func_value/1` of such a value (`walk(Ps)`,
+//! `found(P)`, `[P|Seen]`: built from the bound variables' terms, which
+//! are shared, not copied; the last assignment wins, as the prelude's
+//! `bb_b_put/2` does). A variable read before it is bound makes the clause
+//! not plain.
 //!
 //! Invariant (fidelity): the native form gives a value only where the
 //! engine gives the same one, and hands every other call to the engine,
@@ -32,7 +36,7 @@
 
 use crate::store::Store;
 use crate::term::{Term, Value, Var};
-use sitlog_syntax::Atom;
+use sitlog_syntax::{atoms, Atom};
 use std::collections::HashMap;
 
 /// The names whose mention anywhere in the application's Prolog turns the
@@ -69,14 +73,25 @@ enum PArg {
     /// A variable again: the argument must be identical to it.
     Same(u16),
     Const(Term),
+    /// A compound (a list cell too): the argument must be one of this
+    /// name and arity whose arguments match these.
+    Struct(Atom, Box<[PArg]>),
 }
 
 /// An operand of `==`, `\==`, `=` or `assign_func_value/1`.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 enum Opnd {
     Var(u16),
     Const(Term),
+    /// `name(args..)` (arity at least 1) built of bound variables and
+    /// constants.
+    Build(Atom, Box<[Opnd]>),
 }
+
+/// How deep a head argument or an operand of a plain clause nests (deeper:
+/// not plain), so that a value built from arguments at most [`MAX_DEPTH`]
+/// deep stays far within the engine's `PROLOG_MAX_DEPTH`.
+const MAX_PATTERN_DEPTH: usize = 64;
 
 #[derive(Clone, Copy, Debug)]
 enum Bin {
@@ -271,7 +286,9 @@ impl PlainFns {
 const MAX_DEPTH: usize = 10_000;
 
 /// Whether `t` nests at most [`MAX_DEPTH`] levels and, if `strict`, is
-/// ground with no float or big integer anywhere in it.
+/// ground with no float, big integer or improper list (`[a|b]`) anywhere
+/// in it: the engine cannot give back an answer that holds an improper
+/// list (it fails the call: see [`value`]).
 pub(super) fn sure(store: &Store, t: Term, strict: bool) -> bool {
     match store.value(store.deref(t)) {
         Value::Atom(_) | Value::Int(_) => return true,
@@ -290,10 +307,22 @@ pub(super) fn sure(store: &Store, t: Term, strict: bool) -> bool {
                     return false;
                 }
             }
-            Value::Compound(_, args) => stack.extend(args.iter().map(|&a| (a, depth + 1))),
+            Value::Compound(f, args) => {
+                if strict && f == atoms::DOT && args.len() == 2 && !list_tail(store, args[1]) {
+                    return false;
+                }
+                stack.extend(args.iter().map(|&a| (a, depth + 1)))
+            }
         }
     }
     true
+}
+
+/// Whether `t` is `[]` or a list cell: a cell with it as its tail is not
+/// an improper list's last.
+fn list_tail(store: &Store, t: Term) -> bool {
+    let t = store.deref(t);
+    store.atom_of(t) == Some(atoms::NIL) || store.compound_args(t, atoms::DOT, 2).is_some()
 }
 
 /// Whether `t` names one of [`OFF`] (as an atom or a functor) anywhere.
@@ -354,18 +383,7 @@ fn plain_clause(store: &Store, head: Term, body: Option<Term>) -> Option<PClause
     let mut scope = Scope::default();
     let mut args = Vec::new();
     for &a in store.args(head) {
-        let a = store.deref(a);
-        if let Some(v) = store.var_of(a) {
-            let (i, bound) = scope.var(v)?;
-            if bound {
-                args.push(PArg::Same(i));
-            } else {
-                scope.bind(i);
-                args.push(PArg::Bind(i));
-            }
-        } else {
-            args.push(PArg::Const(constant(store, a)?));
-        }
+        args.push(head_arg(store, a, &mut scope, 0)?);
     }
     let mut goals = Vec::new();
     if let Some(b) = body {
@@ -393,15 +411,56 @@ fn plain_clause(store: &Store, head: Term, body: Option<Term>) -> Option<PClause
     })
 }
 
-/// A bound variable or a constant.
+/// A head argument: a variable (its first occurrence binds it), a constant,
+/// or a compound of these.
+fn head_arg(store: &Store, t: Term, scope: &mut Scope, depth: usize) -> Option<PArg> {
+    if depth > MAX_PATTERN_DEPTH {
+        return None;
+    }
+    let t = store.deref(t);
+    if let Some(v) = store.var_of(t) {
+        let (i, bound) = scope.var(v)?;
+        if bound {
+            return Some(PArg::Same(i));
+        }
+        scope.bind(i);
+        return Some(PArg::Bind(i));
+    }
+    if let Value::Compound(f, a) = store.value(t) {
+        let mut args = Vec::with_capacity(a.len());
+        for &x in a {
+            args.push(head_arg(store, x, scope, depth + 1)?);
+        }
+        return Some(PArg::Struct(f, args.into()));
+    }
+    constant(store, t).map(PArg::Const)
+}
+
+/// A bound variable, a constant, or a compound built of these.
 fn operand(store: &Store, t: Term, scope: &mut Scope) -> Option<Opnd> {
+    operand_at(store, t, scope, 0)
+}
+
+fn operand_at(store: &Store, t: Term, scope: &mut Scope, depth: usize) -> Option<Opnd> {
+    if depth > MAX_PATTERN_DEPTH {
+        return None;
+    }
     let t = store.deref(t);
     match store.var_of(t) {
         Some(v) => match scope.var(v)? {
             (i, true) => Some(Opnd::Var(i)),
             (_, false) => None,
         },
-        None => constant(store, t).map(Opnd::Const),
+        None => match store.value(t) {
+            Value::Compound(f, a) => {
+                let mut args = Vec::with_capacity(a.len());
+                for &x in a {
+                    args.push(operand_at(store, x, scope, depth + 1)?);
+                }
+                Some(Opnd::Build(f, args.into()))
+            }
+            _ => constant(store, t).map(Opnd::Const),
+        },
     }
 }
 
@@ -586,27 +645,100 @@ fn eval(store: &Store, e: &PExpr, regs: &[Term]) -> Result<i64, ()> {
     })
 }
 
-fn value(o: Opnd, regs: &[Term]) -> Term {
+/// The operand's term: a compound built in `store`, its variables' terms
+/// shared (a list argument is not copied). `None` for a list cell whose
+/// tail is neither a cell nor `[]` (`[x|y]`, `[X|T]` with `T` an atom):
+/// the engine fails a call whose answer holds an improper list (its
+/// conversion of the answer panics on the engine's thread), so such a
+/// value is the engine's to decide. The arguments hold none ([`sure`]).
+fn value(store: &mut Store, o: &Opnd, regs: &[Term]) -> Option<Term> {
     match o {
-        Opnd::Var(i) => regs[i as usize],
-        Opnd::Const(t) => t,
+        Opnd::Var(i) => Some(regs[*i as usize]),
+        Opnd::Const(t) => Some(*t),
+        Opnd::Build(f, args) => {
+            let mut small = [Term::EMPTY; 8];
+            let mut big = Vec::new();
+            let ts: &mut [Term] = if args.len() <= small.len() {
+                &mut small[..args.len()]
+            } else {
+                big.resize(args.len(), Term::EMPTY);
+                &mut big
+            };
+            for (t, a) in ts.iter_mut().zip(args.iter()) {
+                *t = value(store, a, regs)?;
+            }
+            if *f == atoms::DOT && ts.len() == 2 && !list_tail(store, ts[1]) {
+                return None;
+            }
+            Some(store.compound(*f, ts))
+        }
+    }
+}
+
+/// The term of a variable or a constant (`None`: a compound to build).
+fn leaf(o: &Opnd, regs: &[Term]) -> Option<Term> {
+    match o {
+        Opnd::Var(i) => Some(regs[*i as usize]),
+        Opnd::Const(k) => Some(*k),
+        Opnd::Build(..) => None,
+    }
+}
+
+/// Whether the operand's value is identical (`==`) to the ground term `t`,
+/// without building it.
+fn ident_term(store: &Store, o: &Opnd, regs: &[Term], t: Term) -> bool {
+    match o {
+        Opnd::Build(f, args) => {
+            store.compound_args(t, *f, args.len()).is_some()
+                && (0..args.len()).all(|i| ident_term(store, &args[i], regs, store.args(t)[i]))
+        }
+        _ => leaf(o, regs).is_some_and(|k| store.identical(k, t)),
+    }
+}
+
+/// Whether two operands' values are identical (`==`).
+fn ident(store: &Store, x: &Opnd, y: &Opnd, regs: &[Term]) -> bool {
+    match (leaf(x, regs), leaf(y, regs), x, y) {
+        (Some(a), Some(b), ..) => store.identical(a, b),
+        (Some(a), None, ..) => ident_term(store, y, regs, a),
+        (None, Some(b), ..) => ident_term(store, x, regs, b),
+        (None, None, Opnd::Build(f, a), Opnd::Build(g, b)) => {
+            f == g
+                && a.len() == b.len()
+                && a.iter()
+                    .zip(b.iter())
+                    .all(|(x, y)| ident(store, x, y, regs))
+        }
+        (None, None, ..) => false,
+    }
+}
+
+/// Whether the ground argument `a` matches the head argument `p`, binding
+/// its variables' first occurrences in `regs`.
+fn head_matches(store: &Store, p: &PArg, a: Term, regs: &mut [Term]) -> bool {
+    match p {
+        PArg::Bind(i) => {
+            regs[*i as usize] = a;
+            true
+        }
+        PArg::Same(i) => store.identical(regs[*i as usize], a),
+        PArg::Const(k) => store.identical(*k, a),
+        PArg::Struct(f, ps) => {
+            if store.compound_args(a, *f, ps.len()).is_none() {
+                return false;
+            }
+            (0..ps.len()).all(|i| {
+                let ai = store.args(a)[i];
+                head_matches(store, &ps[i], ai, regs)
+            })
+        }
     }
 }
 
 fn run_clause(store: &mut Store, c: &PClause, args: &[Term], regs: &mut [Term]) -> Outcome {
     for (p, &a) in c.head.iter().zip(args) {
-        match p {
-            PArg::Bind(i) => regs[*i as usize] = a,
-            PArg::Same(i) => {
-                if !store.identical(regs[*i as usize], a) {
-                    return Outcome::Fail { cut: false };
-                }
-            }
-            PArg::Const(k) => {
-                if !store.identical(*k, a) {
-                    return Outcome::Fail { cut: false };
-                }
-            }
+        if !head_matches(store, p, a, regs) {
+            return Outcome::Fail { cut: false };
         }
     }
     let mut cut = false;
@@ -641,13 +773,17 @@ fn run_clause(store: &mut Store, c: &PClause, args: &[Term], regs: &mut [Term]) 
                 },
                 _ => return Outcome::Unsure,
             },
-            PGoal::Ident(eq, x, y) => store.identical(value(*x, regs), value(*y, regs)) == *eq,
-            PGoal::Bind(i, o) => {
-                regs[*i as usize] = value(*o, regs);
-                true
-            }
+            PGoal::Ident(eq, x, y) => ident(store, x, y, regs) == *eq,
+            PGoal::Bind(i, o) => match value(store, o, regs) {
+                Some(v) => {
+                    regs[*i as usize] = v;
+                    true
+                }
+                None => return Outcome::Unsure,
+            },
             PGoal::Assign(o) => {
-                assigned = Some(value(*o, regs));
+                // Built when the clause has succeeded (a later assignment wins).
+                assigned = Some(o);
                 true
             }
         };
@@ -656,7 +792,7 @@ fn run_clause(store: &mut Store, c: &PClause, args: &[Term], regs: &mut [Term]) 
         }
     }
     match assigned {
-        Some(v) => Outcome::Value(v),
+        Some(o) => value(store, o, regs).map_or(Outcome::Unsure, Outcome::Value),
         None => Outcome::NoValue,
     }
 }
@@ -732,6 +868,65 @@ mod tests {
         let fns2 = scan("k2(a, X) :- Y = X, assign_func_value(Y).\n");
         assert_eq!(call(&fns2, s, "k2(a, z)").as_deref(), Some("z"));
         assert_eq!(call(&fns2, s, "k2(b, z)"), None);
+    }
+
+    #[test]
+    fn compounds_and_lists_taken_and_returned() {
+        let fns = scan(
+            "route(P, _, _) :- P == boom, !, fail.\n\
+             route(P, _, T) :- P == T, !, assign_func_value(found(P)).\n\
+             route(_, Ps, _) :- assign_func_value(walk(Ps)).\n\
+             first([X|_]) :- assign_func_value(X).\n\
+             first([]) :- assign_func_value(none).\n\
+             pair(at(R, O), R) :- assign_func_value(O-[R, 1|x]).\n\
+             pair2(at(R, O)) :- T = [], assign_func_value([O, R|T]).\n\
+             same_as(X) :- X == f(a, [1]), assign_func_value(yes).\n\
+             same_as(X) :- Y = g(X), Y \\== g(b), assign_func_value(Y).\n\
+             same_as(_) :- assign_func_value([]).\n\
+             open(X) :- Y = f(Z), assign_func_value(Y-X-Z).\n\
+             fl(X) :- assign_func_value(f(X, 1.5)).\n",
+        );
+        let mut keys: Vec<String> = fns.keys().map(|(n, a)| format!("{n}/{a}")).collect();
+        keys.sort();
+        assert_eq!(
+            keys,
+            ["first/1", "pair/2", "pair2/1", "route/3", "same_as/1"]
+        );
+        let s = &mut Store::new();
+        assert_eq!(
+            call(&fns, s, "route(a, [b, c], c)").as_deref(),
+            Some("walk([b,c])")
+        );
+        assert_eq!(
+            call(&fns, s, "route(c, [], c)").as_deref(),
+            Some("found(c)")
+        );
+        assert_eq!(call(&fns, s, "route(boom, [], c)"), None); // fails after its cut
+        assert_eq!(call(&fns, s, "route(a, [b|_], c)"), None); // an unbound part
+        assert_eq!(call(&fns, s, "route(a, [b, 1.0], c)"), None); // a float
+        assert_eq!(call(&fns, s, "route(a, [b|c], c)"), None); // an improper list
+        assert_eq!(call(&fns, s, "first([q|r])"), None);
+        assert_eq!(call(&fns, s, "first([q, r])").as_deref(), Some("q"));
+        assert_eq!(call(&fns, s, "first([])").as_deref(), Some("none"));
+        assert_eq!(call(&fns, s, "first(q)"), None); // no clause matches
+        assert_eq!(call(&fns, s, "pair(at(k, cup), k)"), None); // builds `[k, 1|x]`
+        assert_eq!(
+            call(&fns, s, "pair2(at(k, cup))").as_deref(),
+            Some("[cup,k]")
+        );
+        assert_eq!(call(&fns, s, "pair(at(k, cup), j)"), None);
+        assert_eq!(call(&fns, s, "pair(on(k, cup), k)"), None);
+        assert_eq!(call(&fns, s, "same_as(f(a, [1]))").as_deref(), Some("yes"));
+        assert_eq!(
+            call(&fns, s, "same_as(f(a, [2]))").as_deref(),
+            Some("g(f(a,[2]))")
+        );
+        assert_eq!(call(&fns, s, "same_as(b)").as_deref(), Some("[]"));
+        // The argument's list is shared by the value, not copied.
+        let t = s.parse("route(a, [b, c], c)").unwrap().0;
+        let args = s.args(t).to_vec();
+        let v = fns.call(s, Atom::intern("route"), &args, u64::MAX).unwrap();
+        assert_eq!(s.args(v)[0], args[1]);
     }
 
     #[test]

@@ -448,6 +448,10 @@ pub struct TextActions<W: Write> {
     out: W,
     declared: Vec<Atom>,
     unbound_screen: Option<(Atom, String)>,
+    /// `say` and `screen`, interned once: an action's name is compared as
+    /// an atom (its text is a thread-local table look-up, twice an action).
+    say: Atom,
+    screen: Atom,
 }
 
 impl<W: Write> TextActions<W> {
@@ -456,6 +460,8 @@ impl<W: Write> TextActions<W> {
             out,
             declared,
             unbound_screen: None,
+            say: Atom::intern("say"),
+            screen: Atom::intern("screen"),
         }
     }
 
@@ -476,7 +482,11 @@ impl<W: Write> Actions for TextActions<W> {
         let Some((name, arity)) = store.functor(a) else {
             return Ok(());
         };
-        if let (("screen", 1), Some((id, text))) = ((name.as_str(), arity), &self.unbound_screen) {
+        let (say, screen) = (
+            name == self.say && arity == 1,
+            name == self.screen && arity == 1,
+        );
+        if let (true, Some((id, text))) = (screen, &self.unbound_screen) {
             let x = store.args(a)[0];
             if store.is_var(x) {
                 let caption = store.compound(Atom::intern("caption"), &[Term::atom(*id)]);
@@ -487,9 +497,9 @@ impl<W: Write> Actions for TextActions<W> {
             }
         }
         let arg = |i: usize| store.write(store.args(a)[i]);
-        let line = match (name.as_str(), arity) {
-            ("screen", 1) => format!("Golem prints on screen: {}", arg(0)),
-            ("say", 1) => {
+        let line = match (say, screen) {
+            (_, true) => format!("Golem prints on screen: {}", arg(0)),
+            (true, _) => {
                 // A message given as a list is said as one sentence (the
                 // original's msg_format/2).
                 let m = store.args(a)[0];

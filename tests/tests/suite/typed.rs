@@ -3890,6 +3890,9 @@ fn when_with_expression_operands_agrees() {
 /// Helper `review18`'s workloads with bad inputs (issue 37).
 mod review18;
 
+/// Helper `nfn19`'s plain functions returning compounds (issue 37).
+mod plain_compounds;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");

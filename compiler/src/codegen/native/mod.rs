@@ -2921,7 +2921,9 @@ impl Gen<'_> {
                     // (module `perceive`), else handed over first.
                     let arms: Vec<_> = arms.collect();
                     let enter = quote!(#(#id_stmts)* cx.enter_counted(&mut count, #cur, #id););
-                    let kept = perceive::kept_choice(hand, &enter, &exps, &names, &ts, &ty, &arms);
+                    let lazy = perceive::lazy_id(fill_arg(&id_stmts, &id), &id, &cur, &arms);
+                    let kept =
+                        perceive::kept_choice(hand, &enter, lazy, &exps, &names, &ts, &ty, &arms);
                     let handed = quote! {
                         #hand
                         #(#id_stmts)*

@@ -64,6 +64,12 @@
 //! `hands(_, free)`) are read natively in the chosen arc after the checked
 //! conversion, once, where the arc's code reads them (as before).
 //!
+//! A situation whose id is filled from native values (`q([P|Ps])`: the
+//! rest of a walked list converted, its length at every visit) is entered
+//! with the id built only where it is read ([`lazy_id`]: the history, or
+//! the cold path, where `Cx::choose_kept_at` builds it before the machine
+//! reads it), when its arms take only steps that build from the id's parts.
+//!
 //! Kept only when building the expectations and the type term calls
 //! nothing that reads the machine's state (`cx.build`, `cx.term`,
 //! `cx.fill`, constants: [`builds_only`]); an expectation that evaluates
@@ -122,9 +128,13 @@ pub(super) fn hand_expr(hand: &TokenStream) -> Option<TokenStream> {
 /// no expectation is met, else the `arms`. `None` when it cannot be kept
 /// (building calls more than [`BUILDS`], a hand-over of another form):
 /// the caller hands over first, as before.
+/// With `lazy` ([`lazy_id`]), the situation is entered by it and its id
+/// built on the cold path only (`Cx::choose_at`, `Cx::choose_kept_at`).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn kept_choice(
     hand: &TokenStream,
     enter: &TokenStream,
+    lazy: Option<(TokenStream, TokenStream)>,
     exps: &[TokenStream],
     names: &[Ident],
     ty_stmts: &[TokenStream],
@@ -136,11 +146,20 @@ pub(super) fn kept_choice(
         return None;
     }
     let runtime = quote!(super::nat_hand_over(p, cx, stack)?;).to_string();
-    let choose = if hand.to_string() == runtime {
-        quote!(machine::nat_choose(p, cx, stack, type_term))
-    } else {
-        let hand = hand_expr(hand)?;
-        quote!(cx.choose_kept(type_term, |cx| #hand))
+    let (enter, choose) = match (lazy, hand.to_string() == runtime) {
+        (None, true) => (
+            enter.clone(),
+            quote!(machine::nat_choose(p, cx, stack, type_term)),
+        ),
+        (None, false) => {
+            let hand = hand_expr(hand)?;
+            (enter.clone(), quote!(cx.choose_kept(type_term, |cx| #hand)))
+        }
+        (Some((enter, id)), true) => (enter, quote!(cx.choose_at(stack, type_term, #id))),
+        (Some((enter, id)), false) => {
+            let hand = hand_expr(hand)?;
+            (enter, quote!(cx.choose_kept_at(type_term, #id, |cx| #hand)))
+        }
     };
     Some(quote! {
         #enter
@@ -156,6 +175,79 @@ pub(super) fn kept_choice(
             _ => unreachable!("the machine chose an arc of this situation"),
         }
     })
+}
+
+/// The `cx` calls a chosen arm may make for its situation's id to be built
+/// only where it is read ([`lazy_id`]): the entry of the next situation
+/// from the id's parts (`nat_empty`), terms built, the hand-over and the
+/// count before a `run.goto` (`count_and_enter`, which enters the
+/// situation by its name where nothing records).
+const ARM_STEPS: &[&str] = &[
+    "nat_empty",
+    "count_and_enter",
+    "build",
+    "build_of",
+    "term",
+    "fill",
+    "store",
+];
+
+/// The entry of a perceptual situation whose id is filled from native
+/// values (`let idN = cx.fill(..)`: a list part costs its length at every
+/// visit) and read, where nothing records, by nothing but the choice's
+/// cold path: `let idN = Fill(..); cx.enter_perceiving(&mut count, cur,
+/// idN);` and `idN` for the choice (`Cx::choose_kept_at`). `None` (the id
+/// built first, as before) for an id of another form or when an arm does
+/// more than [`ARM_STEPS`] (anything else may read the id: an error names
+/// it) or ends in `run.goto` without `count_and_enter` first.
+pub(super) fn lazy_id(
+    fill: Option<TokenStream>,
+    id: &TokenStream,
+    cur: &proc_macro2::Literal,
+    arms: &[TokenStream],
+) -> Option<(TokenStream, TokenStream)> {
+    let fill = fill?;
+    if !arms.iter().all(arm_steps_only) {
+        return None;
+    }
+    Some((
+        quote!(let #id = #fill; cx.enter_perceiving(&mut count, #cur, #id);),
+        id.clone(),
+    ))
+}
+
+/// Whether `code` calls no `cx` method but [`ARM_STEPS`] and no `run.goto`
+/// before a `count_and_enter`.
+fn arm_steps_only(code: &TokenStream) -> bool {
+    fn walk(code: &TokenStream, entered: &mut bool) -> bool {
+        let toks: Vec<TokenTree> = code.clone().into_iter().collect();
+        for (k, t) in toks.iter().enumerate() {
+            let method = |recv: &str| match (t, toks.get(k + 1), toks.get(k + 2)) {
+                (TokenTree::Ident(i), Some(TokenTree::Punct(dot)), Some(TokenTree::Ident(m)))
+                    if i == recv && dot.as_char() == '.' =>
+                {
+                    Some(m.to_string())
+                }
+                _ => None,
+            };
+            if let TokenTree::Group(g) = t {
+                if !walk(&g.stream(), entered) {
+                    return false;
+                }
+            } else if let Some(m) = method("cx") {
+                if !ARM_STEPS.contains(&m.as_str()) {
+                    return false;
+                }
+                *entered |= m == "count_and_enter";
+            } else if (method("run").as_deref() == Some("goto") && !*entered)
+                || matches!(t, TokenTree::Ident(i) if i == "machine")
+            {
+                return false;
+            }
+        }
+        true
+    }
+    walk(code, &mut false)
 }
 
 #[cfg(test)]
@@ -176,6 +268,38 @@ mod tests {
         assert!(!builds_only(&quote!(let e0 = cx.eval(t, None)?;)));
         assert!(!builds_only(&quote!(let e0 = { cx.var_op(a, b)?; x };)));
         assert!(!builds_only(&quote!(super::nat_hand_over(p, cx, stack)?;)));
+    }
+
+    #[test]
+    fn an_arms_steps_decide_whether_the_id_is_built_lazily() {
+        let ok = quote! {
+            0 => {
+                if run.records || !run.quiet_empty {
+                    cx.nat_empty(stack, &mut count, 2, 0, p.k[3], &[&r3, r4])?;
+                }
+                run.tally(&mut count);
+                super::nat_hand_over(p, cx, stack)?;
+                cx.count_and_enter(count, run.records, 2, a.q);
+                let rec_next = cx.build_of(a.q, &[v0]);
+                return run.goto(cx, exp, act, rec_next, Some(1));
+            }
+        };
+        assert!(arm_steps_only(&ok));
+        assert!(!arm_steps_only(&quote!(0 => { cx.perform(t, Some(0))?; })));
+        assert!(!arm_steps_only(
+            &quote!(0 => { return run.goto(cx, exp, act, n, None); })
+        ));
+        assert!(!arm_steps_only(
+            &quote!(0 => { machine::nat_template(p, cx, stack); })
+        ));
+        let id = quote!(id3);
+        let cur = proc_macro2::Literal::usize_unsuffixed(2);
+        let fill = Some(quote!(Fill(p.k[3], &[&r3, r4])));
+        let (enter, arg) = lazy_id(fill.clone(), &id, &cur, &[ok]).unwrap();
+        assert_eq!(arg.to_string(), "id3");
+        assert!(enter.to_string().contains("enter_perceiving"));
+        assert!(lazy_id(None, &id, &cur, &[]).is_none());
+        assert!(lazy_id(fill, &id, &cur, &[quote!(cx.eval(t, None)?;)]).is_none());
     }
 
     #[test]
