@@ -187,9 +187,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// Performs an arc's action `action` by native code (module doc): the
     /// situation entered first where it is not (`at`, [`Due`]) and the run
     /// records, then the action handed to the effector; where the effector
-    /// fails, the native frames below handed over and the situation entered
-    /// (where it was not), then [`Cx::perform`]'s error. The action as the
-    /// history records it ([`NatAction::recorded`]).
+    /// fails, the situation entered (where it was not) and the native
+    /// frames below handed over, then [`Cx::perform`]'s error. The action
+    /// as the history records it ([`NatAction::recorded`]).
     #[inline]
     pub fn nat_perform<F: NatFrames<P>>(
         &mut self,
@@ -198,16 +198,27 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         action: impl NatAction,
         run: &TypedRun,
     ) -> Result<Term, RunError> {
-        let arc = at.arc();
-        let at = if run.records {
+        if run.records {
+            // Entered first (the entry the history keeps): entered from
+            // then on, the arc's index its entry.
+            let arc = at.arc();
             at.enter(self, stack)?;
-            None
-        } else {
-            Some(at)
-        };
+            return self.nat_perform_at(stack, arc, action, true);
+        }
+        self.nat_perform_at(stack, at, action, false)
+    }
+
+    #[inline]
+    fn nat_perform_at<F: NatFrames<P>>(
+        &mut self,
+        stack: &mut NatBelow<'_, F>,
+        at: impl NatEntry,
+        action: impl NatAction,
+        records: bool,
+    ) -> Result<Term, RunError> {
         match action.perform_in(self) {
-            Ok(()) => Ok(action.recorded(&mut self.m.store, run.records)),
-            Err(e) => Err(self.nat_action_failed(stack, at, e, arc)),
+            Ok(()) => Ok(action.recorded(&mut self.m.store, records)),
+            Err(e) => Err(self.nat_action_failed(stack, at, e)),
         }
     }
 
@@ -218,16 +229,15 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     fn nat_action_failed<F: NatFrames<P>>(
         &mut self,
         stack: &mut NatBelow<'_, F>,
-        at: Option<impl NatEntry>,
+        at: impl NatEntry,
         e: String,
-        arc: Option<usize>,
     ) -> RunError {
         let p = self.m.program;
-        let entered = match at {
-            Some(at) => at.enter(self, stack),
-            None => Ok(()),
-        };
-        if let Err(h) = entered.and_then(|()| nat_hand_over(p, self, stack)) {
+        let arc = at.arc();
+        if let Err(h) = at
+            .enter(self, stack)
+            .and_then(|()| nat_hand_over(p, self, stack))
+        {
             return h;
         }
         self.action_failed(e, arc)
