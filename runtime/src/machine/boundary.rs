@@ -36,9 +36,13 @@
 //!   handed over, `Cx::gc_tick`), so the `Ground` handles native frames
 //!   hold stay valid across the call, as across any native step.
 //!
-//! Invariant: [`Cx::nat_eval`], [`Cx::nat_condition`], [`Cx::nat_var_op`]
-//! and [`Cx::nat_perform_entered`] give what [`Cx::eval`], [`Cx::condition`],
-//! [`Cx::var_op`] and [`Cx::perform`] give after `nat_hand_over` in a DM without locals: the
+//! An action such an arc performs after its evaluations goes through the
+//! one native perform path, [`Cx::nat_perform`] (`machine::effect`), as an
+//! entered situation's.
+//!
+//! Invariant: [`Cx::nat_eval`], [`Cx::nat_condition`] and
+//! [`Cx::nat_var_op`] give what [`Cx::eval`], [`Cx::condition`] and
+//! [`Cx::var_op`] give after `nat_hand_over` in a DM without locals: the
 //! same value, the same changes to the globals and the store, the same
 //! error; only the frames below stay native on success.
 
@@ -219,49 +223,5 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             return h;
         }
         self.var_op_error(e.message, op, name, arc)
-    }
-
-    /// [`Cx::perform`] of an evaluated action by native code (the
-    /// effector sees only the store): the frames below handed over only
-    /// where the effector fails, for the error.
-    #[inline]
-    pub fn nat_perform_entered<F: NatFrames<P>>(
-        &mut self,
-        stack: &mut NatBelow<'_, F>,
-        action: Term,
-        arc: Option<usize>,
-    ) -> Result<(), RunError> {
-        match self.m.perform_raw(action, &mut *self.actions) {
-            Ok(()) => Ok(()),
-            Err(e) => {
-                let p = self.m.program;
-                nat_hand_over(p, self, stack)?;
-                Err(self.action_failed(e, arc))
-            }
-        }
-    }
-
-    /// [`Cx::perform_list`] by native code, as [`Cx::nat_perform_entered`]: the
-    /// elements performed one by one, the list built only where `records`.
-    #[inline]
-    pub fn nat_perform_list_entered<F: NatFrames<P>>(
-        &mut self,
-        stack: &mut NatBelow<'_, F>,
-        elements: &[Term],
-        records: bool,
-        arc: Option<usize>,
-    ) -> Result<Term, RunError> {
-        for &x in elements {
-            if let Err(e) = self.actions.perform(&mut self.m.store, x) {
-                let p = self.m.program;
-                nat_hand_over(p, self, stack)?;
-                return Err(self.action_failed(e, arc));
-            }
-        }
-        Ok(if records {
-            self.m.store.list(elements)
-        } else {
-            Term::NIL
-        })
     }
 }

@@ -1,6 +1,7 @@
-//! An arc's action of effectors performed by native code without handing
-//! its frames over (issue 37, `neff18`): [`Cx::nat_perform`],
-//! [`Cx::nat_perform_any`] and [`Cx::nat_perform_list`], the code generator's
+//! An arc's action performed by native code without handing its frames
+//! over first (issue 37): [`Cx::nat_perform`], the one runtime entry for
+//! it, whether native code entered the situation before the action or not
+//! (`neff18`, `nfun18`, made one by `nuni19`); the code generator's
 //! `codegen::native::effect`.
 //!
 //! An effector ([`Actions::perform`](super::Actions::perform)) is given the
@@ -12,18 +13,39 @@
 //! running DM's call, the situation's id and its location, from the
 //! machine's top frame: the native frames below made machine frames
 //! first, `nat_hand_over`) and the history entry (the situation entered
-//! with its id). So the hand-over and the entry are made where the run
-//! records (the entry first, as before), and elsewhere only where the
-//! effector fails, before the error is made; the error is then the one
-//! [`Cx::perform`] gives in the situation entered, the transitions native
-//! code made before counted (the failing one not, as on the term path).
+//! with its id). So the hand-over is made only where the effector fails,
+//! before the error is made, which is then the one [`Cx::perform`] gives
+//! in the situation entered, the transitions native code made before
+//! counted (the failing one not, as on the term path).
 //!
-//! Invariant: the effector is handed what [`Cx::perform`] would hand it
-//! ([`Cx::nat_perform_any`]: the action, a proper list element by element;
-//! [`Cx::nat_perform`]: the action as it is;
-//! [`Cx::nat_perform_list`]: each item, as an element of a list written
-//! out), in order, the first error ending it, and the error is
-//! [`Cx::perform`]'s in the situation entered.
+//! Two cases, one call, the difference given as data ([`NatEntry`]):
+//! - *not entered yet* ([`Due`]: an action built of values, nothing
+//!   evaluated before it in the arc; `neff18`): the situation is entered
+//!   (its id built, the transitions before it counted) where the run
+//!   records, the frames handed over first, before the action (the entry
+//!   the history keeps, as before); else only where the effector fails,
+//!   both made then, before the error. What this protects: the error's
+//!   site (the situation and its id) and the recorded entry.
+//! - *entered* (`Option<usize>`, the arc's index as errors name it: an
+//!   evaluation in the arc came first and entered the situation, or the
+//!   DM's own hand-over was made; `nfun18`): only the hand-over is left,
+//!   made where the effector fails (nothing where it was made before: the
+//!   stack below is then empty). What this protects: the error's DM (the
+//!   machine's top frame).
+//!
+//! The action, also as data ([`NatAction`]): a term the code generator
+//! knows [`Cx::perform`] hands to the effector as it is (an atom other
+//! than `empty`, a compound that is not a list), handed to it with
+//! nothing looked at; [`AnyShape`], a term of any shape, what
+//! [`Cx::perform`] does with it (`empty` skipped where the actions ignore
+//! it, a proper list element by element); the items of a list written
+//! out (`&[Term; N]`), one by one, the list built for the history only
+//! where the run records.
+//!
+//! Invariant: the effector is handed what [`Cx::perform`] would hand it,
+//! in order, the first error ending it, and the error is
+//! [`Cx::perform`]'s in the situation entered; the situation is entered
+//! with its id before the action where the run records.
 
 use super::native_stack::{nat_hand_over, NatBelow, NatFrames};
 use super::outcome::RunError;
@@ -31,159 +53,193 @@ use super::program::{Cx, DmProgram, TypedRun};
 use super::situation::SitIx;
 use super::IdArg;
 use crate::term::Term;
-use sitlog_syntax::atoms;
+use crate::Store;
 
-impl<P: DmProgram> Cx<'_, '_, P> {
-    /// Performs `action`, an arc's action evaluated (what [`Cx::perform`]
-    /// does with it: `empty` skipped where the actions ignore it, a proper
-    /// list element by element, anything else handed to the effector as
-    /// it is), for arc `arc` of situation `sit` (its id `id`, built only
-    /// where it is entered): where the run records
-    /// ([`TypedRun::records`]), the native frames below handed over and
-    /// the situation entered first ([`Cx::enter_counted`] of `count`),
-    /// then [`Cx::perform`]; else without either, and where the effector
-    /// fails, both made then and the error [`Cx::perform`]'s.
-    #[inline]
-    pub fn nat_perform_any<F: NatFrames<P>>(
-        &mut self,
+/// Where the situation of an arc whose action native code performs
+/// ([`Cx::nat_perform`]) stands (module doc): entered already
+/// (`Option<usize>`, the arc's index as errors name it), or [`Due`].
+pub trait NatEntry {
+    /// The arc's index (0-based) as an error names it.
+    fn arc(&self) -> Option<usize>;
+
+    /// The situation entered where it is not yet: the native frames below
+    /// handed over, the transitions before it counted, its id built.
+    /// Nothing where it is entered.
+    fn enter<P: DmProgram, F: NatFrames<P>>(
+        self,
+        cx: &mut Cx<'_, '_, P>,
         stack: &mut NatBelow<'_, F>,
-        count: &mut u64,
-        (sit, arc): (SitIx, usize),
-        id: impl IdArg,
-        action: Term,
-        run: &TypedRun,
-    ) -> Result<(), RunError> {
-        if run.records {
-            self.nat_enter_first(stack, count, sit, id)?;
-            return self.perform(action, Some(arc));
-        }
-        match self.perform_unentered(action) {
-            Ok(()) => Ok(()),
-            Err(e) => Err(self.nat_action_failed(stack, count, (sit, arc), id, e)),
-        }
+    ) -> Result<(), RunError>;
+}
+
+/// Entered: the arc's index.
+impl NatEntry for Option<usize> {
+    #[inline]
+    fn arc(&self) -> Option<usize> {
+        *self
     }
 
-    /// [`Cx::nat_perform_any`] of an action the code generator knows
-    /// [`Cx::perform`] hands to the effector as it is (an atom other than
-    /// `empty`, a compound that is not a list): handed to it, nothing
-    /// looked at first.
+    #[inline]
+    fn enter<P: DmProgram, F: NatFrames<P>>(
+        self,
+        _: &mut Cx<'_, '_, P>,
+        _: &mut NatBelow<'_, F>,
+    ) -> Result<(), RunError> {
+        Ok(())
+    }
+}
+
+/// A situation native code has not entered yet: the transitions it made
+/// since it last counted, the situation and the arc (0-based), and the
+/// situation's id (an atom, a term or a [`Fill`](super::Fill), built only
+/// where it is entered).
+pub struct Due<'c, I>(pub &'c mut u64, pub (SitIx, usize), pub I);
+
+impl<I: IdArg> NatEntry for Due<'_, I> {
+    #[inline]
+    fn arc(&self) -> Option<usize> {
+        Some(self.1 .1)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn enter<P: DmProgram, F: NatFrames<P>>(
+        self,
+        cx: &mut Cx<'_, '_, P>,
+        stack: &mut NatBelow<'_, F>,
+    ) -> Result<(), RunError> {
+        let Due(count, (sit, _), id) = self;
+        let p = cx.m.program;
+        nat_hand_over(p, cx, stack)?;
+        let id = id.id_in(&mut cx.m.store);
+        cx.enter_counted(count, sit, id);
+        Ok(())
+    }
+}
+
+/// An arc's action as native code hands it to [`Cx::nat_perform`] (module
+/// doc): a [`Term`] handed to the effector as it is, an [`AnyShape`], or
+/// the items of a list written out.
+pub trait NatAction: Copy {
+    /// Hands the action to the effector as [`Cx::perform`] does: the
+    /// effector's message where it fails.
+    fn perform_in<P: DmProgram>(self, cx: &mut Cx<'_, '_, P>) -> Result<(), String>;
+
+    /// The action as the history records it where `records`, else
+    /// anything (the history does not read it).
+    fn recorded(self, store: &mut Store, records: bool) -> Term;
+}
+
+/// An action [`Cx::perform`] hands to the effector as it is (an atom
+/// other than `empty`, a compound that is not a list): the code generator
+/// knows its shape.
+impl NatAction for Term {
+    #[inline]
+    fn perform_in<P: DmProgram>(self, cx: &mut Cx<'_, '_, P>) -> Result<(), String> {
+        cx.actions.perform(&mut cx.m.store, self)
+    }
+
+    #[inline]
+    fn recorded(self, _: &mut Store, _: bool) -> Term {
+        self
+    }
+}
+
+/// An action of any shape (an evaluated term): what [`Cx::perform`] does
+/// with it, `empty` skipped where the actions ignore it, a proper list
+/// element by element.
+#[derive(Clone, Copy)]
+pub struct AnyShape(pub Term);
+
+impl NatAction for AnyShape {
+    #[inline]
+    fn perform_in<P: DmProgram>(self, cx: &mut Cx<'_, '_, P>) -> Result<(), String> {
+        cx.m.perform_raw(self.0, &mut *cx.actions)
+    }
+
+    #[inline]
+    fn recorded(self, _: &mut Store, _: bool) -> Term {
+        self.0
+    }
+}
+
+/// The items of a list action written out: each handed to the effector
+/// (what [`Cx::perform`] does with a proper list), the list built only
+/// where the history records it (else `[]`).
+impl<const N: usize> NatAction for &[Term; N] {
+    #[inline]
+    fn perform_in<P: DmProgram>(self, cx: &mut Cx<'_, '_, P>) -> Result<(), String> {
+        self.iter()
+            .try_for_each(|&x| cx.actions.perform(&mut cx.m.store, x))
+    }
+
+    #[inline]
+    fn recorded(self, store: &mut Store, records: bool) -> Term {
+        if records {
+            store.list(self)
+        } else {
+            Term::NIL
+        }
+    }
+}
+
+impl<P: DmProgram> Cx<'_, '_, P> {
+    /// Performs an arc's action `action` by native code (module doc): the
+    /// situation entered first where it is not (`at`, [`Due`]) and the run
+    /// records, then the action handed to the effector; where the effector
+    /// fails, the situation entered (where it was not) and the native
+    /// frames below handed over, then [`Cx::perform`]'s error. The action
+    /// as the history records it ([`NatAction::recorded`]).
     #[inline]
     pub fn nat_perform<F: NatFrames<P>>(
         &mut self,
         stack: &mut NatBelow<'_, F>,
-        count: &mut u64,
-        (sit, arc): (SitIx, usize),
-        id: impl IdArg,
-        action: Term,
-        run: &TypedRun,
-    ) -> Result<(), RunError> {
-        self.nat_perform_items(stack, count, (sit, arc), id, &[action], run.records)
-    }
-
-    /// What `Machine::perform` does with `action`, the machine not entered:
-    /// the effector's message where it fails.
-    fn perform_unentered(&mut self, action: Term) -> Result<(), String> {
-        let store = &mut self.m.store;
-        let a = store.deref(action);
-        if a == Term::EMPTY && self.actions.ignores_empty() {
-            return Ok(());
-        }
-        let is_list = store.functor(a).is_some_and(|f| f.0 == atoms::DOT) && {
-            let mut it = store.list_iter(a);
-            it.by_ref().for_each(drop);
-            it.tail() == Term::NIL
-        };
-        if !is_list {
-            return self.actions.perform(store, a);
-        }
-        // Walked by position: an action may bind variables (and so grow
-        // the store) while the list is performed.
-        let mut rest = a;
-        while let Some(&[head, tail]) = store.compound_args(rest, atoms::DOT, 2) {
-            self.actions.perform(store, head)?;
-            rest = tail;
-        }
-        Ok(())
-    }
-
-    /// [`Cx::nat_perform`] of the elements of an action list, one by one
-    /// (what [`Cx::perform`] does with a proper list); the list itself, as
-    /// the history records it, built only where the run records (else `[]`).
-    #[inline]
-    pub fn nat_perform_list<F: NatFrames<P>>(
-        &mut self,
-        stack: &mut NatBelow<'_, F>,
-        count: &mut u64,
-        (sit, arc): (SitIx, usize),
-        id: impl IdArg,
-        items: &[Term],
+        at: impl NatEntry,
+        action: impl NatAction,
         run: &TypedRun,
     ) -> Result<Term, RunError> {
-        self.nat_perform_items(stack, count, (sit, arc), id, items, run.records)?;
-        Ok(if run.records {
-            self.m.store.list(items)
-        } else {
-            Term::NIL
-        })
+        if run.records {
+            // Entered first (the entry the history keeps): entered from
+            // then on, the arc's index its entry.
+            let arc = at.arc();
+            at.enter(self, stack)?;
+            return self.nat_perform_at(stack, arc, action, true);
+        }
+        self.nat_perform_at(stack, at, action, false)
     }
 
     #[inline]
-    fn nat_perform_items<F: NatFrames<P>>(
+    fn nat_perform_at<F: NatFrames<P>>(
         &mut self,
         stack: &mut NatBelow<'_, F>,
-        count: &mut u64,
-        (sit, arc): (SitIx, usize),
-        id: impl IdArg,
-        items: &[Term],
+        at: impl NatEntry,
+        action: impl NatAction,
         records: bool,
-    ) -> Result<(), RunError> {
-        if records {
-            self.nat_enter_first(stack, count, sit, id)?;
-            return self.perform_each(items, Some(arc));
+    ) -> Result<Term, RunError> {
+        match action.perform_in(self) {
+            Ok(()) => Ok(action.recorded(&mut self.m.store, records)),
+            Err(e) => Err(self.nat_action_failed(stack, at, e)),
         }
-        for &x in items {
-            if let Err(e) = self.actions.perform(&mut self.m.store, x) {
-                return Err(self.nat_action_failed(stack, count, (sit, arc), id, e));
-            }
-        }
-        Ok(())
     }
 
-    /// The frames below handed over, the situation entered with its id
-    /// (the `count` transitions before it counted): before the action is
-    /// performed where the run records, else where the effector fails.
-    #[cold]
-    #[inline(never)]
-    fn nat_enter_first<F: NatFrames<P>>(
-        &mut self,
-        stack: &mut NatBelow<'_, F>,
-        count: &mut u64,
-        sit: SitIx,
-        id: impl IdArg,
-    ) -> Result<(), RunError> {
-        let p = self.m.program;
-        nat_hand_over(p, self, stack)?;
-        let id = id.id_in(&mut self.m.store);
-        self.enter_counted(count, sit, id);
-        Ok(())
-    }
-
-    /// The effector's error `e`, not recorded: the frames below handed
-    /// over, the situation entered with its id (the `count` transitions
-    /// before it counted), then [`Cx::action_failed`].
+    /// The effector's error `e`: the situation entered where it was not
+    /// (`at`), the frames below handed over, then [`Cx::action_failed`].
     #[cold]
     #[inline(never)]
     fn nat_action_failed<F: NatFrames<P>>(
         &mut self,
         stack: &mut NatBelow<'_, F>,
-        count: &mut u64,
-        (sit, arc): (SitIx, usize),
-        id: impl IdArg,
+        at: impl NatEntry,
         e: String,
     ) -> RunError {
-        if let Err(h) = self.nat_enter_first(stack, count, sit, id) {
+        let p = self.m.program;
+        let arc = at.arc();
+        if let Err(h) = at
+            .enter(self, stack)
+            .and_then(|()| nat_hand_over(p, self, stack))
+        {
             return h;
         }
-        self.action_failed(e, Some(arc))
+        self.action_failed(e, arc)
     }
 }

@@ -33,9 +33,10 @@
 //!   [`NatAt`]: what a DM's situations must offer);
 //! - `boundary`: a user function, the KB or a Prolog condition evaluated
 //!   by native code without handing the native frames over
-//!   ([`Cx::nat_eval`], [`Cx::nat_condition`], [`Cx::nat_perform_entered`]);
-//! - `effect`: an action of effectors performed by native code, its
-//!   frames handed over only where it records or the effector fails;
+//!   ([`Cx::nat_eval`], [`Cx::nat_condition`]);
+//! - `effect`: an arc's action performed by native code, entered or not
+//!   ([`Cx::nat_perform`], [`NatEntry`], [`NatAction`]), its frames
+//!   handed over only where it records unentered or the effector fails;
 //! - `run`: the loop (DM calls and returns, selection of situations, garbage
 //!   collection between them).
 
@@ -54,6 +55,7 @@ mod state;
 mod steps;
 
 pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, Fill, FromIdParts, IdArg, OutSlot};
+pub use effect::{AnyShape, Due, NatAction, NatEntry};
 pub use io::{Actions, Perceived, Perception};
 pub use native_stack::{
     nat_choose, nat_drive, nat_goto, nat_hand_over, nat_materialize, nat_plain, nat_replace_done,

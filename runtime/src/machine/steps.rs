@@ -537,7 +537,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     }
 
     /// [`Machine::perform`] without its error: the effector's message
-    /// (`Cx::nat_perform_entered` makes the error once the native frames are
+    /// (`Cx::nat_perform` makes the error once the native frames are
     /// handed over).
     pub(super) fn perform_raw(
         &mut self,

@@ -3899,13 +3899,20 @@ mod neff18_dms {
     }
 }
 
+mod nuni19_dms {
+    pub mod errand {
+        sitlog_macros::include_dm!("typed/nuni19/errand");
+    }
+}
+
 /// A robot for `typed/neff18/errand`: logs every action; `navigate(P, R)`
 /// binds `R` by place (`ok`; `blocked(hall, door)` at `hall`; `2.5` at
 /// `attic`; `f(_)`, not ground, at `garden`) or fails (`cellar`: the
 /// error of a list's second effector); `grasp(P, _, R)` binds `ok`, or
 /// fails at `pantry` (the second effector of a list), or binds
 /// `slipped` at `shed`; `report(_)` fails where no `navigate` came before
-/// (the second element of a constant list).
+/// (the second element of a constant list); `check(P)` fails at `vault`
+/// (`typed/nuni19/errand`, a DM with locals).
 #[derive(Default)]
 struct Errands(Vec<String>);
 
@@ -3934,6 +3941,7 @@ impl Actions for Errands {
             ("navigate", 2, Some("attic")) => store.parse("2.5").map_err(|e| e.message)?.0,
             ("navigate", 2, Some("garden")) => store.parse("f(_)").map_err(|e| e.message)?.0,
             ("grasp", 3, Some("pantry")) => return Err("the gripper is stuck".to_owned()),
+            ("check", 1, Some("vault")) => return Err("the vault is locked".to_owned()),
             ("grasp", 3, Some("shed")) => Term::atom(Atom::intern("slipped")),
             ("navigate", 2, _) | ("grasp", 3, _) => Term::atom(Atom::intern("ok")),
             _ => return Ok(()),
@@ -4170,5 +4178,70 @@ fn legacy_closes_open_tails_of_expectations() {
                 );
             }
         }
+    }
+}
+
+/// nuni19 (issue 37): actions performed after an evaluation in the same
+/// arc entered the situation, through the one native perform path
+/// (`Cx::nat_perform` with the arc's index, as `neff18`'s unentered ones
+/// with `Due`), in callees below a native caller, agree with the
+/// interpreter: an evaluated action list whose first effector fails
+/// (`cellar`), a list whose second item fails after an evaluated `say`
+/// (`pantry`), a `say` of a term that is not ground (`garden`), an
+/// evaluated `[stop, stop]`, a DM with locals whose action fails
+/// (`vault`) or succeeds; the history kept or not, observed or not.
+#[test]
+fn nuni19_one_native_perform_path_agrees() {
+    use nuni19_dms::errand as m;
+    let ir = interpreter("typed/nuni19/errand");
+    for main in [
+        "errand([kitchen, hall, attic, garden, shed])",
+        "errand([kitchen, cellar, hall])",
+        "errand([attic, pantry])",
+        "errand([kitchen, vault, hall])",
+        "errand([])",
+    ] {
+        for keep in [false, true] {
+            for observe in [false, true] {
+                let c = run_errands(m::program(), main, keep, observe);
+                let i = run_errands(&ir, main, keep, observe);
+                assert_eq!(c, i, "{main} (history {keep}, observer {observe})");
+                let r = run_errands(
+                    &sitlog_compiler::interp::Resolved::new(&ir),
+                    main,
+                    keep,
+                    observe,
+                );
+                assert_eq!(
+                    r, i,
+                    "{main}, resolved (history {keep}, observer {observe})"
+                );
+            }
+        }
+    }
+    // The failing effectors' errors are the machine's, in the callee.
+    for (main, error, site) in [
+        (
+            "errand([kitchen, cellar, hall])",
+            "no map of the cellar",
+            "visit(cellar",
+        ),
+        (
+            "errand([attic, pantry])",
+            "the gripper is stuck",
+            "visit(pantry",
+        ),
+        (
+            "errand([kitchen, vault, hall])",
+            "the vault is locked",
+            "tally(vault",
+        ),
+    ] {
+        let (report, ..) = run_errands(m::program(), main, false, false);
+        let text = report.to_string();
+        assert!(
+            text.contains(error) && text.contains(site),
+            "{main}: {text}"
+        );
     }
 }

@@ -3,9 +3,10 @@
 //! below over (`nat_hand_over`) only because it then evaluates a call of
 //! the evaluator (`cx.eval` of `say(apply(words(_), [..]))`'s argument,
 //! `cx.condition` of `apply(same_place(_, _), [P, T]) == yes`) calls it
-//! where the frames are instead (`Cx::nat_eval`, `Cx::nat_condition`, and
-//! the action so computed performed by `Cx::nat_perform_entered`), the frames
-//! handed over only where that fails (the runtime's `machine::boundary`).
+//! where the frames are instead (`Cx::nat_eval`, `Cx::nat_condition`; the
+//! action so computed is performed by `Cx::nat_perform` as the generator
+//! wrote it, an entered situation's, `effect`), the frames handed over only
+//! where that fails (the runtime's `machine::boundary`).
 //!
 //! What the hand-over protects before such a call, found by reading the
 //! runtime (`eval`, `functions`, `prolog::engine`, `machine::steps`):
@@ -78,11 +79,7 @@ const SAFE: &[&str] = &[
     "nat_enter",
     "nat_eval",
     "nat_condition",
-    "nat_perform_entered",
-    "nat_perform_list_entered",
     "nat_perform",
-    "nat_perform_any",
-    "nat_perform_list",
     "nat_var_op",
     "nat_var_op_fresh",
     "nat_arith_condition",
@@ -102,8 +99,6 @@ const RUN_TO_MACHINE: &[&str] = &["go", "goto", "go_eval"];
 const MOVED: &[(&str, &str)] = &[
     ("eval", "nat_eval"),
     ("condition", "nat_condition"),
-    ("perform", "nat_perform_entered"),
-    ("perform_list", "nat_perform_list_entered"),
     ("var_op", "nat_var_op"),
     ("var_op_fresh", "nat_var_op_fresh"),
     ("arith_condition", "nat_arith_condition"),
@@ -114,7 +109,7 @@ const MOVED: &[(&str, &str)] = &[
 /// the evaluator at the boundary (module doc): where `code` calls the
 /// evaluator (`cx.eval`, `cx.condition`, `cx.var_op`) and its DM has no
 /// locals, every hand-over of the runtime's dropped, the evaluator's calls
-/// and the performs made the `nat_` calls, and a hand-over put back
+/// made the `nat_` calls, and a hand-over put back
 /// before each statement that gives the machine anything ([`late`]: in
 /// the block where it is, so a fallback's `run.goto` gets its own); else
 /// `code`. `None` of [`late`] (a call where no statement can take a
@@ -414,8 +409,7 @@ mod tests {
             super::nat_hand_over(p, cx, stack)?;
             cx.enter_counted(&mut count, 2, id2);
             let b1 = cx.eval(b0, arc_at)?;
-            let act = cx.build(a.say, &[b1]);
-            cx.perform(act, arc_at)?;
+            let act = cx.nat_perform(stack, arc_at, cx.build(a.say, &[b1]), run)?;
             let next_at: Nat = Nat::S6 { r4: r5 };
             run.end(cx, &mut count, exp, act, |s| next_at.id_term(p, s));
             next_at
@@ -427,7 +421,9 @@ mod tests {
             "{got}"
         );
         assert!(
-            got.contains(&quote!(cx.nat_perform_entered(stack, act, arc_at)).to_string()),
+            got.contains(
+                &quote!(cx.nat_perform(stack, arc_at, cx.build(a.say, &[b1]), run)).to_string()
+            ),
             "{got}"
         );
     }

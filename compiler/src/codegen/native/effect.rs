@@ -1,5 +1,5 @@
 //! An arc's action of effectors performed by native code without handing
-//! its frames over (issue 37, helper `neff18`): `navigate(Place, Result)`,
+//! its frames over (issue 37, helpers `neff18`, `nuni19`): `navigate(Place, Result)`,
 //! `[say(['Attempting to grab the', Object]), grasp(Object, Hand,
 //! Result)]`, `[say('Sorry.'), say(Question)]`, a constant action
 //! (`say('I cannot find you.')`, `stop`, a constant list of `say`s), a
@@ -42,12 +42,37 @@
 //!
 //! So an action whose items are built of values only (constants, native
 //! values, fresh variables: `mir::Ev::Value`, `Built`, `Compound` of
-//! them, no evaluation) is built from native values and performed by
-//! `Cx::nat_perform`/`nat_perform_list`: unrecorded, neither the
-//! hand-over nor the entry (the situation's id is a `Fill` or an atom the
-//! call builds only where the effector fails); recorded, both first, as
-//! before. A DM with locals (its own hand-over writes them back) keeps
-//! the hand-over before the action.
+//! them, no evaluation) is built from native values and performed before
+//! the situation is entered: unrecorded, neither the hand-over nor the
+//! entry (the situation's id is a `Fill` or an atom the call builds only
+//! where the effector fails); recorded, both first, as before. A DM with
+//! locals (its own hand-over writes them back) keeps the hand-over before
+//! the action.
+//!
+//! One path performs every arc's action in native code
+//! ([`Gen::nat_perform_call`], the runtime's one `Cx::nat_perform`), the
+//! two cases (helpers `neff18` and `nfun18`, made one by `nuni19`) told
+//! apart by the entry it is given, data:
+//! - `Due(&mut count, (sit, arc), id)`: the action above, *before* the
+//!   situation is entered ([`Gen::nat_effect`]). What is protected: the
+//!   error's site (the situation entered with its id where the effector
+//!   fails, the frames handed over first) and the recorded entry (made
+//!   first where the run records).
+//! - `arc_at` (the arc's index): *after* the arc's code entered the
+//!   situation (`cx.enter_counted`), an action with an evaluation in it or
+//!   of a DM with locals. In a DM without locals whose arc calls the
+//!   evaluator, the boundary post-pass (`boundary::at_boundary`) drops the
+//!   hand-over before the entry: `Cx::nat_perform` hands over only where
+//!   the effector fails (what is protected: the error's DM, the machine's
+//!   top frame). Else the hand-over is made before the entry and the call
+//!   finds no native frame below (`Cx::perform`'s behaviour).
+//!
+//! The action, in both: a term `Cx::perform` hands to the effector as it
+//! is where [`Gen::as_is`] (nothing looked at at run time), an
+//! `AnyShape(..)` for any other value (a term evaluated whole: `empty` and
+//! proper lists as `Cx::perform` treats them), or the items of a list
+//! written out (`&act_items`, the list built for the history only where
+//! the run records).
 
 use super::{atom_arg, fill_parts, runtime_hand, Dm, Gen, Regs, N};
 use crate::mir::{Action, Build, Ev};
@@ -64,6 +89,12 @@ fn built_of_values(e: &Ev) -> bool {
         Ev::Compound(_, args) => args.iter().all(built_of_values),
         _ => false,
     }
+}
+
+/// Whether entry `at` ([`Gen::nat_perform_call`]) is `arc_at`: the
+/// situation entered.
+fn entered(at: &TokenStream) -> bool {
+    at.to_string() == "arc_at"
 }
 
 impl Gen<'_> {
@@ -96,12 +127,13 @@ impl Gen<'_> {
     }
 
     /// The code performing arc `arc`'s action `action` of situation `ix`
-    /// ([`Gen::nat_effect_ok`]), its items built from native values
-    /// first: one `Cx::nat_perform` (`nat_perform_list`), which hands the
-    /// frames over and enters the situation only where the run records
-    /// (first) or the effector fails (then). Binds `act`, the action as the
-    /// history records it (a constant atom's: bound by the caller). `None`: the situation's id is not an atom nor a
-    /// filled pattern (the caller's way then).
+    /// ([`Gen::nat_effect_ok`]) before the situation is entered, its items
+    /// built from native values first: [`Gen::nat_perform_call`] with the
+    /// entry `Due` (the situation entered where the run records, first, or
+    /// the effector fails, then). Binds `act`, the action as the history
+    /// records it (a constant atom's: bound by the caller). `None`: the
+    /// situation's id is not an atom nor a filled pattern (the caller's
+    /// way then).
     pub(super) fn nat_effect(
         &self,
         d: &Dm,
@@ -122,43 +154,73 @@ impl Gen<'_> {
                 None => return Ok(None),
             }
         };
-        let (cur, arc) = (Literal::u32_unsuffixed(ix as u32), quote!(arc_ix));
+        let cur = Literal::u32_unsuffixed(ix as u32);
+        let at = quote!(Due(&mut count, (#cur, arc_ix), #id));
         let mut ts = Vec::new();
         let mut n = 0;
-        let perform = match (action, atom) {
+        let perform = self.nat_perform_call(&at, action, atom, regs, &mut ts, &mut n)?;
+        Ok(Some(quote! {
+            #(#ts)*
+            #perform
+        }))
+    }
+
+    /// The one call performing arc action `action` (`atom`: the action
+    /// when it is a constant atom other than `empty`) by native code,
+    /// whether the situation is entered or not (`at`: `arc_at` where it is,
+    /// `Due(..)` where it is not; the runtime's `machine::effect`): one
+    /// `Cx::nat_perform`, the action a term performed as it is where
+    /// [`Gen::as_is`], else an `AnyShape`, or a list's items written out.
+    /// Its items' statements go to `ts`. Binds `act`, the action as the
+    /// history records it (a constant atom's: bound by the caller).
+    pub(super) fn nat_perform_call(
+        &self,
+        at: &TokenStream,
+        action: &Action,
+        atom: Option<Atom>,
+        regs: &Regs,
+        ts: &mut Vec<TokenStream>,
+        n: &mut usize,
+    ) -> N<TokenStream> {
+        Ok(match (action, atom) {
             // `act` bound by the caller.
             (_, Some(a)) => {
                 let t = self.atom_term(a)?;
-                quote!(cx.nat_perform(stack, &mut count, (#cur, #arc), #id, #t, run)?;)
+                quote!(cx.nat_perform(stack, #at, #t, run)?;)
             }
             (Action::One(e), None) => {
-                let t = self.nat_ev_term(e, regs, &mut ts, &mut n)?;
+                let t = self.nat_ev_term(e, regs, ts, n)?;
                 // What `Cx::perform` hands to the effector as it is (a
                 // compound not a list): nothing looked at at run time.
-                let f = if self.as_is(e) {
-                    quote!(nat_perform)
-                } else {
-                    quote!(nat_perform_any)
+                let shape = |t: TokenStream| {
+                    if self.as_is(e) {
+                        t
+                    } else {
+                        quote!(AnyShape(#t))
+                    }
                 };
-                quote! {
-                    let act = #t;
-                    cx.#f(stack, &mut count, (#cur, #arc), #id, act, run)?;
+                if entered(at) {
+                    let t = shape(t);
+                    quote!(let act = cx.nat_perform(stack, #at, #t, run)?;)
+                } else {
+                    // The action bound first: a `Due`'s call is long.
+                    let act = shape(quote!(act));
+                    quote! {
+                        let act = #t;
+                        cx.nat_perform(stack, #at, #act, run)?;
+                    }
                 }
             }
             (Action::List { items, .. }, None) => {
                 let items = items
                     .iter()
-                    .map(|e| self.nat_ev_term(e, regs, &mut ts, &mut n))
+                    .map(|e| self.nat_ev_term(e, regs, ts, n))
                     .collect::<N<Vec<_>>>()?;
                 quote! {
                     let act_items = [#(#items),*];
-                    let act = cx.nat_perform_list(stack, &mut count, (#cur, #arc), #id, &act_items, run)?;
+                    let act = cx.nat_perform(stack, #at, &act_items, run)?;
                 }
             }
-        };
-        Ok(Some(quote! {
-            #(#ts)*
-            #perform
-        }))
+        })
     }
 }

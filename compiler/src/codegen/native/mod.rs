@@ -3332,9 +3332,19 @@ impl Gen<'_> {
         match atom {
             Some(action) => {
                 let act = self.atom_term(action)?;
+                // Entered first, performed as an entered situation's
+                // action (`effect`, `Cx::nat_perform`).
+                let call = self.nat_perform_call(
+                    &quote!(arc_at),
+                    &arc.action,
+                    atom,
+                    &regs,
+                    &mut vec![],
+                    &mut 0,
+                )?;
                 let perform = quote! {
                     #enter
-                    cx.perform(#act, arc_at)?;
+                    #call
                 };
                 // `empty` performed where the actions do not ignore it,
                 // handed to the effector without handing the native frames
@@ -3412,26 +3422,20 @@ impl Gen<'_> {
                         stmts.extend(effect.clone());
                         None
                     }
-                    Action::One(e) => {
-                        let t = self.nat_ev_term(e, &regs, &mut ts, &mut n).map_err(why)?;
-                        Some(quote! {
-                            let act = #t;
-                            cx.perform(act, arc_at)?;
-                        })
-                    }
-                    Action::List { items, .. } => {
-                        let ts_items = items
-                            .iter()
-                            .map(|e| self.nat_ev_term(e, &regs, &mut ts, &mut n))
-                            .collect::<N<Vec<_>>>()
-                            .map_err(why)?;
-                        // The list itself is built only for the history
-                        // (`Cx::perform_list`).
-                        Some(quote! {
-                            let act_items = [#(#ts_items),*];
-                            let act = cx.perform_list(&act_items, run.records, arc_at)?;
-                        })
-                    }
+                    // Else entered first, then performed as an entered
+                    // situation's action (`effect`, `Cx::nat_perform`):
+                    // the one call of both.
+                    _ => Some(
+                        self.nat_perform_call(
+                            &quote!(arc_at),
+                            &arc.action,
+                            None,
+                            &regs,
+                            &mut ts,
+                            &mut n,
+                        )
+                        .map_err(why)?,
+                    ),
                 };
                 if let Some(perform) = perform {
                     stmts.push(quote! {
