@@ -42,6 +42,11 @@
 //! `inc` of a non-number, a next situation named by the input
 //! (`said(X) : ... => X`). Both back ends must report the same error.
 //!
+//! Besides these, walker programs (seeds from [`WALKER_SEED`], `walkers`:
+//! one list walked by a compound id) and two-list walker programs (seeds
+//! from [`PAIR_SEED`], `pair_walkers`: two lists in step, finals carrying
+//! compounds the caller destructures) read no input.
+//!
 //! Only the first arc of a speech situation may expect a bare variable (it
 //! meets every input, and the last matching arc wins), so the other arcs
 //! still get their turn.
@@ -63,12 +68,12 @@ pub const WALKER_SEED: u64 = 1000;
 pub const WALKERS: u64 = 6;
 
 /// The first seed of the two-list walker programs (helper `review19`,
-/// issue 37, [`pair_walkers`]): seeds `PAIR_SEED..PAIR_SEED + pairs()`.
+/// issue 37, `pair_walkers`): seeds `PAIR_SEED..PAIR_SEED + pairs()`.
 pub const PAIR_SEED: u64 = 2000;
 
 /// How many two-list walker programs `tests/build.rs` generates: 3, or
 /// `SITLOG_RANDOM_PAIRS` at build time (a knob for many seeds: each is a
-/// program compiled into the test binary, about 5 s of build a program).
+/// program compiled into the test library, about 45 KB of generated Rust).
 pub fn pairs() -> u64 {
     option_env!("SITLOG_RANDOM_PAIRS").map_or(3, |n| n.parse().expect("SITLOG_RANDOM_PAIRS"))
 }
