@@ -10,12 +10,22 @@
 //!   DMs costs heap too (the machine's DM stack is a `Vec`).
 //! - Semantics live here once for terms: the interpreter and generated
 //!   code on terms run on the same [`machine`] and its steps. Generated
-//!   *native* code (native values, `sitlog_compiler::codegen::native`) does a
-//!   few steps itself: integer arithmetic and comparisons, list heads and
-//!   tails, matching a callee's final situation against exit arcs, and its frames
-//!   are typed (`machine::native_stack` drives them, generic over the
-//!   program's frame type). There agreement is not by construction but by
-//!   test, with the history kept and without (native code's own DM stack):
+//!   *native* code (native values, `sitlog_compiler::codegen::native`) does
+//!   many steps itself, on Rust values: choosing a situation by its id's
+//!   pattern (a `match` on the id's variant and fields), integer arithmetic
+//!   and comparisons, `when/3`, conjunctions and disjunctions of conditions,
+//!   `member`, list heads and tails, `get`/`set`/`inc` of globals and
+//!   locals, the pipe and DM parameters (`in_arg`/`out_arg`), matching a
+//!   callee's final situation against exit arcs, matching a perception
+//!   against expectations with the frames kept (`Cx::choose_kept`), plain
+//!   user functions (`prolog::plain`, run in Rust before they would become
+//!   a query), and performing an action built of values (converted to a term
+//!   only at the effector); its frames are typed (`machine::native_stack`
+//!   drives them, generic over the program's frame type). Where a value does
+//!   not convert, or at an error, it hands its frames over to the machine
+//!   (`nat_hand_over`), which then runs the step on terms. There agreement
+//!   is not by construction but by test, with the history kept and without
+//!   (native code's own DM stack):
 //!   the examples (`tests/tests/suite/agreement.rs`), every scenario and
 //!   world variant (`home.rs`, `supermarket.rs`), the typed agreement cases
 //!   (`typed.rs`) and the random-program agreement (`random_agreement.rs`)

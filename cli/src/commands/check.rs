@@ -208,23 +208,14 @@ fn diagnostics_of(assets: &sitlog_robot::Assets) -> (SourceMap, Vec<Diagnostic>)
             .find(|f| f.name == p.file)
             .map(|f| f.text.clone())
             .unwrap_or_default();
-        let start = offset(&text, p.line, p.column);
-        let end = text[start..]
-            .find(['\n', ' ', ',', ']', '}'])
-            .map_or(text.len(), |n| start + n.max(1).min(text.len() - start));
-        let file = sources.add(Path::new(&p.file), text);
-        let span = sitlog_syntax::Span {
-            start: start as u32,
-            end: end as u32,
-        };
-        diags.push(
-            Diagnostic::error(
-                sitlog_compiler::load::codes::APP_FILE,
-                Loc { file, span },
-                p.message,
-            )
-            .with_label("here"),
-        );
+        let at = (p.line, p.column, &[',', ']', '}'][..]);
+        diags.push(app_file_error(
+            &mut sources,
+            Path::new(&p.file),
+            text,
+            at,
+            p.message,
+        ));
     }
     (sources, diags)
 }
@@ -310,23 +301,35 @@ fn config_diagnostic(
         Ok(_) => (None, message),
     };
     let (line, column) = place.unwrap_or((0, 0));
+    let at = (line, column, &['='][..]);
+    diags.push(app_file_error(sources, &path, text, at, message));
+}
+
+/// Error E0007 in an application file (`text`, added to `sources` as
+/// `path`) at `(line, column, stops)`: the span runs from there to the
+/// first newline, space or one of `stops` (at least one character).
+fn app_file_error(
+    sources: &mut SourceMap,
+    path: &Path,
+    text: String,
+    (line, column, stops): (usize, usize, &[char]),
+    message: String,
+) -> Diagnostic {
     let start = offset(&text, line, column);
     let end = text[start..]
-        .find(['\n', ' ', '='])
+        .find(|c: char| c == '\n' || c == ' ' || stops.contains(&c))
         .map_or(text.len(), |n| start + n.max(1).min(text.len() - start));
-    let file = sources.add(&path, text);
+    let file = sources.add(path, text);
     let span = sitlog_syntax::Span {
         start: start as u32,
         end: end as u32,
     };
-    diags.push(
-        Diagnostic::error(
-            sitlog_compiler::load::codes::APP_FILE,
-            Loc { file, span },
-            message,
-        )
-        .with_label("here"),
-    );
+    Diagnostic::error(
+        sitlog_compiler::load::codes::APP_FILE,
+        Loc { file, span },
+        message,
+    )
+    .with_label("here")
 }
 
 /// The line, column and message of `:LINE:COL: error: MESSAGE` (what

@@ -328,6 +328,13 @@ impl<'s> Planner<'s> {
         if name == atoms::EQ_EQ || name == atoms::NOT_EQ_EQ {
             return Some(Cond::Other(self.build(c, &scope.vars, depth + 1).ok()?));
         }
+        self.order_cmp(name, args[0], args[1], scope)
+    }
+
+    /// `A > B`, `A < B`, `A >= B`, `A =< B` as a [`Cond::Cmp`] of two
+    /// operands as written; `None` for another functor or an operand
+    /// [`Self::cmp_operand`] does not take.
+    fn order_cmp(&self, name: Atom, a: Term, b: Term, scope: &Scope) -> Option<Cond> {
         if ![
             atoms::GREATER,
             atoms::LESS,
@@ -341,8 +348,8 @@ impl<'s> Planner<'s> {
         let op = ArithCmp::from_atom(name)?;
         Some(Cond::Cmp(
             op,
-            self.cmp_operand(args[0], scope)?,
-            self.cmp_operand(args[1], scope)?,
+            self.cmp_operand(a, scope)?,
+            self.cmp_operand(b, scope)?,
         ))
     }
 
@@ -437,22 +444,7 @@ impl<'s> Planner<'s> {
         {
             return Some(Cond::Other(self.build(t, &scope.vars, depth + 1).ok()?));
         }
-        if ![
-            atoms::GREATER,
-            atoms::LESS,
-            atoms::GREATER_EQ,
-            atoms::LESS_EQ,
-        ]
-        .contains(&name)
-        {
-            return None;
-        }
-        let op = ArithCmp::from_atom(name)?;
-        Some(Cond::Cmp(
-            op,
-            self.cmp_operand(a, scope)?,
-            self.cmp_operand(b, scope)?,
-        ))
+        self.order_cmp(name, a, b, scope)
     }
 
     /// An operand of a value comparison ([`Cond::Cmp`]), as written: a

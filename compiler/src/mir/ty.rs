@@ -332,7 +332,7 @@ impl MirTypes {
         format!(
             "MIR registers typed: {typed}/{regs} ({shaped} with a shape, {ground} ground, {none} no value); \
              situations with no term register: {clean}/{sits} ({shaped_sits} without ground); \
-             variables typed: {vars_typed}/{vars} (MIR inference)"
+             variables with a MIR type: {vars_typed}/{vars} (MIR inference)"
         )
     }
 
