@@ -189,6 +189,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         check::UNKNOWN_WORLD_NAME,
         "(`sitlogc check` of an application with a `world.toml`) a place given by name to `navigate(Place, Status)` or `move(Place, Status)` that is no place or shelf of the world (*did you mean*): the run goes on, `navigate` answering `unknown_place`",
     ),
+    (
+        check::VAR_OP_ARITY,
+        "`get`, `set` or `inc` with another number of arguments than two (`inc(visits)` for `inc(visits, _)`) where it is evaluated: the original stops there (`Ilegal list of terms`)",
+    ),
 ];
 
 /// The meaning of `code`, if it is one.

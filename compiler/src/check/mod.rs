@@ -77,6 +77,7 @@ pub mod codes {
     pub const INC_NOT_A_NUMBER: &str = "E0242";
     /// Given by `sitlogc check`, which reads the world file.
     pub const UNKNOWN_WORLD_NAME: &str = "W0243";
+    pub const VAR_OP_ARITY: &str = "E0250";
 }
 
 /// A program the checker accepted (no errors; warnings allowed).

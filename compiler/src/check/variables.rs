@@ -79,6 +79,43 @@ impl<'p> Checker<'p> {
         if !applies {
             self.inc_not_a_number(dm, &incs, &set);
         }
+        self.var_op_arity(dm);
+    }
+
+    /// E0250: `get`, `set` or `inc` with one argument or more than two
+    /// where the functional language evaluates it (`inc(visits)` for
+    /// `inc(visits, _)`). Ours would take it for a compound (an unknown
+    /// action, doing nothing); the original's evaluator has no rule for it
+    /// and stops (`Ilegal list of terms: inc(visits)`, then an
+    /// instantiation error), wherever it is evaluated.
+    fn var_op_arity(&mut self, dm: &Dm) {
+        let terms = &dm.clause.terms;
+        let mut found = Vec::new();
+        walk_evaluated(dm, |t| {
+            if let Some((f, n)) = terms.functor(t) {
+                if n != 2 && (f == atoms::GET || f == atoms::SET || f == atoms::INC) {
+                    found.push((f, n, t));
+                }
+            }
+        });
+        found.sort_by_key(|&(_, _, t)| terms.span(t));
+        for (f, n, t) in found {
+            let args = terms.args(t);
+            let example = match (args.first(), f == atoms::SET) {
+                (Some(&name), false) => format!("{f}({}, _)", show(dm, name)),
+                (Some(&name), true) => format!("{f}({}, Value)", show(dm, name)),
+                (None, _) => format!("{f}(Name, _)"),
+            };
+            self.diags.push(
+                Diagnostic::error(
+                    codes::VAR_OP_ARITY,
+                    dm.loc(terms.span(t)),
+                    format!("`{f}` with {n} argument{}: `{f}` takes a variable's name and a value, so the run stops here (the original SitLog says `Ilegal list of terms` and stops)", if n == 1 { "" } else { "s" }),
+                )
+                .with_label(format!("`{f}/{n}`, not `{f}/2`"))
+                .with_help(format!("write `{example}`")),
+            );
+        }
     }
 
     /// E0242: `inc` of a local variable whose value is always its default,
