@@ -183,7 +183,7 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
     ),
     (
         check::INC_NOT_A_NUMBER,
-        "`inc` of a local variable whose value is always a default that is not a number (`tries ==> none`; nothing in the DM `set`s it and it applies no user function): the run stops at the `inc`, as the original does (`is not numeric`)",
+        "`inc` of a local variable whose value is never a number there: always a default that is not a number (`tries ==> none`; nothing in the DM `set`s it), or what a `set` stored as written (`set(count, C + 1)` stores the term `0+1`) when every `set` of it stores such a term and every way to the `inc` sets it; the DM applies no user function: the run stops at the `inc`, as the original does (`is not numeric`)",
     ),
     (
         check::UNKNOWN_WORLD_NAME,

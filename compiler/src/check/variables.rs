@@ -28,7 +28,9 @@ impl<'p> Checker<'p> {
         // user function (which may `var_op(set(..))` the caller's locals)
         // is applied.
         let mut incs = Vec::new();
-        let mut set = HashSet::new();
+        // The names `set` anywhere, with the first value stored when every
+        // `set` of the name stores a value that is never a number.
+        let mut set: HashMap<Atom, Option<Option<TermId>>> = HashMap::new();
         let mut applies = false;
         for s in &dm.situations {
             let roots = [s.id, s.prog, s.in_arg, s.out_arg, s.embedded_dm, s.diag_mod];
@@ -45,7 +47,19 @@ impl<'p> Checker<'p> {
                             } else if f == atoms::INC {
                                 incs.push((name, terms.args(t)[0]));
                             } else if f == atoms::SET {
-                                set.insert(name);
+                                // `set` stores its value as written (D-38):
+                                // a compound or an atom is never a number.
+                                let v = terms.args(t)[1];
+                                let number = matches!(
+                                    terms.node(v),
+                                    Node::Var(_) | Node::Int(_) | Node::BigInt(_) | Node::Float(_)
+                                );
+                                let stored = set.entry(name).or_insert(None);
+                                *stored = match *stored {
+                                    None if !number => Some(Some(v)),
+                                    Some(Some(first)) if !number => Some(Some(first)),
+                                    _ => Some(None),
+                                };
                             }
                         }
                     }
@@ -123,7 +137,18 @@ impl<'p> Checker<'p> {
     /// DM `set`s it and no user function is applied, so the `inc` stops
     /// the run wherever it is reached, as it stops the original SitLog
     /// (`the variable "tries" is not numeric`).
-    fn inc_not_a_number(&mut self, dm: &Dm, incs: &[(Atom, TermId)], set: &HashSet<Atom>) {
+    ///
+    /// Also (first-week program 35): `inc` of a local that every `set` of
+    /// the DM gives a value that is never a number (`set(count, C + 1)`
+    /// stores the term `0+1`: `set` does not evaluate), where every way
+    /// from the DM's first situation to the `inc` takes an arc that `set`s
+    /// it (outside a conditional's branch), whatever its default.
+    fn inc_not_a_number(
+        &mut self,
+        dm: &Dm,
+        incs: &[(Atom, TermId)],
+        set: &HashMap<Atom, Option<Option<TermId>>>,
+    ) {
         let terms = &dm.clause.terms;
         let mut incs = incs.to_vec();
         incs.sort_by_key(|&(_, t)| terms.span(t));
@@ -131,13 +156,34 @@ impl<'p> Checker<'p> {
             let Some(local) = dm.locals.iter().find(|l| l.name == name) else {
                 continue;
             };
-            if set.contains(&name)
-                || matches!(
-                    terms.node(local.value),
-                    Node::Var(_) | Node::Int(_) | Node::BigInt(_) | Node::Float(_)
-                )
-            {
-                continue;
+            let default_number = matches!(
+                terms.node(local.value),
+                Node::Var(_) | Node::Int(_) | Node::BigInt(_) | Node::Float(_)
+            );
+            match set.get(&name) {
+                None if !default_number => {}
+                Some(Some(Some(stored))) => {
+                    if default_number && !always_set_before(dm, name, t) {
+                        continue;
+                    }
+                    let value = show(dm, *stored);
+                    self.diags.push(
+                        Diagnostic::error(
+                            codes::INC_NOT_A_NUMBER,
+                            dm.loc(terms.span(t)),
+                            format!("`inc` of `{name}`, whose value here is always what a `set` stored, such as `{value}`: not a number (`set` stores its value as written, it does not evaluate it), so the run stops here (the original SitLog says the variable is not numeric and stops)"),
+                        )
+                        .with_label("never a number here")
+                        .with_secondary(dm.loc(terms.span(*stored)), format!("`{name}` is set to the term `{value}`, not to its value"))
+                        .with_help(if arithmetic(terms, *stored) {
+                            format!("compute the number first (`N is {value}, set({name}, N)`), or count with `inc({name}, _)` alone")
+                        } else {
+                            format!("`set` it to a number before the `inc` (`set({name}, 0)`)")
+                        }),
+                    );
+                    continue;
+                }
+                _ => continue,
             }
             let value = show(dm, local.value);
             self.diags.push(
@@ -205,4 +251,115 @@ impl<'p> Checker<'p> {
             }
         }
     }
+}
+
+/// Every way from `dm`'s first situation to the arc holding `inc` (the
+/// term `inc`) takes an arc that certainly `set`s `name` (in its action,
+/// not in a branch of a conditional), and the `inc`'s own arc sets nothing:
+/// known only when every next situation is known from its text.
+fn always_set_before(dm: &Dm, name: Atom, inc: TermId) -> bool {
+    let terms = &dm.clause.terms;
+    let index = super::situations::SituationIndex::new(dm);
+    let inc_span = terms.span(inc);
+    let inside = |t: TermId| {
+        let s = terms.span(t);
+        s.start <= inc_span.start && inc_span.end <= s.end
+    };
+    let n = dm.situations.len();
+    let mut edges: Vec<Vec<usize>> = vec![Vec::new(); n];
+    let mut at = None;
+    for (i, s) in dm.situations.iter().enumerate() {
+        if [s.prog, s.in_arg, s.out_arg, s.embedded_dm, s.diag_mod]
+            .into_iter()
+            .flatten()
+            .any(inside)
+        {
+            // An `inc` outside the arcs: where it runs is not followed here.
+            return false;
+        }
+        for arc in s.arcs.iter().flatten() {
+            let Some(values) = static_values(terms, arc.next) else {
+                return false;
+            };
+            if [arc.expectation, arc.action, arc.next]
+                .into_iter()
+                .any(inside)
+            {
+                if sets_anywhere(terms, name, arc.expectation)
+                    || sets_anywhere(terms, name, arc.action)
+                    || sets_anywhere(terms, name, arc.next)
+                {
+                    return false;
+                }
+                at = Some(i);
+            }
+            if certainly_sets(terms, name, arc.action) {
+                continue;
+            }
+            for v in values {
+                edges[i].extend(index.targets(dm, v));
+            }
+        }
+    }
+    let Some(at) = at else { return false };
+    let mut reached = vec![false; n];
+    let mut stack = vec![0];
+    if n > 0 {
+        reached[0] = true;
+    }
+    while let Some(i) = stack.pop() {
+        if i == at {
+            return false;
+        }
+        for &j in &edges[i] {
+            if !reached[j] {
+                reached[j] = true;
+                stack.push(j);
+            }
+        }
+    }
+    true
+}
+
+/// `set(name, _)` anywhere in `t`.
+fn sets_anywhere(terms: &Terms, name: Atom, t: TermId) -> bool {
+    let mut stack = vec![t];
+    while let Some(x) = stack.pop() {
+        if let Some(&[n, _]) = terms.compound(x, atoms::SET, 2) {
+            if terms.atom(n) == Some(name) {
+                return true;
+            }
+        }
+        stack.extend_from_slice(terms.args(x));
+    }
+    false
+}
+
+/// The action `t` evaluates `set(name, _)` whenever it runs: the action
+/// itself, or an element of its list (not a branch of a conditional).
+fn certainly_sets(terms: &Terms, name: Atom, t: TermId) -> bool {
+    let mut t = t;
+    loop {
+        if let Some(&[n, _]) = terms.compound(t, atoms::SET, 2) {
+            return terms.atom(n) == Some(name);
+        }
+        let Some(&[head, tail]) = terms.compound(t, atoms::DOT, 2) else {
+            return false;
+        };
+        if terms
+            .compound(head, atoms::SET, 2)
+            .is_some_and(|a| terms.atom(a[0]) == Some(name))
+        {
+            return true;
+        }
+        t = tail;
+    }
+}
+
+/// `t` is an arithmetic expression that `is` would evaluate (`C + 1`).
+fn arithmetic(terms: &Terms, t: TermId) -> bool {
+    matches!(
+        terms.functor(t),
+        Some((f, 1 | 2)) if matches!(f.as_str(), "+" | "-" | "*" | "/" | "//" | "mod" | "rem" | "**" | "^" | "min" | "max" | "abs")
+    )
 }

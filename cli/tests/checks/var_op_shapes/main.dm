@@ -10,3 +10,17 @@ diag_mod(main,
       arcs ==> [ empty : empty => fs ] ],
     [ id ==> fs, type ==> final ] ],
   [ visits ==> 0 ]).
+
+% `set` stores `C + 1` as written (the term `0+1`), then `inc` stops the run
+% (E0242: every way to the `inc` sets it so); only in a branch: not reported.
+diag_mod(counting,
+  [ [ id ==> is, type ==> neutral,
+      arcs ==> [ empty : [get(count, C), set(count, C + 1)] => again ] ],
+    [ id ==> again, type ==> neutral,
+      arcs ==> [ empty : [inc(count, N), say(N)] => maybe ] ],
+    [ id ==> maybe, type ==> neutral,
+      arcs ==> [ empty : [get(total, T), (T == 0 -> set(total, T + 1) ; otherwise -> empty)] => last ] ],
+    [ id ==> last, type ==> neutral,
+      arcs ==> [ empty : [inc(total, M), say(M)] => fs ] ],
+    [ id ==> fs, type ==> final ] ],
+  [ count ==> 0, total ==> 0 ]).
