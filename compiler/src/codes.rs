@@ -193,6 +193,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
         check::VAR_OP_ARITY,
         "`get`, `set` or `inc` with another number of arguments than two (`inc(visits)` for `inc(visits, _)`) where it is evaluated: the original stops there (`Ilegal list of terms`)",
     ),
+    (
+        check::APPLY_VALUE_COUNT,
+        "`apply(F, Values)` with a list of values longer or shorter than `F`'s arguments (`apply(double(X), [2, 3])`): the original prints `Ilegal list of terms` and calls the function with every argument unbound, and so does the run (it stops if the function needs them)",
+    ),
 ];
 
 /// The meaning of `code`, if it is one.

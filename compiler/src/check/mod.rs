@@ -78,6 +78,7 @@ pub mod codes {
     /// Given by `sitlogc check`, which reads the world file.
     pub const UNKNOWN_WORLD_NAME: &str = "W0243";
     pub const VAR_OP_ARITY: &str = "E0250";
+    pub const APPLY_VALUE_COUNT: &str = "W0251";
 }
 
 /// A program the checker accepted (no errors; warnings allowed).
@@ -296,6 +297,7 @@ impl<'p> Checker<'p> {
         if !broken.prolog {
             self.functions();
         }
+        self.apply_value_counts();
         self.false_conditionals();
         self.os_access();
         self.prolog_depth();
