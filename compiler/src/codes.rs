@@ -50,6 +50,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
     (shape::MALFORMED_VAR, "malformed local variable"),
     (shape::MALFORMED_SIDE_FILE, "malformed side-file clause"),
     (
+        shape::MALFORMED_GLOBAL,
+        "a clause of `global_vars.pl` that is not `name ==> value` (`battery => 100.`): it declares no variable (the original keeps it in its list of globals, where no `get` finds it, and runs on)",
+    ),
+    (
         shape::DUPLICATE_ATTRIBUTE,
         "attribute given twice in a situation (the first is used)",
     ),
@@ -101,6 +105,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
     (
         check::UNKNOWN_VARIABLE,
         "`get`/`set`/`inc` of a variable neither local nor global",
+    ),
+    (
+        check::UNKNOWN_VARIABLE_NESTED,
+        "`get`/`set`/`inc` of a variable neither local nor global whose value is data passed on: an element of a list in an action's argument (`say(['Battery at', get(battery, _)])`) or an argument of a next situation (`=> next(get(battery, _))`): the original prints that the variable is not defined and runs on with the value unbound (the run stops there: left)",
     ),
     (check::SINGLETON, "singleton variable (as Prolog warns)"),
     (check::DUPLICATE_GLOBAL, "global variable declared twice"),

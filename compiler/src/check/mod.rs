@@ -52,6 +52,8 @@ pub mod codes {
     pub const DM_ARITY: &str = "E0217";
     pub const UNKNOWN_EXIT: &str = "E0218";
     pub const UNKNOWN_VARIABLE: &str = "E0219";
+    /// E0219 where the original runs on (its value an argument of data).
+    pub const UNKNOWN_VARIABLE_NESTED: &str = "W0219";
     pub const SINGLETON: &str = "W0220";
     pub const DUPLICATE_GLOBAL: &str = "W0221";
     pub const DUPLICATE_LOCAL: &str = "W0222";

@@ -43,7 +43,7 @@ impl<'p> Checker<'p> {
                     if f == atoms::GET || f == atoms::SET || f == atoms::INC {
                         if let Some(name) = terms.atom(terms.args(t)[0]) {
                             if !known(name) {
-                                found.push((f, name, terms.args(t)[0]));
+                                found.push((f, name, terms.args(t)[0], t));
                             } else if f == atoms::INC {
                                 incs.push((name, terms.args(t)[0]));
                             } else if f == atoms::SET {
@@ -68,13 +68,22 @@ impl<'p> Checker<'p> {
                 stack.extend_from_slice(terms.args(t));
             }
         }
-        found.sort_by_key(|&(_, _, t)| terms.span(t));
-        for (f, name, t) in found {
-            let mut d = Diagnostic::error(
-                codes::UNKNOWN_VARIABLE,
-                dm.loc(terms.span(t)),
-                format!("`{f}` of `{name}`, which is neither a local variable of DM `{}` nor a global variable", dm.name),
-            )
+        found.sort_by_key(|&(_, _, t, _)| terms.span(t));
+        let runs_on = data_arguments(dm);
+        for (f, name, t, whole) in found {
+            let mut d = if runs_on.contains(&whole) {
+                Diagnostic::warning(
+                    codes::UNKNOWN_VARIABLE_NESTED,
+                    dm.loc(terms.span(t)),
+                    format!("`{f}` of `{name}`, which is neither a local variable of DM `{}` nor a global variable: its value is unbound here (the original SitLog says the variable is not defined and runs on)", dm.name),
+                )
+            } else {
+                Diagnostic::error(
+                    codes::UNKNOWN_VARIABLE,
+                    dm.loc(terms.span(t)),
+                    format!("`{f}` of `{name}`, which is neither a local variable of DM `{}` nor a global variable", dm.name),
+                )
+            }
             .with_label("unknown SitLog variable");
             let names = dm
                 .locals
@@ -362,4 +371,65 @@ fn arithmetic(terms: &Terms, t: TermId) -> bool {
         terms.functor(t),
         Some((f, 1 | 2)) if matches!(f.as_str(), "+" | "-" | "*" | "/" | "//" | "mod" | "rem" | "**" | "^" | "min" | "max" | "abs")
     )
+}
+
+/// The terms of `dm`'s arcs whose value is data the original passes on
+/// unbound and runs on (first-week program 36): an element of a list (at
+/// any depth, through lists and compounds that are no construct of the
+/// functional language) inside an argument of an action
+/// (`say(['Battery at', get(battery, _)])`), or an argument of a next
+/// situation's compound (`next(get(battery, _))`). A `get` of an unknown
+/// variable there gives the original an unbound value and it runs on; as
+/// an action itself, a direct argument of one (`say(get(battery, _))`: the
+/// original's `say` stops on an unbound value), or in an `is`, a
+/// comparison or a condition, it stops.
+fn data_arguments(dm: &Dm) -> HashSet<TermId> {
+    let terms = &dm.clause.terms;
+    let plain = |t: TermId| {
+        terms.functor(t).is_some_and(|(name, arity)| {
+            !(name == atoms::DOT && arity == 2)
+                && !is_evaluated(name, arity)
+                && conditional(terms, t).is_none()
+        })
+    };
+    let mut out = HashSet::new();
+    // (term, in action position, below a data compound, passed on unbound)
+    let mut stack: Vec<(TermId, bool, bool, bool)> = Vec::new();
+    for s in &dm.situations {
+        for arc in s.arcs.iter().flatten() {
+            stack.push((arc.action, true, false, false));
+            if plain(arc.next) {
+                for &a in terms.args(arc.next) {
+                    stack.push((a, false, true, true));
+                }
+            }
+        }
+    }
+    while let Some((t, action, data, warn)) = stack.pop() {
+        if warn {
+            out.insert(t);
+        }
+        if action {
+            if let Some((then, other)) = conditional(terms, t) {
+                stack.extend([(then, true, false, false), (other, true, false, false)]);
+                continue;
+            }
+            if let Some(&[head, tail]) = terms.compound(t, atoms::DOT, 2) {
+                stack.extend([(head, true, false, false), (tail, true, false, false)]);
+                continue;
+            }
+        }
+        let Some((name, arity)) = terms.functor(t) else {
+            continue;
+        };
+        let list = name == atoms::DOT && arity == 2;
+        if !list && !plain(t) {
+            continue;
+        }
+        let warn = warn || (list && data);
+        for &a in terms.args(t) {
+            stack.push((a, false, true, warn));
+        }
+    }
+    out
 }
