@@ -387,9 +387,8 @@ fn data_arguments(dm: &Dm) -> HashSet<TermId> {
     let terms = &dm.clause.terms;
     let plain = |t: TermId| {
         terms.functor(t).is_some_and(|(name, arity)| {
-            !(name == atoms::DOT && arity == 2)
-                && !is_evaluated(name, arity)
-                && conditional(terms, t).is_none()
+            let list = name == atoms::DOT && arity == 2;
+            !(list || is_evaluated(name, arity)) && conditional(terms, t).is_none()
         })
     };
     let mut out = HashSet::new();
