@@ -143,6 +143,7 @@ fn library_is_compiled(dir: &Path, generated: &[std::path::PathBuf]) {
 /// its diagnostics).
 fn random_programs(out_dir: &Path, index: &mut String) -> String {
     println!("cargo:rerun-if-changed=gen/random_dm.rs");
+    println!("cargo:rerun-if-env-changed=SITLOG_RANDOM_PAIRS");
     let mut table = String::new();
     for seed in random_dm::seeds() {
         let dir = out_dir.join("random").join(format!("seed_{seed}"));

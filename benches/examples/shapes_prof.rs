@@ -217,6 +217,32 @@ mod r18_d_callee_list {
 mod r18_d_yes_no {
     sitlog_macros::include_dm!("../tests/typed/review18/r18_d_yes_no");
 }
+// Helper `review19`'s (session 18): written without reading `tests/typed/shapes`,
+// `tests/typed/review17` or `tests/typed/review18`.
+mod r19_d_shelves {
+    sitlog_macros::include_dm!("../tests/typed/review19/r19_d_shelves");
+}
+mod r19_d_collect_out {
+    sitlog_macros::include_dm!("../tests/typed/review19/r19_d_collect_out");
+}
+mod r19_c_done_pair {
+    sitlog_macros::include_dm!("../tests/typed/review19/r19_c_done_pair");
+}
+mod r19_d_global_goal {
+    sitlog_macros::include_dm!("../tests/typed/review19/r19_d_global_goal");
+}
+mod r19_c_ping_pong {
+    sitlog_macros::include_dm!("../tests/typed/review19/r19_c_ping_pong");
+}
+mod r19_d_chain3 {
+    sitlog_macros::include_dm!("../tests/typed/review19/r19_d_chain3");
+}
+mod r19_d_when_qty {
+    sitlog_macros::include_dm!("../tests/typed/review19/r19_d_when_qty");
+}
+mod r19_d_prolog_first {
+    sitlog_macros::include_dm!("../tests/typed/review19/r19_d_prolog_first");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -282,6 +308,7 @@ fn interpreter(dir: &str) -> Ir {
         "echo_calls" | "list_search" => "dms",
         _ if dir.starts_with("r17_") => "../tests/typed/review17",
         _ if dir.starts_with("r18_") => "../tests/typed/review18",
+        _ if dir.starts_with("r19_") => "../tests/typed/review19",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -407,6 +434,36 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             SCRIPT.with(|s| *s.borrow_mut() = round.repeat(n as usize));
             format!("ask({n}, {list})")
         }
+        "r19_d_shelves" => format!("pick({n}, {}, {last})", shelves_text(len)),
+        "r19_d_collect_out" => {
+            let ints: Vec<String> = (0..len).map(|i| i.to_string()).collect();
+            format!("harvest({n}, [{}], {})", ints.join(","), len / 2)
+        }
+        "r19_c_done_pair" if way != "hand" => {
+            let n = n.to_string();
+            return match way {
+                "compiled" => run_piped(r19_c_done_pair::program(), "relay", Some(&n)),
+                _ => run_piped(&Resolved::new(&interpreter(name)), "relay", Some(&n)),
+            };
+        }
+        "r19_c_done_pair" => String::new(),
+        "r19_d_global_goal" => format!("seek({n}, {list}, {last})"),
+        "r19_c_ping_pong" => format!("rally({n}, 2)"),
+        "r19_d_chain3" => format!("audit({n}, {list}, {last})"),
+        "r19_d_when_qty" => {
+            let items: Vec<String> = (0..len)
+                .map(|i| format!("item(p{i},{})", if i + 1 == len { 9 } else { i % 5 }))
+                .collect();
+            format!("order({n}, [{}], 5)", items.join(","))
+        }
+        "r19_d_prolog_first" => format!(
+            "weigh({n}, [{}])",
+            crates(len)
+                .iter()
+                .map(i64::to_string)
+                .collect::<Vec<_>>()
+                .join(",")
+        ),
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
             let n = n.to_string();
@@ -556,6 +613,27 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                 let script = round.repeat(n as usize);
                 hand_r18_yes_no(n, black_box(&syms), black_box(&script))
             }
+            "r19_d_shelves" => {
+                let shelves: Vec<Vec<Sym>> = syms.chunks(4).map(<[Sym]>::to_vec).collect();
+                hand_r19_shelves(n, black_box(&shelves), black_box(lsym))
+            }
+            "r19_d_collect_out" => {
+                let ints: Vec<i64> = (0..len as i64).collect();
+                hand_r19_collect_out(n, black_box(&ints), black_box(len as i64 / 2))
+            }
+            "r19_c_done_pair" => hand_r19_done_pair(n),
+            "r19_d_global_goal" => hand_r19_global_goal(n, black_box(&syms), black_box(lsym)),
+            "r19_c_ping_pong" => hand_r19_ping_pong(n, black_box(2)),
+            "r19_d_chain3" => hand_r19_chain3(n, black_box(&syms), black_box(lsym)),
+            "r19_d_when_qty" => {
+                let items: Vec<Item> = (0..len)
+                    .map(|i| Item(Sym(i as u32), if i + 1 == len { 9 } else { i as i64 % 5 }))
+                    .collect();
+                hand_r19_when_qty(n, black_box(&items), black_box(5))
+            }
+            "r19_d_prolog_first" => {
+                hand_r19_prolog_first(n, black_box(&crates(len)), black_box(|w| w >= 1000))
+            }
             "r17_c_charge_when" => hand_r17_charge(n),
             "r17_c_courier_global" => hand_r17_courier(n),
             "r17_c_odometer" => hand_r17_odometer(n),
@@ -630,13 +708,20 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r17_d_prog_rooms" => ways!(r17_d_prog_rooms),
         "r17_d_readings_deep" => ways!(r17_d_readings_deep),
         "r17_d_announce" => ways!(r17_d_announce),
+        "r19_d_shelves" => ways!(r19_d_shelves),
+        "r19_d_collect_out" => ways!(r19_d_collect_out),
+        "r19_d_global_goal" => ways!(r19_d_global_goal),
+        "r19_c_ping_pong" => ways!(r19_c_ping_pong),
+        "r19_d_chain3" => ways!(r19_d_chain3),
+        "r19_d_when_qty" => ways!(r19_d_when_qty),
+        "r19_d_prolog_first" => ways!(r19_d_prolog_first),
         "c_call_reads_inarg" => ways!(c_call_reads_inarg),
         "c_expr_compare" => ways!(c_expr_compare),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 59] = [
+const ALL: [&str; 67] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -696,6 +781,14 @@ const ALL: [&str; 59] = [
     "r18_d_yes_no",
     "r18_d_lockstep",
     "r18_d_lockstep_any",
+    "r19_d_shelves",
+    "r19_d_collect_out",
+    "r19_c_done_pair",
+    "r19_d_global_goal",
+    "r19_c_ping_pong",
+    "r19_d_chain3",
+    "r19_d_when_qty",
+    "r19_d_prolog_first",
 ];
 
 /// The two lists of `r18_d_lockstep*` at `len` places: `0..len` and a
@@ -704,6 +797,27 @@ fn lockstep_lists(len: usize) -> (Vec<i64>, Vec<i64>) {
     let xs = (0..len as i64).collect();
     let ys = (0..len as i64).map(|i| i % 3 + 1).collect();
     (xs, ys)
+}
+
+/// The shelves of `r19_d_shelves` at `len` places: `p0..` four a shelf.
+fn shelves_text(len: usize) -> String {
+    let shelves: Vec<String> = (0..len)
+        .collect::<Vec<_>>()
+        .chunks(4)
+        .map(|c| {
+            let items: Vec<String> = c.iter().map(|i| format!("p{i}")).collect();
+            format!("[{}]", items.join(","))
+        })
+        .collect();
+    format!("[{}]", shelves.join(","))
+}
+
+/// The crates of `r19_d_prolog_first` at `len` places: light weights
+/// `0..len - 1`, the last one heavy (1000).
+fn crates(len: usize) -> Vec<i64> {
+    (0..len as i64)
+        .map(|i| if i + 1 == len as i64 { 1000 } else { i })
+        .collect()
 }
 
 fn main() {

@@ -2687,3 +2687,471 @@ pub fn hand_r18_yes_no(rounds: i64, places: &[Sym], script: &str) -> u64 {
     }
     t
 }
+
+/// (d) `r19_d_shelves` (helper `review19`): a list of lists, the shelves
+/// walked and the items of each shelf walked, two kinds of frame state for
+/// the two ids; `got(Item)` or `none` back to the caller.
+pub fn hand_r19_shelves(rounds: i64, shelves: &[Vec<Sym>], want: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Enter,
+        Shelf(&'a [Vec<Sym>]),
+        Item(&'a [Sym], &'a [Vec<Sym>]),
+        Got(Sym),
+        None,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Enter),
+            Frame::Stop => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Enter => {
+                t += 1;
+                *top = Frame::Shelf(shelves);
+            }
+            Frame::Shelf([]) => {
+                t += 1;
+                *top = Frame::None;
+            }
+            Frame::Shelf([s, ss @ ..]) => {
+                t += 1;
+                *top = Frame::Item(s, ss);
+            }
+            Frame::Item([], ss) => {
+                t += 1;
+                *top = Frame::Shelf(ss);
+            }
+            Frame::Item([i, is @ ..], ss) => {
+                t += 1;
+                *top = if *i == want {
+                    Frame::Got(*i)
+                } else {
+                    Frame::Item(is, ss)
+                };
+            }
+            f @ (Frame::Got(_) | Frame::None) => {
+                t += 2;
+                black_box(f);
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n >= rounds {
+                        Frame::Stop
+                    } else {
+                        Frame::Round
+                    };
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r19_d_collect_out` (helper `review19`): the readings above `limit`
+/// gathered in a round (a `Vec`, its allocation reused, the newest first
+/// as the DM's `[R|Acc]`) and handed back as the pipe; the last round's
+/// list is the final situation's in_arg.
+pub fn hand_r19_collect_out(rounds: i64, readings: &[i64], limit: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Start,
+        Pass(&'a [i64]),
+        Kept,
+    }
+    let mut acc: Vec<i64> = Vec::with_capacity(readings.len());
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Start),
+            Frame::Stop => {
+                t += 1;
+                black_box(&acc);
+                stack.pop();
+            }
+            Frame::Start => {
+                t += 1;
+                acc.clear();
+                *top = Frame::Pass(readings);
+            }
+            Frame::Pass([]) => {
+                t += 1;
+                // out_arg ==> Acc: the newest first.
+                acc.reverse();
+                *top = Frame::Kept;
+            }
+            Frame::Pass([r, rs @ ..]) => {
+                t += 1;
+                if *r > limit {
+                    acc.push(*r);
+                }
+                *top = Frame::Pass(rs);
+            }
+            Frame::Kept => {
+                t += 2;
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n >= rounds {
+                        Frame::Stop
+                    } else {
+                        Frame::Round
+                    };
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (c) `r19_c_done_pair` (helper `review19`): `echo_calls` with a final
+/// carrying a pair, `done(X, tick)`, the caller matching its tag and
+/// comparing its count with the pair's first field.
+pub fn hand_r19_done_pair(limit: i64) -> u64 {
+    const TICK: Sym = Sym(1);
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Call,
+        Stop,
+        Odd,
+        Read,
+        Done(i64, Sym),
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Call];
+    let (mut pipe, mut n, mut t) = (limit, 0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Call => stack.push(Frame::Read),
+            Frame::Stop | Frame::Odd => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Read => {
+                t += 1;
+                pipe = black_box(pipe);
+                *top = Frame::Done(pipe, black_box(TICK));
+            }
+            Frame::Done(k, tag) => {
+                t += 2;
+                stack.pop();
+                if let Some(m) = stack.last_mut() {
+                    *m = if tag == TICK {
+                        n = black_box(n + 1);
+                        if n >= k {
+                            Frame::Stop
+                        } else {
+                            Frame::Call
+                        }
+                    } else {
+                        Frame::Odd
+                    };
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r19_d_global_goal` (helper `review19`): a walk comparing each spot
+/// with a global read at each visit (`black_box` on the read: the global
+/// may change between visits), set once by the first situation.
+pub fn hand_r19_global_goal(rounds: i64, spots: &[Sym], goal: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Setup,
+        Round,
+        Stop,
+        Begin,
+        At(&'a [Sym]),
+        Hit(Sym),
+        Miss,
+    }
+    let mut global = Sym(u32::MAX);
+    let mut stack: Vec<Frame> = vec![Frame::Setup];
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Setup => {
+                t += 1;
+                global = black_box(goal);
+                *top = Frame::Round;
+            }
+            Frame::Round => stack.push(Frame::Begin),
+            Frame::Stop => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Begin => {
+                t += 1;
+                *top = Frame::At(spots);
+            }
+            Frame::At([]) => {
+                t += 1;
+                *top = Frame::Miss;
+            }
+            Frame::At([s, ss @ ..]) => {
+                t += 1;
+                *top = if *s == black_box(global) {
+                    Frame::Hit(*s)
+                } else {
+                    Frame::At(ss)
+                };
+            }
+            f @ (Frame::Hit(_) | Frame::Miss) => {
+                t += 2;
+                black_box(f);
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n >= rounds {
+                        Frame::Stop
+                    } else {
+                        Frame::Round
+                    };
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (c) `r19_c_ping_pong` (helper `review19`): two DMs calling each other,
+/// `ping(D)` calls `pong(D)` while `D > 0`, `pong(D)` calls `ping(D - 1)`;
+/// a frame a level on the explicit stack, each ending in `back`.
+pub fn hand_r19_ping_pong(rounds: i64, depth: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame {
+        Serve,
+        Stop,
+        PingLook(i64),
+        PingHit(i64),
+        PongLook(i64),
+        PongHit(i64),
+        Back,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Serve];
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Serve => stack.push(Frame::PingLook(black_box(depth))),
+            Frame::Stop => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::PingLook(d) => {
+                t += 1;
+                *top = if d > 0 {
+                    Frame::PingHit(d)
+                } else {
+                    Frame::Back
+                };
+            }
+            Frame::PingHit(d) => stack.push(Frame::PongLook(d)),
+            Frame::PongLook(d) => {
+                t += 1;
+                *top = Frame::PongHit(d - 1);
+            }
+            Frame::PongHit(e) => stack.push(Frame::PingLook(e)),
+            Frame::Back => {
+                // The final, then the caller's recursive situation on `back`.
+                t += 2;
+                stack.pop();
+                match stack.last_mut() {
+                    Some(Frame::Serve) => {
+                        n = black_box(n + 1);
+                        if n >= rounds {
+                            *stack.last_mut().unwrap() = Frame::Stop;
+                        }
+                    }
+                    Some(f) => *f = Frame::Back,
+                    None => unreachable!(),
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r19_d_chain3` (helper `review19`): `list_search` with three
+/// situations an element (`box`, `label`, `skip`), one state each.
+pub fn hand_r19_chain3(rounds: i64, boxes: &[Sym], label: Sym) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Open,
+        Box(&'a [Sym]),
+        Label(Sym, &'a [Sym]),
+        Skip(&'a [Sym]),
+        Match(Sym),
+        NoMatch,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Open),
+            Frame::Stop => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Open => {
+                t += 1;
+                *top = Frame::Box(boxes);
+            }
+            Frame::Box([]) => {
+                t += 1;
+                *top = Frame::NoMatch;
+            }
+            Frame::Box([b, bs @ ..]) => {
+                t += 1;
+                *top = Frame::Label(*b, bs);
+            }
+            Frame::Label(b, bs) => {
+                t += 1;
+                *top = if b == label {
+                    Frame::Match(b)
+                } else {
+                    Frame::Skip(bs)
+                };
+            }
+            Frame::Skip(bs) => {
+                t += 1;
+                *top = Frame::Box(bs);
+            }
+            f @ (Frame::Match(_) | Frame::NoMatch) => {
+                t += 2;
+                black_box(f);
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n >= rounds {
+                        Frame::Stop
+                    } else {
+                        Frame::Round
+                    };
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r19_d_when_qty` (helper `review19`): `item(Name, Qty)` records,
+/// the first with `Qty >= need` ends the walk (`when/3` in the DM).
+pub fn hand_r19_when_qty(rounds: i64, items: &[Item], need: i64) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        First,
+        Bin(&'a [Item]),
+        Enough(Sym),
+        Short,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::First),
+            Frame::Stop => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::First => {
+                t += 1;
+                *top = Frame::Bin(items);
+            }
+            Frame::Bin([]) => {
+                t += 1;
+                *top = Frame::Short;
+            }
+            Frame::Bin([Item(name, qty), is @ ..]) => {
+                t += 1;
+                *top = if *qty >= need {
+                    Frame::Enough(*name)
+                } else {
+                    Frame::Bin(is)
+                };
+            }
+            f @ (Frame::Enough(_) | Frame::Short) => {
+                t += 2;
+                black_box(f);
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n >= rounds {
+                        Frame::Stop
+                    } else {
+                        Frame::Round
+                    };
+                }
+            }
+        }
+    }
+    t
+}
+
+/// (d) `r19_d_prolog_first` (helper `review19`): the first crate a
+/// predicate accepts (the DM's Prolog `heavy/1`, here the comparison it
+/// makes, behind a function pointer as a call would be).
+pub fn hand_r19_prolog_first(rounds: i64, crates: &[i64], heavy: fn(i64) -> bool) -> u64 {
+    #[derive(Clone, Copy)]
+    enum Frame<'a> {
+        Round,
+        Stop,
+        Load,
+        Crate(&'a [i64]),
+        Heavy(i64),
+        Light,
+    }
+    let mut stack: Vec<Frame> = vec![Frame::Round];
+    let (mut n, mut t) = (0i64, 0u64);
+    while let Some(top) = stack.last_mut() {
+        match *top {
+            Frame::Round => stack.push(Frame::Load),
+            Frame::Stop => {
+                t += 1;
+                stack.pop();
+            }
+            Frame::Load => {
+                t += 1;
+                *top = Frame::Crate(crates);
+            }
+            Frame::Crate([]) => {
+                t += 1;
+                *top = Frame::Light;
+            }
+            Frame::Crate([w, ws @ ..]) => {
+                t += 1;
+                *top = if heavy(*w) {
+                    Frame::Heavy(*w)
+                } else {
+                    Frame::Crate(ws)
+                };
+            }
+            f @ (Frame::Heavy(_) | Frame::Light) => {
+                t += 2;
+                black_box(f);
+                stack.pop();
+                n = black_box(n + 1);
+                if let Some(m) = stack.last_mut() {
+                    *m = if n >= rounds {
+                        Frame::Stop
+                    } else {
+                        Frame::Round
+                    };
+                }
+            }
+        }
+    }
+    t
+}

@@ -202,6 +202,7 @@ pub mod codes {
     pub const MALFORMED_ARC: &str = "E0104";
     pub const MALFORMED_VAR: &str = "E0105";
     pub const MALFORMED_SIDE_FILE: &str = "E0106";
+    pub const MALFORMED_GLOBAL: &str = "W0106";
     pub const DUPLICATE_ATTRIBUTE: &str = "W0107";
 }
 
@@ -461,11 +462,15 @@ pub fn build_globals(
                 value,
                 clause,
             }),
+            // The original reads the clause into its list of globals, where
+            // no `get`/`set`/`inc` finds it, and runs on (first-week program
+            // 36, `battery => 100.`): a warning; a use of the name is E0219,
+            // or W0219 where the original runs on.
             None => diags.push(
-                Diagnostic::error(
-                    codes::MALFORMED_SIDE_FILE,
+                Diagnostic::warning(
+                    codes::MALFORMED_GLOBAL,
                     loc,
-                    "a global variable must be written `name ==> value.`",
+                    "a global variable must be written `name ==> value.`: this clause declares none",
                 )
                 .with_label("not `name ==> value`"),
             ),

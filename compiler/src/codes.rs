@@ -50,6 +50,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
     (shape::MALFORMED_VAR, "malformed local variable"),
     (shape::MALFORMED_SIDE_FILE, "malformed side-file clause"),
     (
+        shape::MALFORMED_GLOBAL,
+        "a clause of `global_vars.pl` that is not `name ==> value` (`battery => 100.`): it declares no variable (the original keeps it in its list of globals, where no `get` finds it, and runs on)",
+    ),
+    (
         shape::DUPLICATE_ATTRIBUTE,
         "attribute given twice in a situation (the first is used)",
     ),
@@ -101,6 +105,10 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
     (
         check::UNKNOWN_VARIABLE,
         "`get`/`set`/`inc` of a variable neither local nor global",
+    ),
+    (
+        check::UNKNOWN_VARIABLE_NESTED,
+        "`get`/`set`/`inc` of a variable neither local nor global whose value is data passed on: an element of a list in an action's argument (`say(['Battery at', get(battery, _)])`) or an argument of a next situation (`=> next(get(battery, _))`): the original prints that the variable is not defined and runs on with the value unbound (the run stops there: left)",
     ),
     (check::SINGLETON, "singleton variable (as Prolog warns)"),
     (check::DUPLICATE_GLOBAL, "global variable declared twice"),
@@ -183,11 +191,19 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
     ),
     (
         check::INC_NOT_A_NUMBER,
-        "`inc` of a local variable whose value is always a default that is not a number (`tries ==> none`; nothing in the DM `set`s it and it applies no user function): the run stops at the `inc`, as the original does (`is not numeric`)",
+        "`inc` of a local variable whose value is never a number there: always a default that is not a number (`tries ==> none`; nothing in the DM `set`s it), or what a `set` stored as written (`set(count, C + 1)` stores the term `0+1`) when every `set` of it stores such a term and every way to the `inc` sets it; the DM applies no user function: the run stops at the `inc`, as the original does (`is not numeric`)",
     ),
     (
         check::UNKNOWN_WORLD_NAME,
         "(`sitlogc check` of an application with a `world.toml`) a place given by name to `navigate(Place, Status)` or `move(Place, Status)` that is no place or shelf of the world (*did you mean*): the run goes on, `navigate` answering `unknown_place`",
+    ),
+    (
+        check::VAR_OP_ARITY,
+        "`get`, `set` or `inc` with another number of arguments than two (`inc(visits)` for `inc(visits, _)`) where it is evaluated: the original stops there (`Ilegal list of terms`)",
+    ),
+    (
+        check::APPLY_VALUE_COUNT,
+        "`apply(F, Values)` with a list of values longer or shorter than `F`'s arguments (`apply(double(X), [2, 3])`): the original prints `Ilegal list of terms` and calls the function with every argument unbound, and so does the run (it stops if the function needs them)",
     ),
 ];
 

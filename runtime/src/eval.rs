@@ -525,19 +525,33 @@ fn apply(ctx: &mut EvalCtx<'_>, f: Term, args: Term) -> Result<Term, EvalError> 
     };
     // Each argument of F that is a variable takes the next value, positionally;
     // other arguments are passed as written (the caller's variables stay unbound).
+    // With more or fewer values than arguments none is bound: the original
+    // binds them only when the counts agree, else prints `Ilegal list of
+    // terms` and calls the function with its arguments unbound (W0251).
+    let counts_agree = values.len() == arity;
     let declared: Vec<Term> = ctx.store.args(f).to_vec();
     let mut call_args = Vec::with_capacity(arity);
     for (i, &a) in declared.iter().enumerate() {
         let a = ctx.store.deref(a);
         call_args.push(if ctx.store.is_var(a) {
-            values
-                .get(i)
-                .copied()
-                .unwrap_or_else(|| ctx.store.new_var())
+            match values.get(i) {
+                Some(&v) if counts_agree => v,
+                _ => ctx.store.new_var(),
+            }
         } else {
             a
         });
     }
+    let unbound = |e: String| {
+        if counts_agree {
+            e
+        } else {
+            format!(
+                "{e} (called with its arguments unbound: {} value(s) for {arity} argument(s), which the original SitLog does not bind either)",
+                values.len()
+            )
+        }
+    };
     let mut call = FnCall {
         store: ctx.store,
         locals: ctx.locals,
@@ -547,9 +561,9 @@ fn apply(ctx: &mut EvalCtx<'_>, f: Term, args: Term) -> Result<Term, EvalError> 
     };
     match ctx.functions.call(&mut call, name, &call_args) {
         Some(Ok(v)) => Ok(v),
-        Some(Err(e)) => Err(EvalError::new(format!(
+        Some(Err(e)) => Err(EvalError::new(unbound(format!(
             "user function `{name}/{arity}` failed: {e}"
-        ))),
+        )))),
         None => Err(EvalError::new(format!(
             "no user function `{name}/{arity}` (called as `{}`)",
             show(ctx.store, f)

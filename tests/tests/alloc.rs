@@ -53,6 +53,17 @@ mod r18_clerk {
     sitlog_macros::include_dm!("typed/review18/r18_c_clerk_global");
 }
 
+/// Shape (c) written without reading the workloads above (helper
+/// `review19`): a final carrying a compound the caller's exit arc
+/// destructures (`done(K, tick)`); two DMs calling each other (`ping`,
+/// `pong`), two levels deep.
+mod r19_done_pair {
+    sitlog_macros::include_dm!("typed/review19/r19_c_done_pair");
+}
+mod r19_ping_pong {
+    sitlog_macros::include_dm!("typed/review19/r19_c_ping_pong");
+}
+
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
@@ -126,6 +137,15 @@ fn measure<A: App>(app: &A) -> Ticks {
 
 /// [`measure`] from the given main DM call.
 fn measure_from<A: App>(app: &A, main: &str) -> Ticks {
+    measure_with(app, main, None)
+}
+
+/// [`measure_from`] with the main DM's in_arg.
+fn measure_piped<A: App>(app: &A, main: &str, in_arg: &str) -> Ticks {
+    measure_with(app, main, Some(in_arg))
+}
+
+fn measure_with<A: App>(app: &A, main: &str, in_arg: Option<&str>) -> Ticks {
     let mut ticks = Ticks {
         n: 0,
         last_allocs: 0,
@@ -137,7 +157,7 @@ fn measure_from<A: App>(app: &A, main: &str) -> Ticks {
     let (outcome, _store) = app::run(
         app,
         main,
-        None,
+        in_arg,
         options(),
         Functions::standard(),
         &mut NoInput,
@@ -193,6 +213,14 @@ fn transitions_allocate_nothing_in_steady_state() {
         (
             "r18_c_clerk_global",
             measure_from(r18_clerk::program(), "boss(1000000000)"),
+        ),
+        (
+            "r19_c_done_pair",
+            measure_piped(r19_done_pair::program(), "relay", "1000000000"),
+        ),
+        (
+            "r19_c_ping_pong",
+            measure_from(r19_ping_pong::program(), "rally(1000000000, 2)"),
         ),
     ];
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("dms/ground_loop");
@@ -250,7 +278,7 @@ fn transitions_allocate_nothing_in_steady_state() {
     }
     assert!(
         bad.is_empty(),
-        "review17's and review18's shape (c) allocated: {bad:?}"
+        "review17's, review18's and review19's shape (c) allocated: {bad:?}"
     );
     // The interpreter builds each instance in the store; the window is long
     // enough to include collections. What remains outside them is the

@@ -260,7 +260,7 @@ fn a_prolog_clause_that_does_not_read_is_skipped() {
     let tmp = tempfile::tempdir().unwrap();
     std::fs::write(
         tmp.path().join("main.dm"),
-        "diag_mod(main, [[id ==> is, type ==> neutral, arcs ==> [empty : say(apply(hi(_), [])) => fs]], [id ==> fs, type ==> final]], []).\n",
+        "diag_mod(main, [[id ==> is, type ==> neutral, arcs ==> [empty : say(apply(hi(_), [x])) => fs]], [id ==> fs, type ==> final]], []).\n",
     )
     .unwrap();
     std::fs::write(

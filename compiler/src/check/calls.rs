@@ -7,6 +7,55 @@
 use super::*;
 
 impl Checker<'_> {
+    /// W0251: `apply(F, [V1, .., Vm])` whose list of values (written as a
+    /// list) is longer or shorter than `F`'s arguments. The original binds
+    /// values to arguments only when the counts agree; otherwise it prints
+    /// `Ilegal list of terms`, waits for a line of input (`Press Ctrl. C
+    /// and abort`) and calls the function with every argument unbound
+    /// (observed: `apply(double(_X), [2, 3])` then stops on `is/2`, a
+    /// function that does not use its argument returns its value). The run
+    /// does the same (`eval::apply`): a warning, the function decides.
+    pub(super) fn apply_value_counts(&mut self) {
+        for dm in &self.program.dms {
+            let terms = &dm.clause.terms;
+            let mut found = Vec::new();
+            walk_evaluated(dm, |t| {
+                let Some(&[f, values]) = terms.compound(t, atoms::APPLY, 2) else {
+                    return;
+                };
+                let Some((name, arity)) =
+                    terms.functor(f).or_else(|| terms.atom(f).map(|a| (a, 0)))
+                else {
+                    return;
+                };
+                let Some(values) = terms.proper_list(values) else {
+                    return;
+                };
+                if values.len() != arity {
+                    found.push((t, f, name, arity, values.len()));
+                }
+            });
+            found.sort_by_key(|&(t, ..)| terms.span(t));
+            for (t, f, name, arity, n) in found {
+                let plural =
+                    |k: usize, w: &str| format!("{k} {w}{}", if k == 1 { "" } else { "s" });
+                self.diags.push(
+                    Diagnostic::warning(
+                        codes::APPLY_VALUE_COUNT,
+                        dm.loc(terms.span(t)),
+                        format!(
+                            "`apply` of `{name}/{arity}` with {}: the values are bound to the arguments only when there are as many, so `{}` is called with every argument unbound (the original SitLog prints `Ilegal list of terms` and does the same)",
+                            plural(n, "value"),
+                            show(dm, f),
+                        ),
+                    )
+                    .with_label(format!("{} for {}", plural(n, "value"), plural(arity, "argument")))
+                    .with_help(format!("give one value per argument: `apply({}, [..])` takes {}", show(dm, f), plural(arity, "value"))),
+                );
+            }
+        }
+    }
+
     /// Every `apply(f(..), Args)` names a function the run will have: a
     /// standard one, a clause head of the application's Prolog files, a KB
     /// service when the KB is in use, or one the host registers.

@@ -52,6 +52,8 @@ pub mod codes {
     pub const DM_ARITY: &str = "E0217";
     pub const UNKNOWN_EXIT: &str = "E0218";
     pub const UNKNOWN_VARIABLE: &str = "E0219";
+    /// E0219 where the original runs on (its value an argument of data).
+    pub const UNKNOWN_VARIABLE_NESTED: &str = "W0219";
     pub const SINGLETON: &str = "W0220";
     pub const DUPLICATE_GLOBAL: &str = "W0221";
     pub const DUPLICATE_LOCAL: &str = "W0222";
@@ -77,6 +79,8 @@ pub mod codes {
     pub const INC_NOT_A_NUMBER: &str = "E0242";
     /// Given by `sitlogc check`, which reads the world file.
     pub const UNKNOWN_WORLD_NAME: &str = "W0243";
+    pub const VAR_OP_ARITY: &str = "E0250";
+    pub const APPLY_VALUE_COUNT: &str = "W0251";
 }
 
 /// A program the checker accepted (no errors; warnings allowed).
@@ -295,6 +299,7 @@ impl<'p> Checker<'p> {
         if !broken.prolog {
             self.functions();
         }
+        self.apply_value_counts();
         self.false_conditionals();
         self.os_access();
         self.prolog_depth();

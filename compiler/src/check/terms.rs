@@ -230,7 +230,7 @@ pub(super) fn calls(dm: &Dm) -> Vec<Call> {
 /// action and next situation, and inside them every argument that is
 /// evaluated (not `apply`'s function, `set`'s stored value, `=`, `is`,
 /// `member`, ..).
-fn walk_evaluated(dm: &Dm, mut visit: impl FnMut(TermId)) {
+pub(super) fn walk_evaluated(dm: &Dm, mut visit: impl FnMut(TermId)) {
     let terms = &dm.clause.terms;
     let mut stack: Vec<TermId> = Vec::new();
     for s in &dm.situations {

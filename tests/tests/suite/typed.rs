@@ -3889,6 +3889,8 @@ fn when_with_expression_operands_agrees() {
 }
 /// Helper `review18`'s workloads with bad inputs (issue 37).
 mod review18;
+/// Helper `review19`'s workloads with bad inputs (issue 37).
+mod review19;
 
 /// Helper `nfn19`'s plain functions returning compounds (issue 37).
 mod plain_compounds;

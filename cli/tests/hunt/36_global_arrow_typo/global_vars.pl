@@ -1,0 +1,2 @@
+% The battery level, written with `=>` for `==>`.
+battery => 100.
