@@ -59,13 +59,14 @@ diag_mod(poked,
   [ n ==> 0 ]
 ).
 
-% A local set to an atom (not its default: check's E0242): `inc` is the machine's error.
-diag_mod(atom,
-  [ [ id ==> s, type ==> neutral, prog ==> [set(n, none)], out_arg ==> inc(n, _),
+% A local set to an atom the caller passes (not its default, and not a constant: with
+% `set(n, none)` check's E0242 would refuse the program): `inc` is the machine's error.
+diag_mod(atom(V),
+  [ [ id ==> s, type ==> neutral, prog ==> [set(n, V)], out_arg ==> inc(n, _),
       arcs ==> [ empty : empty => t(inc(n, _)) ] ],
     [ id ==> t(_), type ==> final ]
   ],
-  [ n ==> none ]
+  [ n ==> 0 ]
 ).
 
 % A value no native situation takes (`t(X)` is term code: its out_arg
