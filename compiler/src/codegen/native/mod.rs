@@ -228,6 +228,7 @@ mod cond;
 mod effect;
 mod fill;
 mod frame;
+mod next_is;
 mod perceive;
 mod pipe;
 use crate::ir::IrDm;
@@ -5095,6 +5096,11 @@ impl Gen<'_> {
                     #out
                     #tail
                 }})
+            }
+            Next::Eval(Ev::Compound(name, args))
+                if args.iter().any(|a| matches!(a, Ev::IsFresh { .. })) =>
+            {
+                self.nat_next_is(d, cur, *name, args, regs, cur_name)
             }
             Next::Eval(Ev::Compound(name, args)) => {
                 let vals = args
