@@ -151,6 +151,10 @@ struct Gen<'s> {
     /// The patterns native code fills (`native::fill`), by their text:
     /// constants after `consts`, pattern `i` constant `consts.len() + i`.
     patterns: std::cell::RefCell<Vec<String>>,
+    /// While a condition native code may redo on terms is generated: the
+    /// statement a global read's cold arm ends with where the global's
+    /// value is not of its MIR type (`native::cold`), instead of an error.
+    global_cold: std::cell::RefCell<Option<proc_macro2::TokenStream>>,
 }
 
 /// Code that builds one term: statements, then the expression of its value.
@@ -177,6 +181,7 @@ impl<'s> Gen<'s> {
             ir: Some(ir),
             native_ok: std::cell::RefCell::new(HashMap::new()),
             patterns: std::cell::RefCell::new(Vec::new()),
+            global_cold: std::cell::RefCell::new(None),
         }
     }
 

@@ -215,7 +215,11 @@ fn run_with<A: app::App>(
     };
     let report: serde_json::Value =
         serde_json::from_str(&report::outcome_json(&store, &outcome)).expect("JSON");
-    let mut seen = log.0;
+    // The actions performed, variables renamed in the order first seen
+    // (native code makes fewer terms: `set(goal, Goal)` with `Goal` unbound
+    // logs the variable under another store number).
+    let mut action_names = std::collections::HashMap::new();
+    let mut seen: Vec<String> = log.0.iter().map(|l| rename(l, &mut action_names)).collect();
     seen.extend(String::from_utf8(text).unwrap().lines().map(str::to_owned));
     // Then the run's warnings as a runner prints them (an in_arg skipped:
     // both back ends warn alike).

@@ -223,10 +223,12 @@ use super::Gen;
 
 mod boundary;
 mod call;
+mod cold;
 mod cond;
 mod effect;
 mod fill;
 mod frame;
+mod next_is;
 mod perceive;
 mod pipe;
 use crate::ir::IrDm;
@@ -4485,7 +4487,7 @@ impl Gen<'_> {
         };
         let rt = rust_ty(&gty)?;
         Ok(Some(V {
-            e: global_op(quote!(global_inc), &rt, &namea, &opa, &enter),
+            e: global_op(quote!(global_inc), &rt, &namea, &opa, &enter, None),
             ty: gty,
         }))
     }
@@ -4811,7 +4813,8 @@ impl Gen<'_> {
         let enter = self.nat_enter_to_evaluate(d, cur)?;
         Ok(Some(V {
             e: {
-                let read = global_op(quote!(global_as), &rt, &namea, &opa, &enter);
+                let cold = self.global_cold.borrow().clone();
+                let read = global_op(quote!(global_as), &rt, &namea, &opa, &enter, cold);
                 quote!((#read))
             },
             ty: gty,
@@ -4969,29 +4972,37 @@ impl Gen<'_> {
                 // A `get(v, D)` of the condition binds `D` for the branches.
                 let mut bregs = regs.clone();
                 let mut binds = Vec::new();
-                let (c, pre) = match self.nat_cond_bind(d, cur, c, &mut bregs, &mut binds) {
-                    Ok(c) => (c, quote!(#(#binds)*)),
-                    // A condition the evaluator computes a side of
-                    // (`apply(member_of(_, _), [O, L]) == yes`): the
-                    // machine entered in the situation, as for a next
-                    // situation's evaluated part; only in a DM without
-                    // locals (the evaluator cannot change the frame's).
+                // A condition the evaluator computes a side of
+                // (`apply(member_of(_, _), [O, L]) == yes`): the
+                // machine entered in the situation, as for a next
+                // situation's evaluated part; only in a DM without
+                // locals (the evaluator cannot change the frame's).
+                let on_terms = |name: &Ident| -> N<Option<TokenStream>> {
+                    let mut ts = Vec::new();
+                    let mut n = 0;
+                    match self.nat_cond_term(c, regs, &mut ts, &mut n) {
+                        Ok(cond) if d.locals.is_empty() && d.dm.locals.is_empty() => {
+                            // The id built only where an error reads it.
+                            let pre = self.nat_eval_lazy_id(
+                                d,
+                                cur,
+                                name,
+                                quote!(#(#ts)* Ok(#cond)),
+                                quote!(bool),
+                            )?;
+                            Ok(Some(pre))
+                        }
+                        _ => Ok(None),
+                    }
+                };
+                let name = format_ident!("cond_value");
+                let cond = self.nat_cond_cold(d, cur, c, &mut bregs, &mut binds, &on_terms)?;
+                let (c, pre) = match cond {
+                    Ok(c) => c,
                     Err(e) => {
-                        let mut ts = Vec::new();
-                        let mut n = 0;
-                        let cond = match self.nat_cond_term(c, regs, &mut ts, &mut n) {
-                            Ok(c) if d.locals.is_empty() && d.dm.locals.is_empty() => c,
-                            _ => return Err(e),
+                        let Some(pre) = on_terms(&name)? else {
+                            return Err(e);
                         };
-                        // The id built only where an error reads it.
-                        let name = format_ident!("cond_value");
-                        let pre = self.nat_eval_lazy_id(
-                            d,
-                            cur,
-                            &name,
-                            quote!(#(#ts)* Ok(#cond)),
-                            quote!(bool),
-                        )?;
                         bregs = regs.clone();
                         (quote!(#name), pre)
                     }
@@ -5091,6 +5102,11 @@ impl Gen<'_> {
                     #out
                     #tail
                 }})
+            }
+            Next::Eval(Ev::Compound(name, args))
+                if args.iter().any(|a| matches!(a, Ev::IsFresh { .. })) =>
+            {
+                self.nat_next_is(d, cur, *name, args, regs, cur_name)
             }
             Next::Eval(Ev::Compound(name, args)) => {
                 let vals = args
@@ -6678,15 +6694,27 @@ fn checked(checks: Vec<Check>, fallback: &TokenStream) -> TokenStream {
 
 /// A global's `get` (`Cx::global_as`) or `inc` (`Cx::global_inc`) done by
 /// native code, of Rust type `rt`; where the global does not hold such a
-/// value (only if the inference were wrong) the machine is entered
-/// (`enter`) and its `var_op` gives the value or its error.
+/// value the machine is entered (`enter`) and its `var_op` gives the value
+/// or its error. A value native code cannot hold (a frame on terms stored
+/// one the MIR's type does not allow: an unbound variable) ends in `cold`
+/// where the code around can redo its work on terms (a condition the
+/// machine evaluates, [`Gen::nat_next`]), else in an error.
 fn global_op(
     method: TokenStream,
     rt: &TokenStream,
     namea: &TokenStream,
     opa: &TokenStream,
     enter: &TokenStream,
+    cold: Option<TokenStream>,
 ) -> TokenStream {
+    let cold = cold.unwrap_or_else(|| {
+        quote! {
+            return Err(cx.error(
+                "a global's value native code cannot hold",
+                arc_at,
+            ))
+        }
+    });
     quote! {
         match cx.#method::<#rt>(#namea) {
             Some(v) => v,
@@ -6696,10 +6724,7 @@ fn global_op(
                 match cx.to_native::<#rt>(t) {
                     Some(v) => v,
                     None => {
-                        return Err(cx.error(
-                            "a global's value native code cannot hold",
-                            arc_at,
-                        ))
+                        #cold
                     }
                 }
             }

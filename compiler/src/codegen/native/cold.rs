@@ -1,0 +1,108 @@
+//! A global read's cold arm in a conditional's condition (issue 37,
+//! `review19`'s finding 1). Native code reads a global as a value of its
+//! MIR type (`Cx::global_as`); a frame on terms (a parameter that was not
+//! ground where its frame started) may have stored a value that type does
+//! not allow, such as an unbound variable (`set(goal, Goal)`, `Goal`
+//! unbound). The interpreter then evaluates the condition on terms (`a ==
+//! _G` is false) and goes on; native code must do the same, not stop with
+//! an error. So where the machine can evaluate the condition
+//! (`Cx::condition` through the situation's lazy id, as for a condition
+//! native code cannot test at all), the native test is a labelled block
+//! whose global read, on finding such a value, breaks out of it with
+//! `None` (the native frames already handed over and the machine entered
+//! by the read's cold arm), and the condition is evaluated on terms: the
+//! branches chosen by the machine's answer, its error where it gives one.
+//! The hot path (the global of its type) is unchanged.
+
+use super::{Dm, Regs, N};
+use crate::codegen::Gen;
+use crate::mir::Cond;
+use proc_macro2::{Group, Ident, TokenStream, TokenTree};
+use quote::{format_ident, quote};
+
+impl Gen<'_> {
+    /// Condition `c` of situation `cur`'s conditional as native code
+    /// ([`Gen::nat_cond_bind`]: `regs` the registers after it, `binds` its
+    /// statements) whose global reads fall back to `on_terms` (the
+    /// statements binding the machine's answer to the name given, `None`:
+    /// the machine cannot evaluate it): the test and the statements before
+    /// it, or `nat_cond_bind`'s error. A global read that has nowhere to go
+    /// (no `on_terms`, or a test that binds registers for the branches,
+    /// `get(v, D)`) is made as before, an error in its cold arm.
+    pub(super) fn nat_cond_cold(
+        &self,
+        d: &Dm,
+        cur: usize,
+        c: &Cond,
+        regs: &mut Regs,
+        binds: &mut Vec<TokenStream>,
+        on_terms: &dyn Fn(&Ident) -> N<Option<TokenStream>>,
+    ) -> N<N<(TokenStream, TokenStream)>> {
+        let name = format_ident!("cond_value");
+        let before = regs.clone();
+        let saved = self.global_cold.replace(Some(quote!(break 'nat_cold None)));
+        let test = self.nat_cond_bind(d, cur, c, regs, binds);
+        *self.global_cold.borrow_mut() = saved;
+        let test = match test {
+            Ok(t)
+                if t.to_string().contains("nat_cold")
+                    || binds.iter().any(|b| b.to_string().contains("nat_cold")) =>
+            {
+                t
+            }
+            Ok(t) => return Ok(Ok((t, quote!(#(#binds)*)))),
+            Err(e) => return Ok(Err(e)),
+        };
+        let redo = match on_terms(&name)? {
+            Some(redo) if binds.is_empty() => redo,
+            // Made again, the read's cold arm an error.
+            _ => {
+                *regs = before;
+                binds.clear();
+                let t = self.nat_cond_bind(d, cur, c, regs, binds);
+                return Ok(t.map(|t| (t, quote!(#(#binds)*))));
+            }
+        };
+        // The fresh variables the evaluation reads (`get(goal, _)`'s `_`)
+        // made in the cold arm, not at every visit (`fresh_vars`).
+        let mut fresh = std::collections::BTreeSet::new();
+        let redo = cold_fresh(redo, &mut fresh);
+        let vars = (!fresh.is_empty()).then(|| {
+            let fresh = fresh.iter();
+            quote!(let [#(#fresh),*] = cx.vars();)
+        });
+        let pre = quote! {
+            let native: Option<bool> = 'nat_cold: { Some(#test) };
+            let #name: bool = match native {
+                Some(v) => v,
+                None => {
+                    #vars
+                    #redo
+                    #name
+                }
+            };
+        };
+        Ok(Ok((quote!(#name), pre)))
+    }
+}
+
+/// `code` with each fresh variable `fresh_r<n>` renamed `cold_r<n>`, the
+/// new names in `out`.
+fn cold_fresh(code: TokenStream, out: &mut std::collections::BTreeSet<Ident>) -> TokenStream {
+    code.into_iter()
+        .map(|t| match t {
+            TokenTree::Ident(i) if super::is_fresh(&i) => {
+                let n = i.to_string();
+                let x = Ident::new(&n.replacen("fresh_r", "cold_r", 1), i.span());
+                out.insert(x.clone());
+                TokenTree::Ident(x)
+            }
+            TokenTree::Group(g) => {
+                let mut h = Group::new(g.delimiter(), cold_fresh(g.stream(), out));
+                h.set_span(g.span());
+                TokenTree::Group(h)
+            }
+            t => t,
+        })
+        .collect()
+}

@@ -1,0 +1,100 @@
+//! `V is E` as an argument of a computed next situation (`=> hit(E is D -
+//! 1)`, `review19`'s finding 2): its value, `E`'s, is the argument. Where
+//! `E` is integer arithmetic of ints native code holds (`+`, `-`, `*`,
+//! unary `-`: [`Gen::nat_int_expr`]) and `V` is read nowhere else, the
+//! value is computed in Rust, first, in the evaluator's order (the other
+//! arguments are native values that evaluate to themselves: nothing to
+//! order them by); an overflow (the only way ints fail) is the cold path:
+//! the native frames handed over, the machine entered in the situation,
+//! `is` evaluated on terms as the evaluator does (its value, or its error
+//! with its message), and the next situation handed to the machine as the
+//! term it built ([`Gen::nat_next`]'s fallback for a part the evaluator
+//! computes). Without this the situation stayed on terms, and a caller
+//! whose callee has a situation on terms ran from its template at every
+//! visit.
+
+use super::{Dm, Regs, N, V};
+use crate::codegen::Gen;
+use crate::mir::Ev;
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+use sitlog_runtime::native::Ty;
+use sitlog_syntax::Atom;
+
+impl Gen<'_> {
+    /// Next situation `name(args..)` of situation `cur` (named `cur_name`)
+    /// with at least one argument `V is E` ([`Ev::IsFresh`]): the selection
+    /// of the native situation it names, or an error (not native: the
+    /// caller keeps the situation on terms).
+    pub(super) fn nat_next_is(
+        &self,
+        d: &Dm,
+        cur: usize,
+        name: Atom,
+        args: &[Ev],
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<TokenStream> {
+        let mut ints = Vec::new();
+        let mut vals = Vec::new();
+        let mut xs = Vec::new();
+        let mut terms = Vec::new();
+        let mut cold = Vec::new();
+        let mut n = 0;
+        for (k, a) in args.iter().enumerate() {
+            match a {
+                Ev::IsFresh { expr, dst } => {
+                    if !super::free_here(d, cur, *dst, regs) {
+                        return Err("`V is E` whose `V` is read again".into());
+                    }
+                    let e = self.nat_int_expr(expr, regs)?;
+                    let x = format_ident!("is{}", k);
+                    ints.push(quote!(let #x: Option<i64> = #e;));
+                    let t = self.nat_build_term(expr, regs, &mut cold, &mut n)?;
+                    let y = format_ident!("is_t{}", k);
+                    cold.push(quote! {
+                        let #y = match #x {
+                            Some(v) => cx.term(&v),
+                            None => cx.is(None, #t, arc_at)?,
+                        };
+                    });
+                    terms.push(quote!(#y));
+                    vals.push(V {
+                        e: quote!(#x),
+                        ty: Ty::Int,
+                    });
+                    xs.push(x);
+                }
+                a => {
+                    let v = self.nat_ev_value(d, cur, a, regs)?;
+                    let e = &v.e;
+                    terms.push(quote!(cx.term(&#e)));
+                    vals.push(v);
+                }
+            }
+        }
+        let enter = self.nat_enter_to_evaluate(d, cur)?;
+        let f = self.functor_native(name)?;
+        let out = d.out.borrow().clone();
+        let tail = super::goto_tail(&d.rec.borrow());
+        let sel = self.nat_select(d, cur, name, vals, cur_name)?;
+        let (pat, val) = match xs.as_slice() {
+            [x] => (quote!(Some(#x)), quote!(#x)),
+            _ => (quote!((#(Some(#xs)),*)), quote!((#(#xs),*))),
+        };
+        Ok(quote! {{
+            #(#ints)*
+            let #pat = #val else {
+                // An overflow: `is` on terms, the next situation the machine's.
+                #enter
+                #(#cold)*
+                let ts = [#(#terms),*];
+                let rec_next = cx.build(#f, &ts);
+                cx.count_transitions(count);
+                #out
+                #tail
+            };
+            #sel
+        }})
+    }
+}
