@@ -1931,7 +1931,15 @@ fn a_locals_inc_in_next_and_out_arg_agrees() {
     let ir = interpreter("typed/locals/inc_next");
     let app = inc_next_nfx16::inc_next::program();
     let mains = [
-        "count", "calls", "fcount", "big", "big_out", "poked", "atom(none)", "handed", "glob",
+        "count",
+        "calls",
+        "fcount",
+        "big",
+        "big_out",
+        "poked",
+        "atom(none)",
+        "handed",
+        "glob",
     ];
     agree_both(app, &ir, &mains);
     // What the machine computes (a value counted twice would differ).
