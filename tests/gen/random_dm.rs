@@ -845,11 +845,18 @@ impl<'a> Gen<'a> {
             let start = self.me == 0 && j == 0;
             if a > 0 && !start && self.rng.chance(5) {
                 // Not a number: an error (E7), when this arc is taken. `v`
-                // is set to `none` first: a local never set from its
-                // non-number default is `check`'s E0242, and the program
-                // would not compile (the error is the run's to show).
+                // is set first to what the global `g_log` holds (a list,
+                // never a number, but `check` cannot know it): a local
+                // never set from its non-number default, or set to a
+                // constant that is not a number, is `check`'s E0242, and
+                // the program would not compile (the error is the run's
+                // to show).
                 let extra = if self.plan().has_v {
-                    vec!["set(v, none)".to_owned(), "inc(v, _)".to_owned()]
+                    vec![
+                        "get(g_log, NotNum)".to_owned(),
+                        "set(v, NotNum)".to_owned(),
+                        "inc(v, _)".to_owned(),
+                    ]
                 } else {
                     vec!["inc(g_log, _)".to_owned()]
                 };
