@@ -295,7 +295,7 @@ fn recursive_exit_arc_is_the_first_that_unifies() {
 #[test]
 fn next_situation_that_does_not_exist_is_an_error() {
     // E8: named in the message, history so far kept.
-    let dm = "diag_mod(main, [[id ==> is, type ==> neutral, arcs ==> [empty : [] => apply(when(I, a, nowhere), [false])]],
+    let dm = "diag_mod(main, [[id ==> is, type ==> neutral, arcs ==> [empty : [] => apply(when(I, a, nowhere), [false, a, nowhere])]],
         [id ==> a, type ==> final]], []).";
     let v = run(dm, "");
     assert_eq!(v["status"], "error");
