@@ -315,7 +315,7 @@ fn emit_rust_prints_generated_code() {
 
 #[test]
 fn build_rejects_a_bad_application() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-build-bad-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-build-bad-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("main.dm"),
@@ -331,7 +331,7 @@ fn build_rejects_a_bad_application() {
 #[test]
 fn built_executable_runs_like_sitlogc_run() {
     let app = workspace().join("dms/examples/pipe");
-    let dir = std::env::temp_dir().join(format!("sitlogc-build-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-build-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     // As an installed sitlogc: a copy of the binary, run from elsewhere,
     // with the default output name (the app is not in the current directory).
@@ -461,7 +461,7 @@ fn built_executable_runs_like_sitlogc_run() {
 #[test]
 fn built_with_debugger_debugs_like_sitlogc_debug() {
     let app = workspace().join("tests/dms/debug_app");
-    let dir = std::env::temp_dir().join(format!("sitlogc-build-dbg-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-build-dbg-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let exe = dir.join("debug_app");
@@ -555,7 +555,7 @@ fn built_with_debugger_debugs_like_sitlogc_debug() {
 fn built_executable_stops_on_sigint() {
     use std::process::Stdio;
     use std::time::{Duration, Instant};
-    let dir = std::env::temp_dir().join(format!("sitlogc-build-int-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-build-int-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let app = dir.join("spin");
     std::fs::create_dir_all(&app).unwrap();

@@ -4,7 +4,8 @@ use crate::support::sitlogc;
 use std::path::PathBuf;
 
 fn temp_file(name: &str, bytes: &[u8]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sitlogc-cli-{}-{name}", std::process::id()));
+    let dir =
+        crate::support::temp_root().join(format!("sitlogc-cli-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
     std::fs::write(&path, bytes).unwrap();
@@ -135,7 +136,8 @@ fn big_file(size: usize) {
 /// legacy::a_broken_dm_refuses_only_the_runs_that_reach_it).
 #[test]
 fn errors_of_a_dm_that_main_does_not_reach_are_errors() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-cli-{}-unreached", std::process::id()));
+    let dir =
+        crate::support::temp_root().join(format!("sitlogc-cli-{}-unreached", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("main.dm"), GOOD).unwrap();

@@ -174,7 +174,7 @@ fn unbound_variables_action_arity_and_situation_types() {
 /// original's would, printing it as `_G..`; `--deny-warnings` refuses it.
 #[test]
 fn unbound_variable_is_a_warning_and_runs() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-unbound-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-unbound-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("main.dm"),
@@ -245,7 +245,7 @@ fn follow_on_errors_only_for_names_the_broken_file_may_define() {
 /// actions and functions are known, as the help of E0219 says.
 #[test]
 fn single_file_reads_side_files_beside_it() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-single-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-single-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("main.dm"),
@@ -292,7 +292,7 @@ fn single_file_reads_side_files_beside_it() {
 /// Nothing to check is a usage error (exit 2), not a pass.
 #[test]
 fn empty_directory_is_an_error() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-empty-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-empty-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let (code, diags, stderr) = check_json(&dir);
     assert_eq!(code, 2, "{stderr}");
@@ -434,7 +434,7 @@ fn programs_the_original_runs_are_not_refused() {
 /// is an error at its line and column.
 #[test]
 fn sitlog_toml_denies_warnings() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-deny-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-deny-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("main.dm"),
@@ -488,7 +488,7 @@ fn sitlog_toml_denies_warnings() {
 /// with a computed next situation.
 #[test]
 fn an_in_arg_the_pipe_never_matches_is_a_warning_where_certain() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-w0235-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-w0235-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("main.dm"),

@@ -10,7 +10,7 @@ fn app() -> PathBuf {
 }
 
 fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sitlogc-cli-debug-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-cli-debug-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)
 }

@@ -334,7 +334,7 @@ fn a_recorded_run_on_the_diagram() {
 
 #[test]
 fn cli_writes_each_format() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-graph-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-graph-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     for (format, start) in [("svg", "<svg"), ("dot", "digraph"), ("json", "{")] {
         let file = dir.join(format!("a.{format}"));
@@ -687,7 +687,8 @@ fn recovery_dms_are_linked_to_the_situations_they_serve() {
 /// writes the overview and a page per DM, linked to each other.
 #[test]
 fn cli_overview_and_pages() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-graph-pages-{}", std::process::id()));
+    let dir =
+        crate::support::temp_root().join(format!("sitlogc-graph-pages-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let size = |svg: &str| -> (f64, f64) {
         let first = svg.lines().next().unwrap();

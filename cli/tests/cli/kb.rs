@@ -63,7 +63,7 @@ fn kb_errors_name_the_position() {
 
 #[test]
 fn kb_services_are_user_functions() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-kbrun-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-kbrun-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("main.dm"),

@@ -185,7 +185,8 @@ fn lines<'a>(stderr: &'a str, prefix: &str) -> Vec<&'a str> {
 /// A tree like the original's: init.pl consults the interpreter (relative
 /// names, which sitlog-rs replaces) and a KB layer from $SITLOG_HOME.
 fn tree(name: &str) -> PathBuf {
-    let root = std::env::temp_dir().join(format!("sitlogc-legacy-{name}-{}", std::process::id()));
+    let root =
+        crate::support::temp_root().join(format!("sitlogc-legacy-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&root);
     write(
         &root,
@@ -552,7 +553,7 @@ fn sitlog_home_is_explicit_or_from_the_environment() {
     );
     // An application outside any tree.
     let elsewhere =
-        std::env::temp_dir().join(format!("sitlogc-legacy-none-{}", std::process::id()));
+        crate::support::temp_root().join(format!("sitlogc-legacy-none-{}", std::process::id()));
     std::fs::create_dir_all(&elsewhere).unwrap();
     std::fs::copy(app.join("main.dm"), elsewhere.join("main.dm")).unwrap();
     // `sitlogc build --legacy` places the application in its tree the same
@@ -641,7 +642,7 @@ fn a_kb_that_sitlog_kb_cannot_read_is_served_by_the_layer() {
 fn a_file_outside_the_original_tree_is_refused_under_legacy() {
     let root = tree("sibling");
     let functions = root.join("apps/shop/user_functions.pl");
-    let elsewhere = std::env::temp_dir().join(format!(
+    let elsewhere = crate::support::temp_root().join(format!(
         "sitlogc-legacy-elsewhere-{}.pl",
         std::process::id()
     ));
@@ -693,7 +694,8 @@ const TASK_B: &str = r#"diag_mod(b,
 /// has such a DM too, under `--legacy`.)
 #[test]
 fn a_broken_dm_refuses_only_the_runs_that_reach_it() {
-    let root = std::env::temp_dir().join(format!("sitlogc-legacy-tasks-{}", std::process::id()));
+    let root =
+        crate::support::temp_root().join(format!("sitlogc-legacy-tasks-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&root);
     write(&root, "tasks/models", "'main.dm'.\n'a.dm'.\n'b.dm'.\n");
     write(&root, "tasks/main.dm", DISPATCH);

@@ -87,7 +87,7 @@ const BAD: &str = "% A greeting.\ndiag_mod(main,\n  [ [ id ==> is, type ==> neut
 
 #[test]
 fn an_editor_session() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-lsp-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-lsp-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("main.dm");
     std::fs::write(&file, BAD).unwrap();
@@ -201,7 +201,7 @@ fn codes(diags: &[Value]) -> Vec<&str> {
 /// with the side files of its directory when there is one.
 #[test]
 fn files_not_saved_yet() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-lsp-new-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-lsp-new-{}", std::process::id()));
     let lone = dir.join("lone");
     let app = dir.join("app");
     std::fs::create_dir_all(&lone).unwrap();

@@ -17,7 +17,8 @@ fn example(name: &str) -> PathBuf {
 
 /// A fresh directory for one test.
 fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sitlogc-rel-{name}-{}", std::process::id()));
+    let dir =
+        crate::support::temp_root().join(format!("sitlogc-rel-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir

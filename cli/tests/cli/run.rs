@@ -48,7 +48,7 @@ fn text_report_lists_history_out_arg_and_globals() {
 
 #[test]
 fn runtime_error_exits_one_with_history_so_far() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-run-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-run-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("main.dm"),
@@ -91,7 +91,7 @@ fn runtime_error_exits_one_with_history_so_far() {
 /// `sitlog.toml`, makes it E14's error, located.
 #[test]
 fn an_in_arg_the_pipe_does_not_match_is_skipped_with_one_warning() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-run-inarg-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-run-inarg-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("main.dm"),
@@ -273,7 +273,7 @@ fn allow_unresolved_runs_a_dead_path_with_a_diag_mod_that_never_matches() {
 
 #[test]
 fn allow_unresolved_runs_legacy_programs_with_dead_paths() {
-    let dir = std::env::temp_dir().join(format!("sitlogc-lenient-{}", std::process::id()));
+    let dir = crate::support::temp_root().join(format!("sitlogc-lenient-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("main.dm"),

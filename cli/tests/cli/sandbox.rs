@@ -37,8 +37,8 @@ struct Scratch {
 
 impl Scratch {
     fn new(name: &str, attack: impl Fn(&str) -> String) -> Scratch {
-        let root =
-            std::env::temp_dir().join(format!("sitlogc-sandbox-{name}-{}", std::process::id()));
+        let root = crate::support::temp_root()
+            .join(format!("sitlogc-sandbox-{name}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&root);
         std::fs::create_dir_all(root.join("app")).unwrap();
         std::fs::create_dir_all(root.join("outside")).unwrap();

@@ -1,7 +1,8 @@
 //! What the command-line tests share: the `sitlogc` under test, the
 //! workspace's paths, asserting a run succeeded (`assert_ok`), running a
-//! child process with a signal, and the home butler's plain run (made once
-//! for the binary).
+//! child process with a signal, the home butler's plain run (made once
+//! for the binary), and the directory the tests write their files in
+//! ([`temp_root`], removed when the binary exits).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -63,4 +64,29 @@ pub fn kill(pid: u32, signal: &str) {
         .status()
         .expect("kill runs");
     assert!(ok.success(), "kill -{signal} {pid}");
+}
+
+/// This test binary's own directory under the system's temporary directory
+/// (`sitlogc-tests-PID`), made at the first call; every test writes its
+/// files under it, and it is removed, with all they wrote, when the binary
+/// exits (the test harness leaves through `exit`, passing or failing, so
+/// the `atexit` handler runs), so a run leaves nothing in `/tmp`.
+pub fn temp_root() -> PathBuf {
+    static ROOT: OnceLock<PathBuf> = OnceLock::new();
+    extern "C" fn remove_root() {
+        if let Some(root) = ROOT.get() {
+            let _ = std::fs::remove_dir_all(root);
+        }
+    }
+    ROOT.get_or_init(|| {
+        let root = std::env::temp_dir().join(format!("sitlogc-tests-{}", std::process::id()));
+        std::fs::create_dir_all(&root).unwrap();
+        // SAFETY: `atexit` registers a plain function with no captured
+        // state; it runs once, after `main` returns or `exit` is called.
+        unsafe {
+            libc::atexit(remove_root);
+        }
+        root
+    })
+    .clone()
 }

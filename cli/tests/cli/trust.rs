@@ -16,7 +16,8 @@ const MAIN: &str = "diag_mod(main,\n  [ [ id ==> is, type ==> neutral, arcs ==> 
 /// An application whose directive writes `marker` (inside the application:
 /// allowed without the flag), and the marker's path.
 fn app(name: &str, user_functions: impl Fn(&Path) -> String) -> (PathBuf, PathBuf) {
-    let dir = std::env::temp_dir().join(format!("sitlogc-trust-{name}-{}", std::process::id()));
+    let dir =
+        crate::support::temp_root().join(format!("sitlogc-trust-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("main.dm"), MAIN).unwrap();

@@ -21,7 +21,8 @@ const MAIN: &str = "diag_mod(main, [
 
 /// A fresh application directory with `main.dm`.
 fn app(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sitlogc-watch-{name}-{}", std::process::id()));
+    let dir =
+        crate::support::temp_root().join(format!("sitlogc-watch-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("main.dm"), MAIN).unwrap();

@@ -10,7 +10,8 @@ use sitlog_runtime::{Functions, Store, Term};
 use std::sync::{Arc, Mutex};
 
 fn ir_of(name: &str, files: &[(&str, &str)]) -> Ir {
-    let dir = std::env::temp_dir().join(format!("sitlog-watch-ir-{name}-{}", std::process::id()));
+    let dir =
+        crate::support::temp_root().join(format!("sitlog-watch-ir-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     for (f, text) in files {

@@ -11,7 +11,8 @@ fn home() -> PathBuf {
 }
 
 fn run_with_world(text: &str, tag: &str) -> Output {
-    let dir = std::env::temp_dir().join(format!("sitlogc-world-{}-{tag}", std::process::id()));
+    let dir =
+        crate::support::temp_root().join(format!("sitlogc-world-{}-{tag}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let world = dir.join("world.toml");
     std::fs::write(&world, text).unwrap();
