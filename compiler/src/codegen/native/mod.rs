@@ -224,6 +224,7 @@ use super::Gen;
 mod boundary;
 mod call;
 mod cold;
+mod cold_next;
 mod cond;
 mod effect;
 mod fill;
@@ -4908,6 +4909,11 @@ impl Gen<'_> {
         cur_name: &TokenStream,
     ) -> N<TokenStream> {
         let curl = Literal::u32_unsuffixed(cur as u32);
+        // A global read whose value native code cannot hold: the machine's
+        // (`cold_next`).
+        if let Some(code) = self.nat_next_cold(d, cur, n, regs, cur_name)? {
+            return Ok(code);
+        }
         // A `get(v, _)`/`inc(v, _)` in the value (`t(inc(n, _))`, `u(X,
         // get(n, _))`) of the frame's local or a global: computed by native
         // code once, first (the evaluator's order), the value selected as

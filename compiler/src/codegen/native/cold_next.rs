@@ -1,0 +1,163 @@
+//! A global read's cold arm in a next situation's value and in an out_arg
+//! computed after it (issue 37, helper `ncold20`; [`super::cold`] does the
+//! same for a conditional's condition). Native code reads a global as a value of its MIR type
+//! (`Cx::global_as`); a frame on terms (a parameter that was not ground
+//! where its frame started) may have stored a value that type does not
+//! allow, such as an unbound variable (`set(goal, Goal)`, `Goal`
+//! unbound), and the interpreter goes on with it: `show(wrap(get(goal,
+//! _)))` is `show(wrap(_G))`. So where the value only reads variables
+//! (values, constants, compounds of them, `get`s: nothing changes if it
+//! is evaluated again), the native code computing it is a labelled block
+//! whose global read, on finding such a value, breaks out of it (the
+//! native frames already handed over and the machine entered in the
+//! situation by the read's cold arm); the value is then evaluated on
+//! terms as the term code does ([`Gen::nat_ev_term`]: its error the
+//! evaluator's) and handed to the machine as the next situation, which
+//! selects, as for a next situation the evaluator computes; an out_arg's
+//! value is evaluated so (`Cx::out_value`) after the next situation
+//! native code computed, which is handed to the machine as its id. The
+//! hot path
+//! (the global of its type) is unchanged; a value with no such read is
+//! made as before, byte for byte.
+
+use super::{Dm, Regs, N};
+use crate::codegen::Gen;
+use crate::mir::{Ev, Next};
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+use sitlog_runtime::native::Ty;
+use sitlog_syntax::atoms;
+
+impl Gen<'_> {
+    /// Next situation `n` of situation `cur` (named `cur_name`) as
+    /// [`Gen::nat_next`] makes it, with its global reads' cold arms going
+    /// to the machine as above. `None`: nothing to do here (no global
+    /// read, a value with an effect, or inside such a block already): the
+    /// caller makes it as before.
+    pub(super) fn nat_next_cold(
+        &self,
+        d: &Dm,
+        cur: usize,
+        n: &Next,
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<Option<TokenStream>> {
+        let Next::Eval(e) = n else {
+            return Ok(None);
+        };
+        if !self.cold_reads(d, e) {
+            return Ok(None);
+        }
+        let saved = self.global_cold.replace(Some(quote!(break 'nat_cold_next)));
+        let code = self.nat_next(d, cur, n, regs, cur_name);
+        *self.global_cold.borrow_mut() = saved;
+        let code = code?;
+        if !code.to_string().contains("nat_cold_next") {
+            return Ok(Some(code));
+        }
+        let (vars, redo) = self.cold_terms(e, regs, |t| quote!(let rec_next = #t;))?;
+        let out = d.out.borrow().clone();
+        let tail = super::goto_tail(&d.rec.borrow());
+        Ok(Some(quote! {
+            'nat_next: {
+                'nat_cold_next: {
+                    break 'nat_next #code;
+                }
+                // A global's value native code cannot hold: the machine's.
+                #vars
+                #redo
+                cx.count_transitions(count);
+                #out
+                #tail
+            }
+        }))
+    }
+}
+
+impl Gen<'_> {
+    /// Whether `e` reads a global and does nothing else than read
+    /// ([`reads_only`]), outside a block of another cold arm: its global
+    /// reads' cold arms may go to the machine, which evaluates `e` again.
+    pub(super) fn cold_reads(&self, d: &Dm, e: &Ev) -> bool {
+        let global_get = |op: sitlog_syntax::Atom, v: sitlog_syntax::Atom| {
+            op == atoms::GET && !d.declares_local(v)
+        };
+        self.global_cold.borrow().is_none() && super::has_var_op(e, &global_get) && reads_only(e)
+    }
+
+    /// `e` evaluated on terms as the term code does ([`Gen::nat_ev_term`]),
+    /// its value given to `then`: the statements making the fresh
+    /// variables it reads (`cold_r<n>`, made there, not at every visit),
+    /// and the evaluation.
+    fn cold_terms(
+        &self,
+        e: &Ev,
+        regs: &Regs,
+        then: impl FnOnce(&TokenStream) -> TokenStream,
+    ) -> N<(Option<TokenStream>, TokenStream)> {
+        // A `get` into a fresh variable binds a term made there; any
+        // other fresh variable it reads (`get(goal, _)`'s `_` where the
+        // MIR gives it a register) is made here.
+        let mut mregs = regs.clone();
+        let mut binds = Vec::new();
+        super::ev_binds(e, &mut binds);
+        for r in &binds {
+            mregs.insert(*r, (format_ident!("fresh_r{}", r), Ty::Term));
+        }
+        let mut ts = Vec::new();
+        let mut n = 0;
+        let t = self.nat_ev_term(e, &mregs, &mut ts, &mut n)?;
+        let then = then(&t);
+        let mut fresh = std::collections::BTreeSet::new();
+        let redo = super::cold::cold_fresh(quote!(#(#ts)* #then), &mut fresh);
+        let bound: Vec<String> = binds.iter().map(|r| format!("cold_r{r}")).collect();
+        fresh.retain(|x| !bound.contains(&x.to_string()));
+        let vars = (!fresh.is_empty()).then(|| {
+            let fresh = fresh.iter();
+            quote!(let [#(#fresh),*] = cx.vars();)
+        });
+        Ok((vars, redo))
+    }
+
+    /// An out_arg `e` computed after next situation `next_at` by `body`
+    /// (its statements, the pipe set), whose global reads were made with
+    /// `break 'nat_cold_out` as their cold arm ([`Gen::cold_reads`]): the
+    /// `Nat` of `next_at`, or, where a read broke out (the machine
+    /// entered in situation `cur`), the out_arg evaluated on terms and
+    /// `next_at` handed to the machine as its id.
+    pub(super) fn nat_out_cold(
+        &self,
+        d: &Dm,
+        e: &Ev,
+        regs: &Regs,
+        body: TokenStream,
+    ) -> N<TokenStream> {
+        let (vars, redo) = self.cold_terms(e, regs, |t| quote!(cx.out_value(#t);))?;
+        let tail = super::goto_tail(&d.rec.borrow());
+        Ok(quote! {
+            'nat_out: {
+                'nat_cold_out: {
+                    #body
+                    break 'nat_out next_at;
+                }
+                // A global's value native code cannot hold: the machine's.
+                #vars
+                #redo
+                cx.count_transitions(count);
+                let rec_next = next_at.id_term(p, cx.store());
+                #tail
+            }
+        })
+    }
+}
+
+/// Whether evaluating `e` only reads: values, constants, compounds of
+/// them and `get`s (evaluated again, nothing changes).
+fn reads_only(e: &Ev) -> bool {
+    match e {
+        Ev::Value(_) | Ev::Built(_) => true,
+        Ev::Compound(_, args) => args.iter().all(reads_only),
+        Ev::VarOp { op, .. } | Ev::VarOpFresh { op, .. } => *op == atoms::GET,
+        _ => false,
+    }
+}
