@@ -23,7 +23,7 @@
 use super::{Dm, Regs, N};
 use crate::codegen::Gen;
 use crate::mir::{Ev, Next};
-use proc_macro2::TokenStream;
+use proc_macro2::{Group, TokenStream, TokenTree};
 use quote::{format_ident, quote};
 use sitlog_runtime::native::Ty;
 use sitlog_syntax::atoms;
@@ -148,6 +148,149 @@ impl Gen<'_> {
                 #tail
             }
         })
+    }
+}
+
+impl Gen<'_> {
+    /// Whether next situation `e` (a value with an effect, an `inc`,
+    /// beside a global read: `show(inc(n, _), get(goal, _))`) can have its
+    /// global reads' cold arms made by [`Gen::nat_effects_cold`]: its
+    /// variable operations are `get`s and `inc`s, nothing else evaluated.
+    pub(super) fn cold_effects(&self, d: &Dm, e: &Ev) -> bool {
+        let global_get = |op: sitlog_syntax::Atom, v: sitlog_syntax::Atom| {
+            op == atoms::GET && !d.declares_local(v)
+        };
+        self.global_cold.borrow().is_none() && super::has_var_op(e, &global_get) && gets_and_incs(e)
+    }
+
+    /// The statements `pre` computing next situation `e`'s `get`s and
+    /// `inc`s ([`Gen::nat_ev_effects`], prefix `pfx`: the `k`-th operation
+    /// in the evaluator's order is `pre[k]`, binding `<pfx><k>`), made with
+    /// `break 'nat_cold_next` as their global reads' cold arm
+    /// ([`Gen::cold_effects`]): each such arm is made the machine's way on
+    /// from there (the machine entered by the read's cold arm, its value
+    /// `t`): `e` built as a term, the operations before the `k`-th their
+    /// values (an `inc` done is not done again), the `k`-th `t`, the later
+    /// ones the machine's, in that order; then handed to the machine as
+    /// the next situation.
+    pub(super) fn nat_effects_cold(
+        &self,
+        d: &Dm,
+        e: &Ev,
+        regs: &Regs,
+        pre: Vec<TokenStream>,
+        pfx: &str,
+    ) -> N<Vec<TokenStream>> {
+        let out = d.out.borrow().clone();
+        let tail = super::goto_tail(&d.rec.borrow());
+        pre.into_iter()
+            .enumerate()
+            .map(|(k, stmt)| {
+                if !stmt.to_string().contains("nat_cold_next") {
+                    return Ok(stmt);
+                }
+                let mut ts = Vec::new();
+                let (mut n, mut op) = (0, 0);
+                let t = self.cold_op_term(e, regs, (k, pfx), &mut op, &mut ts, &mut n)?;
+                let mut fresh = std::collections::BTreeSet::new();
+                let redo = super::cold::cold_fresh(quote!(#(#ts)* let rec_next = #t;), &mut fresh);
+                let vars = (!fresh.is_empty()).then(|| {
+                    let fresh = fresh.iter();
+                    quote!(let [#(#fresh),*] = cx.vars();)
+                });
+                let cold = quote! {{
+                    // A global's value native code cannot hold: the machine's.
+                    #vars
+                    #redo
+                    cx.count_transitions(count);
+                    #out
+                    #tail
+                }};
+                Ok(replace_break(stmt, &cold))
+            })
+            .collect()
+    }
+
+    /// `e` as a term for [`Gen::nat_effects_cold`]'s `k`-th operation's
+    /// cold arm (`op` counts the operations met, in the evaluator's order).
+    fn cold_op_term(
+        &self,
+        e: &Ev,
+        regs: &Regs,
+        (k, pfx): (usize, &str),
+        op: &mut usize,
+        ts: &mut Vec<TokenStream>,
+        n: &mut usize,
+    ) -> N<TokenStream> {
+        let x = format_ident!("b{}", *n);
+        let made = match e {
+            Ev::Compound(f, args) => {
+                let args = args
+                    .iter()
+                    .map(|a| self.cold_op_term(a, regs, (k, pfx), op, ts, n))
+                    .collect::<N<Vec<_>>>()?;
+                let f = self.functor_native(*f)?;
+                quote!(cx.build(#f, &[#(#args),*]))
+            }
+            Ev::VarOp { op: o, name, .. } | Ev::VarOpFresh { op: o, name, .. } => {
+                let j = *op;
+                *op += 1;
+                if j == k {
+                    return Ok(quote!(t));
+                }
+                if j < k {
+                    let v = format_ident!("{}{}", pfx, j);
+                    quote!(cx.term(&#v))
+                } else {
+                    let (o, name) = (self.atom_native(*o)?, self.atom_native(*name)?);
+                    quote!(cx.var_op_fresh(#o, #name, arc_at)?)
+                }
+            }
+            e => return self.nat_ev_term(e, regs, ts, n),
+        };
+        *n += 1;
+        ts.push(quote!(let #x = #made;));
+        Ok(quote!(#x))
+    }
+}
+
+/// `code` with each `break 'nat_cold_next` replaced by `by`.
+fn replace_break(code: TokenStream, by: &TokenStream) -> TokenStream {
+    let mut out: Vec<TokenTree> = Vec::new();
+    let mut it = code.into_iter().peekable();
+    while let Some(t) = it.next() {
+        match t {
+            TokenTree::Ident(i) if i == "break" => {
+                let mut look = it.clone();
+                let is_label = matches!(look.next(), Some(TokenTree::Punct(p)) if p.as_char() == '\'')
+                    && matches!(look.next(), Some(TokenTree::Ident(l)) if l == "nat_cold_next");
+                if is_label {
+                    it.next();
+                    it.next();
+                    out.extend(by.clone());
+                } else {
+                    out.push(TokenTree::Ident(i));
+                }
+            }
+            TokenTree::Group(g) => {
+                let mut h = Group::new(g.delimiter(), replace_break(g.stream(), by));
+                h.set_span(g.span());
+                out.push(TokenTree::Group(h));
+            }
+            t => out.push(t),
+        }
+    }
+    out.into_iter().collect()
+}
+
+/// Whether `e`'s parts are values, constants, compounds of them, `get`s
+/// and `inc`s.
+fn gets_and_incs(e: &Ev) -> bool {
+    match e {
+        Ev::Value(_) | Ev::Built(_) => true,
+        Ev::Compound(_, args) => args.iter().all(gets_and_incs),
+        Ev::VarOp { op, .. } | Ev::VarOpFresh { op, .. } => *op == atoms::GET || *op == atoms::INC,
+        _ => false,
     }
 }
 

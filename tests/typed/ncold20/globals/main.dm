@@ -136,10 +136,51 @@ diag_mod(pick_probe,
   []
 ).
 
+% A global read beside a local's `inc` in a next situation, after it
+% and before it.
+diag_mod(inc(Goal),
+  [ [ id ==> setup, type ==> neutral,
+      arcs ==> [ empty : [set(goal, Goal)] => go ] ],
+    [ id ==> go, type ==> recursive, embedded_dm ==> inc_probe,
+      arcs ==> [ seen(W, N) : empty => stop(W, N) ] ],
+    [ id ==> stop(_, _), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(inc_probe,
+  [ [ id ==> begin, type ==> neutral,
+      arcs ==> [ empty : empty => show(inc(n, _), get(goal, _)) ] ],
+    [ id ==> show(N, W), type ==> neutral,
+      arcs ==> [ empty : empty => seen(W, N) ] ],
+    [ id ==> seen(_, _), type ==> final ]
+  ],
+  [ n ==> 3 ]
+).
+
+diag_mod(inc2(Goal),
+  [ [ id ==> setup, type ==> neutral,
+      arcs ==> [ empty : [set(goal, Goal)] => go ] ],
+    [ id ==> go, type ==> recursive, embedded_dm ==> inc2_probe,
+      arcs ==> [ seen(W, N) : empty => stop(W, N) ] ],
+    [ id ==> stop(_, _), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(inc2_probe,
+  [ [ id ==> begin, type ==> neutral,
+      arcs ==> [ empty : empty => show(get(goal, _), inc(n, _)) ] ],
+    [ id ==> show(W, N), type ==> neutral,
+      arcs ==> [ empty : empty => seen(W, N) ] ],
+    [ id ==> seen(_, _), type ==> final ]
+  ],
+  [ n ==> 3 ]
+).
+
 % Left (native code still stops with an error, `performance.md`): a
 % global read by an exit arc's action, by a neutral arc's action, in a
-% conditional's condition in a DM with a local, beside a local's `inc` in
-% a next situation.
+% conditional's condition in a DM with a local.
 diag_mod(act(Goal),
   [ [ id ==> setup, type ==> neutral,
       arcs ==> [ empty : [set(goal, Goal)] => go ] ],
@@ -201,24 +242,4 @@ diag_mod(loc_probe,
     [ id ==> no, type ==> final ]
   ],
   [ n ==> 0 ]
-).
-
-diag_mod(inc(Goal),
-  [ [ id ==> setup, type ==> neutral,
-      arcs ==> [ empty : [set(goal, Goal)] => go ] ],
-    [ id ==> go, type ==> recursive, embedded_dm ==> inc_probe,
-      arcs ==> [ seen(W, N) : empty => stop(W, N) ] ],
-    [ id ==> stop(_, _), type ==> final ]
-  ],
-  []
-).
-
-diag_mod(inc_probe,
-  [ [ id ==> begin, type ==> neutral,
-      arcs ==> [ empty : empty => show(inc(n, _), get(goal, _)) ] ],
-    [ id ==> show(N, W), type ==> neutral,
-      arcs ==> [ empty : empty => seen(W, N) ] ],
-    [ id ==> seen(_, _), type ==> final ]
-  ],
-  [ n ==> 3 ]
 ).
