@@ -222,7 +222,6 @@ impl Gen<'_> {
         ts: &mut Vec<TokenStream>,
         n: &mut usize,
     ) -> N<TokenStream> {
-        let x = format_ident!("b{}", *n);
         let made = match e {
             Ev::Compound(f, args) => {
                 let args = args
@@ -248,6 +247,7 @@ impl Gen<'_> {
             }
             e => return self.nat_ev_term(e, regs, ts, n),
         };
+        let x = format_ident!("b{}", *n);
         *n += 1;
         ts.push(quote!(let #x = #made;));
         Ok(quote!(#x))
