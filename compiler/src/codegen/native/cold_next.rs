@@ -1,7 +1,8 @@
 //! A global read's cold arm in a next situation's value and in an out_arg
 //! computed after it (issue 37, helper `ncold20`; [`super::cold`] does the
-//! same for a conditional's condition). Native code reads a global as a value of its MIR type
-//! (`Cx::global_as`); a frame on terms (a parameter that was not ground
+//! same for a conditional's condition). Native code reads a global as a
+//! value of its MIR type (`Cx::global_as`); a frame on terms (a parameter
+//! that was not ground
 //! where its frame started) may have stored a value that type does not
 //! allow, such as an unbound variable (`set(goal, Goal)`, `Goal`
 //! unbound), and the interpreter goes on with it: `show(wrap(get(goal,
@@ -15,10 +16,12 @@
 //! evaluator's) and handed to the machine as the next situation, which
 //! selects, as for a next situation the evaluator computes; an out_arg's
 //! value is evaluated so (`Cx::out_value`) after the next situation
-//! native code computed, which is handed to the machine as its id. The
-//! hot path
-//! (the global of its type) is unchanged; a value with no such read is
-//! made as before, byte for byte.
+//! native code computed, which is handed to the machine as its id. A
+//! value that also `inc`s (`show(inc(n, _), get(goal, _))`) cannot be
+//! evaluated again: each read's cold arm goes on from there on its own
+//! ([`Gen::nat_effects_cold`]). The hot path (the global of its type) is
+//! unchanged; a value with no such read is made as before, byte for
+//! byte.
 
 use super::{Dm, Regs, N};
 use crate::codegen::Gen;
@@ -45,9 +48,10 @@ impl Gen<'_> {
         let Next::Eval(e) = n else {
             return Ok(None);
         };
-        if !self.cold_reads(d, e) {
+        if !self.cold_reads(d, e, regs) {
             return Ok(None);
         }
+        let (vars, redo) = self.cold_terms(e, regs, |t| quote!(let rec_next = #t;))?;
         let saved = self.global_cold.replace(Some(quote!(break 'nat_cold_next)));
         let code = self.nat_next(d, cur, n, regs, cur_name);
         *self.global_cold.borrow_mut() = saved;
@@ -55,7 +59,6 @@ impl Gen<'_> {
         if !code.to_string().contains("nat_cold_next") {
             return Ok(Some(code));
         }
-        let (vars, redo) = self.cold_terms(e, regs, |t| quote!(let rec_next = #t;))?;
         let out = d.out.borrow().clone();
         let tail = super::goto_tail(&d.rec.borrow());
         Ok(Some(quote! {
@@ -76,13 +79,17 @@ impl Gen<'_> {
 
 impl Gen<'_> {
     /// Whether `e` reads a global and does nothing else than read
-    /// ([`reads_only`]), outside a block of another cold arm: its global
-    /// reads' cold arms may go to the machine, which evaluates `e` again.
-    pub(super) fn cold_reads(&self, d: &Dm, e: &Ev) -> bool {
+    /// ([`reads_only`]), outside a block of another cold arm, and is made
+    /// on terms ([`Gen::cold_terms`]): its global reads' cold arms may go
+    /// to the machine, which evaluates `e` again.
+    pub(super) fn cold_reads(&self, d: &Dm, e: &Ev, regs: &Regs) -> bool {
         let global_get = |op: sitlog_syntax::Atom, v: sitlog_syntax::Atom| {
             op == atoms::GET && !d.declares_local(v)
         };
-        self.global_cold.borrow().is_none() && super::has_var_op(e, &global_get) && reads_only(e)
+        self.global_cold.borrow().is_none()
+            && super::has_var_op(e, &global_get)
+            && reads_only(e)
+            && self.cold_terms(e, regs, |_| quote!()).is_ok()
     }
 
     /// `e` evaluated on terms as the term code does ([`Gen::nat_ev_term`]),

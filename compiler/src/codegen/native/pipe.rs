@@ -692,7 +692,7 @@ impl Gen<'_> {
         let mut pre = Vec::new();
         // A global read whose value native code cannot hold: the
         // machine's (`cold_next`).
-        let cold = self.cold_reads(d, e);
+        let cold = self.cold_reads(d, e, regs);
         let saved = cold.then(|| self.global_cold.replace(Some(quote!(break 'nat_cold_out))));
         let v = self.nat_ev_effects(d, cur, e, regs, &mut pre, "out");
         if let Some(saved) = saved {
