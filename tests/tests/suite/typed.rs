@@ -3899,6 +3899,8 @@ fn when_with_expression_operands_agrees() {
         ],
     );
 }
+/// Helper `ncold20`'s global reads native code cannot hold (issue 37).
+mod ncold20;
 /// Helper `review18`'s workloads with bad inputs (issue 37).
 mod review18;
 /// Helper `review19`'s workloads with bad inputs (issue 37).

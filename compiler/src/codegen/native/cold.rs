@@ -88,7 +88,10 @@ impl Gen<'_> {
 
 /// `code` with each fresh variable `fresh_r<n>` renamed `cold_r<n>`, the
 /// new names in `out`.
-fn cold_fresh(code: TokenStream, out: &mut std::collections::BTreeSet<Ident>) -> TokenStream {
+pub(super) fn cold_fresh(
+    code: TokenStream,
+    out: &mut std::collections::BTreeSet<Ident>,
+) -> TokenStream {
     code.into_iter()
         .map(|t| match t {
             TokenTree::Ident(i) if super::is_fresh(&i) => {

@@ -224,6 +224,7 @@ use super::Gen;
 mod boundary;
 mod call;
 mod cold;
+mod cold_next;
 mod cond;
 mod effect;
 mod fill;
@@ -4908,6 +4909,11 @@ impl Gen<'_> {
         cur_name: &TokenStream,
     ) -> N<TokenStream> {
         let curl = Literal::u32_unsuffixed(cur as u32);
+        // A global read whose value native code cannot hold: the machine's
+        // (`cold_next`).
+        if let Some(code) = self.nat_next_cold(d, cur, n, regs, cur_name)? {
+            return Ok(code);
+        }
         // A `get(v, _)`/`inc(v, _)` in the value (`t(inc(n, _))`, `u(X,
         // get(n, _))`) of the frame's local or a global: computed by native
         // code once, first (the evaluator's order), the value selected as
@@ -4919,10 +4925,32 @@ impl Gen<'_> {
         if let Next::Eval(e @ Ev::Compound(name, args)) = n {
             if has_var_op(e, &|op, v| op == atoms::INC || d.declares_local(v)) {
                 let mut pre = Vec::new();
+                // A global read beside an `inc`: its cold arm the
+                // machine's from there (`cold_next`).
+                let cold = self.cold_effects(d, e);
+                let saved =
+                    cold.then(|| self.global_cold.replace(Some(quote!(break 'nat_cold_next))));
                 let vals = args
                     .iter()
                     .map(|a| self.nat_ev_effects(d, cur, a, regs, &mut pre, "op"))
                     .collect::<N<Vec<_>>>();
+                let vals = match saved {
+                    Some(saved) => {
+                        *self.global_cold.borrow_mut() = saved;
+                        match self.nat_effects_cold(d, e, regs, std::mem::take(&mut pre), "op") {
+                            Ok(cold) => {
+                                pre = cold;
+                                vals
+                            }
+                            // Made again, the reads' cold arms errors.
+                            Err(_) => args
+                                .iter()
+                                .map(|a| self.nat_ev_effects(d, cur, a, regs, &mut pre, "op"))
+                                .collect::<N<Vec<_>>>(),
+                        }
+                    }
+                    None => vals,
+                };
                 if let Ok(sel) = vals.and_then(|v| self.nat_select(d, cur, *name, v, cur_name)) {
                     return Ok(quote!({ #(#pre)* #sel }));
                 }

@@ -690,7 +690,15 @@ impl Gen<'_> {
         cur_name: &TokenStream,
     ) -> N<TokenStream> {
         let mut pre = Vec::new();
-        let v = self.nat_ev_effects(d, cur, e, regs, &mut pre, "out")?;
+        // A global read whose value native code cannot hold: the
+        // machine's (`cold_next`).
+        let cold = self.cold_reads(d, e, regs);
+        let saved = cold.then(|| self.global_cold.replace(Some(quote!(break 'nat_cold_out))));
+        let v = self.nat_ev_effects(d, cur, e, regs, &mut pre, "out");
+        if let Some(saved) = saved {
+            *self.global_cold.borrow_mut() = saved;
+        }
+        let v = v?;
         // The machine's evaluation: a fresh variable it binds is a term
         // made there.
         let mut mregs = regs.clone();
@@ -722,11 +730,18 @@ impl Gen<'_> {
             return Err("the next situation moves a value its out_arg reads".into());
         }
         let pv = super::place(&v);
-        Ok(quote! {{
-            let next_at = #nx;
+        let body = quote! {
             #(#pre)*
             let pipe_out = cx.term(&#pv);
             cx.set_pipe(pipe_out);
+        };
+        if body.to_string().contains("nat_cold_out") {
+            let out = self.nat_out_cold(d, e, regs, body)?;
+            return Ok(quote!({ let next_at = #nx; #out }));
+        }
+        Ok(quote! {{
+            let next_at = #nx;
+            #body
             next_at
         }})
     }

@@ -1,0 +1,313 @@
+//! A global read's cold arm in a next situation's value and in an out_arg
+//! computed after it (issue 37, helper `ncold20`; [`super::cold`] does the
+//! same for a conditional's condition). Native code reads a global as a
+//! value of its MIR type (`Cx::global_as`); a frame on terms (a parameter
+//! that was not ground
+//! where its frame started) may have stored a value that type does not
+//! allow, such as an unbound variable (`set(goal, Goal)`, `Goal`
+//! unbound), and the interpreter goes on with it: `show(wrap(get(goal,
+//! _)))` is `show(wrap(_G))`. So where the value only reads variables
+//! (values, constants, compounds of them, `get`s: nothing changes if it
+//! is evaluated again), the native code computing it is a labelled block
+//! whose global read, on finding such a value, breaks out of it (the
+//! native frames already handed over and the machine entered in the
+//! situation by the read's cold arm); the value is then evaluated on
+//! terms as the term code does ([`Gen::nat_ev_term`]: its error the
+//! evaluator's) and handed to the machine as the next situation, which
+//! selects, as for a next situation the evaluator computes; an out_arg's
+//! value is evaluated so (`Cx::out_value`) after the next situation
+//! native code computed, which is handed to the machine as its id. A
+//! value that also `inc`s (`show(inc(n, _), get(goal, _))`) cannot be
+//! evaluated again: each read's cold arm goes on from there on its own
+//! ([`Gen::nat_effects_cold`]). The hot path (the global of its type) is
+//! unchanged; a value with no such read is made as before, byte for
+//! byte.
+
+use super::{Dm, Regs, N};
+use crate::codegen::Gen;
+use crate::mir::{Ev, Next};
+use proc_macro2::{Group, TokenStream, TokenTree};
+use quote::{format_ident, quote};
+use sitlog_runtime::native::Ty;
+use sitlog_syntax::atoms;
+
+impl Gen<'_> {
+    /// Next situation `n` of situation `cur` (named `cur_name`) as
+    /// [`Gen::nat_next`] makes it, with its global reads' cold arms going
+    /// to the machine as above. `None`: nothing to do here (no global
+    /// read, a value with an effect, or inside such a block already): the
+    /// caller makes it as before.
+    pub(super) fn nat_next_cold(
+        &self,
+        d: &Dm,
+        cur: usize,
+        n: &Next,
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<Option<TokenStream>> {
+        let Next::Eval(e) = n else {
+            return Ok(None);
+        };
+        if !self.cold_reads(d, e, regs) {
+            return Ok(None);
+        }
+        let (vars, redo) = self.cold_terms(e, regs, |t| quote!(let rec_next = #t;))?;
+        let saved = self.global_cold.replace(Some(quote!(break 'nat_cold_next)));
+        let code = self.nat_next(d, cur, n, regs, cur_name);
+        *self.global_cold.borrow_mut() = saved;
+        let code = code?;
+        if !code.to_string().contains("nat_cold_next") {
+            return Ok(Some(code));
+        }
+        let out = d.out.borrow().clone();
+        let tail = super::goto_tail(&d.rec.borrow());
+        Ok(Some(quote! {
+            'nat_next: {
+                'nat_cold_next: {
+                    break 'nat_next #code;
+                }
+                // A global's value native code cannot hold: the machine's.
+                #vars
+                #redo
+                cx.count_transitions(count);
+                #out
+                #tail
+            }
+        }))
+    }
+}
+
+impl Gen<'_> {
+    /// Whether `e` reads a global and does nothing else than read
+    /// ([`reads_only`]), outside a block of another cold arm, and is made
+    /// on terms ([`Gen::cold_terms`]): its global reads' cold arms may go
+    /// to the machine, which evaluates `e` again.
+    pub(super) fn cold_reads(&self, d: &Dm, e: &Ev, regs: &Regs) -> bool {
+        let global_get = |op: sitlog_syntax::Atom, v: sitlog_syntax::Atom| {
+            op == atoms::GET && !d.declares_local(v)
+        };
+        self.global_cold.borrow().is_none()
+            && super::has_var_op(e, &global_get)
+            && reads_only(e)
+            && self.cold_terms(e, regs, |_| quote!()).is_ok()
+    }
+
+    /// `e` evaluated on terms as the term code does ([`Gen::nat_ev_term`]),
+    /// its value given to `then`: the statements making the fresh
+    /// variables it reads (`cold_r<n>`, made there, not at every visit),
+    /// and the evaluation.
+    fn cold_terms(
+        &self,
+        e: &Ev,
+        regs: &Regs,
+        then: impl FnOnce(&TokenStream) -> TokenStream,
+    ) -> N<(Option<TokenStream>, TokenStream)> {
+        // A `get` into a fresh variable binds a term made there; any
+        // other fresh variable it reads (`get(goal, _)`'s `_` where the
+        // MIR gives it a register) is made here.
+        let mut mregs = regs.clone();
+        let mut binds = Vec::new();
+        super::ev_binds(e, &mut binds);
+        for r in &binds {
+            mregs.insert(*r, (format_ident!("fresh_r{}", r), Ty::Term));
+        }
+        let mut ts = Vec::new();
+        let mut n = 0;
+        let t = self.nat_ev_term(e, &mregs, &mut ts, &mut n)?;
+        let then = then(&t);
+        let mut fresh = std::collections::BTreeSet::new();
+        let redo = super::cold::cold_fresh(quote!(#(#ts)* #then), &mut fresh);
+        let bound: Vec<String> = binds.iter().map(|r| format!("cold_r{r}")).collect();
+        fresh.retain(|x| !bound.contains(&x.to_string()));
+        let vars = (!fresh.is_empty()).then(|| {
+            let fresh = fresh.iter();
+            quote!(let [#(#fresh),*] = cx.vars();)
+        });
+        Ok((vars, redo))
+    }
+
+    /// An out_arg `e` computed after next situation `next_at` by `body`
+    /// (its statements, the pipe set), whose global reads were made with
+    /// `break 'nat_cold_out` as their cold arm ([`Gen::cold_reads`]): the
+    /// `Nat` of `next_at`, or, where a read broke out (the machine
+    /// entered in situation `cur`), the out_arg evaluated on terms and
+    /// `next_at` handed to the machine as its id.
+    pub(super) fn nat_out_cold(
+        &self,
+        d: &Dm,
+        e: &Ev,
+        regs: &Regs,
+        body: TokenStream,
+    ) -> N<TokenStream> {
+        let (vars, redo) = self.cold_terms(e, regs, |t| quote!(cx.out_value(#t);))?;
+        let tail = super::goto_tail(&d.rec.borrow());
+        Ok(quote! {
+            'nat_out: {
+                'nat_cold_out: {
+                    #body
+                    break 'nat_out next_at;
+                }
+                // A global's value native code cannot hold: the machine's.
+                #vars
+                #redo
+                cx.count_transitions(count);
+                let rec_next = next_at.id_term(p, cx.store());
+                #tail
+            }
+        })
+    }
+}
+
+impl Gen<'_> {
+    /// Whether next situation `e` (a value with an effect, an `inc`,
+    /// beside a global read: `show(inc(n, _), get(goal, _))`) can have its
+    /// global reads' cold arms made by [`Gen::nat_effects_cold`]: its
+    /// variable operations are `get`s and `inc`s, nothing else evaluated.
+    pub(super) fn cold_effects(&self, d: &Dm, e: &Ev) -> bool {
+        let global_get = |op: sitlog_syntax::Atom, v: sitlog_syntax::Atom| {
+            op == atoms::GET && !d.declares_local(v)
+        };
+        self.global_cold.borrow().is_none() && super::has_var_op(e, &global_get) && gets_and_incs(e)
+    }
+
+    /// The statements `pre` computing next situation `e`'s `get`s and
+    /// `inc`s ([`Gen::nat_ev_effects`], prefix `pfx`: the `k`-th operation
+    /// in the evaluator's order is `pre[k]`, binding `<pfx><k>`), made with
+    /// `break 'nat_cold_next` as their global reads' cold arm
+    /// ([`Gen::cold_effects`]): each such arm is made the machine's way on
+    /// from there (the machine entered by the read's cold arm, its value
+    /// `t`): `e` built as a term, the operations before the `k`-th their
+    /// values (an `inc` done is not done again), the `k`-th `t`, the later
+    /// ones the machine's, in that order; then handed to the machine as
+    /// the next situation.
+    pub(super) fn nat_effects_cold(
+        &self,
+        d: &Dm,
+        e: &Ev,
+        regs: &Regs,
+        pre: Vec<TokenStream>,
+        pfx: &str,
+    ) -> N<Vec<TokenStream>> {
+        let out = d.out.borrow().clone();
+        let tail = super::goto_tail(&d.rec.borrow());
+        pre.into_iter()
+            .enumerate()
+            .map(|(k, stmt)| {
+                if !stmt.to_string().contains("nat_cold_next") {
+                    return Ok(stmt);
+                }
+                let mut ts = Vec::new();
+                let (mut n, mut op) = (0, 0);
+                let t = self.cold_op_term(e, regs, (k, pfx), &mut op, &mut ts, &mut n)?;
+                let mut fresh = std::collections::BTreeSet::new();
+                let redo = super::cold::cold_fresh(quote!(#(#ts)* let rec_next = #t;), &mut fresh);
+                let vars = (!fresh.is_empty()).then(|| {
+                    let fresh = fresh.iter();
+                    quote!(let [#(#fresh),*] = cx.vars();)
+                });
+                let cold = quote! {{
+                    // A global's value native code cannot hold: the machine's.
+                    #vars
+                    #redo
+                    cx.count_transitions(count);
+                    #out
+                    #tail
+                }};
+                Ok(replace_break(stmt, &cold))
+            })
+            .collect()
+    }
+
+    /// `e` as a term for [`Gen::nat_effects_cold`]'s `k`-th operation's
+    /// cold arm (`op` counts the operations met, in the evaluator's order).
+    fn cold_op_term(
+        &self,
+        e: &Ev,
+        regs: &Regs,
+        (k, pfx): (usize, &str),
+        op: &mut usize,
+        ts: &mut Vec<TokenStream>,
+        n: &mut usize,
+    ) -> N<TokenStream> {
+        let made = match e {
+            Ev::Compound(f, args) => {
+                let args = args
+                    .iter()
+                    .map(|a| self.cold_op_term(a, regs, (k, pfx), op, ts, n))
+                    .collect::<N<Vec<_>>>()?;
+                let f = self.functor_native(*f)?;
+                quote!(cx.build(#f, &[#(#args),*]))
+            }
+            Ev::VarOp { op: o, name, .. } | Ev::VarOpFresh { op: o, name, .. } => {
+                let j = *op;
+                *op += 1;
+                if j == k {
+                    return Ok(quote!(t));
+                }
+                if j < k {
+                    let v = format_ident!("{}{}", pfx, j);
+                    quote!(cx.term(&#v))
+                } else {
+                    let (o, name) = (self.atom_native(*o)?, self.atom_native(*name)?);
+                    quote!(cx.var_op_fresh(#o, #name, arc_at)?)
+                }
+            }
+            e => return self.nat_ev_term(e, regs, ts, n),
+        };
+        let x = format_ident!("b{}", *n);
+        *n += 1;
+        ts.push(quote!(let #x = #made;));
+        Ok(quote!(#x))
+    }
+}
+
+/// `code` with each `break 'nat_cold_next` replaced by `by`.
+fn replace_break(code: TokenStream, by: &TokenStream) -> TokenStream {
+    let mut out: Vec<TokenTree> = Vec::new();
+    let mut it = code.into_iter().peekable();
+    while let Some(t) = it.next() {
+        match t {
+            TokenTree::Ident(i) if i == "break" => {
+                let mut look = it.clone();
+                let is_label = matches!(look.next(), Some(TokenTree::Punct(p)) if p.as_char() == '\'')
+                    && matches!(look.next(), Some(TokenTree::Ident(l)) if l == "nat_cold_next");
+                if is_label {
+                    it.next();
+                    it.next();
+                    out.extend(by.clone());
+                } else {
+                    out.push(TokenTree::Ident(i));
+                }
+            }
+            TokenTree::Group(g) => {
+                let mut h = Group::new(g.delimiter(), replace_break(g.stream(), by));
+                h.set_span(g.span());
+                out.push(TokenTree::Group(h));
+            }
+            t => out.push(t),
+        }
+    }
+    out.into_iter().collect()
+}
+
+/// Whether `e`'s parts are values, constants, compounds of them, `get`s
+/// and `inc`s.
+fn gets_and_incs(e: &Ev) -> bool {
+    match e {
+        Ev::Value(_) | Ev::Built(_) => true,
+        Ev::Compound(_, args) => args.iter().all(gets_and_incs),
+        Ev::VarOp { op, .. } | Ev::VarOpFresh { op, .. } => *op == atoms::GET || *op == atoms::INC,
+        _ => false,
+    }
+}
+
+/// Whether evaluating `e` only reads: values, constants, compounds of
+/// them and `get`s (evaluated again, nothing changes).
+fn reads_only(e: &Ev) -> bool {
+    match e {
+        Ev::Value(_) | Ev::Built(_) => true,
+        Ev::Compound(_, args) => args.iter().all(reads_only),
+        Ev::VarOp { op, .. } | Ev::VarOpFresh { op, .. } => *op == atoms::GET,
+        _ => false,
+    }
+}
