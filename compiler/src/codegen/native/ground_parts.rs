@@ -8,7 +8,9 @@
 //!   [`Gen::diag_parts`] gives `welcome` of the constant `[]`, whose output
 //!   slot ([`Gen::nat_output_slots`]) takes the value natively, so a native
 //!   caller below that passed its output as `Ground::OUT` gets it in the
-//!   frame's slot instead of the frames being handed over;
+//!   frame's slot instead of the frames being handed over; the caller's
+//!   exit arcs read the same parts (`call::slot_final`), so a final that
+//!   comes back in its slots always has its arms there;
 //! - *a ground next situation the evaluator computes*
 //!   (`=> infer(apply(shop_place_here, []))`): where its functor evaluates
 //!   its arguments only ([`sitlog_runtime::eval::evaluates_arguments_only`])
@@ -31,20 +33,29 @@
 use super::Dm;
 use crate::codegen::Gen;
 use crate::mir::{Build, Ev, KindPlan};
-use sitlog_runtime::{Term, Value};
+use sitlog_runtime::{Store, Term, Value};
 use sitlog_syntax::Atom;
+
+/// [`Gen::diag_parts`], for the code that reads a callee's finals
+/// (`call::slot_final`).
+pub(super) fn diag_parts(store: &Store, d: &Dm, b: &Build) -> Option<Build> {
+    let Build::Const(t) = b else {
+        return None;
+    };
+    match store.value(*t) {
+        Value::Compound(name, args) if name == d.dm.name && args.len() == d.dm.arity => Some(
+            Build::Compound(name, args.iter().map(|&a| Build::Const(a)).collect()),
+        ),
+        _ => None,
+    }
+}
 
 impl Gen<'_> {
     /// `b`, a final's `diag_mod`, as a compound of the DM's head (name and
     /// arity) when it is such a constant: each argument a constant
     /// ([`Build::Const`]); else `None` (the generator reads `b` as it is).
     pub(super) fn diag_parts(&self, d: &Dm, b: &Build) -> Option<Build> {
-        let Build::Const(t) = b else {
-            return None;
-        };
-        let (name, args) = self.compound_of(*t)?;
-        (name == d.dm.name && args.len() == d.dm.arity)
-            .then(|| Build::Compound(name, args.iter().map(|&a| Build::Const(a)).collect()))
+        diag_parts(self.store, d, b)
     }
 
     /// A ground next situation `e` the evaluator computes whole
