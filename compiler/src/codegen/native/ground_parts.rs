@@ -18,7 +18,10 @@
 //!   values (what the evaluator does), so [`Gen::ground_next_parts`] gives
 //!   `infer` of the argument `Ev::Eval(apply(..))`, which the generator
 //!   selects natively with the checked conversion (the machine given the
-//!   value only where it does not convert);
+//!   value only where it does not convert); where the generator cannot
+//!   select so (a situation whose argument has a narrower type than
+//!   `ground`, `round(Rooms)` with `Rooms: list<atom>`), the whole term is
+//!   the machine's as before;
 //! - *a DM whose frames are always the base of the native stack*
 //!   ([`Gen::only_at_base`]: no situation that runs as code calls it, so
 //!   it is entered by the machine only): its finals have no native frame

@@ -4949,12 +4949,15 @@ impl Gen<'_> {
                 }
             }
         }
-        // `infer(apply(here, []))` whole: as `infer` of its evaluated part.
+        // `infer(apply(here, []))` whole: as `infer` of its evaluated part
+        // where that selects natively (else as below).
         if let Some(e) = match n {
             Next::Eval(e) => self.ground_next_parts(e),
             _ => None,
         } {
-            return self.nat_next(d, cur, &Next::Eval(e), regs, cur_name);
+            if let Ok(code) = self.nat_next(d, cur, &Next::Eval(e), regs, cur_name) {
+                return Ok(code);
+            }
         }
         match n {
             Next::Static(t, ix)
