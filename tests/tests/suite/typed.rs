@@ -4261,3 +4261,58 @@ fn nuni19_one_native_perform_path_agrees() {
         );
     }
 }
+
+mod nbound20_dms {
+    sitlog_macros::include_dm!("typed/nbound20");
+}
+
+/// nbound20 (issue 37): the last hand-overs of the home butler, in DMs of
+/// their shapes (`typed/nbound20`): a callee whose finals bind its only
+/// parameter, an output, by a constant `diag_mod` (`fetch([])`) or a
+/// built one, called natively (the output back in the frame's slot); a
+/// ground next situation the evaluator computes (`where(apply(place_here,
+/// []))`) whose value selects natively, does not convert (an unbound
+/// variable: the machine selects) or fails; a DM no situation calls,
+/// whose final binds its output without a hand-over (run from the
+/// command line). One engine for every run (each run resets the counter
+/// first); histories kept or not, observed or not.
+#[test]
+fn nbound20_last_hand_overs_agree() {
+    let ir = interpreter("typed/nbound20");
+    let mut f = Functions::standard();
+    let p = sitlog_compiler::run::install_prolog(&ir, &mut f, Default::default())
+        .expect("the Prolog files load")
+        .expect("an engine");
+    ENGINE.with(|e| *e.borrow_mut() = Some((p, false)));
+    let mains = [
+        "main([plain])",
+        "main([none])",
+        "main([bogus])",
+        "main([where])",
+        "main([where, where, where, where, where, where])",
+        "main([plain, where, none, where, bogus, where, where, plain, where])",
+        "shout(hello, S)",
+        "shout(f(x, [1, 2]), ok)",
+        "shout(hello, nok)",
+    ];
+    let renamed = |mut r: (serde_json::Value, u64, Vec<String>, Vec<String>)| {
+        let mut names = std::collections::HashMap::new();
+        r.2 = r.2.iter().map(|l| rename(l, &mut names)).collect();
+        r
+    };
+    for main in &mains {
+        for (keep, observe) in [(false, false), (true, false), (true, true)] {
+            let c = renamed(run(nbound20_dms::program(), main, "", keep, observe, false));
+            let i = renamed(run(&ir, main, "", keep, observe, false));
+            assert_eq!(c, i, "{main} (history {keep}, observed {observe})");
+        }
+    }
+    // What the runs say: the constant output, a value selected natively,
+    // one the machine selected, the evaluation's error.
+    let c = run(nbound20_dms::program(), mains[4], "", false, false, false);
+    let said = c.2.join("\n");
+    for want in ["none([])", "got([shelf(2)])", "got([[shelf,3]])"] {
+        assert!(said.contains(want), "{want} in {said}");
+    }
+    ENGINE.with(|e| *e.borrow_mut() = None);
+}

@@ -93,7 +93,7 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_runtime::machine::Kind;
 use sitlog_runtime::native::Ty;
-use sitlog_runtime::{ArithCmp, Term, Value};
+use sitlog_runtime::{ArithCmp, Store, Term, Value};
 use sitlog_syntax::atoms;
 use std::collections::HashMap;
 
@@ -887,7 +887,7 @@ impl Gen<'_> {
             // A final with `diag_mod` comes back here only when it hands
             // the call's outputs back in its slots (`slot_final`).
             let diag_mod = matches!(&callee.plans[k].kind, KindPlan::Final { diag_mod: Some(_) });
-            let slotted = !outs.is_empty() && slot_final(callee, k);
+            let slotted = !outs.is_empty() && slot_final(self.store, callee, k);
             if callee.dm.situations[k].kind != Kind::Final
                 || !callee.native[k]
                 || (diag_mod && !slotted)
@@ -2137,12 +2137,14 @@ pub(super) fn call_outputs(d: &Dm, ix: usize) -> Vec<(usize, Reg)> {
 /// parameter, a value computed natively (`Dm::outs`), and at every other
 /// position that parameter itself (so unifying it with the call binds the
 /// outputs and nothing else, as the term path's `diag_mod` does).
-pub(super) fn slot_final(d: &Dm, k: usize) -> bool {
+pub(super) fn slot_final(store: &Store, d: &Dm, k: usize) -> bool {
     let plan = &d.plans[k];
-    let KindPlan::Final {
-        diag_mod: Some(Build::Compound(name, args)),
-    } = &plan.kind
-    else {
+    let KindPlan::Final { diag_mod: Some(b) } = &plan.kind else {
+        return false;
+    };
+    // A constant `diag_mod` (`welcome([])`) by its parts (`ground_parts`).
+    let parts = super::ground_parts::diag_parts(store, d, b);
+    let Build::Compound(name, args) = parts.as_ref().unwrap_or(b) else {
         return false;
     };
     if *name != d.dm.name || args.len() != d.dm.arity {

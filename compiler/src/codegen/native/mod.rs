@@ -229,6 +229,7 @@ mod cond;
 mod effect;
 mod fill;
 mod frame;
+mod ground_parts;
 mod next_is;
 mod perceive;
 mod pipe;
@@ -2659,10 +2660,27 @@ impl Gen<'_> {
                 let mut slot_below = None;
                 let diag = match diag_mod {
                     Some(b) => {
-                        let (mut ts, slots) = self.nat_output_slots(d, b, &regs);
-                        slot_below = self.nat_slot_below(d, ix, b, &ts, &slots);
+                        // A constant `welcome([])`: its parts give the
+                        // slots (`ground_parts`), the term is the constant.
+                        let parts = self.diag_parts(d, b);
+                        let whole = b;
+                        let b = parts.as_ref().unwrap_or(b);
+                        let outs = self.nat_output_slots(d, b, &regs);
+                        slot_below = self.nat_slot_below(d, ix, b, &outs);
+                        let mut ts: Vec<TokenStream> = outs
+                            .iter()
+                            .flatten()
+                            .map(|(o, rt, e)| quote!(let #o: #rt = #e;))
+                            .collect();
+                        let slots: Vec<Option<Ident>> =
+                            outs.into_iter().map(|s| s.map(|(o, _, _)| o)).collect();
                         let mut n = 0;
                         let t = match b {
+                            _ if parts.is_some() => {
+                                ts.clear();
+                                self.nat_build_term(whole, &regs, &mut ts, &mut n)
+                                    .map_err(|e| format!("its diag_mod: {e}"))?
+                            }
                             // Every argument a slot or a register: one
                             // `build_of` of the values.
                             Build::Compound(f, args)
@@ -2796,6 +2814,11 @@ impl Gen<'_> {
                             }
                             #hand
                         }
+                    }
+                    // No native frame below ever (`ground_parts`): none
+                    // to hand over.
+                    (Some(_), None) if runtime_hand(hand) && self.only_at_base(d.dm.name) => {
+                        quote!()
                     }
                     (Some(_), None) => quote!(#hand),
                 };
@@ -3633,17 +3656,17 @@ impl Gen<'_> {
 
     /// A final's hand-back through the frame's output slots, when its
     /// `diag_mod` `b` is the DM's head with every output computed natively
-    /// (`slots`, their statements the start of `ts`) and every other
+    /// (`slots`, [`Gen::nat_output_slots`]'s) and every other
     /// argument the parameter itself (`call::slot_final`): the condition
     /// (each output parameter `Ground::OUT`, so the caller made no term
-    /// for it) and the statements setting the slots.
+    /// for it) and the statements setting the slots (`*out2 = Some(..);`,
+    /// each slot's expression).
     fn nat_slot_below(
         &self,
         d: &Dm,
         ix: usize,
         b: &Build,
-        ts: &[TokenStream],
-        slots: &[Option<Ident>],
+        slots: &[Option<(Ident, TokenStream, TokenStream)>],
     ) -> Option<(TokenStream, TokenStream, TokenStream)> {
         let Build::Compound(name, args) = b else {
             return None;
@@ -3657,13 +3680,13 @@ impl Gen<'_> {
         let mut outs = Vec::new();
         for (i, a) in args.iter().enumerate() {
             if d.outputs.get(i).is_some_and(Option::is_some) {
-                let o = slots[i].as_ref()?;
+                let (_, _, e) = slots[i].as_ref()?;
                 if d.params[i] != Ty::Term {
                     return None;
                 }
                 let (p, out) = (format_ident!("p{}", i), format_ident!("out{}", i));
                 conds.push(quote!(#p.is_out()));
-                sets.push(quote!(*#out = Some(#o);));
+                sets.push(quote!(*#out = Some(#e);));
                 let il = Literal::usize_unsuffixed(i);
                 // The slot itself (`&mut Option<T>`, a `&dyn OutSlot`):
                 // `Cx::close_level` makes it a term.
@@ -3678,7 +3701,7 @@ impl Gen<'_> {
         }
         Some((
             quote!(#(#conds)&&*),
-            quote!(#(#ts)* #(#sets)*),
+            quote!(#(#sets)*),
             quote!([#(#outs),*]),
         ))
     }
@@ -3686,24 +3709,26 @@ impl Gen<'_> {
     /// A final's output slots: for each output parameter of the DM
     /// (`DmTypes::outputs`: unbound when called, bound by every final's
     /// `diag_mod`) whose output type is native, the value this final binds
-    /// it to as a Rust local of that type (`let o2: Atom = ..;`), computed
-    /// from the visit's native values; the `diag_mod` term then takes it
-    /// there (`Native::to_term`, the one conversion, at the boundary).
+    /// it to as a Rust expression of that type (its local's name `o2`, the
+    /// type, the expression: `let o2: Atom = ..;` where the `diag_mod` term
+    /// takes it, `Native::to_term`, the one conversion, at the boundary;
+    /// `*out2 = Some(..);` where a native caller's slot takes it, module
+    /// `call`), computed from the visit's native values.
     /// An output this final cannot compute so (a value of another shape, a
     /// fresh variable) is built as before and marks the parameter not held
     /// (`Dm::outs`).
+    #[allow(clippy::type_complexity)]
     fn nat_output_slots(
         &self,
         d: &Dm,
         b: &Build,
         regs: &Regs,
-    ) -> (Vec<TokenStream>, Vec<Option<Ident>>) {
-        let mut stmts = Vec::new();
+    ) -> Vec<Option<(Ident, TokenStream, TokenStream)>> {
         let args: &[Build] = match b {
             Build::Compound(name, args) if *name == d.dm.name && args.len() == d.dm.arity => args,
             _ => {
                 d.outs.borrow_mut().iter_mut().for_each(|o| *o = false);
-                return (stmts, Vec::new());
+                return Vec::new();
             }
         };
         let mut slots = vec![None; args.len()];
@@ -3717,15 +3742,11 @@ impl Gen<'_> {
                 Ok((e, rust_ty(ty)?))
             });
             match slot {
-                Ok((e, rt)) => {
-                    let o = format_ident!("o{}", i);
-                    stmts.push(quote!(let #o: #rt = #e;));
-                    slots[i] = Some(o);
-                }
+                Ok((e, rt)) => slots[i] = Some((format_ident!("o{}", i), rt, e)),
                 Err(_) => outs[i] = false,
             }
         }
-        (stmts, slots)
+        slots
     }
 
     /// The term of `b` built from native values (a boundary: an effector's
@@ -4954,6 +4975,16 @@ impl Gen<'_> {
                 if let Ok(sel) = vals.and_then(|v| self.nat_select(d, cur, *name, v, cur_name)) {
                     return Ok(quote!({ #(#pre)* #sel }));
                 }
+            }
+        }
+        // `infer(apply(here, []))` whole: as `infer` of its evaluated part
+        // where that selects natively (else as below).
+        if let Some(e) = match n {
+            Next::Eval(e) => self.ground_next_parts(e),
+            _ => None,
+        } {
+            if let Ok(code) = self.nat_next(d, cur, &Next::Eval(e), regs, cur_name) {
+                return Ok(code);
             }
         }
         match n {
