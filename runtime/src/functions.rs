@@ -4,6 +4,7 @@
 //! task history (read only, like `get_history/1`).
 
 use crate::history::{self, Item};
+use crate::native::Val;
 use crate::store::Store;
 use crate::term::Term;
 use crate::trust::Trust;
@@ -40,6 +41,14 @@ pub type UserFn = dyn Fn(&mut FnCall<'_>, &[Term]) -> Result<Term, String> + Sen
 /// `None` means "not mine".
 pub type FallbackFn =
     dyn Fn(&mut FnCall<'_>, Atom, &[Term]) -> Option<Result<Term, String>> + Send + Sync;
+
+/// Runs a function that has no Rust entry on native values where it can
+/// (a plain Prolog function: `prolog::plain`), given the registry, the
+/// store and the caller's globals; `None` means the term path
+/// ([`Functions::call`]) decides, with the same answer or error it always
+/// gives. Only code whose DM has no locals calls it (the caller's locals
+/// are then empty, as a query would send them).
+pub type NativeFn = dyn Fn(&Functions, &Store, &Vars, Atom, &[Val]) -> Option<Val> + Send + Sync;
 
 /// Run once when a run starts (its first transition), given the registry
 /// (the run's [`Trust`], call limits and stop flag): an engine's own code (Prolog directives)
@@ -89,6 +98,9 @@ impl Default for CallLimits {
 pub struct Functions {
     map: HashMap<(Atom, usize), Arc<UserFn>>,
     fallback: Option<Arc<FallbackFn>>,
+    /// The fallback's run on native values ([`NativeFn`]); set with it,
+    /// dropped when another fallback is set.
+    native: Option<Arc<NativeFn>>,
     limits: Option<CallLimits>,
     start: Option<Arc<StartFn>>,
     trust: Trust,
@@ -149,6 +161,34 @@ impl Functions {
             + 'static,
     ) {
         self.fallback = Some(Arc::new(f));
+        self.native = None;
+    }
+
+    /// Sets the fallback's run on native values (see [`NativeFn`]): after
+    /// [`Functions::set_fallback`], which drops it.
+    pub fn set_native(
+        &mut self,
+        f: impl Fn(&Functions, &Store, &Vars, Atom, &[Val]) -> Option<Val> + Send + Sync + 'static,
+    ) {
+        self.native = Some(Arc::new(f));
+    }
+
+    /// The value of `name(args..)` run on native values by the fallback, if
+    /// it runs so (see [`NativeFn`]): never for a function registered in
+    /// Rust, which [`Functions::call`] runs instead of the fallback.
+    #[inline]
+    pub fn call_native(
+        &self,
+        store: &Store,
+        globals: &Vars,
+        name: Atom,
+        args: &[Val],
+    ) -> Option<Val> {
+        let f = self.native.as_ref()?;
+        if self.map.contains_key(&(name, args.len())) {
+            return None;
+        }
+        f(self, store, globals, name, args)
     }
 
     /// Sets the bounds of each call of a function run outside Rust

@@ -17,10 +17,10 @@
 use super::consult::{prepare, LineCursor, Prep, PrologLoadError, PrologSource, Redefinitions};
 use super::legacy_kb::{rename_head, KbHost, NativeKb, NativeState, Wrapped, NATIVE_FILE};
 use super::permissions;
-use super::plain::{self, PlainFns, PlainScan};
 use super::swi::{LIBRARIES, PRELUDE, PRELUDE_SWI, SWI_PREDICATES};
 use super::translate::{drop_deep, from_prolog, read_reply, write_atom, Prepared, Writer};
 use crate::functions::{CallLimits, FnCall, Functions, PROLOG_MAX_DEPTH};
+use crate::plain::{self, PlainFns, PlainScan};
 use crate::store::Store;
 use crate::term::Term;
 use crate::trust::{Confine, Trust};
@@ -759,6 +759,12 @@ impl PrologFunctions {
             }
             Some(me.call(call, name, args))
         });
+        if plain && self.inner.plain.keys().next().is_some() {
+            let me = self.clone();
+            functions.set_native(move |functions, store, globals, name, args| {
+                me.plain_vals(functions, store, globals, name, args)
+            });
+        }
         let me = self.clone();
         functions.set_start(move |functions| me.start_from(functions).map_err(|e| show_errors(&e)));
     }
@@ -788,6 +794,44 @@ impl PrologFunctions {
                 .iter()
                 .all(|&(_, v)| plain::sure(store, v, false))
         });
+        if !shallow {
+            return None;
+        }
+        match self.inner.abandoned.lock() {
+            Ok(a) if a.is_none() => Some(v),
+            _ => None,
+        }
+    }
+
+    /// [`plain_call`](Self::plain_call) on native values (`Cx::nat_plain`,
+    /// through [`Functions::call_native`]): the value if the call runs
+    /// natively, `None` for the term path (which starts the engine on a
+    /// call before the run's start, and decides the rest). The same checks
+    /// as the term path's: the registry (`call_native`), the inference
+    /// limit, the caller's variables (the globals: the caller has no
+    /// locals), the engine not abandoned. A plain function is one the
+    /// application defines (its clauses are the application's), so
+    /// `defines` holds of it.
+    fn plain_vals(
+        &self,
+        functions: &Functions,
+        store: &Store,
+        globals: &crate::vars::Vars,
+        name: Atom,
+        args: &[crate::native::Val],
+    ) -> Option<crate::native::Val> {
+        match self.inner.started.lock() {
+            Ok(s) if matches!(*s, Some(Ok(()))) => {}
+            _ => return None,
+        }
+        let limit = functions
+            .call_limits()
+            .map_or(self.inner.options.inference_limit, |l| l.inferences);
+        let v = self.inner.plain.call_vals(name, args, limit)?;
+        let shallow = globals
+            .entries()
+            .iter()
+            .all(|&(_, v)| plain::sure(store, v, false));
         if !shallow {
             return None;
         }
