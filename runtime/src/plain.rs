@@ -155,6 +155,33 @@ enum PGoal {
     /// `V = X` with `V` fresh.
     Bind(u16, Opnd),
     Assign(Opnd),
+    /// `( C -> T ; E )`: `C` tests only (it binds no variable, cuts
+    /// nothing, assigns nothing), `T` and `E` plain conjunctions that bind
+    /// the same variables (a cut in them cuts the clause, as in Prolog).
+    Ite(Box<[PGoal]>, Box<[PGoal]>, Box<[PGoal]>),
+}
+
+impl PGoal {
+    /// Whether the goal only tests (binds, cuts and assigns nothing).
+    fn is_test(&self) -> bool {
+        matches!(
+            self,
+            PGoal::True | PGoal::Fail | PGoal::IsBound(..) | PGoal::Cmp(..) | PGoal::Ident(..)
+        )
+    }
+
+    /// The goals the engine counts for it.
+    fn goals(&self) -> usize {
+        match self {
+            PGoal::Ite(c, t, e) => {
+                1 + [c, t, e]
+                    .iter()
+                    .map(|g| g.iter().map(PGoal::goals).sum::<usize>())
+                    .sum::<usize>()
+            }
+            _ => 1,
+        }
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -231,7 +258,10 @@ impl PlainScan {
             .filter(|((name, _), _)| !name.as_str().starts_with('$'))
             .filter_map(|(key, clauses)| {
                 let clauses = clauses?;
-                let goals: usize = clauses.iter().map(|c| c.body.len() + 1).sum();
+                let goals: usize = clauses
+                    .iter()
+                    .map(|c| c.body.iter().map(PGoal::goals).sum::<usize>() + 1)
+                    .sum();
                 Some((
                     key,
                     PlainFn {
@@ -497,30 +527,72 @@ fn plain_clause(store: &Store, head: Term, body: Option<Term>) -> Option<PClause
     for &a in store.args(head) {
         args.push(head_arg(store, a, &mut scope, 0)?);
     }
-    let mut goals = Vec::new();
-    if let Some(b) = body {
-        let mut conj = vec![b];
-        // The conjunction's goals, left to right.
-        let mut flat = Vec::new();
-        while let Some(g) = conj.pop() {
-            let g = store.deref(g);
-            match store.value(g) {
-                Value::Compound(f, a) if f.as_str() == "," && a.len() == 2 => {
-                    conj.push(a[1]);
-                    conj.push(a[0]);
-                }
-                _ => flat.push(g),
-            }
-        }
-        for g in flat {
-            goals.push(plain_goal(store, g, &mut scope)?);
-        }
-    }
+    let goals = match body {
+        Some(b) => conj(store, b, &mut scope, 0)?,
+        None => Vec::new(),
+    };
     Some(PClause {
         vars: scope.vars.len(),
         head: args.into(),
         body: goals.into(),
     })
+}
+
+/// The plain goals of the conjunction `b`, left to right (`depth`: how
+/// deep in if-then-elses).
+fn conj(store: &Store, b: Term, scope: &mut Scope, depth: usize) -> Option<Vec<PGoal>> {
+    if depth > MAX_PATTERN_DEPTH {
+        return None;
+    }
+    let mut stack = vec![b];
+    let mut flat = Vec::new();
+    while let Some(g) = stack.pop() {
+        let g = store.deref(g);
+        match store.value(g) {
+            Value::Compound(f, a) if f.as_str() == "," && a.len() == 2 => {
+                stack.push(a[1]);
+                stack.push(a[0]);
+            }
+            _ => flat.push(g),
+        }
+    }
+    let mut goals = Vec::with_capacity(flat.len());
+    for g in flat {
+        goals.push(plain_goal(store, g, scope, depth)?);
+    }
+    Some(goals)
+}
+
+/// `( C -> T ; E )` (`c_t` the `->`, `e` the else) as [`PGoal::Ite`], if
+/// plain: the condition only tests, and the variables bound after it are
+/// the same whichever branch ran.
+fn if_then_else(
+    store: &Store,
+    c_t: Term,
+    e: Term,
+    scope: &mut Scope,
+    depth: usize,
+) -> Option<PGoal> {
+    let [c, t] = match store.value(store.deref(c_t)) {
+        Value::Compound(f, a) if f.as_str() == "->" && a.len() == 2 => [a[0], a[1]],
+        _ => return None,
+    };
+    let before = scope.bound.clone();
+    let cg = conj(store, c, scope, depth + 1)?;
+    if !cg.iter().all(PGoal::is_test)
+        || scope.bound.iter().filter(|&&b| b).count() != before.iter().filter(|&&b| b).count()
+    {
+        return None;
+    }
+    let tg = conj(store, t, scope, depth + 1)?;
+    let after_t = scope.bound.clone();
+    for (k, b) in scope.bound.iter_mut().enumerate() {
+        *b = before.get(k).copied().unwrap_or(false);
+    }
+    let eg = conj(store, e, scope, depth + 1)?;
+    let same =
+        (0..scope.bound.len()).all(|k| scope.bound[k] == after_t.get(k).copied().unwrap_or(false));
+    same.then(|| PGoal::Ite(cg.into(), tg.into(), eg.into()))
 }
 
 /// A head argument: a variable (its first occurrence binds it), a constant,
@@ -622,8 +694,11 @@ fn expr(store: &Store, t: Term, scope: &mut Scope, depth: usize) -> Option<PExpr
     }
 }
 
-fn plain_goal(store: &Store, g: Term, scope: &mut Scope) -> Option<PGoal> {
+fn plain_goal(store: &Store, g: Term, scope: &mut Scope, depth: usize) -> Option<PGoal> {
     match store.value(g) {
+        Value::Compound(f, a) if a.len() == 2 && f.as_str() == ";" => {
+            if_then_else(store, a[0], a[1], scope, depth)
+        }
         Value::Atom(a) => match a.as_str() {
             "true" => Some(PGoal::True),
             "fail" | "false" => Some(PGoal::Fail),
@@ -870,51 +945,66 @@ fn run_clause(store: &mut Store, c: &PClause, args: &[Term], regs: &mut [Term]) 
     }
     let mut cut = false;
     let mut assigned = None;
-    for g in c.body.iter() {
+    match run_goals(store, &c.body, regs, &mut cut, &mut assigned) {
+        Err(()) => Outcome::Unsure,
+        Ok(false) => Outcome::Fail { cut },
+        Ok(true) => match assigned {
+            Some(o) => value(store, o, regs).map_or(Outcome::Unsure, Outcome::Value),
+            None => Outcome::NoValue,
+        },
+    }
+}
+
+/// Runs `goals` in order: whether they all held (`cut` set by a cut
+/// reached, `assigned` the last assignment reached), `Err` where the
+/// native form does not decide.
+fn run_goals<'c>(
+    store: &mut Store,
+    goals: &'c [PGoal],
+    regs: &mut [Term],
+    cut: &mut bool,
+    assigned: &mut Option<&'c Opnd>,
+) -> Result<bool, ()> {
+    for g in goals {
         let holds = match g {
             PGoal::True => true,
             PGoal::Fail => false,
             PGoal::Cut => {
-                cut = true;
+                *cut = true;
                 true
             }
-            PGoal::IsFresh(i, e) => match eval(store, e, regs) {
-                Ok(v) => {
-                    regs[*i as usize] = Term::int(v);
-                    true
-                }
-                Err(()) => return Outcome::Unsure,
-            },
-            PGoal::IsBound(i, e) => match (eval(store, e, regs), int(store, regs[*i as usize])) {
-                (Ok(v), Ok(w)) => v == w,
-                _ => return Outcome::Unsure,
-            },
-            PGoal::Cmp(op, x, y) => match (eval(store, x, regs), eval(store, y, regs)) {
-                (Ok(x), Ok(y)) => compare(*op, x, y),
-                _ => return Outcome::Unsure,
-            },
+            PGoal::IsFresh(i, e) => {
+                regs[*i as usize] = Term::int(eval(store, e, regs)?);
+                true
+            }
+            PGoal::IsBound(i, e) => eval(store, e, regs)? == int(store, regs[*i as usize])?,
+            PGoal::Cmp(op, x, y) => compare(*op, eval(store, x, regs)?, eval(store, y, regs)?),
             PGoal::Ident(eq, x, y) => ident(store, x, y, regs) == *eq,
-            PGoal::Bind(i, o) => match value(store, o, regs) {
-                Some(v) => {
-                    regs[*i as usize] = v;
-                    true
-                }
-                None => return Outcome::Unsure,
-            },
+            PGoal::Bind(i, o) => {
+                regs[*i as usize] = value(store, o, regs).ok_or(())?;
+                true
+            }
             PGoal::Assign(o) => {
                 // Built when the clause has succeeded (a later assignment wins).
-                assigned = Some(o);
+                *assigned = Some(o);
                 true
+            }
+            PGoal::Ite(c, t, e) => {
+                // The condition tests only: no cut, no assignment to keep.
+                let (mut no_cut, mut none) = (false, None);
+                let branch = if run_goals(store, c, regs, &mut no_cut, &mut none)? {
+                    t
+                } else {
+                    e
+                };
+                run_goals(store, branch, regs, cut, assigned)?
             }
         };
         if !holds {
-            return Outcome::Fail { cut };
+            return Ok(false);
         }
     }
-    match assigned {
-        Some(o) => value(store, o, regs).map_or(Outcome::Unsure, Outcome::Value),
-        None => Outcome::NoValue,
-    }
+    Ok(true)
 }
 
 #[cfg(test)]
@@ -1102,6 +1192,37 @@ mod tests {
         assert!(fns.call(s, echo, &[deeper], u64::MAX).is_none());
         let fns = scan("echo(X) :- assign_func_value(X).\nassign_func_value(_).\n");
         assert_eq!(fns.keys().count(), 0);
+    }
+
+    #[test]
+    fn if_then_else_with_a_test_for_condition() {
+        let fns = scan(
+            "heavy(W) :- W >= 0, ( W >= 1000 -> A = yes ; A = no ), assign_func_value(A).\n\
+             cut(X) :- ( X > 0 -> !, X > 5 ; true ), assign_func_value(big).\n\
+             cut(_) :- assign_func_value(small).\n\
+             pick(X) :- ( X == a -> assign_func_value(first) ; assign_func_value(other) ).\n\
+             nested(X) :- ( X > 0 -> ( X > 9 -> Y = 2 ; Y = 1 ) ; Y = 0 ), assign_func_value(Y).\n\
+             notest(X) :- ( Y = X -> A = Y ; A = no ), assign_func_value(A).\n\
+             onlyone(X) :- ( X > 0 -> A = yes ; true ), assign_func_value(X).\n\
+             nothen(X) :- ( X > 0 -> A = yes ), assign_func_value(A).\n\
+             either(X) :- ( X > 0 ; X < -5 ), assign_func_value(X).\n",
+        );
+        let mut keys: Vec<String> = fns.keys().map(|(n, a)| format!("{n}/{a}")).collect();
+        keys.sort();
+        assert_eq!(keys, ["cut/1", "heavy/1", "nested/1", "pick/1"]);
+        let s = &mut Store::new();
+        assert_eq!(call(&fns, s, "heavy(1500)").as_deref(), Some("yes"));
+        assert_eq!(call(&fns, s, "heavy(5)").as_deref(), Some("no"));
+        assert_eq!(call(&fns, s, "heavy(-1)"), None); // fails: the engine
+        assert_eq!(call(&fns, s, "heavy(a)"), None); // a type error
+        assert_eq!(call(&fns, s, "cut(9)").as_deref(), Some("big"));
+        assert_eq!(call(&fns, s, "cut(2)"), None); // fails after the cut
+        assert_eq!(call(&fns, s, "cut(0)").as_deref(), Some("big"));
+        assert_eq!(call(&fns, s, "pick(a)").as_deref(), Some("first"));
+        assert_eq!(call(&fns, s, "pick(f(a))").as_deref(), Some("other"));
+        assert_eq!(call(&fns, s, "nested(10)").as_deref(), Some("2"));
+        assert_eq!(call(&fns, s, "nested(3)").as_deref(), Some("1"));
+        assert_eq!(call(&fns, s, "nested(-3)").as_deref(), Some("0"));
     }
 
     #[test]

@@ -290,48 +290,59 @@ fn run_clause(c: &PClause, args: &[Val], regs: &mut [Val]) -> Outcome {
     }
     let mut cut = false;
     let mut assigned = None;
-    for g in c.body.iter() {
+    match run_goals(&c.body, regs, &mut cut, &mut assigned) {
+        Err(()) => Outcome::Unsure,
+        Ok(false) => Outcome::Fail { cut },
+        Ok(true) => match assigned {
+            Some(o) => value(o, regs).map_or(Outcome::Unsure, Outcome::Value),
+            None => Outcome::NoValue,
+        },
+    }
+}
+
+/// `plain::run_goals` on values.
+fn run_goals<'c>(
+    goals: &'c [PGoal],
+    regs: &mut [Val],
+    cut: &mut bool,
+    assigned: &mut Option<&'c Opnd>,
+) -> Result<bool, ()> {
+    for g in goals {
         let holds = match g {
             PGoal::True => true,
             PGoal::Fail => false,
             PGoal::Cut => {
-                cut = true;
+                *cut = true;
                 true
             }
-            PGoal::IsFresh(i, e) => match eval(e, regs) {
-                Ok(v) => {
-                    regs[*i as usize] = Val::Int(v);
-                    true
-                }
-                Err(()) => return Outcome::Unsure,
-            },
-            PGoal::IsBound(i, e) => match (eval(e, regs), int(&regs[*i as usize])) {
-                (Ok(v), Ok(w)) => v == w,
-                _ => return Outcome::Unsure,
-            },
-            PGoal::Cmp(op, x, y) => match (eval(x, regs), eval(y, regs)) {
-                (Ok(x), Ok(y)) => super::compare(*op, x, y),
-                _ => return Outcome::Unsure,
-            },
-            PGoal::Ident(eq, x, y) => ident_oo(x, y, regs) == *eq,
-            PGoal::Bind(i, o) => match value(o, regs) {
-                Some(v) => {
-                    regs[*i as usize] = v;
-                    true
-                }
-                None => return Outcome::Unsure,
-            },
-            PGoal::Assign(o) => {
-                assigned = Some(o);
+            PGoal::IsFresh(i, e) => {
+                regs[*i as usize] = Val::Int(eval(e, regs)?);
                 true
+            }
+            PGoal::IsBound(i, e) => eval(e, regs)? == int(&regs[*i as usize])?,
+            PGoal::Cmp(op, x, y) => super::compare(*op, eval(x, regs)?, eval(y, regs)?),
+            PGoal::Ident(eq, x, y) => ident_oo(x, y, regs) == *eq,
+            PGoal::Bind(i, o) => {
+                regs[*i as usize] = value(o, regs).ok_or(())?;
+                true
+            }
+            PGoal::Assign(o) => {
+                *assigned = Some(o);
+                true
+            }
+            PGoal::Ite(c, t, e) => {
+                let (mut no_cut, mut none) = (false, None);
+                let branch = if run_goals(c, regs, &mut no_cut, &mut none)? {
+                    t
+                } else {
+                    e
+                };
+                run_goals(branch, regs, cut, assigned)?
             }
         };
         if !holds {
-            return Outcome::Fail { cut };
+            return Ok(false);
         }
     }
-    match assigned {
-        Some(o) => value(o, regs).map_or(Outcome::Unsure, Outcome::Value),
-        None => Outcome::NoValue,
-    }
+    Ok(true)
 }

@@ -34,3 +34,15 @@ diag_mod(tick(Start),
   ],
   []
 ).
+
+% `weigh(Crates)`: the first crate `heavy/1` (an if-then-else) accepts.
+diag_mod(weigh(Crates),
+  [ [ id ==> load, type ==> neutral, arcs ==> [ empty : empty => crate(Crates) ] ],
+    [ id ==> crate([]), type ==> neutral, arcs ==> [ empty : empty => light ] ],
+    [ id ==> crate([W|Ws]), type ==> neutral,
+      arcs ==> [ empty : empty => (apply(heavy(_), [W]) == yes -> heavy(W) ; otherwise -> crate(Ws)) ] ],
+    [ id ==> heavy(_), type ==> final ],
+    [ id ==> light, type ==> final ]
+  ],
+  []
+).

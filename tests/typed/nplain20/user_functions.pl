@@ -17,3 +17,16 @@ is_at(_, _) :- assign_func_value(no).
 
 bump(N) :- M is N + 1, M > 3, !, assign_func_value(done(M)).
 bump(N) :- M is N + 1, assign_func_value(at(M)).
+
+% An if-then-else whose condition tests (plain): yes from 1000 on, no
+% below; 13 cuts in the then branch and then fails; a negative weight
+% fails; `big` gives a nested if-then-else's value.
+heavy(W) :-
+    W >= 0,
+    (   W >= 1000
+    ->  A = yes
+    ;   W =:= 13
+    ->  A = unlucky, !, fail
+    ;   A = no
+    ),
+    assign_func_value(A).

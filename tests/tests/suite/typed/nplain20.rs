@@ -1,7 +1,8 @@
 //! Helper `nplain20` (issue 37): plain Prolog user functions called by
 //! native code on the values it holds (`Cx::nat_plain`,
 //! `tests/typed/nplain20`): a next situation that is a function's value
-//! (`hop/2`, `tick/1`), a condition `apply(..) == yes` (`check/2`). The
+//! (`hop/2`, `tick/1`), a condition `apply(..) == yes` (`check/2`,
+//! `weigh/1`, whose function is an if-then-else). The
 //! compiled task and the interpreter's plans, plain forms run natively,
 //! give what the interpreter gives with every call a query of the engine;
 //! the compiled task what the interpreter gives without history. The
@@ -52,6 +53,13 @@ const MAINS: &[&str] = &[
     "tick(9223372036854775807)",
     "tick(a)",
     "tick(1.5)",
+    "weigh([5, 1200, 7])",
+    "weigh([5, 7])",
+    "weigh([5, 13, 2000])",
+    "weigh([5, -1])",
+    "weigh([5, a])",
+    "weigh([5, 1000.0])",
+    "weigh([5, _])",
 ];
 
 #[test]
@@ -70,7 +78,7 @@ fn nplain20_plain_functions_on_native_values_agree() {
         .iter()
         .map(|(n, a)| format!("{n}/{a}"))
         .collect();
-    assert_eq!(names.join(" "), "bump/1 is_at/2 next_of/3");
+    assert_eq!(names.join(" "), "bump/1 heavy/1 is_at/2 next_of/3");
     let compiled = dms::nplain20::program();
     for main in MAINS {
         set(&p, true);
