@@ -202,7 +202,7 @@ pub(super) struct PlainFn {
 /// The native forms of an application's plain functions.
 #[derive(Clone, Debug, Default)]
 pub(super) struct PlainFns {
-    map: HashMap<(Atom, usize), PlainFn>,
+    map: crate::functions::KeyMap<PlainFn>,
 }
 
 /// Reads the application's clauses and directives as the engine loads

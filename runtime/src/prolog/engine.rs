@@ -345,6 +345,9 @@ struct Inner {
     /// The application's plain functions, run natively where they can
     /// be (`plain`).
     plain: PlainFns,
+    /// Started without an error and not abandoned since: what
+    /// `plain_vals` reads instead of both locks.
+    plain_live: AtomicBool,
 }
 
 impl std::fmt::Debug for PrologFunctions {
@@ -627,6 +630,7 @@ impl PrologFunctions {
                 roots,
                 kb_host,
                 plain,
+                plain_live: AtomicBool::new(false),
             }),
         };
         (engine, load_errors)
@@ -663,6 +667,9 @@ impl PrologFunctions {
         let options = limits.map_or(self.inner.options, PrologOptions::from);
         let outcome = self.start_now(trust, options, stop);
         *started = Some(outcome.clone());
+        // Set under the lock: no call can be abandoned before it.
+        let live = outcome.is_ok() && self.inner.abandoned.lock().is_ok_and(|a| a.is_none());
+        self.inner.plain_live.store(live, Ordering::Release);
         outcome
     }
 
@@ -809,7 +816,7 @@ impl PrologFunctions {
     /// call before the run's start, and decides the rest). The same checks
     /// as the term path's: the registry (`call_native`), the inference
     /// limit, the caller's variables (the globals: the caller has no
-    /// locals), the engine not abandoned. A plain function is one the
+    /// locals), the engine started and not abandoned (`plain_live`). A plain function is one the
     /// application defines (its clauses are the application's), so
     /// `defines` holds of it.
     fn plain_vals(
@@ -820,9 +827,8 @@ impl PrologFunctions {
         name: Atom,
         args: &[crate::native::Val],
     ) -> Option<crate::native::Val> {
-        match self.inner.started.lock() {
-            Ok(s) if matches!(*s, Some(Ok(()))) => {}
-            _ => return None,
+        if !self.inner.plain_live.load(Ordering::Acquire) {
+            return None;
         }
         let limit = functions
             .call_limits()
@@ -832,13 +838,9 @@ impl PrologFunctions {
             .entries()
             .iter()
             .all(|&(_, v)| plain::sure(store, v, false));
-        if !shallow {
-            return None;
-        }
-        match self.inner.abandoned.lock() {
-            Ok(a) if a.is_none() => Some(v),
-            _ => None,
-        }
+        // Abandoned meanwhile (by another run sharing the engine): its
+        // calls are errors.
+        (shallow && self.inner.plain_live.load(Ordering::Acquire)).then_some(v)
     }
 
     /// Runs a raw query (for tests and tools): the first answer's binding
@@ -954,6 +956,7 @@ impl PrologFunctions {
                 }
             };
             if let Some(message) = over {
+                self.inner.plain_live.store(false, Ordering::Release);
                 if let Ok(mut a) = self.inner.abandoned.lock() {
                     *a = Some(message.clone());
                 }
