@@ -4,6 +4,7 @@
 //! task history (read only, like `get_history/1`).
 
 use crate::history::{self, Item};
+use crate::native::Val;
 use crate::store::Store;
 use crate::term::Term;
 use crate::trust::Trust;
@@ -40,6 +41,14 @@ pub type UserFn = dyn Fn(&mut FnCall<'_>, &[Term]) -> Result<Term, String> + Sen
 /// `None` means "not mine".
 pub type FallbackFn =
     dyn Fn(&mut FnCall<'_>, Atom, &[Term]) -> Option<Result<Term, String>> + Send + Sync;
+
+/// Runs a function that has no Rust entry on native values where it can
+/// (a plain Prolog function: `prolog::plain`), given the registry, the
+/// store and the caller's globals; `None` means the term path
+/// ([`Functions::call`]) decides, with the same answer or error it always
+/// gives. Only code whose DM has no locals calls it (the caller's locals
+/// are then empty, as a query would send them).
+pub type NativeFn = dyn Fn(&Functions, &Store, &Vars, Atom, &[Val]) -> Option<Val> + Send + Sync;
 
 /// Run once when a run starts (its first transition), given the registry
 /// (the run's [`Trust`], call limits and stop flag): an engine's own code (Prolog directives)
@@ -84,11 +93,44 @@ impl Default for CallLimits {
     }
 }
 
+/// Hashes a function's key (an atom's index and an arity) with a
+/// multiplication a word: the registry is looked up at every call (a
+/// plain function on native values, `Functions::call_native`, too). The
+/// keys are the program's own names, not an adversary's.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct KeyHasher(u64);
+
+impl std::hash::Hasher for KeyHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+    fn write_u32(&mut self, i: u32) {
+        self.write_u64(u64::from(i));
+    }
+    fn write_usize(&mut self, i: usize) {
+        self.write_u64(i as u64);
+    }
+    fn write_u64(&mut self, i: u64) {
+        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+/// A map by function key ([`KeyHasher`]).
+pub(crate) type KeyMap<V> = HashMap<(Atom, usize), V, std::hash::BuildHasherDefault<KeyHasher>>;
+
 /// The registry of user functions.
 #[derive(Clone, Default)]
 pub struct Functions {
-    map: HashMap<(Atom, usize), Arc<UserFn>>,
+    map: KeyMap<Arc<UserFn>>,
     fallback: Option<Arc<FallbackFn>>,
+    /// The fallback's run on native values ([`NativeFn`]); set with it,
+    /// dropped when another fallback is set.
+    native: Option<Arc<NativeFn>>,
     limits: Option<CallLimits>,
     start: Option<Arc<StartFn>>,
     trust: Trust,
@@ -149,6 +191,34 @@ impl Functions {
             + 'static,
     ) {
         self.fallback = Some(Arc::new(f));
+        self.native = None;
+    }
+
+    /// Sets the fallback's run on native values (see [`NativeFn`]): after
+    /// [`Functions::set_fallback`], which drops it.
+    pub fn set_native(
+        &mut self,
+        f: impl Fn(&Functions, &Store, &Vars, Atom, &[Val]) -> Option<Val> + Send + Sync + 'static,
+    ) {
+        self.native = Some(Arc::new(f));
+    }
+
+    /// The value of `name(args..)` run on native values by the fallback, if
+    /// it runs so (see [`NativeFn`]): never for a function registered in
+    /// Rust, which [`Functions::call`] runs instead of the fallback.
+    #[inline]
+    pub fn call_native(
+        &self,
+        store: &Store,
+        globals: &Vars,
+        name: Atom,
+        args: &[Val],
+    ) -> Option<Val> {
+        let f = self.native.as_ref()?;
+        if self.map.contains_key(&(name, args.len())) {
+            return None;
+        }
+        f(self, store, globals, name, args)
     }
 
     /// Sets the bounds of each call of a function run outside Rust

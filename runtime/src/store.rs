@@ -87,6 +87,8 @@ pub struct Store {
     /// Buffers of the collector, kept between collections so that a
     /// collection allocates (and page-faults) nothing once warm.
     pub(crate) gc_scratch: GcScratch,
+    /// The last list a plain function's call took whole (`crate::plain`).
+    pub(crate) plain_memo: crate::plain::Memo,
 }
 
 impl Default for Store {
@@ -120,6 +122,7 @@ impl Store {
             results: Vec::new(),
             rng: seed | 1,
             gc_scratch: Default::default(),
+            plain_memo: Default::default(),
         }
     }
 

@@ -155,6 +155,9 @@ struct Gen<'s> {
     /// statement a global read's cold arm ends with where the global's
     /// value is not of its MIR type (`native::cold`), instead of an error.
     global_cold: std::cell::RefCell<Option<proc_macro2::TokenStream>>,
+    /// The functions the build takes for plain (`native::plain`), read
+    /// once from the program's Prolog files.
+    plain_fns: std::cell::OnceCell<std::collections::HashSet<(Atom, usize)>>,
 }
 
 /// Code that builds one term: statements, then the expression of its value.
@@ -182,6 +185,7 @@ impl<'s> Gen<'s> {
             native_ok: std::cell::RefCell::new(HashMap::new()),
             patterns: std::cell::RefCell::new(Vec::new()),
             global_cold: std::cell::RefCell::new(None),
+            plain_fns: std::cell::OnceCell::new(),
         }
     }
 

@@ -48,6 +48,7 @@ mod native_stack;
 mod observe;
 mod options;
 mod outcome;
+mod plain_fn;
 mod program;
 mod run;
 mod situation;

@@ -181,6 +181,20 @@ impl<T> List<T> {
         it
     }
 
+    /// Whether `other` is this list or one of its tails, decided without a
+    /// walk: a list that arrived whole and a part of it from the same start
+    /// on, or the very same cell; `false` otherwise (also for `[]`, and
+    /// for a tail that a walk along a chain of cells would find).
+    pub fn has_tail(&self, other: &List<T>) -> bool {
+        match (&self.0, &other.0) {
+            (Shape::Slice { items: a, start: i }, Shape::Slice { items: b, start: j }) => {
+                j >= i && Rc::ptr_eq(a, b)
+            }
+            (Shape::Cons(a), Shape::Cons(b)) => Rc::ptr_eq(a, b),
+            _ => false,
+        }
+    }
+
     /// Whether both lists are the very same storage (then they are equal
     /// without a walk): a tail shares its list's storage this way.
     pub fn same_storage(&self, other: &List<T>) -> bool {

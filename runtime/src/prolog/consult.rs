@@ -7,9 +7,9 @@
 //! again replaces what an earlier file defined ([`Redefinitions`]).
 
 use super::legacy_kb::{ClauseFate, NativeState};
-use super::plain::PlainScan;
 use super::translate::{Prepared, Writer};
 use crate::paths::normalize;
+use crate::plain::PlainScan;
 use crate::store::Store;
 use crate::term::{Term, Value};
 use sitlog_syntax::{atoms, read_prolog_clauses, Atom};

@@ -17,10 +17,10 @@
 use super::consult::{prepare, LineCursor, Prep, PrologLoadError, PrologSource, Redefinitions};
 use super::legacy_kb::{rename_head, KbHost, NativeKb, NativeState, Wrapped, NATIVE_FILE};
 use super::permissions;
-use super::plain::{self, PlainFns, PlainScan};
 use super::swi::{LIBRARIES, PRELUDE, PRELUDE_SWI, SWI_PREDICATES};
 use super::translate::{drop_deep, from_prolog, read_reply, write_atom, Prepared, Writer};
 use crate::functions::{CallLimits, FnCall, Functions, PROLOG_MAX_DEPTH};
+use crate::plain::{self, PlainFns, PlainScan};
 use crate::store::Store;
 use crate::term::Term;
 use crate::trust::{Confine, Trust};
@@ -345,6 +345,9 @@ struct Inner {
     /// The application's plain functions, run natively where they can
     /// be (`plain`).
     plain: PlainFns,
+    /// Started without an error and not abandoned since: what
+    /// `plain_vals` reads instead of both locks.
+    plain_live: AtomicBool,
 }
 
 impl std::fmt::Debug for PrologFunctions {
@@ -627,6 +630,7 @@ impl PrologFunctions {
                 roots,
                 kb_host,
                 plain,
+                plain_live: AtomicBool::new(false),
             }),
         };
         (engine, load_errors)
@@ -663,6 +667,9 @@ impl PrologFunctions {
         let options = limits.map_or(self.inner.options, PrologOptions::from);
         let outcome = self.start_now(trust, options, stop);
         *started = Some(outcome.clone());
+        // Set under the lock: no call can be abandoned before it.
+        let live = outcome.is_ok() && self.inner.abandoned.lock().is_ok_and(|a| a.is_none());
+        self.inner.plain_live.store(live, Ordering::Release);
         outcome
     }
 
@@ -759,6 +766,12 @@ impl PrologFunctions {
             }
             Some(me.call(call, name, args))
         });
+        if plain && self.inner.plain.keys().next().is_some() {
+            let me = self.clone();
+            functions.set_native(move |functions, store, globals, name, args| {
+                me.plain_vals(functions, store, globals, name, args)
+            });
+        }
         let me = self.clone();
         functions.set_start(move |functions| me.start_from(functions).map_err(|e| show_errors(&e)));
     }
@@ -795,6 +808,39 @@ impl PrologFunctions {
             Ok(a) if a.is_none() => Some(v),
             _ => None,
         }
+    }
+
+    /// [`plain_call`](Self::plain_call) on native values (`Cx::nat_plain`,
+    /// through [`Functions::call_native`]): the value if the call runs
+    /// natively, `None` for the term path (which starts the engine on a
+    /// call before the run's start, and decides the rest). The same checks
+    /// as the term path's: the registry (`call_native`), the inference
+    /// limit, the caller's variables (the globals: the caller has no
+    /// locals), the engine started and not abandoned (`plain_live`). A plain function is one the
+    /// application defines (its clauses are the application's), so
+    /// `defines` holds of it.
+    fn plain_vals(
+        &self,
+        functions: &Functions,
+        store: &Store,
+        globals: &crate::vars::Vars,
+        name: Atom,
+        args: &[crate::native::Val],
+    ) -> Option<crate::native::Val> {
+        if !self.inner.plain_live.load(Ordering::Acquire) {
+            return None;
+        }
+        let limit = functions
+            .call_limits()
+            .map_or(self.inner.options.inference_limit, |l| l.inferences);
+        let v = self.inner.plain.call_vals(name, args, limit)?;
+        let shallow = globals
+            .entries()
+            .iter()
+            .all(|&(_, v)| plain::sure(store, v, false));
+        // Abandoned meanwhile (by another run sharing the engine): its
+        // calls are errors.
+        (shallow && self.inner.plain_live.load(Ordering::Acquire)).then_some(v)
     }
 
     /// Runs a raw query (for tests and tools): the first answer's binding
@@ -910,6 +956,7 @@ impl PrologFunctions {
                 }
             };
             if let Some(message) = over {
+                self.inner.plain_live.store(false, Ordering::Release);
                 if let Ok(mut a) = self.inner.abandoned.lock() {
                     *a = Some(message.clone());
                 }

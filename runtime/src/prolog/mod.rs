@@ -43,7 +43,7 @@
 //! `assign_func_value/1`, the SitLog variables changed by `var_op/1` and
 //! the bindings of the caller's variables. The engine is not `Send`: it
 //! lives on a thread of its own and calls are messages to it. A call of a
-//! *plain* function (`plain`: integer arithmetic, comparisons, `==`, cut,
+//! *plain* function (`crate::plain`: integer arithmetic, comparisons, `==`, cut,
 //! `assign_func_value/1`) is first run natively from the clauses the
 //! engine loaded; where that does not give a value, the query decides.
 //!
@@ -75,7 +75,6 @@ mod engine;
 mod kb_reach;
 mod legacy_kb;
 mod permissions;
-mod plain;
 mod reach_cache;
 mod swi;
 mod translate;

@@ -3909,6 +3909,9 @@ mod review19;
 /// Helper `nfn19`'s plain functions returning compounds (issue 37).
 mod plain_compounds;
 
+/// Helper `nplain20`'s plain functions called on native values (issue 37).
+mod nplain20;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");

@@ -84,6 +84,9 @@ const SAFE: &[&str] = &[
     "nat_var_op_fresh",
     "nat_arith_condition",
     "nat_is",
+    // A plain function on native values: reads the store and the globals
+    // only (`machine::plain_fn`).
+    "nat_plain",
     "perform_value",
     "global_as",
     "global_inc",

@@ -233,6 +233,7 @@ mod ground_parts;
 mod next_is;
 mod perceive;
 mod pipe;
+mod plain;
 use crate::ir::IrDm;
 use crate::mir::ty::{DmTypes, SitTypes};
 use crate::mir::{Action, ArcPlan, Build, Cond, Ev, Init, KindPlan, Next, Prog, Reg, SitPlan, ID};
@@ -5055,6 +5056,12 @@ impl Gen<'_> {
                     }
                 };
                 let name = format_ident!("cond_value");
+                // `apply(f(..), [..]) == k` of a plain function (`plain`).
+                if let Some(pre) = self.nat_plain_cond(d, c, regs, &name, || on_terms(&name))? {
+                    let a = self.nat_next(d, cur, a, regs, cur_name)?;
+                    let b = self.nat_next(d, cur, b, regs, cur_name)?;
+                    return Ok(quote!({ #pre if #name { #a } else { #b } }));
+                }
                 let cond = self.nat_cond_cold(d, cur, c, &mut bregs, &mut binds, &on_terms)?;
                 let (c, pre) = match cond {
                     Ok(c) => c,
@@ -5153,14 +5160,21 @@ impl Gen<'_> {
                 let t = self.nat_build_term(b, regs, &mut ts, &mut n)?;
                 let out = d.out.borrow().clone();
                 let tail = goto_tail(&d.rec.borrow());
-                Ok(quote! {{
+                let evaluated = quote! {{
                     #enter
                     #(#ts)*
                     let rec_next = cx.eval(#t, arc_at)?;
                     cx.count_transitions(count);
                     #out
                     #tail
-                }})
+                }};
+                // A plain user function's value selected natively (`plain`).
+                if let Some(code) =
+                    self.nat_plain_next(d, cur, b, regs, cur_name, evaluated.clone())?
+                {
+                    return Ok(code);
+                }
+                Ok(evaluated)
             }
             Next::Eval(Ev::Compound(name, args))
                 if args.iter().any(|a| matches!(a, Ev::IsFresh { .. })) =>

@@ -649,6 +649,20 @@ impl Gen<'_> {
             quote!(cx.eval(out_term, arc_at)),
             quote!(Term),
         )?;
+        // A plain user function's value, computed on native values
+        // (`plain`), the evaluation where it gives none.
+        let pre = match self.nat_plain_call(d, b, regs)? {
+            Some(call) => quote! {
+                let #name: Term = match #call {
+                    Some(pv) => cx.term(&pv),
+                    None => {
+                        #pre
+                        #name
+                    }
+                };
+            },
+            None => pre,
+        };
         let pre = rename_kept(pre, &moved);
         let kept = moved.iter().map(|r| {
             let k = kept_name(r);

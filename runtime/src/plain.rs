@@ -33,11 +33,21 @@
 //! as data (`assert`, `retract`, `clause`, ... named anywhere), defines a
 //! predicate the plain form relies on (`assign_func_value/1`), or runs
 //! under the legacy profile (checked by [`PlainScan`]'s caller).
+//!
+//! The same clauses also run on native values (`val`: [`PlainFns::call_vals`],
+//! what `Cx::nat_plain` reaches through the engine's handle), under the
+//! same invariant and the same refusals; and a build reads which
+//! functions are plain from the files' text ([`plain_names`], a guess the
+//! run checks). This module needs no engine: `prolog` (feature `prolog`)
+//! loads the forms, the compiler without it reads the names.
 
 use crate::store::Store;
-use crate::term::{Term, Value, Var};
+use crate::term::{Repr, Term, Value, Var};
 use sitlog_syntax::{atoms, Atom};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+mod val;
 
 /// The names whose mention anywhere in the application's Prolog turns the
 /// native form off: they change or look at clauses, or at the code, as
@@ -145,6 +155,33 @@ enum PGoal {
     /// `V = X` with `V` fresh.
     Bind(u16, Opnd),
     Assign(Opnd),
+    /// `( C -> T ; E )`: `C` tests only (it binds no variable, cuts
+    /// nothing, assigns nothing), `T` and `E` plain conjunctions that bind
+    /// the same variables (a cut in them cuts the clause, as in Prolog).
+    Ite(Box<[PGoal]>, Box<[PGoal]>, Box<[PGoal]>),
+}
+
+impl PGoal {
+    /// Whether the goal only tests (binds, cuts and assigns nothing).
+    fn is_test(&self) -> bool {
+        matches!(
+            self,
+            PGoal::True | PGoal::Fail | PGoal::IsBound(..) | PGoal::Cmp(..) | PGoal::Ident(..)
+        )
+    }
+
+    /// The goals the engine counts for it.
+    fn goals(&self) -> usize {
+        match self {
+            PGoal::Ite(c, t, e) => {
+                1 + [c, t, e]
+                    .iter()
+                    .map(|g| g.iter().map(PGoal::goals).sum::<usize>())
+                    .sum::<usize>()
+            }
+            _ => 1,
+        }
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -165,7 +202,7 @@ pub(super) struct PlainFn {
 /// The native forms of an application's plain functions.
 #[derive(Clone, Debug, Default)]
 pub(super) struct PlainFns {
-    map: HashMap<(Atom, usize), PlainFn>,
+    map: crate::functions::KeyMap<PlainFn>,
 }
 
 /// Reads the application's clauses and directives as the engine loads
@@ -221,7 +258,10 @@ impl PlainScan {
             .filter(|((name, _), _)| !name.as_str().starts_with('$'))
             .filter_map(|(key, clauses)| {
                 let clauses = clauses?;
-                let goals: usize = clauses.iter().map(|c| c.body.len() + 1).sum();
+                let goals: usize = clauses
+                    .iter()
+                    .map(|c| c.body.iter().map(PGoal::goals).sum::<usize>() + 1)
+                    .sum();
                 Some((
                     key,
                     PlainFn {
@@ -233,6 +273,45 @@ impl PlainScan {
             .collect();
         PlainFns { map }
     }
+}
+
+/// The functions of the Prolog files `files` (each its text, and its
+/// clauses if read already) that are plain as the files read (without the
+/// files their directives consult): what a build may expect to run
+/// natively. Only a guess for generated code, which asks at run time
+/// ([`PlainFns::call_vals`] through the engine that loaded the run's
+/// sources, `None` there taking the term path); the engine's own scan
+/// ([`PlainScan`] as `prolog::consult::prepare` loads the files) decides.
+pub fn plain_names(files: &[(&str, Option<&[sitlog_syntax::Clause]>)]) -> HashSet<(Atom, usize)> {
+    let mut scan = PlainScan::default();
+    let neck = Atom::intern(":-");
+    for &(text, clauses) in files {
+        let read;
+        let clauses: &[sitlog_syntax::Clause] = match clauses {
+            Some(clauses) => clauses,
+            None => {
+                read = sitlog_syntax::read_prolog_clauses(text).0;
+                &read
+            }
+        };
+        for c in clauses {
+            let mut store = Store::new();
+            let (t, _) = store.from_clause(c);
+            if let Some(a) = store.compound_args(t, neck, 1) {
+                let g = a[0];
+                scan.directive(&store, g);
+                continue;
+            }
+            let (head, body) = match store.compound_args(t, neck, 2) {
+                Some(a) => (a[0], Some(a[1])),
+                None => (t, None),
+            };
+            if let Some(key) = store.functor(head) {
+                scan.clause(&store, key, head, body);
+            }
+        }
+    }
+    scan.finish().keys().collect()
 }
 
 impl PlainFns {
@@ -285,16 +364,79 @@ impl PlainFns {
 /// than `PROLOG_MAX_DEPTH`, with an error naming the function).
 const MAX_DEPTH: usize = 10_000;
 
+/// The last list cell [`sure`] took whole as an argument, in its store
+/// (`Store::plain_memo`): the store's epoch and the cell's index, so that a
+/// walk that passes the rest of its list at each call checks the list
+/// once (the arguments of the next call are then that list, or its tail).
+/// Only a list the store knows ground is remembered: its cells never
+/// change until a collection, which bumps the epoch (a clone of the store
+/// holds the same cells, and the memo with them).
+#[derive(Debug, Default)]
+pub(crate) struct Memo(AtomicU64);
+
+impl Clone for Memo {
+    fn clone(&self) -> Memo {
+        Memo(AtomicU64::new(self.0.load(Ordering::Relaxed)))
+    }
+}
+
+impl Memo {
+    fn get(&self, epoch: u32) -> Option<u32> {
+        let m = self.0.load(Ordering::Relaxed);
+        (m as u32 != 0 && (m >> 32) as u32 == epoch).then(|| m as u32 - 1)
+    }
+
+    fn set(&self, epoch: u32, cell: u32) {
+        if let Some(c) = cell.checked_add(1) {
+            self.0
+                .store(u64::from(epoch) << 32 | u64::from(c), Ordering::Relaxed);
+        }
+    }
+}
+
+/// The index of the list cell `t` is, if the store knows it ground.
+fn ground_cell(store: &Store, t: Term) -> Option<u32> {
+    match t.0 {
+        Repr::Struct(i)
+            if store.known_ground(t) && store.compound_args(t, atoms::DOT, 2).is_some() =>
+        {
+            Some(i)
+        }
+        _ => None,
+    }
+}
+
 /// Whether `t` nests at most [`MAX_DEPTH`] levels and, if `strict`, is
 /// ground with no float, big integer or improper list (`[a|b]`) anywhere
 /// in it: the engine cannot give back an answer that holds an improper
-/// list (it fails the call: see [`value`]).
+/// list (it fails the call: see [`value`]). A strict argument that is the
+/// list [`Memo`] remembers, or its tail, is taken without a walk.
 pub(super) fn sure(store: &Store, t: Term, strict: bool) -> bool {
-    match store.value(store.deref(t)) {
+    let t = store.deref(t);
+    match store.value(t) {
         Value::Atom(_) | Value::Int(_) => return true,
         Value::Var(_) | Value::BigInt(_) | Value::Float(_) => return !strict,
         Value::Compound(..) => {}
     }
+    let cell = if strict { ground_cell(store, t) } else { None };
+    if let Some(i) = cell {
+        if let Some(m) = store.plain_memo.get(store.epoch) {
+            let last = Term(Repr::Struct(m));
+            if m == i || store.args(last)[1] == t {
+                store.plain_memo.set(store.epoch, i);
+                return true;
+            }
+        }
+    }
+    let ok = sure_walk(store, t, strict);
+    if let (true, Some(i)) = (ok, cell) {
+        store.plain_memo.set(store.epoch, i);
+    }
+    ok
+}
+
+/// [`sure`] of a compound, walked.
+fn sure_walk(store: &Store, t: Term, strict: bool) -> bool {
     let mut stack = vec![(t, 0usize)];
     while let Some((t, depth)) = stack.pop() {
         if depth > MAX_DEPTH {
@@ -385,30 +527,72 @@ fn plain_clause(store: &Store, head: Term, body: Option<Term>) -> Option<PClause
     for &a in store.args(head) {
         args.push(head_arg(store, a, &mut scope, 0)?);
     }
-    let mut goals = Vec::new();
-    if let Some(b) = body {
-        let mut conj = vec![b];
-        // The conjunction's goals, left to right.
-        let mut flat = Vec::new();
-        while let Some(g) = conj.pop() {
-            let g = store.deref(g);
-            match store.value(g) {
-                Value::Compound(f, a) if f.as_str() == "," && a.len() == 2 => {
-                    conj.push(a[1]);
-                    conj.push(a[0]);
-                }
-                _ => flat.push(g),
-            }
-        }
-        for g in flat {
-            goals.push(plain_goal(store, g, &mut scope)?);
-        }
-    }
+    let goals = match body {
+        Some(b) => conj(store, b, &mut scope, 0)?,
+        None => Vec::new(),
+    };
     Some(PClause {
         vars: scope.vars.len(),
         head: args.into(),
         body: goals.into(),
     })
+}
+
+/// The plain goals of the conjunction `b`, left to right (`depth`: how
+/// deep in if-then-elses).
+fn conj(store: &Store, b: Term, scope: &mut Scope, depth: usize) -> Option<Vec<PGoal>> {
+    if depth > MAX_PATTERN_DEPTH {
+        return None;
+    }
+    let mut stack = vec![b];
+    let mut flat = Vec::new();
+    while let Some(g) = stack.pop() {
+        let g = store.deref(g);
+        match store.value(g) {
+            Value::Compound(f, a) if f.as_str() == "," && a.len() == 2 => {
+                stack.push(a[1]);
+                stack.push(a[0]);
+            }
+            _ => flat.push(g),
+        }
+    }
+    let mut goals = Vec::with_capacity(flat.len());
+    for g in flat {
+        goals.push(plain_goal(store, g, scope, depth)?);
+    }
+    Some(goals)
+}
+
+/// `( C -> T ; E )` (`c_t` the `->`, `e` the else) as [`PGoal::Ite`], if
+/// plain: the condition only tests, and the variables bound after it are
+/// the same whichever branch ran.
+fn if_then_else(
+    store: &Store,
+    c_t: Term,
+    e: Term,
+    scope: &mut Scope,
+    depth: usize,
+) -> Option<PGoal> {
+    let [c, t] = match store.value(store.deref(c_t)) {
+        Value::Compound(f, a) if f.as_str() == "->" && a.len() == 2 => [a[0], a[1]],
+        _ => return None,
+    };
+    let before = scope.bound.clone();
+    let cg = conj(store, c, scope, depth + 1)?;
+    if !cg.iter().all(PGoal::is_test)
+        || scope.bound.iter().filter(|&&b| b).count() != before.iter().filter(|&&b| b).count()
+    {
+        return None;
+    }
+    let tg = conj(store, t, scope, depth + 1)?;
+    let after_t = scope.bound.clone();
+    for (k, b) in scope.bound.iter_mut().enumerate() {
+        *b = before.get(k).copied().unwrap_or(false);
+    }
+    let eg = conj(store, e, scope, depth + 1)?;
+    let same =
+        (0..scope.bound.len()).all(|k| scope.bound[k] == after_t.get(k).copied().unwrap_or(false));
+    same.then(|| PGoal::Ite(cg.into(), tg.into(), eg.into()))
 }
 
 /// A head argument: a variable (its first occurrence binds it), a constant,
@@ -510,8 +694,11 @@ fn expr(store: &Store, t: Term, scope: &mut Scope, depth: usize) -> Option<PExpr
     }
 }
 
-fn plain_goal(store: &Store, g: Term, scope: &mut Scope) -> Option<PGoal> {
+fn plain_goal(store: &Store, g: Term, scope: &mut Scope, depth: usize) -> Option<PGoal> {
     match store.value(g) {
+        Value::Compound(f, a) if a.len() == 2 && f.as_str() == ";" => {
+            if_then_else(store, a[0], a[1], scope, depth)
+        }
         Value::Atom(a) => match a.as_str() {
             "true" => Some(PGoal::True),
             "fail" | "false" => Some(PGoal::Fail),
@@ -607,6 +794,43 @@ fn int(store: &Store, t: Term) -> Result<i64, ()> {
     store.int_of(t).ok_or(())
 }
 
+/// `x op y` on integers, `Err` (not decided here) on an overflow or a
+/// division by zero.
+fn bin(op: Bin, x: i64, y: i64) -> Result<i64, ()> {
+    Ok(match op {
+        Bin::Add => x.checked_add(y).ok_or(())?,
+        Bin::Sub => x.checked_sub(y).ok_or(())?,
+        Bin::Mul => x.checked_mul(y).ok_or(())?,
+        // Prolog's `//` truncates toward zero (the engine's
+        // `integer_rounding_function`), as Rust's `/`.
+        Bin::IntDiv => x.checked_div(y).ok_or(())?,
+        Bin::Rem => x.checked_rem(y).ok_or(())?,
+        // `mod`: the sign of the divisor.
+        Bin::Mod => {
+            let r = x.checked_rem(y).ok_or(())?;
+            if r != 0 && ((r < 0) != (y < 0)) {
+                r + y
+            } else {
+                r
+            }
+        }
+        Bin::Min => x.min(y),
+        Bin::Max => x.max(y),
+    })
+}
+
+/// Whether `x op y` holds.
+fn compare(op: Cmp, x: i64, y: i64) -> bool {
+    match op {
+        Cmp::Lt => x < y,
+        Cmp::Gt => x > y,
+        Cmp::Le => x <= y,
+        Cmp::Ge => x >= y,
+        Cmp::Eq => x == y,
+        Cmp::Ne => x != y,
+    }
+}
+
 fn eval(store: &Store, e: &PExpr, regs: &[Term]) -> Result<i64, ()> {
     Ok(match e {
         PExpr::Var(i) => int(store, regs[*i as usize])?,
@@ -619,29 +843,7 @@ fn eval(store: &Store, e: &PExpr, regs: &[Term]) -> Result<i64, ()> {
                 Un::Abs => x.checked_abs().ok_or(())?,
             }
         }
-        PExpr::Bin(op, x, y) => {
-            let (x, y) = (eval(store, x, regs)?, eval(store, y, regs)?);
-            match op {
-                Bin::Add => x.checked_add(y).ok_or(())?,
-                Bin::Sub => x.checked_sub(y).ok_or(())?,
-                Bin::Mul => x.checked_mul(y).ok_or(())?,
-                // Prolog's `//` truncates toward zero (the engine's
-                // `integer_rounding_function`), as Rust's `/`.
-                Bin::IntDiv => x.checked_div(y).ok_or(())?,
-                Bin::Rem => x.checked_rem(y).ok_or(())?,
-                // `mod`: the sign of the divisor.
-                Bin::Mod => {
-                    let r = x.checked_rem(y).ok_or(())?;
-                    if r != 0 && ((r < 0) != (y < 0)) {
-                        r + y
-                    } else {
-                        r
-                    }
-                }
-                Bin::Min => x.min(y),
-                Bin::Max => x.max(y),
-            }
-        }
+        PExpr::Bin(op, x, y) => bin(*op, eval(store, x, regs)?, eval(store, y, regs)?)?,
     })
 }
 
@@ -743,63 +945,72 @@ fn run_clause(store: &mut Store, c: &PClause, args: &[Term], regs: &mut [Term]) 
     }
     let mut cut = false;
     let mut assigned = None;
-    for g in c.body.iter() {
+    match run_goals(store, &c.body, regs, &mut cut, &mut assigned) {
+        Err(()) => Outcome::Unsure,
+        Ok(false) => Outcome::Fail { cut },
+        Ok(true) => match assigned {
+            Some(o) => value(store, o, regs).map_or(Outcome::Unsure, Outcome::Value),
+            None => Outcome::NoValue,
+        },
+    }
+}
+
+/// Runs `goals` in order: whether they all held (`cut` set by a cut
+/// reached, `assigned` the last assignment reached), `Err` where the
+/// native form does not decide.
+fn run_goals<'c>(
+    store: &mut Store,
+    goals: &'c [PGoal],
+    regs: &mut [Term],
+    cut: &mut bool,
+    assigned: &mut Option<&'c Opnd>,
+) -> Result<bool, ()> {
+    for g in goals {
         let holds = match g {
             PGoal::True => true,
             PGoal::Fail => false,
             PGoal::Cut => {
-                cut = true;
+                *cut = true;
                 true
             }
-            PGoal::IsFresh(i, e) => match eval(store, e, regs) {
-                Ok(v) => {
-                    regs[*i as usize] = Term::int(v);
-                    true
-                }
-                Err(()) => return Outcome::Unsure,
-            },
-            PGoal::IsBound(i, e) => match (eval(store, e, regs), int(store, regs[*i as usize])) {
-                (Ok(v), Ok(w)) => v == w,
-                _ => return Outcome::Unsure,
-            },
-            PGoal::Cmp(op, x, y) => match (eval(store, x, regs), eval(store, y, regs)) {
-                (Ok(x), Ok(y)) => match op {
-                    Cmp::Lt => x < y,
-                    Cmp::Gt => x > y,
-                    Cmp::Le => x <= y,
-                    Cmp::Ge => x >= y,
-                    Cmp::Eq => x == y,
-                    Cmp::Ne => x != y,
-                },
-                _ => return Outcome::Unsure,
-            },
+            PGoal::IsFresh(i, e) => {
+                regs[*i as usize] = Term::int(eval(store, e, regs)?);
+                true
+            }
+            PGoal::IsBound(i, e) => eval(store, e, regs)? == int(store, regs[*i as usize])?,
+            PGoal::Cmp(op, x, y) => compare(*op, eval(store, x, regs)?, eval(store, y, regs)?),
             PGoal::Ident(eq, x, y) => ident(store, x, y, regs) == *eq,
-            PGoal::Bind(i, o) => match value(store, o, regs) {
-                Some(v) => {
-                    regs[*i as usize] = v;
-                    true
-                }
-                None => return Outcome::Unsure,
-            },
+            PGoal::Bind(i, o) => {
+                regs[*i as usize] = value(store, o, regs).ok_or(())?;
+                true
+            }
             PGoal::Assign(o) => {
                 // Built when the clause has succeeded (a later assignment wins).
-                assigned = Some(o);
+                *assigned = Some(o);
                 true
+            }
+            PGoal::Ite(c, t, e) => {
+                // The condition tests only: no cut, no assignment to keep.
+                let (mut no_cut, mut none) = (false, None);
+                let branch = if run_goals(store, c, regs, &mut no_cut, &mut none)? {
+                    t
+                } else {
+                    e
+                };
+                run_goals(store, branch, regs, cut, assigned)?
             }
         };
         if !holds {
-            return Outcome::Fail { cut };
+            return Ok(false);
         }
     }
-    match assigned {
-        Some(o) => value(store, o, regs).map_or(Outcome::Unsure, Outcome::Value),
-        None => Outcome::NoValue,
-    }
+    Ok(true)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::native::{Compound, List, Ty, Val};
 
     fn scan(text: &str) -> PlainFns {
         let (clauses, _) = sitlog_syntax::read_prolog_clauses(text);
@@ -823,12 +1034,27 @@ mod tests {
         s.finish()
     }
 
+    /// The call on terms; on values too (`val`) where every argument is a
+    /// `ground` value, which must give the same.
     fn call(fns: &PlainFns, store: &mut Store, q: &str) -> Option<String> {
         let t = store.parse(q).unwrap().0;
         let (name, _) = store.functor(t).unwrap();
         let args = store.args(t).to_vec();
-        fns.call(store, name, &args, 10_000_000)
-            .map(|v| store.writeq(v))
+        let on_terms = fns
+            .call(store, name, &args, 10_000_000)
+            .map(|v| store.writeq(v));
+        let vals: Option<Vec<Val>> = args
+            .iter()
+            .map(|&a| Val::from_term(store, a, &Ty::Ground))
+            .collect();
+        if let Some(vals) = vals {
+            let on_vals = fns.call_vals(name, &vals, 10_000_000).map(|v| {
+                let t = v.to_term(store);
+                store.writeq(t)
+            });
+            assert_eq!(on_vals, on_terms, "{q} on values");
+        }
+        on_terms
     }
 
     #[test]
@@ -966,5 +1192,115 @@ mod tests {
         assert!(fns.call(s, echo, &[deeper], u64::MAX).is_none());
         let fns = scan("echo(X) :- assign_func_value(X).\nassign_func_value(_).\n");
         assert_eq!(fns.keys().count(), 0);
+    }
+
+    #[test]
+    fn if_then_else_with_a_test_for_condition() {
+        let fns = scan(
+            "heavy(W) :- W >= 0, ( W >= 1000 -> A = yes ; A = no ), assign_func_value(A).\n\
+             cut(X) :- ( X > 0 -> !, X > 5 ; true ), assign_func_value(big).\n\
+             cut(_) :- assign_func_value(small).\n\
+             pick(X) :- ( X == a -> assign_func_value(first) ; assign_func_value(other) ).\n\
+             nested(X) :- ( X > 0 -> ( X > 9 -> Y = 2 ; Y = 1 ) ; Y = 0 ), assign_func_value(Y).\n\
+             notest(X) :- ( Y = X -> A = Y ; A = no ), assign_func_value(A).\n\
+             onlyone(X) :- ( X > 0 -> A = yes ; true ), assign_func_value(X).\n\
+             nothen(X) :- ( X > 0 -> A = yes ), assign_func_value(A).\n\
+             either(X) :- ( X > 0 ; X < -5 ), assign_func_value(X).\n",
+        );
+        let mut keys: Vec<String> = fns.keys().map(|(n, a)| format!("{n}/{a}")).collect();
+        keys.sort();
+        assert_eq!(keys, ["cut/1", "heavy/1", "nested/1", "pick/1"]);
+        let s = &mut Store::new();
+        assert_eq!(call(&fns, s, "heavy(1500)").as_deref(), Some("yes"));
+        assert_eq!(call(&fns, s, "heavy(5)").as_deref(), Some("no"));
+        assert_eq!(call(&fns, s, "heavy(-1)"), None); // fails: the engine
+        assert_eq!(call(&fns, s, "heavy(a)"), None); // a type error
+        assert_eq!(call(&fns, s, "cut(9)").as_deref(), Some("big"));
+        assert_eq!(call(&fns, s, "cut(2)"), None); // fails after the cut
+        assert_eq!(call(&fns, s, "cut(0)").as_deref(), Some("big"));
+        assert_eq!(call(&fns, s, "pick(a)").as_deref(), Some("first"));
+        assert_eq!(call(&fns, s, "pick(f(a))").as_deref(), Some("other"));
+        assert_eq!(call(&fns, s, "nested(10)").as_deref(), Some("2"));
+        assert_eq!(call(&fns, s, "nested(3)").as_deref(), Some("1"));
+        assert_eq!(call(&fns, s, "nested(-3)").as_deref(), Some("0"));
+    }
+
+    #[test]
+    fn a_list_taken_whole_is_remembered_with_its_tails() {
+        let s = &mut Store::new();
+        let l = s.parse("[a, b, c]").unwrap().0;
+        assert!(sure(s, l, true));
+        let tail = s.args(l)[1];
+        assert_eq!(s.plain_memo.get(s.epoch), ground_cell(s, l));
+        assert!(sure(s, tail, true));
+        assert_eq!(s.plain_memo.get(s.epoch), ground_cell(s, tail));
+        // Another list is walked: a float is still refused.
+        let f = s.parse("[a, 1.5]").unwrap().0;
+        assert!(!sure(s, f, true));
+        // A list over a variable bound later is not remembered.
+        let x = s.new_var();
+        let one = s.list(&[x]);
+        s.bind(x, Term::atom(Atom::intern("q")));
+        assert!(sure(s, one, true));
+        assert_eq!(s.plain_memo.get(s.epoch), ground_cell(s, tail));
+        // A collection forgets it.
+        let mut roots = [l];
+        s.gc(&mut roots);
+        assert_eq!(s.plain_memo.get(s.epoch), None);
+        assert!(sure(s, roots[0], true));
+    }
+
+    #[test]
+    fn on_values_the_same_refusals() {
+        let fns = scan(
+            "echo(X) :- assign_func_value(X).\n\
+             walk([_|Ps]) :- assign_func_value(walk(Ps)).\n",
+        );
+        let echo = Atom::intern("echo");
+        let sf = Atom::intern("s");
+        let mut v = Val::Sym(Atom::intern("a"));
+        for _ in 0..MAX_DEPTH {
+            v = Val::Tagged(Compound::new(sf, [v]));
+        }
+        assert!(fns.call_vals(echo, &[v.clone()], u64::MAX).is_some());
+        let deeper = Val::Tagged(Compound::new(sf, [v]));
+        assert!(fns.call_vals(echo, &[deeper], u64::MAX).is_none());
+        // A list counts a level per element, as a term does.
+        let long = |n: usize| Val::List((0..n as i64).map(Val::Int).collect::<List<Val>>());
+        assert!(fns.call_vals(echo, &[long(MAX_DEPTH)], u64::MAX).is_some());
+        assert!(fns
+            .call_vals(echo, &[long(MAX_DEPTH + 1)], u64::MAX)
+            .is_none());
+        // Not ground, a float, a compound L evaluates: the term path's.
+        let store = &mut Store::new();
+        let x = store.new_var();
+        for refused in [
+            Val::from(x),
+            Val::Float(1.5),
+            Val::Tagged(Compound::new(
+                Atom::intern("apply"),
+                [Val::Int(1), Val::Int(2)],
+            )),
+            Val::Tagged(Compound::new(atoms::DOT, [Val::Int(1), Val::Int(2)])),
+            Val::List([Val::Int(1), Val::Float(0.5)].into_iter().collect()),
+        ] {
+            assert!(fns.call_vals(echo, &[refused], u64::MAX).is_none());
+        }
+        // The rest of a walk's list, shared, not copied.
+        let walk = Atom::intern("walk");
+        let l: List<Val> = (0..5).map(Val::Int).collect();
+        let mut arg = Val::List(l.clone());
+        for _ in 0..5 {
+            let out = fns.call_vals(walk, &[arg.clone()], u64::MAX).unwrap();
+            let Val::Tagged(c) = &out else {
+                panic!("walk(_) expected");
+            };
+            let (Val::List(rest), Val::List(now)) = (&c.args()[0], &arg) else {
+                panic!("a list expected");
+            };
+            assert!(now.tail().unwrap().same_storage(rest));
+            arg = c.args()[0].clone();
+        }
+        assert!(fns.call_vals(walk, &[arg], u64::MAX).is_none()); // `[]`: no clause
     }
 }

@@ -1,0 +1,244 @@
+//! Plain user functions called on native values (issue 37): a next
+//! situation `apply(f(_, ..), [A1, .., An])` and a condition
+//! `apply(f(_, ..), [..]) == k` (`\==`, `k` an atom or an integer) whose
+//! function the build takes for plain (`sitlog_runtime::plain::plain_names`
+//! over the application's Prolog files) call `Cx::nat_plain` on the
+//! values native code holds; the value it returns is selected natively
+//! ([`Gen::nat_select`] per name and arity of the DM's situations, the
+//! arguments as `ground` values) or compared with `k` in Rust. `None` (the
+//! run's engine does not run the call natively: not plain there, an
+//! argument or value the native form refuses, ...) takes the code this
+//! replaced, the `apply` evaluated as a term, so every answer and error
+//! stays the evaluator's.
+//!
+//! Taken only where that is the same call: a DM without locals (the call
+//! sees the globals only), every declared argument of `f` a distinct fresh
+//! variable and as many values as arguments (each takes its value, D-37),
+//! every value a register of a native type or an atom or integer constant
+//! (they evaluate to themselves; the runtime refuses a value L would
+//! evaluate otherwise).
+
+use super::{coerce, Dm, Regs, N, V};
+use crate::codegen::Gen;
+use crate::mir::{Build, Cond};
+use proc_macro2::{Ident, TokenStream};
+use quote::{format_ident, quote};
+use sitlog_runtime::native::Ty;
+use sitlog_runtime::Value;
+use sitlog_syntax::{atoms, Atom};
+
+impl Gen<'_> {
+    /// Whether the build takes `name/arity` for a plain function.
+    fn knows_plain(&self, name: Atom, arity: usize) -> bool {
+        let Some(ir) = self.ir else {
+            return false;
+        };
+        self.plain_fns
+            .get_or_init(|| {
+                let files: Vec<(&str, Option<&[sitlog_syntax::Clause]>)> = ir
+                    .prolog_sources
+                    .iter()
+                    .map(|f| (f.text.as_str(), f.clauses.as_deref().map(|c| c.as_slice())))
+                    .collect();
+                sitlog_runtime::plain::plain_names(&files)
+            })
+            .contains(&(name, arity))
+    }
+
+    /// `cx.nat_plain(f, &[..])` for `b` = `apply(f(_, ..), [A1..An])` as
+    /// the module doc takes it, else `None`.
+    pub(super) fn nat_plain_call(&self, d: &Dm, b: &Build, regs: &Regs) -> N<Option<TokenStream>> {
+        if !(d.locals.is_empty() && d.dm.locals.is_empty()) {
+            return Ok(None);
+        }
+        let Build::Compound(apply, parts) = b else {
+            return Ok(None);
+        };
+        let [Build::Compound(name, declared), list] = &parts[..] else {
+            return Ok(None);
+        };
+        if *apply != atoms::APPLY {
+            return Ok(None);
+        }
+        // Each declared argument a fresh variable of its own.
+        let mut fresh = Vec::new();
+        for a in declared.iter() {
+            match a {
+                Build::Reg(r)
+                    if regs.get(r).is_some_and(|(x, _)| super::is_fresh(x))
+                        && !fresh.contains(r) =>
+                {
+                    fresh.push(*r)
+                }
+                _ => return Ok(None),
+            }
+        }
+        // The values: a proper list of native registers and atomic constants.
+        let mut items = Vec::new();
+        let mut cur = list;
+        loop {
+            match cur {
+                Build::Compound(dot, ht) if *dot == atoms::DOT && ht.len() == 2 => {
+                    items.push(&ht[0]);
+                    cur = &ht[1];
+                }
+                Build::Const(t) if self.store.atom_of(*t) == Some(atoms::NIL) => break,
+                // A constant list of values: not taken apart here.
+                _ => return Ok(None),
+            }
+        }
+        if items.len() != declared.len() || !self.knows_plain(*name, declared.len()) {
+            return Ok(None);
+        }
+        let mut vals = Vec::new();
+        for it in items {
+            let v = match it {
+                Build::Reg(r) => match regs.get(r) {
+                    Some((x, ty)) if !super::is_fresh(x) && ty.is_native() && *ty != Ty::Float => {
+                        V {
+                            e: quote!(#x.clone()),
+                            ty: ty.clone(),
+                        }
+                    }
+                    _ => return Ok(None),
+                },
+                Build::Const(t)
+                    if matches!(self.store.value(*t), Value::Atom(_) | Value::Int(_)) =>
+                {
+                    self.nat_value(it, regs)?
+                }
+                _ => return Ok(None),
+            };
+            let Ok(e) = coerce(&v, &Ty::Ground) else {
+                return Ok(None);
+            };
+            vals.push(e);
+        }
+        let f = self.atom_native(*name)?;
+        Ok(Some(quote!(cx.nat_plain(#f, &[#(#vals),*]))))
+    }
+
+    /// A next situation evaluated whole (`b`), a plain call: its value
+    /// selected natively, `evaluated` (the term path) where the call gives
+    /// `None`. `None` where `b` is not such a call.
+    pub(super) fn nat_plain_next(
+        &self,
+        d: &Dm,
+        cur: usize,
+        b: &Build,
+        regs: &Regs,
+        cur_name: &TokenStream,
+        evaluated: TokenStream,
+    ) -> N<Option<TokenStream>> {
+        let Some(call) = self.nat_plain_call(d, b, regs)? else {
+            return Ok(None);
+        };
+        // Each name and arity a situation of the DM has, once, in order.
+        let mut ids: Vec<(Atom, usize)> = Vec::new();
+        for p in d.plans.iter() {
+            let cell = p.id == (atoms::DOT, 2);
+            if !cell && !ids.contains(&p.id) {
+                ids.push(p.id);
+            }
+        }
+        let mut arms = Vec::new();
+        for (name, arity) in ids {
+            let a = self.atom_native(name)?;
+            if arity == 0 {
+                let sel = self.nat_select(d, cur, name, Vec::new(), cur_name)?;
+                arms.push(quote!(if pv.sym() == Some(#a) { let next = #sel; break 'plain next; }));
+                continue;
+            }
+            let xs: Vec<Ident> = (0..arity).map(|i| format_ident!("px{}", i)).collect();
+            let vals = xs
+                .iter()
+                .map(|x| V {
+                    e: quote!(#x.clone()),
+                    ty: Ty::Ground,
+                })
+                .collect();
+            let sel = self.nat_select(d, cur, name, vals, cur_name)?;
+            let n = proc_macro2::Literal::usize_unsuffixed(arity);
+            arms.push(quote! {
+                if let Some([#(#xs),*]) = pv.args_of(#a, #n) {
+                    let next = #sel;
+                    break 'plain next;
+                }
+            });
+        }
+        // A value no situation's name takes: the machine says so.
+        let hand = &d.hand;
+        let out = d.out.borrow().clone();
+        let tail = super::goto_tail(&d.rec.borrow());
+        let curl = proc_macro2::Literal::u32_unsuffixed(cur as u32);
+        Ok(Some(quote! {
+            match #call {
+                Some(pv) => 'plain: {
+                    #(#arms)*
+                    #hand
+                    cx.count_and_enter(count, run.records, #curl, #cur_name);
+                    let rec_next = cx.term(&pv);
+                    #out
+                    #tail
+                }
+                None => #evaluated,
+            }
+        }))
+    }
+
+    /// A condition `apply(f(_, ..), [..]) == k` (`\==`; either side), a
+    /// plain call: the test of its value in Rust, `None` from the call
+    /// deciding by `evaluated` (statements binding `name` on the term
+    /// path). `None` where `c` is not such a condition.
+    pub(super) fn nat_plain_cond(
+        &self,
+        d: &Dm,
+        c: &Cond,
+        regs: &Regs,
+        name: &Ident,
+        evaluated: impl FnOnce() -> N<Option<TokenStream>>,
+    ) -> N<Option<TokenStream>> {
+        let Cond::Other(Build::Compound(op, sides)) = c else {
+            return Ok(None);
+        };
+        let eq = match op.as_str() {
+            "==" => true,
+            "\\==" => false,
+            _ => return Ok(None),
+        };
+        let [l, r] = &sides[..] else {
+            return Ok(None);
+        };
+        let (call, k) = match (self.nat_plain_call(d, l, regs)?, r) {
+            (Some(call), Build::Const(k)) => (call, *k),
+            _ => match (l, self.nat_plain_call(d, r, regs)?) {
+                (Build::Const(k), Some(call)) => (call, *k),
+                _ => return Ok(None),
+            },
+        };
+        let test = match self.store.value(k) {
+            Value::Atom(a) => {
+                let a = self.atom_native(a)?;
+                quote!(pv.sym() == Some(#a))
+            }
+            Value::Int(i) => {
+                let i = proc_macro2::Literal::i64_suffixed(i);
+                quote!(pv.int() == Some(#i))
+            }
+            _ => return Ok(None),
+        };
+        let test = if eq { test } else { quote!(!(#test)) };
+        let Some(pre) = evaluated()? else {
+            return Ok(None);
+        };
+        Ok(Some(quote! {
+            let #name: bool = match #call {
+                Some(pv) => #test,
+                None => {
+                    #pre
+                    #name
+                }
+            };
+        }))
+    }
+}
