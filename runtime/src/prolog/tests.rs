@@ -365,8 +365,14 @@ fn legacy_files_redefine_as_swi_consult() {
     // Called first, a predicate is compiled static; a later call that
     // changes or looks at its clauses makes it dynamic with them
     // (issue 39: a static predicate runs faster).
-    assert!(yes(&legacy, "findall(X, t(X), L), L == [1,2], \\+ predicate_property(t(_), dynamic)"));
-    assert!(yes(&legacy, "addt, findall(X, t(X), L), L == [1,2,3], predicate_property(t(_), dynamic)"));
+    assert!(yes(
+        &legacy,
+        "findall(X, t(X), L), L == [1,2], \\+ predicate_property(t(_), dynamic)"
+    ));
+    assert!(yes(
+        &legacy,
+        "addt, findall(X, t(X), L), L == [1,2,3], predicate_property(t(_), dynamic)"
+    ));
     assert!(yes(&legacy, "k(2), clk(L), L == [2-true]"));
     drop(legacy);
     // The same with the layer read and asserted ahead by an engine built
