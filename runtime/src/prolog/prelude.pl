@@ -321,11 +321,17 @@ get_last_situation(History, S) :-
     functor(Cs, _, K),
     '$sitlog_compile_each'(1, K, Cs, Ev),
     '$sitlog_compile_groups'(Gs, Ev).
+% A clause of the predicate goes to the load directly, as assertz/1
+% compiles one (no term or goal expansion: the loader's own, per body goal,
+% was most of a load's cost); a module-qualified one through the loader.
 '$sitlog_compile_each'(I, K, Cs, Ev) :-
     (   I > K
     ->  true
     ;   arg(I, Cs, C),
-        loader:compile_term(C, Ev),
+        (   ( C = (_:_) ; C = (_:_ :- _) )
+        ->  loader:compile_term(C, Ev)
+        ;   '$clause_to_evacuable'(C, Ev)
+        ),
         I1 is I + 1,
         '$sitlog_compile_each'(I1, K, Cs, Ev)
     ).
