@@ -7,8 +7,9 @@
 //! and the caller's variables; the task's history is written only when the
 //! function's `get_history/1` asks the waiting caller for it
 //! ([`Reply::History`]), in parts the engine's reader takes. Under the
-//! legacy profile a predicate is asserted at its first call (a stub until
-//! then, [`lazify`]); no call sees the difference.
+//! legacy profile a predicate is loaded at its first call (a stub until
+//! then, [`lazify`]), compiled static, and asserted (dynamic) instead once
+//! a call changes or looks at its clauses; no call sees the difference.
 //! Invariant (the trust model): loading only stores clauses; the
 //! application's directives run at [`PrologFunctions::start`] (a run's
 //! first transition, or the first call), after the run's permissions are
@@ -284,8 +285,14 @@ struct Shared {
     input: RunInput,
     history: HistoryLink,
     lazy: LazyStore,
+    statics: StaticStore,
     direct: DirectStore,
 }
+
+/// The clauses of the lazily loaded predicates compiled static, by their
+/// number in the [`LazyStore`], kept for the engine to assert them if a
+/// call changes or looks at them ([`unstatic_reply`]).
+type StaticStore = Arc<Mutex<HashMap<usize, Vec<String>>>>;
 
 /// The wrapped predicates of the native KB layer whose clauses call their
 /// layer's clauses directly (`Wrapped::alts`), numbered as their
@@ -301,6 +308,7 @@ impl Shared {
             input: Arc::new(Mutex::new(None)),
             history: Arc::new(Mutex::new(None)),
             lazy: Arc::new(Mutex::new(Vec::new())),
+            statics: Arc::new(Mutex::new(HashMap::new())),
             direct: Arc::new(Mutex::new(Vec::new())),
         }
     }
@@ -1291,8 +1299,10 @@ fn engine_streams(host: HostSlot, shared: Shared) -> StreamConfig {
             // The first character says what is asked: `R` read, `K` KB,
             // `S` the system (clock, sleep), `P` whether a file is inside
             // the application (the guards), `I` input, `H` the history,
-            // `L` a waiting predicate's clauses, `D` a wrapped predicate's
-            // clauses as written (`direct_reply`).
+            // `L` a waiting predicate's clauses (`M` the same, asserted,
+            // never static; `C` those of one compiled static, to assert
+            // in its place), `D` a wrapped predicate's clauses as written
+            // (`direct_reply`).
             // A KB term or a term read may be long: the engine reads it in
             // one go after its length (`'$sitlog_read_long'/1`).
             let long = |text: String| format!("{}\n{text}", text.chars().count());
@@ -1314,7 +1324,11 @@ fn engine_streams(host: HostSlot, shared: Shared) -> StreamConfig {
             } else if let Some(from) = text.strip_prefix('H') {
                 history_reply(&shared.history, from)
             } else if let Some(id) = text.strip_prefix('L') {
-                lazy_reply(&shared.lazy, id)
+                lazy_reply(&shared.lazy, &shared.statics, id, true)
+            } else if let Some(id) = text.strip_prefix('M') {
+                lazy_reply(&shared.lazy, &shared.statics, id, false)
+            } else if let Some(id) = text.strip_prefix('C') {
+                unstatic_reply(&shared.statics, id)
             } else if let Some(k) = text.strip_prefix('D') {
                 direct_reply(&shared.lazy, &shared.direct, k)
             } else {
@@ -1795,8 +1809,10 @@ fn add_stubs(
 /// original's layer and the application's files) get one stub clause
 /// each, `P(V..) :- '$sitlog_lazy'(N, P, A), P(V..)`, their clauses kept
 /// in `store` (number `N`): the stub's first call retracts it, asks the
-/// host for the clauses (an `L` request) and asserts them, then calls the
-/// predicate. The original's layer has 1,720 clauses and
+/// host for the clauses (an `L` request) and compiles them as a consulted
+/// file's, static ([`lazy_reply`]), then calls the predicate; a call that
+/// changes or looks at the clauses asserts them instead (dynamic), before
+/// or after. The original's layer has 1,720 clauses and
 /// `apps/test_behaviors` 800, of which a task calls a few. Calls that
 /// change or look at clauses (`TOUCHING`, renamed in the legacy profile's
 /// clauses) load the predicate first, so that a stub is never seen,
@@ -2036,20 +2052,48 @@ fn rebuild(
     Ok(store.compound(f, &new))
 }
 
-/// The answer to an `L` request (a waiting predicate's number): its clauses
-/// as `'$ok'([c(C1, ..), ..])`, at most [`ADD_BATCH`] a group (taken: a
+/// The answer to an `L` request (a waiting predicate's number; `fixed`)
+/// or an `M` request (not `fixed`): its clauses as
+/// `'$ok'([c(C1, ..), ..])`, at most [`ADD_BATCH`] a group (taken: a
 /// second request gets none), after a line with the text's length in
-/// characters, as [`history_reply`].
-fn lazy_reply(store: &LazyStore, id: &str) -> String {
-    let pred = id.trim().parse::<usize>().ok().and_then(|id| {
+/// characters, as [`history_reply`]. For an `L` request the answer is
+/// `'$static'(..)` instead: the engine compiles the predicate as a
+/// consulted one (static), and the clauses are kept in `statics` for a
+/// `C` request ([`unstatic_reply`]) if a call changes or looks at them
+/// later (the prelude's `'$sitlog_lz_touch'/2`).
+fn lazy_reply(store: &LazyStore, statics: &StaticStore, id: &str, fixed: bool) -> String {
+    let id = id.trim().parse::<usize>().ok();
+    let pred = id.and_then(|id| {
         store
             .lock()
             .ok()
             .and_then(|mut s| s.get_mut(id).and_then(Option::take))
     });
-    let mut text = String::from("'$ok'([");
+    let fixed = fixed && pred.is_some();
+    let mut text = String::from(if fixed { "'$static'([" } else { "'$ok'([" });
     if let Some(pred) = pred {
         write_groups(&mut text, &pred.clauses);
+        if let (true, Some(id), Ok(mut s)) = (fixed, id, statics.lock()) {
+            s.insert(id, pred.clauses);
+        }
+    }
+    text.push_str("]).\n");
+    format!("{}\n{text}", text.chars().count())
+}
+
+/// The answer to a `C` request (the number of a predicate compiled static
+/// by an `L` request, [`lazy_reply`]): its clauses, taken, as
+/// `'$ok'([c(C1, ..), ..])` for the engine to assert in place of its
+/// static code (none if they were taken already).
+fn unstatic_reply(statics: &StaticStore, id: &str) -> String {
+    let clauses = id
+        .trim()
+        .parse::<usize>()
+        .ok()
+        .and_then(|id| statics.lock().ok().and_then(|mut s| s.remove(&id)));
+    let mut text = String::from("'$ok'([");
+    if let Some(clauses) = clauses {
+        write_groups(&mut text, &clauses);
     }
     text.push_str("]).\n");
     format!("{}\n{text}", text.chars().count())
@@ -2119,7 +2163,9 @@ fn load_lazy(machine: &mut Machine, store: &LazyStore) {
             q.push_str("'$sitlog_lazy'(");
             let _ = write!(q, "{id},");
             write_atom(&mut q, *name);
-            let _ = write!(q, ",{arity}),");
+            // Asserted, never static: a call built as data may change
+            // or look at its clauses without loading it first.
+            let _ = write!(q, ",{arity},'M'),");
         }
         q.push_str("R = ok.");
         let _ = first_answer(machine, &q, "R");

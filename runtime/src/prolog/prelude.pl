@@ -252,17 +252,88 @@ get_last_situation(History, S) :-
 % A predicate of the legacy layer loaded at its first call (engine.rs,
 % lazify): its stub clause `P(V..) :- '$sitlog_lazy'(Id, N, A), P(V..)`
 % goes, and its clauses, asked of the host (a line with the answer's
-% length, then '$ok'([c(C1, ..), ..])), are asserted. Nothing when the
-% stub is gone (loaded already, or redefined by a later file).
+% length, then '$ok'([c(C1, ..), ..]) or '$static'([c(C1, ..), ..])), are
+% asserted ('$ok') or compiled as a consulted file's predicate would be
+% ('$static': the engine runs a static predicate without looking for the
+% next clause alive at each try, as it must for a dynamic one). Tag `L`
+% lets the host answer either; `M` (a call that changes or looks at the
+% predicate's clauses loads it) asks for '$ok'. Nothing when the stub is
+% gone (loaded already, or redefined by a later file).
+:- dynamic('$sitlog_static'/3).
 '$sitlog_lazy'(Id, N, A) :-
+    '$sitlog_lazy'(Id, N, A, 'L').
+'$sitlog_lazy'(Id, N, A, Tag) :-
     functor(H, N, A),
     (   retract((H :- '$sitlog_lazy'(Id, _, _), _))
-    ->  '$sitlog_ask_long'('L', Id, Reply),
+    ->  '$sitlog_ask_long'(Tag, Id, Reply),
         (   Reply = '$ok'(Groups)
         ->  '$sitlog_lazy_add'(Groups)
+        ;   Reply = '$static'(Groups)
+        ->  '$sitlog_static_add'(N, A, Groups),
+            assertz('$sitlog_static'(N, A, Id))
         ;   throw(error(existence_error(procedure, N/A), '$sitlog_lazy'/3))
         )
     ;   true
+    ).
+
+% The clauses of N/A (no clause left: its stub was retracted) compiled as
+% the engine's loader compiles a consulted file's (`load/1`, from terms
+% rather than a stream).
+'$sitlog_static_add'(N, A, Groups) :-
+    abolish(N/A),
+    '$sitlog_compile'([], Groups).
+
+% A predicate loaded static whose clauses a call is about to change or
+% look at becomes dynamic with the same clauses, asked of the host again
+% (a `C` request): loaded again, declared dynamic (SWI-Prolog's, and so
+% the original's, are all open to the layer's assert/retract/clause).
+'$sitlog_unstatic'(N, A, Id) :-
+    retract('$sitlog_static'(N, A, Id)),
+    '$sitlog_ask_long'('C', Id, Reply),
+    (   Reply = '$ok'(Groups)
+    ->  '$sitlog_compile'([(:- dynamic(N/A))], Groups)
+    ;   throw(error(existence_error(procedure, N/A), '$sitlog_unstatic'/3))
+    ).
+
+% Terms, then the clauses of Groups, compiled in a load context of their
+% own, as `load/1` does.
+'$sitlog_compile'(Terms, Groups) :-
+    (   current_input(S),
+        loader:create_load_context(S, Ev),
+        catch('$sitlog_compile_do'(Terms, Groups, Ev), E,
+              ( loader:unload_evacuable(Ev), throw(E) )),
+        '$pop_load_context',
+        false                           % the load's terms off the heap
+    ;   true
+    ).
+% ('$conclude_load'/1 is an instruction of the engine, not a predicate:
+% called directly, never through call/N.)
+'$sitlog_compile_do'(Terms, Groups, Ev) :-
+    '$sitlog_compile_list'(Terms, Ev),
+    '$sitlog_compile_groups'(Groups, Ev),
+    '$conclude_load'(Ev).
+'$sitlog_compile_list'([], _).
+'$sitlog_compile_list'([T|Ts], Ev) :-
+    loader:compile_term(T, Ev),
+    '$sitlog_compile_list'(Ts, Ev).
+'$sitlog_compile_groups'([], _).
+'$sitlog_compile_groups'([Cs|Gs], Ev) :-
+    functor(Cs, _, K),
+    '$sitlog_compile_each'(1, K, Cs, Ev),
+    '$sitlog_compile_groups'(Gs, Ev).
+% A clause of the predicate goes to the load directly, as assertz/1
+% compiles one (no term or goal expansion: the loader's own, per body goal,
+% was most of a load's cost); a module-qualified one through the loader.
+'$sitlog_compile_each'(I, K, Cs, Ev) :-
+    (   I > K
+    ->  true
+    ;   arg(I, Cs, C),
+        (   ( C = (_:_) ; C = (_:_ :- _) )
+        ->  loader:compile_term(C, Ev)
+        ;   '$clause_to_evacuable'(C, Ev)
+        ),
+        I1 is I + 1,
+        '$sitlog_compile_each'(I1, K, Cs, Ev)
     ).
 
 % The stubs of waiting predicates (engine.rs, add_stubs), from
@@ -314,6 +385,7 @@ get_last_situation(History, S) :-
         (   Reply = '$ok'(Gs), Gs \== []
         ->  atom_concat('$legacy_', N, L),
             functor(G, L, A),
+            '$sitlog_lz_touch'(L, A),
             retractall(G),
             '$sitlog_lazy_add'(Gs)
         ;   Reply = '$ok'(_)
@@ -345,13 +417,16 @@ get_last_situation(History, S) :-
     ;   callable(H) -> functor(H, N, A), '$sitlog_lz_touch'(N, A)
     ;   true
     ).
-% The stub, if it is there, is the predicate's only clause.
+% The stub, if it is there, is the predicate's only clause; a predicate
+% loaded static becomes dynamic.
 '$sitlog_lz_touch'(N, A) :-
     (   atom(N), integer(A), A >= 0,
         functor(G, N, A),
         catch(once(clause(G, B)), _, fail),
         nonvar(B), B = ('$sitlog_lazy'(Id, _, _), _)
-    ->  '$sitlog_lazy'(Id, N, A)
+    ->  '$sitlog_lazy'(Id, N, A, 'M')
+    ;   atom(N), '$sitlog_static'(N, A, Id)
+    ->  '$sitlog_unstatic'(N, A, Id)
     ;   true
     ).
 

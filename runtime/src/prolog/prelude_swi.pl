@@ -528,6 +528,7 @@
     integer(A),
     !,
     functor(H, N, A),
+    '$sitlog_lz_touch'(N, A),           % a lazily loaded one: dynamic
     (   catch(predicate_property(H, dynamic), _, fail)
     ->  true
     ;   assertz(H),

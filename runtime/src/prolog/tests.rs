@@ -324,12 +324,14 @@ fn a_consulted_library_name_is_taken_from_the_sources_given() {
 fn legacy_files_redefine_as_swi_consult() {
     let layer = PrologSource::new(
         "layer.pl",
-        "p(a1).\np(a2).\nr(x).\ns(1).\ns(2).\nu(1).\nu(2).\nw(X) :- s(X).\n",
+        "p(a1).\np(a2).\nr(x).\ns(1).\ns(2).\nu(1).\nu(2).\nw(X) :- s(X).\n\
+         t(1).\nt(2).\nk(1).\nk(2).\n",
     );
     let app = PrologSource::new(
         "user_functions.pl",
         "p(b).\nadd :- assertz(s(3)).\ncl(L) :- findall(X-B, clause(u(X), B), L).\n\
-         rt :- retract(u(1)).\n",
+         rt :- retract(u(1)).\naddt :- assertz(t(3)).\n\
+         clk(L) :- retract(k(1)), findall(X-B, clause(k(X), B), L).\n",
     );
     // `R` is the binding query_raw gives back: `yes` when p/1 and r/1
     // have the clauses `want`.
@@ -360,6 +362,18 @@ fn legacy_files_redefine_as_swi_consult() {
     assert!(yes(&legacy, "add, findall(X, w(X), L), L == [1,2,3]"));
     assert!(yes(&legacy, "cl(L), L == [1-true,2-true]"));
     assert!(yes(&legacy, "rt, findall(X, u(X), L), L == [2]"));
+    // Called first, a predicate is compiled static; a later call that
+    // changes or looks at its clauses makes it dynamic with them
+    // (issue 39: a static predicate runs faster).
+    assert!(yes(
+        &legacy,
+        "findall(X, t(X), L), L == [1,2], \\+ predicate_property(t(_), dynamic)"
+    ));
+    assert!(yes(
+        &legacy,
+        "addt, findall(X, t(X), L), L == [1,2,3], predicate_property(t(_), dynamic)"
+    ));
+    assert!(yes(&legacy, "k(2), clk(L), L == [2-true]"));
     drop(legacy);
     // The same with the layer read and asserted ahead by an engine built
     // ahead (`sitlogc run --legacy`): its clauses that the application
