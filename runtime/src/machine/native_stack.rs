@@ -127,6 +127,30 @@ impl<F> NatBelow<'_, F> {
             self.len() < self.room
         }
     }
+
+    /// No exit arc of a waiting situation `sit` (id `id`, filled after the
+    /// hand-over) takes its callee's final `final_at`, in a DM without
+    /// locals: the frames below made the machine's ([`nat_hand_over`]),
+    /// then the machine's error ([`Cx::no_exit`]). One cold call for the
+    /// tail of every exit `match` of such a DM.
+    #[cold]
+    #[inline(never)]
+    pub fn no_exit<P: DmProgram, N: NatAt<P>>(
+        &mut self,
+        p: &P,
+        cx: &mut Cx<'_, '_, P>,
+        count: u64,
+        sit: SitIx,
+        id: impl IdArg,
+        final_at: &N,
+    ) -> Result<Option<Step>, RunError>
+    where
+        F: NatFrames<P>,
+    {
+        nat_hand_over(p, cx, self)?;
+        let id = id.id_in(cx.store());
+        cx.no_exit(count, sit, id, |s| final_at.id_term(p, s))
+    }
 }
 
 /// Runs native frames from `base` (the DM the machine entered) on an
@@ -357,6 +381,36 @@ pub fn nat_template<P: DmProgram, F: NatFrames<P>>(
 ) -> Result<Option<Step>, RunError> {
     nat_hand_over(p, cx, stack)?;
     cx.counted_template(count, sit, id)
+}
+
+/// A DM call native code pushes on its own stack (`callee` makes the
+/// callee's frame, once, in the branch that pushes it): with no history
+/// kept or observed, where the depth limit leaves room, the frame put in
+/// `call` for the driver; with the history kept and nothing observing
+/// (`TypedRun::nests`), where `nests` (the caller's exit arcs record
+/// natively) and there is room, pushed with a history level of its own
+/// ([`Cx::push_level`]). `false`, nothing done: the machine makes the
+/// call. One function for every call site of a program (inlined: the
+/// same code as the two branches written at each).
+#[inline(always)]
+pub fn nat_call<P: DmProgram, F: NatFrames<P>>(
+    p: &P,
+    cx: &mut Cx<'_, '_, P>,
+    run: &TypedRun,
+    stack: &NatBelow<'_, F>,
+    call: &mut Option<F>,
+    nests: bool,
+    callee: impl FnOnce() -> F,
+) -> bool {
+    if !run.records && stack.has_room(cx) {
+        *call = Some(callee());
+        true
+    } else if nests && run.nests && stack.has_room(cx) {
+        cx.push_level(p, call, callee());
+        true
+    } else {
+        false
+    }
 }
 
 /// Makes the native frames below the running one machine frames, bottom

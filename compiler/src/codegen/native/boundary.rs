@@ -347,6 +347,8 @@ fn gives_fn(toks: &[TokenTree], k: usize) -> bool {
     let known = matches!(before, Some(TokenTree::Ident(i)) if [
         "nat_goto",
         "nat_template",
+        "no_exit",
+        "nat_call",
         "end",
         "tally",
         "record_next",

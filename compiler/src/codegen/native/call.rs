@@ -18,7 +18,12 @@
 //! frame, its variable met only there (`search(get(places, _), T)`: the
 //! local's value, `Gen::nat_local_get`); where the frames become the
 //! machine's, `Cx::wait_template` evaluates the template's `embedded_dm`
-//! before matching it with the call.
+//! before matching it with the call. The push is one call of the
+//! runtime's `machine::nat_call` (its two branches, with and without a
+//! history level, written once and inlined), the frame made by a closure
+//! only in the branch that pushes it; the exit arms' tail where no arc
+//! takes the final, in a DM without locals, one call of
+//! `NatBelow::no_exit` (the hand-over and the machine's error).
 //!
 //! *Output arguments* (`add(I, 1, J)`, `J` a fresh variable of the
 //! situation written once, as a whole argument: `call_outputs`) given to
@@ -591,14 +596,13 @@ impl Gen<'_> {
         // Both pushes (with a history level and without) build the frame
         // by one closure, `callee()`, where it reads nothing of `cx`: the
         // frame built in place where the branch calls it, as before.
-        if plan.rec_exit && shared && !mentions_any(&frame, &[format_ident!("cx")]) {
+        // One call of the runtime's `machine::nat_call` (the two branches,
+        // inlined) where the frame reads nothing of `cx`.
+        if shared && !mentions_any(&frame, &[format_ident!("cx")]) {
+            let nests = plan.rec_exit;
             return Ok(quote! {
-                let callee = || #frame;
-                if !run.records && stack.has_room(cx) {
-                    *call = Some(super::NatFrame::#callee_v(callee()));
-                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
-                } else if run.nests && stack.has_room(cx) {
-                    cx.push_level(p, call, super::NatFrame::#callee_v(callee()));
+                let callee = || super::NatFrame::#callee_v(#frame);
+                if machine::nat_call(p, cx, run, stack, call, #nests, callee) {
                     return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
                 }
             });
@@ -1073,6 +1077,31 @@ impl Gen<'_> {
             .iter()
             .filter(|(r, _)| mentions(&arms, r))
             .map(|(_, stmt)| stmt);
+        // No exit arc takes the final situation: the machine says so (in
+        // a DM without locals the runtime's hand-over and the error in one
+        // call, `NatBelow::no_exit`, the id filled after the hand-over:
+        // an atom, or a `Fill` made before where the call would not fit
+        // on a line; the arm's statements are indented by 20).
+        let no_exit =
+            |id: &TokenStream| quote!(return stack.no_exit(p, cx, count, #curl, #id, final_at););
+        let fill = super::fill_arg(&id_stmts, &id);
+        let no_exit = match (&fill, id_stmts.is_empty()) {
+            _ if !super::runtime_hand(hand) => None,
+            (Some(fill), _) if super::fits(&no_exit(fill), 20) => Some(no_exit(fill)),
+            (Some(fill), _) if super::fits(&no_exit(&id), 20) => {
+                let ret = no_exit(&id);
+                Some(quote!(let #id = #fill; #ret))
+            }
+            (None, true) if super::fits(&no_exit(&id_arg), 20) => Some(no_exit(&id_arg)),
+            _ => None,
+        };
+        let no_exit = no_exit.unwrap_or_else(|| {
+            quote! {
+                #hand
+                #(#id_stmts)*
+                return cx.no_exit(count, #curl, #id_arg, |s| final_at.id_term(p, s));
+            }
+        });
         let body = quote! {
             let super::NatFrame::#callee_v(done_frame) = ret else {
                 return Err(cx.fault(Fault::WrongFrame));
@@ -1083,10 +1112,7 @@ impl Gen<'_> {
                 #arms
                 _ => {}
             }
-            // No exit arc takes the final situation: the machine says so.
-            #hand
-            #(#id_stmts)*
-            return cx.no_exit(count, #curl, #id_arg, |s| final_at.id_term(p, s));
+            #no_exit
         };
         // Only the parameters the exit arcs read are loaded (a load is a
         // clone: a list's count changed and changed back on every return).
