@@ -58,8 +58,8 @@ pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, Fill, FromIdParts, IdArg,
 pub use effect::{AnyShape, Due, NatAction, NatEntry};
 pub use io::{Actions, Perceived, Perception};
 pub use native_stack::{
-    nat_call, nat_choose, nat_drive, nat_goto, nat_hand_over, nat_materialize, nat_plain,
-    nat_replace_done, nat_template, NatAt, NatBelow, NatFrames,
+    nat_choose, nat_drive, nat_goto, nat_hand_over, nat_materialize, nat_plain, nat_replace_done,
+    nat_template, NatAt, NatBelow, NatFrames,
 };
 pub use observe::{Inspection, Observer};
 pub use options::Options;

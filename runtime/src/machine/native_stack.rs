@@ -383,36 +383,6 @@ pub fn nat_template<P: DmProgram, F: NatFrames<P>>(
     cx.counted_template(count, sit, id)
 }
 
-/// A DM call native code pushes on its own stack (`callee` makes the
-/// callee's frame, once, in the branch that pushes it): with no history
-/// kept or observed, where the depth limit leaves room, the frame put in
-/// `call` for the driver; with the history kept and nothing observing
-/// (`TypedRun::nests`), where `nests` (the caller's exit arcs record
-/// natively) and there is room, pushed with a history level of its own
-/// ([`Cx::push_level`]). `false`, nothing done: the machine makes the
-/// call. One function for every call site of a program (inlined: the
-/// same code as the two branches written at each).
-#[inline(always)]
-pub fn nat_call<P: DmProgram, F: NatFrames<P>>(
-    p: &P,
-    cx: &mut Cx<'_, '_, P>,
-    run: &TypedRun,
-    stack: &NatBelow<'_, F>,
-    call: &mut Option<F>,
-    nests: bool,
-    callee: impl FnOnce() -> F,
-) -> bool {
-    if !run.records && stack.has_room(cx) {
-        *call = Some(callee());
-        true
-    } else if nests && run.nests && stack.has_room(cx) {
-        cx.push_level(p, call, callee());
-        true
-    } else {
-        false
-    }
-}
-
 /// Makes the native frames below the running one machine frames, bottom
 /// first: each waits in its recursive situation, its callee's frame
 /// pushed with the call its situation's `embedded_dm` makes

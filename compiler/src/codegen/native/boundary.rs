@@ -348,7 +348,6 @@ fn gives_fn(toks: &[TokenTree], k: usize) -> bool {
         "nat_goto",
         "nat_template",
         "no_exit",
-        "nat_call",
         "end",
         "tally",
         "record_next",

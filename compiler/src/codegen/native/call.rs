@@ -18,11 +18,8 @@
 //! frame, its variable met only there (`search(get(places, _), T)`: the
 //! local's value, `Gen::nat_local_get`); where the frames become the
 //! machine's, `Cx::wait_template` evaluates the template's `embedded_dm`
-//! before matching it with the call. The push is one call of the
-//! runtime's `machine::nat_call` (its two branches, with and without a
-//! history level, written once and inlined), the frame made by a closure
-//! only in the branch that pushes it; the exit arms' tail where no arc
-//! takes the final, in a DM without locals, one call of
+//! before matching it with the call. The exit arms' tail where no arc
+//! takes the final, in a DM without locals, is one call of
 //! `NatBelow::no_exit` (the hand-over and the machine's error).
 //!
 //! *Output arguments* (`add(I, 1, J)`, `J` a fresh variable of the
@@ -596,13 +593,14 @@ impl Gen<'_> {
         // Both pushes (with a history level and without) build the frame
         // by one closure, `callee()`, where it reads nothing of `cx`: the
         // frame built in place where the branch calls it, as before.
-        // One call of the runtime's `machine::nat_call` (the two branches,
-        // inlined) where the frame reads nothing of `cx`.
-        if shared && !mentions_any(&frame, &[format_ident!("cx")]) {
-            let nests = plan.rec_exit;
+        if plan.rec_exit && shared && !mentions_any(&frame, &[format_ident!("cx")]) {
             return Ok(quote! {
-                let callee = || super::NatFrame::#callee_v(#frame);
-                if machine::nat_call(p, cx, run, stack, call, #nests, callee) {
+                let callee = || #frame;
+                if !run.records && stack.has_room(cx) {
+                    *call = Some(super::NatFrame::#callee_v(callee()));
+                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
+                } else if run.nests && stack.has_room(cx) {
+                    cx.push_level(p, call, super::NatFrame::#callee_v(callee()));
                     return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
                 }
             });
