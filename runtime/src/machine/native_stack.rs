@@ -127,6 +127,30 @@ impl<F> NatBelow<'_, F> {
             self.len() < self.room
         }
     }
+
+    /// No exit arc of a waiting situation `sit` (id `id`, filled after the
+    /// hand-over) takes its callee's final `final_at`, in a DM without
+    /// locals: the frames below made the machine's ([`nat_hand_over`]),
+    /// then the machine's error ([`Cx::no_exit`]). One cold call for the
+    /// tail of every exit `match` of such a DM.
+    #[cold]
+    #[inline(never)]
+    pub fn no_exit<P: DmProgram, N: NatAt<P>>(
+        &mut self,
+        p: &P,
+        cx: &mut Cx<'_, '_, P>,
+        count: u64,
+        sit: SitIx,
+        id: impl IdArg,
+        final_at: &N,
+    ) -> Result<Option<Step>, RunError>
+    where
+        F: NatFrames<P>,
+    {
+        nat_hand_over(p, cx, self)?;
+        let id = id.id_in(cx.store());
+        cx.no_exit(count, sit, id, |s| final_at.id_term(p, s))
+    }
 }
 
 /// Runs native frames from `base` (the DM the machine entered) on an

@@ -350,6 +350,7 @@ fn gives_fn(toks: &[TokenTree], k: usize) -> bool {
     let known = matches!(before, Some(TokenTree::Ident(i)) if [
         "nat_goto",
         "nat_template",
+        "no_exit",
         "end",
         "tally",
         "record_next",

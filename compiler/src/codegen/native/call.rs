@@ -18,7 +18,9 @@
 //! frame, its variable met only there (`search(get(places, _), T)`: the
 //! local's value, `Gen::nat_local_get`); where the frames become the
 //! machine's, `Cx::wait_template` evaluates the template's `embedded_dm`
-//! before matching it with the call.
+//! before matching it with the call. The exit arms' tail where no arc
+//! takes the final, in a DM without locals, is one call of
+//! `NatBelow::no_exit` (the hand-over and the machine's error).
 //!
 //! *Output arguments* (`add(I, 1, J)`, `J` a fresh variable of the
 //! situation written once, as a whole argument: `call_outputs`) given to
@@ -1073,6 +1075,31 @@ impl Gen<'_> {
             .iter()
             .filter(|(r, _)| mentions(&arms, r))
             .map(|(_, stmt)| stmt);
+        // No exit arc takes the final situation: the machine says so (in
+        // a DM without locals the runtime's hand-over and the error in one
+        // call, `NatBelow::no_exit`, the id filled after the hand-over:
+        // an atom, or a `Fill` made before where the call would not fit
+        // on a line; the arm's statements are indented by 20).
+        let no_exit =
+            |id: &TokenStream| quote!(return stack.no_exit(p, cx, count, #curl, #id, final_at););
+        let fill = super::fill_arg(&id_stmts, &id);
+        let no_exit = match (&fill, id_stmts.is_empty()) {
+            _ if !super::runtime_hand(hand) => None,
+            (Some(fill), _) if super::fits(&no_exit(fill), 20) => Some(no_exit(fill)),
+            (Some(fill), _) if super::fits(&no_exit(&id), 20) => {
+                let ret = no_exit(&id);
+                Some(quote!(let #id = #fill; #ret))
+            }
+            (None, true) if super::fits(&no_exit(&id_arg), 20) => Some(no_exit(&id_arg)),
+            _ => None,
+        };
+        let no_exit = no_exit.unwrap_or_else(|| {
+            quote! {
+                #hand
+                #(#id_stmts)*
+                return cx.no_exit(count, #curl, #id_arg, |s| final_at.id_term(p, s));
+            }
+        });
         let body = quote! {
             let super::NatFrame::#callee_v(done_frame) = ret else {
                 return Err(cx.fault(Fault::WrongFrame));
@@ -1083,10 +1110,7 @@ impl Gen<'_> {
                 #arms
                 _ => {}
             }
-            // No exit arc takes the final situation: the machine says so.
-            #hand
-            #(#id_stmts)*
-            return cx.no_exit(count, #curl, #id_arg, |s| final_at.id_term(p, s));
+            #no_exit
         };
         // Only the parameters the exit arcs read are loaded (a load is a
         // clone: a list's count changed and changed back on every return).
