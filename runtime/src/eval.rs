@@ -442,13 +442,14 @@ fn var_op_parts(
         ctx.globals.get(name)
     };
     let Some(current) = current else {
-        return Err(EvalError::new(format!(
-            "`{}`: `{name}` is neither a local nor a global variable",
-            {
-                let t = whole(ctx.store);
-                show(ctx.store, t)
-            }
-        )));
+        // The original prints `Error: Variable "name" is not defined.`, then
+        // `Press Ctrl. C and abort` and reads a term, and goes on with the
+        // value unbound (its `arg` left as it was): so do we, noting it for
+        // a warning (the machine's `Outcome::warnings`). Where that value is
+        // performed as an action, the run stops as the original does
+        // (`machine::io::perform_one`).
+        ctx.store.note_undefined(op, name);
+        return Ok(ctx.store.new_var());
     };
     let new = if op == atoms::GET {
         if let Some(arg) = arg.filter(|&arg| !ctx.store.unify(arg, current)) {

@@ -13,6 +13,11 @@
 //! current contents into a permanent region (programs, constants), and
 //! [`Store::gc`] reclaims everything above it that the caller's roots do not
 //! reach.
+//!
+//! Besides terms, the store keeps one note for the evaluator: which `get`,
+//! `set` or `inc` of a variable that is neither local nor global it has
+//! evaluated ([`Store::note_undefined`]): names only, no terms, so a
+//! collection leaves them alone.
 
 use crate::term::{Repr, Term, Value, Var};
 use sitlog_syntax::write::{write_term, TermSource, VarLabel, View, WriteOptions};
@@ -89,6 +94,9 @@ pub struct Store {
     pub(crate) gc_scratch: GcScratch,
     /// The last list a plain function's call took whole (`crate::plain`).
     pub(crate) plain_memo: crate::plain::Memo,
+    /// `(op, name)` of each `get`/`set`/`inc` of a variable neither local
+    /// nor global evaluated so far, each pair once ([`Store::note_undefined`]).
+    pub(crate) undefined: Vec<(Atom, Atom)>,
 }
 
 impl Default for Store {
@@ -123,7 +131,25 @@ impl Store {
             rng: seed | 1,
             gc_scratch: Default::default(),
             plain_memo: Default::default(),
+            undefined: Vec::new(),
         }
+    }
+
+    /// Notes that the evaluator gave `op(name, _)` an unbound value because
+    /// `name` is neither a local nor a global variable (the original SitLog
+    /// says the variable is not defined and runs on): once per pair.
+    #[cold]
+    #[inline(never)]
+    pub fn note_undefined(&mut self, op: Atom, name: Atom) {
+        if !self.undefined.contains(&(op, name)) {
+            self.undefined.push((op, name));
+        }
+    }
+
+    /// The pairs [`Store::note_undefined`] noted, in order.
+    #[inline]
+    pub fn undefined_noted(&self) -> &[(Atom, Atom)] {
+        &self.undefined
     }
 
     // ---------------------------------------------------------------- build

@@ -114,3 +114,42 @@ fn next_variable_transcript() {
         String::from_utf8_lossy(&out.stderr)
     ));
 }
+
+/// Program 36's `get` of a variable neither local nor global, as an
+/// element of the action list (`[get(battery, B), say(..)]`): the original
+/// goes on with the value unbound, then stops performing it (an
+/// instantiation error), so `check` refuses it (E0219) and a run with
+/// `--allow-unresolved` stops there, located at the arc, the warning of
+/// the variable on stderr (helper fid20, session 19).
+#[test]
+fn undefined_variable_performed_as_an_action_stops() {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(
+        tmp.path().join("main.dm"),
+        "diag_mod(main,\n  [ [ id ==> is, type ==> neutral,\n      arcs ==> [ empty : [get(battery, B), say(['B', B])] => fs ] ],\n    [ id ==> fs, type ==> final ] ],\n  []).\n",
+    )
+    .unwrap();
+    let check = sitlogc().arg("check").arg(tmp.path()).output().unwrap();
+    assert_eq!(check.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&check.stderr).contains("E0219"));
+    let out = sitlogc()
+        .args(["run", "--allow-unresolved", "--format", "json"])
+        .arg(tmp.path())
+        .stdin(std::process::Stdio::null())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let e = r["error"].as_str().unwrap();
+    assert!(
+        e.contains("main.dm:3:18): action failed: the action has no value: `get` of `battery` (neither a local nor a global variable) gave an unbound value"),
+        "{e}"
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(
+            "warning: `get` of `battery`, which is neither a local nor a global variable"
+        ),
+        "{stderr}"
+    );
+}

@@ -220,6 +220,12 @@ impl<'p> Checker<'p> {
                     continue;
                 };
                 for v in values {
+                    // `=> empty` ends the DM, whatever its situations are
+                    // called (the original's first clause for a next
+                    // situation; the machine's `take_step`): no edge.
+                    if terms.atom(v) == Some(atoms::EMPTY) {
+                        continue;
+                    }
                     let mut targets = index.targets(dm, v);
                     // No situation's id unifies with it, whatever its
                     // variables become: the arc can never go on.
@@ -321,7 +327,7 @@ impl<'p> Checker<'p> {
         }
         for v in callees(terms, next).into_iter().flatten() {
             let Some(f) = terms.functor(v) else { continue };
-            if index.all.contains_key(&f) {
+            if index.all.contains_key(&f) || f == (atoms::EMPTY, 0) {
                 continue;
             }
             let shown = show(dm, v);

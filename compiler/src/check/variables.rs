@@ -373,16 +373,18 @@ fn arithmetic(terms: &Terms, t: TermId) -> bool {
     )
 }
 
-/// The terms of `dm`'s arcs whose value is data the original passes on
-/// unbound and runs on (first-week program 36): an element of a list (at
-/// any depth, through lists and compounds that are no construct of the
+/// The terms of `dm`'s situations whose value is data the original passes
+/// on unbound and runs on (first-week program 36): an element of a list
+/// (at any depth, through lists and compounds that are no construct of the
 /// functional language) inside an argument of an action
-/// (`say(['Battery at', get(battery, _)])`), or an argument of a next
-/// situation's compound (`next(get(battery, _))`). A `get` of an unknown
-/// variable there gives the original an unbound value and it runs on; as
-/// an action itself, a direct argument of one (`say(get(battery, _))`: the
-/// original's `say` stops on an unbound value), or in an `is`, a
-/// comparison or a condition, it stops.
+/// (`say(['Battery at', get(battery, _)])`), an argument of a next
+/// situation's compound (`next(get(battery, _))`), an `out_arg`, an element
+/// of a `prog`, an argument of an `embedded_dm` call, and what such a
+/// place holds the same way. A `get` of an unknown variable there gives
+/// the original an unbound value and it runs on (in an `embedded_dm` call
+/// silently: semantics E12); as an action itself, a direct argument of one
+/// (`say(get(battery, _))`: the original's `say` stops on an unbound
+/// value), or in an `is`, a comparison or a condition, it stops.
 fn data_arguments(dm: &Dm) -> HashSet<TermId> {
     let terms = &dm.clause.terms;
     let plain = |t: TermId| {
@@ -401,6 +403,22 @@ fn data_arguments(dm: &Dm) -> HashSet<TermId> {
                 for &a in terms.args(arc.next) {
                     stack.push((a, false, true, true));
                 }
+            }
+        }
+        // The pipe a situation passes on, and the elements of its `prog`
+        // (evaluated, their values dropped): data wherever they are.
+        if let Some(o) = s.out_arg {
+            stack.push((o, false, true, true));
+        }
+        let mut prog = s.prog;
+        while let Some(&[head, tail]) = prog.and_then(|p| terms.compound(p, atoms::DOT, 2)) {
+            stack.push((head, false, true, true));
+            prog = Some(tail);
+        }
+        // The arguments of an embedded DM's call (not the call itself).
+        if let Some(e) = s.embedded_dm.filter(|&e| plain(e)) {
+            for &a in terms.args(e) {
+                stack.push((a, false, true, true));
             }
         }
     }

@@ -145,6 +145,11 @@ impl<'s> Planner<'s> {
     /// The index of the first situation a constant next situation `name`
     /// selects, when that one runs from a plan.
     pub(crate) fn static_target(&self, name: Atom) -> Option<SitIx> {
+        // `empty` ends the DM whatever its situations are called (the
+        // machine's `take_step`): never a situation's index.
+        if name == atoms::EMPTY {
+            return None;
+        }
         for (i, s) in self.dm.situations.iter().enumerate() {
             let id = self.store.args(s.template)[ID];
             match self.store.value(id) {

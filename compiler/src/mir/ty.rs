@@ -1036,7 +1036,11 @@ impl<'a> State<'a> {
         if let Some((_, t)) = self.t.globals.iter().find(|(n, _)| *n == name) {
             return t.clone();
         }
-        Typed::never() // an unknown name is an error at run time: no value
+        // An unknown name: its value is a fresh unbound variable (the
+        // evaluator's `var_op_parts`, as the original runs on).
+        Typed::term(
+            "a `get`, `set` or `inc` of a variable neither local nor global (an unbound value)",
+        )
     }
 
     fn write_var(&mut self, d: usize, name: Atom, t: &Typed) {

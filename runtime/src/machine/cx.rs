@@ -1319,7 +1319,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// non-empty list, one by one (what [`Cx::perform`] does with such a list).
     pub fn perform_each(&mut self, elements: &[Term], arc: Option<usize>) -> Result<(), RunError> {
         for &x in elements {
-            if let Err(e) = self.actions.perform(&mut self.m.store, x) {
+            if let Err(e) = super::io::perform_one(&mut *self.actions, &mut self.m.store, x) {
                 return Err(self.error(format!("action failed: {e}"), arc));
             }
         }
@@ -1353,7 +1353,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// the error [`Cx::perform`] would have given.
     #[inline]
     pub fn perform_value(&mut self, action: Term) -> Result<(), String> {
-        self.actions.perform(&mut self.m.store, action)
+        super::io::perform_one(&mut *self.actions, &mut self.m.store, action)
     }
 
     /// The error of an action [`Cx::perform_value`] did not perform, once

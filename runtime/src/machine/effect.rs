@@ -136,7 +136,7 @@ pub trait NatAction: Copy {
 impl NatAction for Term {
     #[inline]
     fn perform_in<P: DmProgram>(self, cx: &mut Cx<'_, '_, P>) -> Result<(), String> {
-        cx.actions.perform(&mut cx.m.store, self)
+        super::io::perform_one(&mut *cx.actions, &mut cx.m.store, self)
     }
 
     #[inline]
@@ -170,7 +170,7 @@ impl<const N: usize> NatAction for &[Term; N] {
     #[inline]
     fn perform_in<P: DmProgram>(self, cx: &mut Cx<'_, '_, P>) -> Result<(), String> {
         self.iter()
-            .try_for_each(|&x| cx.actions.perform(&mut cx.m.store, x))
+            .try_for_each(|&x| super::io::perform_one(&mut *cx.actions, &mut cx.m.store, x))
     }
 
     #[inline]

@@ -79,3 +79,38 @@ pub trait Actions {
         false
     }
 }
+
+/// Hands one action (an element of an action list, or the action) to the
+/// effector, as every way the machine and native code perform one does,
+/// except an unbound action once the evaluator has given a `get`, `set`
+/// or `inc` of a variable neither local nor global an unbound value
+/// ([`Store::note_undefined`]): the original SitLog goes on with that
+/// value where it is data, and stops where it is performed (Prolog's
+/// instantiation error in `=..`), so the run stops there too (`get(battery,
+/// B)` as an element of an action list). Otherwise as before: an unbound
+/// action is the effector's to judge.
+#[inline]
+pub(crate) fn perform_one<A: Actions + ?Sized>(
+    actions: &mut A,
+    store: &mut Store,
+    action: Term,
+) -> Result<(), String> {
+    if !store.undefined_noted().is_empty() && store.is_var(action) {
+        return Err(undefined_action(store));
+    }
+    actions.perform(store, action)
+}
+
+#[cold]
+#[inline(never)]
+fn undefined_action(store: &Store) -> String {
+    let noted: Vec<String> = store
+        .undefined_noted()
+        .iter()
+        .map(|(op, name)| format!("`{op}` of `{name}`"))
+        .collect();
+    format!(
+        "the action has no value: {} (neither a local nor a global variable) gave an unbound value, and the original SitLog stops on an unbound action too (an instantiation error)",
+        noted.join(", ")
+    )
+}

@@ -82,8 +82,29 @@ pub struct RunWarning {
     pub location: Option<String>,
 }
 
+impl RunWarning {
+    /// `op(name, _)` evaluated where `name` is neither a local nor a global
+    /// variable (`Store::note_undefined`): the value was unbound and the
+    /// run went on, as the original's. Said once per variable and
+    /// operation, at no place: generated code evaluates it without the
+    /// machine knowing the DM (check's W0219 gives the place).
+    pub fn undefined_variable(op: sitlog_syntax::Atom, name: sitlog_syntax::Atom) -> RunWarning {
+        RunWarning {
+            message: format!(
+                "`{op}` of `{name}`, which is neither a local nor a global variable: its value was unbound and the run went on, as the original SitLog's does (it prints `Error: Variable \"{name}\" is not defined.`); a misspelt name? (said once per variable)"
+            ),
+            dm: String::new(),
+            situation: String::new(),
+            location: None,
+        }
+    }
+}
+
 impl std::fmt::Display for RunWarning {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.dm.is_empty() {
+            return write!(f, "warning: {}", self.message);
+        }
         write!(
             f,
             "warning: in DM `{}`, situation `{}`",

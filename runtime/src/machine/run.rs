@@ -70,6 +70,15 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             history = h;
         }
         let interrupted = result.is_err() && self.stop_requested();
+        // The evaluator's notes of variables neither local nor global
+        // (`Store::note_undefined`), after the machine's own warnings.
+        let mut warnings = self.warnings;
+        warnings.extend(
+            self.store
+                .undefined_noted()
+                .iter()
+                .map(|&(op, name)| super::RunWarning::undefined_variable(op, name)),
+        );
         let outcome = Outcome {
             interrupted,
             result,
@@ -78,7 +87,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             globals: self.globals,
             final_situation,
             transitions: self.transitions,
-            warnings: self.warnings,
+            warnings,
         };
         (outcome, self.store)
     }
@@ -408,6 +417,17 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     id = self.store.deref(next);
                     step = Step::Final;
                 }
+                Step::Goto(next) if self.store.deref(next) == Term::atom(atoms::EMPTY) => {
+                    // `=> empty` ends the DM the same way, whatever its
+                    // situations are called: the original's first clause
+                    // for the next situation is `empty`'s (its final
+                    // situation left unbound: a caller takes its first
+                    // exit arc, with a warning).
+                    self.warn_empty_next(here);
+                    unbound_end = true;
+                    id = self.store.new_var();
+                    step = Step::Final;
+                }
                 Step::Goto(next) => return Ok(Some(Goto::Situation(next))),
                 Step::GotoSit(next) => return Ok(Some(Goto::Index(next))),
                 // Taken where the code returns it (the run loop).
@@ -681,7 +701,11 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         value: Term,
     ) -> Option<(SitIx, Term, Option<Term>)> {
         let functor = self.store.functor(value);
-        functor?;
+        // `empty` ends the DM whatever its situations are called: the
+        // machine's `take_step` ends it.
+        if functor? == (atoms::EMPTY, 0) {
+            return None;
+        }
         for sit in 0..self.program.situation_count(dm) as SitIx {
             match self.program.compiled_id(dm, sit) {
                 Some(id) => {

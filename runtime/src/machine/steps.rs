@@ -525,6 +525,41 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         });
     }
 
+    /// The warning of an arc whose next situation is `empty` in an
+    /// embedded DM (docs/guide/language.md, "Next"), the first time its
+    /// situation takes one: the DM ends there without a final situation,
+    /// as the original's, and its caller takes its first exit arc. In
+    /// the main DM, where it ends the task, nothing is said. Cold.
+    #[cold]
+    pub(super) fn warn_empty_next(&mut self, here: Option<(SitIx, Term)>) {
+        if self.frames.len() + self.lazy.len() <= 1 {
+            return;
+        }
+        let Some((dm, call)) = self.warning_dm() else {
+            return;
+        };
+        let key = (dm, here.map(|(s, _)| s));
+        if self.unbound_next_warned.contains(&key) {
+            return;
+        }
+        self.unbound_next_warned.push(key);
+        let arc = match self.chose {
+            Some((s, Some(a))) if Some(s) == here.map(|(s, _)| s) => format!("arc {}'s ", a + 1),
+            _ => String::new(),
+        };
+        let id = here.map_or(Term::atom(atoms::NONE), |(_, id)| id);
+        let [call, id] = writeq_renumbered(&self.store, [call, id]);
+        let location = here.and_then(|(s, _)| self.program.location(dm, s));
+        self.warnings.push(super::RunWarning {
+            message: format!(
+                "{arc}next situation `empty` ends the DM here without a final situation, as the original SitLog ends it, and its caller takes its first exit arc, whatever its expectation (said once per situation)"
+            ),
+            dm: call,
+            situation: id,
+            location,
+        });
+    }
+
     pub(super) fn perform(
         &mut self,
         action: Term,
@@ -561,7 +596,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             let mut rest = a;
             let mut result = Ok(());
             while let Some(&[head, tail]) = self.store.compound_args(rest, atoms::DOT, 2) {
-                result = actions.perform(&mut self.store, head);
+                result = super::io::perform_one(actions, &mut self.store, head);
                 if result.is_err() {
                     break;
                 }
@@ -569,7 +604,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             }
             result
         } else {
-            actions.perform(&mut self.store, a)
+            super::io::perform_one(actions, &mut self.store, a)
         };
         result
     }

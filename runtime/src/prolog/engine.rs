@@ -1105,6 +1105,18 @@ impl PrologFunctions {
                 }
                 Ok(value)
             }
+            PTerm::Atom(a) if a == "cyclic" => Err(format!(
+                "`{}`: its value, a binding of the caller's variables or a SitLog variable it set is a cyclic term (a variable inside its own value), which the run cannot take",
+                shown()
+            )),
+            PTerm::Compound(f, a) if f == "improper" && a.len() == 1 => Err(format!(
+                "`{}`: its value (or what it set) `{}` holds a list whose tail is an atom other than `[]`, which the Prolog engine cannot hand over (end the list with `[]`, or make the tail a variable or a compound)",
+                shown(),
+                match &a[0] {
+                    PTerm::Atom(t) => t.clone(),
+                    other => show_pterm(other),
+                }
+            )),
             PTerm::Atom(a) if a == "novalue" => Err(format!(
                 "`{}` succeeded without calling assign_func_value/1",
                 shown()
@@ -1242,18 +1254,21 @@ fn engine_thread(
                 (q, reply)
             }
         };
-        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            first_answer(&mut machine, &q, "R")
-        }));
+        // The prelude hands over no answer the engine's conversion panics
+        // on that it knows of (a cyclic term, a list with an atom tail:
+        // `'$sitlog_safe'/2`); any other panic is caught quietly.
+        let r = super::quiet::quietly(|| first_answer(&mut machine, &q, "R"));
         let r = match r {
             Ok(r) => r,
-            Err(_) => {
+            Err(message) => {
                 // The engine may be in any state: start afresh.
                 machine = build_machine(&prepared, host.clone(), shared.clone()).0;
                 if let Some((allow_os, limit)) = started {
                     let _ = run_directives(&mut machine, &prepared, allow_os, limit);
                 }
-                Err("the Prolog engine panicked (it was restarted)".to_owned())
+                Err(format!(
+                    "the Prolog engine could not hand over its answer (an internal error of the engine: {message}; it was restarted)"
+                ))
             }
         };
         if let Ok(mut slot) = shared.history.lock() {

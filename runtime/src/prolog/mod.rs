@@ -68,13 +68,16 @@
 //!   rest to the engine;
 //! - `consult`: sources, their clauses, and `consult/1` resolution;
 //! - `engine`: the engine thread and the calling protocol
-//!   ([`PrologFunctions`]).
+//!   ([`PrologFunctions`]);
+//! - `quiet`: a panic inside the engine caught without a backtrace on
+//!   stderr (the engine restarted, the panic the call's error).
 
 mod consult;
 mod engine;
 mod kb_reach;
 mod legacy_kb;
 mod permissions;
+mod quiet;
 mod reach_cache;
 mod swi;
 mod translate;

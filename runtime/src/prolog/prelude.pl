@@ -36,7 +36,72 @@ mode_exe(test).
     bb_b_put('$sitlog_history', '$ask'),
     bb_b_put('$sitlog_value', '$none'),
     catch('$sitlog_run'(Goal, Limit, R0), E, R0 = error(E)),
-    '$sitlog_result'(R0, Vars, Result).
+    '$sitlog_result'(R0, Vars, Result0),
+    '$sitlog_safe'(Result0, Result).
+
+% '$sitlog_safe'(Answer0, Answer): an answer the engine can hand over.
+% Its conversion of an answer cannot take a list whose tail is an atom
+% other than [] ([a|b]; [a|f(x)] and [a|_] it takes) nor a cyclic term:
+% such an answer becomes improper(Text), the value (or the whole answer)
+% written out, or `cyclic`, each an error of the call naming it. The
+% answer is walked once, not copied, up to 20 000 nodes (a cyclic
+% term has more); acyclic_term/1 only past them (it spoils a partial
+% string's atom tail, so it is not asked first).
+'$sitlog_safe'(T0, T) :-
+    '$sitlog_scan'(T0, 20000, _, R),
+    (   R == found
+    ->  (   T0 = ok(V, _, _), '$sitlog_scan'(V, 20000, _, found)
+        ->  W = V
+        ;   W = T0
+        ),
+        (   catch(write_term_to_chars(W, [quoted(true)], Cs), _, fail)
+        ->  atom_chars(Text, Cs)
+        ;   Text = '?'
+        ),
+        T = improper(Text)
+    ;   R == out, \+ acyclic_term(T0)
+    ->  T = cyclic
+    ;   T = T0
+    ).
+
+% '$sitlog_scan'(T, Budget0, Budget, R): R is found (a list with an atom
+% tail in T), none, or out (Budget0 nodes walked, not done).
+'$sitlog_scan'(T, B0, B, R) :-
+    (   B0 =< 0
+    ->  B = B0,
+        R = out
+    ;   \+ compound(T)
+    ->  B is B0 - 1,
+        R = none
+    ;   T = [H|Tl]
+    ->  B1 is B0 - 1,
+        '$sitlog_scan'(H, B1, B2, R1),
+        (   R1 \== none
+        ->  B = B2,
+            R = R1
+        ;   atom(Tl), Tl \== []
+        ->  B = B2,
+            R = found
+        ;   '$sitlog_scan'(Tl, B2, B, R)
+        )
+    ;   functor(T, _, N),
+        B1 is B0 - 1,
+        '$sitlog_scan_args'(1, N, T, B1, B, R)
+    ).
+
+'$sitlog_scan_args'(I, N, T, B0, B, R) :-
+    (   I > N
+    ->  B = B0,
+        R = none
+    ;   arg(I, T, A),
+        '$sitlog_scan'(A, B0, B1, R1),
+        (   R1 \== none
+        ->  B = B1,
+            R = R1
+        ;   I1 is I + 1,
+            '$sitlog_scan_args'(I1, N, T, B1, B, R)
+        )
+    ).
 
 '$sitlog_run'(Goal, inf, R) :-
     !,

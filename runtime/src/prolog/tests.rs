@@ -27,6 +27,11 @@ codes(X) :- X = "ab", assign_func_value(X).
 sum(L) :- sum_list(L, S), assign_func_value(S).
 member(x, _).
 mem(X) :- (member(X, [a]) -> assign_func_value(yes) ; assign_func_value(no)).
+tail_atom(_) :- findall(Y, member(Y, [c]), [T]), assign_func_value(f([ab,cd|T])).
+tail_char(_) :- findall(Y, member(Y, [c]), [T]), assign_func_value(f([a,b|T])).
+set_tail(_) :- findall(Y, member(Y, [y]), [T]), var_op(set(glist, [x|T])), assign_func_value(ok).
+compound_tail(_) :- findall(Y, member(Y, [x]), [T]), assign_func_value([a|f(T)]).
+cyclic(_) :- findall(Y, member(Y, [c]), [_]), X = f(X), assign_func_value(X).
 "#;
 
 struct Env {
@@ -544,4 +549,37 @@ fn a_history_past_the_engines_depth_is_given_on_demand() {
         format!("{}:a", n - 1)
     );
     assert_eq!(run(&mut e, "apply(cur(X), [_])").unwrap(), "5");
+}
+
+/// A value with a list whose tail is an atom (`[ab,cd|x]`: `member/2` is the application's here), which scryer's
+/// conversion of an answer panicked on (the engine restarted, a
+/// backtrace on stderr), and a cyclic value: each an error naming the
+/// function and the value, the engine whole (it answers the next call);
+/// `[a|f(x)]` is handed over as it is (helper fid20).
+#[test]
+fn atom_tails_and_cyclic_values_leave_the_engine_whole() {
+    let mut e = env();
+    let err = run(&mut e, "apply(tail_atom(X), [_])").unwrap_err();
+    assert!(
+        err.contains("`tail_atom/1`: its value (or what it set) `f([ab,cd|x])` holds a list whose tail is an atom"),
+        "{err}"
+    );
+    // Of one-character atoms (a partial string in the engine).
+    let err = run(&mut e, "apply(tail_char(X), [_])").unwrap_err();
+    assert!(err.contains("`tail_char/1`: its value"), "{err}");
+    let err = run(&mut e, "apply(set_tail(X), [_])").unwrap_err();
+    assert!(
+        err.contains("`set_tail/1`") && err.contains("g(glist,[x|x])"),
+        "{err}"
+    );
+    let err = run(&mut e, "apply(cyclic(X), [_])").unwrap_err();
+    assert!(
+        err.contains("`cyclic/1`") && err.contains("cyclic term"),
+        "{err}"
+    );
+    assert_eq!(
+        run(&mut e, "apply(compound_tail(X), [_])").unwrap(),
+        "[a|f(x)]"
+    );
+    assert_eq!(run(&mut e, "apply(echo(X), [b])").unwrap(), "b");
 }

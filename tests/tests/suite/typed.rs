@@ -4318,4 +4318,151 @@ fn nbound20_last_hand_overs_agree() {
         assert!(said.contains(want), "{want} in {said}");
     }
     ENGINE.with(|e| *e.borrow_mut() = None);
+mod undefined_fid20 {
+    pub mod data {
+        sitlog_macros::include_dm!("typed/fid20_undefined");
+    }
+}
+
+/// A `get`, `set` or `inc` of a variable neither local nor global where
+/// its value is data (issue 39's program 36; W0219): an element of a list
+/// in an action's argument, an argument of a next situation, an out_arg,
+/// an element of a prog, an argument of an embedded DM's call, in a
+/// callee whose loop runs natively too. The value is a fresh unbound
+/// variable and the run goes on, as the original's; one warning per
+/// variable and operation, after the machine's own; the compiled task, the
+/// plans and the interpreter alike, history kept and not.
+#[test]
+fn an_undefined_variables_value_is_unbound_and_the_run_goes_on() {
+    use undefined_fid20::data as m;
+    let ir = interpreter("typed/fid20_undefined");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    let options = |keep_history| Options {
+        keep_history,
+        ..Options::default()
+    };
+    let warning = |op: &str, name: &str| {
+        format!(
+            "warning: `{op}` of `{name}`, which is neither a local nor a global variable: its value was unbound and the run went on, as the original SitLog's does (it prints `Error: Variable \"{name}\" is not defined.`); a misspelt name? (said once per variable)"
+        )
+    };
+    for keep in [false, true] {
+        let i = run_with(&ir, "main", None, "", options(keep), false, false);
+        assert_eq!(i.0["status"], "ok", "{}", i.0);
+        // `level` was incremented by the prog; `set(charge, 5)` gave an
+        // unbound value, not 5.
+        let out = i.0["out_arg"].as_str().unwrap_or_default();
+        assert!(
+            out.starts_with("reading(_") && out.ends_with(",4)"),
+            "{out}"
+        );
+        let said: Vec<&String> = i.2.iter().filter(|l| l.starts_with("warning:")).collect();
+        let want = [
+            warning("get", "battery"),
+            warning("get", "charge"),
+            warning("inc", "ticks"),
+            warning("set", "charge"),
+        ];
+        assert_eq!(said, want.iter().collect::<Vec<_>>());
+        assert!(
+            i.2.iter().any(|l| l == "Golem says: more 2"),
+            "the callee's loop ran: {:?}",
+            i.2
+        );
+        if keep {
+            let h = i.0["history"].to_string();
+            assert!(h.contains(r#""situation":"done(2)""#), "{h}");
+        }
+        for (c, by) in [
+            (
+                run_with(m::program(), "main", None, "", options(keep), false, false),
+                "compiled",
+            ),
+            (
+                run_with(&plans, "main", None, "", options(keep), false, false),
+                "plans",
+            ),
+        ] {
+            assert_eq!(
+                unnumbered(format!("{c:?}")),
+                unnumbered(format!("{i:?}")),
+                "{by} (history {keep})"
+            );
+        }
+    }
+}
+
+mod empty_fid20 {
+    pub mod ends {
+        sitlog_macros::include_dm!("typed/fid20_empty");
+    }
+}
+
+/// `=> empty` ends its DM as the original's first rule for a next
+/// situation does, before any situation is looked at (issue 39): the main
+/// DM's ends the task (its out_arg the pipe) without entering its
+/// situation called `empty`, silently; a callee's leaves its final
+/// situation unbound, so the caller takes its first exit arc (`took(X)`),
+/// with one warning at the callee's situation. The history agrees with
+/// the original's (`tests/conformance/original`, the expectations aside:
+/// semantics E1). The compiled task, the plans and the interpreter alike,
+/// history kept and not.
+#[test]
+fn a_next_situation_empty_ends_the_dm() {
+    use empty_fid20::ends as m;
+    let ir = interpreter("typed/fid20_empty");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    let options = |keep_history| Options {
+        keep_history,
+        ..Options::default()
+    };
+    let name = ir.sources.files().next().expect("a file").1.name.clone();
+    for keep in [false, true] {
+        let i = run_with(&ir, "main", None, "", options(keep), false, false);
+        assert_eq!(i.0["status"], "ok", "{}", i.0);
+        assert_eq!(i.0["out_arg"], "ended", "{}", i.0);
+        let said: Vec<&String> = i.2.iter().filter(|l| l.starts_with("warning:")).collect();
+        assert_eq!(
+            said,
+            vec![&format!(
+                "warning: in DM `sub(1)`, situation `s1` ({name}:17:7): arc 1's next situation `empty` ends the DM here without a final situation, as the original SitLog ends it, and its caller takes its first exit arc, whatever its expectation (said once per situation)"
+            )]
+        );
+        let done: Vec<String> =
+            i.2.iter()
+                .filter(|l| l.starts_with("Golem"))
+                .map(|l| unnumbered(l.clone()))
+                .collect();
+        assert_eq!(
+            done,
+            [
+                "Golem says: n(1)",
+                "Golem says: took(first,_G)",
+                "Golem says: bye"
+            ]
+        );
+        if keep {
+            let h = i.0["history"].to_string();
+            assert!(
+                h.ends_with(r#"{"action":"say(bye)","dm":"main","expectation":"empty","situation":"again"}]"#),
+                "{h}"
+            );
+        }
+        for (c, by) in [
+            (
+                run_with(m::program(), "main", None, "", options(keep), false, false),
+                "compiled",
+            ),
+            (
+                run_with(&plans, "main", None, "", options(keep), false, false),
+                "plans",
+            ),
+        ] {
+            assert_eq!(
+                unnumbered(format!("{c:?}")),
+                unnumbered(format!("{i:?}")),
+                "{by} (history {keep})"
+            );
+        }
+    }
 }
