@@ -43,7 +43,7 @@ pub type FallbackFn =
     dyn Fn(&mut FnCall<'_>, Atom, &[Term]) -> Option<Result<Term, String>> + Send + Sync;
 
 /// Runs a function that has no Rust entry on native values where it can
-/// (a plain Prolog function: `prolog::plain`), given the registry, the
+/// (a plain Prolog function: `crate::plain`), given the registry, the
 /// store and the caller's globals; `None` means the term path
 /// ([`Functions::call`]) decides, with the same answer or error it always
 /// gives. Only code whose DM has no locals calls it (the caller's locals

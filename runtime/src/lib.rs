@@ -18,7 +18,7 @@
 //!   locals, the pipe and DM parameters (`in_arg`/`out_arg`), matching a
 //!   callee's final situation against exit arcs, matching a perception
 //!   against expectations with the frames kept (`Cx::choose_kept`), plain
-//!   user functions (`prolog::plain`, run in Rust before they would become
+//!   user functions (`plain`, run in Rust before they would become
 //!   a query), and performing an action built of values (converted to a term
 //!   only at the effector); its frames are typed (`machine::native_stack`
 //!   drives them, generic over the program's frame type). Where a value does
