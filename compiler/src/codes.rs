@@ -108,7 +108,7 @@ pub const DIAGNOSTICS: &[(&str, &str)] = &[
     ),
     (
         check::UNKNOWN_VARIABLE_NESTED,
-        "`get`/`set`/`inc` of a variable neither local nor global whose value is data passed on: an element of a list in an action's argument (`say(['Battery at', get(battery, _)])`) or an argument of a next situation (`=> next(get(battery, _))`): the original prints that the variable is not defined and runs on with the value unbound (the run stops there: left)",
+        "`get`/`set`/`inc` of a variable neither local nor global whose value is data passed on: an element of a list in an action's argument (`say(['Battery at', get(battery, _)])`), an argument of a next situation (`=> next(get(battery, _))`), an `out_arg`, an element of a `prog`, an argument of an `embedded_dm` call: the original prints that the variable is not defined and runs on with the value unbound, and so does the run (a warning once per variable on stderr, [language](language.md#variables-local-and-global))",
     ),
     (check::SINGLETON, "singleton variable (as Prolog warns)"),
     (check::DUPLICATE_GLOBAL, "global variable declared twice"),

@@ -45,7 +45,6 @@ use crate::store::Store;
 use crate::term::{Repr, Term, Value, Var};
 use sitlog_syntax::{atoms, Atom};
 use std::collections::{HashMap, HashSet};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 mod val;
 
@@ -364,36 +363,6 @@ impl PlainFns {
 /// than `PROLOG_MAX_DEPTH`, with an error naming the function).
 const MAX_DEPTH: usize = 10_000;
 
-/// The last list cell [`sure`] took whole as an argument, in its store
-/// (`Store::plain_memo`): the store's epoch and the cell's index, so that a
-/// walk that passes the rest of its list at each call checks the list
-/// once (the arguments of the next call are then that list, or its tail).
-/// Only a list the store knows ground is remembered: its cells never
-/// change until a collection, which bumps the epoch (a clone of the store
-/// holds the same cells, and the memo with them).
-#[derive(Debug, Default)]
-pub(crate) struct Memo(AtomicU64);
-
-impl Clone for Memo {
-    fn clone(&self) -> Memo {
-        Memo(AtomicU64::new(self.0.load(Ordering::Relaxed)))
-    }
-}
-
-impl Memo {
-    fn get(&self, epoch: u32) -> Option<u32> {
-        let m = self.0.load(Ordering::Relaxed);
-        (m as u32 != 0 && (m >> 32) as u32 == epoch).then(|| m as u32 - 1)
-    }
-
-    fn set(&self, epoch: u32, cell: u32) {
-        if let Some(c) = cell.checked_add(1) {
-            self.0
-                .store(u64::from(epoch) << 32 | u64::from(c), Ordering::Relaxed);
-        }
-    }
-}
-
 /// The index of the list cell `t` is, if the store knows it ground.
 fn ground_cell(store: &Store, t: Term) -> Option<u32> {
     match t.0 {
@@ -410,7 +379,7 @@ fn ground_cell(store: &Store, t: Term) -> Option<u32> {
 /// ground with no float, big integer or improper list (`[a|b]`) anywhere
 /// in it: the engine cannot give back an answer that holds an improper
 /// list (it fails the call: see [`value`]). A strict argument that is the
-/// list [`Memo`] remembers, or its tail, is taken without a walk.
+/// list `Store::plain_memo` remembers, or its tail, is taken without a walk.
 pub(super) fn sure(store: &Store, t: Term, strict: bool) -> bool {
     let t = store.deref(t);
     match store.value(t) {

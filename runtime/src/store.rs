@@ -22,6 +22,7 @@
 use crate::term::{Repr, Term, Value, Var};
 use sitlog_syntax::write::{write_term, TermSource, VarLabel, View, WriteOptions};
 use sitlog_syntax::{atoms, Atom};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Header flag: the compound contains no variable handle (ground, and so
 /// acyclic: cells are never changed once written).
@@ -93,7 +94,7 @@ pub struct Store {
     /// collection allocates (and page-faults) nothing once warm.
     pub(crate) gc_scratch: GcScratch,
     /// The last list a plain function's call took whole (`crate::plain`).
-    pub(crate) plain_memo: crate::plain::Memo,
+    pub(crate) plain_memo: PlainMemo,
     /// `(op, name)` of each `get`/`set`/`inc` of a variable neither local
     /// nor global evaluated so far, each pair once ([`Store::note_undefined`]).
     pub(crate) undefined: Vec<(Atom, Atom)>,
@@ -654,5 +655,35 @@ mod tests {
             s.integer_from_text("-9223372036854775808"),
             Some(Term::int(i64::MIN))
         );
+    }
+}
+
+/// The last list cell `plain::sure` took whole as an argument, in its store
+/// (`Store::plain_memo`): the store's epoch and the cell's index, so that a
+/// walk that passes the rest of its list at each call checks the list
+/// once (the arguments of the next call are then that list, or its tail).
+/// Only a list the store knows ground is remembered: its cells never
+/// change until a collection, which bumps the epoch (a clone of the store
+/// holds the same cells, and the memo with them).
+#[derive(Debug, Default)]
+pub(crate) struct PlainMemo(AtomicU64);
+
+impl Clone for PlainMemo {
+    fn clone(&self) -> PlainMemo {
+        PlainMemo(AtomicU64::new(self.0.load(Ordering::Relaxed)))
+    }
+}
+
+impl PlainMemo {
+    pub(crate) fn get(&self, epoch: u32) -> Option<u32> {
+        let m = self.0.load(Ordering::Relaxed);
+        (m as u32 != 0 && (m >> 32) as u32 == epoch).then(|| m as u32 - 1)
+    }
+
+    pub(crate) fn set(&self, epoch: u32, cell: u32) {
+        if let Some(c) = cell.checked_add(1) {
+            self.0
+                .store(u64::from(epoch) << 32 | u64::from(c), Ordering::Relaxed);
+        }
     }
 }

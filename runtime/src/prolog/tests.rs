@@ -35,6 +35,8 @@ cyclic(_) :- findall(Y, member(Y, [c]), [_]), X = f(X), assign_func_value(X).
 "#;
 
 struct Env {
+    /// Held while the test runs: see [`ALONE`].
+    _shared: std::sync::RwLockReadGuard<'static, ()>,
     store: Store,
     locals: Vars,
     globals: Vars,
@@ -57,7 +59,15 @@ fn engine() -> &'static PrologFunctions {
     })
 }
 
+/// Taken for writing by a test that grows the process by hundreds of MiB
+/// (`deep_terms_never_overflow_a_stack`'s million-level term), and for
+/// reading by every [`env`]: the engine's memory limit is the growth of the
+/// whole process during a call, so an engine call of another test beside
+/// such a growth would exceed it.
+static ALONE: std::sync::RwLock<()> = std::sync::RwLock::new(());
+
 fn env() -> Env {
+    let shared = ALONE.read().unwrap_or_else(|e| e.into_inner());
     let p = engine();
     let mut functions = Functions::standard();
     p.install(&mut functions);
@@ -85,6 +95,7 @@ fn env() -> Env {
         entry("main", "rs", "fs2", "screen(x)"),
     ];
     Env {
+        _shared: shared,
         store,
         locals,
         globals,
@@ -464,7 +475,8 @@ fn deep_terms_never_overflow_a_stack() {
     use super::translate::{drop_deep, from_prolog};
     use scryer_prolog::Term as PTerm;
     // An engine term a million levels deep: read into the store (stacker)
-    // and dropped (iteratively).
+    // and dropped (iteratively), no other test's engine call beside it.
+    let alone = ALONE.write().unwrap_or_else(|e| e.into_inner());
     let mut t = PTerm::Atom("a".into());
     for _ in 0..1_000_000 {
         t = PTerm::Compound("s".into(), vec![t]);
@@ -474,6 +486,8 @@ fn deep_terms_never_overflow_a_stack() {
     let s = from_prolog(&mut store, &t, &mut names);
     drop_deep(t);
     assert!(store.compound_args(s, Atom::intern("s"), 1).is_some());
+    drop(store);
+    drop(alone);
     // A call whose argument nests deeper than the engine takes.
     let mut e = env();
     let depth = crate::functions::PROLOG_MAX_DEPTH + 1;

@@ -4318,6 +4318,8 @@ fn nbound20_last_hand_overs_agree() {
         assert!(said.contains(want), "{want} in {said}");
     }
     ENGINE.with(|e| *e.borrow_mut() = None);
+}
+
 mod undefined_fid20 {
     pub mod data {
         sitlog_macros::include_dm!("typed/fid20_undefined");
