@@ -74,8 +74,8 @@ mod input;
 pub mod machine;
 pub mod native;
 pub mod paths;
-/// Plain Prolog user functions run natively (used by `prolog`; the scan of
-/// which functions are plain also without the engine, for a build).
+// Plain Prolog user functions run natively (used by `prolog`; the scan of
+// which functions are plain also without the engine, for a build).
 #[cfg_attr(not(feature = "prolog"), allow(dead_code))]
 pub mod plain;
 pub mod prelude;

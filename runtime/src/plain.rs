@@ -41,6 +41,9 @@
 //! run checks). This module needs no engine: `prolog` (feature `prolog`)
 //! loads the forms, the compiler without it reads the names.
 
+// The module doc names the private items that keep its invariant.
+#![allow(rustdoc::private_intra_doc_links)]
+
 use crate::store::Store;
 use crate::term::{Repr, Term, Value, Var};
 use sitlog_syntax::{atoms, Atom};
@@ -278,9 +281,9 @@ impl PlainScan {
 /// clauses if read already) that are plain as the files read (without the
 /// files their directives consult): what a build may expect to run
 /// natively. Only a guess for generated code, which asks at run time
-/// ([`PlainFns::call_vals`] through the engine that loaded the run's
+/// (`PlainFns::call_vals` through the engine that loaded the run's
 /// sources, `None` there taking the term path); the engine's own scan
-/// ([`PlainScan`] as `prolog::consult::prepare` loads the files) decides.
+/// (`PlainScan` as `prolog::consult::prepare` loads the files) decides.
 pub fn plain_names(files: &[(&str, Option<&[sitlog_syntax::Clause]>)]) -> HashSet<(Atom, usize)> {
     let mut scan = PlainScan::default();
     let neck = Atom::intern(":-");
