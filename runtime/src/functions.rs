@@ -10,7 +10,6 @@ use crate::term::Term;
 use crate::trust::Trust;
 use crate::vars::Vars;
 use sitlog_syntax::{atoms, Atom};
-use std::collections::HashMap;
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
@@ -93,35 +92,10 @@ impl Default for CallLimits {
     }
 }
 
-/// Hashes a function's key (an atom's index and an arity) with a
-/// multiplication a word: the registry is looked up at every call (a
-/// plain function on native values, `Functions::call_native`, too). The
-/// keys are the program's own names, not an adversary's.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct KeyHasher(u64);
-
-impl std::hash::Hasher for KeyHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(u64::from(b));
-        }
-    }
-    fn write_u32(&mut self, i: u32) {
-        self.write_u64(u64::from(i));
-    }
-    fn write_usize(&mut self, i: usize) {
-        self.write_u64(i as u64);
-    }
-    fn write_u64(&mut self, i: u64) {
-        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-}
-
-/// A map by function key ([`KeyHasher`]).
-pub(crate) type KeyMap<V> = HashMap<(Atom, usize), V, std::hash::BuildHasherDefault<KeyHasher>>;
+/// A map by function key (an atom's index and an arity), looked up at
+/// every call (a plain function on native values, `Functions::call_native`,
+/// too): hashed by [`crate::hash::AtomKeyHasher`].
+pub(crate) type KeyMap<V> = crate::hash::AtomKeyMap<(Atom, usize), V>;
 
 /// The registry of user functions.
 #[derive(Clone, Default)]

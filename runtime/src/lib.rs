@@ -40,11 +40,11 @@
 //! |---|---|
 //! | 6 | [`app`], [`prelude`] (the names generated code imports), [`report`], [`testmode`] |
 //! | 5 | [`machine`] (the DM machine) |
-//! | 4 | [`eval`] (the language L), `prolog` (feature `prolog`: Prolog user functions) |
+//! | 4 | [`eval`] (the language L), [`plain`] (plain Prolog user functions run natively, no engine needed), `prolog` (feature `prolog`: Prolog user functions) |
 //! | 3 | `arith`, `copy`, [`functions`], [`native`] (native values: their types, `List`, `Val`, conversions to and from terms, gc of the terms inside) |
 //! | 2 | `unify`, `gc`, `convert`, [`vars`], [`history`], [`builtins`] |
 //! | 1 | `store` |
-//! | 0 | `term`, `special` (the functors L gives a meaning), `eval_error`, `input` (limits on terms from outside), [`paths`], [`trust`] |
+//! | 0 | `term`, `special` (the functors L gives a meaning), `hash` (the atom-keyed tables' hasher), `eval_error`, `input` (limits on terms from outside), [`paths`], [`trust`] |
 //!
 //! The term layer:
 //! - [`Term`]: a `Copy` handle; atoms, integers, floats and variables need
@@ -69,6 +69,7 @@ mod eval_error;
 pub mod functions;
 mod gc;
 mod goal;
+pub(crate) mod hash;
 pub mod history;
 mod input;
 pub mod machine;

@@ -9,7 +9,6 @@ use crate::term::{Repr, Term};
 use sitlog_syntax::write::format_float;
 use sitlog_syntax::{atoms, Atom};
 use std::cmp::Ordering;
-use std::collections::HashMap;
 use std::sync::OnceLock;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -83,29 +82,8 @@ enum Op {
     Copysign,
 }
 
-/// A multiplicative hash for the operator table: its keys are small atom
-/// indices, and SipHash showed up in every `is`.
-#[derive(Default)]
-struct AtomHasher(u64);
-
-impl std::hash::Hasher for AtomHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(u64::from(b));
-        }
-    }
-    fn write_u32(&mut self, i: u32) {
-        self.write_u64(u64::from(i));
-    }
-    fn write_u64(&mut self, i: u64) {
-        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x517c_c1b7_2722_0a95);
-    }
-}
-
-type OpTable = HashMap<(Atom, u32), Op, std::hash::BuildHasherDefault<AtomHasher>>;
+/// The operator table, looked up at every `is` ([`crate::hash::AtomKeyHasher`]).
+type OpTable = crate::hash::AtomKeyMap<(Atom, u32), Op>;
 
 fn op_table() -> &'static OpTable {
     static TABLE: OnceLock<OpTable> = OnceLock::new();
