@@ -488,6 +488,28 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         Ok(n)
     }
 
+    /// Where a warning about the next situation of the arc just taken goes,
+    /// once per DM and situation (`unbound_next_warned`): the running DM's
+    /// call, the arc named (`arc 2's `) if it was the one chosen here, and
+    /// the situation's place; `None` when it was said already or no DM runs.
+    fn next_warning_place(
+        &mut self,
+        here: Option<(SitIx, Term)>,
+    ) -> Option<(Term, String, Option<String>)> {
+        let (dm, call) = self.warning_dm()?;
+        let key = (dm, here.map(|(s, _)| s));
+        if self.unbound_next_warned.contains(&key) {
+            return None;
+        }
+        self.unbound_next_warned.push(key);
+        let arc = match self.chose {
+            Some((s, Some(a))) if Some(s) == here.map(|(s, _)| s) => format!("arc {}'s ", a + 1),
+            _ => String::new(),
+        };
+        let location = here.and_then(|(s, _)| self.program.location(dm, s));
+        Some((call, arc, location))
+    }
+
     /// The warning of an arc whose next situation has no value (docs/guide/language.md, "Next"),
     /// the first time its situation takes one: the running DM ends there,
     /// without a final situation, as the original's ends (its unbound next
@@ -495,21 +517,11 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     /// its first exit arc. Located at the situation, the arc named. Cold.
     #[cold]
     pub(super) fn warn_unbound_next(&mut self, next: Term, here: Option<(SitIx, Term)>) {
-        let Some((dm, call)) = self.warning_dm() else {
+        let Some((call, arc, location)) = self.next_warning_place(here) else {
             return;
-        };
-        let key = (dm, here.map(|(s, _)| s));
-        if self.unbound_next_warned.contains(&key) {
-            return;
-        }
-        self.unbound_next_warned.push(key);
-        let arc = match self.chose {
-            Some((s, Some(a))) if Some(s) == here.map(|(s, _)| s) => format!("arc {}'s ", a + 1),
-            _ => String::new(),
         };
         let id = here.map_or(Term::atom(atoms::NONE), |(_, id)| id);
         let [call, id, next] = writeq_renumbered(&self.store, [call, id, next]);
-        let location = here.and_then(|(s, _)| self.program.location(dm, s));
         let whom = if self.frames.len() + self.lazy.len() > 1 {
             "its caller takes its first exit arc"
         } else {
@@ -535,21 +547,11 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         if self.frames.len() + self.lazy.len() <= 1 {
             return;
         }
-        let Some((dm, call)) = self.warning_dm() else {
+        let Some((call, arc, location)) = self.next_warning_place(here) else {
             return;
-        };
-        let key = (dm, here.map(|(s, _)| s));
-        if self.unbound_next_warned.contains(&key) {
-            return;
-        }
-        self.unbound_next_warned.push(key);
-        let arc = match self.chose {
-            Some((s, Some(a))) if Some(s) == here.map(|(s, _)| s) => format!("arc {}'s ", a + 1),
-            _ => String::new(),
         };
         let id = here.map_or(Term::atom(atoms::NONE), |(_, id)| id);
         let [call, id] = writeq_renumbered(&self.store, [call, id]);
-        let location = here.and_then(|(s, _)| self.program.location(dm, s));
         self.warnings.push(super::RunWarning {
             message: format!(
                 "{arc}next situation `empty` ends the DM here without a final situation, as the original SitLog ends it, and its caller takes its first exit arc, whatever its expectation (said once per situation)"
