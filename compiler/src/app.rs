@@ -3,7 +3,8 @@
 //! protocols, and run-time errors rendered at the failing expression.
 
 use crate::diag::{Diagnostic, Loc};
-use crate::ir::{ExprSite, Ir};
+use crate::ir::Ir;
+use sitlog_runtime::machine::places::{blame, Blame, Written};
 use sitlog_runtime::machine::RunError;
 use sitlog_runtime::{app::App, Atom, Store, Vars};
 
@@ -62,25 +63,20 @@ pub fn run_error_diagnostic(ir: &Ir, error: &RunError) -> Option<Diagnostic> {
         .situations
         .get(site.situation as usize)?
         .source;
-    let arc = error.arc.map(|a| a - 1);
-    let found = site.culprit.and_then(|c| {
-        let exact = |e: &&ExprSite| e.functor == (c.name, c.arity) && e.inner == c.inner;
-        let by_functor = |e: &&ExprSite| e.functor == (c.name, c.arity);
-        let here = || src.exprs.iter().filter(|e| e.arc == arc);
-        here()
-            .find(exact)
-            .or_else(|| here().find(by_functor))
-            .or_else(|| src.exprs.iter().find(exact))
+    let written = src.exprs.iter().map(|e| Written {
+        arc: e.arc,
+        functor: (e.functor.0.as_str(), e.functor.1),
+        inner: e.inner.map(|(n, a)| (n.as_str(), a)),
     });
-    let in_arg = src.in_arg.filter(|_| site.in_arg);
-    let (span, label) = match (found, arc.and_then(|a| src.arcs.get(a))) {
-        _ if in_arg.is_some() => (
-            in_arg.unwrap_or(src.span),
+    // The look-up a compiled program makes on its places text too.
+    let (span, label) = match blame(error, written, src.arcs.len(), src.in_arg.is_some()) {
+        Blame::InArg => (
+            src.in_arg.unwrap_or(src.span),
             "the pipe does not match this in_arg",
         ),
-        (Some(e), _) => (e.span, "failed here"),
-        (None, Some(&span)) => (span, "in this arc"),
-        (None, None) => (src.span, "in this situation"),
+        Blame::Written(i) => (src.exprs[i].span, "failed here"),
+        Blame::Arc(a) => (src.arcs[a], "in this arc"),
+        Blame::Situation => (src.span, "in this situation"),
     };
     let mut place = Vec::new();
     if let Some(dm) = &error.dm {

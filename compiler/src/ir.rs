@@ -64,8 +64,9 @@ pub struct SituationSource {
     pub arcs: Vec<sitlog_syntax::Span>,
     /// Its in_arg's span, when it has one.
     pub in_arg: Option<sitlog_syntax::Span>,
-    /// The constructs of L written in the situation (`apply`, `get`, ...),
-    /// in source order: which arc holds them (`None`: another attribute),
+    /// The constructs of L written in the situation (`apply`, `get`, ...):
+    /// those of the attributes that are not arcs, then each arc's, each in
+    /// source order; which arc holds them (`None`: another attribute),
     /// their functor, their first argument's functor, their span.
     pub exprs: Vec<ExprSite>,
 }
@@ -221,7 +222,9 @@ pub fn lower(checked: &Checked) -> Ir {
                     expr_sites(&clause.terms, t, Some(i), &mut exprs);
                 }
             }
-            exprs.sort_by_key(|e| e.span);
+            // In the order the run-time error's look-up takes them
+            // (`machine::places::blame`): other attributes', then each arc's.
+            exprs.sort_by_key(|e| (e.arc.map_or(0, |a| a + 1), e.span));
             let source = SituationSource {
                 file: dm.file,
                 span: s.span,

@@ -30,6 +30,7 @@ impl Gen<'_> {
             .map(|f| Literal::string(&f.text))
             .collect();
 
+        let places = super::places::places(ir);
         // DM modules.
         let mut dm_namer = Namer::default();
         let mut modules = Vec::new();
@@ -300,6 +301,10 @@ impl Gen<'_> {
             /// (`DmRow`).
             pub const DMS: [DmRow; #dm_count] = [#(#dm_rows),*];
 
+            /// Where each DM's arcs and constructs of L are written, read
+            /// only for a run-time error's place (`machine::places`).
+            pub const PLACES: [&str; #dm_count] = [#(#places),*];
+
             /// The program's ground compound terms (and big integers) as
             /// `writeq` text, read once by [`Program::new`]; code names
             /// constant `i` `k[i]`.
@@ -321,7 +326,7 @@ impl Gen<'_> {
                     );
                     let mut store = ::std::mem::take(store);
                     store.freeze();
-                    Program { store, atoms: a, k, templates, sits }
+                    Program { store, atoms: a, k, templates, sits: sits.with_places(&PLACES) }
                 }
 
                 /// A fresh instance of situation `sit` of DM `dm` from its
@@ -464,6 +469,9 @@ impl Gen<'_> {
                 }
                 fn recovery(&self) -> Vec<(Atom, Atom)> {
                     vec![#(#recovery),*]
+                }
+                fn error_location(&self, error: &RunError) -> Option<String> {
+                    self.sits.error_location(error)
                 }
             }
 

@@ -62,6 +62,7 @@ mod emit;
 mod explain;
 mod names;
 mod native;
+mod places;
 mod step;
 
 pub use explain::explain_types;

@@ -86,8 +86,10 @@ impl<P: DmProgram> Cx<'_, '_, P> {
 
     /// The error of an evaluation by native code: the frames below handed
     /// over first (the machine's error names the running DM), then the
-    /// error in the situation entered, `culprit` kept (what [`Cx::eval`]
-    /// gives) or not ([`Cx::condition`]).
+    /// error in the situation entered, its culprit kept (what [`Cx::eval`]
+    /// gives), or, for a condition (`culprit` false), as
+    /// [`Cx::condition`] gives it (the conditional blamed when the
+    /// evaluator blamed nothing inside).
     #[cold]
     #[inline(never)]
     fn nat_eval_failed<F: NatFrames<P>>(
@@ -101,11 +103,12 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         if let Err(h) = nat_hand_over(p, self, stack) {
             return h;
         }
+        if !culprit {
+            return self.condition_error(e, arc);
+        }
         let mut r = self.error(e.message, arc);
-        if culprit {
-            if let Some(site) = r.site.as_mut() {
-                site.culprit = e.culprit;
-            }
+        if let Some(site) = r.site.as_mut() {
+            site.culprit = e.culprit;
         }
         r
     }
@@ -170,7 +173,14 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     ) -> Result<Term, RunError> {
         match eval::is(&mut self.m.store, v, expr, None) {
             Ok(v) => Ok(v),
-            Err(e) => Err(self.nat_eval_failed(stack, e, false, arc)),
+            Err(e) => {
+                let culprit = super::places::is_culprit(&self.m.store, v);
+                let e = EvalError {
+                    culprit: Some(culprit),
+                    ..e
+                };
+                Err(self.nat_eval_failed(stack, e, true, arc))
+            }
         }
     }
 

@@ -1068,7 +1068,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         expr: Term,
         arc: Option<usize>,
     ) -> Result<Term, RunError> {
-        eval::is(&mut self.m.store, v, expr, None).map_err(|e| self.error(e.message, arc))
+        eval::is(&mut self.m.store, v, expr, None).map_err(|e| self.is_error(e, v, arc))
     }
 
     /// A conditional's condition `a op b` with an arithmetic comparison, on evaluated operands.
@@ -1080,7 +1080,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         b: Term,
         arc: Option<usize>,
     ) -> Result<bool, RunError> {
-        eval::arith_condition(&mut self.m.store, op, a, b).map_err(|e| self.error(e.message, arc))
+        eval::arith_condition(&mut self.m.store, op, a, b).map_err(|e| self.condition_error(e, arc))
     }
 
     /// Whether the value of `A op B` (an arithmetic comparison) is `true`,
@@ -1105,7 +1105,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// [`Cx::compare_value`] for a comparison that is an operand of a
     /// conditional's `(A, B)` or `(A ; B)` (D-35: the condition's
     /// arguments are evaluated as values, then it is called): the same
-    /// value, its error as [`Cx::condition`] gives it (no culprit).
+    /// value, its error as [`Cx::condition`] gives it (blaming `op/2`).
     pub fn compare_condition(
         &mut self,
         op: crate::arith::ArithCmp,
@@ -1114,7 +1114,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         arc: Option<usize>,
     ) -> Result<bool, RunError> {
         eval::compare_value(&mut self.m.store, op, written, values)
-            .map_err(|e| self.error(e.message, arc))
+            .map_err(|e| self.condition_error(e, arc))
     }
 
     /// Whether the value of `t`, an operand of a conditional's `(A, B)` or
@@ -1126,7 +1126,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         let r = eval::eval(&mut self.m.eval_ctx(), t);
         match r {
             Ok(v) => Ok(self.m.store.atom_of(v) == Some(sitlog_syntax::atoms::TRUE)),
-            Err(e) => Err(self.error(e.message, arc)),
+            Err(e) => Err(self.condition_error(e, arc)),
         }
     }
 
@@ -1134,7 +1134,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     pub fn condition(&mut self, cond: Term, arc: Option<usize>) -> Result<bool, RunError> {
         self.m.materialize();
         let r = eval::condition(&mut self.m.eval_ctx(), cond);
-        r.map_err(|e| self.error(e.message, arc))
+        r.map_err(|e| self.condition_error(e, arc))
     }
 
     /// Keeps the variables' values, to be put back by [`Cx::restore_vars`]:

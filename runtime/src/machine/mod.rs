@@ -22,7 +22,9 @@
 //! `sitlog_runtime::machine::X`):
 //! - `situation`: indices, [`Kind`], [`Instance`]; `io`: [`Perception`],
 //!   [`Actions`]; `options`: [`Options`];
-//! - `outcome`: [`Outcome`], [`RunError`], [`RunWarning`];
+//! - `outcome`: [`Outcome`], [`RunError`], [`RunWarning`]; `places`: where
+//!   a run-time error happened in the source ([`places::blame`]), for both
+//!   back ends;
 //! - `state`: the [`Machine`] and its DM stack;
 //! - `observe`: [`Observer`] and the [`Inspection`] it is shown;
 //! - `program`: [`DmProgram`], [`Step`], [`Cx`], [`Between`];
@@ -48,6 +50,7 @@ mod native_stack;
 mod observe;
 mod options;
 mod outcome;
+pub mod places;
 mod plain_fn;
 mod program;
 mod run;

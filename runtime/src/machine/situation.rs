@@ -304,12 +304,19 @@ struct SitEntry {
     in_arg_at: Option<(u32, u32)>,
 }
 
+/// Where a situation and its in_arg (when it has one) are written: line
+/// and column ([`SitTable::positions`]).
+pub(super) type SitPositions = ((u32, u32), Option<(u32, u32)>);
+
 /// A compiled program's situations, by DM and situation index (the rows of
 /// each DM's `SITUATIONS`, names interned once when the program is built).
 #[derive(Clone, Debug, Default)]
 pub struct SitTable {
     /// Per DM: its file, its situations.
     dms: Vec<(&'static str, Vec<SitEntry>)>,
+    /// Per DM: where its arcs and constructs of L are written
+    /// ([`SitTable::with_places`]).
+    places: &'static [&'static str],
     /// Per DM: its name, interned, and its head's arity ([`DmRow::head`]).
     heads: Vec<(Atom, Option<usize>)>,
 }
@@ -338,7 +345,32 @@ impl SitTable {
                 (dm.file, rows)
             })
             .collect();
-        SitTable { dms, heads }
+        SitTable {
+            dms,
+            heads,
+            places: &[],
+        }
+    }
+
+    /// This table, DM `i`'s arcs and constructs of L written where
+    /// `places[i]` says (the text `machine::places` reads, only when a
+    /// run-time error is reported: its module doc).
+    pub fn with_places(self, places: &'static [&'static str]) -> SitTable {
+        SitTable { places, ..self }
+    }
+
+    /// DM `dm`'s file and places text ([`SitTable::with_places`]; empty
+    /// when the program gave none); `None` for no such DM.
+    pub(super) fn file_and_places(&self, dm: DmIx) -> Option<(&'static str, &'static str)> {
+        let file = self.dms.get(dm as usize)?.0;
+        Some((file, self.places.get(dm as usize).copied().unwrap_or("")))
+    }
+
+    /// Where situation `sit` of DM `dm` and its in_arg are written (line,
+    /// column); `None` for no such situation.
+    pub(super) fn positions(&self, dm: DmIx, sit: SitIx) -> Option<SitPositions> {
+        let e = self.dms.get(dm as usize)?.1.get(sit as usize)?;
+        Some((e.at, e.in_arg_at))
     }
 
     /// The name of DM `dm`.
