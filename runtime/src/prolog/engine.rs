@@ -1112,10 +1112,10 @@ impl PrologFunctions {
             PTerm::Compound(f, a) if f == "improper" && a.len() == 1 => Err(format!(
                 "`{}`: its value (or what it set) `{}` holds a list whose tail is an atom other than `[]`, which the Prolog engine cannot hand over (end the list with `[]`, or make the tail a variable or a compound)",
                 shown(),
-                match &a[0] {
+                cut_text(match &a[0] {
                     PTerm::Atom(t) => t.clone(),
                     other => show_pterm(other),
-                }
+                })
             )),
             PTerm::Atom(a) if a == "novalue" => Err(format!(
                 "`{}` succeeded without calling assign_func_value/1",
@@ -2223,6 +2223,16 @@ fn load_error(
         col: p.col,
         message,
     });
+}
+
+/// `text` cut at 200 characters (a value written out in an error message:
+/// an atom-tailed list may hold thousands of elements).
+fn cut_text(text: String) -> String {
+    if text.chars().count() > 200 {
+        format!("{}…", text.chars().take(199).collect::<String>())
+    } else {
+        text
+    }
 }
 
 /// A scryer term as Prolog-like text (for messages).

@@ -46,7 +46,9 @@ mode_exe(test).
 % written out, or `cyclic`, each an error of the call naming it. The
 % answer is walked once, not copied, up to 20 000 nodes (a cyclic
 % term has more); acyclic_term/1 only past them (it spoils a partial
-% string's atom tail, so it is not asked first).
+% string's atom tail, so it is not asked first). The value is written to a
+% depth of 24 (a long list's elements past it as `...`: writing all of a
+% list of thousands of one-character atoms took longer than a call may).
 '$sitlog_safe'(T0, T) :-
     '$sitlog_scan'(T0, 20000, _, R),
     (   R == found
@@ -54,7 +56,7 @@ mode_exe(test).
         ->  W = V
         ;   W = T0
         ),
-        (   catch(write_term_to_chars(W, [quoted(true)], Cs), _, fail)
+        (   catch(write_term_to_chars(W, [quoted(true), max_depth(24)], Cs), _, fail)
         ->  atom_chars(Text, Cs)
         ;   Text = '?'
         ),

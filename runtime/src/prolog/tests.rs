@@ -32,6 +32,13 @@ tail_char(_) :- findall(Y, member(Y, [c]), [T]), assign_func_value(f([a,b|T])).
 set_tail(_) :- findall(Y, member(Y, [y]), [T]), var_op(set(glist, [x|T])), assign_func_value(ok).
 compound_tail(_) :- findall(Y, member(Y, [x]), [T]), assign_func_value([a|f(T)]).
 cyclic(_) :- findall(Y, member(Y, [c]), [_]), X = f(X), assign_func_value(X).
+mk(0, T, T) :- !.
+mk(N, T, [N|R]) :- N1 is N - 1, mk(N1, T, R).
+mkc(0, T, T) :- !.
+mkc(N, T, [a|R]) :- N1 is N - 1, mkc(N1, T, R).
+long_tail(_) :- mk(8000, z, L), assign_func_value(L).
+long_chars(_) :- mkc(8000, z, L), assign_func_value(f(L)).
+long_list(_) :- mk(25000, [], L), assign_func_value(L).
 "#;
 
 struct Env {
@@ -594,6 +601,38 @@ fn atom_tails_and_cyclic_values_leave_the_engine_whole() {
     assert_eq!(
         run(&mut e, "apply(compound_tail(X), [_])").unwrap(),
         "[a|f(x)]"
+    );
+    assert_eq!(run(&mut e, "apply(echo(X), [b])").unwrap(), "b");
+}
+
+/// A long list with an atom tail (`[8000, .., 1|z]`, and of
+/// one-character atoms, a partial string in the engine, whose whole
+/// writing took longer than a call may): the same error as `[a|b]`'s,
+/// naming the function, its value written to a depth (helper fid21). A
+/// long proper list is handed over. Left: an atom tail past the 20 000
+/// nodes the prelude walks is still the engine's internal error (caught
+/// quietly, the engine restarted).
+#[test]
+fn a_long_atom_tailed_list_is_the_same_error() {
+    let mut e = env();
+    let err = run(&mut e, "apply(long_tail(X), [_])").unwrap_err();
+    assert!(
+        err.contains("`long_tail/1`: its value (or what it set) `[8000,7999,")
+            && err.contains("holds a list whose tail is an atom")
+            && err.len() < 600,
+        "{err}"
+    );
+    let err = run(&mut e, "apply(long_chars(X), [_])").unwrap_err();
+    assert!(
+        err.contains("`long_chars/1`: its value")
+            && err.contains("holds a list whose tail is an atom"),
+        "{err}"
+    );
+    let ok = run(&mut e, "apply(long_list(X), [_])").unwrap();
+    assert!(
+        ok.starts_with("[25000,24999,") && ok.ends_with(",2,1]"),
+        "{}",
+        &ok[..40]
     );
     assert_eq!(run(&mut e, "apply(echo(X), [b])").unwrap(), "b");
 }
