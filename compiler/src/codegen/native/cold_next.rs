@@ -190,6 +190,51 @@ impl Gen<'_> {
     ) -> N<Vec<TokenStream>> {
         let out = d.out.borrow().clone();
         let tail = super::goto_tail(&d.rec.borrow());
+        let then = |t: &TokenStream| quote!(let rec_next = #t;);
+        let after = quote! {
+            cx.count_transitions(count);
+            #out
+            #tail
+        };
+        self.effects_cold(e, regs, pre, pfx, &then, &after)
+    }
+
+    /// An out_arg `e` computed after next situation `next_at` (a value
+    /// with an effect beside a global read, [`Gen::cold_effects`]: `f(inc(n,
+    /// _), get(goal, _))`) by the statements `pre` as
+    /// [`Gen::nat_effects_cold`] takes them: each read's cold arm
+    /// evaluates the out_arg the machine's way on from there
+    /// (`Cx::out_value`) and hands `next_at` to the machine as its id, as
+    /// [`Gen::nat_out_cold`] does.
+    pub(super) fn nat_out_effects_cold(
+        &self,
+        d: &Dm,
+        e: &Ev,
+        regs: &Regs,
+        pre: Vec<TokenStream>,
+    ) -> N<Vec<TokenStream>> {
+        let tail = super::goto_tail(&d.rec.borrow());
+        let then = |t: &TokenStream| quote!(cx.out_value(#t););
+        let after = quote! {
+            cx.count_transitions(count);
+            let rec_next = next_at.id_term(p, cx.store());
+            #tail
+        };
+        self.effects_cold(e, regs, pre, "out", &then, &after)
+    }
+
+    /// [`Gen::nat_effects_cold`]'s statements, each cold arm ending with
+    /// `then` of the value's term (its fresh variables made there) and
+    /// `after`.
+    fn effects_cold(
+        &self,
+        e: &Ev,
+        regs: &Regs,
+        pre: Vec<TokenStream>,
+        pfx: &str,
+        then: &dyn Fn(&TokenStream) -> TokenStream,
+        after: &TokenStream,
+    ) -> N<Vec<TokenStream>> {
         pre.into_iter()
             .enumerate()
             .map(|(k, stmt)| {
@@ -200,7 +245,8 @@ impl Gen<'_> {
                 let (mut n, mut op) = (0, 0);
                 let t = self.cold_op_term(e, regs, (k, pfx), &mut op, &mut ts, &mut n)?;
                 let mut fresh = std::collections::BTreeSet::new();
-                let redo = super::cold::cold_fresh(quote!(#(#ts)* let rec_next = #t;), &mut fresh);
+                let then = then(&t);
+                let redo = super::cold::cold_fresh(quote!(#(#ts)* #then), &mut fresh);
                 let vars = (!fresh.is_empty()).then(|| {
                     let fresh = fresh.iter();
                     quote!(let [#(#fresh),*] = cx.vars();)
@@ -209,9 +255,7 @@ impl Gen<'_> {
                     // A global's value native code cannot hold: the machine's.
                     #vars
                     #redo
-                    cx.count_transitions(count);
-                    #out
-                    #tail
+                    #after
                 }};
                 Ok(replace_break(stmt, &cold))
             })
