@@ -155,6 +155,9 @@ struct Gen<'s> {
     /// statement a global read's cold arm ends with where the global's
     /// value is not of its MIR type (`native::cold`), instead of an error.
     global_cold: std::cell::RefCell<Option<proc_macro2::TokenStream>>,
+    /// While a conditional next situation is made as before to see whether
+    /// a global read's arm in it is the error (`native::cold_next`).
+    if_cold_off: std::cell::Cell<bool>,
     /// The functions the build takes for plain (`native::plain`), read
     /// once from the program's Prolog files.
     plain_fns: std::cell::OnceCell<std::collections::HashSet<(Atom, usize)>>,
@@ -185,6 +188,7 @@ impl<'s> Gen<'s> {
             native_ok: std::cell::RefCell::new(HashMap::new()),
             patterns: std::cell::RefCell::new(Vec::new()),
             global_cold: std::cell::RefCell::new(None),
+            if_cold_off: std::cell::Cell::new(false),
             plain_fns: std::cell::OnceCell::new(),
         }
     }

@@ -99,12 +99,16 @@ impl Gen<'_> {
     /// variable's value is evaluated: only numbers, atoms, lists of them
     /// and unbound variables).
     pub(super) fn keeps_locals(&self, c: &Cond, regs: &Regs) -> bool {
+        self.cond_pure(c, Some(regs))
+    }
+
+    /// [`Gen::keeps_locals`]; with `regs` `None` any register's value is
+    /// taken as one that only reads (`cold_next`'s rule for a value).
+    pub(super) fn cond_pure(&self, c: &Cond, regs: Option<&Regs>) -> bool {
         match c {
             Cond::Arith(_, l, r) => self.ev_keeps(l, regs) && self.ev_keeps(r, regs),
             Cond::Cmp(_, l, r) => self.build_keeps(l, regs) && self.build_keeps(r, regs),
-            Cond::And(a, b) | Cond::Or(a, b) => {
-                self.keeps_locals(a, regs) && self.keeps_locals(b, regs)
-            }
+            Cond::And(a, b) | Cond::Or(a, b) => self.cond_pure(a, regs) && self.cond_pure(b, regs),
             Cond::Other(Build::Compound(f, args)) => {
                 matches!(
                     f.as_str(),
@@ -115,12 +119,12 @@ impl Gen<'_> {
         }
     }
 
-    fn ev_keeps(&self, e: &Ev, regs: &Regs) -> bool {
+    fn ev_keeps(&self, e: &Ev, regs: Option<&Regs>) -> bool {
         match e {
             Ev::Value(r) => reg_keeps(*r, regs),
             Ev::Built(b) | Ev::Eval(b) => self.build_keeps(b, regs),
             Ev::If(c, a, b) | Ev::Pick(c, a, b) => {
-                self.keeps_locals(c, regs) && self.ev_keeps(a, regs) && self.ev_keeps(b, regs)
+                self.cond_pure(c, regs) && self.ev_keeps(a, regs) && self.ev_keeps(b, regs)
             }
             Ev::VarOpFresh { op, .. } => *op == atoms::GET,
             Ev::VarOp { op, arg, .. } => *op == atoms::GET && self.build_keeps(arg, regs),
@@ -130,7 +134,7 @@ impl Gen<'_> {
         }
     }
 
-    fn build_keeps(&self, b: &Build, regs: &Regs) -> bool {
+    fn build_keeps(&self, b: &Build, regs: Option<&Regs>) -> bool {
         match b {
             Build::Reg(r) => reg_keeps(*r, regs),
             Build::Const(t) => self.const_keeps(*t),
@@ -157,7 +161,10 @@ fn changes(f: sitlog_syntax::Atom) -> bool {
 
 /// Whether register `r`'s value is one the evaluator leaves as it is: an
 /// unbound variable made at the visit, a number, an atom, a list of them.
-fn reg_keeps(r: crate::mir::Reg, regs: &Regs) -> bool {
+fn reg_keeps(r: crate::mir::Reg, regs: Option<&Regs>) -> bool {
+    let Some(regs) = regs else {
+        return true;
+    };
     fn atomic(t: &Ty) -> bool {
         match t {
             Ty::Int | Ty::Float | Ty::Sym | Ty::Never => true,

@@ -52,8 +52,12 @@ impl Gen<'_> {
             Action::List { items, .. } => (items.iter().collect(), true),
             Action::One(e) => (vec![e], false),
         };
-        if !is_global_get(d, items.get(k).ok_or("no such item")?) {
+        let item = items.get(k).ok_or("no such item")?;
+        let (Ev::VarOpFresh { name, .. } | Ev::VarOp { name, .. }) = item else {
             return Err("not a global's `get`".into());
+        };
+        if !is_global_get(d, item) || !self.global_may_not_hold(*name) {
+            return Err("not a global's `get` that may find such a value".into());
         }
         // What the rest binds (`get(goal, G)`'s `G`): a term made there.
         let mut binds = Vec::new();
@@ -119,9 +123,9 @@ impl Gen<'_> {
     }
 
     /// Next situation `n` as a term evaluated on terms as the term code
-    /// does (a constant as it is, a value by [`Gen::nat_ev_term`]); not a
-    /// conditional.
-    fn next_term(
+    /// does (a constant as it is, a value by [`Gen::nat_ev_term`], a
+    /// conditional's condition by the machine, then the branch it picks).
+    pub(super) fn next_term(
         &self,
         n: &Next,
         regs: &Regs,
@@ -131,8 +135,36 @@ impl Gen<'_> {
         match n {
             Next::Eval(e) => self.nat_ev_term(e, regs, ts, k),
             Next::Static(t, _) => self.nat_const_term(*t, ts, k),
-            Next::If(..) => Err("a conditional next situation".into()),
+            Next::If(c, a, b) => {
+                let c = self.nat_cond_term(c, regs, ts, k)?;
+                let (mut ta, mut tb) = (Vec::new(), Vec::new());
+                let xa = self.next_term(a, regs, &mut ta, k)?;
+                let xb = self.next_term(b, regs, &mut tb, k)?;
+                let x = format_ident!("b{}", *k);
+                *k += 1;
+                ts.push(quote! {
+                    let #x = if #c { #(#ta)* #xa } else { #(#tb)* #xb };
+                });
+                Ok(quote!(#x))
+            }
         }
+    }
+}
+
+impl Gen<'_> {
+    /// Whether global `name` may hold a value of its MIR type native code
+    /// cannot hold (stored by a frame on terms: an unbound variable,
+    /// `f(_)`): a `ground` one, a list, a compound. A number's or an
+    /// atom's cannot (its type joins every value written to it, and a
+    /// frame on terms writes a `ground` one): its cold arm stays the
+    /// error, never reached.
+    pub(super) fn global_may_not_hold(&self, name: sitlog_syntax::Atom) -> bool {
+        let ty = self
+            .mir_types
+            .as_ref()
+            .and_then(|t| t.globals.iter().find(|(n, _)| *n == name))
+            .map(|(_, t)| t.ty.clone());
+        !matches!(ty, Some(Ty::Int | Ty::Float | Ty::Sym))
     }
 }
 

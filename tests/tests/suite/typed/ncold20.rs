@@ -3,7 +3,9 @@
 //! to a value native code cannot hold (`_`, `f(_)`, `[a|_]`), then read
 //! by native code below it elsewhere than a conditional's condition (a
 //! next situation's value, beside an `inc` too, an out_arg, a call's
-//! argument, `when/3`): the interpreter goes on with the value, and so
+//! argument, `when/3`; helper `ncold21`: an action, a condition in a DM
+//! with locals or binding a variable, an out_arg beside an `inc`): the
+//! interpreter goes on with the value, and so
 //! must the compiled task and the interpreter's plans (history, report,
 //! error, actions, observer, with and without history).
 
@@ -100,4 +102,14 @@ fn a_global_read_beside_effects_in_an_action_agrees() {
 #[test]
 fn a_global_read_beside_an_inc_in_an_out_arg_agrees() {
     agree("outinc");
+}
+
+/// `(get(goal, D) == a -> seen(yes, D) ; otherwise -> seen(no, wrap(D)))`
+/// and `(get(goal, D) == get(other, D) -> ..)`: a condition that binds a
+/// variable for its branches, the whole next situation on terms
+/// (`Gen::nat_if_cold`, helper `ncold21`).
+#[test]
+fn a_global_read_in_a_condition_binding_a_variable_agrees() {
+    agree("bind");
+    agree("same");
 }

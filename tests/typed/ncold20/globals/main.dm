@@ -329,3 +329,43 @@ diag_mod(outinc_probe,
   ],
   [ n ==> 3 ]
 ).
+
+% A global read in a conditional's condition that binds a variable the
+% branches read, and one comparing two reads into the same variable.
+diag_mod(bind(Goal),
+  [ [ id ==> setup, type ==> neutral,
+      arcs ==> [ empty : [set(goal, Goal)] => go ] ],
+    [ id ==> go, type ==> recursive, embedded_dm ==> bind_probe,
+      arcs ==> [ seen(W, V) : empty => stop(W, V) ] ],
+    [ id ==> stop(_, _), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(bind_probe,
+  [ [ id ==> begin, type ==> neutral,
+      arcs ==> [ empty : empty =>
+                   (get(goal, D) == a -> seen(yes, D) ; otherwise -> seen(no, wrap(D))) ] ],
+    [ id ==> seen(_, _), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(same(Goal),
+  [ [ id ==> setup, type ==> neutral,
+      arcs ==> [ empty : [set(goal, Goal), set(other, Goal)] => go ] ],
+    [ id ==> go, type ==> recursive, embedded_dm ==> same_probe,
+      arcs ==> [ seen(W) : empty => stop(W) ] ],
+    [ id ==> stop(_), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(same_probe,
+  [ [ id ==> begin, type ==> neutral,
+      arcs ==> [ empty : empty =>
+                   (get(goal, D) == get(other, D) -> seen(D) ; otherwise -> seen(none)) ] ],
+    [ id ==> seen(_), type ==> final ]
+  ],
+  []
+).
