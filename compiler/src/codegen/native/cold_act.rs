@@ -59,6 +59,8 @@ impl Gen<'_> {
         if !is_global_get(d, item) || !self.global_may_not_hold(*name) {
             return Err("not a global's `get` that may find such a value".into());
         }
+        // No pattern registered for code that may be dropped.
+        let _no_new = NoNewPatterns::set(&self.no_new_patterns);
         // What the rest binds (`get(goal, G)`'s `G`): a term made there.
         let mut binds = Vec::new();
         for item in &items[k..] {
@@ -197,5 +199,25 @@ impl<'a> ColdArm<'a> {
 impl Drop for ColdArm<'_> {
     fn drop(&mut self) {
         *self.cell.borrow_mut() = self.saved.take();
+    }
+}
+
+/// While alive, no new `cx.fill` pattern is registered
+/// (`Gen::no_new_patterns`); the flag as it was back when dropped.
+pub(super) struct NoNewPatterns<'a> {
+    cell: &'a std::cell::Cell<bool>,
+    saved: bool,
+}
+
+impl<'a> NoNewPatterns<'a> {
+    pub(super) fn set(cell: &'a std::cell::Cell<bool>) -> Self {
+        let saved = cell.replace(true);
+        NoNewPatterns { cell, saved }
+    }
+}
+
+impl Drop for NoNewPatterns<'_> {
+    fn drop(&mut self) {
+        self.cell.set(self.saved);
     }
 }

@@ -189,6 +189,7 @@ impl Gen<'_> {
     /// variables it reads unset (a register the condition binds, made
     /// there) and the evaluation.
     fn cold_next_terms(&self, n: &Next, regs: &Regs) -> N<(Option<TokenStream>, TokenStream)> {
+        let _no_new = super::cold_act::NoNewPatterns::set(&self.no_new_patterns);
         let mut mregs = regs.clone();
         let mut all = Vec::new();
         next_regs(n, &mut all);
