@@ -151,9 +151,11 @@ struct Gen<'s> {
     /// The patterns native code fills (`native::fill`), by their text:
     /// constants after `consts`, pattern `i` constant `consts.len() + i`.
     patterns: std::cell::RefCell<Vec<String>>,
-    /// While a condition native code may redo on terms is generated: the
-    /// statement a global read's cold arm ends with where the global's
-    /// value is not of its MIR type (`native::cold`), instead of an error.
+    /// While code native code may redo or go on with on terms is
+    /// generated (a condition, a next situation, an out_arg, an arc's
+    /// action): the statement a global read's cold arm ends with where
+    /// the global's value is not of its MIR type (`native::cold`,
+    /// `native::cold_next`, `native::cold_act`), instead of an error.
     global_cold: std::cell::RefCell<Option<proc_macro2::TokenStream>>,
     /// While a conditional next situation is made as before to see whether
     /// a global read's arm in it is the error (`native::cold_next`).

@@ -12,6 +12,11 @@
 //! `None` (the native frames already handed over and the machine entered
 //! by the read's cold arm), and the condition is evaluated on terms: the
 //! branches chosen by the machine's answer, its error where it gives one.
+//! In a DM with locals only where evaluating the condition changes none
+//! ([`Gen::keeps_locals`], helper `ncold21`: native code goes on with the
+//! frame's locals after it). A condition that binds a register for its
+//! branches (`(get(h, D) == V -> .. D ..)`) is not made here: the whole
+//! next situation goes on on terms (`cold_next`'s `Gen::nat_if_cold`).
 //! The hot path (the global of its type) is unchanged.
 
 use super::{Dm, Regs, N};

@@ -104,6 +104,10 @@ impl Gen<'_> {
             }
             None => quote!(),
         };
+        // The expectation's term made again: only one evaluating nothing.
+        if !built_only(&arc.expectation) {
+            return Err("an evaluated expectation".into());
+        }
         let mut exp_ts = Vec::new();
         let exp = self.nat_ev_term(&arc.expectation, exp_regs, &mut exp_ts, &mut n)?;
         let arc_l = Literal::usize_unsuffixed(arc_ix);
@@ -167,6 +171,16 @@ impl Gen<'_> {
             .and_then(|t| t.globals.iter().find(|(n, _)| *n == name))
             .map(|(_, t)| t.ty.clone());
         !matches!(ty, Some(Ty::Int | Ty::Float | Ty::Sym))
+    }
+}
+
+/// Whether `e` is made without evaluating anything: values, constants,
+/// compounds of them.
+fn built_only(e: &Ev) -> bool {
+    match e {
+        Ev::Value(_) | Ev::Built(_) => true,
+        Ev::Compound(_, args) => args.iter().all(built_only),
+        _ => false,
     }
 }
 

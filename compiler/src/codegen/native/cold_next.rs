@@ -19,9 +19,16 @@
 //! native code computed, which is handed to the machine as its id. A
 //! value that also `inc`s (`show(inc(n, _), get(goal, _))`) cannot be
 //! evaluated again: each read's cold arm goes on from there on its own
-//! ([`Gen::nat_effects_cold`]). The hot path (the global of its type) is
-//! unchanged; a value with no such read is made as before, byte for
-//! byte.
+//! ([`Gen::nat_effects_cold`]; an out_arg so too,
+//! [`Gen::nat_out_effects_cold`], helper `ncold21`). A conditional next
+//! situation whose condition [`super::cold`] cannot give to the machine
+//! (it binds a register for the branches) and that only reads is
+//! evaluated whole on terms where a read breaks out
+//! ([`Gen::nat_if_cold`], `ncold21`), for a global whose type may hold
+//! such a value (`ground`, a list, a compound; a number's or an atom's
+//! cannot, [`Gen::global_may_not_hold`]). The hot path (the global of its
+//! type) is unchanged; a value with no such read is made as before, byte
+//! for byte.
 
 use super::{Dm, Regs, N};
 use crate::codegen::Gen;
