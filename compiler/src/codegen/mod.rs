@@ -152,10 +152,19 @@ struct Gen<'s> {
     /// The patterns native code fills (`native::fill`), by their text:
     /// constants after `consts`, pattern `i` constant `consts.len() + i`.
     patterns: std::cell::RefCell<Vec<String>>,
-    /// While a condition native code may redo on terms is generated: the
-    /// statement a global read's cold arm ends with where the global's
-    /// value is not of its MIR type (`native::cold`), instead of an error.
+    /// While code native code may redo or go on with on terms is
+    /// generated (a condition, a next situation, an out_arg, an arc's
+    /// action): the statement a global read's cold arm ends with where
+    /// the global's value is not of its MIR type (`native::cold`,
+    /// `native::cold_next`, `native::cold_act`), instead of an error.
     global_cold: std::cell::RefCell<Option<proc_macro2::TokenStream>>,
+    /// While a conditional next situation is made as before to see whether
+    /// a global read's arm in it is the error (`native::cold_next`).
+    if_cold_off: std::cell::Cell<bool>,
+    /// While a cold arm's terms are made (`native::cold_act`): a `cx.fill`
+    /// only of a pattern registered already, none registered (code made
+    /// and then dropped leaves the patterns' order as it was).
+    no_new_patterns: std::cell::Cell<bool>,
     /// The functions the build takes for plain (`native::plain`), read
     /// once from the program's Prolog files.
     plain_fns: std::cell::OnceCell<std::collections::HashSet<(Atom, usize)>>,
@@ -186,6 +195,8 @@ impl<'s> Gen<'s> {
             native_ok: std::cell::RefCell::new(HashMap::new()),
             patterns: std::cell::RefCell::new(Vec::new()),
             global_cold: std::cell::RefCell::new(None),
+            if_cold_off: std::cell::Cell::new(false),
+            no_new_patterns: std::cell::Cell::new(false),
             plain_fns: std::cell::OnceCell::new(),
         }
     }
@@ -338,9 +349,16 @@ impl<'s> Gen<'s> {
     }
 
     /// The constant index of a pattern (`native::fill`), registered with
-    /// its text after the program's constants.
-    fn pattern(&self, text: String) -> usize {
+    /// its text after the program's constants; `None` (nothing registered)
+    /// for a new one while `no_new_patterns`.
+    fn pattern_if(&self, text: String) -> Option<usize> {
         let mut ps = self.patterns.borrow_mut();
+        if self.no_new_patterns.get() {
+            return ps
+                .iter()
+                .position(|p| *p == text)
+                .map(|i| self.consts.len() + i);
+        }
         let i = match ps.iter().position(|p| *p == text) {
             Some(i) => i,
             None => {
@@ -348,7 +366,7 @@ impl<'s> Gen<'s> {
                 ps.len() - 1
             }
         };
-        self.consts.len() + i
+        Some(self.consts.len() + i)
     }
 
     /// A constant's `writeq` text as a string literal (wrapped, the breaks

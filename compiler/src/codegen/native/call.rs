@@ -939,7 +939,7 @@ impl Gen<'_> {
                 )? {
                     continue; // never this arc for this final
                 }
-                let action = self.nat_exit_action(d, ix, i, &arc.action, &mut regs)?;
+                let action = self.nat_exit_action(d, ix, i, arc, &mut regs)?;
                 // The callee ran since the pipe was read: an out_arg writes
                 // the saved value back ([`Dm::pipe_in`] is the visit's).
                 let pipe_in = d.pipe_in.take();
@@ -1350,9 +1350,12 @@ impl Gen<'_> {
         d: &Dm,
         ix: usize,
         arc_ix: usize,
-        action: &Action,
+        arc_plan: &crate::mir::ArcPlan,
         regs: &mut Regs,
     ) -> N<TokenStream> {
+        let action = &arc_plan.action;
+        // The registers the expectation was made of (a cold arm's entry).
+        let exp_regs = regs.clone();
         let hand = &d.hand;
         let curl = Literal::u32_unsuffixed(ix as u32);
         let arc = Literal::usize_unsuffixed(arc_ix);
@@ -1392,6 +1395,15 @@ impl Gen<'_> {
                 });
                 continue;
             }
+            // A global's `get`: where its value is one native code cannot
+            // hold, the arc's rest on terms (`cold_act`), else an error.
+            let cold = super::cold_act::is_global_get(d, item)
+                .then(|| {
+                    self.cold_action(d, arc_plan, arc_ix, n, regs, &exp_regs)
+                        .ok()
+                })
+                .flatten();
+            let _cold = super::cold_act::ColdArm::set(&self.global_cold, cold);
             let ty = match item {
                 // `get`/`inc` of a global (a name that is no declared local
                 // of this DM, held in the frame or not: the machine's
@@ -1780,6 +1792,17 @@ impl Gen<'_> {
         } else {
             return Err("a variable operation is not native".into());
         };
+        // A `get`'s value native code cannot hold: the arc's rest on terms
+        // where the caller made it (`cold_act`), else an error.
+        let cold = match self.global_cold.borrow().clone() {
+            Some(cold) if op == atoms::GET => cold,
+            _ => quote! {
+                return Err(cx.error(
+                    "a global's value native code cannot hold",
+                    Some(#arc),
+                ))
+            },
+        };
         let value = quote! {
             match #fast {
                 Some(v) => v,
@@ -1789,10 +1812,7 @@ impl Gen<'_> {
                     match cx.to_native::<#rt>(t) {
                         Some(v) => v,
                         None => {
-                            return Err(cx.error(
-                                "a global's value native code cannot hold",
-                                Some(#arc),
-                            ))
+                            #cold
                         }
                     }
                 }

@@ -19,13 +19,20 @@
 //! native code computed, which is handed to the machine as its id. A
 //! value that also `inc`s (`show(inc(n, _), get(goal, _))`) cannot be
 //! evaluated again: each read's cold arm goes on from there on its own
-//! ([`Gen::nat_effects_cold`]). The hot path (the global of its type) is
-//! unchanged; a value with no such read is made as before, byte for
-//! byte.
+//! ([`Gen::nat_effects_cold`]; an out_arg so too,
+//! [`Gen::nat_out_effects_cold`], helper `ncold21`). A conditional next
+//! situation whose condition [`super::cold`] cannot give to the machine
+//! (it binds a register for the branches) and that only reads is
+//! evaluated whole on terms where a read breaks out
+//! ([`Gen::nat_if_cold`], `ncold21`), for a global whose type may hold
+//! such a value (`ground`, a list, a compound; a number's or an atom's
+//! cannot, [`Gen::global_may_not_hold`]). The hot path (the global of its
+//! type) is unchanged; a value with no such read is made as before, byte
+//! for byte.
 
 use super::{Dm, Regs, N};
 use crate::codegen::Gen;
-use crate::mir::{Ev, Next};
+use crate::mir::{Build, Cond, Ev, Next, Reg};
 use proc_macro2::{Group, TokenStream, TokenTree};
 use quote::{format_ident, quote};
 use sitlog_runtime::native::Ty;
@@ -46,7 +53,7 @@ impl Gen<'_> {
         cur_name: &TokenStream,
     ) -> N<Option<TokenStream>> {
         let Next::Eval(e) = n else {
-            return Ok(None);
+            return self.nat_if_cold(d, cur, n, regs, cur_name);
         };
         if !self.cold_reads(d, e, regs) {
             return Ok(None);
@@ -74,6 +81,147 @@ impl Gen<'_> {
                 #tail
             }
         }))
+    }
+}
+
+impl Gen<'_> {
+    /// Conditional next situation `n` of situation `cur` (`nat_next`'s
+    /// arguments) whose global read in its condition [`super::cold`]
+    /// cannot give to the machine (a condition that binds a register for
+    /// the branches, `(get(h, D) == V -> .. D ..)`, or one the evaluator
+    /// may change a local in), where nothing in it but reads (conditions
+    /// and values without `set`, `inc`, `apply`): that read's cold arm,
+    /// and any other's, breaks out, and the whole next situation is
+    /// evaluated on terms (the condition by the machine, then the branch
+    /// it picks) and handed to the machine, as [`Gen::nat_next_cold`]
+    /// does for a value. `None`: made as before (where no read's arm is
+    /// the error, it is that code).
+    fn nat_if_cold(
+        &self,
+        d: &Dm,
+        cur: usize,
+        n: &Next,
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<Option<TokenStream>> {
+        if !matches!(n, Next::If(..))
+            || self.if_cold_off.get()
+            || self.global_cold.borrow().is_some()
+            || !self.next_reads_only(n)
+        {
+            return Ok(None);
+        }
+        // Only a global that may hold such a value (`cold_act`).
+        let mut names = Vec::new();
+        self.next_gets(d, n, &mut names);
+        if !names.into_iter().any(|g| self.global_may_not_hold(g)) {
+            return Ok(None);
+        }
+        self.if_cold_off.set(true);
+        let before = self.nat_next(d, cur, n, regs, cur_name);
+        self.if_cold_off.set(false);
+        let before = before?;
+        if !before
+            .to_string()
+            .contains("a global's value native code cannot hold")
+        {
+            return Ok(Some(before));
+        }
+        let Ok((vars, redo)) = self.cold_next_terms(n, regs) else {
+            return Ok(Some(before));
+        };
+        let saved = self.global_cold.replace(Some(quote!(break 'nat_cold_next)));
+        let code = self.nat_next(d, cur, n, regs, cur_name);
+        *self.global_cold.borrow_mut() = saved;
+        let code = code?;
+        let out = d.out.borrow().clone();
+        let tail = super::goto_tail(&d.rec.borrow());
+        Ok(Some(quote! {
+            'nat_next: {
+                'nat_cold_next: {
+                    break 'nat_next #code;
+                }
+                // A global's value native code cannot hold: the machine's.
+                #vars
+                #redo
+                cx.count_transitions(count);
+                #out
+                #tail
+            }
+        }))
+    }
+
+    /// Whether evaluating next situation `n` only reads: its conditions
+    /// change nothing ([`Gen::cond_pure`]), its values only read
+    /// ([`reads_only`]).
+    fn next_reads_only(&self, n: &Next) -> bool {
+        match n {
+            Next::Static(..) => true,
+            Next::Eval(e) => reads_only(e),
+            Next::If(c, a, b) => {
+                self.cond_pure(c, None) && self.next_reads_only(a) && self.next_reads_only(b)
+            }
+        }
+    }
+
+    /// The globals next situation `n` reads with `get` (a name that is no
+    /// local of DM `d`), in a value or a condition.
+    fn next_gets(&self, d: &Dm, n: &Next, out: &mut Vec<sitlog_syntax::Atom>) {
+        let mut builds = Vec::new();
+        let mut evs = Vec::new();
+        next_parts(n, &mut builds, &mut evs);
+        for e in evs {
+            if let Ev::VarOp { op, name, .. } | Ev::VarOpFresh { op, name, .. } = e {
+                if *op == atoms::GET && !d.declares_local(*name) {
+                    out.push(*name);
+                }
+            }
+        }
+        while let Some(b) = builds.pop() {
+            if let Build::Compound(f, args) = b {
+                if *f == atoms::GET && args.len() == 2 {
+                    if let Build::Const(t) = &args[0] {
+                        if let Some(g) = self.store.atom_of(*t).filter(|g| !d.declares_local(*g)) {
+                            out.push(g);
+                        }
+                    }
+                }
+                builds.extend(args.iter());
+            }
+        }
+    }
+
+    /// Next situation `n` evaluated on terms (`super::cold_act`'s
+    /// `next_term`; the value `rec_next`): the statements making the
+    /// variables it reads unset (a register the condition binds, made
+    /// there) and the evaluation.
+    fn cold_next_terms(&self, n: &Next, regs: &Regs) -> N<(Option<TokenStream>, TokenStream)> {
+        let _no_new = super::cold_act::NoNewPatterns::set(&self.no_new_patterns);
+        let mut mregs = regs.clone();
+        let mut all = Vec::new();
+        next_regs(n, &mut all);
+        for r in &all {
+            mregs
+                .entry(*r)
+                .or_insert_with(|| (format_ident!("fresh_r{}", r), Ty::Term));
+        }
+        let mut binds = Vec::new();
+        super::next_binds(n, &mut binds);
+        for r in &binds {
+            mregs.insert(*r, (format_ident!("fresh_r{}", r), Ty::Term));
+        }
+        let mut ts = Vec::new();
+        let mut k = 0;
+        let t = self.next_term(n, &mregs, &mut ts, &mut k)?;
+        let mut fresh = std::collections::BTreeSet::new();
+        let redo = super::cold::cold_fresh(quote!(#(#ts)* let rec_next = #t;), &mut fresh);
+        let bound: Vec<String> = binds.iter().map(|r| format!("cold_r{r}")).collect();
+        fresh.retain(|x| !bound.contains(&x.to_string()));
+        let vars = (!fresh.is_empty()).then(|| {
+            let fresh = fresh.iter();
+            quote!(let [#(#fresh),*] = cx.vars();)
+        });
+        Ok((vars, redo))
     }
 }
 
@@ -190,6 +338,51 @@ impl Gen<'_> {
     ) -> N<Vec<TokenStream>> {
         let out = d.out.borrow().clone();
         let tail = super::goto_tail(&d.rec.borrow());
+        let then = |t: &TokenStream| quote!(let rec_next = #t;);
+        let after = quote! {
+            cx.count_transitions(count);
+            #out
+            #tail
+        };
+        self.effects_cold(e, regs, pre, pfx, &then, &after)
+    }
+
+    /// An out_arg `e` computed after next situation `next_at` (a value
+    /// with an effect beside a global read, [`Gen::cold_effects`]: `f(inc(n,
+    /// _), get(goal, _))`) by the statements `pre` as
+    /// [`Gen::nat_effects_cold`] takes them: each read's cold arm
+    /// evaluates the out_arg the machine's way on from there
+    /// (`Cx::out_value`) and hands `next_at` to the machine as its id, as
+    /// [`Gen::nat_out_cold`] does.
+    pub(super) fn nat_out_effects_cold(
+        &self,
+        d: &Dm,
+        e: &Ev,
+        regs: &Regs,
+        pre: Vec<TokenStream>,
+    ) -> N<Vec<TokenStream>> {
+        let tail = super::goto_tail(&d.rec.borrow());
+        let then = |t: &TokenStream| quote!(cx.out_value(#t););
+        let after = quote! {
+            cx.count_transitions(count);
+            let rec_next = next_at.id_term(p, cx.store());
+            #tail
+        };
+        self.effects_cold(e, regs, pre, "out", &then, &after)
+    }
+
+    /// [`Gen::nat_effects_cold`]'s statements, each cold arm ending with
+    /// `then` of the value's term (its fresh variables made there) and
+    /// `after`.
+    fn effects_cold(
+        &self,
+        e: &Ev,
+        regs: &Regs,
+        pre: Vec<TokenStream>,
+        pfx: &str,
+        then: &dyn Fn(&TokenStream) -> TokenStream,
+        after: &TokenStream,
+    ) -> N<Vec<TokenStream>> {
         pre.into_iter()
             .enumerate()
             .map(|(k, stmt)| {
@@ -200,7 +393,8 @@ impl Gen<'_> {
                 let (mut n, mut op) = (0, 0);
                 let t = self.cold_op_term(e, regs, (k, pfx), &mut op, &mut ts, &mut n)?;
                 let mut fresh = std::collections::BTreeSet::new();
-                let redo = super::cold::cold_fresh(quote!(#(#ts)* let rec_next = #t;), &mut fresh);
+                let then = then(&t);
+                let redo = super::cold::cold_fresh(quote!(#(#ts)* #then), &mut fresh);
                 let vars = (!fresh.is_empty()).then(|| {
                     let fresh = fresh.iter();
                     quote!(let [#(#fresh),*] = cx.vars();)
@@ -209,9 +403,7 @@ impl Gen<'_> {
                     // A global's value native code cannot hold: the machine's.
                     #vars
                     #redo
-                    cx.count_transitions(count);
-                    #out
-                    #tail
+                    #after
                 }};
                 Ok(replace_break(stmt, &cold))
             })
@@ -309,5 +501,111 @@ fn reads_only(e: &Ev) -> bool {
         Ev::Compound(_, args) => args.iter().all(reads_only),
         Ev::VarOp { op, .. } | Ev::VarOpFresh { op, .. } => *op == atoms::GET,
         _ => false,
+    }
+}
+
+/// The registers next situation `n` reads or binds.
+fn next_regs(n: &Next, out: &mut Vec<Reg>) {
+    match n {
+        Next::Static(..) => {}
+        Next::Eval(e) => ev_regs(e, out),
+        Next::If(c, a, b) => {
+            cond_regs(c, out);
+            next_regs(a, out);
+            next_regs(b, out);
+        }
+    }
+}
+
+fn cond_regs(c: &Cond, out: &mut Vec<Reg>) {
+    match c {
+        Cond::Arith(_, l, r) => {
+            ev_regs(l, out);
+            ev_regs(r, out);
+        }
+        Cond::Other(b) => build_regs(b, out),
+        Cond::Cmp(_, l, r) => {
+            build_regs(l, out);
+            build_regs(r, out);
+        }
+        Cond::And(a, b) | Cond::Or(a, b) => {
+            cond_regs(a, out);
+            cond_regs(b, out);
+        }
+    }
+}
+
+fn ev_regs(e: &Ev, out: &mut Vec<Reg>) {
+    match e {
+        Ev::Value(r) => out.push(*r),
+        Ev::Built(b) | Ev::Eval(b) => build_regs(b, out),
+        Ev::If(c, a, b) | Ev::Pick(c, a, b) => {
+            cond_regs(c, out);
+            ev_regs(a, out);
+            ev_regs(b, out);
+        }
+        Ev::VarOpFresh { dst, .. } => out.push(*dst),
+        Ev::VarOp { arg, .. } => build_regs(arg, out),
+        Ev::IsFresh { expr, dst } => {
+            build_regs(expr, out);
+            out.push(*dst);
+        }
+        Ev::Is { lhs, expr } => {
+            build_regs(lhs, out);
+            build_regs(expr, out);
+        }
+        Ev::Compound(_, args) => args.iter().for_each(|a| ev_regs(a, out)),
+    }
+}
+
+fn build_regs(b: &Build, out: &mut Vec<Reg>) {
+    match b {
+        Build::Reg(r) => out.push(*r),
+        Build::Const(_) => {}
+        Build::Compound(_, args) => args.iter().for_each(|a| build_regs(a, out)),
+    }
+}
+
+/// Every build and every expression of next situation `n`, at any depth
+/// of its conditions and values (not inside a build).
+fn next_parts<'a>(n: &'a Next, builds: &mut Vec<&'a Build>, evs: &mut Vec<&'a Ev>) {
+    fn cond<'a>(c: &'a Cond, builds: &mut Vec<&'a Build>, evs: &mut Vec<&'a Ev>) {
+        match c {
+            Cond::Arith(_, l, r) => {
+                ev(l, builds, evs);
+                ev(r, builds, evs);
+            }
+            Cond::Other(b) => builds.push(b),
+            Cond::Cmp(_, l, r) => builds.extend([l, r]),
+            Cond::And(a, b) | Cond::Or(a, b) => {
+                cond(a, builds, evs);
+                cond(b, builds, evs);
+            }
+        }
+    }
+    fn ev<'a>(e: &'a Ev, builds: &mut Vec<&'a Build>, evs: &mut Vec<&'a Ev>) {
+        evs.push(e);
+        match e {
+            Ev::Built(b) | Ev::Eval(b) => builds.push(b),
+            Ev::If(c, a, b) | Ev::Pick(c, a, b) => {
+                cond(c, builds, evs);
+                ev(a, builds, evs);
+                ev(b, builds, evs);
+            }
+            Ev::VarOp { arg, .. } => builds.push(arg),
+            Ev::IsFresh { expr, .. } => builds.push(expr),
+            Ev::Is { lhs, expr } => builds.extend([lhs, expr]),
+            Ev::Compound(_, args) => args.iter().for_each(|a| ev(a, builds, evs)),
+            Ev::Value(_) | Ev::VarOpFresh { .. } => {}
+        }
+    }
+    match n {
+        Next::Static(..) => {}
+        Next::Eval(e) => ev(e, builds, evs),
+        Next::If(c, a, b) => {
+            cond(c, builds, evs);
+            next_parts(a, builds, evs);
+            next_parts(b, builds, evs);
+        }
     }
 }

@@ -172,7 +172,7 @@ impl Gen<'_> {
         if !self.pat_reads_back(pat, &scratch, back) {
             return None;
         }
-        Some(Self::const_index(self.pattern(text)))
+        self.pattern_if(text).map(Self::const_index)
     }
 
     /// Situation `ix`'s id built by `machine::fill` from its pattern, the

@@ -224,6 +224,7 @@ use super::Gen;
 mod boundary;
 mod call;
 mod cold;
+mod cold_act;
 mod cold_next;
 mod cond;
 mod effect;
@@ -3282,7 +3283,7 @@ impl Gen<'_> {
         };
         if let (None, Some(k), false) = (atom, arc_ix, effector) {
             let mut nregs = regs.clone();
-            if let Ok(act) = self.nat_exit_action(d, ix, k, &arc.action, &mut nregs) {
+            if let Ok(act) = self.nat_exit_action(d, ix, k, arc, &mut nregs) {
                 let name = self.atom_native(plan.id.0)?;
                 let next =
                     self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &nregs, &name)?;
@@ -5037,11 +5038,13 @@ impl Gen<'_> {
                 // machine entered in the situation, as for a next
                 // situation's evaluated part; only in a DM without
                 // locals (the evaluator cannot change the frame's).
-                let on_terms = |name: &Ident| -> N<Option<TokenStream>> {
+                let on_terms_if = |name: &Ident, locals_kept: bool| -> N<Option<TokenStream>> {
                     let mut ts = Vec::new();
                     let mut n = 0;
                     match self.nat_cond_term(c, regs, &mut ts, &mut n) {
-                        Ok(cond) if d.locals.is_empty() && d.dm.locals.is_empty() => {
+                        Ok(cond)
+                            if locals_kept || (d.locals.is_empty() && d.dm.locals.is_empty()) =>
+                        {
                             // The id built only where an error reads it.
                             let pre = self.nat_eval_lazy_id(
                                 d,
@@ -5055,6 +5058,10 @@ impl Gen<'_> {
                         _ => Ok(None),
                     }
                 };
+                let on_terms = |name: &Ident| on_terms_if(name, false);
+                // A global read's cold arm (`cold`): also in a DM with
+                // locals where evaluating the condition changes none.
+                let on_terms_cold = |name: &Ident| on_terms_if(name, self.keeps_locals(c, regs));
                 let name = format_ident!("cond_value");
                 // `apply(f(..), [..]) == k` of a plain function (`plain`).
                 if let Some(pre) = self.nat_plain_cond(d, c, regs, &name, || on_terms(&name))? {
@@ -5062,7 +5069,7 @@ impl Gen<'_> {
                     let b = self.nat_next(d, cur, b, regs, cur_name)?;
                     return Ok(quote!({ #pre if #name { #a } else { #b } }));
                 }
-                let cond = self.nat_cond_cold(d, cur, c, &mut bregs, &mut binds, &on_terms)?;
+                let cond = self.nat_cond_cold(d, cur, c, &mut bregs, &mut binds, &on_terms_cold)?;
                 let (c, pre) = match cond {
                     Ok(c) => c,
                     Err(e) => {

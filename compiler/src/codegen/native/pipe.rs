@@ -707,12 +707,23 @@ impl Gen<'_> {
         // A global read whose value native code cannot hold: the
         // machine's (`cold_next`).
         let cold = self.cold_reads(d, e, regs);
+        // Beside an `inc`: each read's cold arm its own (`cold_next`).
+        let cold_inc = !cold && self.cold_effects(d, e);
         let saved = cold.then(|| self.global_cold.replace(Some(quote!(break 'nat_cold_out))));
+        let saved_inc =
+            cold_inc.then(|| self.global_cold.replace(Some(quote!(break 'nat_cold_next))));
         let v = self.nat_ev_effects(d, cur, e, regs, &mut pre, "out");
-        if let Some(saved) = saved {
+        if let Some(saved) = saved.or(saved_inc) {
             *self.global_cold.borrow_mut() = saved;
         }
-        let v = v?;
+        let mut v = v?;
+        if cold_inc {
+            match self.nat_out_effects_cold(d, e, regs, std::mem::take(&mut pre)) {
+                Ok(cold) => pre = cold,
+                // Made again, the reads' cold arms errors.
+                Err(_) => v = self.nat_ev_effects(d, cur, e, regs, &mut pre, "out")?,
+            }
+        }
         // The machine's evaluation: a fresh variable it binds is a term
         // made there.
         let mut mregs = regs.clone();

@@ -1,2 +1,3 @@
-% Helper ncold20: set by each task's first DM to its argument.
+% Helpers ncold20, ncold21: set by each task's first DM to its argument.
 goal ==> nothing.
+other ==> nothing.

@@ -243,3 +243,129 @@ diag_mod(loc_probe,
   ],
   [ n ==> 0 ]
 ).
+
+% Helper ncold21: more of the above. A global read in an exit arc's
+% action after an `inc` and before one (the `inc` before it not done
+% again, the one after it the machine's), in a neutral arc's action
+% between a local's `inc` and `set`, read again by the next situation.
+diag_mod(act2(Goal),
+  [ [ id ==> setup, type ==> neutral,
+      arcs ==> [ empty : [set(goal, Goal)] => go ] ],
+    [ id ==> go, type ==> recursive, embedded_dm ==> act2_mid,
+      arcs ==> [ seen(W, N, M) : empty => stop(W, N, M) ] ],
+    [ id ==> stop(_, _, _), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(act2_mid,
+  [ [ id ==> begin, type ==> recursive, embedded_dm ==> act_leaf,
+      arcs ==> [ done : [inc(n, N), get(goal, G), inc(n, M)] => seen(G, N, M) ] ],
+    [ id ==> seen(_, _, _), type ==> final ]
+  ],
+  [ n ==> 3 ]
+).
+
+diag_mod(acts2(Goal),
+  [ [ id ==> setup, type ==> neutral,
+      arcs ==> [ empty : [set(goal, Goal)] => go ] ],
+    [ id ==> go, type ==> recursive, embedded_dm ==> acts2_probe,
+      arcs ==> [ seen(W, N, M) : empty => stop(W, N, M) ] ],
+    [ id ==> stop(_, _, _), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(acts2_probe,
+  [ [ id ==> begin, type ==> neutral,
+      arcs ==> [ empty : [inc(n, N), get(goal, G), set(n, 7)] => seen(G, N, get(n, _)) ] ],
+    [ id ==> seen(_, _, _), type ==> final ]
+  ],
+  [ n ==> 3 ]
+).
+
+% A global read in an exit arc's action whose arc sets the pipe.
+diag_mod(act3(Goal),
+  [ [ id ==> setup, type ==> neutral,
+      arcs ==> [ empty : [set(goal, Goal)] => go ] ],
+    [ id ==> go, type ==> recursive, embedded_dm ==> act3_mid,
+      arcs ==> [ seen(W) : empty => after ] ],
+    [ id ==> after, type ==> neutral, in_arg ==> P,
+      arcs ==> [ empty : empty => stop(P) ] ],
+    [ id ==> stop(_), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(act3_mid,
+  [ [ id ==> begin, type ==> recursive, embedded_dm ==> act_leaf,
+      out_arg ==> wrap(get(goal, _)),
+      arcs ==> [ done : [get(goal, G)] => seen(G) ] ],
+    [ id ==> seen(_), type ==> final ]
+  ],
+  []
+).
+
+% A global read in an out_arg that also `inc`s, before the read and
+% after it.
+diag_mod(outinc(Goal),
+  [ [ id ==> setup, type ==> neutral,
+      arcs ==> [ empty : [set(goal, Goal)] => go ] ],
+    [ id ==> go, type ==> recursive, embedded_dm ==> outinc_probe,
+      arcs ==> [ seen : empty => after ] ],
+    [ id ==> after, type ==> neutral, in_arg ==> P,
+      arcs ==> [ empty : empty => stop(P) ] ],
+    [ id ==> stop(_), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(outinc_probe,
+  [ [ id ==> begin, type ==> neutral, out_arg ==> f(inc(n, _), get(goal, _)),
+      arcs ==> [ empty : empty => mid ] ],
+    [ id ==> mid, type ==> neutral, out_arg ==> g(get(goal, _), inc(n, _)),
+      arcs ==> [ empty : empty => seen ] ],
+    [ id ==> seen, type ==> final ]
+  ],
+  [ n ==> 3 ]
+).
+
+% A global read in a conditional's condition that binds a variable the
+% branches read, and one comparing two reads into the same variable.
+diag_mod(bind(Goal),
+  [ [ id ==> setup, type ==> neutral,
+      arcs ==> [ empty : [set(goal, Goal)] => go ] ],
+    [ id ==> go, type ==> recursive, embedded_dm ==> bind_probe,
+      arcs ==> [ seen(W, V) : empty => stop(W, V) ] ],
+    [ id ==> stop(_, _), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(bind_probe,
+  [ [ id ==> begin, type ==> neutral,
+      arcs ==> [ empty : empty =>
+                   (get(goal, D) == a -> seen(yes, D) ; otherwise -> seen(no, wrap(D))) ] ],
+    [ id ==> seen(_, _), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(same(Goal),
+  [ [ id ==> setup, type ==> neutral,
+      arcs ==> [ empty : [set(goal, Goal), set(other, Goal)] => go ] ],
+    [ id ==> go, type ==> recursive, embedded_dm ==> same_probe,
+      arcs ==> [ seen(W) : empty => stop(W) ] ],
+    [ id ==> stop(_), type ==> final ]
+  ],
+  []
+).
+
+diag_mod(same_probe,
+  [ [ id ==> begin, type ==> neutral,
+      arcs ==> [ empty : empty =>
+                   (get(goal, D) == get(other, D) -> seen(D) ; otherwise -> seen(none)) ] ],
+    [ id ==> seen(_), type ==> final ]
+  ],
+  []
+).
