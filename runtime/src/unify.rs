@@ -83,6 +83,20 @@ impl Store {
         {
             return false;
         }
+        // Two compounds of constants (an input `said(yes)` against an
+        // expectation `said(no)`, at every perception): compared in place,
+        // no stack, no trail; two constants unify when they are equal.
+        if let (Repr::Struct(p), Repr::Struct(q)) = (a.0, b.0) {
+            let (fa, xs) = self.compound_at(p);
+            let (fb, ys) = self.compound_at(q);
+            if fa != fb || xs.len() != ys.len() {
+                return false;
+            }
+            let constant = |t: &Term| !matches!(t.0, Repr::Var(_) | Repr::Struct(_) | Repr::Big(_));
+            if xs.iter().chain(ys).all(constant) {
+                return xs == ys;
+            }
+        }
         let start = self.trail.len();
         let mut stack = std::mem::take(&mut self.pairs);
         stack.clear();
@@ -360,6 +374,29 @@ mod tests {
 
     fn a(s: &str) -> Term {
         Term::atom(Atom::intern(s))
+    }
+
+    /// Compounds of constants compared in place give what the walk gives.
+    #[test]
+    fn unify_flat_compounds() {
+        let mut s = Store::new();
+        let said = Atom::intern("said");
+        let yes = s.compound(said, &[a("yes")]);
+        let yes2 = s.compound(said, &[a("yes")]);
+        let no = s.compound(said, &[a("no")]);
+        assert!(s.unify(yes, yes2));
+        assert!(!s.unify(yes, no));
+        let f = Atom::intern("f");
+        let x = s.compound(f, &[Term::int(1), Term::float(2.0)]);
+        let y = s.compound(f, &[Term::int(1), Term::float(2.0)]);
+        let z = s.compound(f, &[Term::int(1), Term::float(-2.0)]);
+        assert!(s.unify(x, y) && !s.unify(x, z) && !s.unify(x, yes));
+        assert_eq!(s.stats().trail, 0, "ground unification binds nothing");
+        // A variable argument: the walk, which binds it.
+        let v = s.new_var();
+        let open = s.compound(said, &[v]);
+        assert!(s.unify(open, no));
+        assert_eq!(s.deref(v), a("no"));
     }
 
     #[test]

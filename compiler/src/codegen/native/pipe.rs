@@ -465,6 +465,20 @@ impl Gen<'_> {
             } else if let Some((name, parts)) = &parts {
                 let t = self.nat_out_term(*name, parts)?;
                 quote!(let pipe_out = #t;)
+            } else if let Some(held) = held_whole(&v) {
+                // A list or compound held as it is (`Cx::hold_pipe_value`):
+                // a term only where something reads the pipe as one.
+                let set = quote!(cx.hold_pipe_value(pipe_out););
+                *d.out.borrow_mut() = set.clone();
+                let n = self.nat_next(d, cur, next, regs, cur_name);
+                *d.out.borrow_mut() = quote!();
+                let n = n?;
+                return Ok(quote! {{
+                    let pipe_out = #held;
+                    let next_at = #n;
+                    #set
+                    next_at
+                }});
             } else {
                 let v = super::place(&v);
                 quote!(let pipe_out = cx.term(&#v);)
@@ -969,6 +983,22 @@ fn held_reg<'a>(
         None => bound
             .find(|(x, _)| *x == r)
             .map(|(x, ty)| (reg(*x), ty.clone())),
+    }
+}
+
+/// An out_arg's value the pipe holds whole as a canonical `Val`
+/// (`Cx::hold_pipe_value`): a list of `Val`s (`list<ground>`, a list of
+/// native compounds; its `Rc` shared, no element copied) or a value held
+/// as a `Val` that is not atomic in every case (`ground`, a compound);
+/// the expression of that `Val`. `None` for an int, a float or an atom
+/// (their terms cost nothing to make) and for a list of ints or atoms
+/// (whose `Val` would copy every element).
+fn held_whole(v: &V) -> Option<TokenStream> {
+    let x = super::place(v);
+    match &v.ty {
+        Ty::List(e) if super::held_as_val(e) => Some(quote!(Val::List(#x.clone()))),
+        t if super::held_as_val(t) => Some(quote!(IntoVal::into_val(#x.clone()))),
+        _ => None,
     }
 }
 
