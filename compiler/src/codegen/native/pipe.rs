@@ -46,6 +46,12 @@
 //! `build_of` of the values makes, so the machine, its history and its
 //! report see what they saw when the pipe was built at once.
 //!
+//! An out_arg that is one value of a list of `Val`s or a `Val` held as it
+//! is (`out_arg ==> Acc`, the list a walk accumulated: `held_whole`) is
+//! held whole (`Cx::hold_pipe_value`, the `Rc` shared): the term, a cell
+//! per element, made only where something reads the pipe as one (the
+//! final that takes the last round's list), not at every call.
+//!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
 //! where the machine enters native code, `nat_entry` checks the
