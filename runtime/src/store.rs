@@ -186,11 +186,14 @@ impl Store {
         self.cells.reserve(args.len() + 1);
         self.cells
             .push(Term(Repr::Functor(name, index(args.len()), flags)));
-        // One push an argument, not `extend_from_slice`: a compound has a
-        // few arguments, which a `memcpy` call of unknown length costs
-        // more to copy (an action `note(S)` built at each visit, issue 37).
-        for &a in args {
-            self.cells.push(a);
+        // A few arguments one push each (an action `note(S)` built at each
+        // visit, issue 37): a `memcpy` call of unknown length costs more.
+        if args.len() <= 4 {
+            for &a in args {
+                self.cells.push(a);
+            }
+        } else {
+            self.cells.extend_from_slice(args);
         }
         Term(Repr::Struct(at))
     }
