@@ -186,7 +186,15 @@ impl Store {
         self.cells.reserve(args.len() + 1);
         self.cells
             .push(Term(Repr::Functor(name, index(args.len()), flags)));
-        self.cells.extend_from_slice(args);
+        // A few arguments one push each (an action `note(S)` built at each
+        // visit, issue 37): a `memcpy` call of unknown length costs more.
+        if args.len() <= 4 {
+            for &a in args {
+                self.cells.push(a);
+            }
+        } else {
+            self.cells.extend_from_slice(args);
+        }
         Term(Repr::Struct(at))
     }
 
@@ -225,9 +233,16 @@ impl Store {
         !matches!(t.0, Repr::Var(_)) && self.flags_of(t) & INERT != 0
     }
 
-    /// The list cell `'.'(head, tail)`.
+    /// The list cell `'.'(head, tail)`: [`Store::compound`]'s cell, its
+    /// three cells written at once (`'.'/2` evaluates its arguments only,
+    /// D-36: ground and inert when both parts are).
+    #[inline]
     pub fn cons(&mut self, head: Term, tail: Term) -> Term {
-        self.compound(atoms::DOT, &[head, tail])
+        let flags = (GROUND | INERT) & self.flags_of(head) & self.flags_of(tail);
+        let at = index(self.cells.len());
+        self.cells
+            .extend_from_slice(&[Term(Repr::Functor(atoms::DOT, 2, flags)), head, tail]);
+        Term(Repr::Struct(at))
     }
 
     /// The proper list `[items..]`.
@@ -609,6 +624,29 @@ mod tests {
         // Binding a variable to itself is a no-op.
         assert!(s.bind(x, x));
         assert!(s.is_var(x));
+    }
+
+    /// `cons` writes the cell `compound` of `'.'/2` writes, flags too.
+    #[test]
+    fn cons_is_the_compound_of_dot() {
+        let mut s = Store::new();
+        let x = s.new_var();
+        let plus = s.compound(Atom::intern("+"), &[Term::int(1), Term::int(2)]);
+        let f = s.compound(Atom::intern("f"), &[Term::int(1)]);
+        let parts = [Term::int(1), Term::atom(atoms::NIL), x, plus, f];
+        for &h in &parts {
+            for &t in &parts {
+                let a = s.cons(h, t);
+                let b = s.compound(atoms::DOT, &[h, t]);
+                let (Repr::Struct(p), Repr::Struct(q)) = (a.0, b.0) else {
+                    panic!("two compounds");
+                };
+                let cell = |i: u32| s.cells[i as usize..i as usize + 3].to_vec();
+                assert_eq!(cell(p), cell(q));
+                assert_eq!(s.known_ground(a), s.known_ground(b));
+                assert_eq!(s.is_inert(a), s.is_inert(b));
+            }
+        }
     }
 
     #[test]

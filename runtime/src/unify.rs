@@ -100,6 +100,26 @@ impl Store {
         ok
     }
 
+    /// [`Store::unify`] of two compounds of constants (an input
+    /// `said(yes)` against an expectation `said(no)`, at every perception):
+    /// compared in place, no pair stack, no trail (two constants unify
+    /// when they are equal); `None` for any other pair (then
+    /// [`Store::unify`]). Apart from `unify` so that its other callers
+    /// (the plans' ids and instances, which are seldom flat) pay nothing.
+    #[inline]
+    pub fn unify_flat(&self, a: Term, b: Term) -> Option<bool> {
+        let (Repr::Struct(p), Repr::Struct(q)) = (self.deref(a).0, self.deref(b).0) else {
+            return None;
+        };
+        let (fa, xs) = self.compound_at(p);
+        let (fb, ys) = self.compound_at(q);
+        if fa != fb || xs.len() != ys.len() {
+            return Some(false);
+        }
+        let constant = |t: &Term| !matches!(t.0, Repr::Var(_) | Repr::Struct(_) | Repr::Big(_));
+        xs.iter().chain(ys).all(constant).then(|| xs == ys)
+    }
+
     fn unify_pairs(&mut self, stack: &mut Vec<(Term, Term)>) -> bool {
         let mut guard = CycleGuard::new();
         while let Some((a, b)) = stack.pop() {
@@ -360,6 +380,34 @@ mod tests {
 
     fn a(s: &str) -> Term {
         Term::atom(Atom::intern(s))
+    }
+
+    /// Compounds of constants compared in place (`unify_flat`) give what
+    /// the walk gives.
+    #[test]
+    fn unify_flat_compounds() {
+        let mut s = Store::new();
+        let said = Atom::intern("said");
+        let yes = s.compound(said, &[a("yes")]);
+        let yes2 = s.compound(said, &[a("yes")]);
+        let no = s.compound(said, &[a("no")]);
+        assert!(s.unify(yes, yes2));
+        assert!(!s.unify(yes, no));
+        assert_eq!(s.unify_flat(yes, yes2), Some(true));
+        assert_eq!(s.unify_flat(yes, no), Some(false));
+        assert_eq!(s.unify_flat(yes, a("yes")), None);
+        let f = Atom::intern("f");
+        let x = s.compound(f, &[Term::int(1), Term::float(2.0)]);
+        let y = s.compound(f, &[Term::int(1), Term::float(2.0)]);
+        let z = s.compound(f, &[Term::int(1), Term::float(-2.0)]);
+        assert!(s.unify(x, y) && !s.unify(x, z) && !s.unify(x, yes));
+        assert_eq!(s.stats().trail, 0, "ground unification binds nothing");
+        // A variable argument: the walk, which binds it.
+        let v = s.new_var();
+        let open = s.compound(said, &[v]);
+        assert_eq!(s.unify_flat(open, no), None);
+        assert!(s.unify(open, no));
+        assert_eq!(s.deref(v), a("no"));
     }
 
     #[test]

@@ -899,6 +899,12 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         // What `build_of` of the values makes (an argument's term built
         // before the compound, in order), without allocating.
         let Machine { held: h, store, .. } = &mut *self.m;
+        if h.n == 0 {
+            // A value held whole: its term, the value let go.
+            let v = std::mem::replace(&mut h.args[0], native::Val::Int(0));
+            *self.pipe = v.to_term(store);
+            return;
+        }
         let mut ts = [Term::NIL; super::HELD_MAX];
         for (t, v) in ts.iter_mut().zip(&h.args[..h.n]) {
             *t = v.to_term(store);
@@ -919,6 +925,27 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             *slot = v;
         }
         *self.pipe = HeldPipe::MARK;
+    }
+
+    /// Sets the pipe to the value `v` (an arc's out_arg `Acc` of a
+    /// canonical value that is not atomic: a list, a compound), held as
+    /// it is ([`HeldPipe`] with no name): its term, which [`Cx::term`] of
+    /// the value would make at once (a walk's whole accumulated list, at
+    /// each call), made only where something reads the pipe as a term.
+    #[inline]
+    pub fn hold_pipe_value(&mut self, v: native::Val) {
+        // An atomic value is its term at once (a `ground` value may be).
+        let t = match v {
+            native::Val::Int(i) => Term::int(i),
+            native::Val::Float(f) => Term::float(f),
+            native::Val::Sym(a) => Term::atom(a),
+            v => {
+                self.m.held.n = 0;
+                self.m.held.args[0] = v;
+                HeldPipe::MARK
+            }
+        };
+        *self.pipe = t;
     }
 
     /// The pipe's `N` arguments when native code holds it as

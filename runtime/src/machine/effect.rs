@@ -42,8 +42,15 @@
 //! out (`&[Term; N]`), one by one, the list built for the history only
 //! where the run records.
 //!
+//! An action whose functor the effector ignores whatever its arguments
+//! ([`Actions::ignores`](super::Actions::ignores): test mode's actions
+//! neither shown nor declared) is not built nor handed over where the run
+//! does not record ([`Cx::ignores_action`], asked by the generated code
+//! first): performing it would do nothing, and nothing reads its term.
+//!
 //! Invariant: the effector is handed what [`Cx::perform`] would hand it,
-//! in order, the first error ending it, and the error is
+//! in order, the first error ending it (but an action it ignores, where
+//! the run does not record), and the error is
 //! [`Cx::perform`]'s in the situation entered; the situation is entered
 //! with its id before the action where the run records.
 
@@ -184,6 +191,16 @@ impl<const N: usize> NatAction for &[Term; N] {
 }
 
 impl<P: DmProgram> Cx<'_, '_, P> {
+    /// Whether the run's effector ignores every action `name(..)` of
+    /// `arity` arguments ([`Actions::ignores`](super::Actions::ignores)):
+    /// native code then neither builds nor performs such an action where
+    /// the run does not record (what [`Cx::nat_perform`] would hand it does
+    /// nothing, and the history does not read it).
+    #[inline]
+    pub fn ignores_action(&self, name: sitlog_syntax::Atom, arity: usize) -> bool {
+        self.actions.ignores(name, arity)
+    }
+
     /// Performs an arc's action `action` by native code (module doc): the
     /// situation entered first where it is not (`at`, [`Due`]) and the run
     /// records, then the action handed to the effector; where the effector

@@ -78,6 +78,16 @@ pub trait Actions {
     fn ignores_empty(&self) -> bool {
         false
     }
+
+    /// Whether performing any action `name(..)` of `arity` arguments (`0`:
+    /// the atom `name`) does nothing (and succeeds), always, whatever its
+    /// arguments are (bound or not): then compiled code neither builds nor
+    /// hands over such an action where nothing records it (`Cx::ignores_action`).
+    /// `false` is always a correct answer.
+    fn ignores(&self, name: sitlog_syntax::Atom, arity: usize) -> bool {
+        let _ = (name, arity);
+        false
+    }
 }
 
 /// Hands one action (an element of an action list, or the action) to the

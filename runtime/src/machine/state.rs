@@ -158,7 +158,10 @@ pub const HELD_MAX: usize = 3;
 /// it holds the pipe, the machine's pipe term is [`HeldPipe::MARK`] (a
 /// header cell, never a handle given out); every reader of that term
 /// makes it the term first (`Cx::flush_pipe`: the same term `build_of` of
-/// the values makes), every writer replaces the mark.
+/// the values makes), every writer replaces the mark. With `n == 0` the
+/// pipe is the value `args[0]` itself (an out_arg `Acc` of a list or a
+/// compound of native values, `Cx::hold_pipe_value`): its term is
+/// `to_term` of it, and no pattern reads it held.
 pub struct HeldPipe {
     pub(super) name: Atom,
     pub(super) n: usize,

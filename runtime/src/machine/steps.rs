@@ -360,6 +360,12 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             };
             // The last arc whose expectation unifies wins (D-14, E2).
             for i in (0..self.expectations.len()).rev() {
+                // Two compounds of constants (`said(yes)`, `said(no)`): no mark.
+                match self.store.unify_flat(input, self.expectations[i]) {
+                    Some(true) => return Ok(Some(i)),
+                    Some(false) => continue,
+                    None => {}
+                }
                 let mark = self.store.mark();
                 if self.store.unify(input, self.expectations[i]) {
                     return Ok(Some(i));
@@ -410,6 +416,12 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             return Err(Some(perceived));
         };
         for i in (0..self.expectations.len()).rev() {
+            // Two compounds of constants (`said(yes)`, `said(no)`): no mark.
+            match self.store.unify_flat(input, self.expectations[i]) {
+                Some(true) => return Ok(i),
+                Some(false) => continue,
+                None => {}
+            }
             let mark = self.store.mark();
             if self.store.unify(input, self.expectations[i]) {
                 return Ok(i);

@@ -424,8 +424,7 @@ impl<T: Native> Native for List<T> {
     }
 
     fn to_term(&self, store: &mut Store) -> Term {
-        let terms: Vec<Term> = self.iter().map(|v| v.to_term(store)).collect();
-        store.list(&terms)
+        super::val::list_term(store, self.iter(), self.len(), T::to_term)
     }
 }
 

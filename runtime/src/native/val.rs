@@ -184,8 +184,7 @@ impl Val {
             Val::Sym(a) => Term::atom(*a),
             Val::Term(t) => t.get(),
             Val::List(items) => {
-                let terms = nested(|| to_terms(items.iter(), store));
-                store.list(&terms)
+                nested(|| list_term(store, items.iter(), items.len(), Val::to_term))
             }
             Val::Tagged(c) => {
                 let terms = nested(|| to_terms(c.args().iter(), store));
@@ -267,6 +266,31 @@ impl Val {
 
 fn to_terms<'a>(items: impl Iterator<Item = &'a Val>, store: &mut Store) -> Vec<Term> {
     items.map(|v| v.to_term(store)).collect()
+}
+
+/// The store list of `len` items made terms in order by `term` (first to
+/// last: `store.list` of them), in a buffer on the stack for a short list
+/// (no vector allocated and freed where native code hands a list on as a
+/// term: a pipe, an id, an action's argument).
+pub(crate) fn list_term<'a, T: 'a>(
+    store: &mut Store,
+    items: impl Iterator<Item = &'a T>,
+    len: usize,
+    term: impl Fn(&T, &mut Store) -> Term,
+) -> Term {
+    const SHORT: usize = 16;
+    if len <= SHORT {
+        let mut buf = [Term::NIL; SHORT];
+        let mut n = 0;
+        for (slot, v) in buf.iter_mut().zip(items) {
+            *slot = term(v, store);
+            n += 1;
+        }
+        store.list(&buf[..n])
+    } else {
+        let terms: Vec<Term> = items.map(|v| term(v, store)).collect();
+        store.list(&terms)
+    }
 }
 
 fn from_term_at(store: &Store, t: Term, ty: &Ty, depth: usize) -> Option<Val> {

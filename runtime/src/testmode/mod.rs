@@ -21,10 +21,19 @@ pub use original::OriginalTestMode;
 mod prompt;
 pub use prompt::PromptPerception;
 
+/// `said`, `nkeyboard` and `listening`, interned once (an input is
+/// delivered at every perception: its type compared as atoms, not text).
+fn said_atoms() -> &'static [Atom; 3] {
+    static ATOMS: std::sync::OnceLock<[Atom; 3]> = std::sync::OnceLock::new();
+    ATOMS.get_or_init(|| ["said", "nkeyboard", "listening"].map(Atom::intern))
+}
+
 /// Types whose perceptual interpreter wraps the input as `said(Term)` (D-14).
 pub(crate) fn wraps_said(store: &Store, ty: Term) -> bool {
-    let name = store.functor(ty).map(|(n, _)| n.as_str());
-    matches!(name, Some("nkeyboard") | Some("listening"))
+    let [_, nkeyboard, listening] = *said_atoms();
+    store
+        .functor(ty)
+        .is_some_and(|(n, _)| n == nkeyboard || n == listening)
 }
 
 /// An input typed or read for a situation of type `ty`, as the perceptual
@@ -35,7 +44,7 @@ pub fn deliver_typed(store: &mut Store, ty: Term, input: Term) -> Perceived {
 
 fn deliver(store: &mut Store, ty: Term, input: Term) -> Perceived {
     if wraps_said(store, ty) {
-        Perceived::Input(store.compound(Atom::intern("said"), &[input]))
+        Perceived::Input(store.compound(said_atoms()[0], &[input]))
     } else {
         Perceived::Input(input)
     }
@@ -61,6 +70,50 @@ pub struct ScriptPerception {
     lines: usize,
     /// Lines dropped from the front of `text` once consumed.
     dropped_lines: usize,
+    /// The plain atoms read last ([`RecentAtoms`]): a script repeats a
+    /// few words.
+    recent: RecentAtoms,
+}
+
+/// The last few plain atoms of at most 8 bytes a script gave, by their
+/// text packed in a `u64` (zero-padded: a plain atom has no zero byte),
+/// each one not an operator: such a word read again (`no.` at each place
+/// of a walk) costs a comparison, not the interner's look-up nor the
+/// operator table's. Any other word goes the way [`plain_atom`] goes.
+#[derive(Default)]
+struct RecentAtoms {
+    keys: [u64; 4],
+    atoms: [Option<Atom>; 4],
+    next: usize,
+}
+
+impl RecentAtoms {
+    /// [`plain_atom`]'s atom of the plain atom `name` (its text), `None`
+    /// for an operator.
+    #[inline]
+    fn atom(&mut self, name: &str, ops: &OpTable) -> Option<Atom> {
+        let bytes = name.as_bytes();
+        if bytes.len() > 8 {
+            return not_op(Atom::intern(name), ops);
+        }
+        let mut packed = [0u8; 8];
+        packed[..bytes.len()].copy_from_slice(bytes);
+        let key = u64::from_le_bytes(packed);
+        if let Some(i) = self.keys.iter().position(|&k| k == key) {
+            return self.atoms[i];
+        }
+        let atom = not_op(Atom::intern(name), ops)?;
+        let i = self.next;
+        self.keys[i] = key;
+        self.atoms[i] = Some(atom);
+        self.next = (i + 1) % self.keys.len();
+        Some(atom)
+    }
+}
+
+/// `atom`, unless it is an operator (not a plain atom: the term reader's).
+fn not_op(atom: Atom, ops: &OpTable) -> Option<Atom> {
+    (!ops.is_op(atom)).then_some(atom)
 }
 
 impl ScriptPerception {
@@ -75,6 +128,7 @@ impl ScriptPerception {
             source: None,
             lines: 0,
             dropped_lines: 0,
+            recent: RecentAtoms::default(),
         }
     }
 
@@ -224,7 +278,15 @@ fn leading_layout(text: &str) -> usize {
 /// white space or the end of the text): the atom and the offset where the
 /// term reader's clause ends. Such an input is most of a scripted run; the
 /// term reader gives the same atom (tested against it below).
-fn plain_atom<'t>(text: &'t str, ops: &OpTable) -> Option<(&'t str, usize)> {
+fn plain_atom(text: &str, ops: &OpTable) -> Option<(Atom, usize)> {
+    let (start, end) = plain_atom_at(text)?;
+    Some((not_op(Atom::intern(&text[start..end]), ops)?, end + 1))
+}
+
+/// Where [`plain_atom`]'s atom is in `text` (its first byte and the byte
+/// after it, the end token's `.`), its operator not checked.
+#[inline]
+fn plain_atom_at(text: &str) -> Option<(usize, usize)> {
     let bytes = text.as_bytes();
     let start = bytes.iter().position(|b| !b.is_ascii_whitespace())?;
     if !bytes[start].is_ascii_lowercase() {
@@ -237,11 +299,7 @@ fn plain_atom<'t>(text: &'t str, ops: &OpTable) -> Option<(&'t str, usize)> {
     if bytes[end] != b'.' || !bytes.get(end + 1).is_none_or(|b| b.is_ascii_whitespace()) {
         return None;
     }
-    let name = &text[start..end];
-    if ops.is_op(Atom::intern(name)) {
-        return None;
-    }
-    Some((name, end + 1))
+    Some((start, end))
 }
 
 /// One input of a script: a plain atom (read without the term reader) or
@@ -259,15 +317,15 @@ impl ScriptPerception {
         let ops = OpTable::sitlog_shared();
         let rest = &self.text[self.pos..];
         if self.atoms_fast {
-            if let Some((name, end)) = plain_atom(rest, ops) {
+            // `plain_atom`, a word read lately looked up in `recent`.
+            let plain = plain_atom_at(rest).and_then(|(start, end)| {
+                Some((self.recent.atom(&rest[start..end], ops)?, end + 1))
+            });
+            if let Some((name, end)) = plain {
                 if end <= self.limits.max_bytes {
                     let start = self.pos;
                     self.pos += end;
-                    return Ok(Some((
-                        ScriptInput::Atom(Atom::intern(name)),
-                        start,
-                        self.pos,
-                    )));
+                    return Ok(Some((ScriptInput::Atom(name), start, self.pos)));
                 }
             }
         }
@@ -525,6 +583,13 @@ impl<W: Write> Actions for TextActions<W> {
     /// `empty` is shown only when it is a declared basic action.
     fn ignores_empty(&self) -> bool {
         !self.declared.contains(&sitlog_syntax::atoms::EMPTY)
+    }
+
+    /// What [`TextActions::perform`] shows: `say/1`, `screen/1` and the
+    /// declared basic actions (any arity); the rest does nothing.
+    fn ignores(&self, name: Atom, arity: usize) -> bool {
+        let shown = arity == 1 && (name == self.say || name == self.screen);
+        !shown && !self.declared.contains(&name)
     }
 }
 

@@ -1,5 +1,6 @@
 //! Tests of test mode's script reading: input limits, plain atoms read
-//! as our reader reads them, and scripts streamed term by term.
+//! as our reader reads them, and scripts streamed term by term; the text
+//! effector says it ignores only what it shows nothing of.
 
 use super::*;
 
@@ -200,6 +201,13 @@ mod plain_atom_tests {
             "tick.\u{a0}stop.\n",
             "",
             "   \n",
+            // Words read again (`RecentAtoms`): more than it keeps, an
+            // operator twice, words of 8 and 9 bytes.
+            "no.\nno.\nyes.\nno.\nyes.\n",
+            "a.b.\nc.\nd.\ne.\na.\nf.\nb.\ne.\n",
+            "is.\nis.\n",
+            "abcdefgh.\nabcdefgh.\nabcdefghi.\nabcdefghi.\nabcdefgh.\n",
+            "ab.\nabc.\nab.\nabc.\n",
         ] {
             same_both_ways(script);
         }
@@ -398,5 +406,32 @@ mod stream_tests {
             ));
         }
         assert!(p.text.len() < 1 << 18, "{}", p.text.len());
+    }
+}
+
+#[cfg(test)]
+mod text_actions_tests {
+    use super::*;
+
+    /// `TextActions::ignores` says yes only of actions `perform` shows
+    /// nothing of, whatever their arguments.
+    #[test]
+    fn ignored_actions_show_nothing() {
+        let mut store = Store::new();
+        let declared = vec![Atom::intern("grasp")];
+        let v = store.new_var();
+        let a = Term::atom(Atom::intern("x"));
+        for name in ["say", "screen", "grasp", "note", "navigate"] {
+            let f = Atom::intern(name);
+            for args in [vec![], vec![a], vec![v], vec![a, v]] {
+                let action = store.compound(f, &args);
+                let mut out = Vec::new();
+                let mut actions = TextActions::new(&mut out, declared.clone());
+                let ignored = actions.ignores(f, args.len());
+                assert!(actions.perform(&mut store, action).is_ok());
+                let shown = !out.is_empty();
+                assert_eq!(ignored, !shown, "{name}/{}", args.len());
+            }
+        }
     }
 }

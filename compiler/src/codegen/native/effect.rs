@@ -67,6 +67,13 @@
 //!   top frame). Else the hand-over is made before the entry and the call
 //!   finds no native frame below (`Cx::perform`'s behaviour).
 //!
+//! An action performed before its situation is entered whose functor is
+//! known (a compound not a list; not `say/1` nor `screen/1`, which every
+//! effector performs) is built and performed only where the run records
+//! or the effector does not ignore it (`Cx::ignores_action`, the
+//! runtime's `Actions::ignores`): an action nothing shows costs a
+//! question, not a term.
+//!
 //! The action, in both: a term `Cx::perform` hands to the effector as it
 //! is where [`Gen::as_is`] (nothing looked at at run time), an
 //! `AnyShape(..)` for any other value (a term evaluated whole: `empty` and
@@ -159,10 +166,44 @@ impl Gen<'_> {
         let mut ts = Vec::new();
         let mut n = 0;
         let perform = self.nat_perform_call(&at, action, atom, regs, &mut ts, &mut n)?;
+        // A compound the effector may ignore whatever its arguments
+        // (`Actions::ignores`: an action test mode neither shows nor
+        // declares): neither built nor handed over where nothing records.
+        if let (Action::One(e), None) = (action, atom) {
+            if let Some((f, arity)) = self.as_is_functor(e) {
+                let f = self.functor_native(f)?;
+                let arity = Literal::usize_unsuffixed(arity);
+                return Ok(Some(quote! {
+                    let act = if run.records || !cx.ignores_action(#f, #arity) {
+                        #(#ts)*
+                        #perform
+                        act
+                    } else {
+                        Term::EMPTY
+                    };
+                }));
+            }
+        }
         Ok(Some(quote! {
             #(#ts)*
             #perform
         }))
+    }
+
+    /// The functor of an action [`Gen::as_is`] (a compound not a list)
+    /// that an effector may ignore: not `say/1` nor `screen/1`, which every
+    /// effector of the workspace performs (test mode shows them, the robot
+    /// speaks and shows them), so the question would always be answered
+    /// no; not asking is always correct, and keeps the program smaller.
+    fn as_is_functor(&self, e: &Ev) -> Option<(Atom, usize)> {
+        let (f, n) = match e {
+            Ev::Built(Build::Const(t)) => self.store.functor(*t)?,
+            Ev::Built(Build::Compound(f, args)) => (*f, args.len()),
+            Ev::Compound(f, args) => (*f, args.len()),
+            _ => return None,
+        };
+        let shown = n == 1 && (f == Atom::intern("say") || f == Atom::intern("screen"));
+        (self.as_is(e) && n > 0 && !shown).then_some((f, n))
     }
 
     /// The one call performing arc action `action` (`atom`: the action

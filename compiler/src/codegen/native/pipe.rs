@@ -46,6 +46,12 @@
 //! `build_of` of the values makes, so the machine, its history and its
 //! report see what they saw when the pipe was built at once.
 //!
+//! An out_arg that is one value of a list of `Val`s or a `Val` held as it
+//! is (`out_arg ==> Acc`, the list a walk accumulated: `held_whole`) is
+//! held whole (`Cx::hold_pipe_value`, the `Rc` shared): the term, a cell
+//! per element, made only where something reads the pipe as one (the
+//! final that takes the last round's list), not at every call.
+//!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
 //! where the machine enters native code, `nat_entry` checks the
@@ -465,6 +471,20 @@ impl Gen<'_> {
             } else if let Some((name, parts)) = &parts {
                 let t = self.nat_out_term(*name, parts)?;
                 quote!(let pipe_out = #t;)
+            } else if let Some(held) = held_whole(&v) {
+                // A list or compound held as it is (`Cx::hold_pipe_value`):
+                // a term only where something reads the pipe as one.
+                let set = quote!(cx.hold_pipe_value(pipe_out););
+                *d.out.borrow_mut() = set.clone();
+                let n = self.nat_next(d, cur, next, regs, cur_name);
+                *d.out.borrow_mut() = quote!();
+                let n = n?;
+                return Ok(quote! {{
+                    let pipe_out = #held;
+                    let next_at = #n;
+                    #set
+                    next_at
+                }});
             } else {
                 let v = super::place(&v);
                 quote!(let pipe_out = cx.term(&#v);)
@@ -980,6 +1000,22 @@ fn held_reg<'a>(
         None => bound
             .find(|(x, _)| *x == r)
             .map(|(x, ty)| (reg(*x), ty.clone())),
+    }
+}
+
+/// An out_arg's value the pipe holds whole as a canonical `Val`
+/// (`Cx::hold_pipe_value`): a list of `Val`s (`list<ground>`, a list of
+/// native compounds; its `Rc` shared, no element copied) or a value held
+/// as a `Val` that is not atomic in every case (`ground`, a compound);
+/// the expression of that `Val`. `None` for an int, a float or an atom
+/// (their terms cost nothing to make) and for a list of ints or atoms
+/// (whose `Val` would copy every element).
+fn held_whole(v: &V) -> Option<TokenStream> {
+    let x = super::place(v);
+    match &v.ty {
+        Ty::List(e) if super::held_as_val(e) => Some(quote!(Val::List(#x.clone()))),
+        t if super::held_as_val(t) => Some(quote!(IntoVal::into_val(#x.clone()))),
+        _ => None,
     }
 }
 
