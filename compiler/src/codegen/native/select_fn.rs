@@ -91,7 +91,7 @@ pub(super) fn share_selections(items: TokenStream, sites: &[SelSite]) -> TokenSt
             format_ident!("{}_{}", base, *n)
         };
         names.insert(f.key.clone(), fname.clone());
-        let atoms = f.reads_atoms.then(|| quote!(a: &Atoms,));
+        let atoms = f.reads_atoms.then(|| quote!(a: &super::Atoms,));
         let params = f.params.iter().map(|(v, t)| quote!(#v: #t));
         let doc = format!(
             " Selects situation `{}` (shared by the DM's selections of it).",
