@@ -3912,6 +3912,9 @@ mod plain_compounds;
 /// Helper `nplain20`'s plain functions called on native values (issue 37).
 mod nplain20;
 
+/// Helper `ncall21`'s calls with evaluated arguments (issue 37).
+mod ncall21;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");
