@@ -268,7 +268,7 @@ fn analyze(g: &Group, sites: &[SelSite]) -> Option<Found> {
     }
     let params: Vec<(Ident, TokenStream)> = vals
         .into_iter()
-        .filter(|(v, _)| idents.iter().any(|i| *i == v.to_string()))
+        .filter(|(v, _)| idents.iter().any(|i| v == i))
         .collect();
     let reads_atoms = idents.iter().any(|i| i == "a");
     let types: Vec<String> = params.iter().map(|(v, t)| format!("{v}: {t}")).collect();
