@@ -3915,6 +3915,9 @@ mod nplain20;
 /// Helper `fid21`'s run-time errors named at their place (issue 39).
 mod fid21;
 
+/// Helper `ncall21`'s calls with evaluated arguments (issue 37).
+mod ncall21;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");

@@ -235,6 +235,7 @@ mod next_is;
 mod perceive;
 mod pipe;
 mod plain;
+mod select_fn;
 use crate::ir::IrDm;
 use crate::mir::ty::{DmTypes, SitTypes};
 use crate::mir::{Action, ArcPlan, Build, Cond, Ev, Init, KindPlan, Next, Prog, Reg, SitPlan, ID};
@@ -1366,6 +1367,9 @@ struct Dm<'a> {
     /// Per situation: how often each register occurs in its plan
     /// (`mir::ty::occurrences`), computed once for every question asked.
     occ: Vec<Vec<u32>>,
+    /// The candidates of each `'sel` block generated, shared where they
+    /// repeat ([`select_fn::share_selections`]).
+    sels: std::cell::RefCell<Vec<select_fn::SelSite>>,
 }
 
 /// A situation whose id takes apart a list `[P|Ps]` (`P` and `Ps`
@@ -1905,6 +1909,7 @@ impl Gen<'_> {
             .iter()
             .filter(|st| !st.regs.iter().any(|r| holds_val(&r.ty)))
             .count();
+        let items = select_fn::share_selections(items, &d.sels.borrow());
         let held = Self::nat_held(&d);
         Ok(NativeCode {
             held,
@@ -2058,6 +2063,7 @@ impl Gen<'_> {
             pipe_unread: std::cell::Cell::new(false),
             movable: Default::default(),
             occ,
+            sels: Default::default(),
         };
         d.hand = self.nat_hand(&d)?;
         // Each situation's code, given which others have native code (a
@@ -5535,6 +5541,16 @@ impl Gen<'_> {
         } else {
             quote!(#(#candidates)*)
         };
+        d.sels.borrow_mut().push(select_fn::SelSite {
+            lets: quote!(#(#lets)*).to_string(),
+            types: args
+                .iter()
+                .map(|v| rust_ty(&v.ty).ok().map(|t| quote!(&#t)))
+                .collect(),
+            text: candidates.to_string(),
+            len: candidates.clone().into_iter().count(),
+            name: name.to_string(),
+        });
         if taken && !leaves {
             // Decided here: every value is taken natively.
             return Ok(quote! {

@@ -1,0 +1,3 @@
+% Helper ncall21: set by `glob/1` and `bad/1` to their argument, by
+% `change/1` to `changed`.
+g ==> nothing.
