@@ -199,6 +199,8 @@ pub(super) struct PlainFn {
     clauses: Box<[PClause]>,
     /// At least the inferences the engine counts for a call.
     inferences: u64,
+    /// The most variables a clause has (the registers a call needs).
+    vars: usize,
 }
 
 /// The native forms of an application's plain functions.
@@ -264,11 +266,13 @@ impl PlainScan {
                     .iter()
                     .map(|c| c.body.iter().map(PGoal::goals).sum::<usize>() + 1)
                     .sum();
+                let vars = clauses.iter().map(|c| c.vars).max().unwrap_or(0);
                 Some((
                     key,
                     PlainFn {
                         clauses: clauses.into(),
                         inferences: (goals as u64 + 1).saturating_mul(4),
+                        vars,
                     },
                 ))
             })

@@ -18,7 +18,7 @@
 //! one without a `Val::Term` stays so), so a walk that passes the rest of
 //! its list at each visit checks it once.
 
-use super::{Opnd, PArg, PClause, PExpr, PGoal, PlainFns, Un, MAX_DEPTH, MIN_INFERENCES};
+use super::{Opnd, PArg, PClause, PExpr, PGoal, PlainFn, PlainFns, Un, MAX_DEPTH, MIN_INFERENCES};
 use crate::native::{Compound, List, Val};
 use crate::term::{Repr, Term};
 use sitlog_syntax::{atoms, Atom};
@@ -51,25 +51,35 @@ impl PlainFns {
         if !args.iter().all(sure_arg) {
             return None;
         }
-        for c in f.clauses.iter() {
-            let out = if c.vars <= SMALL {
-                let mut regs: [Val; SMALL] = std::array::from_fn(|_| Val::Int(0));
-                run_clause(c, args, &mut regs[..c.vars])
-            } else {
-                let mut regs = vec![Val::Int(0); c.vars];
-                run_clause(c, args, &mut regs)
-            };
-            match out {
-                Outcome::Value(v) => return Some(v),
-                Outcome::Fail { cut: false } => continue,
-                Outcome::Fail { cut: true } | Outcome::NoValue | Outcome::Unsure => return None,
-            }
+        // One set of registers for the call, made once: a clause writes a
+        // variable's register before it reads it (a variable read before
+        // it is bound is not plain), so what an earlier clause left there
+        // is never read.
+        if f.vars <= SMALL {
+            let mut regs: [Val; SMALL] = std::array::from_fn(|_| Val::Int(0));
+            run_clauses(f, args, &mut regs[..f.vars])
+        } else {
+            let mut regs = vec![Val::Int(0); f.vars];
+            run_clauses(f, args, &mut regs)
         }
-        None
     }
 }
 
-/// Registers on the stack for a clause of at most this many variables.
+/// The first clause's value, `None` where no clause gives one or the term
+/// path decides.
+fn run_clauses(f: &PlainFn, args: &[Val], regs: &mut [Val]) -> Option<Val> {
+    for c in f.clauses.iter() {
+        match run_clause(c, args, &mut regs[..c.vars]) {
+            Outcome::Value(v) => return Some(v),
+            Outcome::Fail { cut: false } => continue,
+            Outcome::Fail { cut: true } | Outcome::NoValue | Outcome::Unsure => return None,
+        }
+    }
+    None
+}
+
+/// Registers on the stack for a function of at most this many variables
+/// in a clause.
 const SMALL: usize = 8;
 
 /// Whether a top-level argument is taken ([`sure`] at depth 0), a list
@@ -232,13 +242,19 @@ fn value(o: &Opnd, regs: &[Val]) -> Option<Val> {
                 _ => None,
             }
         }
-        Opnd::Build(f, args) => {
-            let mut vs = Vec::with_capacity(args.len());
-            for a in args.iter() {
-                vs.push(value(a, regs)?);
+        // A small compound in one allocation (its slice), no vector first.
+        Opnd::Build(f, args) => Some(Val::Tagged(match &args[..] {
+            [a] => Compound::new(*f, [value(a, regs)?]),
+            [a, b] => Compound::new(*f, [value(a, regs)?, value(b, regs)?]),
+            [a, b, c] => Compound::new(*f, [value(a, regs)?, value(b, regs)?, value(c, regs)?]),
+            _ => {
+                let mut vs = Vec::with_capacity(args.len());
+                for a in args.iter() {
+                    vs.push(value(a, regs)?);
+                }
+                Compound::new(*f, vs)
             }
-            Some(Val::Tagged(Compound::new(*f, vs)))
-        }
+        })),
     }
 }
 

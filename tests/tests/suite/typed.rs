@@ -3912,6 +3912,10 @@ mod plain_compounds;
 /// Helper `nplain20`'s plain functions called on native values (issue 37).
 mod nplain20;
 
+/// Helper `nfnc21`'s plain calls without fresh variables, out_args without
+/// the hand-over (issue 37).
+mod nfnc21;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");
