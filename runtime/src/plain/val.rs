@@ -55,7 +55,10 @@ impl PlainFns {
         // variable's register before it reads it (a variable read before
         // it is bound is not plain), so what an earlier clause left there
         // is never read.
-        if f.vars <= SMALL {
+        if f.vars <= SMALL / 2 {
+            let mut regs: [Val; SMALL / 2] = std::array::from_fn(|_| Val::Int(0));
+            run_clauses(f, args, &mut regs[..f.vars])
+        } else if f.vars <= SMALL {
             let mut regs: [Val; SMALL] = std::array::from_fn(|_| Val::Int(0));
             run_clauses(f, args, &mut regs[..f.vars])
         } else {
@@ -175,6 +178,7 @@ fn parts(v: &Val, f: Atom, n: usize) -> Option<Parts<'_>> {
 /// Whether two values taken or built here are the same term (`==`).
 fn ident(x: &Val, y: &Val) -> bool {
     match (x, y) {
+        (Val::Sym(a), Val::Sym(b)) => a == b,
         (Val::Int(a), Val::Int(b)) => a == b,
         (Val::List(a), Val::List(b)) => {
             a.same_storage(b)
@@ -290,6 +294,7 @@ fn head_matches(p: &PArg, a: &Val, regs: &mut [Val]) -> bool {
             true
         }
         PArg::Same(i) => ident(&regs[*i as usize], a),
+        PArg::Skip => true,
         PArg::Const(k) => ident(&constant(*k), a),
         PArg::Struct(f, ps) => match parts(a, *f, ps.len()) {
             Some(parts) => (0..ps.len()).all(|i| head_matches(&ps[i], parts.get(i), regs)),
