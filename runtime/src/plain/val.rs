@@ -212,7 +212,7 @@ fn constant(k: Term) -> Val {
 fn ident_ov(o: &Opnd, v: &Val, regs: &[Val]) -> bool {
     match o {
         Opnd::Var(i) => ident(&regs[*i as usize], v),
-        Opnd::Const(k) => ident(&constant(*k), v),
+        Opnd::Const(k) => ident_k(v, *k),
         Opnd::Build(f, args) => match parts(v, *f, args.len()) {
             Some(p) => (0..args.len()).all(|i| ident_ov(&args[i], p.get(i), regs)),
             None => false,
@@ -220,8 +220,32 @@ fn ident_ov(o: &Opnd, v: &Val, regs: &[Val]) -> bool {
     }
 }
 
+/// Whether `v` is the constant `k` (`==`): an atom or an integer compared
+/// where it is, the rest as [`ident`] of the constant's value.
+#[inline]
+fn ident_k(v: &Val, k: Term) -> bool {
+    match (v, k.0) {
+        // `[]` is an atom both ways (`atom_of`).
+        (Val::Sym(a), Repr::Atom(b)) => *a == b,
+        (Val::Int(i), Repr::Int(j)) => *i == j,
+        _ => ident(v, &constant(k)),
+    }
+}
+
 /// Whether two operands' values are identical (`==`).
+#[inline]
 fn ident_oo(x: &Opnd, y: &Opnd, regs: &[Val]) -> bool {
+    match (x, y) {
+        (Opnd::Var(i), Opnd::Const(k)) | (Opnd::Const(k), Opnd::Var(i)) => {
+            ident_k(&regs[*i as usize], *k)
+        }
+        (Opnd::Var(i), Opnd::Var(j)) => ident(&regs[*i as usize], &regs[*j as usize]),
+        _ => ident_oo_slow(x, y, regs),
+    }
+}
+
+/// [`ident_oo`] but for a variable against a constant or a variable.
+fn ident_oo_slow(x: &Opnd, y: &Opnd, regs: &[Val]) -> bool {
     match (x, y) {
         (Opnd::Build(f, a), Opnd::Build(g, b)) => {
             f == g
@@ -286,7 +310,8 @@ fn eval(e: &PExpr, regs: &[Val]) -> Result<i64, ()> {
 }
 
 /// Whether the argument `a` matches the head argument `p`, binding its
-/// variables' first occurrences in `regs`.
+/// variables' first occurrences in `regs` (a compound's parts out of line).
+#[inline]
 fn head_matches(p: &PArg, a: &Val, regs: &mut [Val]) -> bool {
     match p {
         PArg::Bind(i) => {
@@ -295,11 +320,16 @@ fn head_matches(p: &PArg, a: &Val, regs: &mut [Val]) -> bool {
         }
         PArg::Same(i) => ident(&regs[*i as usize], a),
         PArg::Skip => true,
-        PArg::Const(k) => ident(&constant(*k), a),
-        PArg::Struct(f, ps) => match parts(a, *f, ps.len()) {
-            Some(parts) => (0..ps.len()).all(|i| head_matches(&ps[i], parts.get(i), regs)),
-            None => false,
-        },
+        PArg::Const(k) => ident_k(a, *k),
+        PArg::Struct(f, ps) => struct_matches(*f, ps, a, regs),
+    }
+}
+
+/// [`head_matches`] of a compound (a list cell too).
+fn struct_matches(f: Atom, ps: &[PArg], a: &Val, regs: &mut [Val]) -> bool {
+    match parts(a, f, ps.len()) {
+        Some(parts) => (0..ps.len()).all(|i| head_matches(&ps[i], parts.get(i), regs)),
+        None => false,
     }
 }
 
