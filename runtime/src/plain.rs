@@ -84,6 +84,9 @@ enum PArg {
     Bind(u16),
     /// A variable again: the argument must be identical to it.
     Same(u16),
+    /// A variable's first occurrence that nothing reads (`_`, a singleton):
+    /// it takes any argument, and no register.
+    Skip,
     Const(Term),
     /// A compound (a list cell too): the argument must be one of this
     /// name and arity whose arguments match these.
@@ -199,6 +202,8 @@ pub(super) struct PlainFn {
     clauses: Box<[PClause]>,
     /// At least the inferences the engine counts for a call.
     inferences: u64,
+    /// The most variables a clause has (the registers a call needs).
+    vars: usize,
 }
 
 /// The native forms of an application's plain functions.
@@ -264,11 +269,13 @@ impl PlainScan {
                     .iter()
                     .map(|c| c.body.iter().map(PGoal::goals).sum::<usize>() + 1)
                     .sum();
+                let vars = clauses.iter().map(|c| c.vars).max().unwrap_or(0);
                 Some((
                     key,
                     PlainFn {
                         clauses: clauses.into(),
                         inferences: (goals as u64 + 1).saturating_mul(4),
+                        vars,
                     },
                 ))
             })
@@ -503,11 +510,84 @@ fn plain_clause(store: &Store, head: Term, body: Option<Term>) -> Option<PClause
         Some(b) => conj(store, b, &mut scope, 0)?,
         None => Vec::new(),
     };
+    // A first occurrence in the head that nothing reads takes no register.
+    let mut read = vec![false; scope.vars.len()];
+    args.iter().for_each(|a| arg_reads(a, &mut read));
+    goals_read(&goals, &mut read);
+    for a in args.iter_mut() {
+        skip_unread(a, &read);
+    }
     Some(PClause {
         vars: scope.vars.len(),
         head: args.into(),
         body: goals.into(),
     })
+}
+
+/// `Bind(i)` of a variable `read` says nothing reads made [`PArg::Skip`].
+fn skip_unread(a: &mut PArg, read: &[bool]) {
+    match a {
+        PArg::Bind(i) if !read[*i as usize] => *a = PArg::Skip,
+        PArg::Struct(_, ps) => ps.iter_mut().for_each(|p| skip_unread(p, read)),
+        _ => {}
+    }
+}
+
+/// Marks the variables a head argument reads (a repeated one).
+fn arg_reads(a: &PArg, read: &mut [bool]) {
+    match a {
+        PArg::Same(i) => read[*i as usize] = true,
+        PArg::Struct(_, ps) => ps.iter().for_each(|p| arg_reads(p, read)),
+        PArg::Bind(_) | PArg::Skip | PArg::Const(_) => {}
+    }
+}
+
+fn opnd_reads(o: &Opnd, read: &mut [bool]) {
+    match o {
+        Opnd::Var(i) => read[*i as usize] = true,
+        Opnd::Build(_, xs) => xs.iter().for_each(|x| opnd_reads(x, read)),
+        Opnd::Const(_) => {}
+    }
+}
+
+fn expr_reads(e: &PExpr, read: &mut [bool]) {
+    match e {
+        PExpr::Var(i) => read[*i as usize] = true,
+        PExpr::Int(_) => {}
+        PExpr::Un(_, x) => expr_reads(x, read),
+        PExpr::Bin(_, x, y) => {
+            expr_reads(x, read);
+            expr_reads(y, read);
+        }
+    }
+}
+
+/// Marks the variables the goals read.
+fn goals_read(goals: &[PGoal], read: &mut [bool]) {
+    for g in goals {
+        match g {
+            PGoal::True | PGoal::Fail | PGoal::Cut => {}
+            PGoal::IsFresh(_, e) => expr_reads(e, read),
+            PGoal::IsBound(i, e) => {
+                read[*i as usize] = true;
+                expr_reads(e, read);
+            }
+            PGoal::Cmp(_, x, y) => {
+                expr_reads(x, read);
+                expr_reads(y, read);
+            }
+            PGoal::Ident(_, x, y) => {
+                opnd_reads(x, read);
+                opnd_reads(y, read);
+            }
+            PGoal::Bind(_, o) | PGoal::Assign(o) => opnd_reads(o, read),
+            PGoal::Ite(c, t, e) => {
+                goals_read(c, read);
+                goals_read(t, read);
+                goals_read(e, read);
+            }
+        }
+    }
 }
 
 /// The plain goals of the conjunction `b`, left to right (`depth`: how
@@ -896,6 +976,7 @@ fn head_matches(store: &Store, p: &PArg, a: Term, regs: &mut [Term]) -> bool {
             true
         }
         PArg::Same(i) => store.identical(regs[*i as usize], a),
+        PArg::Skip => true,
         PArg::Const(k) => store.identical(*k, a),
         PArg::Struct(f, ps) => {
             if store.compound_args(a, *f, ps.len()).is_none() {
@@ -1220,6 +1301,24 @@ mod tests {
         s.gc(&mut roots);
         assert_eq!(s.plain_memo.get(s.epoch), None);
         assert!(sure(s, roots[0], true));
+    }
+
+    #[test]
+    fn a_head_variable_nothing_reads_takes_no_register() {
+        let fns = scan(
+            "f(X, _, X) :- assign_func_value(same).\n\
+             f([_|T], Y, _) :- Y == b, !, assign_func_value(T).\n\
+             f(_, Y, Z) :- W is Z + 1, assign_func_value(p(Y, W)).\n",
+        );
+        let form = format!("{:?}", fns.map.get(&(Atom::intern("f"), 3)).unwrap());
+        // Each `_` skipped (one, two, one); `X` (repeated), `T`, `Y`, `Z`
+        // (read): bound.
+        assert_eq!(form.matches("Skip").count(), 4, "{form}");
+        let s = &mut Store::new();
+        assert_eq!(call(&fns, s, "f(a, b, a)").as_deref(), Some("same"));
+        assert_eq!(call(&fns, s, "f([1, 2], b, c)").as_deref(), Some("[2]"));
+        assert_eq!(call(&fns, s, "f([1, 2], c, 4)").as_deref(), Some("p(c,5)"));
+        assert_eq!(call(&fns, s, "f(a, b, c)"), None); // a type error
     }
 
     #[test]

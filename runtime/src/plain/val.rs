@@ -18,7 +18,7 @@
 //! one without a `Val::Term` stays so), so a walk that passes the rest of
 //! its list at each visit checks it once.
 
-use super::{Opnd, PArg, PClause, PExpr, PGoal, PlainFns, Un, MAX_DEPTH, MIN_INFERENCES};
+use super::{Opnd, PArg, PClause, PExpr, PGoal, PlainFn, PlainFns, Un, MAX_DEPTH, MIN_INFERENCES};
 use crate::native::{Compound, List, Val};
 use crate::term::{Repr, Term};
 use sitlog_syntax::{atoms, Atom};
@@ -51,25 +51,38 @@ impl PlainFns {
         if !args.iter().all(sure_arg) {
             return None;
         }
-        for c in f.clauses.iter() {
-            let out = if c.vars <= SMALL {
-                let mut regs: [Val; SMALL] = std::array::from_fn(|_| Val::Int(0));
-                run_clause(c, args, &mut regs[..c.vars])
-            } else {
-                let mut regs = vec![Val::Int(0); c.vars];
-                run_clause(c, args, &mut regs)
-            };
-            match out {
-                Outcome::Value(v) => return Some(v),
-                Outcome::Fail { cut: false } => continue,
-                Outcome::Fail { cut: true } | Outcome::NoValue | Outcome::Unsure => return None,
-            }
+        // One set of registers for the call, made once: a clause writes a
+        // variable's register before it reads it (a variable read before
+        // it is bound is not plain), so what an earlier clause left there
+        // is never read.
+        if f.vars <= SMALL / 2 {
+            let mut regs: [Val; SMALL / 2] = std::array::from_fn(|_| Val::Int(0));
+            run_clauses(f, args, &mut regs[..f.vars])
+        } else if f.vars <= SMALL {
+            let mut regs: [Val; SMALL] = std::array::from_fn(|_| Val::Int(0));
+            run_clauses(f, args, &mut regs[..f.vars])
+        } else {
+            let mut regs = vec![Val::Int(0); f.vars];
+            run_clauses(f, args, &mut regs)
         }
-        None
     }
 }
 
-/// Registers on the stack for a clause of at most this many variables.
+/// The first clause's value, `None` where no clause gives one or the term
+/// path decides.
+fn run_clauses(f: &PlainFn, args: &[Val], regs: &mut [Val]) -> Option<Val> {
+    for c in f.clauses.iter() {
+        match run_clause(c, args, &mut regs[..c.vars]) {
+            Outcome::Value(v) => return Some(v),
+            Outcome::Fail { cut: false } => continue,
+            Outcome::Fail { cut: true } | Outcome::NoValue | Outcome::Unsure => return None,
+        }
+    }
+    None
+}
+
+/// Registers on the stack for a function of at most this many variables
+/// in a clause.
 const SMALL: usize = 8;
 
 /// Whether a top-level argument is taken ([`sure`] at depth 0), a list
@@ -165,6 +178,7 @@ fn parts(v: &Val, f: Atom, n: usize) -> Option<Parts<'_>> {
 /// Whether two values taken or built here are the same term (`==`).
 fn ident(x: &Val, y: &Val) -> bool {
     match (x, y) {
+        (Val::Sym(a), Val::Sym(b)) => a == b,
         (Val::Int(a), Val::Int(b)) => a == b,
         (Val::List(a), Val::List(b)) => {
             a.same_storage(b)
@@ -198,7 +212,7 @@ fn constant(k: Term) -> Val {
 fn ident_ov(o: &Opnd, v: &Val, regs: &[Val]) -> bool {
     match o {
         Opnd::Var(i) => ident(&regs[*i as usize], v),
-        Opnd::Const(k) => ident(&constant(*k), v),
+        Opnd::Const(k) => ident_k(v, *k),
         Opnd::Build(f, args) => match parts(v, *f, args.len()) {
             Some(p) => (0..args.len()).all(|i| ident_ov(&args[i], p.get(i), regs)),
             None => false,
@@ -206,8 +220,32 @@ fn ident_ov(o: &Opnd, v: &Val, regs: &[Val]) -> bool {
     }
 }
 
+/// Whether `v` is the constant `k` (`==`): an atom or an integer compared
+/// where it is, the rest as [`ident`] of the constant's value.
+#[inline]
+fn ident_k(v: &Val, k: Term) -> bool {
+    match (v, k.0) {
+        // `[]` is an atom both ways (`atom_of`).
+        (Val::Sym(a), Repr::Atom(b)) => *a == b,
+        (Val::Int(i), Repr::Int(j)) => *i == j,
+        _ => ident(v, &constant(k)),
+    }
+}
+
 /// Whether two operands' values are identical (`==`).
+#[inline]
 fn ident_oo(x: &Opnd, y: &Opnd, regs: &[Val]) -> bool {
+    match (x, y) {
+        (Opnd::Var(i), Opnd::Const(k)) | (Opnd::Const(k), Opnd::Var(i)) => {
+            ident_k(&regs[*i as usize], *k)
+        }
+        (Opnd::Var(i), Opnd::Var(j)) => ident(&regs[*i as usize], &regs[*j as usize]),
+        _ => ident_oo_slow(x, y, regs),
+    }
+}
+
+/// [`ident_oo`] but for a variable against a constant or a variable.
+fn ident_oo_slow(x: &Opnd, y: &Opnd, regs: &[Val]) -> bool {
     match (x, y) {
         (Opnd::Build(f, a), Opnd::Build(g, b)) => {
             f == g
@@ -232,13 +270,19 @@ fn value(o: &Opnd, regs: &[Val]) -> Option<Val> {
                 _ => None,
             }
         }
-        Opnd::Build(f, args) => {
-            let mut vs = Vec::with_capacity(args.len());
-            for a in args.iter() {
-                vs.push(value(a, regs)?);
+        // A small compound in one allocation (its slice), no vector first.
+        Opnd::Build(f, args) => Some(Val::Tagged(match &args[..] {
+            [a] => Compound::new(*f, [value(a, regs)?]),
+            [a, b] => Compound::new(*f, [value(a, regs)?, value(b, regs)?]),
+            [a, b, c] => Compound::new(*f, [value(a, regs)?, value(b, regs)?, value(c, regs)?]),
+            _ => {
+                let mut vs = Vec::with_capacity(args.len());
+                for a in args.iter() {
+                    vs.push(value(a, regs)?);
+                }
+                Compound::new(*f, vs)
             }
-            Some(Val::Tagged(Compound::new(*f, vs)))
-        }
+        })),
     }
 }
 
@@ -266,7 +310,8 @@ fn eval(e: &PExpr, regs: &[Val]) -> Result<i64, ()> {
 }
 
 /// Whether the argument `a` matches the head argument `p`, binding its
-/// variables' first occurrences in `regs`.
+/// variables' first occurrences in `regs` (a compound's parts out of line).
+#[inline]
 fn head_matches(p: &PArg, a: &Val, regs: &mut [Val]) -> bool {
     match p {
         PArg::Bind(i) => {
@@ -274,11 +319,17 @@ fn head_matches(p: &PArg, a: &Val, regs: &mut [Val]) -> bool {
             true
         }
         PArg::Same(i) => ident(&regs[*i as usize], a),
-        PArg::Const(k) => ident(&constant(*k), a),
-        PArg::Struct(f, ps) => match parts(a, *f, ps.len()) {
-            Some(parts) => (0..ps.len()).all(|i| head_matches(&ps[i], parts.get(i), regs)),
-            None => false,
-        },
+        PArg::Skip => true,
+        PArg::Const(k) => ident_k(a, *k),
+        PArg::Struct(f, ps) => struct_matches(*f, ps, a, regs),
+    }
+}
+
+/// [`head_matches`] of a compound (a list cell too).
+fn struct_matches(f: Atom, ps: &[PArg], a: &Val, regs: &mut [Val]) -> bool {
+    match parts(a, f, ps.len()) {
+        Some(parts) => (0..ps.len()).all(|i| head_matches(&ps[i], parts.get(i), regs)),
+        None => false,
     }
 }
 

@@ -3918,6 +3918,10 @@ mod fid21;
 /// Helper `ncall21`'s calls with evaluated arguments (issue 37).
 mod ncall21;
 
+/// Helper `nfnc21`'s plain calls without fresh variables, out_args without
+/// the hand-over (issue 37).
+mod nfnc21;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");

@@ -87,6 +87,9 @@ const SAFE: &[&str] = &[
     // A plain function on native values: reads the store and the globals
     // only (`machine::plain_fn`).
     "nat_plain",
+    // An out_arg's value set as the pipe: the run's pipe, no frame's
+    // (`Cx::out_value`).
+    "out_value",
     "perform_value",
     "global_as",
     "global_inc",

@@ -670,18 +670,30 @@ impl Gen<'_> {
             quote!(Term),
         )?;
         // A plain user function's value, computed on native values
-        // (`plain`), the evaluation where it gives none.
-        let pre = match self.nat_plain_call(d, b, regs)? {
-            Some(call) => quote! {
-                let #name: Term = match #call {
-                    Some(pv) => cx.term(&pv),
-                    None => {
-                        #pre
-                        #name
-                    }
-                };
-            },
-            None => pre,
+        // (`plain`), the `apply` built and evaluated where it gives none
+        // (its term built there, after the next situation: building reads
+        // registers only, the kept ones renamed below).
+        let (built, pre) = match self.nat_plain_call(d, b, regs)? {
+            Some(call) => {
+                let term_path = super::plain::cold_arm(quote! {
+                    #(#ts)*
+                    let out_term = #t;
+                    #pre
+                });
+                (
+                    quote!(),
+                    quote! {
+                        let #name: Term = match #call {
+                            Some(pv) => cx.term(&pv),
+                            None => {
+                                #term_path
+                                #name
+                            }
+                        };
+                    },
+                )
+            }
+            None => (quote!(#(#ts)* let out_term = #t;), pre),
         };
         let pre = rename_kept(pre, &moved);
         let kept = moved.iter().map(|r| {
@@ -689,8 +701,7 @@ impl Gen<'_> {
             quote!(let #k = #r.clone();)
         });
         Ok(quote! {{
-            #(#ts)*
-            let out_term = #t;
+            #built
             #(#kept)*
             let next_at = #nx;
             #pre

@@ -17,6 +17,12 @@
 //! every value a register of a native type or an atom or integer constant
 //! (they evaluate to themselves; the runtime refuses a value L would
 //! evaluate otherwise).
+//!
+//! The fresh variables only the term path reads (the `apply`'s declared
+//! `_`s) are made in its arm ([`cold_arm`]), not at every visit: the
+//! value computed natively never reads them (D-37: the caller's declared
+//! variables stay unbound), so a visit whose call runs natively makes no
+//! variable.
 
 use super::{coerce, Dm, Regs, N, V};
 use crate::codegen::Gen;
@@ -26,6 +32,7 @@ use quote::{format_ident, quote};
 use sitlog_runtime::native::Ty;
 use sitlog_runtime::Value;
 use sitlog_syntax::{atoms, Atom};
+use std::collections::BTreeSet;
 
 impl Gen<'_> {
     /// Whether the build takes `name/arity` for a plain function.
@@ -171,6 +178,7 @@ impl Gen<'_> {
         let out = d.out.borrow().clone();
         let tail = super::goto_tail(&d.rec.borrow());
         let curl = proc_macro2::Literal::u32_unsuffixed(cur as u32);
+        let evaluated = cold_arm(evaluated);
         Ok(Some(quote! {
             match #call {
                 Some(pv) => 'plain: {
@@ -181,7 +189,7 @@ impl Gen<'_> {
                     #out
                     #tail
                 }
-                None => #evaluated,
+                None => { #evaluated }
             }
         }))
     }
@@ -231,6 +239,7 @@ impl Gen<'_> {
         let Some(pre) = evaluated()? else {
             return Ok(None);
         };
+        let pre = cold_arm(pre);
         Ok(Some(quote! {
             let #name: bool = match #call {
                 Some(pv) => #test,
@@ -240,5 +249,28 @@ impl Gen<'_> {
                 }
             };
         }))
+    }
+}
+
+/// The term path's arm `code` of a plain call with the fresh variables it
+/// reads (`fresh_r<n>`, the `apply`'s declared `_`s, made at the visit's
+/// start otherwise) made at its start instead, renamed `cold_r<n>`
+/// (statements, then `code`'s: the caller's block holds them; a
+/// use of the same variable elsewhere in the visit still makes its own at
+/// the start: the term path's call does not bind it, D-37).
+pub(super) fn cold_arm(code: TokenStream) -> TokenStream {
+    let mut used = BTreeSet::new();
+    super::fresh_used(&code, &mut used);
+    let mut renamed = BTreeSet::new();
+    let code = super::cold::cold_fresh(code, &mut renamed);
+    if used.is_empty() {
+        return code;
+    }
+    let mut cold = BTreeSet::new();
+    let made = super::cold::cold_fresh(quote!(#(#used)*), &mut cold);
+    let made = made.into_iter();
+    quote! {
+        let [#(#made),*] = cx.vars();
+        #code
     }
 }
