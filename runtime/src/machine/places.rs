@@ -11,7 +11,7 @@
 //!
 //! The place of a [`RunError`] ([`blame`]): the situation's in_arg for the
 //! in_arg's error; else the construct of L the evaluator blamed (the
-//! error's [`Culprit`](crate::eval::Culprit): its functor and its first
+//! error's [`crate::eval::Culprit`]: its functor and its first
 //! argument's), looked up among those written in the situation ([`Written`]:
 //! those of the attributes that are not arcs, then each arc's, each in
 //! source order): first one of the failing arc with the same functor and
@@ -87,7 +87,7 @@ pub(super) fn is_culprit(store: &crate::store::Store, v: Option<Term>) -> Culpri
 
 impl SitTable {
     /// `file:line:col` of what run-time error `error` names ([`blame`]),
-    /// from the program's places ([`DmRow::places`](super::DmRow::places)):
+    /// from the program's places ([`SitTable::with_places`]):
     /// what the interpreter names from the source. `None` without a site.
     pub fn error_location(&self, error: &RunError) -> Option<String> {
         let site = error.site.as_deref()?;
