@@ -71,11 +71,12 @@ pub(super) fn share_selections(items: TokenStream, sites: &[SelSite]) -> TokenSt
         }
         // Shared only where it is fewer lines: each block keeps a call of
         // three lines (one, a selection that takes every value), the
-        // function costs its candidates and about six.
+        // function costs its candidates and about seven (its
+        // `#[inline(always)]`: the sharing saves lines, not instructions).
         let candidates: TokenStream = f.candidates.iter().cloned().collect();
         let lines = super::lines_in_dm(&quote!('sel: { #candidates })).saturating_sub(6);
         let call = if f.rest.is_empty() { 1 } else { 3 };
-        if uses[&f.key] * lines.saturating_sub(call) <= lines + 6 {
+        if uses[&f.key] * lines.saturating_sub(call) <= lines + 7 {
             continue;
         }
         let base = if is_plain_name(&f.name) {
@@ -100,6 +101,7 @@ pub(super) fn share_selections(items: TokenStream, sites: &[SelSite]) -> TokenSt
         fns.push(if f.rest.is_empty() {
             quote! {
                 #[doc = #doc]
+                #[inline(always)]
                 fn #fname(#atoms #(#params),*) -> Nat {
                     'sel: { #candidates }
                 }
@@ -107,6 +109,7 @@ pub(super) fn share_selections(items: TokenStream, sites: &[SelSite]) -> TokenSt
         } else {
             quote! {
                 #[doc = #doc]
+                #[inline(always)]
                 fn #fname(#atoms #(#params),*) -> Option<Nat> {
                     Some('sel: {
                         #candidates
