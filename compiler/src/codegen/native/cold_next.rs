@@ -59,28 +59,11 @@ impl Gen<'_> {
             return Ok(None);
         }
         let (vars, redo) = self.cold_terms(e, regs, |t| quote!(let rec_next = #t;))?;
-        let saved = self.global_cold.replace(Some(quote!(break 'nat_cold_next)));
-        let code = self.nat_next(d, cur, n, regs, cur_name);
-        *self.global_cold.borrow_mut() = saved;
-        let code = code?;
+        let code = self.nat_next_breaking(d, cur, n, regs, cur_name)?;
         if !code.to_string().contains("nat_cold_next") {
             return Ok(Some(code));
         }
-        let out = d.out.borrow().clone();
-        let tail = super::goto_tail(&d.rec.borrow());
-        Ok(Some(quote! {
-            'nat_next: {
-                'nat_cold_next: {
-                    break 'nat_next #code;
-                }
-                // A global's value native code cannot hold: the machine's.
-                #vars
-                #redo
-                cx.count_transitions(count);
-                #out
-                #tail
-            }
-        }))
+        Ok(Some(Self::cold_next_block(d, code, vars, redo)))
     }
 }
 
@@ -130,25 +113,8 @@ impl Gen<'_> {
         let Ok((vars, redo)) = self.cold_next_terms(n, regs) else {
             return Ok(Some(before));
         };
-        let saved = self.global_cold.replace(Some(quote!(break 'nat_cold_next)));
-        let code = self.nat_next(d, cur, n, regs, cur_name);
-        *self.global_cold.borrow_mut() = saved;
-        let code = code?;
-        let out = d.out.borrow().clone();
-        let tail = super::goto_tail(&d.rec.borrow());
-        Ok(Some(quote! {
-            'nat_next: {
-                'nat_cold_next: {
-                    break 'nat_next #code;
-                }
-                // A global's value native code cannot hold: the machine's.
-                #vars
-                #redo
-                cx.count_transitions(count);
-                #out
-                #tail
-            }
-        }))
+        let code = self.nat_next_breaking(d, cur, n, regs, cur_name)?;
+        Ok(Some(Self::cold_next_block(d, code, vars, redo)))
     }
 
     /// Whether evaluating next situation `n` only reads: its conditions
@@ -606,6 +572,50 @@ fn next_parts<'a>(n: &'a Next, builds: &mut Vec<&'a Build>, evs: &mut Vec<&'a Ev
             cond(c, builds, evs);
             next_parts(a, builds, evs);
             next_parts(b, builds, evs);
+        }
+    }
+}
+
+impl Gen<'_> {
+    /// Next situation `n` made with every global read's cold arm breaking
+    /// out to `'nat_cold_next` ([`Gen::cold_next_block`]).
+    fn nat_next_breaking(
+        &self,
+        d: &Dm,
+        cur: usize,
+        n: &Next,
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<TokenStream> {
+        let saved = self.global_cold.replace(Some(quote!(break 'nat_cold_next)));
+        let code = self.nat_next(d, cur, n, regs, cur_name);
+        *self.global_cold.borrow_mut() = saved;
+        code
+    }
+
+    /// `code` ([`Gen::nat_next_breaking`]'s) in its block: where a read
+    /// breaks out, the next situation evaluated on terms (`vars`, `redo`)
+    /// and handed to the machine, with the transition counted.
+    fn cold_next_block(
+        d: &Dm,
+        code: TokenStream,
+        vars: impl quote::ToTokens,
+        redo: impl quote::ToTokens,
+    ) -> TokenStream {
+        let out = d.out.borrow().clone();
+        let tail = super::goto_tail(&d.rec.borrow());
+        quote! {
+            'nat_next: {
+                'nat_cold_next: {
+                    break 'nat_next #code;
+                }
+                // A global's value native code cannot hold: the machine's.
+                #vars
+                #redo
+                cx.count_transitions(count);
+                #out
+                #tail
+            }
         }
     }
 }
