@@ -88,11 +88,13 @@ pub fn run_error_diagnostic(ir: &Ir, error: &RunError) -> Option<Diagnostic> {
     if let Some(a) = error.arc {
         place.push(format!("arc {a}"));
     }
-    let message = if place.is_empty() {
+    // Variables numbered in order of appearance, as `RunError`'s text: the
+    // same in every back end.
+    let message = sitlog_runtime::machine::renumber_vars(&if place.is_empty() {
         error.message.clone()
     } else {
         format!("{} (in {})", error.message, place.join(", "))
-    };
+    });
     Some(
         Diagnostic::error(
             "",
