@@ -88,13 +88,18 @@ pub fn run_error_diagnostic(ir: &Ir, error: &RunError) -> Option<Diagnostic> {
     if let Some(a) = error.arc {
         place.push(format!("arc {a}"));
     }
-    // Variables numbered in order of appearance, as `RunError`'s text: the
-    // same in every back end.
-    let message = sitlog_runtime::machine::renumber_vars(&if place.is_empty() {
-        error.message.clone()
+    // Variables numbered as `RunError`'s text numbers them (the place
+    // first, then the message): the same in every back end.
+    let place = place.join(", ");
+    let text = sitlog_runtime::machine::renumber_vars_after(&place, &error.message);
+    let message = if place.is_empty() {
+        text
     } else {
-        format!("{} (in {})", error.message, place.join(", "))
-    });
+        format!(
+            "{text} (in {})",
+            sitlog_runtime::machine::renumber_vars(&place)
+        )
+    };
     Some(
         Diagnostic::error(
             "",

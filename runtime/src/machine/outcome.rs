@@ -83,9 +83,22 @@ impl RunError {
 /// digit or `_` (a quoted atom `'_G5'` and a name such as `x_G5` or `_G5a`
 /// stay as they are).
 pub fn renumber_vars(text: &str) -> String {
+    renumber_vars_after("", text)
+}
+
+/// [`renumber_vars`] of `text` as if it followed `before`: the names that
+/// occur in `before` are numbered first, in their order there (a rendered
+/// diagnostic that writes the message before the place it names numbers
+/// them as [`RunError`]'s text, which writes the place first).
+pub fn renumber_vars_after(before: &str, text: &str) -> String {
+    let mut seen: Vec<&str> = Vec::new();
+    renumber_into(before, &mut seen);
+    renumber_into(text, &mut seen)
+}
+
+fn renumber_into<'t>(text: &'t str, seen: &mut Vec<&'t str>) -> String {
     let b = text.as_bytes();
     let mut out = String::with_capacity(text.len());
-    let mut seen: Vec<&str> = Vec::new();
     let mut last = 0;
     let mut i = 0;
     while i + 2 < b.len() {
@@ -224,6 +237,10 @@ mod renumber_tests {
             assert_eq!(renumber_vars(s), s);
         }
         assert_eq!(renumber_vars("_G9"), "_G0");
+        assert_eq!(
+            super::renumber_vars_after("g(_G4)", "f(_G9,_G4)"),
+            "f(_G1,_G0)"
+        );
         assert_eq!(renumber_vars("(_G9)"), "(_G0)");
         assert_eq!(renumber_vars("é_G9 _G4 _G9é"), "é_G9 _G0 _G9é");
     }
