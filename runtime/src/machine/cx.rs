@@ -520,6 +520,21 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         id: Term,
         in_arg: Option<Term>,
     ) -> Result<(), RunError> {
+        self.wait_held(sit, id, in_arg, None)
+    }
+
+    /// [`Cx::wait_template`] of a frame whose native call evaluated its
+    /// `embedded_dm` (`held`, `Cx::nat_embedded_dm`): that call, not the
+    /// template's evaluated again (a global the callee set since, a
+    /// function's side effects twice), linked with the instance's
+    /// variables (`Machine::held_or_eval`).
+    pub fn wait_held(
+        &mut self,
+        sit: SitIx,
+        id: Term,
+        in_arg: Option<Term>,
+        held: Option<Term>,
+    ) -> Result<(), RunError> {
         self.m.materialize();
         // The running frame's situation, as native code entered it (its
         // history entry may come after the hand-over), given back below.
@@ -537,7 +552,8 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         let Some(e) = inst.embedded_dm else {
             return Err(self.fault(Fault::NotTheCall));
         };
-        let e = self.m.eval_read_only(e, here)?;
+        self.m.held_call = held;
+        let e = self.m.held_or_eval(e, here)?;
         // The callee's history so far when native code kept it (its level,
         // the bottom one left: frames are made the machine's bottom first),
         // with the call term its entries name, which must be the call. The
