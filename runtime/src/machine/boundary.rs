@@ -143,6 +143,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         stack: &NatBelow<'_, F>,
         t: Term,
     ) -> Result<Term, EvalError> {
+        // The frames typed code called lazily pushed first: the running
+        // frame whose locals are kept is the one `nat_env` evaluates in.
+        self.m.materialize();
         self.m.scratch_globals.restore_from(&self.m.globals);
         if stack.is_empty() {
             let frame = self.m.frames.last().expect("a frame is running");

@@ -548,7 +548,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         }
         // The template's `embedded_dm` evaluated (read-only, as at the
         // call): native code pushes calls whose evaluation reads only
-        // locals (`search(get(places, _), T)`) or gives the term itself.
+        // locals (`search(get(places, _), T)`) or gives the term itself;
+        // or the call native code evaluated and held (`held`), taken as
+        // it is (`machine::held_call`).
         let Some(e) = inst.embedded_dm else {
             return Err(self.fault(Fault::NotTheCall));
         };
