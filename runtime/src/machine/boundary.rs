@@ -41,7 +41,8 @@
 //! entered situation's.
 //!
 //! Invariant: [`Cx::nat_eval`], [`Cx::nat_condition`] and
-//! [`Cx::nat_var_op`] give what [`Cx::eval`], [`Cx::condition`] and
+//! [`Cx::nat_var_op`] (and [`Cx::nat_embedded_dm`], read-only, what
+//! `Machine::eval_read_only` gives) give what [`Cx::eval`], [`Cx::condition`] and
 //! [`Cx::var_op`] give after `nat_hand_over` in a DM without locals: the
 //! same value, the same changes to the globals and the store, the same
 //! error; only the frames below stay native on success.
@@ -127,6 +128,37 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             Ok(v) => Ok(v),
             Err(e) => Err(self.nat_eval_failed(stack, e, true, arc)),
         }
+    }
+
+    /// A recursive situation's `embedded_dm` `t` evaluated by native code
+    /// of a DM without locals, read-only as the machine's call evaluates it
+    /// (`Machine::eval_read_only`, D-20/E12: the globals, and the running
+    /// frame's locals when it is the machine's, restored after), the
+    /// frames below left native. The error is given back, nothing handed
+    /// over: the caller hands over and reports it (`Cx::call_held`), the
+    /// call not evaluated again.
+    #[inline]
+    pub fn nat_embedded_dm<F: NatFrames<P>>(
+        &mut self,
+        stack: &NatBelow<'_, F>,
+        t: Term,
+    ) -> Result<Term, EvalError> {
+        // The frames typed code called lazily pushed first: the running
+        // frame whose locals are kept is the one `nat_env` evaluates in.
+        self.m.materialize();
+        self.m.scratch_globals.restore_from(&self.m.globals);
+        if stack.is_empty() {
+            let frame = self.m.frames.last().expect("a frame is running");
+            self.m.scratch_locals.restore_from(&frame.locals);
+        }
+        let r = self.nat_env(stack, |ctx| eval::eval(ctx, t));
+        let m = &mut *self.m;
+        m.globals.restore_from(&m.scratch_globals);
+        if stack.is_empty() {
+            let frame = m.frames.last_mut().expect("a frame is running");
+            frame.locals.restore_from(&m.scratch_locals);
+        }
+        r
     }
 
     /// [`Cx::condition`] of `cond` by native code of a DM without locals,

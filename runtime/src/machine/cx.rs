@@ -520,6 +520,21 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         id: Term,
         in_arg: Option<Term>,
     ) -> Result<(), RunError> {
+        self.wait_held(sit, id, in_arg, None)
+    }
+
+    /// [`Cx::wait_template`] of a frame whose native call evaluated its
+    /// `embedded_dm` (`held`, `Cx::nat_embedded_dm`): that call, not the
+    /// template's evaluated again (a global the callee set since, a
+    /// function's side effects twice), linked with the instance's
+    /// variables (`Machine::held_or_eval`).
+    pub fn wait_held(
+        &mut self,
+        sit: SitIx,
+        id: Term,
+        in_arg: Option<Term>,
+        held: Option<Term>,
+    ) -> Result<(), RunError> {
         self.m.materialize();
         // The running frame's situation, as native code entered it (its
         // history entry may come after the hand-over), given back below.
@@ -533,11 +548,14 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         }
         // The template's `embedded_dm` evaluated (read-only, as at the
         // call): native code pushes calls whose evaluation reads only
-        // locals (`search(get(places, _), T)`) or gives the term itself.
+        // locals (`search(get(places, _), T)`) or gives the term itself;
+        // or the call native code evaluated and held (`held`), taken as
+        // it is (`machine::held_call`).
         let Some(e) = inst.embedded_dm else {
             return Err(self.fault(Fault::NotTheCall));
         };
-        let e = self.m.eval_read_only(e, here)?;
+        self.m.held_call = held;
+        let e = self.m.held_or_eval(e, here)?;
         // The callee's history so far when native code kept it (its level,
         // the bottom one left: frames are made the machine's bottom first),
         // with the call term its entries name, which must be the call. The

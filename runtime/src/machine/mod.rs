@@ -45,6 +45,7 @@
 mod boundary;
 mod cx;
 mod effect;
+mod held_call;
 mod io;
 mod native_stack;
 mod observe;

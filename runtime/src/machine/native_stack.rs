@@ -81,7 +81,13 @@ pub trait NatAt<P: DmProgram> {
         };
         let in_arg = in_arg.map(|v| v.as_term(cx.store()));
         let id = self.id_term(p, cx.store());
-        cx.wait_template(sit, id, in_arg)
+        cx.wait_held(sit, id, in_arg, self.held())
+    }
+    /// The call a waiting variant's native call evaluated and keeps
+    /// (`Cx::wait_held`); `None` (the default) where the call was not
+    /// evaluated, or is the template's evaluated again.
+    fn held(&self) -> Option<Term> {
+        None
     }
 }
 

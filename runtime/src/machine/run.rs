@@ -349,7 +349,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                             None,
                         ));
                     };
-                    let call = self.eval_read_only(e, here)?;
+                    let call = self.held_or_eval(e, here)?;
                     self.frames.last_mut().expect("frame").pending =
                         Some(Pending::Recursive { sit });
                     self.instances.push(inst);

@@ -97,6 +97,13 @@ pub struct Machine<'p, P> {
     /// Instances of the recursive situations waiting for their embedded
     /// DMs (interpreted path), innermost last.
     pub(super) instances: Vec<Instance>,
+    /// The `embedded_dm` native code evaluated (read-only) before it
+    /// handed its recursive situation's visit to the template
+    /// (`Cx::call_held`): the machine's call takes it instead of
+    /// evaluating the template's again (`machine::held_call`). Set only
+    /// between that hand-over and the call, which takes it (no collection
+    /// in between).
+    pub(super) held_call: Option<Term>,
     /// Reused buffers (no allocation per transition once warm).
     pub(super) scratch_locals: Vars,
     pub(super) scratch_globals: Vars,
@@ -202,6 +209,7 @@ impl<'p, P> Machine<'p, P> {
             lazy: Vec::new(),
             levels: std::collections::VecDeque::new(),
             instances: Vec::new(),
+            held_call: None,
             scratch_locals: Vars::new(),
             scratch_globals: Vars::new(),
             arcs: Vec::new(),

@@ -120,6 +120,9 @@ pub(super) struct Wait {
     /// Its in_arg is a pattern: the pipe value is built from the fields,
     /// in the DM's own `nat_wait` (not `NatAt::waits`).
     pub pattern: bool,
+    /// In `NatAt::held`: the call the variant holds, where its native call
+    /// evaluated it (`CallPlan::held`); else empty.
+    pub held_arm: TokenStream,
 }
 
 /// The functor of an action item that is a compound built of values
@@ -161,13 +164,16 @@ pub(super) fn made_values(e: &Ev, regs: &Regs) -> bool {
 }
 
 /// A native call: the callee's index and native view, and the exit code.
-struct CallPlan<'a> {
-    j: usize,
-    callee: Dm<'a>,
+pub(super) struct CallPlan<'a> {
+    pub(super) j: usize,
+    pub(super) callee: Dm<'a>,
     exit: TokenStream,
     /// The exit arcs record their entries natively (`run.records`): the
     /// call may then be pushed on the native stack with the history kept.
-    rec_exit: bool,
+    pub(super) rec_exit: bool,
+    /// The call is evaluated by native code, once ([`Gen::nat_held_visit`]):
+    /// the waiting variant holds that call (`held`).
+    held: bool,
 }
 
 fn wait_variant(ix: usize) -> Ident {
@@ -348,7 +354,14 @@ impl Gen<'_> {
         }
         self.nat_head_regs(d, ix, &mut regs).ok()?;
         let outs = call_outputs(d, ix);
-        let (name, args) = self.nat_call_values(d, ix, &regs, &outs).ok()?;
+        let (name, args, held) = match self.nat_call_values(d, ix, &regs, &outs) {
+            Ok((name, args)) => (name, args, false),
+            Err(e) if e == EVALUATED => {
+                let (name, args) = self.nat_held_args(d, ix, &regs, &outs)?;
+                (name, args, true)
+            }
+            Err(_) => return None,
+        };
         // The machine's `dm_by_name`: the first DM of that name.
         let j = ir.dms.iter().position(|x| x.name == name)?;
         if ir.dms[j].arity != args.len() {
@@ -398,6 +411,7 @@ impl Gen<'_> {
             callee,
             exit,
             rec_exit,
+            held,
         })
     }
 
@@ -437,9 +451,13 @@ impl Gen<'_> {
             // An argument is a fresh variable (an output argument), or the
             // call is evaluated (`ask(apply(f(_), [X]), ..)`): the
             // machine's visit, from the template.
-            Err(e) if e.starts_with("register r") || e == EVALUATED => {
-                return self.nat_to_template(d, ix)
+            Err(e) if e == EVALUATED => {
+                return match self.nat_call_plan(d, ix) {
+                    Some(plan) if plan.held => self.nat_held_visit(d, ix, regs, &plan),
+                    _ => self.nat_to_template(d, ix),
+                }
             }
+            Err(e) if e.starts_with("register r") => return self.nat_to_template(d, ix),
             Err(e) => return Err(e),
         };
         let to_template = self.nat_to_template(d, ix)?;
@@ -468,6 +486,9 @@ impl Gen<'_> {
         let Some(plan) = self.nat_call_plan(d, ix) else {
             return Ok(to_template);
         };
+        if plan.held {
+            return self.nat_held_visit(d, ix, regs, &plan);
+        }
         let (_, args) = self.nat_call_values(d, ix, regs, outs)?;
         self.nat_push_else(d, ix, regs, &plan, &args, to_template)
     }
@@ -514,9 +535,68 @@ impl Gen<'_> {
         vs: &[Ident],
         shared: bool,
     ) -> N<TokenStream> {
+        let callee_v = format_ident!("D{}", plan.j);
+        let wv = wait_variant(ix);
+        let (frame, wf) = self.nat_callee_frame(d, ix, regs, plan, args, vs)?;
+        // Recorded (the history kept, nothing observing) where the exit
+        // arcs record natively: the callee's entries in a level of their
+        // own (`Cx::push_level`). A branch of its own: the push without a
+        // history tests `run.records` once and builds the frame in place
+        // (one frame built before both cost `echo_calls` 3 instructions a
+        // transition).
+        // Both pushes (with a history level and without) build the frame
+        // by one closure, `callee()`, where it reads nothing of `cx`: the
+        // frame built in place where the branch calls it, as before.
+        if plan.rec_exit && shared && !mentions_any(&frame, &[format_ident!("cx")]) {
+            return Ok(quote! {
+                let callee = || #frame;
+                if !run.records && stack.has_room(cx) {
+                    *call = Some(super::NatFrame::#callee_v(callee()));
+                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
+                } else if run.nests && stack.has_room(cx) {
+                    cx.push_level(p, call, super::NatFrame::#callee_v(callee()));
+                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
+                }
+            });
+        }
+        let rec = if plan.rec_exit {
+            quote! {
+                else if run.nests && stack.has_room(cx) {
+                    let callee = super::NatFrame::#callee_v(#frame);
+                    cx.push_level(p, call, callee);
+                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
+                }
+            }
+        } else {
+            quote!()
+        };
+        Ok(quote! {
+            // The callee's frame on the native stack, within the depth
+            // limit, when no history is kept or observed (else the machine
+            // pushes it: the callee's entries nest in the caller's).
+            if !run.records && stack.has_room(cx) {
+                let callee = #frame;
+                *call = Some(super::NatFrame::#callee_v(callee));
+                // Written where the frame keeps it (not through `at`).
+                return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
+            } #rec
+        })
+    }
+
+    /// The callee's frame of a native call (its parameters the arguments
+    /// `vs`, of values `args`, its locals' defaults, its first situation)
+    /// and the waiting variant's fields, the visit's registers moved in.
+    pub(super) fn nat_callee_frame(
+        &self,
+        d: &Dm,
+        ix: usize,
+        regs: &Regs,
+        plan: &CallPlan,
+        args: &[V],
+        vs: &[Ident],
+    ) -> N<(TokenStream, Vec<TokenStream>)> {
         let callee_f = format_ident!("NatF{}", plan.j);
         let callee_n = format_ident!("NatN{}", plan.j);
-        let callee_v = format_ident!("D{}", plan.j);
         let ir = self.ir.ok_or("no IR")?;
         let mut inits = Vec::new();
         for (i, (v, ty)) in args.iter().zip(&plan.callee.params).enumerate() {
@@ -569,7 +649,6 @@ impl Gen<'_> {
         } else {
             quote!({ at: super::#callee_n::S0 { #(#s0),* }, #(#inits,)* })
         };
-        let wv = wait_variant(ix);
         let mut wf = Vec::new();
         for (r, _) in self.nat_wait_fields(d, ix)? {
             let v = self.nat_value(&Build::Reg(r), regs)?;
@@ -583,50 +662,7 @@ impl Gen<'_> {
                 wf.push(quote!(#rr: #e));
             }
         }
-        // Recorded (the history kept, nothing observing) where the exit
-        // arcs record natively: the callee's entries in a level of their
-        // own (`Cx::push_level`). A branch of its own: the push without a
-        // history tests `run.records` once and builds the frame in place
-        // (one frame built before both cost `echo_calls` 3 instructions a
-        // transition).
-        let frame = quote!(super::#callee_f #fields);
-        // Both pushes (with a history level and without) build the frame
-        // by one closure, `callee()`, where it reads nothing of `cx`: the
-        // frame built in place where the branch calls it, as before.
-        if plan.rec_exit && shared && !mentions_any(&frame, &[format_ident!("cx")]) {
-            return Ok(quote! {
-                let callee = || #frame;
-                if !run.records && stack.has_room(cx) {
-                    *call = Some(super::NatFrame::#callee_v(callee()));
-                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
-                } else if run.nests && stack.has_room(cx) {
-                    cx.push_level(p, call, super::NatFrame::#callee_v(callee()));
-                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
-                }
-            });
-        }
-        let rec = if plan.rec_exit {
-            quote! {
-                else if run.nests && stack.has_room(cx) {
-                    let callee = super::NatFrame::#callee_v(#frame);
-                    cx.push_level(p, call, callee);
-                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
-                }
-            }
-        } else {
-            quote!()
-        };
-        Ok(quote! {
-            // The callee's frame on the native stack, within the depth
-            // limit, when no history is kept or observed (else the machine
-            // pushes it: the callee's entries nest in the caller's).
-            if !run.records && stack.has_room(cx) {
-                let callee = #frame;
-                *call = Some(super::NatFrame::#callee_v(callee));
-                // Written where the frame keeps it (not through `at`).
-                return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
-            } #rec
-        })
+        Ok((quote!(super::#callee_f #fields), wf))
     }
 
     /// The visit of situation `ix` handed to the machine, nothing of it
@@ -690,16 +726,31 @@ impl Gen<'_> {
             " `{}` waiting for its embedded DM",
             self.store.writeq(self.nat_id_of(d, ix))
         );
-        let variant = quote!(#[doc = #doc] #wv { #(#decls),* },);
-        let id = self.nat_id_value(d, ix, quote!(store))?;
-        let id_arm = quote!(Nat::#wv { #(#names),* } => #id,);
         // A call never pushed on the native stack: no waiting variant (the
         // machine's visit from the template waits).
         let plan = self.nat_call_plan(d, ix);
+        // The call evaluated by native code: held by the variant (a handle
+        // of the store, as a `Ground`: no collection while native code
+        // runs), its fields' patterns then `..`.
+        let held = plan.as_ref().is_some_and(|p| p.held);
+        let (held_decl, rest) = if held {
+            (quote!(held: Term), quote!(..))
+        } else {
+            (quote!(), quote!())
+        };
+        let decls: Vec<TokenStream> = decls.into_iter().chain(held.then_some(held_decl)).collect();
+        let variant = quote!(#[doc = #doc] #wv { #(#decls),* },);
+        let id = self.nat_id_value(d, ix, quote!(store))?;
+        let pat = if held {
+            quote!(Nat::#wv { #(#names,)* #rest })
+        } else {
+            quote!(Nat::#wv { #(#names),* })
+        };
+        let id_arm = quote!(#pat => #id,);
         let exit_arm = match &plan {
             Some(plan) => {
                 let exit = super::move_last_clones(&plan.exit, &names);
-                quote!(Nat::#wv { #(#names),* } => 'visit: { #exit })
+                quote!(#pat => 'visit: { #exit })
             }
             None => quote!(),
         };
@@ -741,12 +792,27 @@ impl Gen<'_> {
                 quote!(Nat::#wv { .. } => Some((#curl, None)),),
             ),
         };
-        let wait_arm = quote! {
-            Nat::#wv { #(#names),* } => {
-                #in_stmt
-                #(#id_stmts)*
-                cx.wait_template(#curl, #id, #in_arg)
+        let wait_arm = if held {
+            quote! {
+                Nat::#wv { #(#names,)* held } => {
+                    #in_stmt
+                    #(#id_stmts)*
+                    cx.wait_held(#curl, #id, #in_arg, Some(*held))
+                }
             }
+        } else {
+            quote! {
+                Nat::#wv { #(#names),* } => {
+                    #in_stmt
+                    #(#id_stmts)*
+                    cx.wait_template(#curl, #id, #in_arg)
+                }
+            }
+        };
+        let held_arm = if held {
+            quote!(Nat::#wv { held, .. } => Some(*held),)
+        } else {
+            quote!()
         };
         if plan.is_none() {
             return Ok(None);
@@ -758,6 +824,7 @@ impl Gen<'_> {
             wait_arm,
             waits_arm,
             pattern: pattern.is_some(),
+            held_arm,
         }))
     }
 
@@ -2128,7 +2195,8 @@ fn inert(b: &Build) -> bool {
 /// (position, register) that are a fresh variable of the situation, each
 /// written once in the call, as a whole argument (`J` in `add(I, 1, J)`),
 /// and nothing of the visit sets before the call (no `prog`, not the
-/// in_arg's register nor a variable of an in_arg pattern). A fresh variable written twice (`f(J, J)`) or
+/// in_arg's register nor a variable of an in_arg pattern; an evaluated
+/// call's, in a DM without locals). A fresh variable written twice (`f(J, J)`) or
 /// inside an argument (`f(g(J))`) is none: such a call stays the
 /// machine's (its arguments do not convert).
 pub(super) fn call_outputs(d: &Dm, ix: usize) -> Vec<(usize, Reg)> {
@@ -2142,7 +2210,10 @@ pub(super) fn call_outputs(d: &Dm, ix: usize) -> Vec<(usize, Reg)> {
     let Build::Compound(_, args) = call else {
         return Vec::new();
     };
-    if plan.prog.is_some() || (*eval_call && !inert(call)) {
+    // An evaluated call: its outputs only where native code may evaluate
+    // it itself (a DM without locals, `call_held`; the variable evaluates
+    // to itself).
+    if plan.prog.is_some() || (*eval_call && !inert(call) && !d.locals.is_empty()) {
         return Vec::new();
     }
     fn count(b: &Build, r: Reg) -> usize {
@@ -2350,6 +2421,6 @@ fn built_of(ts: &[TokenStream], exp: &TokenStream) -> Option<TokenStream> {
 }
 
 /// The registers of `b`, pushed to `out` (a register met twice, twice).
-fn build_regs(b: &Build, out: &mut Vec<Reg>) {
+pub(super) fn build_regs(b: &Build, out: &mut Vec<Reg>) {
     super::built_regs(&Ev::Built(b.clone()), out);
 }

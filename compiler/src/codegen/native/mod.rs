@@ -223,6 +223,7 @@ use super::Gen;
 
 mod boundary;
 mod call;
+mod call_held;
 mod cold;
 mod cold_act;
 mod cold_next;
@@ -1505,6 +1506,7 @@ impl Gen<'_> {
         let mut wait_arms = Vec::new();
         let mut waits_arms = Vec::new();
         let mut wait_pattern = false;
+        let mut held_arms = Vec::new();
         let mut any_cursor = false;
         // The variant a frame holds while it runs (`nat_step` takes its own
         // out of the frame): the first without fields, else `Moved`.
@@ -1592,10 +1594,21 @@ impl Gen<'_> {
             // The waiting variant's id is the situation's (the same
             // fields, the same code): one arm for both.
             let wv = format_ident!("W{}", ix);
-            let w_arm = quote!(Nat::#wv { #(#names),* } => #id,).to_string();
+            // A variant holding its evaluated call has one field more
+            // (`call_held`): `..` in its pattern.
+            let rest = match &wait {
+                Some(w) if !w.held_arm.is_empty() => quote!(..),
+                _ => quote!(),
+            };
+            let w_pat = if rest.is_empty() {
+                quote!(Nat::#wv { #(#names),* })
+            } else {
+                quote!(Nat::#wv { #(#names,)* #rest })
+            };
+            let w_arm = quote!(#w_pat => #id,).to_string();
             let same_id = wait.as_ref().is_some_and(|w| w.id_arm.to_string() == w_arm);
             id_arms.push(if same_id {
-                quote!(Nat::#v { #(#names),* } | Nat::#wv { #(#names),* } => #id,)
+                quote!(Nat::#v { #(#names),* } | #w_pat => #id,)
             } else {
                 quote!(Nat::#v { #(#names),* } => #id,)
             });
@@ -1615,6 +1628,7 @@ impl Gen<'_> {
                 wait_arms.push(w.wait_arm.clone());
                 waits_arms.push(w.waits_arm.clone());
                 wait_pattern |= w.pattern;
+                held_arms.push(w.held_arm.clone());
             }
             // Entered by the machine: the fields from the value that
             // selected it, converted (else the term code runs it).
@@ -1715,6 +1729,20 @@ impl Gen<'_> {
                 fn waits(&self) -> Option<(SitIx, Option<&dyn machine::AsTerm>)> {
                     match self {
                         #(#waits_arms)*
+                        _ => None,
+                    }
+                }
+            }
+        };
+        // The calls the waiting variants hold (`NatAt::held`, read by
+        // `NatAt::nat_wait`; a DM's own `nat_wait` reads its fields).
+        let held_fn = if own_wait || held_arms.iter().all(|a| a.is_empty()) {
+            quote!()
+        } else {
+            quote! {
+                fn held(&self) -> Option<Term> {
+                    match self {
+                        #(#held_arms)*
                         _ => None,
                     }
                 }
@@ -1843,6 +1871,7 @@ impl Gen<'_> {
                     }
                 }
                 #waits_fn
+                #held_fn
             }
 
             #frame_items
