@@ -24,20 +24,22 @@ use std::path::PathBuf;
 
 #[proc_macro]
 pub fn include_dm(input: TokenStream) -> TokenStream {
-    // `"path"` or `"path", untyped` (every value a term: for comparisons).
-    let parser = |input: syn::parse::ParseStream| -> syn::Result<(syn::LitStr, bool)> {
+    // `"path"`, `"path", untyped` (every value a term: for comparisons) or
+    // `"path", held` (evaluated DM calls pushed natively:
+    // `codegen::Options::held_calls`).
+    let parser = |input: syn::parse::ParseStream| -> syn::Result<(syn::LitStr, Option<String>)> {
         let lit: syn::LitStr = input.parse()?;
         if input.is_empty() {
-            return Ok((lit, false));
+            return Ok((lit, None));
         }
         input.parse::<syn::Token![,]>()?;
         let flag: syn::Ident = input.parse()?;
-        if flag != "untyped" {
-            return Err(syn::Error::new(flag.span(), "expected `untyped`"));
+        if flag != "untyped" && flag != "held" {
+            return Err(syn::Error::new(flag.span(), "expected `untyped` or `held`"));
         }
-        Ok((lit, true))
+        Ok((lit, Some(flag.to_string())))
     };
-    let (lit, untyped) = match syn::parse::Parser::parse(parser, input) {
+    let (lit, flag) = match syn::parse::Parser::parse(parser, input) {
         Ok(l) => l,
         Err(e) => {
             let msg =
@@ -45,7 +47,10 @@ pub fn include_dm(input: TokenStream) -> TokenStream {
             return syn::Error::new(e.span(), msg).to_compile_error().into();
         }
     };
-    let options = sitlog_compiler::codegen::Options { typed: !untyped };
+    let options = sitlog_compiler::codegen::Options {
+        typed: flag.as_deref() != Some("untyped"),
+        held_calls: flag.as_deref() == Some("held"),
+    };
     let rel = lit.value();
     let base = std::env::var_os("SITLOG_DM_ROOT")
         .or_else(|| std::env::var_os("CARGO_MANIFEST_DIR"))

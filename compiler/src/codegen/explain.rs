@@ -19,7 +19,7 @@ use std::fmt::Write as _;
 /// summary, the native code's total, and last the two lines of
 /// `summary`.
 pub fn explain_types(ir: &Ir) -> String {
-    let mut g = Gen::new(ir, true);
+    let mut g = Gen::new(ir, super::Options::default());
     g.collect(ir);
     let Some(types) = g.mir_types.as_ref() else {
         unreachable!("a typed generator has types")

@@ -107,11 +107,22 @@ pub struct Options {
     /// (the default); `false` keeps every value a term (to compare, or to
     /// rule native code out when chasing a bug).
     pub typed: bool,
+    /// A recursive situation whose DM call is evaluated (`ask(Q, more,
+    /// get(vocab, _), _, _)`) pushes the callee natively, the call
+    /// evaluated once (`native::call_held`); off by default: it works and
+    /// agrees (`typed::ncall22`), but with it the home butler's generated
+    /// code is 8,607 lines, over the 8,000 of issue 37, until the exit arms
+    /// of such calls are shared. `false`: those situations run from their
+    /// template, as before.
+    pub held_calls: bool,
 }
 
 impl Default for Options {
     fn default() -> Options {
-        Options { typed: true }
+        Options {
+            typed: true,
+            held_calls: false,
+        }
     }
 }
 
@@ -123,7 +134,7 @@ pub fn generate(ir: &Ir, source: &str) -> TokenStream {
 /// [`generate`] with options. The MIR is built once here ([`crate::mir::lower`])
 /// and typed once ([`crate::mir::ty::infer`]).
 pub fn generate_with(ir: &Ir, source: &str, options: Options) -> TokenStream {
-    let mut g = Gen::new(ir, options.typed);
+    let mut g = Gen::new(ir, options);
     g.collect(ir);
     g.emit(ir, source)
 }
@@ -168,6 +179,8 @@ struct Gen<'s> {
     /// The functions the build takes for plain (`native::plain`), read
     /// once from the program's Prolog files.
     plain_fns: std::cell::OnceCell<std::collections::HashSet<(Atom, usize)>>,
+    /// [`Options::held_calls`].
+    held_calls: bool,
 }
 
 /// Code that builds one term: statements, then the expression of its value.
@@ -178,10 +191,10 @@ struct Built {
 }
 
 impl<'s> Gen<'s> {
-    /// The generator of `ir`: its MIR lowered and, when `typed`, typed.
-    fn new(ir: &'s Ir, typed: bool) -> Self {
+    /// The generator of `ir`: its MIR lowered and, when `options.typed`, typed.
+    fn new(ir: &'s Ir, options: Options) -> Self {
         let mir = crate::mir::lower(ir);
-        let mir_types = typed.then(|| crate::mir::ty::infer(ir, &mir));
+        let mir_types = options.typed.then(|| crate::mir::ty::infer(ir, &mir));
         Gen {
             mir,
             store: &ir.store,
@@ -198,6 +211,7 @@ impl<'s> Gen<'s> {
             if_cold_off: std::cell::Cell::new(false),
             no_new_patterns: std::cell::Cell::new(false),
             plain_fns: std::cell::OnceCell::new(),
+            held_calls: options.held_calls,
         }
     }
 

@@ -18,6 +18,9 @@
 //! level is opened with that call (`Cx::open_level`), the term a frame made
 //! the machine's is checked against.
 //!
+//! Only with `codegen::Options::held_calls` (off by default: the home
+//! butler's generated code would pass issue 37's 8,000 lines).
+//!
 //! Which calls (`Gen::nat_held_args`): a DM without locals (the
 //! evaluation's environment is then the machine's with no locals,
 //! `machine::boundary`), a situation without `prog` and without an in_arg
@@ -52,6 +55,9 @@ impl Gen<'_> {
         regs: &Regs,
         outs: &[(usize, Reg)],
     ) -> Option<(Atom, Vec<V>)> {
+        if !self.held_calls {
+            return None;
+        }
         let plan = &d.plans[ix];
         if d.shallow || !d.locals.is_empty() || plan.prog.is_some() {
             return None;

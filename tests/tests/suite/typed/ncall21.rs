@@ -17,6 +17,11 @@ mod dms {
     pub mod ncall21 {
         sitlog_macros::include_dm!("typed/ncall21");
     }
+    /// The same program with evaluated calls pushed natively
+    /// (`codegen::Options::held_calls`, off by default).
+    pub mod held {
+        sitlog_macros::include_dm!("typed/ncall21", held);
+    }
 }
 
 /// The application's Prolog user functions loaded once, installed in
@@ -87,4 +92,41 @@ fn ncall21_arithmetic_in_a_call_agrees() {
 #[test]
 fn ncall21_bad_values_in_a_call_agree() {
     agree(&["bad(1)", "bad(a)", "bad(_)", "bad(f(_))"]);
+}
+
+/// Every case above with evaluated calls pushed natively
+/// (`codegen::Options::held_calls`): the calls are evaluated once by
+/// native code, in the compiled task as in the interpreter.
+#[test]
+fn ncall21_held_calls_agree() {
+    let ir = interpreter("typed/ncall21");
+    engine(&ir);
+    agree_both(
+        dms::held::program(),
+        &ir,
+        &[
+            "loc(1)",
+            "loc(x)",
+            "loc(_)",
+            "glob(a)",
+            "glob(7)",
+            "glob(f(_))",
+            "glob(_)",
+            "glob([a|_])",
+            "twice(s)",
+            "twice(f(x))",
+            "twice(_)",
+            "arith(2)",
+            "arith(-7)",
+            "arith(a)",
+            "arith(_)",
+            "arith(1.5)",
+            "arith(4611686018427387904)",
+            "bad(1)",
+            "bad(a)",
+            "bad(_)",
+            "bad(f(_))",
+        ],
+    );
+    ENGINE.with(|e| *e.borrow_mut() = None);
 }

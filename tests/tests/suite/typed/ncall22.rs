@@ -15,7 +15,7 @@ use sitlog_runtime::Functions;
 
 mod dms {
     pub mod ncall22 {
-        sitlog_macros::include_dm!("typed/ncall22");
+        sitlog_macros::include_dm!("typed/ncall22", held);
     }
 }
 
