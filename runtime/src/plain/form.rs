@@ -248,3 +248,50 @@ fn goals(s: &mut String, gs: &[PGoal]) {
     }
     s.push('}');
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn forms(text: &str) -> Vec<(String, String)> {
+        plain_forms(&[(text, None)])
+            .into_iter()
+            .map(|((n, a), f)| (format!("{n}/{a}"), f.fingerprint()))
+            .collect()
+    }
+
+    #[test]
+    fn a_fingerprint_is_the_form() {
+        let a = forms(
+            "f(X, [Y|_]) :- X > 0, !, Z is X + Y, assign_func_value(p(Z)).\n\
+             f(_, _) :- assign_func_value(none).\n\
+             g(X) :- ( X == a -> Y = 1 ; Y = 2 ), assign_func_value(Y).\n\
+             h(X) :- atom(X), assign_func_value(X).\n",
+        );
+        let names: Vec<&str> = a.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(names, ["f/2", "g/1"]);
+        // The same clauses, other variable names and layout: the same.
+        let b = forms(
+            "f(A,[B|_]):-A>0,!,C is A+B,assign_func_value(p(C)).\n\
+             f(_,_):-assign_func_value(none).\n\
+             g(Q) :- ( Q == a -> R = 1 ; R = 2 ), assign_func_value(R).\n",
+        );
+        assert_eq!(a, b);
+        // Each a difference: an atom, an integer, an operator, a clause.
+        for other in [
+            "f(X, [Y|_]) :- X > 0, !, Z is X + Y, assign_func_value(q(Z)).\n",
+            "f(X, [Y|_]) :- X > 1, !, Z is X + Y, assign_func_value(p(Z)).\n",
+            "f(X, [Y|_]) :- X >= 0, !, Z is X + Y, assign_func_value(p(Z)).\n",
+            "f(X, [Y|_]) :- X > 0, Z is X + Y, assign_func_value(p(Z)).\n",
+            "f(X, [Y|_]) :- X > 0, !, Z is Y + X, assign_func_value(p(Z)).\n",
+            "f(X, [Y]) :- X > 0, !, Z is X + Y, assign_func_value(p(Z)).\n",
+        ] {
+            let c = forms(&format!("{other}f(_, _) :- assign_func_value(none).\n"));
+            assert_ne!(c[0].1, a[0].1, "{other}");
+        }
+        // An atom's name, not its index: `ab` + `c` is not `a` + `bc`.
+        let x = forms("k(ab, c) :- assign_func_value(x).\n");
+        let y = forms("k(a, bc) :- assign_func_value(x).\n");
+        assert_ne!(x[0].1, y[0].1);
+    }
+}
