@@ -215,14 +215,17 @@ impl Gen<'_> {
             }
         }
         let mut body = Vec::new();
-        cg.goals(c.body(), &mut body)?;
+        // A clause whose goals always fail ends where they do.
+        let diverges = cg.goals(c.body(), &mut body)?;
         let state = match (cg.dynamic_cut, single_assign) {
             (true, true) => quote!(let mut cut = false;),
             (true, false) => quote!(let mut cut = false; let mut assigned = 0usize;),
             (false, true) => quote!(),
             (false, false) => quote!(let mut assigned = 0usize;),
         };
-        let end = if cg.assigns.is_empty() {
+        let end = if diverges {
+            quote!()
+        } else if cg.assigns.is_empty() {
             quote!(return None;)
         } else if single_assign {
             let o = cg.assigns[0].clone();
@@ -672,11 +675,15 @@ impl Clause<'_, '_> {
         }))
     }
 
-    /// The goals as statements.
-    fn goals(&mut self, gs: &[PGoal], out: &mut Vec<TokenStream>) -> N<()> {
+    /// The goals as statements; `true` where they always fail (what
+    /// follows a `fail` is not written).
+    fn goals(&mut self, gs: &[PGoal], out: &mut Vec<TokenStream>) -> N<bool> {
         for g in gs {
             match g {
-                PGoal::Fail => out.push(self.fail()),
+                PGoal::Fail => {
+                    out.push(self.fail());
+                    return Ok(true);
+                }
                 PGoal::Cut => {
                     if self.dynamic_cut {
                         out.push(quote!(cut = true;));
@@ -714,8 +721,8 @@ impl Clause<'_, '_> {
                         }
                     }
                     let (mut ts, mut es) = (Vec::new(), Vec::new());
-                    self.goals(t, &mut ts)?;
-                    self.goals(e, &mut es)?;
+                    let t_fails = self.goals(t, &mut ts)?;
+                    let e_fails = self.goals(e, &mut es)?;
                     let holds = self.tmp("cond");
                     out.push(quote! {
                         let #holds: bool = #l: { #(#tests)* true };
@@ -725,6 +732,9 @@ impl Clause<'_, '_> {
                             #(#es)*
                         }
                     });
+                    if t_fails && e_fails {
+                        return Ok(true);
+                    }
                 }
                 _ => {
                     if let Some(t) = self.test(g)? {
@@ -734,6 +744,6 @@ impl Clause<'_, '_> {
                 }
             }
         }
-        Ok(())
+        Ok(false)
     }
 }
