@@ -1,8 +1,10 @@
 % Helper nrs22 (issue 37): plain functions compiled to Rust, called by
 % native code: next situations (`cls/1`, `scan/2`, `calc/2`, `wrap/1`), a
 % walk over a list (`scan/2`), conditions (`shape/1`, `ratio/2`,
-% `never/1`), an out_arg (`pump/1`). `tests/typed/nrs22_other` has the
-% same DMs and other definitions of the functions.
+% `never/1`), an out_arg (`pump/1`). `scan/2`'s function gives `empty`,
+% which ends the DM whatever its situations are called (one is `empty`).
+% `tests/typed/nrs22_other` has the same DMs and other definitions of the
+% functions.
 diag_mod(cls(N),
   [ [ id ==> begin, type ==> neutral, arcs ==> [ empty : empty => apply(classify(_), [N]) ] ],
     [ id ==> zero, type ==> final ],
@@ -19,7 +21,7 @@ diag_mod(cls(N),
 diag_mod(scan(Items, T),
   [ [ id ==> begin, type ==> neutral, arcs ==> [ empty : empty => apply(pick(_, _), [Items, T]) ] ],
     [ id ==> rest(Xs), type ==> neutral, arcs ==> [ empty : empty => apply(pick(_, _), [Xs, T]) ] ],
-    [ id ==> none_left, type ==> final ],
+    [ id ==> empty, type ==> final ],
     [ id ==> hit(_), type ==> final ],
     [ id ==> second(_), type ==> final ],
     [ id ==> skipped, type ==> final ]

@@ -10,7 +10,7 @@ classify(_) :- assign_func_value(other).
 
 % `pick/2`: list head patterns, a value built of the rest, `=` and `\==`,
 % the last assignment winning (in an if-then-else).
-pick([], _) :- assign_func_value(none_left).
+pick([], _) :- assign_func_value(empty).
 pick([X|Xs], X) :- !, assign_func_value(hit(Xs)).
 pick([X, Y|_], T) :- X \== T, Y == T, !, L = [Y, X], assign_func_value(second(L)).
 pick([X|Xs], _) :- assign_func_value(rest(Xs)), ( X == skip -> assign_func_value(skipped) ; true ).

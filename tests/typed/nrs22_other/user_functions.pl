@@ -7,7 +7,7 @@ classify(N) :- N > 1000000, !, assign_func_value(big).
 classify(_) :- assign_func_value(other).
 
 % `pick/2`: not plain here (`atom/1`).
-pick([], _) :- assign_func_value(none_left).
+pick([], _) :- assign_func_value(empty).
 pick([X|Xs], X) :- !, assign_func_value(hit(Xs)).
 pick([X|_], _) :- atom(X), X == skip, !, assign_func_value(skipped).
 pick([_|Xs], _) :- assign_func_value(rest(Xs)).

@@ -136,11 +136,13 @@ impl Gen<'_> {
         let Some(call) = self.nat_plain_call(d, b, regs)? else {
             return Ok(None);
         };
-        // Each name and arity a situation of the DM has, once, in order.
+        // Each name and arity a situation of the DM has, once, in order;
+        // not `empty`, which ends the DM whatever its situations are
+        // called (the machine's `goto` of it, below).
         let mut ids: Vec<(Atom, usize)> = Vec::new();
         for p in d.plans.iter() {
             let cell = p.id == (atoms::DOT, 2);
-            if !cell && !ids.contains(&p.id) {
+            if !cell && !ids.contains(&p.id) && p.id != (atoms::EMPTY, 0) {
                 ids.push(p.id);
             }
         }
