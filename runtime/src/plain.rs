@@ -209,6 +209,9 @@ pub struct PlainFn {
     inferences: u64,
     /// The most variables a clause has (the registers a call needs).
     vars: usize,
+    /// [`PlainFn::fingerprint`], made at its first use (a run compares it
+    /// once with a compiled function's).
+    fingerprint: std::sync::OnceLock<String>,
 }
 
 /// The native forms of an application's plain functions.
@@ -281,6 +284,7 @@ impl PlainScan {
                         clauses: clauses.into(),
                         inferences: (goals as u64 + 1).saturating_mul(4),
                         vars,
+                        fingerprint: Default::default(),
                     },
                 ))
             })

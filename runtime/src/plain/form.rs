@@ -54,8 +54,12 @@ impl PlainFn {
         &self.clauses
     }
 
-    /// The form as text (see the module's invariant).
-    pub fn fingerprint(&self) -> String {
+    /// The form as text (see the module's invariant), made once.
+    pub fn fingerprint(&self) -> &str {
+        self.fingerprint.get_or_init(|| self.fingerprint_now())
+    }
+
+    fn fingerprint_now(&self) -> String {
         let mut s = String::new();
         let _ = write!(s, "n{}", self.inferences);
         for c in self.clauses.iter() {
@@ -256,7 +260,7 @@ mod tests {
     fn forms(text: &str) -> Vec<(String, String)> {
         plain_forms(&[(text, None)])
             .into_iter()
-            .map(|((n, a), f)| (format!("{n}/{a}"), f.fingerprint()))
+            .map(|((n, a), f)| (format!("{n}/{a}"), f.fingerprint().to_owned()))
             .collect()
     }
 

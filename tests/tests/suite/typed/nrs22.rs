@@ -166,3 +166,139 @@ fn nrs22_an_engine_of_other_definitions_takes_the_present_path() {
         .resolve_compiled(Atom::intern("diff"), 2, dms::nrs22::plain_rs::FORM2)
         .is_none());
 }
+
+/// Each compiled function called directly gives what the engine's plain
+/// form gives on the same values (`Functions::call_native`: `Some` exactly
+/// where it runs the call natively, the same value), refusals included.
+#[test]
+fn nrs22_each_compiled_function_is_its_plain_form() {
+    use dms::nrs22::plain_rs as k;
+    use sitlog_runtime::native::{Compound, List, Val};
+    use sitlog_runtime::{Store, Vars};
+    let ir = interpreter("typed/nrs22");
+    let mut f = Functions::standard();
+    sitlog_compiler::run::install_prolog(&ir, &mut f, Default::default())
+        .expect("the Prolog files load")
+        .expect("an engine");
+    f.start().expect("the engine starts");
+    let atoms = &dms::nrs22::program().atoms;
+    let sym = |s: &str| Val::Sym(Atom::intern(s));
+    let c = |s: &str, args: Vec<Val>| Val::Tagged(Compound::new(Atom::intern(s), args));
+    let list = |xs: Vec<Val>| Val::List(List::from_vec(xs));
+    let i = Val::Int;
+    type Compiled = fn(&dms::nrs22::Atoms, &[Val]) -> Option<Val>;
+    let cases: Vec<(&str, Compiled, Vec<Vec<Val>>)> = vec![
+        (
+            "classify",
+            k::p0_classify_1,
+            [
+                i(-5),
+                i(0),
+                i(5),
+                i(4),
+                i(13),
+                i(12),
+                i(21),
+                i(2_000_000),
+                i(4_000_000_000),
+                i(i64::MAX),
+                sym("a"),
+                Val::Float(1.5),
+                list(vec![i(1)]),
+                c("f", vec![i(1)]),
+            ]
+            .into_iter()
+            .map(|v| vec![v])
+            .collect(),
+        ),
+        (
+            "pick",
+            k::p1_pick_2,
+            vec![
+                vec![list(vec![sym("a"), sym("b"), sym("c")]), sym("c")],
+                vec![list(vec![sym("c"), sym("b")]), sym("c")],
+                vec![list(vec![sym("a"), sym("c"), sym("b")]), sym("c")],
+                vec![list(vec![sym("skip"), sym("b")]), sym("z")],
+                vec![list(vec![]), sym("a")],
+                vec![
+                    list(vec![c("f", vec![i(1)]), list(vec![sym("x")])]),
+                    list(vec![sym("x")]),
+                ],
+                vec![sym("a"), sym("a")],
+                vec![list(vec![sym("a")]), i(1)],
+                vec![list(vec![sym("a"), Val::Float(0.5)]), i(1)],
+            ],
+        ),
+        (
+            "diff",
+            k::p2_diff_2,
+            vec![
+                vec![i(3), i(10)],
+                vec![i(-8), i(2)],
+                vec![i(5), i(5)],
+                vec![sym("a"), i(1)],
+                vec![sym("a"), sym("a")],
+                vec![i(i64::MIN + 1), i(i64::MAX)],
+                vec![i(i64::MIN), i(0)],
+            ],
+        ),
+        (
+            "area",
+            k::p3_area_1,
+            [
+                c("rect", vec![i(3), i(4)]),
+                c("sq", vec![i(4)]),
+                c("circle", vec![i(1)]),
+                c("rect", vec![sym("a"), i(2)]),
+                c("sq", vec![i(3_037_000_500)]),
+                sym("sq"),
+                c("rect", vec![i(1)]),
+            ]
+            .into_iter()
+            .map(|v| vec![v])
+            .collect(),
+        ),
+        (
+            "quot",
+            k::p4_quot_2,
+            vec![
+                vec![i(9), i(3)],
+                vec![i(10), i(3)],
+                vec![i(-10), i(3)],
+                vec![i(1), i(0)],
+                vec![sym("a"), i(1)],
+                vec![i(i64::MIN), i(-1)],
+            ],
+        ),
+        ("nope", k::p5_nope_1, vec![vec![i(1)]]),
+        (
+            "step",
+            k::p6_step_1,
+            [i(1), i(99), i(100), sym("a"), i(i64::MAX)]
+                .into_iter()
+                .map(|v| vec![v])
+                .collect(),
+        ),
+    ];
+    let (store, globals) = (Store::new(), Vars::default());
+    let mut ran = 0;
+    for (name, compiled, calls) in cases {
+        for args in calls {
+            let by_form = f.call_native(&store, &globals, Atom::intern(name), &args);
+            // The compiled function runs on what the form takes (the
+            // slot checks the arguments first: `plain::rt::args_sure`).
+            let by_rust = if sitlog_runtime::plain::rt::args_sure(&args) {
+                compiled(atoms, &args)
+            } else {
+                None
+            };
+            assert_eq!(
+                format!("{by_rust:?}"),
+                format!("{by_form:?}"),
+                "{name}{args:?}"
+            );
+            ran += usize::from(by_rust.is_some());
+        }
+    }
+    assert_eq!(ran, 29, "calls with a value");
+}
