@@ -148,7 +148,7 @@ impl Gen<'_> {
     /// The items of slot `k`'s function.
     fn plain_fn(&self, k: usize, name: Atom, arity: usize, f: &PlainFn) -> N<TokenStream> {
         let (fname, form) = names(k, name, arity);
-        let fp = Literal::string(&f.fingerprint());
+        let fp = Literal::string(f.fingerprint());
         let args: Vec<Ident> = (0..arity).map(|i| format_ident!("a{}", i)).collect();
         let mut clauses = Vec::new();
         for (n, c) in f.clauses().iter().enumerate() {
