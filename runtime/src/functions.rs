@@ -13,6 +13,9 @@ use sitlog_syntax::{atoms, Atom};
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
+mod compiled;
+pub use compiled::CompiledFn;
+
 /// What a user function gets besides its arguments.
 pub struct FnCall<'a> {
     pub store: &'a mut Store,
@@ -105,6 +108,12 @@ pub struct Functions {
     /// The fallback's run on native values ([`NativeFn`]); set with it,
     /// dropped when another fallback is set.
     native: Option<Arc<NativeFn>>,
+    /// Which plain functions compiled into a program run as compiled
+    /// ([`CompiledFn`], `compiled`); set with the fallback, dropped with it.
+    compiled: Option<Arc<CompiledFn>>,
+    /// The registry's contents as far as a compiled plain function's
+    /// resolution reads them (`compiled`): a new one at each change.
+    stamp: u64,
     limits: Option<CallLimits>,
     start: Option<Arc<StartFn>>,
     trust: Trust,
@@ -146,6 +155,7 @@ impl Functions {
         let key = (Atom::intern(name), arity);
         self.standard.remove(&key);
         self.map.insert(key, Arc::new(f));
+        self.stamp = compiled::new_stamp();
     }
 
     /// Whether `name/arity` is the runtime's own function ([`standard`]),
@@ -166,6 +176,8 @@ impl Functions {
     ) {
         self.fallback = Some(Arc::new(f));
         self.native = None;
+        self.compiled = None;
+        self.stamp = compiled::new_stamp();
     }
 
     /// Sets the fallback's run on native values (see [`NativeFn`]): after
@@ -175,6 +187,7 @@ impl Functions {
         f: impl Fn(&Functions, &Store, &Vars, Atom, &[Val]) -> Option<Val> + Send + Sync + 'static,
     ) {
         self.native = Some(Arc::new(f));
+        self.stamp = compiled::new_stamp();
     }
 
     /// The value of `name(args..)` run on native values by the fallback, if
@@ -199,6 +212,7 @@ impl Functions {
     /// (otherwise each engine uses its own defaults).
     pub fn set_call_limits(&mut self, limits: CallLimits) {
         self.limits = Some(limits);
+        self.stamp = compiled::new_stamp();
     }
 
     /// The bounds set by [`Functions::set_call_limits`].
@@ -262,6 +276,7 @@ impl Functions {
     /// Removes `name/arity`; `true` if it was registered.
     pub fn remove(&mut self, name: Atom, arity: usize) -> bool {
         self.standard.remove(&(name, arity));
+        self.stamp = compiled::new_stamp();
         self.map.remove(&(name, arity)).is_some()
     }
 

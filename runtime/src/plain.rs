@@ -49,7 +49,12 @@ use crate::term::{Repr, Term, Value, Var};
 use sitlog_syntax::{atoms, Atom};
 use std::collections::{HashMap, HashSet};
 
+mod form;
+pub mod rt;
+pub mod slots;
 mod val;
+
+pub use form::{atomic, plain_forms, Atomic};
 
 /// The names whose mention anywhere in the application's Prolog turns the
 /// native form off: they change or look at clauses, or at the code, as
@@ -79,7 +84,7 @@ const MIN_INFERENCES: u64 = 1000;
 
 /// An argument of a plain clause's head.
 #[derive(Clone, Debug)]
-enum PArg {
+pub enum PArg {
     /// A variable's first occurrence: it takes the argument.
     Bind(u16),
     /// A variable again: the argument must be identical to it.
@@ -95,7 +100,7 @@ enum PArg {
 
 /// An operand of `==`, `\==`, `=` or `assign_func_value/1`.
 #[derive(Clone, Debug)]
-enum Opnd {
+pub enum Opnd {
     Var(u16),
     Const(Term),
     /// `name(args..)` (arity at least 1) built of bound variables and
@@ -109,7 +114,7 @@ enum Opnd {
 const MAX_PATTERN_DEPTH: usize = 64;
 
 #[derive(Clone, Copy, Debug)]
-enum Bin {
+pub enum Bin {
     Add,
     Sub,
     Mul,
@@ -121,14 +126,14 @@ enum Bin {
 }
 
 #[derive(Clone, Copy, Debug)]
-enum Un {
+pub enum Un {
     Neg,
     Pos,
     Abs,
 }
 
 #[derive(Clone, Debug)]
-enum PExpr {
+pub enum PExpr {
     Var(u16),
     Int(i64),
     Un(Un, Box<PExpr>),
@@ -136,7 +141,7 @@ enum PExpr {
 }
 
 #[derive(Clone, Copy, Debug)]
-enum Cmp {
+pub enum Cmp {
     Lt,
     Gt,
     Le,
@@ -146,7 +151,7 @@ enum Cmp {
 }
 
 #[derive(Clone, Debug)]
-enum PGoal {
+pub enum PGoal {
     True,
     Fail,
     Cut,
@@ -190,7 +195,7 @@ impl PGoal {
 }
 
 #[derive(Clone, Debug)]
-struct PClause {
+pub struct PClause {
     vars: usize,
     head: Box<[PArg]>,
     body: Box<[PGoal]>,
@@ -198,12 +203,15 @@ struct PClause {
 
 /// A plain user function: its clauses in the engine's order.
 #[derive(Clone, Debug)]
-pub(super) struct PlainFn {
+pub struct PlainFn {
     clauses: Box<[PClause]>,
     /// At least the inferences the engine counts for a call.
     inferences: u64,
     /// The most variables a clause has (the registers a call needs).
     vars: usize,
+    /// [`PlainFn::fingerprint`], made at its first use (a run compares it
+    /// once with a compiled function's).
+    fingerprint: std::sync::OnceLock<String>,
 }
 
 /// The native forms of an application's plain functions.
@@ -276,6 +284,7 @@ impl PlainScan {
                         clauses: clauses.into(),
                         inferences: (goals as u64 + 1).saturating_mul(4),
                         vars,
+                        fingerprint: Default::default(),
                     },
                 ))
             })
@@ -292,6 +301,12 @@ impl PlainScan {
 /// sources, `None` there taking the term path); the engine's own scan
 /// (`PlainScan` as `prolog::consult::prepare` loads the files) decides.
 pub fn plain_names(files: &[(&str, Option<&[sitlog_syntax::Clause]>)]) -> HashSet<(Atom, usize)> {
+    scan_files(files).keys().collect()
+}
+
+/// The plain functions of `files` as [`plain_names`] reads them, their
+/// forms too.
+fn scan_files(files: &[(&str, Option<&[sitlog_syntax::Clause]>)]) -> PlainFns {
     let mut scan = PlainScan::default();
     let neck = Atom::intern(":-");
     for &(text, clauses) in files {
@@ -320,7 +335,7 @@ pub fn plain_names(files: &[(&str, Option<&[sitlog_syntax::Clause]>)]) -> HashSe
             }
         }
     }
-    scan.finish().keys().collect()
+    scan.finish()
 }
 
 impl PlainFns {

@@ -83,6 +83,7 @@ impl Gen<'_> {
             }
         }
         let native_driver = self.native_driver(ir, &dm_mods, &modules);
+        let plain_rs = self.plain_rs_module();
         // A DM with every situation native: its frame entered here and run
         // by the native driver (`Step::Template`: a value did not convert).
         let run_body = if any_all_native {
@@ -513,6 +514,8 @@ impl Gen<'_> {
             #native_driver
 
             #(#modules)*
+
+            #plain_rs
         };
 
         // Atoms: those the code names (a template's atoms are read with

@@ -176,9 +176,11 @@ struct Gen<'s> {
     /// only of a pattern registered already, none registered (code made
     /// and then dropped leaves the patterns' order as it was).
     no_new_patterns: std::cell::Cell<bool>,
-    /// The functions the build takes for plain (`native::plain`), read
-    /// once from the program's Prolog files.
-    plain_fns: std::cell::OnceCell<std::collections::HashSet<(Atom, usize)>>,
+    /// The functions the build takes for plain (`native::plain`) and
+    /// their forms, read once from the program's Prolog files.
+    plain_fns: std::cell::OnceCell<Vec<((Atom, usize), sitlog_runtime::plain::PlainFn)>>,
+    /// The plain functions compiled to Rust, by slot (`native::plain_rs`).
+    plain_rs: std::cell::RefCell<Vec<native::PlainRs>>,
     /// [`Options::held_calls`].
     held_calls: bool,
 }
@@ -211,6 +213,7 @@ impl<'s> Gen<'s> {
             if_cold_off: std::cell::Cell::new(false),
             no_new_patterns: std::cell::Cell::new(false),
             plain_fns: std::cell::OnceCell::new(),
+            plain_rs: std::cell::RefCell::new(Vec::new()),
             held_calls: options.held_calls,
         }
     }
@@ -291,6 +294,7 @@ impl<'s> Gen<'s> {
             self.atom(ty);
             self.atom(dm);
         }
+        self.collect_plain();
     }
 
     /// Registers every atom of a term, functor names included (the atoms a

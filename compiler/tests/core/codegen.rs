@@ -274,3 +274,24 @@ diag_mod(zip3(As, Bs, Cs),
     let zip = text.split("pub mod dm_zip3").nth(1).expect("zip3's module");
     assert_moves_last(zip);
 }
+
+/// Plain Prolog user functions compiled to Rust (helper `nrs22`, issue
+/// 37): `classify/1` (guards, a cut then `fail`, `is`, a cut inside an
+/// if-then-else) and `pick/2` (list head patterns, `=`, `\==`, the last
+/// assignment winning) of `tests/typed/nrs22`, each with its fingerprint,
+/// cut from `sitlogc build --emit rust tests/typed/nrs22`.
+#[test]
+fn plain_functions_compiled_to_rust() {
+    let app = std::path::Path::new("../tests/typed/nrs22");
+    let (checked, diags) = sitlog_compiler::check_path(app).expect("readable");
+    let checked = checked.unwrap_or_else(|_| panic!("does not check: {diags:#?}"));
+    let ir = ir::lower(&checked);
+    let code = codegen::generate_file(&ir, "tests/typed/nrs22");
+    let start = code
+        .find("    pub const FORM0: &str")
+        .expect("classify/1 compiled");
+    let end = code
+        .find("    pub const FORM2: &str")
+        .expect("diff/2 compiled");
+    insta::assert_snapshot!(&code[start..end]);
+}

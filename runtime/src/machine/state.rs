@@ -151,6 +151,9 @@ pub struct Machine<'p, P> {
     /// The situations whose arc ended their DM with a next situation
     /// without a value ([`Machine::end_unbound_next`]): warned about once.
     pub(super) unbound_next_warned: Vec<(DmIx, Option<SitIx>)>,
+    /// The run's plain functions compiled into its program, resolved once
+    /// (`Cx::nat_plain_rs`).
+    pub(super) plain_slots: crate::plain::slots::PlainSlots,
 }
 
 /// How many arguments a pipe held as native values may have
@@ -227,6 +230,7 @@ impl<'p, P> Machine<'p, P> {
             skipped_in_args: Vec::new(),
             unmatched_warned: Vec::new(),
             unbound_next_warned: Vec::new(),
+            plain_slots: Default::default(),
         }
     }
 

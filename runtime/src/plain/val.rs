@@ -87,7 +87,7 @@ const SMALL: usize = 8;
 
 /// Whether a top-level argument is taken ([`sure`] at depth 0), a list
 /// that is a tail of the last one checked without a walk.
-fn sure_arg(v: &Val) -> bool {
+pub(super) fn sure_arg(v: &Val) -> bool {
     match v {
         Val::Int(_) | Val::Sym(_) => true,
         Val::List(l) => {
@@ -148,13 +148,15 @@ fn atom_of(v: &Val) -> Option<Atom> {
 
 /// The arguments of `v` as the compound `f/n` (`n` ≥ 1), a list's head and
 /// tail for `'.'/2`.
-enum Parts<'a> {
+pub enum Parts<'a> {
     Args(&'a [Val]),
     Cell(&'a Val, Val),
 }
 
 impl Parts<'_> {
-    fn get(&self, i: usize) -> &Val {
+    /// Argument `i` (`0`: a list's head, `1` its tail).
+    #[inline]
+    pub fn get(&self, i: usize) -> &Val {
         match self {
             Parts::Args(a) => &a[i],
             Parts::Cell(h, _) if i == 0 => h,
@@ -163,7 +165,7 @@ impl Parts<'_> {
     }
 }
 
-fn parts(v: &Val, f: Atom, n: usize) -> Option<Parts<'_>> {
+pub(super) fn parts(v: &Val, f: Atom, n: usize) -> Option<Parts<'_>> {
     match v {
         Val::List(l) if f == atoms::DOT && n == 2 => {
             l.split_first().map(|(h, t)| Parts::Cell(h, Val::List(t)))
@@ -176,7 +178,7 @@ fn parts(v: &Val, f: Atom, n: usize) -> Option<Parts<'_>> {
 }
 
 /// Whether two values taken or built here are the same term (`==`).
-fn ident(x: &Val, y: &Val) -> bool {
+pub(super) fn ident(x: &Val, y: &Val) -> bool {
     match (x, y) {
         (Val::Sym(a), Val::Sym(b)) => a == b,
         (Val::Int(a), Val::Int(b)) => a == b,
@@ -223,7 +225,7 @@ fn ident_ov(o: &Opnd, v: &Val, regs: &[Val]) -> bool {
 /// Whether `v` is the constant `k` (`==`): an atom or an integer compared
 /// where it is, the rest as [`ident`] of the constant's value.
 #[inline]
-fn ident_k(v: &Val, k: Term) -> bool {
+pub(super) fn ident_k(v: &Val, k: Term) -> bool {
     match (v, k.0) {
         // `[]` is an atom both ways (`atom_of`).
         (Val::Sym(a), Repr::Atom(b)) => *a == b,

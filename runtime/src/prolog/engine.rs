@@ -354,8 +354,9 @@ struct Inner {
     /// be (`plain`).
     plain: PlainFns,
     /// Started without an error and not abandoned since: what
-    /// `plain_vals` reads instead of both locks.
-    plain_live: AtomicBool,
+    /// `plain_vals` reads instead of both locks (and a compiled plain
+    /// function, given it by `set_compiled`).
+    plain_live: Arc<AtomicBool>,
 }
 
 impl std::fmt::Debug for PrologFunctions {
@@ -638,7 +639,7 @@ impl PrologFunctions {
                 roots,
                 kb_host,
                 plain,
-                plain_live: AtomicBool::new(false),
+                plain_live: Arc::new(AtomicBool::new(false)),
             }),
         };
         (engine, load_errors)
@@ -778,6 +779,19 @@ impl PrologFunctions {
             let me = self.clone();
             functions.set_native(move |functions, store, globals, name, args| {
                 me.plain_vals(functions, store, globals, name, args)
+            });
+            // A function compiled from a plain form runs as compiled where
+            // the form is this engine's (its fingerprint) and a call of it
+            // runs natively under the run's inference limit.
+            let me = self.clone();
+            functions.set_compiled(move |functions, name, arity, fingerprint| {
+                let limit = functions
+                    .call_limits()
+                    .map_or(me.inner.options.inference_limit, |l| l.inferences);
+                me.inner
+                    .plain
+                    .compiled_matches(name, arity, fingerprint, limit)
+                    .then(|| me.inner.plain_live.clone())
             });
         }
         let me = self.clone();

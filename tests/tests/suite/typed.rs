@@ -3925,6 +3925,9 @@ mod ncall22;
 /// the hand-over (issue 37).
 mod nfnc21;
 
+/// Helper `nrs22`'s plain functions compiled to Rust (issue 37).
+mod nrs22;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");

@@ -85,8 +85,10 @@ const SAFE: &[&str] = &[
     "nat_arith_condition",
     "nat_is",
     // A plain function on native values: reads the store and the globals
-    // only (`machine::plain_fn`).
+    // only (`machine::plain_fn`); compiled to Rust too (`plain_rs`: its
+    // slot the machine's, no frame's).
     "nat_plain",
+    "nat_plain_rs",
     // An out_arg's value set as the pipe: the run's pipe, no frame's
     // (`Cx::out_value`).
     "out_value",

@@ -37,19 +37,7 @@ use std::collections::BTreeSet;
 impl Gen<'_> {
     /// Whether the build takes `name/arity` for a plain function.
     fn knows_plain(&self, name: Atom, arity: usize) -> bool {
-        let Some(ir) = self.ir else {
-            return false;
-        };
-        self.plain_fns
-            .get_or_init(|| {
-                let files: Vec<(&str, Option<&[sitlog_syntax::Clause]>)> = ir
-                    .prolog_sources
-                    .iter()
-                    .map(|f| (f.text.as_str(), f.clauses.as_deref().map(|c| c.as_slice())))
-                    .collect();
-                sitlog_runtime::plain::plain_names(&files)
-            })
-            .contains(&(name, arity))
+        self.plain_forms().iter().any(|(k, _)| *k == (name, arity))
     }
 
     /// `cx.nat_plain(f, &[..])` for `b` = `apply(f(_, ..), [A1..An])` as
@@ -122,7 +110,15 @@ impl Gen<'_> {
             vals.push(e);
         }
         let f = self.atom_native(*name)?;
-        Ok(Some(quote!(cx.nat_plain(#f, &[#(#vals),*]))))
+        // Compiled to Rust where the generator takes the form (`plain_rs`).
+        Ok(Some(match self.plain_slot(*name, declared.len()) {
+            Some(k) => {
+                let (form, fun) = self.plain_rs_call(k);
+                let k = proc_macro2::Literal::usize_unsuffixed(k);
+                quote!(cx.nat_plain_rs(#k, #f, #form, &[#(#vals),*], |args| #fun(a, args)))
+            }
+            None => quote!(cx.nat_plain(#f, &[#(#vals),*])),
+        }))
     }
 
     /// A next situation evaluated whole (`b`), a plain call: its value
@@ -140,11 +136,13 @@ impl Gen<'_> {
         let Some(call) = self.nat_plain_call(d, b, regs)? else {
             return Ok(None);
         };
-        // Each name and arity a situation of the DM has, once, in order.
+        // Each name and arity a situation of the DM has, once, in order;
+        // not `empty`, which ends the DM whatever its situations are
+        // called (the machine's `goto` of it, below).
         let mut ids: Vec<(Atom, usize)> = Vec::new();
         for p in d.plans.iter() {
             let cell = p.id == (atoms::DOT, 2);
-            if !cell && !ids.contains(&p.id) {
+            if !cell && !ids.contains(&p.id) && p.id != (atoms::EMPTY, 0) {
                 ids.push(p.id);
             }
         }
