@@ -4262,6 +4262,36 @@ fn an_unbound_next_situation_ends_the_dm() {
     }
 }
 
+mod exit_fuzz22 {
+    pub mod exits {
+        sitlog_macros::include_dm!("typed/fuzz22_exit");
+    }
+}
+
+/// A recursive situation's exit arc whose next situation has no value or
+/// is `empty` (found by the `run` fuzz target, session 22: the machine's
+/// loop took it as a situation name, an error where the plans ended the
+/// DM): the DM ends, in the main DM (`u`, `e`) and in a callee (`top_u`,
+/// `top_e`), after a native loop in its callee (`loop_u(K)`); the compiled
+/// task and the plans as the interpreter.
+#[test]
+fn a_recursive_exit_arc_without_a_next_situation_agrees() {
+    agree_app(
+        exit_fuzz22::exits::program(),
+        "typed/fuzz22_exit",
+        &[
+            "u",
+            "e",
+            "top_u",
+            "top_e",
+            "loop_u(1)",
+            "loop_u(5)",
+            "loop_u(a)",
+            "loop_u(_)",
+        ],
+    );
+}
+
 mod legacy_tails_nfid19 {
     pub mod tails {
         sitlog_macros::include_dm!("typed/legacy_tails");
