@@ -4292,6 +4292,49 @@ fn a_recursive_exit_arc_without_a_next_situation_agrees() {
     );
 }
 
+mod undef_fuzz22 {
+    pub mod undef {
+        sitlog_macros::include_dm!("typed/fuzz22_undef");
+    }
+}
+
+/// A `get` or `inc` of a name neither local nor global gives a fresh
+/// unbound value and leaves its variable as it was (found by the `run`
+/// fuzz target, session 22: the plans made the variable that value where
+/// it was first named): where it is first named (`main`, in a native
+/// loop's callee `count`), named before (`twice`); the compiled task and
+/// the plans as the interpreter, every action logged with its variables
+/// renamed in the order first seen (the text the test mode's `say` prints
+/// keeps the store's numbers, which differ).
+#[test]
+fn a_get_of_an_undefined_name_agrees() {
+    let ir = interpreter("typed/fuzz22_undef");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    let compiled = undef_fuzz22::undef::program();
+    for main in ["main", "twice", "loop(1)", "loop(3)", "loop(a)", "loop(_)"] {
+        for keep in [false, true] {
+            for observe in [false, true] {
+                let i = run(&ir, main, "", keep, observe, true);
+                let how = format!("{main} (history {keep}, observed {observe})");
+                assert_eq!(
+                    run(compiled, main, "", keep, observe, true),
+                    i,
+                    "compiled: {how}"
+                );
+                assert_eq!(
+                    run(&plans, main, "", keep, observe, true),
+                    i,
+                    "plans: {how}"
+                );
+            }
+        }
+    }
+    let said = run(compiled, "main", "", false, false, true).2;
+    assert_eq!(said[0], "say([a,_V0,_V1,_V2,_V3])", "{said:?}");
+    let said = run(compiled, "twice", "", false, false, true).2;
+    assert_eq!(said[0], "say([_V0,_V1,_V0])", "{said:?}");
+}
+
 mod legacy_tails_nfid19 {
     pub mod tails {
         sitlog_macros::include_dm!("typed/legacy_tails");
