@@ -104,6 +104,19 @@ fn canonical(text: &str, names: &mut HashMap<String, usize>) -> String {
     out
 }
 
+/// Whether `data` holds text a variable prints as (`_` then a digit, or
+/// `_G` then a digit), e.g. in a quoted atom: [`canonical`] would rename
+/// it as a variable, and a run's fresh variable of the same number would
+/// then look like it (a false disagreement, session 22). Such inputs are
+/// run but not compared.
+fn names_like_variables(data: &[u8]) -> bool {
+    data.windows(2)
+        .any(|w| w[0] == b'_' && w[1].is_ascii_digit())
+        || data
+            .windows(3)
+            .any(|w| w[0] == b'_' && w[1] == b'G' && w[2].is_ascii_digit())
+}
+
 /// Whether to say how far each input got (`SITLOG_FUZZ_RUN_LOG`).
 fn log() -> bool {
     static LOG: OnceLock<bool> = OnceLock::new();
@@ -121,6 +134,9 @@ fuzz_target!(|data: &[u8]| {
     let Some((json, said)) = one_run(&ir, true) else {
         return;
     };
+    if names_like_variables(data) {
+        return;
+    }
     let Some((json_t, said_t)) = one_run(&ir, false) else {
         panic!("the plans' run ended by itself, the templates' did not\nplans: {json}");
     };

@@ -19,6 +19,8 @@ pub(crate) struct Planner<'s> {
     regs: Reg,
     /// `when/3` is the runtime's own ([`super::std_when`]).
     pub(crate) std_when: bool,
+    /// The program's globals ([`Self::sees_var`]); none until set.
+    pub(crate) globals: &'s [(Atom, Term)],
     /// The variables the situation being planned names once (its template,
     /// the DM's head included: the `_` idiom). Only these are unbound
     /// wherever they are evaluated.
@@ -36,9 +38,21 @@ impl<'s> Planner<'s> {
             dm,
             regs: 0,
             std_when: false,
+            globals: &[],
             single: HashSet::new(),
             lowered_when: Default::default(),
         }
+    }
+
+    /// Whether a `get`/`inc` of `name` in this DM reads a variable (a
+    /// local of the DM, or a global): only then does `get(name, V)` give
+    /// `V` the value (`V` not made yet: [`Ev::VarOpFresh`]). Of any other
+    /// name the value is a fresh unbound variable and `V` is left as it
+    /// was (the evaluator's `var_op_parts`, as the original runs on), so
+    /// `V` is made as any variable and the op is [`Ev::VarOp`].
+    fn sees_var(&self, name: Atom) -> bool {
+        self.dm.locals.iter().any(|(n, _)| *n == name)
+            || self.globals.iter().any(|(n, _)| *n == name)
     }
 
     pub(crate) fn reg(&mut self) -> Reg {
@@ -234,7 +248,7 @@ impl<'s> Planner<'s> {
             if let (Some(var), Value::Var(v)) =
                 (self.store.atom_of(args[0]), self.store.value(args[1]))
             {
-                if scope.lazy.remove(&v.index()) {
+                if self.sees_var(var) && scope.lazy.remove(&v.index()) {
                     let dst = *scope.vars.get(&v.index()).ok_or(Unsupported)?;
                     return Ok(Ev::VarOpFresh {
                         op: name,
@@ -546,10 +560,13 @@ impl<'s> Planner<'s> {
             return;
         }
         if args.len() == 2 && (name == atoms::GET || name == atoms::INC) {
-            if let (Some(_), Value::Var(v)) =
+            if let (Some(var), Value::Var(v)) =
                 (self.store.atom_of(args[0]), self.store.value(args[1]))
             {
-                if depth == 0 && seen.insert(v.index()) {
+                if !self.sees_var(var) {
+                    // Left as it was (`Self::sees_var`): made as any variable.
+                    seen.insert(v.index());
+                } else if depth == 0 && seen.insert(v.index()) {
                     lazy.insert(v.index());
                 }
                 return;

@@ -295,6 +295,7 @@ pub fn lower(ir: &Ir) -> Mir {
                 .map(|i| {
                     let mut planner = Planner::new(&ir.store, dm);
                     planner.std_when = std_when;
+                    planner.globals = &ir.globals;
                     let lowered_when = planner.lowered_when.clone();
                     let plan = planner.situation(i).ok();
                     runtime_when |= plan.is_some() && lowered_when.get();

@@ -170,6 +170,139 @@ proptest! {
     }
 }
 
+/// `text` with every variable `_G<n>` renamed `_V0`, `_V1`, ... in the
+/// order first seen through `names`.
+fn canonical(text: &str, names: &mut std::collections::HashMap<String, usize>) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(i) = rest.find("_G") {
+        out.push_str(&rest[..i]);
+        let digits = rest[i + 2..]
+            .find(|c: char| !c.is_ascii_digit())
+            .unwrap_or(rest.len() - i - 2);
+        if digits == 0 {
+            out.push_str("_G");
+        } else {
+            let next = names.len();
+            let n = *names
+                .entry(rest[i..i + 2 + digits].to_owned())
+                .or_insert(next);
+            out.push_str(&format!("_V{n}"));
+        }
+        rest = &rest[i + 2 + digits..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// One run of `text`'s DM `main` on no input, from the interpreter's plans
+/// (`run::run`, what `sitlogc run` does) or from every situation's
+/// template (`run::run_unresolved`): the JSON report and what was said
+/// (variables renamed, [`canonical`]), and the run's warnings.
+fn run_one(text: &str, main: &str, plans: bool) -> (String, String, Vec<String>) {
+    let (program, diags) = load::load_sources(&[("main.dm", text)]);
+    let checked = check::check(program, diags).0.expect("the program checks");
+    let ir = ir::lower(&checked);
+    let config = run::RunConfig {
+        main: main.to_owned(),
+        ..run::RunConfig::default()
+    };
+    let mut perception = ScriptPerception::new("script", String::new());
+    let mut said = Vec::new();
+    let mut actions = TextActions::new(&mut said, ir.basic_actions.clone());
+    let runner = if plans { run::run } else { run::run_unresolved };
+    let (outcome, store) =
+        runner(&ir, config, &mut perception, &mut actions, None).expect("the run starts");
+    let json = report::outcome_json(&store, &outcome);
+    let warnings = outcome.warnings.iter().map(ToString::to_string).collect();
+    drop(actions);
+    let mut names = std::collections::HashMap::new();
+    let json = canonical(&json, &mut names);
+    let said = canonical(&String::from_utf8(said).expect("UTF-8"), &mut names);
+    (json, said, warnings)
+}
+
+/// Found by the `run` fuzz target (session 22, plans against templates):
+/// `get(nope, L)` of a name neither local nor global, `L` not made yet.
+/// The original (and the evaluator, `var_op_parts`) gives a fresh unbound
+/// value and leaves `L` as it was; the plans made `L` that value
+/// (`Ev::VarOpFresh`, right only for a variable the DM sees), so `L`
+/// and the value were one variable where the templates had two.
+#[test]
+fn a_get_of_an_undefined_name_leaves_its_variable_on_both_paths() {
+    let text = "diag_mod(main, [
+  [id ==> is, type ==> neutral,
+   arcs ==> [empty : say([a, get(nope, L), L, inc(nada, M), M]) => s(L)]],
+  [id ==> s(X), type ==> neutral, arcs ==> [empty : say([b, X]) => fs]],
+  [id ==> fs, type ==> final]], []).
+";
+    let plans = run_one(text, "main", true);
+    let templates = run_one(text, "main", false);
+    assert_eq!(plans, templates, "plans / templates");
+    assert!(
+        plans.1.starts_with("Golem says: a _V0 _V1 _V2 _V3.\n"),
+        "{}",
+        plans.1
+    );
+}
+
+/// Found by the `run` fuzz target (session 22, plans against templates):
+/// the exit arc of a recursive situation whose next situation has no
+/// value (`=> Next`) or is `empty` ended the DM on the plans, as any arc's
+/// does (docs/guide/language.md, "Next"), but was an error ("the next
+/// situation `_G0` is not a situation name", or no situation `empty`)
+/// from the templates: the machine's loop took a recursive situation's
+/// next situation as a name without the checks of every other arc's. Now
+/// both end the DM (the main DM: the task; a callee: its caller takes its
+/// first exit arc), with the warning at the recursive situation.
+#[test]
+fn a_recursive_exit_arc_without_a_next_situation_ends_the_dm_on_both_paths() {
+    let text = "diag_mod(u, [
+  [id ==> is, type ==> recursive, embedded_dm ==> sub, arcs ==> [done : say(back) => Next]],
+  [id ==> fs, type ==> final]
+], []).
+diag_mod(e, [
+  [id ==> is, type ==> recursive, embedded_dm ==> sub, arcs ==> [done : say(back) => empty]],
+  [id ==> fs, type ==> final]
+], []).
+diag_mod(top_u, [
+  [id ==> is, type ==> recursive, embedded_dm ==> u, arcs ==> [_ : say(top) => fs]],
+  [id ==> fs, type ==> final]
+], []).
+diag_mod(top_e, [
+  [id ==> is, type ==> recursive, embedded_dm ==> e, arcs ==> [_ : say(top) => fs]],
+  [id ==> fs, type ==> final]
+], []).
+diag_mod(sub, [
+  [id ==> s, type ==> neutral, arcs ==> [empty : say(sub) => done]],
+  [id ==> done, type ==> final]
+], []).
+";
+    for main in ["u", "e", "top_u", "top_e"] {
+        let plans = run_one(text, main, true);
+        let templates = run_one(text, main, false);
+        assert_eq!(plans, templates, "{main}: plans / templates");
+        assert!(plans.0.contains(r#""status":"ok""#), "{main}: {}", plans.0);
+        if main.ends_with('u') {
+            assert!(
+                plans.2.len() == 1 && plans.2[0].contains("next situation `_G0` has no value"),
+                "{main}: {:?}",
+                plans.2
+            );
+        }
+        let top = if main.starts_with("top") {
+            "Golem says: top\n"
+        } else {
+            ""
+        };
+        assert_eq!(
+            plans.1,
+            format!("Golem says: sub\nGolem says: back\n{top}"),
+            "{main}"
+        );
+    }
+}
+
 #[cfg(feature = "prolog")]
 mod prolog {
     use super::*;

@@ -215,7 +215,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         pattern: impl IdArg,
         holes: &[&dyn AsTerm],
     ) -> Result<(), RunError> {
-        if !self.actions.ignores_empty() {
+        if !self.actions.ignores(super::ActionShape::EMPTY) {
             self.perform_empty();
         }
         self.nat_enter(stack, count, sit, arc, pattern, holes)
@@ -419,8 +419,8 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         super::TypedRun {
             records: self.records(),
             nests: self.m.options.keep_history && self.observer.is_none(),
-            quiet_numbers: self.actions.ignores_numbers(),
-            quiet_empty: self.actions.ignores_empty(),
+            quiet_numbers: self.ignores_numbers(),
+            quiet_empty: self.actions.ignores(super::ActionShape::EMPTY),
             count: 0,
             untyped: false,
             call: None,
@@ -1547,10 +1547,11 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         self.m.transitions += n;
     }
 
-    /// Whether the run's actions ignore numbers ([`Actions::ignores_numbers`](super::Actions::ignores_numbers)).
+    /// Whether the run's actions ignore numbers ([`Actions::ignores`](super::Actions::ignores)
+    /// of [`ActionShape::Number`](super::ActionShape::Number)).
     #[inline]
     pub fn ignores_numbers(&self) -> bool {
-        self.actions.ignores_numbers()
+        self.actions.ignores(super::ActionShape::Number)
     }
 
     /// Appends the situation's history entry (and tells the observer).

@@ -198,7 +198,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// nothing, and the history does not read it).
     #[inline]
     pub fn ignores_action(&self, name: sitlog_syntax::Atom, arity: usize) -> bool {
-        self.actions.ignores(name, arity)
+        self.actions.ignores(super::ActionShape::Named(name, arity))
     }
 
     /// Performs an arc's action `action` by native code (module doc): the

@@ -64,30 +64,39 @@ pub trait Actions {
     /// situation, out_arg and the history entry then see the binding.
     fn perform(&mut self, store: &mut Store, action: Term) -> Result<(), String>;
 
-    /// Whether performing a number does nothing (and succeeds), always: then
-    /// typed code skips the calls for actions it knows are numbers (an
-    /// `inc` in an action list). `false` is always a correct answer.
-    fn ignores_numbers(&self) -> bool {
+    /// Whether performing any action of shape `shape` does nothing (and
+    /// succeeds), always, whatever its arguments are (bound or not). One
+    /// question the machine and compiled code ask of three shapes:
+    ///
+    /// - [`ActionShape::Number`]: typed code skips the calls for actions
+    ///   it knows are numbers (an `inc` in an action list);
+    /// - [`ActionShape::EMPTY`] (the atom `empty`, the action of an arc
+    ///   that does nothing): the machine and compiled code do not call
+    ///   [`Actions::perform`] with it;
+    /// - [`ActionShape::Named`]`(name, arity)` (`0`: the atom `name`):
+    ///   compiled code neither builds nor hands over such an action where
+    ///   nothing records it (`Cx::ignores_action`).
+    ///
+    /// `false`, the default, is always a correct answer.
+    fn ignores(&self, shape: ActionShape) -> bool {
+        let _ = shape;
         false
     }
+}
 
-    /// Whether performing the atom `empty` (the action of an arc that
-    /// does nothing) does nothing (and succeeds), always: then the machine
-    /// and compiled code do not call [`Actions::perform`] with it. `false`
-    /// is always a correct answer.
-    fn ignores_empty(&self) -> bool {
-        false
-    }
+/// The shape of actions [`Actions::ignores`] is asked about: every
+/// number, or every action `name(..)` of `arity` arguments.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ActionShape {
+    /// Any number.
+    Number,
+    /// Any action `name(A1, .., An)`, `n` = the arity (`0`: the atom).
+    Named(sitlog_syntax::Atom, usize),
+}
 
-    /// Whether performing any action `name(..)` of `arity` arguments (`0`:
-    /// the atom `name`) does nothing (and succeeds), always, whatever its
-    /// arguments are (bound or not): then compiled code neither builds nor
-    /// hands over such an action where nothing records it (`Cx::ignores_action`).
-    /// `false` is always a correct answer.
-    fn ignores(&self, name: sitlog_syntax::Atom, arity: usize) -> bool {
-        let _ = (name, arity);
-        false
-    }
+impl ActionShape {
+    /// The atom `empty`, the action of an arc that does nothing.
+    pub const EMPTY: ActionShape = ActionShape::Named(sitlog_syntax::atoms::EMPTY, 0);
 }
 
 /// Hands one action (an element of an action list, or the action) to the

@@ -61,7 +61,7 @@ mod steps;
 
 pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, Fill, FromIdParts, IdArg, OutSlot};
 pub use effect::{AnyShape, Due, NatAction, NatEntry};
-pub use io::{Actions, Perceived, Perception};
+pub use io::{ActionShape, Actions, Perceived, Perception};
 pub use native_stack::{
     nat_choose, nat_drive, nat_goto, nat_hand_over, nat_materialize, nat_plain, nat_replace_done,
     nat_template, NatAt, NatBelow, NatFrames,

@@ -166,9 +166,9 @@ pub struct TypedRun {
     /// call DMs on its own stack, their entries in levels of their own
     /// ([`Cx::open_level`]).
     pub nests: bool,
-    /// [`Actions::ignores_numbers`](super::Actions::ignores_numbers).
+    /// [`Actions::ignores`](super::Actions::ignores) of [`ActionShape::Number`](super::ActionShape::Number).
     pub quiet_numbers: bool,
-    /// [`Actions::ignores_empty`](super::Actions::ignores_empty).
+    /// [`Actions::ignores`](super::Actions::ignores) of [`ActionShape::EMPTY`](super::ActionShape::EMPTY).
     pub quiet_empty: bool,
     /// Transitions done without a history entry, not yet counted.
     pub count: u64,

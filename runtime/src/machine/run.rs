@@ -482,11 +482,16 @@ impl<'p, P: DmProgram> Machine<'p, P> {
                     };
                     unbound_end = false;
                     match pending {
-                        Some(Pending::Recursive { sit }) => {
+                        Some(Pending::Recursive { sit: rsit }) => {
                             let rinst = self.instances.pop().expect("a pending instance");
+                            let rid = rinst.id;
                             let next =
-                                self.finish_recursive(sit, rinst, id, pipe, actions, observer)?;
-                            return Ok(Some(Goto::Situation(next)));
+                                self.finish_recursive(rsit, rinst, id, pipe, actions, observer)?;
+                            // The exit arc's next situation is any arc's:
+                            // unbound or `empty`, it ends the DM (the arms
+                            // above), where the recursive situation is.
+                            (sit, id) = (rsit, rid);
+                            step = Step::Goto(next);
                         }
                         Some(Pending::Recovery { id }) => return Ok(Some(Goto::Situation(id))),
                         Some(Pending::Compiled {

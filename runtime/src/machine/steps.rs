@@ -594,7 +594,7 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         actions: &mut dyn Actions,
     ) -> Result<(), String> {
         let a = self.store.deref(action);
-        if a == Term::atom(atoms::EMPTY) && actions.ignores_empty() {
+        if a == Term::atom(atoms::EMPTY) && actions.ignores(super::ActionShape::EMPTY) {
             return Ok(());
         }
         // A proper list is executed element by element (checked and walked

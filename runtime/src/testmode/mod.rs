@@ -10,7 +10,7 @@
 //! `doas(T)`, `speaker(T)`, several terms read...).
 
 pub use crate::input::{InputLimits, SharedInput, TermInput};
-use crate::machine::{Actions, Perceived, Perception};
+use crate::machine::{ActionShape, Actions, Perceived, Perception};
 use crate::store::Store;
 use crate::term::Term;
 use sitlog_syntax::{Atom, ClauseReader, OpTable};
@@ -575,21 +575,17 @@ impl<W: Write> Actions for TextActions<W> {
         Ok(())
     }
 
-    /// A number has no functor: nothing to show.
-    fn ignores_numbers(&self) -> bool {
-        true
-    }
-
-    /// `empty` is shown only when it is a declared basic action.
-    fn ignores_empty(&self) -> bool {
-        !self.declared.contains(&sitlog_syntax::atoms::EMPTY)
-    }
-
     /// What [`TextActions::perform`] shows: `say/1`, `screen/1` and the
-    /// declared basic actions (any arity); the rest does nothing.
-    fn ignores(&self, name: Atom, arity: usize) -> bool {
-        let shown = arity == 1 && (name == self.say || name == self.screen);
-        !shown && !self.declared.contains(&name)
+    /// declared basic actions (any arity; `empty` too, when declared); the
+    /// rest does nothing. A number has no functor: nothing to show.
+    fn ignores(&self, shape: ActionShape) -> bool {
+        match shape {
+            ActionShape::Number => true,
+            ActionShape::Named(name, arity) => {
+                let shown = arity == 1 && (name == self.say || name == self.screen);
+                !shown && !self.declared.contains(&name)
+            }
+        }
     }
 }
 

@@ -427,7 +427,7 @@ mod text_actions_tests {
                 let action = store.compound(f, &args);
                 let mut out = Vec::new();
                 let mut actions = TextActions::new(&mut out, declared.clone());
-                let ignored = actions.ignores(f, args.len());
+                let ignored = actions.ignores(ActionShape::Named(f, args.len()));
                 assert!(actions.perform(&mut store, action).is_ok());
                 let shown = !out.is_empty();
                 assert_eq!(ignored, !shown, "{name}/{}", args.len());

@@ -318,6 +318,127 @@ fn agree_modulo_vars<A: app::App>(compiled: &A, interpreted: &Ir, main: &str) {
     }
 }
 
+/// [`agree_both`] of `compiled` with the application in `dir` (read and
+/// lowered here).
+fn agree_app<A: app::App>(compiled: &A, dir: &str, mains: &[&str]) {
+    agree_both(compiled, &interpreter(dir), mains);
+}
+
+/// The Prolog user functions of `ir` loaded in an engine, once (for a test
+/// of many runs of one application whose Prolog keeps no state).
+fn engine_of(ir: &Ir) -> sitlog_runtime::prolog::PrologFunctions {
+    sitlog_compiler::run::install_prolog(ir, &mut Functions::standard(), Default::default())
+        .expect("the Prolog files load")
+        .expect("an engine")
+}
+
+/// Installs `p` in every run of this thread ([`ENGINE`], [`functions`]),
+/// with `engine_only` every call a query of the engine; `None`: no engine
+/// shared (each run loads [`PROLOG`]'s, if any).
+fn use_engine(p: Option<&sitlog_runtime::prolog::PrologFunctions>, engine_only: bool) {
+    ENGINE.with(|e| *e.borrow_mut() = p.map(|p| (p.clone(), engine_only)));
+}
+
+/// `f` with `ir`'s Prolog user functions loaded once and installed in
+/// every run it makes ([`engine_of`], [`use_engine`]), plain functions
+/// run natively; the engine uninstalled after it.
+fn with_engine<R>(ir: &Ir, f: impl FnOnce() -> R) -> R {
+    use_engine(Some(&engine_of(ir)), false);
+    let r = f();
+    use_engine(None, false);
+    r
+}
+
+/// A comparison [`agree_plain`] makes for each main, variables'
+/// numbers dropped ([`unnumbered`]).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Vs {
+    /// The compiled task, plain functions run natively, history kept and
+    /// observed, against the interpreter with every call a query of the
+    /// engine.
+    CompiledEngine,
+    /// The same of the interpreter's plans.
+    PlansEngine,
+    /// The same of the interpreter itself (plain functions native).
+    InterpreterEngine,
+    /// The compiled task against the interpreter, without history.
+    NoHistory,
+    /// The same, observed.
+    ObservedNoHistory,
+}
+
+/// What most plain-function tests compare ([`agree_plain`]).
+const PLAIN_VS: &[Vs] = &[
+    Vs::CompiledEngine,
+    Vs::PlansEngine,
+    Vs::NoHistory,
+    Vs::ObservedNoHistory,
+];
+
+/// Plain Prolog user functions of the application in `dir`, which must be
+/// `plain` (`name/arity`s, space-separated, as `plain_functions` lists
+/// them): for each of `mains`, the comparisons `modes` with `compiled`.
+/// Gives the application's IR and its engine (uninstalled) back for more
+/// runs.
+fn agree_plain<A: app::App>(
+    compiled: &A,
+    dir: &str,
+    plain: &str,
+    mains: &[&str],
+    modes: &[Vs],
+) -> (Ir, sitlog_runtime::prolog::PrologFunctions) {
+    let ir = interpreter(dir);
+    let resolved = sitlog_compiler::interp::Resolved::new(&ir);
+    let p = engine_of(&ir);
+    let names: Vec<String> = p
+        .plain_functions()
+        .iter()
+        .map(|(n, a)| format!("{n}/{a}"))
+        .collect();
+    assert_eq!(names.join(" "), plain, "{dir}: the plain functions");
+    let same = |a: &dyn std::fmt::Debug, b: &dyn std::fmt::Debug, what: String| {
+        assert_eq!(
+            unnumbered(format!("{a:?}")),
+            unnumbered(format!("{b:?}")),
+            "{what}"
+        );
+    };
+    for main in mains {
+        use_engine(Some(&p), true);
+        let by_engine = run(&ir, main, "", true, true, false);
+        use_engine(Some(&p), false);
+        let vs_engine = |got: &dyn std::fmt::Debug, name: &str| {
+            same(got, &by_engine, format!("{main}: {name} / engine only"));
+        };
+        // Each run made only where it is compared.
+        if modes.contains(&Vs::CompiledEngine) {
+            vs_engine(&run(compiled, main, "", true, true, false), "compiled");
+        }
+        if modes.contains(&Vs::PlansEngine) {
+            vs_engine(&run(&resolved, main, "", true, true, false), "plans");
+        }
+        if modes.contains(&Vs::InterpreterEngine) {
+            vs_engine(&run(&ir, main, "", true, true, false), "interpreter");
+        }
+        for (vs, observe, how) in [
+            (Vs::NoHistory, false, ""),
+            (Vs::ObservedNoHistory, true, "observed, "),
+        ] {
+            if modes.contains(&vs) {
+                let c = run(compiled, main, "", false, observe, false);
+                let i = run(&ir, main, "", false, observe, false);
+                same(
+                    &c,
+                    &i,
+                    format!("{main}: compiled / interpreter, {how}no history"),
+                );
+            }
+        }
+    }
+    use_engine(None, false);
+    (ir, p)
+}
+
 #[test]
 fn typed_loops_agree() {
     let ir = interpreter("typed/loops");
@@ -1112,15 +1233,8 @@ fn plain_user_functions_agree_with_the_engine() {
     use shapes_nufn17 as s;
     // One engine per application, shared by its runs (its Prolog keeps no
     // state); each run installs it either way.
-    let engine = |app: &str| {
-        let mut f = Functions::standard();
-        sitlog_compiler::run::install_prolog(&interpreter(app), &mut f, Default::default())
-            .expect("the Prolog files load")
-            .expect("an engine")
-    };
-    let set = |p: &sitlog_runtime::prolog::PrologFunctions, engine_only: bool| {
-        ENGINE.with(|e| *e.borrow_mut() = Some((p.clone(), engine_only)))
-    };
+    let engine = |app: &str| engine_of(&interpreter(app));
+    let set = |p, engine_only| use_engine(Some(p), engine_only);
     let ir = interpreter("typed/plain_fns");
     let resolved = sitlog_compiler::interp::Resolved::new(&ir);
     let p = engine("typed/plain_fns");
@@ -1220,7 +1334,7 @@ fn plain_user_functions_agree_with_the_engine() {
         );
         assert_eq!(c, by_engine, "{main}");
     }
-    ENGINE.with(|e| *e.borrow_mut() = None);
+    use_engine(None, false);
 }
 
 /// Which user functions are plain (run natively where they can).
@@ -1231,10 +1345,7 @@ fn which_user_functions_are_plain() {
         ("typed/shapes/c_outarg_apply", "succ_of/1"),
         ("typed/plain_fns", "calc/3 next_of/1 same/2"),
     ] {
-        let mut f = Functions::standard();
-        let p = sitlog_compiler::run::install_prolog(&interpreter(app), &mut f, Default::default())
-            .expect("the Prolog files load")
-            .expect("an engine");
+        let p = engine_of(&interpreter(app));
         let names: Vec<String> = p
             .plain_functions()
             .iter()
@@ -3736,11 +3847,7 @@ mod nfun18_boundary {
 #[test]
 fn nfun18_user_functions_at_the_boundary_agree() {
     let ir = interpreter("typed/boundary18");
-    let mut f = Functions::standard();
-    let p = sitlog_compiler::run::install_prolog(&ir, &mut f, Default::default())
-        .expect("the Prolog files load")
-        .expect("an engine");
-    ENGINE.with(|e| *e.borrow_mut() = Some((p, false)));
+    use_engine(Some(&engine_of(&ir)), false);
     let cases = [
         "tag", "count", "fail", "throw", "unbound", "shape", "hist", "cond", "global", "nowhere",
     ];
@@ -3786,7 +3893,7 @@ fn nfun18_user_functions_at_the_boundary_agree() {
         false,
     );
     assert!(c.2.iter().any(|l| l.ends_with(" 2")), "{c:?}");
-    ENGINE.with(|e| *e.borrow_mut() = None);
+    use_engine(None, false);
 }
 
 /// Helper `ncond18`'s (session 17): conjunctions and disjunctions in a
@@ -4161,6 +4268,79 @@ fn an_unbound_next_situation_ends_the_dm() {
     }
 }
 
+mod exit_fuzz22 {
+    pub mod exits {
+        sitlog_macros::include_dm!("typed/fuzz22_exit");
+    }
+}
+
+/// A recursive situation's exit arc whose next situation has no value or
+/// is `empty` (found by the `run` fuzz target, session 22: the machine's
+/// loop took it as a situation name, an error where the plans ended the
+/// DM): the DM ends, in the main DM (`u`, `e`) and in a callee (`top_u`,
+/// `top_e`), after a native loop in its callee (`loop_u(K)`); the compiled
+/// task and the plans as the interpreter.
+#[test]
+fn a_recursive_exit_arc_without_a_next_situation_agrees() {
+    agree_app(
+        exit_fuzz22::exits::program(),
+        "typed/fuzz22_exit",
+        &[
+            "u",
+            "e",
+            "top_u",
+            "top_e",
+            "loop_u(1)",
+            "loop_u(5)",
+            "loop_u(a)",
+            "loop_u(_)",
+        ],
+    );
+}
+
+mod undef_fuzz22 {
+    pub mod undef {
+        sitlog_macros::include_dm!("typed/fuzz22_undef");
+    }
+}
+
+/// A `get` or `inc` of a name neither local nor global gives a fresh
+/// unbound value and leaves its variable as it was (found by the `run`
+/// fuzz target, session 22: the plans made the variable that value where
+/// it was first named): where it is first named (`main`, in a native
+/// loop's callee `count`), named before (`twice`); the compiled task and
+/// the plans as the interpreter, every action logged with its variables
+/// renamed in the order first seen (the text the test mode's `say` prints
+/// keeps the store's numbers, which differ).
+#[test]
+fn a_get_of_an_undefined_name_agrees() {
+    let ir = interpreter("typed/fuzz22_undef");
+    let plans = sitlog_compiler::interp::Resolved::new(&ir);
+    let compiled = undef_fuzz22::undef::program();
+    for main in ["main", "twice", "loop(1)", "loop(3)", "loop(a)", "loop(_)"] {
+        for keep in [false, true] {
+            for observe in [false, true] {
+                let i = run(&ir, main, "", keep, observe, true);
+                let how = format!("{main} (history {keep}, observed {observe})");
+                assert_eq!(
+                    run(compiled, main, "", keep, observe, true),
+                    i,
+                    "compiled: {how}"
+                );
+                assert_eq!(
+                    run(&plans, main, "", keep, observe, true),
+                    i,
+                    "plans: {how}"
+                );
+            }
+        }
+    }
+    let said = run(compiled, "main", "", false, false, true).2;
+    assert_eq!(said[0], "say([a,_V0,_V1,_V2,_V3])", "{said:?}");
+    let said = run(compiled, "twice", "", false, false, true).2;
+    assert_eq!(said[0], "say([_V0,_V1,_V0])", "{said:?}");
+}
+
 mod legacy_tails_nfid19 {
     pub mod tails {
         sitlog_macros::include_dm!("typed/legacy_tails");
@@ -4298,11 +4478,7 @@ mod nbound20_dms {
 #[test]
 fn nbound20_last_hand_overs_agree() {
     let ir = interpreter("typed/nbound20");
-    let mut f = Functions::standard();
-    let p = sitlog_compiler::run::install_prolog(&ir, &mut f, Default::default())
-        .expect("the Prolog files load")
-        .expect("an engine");
-    ENGINE.with(|e| *e.borrow_mut() = Some((p, false)));
+    use_engine(Some(&engine_of(&ir)), false);
     let mains = [
         "main([plain])",
         "main([none])",
@@ -4333,7 +4509,7 @@ fn nbound20_last_hand_overs_agree() {
     for want in ["none([])", "got([shelf(2)])", "got([[shelf,3]])"] {
         assert!(said.contains(want), "{want} in {said}");
     }
-    ENGINE.with(|e| *e.borrow_mut() = None);
+    use_engine(None, false);
 }
 
 mod undefined_fid20 {

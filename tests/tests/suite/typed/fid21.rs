@@ -5,11 +5,11 @@
 //! (`tests/typed/fid21`): the runner's report with the location
 //! `App::error_location` gives it.
 
-use super::{functions, interpreter, ENGINE};
+use super::{functions, interpreter, with_engine};
 use sitlog_compiler::interp::Resolved;
 use sitlog_runtime::machine::{Options, RunError};
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
-use sitlog_runtime::{app, Atom, Functions};
+use sitlog_runtime::{app, Atom};
 
 mod dms {
     pub mod fid21 {
@@ -74,33 +74,30 @@ const WANT: &[(&str, &str)] = &[
 #[test]
 fn a_run_time_error_names_the_same_place_in_every_back_end() {
     let ir = interpreter("typed/fid21");
-    // One engine for every run (the functions keep no state).
-    let engine =
-        sitlog_compiler::run::install_prolog(&ir, &mut Functions::standard(), Default::default())
-            .expect("the Prolog files load")
-            .expect("an engine");
-    ENGINE.with(|e| *e.borrow_mut() = Some((engine, false)));
     let plans = Resolved::new(&ir);
-    let mut bad = Vec::new();
-    for &(case, want) in WANT {
-        for keep in [false, true] {
-            for (by, got) in [
-                ("interpreter", error_of(&ir, case, keep)),
-                ("plans", error_of(&plans, case, keep)),
-                ("compiled", error_of(dms::fid21::program(), case, keep)),
-            ] {
-                if got != want {
-                    bad.push(format!("{case} ({by}, history {keep}): {got}"));
+    // One engine for every run (the functions keep no state).
+    let (bad, shown) = with_engine(&ir, || {
+        let mut bad = Vec::new();
+        for &(case, want) in WANT {
+            for keep in [false, true] {
+                for (by, got) in [
+                    ("interpreter", error_of(&ir, case, keep)),
+                    ("plans", error_of(&plans, case, keep)),
+                    ("compiled", error_of(dms::fid21::program(), case, keep)),
+                ] {
+                    if got != want {
+                        bad.push(format!("{case} ({by}, history {keep}): {got}"));
+                    }
                 }
             }
         }
-    }
-    // One of them as a compiled task prints it (`error: ` and the text).
-    let shown = format!(
-        "error: {}",
-        error_of(dms::fid21::program(), "in_callee", false)
-    );
-    ENGINE.with(|e| *e.borrow_mut() = None);
+        // One of them as a compiled task prints it (`error: ` and the text).
+        let shown = format!(
+            "error: {}",
+            error_of(dms::fid21::program(), "in_callee", false)
+        );
+        (bad, shown)
+    });
     assert!(bad.is_empty(), "{}", bad.join("\n"));
     insta::assert_snapshot!("fid21_compiled_error", shown);
 }

@@ -10,8 +10,7 @@
 //! plans as in the interpreter (history, report, error, actions, observer,
 //! with and without history).
 
-use super::{agree_both, interpreter, run, ENGINE};
-use sitlog_runtime::Functions;
+use super::{agree_both, interpreter, run, with_engine};
 
 mod dms {
     pub mod ncall21 {
@@ -24,30 +23,20 @@ mod dms {
     }
 }
 
-/// The application's Prolog user functions loaded once, installed in
-/// every run of this thread (each task starts with `reset/1`).
-fn engine(ir: &sitlog_compiler::ir::Ir) {
-    let mut f = Functions::standard();
-    let p = sitlog_compiler::run::install_prolog(ir, &mut f, Default::default())
-        .expect("the Prolog files load")
-        .expect("an engine");
-    ENGINE.with(|e| *e.borrow_mut() = Some((p, false)));
-}
-
-/// Each task in the compiled task and the plans as in the interpreter.
+/// Each task in the compiled task and the plans as in the interpreter,
+/// the application's Prolog user functions loaded once, installed in
+/// every run (each task starts with `reset/1`).
 fn agree(mains: &[&str]) {
     let ir = interpreter("typed/ncall21");
-    engine(&ir);
-    agree_both(dms::ncall21::program(), &ir, mains);
-    ENGINE.with(|e| *e.borrow_mut() = None);
+    with_engine(&ir, || agree_both(dms::ncall21::program(), &ir, mains));
 }
 
 /// The compiled task's report (history kept), to check that what the
 /// interpreter gives is the call evaluated once.
 fn report(main: &str) -> String {
-    engine(&interpreter("typed/ncall21"));
-    let r = run(dms::ncall21::program(), main, "", true, false, false);
-    ENGINE.with(|e| *e.borrow_mut() = None);
+    let r = with_engine(&interpreter("typed/ncall21"), || {
+        run(dms::ncall21::program(), main, "", true, false, false)
+    });
     format!("{r:?}")
 }
 
@@ -100,33 +89,33 @@ fn ncall21_bad_values_in_a_call_agree() {
 #[test]
 fn ncall21_held_calls_agree() {
     let ir = interpreter("typed/ncall21");
-    engine(&ir);
-    agree_both(
-        dms::held::program(),
-        &ir,
-        &[
-            "loc(1)",
-            "loc(x)",
-            "loc(_)",
-            "glob(a)",
-            "glob(7)",
-            "glob(f(_))",
-            "glob(_)",
-            "glob([a|_])",
-            "twice(s)",
-            "twice(f(x))",
-            "twice(_)",
-            "arith(2)",
-            "arith(-7)",
-            "arith(a)",
-            "arith(_)",
-            "arith(1.5)",
-            "arith(4611686018427387904)",
-            "bad(1)",
-            "bad(a)",
-            "bad(_)",
-            "bad(f(_))",
-        ],
-    );
-    ENGINE.with(|e| *e.borrow_mut() = None);
+    with_engine(&ir, || {
+        agree_both(
+            dms::held::program(),
+            &ir,
+            &[
+                "loc(1)",
+                "loc(x)",
+                "loc(_)",
+                "glob(a)",
+                "glob(7)",
+                "glob(f(_))",
+                "glob(_)",
+                "glob([a|_])",
+                "twice(s)",
+                "twice(f(x))",
+                "twice(_)",
+                "arith(2)",
+                "arith(-7)",
+                "arith(a)",
+                "arith(_)",
+                "arith(1.5)",
+                "arith(4611686018427387904)",
+                "bad(1)",
+                "bad(a)",
+                "bad(_)",
+                "bad(f(_))",
+            ],
+        )
+    });
 }

@@ -9,7 +9,7 @@
 //! must the compiled task and the interpreter's plans (history, report,
 //! error, actions, observer, with and without history).
 
-use super::{agree_both, interpreter};
+use super::agree_app;
 
 mod dms {
     pub mod globals {
@@ -27,10 +27,9 @@ fn mains(dm: &str) -> Vec<String> {
 }
 
 fn agree(dm: &str) {
-    let ir = interpreter("typed/ncold20/globals");
     let mains = mains(dm);
     let mains: Vec<&str> = mains.iter().map(String::as_str).collect();
-    agree_both(dms::globals::program(), &ir, &mains);
+    agree_app(dms::globals::program(), "typed/ncold20/globals", &mains);
 }
 
 /// `show(get(n, _), get(goal, _))`: a global read beside a local's, each

@@ -13,9 +13,7 @@
 //! of the engine; the compiled task what the interpreter gives without
 //! history.
 
-use super::{interpreter, run, unnumbered, ENGINE};
-use sitlog_compiler::interp::Resolved;
-use sitlog_runtime::Functions;
+use super::{agree_plain, PLAIN_VS};
 
 mod dms {
     pub mod nfnc21 {
@@ -60,53 +58,11 @@ const MAINS: &[&str] = &[
 
 #[test]
 fn nfnc21_plain_calls_and_out_args_agree() {
-    let set = |p: &sitlog_runtime::prolog::PrologFunctions, engine_only: bool| {
-        ENGINE.with(|e| *e.borrow_mut() = Some((p.clone(), engine_only)))
-    };
-    let ir = interpreter("typed/nfnc21");
-    let resolved = Resolved::new(&ir);
-    let mut f = Functions::standard();
-    let p = sitlog_compiler::run::install_prolog(&ir, &mut f, Default::default())
-        .expect("the Prolog files load")
-        .expect("an engine");
-    let names: Vec<String> = p
-        .plain_functions()
-        .iter()
-        .map(|(n, a)| format!("{n}/{a}"))
-        .collect();
-    assert_eq!(names.join(" "), "grow/1 same/2 score/2 step/3");
-    let compiled = dms::nfnc21::program();
-    for main in MAINS {
-        set(&p, true);
-        let by_engine = run(&ir, main, "", true, true, false);
-        set(&p, false);
-        let c = run(compiled, main, "", true, true, false);
-        let i = run(&resolved, main, "", true, true, false);
-        let by_engine = unnumbered(format!("{by_engine:?}"));
-        assert_eq!(
-            unnumbered(format!("{c:?}")),
-            by_engine,
-            "{main}: compiled / engine only"
-        );
-        assert_eq!(
-            unnumbered(format!("{i:?}")),
-            by_engine,
-            "{main}: plans / engine only"
-        );
-        let c = run(compiled, main, "", false, false, false);
-        let i = run(&ir, main, "", false, false, false);
-        assert_eq!(
-            unnumbered(format!("{c:?}")),
-            unnumbered(format!("{i:?}")),
-            "{main}: compiled / interpreter, no history"
-        );
-        let c = run(compiled, main, "", false, true, false);
-        let i = run(&ir, main, "", false, true, false);
-        assert_eq!(
-            unnumbered(format!("{c:?}")),
-            unnumbered(format!("{i:?}")),
-            "{main}: compiled / interpreter, observed, no history"
-        );
-    }
-    ENGINE.with(|e| *e.borrow_mut() = None);
+    agree_plain(
+        dms::nfnc21::program(),
+        "typed/nfnc21",
+        "grow/1 same/2 score/2 step/3",
+        MAINS,
+        PLAIN_VS,
+    );
 }

@@ -14,9 +14,7 @@
 //! Not here: a value holding an improper list (`walk([[x|y], c])`): the
 //! engine fails such a call and stops (`typed::plain_compounds`' doc).
 
-use super::{interpreter, run, unnumbered, ENGINE};
-use sitlog_compiler::interp::Resolved;
-use sitlog_runtime::Functions;
+use super::{agree_plain, PLAIN_VS};
 
 mod dms {
     pub mod nplain20 {
@@ -64,53 +62,11 @@ const MAINS: &[&str] = &[
 
 #[test]
 fn nplain20_plain_functions_on_native_values_agree() {
-    let set = |p: &sitlog_runtime::prolog::PrologFunctions, engine_only: bool| {
-        ENGINE.with(|e| *e.borrow_mut() = Some((p.clone(), engine_only)))
-    };
-    let ir = interpreter("typed/nplain20");
-    let resolved = Resolved::new(&ir);
-    let mut f = Functions::standard();
-    let p = sitlog_compiler::run::install_prolog(&ir, &mut f, Default::default())
-        .expect("the Prolog files load")
-        .expect("an engine");
-    let names: Vec<String> = p
-        .plain_functions()
-        .iter()
-        .map(|(n, a)| format!("{n}/{a}"))
-        .collect();
-    assert_eq!(names.join(" "), "bump/1 heavy/1 is_at/2 next_of/3");
-    let compiled = dms::nplain20::program();
-    for main in MAINS {
-        set(&p, true);
-        let by_engine = run(&ir, main, "", true, true, false);
-        set(&p, false);
-        let c = run(compiled, main, "", true, true, false);
-        let i = run(&resolved, main, "", true, true, false);
-        let by_engine = unnumbered(format!("{by_engine:?}"));
-        assert_eq!(
-            unnumbered(format!("{c:?}")),
-            by_engine,
-            "{main}: compiled / engine only"
-        );
-        assert_eq!(
-            unnumbered(format!("{i:?}")),
-            by_engine,
-            "{main}: plans / engine only"
-        );
-        let c = run(compiled, main, "", false, false, false);
-        let i = run(&ir, main, "", false, false, false);
-        assert_eq!(
-            unnumbered(format!("{c:?}")),
-            unnumbered(format!("{i:?}")),
-            "{main}: compiled / interpreter, no history"
-        );
-        let c = run(compiled, main, "", false, true, false);
-        let i = run(&ir, main, "", false, true, false);
-        assert_eq!(
-            unnumbered(format!("{c:?}")),
-            unnumbered(format!("{i:?}")),
-            "{main}: compiled / interpreter, observed, no history"
-        );
-    }
-    ENGINE.with(|e| *e.borrow_mut() = None);
+    agree_plain(
+        dms::nplain20::program(),
+        "typed/nplain20",
+        "bump/1 heavy/1 is_at/2 next_of/3",
+        MAINS,
+        PLAIN_VS,
+    );
 }

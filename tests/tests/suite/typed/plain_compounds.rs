@@ -14,9 +14,7 @@
 //! runs after it); the native form leaves it to the engine
 //! (`prolog::plain`'s unit tests).
 
-use super::{interpreter, run, unnumbered, ENGINE};
-use sitlog_compiler::interp::Resolved;
-use sitlog_runtime::Functions;
+use super::{agree_plain, engine_of, interpreter, run, unnumbered, use_engine, Vs};
 
 mod dms {
     pub mod plain_compounds {
@@ -52,68 +50,28 @@ const MAINS: &[&str] = &[
     "trip([f(x), g(_)], z)",
 ];
 
-fn engine(app: &str) -> sitlog_runtime::prolog::PrologFunctions {
-    let mut f = Functions::standard();
-    sitlog_compiler::run::install_prolog(&interpreter(app), &mut f, Default::default())
-        .expect("the Prolog files load")
-        .expect("an engine")
-}
-
 #[test]
 fn plain_compounds_agree_with_the_engine() {
-    let set = |p: &sitlog_runtime::prolog::PrologFunctions, engine_only: bool| {
-        ENGINE.with(|e| *e.borrow_mut() = Some((p.clone(), engine_only)))
-    };
-    let ir = interpreter("typed/plain_compounds");
-    let resolved = Resolved::new(&ir);
-    let p = engine("typed/plain_compounds");
-    let names: Vec<String> = p
-        .plain_functions()
-        .iter()
-        .map(|(n, a)| format!("{n}/{a}"))
-        .collect();
-    assert_eq!(names.join(" "), "shape/2 step/3");
-    let compiled = dms::plain_compounds::program();
-    for main in MAINS {
-        set(&p, true);
-        let by_engine = run(&ir, main, "", true, true, false);
-        set(&p, false);
-        let c = run(compiled, main, "", true, true, false);
-        let i = run(&resolved, main, "", true, true, false);
-        let ir_plain = run(&ir, main, "", true, true, false);
-        let by_engine = unnumbered(format!("{by_engine:?}"));
-        assert_eq!(
-            unnumbered(format!("{c:?}")),
-            by_engine,
-            "{main}: compiled / engine only"
-        );
-        assert_eq!(
-            unnumbered(format!("{i:?}")),
-            by_engine,
-            "{main}: plans / engine only"
-        );
-        assert_eq!(
-            unnumbered(format!("{ir_plain:?}")),
-            by_engine,
-            "{main}: interpreter / engine only"
-        );
-        let c = run(compiled, main, "", false, false, false);
-        let i = run(&ir, main, "", false, false, false);
-        assert_eq!(
-            unnumbered(format!("{c:?}")),
-            unnumbered(format!("{i:?}")),
-            "{main}: compiled / interpreter, no history"
-        );
-    }
-    ENGINE.with(|e| *e.borrow_mut() = None);
+    let (ir, p) = agree_plain(
+        dms::plain_compounds::program(),
+        "typed/plain_compounds",
+        "shape/2 step/3",
+        MAINS,
+        &[
+            Vs::CompiledEngine,
+            Vs::PlansEngine,
+            Vs::InterpreterEngine,
+            Vs::NoHistory,
+        ],
+    );
     // `assertz/1` named anywhere: nothing plain, the same runs.
     let ir_a = interpreter("typed/plain_compounds_assert");
-    let pa = engine("typed/plain_compounds_assert");
+    let pa = engine_of(&ir_a);
     assert!(pa.plain_functions().is_empty());
     for main in MAINS {
-        set(&p, true);
+        use_engine(Some(&p), true);
         let by_engine = run(&ir, main, "", true, true, false);
-        set(&pa, false);
+        use_engine(Some(&pa), false);
         let a = run(&ir_a, main, "", true, true, false);
         assert_eq!(
             unnumbered(format!("{a:?}")).replace("plain_compounds_assert/", "plain_compounds/"),
@@ -121,5 +79,5 @@ fn plain_compounds_agree_with_the_engine() {
             "{main}: with assertz named / engine only"
         );
     }
-    ENGINE.with(|e| *e.borrow_mut() = None);
+    use_engine(None, false);
 }

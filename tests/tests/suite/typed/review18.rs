@@ -4,7 +4,7 @@
 //! and on the interpreter's plans against the interpreter (history,
 //! report, error, actions, observer), with and without history.
 
-use super::{agree, agree_both, interpreter, ENGINE};
+use super::{agree, agree_app, agree_both, interpreter, with_engine};
 use sitlog_compiler::interp::Resolved;
 
 mod dms {
@@ -41,10 +41,9 @@ mod dms {
 /// atom, an unbound variable and a compound where the count is compared.
 #[test]
 fn deep_limit_agrees() {
-    let ir = interpreter("typed/review18/r18_c_deep_limit");
-    agree_both(
+    agree_app(
         dms::deep_limit::program(),
-        &ir,
+        "typed/review18/r18_c_deep_limit",
         &[
             "top(3)",
             "top(0)",
@@ -60,10 +59,9 @@ fn deep_limit_agrees() {
 /// parameter: good limits, a float, an atom, unbound, a list.
 #[test]
 fn clerk_global_agrees() {
-    let ir = interpreter("typed/review18/r18_c_clerk_global");
-    agree_both(
+    agree_app(
         dms::clerk::program(),
-        &ir,
+        "typed/review18/r18_c_clerk_global",
         &[
             "boss(3)",
             "boss(1)",
@@ -82,10 +80,9 @@ fn clerk_global_agrees() {
 /// arity, a float quantity, rounds not a number.
 #[test]
 fn item_qty_agrees() {
-    let ir = interpreter("typed/review18/r18_d_item_qty");
-    agree_both(
+    agree_app(
         dms::item_qty::program(),
-        &ir,
+        "typed/review18/r18_d_item_qty",
         &[
             "stock(2, [item(a, 1), item(b, 2), item(c, 3)], c)",
             "stock(2, [item(a, 1), item(b, 2)], z)",
@@ -114,10 +111,9 @@ fn item_qty_agrees() {
 /// unbound room, an open tail.
 #[test]
 fn room_of_agrees() {
-    let ir = interpreter("typed/review18/r18_d_room_of");
-    agree_both(
+    agree_app(
         dms::room_of::program(),
-        &ir,
+        "typed/review18/r18_d_room_of",
         &[
             "tidy(2, [k-cup, b-pen, l-box], pen, b)",
             "tidy(2, [k-cup, b-pen, l-box], pen, k)",
@@ -146,38 +142,28 @@ fn fn_next_agrees() {
     let ir = interpreter("typed/review18/r18_d_fn_next");
     // One engine for every run (`route/3` keeps no state): loading it per
     // run is minutes in a debug build.
-    let mut f = sitlog_runtime::Functions::standard();
-    let engine = sitlog_compiler::run::install_prolog(&ir, &mut f, Default::default())
-        .expect("the Prolog files load")
-        .expect("an engine");
-    ENGINE.with(|e| *e.borrow_mut() = Some((engine, false)));
-    agree_both(
-        dms::fn_next::program(),
-        &ir,
-        &[
-            "errand(2, [a, b, c], c)",
-            "errand(2, [a, b], z)",
-            "errand(2, [], c)",
-            "errand(2, [a|b], z)",
-            "errand(2, [a, b], _)",
-            "errand(2, [a, boom, c], c)",
-            "errand(2, [a, odd, c], c)",
-            "errand(y, [a], a)",
-            "errand(1, [a|T], z)",
-            "errand(1, [1, 1.0], 1.0)",
-        ],
-    );
-    ENGINE.with(|e| *e.borrow_mut() = None);
+    let mains = [
+        "errand(2, [a, b, c], c)",
+        "errand(2, [a, b], z)",
+        "errand(2, [], c)",
+        "errand(2, [a|b], z)",
+        "errand(2, [a, b], _)",
+        "errand(2, [a, boom, c], c)",
+        "errand(2, [a, odd, c], c)",
+        "errand(y, [a], a)",
+        "errand(1, [a|T], z)",
+        "errand(1, [1, 1.0], 1.0)",
+    ];
+    with_engine(&ir, || agree_both(dms::fn_next::program(), &ir, &mains));
 }
 
 /// (d) a callee's list walked by the caller: found, missing, no stops,
 /// an improper tail, an unbound dock, an unbound list.
 #[test]
 fn callee_list_agrees() {
-    let ir = interpreter("typed/review18/r18_d_callee_list");
-    agree_both(
+    agree_app(
         dms::callee_list::program(),
-        &ir,
+        "typed/review18/r18_d_callee_list",
         &[
             "courier(2, [a, b, c], a)",
             "courier(2, [a, b, c], z)",
@@ -236,8 +222,14 @@ fn lockstep_agrees() {
         "gauge(2, [1, 2], [3, 4], _)",
         "gauge(1, [4611686018427387904], [2], 0)",
     ];
-    let ir = interpreter("typed/review18/r18_d_lockstep");
-    agree_both(dms::lockstep::program(), &ir, &mains);
-    let ir = interpreter("typed/review18/r18_d_lockstep_any");
-    agree_both(dms::lockstep_any::program(), &ir, &mains);
+    agree_app(
+        dms::lockstep::program(),
+        "typed/review18/r18_d_lockstep",
+        &mains,
+    );
+    agree_app(
+        dms::lockstep_any::program(),
+        "typed/review18/r18_d_lockstep_any",
+        &mains,
+    );
 }

@@ -7,7 +7,7 @@
 //! plans against the interpreter (history, report, error, actions,
 //! observer), with and without history.
 
-use super::{agree_both, agree_piped, interpreter, ENGINE};
+use super::{agree_both, agree_piped, interpreter, with_engine};
 use sitlog_compiler::interp::Resolved;
 use sitlog_compiler::ir::Ir;
 use sitlog_runtime::app;
@@ -260,26 +260,17 @@ fn when_qty_agrees() {
 #[test]
 fn prolog_first_agrees() {
     let ir = interpreter("typed/review19/r19_d_prolog_first");
-    let mut f = sitlog_runtime::Functions::standard();
-    let engine = sitlog_compiler::run::install_prolog(&ir, &mut f, Default::default())
-        .expect("the Prolog files load")
-        .expect("an engine");
-    ENGINE.with(|e| *e.borrow_mut() = Some((engine, false)));
-    agree_all(
-        dms::prolog_first::program(),
-        &ir,
-        &[
-            "weigh(2, [3, 1000, 5])",
-            "weigh(2, [3, 5])",
-            "weigh(2, [])",
-            "weigh(2, [3|x])",
-            "weigh(2, [3, a, 1000])",
-            "weigh(2, [3, _, 1000])",
-            "weigh(2, [3, -1, 1000])",
-            "weigh(2, [1000.5])",
-            "weigh(1, [3|T])",
-            "weigh(x, [1000])",
-        ],
-    );
-    ENGINE.with(|e| *e.borrow_mut() = None);
+    let mains = [
+        "weigh(2, [3, 1000, 5])",
+        "weigh(2, [3, 5])",
+        "weigh(2, [])",
+        "weigh(2, [3|x])",
+        "weigh(2, [3, a, 1000])",
+        "weigh(2, [3, _, 1000])",
+        "weigh(2, [3, -1, 1000])",
+        "weigh(2, [1000.5])",
+        "weigh(1, [3|T])",
+        "weigh(x, [1000])",
+    ];
+    with_engine(&ir, || agree_all(dms::prolog_first::program(), &ir, &mains));
 }
