@@ -3918,6 +3918,9 @@ mod fid21;
 /// Helper `ncall21`'s calls with evaluated arguments (issue 37).
 mod ncall21;
 
+/// Helper `nyes22`'s perceptions matched in place (issue 37).
+mod nyes22;
+
 /// Helper `nfnc21`'s plain calls without fresh variables, out_args without
 /// the hand-over (issue 37).
 mod nfnc21;
