@@ -88,10 +88,17 @@ pub fn run_error_diagnostic(ir: &Ir, error: &RunError) -> Option<Diagnostic> {
     if let Some(a) = error.arc {
         place.push(format!("arc {a}"));
     }
+    // Variables numbered as `RunError`'s text numbers them (the place
+    // first, then the message): the same in every back end.
+    let place = place.join(", ");
+    let text = sitlog_runtime::machine::renumber_vars_after(&place, &error.message);
     let message = if place.is_empty() {
-        error.message.clone()
+        text
     } else {
-        format!("{} (in {})", error.message, place.join(", "))
+        format!(
+            "{text} (in {})",
+            sitlog_runtime::machine::renumber_vars(&place)
+        )
     };
     Some(
         Diagnostic::error(

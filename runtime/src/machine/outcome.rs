@@ -34,8 +34,26 @@ pub struct ErrorSite {
     pub in_arg: bool,
 }
 
+/// The text of a [`RunError`]: where, then what.
+///
+/// Its unbound variables are numbered in order of first appearance in the
+/// whole text (`_G0`, `_G1`, ..; [`renumber_vars`]): each back end's store
+/// numbers its variables apart (the interpreter's `_G25` is the compiled
+/// task's `_G33`), so the store's numbers would make the same error read
+/// differently in `sitlogc run` and a compiled task. A variable that occurs
+/// twice keeps one name; our convention compares every `_G..` alike with
+/// the original's.
 impl std::fmt::Display for RunError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&renumber_vars(&self.unnumbered_text()))
+    }
+}
+
+impl RunError {
+    /// The text as the parts hold it, variables numbered by the store.
+    fn unnumbered_text(&self) -> String {
+        use std::fmt::Write;
+        let mut f = String::new();
         let mut place = Vec::new();
         if let Some(dm) = &self.dm {
             place.push(format!("DM `{dm}`"));
@@ -47,14 +65,75 @@ impl std::fmt::Display for RunError {
             place.push(format!("arc {a}"));
         }
         if !place.is_empty() {
-            write!(f, "in {}", place.join(", "))?;
+            let _ = write!(f, "in {}", place.join(", "));
             if let Some(loc) = &self.location {
-                write!(f, " ({loc})")?;
+                let _ = write!(f, " ({loc})");
             }
-            write!(f, ": ")?;
+            f.push_str(": ");
         }
-        f.write_str(&self.message)
+        f.push_str(&self.message);
+        f
     }
+}
+
+/// `text` with every variable name `_G<n>` that the writer made renamed
+/// `_G<k>`, `k` its order of first appearance. A name the writer made is
+/// `_G` and digits, not preceded by a letter (any non-ASCII character
+/// counts as one), digit, `_` or a quote and not followed by a letter,
+/// digit or `_` (a quoted atom `'_G5'` and a name such as `x_G5` or `_G5a`
+/// stay as they are).
+pub fn renumber_vars(text: &str) -> String {
+    renumber_vars_after("", text)
+}
+
+/// [`renumber_vars`] of `text` as if it followed `before`: the names that
+/// occur in `before` are numbered first, in their order there (a rendered
+/// diagnostic that writes the message before the place it names numbers
+/// them as [`RunError`]'s text, which writes the place first).
+pub fn renumber_vars_after(before: &str, text: &str) -> String {
+    let mut seen: Vec<&str> = Vec::new();
+    renumber_into(before, &mut seen);
+    renumber_into(text, &mut seen)
+}
+
+fn renumber_into<'t>(text: &'t str, seen: &mut Vec<&'t str>) -> String {
+    let b = text.as_bytes();
+    let mut out = String::with_capacity(text.len());
+    let mut last = 0;
+    let mut i = 0;
+    while i + 2 < b.len() {
+        let starts = b[i] == b'_'
+            && b[i + 1] == b'G'
+            && b[i + 2].is_ascii_digit()
+            && (i == 0
+                || !(b[i - 1].is_ascii_alphanumeric()
+                    || b[i - 1] >= 0x80
+                    || matches!(b[i - 1], b'_' | b'\'' | b'"')));
+        if !starts {
+            i += 1;
+            continue;
+        }
+        let mut j = i + 2;
+        while j < b.len() && b[j].is_ascii_digit() {
+            j += 1;
+        }
+        if j < b.len() && (b[j].is_ascii_alphanumeric() || b[j] >= 0x80 || b[j] == b'_') {
+            i = j;
+            continue;
+        }
+        let digits = &text[i + 2..j];
+        let k = seen.iter().position(|&d| d == digits).unwrap_or_else(|| {
+            seen.push(digits);
+            seen.len() - 1
+        });
+        out.push_str(&text[last..i]);
+        out.push_str("_G");
+        out.push_str(&k.to_string());
+        last = j;
+        i = j;
+    }
+    out.push_str(&text[last..]);
+    out
 }
 
 impl std::error::Error for RunError {}
@@ -138,4 +217,31 @@ pub struct Outcome {
     /// in the order it happened; a runner prints them on stderr, never
     /// in the report.
     pub warnings: Vec<RunWarning>,
+}
+
+#[cfg(test)]
+mod renumber_tests {
+    use super::renumber_vars;
+
+    #[test]
+    fn variables_are_numbered_in_order_of_appearance() {
+        assert_eq!(
+            renumber_vars("in DM `f(_G33,_G7)`: in `_G7 is _G33+_G12`"),
+            "in DM `f(_G0,_G1)`: in `_G1 is _G0+_G2`"
+        );
+    }
+
+    #[test]
+    fn names_the_writer_did_not_make_stay() {
+        for s in ["'_G5'", "x_G5", "_G5a", "_G", "_Gx", "\"_G3\"", "a_G_1"] {
+            assert_eq!(renumber_vars(s), s);
+        }
+        assert_eq!(renumber_vars("_G9"), "_G0");
+        assert_eq!(
+            super::renumber_vars_after("g(_G4)", "f(_G9,_G4)"),
+            "f(_G1,_G0)"
+        );
+        assert_eq!(renumber_vars("(_G9)"), "(_G0)");
+        assert_eq!(renumber_vars("é_G9 _G4 _G9é"), "é_G9 _G0 _G9é");
+    }
 }

@@ -5,7 +5,7 @@
 //! (`tests/typed/fid21`): the runner's report with the location
 //! `App::error_location` gives it.
 
-use super::{functions, interpreter, unnumbered, ENGINE};
+use super::{functions, interpreter, ENGINE};
 use sitlog_compiler::interp::Resolved;
 use sitlog_runtime::machine::{Options, RunError};
 use sitlog_runtime::testmode::{ScriptPerception, TextActions};
@@ -45,14 +45,14 @@ fn error_of<A: app::App>(app: &A, case: &str, keep_history: bool) -> String {
         e.location = Some(at);
     }
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/");
-    unnumbered(e.to_string().replace(root, ""))
+    e.to_string().replace(root, "")
 }
 
 /// Each case's error, where the interpreter names it.
 const WANT: &[(&str, &str)] = &[
     ("inc_atom", "in DM `main(inc_atom)`, situation `inc_atom`, arc 1 (typed/fid21/main.dm:8:39): `inc` of `name`: its value `bob` is not a number"),
     ("apply_fails", "in DM `main(apply_fails)`, situation `apply_fails`, arc 1 (typed/fid21/main.dm:10:30): user function `never/1` failed: `never/1` failed"),
-    ("is_atom", "in DM `main(is_atom)`, situation `is_atom` (typed/fid21/main.dm:11:65): in `_G is bob+1`: Arithmetic: evaluable `bob/0' does not exist"),
+    ("is_atom", "in DM `main(is_atom)`, situation `is_atom` (typed/fid21/main.dm:11:65): in `_G0 is bob+1`: Arithmetic: evaluable `bob/0' does not exist"),
     ("by_zero", "in DM `main(by_zero)`, situation `by_zero`, arc 1 (typed/fid21/main.dm:14:43): user function `ratio/2` failed: `ratio/2` raised error(evaluation_error(zero_divisor),(/)/2)"),
     ("no_situation", "in DM `main(no_situation)`, situation `no_situation`, arc 1 (typed/fid21/main.dm:16:18): there is no situation `[x,x]` in this DM"),
     ("unbound_action", "ok"),
