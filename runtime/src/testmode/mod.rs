@@ -96,16 +96,31 @@ impl RecentAtoms {
     /// [`plain_atom`]'s atom of the plain atom `name` (its text), `None`
     /// for an operator (the operator table asked only for a word not
     /// kept).
+    /// The word is `text[start..end]`.
     #[inline]
-    fn atom(&mut self, name: &str) -> Option<Atom> {
+    fn atom(&mut self, text: &str, start: usize, end: usize) -> Option<Atom> {
+        let name = &text[start..end];
         let bytes = name.as_bytes();
         let ops = OpTable::sitlog_shared;
         if bytes.len() > 8 {
             return not_op(Atom::intern(name), ops());
         }
-        let mut packed = [0u8; 8];
-        packed[..bytes.len()].copy_from_slice(bytes);
-        let key = u64::from_le_bytes(packed);
+        // Packed from the eight bytes at `start` where the text has them
+        // (one load, the bytes past the word masked off), else copied.
+        let key = match text.as_bytes().get(start..start + 8) {
+            Some(eight) => {
+                let word = u64::from_le_bytes(eight.try_into().expect("eight bytes"));
+                match bytes.len() {
+                    8 => word,
+                    n => word & ((1u64 << (8 * n)) - 1),
+                }
+            }
+            None => {
+                let mut packed = [0u8; 8];
+                packed[..bytes.len()].copy_from_slice(bytes);
+                u64::from_le_bytes(packed)
+            }
+        };
         if let Some(i) = self.keys.iter().position(|&k| k == key) {
             return self.atoms[i];
         }
@@ -331,7 +346,7 @@ impl ScriptPerception {
         if end + 1 > self.limits.max_bytes {
             return None;
         }
-        let atom = self.recent.atom(&rest[start..end])?;
+        let atom = self.recent.atom(rest, start, end)?;
         self.pos += end + 1;
         Some(atom)
     }
@@ -345,7 +360,7 @@ impl ScriptPerception {
         if self.atoms_fast {
             // `plain_atom`, a word read lately looked up in `recent`.
             let plain = plain_atom_at(rest)
-                .and_then(|(start, end)| Some((self.recent.atom(&rest[start..end])?, end + 1)));
+                .and_then(|(start, end)| Some((self.recent.atom(rest, start, end)?, end + 1)));
             if let Some((name, end)) = plain {
                 if end <= self.limits.max_bytes {
                     let start = self.pos;

@@ -275,7 +275,11 @@ fn nyes22_compiled_code_matches_inputs_unbuilt() {
         let mut c = counting();
         let got = run_perceiving(dms::nyes22::program(), "main(hi)", &mut c, keep);
         assert_eq!(unnumbered(format!("{got:?}")), want, "history {keep}");
-        assert!((12..=16).contains(&c.wrapped), "history {keep}: {}", c.wrapped);
+        assert!(
+            (12..=16).contains(&c.wrapped),
+            "history {keep}: {}",
+            c.wrapped
+        );
         let mut i = counting();
         let got = run_perceiving(&ir, "main(hi)", &mut i, keep);
         assert_eq!(unnumbered(format!("{got:?}")), want, "history {keep}");
