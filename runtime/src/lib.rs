@@ -17,7 +17,9 @@
 //!   `member`, list heads and tails, `get`/`set`/`inc` of globals and
 //!   locals, the pipe and DM parameters (`in_arg`/`out_arg`), matching a
 //!   callee's final situation against exit arcs, matching a perception
-//!   against expectations with the frames kept (`Cx::choose_kept`), plain
+//!   against expectations with the frames kept (`Cx::choose_kept`; a
+//!   perception's `said(Input)` matched in place, not built:
+//!   `machine::Percept`), plain
 //!   user functions (`plain`, run in Rust before they would become
 //!   a query), and performing an action built of values (converted to a term
 //!   only at the effector); its frames are typed (`machine::native_stack`

@@ -15,6 +15,7 @@
 
 use crate::store::Store;
 use crate::term::{Repr, Term};
+use sitlog_syntax::Atom;
 use std::cell::Cell;
 use std::cmp::Ordering;
 use std::collections::HashSet;
@@ -118,6 +119,36 @@ impl Store {
         }
         let constant = |t: &Term| !matches!(t.0, Repr::Var(_) | Repr::Struct(_) | Repr::Big(_));
         xs.iter().chain(ys).all(constant).then(|| xs == ys)
+    }
+
+    /// [`Store::unify`] of the compound `name(arg)`, not built, with `e`
+    /// (an input `said(yes)` a perception hands over unbuilt, against an
+    /// expectation): `e` of another functor or arity, or not a compound,
+    /// never unifies; `name(E)` unifies when `E` unifies with `arg`, with
+    /// the bindings `unify` of the compounds makes (their one pair of
+    /// arguments), two constants compared in place; `None` when `e` is
+    /// unbound (the caller builds the compound to bind it).
+    #[inline]
+    pub fn unify_wrapped(&mut self, name: Atom, arg: Term, e: Term) -> Option<bool> {
+        let p = match self.deref(e).0 {
+            Repr::Struct(p) => p,
+            Repr::Var(_) => return None,
+            _ => return Some(false),
+        };
+        let (f, args) = self.compound_at(p);
+        if f != name || args.len() != 1 {
+            return Some(false);
+        }
+        let a = self.deref(arg);
+        let b = self.deref(args[0]);
+        if a == b {
+            return Some(true);
+        }
+        let constant = |t: Term| !matches!(t.0, Repr::Var(_) | Repr::Struct(_) | Repr::Big(_));
+        if constant(a) && constant(b) {
+            return Some(false);
+        }
+        Some(self.unify(a, b))
     }
 
     fn unify_pairs(&mut self, stack: &mut Vec<(Term, Term)>) -> bool {
@@ -408,6 +439,73 @@ mod tests {
         assert_eq!(s.unify_flat(open, no), None);
         assert!(s.unify(open, no));
         assert_eq!(s.deref(v), a("no"));
+    }
+
+    /// `unify_wrapped(name, arg, e)` (the input `name(arg)` not built)
+    /// gives what `unify` of the built compound gives, with the same
+    /// bindings, for every pair of an input and an expectation of a grid:
+    /// constants, numbers, big integers, variables (fresh, shared,
+    /// repeated), compounds, another functor or arity.
+    #[test]
+    fn unify_wrapped_agrees_with_the_compound() {
+        let inputs = [
+            "yes",
+            "no",
+            "1",
+            "1.0",
+            "123456789012345678901234567890",
+            "_",
+            "f(_)",
+            "f(a)",
+            "p(a, a)",
+            "p(a, b)",
+            "[x, y]",
+            "said(x)",
+        ];
+        let exps = [
+            "said(yes)",
+            "said(no)",
+            "said(1)",
+            "said(1.0)",
+            "said(123456789012345678901234567890)",
+            "said(_)",
+            "said(f(b))",
+            "said(f(X))",
+            "said(p(X, X))",
+            "said(p(X, Y))",
+            "said([H|T])",
+            "said(said(Z))",
+            "said(a, b)",
+            "heard(yes)",
+            "yes",
+            "_",
+        ];
+        let said = Atom::intern("said");
+        for input in inputs {
+            for exp in exps {
+                // Each way on its own store, the same terms read in order.
+                let run = |wrapped: bool| {
+                    let mut s = Store::new();
+                    let (arg, _) = s.parse(input).unwrap();
+                    let (e, _) = s.parse(exp).unwrap();
+                    let met = if wrapped {
+                        match s.unify_wrapped(said, arg, e) {
+                            Some(met) => met,
+                            None => {
+                                let whole = s.compound(said, &[arg]);
+                                s.unify(whole, e)
+                            }
+                        }
+                    } else {
+                        let whole = s.compound(said, &[arg]);
+                        s.unify(whole, e)
+                    };
+                    let whole = s.compound(said, &[arg]);
+                    (met, s.writeq(whole), s.writeq(e), s.stats().trail)
+                };
+                assert_eq!(run(true), run(false), "said({input}) against {exp}");
+            }
+        }
     }
 
     #[test]

@@ -1,5 +1,9 @@
 //! The world side of the machine: what it asks ([`Perception`]) and what
-//! it has done ([`Actions`]).
+//! it has done ([`Actions`]). A perception may also hand over what it read
+//! with its wrapper not built ([`Percept`], [`Perception::perceive_percept`]);
+//! every such percept means exactly the term [`Percept::into_perceived`]
+//! builds, so matching it in place (`Machine::perceive_kept`) agrees with
+//! matching that term.
 
 use crate::store::Store;
 use crate::term::Term;
@@ -17,6 +21,31 @@ pub enum Perceived {
     Again,
 }
 
+/// What a perception perceived, as [`Perception::perceive_percept`] hands
+/// it over: a [`Perceived`], or an input wrapped by a functor of one
+/// argument (`said(Input)` for a `listening` situation, D-14) with the
+/// wrapper not built, so that the machine can match the input against
+/// each expectation `said(..)` in place, no compound made for an input
+/// that meets one. It means the term [`Percept::into_perceived`] builds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Percept {
+    /// [`Perceived::Input`], [`Perceived::EndOfInput`] or [`Perceived::Again`].
+    Whole(Perceived),
+    /// The input `name(arg)`, not built.
+    Wrapped(sitlog_syntax::Atom, Term),
+}
+
+impl Percept {
+    /// The [`Perceived`] this percept means: `name(arg)` built for a
+    /// wrapped input.
+    pub fn into_perceived(self, store: &mut Store) -> Perceived {
+        match self {
+            Percept::Whole(p) => p,
+            Percept::Wrapped(name, arg) => Perceived::Input(store.compound(name, &[arg])),
+        }
+    }
+}
+
 /// Perceptual interpreters: given the situation type and the evaluated
 /// expectations, perceive what happened (in test mode: read a term).
 pub trait Perception {
@@ -26,6 +55,26 @@ pub trait Perception {
         situation_type: Term,
         expectations: &[Term],
     ) -> Result<Perceived, String>;
+
+    /// [`Perception::perceive`], an input wrapped by a functor of one
+    /// argument (`said(X)`) possibly handed over unbuilt
+    /// ([`Percept::Wrapped`]); it must mean (by
+    /// [`Percept::into_perceived`]) exactly what `perceive` would have
+    /// given, with the same effects (the input read, echoed). The
+    /// default calls `perceive` ([`Percept::Whole`]), always correct.
+    /// Asked where compiled code perceives with its frames kept
+    /// (`Machine::perceive_kept`), which matches a wrapped input against
+    /// the expectations in place. Wrappers that only forward `perceive`
+    /// may forward it too.
+    fn perceive_percept(
+        &mut self,
+        store: &mut Store,
+        situation_type: Term,
+        expectations: &[Term],
+    ) -> Result<Percept, String> {
+        self.perceive(store, situation_type, expectations)
+            .map(Percept::Whole)
+    }
 
     /// Where the next [`Perception::perceive`] is asked for: the running
     /// DM's call and the situation's id (for a prompt that names them).

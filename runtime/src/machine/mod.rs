@@ -21,7 +21,7 @@
 //! this file only re-exports, so every public item keeps its path
 //! `sitlog_runtime::machine::X`):
 //! - `situation`: indices, [`Kind`], [`Instance`]; `io`: [`Perception`],
-//!   [`Actions`]; `options`: [`Options`];
+//!   [`Percept`], [`Actions`]; `options`: [`Options`];
 //! - `outcome`: [`Outcome`], [`RunError`], [`RunWarning`]; `places`: where
 //!   a run-time error happened in the source ([`places::blame`]), for both
 //!   back ends;
@@ -61,7 +61,7 @@ mod steps;
 
 pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, Fill, FromIdParts, IdArg, OutSlot};
 pub use effect::{AnyShape, Due, NatAction, NatEntry};
-pub use io::{ActionShape, Actions, Perceived, Perception};
+pub use io::{ActionShape, Actions, Perceived, Percept, Perception};
 pub use native_stack::{
     nat_choose, nat_drive, nat_goto, nat_hand_over, nat_materialize, nat_plain, nat_replace_done,
     nat_template, NatAt, NatBelow, NatFrames,

@@ -3,7 +3,7 @@
 //! of the met one (perception, the neutral rule, exit arcs), action, next
 //! situation, out_arg, diag_mod and the history entry (D-8..D-22).
 
-use super::io::{Actions, Perceived, Perception};
+use super::io::{Actions, Perceived, Percept, Perception};
 use super::observe::Observer;
 use super::outcome::RunError;
 use super::program::DmProgram;
@@ -389,7 +389,8 @@ impl<'p, P: DmProgram> Machine<'p, P> {
     /// [`Machine::choose_index`]'s first read, for native code that keeps
     /// its frames (`Cx::choose_kept`): `Ok(i)` when arc `i`'s expectation
     /// is met (the last that unifies, as there), with no effect but the
-    /// perception's and the bindings; else `Err(first)`, nothing but the
+    /// perception's and the bindings (an input handed over as
+    /// [`Percept::Wrapped`] matched in place, [`Machine::match_wrapped`]); else `Err(first)`, nothing but the
     /// read done, for `choose_index` to go on from it (`first`: what was
     /// read) once the frames are the machine's. Nothing here reads the
     /// machine's frames: the cases that do are left to `choose_index`
@@ -409,9 +410,12 @@ impl<'p, P: DmProgram> Machine<'p, P> {
         {
             return Err(None);
         }
-        let exps = std::mem::take(&mut self.expectations);
-        let perceived = perception.perceive(&mut self.store, type_term, &exps);
-        self.expectations = exps;
+        let percept = perception.perceive_percept(&mut self.store, type_term, &self.expectations);
+        let perceived = match percept {
+            Ok(Percept::Wrapped(name, arg)) => return self.match_wrapped(name, arg),
+            Ok(Percept::Whole(p)) => Ok(p),
+            Err(e) => Err(e),
+        };
         let Ok(Perceived::Input(input)) = perceived else {
             return Err(Some(perceived));
         };
@@ -429,6 +433,38 @@ impl<'p, P: DmProgram> Machine<'p, P> {
             self.store.undo_to(mark);
         }
         Err(Some(perceived))
+    }
+
+    /// [`Machine::perceive_kept`]'s match of the input `name(arg)`, not
+    /// built ([`Percept::Wrapped`]), against the expectations, the last
+    /// that unifies winning: an expectation `name(E)` unifies with it when
+    /// `E` unifies with `arg` (the same bindings as unifying the
+    /// compounds), one of another functor or a constant never does; an
+    /// unbound expectation gets `name(arg)` built. `Err` with the input
+    /// built when none is met, for `choose_index` to go on from.
+    #[inline]
+    fn match_wrapped(
+        &mut self,
+        name: sitlog_syntax::Atom,
+        arg: Term,
+    ) -> Result<usize, Option<Result<Perceived, String>>> {
+        let mut whole = None;
+        for i in (0..self.expectations.len()).rev() {
+            let e = self.expectations[i];
+            // A failed unification undoes its own bindings.
+            match self.store.unify_wrapped(name, arg, e) {
+                Some(true) => return Ok(i),
+                Some(false) => {}
+                None => {
+                    let input = *whole.get_or_insert_with(|| self.store.compound(name, &[arg]));
+                    if self.store.unify(input, e) {
+                        return Ok(i);
+                    }
+                }
+            }
+        }
+        let input = whole.unwrap_or_else(|| self.store.compound(name, &[arg]));
+        Err(Some(Ok(Perceived::Input(input))))
     }
 
     /// The first exit arc whose expectation unifies with the embedded DM's

@@ -102,7 +102,9 @@ impl Compound {
         Compound(std::iter::once(Val::Sym(name)).chain(args).collect())
     }
 
-    /// The name.
+    /// The name (inlined: a selection by a field's functor,
+    /// `Val::args_of`, asks it at every visit).
+    #[inline]
     pub fn name(&self) -> Atom {
         match self.0.first() {
             Some(Val::Sym(name)) => *name,
@@ -111,6 +113,7 @@ impl Compound {
     }
 
     /// The arguments.
+    #[inline]
     pub fn args(&self) -> &[Val] {
         &self.0[1..]
     }

@@ -10,7 +10,7 @@
 //! `doas(T)`, `speaker(T)`, several terms read...).
 
 pub use crate::input::{InputLimits, SharedInput, TermInput};
-use crate::machine::{ActionShape, Actions, Perceived, Perception};
+use crate::machine::{ActionShape, Actions, Perceived, Percept, Perception};
 use crate::store::Store;
 use crate::term::Term;
 use sitlog_syntax::{Atom, ClauseReader, OpTable};
@@ -43,10 +43,15 @@ pub fn deliver_typed(store: &mut Store, ty: Term, input: Term) -> Perceived {
 }
 
 fn deliver(store: &mut Store, ty: Term, input: Term) -> Perceived {
+    deliver_percept(store, ty, input).into_perceived(store)
+}
+
+/// [`deliver`]'s input, `said(Input)` not built ([`Percept::Wrapped`]).
+fn deliver_percept(store: &Store, ty: Term, input: Term) -> Percept {
     if wraps_said(store, ty) {
-        Perceived::Input(store.compound(said_atoms()[0], &[input]))
+        Percept::Wrapped(said_atoms()[0], input)
     } else {
-        Perceived::Input(input)
+        Percept::Whole(Perceived::Input(input))
     }
 }
 
@@ -89,20 +94,37 @@ struct RecentAtoms {
 
 impl RecentAtoms {
     /// [`plain_atom`]'s atom of the plain atom `name` (its text), `None`
-    /// for an operator.
+    /// for an operator (the operator table asked only for a word not
+    /// kept).
+    /// The word is `text[start..end]`.
     #[inline]
-    fn atom(&mut self, name: &str, ops: &OpTable) -> Option<Atom> {
+    fn atom(&mut self, text: &str, start: usize, end: usize) -> Option<Atom> {
+        let name = &text[start..end];
         let bytes = name.as_bytes();
+        let ops = OpTable::sitlog_shared;
         if bytes.len() > 8 {
-            return not_op(Atom::intern(name), ops);
+            return not_op(Atom::intern(name), ops());
         }
-        let mut packed = [0u8; 8];
-        packed[..bytes.len()].copy_from_slice(bytes);
-        let key = u64::from_le_bytes(packed);
+        // Packed from the eight bytes at `start` where the text has them
+        // (one load, the bytes past the word masked off), else copied.
+        let key = match text.as_bytes().get(start..start + 8) {
+            Some(eight) => {
+                let word = u64::from_le_bytes(eight.try_into().expect("eight bytes"));
+                match bytes.len() {
+                    8 => word,
+                    n => word & ((1u64 << (8 * n)) - 1),
+                }
+            }
+            None => {
+                let mut packed = [0u8; 8];
+                packed[..bytes.len()].copy_from_slice(bytes);
+                u64::from_le_bytes(packed)
+            }
+        };
         if let Some(i) = self.keys.iter().position(|&k| k == key) {
             return self.atoms[i];
         }
-        let atom = not_op(Atom::intern(name), ops)?;
+        let atom = not_op(Atom::intern(name), ops())?;
         let i = self.next;
         self.keys[i] = key;
         self.atoms[i] = Some(atom);
@@ -310,6 +332,25 @@ enum ScriptInput {
 }
 
 impl ScriptPerception {
+    /// [`ScriptPerception::next_input`]'s plain atom, read past, where the
+    /// script is given whole (nothing more to read into `text`): the same
+    /// atom and position, without the clause-sized result; `None`
+    /// (nothing read) for anything else.
+    #[inline]
+    fn next_plain_atom(&mut self) -> Option<Atom> {
+        if self.source.is_some() || !self.atoms_fast {
+            return None;
+        }
+        let rest = &self.text[self.pos..];
+        let (start, end) = plain_atom_at(rest)?;
+        if end + 1 > self.limits.max_bytes {
+            return None;
+        }
+        let atom = self.recent.atom(rest, start, end)?;
+        self.pos += end + 1;
+        Some(atom)
+    }
+
     /// The next input and the offsets in `text` of its text (`None` at
     /// the end of the script); past it once read.
     fn next_input(&mut self) -> Result<Option<(ScriptInput, usize, usize)>, String> {
@@ -318,9 +359,8 @@ impl ScriptPerception {
         let rest = &self.text[self.pos..];
         if self.atoms_fast {
             // `plain_atom`, a word read lately looked up in `recent`.
-            let plain = plain_atom_at(rest).and_then(|(start, end)| {
-                Some((self.recent.atom(&rest[start..end], ops)?, end + 1))
-            });
+            let plain = plain_atom_at(rest)
+                .and_then(|(start, end)| Some((self.recent.atom(rest, start, end)?, end + 1)));
             if let Some((name, end)) = plain {
                 if end <= self.limits.max_bytes {
                     let start = self.pos;
@@ -372,17 +412,31 @@ impl Perception for ScriptPerception {
         &mut self,
         store: &mut Store,
         ty: Term,
-        _expectations: &[Term],
+        expectations: &[Term],
     ) -> Result<Perceived, String> {
-        let t = match self.next_input()? {
-            None => return Ok(Perceived::EndOfInput),
-            Some((ScriptInput::Atom(a), _, _)) => Term::atom(a),
-            Some((ScriptInput::Clause(clause), _, _)) => store.from_clause(&clause).0,
+        let percept = self.perceive_percept(store, ty, expectations)?;
+        Ok(percept.into_perceived(store))
+    }
+
+    /// The script's next input, `said(Input)` (D-14) not built.
+    fn perceive_percept(
+        &mut self,
+        store: &mut Store,
+        ty: Term,
+        _expectations: &[Term],
+    ) -> Result<Percept, String> {
+        let t = match self.next_plain_atom() {
+            Some(a) => Term::atom(a),
+            None => match self.next_input()? {
+                None => return Ok(Percept::Whole(Perceived::EndOfInput)),
+                Some((ScriptInput::Atom(a), _, _)) => Term::atom(a),
+                Some((ScriptInput::Clause(clause), _, _)) => store.from_clause(&clause).0,
+            },
         };
         if self.echo {
             crate::errln!("input: {}", store.writeq(t));
         }
-        Ok(deliver(store, ty, t))
+        Ok(deliver_percept(store, ty, t))
     }
 
     /// A script line that meets no expectation is worth a warning.
@@ -446,6 +500,18 @@ impl<P: Perception + TermInput + 'static> Perception for SharedPerception<P> {
     ) -> Result<Perceived, String> {
         match self.inner.lock() {
             Ok(mut p) => p.perceive(store, ty, expectations),
+            Err(_) => Err("the input's reader failed earlier (poisoned)".to_owned()),
+        }
+    }
+
+    fn perceive_percept(
+        &mut self,
+        store: &mut Store,
+        ty: Term,
+        expectations: &[Term],
+    ) -> Result<Percept, String> {
+        match self.inner.lock() {
+            Ok(mut p) => p.perceive_percept(store, ty, expectations),
             Err(_) => Err("the input's reader failed earlier (poisoned)".to_owned()),
         }
     }

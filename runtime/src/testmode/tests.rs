@@ -435,3 +435,31 @@ mod text_actions_tests {
         }
     }
 }
+
+/// `RecentAtoms` keys a word by its packed text, loaded in one where the
+/// text has eight bytes from its start, copied near the end: the same
+/// atom either way, words that are prefixes of one another kept apart.
+#[test]
+fn recent_atoms_key_words_by_their_text() {
+    let mut recent = super::RecentAtoms::default();
+    let text = "no. no_. nothing8. no. a. ab.";
+    let words: Vec<(usize, usize)> = text
+        .match_indices(|c: char| c.is_ascii_alphanumeric() || c == '_')
+        .fold(Vec::new(), |mut v: Vec<(usize, usize)>, (i, _)| {
+            match v.last_mut() {
+                Some((_, end)) if *end == i => *end = i + 1,
+                _ => v.push((i, i + 1)),
+            }
+            v
+        });
+    for _ in 0..2 {
+        for &(start, end) in &words {
+            assert_eq!(
+                recent.atom(text, start, end),
+                Some(Atom::intern(&text[start..end])),
+                "{}",
+                &text[start..end]
+            );
+        }
+    }
+}

@@ -4028,6 +4028,9 @@ mod ncall21;
 /// Helper `ncall22`'s evaluated calls pushed natively (issue 37).
 mod ncall22;
 
+/// Helper `nyes22`'s perceptions matched in place (issue 37).
+mod nyes22;
+
 /// Helper `nfnc21`'s plain calls without fresh variables, out_args without
 /// the hand-over (issue 37).
 mod nfnc21;

@@ -54,7 +54,10 @@
 //! simulated and the ROS robot's senses), it perceives and matches the
 //! input against the expectations with the machine's matcher, the last
 //! that unifies winning, exactly as `choose_index` does, on the terms
-//! built; a met expectation returns its arc, nothing else done: the native
+//! built (an input the perception hands over as `said(Input)` not built,
+//! `Percept::Wrapped`, is unified with each expectation `said(E)`'s
+//! argument in place: the same bindings as the compounds', no `said(..)`
+//! made unless nothing is met); a met expectation returns its arc, nothing else done: the native
 //! frames are kept. Otherwise (nothing read, or what was read: an input
 //! that meets nothing, the end of input, an error, `Again`) the closure
 //! hands the frames over and the machine's `choose_index` goes on from
