@@ -2,13 +2,7 @@
 //! ([`Gen::nat_select`]) whose candidates are the same code as another
 //! block's of the same DM, but for the values they read (`v0`, `v1`, ...,
 //! each a reference bound by the block's `let`s), becomes one function of
-//! those values (`select_<name>`), called from each block; where the
-//! candidates may fall through (the block goes on to a hand-over), one
-//! `macro_rules!` of the caller's label and those values instead
-//! (`select_<name>!('sel, a, v0, ..)`), whose `break $sel Nat::..` builds
-//! the variant where the block's value goes, as the block did (a
-//! function's `Option<Nat>` cost a copy of the variant and a test a
-//! visit).
+//! those values (`select_<name>`), called from each block.
 //!
 //! Invariant: a block is shared only when its code says what the function
 //! needs: each `let v<i>` written with its type (the function's parameter
@@ -70,7 +64,6 @@ pub(super) fn share_selections(items: TokenStream, sites: &[SelSite]) -> TokenSt
     // One function per shared key, named in order of first occurrence.
     let mut names: HashMap<String, Ident> = HashMap::new();
     let mut fns = Vec::new();
-    let mut macros = Vec::new();
     let mut taken_names: HashMap<String, usize> = HashMap::new();
     for f in &found {
         if uses[&f.key] < 2 || names.contains_key(&f.key) {
@@ -105,69 +98,32 @@ pub(super) fn share_selections(items: TokenStream, sites: &[SelSite]) -> TokenSt
             " Selects situation `{}` (shared by the DM's selections of it).",
             f.name
         );
-        if f.rest.is_empty() {
-            fns.push(quote! {
+        fns.push(if f.rest.is_empty() {
+            quote! {
                 #[doc = #doc]
                 #[inline(always)]
                 fn #fname(#atoms #(#params),*) -> Nat {
                     'sel: { #candidates }
                 }
-            });
+            }
         } else {
-            // A selection that may fall through: a macro breaking out of
-            // the caller's `'sel` block (`$sel`), so that the variant is
-            // built where the block's value goes, as in the block it
-            // replaces (a function's `Option<Nat>` costs a copy of the
-            // variant and a test at every visit, `r18_d_item_qty`).
-            let lets = f.params.iter().map(|(v, t)| quote!(let #v: #t = $#v;));
-            let atoms_let = f.reads_atoms.then(|| quote!(let a: &super::Atoms = $a;));
-            let pats = f.params.iter().map(|(v, _)| quote!(, $#v:expr));
-            let atoms_pat = f.reads_atoms.then(|| quote!(, $a:expr));
-            let body = label_to_macro_var(&candidates);
-            macros.push(quote! {
+            quote! {
                 #[doc = #doc]
-                macro_rules! #fname {
-                    ($sel:lifetime #atoms_pat #(#pats)*) => {{
-                        #atoms_let
-                        #(#lets)*
-                        #body
-                    }};
+                #[inline(always)]
+                fn #fname(#atoms #(#params),*) -> Option<Nat> {
+                    Some('sel: {
+                        #candidates
+                        return None;
+                    })
                 }
-            });
-        }
+            }
+        });
     }
-    if fns.is_empty() && macros.is_empty() {
+    if fns.is_empty() {
         return items;
     }
     let items = rewrite(items, sites, &names);
-    quote!(#(#macros)* #items #(#fns)*)
-}
-
-/// `ts` with each `'sel` (the caller's label) as the macro's `$sel`.
-fn label_to_macro_var(ts: &TokenStream) -> TokenStream {
-    let toks: Vec<T> = ts.clone().into_iter().collect();
-    let mut out = Vec::with_capacity(toks.len());
-    let mut k = 0;
-    while k < toks.len() {
-        match (&toks[k], toks.get(k + 1)) {
-            (T::Punct(q), Some(T::Ident(l)))
-                if q.as_char() == '\'' && q.spacing() == Spacing::Joint && l == "sel" =>
-            {
-                out.push(T::Punct(proc_macro2::Punct::new('$', Spacing::Alone)));
-                out.push(T::Ident(l.clone()));
-                k += 2;
-                continue;
-            }
-            (T::Group(g), _) => {
-                let mut ng = Group::new(g.delimiter(), label_to_macro_var(&g.stream()));
-                ng.set_span(g.span());
-                out.push(T::Group(ng));
-            }
-            (t, _) => out.push(t.clone()),
-        }
-        k += 1;
-    }
-    out.into_iter().collect()
+    quote!(#items #(#fns)*)
 }
 
 fn is_plain_name(s: &str) -> bool {
@@ -207,13 +163,15 @@ fn rewrite(ts: TokenStream, sites: &[SelSite], names: &HashMap<String, Ident>) -
                     let rest: TokenStream = found.rest.iter().cloned().collect();
                     let atoms = found.reads_atoms.then(|| quote!(a,));
                     let args = found.params.iter().map(|(v, _)| v);
+                    let call = quote!(#fname(#atoms #(#args),*));
                     let body = if found.rest.is_empty() {
-                        quote!(#lets #fname(#atoms #(#args),*))
+                        quote!(#lets #call)
                     } else {
-                        let atoms = found.reads_atoms.then(|| quote!(, a));
                         quote! {
                             #lets
-                            #fname!('sel #atoms #(, #args)*);
+                            if let Some(next) = #call {
+                                break 'sel next;
+                            }
                             #rest
                         }
                     };
@@ -414,15 +372,9 @@ mod tests {
         let mut s1 = site(l1, &c);
         s1.types = vec![Some(quote!(&List<Val>)), Some(quote!(&List<Val>))];
         let out = share_selections(items, &[s1, site(l2, &c)]).to_string();
-        assert_eq!(out.matches("macro_rules ! select_each").count(), 1, "{out}");
-        assert_eq!(
-            out.matches("select_each ! ('sel , a , v0 , v1)").count(),
-            2,
-            "{out}"
-        );
+        assert_eq!(out.matches("fn select_each").count(), 1, "{out}");
+        assert_eq!(out.matches("select_each (a , v0 , v1)").count(), 2, "{out}");
         assert_eq!(out.matches("hand ()").count(), 2, "{out}");
-        assert!(out.contains("break $ sel Nat :: S1"), "{out}");
-        assert!(!out.contains("break 'sel Nat :: S1"), "{out}");
     }
 
     #[test]
