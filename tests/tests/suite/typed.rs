@@ -291,9 +291,10 @@ fn agree_piped<A: app::App>(
     }
 }
 
-/// `line` of said text with each variable `_G<n>` renamed in the order
-/// first seen (`names` shared with the logged actions); nothing else of
-/// the text touched (a capitalised word is not a variable there).
+/// `line` of said text with each variable `_G<n>` renamed `_G<k>`, `k`
+/// in the order first seen (`names` shared with the logged actions);
+/// nothing else of the text touched (a capitalised word is not a variable
+/// there).
 fn rename_said(line: &str, names: &mut std::collections::HashMap<String, usize>) -> String {
     let (mut out, mut rest) = (String::new(), line);
     while let Some(at) = rest.find("_G") {
@@ -311,7 +312,8 @@ fn rename_said(line: &str, names: &mut std::collections::HashMap<String, usize>)
         let next = names.len();
         let k = *names.entry(name.to_owned()).or_insert(next);
         out.push_str(&rest[..at]);
-        out.push_str(&format!("_V{k}"));
+        // `_G<k>`: still a variable's name to `unnumbered`.
+        out.push_str(&format!("_G{k}"));
         rest = &rest[at + 2 + digits..];
     }
     out.push_str(rest);
