@@ -25,6 +25,9 @@ use std::path::Path;
 #[path = "../src/hand.rs"]
 mod hand;
 use hand::*;
+#[path = "../src/hand22.rs"]
+mod hand22;
+use hand22::*;
 
 mod c_limit_inarg_echo {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_limit_inarg_echo");
@@ -243,6 +246,30 @@ mod r19_d_when_qty {
 mod r19_d_prolog_first {
     sitlog_macros::include_dm!("../tests/typed/review19/r19_d_prolog_first");
 }
+mod r22_c_stage_global {
+    sitlog_macros::include_dm!("../tests/typed/review22/r22_c_stage_global");
+}
+mod r22_c_ferry_two {
+    sitlog_macros::include_dm!("../tests/typed/review22/r22_c_ferry_two");
+}
+mod r22_c_lap_pipe {
+    sitlog_macros::include_dm!("../tests/typed/review22/r22_c_lap_pipe");
+}
+mod r22_c_rung_id {
+    sitlog_macros::include_dm!("../tests/typed/review22/r22_c_rung_id");
+}
+mod r22_d_sweep_say {
+    sitlog_macros::include_dm!("../tests/typed/review22/r22_d_sweep_say");
+}
+mod r22_d_stock_expect {
+    sitlog_macros::include_dm!("../tests/typed/review22/r22_d_stock_expect");
+}
+mod r22_d_floor_fn {
+    sitlog_macros::include_dm!("../tests/typed/review22/r22_d_floor_fn");
+}
+mod r22_d_goal_local {
+    sitlog_macros::include_dm!("../tests/typed/review22/r22_d_goal_local");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -303,12 +330,23 @@ fn run_fns<A: app::App>(app: &A, main: &str, in_arg: Option<&str>, functions: Fu
     outcome.transitions
 }
 
+/// A workload whose main DM `main` starts with the pipe `n` (helper
+/// `review22`'s (c)), compiled (`app`) or interpreted.
+fn piped<A: app::App>(way: &str, app: &A, name: &str, main: &str, n: i64) -> u64 {
+    let n = n.to_string();
+    match way {
+        "compiled" => run_piped(app, main, Some(&n)),
+        _ => run_piped(&Resolved::new(&interpreter(name)), main, Some(&n)),
+    }
+}
+
 fn interpreter(dir: &str) -> Ir {
     let root = match dir {
         "echo_calls" | "list_search" => "dms",
         _ if dir.starts_with("r17_") => "../tests/typed/review17",
         _ if dir.starts_with("r18_") => "../tests/typed/review18",
         _ if dir.starts_with("r19_") => "../tests/typed/review19",
+        _ if dir.starts_with("r22_") => "../tests/typed/review22",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -464,6 +502,32 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                 .collect::<Vec<_>>()
                 .join(",")
         ),
+        // Helper review22's (c): the limit the pipe the main DM starts with.
+        "r22_c_stage_global" if way != "hand" => {
+            return piped(way, r22_c_stage_global::program(), name, "launch", n)
+        }
+        "r22_c_ferry_two" if way != "hand" => {
+            return piped(way, r22_c_ferry_two::program(), name, "shuttle", n)
+        }
+        "r22_c_lap_pipe" if way != "hand" => {
+            return piped(way, r22_c_lap_pipe::program(), name, "track", n)
+        }
+        "r22_c_rung_id" if way != "hand" => {
+            return piped(way, r22_c_rung_id::program(), name, "ladder", n)
+        }
+        "r22_c_stage_global" | "r22_c_ferry_two" | "r22_c_lap_pipe" | "r22_c_rung_id" => {
+            String::new()
+        }
+        "r22_d_sweep_say" => format!("patrol({n}, {list}, {last})"),
+        "r22_d_stock_expect" => {
+            let pairs: Vec<String> = (0..len).map(|i| format!("p{i}-{}", i % 7 + 1)).collect();
+            format!("inventory({n}, [{}], {last})", pairs.join(","))
+        }
+        "r22_d_floor_fn" => {
+            let ints: Vec<String> = (0..len).map(|i| i.to_string()).collect();
+            format!("meter({n}, [{}], {})", ints.join(","), len - 1)
+        }
+        "r22_d_goal_local" => format!("errands({n}, {list}, {last})"),
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
             let n = n.to_string();
@@ -634,6 +698,30 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             "r19_d_prolog_first" => {
                 hand_r19_prolog_first(n, black_box(&crates(len)), black_box(|w| w >= 1000))
             }
+            "r22_c_stage_global" => hand_r22_stage_global(n),
+            "r22_c_ferry_two" => hand_r22_ferry_two(n),
+            "r22_c_lap_pipe" => hand_r22_lap_pipe(n),
+            "r22_c_rung_id" => hand_r22_rung_id(n),
+            "r22_d_sweep_say" => {
+                let names: Vec<String> = (0..len).map(|i| format!("p{i}")).collect();
+                hand_r22_sweep_say(n, black_box(&syms), black_box(&names), black_box(lsym))
+            }
+            "r22_d_stock_expect" => {
+                let stock: Vec<(Sym, i64)> = (0..len)
+                    .map(|i| (Sym(i as u32), i as i64 % 7 + 1))
+                    .collect();
+                hand_r22_stock_expect(n, black_box(&stock), black_box(lsym))
+            }
+            "r22_d_floor_fn" => {
+                let ints: Vec<i64> = (0..len as i64).collect();
+                hand_r22_floor_fn(
+                    n,
+                    black_box(&ints),
+                    black_box(len as i64 - 1),
+                    black_box(|x, f| x >= f),
+                )
+            }
+            "r22_d_goal_local" => hand_r22_goal_local(n, black_box(&syms), black_box(lsym)),
             "r17_c_charge_when" => hand_r17_charge(n),
             "r17_c_courier_global" => hand_r17_courier(n),
             "r17_c_odometer" => hand_r17_odometer(n),
@@ -716,12 +804,16 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r19_d_when_qty" => ways!(r19_d_when_qty),
         "r19_d_prolog_first" => ways!(r19_d_prolog_first),
         "c_call_reads_inarg" => ways!(c_call_reads_inarg),
+        "r22_d_sweep_say" => ways!(r22_d_sweep_say),
+        "r22_d_stock_expect" => ways!(r22_d_stock_expect),
+        "r22_d_floor_fn" => ways!(r22_d_floor_fn),
+        "r22_d_goal_local" => ways!(r22_d_goal_local),
         "c_expr_compare" => ways!(c_expr_compare),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 67] = [
+const ALL: [&str; 75] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -789,6 +881,14 @@ const ALL: [&str; 67] = [
     "r19_d_chain3",
     "r19_d_when_qty",
     "r19_d_prolog_first",
+    "r22_c_stage_global",
+    "r22_c_ferry_two",
+    "r22_c_lap_pipe",
+    "r22_c_rung_id",
+    "r22_d_sweep_say",
+    "r22_d_stock_expect",
+    "r22_d_floor_fn",
+    "r22_d_goal_local",
 ];
 
 /// The two lists of `r18_d_lockstep*` at `len` places: `0..len` and a

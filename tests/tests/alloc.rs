@@ -64,6 +64,22 @@ mod r19_ping_pong {
     sitlog_macros::include_dm!("typed/review19/r19_c_ping_pong");
 }
 
+/// Shape (c) written after sessions 19-20 (helper `review22`): the callee
+/// in its own file and a global count; recursion through two situations;
+/// the count and the limit in the pipe; the count in the id.
+mod r22_stage_global {
+    sitlog_macros::include_dm!("typed/review22/r22_c_stage_global");
+}
+mod r22_ferry_two {
+    sitlog_macros::include_dm!("typed/review22/r22_c_ferry_two");
+}
+mod r22_lap_pipe {
+    sitlog_macros::include_dm!("typed/review22/r22_c_lap_pipe");
+}
+mod r22_rung_id {
+    sitlog_macros::include_dm!("typed/review22/r22_c_rung_id");
+}
+
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
@@ -222,6 +238,22 @@ fn transitions_allocate_nothing_in_steady_state() {
             "r19_c_ping_pong",
             measure_from(r19_ping_pong::program(), "rally(1000000000, 2)"),
         ),
+        (
+            "r22_c_stage_global",
+            measure_piped(r22_stage_global::program(), "launch", "1000000000"),
+        ),
+        (
+            "r22_c_ferry_two",
+            measure_piped(r22_ferry_two::program(), "shuttle", "1000000000"),
+        ),
+        (
+            "r22_c_lap_pipe",
+            measure_piped(r22_lap_pipe::program(), "track", "1000000000"),
+        ),
+        (
+            "r22_c_rung_id",
+            measure_piped(r22_rung_id::program(), "ladder", "1000000000"),
+        ),
     ];
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("dms/ground_loop");
     let (checked, _) = sitlog_compiler::check_path(&dir).unwrap();
@@ -278,7 +310,7 @@ fn transitions_allocate_nothing_in_steady_state() {
     }
     assert!(
         bad.is_empty(),
-        "review17's, review18's and review19's shape (c) allocated: {bad:?}"
+        "review17's, review18's, review19's and review22's shape (c) allocated: {bad:?}"
     );
     // The interpreter builds each instance in the store; the window is long
     // enough to include collections. What remains outside them is the

@@ -220,7 +220,15 @@ fn run_with<A: app::App>(
     // logs the variable under another store number).
     let mut action_names = std::collections::HashMap::new();
     let mut seen: Vec<String> = log.0.iter().map(|l| rename(l, &mut action_names)).collect();
-    seen.extend(String::from_utf8(text).unwrap().lines().map(str::to_owned));
+    // The text said, its `_G<n>` variables renamed the same way (`say`
+    // of an unbound element: `checking _G43` on one back end, `_G30` on
+    // the other).
+    seen.extend(
+        String::from_utf8(text)
+            .unwrap()
+            .lines()
+            .map(|l| rename_said(l, &mut action_names)),
+    );
     // Then the run's warnings as a runner prints them (an in_arg skipped:
     // both back ends warn alike).
     seen.extend(outcome.warnings.iter().map(ToString::to_string));
@@ -281,6 +289,35 @@ fn agree_piped<A: app::App>(
             }
         }
     }
+}
+
+/// `line` of said text with each variable `_G<n>` renamed `_G<k>`, `k`
+/// in the order first seen (`names` shared with the logged actions);
+/// nothing else of the text touched (a capitalised word is not a variable
+/// there).
+fn rename_said(line: &str, names: &mut std::collections::HashMap<String, usize>) -> String {
+    let (mut out, mut rest) = (String::new(), line);
+    while let Some(at) = rest.find("_G") {
+        let digits = rest[at + 2..]
+            .find(|c: char| !c.is_ascii_digit())
+            .unwrap_or(rest.len() - at - 2);
+        let word_start =
+            at == 0 || !rest[..at].ends_with(|c: char| c.is_alphanumeric() || c == '_');
+        if digits == 0 || !word_start {
+            out.push_str(&rest[..at + 2]);
+            rest = &rest[at + 2..];
+            continue;
+        }
+        let name = &rest[at..at + 2 + digits];
+        let next = names.len();
+        let k = *names.entry(name.to_owned()).or_insert(next);
+        out.push_str(&rest[..at]);
+        // `_G<k>`: still a variable's name to `unnumbered`.
+        out.push_str(&format!("_G{k}"));
+        rest = &rest[at + 2 + digits..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// `s` with every variable's number dropped (`_G12` is `_G`).
@@ -4012,6 +4049,8 @@ mod ncold20;
 mod review18;
 /// Helper `review19`'s workloads with bad inputs (issue 37).
 mod review19;
+/// Helper `review22`'s workloads with bad inputs (issue 37).
+mod review22;
 
 /// Helper `nfn19`'s plain functions returning compounds (issue 37).
 mod plain_compounds;

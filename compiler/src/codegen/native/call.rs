@@ -1718,21 +1718,28 @@ impl Gen<'_> {
                     quote!(if !run.quiet_empty { #perform })
                 }
                 Ty::Sym if const_atom.is_some() => perform_value,
+                // An atom other than `empty` handed to the effector as a
+                // constant one is (`Cx::perform_value`: what the machine's
+                // `perform` does with it, no hand-over; `set(goal, G)`'s
+                // value, helper `review22`).
                 Ty::Sym => quote! {
-                    if !(run.quiet_empty && #x == atoms::EMPTY) { #perform }
+                    if #x != atoms::EMPTY { #perform_value }
+                    else if !run.quiet_empty { #perform }
                 },
                 Ty::Term | Ty::List(_) => perform,
                 // A `ground` value (`set(m, W)`, `W` a parameter's value):
                 // a number or `empty` skipped where the run's actions
-                // ignore it, as for a value of those types; a number
-                // performed, handed to the effector as an `int`'s is
-                // (`Cx::perform_value`, no hand-over).
+                // ignore it, as for a value of those types; a number or
+                // an atom other than `empty` performed, handed to the
+                // effector as an `int`'s is (`Cx::perform_value`, no
+                // hand-over).
                 Ty::Ground => quote! {
                     match &#x {
                         Val::Int(_) | Val::Float(_) => {
                             if !run.quiet_numbers { #perform_value }
                         }
                         Val::Sym(s) if run.quiet_empty && *s == atoms::EMPTY => {}
+                        Val::Sym(s) if *s != atoms::EMPTY => { #perform_value }
                         _ => { #perform }
                     }
                 },

@@ -5221,7 +5221,9 @@ impl Gen<'_> {
                 Ok(evaluated)
             }
             Next::Eval(Ev::Compound(name, args))
-                if args.iter().any(|a| matches!(a, Ev::IsFresh { .. })) =>
+                if args
+                    .iter()
+                    .any(|a| next_is::fresh_is(d, cur, a, regs).is_some()) =>
             {
                 self.nat_next_is(d, cur, *name, args, regs, cur_name)
             }

@@ -11,15 +11,41 @@
 //! term it built ([`Gen::nat_next`]'s fallback for a part the evaluator
 //! computes). Without this the situation stayed on terms, and a caller
 //! whose callee has a situation on terms ran from its template at every
-//! visit.
+//! visit. The same where `V` is first met inside a conditional's branch
+//! (`(I >= Top -> roof ; otherwise -> rung(_J is I + 1))`, helper
+//! `review22`), which the MIR makes an [`Ev::Is`] of an unset register.
 
 use super::{Dm, Regs, N, V};
 use crate::codegen::Gen;
-use crate::mir::Ev;
+use crate::mir::{Build, Ev, Init, Reg};
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 use sitlog_runtime::native::Ty;
 use sitlog_syntax::Atom;
+
+/// `V is E` with `V` unbound where it is evaluated: [`Ev::IsFresh`], or
+/// [`Ev::Is`] of a register that starts unbound in the visit (not a
+/// parameter, an id part or the pipe) and that nothing set before (the MIR
+/// makes `Is` of a variable first met inside a conditional's branch:
+/// `(I >= Top -> roof ; otherwise -> rung(_J is I + 1))`); its expression
+/// and register.
+pub(super) fn fresh_is<'e>(d: &Dm, cur: usize, e: &'e Ev, regs: &Regs) -> Option<(&'e Build, Reg)> {
+    match e {
+        Ev::IsFresh { expr, dst } => Some((expr, *dst)),
+        Ev::Is {
+            lhs: Build::Reg(dst),
+            expr,
+        } if !regs.contains_key(dst)
+            && d.plans[cur]
+                .inits
+                .iter()
+                .all(|(x, i)| x != dst || matches!(i, Init::Fresh)) =>
+        {
+            Some((expr, *dst))
+        }
+        _ => None,
+    }
+}
 
 impl Gen<'_> {
     /// Next situation `name(args..)` of situation `cur` (named `cur_name`)
@@ -42,9 +68,9 @@ impl Gen<'_> {
         let mut cold = Vec::new();
         let mut n = 0;
         for (k, a) in args.iter().enumerate() {
-            match a {
-                Ev::IsFresh { expr, dst } => {
-                    if !super::free_here(d, cur, *dst, regs) {
+            match fresh_is(d, cur, a, regs) {
+                Some((expr, dst)) => {
+                    if !super::free_here(d, cur, dst, regs) {
                         return Err("`V is E` whose `V` is read again".into());
                     }
                     let e = self.nat_int_expr(expr, regs)?;
@@ -65,7 +91,7 @@ impl Gen<'_> {
                     });
                     xs.push(x);
                 }
-                a => {
+                None => {
                     let v = self.nat_ev_value(d, cur, a, regs)?;
                     let e = &v.e;
                     terms.push(quote!(cx.term(&#e)));
