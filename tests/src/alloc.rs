@@ -1,8 +1,12 @@
 //! The counting global allocator of the allocation test (`tests/alloc.rs`)
 //! and the benchmarks (`benches/benches/compiled.rs`): [`Counting`]
 //! forwards to the system allocator and, while counting is on, counts every
-//! allocation and reallocation (frees are not counted). One counter per
-//! process. A test or bench binary installs it itself:
+//! allocation and reallocation (frees are not counted) **made by the thread
+//! that turned counting on**: another thread of the process (libtest's
+//! main thread printing "has been running for over 60 seconds" on a loaded
+//! machine, another test) is not the code measured, and counting it made
+//! the allocation test fail now and then. One counter per process. A test
+//! or bench binary installs it itself:
 //!
 //! ```ignore
 //! #[global_allocator]
@@ -12,6 +16,7 @@
 //! (this library does not: every test binary linking it would get it).
 
 use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 /// Counts heap allocations (and reallocations) while counting is on.
@@ -20,10 +25,22 @@ pub struct Counting;
 static COUNTING: AtomicBool = AtomicBool::new(false);
 static ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
 
+thread_local! {
+    /// This thread turned counting on (const-initialised, no destructor:
+    /// reading it never allocates, so the allocator may).
+    static THIS_THREAD: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Whether an allocation now is counted.
+#[inline]
+fn counted() -> bool {
+    COUNTING.load(Ordering::Relaxed) && THIS_THREAD.try_with(Cell::get).unwrap_or(false)
+}
+
 unsafe impl GlobalAlloc for Counting {
     #[inline]
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if COUNTING.load(Ordering::Relaxed) {
+        if counted() {
             ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
         }
         System.alloc(layout)
@@ -34,15 +51,16 @@ unsafe impl GlobalAlloc for Counting {
     }
     #[inline]
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if COUNTING.load(Ordering::Relaxed) {
+        if counted() {
             ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
         }
         System.realloc(ptr, layout, new_size)
     }
 }
 
-/// Turns counting on or off (the count is kept).
+/// Turns counting on or off for the calling thread (the count is kept).
 pub fn set_counting(on: bool) {
+    THIS_THREAD.with(|t| t.set(on));
     COUNTING.store(on, Ordering::SeqCst);
 }
 
