@@ -40,17 +40,31 @@ fn report(main: &str) -> String {
     format!("{r:?}")
 }
 
+/// The cases, by what the call's arguments do.
+const LOCAL: &[&str] = &["loc(1)", "loc(x)", "loc(_)"];
+const GLOBAL: &[&str] = &["glob(a)", "glob(7)", "glob(f(_))", "glob(_)", "glob([a|_])"];
+const APPLY: &[&str] = &["twice(s)", "twice(f(x))", "twice(_)"];
+const ARITH: &[&str] = &[
+    "arith(2)",
+    "arith(-7)",
+    "arith(a)",
+    "arith(_)",
+    "arith(1.5)",
+    "arith(4611686018427387904)",
+];
+const BAD: &[&str] = &["bad(1)", "bad(a)", "bad(_)", "bad(f(_))"];
+
 /// `echo(get(n, _))`, `slow(get(n, _))` after an `inc` of the local.
 #[test]
 fn ncall21_a_local_read_in_a_call_agrees() {
-    agree(&["loc(1)", "loc(x)", "loc(_)"]);
+    agree(LOCAL);
 }
 
 /// `change(get(g, _))`: the callee sets `g`, then hands over; its
 /// parameter and the caller's exit arc see the value read at the call.
 #[test]
 fn ncall21_a_global_the_callee_changes_agrees() {
-    agree(&["glob(a)", "glob(7)", "glob(f(_))", "glob(_)", "glob([a|_])"]);
+    agree(GLOBAL);
     let r = report("glob(a)");
     assert!(r.contains("stop(a,1,changed)"), "{r}");
 }
@@ -59,7 +73,7 @@ fn ncall21_a_global_the_callee_changes_agrees() {
 /// once), whatever the hand-over in the callee.
 #[test]
 fn ncall21_an_apply_with_a_side_effect_agrees() {
-    agree(&["twice(s)", "twice(f(x))", "twice(_)"]);
+    agree(APPLY);
     let r = report("twice(s)");
     assert!(r.contains("stop(s-1,2,2/[s,hand(s-1)])"), "{r}");
 }
@@ -67,20 +81,13 @@ fn ncall21_an_apply_with_a_side_effect_agrees() {
 /// `slow(_ is K * 2 + 1)`: a value, a type error, unbound, an overflow.
 #[test]
 fn ncall21_arithmetic_in_a_call_agrees() {
-    agree(&[
-        "arith(2)",
-        "arith(-7)",
-        "arith(a)",
-        "arith(_)",
-        "arith(1.5)",
-        "arith(4611686018427387904)",
-    ]);
+    agree(ARITH);
 }
 
 /// `add(get(g, _))` whose callee adds one: an int, an atom, unbound.
 #[test]
 fn ncall21_bad_values_in_a_call_agree() {
-    agree(&["bad(1)", "bad(a)", "bad(_)", "bad(f(_))"]);
+    agree(BAD);
 }
 
 /// Every case above with evaluated calls pushed natively
@@ -90,32 +97,8 @@ fn ncall21_bad_values_in_a_call_agree() {
 fn ncall21_held_calls_agree() {
     let ir = interpreter("typed/ncall21");
     with_engine(&ir, || {
-        agree_both(
-            dms::held::program(),
-            &ir,
-            &[
-                "loc(1)",
-                "loc(x)",
-                "loc(_)",
-                "glob(a)",
-                "glob(7)",
-                "glob(f(_))",
-                "glob(_)",
-                "glob([a|_])",
-                "twice(s)",
-                "twice(f(x))",
-                "twice(_)",
-                "arith(2)",
-                "arith(-7)",
-                "arith(a)",
-                "arith(_)",
-                "arith(1.5)",
-                "arith(4611686018427387904)",
-                "bad(1)",
-                "bad(a)",
-                "bad(_)",
-                "bad(f(_))",
-            ],
-        )
+        for mains in [LOCAL, GLOBAL, APPLY, ARITH, BAD] {
+            agree_both(dms::held::program(), &ir, mains);
+        }
     });
 }
