@@ -68,9 +68,10 @@ fn explain_types_ends_with_one_summary_line() {
             .unwrap_or_else(|| panic!("{app}: {native}"));
         let (n, y): (usize, usize) = (n.parse().unwrap(), y.parse().unwrap());
         assert!(n <= y, "{app}: {native}");
-        // The breakdown: situations whose native visit runs the template,
-        // or hands the frames over, before any branch (not on native
-        // values, the first not compiled as code either).
+        // The breakdown: situations whose native code runs the template,
+        // or hands the frames over, on every path, or either on some
+        // paths (not on native values, the first not compiled as code
+        // either).
         let count = |line: &str, prefix: &str| -> usize {
             let rest = line
                 .strip_prefix(prefix)
@@ -78,21 +79,25 @@ fn explain_types_ends_with_one_summary_line() {
             rest.split(' ').next().unwrap().parse().unwrap()
         };
         let template = count(
-            lines[lines.len() - 4],
+            lines[lines.len() - 5],
             "situations run from the template at every visit: ",
         );
         let hands = count(
-            lines[lines.len() - 3],
-            "situations handing the native frames over before any branch: ",
+            lines[lines.len() - 4],
+            "situations handing the native frames over at every visit: ",
         );
-        assert!(n + template + hands <= y, "{app}: {text}");
+        let partly = count(
+            lines[lines.len() - 3],
+            "situations handing over or running the template on some paths: ",
+        );
+        assert!(n + template + hands + partly <= y, "{app}: {text}");
         // Issue 37's target for the two applications: at least 80 % of the
         // variables typed (below); the 80 % of situations on native values
         // is printed, not asserted (unmet).
         let app_target = app.starts_with("dms/apps/");
         println!("{app}: {native} (80 % target: {})", 5 * n >= 4 * y);
-        assert!(lines[lines.len() - 5].starts_with("native code: "));
-        let mir = lines[lines.len() - 6];
+        assert!(lines[lines.len() - 6].starts_with("native code: "));
+        let mir = lines[lines.len() - 7];
         assert!(
             mir.starts_with("MIR registers typed: ")
                 && mir.contains("; situations with no term register: ")

@@ -85,14 +85,19 @@ pub fn explain_types(ir: &Ir) -> String {
                     };
                     match n.visits.get(i).copied().flatten() {
                         Some(Visit::Template) => format!(
-                            "{on}, but run from its template at every visit (before any branch its \
-                             code hands the native frames over and calls the machine's template: \
-                             not on native values, not compiled as code)"
+                            "{on}, but run from its template at every visit (on every path its \
+                             code calls the machine's template: not on native values, not \
+                             compiled as code)"
                         ),
                         Some(Visit::HandsOver) => format!(
-                            "{on}, but handing the native frames over before any branch at every \
-                             visit (`nat_hand_over`: the frames below made machine frames, their \
+                            "{on}, but handing the native frames over at every visit \
+                             (`nat_hand_over`: the frames below made machine frames, their \
                              values terms: not on native values)"
+                        ),
+                        Some(Visit::Partly) => format!(
+                            "{on}, but handing the native frames over or running the template \
+                             on some paths (not a failed conversion, not the history's: terms \
+                             there, not on native values)"
                         ),
                         _ => on.to_owned(),
                     }
@@ -144,9 +149,15 @@ pub fn explain_types(ir: &Ir) -> String {
     );
     let _ = writeln!(
         out,
-        "situations handing the native frames over before any branch: {}{}",
+        "situations handing the native frames over at every visit: {}{}",
         totals.hands.len(),
         names(&totals.hands)
+    );
+    let _ = writeln!(
+        out,
+        "situations handing over or running the template on some paths: {}{}",
+        totals.partly.len(),
+        names(&totals.partly)
     );
     let _ = writeln!(out, "{}", summary(&totals));
     out
@@ -167,10 +178,12 @@ struct Totals {
     vars: usize,
     held: usize,
     /// The situations with native code whose every visit runs from the
-    /// template, and those whose every visit hands the native frames
-    /// over before any branch ([`Visit`]), as `dm/id`.
+    /// template, those whose every visit hands the native frames over,
+    /// and those that do either on some paths only ([`Visit`]), as
+    /// `dm/id`.
     template: Vec<String>,
     hands: Vec<String>,
+    partly: Vec<String>,
 }
 
 impl Totals {
@@ -205,6 +218,7 @@ impl Totals {
                         self.template.push(name());
                     }
                     Some(Visit::HandsOver) => self.hands.push(name()),
+                    Some(Visit::Partly) => self.partly.push(name()),
                     _ => {}
                 }
             }
@@ -254,11 +268,12 @@ impl Totals {
 /// N/Y`, then `situations compiled as code: X/Y; variables typed: A/B`.
 /// Of the application's Y situations, X run as generated code (a MIR
 /// plan: no template instantiated; a situation whose native visit runs
-/// its template before any branch, [`Visit::Template`], is not), N have
+/// its template on every path, [`Visit::Template`], is not), N have
 /// native code whose registers all have a Rust type (no term, no ground
-/// handle) and whose visit neither hands the native frames over nor runs
-/// the template before any branch ([`Visit::Native`]: the code's
-/// statements up to its first branch, read as generated). Of its B variables
+/// handle) and whose code neither hands the native frames over nor runs
+/// the template on any path but a failed conversion's or the history's
+/// ([`Visit::Native`]: every path of the visit and of its exit arm, read
+/// as generated, `native::visit`). Of its B variables
 /// (every DM parameter, the pipe of each DM an in_arg reads, every local,
 /// every global), A are held by the generated code as native Rust values
 /// (`i64`, `f64`, `Atom`, `List`, `Val`) in every situation of their DM

@@ -3,5 +3,6 @@
 
 mod codegen;
 mod diagnostics;
+mod explain_visit;
 mod never_panic;
 mod shapes;

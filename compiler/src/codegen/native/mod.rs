@@ -238,6 +238,7 @@ mod pipe;
 mod plain;
 mod plain_rs;
 mod select_fn;
+mod visit;
 use crate::ir::IrDm;
 use crate::mir::ty::{DmTypes, SitTypes};
 use crate::mir::{Action, ArcPlan, Build, Cond, Ev, Init, KindPlan, Next, Prog, Reg, SitPlan, ID};
@@ -249,6 +250,8 @@ use sitlog_runtime::native::Ty;
 use sitlog_runtime::{Term, Value};
 use sitlog_syntax::{atoms, Atom};
 use std::collections::{BTreeSet, HashMap};
+use visit::visit_kind;
+pub use visit::Visit;
 
 /// Why a DM is not native (shown in the generated docs and
 /// `--explain-types`).
@@ -501,91 +504,6 @@ fn hands_over_first(code: &TokenStream) -> bool {
     g.stream()
         .into_iter()
         .any(|t| matches!(t, TokenTree::Ident(i) if i == "nat_hand_over"))
-}
-
-/// What a situation's native visit does at a visit whose inputs have
-/// their inferred types, read from its generated statements up to the
-/// first branch (`--explain-types`, issue 37's "on native values"): an
-/// `if` without `else` that cannot leave the visit (no `return`, `break`,
-/// `continue` in it) is passed over, a block statement (`let x = { .. };`)
-/// read through; any other `if`, a `match`, a `let .. else`, a loop ends
-/// the reading (a `?`'s error path is not a branch).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Visit {
-    /// Branches (or returns) natively before any hand-over or template.
-    Native,
-    /// Hands the native frames below over to the machine on every path
-    /// (`nat_hand_over`: each made a machine frame, its values converted
-    /// to terms; the locals written back), then goes on natively.
-    HandsOver,
-    /// Runs the visit from the situation's template (`machine::nat_template`,
-    /// `Cx::counted_template`) on every path: the frames handed over, an
-    /// instance made.
-    Template,
-}
-
-/// [`Visit`] of a situation's visit code `body`; a template call reached
-/// wins over the hand-over that precedes it.
-fn visit_kind(body: &TokenStream) -> Visit {
-    use proc_macro2::{Delimiter, TokenTree};
-    fn leaves(ts: &TokenStream) -> bool {
-        ts.clone().into_iter().any(|t| match t {
-            TokenTree::Ident(i) => i == "return" || i == "break" || i == "continue",
-            TokenTree::Group(g) => leaves(&g.stream()),
-            _ => false,
-        })
-    }
-    // `false`: a branch ended the reading.
-    fn read(ts: &TokenStream, kind: &mut Visit) -> bool {
-        let toks: Vec<TokenTree> = ts.clone().into_iter().collect();
-        let mut k = 0;
-        while k < toks.len() {
-            match &toks[k] {
-                TokenTree::Ident(i) if i == "if" => {
-                    let Some(then) = (k + 1..toks.len()).find(|&j| {
-                        matches!(&toks[j], TokenTree::Group(g) if g.delimiter() == Delimiter::Brace)
-                    }) else {
-                        return false;
-                    };
-                    let TokenTree::Group(g) = &toks[then] else {
-                        return false;
-                    };
-                    let has_else =
-                        matches!(toks.get(then + 1), Some(TokenTree::Ident(e)) if e == "else");
-                    if has_else || leaves(&g.stream()) {
-                        return false;
-                    }
-                    k = then + 1;
-                    continue;
-                }
-                TokenTree::Ident(i)
-                    if ["match", "else", "loop", "while", "for"].contains(&&*i.to_string()) =>
-                {
-                    return false;
-                }
-                TokenTree::Ident(i) if i == "nat_template" || i == "counted_template" => {
-                    *kind = Visit::Template;
-                    return false;
-                }
-                TokenTree::Ident(i) if i == "nat_hand_over" => *kind = Visit::HandsOver,
-                // A block statement or a `let`'s block value, not a
-                // closure's body.
-                TokenTree::Group(g)
-                    if g.delimiter() == Delimiter::Brace
-                        && !matches!(toks.get(k.wrapping_sub(1)), Some(TokenTree::Punct(p)) if p.as_char() == '|')
-                        && !read(&g.stream(), kind) =>
-                {
-                    return false;
-                }
-                _ => {}
-            }
-            k += 1;
-        }
-        true
-    }
-    let mut kind = Visit::Native;
-    read(body, &mut kind);
-    kind
 }
 
 /// `code` with `arc_at` (the arc's index `i`, `Some(i)`) bound where it
@@ -1267,8 +1185,8 @@ pub(super) struct NativeCode {
     /// its frame).
     pub run_native: TokenStream,
     /// How many situations hold no ground handle (no register `term`) and
-    /// whose visit neither hands the frames over nor runs the template
-    /// before any branch ([`Visit::Native`]): the ones on native values.
+    /// whose code neither hands the frames over nor runs the template on
+    /// any of its own paths ([`Visit::Native`]): the ones on native values.
     pub on_native_values: usize,
     /// How many of those hold no `Val` either (only fixed shapes: no
     /// register `ground` or a compound type).
@@ -1474,7 +1392,10 @@ impl Gen<'_> {
         let (d, why, code) = self.nat_dm_fix(dm, dm_ix, t, shallow)?;
         let visits: Vec<Option<Visit>> = code
             .iter()
-            .map(|c| c.as_ref().map(|(_, body, _, _)| visit_kind(body)))
+            .map(|c| {
+                c.as_ref()
+                    .map(|(_, body, _, wait)| visit_kind(body, wait.as_ref().map(|w| &w.exit_arm)))
+            })
             .collect();
         // With no situation native, `items` is never emitted (the caller
         // looks at `native_sits`); `why` says why for each.
@@ -1923,8 +1844,9 @@ impl Gen<'_> {
         // Counted on inference's types: a register that holds no value
         // (`never`: `_`, a parameter or id part nothing reads) is native
         // there although native code may carry a term in its place.
-        // And on what the visit's code does (`Visit`): one that hands the
-        // frames over or runs the template at every visit is not.
+        // And on what the situation's code does (`Visit`): one that hands
+        // the frames over or runs the template on a path of its own (not
+        // a failed conversion's, not the history's) is not.
         let native: Vec<&SitTypes> = t
             .sits
             .iter()
@@ -6858,43 +6780,5 @@ fn global_op(
                 }
             }
         }
-    }
-}
-
-#[cfg(test)]
-mod visit_tests {
-    use super::{visit_kind, Visit};
-    use quote::quote;
-
-    #[test]
-    fn visit_kind_reads_up_to_the_first_branch() {
-        // The template, alone or after the hand-over.
-        let t = quote!(return machine::nat_template(p, cx, stack, count, 2, a.welcome););
-        assert_eq!(visit_kind(&t), Visit::Template);
-        let t =
-            quote!(super::nat_hand_over(p, cx, stack)?; return cx.counted_template(count, 1, id););
-        assert_eq!(visit_kind(&t), Visit::Template);
-        // A push tried first: native where it is made.
-        let t = quote!(if !run.records { return cx.step_done(count, slot, at); } return machine::nat_template(p, cx, stack, count, 0, a.is););
-        assert_eq!(visit_kind(&t), Visit::Native);
-        // The hand-over first, or after an `if` that cannot leave, or in a
-        // block statement.
-        let t = quote!(let exp = Term::EMPTY; super::nat_hand_over(p, cx, stack)?; cx.perform(act, None)?;);
-        assert_eq!(visit_kind(&t), Visit::HandsOver);
-        let t = quote!(if run.records { cx.nat_empty(stack)?; } let next_at: Nat = { super::nat_hand_over(p, cx, stack)?; Nat::S1 {} }; next_at);
-        assert_eq!(visit_kind(&t), Visit::HandsOver);
-        // Only on a path: native.
-        let t = quote!(let Some(x) = v else { super::nat_hand_over(p, cx, stack)?; return run.goto(); }; x);
-        assert_eq!(visit_kind(&t), Visit::Native);
-        let t = quote!(match chosen {
-            0 => {
-                super::nat_hand_over(p, cx, stack)?;
-            }
-            _ => {}
-        });
-        assert_eq!(visit_kind(&t), Visit::Native);
-        // A closure's body is not run there.
-        let t = quote!(let f = || { super::nat_hand_over(p, cx, stack) }; Nat::S0 {});
-        assert_eq!(visit_kind(&t), Visit::Native);
     }
 }
