@@ -22,7 +22,9 @@
 //!
 //! Invariant: the call the machine pushes is the term native code
 //! evaluated, and an argument that is a variable of the template's call is
-//! the instance's variable, as when the machine evaluates the call itself.
+//! the instance's variable, as when the machine evaluates the call itself
+//! (a link that fails is the run's error naming the call, never a silent
+//! stop: not reachable, see `Machine::held_or_eval`).
 
 use super::native_stack::NatFrames;
 use super::outcome::RunError;
@@ -56,8 +58,27 @@ impl<P: DmProgram> Machine<'_, P> {
         if same {
             for k in 0..self.store.args(e).len() {
                 let (x, y) = (self.store.args(e)[k], self.store.args(call)[k]);
-                if self.store.is_var(self.store.deref(x)) && !self.store.unify(x, y) {
-                    break;
+                if !self.store.is_var(self.store.deref(x)) {
+                    continue;
+                }
+                // Not reachable: `x` is an unbound variable of the
+                // template's fresh instance, which the call native code
+                // evaluated (from its own values) cannot contain, and an
+                // unbound variable unifies with any other term (no occurs
+                // check). Were it reached, the arguments linked before
+                // would stay bound and the rest not: the run's error, never
+                // a silent stop with the instance half linked.
+                let linked = self.store.unify(x, y);
+                debug_assert!(linked, "a held call's argument did not link");
+                if !linked {
+                    let message = format!(
+                        "the call `{}` native code evaluated does not unify with the \
+                         situation's `embedded_dm` `{}` at argument {}",
+                        self.store.writeq(call),
+                        self.store.writeq(e),
+                        k + 1
+                    );
+                    return Err(self.err(message, here, None));
                 }
             }
         }
