@@ -68,7 +68,9 @@ pub use native_stack::{
 };
 pub use observe::{Inspection, Observer};
 pub use options::Options;
-pub use outcome::{renumber_vars, renumber_vars_after, ErrorSite, Outcome, RunError, RunWarning};
+pub use outcome::{
+    rename_vars, renumber_vars, renumber_vars_after, ErrorSite, Outcome, RunError, RunWarning,
+};
 pub use program::{Between, Cx, DmProgram, Next, Step, TypedRun, Visit};
 pub use situation::{
     none_marker, read_consts, read_dms, read_templates, DmIx, DmRow, Instance, Kind, SitIx, SitRow,

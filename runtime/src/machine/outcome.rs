@@ -97,6 +97,20 @@ pub fn renumber_vars_after(before: &str, text: &str) -> String {
 }
 
 fn renumber_into<'t>(text: &'t str, seen: &mut Vec<&'t str>) -> String {
+    rename_vars(text, |digits| {
+        Some(seen.iter().position(|&d| d == digits).unwrap_or_else(|| {
+            seen.push(digits);
+            seen.len() - 1
+        }))
+    })
+}
+
+/// `text` with each variable name `_G<n>` that the writer made (as
+/// [`renumber_vars`] finds them) renamed by `name`, given the digits `n`:
+/// `Some(k)` writes `_G<k>`, `None` writes `_G` (the number dropped). The
+/// one scan of the names behind [`renumber_vars`], a test harness's
+/// renaming of said text and its comparisons modulo variables.
+pub fn rename_vars<'t>(text: &'t str, mut name: impl FnMut(&'t str) -> Option<usize>) -> String {
     let b = text.as_bytes();
     let mut out = String::with_capacity(text.len());
     let mut last = 0;
@@ -121,14 +135,11 @@ fn renumber_into<'t>(text: &'t str, seen: &mut Vec<&'t str>) -> String {
             i = j;
             continue;
         }
-        let digits = &text[i + 2..j];
-        let k = seen.iter().position(|&d| d == digits).unwrap_or_else(|| {
-            seen.push(digits);
-            seen.len() - 1
-        });
         out.push_str(&text[last..i]);
         out.push_str("_G");
-        out.push_str(&k.to_string());
+        if let Some(k) = name(&text[i + 2..j]) {
+            out.push_str(&k.to_string());
+        }
         last = j;
         i = j;
     }
@@ -243,5 +254,23 @@ mod renumber_tests {
         );
         assert_eq!(renumber_vars("(_G9)"), "(_G0)");
         assert_eq!(renumber_vars("é_G9 _G4 _G9é"), "é_G9 _G0 _G9é");
+    }
+
+    /// The map decides: numbers kept apart in a map the caller owns, or
+    /// dropped.
+    #[test]
+    fn rename_vars_takes_the_map() {
+        use super::rename_vars;
+        let mut names = std::collections::HashMap::new();
+        let mut by = |d: &str| {
+            let next = names.len();
+            Some(*names.entry(d.to_owned()).or_insert(next))
+        };
+        assert_eq!(rename_vars("a _G7 b _G3", &mut by), "a _G0 b _G1");
+        assert_eq!(rename_vars("_G3 '_G7'", &mut by), "_G1 '_G7'");
+        assert_eq!(
+            rename_vars("f(_G12, _G4, x_G4)", |_| None),
+            "f(_G, _G, x_G4)"
+        );
     }
 }

@@ -292,48 +292,37 @@ fn agree_piped<A: app::App>(
 }
 
 /// `line` of said text with each variable `_G<n>` renamed `_G<k>`, `k`
-/// in the order first seen (`names` shared with the logged actions);
-/// nothing else of the text touched (a capitalised word is not a variable
-/// there).
+/// in the order first seen (`names` shared with the logged actions, keyed
+/// by the name `_G<n>`); nothing else of the text touched (a capitalised
+/// word is not a variable there). The runtime's scan
+/// (`machine::rename_vars`), with this map.
 fn rename_said(line: &str, names: &mut std::collections::HashMap<String, usize>) -> String {
-    let (mut out, mut rest) = (String::new(), line);
-    while let Some(at) = rest.find("_G") {
-        let digits = rest[at + 2..]
-            .find(|c: char| !c.is_ascii_digit())
-            .unwrap_or(rest.len() - at - 2);
-        let word_start =
-            at == 0 || !rest[..at].ends_with(|c: char| c.is_alphanumeric() || c == '_');
-        if digits == 0 || !word_start {
-            out.push_str(&rest[..at + 2]);
-            rest = &rest[at + 2..];
-            continue;
-        }
-        let name = &rest[at..at + 2 + digits];
+    sitlog_runtime::machine::rename_vars(line, |digits| {
         let next = names.len();
-        let k = *names.entry(name.to_owned()).or_insert(next);
-        out.push_str(&rest[..at]);
-        // `_G<k>`: still a variable's name to `unnumbered`.
-        out.push_str(&format!("_G{k}"));
-        rest = &rest[at + 2 + digits..];
-    }
-    out.push_str(rest);
-    out
+        Some(*names.entry(format!("_G{digits}")).or_insert(next))
+    })
 }
 
-/// `s` with every variable's number dropped (`_G12` is `_G`).
+/// `s` with every variable's number dropped (`_G12` is `_G`): the
+/// runtime's scan (`machine::rename_vars`) with no number. A name right
+/// after a `"` (the first word of a string as `{:?}` writes it) is one
+/// too here: the scan is made on the text with each `"` a space, then the
+/// names it found dropped in `s`.
 fn unnumbered(s: String) -> String {
+    let spaced = s.replace('"', " ");
+    let mut at = Vec::new();
+    let base = spaced.as_ptr() as usize;
+    sitlog_runtime::machine::rename_vars(&spaced, |digits| {
+        at.push((digits.as_ptr() as usize - base, digits.len()));
+        None
+    });
     let mut out = String::with_capacity(s.len());
-    let mut chars = s.chars().peekable();
-    while let Some(c) = chars.next() {
-        out.push(c);
-        if c == '_' && chars.peek() == Some(&'G') {
-            out.push('G');
-            chars.next();
-            while chars.peek().is_some_and(|d| d.is_ascii_digit()) {
-                chars.next();
-            }
-        }
+    let mut last = 0;
+    for (i, n) in at {
+        out.push_str(&s[last..i]);
+        last = i + n;
     }
+    out.push_str(&s[last..]);
     out
 }
 
