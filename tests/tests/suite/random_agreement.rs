@@ -1,6 +1,8 @@
 //! Agreement on random programs (issue 5): the well-formed random
 //! applications of `tests/gen/random_dm.rs` (compiled to Rust by
-//! `tests/build.rs`, table `RANDOM_APPS`) run on random scripts once on the
+//! `tests/build.rs`, table `RANDOM_APPS`: random DMs, list walkers, two-list
+//! walkers and recursive walkers of atoms, ints and lists by compound ids)
+//! run on random scripts once on the
 //! reference interpreter and once as generated Rust; the JSON reports
 //! (status, error text, history, out_arg, globals) must be equal up to a
 //! consistent renaming of variables, errors included.
@@ -238,16 +240,25 @@ fn every_random_program_is_compiled_and_checks_clean() {
                 .collect()
         })
         .collect();
-    let missing: Vec<&str> = CONSTRUCTS
-        .iter()
-        .filter(|(_, made)| !texts.iter().any(|t| made(t)))
-        .map(|(what, _)| *what)
-        .collect();
-    assert!(
-        missing.is_empty(),
-        "no random program of random_dm::SEEDS makes: {}",
-        missing.join("; ")
+    assert_makes(
+        CONSTRUCTS,
+        &texts,
+        "no random program of random_dm::SEEDS makes",
     );
+    // The recursive walkers together make theirs (issue 37: atoms, lists
+    // and compound ids).
+    let rec: Vec<String> = RANDOM_APPS
+        .iter()
+        .filter(|a| a.0 >= random_dm::REC_SEED)
+        .map(|a| {
+            random_dm::program(a.0)
+                .into_iter()
+                .map(|(_, t)| t)
+                .collect()
+        })
+        .collect();
+    assert_eq!(rec.len() as u64, random_dm::REC_WALKERS);
+    assert_makes(REC_CONSTRUCTS, &rec, "no recursive walker program makes");
     assert!(
         short.is_empty(),
         "random programs that never make 3 transitions: {}",
@@ -255,8 +266,59 @@ fn every_random_program_is_compiled_and_checks_clean() {
     );
 }
 
+/// What the recursive walkers (`random_dm::REC_SEED..`) make, together.
+const REC_CONSTRUCTS: &[(&str, Shows)] = &[
+    (
+        "a recursive compound id of a list pattern and an int",
+        |t| t.contains("id ==> try([P|Rest], I), type ==> recursive"),
+    ),
+    ("a call with arguments, one an atom", |t| {
+        t.contains("(P, T, tag)")
+    }),
+    ("a next id computed by `is`", |t| {
+        t.contains("try(Rest, _J is I + 1)")
+    }),
+    ("a compound final of an element and an int", |t| {
+        t.contains("id ==> found(_P, ")
+    }),
+    ("the limit read from the pipe", |t| {
+        t.contains("in_arg ==> Lim")
+    }),
+    ("a final's out_arg into the pipe", |t| {
+        t.contains("out_arg ==> I")
+    }),
+    ("a callee handing the pipe on", |t| {
+        t.contains("in_arg ==> N, out_arg ==> N")
+    }),
+    ("a say of the element", |t| t.contains("say([at, P])")),
+    ("a list of atoms", |t| {
+        t.contains("v0([a") || t.contains("v1([a")
+    }),
+    ("a list of ints", |t| {
+        t.contains("v0([0")
+            || t.contains("v0([1")
+            || t.contains("v0([2")
+            || t.contains("v0([7")
+            || t.contains("v0([9")
+    }),
+    ("a list of lists", |t| {
+        t.contains("v0([[") || t.contains("v1([[")
+    }),
+];
+
 /// Whether a program's DM text shows a construct.
 type Shows = fn(&str) -> bool;
+
+/// That some text of `texts` shows each construct of `constructs`, else
+/// `what` and the missing ones.
+fn assert_makes(constructs: &[(&str, Shows)], texts: &[String], what: &str) {
+    let missing: Vec<&str> = constructs
+        .iter()
+        .filter(|(_, made)| !texts.iter().any(|t| made(t)))
+        .map(|(what, _)| *what)
+        .collect();
+    assert!(missing.is_empty(), "{what}: {}", missing.join("; "));
+}
 
 /// Every construct of `tests/gen/random_dm.rs`'s random programs, with how
 /// a program's DM text shows it.
