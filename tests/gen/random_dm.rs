@@ -578,7 +578,7 @@ fn rec_walkers(seed: u64) -> (Vec<(String, String)>, Vec<String>) {
         } else {
             ("", "I >= 99")
         };
-        let action = if (w == 0 && idx % 3 != 0) || rng.chance(40) {
+        let action = if (w == 0 && !idx.is_multiple_of(3)) || rng.chance(40) {
             "say([at, P])"
         } else {
             "empty"

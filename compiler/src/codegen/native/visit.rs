@@ -349,7 +349,7 @@ fn closure_end(toks: &[TokenTree], k: usize) -> usize {
 /// `cx.gc_tick()`, negated or joined by `&&`, `||`), else `None`.
 fn decided(cond: &[TokenTree]) -> Option<bool> {
     // Split at the top level's `||`, then `&&`.
-    fn split<'a>(toks: &'a [TokenTree], op: char) -> Vec<&'a [TokenTree]> {
+    fn split(toks: &[TokenTree], op: char) -> Vec<&[TokenTree]> {
         let mut out = Vec::new();
         let mut start = 0;
         let mut j = 0;
