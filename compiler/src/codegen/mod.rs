@@ -121,7 +121,7 @@ impl Default for Options {
     fn default() -> Options {
         Options {
             typed: true,
-            held_calls: false,
+            held_calls: true,
         }
     }
 }

@@ -42,6 +42,7 @@
 //! - `run`: the loop (DM calls and returns, selection of situations, garbage
 //!   collection between them).
 
+mod arm_calls;
 mod boundary;
 mod cx;
 mod effect;
@@ -59,6 +60,7 @@ mod situation;
 mod state;
 mod steps;
 
+pub use arm_calls::Of;
 pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, Fill, FromIdParts, IdArg, OutSlot};
 pub use effect::{AnyShape, Due, NatAction, NatEntry};
 pub use io::{ActionShape, Actions, Perceived, Percept, Perception};
