@@ -33,6 +33,15 @@ impl IdArg for Of<'_> {
     }
 }
 
+/// A native value (an exit arc's action's value, `&act0`) made a term only
+/// where a call needs it ([`TypedRun::entry`]).
+impl<T: crate::native::Native> IdArg for &T {
+    #[inline]
+    fn id_in(self, store: &mut Store) -> Term {
+        self.to_term(store)
+    }
+}
+
 impl TypedRun {
     /// An arc whose action is `empty`, in a DM without locals: where the
     /// run records or the actions do not ignore `empty`,

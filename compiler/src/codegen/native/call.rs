@@ -2625,9 +2625,26 @@ fn lazy_entry(
     id_stmts: &[TokenStream],
     id: &TokenStream,
 ) -> Option<LazyEntry> {
-    if !ts.is_empty() || act.to_string().starts_with("let") {
+    if !ts.is_empty() {
         return None;
     }
+    // `let act = cx.term(&act0);`: the value, made a term by the call.
+    let act = match syn::parse2::<syn::Stmt>(act.clone()) {
+        Ok(syn::Stmt::Local(l)) => match l.init.map(|i| *i.expr) {
+            Some(syn::Expr::MethodCall(m))
+                if m.method == "term" && m.args.len() == 1 && {
+                    let r = &m.receiver;
+                    quote!(#r).to_string() == "cx"
+                } =>
+            {
+                let v = &m.args[0];
+                quote!(#v)
+            }
+            _ => return None,
+        },
+        _ if act.to_string().starts_with("let") => return None,
+        _ => act.clone(),
+    };
     let exp = match syn::parse2::<syn::Expr>(exp.clone()).ok()? {
         syn::Expr::MethodCall(m)
             if m.method == "build_of" && {
