@@ -18,8 +18,8 @@
 //! level is opened with that call (`Cx::open_level`), the term a frame made
 //! the machine's is checked against.
 //!
-//! Only with `codegen::Options::held_calls` (off by default: the home
-//! butler's generated code would pass issue 37's 8,000 lines).
+//! With `codegen::Options::held_calls` (the default; `false` keeps these
+//! situations on their templates).
 //!
 //! Which calls (`Gen::nat_held_args`): a DM without locals (the
 //! evaluation's environment is then the machine's with no locals,
