@@ -112,12 +112,13 @@ impl TypedRun {
         }
     }
 
-    /// An exit arc's entry and record once its next situation `next` is
-    /// made, where the run records: its expectation and action (`exp`,
-    /// made terms in that order), then [`Cx::enter_next`] (the id `id`
-    /// filled, the entry, the record with the next situation's id).
+    /// An exit arc's end once its next situation `next` is made: where
+    /// the run records, its expectation and action (`exp`, made terms in
+    /// that order), then [`Cx::enter_next`] (the id `id` filled, the
+    /// entry, the record with the next situation's id); else one more
+    /// transition counted ([`TypedRun::tally`] and the entry in one test).
     #[inline(always)]
-    pub fn enter_next<P: DmProgram>(
+    pub fn exit_end<P: DmProgram>(
         &self,
         cx: &mut Cx<'_, '_, P>,
         count: &mut u64,
@@ -130,6 +131,8 @@ impl TypedRun {
             let exp = exp.id_in(cx.store());
             let act = act.id_in(cx.store());
             cx.enter_next(count, sit, id, exp, act, next);
+        } else {
+            *count += 1;
         }
     }
 }

@@ -368,7 +368,7 @@ fn gives_fn(toks: &[TokenTree], k: usize) -> bool {
         "empty",
         "exit_empty",
         "entry",
-        "enter_next",
+        "exit_end",
         "push",
         "perform",
         "call_held",

@@ -1088,7 +1088,7 @@ impl Gen<'_> {
                         // there would end its borrow).
                         let lazy = lazy.and_then(|l| {
                             l.stmts(&quote!(), |id| {
-                                quote!(run.enter_next(cx, &mut count, #curl, #id, ea, &next_at);)
+                                quote!(run.exit_end(cx, &mut count, #curl, #id, ea, &next_at);)
                             })
                         });
                         // Else the entry and its record one call where it fits.
@@ -1098,13 +1098,13 @@ impl Gen<'_> {
                                 cx.record_next(exp, act, |s| next_at.id_term(p, s));
                             }
                         });
+                        // The count in `TypedRun::exit_end` too.
                         let rec = match lazy {
                             Some(l) => l,
-                            None => quote!(if run.recorded() { #rec }),
+                            None => quote!(run.tally(&mut count); if run.recorded() { #rec }),
                         };
                         quote! {
                             let next_at: Nat = #next;
-                            run.tally(&mut count);
                             #rec
                             break 'visit next_at;
                         }
