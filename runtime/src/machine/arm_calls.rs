@@ -1,10 +1,11 @@
 //! Steps generated code writes at many sites (issue 37), each one call
 //! here instead of the same few lines at every site: the test of whether
 //! `empty` is performed, the push of a callee's frame on the native stack
-//! with or without a history level, an exit arc's entry where the run
-//! records. Every one is `#[inline(always)]` over the calls the sites
-//! made before (the machine code of a site is the same; only its source is
-//! shorter), so behaviour and the hot path stay those of the inline code.
+//! with or without a history level, an exit arc's entry and end where the
+//! run records (its terms given lazily: [`Of`], a `Fill`, `&value`), a
+//! `ground` action value performed. Each is inlined over the calls the
+//! sites made before (the cold paths are the same out-of-line calls), so
+//! behaviour stays that of the inline code; only the source is shorter.
 //!
 //! Invariant: each helper does exactly what the lines it replaces did, in
 //! the same order (terms made in the store in the same order, the same

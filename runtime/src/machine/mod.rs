@@ -39,6 +39,10 @@
 //! - `effect`: an arc's action performed by native code, entered or not
 //!   ([`Cx::nat_perform`], [`NatEntry`], [`NatAction`]), its frames
 //!   handed over only where it records unentered or the effector fails;
+//! - `arm_calls`: steps generated code writes at many sites as one inlined
+//!   call each ([`TypedRun::empty`], [`TypedRun::entry`],
+//!   [`TypedRun::exit_end`], [`NatBelow::push`], [`NatBelow::perform`],
+//!   [`Of`]);
 //! - `run`: the loop (DM calls and returns, selection of situations, garbage
 //!   collection between them).
 
