@@ -25,8 +25,9 @@ use std::path::PathBuf;
 #[proc_macro]
 pub fn include_dm(input: TokenStream) -> TokenStream {
     // `"path"`, `"path", untyped` (every value a term: for comparisons) or
-    // `"path", held` (evaluated DM calls pushed natively:
-    // `codegen::Options::held_calls`).
+    // `"path", held` (evaluated DM calls pushed natively,
+    // `codegen::Options::held_calls`: the default, the flag kept for the
+    // tests that name it).
     let parser = |input: syn::parse::ParseStream| -> syn::Result<(syn::LitStr, Option<String>)> {
         let lit: syn::LitStr = input.parse()?;
         if input.is_empty() {
@@ -49,7 +50,8 @@ pub fn include_dm(input: TokenStream) -> TokenStream {
     };
     let options = sitlog_compiler::codegen::Options {
         typed: flag.as_deref() != Some("untyped"),
-        held_calls: flag.as_deref() == Some("held"),
+        // On by default (`held` says so, kept for the tests that name it).
+        held_calls: true,
     };
     let rel = lit.value();
     let base = std::env::var_os("SITLOG_DM_ROOT")

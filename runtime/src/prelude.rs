@@ -7,8 +7,8 @@
 //! through their module, so no local name can shadow them.
 
 pub use crate::machine::{
-    AnyShape, Cx, DmIx, DmRow, Due, Fault, Fill, Instance, Kind, NatAt, NatFrames, RunError, SitIx,
-    SitRow, SitTable, Step, TypedRun, Visit,
+    AnyShape, Cx, DmIx, DmRow, Due, Fault, Fill, Instance, Kind, NatAt, NatFrames, Of, RunError,
+    SitIx, SitRow, SitTable, Step, TypedRun, Visit,
 };
 pub use crate::native::{FromVal, Ground, IntoVal, List, Native, Never, Val};
 pub use crate::{atoms, machine, native, Atom, Store, Term, Vars};

@@ -521,7 +521,7 @@ impl Gen<'_> {
         // Atoms: those the code names (a template's atoms are read with
         // its text).
         let mut used = std::collections::HashSet::new();
-        idents_in(&body, &mut used);
+        field_idents_in(&body, &mut used);
         let atoms: Vec<&(Atom, Ident)> = self
             .atoms
             .iter()
@@ -1032,6 +1032,27 @@ fn line_col(location: &str) -> (Literal, Literal) {
 }
 
 /// The identifiers in `ts`, as text.
+/// [`idents_in`] but for a method's name (`run.empty(..)`: no atom field
+/// is called).
+fn field_idents_in(ts: &TokenStream, out: &mut std::collections::HashSet<String>) {
+    use proc_macro2::{Delimiter, TokenTree};
+    let toks: Vec<TokenTree> = ts.clone().into_iter().collect();
+    for (k, tt) in toks.iter().enumerate() {
+        match tt {
+            TokenTree::Group(g) => field_idents_in(&g.stream(), out),
+            TokenTree::Ident(i) => {
+                let method = k > 0
+                    && matches!(&toks[k - 1], TokenTree::Punct(p) if p.as_char() == '.')
+                    && matches!(toks.get(k + 1), Some(TokenTree::Group(g)) if g.delimiter() == Delimiter::Parenthesis);
+                if !method {
+                    out.insert(i.to_string());
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
 pub(super) fn idents_in(ts: &TokenStream, out: &mut std::collections::HashSet<String>) {
     for tt in ts.clone() {
         match tt {

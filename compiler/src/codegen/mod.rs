@@ -109,11 +109,11 @@ pub struct Options {
     pub typed: bool,
     /// A recursive situation whose DM call is evaluated (`ask(Q, more,
     /// get(vocab, _), _, _)`) pushes the callee natively, the call
-    /// evaluated once (`native::call_held`); off by default: it works and
-    /// agrees (`typed::ncall22`), but with it the home butler's generated
-    /// code is 8,607 lines, over the 8,000 of issue 37, until the exit arms
-    /// of such calls are shared. `false`: those situations run from their
-    /// template, as before.
+    /// evaluated once (`native::call_held`); on by default (`typed::ncall22`;
+    /// the home butler's generated code within issue 37's 8,000 lines since
+    /// exit arms and pushes are written with the runtime's shared calls,
+    /// `machine::arm_calls`). `false`: those situations run from their
+    /// template.
     pub held_calls: bool,
 }
 
@@ -121,7 +121,7 @@ impl Default for Options {
     fn default() -> Options {
         Options {
             typed: true,
-            held_calls: false,
+            held_calls: true,
         }
     }
 }

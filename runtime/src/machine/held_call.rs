@@ -101,6 +101,14 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         Some((call, T::from_id_parts(&self.m.store, call, paths)?))
     }
 
+    /// [`Cx::call_args`] of the call's first arguments, as many as `T`
+    /// has (`(v0, v1)`: arguments 0 and 1).
+    #[inline]
+    pub fn first_args<T: FromIdParts>(&self, ev: &Result<Term, EvalError>) -> Option<(Term, T)> {
+        const FIRST: [&[usize]; 8] = [&[0], &[1], &[2], &[3], &[4], &[5], &[6], &[7]];
+        self.call_args(ev, &FIRST)
+    }
+
     /// The callee's frame `callee` of a held call (`held`) put in `call`
     /// for the driver to push; with the history kept its level opened
     /// with that call ([`Cx::open_level`]), the term a frame made the
@@ -150,5 +158,29 @@ impl<P: DmProgram> Cx<'_, '_, P> {
                 Err(e)
             }
         }
+    }
+}
+
+impl<F> super::NatBelow<'_, F> {
+    /// [`Cx::call_held`] in a DM without locals, the native frames below
+    /// handed over first (the runtime's
+    /// [`nat_hand_over`](super::nat_hand_over)): one cold call for a held
+    /// call that native code does not push.
+    #[cold]
+    #[inline(never)]
+    pub fn call_held<P: DmProgram>(
+        &mut self,
+        p: &P,
+        cx: &mut Cx<'_, '_, P>,
+        count: u64,
+        sit: SitIx,
+        id: impl IdArg,
+        held: Result<Term, EvalError>,
+    ) -> Result<Option<Step>, RunError>
+    where
+        F: NatFrames<P>,
+    {
+        super::nat_hand_over(p, cx, self)?;
+        cx.call_held(count, sit, id, held)
     }
 }

@@ -39,9 +39,14 @@
 //! - `effect`: an arc's action performed by native code, entered or not
 //!   ([`Cx::nat_perform`], [`NatEntry`], [`NatAction`]), its frames
 //!   handed over only where it records unentered or the effector fails;
+//! - `arm_calls`: steps generated code writes at many sites as one inlined
+//!   call each ([`TypedRun::empty`], [`TypedRun::entry`],
+//!   [`TypedRun::exit_end`], [`NatBelow::push`], [`NatBelow::perform`],
+//!   [`Of`]);
 //! - `run`: the loop (DM calls and returns, selection of situations, garbage
 //!   collection between them).
 
+mod arm_calls;
 mod boundary;
 mod cx;
 mod effect;
@@ -59,6 +64,7 @@ mod situation;
 mod state;
 mod steps;
 
+pub use arm_calls::Of;
 pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, Fill, FromIdParts, IdArg, OutSlot};
 pub use effect::{AnyShape, Due, NatAction, NatEntry};
 pub use io::{ActionShape, Actions, Perceived, Percept, Perception};

@@ -253,11 +253,11 @@ impl TypedRun {
         &self,
         cx: &mut Cx<'_, '_, P>,
         count: u64,
-        id: impl Into<Term>,
+        id: impl super::IdArg,
         outs: &[(usize, &dyn super::OutSlot)],
     ) -> Result<u64, RunError> {
         if self.recorded() {
-            cx.close_level(id.into(), outs)?;
+            cx.close_level(id, outs)?;
             return Ok(count);
         }
         Ok(count + 1)

@@ -362,6 +362,16 @@ fn gives_fn(toks: &[TokenTree], k: usize) -> bool {
         "count_but_this",
         "close_level",
         "recorded",
+        // `machine::arm_calls`: `nat_empty` (given `stack`), an entry, a
+        // push (`push_level`), a `ground` performed (handing over itself
+        // where it must), and `NatBelow::call_held` (the same).
+        "empty",
+        "exit_empty",
+        "entry",
+        "exit_end",
+        "push",
+        "perform",
+        "call_held",
     ]
     .contains(&&*i.to_string()));
     let closure =

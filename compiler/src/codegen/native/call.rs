@@ -505,14 +505,33 @@ impl Gen<'_> {
         to_template: TokenStream,
     ) -> N<TokenStream> {
         let vs: Vec<Ident> = (0..args.len()).map(|i| format_ident!("v{}", i)).collect();
-        let lets = args.iter().zip(&vs).map(|(v, x)| {
-            let e = &v.e;
-            quote!(let #x = #e;)
-        });
+        // An output argument (no term) written `Ground::OUT` where it is
+        // used, not bound first.
+        let out = quote!(Ground::OUT).to_string();
+        let lets = args
+            .iter()
+            .zip(&vs)
+            .filter(|(v, _)| v.e.to_string() != out)
+            .map(|(v, x)| {
+                let e = &v.e;
+                quote!(let #x = #e;)
+            });
+        let outs: Vec<&Ident> = args
+            .iter()
+            .zip(&vs)
+            .filter(|(v, _)| v.e.to_string() == out)
+            .map(|(_, x)| x)
+            .collect();
         // The frame made by one closure for both pushes where nothing after
         // them reads the arguments (the closure takes them).
         let reads_args = mentions_any(&to_template, &vs);
         let push = self.nat_push(d, ix, regs, plan, args, &vs, !reads_args)?;
+        let (push, to_template) = outs.iter().fold((push, to_template), |(p, t), x| {
+            (
+                super::call_held::replace_ident(&p, x, &quote!(Ground::OUT)),
+                super::call_held::replace_ident(&t, x, &quote!(Ground::OUT)),
+            )
+        });
         Ok(quote! {
             #(#lets)*
             #push
@@ -548,13 +567,10 @@ impl Gen<'_> {
         // by one closure, `callee()`, where it reads nothing of `cx`: the
         // frame built in place where the branch calls it, as before.
         if plan.rec_exit && shared && !mentions_any(&frame, &[format_ident!("cx")]) {
+            // Both tests and pushes one call (`NatBelow::push`, inlined).
             return Ok(quote! {
                 let callee = || #frame;
-                if !run.records && stack.has_room(cx) {
-                    *call = Some(super::NatFrame::#callee_v(callee()));
-                    return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
-                } else if run.nests && stack.has_room(cx) {
-                    cx.push_level(p, call, super::NatFrame::#callee_v(callee()));
+                if stack.push(p, cx, run, call, super::NatFrame::#callee_v, callee) {
                     return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
                 }
             });
@@ -689,6 +705,14 @@ impl Gen<'_> {
                 let ret = quote!(return machine::nat_template(p, cx, stack, count, #curl, #arg););
                 if super::fits(&ret, 24) {
                     return Ok(ret);
+                }
+            }
+            // A `Fill` bound first (filled after the hand-over, by the call).
+            if let Some(fill) = super::fill_arg(&id_stmts, &id) {
+                let ret = quote!(return machine::nat_template(p, cx, stack, count, #curl, #id););
+                let fill = quote!(let #id = #fill;);
+                if super::fits(&ret, 24) && super::fits(&fill, 24) {
+                    return Ok(quote!(#fill #ret));
                 }
             }
         }
@@ -940,7 +964,7 @@ impl Gen<'_> {
             TokenStream,
             (usize, TokenStream),
             TokenStream,
-            Option<(TokenStream, TokenStream, Option<TokenStream>)>,
+            Option<ExitRecord>,
         );
         let mut finals: Vec<(TokenStream, Vec<ArcCode>)> = Vec::new();
         // Every arc's entry built natively (its expectation a term of the
@@ -1036,6 +1060,7 @@ impl Gen<'_> {
             let sk = format_ident!("S{}", k);
             finals.push((quote!(super::#callee_n::#sk { #(#cf),* }), arcs_code));
         }
+        let curl = Literal::u32_unsuffixed(ix as u32);
         let arms = finals.into_iter().map(|(pat, arcs)| {
             // An arc whose test always holds takes every final that
             // reaches it: the arcs after it are never tried.
@@ -1051,25 +1076,36 @@ impl Gen<'_> {
                     // nothing the entry reads): made first, once, then the
                     // transition counted (`run.tally`) or the entry recorded
                     // (the order of the store's terms is the entry's alone).
-                    Some((entry, next, one))
+                    Some((entry, next, one, lazy))
                         if rec_all
                             && !leaves(&next)
                             && !mentions(&next, &format_ident!("cx"))
                             && !super::moves_any(&next, &entry) =>
                     {
-                        // The entry and its record one call where it fits.
+                        // The entry and its record one `TypedRun` call
+                        // where its terms can be made there (the id bound
+                        // before the next situation is not reused: a move
+                        // there would end its borrow).
+                        let lazy = lazy.and_then(|l| {
+                            l.stmts(&quote!(), |id| {
+                                quote!(run.exit_end(cx, &mut count, #curl, #id, ea, &next_at);)
+                            })
+                        });
+                        // Else the entry and its record one call where it fits.
                         let rec = one.unwrap_or_else(|| {
                             quote! {
                                 #entry
                                 cx.record_next(exp, act, |s| next_at.id_term(p, s));
                             }
                         });
+                        // The count in `TypedRun::exit_end` too.
+                        let rec = match lazy {
+                            Some(l) => l,
+                            None => quote!(run.tally(&mut count); if run.recorded() { #rec }),
+                        };
                         quote! {
                             let next_at: Nat = #next;
-                            run.tally(&mut count);
-                            if run.recorded() {
-                                #rec
-                            }
+                            #rec
                             break 'visit next_at;
                         }
                     }
@@ -1079,7 +1115,7 @@ impl Gen<'_> {
                     // A next situation that hands over before anything
                     // else (a Prolog condition: a cold path) is written once,
                     // below, not once a way.
-                    Some((entry, next, _))
+                    Some((entry, next, _, _))
                         if rec_all && !uses_entry(&next) && !super::hands_over_first(&next) =>
                     {
                         quote! {
@@ -1092,7 +1128,24 @@ impl Gen<'_> {
                             #plain
                         }
                     }
-                    Some((entry, next, _)) if rec_all => quote! {
+                    // The entry one call (`TypedRun::entry`) where its
+                    // terms can be made there.
+                    Some((_, next, _, Some(lazy)))
+                        if rec_all && lazy.stmts(&head, |_| quote!()).is_some() =>
+                    {
+                        let entry = lazy
+                            .stmts(&head, |id| {
+                                quote!(let (exp, act) = run.entry(cx, &mut count, #curl, #id, ea);)
+                            })
+                            .unwrap_or_default();
+                        quote! {
+                            #entry
+                            let next_at: Nat = #next;
+                            run.record_next(cx, exp, act, |s| next_at.id_term(p, s));
+                            break 'visit next_at;
+                        }
+                    }
+                    Some((entry, next, _, _)) if rec_all => quote! {
                         let (exp, act) = if run.recorded() {
                             #entry
                             (exp, act)
@@ -1147,8 +1200,7 @@ impl Gen<'_> {
         // call, `NatBelow::no_exit`, the id filled after the hand-over:
         // an atom, or a `Fill` made before where the call would not fit
         // on a line; the arm's statements are indented by 20).
-        let no_exit =
-            |id: &TokenStream| quote!(return stack.no_exit(p, cx, count, #curl, #id, final_at););
+        let no_exit = |id: &TokenStream| quote!(return stack.no_exit(p, cx, count, #curl, #id, &done_frame.at););
         let fill = super::fill_arg(&id_stmts, &id);
         let no_exit = match (&fill, id_stmts.is_empty()) {
             _ if !super::runtime_hand(hand) => None,
@@ -1164,20 +1216,36 @@ impl Gen<'_> {
             quote! {
                 #hand
                 #(#id_stmts)*
-                return cx.no_exit(count, #curl, #id_arg, |s| final_at.id_term(p, s));
+                return cx.no_exit(count, #curl, #id_arg, |s| done_frame.at.id_term(p, s));
             }
         });
+        let body = quote! {
+            match &done_frame.at {
+                #arms
+                _ => {}
+            }
+            #no_exit
+        };
+        // The waiting situation's id as one `Fill` made first where the arms
+        // make it more than once (their `let`s of it dropped): where it
+        // reads only the variant's fields (immutable: nothing changes them
+        // while it lives).
+        let fields: Vec<Ident> = self
+            .nat_wait_fields(d, ix)?
+            .iter()
+            .map(|(r, _)| reg(*r))
+            .collect();
+        let (one_id, body) = match &fill {
+            Some(fill) if reads_only(fill, &fields) => one_fill(&body, fill),
+            _ => (None, body),
+        };
         let body = quote! {
             let super::NatFrame::#callee_v(done_frame) = ret else {
                 return Err(cx.fault(Fault::WrongFrame));
             };
             #(#out_loads)*
-            let final_at = &done_frame.at;
-            match &final_at {
-                #arms
-                _ => {}
-            }
-            #no_exit
+            #one_id
+            #body
         };
         // Only the parameters the exit arcs read are loaded (a load is a
         // clone: a list's count changed and changed back on every return).
@@ -1199,7 +1267,7 @@ impl Gen<'_> {
         arc: &crate::mir::ArcPlan,
         regs: &Regs,
         cur_name: &TokenStream,
-    ) -> N<(TokenStream, TokenStream, Option<TokenStream>)> {
+    ) -> N<ExitRecord> {
         let mut ts = Vec::new();
         let mut n = 0;
         let exp = self.nat_ev_term(&arc.expectation, regs, &mut ts, &mut n)?;
@@ -1268,6 +1336,7 @@ impl Gen<'_> {
                 #call
             }
         });
+        let lazy = lazy_entry(&ts, &exp, &act, &id_stmts, &id);
         Ok((
             quote! {
                 #(#ts)*
@@ -1277,6 +1346,7 @@ impl Gen<'_> {
             },
             next,
             one,
+            lazy,
         ))
     }
 
@@ -1431,6 +1501,14 @@ impl Gen<'_> {
             #hand
             #(#id_stmts)*
             cx.enter_counted(&mut count, #curl, #id);
+        };
+        // The id as a call takes it: an atom, or a `Fill` bound first.
+        let ground_id = match super::fill_arg(&id_stmts, &id) {
+            Some(fill) => Some((quote!(let #id = #fill;), id.clone())),
+            None if id_stmts.is_empty() && super::atom_arg(&id).to_string() != id.to_string() => {
+                Some((quote!(), super::atom_arg(&id)))
+            }
+            None => None,
         };
         let mut stmts = Vec::new();
         let mut performs = Vec::new();
@@ -1694,7 +1772,13 @@ impl Gen<'_> {
                     // the hand-over (a DM's own writes its locals back) and
                     // the entry that reports the error.
                     let arc_t = quote!(#arc);
+                    let gated = super::runtime_hand(hand)
+                        .then(|| {
+                            super::gated_empty_call(&id_stmts, &id, &curl, &arc_t, "exit_empty")
+                        })
+                        .flatten();
                     match super::empty_call(&id_stmts, &id, &curl, &arc_t, false) {
+                        _ if gated.is_some() => gated.unwrap_or_default(),
                         Some(call) if super::runtime_hand(hand) => {
                             quote!(if !run.quiet_empty { #call })
                         }
@@ -1733,6 +1817,15 @@ impl Gen<'_> {
                 // an atom other than `empty` performed, handed to the
                 // effector as an `int`'s is (`Cx::perform_value`, no
                 // hand-over).
+                // The same in one call (`NatBelow::perform`) where the
+                // hand-over is the runtime's and the id an atom or a `Fill`.
+                Ty::Ground if super::runtime_hand(hand) && !list && ground_id.is_some() => {
+                    let (id_let, id_arg) = ground_id.clone().unwrap_or_default();
+                    quote! {
+                        #id_let
+                        stack.perform(cx, run, &mut count, #curl, #arc, #id_arg, &#x)?;
+                    }
+                }
                 Ty::Ground => quote! {
                     match &#x {
                         Val::Int(_) | Val::Float(_) => {
@@ -2369,6 +2462,214 @@ fn bind_fresh(
     stmts.push(quote!(let #rr = #e;));
     regs.insert(dst, (rr, dty));
     Ok(())
+}
+
+/// Whether `fill` (a `Fill(p.k[i], &[..])`) reads no variable but
+/// `fields`.
+fn reads_only(fill: &TokenStream, fields: &[Ident]) -> bool {
+    let mut ids = std::collections::BTreeSet::new();
+    super::idents(fill, &mut ids);
+    ids.iter()
+        .all(|i| ["Fill", "p", "k"].contains(&i.as_str()) || fields.iter().any(|f| f == i))
+}
+
+/// `code` with its statements `let x = FILL;` (`fill`) dropped and every
+/// such `x` named as the first: that name's `let` (to put before `code`)
+/// and the code; where there are fewer than two, none and `code`.
+pub(super) fn one_fill(
+    code: &TokenStream,
+    fill: &TokenStream,
+) -> (Option<TokenStream>, TokenStream) {
+    use proc_macro2::{Group, TokenTree};
+    fn drop_lets(ts: &TokenStream, fill: &str, names: &mut Vec<Ident>) -> TokenStream {
+        let toks: Vec<TokenTree> = ts.clone().into_iter().collect();
+        let mut out = Vec::new();
+        let mut k = 0;
+        while k < toks.len() {
+            if let (TokenTree::Ident(l), Some(TokenTree::Ident(x)), Some(TokenTree::Punct(eq))) =
+                (&toks[k], toks.get(k + 1), toks.get(k + 2))
+            {
+                if l == "let" && eq.as_char() == '=' && eq.spacing() == proc_macro2::Spacing::Alone
+                {
+                    let end = toks[k + 3..]
+                        .iter()
+                        .position(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == ';'));
+                    if let Some(end) = end {
+                        let init: TokenStream = toks[k + 3..k + 3 + end].iter().cloned().collect();
+                        if init.to_string() == fill {
+                            names.push(x.clone());
+                            k += 3 + end + 1;
+                            continue;
+                        }
+                    }
+                }
+            }
+            match &toks[k] {
+                TokenTree::Group(g) => {
+                    let mut ng = Group::new(g.delimiter(), drop_lets(&g.stream(), fill, names));
+                    ng.set_span(g.span());
+                    out.push(TokenTree::Group(ng));
+                }
+                t => out.push(t.clone()),
+            }
+            k += 1;
+        }
+        out.into_iter().collect()
+    }
+    fn rename(ts: &TokenStream, from: &[Ident], to: &Ident) -> TokenStream {
+        ts.clone()
+            .into_iter()
+            .map(|t| match t {
+                TokenTree::Ident(i) if from.contains(&i) => TokenTree::Ident(to.clone()),
+                TokenTree::Group(g) => {
+                    let mut ng = Group::new(g.delimiter(), rename(&g.stream(), from, to));
+                    ng.set_span(g.span());
+                    TokenTree::Group(ng)
+                }
+                t => t,
+            })
+            .collect()
+    }
+    let mut names = Vec::new();
+    let dropped = drop_lets(code, &fill.to_string(), &mut names);
+    match names.first() {
+        Some(x) if names.len() >= 2 => {
+            let x = x.clone();
+            (Some(quote!(let #x = #fill;)), rename(&dropped, &names, &x))
+        }
+        _ => (None, code.clone()),
+    }
+}
+
+/// An exit arc's recorded way ([`Gen::nat_exit_record`]): its entry's
+/// statements, its next situation, the entry and record as one call where
+/// it fits, and the entry's terms made where a `TypedRun` call needs them
+/// ([`LazyEntry`]).
+type ExitRecord = (
+    TokenStream,
+    TokenStream,
+    Option<TokenStream>,
+    Option<LazyEntry>,
+);
+
+/// An exit arc's entry whose terms a `TypedRun` call makes only where the
+/// run records ([`lazy_entry`]): `let ea = (EXP, ACT);` (its expectation
+/// an `Of` or a constant, its action a constant), and the id (an atom, or
+/// a `Fill` bound first: its name and `let`).
+struct LazyEntry {
+    pair: TokenStream,
+    id: TokenStream,
+    id_let: Option<(Ident, TokenStream)>,
+}
+
+impl LazyEntry {
+    /// `call` of the id and `ea` after the pair's `let` (and the id's,
+    /// unless `head` binds the same `Fill` already: that name then);
+    /// `None` where a statement would not fit on a line.
+    fn stmts(
+        &self,
+        head: &TokenStream,
+        call: impl Fn(&TokenStream) -> TokenStream,
+    ) -> Option<TokenStream> {
+        let pair = &self.pair;
+        let pair = quote!(let ea = #pair;);
+        let (id_let, id) = match &self.id_let {
+            None => (None, self.id.clone()),
+            Some((x, fill)) => match bound_as(head, fill) {
+                Some(y) => (None, quote!(#y)),
+                None => (Some(quote!(let #x = #fill;)), quote!(#x)),
+            },
+        };
+        let call = call(&id);
+        let all: Vec<&TokenStream> = id_let.iter().chain([&pair, &call]).collect();
+        all.iter()
+            .all(|t| super::fits_at(t, None))
+            .then(|| quote!(#id_let #pair #call))
+    }
+}
+
+/// The name `head` binds to `fill` (`let x = Fill(..);`, a statement of
+/// its own at its top level), if any.
+fn bound_as(head: &TokenStream, fill: &TokenStream) -> Option<Ident> {
+    use proc_macro2::TokenTree;
+    let toks: Vec<TokenTree> = head.clone().into_iter().collect();
+    let want = fill.to_string();
+    for k in 0..toks.len() {
+        let (TokenTree::Ident(l), Some(TokenTree::Ident(x)), Some(TokenTree::Punct(eq))) =
+            (&toks[k], toks.get(k + 1), toks.get(k + 2))
+        else {
+            continue;
+        };
+        if l != "let" || eq.as_char() != '=' {
+            continue;
+        }
+        let end = toks[k + 3..]
+            .iter()
+            .position(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == ';'))?;
+        let init: TokenStream = toks[k + 3..k + 3 + end].iter().cloned().collect();
+        if init.to_string() == want {
+            return Some(x.clone());
+        }
+    }
+    None
+}
+
+/// [`LazyEntry`] of an exit arc's entry: where the expectation is a term
+/// made by one `cx.build_of` (then an `Of`) or a constant (its statements
+/// `ts` none), the action a constant, the id an atom or one `cx.fill`
+/// (then a `Fill`). `None` for any other.
+fn lazy_entry(
+    ts: &[TokenStream],
+    exp: &TokenStream,
+    act: &TokenStream,
+    id_stmts: &[TokenStream],
+    id: &TokenStream,
+) -> Option<LazyEntry> {
+    if !ts.is_empty() {
+        return None;
+    }
+    // `let act = cx.term(&act0);`: the value, made a term by the call.
+    let act = match syn::parse2::<syn::Stmt>(act.clone()) {
+        Ok(syn::Stmt::Local(l)) => match l.init.map(|i| *i.expr) {
+            Some(syn::Expr::MethodCall(m))
+                if m.method == "term" && m.args.len() == 1 && {
+                    let r = &m.receiver;
+                    quote!(#r).to_string() == "cx"
+                } =>
+            {
+                let v = &m.args[0];
+                quote!(#v)
+            }
+            _ => return None,
+        },
+        _ if act.to_string().starts_with("let") => return None,
+        _ => act.clone(),
+    };
+    let exp = match syn::parse2::<syn::Expr>(exp.clone()).ok()? {
+        syn::Expr::MethodCall(m)
+            if m.method == "build_of" && {
+                let r = &m.receiver;
+                quote!(#r).to_string() == "cx"
+            } =>
+        {
+            let args = &m.args;
+            quote!(Of(#args))
+        }
+        e if !mentions(&quote!(#e), &format_ident!("cx")) => quote!(#e),
+        _ => return None,
+    };
+    let (id_let, id) = if id_stmts.is_empty() {
+        (None, super::atom_arg(id))
+    } else {
+        let fill = super::fill_arg(id_stmts, id)?;
+        let x = syn::parse2::<Ident>(id.clone()).ok()?;
+        (Some((x, fill)), id.clone())
+    };
+    Some(LazyEntry {
+        pair: quote!((#exp, #act)),
+        id,
+        id_let,
+    })
 }
 
 /// `exp`, a compound `cx.build(f, &[..])` whose arguments' terms `ts`

@@ -18,8 +18,8 @@
 //! level is opened with that call (`Cx::open_level`), the term a frame made
 //! the machine's is checked against.
 //!
-//! Only with `codegen::Options::held_calls` (off by default: the home
-//! butler's generated code would pass issue 37's 8,000 lines).
+//! With `codegen::Options::held_calls` (the default; `false` keeps these
+//! situations on their templates).
 //!
 //! Which calls (`Gen::nat_held_args`): a DM without locals (the
 //! evaluation's environment is then the machine's with no locals,
@@ -193,20 +193,25 @@ impl Gen<'_> {
             return Ok(to_template); // `FromIdParts`: eight at most
         }
         let cold = self.nat_held_cold(d, ix)?;
+        // The first arguments: `Cx::first_args` (the paths its type's).
+        let first = (0..xs.len())
+            .map(|k| {
+                let kl = Literal::usize_unsuffixed(k);
+                quote!(&[#kl]).to_string()
+            })
+            .eq(paths.iter().map(|p| p.to_string()));
         let conv = if xs.is_empty() {
             quote!(let Ok(&held) = ev.as_ref() else { #cold };)
+        } else if first {
+            quote!(let Some((held, (#(#xs,)*))) = cx.first_args(&ev) else { #cold };)
         } else {
             quote!(let Some((held, (#(#xs,)*))) = cx.call_args(&ev, &[#(#paths),*]) else { #cold };)
         };
-        let outs_let = match &outs_let[..] {
-            [] => quote!(),
-            [v] => quote!(let #v = Ground::OUT;),
-            vs => {
-                let o = vs.iter().map(|_| quote!(Ground::OUT));
-                quote!(let (#(#vs),*) = (#(#o),*);)
-            }
-        };
         let (frame, wf) = self.nat_callee_frame(d, ix, &regs, plan, &args, &vs)?;
+        // An output argument passes no term: `Ground::OUT` in the frame.
+        let frame = outs_let
+            .iter()
+            .fold(frame, |f, v| replace_ident(&f, v, &quote!(Ground::OUT)));
         let callee_v = format_ident!("D{}", plan.j);
         let wv = format_ident!("W{}", ix);
         let guard = if plan.rec_exit {
@@ -214,19 +219,28 @@ impl Gen<'_> {
         } else {
             quote!(!run.records)
         };
-        Ok(quote! {
+        let visit = quote! {
             // The call evaluated once, read-only, then pushed natively
             // with the variant holding it (`call_held` where it is not).
             if #guard && stack.has_room(cx) {
                 #(#ts)*
                 let ev = cx.nat_embedded_dm(stack, #t);
                 #conv
-                #outs_let
                 let callee = #frame;
                 cx.push_held(run, call, held, super::NatFrame::#callee_v(callee));
                 return cx.step_done(count, slot, Nat::#wv { #(#wf,)* held });
             }
             #to_template
+        };
+        // The situation's id (a `Fill` both ways that hand over make) bound
+        // once, first: a DM without locals, its registers not changed.
+        let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        Ok(match super::fill_arg(&id_stmts, &id) {
+            Some(fill) => match super::call::one_fill(&visit, &fill) {
+                (Some(id_let), visit) => quote!(#id_let #visit),
+                (None, visit) => visit,
+            },
+            None => visit,
         })
     }
 
@@ -236,6 +250,19 @@ impl Gen<'_> {
         let curl = Literal::u32_unsuffixed(ix as u32);
         let hand = &d.hand;
         let (id_stmts, id) = self.nat_id_term(d, ix, quote!(cx.store()))?;
+        // The runtime's hand-over: both in one call (`NatBelow::call_held`),
+        // the id an atom or a `Fill` bound first.
+        let id_parts = match super::fill_arg(&id_stmts, &id) {
+            Some(fill) => Some((quote!(let #id = #fill;), id.clone())),
+            None if id_stmts.is_empty() => Some((quote!(), super::atom_arg(&id))),
+            None => None,
+        };
+        if let (true, Some((id_let, id_arg))) = (super::runtime_hand(hand), id_parts) {
+            return Ok(quote! {
+                #id_let
+                return stack.call_held(p, cx, count, #curl, #id_arg, ev);
+            });
+        }
         if let Some(fill) = super::fill_arg(&id_stmts, &id) {
             return Ok(quote!(#hand return cx.call_held(count, #curl, #fill, ev);));
         }
@@ -249,4 +276,23 @@ impl Gen<'_> {
             return cx.call_held(count, #curl, #id, ev);
         })
     }
+}
+
+/// `ts` with every identifier `x` replaced by `by`.
+pub(super) fn replace_ident(ts: &TokenStream, x: &Ident, by: &TokenStream) -> TokenStream {
+    use proc_macro2::{Group, TokenTree};
+    ts.clone()
+        .into_iter()
+        .flat_map(|t| -> Vec<TokenTree> {
+            match t {
+                TokenTree::Ident(i) if i == *x => by.clone().into_iter().collect(),
+                TokenTree::Group(g) => {
+                    let mut ng = Group::new(g.delimiter(), replace_ident(&g.stream(), x, by));
+                    ng.set_span(g.span());
+                    vec![TokenTree::Group(ng)]
+                }
+                t => vec![t],
+            }
+        })
+        .collect()
 }

@@ -237,6 +237,7 @@ mod perceive;
 mod pipe;
 mod plain;
 mod plain_rs;
+mod sel_flat;
 mod select_fn;
 mod visit;
 use crate::ir::IrDm;
@@ -771,6 +772,48 @@ fn empty_call(
     arc: &TokenStream,
     entered: bool,
 ) -> Option<TokenStream> {
+    let f = if entered {
+        format_ident!("nat_enter")
+    } else {
+        format_ident!("nat_empty")
+    };
+    empty_call_with(
+        id_stmts,
+        id,
+        arc,
+        |pattern, holes| quote!(cx.#f(stack, &mut count, #cur, #arc, #pattern, #holes)?;),
+    )
+}
+
+/// [`empty_call`] of `Cx::nat_empty` with its test: `TypedRun::empty`
+/// (`gate` `empty`: where the run records or the actions do not ignore
+/// `empty`, a neutral or perceptual arc's) or `TypedRun::exit_empty` (only
+/// the latter: an exit arc's, whose entry is made after it), one call in
+/// place of an `if` around the call.
+fn gated_empty_call(
+    id_stmts: &[TokenStream],
+    id: &TokenStream,
+    cur: &Literal,
+    arc: &TokenStream,
+    gate: &str,
+) -> Option<TokenStream> {
+    let f = format_ident!("{}", gate);
+    empty_call_with(
+        id_stmts,
+        id,
+        arc,
+        |pattern, holes| quote!(run.#f(cx, stack, &mut count, #cur, #arc, #pattern, #holes)?;),
+    )
+}
+
+/// The statements of [`empty_call`], the call made by `call` of the id's
+/// pattern and holes.
+fn empty_call_with(
+    id_stmts: &[TokenStream],
+    id: &TokenStream,
+    arc: &TokenStream,
+    call: impl Fn(&TokenStream, &TokenStream) -> TokenStream,
+) -> Option<TokenStream> {
     let (pattern, holes) = match id_stmts {
         [] => {
             let x = atom_arg(id);
@@ -782,19 +825,17 @@ fn empty_call(
         _ => fill_parts(id_stmts, id)?,
     };
     // Measured with `arc_ix` a digit, as `with_arc_at` puts it in.
-    let arc_m = if arc.to_string() == "arc_ix" {
-        quote!(0)
-    } else {
-        arc.clone()
+    let measure = |stmt: TokenStream| {
+        if arc.to_string() == "arc_ix" {
+            let s = stmt.to_string().replace("arc_ix", "0");
+            s.parse::<TokenStream>().unwrap_or(stmt)
+        } else {
+            stmt
+        }
     };
-    let f = if entered {
-        format_ident!("nat_enter")
-    } else {
-        format_ident!("nat_empty")
-    };
-    let measured = quote!(cx.nat_empty(stack, &mut count, #cur, #arc_m, #pattern, #holes)?;);
-    if fits_at(&measured, None) {
-        return Some(quote!(cx.#f(stack, &mut count, #cur, #arc, #pattern, #holes)?;));
+    let one = call(&pattern, &holes);
+    if fits_at(&measure(one.clone()), None) {
+        return Some(one);
     }
     // Else the id's pattern and holes as a `Fill` first (they borrow only
     // registers), which the call fills after the hand-over: two lines
@@ -803,11 +844,11 @@ fn empty_call(
         return None;
     }
     let fill = quote!(let #id = Fill(#pattern, #holes););
-    let measured = quote!(cx.nat_empty(stack, &mut count, #cur, #arc_m, #id, &[])?;);
-    (fits_at(&fill, None) && fits_at(&measured, None)).then(|| {
+    let two = call(id, &quote!(&[]));
+    (fits_at(&fill, None) && fits_at(&measure(two.clone()), None)).then(|| {
         quote! {
             #fill
-            cx.#f(stack, &mut count, #cur, #arc, #id, &[])?;
+            #two
         }
     })
 }
@@ -1863,6 +1904,7 @@ impl Gen<'_> {
             .filter(|st| !st.regs.iter().any(|r| holds_val(&r.ty)))
             .count();
         let items = select_fn::share_selections(items, &d.sels.borrow());
+        let items = sel_flat::flatten(items);
         let held = Self::nat_held(&d);
         Ok(NativeCode {
             held,
@@ -2754,6 +2796,19 @@ impl Gen<'_> {
                             }
                         }
                     }
+                    // A `Fill` id bound first (nothing filled where
+                    // nothing is recorded), the same one call.
+                    (None, _) if fill_arg(&id_stmts, &id).is_some() => {
+                        let fill = fill_arg(&id_stmts, &id);
+                        quote! {
+                            if !stack.is_empty() {
+                                #out_set
+                                let #id = #fill;
+                                let count = run.close_level(cx, count, #id, &[])?;
+                                return cx.step_done(count, slot, Nat::#v { #(#names),* });
+                            }
+                        }
+                    }
                     (None, _) => {
                         let close = close(quote!([]));
                         quote! {
@@ -2762,6 +2817,26 @@ impl Gen<'_> {
                                 #close
                                 return cx.step_done(count + 1, slot, Nat::#v { #(#names),* });
                             }
+                        }
+                    }
+                    (Some(_), Some((cond, set, outs)))
+                        if fill_arg(&id_stmts, &id).is_some()
+                            || (id_stmts.is_empty()
+                                && atom_arg(&id).to_string() != id.to_string()) =>
+                    {
+                        let (id_let, id_arg) = match fill_arg(&id_stmts, &id) {
+                            Some(fill) => (quote!(let #id = #fill;), id.clone()),
+                            None => (quote!(), atom_arg(&id)),
+                        };
+                        quote! {
+                            if !stack.is_empty() && #cond {
+                                #set
+                                #out_set
+                                #id_let
+                                let count = run.close_level(cx, count, #id_arg, &#outs)?;
+                                return cx.step_done(count, slot, Nat::#v { #(#names),* });
+                            }
+                            #hand
                         }
                     }
                     (Some(_), Some((cond, set, outs))) => {
@@ -3357,7 +3432,13 @@ impl Gen<'_> {
                 } else {
                     quote!(if cx.empty_fails(run) { #hand })
                 };
-                stmts.push(if let Some(call) = one {
+                // The test in the call (`TypedRun::empty`) with the
+                // runtime's hand-over.
+                let gated = gated_empty_call(&id_stmts, &id, &cur, &quote!(arc_ix), "empty")
+                    .filter(|_| action == atoms::EMPTY && runtime_hand(hand));
+                stmts.push(if let Some(call) = gated {
+                    call
+                } else if let Some(call) = one {
                     quote! {
                         if run.records || !run.quiet_empty {
                             #own_hand_if
