@@ -375,6 +375,9 @@ fn decided(cond: &[TokenTree]) -> Option<bool> {
             | "stack.is_empty()"
             | "cx.empty_fails(run)" => Some(false),
             "stack.has_room(cx)" => Some(true),
+            // `NatBelow::push`: `false` only where a history is recorded and
+            // not nested, or at the depth limit (both not counted).
+            _ if text.starts_with("stack.push(") => Some(true),
             // `false` only for a global that does not exist (the machine's
             // error follows).
             _ if text.starts_with("cx.global_set(") => Some(true),
