@@ -1406,6 +1406,13 @@ impl Gen<'_> {
         }
     }
 
+    /// Whether `e` is a constant compound that is not a list
+    /// (`say('Nothing here.')`): an effector's action performed as it is.
+    pub(super) fn const_compound(&self, e: &Ev) -> bool {
+        matches!(e, Ev::Built(Build::Const(t))
+            if self.store.functor(*t).is_some_and(|(f, n)| n > 0 && f != atoms::DOT))
+    }
+
     /// An exit arc's action (and a perceptual or neutral arc's, when it
     /// has only these): `inc`/`get` of a local into a fresh variable,
     /// `get(v, X)` with `X` made before (unified), `set` of a local the
@@ -1448,7 +1455,10 @@ impl Gen<'_> {
             // An effector's compound action built of values (`note(S)`):
             // its term made from native values, handed to the effector
             // without entering the machine (below).
-            if pure_compound(item).is_some_and(|f| f != atoms::DOT) && made_values(item, regs) {
+            // A constant compound (`say('Nothing here.')`) too.
+            if (self.const_compound(item) || pure_compound(item).is_some_and(|f| f != atoms::DOT))
+                && made_values(item, regs)
+            {
                 let mut ts = Vec::new();
                 let t = self.nat_ev_term(item, regs, &mut ts, &mut nb)?;
                 stmts.push(quote!(#(#ts)* let #x = Ground(#t);));

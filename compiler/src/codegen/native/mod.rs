@@ -3314,9 +3314,13 @@ impl Gen<'_> {
         let mut rec_fast = None;
         // An effector's compound action (`note(S)`): the general way
         // below performs it without entering the machine.
+        // A constant compound among a list's items too (`[say('Hi.'),
+        // say(N)]`): the general way, as before exit arcs performed them.
         let effector = match &arc.action {
-            Action::One(e) => call::pure_compound(e).is_some_and(|f| f != atoms::DOT),
-            Action::List { .. } => false,
+            Action::One(e) => {
+                self.const_compound(e) || call::pure_compound(e).is_some_and(|f| f != atoms::DOT)
+            }
+            Action::List { items, .. } => items.iter().any(|e| self.const_compound(e)),
         };
         if let (None, Some(k), false) = (atom, arc_ix, effector) {
             let mut nregs = regs.clone();
