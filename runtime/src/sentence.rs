@@ -44,33 +44,43 @@ fn pause_atom() -> Atom {
 pub struct Holed<'s> {
     store: &'s Store,
     holes: &'s [Term],
+    /// `'$hole'`, looked up once.
+    hole: Atom,
 }
 
 impl<'s> Holed<'s> {
     /// The store's terms as they are.
     pub fn plain(store: &'s Store) -> Self {
-        Holed { store, holes: &[] }
+        Holed {
+            store,
+            holes: &[],
+            hole: atoms::NIL,
+        }
     }
 
-    /// Patterns of `store` with `holes` (each [`atomic`]).
+    /// Patterns of `store` with `holes` (each [`atomic`]), the patterns
+    /// marked as a program's constants are (`machine::cx::mark_pattern`:
+    /// a hole is seen where the mark says one is below).
     pub fn new(store: &'s Store, holes: &'s [Term]) -> Self {
         debug_assert!(holes.iter().all(|&h| atomic(store, h)));
-        Holed { store, holes }
+        Holed {
+            store,
+            holes,
+            hole: hole_atom(),
+        }
     }
 
     /// `t` dereferenced, a hole its value.
     #[inline]
     pub fn resolve(&self, t: Term) -> Term {
         let t = self.store.deref(t);
-        if self.holes.is_empty() {
+        if self.holes.is_empty() || !self.store.is_holed(t) {
             return t;
         }
-        if let Value::Compound(f, [i]) = self.store.value(t) {
-            if f == hole_atom() {
-                let i = self.store.int_of(*i).and_then(|i| usize::try_from(i).ok());
-                if let Some(&h) = i.and_then(|i| self.holes.get(i)) {
-                    return self.store.deref(h);
-                }
+        if let Some([i]) = self.store.compound_args(t, self.hole, 1) {
+            let i = self.store.int_of(*i).and_then(|i| usize::try_from(i).ok());
+            if let Some(&h) = i.and_then(|i| self.holes.get(i)) {
+                return self.store.deref(h);
             }
         }
         t
@@ -117,12 +127,12 @@ pub fn write_in(src: &Holed<'_>, t: Term, out: &mut String) {
 
 /// Appends the sentence of `items` (the rule of [`crate::builtins::sentence`]).
 pub fn sentence_into(store: &Store, items: &[Term], out: &mut String) {
-    sentence_of(
-        &Holed::plain(store),
-        items.len(),
-        items.iter().copied(),
-        out,
-    );
+    let src = Holed::plain(store);
+    let mut items = items.iter().map(|&t| store.deref(t));
+    match items.next() {
+        Some(first) => sentence_of(&src, first, items, out),
+        None => out.push_str("[]"),
+    }
 }
 
 /// Appends the text of message `m`: a proper list with an item or more
@@ -132,16 +142,23 @@ pub fn message_into(store: &Store, m: Term, out: &mut String) {
     message_in(&Holed::plain(store), m, out);
 }
 
-/// [`message_into`] through `src`.
+/// [`message_into`] through `src`: one pass over the list, what was
+/// written of it taken back where it turns out not to be a proper list.
 pub fn message_in(src: &Holed<'_>, m: Term, out: &mut String) {
     let m = src.resolve(m);
+    let start = out.len();
     let mut items = Items { src, cur: m };
-    let n = items.by_ref().count();
-    if n == 0 || src.store.atom_of(items.cur) != Some(atoms::NIL) {
+    let proper = match items.next() {
+        None => false,
+        Some(first) => {
+            sentence_of(src, first, &mut items, out);
+            src.store.atom_of(items.cur) == Some(atoms::NIL)
+        }
+    };
+    if !proper {
+        out.truncate(start);
         write_in(src, m, out);
-        return;
     }
-    sentence_of(src, n, Items { src, cur: m }, out);
 }
 
 /// The text of message `m` ([`message_into`]).
@@ -162,9 +179,8 @@ impl Iterator for Items<'_, '_> {
     type Item = Term;
     #[inline]
     fn next(&mut self) -> Option<Term> {
-        match self.src.store.value(self.cur) {
-            Value::Compound(f, [head, tail]) if f == atoms::DOT => {
-                let (head, tail) = (*head, *tail);
+        match self.src.store.compound_args(self.cur, atoms::DOT, 2) {
+            Some(&[head, tail]) => {
                 self.cur = self.src.resolve(tail);
                 Some(self.src.resolve(head))
             }
@@ -173,20 +189,21 @@ impl Iterator for Items<'_, '_> {
     }
 }
 
-/// The rule on the `n` items `items` yields.
-fn sentence_of(src: &Holed<'_>, n: usize, mut items: impl Iterator<Item = Term>, out: &mut String) {
+/// The rule on `first` and the items `items` yields (each resolved).
+fn sentence_of(
+    src: &Holed<'_>,
+    first: Term,
+    mut items: impl Iterator<Item = Term>,
+    out: &mut String,
+) {
     let pause = pause_atom();
-    let is_pause = |t: Term| src.store.atom_of(src.resolve(t)) == Some(pause);
-    let (a, b) = match (items.next(), items.next()) {
-        (None, _) => {
-            out.push_str("[]");
+    let is_pause = |t: Term| src.store.atom_of(t) == Some(pause);
+    let (a, b) = match items.next() {
+        None => {
+            write_in(src, first, out);
             return;
         }
-        (Some(one), None) => {
-            write_in(src, one, out);
-            return;
-        }
-        (Some(a), Some(b)) => (a, b),
+        Some(b) => (first, b),
     };
     if is_pause(a) {
         out.push_str(". ");
@@ -199,10 +216,9 @@ fn sentence_of(src: &Holed<'_>, n: usize, mut items: impl Iterator<Item = Term>,
         out.push(' ');
         write_in(src, b, out);
     }
-    if n == 2 {
-        return;
-    }
+    let mut more = false;
     for x in items {
+        more = true;
         if is_pause(x) {
             out.push_str(". ");
         } else {
@@ -210,7 +226,9 @@ fn sentence_of(src: &Holed<'_>, n: usize, mut items: impl Iterator<Item = Term>,
             write_in(src, x, out);
         }
     }
-    out.push('.');
+    if more {
+        out.push('.');
+    }
 }
 
 #[cfg(test)]

@@ -154,7 +154,8 @@ pub trait NatAction: Copy {
 
 /// A compound action (not a list) of native values given as its pattern
 /// and holes (`Fill(p.k[3], &[&r4])`, `Cx::fill`'s arguments): where the
-/// run does not record and every hole is an atom or a number, offered to
+/// run does not record, every hole is an atom or a number and the pattern
+/// is marked (`mark_pattern`: a program's constant), offered to
 /// the effector unfilled ([`Actions::perform_filled`](super::Actions::perform_filled):
 /// test mode writes its line from the pattern, no term built); else, or
 /// where the effector declines, filled and handed to it as it is (what
@@ -185,7 +186,7 @@ impl NatAction for Fill<'_> {
                     *t = h.as_term(store);
                     atomic &= crate::sentence::atomic(store, *t);
                 }
-                if atomic {
+                if atomic && store.is_holed(pattern) {
                     if let Some(done) = cx.actions.perform_filled(store, pattern, &ts[..n]) {
                         return done.map(|()| Term::EMPTY);
                     }

@@ -134,7 +134,8 @@ pub trait Actions {
 
     /// Performs the action `pattern` filled with `holes` without the
     /// term built, where the effector can: `pattern` a program's constant
-    /// with `'$hole'(i)` where `holes[i]` goes (`Cx::fill`'s), every hole
+    /// with `'$hole'(i)` where `holes[i]` goes (`Cx::fill`'s, marked as
+    /// it was read: `machine::cx::mark_pattern`), every hole
     /// an atom or a number ([`crate::sentence::atomic`]), the term filled
     /// a compound that is not a list. `None`: not performed (the caller
     /// then builds the term and calls [`Actions::perform`]); else what

@@ -673,6 +673,10 @@ impl<W: Write> Actions for TextActions<W> {
         pattern: Term,
         holes: &[Term],
     ) -> Option<Result<(), String>> {
+        if !store.is_holed(pattern) {
+            // Not a pattern read as a program's constant is.
+            return None;
+        }
         let src = crate::sentence::Holed::new(store, holes);
         let a = src.resolve(pattern);
         let (name, arity) = store.functor(a)?;
