@@ -74,13 +74,15 @@ impl<'s> Holed<'s> {
     #[inline]
     pub fn resolve(&self, t: Term) -> Term {
         let t = self.store.deref(t);
-        if self.holes.is_empty() || !self.store.is_holed(t) {
+        if self.holes.is_empty() {
             return t;
         }
-        if let Some([i]) = self.store.compound_args(t, self.hole, 1) {
-            let i = self.store.int_of(*i).and_then(|i| usize::try_from(i).ok());
-            if let Some(&h) = i.and_then(|i| self.holes.get(i)) {
-                return self.store.deref(h);
+        if let Some((name, [i])) = self.store.holed_parts(t) {
+            if name == self.hole {
+                let i = self.store.int_of(*i).and_then(|i| usize::try_from(i).ok());
+                if let Some(&h) = i.and_then(|i| self.holes.get(i)) {
+                    return self.store.deref(h);
+                }
             }
         }
         t
@@ -103,7 +105,11 @@ impl TermSource for Holed<'_> {
 /// no other term.
 #[inline]
 pub fn atomic(store: &Store, t: Term) -> bool {
-    !matches!(store.value(t), Value::Var(_) | Value::Compound(..))
+    use crate::term::Repr;
+    matches!(
+        store.deref(t).0,
+        Repr::Atom(_) | Repr::Int(_) | Repr::Float(_) | Repr::Big(_)
+    )
 }
 
 /// Appends `t` as `write/1` writes it (`Store::write`).

@@ -236,6 +236,20 @@ impl Store {
         matches!(t.0, Repr::Struct(_)) && self.flags_of(t) & HOLED != 0
     }
 
+    /// The name and arguments of `t` (not dereferenced) where it is a
+    /// compound flagged [`HOLED`]: one read of its header.
+    #[inline]
+    pub(crate) fn holed_parts(&self, t: Term) -> Option<(Atom, &[Term])> {
+        let Repr::Struct(p) = t.0 else { return None };
+        let p = p as usize;
+        match self.cells[p].0 {
+            Repr::Functor(name, n, f) if f & HOLED != 0 => {
+                Some((name, &self.cells[p + 1..p + 1 + n as usize]))
+            }
+            _ => None,
+        }
+    }
+
     /// Whether `t` is known to be ground without walking it: atomic, or a
     /// compound built from ground parts only (every argument atomic or
     /// itself such a compound; a compound built over variable handles is
@@ -406,6 +420,7 @@ impl Store {
     }
 
     /// The arguments if `t` is `name(..)` with exactly `arity` arguments.
+    #[inline]
     pub fn compound_args(&self, t: Term, name: Atom, arity: usize) -> Option<&[Term]> {
         match self.deref(t).0 {
             Repr::Struct(p) => {
