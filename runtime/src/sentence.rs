@@ -20,7 +20,6 @@
 //! text, `Actions::perform_filled`): a hole read where the term filled has
 //! its value, so the text is the filled term's, byte for byte.
 
-use crate::machine::hole_atom;
 use crate::term::{Term, Value};
 use crate::Store;
 use sitlog_syntax::write::{write_term, TermSource, View, WriteOptions};
@@ -44,18 +43,12 @@ fn pause_atom() -> Atom {
 pub struct Holed<'s> {
     store: &'s Store,
     holes: &'s [Term],
-    /// `'$hole'`, looked up once.
-    hole: Atom,
 }
 
 impl<'s> Holed<'s> {
     /// The store's terms as they are.
     pub fn plain(store: &'s Store) -> Self {
-        Holed {
-            store,
-            holes: &[],
-            hole: atoms::NIL,
-        }
+        Holed { store, holes: &[] }
     }
 
     /// Patterns of `store` with `holes` (each [`atomic`]), the patterns
@@ -63,11 +56,7 @@ impl<'s> Holed<'s> {
     /// a hole is seen where the mark says one is below).
     pub fn new(store: &'s Store, holes: &'s [Term]) -> Self {
         debug_assert!(holes.iter().all(|&h| atomic(store, h)));
-        Holed {
-            store,
-            holes,
-            hole: hole_atom(),
-        }
+        Holed { store, holes }
     }
 
     /// `t` dereferenced, a hole its value.
@@ -77,12 +66,13 @@ impl<'s> Holed<'s> {
         if self.holes.is_empty() {
             return t;
         }
-        if let Some((name, [i])) = self.store.holed_parts(t) {
-            if name == self.hole {
-                let i = self.store.int_of(*i).and_then(|i| usize::try_from(i).ok());
-                if let Some(&h) = i.and_then(|i| self.holes.get(i)) {
-                    return self.store.deref(h);
-                }
+        // A marked compound of one integer argument has no hole below it
+        // but itself: it is `'$hole'(i)` (the mark is put on holes and the
+        // compounds above them only).
+        if let Some((_, [i])) = self.store.holed_parts(t) {
+            let i = self.store.int_of(*i).and_then(|i| usize::try_from(i).ok());
+            if let Some(&h) = i.and_then(|i| self.holes.get(i)) {
+                return self.store.deref(h);
             }
         }
         t
