@@ -343,11 +343,7 @@ fn report(store: &mut Store, action: Term, i: usize, status: Term) -> Result<(),
 /// rule ([`sitlog_runtime::builtins::sentence`]: words separated by a
 /// space, a final `.` from three words on), anything else is written as it is.
 pub fn sentence(store: &Store, text: Term) -> String {
-    let t = store.deref(text);
-    match store.list_to_vec(t).filter(|items| !items.is_empty()) {
-        Some(items) => sitlog_runtime::builtins::sentence(store, &items),
-        None => store.write(t),
-    }
+    sitlog_runtime::sentence::message(store, text)
 }
 
 impl Actions for Effectors {

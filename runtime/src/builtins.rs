@@ -199,35 +199,11 @@ fn run(store: &mut Store, name: Atom, t: Term) -> Result<Term, EvalError> {
 /// between elements); a message of three or more elements ends with `.`.
 /// `[A]` is `A`; two elements get no final stop. An element is written as
 /// a term (a list among them as `[a,b]`, as the original prints it).
+/// Written by [`crate::sentence`] (into a caller's buffer there).
 pub fn sentence(store: &Store, items: &[Term]) -> String {
-    let is_pause = |t: Term| store.atom_of(store.deref(t)).map(|a| a.as_str()) == Some("pause");
-    let text = |t: Term| store.write(t);
-    match items {
-        [] => "[]".to_owned(),
-        [one] => text(*one),
-        [a, b, rest @ ..] => {
-            let mut out = if is_pause(*a) {
-                format!(". {}", text(*b))
-            } else if is_pause(*b) {
-                format!("{} .", text(*a))
-            } else {
-                format!("{} {}", text(*a), text(*b))
-            };
-            if rest.is_empty() {
-                return out;
-            }
-            for &x in rest {
-                if is_pause(x) {
-                    out.push_str(". ");
-                } else {
-                    out.push(' ');
-                    out.push_str(&text(x));
-                }
-            }
-            out.push('.');
-            out
-        }
-    }
+    let mut out = String::new();
+    crate::sentence::sentence_into(store, items, &mut out);
+    out
 }
 
 /// The original's value of the constant pi in its coordinate transforms

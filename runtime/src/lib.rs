@@ -85,6 +85,7 @@ pub mod prelude;
 #[cfg(feature = "prolog")]
 pub mod prolog;
 pub mod report;
+pub mod sentence;
 mod special;
 pub mod stderr;
 mod store;

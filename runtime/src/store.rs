@@ -29,6 +29,13 @@ use std::sync::atomic::{AtomicU64, Ordering};
 pub(crate) const GROUND: u8 = 1;
 /// Header flag: the compound is ground and evaluates to itself in L.
 pub(crate) const INERT: u8 = 2;
+/// Header flag: a compound of a pattern native code fills
+/// (`machine::fill`) with a hole below it, the hole included; an argument
+/// of it without the flag holds no hole. Set once, as the program's
+/// constants are read, by [`Store::set_holed`]: a note beside the term,
+/// which does not change what the term is (the one change to a cell once
+/// written; nothing but `machine::fill` reads it).
+pub(crate) const HOLED: u8 = 4;
 
 /// A point in the trail to undo bindings back to (see [`Store::mark`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -214,6 +221,35 @@ impl Store {
         }
     }
 
+    /// Flags compound `t` [`HOLED`] (a pattern's, `machine::cx::mark_pattern`).
+    pub(crate) fn set_holed(&mut self, t: Term) {
+        if let Repr::Struct(p) = t.0 {
+            if let Repr::Functor(name, n, f) = self.cells[p as usize].0 {
+                self.cells[p as usize] = Term(Repr::Functor(name, n, f | HOLED));
+            }
+        }
+    }
+
+    /// Whether `t` (not dereferenced) is a compound flagged [`HOLED`].
+    #[inline]
+    pub(crate) fn is_holed(&self, t: Term) -> bool {
+        matches!(t.0, Repr::Struct(_)) && self.flags_of(t) & HOLED != 0
+    }
+
+    /// The name and arguments of `t` (not dereferenced) where it is a
+    /// compound flagged [`HOLED`]: one read of its header.
+    #[inline]
+    pub(crate) fn holed_parts(&self, t: Term) -> Option<(Atom, &[Term])> {
+        let Repr::Struct(p) = t.0 else { return None };
+        let p = p as usize;
+        match self.cells[p].0 {
+            Repr::Functor(name, n, f) if f & HOLED != 0 => {
+                Some((name, &self.cells[p + 1..p + 1 + n as usize]))
+            }
+            _ => None,
+        }
+    }
+
     /// Whether `t` is known to be ground without walking it: atomic, or a
     /// compound built from ground parts only (every argument atomic or
     /// itself such a compound; a compound built over variable handles is
@@ -384,6 +420,7 @@ impl Store {
     }
 
     /// The arguments if `t` is `name(..)` with exactly `arity` arguments.
+    #[inline]
     pub fn compound_args(&self, t: Term, name: Atom, arity: usize) -> Option<&[Term]> {
         match self.deref(t).0 {
             Repr::Struct(p) => {

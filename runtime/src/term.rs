@@ -33,7 +33,8 @@ pub(crate) enum Repr {
     /// Index of the header cell of a compound; the args follow it.
     Struct(u32),
     /// Header cell: name, arity and what holds of the whole compound
-    /// (`store::GROUND`, `store::INERT`), decided when it is built.
+    /// (`store::GROUND`, `store::INERT`), decided when it is built; a
+    /// pattern's `store::HOLED`, noted once as it is read.
     Functor(Atom, u32, u8),
 }
 

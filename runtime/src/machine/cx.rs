@@ -1775,8 +1775,59 @@ pub fn fill(store: &mut Store, pattern: Term, holes: &[&dyn AsTerm]) -> Term {
 }
 
 /// [`fill`] of `t` with the holes' terms (no allocation for compounds of up
-/// to eight arguments).
-fn fill_in(store: &mut Store, t: Term, holes: &[Term]) -> Term {
+/// to eight arguments): a pattern marked as it was read ([`mark_pattern`])
+/// walked along its holes only, its constant parts neither walked nor
+/// copied; any other, walked whole.
+pub(super) fn fill_in(store: &mut Store, t: Term, holes: &[Term]) -> Term {
+    if store.is_holed(t) {
+        fill_holed(store, t, holes)
+    } else {
+        fill_walk(store, t, holes)
+    }
+}
+
+/// Whether `t` is `'$hole'(i)`: `Some(i)`.
+#[inline]
+fn hole_index(store: &Store, name: Atom, args: &[Term]) -> Option<usize> {
+    match args {
+        [i] if name == hole_atom() => store.int_of(*i).and_then(|i| usize::try_from(i).ok()),
+        _ => None,
+    }
+}
+
+/// [`fill_in`] of a compound flagged `HOLED`: only its flagged arguments
+/// have holes below them.
+fn fill_holed(store: &mut Store, t: Term, holes: &[Term]) -> Term {
+    let mut buf = [Term::NIL; 8];
+    let mut spill = Vec::new();
+    let (name, n) = match store.value(t) {
+        crate::term::Value::Compound(name, args) => {
+            if let Some(i) = hole_index(store, name, args) {
+                return holes.get(i).copied().unwrap_or(t);
+            }
+            match buf.get_mut(..args.len()) {
+                Some(b) => b.copy_from_slice(args),
+                None => spill.extend_from_slice(args),
+            }
+            (name, args.len())
+        }
+        _ => return t,
+    };
+    let args: &mut [Term] = if spill.is_empty() {
+        &mut buf[..n]
+    } else {
+        &mut spill
+    };
+    for a in args.iter_mut() {
+        if store.is_holed(*a) {
+            *a = fill_holed(store, *a, holes);
+        }
+    }
+    native::compound(store, name, args)
+}
+
+/// [`fill_in`] of a pattern not marked: walked whole.
+fn fill_walk(store: &mut Store, t: Term, holes: &[Term]) -> Term {
     let mut buf = [Term::NIL; 8];
     let mut spill = Vec::new();
     let (name, n) = match store.value(t) {
@@ -1794,15 +1845,12 @@ fn fill_in(store: &mut Store, t: Term, holes: &[Term]) -> Term {
     } else {
         &mut spill
     };
-    if name == hole_atom() && n == 1 {
-        let i = store.int_of(args[0]).and_then(|i| usize::try_from(i).ok());
-        if let Some(&h) = i.and_then(|i| holes.get(i)) {
-            return h;
-        }
+    if let Some(&h) = hole_index(store, name, args).and_then(|i| holes.get(i)) {
+        return h;
     }
     let mut changed = false;
     for a in args.iter_mut() {
-        let f = fill_in(store, *a, holes);
+        let f = fill_walk(store, *a, holes);
         changed |= f != *a;
         *a = f;
     }
@@ -1810,6 +1858,29 @@ fn fill_in(store: &mut Store, t: Term, holes: &[Term]) -> Term {
         return t;
     }
     native::compound(store, name, args)
+}
+
+/// Marks pattern `t` for [`fill`] (once, as a program's constant is read,
+/// `read_consts`): each compound with a hole `'$hole'(i)` below it, the
+/// hole included, flagged, so that filling walks those only. Whether `t`
+/// has a hole.
+pub fn mark_pattern(store: &mut Store, t: Term) -> bool {
+    stacker::maybe_grow(64 * 1024, 1024 * 1024, || {
+        let (name, args) = match store.value(t) {
+            crate::term::Value::Compound(name, args) => (name, args.to_vec()),
+            _ => return false,
+        };
+        let mut holed = hole_index(store, name, &args).is_some();
+        if !holed {
+            for a in args {
+                holed |= mark_pattern(store, a);
+            }
+        }
+        if holed {
+            store.set_holed(t);
+        }
+        holed
+    })
 }
 
 /// `f` of `args` made terms (no allocation up to eight).
@@ -1829,3 +1900,7 @@ fn with_terms(
         f(store, &ts)
     }
 }
+
+#[cfg(test)]
+#[path = "fill_tests.rs"]
+mod fill_tests;

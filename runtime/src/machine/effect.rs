@@ -40,7 +40,10 @@
 //! [`Cx::perform`] does with it (`empty` skipped where the actions ignore
 //! it, a proper list element by element); the items of a list written
 //! out (`&[Term; N]`), one by one, the list built for the history only
-//! where the run records.
+//! where the run records; a compound of native values as its pattern and
+//! holes ([`Fill`]), offered to the effector unfilled where nothing records
+//! it and its holes are atoms or numbers (`Actions::perform_filled`: test
+//! mode writes the line from the pattern), else filled.
 //!
 //! An action whose functor the effector ignores whatever its arguments
 //! ([`Actions::ignores`](super::Actions::ignores): test mode's actions
@@ -58,7 +61,7 @@ use super::native_stack::{nat_hand_over, NatBelow, NatFrames};
 use super::outcome::RunError;
 use super::program::{Cx, DmProgram, TypedRun};
 use super::situation::SitIx;
-use super::IdArg;
+use super::{Fill, IdArg};
 use crate::term::Term;
 use crate::Store;
 
@@ -135,6 +138,66 @@ pub trait NatAction: Copy {
     /// The action as the history records it where `records`, else
     /// anything (the history does not read it).
     fn recorded(self, store: &mut Store, records: bool) -> Term;
+
+    /// [`NatAction::perform_in`], then [`NatAction::recorded`]: one call
+    /// where the two share work ([`Fill`]).
+    #[inline]
+    fn perform_recorded<P: DmProgram>(
+        self,
+        cx: &mut Cx<'_, '_, P>,
+        records: bool,
+    ) -> Result<Term, String> {
+        self.perform_in(cx)?;
+        Ok(self.recorded(&mut cx.m.store, records))
+    }
+}
+
+/// A compound action (not a list) of native values given as its pattern
+/// and holes (`Fill(p.k[3], &[&r4])`, `Cx::fill`'s arguments): where the
+/// run does not record, every hole is an atom or a number and the pattern
+/// is marked (`mark_pattern`: a program's constant), offered to
+/// the effector unfilled ([`Actions::perform_filled`](super::Actions::perform_filled):
+/// test mode writes its line from the pattern, no term built); else, or
+/// where the effector declines, filled and handed to it as it is (what
+/// [`Cx::perform`] does with a compound that is not a list).
+impl NatAction for Fill<'_> {
+    #[inline]
+    fn perform_in<P: DmProgram>(self, cx: &mut Cx<'_, '_, P>) -> Result<(), String> {
+        self.perform_recorded(cx, false).map(|_| ())
+    }
+
+    #[inline]
+    fn recorded(self, store: &mut Store, _: bool) -> Term {
+        super::fill(store, self.0, self.1)
+    }
+
+    fn perform_recorded<P: DmProgram>(
+        self,
+        cx: &mut Cx<'_, '_, P>,
+        records: bool,
+    ) -> Result<Term, String> {
+        let Fill(pattern, holes) = self;
+        let store = &mut cx.m.store;
+        let action = match holes.len() {
+            n if n <= 8 && !records => {
+                let mut ts = [Term::NIL; 8];
+                let mut atomic = true;
+                for (t, h) in ts.iter_mut().zip(holes) {
+                    *t = h.as_term(store);
+                    atomic &= crate::sentence::atomic(store, *t);
+                }
+                if atomic && store.is_holed(pattern) {
+                    if let Some(done) = cx.actions.perform_filled(store, pattern, &ts[..n]) {
+                        return done.map(|()| Term::EMPTY);
+                    }
+                }
+                super::cx::fill_in(store, pattern, &ts[..n])
+            }
+            _ => super::fill(store, pattern, holes),
+        };
+        super::io::perform_one(&mut *cx.actions, &mut cx.m.store, action)?;
+        Ok(action)
+    }
 }
 
 /// An action [`Cx::perform`] hands to the effector as it is (an atom
@@ -233,8 +296,8 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         action: impl NatAction,
         records: bool,
     ) -> Result<Term, RunError> {
-        match action.perform_in(self) {
-            Ok(()) => Ok(action.recorded(&mut self.m.store, records)),
+        match action.perform_recorded(self, records) {
+            Ok(t) => Ok(t),
             Err(e) => Err(self.nat_action_failed(stack, at, e)),
         }
     }

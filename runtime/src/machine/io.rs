@@ -131,6 +131,28 @@ pub trait Actions {
         let _ = shape;
         false
     }
+
+    /// Performs the action `pattern` filled with `holes` without the
+    /// term built, where the effector can: `pattern` a program's constant
+    /// with `'$hole'(i)` where `holes[i]` goes (`Cx::fill`'s, marked as
+    /// it was read: `machine::cx::mark_pattern`), every hole
+    /// an atom or a number ([`crate::sentence::atomic`]), the term filled
+    /// a compound that is not a list. `None`: not performed (the caller
+    /// then builds the term and calls [`Actions::perform`]); else what
+    /// `perform` of the filled term does, the same effects in the same
+    /// order (test mode writes the same line,
+    /// [`crate::sentence::Holed`]). Asked by native code where nothing
+    /// records the action. `None`, the default, is always a correct
+    /// answer.
+    fn perform_filled(
+        &mut self,
+        store: &mut Store,
+        pattern: Term,
+        holes: &[Term],
+    ) -> Option<Result<(), String>> {
+        let _ = (store, pattern, holes);
+        None
+    }
 }
 
 /// The shape of actions [`Actions::ignores`] is asked about: every

@@ -244,6 +244,23 @@ impl TypedRun {
         }
     }
 
+    /// [`TypedRun::end`] of an arc whose next situation is the variant
+    /// `next`, given back (the visit's value: one call where the code
+    /// would record `next`'s id, then name it).
+    #[inline(always)]
+    pub fn end_at<P: DmProgram, N: super::NatAt<P>>(
+        &self,
+        p: &P,
+        cx: &mut Cx<'_, '_, P>,
+        count: &mut u64,
+        expectation: Term,
+        action: Term,
+        next: N,
+    ) -> N {
+        self.end(cx, count, expectation, action, |s| next.id_term(p, s));
+        next
+    }
+
     /// A final reached above the native stack's bottom, its level closed
     /// when recorded ([`Cx::close_level`] of its id `id` and outputs
     /// `outs`): the transitions for the driver to count, `count`, and its

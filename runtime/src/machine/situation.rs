@@ -101,6 +101,12 @@ pub fn read_templates(store: &mut Store, texts: &[&str]) -> Vec<Option<Term>> {
 /// that does not read is the compiler's bug, reported with the text.
 pub fn read_consts<const N: usize>(store: &mut Store, texts: &[&str; N]) -> [Term; N] {
     texts.map(|text| match store.parse(text) {
+        // A pattern (`Cx::fill`'s): marked so that filling it walks its
+        // holes only.
+        Ok((t, _)) if text.contains("$hole") => {
+            super::cx::mark_pattern(store, t);
+            t
+        }
         Ok((t, _)) => t,
         Err(e) => panic!("a generated constant does not read: {e}: {text}"),
     })

@@ -576,6 +576,9 @@ pub struct TextActions<W: Write> {
     /// an atom (its text is a thread-local table look-up, twice an action).
     say: Atom,
     screen: Atom,
+    /// The line written, reused from action to action (no allocation
+    /// once it is as long as the longest line).
+    line: String,
 }
 
 impl<W: Write> TextActions<W> {
@@ -586,6 +589,7 @@ impl<W: Write> TextActions<W> {
             unbound_screen: None,
             say: Atom::intern("say"),
             screen: Atom::intern("screen"),
+            line: String::new(),
         }
     }
 
@@ -597,6 +601,42 @@ impl<W: Write> TextActions<W> {
     pub fn with_unbound_screen(mut self, caption: Option<(String, String)>) -> Self {
         self.unbound_screen = caption.map(|(id, text)| (Atom::intern(&id), text));
         self
+    }
+
+    /// Writes the line of action `a` (`name/1` `say` or `screen`, or
+    /// another), seen through `src`, where it is shown: built in one
+    /// reused buffer, written at once.
+    fn show(
+        &mut self,
+        src: &crate::sentence::Holed<'_>,
+        a: Term,
+        name: Atom,
+        say: bool,
+        screen: bool,
+    ) {
+        let store = src.store();
+        let line = &mut self.line;
+        line.clear();
+        match (say, screen) {
+            (_, true) => {
+                line.push_str("Golem prints on screen: ");
+                crate::sentence::write_in(src, store.args(a)[0], line);
+            }
+            (true, _) => {
+                // A message given as a list is said as one sentence (the
+                // original's msg_format/2).
+                line.push_str("Golem says: ");
+                crate::sentence::message_in(src, store.args(a)[0], line);
+            }
+            _ if self.declared.contains(&name) => {
+                line.push_str("Golem does: ");
+                let options = sitlog_syntax::write::WriteOptions::writeq();
+                line.push_str(&sitlog_syntax::write::write_term(src, a, options));
+            }
+            _ => return,
+        }
+        line.push('\n');
+        let _ = self.out.write_all(line.as_bytes());
     }
 }
 
@@ -620,25 +660,35 @@ impl<W: Write> Actions for TextActions<W> {
                 return Ok(());
             }
         }
-        let arg = |i: usize| store.write(store.args(a)[i]);
-        let line = match (say, screen) {
-            (_, true) => format!("Golem prints on screen: {}", arg(0)),
-            (true, _) => {
-                // A message given as a list is said as one sentence (the
-                // original's msg_format/2).
-                let m = store.args(a)[0];
-                match store.list_to_vec(m).filter(|items| !items.is_empty()) {
-                    Some(items) => {
-                        format!("Golem says: {}", crate::builtins::sentence(store, &items))
-                    }
-                    None => format!("Golem says: {}", arg(0)),
-                }
-            }
-            _ if self.declared.contains(&name) => format!("Golem does: {}", store.writeq(a)),
-            _ => return Ok(()),
-        };
-        let _ = writeln!(self.out, "{line}");
+        self.show(&crate::sentence::Holed::plain(store), a, name, say, screen);
         Ok(())
+    }
+
+    /// The same line as [`TextActions::perform`] of the term filled, from
+    /// the pattern and its holes (`Holed`); `None` where `perform` would
+    /// bind a variable (an unbound `screen(X)` shown by its caption).
+    fn perform_filled(
+        &mut self,
+        store: &mut Store,
+        pattern: Term,
+        holes: &[Term],
+    ) -> Option<Result<(), String>> {
+        if !store.is_holed(pattern) {
+            // Not a pattern read as a program's constant is.
+            return None;
+        }
+        let src = crate::sentence::Holed::new(store, holes);
+        let a = src.resolve(pattern);
+        let (name, arity) = store.functor(a)?;
+        let (say, screen) = (
+            name == self.say && arity == 1,
+            name == self.screen && arity == 1,
+        );
+        if screen && self.unbound_screen.is_some() && store.is_var(src.resolve(store.args(a)[0])) {
+            return None;
+        }
+        self.show(&src, a, name, say, screen);
+        Some(Ok(()))
     }
 
     /// What [`TextActions::perform`] shows: `say/1`, `screen/1` and the

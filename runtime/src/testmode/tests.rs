@@ -463,3 +463,52 @@ fn recent_atoms_key_words_by_their_text() {
         }
     }
 }
+
+/// `TextActions::perform_filled` writes the line `perform` writes of the
+/// term filled (a pattern's holes atoms or numbers), byte for byte.
+#[test]
+fn filled_actions_show_the_filled_terms_line() {
+    let patterns = [
+        "say([checking,'$hole'(0)])",
+        "say(['$hole'(0),is,at,'$hole'(1)])",
+        "say(['$hole'(0),pause,'$hole'(1),f('$hole'(0))])",
+        "say(['$hole'(0)|'$hole'(1)])",
+        "say(hello('$hole'(0)))",
+        "screen(['$hole'(0),'$hole'(1)])",
+        "point(left,'$hole'(1))",
+        "grasp(['$hole'(0)],'$hole'(1),'A b')",
+        "note('$hole'(0))",
+    ];
+    let hole_sets: [&[&str]; 4] = [
+        &["p3", "7"],
+        &["'Living room'", "-2.5"],
+        &["[]", "pause"],
+        &["'$hole'", "99999999999999999999"],
+    ];
+    for text in patterns {
+        for hs in hole_sets {
+            let mut store = Store::new();
+            let [k] = crate::machine::read_consts(&mut store, &[text]);
+            let holes: Vec<Term> = hs.iter().map(|h| store.parse(h).unwrap().0).collect();
+            let declared = vec![Atom::intern("grasp"), Atom::intern("point")];
+            let mut filled_out = Vec::new();
+            let mut actions = TextActions::new(&mut filled_out, declared.clone());
+            let done = actions.perform_filled(&mut store, k, &holes);
+            assert!(matches!(done, Some(Ok(()))), "{text}");
+            let refs: Vec<&dyn crate::machine::AsTerm> = holes
+                .iter()
+                .map(|t| t as &dyn crate::machine::AsTerm)
+                .collect();
+            let t = crate::machine::fill(&mut store, k, &refs);
+            let mut out = Vec::new();
+            TextActions::new(&mut out, declared)
+                .perform(&mut store, t)
+                .unwrap();
+            assert_eq!(
+                String::from_utf8(filled_out).unwrap(),
+                String::from_utf8(out).unwrap(),
+                "{text} {hs:?}"
+            );
+        }
+    }
+}

@@ -357,6 +357,7 @@ fn gives_fn(toks: &[TokenTree], k: usize) -> bool {
         "nat_template",
         "no_exit",
         "end",
+        "end_at",
         "tally",
         "record_next",
         "count_but_this",

@@ -91,7 +91,7 @@
 
 use super::{coerce, identical, leaves, reg, rust_ty, Dm, Gen, Regs, N, V};
 use crate::mir::{Action, Build, Ev, Init, KindPlan, Reg};
-use proc_macro2::{Ident, Literal, TokenStream};
+use proc_macro2::{Ident, Literal, TokenStream, TokenTree};
 use quote::{format_ident, quote};
 use sitlog_runtime::machine::Kind;
 use sitlog_runtime::native::Ty;
@@ -508,10 +508,26 @@ impl Gen<'_> {
         // An output argument (no term) written `Ground::OUT` where it is
         // used, not bound first.
         let out = quote!(Ground::OUT).to_string();
+        // The frame made by one closure for both pushes where nothing after
+        // them reads the arguments (the closure takes them).
+        let reads_args = mentions_any(&to_template, &vs);
+        let mut push = self.nat_push(d, ix, regs, plan, args, &vs, !reads_args)?;
+        // A register's clone read once by the push, and by nothing after
+        // it, written where the frame takes it (made only when pushed; one
+        // line less).
+        let mut inlined = Vec::new();
+        if !reads_args {
+            for (v, x) in args.iter().zip(&vs) {
+                if is_clone_of_reg(&v.e) && super::pipe::mentions(&push, x) == 1 {
+                    push = super::call_held::replace_ident(&push, x, &v.e);
+                    inlined.push(x.clone());
+                }
+            }
+        }
         let lets = args
             .iter()
             .zip(&vs)
-            .filter(|(v, _)| v.e.to_string() != out)
+            .filter(|(v, x)| v.e.to_string() != out && !inlined.contains(x))
             .map(|(v, x)| {
                 let e = &v.e;
                 quote!(let #x = #e;)
@@ -522,10 +538,6 @@ impl Gen<'_> {
             .filter(|(v, _)| v.e.to_string() == out)
             .map(|(_, x)| x)
             .collect();
-        // The frame made by one closure for both pushes where nothing after
-        // them reads the arguments (the closure takes them).
-        let reads_args = mentions_any(&to_template, &vs);
-        let push = self.nat_push(d, ix, regs, plan, args, &vs, !reads_args)?;
         let (push, to_template) = outs.iter().fold((push, to_template), |(p, t), x| {
             (
                 super::call_held::replace_ident(&p, x, &quote!(Ground::OUT)),
@@ -1476,6 +1488,13 @@ impl Gen<'_> {
         }
     }
 
+    /// Whether `e` is a constant compound that is not a list
+    /// (`say('Nothing here.')`): an effector's action performed as it is.
+    pub(super) fn const_compound(&self, e: &Ev) -> bool {
+        matches!(e, Ev::Built(Build::Const(t))
+            if self.store.functor(*t).is_some_and(|(f, n)| n > 0 && f != atoms::DOT))
+    }
+
     /// An exit arc's action (and a perceptual or neutral arc's, when it
     /// has only these): `inc`/`get` of a local into a fresh variable,
     /// `get(v, X)` with `X` made before (unified), `set` of a local the
@@ -1526,7 +1545,10 @@ impl Gen<'_> {
             // An effector's compound action built of values (`note(S)`):
             // its term made from native values, handed to the effector
             // without entering the machine (below).
-            if pure_compound(item).is_some_and(|f| f != atoms::DOT) && made_values(item, regs) {
+            // A constant compound (`say('Nothing here.')`) too.
+            if (self.const_compound(item) || pure_compound(item).is_some_and(|f| f != atoms::DOT))
+                && made_values(item, regs)
+            {
                 let mut ts = Vec::new();
                 let t = self.nat_ev_term(item, regs, &mut ts, &mut nb)?;
                 stmts.push(quote!(#(#ts)* let #x = Ground(#t);));
@@ -2278,6 +2300,17 @@ fn ev_as_build(e: &Ev) -> Option<Build> {
 /// Whether generated code `ts` mentions the identifier `x`.
 pub(super) fn mentions(ts: &TokenStream, x: &Ident) -> bool {
     super::pipe::mentions(ts, x) > 0
+}
+
+/// Whether `e` is `r<k>.clone()`, a register's clone (no other effect).
+fn is_clone_of_reg(e: &TokenStream) -> bool {
+    let t: Vec<TokenTree> = e.clone().into_iter().collect();
+    matches!(&t[..], [TokenTree::Ident(r), TokenTree::Punct(dot), TokenTree::Ident(c), TokenTree::Group(g)]
+        if r.to_string().starts_with('r')
+            && dot.as_char() == '.'
+            && c == "clone"
+            && g.delimiter() == proc_macro2::Delimiter::Parenthesis
+            && g.stream().is_empty())
 }
 
 /// Whether evaluating the call term gives it back (built from values).

@@ -75,7 +75,9 @@
 //! question, not a term.
 //!
 //! The action, in both: a term `Cx::perform` hands to the effector as it
-//! is where [`Gen::as_is`] (nothing looked at at run time), an
+//! is where [`Gen::as_is`] (nothing looked at at run time; one filled
+//! from its pattern given as `Fill(pattern, holes)`, which the effector
+//! may perform unfilled where nothing records it), an
 //! `AnyShape(..)` for any other value (a term evaluated whole: `empty` and
 //! proper lists as `Cx::perform` treats them), or the items of a list
 //! written out (`&act_items`, the list built for the history only where
@@ -231,6 +233,20 @@ impl Gen<'_> {
             }
             (Action::One(e), None) => {
                 let t = self.nat_ev_term(e, regs, ts, n)?;
+                // A compound filled from its pattern (`let b0 =
+                // cx.fill(p.k[3], &[&r4]);`): handed over as the pattern
+                // and its holes, `Fill`, which the effector may perform
+                // unfilled (the runtime's `machine::effect`).
+                if let Some((pattern, holes)) = ts
+                    .last()
+                    .filter(|_| self.as_is(e))
+                    .and_then(|last| fill_parts(std::slice::from_ref(last), &t))
+                {
+                    ts.pop();
+                    return Ok(quote! {
+                        let act = cx.nat_perform(stack, #at, Fill(#pattern, #holes), run)?;
+                    });
+                }
                 // What `Cx::perform` hands to the effector as it is (a
                 // compound not a list): nothing looked at at run time.
                 let shape = |t: TokenStream| {

@@ -244,7 +244,7 @@ use crate::ir::IrDm;
 use crate::mir::ty::{DmTypes, SitTypes};
 use crate::mir::{Action, ArcPlan, Build, Cond, Ev, Init, KindPlan, Next, Prog, Reg, SitPlan, ID};
 pub(super) use plain_rs::PlainRs;
-use proc_macro2::{Ident, Literal, TokenStream};
+use proc_macro2::{Delimiter, Ident, Literal, TokenStream, TokenTree};
 use quote::{format_ident, quote};
 use sitlog_runtime::machine::Kind;
 use sitlog_runtime::native::Ty;
@@ -3311,9 +3311,13 @@ impl Gen<'_> {
         let mut rec_fast = None;
         // An effector's compound action (`note(S)`): the general way
         // below performs it without entering the machine.
+        // A constant compound among a list's items too (`[say('Hi.'),
+        // say(N)]`): the general way, as before exit arcs performed them.
         let effector = match &arc.action {
-            Action::One(e) => call::pure_compound(e).is_some_and(|f| f != atoms::DOT),
-            Action::List { .. } => false,
+            Action::One(e) => {
+                self.const_compound(e) || call::pure_compound(e).is_some_and(|f| f != atoms::DOT)
+            }
+            Action::List { items, .. } => items.iter().any(|e| self.const_compound(e)),
         };
         if let (None, Some(k), false) = (atom, arc_ix, effector) {
             let mut nregs = regs.clone();
@@ -3589,13 +3593,22 @@ impl Gen<'_> {
             }
         } else if !tally_apart && !leaves(&next) {
             // The next situation neither returns nor fails: the arc's end
-            // counts it or records its entry (`TypedRun::end`).
+            // counts it or records its entry (`TypedRun::end_at`).
             let init = init_of(next);
-            quote! {
-                #(#stmts)*
-                let next_at: Nat = #init;
-                run.end(cx, &mut count, exp, act, |s| next_at.id_term(p, s));
-                next_at
+            // A variant without fields is named in the call itself.
+            let bare = matches!(init.clone().into_iter().last(),
+                Some(TokenTree::Group(g)) if g.delimiter() == Delimiter::Brace && g.stream().is_empty());
+            if bare {
+                quote! {
+                    #(#stmts)*
+                    run.end_at(p, cx, &mut count, exp, act, #init)
+                }
+            } else {
+                quote! {
+                    #(#stmts)*
+                    let next_at: Nat = #init;
+                    run.end_at(p, cx, &mut count, exp, act, next_at)
+                }
             }
         } else {
             let tally = if tally_apart { quote!() } else { tally };

@@ -1,0 +1,365 @@
+//! The text of a message (`say(M)`, `screen(M)`, `msg_format/2`) written
+//! into a caller's buffer (issue 37: a `say` at every step of a walk).
+//!
+//! What it owns: the one writer of the original's sentence rule
+//! ([`crate::builtins::sentence`] documents it: the items separated by a
+//! space, `pause` a full stop, a final `.` from three items on) and of
+//! `write/1`'s text of a message that is not a list.
+//!
+//! Invariant: the text appended is byte for byte what `Store::write` of
+//! each item, joined by the rule, gives. An atom is appended as its name
+//! and a small integer as its digits with no writer in between (what
+//! `write/1` gives them standing alone: it quotes nothing and an atom
+//! standing alone is never put in parentheses); anything else (floats,
+//! big integers, variables, compounds, lists) goes through the term
+//! writer. No allocation for a message of atoms and integers but the
+//! caller's buffer growing.
+//!
+//! The same text is written from a pattern and its holes without the term
+//! filled ([`Holed`]: native code's `Fill`, an effector that only writes
+//! text, `Actions::perform_filled`): a hole read where the term filled has
+//! its value, so the text is the filled term's, byte for byte.
+
+use crate::term::{Term, Value};
+use crate::Store;
+use sitlog_syntax::write::{write_term, TermSource, View, WriteOptions};
+use sitlog_syntax::{atoms, Atom};
+use std::fmt::Write as _;
+
+/// `pause`, interned once: the item the rule writes as a full stop.
+fn pause_atom() -> Atom {
+    static PAUSE: std::sync::OnceLock<Atom> = std::sync::OnceLock::new();
+    *PAUSE.get_or_init(|| Atom::intern("pause"))
+}
+
+/// The terms of `store` as text sees them, a pattern's holes filled: a
+/// program's constant with `'$hole'(i)` where value `holes[i]` goes
+/// (`Cx::fill`'s pattern) read as the term filled, without building it
+/// (an effector that only writes text, `Actions::perform_filled`). Every
+/// hole must be atomic (an atom or a number: [`atomic`]), so that what is
+/// seen through a hole holds no `'$hole'(_)` of its own; with no holes,
+/// the store's terms as they are.
+#[derive(Clone, Copy)]
+pub struct Holed<'s> {
+    store: &'s Store,
+    holes: &'s [Term],
+}
+
+impl<'s> Holed<'s> {
+    /// The store's terms as they are.
+    pub fn plain(store: &'s Store) -> Self {
+        Holed { store, holes: &[] }
+    }
+
+    /// Patterns of `store` with `holes` (each [`atomic`]), the patterns
+    /// marked as a program's constants are (`machine::cx::mark_pattern`:
+    /// a hole is seen where the mark says one is below).
+    pub fn new(store: &'s Store, holes: &'s [Term]) -> Self {
+        debug_assert!(holes.iter().all(|&h| atomic(store, h)));
+        Holed { store, holes }
+    }
+
+    /// `t` dereferenced, a hole its value.
+    #[inline]
+    pub fn resolve(&self, t: Term) -> Term {
+        let t = self.store.deref(t);
+        if self.holes.is_empty() {
+            return t;
+        }
+        // A marked compound of one integer argument has no hole below it
+        // but itself: it is `'$hole'(i)` (the mark is put on holes and the
+        // compounds above them only).
+        if let Some((_, [i])) = self.store.holed_parts(t) {
+            let i = self.store.int_of(*i).and_then(|i| usize::try_from(i).ok());
+            if let Some(&h) = i.and_then(|i| self.holes.get(i)) {
+                return self.store.deref(h);
+            }
+        }
+        t
+    }
+
+    /// The store.
+    pub fn store(&self) -> &'s Store {
+        self.store
+    }
+}
+
+impl TermSource for Holed<'_> {
+    type Ref = Term;
+    fn view(&self, t: Term) -> View<'_, Term> {
+        self.store.view(self.resolve(t))
+    }
+}
+
+/// Whether `t` is an atom or a number (dereferenced): a value that holds
+/// no other term.
+#[inline]
+pub fn atomic(store: &Store, t: Term) -> bool {
+    use crate::term::Repr;
+    matches!(
+        store.deref(t).0,
+        Repr::Atom(_) | Repr::Int(_) | Repr::Float(_) | Repr::Big(_)
+    )
+}
+
+/// Appends `t` as `write/1` writes it (`Store::write`).
+#[inline]
+pub fn write_into(store: &Store, t: Term, out: &mut String) {
+    write_in(&Holed::plain(store), t, out);
+}
+
+/// [`write_into`] through `src`.
+#[inline]
+pub fn write_in(src: &Holed<'_>, t: Term, out: &mut String) {
+    let t = src.resolve(t);
+    match src.store.value(t) {
+        Value::Atom(a) => out.push_str(a.as_str()),
+        Value::Int(i) => {
+            let _ = write!(out, "{i}");
+        }
+        _ => out.push_str(&write_term(src, t, WriteOptions::write())),
+    }
+}
+
+/// Appends the sentence of `items` (the rule of [`crate::builtins::sentence`]).
+pub fn sentence_into(store: &Store, items: &[Term], out: &mut String) {
+    let src = Holed::plain(store);
+    let mut items = items.iter().map(|&t| store.deref(t));
+    match items.next() {
+        Some(first) => sentence_of(&src, first, items, out),
+        None => out.push_str("[]"),
+    }
+}
+
+/// Appends the text of message `m`: a proper list with an item or more
+/// as one sentence, anything else as `write/1` writes it (test mode's
+/// `say(M)`, the robots' `say`, `screen` and `message`).
+pub fn message_into(store: &Store, m: Term, out: &mut String) {
+    message_in(&Holed::plain(store), m, out);
+}
+
+/// [`message_into`] through `src`: one pass over the list, what was
+/// written of it taken back where it turns out not to be a proper list.
+pub fn message_in(src: &Holed<'_>, m: Term, out: &mut String) {
+    let m = src.resolve(m);
+    let start = out.len();
+    let mut items = Items { src, cur: m };
+    let proper = match items.next() {
+        None => false,
+        Some(first) => {
+            sentence_of(src, first, &mut items, out);
+            src.store.atom_of(items.cur) == Some(atoms::NIL)
+        }
+    };
+    if !proper {
+        out.truncate(start);
+        write_in(src, m, out);
+    }
+}
+
+/// The text of message `m` ([`message_into`]).
+pub fn message(store: &Store, m: Term) -> String {
+    let mut out = String::new();
+    message_into(store, m, &mut out);
+    out
+}
+
+/// The items of a list seen through a [`Holed`], resolved; `cur`, the
+/// rest (at the end, the tail).
+struct Items<'a, 's> {
+    src: &'a Holed<'s>,
+    cur: Term,
+}
+
+impl Iterator for Items<'_, '_> {
+    type Item = Term;
+    #[inline]
+    fn next(&mut self) -> Option<Term> {
+        match self.src.store.compound_args(self.cur, atoms::DOT, 2) {
+            Some(&[head, tail]) => {
+                self.cur = self.src.resolve(tail);
+                Some(self.src.resolve(head))
+            }
+            _ => None,
+        }
+    }
+}
+
+/// The rule on `first` and the items `items` yields (each resolved).
+fn sentence_of(
+    src: &Holed<'_>,
+    first: Term,
+    mut items: impl Iterator<Item = Term>,
+    out: &mut String,
+) {
+    let pause = pause_atom();
+    let is_pause = |t: Term| src.store.atom_of(t) == Some(pause);
+    let (a, b) = match items.next() {
+        None => {
+            write_in(src, first, out);
+            return;
+        }
+        Some(b) => (first, b),
+    };
+    if is_pause(a) {
+        out.push_str(". ");
+        write_in(src, b, out);
+    } else if is_pause(b) {
+        write_in(src, a, out);
+        out.push_str(" .");
+    } else {
+        write_in(src, a, out);
+        out.push(' ');
+        write_in(src, b, out);
+    }
+    let mut more = false;
+    for x in items {
+        more = true;
+        if is_pause(x) {
+            out.push_str(". ");
+        } else {
+            out.push(' ');
+            write_in(src, x, out);
+        }
+    }
+    if more {
+        out.push('.');
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rule as it was written before this module (each item by
+    /// `Store::write`, joined with `format!`): what the writer must give.
+    fn reference(store: &Store, items: &[Term]) -> String {
+        let is_pause = |t: Term| store.atom_of(store.deref(t)).map(|a| a.as_str()) == Some("pause");
+        let text = |t: Term| store.write(t);
+        match items {
+            [] => "[]".to_owned(),
+            [one] => text(*one),
+            [a, b, rest @ ..] => {
+                let mut out = if is_pause(*a) {
+                    format!(". {}", text(*b))
+                } else if is_pause(*b) {
+                    format!("{} .", text(*a))
+                } else {
+                    format!("{} {}", text(*a), text(*b))
+                };
+                if rest.is_empty() {
+                    return out;
+                }
+                for &x in rest {
+                    if is_pause(x) {
+                        out.push_str(". ");
+                    } else {
+                        out.push(' ');
+                        out.push_str(&text(x));
+                    }
+                }
+                out.push('.');
+                out
+            }
+        }
+    }
+
+    /// The message's text by the old way (`list_to_vec`, then the rule or
+    /// `Store::write`).
+    fn reference_message(store: &Store, m: Term) -> String {
+        match store.list_to_vec(m).filter(|items| !items.is_empty()) {
+            Some(items) => reference(store, &items),
+            None => store.write(m),
+        }
+    }
+
+    const MESSAGES: &[&str] = &[
+        "[checking, p3]",
+        "[checking]",
+        "[]",
+        "hello",
+        "'Hello there'",
+        "['Hello', 'Bob', pause, welcome]",
+        "[pause, a]",
+        "[a, pause]",
+        "[pause, pause]",
+        "[a, b, pause, c, pause]",
+        "[a, b, c]",
+        "['it''s', 'a\\nb', '', [], '[]', '{}', ',', '|', ';', '!', '.']",
+        "[-, +, '==>', '-->', (:-), (dynamic), mod, is, (\\+)]",
+        "[0, 1, -7, 123456789012, 99999999999999999999999, -99999999999999999999999]",
+        "[1.0, -0.5, 1.0e22, 1.5e-7, 3.14159, 100000000000000.0]",
+        "[[a, b], [the, 'living room'], [x|y], [1, [2, [3]]]]",
+        "[f(x), f('A b', [c]), - 1, -(1), -(-(1)), a-b, 1+2*3, (a:-b, c), {x}, '$hole'(0)]",
+        "[\"a string\", \"\", \"it's\"]",
+        "[X, Y, _, X]",
+        "[a|T]",
+        "[a, b|c]",
+        "f(X)",
+        "'€uro', 中文, 'Ab'",
+        "['€uro', 中文, 'Ab', 'hello world']",
+        "7",
+        "-2.5",
+        "[pause]",
+        "[say(hi), [pause], 'pause']",
+    ];
+
+    #[test]
+    fn messages_are_written_as_before() {
+        for text in MESSAGES {
+            let mut store = Store::new();
+            let (m, _) = store.parse(text).expect(text);
+            let mut out = String::from(">");
+            message_into(&store, m, &mut out);
+            assert_eq!(out[1..], reference_message(&store, m), "{text}");
+            assert_eq!(message(&store, m), reference_message(&store, m), "{text}");
+            if let Some(items) = store.list_to_vec(m) {
+                let mut out = String::new();
+                sentence_into(&store, &items, &mut out);
+                assert_eq!(out, reference(&store, &items), "{text}");
+            }
+        }
+    }
+
+    #[test]
+    fn items_written_as_write_writes_them() {
+        let mut store = Store::new();
+        for text in MESSAGES {
+            let (m, _) = store.parse(text).expect(text);
+            for t in std::iter::once(m).chain(store.list_iter(m)) {
+                let mut out = String::new();
+                write_into(&store, t, &mut out);
+                assert_eq!(out, store.write(t), "{text}");
+            }
+        }
+        // Bound variables are followed.
+        let v = store.new_var();
+        store.bind(v, Term::atom(Atom::intern("Bound one")));
+        let (l, _) = store.parse("[x, y]").unwrap();
+        let items = [v, l, Term::int(-3), Term::float(0.1)];
+        let mut out = String::new();
+        sentence_into(&store, &items, &mut out);
+        assert_eq!(out, "Bound one [x,y] -3 0.1.");
+        assert_eq!(out, reference(&store, &items));
+    }
+
+    #[test]
+    fn sentences_spelled_out() {
+        let mut store = Store::new();
+        let cases = [
+            ("[checking, p3]", "checking p3"),
+            ("[checking, 'Room 3', 4]", "checking Room 3 4."),
+            ("['Hello', pause, 'Bob']", "Hello . Bob."),
+            ("[pause, a]", ". a"),
+            ("[a, pause]", "a ."),
+            ("[x]", "x"),
+            ("[[a,b]]", "[a,b]"),
+            ("[a, 'b c'|d]", "[a,b c|d]"),
+            ("'Don''t'", "Don't"),
+        ];
+        for (text, said) in cases {
+            let (m, _) = store.parse(text).unwrap();
+            assert_eq!(message(&store, m), said, "{text}");
+        }
+    }
+}
