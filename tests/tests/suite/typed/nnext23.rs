@@ -188,7 +188,12 @@ fn nnext23_answers_are_the_plain_forms_values() {
         assert!(by_rust.is_some());
     }
     for x in [Val::Int(3), Val::Int(50), Val::Int(500), sym("a")] {
-        let by_form = f.call_native(&store, &globals, Atom::intern("kind"), &[x.clone()]);
+        let by_form = f.call_native(
+            &store,
+            &globals,
+            Atom::intern("kind"),
+            std::slice::from_ref(&x),
+        );
         let by_rust = k::p2_kind_1(atoms, [&x]).map(|v| v.val(atoms));
         assert_eq!(
             format!("{by_rust:?}"),
