@@ -11,6 +11,7 @@
 
 use super::program::{Cx, DmProgram};
 use crate::native::Val;
+use crate::plain::rt::Answer;
 use sitlog_syntax::Atom;
 
 impl<P: DmProgram> Cx<'_, '_, P> {
@@ -30,24 +31,34 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// [`Cx::nat_plain`] of a plain function compiled into the program:
     /// `f`, the function compiled from the form whose fingerprint is
     /// `form`, runs where slot `k` resolved to it for this run (the
-    /// engine's form is `form`: `crate::plain::slots`); elsewhere the call
-    /// is [`Cx::nat_plain`]'s. `None`: evaluate the `apply` as a term.
+    /// engine's form is `form`: `crate::plain::slots`), on the arguments
+    /// by reference; elsewhere the call is [`Cx::nat_plain`]'s, its value
+    /// the answer [`Answer::of_val`]. `None`: evaluate the `apply` as a
+    /// term.
     #[inline]
-    pub fn nat_plain_rs(
+    pub fn nat_plain_rs<'v, const N: usize, R: Answer>(
         &mut self,
         k: usize,
         name: Atom,
         form: &str,
-        args: &[Val],
-        f: impl FnOnce(&[Val]) -> Option<Val>,
-    ) -> Option<Val> {
+        args: [&'v Val; N],
+        f: impl FnOnce([&'v Val; N]) -> Option<R>,
+    ) -> Option<R> {
         let m = &mut *self.m;
         match m
             .plain_slots
             .run(k, &m.functions, &m.store, &m.globals, name, form, args, f)
         {
             Some(v) => v,
-            None => m.functions.call_native(&m.store, &m.globals, name, args),
+            None => self.nat_plain_other(name, args).map(R::of_val),
         }
+    }
+
+    /// [`Cx::nat_plain`] of arguments by reference (a slot not resolved
+    /// to its compiled function).
+    #[cold]
+    #[inline(never)]
+    fn nat_plain_other<const N: usize>(&self, name: Atom, args: [&Val; N]) -> Option<Val> {
+        self.nat_plain(name, &args.map(Val::clone))
     }
 }

@@ -7,7 +7,10 @@
 //!
 //! Invariant: each function here is the one `call_vals` runs for the same
 //! step (no second implementation of `==`, of a head's compound, of `mod`
-//! or of the arguments' check).
+//! or of the arguments' check; an atom's or an integer's case decided
+//! inline is the first case of the evaluator's own). [`Answer`]: what a
+//! compiled function answers (a `Val`, or the generated `Ans<k>` of one
+//! that answers compounds by their parts).
 
 use super::val;
 use crate::native::{List, Val};
@@ -21,13 +24,45 @@ pub use super::val::Parts;
 /// check `call_vals` makes before it runs a clause.
 #[inline]
 pub fn args_sure(args: &[Val]) -> bool {
-    args.iter().all(val::sure_arg)
+    args.iter().all(arg_sure)
+}
+
+/// [`args_sure`] of one argument (an atom or an integer without a call).
+#[inline]
+pub fn arg_sure(v: &Val) -> bool {
+    matches!(v, Val::Int(_) | Val::Sym(_)) || val::sure_arg(v)
+}
+
+/// An argument as the reference a compiled function takes (`x` a `Val`
+/// or a `&Val`).
+#[inline(always)]
+pub fn arg<B: std::borrow::Borrow<Val> + ?Sized>(x: &B) -> &Val {
+    x.borrow()
+}
+
+/// What a compiled plain function answers: its value, or (a function
+/// that answers a compound: the generated `Ans<k>`) which compound and
+/// its parts, the value not built. [`Answer::of_val`]: a value the
+/// function's path not compiled gave.
+pub trait Answer {
+    fn of_val(v: Val) -> Self;
+}
+
+impl Answer for Val {
+    #[inline(always)]
+    fn of_val(v: Val) -> Val {
+        v
+    }
 }
 
 /// `x == y` of two values a plain clause holds.
 #[inline]
 pub fn ident(x: &Val, y: &Val) -> bool {
-    val::ident(x, y)
+    match (x, y) {
+        (Val::Sym(a), Val::Sym(b)) => a == b,
+        (Val::Int(a), Val::Int(b)) => a == b,
+        _ => val::ident(x, y),
+    }
 }
 
 /// `v == a` (the atom `a`; `[]` the empty list too).

@@ -10,7 +10,8 @@
 //! the engine's live flag, and then only where `call_vals` would run the
 //! same form on the same arguments: the flag set (the engine started and
 //! not abandoned) before and after, every argument taken
-//! ([`rt::args_sure`](super::rt::args_sure)), every global no deeper than
+//! ([`rt::arg_sure`](super::rt::arg_sure), the arguments by reference: none
+//! is copied for the call), every global no deeper than
 //! the engine takes ([`super::sure`]: globals whose terms cannot change
 //! since they were found so are not walked again); the inference limit was checked at
 //! the resolution (the stamp changes with the limits). A slot that did
@@ -66,13 +67,14 @@ impl Default for PlainSlots {
 }
 
 impl PlainSlots {
-    /// The value of the compiled function `f` of slot `k` (`name/args.len()`
-    /// compiled from the form whose fingerprint is `form`) on `args`:
-    /// `Some(answer)` where the slot runs as compiled (`answer` `None`: the
-    /// term path decides), `None` where it runs as a function not compiled.
+    /// The answer of the compiled function `f` of slot `k` (`name/N`
+    /// compiled from the form whose fingerprint is `form`) on `args`,
+    /// each passed by reference: `Some(answer)` where the slot runs as
+    /// compiled (`answer` `None`: the term path decides), `None` where it
+    /// runs as a function not compiled.
     #[inline]
     #[allow(clippy::too_many_arguments)]
-    pub fn run(
+    pub fn run<'v, const N: usize, R>(
         &mut self,
         k: usize,
         functions: &Functions,
@@ -80,22 +82,19 @@ impl PlainSlots {
         globals: &Vars,
         name: Atom,
         form: &str,
-        args: &[Val],
-        f: impl FnOnce(&[Val]) -> Option<Val>,
-    ) -> Option<Option<Val>> {
+        args: [&'v Val; N],
+        f: impl FnOnce([&'v Val; N]) -> Option<R>,
+    ) -> Option<Option<R>> {
         if self.stamp != functions.stamp() || k >= self.slots.len() {
             self.renew(k, functions);
         }
         if let Slot::Unknown = self.slots[k] {
-            self.slots[k] = match functions.resolve_compiled(name, args.len(), form) {
-                Some(live) => Slot::Compiled(live),
-                None => Slot::Other,
-            };
+            self.resolve(k, functions, name, N, form);
         }
         let Slot::Compiled(live) = &self.slots[k] else {
             return None;
         };
-        if !live.load(Ordering::Acquire) || !super::rt::args_sure(args) {
+        if !live.load(Ordering::Acquire) || !args.iter().all(|v| super::rt::arg_sure(v)) {
             return Some(None);
         }
         if !self.checked.shallow(store, globals.entries()) {
@@ -104,7 +103,16 @@ impl PlainSlots {
         let v = f(args);
         // Abandoned meanwhile (by another run sharing the engine): its
         // calls are errors.
-        Some(v.filter(|_| live.load(Ordering::Acquire)))
+        Some(v.filter(|_| matches!(&self.slots[k], Slot::Compiled(l) if l.load(Ordering::Acquire))))
+    }
+
+    /// Slot `k` resolved (asked once a stamp).
+    #[cold]
+    fn resolve(&mut self, k: usize, functions: &Functions, name: Atom, arity: usize, form: &str) {
+        self.slots[k] = match functions.resolve_compiled(name, arity, form) {
+            Some(live) => Slot::Compiled(live),
+            None => Slot::Other,
+        };
     }
 
     /// Forgets every resolution made under another stamp, and makes room
@@ -177,16 +185,17 @@ mod tests {
         let (store, globals) = (Store::new(), Vars::default());
         let f = Atom::intern("f");
         let mut slots = PlainSlots::default();
-        let one = |_: &[Val]| Some(Val::Int(1));
-        let args = [Val::Int(0)];
+        let one = |_: [&Val; 1]| Some(Val::Int(1));
+        let arg = Val::Int(0);
+        let args = [&arg];
         for _ in 0..3 {
-            let v = slots.run(0, &functions, &store, &globals, f, "form", &args, one);
+            let v = slots.run(0, &functions, &store, &globals, f, "form", args, one);
             assert!(matches!(v, Some(Some(Val::Int(1)))));
         }
         assert_eq!(asked.load(Ordering::Relaxed), 1);
         // Another fingerprint: the present path (`None`), asked once.
         for _ in 0..2 {
-            let v = slots.run(1, &functions, &store, &globals, f, "other", &args, one);
+            let v = slots.run(1, &functions, &store, &globals, f, "other", args, one);
             assert!(v.is_none());
         }
         assert_eq!(asked.load(Ordering::Relaxed), 2);
@@ -198,24 +207,24 @@ mod tests {
             &globals,
             f,
             "form",
-            &[Val::Float(0.5)],
+            [&Val::Float(0.5)],
             one,
         );
         assert!(matches!(v, Some(None)));
         live.store(false, Ordering::Relaxed);
-        let v = slots.run(0, &functions, &store, &globals, f, "form", &args, one);
+        let v = slots.run(0, &functions, &store, &globals, f, "form", args, one);
         assert!(matches!(v, Some(None)));
         live.store(true, Ordering::Relaxed);
         // A Rust function of the name registered: a new stamp, not compiled.
         functions.register("f", 1, |_, _| Ok(crate::Term::int(2)));
-        let v = slots.run(0, &functions, &store, &globals, f, "form", &args, one);
+        let v = slots.run(0, &functions, &store, &globals, f, "form", args, one);
         assert!(v.is_none());
         functions.remove(f, 1);
-        let v = slots.run(0, &functions, &store, &globals, f, "form", &args, one);
+        let v = slots.run(0, &functions, &store, &globals, f, "form", args, one);
         assert!(matches!(v, Some(Some(_))));
         // A new fallback drops the resolution's hook.
         functions.set_fallback(|_, _, _| None);
-        let v = slots.run(0, &functions, &store, &globals, f, "form", &args, one);
+        let v = slots.run(0, &functions, &store, &globals, f, "form", args, one);
         assert!(v.is_none());
     }
 
@@ -226,7 +235,7 @@ mod tests {
         let functions = registry(&live, &asked);
         let mut store = Store::new();
         let f = Atom::intern("f");
-        let one = |_: &[Val]| Some(Val::Int(1));
+        let one = |_: [&Val; 1]| Some(Val::Int(1));
         let mut deep = Term::atom(Atom::intern("a"));
         let s = Atom::intern("s");
         for _ in 0..=super::super::MAX_DEPTH {
@@ -242,7 +251,7 @@ mod tests {
             &globals,
             f,
             "form",
-            &[Val::Int(0)],
+            [&Val::Int(0)],
             one,
         );
         assert!(matches!(v, Some(Some(_))));
@@ -255,7 +264,7 @@ mod tests {
             &globals,
             f,
             "form",
-            &[Val::Int(0)],
+            [&Val::Int(0)],
             one,
         );
         assert!(matches!(v, Some(None)));
@@ -269,7 +278,7 @@ mod tests {
             &globals,
             f,
             "form",
-            &[Val::Int(0)],
+            [&Val::Int(0)],
             one,
         );
         assert!(matches!(v, Some(Some(_))));
@@ -282,7 +291,7 @@ mod tests {
             &globals,
             f,
             "form",
-            &[Val::Int(0)],
+            [&Val::Int(0)],
             one,
         );
         assert!(matches!(v, Some(None)));

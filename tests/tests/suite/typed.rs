@@ -4066,6 +4066,10 @@ mod nfnc21;
 /// Helper `nrs22`'s plain functions compiled to Rust (issue 37).
 mod nrs22;
 
+/// Helper `nnext23`'s next situations selected from a compiled function's
+/// answer, its compound not built (issue 37).
+mod nnext23;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");

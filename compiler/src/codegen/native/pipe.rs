@@ -674,7 +674,12 @@ impl Gen<'_> {
         // (its term built there, after the next situation: building reads
         // registers only, the kept ones renamed below).
         let (built, pre) = match self.nat_plain_call(d, b, regs)? {
-            Some(call) => {
+            Some((call, ans)) => {
+                // A compound answered by its parts: built here.
+                let val = match ans {
+                    Some(_) => quote!(pa.val(a)),
+                    None => quote!(pa),
+                };
                 let term_path = super::plain::cold_arm(quote! {
                     #(#ts)*
                     let out_term = #t;
@@ -684,7 +689,7 @@ impl Gen<'_> {
                     quote!(),
                     quote! {
                         let #name: Term = match #call {
-                            Some(pv) => cx.term(&pv),
+                            Some(pa) => cx.term(&#val),
                             None => {
                                 #term_path
                                 #name

@@ -9,7 +9,12 @@
 //! run's engine does not run the call natively: not plain there, an
 //! argument or value the native form refuses, ...) takes the code this
 //! replaced, the `apply` evaluated as a term, so every answer and error
-//! stays the evaluator's.
+//! stays the evaluator's. A function compiled to Rust (`plain_rs`) is
+//! called on the values by reference (a `Val` held, without a copy); one
+//! that answers a compound answers it by its parts (`plain_rs::Ans<k>`):
+//! a situation of that name and arity is selected from them, the value
+//! never built (built only where no situation takes it, for the machine,
+//! and for an out_arg's term).
 //!
 //! Taken only where that is the same call: a DM without locals (the call
 //! sees the globals only), every declared argument of `f` a distinct fresh
@@ -24,6 +29,7 @@
 //! variables stay unbound), so a visit whose call runs natively makes no
 //! variable.
 
+use super::plain_rs::Answers;
 use super::{coerce, Dm, Regs, N, V};
 use crate::codegen::Gen;
 use crate::mir::{Build, Cond};
@@ -41,8 +47,14 @@ impl Gen<'_> {
     }
 
     /// `cx.nat_plain(f, &[..])` for `b` = `apply(f(_, ..), [A1..An])` as
-    /// the module doc takes it, else `None`.
-    pub(super) fn nat_plain_call(&self, d: &Dm, b: &Build, regs: &Regs) -> N<Option<TokenStream>> {
+    /// the module doc takes it, else `None`; with the answers' type of the
+    /// compiled function it calls (`None`: a `Val`).
+    pub(super) fn nat_plain_call(
+        &self,
+        d: &Dm,
+        b: &Build,
+        regs: &Regs,
+    ) -> N<Option<(TokenStream, Option<Answers>)>> {
         if !(d.locals.is_empty() && d.dm.locals.is_empty()) {
             return Ok(None);
         }
@@ -86,10 +98,18 @@ impl Gen<'_> {
             return Ok(None);
         }
         let mut vals = Vec::new();
+        // Each value a reference too, for the compiled function: a `Val`
+        // held, by reference; another, converted in a temporary.
+        let mut refs = Vec::new();
         for it in items {
             let v = match it {
                 Build::Reg(r) => match regs.get(r) {
                     Some((x, ty)) if !super::is_fresh(x) && ty.is_native() && *ty != Ty::Float => {
+                        if super::held_as_val(ty) {
+                            refs.push(Some(quote!(::sitlog_runtime::plain::rt::arg(&#x))));
+                        } else {
+                            refs.push(None);
+                        }
                         V {
                             e: quote!(#x.clone()),
                             ty: ty.clone(),
@@ -100,6 +120,7 @@ impl Gen<'_> {
                 Build::Const(t)
                     if matches!(self.store.value(*t), Value::Atom(_) | Value::Int(_)) =>
                 {
+                    refs.push(None);
                     self.nat_value(it, regs)?
                 }
                 _ => return Ok(None),
@@ -113,11 +134,18 @@ impl Gen<'_> {
         // Compiled to Rust where the generator takes the form (`plain_rs`).
         Ok(Some(match self.plain_slot(*name, declared.len()) {
             Some(k) => {
-                let (form, fun) = self.plain_rs_call(k);
+                let (form, fun, ans) = self.plain_rs_call(k);
                 let k = proc_macro2::Literal::usize_unsuffixed(k);
-                quote!(cx.nat_plain_rs(#k, #f, #form, &[#(#vals),*], |args| #fun(a, args)))
+                let args = refs.into_iter().zip(vals).map(|(r, v)| match r {
+                    Some(r) => r,
+                    None => quote!(&(#v)),
+                });
+                (
+                    quote!(cx.nat_plain_rs(#k, #f, #form, [#(#args),*], |args| #fun(a, args))),
+                    ans,
+                )
             }
-            None => quote!(cx.nat_plain(#f, &[#(#vals),*])),
+            None => (quote!(cx.nat_plain(#f, &[#(#vals),*])), None),
         }))
     }
 
@@ -133,7 +161,7 @@ impl Gen<'_> {
         cur_name: &TokenStream,
         evaluated: TokenStream,
     ) -> N<Option<TokenStream>> {
-        let Some(call) = self.nat_plain_call(d, b, regs)? else {
+        let Some((call, ans)) = self.nat_plain_call(d, b, regs)? else {
             return Ok(None);
         };
         // Each name and arity a situation of the DM has, once, in order;
@@ -146,6 +174,48 @@ impl Gen<'_> {
                 ids.push(p.id);
             }
         }
+        // A compound answered by its parts: selected from them, its value
+        // not built (built where no situation takes it).
+        let by_parts = match &ans {
+            Some(ans) => {
+                let mut arms = Vec::new();
+                let mut built = false;
+                for (j, &(name, arity)) in ans.shapes.iter().enumerate() {
+                    if !ids.contains(&(name, arity)) {
+                        built = true;
+                        continue;
+                    }
+                    let v = format_ident!("V{}", j);
+                    let xs: Vec<Ident> = (0..arity).map(|i| format_ident!("px{}", i)).collect();
+                    let vals = xs
+                        .iter()
+                        .map(|x| V {
+                            e: quote!(#x.clone()),
+                            ty: Ty::Ground,
+                        })
+                        .collect();
+                    let sel = self.nat_select(d, cur, name, vals, cur_name)?;
+                    let e = &ans.name;
+                    arms.push(quote! {
+                        super::plain_rs::#e::#v(#(#xs),*) => {
+                            #(let #xs: &Val = &#xs;)*
+                            let next = #sel;
+                            break 'plain next;
+                        }
+                    });
+                }
+                let e = &ans.name;
+                let other = built.then(|| quote!(other => other.val(a),));
+                quote! {
+                    let pv: Val = match pa {
+                        super::plain_rs::#e::Val(pv) => pv,
+                        #(#arms)*
+                        #other
+                    };
+                }
+            }
+            None => quote!(let pv: Val = pa;),
+        };
         let mut arms = Vec::new();
         for (name, arity) in ids {
             let a = self.atom_native(name)?;
@@ -179,7 +249,8 @@ impl Gen<'_> {
         let evaluated = cold_arm(evaluated);
         Ok(Some(quote! {
             match #call {
-                Some(pv) => 'plain: {
+                Some(pa) => 'plain: {
+                    #by_parts
                     #(#arms)*
                     #hand
                     cx.count_and_enter(count, run.records, #curl, #cur_name);
@@ -215,7 +286,7 @@ impl Gen<'_> {
         let [l, r] = &sides[..] else {
             return Ok(None);
         };
-        let (call, k) = match (self.nat_plain_call(d, l, regs)?, r) {
+        let ((call, ans), k) = match (self.nat_plain_call(d, l, regs)?, r) {
             (Some(call), Build::Const(k)) => (call, *k),
             _ => match (l, self.nat_plain_call(d, r, regs)?) {
                 (Build::Const(k), Some(call)) => (call, *k),
@@ -234,13 +305,28 @@ impl Gen<'_> {
             _ => return Ok(None),
         };
         let test = if eq { test } else { quote!(!(#test)) };
+        // A compound answered by its parts is not the constant.
+        let test = match ans {
+            Some(ans) => {
+                let e = &ans.name;
+                let other = if eq { quote!(false) } else { quote!(true) };
+                quote!(match pa {
+                    super::plain_rs::#e::Val(pv) => #test,
+                    _ => #other,
+                })
+            }
+            None => quote!({
+                let pv = pa;
+                #test
+            }),
+        };
         let Some(pre) = evaluated()? else {
             return Ok(None);
         };
         let pre = cold_arm(pre);
         Ok(Some(quote! {
             let #name: bool = match #call {
-                Some(pv) => #test,
+                Some(pa) => #test,
                 None => {
                     #pre
                     #name

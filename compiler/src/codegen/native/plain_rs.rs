@@ -1,7 +1,8 @@
 //! Plain Prolog user functions compiled to Rust (issue 37, way (b)): each
 //! plain function native code calls ([`super::plain`]) is written as one
-//! Rust function over `Val`s (`plain_rs::p<k>_<name>_<arity>` in the
-//! program's module `plain_rs`), from the very form the runtime's
+//! Rust function over `Val`s, its arguments by reference
+//! (`plain_rs::p<k>_<name>_<arity>(a, [&Val; n])` in the program's module
+//! `plain_rs`), from the very form the runtime's
 //! evaluator runs (`sitlog_runtime::plain::plain_forms`: one analysis, two
 //! back ends); a call site calls it through `Cx::nat_plain_rs` with its
 //! slot `k` and the form's fingerprint (`FORM<k>`).
@@ -18,9 +19,19 @@
 //! clause that succeeds without a value; `None` after the last clause.
 //! The helpers it calls are the evaluator's (`sitlog_runtime::plain::rt`).
 //!
+//! A function some clause of which answers a compound (not a list cell)
+//! answers an `Ans<k>` instead of a `Val`: the compound by its variant
+//! (`V<j>`, one a name, arity and way its parts are held) and its parts,
+//! a head variable a reference into the arguments, any other part a
+//! value; every other value as `Ans<k>::Val`. Its call sites select the
+//! next situation from the parts (the compound never built where a
+//! situation takes it: `plain`), `Ans<k>::val` builds the value
+//! (`Ans<k>::Val` also holds the value of the path not compiled).
+//!
 //! Invariant (the same clauses, ensured at run time): the compiled
-//! function gives `Some(v)` exactly where the evaluator's
-//! `PlainFns::call_vals` on the same form gives `Some(v)`, else `None`;
+//! function gives `Some(v)` (an answer whose `val` is `v`) exactly where
+//! the evaluator's `PlainFns::call_vals` on the same form gives `Some(v)`,
+//! else `None`;
 //! and it runs only where the run's engine loaded that same form (the
 //! fingerprint, atoms by name, compared once a run: `Cx::nat_plain_rs`,
 //! `sitlog_runtime::plain::slots`) and `call_vals` would run the call (the
@@ -36,10 +47,31 @@ use sitlog_runtime::plain::{
 };
 use sitlog_syntax::{atoms, Atom};
 
-/// A compiled plain function: its slot's name and arity and its items.
+/// A compiled plain function: its slot's name and arity, its items and
+/// its answers' type.
 pub(in crate::codegen) struct PlainRs {
     key: (Atom, usize),
     items: Option<TokenStream>,
+    ans: Option<Answers>,
+}
+
+/// The answers of a function whose clauses answer a compound (`Ans<k>`,
+/// a variant a compound's name, arity and how its parts are held, its
+/// parts not built into a value; `Ans<k>::Val` every other value).
+#[derive(Clone)]
+pub(super) struct Answers {
+    /// The enum's name (`Ans<k>`).
+    pub(super) name: Ident,
+    /// Each variant's (`V<j>`) compound name and arity.
+    pub(super) shapes: Vec<(Atom, usize)>,
+}
+
+/// A compound answer's variant: its name and each part's way, a
+/// reference into the arguments (`true`) or a value.
+#[derive(Clone, PartialEq)]
+struct Shape {
+    f: Atom,
+    refs: Vec<bool>,
 }
 
 /// How a clause holds a variable.
@@ -100,15 +132,20 @@ impl Gen<'_> {
             return used[k].items.is_some().then_some(k);
         }
         let k = used.len();
-        let items = self
+        let made = self
             .plain_forms()
             .iter()
             .find(|(key, _)| *key == (name, arity))
             .and_then(|(_, f)| self.plain_fn(k, name, arity, f).ok());
-        let ok = items.is_some();
+        let ok = made.is_some();
+        let (items, ans) = match made {
+            Some((items, ans)) => (Some(items), ans),
+            None => (None, None),
+        };
         used.push(PlainRs {
             key: (name, arity),
             items,
+            ans,
         });
         ok.then_some(k)
     }
@@ -137,40 +174,130 @@ impl Gen<'_> {
     }
 
     /// The call of slot `k`'s function as a call site writes it: the
-    /// fingerprint and the function.
-    pub(super) fn plain_rs_call(&self, k: usize) -> (TokenStream, TokenStream) {
+    /// fingerprint and the function; its answers' type (`None`: a `Val`).
+    pub(super) fn plain_rs_call(&self, k: usize) -> (TokenStream, TokenStream, Option<Answers>) {
         let used = self.plain_rs.borrow();
         let (name, arity) = used[k].key;
         let (f, form) = names(k, name, arity);
-        (quote!(super::plain_rs::#form), quote!(super::plain_rs::#f))
+        (
+            quote!(super::plain_rs::#form),
+            quote!(super::plain_rs::#f),
+            used[k].ans.clone(),
+        )
     }
 
-    /// The items of slot `k`'s function.
-    fn plain_fn(&self, k: usize, name: Atom, arity: usize, f: &PlainFn) -> N<TokenStream> {
+    /// The items of slot `k`'s function and its answers' type.
+    fn plain_fn(
+        &self,
+        k: usize,
+        name: Atom,
+        arity: usize,
+        f: &PlainFn,
+    ) -> N<(TokenStream, Option<Answers>)> {
         let (fname, form) = names(k, name, arity);
         let fp = Literal::string(f.fingerprint());
         let args: Vec<Ident> = (0..arity).map(|i| format_ident!("a{}", i)).collect();
+        // An answer type where a clause answers a compound.
+        let mut compound = false;
+        for c in f.clauses() {
+            answers_compound(c.body(), &mut compound);
+        }
+        let ans = compound.then(|| format_ident!("Ans{}", k));
+        let shapes = std::cell::RefCell::new(Vec::new());
         let mut clauses = Vec::new();
         for (n, c) in f.clauses().iter().enumerate() {
-            clauses.push(self.plain_clause(n, c, &args)?);
+            clauses.push(self.plain_clause(n, c, &args, ans.as_ref(), &shapes)?);
         }
         let doc = format!(" `{}/{}`, compiled.", name.as_str(), arity);
-        Ok(quote! {
+        let n = Literal::usize_unsuffixed(arity);
+        let Some(ans) = ans else {
+            return Ok((
+                quote! {
+                    /// The fingerprint of the form compiled below.
+                    pub const #form: &str = #fp;
+                    #[doc = #doc]
+                    #[inline]
+                    pub fn #fname(a: &Atoms, [#(#args),*]: [&Val; #n]) -> Option<Val> {
+                        #(#clauses)*
+                        None
+                    }
+                },
+                None,
+            ));
+        };
+        let shapes = shapes.into_inner();
+        let long = shapes.iter().any(|s| s.refs.contains(&true));
+        let lt = long.then(|| quote!(<'v>));
+        let (mut variants, mut builds, mut names) = (Vec::new(), Vec::new(), Vec::new());
+        for (j, s) in shapes.iter().enumerate() {
+            let v = format_ident!("V{}", j);
+            let fa = self.atom_native(s.f)?;
+            let tys = s
+                .refs
+                .iter()
+                .map(|r| if *r { quote!(&'v Val) } else { quote!(Val) });
+            let xs: Vec<Ident> = (0..s.refs.len()).map(|i| format_ident!("x{}", i)).collect();
+            let vals = xs
+                .iter()
+                .zip(&s.refs)
+                .map(|(x, r)| if *r { quote!(#x.clone()) } else { quote!(#x) });
+            let vdoc = format!(" `{}/{}`, by its parts.", s.f.as_str(), s.refs.len());
+            variants.push(quote!(#[doc = #vdoc] #v(#(#tys),*),));
+            builds.push(quote!(#ans::#v(#(#xs),*) => Val::Tagged(native::Compound::new(#fa, [#(#vals),*])),));
+            names.push((s.f, s.refs.len()));
+        }
+        let edoc = format!(
+            " What `{}/{}` answers: a compound by its parts (not built), any other value as it is.",
+            name.as_str(),
+            arity
+        );
+        let items = quote! {
             /// The fingerprint of the form compiled below.
             pub const #form: &str = #fp;
+            #[doc = #edoc]
+            pub enum #ans #lt {
+                Val(Val),
+                #(#variants)*
+            }
+            impl #lt rt::Answer for #ans #lt {
+                #[inline(always)]
+                fn of_val(v: Val) -> Self {
+                    #ans::Val(v)
+                }
+            }
+            impl #lt #ans #lt {
+                /// The answer's value, built.
+                pub fn val(self, a: &Atoms) -> Val {
+                    match self {
+                        #ans::Val(v) => v,
+                        #(#builds)*
+                    }
+                }
+            }
             #[doc = #doc]
             #[inline]
-            pub fn #fname(a: &Atoms, args: &[Val]) -> Option<Val> {
-                let [#(#args),*] = args else {
-                    return None;
-                };
+            pub fn #fname<'v>(a: &Atoms, [#(#args),*]: [&'v Val; #n]) -> Option<#ans #lt> {
                 #(#clauses)*
                 None
             }
-        })
+        };
+        Ok((
+            items,
+            Some(Answers {
+                name: ans,
+                shapes: names,
+            }),
+        ))
     }
 
-    fn plain_clause(&self, n: usize, c: &PClause, args: &[Ident]) -> N<TokenStream> {
+    fn plain_clause(
+        &self,
+        n: usize,
+        c: &PClause,
+        args: &[Ident],
+        ans: Option<&Ident>,
+        shapes: &std::cell::RefCell<Vec<Shape>>,
+    ) -> N<TokenStream> {
         let mut kinds = vec![None; c.vars()];
         for a in c.head() {
             head_kinds(a, &mut kinds);
@@ -198,10 +325,13 @@ impl Gen<'_> {
             cut: false,
             assigns: Vec::new(),
             dynamic_assign: !single_assign,
+            long: vec![false; c.vars()],
+            ans: ans.cloned(),
+            shapes,
         };
         let mut stmts = Vec::new();
         for (p, a) in c.head().iter().zip(args) {
-            cg.head(p, quote!(#a), &mut stmts)?;
+            cg.head(p, quote!(#a), true, &mut stmts)?;
         }
         // The body's variables, each written once on a path before it is read.
         let mut decls = Vec::new();
@@ -229,12 +359,12 @@ impl Gen<'_> {
             quote!(return None;)
         } else if single_assign {
             let o = cg.assigns[0].clone();
-            let v = cg.value(&o)?;
+            let v = cg.answer(&o)?;
             quote!(return Some(#v);)
         } else {
             let mut arms = Vec::new();
             for (i, o) in cg.assigns.clone().iter().enumerate() {
-                let v = cg.value(o)?;
+                let v = cg.answer(o)?;
                 let i = Literal::usize_unsuffixed(i + 1);
                 arms.push(quote!(#i => #v,));
             }
@@ -357,6 +487,28 @@ fn body_kinds(gs: &[PGoal], kinds: &mut [Option<Kind>]) {
     }
 }
 
+/// Whether `o`, a value assigned, is a compound a function answers by its
+/// parts (not a list cell).
+fn compound_answer(o: &Opnd) -> bool {
+    let cell = |f: Atom, n: usize| f == atoms::DOT && n == 2;
+    matches!(o, Opnd::Build(f, args) if !args.is_empty() && !cell(*f, args.len()))
+}
+
+/// Whether a goal of `gs` assigns a compound answered by its parts.
+fn answers_compound(gs: &[PGoal], found: &mut bool) {
+    for g in gs {
+        match g {
+            PGoal::Assign(o) => *found |= compound_answer(o),
+            PGoal::Ite(c, t, e) => {
+                answers_compound(c, found);
+                answers_compound(t, found);
+                answers_compound(e, found);
+            }
+            _ => {}
+        }
+    }
+}
+
 /// Whether a cut is inside an if-then-else (the clause then keeps whether
 /// it cut at run time).
 fn cut_inside(g: &PGoal) -> bool {
@@ -398,6 +550,12 @@ struct Clause<'g, 's> {
     /// Whether the clause keeps which assignment it reached last at run
     /// time (`assigned`); else it has at most one, at its top level.
     dynamic_assign: bool,
+    /// Which head variables are references into the arguments (`&'v`).
+    long: Vec<bool>,
+    /// The function's answer type (`None`: it answers a `Val`) and its
+    /// variants so far.
+    ans: Option<Ident>,
+    shapes: &'g std::cell::RefCell<Vec<Shape>>,
 }
 
 impl Clause<'_, '_> {
@@ -430,6 +588,51 @@ impl Clause<'_, '_> {
         }
     }
 
+    /// The value of an assignment, as the function answers it: a compound
+    /// (not a list cell) by its variant and parts where the function has
+    /// an answer type, else the value.
+    fn answer(&mut self, o: &Opnd) -> N<TokenStream> {
+        let Some(ans) = self.ans.clone() else {
+            return self.value(o);
+        };
+        match o {
+            Opnd::Build(f, args) if compound_answer(o) => {
+                let mut refs = Vec::new();
+                let mut parts = Vec::new();
+                for x in args.iter() {
+                    match x {
+                        Opnd::Var(i)
+                            if self.kinds[*i as usize] == Kind::Ref && self.long[*i as usize] =>
+                        {
+                            let r = reg(*i as usize);
+                            refs.push(true);
+                            parts.push(quote!(#r));
+                        }
+                        _ => {
+                            refs.push(false);
+                            parts.push(self.value(x)?);
+                        }
+                    }
+                }
+                let shape = Shape { f: *f, refs };
+                let mut shapes = self.shapes.borrow_mut();
+                let j = match shapes.iter().position(|s| *s == shape) {
+                    Some(j) => j,
+                    None => {
+                        shapes.push(shape);
+                        shapes.len() - 1
+                    }
+                };
+                let v = format_ident!("V{}", j);
+                Ok(quote!(#ans::#v(#(#parts),*)))
+            }
+            _ => {
+                let v = self.value(o)?;
+                Ok(quote!(#ans::Val(#v)))
+            }
+        }
+    }
+
     /// Register `i` as a `&Val` expression.
     fn reg_ref(&self, i: u16) -> TokenStream {
         let r = reg(i as usize);
@@ -454,12 +657,14 @@ impl Clause<'_, '_> {
         })
     }
 
-    /// The head argument `p` matched against `v` (a `&Val`).
-    fn head(&mut self, p: &PArg, v: TokenStream, out: &mut Vec<TokenStream>) -> N<()> {
+    /// The head argument `p` matched against `v` (a `&Val`; `long`: a
+    /// reference into the arguments, `&'v`).
+    fn head(&mut self, p: &PArg, v: TokenStream, long: bool, out: &mut Vec<TokenStream>) -> N<()> {
         let label = self.label.clone();
         match p {
             PArg::Bind(i) => {
                 let r = reg(*i as usize);
+                self.long[*i as usize] = long;
                 out.push(quote!(let #r: &Val = #v;));
             }
             PArg::Same(i) => {
@@ -478,8 +683,8 @@ impl Clause<'_, '_> {
                     let Some((#h, #t)) = #l.split_first() else { break #label; };
                     let #t = Val::List(#t);
                 });
-                self.head(&ps[0], quote!(#h), out)?;
-                self.head(&ps[1], quote!(&#t), out)?;
+                self.head(&ps[0], quote!(#h), long, out)?;
+                self.head(&ps[1], quote!(&#t), false, out)?;
             }
             PArg::Struct(_, ps) if ps.is_empty() => out.push(quote!(break #label;)),
             PArg::Struct(f, ps) => {
@@ -492,7 +697,7 @@ impl Clause<'_, '_> {
                 });
                 for (i, p) in ps.iter().enumerate() {
                     let i = Literal::usize_unsuffixed(i);
-                    self.head(p, quote!(&#c.args()[#i]), out)?;
+                    self.head(p, quote!(&#c.args()[#i]), long, out)?;
                 }
             }
         }
