@@ -4077,6 +4077,9 @@ mod nfnc21;
 /// Helper `nrs22`'s plain functions compiled to Rust (issue 37).
 mod nrs22;
 
+/// Helper `nstock23`'s DMs with a pattern in their head (issue 37).
+mod nstock23;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");

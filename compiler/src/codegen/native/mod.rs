@@ -232,6 +232,7 @@ mod effect;
 mod fill;
 mod frame;
 mod ground_parts;
+mod head;
 mod next_is;
 mod perceive;
 mod pipe;
@@ -354,7 +355,8 @@ fn unread_reg_ty(t: &DmTypes, st: &SitTypes, init: Option<&Init>) -> Ty {
             ty
         }
         Some(Init::Pipe) => st.pipe.ty.clone(),
-        Some(Init::Fresh) | None => Ty::Term,
+        // A part of a head pattern nothing reads: never loaded.
+        Some(Init::HeadPath(..)) | Some(Init::Fresh) | None => Ty::Term,
     }
 }
 
@@ -1445,6 +1447,8 @@ impl Dm<'_> {
                         {
                             Some(*p)
                         }
+                        // A pattern's parameter: its parts read natively.
+                        Init::HeadPath(p, _) => Some(*p),
                         _ => None,
                     })
             })
@@ -1631,6 +1635,16 @@ impl Gen<'_> {
                 waits_arms.push(w.waits_arm.clone());
                 wait_pattern |= w.pattern;
                 held_arms.push(w.held_arm.clone());
+            }
+            // A visit that runs the situation's template on every path
+            // is not entered natively (issue 37, `nstock23`): its entry
+            // would convert the id's fields and the parameters only to
+            // hand them back as terms (a walk `try([P|Ps])` on its
+            // template converted `Ps` and the parameters at every visit:
+            // quadratic). The machine runs it from its template, as it
+            // does for a value that does not convert (`_ => return None`).
+            if visits[ix] == Some(Visit::Template) {
+                continue;
             }
             // Entered by the machine: the fields from the value that
             // selected it, converted (else the term code runs it).
@@ -2037,6 +2051,16 @@ impl Gen<'_> {
                     let ty = t.params.get(*p).map_or(Ty::Term, |p| p.ty.clone());
                     if w.is_none() && rust_ty(&ty).is_err() {
                         w = Some(format!("parameter {} is typed {ty}", p + 1));
+                    }
+                }
+                // A head pattern's parameter is taken apart as a `Val`.
+                if let Init::HeadPath(p, _) = init {
+                    let ty = t.params.get(*p).map_or(Ty::Term, |p| p.ty.clone());
+                    if w.is_none() && !held_as_val(&ty) {
+                        w = Some(format!(
+                            "parameter {} (a pattern of the head) is typed {ty}",
+                            p + 1
+                        ));
                     }
                 }
             }
@@ -2660,6 +2684,11 @@ impl Gen<'_> {
                 Init::HeadArg(i) => {
                     let ty = st.regs[*r as usize].ty.clone();
                     stmts.push(load_head_arg(d, *r, *i, ty, &mut regs)?);
+                }
+                Init::HeadPath(..) if st.unbound.get(*r as usize).copied().unwrap_or(false) => {}
+                Init::HeadPath(i, path) => {
+                    let ty = st.regs[*r as usize].ty.clone();
+                    stmts.push(head::load_head_path(d, *r, *i, path, ty, &mut regs)?);
                 }
                 Init::Pipe => {
                     let ty = st.regs[*r as usize].ty.clone();
