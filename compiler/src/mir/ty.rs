@@ -2811,10 +2811,10 @@ diag_mod(take(A, B),
         let (ir, _, t) = types_of(
             r#"
 diag_mod(main,
-  [ [ id ==> go, type ==> recursive, embedded_dm ==> fixed(a), arcs ==> [ fs : empty => fs ] ],
+  [ [ id ==> go, type ==> recursive, embedded_dm ==> fixed(a, a), arcs ==> [ fs : empty => fs ] ],
     [ id ==> fs, type ==> final ] ],
   []).
-diag_mod(fixed(a),
+diag_mod(fixed(X, X),
   [ [ id ==> is, type ==> neutral, arcs ==> [ empty : set(k, b) => fs ] ],
     [ id ==> fs, type ==> final ] ],
   [ k ==> 0 ]).

@@ -119,13 +119,18 @@ mod tests {
         let tail: Val = head_part(&l, &[1]).expect("a tail");
         assert_eq!(tail, val(&mut s, "[y]"));
         let q = pattern(&mut s, "p(yes, 3, [])");
-        assert!(head_matches(&s, q, &val(&mut s, "p(yes, 3, [])")));
-        assert!(!head_matches(&s, q, &val(&mut s, "p(no, 3, [])")));
-        assert!(!head_matches(&s, q, &val(&mut s, "p(yes, 4, [])")));
-        assert!(!head_matches(&s, q, &val(&mut s, "p(yes, 3, [a])")));
+        let v = val(&mut s, "p(yes, 3, [])");
+        assert!(head_matches(&s, q, &v));
+        let v = val(&mut s, "p(no, 3, [])");
+        assert!(!head_matches(&s, q, &v));
+        let v = val(&mut s, "p(yes, 4, [])");
+        assert!(!head_matches(&s, q, &v));
+        let v = val(&mut s, "p(yes, 3, [a])");
+        assert!(!head_matches(&s, q, &v));
         // A float: the machine decides.
         let f = pattern(&mut s, "g(1.5)");
-        assert!(!head_matches(&s, f, &val(&mut s, "g(1.5)")));
+        let v = val(&mut s, "g(1.5)");
+        assert!(!head_matches(&s, f, &v));
     }
 
     use sitlog_syntax::Atom;

@@ -102,6 +102,13 @@ fn pair_same_agrees() {
             "agree([p(a, a, on)|T])",
             "agree([p(a, a, on)|x])",
             "agree([p(f(a), f(a), on), p([1], [1], on)])",
+            // The callee as the main DM: its head unified with the
+            // command line's call (E13 where it does not).
+            "same(p(a, a, on))",
+            "same(p(a, b, on))",
+            "same(p(a, a, off))",
+            "same(x)",
+            "same(_)",
         ],
     );
 }
