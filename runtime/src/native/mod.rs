@@ -25,7 +25,7 @@ mod rust;
 mod ty;
 mod val;
 
-pub use head::{head_matches, head_part};
+pub use head::head_part;
 pub use list::{Iter, List};
 pub use rust::{compound, id_part, FromVal, Ground, IntoVal, Native, Never};
 pub use ty::{Ty, MAX_DEPTH};

@@ -7,9 +7,9 @@
 //! code holds the parameter as a `Val` (its type `ground` or a fixed-shape
 //! compound) and takes the part apart at each visit (`native::head_part`,
 //! no allocation). A native caller pushes such a callee's frame only where
-//! its argument matches the pattern (`native::head_matches` of the
-//! argument against the pattern, a constant of the program with
-//! `'$hole'(i)` for each variable, [`Gen::head_guard`]); where it does
+//! its argument matches the pattern (Rust tests on the `Val` generated
+//! from the pattern, [`Gen::head_guard`]: `v0.args_of(a.minus, 2)
+//! .is_some()` for `K-_Qty`, no store read); where it does
 //! not, or where that is not decided natively, the call goes to the
 //! machine, whose unification decides and reports a head that does not
 //! unify exactly as the interpreter does (the same path as a call that is
@@ -26,7 +26,8 @@ use crate::mir::Reg;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_runtime::native::Ty;
-use sitlog_runtime::{Store, Term, Value};
+use sitlog_runtime::{Term, Value};
+use sitlog_syntax::atoms;
 
 /// `let rN: T = ..;` loading register `r` (of type `ty`) from the part at
 /// `path` of parameter `i`, a pattern of the head.
@@ -62,46 +63,14 @@ pub(super) fn load_head_path(
     })
 }
 
-/// The text of `t` with `'$hole'(n)` for its `n`-th variable (`None`
-/// when it names `'$hole'`, or has a float or a big integer: not matched
-/// natively).
-fn pattern_text(store: &Store, t: Term) -> Option<String> {
-    let mut scratch = Store::new();
-    let mut n = 0;
-    let copy = copy_holes(store, t, &mut scratch, &mut n)?;
-    Some(scratch.writeq(copy))
-}
-
-fn copy_holes(store: &Store, t: Term, out: &mut Store, n: &mut i64) -> Option<Term> {
-    let hole = sitlog_runtime::machine::hole_atom();
-    Some(match store.value(t) {
-        Value::Var(_) => {
-            *n += 1;
-            out.compound(hole, &[Term::int(*n - 1)])
-        }
-        Value::Atom(a) if a == hole => return None,
-        Value::Atom(_) | Value::Int(_) => t,
-        Value::Compound(f, args) => {
-            if f == hole {
-                return None;
-            }
-            let args = args.to_vec();
-            let mut copied = Vec::with_capacity(args.len());
-            for a in args {
-                copied.push(copy_holes(store, a, out, n)?);
-            }
-            out.compound(f, &copied)
-        }
-        _ => return None,
-    })
-}
-
 impl Gen<'_> {
     /// The condition under which a native caller pushes DM `j`'s frame
     /// with arguments `vs` (of types `tys`): each argument whose head
-    /// argument is a pattern matches it (`&& native::head_matches(..)`,
-    /// empty for a head of variables); an error where such an argument is
-    /// not held as the callee's `Val` (the call is then the machine's).
+    /// argument is a pattern matches it (`&& ..`, Rust tests on the `Val`
+    /// generated from the pattern, [`Gen::head_match`]; empty for a head of
+    /// variables); an error where such an argument is not held as the
+    /// callee's `Val` or the pattern has a float or a big integer (the call
+    /// is then the machine's).
     pub(super) fn head_guard(
         &self,
         j: usize,
@@ -112,6 +81,7 @@ impl Gen<'_> {
         let ir = self.ir.ok_or("no IR")?;
         let head = ir.dms[j].head;
         let mut conds = Vec::new();
+        let mut n = 0;
         for (i, &a) in self.store.args(head).iter().enumerate() {
             if matches!(self.store.value(a), Value::Var(_)) {
                 continue;
@@ -124,13 +94,70 @@ impl Gen<'_> {
                     "an argument of type {ty} for a head pattern (parameter typed {pty})"
                 ));
             }
-            let text = pattern_text(self.store, a).ok_or("a head pattern not matched natively")?;
-            let k = self
-                .pattern_if(text)
-                .map(Self::const_index)
-                .ok_or("a head pattern not registered")?;
-            conds.push(quote!(&& native::head_matches(cx.store(), p.k #k, &#x)));
+            if let Some(c) = self.head_match(a, quote!(#x), &mut n, 0)? {
+                conds.push(quote!(&& #c));
+            }
         }
         Ok(quote!(#(#conds)*))
+    }
+
+    /// Whether the `Val` `e` unifies with pattern `t` (a head argument whose
+    /// variables are all distinct: each matches anything), as Rust tests;
+    /// `None`: always (a variable).
+    fn head_match(
+        &self,
+        t: Term,
+        e: TokenStream,
+        n: &mut usize,
+        depth: usize,
+    ) -> N<Option<TokenStream>> {
+        if depth > crate::mir::MAX_DEPTH {
+            return Err("a head pattern too deep".into());
+        }
+        Ok(match self.store.value(t) {
+            Value::Var(_) => None,
+            Value::Atom(a) if a == atoms::NIL => Some(quote!(#e.is_nil())),
+            Value::Atom(a) => {
+                let k = self.atom_native(a)?;
+                Some(quote!(#e.sym() == Some(#k)))
+            }
+            Value::Int(i) => {
+                let l = Literal::i64_unsuffixed(i);
+                Some(quote!(#e.int() == Some(#l)))
+            }
+            Value::Compound(f, args) if f == atoms::DOT && args.len() == 2 => {
+                let (h, tl) = (format_ident!("h{}", *n), format_ident!("t{}", *n));
+                *n += 1;
+                let (a0, a1) = (args[0], args[1]);
+                let ch = self.head_match(a0, quote!(#h), n, depth + 1)?;
+                let ct = self.head_match(a1, quote!(#tl), n, depth + 1)?;
+                let conds: Vec<TokenStream> = ch.into_iter().chain(ct).collect();
+                if conds.is_empty() {
+                    Some(quote!(#e.split_list().is_some()))
+                } else {
+                    Some(quote!(#e.split_list().is_some_and(|(#h, #tl)| #(#conds)&&*)))
+                }
+            }
+            Value::Compound(f, args) => {
+                let k = self.atom_native(f)?;
+                let arity = Literal::usize_unsuffixed(args.len());
+                let xs = format_ident!("xs{}", *n);
+                *n += 1;
+                let args = args.to_vec();
+                let mut conds = Vec::new();
+                for (i, a) in args.into_iter().enumerate() {
+                    let il = Literal::usize_unsuffixed(i);
+                    if let Some(c) = self.head_match(a, quote!(#xs[#il]), n, depth + 1)? {
+                        conds.push(c);
+                    }
+                }
+                if conds.is_empty() {
+                    Some(quote!(#e.args_of(#k, #arity).is_some()))
+                } else {
+                    Some(quote!(#e.args_of(#k, #arity).is_some_and(|#xs| #(#conds)&&*)))
+                }
+            }
+            _ => return Err("a head pattern with a float or a big integer".into()),
+        })
     }
 }

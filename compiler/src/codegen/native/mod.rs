@@ -23,7 +23,12 @@
 //!   not fit leaves the visit to the machine, nothing done: a situation with
 //!   native code has no term code (`codegen::emit`), so `run_situation`
 //!   returns `Step::Template` and the machine runs it from its template,
-//!   as the interpreter does (correct, slower, rare). "Term code" below
+//!   as the interpreter does (correct, slower, rare). A situation whose
+//!   visit runs its template on every path ([`Visit::Template`]) has no
+//!   entry at all: converting its fields and the parameters only to build
+//!   them back as terms made a walk on its template quadratic (issue 37,
+//!   `nstock23`), so the machine runs it from its template, nothing
+//!   converted. "Term code" below
 //!   means, for such a situation, that path. Where native code needs a
 //!   situation's id as a term (entering it, its history entry, a
 //!   hand-over, a wait), it is filled from its pattern, a constant with a
