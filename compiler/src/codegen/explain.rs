@@ -329,6 +329,6 @@ fn template_why(store: &Store, s: &crate::ir::IrSituation) -> &'static str {
     {
         "a recursive situation without `embedded_dm`"
     } else {
-        "its DM's parameters are not distinct variables, or a term is too deep"
+        "its DM's head names a variable twice, or a term is too deep"
     }
 }

@@ -482,6 +482,11 @@ impl Gen<'_> {
                     let i = Literal::usize_unsuffixed(*i);
                     quote!(cx.head_arg(#i))
                 }
+                Init::HeadPath(i, path) => {
+                    let i = Literal::usize_unsuffixed(*i);
+                    let path = path.iter().map(|&k| Literal::usize_unsuffixed(k));
+                    quote!(cx.head_part(#i, &[#(#path),*]))
+                }
                 // A variable in_arg takes the pipe value (D-8).
                 Init::Pipe => quote!(cx.pipe()),
                 Init::Fresh => quote!(cx.var()),

@@ -284,6 +284,7 @@ pub(super) fn run_plan(p: &SitPlan, cx: Rcx<'_, '_, '_, '_>, regs: &mut [Term]) 
             Init::IdArg(i) => cx.arg(id, *i),
             Init::IdPath(path) => path.iter().fold(id, |t, &i| cx.arg(t, i)),
             Init::HeadArg(i) => cx.head_arg(*i),
+            Init::HeadPath(i, path) => cx.head_part(*i, path),
             Init::Pipe => cx.pipe(),
             Init::Fresh => cx.var(),
         };

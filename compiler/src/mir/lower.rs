@@ -105,12 +105,10 @@ impl<'s> Planner<'s> {
         if s.kind == Kind::Recursive && self.store.atom_of(f[EMBEDDED_DM]) == Some(none_marker()) {
             return None;
         }
-        let mut seen = HashSet::new();
-        for &a in self.store.args(self.dm.head) {
-            match self.store.value(a) {
-                Value::Var(v) if seen.insert(v.index()) => {}
-                _ => return None,
-            }
+        // A head naming each variable once: an argument a variable or a
+        // pattern (`key_of(K-_Qty)`, [`Init::HeadPath`]).
+        if !self.linear_head() {
+            return None;
         }
         match self.store.value(f[ID]) {
             Value::Atom(a) if a != none_marker() => Some((a, 0)),
@@ -119,6 +117,24 @@ impl<'s> Planner<'s> {
             Value::Compound(name, args) => Some((name, args.len())),
             _ => None,
         }
+    }
+
+    /// Whether the DM's head names each of its variables once, and no term
+    /// in it is deeper than [`MAX_DEPTH`].
+    pub(crate) fn linear_head(&self) -> bool {
+        let mut seen = HashSet::new();
+        let mut stack: Vec<(Term, usize)> = vec![(self.dm.head, 0)];
+        while let Some((t, depth)) = stack.pop() {
+            if depth > MAX_DEPTH {
+                return false;
+            }
+            match self.store.value(t) {
+                Value::Var(v) if !seen.insert(v.index()) => return false,
+                Value::Compound(_, args) => stack.extend(args.iter().map(|&a| (a, depth + 1))),
+                _ => {}
+            }
+        }
+        true
     }
 
     /// Whether a compound id's arguments are distinct variables and atomic
@@ -660,15 +676,25 @@ impl<'s> Planner<'s> {
                 self.term_vars(t, &mut inst_vars);
             }
         }
-        let head_vars: Vec<u32> = self
-            .store
-            .args(f[HEAD])
-            .iter()
-            .map(|&a| match self.store.value(a) {
-                Value::Var(v) => Ok(v.index()),
-                _ => Err(Unsupported),
-            })
-            .collect::<Plan<_>>()?;
+        // A head argument that is a variable is the argument; the
+        // variables of one that is a pattern are parts of it
+        // ([`Init::HeadPath`]), each named once in the head (`compiled_id`).
+        let mut head_vars: Vec<u32> = Vec::new();
+        let mut head_paths: HashMap<u32, (usize, Box<[usize]>)> = HashMap::new();
+        for (i, &a) in self.store.args(f[HEAD]).iter().enumerate() {
+            match self.store.value(a) {
+                Value::Var(v) => head_vars.push(v.index()),
+                _ => {
+                    // No variable there: never this index.
+                    head_vars.push(u32::MAX);
+                    let mut paths = HashMap::new();
+                    self.var_paths(a, &mut Vec::new(), &mut paths);
+                    for (v, path) in paths {
+                        head_paths.insert(v, (i, path));
+                    }
+                }
+            }
+        }
         let in_arg = self.field(s, IN_ARG);
         let out_arg = self.field(s, OUT_ARG);
         let diag_mod = self.field(s, DIAG_MOD);
@@ -678,7 +704,9 @@ impl<'s> Planner<'s> {
         // the id's (then the pipe is unified with its value).
         let in_var = in_arg.and_then(|t| match self.store.value(t) {
             Value::Var(v)
-                if !head_vars.contains(&v.index()) && !id_vars_all.contains(&v.index()) =>
+                if !head_vars.contains(&v.index())
+                    && !head_paths.contains_key(&v.index())
+                    && !id_vars_all.contains(&v.index()) =>
             {
                 Some(v.index())
             }
@@ -727,6 +755,8 @@ impl<'s> Planner<'s> {
                 Init::IdPath(Box::clone(path))
             } else if let Some(i) = head_vars.iter().position(|&h| h == v) {
                 Init::HeadArg(i)
+            } else if let Some((i, path)) = head_paths.get(&v) {
+                Init::HeadPath(*i, Box::clone(path))
             } else if Some(v) == in_var {
                 Init::Pipe
             } else {
@@ -735,6 +765,11 @@ impl<'s> Planner<'s> {
             let r = self.reg();
             inits.push((r, init));
             scope.vars.insert(v, r);
+        }
+        // An id variable that is part of a head pattern: linked to the call
+        // by the term path only (not planned).
+        if id_vars_all.iter().any(|v| head_paths.contains_key(v)) {
+            return Err(Unsupported);
         }
         // Id variables that are parameters: linked to the call after selection (D-7).
         let links: Vec<(Reg, usize)> = head_vars

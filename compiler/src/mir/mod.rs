@@ -7,8 +7,9 @@
 //! Invariant: the rules of *which situations run as code* (an atom id, or
 //! a compound id, whose variables shared with the DM's parameters are
 //! [`SitPlan::links`]; any type, a
-//! compound one built from the situation's variables; a DM whose
-//! parameters are distinct variables; no term deeper than [`MAX_DEPTH`]),
+//! compound one built from the situation's variables; a DM whose head
+//! names each of its variables once, an argument a variable or a pattern
+//! ([`Init::HeadPath`]); no term deeper than [`MAX_DEPTH`]),
 //! *which variables are lazy* (first occurring as the argument of
 //! `get`/`inc` or the variable of `is`) and *where a constant next
 //! situation goes* are decided here only. The interpreter
@@ -146,6 +147,13 @@ pub enum Init {
     IdPath(Box<[usize]>),
     /// Argument `i` of the DM call.
     HeadArg(usize),
+    /// The part at this path of argument positions of argument `i` of the
+    /// DM call, whose head argument there is a pattern (`K` in
+    /// `key_of(K-_Qty)`: `HeadPath(0, [0])`). The head is unified with the
+    /// call where the DM starts (E13: an error where it does not unify), so
+    /// the argument is an instance of the pattern and every later fresh
+    /// head's unification with it (D-7) binds the variable to that part.
+    HeadPath(usize, Box<[usize]>),
     /// A variable in_arg: the incoming pipe.
     Pipe,
     Fresh,

@@ -1525,7 +1525,12 @@ impl<'a> State<'a> {
             // A parameter or id argument nothing in the plan reads
             // (`_Answer`, `understood(Answer, _)`): no value is needed.
             let unread = self.occ[d][s].get(*r as usize) == Some(&0);
-            if unread && matches!(init, Init::HeadArg(_) | Init::IdArg(_) | Init::IdPath(_)) {
+            if unread
+                && matches!(
+                    init,
+                    Init::HeadArg(_) | Init::HeadPath(..) | Init::IdArg(_) | Init::IdPath(_)
+                )
+            {
                 self.unbound_or_term(d, s, *r, &fresh_why);
                 continue;
             }
@@ -1537,6 +1542,7 @@ impl<'a> State<'a> {
                     .get(*i)
                     .cloned()
                     .unwrap_or_else(Typed::never),
+                Init::HeadPath(i, path) => self.head_path(d, *i, path),
                 Init::Pipe => pipe.clone(),
                 Init::Fresh => {
                     fresh.push(*r);
@@ -1816,6 +1822,10 @@ impl<'a> State<'a> {
                 let read = plans.iter().enumerate().any(|(s, p)| {
                     let p = p.as_ref().expect("planned");
                     p.links.iter().any(|&(_, k)| k == i)
+                        // A pattern is matched with the argument: read.
+                        || p.inits.iter().any(|(_, init)| {
+                            matches!(init, Init::HeadPath(k, _) if *k == i)
+                        })
                         || p.inits.iter().any(|(r, init)| {
                             matches!(init, Init::HeadArg(k) if *k == i)
                                 && self.occ[c][s].get(*r as usize) != Some(&0)
@@ -1885,6 +1895,34 @@ impl<'a> State<'a> {
             }
         }
         out
+    }
+
+    /// The type of the part at `path` of parameter `i`, whose head
+    /// argument is a pattern ([`Init::HeadPath`]): the parameter's type
+    /// taken apart along the pattern (`never` where the type cannot match
+    /// it: the call is an error there, E13).
+    fn head_path(&self, d: usize, i: usize, path: &[usize]) -> Typed {
+        let store = self.store();
+        let off = || Typed::term("a head path off the head");
+        let mut t = self.t.dms[d]
+            .params
+            .get(i)
+            .cloned()
+            .unwrap_or_else(Typed::never);
+        let Some(mut sub) = store.arg(self.ir.dms[d].head, i) else {
+            return off();
+        };
+        for &k in path {
+            let Value::Compound(name, args) = store.value(sub) else {
+                return off();
+            };
+            let Some(vs) = args_of(&t, name, args.len()) else {
+                return Typed::never();
+            };
+            t = vs.get(k).cloned().unwrap_or_else(Typed::never);
+            sub = args.get(k).copied().unwrap_or(sub);
+        }
+        t
     }
 
     fn id_path(&self, p: &SitPlan, id_args: &[Typed], path: &[usize]) -> Typed {
@@ -2773,10 +2811,10 @@ diag_mod(take(A, B),
         let (ir, _, t) = types_of(
             r#"
 diag_mod(main,
-  [ [ id ==> go, type ==> recursive, embedded_dm ==> fixed(a), arcs ==> [ fs : empty => fs ] ],
+  [ [ id ==> go, type ==> recursive, embedded_dm ==> fixed(a, a), arcs ==> [ fs : empty => fs ] ],
     [ id ==> fs, type ==> final ] ],
   []).
-diag_mod(fixed(a),
+diag_mod(fixed(X, X),
   [ [ id ==> is, type ==> neutral, arcs ==> [ empty : set(k, b) => fs ] ],
     [ id ==> fs, type ==> final ] ],
   [ k ==> 0 ]).

@@ -750,6 +750,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             Fault::Visited => "native code visited a waiting situation or a running frame",
             Fault::Exits => "native exit arcs disagree with the machine's",
             Fault::NoLevel => "native code closed a history level it did not open",
+            Fault::HeadPart => "native code read a part its DM's head pattern does not have",
             Fault::NotTheCall => {
                 "native code called a DM its situation's embedded_dm does not call"
             }
@@ -867,6 +868,22 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             Some(a) => a,
             None => self.m.store.new_var(),
         }
+    }
+
+    /// The part at `path` (argument positions) of argument `i` of the
+    /// running DM's call: the value a variable of a head argument written
+    /// as a pattern takes (`K` in `key_of(K-_Qty)`; D-7: the call unified
+    /// with the head where the DM started, so the part is there); a fresh
+    /// variable where the call has no such part.
+    pub fn head_part(&mut self, i: usize, path: &[usize]) -> Term {
+        let mut t = self.head_arg(i);
+        for &k in path {
+            match self.m.store.arg(t, k) {
+                Some(a) => t = a,
+                None => return self.m.store.new_var(),
+            }
+        }
+        t
     }
 
     /// Links `x`, the selected id's value of a variable that is also head
@@ -1651,6 +1668,9 @@ pub enum Fault {
     /// A native final closing a history level none opened, or whose call
     /// term does not take its outputs.
     NoLevel,
+    /// A native frame's parameter without the part its DM's head pattern
+    /// names (the push checked the match: `native::head_matches`).
+    HeadPart,
 }
 
 /// A value native code makes a term of, of any native type (a term is

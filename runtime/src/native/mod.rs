@@ -19,11 +19,13 @@
 //! conversions (`Val::from_term`, `Val::to_term`, `Val::identical_to`) and
 //! [`gc`], the one place a native value becomes a term or back.
 
+mod head;
 mod list;
 mod rust;
 mod ty;
 mod val;
 
+pub use head::head_part;
 pub use list::{Iter, List};
 pub use rust::{compound, id_part, FromVal, Ground, IntoVal, Native, Never};
 pub use ty::{Ty, MAX_DEPTH};

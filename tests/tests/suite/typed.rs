@@ -4070,6 +4070,9 @@ mod nrs22;
 /// answer, its compound not built (issue 37).
 mod nnext23;
 
+/// Helper `nstock23`'s DMs with a pattern in their head (issue 37).
+mod nstock23;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");

@@ -337,6 +337,14 @@ impl Gen<'_> {
                 let ty = d.types[ix].regs[*r as usize].ty.clone();
                 stmts.push((reg(*r), super::load_head_arg(d, *r, *i, ty, regs)?));
             }
+            if let Init::HeadPath(i, path) = init {
+                if unbound(*r) {
+                    continue;
+                }
+                let ty = d.types[ix].regs[*r as usize].ty.clone();
+                let load = super::head::load_head_path(d, *r, *i, path, ty, regs)?;
+                stmts.push((reg(*r), load));
+            }
         }
         Ok(stmts)
     }
@@ -370,6 +378,14 @@ impl Gen<'_> {
         let callee = self.nat_dm_of(j)?;
         for (v, ty) in args.iter().zip(&callee.params) {
             coerce(v, ty).ok()?;
+        }
+        // A callee whose head has a pattern: pushed where the argument
+        // matches it (`Gen::head_guard`), not as a held call.
+        let tys: Vec<Ty> = args.iter().map(|v| v.ty.clone()).collect();
+        let vs: Vec<Ident> = (0..args.len()).map(|i| format_ident!("v{}", i)).collect();
+        let guard = self.head_guard(j, &vs, &tys, &callee.params).ok()?;
+        if held && !guard.is_empty() {
+            return None;
         }
         // Each output argument: an output parameter of the callee (no
         // situation reads it, every final binds it) held in a slot of a
@@ -569,6 +585,11 @@ impl Gen<'_> {
         let callee_v = format_ident!("D{}", plan.j);
         let wv = wait_variant(ix);
         let (frame, wf) = self.nat_callee_frame(d, ix, regs, plan, args, vs)?;
+        // A callee's head pattern matched by the arguments (empty for a
+        // head of variables; read before the frame takes them).
+        let tys: Vec<Ty> = args.iter().map(|v| v.ty.clone()).collect();
+        let guard = self.head_guard(plan.j, vs, &tys, &plan.callee.params)?;
+        let shared = shared && guard.is_empty();
         // Recorded (the history kept, nothing observing) where the exit
         // arcs record natively: the callee's entries in a level of their
         // own (`Cx::push_level`). A branch of its own: the push without a
@@ -589,7 +610,7 @@ impl Gen<'_> {
         }
         let rec = if plan.rec_exit {
             quote! {
-                else if run.nests && stack.has_room(cx) {
+                else if run.nests && stack.has_room(cx) #guard {
                     let callee = super::NatFrame::#callee_v(#frame);
                     cx.push_level(p, call, callee);
                     return cx.step_done(count, slot, Nat::#wv { #(#wf),* });
@@ -602,7 +623,7 @@ impl Gen<'_> {
             // The callee's frame on the native stack, within the depth
             // limit, when no history is kept or observed (else the machine
             // pushes it: the callee's entries nest in the caller's).
-            if !run.records && stack.has_room(cx) {
+            if !run.records && stack.has_room(cx) #guard {
                 let callee = #frame;
                 *call = Some(super::NatFrame::#callee_v(callee));
                 // Written where the frame keeps it (not through `at`).

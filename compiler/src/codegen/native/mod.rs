@@ -23,7 +23,12 @@
 //!   not fit leaves the visit to the machine, nothing done: a situation with
 //!   native code has no term code (`codegen::emit`), so `run_situation`
 //!   returns `Step::Template` and the machine runs it from its template,
-//!   as the interpreter does (correct, slower, rare). "Term code" below
+//!   as the interpreter does (correct, slower, rare). A situation whose
+//!   visit runs its template on every path ([`Visit::Template`]) has no
+//!   entry at all: converting its fields and the parameters only to build
+//!   them back as terms made a walk on its template quadratic (issue 37,
+//!   `nstock23`), so the machine runs it from its template, nothing
+//!   converted. "Term code" below
 //!   means, for such a situation, that path. Where native code needs a
 //!   situation's id as a term (entering it, its history entry, a
 //!   hand-over, a wait), it is filled from its pattern, a constant with a
@@ -232,6 +237,7 @@ mod effect;
 mod fill;
 mod frame;
 mod ground_parts;
+mod head;
 mod next_is;
 mod perceive;
 mod pipe;
@@ -358,7 +364,8 @@ fn unread_reg_ty(t: &DmTypes, st: &SitTypes, init: Option<&Init>) -> Ty {
             ty
         }
         Some(Init::Pipe) => st.pipe.ty.clone(),
-        Some(Init::Fresh) | None => Ty::Term,
+        // A part of a head pattern nothing reads: never loaded.
+        Some(Init::HeadPath(..)) | Some(Init::Fresh) | None => Ty::Term,
     }
 }
 
@@ -1404,6 +1411,8 @@ impl Dm<'_> {
                         {
                             Some(*p)
                         }
+                        // A pattern's parameter: its parts read natively.
+                        Init::HeadPath(p, _) => Some(*p),
                         _ => None,
                     })
             })
@@ -1593,6 +1602,16 @@ impl Gen<'_> {
                 waits_arms.push(w.waits_arm.clone());
                 wait_pattern |= w.pattern;
                 held_arms.push(w.held_arm.clone());
+            }
+            // A visit that runs the situation's template on every path
+            // is not entered natively (issue 37, `nstock23`): its entry
+            // would convert the id's fields and the parameters only to
+            // hand them back as terms (a walk `try([P|Ps])` on its
+            // template converted `Ps` and the parameters at every visit:
+            // quadratic). The machine runs it from its template, as it
+            // does for a value that does not convert (`_ => return None`).
+            if visits[ix] == Some(Visit::Template) {
+                continue;
             }
             // Entered by the machine: the fields from the value that
             // selected it, converted (else the term code runs it).
@@ -2001,6 +2020,16 @@ impl Gen<'_> {
                     let ty = t.params.get(*p).map_or(Ty::Term, |p| p.ty.clone());
                     if w.is_none() && rust_ty(&ty).is_err() {
                         w = Some(format!("parameter {} is typed {ty}", p + 1));
+                    }
+                }
+                // A head pattern's parameter is taken apart as a `Val`.
+                if let Init::HeadPath(p, _) = init {
+                    let ty = t.params.get(*p).map_or(Ty::Term, |p| p.ty.clone());
+                    if w.is_none() && !held_as_val(&ty) {
+                        w = Some(format!(
+                            "parameter {} (a pattern of the head) is typed {ty}",
+                            p + 1
+                        ));
                     }
                 }
             }
@@ -2624,6 +2653,11 @@ impl Gen<'_> {
                 Init::HeadArg(i) => {
                     let ty = st.regs[*r as usize].ty.clone();
                     stmts.push(load_head_arg(d, *r, *i, ty, &mut regs)?);
+                }
+                Init::HeadPath(..) if st.unbound.get(*r as usize).copied().unwrap_or(false) => {}
+                Init::HeadPath(i, path) => {
+                    let ty = st.regs[*r as usize].ty.clone();
+                    stmts.push(head::load_head_path(d, *r, *i, path, ty, &mut regs)?);
                 }
                 Init::Pipe => {
                     let ty = st.regs[*r as usize].ty.clone();
