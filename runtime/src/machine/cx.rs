@@ -1818,25 +1818,15 @@ fn hole_index(store: &Store, name: Atom, args: &[Term]) -> Option<usize> {
 /// [`fill_in`] of a compound flagged `HOLED`: only its flagged arguments
 /// have holes below them.
 fn fill_holed(store: &mut Store, t: Term, holes: &[Term]) -> Term {
+    if let crate::term::Value::Compound(name, args) = store.value(t) {
+        if let Some(i) = hole_index(store, name, args) {
+            return holes.get(i).copied().unwrap_or(t);
+        }
+    }
     let mut buf = [Term::NIL; 8];
     let mut spill = Vec::new();
-    let (name, n) = match store.value(t) {
-        crate::term::Value::Compound(name, args) => {
-            if let Some(i) = hole_index(store, name, args) {
-                return holes.get(i).copied().unwrap_or(t);
-            }
-            match buf.get_mut(..args.len()) {
-                Some(b) => b.copy_from_slice(args),
-                None => spill.extend_from_slice(args),
-            }
-            (name, args.len())
-        }
-        _ => return t,
-    };
-    let args: &mut [Term] = if spill.is_empty() {
-        &mut buf[..n]
-    } else {
-        &mut spill
+    let Some((name, args)) = args_copy(store, t, &mut buf, &mut spill) else {
+        return t;
     };
     for a in args.iter_mut() {
         if store.is_holed(*a) {
@@ -1846,24 +1836,36 @@ fn fill_holed(store: &mut Store, t: Term, holes: &[Term]) -> Term {
     native::compound(store, name, args)
 }
 
+/// Compound `t`'s name and a copy of its arguments, in `buf` up to 8 of
+/// them (no allocation), else in `spill`; `None` for any other term.
+fn args_copy<'b>(
+    store: &Store,
+    t: Term,
+    buf: &'b mut [Term; 8],
+    spill: &'b mut Vec<Term>,
+) -> Option<(Atom, &'b mut [Term])> {
+    let crate::term::Value::Compound(name, args) = store.value(t) else {
+        return None;
+    };
+    let n = args.len();
+    match buf.get_mut(..n) {
+        Some(b) => {
+            b.copy_from_slice(args);
+            Some((name, &mut buf[..n]))
+        }
+        None => {
+            spill.extend_from_slice(args);
+            Some((name, &mut spill[..]))
+        }
+    }
+}
+
 /// [`fill_in`] of a pattern not marked: walked whole.
 fn fill_walk(store: &mut Store, t: Term, holes: &[Term]) -> Term {
     let mut buf = [Term::NIL; 8];
     let mut spill = Vec::new();
-    let (name, n) = match store.value(t) {
-        crate::term::Value::Compound(name, args) => {
-            match buf.get_mut(..args.len()) {
-                Some(b) => b.copy_from_slice(args),
-                None => spill.extend_from_slice(args),
-            }
-            (name, args.len())
-        }
-        _ => return t,
-    };
-    let args: &mut [Term] = if spill.is_empty() {
-        &mut buf[..n]
-    } else {
-        &mut spill
+    let Some((name, args)) = args_copy(store, t, &mut buf, &mut spill) else {
+        return t;
     };
     if let Some(&h) = hole_index(store, name, args).and_then(|i| holes.get(i)) {
         return h;

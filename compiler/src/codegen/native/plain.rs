@@ -186,14 +186,7 @@ impl Gen<'_> {
                         continue;
                     }
                     let v = format_ident!("V{}", j);
-                    let xs: Vec<Ident> = (0..arity).map(|i| format_ident!("px{}", i)).collect();
-                    let vals = xs
-                        .iter()
-                        .map(|x| V {
-                            e: quote!(#x.clone()),
-                            ty: Ty::Ground,
-                        })
-                        .collect();
+                    let (xs, vals) = part_vals(arity);
                     let sel = self.nat_select(d, cur, name, vals, cur_name)?;
                     let e = &ans.name;
                     arms.push(quote! {
@@ -224,14 +217,7 @@ impl Gen<'_> {
                 arms.push(quote!(if pv.sym() == Some(#a) { let next = #sel; break 'plain next; }));
                 continue;
             }
-            let xs: Vec<Ident> = (0..arity).map(|i| format_ident!("px{}", i)).collect();
-            let vals = xs
-                .iter()
-                .map(|x| V {
-                    e: quote!(#x.clone()),
-                    ty: Ty::Ground,
-                })
-                .collect();
+            let (xs, vals) = part_vals(arity);
             let sel = self.nat_select(d, cur, name, vals, cur_name)?;
             let n = proc_macro2::Literal::usize_unsuffixed(arity);
             arms.push(quote! {
@@ -357,4 +343,18 @@ pub(super) fn cold_arm(code: TokenStream) -> TokenStream {
         let [#(#made),*] = cx.vars();
         #code
     }
+}
+
+/// The names `px0`, `px1`, .. of an answer's `arity` parts and their
+/// values for a selection (each cloned where a variant takes it).
+fn part_vals(arity: usize) -> (Vec<Ident>, Vec<V>) {
+    let xs: Vec<Ident> = (0..arity).map(|i| format_ident!("px{}", i)).collect();
+    let vals = xs
+        .iter()
+        .map(|x| V {
+            e: quote!(#x.clone()),
+            ty: Ty::Ground,
+        })
+        .collect();
+    (xs, vals)
 }
