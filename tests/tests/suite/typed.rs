@@ -4040,6 +4040,8 @@ mod review18;
 mod review19;
 /// Helper `review22`'s workloads with bad inputs (issue 37).
 mod review22;
+/// Helper `review24`'s workloads with bad inputs (issue 37).
+mod review24;
 
 /// Helper `nfn19`'s plain functions returning compounds (issue 37).
 mod plain_compounds;
