@@ -28,6 +28,9 @@ use hand::*;
 #[path = "../src/hand22.rs"]
 mod hand22;
 use hand22::*;
+#[path = "../src/hand24.rs"]
+mod hand24;
+use hand24::*;
 
 mod c_limit_inarg_echo {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_limit_inarg_echo");
@@ -270,6 +273,25 @@ mod r22_d_floor_fn {
 mod r22_d_goal_local {
     sitlog_macros::include_dm!("../tests/typed/review22/r22_d_goal_local");
 }
+// Helper `review24`'s (session 23).
+mod r24_c_winch_param {
+    sitlog_macros::include_dm!("../tests/typed/review24/r24_c_winch_param");
+}
+mod r24_c_mill_nested {
+    sitlog_macros::include_dm!("../tests/typed/review24/r24_c_mill_nested");
+}
+mod r24_d_gauge_guard {
+    sitlog_macros::include_dm!("../tests/typed/review24/r24_d_gauge_guard");
+}
+mod r24_d_where_pairs {
+    sitlog_macros::include_dm!("../tests/typed/review24/r24_d_where_pairs");
+}
+mod r24_d_sift_two_lists {
+    sitlog_macros::include_dm!("../tests/typed/review24/r24_d_sift_two_lists");
+}
+mod r24_d_near_floats {
+    sitlog_macros::include_dm!("../tests/typed/review24/r24_d_near_floats");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -347,6 +369,7 @@ fn interpreter(dir: &str) -> Ir {
         _ if dir.starts_with("r18_") => "../tests/typed/review18",
         _ if dir.starts_with("r19_") => "../tests/typed/review19",
         _ if dir.starts_with("r22_") => "../tests/typed/review22",
+        _ if dir.starts_with("r24_") => "../tests/typed/review24",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -528,6 +551,24 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             format!("meter({n}, [{}], {})", ints.join(","), len - 1)
         }
         "r22_d_goal_local" => format!("errands({n}, {list}, {last})"),
+        // Helper review24's: (c) the limit the pipe the main DM starts with.
+        "r24_c_winch_param" if way != "hand" => {
+            return piped(way, r24_c_winch_param::program(), name, "winch", n)
+        }
+        "r24_c_mill_nested" if way != "hand" => {
+            return piped(way, r24_c_mill_nested::program(), name, "works", n)
+        }
+        "r24_c_winch_param" | "r24_c_mill_nested" => String::new(),
+        "r24_d_gauge_guard" => {
+            let ints: Vec<String> = (0..len).map(|i| i.to_string()).collect();
+            format!("gauge({n}, [{}], {})", ints.join(","), len - 2)
+        }
+        "r24_d_where_pairs" => format!("where({n}, {pairs_text}, {last})"),
+        "r24_d_sift_two_lists" => format!("sort_room({n}, {list}, {last})"),
+        "r24_d_near_floats" => {
+            let freqs: Vec<String> = (0..len).map(|i| format!("{i}.5")).collect();
+            format!("tune({n}, [{}], {}.5)", freqs.join(","), len - 1)
+        }
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
             let n = n.to_string();
@@ -722,6 +763,33 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                 )
             }
             "r22_d_goal_local" => hand_r22_goal_local(n, black_box(&syms), black_box(lsym)),
+            "r24_c_winch_param" => hand_r24_winch_param(n),
+            "r24_c_mill_nested" => hand_r24_mill_nested(n),
+            "r24_d_gauge_guard" => {
+                let ints: Vec<i64> = (0..len as i64).collect();
+                hand_r24_gauge_guard(n, black_box(&ints), black_box(len as i64 - 2))
+            }
+            "r24_d_where_pairs" => {
+                let names: Vec<String> = (0..len).map(|i| format!("p{i}")).collect();
+                let places: Vec<String> = (0..5).map(|i| format!("s{i}")).collect();
+                hand_r24_where_pairs(
+                    n,
+                    black_box(&sym_pairs),
+                    black_box(lsym),
+                    black_box(&names),
+                    black_box(&places),
+                )
+            }
+            "r24_d_sift_two_lists" => hand_r24_sift_two_lists(n, black_box(&syms), black_box(lsym)),
+            "r24_d_near_floats" => {
+                let freqs: Vec<f64> = (0..len).map(|i| i as f64 + 0.5).collect();
+                hand_r24_near_floats(
+                    n,
+                    black_box(&freqs),
+                    black_box((len - 1) as f64 + 0.5),
+                    black_box(|x: f64, t: f64| (x - t).abs() < 0.1),
+                )
+            }
             "r17_c_charge_when" => hand_r17_charge(n),
             "r17_c_courier_global" => hand_r17_courier(n),
             "r17_c_odometer" => hand_r17_odometer(n),
@@ -808,12 +876,16 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r22_d_stock_expect" => ways!(r22_d_stock_expect),
         "r22_d_floor_fn" => ways!(r22_d_floor_fn),
         "r22_d_goal_local" => ways!(r22_d_goal_local),
+        "r24_d_gauge_guard" => ways!(r24_d_gauge_guard),
+        "r24_d_where_pairs" => ways!(r24_d_where_pairs),
+        "r24_d_sift_two_lists" => ways!(r24_d_sift_two_lists),
+        "r24_d_near_floats" => ways!(r24_d_near_floats),
         "c_expr_compare" => ways!(c_expr_compare),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 75] = [
+const ALL: [&str; 81] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -889,6 +961,12 @@ const ALL: [&str; 75] = [
     "r22_d_stock_expect",
     "r22_d_floor_fn",
     "r22_d_goal_local",
+    "r24_c_winch_param",
+    "r24_c_mill_nested",
+    "r24_d_gauge_guard",
+    "r24_d_where_pairs",
+    "r24_d_sift_two_lists",
+    "r24_d_near_floats",
 ];
 
 /// The two lists of `r18_d_lockstep*` at `len` places: `0..len` and a
@@ -923,7 +1001,12 @@ fn crates(len: usize) -> Vec<i64> {
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.first().map(String::as_str) == Some("check") {
-        for name in ALL {
+        // `check NAME...`: those workloads only.
+        let some: Vec<&str> = args[1..].iter().map(String::as_str).collect();
+        for name in ALL
+            .into_iter()
+            .filter(|n| some.is_empty() || some.contains(n))
+        {
             for len in [8, 13] {
                 let t: Vec<u64> = ["compiled", "interp", "hand"]
                     .iter()

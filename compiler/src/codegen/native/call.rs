@@ -1763,6 +1763,40 @@ impl Gen<'_> {
                     regs.insert(*dst, (rr, dty.clone()));
                     dty
                 }
+                // `K1 is K + 1.0` into a fresh variable typed `float`: the
+                // evaluator's float arithmetic in Rust (`float_expr`); an
+                // operand that is no number, an overflow or a result that
+                // is not finite takes the machine's way as above.
+                Ev::IsFresh { expr, dst } if d.types[ix].regs[*dst as usize].ty == Ty::Float => {
+                    let e = self.nat_float_expr(expr, regs)?;
+                    let mut ts = Vec::new();
+                    let mut n = 0;
+                    let t = self.nat_build_term(expr, regs, &mut ts, &mut n)?;
+                    stmts.push(quote! {
+                        let #x: f64 = match #e {
+                            Some(v) => v,
+                            None => {
+                                #enter
+                                #(#ts)*
+                                let v = cx.is(None, #t, Some(#arc))?;
+                                let v = cx.store_ref().deref(v);
+                                match cx.to_native::<f64>(v) {
+                                    Some(v) => v,
+                                    None => {
+                                        return Err(cx.error(
+                                            "`is` gave a value native code cannot hold",
+                                            Some(#arc),
+                                        ))
+                                    }
+                                }
+                            }
+                        };
+                    });
+                    let rr = reg(*dst);
+                    stmts.push(quote!(let #rr = #x;));
+                    regs.insert(*dst, (rr, Ty::Float));
+                    Ty::Float
+                }
                 Ev::Built(Build::Const(t)) => {
                     let v = self.nat_value(&Build::Const(*t), regs)?;
                     let e = v.e;

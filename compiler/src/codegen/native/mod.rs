@@ -235,6 +235,7 @@ mod cold_next;
 mod cond;
 mod effect;
 mod fill;
+mod float_expr;
 mod frame;
 mod ground_parts;
 mod head;
