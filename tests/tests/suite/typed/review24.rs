@@ -81,6 +81,22 @@ mod dms {
     pub mod near_floats {
         sitlog_macros::include_dm!("typed/review24/r24_d_near_floats");
     }
+    pub mod float_is {
+        sitlog_macros::include_dm!("typed/review24/r24_float_is");
+    }
+}
+
+/// Float arithmetic of an arc's action in Rust (`float_expr.rs`): a
+/// value, a float overflow and an int overflow inside (the machine's
+/// errors), an unbound selector.
+#[test]
+fn float_is_agrees() {
+    let ir = interpreter("typed/review24/r24_float_is");
+    agree_all(
+        dms::float_is::program(),
+        &ir,
+        &["scale(ok)", "scale(big)", "scale(huge)", "scale(_)"],
+    );
 }
 
 /// (c) two results, the pipe and the caller's variable bound by the
