@@ -11,7 +11,8 @@
 //! the same order (terms made in the store in the same order, the same
 //! transitions counted).
 
-use super::cx::{AsTerm, IdArg};
+use super::cx::IdArg;
+use super::holes::Holes;
 use super::native_stack::{NatBelow, NatFrames};
 use super::outcome::RunError;
 use super::program::{Cx, DmProgram, TypedRun};
@@ -22,15 +23,18 @@ use crate::term::Term;
 use sitlog_syntax::Atom;
 
 /// A compound of native values named `name` ([`Cx::build_of`]'s
-/// arguments) built only where a call needs it: an exit arc's expectation
-/// given to [`TypedRun::entry`], built only when the run records.
+/// arguments, the values a tuple of references: [`Holes`]) built only
+/// where a call needs it: an exit arc's expectation given to
+/// [`TypedRun::entry`], built only when the run records.
 #[derive(Clone, Copy)]
-pub struct Of<'a>(pub Atom, pub &'a [&'a dyn AsTerm]);
+pub struct Of<H>(pub Atom, pub H);
 
-impl IdArg for Of<'_> {
+impl<H: Holes> IdArg for Of<H> {
     #[inline]
     fn id_in(self, store: &mut Store) -> Term {
-        super::cx::build_of(store, self.0, self.1)
+        let name = self.0;
+        self.1
+            .with_terms(store, |store, ts| crate::native::compound(store, name, ts))
     }
 }
 
@@ -58,7 +62,7 @@ impl TypedRun {
         sit: SitIx,
         arc: usize,
         pattern: impl IdArg,
-        holes: &[&dyn AsTerm],
+        holes: impl Holes,
     ) -> Result<(), RunError> {
         if self.records || !self.quiet_empty {
             cx.nat_empty(stack, count, sit, arc, pattern, holes)?;
@@ -79,7 +83,7 @@ impl TypedRun {
         sit: SitIx,
         arc: usize,
         pattern: impl IdArg,
-        holes: &[&dyn AsTerm],
+        holes: impl Holes,
     ) -> Result<(), RunError> {
         if !self.quiet_empty {
             cx.nat_empty(stack, count, sit, arc, pattern, holes)?;

@@ -13,6 +13,7 @@
 //! at most `GC_TICKS - 1` situations later than `gc_due` would; at every
 //! check below `GC_TICKS_BELOW`).
 
+use super::holes::Holes;
 use super::outcome::RunError;
 use super::program::{Cx, DmProgram, Step, Visit};
 use super::situation::{DmIx, SitIx};
@@ -213,7 +214,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         sit: SitIx,
         arc: usize,
         pattern: impl IdArg,
-        holes: &[&dyn AsTerm],
+        holes: impl Holes,
     ) -> Result<(), RunError> {
         if !self.actions.ignores(super::ActionShape::EMPTY) {
             self.perform_empty();
@@ -241,7 +242,7 @@ impl<P: DmProgram> Cx<'_, '_, P> {
         sit: SitIx,
         arc: usize,
         pattern: impl IdArg,
-        holes: &[&dyn AsTerm],
+        holes: impl Holes,
     ) -> Result<(), RunError> {
         if let Some(e) = self.m.empty_failed.take() {
             let p = self.m.program;
@@ -260,13 +261,15 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// A situation's id from its pattern and holes ([`Cx::fill`]), the
     /// pattern an [`IdArg`] (a [`Fill`] is filled first, its holes its own).
     #[inline]
-    fn nat_id(&mut self, pattern: impl IdArg, holes: &[&dyn AsTerm]) -> Term {
+    fn nat_id(&mut self, pattern: impl IdArg, holes: impl Holes) -> Term {
         let pattern = pattern.id_in(&mut self.m.store);
-        if holes.is_empty() {
-            pattern
-        } else {
-            self.fill(pattern, holes)
-        }
+        holes.with_terms(&mut self.m.store, |store, ts| {
+            if ts.is_empty() {
+                pattern
+            } else {
+                fill_in(store, pattern, ts)
+            }
+        })
     }
 
     /// Whether the effector refused the `empty` of [`Cx::empty_fails`],
@@ -1776,15 +1779,19 @@ impl IdArg for Atom {
 }
 
 /// A pattern and its holes ([`Cx::fill`]'s arguments) given to a call
-/// that fills them first: `Fill(p.k[29], &[&r1])`, where a `let` of the
-/// filled id would come just before the call.
+/// that fills them first: `Fill(p.k[29], (&r1,))`, where a `let` of the
+/// filled id would come just before the call. The holes a tuple of
+/// references ([`Holes`]), so a call that fills only on a gated path
+/// does no work for them on the other.
 #[derive(Clone, Copy)]
-pub struct Fill<'a>(pub Term, pub &'a [&'a dyn AsTerm]);
+pub struct Fill<H>(pub Term, pub H);
 
-impl IdArg for Fill<'_> {
+impl<H: Holes> IdArg for Fill<H> {
     #[inline]
     fn id_in(self, store: &mut Store) -> Term {
-        fill(store, self.0, self.1)
+        let pattern = self.0;
+        self.1
+            .with_terms(store, |store, ts| fill_in(store, pattern, ts))
     }
 }
 
@@ -1911,16 +1918,7 @@ fn with_terms(
     args: &[&dyn AsTerm],
     f: impl FnOnce(&mut Store, &[Term]) -> Term,
 ) -> Term {
-    if args.len() <= 8 {
-        let mut ts = [Term::NIL; 8];
-        for (t, a) in ts.iter_mut().zip(args) {
-            *t = a.as_term(store);
-        }
-        f(store, &ts[..args.len()])
-    } else {
-        let ts: Vec<Term> = args.iter().map(|a| a.as_term(store)).collect();
-        f(store, &ts)
-    }
+    args.with_terms(store, f)
 }
 
 #[cfg(test)]

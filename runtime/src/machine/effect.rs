@@ -61,7 +61,7 @@ use super::native_stack::{nat_hand_over, NatBelow, NatFrames};
 use super::outcome::RunError;
 use super::program::{Cx, DmProgram, TypedRun};
 use super::situation::SitIx;
-use super::{Fill, IdArg};
+use super::{Fill, Holes, IdArg};
 use crate::term::Term;
 use crate::Store;
 
@@ -153,14 +153,14 @@ pub trait NatAction: Copy {
 }
 
 /// A compound action (not a list) of native values given as its pattern
-/// and holes (`Fill(p.k[3], &[&r4])`, `Cx::fill`'s arguments): where the
+/// and holes (`Fill(p.k[3], (&r4,))`, `Cx::fill`'s arguments): where the
 /// run does not record, every hole is an atom or a number and the pattern
 /// is marked (`mark_pattern`: a program's constant), offered to
 /// the effector unfilled ([`Actions::perform_filled`](super::Actions::perform_filled):
 /// test mode writes its line from the pattern, no term built); else, or
 /// where the effector declines, filled and handed to it as it is (what
 /// [`Cx::perform`] does with a compound that is not a list).
-impl NatAction for Fill<'_> {
+impl<H: Holes> NatAction for Fill<H> {
     #[inline]
     fn perform_in<P: DmProgram>(self, cx: &mut Cx<'_, '_, P>) -> Result<(), String> {
         self.perform_recorded(cx, false).map(|_| ())
@@ -168,7 +168,7 @@ impl NatAction for Fill<'_> {
 
     #[inline]
     fn recorded(self, store: &mut Store, _: bool) -> Term {
-        super::fill(store, self.0, self.1)
+        self.id_in(store)
     }
 
     fn perform_recorded<P: DmProgram>(
@@ -178,23 +178,24 @@ impl NatAction for Fill<'_> {
     ) -> Result<Term, String> {
         let Fill(pattern, holes) = self;
         let store = &mut cx.m.store;
-        let action = match holes.len() {
-            n if n <= 8 && !records => {
-                let mut ts = [Term::NIL; 8];
-                let mut atomic = true;
-                for (t, h) in ts.iter_mut().zip(holes) {
-                    *t = h.as_term(store);
-                    atomic &= crate::sentence::atomic(store, *t);
-                }
-                if atomic && store.is_holed(pattern) {
-                    if let Some(done) = cx.actions.perform_filled(store, pattern, &ts[..n]) {
-                        return done.map(|()| Term::EMPTY);
-                    }
-                }
-                super::cx::fill_in(store, pattern, &ts[..n])
+        let actions = &mut *cx.actions;
+        let mut done = None;
+        let action = holes.with_terms(store, |store, ts| {
+            if ts.len() <= 8
+                && !records
+                && ts.iter().all(|&t| crate::sentence::atomic(store, t))
+                && store.is_holed(pattern)
+            {
+                done = actions.perform_filled(store, pattern, ts);
             }
-            _ => super::fill(store, pattern, holes),
-        };
+            match done {
+                Some(_) => Term::EMPTY,
+                None => super::cx::fill_in(store, pattern, ts),
+            }
+        });
+        if let Some(done) = done {
+            return done.map(|()| Term::EMPTY);
+        }
         super::io::perform_one(&mut *cx.actions, &mut cx.m.store, action)?;
         Ok(action)
     }

@@ -30,6 +30,9 @@
 //! - `program`: [`DmProgram`], [`Step`], [`Cx`], [`Between`];
 //! - `steps`: the semantic steps of one situation;
 //! - `cx`: the steps as [`Cx`] offers them to compiled code;
+//! - `holes`: the holes of a pattern native code fills, as a tuple of
+//!   references a gated call takes without building anything ([`Holes`],
+//!   beside `cx`'s [`AsTerm`], which each hole is);
 //! - `native_stack`: the native stack of compiled code ([`nat_drive`],
 //!   [`NatBelow`], [`NatFrames`]: what the program's frames must offer,
 //!   [`NatAt`]: what a DM's situations must offer);
@@ -51,6 +54,7 @@ mod boundary;
 mod cx;
 mod effect;
 mod held_call;
+mod holes;
 mod io;
 mod native_stack;
 mod observe;
@@ -67,6 +71,7 @@ mod steps;
 pub use arm_calls::Of;
 pub use cx::{build_of, fill, hole_atom, AsTerm, Fault, Fill, FromIdParts, IdArg, OutSlot};
 pub use effect::{AnyShape, Due, NatAction, NatEntry};
+pub use holes::{Holes, TUPLE_HOLES};
 pub use io::{ActionShape, Actions, Perceived, Percept, Perception};
 pub use native_stack::{
     nat_choose, nat_drive, nat_goto, nat_hand_over, nat_materialize, nat_plain, nat_replace_done,

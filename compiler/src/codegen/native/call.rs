@@ -2740,8 +2740,10 @@ fn lazy_entry(
                 quote!(#r).to_string() == "cx"
             } =>
         {
-            let args = &m.args;
-            quote!(Of(#args))
+            let name = m.args.first()?;
+            let holes = m.args.get(1)?;
+            let holes = super::fill::holes_tuple(&quote!(#holes));
+            quote!(Of(#name, #holes))
         }
         e if !mentions(&quote!(#e), &format_ident!("cx")) => quote!(#e),
         _ => return None,

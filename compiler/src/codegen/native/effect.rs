@@ -159,7 +159,10 @@ impl Gen<'_> {
                 // In the call (not a `let`, which would hold its borrows
                 // of the fields: a field moved after would be cloned).
                 Some((pattern, holes)) if holes.to_string() == quote!(&[]).to_string() => pattern,
-                Some((pattern, holes)) => quote!(Fill(#pattern, #holes)),
+                Some((pattern, holes)) => {
+                    let holes = super::fill::holes_tuple(&holes);
+                    quote!(Fill(#pattern, #holes))
+                }
                 None => return Ok(None),
             }
         };
@@ -243,6 +246,7 @@ impl Gen<'_> {
                     .and_then(|last| fill_parts(std::slice::from_ref(last), &t))
                 {
                     ts.pop();
+                    let holes = super::fill::holes_tuple(&holes);
                     return Ok(quote! {
                         let act = cx.nat_perform(stack, #at, Fill(#pattern, #holes), run)?;
                     });

@@ -336,3 +336,48 @@ impl Gen<'_> {
         }
     }
 }
+
+/// The holes `holes` of a `cx.fill`/`cx.build_of` call (`&[&r5, r6]`) as
+/// a call that takes them lazily wants them (the runtime's `Holes`): a
+/// tuple of references, `(&r5, r6)`, `(&r3,)` or `()`, which a gated call
+/// keeps in registers where a slice of `&dyn AsTerm` is built in memory
+/// before its test (issue 37); with more holes than a tuple takes, the
+/// array with its first element cast (`&[&r1 as &dyn machine::AsTerm,
+/// ..]`). Anything not an array reference is given back as it is.
+pub(super) fn holes_tuple(holes: &TokenStream) -> TokenStream {
+    let Ok(syn::Expr::Reference(r)) = syn::parse2::<syn::Expr>(holes.clone()) else {
+        return holes.clone();
+    };
+    let syn::Expr::Array(arr) = &*r.expr else {
+        return holes.clone();
+    };
+    let elems: Vec<&syn::Expr> = arr.elems.iter().collect();
+    match elems.as_slice() {
+        [] => quote!(()),
+        [one] => quote!((#one,)),
+        many if many.len() <= sitlog_runtime::machine::TUPLE_HOLES => quote!((#(#many),*)),
+        [first, rest @ ..] => quote!(&[#first as &dyn machine::AsTerm, #(#rest),*]),
+    }
+}
+
+#[cfg(test)]
+mod holes_tests {
+    use super::holes_tuple;
+    use quote::quote;
+
+    #[test]
+    fn holes_become_a_tuple_of_references() {
+        let t = |h: proc_macro2::TokenStream| holes_tuple(&h).to_string();
+        assert_eq!(t(quote!(&[])), quote!(()).to_string());
+        assert_eq!(t(quote!(&[&r3])), quote!((&r3,)).to_string());
+        assert_eq!(
+            t(quote!(&[&r5, r6, &r7])),
+            quote!((&r5, r6, &r7)).to_string()
+        );
+        assert_eq!(t(quote!(holes)), quote!(holes).to_string());
+        let many: Vec<_> = (0..13u32).map(|i| quote::format_ident!("r{}", i.to_string())).collect();
+        let out = t(quote!(&[#(&#many),*]));
+        let first = quote!(&r0 as &dyn machine::AsTerm).to_string();
+        assert!(out.contains(&first) && out.starts_with('&') && out.ends_with(']'));
+    }
+}

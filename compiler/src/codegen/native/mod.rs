@@ -822,15 +822,20 @@ fn empty_call_with(
     arc: &TokenStream,
     call: impl Fn(&TokenStream, &TokenStream) -> TokenStream,
 ) -> Option<TokenStream> {
+    // The holes a tuple (`fill::holes_tuple`): nothing built before the
+    // call's test.
     let (pattern, holes) = match id_stmts {
         [] => {
             let x = atom_arg(id);
             if x.to_string() == id.to_string() {
                 return None;
             }
-            (x, quote!(&[]))
+            (x, quote!(()))
         }
-        _ => fill_parts(id_stmts, id)?,
+        _ => {
+            let (pattern, holes) = fill_parts(id_stmts, id)?;
+            (pattern, fill::holes_tuple(&holes))
+        }
     };
     // Measured with `arc_ix` a digit, as `with_arc_at` puts it in.
     let measure = |stmt: TokenStream| {
@@ -852,7 +857,7 @@ fn empty_call_with(
         return None;
     }
     let fill = quote!(let #id = Fill(#pattern, #holes););
-    let two = call(id, &quote!(&[]));
+    let two = call(id, &quote!(()));
     (fits_at(&fill, None) && fits_at(&measure(two.clone()), None)).then(|| {
         quote! {
             #fill
@@ -897,6 +902,7 @@ fn fill_parts(stmts: &[TokenStream], id: &TokenStream) -> Option<(TokenStream, T
 /// [`IdArg`](sitlog_runtime::machine::IdArg) fills it first.
 fn fill_arg(stmts: &[TokenStream], id: &TokenStream) -> Option<TokenStream> {
     let (pattern, holes) = fill_parts(stmts, id)?;
+    let holes = fill::holes_tuple(&holes);
     Some(quote!(Fill(#pattern, #holes)))
 }
 
@@ -1529,11 +1535,23 @@ impl Gen<'_> {
                     };
                     // The variant's other fields (passed on unchanged by
                     // the visit's own next situation, `walk(Ps, T)`): their
-                    // values, the variant left holding them.
-                    let others = names.iter().filter(|x| **x != k);
+                    // values, the variant left holding them; read where
+                    // they lie where the visit only borrows or clones them
+                    // ([`only_refs`]: no clone and drop a step).
+                    let mut body = body;
+                    let mut others = Vec::new();
+                    for x in names.iter().filter(|x| **x != k) {
+                        let toks: Vec<TokenTree> = body.clone().into_iter().collect();
+                        if only_refs(&toks, x) {
+                            others.push(quote!(let #x = &*#x;));
+                            body = refs_read_through(&toks, x);
+                        } else {
+                            others.push(quote!(let #x = (*#x).clone();));
+                        }
+                    }
                     (
                         Some(quote!(let (#h, #t) = #k.head_tail(); let #t = &#t;)),
-                        quote!(#(let #others = (*#others).clone();)* #head #k.advance(); #body),
+                        quote!(#(#others)* #head #k.advance(); #body),
                     )
                 }
                 Some(c) => {
@@ -6555,7 +6573,7 @@ fn by_ref_loads(ts: TokenStream) -> TokenStream {
                 s.strip_prefix(pre)
                     .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
             };
-            if l == "let"
+            let load = l == "let"
                 && numbered(r, &['r'])
                 && eq.as_char() == '='
                 && numbered(x, &['p', 'c'])
@@ -6563,12 +6581,19 @@ fn by_ref_loads(ts: TokenStream) -> TokenStream {
                 && clone == "clone"
                 && g.delimiter() == proc_macro2::Delimiter::Parenthesis
                 && g.stream().is_empty()
-                && semi.as_char() == ';'
-                && only_borrowed(&toks[i + 8..], r)
-            {
+                && semi.as_char() == ';';
+            if load && only_borrowed(&toks[i + 8..], r) {
                 out.extend(quote!(let #r = &*#x;));
                 i += 8;
                 continue;
+            }
+            // Else where the rest reads it also as `&r` elsewhere (any use:
+            // a reference is what it was, a hole, a term made of it): bound
+            // so too, each such `&r` made `r` ([`refs_read_through`]).
+            if load && only_refs(&toks[i + 8..], r) {
+                out.extend(quote!(let #r = &*#x;));
+                out.extend(by_ref_loads(refs_read_through(&toks[i + 8..], r)));
+                return out;
             }
         }
         match &toks[i] {
@@ -6606,6 +6631,64 @@ fn only_borrowed(toks: &[proc_macro2::TokenTree], r: &Ident) -> bool {
         }
         _ => true,
     })
+}
+
+/// [`only_borrowed`], or `&r` alone anywhere else (not `&&r`, `&mut r`,
+/// `&r.f`): a place that takes a reference, which `r` bound by
+/// reference is.
+fn only_refs(toks: &[proc_macro2::TokenTree], r: &Ident) -> bool {
+    use proc_macro2::{Spacing, TokenTree as T};
+    toks.iter().enumerate().all(|(k, t)| match t {
+        T::Ident(x) if x == r => {
+            let field = matches!(toks.get(k + 1), Some(T::Punct(c)) if c.as_char() == ':' && c.spacing() == Spacing::Alone)
+                && !matches!(k.checked_sub(1).map(|j| &toks[j]), Some(T::Ident(l)) if l == "let");
+            field || cloned_at(toks, k) || selected_at(toks, k) || amp_alone(toks, k)
+        }
+        T::Group(g) => only_refs(&g.stream().into_iter().collect::<Vec<_>>(), r),
+        _ => true,
+    })
+}
+
+/// Whether the identifier at `toks[k]` is borrowed alone, `&x` (not
+/// `&&x`, not `&x.f`).
+fn amp_alone(toks: &[proc_macro2::TokenTree], k: usize) -> bool {
+    use proc_macro2::TokenTree as T;
+    let amp =
+        |j: Option<usize>| matches!(j.map(|j| &toks[j]), Some(T::Punct(a)) if a.as_char() == '&');
+    amp(k.checked_sub(1))
+        && !amp(k.checked_sub(2))
+        && !matches!(toks.get(k + 1), Some(T::Punct(d)) if d.as_char() == '.')
+}
+
+/// `toks` (which [`only_refs`] accepts for `r`) with `r` bound by
+/// reference: each `&r` made `r`, but where [`only_borrowed`] reads it as
+/// it is (`borrow(&r)`, a selected value's `let v<i>: &T = &r;`, whose
+/// text the shared selections match: `select_fn`).
+fn refs_read_through(toks: &[proc_macro2::TokenTree], r: &Ident) -> TokenStream {
+    use proc_macro2::{Group, TokenTree as T};
+    let mut out: Vec<T> = Vec::new();
+    for (k, t) in toks.iter().enumerate() {
+        match t {
+            T::Ident(x) if x == r && amp_alone(toks, k) && !selected_at(toks, k) => {
+                out.pop();
+                out.push(t.clone());
+            }
+            T::Group(g) => {
+                let inner: Vec<T> = g.stream().into_iter().collect();
+                let borrowed = matches!(inner.as_slice(), [T::Punct(amp), T::Ident(x)] if amp.as_char() == '&' && x == r)
+                    && matches!(k.checked_sub(1).map(|j| &toks[j]), Some(T::Ident(b)) if b == "borrow");
+                if borrowed {
+                    out.push(t.clone());
+                } else {
+                    let mut ng = Group::new(g.delimiter(), refs_read_through(&inner, r));
+                    ng.set_span(g.span());
+                    out.push(T::Group(ng));
+                }
+            }
+            t => out.push(t.clone()),
+        }
+    }
+    out.into_iter().collect()
 }
 
 /// The identifier at `toks[k]` borrowed as a selected value, `let v<i>:

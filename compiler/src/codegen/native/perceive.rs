@@ -278,7 +278,7 @@ mod tests {
         let ok = quote! {
             0 => {
                 if run.records || !run.quiet_empty {
-                    cx.nat_empty(stack, &mut count, 2, 0, p.k[3], &[&r3, r4])?;
+                    cx.nat_empty(stack, &mut count, 2, 0, p.k[3], (&r3, r4))?;
                 }
                 run.tally(&mut count);
                 super::nat_hand_over(p, cx, stack)?;
@@ -297,7 +297,7 @@ mod tests {
         ));
         let id = quote!(id3);
         let cur = proc_macro2::Literal::usize_unsuffixed(2);
-        let fill = Some(quote!(Fill(p.k[3], &[&r3, r4])));
+        let fill = Some(quote!(Fill(p.k[3], (&r3, r4))));
         let (enter, arg) = lazy_id(fill.clone(), &id, &cur, &[ok]).unwrap();
         assert_eq!(arg.to_string(), "id3");
         assert!(enter.to_string().contains("enter_perceiving"));

@@ -574,7 +574,7 @@ mod tests {
                 return Ok(Some(Step::Goto(id)));
             }
             super::nat_hand_over(p, cx, stack)?;
-            return cx.counted_template(count, 1, Fill(p.k[3], &[&r0]));
+            return cx.counted_template(count, 1, Fill(p.k[3], (&r0,)));
         };
         assert_eq!(kind(t), Visit::Template);
         let t = quote! {
