@@ -28,6 +28,9 @@ use hand::*;
 #[path = "../src/hand22.rs"]
 mod hand22;
 use hand22::*;
+#[path = "../src/hand_nre24.rs"]
+mod hand_nre24;
+use hand_nre24::*;
 
 mod c_limit_inarg_echo {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_limit_inarg_echo");
@@ -270,6 +273,10 @@ mod r22_d_floor_fn {
 mod r22_d_goal_local {
     sitlog_macros::include_dm!("../tests/typed/review22/r22_d_goal_local");
 }
+// Helper nre24's (d): a frame entered again from the machine at each place.
+mod n24_d_note_walk {
+    sitlog_macros::include_dm!("../tests/typed/nre24/n24_d_note_walk");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -347,6 +354,7 @@ fn interpreter(dir: &str) -> Ir {
         _ if dir.starts_with("r18_") => "../tests/typed/review18",
         _ if dir.starts_with("r19_") => "../tests/typed/review19",
         _ if dir.starts_with("r22_") => "../tests/typed/review22",
+        _ if dir.starts_with("n24_") => "../tests/typed/nre24",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -528,6 +536,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             format!("meter({n}, [{}], {})", ints.join(","), len - 1)
         }
         "r22_d_goal_local" => format!("errands({n}, {list}, {last})"),
+        "n24_d_note_walk" => format!("survey({n}, {list}, {last})"),
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
             let n = n.to_string();
@@ -722,6 +731,11 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                 )
             }
             "r22_d_goal_local" => hand_r22_goal_local(n, black_box(&syms), black_box(lsym)),
+            "n24_d_note_walk" => {
+                hand_n24_note_walk(n, black_box(&syms), black_box(lsym), black_box(|s| {
+                    black_box(s);
+                }))
+            }
             "r17_c_charge_when" => hand_r17_charge(n),
             "r17_c_courier_global" => hand_r17_courier(n),
             "r17_c_odometer" => hand_r17_odometer(n),
@@ -808,12 +822,13 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r22_d_stock_expect" => ways!(r22_d_stock_expect),
         "r22_d_floor_fn" => ways!(r22_d_floor_fn),
         "r22_d_goal_local" => ways!(r22_d_goal_local),
+        "n24_d_note_walk" => ways!(n24_d_note_walk),
         "c_expr_compare" => ways!(c_expr_compare),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 75] = [
+const ALL: [&str; 76] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -889,6 +904,7 @@ const ALL: [&str; 75] = [
     "r22_d_stock_expect",
     "r22_d_floor_fn",
     "r22_d_goal_local",
+    "n24_d_note_walk",
 ];
 
 /// The two lists of `r18_d_lockstep*` at `len` places: `0..len` and a
