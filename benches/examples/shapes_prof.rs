@@ -731,11 +731,14 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                 )
             }
             "r22_d_goal_local" => hand_r22_goal_local(n, black_box(&syms), black_box(lsym)),
-            "n24_d_note_walk" => {
-                hand_n24_note_walk(n, black_box(&syms), black_box(lsym), black_box(|s| {
+            "n24_d_note_walk" => hand_n24_note_walk(
+                n,
+                black_box(&syms),
+                black_box(lsym),
+                black_box(|s| {
                     black_box(s);
-                }))
-            }
+                }),
+            ),
             "r17_c_charge_when" => hand_r17_charge(n),
             "r17_c_courier_global" => hand_r17_courier(n),
             "r17_c_odometer" => hand_r17_odometer(n),

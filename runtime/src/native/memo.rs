@@ -193,7 +193,13 @@ fn remember<T: 'static>(store: &Store, kind: TypeId, items: &Rc<[T]>, base: u32,
     let spine = if even {
         Spine::Stride { c0: first, step }
     } else {
-        Spine::Map(cells.iter().enumerate().map(|(k, &c)| (c, k as u32)).collect())
+        Spine::Map(
+            cells
+                .iter()
+                .enumerate()
+                .map(|(k, &c)| (c, k as u32))
+                .collect(),
+        )
     };
     let lo = cells.iter().copied().min().unwrap_or(0);
     let hi = cells.iter().copied().max().unwrap_or(0);
@@ -240,8 +246,7 @@ pub(crate) fn list_from_term<T: 'static>(
     let mut items = Vec::new();
     let mut cells = Vec::new();
     let mut cur = t;
-    loop {
-        let Some(c) = cell_of(cur) else { break };
+    while let Some(c) = cell_of(cur) {
         if ranges.may_hold(c) {
             if let Some(rest) = find::<T>(store, kind, cur) {
                 return Some(

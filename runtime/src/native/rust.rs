@@ -26,9 +26,9 @@
 //! so Rust's `==` on two of them is Prolog's `==` on their terms.
 
 use super::{List, Ty, Val};
-use std::any::TypeId;
 use crate::{Store, Term};
 use sitlog_syntax::{atoms, Atom};
+use std::any::TypeId;
 
 /// A type no value has: the elements of `list<never>` (`[]`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -87,7 +87,7 @@ fn what_does_not_convert_stays_so() {
     let mut s = Store::new();
     let (_, t) = atoms_list(&mut s, 12);
     let v = s.new_var();
-    let items: Vec<Term> = (0..12).map(|i| Term::int(i)).collect();
+    let items: Vec<Term> = (0..12).map(Term::int).collect();
     let partial = s.list_with_tail(&items, v);
     assert!(<List<i64>>::from_term(&s, partial).is_none());
     let improper = s.list_with_tail(&items, Term::atom(Atom::intern("b")));
@@ -121,12 +121,12 @@ fn ground_lists_share_their_tails() {
     clear();
     let mut s = Store::new();
     let f = Atom::intern("f");
-    let ts: Vec<Term> = (0..16)
-        .map(|i| s.compound(f, &[Term::int(i)]))
-        .collect();
+    let ts: Vec<Term> = (0..16).map(|i| s.compound(f, &[Term::int(i)])).collect();
     let t = s.list(&ts);
     let v = <Val as Native>::from_term(&s, t).unwrap();
-    let Val::List(whole) = &v else { panic!("a list") };
+    let Val::List(whole) = &v else {
+        panic!("a list")
+    };
     let t5 = tail_at(&s, t, 5);
     let v5 = <Val as Native>::from_term(&s, t5).unwrap();
     let Val::List(l5) = &v5 else { panic!("a list") };
@@ -137,7 +137,9 @@ fn ground_lists_share_their_tails() {
     // Nested: a list of lists, the inner ones converted by a walk.
     let outer = s.list(&[t, t5]);
     let n = <Val as Native>::from_term(&s, outer).unwrap();
-    let Val::List(items) = n else { panic!("a list") };
+    let Val::List(items) = n else {
+        panic!("a list")
+    };
     assert_eq!(items.iter().cloned().collect::<Vec<_>>(), [v, v5]);
 }
 

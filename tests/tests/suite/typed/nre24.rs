@@ -76,7 +76,10 @@ fn lists() -> Vec<(String, &'static str)> {
         (format!("[{}|z]", places(10, "")), "zz"),
         ("[1, 2, 3, 4, 5, 6, 7, 8, 9, 1.0, 10]".to_owned(), "1.0"),
         ("[1, 2, 3, 4, 5, 6, 7, 8, 9, 1.0, 10]".to_owned(), "10"),
-        (format!("[{}, f(a), g([b]), [c, d], []]", places(8, "")), "[c, d]"),
+        (
+            format!("[{}, f(a), g([b]), [c, d], []]", places(8, "")),
+            "[c, d]",
+        ),
         (format!("[{}, f(a), g([b])]", places(8, "")), "g([b])"),
         (format!("[[{}], [{}]]", places(9, ""), places(8, "")), "x"),
         (format!("[{}, f(X), get(x, _)]", places(8, "")), "zz"),
