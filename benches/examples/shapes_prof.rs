@@ -31,6 +31,9 @@ use hand22::*;
 #[path = "../src/hand24.rs"]
 mod hand24;
 use hand24::*;
+#[path = "../src/hand_nre24.rs"]
+mod hand_nre24;
+use hand_nre24::*;
 
 mod c_limit_inarg_echo {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_limit_inarg_echo");
@@ -291,6 +294,9 @@ mod r24_d_sift_two_lists {
 }
 mod r24_d_near_floats {
     sitlog_macros::include_dm!("../tests/typed/review24/r24_d_near_floats");
+// Helper nre24's (d): a frame entered again from the machine at each place.
+mod n24_d_note_walk {
+    sitlog_macros::include_dm!("../tests/typed/nre24/n24_d_note_walk");
 }
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
@@ -370,6 +376,7 @@ fn interpreter(dir: &str) -> Ir {
         _ if dir.starts_with("r19_") => "../tests/typed/review19",
         _ if dir.starts_with("r22_") => "../tests/typed/review22",
         _ if dir.starts_with("r24_") => "../tests/typed/review24",
+        _ if dir.starts_with("n24_") => "../tests/typed/nre24",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -569,6 +576,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             let freqs: Vec<String> = (0..len).map(|i| format!("{i}.5")).collect();
             format!("tune({n}, [{}], {}.5)", freqs.join(","), len - 1)
         }
+        "n24_d_note_walk" => format!("survey({n}, {list}, {last})"),
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
             let n = n.to_string();
@@ -790,6 +798,14 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                     black_box(|x: f64, t: f64| (x - t).abs() < 0.1),
                 )
             }
+            "n24_d_note_walk" => hand_n24_note_walk(
+                n,
+                black_box(&syms),
+                black_box(lsym),
+                black_box(|s| {
+                    black_box(s);
+                }),
+            ),
             "r17_c_charge_when" => hand_r17_charge(n),
             "r17_c_courier_global" => hand_r17_courier(n),
             "r17_c_odometer" => hand_r17_odometer(n),
@@ -880,12 +896,13 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r24_d_where_pairs" => ways!(r24_d_where_pairs),
         "r24_d_sift_two_lists" => ways!(r24_d_sift_two_lists),
         "r24_d_near_floats" => ways!(r24_d_near_floats),
+        "n24_d_note_walk" => ways!(n24_d_note_walk),
         "c_expr_compare" => ways!(c_expr_compare),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 81] = [
+const ALL: [&str; 82] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -967,6 +984,7 @@ const ALL: [&str; 81] = [
     "r24_d_where_pairs",
     "r24_d_sift_two_lists",
     "r24_d_near_floats",
+    "n24_d_note_walk",
 ];
 
 /// The two lists of `r18_d_lockstep*` at `len` places: `0..len` and a

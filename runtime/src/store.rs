@@ -105,6 +105,28 @@ pub struct Store {
     /// `(op, name)` of each `get`/`set`/`inc` of a variable neither local
     /// nor global evaluated so far, each pair once ([`Store::note_undefined`]).
     pub(crate) undefined: Vec<(Atom, Atom)>,
+    /// This store among all (a clone is another): with [`Store::epoch`],
+    /// what names its cells for `native::memo` (the lists converted from
+    /// and to terms of this store, remembered).
+    pub(crate) id: StoreId,
+}
+
+/// A store's identity, unique in the process: a clone gets a new one (its
+/// cells may differ from the original's at the same epoch later).
+#[derive(Debug, PartialEq, Eq)]
+pub(crate) struct StoreId(pub(crate) u64);
+
+impl StoreId {
+    fn fresh() -> StoreId {
+        static NEXT: AtomicU64 = AtomicU64::new(1);
+        StoreId(NEXT.fetch_add(1, Ordering::Relaxed))
+    }
+}
+
+impl Clone for StoreId {
+    fn clone(&self) -> StoreId {
+        StoreId::fresh()
+    }
 }
 
 impl Default for Store {
@@ -140,6 +162,7 @@ impl Store {
             gc_scratch: Default::default(),
             plain_memo: Default::default(),
             undefined: Vec::new(),
+            id: StoreId::fresh(),
         }
     }
 

@@ -209,6 +209,39 @@ impl<T> List<T> {
     }
 }
 
+impl<T> List<T> {
+    /// The storage and start index of a list that arrived whole (the slice
+    /// shape): what `native::memo` remembers a term for.
+    #[inline]
+    pub(crate) fn slice_parts(&self) -> Option<(&Rc<[T]>, u32)> {
+        match &self.0 {
+            Shape::Slice { items, start } => Some((items, *start)),
+            _ => None,
+        }
+    }
+
+    /// `items[start..]` sharing `items` (`[]` from its end on): a tail of a
+    /// list `native::memo` remembers.
+    #[inline]
+    pub(crate) fn from_rc(items: Rc<[T]>, start: u32) -> List<T> {
+        if (start as usize) < items.len() {
+            List(Shape::Slice { items, start })
+        } else {
+            List::nil()
+        }
+    }
+
+    /// The head and tail of a list built by [`List::cons`] (the cell
+    /// shape), `None` for the others.
+    #[inline]
+    pub(crate) fn cell_parts(&self) -> Option<(&T, &List<T>)> {
+        match &self.0 {
+            Shape::Cons(cell) => Some((&cell.head, &cell.tail)),
+            _ => None,
+        }
+    }
+}
+
 /// The element at `start` of a shared slice and the rest after it (the
 /// same storage, `[]` at its end): [`List::split_first`] and
 /// [`List::head_tail`] of a slice list.

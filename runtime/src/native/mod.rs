@@ -15,12 +15,17 @@
 //!   a handle as given. A `Term` sits in a `Cell`, so the collector moves it
 //!   in place even inside a shared list, without copying the list.
 //!
+//! - A list converted whole from a term, or made a term whole, is
+//!   remembered beside that term's cells (`memo`), so a frame handed to
+//!   the machine and entered again converts its lists in O(1).
+//!
 //! Invariant: nothing here reads or writes the store except the
 //! conversions (`Val::from_term`, `Val::to_term`, `Val::identical_to`) and
 //! [`gc`], the one place a native value becomes a term or back.
 
 mod head;
 mod list;
+mod memo;
 mod rust;
 mod ty;
 mod val;

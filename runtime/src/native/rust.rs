@@ -28,6 +28,7 @@
 use super::{List, Ty, Val};
 use crate::{Store, Term};
 use sitlog_syntax::{atoms, Atom};
+use std::any::TypeId;
 
 /// A type no value has: the elements of `list<never>` (`[]`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -57,7 +58,7 @@ impl Ground {
 }
 
 /// A Rust type generated code holds a typed register in.
-pub trait Native: Clone + PartialEq + Sized {
+pub trait Native: Clone + PartialEq + Sized + 'static {
     /// The value `t` (dereferenced) is, when it has this type.
     fn from_term(store: &Store, t: Term) -> Option<Self>;
     /// The term of this value.
@@ -407,24 +408,22 @@ impl Val {
 }
 
 impl<T: Native> Native for List<T> {
+    /// A walk of the list, each element converted; a list remembered
+    /// (`native::memo`: the same term converted before, or made of this
+    /// list) shared at once.
     fn from_term(store: &Store, t: Term) -> Option<List<T>> {
-        // A proper list has at most one cell per three store cells; more
-        // steps than that means the spine is cyclic.
-        let most = store.cells.len() / 3;
-        let mut items = Vec::new();
-        let mut it = store.list_iter(t);
-        for item in it.by_ref() {
-            if items.len() >= most {
-                return None;
-            }
-            // Nesting follows the type, at most `MAX_DEPTH` levels.
-            items.push(T::from_term(store, item)?);
-        }
-        (it.tail() == Term::NIL).then(|| List::from_vec(items))
+        // Nesting follows the type, at most `MAX_DEPTH` levels.
+        super::memo::list_from_term(store, TypeId::of::<T>(), t, |item| {
+            T::from_term(store, item)
+        })
     }
 
     fn to_term(&self, store: &mut Store) -> Term {
-        super::val::list_term(store, self.iter(), self.len(), T::to_term)
+        super::memo::list_to_term(store, TypeId::of::<T>(), self, T::to_term, |v| {
+            (v as &dyn std::any::Any)
+                .downcast_ref::<Val>()
+                .is_none_or(|v| !v.holds_terms())
+        })
     }
 }
 

@@ -16,10 +16,12 @@
 //!   which rewrites every term inside, shared lists included.
 
 use super::list::List;
+use super::memo::GroundList;
 use super::ty::{Ty, MAX_DEPTH};
 use crate::store::Store;
 use crate::term::{Term, Value};
 use sitlog_syntax::{atoms, Atom};
+use std::any::TypeId;
 use std::cell::Cell;
 use std::rc::Rc;
 
@@ -186,9 +188,15 @@ impl Val {
             Val::Float(f) => Term::float(*f),
             Val::Sym(a) => Term::atom(*a),
             Val::Term(t) => t.get(),
-            Val::List(items) => {
-                nested(|| list_term(store, items.iter(), items.len(), Val::to_term))
-            }
+            Val::List(items) => nested(|| {
+                super::memo::list_to_term(
+                    store,
+                    TypeId::of::<GroundList>(),
+                    items,
+                    Val::to_term,
+                    |v| !v.holds_terms(),
+                )
+            }),
             Val::Tagged(c) => {
                 let terms = nested(|| to_terms(c.args().iter(), store));
                 store.compound(c.name(), &terms)
@@ -311,6 +319,14 @@ fn from_term_at(store: &Store, t: Term, ty: &Ty, depth: usize) -> Option<Val> {
             Value::Float(_) => store.float_of(t).map(Val::Float),
             Value::Atom(a) if a == atoms::NIL => Some(Val::List(List::from_vec(Vec::new()))),
             Value::Atom(a) => Some(Val::Sym(a)),
+            // A list read whole (a parameter, an id's part): remembered
+            // (`native::memo`), so that a frame entered again shares it.
+            Value::Compound(name, &[_, _]) if name == atoms::DOT && depth == 0 => {
+                super::memo::list_from_term(store, TypeId::of::<GroundList>(), t, |item| {
+                    from_term_at(store, item, &Ty::Ground, 1)
+                })
+                .map(Val::List)
+            }
             Value::Compound(name, &[_, _]) if name == atoms::DOT => {
                 from_term_at(store, t, &Ty::list(Ty::Ground), depth)
             }

@@ -4075,6 +4075,10 @@ mod nnext23;
 /// Helper `nstock23`'s DMs with a pattern in their head (issue 37).
 mod nstock23;
 
+/// Helper `nre24`'s walks entered again from the machine at each place
+/// (issue 37).
+mod nre24;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");

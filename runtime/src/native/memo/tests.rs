@@ -1,0 +1,163 @@
+use super::*;
+use crate::native::{Native, Ty, Val};
+use sitlog_syntax::Atom;
+
+fn atoms_list(store: &mut Store, n: usize) -> (Vec<Atom>, Term) {
+    let xs: Vec<Atom> = (0..n).map(|i| Atom::intern(&format!("p{i}"))).collect();
+    let ts: Vec<Term> = xs.iter().map(|&a| Term::atom(a)).collect();
+    (xs.clone(), store.list(&ts))
+}
+
+/// The `k`-th tail of list term `t`.
+fn tail_at(store: &Store, t: Term, k: usize) -> Term {
+    let mut cur = t;
+    for _ in 0..k {
+        cur = store.args(cur)[1];
+    }
+    cur
+}
+
+/// A list and each of its tails convert to what a walk gives, sharing one
+/// storage; making a term of a tail gives back the very cell, no cell
+/// built.
+#[test]
+fn tails_convert_and_come_back_shared() {
+    clear();
+    let mut s = Store::new();
+    let (xs, t) = atoms_list(&mut s, 20);
+    let whole = <List<Atom>>::from_term(&s, t).expect("a list");
+    assert_eq!(whole.iter().copied().collect::<Vec<_>>(), xs);
+    for k in 0..=20 {
+        let tk = tail_at(&s, t, k);
+        let l = <List<Atom>>::from_term(&s, tk).expect("a tail");
+        assert_eq!(l.iter().copied().collect::<Vec<_>>(), xs[k..]);
+        if k < 20 {
+            assert!(whole.has_tail(&l), "tail {k} shares the storage");
+        }
+        let cells = s.stats().cells;
+        let back = l.to_term(&mut s);
+        assert!(s.identical(back, tk));
+        if k < 20 {
+            assert_eq!(back, tk, "the same cell");
+            assert_eq!(s.stats().cells, cells, "no cell built");
+        }
+    }
+    // `[X|Tail]` built natively on a remembered tail: its own cell only,
+    // and read back up to the remembered tail.
+    let x = Atom::intern("x");
+    let tail = <List<Atom>>::from_term(&s, tail_at(&s, t, 5)).unwrap();
+    let consed = List::cons(x, tail.clone());
+    let cells = s.stats().cells;
+    let ct = consed.to_term(&mut s);
+    assert_eq!(s.stats().cells, cells + 3);
+    let back = <List<Atom>>::from_term(&s, ct).unwrap();
+    assert_eq!(back, consed);
+    assert!(back.tail().unwrap().same_storage(&tail));
+}
+
+/// A slice made a term whole is remembered: the term and its tails read
+/// back shared; another store, or the same after a collection, walks.
+#[test]
+fn made_terms_are_remembered_per_store_and_epoch() {
+    clear();
+    let mut s = Store::new();
+    let l: List<i64> = (0..30).collect();
+    let t = l.to_term(&mut s);
+    let back = <List<i64>>::from_term(&s, tail_at(&s, t, 3)).unwrap();
+    assert!(l.has_tail(&back) && back.len() == 27);
+    // A clone of the store is another store: it walks (and agrees).
+    let c = s.clone();
+    let other = <List<i64>>::from_term(&c, t).unwrap();
+    assert_eq!(other, l);
+    assert!(!other.same_storage(&l));
+    // After a collection the cells moved: the entry is not used.
+    let mut roots = [t];
+    s.gc(&mut roots);
+    let moved = <List<i64>>::from_term(&s, roots[0]).unwrap();
+    assert_eq!(moved, l);
+    assert!(!moved.same_storage(&l));
+}
+
+/// A list that does not convert is never remembered as one that does:
+/// partial, improper, unbound elements, a list built over a bound
+/// variable (not known ground), non-inert elements of `ground` lists.
+#[test]
+fn what_does_not_convert_stays_so() {
+    clear();
+    let mut s = Store::new();
+    let (_, t) = atoms_list(&mut s, 12);
+    let v = s.new_var();
+    let items: Vec<Term> = (0..12).map(Term::int).collect();
+    let partial = s.list_with_tail(&items, v);
+    assert!(<List<i64>>::from_term(&s, partial).is_none());
+    let improper = s.list_with_tail(&items, Term::atom(Atom::intern("b")));
+    assert!(<List<i64>>::from_term(&s, improper).is_none());
+    // Bound later: converts, not remembered (a binding can be undone).
+    let m = s.mark();
+    let over_var = s.list_with_tail(&items, v);
+    assert!(s.bind(v, Term::NIL));
+    let got = <List<i64>>::from_term(&s, over_var).unwrap();
+    assert_eq!(got.len(), 12);
+    s.undo_to(m);
+    assert!(<List<i64>>::from_term(&s, over_var).is_none());
+    // Atoms do not convert to integers, remembered or not.
+    assert!(<List<i64>>::from_term(&s, t).is_none());
+    assert!(<List<Atom>>::from_term(&s, t).is_some());
+    assert!(<List<i64>>::from_term(&s, t).is_none());
+    // A `ground` list with an element L evaluates (`get(a, a)`): not a value.
+    let a = Term::atom(Atom::intern("a"));
+    let sum = s.compound(atoms::GET, &[a, a]);
+    let mut ts = items.clone();
+    ts.push(sum);
+    let evals = s.list(&ts);
+    assert!(<Val as Native>::from_term(&s, evals).is_none());
+    assert!(<List<Val>>::from_term(&s, evals).is_none());
+}
+
+/// `Val`'s conversion of a `ground` list shares a tail too, and agrees
+/// with a walk; a nested list converts as before.
+#[test]
+fn ground_lists_share_their_tails() {
+    clear();
+    let mut s = Store::new();
+    let f = Atom::intern("f");
+    let ts: Vec<Term> = (0..16).map(|i| s.compound(f, &[Term::int(i)])).collect();
+    let t = s.list(&ts);
+    let v = <Val as Native>::from_term(&s, t).unwrap();
+    let Val::List(whole) = &v else {
+        panic!("a list")
+    };
+    let t5 = tail_at(&s, t, 5);
+    let v5 = <Val as Native>::from_term(&s, t5).unwrap();
+    let Val::List(l5) = &v5 else { panic!("a list") };
+    assert!(whole.has_tail(l5));
+    assert_eq!(Val::from_term(&s, t5, &Ty::Ground), Some(v5.clone()));
+    let back = Native::to_term(&v5, &mut s);
+    assert_eq!(back, t5);
+    // Nested: a list of lists, the inner ones converted by a walk.
+    let outer = s.list(&[t, t5]);
+    let n = <Val as Native>::from_term(&s, outer).unwrap();
+    let Val::List(items) = n else {
+        panic!("a list")
+    };
+    assert_eq!(items.iter().cloned().collect::<Vec<_>>(), [v, v5]);
+}
+
+/// Only [`ENTRIES`] entries are kept, the oldest dropped; each still
+/// agrees with a walk.
+#[test]
+fn entries_are_bounded() {
+    clear();
+    let mut s = Store::new();
+    let lists: Vec<(List<i64>, Term)> = (0..(ENTRIES as i64 + 3))
+        .map(|j| {
+            let l: List<i64> = (0..10).map(|i| i + 100 * j).collect();
+            let t = l.to_term(&mut s);
+            (l, t)
+        })
+        .collect();
+    MEMO.with(|m| assert_eq!(m.borrow().len(), ENTRIES));
+    for (l, t) in &lists {
+        assert_eq!(&<List<i64>>::from_term(&s, *t).unwrap(), l);
+    }
+}
