@@ -250,6 +250,23 @@ impl Store {
         }
     }
 
+    /// The name and arguments of `t` (not dereferenced) where it is a
+    /// compound, and whether it is flagged [`HOLED`]: one read of its
+    /// header (`crate::sentence`'s walk of a pattern).
+    #[inline]
+    pub(crate) fn parts_flagged(&self, t: Term) -> Option<(Atom, &[Term], bool)> {
+        let Repr::Struct(p) = t.0 else { return None };
+        let p = p as usize;
+        match self.cells[p].0 {
+            Repr::Functor(name, n, f) => Some((
+                name,
+                &self.cells[p + 1..p + 1 + n as usize],
+                f & HOLED != 0,
+            )),
+            _ => None,
+        }
+    }
+
     /// Whether `t` is known to be ground without walking it: atomic, or a
     /// compound built from ground parts only (every argument atomic or
     /// itself such a compound; a compound built over variable handles is

@@ -614,19 +614,24 @@ impl<W: Write> TextActions<W> {
         say: bool,
         screen: bool,
     ) {
-        let store = src.store();
         let line = &mut self.line;
         line.clear();
+        // The argument of `say/1` or `screen/1`, seen (a hole its value).
+        let arg = || src.parts(a).and_then(|(_, args)| args.get(0));
         match (say, screen) {
             (_, true) => {
                 line.push_str("Golem prints on screen: ");
-                crate::sentence::write_in(src, store.args(a)[0], line);
+                if let Some(m) = arg() {
+                    crate::sentence::write_seen(src, m, line);
+                }
             }
             (true, _) => {
                 // A message given as a list is said as one sentence (the
                 // original's msg_format/2).
                 line.push_str("Golem says: ");
-                crate::sentence::message_in(src, store.args(a)[0], line);
+                if let Some(m) = arg() {
+                    crate::sentence::message_seen(src, m, line);
+                }
             }
             _ if self.declared.contains(&name) => {
                 line.push_str("Golem does: ");
@@ -678,13 +683,15 @@ impl<W: Write> Actions for TextActions<W> {
             return None;
         }
         let src = crate::sentence::Holed::new(store, holes);
+        // A compound (an action that is a hole, an atom, is left to
+        // `perform`).
         let a = src.resolve(pattern);
-        let (name, arity) = store.functor(a)?;
+        let (name, args) = src.parts(a)?;
         let (say, screen) = (
-            name == self.say && arity == 1,
-            name == self.screen && arity == 1,
+            name == self.say && args.len() == 1,
+            name == self.screen && args.len() == 1,
         );
-        if screen && self.unbound_screen.is_some() && store.is_var(src.resolve(store.args(a)[0])) {
+        if screen && self.unbound_screen.is_some() && args.get(0).is_some_and(|x| store.is_var(x)) {
             return None;
         }
         self.show(&src, a, name, say, screen);
