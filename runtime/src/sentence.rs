@@ -33,7 +33,7 @@ use sitlog_syntax::write::{write_term, TermSource, View, WriteOptions};
 use sitlog_syntax::{atoms, Atom};
 
 /// `pause`, interned once: the item the rule writes as a full stop.
-fn pause_atom() -> Atom {
+pub(crate) fn pause_atom() -> Atom {
     static PAUSE: std::sync::OnceLock<Atom> = std::sync::OnceLock::new();
     *PAUSE.get_or_init(|| Atom::intern("pause"))
 }
@@ -123,7 +123,9 @@ impl<'s> Holed<'s> {
     #[inline]
     fn cons(&self, t: Term) -> Option<(Term, Term)> {
         match self.store.parts_flagged(t)? {
-            (atoms::DOT, &[head, tail], holed) => Some((self.see(head, holed), self.see(tail, holed))),
+            (atoms::DOT, &[head, tail], holed) => {
+                Some((self.see(head, holed), self.see(tail, holed)))
+            }
             _ => None,
         }
     }
@@ -288,44 +290,73 @@ impl Iterator for Items<'_, '_> {
 }
 
 /// The rule on `first` and the items `items` yields (each resolved).
-fn sentence_of(
-    src: &Holed<'_>,
-    first: Term,
-    mut items: impl Iterator<Item = Term>,
-    out: &mut String,
-) {
+fn sentence_of(src: &Holed<'_>, first: Term, items: impl Iterator<Item = Term>, out: &mut String) {
     let pause = Term::atom(pause_atom());
-    let is_pause = |t: Term| t == pause;
+    rule(
+        first,
+        items,
+        |t| t == pause,
+        |t, out: &mut String| write_seen(src, t, out),
+        out,
+    );
+}
+
+/// What the rule appends to: text, and (through `write`) the items.
+pub(crate) trait Said {
+    /// Appends `text`.
+    fn text(&mut self, text: &str);
+}
+
+impl Said for String {
+    #[inline]
+    fn text(&mut self, text: &str) {
+        self.push_str(text);
+    }
+}
+
+/// The original's sentence rule ([`crate::builtins::sentence`]) on
+/// `first` and the items `items` yields, of any kind: `is_pause` tells
+/// the item written as a full stop, `write` appends one item (test
+/// mode's plan of a pattern's line, `testmode::said`, writes a hole as a
+/// place to fill).
+#[inline]
+pub(crate) fn rule<X: Copy, O: Said>(
+    first: X,
+    mut items: impl Iterator<Item = X>,
+    is_pause: impl Fn(X) -> bool,
+    mut write: impl FnMut(X, &mut O),
+    out: &mut O,
+) {
     let (a, b) = match items.next() {
         None => {
-            write_seen(src, first, out);
+            write(first, out);
             return;
         }
         Some(b) => (first, b),
     };
     if is_pause(a) {
-        out.push_str(". ");
-        write_seen(src, b, out);
+        out.text(". ");
+        write(b, out);
     } else if is_pause(b) {
-        write_seen(src, a, out);
-        out.push_str(" .");
+        write(a, out);
+        out.text(" .");
     } else {
-        write_seen(src, a, out);
-        out.push(' ');
-        write_seen(src, b, out);
+        write(a, out);
+        out.text(" ");
+        write(b, out);
     }
     let mut more = false;
     for x in items {
         more = true;
         if is_pause(x) {
-            out.push_str(". ");
+            out.text(". ");
         } else {
-            out.push(' ');
-            write_seen(src, x, out);
+            out.text(" ");
+            write(x, out);
         }
     }
     if more {
-        out.push('.');
+        out.text(".");
     }
 }
 

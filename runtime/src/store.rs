@@ -105,6 +105,29 @@ pub struct Store {
     /// `(op, name)` of each `get`/`set`/`inc` of a variable neither local
     /// nor global evaluated so far, each pair once ([`Store::note_undefined`]).
     pub(crate) undefined: Vec<(Atom, Atom)>,
+    /// This store among the process's ([`StoreId`]).
+    pub(crate) id: StoreId,
+}
+
+/// A store's identity in the process, for caches of what its frozen
+/// region holds (test mode's plan of a `say` pattern's line,
+/// `testmode::said`): drawn from a counter when the store is made, a new
+/// one for a clone (which may freeze other terms at the same places
+/// afterwards).
+#[derive(Debug)]
+pub(crate) struct StoreId(pub(crate) u64);
+
+impl StoreId {
+    fn fresh() -> StoreId {
+        static NEXT: AtomicU64 = AtomicU64::new(1);
+        StoreId(NEXT.fetch_add(1, Ordering::Relaxed))
+    }
+}
+
+impl Clone for StoreId {
+    fn clone(&self) -> StoreId {
+        StoreId::fresh()
+    }
 }
 
 impl Default for Store {
@@ -140,6 +163,7 @@ impl Store {
             gc_scratch: Default::default(),
             plain_memo: Default::default(),
             undefined: Vec::new(),
+            id: StoreId::fresh(),
         }
     }
 
@@ -258,11 +282,20 @@ impl Store {
         let Repr::Struct(p) = t.0 else { return None };
         let p = p as usize;
         match self.cells[p].0 {
-            Repr::Functor(name, n, f) => Some((
-                name,
-                &self.cells[p + 1..p + 1 + n as usize],
-                f & HOLED != 0,
-            )),
+            Repr::Functor(name, n, f) => {
+                Some((name, &self.cells[p + 1..p + 1 + n as usize], f & HOLED != 0))
+            }
+            _ => None,
+        }
+    }
+
+    /// The index of compound `t` (not dereferenced) where it lies in the
+    /// frozen region: its cells never change nor move again (only a
+    /// pattern's `HOLED` flag is set, as it is read, before the freeze).
+    #[inline]
+    pub(crate) fn frozen_index(&self, t: Term) -> Option<u32> {
+        match t.0 {
+            Repr::Struct(p) if p < self.frozen.cells => Some(p),
             _ => None,
         }
     }

@@ -17,6 +17,7 @@ use sitlog_syntax::{Atom, ClauseReader, OpTable};
 use std::io::{BufRead, Read, Write};
 
 pub mod original;
+mod said;
 pub use original::OriginalTestMode;
 mod prompt;
 pub use prompt::PromptPerception;
@@ -579,6 +580,8 @@ pub struct TextActions<W: Write> {
     /// The line written, reused from action to action (no allocation
     /// once it is as long as the longest line).
     line: String,
+    /// The lines of `say` patterns, planned once (`said`).
+    plans: said::Plans,
 }
 
 impl<W: Write> TextActions<W> {
@@ -590,6 +593,7 @@ impl<W: Write> TextActions<W> {
             say: Atom::intern("say"),
             screen: Atom::intern("screen"),
             line: String::new(),
+            plans: said::Plans::default(),
         }
     }
 
@@ -693,6 +697,13 @@ impl<W: Write> Actions for TextActions<W> {
         );
         if screen && self.unbound_screen.is_some() && args.get(0).is_some_and(|x| store.is_var(x)) {
             return None;
+        }
+        if say {
+            self.line.clear();
+            if self.plans.write(store, a, holes, &mut self.line) {
+                let _ = self.out.write_all(self.line.as_bytes());
+                return Some(Ok(()));
+            }
         }
         self.show(&src, a, name, say, screen);
         Some(Ok(()))
