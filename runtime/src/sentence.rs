@@ -78,7 +78,7 @@ impl<'s> Holed<'s> {
     /// `t` (dereferenced) an argument of a compound whose header said
     /// whether it is marked (`holed`), as seen: where the compound is not
     /// marked, nothing below it is a hole.
-    #[inline]
+    #[inline(always)]
     fn see(&self, t: Term, holed: bool) -> Term {
         let t = self.store.deref(t);
         if holed && !self.holes.is_empty() {
@@ -120,7 +120,7 @@ impl<'s> Holed<'s> {
     }
 
     /// The head and tail of list cell `t` (seen), each seen.
-    #[inline]
+    #[inline(always)]
     fn cons(&self, t: Term) -> Option<(Term, Term)> {
         match self.store.parts_flagged(t)? {
             (atoms::DOT, &[head, tail], holed) => {
@@ -194,18 +194,25 @@ pub fn write_in(src: &Holed<'_>, t: Term, out: &mut String) {
 }
 
 /// [`write_in`] of `t` seen already (dereferenced, a hole its value).
-#[inline]
+#[inline(always)]
 pub fn write_seen(src: &Holed<'_>, t: Term, out: &mut String) {
     match t.0 {
         Repr::Atom(a) => out.push_str(a.as_str()),
         Repr::Int(i) => push_int(i, out),
-        _ => out.push_str(&write_term(src, t, WriteOptions::write())),
+        _ => write_other(src, t, out),
     }
+}
+
+/// [`write_seen`] of a term neither an atom nor a small integer: the term
+/// writer's text.
+#[inline(never)]
+fn write_other(src: &Holed<'_>, t: Term, out: &mut String) {
+    out.push_str(&write_term(src, t, WriteOptions::write()));
 }
 
 /// Appends the decimal digits of `i` (`write/1`'s text of a small
 /// integer), no formatter.
-#[inline]
+#[inline(never)]
 fn push_int(i: i64, out: &mut String) {
     let mut digits = [0u8; 20];
     let mut at = digits.len();
@@ -281,7 +288,7 @@ struct Items<'a, 's> {
 
 impl Iterator for Items<'_, '_> {
     type Item = Term;
-    #[inline]
+    #[inline(always)]
     fn next(&mut self) -> Option<Term> {
         let (head, tail) = self.src.cons(self.cur)?;
         self.cur = tail;

@@ -687,10 +687,13 @@ impl<W: Write> Actions for TextActions<W> {
             return None;
         }
         let src = crate::sentence::Holed::new(store, holes);
-        // A compound (an action that is a hole, an atom, is left to
-        // `perform`).
-        let a = src.resolve(pattern);
+        // A compound marked; an action that is a hole itself (its value
+        // an atom or a number) is left to `perform`.
+        let a = store.deref(pattern);
         let (name, args) = src.parts(a)?;
+        if name == crate::machine::hole_atom() && args.len() == 1 {
+            return None;
+        }
         let (say, screen) = (
             name == self.say && args.len() == 1,
             name == self.screen && args.len() == 1,

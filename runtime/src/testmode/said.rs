@@ -46,6 +46,9 @@ pub(super) struct Plans {
     /// By the pattern's place: its pieces (`pieces[from..to]`), or `None`
     /// where it has no plan.
     by_pattern: AtomKeyMap<u32, Option<(u32, u32)>>,
+    /// The last pattern's place and plan (a `say` at each step of a walk:
+    /// the same pattern again).
+    last: Option<(u32, Option<(u32, u32)>)>,
     pieces: Vec<Piece>,
     text: String,
 }
@@ -68,39 +71,44 @@ impl Plans {
         };
         if self.store != store.id.0 {
             self.by_pattern.clear();
+            self.last = None;
             self.pieces.clear();
             self.text.clear();
             self.store = store.id.0;
         }
-        let planned = match self.by_pattern.get(&at) {
-            Some(&p) => p,
-            None => {
-                let p = self.plan(store, pattern);
-                self.by_pattern.insert(at, p);
+        let planned = match self.last {
+            Some((last, p)) if last == at => p,
+            _ => {
+                let p = match self.by_pattern.get(&at) {
+                    Some(&p) => p,
+                    None => {
+                        let p = self.plan(store, pattern);
+                        self.by_pattern.insert(at, p);
+                        p
+                    }
+                };
+                self.last = Some((at, p));
                 p
             }
         };
         let Some((from, to)) = planned else {
             return false;
         };
-        let pieces = &self.pieces[from as usize..to as usize];
+        let start = line.len();
         let pause = Term::atom(pause_atom());
-        let seen = |i: u32| holes.get(i as usize).map(|&h| store.deref(h));
-        if pieces
-            .iter()
-            .any(|p| matches!(p, Piece::Hole(i) if seen(*i).is_none_or(|h| h == pause)))
-        {
-            return false;
-        }
         let src = Holed::new(store, holes);
-        for p in pieces {
+        for p in &self.pieces[from as usize..to as usize] {
             match *p {
                 Piece::Text(a, b) => line.push_str(&self.text[a as usize..b as usize]),
-                Piece::Hole(i) => {
-                    if let Some(h) = seen(i) {
-                        write_seen(&src, h, line);
+                Piece::Hole(i) => match holes.get(i as usize).map(|&h| store.deref(h)) {
+                    Some(h) if h != pause => write_seen(&src, h, line),
+                    // The rule's separators change with `pause`; a hole
+                    // with no value is written as the term it is.
+                    _ => {
+                        line.truncate(start);
+                        return false;
                     }
-                }
+                },
             }
         }
         true
