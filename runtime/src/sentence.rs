@@ -19,15 +19,21 @@
 //! filled ([`Holed`]: native code's `Fill`, an effector that only writes
 //! text, `Actions::perform_filled`): a hole read where the term filled has
 //! its value, so the text is the filled term's, byte for byte.
+//!
+//! Cost (issue 37, `r22_d_sweep_say`): a list cell's header is read once
+//! for its name, arguments and mark ([`Holed::cons`]); an argument is
+//! looked at as a hole only where its compound is marked (a pattern's
+//! constant part holds none); an item is written as it was seen, not
+//! resolved again; an atom's text is a read of the interner's published
+//! table (`Atom::as_str`); an integer's digits are made in place.
 
-use crate::term::{Term, Value};
+use crate::term::{Repr, Term};
 use crate::Store;
 use sitlog_syntax::write::{write_term, TermSource, View, WriteOptions};
 use sitlog_syntax::{atoms, Atom};
-use std::fmt::Write as _;
 
 /// `pause`, interned once: the item the rule writes as a full stop.
-fn pause_atom() -> Atom {
+pub(crate) fn pause_atom() -> Atom {
     static PAUSE: std::sync::OnceLock<Atom> = std::sync::OnceLock::new();
     *PAUSE.get_or_init(|| Atom::intern("pause"))
 }
@@ -66,6 +72,25 @@ impl<'s> Holed<'s> {
         if self.holes.is_empty() {
             return t;
         }
+        self.hole_or(t)
+    }
+
+    /// `t` (dereferenced) an argument of a compound whose header said
+    /// whether it is marked (`holed`), as seen: where the compound is not
+    /// marked, nothing below it is a hole.
+    #[inline(always)]
+    fn see(&self, t: Term, holed: bool) -> Term {
+        let t = self.store.deref(t);
+        if holed && !self.holes.is_empty() {
+            self.hole_or(t)
+        } else {
+            t
+        }
+    }
+
+    /// `t` (dereferenced) its hole's value where it is a hole.
+    #[inline]
+    fn hole_or(&self, t: Term) -> Term {
         // A marked compound of one integer argument has no hole below it
         // but itself: it is `'$hole'(i)` (the mark is put on holes and the
         // compounds above them only).
@@ -78,9 +103,64 @@ impl<'s> Holed<'s> {
         t
     }
 
+    /// The name and arguments of `t` (seen: dereferenced, a hole its
+    /// value) where it is a compound, each argument seen: one read of its
+    /// header.
+    #[inline]
+    pub fn parts(&self, t: Term) -> Option<(Atom, Parts<'_, 's>)> {
+        let (name, args, holed) = self.store.parts_flagged(t)?;
+        Some((
+            name,
+            Parts {
+                src: self,
+                args,
+                holed,
+            },
+        ))
+    }
+
+    /// The head and tail of list cell `t` (seen), each seen.
+    #[inline(always)]
+    fn cons(&self, t: Term) -> Option<(Term, Term)> {
+        match self.store.parts_flagged(t)? {
+            (atoms::DOT, &[head, tail], holed) => {
+                Some((self.see(head, holed), self.see(tail, holed)))
+            }
+            _ => None,
+        }
+    }
+
     /// The store.
     pub fn store(&self) -> &'s Store {
         self.store
+    }
+}
+
+/// The arguments of a compound as a [`Holed`] sees them ([`Holed::parts`]).
+#[derive(Clone, Copy)]
+pub struct Parts<'a, 's> {
+    src: &'a Holed<'s>,
+    args: &'s [Term],
+    holed: bool,
+}
+
+impl Parts<'_, '_> {
+    /// Argument `i` (0-based), seen.
+    #[inline]
+    pub fn get(&self, i: usize) -> Option<Term> {
+        self.args.get(i).map(|&t| self.src.see(t, self.holed))
+    }
+
+    /// How many arguments.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.args.len()
+    }
+
+    /// Whether there are none.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.args.is_empty()
     }
 }
 
@@ -95,7 +175,6 @@ impl TermSource for Holed<'_> {
 /// no other term.
 #[inline]
 pub fn atomic(store: &Store, t: Term) -> bool {
-    use crate::term::Repr;
     matches!(
         store.deref(t).0,
         Repr::Atom(_) | Repr::Int(_) | Repr::Float(_) | Repr::Big(_)
@@ -111,14 +190,46 @@ pub fn write_into(store: &Store, t: Term, out: &mut String) {
 /// [`write_into`] through `src`.
 #[inline]
 pub fn write_in(src: &Holed<'_>, t: Term, out: &mut String) {
-    let t = src.resolve(t);
-    match src.store.value(t) {
-        Value::Atom(a) => out.push_str(a.as_str()),
-        Value::Int(i) => {
-            let _ = write!(out, "{i}");
-        }
-        _ => out.push_str(&write_term(src, t, WriteOptions::write())),
+    write_seen(src, src.resolve(t), out);
+}
+
+/// [`write_in`] of `t` seen already (dereferenced, a hole its value).
+#[inline(always)]
+pub fn write_seen(src: &Holed<'_>, t: Term, out: &mut String) {
+    match t.0 {
+        Repr::Atom(a) => out.push_str(a.as_str()),
+        Repr::Int(i) => push_int(i, out),
+        _ => write_other(src, t, out),
     }
+}
+
+/// [`write_seen`] of a term neither an atom nor a small integer: the term
+/// writer's text.
+#[inline(never)]
+fn write_other(src: &Holed<'_>, t: Term, out: &mut String) {
+    out.push_str(&write_term(src, t, WriteOptions::write()));
+}
+
+/// Appends the decimal digits of `i` (`write/1`'s text of a small
+/// integer), no formatter.
+#[inline(never)]
+fn push_int(i: i64, out: &mut String) {
+    let mut digits = [0u8; 20];
+    let mut at = digits.len();
+    let mut n = i.unsigned_abs();
+    loop {
+        at -= 1;
+        digits[at] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    if i < 0 {
+        out.push('-');
+    }
+    // ASCII digits: always text.
+    out.push_str(std::str::from_utf8(&digits[at..]).unwrap_or_default());
 }
 
 /// Appends the sentence of `items` (the rule of [`crate::builtins::sentence`]).
@@ -141,19 +252,23 @@ pub fn message_into(store: &Store, m: Term, out: &mut String) {
 /// [`message_into`] through `src`: one pass over the list, what was
 /// written of it taken back where it turns out not to be a proper list.
 pub fn message_in(src: &Holed<'_>, m: Term, out: &mut String) {
-    let m = src.resolve(m);
+    message_seen(src, src.resolve(m), out);
+}
+
+/// [`message_in`] of `m` seen already (dereferenced, a hole its value).
+pub fn message_seen(src: &Holed<'_>, m: Term, out: &mut String) {
     let start = out.len();
     let mut items = Items { src, cur: m };
     let proper = match items.next() {
         None => false,
         Some(first) => {
             sentence_of(src, first, &mut items, out);
-            src.store.atom_of(items.cur) == Some(atoms::NIL)
+            items.cur == Term::NIL
         }
     };
     if !proper {
         out.truncate(start);
-        write_in(src, m, out);
+        write_seen(src, m, out);
     }
 }
 
@@ -173,57 +288,82 @@ struct Items<'a, 's> {
 
 impl Iterator for Items<'_, '_> {
     type Item = Term;
-    #[inline]
+    #[inline(always)]
     fn next(&mut self) -> Option<Term> {
-        match self.src.store.compound_args(self.cur, atoms::DOT, 2) {
-            Some(&[head, tail]) => {
-                self.cur = self.src.resolve(tail);
-                Some(self.src.resolve(head))
-            }
-            _ => None,
-        }
+        let (head, tail) = self.src.cons(self.cur)?;
+        self.cur = tail;
+        Some(head)
     }
 }
 
 /// The rule on `first` and the items `items` yields (each resolved).
-fn sentence_of(
-    src: &Holed<'_>,
-    first: Term,
-    mut items: impl Iterator<Item = Term>,
-    out: &mut String,
+fn sentence_of(src: &Holed<'_>, first: Term, items: impl Iterator<Item = Term>, out: &mut String) {
+    let pause = Term::atom(pause_atom());
+    rule(
+        first,
+        items,
+        |t| t == pause,
+        |t, out: &mut String| write_seen(src, t, out),
+        out,
+    );
+}
+
+/// What the rule appends to: text, and (through `write`) the items.
+pub(crate) trait Said {
+    /// Appends `text`.
+    fn text(&mut self, text: &str);
+}
+
+impl Said for String {
+    #[inline]
+    fn text(&mut self, text: &str) {
+        self.push_str(text);
+    }
+}
+
+/// The original's sentence rule ([`crate::builtins::sentence`]) on
+/// `first` and the items `items` yields, of any kind: `is_pause` tells
+/// the item written as a full stop, `write` appends one item (test
+/// mode's plan of a pattern's line, `testmode::said`, writes a hole as a
+/// place to fill).
+#[inline]
+pub(crate) fn rule<X: Copy, O: Said>(
+    first: X,
+    mut items: impl Iterator<Item = X>,
+    is_pause: impl Fn(X) -> bool,
+    mut write: impl FnMut(X, &mut O),
+    out: &mut O,
 ) {
-    let pause = pause_atom();
-    let is_pause = |t: Term| src.store.atom_of(t) == Some(pause);
     let (a, b) = match items.next() {
         None => {
-            write_in(src, first, out);
+            write(first, out);
             return;
         }
         Some(b) => (first, b),
     };
     if is_pause(a) {
-        out.push_str(". ");
-        write_in(src, b, out);
+        out.text(". ");
+        write(b, out);
     } else if is_pause(b) {
-        write_in(src, a, out);
-        out.push_str(" .");
+        write(a, out);
+        out.text(" .");
     } else {
-        write_in(src, a, out);
-        out.push(' ');
-        write_in(src, b, out);
+        write(a, out);
+        out.text(" ");
+        write(b, out);
     }
     let mut more = false;
     for x in items {
         more = true;
         if is_pause(x) {
-            out.push_str(". ");
+            out.text(". ");
         } else {
-            out.push(' ');
-            write_in(src, x, out);
+            out.text(" ");
+            write(x, out);
         }
     }
     if more {
-        out.push('.');
+        out.text(".");
     }
 }
 

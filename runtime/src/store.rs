@@ -105,14 +105,16 @@ pub struct Store {
     /// `(op, name)` of each `get`/`set`/`inc` of a variable neither local
     /// nor global evaluated so far, each pair once ([`Store::note_undefined`]).
     pub(crate) undefined: Vec<(Atom, Atom)>,
-    /// This store among all (a clone is another): with [`Store::epoch`],
+    /// This store among the process's ([`StoreId`]): with [`Store::epoch`],
     /// what names its cells for `native::memo` (the lists converted from
-    /// and to terms of this store, remembered).
+    /// and to terms of this store, remembered) and for test mode's plan of
+    /// a `say` pattern's line (`testmode::said`).
     pub(crate) id: StoreId,
 }
 
-/// A store's identity, unique in the process: a clone gets a new one (its
-/// cells may differ from the original's at the same epoch later).
+/// A store's identity, unique in the process: drawn from a counter when
+/// the store is made, a new one for a clone (its cells may differ from the
+/// original's at the same places and epoch later).
 #[derive(Debug, PartialEq, Eq)]
 pub(crate) struct StoreId(pub(crate) u64);
 
@@ -269,6 +271,32 @@ impl Store {
             Repr::Functor(name, n, f) if f & HOLED != 0 => {
                 Some((name, &self.cells[p + 1..p + 1 + n as usize]))
             }
+            _ => None,
+        }
+    }
+
+    /// The name and arguments of `t` (not dereferenced) where it is a
+    /// compound, and whether it is flagged [`HOLED`]: one read of its
+    /// header (`crate::sentence`'s walk of a pattern).
+    #[inline]
+    pub(crate) fn parts_flagged(&self, t: Term) -> Option<(Atom, &[Term], bool)> {
+        let Repr::Struct(p) = t.0 else { return None };
+        let p = p as usize;
+        match self.cells[p].0 {
+            Repr::Functor(name, n, f) => {
+                Some((name, &self.cells[p + 1..p + 1 + n as usize], f & HOLED != 0))
+            }
+            _ => None,
+        }
+    }
+
+    /// The index of compound `t` (not dereferenced) where it lies in the
+    /// frozen region: its cells never change nor move again (only a
+    /// pattern's `HOLED` flag is set, as it is read, before the freeze).
+    #[inline]
+    pub(crate) fn frozen_index(&self, t: Term) -> Option<u32> {
+        match t.0 {
+            Repr::Struct(p) if p < self.frozen.cells => Some(p),
             _ => None,
         }
     }

@@ -4,6 +4,16 @@
 //! Interned strings are leaked and never collected (as in most Prolog systems
 //! without atom GC); a long-running task reading unbounded distinct atoms from
 //! input grows by their text.
+//!
+//! An atom's text is read without a lock, a thread-local or a hash
+//! ([`Atom::as_str`], issue 37: a `say` writes a word per item): every name is
+//! also published, once, in an append-only table of segments of doubling
+//! size ([`NAMES`]), each slot set once. Invariant: an atom handed out by
+//! [`Atom::intern`] has its name in the table (published under the
+//! interner's write lock, before the lock is released, and so before any
+//! other thread can learn its id); a slot not set yet (an atom of the
+//! predefined table before the interner was first used) is read from the
+//! interner.
 
 use std::collections::HashMap;
 use std::fmt;
@@ -29,6 +39,7 @@ fn interner() -> &'static RwLock<Interner> {
             let id = interner.names.len() as u32;
             interner.names.push(name);
             interner.ids.insert(name, id);
+            publish(id, name);
         }
         RwLock::new(interner)
     })
@@ -143,25 +154,28 @@ impl Atom {
         let id = u32::try_from(guard.names.len()).expect("more than 2^32 atoms");
         guard.names.push(leaked);
         guard.ids.insert(leaked, id);
+        publish(id, leaked);
         Atom(id)
     }
 
-    /// The atom's text.
+    /// The atom's text: a read of the published table ([`NAMES`]), no
+    /// lock, no thread-local, no hash.
+    #[inline]
     pub fn as_str(self) -> &'static str {
-        // Names are leaked and never move: each thread keeps its own copy
-        // of the table's prefix and takes the lock only for atoms newer
-        // than its copy (the hot paths ask for the same few names).
-        let i = self.0 as usize;
-        NAMES_SEEN.with(|seen| {
-            if let Some(&name) = seen.borrow().get(i) {
-                return name;
-            }
-            let guard = interner().read().unwrap_or_else(|e| e.into_inner());
-            let mut seen = seen.borrow_mut();
-            let from = seen.len();
-            seen.extend_from_slice(&guard.names[from..]);
-            guard.names[i]
-        })
+        match name_slot(self.0).and_then(OnceLock::get) {
+            Some(name) => name,
+            None => self.as_str_unpublished(),
+        }
+    }
+
+    /// [`Atom::as_str`] of an atom whose name is not in the table yet: a
+    /// predefined atom before the interner was first used (which
+    /// publishes them all).
+    #[cold]
+    #[inline(never)]
+    fn as_str_unpublished(self) -> &'static str {
+        let guard = interner().read().unwrap_or_else(|e| e.into_inner());
+        guard.names[self.0 as usize]
     }
 
     /// The interner index (stable for the life of the process).
@@ -178,9 +192,41 @@ impl Atom {
 
 const CACHE_SLOTS: usize = 512;
 
-thread_local! {
-    /// This thread's copy of a prefix of the interner's names (see [`Atom::as_str`]).
-    static NAMES_SEEN: std::cell::RefCell<Vec<&'static str>> = const { std::cell::RefCell::new(Vec::new()) };
+/// Slots in the table's first segment; segment `k` has `SEGMENT0 << k`.
+const SEGMENT0: usize = 1024;
+/// Segments: `SEGMENT0 * (2^SEGMENTS - 1)` slots, more than the `2^32`
+/// atoms an id can name.
+const SEGMENTS: usize = 23;
+
+/// One segment of the table: a slot per atom, each set once.
+type Segment = Box<[OnceLock<&'static str>]>;
+
+/// Every interned name by id, append-only (module doc): segment `k` holds
+/// ids `SEGMENT0 * (2^k - 1)` up to (not including) `SEGMENT0 * (2^(k+1) - 1)`,
+/// allocated when its first id is published.
+static NAMES: [OnceLock<Segment>; SEGMENTS] = [const { OnceLock::new() }; SEGMENTS];
+
+/// The slot of id `i` in [`NAMES`], where its segment exists.
+#[inline]
+fn name_slot(i: u32) -> Option<&'static OnceLock<&'static str>> {
+    let (k, at) = segment_of(i);
+    NAMES.get(k)?.get()?.get(at)
+}
+
+/// The segment of id `i` and its place in it.
+#[inline]
+fn segment_of(i: u32) -> (usize, usize) {
+    let j = (i as usize / SEGMENT0) + 1;
+    let k = (usize::BITS - 1 - j.leading_zeros()) as usize;
+    (k, i as usize - SEGMENT0 * ((1 << k) - 1))
+}
+
+/// Sets the slot of id `id` to `name` (the interner's write lock held, or
+/// its initialisation), allocating its segment the first time.
+fn publish(id: u32, name: &'static str) {
+    let (k, at) = segment_of(id);
+    let segment = NAMES[k].get_or_init(|| (0..SEGMENT0 << k).map(|_| OnceLock::new()).collect());
+    let _ = segment[at].set(name);
 }
 
 thread_local! {
@@ -235,6 +281,34 @@ mod tests {
         assert_eq!(atoms::NIL.as_str(), "[]");
         assert_eq!(atoms::ERROR.as_str(), "error");
         assert_eq!(Atom::intern("==>"), atoms::DOUBLE_ARROW);
+    }
+
+    #[test]
+    fn segments_cover_the_ids() {
+        assert_eq!(segment_of(0), (0, 0));
+        assert_eq!(segment_of(1023), (0, 1023));
+        assert_eq!(segment_of(1024), (1, 0));
+        assert_eq!(segment_of(3071), (1, 2047));
+        assert_eq!(segment_of(3072), (2, 0));
+        assert_eq!(segment_of(7167), (2, 4095));
+        assert_eq!(segment_of(7168), (3, 0));
+        let (k, at) = segment_of(u32::MAX);
+        assert!(k < SEGMENTS && at < SEGMENT0 << k);
+    }
+
+    #[test]
+    fn names_past_the_first_segment_and_from_other_threads() {
+        let atoms: Vec<Atom> = (0..3000)
+            .map(|i| Atom::intern(&format!("atom_table_test_{i}")))
+            .collect();
+        let other = std::thread::spawn(move || {
+            (0..3000).all(|i| atoms[i].as_str() == format!("atom_table_test_{i}"))
+        });
+        assert!(other.join().unwrap());
+        let late = std::thread::spawn(|| Atom::intern("atom_made_on_another_thread"))
+            .join()
+            .unwrap();
+        assert_eq!(late.as_str(), "atom_made_on_another_thread");
     }
 
     #[test]

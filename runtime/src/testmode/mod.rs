@@ -17,6 +17,7 @@ use sitlog_syntax::{Atom, ClauseReader, OpTable};
 use std::io::{BufRead, Read, Write};
 
 pub mod original;
+mod said;
 pub use original::OriginalTestMode;
 mod prompt;
 pub use prompt::PromptPerception;
@@ -579,6 +580,8 @@ pub struct TextActions<W: Write> {
     /// The line written, reused from action to action (no allocation
     /// once it is as long as the longest line).
     line: String,
+    /// The lines of `say` patterns, planned once (`said`).
+    plans: said::Plans,
 }
 
 impl<W: Write> TextActions<W> {
@@ -590,6 +593,7 @@ impl<W: Write> TextActions<W> {
             say: Atom::intern("say"),
             screen: Atom::intern("screen"),
             line: String::new(),
+            plans: said::Plans::default(),
         }
     }
 
@@ -614,19 +618,24 @@ impl<W: Write> TextActions<W> {
         say: bool,
         screen: bool,
     ) {
-        let store = src.store();
         let line = &mut self.line;
         line.clear();
+        // The argument of `say/1` or `screen/1`, seen (a hole its value).
+        let arg = || src.parts(a).and_then(|(_, args)| args.get(0));
         match (say, screen) {
             (_, true) => {
                 line.push_str("Golem prints on screen: ");
-                crate::sentence::write_in(src, store.args(a)[0], line);
+                if let Some(m) = arg() {
+                    crate::sentence::write_seen(src, m, line);
+                }
             }
             (true, _) => {
                 // A message given as a list is said as one sentence (the
                 // original's msg_format/2).
                 line.push_str("Golem says: ");
-                crate::sentence::message_in(src, store.args(a)[0], line);
+                if let Some(m) = arg() {
+                    crate::sentence::message_seen(src, m, line);
+                }
             }
             _ if self.declared.contains(&name) => {
                 line.push_str("Golem does: ");
@@ -678,14 +687,26 @@ impl<W: Write> Actions for TextActions<W> {
             return None;
         }
         let src = crate::sentence::Holed::new(store, holes);
-        let a = src.resolve(pattern);
-        let (name, arity) = store.functor(a)?;
-        let (say, screen) = (
-            name == self.say && arity == 1,
-            name == self.screen && arity == 1,
-        );
-        if screen && self.unbound_screen.is_some() && store.is_var(src.resolve(store.args(a)[0])) {
+        // A compound marked; an action that is a hole itself (its value
+        // an atom or a number) is left to `perform`.
+        let a = store.deref(pattern);
+        let (name, args) = src.parts(a)?;
+        if name == crate::machine::hole_atom() && args.len() == 1 {
             return None;
+        }
+        let (say, screen) = (
+            name == self.say && args.len() == 1,
+            name == self.screen && args.len() == 1,
+        );
+        if screen && self.unbound_screen.is_some() && args.get(0).is_some_and(|x| store.is_var(x)) {
+            return None;
+        }
+        if say {
+            self.line.clear();
+            if self.plans.write(store, a, holes, &mut self.line) {
+                let _ = self.out.write_all(self.line.as_bytes());
+                return Some(Ok(()));
+            }
         }
         self.show(&src, a, name, say, screen);
         Some(Ok(()))

@@ -512,3 +512,86 @@ fn filled_actions_show_the_filled_terms_line() {
         }
     }
 }
+
+/// A `say` pattern's line planned once (`said`): the plan's line, the
+/// walk's and `perform`'s of the term filled are the same, byte for byte,
+/// the first time and the next; a pattern with a hole below a compound
+/// item or as a tail, or a hole whose value is `pause`, written by the
+/// walk.
+#[test]
+fn planned_say_lines_are_the_filled_terms_lines() {
+    let patterns = [
+        ("say([checking,'$hole'(0)])", true),
+        ("say('$hole'(0))", true),
+        ("say(['$hole'(0)])", true),
+        ("say(['$hole'(0),is,at,'$hole'(1)])", true),
+        ("say(['$hole'(1),'$hole'(0)])", true),
+        ("say([pause,'$hole'(0)])", true),
+        ("say(['$hole'(0),pause])", true),
+        ("say(['It''s','$hole'(0),pause,'Living room',[a,'B c'],3,-2,1.5,f(x),'$hole'(1),pause])", true),
+        ("say(['$hole'(0),pause,'$hole'(1),f('$hole'(0))])", false),
+        ("say(['$hole'(0)|'$hole'(1)])", false),
+        ("say([a,'$hole'(0)|b])", false),
+        ("say(hello('$hole'(0)))", false),
+        ("say(['$hole'(5)])", true),
+    ];
+    let hole_sets: [&[&str]; 6] = [
+        &["p3", "7"],
+        &["'Living room'", "-2.5"],
+        &["[]", "pause"],
+        &["pause", "x"],
+        &["'$hole'", "99999999999999999999"],
+        &["-7", "'a\\nb'"],
+    ];
+    for (text, planned) in patterns {
+        let mut store = Store::new();
+        let [k] = crate::machine::read_consts(&mut store, &[text]);
+        store.freeze();
+        let mut filled_out = Vec::new();
+        let mut actions = TextActions::new(&mut filled_out, Vec::new());
+        let mut expected = String::new();
+        for _ in 0..2 {
+            for hs in hole_sets {
+                let holes: Vec<Term> = hs.iter().map(|h| store.parse(h).unwrap().0).collect();
+                let done = actions.perform_filled(&mut store, k, &holes);
+                assert!(matches!(done, Some(Ok(()))), "{text}");
+                let refs: Vec<&dyn crate::machine::AsTerm> = holes
+                    .iter()
+                    .map(|t| t as &dyn crate::machine::AsTerm)
+                    .collect();
+                let t = crate::machine::fill(&mut store, k, &refs);
+                let mut out = Vec::new();
+                TextActions::new(&mut out, Vec::new())
+                    .perform(&mut store, t)
+                    .unwrap();
+                expected.push_str(&String::from_utf8(out).unwrap());
+            }
+        }
+        assert_eq!(actions.plans.planned(), usize::from(planned), "{text}");
+        drop(actions);
+        assert_eq!(String::from_utf8(filled_out).unwrap(), expected, "{text}");
+    }
+}
+
+/// A plan is of one store: the same place in another store's frozen
+/// region holds another pattern.
+#[test]
+fn planned_say_lines_are_of_one_store() {
+    let mut out = Vec::new();
+    let mut actions = TextActions::new(&mut out, Vec::new());
+    for text in ["say([one,'$hole'(0)])", "say([two,'$hole'(0),three])"] {
+        let mut store = Store::new();
+        let [k] = crate::machine::read_consts(&mut store, &[text]);
+        store.freeze();
+        let mut clone = store.clone();
+        for s in [&mut store, &mut clone] {
+            let done = actions.perform_filled(s, k, &[Term::int(1)]);
+            assert!(matches!(done, Some(Ok(()))), "{text}");
+        }
+    }
+    drop(actions);
+    assert_eq!(
+        String::from_utf8(out).unwrap(),
+        "Golem says: one 1\nGolem says: one 1\nGolem says: two 1 three.\nGolem says: two 1 three.\n"
+    );
+}
