@@ -294,6 +294,7 @@ mod r24_d_sift_two_lists {
 }
 mod r24_d_near_floats {
     sitlog_macros::include_dm!("../tests/typed/review24/r24_d_near_floats");
+}
 // Helper nre24's (d): a frame entered again from the machine at each place.
 mod n24_d_note_walk {
     sitlog_macros::include_dm!("../tests/typed/nre24/n24_d_note_walk");

@@ -375,7 +375,9 @@ mod holes_tests {
             quote!((&r5, r6, &r7)).to_string()
         );
         assert_eq!(t(quote!(holes)), quote!(holes).to_string());
-        let many: Vec<_> = (0..13u32).map(|i| quote::format_ident!("r{}", i.to_string())).collect();
+        let many: Vec<_> = (0..13u32)
+            .map(|i| quote::format_ident!("r{}", i.to_string()))
+            .collect();
         let out = t(quote!(&[#(&#many),*]));
         let first = quote!(&r0 as &dyn machine::AsTerm).to_string();
         assert!(out.contains(&first) && out.starts_with('&') && out.ends_with(']'));
