@@ -21,7 +21,7 @@
 //! its value, so the text is the filled term's, byte for byte.
 //!
 //! Cost (issue 37, `r22_d_sweep_say`): a list cell's header is read once
-//! for its name, arguments and mark ([`Holed::cons`]); an argument is
+//! for its name, arguments and mark (`Holed::cons`); an argument is
 //! looked at as a hole only where its compound is marked (a pattern's
 //! constant part holds none); an item is written as it was seen, not
 //! resolved again; an atom's text is a read of the interner's published

@@ -8,7 +8,7 @@
 //! An atom's text is read without a lock, a thread-local or a hash
 //! ([`Atom::as_str`], issue 37: a `say` writes a word per item): every name is
 //! also published, once, in an append-only table of segments of doubling
-//! size ([`NAMES`]), each slot set once. Invariant: an atom handed out by
+//! size (`NAMES`), each slot set once. Invariant: an atom handed out by
 //! [`Atom::intern`] has its name in the table (published under the
 //! interner's write lock, before the lock is released, and so before any
 //! other thread can learn its id); a slot not set yet (an atom of the
@@ -158,7 +158,7 @@ impl Atom {
         Atom(id)
     }
 
-    /// The atom's text: a read of the published table ([`NAMES`]), no
+    /// The atom's text: a read of the published table (`NAMES`), no
     /// lock, no thread-local, no hash.
     #[inline]
     pub fn as_str(self) -> &'static str {
