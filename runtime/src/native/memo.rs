@@ -244,6 +244,11 @@ pub(crate) fn list_from_term<T: 'static>(
     // than that means the spine is cyclic.
     let most = store.cells.len() / 3;
     let mut items = Vec::new();
+    // The spine's cells, needed only for a list long enough to remember:
+    // the first [`MIN_LEN`] on the stack, the rest (and those) in `cells`
+    // once it is that long, so a short list's conversion allocates no
+    // second vector.
+    let mut first = [0u32; MIN_LEN];
     let mut cells = Vec::new();
     let mut cur = t;
     while let Some(c) = cell_of(cur) {
@@ -263,8 +268,16 @@ pub(crate) fn list_from_term<T: 'static>(
         if items.len() >= most {
             return None;
         }
+        let k = items.len();
         items.push(conv(head)?);
-        cells.push(c);
+        if k < MIN_LEN {
+            first[k] = c;
+        } else {
+            if k == MIN_LEN {
+                cells.extend_from_slice(&first);
+            }
+            cells.push(c);
+        }
         cur = store.deref(tail);
     }
     if cur != Term::NIL {
@@ -272,6 +285,9 @@ pub(crate) fn list_from_term<T: 'static>(
     }
     if items.len() < MIN_LEN || !store.known_ground(t) || !store.is_inert(t) {
         return Some(List::from_vec(items));
+    }
+    if cells.is_empty() {
+        cells.extend_from_slice(&first);
     }
     let items: Rc<[T]> = Rc::from(items);
     remember(store, kind, &items, 0, cells);
