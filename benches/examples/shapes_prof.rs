@@ -31,6 +31,9 @@ use hand22::*;
 #[path = "../src/hand24.rs"]
 mod hand24;
 use hand24::*;
+#[path = "../src/hand25.rs"]
+mod hand25;
+use hand25::*;
 #[path = "../src/hand_nre24.rs"]
 mod hand_nre24;
 use hand_nre24::*;
@@ -295,6 +298,28 @@ mod r24_d_sift_two_lists {
 mod r24_d_near_floats {
     sitlog_macros::include_dm!("../tests/typed/review24/r24_d_near_floats");
 }
+// Helper `review25`'s (session 24).
+mod r25_c_pass_limit {
+    sitlog_macros::include_dm!("../tests/typed/review25/r25_c_pass_limit");
+}
+mod r25_c_rota_list {
+    sitlog_macros::include_dm!("../tests/typed/review25/r25_c_rota_list");
+}
+mod r25_d_obj_records {
+    sitlog_macros::include_dm!("../tests/typed/review25/r25_d_obj_records");
+}
+mod r25_d_prolog_route {
+    sitlog_macros::include_dm!("../tests/typed/review25/r25_d_prolog_route");
+}
+mod r25_d_filter_out {
+    sitlog_macros::include_dm!("../tests/typed/review25/r25_d_filter_out");
+}
+mod r25_d_strings {
+    sitlog_macros::include_dm!("../tests/typed/review25/r25_d_strings");
+}
+mod r25_d_mutual_walk {
+    sitlog_macros::include_dm!("../tests/typed/review25/r25_d_mutual_walk");
+}
 // Helper nre24's (d): a frame entered again from the machine at each place.
 mod n24_d_note_walk {
     sitlog_macros::include_dm!("../tests/typed/nre24/n24_d_note_walk");
@@ -369,6 +394,14 @@ fn piped<A: app::App>(way: &str, app: &A, name: &str, main: &str, n: i64) -> u64
     }
 }
 
+/// [`piped`] of a main DM call with arguments, the pipe starting at 0.
+fn piped_main<A: app::App>(way: &str, app: &A, name: &str, main: &str) -> u64 {
+    match way {
+        "compiled" => run_piped(app, main, Some("0")),
+        _ => run_piped(&Resolved::new(&interpreter(name)), main, Some("0")),
+    }
+}
+
 fn interpreter(dir: &str) -> Ir {
     let root = match dir {
         "echo_calls" | "list_search" => "dms",
@@ -377,6 +410,7 @@ fn interpreter(dir: &str) -> Ir {
         _ if dir.starts_with("r19_") => "../tests/typed/review19",
         _ if dir.starts_with("r22_") => "../tests/typed/review22",
         _ if dir.starts_with("r24_") => "../tests/typed/review24",
+        _ if dir.starts_with("r25_") => "../tests/typed/review25",
         _ if dir.starts_with("n24_") => "../tests/typed/nre24",
         _ => "../tests/typed/shapes",
     };
@@ -578,6 +612,53 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             format!("tune({n}, [{}], {}.5)", freqs.join(","), len - 1)
         }
         "n24_d_note_walk" => format!("survey({n}, {list}, {last})"),
+        // Helper review25's: (c) the count the pipe (from 0), the limit an
+        // argument of the main DM.
+        "r25_c_pass_limit" if way != "hand" => {
+            return piped_main(way, r25_c_pass_limit::program(), name, &format!("lap({n})"))
+        }
+        "r25_c_rota_list" if way != "hand" => {
+            let main = format!("rota({n}, [ann, bob, cy])");
+            return piped_main(way, r25_c_rota_list::program(), name, &main);
+        }
+        "r25_c_pass_limit" | "r25_c_rota_list" => String::new(),
+        "r25_d_obj_records" => {
+            let objs: Vec<String> = r25_objs(len)
+                .iter()
+                .enumerate()
+                .map(|(i, (k, w))| format!("obj(p{i},{},{w})", if *k { "kitchen" } else { "hall" }))
+                .collect();
+            format!("haul({n}, [{}], 50)", objs.join(","))
+        }
+        "r25_d_prolog_route" => {
+            let stops: Vec<String> = (0..len)
+                .map(|i| {
+                    if r25_is_hall(i, len) {
+                        "hall".to_owned()
+                    } else {
+                        format!("p{i}")
+                    }
+                })
+                .collect();
+            format!("errand({n}, [{}], {last})", stops.join(","))
+        }
+        "r25_d_filter_out" => {
+            let stops: Vec<String> = (0..len)
+                .map(|i| {
+                    if r25_is_hall(i, len) {
+                        "hall".to_owned()
+                    } else {
+                        format!("p{i}")
+                    }
+                })
+                .collect();
+            format!("sweep({n}, [{}], hall)", stops.join(","))
+        }
+        "r25_d_strings" => {
+            let goods: Vec<String> = (0..len).map(|i| format!("\"p{i}\"")).collect();
+            format!("shop({n}, [{}], \"{last}\")", goods.join(","))
+        }
+        "r25_d_mutual_walk" => format!("stroll({n}, {list}, {last})"),
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
             let n = n.to_string();
@@ -807,6 +888,49 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                     black_box(s);
                 }),
             ),
+            "r25_c_pass_limit" => hand_r25_pass_limit(n),
+            "r25_c_rota_list" => {
+                let crew = [Sym(10_000), Sym(10_001), Sym(10_002)];
+                hand_r25_rota_list(n, black_box(&crew), black_box(Sym(10_002)))
+            }
+            "r25_d_obj_records" => {
+                let (kitchen, hall) = (Sym(10_001), Sym(10_000));
+                let objs: Vec<Obj> = r25_objs(len)
+                    .iter()
+                    .enumerate()
+                    .map(|(i, (k, w))| Obj(Sym(i as u32), if *k { kitchen } else { hall }, *w))
+                    .collect();
+                hand_r25_obj_records(n, black_box(&objs), black_box(50), black_box(kitchen))
+            }
+            "r25_d_prolog_route" | "r25_d_filter_out" => {
+                let (hall, kitchen) = (Sym(10_000), Sym(10_001));
+                let stops: Vec<Sym> = (0..len)
+                    .map(|i| {
+                        if r25_is_hall(i, len) {
+                            hall
+                        } else {
+                            Sym(i as u32)
+                        }
+                    })
+                    .collect();
+                if name == "r25_d_filter_out" {
+                    hand_r25_filter_out(n, black_box(&stops), black_box(hall))
+                } else {
+                    hand_r25_prolog_route(
+                        n,
+                        black_box(&stops),
+                        black_box(lsym),
+                        black_box(hall),
+                        black_box(kitchen),
+                    )
+                }
+            }
+            "r25_d_strings" => {
+                let goods: Vec<Vec<u8>> = (0..len).map(|i| format!("p{i}").into_bytes()).collect();
+                let want = format!("p{}", len - 1).into_bytes();
+                hand_r25_strings(n, black_box(&goods), black_box(&want))
+            }
+            "r25_d_mutual_walk" => hand_r25_mutual_walk(n, black_box(&syms), black_box(lsym)),
             "r17_c_charge_when" => hand_r17_charge(n),
             "r17_c_courier_global" => hand_r17_courier(n),
             "r17_c_odometer" => hand_r17_odometer(n),
@@ -898,12 +1022,17 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r24_d_sift_two_lists" => ways!(r24_d_sift_two_lists),
         "r24_d_near_floats" => ways!(r24_d_near_floats),
         "n24_d_note_walk" => ways!(n24_d_note_walk),
+        "r25_d_obj_records" => ways!(r25_d_obj_records),
+        "r25_d_prolog_route" => ways!(r25_d_prolog_route),
+        "r25_d_filter_out" => ways!(r25_d_filter_out),
+        "r25_d_strings" => ways!(r25_d_strings),
+        "r25_d_mutual_walk" => ways!(r25_d_mutual_walk),
         "c_expr_compare" => ways!(c_expr_compare),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 82] = [
+const ALL: [&str; 89] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -986,7 +1115,35 @@ const ALL: [&str; 82] = [
     "r24_d_sift_two_lists",
     "r24_d_near_floats",
     "n24_d_note_walk",
+    "r25_c_pass_limit",
+    "r25_c_rota_list",
+    "r25_d_obj_records",
+    "r25_d_prolog_route",
+    "r25_d_filter_out",
+    "r25_d_strings",
+    "r25_d_mutual_walk",
 ];
+
+/// The records of `r25_d_obj_records` at `len` places: in the kitchen
+/// every third, weights `i % 7 + 1`, the last in the kitchen and the only
+/// one above the limit (100 against 50).
+fn r25_objs(len: usize) -> Vec<(bool, i64)> {
+    (0..len)
+        .map(|i| {
+            if i + 1 == len {
+                (true, 100)
+            } else {
+                (i % 3 == 0, i as i64 % 7 + 1)
+            }
+        })
+        .collect()
+}
+
+/// Whether stop `i` of `r25_d_prolog_route` and `r25_d_filter_out` is
+/// `hall`: every fourth from the second, never the last (the target).
+fn r25_is_hall(i: usize, len: usize) -> bool {
+    i % 4 == 1 && i + 1 != len
+}
 
 /// The two lists of `r18_d_lockstep*` at `len` places: `0..len` and a
 /// small weight for each (`i % 3 + 1`), the same length.
