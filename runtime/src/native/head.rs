@@ -14,7 +14,26 @@ use super::FromVal;
 /// tail 1) as a `T`; `None` when there is no such part or it is not a `T`
 /// (never for a frame's parameter that matched the pattern, with the type
 /// inference gave the part).
+///
+/// Inlined: the steps into a compound's argument or a list's head are a
+/// loop of reads in place (`key_of(K-_Qty)` takes `K` at every visit of
+/// a walk); a step into a list's tail, which makes a list, is
+/// [`head_part_at`]'s.
+#[inline]
 pub fn head_part<T: FromVal>(v: &Val, path: &[usize]) -> Option<T> {
+    let mut cur = v;
+    for (n, &k) in path.iter().enumerate() {
+        cur = match cur {
+            Val::Tagged(c) => c.args().get(k)?,
+            Val::List(l) if k == 0 => l.first()?,
+            _ => return head_part_at(cur, &path[n..]),
+        };
+    }
+    T::from_val(cur)
+}
+
+/// [`head_part`] by recursion on the path, for a step into a list's tail.
+fn head_part_at<T: FromVal>(v: &Val, path: &[usize]) -> Option<T> {
     let Some((&k, rest)) = path.split_first() else {
         return T::from_val(v);
     };
@@ -22,12 +41,12 @@ pub fn head_part<T: FromVal>(v: &Val, path: &[usize]) -> Option<T> {
         Val::List(l) => {
             let (x, tail) = l.split_first()?;
             match k {
-                0 => head_part(x, rest),
-                1 => head_part(&Val::List(tail), rest),
+                0 => head_part_at(x, rest),
+                1 => head_part_at(&Val::List(tail), rest),
                 _ => None,
             }
         }
-        Val::Tagged(c) => head_part(c.args().get(k)?, rest),
+        Val::Tagged(c) => head_part_at(c.args().get(k)?, rest),
         _ => None,
     }
 }

@@ -13,8 +13,12 @@
 //! Invariant: a slice shape is never empty (`start < items.len()`; the
 //! empty list is `Nil`, which allocates nothing), a cell's `len` is its
 //! list's length, and dropping a chain of cells of any length takes
-//! constant stack (`Drop for Cell` unlinks it in a loop).
+//! constant stack (the cells' own module, [`cells`], frees a chain in a
+//! loop, each block kept by a per-thread pool for the next `cons`).
 
+mod cells;
+
+use cells::{CellRef, Node};
 use std::fmt;
 use std::rc::Rc;
 
@@ -28,14 +32,7 @@ enum Shape<T> {
         items: Rc<[T]>,
         start: u32,
     },
-    Cons(Rc<Cell<T>>),
-}
-
-struct Cell<T> {
-    head: T,
-    tail: List<T>,
-    /// Length of the list this cell starts.
-    len: usize,
+    Cons(CellRef<T>),
 }
 
 impl<T> List<T> {
@@ -73,7 +70,7 @@ impl<T> List<T> {
     /// `[head|tail]`: one cell, `tail` shared.
     pub fn cons(head: T, tail: List<T>) -> List<T> {
         let len = tail.len() + 1;
-        List(Shape::Cons(Rc::new(Cell { head, tail, len })))
+        List(Shape::Cons(CellRef::new(head, tail, len)))
     }
 
     /// Whether this is `[]`.
@@ -190,7 +187,7 @@ impl<T> List<T> {
             (Shape::Slice { items: a, start: i }, Shape::Slice { items: b, start: j }) => {
                 j >= i && Rc::ptr_eq(a, b)
             }
-            (Shape::Cons(a), Shape::Cons(b)) => Rc::ptr_eq(a, b),
+            (Shape::Cons(a), Shape::Cons(b)) => CellRef::ptr_eq(a, b),
             _ => false,
         }
     }
@@ -203,7 +200,7 @@ impl<T> List<T> {
             (Shape::Slice { items: a, start: i }, Shape::Slice { items: b, start: j }) => {
                 i == j && Rc::ptr_eq(a, b)
             }
-            (Shape::Cons(a), Shape::Cons(b)) => Rc::ptr_eq(a, b),
+            (Shape::Cons(a), Shape::Cons(b)) => CellRef::ptr_eq(a, b),
             _ => false,
         }
     }
@@ -274,7 +271,7 @@ impl<T> Clone for List<T> {
                 items: Rc::clone(items),
                 start: *start,
             },
-            Shape::Cons(cell) => Shape::Cons(Rc::clone(cell)),
+            Shape::Cons(cell) => Shape::Cons(cell.clone()),
         })
     }
 }
@@ -282,22 +279,6 @@ impl<T> Clone for List<T> {
 impl<T> Default for List<T> {
     fn default() -> List<T> {
         List::nil()
-    }
-}
-
-impl<T> Drop for Cell<T> {
-    /// Unlinks the chain behind this cell one cell at a time, so a long
-    /// chain does not drop recursively (its elements drop as usual: their
-    /// own nesting is bounded by the type's depth).
-    fn drop(&mut self) {
-        let mut rest = std::mem::take(&mut self.tail);
-        while let Shape::Cons(cell) = std::mem::take(&mut rest).0 {
-            match Rc::try_unwrap(cell) {
-                Ok(mut cell) => rest = std::mem::take(&mut cell.tail),
-                // Shared: someone else keeps the rest alive.
-                Err(_) => break,
-            }
-        }
     }
 }
 
@@ -339,7 +320,7 @@ impl<'a, T> IntoIterator for &'a List<T> {
 /// Iterator over a [`List`]'s elements: the chain of cells first, then the
 /// slice it ends in.
 pub struct Iter<'a, T> {
-    cell: Option<&'a Cell<T>>,
+    cell: Option<&'a Node<T>>,
     slice: std::slice::Iter<'a, T>,
     left: usize,
 }
@@ -349,7 +330,7 @@ impl<'a, T> Iter<'a, T> {
         match &list.0 {
             Shape::Nil => {}
             Shape::Slice { items, start } => self.slice = items[*start as usize..].iter(),
-            Shape::Cons(cell) => self.cell = Some(cell),
+            Shape::Cons(cell) => self.cell = Some(&**cell),
         }
     }
 }

@@ -4076,6 +4076,8 @@ mod nnext23;
 
 /// Helper `nstock23`'s DMs with a pattern in their head (issue 37).
 mod nstock23;
+/// Helper `nstock25`'s walks: parameters read after a call, shared cells.
+mod nstock25;
 
 /// Helper `nre24`'s walks entered again from the machine at each place
 /// (issue 37).

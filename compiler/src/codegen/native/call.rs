@@ -193,6 +193,13 @@ impl Gen<'_> {
                 if outs.iter().any(|&(_, o)| o == r) {
                     continue;
                 }
+                // A parameter held as it is (`lookup(Stock, Want)`'s
+                // `Want`): the exit arcs read it from the frame
+                // (`Gen::nat_exit` loads it, by reference where it is only
+                // read), no copy kept in the variant.
+                if self.nat_param_reg(d, ix, r) {
+                    continue;
+                }
                 if !fields.iter().any(|(x, _)| *x == r) {
                     fields.push((r, d.types[ix].regs[r as usize].ty.clone()));
                 }
@@ -222,6 +229,23 @@ impl Gen<'_> {
             }
         }
         Ok(fields)
+    }
+
+    /// Whether register `r` of situation `ix` is a parameter of the DM
+    /// read whole, of the parameter's own type (its load is `pN.clone()`,
+    /// `load_head_arg`): the frame holds that value for as long as the
+    /// situation waits, and never writes it (a variable bound by the callee
+    /// is bound in the store, the same term either way), so reading it
+    /// after the call reads what a copy made before it would hold.
+    fn nat_param_reg(&self, d: &Dm, ix: usize, r: Reg) -> bool {
+        let Some(i) = d.plans[ix].inits.iter().find_map(|(x, init)| match init {
+            Init::HeadArg(i) if *x == r => Some(*i),
+            _ => None,
+        }) else {
+            return false;
+        };
+        let unbound = d.types[ix].unbound.get(r as usize).copied();
+        unbound == Some(false) && d.params.get(i) == Some(&d.types[ix].regs[r as usize].ty)
     }
 
     /// The call's DM name and argument values (`None`: evaluating it is not
