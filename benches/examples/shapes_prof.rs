@@ -34,6 +34,9 @@ use hand24::*;
 #[path = "../src/hand_nre24.rs"]
 mod hand_nre24;
 use hand_nre24::*;
+#[path = "../src/hand25g.rs"]
+mod hand25g;
+use hand25g::*;
 
 mod c_limit_inarg_echo {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_limit_inarg_echo");
@@ -299,6 +302,14 @@ mod r24_d_near_floats {
 mod n24_d_note_walk {
     sitlog_macros::include_dm!("../tests/typed/nre24/n24_d_note_walk");
 }
+// Helper ngauge25's: a float `is` in a prog (c), in a next situation's
+// argument (d).
+mod g25_c_float_prog {
+    sitlog_macros::include_dm!("../tests/typed/ngauge25/g25_c_float_prog");
+}
+mod g25_d_float_next {
+    sitlog_macros::include_dm!("../tests/typed/ngauge25/g25_d_float_next");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -378,6 +389,7 @@ fn interpreter(dir: &str) -> Ir {
         _ if dir.starts_with("r22_") => "../tests/typed/review22",
         _ if dir.starts_with("r24_") => "../tests/typed/review24",
         _ if dir.starts_with("n24_") => "../tests/typed/nre24",
+        _ if dir.starts_with("g25_") => "../tests/typed/ngauge25",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -578,6 +590,13 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             format!("tune({n}, [{}], {}.5)", freqs.join(","), len - 1)
         }
         "n24_d_note_walk" => format!("survey({n}, {list}, {last})"),
+        // Helper ngauge25's: the charge a float; weights `i % 3 + 1`, a
+        // cap never passed (every place walked).
+        "g25_c_float_prog" => format!("battery({n}, 0.0)"),
+        "g25_d_float_next" => {
+            let ws: Vec<String> = (0..len).map(|i| (i % 3 + 1).to_string()).collect();
+            format!("tally({n}, [{}], 1.0e9)", ws.join(","))
+        }
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
             let n = n.to_string();
@@ -807,6 +826,11 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                     black_box(s);
                 }),
             ),
+            "g25_c_float_prog" => hand_g25_float_prog(n, black_box(0.0)),
+            "g25_d_float_next" => {
+                let ws: Vec<i64> = (0..len as i64).map(|i| i % 3 + 1).collect();
+                hand_g25_float_next(n, black_box(&ws), black_box(1.0e9))
+            }
             "r17_c_charge_when" => hand_r17_charge(n),
             "r17_c_courier_global" => hand_r17_courier(n),
             "r17_c_odometer" => hand_r17_odometer(n),
@@ -898,12 +922,14 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r24_d_sift_two_lists" => ways!(r24_d_sift_two_lists),
         "r24_d_near_floats" => ways!(r24_d_near_floats),
         "n24_d_note_walk" => ways!(n24_d_note_walk),
+        "g25_c_float_prog" => ways!(g25_c_float_prog),
+        "g25_d_float_next" => ways!(g25_d_float_next),
         "c_expr_compare" => ways!(c_expr_compare),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 82] = [
+const ALL: [&str; 84] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -986,6 +1012,8 @@ const ALL: [&str; 82] = [
     "r24_d_sift_two_lists",
     "r24_d_near_floats",
     "n24_d_note_walk",
+    "g25_c_float_prog",
+    "g25_d_float_next",
 ];
 
 /// The two lists of `r18_d_lockstep*` at `len` places: `0..len` and a
