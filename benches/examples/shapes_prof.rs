@@ -37,6 +37,9 @@ use hand25::*;
 #[path = "../src/hand_nre24.rs"]
 mod hand_nre24;
 use hand_nre24::*;
+#[path = "../src/hand25g.rs"]
+mod hand25g;
+use hand25g::*;
 
 mod c_limit_inarg_echo {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_limit_inarg_echo");
@@ -324,6 +327,14 @@ mod r25_d_mutual_walk {
 mod n24_d_note_walk {
     sitlog_macros::include_dm!("../tests/typed/nre24/n24_d_note_walk");
 }
+// Helper ngauge25's: a float `is` in a prog (c), in a next situation's
+// argument (d).
+mod g25_c_float_prog {
+    sitlog_macros::include_dm!("../tests/typed/ngauge25/g25_c_float_prog");
+}
+mod g25_d_float_next {
+    sitlog_macros::include_dm!("../tests/typed/ngauge25/g25_d_float_next");
+}
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
 // `benches/benches/compiled.rs` times (`hand_echo_calls`,
@@ -412,6 +423,7 @@ fn interpreter(dir: &str) -> Ir {
         _ if dir.starts_with("r24_") => "../tests/typed/review24",
         _ if dir.starts_with("r25_") => "../tests/typed/review25",
         _ if dir.starts_with("n24_") => "../tests/typed/nre24",
+        _ if dir.starts_with("g25_") => "../tests/typed/ngauge25",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -659,6 +671,13 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             format!("shop({n}, [{}], \"{last}\")", goods.join(","))
         }
         "r25_d_mutual_walk" => format!("stroll({n}, {list}, {last})"),
+        // Helper ngauge25's: the charge a float; weights `i % 3 + 1`, a
+        // cap never passed (every place walked).
+        "g25_c_float_prog" => format!("battery({n}, 0.0)"),
+        "g25_d_float_next" => {
+            let ws: Vec<String> = (0..len).map(|i| (i % 3 + 1).to_string()).collect();
+            format!("tally({n}, [{}], 1.0e9)", ws.join(","))
+        }
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
             let n = n.to_string();
@@ -931,6 +950,11 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                 hand_r25_strings(n, black_box(&goods), black_box(&want))
             }
             "r25_d_mutual_walk" => hand_r25_mutual_walk(n, black_box(&syms), black_box(lsym)),
+            "g25_c_float_prog" => hand_g25_float_prog(n, black_box(0.0)),
+            "g25_d_float_next" => {
+                let ws: Vec<i64> = (0..len as i64).map(|i| i % 3 + 1).collect();
+                hand_g25_float_next(n, black_box(&ws), black_box(1.0e9))
+            }
             "r17_c_charge_when" => hand_r17_charge(n),
             "r17_c_courier_global" => hand_r17_courier(n),
             "r17_c_odometer" => hand_r17_odometer(n),
@@ -1027,12 +1051,14 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r25_d_filter_out" => ways!(r25_d_filter_out),
         "r25_d_strings" => ways!(r25_d_strings),
         "r25_d_mutual_walk" => ways!(r25_d_mutual_walk),
+        "g25_c_float_prog" => ways!(g25_c_float_prog),
+        "g25_d_float_next" => ways!(g25_d_float_next),
         "c_expr_compare" => ways!(c_expr_compare),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 89] = [
+const ALL: [&str; 91] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -1122,6 +1148,8 @@ const ALL: [&str; 89] = [
     "r25_d_filter_out",
     "r25_d_strings",
     "r25_d_mutual_walk",
+    "g25_c_float_prog",
+    "g25_d_float_next",
 ];
 
 /// The records of `r25_d_obj_records` at `len` places: in the kitchen

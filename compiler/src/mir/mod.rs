@@ -11,8 +11,9 @@
 //! names each of its variables once, an argument a variable or a pattern
 //! ([`Init::HeadPath`]); no term deeper than [`MAX_DEPTH`]),
 //! *which variables are lazy* (first occurring as the argument of
-//! `get`/`inc` or the variable of `is`) and *where a constant next
-//! situation goes* are decided here only. The interpreter
+//! `get`/`inc` or the variable of `is`), *where a constant next
+//! situation goes* and *which out_arg passes the pipe on unchanged*
+//! ([`OutPass`]) are decided here only. The interpreter
 //! ([`crate::interp`]) runs the plans; the code generator
 //! ([`crate::codegen`]) prints them as Rust; both therefore take the same
 //! steps in the same order, which `tests/tests/suite/random_agreement.rs`
@@ -25,6 +26,8 @@ use sitlog_syntax::atoms;
 use std::collections::{HashMap, HashSet};
 
 mod lower;
+mod out_pass;
+pub use out_pass::OutPass;
 pub mod ty;
 
 use lower::Planner;

@@ -89,7 +89,9 @@
 //!   argument, `apply(name_of(_), ..)`, `get(vocab, _)`) gets a fresh
 //!   variable there. Where its value flows on (a DM parameter, a next
 //!   situation's argument, the pipe, an arc's import) it counts as `Term`
-//!   (maybe unbound), so no receiver is typed by it.
+//!   (maybe unbound), so no receiver is typed by it; but an out_arg that
+//!   is such a variable nothing binds ([`super::OutPass::Unchanged`])
+//!   passes the pipe on, which leaves with the incoming pipe's type.
 //! - **output arguments** (D-20, D-23): a fresh variable given as an
 //!   argument of a DM call, read nowhere before the call, is bound when
 //!   the call returns by the callee's final `diag_mod` (`welcome(Items)`
@@ -1683,7 +1685,12 @@ impl<'a> State<'a> {
                 if let Some(b) = diag_mod {
                     self.scan_writes(d, s, b, 0);
                 }
-                let leaves = out.unwrap_or_else(|| pipe.clone());
+                // An out_arg nothing binds passes the pipe on (`OutPass`).
+                let leaves = match out {
+                    Some(_) if p.final_out_pass() == super::OutPass::Unchanged => pipe.clone(),
+                    Some(o) => o,
+                    None => pipe.clone(),
+                };
                 self.changed |= self.t.dms[d].pipe_out.absorb(&leaves);
             }
             KindPlan::Perceptual(arcs) => self.arcs(d, s, arcs, None, &pipe, out.as_ref()),
@@ -2034,6 +2041,8 @@ impl<'a> State<'a> {
                 }
             }
             let leaves = match (&arc.out_arg, out) {
+                // A variable nothing binds: the pipe passes on (`OutPass`).
+                (Some(_), _) if arc.out_pass() == super::OutPass::Unchanged => pipe.clone(),
                 (Some(e), _) => self.ev(d, s, e),
                 (None, Some(o)) => o.clone(),
                 (None, None) => pipe.clone(),

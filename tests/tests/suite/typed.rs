@@ -4083,6 +4083,10 @@ mod nstock25;
 /// (issue 37).
 mod nre24;
 
+/// Helper `ngauge25`'s out_args left unbound and float `is` in a prog and
+/// a next situation's argument (issue 37).
+mod ngauge25;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");

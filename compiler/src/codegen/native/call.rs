@@ -1091,8 +1091,14 @@ impl Gen<'_> {
                 // The callee ran since the pipe was read: an out_arg writes
                 // the saved value back ([`Dm::pipe_in`] is the visit's).
                 let pipe_in = d.pipe_in.take();
-                let next =
-                    self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &cur_name);
+                let next = self.nat_next_out(
+                    d,
+                    ix,
+                    &arc.next,
+                    super::pipe::arc_out(arc),
+                    &regs,
+                    &cur_name,
+                );
                 d.pipe_in.set(pipe_in);
                 // One expression (a variant, a `'sel` block) as it is; else
                 // a block.
@@ -1376,7 +1382,7 @@ impl Gen<'_> {
         let curl = Literal::u32_unsuffixed(ix as u32);
         let pipe_in = d.pipe_in.take();
         *d.rec.borrow_mut() = super::rec_entry();
-        let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), regs, cur_name);
+        let next = self.nat_next_out(d, ix, &arc.next, super::pipe::arc_out(arc), regs, cur_name);
         *d.rec.borrow_mut() = quote!();
         d.pipe_in.set(pipe_in);
         let next = super::as_expr(next?);

@@ -67,7 +67,7 @@ impl Gen<'_> {
             super::ev_binds(item, &mut binds);
         }
         super::next_binds(&arc.next, &mut binds);
-        if let Some(o) = &arc.out_arg {
+        if let Some(o) = super::pipe::arc_out(arc) {
             super::ev_binds(o, &mut binds);
         }
         let mut mregs = regs.clone();
@@ -96,7 +96,7 @@ impl Gen<'_> {
         };
         let mut next_ts = Vec::new();
         let next = self.next_term(&arc.next, &mregs, &mut next_ts, &mut n)?;
-        let out = match &arc.out_arg {
+        let out = match super::pipe::arc_out(arc) {
             Some(o) => {
                 let mut out_ts = Vec::new();
                 let t = self.nat_ev_term(o, &mregs, &mut out_ts, &mut n)?;

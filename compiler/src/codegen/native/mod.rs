@@ -2791,8 +2791,13 @@ impl Gen<'_> {
                 };
                 let v = variant(ix);
                 let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
-                // out_arg: the pipe's new value (never unbound here).
-                let (out_set, out_final) = match &plan.out_arg {
+                // out_arg: the pipe's new value; a variable nothing binds
+                // passes the pipe on (`mir::OutPass`, D-18): none.
+                let final_out = match plan.final_out_pass() {
+                    crate::mir::OutPass::Unchanged => None,
+                    crate::mir::OutPass::Value => plan.out_arg.as_ref(),
+                };
+                let (out_set, out_final) = match final_out {
                     Some((b, _)) => {
                         let v = self.nat_value(b, &regs)?.e;
                         (
@@ -2913,7 +2918,7 @@ impl Gen<'_> {
                 };
                 // Without an out_arg, the entry and the pipe kept as the
                 // final's output by one call (`Cx::enter_final`).
-                let enter = if plan.out_arg.is_some() {
+                let enter = if final_out.is_some() {
                     quote!(cx.enter_counted(&mut count, #cur, #id); #out_final)
                 } else {
                     quote!(cx.enter_final(&mut count, #cur, #id)?;)
@@ -3114,9 +3119,11 @@ impl Gen<'_> {
 
     /// A `prog` of `set(l, V)` and `inc(l, _)` of the frame's locals and `V is E` elements
     /// (`V` not set yet, `E` integer `+`, `-`,
-    /// `*` over registers and integer constants): computed in Rust with
-    /// checked operations; when an operand is not an int or an operation
-    /// overflows, the element is evaluated on terms where the term code
+    /// `*` over registers and integer constants, or float arithmetic as an
+    /// arc's action computes it, `float_expr`): computed in Rust with
+    /// checked operations; when an operand is not a number of its kind, an
+    /// operation overflows or a float result is not finite, the element is
+    /// evaluated on terms where the term code
     /// evaluates it (the machine entered in the situation: its value or
     /// its error), and its value converted to `V`'s type.
     fn nat_prog(&self, d: &Dm, ix: usize, prog: &Prog, regs: &mut Regs) -> N<TokenStream> {
@@ -3236,20 +3243,32 @@ impl Gen<'_> {
                             .into(),
                     ),
                 };
-            let e = self.nat_int_expr(expr, regs)?;
             let ty = d.types[ix].regs[*dst as usize].ty.clone();
             let rty = rust_ty(&ty)?;
             let x = reg(*dst);
-            let native = match &ty {
-                Ty::Int => quote!(v),
-                t if held_as_val(t) => quote!(Val::Int(v)),
-                _ => return Err(format!("its prog's `is` gives a value of type {ty}")),
+            // Float arithmetic (`K is N * 0.5`) as an arc's action does it
+            // (`float_expr`): `None` (no number, an overflow, a result not
+            // finite) takes the machine's evaluation below.
+            let (e, num, native) = if self.float_typed(expr, regs) {
+                let native = match &ty {
+                    Ty::Float => quote!(v),
+                    t if held_as_val(t) => quote!(Val::Float(v)),
+                    _ => return Err(format!("its prog's `is` gives a value of type {ty}")),
+                };
+                (self.nat_float_expr(expr, regs)?, quote!(f64), native)
+            } else {
+                let native = match &ty {
+                    Ty::Int => quote!(v),
+                    t if held_as_val(t) => quote!(Val::Int(v)),
+                    _ => return Err(format!("its prog's `is` gives a value of type {ty}")),
+                };
+                (self.nat_int_expr(expr, regs)?, quote!(i64), native)
             };
             let mut ts = Vec::new();
             let mut n = 0;
             let t = self.nat_build_term(expr, regs, &mut ts, &mut n)?;
             out.push(quote! {
-                let prog_v: Option<i64> = #e;
+                let prog_v: Option<#num> = #e;
                 let #x: #rty = match prog_v {
                     Some(v) => #native,
                     None => {
@@ -3377,7 +3396,7 @@ impl Gen<'_> {
             if let Ok(act) = self.nat_exit_action(d, ix, k, arc, &mut nregs) {
                 let name = self.atom_native(plan.id.0)?;
                 let next =
-                    self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &nregs, &name)?;
+                    self.nat_next_out(d, ix, &arc.next, pipe::arc_out(arc), &nregs, &name)?;
                 fast = Some(quote! { #act count += 1; #next });
                 // Recorded above the machine's frames (a level of its
                 // own): the same, the entry made of the values.
@@ -3414,7 +3433,7 @@ impl Gen<'_> {
         let conv = self.nat_bound_at_boundary(
             st,
             &arc.next,
-            arc.out_arg.as_ref(),
+            pipe::arc_out(arc),
             &regs,
             reloads,
             &enter_id,
@@ -3624,7 +3643,7 @@ impl Gen<'_> {
         }
         let name = self.atom_native(plan.id.0)?;
         *d.rec.borrow_mut() = rec_entry();
-        let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), &regs, &name);
+        let next = self.nat_next_out(d, ix, &arc.next, pipe::arc_out(arc), &regs, &name);
         *d.rec.borrow_mut() = quote!();
         let next = next?;
         // One expression (most: a variant, a `'sel` block) is the
@@ -3730,7 +3749,7 @@ impl Gen<'_> {
         let cur = Literal::u32_unsuffixed(ix as u32);
         let name = self.atom_native(d.plans[ix].id.0).ok()?;
         *d.rec.borrow_mut() = rec_entry();
-        let next = self.nat_next_out(d, ix, &arc.next, arc.out_arg.as_ref(), nregs, &name);
+        let next = self.nat_next_out(d, ix, &arc.next, pipe::arc_out(arc), nregs, &name);
         *d.rec.borrow_mut() = quote!();
         let next = next.ok()?;
         Some(quote! {

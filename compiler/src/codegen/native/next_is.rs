@@ -14,6 +14,11 @@
 //! visit. The same where `V` is first met inside a conditional's branch
 //! (`(I >= Top -> roof ; otherwise -> rung(_J is I + 1))`, helper
 //! `review22`), which the MIR makes an [`Ev::Is`] of an unset register.
+//! Float arithmetic (`add(Rest, _ is S + W * 0.5)`: `E` a float by
+//! [`Gen::float_typed`], helper `ngauge25`) the same way, computed as an
+//! arc's action computes it ([`Gen::nat_float_expr`]): an operand that is
+//! no number, an int overflow inside or a result that is not finite takes
+//! the cold path above, the machine's evaluation.
 
 use super::{Dm, Regs, N, V};
 use crate::codegen::Gen;
@@ -27,15 +32,16 @@ use sitlog_syntax::Atom;
 /// [`Ev::Is`] of a register that starts unbound in the visit (not a
 /// parameter, an id part or the pipe) and that nothing set before (the MIR
 /// makes `Is` of a variable first met inside a conditional's branch:
-/// `(I >= Top -> roof ; otherwise -> rung(_J is I + 1))`); its expression
-/// and register.
+/// `(I >= Top -> roof ; otherwise -> rung(_J is I + 1))`; in a
+/// perceptual situation such a variable is a fresh term `fresh_r<n>` the
+/// visit would make, still unbound here); its expression and register.
 pub(super) fn fresh_is<'e>(d: &Dm, cur: usize, e: &'e Ev, regs: &Regs) -> Option<(&'e Build, Reg)> {
     match e {
         Ev::IsFresh { expr, dst } => Some((expr, *dst)),
         Ev::Is {
             lhs: Build::Reg(dst),
             expr,
-        } if !regs.contains_key(dst)
+        } if regs.get(dst).is_none_or(|(x, _)| super::is_fresh(x))
             && d.plans[cur]
                 .inits
                 .iter()
@@ -73,9 +79,15 @@ impl Gen<'_> {
                     if !super::free_here(d, cur, dst, regs) {
                         return Err("`V is E` whose `V` is read again".into());
                     }
-                    let e = self.nat_int_expr(expr, regs)?;
+                    // Float arithmetic as an arc's action does it
+                    // (`float_expr`); else integer arithmetic.
+                    let (e, num, ty) = if self.float_typed(expr, regs) {
+                        (self.nat_float_expr(expr, regs)?, quote!(f64), Ty::Float)
+                    } else {
+                        (self.nat_int_expr(expr, regs)?, quote!(i64), Ty::Int)
+                    };
                     let x = format_ident!("is{}", k);
-                    ints.push(quote!(let #x: Option<i64> = #e;));
+                    ints.push(quote!(let #x: Option<#num> = #e;));
                     let t = self.nat_build_term(expr, regs, &mut cold, &mut n)?;
                     let y = format_ident!("is_t{}", k);
                     cold.push(quote! {
@@ -85,10 +97,7 @@ impl Gen<'_> {
                         };
                     });
                     terms.push(quote!(#y));
-                    vals.push(V {
-                        e: quote!(#x),
-                        ty: Ty::Int,
-                    });
+                    vals.push(V { e: quote!(#x), ty });
                     xs.push(x);
                 }
                 None => {

@@ -23,6 +23,15 @@
 //! next situation is handed over: once on every way
 //! (`Gen::nat_next_out_after`).
 //!
+//! An arc's out_arg that is a variable of the arc nothing binds
+//! (`mir::OutPass::Unchanged`: `out_arg ==> R1` with an exit arc
+//! `error(E) : say(..) => rest` that leaves `R1` unbound) is no out_arg
+//! here ([`arc_out`]): the pipe passes on unchanged (D-18), in a recursive
+//! situation the one its embedded DM handed back (D-22); a final's the
+//! same (`SitPlan::final_out_pass`). Without this such an arc failed to
+//! generate (its register read unset) and its situation ran from its
+//! template at every visit (`r24_d_gauge_guard`).
+//!
 //! An in_arg that is a pattern (`N-L`, `f(A, [B|C])`) is matched where the
 //! pipe's term is (`Gen::nat_pipe_match`): its variables become registers
 //! of the visit, and a pipe it does not take natively hands the visit to
@@ -489,7 +498,15 @@ impl Gen<'_> {
                 let v = super::place(&v);
                 quote!(let pipe_out = cx.term(&#v);)
             };
-            (pipe_out, quote!(cx.set_pipe(pipe_out);))
+            // A value held as a term may be an unbound variable (a fresh
+            // one the arc may or may not have bound): decided at run time,
+            // the pipe passed on then (D-18, `Cx::out_value`).
+            let set = if v.ty == Ty::Term {
+                quote!(cx.out_value(pipe_out);)
+            } else {
+                quote!(cx.set_pipe(pipe_out);)
+            };
+            (pipe_out, set)
         };
         *d.out.borrow_mut() = set.clone();
         let n = self.nat_next(d, cur, next, regs, cur_name);
@@ -944,6 +961,18 @@ impl Gen<'_> {
             return Ok(None);
         };
         Ok(Some(quote!((if #c { #ta } else { #tb }))))
+    }
+}
+
+/// The out_arg an arc's native code evaluates: none where it passes the
+/// pipe on unchanged ([`crate::mir::OutPass::Unchanged`]: a variable of
+/// the arc nothing binds, D-18), which is then the arc without an
+/// out_arg; else the arc's out_arg (a variable held as a term is decided
+/// at run time, `Cx::out_value`).
+pub(super) fn arc_out(arc: &crate::mir::ArcPlan) -> Option<&Ev> {
+    match arc.out_pass() {
+        crate::mir::OutPass::Unchanged => None,
+        crate::mir::OutPass::Value => arc.out_arg.as_ref(),
     }
 }
 
