@@ -25,6 +25,7 @@ use sitlog_syntax::atoms;
 use std::collections::{HashMap, HashSet};
 
 mod lower;
+pub(crate) use lower::is_type_test;
 pub mod ty;
 
 use lower::Planner;

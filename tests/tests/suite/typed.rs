@@ -4042,6 +4042,8 @@ mod review19;
 mod review22;
 /// Helper `review24`'s workloads with bad inputs (issue 37).
 mod review24;
+/// Helper `nwinch25`'s outputs some finals leave and type tests (issue 37).
+mod nwinch25;
 
 /// Helper `nfn19`'s plain functions returning compounds (issue 37).
 mod plain_compounds;
