@@ -208,10 +208,7 @@ mod tests {
                 atoms::DOT,
                 [Val::Int(1), Val::List(List::from_vec(vec![Val::Int(2)]))],
             )),
-            Val::Tagged(Compound::new(
-                f,
-                [Val::Term(std::cell::Cell::new(unbound))],
-            )),
+            Val::Tagged(Compound::new(f, [Val::Term(std::cell::Cell::new(unbound))])),
             Val::Term(std::cell::Cell::new(unbound)),
             Val::Term(std::cell::Cell::new(Term::int(4))),
         ];

@@ -2484,7 +2484,10 @@ pub(crate) fn arc_mentions(arc: &crate::mir::ArcPlan, r: Reg) -> bool {
         || action
         || next(&arc.next, r, 0)
         || arc.out_arg.as_ref().is_some_and(|e| ev_mentions(e, r, 0))
-        || arc.diag_mod.as_ref().is_some_and(|b| build_mentions(b, r, 0))
+        || arc
+            .diag_mod
+            .as_ref()
+            .is_some_and(|b| build_mentions(b, r, 0))
 }
 
 pub(crate) fn build_mentions(b: &Build, r: Reg, depth: usize) -> bool {

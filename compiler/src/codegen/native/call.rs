@@ -1083,8 +1083,14 @@ impl Gen<'_> {
                 }
                 // An arc taking a final that leaves the outputs unbound
                 // reads none of them (the MIR typed them so, `mir::ty`).
-                if leaving && outs.iter().any(|&(_, r)| crate::mir::ty::arc_mentions(arc, r)) {
-                    return Err("an exit arc reads an output argument a final leaves unbound".into());
+                if leaving
+                    && outs
+                        .iter()
+                        .any(|&(_, r)| crate::mir::ty::arc_mentions(arc, r))
+                {
+                    return Err(
+                        "an exit arc reads an output argument a final leaves unbound".into(),
+                    );
                 }
                 let action = self.nat_exit_action(d, ix, i, arc, &mut regs)?;
                 // The callee ran since the pipe was read: an out_arg writes
@@ -1111,10 +1117,14 @@ impl Gen<'_> {
                     let next_at = #next;
                     break 'visit next_at;
                 };
-arcs_code.push((cond, (i, head), plain, rec));
+                arcs_code.push((cond, (i, head), plain, rec));
             }
             let sk = format_ident!("S{}", k);
-            finals.push((quote!(super::#callee_n::#sk { #(#cf),* }), arcs_code, leaving));
+            finals.push((
+                quote!(super::#callee_n::#sk { #(#cf),* }),
+                arcs_code,
+                leaving,
+            ));
         }
         let curl = Literal::u32_unsuffixed(ix as u32);
         let arms = finals.into_iter().map(|(pat, arcs, leaving)| {

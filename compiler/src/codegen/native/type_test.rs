@@ -43,7 +43,10 @@ impl Gen<'_> {
         }
         let k = TypeTest::of(op.as_str(), args.len()).ok_or("not a type test")?;
         let [Build::Reg(r)] = &args[..] else {
-            return Err(format!("`{}/1` of a value that is not a variable", k.name()));
+            return Err(format!(
+                "`{}/1` of a value that is not a variable",
+                k.name()
+            ));
         };
         if regs.get(r).is_some_and(|(v, _)| super::is_fresh(v)) {
             return Err(format!("`{}/1` of a fresh variable", k.name()));

@@ -20,6 +20,21 @@ mod dms {
     pub mod typed {
         sitlog_macros::include_dm!("typed/nwinch25/typed");
     }
+    pub mod tally_grade {
+        sitlog_macros::include_dm!("typed/nwinch25/n25_c_tally_grade");
+    }
+}
+
+/// The workload `n25_c_tally_grade` with pipes of each kind: ints (one,
+/// several, zero and negative: `other`), a float, an atom, a string, a
+/// list, a compound, unbound.
+#[test]
+fn tally_grade_agrees() {
+    let ir = interpreter("typed/nwinch25/n25_c_tally_grade");
+    for pipe in ["3", "1", "0", "-2", "2.5", "a", "\"s\"", "[1]", "f(1)", "_"] {
+        agree_piped(dms::tally_grade::program(), &ir, "tally", Some(pipe), "");
+        agree_piped(&Resolved::new(&ir), &ir, "tally", Some(pipe), "");
+    }
 }
 
 /// Outputs bound by some finals, all, none; the variable said, compared
