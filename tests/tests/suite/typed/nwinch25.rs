@@ -99,7 +99,8 @@ fn type_tests_agree() {
     for v in values {
         let kinds = format!("kinds({v})");
         let both = format!("both({v})");
-        agree_both(dms::kinds::program(), &ir, &[&kinds, &both]);
+        let mixed = format!("mixed({v})");
+        agree_both(dms::kinds::program(), &ir, &[&kinds, &both, &mixed]);
     }
 }
 

@@ -41,3 +41,19 @@ diag_mod(both(X),
   ],
   []
 ).
+
+% A type test in a conjunction in a situation native code does not run
+% (`@<` is a condition it leaves to the machine): the term code's
+% junction calls the type test as a goal.
+diag_mod(mixed(X),
+  [ [ id ==> a,
+      type ==> neutral,
+      arcs ==> [ empty : [ (atom(X), X \== z -> yes ; otherwise -> no),
+                           (\+ integer(X) ; X > 2 -> over ; otherwise -> under) ]
+                 => (X @< m -> low ; otherwise -> high) ]
+    ],
+    [ id ==> low, type ==> final ],
+    [ id ==> high, type ==> final ]
+  ],
+  []
+).
