@@ -34,6 +34,9 @@ use hand24::*;
 #[path = "../src/hand25.rs"]
 mod hand25;
 use hand25::*;
+#[path = "../src/hand25w.rs"]
+mod hand25w;
+use hand25w::*;
 #[path = "../src/hand_nre24.rs"]
 mod hand_nre24;
 use hand_nre24::*;
@@ -286,6 +289,9 @@ mod r22_d_goal_local {
 mod r24_c_winch_param {
     sitlog_macros::include_dm!("../tests/typed/review24/r24_c_winch_param");
 }
+mod n25_c_tally_grade {
+    sitlog_macros::include_dm!("../tests/typed/nwinch25/n25_c_tally_grade");
+}
 mod r24_c_mill_nested {
     sitlog_macros::include_dm!("../tests/typed/review24/r24_c_mill_nested");
 }
@@ -424,6 +430,7 @@ fn interpreter(dir: &str) -> Ir {
         _ if dir.starts_with("r25_") => "../tests/typed/review25",
         _ if dir.starts_with("n24_") => "../tests/typed/nre24",
         _ if dir.starts_with("g25_") => "../tests/typed/ngauge25",
+        _ if dir.starts_with("n25_c_tally") => "../tests/typed/nwinch25",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -613,6 +620,11 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             return piped(way, r24_c_mill_nested::program(), name, "works", n)
         }
         "r24_c_winch_param" | "r24_c_mill_nested" => String::new(),
+        // Helper nwinch25's: (c) the limit the pipe the main DM starts with.
+        "n25_c_tally_grade" if way != "hand" => {
+            return piped(way, n25_c_tally_grade::program(), name, "tally", n)
+        }
+        "n25_c_tally_grade" => String::new(),
         "r24_d_gauge_guard" => {
             let ints: Vec<String> = (0..len).map(|i| i.to_string()).collect();
             format!("gauge({n}, [{}], {})", ints.join(","), len - 2)
@@ -873,6 +885,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             }
             "r22_d_goal_local" => hand_r22_goal_local(n, black_box(&syms), black_box(lsym)),
             "r24_c_winch_param" => hand_r24_winch_param(n),
+            "n25_c_tally_grade" => hand_n25_tally_grade(n),
             "r24_c_mill_nested" => hand_r24_mill_nested(n),
             "r24_d_gauge_guard" => {
                 let ints: Vec<i64> = (0..len as i64).collect();
@@ -1058,7 +1071,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
     }
 }
 
-const ALL: [&str; 91] = [
+const ALL: [&str; 92] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -1135,6 +1148,7 @@ const ALL: [&str; 91] = [
     "r22_d_floor_fn",
     "r22_d_goal_local",
     "r24_c_winch_param",
+    "n25_c_tally_grade",
     "r24_c_mill_nested",
     "r24_d_gauge_guard",
     "r24_d_where_pairs",

@@ -11,7 +11,7 @@ use crate::arith::ArithCmp;
 use crate::builtins;
 use crate::eval_error::{shown as show, EvalError};
 use crate::store::Store;
-use crate::term::{Term, Value};
+use crate::term::Term;
 use sitlog_syntax::atoms;
 
 /// Whether `goal` (its arguments already evaluated) holds, called as the
@@ -35,6 +35,10 @@ fn goal_holds_inner(store: &mut Store, goal: Term) -> Result<bool, EvalError> {
         *slot = a;
     }
     let text = name.as_str();
+    // Type tests: one decider for terms and native values (`type_test`).
+    if let Some(k) = crate::type_test::TypeTest::of(text, arity) {
+        return Ok(crate::type_test::term_is(k, store, args[0]));
+    }
     let holds = match (text, arity) {
         ("true", 0) | ("otherwise", 0) => true,
         ("fail", 0) | ("false", 0) => false,
@@ -104,23 +108,6 @@ fn goal_holds_inner(store: &mut Store, goal: Term) -> Result<bool, EvalError> {
             }
         }
         ("->", 2) => goal_holds(store, args[0])? && goal_holds(store, args[1])?,
-        ("var", 1) => store.is_var(args[0]),
-        ("nonvar", 1) => !store.is_var(args[0]),
-        ("ground", 1) => store.is_ground(args[0]),
-        ("atom", 1) => store.atom_of(args[0]).is_some(),
-        ("number" | "integer" | "float" | "atomic" | "compound" | "is_list", 1) => {
-            let v = store.deref(args[0]);
-            match (text, store.value(v)) {
-                ("number", Value::Int(_) | Value::BigInt(_) | Value::Float(_)) => true,
-                ("integer", Value::Int(_) | Value::BigInt(_)) => true,
-                ("float", Value::Float(_)) => true,
-                ("atomic", Value::Var(_) | Value::Compound(..)) => false,
-                ("atomic", _) => true,
-                ("compound", Value::Compound(..)) => true,
-                ("is_list", _) => store.list_to_vec(v).is_some(),
-                _ => false,
-            }
-        }
         _ => {
             return Err(EvalError::new(format!(
                 "`{text}/{arity}` cannot be called as a condition here (in `{}`)",

@@ -92,6 +92,7 @@ mod store;
 mod term;
 pub mod testmode;
 pub mod trust;
+pub mod type_test;
 mod unify;
 pub mod vars;
 

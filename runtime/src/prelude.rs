@@ -11,4 +11,5 @@ pub use crate::machine::{
     SitIx, SitRow, SitTable, Step, TypedRun, Visit,
 };
 pub use crate::native::{FromVal, Ground, IntoVal, List, Native, Never, Val};
+pub use crate::type_test::TypeTest;
 pub use crate::{atoms, machine, native, Atom, Store, Term, Vars};

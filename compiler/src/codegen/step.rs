@@ -248,9 +248,13 @@ impl Gen<'_> {
 
     /// An operand of [`Cond::And`]/[`Cond::Or`] (`mir::lower`): whether
     /// its value is `true` (`Cx::value_holds` on it as written), its error
-    /// the condition's.
+    /// the condition's; a type test called as a goal (`Cx::condition`).
     fn junction_leaf_code(&self, c: &Cond, arc: &TokenStream, b: &mut Body) -> TokenStream {
         match c.written() {
+            // A type test holds where its goal does (`mir::is_type_test`).
+            _ if matches!(c, Cond::Other(t) if crate::mir::is_type_test(t)) => {
+                self.cond_code(c, arc, b)
+            }
             Some(w) if !matches!(c, Cond::And(..) | Cond::Or(..)) => {
                 let t = self.build_code(&w, b);
                 let x = b.tmp();

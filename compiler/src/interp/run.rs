@@ -172,6 +172,13 @@ fn junction_leaf(
     c: &Cond,
     arc: Option<usize>,
 ) -> R<bool> {
+    // A type test holds where its goal does (`mir::is_type_test`).
+    if let Cond::Other(b) = c {
+        if crate::mir::is_type_test(b) {
+            let t = build(cx, regs, b);
+            return Ok(cx.condition(t, arc)?);
+        }
+    }
     if let Cond::Cmp(op, l, r) = c {
         let (l, r) = (build(cx, regs, l), build(cx, regs, r));
         if let (Some(a), Some(b)) = (cx.int_of(l), cx.int_of(r)) {

@@ -466,6 +466,13 @@ impl<'s> Planner<'s> {
         if let Some(c) = self.junction(t, scope, depth) {
             return Some(c);
         }
+        // A type test (`number(X)`, `\+ atom(X)`): it holds where the goal
+        // of its evaluated arguments does (`is_type_test`).
+        if let Ok(b) = self.build(t, &scope.vars, depth + 1) {
+            if is_type_test(&b) {
+                return Some(Cond::Other(b));
+            }
+        }
         let Value::Compound(name, &[a, b]) = self.store.value(t) else {
             return None;
         };
@@ -974,5 +981,22 @@ impl<'s> Planner<'s> {
             type_term,
             exps,
         })
+    }
+}
+
+/// Whether `b` is a type test of a condition (`var/1`, `number/1`,
+/// `is_list/1`, ... the runtime's `type_test`) or `\+` of one: in a
+/// conjunction or disjunction ([`Cond::And`], [`Cond::Or`]) it holds where
+/// the goal of its evaluated argument holds (its value is the compound,
+/// not `true`: a back end calls it as a condition).
+pub(crate) fn is_type_test(b: &Build) -> bool {
+    match b {
+        Build::Compound(op, args) if args.len() == 1 && op.as_str() == "\\+" => {
+            is_type_test(&args[0])
+        }
+        Build::Compound(op, args) => {
+            sitlog_runtime::type_test::TypeTest::of(op.as_str(), args.len()).is_some()
+        }
+        _ => false,
     }
 }

@@ -28,6 +28,7 @@ use std::collections::{HashMap, HashSet};
 mod lower;
 mod out_pass;
 pub use out_pass::OutPass;
+pub(crate) use lower::is_type_test;
 pub mod ty;
 
 use lower::Planner;

@@ -96,8 +96,12 @@
 //!   argument of a DM call, read nowhere before the call, is bound when
 //!   the call returns by the callee's final `diag_mod` (`welcome(Items)`
 //!   in DM `welcome(_Order)`): it takes the join of that argument over
-//!   every final situation of the callee, when every one has a planned
-//!   `diag_mod` of the DM's name and arity with a value there (else it
+//!   every final situation of the callee that binds it, when every final
+//!   situation is planned and has a `diag_mod` of the DM's name and arity
+//!   with a value there or has no `diag_mod` (it leaves the variable
+//!   unbound: `spool(_Out)`'s `jammed`), one at least binding it, and no
+//!   exit arc that may take a final leaving it (its expectation not a
+//!   pattern no such final's id matches) mentions the variable (else it
 //!   stays `Term`). The callee's parameter gets `Term` from it (unbound
 //!   when the DM is called).
 //! - **an expectation that is a pattern** (`said(Text)`, `success(X)`:
@@ -244,8 +248,10 @@ pub struct DmTypes {
     pub sits: Vec<Option<SitTypes>>,
     /// Per parameter: when no situation of the DM reads it (every
     /// situation has a plan) and every final situation binds it through
-    /// its `diag_mod`, the type it has when the DM returns (an output
-    /// argument, `ask(.., _Answer, _Status)`); else `None`.
+    /// its `diag_mod` or has none (leaving it as the caller gave it,
+    /// unbound for an output argument), one at least binding it, the type
+    /// it has when a final that binds it returns (an output argument,
+    /// `ask(.., _Answer, _Status)`); else `None`.
     pub outputs: Vec<Option<Typed>>,
     /// Why the DM can be started from outside the program's own calls
     /// (the command line, the machine, a computed call), if it can: its
@@ -1648,7 +1654,17 @@ impl<'a> State<'a> {
                     let Build::Reg(r) = a else { continue };
                     let once = args.iter().filter(|x| build_mentions(x, *r, 0)).count() == 1;
                     if fresh.contains(r) && !bound.contains(r) && once && !before(*r) {
-                        if let Some(t) = self.out_param(c, i) {
+                        // A final of the callee that has no `diag_mod`
+                        // leaves the variable unbound: typed by the others
+                        // only where no exit arc that may take such a
+                        // final reads it (`leaving_read`).
+                        let t = self.out_param(c, i).filter(|_| {
+                            let KindPlan::Recursive { exit, .. } = &p.kind else {
+                                return false;
+                            };
+                            !self.leaving_read(c, exit, *r)
+                        });
+                        if let Some(t) = t {
                             self.def(d, s, *r, &t);
                             outs.push(*r);
                         }
@@ -1846,8 +1862,11 @@ impl<'a> State<'a> {
     }
 
     /// The type argument `i` of a call of DM `c` has when the call
-    /// returns, when every final situation of `c` binds it: its
-    /// `diag_mod` is `c`'s head with a value there (D-20); else `None`.
+    /// returns, when every final situation of `c` binds it (its
+    /// `diag_mod` is `c`'s head with a value there, D-20) or has no
+    /// `diag_mod` (it leaves the argument as the caller gave it: a fresh
+    /// variable stays unbound, `State::leaving_read`), and one binds it;
+    /// else `None`.
     fn out_param(&self, c: usize, i: usize) -> Option<Typed> {
         let dm = &self.ir.dms[c];
         let arity = self.store().args(dm.head).len();
@@ -1858,8 +1877,10 @@ impl<'a> State<'a> {
                 continue;
             }
             let p = self.mir.plan(c as u32, s as SitIx)?;
-            let KindPlan::Final { diag_mod: Some(b) } = &p.kind else {
-                return None;
+            let b = match &p.kind {
+                KindPlan::Final { diag_mod: Some(b) } => b,
+                KindPlan::Final { diag_mod: None } => continue,
+                _ => return None,
             };
             let t = match b {
                 Build::Compound(name, args)
@@ -1884,6 +1905,48 @@ impl<'a> State<'a> {
             out.absorb(&t);
         }
         any.then_some(out)
+    }
+
+    /// Whether an exit arc of `exit` that may take a final situation of
+    /// DM `c` with no `diag_mod` (one that leaves an output argument
+    /// unbound) reads register `r`: its expectation is not a pattern
+    /// that no such final's id can match.
+    fn leaving_read(&self, c: usize, exit: &Arcs, r: Reg) -> bool {
+        let dm = &self.ir.dms[c];
+        let leaving: Vec<((Atom, usize), Typed)> = dm
+            .situations
+            .iter()
+            .enumerate()
+            .filter(|(_, sit)| sit.kind == Kind::Final)
+            .filter_map(|(s, _)| {
+                let p = self.mir.plan(c as u32, s as SitIx)?;
+                matches!(p.kind, KindPlan::Final { diag_mod: None })
+                    .then(|| (p.id, self.final_value(c, s, p)))
+            })
+            .collect();
+        if leaving.is_empty() {
+            return false;
+        }
+        // A pattern of another name or arity than the final's id never
+        // matches it (`wound` is not `jammed`); else its types decide.
+        let functor = |b: &Build| match b {
+            Build::Compound(name, args) => Some((*name, args.len())),
+            Build::Const(t) => match self.store().value(*t) {
+                Value::Atom(a) => Some((a, 0)),
+                Value::Compound(name, args) => Some((name, args.len())),
+                _ => None,
+            },
+            Build::Reg(_) => None,
+        };
+        exit.arcs.iter().any(|arc| {
+            let may_take = match Self::pattern_of(&arc.expectation) {
+                Some(pat) => leaving.iter().any(|(id, f)| {
+                    functor(&pat).is_none_or(|x| x == *id) && self.can_match(&pat, &f.ty, 0)
+                }),
+                None => true,
+            };
+            may_take && arc_mentions(arc, r)
+        })
     }
 
     /// The id values DM `c`'s final situations hand back.
@@ -2406,6 +2469,34 @@ fn is_lhs(items: &[Ev], before: impl Fn(Reg) -> bool, out: &mut Vec<Reg>) {
             }
         }
     }
+}
+
+/// Whether arc `arc` reads or binds register `r` anywhere (its imports,
+/// expectation, action, next situation, out_arg, diag_mod).
+pub(crate) fn arc_mentions(arc: &crate::mir::ArcPlan, r: Reg) -> bool {
+    fn next(x: &Next, r: Reg, depth: usize) -> bool {
+        match x {
+            _ if depth > MAX_DEPTH => true,
+            Next::Static(..) => false,
+            Next::If(c, a, b) => {
+                cond_mentions(c, r, depth + 1) || next(a, r, depth + 1) || next(b, r, depth + 1)
+            }
+            Next::Eval(e) => ev_mentions(e, r, depth + 1),
+        }
+    }
+    let action = match &arc.action {
+        Action::List { items, .. } => items.iter().any(|e| ev_mentions(e, r, 0)),
+        Action::One(e) => ev_mentions(e, r, 0),
+    };
+    arc.import_from.contains(&r)
+        || ev_mentions(&arc.expectation, r, 0)
+        || action
+        || next(&arc.next, r, 0)
+        || arc.out_arg.as_ref().is_some_and(|e| ev_mentions(e, r, 0))
+        || arc
+            .diag_mod
+            .as_ref()
+            .is_some_and(|b| build_mentions(b, r, 0))
 }
 
 pub(crate) fn build_mentions(b: &Build, r: Reg, depth: usize) -> bool {

@@ -1023,7 +1023,22 @@ impl Gen<'_> {
             TokenStream,
             Option<ExitRecord>,
         );
-        let mut finals: Vec<(TokenStream, Vec<ArcCode>)> = Vec::new();
+        let mut finals: Vec<(TokenStream, Vec<ArcCode>, bool)> = Vec::new();
+        // A final with no `diag_mod` leaves the output arguments unbound
+        // (`DmTypes::outputs`): its arcs see no output register (one that
+        // reads it is not native), and the outputs are loaded in the arms
+        // of the finals that bind them, not before the `match`.
+        let leaves_outs = |k: usize| {
+            !out_loads.is_empty()
+                && matches!(&callee.plans[k].kind, KindPlan::Final { diag_mod: None })
+        };
+        let out_regs: Vec<Ident> = out_loads.iter().map(|(r, _)| r.clone()).collect();
+        let regs_leave: Regs = regs
+            .iter()
+            .filter(|(_, (v, _))| !out_regs.contains(v))
+            .map(|(r, v)| (*r, v.clone()))
+            .collect();
+        let mut any_leaves = false;
         // Every arc's entry built natively (its expectation a term of the
         // registers, its action of the values it computed).
         let mut rec_all = true;
@@ -1054,6 +1069,9 @@ impl Gen<'_> {
                 .collect();
             let pat = self.nat_id_of(callee, k);
             let mut arcs_code = Vec::new();
+            let leaving = leaves_outs(k);
+            any_leaves |= leaving;
+            let regs = if leaving { &regs_leave } else { &regs };
             for (i, arc) in exit.arcs.iter().enumerate() {
                 if arc.diag_mod.is_some() {
                     return Err("an exit arc has diag_mod".into());
@@ -1086,6 +1104,17 @@ impl Gen<'_> {
                     &mut lets,
                 )? {
                     continue; // never this arc for this final
+                }
+                // An arc taking a final that leaves the outputs unbound
+                // reads none of them (the MIR typed them so, `mir::ty`).
+                if leaving
+                    && outs
+                        .iter()
+                        .any(|&(_, r)| crate::mir::ty::arc_mentions(arc, r))
+                {
+                    return Err(
+                        "an exit arc reads an output argument a final leaves unbound".into(),
+                    );
                 }
                 let action = self.nat_exit_action(d, ix, i, arc, &mut regs)?;
                 // The callee ran since the pipe was read: an out_arg writes
@@ -1121,10 +1150,14 @@ impl Gen<'_> {
                 arcs_code.push((cond, (i, head), plain, rec));
             }
             let sk = format_ident!("S{}", k);
-            finals.push((quote!(super::#callee_n::#sk { #(#cf),* }), arcs_code));
+            finals.push((
+                quote!(super::#callee_n::#sk { #(#cf),* }),
+                arcs_code,
+                leaving,
+            ));
         }
         let curl = Literal::u32_unsuffixed(ix as u32);
-        let arms = finals.into_iter().map(|(pat, arcs)| {
+        let arms = finals.into_iter().map(|(pat, arcs, leaving)| {
             // An arc whose test always holds takes every final that
             // reaches it: the arcs after it are never tried.
             let taken = arcs.iter().position(|(c, ..)| c.is_empty());
@@ -1231,9 +1264,18 @@ impl Gen<'_> {
                     quote!(if #cond { #body })
                 }
             });
-            quote!(#pat => { #(#arcs)* })
+            let arcs = quote!(#(#arcs)*);
+            // Where a final leaves the outputs, each binding final's arm
+            // loads those its arcs read.
+            let loads = out_loads
+                .iter()
+                .filter(|(r, _)| any_leaves && !leaving && mentions(&arcs, r))
+                .map(|(_, stmt)| stmt);
+            quote!(#pat => { #(#loads)* #arcs })
         });
-        let body = self.nat_exit_body(d, ix, j, quote!(#(#arms)*), &out_loads, &head)?;
+        let arms: Vec<TokenStream> = arms.collect();
+        let top: &[(Ident, TokenStream)] = if any_leaves { &[] } else { &out_loads };
+        let body = self.nat_exit_body(d, ix, j, quote!(#(#arms)*), top, &head)?;
         Ok((body, rec_all))
     }
 

@@ -123,15 +123,40 @@ impl Gen<'_> {
     /// Whether arc actions `action` (`atom`: the action when it is a
     /// constant atom) of a situation of `d` are performed by
     /// [`Gen::nat_effect`]: a DM without locals, an action of effectors
-    /// built of values only (not `empty`, which `Cx::nat_empty` performs).
-    pub(super) fn nat_effect_ok(&self, d: &Dm, action: &Action, atom: Option<Atom>) -> bool {
+    /// built of values only (not `empty`, which `Cx::nat_empty` performs),
+    /// or of conditionals on type tests native code decides on `regs`
+    /// (`(number(X) -> n ; otherwise -> o)`, module `type_test`) choosing
+    /// between such values.
+    pub(super) fn nat_effect_ok(
+        &self,
+        d: &Dm,
+        action: &Action,
+        atom: Option<Atom>,
+        regs: &Regs,
+    ) -> bool {
         if !runtime_hand(&d.hand) {
             return false;
         }
+        let ok = |e: &Ev| self.values_or_tests(e, regs, 0);
         match (action, atom) {
             (_, Some(a)) => a != atoms::EMPTY,
-            (Action::One(e), None) => built_of_values(e),
-            (Action::List { items, .. }, None) => items.iter().all(built_of_values),
+            (Action::One(e), None) => ok(e),
+            (Action::List { items, .. }, None) => items.iter().all(ok),
+        }
+    }
+
+    /// [`built_of_values`], or a conditional whose condition is a type
+    /// test native code decides on `regs` and whose branches are such.
+    fn values_or_tests(&self, e: &Ev, regs: &Regs, depth: usize) -> bool {
+        match e {
+            _ if built_of_values(e) => true,
+            Ev::If(c, a, b) if depth < sitlog_runtime::native::MAX_DEPTH => {
+                matches!(&**c, crate::mir::Cond::Other(t)
+                    if self.is_type_test(t) && self.nat_type_test(t, regs).is_ok())
+                    && self.values_or_tests(a, regs, depth + 1)
+                    && self.values_or_tests(b, regs, depth + 1)
+            }
+            _ => false,
         }
     }
 

@@ -246,6 +246,7 @@ mod plain;
 mod plain_rs;
 mod sel_flat;
 mod select_fn;
+mod type_test;
 mod visit;
 use crate::ir::IrDm;
 use crate::mir::ty::{DmTypes, SitTypes};
@@ -2783,11 +2784,12 @@ impl Gen<'_> {
                         };
                         quote!(#(#ts)* cx.diag_mod(#t)?;)
                     }
-                    None => {
-                        // No output bound here: none is held.
-                        d.outs.borrow_mut().iter_mut().for_each(|o| *o = false);
-                        quote!()
-                    }
+                    // No output bound here: each is left as the caller
+                    // gave it (a slot stays `None`; the MIR's outputs
+                    // allow such a final, `DmTypes::outputs`, and the
+                    // caller's exit arcs taking it do not read it,
+                    // `call::nat_exit`).
+                    None => quote!(),
                 };
                 let v = variant(ix);
                 let names: Vec<Ident> = fields.iter().map(|(r, _)| reg(*r)).collect();
@@ -3412,7 +3414,7 @@ impl Gen<'_> {
         let reloads = atom.is_none() && !d.locals.is_empty();
         // An action of effectors built of values (`navigate(P, R)`, a
         // list of `say`s): performed without the hand-over (`effect`).
-        let effect = if self.nat_effect_ok(d, &arc.action, atom) {
+        let effect = if self.nat_effect_ok(d, &arc.action, atom, &regs) {
             self.nat_effect(d, ix, &arc.action, atom, &regs)
                 .ok()
                 .flatten()
@@ -4046,6 +4048,12 @@ impl Gen<'_> {
         *n += 1;
         match c {
             Cond::Other(b) => {
+                // A type test of a native value (`type_test`).
+                if self.is_type_test(b) {
+                    if let Ok(t) = self.nat_type_test(b, regs) {
+                        return Ok(t);
+                    }
+                }
                 if let Build::Compound(op, args) = b {
                     if args.len() == 2 && matches!(op.as_str(), "==" | "\\==") {
                         let l = self.nat_value(&args[0], regs);
@@ -4810,6 +4818,8 @@ impl Gen<'_> {
                     quote!((!#found))
                 })
             }
+            // `number(X)`, `\+ atom(X)`, .. of a native value (`type_test`).
+            Cond::Other(b) if self.is_type_test(b) => self.nat_type_test(b, regs),
             // `(A, B)`, `(A ; B)` (`cond.rs`).
             Cond::And(..) | Cond::Or(..) => self.nat_junction(d, cur, c, regs, pre),
             _ => Err("a condition is not `==`, `\\==`, `member` or an int comparison".into()),
