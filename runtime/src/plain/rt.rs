@@ -158,3 +158,13 @@ pub fn cmp(op: Cmp, x: Num, y: Num) -> Option<bool> {
 pub fn same(e: Num, v: Num) -> bool {
     super::num::same(e, v)
 }
+
+/// Whether a local of the caller, sent with a query, is one the plain
+/// form runs a call beside (the term path's check of the caller's
+/// variables, `plain::sure` not strict: not too deep for the engine);
+/// stricter here (a value `call_vals` takes as an argument), which
+/// refuses more, never less.
+#[inline]
+pub fn local_sure(v: &Val) -> bool {
+    matches!(v, Val::Int(_) | Val::Sym(_) | Val::Float(_)) || val::sure_arg(v)
+}
