@@ -31,6 +31,9 @@ use hand22::*;
 #[path = "../src/hand24.rs"]
 mod hand24;
 use hand24::*;
+#[path = "../src/hand25f.rs"]
+mod hand25f;
+use hand25f::*;
 #[path = "../src/hand_nre24.rs"]
 mod hand_nre24;
 use hand_nre24::*;
@@ -295,6 +298,10 @@ mod r24_d_sift_two_lists {
 mod r24_d_near_floats {
     sitlog_macros::include_dm!("../tests/typed/review24/r24_d_near_floats");
 }
+// Helper nfloat25's (d): floats in a band, a plain function's answer the next situation.
+mod n25_d_float_band {
+    sitlog_macros::include_dm!("../tests/typed/nfloat25/n25_d_float_band");
+}
 // Helper nre24's (d): a frame entered again from the machine at each place.
 mod n24_d_note_walk {
     sitlog_macros::include_dm!("../tests/typed/nre24/n24_d_note_walk");
@@ -378,6 +385,7 @@ fn interpreter(dir: &str) -> Ir {
         _ if dir.starts_with("r22_") => "../tests/typed/review22",
         _ if dir.starts_with("r24_") => "../tests/typed/review24",
         _ if dir.starts_with("n24_") => "../tests/typed/nre24",
+        _ if dir.starts_with("n25_") => "../tests/typed/nfloat25",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -578,6 +586,10 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             format!("tune({n}, [{}], {}.5)", freqs.join(","), len - 1)
         }
         "n24_d_note_walk" => format!("survey({n}, {list}, {last})"),
+        "n25_d_float_band" => {
+            let xs: Vec<String> = (0..len).map(|i| format!("{i}.5")).collect();
+            format!("band({n}, [{}], {}.25)", xs.join(","), len - 1)
+        }
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
             let n = n.to_string();
@@ -799,6 +811,18 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                     black_box(|x: f64, t: f64| (x - t).abs() < 0.1),
                 )
             }
+            "n25_d_float_band" => {
+                let xs: Vec<f64> = (0..len).map(|i| i as f64 + 0.5).collect();
+                hand_n25_float_band(
+                    n,
+                    black_box(&xs),
+                    black_box((len - 1) as f64 + 0.25),
+                    black_box(|x: f64, lo: f64| {
+                        let m = (x - lo) / 2.0;
+                        m >= 0.0 && m <= 0.25
+                    }),
+                )
+            }
             "n24_d_note_walk" => hand_n24_note_walk(
                 n,
                 black_box(&syms),
@@ -898,12 +922,13 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r24_d_sift_two_lists" => ways!(r24_d_sift_two_lists),
         "r24_d_near_floats" => ways!(r24_d_near_floats),
         "n24_d_note_walk" => ways!(n24_d_note_walk),
+        "n25_d_float_band" => ways!(n25_d_float_band),
         "c_expr_compare" => ways!(c_expr_compare),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 82] = [
+const ALL: [&str; 83] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -986,6 +1011,7 @@ const ALL: [&str; 82] = [
     "r24_d_sift_two_lists",
     "r24_d_near_floats",
     "n24_d_note_walk",
+    "n25_d_float_band",
 ];
 
 /// The two lists of `r18_d_lockstep*` at `len` places: `0..len` and a
