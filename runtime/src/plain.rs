@@ -6,8 +6,9 @@
 //! Plain: a head whose arguments are variables, atoms, integers, or
 //! compounds and lists of these (`[P|Ps]`, `at(R, O)`); a body
 //! that is a conjunction of `true`, `fail`/`false`, `!`, `V is E` (`E`
-//! over integers and bound variables with `+ - * // mod rem min max abs`,
-//! unary `-` and `+`), `< > =< >= =:= =\=` between such expressions,
+//! over integers, floats and bound variables with `+ - * / // mod rem min
+//! max abs`, unary `-` and `+`, computed as the engine computes them or
+//! left to it: [`num`]), `< > =< >= =:= =\=` between such expressions,
 //! `==`/`\==` and `=` between bound variables, atoms, integers and
 //! compounds or lists built of these (`=` with a fresh variable on one
 //! side binds it), and `assign_func_value/1` of such a value (`walk(Ps)`,
@@ -19,7 +20,8 @@
 //! Invariant (fidelity): the native form gives a value only where the
 //! engine gives the same one, and hands every other call to the engine,
 //! whose result and error it then is by construction. It runs a call only
-//! when every argument is ground with no float or big integer in it, and
+//! when every argument is ground with no big integer and no float but a
+//! sure one ([`num::sure_float`]) in it, and
 //! neither they nor the caller's variables (which a query sends) nest
 //! deeper than [`MAX_DEPTH`], and
 //! gives up (the engine runs the call) on an argument or a value of
@@ -407,7 +409,8 @@ fn ground_cell(store: &Store, t: Term) -> Option<u32> {
 }
 
 /// Whether `t` nests at most [`MAX_DEPTH`] levels and, if `strict`, is
-/// ground with no float, big integer or improper list (`[a|b]`) anywhere
+/// ground with no float that is not sure ([`num::sure_float`]), big
+/// integer or improper list (`[a|b]`) anywhere
 /// in it: the engine cannot give back an answer that holds an improper
 /// list (it fails the call: see [`value`]). A strict argument that is the
 /// list `Store::plain_memo` remembers, or its tail, is taken without a walk.

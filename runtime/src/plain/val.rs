@@ -106,7 +106,8 @@ pub(super) fn sure_arg(v: &Val) -> bool {
 }
 
 /// Whether `v`, at nesting `depth`, is what the term path takes as it is:
-/// ground (no `Val::Term`), no float, no improper list (a `'.'/2`
+/// ground (no `Val::Term`), no float but a sure one (`num::sure_float`),
+/// no improper list (a `'.'/2`
 /// compound is one), no compound L evaluates otherwise than by its
 /// arguments (D-36), nesting at most [`MAX_DEPTH`] levels counted as the
 /// term's (a list a level per element).
