@@ -37,6 +37,9 @@ use hand25::*;
 #[path = "../src/hand25w.rs"]
 mod hand25w;
 use hand25w::*;
+#[path = "../src/hand25f.rs"]
+mod hand25f;
+use hand25f::*;
 #[path = "../src/hand_nre24.rs"]
 mod hand_nre24;
 use hand_nre24::*;
@@ -328,6 +331,9 @@ mod r25_d_strings {
 }
 mod r25_d_mutual_walk {
     sitlog_macros::include_dm!("../tests/typed/review25/r25_d_mutual_walk");
+// Helper nfloat25's (d): floats in a band, a plain function's answer the next situation.
+mod n25_d_float_band {
+    sitlog_macros::include_dm!("../tests/typed/nfloat25/n25_d_float_band");
 }
 // Helper nre24's (d): a frame entered again from the machine at each place.
 mod n24_d_note_walk {
@@ -431,6 +437,7 @@ fn interpreter(dir: &str) -> Ir {
         _ if dir.starts_with("n24_") => "../tests/typed/nre24",
         _ if dir.starts_with("g25_") => "../tests/typed/ngauge25",
         _ if dir.starts_with("n25_c_tally") => "../tests/typed/nwinch25",
+        _ if dir.starts_with("n25_") => "../tests/typed/nfloat25",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -689,6 +696,9 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "g25_d_float_next" => {
             let ws: Vec<String> = (0..len).map(|i| (i % 3 + 1).to_string()).collect();
             format!("tally({n}, [{}], 1.0e9)", ws.join(","))
+        "n25_d_float_band" => {
+            let xs: Vec<String> = (0..len).map(|i| format!("{i}.5")).collect();
+            format!("band({n}, [{}], {}.25)", xs.join(","), len - 1)
         }
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
@@ -912,6 +922,18 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                     black_box(|x: f64, t: f64| (x - t).abs() < 0.1),
                 )
             }
+            "n25_d_float_band" => {
+                let xs: Vec<f64> = (0..len).map(|i| i as f64 + 0.5).collect();
+                hand_n25_float_band(
+                    n,
+                    black_box(&xs),
+                    black_box((len - 1) as f64 + 0.25),
+                    black_box(|x: f64, lo: f64| {
+                        let m = (x - lo) / 2.0;
+                        m >= 0.0 && m <= 0.25
+                    }),
+                )
+            }
             "n24_d_note_walk" => hand_n24_note_walk(
                 n,
                 black_box(&syms),
@@ -1066,12 +1088,13 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "r25_d_mutual_walk" => ways!(r25_d_mutual_walk),
         "g25_c_float_prog" => ways!(g25_c_float_prog),
         "g25_d_float_next" => ways!(g25_d_float_next),
+        "n25_d_float_band" => ways!(n25_d_float_band),
         "c_expr_compare" => ways!(c_expr_compare),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 92] = [
+const ALL: [&str; 93] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -1164,6 +1187,7 @@ const ALL: [&str; 92] = [
     "r25_d_mutual_walk",
     "g25_c_float_prog",
     "g25_d_float_next",
+    "n25_d_float_band",
 ];
 
 /// The records of `r25_d_obj_records` at `len` places: in the kitchen

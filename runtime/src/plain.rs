@@ -6,8 +6,9 @@
 //! Plain: a head whose arguments are variables, atoms, integers, or
 //! compounds and lists of these (`[P|Ps]`, `at(R, O)`); a body
 //! that is a conjunction of `true`, `fail`/`false`, `!`, `V is E` (`E`
-//! over integers and bound variables with `+ - * // mod rem min max abs`,
-//! unary `-` and `+`), `< > =< >= =:= =\=` between such expressions,
+//! over integers, floats and bound variables with `+ - * / // mod rem min
+//! max abs`, unary `-` and `+`, computed as the engine computes them or
+//! left to it: [`num`]), `< > =< >= =:= =\=` between such expressions,
 //! `==`/`\==` and `=` between bound variables, atoms, integers and
 //! compounds or lists built of these (`=` with a fresh variable on one
 //! side binds it), and `assign_func_value/1` of such a value (`walk(Ps)`,
@@ -19,7 +20,8 @@
 //! Invariant (fidelity): the native form gives a value only where the
 //! engine gives the same one, and hands every other call to the engine,
 //! whose result and error it then is by construction. It runs a call only
-//! when every argument is ground with no float or big integer in it, and
+//! when every argument is ground with no big integer and no float but a
+//! sure one ([`num::sure_float`]) in it, and
 //! neither they nor the caller's variables (which a query sends) nest
 //! deeper than [`MAX_DEPTH`], and
 //! gives up (the engine runs the call) on an argument or a value of
@@ -44,12 +46,14 @@
 // The module doc names the private items that keep its invariant.
 #![allow(rustdoc::private_intra_doc_links)]
 
+use crate::arith::Number;
 use crate::store::Store;
 use crate::term::{Repr, Term, Value, Var};
 use sitlog_syntax::{atoms, Atom};
 use std::collections::{HashMap, HashSet};
 
 mod form;
+pub mod num;
 pub mod rt;
 pub mod slots;
 mod val;
@@ -123,6 +127,8 @@ pub enum Bin {
     Rem,
     Min,
     Max,
+    /// `/`: native only with a float operand ([`num`]).
+    Div,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -136,6 +142,8 @@ pub enum Un {
 pub enum PExpr {
     Var(u16),
     Int(i64),
+    /// A float constant ([`num::sure_float`]).
+    Float(f64),
     Un(Un, Box<PExpr>),
     Bin(Bin, Box<PExpr>, Box<PExpr>),
 }
@@ -401,7 +409,8 @@ fn ground_cell(store: &Store, t: Term) -> Option<u32> {
 }
 
 /// Whether `t` nests at most [`MAX_DEPTH`] levels and, if `strict`, is
-/// ground with no float, big integer or improper list (`[a|b]`) anywhere
+/// ground with no float that is not sure ([`num::sure_float`]), big
+/// integer or improper list (`[a|b]`) anywhere
 /// in it: the engine cannot give back an answer that holds an improper
 /// list (it fails the call: see [`value`]). A strict argument that is the
 /// list `Store::plain_memo` remembers, or its tail, is taken without a walk.
@@ -409,7 +418,8 @@ pub(super) fn sure(store: &Store, t: Term, strict: bool) -> bool {
     let t = store.deref(t);
     match store.value(t) {
         Value::Atom(_) | Value::Int(_) => return true,
-        Value::Var(_) | Value::BigInt(_) | Value::Float(_) => return !strict,
+        Value::Float(f) => return !strict || num::sure_float(f),
+        Value::Var(_) | Value::BigInt(_) => return !strict,
         Value::Compound(..) => {}
     }
     let cell = if strict { ground_cell(store, t) } else { None };
@@ -438,7 +448,12 @@ fn sure_walk(store: &Store, t: Term, strict: bool) -> bool {
         }
         match store.value(store.deref(t)) {
             Value::Atom(_) | Value::Int(_) => {}
-            Value::Var(_) | Value::BigInt(_) | Value::Float(_) => {
+            Value::Float(f) => {
+                if strict && !num::sure_float(f) {
+                    return false;
+                }
+            }
+            Value::Var(_) | Value::BigInt(_) => {
                 if strict {
                     return false;
                 }
@@ -568,7 +583,7 @@ fn opnd_reads(o: &Opnd, read: &mut [bool]) {
 fn expr_reads(e: &PExpr, read: &mut [bool]) {
     match e {
         PExpr::Var(i) => read[*i as usize] = true,
-        PExpr::Int(_) => {}
+        PExpr::Int(_) | PExpr::Float(_) => {}
         PExpr::Un(_, x) => expr_reads(x, read),
         PExpr::Bin(_, x, y) => {
             expr_reads(x, read);
@@ -726,6 +741,7 @@ fn expr(store: &Store, t: Term, scope: &mut Scope, depth: usize) -> Option<PExpr
             (_, false) => None,
         },
         Value::Int(i) => Some(PExpr::Int(i)),
+        Value::Float(f) if num::sure_float(f) => Some(PExpr::Float(f)),
         Value::Compound(f, a) if a.len() == 1 => {
             let op = match f.as_str() {
                 "-" => Un::Neg,
@@ -748,6 +764,7 @@ fn expr(store: &Store, t: Term, scope: &mut Scope, depth: usize) -> Option<PExpr
                 "rem" => Bin::Rem,
                 "min" => Bin::Min,
                 "max" => Bin::Max,
+                "/" => Bin::Div,
                 _ => return None,
             };
             let (x, y) = (a[0], a[1]);
@@ -856,11 +873,6 @@ enum Outcome {
     Unsure,
 }
 
-/// An integer, or `Err` (not decided here) for anything else.
-fn int(store: &Store, t: Term) -> Result<i64, ()> {
-    store.int_of(t).ok_or(())
-}
-
 /// `x op y` on integers, `Err` (not decided here) on an overflow or a
 /// division by zero.
 fn bin(op: Bin, x: i64, y: i64) -> Result<i64, ()> {
@@ -883,6 +895,8 @@ fn bin(op: Bin, x: i64, y: i64) -> Result<i64, ()> {
         }
         Bin::Min => x.min(y),
         Bin::Max => x.max(y),
+        // Of two integers: the engine's float ([`num`]).
+        Bin::Div => return Err(()),
     })
 }
 
@@ -898,19 +912,25 @@ fn compare(op: Cmp, x: i64, y: i64) -> bool {
     }
 }
 
-fn eval(store: &Store, e: &PExpr, regs: &[Term]) -> Result<i64, ()> {
+/// The number `t` is (a sure float, [`num::sure_float`]), `Err` (not
+/// decided here) for anything else.
+fn number(store: &Store, t: Term) -> Result<Number, ()> {
+    match store.value(store.deref(t)) {
+        Value::Int(i) => Ok(Number::Int(i)),
+        Value::Float(f) => num::of_float(f).ok_or(()),
+        _ => Err(()),
+    }
+}
+
+fn eval(store: &Store, e: &PExpr, regs: &[Term]) -> Result<Number, ()> {
     Ok(match e {
-        PExpr::Var(i) => int(store, regs[*i as usize])?,
-        PExpr::Int(i) => *i,
-        PExpr::Un(op, x) => {
-            let x = eval(store, x, regs)?;
-            match op {
-                Un::Neg => x.checked_neg().ok_or(())?,
-                Un::Pos => x,
-                Un::Abs => x.checked_abs().ok_or(())?,
-            }
+        PExpr::Var(i) => number(store, regs[*i as usize])?,
+        PExpr::Int(i) => Number::Int(*i),
+        PExpr::Float(f) => Number::Float(*f),
+        PExpr::Un(op, x) => num::un(*op, eval(store, x, regs)?).ok_or(())?,
+        PExpr::Bin(op, x, y) => {
+            num::bin(*op, eval(store, x, regs)?, eval(store, y, regs)?).ok_or(())?
         }
-        PExpr::Bin(op, x, y) => bin(*op, eval(store, x, regs)?, eval(store, y, regs)?)?,
     })
 }
 
@@ -1042,11 +1062,15 @@ fn run_goals<'c>(
                 true
             }
             PGoal::IsFresh(i, e) => {
-                regs[*i as usize] = Term::int(eval(store, e, regs)?);
+                regs[*i as usize] = Term::from(eval(store, e, regs)?);
                 true
             }
-            PGoal::IsBound(i, e) => eval(store, e, regs)? == int(store, regs[*i as usize])?,
-            PGoal::Cmp(op, x, y) => compare(*op, eval(store, x, regs)?, eval(store, y, regs)?),
+            PGoal::IsBound(i, e) => {
+                num::same(eval(store, e, regs)?, number(store, regs[*i as usize])?)
+            }
+            PGoal::Cmp(op, x, y) => {
+                num::compare(*op, eval(store, x, regs)?, eval(store, y, regs)?).ok_or(())?
+            }
             PGoal::Ident(eq, x, y) => ident(store, x, y, regs) == *eq,
             PGoal::Bind(i, o) => {
                 regs[*i as usize] = value(store, o, regs).ok_or(())?;
@@ -1146,7 +1170,10 @@ mod tests {
         assert_eq!(call(&fns, s, "same(a, a)").as_deref(), Some("yes"));
         assert_eq!(call(&fns, s, "same(a, b)").as_deref(), Some("no"));
         assert_eq!(call(&fns, s, "same(f(x), f(x))").as_deref(), Some("yes"));
-        assert_eq!(call(&fns, s, "same(1, 1.0)"), None); // a float: the engine
+        assert_eq!(call(&fns, s, "same(1, 1.0)").as_deref(), Some("no")); // not identical
+        assert_eq!(call(&fns, s, "same(1.5, 1.5)").as_deref(), Some("yes"));
+        assert_eq!(call(&fns, s, "succ_of(1.5)").as_deref(), Some("2.5"));
+        assert_eq!(call(&fns, s, "m(7.0)"), None); // `mod` of a float: a type error
         assert_eq!(call(&fns, s, "same(X, a)"), None); // unbound: the engine
         assert_eq!(call(&fns, s, "succ_of(41)").as_deref(), Some("42"));
         assert_eq!(call(&fns, s, "succ_of(abc)"), None); // a type error
@@ -1162,6 +1189,44 @@ mod tests {
         let fns2 = scan("k2(a, X) :- Y = X, assign_func_value(Y).\n");
         assert_eq!(call(&fns2, s, "k2(a, z)").as_deref(), Some("z"));
         assert_eq!(call(&fns2, s, "k2(b, z)"), None);
+    }
+
+    #[test]
+    fn floats_in_arithmetic_and_comparisons() {
+        let fns = scan(
+            "near(X, T) :- D is abs(X - T), D < 0.1, !, assign_func_value(close).\n\
+             near(_, _) :- assign_func_value(far).\n\
+             half(X) :- Y is X / 2, assign_func_value(Y).\n\
+             halfi(X) :- Y is X / 2.0, assign_func_value(Y).\n\
+             big(X) :- Y is max(X, 1.0), Z is min(Y, 10), assign_func_value(Z).\n\
+             eq(X, Y) :- X =:= Y, !, assign_func_value(yes).\n\
+             eq(_, _) :- assign_func_value(no).\n\
+             is2(X) :- Y = 2, Y is X, !, assign_func_value(yes).\n\
+             is2(_) :- assign_func_value(no).\n\
+             neg(X) :- Y is -X, assign_func_value(Y).\n",
+        );
+        let s = &mut Store::new();
+        assert_eq!(call(&fns, s, "near(1.0, 1.05)").as_deref(), Some("close"));
+        assert_eq!(call(&fns, s, "near(1.0, 1.1)").as_deref(), Some("far"));
+        assert_eq!(call(&fns, s, "near(1, 1)").as_deref(), Some("close"));
+        assert_eq!(call(&fns, s, "near(a, 1.0)"), None); // a type error
+        assert_eq!(call(&fns, s, "half(3.0)").as_deref(), Some("1.5"));
+        assert_eq!(call(&fns, s, "half(3)"), None); // `/` of integers: the engine's
+        assert_eq!(call(&fns, s, "half(0.0)").as_deref(), Some("0.0"));
+        assert_eq!(call(&fns, s, "halfi(0)").as_deref(), Some("0.0"));
+        assert_eq!(call(&fns, s, "halfi(1.0e308)").as_deref(), Some("5.0e+307"));
+        assert_eq!(call(&fns, s, "big(0)").as_deref(), Some("1.0"));
+        assert_eq!(call(&fns, s, "big(1)"), None); // a tie of 1 and 1.0
+        assert_eq!(call(&fns, s, "big(12)").as_deref(), Some("10"));
+        assert_eq!(call(&fns, s, "eq(1, 1.0)").as_deref(), Some("yes"));
+        assert_eq!(
+            call(&fns, s, "eq(0.1, 0.10000000000000002)").as_deref(),
+            Some("no")
+        );
+        assert_eq!(call(&fns, s, "is2(2)").as_deref(), Some("yes"));
+        assert_eq!(call(&fns, s, "is2(2.0)").as_deref(), Some("no")); // 2 = 2.0 fails
+        assert_eq!(call(&fns, s, "neg(2.5)").as_deref(), Some("-2.5"));
+        assert_eq!(call(&fns, s, "neg(0.0)"), None); // negative zero
     }
 
     #[test]
@@ -1197,7 +1262,10 @@ mod tests {
         );
         assert_eq!(call(&fns, s, "route(boom, [], c)"), None); // fails after its cut
         assert_eq!(call(&fns, s, "route(a, [b|_], c)"), None); // an unbound part
-        assert_eq!(call(&fns, s, "route(a, [b, 1.0], c)"), None); // a float
+        assert_eq!(
+            call(&fns, s, "route(a, [b, 1.0], c)").as_deref(),
+            Some("walk([b,1.0])")
+        );
         assert_eq!(call(&fns, s, "route(a, [b|c], c)"), None); // an improper list
         assert_eq!(call(&fns, s, "first([q|r])"), None);
         assert_eq!(call(&fns, s, "first([q, r])").as_deref(), Some("q"));
@@ -1303,7 +1371,7 @@ mod tests {
         assert!(sure(s, tail, true));
         assert_eq!(s.plain_memo.get(s.epoch), ground_cell(s, tail));
         // Another list is walked: a float is still refused.
-        let f = s.parse("[a, 1.5]").unwrap().0;
+        let f = s.list(&[Term::atom(Atom::intern("a")), Term::float(-0.0)]);
         assert!(!sure(s, f, true));
         // A list over a variable bound later is not remembered.
         let x = s.new_var();
@@ -1357,18 +1425,23 @@ mod tests {
         assert!(fns
             .call_vals(echo, &[long(MAX_DEPTH + 1)], u64::MAX)
             .is_none());
-        // Not ground, a float, a compound L evaluates: the term path's.
+        // Not ground, a float not sure (negative zero, NaN, infinite), a compound L evaluates: the term path's.
         let store = &mut Store::new();
         let x = store.new_var();
         for refused in [
             Val::from(x),
-            Val::Float(1.5),
+            Val::Float(-0.0),
+            Val::Float(f64::NAN),
             Val::Tagged(Compound::new(
                 Atom::intern("apply"),
                 [Val::Int(1), Val::Int(2)],
             )),
             Val::Tagged(Compound::new(atoms::DOT, [Val::Int(1), Val::Int(2)])),
-            Val::List([Val::Int(1), Val::Float(0.5)].into_iter().collect()),
+            Val::List(
+                [Val::Int(1), Val::Float(f64::INFINITY)]
+                    .into_iter()
+                    .collect(),
+            ),
         ] {
             assert!(fns.call_vals(echo, &[refused], u64::MAX).is_none());
         }

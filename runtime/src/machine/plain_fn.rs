@@ -33,8 +33,9 @@ impl<P: DmProgram> Cx<'_, '_, P> {
     /// `form`, runs where slot `k` resolved to it for this run (the
     /// engine's form is `form`: `crate::plain::slots`), on the arguments
     /// by reference; elsewhere the call is [`Cx::nat_plain`]'s, its value
-    /// the answer [`Answer::of_val`]. `None`: evaluate the `apply` as a
-    /// term.
+    /// the answer [`Answer::of_val`] (also where the compiled function
+    /// answers `None`: a float its arithmetic on integers does not take).
+    /// `None`: evaluate the `apply` as a term.
     #[inline]
     pub fn nat_plain_rs<'v, const N: usize, R: Answer>(
         &mut self,
@@ -49,8 +50,11 @@ impl<P: DmProgram> Cx<'_, '_, P> {
             .plain_slots
             .run(k, &m.functions, &m.store, &m.globals, name, form, args, f)
         {
-            Some(v) => v,
-            None => self.nat_plain_other(name, args).map(R::of_val),
+            Some(Some(v)) => Some(v),
+            // Not resolved, or the compiled function refused: a function
+            // of integers compiled without floats refuses a float the
+            // form runs on (`plain::num`), which the form then runs.
+            _ => self.nat_plain_other(name, args).map(R::of_val),
         }
     }
 

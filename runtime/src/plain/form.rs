@@ -166,6 +166,10 @@ fn expr(s: &mut String, e: &PExpr) {
         PExpr::Int(i) => {
             let _ = write!(s, "i{i};");
         }
+        PExpr::Float(f) => {
+            // Its bits: the same float exactly.
+            let _ = write!(s, "f{:x};", f.to_bits());
+        }
         PExpr::Un(op, x) => {
             let op = match op {
                 Un::Neg => "neg",
@@ -186,6 +190,7 @@ fn expr(s: &mut String, e: &PExpr) {
                 Bin::Rem => "rem",
                 Bin::Min => "min",
                 Bin::Max => "max",
+                Bin::Div => "fdiv",
             };
             let _ = write!(s, "x{op}(");
             expr(s, x);

@@ -19,7 +19,8 @@ use sitlog_syntax::Atom;
 
 pub use super::val::Parts;
 
-/// Whether every argument is one the plain form takes (ground, no float,
+/// Whether every argument is one the plain form takes (ground, no float
+/// but a sure one,
 /// no improper list, no construct of L, at most `MAX_DEPTH` deep): the
 /// check `call_vals` makes before it runs a clause.
 #[inline]
@@ -108,4 +109,62 @@ pub fn cons(h: Val, t: Val) -> Option<Val> {
         Val::List(t) => Some(Val::List(List::cons(h, t))),
         _ => None,
     }
+}
+
+pub use super::{Bin, Cmp, Un};
+/// A number of a clause's arithmetic (a function with a float constant
+/// or a `/` keeps its `is` variables as these).
+pub use crate::arith::Number as Num;
+
+/// The number `v` is (`None`: the term path decides: not a number, a
+/// float the plain form does not take).
+#[inline]
+pub fn num(v: &Val) -> Option<Num> {
+    match v {
+        Val::Int(i) => Some(Num::Int(*i)),
+        _ => val::number(v).ok(),
+    }
+}
+
+/// A number as a value.
+#[inline]
+pub fn num_val(n: Num) -> Val {
+    match n {
+        Num::Int(i) => Val::Int(i),
+        Num::Float(f) => Val::Float(f),
+    }
+}
+
+/// `op x` (`super::num::un`).
+#[inline]
+pub fn un(op: Un, x: Num) -> Option<Num> {
+    super::num::un(op, x)
+}
+
+/// `x op y` (`super::num::bin`).
+#[inline]
+pub fn bin(op: Bin, x: Num, y: Num) -> Option<Num> {
+    super::num::bin(op, x, y)
+}
+
+/// Whether `x op y` holds (`super::num::compare`).
+#[inline]
+pub fn cmp(op: Cmp, x: Num, y: Num) -> Option<bool> {
+    super::num::compare(op, x, y)
+}
+
+/// Whether `V is E` holds with `V` the number `v` (`super::num::same`).
+#[inline]
+pub fn same(e: Num, v: Num) -> bool {
+    super::num::same(e, v)
+}
+
+/// Whether a local of the caller, sent with a query, is one the plain
+/// form runs a call beside (the term path's check of the caller's
+/// variables, `plain::sure` not strict: not too deep for the engine);
+/// stricter here (a value `call_vals` takes as an argument), which
+/// refuses more, never less.
+#[inline]
+pub fn local_sure(v: &Val) -> bool {
+    matches!(v, Val::Int(_) | Val::Sym(_) | Val::Float(_)) || val::sure_arg(v)
 }

@@ -207,7 +207,7 @@ mod tests {
             &globals,
             f,
             "form",
-            [&Val::Float(0.5)],
+            [&Val::Float(-0.0)],
             one,
         );
         assert!(matches!(v, Some(None)));

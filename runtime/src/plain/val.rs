@@ -8,7 +8,7 @@
 //! `v`'s, and the term evaluator would have passed those terms to the
 //! function unchanged; everything else is `None` (the caller takes the
 //! term path, whose answer and error are the engine's). So it refuses what
-//! `call` refuses (a float, an unbound part, an improper list, a deeper
+//! `call` refuses (a float that is not sure, `num::sure_float`, an unbound part, an improper list, a deeper
 //! nesting than [`MAX_DEPTH`], a type error, an overflow, a function that
 //! fails or assigns nothing) and, besides, an argument that L would not
 //! take as its own value (a compound whose functor is a construct of L,
@@ -18,7 +18,8 @@
 //! one without a `Val::Term` stays so), so a walk that passes the rest of
 //! its list at each visit checks it once.
 
-use super::{Opnd, PArg, PClause, PExpr, PGoal, PlainFn, PlainFns, Un, MAX_DEPTH, MIN_INFERENCES};
+use super::{num, Opnd, PArg, PClause, PExpr, PGoal, PlainFn, PlainFns, MAX_DEPTH, MIN_INFERENCES};
+use crate::arith::Number;
 use crate::native::{Compound, List, Val};
 use crate::term::{Repr, Term};
 use sitlog_syntax::{atoms, Atom};
@@ -105,7 +106,8 @@ pub(super) fn sure_arg(v: &Val) -> bool {
 }
 
 /// Whether `v`, at nesting `depth`, is what the term path takes as it is:
-/// ground (no `Val::Term`), no float, no improper list (a `'.'/2`
+/// ground (no `Val::Term`), no float but a sure one (`num::sure_float`),
+/// no improper list (a `'.'/2`
 /// compound is one), no compound L evaluates otherwise than by its
 /// arguments (D-36), nesting at most [`MAX_DEPTH`] levels counted as the
 /// term's (a list a level per element).
@@ -115,7 +117,8 @@ fn sure(v: &Val, depth: usize) -> bool {
     }
     match v {
         Val::Int(_) | Val::Sym(_) => true,
-        Val::Float(_) | Val::Term(_) => false,
+        Val::Float(f) => num::sure_float(*f),
+        Val::Term(_) => false,
         Val::List(l) => {
             // The `[]` ending the list sits `len` levels down.
             if depth + l.len() > MAX_DEPTH {
@@ -182,6 +185,8 @@ pub(super) fn ident(x: &Val, y: &Val) -> bool {
     match (x, y) {
         (Val::Sym(a), Val::Sym(b)) => a == b,
         (Val::Int(a), Val::Int(b)) => a == b,
+        // Sure floats (`num::sure_float`): identical by value.
+        (Val::Float(a), Val::Float(b)) => a.to_bits() == b.to_bits(),
         (Val::List(a), Val::List(b)) => {
             a.same_storage(b)
                 || (a.len() == b.len() && a.iter().zip(b.iter()).all(|(p, q)| ident(p, q)))
@@ -288,27 +293,34 @@ fn value(o: &Opnd, regs: &[Val]) -> Option<Val> {
     }
 }
 
-fn int(v: &Val) -> Result<i64, ()> {
+/// The number `v` is (a sure float, `num::sure_float`), `Err` (not
+/// decided here) for anything else.
+#[inline]
+pub(super) fn number(v: &Val) -> Result<Number, ()> {
     match v {
-        Val::Int(i) => Ok(*i),
+        Val::Int(i) => Ok(Number::Int(*i)),
+        Val::Float(f) => num::of_float(*f).ok_or(()),
         _ => Err(()),
     }
 }
 
-fn eval(e: &PExpr, regs: &[Val]) -> Result<i64, ()> {
+fn eval(e: &PExpr, regs: &[Val]) -> Result<Number, ()> {
     Ok(match e {
-        PExpr::Var(i) => int(&regs[*i as usize])?,
-        PExpr::Int(i) => *i,
-        PExpr::Un(op, x) => {
-            let x = eval(x, regs)?;
-            match op {
-                Un::Neg => x.checked_neg().ok_or(())?,
-                Un::Pos => x,
-                Un::Abs => x.checked_abs().ok_or(())?,
-            }
-        }
-        PExpr::Bin(op, x, y) => super::bin(*op, eval(x, regs)?, eval(y, regs)?)?,
+        PExpr::Var(i) => number(&regs[*i as usize])?,
+        PExpr::Int(i) => Number::Int(*i),
+        PExpr::Float(f) => Number::Float(*f),
+        PExpr::Un(op, x) => num::un(*op, eval(x, regs)?).ok_or(())?,
+        PExpr::Bin(op, x, y) => num::bin(*op, eval(x, regs)?, eval(y, regs)?).ok_or(())?,
     })
+}
+
+/// A number as a value.
+#[inline]
+fn of_number(n: Number) -> Val {
+    match n {
+        Number::Int(i) => Val::Int(i),
+        Number::Float(f) => Val::Float(f),
+    }
 }
 
 /// Whether the argument `a` matches the head argument `p`, binding its
@@ -369,11 +381,11 @@ fn run_goals<'c>(
                 true
             }
             PGoal::IsFresh(i, e) => {
-                regs[*i as usize] = Val::Int(eval(e, regs)?);
+                regs[*i as usize] = of_number(eval(e, regs)?);
                 true
             }
-            PGoal::IsBound(i, e) => eval(e, regs)? == int(&regs[*i as usize])?,
-            PGoal::Cmp(op, x, y) => super::compare(*op, eval(x, regs)?, eval(y, regs)?),
+            PGoal::IsBound(i, e) => num::same(eval(e, regs)?, number(&regs[*i as usize])?),
+            PGoal::Cmp(op, x, y) => num::compare(*op, eval(x, regs)?, eval(y, regs)?).ok_or(())?,
             PGoal::Ident(eq, x, y) => ident_oo(x, y, regs) == *eq,
             PGoal::Bind(i, o) => {
                 regs[*i as usize] = value(o, regs).ok_or(())?;

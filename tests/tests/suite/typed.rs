@@ -4036,6 +4036,8 @@ fn when_with_expression_operands_agrees() {
 mod ncold20;
 /// Helper `nwinch25`'s outputs some finals leave and type tests (issue 37).
 mod nwinch25;
+/// Helper `nfloat25`'s plain functions on floats against the engine (issue 37).
+mod nfloat25;
 /// Helper `review18`'s workloads with bad inputs (issue 37).
 mod review18;
 /// Helper `review19`'s workloads with bad inputs (issue 37).

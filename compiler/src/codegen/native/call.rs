@@ -324,7 +324,7 @@ impl Gen<'_> {
     /// met only there (`SitTypes::unbound`: binding it has no other
     /// effect): the local's value, read natively (`search(get(places, _),
     /// T)`).
-    fn nat_local_get(&self, d: &Dm, ix: usize, b: &Build) -> Option<V> {
+    pub(super) fn nat_local_get(&self, d: &Dm, ix: usize, b: &Build) -> Option<V> {
         let Build::Compound(op, args) = b else {
             return None;
         };

@@ -161,7 +161,11 @@ impl Gen<'_> {
     /// `next_term`; the value `rec_next`): the statements making the
     /// variables it reads unset (a register the condition binds, made
     /// there) and the evaluation.
-    fn cold_next_terms(&self, n: &Next, regs: &Regs) -> N<(Option<TokenStream>, TokenStream)> {
+    pub(super) fn cold_next_terms(
+        &self,
+        n: &Next,
+        regs: &Regs,
+    ) -> N<(Option<TokenStream>, TokenStream)> {
         let _no_new = super::cold_act::NoNewPatterns::set(&self.no_new_patterns);
         let mut mregs = regs.clone();
         let mut all = Vec::new();

@@ -5165,6 +5165,10 @@ impl Gen<'_> {
                 self.nat_select(d, cur, name, vals, cur_name)
             }
             Next::If(c, a, b) => {
+                // A plain call's test in a DM with locals (`plain`).
+                if let Some(code) = self.nat_plain_if_locals(d, cur, n, regs, cur_name)? {
+                    return Ok(code);
+                }
                 // A `get(v, D)` of the condition binds `D` for the branches.
                 let mut bregs = regs.clone();
                 let mut binds = Vec::new();

@@ -690,7 +690,7 @@ impl Gen<'_> {
         // (`plain`), the `apply` built and evaluated where it gives none
         // (its term built there, after the next situation: building reads
         // registers only, the kept ones renamed below).
-        let (built, pre) = match self.nat_plain_call(d, b, regs)? {
+        let (built, pre) = match self.nat_plain_call(d, b, regs, None)? {
             Some((call, ans)) => {
                 // A compound answered by its parts: built here.
                 let val = match ans {

@@ -32,7 +32,7 @@
 use super::plain_rs::Answers;
 use super::{coerce, Dm, Regs, N, V};
 use crate::codegen::Gen;
-use crate::mir::{Build, Cond};
+use crate::mir::{Build, Cond, Next};
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 use sitlog_runtime::native::Ty;
@@ -54,10 +54,35 @@ impl Gen<'_> {
         d: &Dm,
         b: &Build,
         regs: &Regs,
+        at: Option<usize>,
     ) -> N<Option<(TokenStream, Option<Answers>)>> {
-        if !(d.locals.is_empty() && d.dm.locals.is_empty()) {
+        // A DM with locals: only where the term path hands the frames
+        // over (`at`, the situation), the locals held natively, each an
+        // int, a float or an atom (a query sends them; these are never
+        // too deep for it) or a `Val` checked at the call
+        // (`rt::local_sure`).
+        let scalar = |ty: &Ty| matches!(ty, Ty::Int | Ty::Float | Ty::Sym);
+        let locals = !(d.locals.is_empty() && d.dm.locals.is_empty());
+        if locals
+            && !(at.is_some()
+                && d.locals_ok
+                && d.locals.len() == d.dm.locals.len()
+                && d.locals
+                    .iter()
+                    .all(|(_, ty)| scalar(ty) || super::held_as_val(ty)))
+        {
             return Ok(None);
         }
+        let local_checks: Vec<TokenStream> = d
+            .locals
+            .iter()
+            .enumerate()
+            .filter(|(_, (_, ty))| !scalar(ty))
+            .map(|(i, _)| {
+                let l = format_ident!("l{}", i);
+                quote!(::sitlog_runtime::plain::rt::local_sure(&*#l))
+            })
+            .collect();
         let Build::Compound(apply, parts) = b else {
             return Ok(None);
         };
@@ -102,9 +127,22 @@ impl Gen<'_> {
         // held, by reference; another, converted in a temporary.
         let mut refs = Vec::new();
         for it in items {
+            // `get(l, _)` of a local held natively: its value.
+            if let Some((v, l)) = at.and_then(|ix| self.plain_local_get(d, ix, it, regs)) {
+                let Ok(e) = coerce(&v, &Ty::Ground) else {
+                    return Ok(None);
+                };
+                // A `Val` held, by reference, for the compiled function.
+                refs.push(
+                    super::held_as_val(&v.ty)
+                        .then(|| quote!(::sitlog_runtime::plain::rt::arg(&*#l))),
+                );
+                vals.push(e);
+                continue;
+            }
             let v = match it {
                 Build::Reg(r) => match regs.get(r) {
-                    Some((x, ty)) if !super::is_fresh(x) && ty.is_native() && *ty != Ty::Float => {
+                    Some((x, ty)) if !super::is_fresh(x) && ty.is_native() => {
                         if super::held_as_val(ty) {
                             refs.push(Some(quote!(::sitlog_runtime::plain::rt::arg(&#x))));
                         } else {
@@ -118,7 +156,10 @@ impl Gen<'_> {
                     _ => return Ok(None),
                 },
                 Build::Const(t)
-                    if matches!(self.store.value(*t), Value::Atom(_) | Value::Int(_)) =>
+                    if matches!(
+                        self.store.value(*t),
+                        Value::Atom(_) | Value::Int(_) | Value::Float(_)
+                    ) =>
                 {
                     refs.push(None);
                     self.nat_value(it, regs)?
@@ -132,7 +173,16 @@ impl Gen<'_> {
         }
         let f = self.atom_native(*name)?;
         // Compiled to Rust where the generator takes the form (`plain_rs`).
-        Ok(Some(match self.plain_slot(*name, declared.len()) {
+        let guard = |(call, ans): (TokenStream, Option<Answers>)| {
+            if local_checks.is_empty() {
+                return (call, ans);
+            }
+            (
+                quote!((if #(#local_checks)&&* { #call } else { None })),
+                ans,
+            )
+        };
+        Ok(Some(guard(match self.plain_slot(*name, declared.len()) {
             Some(k) => {
                 let (form, fun, ans) = self.plain_rs_call(k);
                 let k = proc_macro2::Literal::usize_unsuffixed(k);
@@ -146,7 +196,37 @@ impl Gen<'_> {
                 )
             }
             None => (quote!(cx.nat_plain(#f, &[#(#vals),*])), None),
-        }))
+        })))
+    }
+
+    /// `get(l, V)` as a plain call's value (`b`) in situation `ix`, `l` a
+    /// local held in the frame: its value, read natively, where binding
+    /// `V` has no other effect (`nat_local_get`'s `unbound`, or a fresh
+    /// variable met only there: nothing reads it after).
+    fn plain_local_get(&self, d: &Dm, ix: usize, b: &Build, regs: &Regs) -> Option<(V, Ident)> {
+        let Build::Compound(op, args) = b else {
+            return None;
+        };
+        let [Build::Const(n), Build::Reg(r)] = &args[..] else {
+            return None;
+        };
+        if *op != atoms::GET || !d.locals_ok {
+            return None;
+        }
+        let taken = self.nat_local_get(d, ix, b).is_some()
+            || (regs.get(r).is_some_and(|(x, _)| super::is_fresh(x))
+                && super::occurs_once(d, ix, *r));
+        if !taken {
+            return None;
+        }
+        let (l, ty) = d.local_field(self.store.atom_of(*n)?)?;
+        Some((
+            V {
+                e: quote!((*#l).clone()),
+                ty,
+            },
+            l,
+        ))
     }
 
     /// A next situation evaluated whole (`b`), a plain call: its value
@@ -161,7 +241,7 @@ impl Gen<'_> {
         cur_name: &TokenStream,
         evaluated: TokenStream,
     ) -> N<Option<TokenStream>> {
-        let Some((call, ans)) = self.nat_plain_call(d, b, regs)? else {
+        let Some((call, ans)) = self.nat_plain_call(d, b, regs, Some(cur))? else {
             return Ok(None);
         };
         // Each name and arity a situation of the DM has, once, in order;
@@ -261,6 +341,86 @@ impl Gen<'_> {
         name: &Ident,
         evaluated: impl FnOnce() -> N<Option<TokenStream>>,
     ) -> N<Option<TokenStream>> {
+        let Some((call, test)) = self.plain_cond_parts(d, None, c, regs)? else {
+            return Ok(None);
+        };
+        let Some(pre) = evaluated()? else {
+            return Ok(None);
+        };
+        let pre = cold_arm(pre);
+        Ok(Some(quote! {
+            let #name: bool = match #call {
+                Some(pa) => #test,
+                None => {
+                    #pre
+                    #name
+                }
+            };
+        }))
+    }
+
+    /// A conditional next situation `n` (`( C -> A ; otherwise -> B )`)
+    /// in a DM with locals whose condition `C` is a plain call's test as
+    /// [`Gen::nat_plain_cond`] takes it: the test in Rust and `A` or `B`
+    /// natively; where the call gives `None`, the native frames handed
+    /// over (the locals written back), the machine entered in situation
+    /// `cur` and the whole next situation evaluated on terms
+    /// (`cold_next`'s `cold_next_terms`), as the term path does: nothing
+    /// was done before (the native call changes nothing). `None`: not
+    /// such a situation (a DM without locals takes `nat_plain_cond`).
+    pub(super) fn nat_plain_if_locals(
+        &self,
+        d: &Dm,
+        cur: usize,
+        n: &Next,
+        regs: &Regs,
+        cur_name: &TokenStream,
+    ) -> N<Option<TokenStream>> {
+        let Next::If(c, a, b) = n else {
+            return Ok(None);
+        };
+        if d.locals.is_empty() && d.dm.locals.is_empty() {
+            return Ok(None);
+        }
+        let Some((call, test)) = self.plain_cond_parts(d, Some(cur), c, regs)? else {
+            return Ok(None);
+        };
+        let Ok((vars, redo)) = self.cold_next_terms(n, regs) else {
+            return Ok(None);
+        };
+        let a = self.nat_next(d, cur, a, regs, cur_name)?;
+        let b = self.nat_next(d, cur, b, regs, cur_name)?;
+        let enter = self.nat_enter_to_evaluate(d, cur)?;
+        let out = d.out.borrow().clone();
+        let tail = super::goto_tail(&d.rec.borrow());
+        Ok(Some(quote! {
+            match #call {
+                Some(pa) => {
+                    let cond_value: bool = #test;
+                    if cond_value { #a } else { #b }
+                }
+                None => {
+                    #enter
+                    #vars
+                    #redo
+                    cx.count_transitions(count);
+                    #out
+                    #tail
+                }
+            }
+        }))
+    }
+
+    /// The call and the test (of `pa`, its answer) of a condition
+    /// `apply(f(_, ..), [..]) == k` (`\==`; either side) whose call
+    /// [`Gen::nat_plain_call`] takes (`at` as there).
+    fn plain_cond_parts(
+        &self,
+        d: &Dm,
+        at: Option<usize>,
+        c: &Cond,
+        regs: &Regs,
+    ) -> N<Option<(TokenStream, TokenStream)>> {
         let Cond::Other(Build::Compound(op, sides)) = c else {
             return Ok(None);
         };
@@ -272,9 +432,9 @@ impl Gen<'_> {
         let [l, r] = &sides[..] else {
             return Ok(None);
         };
-        let ((call, ans), k) = match (self.nat_plain_call(d, l, regs)?, r) {
+        let ((call, ans), k) = match (self.nat_plain_call(d, l, regs, at)?, r) {
             (Some(call), Build::Const(k)) => (call, *k),
-            _ => match (l, self.nat_plain_call(d, r, regs)?) {
+            _ => match (l, self.nat_plain_call(d, r, regs, at)?) {
                 (Build::Const(k), Some(call)) => (call, *k),
                 _ => return Ok(None),
             },
@@ -306,19 +466,7 @@ impl Gen<'_> {
                 #test
             }),
         };
-        let Some(pre) = evaluated()? else {
-            return Ok(None);
-        };
-        let pre = cold_arm(pre);
-        Ok(Some(quote! {
-            let #name: bool = match #call {
-                Some(pa) => #test,
-                None => {
-                    #pre
-                    #name
-                }
-            };
-        }))
+        Ok(Some((call, test)))
     }
 }
 

@@ -31,7 +31,11 @@
 //! Invariant (the same clauses, ensured at run time): the compiled
 //! function gives `Some(v)` (an answer whose `val` is `v`) exactly where
 //! the evaluator's `PlainFns::call_vals` on the same form gives `Some(v)`,
-//! else `None`;
+//! else `None`, but for one case: a function without a float constant or
+//! a `/` computes on `i64` and answers `None` where a float reaches its
+//! arithmetic (`call_vals` may run it: `Cx::nat_plain_rs` then asks it);
+//! a function with one computes on `rt::Num` as `call_vals` does
+//! (`sitlog_runtime::plain::num`);
 //! and it runs only where the run's engine loaded that same form (the
 //! fingerprint, atoms by name, compared once a run: `Cx::nat_plain_rs`,
 //! `sitlog_runtime::plain::slots`) and `call_vals` would run the call (the
@@ -79,7 +83,8 @@ struct Shape {
 enum Kind {
     /// A head variable: a reference into the arguments.
     Ref,
-    /// Bound by `is` only: an `i64`.
+    /// Bound by `is` only: an `i64` (a `rt::Num` in a function with
+    /// floats, `Clause::floats`).
     Int,
     /// Bound by `=` (or both): an owned `Val`.
     Val,
@@ -204,9 +209,10 @@ impl Gen<'_> {
         }
         let ans = compound.then(|| format_ident!("Ans{}", k));
         let shapes = std::cell::RefCell::new(Vec::new());
+        let floats = f.clauses().iter().any(|c| goals_float(c.body()));
         let mut clauses = Vec::new();
         for (n, c) in f.clauses().iter().enumerate() {
-            clauses.push(self.plain_clause(n, c, &args, ans.as_ref(), &shapes)?);
+            clauses.push(self.plain_clause(n, c, &args, ans.as_ref(), &shapes, floats)?);
         }
         let doc = format!(" `{}/{}`, compiled.", name.as_str(), arity);
         let n = Literal::usize_unsuffixed(arity);
@@ -297,6 +303,7 @@ impl Gen<'_> {
         args: &[Ident],
         ans: Option<&Ident>,
         shapes: &std::cell::RefCell<Vec<Shape>>,
+        floats: bool,
     ) -> N<TokenStream> {
         let mut kinds = vec![None; c.vars()];
         for a in c.head() {
@@ -328,6 +335,7 @@ impl Gen<'_> {
             long: vec![false; c.vars()],
             ans: ans.cloned(),
             shapes,
+            floats,
         };
         let mut stmts = Vec::new();
         for (p, a) in c.head().iter().zip(args) {
@@ -340,6 +348,7 @@ impl Gen<'_> {
             match k {
                 _ if !declared[i] => {}
                 Kind::Ref => {}
+                Kind::Int if cg.floats => decls.push(quote!(let #r: rt::Num;)),
                 Kind::Int => decls.push(quote!(let #r: i64;)),
                 Kind::Val => decls.push(quote!(let #r: Val;)),
             }
@@ -459,6 +468,25 @@ fn goal_atoms(gs: &[PGoal], out: &mut Vec<Atom>) {
     }
 }
 
+/// Whether an expression of `gs` has a float constant or a `/` (the
+/// function's arithmetic is then on `rt::Num`).
+fn goals_float(gs: &[PGoal]) -> bool {
+    fn expr(e: &PExpr) -> bool {
+        match e {
+            PExpr::Float(_) | PExpr::Bin(Bin::Div, ..) => true,
+            PExpr::Var(_) | PExpr::Int(_) => false,
+            PExpr::Un(_, x) => expr(x),
+            PExpr::Bin(_, x, y) => expr(x) || expr(y),
+        }
+    }
+    gs.iter().any(|g| match g {
+        PGoal::IsFresh(_, e) | PGoal::IsBound(_, e) => expr(e),
+        PGoal::Cmp(_, x, y) => expr(x) || expr(y),
+        PGoal::Ite(c, t, e) => goals_float(c) || goals_float(t) || goals_float(e),
+        _ => false,
+    })
+}
+
 fn head_kinds(a: &PArg, kinds: &mut [Option<Kind>]) {
     match a {
         PArg::Bind(i) => kinds[*i as usize] = Some(Kind::Ref),
@@ -556,6 +584,10 @@ struct Clause<'g, 's> {
     /// variants so far.
     ans: Option<Ident>,
     shapes: &'g std::cell::RefCell<Vec<Shape>>,
+    /// The function has a float constant or a `/`: its arithmetic is on
+    /// `rt::Num` (integers and floats, `sitlog_runtime::plain::num`),
+    /// else on `i64`.
+    floats: bool,
 }
 
 impl Clause<'_, '_> {
@@ -638,6 +670,7 @@ impl Clause<'_, '_> {
         let r = reg(i as usize);
         match self.kinds[i as usize] {
             Kind::Ref => quote!(#r),
+            Kind::Int if self.floats => quote!(&rt::num_val(#r)),
             Kind::Int => quote!(&Val::Int(#r)),
             Kind::Val => quote!(&#r),
         }
@@ -773,6 +806,7 @@ impl Clause<'_, '_> {
             Opnd::Var(i) => {
                 let r = reg(*i as usize);
                 match self.kinds[*i as usize] {
+                    Kind::Int if self.floats => quote!(rt::num_val(#r)),
                     Kind::Int => quote!(Val::Int(#r)),
                     Kind::Ref | Kind::Val => quote!(#r.clone()),
                 }
@@ -807,8 +841,12 @@ impl Clause<'_, '_> {
         })
     }
 
-    /// The expression's integer (`?`: the term path decides).
+    /// The expression's integer (`?`: the term path decides); a `rt::Num`
+    /// in a function with floats.
     fn eval(&self, e: &PExpr) -> TokenStream {
+        if self.floats {
+            return self.eval_num(e);
+        }
         match e {
             PExpr::Var(i) => {
                 let r = reg(*i as usize);
@@ -819,6 +857,8 @@ impl Clause<'_, '_> {
                 }
             }
             PExpr::Int(i) => int_lit(*i),
+            // Not in a function without floats (`Clause::floats`).
+            PExpr::Float(_) => quote!(None?),
             PExpr::Un(op, x) => {
                 let x = self.eval(x);
                 match op {
@@ -838,13 +878,86 @@ impl Clause<'_, '_> {
                     Bin::Mod => quote!(rt::modulo(#x, #y)?),
                     Bin::Min => quote!((#x).min(#y)),
                     Bin::Max => quote!((#x).max(#y)),
+                    Bin::Div => quote!(None?),
                 }
+            }
+        }
+    }
+
+    /// [`Clause::eval`] on `rt::Num` (the evaluator's `plain::num`).
+    fn eval_num(&self, e: &PExpr) -> TokenStream {
+        match e {
+            PExpr::Var(i) => {
+                let r = reg(*i as usize);
+                match self.kinds[*i as usize] {
+                    Kind::Int => quote!(#r),
+                    Kind::Ref => quote!(rt::num(#r)?),
+                    Kind::Val => quote!(rt::num(&#r)?),
+                }
+            }
+            PExpr::Int(i) => {
+                let i = int_lit(*i);
+                quote!(rt::Num::Int(#i))
+            }
+            PExpr::Float(f) => {
+                let bits = Literal::u64_suffixed(f.to_bits());
+                quote!(rt::Num::Float(f64::from_bits(#bits)))
+            }
+            PExpr::Un(op, x) => {
+                let x = self.eval_num(x);
+                let op = match op {
+                    Un::Neg => quote!(Neg),
+                    Un::Pos => quote!(Pos),
+                    Un::Abs => quote!(Abs),
+                };
+                quote!(rt::un(rt::Un::#op, #x)?)
+            }
+            PExpr::Bin(op, x, y) => {
+                let (x, y) = (self.eval_num(x), self.eval_num(y));
+                let op = match op {
+                    Bin::Add => quote!(Add),
+                    Bin::Sub => quote!(Sub),
+                    Bin::Mul => quote!(Mul),
+                    Bin::IntDiv => quote!(IntDiv),
+                    Bin::Rem => quote!(Rem),
+                    Bin::Mod => quote!(Mod),
+                    Bin::Min => quote!(Min),
+                    Bin::Max => quote!(Max),
+                    Bin::Div => quote!(Div),
+                };
+                quote!(rt::bin(rt::Bin::#op, #x, #y)?)
             }
         }
     }
 
     /// A test goal (`is_test`) as a `bool` expression; `None` for `true`.
     fn test(&mut self, g: &PGoal) -> N<Option<TokenStream>> {
+        if self.floats {
+            match g {
+                PGoal::IsBound(i, e) => {
+                    let e = self.eval_num(e);
+                    let r = reg(*i as usize);
+                    return Ok(Some(match self.kinds[*i as usize] {
+                        Kind::Int => quote!(rt::same(#e, #r)),
+                        Kind::Ref => quote!(rt::same(#e, rt::num(#r)?)),
+                        Kind::Val => quote!(rt::same(#e, rt::num(&#r)?)),
+                    }));
+                }
+                PGoal::Cmp(op, x, y) => {
+                    let (x, y) = (self.eval_num(x), self.eval_num(y));
+                    let op = match op {
+                        Cmp::Lt => quote!(Lt),
+                        Cmp::Gt => quote!(Gt),
+                        Cmp::Le => quote!(Le),
+                        Cmp::Ge => quote!(Ge),
+                        Cmp::Eq => quote!(Eq),
+                        Cmp::Ne => quote!(Ne),
+                    };
+                    return Ok(Some(quote!(rt::cmp(rt::Cmp::#op, #x, #y)?)));
+                }
+                _ => {}
+            }
+        }
         Ok(Some(match g {
             PGoal::True => return Ok(None),
             PGoal::Fail => quote!(false),
@@ -901,6 +1014,7 @@ impl Clause<'_, '_> {
                     let e = self.eval(e);
                     out.push(match self.kinds[*i as usize] {
                         Kind::Int => quote!(#r = #e;),
+                        _ if self.floats => quote!(#r = rt::num_val(#e);),
                         _ => quote!(#r = Val::Int(#e);),
                     });
                 }
