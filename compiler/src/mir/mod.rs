@@ -11,7 +11,8 @@
 //! names each of its variables once, an argument a variable or a pattern
 //! ([`Init::HeadPath`]); no term deeper than [`MAX_DEPTH`]),
 //! *which variables are lazy* (first occurring as the argument of
-//! `get`/`inc` or the variable of `is`) and *where a constant next
+//! `get`/`inc`, the variable of `is`, or a side of `=` whose other side
+//! does not name it) and *where a constant next
 //! situation goes* are decided here only. The interpreter
 //! ([`crate::interp`]) runs the plans; the code generator
 //! ([`crate::codegen`]) prints them as Rust; both therefore take the same
@@ -99,6 +100,13 @@ pub enum Ev {
     Is {
         lhs: Build,
         expr: Build,
+    },
+    /// `V = E` or `E = V` for a variable `V` not made yet and not in `E`
+    /// (D-30: unified, not evaluated): `V` takes `E`'s term as built, which
+    /// is also the value. The unification cannot fail and makes no cycle.
+    BindFresh {
+        expr: Build,
+        dst: Reg,
     },
     /// A compound whose evaluation evaluates its arguments only.
     Compound(Atom, Box<[Ev]>),
@@ -341,9 +349,11 @@ impl Ev {
     fn constants(&self, out: &mut Vec<Term>) {
         match self {
             Ev::Value(_) | Ev::VarOpFresh { .. } => {}
-            Ev::Built(b) | Ev::Eval(b) | Ev::VarOp { arg: b, .. } | Ev::IsFresh { expr: b, .. } => {
-                b.constants(out)
-            }
+            Ev::Built(b)
+            | Ev::Eval(b)
+            | Ev::VarOp { arg: b, .. }
+            | Ev::IsFresh { expr: b, .. }
+            | Ev::BindFresh { expr: b, .. } => b.constants(out),
             Ev::If(c, a, b) | Ev::Pick(c, a, b) => {
                 c.constants(out);
                 a.constants(out);

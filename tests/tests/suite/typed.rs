@@ -4034,6 +4034,8 @@ fn when_with_expression_operands_agrees() {
 }
 /// Helper `ncold20`'s global reads native code cannot hold (issue 37).
 mod ncold20;
+/// Helper `neq25`'s `X = Y` in arcs' actions (issue 37).
+mod neq25;
 /// Helper `review18`'s workloads with bad inputs (issue 37).
 mod review18;
 /// Helper `review19`'s workloads with bad inputs (issue 37).
