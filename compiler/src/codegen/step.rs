@@ -179,6 +179,12 @@ impl Gen<'_> {
                 b.stmts.push(quote!(#dst = cx.is(None, #expr, #arc)?;));
                 quote!(#dst)
             }
+            Ev::BindFresh { expr, dst } => {
+                let expr = self.build_code(expr, b);
+                let dst = reg(*dst);
+                b.stmts.push(quote!(#dst = #expr;));
+                quote!(#dst)
+            }
             Ev::Is { lhs, expr } => {
                 let expr = self.build_code(expr, b);
                 let lhs = self.build_code(lhs, b);

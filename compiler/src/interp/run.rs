@@ -94,6 +94,11 @@ pub(super) fn ev(
             regs[*dst as usize] = v;
             Ok(v)
         }
+        Ev::BindFresh { expr, dst } => {
+            let v = build(cx, regs, expr);
+            regs[*dst as usize] = v;
+            Ok(v)
+        }
         Ev::Is { lhs, expr } => {
             let x = build(cx, regs, expr);
             let l = build(cx, regs, lhs);

@@ -293,6 +293,11 @@ impl<'s> Planner<'s> {
             let lhs = self.build(args[0], &scope.vars, depth + 1)?;
             return Ok(Ev::Is { lhs, expr });
         }
+        if args.len() == 2 && name == atoms::EQUALS {
+            if let Some(e) = self.bind_fresh(args[0], args[1], scope, depth)? {
+                return Ok(e);
+            }
+        }
         if let Some(e) = self.when_call(t, scope, depth) {
             return Ok(e);
         }
@@ -304,6 +309,24 @@ impl<'s> Planner<'s> {
             return Ok(Ev::Compound(name, values.into()));
         }
         Ok(Ev::Eval(self.build(t, &scope.vars, depth + 1)?))
+    }
+
+    /// `X = Y` (D-30) where one side is a lazy variable (not made yet; the
+    /// lazy walk made it lazy only if the other side does not name it):
+    /// [`Ev::BindFresh`] of the other side's term, unevaluated. Anything
+    /// else (`None`) stays the evaluator's unification.
+    fn bind_fresh(&self, x: Term, y: Term, scope: &mut Scope, depth: usize) -> Plan<Option<Ev>> {
+        for (v, e) in [(x, y), (y, x)] {
+            if let Value::Var(v) = self.store.value(v) {
+                if scope.lazy.contains(&v.index()) {
+                    let expr = self.build(e, &scope.vars, depth + 1)?;
+                    scope.lazy.remove(&v.index());
+                    let dst = *scope.vars.get(&v.index()).ok_or(Unsupported)?;
+                    return Ok(Some(Ev::BindFresh { expr, dst }));
+                }
+            }
+        }
+        Ok(None)
     }
 
     /// `apply(when(_, _, _), [C, T, E])` with the runtime's own `when/3`
@@ -531,14 +554,31 @@ impl<'s> Planner<'s> {
     }
 
     /// Variables whose first occurrence is the argument of a `get`/`inc`
-    /// (or the variable of an `is`) outside any conditional.
-    pub(crate) fn lazy_vars(&self, terms: &[Term]) -> HashSet<u32> {
+    /// (or the variable of an `is`, or a side of `=`) outside any
+    /// conditional, none of them `known` (made before the arc). A side of
+    /// `=` only where the other side names no variable the arc makes
+    /// unbound (each `known` or itself lazy, so bound before): otherwise
+    /// the value would have unbound parts, and the `=` stays the
+    /// evaluator's unification.
+    pub(crate) fn lazy_vars(&self, terms: &[Term], known: &dyn Fn(u32) -> bool) -> HashSet<u32> {
         let mut seen = HashSet::new();
         let mut lazy = HashSet::new();
+        let mut binds = Vec::new();
         for &t in terms {
-            self.lazy_walk(t, 0, &mut seen, &mut lazy);
+            self.lazy_walk(t, 0, &mut seen, &mut lazy, &mut binds);
         }
-        lazy
+        lazy.retain(|&v| !known(v));
+        loop {
+            let before = lazy.len();
+            for (v, others) in &binds {
+                if lazy.contains(v) && others.iter().any(|w| !known(*w) && !lazy.contains(w)) {
+                    lazy.remove(v);
+                }
+            }
+            if lazy.len() == before {
+                return lazy;
+            }
+        }
     }
 
     pub(crate) fn lazy_walk(
@@ -547,6 +587,7 @@ impl<'s> Planner<'s> {
         depth: usize,
         seen: &mut HashSet<u32>,
         lazy: &mut HashSet<u32>,
+        binds: &mut Vec<(u32, Vec<u32>)>,
     ) {
         let Value::Compound(name, args) = self.store.value(t) else {
             if let Value::Var(v) = self.store.value(t) {
@@ -563,7 +604,7 @@ impl<'s> Planner<'s> {
         }
         if let Some((c, a, b)) = eval::conditional(self.store, t) {
             for part in [c, a, b] {
-                self.lazy_walk(part, depth + 1, seen, lazy);
+                self.lazy_walk(part, depth + 1, seen, lazy, binds);
             }
             return;
         }
@@ -582,6 +623,31 @@ impl<'s> Planner<'s> {
             seen.extend(vars);
             return;
         }
+        if args.len() == 2 && name == atoms::EQUALS {
+            // `V = E` / `E = V` with `V` first met here and not in `E`
+            // ([`Self::bind_fresh`]); the left side is tried first.
+            let mut vars = Vec::new();
+            self.term_vars(t, &mut vars);
+            let fresh = |side: Term, other: Term, seen: &HashSet<u32>| match self.store.value(side)
+            {
+                Value::Var(v) if !seen.contains(&v.index()) => {
+                    let mut in_other = Vec::new();
+                    self.term_vars(other, &mut in_other);
+                    (!in_other.contains(&v.index())).then_some((v.index(), in_other))
+                }
+                _ => None,
+            };
+            if depth == 0 {
+                if let Some((v, others)) =
+                    fresh(args[0], args[1], seen).or_else(|| fresh(args[1], args[0], seen))
+                {
+                    lazy.insert(v);
+                    binds.push((v, others));
+                }
+            }
+            seen.extend(vars);
+            return;
+        }
         if args.len() == 2 && (name == atoms::GET || name == atoms::INC) {
             if let (Some(var), Value::Var(v)) =
                 (self.store.atom_of(args[0]), self.store.value(args[1]))
@@ -597,7 +663,7 @@ impl<'s> Planner<'s> {
         }
         if !self.store.is_ground(t) && eval::evaluates_arguments_only(name, args.len()) {
             for &a in args {
-                self.lazy_walk(a, depth, seen, lazy);
+                self.lazy_walk(a, depth, seen, lazy, binds);
             }
             return;
         }
@@ -894,11 +960,9 @@ impl<'s> Planner<'s> {
             let in_order: Vec<Term> = arc.iter().copied().chain(out_arg).collect();
             let mut in_expectation = Vec::new();
             self.term_vars(arc[0], &mut in_expectation);
-            let lazy: HashSet<u32> = self
-                .lazy_vars(&in_order)
-                .into_iter()
-                .filter(|v| !scope.vars.contains_key(v) && !in_expectation.contains(v))
-                .collect();
+            let lazy: HashSet<u32> = self.lazy_vars(&in_order, &|v| {
+                scope.vars.contains_key(&v) || in_expectation.contains(&v)
+            });
             let imported: Vec<u32> = vars
                 .iter()
                 .copied()

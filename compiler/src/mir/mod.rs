@@ -11,7 +11,8 @@
 //! names each of its variables once, an argument a variable or a pattern
 //! ([`Init::HeadPath`]); no term deeper than [`MAX_DEPTH`]),
 //! *which variables are lazy* (first occurring as the argument of
-//! `get`/`inc` or the variable of `is`), *where a constant next
+//! `get`/`inc`, the variable of `is`, or a side of `=` whose other side
+//! does not name it), *where a constant next
 //! situation goes* and *which out_arg passes the pipe on unchanged*
 //! ([`OutPass`]) are decided here only. The interpreter
 //! ([`crate::interp`]) runs the plans; the code generator
@@ -103,6 +104,13 @@ pub enum Ev {
     Is {
         lhs: Build,
         expr: Build,
+    },
+    /// `V = E` or `E = V` for a variable `V` not made yet and not in `E`
+    /// (D-30: unified, not evaluated): `V` takes `E`'s term as built, which
+    /// is also the value. The unification cannot fail and makes no cycle.
+    BindFresh {
+        expr: Build,
+        dst: Reg,
     },
     /// A compound whose evaluation evaluates its arguments only.
     Compound(Atom, Box<[Ev]>),
@@ -345,9 +353,11 @@ impl Ev {
     fn constants(&self, out: &mut Vec<Term>) {
         match self {
             Ev::Value(_) | Ev::VarOpFresh { .. } => {}
-            Ev::Built(b) | Ev::Eval(b) | Ev::VarOp { arg: b, .. } | Ev::IsFresh { expr: b, .. } => {
-                b.constants(out)
-            }
+            Ev::Built(b)
+            | Ev::Eval(b)
+            | Ev::VarOp { arg: b, .. }
+            | Ev::IsFresh { expr: b, .. }
+            | Ev::BindFresh { expr: b, .. } => b.constants(out),
             Ev::If(c, a, b) | Ev::Pick(c, a, b) => {
                 c.constants(out);
                 a.constants(out);

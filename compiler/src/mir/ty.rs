@@ -1175,6 +1175,12 @@ impl<'a> State<'a> {
                 self.def(d, s, *dst, &v);
                 v
             }
+            // `V = E`: `V` takes `E`'s term as built (D-30).
+            Ev::BindFresh { expr, dst } => {
+                let v = self.build_ty(d, s, expr);
+                self.def(d, s, *dst, &v);
+                v
+            }
             Ev::Is { lhs, expr } => {
                 let v = self.is_ty(d, s, expr);
                 if let Build::Reg(r) = lhs {
@@ -2270,7 +2276,7 @@ fn ev_first_use(e: &Ev, r: Reg, depth: usize) -> Use {
         },
         Ev::VarOpFresh { dst, .. } if *dst == r => Use::Boundary,
         Ev::VarOpFresh { .. } => Use::None,
-        Ev::IsFresh { expr, dst } => match met(expr, Use::Read) {
+        Ev::IsFresh { expr, dst } | Ev::BindFresh { expr, dst } => match met(expr, Use::Read) {
             Use::None if *dst == r => Use::Boundary,
             u => u,
         },
@@ -2362,7 +2368,7 @@ pub(crate) fn occurrences(p: &SitPlan) -> Vec<u32> {
                 ev(b, f, depth + 1);
             }
             Ev::VarOpFresh { dst, .. } => f(*dst),
-            Ev::IsFresh { expr, dst } => {
+            Ev::IsFresh { expr, dst } | Ev::BindFresh { expr, dst } => {
                 build(expr, f, depth + 1);
                 f(*dst);
             }
@@ -2531,9 +2537,11 @@ pub(crate) fn ev_mentions(e: &Ev, r: Reg, depth: usize) -> bool {
     let cond = |c: &Cond| cond_mentions(c, r, depth);
     match e {
         Ev::Value(x) => *x == r,
-        Ev::Built(b) | Ev::Eval(b) | Ev::VarOp { arg: b, .. } | Ev::IsFresh { expr: b, .. } => {
-            build_mentions(b, r, depth + 1)
-        }
+        Ev::Built(b)
+        | Ev::Eval(b)
+        | Ev::VarOp { arg: b, .. }
+        | Ev::IsFresh { expr: b, .. }
+        | Ev::BindFresh { expr: b, .. } => build_mentions(b, r, depth + 1),
         Ev::If(c, a, b) | Ev::Pick(c, a, b) => {
             cond(c) || ev_mentions(a, r, depth + 1) || ev_mentions(b, r, depth + 1)
         }

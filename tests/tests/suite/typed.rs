@@ -4038,6 +4038,8 @@ mod ncold20;
 mod nwinch25;
 /// Helper `nfloat25`'s plain functions on floats against the engine (issue 37).
 mod nfloat25;
+/// Helper `neq25`'s `X = Y` in arcs' actions (issue 37).
+mod neq25;
 /// Helper `review18`'s workloads with bad inputs (issue 37).
 mod review18;
 /// Helper `review19`'s workloads with bad inputs (issue 37).

@@ -1869,6 +1869,20 @@ impl Gen<'_> {
                     regs.insert(*dst, (rr, Ty::Float));
                     Ty::Float
                 }
+                // `V = E` (D-30) into a fresh variable: `E`'s native
+                // value, as built, held in `V`'s register (no unification
+                // is needed: `V` is not made yet and `E` does not name it).
+                Ev::BindFresh { expr, dst } => {
+                    let v = self.nat_value(expr, regs)?;
+                    if let Build::Const(t) = expr {
+                        if let sitlog_runtime::Value::Atom(a) = self.store.value(*t) {
+                            const_atom = Some(a);
+                        }
+                    }
+                    let dty = d.types[ix].regs[*dst as usize].ty.clone();
+                    bind_fresh(&mut stmts, regs, &x, v.e, &v.ty, *dst, dty)?;
+                    v.ty
+                }
                 Ev::Built(Build::Const(t)) => {
                     let v = self.nat_value(&Build::Const(*t), regs)?;
                     let e = v.e;

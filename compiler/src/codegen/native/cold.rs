@@ -133,7 +133,7 @@ impl Gen<'_> {
             }
             Ev::VarOpFresh { op, .. } => *op == atoms::GET,
             Ev::VarOp { op, arg, .. } => *op == atoms::GET && self.build_keeps(arg, regs),
-            Ev::IsFresh { expr, .. } => self.build_keeps(expr, regs),
+            Ev::IsFresh { expr, .. } | Ev::BindFresh { expr, .. } => self.build_keeps(expr, regs),
             Ev::Is { lhs, expr } => self.build_keeps(lhs, regs) && self.build_keeps(expr, regs),
             Ev::Compound(f, args) => !changes(*f) && args.iter().all(|a| self.ev_keeps(a, regs)),
         }

@@ -516,7 +516,7 @@ fn ev_regs(e: &Ev, out: &mut Vec<Reg>) {
         }
         Ev::VarOpFresh { dst, .. } => out.push(*dst),
         Ev::VarOp { arg, .. } => build_regs(arg, out),
-        Ev::IsFresh { expr, dst } => {
+        Ev::IsFresh { expr, dst } | Ev::BindFresh { expr, dst } => {
             build_regs(expr, out);
             out.push(*dst);
         }
@@ -563,7 +563,7 @@ fn next_parts<'a>(n: &'a Next, builds: &mut Vec<&'a Build>, evs: &mut Vec<&'a Ev
                 ev(b, builds, evs);
             }
             Ev::VarOp { arg, .. } => builds.push(arg),
-            Ev::IsFresh { expr, .. } => builds.push(expr),
+            Ev::IsFresh { expr, .. } | Ev::BindFresh { expr, .. } => builds.push(expr),
             Ev::Is { lhs, expr } => builds.extend([lhs, expr]),
             Ev::Compound(_, args) => args.iter().for_each(|a| ev(a, builds, evs)),
             Ev::Value(_) | Ev::VarOpFresh { .. } => {}

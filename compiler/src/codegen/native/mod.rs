@@ -1114,7 +1114,9 @@ fn has_var_op(e: &Ev, which: &dyn Fn(Atom, Atom) -> bool) -> bool {
 /// made yet), in evaluation order.
 fn ev_binds(e: &Ev, out: &mut Vec<Reg>) {
     match e {
-        Ev::VarOpFresh { dst, .. } | Ev::IsFresh { dst, .. } => out.push(*dst),
+        Ev::VarOpFresh { dst, .. } | Ev::IsFresh { dst, .. } | Ev::BindFresh { dst, .. } => {
+            out.push(*dst)
+        }
         Ev::Compound(_, args) => args.iter().for_each(|a| ev_binds(a, out)),
         Ev::If(_, a, b) | Ev::Pick(_, a, b) => {
             ev_binds(a, out);
@@ -3985,6 +3987,16 @@ impl Gen<'_> {
                 };
                 let t = self.nat_build_term(expr, regs, ts, n)?;
                 ts.push(quote!(let #x = cx.is(None, #t, arc_at)?;));
+                Ok(quote!(#x))
+            }
+            // `V = E` (D-30): `V` is `E`'s term as built.
+            Ev::BindFresh { expr, dst } => {
+                let x = match regs.get(dst) {
+                    Some((x, _)) if is_fresh(x) => x.clone(),
+                    _ => return Err(format!("register r{dst} is set twice")),
+                };
+                let t = self.nat_build_term(expr, regs, ts, n)?;
+                ts.push(quote!(let #x = #t;));
                 Ok(quote!(#x))
             }
             Ev::Is { lhs, expr } => {
