@@ -4034,6 +4034,8 @@ fn when_with_expression_operands_agrees() {
 }
 /// Helper `ncold20`'s global reads native code cannot hold (issue 37).
 mod ncold20;
+/// Helper `npipe25`'s lists read from the held pipe (issue 37).
+mod npipe25;
 /// Helper `review18`'s workloads with bad inputs (issue 37).
 mod review18;
 /// Helper `review19`'s workloads with bad inputs (issue 37).
