@@ -54,6 +54,7 @@ mod boundary;
 mod cx;
 mod effect;
 mod held_call;
+mod held_in;
 mod holes;
 mod io;
 mod native_stack;

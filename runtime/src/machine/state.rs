@@ -171,7 +171,9 @@ pub const HELD_MAX: usize = 3;
 /// the values makes), every writer replaces the mark. With `n == 0` the
 /// pipe is the value `args[0]` itself (an out_arg `Acc` of a list or a
 /// compound of native values, `Cx::hold_pipe_value`): its term is
-/// `to_term` of it, and no pattern reads it held.
+/// `to_term` of it, and no pattern reads it held. A native in_arg that
+/// reads the whole pipe into a register reads either where it is
+/// (`Cx::pipe_as`, module `held_in`), the pipe left held.
 pub struct HeldPipe {
     pub(super) name: Atom,
     pub(super) n: usize,

@@ -69,9 +69,23 @@ pub trait Native: Clone + PartialEq + Sized + 'static {
     fn converts(store: &Store, t: Term) -> bool {
         Self::from_term(store, t).is_some()
     }
+    /// The value a canonical [`Val`]'s term converts to, read from the
+    /// value itself (the pipe native code holds whole, `Cx::pipe_as`):
+    /// `Some(x)` only where `from_term` of `v.to_term(..)` is `Some(x)`;
+    /// `None` where that is not known without the term (the caller then
+    /// makes the term and converts it). Only the types [`FromVal`]
+    /// reads, and lists of them, say more than `None`.
+    #[inline]
+    fn from_held(_v: &Val) -> Option<Self> {
+        None
+    }
 }
 
 impl Native for i64 {
+    #[inline]
+    fn from_held(v: &Val) -> Option<i64> {
+        <i64 as FromVal>::from_val(v)
+    }
     #[inline]
     fn from_term(store: &Store, t: Term) -> Option<i64> {
         store.int_of(t)
@@ -84,6 +98,10 @@ impl Native for i64 {
 
 impl Native for f64 {
     #[inline]
+    fn from_held(v: &Val) -> Option<f64> {
+        <f64 as FromVal>::from_val(v)
+    }
+    #[inline]
     fn from_term(store: &Store, t: Term) -> Option<f64> {
         store.float_of(t)
     }
@@ -94,6 +112,10 @@ impl Native for f64 {
 }
 
 impl Native for Atom {
+    #[inline]
+    fn from_held(v: &Val) -> Option<Atom> {
+        <Atom as FromVal>::from_val(v)
+    }
     #[inline]
     fn from_term(store: &Store, t: Term) -> Option<Atom> {
         store.atom_of(t)
@@ -135,6 +157,11 @@ impl Native for Ground {
 }
 
 impl Native for Val {
+    /// The value itself (canonical, inert: [`FromVal`]).
+    #[inline]
+    fn from_held(v: &Val) -> Option<Val> {
+        <Val as FromVal>::from_val(v)
+    }
     /// A `ground` register's value (or a fixed-shape compound's), the
     /// checked conversion of a boundary: `None` for a term that is not
     /// ground, not inert (the term path would evaluate it: `1 + 1`), a
@@ -408,6 +435,22 @@ impl Val {
 }
 
 impl<T: Native> Native for List<T> {
+    /// A held list of `Val`s read as a `List<Val>`: its `Rc` shared; of
+    /// another element type, each element read by `T::from_held` (a new
+    /// list, as `from_term` makes); `[]` the empty list. Anything else
+    /// (an improper list, a compound): `None`, the term decides.
+    fn from_held(v: &Val) -> Option<List<T>> {
+        match v {
+            Val::List(l) => {
+                if let Some(l) = (l as &dyn std::any::Any).downcast_ref::<List<T>>() {
+                    return Some(l.clone());
+                }
+                l.iter().map(T::from_held).collect()
+            }
+            v if v.is_nil() => Some(List::nil()),
+            _ => None,
+        }
+    }
     /// A walk of the list, each element converted; a list remembered
     /// (`native::memo`: the same term converted before, or made of this
     /// list) shared at once.
@@ -533,5 +576,51 @@ mod tests {
         let id = compound(&mut s, f, &[Term::atom(a)]);
         assert_eq!(s.writeq(id), "f(a)");
         assert_eq!(compound(&mut s, f, &[]), Term::atom(f));
+    }
+
+    /// `from_held` of a canonical value gives what `from_term` of its
+    /// term gives, where it says anything (`Cx::pipe_as`).
+    #[test]
+    fn from_held_agrees_with_the_term() {
+        fn check<T: Native + std::fmt::Debug>(s: &mut Store, v: &Val) {
+            if let Some(x) = T::from_held(v) {
+                let t = v.to_term(s);
+                assert_eq!(Some(x), T::from_term(s, t), "{v:?}");
+            }
+        }
+        let mut s = Store::new();
+        let a = Atom::intern("a");
+        let f = Atom::intern("f");
+        let fa = Val::Tagged(super::super::Compound::new(f, [Val::Sym(a), Val::Int(1)]));
+        let atoms: List<Val> = [Val::Sym(a), Val::Sym(f)].into_iter().collect();
+        let ints: List<Val> = [Val::Int(1), Val::Int(2)].into_iter().collect();
+        let mixed: List<Val> = [fa.clone(), Val::Float(1.5), Val::List(ints.clone())]
+            .into_iter()
+            .collect();
+        for v in [
+            Val::List(atoms),
+            Val::List(ints),
+            Val::List(mixed),
+            Val::List(List::nil()),
+            fa,
+            Val::Int(3),
+            Val::Float(2.5),
+            Val::Sym(a),
+        ] {
+            check::<Val>(&mut s, &v);
+            check::<List<Val>>(&mut s, &v);
+            check::<List<Atom>>(&mut s, &v);
+            check::<List<i64>>(&mut s, &v);
+            check::<List<Never>>(&mut s, &v);
+            check::<i64>(&mut s, &v);
+            check::<f64>(&mut s, &v);
+            check::<Atom>(&mut s, &v);
+            assert!(<Val as Native>::from_held(&v).is_some());
+        }
+        let l: List<Val> = [Val::Int(1)].into_iter().collect();
+        assert_eq!(
+            <List<i64> as Native>::from_held(&Val::List(l)),
+            Some([1].into_iter().collect())
+        );
     }
 }

@@ -4040,6 +4040,8 @@ mod nwinch25;
 mod nfloat25;
 /// Helper `neq25`'s `X = Y` in arcs' actions (issue 37).
 mod neq25;
+/// Helper `npipe25`'s lists read from the held pipe (issue 37).
+mod npipe25;
 /// Helper `review18`'s workloads with bad inputs (issue 37).
 mod review18;
 /// Helper `review19`'s workloads with bad inputs (issue 37).

@@ -61,6 +61,13 @@
 //! per element, made only where something reads the pipe as one (the
 //! final that takes the last round's list), not at every call.
 //!
+//! An in_arg that reads the whole pipe into a register (`in_arg ==> L`)
+//! reads a held pipe where it is (`Cx::pipe_as`, `Cx::pipe_converts`,
+//! `npipe25`): the value held whole or the compound of the held values,
+//! converted by `Native::from_held` (a list of `Val`s shared), no term
+//! made and none converted back; the pipe stays held. Where `from_held`
+//! cannot tell, the term is made and converted as before.
+//!
 //! A pipe value that does not convert hands the situation over to the
 //! machine before anything of its visit is done (its term code runs it);
 //! where the machine enters native code, `nat_entry` checks the
@@ -89,8 +96,7 @@ impl Gen<'_> {
         let _ = Literal::u32_unsuffixed(ix as u32);
         if d.pipe_unread.get() {
             return Ok(quote! {
-                let pipe_in = cx.pipe_in();
-                if !cx.converts_to::<#rty>(pipe_in) {
+                if !cx.pipe_converts::<#rty>() {
                     // Not of the in_arg's type: the term code runs the visit.
                     #hand
                     cx.count_transitions(count);
@@ -102,8 +108,7 @@ impl Gen<'_> {
             });
         }
         Ok(quote! {
-            let pipe_in = cx.pipe_in();
-            let pipe_value = cx.to_native::<#rty>(pipe_in);
+            let pipe_value = cx.pipe_as::<#rty>();
             let Some(#rr) = pipe_value else {
                 // Not of the in_arg's type: the term code runs the visit.
                 #hand
@@ -401,8 +406,7 @@ impl Gen<'_> {
             if let Init::Pipe = init {
                 let ty = super::rust_ty(&d.types[ix].regs[*r as usize].ty)?;
                 checks.push(quote! {
-                    let t = cx.pipe_in();
-                    if cx.to_native::<#ty>(t).is_none() {
+                    if !cx.pipe_converts::<#ty>() {
                         return None;
                     }
                 });

@@ -9,7 +9,7 @@
 //! hand-over after a conversion check, inside a block, a branch or a
 //! labelled block is seen. These paths are not the situation's
 //! own: a **failed conversion at a boundary** (the `else` of a `let ..
-//! else`, the body of `if !cx.converts_to::<T>(..)`, the `None` or `_`
+//! else`, the body of `if !cx.converts_to::<T>(..)` (or `pipe_converts`), the `None` or `_`
 //! arm of a `match`: a value that is not of its inferred type, of no shape
 //! the other arms take, or an overflow of checked arithmetic, handed to
 //! the machine's term code; a selection's value that no variant takes, the end of a `'sel`
@@ -437,7 +437,8 @@ fn if_chain(toks: &[TokenTree], mut k: usize, f: &mut Flow) -> usize {
         };
         let body: Vec<TokenTree> = g.stream().into_iter().collect();
         // `if !cx.converts_to::<T>(v)`: its body is a failed conversion.
-        let failed = is_punct(cond.first(), '!') && has_ident(cond, "converts_to");
+        let failed = is_punct(cond.first(), '!')
+            && (has_ident(cond, "converts_to") || has_ident(cond, "pipe_converts"));
         let value = if failed { Some(false) } else { decided(cond) };
         if value != Some(false) {
             let b = seq(&body, after);
