@@ -53,7 +53,7 @@ def all_workloads():
 
 
 def shape(name):
-    return "d" if name.startswith(("d_", "r17_d_", "r18_d_", "r19_d_", "r22_d_", "r24_d_", "n24_d_")) or name == "list_search" else "c"
+    return "d" if name.startswith(("d_", "r17_d_", "r18_d_", "r19_d_", "r22_d_", "r24_d_", "n24_d_", "n25_d_")) or name == "list_search" else "c"
 
 
 def count(name, way, n, places):

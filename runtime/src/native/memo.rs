@@ -262,8 +262,14 @@ impl Ranges {
     }
 }
 
-/// The remembered list of `kind` term cell `c` is, if any.
-fn find<T: 'static>(store: &Store, kind: TypeId, c: u32, ranges: &Ranges) -> Option<List<T>> {
+/// The remembered list of `kind` term cell `c` is, if any, and whether
+/// none of its elements holds a term.
+fn find<T: 'static>(
+    store: &Store,
+    kind: TypeId,
+    c: u32,
+    ranges: &Ranges,
+) -> Option<(List<T>, bool)> {
     if !ranges.cells && !ranges.may_hold(c) {
         return None;
     }
@@ -271,7 +277,7 @@ fn find<T: 'static>(store: &Store, kind: TypeId, c: u32, ranges: &Ranges) -> Opt
         if ranges.cells {
             if let Some(one) = m.cells.by_term.get(&c) {
                 if one.kind == kind {
-                    return List::from_cell_any(&one.cell);
+                    return List::from_cell_any(&one.cell).map(|l| (l, one.termless));
                 }
             }
         }
@@ -284,13 +290,14 @@ fn find<T: 'static>(store: &Store, kind: TypeId, c: u32, ranges: &Ranges) -> Opt
             .find_map(|e| {
                 let i = e.index_of(c)?;
                 let items = e.items.downcast_ref::<Rc<[T]>>()?;
-                Some(List::from_rc(Rc::clone(items), i))
+                Some((List::from_rc(Rc::clone(items), i), e.termless))
             })
     })
 }
 
-/// The term a slice-shaped `list` is, remembered (any kind), if any.
-fn term_of<T: 'static>(store: &Store, list: &List<T>) -> Option<Term> {
+/// The term a slice-shaped `list` is, remembered (any kind), if any, and
+/// whether none of its elements holds a term.
+fn term_of<T: 'static>(store: &Store, list: &List<T>) -> Option<(Term, bool)> {
     let (items, start) = list.slice_parts()?;
     let ptr = Rc::as_ptr(items) as *const T as usize;
     with_memo(|m| {
@@ -299,25 +306,30 @@ fn term_of<T: 'static>(store: &Store, list: &List<T>) -> Option<Term> {
             .filter(|e| e.ptr == ptr && e.valid(store) && e.items.is::<Rc<[T]>>())
             .find_map(|e| {
                 let k = start.checked_sub(e.base)?;
-                e.cells.get(k as usize).map(|&c| Term(Repr::Struct(c)))
+                e.cells
+                    .get(k as usize)
+                    .map(|&c| (Term(Repr::Struct(c)), e.termless))
             })
     })
 }
 
-/// The term cell a cell-shaped list (its cell at `addr`) is, remembered.
+/// The term cell a cell-shaped list (its cell at `addr`) is, remembered,
+/// and whether none of its elements holds a term.
 #[inline]
-fn term_of_cell(store: &Store, addr: usize) -> Option<Term> {
+fn term_of_cell(store: &Store, addr: usize) -> Option<(Term, bool)> {
     with_memo(|m| {
         if !m.cells.valid(store) {
             return None;
         }
-        m.cells.by_addr.get(&addr).map(|&c| Term(Repr::Struct(c)))
+        let &c = m.cells.by_addr.get(&addr)?;
+        let termless = m.cells.by_term.get(&c).is_some_and(|one| one.termless);
+        Some((Term(Repr::Struct(c)), termless))
     })
 }
 
 /// Remembers that term cell `c` (ground and inert) and `list`'s cell are
-/// the same list, its head `head`.
-fn remember_cell<T: 'static>(store: &Store, kind: TypeId, c: u32, list: &List<T>, head: &T) {
+/// the same list (`termless`: none of its elements holds a term).
+fn remember_cell<T: 'static>(store: &Store, kind: TypeId, c: u32, list: &List<T>, termless: bool) {
     let (Some(cell), Some(addr)) = (list.cell_any(), list.cell_addr()) else {
         return;
     };
@@ -325,7 +337,7 @@ fn remember_cell<T: 'static>(store: &Store, kind: TypeId, c: u32, list: &List<T>
         kind,
         cell,
         addr,
-        termless: termless(std::slice::from_ref(head)),
+        termless,
     };
     with_memo(|m| {
         let cells = &mut m.cells;
@@ -494,18 +506,17 @@ pub(crate) fn list_from_term<T: 'static>(
     let mut cells = Vec::new();
     let mut cur = t;
     while let Some(c) = cell_of(cur) {
-        if let Some(rest) = find::<T>(store, kind, c, &ranges) {
+        if let Some((rest, mut clean)) = find::<T>(store, kind, c, &ranges) {
             // The cells above the remembered tail, remembered too (those
             // ground and inert), each beside the `cons` cell made of it.
             let mut acc = rest;
             for (i, x) in items.into_iter().enumerate().rev() {
+                clean = clean && termless(std::slice::from_ref(&x));
                 acc = List::cons(x, acc);
                 let c = if cells.is_empty() { first[i] } else { cells[i] };
                 let ct = Term(Repr::Struct(c));
                 if store.known_ground(ct) && store.is_inert(ct) {
-                    if let Some((head, _)) = acc.cell_parts() {
-                        remember_cell(store, kind, c, &acc, head);
-                    }
+                    remember_cell(store, kind, c, &acc, clean);
                 }
             }
             return Some(acc);
@@ -584,11 +595,11 @@ pub(crate) fn list_to_term<T: 'static>(
         rest = tail;
     }
     if prefix == 0 {
-        if let Some(t) = hit {
+        if let Some((t, _)) = hit {
             return t;
         }
     }
-    let tail = match hit {
+    let (tail, mut clean) = match hit {
         Some(t) => t,
         None => slice_term(store, kind, rest, &term, &keep),
     };
@@ -606,10 +617,11 @@ pub(crate) fn list_to_term<T: 'static>(
         };
         let h = term(head, store);
         acc = store.cons(h, acc);
+        clean = clean && termless(std::slice::from_ref(head));
         if let Some(c) = cell_of(acc) {
             if keep(head) && store.known_ground(acc) && store.is_inert(acc) {
                 if let Some(cell) = cell {
-                    remember_cell(store, kind, c, cell, head);
+                    remember_cell(store, kind, c, cell, clean);
                 }
             }
         }
@@ -618,17 +630,21 @@ pub(crate) fn list_to_term<T: 'static>(
 }
 
 /// The term of a slice-shaped list or `[]`: remembered, else built (and
-/// remembered if long enough, ground and inert).
+/// remembered if long enough, ground and inert); and whether none of its
+/// elements holds a term.
 fn slice_term<T: 'static>(
     store: &mut Store,
     kind: TypeId,
     list: &List<T>,
     term: &impl Fn(&T, &mut Store) -> Term,
     keep: &impl Fn(&T) -> bool,
-) -> Term {
-    if let Some(t) = term_of(store, list) {
-        return t;
+) -> (Term, bool) {
+    if let Some(found) = term_of(store, list) {
+        return found;
     }
+    let clean = list
+        .slice_parts()
+        .is_none_or(|(items, start)| termless(&items[start as usize..]));
     let t = super::val::list_term(store, list.iter(), list.len(), term);
     if list.len() >= MIN_LEN && store.known_ground(t) && store.is_inert(t) {
         if let Some((items, start)) = list.slice_parts() {
@@ -639,7 +655,7 @@ fn slice_term<T: 'static>(
             }
         }
     }
-    t
+    (t, clean)
 }
 
 /// The cells of a proper list's spine, first to last.

@@ -4079,6 +4079,10 @@ mod nstock23;
 /// (issue 37).
 mod nre24;
 
+/// Helper `nmemo25`'s accumulators and lists across collections (issue 37),
+/// with helper `nglob24`'s global lists.
+mod nmemo25;
+
 mod neff18_dms {
     pub mod errand {
         sitlog_macros::include_dm!("typed/neff18/errand");

@@ -316,3 +316,30 @@ fn entries_are_bounded() {
         assert_eq!(&<List<i64>>::from_term(&s, *t).unwrap(), l);
     }
 }
+
+/// A cell made a term above a list whose elements hold terms is
+/// remembered, but not across a collection (those terms moved).
+#[test]
+fn a_cell_above_terms_is_dropped_by_a_collection() {
+    clear();
+    let mut s = Store::new();
+    let f = Atom::intern("f");
+    let ft = s.compound(f, &[Term::int(1)]);
+    let tail: List<Val> = List::from_vec(vec![Val::from(ft), Val::Int(2)]);
+    let l = List::cons(Val::Int(0), tail);
+    let t = l.to_term(&mut s);
+    let back = <List<Val>>::from_term(&s, t).unwrap();
+    assert!(back.same_storage(&l));
+    MEMO.with(|m| {
+        let m = m.borrow();
+        let c = &m.as_ref().unwrap().cells;
+        assert_eq!(c.by_term.len(), 1);
+        assert!(c.by_term.values().all(|one| !one.termless));
+    });
+    let mut roots = [t];
+    s.gc(&mut roots);
+    MEMO.with(|m| assert!(m.borrow().as_ref().unwrap().cells.by_term.is_empty()));
+    let again = <List<Val>>::from_term(&s, roots[0]).unwrap();
+    assert!(!again.same_storage(&l));
+    assert_eq!(again.len(), 3);
+}
