@@ -60,10 +60,17 @@ fn lists() -> Vec<(String, &'static str)> {
 
 /// Each of `mains` on the compiled task and on the interpreter's plans
 /// against the interpreter with a GC threshold of `threshold` cells, the
-/// history kept and not.
-fn agree_collecting<A: app::App>(compiled: &A, dir: &str, mains: &[String], threshold: usize) {
+/// history kept and not (`prolog`: the DMs have user functions, loaded
+/// once).
+fn agree_collecting<A: app::App>(
+    compiled: &A,
+    dir: &str,
+    mains: &[String],
+    threshold: usize,
+    prolog: bool,
+) {
     let ir = interpreter(dir);
-    with_engine(&ir, || {
+    let all = || {
         for main in mains {
             for keep_history in [false, true] {
                 let options = || Options {
@@ -85,7 +92,12 @@ fn agree_collecting<A: app::App>(compiled: &A, dir: &str, mains: &[String], thre
                 );
             }
         }
-    });
+    };
+    if prolog {
+        with_engine(&ir, all);
+    } else {
+        all();
+    }
 }
 
 /// The accumulator walk of the workload `n25_d_tally_walk`: one round and
@@ -106,11 +118,11 @@ fn tally_walk_agrees() {
         agree_both(dms::tally_walk::program(), &ir, &mains);
     });
     let long = vec![
-        format!("survey(3, [{}], p299)", places(300, "")),
+        format!("survey(2, [{}], p149)", places(150, "")),
         format!("survey(2, [{}], zz)", places(40, "")),
     ];
-    for threshold in [1, 500, 5000] {
-        agree_collecting(dms::tally_walk::program(), dir, &long, threshold);
+    for threshold in [1, 3000] {
+        agree_collecting(dms::tally_walk::program(), dir, &long, threshold, true);
     }
 }
 
@@ -130,13 +142,13 @@ fn accumulators_agree() {
         agree_both(dms::acc::program(), &ir, &ms);
     });
     let long = vec![
-        format!("pair([{}], p199)", places(200, "")),
+        format!("pair([{}], p119)", places(120, "")),
         format!("pair([{}], zz)", places(30, "")),
-        format!("bound([{}], p3)", places(200, "")),
+        format!("bound([{}], p3)", places(120, "")),
         format!("bound([{}], zz)", places(30, "")),
     ];
-    for threshold in [1, 700] {
-        agree_collecting(dms::acc::program(), dir, &long, threshold);
+    for threshold in [1, 3000] {
+        agree_collecting(dms::acc::program(), dir, &long, threshold, true);
     }
 }
 
@@ -163,7 +175,7 @@ fn grow_list_agrees() {
     );
     let long = vec!["gather(400)".to_owned(), "gather(20)".to_owned()];
     for threshold in [1, 600] {
-        agree_collecting(dms::grow_list::program(), dir, &long, threshold);
+        agree_collecting(dms::grow_list::program(), dir, &long, threshold, false);
     }
 }
 
@@ -185,5 +197,6 @@ fn two_writers_agree() {
         dir,
         &["mix(300)".to_owned()],
         1,
+        false,
     );
 }
