@@ -46,7 +46,14 @@ use hand_nre24::*;
 #[path = "../src/hand25g.rs"]
 mod hand25g;
 use hand25g::*;
+#[path = "../src/hand_nmemo25.rs"]
+mod hand_nmemo25;
+use hand_nmemo25::*;
 
+// Helper `nglob24`'s (issue 37): a global list grown a step, read each step.
+mod g24_d_grow_list {
+    sitlog_macros::include_dm!("../tests/typed/nglob24/g24_d_grow_list");
+}
 mod c_limit_inarg_echo {
     sitlog_macros::include_dm!("../tests/typed/shapes/c_limit_inarg_echo");
 }
@@ -346,6 +353,9 @@ mod g25_c_float_prog {
 }
 mod g25_d_float_next {
     sitlog_macros::include_dm!("../tests/typed/ngauge25/g25_d_float_next");
+// Helper nmemo25's (d): the same walk with an accumulator `[S|Seen]`.
+mod n25_d_tally_walk {
+    sitlog_macros::include_dm!("../tests/typed/nmemo25/n25_d_tally_walk");
 }
 // Ours (`benches/dms`), for comparing the compiled and interpreted runs
 // of a change with the benchmarks'; their hand-written way is the one
@@ -438,6 +448,8 @@ fn interpreter(dir: &str) -> Ir {
         _ if dir.starts_with("g25_") => "../tests/typed/ngauge25",
         _ if dir.starts_with("n25_c_tally") => "../tests/typed/nwinch25",
         _ if dir.starts_with("n25_") => "../tests/typed/nfloat25",
+        _ if dir.starts_with("n25_") => "../tests/typed/nmemo25",
+        _ if dir.starts_with("g24_") => "../tests/typed/nglob24",
         _ => "../tests/typed/shapes",
     };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(root).join(dir);
@@ -610,6 +622,9 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             String::new()
         }
         "r22_d_sweep_say" => format!("patrol({n}, {list}, {last})"),
+        // Helper `nglob24`'s: `n` steps, the list `n` long at the end (its
+        // places unused).
+        "g24_d_grow_list" => format!("gather({n})"),
         "r22_d_stock_expect" => {
             let pairs: Vec<String> = (0..len).map(|i| format!("p{i}-{}", i % 7 + 1)).collect();
             format!("inventory({n}, [{}], {last})", pairs.join(","))
@@ -700,6 +715,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             let xs: Vec<String> = (0..len).map(|i| format!("{i}.5")).collect();
             format!("band({n}, [{}], {}.25)", xs.join(","), len - 1)
         }
+        "n24_d_note_walk" | "n25_d_tally_walk" => format!("survey({n}, {list}, {last})"),
         "echo_calls" if way == "hand" => return hand_echo_calls(black_box(n)),
         "echo_calls" => {
             let n = n.to_string();
@@ -871,6 +887,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                 hand_r19_prolog_first(n, black_box(&crates(len)), black_box(|w| w >= 1000))
             }
             "r22_c_stage_global" => hand_r22_stage_global(n),
+            "g24_d_grow_list" => hand_g24_grow_list(n),
             "r22_c_ferry_two" => hand_r22_ferry_two(n),
             "r22_c_lap_pipe" => hand_r22_lap_pipe(n),
             "r22_c_rung_id" => hand_r22_rung_id(n),
@@ -934,6 +951,14 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                     }),
                 )
             }
+            "n25_d_tally_walk" => hand_n25_tally_walk(
+                n,
+                black_box(&syms),
+                black_box(lsym),
+                black_box(|s| {
+                    black_box(s);
+                }),
+            ),
             "n24_d_note_walk" => hand_n24_note_walk(
                 n,
                 black_box(&syms),
@@ -1089,12 +1114,14 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "g25_c_float_prog" => ways!(g25_c_float_prog),
         "g25_d_float_next" => ways!(g25_d_float_next),
         "n25_d_float_band" => ways!(n25_d_float_band),
+        "n25_d_tally_walk" => ways!(n25_d_tally_walk),
         "c_expr_compare" => ways!(c_expr_compare),
+        "g24_d_grow_list" => ways!(g24_d_grow_list),
         _ => unreachable!(),
     }
 }
 
-const ALL: [&str; 93] = [
+const ALL: [&str; 94] = [
     "c_limit_inarg_echo",
     "c_counter_param",
     "c_outarg_cond",
@@ -1188,6 +1215,7 @@ const ALL: [&str; 93] = [
     "g25_c_float_prog",
     "g25_d_float_next",
     "n25_d_float_band",
+    "n25_d_tally_walk",
 ];
 
 /// The records of `r25_d_obj_records` at `len` places: in the kitchen
@@ -1240,6 +1268,12 @@ fn crates(len: usize) -> Vec<i64> {
         .collect()
 }
 
+/// Workloads not in [`ALL`] (not in `shapes_table.py`'s run): helper
+/// `nglob24`'s global list grown a step, whose cost a transition grows with
+/// the steps (its values performed are terms made from the list), measured
+/// at 8 and 256 steps instead (docs/guide/performance.md).
+const EXTRA: [&str; 1] = ["g24_d_grow_list"];
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.first().map(String::as_str) == Some("check") {
@@ -1247,6 +1281,7 @@ fn main() {
         let some: Vec<&str> = args[1..].iter().map(String::as_str).collect();
         for name in ALL
             .into_iter()
+            .chain(EXTRA)
             .filter(|n| some.is_empty() || some.contains(n))
         {
             for len in [8, 13] {

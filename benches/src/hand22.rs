@@ -474,3 +474,29 @@ pub fn hand_r22_goal_local(rounds: i64, spots: &[Sym], goal: Sym) -> u64 {
     }
     t
 }
+
+/// Helper `nglob24`'s `g24_d_grow_list` (issue 37): `budget` steps, each
+/// reading the global list (`get(seen, S)`), counting (`inc(count, C)`) and
+/// setting the list one element longer (`set(seen, [C|S])`), the values
+/// performed (`black_box`: the effector ignores a list and a number); then
+/// `check` (the list not empty) and `done`. The list a persistent cons list
+/// (`Rc` cells): a read and a write take constant time.
+pub fn hand_g24_grow_list(budget: i64) -> u64 {
+    use std::rc::Rc;
+    struct Cell(i64, Option<Rc<Cell>>);
+    let (mut seen, mut count, mut t): (Option<Rc<Cell>>, i64, u64) = (None, 0, 0);
+    loop {
+        t += 1;
+        let s = black_box(seen.clone());
+        count = black_box(count + 1);
+        seen = Some(Rc::new(Cell(count, s)));
+        black_box(&seen);
+        if count >= black_box(budget) {
+            break;
+        }
+    }
+    // `check`, then the final `done` (the list is not empty).
+    t += 1;
+    black_box(seen.as_ref().map(|c| c.0));
+    t + 1
+}

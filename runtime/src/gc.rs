@@ -165,7 +165,16 @@ impl Store {
         }
         self.gc_scratch = scratch;
         self.trail.clear();
+        let old_epoch = self.epoch;
         self.epoch = self.epoch.wrapping_add(1);
+        // Lists remembered beside their terms follow their cells.
+        crate::native::memo::moved(
+            self.id.0,
+            old_epoch,
+            self.epoch,
+            frozen.cells,
+            &self.gc_scratch.cell_fwd,
+        );
         // Give back memory after a burst, keeping room to grow.
         shrink(&mut self.cells);
         shrink(&mut self.vars);

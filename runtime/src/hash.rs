@@ -1,8 +1,9 @@
 //! The hasher of the runtime's small tables keyed by atoms (the function
 //! registry, the plain functions, the evaluator's operator table): a
 //! multiplication a word, where SipHash showed up on every call and every
-//! `is`. Invariant: only for keys the program itself names (atom indices,
-//! arities), never for keys an adversary chooses.
+//! `is`; and `native::memo`'s cells (store cell indices, addresses).
+//! Invariant: only for keys the program itself names (atom indices,
+//! arities) or the runtime makes, never for keys an adversary chooses.
 
 use std::collections::HashMap;
 use std::hash::BuildHasherDefault;

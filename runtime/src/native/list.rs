@@ -237,6 +237,35 @@ impl<T> List<T> {
             _ => None,
         }
     }
+
+    /// The address of a cell-shaped list's cell (`native::memo`'s key for
+    /// it), `None` for the others.
+    #[inline]
+    pub(crate) fn cell_addr(&self) -> Option<usize> {
+        match &self.0 {
+            Shape::Cons(cell) => Some(Rc::as_ptr(cell) as *const () as usize),
+            _ => None,
+        }
+    }
+}
+
+impl<T: 'static> List<T> {
+    /// A cell-shaped list's cell, shared, as `native::memo` keeps it.
+    pub(crate) fn cell_any(&self) -> Option<Rc<dyn std::any::Any>> {
+        match &self.0 {
+            Shape::Cons(cell) => Some(Rc::clone(cell) as Rc<dyn std::any::Any>),
+            _ => None,
+        }
+    }
+
+    /// The list a cell [`List::cell_any`] gave starts (shared), `None` if
+    /// it is a cell of another element type.
+    pub(crate) fn from_cell_any(cell: &Rc<dyn std::any::Any>) -> Option<List<T>> {
+        Rc::clone(cell)
+            .downcast::<Cell<T>>()
+            .ok()
+            .map(|c| List(Shape::Cons(c)))
+    }
 }
 
 /// The element at `start` of a shared slice and the rest after it (the

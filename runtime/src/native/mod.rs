@@ -25,7 +25,7 @@
 
 mod head;
 mod list;
-mod memo;
+pub(crate) mod memo;
 mod rust;
 mod ty;
 mod val;

@@ -4094,6 +4094,9 @@ mod nre24;
 /// Helper `ngauge25`'s out_args left unbound and float `is` in a prog and
 /// a next situation's argument (issue 37).
 mod ngauge25;
+/// Helper `nmemo25`'s accumulators and lists across collections (issue 37),
+/// with helper `nglob24`'s global lists.
+mod nmemo25;
 
 mod neff18_dms {
     pub mod errand {
