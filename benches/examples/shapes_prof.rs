@@ -338,6 +338,7 @@ mod r25_d_strings {
 }
 mod r25_d_mutual_walk {
     sitlog_macros::include_dm!("../tests/typed/review25/r25_d_mutual_walk");
+}
 // Helper nfloat25's (d): floats in a band, a plain function's answer the next situation.
 mod n25_d_float_band {
     sitlog_macros::include_dm!("../tests/typed/nfloat25/n25_d_float_band");
@@ -353,6 +354,7 @@ mod g25_c_float_prog {
 }
 mod g25_d_float_next {
     sitlog_macros::include_dm!("../tests/typed/ngauge25/g25_d_float_next");
+}
 // Helper nmemo25's (d): the same walk with an accumulator `[S|Seen]`.
 mod n25_d_tally_walk {
     sitlog_macros::include_dm!("../tests/typed/nmemo25/n25_d_tally_walk");
@@ -657,7 +659,6 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
             let freqs: Vec<String> = (0..len).map(|i| format!("{i}.5")).collect();
             format!("tune({n}, [{}], {}.5)", freqs.join(","), len - 1)
         }
-        "n24_d_note_walk" => format!("survey({n}, {list}, {last})"),
         // Helper review25's: (c) the count the pipe (from 0), the limit an
         // argument of the main DM.
         "r25_c_pass_limit" if way != "hand" => {
@@ -711,6 +712,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
         "g25_d_float_next" => {
             let ws: Vec<String> = (0..len).map(|i| (i % 3 + 1).to_string()).collect();
             format!("tally({n}, [{}], 1.0e9)", ws.join(","))
+        }
         "n25_d_float_band" => {
             let xs: Vec<String> = (0..len).map(|i| format!("{i}.5")).collect();
             format!("band({n}, [{}], {}.25)", xs.join(","), len - 1)

@@ -28,8 +28,8 @@ use std::collections::{HashMap, HashSet};
 
 mod lower;
 mod out_pass;
-pub use out_pass::OutPass;
 pub(crate) use lower::is_type_test;
+pub use out_pass::OutPass;
 pub mod ty;
 
 use lower::Planner;

@@ -243,7 +243,7 @@ impl<T> List<T> {
     #[inline]
     pub(crate) fn cell_addr(&self) -> Option<usize> {
         match &self.0 {
-            Shape::Cons(cell) => Some(Rc::as_ptr(cell) as *const () as usize),
+            Shape::Cons(cell) => Some(cell.addr()),
             _ => None,
         }
     }
@@ -253,7 +253,9 @@ impl<T: 'static> List<T> {
     /// A cell-shaped list's cell, shared, as `native::memo` keeps it.
     pub(crate) fn cell_any(&self) -> Option<Rc<dyn std::any::Any>> {
         match &self.0 {
-            Shape::Cons(cell) => Some(Rc::clone(cell) as Rc<dyn std::any::Any>),
+            // The list itself, behind a type-erased `Rc`: it holds the
+            // cell (one more holder), so the cell's address stays its own.
+            Shape::Cons(_) => Some(Rc::new(self.clone()) as Rc<dyn std::any::Any>),
             _ => None,
         }
     }
@@ -261,10 +263,7 @@ impl<T: 'static> List<T> {
     /// The list a cell [`List::cell_any`] gave starts (shared), `None` if
     /// it is a cell of another element type.
     pub(crate) fn from_cell_any(cell: &Rc<dyn std::any::Any>) -> Option<List<T>> {
-        Rc::clone(cell)
-            .downcast::<Cell<T>>()
-            .ok()
-            .map(|c| List(Shape::Cons(c)))
+        cell.downcast_ref::<List<T>>().cloned()
     }
 }
 

@@ -4034,14 +4034,14 @@ fn when_with_expression_operands_agrees() {
 }
 /// Helper `ncold20`'s global reads native code cannot hold (issue 37).
 mod ncold20;
-/// Helper `nwinch25`'s outputs some finals leave and type tests (issue 37).
-mod nwinch25;
-/// Helper `nfloat25`'s plain functions on floats against the engine (issue 37).
-mod nfloat25;
 /// Helper `neq25`'s `X = Y` in arcs' actions (issue 37).
 mod neq25;
+/// Helper `nfloat25`'s plain functions on floats against the engine (issue 37).
+mod nfloat25;
 /// Helper `npipe25`'s lists read from the held pipe (issue 37).
 mod npipe25;
+/// Helper `nwinch25`'s outputs some finals leave and type tests (issue 37).
+mod nwinch25;
 /// Helper `review18`'s workloads with bad inputs (issue 37).
 mod review18;
 /// Helper `review19`'s workloads with bad inputs (issue 37).

@@ -66,6 +66,13 @@ impl<T> CellRef<T> {
         a.ptr == b.ptr
     }
 
+    /// The cell's address: its identity while a holder lives
+    /// (`native::memo`'s key for it).
+    #[inline]
+    pub(super) fn addr(&self) -> usize {
+        self.ptr.as_ptr() as usize
+    }
+
     /// The holders of this cell (for tests).
     #[cfg(test)]
     pub(super) fn holders(&self) -> usize {
