@@ -949,7 +949,7 @@ fn one(name: &str, way: &str, n: i64, len: usize) -> u64 {
                     black_box((len - 1) as f64 + 0.25),
                     black_box(|x: f64, lo: f64| {
                         let m = (x - lo) / 2.0;
-                        m >= 0.0 && m <= 0.25
+                        (0.0..=0.25).contains(&m)
                     }),
                 )
             }

@@ -20,12 +20,12 @@ const CASES: [(&str, &str, &str); 5] = [
     (
         "inarg_unread",
         "main/rung(I)",
-        "if ! cx . converts_to :: < i64 >",
+        "if ! cx . pipe_converts :: < i64 >",
     ),
     (
         "inarg_read",
         "main/rung(I)",
-        "if ! cx . converts_to :: < i64 >",
+        "if ! cx . pipe_converts :: < i64 >",
     ),
     (
         "inarg_pattern",
