@@ -18,7 +18,7 @@ use super::FromVal;
 /// Inlined: the steps into a compound's argument or a list's head are a
 /// loop of reads in place (`key_of(K-_Qty)` takes `K` at every visit of
 /// a walk); a step into a list's tail, which makes a list, is
-/// [`head_part_at`]'s.
+/// `head_part_at`'s.
 #[inline]
 pub fn head_part<T: FromVal>(v: &Val, path: &[usize]) -> Option<T> {
     let mut cur = v;
